@@ -1,0 +1,59 @@
+#!/bin/sh
+# Benchmark of the N-link chain (specs/gen_chain.sh), N = 2 5 10 20 50:
+#   compile_s  time of `eomc compile`
+#   ops        operation count of the generated mass_bias (adds+muls+divs+calls)
+#   ops_all    of all emitted functions
+#   lines      lines of generated C
+#   cc_s       time of `cc -O2 -c` on the generated C
+#   ns_rhs     ns per right-hand side: generated M and h + the runtime solve
+#   allocs     allocations in 1000 right-hand sides (must be 0)
+# and checks the targets: N = 50 compiles in < 1 s and its C in < 10 s,
+# N = 5 right-hand side <= 130 ns, no allocation.
+#
+# usage: chain_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB
+set -eu
+eomc=$1 src=$2 inc=$3 lib=$4
+cc=${CC:-cc}
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+gsl_libs=$(pkg-config --libs gsl)
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
+
+printf '%4s %10s %8s %8s %8s %8s %8s %7s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs
+fail=0
+for n in 2 5 10 20 50; do
+  "$src/specs/gen_chain.sh" "$n" > "$dir/chain$n.yaml"
+  t0=$(now)
+  "$eomc" compile "$dir/chain$n.yaml" -o "$dir/chain$n.c" --stats 2> "$dir/stats$n"
+  t1=$(now)
+  ops=$(awk '$1 == "mass_bias" { print $6 }' "$dir/stats$n")
+  all=$(awk 'NR > 1 { s += $6 } END { print s }' "$dir/stats$n")
+  lines=$(wc -l < "$dir/chain$n.c")
+  t2=$(now)
+  $cc -std=c11 -O2 -I"$inc" -c "$dir/chain$n.c" -o "$dir/chain$n.o"
+  t3=$(now)
+  $cc -std=c11 -O2 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
+    "$dir/chain$n.o" "$lib" $gsl_libs -lm \
+    -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/bench$n"
+  set -- $("$dir/bench$n" 2>/dev/null)
+  ns=$1 allocs=$2
+  ct=$(elapsed "$t0" "$t1") cct=$(elapsed "$t2" "$t3")
+  printf '%4d %10s %8d %8d %8d %8s %8s %7d\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" "$allocs"
+  [ "$allocs" -eq 0 ] || { echo "FAIL: N = $n allocates in the right-hand side"; fail=1; }
+  if [ "$n" -eq 50 ]; then
+    awk -v t="$ct" 'BEGIN { exit !(t < 1) }' || { echo "FAIL: N = 50 compile $ct s >= 1 s"; fail=1; }
+    awk -v t="$cct" 'BEGIN { exit !(t < 10) }' || { echo "FAIL: N = 50 cc $cct s >= 10 s"; fail=1; }
+  fi
+  [ "$n" -eq 20 ] && ops20=$all
+  if [ "$n" -eq 50 ]; then
+    # polynomial growth: code size ~ N^p with p well below exponential
+    p=$(awk -v a="$ops20" -v b="$all" 'BEGIN { printf "%.2f", log(b / a) / log(2.5) }')
+    echo "code size grows as N^$p between N = 20 and 50"
+    awk -v p="$p" 'BEGIN { exit !(p < 4) }' || { echo "FAIL: growth exponent $p >= 4"; fail=1; }
+  fi
+  if [ "$n" -eq 5 ]; then
+    awk -v t="$ns" 'BEGIN { exit !(t <= 130) }' || { echo "FAIL: N = 5 right-hand side $ns ns > 130 ns"; fail=1; }
+  fi
+done
+exit $fail

@@ -1,0 +1,226 @@
+/*
+ * build: run the C compiler on generated code.
+ *
+ * The runtime is found next to eomc: when eomc runs from its meson build
+ * directory, the headers come from the source tree and the library from
+ * the build tree; otherwise relative to eomc's own location, as the
+ * configured bindir relates to includedir and libdir (so an installed tree
+ * can be moved, or staged with DESTDIR).  EOMC_RUNTIME_INCLUDE and
+ * EOMC_RUNTIME_LIB override both.
+ */
+#include "build.h"
+#include "arena.h"
+#include "config.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+/* The directory of the running eomc, or "" if unknown. */
+static void
+self_dir(char *dir, size_t len)
+{
+    char self[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    dir[0] = '\0';
+    if (n <= 0)
+        return;
+    self[n] = '\0';
+    char *slash = strrchr(self, '/');
+    if (slash)
+        *slash = '\0';
+    snprintf(dir, len, "%s", self);
+}
+
+static int
+running_from_build_dir(const char *self)
+{
+    char dir[PATH_MAX];
+    if (!realpath(EOMC_BUILD_DIR, dir))
+        return 0;
+    size_t len = strlen(dir);
+    return strncmp(self, dir, len) == 0 && (self[len] == '/' || !self[len]);
+}
+
+/* `to` relative to `from` (both absolute, normalised): /usr/bin and
+ * /usr/include give ../include. */
+static void
+relative(const char *from, const char *to, char *out, size_t len)
+{
+    size_t common = 0;
+    for (size_t i = 0; from[i] && from[i] == to[i]; i++)
+        if (from[i] == '/')
+            common = i + 1;
+    out[0] = '\0';
+    for (const char *p = from + common; *p; p++)
+        if (p == from + common || p[-1] == '/')
+            strncat(out, "../", len - strlen(out) - 1);
+    strncat(out, to + common, len - strlen(out) - 1);
+}
+
+static void
+runtime_paths(const char **inc, const char **lib)
+{
+    static char ibuf[PATH_MAX * 2], lbuf[PATH_MAX * 2];
+    char self[PATH_MAX], rel[PATH_MAX];
+    self_dir(self, sizeof self);
+    if (running_from_build_dir(self)) {
+        *inc = EOMC_SOURCE_DIR "/runtime";
+        *lib = EOMC_BUILD_DIR "/runtime/libeomcrt.a";
+    } else {
+        relative(EOMC_BINDIR, EOMC_INCLUDEDIR, rel, sizeof rel);
+        snprintf(ibuf, sizeof ibuf, "%s/%s", self, rel);
+        relative(EOMC_BINDIR, EOMC_LIBDIR, rel, sizeof rel);
+        snprintf(lbuf, sizeof lbuf, "%s/%s/libeomcrt.a", self, rel);
+        *inc = ibuf;
+        *lib = lbuf;
+    }
+    if (getenv("EOMC_RUNTIME_INCLUDE"))
+        *inc = getenv("EOMC_RUNTIME_INCLUDE");
+    if (getenv("EOMC_RUNTIME_LIB"))
+        *lib = getenv("EOMC_RUNTIME_LIB");
+}
+
+/* Split a flags string like "-L/x -lgsl -lgslcblas -lm" into argv. */
+static int
+split_flags(char *flags, char **argv, int max)
+{
+    int n = 0;
+    for (char *tok = strtok(flags, " \t\n"); tok && n < max; tok = strtok(NULL, " \t\n"))
+        argv[n++] = tok;
+    return n;
+}
+
+static int
+run_cc(char **argv)
+{
+    pid_t pid = fork();
+    if (pid < 0) {
+        fprintf(stderr, "eomc: cannot start %s: %s\n", argv[0], strerror(errno));
+        return -1;
+    }
+    if (pid == 0) {
+        execvp(argv[0], argv);
+        fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
+        _exit(127);
+    }
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        fprintf(stderr, "eomc: %s failed on the generated code\n", argv[0]);
+        return -1;
+    }
+    return 0;
+}
+
+int
+build_executable(const char *c_file, const char *exe)
+{
+    const char *inc, *lib, *cc = getenv("CC");
+    if (!cc || !*cc)
+        cc = "cc";
+    runtime_paths(&inc, &lib);
+    if (access(lib, R_OK) != 0) {
+        fprintf(stderr, "eomc: runtime library not found at %s "
+                        "(set EOMC_RUNTIME_LIB)\n", lib);
+        return -1;
+    }
+    size_t len = strlen(exe) + 16;
+    char *tmp = xmalloc(len);
+    snprintf(tmp, len, "%s.tmp%ld", exe, (long)getpid());
+    char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS;
+    snprintf(incflag, sizeof incflag, "-I%s", inc);
+    snprintf(ccbuf, sizeof ccbuf, "%s", cc);
+    char *argv[64];
+    int n = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
+    const char *fixed[] = {"-std=c11", "-O2", "-DEOMC_MAIN", incflag, c_file,
+                           lib, "-o", tmp};
+    for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; k++)
+        argv[n++] = (char *)fixed[k];
+    n += split_flags(libs, argv + n, 40);
+    argv[n++] = "-lm";
+    argv[n] = NULL;
+    int rc = run_cc(argv);
+    if (rc == 0 && rename(tmp, exe) != 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
+        rc = -1;
+    }
+    if (rc != 0)
+        unlink(tmp);
+    free(tmp);
+    return rc;
+}
+
+static uint64_t
+fnv1a(const char *s, size_t n)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; i++) {
+        h ^= (unsigned char)s[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+static int
+make_dirs(char *path)
+{
+    for (char *p = path + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        int rc = mkdir(path, 0755);
+        *p = '/';
+        if (rc != 0 && errno != EEXIST)
+            return -1;
+    }
+    if (mkdir(path, 0755) != 0 && errno != EEXIST)
+        return -1;
+    return 0;
+}
+
+char *
+build_cache_path(const char *name, const char *key, size_t len)
+{
+    const char *root = getenv("EOMC_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME");
+    const char *home = getenv("HOME");
+    char dir[PATH_MAX];
+    if (root && *root)
+        snprintf(dir, sizeof dir, "%s", root);
+    else if (xdg && *xdg)
+        snprintf(dir, sizeof dir, "%s/eomc", xdg);
+    else
+        snprintf(dir, sizeof dir, "%s/.cache/eomc", home && *home ? home : "/tmp");
+    /* The key: spec and options (the caller's text), eomc's version, the
+     * C compiler, and the identity of eomc and runtime files (so that a
+     * rebuilt eomc never reuses an old simulator). */
+    const char *cc = getenv("CC"), *inc, *lib;
+    runtime_paths(&inc, &lib);
+    char ident[512];
+    struct stat st1 = {0}, st2 = {0};
+    stat("/proc/self/exe", &st1);
+    stat(lib, &st2);
+    int il = snprintf(ident, sizeof ident, "%s|%s|%lld.%lld|%lld.%lld", EOMC_VERSION,
+                      cc ? cc : "cc", (long long)st1.st_mtime, (long long)st1.st_size,
+                      (long long)st2.st_mtime, (long long)st2.st_size);
+    uint64_t h = fnv1a(key, len) ^ fnv1a(ident, (size_t)il) * 31;
+    size_t dl = strlen(dir);
+    snprintf(dir + dl, sizeof dir - dl, "/%016llx", (unsigned long long)h);
+    if (make_dirs(dir) != 0) {
+        fprintf(stderr, "eomc: cannot create cache directory %s: %s\n", dir,
+                strerror(errno));
+        return NULL;
+    }
+    size_t n = strlen(dir) + strlen(name) + 2;
+    char *path = xmalloc(n);
+    snprintf(path, n, "%s/%s", dir, name);
+    return path;
+}

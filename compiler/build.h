@@ -1,0 +1,16 @@
+/*
+ * build: turn generated C into a simulator executable with $CC, and keep
+ * built simulators in a cache keyed by content for `eomc run`.
+ */
+#ifndef EOMC_BUILD_H
+#define EOMC_BUILD_H
+
+/* Compile c_file with the runtime into exe (written to a temporary name
+ * and renamed when complete).  Returns 0, or -1 after printing why. */
+int build_executable(const char *c_file, const char *exe);
+
+/* Where `eomc run` keeps the simulator for this key; the directory is
+ * created.  Returns a malloc'd path, or NULL after printing why. */
+char *build_cache_path(const char *name, const char *key_text, size_t len);
+
+#endif

@@ -1,0 +1,625 @@
+/*
+ * expr: hash-consed expression DAG with simplifying constructors.
+ *
+ * The pool is an array of nodes indexed by id plus an open-addressing hash
+ * table of ids keyed on (op, a, b, value bits).  Interning a node has the
+ * shape of Lua's internshrstr: hash, probe, return the existing id or
+ * append.  Commutative operands are put in canonical order (constants
+ * first, then by id) before interning, so a+b and b+a are one node.
+ */
+#include "expr.h"
+#include "arena.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct ExprPool {
+    ExprNode *node;
+    size_t n, cap;
+    uint32_t *table; /* ids + 1; 0 = empty slot */
+    size_t tcap;
+};
+
+const char *const expr_op_spelling[EXPR_NOPS] = {
+#define OP(name, arity, spell, kind) spell,
+#include "ops.def"
+#undef OP
+};
+const char *const expr_op_name[EXPR_NOPS] = {
+#define OP(name, arity, spell, kind) #name,
+#include "ops.def"
+#undef OP
+};
+const int expr_op_arity[EXPR_NOPS] = {
+#define OP(name, arity, spell, kind) arity,
+#include "ops.def"
+#undef OP
+};
+const int expr_op_kind[EXPR_NOPS] = {
+#define OP(name, arity, spell, kind) OPK_##kind,
+#include "ops.def"
+#undef OP
+};
+
+static uint64_t
+hash_node(const ExprNode *n)
+{
+    uint64_t bits;
+    memcpy(&bits, &n->value, sizeof bits);
+    uint64_t h = 1469598103934665603ull; /* FNV-1a over the fields */
+    uint64_t words[4] = {n->op, n->a, n->b, bits};
+    for (int i = 0; i < 4; i++) {
+        h ^= words[i];
+        h *= 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+static int
+same_node(const ExprNode *x, const ExprNode *y)
+{
+    return x->op == y->op && x->a == y->a && x->b == y->b &&
+           memcmp(&x->value, &y->value, sizeof x->value) == 0;
+}
+
+static void
+rehash(ExprPool *P)
+{
+    size_t cap = P->tcap ? P->tcap * 2 : 1024;
+    uint32_t *t = xmalloc(cap * sizeof *t);
+    memset(t, 0, cap * sizeof *t);
+    for (size_t id = 0; id < P->n; id++) {
+        size_t i = hash_node(&P->node[id]) & (cap - 1);
+        while (t[i])
+            i = (i + 1) & (cap - 1);
+        t[i] = (uint32_t)id + 1;
+    }
+    free(P->table);
+    P->table = t;
+    P->tcap = cap;
+}
+
+static ExprId
+intern(ExprPool *P, ExprNode nd)
+{
+    if (P->n * 2 >= P->tcap)
+        rehash(P);
+    size_t i = hash_node(&nd) & (P->tcap - 1);
+    while (P->table[i]) {
+        ExprId id = P->table[i] - 1;
+        if (same_node(&P->node[id], &nd))
+            return id;
+        i = (i + 1) & (P->tcap - 1);
+    }
+    if (P->n == P->cap) {
+        P->cap = P->cap ? P->cap * 2 : 1024;
+        P->node = xrealloc(P->node, P->cap * sizeof *P->node);
+    }
+    ExprId id = (ExprId)P->n++;
+    P->node[id] = nd;
+    P->table[i] = id + 1;
+    return id;
+}
+
+ExprPool *
+expr_pool_new(void)
+{
+    ExprPool *P = xmalloc(sizeof *P);
+    memset(P, 0, sizeof *P);
+    expr_const(P, 0.0); /* EXPR_ZERO */
+    expr_const(P, 1.0); /* EXPR_ONE */
+    return P;
+}
+
+void
+expr_pool_free(ExprPool *P)
+{
+    if (!P)
+        return;
+    free(P->node);
+    free(P->table);
+    free(P);
+}
+
+size_t expr_pool_size(const ExprPool *P) { return P->n; }
+
+const ExprNode *expr_node(const ExprPool *P, ExprId e) { return &P->node[e]; }
+
+static ExprId
+mk(ExprPool *P, int op, ExprId a, ExprId b)
+{
+    ExprNode nd = {.op = (uint8_t)op, .a = a, .b = b, .value = 0.0};
+    return intern(P, nd);
+}
+
+ExprId
+expr_const(ExprPool *P, double v)
+{
+    if (v == 0.0)
+        v = 0.0; /* one zero: -0.0 folds to +0.0 */
+    ExprNode nd = {.op = EXPR_CONST, .a = 0, .b = 0, .value = v};
+    return intern(P, nd);
+}
+
+ExprId expr_var(ExprPool *P, int coord, int order)
+{
+    return mk(P, EXPR_VAR, (uint32_t)coord, (uint32_t)order);
+}
+ExprId expr_param(ExprPool *P, int i) { return mk(P, EXPR_PARAM, (uint32_t)i, 0); }
+ExprId expr_input(ExprPool *P, int i) { return mk(P, EXPR_INPUT, (uint32_t)i, 0); }
+ExprId expr_time(ExprPool *P) { return mk(P, EXPR_TIME, 0, 0); }
+
+int
+expr_is_const(const ExprPool *P, ExprId e, double *value)
+{
+    if (P->node[e].op != EXPR_CONST)
+        return 0;
+    if (value)
+        *value = P->node[e].value;
+    return 1;
+}
+
+static int
+is_value(const ExprPool *P, ExprId e, double v)
+{
+    double c;
+    return expr_is_const(P, e, &c) && c == v;
+}
+
+static int op_of(const ExprPool *P, ExprId e) { return P->node[e].op; }
+
+/* Fold to a constant only when the result is finite: 1/0 or log(-1) stay
+ * symbolic so that the checker upstream can report them. */
+static int
+foldable(double r)
+{
+    return isfinite(r);
+}
+
+/* Canonical order of commutative operands: constants first, then by id. */
+static void
+order2(const ExprPool *P, ExprId *a, ExprId *b)
+{
+    int ca = op_of(P, *a) == EXPR_CONST, cb = op_of(P, *b) == EXPR_CONST;
+    if ((cb && !ca) || (ca == cb && *b < *a)) {
+        ExprId t = *a;
+        *a = *b;
+        *b = t;
+    }
+}
+
+ExprId
+expr_neg(ExprPool *P, ExprId a)
+{
+    const ExprNode nv = P->node[a], *n = &nv;
+    switch (n->op) {
+    case EXPR_CONST:
+        return expr_const(P, -n->value);
+    case EXPR_NEG:
+        return n->a;
+    case EXPR_SUB:
+        return expr_sub(P, n->b, n->a);
+    case EXPR_MUL:
+        if (op_of(P, n->a) == EXPR_CONST) /* -(c*x) = (-c)*x */
+            return expr_mul(P, expr_const(P, -P->node[n->a].value), n->b);
+        break;
+    }
+    return mk(P, EXPR_NEG, a, 0);
+}
+
+ExprId
+expr_add(ExprPool *P, ExprId a, ExprId b)
+{
+    double x, y;
+    if (expr_is_const(P, a, &x) && expr_is_const(P, b, &y) && foldable(x + y))
+        return expr_const(P, x + y);
+    if (is_value(P, a, 0.0))
+        return b;
+    if (is_value(P, b, 0.0))
+        return a;
+    if (op_of(P, b) == EXPR_NEG)
+        return expr_sub(P, a, P->node[b].a);
+    if (op_of(P, a) == EXPR_NEG)
+        return expr_sub(P, b, P->node[a].a);
+    if (a == b)
+        return expr_mul(P, expr_const(P, 2.0), a);
+    order2(P, &a, &b);
+    return mk(P, EXPR_ADD, a, b);
+}
+
+ExprId
+expr_sub(ExprPool *P, ExprId a, ExprId b)
+{
+    double x, y;
+    if (expr_is_const(P, a, &x) && expr_is_const(P, b, &y) && foldable(x - y))
+        return expr_const(P, x - y);
+    if (a == b)
+        return EXPR_ZERO;
+    if (is_value(P, b, 0.0))
+        return a;
+    if (is_value(P, a, 0.0))
+        return expr_neg(P, b);
+    if (op_of(P, b) == EXPR_NEG)
+        return expr_add(P, a, P->node[b].a);
+    if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
+        return expr_neg(P, expr_add(P, P->node[a].a, b));
+    return mk(P, EXPR_SUB, a, b);
+}
+
+/* x^m * x^n = x^(m+n) where one side is x or an integer power of x. */
+static int
+power_parts(const ExprPool *P, ExprId e, ExprId *base)
+{
+    if (op_of(P, e) == EXPR_POWI) {
+        *base = P->node[e].a;
+        return (int32_t)P->node[e].b;
+    }
+    *base = e;
+    return 1;
+}
+
+ExprId
+expr_mul(ExprPool *P, ExprId a, ExprId b)
+{
+    double x, y;
+    order2(P, &a, &b);
+    int ca = expr_is_const(P, a, &x), cb = expr_is_const(P, b, &y);
+    if (ca && cb && foldable(x * y))
+        return expr_const(P, x * y);
+    if (ca) {
+        if (x == 0.0)
+            return EXPR_ZERO;
+        if (x == 1.0)
+            return b;
+        if (x == -1.0)
+            return expr_neg(P, b);
+        const ExprNode nbv = P->node[b], *nb = &nbv;
+        /* c1*(c2*y) = (c1 c2)*y */
+        if (nb->op == EXPR_MUL && op_of(P, nb->a) == EXPR_CONST &&
+            foldable(x * P->node[nb->a].value))
+            return expr_mul(P, expr_const(P, x * P->node[nb->a].value), nb->b);
+        if (nb->op == EXPR_NEG)
+            return expr_mul(P, expr_const(P, -x), nb->a);
+        return mk(P, EXPR_MUL, a, b);
+    }
+    if (op_of(P, a) == EXPR_NEG)
+        return expr_neg(P, expr_mul(P, P->node[a].a, b));
+    if (op_of(P, b) == EXPR_NEG)
+        return expr_neg(P, expr_mul(P, a, P->node[b].a));
+    /* Constant factors float to the front: (c*x)*y = c*(x*y). */
+    if (op_of(P, a) == EXPR_MUL && op_of(P, P->node[a].a) == EXPR_CONST)
+        return expr_mul(P, P->node[a].a, expr_mul(P, P->node[a].b, b));
+    if (op_of(P, b) == EXPR_MUL && op_of(P, P->node[b].a) == EXPR_CONST)
+        return expr_mul(P, P->node[b].a, expr_mul(P, a, P->node[b].b));
+    ExprId ba, bb;
+    int ma = power_parts(P, a, &ba), mb = power_parts(P, b, &bb);
+    if (ba == bb && op_of(P, ba) != EXPR_CONST)
+        return expr_powi(P, ba, ma + mb);
+    return mk(P, EXPR_MUL, a, b);
+}
+
+static int
+is_pow2(double c)
+{
+    int e;
+    return c != 0.0 && fabs(frexp(c, &e)) == 0.5;
+}
+
+ExprId
+expr_div(ExprPool *P, ExprId a, ExprId b)
+{
+    double x, y;
+    int ca = expr_is_const(P, a, &x), cb = expr_is_const(P, b, &y);
+    if (ca && cb && y != 0.0 && foldable(x / y))
+        return expr_const(P, x / y);
+    if (cb && y == 1.0)
+        return a;
+    if (cb && y == -1.0)
+        return expr_neg(P, a);
+    if (cb && is_pow2(y)) /* exact: x/4 = 0.25*x */
+        return expr_mul(P, expr_const(P, 1.0 / y), a);
+    if (ca && x == 0.0 && !(cb && y == 0.0))
+        return EXPR_ZERO;
+    if (a == b && !cb) /* x/x = 1 symbolically; 0/0 stays */
+        return EXPR_ONE;
+    if (op_of(P, a) == EXPR_NEG)
+        return expr_neg(P, expr_div(P, P->node[a].a, b));
+    if (op_of(P, b) == EXPR_NEG)
+        return expr_neg(P, expr_div(P, a, P->node[b].a));
+    /* (c*x)/y = c*(x/y), keeping constants outermost */
+    if (op_of(P, a) == EXPR_MUL && op_of(P, P->node[a].a) == EXPR_CONST)
+        return expr_mul(P, P->node[a].a, expr_div(P, P->node[a].b, b));
+    return mk(P, EXPR_DIV, a, b);
+}
+
+ExprId
+expr_powi(ExprPool *P, ExprId a, int n)
+{
+    double x;
+    if (n == 0)
+        return EXPR_ONE;
+    if (n == 1)
+        return a;
+    if (n == -1)
+        return expr_div(P, EXPR_ONE, a);
+    if (expr_is_const(P, a, &x)) {
+        double r = pow(x, n);
+        if (foldable(r))
+            return expr_const(P, r);
+    }
+    const ExprNode nav = P->node[a], *na = &nav;
+    if (na->op == EXPR_POWI) {
+        long m = (long)(int32_t)na->b * n;
+        if (m >= INT32_MIN && m <= INT32_MAX)
+            return expr_powi(P, na->a, (int)m);
+    }
+    if (na->op == EXPR_NEG) {
+        ExprId r = expr_powi(P, na->a, n);
+        return n % 2 ? expr_neg(P, r) : r;
+    }
+    if (n < 0)
+        return expr_div(P, EXPR_ONE, expr_powi(P, a, -n));
+    return mk(P, EXPR_POWI, a, (uint32_t)(int32_t)n);
+}
+
+ExprId
+expr_pow(ExprPool *P, ExprId a, ExprId b)
+{
+    double x, y;
+    if (expr_is_const(P, b, &y)) {
+        if (y == rint(y) && fabs(y) <= 64)
+            return expr_powi(P, a, (int)y);
+        if (y == 0.5)
+            return expr_unary(P, EXPR_SQRT, a);
+        if (y == -0.5)
+            return expr_div(P, EXPR_ONE, expr_unary(P, EXPR_SQRT, a));
+        if (expr_is_const(P, a, &x) && foldable(pow(x, y)))
+            return expr_const(P, pow(x, y));
+    }
+    return mk(P, EXPR_POW, a, b);
+}
+
+static double
+sign(double x)
+{
+    return (x > 0) - (x < 0);
+}
+
+static double
+apply1(int op, double x)
+{
+    switch (op) {
+    case EXPR_NEG: return -x;
+    case EXPR_SIN: return sin(x);
+    case EXPR_COS: return cos(x);
+    case EXPR_TAN: return tan(x);
+    case EXPR_ASIN: return asin(x);
+    case EXPR_ACOS: return acos(x);
+    case EXPR_ATAN: return atan(x);
+    case EXPR_SINH: return sinh(x);
+    case EXPR_COSH: return cosh(x);
+    case EXPR_TANH: return tanh(x);
+    case EXPR_EXP: return exp(x);
+    case EXPR_LOG: return log(x);
+    case EXPR_SQRT: return sqrt(x);
+    case EXPR_ABS: return fabs(x);
+    case EXPR_SIGN: return sign(x);
+    }
+    return NAN;
+}
+
+ExprId
+expr_unary(ExprPool *P, int op, ExprId a)
+{
+    double x;
+    if (op == EXPR_NEG)
+        return expr_neg(P, a);
+    if (expr_is_const(P, a, &x) && foldable(apply1(op, x)))
+        return expr_const(P, apply1(op, x));
+    if (op_of(P, a) == EXPR_NEG) {
+        ExprId in = P->node[a].a;
+        switch (op) { /* odd and even functions */
+        case EXPR_SIN: case EXPR_TAN: case EXPR_ASIN: case EXPR_ATAN:
+        case EXPR_SINH: case EXPR_TANH: case EXPR_SIGN:
+            return expr_neg(P, expr_unary(P, op, in));
+        case EXPR_COS: case EXPR_COSH: case EXPR_ABS:
+            return expr_unary(P, op, in);
+        }
+    }
+    return mk(P, op, a, 0);
+}
+
+ExprId
+expr_binary(ExprPool *P, int op, ExprId a, ExprId b)
+{
+    double x, y;
+    switch (op) {
+    case EXPR_ADD: return expr_add(P, a, b);
+    case EXPR_SUB: return expr_sub(P, a, b);
+    case EXPR_MUL: return expr_mul(P, a, b);
+    case EXPR_DIV: return expr_div(P, a, b);
+    case EXPR_POW: return expr_pow(P, a, b);
+    case EXPR_ATAN2:
+        if (expr_is_const(P, a, &x) && expr_is_const(P, b, &y))
+            return expr_const(P, atan2(x, y));
+        return mk(P, EXPR_ATAN2, a, b);
+    }
+    return EXPR_NONE;
+}
+
+/* ---- traversals ---- */
+
+void
+expr_mark(ExprPool *P, int n, const ExprId *roots, unsigned char *mark)
+{
+    size_t cap = 64, sp = 0;
+    ExprId *stack = xmalloc(cap * sizeof *stack);
+    for (int i = 0; i < n; i++)
+        if (roots[i] != EXPR_NONE)
+            stack[sp++] = roots[i], sp == cap ? (cap *= 2, stack = xrealloc(stack, cap * sizeof *stack)) : 0;
+    while (sp) {
+        ExprId e = stack[--sp];
+        if (mark[e])
+            continue;
+        mark[e] = 1;
+        const ExprNode *nd = &P->node[e];
+        int ar = expr_op_arity[nd->op];
+        if (sp + 2 >= cap) {
+            cap *= 2;
+            stack = xrealloc(stack, cap * sizeof *stack);
+        }
+        if (ar >= 1)
+            stack[sp++] = nd->a;
+        if (ar >= 2)
+            stack[sp++] = nd->b;
+    }
+    free(stack);
+}
+
+static unsigned char *
+marked(ExprPool *P, int n, const ExprId *roots)
+{
+    unsigned char *mark = xmalloc(P->n);
+    memset(mark, 0, P->n);
+    expr_mark(P, n, roots, mark);
+    return mark;
+}
+
+int
+expr_max_order(ExprPool *P, ExprId e)
+{
+    unsigned char *mark = marked(P, 1, &e);
+    int order = -1;
+    for (ExprId i = 0; i <= e; i++)
+        if (mark[i] && P->node[i].op == EXPR_VAR && (int)P->node[i].b > order)
+            order = (int)P->node[i].b;
+    free(mark);
+    return order;
+}
+
+int
+expr_depends(ExprPool *P, ExprId e, ExprId leaf)
+{
+    if (leaf > e)
+        return 0;
+    unsigned char *mark = marked(P, 1, &e);
+    int r = mark[leaf];
+    free(mark);
+    return r;
+}
+
+static double
+eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
+{
+    double x = 0, y = 0;
+    int ar = expr_op_arity[nd->op];
+    if (ar >= 1 && nd->op != EXPR_POWI)
+        x = v[nd->a];
+    if (ar >= 2)
+        y = v[nd->b];
+    switch (nd->op) {
+    case EXPR_CONST: return nd->value;
+    case EXPR_VAR: return env->q[nd->b][nd->a];
+    case EXPR_PARAM: return env->p[nd->a];
+    case EXPR_INPUT: return env->u[nd->a];
+    case EXPR_TIME: return env->t;
+    case EXPR_ADD: return x + y;
+    case EXPR_SUB: return x - y;
+    case EXPR_MUL: return x * y;
+    case EXPR_DIV: return x / y;
+    case EXPR_POWI: return pow(v[nd->a], (int32_t)nd->b);
+    case EXPR_POW: return pow(x, y);
+    case EXPR_ATAN2: return atan2(x, y);
+    }
+    return apply1(nd->op, x);
+}
+
+void
+expr_eval_many(ExprPool *P, int n, const ExprId *roots, const ExprEnv *env,
+               double *out)
+{
+    unsigned char *mark = marked(P, n, roots);
+    double *v = xmalloc(P->n * sizeof *v);
+    for (size_t i = 0; i < P->n; i++)
+        if (mark[i])
+            v[i] = eval_node(&P->node[i], v, env);
+    for (int i = 0; i < n; i++)
+        out[i] = roots[i] == EXPR_NONE ? 0.0 : v[roots[i]];
+    free(v);
+    free(mark);
+}
+
+double
+expr_eval(ExprPool *P, ExprId e, const ExprEnv *env)
+{
+    double r;
+    expr_eval_many(P, 1, &e, env, &r);
+    return r;
+}
+
+/* Rebuild a node over new operands through the simplifying constructors. */
+static ExprId
+rebuild(ExprPool *P, const ExprNode *nd, ExprId a, ExprId b)
+{
+    if (nd->op == EXPR_POWI)
+        return expr_powi(P, a, (int32_t)nd->b);
+    if (expr_op_arity[nd->op] == 1)
+        return expr_unary(P, nd->op, a);
+    return expr_binary(P, nd->op, a, b);
+}
+
+ExprId
+expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from, const ExprId *to)
+{
+    size_t size = P->n;
+    unsigned char *mark = marked(P, 1, &e);
+    ExprId *map = xmalloc(size * sizeof *map);
+    for (ExprId i = 0; i <= e; i++) {
+        if (!mark[i])
+            continue;
+        map[i] = i;
+        for (int k = 0; k < n; k++)
+            if (from[k] == i)
+                map[i] = to[k];
+        ExprNode nd = P->node[i];
+        int ar = expr_op_arity[nd.op];
+        if (map[i] != i || ar == 0)
+            continue;
+        ExprId a = map[nd.a], b = ar == 2 ? map[nd.b] : nd.b;
+        if (a != nd.a || (ar == 2 && b != nd.b))
+            map[i] = rebuild(P, &nd, a, b);
+    }
+    ExprId r = map[e];
+    free(map);
+    free(mark);
+    return r;
+}
+
+ExprCount
+expr_count_ops(ExprPool *P, int n, const ExprId *roots)
+{
+    ExprCount c = {0, 0, 0, 0};
+    unsigned char *mark = marked(P, n, roots);
+    for (size_t i = 0; i < P->n; i++) {
+        if (!mark[i])
+            continue;
+        switch (P->node[i].op) {
+        case EXPR_ADD: case EXPR_SUB: case EXPR_NEG: c.adds++; break;
+        case EXPR_MUL: c.muls++; break;
+        case EXPR_DIV: c.divs++; break;
+        case EXPR_POWI: {
+            /* emitted as repeated multiplication (and 1/x for n < 0) */
+            int k = abs((int32_t)P->node[i].b);
+            c.muls += k - 1;
+            break;
+        }
+        default:
+            if (expr_op_kind[P->node[i].op] == OPK_CALL)
+                c.calls++;
+        }
+    }
+    free(mark);
+    return c;
+}

@@ -1,0 +1,109 @@
+/*
+ * expr: the expression DAG.
+ *
+ * Nodes are immutable and hash-consed: building a node that already exists
+ * returns the existing id, so common subexpressions are shared by
+ * construction.  A node's operands always have smaller ids than the node,
+ * so id order is a topological order and ids are deterministic (they only
+ * depend on the order of construction calls).
+ *
+ * The constructors simplify: constant folding (only to finite results;
+ * -0.0 is stored as 0.0), x+0, x*1, x*0 = 0 (symbolically: no IEEE
+ * infinities are assumed), --x, x-x, integer powers, and constant factors
+ * collected to the left of a product.
+ *
+ * All nodes live in one ExprPool and are freed with it.
+ */
+#ifndef EOMC_EXPR_H
+#define EOMC_EXPR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef uint32_t ExprId;
+
+enum {
+#define OP(name, arity, spell, kind) EXPR_##name,
+#include "ops.def"
+#undef OP
+    EXPR_NOPS
+};
+
+#define EXPR_NONE ((ExprId)0xffffffffu) /* "no expression" sentinel */
+enum { EXPR_ZERO = 0, EXPR_ONE = 1 }; /* made by expr_pool_new */
+enum { EXPR_MAX_ORDER = 3 };     /* highest derivative a VAR may carry */
+
+enum { OPK_LEAF, OPK_INFIX, OPK_PREFIX, OPK_CALL };
+
+typedef struct ExprNode {
+    uint8_t op;
+    uint32_t a, b; /* operands, or leaf data: see ops.def */
+    double value;  /* EXPR_CONST only */
+} ExprNode;
+
+typedef struct ExprPool ExprPool;
+
+ExprPool *expr_pool_new(void);
+void expr_pool_free(ExprPool *P);
+size_t expr_pool_size(const ExprPool *P);
+const ExprNode *expr_node(const ExprPool *P, ExprId e);
+
+/* Operator tables, from ops.def. */
+extern const char *const expr_op_spelling[EXPR_NOPS];
+extern const char *const expr_op_name[EXPR_NOPS];
+extern const int expr_op_arity[EXPR_NOPS];
+extern const int expr_op_kind[EXPR_NOPS];
+
+/* Leaves. */
+ExprId expr_const(ExprPool *P, double v);
+ExprId expr_var(ExprPool *P, int coord, int order);
+ExprId expr_param(ExprPool *P, int index);
+ExprId expr_input(ExprPool *P, int index);
+ExprId expr_time(ExprPool *P);
+
+/* Simplifying constructors. */
+ExprId expr_add(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_sub(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_mul(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_div(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_neg(ExprPool *P, ExprId a);
+ExprId expr_powi(ExprPool *P, ExprId a, int n);
+ExprId expr_pow(ExprPool *P, ExprId a, ExprId b);
+/* Any unary (SIN..SIGN, NEG) or binary (ADD..DIV, POW, ATAN2) operator. */
+ExprId expr_unary(ExprPool *P, int op, ExprId a);
+ExprId expr_binary(ExprPool *P, int op, ExprId a, ExprId b);
+
+/* Queries. */
+int expr_is_const(const ExprPool *P, ExprId e, double *value);
+/* Highest derivative order of any coordinate in e, or -1 if none. */
+int expr_max_order(ExprPool *P, ExprId e);
+/* Does e contain the given leaf (a VAR, PARAM, INPUT or TIME node)? */
+int expr_depends(ExprPool *P, ExprId e, ExprId leaf);
+
+/* Numerical evaluation (tests, checks, constant parameters). */
+typedef struct ExprEnv {
+    double t;
+    const double *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: k-th derivative of q_i */
+    const double *p;
+    const double *u;
+} ExprEnv;
+double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
+void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
+                    const ExprEnv *env, double *out);
+
+/* Replace leaves from[i] by to[i] everywhere in e (memoized per call). */
+ExprId expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from,
+                  const ExprId *to);
+
+/* Operation counts of the nodes reachable from roots, each shared node
+ * counted once (as straight-line code would compute it). */
+typedef struct ExprCount {
+    long adds, muls, divs, calls;
+} ExprCount;
+ExprCount expr_count_ops(ExprPool *P, int n, const ExprId *roots);
+
+/* Mark the nodes reachable from roots: mark[id] = 1.  mark has
+ * expr_pool_size(P) entries and is not cleared first. */
+void expr_mark(ExprPool *P, int n, const ExprId *roots, unsigned char *mark);
+
+#endif

@@ -1,0 +1,42 @@
+/*
+ * forms: the table of forms and what they share.
+ */
+#include "forms.h"
+
+#include <string.h>
+
+static const Form *const all[] = {
+    &form_lagrange, &form_nielsen, &form_tzenoff, &form_gibbs_appell,
+};
+
+const Form *
+form_find(const char *name)
+{
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (strcmp(all[i]->name, name) == 0)
+            return all[i];
+    return NULL;
+}
+
+const char *
+form_names(void)
+{
+    return "lagrange, nielsen, tzenoff, gibbs-appell";
+}
+
+ExprId *
+form_gradient(const Mech *m, ExprId f, int order, Arena *A, Diff *D)
+{
+    ExprId *g = arena_new_array(A, ExprId, m->n);
+    diff_gradient(D, f, m->n, m->q[order], g);
+    return g;
+}
+
+ExprId *
+form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    ExprId *G = form_gradient(m, m->V, 0, A, D);
+    for (int i = 0; i < m->n; i++)
+        G[i] = expr_sub(P, G[i], m->Q[i]);
+    return G;
+}

@@ -1,0 +1,35 @@
+/*
+ * forms: the residual forms of the equations of motion.
+ *
+ * Each form builds E_i(t, q, q', q'') from its own definition (never by
+ * rewriting another form's result: their agreement is a test).  All are
+ * affine in q''; eom.c takes M = dE/dq'' and h = E(q'' = 0) from any of
+ * them.
+ */
+#ifndef EOMC_FORMS_H
+#define EOMC_FORMS_H
+
+#include "../mech.h"
+
+typedef struct Form {
+    const char *name;    /* --form NAME */
+    const char *formula; /* the residual, for banners and --explain */
+    /* Residual E[n] in A, or NULL with *why set when the form does not
+     * apply to this model. */
+    ExprId *(*residual)(const Mech *m, Arena *A, ExprPool *P, Diff *D,
+                        const char **why);
+} Form;
+
+extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell;
+
+/* The form called `name`, or NULL. */
+const Form *form_find(const char *name);
+/* Comma-separated list of the form names, for messages. */
+const char *form_names(void);
+
+/* dV/dq_i - Q_i, the part every form shares. */
+ExprId *form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D);
+/* Gradient of f with respect to the leaves q^(order). */
+ExprId *form_gradient(const Mech *m, ExprId f, int order, Arena *A, Diff *D);
+
+#endif

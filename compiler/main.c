@@ -1,0 +1,278 @@
+/*
+ * eomc: the command line.
+ *
+ *   eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]
+ *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST]
+ *   eomc run     SPEC [--form NAME] [--effects LIST] [simulator options]
+ *
+ * The pipeline: spec_load (YAML -> Spec) -> mech_build (T, V, S, Q) ->
+ * a form's residual -> eom_derive (M, h, Jacobians) -> emit_model (C).
+ * Files are written under a temporary name and renamed when complete, so
+ * a failure never leaves a half-written output behind.
+ */
+#include "build.h"
+#include "config.h"
+#include "emit.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+enum { EXIT_USAGE = 2 };
+
+typedef struct Options {
+    const char *cmd, *spec, *out, *form, *effects;
+    int stats;
+    int nsim; /* `run`: options passed on to the simulator */
+    char **sim;
+} Options;
+
+static void
+usage(FILE *f)
+{
+    fprintf(f,
+        "usage: eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]\n"
+        "       eomc build SPEC [-o EXE] [--form NAME] [--effects LIST]\n"
+        "       eomc run SPEC [--form NAME] [--effects LIST] [SIMULATOR OPTIONS]\n"
+        "       eomc --help | --version\n"
+        "\n"
+        "  --form NAME      equation form: %s (default lagrange)\n"
+        "  --effects LIST   comma-separated effects to turn on, replacing the\n"
+        "                   scene's choice (\"\" = none)\n"
+        "  --stats          print the operation counts of each emitted function\n"
+        "Simulator options (eomc run, and built executables): see `EXE --help`.\n",
+        form_names());
+}
+
+static _Noreturn void
+usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "eomc: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n(see eomc --help)\n");
+    exit(EXIT_USAGE);
+}
+
+static void
+parse_args(int argc, char **argv, Options *o)
+{
+    if (argc < 2)
+        usage(stderr), exit(EXIT_USAGE);
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))
+        usage(stdout), exit(0);
+    if (!strcmp(argv[1], "--version"))
+        printf("eomc %s\n", EOMC_VERSION), exit(0);
+    o->cmd = argv[1];
+    if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run"))
+        usage_error("unknown command '%s'; expected compile, build or run", o->cmd);
+    int run = !strcmp(o->cmd, "run");
+    o->sim = calloc((size_t)argc + 1, sizeof *o->sim);
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        int has_val = i + 1 < argc;
+        if (!strcmp(a, "--form") || !strcmp(a, "--effects") || (!run && !strcmp(a, "-o"))) {
+            if (!has_val)
+                usage_error("option %s needs a value", a);
+            const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects : &o->out;
+            *slot = argv[++i];
+        } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
+            o->stats = 1;
+        } else if (run && o->spec) {
+            o->sim[o->nsim++] = argv[i];
+        } else if (a[0] == '-' && a[1]) {
+            usage_error("unknown option '%s'", a);
+        } else if (!o->spec) {
+            o->spec = a;
+        } else {
+            usage_error("unexpected argument '%s'", a);
+        }
+    }
+    if (!o->spec)
+        usage_error("%s: no spec file given", o->cmd);
+    if (!o->form)
+        o->form = "lagrange";
+    if (!form_find(o->form))
+        fprintf(stderr, "eomc: unknown form '%s'; valid forms: %s\n", o->form,
+                form_names()), exit(EXIT_USAGE);
+}
+
+static void
+print_stats(const EmitStats *st)
+{
+    fprintf(stderr, "%-10s %8s %8s %8s %8s %8s\n", "function", "adds", "muls",
+            "divs", "calls", "total");
+    for (int i = 0; i < EMIT_NFUNCS; i++) {
+        ExprCount c = st[i].count;
+        fprintf(stderr, "%-10s %8ld %8ld %8ld %8ld %8ld\n", st[i].function,
+                c.adds, c.muls, c.divs, c.calls, c.adds + c.muls + c.divs + c.calls);
+    }
+}
+
+/* Load, derive and emit to `out`.  Returns 0, or an exit status. */
+static int
+compile(const Options *o, FILE *out)
+{
+    Arena *A = arena_new();
+    ExprPool *P = expr_pool_new();
+    Diff *D = diff_new(P);
+    int rc = EXIT_USAGE;
+    Spec *s = spec_load(o->spec, A, P);
+    if (s && (!o->effects || spec_select_effects(s, o->effects) == 0)) {
+        const char *why = NULL;
+        Mech *m = mech_build(s, A, P, D);
+        Eom *e = eom_derive(s, m, form_find(o->form), A, P, D, &why);
+        if (!e) {
+            fprintf(stderr, "%s: error: form '%s' does not apply: %s\n",
+                    o->spec, o->form, why);
+        } else {
+            char opts[256] = "";
+            if (o->effects)
+                snprintf(opts, sizeof opts, "--effects %s", o->effects);
+            EmitInfo info = {EOMC_VERSION, opts};
+            EmitStats st[EMIT_NFUNCS];
+            emit_model(out, s, m, e, P, D, &info, st);
+            if (o->stats)
+                print_stats(st);
+            rc = 0;
+        }
+    }
+    diff_free(D);
+    expr_pool_free(P);
+    arena_free(A);
+    return rc;
+}
+
+/* Write to path.tmpPID, then rename: never a half-written file. */
+static int
+compile_to_file(const Options *o, const char *path)
+{
+    size_t len = strlen(path) + 32;
+    char *tmp = xmalloc(len);
+    snprintf(tmp, len, "%s.tmp%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", tmp, strerror(errno));
+        free(tmp);
+        return EXIT_USAGE;
+    }
+    int rc = compile(o, f);
+    if (fclose(f) != 0 && rc == 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
+        rc = EXIT_USAGE;
+    }
+    if (rc == 0 && rename(tmp, path) != 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
+        rc = EXIT_USAGE;
+    }
+    if (rc != 0)
+        unlink(tmp);
+    free(tmp);
+    return rc;
+}
+
+/* Generate into a temporary directory and build `exe` from it. */
+static int
+build(const Options *o, const char *exe)
+{
+    char dir[] = "/tmp/eomc-XXXXXX";
+    if (!mkdtemp(dir)) {
+        fprintf(stderr, "eomc: cannot create a temporary directory: %s\n", strerror(errno));
+        return 1;
+    }
+    char cfile[sizeof dir + 16];
+    snprintf(cfile, sizeof cfile, "%s/model.c", dir);
+    int rc = compile_to_file(o, cfile);
+    if (rc == 0 && build_executable(cfile, exe) != 0)
+        rc = 1;
+    unlink(cfile);
+    rmdir(dir);
+    return rc;
+}
+
+static char *
+read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 4096, n = 0;
+    char *buf = xmalloc(cap);
+    size_t k;
+    while ((k = fread(buf + n, 1, cap - n, f)) > 0)
+        if ((n += k) == cap)
+            buf = xrealloc(buf, cap *= 2);
+    fclose(f);
+    *len = n;
+    return buf;
+}
+
+static const char *
+spec_base(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    return b ? b + 1 : path;
+}
+
+/* `run`: build into the cache unless an identical build is there, then
+ * become the simulator. */
+static int
+run(const Options *o)
+{
+    size_t len;
+    char *text = read_file(o->spec, &len);
+    if (!text) {
+        fprintf(stderr, "eomc: cannot read %s: %s\n", o->spec, strerror(errno));
+        return EXIT_USAGE;
+    }
+    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + 64;
+    text = xrealloc(text, len + extra);
+    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s",
+                            o->form, o->effects ? o->effects : "(scene)");
+    char name[256];
+    snprintf(name, sizeof name, "sim-%s", spec_base(o->spec));
+    char *exe = build_cache_path(name, text, len);
+    free(text);
+    if (!exe)
+        return 1;
+    if (access(exe, X_OK) != 0) {
+        int rc = build(o, exe);
+        if (rc != 0) {
+            free(exe);
+            return rc;
+        }
+    }
+    char **argv = calloc((size_t)o->nsim + 2, sizeof *argv);
+    argv[0] = exe;
+    for (int i = 0; i < o->nsim; i++)
+        argv[i + 1] = o->sim[i];
+    fflush(stdout);
+    execv(exe, argv);
+    fprintf(stderr, "eomc: cannot run %s: %s\n", exe, strerror(errno));
+    return 1;
+}
+
+int
+main(int argc, char **argv)
+{
+    Options o = {0};
+    parse_args(argc, argv, &o);
+    int rc;
+    if (!strcmp(o.cmd, "compile"))
+        rc = o.out ? compile_to_file(&o, o.out) : compile(&o, stdout);
+    else if (!strcmp(o.cmd, "build")) {
+        char def[256];
+        if (!o.out) { /* default: the spec's name in the current directory */
+            snprintf(def, sizeof def, "%s", spec_base(o.spec));
+            char *dot = strrchr(def, '.');
+            if (dot)
+                *dot = '\0';
+            o.out = def;
+        }
+        rc = build(&o, o.out);
+    } else
+        rc = run(&o);
+    free(o.sim);
+    return rc;
+}

@@ -1,0 +1,24 @@
+/*
+ * mech: the mechanical quantities of a spec's scene, as expressions:
+ * kinetic energy T, potential energy V, acceleration energy S and the
+ * generalized forces Q of the enabled effects.  The forms (forms/) derive
+ * their residuals from these and nothing else.
+ */
+#ifndef EOMC_MECH_H
+#define EOMC_MECH_H
+
+#include "diff.h"
+#include "spec.h"
+
+typedef struct Mech {
+    int n;         /* number of coordinates */
+    ExprId T, V;   /* kinetic and potential energy */
+    ExprId S;      /* acceleration energy 1/2 sum m |r''|^2, EXPR_NONE if
+                    * the spec has explicit kinetic terms (no S for them) */
+    ExprId *Q;     /* [n] generalized non-potential forces */
+    ExprId *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: the leaf for q_i^(k) */
+} Mech;
+
+Mech *mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D);
+
+#endif

@@ -1,0 +1,11 @@
+#!/bin/sh
+# Rewrite generated/NAME.c from specs/NAME.yaml with the given eomc.
+# Run through `meson compile -C build regenerate`.
+set -eu
+eomc=$1
+shift
+root=${MESON_SOURCE_ROOT:-$(cd "$(dirname "$0")/.." && pwd)}
+for name in "$@"; do
+  "$eomc" compile "$root/specs/$name.yaml" -o "$root/generated/$name.c"
+  echo "generated/$name.c"
+done

@@ -1,0 +1,64 @@
+/*
+ * check.h: a minimal TAP harness (in the spirit of minctest.h).
+ * Each CHECK prints one "ok N" / "not ok N" line; check_done() prints
+ * the plan and returns the exit status.
+ */
+#ifndef EOMC_CHECK_H
+#define EOMC_CHECK_H
+
+#include <math.h>
+#include <stdio.h>
+
+static int check_n, check_failed;
+
+#define CHECK(cond, ...)                                                   \
+    do {                                                                   \
+        int ok_ = !!(cond);                                                \
+        check_n++;                                                         \
+        if (!ok_)                                                          \
+            check_failed++;                                                \
+        printf("%sok %d - ", ok_ ? "" : "not ", check_n);                 \
+        printf(__VA_ARGS__);                                               \
+        printf("\n");                                                      \
+        if (!ok_)                                                          \
+            printf("# failed at %s:%d: %s\n", __FILE__, __LINE__, #cond);  \
+    } while (0)
+
+/* |got - want| <= tol * max(1, |want|) */
+static inline int
+check_close(double got, double want, double tol)
+{
+    double scale = fabs(want) > 1 ? fabs(want) : 1;
+    return isfinite(got) && fabs(got - want) <= tol * scale;
+}
+
+#define CHECK_NEAR(got, want, tol, ...)                                    \
+    do {                                                                   \
+        double g_ = (got), w_ = (want);                                    \
+        if (!check_close(g_, w_, (tol)))                                   \
+            printf("# got %.17g, want %.17g\n", g_, w_);                   \
+        CHECK(check_close(g_, w_, (tol)), __VA_ARGS__);                    \
+    } while (0)
+
+static inline int
+check_done(void)
+{
+    printf("1..%d\n", check_n);
+    return check_failed ? 1 : 0;
+}
+
+/* Deterministic pseudo-random numbers in [lo, hi) (xorshift64*). */
+static unsigned long long check_rng_state = 0x9E3779B97F4A7C15ull;
+static inline double
+check_rand(double lo, double hi)
+{
+    unsigned long long x = check_rng_state;
+    x ^= x >> 12;
+    x ^= x << 25;
+    x ^= x >> 27;
+    check_rng_state = x;
+    double u = (double)((x * 2685821657736338717ull) >> 11) / 9007199254740992.0;
+    return lo + (hi - lo) * u;
+}
+
+#endif

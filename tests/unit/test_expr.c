@@ -1,0 +1,229 @@
+/*
+ * Unit tests of the expression engine (expr.c, diff.c): hash-consing and
+ * simplification, and every operator's derivative (forward, reverse and
+ * total time derivative) against central finite differences.
+ */
+#include "check.h"
+#include "diff.h"
+#include "expr.h"
+
+#include <string.h>
+
+static ExprPool *P;
+static Diff *D;
+
+/* Evaluate e with q_0 = x, q_1 = y (order 0), nothing else. */
+static double
+at(ExprId e, double x, double y)
+{
+    double q0[2] = {x, y}, q1[2] = {0, 0};
+    ExprEnv env = {.t = 0, .q = {q0, q1, q1, q1}};
+    return expr_eval(P, e, &env);
+}
+
+static void
+test_hashcons(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0);
+    CHECK(expr_add(P, x, y) == expr_add(P, y, x), "x+y and y+x are one node");
+    CHECK(expr_mul(P, x, y) == expr_mul(P, y, x), "x*y and y*x are one node");
+    CHECK(expr_add(P, x, EXPR_ZERO) == x, "x+0 = x");
+    CHECK(expr_mul(P, x, EXPR_ONE) == x, "x*1 = x");
+    CHECK(expr_mul(P, EXPR_ZERO, x) == EXPR_ZERO, "0*x = 0");
+    CHECK(expr_neg(P, expr_neg(P, x)) == x, "--x = x");
+    CHECK(expr_sub(P, x, x) == EXPR_ZERO, "x-x = 0");
+    CHECK(expr_mul(P, x, x) == expr_powi(P, x, 2), "x*x = x^2");
+    CHECK(expr_mul(P, expr_powi(P, x, 2), x) == expr_powi(P, x, 3), "x^2*x = x^3");
+    ExprId c = expr_mul(P, expr_const(P, 2), expr_mul(P, expr_const(P, 3), x));
+    CHECK(c == expr_mul(P, expr_const(P, 6), x), "2*(3*x) = 6*x");
+    ExprId d = expr_mul(P, expr_mul(P, expr_const(P, 2), x), y);
+    CHECK(d == expr_mul(P, expr_const(P, 2), expr_mul(P, x, y)), "(2x)y = 2(xy)");
+    CHECK(expr_const(P, -0.0) == EXPR_ZERO, "-0.0 is stored as 0.0");
+    double v;
+    CHECK(expr_is_const(P, expr_add(P, expr_const(P, 0.1), expr_const(P, 0.2)), &v)
+          && v == 0.1 + 0.2, "constant folding is IEEE addition");
+    ExprId nan = expr_div(P, EXPR_ZERO, EXPR_ZERO);
+    CHECK(!expr_is_const(P, nan, NULL), "0/0 is not folded into a NaN constant");
+    ExprId inf = expr_div(P, EXPR_ONE, EXPR_ZERO);
+    CHECK(!expr_is_const(P, inf, NULL), "1/0 is not folded into an infinity");
+    CHECK(expr_pow(P, x, expr_const(P, 2)) == expr_powi(P, x, 2), "pow(x,2) = x^2");
+    CHECK(expr_pow(P, x, expr_const(P, 0.5)) == expr_unary(P, EXPR_SQRT, x),
+          "pow(x,0.5) = sqrt x");
+    CHECK(expr_unary(P, EXPR_COS, expr_neg(P, x)) == expr_unary(P, EXPR_COS, x),
+          "cos(-x) = cos x");
+    CHECK(expr_powi(P, expr_powi(P, x, 2), 3) == expr_powi(P, x, 6), "(x^2)^3 = x^6");
+    ExprId big = EXPR_ZERO;
+    for (int i = 0; i < 100; i++)
+        big = expr_add(P, big, expr_mul(P, expr_unary(P, EXPR_SIN, x), y));
+    size_t before = expr_pool_size(P);
+    for (int i = 0; i < 100; i++)
+        (void)expr_mul(P, expr_unary(P, EXPR_SIN, x), y);
+    CHECK(expr_pool_size(P) == before, "rebuilding existing nodes allocates none");
+    ExprCount cnt = expr_count_ops(P, 1, &big);
+    CHECK(cnt.calls == 1, "a shared sin(x) is counted once (got %ld)", cnt.calls);
+}
+
+typedef struct Case {
+    const char *name;
+    int op;
+    double lo, hi;   /* domain of x */
+    double ylo, yhi; /* domain of y (binary ops) */
+} Case;
+
+static const Case cases[] = {
+    {"add", EXPR_ADD, -3, 3, -3, 3},     {"sub", EXPR_SUB, -3, 3, -3, 3},
+    {"mul", EXPR_MUL, -3, 3, -3, 3},     {"div", EXPR_DIV, -3, 3, 0.5, 3},
+    {"pow", EXPR_POW, 0.2, 3, -2, 2},    {"atan2", EXPR_ATAN2, -3, 3, -3, 3},
+    {"neg", EXPR_NEG, -3, 3, 0, 0},      {"sin", EXPR_SIN, -4, 4, 0, 0},
+    {"cos", EXPR_COS, -4, 4, 0, 0},      {"tan", EXPR_TAN, -1.2, 1.2, 0, 0},
+    {"asin", EXPR_ASIN, -0.9, 0.9, 0, 0}, {"acos", EXPR_ACOS, -0.9, 0.9, 0, 0},
+    {"atan", EXPR_ATAN, -4, 4, 0, 0},    {"sinh", EXPR_SINH, -2, 2, 0, 0},
+    {"cosh", EXPR_COSH, -2, 2, 0, 0},    {"tanh", EXPR_TANH, -2, 2, 0, 0},
+    {"exp", EXPR_EXP, -2, 2, 0, 0},      {"log", EXPR_LOG, 0.1, 4, 0, 0},
+    {"sqrt", EXPR_SQRT, 0.1, 4, 0, 0},   {"abs", EXPR_ABS, 0.1, 3, 0, 0},
+};
+
+/* Central difference of f along x (k = 0) or y (k = 1). */
+static double
+fd(ExprId f, double x, double y, int k)
+{
+    double h = 1e-5 * (1 + fabs(k ? y : x));
+    if (k == 0)
+        return (at(f, x + h, y) - at(f, x - h, y)) / (2 * h);
+    return (at(f, x, y + h) - at(f, x, y - h)) / (2 * h);
+}
+
+/* Each operator applied to compound operands (so the chain rule is
+ * exercised), differentiated three ways and checked against FD. */
+static void
+test_derivatives(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0);
+    ExprId leaves[2] = {x, y};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        const Case *k = &cases[c];
+        int binary = k->ylo != k->yhi;
+        /* operands: x + 0.1 y^2 (stays in the domain for small y) and y */
+        ExprId ax = expr_add(P, x, expr_mul(P, expr_const(P, 0.01), expr_powi(P, y, 2)));
+        ExprId f = binary ? expr_binary(P, k->op, ax, y) : expr_unary(P, k->op, ax);
+        int worst_ok = 1;
+        for (int trial = 0; trial < 20; trial++) {
+            double xv = check_rand(k->lo, k->hi * 0.9);
+            double yv = binary ? check_rand(k->ylo, k->yhi) : check_rand(-1, 1);
+            if (!binary && xv + 0.01 * yv * yv >= k->hi)
+                xv -= 0.1;
+            ExprId grad[2];
+            diff_gradient(D, f, 2, leaves, grad);
+            for (int i = 0; i < 2; i++) {
+                double want = fd(f, xv, yv, i);
+                double fwd = at(diff_partial(D, f, leaves[i]), xv, yv);
+                double rev = at(grad[i], xv, yv);
+                if (!check_close(fwd, want, 1e-6) || !check_close(rev, want, 1e-6)) {
+                    printf("# %s d/d%c at (%g, %g): fwd %.12g rev %.12g fd %.12g\n",
+                           k->name, "xy"[i], xv, yv, fwd, rev, want);
+                    worst_ok = 0;
+                }
+            }
+        }
+        CHECK(worst_ok, "d(%s) forward and reverse match central differences", k->name);
+    }
+}
+
+/* Integer powers, including negative ones and compositions. */
+static void
+test_powi(void)
+{
+    ExprId x = expr_var(P, 0, 0);
+    int ok = 1;
+    for (int n = -4; n <= 7; n++) {
+        ExprId f = expr_powi(P, expr_unary(P, EXPR_SIN, x), n);
+        ExprId d = diff_partial(D, f, x);
+        for (int trial = 0; trial < 5; trial++) {
+            double xv = check_rand(0.3, 2.8);
+            double want = fd(f, xv, 0, 0), got = at(d, xv, 0);
+            if (!check_close(got, want, 1e-6) || !check_close(at(f, xv, 0), pow(sin(xv), n), 1e-14))
+                ok = 0;
+        }
+    }
+    CHECK(ok, "x^n for n in -4..7: value and derivative");
+}
+
+/* d/dt along a trajectory: q(t) = polynomials, so q', q'', q''' are known
+ * exactly; compare diff_time(e) with FD in t of e(t, q(t), q'(t)). */
+static double traj_c[2][5] = {{0.3, -0.7, 0.4, 0.25, -0.1}, {-0.5, 0.2, 0.9, -0.3, 0.05}};
+
+static double
+poly(int i, int k, double t) /* k-th derivative of q_i at t */
+{
+    double s = 0;
+    for (int p = k; p < 5; p++) {
+        double c = traj_c[i][p];
+        for (int m = 0; m < k; m++)
+            c *= p - m;
+        s += c * pow(t, p - k);
+    }
+    return s;
+}
+
+static double
+at_time(ExprId e, double t)
+{
+    double q[4][2];
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i < 2; i++)
+            q[k][i] = poly(i, k, t);
+    ExprEnv env = {.t = t, .q = {q[0], q[1], q[2], q[3]}};
+    return expr_eval(P, e, &env);
+}
+
+static void
+test_time_derivative(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0), t = expr_time(P);
+    ExprId xd = expr_var(P, 0, 1), yd = expr_var(P, 1, 1);
+    /* a kinetic-energy-like expression with explicit time dependence */
+    ExprId e = expr_add(P,
+        expr_mul(P, expr_unary(P, EXPR_COS, expr_sub(P, x, y)), expr_mul(P, xd, yd)),
+        expr_mul(P, expr_unary(P, EXPR_SIN, t), expr_powi(P, xd, 2)));
+    ExprId e1 = diff_time(D, e), e2 = diff_time(D, e1);
+    int ok1 = 1, ok2 = 1;
+    for (int trial = 0; trial < 10; trial++) {
+        double tv = check_rand(-1, 1), h = 1e-5;
+        double fd1 = (at_time(e, tv + h) - at_time(e, tv - h)) / (2 * h);
+        double fd2 = (at_time(e1, tv + h) - at_time(e1, tv - h)) / (2 * h);
+        ok1 &= check_close(at_time(e1, tv), fd1, 1e-7);
+        ok2 &= check_close(at_time(e2, tv), fd2, 1e-7);
+    }
+    CHECK(ok1, "first total time derivative matches FD along a trajectory");
+    CHECK(ok2, "second total time derivative (with q''') matches FD");
+    CHECK(expr_max_order(P, e2) == 3, "e'' contains q''' (order %d)", expr_max_order(P, e2));
+    CHECK(diff_time(D, expr_input(P, 0)) == EXPR_NONE, "an input's derivative is unknown");
+    CHECK(diff_time(D, expr_var(P, 0, EXPR_MAX_ORDER)) == EXPR_NONE,
+          "derivative order beyond the maximum is refused");
+}
+
+static void
+test_subst(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0);
+    ExprId f = expr_add(P, expr_mul(P, x, y), expr_unary(P, EXPR_SIN, y));
+    ExprId g = expr_subst(P, f, 1, &y, (ExprId[]){EXPR_ZERO});
+    CHECK(g == EXPR_ZERO, "x*y + sin y at y = 0 simplifies to 0");
+    ExprId h = expr_subst(P, f, 1, &x, (ExprId[]){expr_const(P, 2)});
+    CHECK_NEAR(at(h, 0, 0.7), 2 * 0.7 + sin(0.7), 1e-15, "substitution of a constant");
+}
+
+int
+main(void)
+{
+    P = expr_pool_new();
+    D = diff_new(P);
+    test_hashcons();
+    test_derivatives();
+    test_powi();
+    test_time_derivative();
+    test_subst();
+    diff_free(D);
+    expr_pool_free(P);
+    return check_done();
+}

@@ -1,11 +1,18 @@
 /*
  * emit: the C printer.
  *
- * A function body is built from a list of outputs (an expression and the
- * C lvalue it goes to).  We mark what the outputs reach, give each used
- * leaf a named local, walk the marked nodes in id order (a topological
- * order) and print one temporary per operator node, then the
- * assignments.  All cleverness is in the DAG; this is a plain loop.
+ * A function is a list of outputs (an expression and the C lvalue it goes
+ * to).  We schedule the operator nodes the outputs need depth-first, in
+ * output order, so that each value is computed shortly before its first
+ * use, and print one `const double` temporary per node; each output is
+ * assigned as soon as its value exists.  All cleverness is in the DAG;
+ * this is a plain loop.
+ *
+ * Very large functions (the Jacobian of a 50-link chain has ~70 000
+ * nodes) are cut into parts of at most PART_SIZE temporaries, each its own
+ * non-inlined C function: the C compiler's register allocator is
+ * superlinear in function size, and parts keep `cc -O2` time linear.
+ * Values needed by a later part travel through a stack array s[].
  */
 #include "emit.h"
 
@@ -14,19 +21,33 @@
 #include <stdlib.h>
 #include <string.h>
 
+enum { PART_SIZE = 6000 };
+
 typedef struct Out {
     ExprId e;
     char dest[48];
 } Out;
 
+/* What a generated function looks like from outside. */
+typedef struct Func {
+    const char *name;    /* e.g. "mass_bias" */
+    const char *comment;
+    const char *params;  /* C parameter list */
+    const char *args;    /* the parameter names, comma-separated */
+    const char *src[7];  /* names of the q, v, a, -, p, u, t parameters */
+    const char *unused;  /* outputs nothing is written to, or NULL */
+} Func;
+
 typedef struct Printer {
     FILE *f;
     ExprPool *P;
     const Spec *s;
-    char **name; /* per node id: its C spelling once emitted, or NULL */
-    unsigned char *mark;
-    size_t size;
-    unsigned used; /* bit k: source array k (see print_body) is read */
+    /* per node id, for the function being printed */
+    int *temp;  /* temporary number, -1 if not scheduled */
+    int *part;  /* the part that computes it */
+    int *slot;  /* index in s[], -1 if only its own part uses it */
+    int cur;    /* the part being printed */
+    unsigned used; /* bit k: parameter src[k] is read in this part */
 } Printer;
 
 static void
@@ -48,7 +69,9 @@ format_const(char *buf, size_t len, double v)
         strncat(buf, ".0", len - strlen(buf) - 1);
 }
 
-static const char *
+static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }
+
+static void
 leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
 {
     static const char prefix[] = {'q', 'v', 'a', 'j'};
@@ -62,29 +85,34 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
     case EXPR_INPUT:
         snprintf(buf, len, "u_%s", pr->s->input[nd->a].name);
         break;
-    case EXPR_TIME:
+    default:
         snprintf(buf, len, "t");
-        break;
     }
-    return buf;
 }
 
-/* The spelling of an operand: a name, or a constant (negative ones in
- * parentheses so that `x - -1` never appears). */
+/* The spelling of an operand: a constant (negative ones in parentheses so
+ * that `x - -1` never appears), a leaf's local, a temporary of this part,
+ * or a value shared from an earlier part. */
 static const char *
 operand(Printer *pr, ExprId e, char *buf, size_t len)
 {
     const ExprNode *nd = expr_node(pr->P, e);
-    if (nd->op != EXPR_CONST)
-        return pr->name[e];
-    char num[40];
-    format_const(num, sizeof num, nd->value);
-    snprintf(buf, len, nd->value < 0 ? "(%s)" : "%s", num);
+    if (nd->op == EXPR_CONST) {
+        char num[40];
+        format_const(num, sizeof num, nd->value);
+        snprintf(buf, len, nd->value < 0 ? "(%s)" : "%s", num);
+    } else if (is_leaf(nd)) {
+        leaf_name(pr, nd, buf, len);
+    } else if (pr->part[e] == pr->cur) {
+        snprintf(buf, len, "w%d", pr->temp[e]);
+    } else {
+        snprintf(buf, len, "s[%d]", pr->slot[e]);
+    }
     return buf;
 }
 
 static void
-print_powi(Printer *pr, const char *x, int n, char *rhs, size_t len)
+print_powi(const char *x, int n, char *rhs, size_t len)
 {
     if (n > 4) {
         snprintf(rhs, len, "pow(%s, %d)", x, n);
@@ -99,10 +127,10 @@ print_powi(Printer *pr, const char *x, int n, char *rhs, size_t len)
 }
 
 static void
-print_node(Printer *pr, ExprId id, int *ntemp)
+print_node(Printer *pr, ExprId id)
 {
     const ExprNode *nd = expr_node(pr->P, id);
-    char ba[64], bb[64], rhs[256];
+    char ba[200], bb[200], rhs[512];
     const char *x = NULL, *y = NULL;
     int ar = expr_op_arity[nd->op];
     if (ar >= 1)
@@ -119,7 +147,7 @@ print_node(Printer *pr, ExprId id, int *ntemp)
         break;
     default:
         if (nd->op == EXPR_POWI)
-            print_powi(pr, x, (int32_t)nd->b, rhs, sizeof rhs);
+            print_powi(x, (int32_t)nd->b, rhs, sizeof rhs);
         else if (nd->op == EXPR_SIGN)
             snprintf(rhs, sizeof rhs, "(double)((%s > 0) - (%s < 0))", x, x);
         else if (ar == 2)
@@ -127,70 +155,232 @@ print_node(Printer *pr, ExprId id, int *ntemp)
         else
             snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
     }
-    char name[24];
-    snprintf(name, sizeof name, "w%d", (*ntemp)++);
-    println(pr, "    const double %s = %s;", name, rhs);
-    pr->name[id] = strdup(name);
+    println(pr, "    const double w%d = %s;", pr->temp[id], rhs);
+    if (pr->slot[id] >= 0)
+        println(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
 }
 
-/* Locals for the leaves the outputs use, in a fixed order: t, then
+/* ---- scheduling ---- */
+
+typedef struct Sched {
+    ExprId *node;  /* operator nodes in print order */
+    int n;
+    int *after;    /* per output: nodes printed before its assignment */
+    int *pstart;   /* per part: first node; pstart[nparts] = n */
+    int *ostart;   /* per part: first output; ostart[nparts] = nout */
+    int nparts, nslots;
+} Sched;
+
+/* Append the unscheduled operator nodes that root needs, operands first. */
+static void
+schedule_tree(Printer *pr, Sched *S, ExprId root)
+{
+    size_t cap = 64, sp = 0;
+    struct { ExprId id; int expanded; } *stack = malloc(cap * sizeof *stack);
+    stack[sp].id = root;
+    stack[sp++].expanded = 0;
+    while (sp) {
+        ExprId e = stack[sp - 1].id;
+        const ExprNode *nd = expr_node(pr->P, e);
+        if (is_leaf(nd) || pr->temp[e] >= 0) {
+            sp--;
+        } else if (stack[sp - 1].expanded) {
+            sp--;
+            pr->temp[e] = S->n;
+            S->node[S->n++] = e;
+        } else {
+            stack[sp - 1].expanded = 1;
+            if (sp + 2 >= cap)
+                stack = realloc(stack, (cap *= 2) * sizeof *stack);
+            int ar = expr_op_arity[nd->op];
+            ExprId ops[2] = {nd->a, nd->b};
+            for (int k = ar - 1; k >= 0; k--) { /* operand a comes first */
+                stack[sp].id = ops[k];
+                stack[sp++].expanded = 0;
+            }
+        }
+    }
+    free(stack);
+}
+
+/* A value crossing into another part gets a slot in s[]. */
+static void
+share(Printer *pr, Sched *S, ExprId e, int part)
+{
+    if (!is_leaf(expr_node(pr->P, e)) && pr->part[e] != part && pr->slot[e] < 0)
+        pr->slot[e] = S->nslots++;
+}
+
+static void
+schedule(Printer *pr, Sched *S, int nout, const Out *out)
+{
+    size_t size = expr_pool_size(pr->P);
+    S->node = malloc(size * sizeof *S->node);
+    S->after = malloc(((size_t)nout + 1) * sizeof *S->after);
+    S->pstart = malloc(((size_t)nout + 2) * sizeof *S->pstart);
+    S->ostart = malloc(((size_t)nout + 2) * sizeof *S->ostart);
+    S->n = S->nparts = S->nslots = 0;
+    S->pstart[0] = S->ostart[0] = 0;
+    for (int i = 0; i < nout; i++) {
+        schedule_tree(pr, S, out[i].e);
+        S->after[i] = S->n;
+        if (S->n - S->pstart[S->nparts] >= PART_SIZE || i == nout - 1) {
+            S->nparts++;
+            S->pstart[S->nparts] = S->n;
+            S->ostart[S->nparts] = i + 1;
+        }
+    }
+    if (S->nparts == 0) { /* no outputs */
+        S->nparts = 1;
+        S->pstart[1] = S->ostart[1] = 0;
+    }
+    for (int p = 0; p < S->nparts; p++)
+        for (int k = S->pstart[p]; k < S->pstart[p + 1]; k++)
+            pr->part[S->node[k]] = p;
+    for (int p = 0; p < S->nparts; p++) {
+        for (int k = S->pstart[p]; k < S->pstart[p + 1]; k++) {
+            const ExprNode *nd = expr_node(pr->P, S->node[k]);
+            int ar = expr_op_arity[nd->op];
+            if (ar >= 1)
+                share(pr, S, nd->a, p);
+            if (ar >= 2)
+                share(pr, S, nd->b, p);
+        }
+        for (int i = S->ostart[p]; i < S->ostart[p + 1]; i++)
+            share(pr, S, out[i].e, p);
+    }
+}
+
+/* ---- printing ---- */
+
+static void
+mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
+{
+    if (is_leaf(expr_node(pr->P, e)))
+        mark[e] = 1;
+}
+
+/* Named locals for the leaves part p reads, in a fixed order: t, the
  * coordinates by derivative order, parameters, inputs. */
 static void
-print_leaves(Printer *pr, const char *const *src)
+print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
+             const char *const *src)
 {
     static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT};
+    size_t size = expr_pool_size(pr->P);
+    unsigned char *mark = calloc(size, 1);
+    for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        int ar = expr_op_arity[nd->op];
+        if (ar >= 1)
+            mark_leaf(pr, nd->a, mark);
+        if (ar >= 2)
+            mark_leaf(pr, nd->b, mark);
+    }
+    for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1] && i < nout; i++)
+        mark_leaf(pr, out[i].e, mark);
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
-        for (size_t id = 0; id < pr->size; id++) {
+        for (size_t id = 0; id < size; id++) {
             const ExprNode *nd = expr_node(pr->P, (ExprId)id);
-            if (!pr->mark[id] || nd->op != kinds[k])
+            if (!mark[id] || nd->op != kinds[k])
                 continue;
-            char buf[160];
-            leaf_name(pr, nd, buf, sizeof buf);
-            pr->name[id] = strdup(buf);
             if (nd->op == EXPR_TIME) {
                 pr->used |= 1u << 6;
                 continue;
             }
-            int arr = nd->op == EXPR_VAR ? (int)nd->b
-                    : nd->op == EXPR_PARAM ? 4 : 5;
+            int arr = nd->op == EXPR_VAR ? (int)nd->b : nd->op == EXPR_PARAM ? 4 : 5;
+            char buf[160];
+            leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
             println(pr, "    const double %s = %s[%u];", buf, src[arr], nd->a);
         }
+    free(mark);
 }
 
-/* Emit the body of one function: locals, temporaries, assignments.
- * `src` names the arguments holding q, v, a, (none), p, u, t; NULL
- * where the function has no such argument. */
-static ExprCount
-print_body(Printer *pr, int nout, const Out *out, const char *const *src)
+/* The statements of part p: leaves, temporaries, assignments. */
+static void
+print_part(Printer *pr, const Sched *S, int nout, const Out *out,
+           const Func *fn)
 {
     pr->used = 0;
-    size_t size = expr_pool_size(pr->P);
-    pr->size = size;
-    pr->mark = calloc(size, 1);
-    pr->name = calloc(size, sizeof *pr->name);
-    ExprId *roots = malloc((size_t)(nout ? nout : 1) * sizeof *roots);
-    for (int i = 0; i < nout; i++)
-        roots[i] = out[i].e;
-    expr_mark(pr->P, nout, roots, pr->mark);
-    print_leaves(pr, src);
-    for (int k = 0; k < 7; k++) /* silence -Wunused-parameter */
-        if (src[k] && !(pr->used >> k & 1))
-            println(pr, "    (void)%s;", src[k]);
-    int ntemp = 0;
-    for (size_t id = 0; id < size; id++)
-        if (pr->mark[id] && expr_op_arity[expr_node(pr->P, (ExprId)id)->op] > 0)
-            print_node(pr, (ExprId)id, &ntemp);
-    for (int i = 0; i < nout; i++) {
-        char buf[64];
+    print_leaves(pr, S, nout, out, fn->src);
+    if (S->nparts == 1) {
+        for (int k = 0; k < 7; k++) /* silence -Wunused-parameter */
+            if (fn->src[k] && !(pr->used >> k & 1))
+                println(pr, "    (void)%s;", fn->src[k]);
+        if (fn->unused)
+            println(pr, "    %s", fn->unused);
+    }
+    int k = S->pstart[pr->cur];
+    for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1]; i++) {
+        for (; k < S->after[i]; k++)
+            print_node(pr, S->node[k]);
+        char buf[200];
         println(pr, "    %s = %s;", out[i].dest, operand(pr, out[i].e, buf, sizeof buf));
     }
+}
+
+/* (void) every parameter: a part uses only some of them. */
+static void
+print_voids(Printer *pr, const char *args)
+{
+    fprintf(pr->f, "    (void)s;");
+    for (const char *p = args; *p;) {
+        size_t n = strcspn(p, ", ");
+        fprintf(pr->f, " (void)%.*s;", (int)n, p);
+        p += n;
+        p += strspn(p, ", ");
+    }
+    fputc('\n', pr->f);
+}
+
+/* Print `fn` computing the outputs; returns its operation counts. */
+static ExprCount
+print_function(Printer *pr, const Func *fn, int nout, const Out *out)
+{
+    size_t size = expr_pool_size(pr->P);
+    pr->temp = malloc(size * sizeof *pr->temp);
+    pr->part = malloc(size * sizeof *pr->part);
+    pr->slot = malloc(size * sizeof *pr->slot);
+    for (size_t i = 0; i < size; i++)
+        pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
+    Sched S;
+    schedule(pr, &S, nout, out);
+    const char *nm = pr->s->name;
+    if (S.nparts == 1) {
+        println(pr, "/* %s */", fn->comment);
+        println(pr, "static void\n%s_%s(%s)\n{", nm, fn->name, fn->params);
+        pr->cur = 0;
+        print_part(pr, &S, nout, out, fn);
+        println(pr, "}\n");
+    } else {
+        for (pr->cur = 0; pr->cur < S.nparts; pr->cur++) {
+            println(pr, "/* %s: part %d of %d */", fn->name, pr->cur + 1, S.nparts);
+            println(pr, "static EOMC_NOINLINE void\n%s_%s_part%d(%s, double *s)\n{",
+                    nm, fn->name, pr->cur + 1, fn->params);
+            print_voids(pr, fn->args);
+            print_part(pr, &S, nout, out, fn);
+            println(pr, "}\n");
+        }
+        println(pr, "/* %s */", fn->comment);
+        println(pr, "static void\n%s_%s(%s)\n{", nm, fn->name, fn->params);
+        println(pr, "    double s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
+        for (int p = 0; p < S.nparts; p++)
+            println(pr, "    %s_%s_part%d(%s, s);", nm, fn->name, p + 1, fn->args);
+        println(pr, "}\n");
+    }
+    ExprId *roots = malloc(((size_t)nout + 1) * sizeof *roots);
+    for (int i = 0; i < nout; i++)
+        roots[i] = out[i].e;
     ExprCount c = expr_count_ops(pr->P, nout, roots);
-    for (size_t id = 0; id < size; id++)
-        free(pr->name[id]);
-    free(pr->name);
-    free(pr->mark);
     free(roots);
+    free(S.node);
+    free(S.after);
+    free(S.pstart);
+    free(S.ostart);
+    free(pr->temp);
+    free(pr->part);
+    free(pr->slot);
     return c;
 }
 
@@ -250,6 +440,12 @@ print_banner(Printer *pr, const Eom *e, const EmitInfo *info)
     println(pr, "");
     println(pr, "#include \"eomc_model.h\"");
     println(pr, "");
+    println(pr, "#if defined(__GNUC__)");
+    println(pr, "#define EOMC_NOINLINE __attribute__((noinline))");
+    println(pr, "#else");
+    println(pr, "#define EOMC_NOINLINE");
+    println(pr, "#endif");
+    println(pr, "");
 }
 
 static void
@@ -279,19 +475,63 @@ add_out(Out *o, int *n, ExprId e, const char *fmt, ...)
     o[(*n)++].e = e;
 }
 
-/* `unused`: output arguments nothing is written to, or NULL. */
-static ExprCount
-print_function(Printer *pr, const char *comment, const char *proto,
-               int nout, const Out *out, const char *const src[7],
-               const char *unused)
+#define SRC(q, v, a, p, u, t) {q, v, a, NULL, p, u, t}
+
+static const Func f_initial = {
+    "initial", "Initial state from the spec's `initial`.",
+    "const double *p, double *q, double *v", "p, q, v",
+    SRC(NULL, NULL, NULL, "p", NULL, NULL), NULL,
+};
+static const Func f_inputs = {
+    "inputs", "Input signals u(t) and du/dt.",
+    "double t, const double *p, double *u, double *dudt", "t, p, u, dudt",
+    SRC(NULL, NULL, NULL, "p", NULL, "t"), "(void)u;\n    (void)dudt;",
+};
+static const Func f_mass_bias = {
+    "mass_bias",
+    "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
+    "double t, const double *q, const double *v, const double *p,\n"
+    "    const double *u, double *M, double *h", "t, q, v, p, u, M, h",
+    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+static const Func f_energy = {
+    "energy", "Kinetic energy T and potential energy V.",
+    "double t, const double *q, const double *v, const double *p,\n"
+    "    const double *u, double *TV", "t, q, v, p, u, TV",
+    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+static const Func f_jacobian = {
+    "jacobian",
+    "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, double *dEdq, double *dEdv,\n"
+    "    double *dEdu, double *dEdt", "t, q, v, a, p, u, dEdq, dEdv, dEdu, dEdt",
+    SRC("q", "v", "a", "p", "u", "t"), "(void)dEdu;",
+};
+
+static void
+print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *info)
 {
-    println(pr, "/* %s */", comment);
-    println(pr, "static void\n%s_%s\n{", pr->s->name, proto);
-    if (unused)
-        println(pr, "    %s", unused);
-    ExprCount c = print_body(pr, nout, out, src);
-    println(pr, "}\n");
-    return c;
+    const char *nm = s->name;
+    println(pr, "const eomc_model %s_model = {", nm);
+    println(pr, "    EOMC_ABI_VERSION, \"%s\", \"%s\", \"%s\", \"%s\",", nm,
+            base_name(s->path), e->form->name, info->options);
+    println(pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", s->nq, s->np, s->nu);
+    char a[40], b[40], c[40], d[40], h[40];
+    format_const(a, sizeof a, s->scene.t_end);
+    format_const(b, sizeof b, s->scene.dt);
+    format_const(c, sizeof c, s->scene.rtol);
+    format_const(d, sizeof d, s->scene.atol);
+    format_const(h, sizeof h, s->scene.h_fixed);
+    println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, c, d, h);
+    println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
+            nm, nm, nm, nm, nm);
+    println(pr, "};");
+    println(pr, "");
+    println(pr, "#ifdef EOMC_MAIN");
+    println(pr, "#include \"eomc.h\"");
+    println(pr, "int main(int argc, char **argv) { return eomc_main(argc, argv, &%s_model); }", nm);
+    println(pr, "#endif");
 }
 
 void
@@ -299,33 +539,28 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
            Diff *D, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
 {
     Printer pr = {.f = f, .P = P, .s = s};
-    int n = s->nq, nu = s->nu, k = 0, cap = 2 * n * n + n * nu + 4 * n + 2 * nu + 2;
-    Out *o = calloc((size_t)cap, sizeof *o);
-    (void)m;
+    int n = s->nq, nu = s->nu, k;
+    Out *o = calloc((size_t)(2 * n * n + n * nu + 4 * n + 2 * nu + 2), sizeof *o);
     print_banner(&pr, e, info);
     print_tables(&pr);
 
+    k = 0;
     for (int i = 0; i < n; i++)
         add_out(o, &k, s->coord[i].q0, "q[%d]", i);
     for (int i = 0; i < n; i++)
         add_out(o, &k, s->coord[i].v0, "v[%d]", i);
-    stats[0].function = "initial";
-    stats[0].count = print_function(&pr, "Initial state from the spec's `initial`.",
-        "initial(const double *p, double *q, double *v)", k, o,
-        (const char *const[7]){NULL, NULL, NULL, NULL, "p", NULL, NULL}, NULL);
+    stats[0] = (EmitStats){"initial", print_function(&pr, &f_initial, k, o)};
 
     k = 0;
     for (int i = 0; i < nu; i++)
         add_out(o, &k, s->input[i].expr, "u[%d]", i);
     for (int i = 0; i < nu; i++)
         add_out(o, &k, diff_time(D, s->input[i].expr), "if (dudt) dudt[%d]", i);
-    stats[1].function = "inputs";
-    stats[1].count = print_function(&pr, "Input signals u(t) and du/dt.",
-        "inputs(double t, const double *p, double *u, double *dudt)", k, o,
-        (const char *const[7]){NULL, NULL, NULL, NULL, "p", NULL, "t"},
-        nu ? NULL : "(void)u;\n    (void)dudt;");
+    Func fin = f_inputs;
+    fin.unused = nu ? NULL : f_inputs.unused;
+    stats[1] = (EmitStats){"inputs", print_function(&pr, &fin, k, o)};
 
-    k = 0;
+    k = 0; /* lower triangle and h, then the mirrored upper triangle */
     for (int i = 0; i < n; i++)
         for (int j = 0; j <= i; j++)
             add_out(o, &k, e->M[i * n + j], "M[%d]", i * n + j);
@@ -334,59 +569,26 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n; j++)
             add_out(o, &k, e->M[i * n + j], "M[%d]", i * n + j);
-    stats[2].function = "mass_bias";
-    stats[2].count = print_function(&pr,
-        "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
-        "mass_bias(double t, const double *q, const double *v, const double *p,\n"
-        "    const double *u, double *M, double *h)", k, o,
-        (const char *const[7]){"q", "v", NULL, NULL, "p", "u", "t"}, NULL);
+    stats[2] = (EmitStats){"mass_bias", print_function(&pr, &f_mass_bias, k, o)};
 
     k = 0;
     add_out(o, &k, m->T, "TV[0]");
     add_out(o, &k, m->V, "TV[1]");
-    stats[3].function = "energy";
-    stats[3].count = print_function(&pr, "Kinetic energy T and potential energy V.",
-        "energy(double t, const double *q, const double *v, const double *p,\n"
-        "    const double *u, double *TV)", k, o,
-        (const char *const[7]){"q", "v", NULL, NULL, "p", "u", "t"}, NULL);
+    stats[3] = (EmitStats){"energy", print_function(&pr, &f_energy, k, o)};
 
     k = 0;
-    for (int i = 0; i < n * n; i++)
-        add_out(o, &k, e->dEdq[i], "dEdq[%d]", i);
-    for (int i = 0; i < n * n; i++)
-        add_out(o, &k, e->dEdv[i], "dEdv[%d]", i);
-    for (int i = 0; i < n * nu; i++)
-        add_out(o, &k, e->dEdu[i], "dEdu[%d]", i);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) { /* row by row: rows share their work */
+        for (int j = 0; j < n; j++)
+            add_out(o, &k, e->dEdq[i * n + j], "dEdq[%d]", i * n + j);
+        for (int j = 0; j < n; j++)
+            add_out(o, &k, e->dEdv[i * n + j], "dEdv[%d]", i * n + j);
+        for (int j = 0; j < nu; j++)
+            add_out(o, &k, e->dEdu[i * nu + j], "dEdu[%d]", i * nu + j);
         add_out(o, &k, e->dEdt[i], "dEdt[%d]", i);
-    stats[4].function = "jacobian";
-    stats[4].count = print_function(&pr,
-        "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
-        "jacobian(double t, const double *q, const double *v, const double *a,\n"
-        "    const double *p, const double *u, double *dEdq, double *dEdv,\n"
-        "    double *dEdu, double *dEdt)", k, o,
-        (const char *const[7]){"q", "v", "a", NULL, "p", "u", "t"},
-        nu ? NULL : "(void)dEdu;");
+    }
+    Func fj = f_jacobian;
+    fj.unused = nu ? NULL : f_jacobian.unused;
+    stats[4] = (EmitStats){"jacobian", print_function(&pr, &fj, k, o)};
     free(o);
-
-    const char *nm = s->name;
-    println(&pr, "const eomc_model %s_model = {", nm);
-    println(&pr, "    EOMC_ABI_VERSION, \"%s\", \"%s\", \"%s\", \"%s\",", nm,
-            base_name(s->path), e->form->name, info->options);
-    println(&pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", n, s->np, nu);
-    char a[40], b[40], c[40], d[40], h[40];
-    format_const(a, sizeof a, s->scene.t_end);
-    format_const(b, sizeof b, s->scene.dt);
-    format_const(c, sizeof c, s->scene.rtol);
-    format_const(d, sizeof d, s->scene.atol);
-    format_const(h, sizeof h, s->scene.h_fixed);
-    println(&pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, c, d, h);
-    println(&pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
-            nm, nm, nm, nm, nm);
-    println(&pr, "};");
-    println(&pr, "");
-    println(&pr, "#ifdef EOMC_MAIN");
-    println(&pr, "#include \"eomc.h\"");
-    println(&pr, "int main(int argc, char **argv) { return eomc_main(argc, argv, &%s_model); }", nm);
-    println(&pr, "#endif");
+    print_model_struct(&pr, s, e, info);
 }

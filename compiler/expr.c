@@ -131,6 +131,9 @@ static ExprId
 mk(ExprPool *P, int op, ExprId a, ExprId b)
 {
     ExprNode nd = {.op = (uint8_t)op, .a = a, .b = b, .value = 0.0};
+    int ar = expr_op_arity[op];
+    nd.coeff = op == EXPR_PARAM || (ar >= 1 && P->node[a].coeff &&
+                                    (ar == 1 || P->node[b].coeff));
     return intern(P, nd);
 }
 
@@ -139,7 +142,7 @@ expr_const(ExprPool *P, double v)
 {
     if (v == 0.0)
         v = 0.0; /* one zero: -0.0 folds to +0.0 */
-    ExprNode nd = {.op = EXPR_CONST, .a = 0, .b = 0, .value = v};
+    ExprNode nd = {.op = EXPR_CONST, .coeff = 1, .a = 0, .b = 0, .value = v};
     return intern(P, nd);
 }
 
@@ -170,6 +173,20 @@ is_value(const ExprPool *P, ExprId e, double v)
 
 static int op_of(const ExprPool *P, ExprId e) { return P->node[e].op; }
 
+int expr_is_coeff(const ExprPool *P, ExprId e) { return P->node[e].coeff; }
+
+/* e = c*x with c a coefficient: *c and *x, else 0. */
+static int
+scaled(const ExprPool *P, ExprId e, ExprId *c, ExprId *x)
+{
+    const ExprNode *n = &P->node[e];
+    if (n->op != EXPR_MUL || !P->node[n->a].coeff || P->node[n->b].coeff)
+        return 0;
+    *c = n->a;
+    *x = n->b;
+    return 1;
+}
+
 /* Fold to a constant only when the result is finite: 1/0 or log(-1) stay
  * symbolic so that the checker upstream can report them. */
 static int
@@ -178,12 +195,19 @@ foldable(double r)
     return isfinite(r);
 }
 
-/* Canonical order of commutative operands: constants first, then by id. */
+/* Canonical order of commutative operands: constants first, then other
+ * coefficients, then by id. */
+static int
+rank(const ExprPool *P, ExprId e)
+{
+    return op_of(P, e) == EXPR_CONST ? 0 : P->node[e].coeff ? 1 : 2;
+}
+
 static void
 order2(const ExprPool *P, ExprId *a, ExprId *b)
 {
-    int ca = op_of(P, *a) == EXPR_CONST, cb = op_of(P, *b) == EXPR_CONST;
-    if ((cb && !ca) || (ca == cb && *b < *a)) {
+    int ra = rank(P, *a), rb = rank(P, *b);
+    if (rb < ra || (ra == rb && *b < *a)) {
         ExprId t = *a;
         *a = *b;
         *b = t;
@@ -225,6 +249,9 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
         return expr_sub(P, b, P->node[a].a);
     if (a == b)
         return expr_mul(P, expr_const(P, 2.0), a);
+    ExprId c1, x1, c2, x2;
+    if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
+        return expr_mul(P, c1, expr_add(P, x1, x2)); /* c x + c y = c (x + y) */
     order2(P, &a, &b);
     return mk(P, EXPR_ADD, a, b);
 }
@@ -245,6 +272,9 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
         return expr_add(P, a, P->node[b].a);
     if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
         return expr_neg(P, expr_add(P, P->node[a].a, b));
+    ExprId c1, x1, c2, x2;
+    if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
+        return expr_mul(P, c1, expr_sub(P, x1, x2)); /* c x - c y = c (x - y) */
     return mk(P, EXPR_SUB, a, b);
 }
 
@@ -275,24 +305,22 @@ expr_mul(ExprPool *P, ExprId a, ExprId b)
             return b;
         if (x == -1.0)
             return expr_neg(P, b);
-        const ExprNode nbv = P->node[b], *nb = &nbv;
-        /* c1*(c2*y) = (c1 c2)*y */
-        if (nb->op == EXPR_MUL && op_of(P, nb->a) == EXPR_CONST &&
-            foldable(x * P->node[nb->a].value))
-            return expr_mul(P, expr_const(P, x * P->node[nb->a].value), nb->b);
-        if (nb->op == EXPR_NEG)
-            return expr_mul(P, expr_const(P, -x), nb->a);
-        return mk(P, EXPR_MUL, a, b);
+        if (op_of(P, b) == EXPR_NEG)
+            return expr_mul(P, expr_const(P, -x), P->node[b].a);
     }
-    if (op_of(P, a) == EXPR_NEG)
+    if (!ca && op_of(P, a) == EXPR_NEG)
         return expr_neg(P, expr_mul(P, P->node[a].a, b));
-    if (op_of(P, b) == EXPR_NEG)
+    if (!ca && op_of(P, b) == EXPR_NEG)
         return expr_neg(P, expr_mul(P, a, P->node[b].a));
-    /* Constant factors float to the front: (c*x)*y = c*(x*y). */
-    if (op_of(P, a) == EXPR_MUL && op_of(P, P->node[a].a) == EXPR_CONST)
-        return expr_mul(P, P->node[a].a, expr_mul(P, P->node[a].b, b));
-    if (op_of(P, b) == EXPR_MUL && op_of(P, P->node[b].a) == EXPR_CONST)
-        return expr_mul(P, P->node[b].a, expr_mul(P, a, P->node[b].b));
+    /* Coefficient factors float to the front and gather there:
+     * c*(d*y) = (c d)*y, (c*x)*y = c*(x*y), x*(c*y) = c*(x*y). */
+    ExprId cf, rest;
+    if (P->node[a].coeff && scaled(P, b, &cf, &rest))
+        return expr_mul(P, expr_mul(P, a, cf), rest);
+    if (!P->node[a].coeff && scaled(P, a, &cf, &rest))
+        return expr_mul(P, cf, expr_mul(P, rest, b));
+    if (!P->node[a].coeff && scaled(P, b, &cf, &rest))
+        return expr_mul(P, cf, expr_mul(P, a, rest));
     ExprId ba, bb;
     int ma = power_parts(P, a, &ba), mb = power_parts(P, b, &bb);
     if (ba == bb && op_of(P, ba) != EXPR_CONST)
@@ -328,9 +356,10 @@ expr_div(ExprPool *P, ExprId a, ExprId b)
         return expr_neg(P, expr_div(P, P->node[a].a, b));
     if (op_of(P, b) == EXPR_NEG)
         return expr_neg(P, expr_div(P, a, P->node[b].a));
-    /* (c*x)/y = c*(x/y), keeping constants outermost */
-    if (op_of(P, a) == EXPR_MUL && op_of(P, P->node[a].a) == EXPR_CONST)
-        return expr_mul(P, P->node[a].a, expr_div(P, P->node[a].b, b));
+    /* (c*x)/y = c*(x/y), keeping coefficients outermost */
+    ExprId cf, rest;
+    if (!P->node[b].coeff && scaled(P, a, &cf, &rest))
+        return expr_mul(P, cf, expr_div(P, rest, b));
     return mk(P, EXPR_DIV, a, b);
 }
 

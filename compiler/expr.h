@@ -9,8 +9,11 @@
  *
  * The constructors simplify: constant folding (only to finite results;
  * -0.0 is stored as 0.0), x+0, x*1, x*0 = 0 (symbolically: no IEEE
- * infinities are assumed), --x, x-x, integer powers, and constant factors
- * collected to the left of a product.
+ * infinities are assumed), --x, x-x, integer powers, and coefficient
+ * factors (expressions of constants and parameters only, such as m*l^2)
+ * collected to the left of a product and out of sums: c*x + c*y =
+ * c*(x + y).  Mechanics is full of m and l; this keeps them from being
+ * multiplied in again and again.
  *
  * All nodes live in one ExprPool and are freed with it.
  */
@@ -37,6 +40,7 @@ enum { OPK_LEAF, OPK_INFIX, OPK_PREFIX, OPK_CALL };
 
 typedef struct ExprNode {
     uint8_t op;
+    uint8_t coeff; /* depends on parameters and constants only (derived) */
     uint32_t a, b; /* operands, or leaf data: see ops.def */
     double value;  /* EXPR_CONST only */
 } ExprNode;
@@ -75,6 +79,8 @@ ExprId expr_binary(ExprPool *P, int op, ExprId a, ExprId b);
 
 /* Queries. */
 int expr_is_const(const ExprPool *P, ExprId e, double *value);
+/* Does e depend on parameters and constants only? */
+int expr_is_coeff(const ExprPool *P, ExprId e);
 /* Highest derivative order of any coordinate in e, or -1 if none. */
 int expr_max_order(ExprPool *P, ExprId e);
 /* Does e contain the given leaf (a VAR, PARAM, INPUT or TIME node)? */

@@ -123,8 +123,11 @@ char *
 arena_printf(Arena *a, const char *fmt, ...)
 {
     va_list ap;
+    char probe[1];
+    if (!fmt) /* never; tells gcc -fsanitize=null that fmt is set */
+        fmt = "";
     va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
+    int n = vsnprintf(probe, sizeof probe, fmt, ap); /* the length it needs */
     va_end(ap);
     char *p = arena_alloc(a, (size_t)n + 1);
     va_start(ap, fmt);

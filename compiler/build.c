@@ -8,6 +8,7 @@
  * can be moved, or staged with DESTDIR).  EOMC_RUNTIME_INCLUDE and
  * EOMC_RUNTIME_LIB override both.
  */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "build.h"
 #include "arena.h"
 #include "config.h"
@@ -67,7 +68,7 @@ relative(const char *from, const char *to, char *out, size_t len)
 static void
 runtime_paths(const char **inc, const char **lib)
 {
-    static char ibuf[PATH_MAX * 2], lbuf[PATH_MAX * 2];
+    static char ibuf[PATH_MAX * 2 + 64], lbuf[PATH_MAX * 2 + 64];
     char self[PATH_MAX], rel[PATH_MAX];
     self_dir(self, sizeof self);
     if (running_from_build_dir(self)) {

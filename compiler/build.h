@@ -5,6 +5,8 @@
 #ifndef EOMC_BUILD_H
 #define EOMC_BUILD_H
 
+#include <stddef.h>
+
 /* Compile c_file with the runtime into exe (written to a temporary name
  * and renamed when complete).  Returns 0, or -1 after printing why. */
 int build_executable(const char *c_file, const char *exe);

@@ -60,11 +60,16 @@ println(Printer *pr, const char *fmt, ...)
     fputc('\n', pr->f);
 }
 
-/* %.17g round-trips; make sure C reads it as a double, not an int. */
+/* The shortest %g form that reads back as the same double (9.81, not
+ * 9.8100000000000005), made to look like a double to C. */
 static void
 format_const(char *buf, size_t len, double v)
 {
-    snprintf(buf, len, "%.17g", v);
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(buf, len, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
     if (!strpbrk(buf, ".eEn"))
         strncat(buf, ".0", len - strlen(buf) - 1);
 }
@@ -509,13 +514,60 @@ static const Func f_jacobian = {
     SRC("q", "v", "a", "p", "u", "t"), "(void)dEdu;",
 };
 
+static const Func f_accel_solve = {
+    "accel_solve",
+    "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
+    " * skipped); piv[k] = d_k - EOMC_PIVOT_TOL M_kk must all be positive.",
+    "double t, const double *q, const double *v, const double *p,\n"
+    "    const double *u, double *a, double *piv", "t, q, v, p, u, a, piv",
+    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+
+/* The accel member of eomc_model: the solve, then the pivot check. */
+static void
+print_accel(Printer *pr, int n)
+{
+    const char *nm = pr->s->name;
+    println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if pivot k fails (M singular or not");
+    println(pr, " * positive definite). */");
+    println(pr, "static int\n%s_accel(double t, const double *q, const double *v, "
+            "const double *p,\n    const double *u, double *a)\n{", nm);
+    println(pr, "    double piv[%d];", n);
+    println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv);", nm);
+    println(pr, "    for (int k = 0; k < %d; k++)", n);
+    println(pr, "        if (!(piv[k] > 0.0))");
+    println(pr, "            return k + 1;");
+    println(pr, "    return 0;");
+    println(pr, "}\n");
+}
+
+/* A C string literal for any text: quotes, backslashes and control
+ * characters escaped (file names may contain anything). */
+static void
+print_c_string(FILE *f, const char *text)
+{
+    fputc('"', f);
+    for (const unsigned char *c = (const unsigned char *)text; *c; c++) {
+        if (*c == '"' || *c == '\\')
+            fprintf(f, "\\%c", *c);
+        else if (*c < 0x20 || *c >= 0x7f || *c == '?')
+            fprintf(f, "\\%03o", *c); /* octal: no trigraphs, no runaway hex */
+        else
+            fputc(*c, f);
+    }
+    fputc('"', f);
+}
+
 static void
 print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *info)
 {
     const char *nm = s->name;
     println(pr, "const eomc_model %s_model = {", nm);
-    println(pr, "    EOMC_ABI_VERSION, \"%s\", \"%s\", \"%s\", \"%s\",", nm,
-            base_name(s->path), e->form->name, info->options);
+    fprintf(pr->f, "    EOMC_ABI_VERSION, \"%s\", ", nm);
+    print_c_string(pr->f, base_name(s->path));
+    fprintf(pr->f, ", \"%s\", ", e->form->name);
+    print_c_string(pr->f, info->options);
+    println(pr, ",");
     println(pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", s->nq, s->np, s->nu);
     char a[40], b[40], c[40], d[40], h[40];
     format_const(a, sizeof a, s->scene.t_end);
@@ -526,6 +578,11 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *inf
     println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, c, d, h);
     println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
             nm, nm, nm, nm, nm);
+    if (e->acc)
+        println(pr, "    %s_accel,", nm);
+    else
+        println(pr, "    NULL, /* more than %d coordinates: the runtime solves with GSL */",
+                EOM_SOLVE_MAX);
     println(pr, "};");
     println(pr, "");
     println(pr, "#ifdef EOMC_MAIN");
@@ -589,6 +646,17 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
     Func fj = f_jacobian;
     fj.unused = nu ? NULL : f_jacobian.unused;
     stats[4] = (EmitStats){"jacobian", print_function(&pr, &fj, k, o)};
+
+    stats[5] = (EmitStats){"accel", {0, 0, 0, 0}};
+    if (e->acc) {
+        k = 0;
+        for (int i = 0; i < n; i++)
+            add_out(o, &k, e->piv[i], "piv[%d]", i);
+        for (int i = 0; i < n; i++)
+            add_out(o, &k, e->acc[i], "a[%d]", i);
+        stats[5].count = print_function(&pr, &f_accel_solve, k, o);
+        print_accel(&pr, n);
+    }
     free(o);
     print_model_struct(&pr, s, e, info);
 }

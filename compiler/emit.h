@@ -23,7 +23,7 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 5 };
+enum { EMIT_NFUNCS = 6 };
 
 void emit_model(FILE *out, const Spec *s, const Mech *m, const Eom *e,
                 ExprPool *P, Diff *D, const EmitInfo *info,

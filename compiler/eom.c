@@ -27,6 +27,46 @@ derive_row(Eom *e, Diff *D, const ExprId *accel, const ExprId *leaves,
     e->dEdt[i] = grad[2 * n + nu];
 }
 
+/* LDL^T of the symmetric M, then a = -L^-T D^-1 L^-1 h:
+ *   d_j = M_jj - sum_k<j L_jk e_jk,   e_ik = L_ik d_k
+ *   L_ij = (M_ij - sum_k<j L_ik e_jk) / d_j          (i > j)
+ * One reciprocal per pivot; everything else multiplies. */
+static void
+derive_solve(Eom *e, Arena *A, ExprPool *P)
+{
+    int n = e->n;
+    ExprId *L = arena_new_array(A, ExprId, n * n), *E = arena_new_array(A, ExprId, n * n);
+    ExprId *inv = arena_new_array(A, ExprId, n), *y = arena_new_array(A, ExprId, n);
+    e->acc = arena_new_array(A, ExprId, n);
+    e->piv = arena_new_array(A, ExprId, n);
+    ExprId tol = expr_const(P, EOM_PIVOT_TOL);
+    for (int j = 0; j < n; j++) {
+        ExprId d = e->M[j * n + j];
+        for (int k = 0; k < j; k++)
+            d = expr_sub(P, d, expr_mul(P, L[j * n + k], E[j * n + k]));
+        e->piv[j] = expr_sub(P, d, expr_mul(P, tol, e->M[j * n + j]));
+        inv[j] = expr_div(P, EXPR_ONE, d);
+        for (int i = j + 1; i < n; i++) {
+            ExprId s = e->M[i * n + j];
+            for (int k = 0; k < j; k++)
+                s = expr_sub(P, s, expr_mul(P, L[i * n + k], E[j * n + k]));
+            E[i * n + j] = s; /* = L_ij d_j */
+            L[i * n + j] = expr_mul(P, s, inv[j]);
+        }
+    }
+    for (int i = 0; i < n; i++) { /* L y = -h */
+        y[i] = expr_neg(P, e->h[i]);
+        for (int k = 0; k < i; k++)
+            y[i] = expr_sub(P, y[i], expr_mul(P, L[i * n + k], y[k]));
+    }
+    for (int i = n - 1; i >= 0; i--) { /* L^T a = D^-1 y */
+        ExprId a = expr_mul(P, y[i], inv[i]);
+        for (int k = i + 1; k < n; k++)
+            a = expr_sub(P, a, expr_mul(P, L[k * n + i], e->acc[k]));
+        e->acc[i] = a;
+    }
+}
+
 Eom *
 eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
            ExprPool *P, Diff *D, const char **why)
@@ -63,5 +103,7 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         zeros[j] = EXPR_ZERO;
     for (int i = 0; i < n; i++)
         e->h[i] = expr_subst(P, E[i], n, m->q[2], zeros);
+    if (n <= EOM_SOLVE_MAX)
+        derive_solve(e, A, P);
     return e;
 }

@@ -18,7 +18,18 @@ typedef struct Eom {
     ExprId *dEdq, *dEdv; /* [n*n] */
     ExprId *dEdu; /* [n*nu] */
     ExprId *dEdt; /* [n] */
+    /* a = -M^-1 h by an unrolled LDL^T factorization built in the DAG
+     * (structural zeros of M drop out by simplification), and the pivot
+     * margins piv_k = d_k - EOMC_PIVOT_TOL M_kk, all > 0 when M is safely
+     * positive definite.  NULL when n > EOM_SOLVE_MAX. */
+    ExprId *acc, *piv;
 } Eom;
+
+/* Up to this many coordinates the solve is emitted as straight-line code
+ * (measured: GSL's Cholesky takes 370 ns at n = 5, the whole budget of a
+ * right-hand side three times over).  Must match eomc_model.h. */
+enum { EOM_SOLVE_MAX = 12 };
+#define EOM_PIVOT_TOL 1e-13 /* = EOMC_PIVOT_TOL of eomc_model.h */
 
 /* NULL with *why set if the form does not apply to the model. */
 Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,

@@ -132,8 +132,15 @@ mk(ExprPool *P, int op, ExprId a, ExprId b)
 {
     ExprNode nd = {.op = (uint8_t)op, .a = a, .b = b, .value = 0.0};
     int ar = expr_op_arity[op];
-    nd.coeff = op == EXPR_PARAM || (ar >= 1 && P->node[a].coeff &&
-                                    (ar == 1 || P->node[b].coeff));
+    switch (op) {
+    case EXPR_VAR: nd.deps = (uint8_t)DEP_ORDER(b); break;
+    case EXPR_PARAM: nd.deps = DEP_P; break;
+    case EXPR_INPUT: nd.deps = DEP_U; break;
+    case EXPR_TIME: nd.deps = DEP_T; break;
+    default:
+        nd.deps = P->node[a].deps | (ar == 2 ? P->node[b].deps : 0);
+    }
+    nd.coeff = (nd.deps & ~DEP_P) == 0;
     return intern(P, nd);
 }
 
@@ -338,7 +345,7 @@ is_pow2(double c)
 ExprId
 expr_div(ExprPool *P, ExprId a, ExprId b)
 {
-    double x, y;
+    double x = 0, y = 0;
     int ca = expr_is_const(P, a, &x), cb = expr_is_const(P, b, &y);
     if (ca && cb && y != 0.0 && foldable(x / y))
         return expr_const(P, x / y);
@@ -517,15 +524,28 @@ marked(ExprPool *P, int n, const ExprId *roots)
 }
 
 int
-expr_max_order(ExprPool *P, ExprId e)
+expr_max_order(const ExprPool *P, ExprId e)
 {
+    for (int k = EXPR_MAX_ORDER; k >= 0; k--)
+        if (P->node[e].deps & DEP_ORDER(k))
+            return k;
+    return -1;
+}
+
+unsigned expr_deps(const ExprPool *P, ExprId e) { return P->node[e].deps; }
+
+ExprId
+expr_find_leaf(ExprPool *P, ExprId e, unsigned deps)
+{
+    if (!(P->node[e].deps & deps))
+        return EXPR_NONE;
     unsigned char *mark = marked(P, 1, &e);
-    int order = -1;
-    for (ExprId i = 0; i <= e; i++)
-        if (mark[i] && P->node[i].op == EXPR_VAR && (int)P->node[i].b > order)
-            order = (int)P->node[i].b;
+    ExprId found = EXPR_NONE;
+    for (ExprId i = 0; i <= e && found == EXPR_NONE; i++)
+        if (mark[i] && expr_op_arity[P->node[i].op] == 0 && (P->node[i].deps & deps))
+            found = i;
     free(mark);
-    return order;
+    return found;
 }
 
 int

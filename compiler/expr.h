@@ -38,9 +38,21 @@ enum { EXPR_MAX_ORDER = 3 };     /* highest derivative a VAR may carry */
 
 enum { OPK_LEAF, OPK_INFIX, OPK_PREFIX, OPK_CALL };
 
+/* What a node depends on (derived from its operands when it is built):
+ * one bit per kind of leaf, and per derivative order of the coordinates. */
+enum {
+    DEP_T = 1 << 0,      /* time */
+    DEP_Q = 1 << 1,      /* q; DEP_Q << k for the k-th derivative */
+    DEP_P = 1 << 5,      /* parameters */
+    DEP_U = 1 << 6,      /* inputs */
+};
+#define DEP_ORDER(k) (DEP_Q << (k))
+#define DEP_ANY_Q (DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_ORDER(3))
+
 typedef struct ExprNode {
     uint8_t op;
     uint8_t coeff; /* depends on parameters and constants only (derived) */
+    uint8_t deps;  /* DEP_ bits of the leaves below (derived) */
     uint32_t a, b; /* operands, or leaf data: see ops.def */
     double value;  /* EXPR_CONST only */
 } ExprNode;
@@ -82,7 +94,12 @@ int expr_is_const(const ExprPool *P, ExprId e, double *value);
 /* Does e depend on parameters and constants only? */
 int expr_is_coeff(const ExprPool *P, ExprId e);
 /* Highest derivative order of any coordinate in e, or -1 if none. */
-int expr_max_order(ExprPool *P, ExprId e);
+int expr_max_order(const ExprPool *P, ExprId e);
+/* The DEP_ bits of e. */
+unsigned expr_deps(const ExprPool *P, ExprId e);
+/* The first leaf (lowest id) below e whose DEP_ bits meet `deps`, or
+ * EXPR_NONE: to name what an expression should not depend on. */
+ExprId expr_find_leaf(ExprPool *P, ExprId e, unsigned deps);
 /* Does e contain the given leaf (a VAR, PARAM, INPUT or TIME node)? */
 int expr_depends(ExprPool *P, ExprId e, ExprId leaf);
 

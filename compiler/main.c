@@ -119,6 +119,15 @@ compile(const Options *o, FILE *out)
     Diff *D = diff_new(P);
     int rc = EXIT_USAGE;
     Spec *s = spec_load(o->spec, A, P);
+    jmp_buf jb;
+    jmp_buf *old = diag_set_jump(&jb);
+    if (setjmp(jb) != 0) { /* a diagnostic while deriving: nothing emitted */
+        diag_set_jump(old);
+        diff_free(D);
+        expr_pool_free(P);
+        arena_free(A);
+        return EXIT_USAGE;
+    }
     if (s && (!o->effects || spec_select_effects(s, o->effects) == 0)) {
         const char *why = NULL;
         Mech *m = mech_build(s, A, P, D);
@@ -138,6 +147,7 @@ compile(const Options *o, FILE *out)
             rc = 0;
         }
     }
+    diag_set_jump(old);
     diff_free(D);
     expr_pool_free(P);
     arena_free(A);

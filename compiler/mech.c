@@ -106,5 +106,12 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     for (int e = 0; e < s->neffect; e++)
         if (s->effect[e].enabled)
             add_effect(s, &s->effect[e], m, P, D);
+    /* A coordinate whose velocity is not in T has a zero row in M: the
+     * spec is wrong, and saying so beats a singular matrix at run time. */
+    for (int i = 0; i < m->n; i++)
+        if (diff_partial(D, m->T, m->q[1][i]) == EXPR_ZERO)
+            diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
+                       "energy: it has no inertia, so its row of the mass matrix is zero",
+                       s->coord[i].name);
     return m;
 }

@@ -77,6 +77,9 @@ typedef struct SpecScene {
     double h_fixed;     /* 0 = adaptive */
 } SpecScene;
 
+/* The integrators the runtime offers (ORDER: runtime/sim.c eomc_methods). */
+extern const char *const spec_methods[];
+
 typedef struct Spec {
     const char *path;        /* as given */
     const char *name;        /* `name:` or the file's base name; a C identifier */

@@ -8,6 +8,8 @@
  *
  * of the spec's scene.  Arrays are row-major; n = nq.  Every function is
  * straight-line code: no allocation, no state, safe to call from threads.
+ * The generated file needs nothing but <math.h> and this header, so it can
+ * be used without the runtime library.
  *
  * Argument names used below:
  *   t   time                       q   coordinates            [nq]
@@ -55,6 +57,18 @@ typedef struct eomc_model {
     void (*jacobian)(double t, const double *q, const double *v,
                      const double *a, const double *p, const double *u,
                      double *dEdq, double *dEdv, double *dEdu, double *dEdt);
+    /* The accelerations a = -M^-1 h in one straight-line function: M and h
+     * as in mass_bias, then an unrolled LDL^T factorization that skips the
+     * structural zeros of M.  Returns 0, or k + 1 when the k-th pivot is
+     * not positive relative to M's diagonal (d_k <= EOMC_PIVOT_TOL * M_kk:
+     * M is singular or not positive definite), in which case a is
+     * meaningless.  NULL for large models (nq > 12), where the runtime
+     * factors mass_bias's M with GSL instead. */
+    int (*accel)(double t, const double *q, const double *v, const double *p,
+                 const double *u, double *a);
 } eomc_model;
+
+/* The relative pivot threshold of both solves (generated and runtime). */
+#define EOMC_PIVOT_TOL 1e-13
 
 #endif

@@ -1,0 +1,193 @@
+/*
+ * diag: print a diagnostic with the offending source line and a caret,
+ * then unwind to the loader's catch point.
+ *
+ * Sources are registered by file name so that any SrcLoc can be quoted;
+ * columns count characters (UTF-8 sequences are one column, as libyaml
+ * counts them), and the caret line copies the tabs of the source line so
+ * that it lines up in a terminal.
+ */
+#include "diag.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MAX_SOURCES = 16 };
+
+static struct {
+    const char *file, *text;
+    size_t len;
+} sources[MAX_SOURCES];
+static int nsources;
+static jmp_buf *jump_target;
+
+void
+diag_add_source(const char *file, const char *text, size_t len)
+{
+    if (nsources == MAX_SOURCES) /* keep the newest: shift the oldest out */
+        memmove(sources, sources + 1, sizeof sources[0] * --nsources);
+    sources[nsources].file = file;
+    sources[nsources].text = text;
+    sources[nsources].len = len;
+    nsources++;
+}
+
+void diag_forget_sources(void) { nsources = 0; }
+
+jmp_buf *
+diag_set_jump(jmp_buf *target)
+{
+    jmp_buf *old = jump_target;
+    jump_target = target;
+    return old;
+}
+
+/* The text of line `line` (1-based) of `file`, and its length. */
+static const char *
+source_line(const char *file, int line, size_t *len)
+{
+    for (int i = nsources - 1; i >= 0; i--) {
+        if (strcmp(sources[i].file, file) != 0)
+            continue;
+        const char *p = sources[i].text, *end = p + sources[i].len;
+        for (int l = 1; l < line && p < end; l++) {
+            const char *nl = memchr(p, '\n', (size_t)(end - p));
+            p = nl ? nl + 1 : end;
+        }
+        if (p >= end && line > 1)
+            return NULL;
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        *len = (size_t)((nl ? nl : end) - p);
+        if (*len && p[*len - 1] == '\r')
+            (*len)--;
+        return p;
+    }
+    return NULL;
+}
+
+static int is_cont(unsigned char c) { return (c & 0xC0) == 0x80; }
+
+/*  12 | the line
+ *     |    ^      */
+static void
+print_excerpt(SrcLoc at)
+{
+    size_t len;
+    const char *text = source_line(at.file, at.line, &len);
+    if (!text || len > 1000)
+        return;
+    char gutter[16];
+    int w = snprintf(gutter, sizeof gutter, "%d", at.line);
+    fprintf(stderr, " %s | %.*s\n %*s | ", gutter, (int)len, text, w, "");
+    int col = 1;
+    for (size_t i = 0; i < len && col < at.col; i++) {
+        unsigned char c = (unsigned char)text[i];
+        if (is_cont(c))
+            continue;
+        fputc(c == '\t' ? '\t' : ' ', stderr);
+        col++;
+    }
+    fputs("^\n", stderr);
+}
+
+static void
+report(const char *kind, SrcLoc at, const char *fmt, va_list ap)
+{
+    fflush(stdout);
+    if (at.file && at.line > 0)
+        fprintf(stderr, "%s:%d:%d: %s: ", at.file, at.line, at.col > 0 ? at.col : 1, kind);
+    else if (at.file)
+        fprintf(stderr, "%s: %s: ", at.file, kind);
+    else
+        fprintf(stderr, "eomc: %s: ", kind);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    if (at.file && at.line > 0)
+        print_excerpt(at);
+}
+
+void
+diag_error(SrcLoc at, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report("error", at, fmt, ap);
+    va_end(ap);
+    if (jump_target)
+        longjmp(*jump_target, 1);
+    exit(2);
+}
+
+void
+diag_warning(SrcLoc at, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report("warning", at, fmt, ap);
+    va_end(ap);
+}
+
+void
+diag_note(SrcLoc at, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report("note", at, fmt, ap);
+    va_end(ap);
+}
+
+/* Levenshtein distance, capped: we only care about small ones. */
+static int
+distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 64 || lb > 64)
+        return 99;
+    int row[65];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = (int)j;
+    for (size_t i = 1; i <= la; i++) {
+        int diag = row[0];
+        row[0] = (int)i;
+        for (size_t j = 1; j <= lb; j++) {
+            int up = row[j];
+            int sub = diag + (a[i - 1] != b[j - 1]);
+            int best = up + 1 < row[j - 1] + 1 ? up + 1 : row[j - 1] + 1;
+            row[j] = sub < best ? sub : best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+const char *
+diag_nearest(const char *name, const char *const *cands, int n)
+{
+    const char *best = NULL;
+    int bestd = 99;
+    for (int i = 0; i < n; i++) {
+        int d = distance(name, cands[i]);
+        if (d < bestd) {
+            bestd = d;
+            best = cands[i];
+        }
+    }
+    /* a plausible typo: a third of the length, at least one edit from
+     * three characters on; any one-letter name is one edit from any other,
+     * so short names get no guess */
+    int len = (int)strlen(name), allowed = len / 3;
+    if (allowed < 1 && len >= 3)
+        allowed = 1;
+    return bestd <= allowed ? best : NULL;
+}
+
+void
+diag_internal(const char *file, int line)
+{
+    fflush(stdout);
+    fprintf(stderr, "eomc: internal error at %s:%d (a bug in eomc; please report it "
+                    "with the spec that caused it)\n", file, line);
+    exit(70);
+}

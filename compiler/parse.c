@@ -1,0 +1,467 @@
+/*
+ * parse: a recursive-descent parser (grammar in parse.h) that builds DAG
+ * nodes as it goes, through the simplifying constructors.
+ *
+ * Recursion is bounded: nesting deeper than MAX_DEPTH (parentheses,
+ * prefix signs, calls) is an error, not a stack overflow.  Long flat
+ * expressions (a + b + c + ...) are loops, not recursion.  The token
+ * stream is never stored: the lexer reads one token ahead.
+ */
+#include "parse.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MAX_DEPTH = 200, MAX_NAME = 128 };
+
+typedef enum {
+    T_END, T_NUM, T_NAME, T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
+    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME,
+} TokKind;
+
+typedef struct Token {
+    TokKind kind;
+    size_t off, len; /* bytes of the source text */
+    double num;      /* T_NUM */
+} Token;
+
+typedef struct Parser {
+    ParseScope *sc;
+    const ParseSrc *src;
+    Token tok; /* the current token */
+    int depth;
+} Parser;
+
+static SrcLoc at(const Parser *ps, size_t off) { return ps->src->where(ps->src, off); }
+
+static const char *
+tok_text(const Parser *ps, const Token *t, char *buf, size_t len)
+{
+    if (t->kind == T_END)
+        return "end of expression";
+    size_t n = t->len < len - 3 ? t->len : len - 3;
+    snprintf(buf, len, "'%.*s'", (int)n, ps->src->text + t->off);
+    return buf;
+}
+
+/* ---- lexer ---- */
+
+static int is_name_start(int c) { return isalpha(c) || c == '_'; }
+static int is_name_char(int c) { return isalnum(c) || c == '_'; }
+
+static size_t
+scan_number(const ParseSrc *src, size_t i, double *value)
+{
+    const char *s = src->text;
+    size_t start = i, n = src->len;
+    while (i < n && isdigit((unsigned char)s[i]))
+        i++;
+    if (i < n && s[i] == '.')
+        for (i++; i < n && isdigit((unsigned char)s[i]);)
+            i++;
+    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
+        size_t j = i + 1;
+        if (j < n && (s[j] == '+' || s[j] == '-'))
+            j++;
+        if (j < n && isdigit((unsigned char)s[j])) {
+            for (i = j; i < n && isdigit((unsigned char)s[i]);)
+                i++;
+        } else {
+            diag_error(src->where(src, i), "malformed number: exponent has no digits");
+        }
+    }
+    char buf[400];
+    if (i - start >= sizeof buf)
+        diag_error(src->where(src, start), "number has too many digits");
+    memcpy(buf, s + start, i - start);
+    buf[i - start] = '\0';
+    errno = 0;
+    *value = strtod(buf, NULL);
+    if (errno == ERANGE && (isinf(*value) || *value == 0.0) && strspn(buf, "0.eE+-") != strlen(buf))
+        diag_error(src->where(src, start), "number %s is out of the range of a double", buf);
+    return i;
+}
+
+static _Noreturn void
+bad_char(const ParseSrc *src, size_t i)
+{
+    unsigned char c = (unsigned char)src->text[i];
+    if (c >= 0x80) {
+        size_t n = 1;
+        while (i + n < src->len && ((unsigned char)src->text[i + n] & 0xC0) == 0x80)
+            n++;
+        diag_error(src->where(src, i), "unexpected character '%.*s' (names are ASCII)",
+                   (int)n, src->text + i);
+    }
+    if (c == '=')
+        diag_error(src->where(src, i), "unexpected '=': an expression here is a value, "
+                   "not an equation (a constraint `f = 0` is written as just f)");
+    if (isprint(c))
+        diag_error(src->where(src, i), "unexpected character '%c'", c);
+    diag_error(src->where(src, i), "unexpected character (byte 0x%02x)", c);
+}
+
+static Token
+lex(const ParseSrc *src, size_t i)
+{
+    const char *s = src->text;
+    while (i < src->len && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r'))
+        i++;
+    Token t = {T_END, i, 0, 0.0};
+    if (i >= src->len)
+        return t;
+    unsigned char c = (unsigned char)s[i];
+    static const char ops[] = "+-*/^(),'";
+    static const TokKind kinds[] = {T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
+                                    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME};
+    if (isdigit(c) || (c == '.' && i + 1 < src->len && isdigit((unsigned char)s[i + 1]))) {
+        t.kind = T_NUM;
+        t.len = scan_number(src, i, &t.num) - i;
+    } else if (is_name_start(c)) {
+        size_t j = i;
+        while (j < src->len && is_name_char((unsigned char)s[j]))
+            j++;
+        t.kind = T_NAME;
+        t.len = j - i;
+        if (t.len > MAX_NAME)
+            diag_error(src->where(src, i), "name is longer than %d characters", MAX_NAME);
+    } else if (c && strchr(ops, c)) {
+        t.kind = kinds[strchr(ops, c) - ops];
+        t.len = 1;
+        if (c == '*' && i + 1 < src->len && s[i + 1] == '*')
+            diag_error(src->where(src, i), "'**' is not an operator here: write powers as x^2");
+    } else {
+        bad_char(src, i);
+    }
+    return t;
+}
+
+static void next(Parser *ps) { ps->tok = lex(ps->src, ps->tok.off + ps->tok.len); }
+
+static int
+accept(Parser *ps, TokKind k)
+{
+    if (ps->tok.kind != k)
+        return 0;
+    next(ps);
+    return 1;
+}
+
+/* ---- built-in functions ---- */
+
+typedef struct Builtin {
+    const char *name;
+    int op;    /* EXPR_ op, or -1 for dot */
+    int arity;
+} Builtin;
+
+static const Builtin builtins[] = {
+    {"sin", EXPR_SIN, 1},   {"cos", EXPR_COS, 1},     {"tan", EXPR_TAN, 1},
+    {"asin", EXPR_ASIN, 1}, {"acos", EXPR_ACOS, 1},   {"atan", EXPR_ATAN, 1},
+    {"atan2", EXPR_ATAN2, 2}, {"sinh", EXPR_SINH, 1}, {"cosh", EXPR_COSH, 1},
+    {"tanh", EXPR_TANH, 1}, {"exp", EXPR_EXP, 1},     {"log", EXPR_LOG, 1},
+    {"sqrt", EXPR_SQRT, 1}, {"abs", EXPR_ABS, 1},     {"pow", EXPR_POW, 2},
+    {"dot", -1, 1},
+};
+enum { NBUILTINS = sizeof builtins / sizeof builtins[0] };
+
+static const Builtin *
+find_builtin(const char *name)
+{
+    for (int i = 0; i < NBUILTINS; i++)
+        if (strcmp(builtins[i].name, name) == 0)
+            return &builtins[i];
+    return NULL;
+}
+
+int
+parse_is_reserved(const char *name)
+{
+    return !strcmp(name, "t") || !strcmp(name, "pi") || find_builtin(name) != NULL;
+}
+
+/* ---- dependency checks ---- */
+
+static void
+describe_leaf(ParseScope *sc, ExprId leaf, char *buf, size_t len)
+{
+    const ExprNode *nd = expr_node(sc->P, leaf);
+    static const char *const order[] = {"coordinate", "velocity", "acceleration", "jerk"};
+    static const char *const primes[] = {"", "'", "''", "'''"};
+    switch (nd->op) {
+    case EXPR_TIME:
+        snprintf(buf, len, "time t");
+        break;
+    case EXPR_VAR:
+        snprintf(buf, len, "the %s '%s%s'", order[nd->b], sc->leaf_name(sc, leaf), primes[nd->b]);
+        break;
+    case EXPR_PARAM:
+        snprintf(buf, len, "the parameter '%s'", sc->leaf_name(sc, leaf));
+        break;
+    default:
+        snprintf(buf, len, "the input '%s'", sc->leaf_name(sc, leaf));
+    }
+}
+
+/* e is what `name` (or a derivative, name = NULL) produced at off. */
+static void
+check_deps(Parser *ps, ExprId e, const char *name, size_t off)
+{
+    ParseScope *sc = ps->sc;
+    unsigned bad = expr_deps(sc->P, e) & ~sc->allow;
+    if (!bad)
+        return;
+    ExprId leaf = expr_find_leaf(sc->P, e, bad);
+    char what[200];
+    describe_leaf(sc, leaf, what, sizeof what);
+    if (name && expr_op_arity[expr_node(sc->P, e)->op] != 0)
+        diag_error(at(ps, off), "%s cannot depend on %s (through '%s')", sc->what, what, name);
+    diag_error(at(ps, off), "%s cannot depend on %s", sc->what, what);
+}
+
+/* The total time derivative of e, or an error at off saying why not. */
+static ExprId
+time_derivative(Parser *ps, ExprId e, size_t off)
+{
+    ParseScope *sc = ps->sc;
+    ExprId d = diff_time(sc->D, e);
+    if (d != EXPR_NONE) {
+        check_deps(ps, d, NULL, off);
+        return d;
+    }
+    ExprId u = expr_find_leaf(sc->P, e, DEP_U);
+    if (u != EXPR_NONE)
+        diag_error(at(ps, off), "cannot differentiate the input '%s': an input's time "
+                   "derivative is not known (write the signal of t in a define instead)",
+                   sc->leaf_name(sc, u));
+    diag_error(at(ps, off), "derivatives above the third (q''') are not supported");
+}
+
+/* ---- the grammar ---- */
+
+static ExprId expr(Parser *ps);
+static ExprId unary(Parser *ps);
+
+static void
+enter(Parser *ps)
+{
+    if (++ps->depth > MAX_DEPTH)
+        diag_error(at(ps, ps->tok.off), "expression is nested more than %d levels deep",
+                   MAX_DEPTH);
+}
+
+static void
+expect(Parser *ps, TokKind k, const char *what, size_t open_off)
+{
+    if (ps->tok.kind == k) {
+        next(ps);
+        return;
+    }
+    char buf[80];
+    const char *found = tok_text(ps, &ps->tok, buf, sizeof buf);
+    if (k == T_RPAREN) {
+        SrcLoc o = at(ps, open_off);
+        diag_error(at(ps, ps->tok.off), "expected ')' to close the '(' at column %d, found %s",
+                   o.col, found);
+    }
+    diag_error(at(ps, ps->tok.off), "expected %s, found %s", what, found);
+}
+
+/* NAME "(" expr ("," expr)* ")" with the name already read. */
+static ExprId
+call(Parser *ps, const char *name, size_t name_off)
+{
+    const Builtin *b = find_builtin(name);
+    if (!b)
+        diag_error(at(ps, name_off), "unknown function '%s'", name);
+    size_t open = ps->tok.off;
+    next(ps); /* ( */
+    enter(ps);
+    ExprId args[2];
+    int n = 0;
+    if (ps->tok.kind != T_RPAREN) {
+        do {
+            size_t arg_off = ps->tok.off;
+            ExprId a = expr(ps);
+            if (n == b->arity)
+                diag_error(at(ps, arg_off), "too many arguments: %s takes %d", name, b->arity);
+            args[n++] = a;
+        } while (accept(ps, T_COMMA));
+    }
+    expect(ps, T_RPAREN, "')'", open);
+    ps->depth--;
+    if (n != b->arity)
+        diag_error(at(ps, name_off), "%s takes %d argument%s, not %d", name, b->arity,
+                   b->arity == 1 ? "" : "s", n);
+    ExprPool *P = ps->sc->P;
+    if (b->op < 0)
+        return time_derivative(ps, args[0], name_off);
+    return b->arity == 1 ? expr_unary(P, b->op, args[0]) : expr_binary(P, b->op, args[0], args[1]);
+}
+
+static ExprId
+name_or_call(Parser *ps)
+{
+    char name[MAX_NAME + 1];
+    size_t off = ps->tok.off, len = ps->tok.len;
+    memcpy(name, ps->src->text + off, len);
+    name[len] = '\0';
+    next(ps);
+    if (ps->tok.kind == T_LPAREN)
+        return call(ps, name, off);
+    if (find_builtin(name))
+        diag_error(at(ps, off), "'%s' is a function: write %s(...)", name, name);
+    ParseScope *sc = ps->sc;
+    ExprId e;
+    if (!strcmp(name, "t"))
+        e = expr_time(sc->P);
+    else if (!strcmp(name, "pi"))
+        e = expr_const(sc->P, 3.14159265358979323846);
+    else
+        e = sc->lookup(sc, name, at(ps, off));
+    check_deps(ps, e, name, off);
+    return e;
+}
+
+/* primary = NUMBER | NAME | call | "(" expr ")" */
+static ExprId
+primary(Parser *ps)
+{
+    Token t = ps->tok;
+    char buf[80];
+    switch (t.kind) {
+    case T_NUM:
+        next(ps);
+        return expr_const(ps->sc->P, t.num);
+    case T_NAME:
+        return name_or_call(ps);
+    case T_LPAREN: {
+        next(ps);
+        enter(ps);
+        ExprId e = expr(ps);
+        expect(ps, T_RPAREN, "')'", t.off);
+        ps->depth--;
+        return e;
+    }
+    default:
+        diag_error(at(ps, t.off), "expected a number, a name or '(', found %s",
+                   tok_text(ps, &t, buf, sizeof buf));
+    }
+}
+
+/* postfix = primary "'"* */
+static ExprId
+postfix(Parser *ps)
+{
+    ExprId e = primary(ps);
+    while (ps->tok.kind == T_PRIME) {
+        size_t prime = ps->tok.off;
+        next(ps);
+        e = time_derivative(ps, e, prime);
+    }
+    return e;
+}
+
+/* power = postfix ("^" unary)? */
+static ExprId
+power(Parser *ps)
+{
+    ExprId base = postfix(ps);
+    if (ps->tok.kind != T_CARET)
+        return base;
+    next(ps);
+    enter(ps);
+    ExprId ex = unary(ps);
+    ps->depth--;
+    return expr_pow(ps->sc->P, base, ex);
+}
+
+/* unary = ("-" | "+") unary | power */
+static ExprId
+unary(Parser *ps)
+{
+    if (ps->tok.kind != T_MINUS && ps->tok.kind != T_PLUS)
+        return power(ps);
+    int neg = ps->tok.kind == T_MINUS;
+    next(ps);
+    enter(ps);
+    ExprId e = unary(ps);
+    ps->depth--;
+    return neg ? expr_neg(ps->sc->P, e) : e;
+}
+
+/* term = unary (("*" | "/") unary)* */
+static ExprId
+term(Parser *ps)
+{
+    ExprPool *P = ps->sc->P;
+    ExprId e = unary(ps);
+    for (;;) {
+        if (accept(ps, T_STAR)) {
+            e = expr_mul(P, e, unary(ps));
+        } else if (ps->tok.kind == T_SLASH) {
+            size_t op = ps->tok.off;
+            next(ps);
+            ExprId d = unary(ps);
+            if (d == EXPR_ZERO)
+                diag_error(at(ps, op), "division by zero");
+            e = expr_div(P, e, d);
+        } else {
+            return e;
+        }
+    }
+}
+
+/* expr = term (("+" | "-") term)* */
+static ExprId
+expr(Parser *ps)
+{
+    ExprPool *P = ps->sc->P;
+    ExprId e = term(ps);
+    for (;;) {
+        if (accept(ps, T_PLUS))
+            e = expr_add(P, e, term(ps));
+        else if (accept(ps, T_MINUS))
+            e = expr_sub(P, e, term(ps));
+        else
+            return e;
+    }
+}
+
+ExprId
+parse_expr(ParseScope *sc, const ParseSrc *src)
+{
+    Parser ps = {sc, src, {T_END, 0, 0, 0.0}, 0};
+    ps.tok = lex(src, 0);
+    if (ps.tok.kind == T_END)
+        diag_error(at(&ps, 0), "empty expression");
+    ExprId e = expr(&ps);
+    if (ps.tok.kind != T_END) {
+        char buf[80];
+        const char *found = tok_text(&ps, &ps.tok, buf, sizeof buf);
+        if (ps.tok.kind == T_NAME || ps.tok.kind == T_NUM || ps.tok.kind == T_LPAREN)
+            diag_error(at(&ps, ps.tok.off), "expected an operator before %s "
+                       "(multiplication is written with '*')", found);
+        if (ps.tok.kind == T_RPAREN)
+            diag_error(at(&ps, ps.tok.off), "unmatched ')'");
+        diag_error(at(&ps, ps.tok.off), "unexpected %s", found);
+    }
+    return e;
+}
+
+void
+parse_names(const ParseSrc *src,
+            void (*fn)(void *ctx, const char *name, size_t len, size_t off), void *ctx)
+{
+    Token t = lex(src, 0);
+    while (t.kind != T_END) {
+        Token n = lex(src, t.off + t.len);
+        if (t.kind == T_NAME && n.kind != T_LPAREN)
+            fn(ctx, src->text + t.off, t.len, t.off);
+        t = n;
+    }
+}

@@ -1,0 +1,58 @@
+/*
+ * parse: the expression language of specs, parsed straight into the DAG.
+ *
+ *   expr    = term (("+" | "-") term)*
+ *   term    = unary (("*" | "/") unary)*
+ *   unary   = ("-" | "+") unary | power
+ *   power   = postfix ("^" unary)?      right-associative; -x^2 = -(x^2)
+ *   postfix = primary "'"*              x' = dot(x), x'' = dot(dot(x))
+ *   primary = NUMBER | NAME | NAME "(" expr ("," expr)* ")" | "(" expr ")"
+ *
+ * Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt
+ * abs pow, and dot(e), the total time derivative.  Names are resolved by
+ * the caller's scope; `t` and `pi` are built in.  Every error is reported
+ * through diag_error at its place inside the string.
+ */
+#ifndef EOMC_PARSE_H
+#define EOMC_PARSE_H
+
+#include "diag.h"
+#include "diff.h"
+
+/* One expression's text and how to locate a byte of it in its file. */
+typedef struct ParseSrc ParseSrc;
+struct ParseSrc {
+    const char *text;
+    size_t len;
+    SrcLoc (*where)(const ParseSrc *src, size_t off);
+    const void *data; /* for where() */
+};
+
+typedef struct ParseScope ParseScope;
+struct ParseScope {
+    ExprPool *P;
+    Diff *D;
+    /* The expression a name stands for; reports unknown names itself. */
+    ExprId (*lookup)(ParseScope *sc, const char *name, SrcLoc at);
+    /* The user's name of a leaf (coordinate, parameter, input). */
+    const char *(*leaf_name)(ParseScope *sc, ExprId leaf);
+    /* What the expression being parsed may depend on (DEP_ bits), and
+     * what it is, for messages: "a mass", "a position". */
+    unsigned allow;
+    const char *what;
+};
+
+/* Parse src in scope sc.  Returns the expression; never EXPR_NONE. */
+ExprId parse_expr(ParseScope *sc, const ParseSrc *src);
+
+/* Call fn for every name in src (not function names), in order, with its
+ * byte offset: for dependency analysis before parsing.  Reports lexical
+ * errors. */
+void parse_names(const ParseSrc *src,
+                 void (*fn)(void *ctx, const char *name, size_t len, size_t off),
+                 void *ctx);
+
+/* Is name reserved by the language (t, pi, a function name)? */
+int parse_is_reserved(const char *name);
+
+#endif

@@ -1,0 +1,1087 @@
+/*
+ * spec: YAML (libyaml's document API) -> checked Spec.
+ *
+ * The loader works in phases, so that every name is known before any
+ * expression is parsed: names (parameters, coordinates, inputs, defines),
+ * then the defines in dependency order (found by lexing their texts, so
+ * that a cycle is reported as one, and no define expansion recurses),
+ * then everything else.  Each expression is parsed with the DEP_ bits
+ * of what it may depend on; parse.c rejects the rest at the right column.
+ *
+ * Errors go through diag_error, which longjmps back to spec_load_buffer:
+ * everything the loader allocates lives in the arena or the pool, so
+ * nothing leaks when it unwinds, except the libyaml document, which the
+ * catch point deletes.
+ */
+#include "spec.h"
+#include "parse.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+const char *const spec_methods[] = {
+    "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp", "rk4imp",
+    "bsimp", "msadams", "msbdf", NULL,
+};
+
+enum { MAX_SPEC_BYTES = 16 << 20 };
+
+typedef enum { NAME_PARAM, NAME_COORD, NAME_INPUT, NAME_DEFINE } NameKind;
+
+typedef struct Name {
+    const char *name;
+    NameKind kind;
+    int index; /* into Spec.param / coord / input, or Loader.def */
+    SrcLoc loc;
+} Name;
+
+typedef struct Define {
+    const char *name;
+    yaml_node_t *node;
+    ExprId value; /* EXPR_NONE until resolved */
+    int state;    /* 0 new, 1 being ordered, 2 ordered */
+    int *deps;    /* defines it names, and where */
+    size_t *dep_off;
+    int ndeps;
+} Define;
+
+typedef struct Loader {
+    ParseScope sc; /* first: parser callbacks receive the Loader */
+    const char *path, *text;
+    size_t len;
+    size_t *line_start; /* byte offset of each line */
+    size_t nlines;
+    yaml_document_t doc;
+    int have_doc;
+    Arena *A;
+    ExprPool *P;
+    Spec *s;
+    Name *names;
+    int nnames;
+    Define *def;
+    int ndef;
+} Loader;
+
+/* A scalar being parsed as an expression: where() maps its bytes back. */
+typedef struct Scalar {
+    ParseSrc src; /* first */
+    const Loader *L;
+    const yaml_node_t *node;
+} Scalar;
+
+/* ---- locations ---- */
+
+static SrcLoc
+loc_of(const Loader *L, const yaml_node_t *n)
+{
+    return (SrcLoc){L->path, (int)n->start_mark.line + 1, (int)n->start_mark.column + 1};
+}
+
+static int is_cont(unsigned char c) { return (c & 0xC0) == 0x80; }
+
+/* Byte offset of (line, column), both 0-based, column in characters. */
+static size_t
+byte_at(const Loader *L, size_t line, size_t col)
+{
+    if (line >= L->nlines)
+        return L->len;
+    size_t i = L->line_start[line];
+    while (i < L->len && col > 0) {
+        i++;
+        while (i < L->len && is_cont((unsigned char)L->text[i]))
+            i++;
+        col--;
+    }
+    return i;
+}
+
+static size_t
+escape_len(const char *s, size_t i, size_t end)
+{
+    if (i + 1 >= end)
+        return 1;
+    switch (s[i + 1]) {
+    case 'x': return 4;
+    case 'u': return 6;
+    case 'U': return 10;
+    case '\n': return 2;
+    }
+    return 2;
+}
+
+/* Walk the source of a scalar and its value side by side up to byte `off`
+ * of the value: line folding, quotes and escapes are skipped in the
+ * source. */
+static SrcLoc
+scalar_where(const ParseSrc *src, size_t off)
+{
+    const Scalar *sc = (const Scalar *)src;
+    const Loader *L = sc->L;
+    const yaml_node_t *n = sc->node;
+    size_t line = n->start_mark.line, col = n->start_mark.column;
+    size_t i = byte_at(L, line, col), end = L->len;
+    const char *s = L->text, *v = src->text;
+    yaml_scalar_style_t style = n->data.scalar.style;
+    if (style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE) {
+        i++, col++;
+    } else if (style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE) {
+        while (i < end && s[i] != '\n')
+            i++;
+        i++, line++, col = 0;
+    }
+    for (size_t k = 0; k < off && k < src->len && i < end;) {
+        unsigned char c = (unsigned char)s[i], vc = (unsigned char)v[k];
+        size_t step = 1, vstep = 1;
+        if (style == YAML_DOUBLE_QUOTED_SCALAR_STYLE && c == '\\') {
+            step = escape_len(s, i, end);
+            while (k + vstep < src->len && is_cont((unsigned char)v[k + vstep]))
+                vstep++;
+        } else if (style == YAML_SINGLE_QUOTED_SCALAR_STYLE && c == '\'' && vc == '\'') {
+            step = 2;
+        } else if (c != vc) {
+            if (c != ' ' && c != '\t' && c != '\n' && c != '\r')
+                break; /* lost track: report what we have */
+            vstep = 0;   /* folded whitespace: source only */
+        }
+        for (size_t j = 0; j < step && i < end; j++, i++) {
+            if (s[i] == '\n')
+                line++, col = 0;
+            else if (!is_cont((unsigned char)s[i]))
+                col++;
+        }
+        k += vstep;
+    }
+    return (SrcLoc){L->path, (int)line + 1, (int)col + 1};
+}
+
+/* ---- YAML node access ---- */
+
+static yaml_node_t *
+node(Loader *L, int id)
+{
+    yaml_node_t *n = yaml_document_get_node(&L->doc, id);
+    if (!n)
+        diag_unreachable();
+    return n;
+}
+
+static const char *
+kind_name(const yaml_node_t *n)
+{
+    switch (n->type) {
+    case YAML_SCALAR_NODE: return "a scalar";
+    case YAML_SEQUENCE_NODE: return "a sequence";
+    case YAML_MAPPING_NODE: return "a mapping";
+    default: return "nothing";
+    }
+}
+
+static int
+is_null(const yaml_node_t *n)
+{
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return 0;
+    const char *v = (const char *)n->data.scalar.value;
+    return !*v || !strcmp(v, "~") || !strcmp(v, "null") || !strcmp(v, "Null") ||
+           !strcmp(v, "NULL");
+}
+
+static void
+expect_type(Loader *L, const yaml_node_t *n, yaml_node_type_t type, const char *what)
+{
+    if (n->type == type && !(type == YAML_SCALAR_NODE && is_null(n)))
+        return;
+    const char *want = type == YAML_SCALAR_NODE ? "a value"
+                     : type == YAML_SEQUENCE_NODE ? "a sequence [...]" : "a mapping";
+    diag_error(loc_of(L, n), "%s must be %s, not %s", what, want,
+               is_null(n) ? "empty" : kind_name(n));
+}
+
+static const char *
+scalar(Loader *L, const yaml_node_t *n, const char *what)
+{
+    expect_type(L, n, YAML_SCALAR_NODE, what);
+    if (strlen((const char *)n->data.scalar.value) != n->data.scalar.length)
+        diag_error(loc_of(L, n), "%s contains a NUL character", what);
+    return (const char *)n->data.scalar.value;
+}
+
+static const char *
+key_of(Loader *L, const yaml_node_pair_t *p)
+{
+    return scalar(L, node(L, p->key), "a key");
+}
+
+#define PAIRS(map) (map)->data.mapping.pairs.start
+#define NPAIRS(map) ((int)((map)->data.mapping.pairs.top - (map)->data.mapping.pairs.start))
+#define ITEMS(seq) (seq)->data.sequence.items.start
+#define NITEMS(seq) ((int)((seq)->data.sequence.items.top - (seq)->data.sequence.items.start))
+
+typedef struct KeyRef {
+    const char *key;
+    int index;
+} KeyRef;
+
+static int
+cmp_key(const void *a, const void *b)
+{
+    const KeyRef *x = a, *y = b;
+    int c = strcmp(x->key, y->key);
+    return c ? c : (x->index > y->index) - (x->index < y->index);
+}
+
+/* Keys are scalars, each at most once (sorted: no quadratic scan). */
+static void
+check_unique_keys(Loader *L, yaml_node_t *map)
+{
+    int n = NPAIRS(map);
+    if (n < 2)
+        return;
+    KeyRef *k = arena_new_array(L->A, KeyRef, n);
+    for (int i = 0; i < n; i++)
+        k[i] = (KeyRef){key_of(L, &PAIRS(map)[i]), i};
+    qsort(k, (size_t)n, sizeof *k, cmp_key);
+    for (int i = 1; i < n; i++)
+        if (!strcmp(k[i].key, k[i - 1].key))
+            diag_error(loc_of(L, node(L, PAIRS(map)[k[i].index].key)),
+                       "duplicate key '%s'", k[i].key);
+}
+
+static yaml_node_t *
+as_map(Loader *L, yaml_node_t *n, const char *what)
+{
+    expect_type(L, n, YAML_MAPPING_NODE, what);
+    check_unique_keys(L, n);
+    return n;
+}
+
+/* Only `allowed` keys (NULL-terminated) may appear in map. */
+static void
+check_keys(Loader *L, yaml_node_t *map, const char *const *allowed, const char *where)
+{
+    int nallowed = 0;
+    while (allowed[nallowed])
+        nallowed++;
+    for (int i = 0; i < NPAIRS(map); i++) {
+        const char *k = key_of(L, &PAIRS(map)[i]);
+        int ok = 0;
+        for (int j = 0; j < nallowed && !ok; j++)
+            ok = !strcmp(k, allowed[j]);
+        if (ok)
+            continue;
+        const char *near = diag_nearest(k, allowed, nallowed);
+        SrcLoc at = loc_of(L, node(L, PAIRS(map)[i].key));
+        if (near)
+            diag_error(at, "unknown key '%s' in %s; did you mean '%s'?", k, where, near);
+        char list[512] = "";
+        for (int j = 0; j < nallowed; j++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
+                     allowed[j]);
+        diag_error(at, "unknown key '%s' in %s; expected one of: %s", k, where, list);
+    }
+}
+
+static yaml_node_t *
+lookup_key(Loader *L, yaml_node_t *map, const char *key)
+{
+    for (int i = 0; i < NPAIRS(map); i++)
+        if (!strcmp(key_of(L, &PAIRS(map)[i]), key))
+            return node(L, PAIRS(map)[i].value);
+    return NULL;
+}
+
+/* ---- names ---- */
+
+static int
+is_identifier(const char *s)
+{
+    if (!(*s == '_' || (*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z')))
+        return 0;
+    for (; *s; s++)
+        if (!(*s == '_' || (*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') ||
+              (*s >= '0' && *s <= '9')))
+            return 0;
+    return 1;
+}
+
+static Name *
+find_name(Loader *L, const char *name)
+{
+    for (int i = 0; i < L->nnames; i++)
+        if (!strcmp(L->names[i].name, name))
+            return &L->names[i];
+    return NULL;
+}
+
+static const char *const kind_names[] = {"parameter", "coordinate", "input", "define"};
+
+/* Check a new name (identifier, not reserved, not taken) and keep it. */
+static const char *
+add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
+{
+    const char *name = scalar(L, n, "a name");
+    SrcLoc at = loc_of(L, n);
+    if (!is_identifier(name))
+        diag_error(at, "'%s' is not a valid name (letters, digits and _, not starting "
+                   "with a digit)", name);
+    if (strlen(name) > 64)
+        diag_error(at, "name '%.20s...' is longer than 64 characters", name);
+    if (parse_is_reserved(name))
+        diag_error(at, "'%s' is reserved (t, pi and the function names)", name);
+    Name *old = find_name(L, name);
+    if (old)
+        diag_error(at, "'%s' is already a %s (line %d)", name, kind_names[old->kind],
+                   old->loc.line);
+    L->names[L->nnames++] = (Name){arena_strdup(L->A, name), kind, index, at};
+    return L->names[L->nnames - 1].name;
+}
+
+static ExprId
+lookup(ParseScope *sc, const char *name, SrcLoc at)
+{
+    Loader *L = (Loader *)sc;
+    Name *nm = find_name(L, name);
+    if (nm) {
+        switch (nm->kind) {
+        case NAME_PARAM: return expr_param(L->P, nm->index);
+        case NAME_COORD: return expr_var(L->P, nm->index, 0);
+        case NAME_INPUT: return expr_input(L->P, nm->index);
+        case NAME_DEFINE:
+            if (L->def[nm->index].value == EXPR_NONE)
+                diag_unreachable(); /* ordered before its users */
+            return L->def[nm->index].value;
+        }
+    }
+    if (!strcmp(name, "nan") || !strcmp(name, "NaN") || !strcmp(name, "inf") ||
+        !strcmp(name, "Inf") || !strcmp(name, "infinity"))
+        diag_error(at, "'%s' is not allowed: every value must be a finite number", name);
+    const char **cands = arena_new_array(L->A, const char *, L->nnames + 1);
+    for (int i = 0; i < L->nnames; i++)
+        cands[i] = L->names[i].name;
+    const char *near = diag_nearest(name, cands, L->nnames);
+    if (near)
+        diag_error(at, "unknown name '%s'; did you mean '%s'?", name, near);
+    if (L->nnames == 0 || L->nnames > 12)
+        diag_error(at, "unknown name '%s'", name);
+    char list[1024] = "";
+    for (int i = 0; i < L->nnames; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
+                 cands[i]);
+    diag_error(at, "unknown name '%s' (the names here are %s)", name, list);
+}
+
+static const char *
+leaf_name(ParseScope *sc, ExprId leaf)
+{
+    Loader *L = (Loader *)sc;
+    const ExprNode *nd = expr_node(L->P, leaf);
+    switch (nd->op) {
+    case EXPR_VAR: return L->s->coord[nd->a].name;
+    case EXPR_PARAM: return L->s->param[nd->a].name;
+    case EXPR_INPUT: return L->s->input[nd->a].name;
+    }
+    return "t";
+}
+
+/* ---- expressions ---- */
+
+/* What each kind of expression may depend on. */
+enum {
+    ALLOW_CONST = 0,
+    ALLOW_PARAM = DEP_P,
+    ALLOW_SIGNAL = DEP_T | DEP_P,
+    ALLOW_POSITION = DEP_T | DEP_ORDER(0) | DEP_P,
+    ALLOW_KINETIC = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
+    ALLOW_POTENTIAL = DEP_T | DEP_ORDER(0) | DEP_P | DEP_U,
+    ALLOW_FORCE = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P | DEP_U,
+    ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
+    ALLOW_ALL = 0xff,
+};
+
+static void
+scalar_src(Loader *L, Scalar *sc, const yaml_node_t *n, const char *what)
+{
+    const char *text = scalar(L, n, what);
+    sc->src = (ParseSrc){text, n->data.scalar.length, scalar_where, NULL};
+    sc->L = L;
+    sc->node = n;
+}
+
+static ExprId
+expression(Loader *L, const yaml_node_t *n, unsigned allow, const char *what)
+{
+    Scalar sc;
+    scalar_src(L, &sc, n, what);
+    L->sc.allow = allow;
+    L->sc.what = what;
+    return parse_expr(&L->sc, &sc.src);
+}
+
+/* A number: a constant expression (2*pi is fine), finite. */
+static double
+number(Loader *L, const yaml_node_t *n, const char *what)
+{
+    ExprId e = expression(L, n, ALLOW_CONST, what);
+    double v;
+    if (!expr_is_const(L->P, e, &v))
+        diag_error(loc_of(L, n), "%s does not evaluate to a finite number", what);
+    return v;
+}
+
+/* A vector of 2 or 3 expressions. */
+static int
+vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId out[3])
+{
+    expect_type(L, n, YAML_SEQUENCE_NODE, what);
+    int dim = NITEMS(n);
+    if (dim != 2 && dim != 3)
+        diag_error(loc_of(L, n), "%s must have 2 or 3 components, not %d", what, dim);
+    for (int k = 0; k < dim; k++)
+        out[k] = expression(L, node(L, ITEMS(n)[k]), allow, what);
+    return dim;
+}
+
+/* ---- the sections ---- */
+
+static void
+load_parameters(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->np = NPAIRS(map);
+    s->param = arena_new_array(L->A, SpecParam, s->np);
+    for (int i = 0; i < s->np; i++) {
+        yaml_node_pair_t *p = &PAIRS(map)[i];
+        s->param[i].name = add_name(L, node(L, p->key), NAME_PARAM, i);
+        s->param[i].loc = loc_of(L, node(L, p->key));
+    }
+    for (int i = 0; i < s->np; i++)
+        s->param[i].value = number(L, node(L, PAIRS(map)[i].value), "a parameter value");
+}
+
+static void
+load_coordinates(Loader *L, yaml_node_t *seq)
+{
+    Spec *s = L->s;
+    expect_type(L, seq, YAML_SEQUENCE_NODE, "coordinates");
+    s->nq = NITEMS(seq);
+    if (s->nq == 0)
+        diag_error(loc_of(L, seq), "a spec needs at least one coordinate");
+    s->coord = arena_new_array(L->A, SpecCoord, s->nq);
+    for (int i = 0; i < s->nq; i++) {
+        yaml_node_t *n = node(L, ITEMS(seq)[i]);
+        s->coord[i].name = add_name(L, n, NAME_COORD, i);
+        s->coord[i].loc = loc_of(L, n);
+        s->coord[i].q0 = s->coord[i].v0 = EXPR_ZERO;
+    }
+}
+
+static void
+name_inputs(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->nu = NPAIRS(map);
+    s->input = arena_new_array(L->A, SpecInput, s->nu);
+    for (int i = 0; i < s->nu; i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key);
+        s->input[i].name = add_name(L, k, NAME_INPUT, i);
+        s->input[i].loc = loc_of(L, k);
+    }
+}
+
+static void
+name_defines(Loader *L, yaml_node_t *map)
+{
+    L->ndef = NPAIRS(map);
+    L->def = arena_new_array(L->A, Define, L->ndef);
+    for (int i = 0; i < L->ndef; i++) {
+        L->def[i].name = add_name(L, node(L, PAIRS(map)[i].key), NAME_DEFINE, i);
+        L->def[i].node = node(L, PAIRS(map)[i].value);
+        L->def[i].value = EXPR_NONE;
+    }
+}
+
+typedef struct DepCollect {
+    Loader *L;
+    Define *d;
+    int cap;
+} DepCollect;
+
+static void
+collect_dep(void *ctx, const char *name, size_t len, size_t off)
+{
+    DepCollect *c = ctx;
+    char buf[80];
+    if (len >= sizeof buf)
+        return;
+    memcpy(buf, name, len);
+    buf[len] = '\0';
+    Name *nm = find_name(c->L, buf);
+    if (!nm || nm->kind != NAME_DEFINE)
+        return;
+    Define *d = c->d;
+    if (d->ndeps == c->cap) {
+        int cap = c->cap ? 2 * c->cap : 8;
+        int *deps = arena_new_array(c->L->A, int, cap);
+        size_t *offs = arena_new_array(c->L->A, size_t, cap);
+        if (d->ndeps) {
+            memcpy(deps, d->deps, sizeof *deps * (size_t)d->ndeps);
+            memcpy(offs, d->dep_off, sizeof *offs * (size_t)d->ndeps);
+        }
+        d->deps = deps, d->dep_off = offs, c->cap = cap;
+    }
+    d->deps[d->ndeps] = nm->index;
+    d->dep_off[d->ndeps++] = off;
+}
+
+/* Define i refers to itself: report the cycle at its first step. */
+static _Noreturn void
+define_cycle(Loader *L, const int *stack, const int *edge, int sp, int i)
+{
+    int from = sp - 1;
+    while (from > 0 && stack[from] != i)
+        from--;
+    char path[1024] = "";
+    for (int k = from; k < sp; k++)
+        snprintf(path + strlen(path), sizeof path - strlen(path), "%s -> ", L->def[stack[k]].name);
+    snprintf(path + strlen(path), sizeof path - strlen(path), "%s", L->def[i].name);
+    Define *d = &L->def[stack[from]];
+    Scalar sc;
+    scalar_src(L, &sc, d->node, "a define");
+    SrcLoc at = scalar_where(&sc.src, d->dep_off[edge[from] - 1]);
+    diag_error(at, "define '%s' refers to itself: %s", L->def[i].name, path);
+}
+
+static void
+resolve_define(Loader *L, Define *d)
+{
+    char what[120];
+    snprintf(what, sizeof what, "define '%s'", d->name);
+    d->value = expression(L, d->node, ALLOW_ALL, arena_strdup(L->A, what));
+}
+
+/* Resolve every define after the defines it names: a depth-first
+ * post-order with an explicit stack (chains of defines can be long). */
+static void
+resolve_defines(Loader *L)
+{
+    for (int i = 0; i < L->ndef; i++) {
+        Scalar sc;
+        scalar_src(L, &sc, L->def[i].node, "a define");
+        DepCollect c = {L, &L->def[i], 0};
+        parse_names(&sc.src, collect_dep, &c);
+    }
+    int *stack = arena_new_array(L->A, int, L->ndef + 1);
+    int *edge = arena_new_array(L->A, int, L->ndef + 1);
+    for (int root = 0; root < L->ndef; root++) {
+        if (L->def[root].state)
+            continue;
+        int sp = 0;
+        stack[sp] = root, edge[sp++] = 0;
+        L->def[root].state = 1;
+        while (sp) {
+            Define *d = &L->def[stack[sp - 1]];
+            if (edge[sp - 1] == d->ndeps) {
+                resolve_define(L, d);
+                d->state = 2;
+                sp--;
+                continue;
+            }
+            int next = d->deps[edge[sp - 1]++];
+            if (L->def[next].state == 1)
+                define_cycle(L, stack, edge, sp, next);
+            if (L->def[next].state == 0) {
+                L->def[next].state = 1;
+                stack[sp] = next, edge[sp++] = 0;
+            }
+        }
+    }
+}
+
+static void
+load_inputs(Loader *L, yaml_node_t *map)
+{
+    for (int i = 0; i < L->s->nu; i++)
+        L->s->input[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_SIGNAL,
+                                         "an input signal");
+}
+
+static void
+load_particles(Loader *L, yaml_node_t *map)
+{
+    static const char *const keys[] = {"mass", "position", NULL};
+    Spec *s = L->s;
+    s->npart = NPAIRS(map);
+    s->part = arena_new_array(L->A, SpecParticle, s->npart);
+    for (int i = 0; i < s->npart; i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
+        SpecParticle *pt = &s->part[i];
+        pt->name = arena_strdup(L->A, scalar(L, k, "a particle name"));
+        pt->loc = loc_of(L, k);
+        as_map(L, v, "a particle");
+        check_keys(L, v, keys, "a particle");
+        yaml_node_t *mass = lookup_key(L, v, "mass"), *pos = lookup_key(L, v, "position");
+        if (!mass)
+            diag_error(loc_of(L, v), "particle '%s' has no mass", pt->name);
+        if (!pos)
+            diag_error(loc_of(L, v), "particle '%s' has no position", pt->name);
+        pt->mass = expression(L, mass, ALLOW_PARAM, "a mass");
+        pt->dim = vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
+    }
+}
+
+/* A scalar or a sequence of scalars: the terms of an energy. */
+static SpecTerm *
+load_terms(Loader *L, yaml_node_t *n, unsigned allow, const char *what, int *count)
+{
+    int one = n->type == YAML_SCALAR_NODE;
+    if (!one)
+        expect_type(L, n, YAML_SEQUENCE_NODE, what);
+    *count = one ? 1 : NITEMS(n);
+    SpecTerm *t = arena_new_array(L->A, SpecTerm, *count);
+    for (int i = 0; i < *count; i++) {
+        yaml_node_t *item = one ? n : node(L, ITEMS(n)[i]);
+        t[i].loc = loc_of(L, item);
+        t[i].expr = expression(L, item, allow, what);
+    }
+    return t;
+}
+
+static int
+find_particle(Loader *L, yaml_node_t *n)
+{
+    const char *name = scalar(L, n, "a particle name");
+    const char **cands = arena_new_array(L->A, const char *, L->s->npart + 1);
+    for (int i = 0; i < L->s->npart; i++) {
+        if (!strcmp(L->s->part[i].name, name))
+            return i;
+        cands[i] = L->s->part[i].name;
+    }
+    const char *near = diag_nearest(name, cands, L->s->npart);
+    if (near)
+        diag_error(loc_of(L, n), "unknown particle '%s'; did you mean '%s'?", name, near);
+    diag_error(loc_of(L, n), "unknown particle '%s'", name);
+}
+
+static void
+load_force(Loader *L, yaml_node_t *map, SpecForce *f)
+{
+    static const char *const keys[] = {"gravity", "potential", "force", "work", "on", NULL};
+    as_map(L, map, "a force");
+    check_keys(L, map, keys, "an effect");
+    f->loc = loc_of(L, map);
+    int kinds = 0;
+    yaml_node_t *v, *on = lookup_key(L, map, "on");
+    if ((v = lookup_key(L, map, "gravity"))) {
+        f->kind = FORCE_GRAVITY, kinds++;
+        f->dim = vector(L, v, ALLOW_FIELD, "a gravity field", f->vec);
+        for (int k = 0; k < L->s->npart; k++)
+            if (L->s->part[k].dim != f->dim)
+                diag_error(loc_of(L, v), "gravity has %d components but particle '%s' is %d-D",
+                           f->dim, L->s->part[k].name, L->s->part[k].dim);
+        if (L->s->npart == 0)
+            diag_error(loc_of(L, v), "gravity acts on particles, and this spec has none "
+                       "(write a potential instead)");
+    }
+    if ((v = lookup_key(L, map, "potential")))
+        f->kind = FORCE_POTENTIAL, kinds++,
+        f->expr = expression(L, v, ALLOW_POTENTIAL, "a potential");
+    if ((v = lookup_key(L, map, "work")))
+        f->kind = FORCE_WORK, kinds++,
+        f->expr = expression(L, v, ALLOW_FORCE, "a virtual-work expression");
+    if ((v = lookup_key(L, map, "force"))) {
+        f->kind = FORCE_VECTOR, kinds++;
+        if (!on)
+            diag_error(loc_of(L, map), "a force needs `on: PARTICLE`, the particle it acts on");
+        f->particle = find_particle(L, on);
+        f->dim = vector(L, v, ALLOW_FORCE, "a force", f->vec);
+        if (f->dim != L->s->part[f->particle].dim)
+            diag_error(loc_of(L, v), "the force has %d components but particle '%s' is %d-D",
+                       f->dim, L->s->part[f->particle].name, L->s->part[f->particle].dim);
+    } else if (on) {
+        diag_error(loc_of(L, on), "`on` belongs to a force vector (`force: [...]`)");
+    }
+    if (kinds != 1)
+        diag_error(loc_of(L, map), kinds ? "an effect item has exactly one of gravity, "
+                   "potential, force, work (write a list for several)"
+                   : "an effect item needs one of gravity, potential, force, work");
+}
+
+static void
+load_effects(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->neffect = NPAIRS(map);
+    s->effect = arena_new_array(L->A, SpecEffect, s->neffect);
+    for (int i = 0; i < s->neffect; i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
+        SpecEffect *e = &s->effect[i];
+        e->name = arena_strdup(L->A, scalar(L, k, "an effect name"));
+        e->loc = loc_of(L, k);
+        e->enabled = 1;
+        if (!is_identifier(e->name))
+            diag_error(e->loc, "'%s' is not a valid effect name", e->name);
+        int list = v->type == YAML_SEQUENCE_NODE;
+        e->nforce = list ? NITEMS(v) : 1;
+        if (e->nforce == 0)
+            diag_error(loc_of(L, v), "effect '%s' is empty", e->name);
+        e->force = arena_new_array(L->A, SpecForce, e->nforce);
+        for (int j = 0; j < e->nforce; j++)
+            load_force(L, list ? node(L, ITEMS(v)[j]) : v, &e->force[j]);
+    }
+}
+
+static void
+load_initial(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    for (int i = 0; i < NPAIRS(map); i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key);
+        const char *key = scalar(L, k, "an initial-state name");
+        size_t len = strlen(key);
+        int vel = len > 1 && key[len - 1] == '\'';
+        int found = -1;
+        for (int c = 0; c < s->nq && found < 0; c++)
+            if (strlen(s->coord[c].name) == len - (size_t)vel &&
+                !strncmp(s->coord[c].name, key, len - (size_t)vel))
+                found = c;
+        if (found < 0) {
+            const char **cands = arena_new_array(L->A, const char *, 2 * s->nq);
+            for (int c = 0; c < s->nq; c++) {
+                cands[2 * c] = s->coord[c].name;
+                cands[2 * c + 1] = arena_printf(L->A, "%s'", s->coord[c].name);
+            }
+            const char *near = diag_nearest(key, cands, 2 * s->nq);
+            if (near)
+                diag_error(loc_of(L, k), "'%s' is not a coordinate or velocity; did you mean '%s'?",
+                           key, near);
+            diag_error(loc_of(L, k), "'%s' is not a coordinate (x) or a velocity (x')", key);
+        }
+        ExprId e = expression(L, node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
+        if (vel)
+            s->coord[found].v0 = e;
+        else
+            s->coord[found].q0 = e;
+    }
+}
+
+static const char *
+method_name(Loader *L, yaml_node_t *n)
+{
+    const char *m = scalar(L, n, "method");
+    int count = 0;
+    for (; spec_methods[count]; count++)
+        if (!strcmp(spec_methods[count], m))
+            return spec_methods[count];
+    const char *near = diag_nearest(m, spec_methods, count);
+    if (near)
+        diag_error(loc_of(L, n), "unknown method '%s'; did you mean '%s'?", m, near);
+    diag_error(loc_of(L, n), "unknown method '%s'; the methods are rk2, rk4, rkf45, rkck, "
+               "rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf", m);
+}
+
+static int
+find_effect(Loader *L, yaml_node_t *n)
+{
+    const char *name = scalar(L, n, "an effect name");
+    const char **cands = arena_new_array(L->A, const char *, L->s->neffect + 1);
+    for (int i = 0; i < L->s->neffect; i++) {
+        if (!strcmp(L->s->effect[i].name, name))
+            return i;
+        cands[i] = L->s->effect[i].name;
+    }
+    const char *near = diag_nearest(name, cands, L->s->neffect);
+    if (near)
+        diag_error(loc_of(L, n), "unknown effect '%s'; did you mean '%s'?", name, near);
+    diag_error(loc_of(L, n), "unknown effect '%s'", name);
+}
+
+static double
+positive(Loader *L, yaml_node_t *n, const char *what, int zero_ok)
+{
+    double v = number(L, n, what);
+    if (v < 0 || (!zero_ok && v == 0))
+        diag_error(loc_of(L, n), "%s must be %s, not %.17g", what,
+                   zero_ok ? "zero or positive" : "positive", v);
+    return v;
+}
+
+static void
+load_scene(Loader *L, yaml_node_t *map)
+{
+    static const char *const keys[] = {"effects", "t_end", "dt", "method", "rtol", "atol",
+                                       "fixed_step", NULL};
+    SpecScene *sc = &L->s->scene;
+    as_map(L, map, "scene");
+    check_keys(L, map, keys, "scene");
+    yaml_node_t *v;
+    if ((v = lookup_key(L, map, "effects"))) {
+        expect_type(L, v, YAML_SEQUENCE_NODE, "the scene's effects");
+        for (int i = 0; i < L->s->neffect; i++)
+            L->s->effect[i].enabled = 0;
+        for (int i = 0; i < NITEMS(v); i++)
+            L->s->effect[find_effect(L, node(L, ITEMS(v)[i]))].enabled = 1;
+    }
+    if ((v = lookup_key(L, map, "t_end")))
+        sc->t_end = positive(L, v, "t_end", 0);
+    if ((v = lookup_key(L, map, "dt")))
+        sc->dt = positive(L, v, "dt", 0);
+    if ((v = lookup_key(L, map, "method")))
+        sc->method = method_name(L, v);
+    if ((v = lookup_key(L, map, "rtol")))
+        sc->rtol = positive(L, v, "rtol", 1);
+    if ((v = lookup_key(L, map, "atol")))
+        sc->atol = positive(L, v, "atol", 1);
+    if ((v = lookup_key(L, map, "fixed_step")))
+        sc->h_fixed = positive(L, v, "fixed_step", 1);
+    if (sc->rtol == 0 && sc->atol == 0 && sc->h_fixed == 0)
+        diag_error(loc_of(L, map), "rtol and atol cannot both be zero for adaptive steps");
+}
+
+/* The spec's name: `name:`, or the file's base name made an identifier. */
+static const char *
+spec_name(Loader *L, yaml_node_t *n)
+{
+    if (n) {
+        const char *name = scalar(L, n, "name");
+        if (!is_identifier(name) || strlen(name) > 64)
+            diag_error(loc_of(L, n), "name '%s' must be a C identifier (letters, digits, _)", name);
+        return arena_strdup(L->A, name);
+    }
+    const char *base = strrchr(L->path, '/');
+    base = base ? base + 1 : L->path;
+    size_t len = strcspn(base, ".");
+    if (len > 64)
+        len = 64;
+    char *name = arena_alloc(L->A, len + 3);
+    size_t k = 0;
+    if (len == 0 || (base[0] >= '0' && base[0] <= '9'))
+        name[k++] = 'm', name[k++] = '_';
+    for (size_t i = 0; i < len; i++)
+        name[k++] = is_identifier((char[]){'a', base[i], 0}) ? base[i] : '_';
+    return name;
+}
+
+static const char *const top_keys[] = {
+    "name", "description", "parameters", "coordinates", "define", "inputs",
+    "particles", "kinetic", "potential", "effects", "initial", "scene", NULL,
+};
+
+static yaml_node_t *
+section(Loader *L, yaml_node_t *root, const char *key, int map)
+{
+    yaml_node_t *n = lookup_key(L, root, key);
+    if (!n || is_null(n))
+        return NULL;
+    return map ? as_map(L, n, key) : n;
+}
+
+static void
+load_root(Loader *L, yaml_node_t *root)
+{
+    Spec *s = L->s;
+    expect_type(L, root, YAML_MAPPING_NODE, "the top level of a spec");
+    check_unique_keys(L, root);
+    check_keys(L, root, top_keys, "the spec");
+    s->name = spec_name(L, section(L, root, "name", 0));
+    yaml_node_t *d = section(L, root, "description", 0);
+    s->description = d ? arena_strdup(L->A, scalar(L, d, "description")) : "";
+    yaml_node_t *params = section(L, root, "parameters", 1);
+    yaml_node_t *coords = lookup_key(L, root, "coordinates");
+    yaml_node_t *inputs = section(L, root, "inputs", 1);
+    yaml_node_t *defines = section(L, root, "define", 1);
+    if (!coords)
+        diag_error(loc_of(L, root), "the spec has no `coordinates:`");
+    int most = (params ? NPAIRS(params) : 0) + (inputs ? NPAIRS(inputs) : 0) +
+               (defines ? NPAIRS(defines) : 0) + (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
+    L->names = arena_new_array(L->A, Name, most + 1);
+    if (params)
+        load_parameters(L, params);
+    load_coordinates(L, coords);
+    if (inputs)
+        name_inputs(L, inputs);
+    if (defines) {
+        name_defines(L, defines);
+        resolve_defines(L);
+    }
+    if (inputs)
+        load_inputs(L, inputs);
+    yaml_node_t *n;
+    if ((n = section(L, root, "particles", 1)))
+        load_particles(L, n);
+    if ((n = section(L, root, "kinetic", 0)))
+        s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term", &s->nkinetic);
+    if ((n = section(L, root, "potential", 0)))
+        s->potential = load_terms(L, n, ALLOW_POTENTIAL, "a potential-energy term",
+                                  &s->npotential);
+    if ((n = section(L, root, "effects", 1)))
+        load_effects(L, n);
+    if ((n = section(L, root, "initial", 1)))
+        load_initial(L, n);
+    if ((n = section(L, root, "scene", 1)))
+        load_scene(L, n);
+    if (s->npart == 0 && s->nkinetic == 0)
+        diag_error(loc_of(L, root), "the spec has no kinetic energy: give `particles:` or "
+                   "`kinetic:` terms");
+}
+
+static void
+index_lines(Loader *L)
+{
+    size_t n = 1;
+    for (size_t i = 0; i < L->len; i++)
+        n += L->text[i] == '\n';
+    L->line_start = arena_new_array(L->A, size_t, n);
+    L->nlines = 0;
+    L->line_start[L->nlines++] = 0;
+    for (size_t i = 0; i < L->len; i++)
+        if (L->text[i] == '\n')
+            L->line_start[L->nlines++] = i + 1;
+}
+
+/* Line and column of a byte offset (libyaml's reader errors give one). */
+static SrcLoc
+loc_of_byte(const Loader *L, size_t off)
+{
+    size_t line = 0;
+    while (line + 1 < L->nlines && L->line_start[line + 1] <= off)
+        line++;
+    int col = 1;
+    for (size_t i = L->line_start[line]; i < off && i < L->len; i++)
+        col += !is_cont((unsigned char)L->text[i]);
+    return (SrcLoc){L->path, (int)line + 1, col};
+}
+
+/* libyaml's own errors, with its marks; the parser is deleted first. */
+static _Noreturn void
+yaml_failure(Loader *L, yaml_parser_t *yp)
+{
+    SrcLoc at = {L->path, (int)yp->problem_mark.line + 1, (int)yp->problem_mark.column + 1};
+    if (yp->error == YAML_READER_ERROR)
+        at = loc_of_byte(L, yp->problem_offset);
+    char msg[512];
+    const char *problem = yp->problem ? yp->problem : "cannot parse the YAML";
+    if (yp->context)
+        snprintf(msg, sizeof msg, "%s %s that started at line %d, column %d", problem,
+                 yp->context, (int)yp->context_mark.line + 1, (int)yp->context_mark.column + 1);
+    else
+        snprintf(msg, sizeof msg, "%s", problem);
+    size_t b = byte_at(L, yp->problem_mark.line, yp->problem_mark.column);
+    if (yp->error != YAML_READER_ERROR && b < L->len && L->text[b] == '\t')
+        snprintf(msg, sizeof msg, "a tab character: YAML indents with spaces only");
+    yaml_parser_delete(yp);
+    diag_error(at, "%s", msg);
+}
+
+static void
+load_document(Loader *L)
+{
+    yaml_parser_t yp;
+    if (!yaml_parser_initialize(&yp))
+        diag_error((SrcLoc){L->path, 0, 0}, "out of memory");
+    yaml_parser_set_input_string(&yp, (const unsigned char *)L->text, L->len);
+    if (!yaml_parser_load(&yp, &L->doc))
+        yaml_failure(L, &yp);
+    L->have_doc = 1;
+    /* a second document would be ignored silently: refuse it */
+    yaml_document_t extra;
+    if (!yaml_parser_load(&yp, &extra))
+        yaml_failure(L, &yp);
+    int more = yaml_document_get_root_node(&extra) != NULL;
+    SrcLoc at = {L->path, (int)extra.start_mark.line + 1, (int)extra.start_mark.column + 1};
+    yaml_document_delete(&extra);
+    yaml_parser_delete(&yp);
+    if (more)
+        diag_error(at, "a spec is one YAML document; this is a second one");
+}
+
+Spec *
+spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprPool *P)
+{
+    Loader *L = arena_alloc(A, sizeof *L);
+    L->path = arena_strdup(A, path);
+    L->text = text;
+    L->len = len;
+    L->A = A;
+    L->P = P;
+    L->sc = (ParseScope){P, diff_new(P), lookup, leaf_name, 0, ""};
+    L->s = arena_alloc(A, sizeof *L->s);
+    L->s->path = L->path;
+    L->s->scene = (SpecScene){10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0};
+    diag_add_source(L->path, text, len);
+    jmp_buf jb;
+    jmp_buf *old = diag_set_jump(&jb);
+    Spec *volatile result = NULL;
+    if (setjmp(jb) == 0) {
+        index_lines(L);
+        load_document(L);
+        yaml_node_t *root = yaml_document_get_root_node(&L->doc);
+        if (!root)
+            diag_error((SrcLoc){L->path, 1, 1}, "the spec is empty");
+        load_root(L, root);
+        result = L->s;
+    }
+    diag_set_jump(old);
+    if (L->have_doc)
+        yaml_document_delete(&L->doc);
+    diff_free(L->sc.D);
+    return result;
+}
+
+Spec *
+spec_load(const char *path, Arena *A, ExprPool *P)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "eomc: cannot read %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 14, n = 0, k;
+    char *buf = arena_alloc(A, cap);
+    while ((k = fread(buf + n, 1, cap - n, f)) > 0) {
+        n += k;
+        if (n == cap) {
+            if (cap >= MAX_SPEC_BYTES) {
+                fclose(f);
+                fprintf(stderr, "eomc: %s: a spec is at most %d MiB\n", path, MAX_SPEC_BYTES >> 20);
+                return NULL;
+            }
+            char *bigger = arena_alloc(A, cap * 2);
+            memcpy(bigger, buf, n);
+            buf = bigger, cap *= 2;
+        }
+    }
+    int err = ferror(f);
+    fclose(f);
+    if (err) {
+        fprintf(stderr, "eomc: cannot read %s\n", path);
+        return NULL;
+    }
+    return spec_load_buffer(path, buf, n, A, P);
+}
+
+int
+spec_select_effects(Spec *s, const char *list)
+{
+    for (int i = 0; i < s->neffect; i++)
+        s->effect[i].enabled = 0;
+    for (const char *p = list; *p;) {
+        size_t n = strcspn(p, ",");
+        int found = 0;
+        for (int i = 0; i < s->neffect; i++)
+            if (strlen(s->effect[i].name) == n && !strncmp(s->effect[i].name, p, n))
+                s->effect[i].enabled = found = 1;
+        if (!found && n > 0) {
+            fprintf(stderr, "eomc: --effects: unknown effect '%.*s'; %s has", (int)n, p, s->path);
+            for (int i = 0; i < s->neffect; i++)
+                fprintf(stderr, "%s %s", i ? "," : "", s->effect[i].name);
+            fprintf(stderr, "%s\n", s->neffect ? "" : " no effects");
+            return -1;
+        }
+        p += n;
+        p += *p == ',';
+    }
+    return 0;
+}

@@ -1,0 +1,109 @@
+/*
+ * eomc.h: the runtime library (libeomcrt) that generated models link.
+ *
+ * An eomc_sim holds one model, its parameter values and inputs, and every
+ * work array the right-hand side needs: after eomc_sim_alloc, evaluating
+ * accelerations, Jacobians or a whole integration allocates nothing per
+ * step.  The API follows GSL's object_verb style: alloc, use, free; every
+ * function that can fail returns an EOMC_ status and leaves a message in
+ * eomc_sim_error().
+ *
+ *     eomc_sim *sim = eomc_sim_alloc(&pendulum_model);
+ *     eomc_sim_set(sim, "l", 2.0);
+ *     double q[1] = {0.5}, v[1] = {0}, a[1];
+ *     if (eomc_sim_accel(sim, 0.0, q, v, a) != EOMC_OK)
+ *         fprintf(stderr, "%s\n", eomc_sim_error(sim));
+ *     eomc_sim_free(sim);
+ *
+ * The first-order state is x = (q, q') of length 2 nq; its derivative is
+ * x' = (q', q''(t, q, q')).
+ */
+#ifndef EOMC_H
+#define EOMC_H
+
+#include <stdio.h>
+
+#include "eomc_model.h"
+
+enum {
+    EOMC_OK = 0,
+    EOMC_EUSAGE = 2,   /* bad name or value from the user: exit status 2 */
+    EOMC_ENUMERIC = 3, /* numerical failure at run time: exit status 3 */
+};
+
+typedef struct eomc_sim eomc_sim;
+
+/* NULL if the model's ABI does not match this runtime or memory runs out. */
+eomc_sim *eomc_sim_alloc(const eomc_model *m);
+void eomc_sim_free(eomc_sim *s);
+const eomc_model *eomc_sim_model(const eomc_sim *s);
+
+/* Set a parameter, or an input, by name.  An input set here is held at
+ * this constant value from then on.  EOMC_EUSAGE for an unknown name. */
+int eomc_sim_set(eomc_sim *s, const char *name, double value);
+/* Current parameter values [np]. */
+const double *eomc_sim_params(const eomc_sim *s);
+/* Input values at t [nu] (constants or the model's signals). */
+void eomc_sim_inputs(eomc_sim *s, double t, double *u);
+
+/* The model's initial state for the current parameters. */
+void eomc_sim_initial(const eomc_sim *s, double *q, double *v);
+
+/* q'' at (t, q, v): solves M q'' = -h.  EOMC_ENUMERIC if M is singular or
+ * not positive definite, or q'' is not finite. */
+int eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v,
+                   double *a);
+/* T and V at (t, q, v). */
+void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,
+                     double *T, double *V);
+/* The Jacobian of x' = f(t, x), exact, from the generated residual
+ * Jacobians: dq''/dx = -M^-1 dE/dx.  dfdx is (2nq x 2nq) row-major; dfdt
+ * [2nq] includes the inputs' time derivatives.  Either may be NULL. */
+int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
+                      double *dfdt);
+
+/* ---- integration ---- */
+
+/* The GSL odeiv2 steppers by name, NULL-terminated. */
+extern const char *const eomc_methods[];
+
+typedef struct eomc_run_opts {
+    double t0, t_end;  /* time span */
+    double dt;         /* output interval (> 0) */
+    const char *method;
+    double rtol, atol; /* adaptive tolerances */
+    double h_fixed;    /* > 0: fixed steps (adjusted down to divide dt) */
+    long max_steps;    /* per run; 0 = no limit */
+} eomc_run_opts;
+
+/* Defaults from the model's scene. */
+eomc_run_opts eomc_run_defaults(const eomc_model *m);
+
+typedef struct eomc_stats {
+    long steps, rejected;    /* accepted and rejected steps */
+    long rhs_evals, jac_evals;
+    double cpu_seconds;
+    double h_used;           /* the fixed step actually taken, or 0 */
+} eomc_stats;
+
+/* Called at every output time, t0 first and t_end last, with the state
+ * x [2nq].  A nonzero return stops the integration with that status. */
+typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
+
+/* Integrate from x (updated in place to the last state reached).  Returns
+ * EOMC_OK, EOMC_EUSAGE for bad options, or EOMC_ENUMERIC; the rows already
+ * passed to `row` stand. */
+int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
+                       eomc_row_fn row, void *ctx, eomc_stats *st);
+
+/* The last error: "t = 1.25: mass matrix is not positive definite (pivot
+ * 2, q2); state q1 = ..., ..." */
+const char *eomc_sim_error(const eomc_sim *s);
+
+/* ---- the standalone simulator ---- */
+
+/* The command line of a built simulator (see `EXE --help`).  Returns the
+ * exit status: 0, 2 (usage) or 3 (numerical failure). */
+int eomc_main(int argc, char **argv, const eomc_model *m);
+
+#endif

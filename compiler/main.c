@@ -218,11 +218,15 @@ read_file(const char *path, size_t *len)
     return buf;
 }
 
-static const char *
-spec_base(const char *path)
+/* The spec's file name without directory and extension. */
+static void
+spec_stem(const char *path, char *out, size_t len)
 {
     const char *b = strrchr(path, '/');
-    return b ? b + 1 : path;
+    snprintf(out, len, "%s", b ? b + 1 : path);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
 }
 
 /* `run`: build into the cache unless an identical build is there, then
@@ -240,8 +244,9 @@ run(const Options *o)
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s",
                             o->form, o->effects ? o->effects : "(scene)");
-    char name[256];
-    snprintf(name, sizeof name, "sim-%s", spec_base(o->spec));
+    char stem[200], name[256];
+    spec_stem(o->spec, stem, sizeof stem);
+    snprintf(name, sizeof name, "sim-%s", stem);
     char *exe = build_cache_path(name, text, len);
     free(text);
     if (!exe)
@@ -254,7 +259,7 @@ run(const Options *o)
         }
     }
     char **argv = calloc((size_t)o->nsim + 2, sizeof *argv);
-    argv[0] = exe;
+    argv[0] = stem; /* messages name the model, not the cache path */
     for (int i = 0; i < o->nsim; i++)
         argv[i + 1] = o->sim[i];
     fflush(stdout);
@@ -274,10 +279,7 @@ main(int argc, char **argv)
     else if (!strcmp(o.cmd, "build")) {
         char def[256];
         if (!o.out) { /* default: the spec's name in the current directory */
-            snprintf(def, sizeof def, "%s", spec_base(o.spec));
-            char *dot = strrchr(def, '.');
-            if (dot)
-                *dot = '\0';
+            spec_stem(o.spec, def, sizeof def);
             o.out = def;
         }
         rc = build(&o, o.out);

@@ -74,6 +74,8 @@ typedef struct eomc_run_opts {
     double rtol, atol; /* adaptive tolerances */
     double h_fixed;    /* > 0: fixed steps (adjusted down to divide dt) */
     long max_steps;    /* per run; 0 = no limit */
+    int progress;      /* nonzero: when stderr is a terminal and the run
+                        * takes over a second, show t on stderr */
 } eomc_run_opts;
 
 /* Defaults from the model's scene. */

@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 
 /* Run `cmd` through the shell; its stdout into a malloc'd string. */
-static char *
+static inline char *
 sim_capture(const char *cmd, int *status)
 {
     FILE *f = popen(cmd, "r");
@@ -31,7 +31,7 @@ sim_capture(const char *cmd, int *status)
 }
 
 /* The value printed by --accel on the line "NAME VALUE", or NAN. */
-static double
+static inline double
 sim_accel_value(const char *out, const char *name)
 {
     size_t len = strlen(name);
@@ -48,7 +48,7 @@ typedef struct SimTable {
     double *v; /* v[row * ncol + col] */
 } SimTable;
 
-static int
+static inline int
 sim_column(const SimTable *t, const char *name)
 {
     for (int j = 0; j < t->ncol; j++)
@@ -58,7 +58,7 @@ sim_column(const SimTable *t, const char *name)
     exit(1);
 }
 
-static SimTable
+static inline SimTable
 sim_parse_csv(char *text)
 {
     SimTable t = {0, 0, NULL, NULL};
@@ -84,7 +84,16 @@ sim_parse_csv(char *text)
     return t;
 }
 
-static double
+static inline void
+sim_table_free(SimTable *t)
+{
+    for (int j = 0; j < t->ncol; j++)
+        free(t->col[j]);
+    free(t->col);
+    free(t->v);
+}
+
+static inline double
 sim_at(const SimTable *t, int row, int col)
 {
     return t->v[(size_t)row * (size_t)t->ncol + (size_t)col];

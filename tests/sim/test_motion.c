@@ -25,7 +25,9 @@ run(int which, const char *args)
     char *out = sim_capture(cmd, &st);
     if (st != 0)
         printf("# %s exited %d\n", cmd, st);
-    return sim_parse_csv(out);
+    SimTable t = sim_parse_csv(out);
+    free(out);
+    return t;
 }
 
 static void
@@ -41,6 +43,7 @@ falling(void)
     }
     CHECK(t.nrow == 101, "falling_particle: 101 rows for t in [0, 1] by 0.01 (got %d)", t.nrow);
     CHECK(ok, "falling_particle: y(t) = y0 + (f/m - g) t^2 / 2");
+    sim_table_free(&t);
 }
 
 /* Root of the cubic Hermite interpolant of theta between two rows. */
@@ -85,6 +88,7 @@ pendulum_period(void)
             CHECK_NEAR(down[1] - down[0], T, 1e-7,
                        "pendulum theta0 = %g: period = 4 K(sin(theta0/2)) sqrt(l/g) = %.10f",
                        amp[k], T);
+        sim_table_free(&t);
     }
 }
 
@@ -113,6 +117,7 @@ double_pendulum(void)
     CHECK_NEAR(E0, want, 1e-14, "double_pendulum: E(0) = -g (2 cos th1 + cos th2)");
     CHECK(t.nrow > 100 && sim_at(&t, t.nrow - 1, 0) == 10.0, "double_pendulum: ran to t = 10");
     CHECK(drift < 1e-9, "double_pendulum: energy drift %.3g < 1e-9 over 10 s (rk8pd, 1e-12)", drift);
+    sim_table_free(&t);
 }
 
 static void
@@ -121,6 +126,7 @@ conserved(int which, const char *label, const char *args)
     SimTable t = run(which, args);
     double E0, drift = energy_drift(&t, &E0);
     CHECK(t.nrow > 10 && drift < 1e-9, "%s: energy drift %.3g < 1e-9", label, drift);
+    sim_table_free(&t);
 }
 
 int

@@ -4,6 +4,7 @@
  * nothing.  Compiled by chain_bench.sh with -DMODEL=chainN_model and
  * -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc.
  */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>

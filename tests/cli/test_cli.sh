@@ -56,6 +56,17 @@ count=$(find "$tmp/cache" -type f -name 'sim-*' | wc -l)
 count=$(find "$tmp/cache" -type f -name 'sim-*' | wc -l)
 [ "$count" -eq 2 ]; ok $? "another --form is another cache entry"
 
+# an effect the scene leaves out generates no code: falling_particle with
+# only gravity never reads the push force f, and y'' = -g whatever f is
+"$eomc" compile "$src/specs/falling_particle.yaml" --effects gravity -o "$tmp/grav.c"
+"$eomc" compile "$src/specs/falling_particle.yaml" -o "$tmp/both.c"
+! grep -q 'p_f\|p\[2\]' "$tmp/grav.c" && grep -q 'p_f = p\[2\]' "$tmp/both.c"
+ok $? "--effects gravity: no code reads the push force f (the full scene does)"
+got=$("$eomc" run "$src/specs/falling_particle.yaml" --effects gravity --accel --set f=100 --set g=3.5 | accel_of y)
+near "$got" -3.5; ok $? "--effects gravity: y'' = -g = $got with f = 100 set"
+got=$("$eomc" run "$src/specs/falling_particle.yaml" --effects push --accel --set f=3 --set m=2 | accel_of y)
+near "$got" 1.5; ok $? "--effects push: y'' = f/m = $got, no gravity"
+
 # failures: exit status 2, no output left
 printf 'coordinates: [x]\nparticles: {p: {mass: 1, position: [x, y]}}\n' > "$tmp/bad.yaml"
 "$eomc" compile "$tmp/bad.yaml" -o "$tmp/bad.c" 2> "$tmp/bad.err"; st=$?

@@ -440,35 +440,50 @@ driver_error(eomc_sim *s, int status, double t, const double *x, double hmin,
     }
 }
 
-/* Advance from *t to t1, adaptively or in fixed steps that divide the
- * interval evenly.  Fixed steps bypass the driver's error control, which
- * would refuse a step whose error estimate exceeds the tolerances. */
+/* Advance from *t to t1 in fixed steps that divide the interval evenly.
+ * They bypass the driver's error control, which would refuse a step whose
+ * error estimate exceeds the tolerances. */
+static int
+advance_fixed(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1,
+              double *x, eomc_stats *st)
+{
+    double span = t1 - *t;
+    unsigned long k = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
+    if (k < 1)
+        k = 1;
+    double h = span / (double)k;
+    if (st->h_used == 0)
+        st->h_used = h; /* a whole interval's step, not the last sliver's */
+    for (unsigned long i = 0; i < k; i++) {
+        if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
+            return GSL_EMAXITER;
+        int rc = gsl_odeiv2_evolve_apply_fixed_step(d->e, NULL, d->s, d->sys, t, h, x);
+        if (rc != GSL_SUCCESS)
+            return rc;
+    }
+    *t = t1; /* the sum of k steps may miss t1 by an ulp */
+    return GSL_SUCCESS;
+}
+
+/* Advance adaptively, as gsl_odeiv2_driver_apply does, but checking the
+ * step budget before each step (the driver lets two more through) and
+ * not mistaking the short step that lands on t1 for an underflow. */
 static int
 advance(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1, double *x,
-        eomc_stats *st)
+        eomc_stats *st, double hmin)
 {
-    if (o->h_fixed > 0) {
-        double span = t1 - *t;
-        unsigned long k = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
-        if (k < 1)
-            k = 1;
-        st->h_used = span / (double)k;
-        for (unsigned long i = 0; i < k; i++) {
-            int rc = gsl_odeiv2_evolve_apply_fixed_step(d->e, NULL, d->s, d->sys, t,
-                                                        st->h_used, x);
-            if (rc != GSL_SUCCESS)
-                return rc;
-        }
-        *t = t1; /* the sum of k steps may miss t1 by an ulp */
-        return GSL_SUCCESS;
-    }
-    if (o->max_steps > 0) {
-        long left = o->max_steps - (long)d->e->count;
-        if (left <= 0)
+    if (o->h_fixed > 0)
+        return advance_fixed(d, o, t, t1, x, st);
+    while (*t < t1) {
+        if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
             return GSL_EMAXITER;
-        gsl_odeiv2_driver_set_nmax(d, (unsigned long)left);
+        int rc = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, d->sys, t, t1, &d->h, x);
+        if (rc != GSL_SUCCESS)
+            return rc;
+        if (*t < t1 && fabs(d->h) < hmin)
+            return GSL_ENOPROG;
     }
-    return gsl_odeiv2_driver_apply(d, t, t1, x);
+    return GSL_SUCCESS;
 }
 
 int
@@ -501,7 +516,6 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
                                                          o->atol, o->rtol);
     if (!d)
         return usage_error(s, "cannot set up the %s integrator", o->method);
-    gsl_odeiv2_driver_set_hmin(d, hmin);
 
     clock_t c0 = clock();
     double t = o->t0;
@@ -510,7 +524,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         double t1 = o->t0 + (double)k * o->dt;
         if (t1 > o->t_end - 1e-9 * o->dt) /* no sliver of an interval at the end */
             t1 = o->t_end;
-        int status = advance(d, o, &t, t1, x, st);
+        int status = advance(d, o, &t, t1, x, st, hmin);
         st->steps = (long)d->e->count;
         st->rejected = (long)d->e->failed_steps;
         if (status != GSL_SUCCESS) {

@@ -1,0 +1,355 @@
+/*
+ * models.c: hand-written models for the runtime tests (see models.h).
+ * Each is what eomc would generate: straight-line functions of the residual
+ * E(t, q, q', q'') = M q'' + h, its exact partial derivatives, T and V.
+ */
+#include <math.h>
+#include <stddef.h>
+
+#include "models.h"
+
+/* ---- the harmonic oscillator: E = m x'' + k x ---- */
+
+static const char *const osc_q[] = {"x"};
+static const char *const osc_p[] = {"m", "k", "x0"};
+static const char *const osc_u[] = {NULL};
+static const double osc_pdef[] = {OSC_M, OSC_K, OSC_X0};
+
+static void
+osc_initial(const double *p, double *q, double *v)
+{
+    q[0] = p[2];
+    v[0] = OSC_V0;
+}
+
+static void
+no_inputs(double t, const double *p, double *u, double *dudt)
+{
+    (void)t;
+    (void)p;
+    (void)u;
+    (void)dudt;
+}
+
+static void
+osc_mass_bias(double t, const double *q, const double *v, const double *p,
+              const double *u, double *M, double *h)
+{
+    (void)t;
+    (void)v;
+    (void)u;
+    M[0] = p[0];
+    h[0] = p[1] * q[0];
+}
+
+static void
+osc_energy(double t, const double *q, const double *v, const double *p,
+           const double *u, double *TV)
+{
+    (void)t;
+    (void)u;
+    TV[0] = 0.5 * p[0] * v[0] * v[0];
+    TV[1] = 0.5 * p[1] * q[0] * q[0];
+}
+
+static void
+osc_jacobian(double t, const double *q, const double *v, const double *a,
+             const double *p, const double *u, double *dEdq, double *dEdv,
+             double *dEdu, double *dEdt)
+{
+    (void)t;
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)u;
+    (void)dEdu;
+    dEdq[0] = p[1];
+    dEdv[0] = 0.0;
+    dEdt[0] = 0.0;
+}
+
+/* The generator's 1x1 LDL^T: d_0 = M_00, pivot check d_0 > TOL M_00. */
+static int
+osc_accel(double t, const double *q, const double *v, const double *p,
+          const double *u, double *a)
+{
+    (void)t;
+    (void)v;
+    (void)u;
+    double M = p[0], h = p[1] * q[0], piv = M - EOMC_PIVOT_TOL * M;
+    a[0] = piv > 0.0 ? -h / M : NAN;
+    return piv > 0.0 ? 0 : 1;
+}
+
+const eomc_model osc_model = {
+    EOMC_ABI_VERSION, "osc", "osc.yaml", "lagrange", "",
+    1, 3, 0, osc_q, osc_p, osc_u, osc_pdef,
+    10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
+    osc_initial, no_inputs, osc_mass_bias, osc_energy, osc_jacobian,
+    osc_accel,
+};
+
+void
+osc_exact(double m, double k, double x0, double v0, double t, double *x, double *v)
+{
+    double w = sqrt(k / m);
+    *x = x0 * cos(w * t) + v0 / w * sin(w * t);
+    *v = -x0 * w * sin(w * t) + v0 * cos(w * t);
+}
+
+/* ---- the double pendulum, absolute angles ----
+ * With A = (m1 + m2) l1^2, B = m2 l1 l2, C = m2 l2^2, G1 = (m1 + m2) g l1,
+ * G2 = m2 g l2 and d = th1 - th2:
+ *   E1 = A a1 + B cos(d) a2 + B sin(d) v2^2 + G1 sin(th1)
+ *   E2 = B cos(d) a1 + C a2 - B sin(d) v1^2 + G2 sin(th2)
+ */
+
+static const char *const cp_q[] = {"th1", "th2"};
+static const char *const cp_p[] = {"m1", "m2", "l1", "l2", "g"};
+static const double cp_pdef[] = {1.0, 1.5, 1.0, 0.7, 9.81};
+
+typedef struct Coef {
+    double A, B, C, G1, G2;
+} Coef;
+
+static Coef
+cp_coef(const double *p)
+{
+    double m1 = p[0], m2 = p[1], l1 = p[2], l2 = p[3], g = p[4];
+    return (Coef){(m1 + m2) * l1 * l1, m2 * l1 * l2, m2 * l2 * l2,
+                  (m1 + m2) * g * l1, m2 * g * l2};
+}
+
+static void
+cp_initial(const double *p, double *q, double *v)
+{
+    (void)p;
+    q[0] = 0.6;
+    q[1] = -0.4;
+    v[0] = 0.3;
+    v[1] = -0.2;
+}
+
+static void
+cp_mass_bias(double t, const double *q, const double *v, const double *p,
+             const double *u, double *M, double *h)
+{
+    (void)t;
+    (void)u;
+    Coef c = cp_coef(p);
+    double d = q[0] - q[1], cd = cos(d), sd = sin(d);
+    M[0] = c.A;
+    M[1] = c.B * cd;
+    M[2] = c.B * cd;
+    M[3] = c.C;
+    h[0] = c.B * sd * v[1] * v[1] + c.G1 * sin(q[0]);
+    h[1] = -c.B * sd * v[0] * v[0] + c.G2 * sin(q[1]);
+}
+
+static void
+cp_energy(double t, const double *q, const double *v, const double *p,
+          const double *u, double *TV)
+{
+    (void)t;
+    (void)u;
+    Coef c = cp_coef(p);
+    TV[0] = 0.5 * c.A * v[0] * v[0] + 0.5 * c.C * v[1] * v[1] +
+            c.B * v[0] * v[1] * cos(q[0] - q[1]);
+    TV[1] = -c.G1 * cos(q[0]) - c.G2 * cos(q[1]);
+}
+
+static void
+cp_jacobian(double t, const double *q, const double *v, const double *a,
+            const double *p, const double *u, double *dEdq, double *dEdv,
+            double *dEdu, double *dEdt)
+{
+    (void)t;
+    (void)u;
+    (void)dEdu;
+    Coef c = cp_coef(p);
+    double d = q[0] - q[1], cd = cos(d), sd = sin(d);
+    dEdq[0] = -c.B * sd * a[1] + c.B * cd * v[1] * v[1] + c.G1 * cos(q[0]);
+    dEdq[1] = c.B * sd * a[1] - c.B * cd * v[1] * v[1];
+    dEdq[2] = -c.B * sd * a[0] - c.B * cd * v[0] * v[0];
+    dEdq[3] = c.B * sd * a[0] + c.B * cd * v[0] * v[0] + c.G2 * cos(q[1]);
+    dEdv[0] = 0.0;
+    dEdv[1] = 2.0 * c.B * sd * v[1];
+    dEdv[2] = -2.0 * c.B * sd * v[0];
+    dEdv[3] = 0.0;
+    dEdt[0] = 0.0;
+    dEdt[1] = 0.0;
+}
+
+const eomc_model coupled_model = {
+    EOMC_ABI_VERSION, "coupled", "coupled.yaml", "lagrange", "",
+    2, 5, 0, cp_q, cp_p, osc_u, cp_pdef,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    cp_initial, no_inputs, cp_mass_bias, cp_energy, cp_jacobian,
+    NULL,
+};
+
+/* ---- the driven oscillator: E = m x'' + c x' + k x - u - b t ---- */
+
+static const char *const dr_q[] = {"x"};
+static const char *const dr_p[] = {"m", "c", "k", "A", "w", "b"};
+static const char *const dr_u[] = {"u"};
+static const double dr_pdef[] = {DRIVEN_M, 0.0, DRIVEN_K, DRIVEN_A, DRIVEN_W, 0.0};
+
+static void
+dr_initial(const double *p, double *q, double *v)
+{
+    (void)p;
+    q[0] = DRIVEN_X0;
+    v[0] = DRIVEN_V0;
+}
+
+static void
+dr_inputs(double t, const double *p, double *u, double *dudt)
+{
+    u[0] = p[3] * sin(p[4] * t);
+    if (dudt)
+        dudt[0] = p[3] * p[4] * cos(p[4] * t);
+}
+
+static void
+dr_mass_bias(double t, const double *q, const double *v, const double *p,
+             const double *u, double *M, double *h)
+{
+    M[0] = p[0];
+    h[0] = p[1] * v[0] + p[2] * q[0] - u[0] - p[5] * t;
+}
+
+static void
+dr_energy(double t, const double *q, const double *v, const double *p,
+          const double *u, double *TV)
+{
+    (void)t;
+    (void)u;
+    TV[0] = 0.5 * p[0] * v[0] * v[0];
+    TV[1] = 0.5 * p[2] * q[0] * q[0];
+}
+
+static void
+dr_jacobian(double t, const double *q, const double *v, const double *a,
+            const double *p, const double *u, double *dEdq, double *dEdv,
+            double *dEdu, double *dEdt)
+{
+    (void)t;
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)u;
+    dEdq[0] = p[2];
+    dEdv[0] = p[1];
+    dEdu[0] = -1.0;
+    dEdt[0] = -p[5];
+}
+
+static int
+dr_accel(double t, const double *q, const double *v, const double *p,
+         const double *u, double *a)
+{
+    double M = p[0], h = p[1] * v[0] + p[2] * q[0] - u[0] - p[5] * t;
+    double piv = M - EOMC_PIVOT_TOL * M;
+    a[0] = piv > 0.0 ? -h / M : NAN;
+    return piv > 0.0 ? 0 : 1;
+}
+
+const eomc_model driven_model = {
+    EOMC_ABI_VERSION, "driven", "driven.yaml", "lagrange", "",
+    1, 6, 1, dr_q, dr_p, dr_u, dr_pdef,
+    5.0, 0.05, "rkf45", 1e-10, 1e-10, 0.0,
+    dr_initial, dr_inputs, dr_mass_bias, dr_energy, dr_jacobian,
+    dr_accel,
+};
+
+void
+driven_exact(double m, double k, double A, double w, double x0, double v0,
+             double t, double *x, double *v)
+{
+    double w0 = sqrt(k / m), P = A / m / (w0 * w0 - w * w);
+    double c1 = x0, c2 = (v0 - P * w) / w0;
+    *x = c1 * cos(w0 * t) + c2 * sin(w0 * t) + P * sin(w * t);
+    *v = -c1 * w0 * sin(w0 * t) + c2 * w0 * cos(w0 * t) + P * w * cos(w * t);
+}
+
+/* ---- M = 1 - zeta^2, h = 0: zeta = t until M = 0 at t = 1 ---- */
+
+static const char *const np_q[] = {"zeta"};
+static const char *const np_p[] = {NULL};
+static const double np_pdef[] = {0.0};
+
+static void
+np_initial(const double *p, double *q, double *v)
+{
+    (void)p;
+    q[0] = 0.0;
+    v[0] = 1.0;
+}
+
+static void
+np_mass_bias(double t, const double *q, const double *v, const double *p,
+             const double *u, double *M, double *h)
+{
+    (void)t;
+    (void)v;
+    (void)p;
+    (void)u;
+    M[0] = 1.0 - q[0] * q[0];
+    h[0] = 0.0;
+}
+
+static void
+np_energy(double t, const double *q, const double *v, const double *p,
+          const double *u, double *TV)
+{
+    (void)t;
+    (void)p;
+    (void)u;
+    TV[0] = 0.5 * (1.0 - q[0] * q[0]) * v[0] * v[0];
+    TV[1] = 0.0;
+}
+
+static void
+np_jacobian(double t, const double *q, const double *v, const double *a,
+            const double *p, const double *u, double *dEdq, double *dEdv,
+            double *dEdu, double *dEdt)
+{
+    (void)t;
+    (void)v;
+    (void)p;
+    (void)u;
+    (void)dEdu;
+    dEdq[0] = -2.0 * q[0] * a[0];
+    dEdv[0] = 0.0;
+    dEdt[0] = 0.0;
+}
+
+static int
+np_accel(double t, const double *q, const double *v, const double *p,
+         const double *u, double *a)
+{
+    (void)t;
+    (void)v;
+    (void)p;
+    (void)u;
+    double M = 1.0 - q[0] * q[0], piv = M - EOMC_PIVOT_TOL * M;
+    a[0] = piv > 0.0 ? -0.0 / M : NAN;
+    return piv > 0.0 ? 0 : 1;
+}
+
+const eomc_model nonpd_model = {
+    EOMC_ABI_VERSION, "nonpd", "nonpd.yaml", "lagrange", "",
+    1, 0, 0, np_q, np_p, osc_u, np_pdef,
+    2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
+    np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
+    np_accel,
+};
+
+const eomc_model nonpd_gsl_model = {
+    EOMC_ABI_VERSION, "nonpd_gsl", "nonpd_gsl.yaml", "lagrange", "",
+    1, 0, 0, np_q, np_p, osc_u, np_pdef,
+    2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
+    np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
+    NULL,
+};

@@ -1,0 +1,50 @@
+/*
+ * models.h: hand-written models, as the generator would emit them, for the
+ * runtime tests (models.c has the equations and their closed forms).
+ *
+ *   osc_model        m x'' + k x = 0; p = (m, k, x0), x(0) = x0, x'(0) = 1/2;
+ *                    accel member set
+ *   coupled_model    the double pendulum in absolute angles th1, th2: a
+ *                    q-dependent, non-diagonal SPD mass matrix; accel NULL
+ *                    (the runtime's GSL Cholesky solve)
+ *   driven_model     m x'' + c x' + k x = u + b t, u = A sin(w t);
+ *                    p = (m, c, k, A, w, b); accel member set
+ *   nonpd_model      (1 - zeta^2) zeta'' = 0 from zeta = 0, zeta' = 1: M
+ *                    loses positive definiteness at t = 1; accel member set
+ *   nonpd_gsl_model  the same with accel NULL
+ */
+#ifndef EOMC_TEST_MODELS_H
+#define EOMC_TEST_MODELS_H
+
+#include "eomc_model.h"
+
+extern const eomc_model osc_model;
+extern const eomc_model coupled_model;
+extern const eomc_model driven_model;
+extern const eomc_model nonpd_model;
+extern const eomc_model nonpd_gsl_model;
+
+/* Defaults of osc_model. */
+#define OSC_M 2.0
+#define OSC_K 8.0
+#define OSC_X0 1.0
+#define OSC_V0 0.5
+
+/* x(t), x'(t) of m x'' + k x = 0 from (x0, v0) at t = 0. */
+void osc_exact(double m, double k, double x0, double v0, double t, double *x,
+               double *v);
+
+/* Defaults of driven_model (c = b = 0: undamped, no ramp). */
+#define DRIVEN_M 1.5
+#define DRIVEN_K 6.0
+#define DRIVEN_A 0.8
+#define DRIVEN_W 3.1
+#define DRIVEN_X0 0.2
+#define DRIVEN_V0 (-0.1)
+
+/* x(t), x'(t) of m x'' + k x = A sin(w t) (w^2 != k/m) with x = x0,
+ * x' = v0 at t = 0. */
+void driven_exact(double m, double k, double A, double w, double x0, double v0,
+                  double t, double *x, double *v);
+
+#endif

@@ -297,6 +297,68 @@ power_parts(const ExprPool *P, ExprId e, ExprId *base)
     return 1;
 }
 
+/* A product of non-coefficient factors is kept in one canonical shape: a
+ * left-deep chain ((f1*f2)*f3)*... of its factors sorted by base id, equal
+ * bases merged into integer powers.  So x*y*z is one node however it was
+ * built, and x*(y*x) is x^2*y.  Only monomials are flattened (factors that
+ * are leaves or function calls, such as sin q1 * v2): a product with a
+ * sum or quotient factor stays binary, so that intermediate products that
+ * are shared (the solve is full of them) are not rebuilt in another
+ * order. */
+enum { MAX_FACTORS = 32 };
+
+typedef struct Factor {
+    ExprId base;
+    int n;
+} Factor;
+
+/* Append the factors of e (a canonical product, a power or anything else)
+ * to f; 0 if there are more than MAX_FACTORS. */
+static int
+gather_factors(const ExprPool *P, ExprId e, Factor *f, int *nf)
+{
+    const ExprNode *nd = &P->node[e];
+    if (nd->op == EXPR_MUL && !P->node[nd->a].coeff && !P->node[nd->b].coeff)
+        return gather_factors(P, nd->a, f, nf) && gather_factors(P, nd->b, f, nf);
+    if (*nf == MAX_FACTORS)
+        return 0;
+    f[*nf].n = power_parts(P, e, &f[*nf].base);
+    int k = expr_op_kind[op_of(P, f[*nf].base)];
+    (*nf)++;
+    return k == OPK_LEAF || k == OPK_CALL;
+}
+
+static ExprId
+canonical_product(ExprPool *P, ExprId a, ExprId b)
+{
+    Factor f[MAX_FACTORS];
+    int nf = 0;
+    if (!gather_factors(P, a, f, &nf) || !gather_factors(P, b, f, &nf)) {
+        order2(P, &a, &b);
+        return mk(P, EXPR_MUL, a, b);
+    }
+    for (int i = 1; i < nf; i++) { /* insertion sort: products are short */
+        Factor x = f[i];
+        int j = i;
+        for (; j > 0 && f[j - 1].base > x.base; j--)
+            f[j] = f[j - 1];
+        f[j] = x;
+    }
+    int m = 0;
+    for (int i = 0; i < nf; i++) {
+        if (m && f[m - 1].base == f[i].base)
+            f[m - 1].n += f[i].n;
+        else
+            f[m++] = f[i];
+    }
+    ExprId r = EXPR_NONE;
+    for (int i = 0; i < m; i++) {
+        ExprId x = expr_powi(P, f[i].base, f[i].n);
+        r = r == EXPR_NONE ? x : mk(P, EXPR_MUL, r, x);
+    }
+    return r;
+}
+
 ExprId
 expr_mul(ExprPool *P, ExprId a, ExprId b)
 {
@@ -332,6 +394,8 @@ expr_mul(ExprPool *P, ExprId a, ExprId b)
     int ma = power_parts(P, a, &ba), mb = power_parts(P, b, &bb);
     if (ba == bb && op_of(P, ba) != EXPR_CONST)
         return expr_powi(P, ba, ma + mb);
+    if (!P->node[a].coeff && !P->node[b].coeff)
+        return canonical_product(P, a, b);
     return mk(P, EXPR_MUL, a, b);
 }
 

@@ -213,6 +213,46 @@ test_subst(void)
     CHECK_NEAR(at(h, 0, 0.7), 2 * 0.7 + sin(0.7), 1e-15, "substitution of a constant");
 }
 
+/* Pseudo-random points in [lo, hi] (deterministic: a fixed LCG). */
+static double
+rnd(double lo, double hi)
+{
+    static unsigned long long state = 88172645463325252ull;
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * (double)(state >> 11) / 9007199254740992.0;
+}
+
+/* a and b agree at random points (x, y) in [-3, 3]^2. */
+static int
+same_at_random_points(ExprId a, ExprId b)
+{
+    for (int k = 0; k < 20; k++) {
+        double x = rnd(-3, 3), y = rnd(-3, 3);
+        if (!check_close(at(a, x, y), at(b, x, y), 1e-12))
+            return 0;
+    }
+    return 1;
+}
+
+/* Products of monomial factors are one node however they are built. */
+static void
+test_canonical_products(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0);
+    ExprId s = expr_unary(P, EXPR_SIN, x), c = expr_unary(P, EXPR_COS, x);
+    ExprId l = expr_mul(P, expr_mul(P, s, y), expr_mul(P, c, y));
+    ExprId r = expr_mul(P, expr_mul(P, c, y), expr_mul(P, s, y));
+    CHECK(l == r, "sin*y*(cos*y) and cos*y*(sin*y) are one node");
+    CHECK(same_at_random_points(l, expr_mul(P, expr_mul(P, s, c), expr_powi(P, y, 2))),
+          "sin*y*(cos*y) = sin*cos*y^2 numerically");
+    ExprId t = expr_mul(P, x, expr_mul(P, y, x));
+    CHECK(t == expr_mul(P, expr_powi(P, x, 2), y), "x*(y*x) = x^2*y");
+    CHECK(same_at_random_points(t, expr_mul(P, expr_mul(P, x, x), y)), "x*(y*x) numerically");
+    ExprId u = expr_mul(P, expr_add(P, x, y), s), w = expr_mul(P, s, expr_add(P, x, y));
+    CHECK(u == w, "a sum factor commutes but is not flattened");
+    CHECK(expr_sub(P, l, r) == EXPR_ZERO, "reordered monomials cancel");
+}
+
 int
 main(void)
 {
@@ -223,6 +263,7 @@ main(void)
     test_powi();
     test_time_derivative();
     test_subst();
+    test_canonical_products();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

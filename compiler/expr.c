@@ -240,6 +240,26 @@ expr_neg(ExprPool *P, ExprId a)
     return mk(P, EXPR_NEG, a, 0);
 }
 
+/* The argument of e = f(x)^2 for f = SIN or COS, else EXPR_NONE. */
+static ExprId
+square_of(const ExprPool *P, ExprId e, int f)
+{
+    const ExprNode *n = &P->node[e];
+    if (n->op != EXPR_POWI || (int32_t)n->b != 2 || op_of(P, n->a) != f)
+        return EXPR_NONE;
+    return P->node[n->a].a;
+}
+
+/* cos(x)^2 + sin(x)^2 = 1 (with c cos^2 + c sin^2 = c (cos^2 + sin^2)
+ * below, also for a common coefficient c). */
+static int
+pythagorean(const ExprPool *P, ExprId a, ExprId b)
+{
+    ExprId ca = square_of(P, a, EXPR_COS), sb = square_of(P, b, EXPR_SIN);
+    ExprId cb = square_of(P, b, EXPR_COS), sa = square_of(P, a, EXPR_SIN);
+    return (ca != EXPR_NONE && ca == sb) || (cb != EXPR_NONE && cb == sa);
+}
+
 ExprId
 expr_add(ExprPool *P, ExprId a, ExprId b)
 {
@@ -256,6 +276,8 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
         return expr_sub(P, b, P->node[a].a);
     if (a == b)
         return expr_mul(P, expr_const(P, 2.0), a);
+    if (pythagorean(P, a, b))
+        return EXPR_ONE;
     ExprId c1, x1, c2, x2;
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
         return expr_mul(P, c1, expr_add(P, x1, x2)); /* c x + c y = c (x + y) */

@@ -253,6 +253,25 @@ test_canonical_products(void)
     CHECK(expr_sub(P, l, r) == EXPR_ZERO, "reordered monomials cancel");
 }
 
+/* cos(x)^2 + sin(x)^2 = 1, also under a common coefficient. */
+static void
+test_pythagorean(void)
+{
+    ExprId x = expr_add(P, expr_var(P, 0, 0), expr_var(P, 1, 0));
+    ExprId c2 = expr_powi(P, expr_unary(P, EXPR_COS, x), 2);
+    ExprId s2 = expr_mul(P, expr_unary(P, EXPR_SIN, x), expr_unary(P, EXPR_SIN, x));
+    CHECK(expr_add(P, c2, s2) == EXPR_ONE, "cos^2 + sin^2 = 1");
+    CHECK(expr_add(P, s2, c2) == EXPR_ONE, "sin^2 + cos^2 = 1");
+    CHECK(same_at_random_points(expr_add(P, c2, s2), EXPR_ONE), "cos^2 + sin^2 = 1 numerically");
+    ExprId k = expr_mul(P, expr_const(P, 3), expr_param(P, 0));
+    ExprId e = expr_add(P, expr_mul(P, k, c2), expr_mul(P, k, s2));
+    CHECK(e == k, "k cos^2 + k sin^2 = k");
+    ExprId y = expr_var(P, 1, 0);
+    ExprId o = expr_add(P, c2, expr_powi(P, expr_unary(P, EXPR_SIN, y), 2));
+    CHECK(o != EXPR_ONE && !same_at_random_points(o, EXPR_ONE),
+          "cos(x)^2 + sin(y)^2 is not folded");
+}
+
 int
 main(void)
 {
@@ -264,6 +283,7 @@ main(void)
     test_time_derivative();
     test_subst();
     test_canonical_products();
+    test_pythagorean();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

@@ -517,7 +517,8 @@ static const Func f_jacobian = {
 static const Func f_accel_solve = {
     "accel_solve",
     "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
-    " * skipped); piv[k] = d_k - EOMC_PIVOT_TOL M_kk must all be positive.",
+    " * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk\n"
+    " * must all be positive.",
     "double t, const double *q, const double *v, const double *p,\n"
     "    const double *u, double *a, double *piv", "t, q, v, p, u, a, piv",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
@@ -528,13 +529,13 @@ static void
 print_accel(Printer *pr, int n)
 {
     const char *nm = pr->s->name;
-    println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if pivot k fails (M singular or not");
-    println(pr, " * positive definite). */");
+    println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M");
+    println(pr, " * singular or not positive definite). */");
     println(pr, "static int\n%s_accel(double t, const double *q, const double *v, "
             "const double *p,\n    const double *u, double *a)\n{", nm);
     println(pr, "    double piv[%d];", n);
     println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv);", nm);
-    println(pr, "    for (int k = 0; k < %d; k++)", n);
+    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
     println(pr, "        if (!(piv[k] > 0.0))");
     println(pr, "            return k + 1;");
     println(pr, "    return 0;");

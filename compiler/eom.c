@@ -27,43 +27,72 @@ derive_row(Eom *e, Diff *D, const ExprId *accel, const ExprId *leaves,
     e->dEdt[i] = grad[2 * n + nu];
 }
 
+/* x - (t[0] + ... + t[k-1]) with the sum as a balanced tree: the solve
+ * is a chain of dependent steps, and a tree of depth log k instead of a
+ * chain of k subtractions shortens it (latency, not operation count, is
+ * what the unrolled solve costs). */
+static ExprId
+minus_sum(ExprPool *P, ExprId x, ExprId *t, int k)
+{
+    if (k == 0)
+        return x;
+    while (k > 1) {
+        int m = 0;
+        for (int i = 0; i + 1 < k; i += 2)
+            t[m++] = expr_add(P, t[i], t[i + 1]);
+        if (k % 2)
+            t[m++] = t[k - 1];
+        k = m;
+    }
+    return expr_sub(P, x, t[0]);
+}
+
 /* LDL^T of the symmetric M, then a = -L^-T D^-1 L^-1 h:
  *   d_j = M_jj - sum_k<j L_jk e_jk,   e_ik = L_ik d_k
  *   L_ij = (M_ij - sum_k<j L_ik e_jk) / d_j          (i > j)
- * One reciprocal per pivot; everything else multiplies. */
+ * One reciprocal per pivot; everything else multiplies.  Row and column j
+ * of the factored matrix are coordinate ord[j] = n-1-j: the last
+ * coordinates of a chain or tree have the simplest entries (for a chain
+ * M_nn is a constant), so the first pivots are ready early. */
 static void
 derive_solve(Eom *e, Arena *A, ExprPool *P)
 {
     int n = e->n;
     ExprId *L = arena_new_array(A, ExprId, n * n), *E = arena_new_array(A, ExprId, n * n);
     ExprId *inv = arena_new_array(A, ExprId, n), *y = arena_new_array(A, ExprId, n);
+    ExprId *t = arena_new_array(A, ExprId, n), *x = arena_new_array(A, ExprId, n);
+    int *ord = arena_new_array(A, int, n);
+    for (int j = 0; j < n; j++)
+        ord[j] = n - 1 - j;
+#define MO(i, j) e->M[ord[i] * n + ord[j]]
     e->acc = arena_new_array(A, ExprId, n);
     e->piv = arena_new_array(A, ExprId, n);
     ExprId tol = expr_const(P, EOM_PIVOT_TOL);
     for (int j = 0; j < n; j++) {
-        ExprId d = e->M[j * n + j];
         for (int k = 0; k < j; k++)
-            d = expr_sub(P, d, expr_mul(P, L[j * n + k], E[j * n + k]));
-        e->piv[j] = expr_sub(P, d, expr_mul(P, tol, e->M[j * n + j]));
+            t[k] = expr_mul(P, L[j * n + k], E[j * n + k]);
+        ExprId d = minus_sum(P, MO(j, j), t, j);
+        e->piv[ord[j]] = expr_sub(P, d, expr_mul(P, tol, MO(j, j)));
         inv[j] = expr_div(P, EXPR_ONE, d);
         for (int i = j + 1; i < n; i++) {
-            ExprId s = e->M[i * n + j];
             for (int k = 0; k < j; k++)
-                s = expr_sub(P, s, expr_mul(P, L[i * n + k], E[j * n + k]));
+                t[k] = expr_mul(P, L[i * n + k], E[j * n + k]);
+            ExprId s = minus_sum(P, MO(i, j), t, j);
             E[i * n + j] = s; /* = L_ij d_j */
             L[i * n + j] = expr_mul(P, s, inv[j]);
         }
     }
+#undef MO
     for (int i = 0; i < n; i++) { /* L y = -h */
-        y[i] = expr_neg(P, e->h[i]);
         for (int k = 0; k < i; k++)
-            y[i] = expr_sub(P, y[i], expr_mul(P, L[i * n + k], y[k]));
+            t[k] = expr_mul(P, L[i * n + k], y[k]);
+        y[i] = minus_sum(P, expr_neg(P, e->h[ord[i]]), t, i);
     }
     for (int i = n - 1; i >= 0; i--) { /* L^T a = D^-1 y */
-        ExprId a = expr_mul(P, y[i], inv[i]);
         for (int k = i + 1; k < n; k++)
-            a = expr_sub(P, a, expr_mul(P, L[k * n + i], e->acc[k]));
-        e->acc[i] = a;
+            t[k - i - 1] = expr_mul(P, L[k * n + i], x[k]);
+        x[i] = minus_sum(P, expr_mul(P, y[i], inv[i]), t, n - 1 - i);
+        e->acc[ord[i]] = x[i];
     }
 }
 

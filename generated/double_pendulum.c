@@ -416,7 +416,8 @@ double_pendulum_jacobian(double t, const double *q, const double *v, const doubl
 }
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped); piv[k] = d_k - EOMC_PIVOT_TOL M_kk must all be positive. */
+ * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
+ * must all be positive. */
 static void
 double_pendulum_accel_solve(double t, const double *q, const double *v, const double *p,
     const double *u, double *a, double *piv)
@@ -451,120 +452,120 @@ double_pendulum_accel_solve(double t, const double *q, const double *v, const do
     const double w16 = w14 + w15;
     const double w17 = w13 * w16;
     const double w18 = w12 + w17;
-    const double w19 = 1e-13 * w18;
-    const double w20 = w18 - w19;
-    piv[0] = w20;
-    const double w21 = p_l2 * w7;
-    const double w22 = p_l2 * w21;
-    const double w23 = p_l1 * w21;
-    const double w24 = w23 * w23;
+    const double w19 = p_l2 * w7;
+    const double w20 = p_l1 * w19;
+    const double w21 = p_l2 * w19;
+    const double w22 = 1.0 / w21;
+    const double w23 = w20 * w22;
+    const double w24 = w20 * w23;
     const double w25 = sin(q_th2);
     const double w26 = w0 * w25;
     const double w27 = cos(q_th2);
     const double w28 = w13 * w27;
     const double w29 = w26 + w28;
-    const double w30 = 1.0 / w18;
-    const double w31 = w29 * w30;
-    const double w32 = w29 * w31;
-    const double w33 = w24 * w32;
-    const double w34 = w22 - w33;
-    const double w35 = 1e-13 * w22;
-    const double w36 = w34 - w35;
+    const double w30 = w29 * w29;
+    const double w31 = w24 * w30;
+    const double w32 = w18 - w31;
+    const double w33 = 1e-13 * w18;
+    const double w34 = w32 - w33;
+    piv[0] = w34;
+    const double w35 = 1e-13 * w21;
+    const double w36 = w21 - w35;
     piv[1] = w36;
-    const double w37 = p_l1 * p_g;
-    const double w38 = p_m1 * w37;
-    const double w39 = p_m2 * p_g;
-    const double w40 = p_l1 * w39;
-    const double w41 = w38 + w40;
-    const double w42 = w41 * w0;
-    const double w43 = w13 * v_th1;
-    const double w44 = w0 * v_th1;
-    const double w45 = w4 * w44;
-    const double w46 = p_l1 * w44;
-    const double w47 = w25 * v_th2;
-    const double w48 = p_l2 * w47;
-    const double w49 = w46 + w48;
-    const double w50 = w8 * w49;
-    const double w51 = w45 + w50;
-    const double w52 = w43 * w51;
-    const double w53 = v_th1 * v_th1;
-    const double w54 = w13 * w53;
-    const double w55 = w4 * w54;
-    const double w56 = p_l1 * w54;
-    const double w57 = v_th2 * v_th2;
-    const double w58 = w27 * w57;
-    const double w59 = p_l2 * w58;
-    const double w60 = w56 + w59;
-    const double w61 = w8 * w60;
-    const double w62 = w55 + w61;
-    const double w63 = w0 * w62;
-    const double w64 = w52 + w63;
-    const double w65 = w4 * w43;
-    const double w66 = p_l1 * w43;
-    const double w67 = w27 * v_th2;
-    const double w68 = p_l2 * w67;
-    const double w69 = w66 + w68;
-    const double w70 = w8 * w69;
-    const double w71 = w65 + w70;
-    const double w72 = w44 * w71;
-    const double w73 = w0 * w53;
-    const double w74 = w4 * w73;
-    const double w75 = p_l1 * w73;
-    const double w76 = w25 * w57;
-    const double w77 = p_l2 * w76;
-    const double w78 = w75 + w77;
-    const double w79 = w8 * w78;
-    const double w80 = w74 + w79;
-    const double w81 = w13 * w80;
-    const double w82 = w72 + w81;
-    const double w83 = w64 - w82;
-    const double w84 = v_th1 * w51;
-    const double w85 = w13 * w84;
-    const double w86 = v_th1 * w71;
-    const double w87 = w0 * w86;
-    const double w88 = w85 - w87;
-    const double w89 = w83 - w88;
-    const double w90 = w42 + w89;
-    const double w91 = w90 * w30;
-    const double w92 = 1.0 / w34;
-    const double w93 = w90 * w31;
-    const double w94 = w23 * w93;
-    const double w95 = p_l2 * w39;
-    const double w96 = w95 * w25;
-    const double w97 = w67 * w49;
-    const double w98 = w25 * w60;
-    const double w99 = w97 + w98;
-    const double w100 = w69 * w47;
-    const double w101 = w27 * w78;
-    const double w102 = w100 + w101;
-    const double w103 = w99 - w102;
-    const double w104 = v_th2 * w49;
-    const double w105 = w27 * w104;
-    const double w106 = v_th2 * w69;
-    const double w107 = w25 * w106;
+    const double w37 = 1.0 / w32;
+    const double w38 = p_m2 * p_g;
+    const double w39 = p_l2 * w38;
+    const double w40 = w39 * w25;
+    const double w41 = w27 * v_th2;
+    const double w42 = w0 * v_th1;
+    const double w43 = p_l1 * w42;
+    const double w44 = w25 * v_th2;
+    const double w45 = p_l2 * w44;
+    const double w46 = w43 + w45;
+    const double w47 = w41 * w46;
+    const double w48 = v_th1 * v_th1;
+    const double w49 = w13 * w48;
+    const double w50 = p_l1 * w49;
+    const double w51 = v_th2 * v_th2;
+    const double w52 = w27 * w51;
+    const double w53 = p_l2 * w52;
+    const double w54 = w50 + w53;
+    const double w55 = w25 * w54;
+    const double w56 = w47 + w55;
+    const double w57 = w13 * v_th1;
+    const double w58 = p_l1 * w57;
+    const double w59 = p_l2 * w41;
+    const double w60 = w58 + w59;
+    const double w61 = w60 * w44;
+    const double w62 = w0 * w48;
+    const double w63 = p_l1 * w62;
+    const double w64 = w25 * w51;
+    const double w65 = p_l2 * w64;
+    const double w66 = w63 + w65;
+    const double w67 = w27 * w66;
+    const double w68 = w61 + w67;
+    const double w69 = w56 - w68;
+    const double w70 = v_th2 * w46;
+    const double w71 = w27 * w70;
+    const double w72 = v_th2 * w60;
+    const double w73 = w25 * w72;
+    const double w74 = w71 - w73;
+    const double w75 = w69 - w74;
+    const double w76 = w19 * w75;
+    const double w77 = w40 + w76;
+    const double w78 = w29 * w77;
+    const double w79 = w23 * w78;
+    const double w80 = p_l1 * p_g;
+    const double w81 = p_m1 * w80;
+    const double w82 = p_l1 * w38;
+    const double w83 = w81 + w82;
+    const double w84 = w83 * w0;
+    const double w85 = w4 * w42;
+    const double w86 = w8 * w46;
+    const double w87 = w85 + w86;
+    const double w88 = w57 * w87;
+    const double w89 = w4 * w49;
+    const double w90 = w8 * w54;
+    const double w91 = w89 + w90;
+    const double w92 = w0 * w91;
+    const double w93 = w88 + w92;
+    const double w94 = w4 * w57;
+    const double w95 = w8 * w60;
+    const double w96 = w94 + w95;
+    const double w97 = w42 * w96;
+    const double w98 = w4 * w62;
+    const double w99 = w8 * w66;
+    const double w100 = w98 + w99;
+    const double w101 = w13 * w100;
+    const double w102 = w97 + w101;
+    const double w103 = w93 - w102;
+    const double w104 = v_th1 * w87;
+    const double w105 = w13 * w104;
+    const double w106 = v_th1 * w96;
+    const double w107 = w0 * w106;
     const double w108 = w105 - w107;
     const double w109 = w103 - w108;
-    const double w110 = w21 * w109;
-    const double w111 = w96 + w110;
-    const double w112 = w94 - w111;
-    const double w113 = w92 * w112;
-    const double w114 = w31 * w113;
-    const double w115 = w23 * w114;
-    const double w116 = w91 + w115;
+    const double w110 = w84 + w109;
+    const double w111 = w79 - w110;
+    const double w112 = w37 * w111;
+    a[0] = w112;
+    const double w113 = w29 * w112;
+    const double w114 = w23 * w113;
+    const double w115 = w22 * w77;
+    const double w116 = w114 + w115;
     const double w117 = -w116;
-    a[0] = w117;
-    a[1] = w113;
+    a[1] = w117;
 }
 
-/* q'' = -M^-1 h; 0, or k + 1 if pivot k fails (M singular or not
- * positive definite). */
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite). */
 static int
 double_pendulum_accel(double t, const double *q, const double *v, const double *p,
     const double *u, double *a)
 {
     double piv[2];
     double_pendulum_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 0; k < 2; k++)
+    for (int k = 1; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
             return k + 1;
     return 0;

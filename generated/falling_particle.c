@@ -103,7 +103,8 @@ falling_particle_jacobian(double t, const double *q, const double *v, const doub
 }
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped); piv[k] = d_k - EOMC_PIVOT_TOL M_kk must all be positive. */
+ * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
+ * must all be positive. */
 static void
 falling_particle_accel_solve(double t, const double *q, const double *v, const double *p,
     const double *u, double *a, double *piv)
@@ -127,15 +128,15 @@ falling_particle_accel_solve(double t, const double *q, const double *v, const d
     a[0] = w7;
 }
 
-/* q'' = -M^-1 h; 0, or k + 1 if pivot k fails (M singular or not
- * positive definite). */
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite). */
 static int
 falling_particle_accel(double t, const double *q, const double *v, const double *p,
     const double *u, double *a)
 {
     double piv[1];
     falling_particle_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 0; k < 1; k++)
+    for (int k = 0; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
             return k + 1;
     return 0;

@@ -59,8 +59,10 @@ typedef struct eomc_model {
                      double *dEdq, double *dEdv, double *dEdu, double *dEdt);
     /* The accelerations a = -M^-1 h in one straight-line function: M and h
      * as in mass_bias, then an unrolled LDL^T factorization that skips the
-     * structural zeros of M.  Returns 0, or k + 1 when the k-th pivot is
-     * not positive relative to M's diagonal (d_k <= EOMC_PIVOT_TOL * M_kk:
+     * structural zeros of M, eliminating the last coordinate first.
+     * Returns 0, or k + 1 when the pivot of coordinate k (the first
+     * failing one in elimination order) is not positive relative to M's
+     * diagonal (d_k <= EOMC_PIVOT_TOL * M_kk:
      * M is singular or not positive definite), in which case a is
      * meaningless.  NULL for large models (nq > 12), where the runtime
      * factors mass_bias's M with GSL instead. */

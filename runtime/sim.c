@@ -223,6 +223,18 @@ all_finite(const double *x, int n)
     return 1;
 }
 
+/* 0.0 when every x[i] is finite, NaN otherwise: x - x is 0 for a finite
+ * x and NaN for an infinity or a NaN.  Branch-free, so the common case
+ * costs a few subtractions (the checks are on every right-hand side). */
+static double
+nonfinite_sum(const double *x, int n)
+{
+    double z = 0.0;
+    for (int i = 0; i < n; i++)
+        z += x[i] - x[i];
+    return z;
+}
+
 /* M = L D L^T in place (GSL), with the generated solve's pivot test: a
  * pivot d_k <= EOMC_PIVOT_TOL * M_kk means M is singular or not positive
  * definite.  Returns 0 or the failing pivot k + 1. */
@@ -265,8 +277,9 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     const eomc_model *m = s->m;
     int n = s->n, k;
     inputs_at(s, t);
-    if (!isfinite(t) || !all_finite(q, n) || !all_finite(v, n) ||
-        !all_finite(s->u, s->nu))
+    double z = (t - t) + nonfinite_sum(q, n) + nonfinite_sum(v, n) +
+               nonfinite_sum(s->u, s->nu);
+    if (z != 0.0)
         return numeric_error(s, t, q, v, "the state or an input is not finite");
     if (m->accel) {
         k = m->accel(t, q, v, s->p, s->u, a);
@@ -278,10 +291,11 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     }
     if (k)
         return pivot_error(s, t, q, v, k);
-    for (int i = 0; i < n; i++)
-        if (!isfinite(a[i]))
-            return numeric_error(s, t, q, v, "acceleration %s'' is not finite",
-                                 m->q_names[i]);
+    if (nonfinite_sum(a, n) != 0.0)
+        for (int i = 0; i < n; i++)
+            if (!isfinite(a[i]))
+                return numeric_error(s, t, q, v, "acceleration %s'' is not finite",
+                                     m->q_names[i]);
     return EOMC_OK;
 }
 

@@ -28,21 +28,73 @@ particle_square(ExprPool *P, Diff *D, const SpecParticle *pt, int order)
     return expr_mul(P, half_m, dot_product(P, pt->dim, w, w));
 }
 
-/* Q_i += F . dr/dq_i */
+/* Body-frame w x (I w). */
 static void
-add_vector_force(const Spec *s, const SpecForce *f, Mech *m, ExprPool *P,
-                 Diff *D)
+gyroscopic(ExprPool *P, const SpecBody *b, ExprId out[3])
 {
-    const SpecParticle *pt = &s->part[f->particle];
-    for (int i = 0; i < m->n; i++) {
-        ExprId J[3];
-        for (int k = 0; k < pt->dim; k++)
-            J[k] = diff_partial(D, pt->pos[k], m->q[0][i]);
-        m->Q[i] = expr_add(P, m->Q[i], dot_product(P, pt->dim, f->vec, J));
+    ExprId Iw[3];
+    for (int i = 0; i < 3; i++)
+        Iw[i] = dot_product(P, 3, &b->inertia[3 * i], b->omega);
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        out[i] = expr_sub(P, expr_mul(P, b->omega[j], Iw[k]), expr_mul(P, b->omega[k], Iw[j]));
     }
 }
 
-/* V -= sum_k m_k g . r_k over all particles */
+/* 1/2 m |c'|^2 + 1/2 w.I w (order 1), or the acceleration energy
+ * 1/2 m |c''|^2 + 1/2 w'.I w' + w'.(w x I w), less terms free of q''
+ * (order 2). */
+static ExprId
+body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
+{
+    SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}};
+    for (int k = 0; k < b->dim; k++)
+        centre.pos[k] = b->center[k];
+    ExprId e = particle_square(P, D, &centre, order), half = expr_const(P, 0.5);
+    int nw = b->dim == 2 ? 1 : 3;
+    ExprId w[3], Iw[3];
+    for (int i = 0; i < nw; i++)
+        w[i] = order == 1 ? b->omega[i] : diff_time(D, b->omega[i]);
+    for (int i = 0; i < nw; i++)
+        Iw[i] = nw == 1 ? expr_mul(P, b->inertia[0], w[0])
+                        : dot_product(P, 3, &b->inertia[3 * i], w);
+    e = expr_add(P, e, expr_mul(P, half, dot_product(P, nw, w, Iw)));
+    if (order == 2 && nw == 3) {
+        ExprId g[3];
+        gyroscopic(P, b, g);
+        e = expr_add(P, e, dot_product(P, 3, w, g));
+    }
+    return e;
+}
+
+/* Q_i += F . dr/dq_i for a force at a point r(t, q). */
+static void
+add_point_force(const ExprId *r, int dim, const SpecForce *f, Mech *m, ExprPool *P,
+                Diff *D)
+{
+    for (int i = 0; i < m->n; i++) {
+        ExprId J[3];
+        for (int k = 0; k < dim; k++)
+            J[k] = diff_partial(D, r[k], m->q[0][i]);
+        m->Q[i] = expr_add(P, m->Q[i], dot_product(P, dim, f->vec, J));
+    }
+}
+
+/* Q_i += tau . dw/dq_i': the virtual rotation of the body is
+ * (dw/dq') delta q. */
+static void
+add_torque(const SpecBody *b, const SpecForce *f, Mech *m, ExprPool *P, Diff *D)
+{
+    int nw = b->dim == 2 ? 1 : 3;
+    for (int i = 0; i < m->n; i++) {
+        ExprId J[3];
+        for (int k = 0; k < nw; k++)
+            J[k] = diff_partial(D, b->omega[k], m->q[1][i]);
+        m->Q[i] = expr_add(P, m->Q[i], dot_product(P, nw, f->vec, J));
+    }
+}
+
+/* V -= sum_k m_k g . r_k over all particles and bodies' centres */
 static ExprId
 gravity_potential(const Spec *s, const SpecForce *f, ExprPool *P)
 {
@@ -51,6 +103,11 @@ gravity_potential(const Spec *s, const SpecForce *f, ExprPool *P)
         const SpecParticle *pt = &s->part[k];
         ExprId gr = dot_product(P, pt->dim, f->vec, pt->pos);
         V = expr_sub(P, V, expr_mul(P, pt->mass, gr));
+    }
+    for (int k = 0; k < s->nbody; k++) {
+        const SpecBody *b = &s->body[k];
+        ExprId gr = dot_product(P, b->dim, f->vec, b->center);
+        V = expr_sub(P, V, expr_mul(P, b->mass, gr));
     }
     return V;
 }
@@ -68,7 +125,13 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
             m->V = expr_add(P, m->V, f->expr);
             break;
         case FORCE_VECTOR:
-            add_vector_force(s, f, m, P, D);
+            if (f->particle >= 0)
+                add_point_force(s->part[f->particle].pos, f->dim, f, m, P, D);
+            else
+                add_point_force(s->body[f->body].center, f->dim, f, m, P, D);
+            break;
+        case FORCE_TORQUE:
+            add_torque(&s->body[f->body], f, m, P, D);
             break;
         case FORCE_WORK: /* delta W = sum_i dW/dq_i delta q_i */
             for (int i = 0; i < m->n; i++)
@@ -93,6 +156,10 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     for (int k = 0; k < s->npart; k++) {
         m->T = expr_add(P, m->T, particle_square(P, D, &s->part[k], 1));
         m->S = expr_add(P, m->S, particle_square(P, D, &s->part[k], 2));
+    }
+    for (int k = 0; k < s->nbody; k++) {
+        m->T = expr_add(P, m->T, body_energy(P, D, &s->body[k], 1));
+        m->S = expr_add(P, m->S, body_energy(P, D, &s->body[k], 2));
     }
     for (int k = 0; k < s->nkinetic; k++)
         m->T = expr_add(P, m->T, s->kinetic[k].expr);

@@ -398,6 +398,7 @@ enum {
     ALLOW_POTENTIAL = DEP_T | DEP_ORDER(0) | DEP_P | DEP_U,
     ALLOW_FORCE = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P | DEP_U,
     ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
+    ALLOW_CONSTRAINT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_P | DEP_U,
     ALLOW_ALL = 0xff,
 };
 
@@ -632,6 +633,129 @@ load_particles(Loader *L, yaml_node_t *map)
     }
 }
 
+/* Inertia about the centre in the body frame: a scalar (planar), three
+ * principal moments, or a symmetric 3 x 3 tensor. */
+static void
+load_inertia(Loader *L, yaml_node_t *n, SpecBody *b)
+{
+    for (int k = 0; k < 9; k++)
+        b->inertia[k] = EXPR_ZERO;
+    if (b->dim == 2) {
+        b->inertia[0] = expression(L, n, ALLOW_PARAM, "an inertia");
+        return;
+    }
+    expect_type(L, n, YAML_SEQUENCE_NODE, "an inertia (3 principal moments or a 3 x 3 tensor)");
+    if (NITEMS(n) != 3)
+        diag_error(loc_of(L, n), "an inertia has 3 principal moments or 3 rows, not %d",
+                   (int)NITEMS(n));
+    int tensor = node(L, ITEMS(n)[0])->type == YAML_SEQUENCE_NODE;
+    for (int i = 0; i < 3; i++) {
+        yaml_node_t *row = node(L, ITEMS(n)[i]);
+        if ((row->type == YAML_SEQUENCE_NODE) != tensor)
+            diag_error(loc_of(L, row), "write an inertia as 3 moments or as 3 rows, not both");
+        if (!tensor) {
+            b->inertia[4 * i] = expression(L, row, ALLOW_PARAM, "a principal moment");
+            continue;
+        }
+        if (NITEMS(row) != 3)
+            diag_error(loc_of(L, row), "a row of the inertia tensor has 3 entries, not %d",
+                       (int)NITEMS(row));
+        for (int j = 0; j < 3; j++)
+            b->inertia[3 * i + j] = expression(L, node(L, ITEMS(row)[j]), ALLOW_PARAM,
+                                               "an inertia entry");
+    }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < i; j++)
+            if (b->inertia[3 * i + j] != b->inertia[3 * j + i])
+                diag_error(loc_of(L, n), "the inertia tensor of body '%s' is not symmetric "
+                           "(row %d, column %d)", b->name, i + 1, j + 1);
+}
+
+/* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
+ * axes of the sequence ("zxz": z, then the new x, then the new z):
+ *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
+static void
+rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
+{
+    ExprPool *P = L->P;
+    if (NPAIRS(map) != 1)
+        diag_error(loc_of(L, map), "a rotation is one sequence of axes with its angles, "
+                   "such as {zxz: [psi, theta, phi]}");
+    yaml_node_t *k = node(L, PAIRS(map)[0].key), *v = node(L, PAIRS(map)[0].value);
+    const char *axes = scalar(L, k, "a rotation sequence");
+    size_t na = strlen(axes);
+    if (na < 1 || na > 3 || strspn(axes, "xyz") != na)
+        diag_error(loc_of(L, k), "'%s' is not a rotation sequence: 1 to 3 of the axes "
+                   "x, y, z, such as zxz or zyx", axes);
+    expect_type(L, v, YAML_SEQUENCE_NODE, "the angles of a rotation");
+    if ((size_t)NITEMS(v) != na)
+        diag_error(loc_of(L, v), "rotation %s has %zu angles, not %d", axes, na,
+                   (int)NITEMS(v));
+    ExprId w[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    for (size_t i = 0; i < na; i++) {
+        ExprId th = expression(L, node(L, ITEMS(v)[i]), ALLOW_POSITION, "an angle");
+        ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
+        int a = axes[i] - 'x', j = (a + 1) % 3, l = (a + 2) % 3;
+        /* R_a^T w: rotate the other two components by -th */
+        ExprId wj = expr_add(P, expr_mul(P, c, w[j]), expr_mul(P, s, w[l]));
+        ExprId wl = expr_sub(P, expr_mul(P, c, w[l]), expr_mul(P, s, w[j]));
+        w[j] = wj, w[l] = wl;
+        ExprId rate = diff_time(L->sc.D, th);
+        w[a] = expr_add(P, w[a], rate);
+    }
+    for (int i = 0; i < 3; i++)
+        b->omega[i] = w[i];
+}
+
+static void
+load_bodies(Loader *L, yaml_node_t *map)
+{
+    static const char *const keys[] = {"mass", "center", "inertia", "rotation", "omega",
+                                       "angle", NULL};
+    Spec *s = L->s;
+    s->nbody = NPAIRS(map);
+    s->body = arena_new_array(L->A, SpecBody, s->nbody);
+    for (int i = 0; i < s->nbody; i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
+        SpecBody *b = &s->body[i];
+        b->name = arena_strdup(L->A, scalar(L, k, "a body name"));
+        b->loc = loc_of(L, k);
+        for (int j = 0; j < s->npart; j++)
+            if (!strcmp(s->part[j].name, b->name))
+                diag_error(b->loc, "'%s' is already the name of a particle", b->name);
+        as_map(L, v, "a body");
+        check_keys(L, v, keys, "a body");
+        yaml_node_t *mass = lookup_key(L, v, "mass"), *c = lookup_key(L, v, "center");
+        yaml_node_t *in = lookup_key(L, v, "inertia"), *rot = lookup_key(L, v, "rotation");
+        yaml_node_t *om = lookup_key(L, v, "omega"), *ang = lookup_key(L, v, "angle");
+        const char *missing = !mass ? "mass" : !c ? "center" : !in ? "inertia" : NULL;
+        if (missing)
+            diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
+        b->mass = expression(L, mass, ALLOW_PARAM, "a mass");
+        b->dim = vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
+        load_inertia(L, in, b);
+        b->omega[0] = b->omega[1] = b->omega[2] = EXPR_ZERO;
+        int how = !!rot + !!om + !!ang;
+        if (how != 1)
+            diag_error(loc_of(L, v), "body '%s' needs exactly one of %s", b->name,
+                       b->dim == 2 ? "angle (planar), omega"
+                                   : "rotation (e.g. {zxz: [psi, theta, phi]}), omega");
+        if (ang && b->dim != 2)
+            diag_error(loc_of(L, ang), "`angle` is for planar bodies; a 3-D body takes a "
+                       "`rotation` or `omega`");
+        if (ang)
+            b->omega[0] = diff_time(L->sc.D, expression(L, ang, ALLOW_POSITION, "an angle"));
+        else if (rot && b->dim != 2)
+            rotation_omega(L, as_map(L, rot, "a rotation"), b);
+        else if (rot)
+            diag_error(loc_of(L, rot), "a planar body turns by an `angle`");
+        else if (b->dim == 2)
+            b->omega[0] = expression(L, om, ALLOW_KINETIC, "an angular velocity");
+        else if (vector(L, om, ALLOW_KINETIC, "an angular velocity", b->omega) != 3)
+            diag_error(loc_of(L, om), "a 3-D body's angular velocity has 3 components");
+    }
+}
+
 /* A scalar or a sequence of scalars: the terms of an energy. */
 static SpecTerm *
 load_terms(Loader *L, yaml_node_t *n, unsigned allow, const char *what, int *count)
@@ -649,26 +773,64 @@ load_terms(Loader *L, yaml_node_t *n, unsigned allow, const char *what, int *cou
     return t;
 }
 
+/* The particle or body a force acts on: its index, *is_body set. */
 static int
-find_particle(Loader *L, yaml_node_t *n)
+find_target(Loader *L, yaml_node_t *n, int *is_body)
 {
-    const char *name = scalar(L, n, "a particle name");
-    const char **cands = arena_new_array(L->A, const char *, L->s->npart + 1);
-    for (int i = 0; i < L->s->npart; i++) {
-        if (!strcmp(L->s->part[i].name, name))
+    const char *name = scalar(L, n, "a particle or body name");
+    const Spec *s = L->s;
+    const char **cands = arena_new_array(L->A, const char *, s->npart + s->nbody + 1);
+    *is_body = 0;
+    for (int i = 0; i < s->npart; i++) {
+        if (!strcmp(s->part[i].name, name))
             return i;
-        cands[i] = L->s->part[i].name;
+        cands[i] = s->part[i].name;
     }
-    const char *near = diag_nearest(name, cands, L->s->npart);
+    *is_body = 1;
+    for (int i = 0; i < s->nbody; i++) {
+        if (!strcmp(s->body[i].name, name))
+            return i;
+        cands[s->npart + i] = s->body[i].name;
+    }
+    const char *near = diag_nearest(name, cands, s->npart + s->nbody);
     if (near)
-        diag_error(loc_of(L, n), "unknown particle '%s'; did you mean '%s'?", name, near);
-    diag_error(loc_of(L, n), "unknown particle '%s'", name);
+        diag_error(loc_of(L, n), "unknown particle or body '%s'; did you mean '%s'?", name,
+                   near);
+    diag_error(loc_of(L, n), "unknown particle or body '%s'", name);
+}
+
+/* A force vector on a particle or a body's centre, or a torque on a body. */
+static void
+load_applied(Loader *L, yaml_node_t *map, yaml_node_t *v, yaml_node_t *on, SpecForce *f,
+             int torque)
+{
+    const char *what = torque ? "a torque" : "a force";
+    if (!on)
+        diag_error(loc_of(L, map), "%s needs `on: %s`, what it acts on", what,
+                   torque ? "BODY" : "PARTICLE");
+    int is_body, k = find_target(L, on, &is_body);
+    f->particle = is_body ? -1 : k;
+    f->body = is_body ? k : -1;
+    int dim = is_body ? L->s->body[k].dim : L->s->part[k].dim;
+    const char *name = is_body ? L->s->body[k].name : L->s->part[k].name;
+    if (torque && !is_body)
+        diag_error(loc_of(L, on), "a torque acts on a body, and '%s' is a particle", name);
+    if (torque && dim == 2) {
+        f->dim = 1;
+        f->vec[0] = expression(L, v, ALLOW_FORCE, what);
+        return;
+    }
+    f->dim = vector(L, v, ALLOW_FORCE, what, f->vec);
+    if (f->dim != dim)
+        diag_error(loc_of(L, v), "%s has %d components but %s '%s' is %d-D", what, f->dim,
+                   is_body ? "body" : "particle", name, dim);
 }
 
 static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
-    static const char *const keys[] = {"gravity", "potential", "force", "work", "on", NULL};
+    static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
+                                       "on", NULL};
     as_map(L, map, "a force");
     check_keys(L, map, keys, "an effect");
     f->loc = loc_of(L, map);
@@ -681,9 +843,13 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
             if (L->s->part[k].dim != f->dim)
                 diag_error(loc_of(L, v), "gravity has %d components but particle '%s' is %d-D",
                            f->dim, L->s->part[k].name, L->s->part[k].dim);
-        if (L->s->npart == 0)
-            diag_error(loc_of(L, v), "gravity acts on particles, and this spec has none "
-                       "(write a potential instead)");
+        for (int k = 0; k < L->s->nbody; k++)
+            if (L->s->body[k].dim != f->dim)
+                diag_error(loc_of(L, v), "gravity has %d components but body '%s' is %d-D",
+                           f->dim, L->s->body[k].name, L->s->body[k].dim);
+        if (L->s->npart + L->s->nbody == 0)
+            diag_error(loc_of(L, v), "gravity acts on particles and bodies, and this spec "
+                       "has none (write a potential instead)");
     }
     if ((v = lookup_key(L, map, "potential")))
         f->kind = FORCE_POTENTIAL, kinds++,
@@ -691,22 +857,16 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
     if ((v = lookup_key(L, map, "work")))
         f->kind = FORCE_WORK, kinds++,
         f->expr = expression(L, v, ALLOW_FORCE, "a virtual-work expression");
-    if ((v = lookup_key(L, map, "force"))) {
-        f->kind = FORCE_VECTOR, kinds++;
-        if (!on)
-            diag_error(loc_of(L, map), "a force needs `on: PARTICLE`, the particle it acts on");
-        f->particle = find_particle(L, on);
-        f->dim = vector(L, v, ALLOW_FORCE, "a force", f->vec);
-        if (f->dim != L->s->part[f->particle].dim)
-            diag_error(loc_of(L, v), "the force has %d components but particle '%s' is %d-D",
-                       f->dim, L->s->part[f->particle].name, L->s->part[f->particle].dim);
-    } else if (on) {
-        diag_error(loc_of(L, on), "`on` belongs to a force vector (`force: [...]`)");
-    }
+    if ((v = lookup_key(L, map, "force")))
+        f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
+    if ((v = lookup_key(L, map, "torque")))
+        f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
+    if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
+        diag_error(loc_of(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(loc_of(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, work (write a list for several)"
-                   : "an effect item needs one of gravity, potential, force, work");
+                   "potential, force, torque, work (write a list for several)"
+                   : "an effect item needs one of gravity, potential, force, torque, work");
 }
 
 static void
@@ -731,6 +891,71 @@ load_effects(Loader *L, yaml_node_t *map)
         for (int j = 0; j < e->nforce; j++)
             load_force(L, list ? node(L, ITEMS(v)[j]) : v, &e->force[j]);
     }
+}
+
+static int
+find_coordinate(Loader *L, yaml_node_t *n)
+{
+    const char *name = scalar(L, n, "a coordinate name");
+    const char **cands = arena_new_array(L->A, const char *, L->s->nq + 1);
+    for (int i = 0; i < L->s->nq; i++) {
+        if (!strcmp(L->s->coord[i].name, name))
+            return i;
+        cands[i] = L->s->coord[i].name;
+    }
+    const char *near = diag_nearest(name, cands, L->s->nq);
+    if (near)
+        diag_error(loc_of(L, n), "'%s' is not a coordinate; did you mean '%s'?", name, near);
+    diag_error(loc_of(L, n), "'%s' is not a coordinate", name);
+}
+
+/* NAME: EXPR, or NAME: {expr: EXPR, dependent: COORDINATE}. */
+static void
+load_constraint(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecConstraint *c)
+{
+    static const char *const keys[] = {"expr", "dependent", NULL};
+    c->name = arena_strdup(L->A, scalar(L, k, "a constraint name"));
+    c->loc = loc_of(L, k);
+    c->dependent = -1;
+    if (!is_identifier(c->name))
+        diag_error(c->loc, "'%s' is not a valid constraint name", c->name);
+    yaml_node_t *e = v;
+    if (v->type == YAML_MAPPING_NODE) {
+        as_map(L, v, "a constraint");
+        check_keys(L, v, keys, "a constraint");
+        if (!(e = lookup_key(L, v, "expr")))
+            diag_error(loc_of(L, v), "constraint '%s' has no `expr:`", c->name);
+        yaml_node_t *d = lookup_key(L, v, "dependent");
+        if (d) {
+            c->dependent = find_coordinate(L, d);
+            c->dep_loc = loc_of(L, d);
+        }
+    }
+    c->expr = expression(L, e, ALLOW_CONSTRAINT, "a constraint");
+    c->order = expr_max_order(L->P, c->expr);
+    if (!(expr_deps(L->P, c->expr) & DEP_ANY_Q))
+        diag_error(loc_of(L, e), "constraint '%s' involves no coordinate, so it constrains "
+                   "nothing (its order cannot be determined)", c->name);
+}
+
+static void
+load_constraints(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->nconstraint = NPAIRS(map);
+    s->constraint = arena_new_array(L->A, SpecConstraint, s->nconstraint);
+    for (int i = 0; i < s->nconstraint; i++) {
+        SpecConstraint *c = &s->constraint[i];
+        load_constraint(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value), c);
+        for (int j = 0; j < i; j++)
+            if (c->dependent >= 0 && s->constraint[j].dependent == c->dependent)
+                diag_error(c->dep_loc, "coordinate '%s' is already the dependent coordinate "
+                           "of constraint '%s'", s->coord[c->dependent].name,
+                           s->constraint[j].name);
+    }
+    if (s->nconstraint >= s->nq)
+        diag_error(loc_of(L, map), "%d constraints on %d coordinates leave no freedom of "
+                   "motion", s->nconstraint, s->nq);
 }
 
 static void
@@ -866,7 +1091,9 @@ spec_name(Loader *L, yaml_node_t *n)
 
 static const char *const top_keys[] = {
     "name", "description", "parameters", "coordinates", "define", "inputs",
-    "particles", "kinetic", "potential", "effects", "initial", "scene", NULL,
+    "particles", "bodies", "kinetic", "potential", "effects", "constraints", "initial",
+    "scene",
+    NULL,
 };
 
 static yaml_node_t *
@@ -911,6 +1138,8 @@ load_root(Loader *L, yaml_node_t *root)
     yaml_node_t *n;
     if ((n = section(L, root, "particles", 1)))
         load_particles(L, n);
+    if ((n = section(L, root, "bodies", 1)))
+        load_bodies(L, n);
     if ((n = section(L, root, "kinetic", 0)))
         s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term", &s->nkinetic);
     if ((n = section(L, root, "potential", 0)))
@@ -918,13 +1147,15 @@ load_root(Loader *L, yaml_node_t *root)
                                   &s->npotential);
     if ((n = section(L, root, "effects", 1)))
         load_effects(L, n);
+    if ((n = section(L, root, "constraints", 1)))
+        load_constraints(L, n);
     if ((n = section(L, root, "initial", 1)))
         load_initial(L, n);
     if ((n = section(L, root, "scene", 1)))
         load_scene(L, n);
-    if (s->npart == 0 && s->nkinetic == 0)
-        diag_error(loc_of(L, root), "the spec has no kinetic energy: give `particles:` or "
-                   "`kinetic:` terms");
+    if (s->npart == 0 && s->nbody == 0 && s->nkinetic == 0)
+        diag_error(loc_of(L, root), "the spec has no kinetic energy: give `particles:`, "
+                   "`bodies:` or `kinetic:` terms");
 }
 
 static void

@@ -41,17 +41,34 @@ typedef struct SpecParticle {
     ExprId pos[3]; /* of t, q, p, inputs */
 } SpecParticle;
 
+/* A rigid body: T = 1/2 m |c'|^2 + 1/2 w.I w with w its body-frame
+ * angular velocity.  Planar bodies (dim 2) have one angle and a scalar
+ * inertia (inertia[0], omega[0]). */
+typedef struct SpecBody {
+    const char *name;
+    SrcLoc loc;
+    ExprId mass;       /* of p and t */
+    int dim;           /* 2 or 3 */
+    ExprId center[3];  /* centre of mass, of t, q, p */
+    ExprId inertia[9]; /* about the centre, body frame, row-major, of p */
+    ExprId omega[3];   /* body-frame angular velocity, of t, q, q', p */
+} SpecBody;
+
 typedef enum SpecForceKind {
     FORCE_GRAVITY,   /* vec: field g; V -= m_k g . r_k for every particle */
     FORCE_POTENTIAL, /* expr: added to V */
-    FORCE_VECTOR,    /* vec applied at particle: Q_i += F . dr/dq_i */
+    FORCE_VECTOR,    /* vec applied at particle (or a body's centre):
+                      * Q_i += F . dr/dq_i */
+    FORCE_TORQUE,    /* vec (body frame; planar: vec[0]) on body:
+                      * Q_i += tau . dw/dq_i' */
     FORCE_WORK,      /* expr W: Q_i += dW/dq_i (force factors free of q) */
 } SpecForceKind;
 
 typedef struct SpecForce {
     SpecForceKind kind;
     SrcLoc loc;
-    int particle; /* FORCE_VECTOR: index into Spec.part */
+    int particle; /* FORCE_VECTOR: index into Spec.part, or -1 */
+    int body;     /* FORCE_VECTOR, FORCE_TORQUE: index into Spec.body, or -1 */
     int dim;      /* FORCE_GRAVITY, FORCE_VECTOR: 2 or 3 */
     ExprId vec[3];
     ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK */
@@ -70,6 +87,18 @@ typedef struct SpecTerm {
     ExprId expr;
 } SpecTerm;
 
+/* A constraint expr = 0, classified by the highest derivative of a
+ * coordinate in it (defines expanded): 0 holonomic g(t, q), 1 first
+ * order phi(t, q, q') (linear or not), 2 second order f(t, q, q', q''). */
+typedef struct SpecConstraint {
+    const char *name;
+    SrcLoc loc;
+    ExprId expr;
+    int order;
+    int dependent;    /* coordinate to eliminate, or -1: the compiler chooses */
+    SrcLoc dep_loc;   /* of `dependent:` */
+} SpecConstraint;
+
 typedef struct SpecScene {
     double t_end, dt;   /* defaults 10, 0.01 */
     const char *method; /* default "rk8pd" */
@@ -84,14 +113,16 @@ typedef struct Spec {
     const char *path;        /* as given */
     const char *name;        /* `name:` or the file's base name; a C identifier */
     const char *description; /* or "" */
-    int nq, np, nu, npart, neffect, nkinetic, npotential;
+    int nq, np, nu, npart, nbody, neffect, nkinetic, npotential, nconstraint;
     SpecCoord *coord;
     SpecParam *param;
     SpecInput *input;
     SpecParticle *part;
+    SpecBody *body;
     SpecEffect *effect;
     SpecTerm *kinetic;   /* explicit kinetic-energy terms */
     SpecTerm *potential; /* always-on potential-energy terms */
+    SpecConstraint *constraint;
     SpecScene scene;
 } Spec;
 

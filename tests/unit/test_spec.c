@@ -166,7 +166,7 @@ test_error_places(void)
          "2:16: error: particle 'p' has no mass"},
         {"coordinates: [x]\nparticles: {p: {mass: 1, position: [x, 0]}}\n"
          "effects: {push: {force: [1, 0], on: q}}\n",
-         "3:37: error: unknown particle 'q'"},
+         "3:37: error: unknown particle or body 'q'"},
         {"coordinates: [x]\nparticles: {p: {mass: 1, position: [x, 0]}}\n"
          "effects: {g: {gravity: [0, 0, -1]}}\n",
          "3:24: error: gravity has 3 components but particle 'p' is 2-D"},

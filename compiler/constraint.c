@@ -1,0 +1,131 @@
+/*
+ * constraint: classification, acceleration level, virtual displacements,
+ * and the choice of dependent coordinates for elimination.
+ *
+ * The choice, when the spec does not name one: constraints in spec order,
+ * each takes the last coordinate (in `coordinates:` order) whose column of
+ * df/dq'' is not identically zero and that no earlier constraint took.
+ * Whether that block of B is invertible depends on the state; the runtime
+ * checks it at every evaluation and names the constraint when it is not.
+ */
+#include "constraint.h"
+
+#include <stdlib.h>
+
+const char *
+constraint_order_name(int order)
+{
+    static const char *const names[] = {"holonomic", "first-order", "second-order"};
+    return order >= 0 && order <= 2 ? names[order] : "?";
+}
+
+/* f at q'' = 0. */
+static ExprId
+at_zero_accel(ExprPool *P, const Mech *m, ExprId f)
+{
+    ExprId *zero = calloc((size_t)m->n, sizeof *zero);
+    for (int i = 0; i < m->n; i++)
+        zero[i] = EXPR_ZERO;
+    ExprId b = expr_subst(P, f, m->n, m->q[2], zero);
+    free(zero);
+    return b;
+}
+
+static int
+is_affine(Diff *D, const Constraints *c, const Mech *m, int a)
+{
+    for (int j = 0; j < c->n; j++)
+        for (int k = 0; k < c->n; k++)
+            if (diff_partial(D, c->B[a * c->n + j], m->q[2][k]) != EXPR_ZERO)
+                return 0;
+    return 1;
+}
+
+static ExprId
+dt_checked(Diff *D, const SpecConstraint *sc, ExprId e)
+{
+    ExprId d = diff_time(D, e);
+    if (d == EXPR_NONE)
+        diag_error(sc->loc, "constraint '%s' is %s and depends on an input; inputs "
+                   "are signals whose derivatives are unknown, so it cannot be "
+                   "brought to acceleration level", sc->name,
+                   constraint_order_name(sc->order));
+    return d;
+}
+
+/* g -> (g, g', g''), phi -> (phi, phi'), f -> f. */
+static void
+to_acceleration(Constraints *c, Diff *D, int a)
+{
+    const SpecConstraint *sc = &c->spec[a];
+    ExprId e = sc->expr;
+    c->pos[a] = c->vel[a] = EXPR_NONE;
+    if (sc->order == 0) {
+        c->pos[a] = e;
+        e = dt_checked(D, sc, e);
+    }
+    if (sc->order <= 1) {
+        c->vel[a] = e;
+        e = dt_checked(D, sc, e);
+    }
+    c->f[a] = e;
+}
+
+static void
+choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s)
+{
+    const SpecConstraint *sc = &c->spec[a];
+    int n = c->n, j = sc->dependent;
+    if (j >= 0) {
+        if (c->B[a * n + j] == EXPR_ZERO)
+            diag_error(sc->dep_loc, "constraint '%s' does not involve %s at acceleration "
+                       "level, so it cannot determine it", sc->name, s->coord[j].name);
+    } else {
+        for (j = n - 1; j >= 0; j--)
+            if (!taken[j] && c->B[a * n + j] != EXPR_ZERO)
+                break;
+        if (j < 0)
+            diag_error(sc->loc, "no coordinate is left for constraint '%s' to determine: "
+                       "every coordinate it involves is taken by an earlier constraint "
+                       "(name one with `dependent:`)", sc->name);
+    }
+    taken[j] = 1;
+    c->dependent[a] = j;
+}
+
+Constraints *
+constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    if (s->nconstraint == 0)
+        return NULL;
+    Constraints *c = arena_new_array(A, Constraints, 1);
+    int nc = c->nc = s->nconstraint, n = c->n = s->nq;
+    c->spec = s->constraint;
+    c->f = arena_new_array(A, ExprId, nc);
+    c->b = arena_new_array(A, ExprId, nc);
+    c->pos = arena_new_array(A, ExprId, nc);
+    c->vel = arena_new_array(A, ExprId, nc);
+    c->B = arena_new_array(A, ExprId, nc * n);
+    c->dependent = arena_new_array(A, int, nc);
+    c->affine = 1;
+    unsigned char *taken = arena_new_array(A, unsigned char, n);
+    for (int a = 0; a < nc; a++) {
+        to_acceleration(c, D, a);
+        int any = 0;
+        for (int j = 0; j < n; j++)
+            any |= (c->B[a * n + j] = diff_partial(D, c->f[a], m->q[2][j])) != EXPR_ZERO;
+        if (!any)
+            diag_error(s->constraint[a].loc, "constraint '%s' does not restrict the "
+                       "accelerations (its acceleration-level form is free of q'')",
+                       s->constraint[a].name);
+        c->b[a] = at_zero_accel(P, m, c->f[a]);
+        c->affine &= is_affine(D, c, m, a);
+    }
+    for (int a = 0; a < nc; a++) /* named ones first: they are not negotiable */
+        if (s->constraint[a].dependent >= 0)
+            choose_dependent(c, a, taken, s);
+    for (int a = 0; a < nc; a++)
+        if (s->constraint[a].dependent < 0)
+            choose_dependent(c, a, taken, s);
+    return c;
+}

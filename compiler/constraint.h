@@ -1,0 +1,40 @@
+/*
+ * constraint: a spec's constraints brought to acceleration level.
+ *
+ * Each constraint is classified by the highest derivative of a coordinate
+ * in it (order 0 holonomic g(t, q), 1 first order phi(t, q, q'), 2 second
+ * order f(t, q, q', q'')) and differentiated 2, 1 or 0 times to
+ *     f_a(t, q, q', q'') = 0.
+ * Its virtual-displacement row is B_a = df_a/dq'' (Chetaev / Appell rule:
+ * dg/dq for holonomic, dphi/dq' for first order).  When every f_a is
+ * affine in q'' (always for orders 0 and 1), f = B q'' + b.
+ */
+#ifndef EOMC_CONSTRAINT_H
+#define EOMC_CONSTRAINT_H
+
+#include "mech.h"
+
+typedef struct Constraints {
+    int nc, n;
+    const SpecConstraint *spec; /* [nc] names, orders, locations */
+    ExprId *f;        /* [nc] acceleration level */
+    ExprId *B;        /* [nc*n] df/dq'' */
+    ExprId *b;        /* [nc] f at q'' = 0 (meaningful when affine) */
+    ExprId *pos;      /* [nc] holonomic: g; otherwise EXPR_NONE */
+    ExprId *vel;      /* [nc] holonomic: g'; first order: phi; else EXPR_NONE */
+    int affine;       /* every f_a affine in q'' */
+    int *dependent;   /* [nc] coordinate eliminated by each constraint */
+} Constraints;
+
+/* NULL when the spec has no constraints.  Errors (a constraint that does
+ * not restrict the accelerations, an input under d/dt, a dependent
+ * coordinate the constraint does not involve) are diagnostics at the
+ * constraint's source location. */
+Constraints *constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P,
+                               Diff *D);
+
+/* "holonomic", "first-order", "second-order" (+ " nonlinear in q''" etc.
+ * are for --explain). */
+const char *constraint_order_name(int order);
+
+#endif

@@ -13,9 +13,19 @@
 
 #include "eom.h"
 
+/* How the jacobian member is printed.  UNROLLED: every entry of dE/dq
+ * and dE/dq' as its own expression, the fastest to run; code grows as
+ * n |E|.  SEEDED: the directional derivatives of E along seeds dq and
+ * dq' as two functions (code ~ |E|) that jacobian calls once per column
+ * with a unit seed: exact all the same, slower to run, far less for the C
+ * compiler.  AUTO: unrolled up to EMIT_UNROLLED_JACOBIAN_MAX operations. */
+enum { EMIT_JACOBIAN_AUTO, EMIT_JACOBIAN_UNROLLED, EMIT_JACOBIAN_SEEDED };
+enum { EMIT_UNROLLED_JACOBIAN_MAX = 20000 }; /* provisional */
+
 typedef struct EmitInfo {
     const char *version;  /* eomc's */
     const char *options;  /* generator options for the banner, "" if none */
+    int jacobian;         /* EMIT_JACOBIAN_... */
 } EmitInfo;
 
 /* Operation counts of each emitted function. */

@@ -7,10 +7,13 @@
 #   cc_s       time of `cc -O2 -c` on the generated C
 #   ns_rhs     ns per right-hand side: generated M and h + the runtime solve
 #   allocs     allocations in 1000 right-hand sides (must be 0)
+#   ns_jac     ns per full Jacobian (the model's jacobian member)
 # and checks the targets: N = 50 compiles in < 1 s and its C in < 10 s,
 # N = 5 right-hand side <= 130 ns, no allocation.
 #
 # usage: chain_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB
+# $EOMC_FLAGS: more options for `eomc compile`, e.g. "--jacobian unrolled";
+# $BENCH_N: the N to run (default "2 5 10 20 50").
 set -eu
 eomc=$1 src=$2 inc=$3 lib=$4
 cc=${CC:-cc}
@@ -20,12 +23,12 @@ gsl_libs=$(pkg-config --libs gsl)
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-printf '%4s %10s %8s %8s %8s %8s %8s %7s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs
+printf '%4s %10s %8s %8s %8s %8s %8s %7s %9s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs ns_jac
 fail=0
-for n in 2 5 10 20 50; do
+for n in ${BENCH_N:-2 5 10 20 50}; do
   "$src/specs/gen_chain.sh" "$n" > "$dir/chain$n.yaml"
   t0=$(now)
-  "$eomc" compile "$dir/chain$n.yaml" -o "$dir/chain$n.c" --stats 2> "$dir/stats$n"
+  "$eomc" compile "$dir/chain$n.yaml" -o "$dir/chain$n.c" --stats ${EOMC_FLAGS:-} 2> "$dir/stats$n"
   t1=$(now)
   ops=$(awk '$1 == "mass_bias" { print $6 }' "$dir/stats$n")
   all=$(awk 'NR > 1 { s += $6 } END { print s }' "$dir/stats$n")
@@ -37,16 +40,16 @@ for n in 2 5 10 20 50; do
     "$dir/chain$n.o" "$lib" $gsl_libs -lm \
     -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/bench$n"
   set -- $("$dir/bench$n" 2>/dev/null)
-  ns=$1 allocs=$2
+  ns=$1 allocs=$2 nsjac=$3
   ct=$(elapsed "$t0" "$t1") cct=$(elapsed "$t2" "$t3")
-  printf '%4d %10s %8d %8d %8d %8s %8s %7d\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" "$allocs"
+  printf '%4d %10s %8d %8d %8d %8s %8s %7d %9s\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" "$allocs" "$nsjac"
   [ "$allocs" -eq 0 ] || { echo "FAIL: N = $n allocates in the right-hand side"; fail=1; }
   if [ "$n" -eq 50 ]; then
     awk -v t="$ct" 'BEGIN { exit !(t < 1) }' || { echo "FAIL: N = 50 compile $ct s >= 1 s"; fail=1; }
     awk -v t="$cct" 'BEGIN { exit !(t < 10) }' || { echo "FAIL: N = 50 cc $cct s >= 10 s"; fail=1; }
   fi
   [ "$n" -eq 20 ] && ops20=$all
-  if [ "$n" -eq 50 ]; then
+  if [ "$n" -eq 50 ] && [ -n "${ops20:-}" ]; then
     # polynomial growth: code size ~ N^p with p well below exponential
     p=$(awk -v a="$ops20" -v b="$all" 'BEGIN { printf "%.2f", log(b / a) / log(2.5) }')
     echo "code size grows as N^$p between N = 20 and 50"

@@ -1,7 +1,7 @@
 /*
  * ns per right-hand side (generated M and h, then the runtime's solve) of
- * one generated model, and a check that the right-hand side allocates
- * nothing.  Compiled by chain_bench.sh with -DMODEL=chainN_model and
+ * one generated model, a check that the right-hand side allocates
+ * nothing, and ns per call of the model's full Jacobian (jacobian member).  Compiled by chain_bench.sh with -DMODEL=chainN_model and
  * -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc.
  */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
@@ -56,15 +56,41 @@ main(void)
             break;
         calls *= 4;
     }
+    /* the Jacobian, timed the same way */
+    double *dEdq = calloc((size_t)n * (size_t)n, sizeof *dEdq);
+    double *dEdv = calloc((size_t)n * (size_t)n, sizeof *dEdv);
+    double *dEdt = calloc((size_t)n, sizeof *dEdt);
+    double *dEdu = calloc((size_t)(n * m->nu + 1), sizeof *dEdu);
+    double *u = calloc((size_t)m->nu + 1, sizeof *u);
+    long jcalls = 10;
+    double j0, j1;
+    for (;;) {
+        j0 = now();
+        for (long k = 0; k < jcalls; k++) {
+            q[0] = 0.3 + 1e-9 * (double)k;
+            m->jacobian(0.0, q, v, a, m->p_default, u, dEdq, dEdv, dEdu, dEdt);
+            sum += dEdq[n * n - 1];
+        }
+        j1 = now();
+        if (j1 - j0 > 0.3)
+            break;
+        jcalls *= 4;
+    }
     long before = nalloc;
     for (int k = 0; k < 1000; k++)
         eomc_sim_accel(sim, 0.0, q, v, a);
     long allocs = nalloc - before;
-    printf("%.1f %ld\n", (t1 - t0) / (double)calls * 1e9, allocs);
+    printf("%.1f %ld %.0f\n", (t1 - t0) / (double)calls * 1e9, allocs,
+           (j1 - j0) / (double)jcalls * 1e9);
     fprintf(stderr, "(checksum %g)\n", sum);
     eomc_sim_free(sim);
     free(q);
     free(v);
     free(a);
+    free(dEdq);
+    free(dEdv);
+    free(dEdt);
+    free(dEdu);
+    free(u);
     return allocs != 0;
 }

@@ -286,3 +286,38 @@ diff_gradient(Diff *D, ExprId f, int n, const ExprId *leaves, ExprId *out)
     free(adj);
     free(mark);
 }
+
+void
+diff_jvp(Diff *D, int nroots, const ExprId *roots, int n, const ExprId *leaves,
+         const ExprId *seeds, ExprId *out)
+{
+    ExprPool *P = D->P;
+    ExprId top = 0;
+    for (int i = 0; i < nroots; i++)
+        if (roots[i] != EXPR_NONE && roots[i] > top)
+            top = roots[i];
+    size_t size = (size_t)top + 1;
+    unsigned char *mark = xmalloc(expr_pool_size(P));
+    memset(mark, 0, expr_pool_size(P));
+    expr_mark(P, nroots, roots, mark);
+    ExprId *tan = xmalloc(size * sizeof *tan); /* tangent by node id */
+    for (ExprId id = 0; id < size; id++) { /* operands first: ids ascend */
+        tan[id] = EXPR_ZERO;
+        if (!mark[id])
+            continue;
+        const ExprNode nd = *expr_node(P, id);
+        int na = nargs_of(&nd);
+        if (na == 0) {
+            for (int k = 0; k < n; k++)
+                if (leaves[k] == id)
+                    tan[id] = seeds[k];
+            continue;
+        }
+        ExprId d[2] = {tan[nd.a], na == 2 ? tan[nd.b] : EXPR_ZERO};
+        tan[id] = chain(P, id, d, na);
+    }
+    for (int i = 0; i < nroots; i++)
+        out[i] = roots[i] == EXPR_NONE ? EXPR_NONE : tan[roots[i]];
+    free(tan);
+    free(mark);
+}

@@ -11,6 +11,11 @@
  *    order beyond EXPR_MAX_ORDER.
  *  - diff_gradient: reverse mode: the partials of one scalar with respect
  *    to many leaves in one sweep over the DAG.
+ *  - diff_jvp: forward mode along a symbolic direction: the derivatives
+ *    of many roots along sum_k seed_k d/dleaf_k in one sweep.  With
+ *    EXPR_SEED leaves as the seeds the result is one expression, about the
+ *    size of the roots, that gives any column of the Jacobian once the
+ *    seeds get values.
  */
 #ifndef EOMC_DIFF_H
 #define EOMC_DIFF_H
@@ -25,6 +30,8 @@ void diff_free(Diff *D);
 ExprId diff_partial(Diff *D, ExprId e, ExprId leaf);
 ExprId diff_time(Diff *D, ExprId e);
 void diff_gradient(Diff *D, ExprId f, int n, const ExprId *leaves, ExprId *out);
+void diff_jvp(Diff *D, int nroots, const ExprId *roots, int n,
+              const ExprId *leaves, const ExprId *seeds, ExprId *out);
 
 /* The partial derivative of node e with respect to its k-th operand
  * (k = 0 or 1), as an expression: the local rule of each operator. */

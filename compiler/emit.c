@@ -34,7 +34,7 @@ typedef struct Func {
     const char *comment;
     const char *params;  /* C parameter list */
     const char *args;    /* the parameter names, comma-separated */
-    const char *src[7];  /* names of the q, v, a, -, p, u, t parameters */
+    const char *src[9];  /* names of the q, v, a, -, p, u, t, dq, dv parameters */
     const char *unused;  /* outputs nothing is written to, or NULL */
 } Func;
 
@@ -46,6 +46,8 @@ typedef struct Printer {
     int *temp;  /* temporary number, -1 if not scheduled */
     int *part;  /* the part that computes it */
     int *slot;  /* index in s[], -1 if only its own part uses it */
+    int *ext;   /* NULL, or per node its index in an input array shared[] (-1:
+                 * not there): values computed once by another function */
     int cur;    /* the part being printed */
     unsigned used; /* bit k: parameter src[k] is read in this part */
 } Printer;
@@ -76,11 +78,16 @@ format_const(char *buf, size_t len, double v)
 
 static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }
 
+static int is_ext(const Printer *pr, ExprId e) { return pr->ext && pr->ext[e] >= 0; }
+
 static void
 leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
 {
     static const char prefix[] = {'q', 'v', 'a', 'j'};
     switch (nd->op) {
+    case EXPR_SEED:
+        snprintf(buf, len, "%s_%s", nd->b ? "dv" : "dq", pr->s->coord[nd->a].name);
+        break;
     case EXPR_VAR:
         snprintf(buf, len, "%c_%s", prefix[nd->b], pr->s->coord[nd->a].name);
         break;
@@ -96,8 +103,9 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
 }
 
 /* The spelling of an operand: a constant (negative ones in parentheses so
- * that `x - -1` never appears), a leaf's local, a temporary of this part,
- * or a value shared from an earlier part. */
+ * that `x - -1` never appears), a leaf's local, a value computed by
+ * another function (shared[]), a temporary of this part, or a value shared from
+ * an earlier part. */
 static const char *
 operand(Printer *pr, ExprId e, char *buf, size_t len)
 {
@@ -108,6 +116,8 @@ operand(Printer *pr, ExprId e, char *buf, size_t len)
         snprintf(buf, len, nd->value < 0 ? "(%s)" : "%s", num);
     } else if (is_leaf(nd)) {
         leaf_name(pr, nd, buf, len);
+    } else if (is_ext(pr, e)) {
+        snprintf(buf, len, "shared[%d]", pr->ext[e]);
     } else if (pr->part[e] == pr->cur) {
         snprintf(buf, len, "w%d", pr->temp[e]);
     } else {
@@ -187,7 +197,7 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
     while (sp) {
         ExprId e = stack[sp - 1].id;
         const ExprNode *nd = expr_node(pr->P, e);
-        if (is_leaf(nd) || pr->temp[e] >= 0) {
+        if (is_leaf(nd) || pr->temp[e] >= 0 || is_ext(pr, e)) {
             sp--;
         } else if (stack[sp - 1].expanded) {
             sp--;
@@ -212,7 +222,8 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
 static void
 share(Printer *pr, Sched *S, ExprId e, int part)
 {
-    if (!is_leaf(expr_node(pr->P, e)) && pr->part[e] != part && pr->slot[e] < 0)
+    if (!is_leaf(expr_node(pr->P, e)) && !is_ext(pr, e) && pr->part[e] != part &&
+        pr->slot[e] < 0)
         pr->slot[e] = S->nslots++;
 }
 
@@ -266,12 +277,12 @@ mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
 }
 
 /* Named locals for the leaves part p reads, in a fixed order: t, the
- * coordinates by derivative order, parameters, inputs. */
+ * coordinates by derivative order, parameters, inputs, seeds. */
 static void
 print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
              const char *const *src)
 {
-    static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT};
+    static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED};
     size_t size = expr_pool_size(pr->P);
     unsigned char *mark = calloc(size, 1);
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
@@ -293,7 +304,10 @@ print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
                 pr->used |= 1u << 6;
                 continue;
             }
-            int arr = nd->op == EXPR_VAR ? (int)nd->b : nd->op == EXPR_PARAM ? 4 : 5;
+            int arr = nd->op == EXPR_VAR    ? (int)nd->b
+                      : nd->op == EXPR_PARAM  ? 4
+                      : nd->op == EXPR_INPUT  ? 5
+                                              : 7 + (int)nd->b; /* seeds */
             char buf[160];
             leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
@@ -310,7 +324,7 @@ print_part(Printer *pr, const Sched *S, int nout, const Out *out,
     pr->used = 0;
     print_leaves(pr, S, nout, out, fn->src);
     if (S->nparts == 1) {
-        for (int k = 0; k < 7; k++) /* silence -Wunused-parameter */
+        for (int k = 0; k < 9; k++) /* silence -Wunused-parameter */
             if (fn->src[k] && !(pr->used >> k & 1))
                 println(pr, "    (void)%s;", fn->src[k]);
         if (fn->unused)
@@ -374,11 +388,8 @@ print_function(Printer *pr, const Func *fn, int nout, const Out *out)
             println(pr, "    %s_%s_part%d(%s, s);", nm, fn->name, p + 1, fn->args);
         println(pr, "}\n");
     }
-    ExprId *roots = malloc(((size_t)nout + 1) * sizeof *roots);
-    for (int i = 0; i < nout; i++)
-        roots[i] = out[i].e;
-    ExprCount c = expr_count_ops(pr->P, nout, roots);
-    free(roots);
+    /* exactly what was printed: values from shared[] are counted where made */
+    ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
     free(S.node);
     free(S.after);
     free(S.pstart);
@@ -480,7 +491,7 @@ add_out(Out *o, int *n, ExprId e, const char *fmt, ...)
     o[(*n)++].e = e;
 }
 
-#define SRC(q, v, a, p, u, t) {q, v, a, NULL, p, u, t}
+#define SRC(q, v, a, p, u, t) {q, v, a, NULL, p, u, t, NULL, NULL}
 
 static const Func f_initial = {
     "initial", "Initial state from the spec's `initial`.",
@@ -514,6 +525,34 @@ static const Func f_jacobian = {
     SRC("q", "v", "a", "p", "u", "t"), "(void)dEdu;",
 };
 
+/* The seeded jacobian (print_seeded_jacobian): shared values, then one
+ * column per call. */
+static const Func f_jac_shared = {
+    "jacobian_shared",
+    "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
+    " * dE/dt.",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, double *shared, double *dEdu,\n"
+    "    double *dEdt", "t, q, v, a, p, u, shared, dEdu, dEdt",
+    SRC("q", "v", "a", "p", "u", "t"), NULL,
+};
+static const Func f_jac_dq = {
+    "jacobian_dq",
+    "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, const double *shared,\n    const double *dq,\n"
+    "    double *dE", "t, q, v, a, p, u, shared, dq, dE",
+    {"q", "v", "a", NULL, "p", "u", "t", "dq", NULL}, "(void)shared;",
+};
+static const Func f_jac_dv = {
+    "jacobian_dv",
+    "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, const double *shared,\n    const double *dv,\n"
+    "    double *dE", "t, q, v, a, p, u, shared, dv, dE",
+    {"q", "v", "a", NULL, "p", "u", "t", NULL, "dv"}, "(void)shared;",
+};
+
 static const Func f_accel_solve = {
     "accel_solve",
     "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
@@ -523,6 +562,103 @@ static const Func f_accel_solve = {
     "    const double *u, double *a, double *piv", "t, q, v, p, u, a, piv",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
+
+static void
+add_count(ExprCount *c, ExprCount d)
+{
+    c->adds += d.adds;
+    c->muls += d.muls;
+    c->divs += d.divs;
+    c->calls += d.calls;
+}
+
+/* The jacobian member as directional derivatives (EMIT_JACOBIAN_SEEDED).
+ * The seeded expressions e->jvp_q, e->jvp_v are linear in the seeds; what
+ * they need that does not depend on the seeds (sines, products, ...) is
+ * the same for every column, so jacobian_shared computes it once into shared[],
+ * and jacobian_dq and jacobian_dv compute only the seed-dependent rest,
+ * once per column with a unit seed.  Returns the operations printed. */
+static ExprCount
+print_seeded_jacobian(Printer *pr, const Eom *e)
+{
+    ExprPool *P = pr->P;
+    const char *nm = pr->s->name;
+    int n = e->n, nu = e->nu, nw = 0, k;
+    size_t size = expr_pool_size(P);
+    ExprId *roots = malloc(2 * (size_t)n * sizeof *roots);
+    for (int i = 0; i < n; i++) {
+        roots[i] = e->jvp_q[i];
+        roots[n + i] = e->jvp_v[i];
+    }
+    /* shared[] holds the seed-free operator nodes that seeded nodes read (and
+     * any seed-free root), numbered by id: deterministic. */
+    unsigned char *mark = calloc(size, 1), *need = calloc(size, 1);
+    expr_mark(P, 2 * n, roots, mark);
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        if (!mark[id] || is_leaf(nd) || !(nd->deps & DEP_S))
+            continue;
+        int ar = expr_op_arity[nd->op];
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < ar; j++)
+            if (!(expr_deps(P, ops[j]) & DEP_S) && !is_leaf(expr_node(P, ops[j])))
+                need[ops[j]] = 1;
+    }
+    for (int i = 0; i < 2 * n; i++)
+        if (!(expr_deps(P, roots[i]) & DEP_S) && !is_leaf(expr_node(P, roots[i])))
+            need[roots[i]] = 1;
+    int *ext = malloc(size * sizeof *ext);
+    for (size_t id = 0; id < size; id++)
+        ext[id] = need[id] ? nw++ : -1;
+
+    Out *o = calloc((size_t)nw + (size_t)n * ((size_t)nu + 2) + 1, sizeof *o);
+    k = 0;
+    for (size_t id = 0; id < size; id++)
+        if (need[id])
+            add_out(o, &k, (ExprId)id, "shared[%d]", ext[id]);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < nu; j++)
+            add_out(o, &k, e->dEdu[i * nu + j], "dEdu[%d]", i * nu + j);
+        add_out(o, &k, e->dEdt[i], "dEdt[%d]", i);
+    }
+    Func fs = f_jac_shared;
+    fs.unused = nu ? (nw ? NULL : "(void)shared;") : nw ? "(void)dEdu;" : "(void)shared;\n    (void)dEdu;";
+    ExprCount c = print_function(pr, &fs, k, o);
+    pr->ext = ext;
+    k = 0;
+    for (int i = 0; i < n; i++)
+        add_out(o, &k, e->jvp_q[i], "dE[%d]", i * n);
+    add_count(&c, print_function(pr, &f_jac_dq, k, o));
+    k = 0;
+    for (int i = 0; i < n; i++)
+        add_out(o, &k, e->jvp_v[i], "dE[%d]", i * n);
+    add_count(&c, print_function(pr, &f_jac_dv, k, o));
+    pr->ext = NULL;
+
+    println(pr, "/* %s", f_jacobian.comment);
+    println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
+    println(pr, " * dq = e_j (dq' = e_j): exact, in code about the size of E instead of");
+    println(pr, " * %d times that. */", n);
+    println(pr, "static void\n%s_jacobian(%s)\n{", nm, f_jacobian.params);
+    println(pr, "    double shared[%d]; /* values every column needs */", nw ? nw : 1);
+    println(pr, "    double seed[%d];", n);
+    println(pr, "    %s_jacobian_shared(t, q, v, a, p, u, shared, dEdu, dEdt);", nm);
+    println(pr, "    for (int j = 0; j < %d; j++)", n);
+    println(pr, "        seed[j] = 0.0;");
+    println(pr, "    for (int j = 0; j < %d; j++) {", n);
+    println(pr, "        seed[j] = 1.0;");
+    println(pr, "        %s_jacobian_dq(t, q, v, a, p, u, shared, seed, dEdq + j);", nm);
+    println(pr, "        %s_jacobian_dv(t, q, v, a, p, u, shared, seed, dEdv + j);", nm);
+    println(pr, "        seed[j] = 0.0;");
+    println(pr, "    }");
+    println(pr, "}\n");
+    free(o);
+    free(ext);
+    free(need);
+    free(mark);
+    free(roots);
+    return c;
+}
 
 /* The accel member of eomc_model: the solve, then the pivot check. */
 static void
@@ -635,7 +771,19 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
     stats[3] = (EmitStats){"energy", print_function(&pr, &f_energy, k, o)};
 
     k = 0;
-    for (int i = 0; i < n; i++) { /* row by row: rows share their work */
+    ExprId *jroots = malloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
+    for (int i = 0; i < n * n; i++) {
+        jroots[i] = e->dEdq[i];
+        jroots[n * n + i] = e->dEdv[i];
+    }
+    ExprCount jc = expr_count_ops(P, 2 * n * n, jroots);
+    free(jroots);
+    long jops = jc.adds + jc.muls + jc.divs + jc.calls;
+    int seeded = info->jacobian == EMIT_JACOBIAN_SEEDED ||
+                 (info->jacobian == EMIT_JACOBIAN_AUTO && jops > EMIT_UNROLLED_JACOBIAN_MAX);
+    if (seeded)
+        stats[4] = (EmitStats){"jacobian", print_seeded_jacobian(&pr, e)};
+    for (int i = 0; i < n && !seeded; i++) { /* row by row: rows share their work */
         for (int j = 0; j < n; j++)
             add_out(o, &k, e->dEdq[i * n + j], "dEdq[%d]", i * n + j);
         for (int j = 0; j < n; j++)
@@ -644,9 +792,11 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
             add_out(o, &k, e->dEdu[i * nu + j], "dEdu[%d]", i * nu + j);
         add_out(o, &k, e->dEdt[i], "dEdt[%d]", i);
     }
-    Func fj = f_jacobian;
-    fj.unused = nu ? NULL : f_jacobian.unused;
-    stats[4] = (EmitStats){"jacobian", print_function(&pr, &fj, k, o)};
+    if (!seeded) {
+        Func fj = f_jacobian;
+        fj.unused = nu ? NULL : f_jacobian.unused;
+        stats[4] = (EmitStats){"jacobian", print_function(&pr, &fj, k, o)};
+    }
 
     stats[5] = (EmitStats){"accel", {0, 0, 0, 0}};
     if (e->acc) {

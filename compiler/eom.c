@@ -7,6 +7,9 @@
  * row.  Only the lower triangle of M is derived: M is symmetric for every
  * form here (tests/unit/test_forms.c checks the upper triangle against the
  * residual).
+ *
+ * The same partials also come as directional derivatives along symbolic
+ * seeds (diff_jvp): one forward sweep over E for q and one for q'.
  */
 #include "eom.h"
 
@@ -126,6 +129,15 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
     leaves[2 * n + nu] = expr_time(P);
     for (int i = 0; i < n; i++)
         derive_row(e, D, m->q[2], leaves, grad, i);
+    ExprId *seed = arena_new_array(A, ExprId, n);
+    e->jvp_q = arena_new_array(A, ExprId, n);
+    e->jvp_v = arena_new_array(A, ExprId, n);
+    for (int j = 0; j < n; j++)
+        seed[j] = expr_seed(P, j, 0);
+    diff_jvp(D, n, E, n, m->q[0], seed, e->jvp_q);
+    for (int j = 0; j < n; j++)
+        seed[j] = expr_seed(P, j, 1);
+    diff_jvp(D, n, E, n, m->q[1], seed, e->jvp_v);
     /* h = E at q'' = 0: substitution rebuilds only what depends on q'' */
     ExprId *zeros = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++)

@@ -18,6 +18,13 @@ typedef struct Eom {
     ExprId *dEdq, *dEdv; /* [n*n] */
     ExprId *dEdu; /* [n*nu] */
     ExprId *dEdt; /* [n] */
+    /* The same partials as directional derivatives: jvp_q[i] = sum_j
+     * dE_i/dq_j dq_j and jvp_v[i] = sum_j dE_i/dq'_j dq'_j over the seeds
+     * expr_seed(j, 0) = dq_j and expr_seed(j, 1) = dq'_j.  About the size
+     * of E itself, where dEdq and dEdv grow as n |E|: the emitter prints
+     * these and loops over unit seeds when the unrolled matrices would be
+     * too much code. */
+    ExprId *jvp_q, *jvp_v; /* [n] */
     /* a = -M^-1 h by an unrolled LDL^T factorization built in the DAG
      * (structural zeros of M drop out by simplification), and the pivot
      * margins piv_k = d_k - EOMC_PIVOT_TOL M_kk, all > 0 when M is safely

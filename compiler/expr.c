@@ -137,6 +137,7 @@ mk(ExprPool *P, int op, ExprId a, ExprId b)
     case EXPR_PARAM: nd.deps = DEP_P; break;
     case EXPR_INPUT: nd.deps = DEP_U; break;
     case EXPR_TIME: nd.deps = DEP_T; break;
+    case EXPR_SEED: nd.deps = DEP_S; break;
     default:
         nd.deps = P->node[a].deps | (ar == 2 ? P->node[b].deps : 0);
     }
@@ -160,6 +161,11 @@ ExprId expr_var(ExprPool *P, int coord, int order)
 ExprId expr_param(ExprPool *P, int i) { return mk(P, EXPR_PARAM, (uint32_t)i, 0); }
 ExprId expr_input(ExprPool *P, int i) { return mk(P, EXPR_INPUT, (uint32_t)i, 0); }
 ExprId expr_time(ExprPool *P) { return mk(P, EXPR_TIME, 0, 0); }
+ExprId
+expr_seed(ExprPool *P, int coord, int kind)
+{
+    return mk(P, EXPR_SEED, (uint32_t)coord, (uint32_t)kind);
+}
 
 int
 expr_is_const(const ExprPool *P, ExprId e, double *value)
@@ -660,6 +666,7 @@ eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
     case EXPR_PARAM: return env->p[nd->a];
     case EXPR_INPUT: return env->u[nd->a];
     case EXPR_TIME: return env->t;
+    case EXPR_SEED: return env->seed[nd->b] ? env->seed[nd->b][nd->a] : 0.0;
     case EXPR_ADD: return x + y;
     case EXPR_SUB: return x - y;
     case EXPR_MUL: return x * y;
@@ -732,29 +739,42 @@ expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from, const ExprId *to)
     return r;
 }
 
+static void
+count_node(const ExprPool *P, ExprId i, ExprCount *c)
+{
+    switch (P->node[i].op) {
+    case EXPR_ADD: case EXPR_SUB: case EXPR_NEG: c->adds++; break;
+    case EXPR_MUL: c->muls++; break;
+    case EXPR_DIV: c->divs++; break;
+    case EXPR_POWI: {
+        /* emitted as repeated multiplication (and 1/x for n < 0) */
+        int k = abs((int32_t)P->node[i].b);
+        c->muls += k - 1;
+        break;
+    }
+    default:
+        if (expr_op_kind[P->node[i].op] == OPK_CALL)
+            c->calls++;
+    }
+}
+
 ExprCount
 expr_count_ops(ExprPool *P, int n, const ExprId *roots)
 {
     ExprCount c = {0, 0, 0, 0};
     unsigned char *mark = marked(P, n, roots);
-    for (size_t i = 0; i < P->n; i++) {
-        if (!mark[i])
-            continue;
-        switch (P->node[i].op) {
-        case EXPR_ADD: case EXPR_SUB: case EXPR_NEG: c.adds++; break;
-        case EXPR_MUL: c.muls++; break;
-        case EXPR_DIV: c.divs++; break;
-        case EXPR_POWI: {
-            /* emitted as repeated multiplication (and 1/x for n < 0) */
-            int k = abs((int32_t)P->node[i].b);
-            c.muls += k - 1;
-            break;
-        }
-        default:
-            if (expr_op_kind[P->node[i].op] == OPK_CALL)
-                c.calls++;
-        }
-    }
+    for (size_t i = 0; i < P->n; i++)
+        if (mark[i])
+            count_node(P, (ExprId)i, &c);
     free(mark);
+    return c;
+}
+
+ExprCount
+expr_count_list(ExprPool *P, size_t n, const ExprId *nodes)
+{
+    ExprCount c = {0, 0, 0, 0};
+    for (size_t i = 0; i < n; i++)
+        count_node(P, nodes[i], &c);
     return c;
 }

@@ -45,6 +45,7 @@ enum {
     DEP_Q = 1 << 1,      /* q; DEP_Q << k for the k-th derivative */
     DEP_P = 1 << 5,      /* parameters */
     DEP_U = 1 << 6,      /* inputs */
+    DEP_S = 1 << 7,      /* seeds of a directional derivative */
 };
 #define DEP_ORDER(k) (DEP_Q << (k))
 #define DEP_ANY_Q (DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_ORDER(3))
@@ -76,6 +77,9 @@ ExprId expr_var(ExprPool *P, int coord, int order);
 ExprId expr_param(ExprPool *P, int index);
 ExprId expr_input(ExprPool *P, int index);
 ExprId expr_time(ExprPool *P);
+/* The seed component dq_i (kind 0) or dq'_i (kind 1) of a directional
+ * derivative (diff_jvp).  Only the emitter gives seeds values. */
+ExprId expr_seed(ExprPool *P, int coord, int kind);
 
 /* Simplifying constructors. */
 ExprId expr_add(ExprPool *P, ExprId a, ExprId b);
@@ -109,6 +113,7 @@ typedef struct ExprEnv {
     const double *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: k-th derivative of q_i */
     const double *p;
     const double *u;
+    const double *seed[2]; /* seeds dq, dq' of EXPR_SEED; NULL reads as 0 */
 } ExprEnv;
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
@@ -124,6 +129,8 @@ typedef struct ExprCount {
     long adds, muls, divs, calls;
 } ExprCount;
 ExprCount expr_count_ops(ExprPool *P, int n, const ExprId *roots);
+/* Operation counts of exactly the n given nodes (no traversal). */
+ExprCount expr_count_list(ExprPool *P, size_t n, const ExprId *nodes);
 
 /* Mark the nodes reachable from roots: mark[id] = 1.  mark has
  * expr_pool_size(P) entries and is not cleared first. */

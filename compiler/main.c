@@ -2,8 +2,9 @@
  * eomc: the command line.
  *
  *   eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]
- *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST]
- *   eomc run     SPEC [--form NAME] [--effects LIST] [simulator options]
+ *                [--jacobian auto|unrolled|seeded]
+ *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST] [--jacobian HOW]
+ *   eomc run     SPEC [--form NAME] [--effects LIST] [--jacobian HOW] [simulator options]
  *
  * The pipeline: spec_load (YAML -> Spec) -> mech_build (T, V, S, Q) ->
  * a form's residual -> eom_derive (M, h, Jacobians) -> emit_model (C).
@@ -24,7 +25,7 @@
 enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
-    const char *cmd, *spec, *out, *form, *effects;
+    const char *cmd, *spec, *out, *form, *effects, *jacobian;
     int stats;
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
@@ -43,6 +44,8 @@ usage(FILE *f)
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
         "  --stats          print the operation counts of each emitted function\n"
+        "  --jacobian HOW   auto (default), unrolled or seeded: how the Jacobian\n"
+        "                   of large models is printed (docs: emit.h)\n"
         "Simulator options (eomc run, and built executables): see `EXE --help`.\n",
         form_names());
 }
@@ -73,10 +76,12 @@ parse_args(int argc, char **argv, Options *o)
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         int has_val = i + 1 < argc;
-        if (!strcmp(a, "--form") || !strcmp(a, "--effects") || (!run && !strcmp(a, "-o"))) {
+        if (!strcmp(a, "--form") || !strcmp(a, "--effects") || !strcmp(a, "--jacobian") ||
+            (!run && !strcmp(a, "-o"))) {
             if (!has_val)
                 usage_error("option %s needs a value", a);
-            const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects : &o->out;
+            const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects
+                              : a[2] == 'j' ? &o->jacobian : &o->out;
             *slot = argv[++i];
         } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
             o->stats = 1;
@@ -94,6 +99,9 @@ parse_args(int argc, char **argv, Options *o)
         usage_error("%s: no spec file given", o->cmd);
     if (!o->form)
         o->form = "lagrange";
+    if (o->jacobian && strcmp(o->jacobian, "auto") && strcmp(o->jacobian, "unrolled") &&
+        strcmp(o->jacobian, "seeded"))
+        usage_error("--jacobian must be auto, unrolled or seeded, not '%s'", o->jacobian);
     if (!form_find(o->form))
         fprintf(stderr, "eomc: unknown form '%s'; valid forms: %s\n", o->form,
                 form_names()), exit(EXIT_USAGE);
@@ -142,9 +150,16 @@ compile(const Options *o, FILE *out)
                     o->spec, o->form, why);
         } else {
             char opts[256] = "";
+            int jac = EMIT_JACOBIAN_AUTO;
             if (o->effects)
                 snprintf(opts, sizeof opts, "--effects %s", o->effects);
-            EmitInfo info = {EOMC_VERSION, opts};
+            if (o->jacobian && strcmp(o->jacobian, "auto")) { /* it changes the code */
+                size_t len = strlen(opts);
+                snprintf(opts + len, sizeof opts - len, "%s--jacobian %s",
+                         len ? " " : "", o->jacobian);
+                jac = o->jacobian[0] == 's' ? EMIT_JACOBIAN_SEEDED : EMIT_JACOBIAN_UNROLLED;
+            }
+            EmitInfo info = {EOMC_VERSION, opts, jac};
             EmitStats st[EMIT_NFUNCS];
             emit_model(out, s, m, e, P, D, &info, st);
             if (o->stats)
@@ -245,10 +260,11 @@ run(const Options *o)
         fprintf(stderr, "eomc: cannot read %s: %s\n", o->spec, strerror(errno));
         return EXIT_USAGE;
     }
-    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + 64;
+    const char *jac = o->jacobian ? o->jacobian : "auto";
+    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) + 80;
     text = xrealloc(text, len + extra);
-    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s",
-                            o->form, o->effects ? o->effects : "(scene)");
+    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s --jacobian %s",
+                            o->form, o->effects ? o->effects : "(scene)", jac);
     char stem[200], name[256];
     spec_stem(o->spec, stem, sizeof stem);
     snprintf(name, sizeof name, "sim-%s", stem);

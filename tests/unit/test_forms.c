@@ -3,7 +3,8 @@
  *     dS/dq'' = d/dt dT/dq' - dT/dq
  *     d(T')/dq' = d/dt dT/dq' + dT/dq
  *     1/2 d(T'')/dq'' = d/dt dT/dq' + 1/2 dT/dq
- * and the four residual forms giving the same M and h, for models built
+ * and the four residual forms giving the same M and h (and the seeded
+ * directional derivatives of E matching its Jacobian), for models built
  * directly as Specs (no YAML): a double pendulum in absolute angles, and
  * a particle in spherical coordinates with a time-dependent support.
  */
@@ -131,7 +132,7 @@ check_forms_agree(const char *label, const Spec *s)
         if (!e[f])
             return;
     }
-    int ok[4] = {1, 1, 1, 1}, sym = 1, affine = 1;
+    int ok[4] = {1, 1, 1, 1}, sym = 1, affine = 1, jvp = 1;
     for (int trial = 0; trial < 100; trial++) {
         double st[4][3];
         ExprEnv env = {0};
@@ -151,6 +152,23 @@ check_forms_agree(const char *label, const Spec *s)
                 Ma += expr_eval(P, e[0]->M[i * n + j], &env) * st[2][j];
             affine &= check_close(expr_eval(P, e[0]->E[i], &env), Ma, 1e-12);
         }
+        /* the seeded forms: sum_j dE_i/dq_j dq_j (and for q') at a random
+         * seed, against the unrolled Jacobian, for every form */
+        double seed[2][3];
+        for (int j = 0; j < n; j++)
+            seed[0][j] = check_rand(-1, 1), seed[1][j] = check_rand(-1, 1);
+        env.seed[0] = seed[0];
+        env.seed[1] = seed[1];
+        for (int f = 0; f < 4; f++)
+            for (int i = 0; i < n; i++) {
+                double wq = 0, wv = 0;
+                for (int j = 0; j < n; j++) {
+                    wq += expr_eval(P, e[f]->dEdq[i * n + j], &env) * seed[0][j];
+                    wv += expr_eval(P, e[f]->dEdv[i * n + j], &env) * seed[1][j];
+                }
+                jvp &= check_close(expr_eval(P, e[f]->jvp_q[i], &env), wq, 1e-12);
+                jvp &= check_close(expr_eval(P, e[f]->jvp_v[i], &env), wv, 1e-12);
+            }
         /* the lower triangle is computed; check the upper one from the
          * residual directly: dE_i/da_j = dE_j/da_i */
         for (int i = 0; i < n; i++)
@@ -163,6 +181,7 @@ check_forms_agree(const char *label, const Spec *s)
         CHECK(ok[f], "%s: %s gives the M and h of lagrange", label, names[f]);
     CHECK(sym, "%s: dE/dq'' is symmetric", label);
     CHECK(affine, "%s: E = M q'' + h", label);
+    CHECK(jvp, "%s: seeded derivatives of E = its Jacobian times the seeds", label);
 }
 
 int

@@ -200,6 +200,20 @@ scaled(const ExprPool *P, ExprId e, ExprId *c, ExprId *x)
     return 1;
 }
 
+/* e as c*x with c a coefficient (1 when e is not scaled) and x not: the
+ * terms of like-term collection.  0 when e is itself a coefficient. */
+static int
+term(const ExprPool *P, ExprId e, ExprId *c, ExprId *x)
+{
+    if (scaled(P, e, c, x))
+        return 1;
+    if (P->node[e].coeff)
+        return 0;
+    *c = EXPR_ONE;
+    *x = e;
+    return 1;
+}
+
 /* Fold to a constant only when the result is finite: 1/0 or log(-1) stay
  * symbolic so that the checker upstream can report them. */
 static int
@@ -285,6 +299,8 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
     if (pythagorean(P, a, b))
         return EXPR_ONE;
     ExprId c1, x1, c2, x2;
+    if (term(P, a, &c1, &x1) && term(P, b, &c2, &x2) && x1 == x2)
+        return expr_mul(P, expr_add(P, c1, c2), x1); /* c x + d x = (c + d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
         return expr_mul(P, c1, expr_add(P, x1, x2)); /* c x + c y = c (x + y) */
     order2(P, &a, &b);
@@ -308,6 +324,8 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
     if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
         return expr_neg(P, expr_add(P, P->node[a].a, b));
     ExprId c1, x1, c2, x2;
+    if (term(P, a, &c1, &x1) && term(P, b, &c2, &x2) && x1 == x2)
+        return expr_mul(P, expr_sub(P, c1, c2), x1); /* c x - d x = (c - d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
         return expr_mul(P, c1, expr_sub(P, x1, x2)); /* c x - c y = c (x - y) */
     return mk(P, EXPR_SUB, a, b);

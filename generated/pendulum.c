@@ -50,10 +50,10 @@ pendulum_mass_bias(double t, const double *q, const double *v, const double *p,
     const double *u, double *M, double *h)
 {
     const double q_theta = q[0];
-    const double v_theta = v[0];
     const double p_m = p[0];
     const double p_l = p[1];
     const double p_g = p[2];
+    (void)v;
     (void)u;
     (void)t;
     const double w0 = 0.5 * p_m;
@@ -65,16 +65,7 @@ pendulum_mass_bias(double t, const double *q, const double *v, const double *p,
     const double w5 = p_m * w4;
     const double w6 = sin(q_theta);
     const double w7 = w5 * w6;
-    const double w8 = cos(q_theta);
-    const double w9 = w6 * w8;
-    const double w10 = v_theta * v_theta;
-    const double w11 = w9 * w10;
-    const double w12 = (-2.0) * w11;
-    const double w13 = 2.0 * w11;
-    const double w14 = w12 + w13;
-    const double w15 = w3 * w14;
-    const double w16 = w7 + w15;
-    h[0] = w16;
+    h[0] = w7;
 }
 
 /* Kinetic energy T and potential energy V. */
@@ -166,10 +157,10 @@ pendulum_accel_solve(double t, const double *q, const double *v, const double *p
     const double *u, double *a, double *piv)
 {
     const double q_theta = q[0];
-    const double v_theta = v[0];
     const double p_m = p[0];
     const double p_l = p[1];
     const double p_g = p[2];
+    (void)v;
     (void)u;
     (void)t;
     const double w0 = 0.5 * p_m;
@@ -179,23 +170,14 @@ pendulum_accel_solve(double t, const double *q, const double *v, const double *p
     const double w4 = 1e-13 * w3;
     const double w5 = w3 - w4;
     piv[0] = w5;
-    const double w6 = 1.0 / w3;
-    const double w7 = p_l * p_g;
-    const double w8 = p_m * w7;
-    const double w9 = sin(q_theta);
-    const double w10 = w8 * w9;
-    const double w11 = cos(q_theta);
-    const double w12 = w9 * w11;
-    const double w13 = v_theta * v_theta;
-    const double w14 = w12 * w13;
-    const double w15 = (-2.0) * w14;
-    const double w16 = 2.0 * w14;
-    const double w17 = w15 + w16;
-    const double w18 = w3 * w17;
-    const double w19 = w10 + w18;
-    const double w20 = w6 * w19;
-    const double w21 = -w20;
-    a[0] = w21;
+    const double w6 = p_l * p_g;
+    const double w7 = p_m * w6;
+    const double w8 = 1.0 / w3;
+    const double w9 = w7 * w8;
+    const double w10 = sin(q_theta);
+    const double w11 = w9 * w10;
+    const double w12 = -w11;
+    a[0] = w12;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M

@@ -12,12 +12,14 @@
 static ExprPool *P;
 static Diff *D;
 
-/* Evaluate e with q_0 = x, q_1 = y (order 0), nothing else. */
+/* Evaluate e with q_0 = x, q_1 = y (order 0), q_2 = 0.5, velocities
+ * (0.3, -0.2, 0.1), parameters (1.7, 0.6), nothing else. */
 static double
 at(ExprId e, double x, double y)
 {
-    double q0[2] = {x, y}, q1[2] = {0, 0};
-    ExprEnv env = {.t = 0, .q = {q0, q1, q1, q1}};
+    double q0[3] = {x, y, 0.5}, q1[3] = {0.3, -0.2, 0.1}, z[3] = {0, 0, 0};
+    double p[2] = {1.7, 0.6};
+    ExprEnv env = {.t = 0, .q = {q0, q1, z, z}, .p = p};
     return expr_eval(P, e, &env);
 }
 
@@ -272,6 +274,25 @@ test_pythagorean(void)
           "cos(x)^2 + sin(y)^2 is not folded");
 }
 
+/* c x + d x = (c + d) x for coefficients c, d (constants, parameters). */
+static void
+test_like_terms(void)
+{
+    ExprId x = expr_mul(P, expr_unary(P, EXPR_SIN, expr_var(P, 0, 0)), expr_var(P, 1, 1));
+    ExprId two = expr_const(P, 2), m = expr_param(P, 0);
+    CHECK(expr_add(P, expr_mul(P, expr_const(P, -2), x), expr_mul(P, two, x)) == EXPR_ZERO,
+          "-2 x + 2 x = 0");
+    CHECK(expr_sub(P, expr_mul(P, two, x), expr_mul(P, two, x)) == EXPR_ZERO, "2 x - 2 x = 0");
+    ExprId e = expr_add(P, x, expr_mul(P, expr_const(P, 3), x));
+    CHECK(e == expr_mul(P, expr_const(P, 4), x), "x + 3 x = 4 x");
+    ExprId f = expr_sub(P, expr_mul(P, m, x), x), g = expr_mul(P, expr_sub(P, m, EXPR_ONE), x);
+    CHECK(f == g && same_at_random_points(f, g), "m x - x = (m - 1) x");
+    ExprId y = expr_var(P, 2, 0);
+    ExprId h = expr_add(P, expr_mul(P, two, x), expr_mul(P, two, y));
+    CHECK(same_at_random_points(h, expr_mul(P, two, expr_add(P, x, y))),
+          "2 x + 2 y stays 2 (x + y), numerically equal");
+}
+
 int
 main(void)
 {
@@ -284,6 +305,7 @@ main(void)
     test_subst();
     test_canonical_products();
     test_pythagorean();
+    test_like_terms();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

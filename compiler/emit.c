@@ -425,7 +425,7 @@ base_name(const char *path)
 }
 
 static void
-print_banner(Printer *pr, const Eom *e, const EmitInfo *info)
+print_banner(Printer *pr, const Eom *e, const Constraints *c, const EmitInfo *info)
 {
     const Spec *s = pr->s;
     const char *base = base_name(s->path);
@@ -450,6 +450,15 @@ print_banner(Printer *pr, const Eom *e, const EmitInfo *info)
     println(pr, "%s (no code is generated for these)", any ? "" : " (none)");
     println(pr, " *");
     println(pr, " * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0");
+    if (c) {
+        println(pr, " *");
+        println(pr, " * constraints, by %s:", info->eliminate
+                ? "elimination (C^T E = 0, f = 0)" : "multipliers (E + B^T lambda = 0, f = 0)");
+        for (int k = 0; k < c->nc; k++)
+            println(pr, " *   %-12s %s, determines %s", c->spec[k].name,
+                    constraint_order_name(c->spec[k].order), s->coord[c->dependent[k]].name);
+        println(pr, " *   %s in q''", c->affine ? "all affine" : "not all affine (Newton)");
+    }
     println(pr, " */");
     println(pr, "#include <math.h>");
     println(pr, "#include <stddef.h>");
@@ -561,6 +570,32 @@ static const Func f_accel_solve = {
     "double t, const double *q, const double *v, const double *p,\n"
     "    const double *u, double *a, double *piv", "t, q, v, p, u, a, piv",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+
+static const Func f_constraint = {
+    "constraint",
+    "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, double *f, double *B",
+    "t, q, v, a, p, u, f, B",
+    SRC("q", "v", "a", "p", "u", "t"), NULL,
+};
+static const Func f_c_levels = {
+    "c_levels",
+    "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
+    "double t, const double *q, const double *v, const double *p,\n"
+    "    const double *u, double *pos, double *vel", "t, q, v, p, u, pos, vel",
+    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+static const Func f_c_jacobian = {
+    "c_jacobian",
+    "Partial derivatives of f and of B = df/dq'' (u held fixed).",
+    "double t, const double *q, const double *v, const double *a,\n"
+    "    const double *p, const double *u, double *dfdq, double *dfdv,\n"
+    "    double *dfdu, double *dfdt, double *dBdq, double *dBdv, double *dBda,\n"
+    "    double *dBdu, double *dBdt",
+    "t, q, v, a, p, u, dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt",
+    SRC("q", "v", "a", "p", "u", "t"), "(void)dfdu;\n    (void)dBdu;",
 };
 
 static void
@@ -696,7 +731,8 @@ print_c_string(FILE *f, const char *text)
 }
 
 static void
-print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *info)
+print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *c,
+                   const EmitInfo *info)
 {
     const char *nm = s->name;
     println(pr, "const eomc_model %s_model = {", nm);
@@ -706,20 +742,28 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *inf
     print_c_string(pr->f, info->options);
     println(pr, ",");
     println(pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", s->nq, s->np, s->nu);
-    char a[40], b[40], c[40], d[40], h[40];
+    char a[40], b[40], rt[40], at[40], h[40];
     format_const(a, sizeof a, s->scene.t_end);
     format_const(b, sizeof b, s->scene.dt);
-    format_const(c, sizeof c, s->scene.rtol);
-    format_const(d, sizeof d, s->scene.atol);
+    format_const(rt, sizeof rt, s->scene.rtol);
+    format_const(at, sizeof at, s->scene.atol);
     format_const(h, sizeof h, s->scene.h_fixed);
-    println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, c, d, h);
+    println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, rt, at, h);
     println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
             nm, nm, nm, nm, nm);
-    if (e->acc)
+    if (c)
+        println(pr, "    NULL, /* constrained: the runtime solves the KKT system */");
+    else if (e->acc)
         println(pr, "    %s_accel,", nm);
     else
         println(pr, "    NULL, /* more than %d coordinates: the runtime solves with GSL */",
                 EOM_SOLVE_MAX);
+    if (c)
+        println(pr, "    %d, c_names, c_order, c_dependent, %d, %d,\n"
+                "    %s_constraint, %s_c_levels, %s_c_jacobian,", c->nc, c->affine,
+                info->eliminate, nm, nm, nm);
+    else
+        println(pr, "    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,");
     println(pr, "};");
     println(pr, "");
     println(pr, "#ifdef EOMC_MAIN");
@@ -728,15 +772,84 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const EmitInfo *inf
     println(pr, "#endif");
 }
 
+/* Names, orders and dependent coordinates of the constraints. */
+static void
+print_constraint_tables(Printer *pr, const Constraints *c)
+{
+    fprintf(pr->f, "static const char *const c_names[%d] = {", c->nc);
+    for (int k = 0; k < c->nc; k++)
+        fprintf(pr->f, "%s\"%s\"", k ? ", " : "", c->spec[k].name);
+    println(pr, "};");
+    fprintf(pr->f, "static const int c_order[%d] = {", c->nc);
+    for (int k = 0; k < c->nc; k++)
+        fprintf(pr->f, "%s%d", k ? ", " : "", c->spec[k].order);
+    println(pr, "};");
+    fprintf(pr->f, "static const int c_dependent[%d] = {", c->nc);
+    for (int k = 0; k < c->nc; k++)
+        fprintf(pr->f, "%s%d", k ? ", " : "", c->dependent[k]);
+    println(pr, "};\n");
+}
+
+/* constraint, c_levels and c_jacobian; their counts into stats[6..8]. */
+static void
+print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
+{
+    const Spec *s = pr->s;
+    int n = s->nq, nu = s->nu, nc = c->nc, k = 0;
+    Out *o = calloc((size_t)(nc * (3 * n * n + n * nu + 3 * n + nu + 4)), sizeof *o);
+    for (int a = 0; a < nc; a++) {
+        add_out(o, &k, c->f[a], "f[%d]", a);
+        for (int j = 0; j < n; j++)
+            add_out(o, &k, c->B[a * n + j], "B[%d]", a * n + j);
+    }
+    stats[0] = (EmitStats){"constraint", print_function(pr, &f_constraint, k, o)};
+    k = 0;
+    for (int a = 0; a < nc; a++) {
+        add_out(o, &k, c->pos[a] == EXPR_NONE ? EXPR_ZERO : c->pos[a], "pos[%d]", a);
+        add_out(o, &k, c->vel[a] == EXPR_NONE ? EXPR_ZERO : c->vel[a], "vel[%d]", a);
+    }
+    stats[1] = (EmitStats){"c_levels", print_function(pr, &f_c_levels, k, o)};
+    k = 0;
+    ExprId t = expr_time(pr->P);
+    for (int a = 0; a < nc; a++) {
+        ExprId fa = c->f[a];
+        for (int j = 0; j < n; j++) {
+            add_out(o, &k, diff_partial(D, fa, expr_var(pr->P, j, 0)), "dfdq[%d]", a * n + j);
+            add_out(o, &k, diff_partial(D, fa, expr_var(pr->P, j, 1)), "dfdv[%d]", a * n + j);
+        }
+        for (int l = 0; l < nu; l++)
+            add_out(o, &k, diff_partial(D, fa, expr_input(pr->P, l)), "dfdu[%d]", a * nu + l);
+        add_out(o, &k, diff_partial(D, fa, t), "dfdt[%d]", a);
+        for (int i = 0; i < n; i++) {
+            ExprId b = c->B[a * n + i];
+            int row = a * n + i;
+            for (int j = 0; j < n; j++) {
+                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 0)), "dBdq[%d]", row * n + j);
+                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 1)), "dBdv[%d]", row * n + j);
+                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 2)), "dBda[%d]", row * n + j);
+            }
+            for (int l = 0; l < nu; l++)
+                add_out(o, &k, diff_partial(D, b, expr_input(pr->P, l)), "dBdu[%d]", row * nu + l);
+            add_out(o, &k, diff_partial(D, b, t), "dBdt[%d]", row);
+        }
+    }
+    Func fj = f_c_jacobian;
+    fj.unused = nu ? NULL : f_c_jacobian.unused;
+    stats[2] = (EmitStats){"c_jacobian", print_function(pr, &fj, k, o)};
+    free(o);
+}
+
 void
-emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
-           Diff *D, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
+emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
+           ExprPool *P, Diff *D, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
 {
     Printer pr = {.f = f, .P = P, .s = s};
     int n = s->nq, nu = s->nu, k;
     Out *o = calloc((size_t)(2 * n * n + n * nu + 4 * n + 2 * nu + 2), sizeof *o);
-    print_banner(&pr, e, info);
+    print_banner(&pr, e, c, info);
     print_tables(&pr);
+    if (c)
+        print_constraint_tables(&pr, c);
 
     k = 0;
     for (int i = 0; i < n; i++)
@@ -799,7 +912,12 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
     }
 
     stats[5] = (EmitStats){"accel", {0, 0, 0, 0}};
-    if (e->acc) {
+    stats[6] = (EmitStats){"constraint", {0, 0, 0, 0}};
+    stats[7] = (EmitStats){"c_levels", {0, 0, 0, 0}};
+    stats[8] = (EmitStats){"c_jacobian", {0, 0, 0, 0}};
+    if (c)
+        print_constraints(&pr, c, D, stats + 6);
+    if (e->acc && !c) {
         k = 0;
         for (int i = 0; i < n; i++)
             add_out(o, &k, e->piv[i], "piv[%d]", i);
@@ -809,5 +927,5 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, ExprPool *P,
         print_accel(&pr, n);
     }
     free(o);
-    print_model_struct(&pr, s, e, info);
+    print_model_struct(&pr, s, e, c, info);
 }

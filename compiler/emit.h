@@ -11,6 +11,7 @@
 
 #include <stdio.h>
 
+#include "constraint.h"
 #include "eom.h"
 
 /* How the jacobian member is printed.  UNROLLED: every entry of dE/dq
@@ -30,6 +31,7 @@ typedef struct EmitInfo {
     const char *version;  /* eomc's */
     const char *options;  /* generator options for the banner, "" if none */
     int jacobian;         /* EMIT_JACOBIAN_... */
+    int eliminate;        /* constraints by elimination (Maggi), else multipliers */
 } EmitInfo;
 
 /* Operation counts of each emitted function. */
@@ -37,10 +39,11 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 6 };
+enum { EMIT_NFUNCS = 9 };
 
+/* c: the constraints, or NULL. */
 void emit_model(FILE *out, const Spec *s, const Mech *m, const Eom *e,
-                ExprPool *P, Diff *D, const EmitInfo *info,
+                const Constraints *c, ExprPool *P, Diff *D, const EmitInfo *info,
                 EmitStats stats[EMIT_NFUNCS]);
 
 #endif

@@ -26,7 +26,7 @@ enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian;
-    int stats;
+    int stats, eliminate;
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
 } Options;
@@ -44,6 +44,8 @@ usage(FILE *f)
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
         "  --stats          print the operation counts of each emitted function\n"
+        "  --eliminate      eliminate the constraints (C^T E = 0, f = 0) instead of\n"
+        "                   using multipliers; --form maggi is lagrange with it\n"
         "  --jacobian HOW   auto (default), unrolled or seeded: how the Jacobian\n"
         "                   of large models is printed (docs: emit.h)\n"
         "Simulator options (eomc run, and built executables): see `EXE --help`.\n",
@@ -85,6 +87,8 @@ parse_args(int argc, char **argv, Options *o)
             *slot = argv[++i];
         } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
             o->stats = 1;
+        } else if (!strcmp(a, "--eliminate") && !(run && o->spec && o->nsim)) {
+            o->eliminate = 1;
         } else if (run && o->spec) {
             o->sim[o->nsim++] = argv[i];
         } else if (a[0] == '-' && a[1]) {
@@ -141,11 +145,9 @@ compile(const Options *o, FILE *out)
         const char *why = NULL;
         Mech *m = mech_build(s, A, P, D);
         Constraints *c = constraints_build(s, m, A, P, D);
-        Eom *e = c ? NULL : eom_derive(s, m, form_find(o->form), A, P, D, &why);
-        if (c) { /* classified and checked; the emitter does not take them yet */
-            fprintf(stderr, "%s: error: this eomc classifies constraints but does not "
-                    "emit constrained models yet (issue 3)\n", o->spec);
-        } else if (!e) {
+        const Form *form = form_find(o->form);
+        Eom *e = eom_derive(s, m, form, A, P, D, &why);
+        if (!e) {
             fprintf(stderr, "%s: error: form '%s' does not apply: %s\n",
                     o->spec, o->form, why);
         } else {
@@ -159,9 +161,13 @@ compile(const Options *o, FILE *out)
                          len ? " " : "", o->jacobian);
                 jac = o->jacobian[0] == 's' ? EMIT_JACOBIAN_SEEDED : EMIT_JACOBIAN_UNROLLED;
             }
-            EmitInfo info = {EOMC_VERSION, opts, jac};
+            if (o->eliminate) {
+                size_t len = strlen(opts);
+                snprintf(opts + len, sizeof opts - len, "%s--eliminate", len ? " " : "");
+            }
+            EmitInfo info = {EOMC_VERSION, opts, jac, form->eliminate || o->eliminate};
             EmitStats st[EMIT_NFUNCS];
-            emit_model(out, s, m, e, P, D, &info, st);
+            emit_model(out, s, m, e, c, P, D, &info, st);
             if (o->stats)
                 print_stats(st);
             rc = 0;
@@ -263,8 +269,9 @@ run(const Options *o)
     const char *jac = o->jacobian ? o->jacobian : "auto";
     size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) + 80;
     text = xrealloc(text, len + extra);
-    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s --jacobian %s",
-                            o->form, o->effects ? o->effects : "(scene)", jac);
+    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s --eliminate %d --jacobian %s",
+                            o->form, o->effects ? o->effects : "(scene)", o->eliminate,
+                            jac);
     char stem[200], name[256];
     spec_stem(o->spec, stem, sizeof stem);
     snprintf(name, sizeof name, "sim-%s", stem);

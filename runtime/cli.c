@@ -31,7 +31,8 @@ typedef struct Csv {
     eomc_sim *sim;
     long rows;
     double E0, dE; /* first energy, largest change seen */
-    double *TV;
+    double *res;   /* [nc] constraint residuals of a row */
+    double res_max; /* the largest |residual| written */
 } Csv;
 
 /* ---- messages ---- */
@@ -342,14 +343,22 @@ print_header(FILE *f, const eomc_model *m)
         fprintf(f, ",%s", m->q_names[i]);
     for (int i = 0; i < m->nq; i++)
         fprintf(f, ",%s'", m->q_names[i]);
-    fprintf(f, ",T,V,E\n");
+    fprintf(f, ",T,V,E");
+    for (int k = 0; k < m->nc; k++)
+        fprintf(f, ",lambda[%s]", m->c_names[k]);
+    for (int k = 0; k < m->nc; k++)
+        fprintf(f, ",res[%s]", m->c_names[k]);
+    fprintf(f, "\n");
 }
 
 static int
 write_row(void *ctx, double t, const double *x)
 {
     Csv *w = ctx;
-    int n = eomc_sim_model(w->sim)->nq;
+    const eomc_model *m = eomc_sim_model(w->sim);
+    int n = m->nq, nc = m->nc;
+    if (nc > 0 && eomc_sim_residuals(w->sim, t, x, x + n, w->res) != EOMC_OK)
+        return EOMC_ENUMERIC;
     double T, V;
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
     double E = T + V;
@@ -360,7 +369,15 @@ write_row(void *ctx, double t, const double *x)
     fprintf(w->f, "%.17g", t);
     for (int i = 0; i < 2 * n; i++)
         fprintf(w->f, ",%.17g", x[i]);
-    fprintf(w->f, ",%.17g,%.17g,%.17g\n", T, V, E);
+    fprintf(w->f, ",%.17g,%.17g,%.17g", T, V, E);
+    const double *lam = eomc_sim_multipliers(w->sim);
+    for (int k = 0; k < nc; k++)
+        fprintf(w->f, ",%.17g", lam[k]);
+    for (int k = 0; k < nc; k++) {
+        fprintf(w->f, ",%.17g", w->res[k]);
+        w->res_max = fmax(w->res_max, fabs(w->res[k]));
+    }
+    fputc('\n', w->f);
     w->rows++;
     return EOMC_OK;
 }
@@ -430,10 +447,12 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
     const eomc_model *m = eomc_sim_model(sim);
     double *a = calloc((size_t)m->nq, sizeof *a);
     int rc = eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
-    if (rc == EOMC_OK)
+    if (rc == EOMC_OK) {
         for (int i = 0; i < m->nq; i++)
             printf("%s'' %.17g\n", m->q_names[i], a[i]);
-    else
+        for (int k = 0; k < m->nc; k++)
+            printf("lambda[%s] %.17g\n", m->c_names[k], eomc_sim_multipliers(sim)[k]);
+    } else
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     free(a);
     return rc;
@@ -443,9 +462,10 @@ static int
 simulate(Cli *c, eomc_sim *sim, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    Csv w = {stdout, sim, 0, 0, 0, NULL};
+    Csv w = {stdout, sim, 0, 0, 0, calloc((size_t)m->nc + 1, sizeof(double)), 0};
     if (c->out && !(w.f = fopen(c->out, "w"))) {
         fprintf(stderr, "%s: -o: cannot write '%s'\n", c->prog, c->out);
+        free(w.res);
         return EOMC_EUSAGE;
     }
     print_header(w.f, m);
@@ -463,10 +483,14 @@ simulate(Cli *c, eomc_sim *sim, double *x)
     if (rc == EOMC_ENUMERIC)
         fprintf(stderr, "%s: the %ld rows computed up to then are kept\n", c->prog,
                 w.rows);
-    if (c->stats)
+    if (c->stats) {
         print_stats(&st);
+        if (m->nc > 0)
+            fprintf(stderr, "max_residual %.3g\n", w.res_max);
+    }
     if (c->summary && !rc)
         print_summary(c, m, &w, &st);
+    free(w.res);
     return rc;
 }
 

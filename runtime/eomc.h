@@ -53,6 +53,15 @@ void eomc_sim_initial(const eomc_sim *s, double *q, double *v);
  * not positive definite, or q'' is not finite. */
 int eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v,
                    double *a);
+/* Constrained models (model->nc > 0): the multipliers lambda [nc] of the
+ * last eomc_sim_accel (constraint forces: the motion is E + B^T lambda =
+ * 0), or NULL for a model without constraints. */
+const double *eomc_sim_multipliers(const eomc_sim *s);
+/* Each constraint's residual at its own level [nc]: g (holonomic), phi
+ * (first order) or f at the accelerations (second order). */
+int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
+                       double *res);
+
 /* T and V at (t, q, v). */
 void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,
                      double *T, double *V);

@@ -11,6 +11,11 @@
  * The generated file needs nothing but <math.h> and this header, so it can
  * be used without the runtime library.
  *
+ * With constraints f_k(t, q, q', q'') = 0 (brought to acceleration level;
+ * holonomic ones differentiated twice, first-order ones once) the motion
+ * is E + B^T lambda = 0, f = 0 with B = df/dq'' (multipliers), or
+ * C^T E = 0, f = 0 with C spanning the null space of B (elimination).
+ *
  * Argument names used below:
  *   t   time                       q   coordinates            [nq]
  *   v   velocities q'   [nq]       a   accelerations q''      [nq]
@@ -19,7 +24,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 1
+#define EOMC_ABI_VERSION 2
 
 typedef struct eomc_model {
     int abi;               /* EOMC_ABI_VERSION of the generator */
@@ -65,9 +70,33 @@ typedef struct eomc_model {
      * diagonal (d_k <= EOMC_PIVOT_TOL * M_kk:
      * M is singular or not positive definite), in which case a is
      * meaningless.  NULL for large models (nq > 12), where the runtime
-     * factors mass_bias's M with GSL instead. */
+     * factors mass_bias's M with GSL instead, and for constrained ones. */
     int (*accel)(double t, const double *q, const double *v, const double *p,
                  const double *u, double *a);
+
+    /* ---- constraints (nc = 0: none; then the rest is NULL or 0) ---- */
+    int nc;
+    const char *const *c_names; /* [nc] */
+    const int *c_order;         /* [nc] 0 holonomic, 1 first order, 2 second order */
+    const int *c_dependent;     /* [nc] the coordinate each one determines when
+                                 * they are eliminated */
+    int c_affine;               /* every f_k is affine in a: f = B a + f(a = 0) */
+    int eliminate;              /* 0: multipliers (KKT), 1: elimination (Maggi) */
+    /* f [nc] and B = df/da [nc*nq] at (t, q, v, a). */
+    void (*constraint)(double t, const double *q, const double *v, const double *a,
+                       const double *p, const double *u, double *f, double *B);
+    /* The constraints at their own level: pos[k] = g_k (holonomic, else 0),
+     * vel[k] = g_k' (holonomic) or phi_k (first order), else 0. */
+    void (*c_levels)(double t, const double *q, const double *v, const double *p,
+                     const double *u, double *pos, double *vel);
+    /* Partial derivatives of f and B at (t, q, v, a), u held fixed:
+     * dfdq[k*nq+j] = df_k/dq_j (dfdv, dfdu [nc*nu], dfdt [nc] alike),
+     * dBdq[(k*nq+i)*nq+j] = dB_ki/dq_j (dBdv, dBda alike),
+     * dBdu[(k*nq+i)*nu+l] = dB_ki/du_l, dBdt[k*nq+i] = dB_ki/dt. */
+    void (*c_jacobian)(double t, const double *q, const double *v, const double *a,
+                       const double *p, const double *u, double *dfdq, double *dfdv,
+                       double *dfdu, double *dfdt, double *dBdq, double *dBdv,
+                       double *dBda, double *dBdu, double *dBdt);
 } eomc_model;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

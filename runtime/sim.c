@@ -6,7 +6,7 @@
  * the Jacobian run without allocating.  GSL's error handler is turned off
  * so that a failing factorization comes back as a status, never an abort.
  */
-#include "eomc.h"
+#include "simimpl.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
@@ -17,24 +17,6 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-
-struct eomc_sim {
-    const eomc_model *m;
-    int n, nu;
-    double *p;               /* [np] parameter values */
-    double *u, *dudt;        /* [nu] inputs at the last time asked */
-    double *u_const;         /* [nu] held values, where u_held */
-    unsigned char *u_held;   /* [nu] */
-    double *M, *h, *a, *Mdiag;            /* [n*n], [n], [n], [n] */
-    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
-    double *col;             /* [n] one right-hand side of M y = b */
-    eomc_stats *st;          /* counters of the running integration */
-    int progress;            /* show progress (a terminal, > 1 s) */
-    double t_end, wall0, next_show;
-    int shown;
-    size_t errlen;
-    char *err;               /* the last error message */
-};
 
 const char *const eomc_methods[] = {
     "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp", "rk4imp",
@@ -93,10 +75,13 @@ eomc_sim_alloc(const eomc_model *m)
     s->errlen = 1024;
     for (int i = 0; i < m->nq; i++)
         s->errlen += 2 * (strlen(m->q_names[i]) + 32);
+    for (int k = 0; k < m->nc; k++)
+        s->errlen += strlen(m->c_names[k]) + strlen(m->q_names[m->c_dependent[k]]) + 8;
     s->err = calloc(s->errlen, 1);
+    s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
-        !s->col || !s->err) {
+        !s->col || !s->err || (m->nc > 0 && !s->kkt)) {
         eomc_sim_free(s);
         return NULL;
     }
@@ -114,6 +99,7 @@ eomc_sim_free(eomc_sim *s)
                       s->err};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
+    kkt_free(s->kkt);
     free(s);
 }
 
@@ -140,9 +126,9 @@ usage_error(eomc_sim *s, const char *fmt, ...)
 }
 
 /* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." */
-static int
-numeric_error(eomc_sim *s, double t, const double *q, const double *v,
-              const char *fmt, ...)
+int
+sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
+                  const char *fmt, ...)
 {
     size_t len = 0, cap = s->errlen;
     len += (size_t)snprintf(s->err, cap, "t = %.17g: ", t);
@@ -187,8 +173,8 @@ eomc_sim_params(const eomc_sim *s)
 }
 
 /* u and du/dt at t into s->u, s->dudt, held inputs as constants. */
-static void
-inputs_at(eomc_sim *s, double t)
+void
+sim_inputs_at(eomc_sim *s, double t)
 {
     if (s->nu == 0)
         return;
@@ -203,7 +189,7 @@ inputs_at(eomc_sim *s, double t)
 void
 eomc_sim_inputs(eomc_sim *s, double t, double *u)
 {
-    inputs_at(s, t);
+    sim_inputs_at(s, t);
     if (s->nu)
         memcpy(u, s->u, (size_t)s->nu * sizeof *u);
 }
@@ -266,7 +252,7 @@ solve_neg(eomc_sim *s, double *b)
 static int
 pivot_error(eomc_sim *s, double t, const double *q, const double *v, int k)
 {
-    return numeric_error(s, t, q, v,
+    return sim_numeric_error(s, t, q, v,
                          "mass matrix is singular or not positive definite "
                          "(pivot %d, coordinate %s)", k, s->m->q_names[k - 1]);
 }
@@ -276,12 +262,15 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
 {
     const eomc_model *m = s->m;
     int n = s->n, k;
-    inputs_at(s, t);
+    sim_inputs_at(s, t);
     double z = (t - t) + nonfinite_sum(q, n) + nonfinite_sum(v, n) +
                nonfinite_sum(s->u, s->nu);
     if (z != 0.0)
-        return numeric_error(s, t, q, v, "the state or an input is not finite");
-    if (m->accel) {
+        return sim_numeric_error(s, t, q, v, "the state or an input is not finite");
+    if (s->kkt) {
+        if ((k = kkt_accel(s, t, q, v, a)) != EOMC_OK)
+            return k;
+    } else if (m->accel) {
         k = m->accel(t, q, v, s->p, s->u, a);
     } else {
         m->mass_bias(t, q, v, s->p, s->u, s->M, a);
@@ -294,9 +283,26 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     if (nonfinite_sum(a, n) != 0.0)
         for (int i = 0; i < n; i++)
             if (!isfinite(a[i]))
-                return numeric_error(s, t, q, v, "acceleration %s'' is not finite",
+                return sim_numeric_error(s, t, q, v, "acceleration %s'' is not finite",
                                      m->q_names[i]);
     return EOMC_OK;
+}
+
+const double *
+eomc_sim_multipliers(const eomc_sim *s)
+{
+    return s->kkt ? kkt_multipliers(s->kkt) : NULL;
+}
+
+int
+eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v, double *res)
+{
+    if (!s->kkt)
+        return EOMC_OK;
+    int rc = eomc_sim_accel(s, t, q, v, s->a);
+    if (rc == EOMC_OK)
+        kkt_residuals(s, t, q, v, s->a, res);
+    return rc;
 }
 
 void
@@ -304,7 +310,7 @@ eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double 
                 double *V)
 {
     double TV[2];
-    inputs_at(s, t);
+    sim_inputs_at(s, t);
     s->m->energy(t, q, v, s->p, s->u, TV);
     *T = TV[0];
     *V = TV[1];
@@ -318,6 +324,8 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
     const eomc_model *m = s->m;
     int n = s->n, nu = s->nu, N = 2 * n;
     const double *q = x, *v = x + n;
+    if (s->kkt)
+        return kkt_jacobian(s, t, x, dfdx, dfdt);
     int rc = eomc_sim_accel(s, t, q, v, s->a);
     if (rc)
         return rc;
@@ -444,12 +452,12 @@ driver_error(eomc_sim *s, int status, double t, const double *x, double hmin,
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
     case GSL_EMAXITER:
-        return numeric_error(s, t, x, x + n, "too many steps (the limit is %ld)",
+        return sim_numeric_error(s, t, x, x + n, "too many steps (the limit is %ld)",
                              max_steps);
     case GSL_ENOPROG:
-        return numeric_error(s, t, x, x + n, "step size underflow (below %.3g)", hmin);
+        return sim_numeric_error(s, t, x, x + n, "step size underflow (below %.3g)", hmin);
     default:
-        return numeric_error(s, t, x, x + n, "the integrator failed: %s",
+        return sim_numeric_error(s, t, x, x + n, "the integrator failed: %s",
                              gsl_strerror(status));
     }
 }
@@ -513,7 +521,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         return rc;
     int n = s->n;
     if (!all_finite(x, 2 * n) || !all_finite(s->p, s->m->np))
-        return numeric_error(s, o->t0, x, x + n,
+        return sim_numeric_error(s, o->t0, x, x + n,
                              "the initial state or a parameter is not finite");
     s->st = st;
     s->progress = o->progress && isatty(2);
@@ -546,7 +554,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             break;
         }
         if (!all_finite(x, 2 * n)) {
-            rc = numeric_error(s, t, x, x + n, "the state is not finite");
+            rc = sim_numeric_error(s, t, x, x + n, "the state is not finite");
             break;
         }
         rc = row ? row(ctx, t, x) : 0;

@@ -6,7 +6,7 @@
 #include <string.h>
 
 static const Form *const all[] = {
-    &form_lagrange, &form_nielsen, &form_tzenoff, &form_gibbs_appell,
+    &form_lagrange, &form_maggi, &form_nielsen, &form_tzenoff, &form_gibbs_appell,
 };
 
 const Form *
@@ -21,7 +21,7 @@ form_find(const char *name)
 const char *
 form_names(void)
 {
-    return "lagrange, nielsen, tzenoff, gibbs-appell";
+    return "lagrange, maggi, nielsen, tzenoff, gibbs-appell";
 }
 
 ExprId *

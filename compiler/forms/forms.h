@@ -18,9 +18,12 @@ typedef struct Form {
      * apply to this model. */
     ExprId *(*residual)(const Mech *m, Arena *A, ExprPool *P, Diff *D,
                         const char **why);
+    int eliminate;       /* constraints by elimination rather than multipliers */
 } Form;
 
-extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell;
+/* maggi is Lagrange's residual with the constraints eliminated (C^T E =
+ * 0, f = 0); --eliminate selects elimination for the other forms. */
+extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi;
 
 /* The form called `name`, or NULL. */
 const Form *form_find(const char *name);

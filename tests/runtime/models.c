@@ -81,12 +81,16 @@ osc_accel(double t, const double *q, const double *v, const double *p,
     return piv > 0.0 ? 0 : 1;
 }
 
+/* The constraint members of a model without constraints. */
+#define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL
+
 const eomc_model osc_model = {
     EOMC_ABI_VERSION, "osc", "osc.yaml", "lagrange", "",
     1, 3, 0, osc_q, osc_p, osc_u, osc_pdef,
     10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     osc_initial, no_inputs, osc_mass_bias, osc_energy, osc_jacobian,
     osc_accel,
+    NO_CONSTRAINTS,
 };
 
 void
@@ -186,6 +190,7 @@ const eomc_model coupled_model = {
     10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cp_initial, no_inputs, cp_mass_bias, cp_energy, cp_jacobian,
     NULL,
+    NO_CONSTRAINTS,
 };
 
 /* ---- the driven oscillator: E = m x'' + c x' + k x - u - b t ---- */
@@ -261,6 +266,7 @@ const eomc_model driven_model = {
     5.0, 0.05, "rkf45", 1e-10, 1e-10, 0.0,
     dr_initial, dr_inputs, dr_mass_bias, dr_energy, dr_jacobian,
     dr_accel,
+    NO_CONSTRAINTS,
 };
 
 void
@@ -344,6 +350,7 @@ const eomc_model nonpd_model = {
     2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     np_accel,
+    NO_CONSTRAINTS,
 };
 
 const eomc_model nonpd_gsl_model = {
@@ -352,4 +359,5 @@ const eomc_model nonpd_gsl_model = {
     2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     NULL,
+    NO_CONSTRAINTS,
 };

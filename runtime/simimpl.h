@@ -1,0 +1,53 @@
+/*
+ * simimpl.h: the inside of an eomc_sim, shared by sim.c (unconstrained
+ * models, integration) and kkt.c (constrained ones).  Not installed.
+ */
+#ifndef EOMC_SIMIMPL_H
+#define EOMC_SIMIMPL_H
+
+#include "eomc.h"
+
+#include <stddef.h>
+
+typedef struct Kkt Kkt;
+
+struct eomc_sim {
+    const eomc_model *m;
+    int n, nu;
+    double *p;               /* [np] parameter values */
+    double *u, *dudt;        /* [nu] inputs at the last time asked */
+    double *u_const;         /* [nu] held values, where u_held */
+    unsigned char *u_held;   /* [nu] */
+    double *M, *h, *a, *Mdiag;            /* [n*n], [n], [n], [n] */
+    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
+    double *col;             /* [n] one right-hand side of M y = b */
+    eomc_stats *st;          /* counters of the running integration */
+    int progress;            /* show progress (a terminal, > 1 s) */
+    double t_end, wall0, next_show;
+    int shown;
+    size_t errlen;
+    char *err;               /* the last error message */
+    Kkt *kkt;                /* constrained models: work arrays, multipliers */
+};
+
+
+/* "t = T: CAUSE; state: q1 = .., q1' = .."; returns EOMC_ENUMERIC. */
+int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
+                      const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+/* u and du/dt at t into s->u, s->dudt (held inputs constant). */
+void sim_inputs_at(eomc_sim *s, double t);
+
+/* kkt.c: NULL-safe; kkt_alloc returns NULL when memory runs out. */
+Kkt *kkt_alloc(const eomc_model *m);
+void kkt_free(Kkt *k);
+/* q'' (and the multipliers, kept in the Kkt) at (t, q, v): inputs already
+ * evaluated into s->u. */
+int kkt_accel(eomc_sim *s, double t, const double *q, const double *v, double *a);
+/* The Jacobian of x' = f(t, x) for a constrained model. */
+int kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt);
+const double *kkt_multipliers(const Kkt *k);
+/* Each constraint at its own level (g, phi, or f at a). */
+void kkt_residuals(eomc_sim *s, double t, const double *q, const double *v,
+                   const double *a, double *res);
+
+#endif

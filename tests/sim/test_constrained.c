@@ -8,6 +8,10 @@
  *    lambda = m (g cos(theta) + l theta'^2) / (2 l) (the rod's tension T
  *    with constraint force -B^T lambda = -2 lambda (x, y));
  *  - appell on the branch z' = a v: the closed form of docs/mechanics.md;
+ *  - precession (second-order constraint on a rigid body): the paper's
+ *    two equations of motion, C r' - (A - B) p q = 0 and
+ *    C r' psi' cos(theta) + A p p' + B q q' + (A - B) p q phi' = 0, and the
+ *    constraint itself, at random states;
  *  - the Jacobian of x' = f(t, x) against central differences of the
  *    accelerations, for both models.
  */
@@ -16,7 +20,7 @@
 
 #include <stdlib.h>
 
-extern const eomc_model cartesian_pendulum_model, appell_model;
+extern const eomc_model cartesian_pendulum_model, appell_model, precession_model;
 
 static void
 pendulum(void)
@@ -64,6 +68,37 @@ appell(void)
     eomc_sim_free(s);
 }
 
+static void
+precession(void)
+{
+    eomc_sim *s = eomc_sim_alloc(&precession_model);
+    const double A = 1.0, B = 1.5, C = 2.0, lam = 0.5;
+    int ok = 1, con = 1;
+    for (int k = 0; k < 50; k++) {
+        double q[3] = {check_rand(-3, 3), check_rand(0.3, 2.8), check_rand(-3, 3)};
+        double v[3] = {check_rand(-1, 1), check_rand(-1, 1), check_rand(-1, 1)}, a[3];
+        ok &= eomc_sim_accel(s, 0.0, q, v, a) == EOMC_OK;
+        double th = q[1], ph = q[2], ps1 = v[0], th1 = v[1], ph1 = v[2];
+        double st = sin(th), ct = cos(th), sp = sin(ph), cp = cos(ph);
+        double p = ps1 * st * sp + th1 * cp, qq = ps1 * st * cp - th1 * sp, r = ps1 * ct + ph1;
+        double pd = a[0] * st * sp + ps1 * ct * th1 * sp + ps1 * st * cp * ph1 + a[1] * cp -
+                    th1 * sp * ph1;
+        double qd = a[0] * st * cp + ps1 * ct * th1 * cp - ps1 * st * sp * ph1 - a[1] * sp -
+                    th1 * cp * ph1;
+        double rd = a[0] * ct - ps1 * st * th1 + a[2];
+        double e1 = C * rd - (A - B) * p * qq;
+        double e2 = C * rd * ps1 * ct + A * p * pd + B * qq * qd + (A - B) * p * qq * ph1;
+        double s2 = p * p + qq * qq, f = (p * qd - qq * pd) + r * s2 - lam * pow(s2, 1.5);
+        ok &= fabs(e1) < 1e-12 && fabs(e2) < 1e-12;
+        con &= fabs(f) < 1e-12;
+    }
+    CHECK(ok, "%s: precession: C r' = (A - B) p q and the paper's second equation hold",
+          precession_model.form);
+    CHECK(con, "%s: precession: the constraint holds at the computed q''",
+          precession_model.form);
+    eomc_sim_free(s);
+}
+
 /* Largest |J - J_fd| / (1 + |J|) over entries, J from eomc_sim_jacobian. */
 static double
 jacobian_error(const eomc_model *m, const double *x0)
@@ -102,6 +137,10 @@ jacobians(void)
     double xa[6] = {0.3, -0.2, 1.1, 1.5, -0.4, 0.5 * sqrt(1.5 * 1.5 + 0.16)};
     e = jacobian_error(&appell_model, xa);
     CHECK(e < 1e-7, "%s: appell Jacobian = central differences (%.2g)", appell_model.form, e);
+    double xr[6] = {0.4, 1.1, -0.7, 0.5, -0.3, 0.9};
+    e = jacobian_error(&precession_model, xr);
+    CHECK(e < 1e-7, "%s: precession Jacobian = central differences (%.2g)",
+          precession_model.form, e);
 }
 
 int
@@ -109,6 +148,7 @@ main(void)
 {
     pendulum();
     appell();
+    precession();
     jacobians();
     return check_done();
 }

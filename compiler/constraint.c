@@ -31,13 +31,16 @@ at_zero_accel(ExprPool *P, const Mech *m, ExprId f)
     return b;
 }
 
+/* e linear (affine) in the leaves q^(order): all second partials vanish. */
 static int
-is_affine(Diff *D, const Constraints *c, const Mech *m, int a)
+is_linear_in(Diff *D, const Mech *m, ExprId e, int order)
 {
-    for (int j = 0; j < c->n; j++)
-        for (int k = 0; k < c->n; k++)
-            if (diff_partial(D, c->B[a * c->n + j], m->q[2][k]) != EXPR_ZERO)
+    for (int j = 0; j < m->n; j++) {
+        ExprId d = diff_partial(D, e, m->q[order][j]);
+        for (int k = 0; k < m->n; k++)
+            if (diff_partial(D, d, m->q[order][k]) != EXPR_ZERO)
                 return 0;
+    }
     return 1;
 }
 
@@ -107,6 +110,7 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     c->vel = arena_new_array(A, ExprId, nc);
     c->B = arena_new_array(A, ExprId, nc * n);
     c->dependent = arena_new_array(A, int, nc);
+    c->linear = arena_new_array(A, unsigned char, nc);
     c->affine = 1;
     unsigned char *taken = arena_new_array(A, unsigned char, n);
     for (int a = 0; a < nc; a++) {
@@ -119,7 +123,9 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
                        "accelerations (its acceleration-level form is free of q'')",
                        s->constraint[a].name);
         c->b[a] = at_zero_accel(P, m, c->f[a]);
-        c->affine &= is_affine(D, c, m, a);
+        int order = s->constraint[a].order;
+        c->linear[a] = order == 0 || is_linear_in(D, m, s->constraint[a].expr, order);
+        c->affine &= is_linear_in(D, m, c->f[a], 2);
     }
     for (int a = 0; a < nc; a++) /* named ones first: they are not negotiable */
         if (s->constraint[a].dependent >= 0)
@@ -128,4 +134,31 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
         if (s->constraint[a].dependent < 0)
             choose_dependent(c, a, taken, s);
     return c;
+}
+
+void
+constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
+{
+    fprintf(f, "constraints (%d), by %s\n", c->nc, eliminate
+            ? "elimination: C^T E = 0 and f = 0, C = [I; -B_h^-1 B_v] spanning the "
+              "null space of B"
+            : "multipliers: E + B^T lambda = 0 and f = 0 (the KKT system "
+              "[M B^T; B 0] [q''; lambda] = [-h; -b] when f is affine in q'')");
+    static const char *const how[] = {
+        "g(t, q) = 0, differentiated twice; B = dg/dq",
+        "phi(t, q, q') = 0, differentiated once; B = dphi/dq' (Chetaev, Appell)",
+        "f(t, q, q', q'') = 0 as written; B = df/dq''",
+    };
+    for (int k = 0; k < c->nc; k++) {
+        const SpecConstraint *sc = &c->spec[k];
+        const char *lin = sc->order == 1 ? (c->linear[k] ? ", linear in q'" : ", nonlinear in q'")
+                          : sc->order == 2 ? (c->linear[k] ? ", affine in q''"
+                                                           : ", nonlinear in q'' (Newton)")
+                                           : "";
+        fprintf(f, "  %-14s %s%s: %s; determines %s (%s)\n", sc->name,
+                constraint_order_name(sc->order), lin, how[sc->order],
+                s->coord[c->dependent[k]].name,
+                sc->dependent >= 0 ? "named in the spec" : "chosen: the last coordinate "
+                "it involves that no earlier constraint took");
+    }
 }

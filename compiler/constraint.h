@@ -14,6 +14,8 @@
 
 #include "mech.h"
 
+#include <stdio.h>
+
 typedef struct Constraints {
     int nc, n;
     const SpecConstraint *spec; /* [nc] names, orders, locations */
@@ -23,6 +25,8 @@ typedef struct Constraints {
     ExprId *pos;      /* [nc] holonomic: g; otherwise EXPR_NONE */
     ExprId *vel;      /* [nc] holonomic: g'; first order: phi; else EXPR_NONE */
     int affine;       /* every f_a affine in q'' */
+    unsigned char *linear; /* [nc] first order: linear in q'; second order:
+                            * affine in q''; holonomic: 1 */
     int *dependent;   /* [nc] coordinate eliminated by each constraint */
 } Constraints;
 
@@ -33,8 +37,10 @@ typedef struct Constraints {
 Constraints *constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P,
                                Diff *D);
 
-/* "holonomic", "first-order", "second-order" (+ " nonlinear in q''" etc.
- * are for --explain). */
+/* "holonomic", "first-order", "second-order". */
 const char *constraint_order_name(int order);
+
+/* What --explain says about the constraints: one line each. */
+void constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate);
 
 #endif

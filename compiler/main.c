@@ -26,7 +26,7 @@ enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian;
-    int stats, eliminate;
+    int stats, eliminate, explain;
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
 } Options;
@@ -44,6 +44,8 @@ usage(FILE *f)
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
         "  --stats          print the operation counts of each emitted function\n"
+        "  --explain        (compile) say how the model was classified and derived,\n"
+        "                   on stdout; the C goes only to -o FILE then\n"
         "  --eliminate      eliminate the constraints (C^T E = 0, f = 0) instead of\n"
         "                   using multipliers; --form maggi is lagrange with it\n"
         "  --jacobian HOW   auto (default), unrolled or seeded: how the Jacobian\n"
@@ -87,6 +89,8 @@ parse_args(int argc, char **argv, Options *o)
             *slot = argv[++i];
         } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
             o->stats = 1;
+        } else if (!run && !strcmp(a, "--explain") && !strcmp(o->cmd, "compile")) {
+            o->explain = 1;
         } else if (!strcmp(a, "--eliminate") && !(run && o->spec && o->nsim)) {
             o->eliminate = 1;
         } else if (run && o->spec) {
@@ -123,7 +127,33 @@ print_stats(const EmitStats *st)
     }
 }
 
-/* Load, derive and emit to `out`.  Returns 0, or an exit status. */
+/* --explain: what eomc made of the spec. */
+static void
+explain(const Spec *s, const Form *form, const Constraints *c, const EmitInfo *info)
+{
+    printf("%s (%s): %d coordinate%s (", s->name, s->path, s->nq, s->nq == 1 ? "" : "s");
+    for (int i = 0; i < s->nq; i++)
+        printf("%s%s", i ? ", " : "", s->coord[i].name);
+    printf("), %d parameters, %d inputs, %d particles, %d bodies\n", s->np, s->nu,
+           s->npart, s->nbody);
+    printf("form %s: E = %s\n", form->name, form->formula);
+    for (int on = 1; on >= 0; on--) {
+        int any = 0;
+        printf(on ? "effects on:" : "; off (no code):");
+        for (int k = 0; k < s->neffect; k++)
+            if (s->effect[k].enabled == on)
+                printf(" %s", s->effect[k].name), any = 1;
+        printf("%s", any ? "" : " (none)");
+    }
+    printf("\n");
+    if (c)
+        constraints_explain(stdout, c, s, info->eliminate);
+    else
+        printf("no constraints: q'' = -M^-1 h\n");
+}
+
+/* Load, derive and emit to `out` (NULL: nothing, --explain only).
+ * Returns 0, or an exit status. */
 static int
 compile(const Options *o, FILE *out)
 {
@@ -167,7 +197,10 @@ compile(const Options *o, FILE *out)
             }
             EmitInfo info = {EOMC_VERSION, opts, jac, form->eliminate || o->eliminate};
             EmitStats st[EMIT_NFUNCS];
-            emit_model(out, s, m, e, c, P, D, &info, st);
+            if (o->explain)
+                explain(s, form, c, &info);
+            if (out)
+                emit_model(out, s, m, e, c, P, D, &info, st);
             if (o->stats)
                 print_stats(st);
             rc = 0;
@@ -303,7 +336,7 @@ main(int argc, char **argv)
     parse_args(argc, argv, &o);
     int rc;
     if (!strcmp(o.cmd, "compile"))
-        rc = o.out ? compile_to_file(&o, o.out) : compile(&o, stdout);
+        rc = o.out ? compile_to_file(&o, o.out) : compile(&o, o.explain ? NULL : stdout);
     else if (!strcmp(o.cmd, "build")) {
         char def[256];
         if (!o.out) { /* default: the spec's name in the current directory */

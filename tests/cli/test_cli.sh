@@ -67,6 +67,20 @@ near "$got" -3.5; ok $? "--effects gravity: y'' = -g = $got with f = 100 set"
 got=$("$eomc" run "$src/specs/falling_particle.yaml" --effects push --accel --set f=3 --set m=2 | accel_of y)
 near "$got" 1.5; ok $? "--effects push: y'' = f/m = $got, no gravity"
 
+# --explain: the classification of each constraint, and no C on stdout
+ex() { "$eomc" compile "$src/specs/$1.yaml" --explain 2>&1; }
+ex appell | grep -q "cone *first-order, nonlinear in q'.*determines z"
+ok $? "--explain: Appell's cone is first order, nonlinear in q', determines z"
+ex precession | grep -q "precession *second-order, affine in q''"
+ok $? "--explain: the precession constraint is second order, affine in q''"
+ex cartesian_pendulum | grep -q "rod *holonomic.*B = dg/dq"
+ok $? "--explain: the rod is holonomic"
+printf 'coordinates: [x, y]\nparticles: {b: {mass: 1, position: [x, y]}}\nconstraints: {roll: {expr: "x'"'"' - 2*y'"'"'", dependent: x}}\n' > "$tmp/lin.yaml"
+"$eomc" compile "$tmp/lin.yaml" --explain --form maggi > "$tmp/lin.txt" 2>&1
+grep -q "roll *first-order, linear in q'.*determines x (named in the spec)" "$tmp/lin.txt" &&
+  grep -q "by elimination" "$tmp/lin.txt" && ! grep -q "#include" "$tmp/lin.txt"
+ok $? "--explain: a linear first-order constraint, its named dependent, elimination, no C"
+
 # failures: exit status 2, no output left
 printf 'coordinates: [x]\nparticles: {p: {mass: 1, position: [x, y]}}\n' > "$tmp/bad.yaml"
 "$eomc" compile "$tmp/bad.yaml" -o "$tmp/bad.c" 2> "$tmp/bad.err"; st=$?

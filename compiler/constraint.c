@@ -10,25 +10,11 @@
  */
 #include "constraint.h"
 
-#include <stdlib.h>
-
 const char *
 constraint_order_name(int order)
 {
     static const char *const names[] = {"holonomic", "first-order", "second-order"};
     return order >= 0 && order <= 2 ? names[order] : "?";
-}
-
-/* f at q'' = 0. */
-static ExprId
-at_zero_accel(ExprPool *P, const Mech *m, ExprId f)
-{
-    ExprId *zero = calloc((size_t)m->n, sizeof *zero);
-    for (int i = 0; i < m->n; i++)
-        zero[i] = EXPR_ZERO;
-    ExprId b = expr_subst(P, f, m->n, m->q[2], zero);
-    free(zero);
-    return b;
 }
 
 /* e linear (affine) in the leaves q^(order): all second partials vanish. */
@@ -113,6 +99,9 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     c->linear = arena_new_array(A, unsigned char, nc);
     c->affine = 1;
     unsigned char *taken = arena_new_array(A, unsigned char, n);
+    ExprId *zero = arena_new_array(A, ExprId, n); /* q'' = 0, for b */
+    for (int j = 0; j < n; j++)
+        zero[j] = EXPR_ZERO;
     for (int a = 0; a < nc; a++) {
         to_acceleration(c, D, a);
         int any = 0;
@@ -122,7 +111,7 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
             diag_error(s->constraint[a].loc, "constraint '%s' does not restrict the "
                        "accelerations (its acceleration-level form is free of q'')",
                        s->constraint[a].name);
-        c->b[a] = at_zero_accel(P, m, c->f[a]);
+        c->b[a] = expr_subst(P, c->f[a], n, m->q[2], zero);
         int order = s->constraint[a].order;
         c->linear[a] = order == 0 || is_linear_in(D, m, s->constraint[a].expr, order);
         c->affine &= is_linear_in(D, m, c->f[a], 2);

@@ -199,10 +199,11 @@ compile(const Options *o, FILE *out)
             EmitStats st[EMIT_NFUNCS];
             if (o->explain)
                 explain(s, form, c, &info);
-            if (out)
+            if (out) {
                 emit_model(out, s, m, e, c, P, D, &info, st);
-            if (o->stats)
-                print_stats(st);
+                if (o->stats)
+                    print_stats(st);
+            }
             rc = 0;
         }
     }

@@ -773,30 +773,41 @@ load_terms(Loader *L, yaml_node_t *n, unsigned allow, const char *what, int *cou
     return t;
 }
 
+/* The index of the name node n holds among cands[0..count), or a
+ * diagnostic at n: "unknown WHAT 'x'", or with is_not "'x' is not a
+ * WHAT", and "; did you mean 'y'?" when a name is close. */
+static int
+find_in(Loader *L, yaml_node_t *n, const char *what, int is_not, const char **cands,
+        int count)
+{
+    const char *name = scalar(L, n, what);
+    for (int i = 0; i < count; i++)
+        if (!strcmp(cands[i], name))
+            return i;
+    const char *near = diag_nearest(name, cands, count);
+    char msg[256];
+    if (is_not)
+        snprintf(msg, sizeof msg, "'%s' is not a %s", name, what);
+    else
+        snprintf(msg, sizeof msg, "unknown %s '%s'", what, name);
+    if (near)
+        diag_error(loc_of(L, n), "%s; did you mean '%s'?", msg, near);
+    diag_error(loc_of(L, n), "%s", msg);
+}
+
 /* The particle or body a force acts on: its index, *is_body set. */
 static int
 find_target(Loader *L, yaml_node_t *n, int *is_body)
 {
-    const char *name = scalar(L, n, "a particle or body name");
     const Spec *s = L->s;
     const char **cands = arena_new_array(L->A, const char *, s->npart + s->nbody + 1);
-    *is_body = 0;
-    for (int i = 0; i < s->npart; i++) {
-        if (!strcmp(s->part[i].name, name))
-            return i;
+    for (int i = 0; i < s->npart; i++)
         cands[i] = s->part[i].name;
-    }
-    *is_body = 1;
-    for (int i = 0; i < s->nbody; i++) {
-        if (!strcmp(s->body[i].name, name))
-            return i;
+    for (int i = 0; i < s->nbody; i++)
         cands[s->npart + i] = s->body[i].name;
-    }
-    const char *near = diag_nearest(name, cands, s->npart + s->nbody);
-    if (near)
-        diag_error(loc_of(L, n), "unknown particle or body '%s'; did you mean '%s'?", name,
-                   near);
-    diag_error(loc_of(L, n), "unknown particle or body '%s'", name);
+    int k = find_in(L, n, "particle or body", 0, cands, s->npart + s->nbody);
+    *is_body = k >= s->npart;
+    return *is_body ? k - s->npart : k;
 }
 
 /* A force vector on a particle or a body's centre, or a torque on a body. */
@@ -896,17 +907,10 @@ load_effects(Loader *L, yaml_node_t *map)
 static int
 find_coordinate(Loader *L, yaml_node_t *n)
 {
-    const char *name = scalar(L, n, "a coordinate name");
     const char **cands = arena_new_array(L->A, const char *, L->s->nq + 1);
-    for (int i = 0; i < L->s->nq; i++) {
-        if (!strcmp(L->s->coord[i].name, name))
-            return i;
+    for (int i = 0; i < L->s->nq; i++)
         cands[i] = L->s->coord[i].name;
-    }
-    const char *near = diag_nearest(name, cands, L->s->nq);
-    if (near)
-        diag_error(loc_of(L, n), "'%s' is not a coordinate; did you mean '%s'?", name, near);
-    diag_error(loc_of(L, n), "'%s' is not a coordinate", name);
+    return find_in(L, n, "coordinate", 1, cands, L->s->nq);
 }
 
 /* NAME: EXPR, or NAME: {expr: EXPR, dependent: COORDINATE}. */
@@ -1010,17 +1014,10 @@ method_name(Loader *L, yaml_node_t *n)
 static int
 find_effect(Loader *L, yaml_node_t *n)
 {
-    const char *name = scalar(L, n, "an effect name");
     const char **cands = arena_new_array(L->A, const char *, L->s->neffect + 1);
-    for (int i = 0; i < L->s->neffect; i++) {
-        if (!strcmp(L->s->effect[i].name, name))
-            return i;
+    for (int i = 0; i < L->s->neffect; i++)
         cands[i] = L->s->effect[i].name;
-    }
-    const char *near = diag_nearest(name, cands, L->s->neffect);
-    if (near)
-        diag_error(loc_of(L, n), "unknown effect '%s'; did you mean '%s'?", name, near);
-    diag_error(loc_of(L, n), "unknown effect '%s'", name);
+    return find_in(L, n, "effect", 0, cands, L->s->neffect);
 }
 
 static double

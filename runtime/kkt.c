@@ -50,12 +50,6 @@ struct Kkt {
     char *names;                /* "rod (y), cone (z)" for messages */
 };
 
-static double *
-zeros(size_t n)
-{
-    return calloc(n ? n : 1, sizeof(double));
-}
-
 Kkt *
 kkt_alloc(const eomc_model *m)
 {
@@ -64,14 +58,14 @@ kkt_alloc(const eomc_model *m)
         return NULL;
     size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, N = n + nc;
     k->n = m->nq, k->nc = m->nc, k->N = (int)N, k->np = m->nq - m->nc;
-    k->K = zeros(N * N), k->r = zeros(N), k->A = zeros(n * n), k->ra = zeros(n);
-    k->f = zeros(nc), k->B = zeros(nc * n), k->lam = zeros(nc), k->zero = zeros(n);
-    k->prev_a = zeros(n), k->prev_lam = zeros(nc);
-    k->dfdq = zeros(nc * n), k->dfdv = zeros(nc * n), k->dfdu = zeros(nc * nu);
-    k->dfdt = zeros(nc);
-    k->dBdq = zeros(nc * n * n), k->dBdv = zeros(nc * n * n), k->dBda = zeros(nc * n * n);
-    k->dBdu = zeros(nc * n * nu), k->dBdt = zeros(nc * n);
-    k->BH = zeros(nc * nc), k->G = zeros(nc * n), k->E = zeros(n);
+    k->K = sim_zeros(N * N), k->r = sim_zeros(N), k->A = sim_zeros(n * n), k->ra = sim_zeros(n);
+    k->f = sim_zeros(nc), k->B = sim_zeros(nc * n), k->lam = sim_zeros(nc), k->zero = sim_zeros(n);
+    k->prev_a = sim_zeros(n), k->prev_lam = sim_zeros(nc);
+    k->dfdq = sim_zeros(nc * n), k->dfdv = sim_zeros(nc * n), k->dfdu = sim_zeros(nc * nu);
+    k->dfdt = sim_zeros(nc);
+    k->dBdq = sim_zeros(nc * n * n), k->dBdv = sim_zeros(nc * n * n), k->dBda = sim_zeros(nc * n * n);
+    k->dBdu = sim_zeros(nc * n * nu), k->dBdt = sim_zeros(nc * n);
+    k->BH = sim_zeros(nc * nc), k->G = sim_zeros(nc * n), k->E = sim_zeros(n);
     k->dep = calloc(nc, sizeof *k->dep), k->indep = calloc(n, sizeof *k->indep);
     k->permN = gsl_permutation_alloc(N), k->permn = gsl_permutation_alloc(n);
     k->permc = gsl_permutation_alloc(nc);
@@ -87,19 +81,19 @@ kkt_alloc(const eomc_model *m)
         kkt_free(k);
         return NULL;
     }
-    unsigned char *taken = calloc(n, 1);
     for (int c = 0; c < m->nc; c++) {
         k->dep[c] = m->c_dependent[c];
-        if (taken)
-            taken[k->dep[c]] = 1;
         size_t at = strlen(k->names);
         snprintf(k->names + at, len - at, "%s%s (%s)", c ? ", " : "", m->c_names[c],
                  m->q_names[k->dep[c]]);
     }
-    for (int i = 0, r = 0; i < m->nq && taken; i++)
-        if (!taken[i])
+    for (int i = 0, r = 0; i < m->nq; i++) {
+        int dependent = 0;
+        for (int c = 0; c < m->nc; c++)
+            dependent |= k->dep[c] == i;
+        if (!dependent)
             k->indep[r++] = i;
-    free(taken);
+    }
     return k;
 }
 
@@ -240,7 +234,7 @@ null_space(Kkt *k)
             k->BH[c * nc + l] = k->B[c * n + k->dep[l]];
     if (lu_factor(k->BH, nc, k->permc) != 0)
         return -1;
-    double col[64], *x = nc <= 64 ? col : k->E; /* E is free here */
+    double *x = k->E; /* free here; n >= nc entries */
     for (int r = 0; r < np; r++) {
         for (int c = 0; c < nc; c++)
             x[c] = k->B[c * n + k->indep[r]];
@@ -399,8 +393,9 @@ kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
     m->c_jacobian(t, q, v, s->a, s->p, s->u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq,
                   k->dBdv, k->dBda, k->dBdu, k->dBdt);
+    /* s->M is this state's, from kkt_accel; B is re-evaluated because a
+     * Newton solve leaves the previous iterate's. */
     m->constraint(t, q, v, s->a, s->p, s->u, k->f, k->B);
-    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
     build_kkt(k, s->M, !m->c_affine);
     if (lu_factor(k->K, N, k->permN) != 0)
         return sim_numeric_error(s, t, q, v, "the constrained system is singular: the "

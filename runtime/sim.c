@@ -38,8 +38,8 @@ step_type(const char *name)
     return NULL;
 }
 
-static double *
-vec(size_t n)
+double *
+sim_zeros(size_t n)
 {
     return calloc(n ? n : 1, sizeof(double));
 }
@@ -57,20 +57,20 @@ eomc_sim_alloc(const eomc_model *m)
     s->m = m;
     s->n = m->nq;
     s->nu = m->nu;
-    s->p = vec(np);
-    s->u = vec(nu);
-    s->dudt = vec(nu);
-    s->u_const = vec(nu);
+    s->p = sim_zeros(np);
+    s->u = sim_zeros(nu);
+    s->dudt = sim_zeros(nu);
+    s->u_const = sim_zeros(nu);
     s->u_held = calloc(nu ? nu : 1, 1);
-    s->M = vec(n * n);
-    s->h = vec(n);
-    s->a = vec(n);
-    s->Mdiag = vec(n);
-    s->dEdq = vec(n * n);
-    s->dEdv = vec(n * n);
-    s->dEdu = vec(n * nu);
-    s->dEdt = vec(n);
-    s->col = vec(n);
+    s->M = sim_zeros(n * n);
+    s->h = sim_zeros(n);
+    s->a = sim_zeros(n);
+    s->Mdiag = sim_zeros(n);
+    s->dEdq = sim_zeros(n * n);
+    s->dEdv = sim_zeros(n * n);
+    s->dEdu = sim_zeros(n * nu);
+    s->dEdt = sim_zeros(n);
+    s->col = sim_zeros(n);
     /* Room for the cause and every coordinate and velocity by name. */
     s->errlen = 1024;
     for (int i = 0; i < m->nq; i++)

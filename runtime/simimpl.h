@@ -31,6 +31,8 @@ struct eomc_sim {
 };
 
 
+/* A zeroed array of n doubles (at least one), or NULL. */
+double *sim_zeros(size_t n);
 /* "t = T: CAUSE; state: q1 = .., q1' = .."; returns EOMC_ENUMERIC. */
 int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));

@@ -587,6 +587,16 @@ static const Func f_c_levels = {
     "    const double *u, double *pos, double *vel", "t, q, v, p, u, pos, vel",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
+static const Func f_c_levels_jacobian = {
+    "c_levels_jacobian",
+    "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
+    " * stabilization adds to df/dx.",
+    "double t, const double *q, const double *v, const double *p,\n"
+    "    const double *u, double *dposdq, double *dveldq, double *dveldv,\n"
+    "    double *dposdu, double *dveldu, double *dposdt, double *dveldt",
+    "t, q, v, p, u, dposdq, dveldq, dveldv, dposdu, dveldu, dposdt, dveldt",
+    SRC("q", "v", NULL, "p", "u", "t"), "(void)dposdu;\n    (void)dveldu;",
+};
 static const Func f_c_jacobian = {
     "c_jacobian",
     "Partial derivatives of f and of B = df/dq'' (u held fixed).",
@@ -760,10 +770,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
                 EOM_SOLVE_MAX);
     if (c)
         println(pr, "    %d, c_names, c_order, c_dependent, %d, %d,\n"
-                "    %s_constraint, %s_c_levels, %s_c_jacobian,", c->nc, c->affine,
-                info->eliminate, nm, nm, nm);
+                "    %s_constraint, %s_c_levels, %s_c_jacobian, %s_c_levels_jacobian,",
+                c->nc, c->affine, info->eliminate, nm, nm, nm, nm);
     else
-        println(pr, "    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,");
+        println(pr, "    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,");
     println(pr, "};");
     println(pr, "");
     println(pr, "#ifdef EOMC_MAIN");
@@ -790,13 +800,40 @@ print_constraint_tables(Printer *pr, const Constraints *c)
     println(pr, "};\n");
 }
 
-/* constraint, c_levels and c_jacobian; their counts into stats[6..8]. */
+/* The derivatives of pos and vel into o; returns the count. */
+static int
+add_levels_jacobian(Printer *pr, const Constraints *c, Diff *D, Out *o)
+{
+    int n = pr->s->nq, nu = pr->s->nu, k = 0;
+    ExprId t = expr_time(pr->P);
+    for (int a = 0; a < c->nc; a++) {
+        ExprId g = c->pos[a] == EXPR_NONE ? EXPR_ZERO : c->pos[a];
+        ExprId w = c->vel[a] == EXPR_NONE ? EXPR_ZERO : c->vel[a];
+        for (int j = 0; j < n; j++) {
+            ExprId qj = expr_var(pr->P, j, 0), vj = expr_var(pr->P, j, 1);
+            add_out(o, &k, diff_partial(D, g, qj), "dposdq[%d]", a * n + j);
+            add_out(o, &k, diff_partial(D, w, qj), "dveldq[%d]", a * n + j);
+            add_out(o, &k, diff_partial(D, w, vj), "dveldv[%d]", a * n + j);
+        }
+        for (int l = 0; l < nu; l++) {
+            ExprId ul = expr_input(pr->P, l);
+            add_out(o, &k, diff_partial(D, g, ul), "dposdu[%d]", a * nu + l);
+            add_out(o, &k, diff_partial(D, w, ul), "dveldu[%d]", a * nu + l);
+        }
+        add_out(o, &k, diff_partial(D, g, t), "dposdt[%d]", a);
+        add_out(o, &k, diff_partial(D, w, t), "dveldt[%d]", a);
+    }
+    return k;
+}
+
+/* constraint, c_levels, c_jacobian and c_levels_jacobian; their counts
+ * into stats[0..3]. */
 static void
 print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
 {
     const Spec *s = pr->s;
     int n = s->nq, nu = s->nu, nc = c->nc, k = 0;
-    Out *o = calloc((size_t)(nc * (3 * n * n + n * nu + 3 * n + nu + 4)), sizeof *o);
+    Out *o = calloc((size_t)(nc * (3 * n * n + n * nu + 3 * n + 2 * nu + 4)), sizeof *o);
     for (int a = 0; a < nc; a++) {
         add_out(o, &k, c->f[a], "f[%d]", a);
         for (int j = 0; j < n; j++)
@@ -836,6 +873,10 @@ print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
     Func fj = f_c_jacobian;
     fj.unused = nu ? NULL : f_c_jacobian.unused;
     stats[2] = (EmitStats){"c_jacobian", print_function(pr, &fj, k, o)};
+    k = add_levels_jacobian(pr, c, D, o);
+    Func fl = f_c_levels_jacobian;
+    fl.unused = nu ? NULL : f_c_levels_jacobian.unused;
+    stats[3] = (EmitStats){"c_levels_jacobian", print_function(pr, &fl, k, o)};
     free(o);
 }
 
@@ -915,6 +956,7 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
     stats[6] = (EmitStats){"constraint", {0, 0, 0, 0}};
     stats[7] = (EmitStats){"c_levels", {0, 0, 0, 0}};
     stats[8] = (EmitStats){"c_jacobian", {0, 0, 0, 0}};
+    stats[9] = (EmitStats){"c_levels_jacobian", {0, 0, 0, 0}};
     if (c)
         print_constraints(&pr, c, D, stats + 6);
     if (e->acc && !c) {

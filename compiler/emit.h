@@ -39,7 +39,7 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 9 };
+enum { EMIT_NFUNCS = 10 };
 
 /* c: the constraints, or NULL. */
 void emit_model(FILE *out, const Spec *s, const Mech *m, const Eom *e,

@@ -274,6 +274,42 @@ appell_c_jacobian(double t, const double *q, const double *v, const double *a,
     dBdt[2] = 0.0;
 }
 
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+static void
+appell_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
+    const double *u, double *dposdq, double *dveldq, double *dveldv,
+    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+{
+    const double v_z = v[2];
+    const double v_x = v[0];
+    const double v_y = v[1];
+    const double p_a = p[2];
+    (void)q;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    dposdq[0] = 0.0;
+    dveldq[0] = 0.0;
+    const double w0 = p_a * p_a;
+    const double w1 = 2.0 * w0;
+    const double w2 = w1 * v_x;
+    const double w3 = -w2;
+    dveldv[0] = w3;
+    dposdq[1] = 0.0;
+    dveldq[1] = 0.0;
+    const double w4 = w1 * v_y;
+    const double w5 = -w4;
+    dveldv[1] = w5;
+    dposdq[2] = 0.0;
+    dveldq[2] = 0.0;
+    const double w6 = 2.0 * v_z;
+    dveldv[2] = w6;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
 const eomc_model appell_model = {
     EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -281,7 +317,7 @@ const eomc_model appell_model = {
     appell_initial, appell_inputs, appell_mass_bias, appell_energy, appell_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
-    appell_constraint, appell_c_levels, appell_c_jacobian,
+    appell_constraint, appell_c_levels, appell_c_jacobian, appell_c_levels_jacobian,
 };
 
 #ifdef EOMC_MAIN

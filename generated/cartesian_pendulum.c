@@ -226,6 +226,36 @@ cartesian_pendulum_c_jacobian(double t, const double *q, const double *v, const 
     dBdt[1] = 0.0;
 }
 
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+static void
+cartesian_pendulum_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
+    const double *u, double *dposdq, double *dveldq, double *dveldv,
+    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+{
+    const double q_x = q[0];
+    const double q_y = q[1];
+    const double v_x = v[0];
+    const double v_y = v[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    const double w0 = 2.0 * q_x;
+    dposdq[0] = w0;
+    const double w1 = 2.0 * v_x;
+    dveldq[0] = w1;
+    dveldv[0] = w0;
+    const double w2 = 2.0 * q_y;
+    dposdq[1] = w2;
+    const double w3 = 2.0 * v_y;
+    dveldq[1] = w3;
+    dveldv[1] = w2;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
 const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
@@ -233,7 +263,7 @@ const eomc_model cartesian_pendulum_model = {
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
-    cartesian_pendulum_constraint, cartesian_pendulum_c_levels, cartesian_pendulum_c_jacobian,
+    cartesian_pendulum_constraint, cartesian_pendulum_c_levels, cartesian_pendulum_c_jacobian, cartesian_pendulum_c_levels_jacobian,
 };
 
 #ifdef EOMC_MAIN

@@ -1110,6 +1110,57 @@ central_constant_speed_c_jacobian(double t, const double *q, const double *v, co
     dBdt[2] = 0.0;
 }
 
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+static void
+central_constant_speed_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
+    const double *u, double *dposdq, double *dveldq, double *dveldv,
+    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+{
+    const double q_r = q[0];
+    const double q_theta = q[1];
+    const double v_r = v[0];
+    const double v_phi = v[2];
+    const double v_theta = v[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    dposdq[0] = 0.0;
+    const double w0 = cos(q_theta);
+    const double w1 = w0 * w0;
+    const double w2 = q_r * w1;
+    const double w3 = v_phi * v_phi;
+    const double w4 = w2 * w3;
+    const double w5 = v_theta * v_theta;
+    const double w6 = q_r * w5;
+    const double w7 = w4 + w6;
+    const double w8 = 2.0 * w7;
+    dveldq[0] = w8;
+    const double w9 = 2.0 * v_r;
+    dveldv[0] = w9;
+    dposdq[1] = 0.0;
+    const double w10 = q_r * q_r;
+    const double w11 = w10 * w0;
+    const double w12 = sin(q_theta);
+    const double w13 = w11 * w12;
+    const double w14 = w13 * w3;
+    const double w15 = (-2.0) * w14;
+    dveldq[1] = w15;
+    const double w16 = w10 * v_theta;
+    const double w17 = 2.0 * w16;
+    dveldv[1] = w17;
+    dposdq[2] = 0.0;
+    dveldq[2] = 0.0;
+    const double w18 = w10 * w1;
+    const double w19 = w18 * v_phi;
+    const double w20 = 2.0 * w19;
+    dveldv[2] = w20;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
 const eomc_model central_constant_speed_model = {
     EOMC_ABI_VERSION, "central_constant_speed", "central_constant_speed.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -1117,7 +1168,7 @@ const eomc_model central_constant_speed_model = {
     central_constant_speed_initial, central_constant_speed_inputs, central_constant_speed_mass_bias, central_constant_speed_energy, central_constant_speed_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
-    central_constant_speed_constraint, central_constant_speed_c_levels, central_constant_speed_c_jacobian,
+    central_constant_speed_constraint, central_constant_speed_c_levels, central_constant_speed_c_jacobian, central_constant_speed_c_levels_jacobian,
 };
 
 #ifdef EOMC_MAIN

@@ -2086,7 +2086,7 @@ const eomc_model chain5_model = {
     1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     chain5_initial, chain5_inputs, chain5_mass_bias, chain5_energy, chain5_jacobian,
     chain5_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,
+    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

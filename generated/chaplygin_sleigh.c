@@ -394,6 +394,41 @@ chaplygin_sleigh_c_jacobian(double t, const double *q, const double *v, const do
     dBdt[2] = 0.0;
 }
 
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+static void
+chaplygin_sleigh_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
+    const double *u, double *dposdq, double *dveldq, double *dveldv,
+    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+{
+    const double q_theta = q[2];
+    const double v_x = v[0];
+    const double v_y = v[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    dposdq[0] = 0.0;
+    dveldq[0] = 0.0;
+    const double w0 = sin(q_theta);
+    const double w1 = -w0;
+    dveldv[0] = w1;
+    dposdq[1] = 0.0;
+    dveldq[1] = 0.0;
+    const double w2 = cos(q_theta);
+    dveldv[1] = w2;
+    dposdq[2] = 0.0;
+    const double w3 = w0 * v_y;
+    const double w4 = w2 * v_x;
+    const double w5 = w3 + w4;
+    const double w6 = -w5;
+    dveldq[2] = w6;
+    dveldv[2] = 0.0;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
 const eomc_model chaplygin_sleigh_model = {
     EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "",
     3, 5, 0, q_names, p_names, u_names, p_default,
@@ -401,7 +436,7 @@ const eomc_model chaplygin_sleigh_model = {
     chaplygin_sleigh_initial, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, chaplygin_sleigh_energy, chaplygin_sleigh_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
-    chaplygin_sleigh_constraint, chaplygin_sleigh_c_levels, chaplygin_sleigh_c_jacobian,
+    chaplygin_sleigh_constraint, chaplygin_sleigh_c_levels, chaplygin_sleigh_c_jacobian, chaplygin_sleigh_c_levels_jacobian,
 };
 
 #ifdef EOMC_MAIN

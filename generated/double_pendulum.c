@@ -550,7 +550,7 @@ const eomc_model double_pendulum_model = {
     1e+01, 0.05, "rk8pd", 1e-12, 1e-12, 0.0,
     double_pendulum_initial, double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_energy, double_pendulum_jacobian,
     double_pendulum_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,
+    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

@@ -148,7 +148,7 @@ const eomc_model falling_particle_model = {
     1.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     falling_particle_initial, falling_particle_inputs, falling_particle_mass_bias, falling_particle_energy, falling_particle_jacobian,
     falling_particle_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,
+    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

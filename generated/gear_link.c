@@ -195,7 +195,7 @@ const eomc_model gear_link_model = {
     1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
     gear_link_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,
+    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

@@ -200,7 +200,7 @@ const eomc_model pendulum_model = {
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     pendulum_initial, pendulum_inputs, pendulum_mass_bias, pendulum_energy, pendulum_jacobian,
     pendulum_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL,
+    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

@@ -906,6 +906,33 @@ precession_c_jacobian(double t, const double *q, const double *v, const double *
     dBdt[2] = 0.0;
 }
 
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+static void
+precession_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
+    const double *u, double *dposdq, double *dveldq, double *dveldv,
+    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+{
+    (void)q;
+    (void)v;
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    dposdq[0] = 0.0;
+    dveldq[0] = 0.0;
+    dveldv[0] = 0.0;
+    dposdq[1] = 0.0;
+    dveldq[1] = 0.0;
+    dveldv[1] = 0.0;
+    dposdq[2] = 0.0;
+    dveldq[2] = 0.0;
+    dveldv[2] = 0.0;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
 const eomc_model precession_model = {
     EOMC_ABI_VERSION, "precession", "precession.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -913,7 +940,7 @@ const eomc_model precession_model = {
     precession_initial, precession_inputs, precession_mass_bias, precession_energy, precession_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
-    precession_constraint, precession_c_levels, precession_c_jacobian,
+    precession_constraint, precession_c_levels, precession_c_jacobian, precession_c_levels_jacobian,
 };
 
 #ifdef EOMC_MAIN

@@ -21,7 +21,10 @@ typedef struct Cli {
     const char *prog;
     eomc_run_opts run;
     const char *out;
-    int stats, summary, accel;
+    int stats, summary, accel, assemble;
+    int stabilize;        /* EOMC_STABILIZE_... */
+    double alpha, beta;   /* Baumgarte's rates */
+    int rates_given;
     char **set, **init; /* NAME=VALUE arguments, in order */
     int nset, ninit;
 } Cli;
@@ -103,10 +106,13 @@ list_names(FILE *f, const char *const *names, int n, const char *suffix)
 
 static const char *const option_names[] = {
     "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step",
-    "--max-steps", "--set", "--init", "-o", "--stats", "--summary", "--accel",
-    "--help", "--version",
+    "--max-steps", "--set", "--init", "-o", "--stabilize", "--baumgarte", "--stats",
+    "--summary", "--accel", "--assemble", "--help", "--version",
 };
-enum { NOPTIONS = sizeof option_names / sizeof option_names[0], FIRST_FLAG = 10 };
+enum { NOPTIONS = sizeof option_names / sizeof option_names[0], FIRST_FLAG = 12 };
+static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
+/* Baumgarte's rates when --baumgarte is not given (1/time units). */
+#define DEFAULT_RATE 10.0
 
 static void
 help(const Cli *c, const eomc_model *m)
@@ -126,12 +132,19 @@ help(const Cli *c, const eomc_model *m)
            "  --max-steps N      fail after N steps\n"
            "  --set NAME=VALUE   a parameter, or an input held constant\n"
            "  --init NAME=VALUE  initial coordinate NAME or velocity NAME'\n"
-           "  -o FILE            write the CSV to FILE instead of stdout\n"
-           "  --stats            integrator statistics on stderr\n"
+           "  -o FILE            write the CSV to FILE instead of stdout\n",
+           m->rtol, m->atol);
+    if (m->nc > 0)
+        printf("  --stabilize NAME   drift control: none (default), baumgarte, project\n"
+               "  --baumgarte A,B    Baumgarte's rates: g'' + 2A g' + B^2 g = 0, "
+               "phi' + A phi = 0\n"
+               "                     (default %g,%g; implies --stabilize baumgarte)\n"
+               "  --assemble         project the initial state onto the constraints "
+               "first\n", DEFAULT_RATE, DEFAULT_RATE);
+    printf("  --stats            integrator statistics on stderr\n"
            "  --summary          a paragraph about the run on stderr\n"
            "  --accel            print q'' at the initial state and exit\n"
-           "  --help, --version\n\n",
-           m->rtol, m->atol);
+           "  --help, --version\n\n");
     printf("coordinates: ");
     list_names(stdout, m->q_names, m->nq, "");
     printf("\nparameters: ");
@@ -199,6 +212,26 @@ take_value(Cli *c, int k, const char *val)
     case 7: c->set[c->nset++] = (char *)val; return EOMC_OK;
     case 8: c->init[c->ninit++] = (char *)val; return EOMC_OK;
     case 9: c->out = val; return EOMC_OK;
+    case 10:
+        for (int j = 0; j < 3; j++)
+            if (strcmp(val, stabilize_names[j]) == 0) {
+                c->stabilize = j;
+                return EOMC_OK;
+            }
+        return usage(c, "--stabilize: unknown method '%s'%s; methods: none, baumgarte, "
+                     "project", val, nearest(val, stabilize_names, 3, ""));
+    case 11: {
+        char *comma = strchr(val, ','), *a = strndup(val, comma ? (size_t)(comma - val) : 0);
+        int bad = !comma || !a || !number(a, &c->alpha) || !number(comma + 1, &c->beta);
+        free(a);
+        if (bad)
+            return usage(c, "--baumgarte: expected ALPHA,BETA (two numbers), not '%s'", val);
+        if (c->alpha < 0 || c->beta < 0)
+            return usage(c, "--baumgarte: %s is out of range (the rates must be >= 0)",
+                         val);
+        c->rates_given = 1;
+        return EOMC_OK;
+    }
     }
     return EOMC_OK;
 }
@@ -231,17 +264,17 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
         if (k >= FIRST_FLAG) {
             if (eq)
                 return usage(c, "%s takes no value", option_names[k]);
-            if (k == FIRST_FLAG + 3) {
+            if (k == FIRST_FLAG + 4) {
                 help(c, m);
                 return -1;
             }
-            if (k == FIRST_FLAG + 4) {
+            if (k == FIRST_FLAG + 5) {
                 printf("%s: model %s from %s, %s form%s%s; eomc runtime %s\n", c->prog,
                        m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
                        EOMC_VERSION);
                 return -1;
             }
-            int *flag[] = {&c->stats, &c->summary, &c->accel};
+            int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble};
             *flag[k - FIRST_FLAG] = 1;
             continue;
         }
@@ -255,6 +288,13 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
         if (rc)
             return rc;
     }
+    if (c->rates_given && c->stabilize < 0)
+        c->stabilize = EOMC_STABILIZE_BAUMGARTE;
+    if (c->rates_given && c->stabilize != EOMC_STABILIZE_BAUMGARTE)
+        return usage(c, "--baumgarte gives the rates of --stabilize baumgarte, not of "
+                     "--stabilize %s", stabilize_names[c->stabilize]);
+    if (c->stabilize < 0)
+        c->stabilize = EOMC_STABILIZE_NONE;
     return EOMC_OK;
 }
 
@@ -435,11 +475,73 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
     ADD("Wrote %ld rows every %g to %s. ", w->rows, c->run.dt, c->out ? c->out : "stdout");
     ADD("Energy E = T + V started at %.10g; its largest change was %.3g (%.3g relative).",
         w->E0, w->dE, w->dE / fmax(fabs(w->E0), 1e-300));
+    if (m->nc > 0)
+        ADD(" The largest constraint residual was %.3g", fmax(st->max_residual, w->res_max));
+    if (m->nc > 0 && c->stabilize == EOMC_STABILIZE_PROJECT)
+        ADD(" with projection after every step (%.3g before it).", st->max_drift);
+    else if (m->nc > 0 && c->stabilize == EOMC_STABILIZE_BAUMGARTE)
+        ADD(" with Baumgarte's stabilization (rates %g, %g).", c->alpha, c->beta);
+    else if (m->nc > 0)
+        ADD(", without stabilization.");
 #undef ADD
     wrap(stderr, text);
 }
 
 /* ---- main ---- */
+
+/* Whether the model has a constraint below acceleration level. */
+static int
+has_levels(const eomc_model *m)
+{
+    for (int k = 0; k < m->nc; k++)
+        if (m->c_order[k] <= 1)
+            return 1;
+    return 0;
+}
+
+static int
+set_stabilize(Cli *c, eomc_sim *sim)
+{
+    if (c->stabilize == EOMC_STABILIZE_NONE ||
+        eomc_sim_stabilize(sim, c->stabilize, c->alpha, c->beta) == EOMC_OK)
+        return EOMC_OK;
+    return usage(c, "--stabilize %s: %s", stabilize_names[c->stabilize],
+                 eomc_sim_error(sim));
+}
+
+/* Project the initial state onto the constraints and say what moved. */
+static int
+assemble(Cli *c, eomc_sim *sim, double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq, moved = 0;
+    if (!has_levels(m))
+        return usage(c, "--assemble: %s has no holonomic or first-order constraint to "
+                     "assemble", m->name);
+    double *x0 = malloc(2 * (size_t)n * sizeof *x0);
+    if (!x0)
+        return usage(c, "out of memory");
+    memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
+    int rc = eomc_sim_project(sim, c->run.t0, x, x + n);
+    if (rc != EOMC_OK) {
+        fprintf(stderr, "%s: error: --assemble: %s\n", c->prog, eomc_sim_error(sim));
+        free(x0);
+        return rc;
+    }
+    for (int i = 0; i < 2 * n; i++)
+        if (x[i] != x0[i]) {
+            if (!moved++)
+                fprintf(stderr, "%s: --assemble moved the initial state onto the "
+                        "constraints:\n", c->prog);
+            fprintf(stderr, "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
+                    i < n ? "" : "'", x0[i], x[i], x[i] - x0[i]);
+        }
+    if (!moved)
+        fprintf(stderr, "%s: --assemble: the initial state already satisfies the "
+                "constraints\n", c->prog);
+    free(x0);
+    return EOMC_OK;
+}
 
 static int
 print_accel(Cli *c, eomc_sim *sim, const double *x)
@@ -486,7 +588,9 @@ simulate(Cli *c, eomc_sim *sim, double *x)
     if (c->stats) {
         print_stats(&st);
         if (m->nc > 0)
-            fprintf(stderr, "max_residual %.3g\n", w.res_max);
+            fprintf(stderr, "max_residual %.3g\n", fmax(st.max_residual, w.res_max));
+        if (c->stabilize == EOMC_STABILIZE_PROJECT)
+            fprintf(stderr, "max_drift %.3g\n", st.max_drift);
     }
     if (c->summary && !rc)
         print_summary(c, m, &w, &st);
@@ -499,6 +603,8 @@ eomc_main(int argc, char **argv, const eomc_model *m)
 {
     const char *slash = argc > 0 ? strrchr(argv[0], '/') : NULL;
     Cli c = {0};
+    c.stabilize = -1;
+    c.alpha = c.beta = DEFAULT_RATE;
     c.prog = argc > 0 ? (slash ? slash + 1 : argv[0]) : m->name;
     c.run = eomc_run_defaults(m);
     c.set = calloc((size_t)argc + 1, sizeof *c.set);
@@ -512,9 +618,11 @@ eomc_main(int argc, char **argv, const eomc_model *m)
         rc = EOMC_EUSAGE;
     } else if ((rc = parse_args(&c, argc, argv, m)) != EOMC_OK) {
         rc = rc < 0 ? EOMC_OK : rc;
-    } else if ((rc = apply_sets(&c, sim)) == EOMC_OK) {
+    } else if ((rc = apply_sets(&c, sim)) == EOMC_OK &&
+               (rc = set_stabilize(&c, sim)) == EOMC_OK) {
         eomc_sim_initial(sim, x, x + m->nq);
-        if ((rc = apply_inits(&c, m, x)) == EOMC_OK)
+        if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
+            (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
             rc = c.accel ? print_accel(&c, sim, x) : simulate(&c, sim, x);
     }
     eomc_sim_free(sim);

@@ -62,6 +62,21 @@ const double *eomc_sim_multipliers(const eomc_sim *s);
 int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
                        double *res);
 
+/* Drift control for the holonomic and first-order constraints, which
+ * the solve enforces only at acceleration level:
+ *   EOMC_STABILIZE_BAUMGARTE  solve g'' + 2 alpha g' + beta^2 g = 0 and
+ *                             phi' + alpha phi = 0 instead (rates in 1/time);
+ *   EOMC_STABILIZE_PROJECT    after every step, eomc_sim_project.
+ * EOMC_EUSAGE when the model has no such constraint or alpha, beta are
+ * negative or not finite. */
+enum { EOMC_STABILIZE_NONE, EOMC_STABILIZE_BAUMGARTE, EOMC_STABILIZE_PROJECT };
+int eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta);
+/* Move (q, v) onto the constraints, in place: q onto every holonomic
+ * g = 0, then v onto every g' = 0 and phi = 0, each by Gauss-Newton for
+ * the least change in the mass matrix's metric.  A no-op without such
+ * constraints; EOMC_ENUMERIC when it cannot converge. */
+int eomc_sim_project(eomc_sim *s, double t, double *q, double *v);
+
 /* T and V at (t, q, v). */
 void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,
                      double *T, double *V);
@@ -95,6 +110,10 @@ typedef struct eomc_stats {
     long rhs_evals, jac_evals;
     double cpu_seconds;
     double h_used;           /* the fixed step actually taken, or 0 */
+    /* Constrained models: the largest |g|, |g'| or |phi| of the state at
+     * t0 and after every step (after projection, when projecting), and
+     * the largest found right after a step, before any projection. */
+    double max_residual, max_drift;
 } eomc_stats;
 
 /* Called at every output time, t0 first and t_end last, with the state

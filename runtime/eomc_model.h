@@ -24,7 +24,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 2
+#define EOMC_ABI_VERSION 3
 
 typedef struct eomc_model {
     int abi;               /* EOMC_ABI_VERSION of the generator */
@@ -97,6 +97,14 @@ typedef struct eomc_model {
                        const double *p, const double *u, double *dfdq, double *dfdv,
                        double *dfdu, double *dfdt, double *dBdq, double *dBdv,
                        double *dBda, double *dBdu, double *dBdt);
+    /* Partial derivatives of c_levels' pos and vel at (t, q, v), u held
+     * fixed: dposdq[k*nq+j] = dpos_k/dq_j (dveldq, dveldv alike),
+     * dposdu[k*nu+l], dveldu alike, dposdt[k], dveldt[k].  Baumgarte's
+     * stabilization needs them for an exact Jacobian. */
+    void (*c_levels_jacobian)(double t, const double *q, const double *v,
+                              const double *p, const double *u, double *dposdq,
+                              double *dveldq, double *dveldv, double *dposdu,
+                              double *dveldu, double *dposdt, double *dveldt);
 } eomc_model;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

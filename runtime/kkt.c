@@ -22,6 +22,11 @@
  * way it was solved):  d(q'', lambda)/dx = -K^-1 dR/dx  with
  *     dR/dx = [dE/dx + sum_k lambda_k dB_k/dx; df/dx].
  *
+ * Baumgarte's stabilization replaces f by f + w_v vel + w_p pos (the
+ * constraint's own levels from c_levels; w_v = 2 alpha, w_p = beta^2 for
+ * a holonomic one, w_v = alpha for a first-order one).  The offset does
+ * not depend on q'', so it is computed once per solve, and B is unchanged.
+ *
  * Every array is allocated in kkt_alloc; LU factorizations are GSL's.
  */
 #include "simimpl.h"
@@ -45,6 +50,8 @@ struct Kkt {
     double *dfdq, *dfdv, *dfdu, *dfdt;         /* [nc*n] [nc*n] [nc*nu] [nc] */
     double *dBdq, *dBdv, *dBda, *dBdu, *dBdt;  /* [nc*n*n] x3, [nc*n*nu], [nc*n] */
     double *BH, *G, *E;         /* [nc*nc], [nc*np], [n] */
+    double *off;                /* [nc] Baumgarte's terms, else 0 */
+    double *dposdq, *dveldq, *dveldv, *dposdu, *dveldu, *dposdt, *dveldt;
     int *dep, *indep;           /* [nc], [np] */
     gsl_permutation *permN, *permn, *permc;
     char *names;                /* "rod (y), cone (z)" for messages */
@@ -66,6 +73,9 @@ kkt_alloc(const eomc_model *m)
     k->dBdq = sim_zeros(nc * n * n), k->dBdv = sim_zeros(nc * n * n), k->dBda = sim_zeros(nc * n * n);
     k->dBdu = sim_zeros(nc * n * nu), k->dBdt = sim_zeros(nc * n);
     k->BH = sim_zeros(nc * nc), k->G = sim_zeros(nc * n), k->E = sim_zeros(n);
+    k->off = sim_zeros(nc), k->dposdq = sim_zeros(nc * n), k->dveldq = sim_zeros(nc * n);
+    k->dveldv = sim_zeros(nc * n), k->dposdu = sim_zeros(nc * nu);
+    k->dveldu = sim_zeros(nc * nu), k->dposdt = sim_zeros(nc), k->dveldt = sim_zeros(nc);
     k->dep = calloc(nc, sizeof *k->dep), k->indep = calloc(n, sizeof *k->indep);
     k->permN = gsl_permutation_alloc(N), k->permn = gsl_permutation_alloc(n);
     k->permc = gsl_permutation_alloc(nc);
@@ -76,7 +86,8 @@ kkt_alloc(const eomc_model *m)
     if (!k->K || !k->r || !k->A || !k->ra || !k->f || !k->B || !k->lam || !k->zero ||
         !k->prev_a || !k->prev_lam || !k->dfdq || !k->dfdv || !k->dfdu || !k->dfdt ||
         !k->dBdq || !k->dBdv || !k->dBda || !k->dBdu || !k->dBdt || !k->BH || !k->G ||
-        !k->E || !k->dep || !k->indep || !k->permN || !k->permn || !k->permc ||
+        !k->E || !k->off || !k->dposdq || !k->dveldq || !k->dveldv || !k->dposdu ||
+        !k->dveldu || !k->dposdt || !k->dveldt || !k->dep || !k->indep || !k->permN || !k->permn || !k->permc ||
         !k->names) {
         kkt_free(k);
         return NULL;
@@ -104,8 +115,9 @@ kkt_free(Kkt *k)
         return;
     void *arrays[] = {k->K, k->r, k->A, k->ra, k->f, k->B, k->lam, k->zero, k->prev_a,
                       k->prev_lam, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
-                      k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->dep, k->indep,
-                      k->names};
+                      k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off, k->dposdq,
+                      k->dveldq, k->dveldv, k->dposdu, k->dveldu, k->dposdt, k->dveldt,
+                      k->dep, k->indep, k->names};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
     if (k->permN)
@@ -178,6 +190,65 @@ max_abs(const double *x, int n)
     return m;
 }
 
+/* Baumgarte's weights of constraint c's levels: f + *wv vel + *wp pos. */
+static void
+baumgarte_weights(const eomc_sim *s, int c, double *wv, double *wp)
+{
+    int order = s->m->c_order[c], on = s->stabilize == EOMC_STABILIZE_BAUMGARTE;
+    *wv = !on ? 0 : order == 0 ? 2 * s->alpha : order == 1 ? s->alpha : 0;
+    *wp = on && order == 0 ? s->beta * s->beta : 0;
+}
+
+/* k->off at (t, q, v): Baumgarte's terms, or zeros. */
+static void
+baumgarte_offset(eomc_sim *s, double t, const double *q, const double *v)
+{
+    Kkt *k = s->kkt;
+    double *pos = k->r, *vel = k->ra; /* free until the solve; N, n >= nc */
+    memset(k->off, 0, (size_t)k->nc * sizeof *k->off);
+    if (s->stabilize != EOMC_STABILIZE_BAUMGARTE)
+        return;
+    s->m->c_levels(t, q, v, s->p, s->u, pos, vel);
+    for (int c = 0; c < k->nc; c++) {
+        double wv, wp;
+        baumgarte_weights(s, c, &wv, &wp);
+        k->off[c] = wv * vel[c] + wp * pos[c];
+    }
+}
+
+/* What Baumgarte's terms add to df/dq, df/dv, df/du and df/dt. */
+static void
+baumgarte_jacobian(eomc_sim *s, double t, const double *q, const double *v)
+{
+    Kkt *k = s->kkt;
+    int n = k->n, nu = s->nu;
+    if (s->stabilize != EOMC_STABILIZE_BAUMGARTE)
+        return;
+    s->m->c_levels_jacobian(t, q, v, s->p, s->u, k->dposdq, k->dveldq, k->dveldv,
+                            k->dposdu, k->dveldu, k->dposdt, k->dveldt);
+    for (int c = 0; c < k->nc; c++) {
+        double wv, wp;
+        baumgarte_weights(s, c, &wv, &wp);
+        for (int j = 0; j < n; j++) {
+            k->dfdq[c * n + j] += wv * k->dveldq[c * n + j] + wp * k->dposdq[c * n + j];
+            k->dfdv[c * n + j] += wv * k->dveldv[c * n + j];
+        }
+        for (int l = 0; l < nu; l++)
+            k->dfdu[c * nu + l] += wv * k->dveldu[c * nu + l] + wp * k->dposdu[c * nu + l];
+        k->dfdt[c] += wv * k->dveldt[c] + wp * k->dposdt[c];
+    }
+}
+
+/* f (with Baumgarte's terms) and B at (t, q, v, a) into k. */
+static void
+eval_constraint(eomc_sim *s, double t, const double *q, const double *v, const double *a)
+{
+    Kkt *k = s->kkt;
+    s->m->constraint(t, q, v, a, s->p, s->u, k->f, k->B);
+    for (int c = 0; c < k->nc; c++)
+        k->f[c] += k->off[c];
+}
+
 /* E = M a + h into k->E. */
 static void
 residual_E(const eomc_sim *s, const double *a)
@@ -199,7 +270,7 @@ step_multipliers(eomc_sim *s, double t, const double *q, const double *v, double
     Kkt *k = s->kkt;
     const eomc_model *m = s->m;
     int n = k->n, nc = k->nc, N = k->N;
-    m->constraint(t, q, v, a, s->p, s->u, k->f, k->B);
+    eval_constraint(s, t, q, v, a);
     if (!m->c_affine)
         m->c_jacobian(t, q, v, a, s->p, s->u, k->dfdq, k->dfdv, k->dfdu, k->dfdt,
                       k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt);
@@ -251,9 +322,8 @@ static int
 step_eliminate(eomc_sim *s, double t, const double *q, const double *v, double *a)
 {
     Kkt *k = s->kkt;
-    const eomc_model *m = s->m;
     int n = k->n, nc = k->nc, np = k->np;
-    m->constraint(t, q, v, a, s->p, s->u, k->f, k->B);
+    eval_constraint(s, t, q, v, a);
     if (null_space(k) != 0)
         return -2;
     residual_E(s, a);
@@ -309,6 +379,7 @@ kkt_accel(eomc_sim *s, double t, const double *q, const double *v, double *a)
     const eomc_model *m = s->m;
     int n = k->n, nc = k->nc, rc = 0;
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    baumgarte_offset(s, t, q, v);
     int iters = m->c_affine ? 1 : NEWTON_MAX;
     if (m->c_affine || !k->have_prev) { /* one exact step from zero when affine */
         memset(a, 0, (size_t)n * sizeof *a);
@@ -393,6 +464,7 @@ kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
     m->c_jacobian(t, q, v, s->a, s->p, s->u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq,
                   k->dBdv, k->dBda, k->dBdu, k->dBdt);
+    baumgarte_jacobian(s, t, q, v);
     /* s->M is this state's, from kkt_accel; B is re-evaluated because a
      * Newton solve leaves the previous iterate's. */
     m->constraint(t, q, v, s->a, s->p, s->u, k->f, k->B);

@@ -79,9 +79,10 @@ eomc_sim_alloc(const eomc_model *m)
         s->errlen += strlen(m->c_names[k]) + strlen(m->q_names[m->c_dependent[k]]) + 8;
     s->err = calloc(s->errlen, 1);
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
+    s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
-        !s->col || !s->err || (m->nc > 0 && !s->kkt)) {
+        !s->col || !s->err || (m->nc > 0 && (!s->kkt || !s->proj))) {
         eomc_sim_free(s);
         return NULL;
     }
@@ -100,6 +101,7 @@ eomc_sim_free(eomc_sim *s)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
+    proj_free(s->proj);
     free(s);
 }
 
@@ -305,6 +307,33 @@ eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v, doub
     return rc;
 }
 
+int
+eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta)
+{
+    if (method < EOMC_STABILIZE_NONE || method > EOMC_STABILIZE_PROJECT)
+        return usage_error(s, "unknown stabilization method %d", method);
+    if (method != EOMC_STABILIZE_NONE && !(s->proj && proj_levels(s->proj)))
+        return usage_error(s, "%s has no holonomic or first-order constraint to "
+                           "stabilize", s->m->name);
+    if (!(alpha >= 0 && beta >= 0 && isfinite(alpha) && isfinite(beta)))
+        return usage_error(s, "Baumgarte's rates must be finite and not negative, "
+                           "not %g, %g", alpha, beta);
+    s->stabilize = method;
+    s->alpha = alpha;
+    s->beta = beta;
+    return EOMC_OK;
+}
+
+int
+eomc_sim_project(eomc_sim *s, double t, double *q, double *v)
+{
+    if (!s->proj)
+        return EOMC_OK;
+    if (!all_finite(q, s->n) || !all_finite(v, s->n))
+        return sim_numeric_error(s, t, q, v, "the state is not finite");
+    return proj_apply(s, t, q, v);
+}
+
 void
 eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double *T,
                 double *V)
@@ -462,12 +491,33 @@ driver_error(eomc_sim *s, int status, double t, const double *x, double hmin,
     }
 }
 
+/* After each accepted step of a constrained model: measure the drift,
+ * and project when asked.  A projected state is not the one the stepper
+ * produced, so its history (multistep methods) is dropped. */
+static int
+after_step(eomc_sim *s, gsl_odeiv2_step *step, double t, double *x, eomc_stats *st)
+{
+    int n = s->n;
+    if (!s->proj || !proj_levels(s->proj) || !all_finite(x, 2 * n))
+        return GSL_SUCCESS; /* a non-finite state is reported at the output time */
+    double r = proj_residual(s, t, x, x + n);
+    st->max_drift = fmax(st->max_drift, r);
+    if (s->stabilize == EOMC_STABILIZE_PROJECT) {
+        if (proj_apply(s, t, x, x + n) != EOMC_OK)
+            return GSL_EBADFUNC;
+        gsl_odeiv2_step_reset(step);
+        r = proj_residual(s, t, x, x + n);
+    }
+    st->max_residual = fmax(st->max_residual, r);
+    return GSL_SUCCESS;
+}
+
 /* Advance from *t to t1 in fixed steps that divide the interval evenly.
  * They bypass the driver's error control, which would refuse a step whose
  * error estimate exceeds the tolerances. */
 static int
-advance_fixed(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1,
-              double *x, eomc_stats *st)
+advance_fixed(eomc_sim *s, gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t,
+              double t1, double *x, eomc_stats *st)
 {
     double span = t1 - *t;
     unsigned long k = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
@@ -480,6 +530,8 @@ advance_fixed(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1
         if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
             return GSL_EMAXITER;
         int rc = gsl_odeiv2_evolve_apply_fixed_step(d->e, NULL, d->s, d->sys, t, h, x);
+        if (rc == GSL_SUCCESS)
+            rc = after_step(s, d->s, *t, x, st);
         if (rc != GSL_SUCCESS)
             return rc;
     }
@@ -491,15 +543,17 @@ advance_fixed(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1
  * step budget before each step (the driver lets two more through) and
  * not mistaking the short step that lands on t1 for an underflow. */
 static int
-advance(gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1, double *x,
-        eomc_stats *st, double hmin)
+advance(eomc_sim *s, gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, double t1,
+        double *x, eomc_stats *st, double hmin)
 {
     if (o->h_fixed > 0)
-        return advance_fixed(d, o, t, t1, x, st);
+        return advance_fixed(s, d, o, t, t1, x, st);
     while (*t < t1) {
         if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
             return GSL_EMAXITER;
         int rc = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, d->sys, t, t1, &d->h, x);
+        if (rc == GSL_SUCCESS)
+            rc = after_step(s, d->s, *t, x, st);
         if (rc != GSL_SUCCESS)
             return rc;
         if (*t < t1 && fabs(d->h) < hmin)
@@ -541,12 +595,14 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
 
     clock_t c0 = clock();
     double t = o->t0;
+    if (s->proj && proj_levels(s->proj))
+        st->max_residual = st->max_drift = proj_residual(s, t, x, x + n);
     rc = row ? row(ctx, t, x) : 0;
     for (long k = 1; rc == EOMC_OK && t < o->t_end; k++) {
         double t1 = o->t0 + (double)k * o->dt;
         if (t1 > o->t_end - 1e-9 * o->dt) /* no sliver of an interval at the end */
             t1 = o->t_end;
-        int status = advance(d, o, &t, t1, x, st, hmin);
+        int status = advance(s, d, o, &t, t1, x, st, hmin);
         st->steps = (long)d->e->count;
         st->rejected = (long)d->e->failed_steps;
         if (status != GSL_SUCCESS) {

@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 typedef struct Kkt Kkt;
+typedef struct Proj Proj;
 
 struct eomc_sim {
     const eomc_model *m;
@@ -28,6 +29,9 @@ struct eomc_sim {
     size_t errlen;
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: work arrays, multipliers */
+    Proj *proj;              /* constrained models: projection's work arrays */
+    int stabilize;           /* EOMC_STABILIZE_... */
+    double alpha, beta;      /* Baumgarte's rates */
 };
 
 
@@ -51,5 +55,16 @@ const double *kkt_multipliers(const Kkt *k);
 /* Each constraint at its own level (g, phi, or f at a). */
 void kkt_residuals(eomc_sim *s, double t, const double *q, const double *v,
                    const double *a, double *res);
+
+
+/* project.c: NULL-safe; proj_alloc returns NULL when memory runs out. */
+Proj *proj_alloc(const eomc_model *m);
+void proj_free(Proj *j);
+/* Whether the model has constraints below acceleration level. */
+int proj_levels(const Proj *j);
+/* The largest |g| and |g'| or |phi| at (t, q, v). */
+double proj_residual(eomc_sim *s, double t, const double *q, const double *v);
+/* (q, v) onto the holonomic and velocity-level constraints, in place. */
+int proj_apply(eomc_sim *s, double t, double *q, double *v);
 
 #endif

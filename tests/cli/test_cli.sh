@@ -81,6 +81,27 @@ grep -q "roll *first-order, linear in q'.*determines x (named in the spec)" "$tm
   grep -q "by elimination" "$tmp/lin.txt" && ! grep -q "#include" "$tmp/lin.txt"
 ok $? "--explain: a linear first-order constraint, its named dependent, elimination, no C"
 
+# drift control and assembly on the Cartesian pendulum (l = 1, theta0 = 1)
+"$eomc" build "$src/specs/cartesian_pendulum.yaml" -o "$tmp/cp" 2> /dev/null
+"$tmp/cp" --init x=1.2 --assemble --accel > "$tmp/asm.out" 2> "$tmp/asm.err"
+got=$(sed -n 's/^  x 1.2 -> \([^ ]*\) .*/\1/p' "$tmp/asm.err")
+want=$(awk 'BEGIN { y = -cos(1); printf "%.17g", 1.2 / sqrt(1.44 + y * y) }')
+near "$got" "$want"; ok $? "--assemble moves x = 1.2 to x / |(x, y)| = $got and says so"
+"$tmp/cp" --method rkf45 --rtol 1e-6 --atol 1e-6 --t-end 50 --stabilize project --stats \
+  -o "$tmp/cp.csv" 2> "$tmp/proj.err"
+res=$(sed -n 's/^max_residual //p' "$tmp/proj.err")
+awk -v r="$res" 'BEGIN { exit !(r != "" && r < 1e-12) }'
+ok $? "--stabilize project --stats: max_residual $res < 1e-12 over 50 s at rtol 1e-6"
+usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
+usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
+ok $? "--stabilize with a typo: usage error suggesting project"
+usage_err "$tmp/cp" --baumgarte 1 && grep -q "ALPHA,BETA" "$tmp/u.err"
+ok $? "--baumgarte 1: usage error asking for ALPHA,BETA"
+usage_err "$tmp/cp" --stabilize project --baumgarte 1,2
+ok $? "--baumgarte with --stabilize project: usage error"
+usage_err "$tmp/pend" --stabilize project && grep -q "no holonomic or first-order" "$tmp/u.err"
+ok $? "--stabilize on a model without constraints: usage error"
+
 # failures: exit status 2, no output left
 printf 'coordinates: [x]\nparticles: {p: {mass: 1, position: [x, y]}}\n' > "$tmp/bad.yaml"
 "$eomc" compile "$tmp/bad.yaml" -o "$tmp/bad.c" 2> "$tmp/bad.err"; st=$?

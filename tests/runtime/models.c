@@ -82,7 +82,7 @@ osc_accel(double t, const double *q, const double *v, const double *p,
 }
 
 /* The constraint members of a model without constraints. */
-#define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL
+#define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL
 
 const eomc_model osc_model = {
     EOMC_ABI_VERSION, "osc", "osc.yaml", "lagrange", "",

@@ -12,8 +12,11 @@
  *    two equations of motion, C r' - (A - B) p q = 0 and
  *    C r' psi' cos(theta) + A p p' + B q q' + (A - B) p q phi' = 0, and the
  *    constraint itself, at random states;
+ *  - Baumgarte's stabilization at inconsistent states: the computed q''
+ *    satisfy g'' + 2 alpha g' + beta^2 g = 0 (pendulum) and
+ *    phi' + alpha phi = 0 (appell), with g', g'', phi' written out by hand;
  *  - the Jacobian of x' = f(t, x) against central differences of the
- *    accelerations, for both models.
+ *    accelerations, for these models, with and without Baumgarte's terms.
  */
 #include "../unit/check.h"
 #include "eomc.h"
@@ -99,11 +102,49 @@ precession(void)
     eomc_sim_free(s);
 }
 
-/* Largest |J - J_fd| / (1 + |J|) over entries, J from eomc_sim_jacobian. */
+static void
+baumgarte(void)
+{
+    const double al = 3.0, be = 5.0, l = 1.0, A = 0.7;
+    eomc_sim *s = eomc_sim_alloc(&cartesian_pendulum_model);
+    eomc_sim_set(s, "l", l);
+    int ok = eomc_sim_stabilize(s, EOMC_STABILIZE_BAUMGARTE, al, be) == EOMC_OK;
+    for (int k = 0; k < 50; k++) {
+        double q[2] = {check_rand(-1.2, 1.2), check_rand(-1.2, 1.2)};
+        double v[2] = {check_rand(-3, 3), check_rand(-3, 3)}, a[2];
+        ok &= eomc_sim_accel(s, 0.0, q, v, a) == EOMC_OK;
+        double g = q[0] * q[0] + q[1] * q[1] - l * l, g1 = 2 * (q[0] * v[0] + q[1] * v[1]);
+        double g2 = 2 * (v[0] * v[0] + v[1] * v[1] + q[0] * a[0] + q[1] * a[1]);
+        ok &= fabs(g2 + 2 * al * g1 + be * be * g) < 1e-11 * (1 + fabs(g2));
+    }
+    CHECK(ok, "%s: baumgarte: g'' + 2 alpha g' + beta^2 g = 0 at 50 inconsistent states",
+          cartesian_pendulum_model.form);
+    eomc_sim_free(s);
+    s = eomc_sim_alloc(&appell_model);
+    eomc_sim_set(s, "a", A);
+    ok = eomc_sim_stabilize(s, EOMC_STABILIZE_BAUMGARTE, al, be) == EOMC_OK;
+    for (int k = 0; k < 50; k++) {
+        double q[3] = {check_rand(-5, 5), check_rand(-5, 5), check_rand(-5, 5)};
+        double v[3] = {check_rand(-3, 3), check_rand(-3, 3), 0}, a[3];
+        v[2] = A * sqrt(v[0] * v[0] + v[1] * v[1]) * check_rand(0.8, 1.2);
+        ok &= eomc_sim_accel(s, 0.0, q, v, a) == EOMC_OK;
+        double phi = v[2] * v[2] - A * A * (v[0] * v[0] + v[1] * v[1]);
+        double phi1 = 2 * v[2] * a[2] - 2 * A * A * (v[0] * a[0] + v[1] * a[1]);
+        ok &= fabs(phi1 + al * phi) < 1e-11 * (1 + fabs(phi1));
+    }
+    CHECK(ok, "%s: baumgarte: phi' + alpha phi = 0 at 50 inconsistent states",
+          appell_model.form);
+    eomc_sim_free(s);
+}
+
+/* Largest |J - J_fd| / (1 + |J|) over entries, J from eomc_sim_jacobian;
+ * with Baumgarte's stabilization when stab. */
 static double
-jacobian_error(const eomc_model *m, const double *x0)
+jacobian_error(const eomc_model *m, const double *x0, int stab)
 {
     eomc_sim *s = eomc_sim_alloc(m);
+    if (stab)
+        eomc_sim_stabilize(s, EOMC_STABILIZE_BAUMGARTE, 3.0, 5.0);
     int n = m->nq, W = 2 * n;
     double *J = calloc((size_t)(W * W), sizeof *J), x[16], ap[8], am[8], worst = 0;
     if (eomc_sim_jacobian(s, 0.0, x0, J, NULL) != EOMC_OK)
@@ -131,14 +172,23 @@ jacobians(void)
 {
     double th = 0.7, w = 1.3;
     double xp[4] = {sin(th), -cos(th), cos(th) * w, sin(th) * w};
-    double e = jacobian_error(&cartesian_pendulum_model, xp);
+    double e = jacobian_error(&cartesian_pendulum_model, xp, 0);
     CHECK(e < 1e-7, "%s: cartesian pendulum Jacobian = central differences (%.2g)",
           cartesian_pendulum_model.form, e);
     double xa[6] = {0.3, -0.2, 1.1, 1.5, -0.4, 0.5 * sqrt(1.5 * 1.5 + 0.16)};
-    e = jacobian_error(&appell_model, xa);
+    e = jacobian_error(&appell_model, xa, 0);
     CHECK(e < 1e-7, "%s: appell Jacobian = central differences (%.2g)", appell_model.form, e);
+    /* off the constraints, where Baumgarte's terms are not zero */
+    double xpb[4] = {1.1 * sin(th), -cos(th), cos(th) * w + 0.3, sin(th) * w};
+    e = jacobian_error(&cartesian_pendulum_model, xpb, 1);
+    CHECK(e < 1e-7, "%s: cartesian pendulum Jacobian with Baumgarte = central "
+          "differences (%.2g)", cartesian_pendulum_model.form, e);
+    double xab[6] = {0.3, -0.2, 1.1, 1.5, -0.4, 0.6 * sqrt(1.5 * 1.5 + 0.16)};
+    e = jacobian_error(&appell_model, xab, 1);
+    CHECK(e < 1e-7, "%s: appell Jacobian with Baumgarte = central differences (%.2g)",
+          appell_model.form, e);
     double xr[6] = {0.4, 1.1, -0.7, 0.5, -0.3, 0.9};
-    e = jacobian_error(&precession_model, xr);
+    e = jacobian_error(&precession_model, xr, 0);
     CHECK(e < 1e-7, "%s: precession Jacobian = central differences (%.2g)",
           precession_model.form, e);
 }
@@ -149,6 +199,7 @@ main(void)
     pendulum();
     appell();
     precession();
+    baumgarte();
     jacobians();
     return check_done();
 }

@@ -6,7 +6,17 @@
  *    trajectory as the Cartesian formulation (tests/sim/specs/
  *    central_cartesian.yaml), mapped to x, y, z;
  *  - cartesian_pendulum: theta = atan2(x, -y) has the period
- *    4 K(sin(theta0/2)) sqrt(l/g) of the simple pendulum.
+ *    4 K(sin(theta0/2)) sqrt(l/g) of the simple pendulum;
+ *  - drift: over 100 periods at a loose tolerance (rkf45, 1e-6), the
+ *    pendulum's x^2 + y^2 - l^2 and its derivative drift without
+ *    stabilization, shrink with Baumgarte's, and stay below 1e-12 with
+ *    projection, in every row (recomputed here) and after every step
+ *    (the runtime's statistics);
+ *  - projection: a point off the circle goes to l q / |q| and its
+ *    velocity to the tangential part (M = m I, so the mass metric is the
+ *    Euclidean one); central_constant_speed's velocity is scaled to speed
+ *    v0 with q unchanged (Gauss-Newton's steps are all along M^-1 dphi/dv,
+ *    which is parallel to v).
  */
 #include "../unit/check.h"
 #include "eomc.h"
@@ -37,11 +47,23 @@ keep(void *ctx, double t, const double *x)
     return EOMC_OK;
 }
 
-/* Integrate m from x (the model's initial state if NULL) to t_end. */
+typedef struct Opts {
+    const char *method;
+    double tol;
+    int stabilize;
+    double alpha, beta;
+} Opts;
+
+/* Integrate m from x (the model's initial state if NULL) to t_end, with
+ * rk8pd at 1e-12 unless o says otherwise; statistics into st if given. */
 static Rows *
-run(const eomc_model *m, const double *x0, double t_end, double dt)
+run_with(const eomc_model *m, const double *x0, double t_end, double dt, const Opts *op,
+         eomc_stats *st)
 {
     eomc_sim *s = eomc_sim_alloc(m);
+    if (op && op->stabilize &&
+        eomc_sim_stabilize(s, op->stabilize, op->alpha, op->beta) != EOMC_OK)
+        printf("# %s: %s\n", m->name, eomc_sim_error(s));
     Rows *r = calloc(1, sizeof *r);
     r->w = 2 * m->nq;
     double x[8];
@@ -52,10 +74,18 @@ run(const eomc_model *m, const double *x0, double t_end, double dt)
         eomc_sim_initial(s, x, x + m->nq);
     eomc_run_opts o = eomc_run_defaults(m);
     o.t_end = t_end, o.dt = dt, o.method = "rk8pd", o.rtol = o.atol = 1e-12;
-    if (eomc_sim_integrate(s, &o, x, keep, r, NULL) != EOMC_OK)
+    if (op)
+        o.method = op->method, o.rtol = o.atol = op->tol;
+    if (eomc_sim_integrate(s, &o, x, keep, r, st) != EOMC_OK)
         printf("# %s: %s\n", m->name, eomc_sim_error(s));
     eomc_sim_free(s);
     return r;
+}
+
+static Rows *
+run(const eomc_model *m, const double *x0, double t_end, double dt)
+{
+    return run_with(m, x0, t_end, dt, NULL, NULL);
 }
 
 static void
@@ -133,11 +163,89 @@ pendulum_period(void)
     free(r);
 }
 
+/* Largest |g| and |g'| of the pendulum (l = 1) over the rows. */
+static double
+pendulum_residual(const Rows *r)
+{
+    double worst = 0;
+    for (int k = 0; k < r->n; k++) {
+        const double *x = r->x[k];
+        worst = fmax(worst, fabs(x[0] * x[0] + x[1] * x[1] - 1.0));
+        worst = fmax(worst, fabs(2 * (x[0] * x[2] + x[1] * x[3])));
+    }
+    return worst;
+}
+
+static void
+drift(void)
+{
+    const double th0 = 1.0, l = 1.0, g = 9.81;
+    double T = 4 * gsl_sf_ellint_Kcomp(sin(th0 / 2), GSL_PREC_DOUBLE) * sqrt(l / g);
+    double span = 100 * T, dt = span / 2000;
+    eomc_stats st[3];
+    double rows[3];
+    for (int k = 0; k < 3; k++) {
+        Opts o = {"rkf45", 1e-6, k, 10.0, 10.0};
+        Rows *r = run_with(&cartesian_pendulum_model, NULL, span, dt, &o, &st[k]);
+        rows[k] = r->n == 2001 ? pendulum_residual(r) : INFINITY;
+        free(r);
+    }
+    printf("# drift over 100 periods: none %.3g, baumgarte %.3g, project %.3g "
+           "(%.3g before each projection)\n", rows[0], rows[1], rows[2], st[2].max_drift);
+    CHECK(rows[0] > 1e-8 && st[0].max_residual >= rows[0],
+          "drift: unstabilized, the rows drift by %.2g (the steps' largest %.2g)", rows[0],
+          st[0].max_residual);
+    CHECK(rows[1] < rows[0] / 100 && st[1].max_residual < st[0].max_residual / 100,
+          "drift: baumgarte (10, 10) keeps it %.0fx smaller", rows[0] / rows[1]);
+    CHECK(rows[2] < 1e-12 && st[2].max_residual < 1e-12 && st[2].max_drift > 1e-12,
+          "drift: projection keeps every row (%.2g) and step (%.2g) below 1e-12 over 100 "
+          "periods", rows[2], st[2].max_residual);
+}
+
+static void
+projection(void)
+{
+    eomc_sim *s = eomc_sim_alloc(&cartesian_pendulum_model);
+    const double l = 0.8, v0 = 1.2;
+    eomc_sim_set(s, "l", l);
+    int ok = 1;
+    for (int k = 0; k < 50; k++) {
+        double q[2] = {check_rand(-2, 2), check_rand(-2, 2)};
+        double v[2] = {check_rand(-3, 3), check_rand(-3, 3)}, r = hypot(q[0], q[1]);
+        double e[2] = {q[0] / r, q[1] / r}, vr = v[0] * e[0] + v[1] * e[1];
+        double vt[2] = {v[0] - vr * e[0], v[1] - vr * e[1]};
+        ok &= eomc_sim_project(s, 0.0, q, v) == EOMC_OK;
+        ok &= check_close(q[0], l * e[0], 1e-14) && check_close(q[1], l * e[1], 1e-14);
+        ok &= fabs(v[0] - vt[0]) < 1e-13 && fabs(v[1] - vt[1]) < 1e-13;
+    }
+    CHECK(ok, "projection: cartesian pendulum q -> l q / |q|, v -> its tangential part, "
+              "50 random states");
+    eomc_sim_free(s);
+    s = eomc_sim_alloc(&central_constant_speed_model);
+    ok = 1;
+    for (int k = 0; k < 50; k++) {
+        double q[3] = {check_rand(0.5, 3), check_rand(-1.2, 1.2), check_rand(-3, 3)};
+        double v[3] = {check_rand(-2, 2), check_rand(-2, 2), check_rand(-2, 2)}, q0[3], w[3];
+        double ct = cos(q[1]);
+        double speed = sqrt(v[0] * v[0] + q[0] * q[0] * (v[1] * v[1] + ct * ct * v[2] * v[2]));
+        for (int i = 0; i < 3; i++)
+            q0[i] = q[i], w[i] = v[i] * v0 / speed;
+        ok &= eomc_sim_project(s, 0.0, q, v) == EOMC_OK;
+        for (int i = 0; i < 3; i++)
+            ok &= q[i] == q0[i] && check_close(v[i], w[i], 1e-13);
+    }
+    CHECK(ok, "projection: central_constant_speed v -> v v0 / |v| (q unchanged), 50 "
+              "random states");
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
     sleigh();
     central();
     pendulum_period();
+    drift();
+    projection();
     return check_done();
 }

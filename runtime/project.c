@@ -1,0 +1,225 @@
+/*
+ * project: move a state back onto its constraints.
+ *
+ * Positions go onto the holonomic constraints g(t, q) = 0, then
+ * velocities onto every velocity-level one (g' for holonomic, phi for
+ * first order), each by Gauss-Newton in the metric of the mass matrix:
+ * the smallest change dq^T M dq that satisfies the linearized
+ * constraints,
+ *     dq = -M^-1 G^T (G M^-1 G^T)^-1 r,
+ * with G the rows of B = df/dq'' that belong to the level (B is dg/dq for
+ * a holonomic constraint and dphi/dq' for a first-order one, so the model
+ * already supplies it).  The kinetic-energy metric makes the correction
+ * what a constraint impulse would do, independent of the coordinates'
+ * units.  M is taken once, at the state given.  Second-order constraints
+ * have nothing below acceleration level and are left alone.
+ */
+#include "simimpl.h"
+
+#include <gsl/gsl_linalg.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { PROJ_MAX = 20 };
+#define PROJ_TOL 1e-14     /* relative size of the last correction */
+#define SINGULAR_TOL 1e-13 /* |U_ii| <= SINGULAR_TOL max|S_ij|: singular */
+
+struct Proj {
+    int n, nc;
+    int npos, nvel;            /* rows at each level */
+    int *pos_rows, *vel_rows;  /* [nc] constraint indices */
+    double *L, *h;             /* [n*n] Cholesky factor of M, [n] */
+    double *f, *B;             /* [nc], [nc*n] */
+    double *pos, *vel, *zero;  /* [nc], [nc], [n] */
+    double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
+    gsl_permutation *perm[2];  /* [npos], [nvel] (at least 1) */
+    char *names[2];            /* constraint names of each level, for messages */
+};
+
+static char *
+join_names(const eomc_model *m, const int *rows, int nr)
+{
+    size_t len = 1;
+    for (int r = 0; r < nr; r++)
+        len += strlen(m->c_names[rows[r]]) + 2;
+    char *s = calloc(len, 1);
+    for (int r = 0; s && r < nr; r++) {
+        if (r)
+            strcat(s, ", ");
+        strcat(s, m->c_names[rows[r]]);
+    }
+    return s;
+}
+
+Proj *
+proj_alloc(const eomc_model *m)
+{
+    Proj *j = calloc(1, sizeof *j);
+    if (!j)
+        return NULL;
+    size_t n = (size_t)m->nq, nc = (size_t)m->nc;
+    j->n = m->nq, j->nc = m->nc;
+    j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
+    j->L = sim_zeros(n * n), j->h = sim_zeros(n), j->f = sim_zeros(nc);
+    j->B = sim_zeros(nc * n), j->pos = sim_zeros(nc), j->vel = sim_zeros(nc);
+    j->zero = sim_zeros(n), j->Y = sim_zeros(nc * n), j->S = sim_zeros(nc * nc);
+    j->mu = sim_zeros(nc);
+    if (j->pos_rows && j->vel_rows)
+        for (int c = 0; c < m->nc; c++) {
+            if (m->c_order[c] == 0)
+                j->pos_rows[j->npos++] = c;
+            if (m->c_order[c] <= 1)
+                j->vel_rows[j->nvel++] = c;
+        }
+    j->perm[0] = gsl_permutation_alloc((size_t)(j->npos ? j->npos : 1));
+    j->perm[1] = gsl_permutation_alloc((size_t)(j->nvel ? j->nvel : 1));
+    j->names[0] = join_names(m, j->pos_rows, j->npos);
+    j->names[1] = join_names(m, j->vel_rows, j->nvel);
+    if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
+        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->perm[0] || !j->perm[1] || !j->names[0] ||
+        !j->names[1]) {
+        proj_free(j);
+        return NULL;
+    }
+    return j;
+}
+
+void
+proj_free(Proj *j)
+{
+    if (!j)
+        return;
+    void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
+                      j->vel, j->zero, j->Y, j->S, j->mu, j->names[0], j->names[1]};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
+        free(arrays[i]);
+    for (int l = 0; l < 2; l++)
+        if (j->perm[l])
+            gsl_permutation_free(j->perm[l]);
+    free(j);
+}
+
+int
+proj_levels(const Proj *j)
+{
+    return j->nvel > 0;
+}
+
+double
+proj_residual(eomc_sim *s, double t, const double *q, const double *v)
+{
+    Proj *j = s->proj;
+    double r = 0;
+    if (j->nvel == 0)
+        return 0;
+    sim_inputs_at(s, t);
+    s->m->c_levels(t, q, v, s->p, s->u, j->pos, j->vel);
+    for (int k = 0; k < j->npos; k++)
+        r = fmax(r, fabs(j->pos[j->pos_rows[k]]));
+    for (int k = 0; k < j->nvel; k++)
+        r = fmax(r, fabs(j->vel[j->vel_rows[k]]));
+    return r;
+}
+
+static double
+max_abs(const double *x, int n)
+{
+    double m = 0;
+    for (int i = 0; i < n; i++)
+        m = fmax(m, fabs(x[i]));
+    return m;
+}
+
+/* One Gauss-Newton correction of x (q at level 0, v at level 1): 1 when
+ * it was negligible, 0 after a correction, -1 when G M^-1 G^T is
+ * singular. */
+static int
+correct(eomc_sim *s, double t, double *q, double *v, int level)
+{
+    Proj *j = s->proj;
+    const eomc_model *m = s->m;
+    int n = j->n, nr = level ? j->nvel : j->npos;
+    const int *rows = level ? j->vel_rows : j->pos_rows;
+    double *x = level ? v : q, *r = level ? j->vel : j->pos;
+    m->c_levels(t, q, v, s->p, s->u, j->pos, j->vel);
+    int zero = 1;
+    for (int k = 0; k < nr; k++)
+        zero &= r[rows[k]] == 0.0;
+    if (zero)
+        return 1;
+    m->constraint(t, q, v, j->zero, s->p, s->u, j->f, j->B);
+    gsl_matrix_view L = gsl_matrix_view_array(j->L, (size_t)n, (size_t)n);
+    for (int k = 0; k < nr; k++) {
+        double *y = j->Y + k * n;
+        memcpy(y, j->B + rows[k] * n, (size_t)n * sizeof *y);
+        gsl_vector_view yv = gsl_vector_view_array(y, (size_t)n);
+        gsl_linalg_cholesky_svx(&L.matrix, &yv.vector);
+    }
+    double scale = 0;
+    for (int k = 0; k < nr; k++)
+        for (int l = 0; l < nr; l++) {
+            double d = 0;
+            for (int i = 0; i < n; i++)
+                d += j->B[rows[k] * n + i] * j->Y[l * n + i];
+            j->S[k * nr + l] = d;
+            scale = fmax(scale, fabs(d));
+        }
+    gsl_matrix_view S = gsl_matrix_view_array(j->S, (size_t)nr, (size_t)nr);
+    int sign;
+    gsl_linalg_LU_decomp(&S.matrix, j->perm[level], &sign);
+    for (int k = 0; k < nr; k++)
+        if (!(fabs(j->S[k * nr + k]) > SINGULAR_TOL * scale))
+            return -1;
+    for (int k = 0; k < nr; k++)
+        j->mu[k] = r[rows[k]];
+    gsl_vector_view mu = gsl_vector_view_array(j->mu, (size_t)nr);
+    gsl_linalg_LU_svx(&S.matrix, j->perm[level], &mu.vector);
+    double step = 0;
+    for (int i = 0; i < n; i++) {
+        double d = 0;
+        for (int k = 0; k < nr; k++)
+            d += j->Y[k * n + i] * j->mu[k];
+        x[i] -= d;
+        step = fmax(step, fabs(d));
+    }
+    return step <= PROJ_TOL * (1 + max_abs(x, n));
+}
+
+static int
+project_level(eomc_sim *s, double t, double *q, double *v, int level)
+{
+    Proj *j = s->proj;
+    if ((level ? j->nvel : j->npos) == 0)
+        return EOMC_OK;
+    int rc = 0;
+    for (int it = 0; it < PROJ_MAX && rc == 0; it++)
+        rc = correct(s, t, q, v, level);
+    const char *what = level ? "velocities" : "positions";
+    if (rc < 0)
+        return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
+                                 "constraints %s: they are dependent or degenerate "
+                                 "here", what, j->names[level]);
+    if (rc == 0)
+        return sim_numeric_error(s, t, q, v, "projecting the %s onto the constraints "
+                                 "%s did not converge in %d Gauss-Newton steps", what,
+                                 j->names[level], PROJ_MAX);
+    return EOMC_OK;
+}
+
+int
+proj_apply(eomc_sim *s, double t, double *q, double *v)
+{
+    Proj *j = s->proj;
+    int n = j->n;
+    if (j->nvel == 0)
+        return EOMC_OK;
+    sim_inputs_at(s, t);
+    s->m->mass_bias(t, q, v, s->p, s->u, j->L, j->h);
+    gsl_matrix_view L = gsl_matrix_view_array(j->L, (size_t)n, (size_t)n);
+    if (gsl_linalg_cholesky_decomp1(&L.matrix) != GSL_SUCCESS)
+        return sim_numeric_error(s, t, q, v, "cannot project onto the constraints: "
+                                 "the mass matrix is not positive definite");
+    int rc = project_level(s, t, q, v, 0);
+    return rc ? rc : project_level(s, t, q, v, 1);
+}

@@ -112,6 +112,9 @@ grep -q "bad.yaml:2:" "$tmp/bad.err"; ok $? "the error names file:line"
 [ $st -eq 2 ] && [ ! -e "$tmp/badexe" ]; ok $? "eomc build of a bad spec exits 2, no executable"
 "$eomc" compile "$src/specs/pendulum.yaml" --form nope > /dev/null 2> "$tmp/form.err"; st=$?
 [ $st -eq 2 ] && grep -q "lagrange" "$tmp/form.err"; ok $? "an unknown form is a usage error listing the forms"
+"$eomc" compile "$src/specs/gear_link.yaml" --form gibbs-appell -o "$tmp/ga.c" 2> "$tmp/ga.err"; st=$?
+[ $st -eq 2 ] && [ ! -e "$tmp/ga.c" ] && grep -q "explicit kinetic-energy terms" "$tmp/ga.err"
+ok $? "gibbs-appell on a spec with explicit kinetic terms: refused (no S), exit 2"
 "$eomc" frobnicate 2> /dev/null; ok $(($? != 2)) "an unknown command exits 2"
 
 echo "1..$n"

@@ -12,6 +12,11 @@
  *    stabilization, shrink with Baumgarte's, and stay below 1e-12 with
  *    projection, in every row (recomputed here) and after every step
  *    (the runtime's statistics);
+ *  - rolling_disk (defaults m = 1, R = 0.5, g = 9.81): the energy, written
+ *    out here from the centre's velocity and the z-x-z body rates, is
+ *    conserved over 10 s of leaning, turning motion; started upright and
+ *    rolling straight, the disk stays upright and its contact point moves
+ *    at -R phi' along x;
  *  - projection: a point off the circle goes to l q / |q| and its
  *    velocity to the tangential part (M = m I, so the mass metric is the
  *    Euclidean one); central_constant_speed's velocity is scaled to speed
@@ -25,13 +30,13 @@
 #include <stdlib.h>
 
 extern const eomc_model chaplygin_sleigh_model, central_constant_speed_model,
-    central_cartesian_model, cartesian_pendulum_model;
+    central_cartesian_model, cartesian_pendulum_model, rolling_disk_model;
 
 enum { MAXROWS = 4096 };
 
 typedef struct Rows {
     int n, w;
-    double t[MAXROWS], x[MAXROWS][8];
+    double t[MAXROWS], x[MAXROWS][12];
 } Rows;
 
 static int
@@ -66,7 +71,7 @@ run_with(const eomc_model *m, const double *x0, double t_end, double dt, const O
         printf("# %s: %s\n", m->name, eomc_sim_error(s));
     Rows *r = calloc(1, sizeof *r);
     r->w = 2 * m->nq;
-    double x[8];
+    double x[12];
     if (x0)
         for (int i = 0; i < r->w; i++)
             x[i] = x0[i];
@@ -163,6 +168,46 @@ pendulum_period(void)
     free(r);
 }
 
+/* The rolling disk's T + V, from its definition (A = m R^2 / 4, C = m R^2 / 2). */
+static double
+disk_energy(const double *x)
+{
+    const double m = 1.0, R = 0.5, g = 9.81, A = m * R * R / 4, C = m * R * R / 2;
+    double ps = x[2], th = x[3], xd = x[5], yd = x[6], psd = x[7], thd = x[8], phd = x[9];
+    double cx = xd + R * sin(th) * thd * sin(ps) - R * cos(th) * cos(ps) * psd;
+    double cy = yd - R * sin(th) * thd * cos(ps) - R * cos(th) * sin(ps) * psd;
+    double cz = R * cos(th) * thd, r3 = psd * cos(th) + phd;
+    double T = 0.5 * m * (cx * cx + cy * cy + cz * cz) +
+               0.5 * A * (psd * psd * sin(th) * sin(th) + thd * thd) + 0.5 * C * r3 * r3;
+    return T + m * g * R * sin(th);
+}
+
+static void
+rolling_disk(void)
+{
+    Rows *r = run(&rolling_disk_model, NULL, 10, 0.01);
+    double E0 = disk_energy(r->x[0]), drift = 0, lean = 0;
+    for (int k = 0; k < r->n; k++) {
+        drift = fmax(drift, fabs(disk_energy(r->x[k]) - E0) / E0);
+        lean = fmax(lean, fabs(r->x[k][3] - r->x[0][3]));
+    }
+    CHECK(r->n == 1001 && drift < 1e-12 && lean > 0.1,
+          "rolling disk: energy conserved to %.2g over 10 s (the lean varies by %.2f rad)",
+          drift, lean);
+    free(r);
+    const double R = 0.5, spin = 6.0;
+    double x0[10] = {0, 0, 0, (2 * atan(1.0)), 0, -R * spin, 0, 0, 0, spin};
+    r = run(&rolling_disk_model, x0, 5, 0.05);
+    double off = 0;
+    for (int k = 0; k < r->n; k++) {
+        off = fmax(off, fabs(r->x[k][0] + R * spin * r->t[k]) + fabs(r->x[k][1]));
+        off = fmax(off, fabs(r->x[k][3] - (2 * atan(1.0))) + fabs(r->x[k][2]));
+    }
+    CHECK(r->n == 101 && off < 1e-9, "rolling disk: upright, it rolls straight at R phi' "
+          "(%.2g)", off);
+    free(r);
+}
+
 /* Largest |g| and |g'| of the pendulum (l = 1) over the rows. */
 static double
 pendulum_residual(const Rows *r)
@@ -245,6 +290,7 @@ main(void)
     sleigh();
     central();
     pendulum_period();
+    rolling_disk();
     drift();
     projection();
     return check_done();

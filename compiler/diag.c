@@ -52,11 +52,12 @@ source_line(const char *file, int line, size_t *len)
         if (strcmp(sources[i].file, file) != 0)
             continue;
         const char *p = sources[i].text, *end = p + sources[i].len;
-        for (int l = 1; l < line && p < end; l++) {
+        int l = 1;
+        for (; l < line && p < end; l++) {
             const char *nl = memchr(p, '\n', (size_t)(end - p));
             p = nl ? nl + 1 : end;
         }
-        if (p >= end && line > 1)
+        if (l < line) /* past the end; the line after a final newline is empty */
             return NULL;
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         *len = (size_t)((nl ? nl : end) - p);
@@ -69,6 +70,8 @@ source_line(const char *file, int line, size_t *len)
 
 static int is_cont(unsigned char c) { return (c & 0xC0) == 0x80; }
 
+enum { EXCERPT_MAX = 100 }; /* longer lines are shown around the column */
+
 /*  12 | the line
  *     |    ^      */
 static void
@@ -76,12 +79,30 @@ print_excerpt(SrcLoc at)
 {
     size_t len;
     const char *text = source_line(at.file, at.line, &len);
-    if (!text || len > 1000)
+    if (!text)
         return;
+    /* a window of a long line: whole characters, starting EXCERPT_MAX/2
+     * characters before the column */
+    int col = 1, skip = at.col - EXCERPT_MAX / 2;
+    const char *pre = "", *post = "";
+    while (col < skip && len > 0) {
+        text++, len--;
+        if (len == 0 || !is_cont((unsigned char)*text))
+            col++;
+        pre = "...";
+    }
+    size_t shown = 0;
+    for (int chars = 0; shown < len; shown++) {
+        if (!is_cont((unsigned char)text[shown]) && chars++ == EXCERPT_MAX) {
+            post = "...";
+            break;
+        }
+    }
     char gutter[16];
     int w = snprintf(gutter, sizeof gutter, "%d", at.line);
-    fprintf(stderr, " %s | %.*s\n %*s | ", gutter, (int)len, text, w, "");
-    int col = 1;
+    fprintf(stderr, " %s | %s%.*s%s\n %*s | %*s", gutter, pre, (int)shown, text, post, w,
+            "", (int)strlen(pre), "");
+    len = shown;
     for (size_t i = 0; i < len && col < at.col; i++) {
         unsigned char c = (unsigned char)text[i];
         if (is_cont(c))

@@ -140,6 +140,10 @@ mk(ExprPool *P, int op, ExprId a, ExprId b)
     case EXPR_SEED: nd.deps = DEP_S; break;
     default:
         nd.deps = P->node[a].deps | (ar == 2 ? P->node[b].deps : 0);
+        nd.height = P->node[a].height;
+        if (ar == 2 && P->node[b].height > nd.height)
+            nd.height = P->node[b].height;
+        nd.height++;
     }
     nd.coeff = (nd.deps & ~DEP_P) == 0;
     return intern(P, nd);
@@ -359,13 +363,16 @@ typedef struct Factor {
 } Factor;
 
 /* Append the factors of e (a canonical product, a power or anything else)
- * to f; 0 if there are more than MAX_FACTORS. */
+ * to f; 0 if there are more than MAX_FACTORS.  A chain of products deeper
+ * than MAX_FACTORS has more factors than that, so the walk stops there:
+ * long products cost constant time here, and no deep recursion. */
 static int
-gather_factors(const ExprPool *P, ExprId e, Factor *f, int *nf)
+gather_factors(const ExprPool *P, ExprId e, Factor *f, int *nf, int depth)
 {
     const ExprNode *nd = &P->node[e];
     if (nd->op == EXPR_MUL && !P->node[nd->a].coeff && !P->node[nd->b].coeff)
-        return gather_factors(P, nd->a, f, nf) && gather_factors(P, nd->b, f, nf);
+        return depth < MAX_FACTORS && gather_factors(P, nd->a, f, nf, depth + 1) &&
+               gather_factors(P, nd->b, f, nf, depth + 1);
     if (*nf == MAX_FACTORS)
         return 0;
     f[*nf].n = power_parts(P, e, &f[*nf].base);
@@ -379,7 +386,7 @@ canonical_product(ExprPool *P, ExprId a, ExprId b)
 {
     Factor f[MAX_FACTORS];
     int nf = 0;
-    if (!gather_factors(P, a, f, &nf) || !gather_factors(P, b, f, &nf)) {
+    if (!gather_factors(P, a, f, &nf, 0) || !gather_factors(P, b, f, &nf, 0)) {
         order2(P, &a, &b);
         return mk(P, EXPR_MUL, a, b);
     }

@@ -55,6 +55,7 @@ typedef struct ExprNode {
     uint8_t coeff; /* depends on parameters and constants only (derived) */
     uint8_t deps;  /* DEP_ bits of the leaves below (derived) */
     uint32_t a, b; /* operands, or leaf data: see ops.def */
+    uint32_t height; /* 0 for a leaf, else 1 + the operands' highest (derived) */
     double value;  /* EXPR_CONST only */
 } ExprNode;
 

@@ -17,6 +17,7 @@
 #include "emit.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -330,8 +331,8 @@ run(const Options *o)
     return 1;
 }
 
-int
-main(int argc, char **argv)
+static int
+eomc_main(int argc, char **argv)
 {
     Options o = {0};
     parse_args(argc, argv, &o);
@@ -349,4 +350,40 @@ main(int argc, char **argv)
         rc = run(&o);
     free(o.sim);
     return rc;
+}
+
+/* Derivatives and emission walk expressions recursively, as deep as an
+ * expression is high.  parse.c bounds the height of what a spec can write
+ * (10 000), derivatives are a few times higher, and a sanitizer build's
+ * frames are large: the work runs on a thread whose stack is sized for
+ * that (address space only: untouched pages cost nothing). */
+enum { STACK_BYTES = 512 << 20 };
+
+typedef struct MainArgs {
+    int argc;
+    char **argv;
+    int rc;
+} MainArgs;
+
+static void *
+main_thread(void *arg)
+{
+    MainArgs *m = arg;
+    m->rc = eomc_main(m->argc, m->argv);
+    return NULL;
+}
+
+int
+main(int argc, char **argv)
+{
+    MainArgs m = {argc, argv, 0};
+    pthread_attr_t attr;
+    pthread_t th;
+    if (pthread_attr_init(&attr) != 0 ||
+        pthread_attr_setstacksize(&attr, STACK_BYTES) != 0 ||
+        pthread_create(&th, &attr, main_thread, &m) != 0)
+        return eomc_main(argc, argv); /* the default stack, then */
+    pthread_attr_destroy(&attr);
+    pthread_join(th, NULL);
+    return m.rc;
 }

@@ -4,8 +4,12 @@
  *
  * Recursion is bounded: nesting deeper than MAX_DEPTH (parentheses,
  * prefix signs, calls) is an error, not a stack overflow.  Long flat
- * expressions (a + b + c + ...) are loops, not recursion.  The token
- * stream is never stored: the lexer reads one token ahead.
+ * expressions (a + b + c + ...) are loops, not recursion, but building a
+ * sum or product term by term costs time proportional to its length (the
+ * constructors collect like terms), so one expression is limited to
+ * MAX_OPERATORS binary operators: a longer one is an error suggesting
+ * defines, not minutes of work.  The token stream is never stored: the
+ * lexer reads one token ahead.
  */
 #include "parse.h"
 
@@ -16,7 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_DEPTH = 200, MAX_NAME = 128 };
+enum { MAX_DEPTH = 200, MAX_NAME = 128, MAX_OPERATORS = 10000 };
+/* The height of an expression with the defines it uses expanded: every
+ * later pass (derivatives, emission) walks it, some recursively, and
+ * derivatives are a few times higher still. */
+enum { MAX_HEIGHT = 10000 };
 
 typedef enum {
     T_END, T_NUM, T_NAME, T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
@@ -34,6 +42,7 @@ typedef struct Parser {
     const ParseSrc *src;
     Token tok; /* the current token */
     int depth;
+    int operators; /* binary operators so far */
 } Parser;
 
 static SrcLoc at(const Parser *ps, size_t off) { return ps->src->where(ps->src, off); }
@@ -394,6 +403,15 @@ unary(Parser *ps)
     return neg ? expr_neg(ps->sc->P, e) : e;
 }
 
+/* One more binary operator, at the current token. */
+static void
+count_operator(Parser *ps)
+{
+    if (++ps->operators > MAX_OPERATORS)
+        diag_error(at(ps, ps->tok.off), "expression has more than %d operators; split it "
+                   "into defines", MAX_OPERATORS);
+}
+
 /* term = unary (("*" | "/") unary)* */
 static ExprId
 term(Parser *ps)
@@ -401,6 +419,8 @@ term(Parser *ps)
     ExprPool *P = ps->sc->P;
     ExprId e = unary(ps);
     for (;;) {
+        if (ps->tok.kind == T_STAR || ps->tok.kind == T_SLASH)
+            count_operator(ps);
         if (accept(ps, T_STAR)) {
             e = expr_mul(P, e, unary(ps));
         } else if (ps->tok.kind == T_SLASH) {
@@ -423,6 +443,8 @@ expr(Parser *ps)
     ExprPool *P = ps->sc->P;
     ExprId e = term(ps);
     for (;;) {
+        if (ps->tok.kind == T_PLUS || ps->tok.kind == T_MINUS)
+            count_operator(ps);
         if (accept(ps, T_PLUS))
             e = expr_add(P, e, term(ps));
         else if (accept(ps, T_MINUS))
@@ -435,7 +457,7 @@ expr(Parser *ps)
 ExprId
 parse_expr(ParseScope *sc, const ParseSrc *src)
 {
-    Parser ps = {sc, src, {T_END, 0, 0, 0.0}, 0};
+    Parser ps = {sc, src, {T_END, 0, 0, 0.0}, 0, 0};
     ps.tok = lex(src, 0);
     if (ps.tok.kind == T_END)
         diag_error(at(&ps, 0), "empty expression");
@@ -450,6 +472,9 @@ parse_expr(ParseScope *sc, const ParseSrc *src)
             diag_error(at(&ps, ps.tok.off), "unmatched ')'");
         diag_error(at(&ps, ps.tok.off), "unexpected %s", found);
     }
+    if (e != EXPR_NONE && expr_node(sc->P, e)->height > MAX_HEIGHT)
+        diag_error(at(&ps, 0), "expression is nested more than %d levels deep with the "
+                   "defines it uses expanded", MAX_HEIGHT);
     return e;
 }
 

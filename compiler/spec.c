@@ -318,6 +318,11 @@ find_name(Loader *L, const char *name)
 
 static const char *const kind_names[] = {"parameter", "coordinate", "input", "define"};
 
+/* Names are looked up by a linear search, and models are dense in their
+ * coordinates: a spec with more names than this is refused rather than
+ * compiled for minutes. */
+enum { SPEC_MAX_NAMES = 10000 };
+
 /* Check a new name (identifier, not reserved, not taken) and keep it. */
 static const char *
 add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
@@ -331,6 +336,9 @@ add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
         diag_error(at, "name '%.20s...' is longer than 64 characters", name);
     if (parse_is_reserved(name))
         diag_error(at, "'%s' is reserved (t, pi and the function names)", name);
+    if (L->nnames >= SPEC_MAX_NAMES)
+        diag_error(at, "more than %d names (parameters, coordinates, inputs, defines, "
+                   "particles, bodies, effects and constraints)", SPEC_MAX_NAMES);
     Name *old = find_name(L, name);
     if (old)
         diag_error(at, "'%s' is already a %s (line %d)", name, kind_names[old->kind],
@@ -1203,10 +1211,44 @@ yaml_failure(Loader *L, yaml_parser_t *yp)
     diag_error(at, "%s", msg);
 }
 
+/* libyaml's scanner slows down quadratically with flow nesting, and a
+ * deep document would make every later walk deep: refuse one nested
+ * deeper than SPEC_MAX_DEPTH, reading events (which stops at the first
+ * offending level instead of scanning the whole file), before loading. */
+enum { SPEC_MAX_DEPTH = 64 };
+
+static void
+check_depth(Loader *L)
+{
+    yaml_parser_t yp;
+    yaml_event_t ev;
+    if (!yaml_parser_initialize(&yp))
+        diag_error((SrcLoc){L->path, 0, 0}, "out of memory");
+    yaml_parser_set_input_string(&yp, (const unsigned char *)L->text, L->len);
+    for (int depth = 0, done = 0; !done;) {
+        if (!yaml_parser_parse(&yp, &ev))
+            yaml_failure(L, &yp);
+        int type = ev.type;
+        SrcLoc at = {L->path, (int)ev.start_mark.line + 1, (int)ev.start_mark.column + 1};
+        yaml_event_delete(&ev);
+        if (type == YAML_SEQUENCE_START_EVENT || type == YAML_MAPPING_START_EVENT)
+            depth++;
+        else if (type == YAML_SEQUENCE_END_EVENT || type == YAML_MAPPING_END_EVENT)
+            depth--;
+        done = type == YAML_STREAM_END_EVENT;
+        if (depth > SPEC_MAX_DEPTH) {
+            yaml_parser_delete(&yp);
+            diag_error(at, "the YAML is nested more than %d levels deep", SPEC_MAX_DEPTH);
+        }
+    }
+    yaml_parser_delete(&yp);
+}
+
 static void
 load_document(Loader *L)
 {
     yaml_parser_t yp;
+    check_depth(L);
     if (!yaml_parser_initialize(&yp))
         diag_error((SrcLoc){L->path, 0, 0}, "out of memory");
     yaml_parser_set_input_string(&yp, (const unsigned char *)L->text, L->len);

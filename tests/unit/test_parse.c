@@ -218,15 +218,21 @@ test_errors(void)
     deep[n + 1] = '\0';
     col = error_column(deep, 0xff, msg, sizeof msg);
     CHECK(col > 0 && strstr(msg, "nested more than"), "100000 prefix minus signs: an error");
-    /* a long flat sum is a loop, not recursion */
+    /* a long flat sum is a loop, not recursion; past 10000 operators it
+     * is an error at the 10001st (each term is "- x " or "+ y ") */
     char *flat = malloc(4 * n + 2);
     flat[0] = 'x';
     for (size_t i = 0; i < n; i++)
         memcpy(flat + 1 + 4 * i, i % 2 ? "+ y " : "- x ", 4);
     flat[4 * n + 1] = '\0';
+    col = error_column(flat, 0xff, msg, sizeof msg);
+    CHECK(col == 2 + 4 * 10000 && strstr(msg, "more than 10000 operators"),
+          "a sum of 100000 terms: an error at the 10001st operator (%s)", msg);
+    size_t m = 10000;
+    flat[4 * m + 1] = '\0';
     randomize();
-    CHECK_NEAR(eval(parse(flat)), (double)(n / 2) * st[0][1] - (double)(n / 2 - 1) * st[0][0],
-               1e-9, "a flat sum of 100000 terms parses and evaluates");
+    CHECK_NEAR(eval(parse(flat)), (double)(m / 2) * st[0][1] - (double)(m / 2 - 1) * st[0][0],
+               1e-9, "a flat sum of 10000 terms parses and evaluates");
     free(flat);
     free(deep);
 }

@@ -560,11 +560,31 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
     return rc;
 }
 
+/* A start off the constraints is allowed (the drift then starts there),
+ * but rarely meant: say so, once, before integrating. */
+#define INCONSISTENT_TOL 1e-8
+
+static void
+check_consistent(const Cli *c, eomc_sim *sim, const double *x, double *res)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    if (!has_levels(m) || eomc_sim_residuals(sim, c->run.t0, x, x + m->nq, res) != EOMC_OK)
+        return; /* a failure here is reported by the integration */
+    for (int k = 0; k < m->nc; k++)
+        if (m->c_order[k] <= 1 && !(fabs(res[k]) <= INCONSISTENT_TOL)) {
+            fprintf(stderr, "%s: warning: the initial state violates the constraint %s "
+                    "by %.3g (--assemble projects it onto the constraints)\n", c->prog,
+                    m->c_names[k], res[k]);
+            return;
+        }
+}
+
 static int
 simulate(Cli *c, eomc_sim *sim, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     Csv w = {stdout, sim, 0, 0, 0, calloc((size_t)m->nc + 1, sizeof(double)), 0};
+    check_consistent(c, sim, x, w.res);
     if (c->out && !(w.f = fopen(c->out, "w"))) {
         fprintf(stderr, "%s: -o: cannot write '%s'\n", c->prog, c->out);
         free(w.res);

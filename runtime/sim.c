@@ -80,9 +80,13 @@ eomc_sim_alloc(const eomc_model *m)
     s->err = calloc(s->errlen, 1);
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
+    size_t nc = (size_t)m->nc;
+    s->B0 = sim_zeros(nc * n), s->B1 = sim_zeros(nc * n), s->fk = sim_zeros(nc);
+    s->x0 = sim_zeros(2 * n), s->xt = sim_zeros(2 * n), s->xerr = sim_zeros(2 * n);
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
-        !s->col || !s->err || (m->nc > 0 && (!s->kkt || !s->proj))) {
+        !s->col || !s->err || (m->nc > 0 && (!s->kkt || !s->proj)) || !s->B0 || !s->B1 ||
+        !s->fk || !s->x0 || !s->xt || !s->xerr) {
         eomc_sim_free(s);
         return NULL;
     }
@@ -97,7 +101,7 @@ eomc_sim_free(eomc_sim *s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->Mdiag, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
-                      s->err};
+                      s->err, s->B0, s->B1, s->fk, s->x0, s->xt, s->xerr};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
@@ -491,25 +495,136 @@ driver_error(eomc_sim *s, int status, double t, const double *x, double hmin,
     }
 }
 
-/* After each accepted step of a constrained model: measure the drift,
- * and project when asked.  A projected state is not the one the stepper
- * produced, so its history (multistep methods) is dropped. */
+/* ---- degenerate constraints ----
+ *
+ * A constraint degenerates where its row of B = df/dq'' vanishes (Appell's
+ * cone at v = 0): there the accelerations are not determined, and the
+ * KKT solution can pass smoothly through the point onto another branch
+ * without the integrator noticing.  After each step we compare every row
+ * with the row before it: a row that reversed direction went through zero
+ * or close to it.  The step is then bisected to the reversal, and if the
+ * row is small there relative to its size at either end (not merely
+ * turned by a right angle in one long step), the run stops with an error
+ * at that time and state. */
+
+#define DEGENERATE_TOL 1e-3 /* |B_k| at the reversal, relative to the ends */
+enum { BISECTIONS = 60 };
+
+/* The rows of B at the state x [2n] and t into B [nc*n]. */
 static int
-after_step(eomc_sim *s, gsl_odeiv2_step *step, double t, double *x, eomc_stats *st)
+constraint_rows(eomc_sim *s, double t, const double *x, double *B)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (!all_finite(x, 2 * n))
+        return -1;
+    if (!m->c_affine && eomc_sim_accel(s, t, x, x + n, s->a) != EOMC_OK)
+        return -1;
+    if (m->c_affine)
+        memset(s->a, 0, (size_t)n * sizeof *s->a);
+    sim_inputs_at(s, t);
+    m->constraint(t, x, x + n, s->a, s->p, s->u, s->fk, B);
+    return 0;
+}
+
+static double
+row_dot(const double *a, const double *b, int n)
+{
+    double d = 0;
+    for (int i = 0; i < n; i++)
+        d += a[i] * b[i];
+    return d;
+}
+
+/* The first row k of B1 that reversed direction since B0, or -1. */
+static int
+reversed_row(const eomc_sim *s, const double *B0, const double *B1)
 {
     int n = s->n;
-    if (!s->proj || !proj_levels(s->proj) || !all_finite(x, 2 * n))
-        return GSL_SUCCESS; /* a non-finite state is reported at the output time */
-    double r = proj_residual(s, t, x, x + n);
-    st->max_drift = fmax(st->max_drift, r);
-    if (s->stabilize == EOMC_STABILIZE_PROJECT) {
-        if (proj_apply(s, t, x, x + n) != EOMC_OK)
-            return GSL_EBADFUNC;
+    for (int k = 0; k < s->m->nc; k++)
+        if (row_dot(B0 + k * n, B1 + k * n, n) <= 0)
+            return k;
+    return -1;
+}
+
+/* Row k reversed in the step from (s->t0, s->x0) to t1: bisect the step
+ * for the reversal; an error there if the row is (nearly) zero. */
+static int
+locate_degeneracy(eomc_sim *s, gsl_odeiv2_step *step, const gsl_odeiv2_system *sys,
+                  int k, double t1)
+{
+    int n = s->n, N = 2 * n;
+    double *Bk0 = s->B0 + k * n, ends = fmax(sqrt(row_dot(Bk0, Bk0, n)),
+                                             sqrt(row_dot(s->B1 + k * n, s->B1 + k * n, n)));
+    double lo = 0, hi = t1 - s->t0, small = INFINITY;
+    for (int it = 0; it < BISECTIONS; it++) {
+        double h = 0.5 * (lo + hi);
+        memcpy(s->xt, s->x0, (size_t)N * sizeof *s->xt);
         gsl_odeiv2_step_reset(step);
-        r = proj_residual(s, t, x, x + n);
+        if (gsl_odeiv2_step_apply(step, s->t0, h, s->xt, s->xerr, NULL, NULL, sys) !=
+                GSL_SUCCESS ||
+            constraint_rows(s, s->t0 + h, s->xt, s->B1) != 0) {
+            small = 0; /* the solve broke down this close to it */
+            break;
+        }
+        double *Bk = s->B1 + k * n;
+        small = fmin(small, sqrt(row_dot(Bk, Bk, n)));
+        *(row_dot(Bk0, Bk, n) > 0 ? &lo : &hi) = h;
     }
-    st->max_residual = fmax(st->max_residual, r);
+    gsl_odeiv2_step_reset(step);
+    if (!(small <= DEGENERATE_TOL * ends))
+        return GSL_SUCCESS; /* the row turned, it did not vanish */
+    memcpy(s->xt, s->x0, (size_t)N * sizeof *s->xt);
+    if (lo > 0)
+        gsl_odeiv2_step_apply(step, s->t0, lo, s->xt, s->xerr, NULL, NULL, sys);
+    gsl_odeiv2_step_reset(step);
+    sim_numeric_error(s, s->t0 + lo, s->xt, s->xt + n, "the constraint %s degenerates: "
+                      "its row of B = df/dq'' vanishes here (it reverses direction), so "
+                      "the accelerations are no longer determined", s->m->c_names[k]);
+    return GSL_EBADFUNC;
+}
+
+/* After each accepted step of a constrained model: check that no
+ * constraint degenerated, measure the drift, and project when asked.  A
+ * projected state is not the one the stepper produced, so its history
+ * (multistep methods) is dropped. */
+static int
+after_step(eomc_sim *s, gsl_odeiv2_driver *d, double t, double *x, eomc_stats *st)
+{
+    int n = s->n;
+    if (!s->kkt || !all_finite(x, 2 * n))
+        return GSL_SUCCESS; /* a non-finite state is reported at the output time */
+    if (constraint_rows(s, t, x, s->B1) != 0)
+        return GSL_EBADFUNC;
+    int k = reversed_row(s, s->B0, s->B1);
+    if (k >= 0 && locate_degeneracy(s, d->s, d->sys, k, t) != GSL_SUCCESS)
+        return GSL_EBADFUNC;
+    if (proj_levels(s->proj)) {
+        double r = proj_residual(s, t, x, x + n);
+        st->max_drift = fmax(st->max_drift, r);
+        if (s->stabilize == EOMC_STABILIZE_PROJECT) {
+            if (proj_apply(s, t, x, x + n) != EOMC_OK)
+                return GSL_EBADFUNC;
+            gsl_odeiv2_step_reset(d->s);
+            r = proj_residual(s, t, x, x + n);
+            if (constraint_rows(s, t, x, s->B1) != 0)
+                return GSL_EBADFUNC;
+        }
+        st->max_residual = fmax(st->max_residual, r);
+    }
+    double *B = s->B0; /* the rows after this step are the next one's start */
+    s->B0 = s->B1, s->B1 = B;
     return GSL_SUCCESS;
+}
+
+/* Before each step: keep its start for after_step. */
+static void
+before_step(eomc_sim *s, double t, const double *x)
+{
+    if (s->kkt) {
+        s->t0 = t;
+        memcpy(s->x0, x, 2 * (size_t)s->n * sizeof *x);
+    }
 }
 
 /* Advance from *t to t1 in fixed steps that divide the interval evenly.
@@ -529,9 +644,10 @@ advance_fixed(eomc_sim *s, gsl_odeiv2_driver *d, const eomc_run_opts *o, double 
     for (unsigned long i = 0; i < k; i++) {
         if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
             return GSL_EMAXITER;
+        before_step(s, *t, x);
         int rc = gsl_odeiv2_evolve_apply_fixed_step(d->e, NULL, d->s, d->sys, t, h, x);
         if (rc == GSL_SUCCESS)
-            rc = after_step(s, d->s, *t, x, st);
+            rc = after_step(s, d, *t, x, st);
         if (rc != GSL_SUCCESS)
             return rc;
     }
@@ -551,9 +667,10 @@ advance(eomc_sim *s, gsl_odeiv2_driver *d, const eomc_run_opts *o, double *t, do
     while (*t < t1) {
         if (o->max_steps > 0 && (long)d->e->count >= o->max_steps)
             return GSL_EMAXITER;
+        before_step(s, *t, x);
         int rc = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, d->sys, t, t1, &d->h, x);
         if (rc == GSL_SUCCESS)
-            rc = after_step(s, d->s, *t, x, st);
+            rc = after_step(s, d, *t, x, st);
         if (rc != GSL_SUCCESS)
             return rc;
         if (*t < t1 && fabs(d->h) < hmin)
@@ -598,6 +715,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (s->proj && proj_levels(s->proj))
         st->max_residual = st->max_drift = proj_residual(s, t, x, x + n);
     rc = row ? row(ctx, t, x) : 0;
+    if (rc == EOMC_OK && s->kkt && constraint_rows(s, t, x, s->B0) != 0)
+        rc = EOMC_ENUMERIC;
     for (long k = 1; rc == EOMC_OK && t < o->t_end; k++) {
         double t1 = o->t0 + (double)k * o->dt;
         if (t1 > o->t_end - 1e-9 * o->dt) /* no sliver of an interval at the end */

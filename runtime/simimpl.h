@@ -30,6 +30,10 @@ struct eomc_sim {
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: work arrays, multipliers */
     Proj *proj;              /* constrained models: projection's work arrays */
+    double *B0, *B1, *fk;    /* constrained: rows of B before and after a step,
+                              * [nc*n] each, and f [nc] (scratch) */
+    double *x0, *xt, *xerr;  /* [2n] the state before a step, trial states */
+    double t0;               /* the time before the step */
     int stabilize;           /* EOMC_STABILIZE_... */
     double alpha, beta;      /* Baumgarte's rates */
 };

@@ -92,6 +92,11 @@ near "$got" "$want"; ok $? "--assemble moves x = 1.2 to x / |(x, y)| = $got and 
 res=$(sed -n 's/^max_residual //p' "$tmp/proj.err")
 awk -v r="$res" 'BEGIN { exit !(r != "" && r < 1e-12) }'
 ok $? "--stabilize project --stats: max_residual $res < 1e-12 over 50 s at rtol 1e-6"
+"$tmp/cp" --init x=1.2 --t-end 0.1 -o /dev/null 2> "$tmp/warn.err"; st=$?
+[ $st -eq 0 ] && grep -q "warning: the initial state violates the constraint rod" "$tmp/warn.err"
+ok $? "an initial state off the constraints: a warning naming the constraint, suggesting --assemble"
+"$tmp/cp" --t-end 0.1 -o /dev/null 2> "$tmp/nowarn.err"
+[ ! -s "$tmp/nowarn.err" ]; ok $? "a consistent initial state: no warning"
 usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
 usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
 ok $? "--stabilize with a typo: usage error suggesting project"

@@ -1,0 +1,103 @@
+#!/bin/sh
+# Numerical failure at run time, as a user meets it (TAP).  Each case is a
+# spec built into a simulator and run to its failure; every case checks
+#  - exit status 3;
+#  - the message: "t = VALUE", the cause, and the whole state by name;
+#  - the CSV: the rows before the failure (as many as the message says,
+#    the exact count where the failure time is known), all finite, none
+#    after the failure time.
+# Cases (tests/sim/specs/fail_*.yaml, and specs/appell.yaml):
+#  - an input 1/(1 - t) drives the state to a singularity: step size
+#    underflow just before t = 1;
+#  - a force sqrt(1 - t): the acceleration is not finite past t = 1;
+#  - a mass 1 - t at rest: a zero pivot at t = 1 exactly;
+#  - a constraint whose two roots in x'' merge at t = 1: singular system;
+#  - a constraint on which Newton's method cycles: no convergence at t = 0;
+#  - --max-steps 5: too many steps;
+#  - Appell's particle on the decelerating branch z' = -a v stops at
+#    t* = v0 (1 + a^2) / (a g), where the cone degenerates: the run ends
+#    there with that error, not with NaN or a jump to the other branch.
+# usage: test_failures.sh EOMC SOURCE_ROOT
+set -u
+eomc=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+
+# run NAME SPEC [OPTIONS]: build (once) and run; sets st, err, csv
+run() {
+  name=$1 spec=$2
+  shift 2
+  [ -x "$tmp/$name" ] || "$eomc" build "$spec" -o "$tmp/$name" 2> "$tmp/$name.build" ||
+    cat "$tmp/$name.build"
+  "$tmp/$name" -o "$tmp/$name.csv" "$@" 2> "$tmp/$name.err"
+  st=$?
+  err=$(cat "$tmp/$name.err")
+  csv="$tmp/$name.csv"
+}
+
+# kept TFAIL [NROWS]: the CSV has the rows the message claims (NROWS if
+# given), every field a finite number, every time <= TFAIL
+kept() {
+  claimed=$(sed -n 's/.*: the \([0-9]*\) rows computed up to then are kept/\1/p' "$tmp/$name.err")
+  awk -F, -v tf="$1" -v want="${2:-}" -v claimed="$claimed" '
+    NR == 1 { next }
+    { rows++; if ($1 + 0 > tf + 0) bad = 1
+      for (i = 1; i <= NF; i++) if ($i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) bad = 1 }
+    END { rows += 0; exit !(!bad && rows == claimed + 0 && (want == "" || rows == want + 0)) }
+  ' "$csv"
+}
+
+state_named() { printf '%s' "$err" | grep -q "; state: $1"; }
+t_of() { printf '%s' "$err" | sed -n 's/.*error: t = \([-0-9.e+]*\):.*/\1/p' | head -n 1; }
+near() { awk -v a="$1" -v b="$2" -v r="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= r * (b < 0 ? -b : b)) }'; }
+
+specs="$src/tests/sim/specs"
+
+run input "$specs/fail_input.yaml"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "step size underflow" && near "$t" 1 1e-6 &&
+  state_named "x = " && kept "$t" 10
+ok $? "u = 1/(1 - t): step size underflow at t = $t, 10 rows kept (exit $st)"
+
+run nan "$specs/fail_nan.yaml"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "acceleration x'' is not finite" &&
+  near "$t" 1 1e-3 && state_named "x = " && kept "$t" 11
+ok $? "force sqrt(1 - t): acceleration x'' not finite at t = $t, 11 rows kept (exit $st)"
+
+run mass "$specs/fail_mass.yaml"
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "error: t = 1: mass matrix is singular or not positive definite (pivot 1, coordinate x); state: x = 1, x' = 0" &&
+  kept 1 10
+ok $? "mass 1 - t: singular mass matrix at t = 1 exactly, 10 rows kept (exit $st)"
+
+run fold "$specs/fail_fold.yaml"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "the constrained system is singular: the constraints fold (x)" &&
+  near "$t" 1 1e-9 && state_named "x = " && kept "$t" 10
+ok $? "roots merging at t = 1: singular constrained system at t = $t, 10 rows kept (exit $st)"
+
+run cycle "$specs/fail_cycle.yaml"
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "error: t = 0: Newton's method on the constraints cycle (x) did not converge in 50 iterations; state: x = 0" &&
+  [ "$(cat "$csv")" = "t,x,y,x',y',T,V,E,lambda[cycle],res[cycle]" ]
+ok $? "Newton cycling 0 -> 1 -> 0: no convergence at t = 0, only the header written (exit $st)"
+
+run input "$specs/fail_input.yaml" --max-steps 5
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "too many steps (the limit is 5)" && kept "$t"
+ok $? "--max-steps 5: too many steps at t = $t, the rows before kept (exit $st)"
+
+# Appell: v0 = 2 along x, z' = -a v0, a = 0.5, g = 9.81
+run appell "$src/specs/appell.yaml" --init "y'=0" --init "z'=-1" --t-end 1
+t=$(t_of)
+tstar=$(awk 'BEGIN { printf "%.17g", 2 * 1.25 / (0.5 * 9.81) }')
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "the constraint cone degenerates" &&
+  near "$t" "$tstar" 1e-6 && state_named "x = " && kept "$t" 51
+ok $? "appell, decelerating: stops at t = $t (t* = $tstar) where the cone degenerates, 51 rows kept (exit $st)"
+last=$(tail -n 1 "$csv" | cut -d, -f5)
+awk -v v="$last" 'BEGIN { exit !(v > 0) }'
+ok $? "appell, decelerating: x' stays positive up to the last row ($last): no jump to the other branch"
+
+echo "1..$n"
+[ $failed -eq 0 ]

@@ -123,6 +123,13 @@ run_cc(char **argv)
 }
 
 int
+build_is_special(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+int
 build_executable(const char *c_file, const char *exe)
 {
     const char *inc, *lib, *cc = getenv("CC");
@@ -136,7 +143,8 @@ build_executable(const char *c_file, const char *exe)
     }
     size_t len = strlen(exe) + 16;
     char *tmp = xmalloc(len);
-    snprintf(tmp, len, "%s.tmp%ld", exe, (long)getpid());
+    int special = build_is_special(exe);
+    snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
     char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS;
     snprintf(incflag, sizeof incflag, "-I%s", inc);
     snprintf(ccbuf, sizeof ccbuf, "%s", cc);
@@ -150,11 +158,11 @@ build_executable(const char *c_file, const char *exe)
     argv[n++] = "-lm";
     argv[n] = NULL;
     int rc = run_cc(argv);
-    if (rc == 0 && rename(tmp, exe) != 0) {
+    if (rc == 0 && !special && rename(tmp, exe) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
         rc = -1;
     }
-    if (rc != 0)
+    if (rc != 0 && !special)
         unlink(tmp);
     free(tmp);
     return rc;

@@ -7,6 +7,11 @@
 
 #include <stddef.h>
 
+/* Whether path names something other than a regular file or nothing (a
+ * device such as /dev/null, a pipe): written in place, since renaming a
+ * temporary file over it would replace the device itself. */
+int build_is_special(const char *path);
+
 /* Compile c_file with the runtime into exe (written to a temporary name
  * and renamed when complete).  Returns 0, or -1 after printing why. */
 int build_executable(const char *c_file, const char *exe);

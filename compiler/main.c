@@ -215,13 +215,15 @@ compile(const Options *o, FILE *out)
     return rc;
 }
 
-/* Write to path.tmpPID, then rename: never a half-written file. */
+/* Write to path.tmpPID, then rename: never a half-written file (but a
+ * device such as /dev/null is written in place). */
 static int
 compile_to_file(const Options *o, const char *path)
 {
     size_t len = strlen(path) + 32;
     char *tmp = xmalloc(len);
-    snprintf(tmp, len, "%s.tmp%ld", path, (long)getpid());
+    int special = build_is_special(path);
+    snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", path, (long)getpid());
     FILE *f = fopen(tmp, "w");
     if (!f) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", tmp, strerror(errno));
@@ -233,11 +235,11 @@ compile_to_file(const Options *o, const char *path)
         fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
         rc = EXIT_USAGE;
     }
-    if (rc == 0 && rename(tmp, path) != 0) {
+    if (rc == 0 && !special && rename(tmp, path) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
         rc = EXIT_USAGE;
     }
-    if (rc != 0)
+    if (rc != 0 && !special)
         unlink(tmp);
     free(tmp);
     return rc;

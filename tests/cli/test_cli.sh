@@ -22,6 +22,15 @@ accel_of() { sed -n "s/^$1'' //p"; }
 (cd "$src" && "$eomc" compile specs/pendulum.yaml) > "$tmp/b.c"
 cmp -s "$tmp/a.c" "$tmp/b.c"; ok $? "compile output is identical bytes from another directory"
 
+# a special file (here a pipe; /dev/null alike) is written in place, not
+# replaced by a renamed temporary file
+mkfifo "$tmp/pipe"
+cat "$tmp/pipe" > "$tmp/piped.c" &
+"$eomc" compile "$src/specs/pendulum.yaml" -o "$tmp/pipe"; st=$?
+wait
+[ $st -eq 0 ] && [ -p "$tmp/pipe" ] && cmp -s "$tmp/piped.c" "$tmp/a.c"
+ok $? "compile -o PIPE writes through the pipe and leaves it a pipe"
+
 # build from the build tree
 "$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/pend" 2> "$tmp/err"
 got=$("$tmp/pend" --accel --init theta=0.5 | accel_of theta)

@@ -67,7 +67,7 @@ choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s)
     int n = c->n, j = sc->dependent;
     if (j >= 0) {
         if (c->B[a * n + j] == EXPR_ZERO)
-            diag_error(sc->dep_loc, "constraint '%s' does not involve %s at acceleration "
+            diag_error(sc->dep_loc, "constraint '%s' does not involve '%s' at acceleration "
                        "level, so it cannot determine it", sc->name, s->coord[j].name);
     } else {
         for (j = n - 1; j >= 0; j--)

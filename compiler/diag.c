@@ -72,6 +72,40 @@ static int is_cont(unsigned char c) { return (c & 0xC0) == 0x80; }
 
 enum { EXCERPT_MAX = 100 }; /* longer lines are shown around the column */
 
+/* The length of the well-formed UTF-8 sequence at text[i], or 0. */
+static size_t
+utf8_len(const char *text, size_t i, size_t len)
+{
+    unsigned char c = (unsigned char)text[i];
+    size_t n = c < 0x80 ? 1 : c >= 0xc2 && c < 0xe0 ? 2 : c >= 0xe0 && c < 0xf0 ? 3
+             : c >= 0xf0 && c < 0xf5 ? 4 : 0;
+    for (size_t k = 1; k < n; k++)
+        if (i + k >= len || !is_cont((unsigned char)text[i + k]))
+            return 0;
+    if (c == 0xed && (unsigned char)text[i + 1] >= 0xa0) /* a UTF-16 surrogate */
+        return 0;
+    return n;
+}
+
+/* The excerpt as the terminal should show it: '?' for a control character
+ * (other than tab) and for each byte that is not part of well-formed
+ * UTF-8; the error message names such bytes. */
+static void
+print_shown(const char *text, size_t len)
+{
+    for (size_t i = 0; i < len;) {
+        unsigned char c = (unsigned char)text[i];
+        size_t n = utf8_len(text, i, len);
+        if (n == 0 || (c < 0x20 && c != '\t') || c == 0x7f) {
+            fputc('?', stderr);
+            i++;
+            continue;
+        }
+        fwrite(text + i, 1, n, stderr);
+        i += n;
+    }
+}
+
 /*  12 | the line
  *     |    ^      */
 static void
@@ -100,8 +134,9 @@ print_excerpt(SrcLoc at)
     }
     char gutter[16];
     int w = snprintf(gutter, sizeof gutter, "%d", at.line);
-    fprintf(stderr, " %s | %s%.*s%s\n %*s | %*s", gutter, pre, (int)shown, text, post, w,
-            "", (int)strlen(pre), "");
+    fprintf(stderr, " %s | %s", gutter, pre);
+    print_shown(text, shown);
+    fprintf(stderr, "%s\n %*s | %*s", post, w, "", (int)strlen(pre), "");
     len = shown;
     for (size_t i = 0; i < len && col < at.col; i++) {
         unsigned char c = (unsigned char)text[i];
@@ -159,28 +194,34 @@ diag_note(SrcLoc at, const char *fmt, ...)
     va_end(ap);
 }
 
-/* Levenshtein distance, capped: we only care about small ones. */
+/* Edit distance with transpositions (optimal string alignment), capped:
+ * we only care about small ones, and a swap of two neighbouring letters
+ * (`bbo` for `bob`, `t_ned` for `t_end`) is the commonest typo, one edit. */
 static int
 distance(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
     if (la > 64 || lb > 64)
         return 99;
-    int row[65];
+    int d[65][65];
+    for (size_t i = 0; i <= la; i++)
+        d[i][0] = (int)i;
     for (size_t j = 0; j <= lb; j++)
-        row[j] = (int)j;
+        d[0][j] = (int)j;
     for (size_t i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = (int)i;
         for (size_t j = 1; j <= lb; j++) {
-            int up = row[j];
-            int sub = diag + (a[i - 1] != b[j - 1]);
-            int best = up + 1 < row[j - 1] + 1 ? up + 1 : row[j - 1] + 1;
-            row[j] = sub < best ? sub : best;
-            diag = up;
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best)
+                best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best)
+                best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
         }
     }
-    return row[lb];
+    return d[la][lb];
 }
 
 const char *

@@ -64,6 +64,20 @@ usage_error(const char *fmt, const char *arg)
     exit(EXIT_USAGE);
 }
 
+/* An option eomc does not know: the nearest one it does, if close. */
+static _Noreturn void
+unknown_option(const char *a)
+{
+    static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
+                                       "--explain", "--eliminate", "--help", "--version"};
+    const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
+    if (!near)
+        usage_error("unknown option '%s'", a);
+    fprintf(stderr, "eomc: unknown option '%s'; did you mean '%s'?\n(see eomc --help)\n", a,
+            near);
+    exit(EXIT_USAGE);
+}
+
 static void
 parse_args(int argc, char **argv, Options *o)
 {
@@ -74,8 +88,14 @@ parse_args(int argc, char **argv, Options *o)
     if (!strcmp(argv[1], "--version"))
         printf("eomc %s\n", EOMC_VERSION), exit(0);
     o->cmd = argv[1];
-    if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run"))
+    static const char *const cmds[] = {"compile", "build", "run"};
+    if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run")) {
+        const char *near = diag_nearest(o->cmd, cmds, 3);
+        if (near)
+            fprintf(stderr, "eomc: unknown command '%s'; did you mean '%s'?\n", o->cmd, near),
+                exit(EXIT_USAGE);
         usage_error("unknown command '%s'; expected compile, build or run", o->cmd);
+    }
     int run = !strcmp(o->cmd, "run");
     o->sim = calloc((size_t)argc + 1, sizeof *o->sim);
     for (int i = 2; i < argc; i++) {
@@ -97,7 +117,7 @@ parse_args(int argc, char **argv, Options *o)
         } else if (run && o->spec) {
             o->sim[o->nsim++] = argv[i];
         } else if (a[0] == '-' && a[1]) {
-            usage_error("unknown option '%s'", a);
+            unknown_option(a);
         } else if (!o->spec) {
             o->spec = a;
         } else {
@@ -111,9 +131,13 @@ parse_args(int argc, char **argv, Options *o)
     if (o->jacobian && strcmp(o->jacobian, "auto") && strcmp(o->jacobian, "unrolled") &&
         strcmp(o->jacobian, "seeded"))
         usage_error("--jacobian must be auto, unrolled or seeded, not '%s'", o->jacobian);
-    if (!form_find(o->form))
-        fprintf(stderr, "eomc: unknown form '%s'; valid forms: %s\n", o->form,
-                form_names()), exit(EXIT_USAGE);
+    if (!form_find(o->form)) {
+        const char *near = form_nearest(o->form);
+        fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,
+                near ? "did you mean '" : "", near ? near : "", near ? "'? " : "",
+                form_names());
+        exit(EXIT_USAGE);
+    }
 }
 
 static void
@@ -225,8 +249,8 @@ compile_to_file(const Options *o, const char *path)
     int special = build_is_special(path);
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", path, (long)getpid());
     FILE *f = fopen(tmp, "w");
-    if (!f) {
-        fprintf(stderr, "eomc: cannot write %s: %s\n", tmp, strerror(errno));
+    if (!f) { /* named as the user wrote it: the temporary name is ours */
+        fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
         free(tmp);
         return EXIT_USAGE;
     }

@@ -95,6 +95,19 @@ scan_number(const ParseSrc *src, size_t i, double *value)
     return i;
 }
 
+/* The length of YAML's spelling of infinity or NaN after its '.' at i
+ * (`.inf`, `.NaN`, ...), or 0: a YAML number that is not finite. */
+static size_t
+not_finite(const ParseSrc *src, size_t i)
+{
+    static const char *const words[] = {"inf", "Inf", "INF", "nan", "NaN", "NAN"};
+    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++)
+        if (src->len - i >= 3 && !memcmp(src->text + i, words[k], 3) &&
+            (src->len - i == 3 || !is_name_char((unsigned char)src->text[i + 3])))
+            return 3;
+    return 0;
+}
+
 static _Noreturn void
 bad_char(const ParseSrc *src, size_t i)
 {
@@ -106,6 +119,9 @@ bad_char(const ParseSrc *src, size_t i)
         diag_error(src->where(src, i), "unexpected character '%.*s' (names are ASCII)",
                    (int)n, src->text + i);
     }
+    if (c == '.' && not_finite(src, i + 1))
+        diag_error(src->where(src, i), "'%.*s' is not allowed: every value must be a finite "
+                   "number", (int)not_finite(src, i + 1) + 1, src->text + i);
     if (c == '=')
         diag_error(src->where(src, i), "unexpected '=': an expression here is a value, "
                    "not an equation (a constraint `f = 0` is written as just f)");
@@ -250,17 +266,42 @@ time_derivative(Parser *ps, ExprId e, size_t off)
     diag_error(at(ps, off), "derivatives above the third (q''') are not supported");
 }
 
+/* ---- constants ---- */
+
+/* e is OP applied at off to the constants a (and b, unless EXPR_NONE).
+ * The constructors fold constants only to finite values, so a result that
+ * is not a constant is an infinity or a NaN: log(0), 0^-1, 1e308*10,
+ * acos(2).  No generated code should compute one. */
+static ExprId
+finite(Parser *ps, ExprId e, const char *op, ExprId a, ExprId b, size_t off)
+{
+    ExprPool *P = ps->sc->P;
+    double x, y = 0;
+    if (!expr_is_const(P, a, &x) || (b != EXPR_NONE && !expr_is_const(P, b, &y)) ||
+        expr_is_const(P, e, NULL))
+        return e;
+    char what[160];
+    if (isalpha((unsigned char)op[0]) && b != EXPR_NONE)
+        snprintf(what, sizeof what, "%s(%g, %g)", op, x, y);
+    else if (isalpha((unsigned char)op[0]))
+        snprintf(what, sizeof what, "%s(%g)", op, x);
+    else
+        snprintf(what, sizeof what, "%g %s %g", x, op, y);
+    diag_error(at(ps, off), "%s is not a finite number", what);
+}
+
 /* ---- the grammar ---- */
 
 static ExprId expr(Parser *ps);
 static ExprId unary(Parser *ps);
 
+/* One level deeper, for the '(', sign or '^' at off: the error points at
+ * the one that goes too deep, not at what follows it. */
 static void
-enter(Parser *ps)
+enter(Parser *ps, size_t off)
 {
     if (++ps->depth > MAX_DEPTH)
-        diag_error(at(ps, ps->tok.off), "expression is nested more than %d levels deep",
-                   MAX_DEPTH);
+        diag_error(at(ps, off), "expression is nested more than %d levels deep", MAX_DEPTH);
 }
 
 static void
@@ -280,16 +321,34 @@ expect(Parser *ps, TokKind k, const char *what, size_t open_off)
     diag_error(at(ps, ps->tok.off), "expected %s, found %s", what, found);
 }
 
+/* A call of something that is not a function: the nearest function's
+ * name, or the list of them. */
+static _Noreturn void
+unknown_function(Parser *ps, const char *name, size_t off)
+{
+    const char *names[NBUILTINS];
+    char list[256] = "";
+    for (int i = 0; i < NBUILTINS; i++) {
+        names[i] = builtins[i].name;
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
+                 names[i]);
+    }
+    const char *near = diag_nearest(name, names, NBUILTINS);
+    if (near)
+        diag_error(at(ps, off), "unknown function '%s'; did you mean '%s'?", name, near);
+    diag_error(at(ps, off), "unknown function '%s' (the functions are %s)", name, list);
+}
+
 /* NAME "(" expr ("," expr)* ")" with the name already read. */
 static ExprId
 call(Parser *ps, const char *name, size_t name_off)
 {
     const Builtin *b = find_builtin(name);
     if (!b)
-        diag_error(at(ps, name_off), "unknown function '%s'", name);
+        unknown_function(ps, name, name_off);
     size_t open = ps->tok.off;
     next(ps); /* ( */
-    enter(ps);
+    enter(ps, open);
     ExprId args[2];
     int n = 0;
     if (ps->tok.kind != T_RPAREN) {
@@ -309,7 +368,9 @@ call(Parser *ps, const char *name, size_t name_off)
     ExprPool *P = ps->sc->P;
     if (b->op < 0)
         return time_derivative(ps, args[0], name_off);
-    return b->arity == 1 ? expr_unary(P, b->op, args[0]) : expr_binary(P, b->op, args[0], args[1]);
+    if (b->arity == 1)
+        return finite(ps, expr_unary(P, b->op, args[0]), name, args[0], EXPR_NONE, name_off);
+    return finite(ps, expr_binary(P, b->op, args[0], args[1]), name, args[0], args[1], name_off);
 }
 
 static ExprId
@@ -350,7 +411,7 @@ primary(Parser *ps)
         return name_or_call(ps);
     case T_LPAREN: {
         next(ps);
-        enter(ps);
+        enter(ps, t.off);
         ExprId e = expr(ps);
         expect(ps, T_RPAREN, "')'", t.off);
         ps->depth--;
@@ -382,11 +443,12 @@ power(Parser *ps)
     ExprId base = postfix(ps);
     if (ps->tok.kind != T_CARET)
         return base;
+    size_t caret = ps->tok.off;
     next(ps);
-    enter(ps);
+    enter(ps, caret);
     ExprId ex = unary(ps);
     ps->depth--;
-    return expr_pow(ps->sc->P, base, ex);
+    return finite(ps, expr_pow(ps->sc->P, base, ex), "^", base, ex, caret);
 }
 
 /* unary = ("-" | "+") unary | power */
@@ -396,8 +458,9 @@ unary(Parser *ps)
     if (ps->tok.kind != T_MINUS && ps->tok.kind != T_PLUS)
         return power(ps);
     int neg = ps->tok.kind == T_MINUS;
+    size_t sign = ps->tok.off;
     next(ps);
-    enter(ps);
+    enter(ps, sign);
     ExprId e = unary(ps);
     ps->depth--;
     return neg ? expr_neg(ps->sc->P, e) : e;
@@ -421,15 +484,15 @@ term(Parser *ps)
     for (;;) {
         if (ps->tok.kind == T_STAR || ps->tok.kind == T_SLASH)
             count_operator(ps);
+        size_t op = ps->tok.off;
         if (accept(ps, T_STAR)) {
-            e = expr_mul(P, e, unary(ps));
-        } else if (ps->tok.kind == T_SLASH) {
-            size_t op = ps->tok.off;
-            next(ps);
+            ExprId f = unary(ps);
+            e = finite(ps, expr_mul(P, e, f), "*", e, f, op);
+        } else if (accept(ps, T_SLASH)) {
             ExprId d = unary(ps);
             if (d == EXPR_ZERO)
                 diag_error(at(ps, op), "division by zero");
-            e = expr_div(P, e, d);
+            e = finite(ps, expr_div(P, e, d), "/", e, d, op);
         } else {
             return e;
         }
@@ -445,10 +508,12 @@ expr(Parser *ps)
     for (;;) {
         if (ps->tok.kind == T_PLUS || ps->tok.kind == T_MINUS)
             count_operator(ps);
+        size_t op = ps->tok.off;
+        ExprId r;
         if (accept(ps, T_PLUS))
-            e = expr_add(P, e, term(ps));
+            r = term(ps), e = finite(ps, expr_add(P, e, r), "+", e, r, op);
         else if (accept(ps, T_MINUS))
-            e = expr_sub(P, e, term(ps));
+            r = term(ps), e = finite(ps, expr_sub(P, e, r), "-", e, r, op);
         else
             return e;
     }

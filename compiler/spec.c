@@ -112,6 +112,25 @@ escape_len(const char *s, size_t i, size_t end)
     return 2;
 }
 
+/* A node's mark is at its anchor (&a) or tag (!t) when it has one: the
+ * byte where its text starts, past them and the blanks after them. */
+static size_t
+skip_properties(const char *s, size_t i, size_t end, size_t *line, size_t *col)
+{
+    while (i < end && (s[i] == '&' || s[i] == '!')) {
+        for (; i < end && s[i] != ' ' && s[i] != '\t' && s[i] != '\n' && s[i] != '\r'; i++)
+            *col += !is_cont((unsigned char)s[i]);
+        while (i < end && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) {
+            if (s[i] == '\n')
+                (*line)++, *col = 0;
+            else if (s[i] != '\r')
+                (*col)++;
+            i++;
+        }
+    }
+    return i;
+}
+
 /* Walk the source of a scalar and its value side by side up to byte `off`
  * of the value: line folding, quotes and escapes are skipped in the
  * source. */
@@ -125,6 +144,7 @@ scalar_where(const ParseSrc *src, size_t off)
     size_t i = byte_at(L, line, col), end = L->len;
     const char *s = L->text, *v = src->text;
     yaml_scalar_style_t style = n->data.scalar.style;
+    i = skip_properties(s, i, end, &line, &col);
     if (style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE) {
         i++, col++;
     } else if (style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE) {
@@ -233,9 +253,10 @@ cmp_key(const void *a, const void *b)
     return c ? c : (x->index > y->index) - (x->index < y->index);
 }
 
-/* Keys are scalars, each at most once (sorted: no quadratic scan). */
+/* Keys are scalars, each at most once (sorted: no quadratic scan); a
+ * repeated one is reported where it repeats, naming the first. */
 static void
-check_unique_keys(Loader *L, yaml_node_t *map)
+check_unique_keys(Loader *L, yaml_node_t *map, const char *what)
 {
     int n = NPAIRS(map);
     if (n < 2)
@@ -244,21 +265,54 @@ check_unique_keys(Loader *L, yaml_node_t *map)
     for (int i = 0; i < n; i++)
         k[i] = (KeyRef){key_of(L, &PAIRS(map)[i]), i};
     qsort(k, (size_t)n, sizeof *k, cmp_key);
-    for (int i = 1; i < n; i++)
-        if (!strcmp(k[i].key, k[i - 1].key))
-            diag_error(loc_of(L, node(L, PAIRS(map)[k[i].index].key)),
-                       "duplicate key '%s'", k[i].key);
+    for (int i = 1; i < n; i++) {
+        if (strcmp(k[i].key, k[i - 1].key))
+            continue;
+        SrcLoc first = loc_of(L, node(L, PAIRS(map)[k[i - 1].index].key));
+        diag_error(loc_of(L, node(L, PAIRS(map)[k[i].index].key)),
+                   "duplicate key '%s' in %s (first at line %d, column %d)", k[i].key, what,
+                   first.line, first.col);
+    }
 }
 
 static yaml_node_t *
 as_map(Loader *L, yaml_node_t *n, const char *what)
 {
     expect_type(L, n, YAML_MAPPING_NODE, what);
-    check_unique_keys(L, n);
+    check_unique_keys(L, n, what);
     return n;
 }
 
-/* Only `allowed` keys (NULL-terminated) may appear in map. */
+/* Where each key of the format belongs, for a key found elsewhere. */
+static const struct {
+    const char *key, *where;
+} key_homes[] = {
+    {"mass", "in a particle or a body"}, {"position", "in a particle"},
+    {"center", "in a body"}, {"inertia", "in a body"}, {"rotation", "in a body"},
+    {"omega", "in a body"}, {"angle", "in a body"}, {"gravity", "in an effect"},
+    {"force", "in an effect"}, {"torque", "in an effect"}, {"work", "in an effect"},
+    {"on", "in an effect"}, {"expr", "in a constraint"}, {"dependent", "in a constraint"},
+    {"t_end", "in `scene`"}, {"dt", "in `scene`"}, {"method", "in `scene`"},
+    {"rtol", "in `scene`"}, {"atol", "in `scene`"}, {"fixed_step", "in `scene`"},
+    {"coordinates", "at the top level"}, {"parameters", "at the top level"},
+    {"particles", "at the top level"}, {"bodies", "at the top level"},
+    {"define", "at the top level"}, {"inputs", "at the top level"},
+    {"kinetic", "at the top level"}, {"initial", "at the top level"},
+    {"constraints", "at the top level"}, {"scene", "at the top level"},
+};
+
+static const char *
+key_home(const char *key)
+{
+    for (size_t i = 0; i < sizeof key_homes / sizeof key_homes[0]; i++)
+        if (!strcmp(key_homes[i].key, key))
+            return key_homes[i].where;
+    return NULL;
+}
+
+/* Only `allowed` keys (NULL-terminated) may appear in map.  An unknown
+ * key gets the nearest allowed one, or where it belongs if it is a key of
+ * another part of the spec, or the list of allowed keys. */
 static void
 check_keys(Loader *L, yaml_node_t *map, const char *const *allowed, const char *where)
 {
@@ -276,6 +330,9 @@ check_keys(Loader *L, yaml_node_t *map, const char *const *allowed, const char *
         SrcLoc at = loc_of(L, node(L, PAIRS(map)[i].key));
         if (near)
             diag_error(at, "unknown key '%s' in %s; did you mean '%s'?", k, where, near);
+        const char *home = key_home(k);
+        if (home)
+            diag_error(at, "'%s' is not a key of %s: it belongs %s", k, where, home);
         char list[512] = "";
         for (int j = 0; j < nallowed; j++)
             snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
@@ -316,7 +373,8 @@ find_name(Loader *L, const char *name)
     return NULL;
 }
 
-static const char *const kind_names[] = {"parameter", "coordinate", "input", "define"};
+static const char *const kind_names[] = {"a parameter", "a coordinate", "an input",
+                                         "a define"};
 
 /* Names are looked up by a linear search, and models are dense in their
  * coordinates: a spec with more names than this is refused rather than
@@ -337,11 +395,14 @@ add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
     if (parse_is_reserved(name))
         diag_error(at, "'%s' is reserved (t, pi and the function names)", name);
     if (L->nnames >= SPEC_MAX_NAMES)
-        diag_error(at, "more than %d names (parameters, coordinates, inputs, defines, "
-                   "particles, bodies, effects and constraints)", SPEC_MAX_NAMES);
+        diag_error(at, "more than %d names (parameters, coordinates, inputs and defines)",
+                   SPEC_MAX_NAMES);
     Name *old = find_name(L, name);
+    if (old && old->loc.line == at.line)
+        diag_error(at, "'%s' is already %s (line %d, column %d)", name, kind_names[old->kind],
+                   old->loc.line, old->loc.col);
     if (old)
-        diag_error(at, "'%s' is already a %s (line %d)", name, kind_names[old->kind],
+        diag_error(at, "'%s' is already %s (line %d)", name, kind_names[old->kind],
                    old->loc.line);
     L->names[L->nnames++] = (Name){arena_strdup(L->A, name), kind, index, at};
     return L->names[L->nnames - 1].name;
@@ -456,7 +517,7 @@ vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId out[3
 /* ---- the sections ---- */
 
 static void
-load_parameters(Loader *L, yaml_node_t *map)
+name_parameters(Loader *L, yaml_node_t *map)
 {
     Spec *s = L->s;
     s->np = NPAIRS(map);
@@ -466,8 +527,14 @@ load_parameters(Loader *L, yaml_node_t *map)
         s->param[i].name = add_name(L, node(L, p->key), NAME_PARAM, i);
         s->param[i].loc = loc_of(L, node(L, p->key));
     }
-    for (int i = 0; i < s->np; i++)
-        s->param[i].value = number(L, node(L, PAIRS(map)[i].value), "a parameter value");
+}
+
+/* After every name is known, so that `k: 2*x` says x is a coordinate. */
+static void
+load_parameters(Loader *L, yaml_node_t *map)
+{
+    for (int i = 0; i < L->s->np; i++)
+        L->s->param[i].value = number(L, node(L, PAIRS(map)[i].value), "a parameter value");
 }
 
 static void
@@ -617,6 +684,19 @@ load_inputs(Loader *L, yaml_node_t *map)
                                          "an input signal");
 }
 
+/* A mass: of parameters (a massless point is fine: forces can act on it),
+ * and not negative when it is a number (a parameter is checked by the
+ * simulator, which tests M). */
+static ExprId
+mass_of(Loader *L, const yaml_node_t *n)
+{
+    ExprId m = expression(L, n, ALLOW_PARAM, "a mass");
+    double v;
+    if (expr_is_const(L->P, m, &v) && v < 0)
+        diag_error(loc_of(L, n), "a mass cannot be negative (%g)", v);
+    return m;
+}
+
 static void
 load_particles(Loader *L, yaml_node_t *map)
 {
@@ -636,7 +716,7 @@ load_particles(Loader *L, yaml_node_t *map)
             diag_error(loc_of(L, v), "particle '%s' has no mass", pt->name);
         if (!pos)
             diag_error(loc_of(L, v), "particle '%s' has no position", pt->name);
-        pt->mass = expression(L, mass, ALLOW_PARAM, "a mass");
+        pt->mass = mass_of(L, mass);
         pt->dim = vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
     }
 }
@@ -715,6 +795,23 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
         b->omega[i] = w[i];
 }
 
+/* More than one of rotation, omega, angle: at the second one written. */
+static _Noreturn void
+two_orientations(Loader *L, const SpecBody *b, yaml_node_t *map)
+{
+    static const char *const keys[] = {"rotation", "omega", "angle"};
+    int found[2], n = 0;
+    for (int i = 0; i < NPAIRS(map) && n < 2; i++)
+        for (int k = 0; k < 3; k++)
+            if (!strcmp(key_of(L, &PAIRS(map)[i]), keys[k]))
+                found[n++] = i;
+    const char *first = key_of(L, &PAIRS(map)[found[0]]);
+    const char *second = key_of(L, &PAIRS(map)[found[1]]);
+    diag_error(loc_of(L, node(L, PAIRS(map)[found[1]].key)), "body '%s' has both `%s` and "
+               "`%s`; its orientation is exactly one of rotation, omega, angle", b->name,
+               first, second);
+}
+
 static void
 load_bodies(Loader *L, yaml_node_t *map)
 {
@@ -730,7 +827,8 @@ load_bodies(Loader *L, yaml_node_t *map)
         b->loc = loc_of(L, k);
         for (int j = 0; j < s->npart; j++)
             if (!strcmp(s->part[j].name, b->name))
-                diag_error(b->loc, "'%s' is already the name of a particle", b->name);
+                diag_error(b->loc, "'%s' is already the name of a particle (line %d)", b->name,
+                           s->part[j].loc.line);
         as_map(L, v, "a body");
         check_keys(L, v, keys, "a body");
         yaml_node_t *mass = lookup_key(L, v, "mass"), *c = lookup_key(L, v, "center");
@@ -739,11 +837,13 @@ load_bodies(Loader *L, yaml_node_t *map)
         const char *missing = !mass ? "mass" : !c ? "center" : !in ? "inertia" : NULL;
         if (missing)
             diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
-        b->mass = expression(L, mass, ALLOW_PARAM, "a mass");
+        b->mass = mass_of(L, mass);
         b->dim = vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
         load_inertia(L, in, b);
         b->omega[0] = b->omega[1] = b->omega[2] = EXPR_ZERO;
         int how = !!rot + !!om + !!ang;
+        if (how > 1)
+            two_orientations(L, b, v);
         if (how != 1)
             diag_error(loc_of(L, v), "body '%s' needs exactly one of %s", b->name,
                        b->dim == 2 ? "angle (planar), omega"
@@ -783,10 +883,11 @@ load_terms(Loader *L, yaml_node_t *n, unsigned allow, const char *what, int *cou
 
 /* The index of the name node n holds among cands[0..count), or a
  * diagnostic at n: "unknown WHAT 'x'", or with is_not "'x' is not a
- * WHAT", and "; did you mean 'y'?" when a name is close. */
+ * WHAT", and "; did you mean 'y'?" when a name is close, else the list
+ * of them (PLURAL) when it is short. */
 static int
-find_in(Loader *L, yaml_node_t *n, const char *what, int is_not, const char **cands,
-        int count)
+find_in(Loader *L, yaml_node_t *n, const char *what, const char *plural, int is_not,
+        const char **cands, int count)
 {
     const char *name = scalar(L, n, what);
     for (int i = 0; i < count; i++)
@@ -800,7 +901,14 @@ find_in(Loader *L, yaml_node_t *n, const char *what, int is_not, const char **ca
         snprintf(msg, sizeof msg, "unknown %s '%s'", what, name);
     if (near)
         diag_error(loc_of(L, n), "%s; did you mean '%s'?", msg, near);
-    diag_error(loc_of(L, n), "%s", msg);
+    if (count == 0 || count > 12)
+        diag_error(loc_of(L, n), "%s", msg);
+    char list[1024] = "";
+    for (int i = 0; i < count; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
+                 cands[i]);
+    diag_error(loc_of(L, n), "%s; the %s %s %s", msg, count == 1 ? what : plural,
+               count == 1 ? "is" : "are", list);
 }
 
 /* The particle or body a force acts on: its index, *is_body set. */
@@ -813,7 +921,8 @@ find_target(Loader *L, yaml_node_t *n, int *is_body)
         cands[i] = s->part[i].name;
     for (int i = 0; i < s->nbody; i++)
         cands[s->npart + i] = s->body[i].name;
-    int k = find_in(L, n, "particle or body", 0, cands, s->npart + s->nbody);
+    int k = find_in(L, n, "particle or body", "particles and bodies", 0, cands,
+                    s->npart + s->nbody);
     *is_body = k >= s->npart;
     return *is_body ? k - s->npart : k;
 }
@@ -918,7 +1027,7 @@ find_coordinate(Loader *L, yaml_node_t *n)
     const char **cands = arena_new_array(L->A, const char *, L->s->nq + 1);
     for (int i = 0; i < L->s->nq; i++)
         cands[i] = L->s->coord[i].name;
-    return find_in(L, n, "coordinate", 1, cands, L->s->nq);
+    return find_in(L, n, "coordinate", "coordinates", 1, cands, L->s->nq);
 }
 
 /* NAME: EXPR, or NAME: {expr: EXPR, dependent: COORDINATE}. */
@@ -948,6 +1057,12 @@ load_constraint(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecConstraint *c)
     if (!(expr_deps(L->P, c->expr) & DEP_ANY_Q))
         diag_error(loc_of(L, e), "constraint '%s' involves no coordinate, so it constrains "
                    "nothing (its order cannot be determined)", c->name);
+    /* only second-order constraints are used as written: the others are
+     * differentiated, and an input's derivative is unknown.  Parsed again
+     * without inputs, the error points at the input. */
+    if (c->order < 2 && (expr_deps(L->P, c->expr) & DEP_U))
+        expression(L, e, ALLOW_CONSTRAINT & ~(unsigned)DEP_U,
+                   c->order == 0 ? "a holonomic constraint" : "a first-order constraint");
 }
 
 static void
@@ -965,9 +1080,9 @@ load_constraints(Loader *L, yaml_node_t *map)
                            "of constraint '%s'", s->coord[c->dependent].name,
                            s->constraint[j].name);
     }
-    if (s->nconstraint >= s->nq)
-        diag_error(loc_of(L, map), "%d constraints on %d coordinates leave no freedom of "
-                   "motion", s->nconstraint, s->nq);
+    if (s->nconstraint >= s->nq) /* at the one too many */
+        diag_error(s->constraint[s->nq - 1].loc, "%d constraints on %d coordinate%s leave no "
+                   "freedom of motion", s->nconstraint, s->nq, s->nq == 1 ? "" : "s");
 }
 
 static void
@@ -1025,7 +1140,7 @@ find_effect(Loader *L, yaml_node_t *n)
     const char **cands = arena_new_array(L->A, const char *, L->s->neffect + 1);
     for (int i = 0; i < L->s->neffect; i++)
         cands[i] = L->s->effect[i].name;
-    return find_in(L, n, "effect", 0, cands, L->s->neffect);
+    return find_in(L, n, "effect", "effects", 0, cands, L->s->neffect);
 }
 
 static double
@@ -1115,7 +1230,7 @@ load_root(Loader *L, yaml_node_t *root)
 {
     Spec *s = L->s;
     expect_type(L, root, YAML_MAPPING_NODE, "the top level of a spec");
-    check_unique_keys(L, root);
+    check_unique_keys(L, root, "the spec");
     check_keys(L, root, top_keys, "the spec");
     s->name = spec_name(L, section(L, root, "name", 0));
     yaml_node_t *d = section(L, root, "description", 0);
@@ -1130,7 +1245,7 @@ load_root(Loader *L, yaml_node_t *root)
                (defines ? NPAIRS(defines) : 0) + (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
     L->names = arena_new_array(L->A, Name, most + 1);
     if (params)
-        load_parameters(L, params);
+        name_parameters(L, params);
     load_coordinates(L, coords);
     if (inputs)
         name_inputs(L, inputs);
@@ -1138,6 +1253,8 @@ load_root(Loader *L, yaml_node_t *root)
         name_defines(L, defines);
         resolve_defines(L);
     }
+    if (params)
+        load_parameters(L, params);
     if (inputs)
         load_inputs(L, inputs);
     yaml_node_t *n;
@@ -1190,13 +1307,48 @@ loc_of_byte(const Loader *L, size_t off)
     return (SrcLoc){L->path, (int)line + 1, col};
 }
 
+/* Where a reader error is: libyaml gives the byte after a truncated
+ * UTF-8 sequence; the sequence starts at its lead byte. */
+static size_t
+reader_offset(const Loader *L, const yaml_parser_t *yp)
+{
+    size_t off = yp->problem_offset;
+    if (!yp->problem || strcmp(yp->problem, "invalid trailing UTF-8 octet") || off > L->len)
+        return off;
+    while (off > 0 && is_cont((unsigned char)L->text[off - 1]))
+        off--;
+    return off > 0 ? off - 1 : off;
+}
+
+/* libyaml's reader errors, with the byte they are about: a spec is UTF-8
+ * text without control characters. */
+static void
+reader_problem(const Loader *L, const yaml_parser_t *yp, char *msg, size_t len)
+{
+    const char *p = yp->problem ? yp->problem : "";
+    int v = yp->problem_value;
+    size_t off = reader_offset(L, yp);
+    if (!strcmp(p, "invalid trailing UTF-8 octet") && off < L->len)
+        snprintf(msg, len, "incomplete UTF-8 sequence (byte 0x%02x without the bytes that "
+                 "follow it): a spec must be UTF-8 text", (unsigned char)L->text[off]);
+    else if (strstr(p, "UTF-8") && v >= 0)
+        snprintf(msg, len, "%s (byte 0x%02x): a spec must be UTF-8 text", p, v & 0xff);
+    else if (strstr(p, "UTF-8") || strstr(p, "Unicode"))
+        snprintf(msg, len, "%s: a spec must be UTF-8 text", p);
+    else if (strstr(p, "control characters") && v >= 0)
+        snprintf(msg, len, "control character (U+%04X) in the text: a spec cannot contain "
+                 "control characters other than tab and line breaks", (unsigned)v);
+    else
+        snprintf(msg, len, "%s", p);
+}
+
 /* libyaml's own errors, with its marks; the parser is deleted first. */
 static _Noreturn void
 yaml_failure(Loader *L, yaml_parser_t *yp)
 {
     SrcLoc at = {L->path, (int)yp->problem_mark.line + 1, (int)yp->problem_mark.column + 1};
     if (yp->error == YAML_READER_ERROR)
-        at = loc_of_byte(L, yp->problem_offset);
+        at = loc_of_byte(L, reader_offset(L, yp));
     char msg[512];
     const char *problem = yp->problem ? yp->problem : "cannot parse the YAML";
     if (yp->context)
@@ -1207,6 +1359,12 @@ yaml_failure(Loader *L, yaml_parser_t *yp)
     size_t b = byte_at(L, yp->problem_mark.line, yp->problem_mark.column);
     if (yp->error != YAML_READER_ERROR && b < L->len && L->text[b] == '\t')
         snprintf(msg, sizeof msg, "a tab character: YAML indents with spaces only");
+    else if (yp->error == YAML_READER_ERROR)
+        reader_problem(L, yp, msg, sizeof msg);
+    else if (yp->problem && !strcmp(yp->problem, "did not find expected key") && yp->context &&
+             strstr(yp->context, "block mapping"))
+        snprintf(msg + strlen(msg), sizeof msg - strlen(msg),
+                 " (is this line indented like the keys of that mapping?)");
     yaml_parser_delete(yp);
     diag_error(at, "%s", msg);
 }
@@ -1308,6 +1466,7 @@ spec_load(const char *path, Arena *A, ExprPool *P)
         fprintf(stderr, "eomc: cannot read %s: %s\n", path, strerror(errno));
         return NULL;
     }
+    errno = 0;
     size_t cap = 1 << 14, n = 0, k;
     char *buf = arena_alloc(A, cap);
     while ((k = fread(buf + n, 1, cap - n, f)) > 0) {
@@ -1323,13 +1482,29 @@ spec_load(const char *path, Arena *A, ExprPool *P)
             buf = bigger, cap *= 2;
         }
     }
-    int err = ferror(f);
+    int err = ferror(f) ? errno : 0; /* a directory opens, and fails to read */
     fclose(f);
     if (err) {
-        fprintf(stderr, "eomc: cannot read %s\n", path);
+        fprintf(stderr, "eomc: cannot read %s: %s\n", path, strerror(err));
         return NULL;
     }
     return spec_load_buffer(path, buf, n, A, P);
+}
+
+/* --effects with a typo: the nearest effect, or NULL if none is close. */
+static const char *
+effect_typo(const Spec *s, const char *name, size_t n)
+{
+    char buf[80];
+    const char *cands[64];
+    int count = s->neffect < 64 ? s->neffect : 64;
+    if (n >= sizeof buf)
+        return NULL;
+    memcpy(buf, name, n);
+    buf[n] = '\0';
+    for (int i = 0; i < count; i++)
+        cands[i] = s->effect[i].name;
+    return diag_nearest(buf, cands, count);
 }
 
 int
@@ -1344,7 +1519,11 @@ spec_select_effects(Spec *s, const char *list)
             if (strlen(s->effect[i].name) == n && !strncmp(s->effect[i].name, p, n))
                 s->effect[i].enabled = found = 1;
         if (!found && n > 0) {
-            fprintf(stderr, "eomc: --effects: unknown effect '%.*s'; %s has", (int)n, p, s->path);
+            const char *near = effect_typo(s, p, n);
+            fprintf(stderr, "eomc: --effects: unknown effect '%.*s'; ", (int)n, p);
+            if (near)
+                fprintf(stderr, "did you mean '%s'? ", near);
+            fprintf(stderr, "%s has", s->path);
             for (int i = 0; i < s->neffect; i++)
                 fprintf(stderr, "%s %s", i ? "," : "", s->effect[i].name);
             fprintf(stderr, "%s\n", s->neffect ? "" : " no effects");

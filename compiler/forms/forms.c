@@ -19,6 +19,15 @@ form_find(const char *name)
 }
 
 const char *
+form_nearest(const char *name)
+{
+    const char *names[sizeof all / sizeof all[0]];
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        names[i] = all[i]->name;
+    return diag_nearest(name, names, (int)(sizeof all / sizeof all[0]));
+}
+
+const char *
 form_names(void)
 {
     return "lagrange, maggi, nielsen, tzenoff, gibbs-appell";

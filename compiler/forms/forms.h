@@ -29,6 +29,8 @@ extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, 
 const Form *form_find(const char *name);
 /* Comma-separated list of the form names, for messages. */
 const char *form_names(void);
+/* The form a misspelt name most likely meant, or NULL. */
+const char *form_nearest(const char *name);
 
 /* dV/dq_i - Q_i, the part every form shares. */
 ExprId *form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D);

@@ -22,6 +22,7 @@ static struct {
 } sources[MAX_SOURCES];
 static int nsources;
 static jmp_buf *jump_target;
+static FILE *output; /* NULL: stderr */
 
 void
 diag_add_source(const char *file, const char *text, size_t len)
@@ -41,6 +42,14 @@ diag_set_jump(jmp_buf *target)
 {
     jmp_buf *old = jump_target;
     jump_target = target;
+    return old;
+}
+
+FILE *
+diag_set_output(FILE *out)
+{
+    FILE *old = output;
+    output = out;
     return old;
 }
 
@@ -91,17 +100,17 @@ utf8_len(const char *text, size_t i, size_t len)
  * (other than tab) and for each byte that is not part of well-formed
  * UTF-8; the error message names such bytes. */
 static void
-print_shown(const char *text, size_t len)
+print_shown(FILE *out, const char *text, size_t len)
 {
     for (size_t i = 0; i < len;) {
         unsigned char c = (unsigned char)text[i];
         size_t n = utf8_len(text, i, len);
         if (n == 0 || (c < 0x20 && c != '\t') || c == 0x7f) {
-            fputc('?', stderr);
+            fputc('?', out);
             i++;
             continue;
         }
-        fwrite(text + i, 1, n, stderr);
+        fwrite(text + i, 1, n, out);
         i += n;
     }
 }
@@ -109,7 +118,7 @@ print_shown(const char *text, size_t len)
 /*  12 | the line
  *     |    ^      */
 static void
-print_excerpt(SrcLoc at)
+print_excerpt(FILE *out, SrcLoc at)
 {
     size_t len;
     const char *text = source_line(at.file, at.line, &len);
@@ -134,34 +143,37 @@ print_excerpt(SrcLoc at)
     }
     char gutter[16];
     int w = snprintf(gutter, sizeof gutter, "%d", at.line);
-    fprintf(stderr, " %s | %s", gutter, pre);
-    print_shown(text, shown);
-    fprintf(stderr, "%s\n %*s | %*s", post, w, "", (int)strlen(pre), "");
+    fprintf(out, " %s | %s", gutter, pre);
+    print_shown(out, text, shown);
+    fprintf(out, "%s\n %*s | %*s", post, w, "", (int)strlen(pre), "");
     len = shown;
     for (size_t i = 0; i < len && col < at.col; i++) {
         unsigned char c = (unsigned char)text[i];
         if (is_cont(c))
             continue;
-        fputc(c == '\t' ? '\t' : ' ', stderr);
+        fputc(c == '\t' ? '\t' : ' ', out);
         col++;
     }
-    fputs("^\n", stderr);
+    fputs("^\n", out);
 }
 
-static void
+/* nonnull: without it gcc -O2 -fsanitize=undefined warns of a null format
+ * once the stream is not a constant */
+static void __attribute__((format(printf, 3, 0), nonnull(3)))
 report(const char *kind, SrcLoc at, const char *fmt, va_list ap)
 {
+    FILE *out = output ? output : stderr;
     fflush(stdout);
     if (at.file && at.line > 0)
-        fprintf(stderr, "%s:%d:%d: %s: ", at.file, at.line, at.col > 0 ? at.col : 1, kind);
+        fprintf(out, "%s:%d:%d: %s: ", at.file, at.line, at.col > 0 ? at.col : 1, kind);
     else if (at.file)
-        fprintf(stderr, "%s: %s: ", at.file, kind);
+        fprintf(out, "%s: %s: ", at.file, kind);
     else
-        fprintf(stderr, "eomc: %s: ", kind);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+        fprintf(out, "eomc: %s: ", kind);
+    vfprintf(out, fmt, ap);
+    fputc('\n', out);
     if (at.file && at.line > 0)
-        print_excerpt(at);
+        print_excerpt(out, at);
 }
 
 void

@@ -16,6 +16,7 @@
 
 #include <setjmp.h>
 #include <stddef.h>
+#include <stdio.h>
 
 typedef struct SrcLoc {
     const char *file; /* path as given by the user; NULL = no location */
@@ -29,6 +30,12 @@ void diag_forget_sources(void);
 
 /* Where diag_error jumps to; returns the previous target.  NULL exits(2). */
 jmp_buf *diag_set_jump(jmp_buf *target);
+
+/* Where errors, warnings and notes are printed; returns the previous
+ * stream.  NULL = stderr (the default).  The fuzz targets send them to
+ * /dev/null, so that formatting them is still exercised.  Internal errors
+ * always go to stderr. */
+FILE *diag_set_output(FILE *out);
 
 _Noreturn void diag_error(SrcLoc at, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

@@ -1,0 +1,141 @@
+/*
+ * Fuzz target: the expression parser and the derivative engine.  The
+ * input is one expression's text, in a scope with coordinates x and y,
+ * parameter k and input u (as tests/unit/test_parse.c).  A parsed
+ * expression is evaluated, differentiated (d/dt, partials, a gradient, a
+ * directional derivative) and the derivatives evaluated: any error is
+ * fine, a crash, a sanitizer report, a leak or a hang is not.
+ */
+#include "fuzz.h"
+
+#include "parse.h"
+
+#include <setjmp.h>
+#include <string.h>
+
+static ExprId
+lookup(ParseScope *sc, const char *name, SrcLoc at)
+{
+    if (!strcmp(name, "x"))
+        return expr_var(sc->P, 0, 0);
+    if (!strcmp(name, "y"))
+        return expr_var(sc->P, 1, 0);
+    if (!strcmp(name, "k"))
+        return expr_param(sc->P, 0);
+    if (!strcmp(name, "u"))
+        return expr_input(sc->P, 0);
+    static const char *const names[] = {"x", "y", "k", "u"};
+    const char *near = diag_nearest(name, names, 4);
+    diag_error(at, "unknown name '%s'%s%s%s", name, near ? "; did you mean '" : "",
+               near ? near : "", near ? "'?" : "");
+}
+
+static const char *
+leaf_name(ParseScope *sc, ExprId leaf)
+{
+    const ExprNode *nd = expr_node(sc->P, leaf);
+    if (nd->op == EXPR_VAR)
+        return nd->a ? "y" : "x";
+    return nd->op == EXPR_PARAM ? "k" : "u";
+}
+
+static SrcLoc
+where(const ParseSrc *src, size_t off)
+{
+    (void)src;
+    return (SrcLoc){"fuzz", 1, (int)off + 1};
+}
+
+static void
+count_name(void *ctx, const char *name, size_t len, size_t off)
+{
+    (void)name, (void)len, (void)off;
+    ++*(int *)ctx;
+}
+
+static double
+eval(ExprPool *P, ExprId e)
+{
+    static const double q[4][2] = {{0.3, -1.1}, {0.7, 0.2}, {-0.4, 1.3}, {0.1, 0.9}};
+    static const double p[1] = {1.7}, u[1] = {0.6}, seed[2][2] = {{1, 0.5}, {-0.25, 2}};
+    ExprEnv env = {.t = 0.4, .q = {q[0], q[1], q[2], q[3]}, .p = p, .u = u,
+                   .seed = {seed[0], seed[1]}};
+    return e == EXPR_NONE ? 0 : expr_eval(P, e, &env);
+}
+
+typedef struct Input {
+    const uint8_t *data;
+    size_t size;
+} Input;
+
+static void
+exercise(ExprPool *P, Diff *D, ExprId e)
+{
+    ExprId leaves[6] = {expr_var(P, 0, 0), expr_var(P, 1, 0), expr_var(P, 0, 1),
+                        expr_var(P, 1, 1), expr_param(P, 0), expr_time(P)};
+    ExprId d[12];
+    int n = 0;
+    d[n++] = e;
+    d[n++] = diff_time(D, e);
+    if (d[1] != EXPR_NONE)
+        d[n++] = diff_time(D, d[1]);
+    for (int i = 0; i < 6; i += 2)
+        d[n++] = diff_partial(D, e, leaves[i]);
+    ExprId grad[6];
+    diff_gradient(D, e, 6, leaves, grad);
+    d[n++] = grad[1];
+    d[n++] = grad[4];
+    ExprId seeds[2] = {expr_seed(P, 0, 0), expr_seed(P, 1, 1)}, jvp;
+    ExprId dir[2] = {leaves[0], leaves[3]};
+    diff_jvp(D, 1, &e, 2, dir, seeds, &jvp);
+    d[n++] = jvp;
+    double sink = 0;
+    for (int i = 0; i < n; i++)
+        sink += eval(P, d[i]);
+    double many[12];
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (d[i] != EXPR_NONE)
+            d[m++] = d[i];
+    ExprEnv env = {0};
+    static const double zero[2], p[1] = {1};
+    env.q[0] = env.q[1] = env.q[2] = env.q[3] = zero;
+    env.p = p, env.u = p;
+    expr_eval_many(P, m, d, &env, many);
+    ExprId from = leaves[0], to = leaves[1];
+    expr_count_ops(P, 1, (ExprId[]){expr_subst(P, e, 1, &from, &to)});
+    (void)sink;
+}
+
+static void
+parse_one(void *ctx)
+{
+    Input *in = ctx;
+    ExprPool *P = expr_pool_new();
+    Diff *D = diff_new(P);
+    ParseScope sc = {P, D, lookup, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U,
+                     "an expression"};
+    ParseSrc src = {(const char *)in->data, in->size, where, NULL};
+    jmp_buf jb;
+    jmp_buf *old = diag_set_jump(&jb);
+    if (setjmp(jb) == 0) {
+        int names = 0;
+        parse_names(&src, count_name, &names);
+        ExprId e = parse_expr(&sc, &src);
+        exercise(P, D, e);
+        /* the same text where only parameters and t may appear */
+        sc.allow = DEP_P | DEP_T;
+        sc.what = "a mass";
+        parse_expr(&sc, &src);
+    }
+    diag_set_jump(old);
+    diff_free(D);
+    expr_pool_free(P);
+}
+
+FUZZ_ENTRY(expr)
+{
+    Input in = {data, size};
+    fuzz_run(parse_one, &in);
+    return 0;
+}

@@ -38,7 +38,6 @@
 
 enum { NEWTON_MAX = 50 };
 #define NEWTON_TOL 1e-13   /* relative size of the last Newton step */
-#define SINGULAR_TOL 1e-13 /* |U_ii| <= SINGULAR_TOL max|A_ij|: singular */
 
 struct Kkt {
     int n, nc, N, np;           /* N = n + nc unknowns, np = n - nc independent */
@@ -135,9 +134,8 @@ kkt_multipliers(const Kkt *k)
     return k->lam;
 }
 
-/* LU of the N x N matrix A in place; -1 when a pivot is negligible. */
-static int
-lu_factor(double *A, int N, gsl_permutation *perm)
+int
+kkt_lu_factor(double *A, int N, gsl_permutation *perm)
 {
     double scale = 0;
     for (int i = 0; i < N * N; i++)
@@ -146,14 +144,13 @@ lu_factor(double *A, int N, gsl_permutation *perm)
     int sign;
     gsl_linalg_LU_decomp(&Av.matrix, perm, &sign);
     for (int i = 0; i < N; i++)
-        if (!(fabs(A[i * N + i]) > SINGULAR_TOL * scale))
+        if (!(fabs(A[i * N + i]) > KKT_SINGULAR_TOL * scale))
             return -1;
     return 0;
 }
 
-/* b = A^-1 b with A factored by lu_factor. */
-static void
-lu_solve(double *A, int N, gsl_permutation *perm, double *b)
+void
+kkt_lu_solve(double *A, int N, gsl_permutation *perm, double *b)
 {
     gsl_matrix_view Av = gsl_matrix_view_array(A, (size_t)N, (size_t)N);
     gsl_vector_view bv = gsl_vector_view_array(b, (size_t)N);
@@ -181,8 +178,17 @@ build_kkt(Kkt *k, const double *M, int hessian)
             k->K[(n + c) * N + n + d] = 0;
 }
 
-static double
-max_abs(const double *x, int n)
+double
+kkt_dot(const double *a, const double *b, int n)
+{
+    double d = 0;
+    for (int i = 0; i < n; i++)
+        d += a[i] * b[i];
+    return d;
+}
+
+double
+kkt_max_abs(const double *x, int n)
 {
     double m = 0;
     for (int i = 0; i < n; i++)
@@ -284,15 +290,15 @@ step_multipliers(eomc_sim *s, double t, const double *q, const double *v, double
     }
     for (int c = 0; c < nc; c++)
         k->r[n + c] = -k->f[c];
-    if (lu_factor(k->K, N, k->permN) != 0)
+    if (kkt_lu_factor(k->K, N, k->permN) != 0)
         return -1;
-    lu_solve(k->K, N, k->permN, k->r);
+    kkt_lu_solve(k->K, N, k->permN, k->r);
     for (int i = 0; i < n; i++)
         a[i] += k->r[i];
     for (int c = 0; c < nc; c++)
         k->lam[c] += k->r[n + c];
-    return max_abs(k->r, n) <= NEWTON_TOL * (1 + max_abs(a, n)) &&
-           max_abs(k->r + n, nc) <= NEWTON_TOL * (1 + max_abs(k->lam, nc));
+    return kkt_max_abs(k->r, n) <= NEWTON_TOL * (1 + kkt_max_abs(a, n)) &&
+           kkt_max_abs(k->r + n, nc) <= NEWTON_TOL * (1 + kkt_max_abs(k->lam, nc));
 }
 
 /* B_h into k->BH, factored; g = -B_h^-1 B_v into k->G [nc*np]. */
@@ -303,13 +309,13 @@ null_space(Kkt *k)
     for (int c = 0; c < nc; c++)
         for (int l = 0; l < nc; l++)
             k->BH[c * nc + l] = k->B[c * n + k->dep[l]];
-    if (lu_factor(k->BH, nc, k->permc) != 0)
+    if (kkt_lu_factor(k->BH, nc, k->permc) != 0)
         return -1;
     double *x = k->E; /* free here; n >= nc entries */
     for (int r = 0; r < np; r++) {
         for (int c = 0; c < nc; c++)
             x[c] = k->B[c * n + k->indep[r]];
-        lu_solve(k->BH, nc, k->permc, x);
+        kkt_lu_solve(k->BH, nc, k->permc, x);
         for (int l = 0; l < nc; l++)
             k->G[l * np + r] = -x[l];
     }
@@ -344,12 +350,12 @@ step_eliminate(eomc_sim *s, double t, const double *q, const double *v, double *
         memcpy(k->A + (np + c) * n, k->B + c * n, (size_t)n * sizeof(double));
         k->ra[np + c] = -k->f[c];
     }
-    if (lu_factor(k->A, n, k->permn) != 0)
+    if (kkt_lu_factor(k->A, n, k->permn) != 0)
         return -1;
-    lu_solve(k->A, n, k->permn, k->ra);
+    kkt_lu_solve(k->A, n, k->permn, k->ra);
     for (int i = 0; i < n; i++)
         a[i] += k->ra[i];
-    return max_abs(k->ra, n) <= NEWTON_TOL * (1 + max_abs(a, n));
+    return kkt_max_abs(k->ra, n) <= NEWTON_TOL * (1 + kkt_max_abs(a, n));
 }
 
 /* The multipliers after elimination: B_h^T lambda = -E_h at the solution. */
@@ -364,11 +370,11 @@ eliminated_multipliers(eomc_sim *s, double t, const double *q, const double *v,
     for (int c = 0; c < nc; c++)
         for (int l = 0; l < nc; l++)
             k->BH[l * nc + c] = k->B[c * n + k->dep[l]]; /* transposed */
-    if (lu_factor(k->BH, nc, k->permc) != 0)
+    if (kkt_lu_factor(k->BH, nc, k->permc) != 0)
         return -1;
     for (int l = 0; l < nc; l++)
         k->lam[l] = -k->E[k->dep[l]];
-    lu_solve(k->BH, nc, k->permc, k->lam);
+    kkt_lu_solve(k->BH, nc, k->permc, k->lam);
     return 0;
 }
 
@@ -469,7 +475,7 @@ kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
      * Newton solve leaves the previous iterate's. */
     m->constraint(t, q, v, s->a, s->p, s->u, k->f, k->B);
     build_kkt(k, s->M, !m->c_affine);
-    if (lu_factor(k->K, N, k->permN) != 0)
+    if (kkt_lu_factor(k->K, N, k->permN) != 0)
         return sim_numeric_error(s, t, q, v, "the constrained system is singular: the "
                                  "constraints %s are dependent or degenerate here",
                                  k->names);
@@ -479,14 +485,14 @@ kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
                 dfdx[i * W + j] = j == n + i;
         for (int j = 0; j < W; j++) {
             jacobian_column(s, j);
-            lu_solve(k->K, N, k->permN, k->r);
+            kkt_lu_solve(k->K, N, k->permN, k->r);
             for (int i = 0; i < n; i++)
                 dfdx[(n + i) * W + j] = -k->r[i];
         }
     }
     if (dfdt) {
         time_column(s);
-        lu_solve(k->K, N, k->permN, k->r);
+        kkt_lu_solve(k->K, N, k->permN, k->r);
         for (int i = 0; i < n; i++) {
             dfdt[i] = 0;
             dfdt[n + i] = -k->r[i];

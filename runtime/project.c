@@ -23,7 +23,6 @@
 
 enum { PROJ_MAX = 20 };
 #define PROJ_TOL 1e-14     /* relative size of the last correction */
-#define SINGULAR_TOL 1e-13 /* |U_ii| <= SINGULAR_TOL max|S_ij|: singular */
 
 struct Proj {
     int n, nc;
@@ -122,15 +121,6 @@ proj_residual(eomc_sim *s, double t, const double *q, const double *v)
     return r;
 }
 
-static double
-max_abs(const double *x, int n)
-{
-    double m = 0;
-    for (int i = 0; i < n; i++)
-        m = fmax(m, fabs(x[i]));
-    return m;
-}
-
 /* One Gauss-Newton correction of x (q at level 0, v at level 1): 1 when
  * it was negligible, 0 after a correction, -1 when G M^-1 G^T is
  * singular. */
@@ -156,25 +146,14 @@ correct(eomc_sim *s, double t, double *q, double *v, int level)
         gsl_vector_view yv = gsl_vector_view_array(y, (size_t)n);
         gsl_linalg_cholesky_svx(&L.matrix, &yv.vector);
     }
-    double scale = 0;
     for (int k = 0; k < nr; k++)
-        for (int l = 0; l < nr; l++) {
-            double d = 0;
-            for (int i = 0; i < n; i++)
-                d += j->B[rows[k] * n + i] * j->Y[l * n + i];
-            j->S[k * nr + l] = d;
-            scale = fmax(scale, fabs(d));
-        }
-    gsl_matrix_view S = gsl_matrix_view_array(j->S, (size_t)nr, (size_t)nr);
-    int sign;
-    gsl_linalg_LU_decomp(&S.matrix, j->perm[level], &sign);
-    for (int k = 0; k < nr; k++)
-        if (!(fabs(j->S[k * nr + k]) > SINGULAR_TOL * scale))
-            return -1;
+        for (int l = 0; l < nr; l++)
+            j->S[k * nr + l] = kkt_dot(j->B + rows[k] * n, j->Y + l * n, n);
+    if (kkt_lu_factor(j->S, nr, j->perm[level]) != 0)
+        return -1;
     for (int k = 0; k < nr; k++)
         j->mu[k] = r[rows[k]];
-    gsl_vector_view mu = gsl_vector_view_array(j->mu, (size_t)nr);
-    gsl_linalg_LU_svx(&S.matrix, j->perm[level], &mu.vector);
+    kkt_lu_solve(j->S, nr, j->perm[level], j->mu);
     double step = 0;
     for (int i = 0; i < n; i++) {
         double d = 0;
@@ -183,7 +162,7 @@ correct(eomc_sim *s, double t, double *q, double *v, int level)
         x[i] -= d;
         step = fmax(step, fabs(d));
     }
-    return step <= PROJ_TOL * (1 + max_abs(x, n));
+    return step <= PROJ_TOL * (1 + kkt_max_abs(x, n));
 }
 
 static int

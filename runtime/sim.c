@@ -527,22 +527,13 @@ constraint_rows(eomc_sim *s, double t, const double *x, double *B)
     return 0;
 }
 
-static double
-row_dot(const double *a, const double *b, int n)
-{
-    double d = 0;
-    for (int i = 0; i < n; i++)
-        d += a[i] * b[i];
-    return d;
-}
-
 /* The first row k of B1 that reversed direction since B0, or -1. */
 static int
 reversed_row(const eomc_sim *s, const double *B0, const double *B1)
 {
     int n = s->n;
     for (int k = 0; k < s->m->nc; k++)
-        if (row_dot(B0 + k * n, B1 + k * n, n) <= 0)
+        if (kkt_dot(B0 + k * n, B1 + k * n, n) <= 0)
             return k;
     return -1;
 }
@@ -554,8 +545,8 @@ locate_degeneracy(eomc_sim *s, gsl_odeiv2_step *step, const gsl_odeiv2_system *s
                   int k, double t1)
 {
     int n = s->n, N = 2 * n;
-    double *Bk0 = s->B0 + k * n, ends = fmax(sqrt(row_dot(Bk0, Bk0, n)),
-                                             sqrt(row_dot(s->B1 + k * n, s->B1 + k * n, n)));
+    double *Bk0 = s->B0 + k * n, ends = fmax(sqrt(kkt_dot(Bk0, Bk0, n)),
+                                             sqrt(kkt_dot(s->B1 + k * n, s->B1 + k * n, n)));
     double lo = 0, hi = t1 - s->t0, small = INFINITY;
     for (int it = 0; it < BISECTIONS; it++) {
         double h = 0.5 * (lo + hi);
@@ -568,8 +559,8 @@ locate_degeneracy(eomc_sim *s, gsl_odeiv2_step *step, const gsl_odeiv2_system *s
             break;
         }
         double *Bk = s->B1 + k * n;
-        small = fmin(small, sqrt(row_dot(Bk, Bk, n)));
-        *(row_dot(Bk0, Bk, n) > 0 ? &lo : &hi) = h;
+        small = fmin(small, sqrt(kkt_dot(Bk, Bk, n)));
+        *(kkt_dot(Bk0, Bk, n) > 0 ? &lo : &hi) = h;
     }
     gsl_odeiv2_step_reset(step);
     if (!(small <= DEGENERATE_TOL * ends))

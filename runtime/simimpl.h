@@ -7,6 +7,7 @@
 
 #include "eomc.h"
 
+#include <gsl/gsl_permutation.h>
 #include <stddef.h>
 
 typedef struct Kkt Kkt;
@@ -46,6 +47,15 @@ int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* u and du/dt at t into s->u, s->dudt (held inputs constant). */
 void sim_inputs_at(eomc_sim *s, double t);
+
+/* kkt.c: LU of the N x N matrix A in place (GSL), -1 when a pivot is
+ * negligible: |U_ii| <= KKT_SINGULAR_TOL max|A_ij|; b = A^-1 b with A so
+ * factored; a . b; the largest |x_i|. */
+#define KKT_SINGULAR_TOL 1e-13
+int kkt_lu_factor(double *A, int N, gsl_permutation *perm);
+void kkt_lu_solve(double *A, int N, gsl_permutation *perm, double *b);
+double kkt_dot(const double *a, const double *b, int n);
+double kkt_max_abs(const double *x, int n);
 
 /* kkt.c: NULL-safe; kkt_alloc returns NULL when memory runs out. */
 Kkt *kkt_alloc(const eomc_model *m);

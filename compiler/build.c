@@ -129,6 +129,35 @@ build_is_special(const char *path)
     return stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
 }
 
+/* path's directory and a file name in it: "dir/name". */
+static char *
+sibling(const char *path, const char *name)
+{
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path + 1) : 0, len = dir + strlen(name) + 1;
+    char *out = xmalloc(len);
+    snprintf(out, len, "%.*s%s", (int)dir, path, name);
+    return out;
+}
+
+/* The reference solution's functions are the same file compiled again
+ * in extended precision: a second translation unit that includes it with
+ * EOMC_EXTENDED defined.  Returns its path, or NULL after printing why. */
+static char *
+write_extended_unit(const char *c_file)
+{
+    char *ext = sibling(c_file, "model_ext.c");
+    const char *base = strrchr(c_file, '/');
+    FILE *f = fopen(ext, "w");
+    if (!f || fprintf(f, "#define EOMC_EXTENDED 1\n#include \"%s\"\n",
+                      base ? base + 1 : c_file) < 0 || fclose(f) != 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", ext, strerror(errno));
+        free(ext);
+        return NULL;
+    }
+    return ext;
+}
+
 int
 build_executable(const char *c_file, const char *exe)
 {
@@ -141,6 +170,9 @@ build_executable(const char *c_file, const char *exe)
                         "(set EOMC_RUNTIME_LIB)\n", lib);
         return -1;
     }
+    char *ext = write_extended_unit(c_file);
+    if (!ext)
+        return -1;
     size_t len = strlen(exe) + 16;
     char *tmp = xmalloc(len);
     int special = build_is_special(exe);
@@ -150,7 +182,7 @@ build_executable(const char *c_file, const char *exe)
     snprintf(ccbuf, sizeof ccbuf, "%s", cc);
     char *argv[64];
     int n = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
-    const char *fixed[] = {"-std=c11", "-O2", "-DEOMC_MAIN", incflag, c_file,
+    const char *fixed[] = {"-std=c11", "-O2", "-DEOMC_MAIN", incflag, c_file, ext,
                            lib, "-o", tmp};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; k++)
         argv[n++] = (char *)fixed[k];
@@ -164,6 +196,8 @@ build_executable(const char *c_file, const char *exe)
     }
     if (rc != 0 && !special)
         unlink(tmp);
+    unlink(ext);
+    free(ext);
     free(tmp);
     return rc;
 }

@@ -13,7 +13,9 @@
 int build_is_special(const char *path);
 
 /* Compile c_file with the runtime into exe (written to a temporary name
- * and renamed when complete).  Returns 0, or -1 after printing why. */
+ * and renamed when complete), and c_file a second time with
+ * EOMC_EXTENDED for the reference solution (through a file model_ext.c
+ * written next to it, and removed).  Returns 0, or -1 after printing why. */
 int build_executable(const char *c_file, const char *exe);
 
 /* Where `eomc run` keeps the simulator for this key; the directory is

@@ -50,7 +50,9 @@ typedef struct Printer {
                  * not there): values computed once by another function */
     int cur;    /* the part being printed */
     unsigned used; /* bit k: parameter src[k] is read in this part */
+    int fenced;    /* inside #ifndef EOMC_EXTENDED */
 } Printer;
+
 
 static void
 println(Printer *pr, const char *fmt, ...)
@@ -60,6 +62,44 @@ println(Printer *pr, const char *fmt, ...)
     vfprintf(pr->f, fmt, ap);
     va_end(ap);
     fputc('\n', pr->f);
+}
+
+/* What follows is compiled in double only (1: the functions the
+ * reference solution does not need), or in both precisions (0). */
+static void
+fence(Printer *pr, int double_only)
+{
+    if (double_only && !pr->fenced)
+        println(pr, "#ifndef EOMC_EXTENDED");
+    else if (!double_only && pr->fenced)
+        println(pr, "#endif /* EOMC_EXTENDED */\n");
+    pr->fenced = double_only;
+}
+
+/* Lines of generated code are wrapped before this column. */
+enum { WRAP = 80 };
+
+/* "TYPE\nNAME(PARAMS)\n{", the comma-separated parameters wrapped. */
+static void
+print_head(Printer *pr, const char *type, const char *name, const char *params)
+{
+    fprintf(pr->f, "%s\n%s(", type, name);
+    int col = (int)strlen(name) + 1;
+    for (const char *p = params; *p;) {
+        int len = (int)strcspn(p, ",");
+        if (p != params && col + 2 + len + 1 > WRAP) {
+            fputs(",\n    ", pr->f);
+            col = 4;
+        } else if (p != params) {
+            fputs(", ", pr->f);
+            col += 2;
+        }
+        fprintf(pr->f, "%.*s", len, p);
+        col += len;
+        p += len;
+        p += strspn(p, ", ");
+    }
+    fputs(")\n{\n", pr->f);
 }
 
 /* The shortest %g form that reads back as the same double (9.81, not
@@ -164,13 +204,13 @@ print_node(Printer *pr, ExprId id)
         if (nd->op == EXPR_POWI)
             print_powi(x, (int32_t)nd->b, rhs, sizeof rhs);
         else if (nd->op == EXPR_SIGN)
-            snprintf(rhs, sizeof rhs, "(double)((%s > 0) - (%s < 0))", x, x);
+            snprintf(rhs, sizeof rhs, "(eomc_real)((%s > 0) - (%s < 0))", x, x);
         else if (ar == 2)
             snprintf(rhs, sizeof rhs, "%s(%s, %s)", sp, x, y);
         else
             snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
     }
-    println(pr, "    const double w%d = %s;", pr->temp[id], rhs);
+    println(pr, "    const eomc_real w%d = %s;", pr->temp[id], rhs);
     if (pr->slot[id] >= 0)
         println(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
 }
@@ -311,7 +351,7 @@ print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
             char buf[160];
             leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
-            println(pr, "    const double %s = %s[%u];", buf, src[arr], nd->a);
+            println(pr, "    const eomc_real %s = %s[%u];", buf, src[arr], nd->a);
         }
     free(mark);
 }
@@ -366,24 +406,28 @@ print_function(Printer *pr, const Func *fn, int nout, const Out *out)
     Sched S;
     schedule(pr, &S, nout, out);
     const char *nm = pr->s->name;
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_%s", nm, fn->name);
     if (S.nparts == 1) {
         println(pr, "/* %s */", fn->comment);
-        println(pr, "static void\n%s_%s(%s)\n{", nm, fn->name, fn->params);
+        print_head(pr, "static void", fname, fn->params);
         pr->cur = 0;
         print_part(pr, &S, nout, out, fn);
         println(pr, "}\n");
     } else {
         for (pr->cur = 0; pr->cur < S.nparts; pr->cur++) {
+            char part[160], params[600];
             println(pr, "/* %s: part %d of %d */", fn->name, pr->cur + 1, S.nparts);
-            println(pr, "static EOMC_NOINLINE void\n%s_%s_part%d(%s, double *s)\n{",
-                    nm, fn->name, pr->cur + 1, fn->params);
+            snprintf(part, sizeof part, "%s_part%d", fname, pr->cur + 1);
+            snprintf(params, sizeof params, "%s, eomc_real *s", fn->params);
+            print_head(pr, "static EOMC_NOINLINE void", part, params);
             print_voids(pr, fn->args);
             print_part(pr, &S, nout, out, fn);
             println(pr, "}\n");
         }
         println(pr, "/* %s */", fn->comment);
-        println(pr, "static void\n%s_%s(%s)\n{", nm, fn->name, fn->params);
-        println(pr, "    double s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
+        print_head(pr, "static void", fname, fn->params);
+        println(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
         for (int p = 0; p < S.nparts; p++)
             println(pr, "    %s_%s_part%d(%s, s);", nm, fn->name, p + 1, fn->args);
         println(pr, "}\n");
@@ -424,8 +468,27 @@ base_name(const char *path)
     return base ? base + 1 : path;
 }
 
+/* A sentence in the banner, " * " lines wrapped before WRAP. */
 static void
-print_banner(Printer *pr, const Eom *e, const Constraints *c, const EmitInfo *info)
+print_wrapped(Printer *pr, const char *text)
+{
+    int col = 0;
+    for (const char *p = text; *p;) {
+        int len = (int)strcspn(p, " ");
+        if (col && col + 1 + len + 1 >= WRAP) {
+            fputc('\n', pr->f);
+            col = 0;
+        }
+        col += fprintf(pr->f, "%s%.*s", col ? " " : " * ", len, p);
+        p += len;
+        p += strspn(p, " ");
+    }
+    fputs(".\n", pr->f);
+}
+
+static void
+print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *inv,
+             const EmitInfo *info)
 {
     const Spec *s = pr->s;
     const char *base = base_name(s->path);
@@ -450,6 +513,7 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const EmitInfo *in
     println(pr, "%s (no code is generated for these)", any ? "" : " (none)");
     println(pr, " *");
     println(pr, " * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0");
+    print_wrapped(pr, inv->note);
     if (c) {
         println(pr, " *");
         println(pr, " * constraints, by %s:", info->eliminate
@@ -459,6 +523,10 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const EmitInfo *in
                     constraint_order_name(c->spec[k].order), s->coord[c->dependent[k]].name);
         println(pr, " *   %s in q''", c->affine ? "all affine" : "not all affine (Newton)");
     }
+    println(pr, " *");
+    println(pr, " * Compiled with -DEOMC_EXTENDED, the functions that the reference solution");
+    println(pr, " * needs are compiled in extended precision instead (%s_model_ext).",
+            s->name);
     println(pr, " */");
     println(pr, "#include <math.h>");
     println(pr, "#include <stddef.h>");
@@ -467,8 +535,10 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const EmitInfo *in
     println(pr, "");
     println(pr, "#if defined(__GNUC__)");
     println(pr, "#define EOMC_NOINLINE __attribute__((noinline))");
+    println(pr, "#define EOMC_WEAK __attribute__((weak))");
     println(pr, "#else");
     println(pr, "#define EOMC_NOINLINE");
+    println(pr, "#define EOMC_WEAK");
     println(pr, "#endif");
     println(pr, "");
 }
@@ -504,33 +574,29 @@ add_out(Out *o, int *n, ExprId e, const char *fmt, ...)
 
 static const Func f_initial = {
     "initial", "Initial state from the spec's `initial`.",
-    "const double *p, double *q, double *v", "p, q, v",
+    "const eomc_real *p, eomc_real *q, eomc_real *v", "p, q, v",
     SRC(NULL, NULL, NULL, "p", NULL, NULL), NULL,
 };
 static const Func f_inputs = {
     "inputs", "Input signals u(t) and du/dt.",
-    "double t, const double *p, double *u, double *dudt", "t, p, u, dudt",
+    "eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt", "t, p, u, dudt",
     SRC(NULL, NULL, NULL, "p", NULL, "t"), "(void)u;\n    (void)dudt;",
 };
 static const Func f_mass_bias = {
     "mass_bias",
     "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
-    "double t, const double *q, const double *v, const double *p,\n"
-    "    const double *u, double *M, double *h", "t, q, v, p, u, M, h",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h", "t, q, v, p, u, M, h",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
 static const Func f_energy = {
     "energy", "Kinetic energy T and potential energy V.",
-    "double t, const double *q, const double *v, const double *p,\n"
-    "    const double *u, double *TV", "t, q, v, p, u, TV",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *TV", "t, q, v, p, u, TV",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
 static const Func f_jacobian = {
     "jacobian",
     "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, double *dEdq, double *dEdv,\n"
-    "    double *dEdu, double *dEdt", "t, q, v, a, p, u, dEdq, dEdv, dEdu, dEdt",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt", "t, q, v, a, p, u, dEdq, dEdv, dEdu, dEdt",
     SRC("q", "v", "a", "p", "u", "t"), "(void)dEdu;",
 };
 
@@ -540,25 +606,19 @@ static const Func f_jac_shared = {
     "jacobian_shared",
     "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
     " * dE/dt.",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, double *shared, double *dEdu,\n"
-    "    double *dEdt", "t, q, v, a, p, u, shared, dEdu, dEdt",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *shared, eomc_real *dEdu, eomc_real *dEdt", "t, q, v, a, p, u, shared, dEdu, dEdt",
     SRC("q", "v", "a", "p", "u", "t"), NULL,
 };
 static const Func f_jac_dq = {
     "jacobian_dq",
     "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, const double *shared,\n    const double *dq,\n"
-    "    double *dE", "t, q, v, a, p, u, shared, dq, dE",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, const eomc_real *shared, const eomc_real *dq, eomc_real *dE", "t, q, v, a, p, u, shared, dq, dE",
     {"q", "v", "a", NULL, "p", "u", "t", "dq", NULL}, "(void)shared;",
 };
 static const Func f_jac_dv = {
     "jacobian_dv",
     "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, const double *shared,\n    const double *dv,\n"
-    "    double *dE", "t, q, v, a, p, u, shared, dv, dE",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, const eomc_real *shared, const eomc_real *dv, eomc_real *dE", "t, q, v, a, p, u, shared, dv, dE",
     {"q", "v", "a", NULL, "p", "u", "t", NULL, "dv"}, "(void)shared;",
 };
 
@@ -567,43 +627,35 @@ static const Func f_accel_solve = {
     "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
     " * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk\n"
     " * must all be positive.",
-    "double t, const double *q, const double *v, const double *p,\n"
-    "    const double *u, double *a, double *piv", "t, q, v, p, u, a, piv",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv", "t, q, v, p, u, a, piv",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
 
 static const Func f_constraint = {
     "constraint",
     "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, double *f, double *B",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f, eomc_real *B",
     "t, q, v, a, p, u, f, B",
     SRC("q", "v", "a", "p", "u", "t"), NULL,
 };
 static const Func f_c_levels = {
     "c_levels",
     "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
-    "double t, const double *q, const double *v, const double *p,\n"
-    "    const double *u, double *pos, double *vel", "t, q, v, p, u, pos, vel",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel", "t, q, v, p, u, pos, vel",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
 static const Func f_c_levels_jacobian = {
     "c_levels_jacobian",
     "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
     " * stabilization adds to df/dx.",
-    "double t, const double *q, const double *v, const double *p,\n"
-    "    const double *u, double *dposdq, double *dveldq, double *dveldv,\n"
-    "    double *dposdu, double *dveldu, double *dposdt, double *dveldt",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu, eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt",
     "t, q, v, p, u, dposdq, dveldq, dveldv, dposdu, dveldu, dposdt, dveldt",
     SRC("q", "v", NULL, "p", "u", "t"), "(void)dposdu;\n    (void)dveldu;",
 };
 static const Func f_c_jacobian = {
     "c_jacobian",
     "Partial derivatives of f and of B = df/dq'' (u held fixed).",
-    "double t, const double *q, const double *v, const double *a,\n"
-    "    const double *p, const double *u, double *dfdq, double *dfdv,\n"
-    "    double *dfdu, double *dfdt, double *dBdq, double *dBdv, double *dBda,\n"
-    "    double *dBdu, double *dBdt",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt",
     "t, q, v, a, p, u, dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt",
     SRC("q", "v", "a", "p", "u", "t"), "(void)dfdu;\n    (void)dBdu;",
 };
@@ -684,9 +736,11 @@ print_seeded_jacobian(Printer *pr, const Eom *e)
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
     println(pr, " * dq = e_j (dq' = e_j): exact, in code about the size of E instead of");
     println(pr, " * %d times that. */", n);
-    println(pr, "static void\n%s_jacobian(%s)\n{", nm, f_jacobian.params);
-    println(pr, "    double shared[%d]; /* values every column needs */", nw ? nw : 1);
-    println(pr, "    double seed[%d];", n);
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_jacobian", nm);
+    print_head(pr, "static void", fname, f_jacobian.params);
+    println(pr, "    eomc_real shared[%d]; /* values every column needs */", nw ? nw : 1);
+    println(pr, "    eomc_real seed[%d];", n);
     println(pr, "    %s_jacobian_shared(t, q, v, a, p, u, shared, dEdu, dEdt);", nm);
     println(pr, "    for (int j = 0; j < %d; j++)", n);
     println(pr, "        seed[j] = 0.0;");
@@ -712,9 +766,11 @@ print_accel(Printer *pr, int n)
     const char *nm = pr->s->name;
     println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M");
     println(pr, " * singular or not positive definite). */");
-    println(pr, "static int\n%s_accel(double t, const double *q, const double *v, "
-            "const double *p,\n    const double *u, double *a)\n{", nm);
-    println(pr, "    double piv[%d];", n);
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_accel", nm);
+    print_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, eomc_real *a");
+    println(pr, "    eomc_real piv[%d];", n);
     println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv);", nm);
     println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
     println(pr, "        if (!(piv[k] > 0.0))");
@@ -742,7 +798,7 @@ print_c_string(FILE *f, const char *text)
 
 static void
 print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *c,
-                   const EmitInfo *info)
+                   const Invariant *inv, const EmitInfo *info)
 {
     const char *nm = s->name;
     println(pr, "const eomc_model %s_model = {", nm);
@@ -774,12 +830,34 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
                 c->nc, c->affine, info->eliminate, nm, nm, nm, nm);
     else
         println(pr, "    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,");
-    println(pr, "};");
-    println(pr, "");
+    if (inv->h != EXPR_NONE)
+        fprintf(pr->f, "    %s_invariant, \"%s\",\n    ", nm, inv->name);
+    else
+        fprintf(pr->f, "    NULL, NULL,\n    ");
+    print_c_string(pr->f, inv->note);
+    println(pr, ",\n};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
-    println(pr, "int main(int argc, char **argv) { return eomc_main(argc, argv, &%s_model); }", nm);
+    println(pr, "/* The reference solution's functions: this file compiled again with");
+    println(pr, " * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator");
+    println(pr, " * runs but cannot measure its errors. */");
+    println(pr, "extern const eomc_model_ext %s_model_ext EOMC_WEAK;", nm);
+    println(pr, "int main(int argc, char **argv)");
+    println(pr, "{");
+    println(pr, "    return eomc_main(argc, argv, &%s_model, &%s_model_ext);", nm, nm);
+    println(pr, "}");
     println(pr, "#endif");
+    println(pr, "#else");
+    println(pr, "const eomc_model_ext %s_model_ext = {", nm);
+    println(pr, "    EOMC_ABI_VERSION, \"%s\", %s_inputs, %s_mass_bias, %s%s,", nm, nm, nm,
+            !c && e->acc ? nm : "NULL", !c && e->acc ? "_accel" : "");
+    if (c)
+        println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
+                c->affine ? "" : "_c_jacobian");
+    else
+        println(pr, "    NULL, NULL,");
+    println(pr, "};");
+    println(pr, "#endif /* EOMC_EXTENDED */");
 }
 
 /* Names, orders and dependent coordinates of the constraints. */
@@ -839,7 +917,9 @@ print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
         for (int j = 0; j < n; j++)
             add_out(o, &k, c->B[a * n + j], "B[%d]", a * n + j);
     }
+    fence(pr, 0);
     stats[0] = (EmitStats){"constraint", print_function(pr, &f_constraint, k, o)};
+    fence(pr, 1);
     k = 0;
     for (int a = 0; a < nc; a++) {
         add_out(o, &k, c->pos[a] == EXPR_NONE ? EXPR_ZERO : c->pos[a], "pos[%d]", a);
@@ -872,7 +952,9 @@ print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
     }
     Func fj = f_c_jacobian;
     fj.unused = nu ? NULL : f_c_jacobian.unused;
+    fence(pr, c->affine); /* Newton's method needs it only when f is not affine */
     stats[2] = (EmitStats){"c_jacobian", print_function(pr, &fj, k, o)};
+    fence(pr, 1);
     k = add_levels_jacobian(pr, c, D, o);
     Func fl = f_c_levels_jacobian;
     fl.unused = nu ? NULL : f_c_levels_jacobian.unused;
@@ -880,14 +962,24 @@ print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
     free(o);
 }
 
+/* The conserved quantity, when there is one. */
+static const Func f_invariant = {
+    "invariant", "The conserved quantity (eomc_model.h: invariant).",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, "
+    "const eomc_real *u, eomc_real *h", "t, q, v, p, u, h",
+    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+};
+
 void
 emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
-           ExprPool *P, Diff *D, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
+           const Invariant *inv, ExprPool *P, Diff *D, const EmitInfo *info,
+           EmitStats stats[EMIT_NFUNCS])
 {
     Printer pr = {.f = f, .P = P, .s = s};
     int n = s->nq, nu = s->nu, k;
     Out *o = calloc((size_t)(2 * n * n + n * nu + 4 * n + 2 * nu + 2), sizeof *o);
-    print_banner(&pr, e, c, info);
+    print_banner(&pr, e, c, inv, info);
+    fence(&pr, 1);
     print_tables(&pr);
     if (c)
         print_constraint_tables(&pr, c);
@@ -899,6 +991,7 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
         add_out(o, &k, s->coord[i].v0, "v[%d]", i);
     stats[0] = (EmitStats){"initial", print_function(&pr, &f_initial, k, o)};
 
+    fence(&pr, 0);
     k = 0;
     for (int i = 0; i < nu; i++)
         add_out(o, &k, s->input[i].expr, "u[%d]", i);
@@ -919,6 +1012,7 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
             add_out(o, &k, e->M[i * n + j], "M[%d]", i * n + j);
     stats[2] = (EmitStats){"mass_bias", print_function(&pr, &f_mass_bias, k, o)};
 
+    fence(&pr, 1);
     k = 0;
     add_out(o, &k, m->T, "TV[0]");
     add_out(o, &k, m->V, "TV[1]");
@@ -957,9 +1051,16 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
     stats[7] = (EmitStats){"c_levels", {0, 0, 0, 0}};
     stats[8] = (EmitStats){"c_jacobian", {0, 0, 0, 0}};
     stats[9] = (EmitStats){"c_levels_jacobian", {0, 0, 0, 0}};
+    stats[10] = (EmitStats){"invariant", {0, 0, 0, 0}};
+    if (inv->h != EXPR_NONE) {
+        k = 0;
+        add_out(o, &k, inv->h, "h[0]");
+        stats[10].count = print_function(&pr, &f_invariant, k, o);
+    }
     if (c)
         print_constraints(&pr, c, D, stats + 6);
     if (e->acc && !c) {
+        fence(&pr, 0);
         k = 0;
         for (int i = 0; i < n; i++)
             add_out(o, &k, e->piv[i], "piv[%d]", i);
@@ -969,5 +1070,6 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
         print_accel(&pr, n);
     }
     free(o);
-    print_model_struct(&pr, s, e, c, info);
+    fence(&pr, 1);
+    print_model_struct(&pr, s, e, c, inv, info);
 }

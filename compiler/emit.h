@@ -3,8 +3,8 @@
  * runtime/eomc_model.h.  One `const double` temporary per shared DAG node
  * reachable from a function's outputs (dead nodes are never printed),
  * numbered in emission order; leaves get named locals (q_x, v_x, a_x,
- * p_x, u_x); constants print with %.17g.  Output depends only on the
- * input, byte for byte.
+ * p_x, u_x); constants print in the shortest form that reads back
+ * exactly.  Output depends only on the input, byte for byte.
  */
 #ifndef EOMC_EMIT_H
 #define EOMC_EMIT_H
@@ -13,6 +13,7 @@
 
 #include "constraint.h"
 #include "eom.h"
+#include "invariant.h"
 
 /* How the jacobian member is printed.  UNROLLED: every entry of dE/dq
  * and dE/dq' as its own expression, the fastest to run; code grows as
@@ -39,11 +40,13 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 10 };
+enum { EMIT_NFUNCS = 11 };
 
-/* c: the constraints, or NULL. */
+/* c: the constraints, or NULL.  The functions are written in
+ * eomc_real (eomc_model.h); those the reference solution needs are also
+ * compiled with -DEOMC_EXTENDED, the others are fenced off from it. */
 void emit_model(FILE *out, const Spec *s, const Mech *m, const Eom *e,
-                const Constraints *c, ExprPool *P, Diff *D, const EmitInfo *info,
-                EmitStats stats[EMIT_NFUNCS]);
+                const Constraints *c, const Invariant *inv, ExprPool *P, Diff *D,
+                const EmitInfo *info, EmitStats stats[EMIT_NFUNCS]);
 
 #endif

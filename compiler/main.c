@@ -15,6 +15,7 @@
 #include "constraint.h"
 #include "config.h"
 #include "emit.h"
+#include "invariant.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -143,18 +144,23 @@ parse_args(int argc, char **argv, Options *o)
 static void
 print_stats(const EmitStats *st)
 {
-    fprintf(stderr, "%-10s %8s %8s %8s %8s %8s\n", "function", "adds", "muls",
-            "divs", "calls", "total");
+    int w = (int)strlen("function");
+    for (int i = 0; i < EMIT_NFUNCS; i++)
+        if ((int)strlen(st[i].function) > w)
+            w = (int)strlen(st[i].function);
+    fprintf(stderr, "%-*s %8s %8s %8s %8s %8s\n", w, "function", "adds", "muls", "divs",
+            "calls", "total");
     for (int i = 0; i < EMIT_NFUNCS; i++) {
         ExprCount c = st[i].count;
-        fprintf(stderr, "%-10s %8ld %8ld %8ld %8ld %8ld\n", st[i].function,
-                c.adds, c.muls, c.divs, c.calls, c.adds + c.muls + c.divs + c.calls);
+        fprintf(stderr, "%-*s %8ld %8ld %8ld %8ld %8ld\n", w, st[i].function, c.adds,
+                c.muls, c.divs, c.calls, c.adds + c.muls + c.divs + c.calls);
     }
 }
 
 /* --explain: what eomc made of the spec. */
 static void
-explain(const Spec *s, const Form *form, const Constraints *c, const EmitInfo *info)
+explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *inv,
+        const EmitInfo *info)
 {
     printf("%s (%s): %d coordinate%s (", s->name, s->path, s->nq, s->nq == 1 ? "" : "s");
     for (int i = 0; i < s->nq; i++)
@@ -175,6 +181,7 @@ explain(const Spec *s, const Form *form, const Constraints *c, const EmitInfo *i
         constraints_explain(stdout, c, s, info->eliminate);
     else
         printf("no constraints: q'' = -M^-1 h\n");
+    printf("%s\n", inv->note);
 }
 
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
@@ -200,6 +207,7 @@ compile(const Options *o, FILE *out)
         const char *why = NULL;
         Mech *m = mech_build(s, A, P, D);
         Constraints *c = constraints_build(s, m, A, P, D);
+        Invariant *inv = invariant_derive(s, m, c, A, P, D);
         const Form *form = form_find(o->form);
         Eom *e = eom_derive(s, m, form, A, P, D, &why);
         if (!e) {
@@ -223,9 +231,9 @@ compile(const Options *o, FILE *out)
             EmitInfo info = {EOMC_VERSION, opts, jac, form->eliminate || o->eliminate};
             EmitStats st[EMIT_NFUNCS];
             if (o->explain)
-                explain(s, form, c, &info);
+                explain(s, form, c, inv, &info);
             if (out) {
-                emit_model(out, s, m, e, c, P, D, &info, st);
+                emit_model(out, s, m, e, c, inv, P, D, &info, st);
                 if (o->stats)
                     print_stats(st);
             }

@@ -22,9 +22,12 @@
 #include <string.h>
 #include <yaml.h>
 
+/* The runtime's list of integration methods, the one list of them. */
 const char *const spec_methods[] = {
-    "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp", "rk4imp",
-    "bsimp", "msadams", "msbdf", NULL,
+#define METHOD(name, gsl, fixed, description) #name,
+#include "../runtime/methods.def"
+#undef METHOD
+    NULL,
 };
 
 enum { MAX_SPEC_BYTES = 16 << 20 };
@@ -1130,8 +1133,11 @@ method_name(Loader *L, yaml_node_t *n)
     const char *near = diag_nearest(m, spec_methods, count);
     if (near)
         diag_error(loc_of(L, n), "unknown method '%s'; did you mean '%s'?", m, near);
-    diag_error(loc_of(L, n), "unknown method '%s'; the methods are rk2, rk4, rkf45, rkck, "
-               "rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf", m);
+    char list[256] = "";
+    for (int k = 0; k < count; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "",
+                 spec_methods[k]);
+    diag_error(loc_of(L, n), "unknown method '%s'; the methods are %s", m, list);
 }
 
 static int

@@ -8,10 +8,15 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * E = T + V is conserved: T, V and the constraints do not depend on t, every
+ * effect is a potential and the constraint forces do no work.
  *
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   cone         first-order, determines z
  *   all affine in q''
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (appell_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -20,10 +25,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[3] = {"x", "y", "z"};
 static const char *const p_names[4] = {"m", "g", "a", "v0"};
 static const char *const u_names[1] = {NULL};
@@ -35,24 +43,26 @@ static const int c_dependent[1] = {2};
 
 /* Initial state from the spec's `initial`. */
 static void
-appell_initial(const double *p, double *q, double *v)
+appell_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
-    const double p_a = p[2];
-    const double p_v0 = p[3];
+    const eomc_real p_a = p[2];
+    const eomc_real p_v0 = p[3];
     q[0] = 0.0;
     q[1] = 0.0;
     q[2] = 0.0;
     v[0] = p_v0;
-    const double w0 = 0.3 * p_v0;
+    const eomc_real w0 = 0.3 * p_v0;
     v[1] = w0;
-    const double w1 = p_a * p_v0;
-    const double w2 = 1.044030650891055 * w1;
+    const eomc_real w1 = p_a * p_v0;
+    const eomc_real w2 = 1.044030650891055 * w1;
     v[2] = w2;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-appell_inputs(double t, const double *p, double *u, double *dudt)
+appell_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -62,17 +72,17 @@ appell_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-appell_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+appell_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double p_m = p[0];
-    const double p_g = p[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = 2.0 * w0;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = 2.0 * w0;
     M[0] = w1;
     M[3] = 0.0;
     M[4] = w1;
@@ -81,46 +91,47 @@ appell_mass_bias(double t, const double *q, const double *v, const double *p,
     M[8] = w1;
     h[0] = 0.0;
     h[1] = 0.0;
-    const double w2 = p_m * p_g;
-    const double w3 = -w2;
+    const eomc_real w2 = p_m * p_g;
+    const eomc_real w3 = -w2;
     h[2] = w3;
     M[1] = 0.0;
     M[2] = 0.0;
     M[5] = 0.0;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-appell_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+appell_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_z = q[2];
-    const double v_z = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_m = p[0];
-    const double p_g = p[1];
+    const eomc_real q_z = q[2];
+    const eomc_real v_z = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = v_z * v_z;
-    const double w2 = v_x * v_x;
-    const double w3 = v_y * v_y;
-    const double w4 = w2 + w3;
-    const double w5 = w1 + w4;
-    const double w6 = w0 * w5;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = v_z * v_z;
+    const eomc_real w2 = v_x * v_x;
+    const eomc_real w3 = v_y * v_y;
+    const eomc_real w4 = w2 + w3;
+    const eomc_real w5 = w1 + w4;
+    const eomc_real w6 = w0 * w5;
     TV[0] = w6;
-    const double w7 = p_m * p_g;
-    const double w8 = w7 * q_z;
-    const double w9 = -w8;
+    const eomc_real w7 = p_m * p_g;
+    const eomc_real w8 = w7 * q_z;
+    const eomc_real w9 = -w8;
     TV[1] = w9;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-appell_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+appell_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     (void)q;
     (void)v;
@@ -152,75 +163,105 @@ appell_jacobian(double t, const double *q, const double *v, const double *a,
     dEdt[2] = 0.0;
 }
 
+/* The conserved quantity (eomc_model.h: invariant). */
+static void
+appell_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_z = q[2];
+    const eomc_real v_z = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = v_z * v_z;
+    const eomc_real w2 = v_x * v_x;
+    const eomc_real w3 = v_y * v_y;
+    const eomc_real w4 = w2 + w3;
+    const eomc_real w5 = w1 + w4;
+    const eomc_real w6 = w0 * w5;
+    const eomc_real w7 = p_m * p_g;
+    const eomc_real w8 = w7 * q_z;
+    const eomc_real w9 = w6 - w8;
+    h[0] = w9;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
 static void
-appell_constraint(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *f, double *B)
+appell_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B)
 {
-    const double v_z = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
-    const double a_z = a[2];
-    const double p_a = p[2];
+    const eomc_real v_z = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
+    const eomc_real a_z = a[2];
+    const eomc_real p_a = p[2];
     (void)q;
     (void)u;
     (void)t;
-    const double w0 = v_z * a_z;
-    const double w1 = 2.0 * w0;
-    const double w2 = p_a * p_a;
-    const double w3 = 2.0 * w2;
-    const double w4 = v_x * a_x;
-    const double w5 = v_y * a_y;
-    const double w6 = w4 + w5;
-    const double w7 = w3 * w6;
-    const double w8 = w1 - w7;
+    const eomc_real w0 = v_z * a_z;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = p_a * p_a;
+    const eomc_real w3 = 2.0 * w2;
+    const eomc_real w4 = v_x * a_x;
+    const eomc_real w5 = v_y * a_y;
+    const eomc_real w6 = w4 + w5;
+    const eomc_real w7 = w3 * w6;
+    const eomc_real w8 = w1 - w7;
     f[0] = w8;
-    const double w9 = w3 * v_x;
-    const double w10 = -w9;
+    const eomc_real w9 = w3 * v_x;
+    const eomc_real w10 = -w9;
     B[0] = w10;
-    const double w11 = w3 * v_y;
-    const double w12 = -w11;
+    const eomc_real w11 = w3 * v_y;
+    const eomc_real w12 = -w11;
     B[1] = w12;
-    const double w13 = 2.0 * v_z;
+    const eomc_real w13 = 2.0 * v_z;
     B[2] = w13;
 }
 
+#ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
 static void
-appell_c_levels(double t, const double *q, const double *v, const double *p,
-    const double *u, double *pos, double *vel)
+appell_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
-    const double v_z = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_a = p[2];
+    const eomc_real v_z = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_a = p[2];
     (void)q;
     (void)u;
     (void)t;
     pos[0] = 0.0;
-    const double w0 = v_z * v_z;
-    const double w1 = p_a * p_a;
-    const double w2 = v_x * v_x;
-    const double w3 = v_y * v_y;
-    const double w4 = w2 + w3;
-    const double w5 = w1 * w4;
-    const double w6 = w0 - w5;
+    const eomc_real w0 = v_z * v_z;
+    const eomc_real w1 = p_a * p_a;
+    const eomc_real w2 = v_x * v_x;
+    const eomc_real w3 = v_y * v_y;
+    const eomc_real w4 = w2 + w3;
+    const eomc_real w5 = w1 * w4;
+    const eomc_real w6 = w0 - w5;
     vel[0] = w6;
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
-appell_c_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dfdq, double *dfdv,
-    double *dfdu, double *dfdt, double *dBdq, double *dBdv, double *dBda,
-    double *dBdu, double *dBdt)
+appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt)
 {
-    const double a_x = a[0];
-    const double a_y = a[1];
-    const double a_z = a[2];
-    const double p_a = p[2];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
+    const eomc_real a_z = a[2];
+    const eomc_real p_a = p[2];
     (void)q;
     (void)v;
     (void)u;
@@ -228,21 +269,21 @@ appell_c_jacobian(double t, const double *q, const double *v, const double *a,
     (void)dfdu;
     (void)dBdu;
     dfdq[0] = 0.0;
-    const double w0 = p_a * p_a;
-    const double w1 = 2.0 * w0;
-    const double w2 = w1 * a_x;
-    const double w3 = -w2;
+    const eomc_real w0 = p_a * p_a;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = w1 * a_x;
+    const eomc_real w3 = -w2;
     dfdv[0] = w3;
     dfdq[1] = 0.0;
-    const double w4 = w1 * a_y;
-    const double w5 = -w4;
+    const eomc_real w4 = w1 * a_y;
+    const eomc_real w5 = -w4;
     dfdv[1] = w5;
     dfdq[2] = 0.0;
-    const double w6 = 2.0 * a_z;
+    const eomc_real w6 = 2.0 * a_z;
     dfdv[2] = w6;
     dfdt[0] = 0.0;
     dBdq[0] = 0.0;
-    const double w7 = (-2.0) * w0;
+    const eomc_real w7 = (-2.0) * w0;
     dBdv[0] = w7;
     dBda[0] = 0.0;
     dBdq[1] = 0.0;
@@ -277,14 +318,15 @@ appell_c_jacobian(double t, const double *q, const double *v, const double *a,
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
 static void
-appell_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
-    const double *u, double *dposdq, double *dveldq, double *dveldv,
-    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *dposdq,
+    eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu, eomc_real *dveldu,
+    eomc_real *dposdt, eomc_real *dveldt)
 {
-    const double v_z = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_a = p[2];
+    const eomc_real v_z = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_a = p[2];
     (void)q;
     (void)u;
     (void)t;
@@ -292,19 +334,19 @@ appell_c_levels_jacobian(double t, const double *q, const double *v, const doubl
     (void)dveldu;
     dposdq[0] = 0.0;
     dveldq[0] = 0.0;
-    const double w0 = p_a * p_a;
-    const double w1 = 2.0 * w0;
-    const double w2 = w1 * v_x;
-    const double w3 = -w2;
+    const eomc_real w0 = p_a * p_a;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = w1 * v_x;
+    const eomc_real w3 = -w2;
     dveldv[0] = w3;
     dposdq[1] = 0.0;
     dveldq[1] = 0.0;
-    const double w4 = w1 * v_y;
-    const double w5 = -w4;
+    const eomc_real w4 = w1 * v_y;
+    const eomc_real w5 = -w4;
     dveldv[1] = w5;
     dposdq[2] = 0.0;
     dveldq[2] = 0.0;
-    const double w6 = 2.0 * v_z;
+    const eomc_real w6 = 2.0 * v_z;
     dveldv[2] = w6;
     dposdt[0] = 0.0;
     dveldt[0] = 0.0;
@@ -318,9 +360,24 @@ const eomc_model appell_model = {
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
     appell_constraint, appell_c_levels, appell_c_jacobian, appell_c_levels_jacobian,
+    appell_invariant, "E",
+    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &appell_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext appell_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &appell_model, &appell_model_ext);
+}
 #endif
+#else
+const eomc_model_ext appell_model_ext = {
+    EOMC_ABI_VERSION, "appell", appell_inputs, appell_mass_bias, NULL,
+    appell_constraint, NULL,
+};
+#endif /* EOMC_EXTENDED */

@@ -8,10 +8,15 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * E = T + V is conserved: T, V and the constraints do not depend on t, every
+ * effect is a potential and the constraint forces do no work.
  *
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   rod          holonomic, determines y
  *   all affine in q''
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (cartesian_pendulum_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -20,10 +25,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[2] = {"x", "y"};
 static const char *const p_names[4] = {"m", "l", "g", "theta0"};
 static const char *const u_names[1] = {NULL};
@@ -35,24 +43,27 @@ static const int c_dependent[1] = {1};
 
 /* Initial state from the spec's `initial`. */
 static void
-cartesian_pendulum_initial(const double *p, double *q, double *v)
+cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
-    const double p_l = p[1];
-    const double p_theta0 = p[3];
-    const double w0 = sin(p_theta0);
-    const double w1 = p_l * w0;
+    const eomc_real p_l = p[1];
+    const eomc_real p_theta0 = p[3];
+    const eomc_real w0 = sin(p_theta0);
+    const eomc_real w1 = p_l * w0;
     q[0] = w1;
-    const double w2 = cos(p_theta0);
-    const double w3 = p_l * w2;
-    const double w4 = -w3;
+    const eomc_real w2 = cos(p_theta0);
+    const eomc_real w3 = p_l * w2;
+    const eomc_real w4 = -w3;
     q[1] = w4;
     v[0] = 0.0;
     v[1] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-cartesian_pendulum_inputs(double t, const double *p, double *u, double *dudt)
+cartesian_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -62,54 +73,56 @@ cartesian_pendulum_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-cartesian_pendulum_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M,
+    eomc_real *h)
 {
-    const double p_m = p[0];
-    const double p_g = p[2];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[2];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = 2.0 * w0;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = 2.0 * w0;
     M[0] = w1;
     M[2] = 0.0;
     M[3] = w1;
     h[0] = 0.0;
-    const double w2 = p_m * p_g;
+    const eomc_real w2 = p_m * p_g;
     h[1] = w2;
     M[1] = 0.0;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-cartesian_pendulum_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_y = q[1];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_m = p[0];
-    const double p_g = p[2];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[2];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = v_x * v_x;
-    const double w2 = v_y * v_y;
-    const double w3 = w1 + w2;
-    const double w4 = w0 * w3;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = v_x * v_x;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = w0 * w3;
     TV[0] = w4;
-    const double w5 = p_m * p_g;
-    const double w6 = w5 * q_y;
+    const eomc_real w5 = p_m * p_g;
+    const eomc_real w6 = w5 * q_y;
     TV[1] = w6;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-cartesian_pendulum_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+cartesian_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     (void)q;
     (void)v;
@@ -130,84 +143,112 @@ cartesian_pendulum_jacobian(double t, const double *q, const double *v, const do
     dEdt[1] = 0.0;
 }
 
+/* The conserved quantity (eomc_model.h: invariant). */
+static void
+cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[2];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = v_x * v_x;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = w0 * w3;
+    const eomc_real w5 = p_m * p_g;
+    const eomc_real w6 = w5 * q_y;
+    const eomc_real w7 = w4 + w6;
+    h[0] = w7;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
 static void
-cartesian_pendulum_constraint(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *f, double *B)
+cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *f, eomc_real *B)
 {
-    const double q_x = q[0];
-    const double q_y = q[1];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
     (void)p;
     (void)u;
     (void)t;
-    const double w0 = v_x * v_x;
-    const double w1 = q_x * a_x;
-    const double w2 = w0 + w1;
-    const double w3 = v_y * v_y;
-    const double w4 = q_y * a_y;
-    const double w5 = w3 + w4;
-    const double w6 = w2 + w5;
-    const double w7 = 2.0 * w6;
+    const eomc_real w0 = v_x * v_x;
+    const eomc_real w1 = q_x * a_x;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = v_y * v_y;
+    const eomc_real w4 = q_y * a_y;
+    const eomc_real w5 = w3 + w4;
+    const eomc_real w6 = w2 + w5;
+    const eomc_real w7 = 2.0 * w6;
     f[0] = w7;
-    const double w8 = 2.0 * q_x;
+    const eomc_real w8 = 2.0 * q_x;
     B[0] = w8;
-    const double w9 = 2.0 * q_y;
+    const eomc_real w9 = 2.0 * q_y;
     B[1] = w9;
 }
 
+#ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
 static void
-cartesian_pendulum_c_levels(double t, const double *q, const double *v, const double *p,
-    const double *u, double *pos, double *vel)
+cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
-    const double q_x = q[0];
-    const double q_y = q[1];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_l = p[1];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_l = p[1];
     (void)u;
     (void)t;
-    const double w0 = q_x * q_x;
-    const double w1 = q_y * q_y;
-    const double w2 = w0 + w1;
-    const double w3 = p_l * p_l;
-    const double w4 = w2 - w3;
+    const eomc_real w0 = q_x * q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = p_l * p_l;
+    const eomc_real w4 = w2 - w3;
     pos[0] = w4;
-    const double w5 = q_x * v_x;
-    const double w6 = q_y * v_y;
-    const double w7 = w5 + w6;
-    const double w8 = 2.0 * w7;
+    const eomc_real w5 = q_x * v_x;
+    const eomc_real w6 = q_y * v_y;
+    const eomc_real w7 = w5 + w6;
+    const eomc_real w8 = 2.0 * w7;
     vel[0] = w8;
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
-cartesian_pendulum_c_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dfdq, double *dfdv,
-    double *dfdu, double *dfdt, double *dBdq, double *dBdv, double *dBda,
-    double *dBdu, double *dBdt)
+cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu,
+    eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda,
+    eomc_real *dBdu, eomc_real *dBdt)
 {
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
     (void)q;
     (void)p;
     (void)u;
     (void)t;
     (void)dfdu;
     (void)dBdu;
-    const double w0 = 2.0 * a_x;
+    const eomc_real w0 = 2.0 * a_x;
     dfdq[0] = w0;
-    const double w1 = 4.0 * v_x;
+    const eomc_real w1 = 4.0 * v_x;
     dfdv[0] = w1;
-    const double w2 = 2.0 * a_y;
+    const eomc_real w2 = 2.0 * a_y;
     dfdq[1] = w2;
-    const double w3 = 4.0 * v_y;
+    const eomc_real w3 = 4.0 * v_y;
     dfdv[1] = w3;
     dfdt[0] = 0.0;
     dBdq[0] = 2.0;
@@ -229,27 +270,28 @@ cartesian_pendulum_c_jacobian(double t, const double *q, const double *v, const 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
 static void
-cartesian_pendulum_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
-    const double *u, double *dposdq, double *dveldq, double *dveldv,
-    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt)
 {
-    const double q_x = q[0];
-    const double q_y = q[1];
-    const double v_x = v[0];
-    const double v_y = v[1];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
     (void)p;
     (void)u;
     (void)t;
     (void)dposdu;
     (void)dveldu;
-    const double w0 = 2.0 * q_x;
+    const eomc_real w0 = 2.0 * q_x;
     dposdq[0] = w0;
-    const double w1 = 2.0 * v_x;
+    const eomc_real w1 = 2.0 * v_x;
     dveldq[0] = w1;
     dveldv[0] = w0;
-    const double w2 = 2.0 * q_y;
+    const eomc_real w2 = 2.0 * q_y;
     dposdq[1] = w2;
-    const double w3 = 2.0 * v_y;
+    const eomc_real w3 = 2.0 * v_y;
     dveldq[1] = w3;
     dveldv[1] = w2;
     dposdt[0] = 0.0;
@@ -264,9 +306,24 @@ const eomc_model cartesian_pendulum_model = {
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
     cartesian_pendulum_constraint, cartesian_pendulum_c_levels, cartesian_pendulum_c_jacobian, cartesian_pendulum_c_levels_jacobian,
+    cartesian_pendulum_invariant, "E",
+    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &cartesian_pendulum_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext cartesian_pendulum_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &cartesian_pendulum_model, &cartesian_pendulum_model_ext);
+}
 #endif
+#else
+const eomc_model_ext cartesian_pendulum_model_ext = {
+    EOMC_ABI_VERSION, "cartesian_pendulum", cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, NULL,
+    cartesian_pendulum_constraint, NULL,
+};
+#endif /* EOMC_EXTENDED */

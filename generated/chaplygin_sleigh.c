@@ -8,10 +8,15 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * E = T + V is conserved: T, V and the constraints do not depend on t, every
+ * effect is a potential and the constraint forces do no work.
  *
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   blade        first-order, determines y
  *   all affine in q''
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (chaplygin_sleigh_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -20,10 +25,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[3] = {"x", "y", "theta"};
 static const char *const p_names[5] = {"m", "J", "b", "v0", "w0"};
 static const char *const u_names[1] = {NULL};
@@ -35,10 +43,10 @@ static const int c_dependent[1] = {1};
 
 /* Initial state from the spec's `initial`. */
 static void
-chaplygin_sleigh_initial(const double *p, double *q, double *v)
+chaplygin_sleigh_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
-    const double p_v0 = p[3];
-    const double p_w0 = p[4];
+    const eomc_real p_v0 = p[3];
+    const eomc_real p_w0 = p[4];
     q[0] = 0.0;
     q[1] = 0.0;
     q[2] = 0.0;
@@ -47,9 +55,12 @@ chaplygin_sleigh_initial(const double *p, double *q, double *v)
     v[2] = p_w0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-chaplygin_sleigh_inputs(double t, const double *p, double *u, double *dudt)
+chaplygin_sleigh_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -59,305 +70,344 @@ chaplygin_sleigh_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-chaplygin_sleigh_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double q_theta = q[2];
-    const double v_theta = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_m = p[0];
-    const double p_b = p[2];
-    const double p_J = p[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_b = p[2];
+    const eomc_real p_J = p[1];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = 2.0 * w0;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = 2.0 * w0;
     M[0] = w1;
     M[3] = 0.0;
     M[4] = w1;
-    const double w2 = p_b * w1;
-    const double w3 = sin(q_theta);
-    const double w4 = w2 * w3;
-    const double w5 = -w4;
+    const eomc_real w2 = p_b * w1;
+    const eomc_real w3 = sin(q_theta);
+    const eomc_real w4 = w2 * w3;
+    const eomc_real w5 = -w4;
     M[6] = w5;
-    const double w6 = cos(q_theta);
-    const double w7 = w2 * w6;
+    const eomc_real w6 = cos(q_theta);
+    const eomc_real w7 = w2 * w6;
     M[7] = w7;
-    const double w8 = 0.5 * p_J;
-    const double w9 = 2.0 * w8;
-    const double w10 = p_b * w2;
-    const double w11 = w6 * w6;
-    const double w12 = w10 * w11;
-    const double w13 = w9 + w12;
-    const double w14 = w3 * w3;
-    const double w15 = w10 * w14;
-    const double w16 = w13 + w15;
+    const eomc_real w8 = 0.5 * p_J;
+    const eomc_real w9 = 2.0 * w8;
+    const eomc_real w10 = p_b * w2;
+    const eomc_real w11 = w6 * w6;
+    const eomc_real w12 = w10 * w11;
+    const eomc_real w13 = w9 + w12;
+    const eomc_real w14 = w3 * w3;
+    const eomc_real w15 = w10 * w14;
+    const eomc_real w16 = w13 + w15;
     M[8] = w16;
-    const double w17 = v_theta * v_theta;
-    const double w18 = w6 * w17;
-    const double w19 = w2 * w18;
-    const double w20 = -w19;
+    const eomc_real w17 = v_theta * v_theta;
+    const eomc_real w18 = w6 * w17;
+    const eomc_real w19 = w2 * w18;
+    const eomc_real w20 = -w19;
     h[0] = w20;
-    const double w21 = w3 * w17;
-    const double w22 = w2 * w21;
-    const double w23 = -w22;
+    const eomc_real w21 = w3 * w17;
+    const eomc_real w22 = w2 * w21;
+    const eomc_real w23 = -w22;
     h[1] = w23;
-    const double w24 = w3 * v_theta;
-    const double w25 = p_b * w24;
-    const double w26 = v_x - w25;
-    const double w27 = v_theta * w26;
-    const double w28 = w6 * w27;
-    const double w29 = w6 * v_theta;
-    const double w30 = p_b * w29;
-    const double w31 = v_y + w30;
-    const double w32 = v_theta * w31;
-    const double w33 = w3 * w32;
-    const double w34 = w28 + w33;
-    const double w35 = w24 * w31;
-    const double w36 = w6 * w3;
-    const double w37 = w36 * w17;
-    const double w38 = p_b * w37;
-    const double w39 = w35 + w38;
-    const double w40 = w26 * w29;
-    const double w41 = w40 - w38;
-    const double w42 = w39 + w41;
-    const double w43 = w34 - w42;
-    const double w44 = w2 * w43;
+    const eomc_real w24 = w3 * v_theta;
+    const eomc_real w25 = p_b * w24;
+    const eomc_real w26 = v_x - w25;
+    const eomc_real w27 = v_theta * w26;
+    const eomc_real w28 = w6 * w27;
+    const eomc_real w29 = w6 * v_theta;
+    const eomc_real w30 = p_b * w29;
+    const eomc_real w31 = v_y + w30;
+    const eomc_real w32 = v_theta * w31;
+    const eomc_real w33 = w3 * w32;
+    const eomc_real w34 = w28 + w33;
+    const eomc_real w35 = w24 * w31;
+    const eomc_real w36 = w6 * w3;
+    const eomc_real w37 = w36 * w17;
+    const eomc_real w38 = p_b * w37;
+    const eomc_real w39 = w35 + w38;
+    const eomc_real w40 = w26 * w29;
+    const eomc_real w41 = w40 - w38;
+    const eomc_real w42 = w39 + w41;
+    const eomc_real w43 = w34 - w42;
+    const eomc_real w44 = w2 * w43;
     h[2] = w44;
     M[1] = 0.0;
     M[2] = w5;
     M[5] = w7;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-chaplygin_sleigh_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_theta = q[2];
-    const double v_theta = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double p_m = p[0];
-    const double p_b = p[2];
-    const double p_J = p[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_b = p[2];
+    const eomc_real p_J = p[1];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = sin(q_theta);
-    const double w2 = w1 * v_theta;
-    const double w3 = p_b * w2;
-    const double w4 = v_x - w3;
-    const double w5 = w4 * w4;
-    const double w6 = cos(q_theta);
-    const double w7 = w6 * v_theta;
-    const double w8 = p_b * w7;
-    const double w9 = v_y + w8;
-    const double w10 = w9 * w9;
-    const double w11 = w5 + w10;
-    const double w12 = w0 * w11;
-    const double w13 = 0.5 * p_J;
-    const double w14 = v_theta * v_theta;
-    const double w15 = w13 * w14;
-    const double w16 = w12 + w15;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = sin(q_theta);
+    const eomc_real w2 = w1 * v_theta;
+    const eomc_real w3 = p_b * w2;
+    const eomc_real w4 = v_x - w3;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = cos(q_theta);
+    const eomc_real w7 = w6 * v_theta;
+    const eomc_real w8 = p_b * w7;
+    const eomc_real w9 = v_y + w8;
+    const eomc_real w10 = w9 * w9;
+    const eomc_real w11 = w5 + w10;
+    const eomc_real w12 = w0 * w11;
+    const eomc_real w13 = 0.5 * p_J;
+    const eomc_real w14 = v_theta * v_theta;
+    const eomc_real w15 = w13 * w14;
+    const eomc_real w16 = w12 + w15;
     TV[0] = w16;
     TV[1] = 0.0;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-chaplygin_sleigh_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
-    const double q_theta = q[2];
-    const double v_theta = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
-    const double a_theta = a[2];
-    const double p_m = p[0];
-    const double p_b = p[2];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
+    const eomc_real a_theta = a[2];
+    const eomc_real p_m = p[0];
+    const eomc_real p_b = p[2];
     (void)u;
     (void)t;
     (void)dEdu;
     dEdq[0] = 0.0;
     dEdq[1] = 0.0;
-    const double w0 = 0.5 * p_m;
-    const double w1 = (-2.0) * w0;
-    const double w2 = p_b * w1;
-    const double w3 = cos(q_theta);
-    const double w4 = w3 * a_theta;
-    const double w5 = sin(q_theta);
-    const double w6 = v_theta * v_theta;
-    const double w7 = w5 * w6;
-    const double w8 = w4 - w7;
-    const double w9 = w2 * w8;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = (-2.0) * w0;
+    const eomc_real w2 = p_b * w1;
+    const eomc_real w3 = cos(q_theta);
+    const eomc_real w4 = w3 * a_theta;
+    const eomc_real w5 = sin(q_theta);
+    const eomc_real w6 = v_theta * v_theta;
+    const eomc_real w7 = w5 * w6;
+    const eomc_real w8 = w4 - w7;
+    const eomc_real w9 = w2 * w8;
     dEdq[2] = w9;
     dEdv[0] = 0.0;
     dEdv[1] = 0.0;
-    const double w10 = 2.0 * w2;
-    const double w11 = w3 * v_theta;
-    const double w12 = w10 * w11;
+    const eomc_real w10 = 2.0 * w2;
+    const eomc_real w11 = w3 * v_theta;
+    const eomc_real w12 = w10 * w11;
     dEdv[2] = w12;
     dEdt[0] = 0.0;
     dEdq[3] = 0.0;
     dEdq[4] = 0.0;
-    const double w13 = 2.0 * w0;
-    const double w14 = p_b * w13;
-    const double w15 = w3 * w6;
-    const double w16 = w5 * a_theta;
-    const double w17 = w15 + w16;
-    const double w18 = w14 * w17;
-    const double w19 = -w18;
+    const eomc_real w13 = 2.0 * w0;
+    const eomc_real w14 = p_b * w13;
+    const eomc_real w15 = w3 * w6;
+    const eomc_real w16 = w5 * a_theta;
+    const eomc_real w17 = w15 + w16;
+    const eomc_real w18 = w14 * w17;
+    const eomc_real w19 = -w18;
     dEdq[5] = w19;
     dEdv[3] = 0.0;
     dEdv[4] = 0.0;
-    const double w20 = 2.0 * w14;
-    const double w21 = w5 * v_theta;
-    const double w22 = w20 * w21;
-    const double w23 = -w22;
+    const eomc_real w20 = 2.0 * w14;
+    const eomc_real w21 = w5 * v_theta;
+    const eomc_real w22 = w20 * w21;
+    const eomc_real w23 = -w22;
     dEdv[5] = w23;
     dEdt[1] = 0.0;
     dEdq[6] = 0.0;
     dEdq[7] = 0.0;
-    const double w24 = p_b * w11;
-    const double w25 = v_y + w24;
-    const double w26 = v_theta * w25;
-    const double w27 = p_b * w17;
-    const double w28 = a_x - w27;
-    const double w29 = w26 - w28;
-    const double w30 = w14 * w29;
-    const double w31 = p_b * w14;
-    const double w32 = w31 * w15;
-    const double w33 = w30 - w32;
-    const double w34 = w31 * w16;
-    const double w35 = w33 + w34;
-    const double w36 = w14 * w26;
-    const double w37 = w35 - w36;
-    const double w38 = w3 * w37;
-    const double w39 = p_b * w8;
-    const double w40 = a_y + w39;
-    const double w41 = p_b * w21;
-    const double w42 = v_x - w41;
-    const double w43 = v_theta * w42;
-    const double w44 = w40 + w43;
-    const double w45 = w14 * w44;
-    const double w46 = w31 * w4;
-    const double w47 = w45 + w46;
-    const double w48 = w31 * w7;
-    const double w49 = w47 + w48;
-    const double w50 = w14 * w43;
-    const double w51 = w49 - w50;
-    const double w52 = w5 * w51;
-    const double w53 = w38 - w52;
+    const eomc_real w24 = p_b * w11;
+    const eomc_real w25 = v_y + w24;
+    const eomc_real w26 = v_theta * w25;
+    const eomc_real w27 = p_b * w17;
+    const eomc_real w28 = a_x - w27;
+    const eomc_real w29 = w26 - w28;
+    const eomc_real w30 = w14 * w29;
+    const eomc_real w31 = p_b * w14;
+    const eomc_real w32 = w31 * w15;
+    const eomc_real w33 = w30 - w32;
+    const eomc_real w34 = w31 * w16;
+    const eomc_real w35 = w33 + w34;
+    const eomc_real w36 = w14 * w26;
+    const eomc_real w37 = w35 - w36;
+    const eomc_real w38 = w3 * w37;
+    const eomc_real w39 = p_b * w8;
+    const eomc_real w40 = a_y + w39;
+    const eomc_real w41 = p_b * w21;
+    const eomc_real w42 = v_x - w41;
+    const eomc_real w43 = v_theta * w42;
+    const eomc_real w44 = w40 + w43;
+    const eomc_real w45 = w14 * w44;
+    const eomc_real w46 = w31 * w4;
+    const eomc_real w47 = w45 + w46;
+    const eomc_real w48 = w31 * w7;
+    const eomc_real w49 = w47 + w48;
+    const eomc_real w50 = w14 * w43;
+    const eomc_real w51 = w49 - w50;
+    const eomc_real w52 = w5 * w51;
+    const eomc_real w53 = w38 - w52;
     dEdq[8] = w53;
     dEdv[6] = 0.0;
     dEdv[7] = 0.0;
-    const double w54 = w3 * w42;
-    const double w55 = w5 * w25;
-    const double w56 = w54 + w55;
-    const double w57 = w56 - w54;
-    const double w58 = w57 - w55;
-    const double w59 = w14 * w58;
+    const eomc_real w54 = w3 * w42;
+    const eomc_real w55 = w5 * w25;
+    const eomc_real w56 = w54 + w55;
+    const eomc_real w57 = w56 - w54;
+    const eomc_real w58 = w57 - w55;
+    const eomc_real w59 = w14 * w58;
     dEdv[8] = w59;
     dEdt[2] = 0.0;
 }
 
+/* The conserved quantity (eomc_model.h: invariant). */
+static void
+chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real p_b = p[2];
+    const eomc_real p_J = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = sin(q_theta);
+    const eomc_real w2 = w1 * v_theta;
+    const eomc_real w3 = p_b * w2;
+    const eomc_real w4 = v_x - w3;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = cos(q_theta);
+    const eomc_real w7 = w6 * v_theta;
+    const eomc_real w8 = p_b * w7;
+    const eomc_real w9 = v_y + w8;
+    const eomc_real w10 = w9 * w9;
+    const eomc_real w11 = w5 + w10;
+    const eomc_real w12 = w0 * w11;
+    const eomc_real w13 = 0.5 * p_J;
+    const eomc_real w14 = v_theta * v_theta;
+    const eomc_real w15 = w13 * w14;
+    const eomc_real w16 = w12 + w15;
+    h[0] = w16;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
 static void
-chaplygin_sleigh_constraint(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *f, double *B)
+chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B)
 {
-    const double q_theta = q[2];
-    const double v_theta = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
     (void)p;
     (void)u;
     (void)t;
-    const double w0 = cos(q_theta);
-    const double w1 = w0 * a_y;
-    const double w2 = sin(q_theta);
-    const double w3 = w2 * v_theta;
-    const double w4 = w3 * v_y;
-    const double w5 = w1 - w4;
-    const double w6 = w0 * v_theta;
-    const double w7 = w6 * v_x;
-    const double w8 = w2 * a_x;
-    const double w9 = w7 + w8;
-    const double w10 = w5 - w9;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = w0 * a_y;
+    const eomc_real w2 = sin(q_theta);
+    const eomc_real w3 = w2 * v_theta;
+    const eomc_real w4 = w3 * v_y;
+    const eomc_real w5 = w1 - w4;
+    const eomc_real w6 = w0 * v_theta;
+    const eomc_real w7 = w6 * v_x;
+    const eomc_real w8 = w2 * a_x;
+    const eomc_real w9 = w7 + w8;
+    const eomc_real w10 = w5 - w9;
     f[0] = w10;
-    const double w11 = -w2;
+    const eomc_real w11 = -w2;
     B[0] = w11;
     B[1] = w0;
     B[2] = 0.0;
 }
 
+#ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
 static void
-chaplygin_sleigh_c_levels(double t, const double *q, const double *v, const double *p,
-    const double *u, double *pos, double *vel)
+chaplygin_sleigh_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
-    const double q_theta = q[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
     (void)p;
     (void)u;
     (void)t;
     pos[0] = 0.0;
-    const double w0 = cos(q_theta);
-    const double w1 = w0 * v_y;
-    const double w2 = sin(q_theta);
-    const double w3 = w2 * v_x;
-    const double w4 = w1 - w3;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = w0 * v_y;
+    const eomc_real w2 = sin(q_theta);
+    const eomc_real w3 = w2 * v_x;
+    const eomc_real w4 = w1 - w3;
     vel[0] = w4;
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
-chaplygin_sleigh_c_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dfdq, double *dfdv,
-    double *dfdu, double *dfdt, double *dBdq, double *dBdv, double *dBda,
-    double *dBdu, double *dBdt)
+chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt)
 {
-    const double q_theta = q[2];
-    const double v_theta = v[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
-    const double a_x = a[0];
-    const double a_y = a[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
     (void)p;
     (void)u;
     (void)t;
     (void)dfdu;
     (void)dBdu;
     dfdq[0] = 0.0;
-    const double w0 = cos(q_theta);
-    const double w1 = w0 * v_theta;
-    const double w2 = -w1;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = w0 * v_theta;
+    const eomc_real w2 = -w1;
     dfdv[0] = w2;
     dfdq[1] = 0.0;
-    const double w3 = sin(q_theta);
-    const double w4 = w3 * v_theta;
-    const double w5 = -w4;
+    const eomc_real w3 = sin(q_theta);
+    const eomc_real w4 = w3 * v_theta;
+    const eomc_real w5 = -w4;
     dfdv[1] = w5;
-    const double w6 = w4 * v_x;
-    const double w7 = w0 * a_x;
-    const double w8 = w6 - w7;
-    const double w9 = w3 * a_y;
-    const double w10 = w1 * v_y;
-    const double w11 = w9 + w10;
-    const double w12 = w8 - w11;
+    const eomc_real w6 = w4 * v_x;
+    const eomc_real w7 = w0 * a_x;
+    const eomc_real w8 = w6 - w7;
+    const eomc_real w9 = w3 * a_y;
+    const eomc_real w10 = w1 * v_y;
+    const eomc_real w11 = w9 + w10;
+    const eomc_real w12 = w8 - w11;
     dfdq[2] = w12;
-    const double w13 = w3 * v_y;
-    const double w14 = w0 * v_x;
-    const double w15 = w13 + w14;
-    const double w16 = -w15;
+    const eomc_real w13 = w3 * v_y;
+    const eomc_real w14 = w0 * v_x;
+    const eomc_real w15 = w13 + w14;
+    const eomc_real w16 = -w15;
     dfdv[2] = w16;
     dfdt[0] = 0.0;
     dBdq[0] = 0.0;
@@ -366,7 +416,7 @@ chaplygin_sleigh_c_jacobian(double t, const double *q, const double *v, const do
     dBdq[1] = 0.0;
     dBdv[1] = 0.0;
     dBda[1] = 0.0;
-    const double w17 = -w0;
+    const eomc_real w17 = -w0;
     dBdq[2] = w17;
     dBdv[2] = 0.0;
     dBda[2] = 0.0;
@@ -377,7 +427,7 @@ chaplygin_sleigh_c_jacobian(double t, const double *q, const double *v, const do
     dBdq[4] = 0.0;
     dBdv[4] = 0.0;
     dBda[4] = 0.0;
-    const double w18 = -w3;
+    const eomc_real w18 = -w3;
     dBdq[5] = w18;
     dBdv[5] = 0.0;
     dBda[5] = 0.0;
@@ -397,13 +447,14 @@ chaplygin_sleigh_c_jacobian(double t, const double *q, const double *v, const do
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
 static void
-chaplygin_sleigh_c_levels_jacobian(double t, const double *q, const double *v, const double *p,
-    const double *u, double *dposdq, double *dveldq, double *dveldv,
-    double *dposdu, double *dveldu, double *dposdt, double *dveldt)
+chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt)
 {
-    const double q_theta = q[2];
-    const double v_x = v[0];
-    const double v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
     (void)p;
     (void)u;
     (void)t;
@@ -411,18 +462,18 @@ chaplygin_sleigh_c_levels_jacobian(double t, const double *q, const double *v, c
     (void)dveldu;
     dposdq[0] = 0.0;
     dveldq[0] = 0.0;
-    const double w0 = sin(q_theta);
-    const double w1 = -w0;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = -w0;
     dveldv[0] = w1;
     dposdq[1] = 0.0;
     dveldq[1] = 0.0;
-    const double w2 = cos(q_theta);
+    const eomc_real w2 = cos(q_theta);
     dveldv[1] = w2;
     dposdq[2] = 0.0;
-    const double w3 = w0 * v_y;
-    const double w4 = w2 * v_x;
-    const double w5 = w3 + w4;
-    const double w6 = -w5;
+    const eomc_real w3 = w0 * v_y;
+    const eomc_real w4 = w2 * v_x;
+    const eomc_real w5 = w3 + w4;
+    const eomc_real w6 = -w5;
     dveldq[2] = w6;
     dveldv[2] = 0.0;
     dposdt[0] = 0.0;
@@ -437,9 +488,24 @@ const eomc_model chaplygin_sleigh_model = {
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,
     chaplygin_sleigh_constraint, chaplygin_sleigh_c_levels, chaplygin_sleigh_c_jacobian, chaplygin_sleigh_c_levels_jacobian,
+    chaplygin_sleigh_invariant, "E",
+    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &chaplygin_sleigh_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext chaplygin_sleigh_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &chaplygin_sleigh_model, &chaplygin_sleigh_model_ext);
+}
 #endif
+#else
+const eomc_model_ext chaplygin_sleigh_model_ext = {
+    EOMC_ABI_VERSION, "chaplygin_sleigh", chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, NULL,
+    chaplygin_sleigh_constraint, NULL,
+};
+#endif /* EOMC_EXTENDED */

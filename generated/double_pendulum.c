@@ -8,6 +8,11 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * E = T + V is conserved: T and V do not depend on t and every effect is a
+ * potential.
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (double_pendulum_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -16,10 +21,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[2] = {"th1", "th2"};
 static const char *const p_names[5] = {"m1", "m2", "l1", "l2", "g"};
 static const char *const u_names[1] = {NULL};
@@ -27,7 +35,7 @@ static const double p_default[5] = {1.0, 1.0, 1.0, 1.0, 9.81};
 
 /* Initial state from the spec's `initial`. */
 static void
-double_pendulum_initial(const double *p, double *q, double *v)
+double_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
     q[0] = 2.0;
@@ -36,9 +44,12 @@ double_pendulum_initial(const double *p, double *q, double *v)
     v[1] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-double_pendulum_inputs(double t, const double *p, double *u, double *dudt)
+double_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -48,495 +59,554 @@ double_pendulum_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-double_pendulum_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double q_th1 = q[0];
-    const double q_th2 = q[1];
-    const double v_th1 = v[0];
-    const double v_th2 = v[1];
-    const double p_l1 = p[2];
-    const double p_l2 = p[3];
-    const double p_m1 = p[0];
-    const double p_m2 = p[1];
-    const double p_g = p[4];
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    const eomc_real p_g = p[4];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m1;
-    const double w1 = p_l1 * p_l1;
-    const double w2 = w0 * w1;
-    const double w3 = 2.0 * w2;
-    const double w4 = 0.5 * p_m2;
-    const double w5 = 2.0 * w4;
-    const double w6 = p_l1 * w5;
-    const double w7 = p_l1 * w6;
-    const double w8 = w3 + w7;
+    const eomc_real w0 = 0.5 * p_m1;
+    const eomc_real w1 = p_l1 * p_l1;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = 2.0 * w2;
+    const eomc_real w4 = 0.5 * p_m2;
+    const eomc_real w5 = 2.0 * w4;
+    const eomc_real w6 = p_l1 * w5;
+    const eomc_real w7 = p_l1 * w6;
+    const eomc_real w8 = w3 + w7;
     M[0] = w8;
-    const double w9 = p_l2 * w5;
-    const double w10 = p_l1 * w9;
-    const double w11 = sin(q_th1);
-    const double w12 = sin(q_th2);
-    const double w13 = w11 * w12;
-    const double w14 = cos(q_th1);
-    const double w15 = cos(q_th2);
-    const double w16 = w14 * w15;
-    const double w17 = w13 + w16;
-    const double w18 = w10 * w17;
+    const eomc_real w9 = p_l2 * w5;
+    const eomc_real w10 = p_l1 * w9;
+    const eomc_real w11 = sin(q_th1);
+    const eomc_real w12 = sin(q_th2);
+    const eomc_real w13 = w11 * w12;
+    const eomc_real w14 = cos(q_th1);
+    const eomc_real w15 = cos(q_th2);
+    const eomc_real w16 = w14 * w15;
+    const eomc_real w17 = w13 + w16;
+    const eomc_real w18 = w10 * w17;
     M[2] = w18;
-    const double w19 = p_l2 * w9;
+    const eomc_real w19 = p_l2 * w9;
     M[3] = w19;
-    const double w20 = p_l1 * p_g;
-    const double w21 = p_m1 * w20;
-    const double w22 = p_m2 * p_g;
-    const double w23 = p_l1 * w22;
-    const double w24 = w21 + w23;
-    const double w25 = w24 * w11;
-    const double w26 = w14 * v_th1;
-    const double w27 = w11 * v_th1;
-    const double w28 = w3 * w27;
-    const double w29 = p_l1 * w27;
-    const double w30 = w12 * v_th2;
-    const double w31 = p_l2 * w30;
-    const double w32 = w29 + w31;
-    const double w33 = w6 * w32;
-    const double w34 = w28 + w33;
-    const double w35 = w26 * w34;
-    const double w36 = v_th1 * v_th1;
-    const double w37 = w14 * w36;
-    const double w38 = w3 * w37;
-    const double w39 = p_l1 * w37;
-    const double w40 = v_th2 * v_th2;
-    const double w41 = w15 * w40;
-    const double w42 = p_l2 * w41;
-    const double w43 = w39 + w42;
-    const double w44 = w6 * w43;
-    const double w45 = w38 + w44;
-    const double w46 = w11 * w45;
-    const double w47 = w35 + w46;
-    const double w48 = w3 * w26;
-    const double w49 = p_l1 * w26;
-    const double w50 = w15 * v_th2;
-    const double w51 = p_l2 * w50;
-    const double w52 = w49 + w51;
-    const double w53 = w6 * w52;
-    const double w54 = w48 + w53;
-    const double w55 = w27 * w54;
-    const double w56 = w11 * w36;
-    const double w57 = w3 * w56;
-    const double w58 = p_l1 * w56;
-    const double w59 = w12 * w40;
-    const double w60 = p_l2 * w59;
-    const double w61 = w58 + w60;
-    const double w62 = w6 * w61;
-    const double w63 = w57 + w62;
-    const double w64 = w14 * w63;
-    const double w65 = w55 + w64;
-    const double w66 = w47 - w65;
-    const double w67 = v_th1 * w34;
-    const double w68 = w14 * w67;
-    const double w69 = v_th1 * w54;
-    const double w70 = w11 * w69;
-    const double w71 = w68 - w70;
-    const double w72 = w66 - w71;
-    const double w73 = w25 + w72;
+    const eomc_real w20 = p_l1 * p_g;
+    const eomc_real w21 = p_m1 * w20;
+    const eomc_real w22 = p_m2 * p_g;
+    const eomc_real w23 = p_l1 * w22;
+    const eomc_real w24 = w21 + w23;
+    const eomc_real w25 = w24 * w11;
+    const eomc_real w26 = w14 * v_th1;
+    const eomc_real w27 = w11 * v_th1;
+    const eomc_real w28 = w3 * w27;
+    const eomc_real w29 = p_l1 * w27;
+    const eomc_real w30 = w12 * v_th2;
+    const eomc_real w31 = p_l2 * w30;
+    const eomc_real w32 = w29 + w31;
+    const eomc_real w33 = w6 * w32;
+    const eomc_real w34 = w28 + w33;
+    const eomc_real w35 = w26 * w34;
+    const eomc_real w36 = v_th1 * v_th1;
+    const eomc_real w37 = w14 * w36;
+    const eomc_real w38 = w3 * w37;
+    const eomc_real w39 = p_l1 * w37;
+    const eomc_real w40 = v_th2 * v_th2;
+    const eomc_real w41 = w15 * w40;
+    const eomc_real w42 = p_l2 * w41;
+    const eomc_real w43 = w39 + w42;
+    const eomc_real w44 = w6 * w43;
+    const eomc_real w45 = w38 + w44;
+    const eomc_real w46 = w11 * w45;
+    const eomc_real w47 = w35 + w46;
+    const eomc_real w48 = w3 * w26;
+    const eomc_real w49 = p_l1 * w26;
+    const eomc_real w50 = w15 * v_th2;
+    const eomc_real w51 = p_l2 * w50;
+    const eomc_real w52 = w49 + w51;
+    const eomc_real w53 = w6 * w52;
+    const eomc_real w54 = w48 + w53;
+    const eomc_real w55 = w27 * w54;
+    const eomc_real w56 = w11 * w36;
+    const eomc_real w57 = w3 * w56;
+    const eomc_real w58 = p_l1 * w56;
+    const eomc_real w59 = w12 * w40;
+    const eomc_real w60 = p_l2 * w59;
+    const eomc_real w61 = w58 + w60;
+    const eomc_real w62 = w6 * w61;
+    const eomc_real w63 = w57 + w62;
+    const eomc_real w64 = w14 * w63;
+    const eomc_real w65 = w55 + w64;
+    const eomc_real w66 = w47 - w65;
+    const eomc_real w67 = v_th1 * w34;
+    const eomc_real w68 = w14 * w67;
+    const eomc_real w69 = v_th1 * w54;
+    const eomc_real w70 = w11 * w69;
+    const eomc_real w71 = w68 - w70;
+    const eomc_real w72 = w66 - w71;
+    const eomc_real w73 = w25 + w72;
     h[0] = w73;
-    const double w74 = p_l2 * w22;
-    const double w75 = w74 * w12;
-    const double w76 = w50 * w32;
-    const double w77 = w12 * w43;
-    const double w78 = w76 + w77;
-    const double w79 = w52 * w30;
-    const double w80 = w15 * w61;
-    const double w81 = w79 + w80;
-    const double w82 = w78 - w81;
-    const double w83 = v_th2 * w32;
-    const double w84 = w15 * w83;
-    const double w85 = v_th2 * w52;
-    const double w86 = w12 * w85;
-    const double w87 = w84 - w86;
-    const double w88 = w82 - w87;
-    const double w89 = w9 * w88;
-    const double w90 = w75 + w89;
+    const eomc_real w74 = p_l2 * w22;
+    const eomc_real w75 = w74 * w12;
+    const eomc_real w76 = w50 * w32;
+    const eomc_real w77 = w12 * w43;
+    const eomc_real w78 = w76 + w77;
+    const eomc_real w79 = w52 * w30;
+    const eomc_real w80 = w15 * w61;
+    const eomc_real w81 = w79 + w80;
+    const eomc_real w82 = w78 - w81;
+    const eomc_real w83 = v_th2 * w32;
+    const eomc_real w84 = w15 * w83;
+    const eomc_real w85 = v_th2 * w52;
+    const eomc_real w86 = w12 * w85;
+    const eomc_real w87 = w84 - w86;
+    const eomc_real w88 = w82 - w87;
+    const eomc_real w89 = w9 * w88;
+    const eomc_real w90 = w75 + w89;
     h[1] = w90;
     M[1] = w18;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-double_pendulum_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+double_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_th1 = q[0];
-    const double q_th2 = q[1];
-    const double v_th1 = v[0];
-    const double v_th2 = v[1];
-    const double p_l1 = p[2];
-    const double p_l2 = p[3];
-    const double p_m1 = p[0];
-    const double p_m2 = p[1];
-    const double p_g = p[4];
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    const eomc_real p_g = p[4];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m1;
-    const double w1 = p_l1 * p_l1;
-    const double w2 = w0 * w1;
-    const double w3 = cos(q_th1);
-    const double w4 = w3 * v_th1;
-    const double w5 = w4 * w4;
-    const double w6 = sin(q_th1);
-    const double w7 = w6 * v_th1;
-    const double w8 = w7 * w7;
-    const double w9 = w5 + w8;
-    const double w10 = w2 * w9;
-    const double w11 = 0.5 * p_m2;
-    const double w12 = p_l1 * w4;
-    const double w13 = cos(q_th2);
-    const double w14 = w13 * v_th2;
-    const double w15 = p_l2 * w14;
-    const double w16 = w12 + w15;
-    const double w17 = w16 * w16;
-    const double w18 = p_l1 * w7;
-    const double w19 = sin(q_th2);
-    const double w20 = w19 * v_th2;
-    const double w21 = p_l2 * w20;
-    const double w22 = w18 + w21;
-    const double w23 = w22 * w22;
-    const double w24 = w17 + w23;
-    const double w25 = w11 * w24;
-    const double w26 = w10 + w25;
+    const eomc_real w0 = 0.5 * p_m1;
+    const eomc_real w1 = p_l1 * p_l1;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = cos(q_th1);
+    const eomc_real w4 = w3 * v_th1;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = sin(q_th1);
+    const eomc_real w7 = w6 * v_th1;
+    const eomc_real w8 = w7 * w7;
+    const eomc_real w9 = w5 + w8;
+    const eomc_real w10 = w2 * w9;
+    const eomc_real w11 = 0.5 * p_m2;
+    const eomc_real w12 = p_l1 * w4;
+    const eomc_real w13 = cos(q_th2);
+    const eomc_real w14 = w13 * v_th2;
+    const eomc_real w15 = p_l2 * w14;
+    const eomc_real w16 = w12 + w15;
+    const eomc_real w17 = w16 * w16;
+    const eomc_real w18 = p_l1 * w7;
+    const eomc_real w19 = sin(q_th2);
+    const eomc_real w20 = w19 * v_th2;
+    const eomc_real w21 = p_l2 * w20;
+    const eomc_real w22 = w18 + w21;
+    const eomc_real w23 = w22 * w22;
+    const eomc_real w24 = w17 + w23;
+    const eomc_real w25 = w11 * w24;
+    const eomc_real w26 = w10 + w25;
     TV[0] = w26;
-    const double w27 = p_l1 * p_g;
-    const double w28 = p_m1 * w27;
-    const double w29 = w28 * w3;
-    const double w30 = p_m2 * p_g;
-    const double w31 = p_l1 * w3;
-    const double w32 = p_l2 * w13;
-    const double w33 = w31 + w32;
-    const double w34 = w30 * w33;
-    const double w35 = w29 + w34;
-    const double w36 = -w35;
+    const eomc_real w27 = p_l1 * p_g;
+    const eomc_real w28 = p_m1 * w27;
+    const eomc_real w29 = w28 * w3;
+    const eomc_real w30 = p_m2 * p_g;
+    const eomc_real w31 = p_l1 * w3;
+    const eomc_real w32 = p_l2 * w13;
+    const eomc_real w33 = w31 + w32;
+    const eomc_real w34 = w30 * w33;
+    const eomc_real w35 = w29 + w34;
+    const eomc_real w36 = -w35;
     TV[1] = w36;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-double_pendulum_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+double_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
-    const double q_th1 = q[0];
-    const double q_th2 = q[1];
-    const double v_th1 = v[0];
-    const double v_th2 = v[1];
-    const double a_th1 = a[0];
-    const double a_th2 = a[1];
-    const double p_l1 = p[2];
-    const double p_l2 = p[3];
-    const double p_m1 = p[0];
-    const double p_m2 = p[1];
-    const double p_g = p[4];
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real a_th1 = a[0];
+    const eomc_real a_th2 = a[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    const eomc_real p_g = p[4];
     (void)u;
     (void)t;
     (void)dEdu;
-    const double w0 = cos(q_th1);
-    const double w1 = 0.5 * p_m1;
-    const double w2 = p_l1 * p_l1;
-    const double w3 = w1 * w2;
-    const double w4 = 2.0 * w3;
-    const double w5 = w0 * v_th1;
-    const double w6 = w4 * w5;
-    const double w7 = 0.5 * p_m2;
-    const double w8 = 2.0 * w7;
-    const double w9 = p_l1 * w8;
-    const double w10 = p_l1 * w5;
-    const double w11 = cos(q_th2);
-    const double w12 = w11 * v_th2;
-    const double w13 = p_l2 * w12;
-    const double w14 = w10 + w13;
-    const double w15 = w9 * w14;
-    const double w16 = w6 + w15;
-    const double w17 = v_th1 * w16;
-    const double w18 = p_l1 * p_g;
-    const double w19 = p_m1 * w18;
-    const double w20 = p_m2 * p_g;
-    const double w21 = p_l1 * w20;
-    const double w22 = w19 + w21;
-    const double w23 = v_th1 * v_th1;
-    const double w24 = w0 * w23;
-    const double w25 = sin(q_th1);
-    const double w26 = w25 * a_th1;
-    const double w27 = w24 + w26;
-    const double w28 = w4 * w27;
-    const double w29 = p_l1 * w27;
-    const double w30 = v_th2 * v_th2;
-    const double w31 = w11 * w30;
-    const double w32 = sin(q_th2);
-    const double w33 = w32 * a_th2;
-    const double w34 = w31 + w33;
-    const double w35 = p_l2 * w34;
-    const double w36 = w29 + w35;
-    const double w37 = w9 * w36;
-    const double w38 = w28 + w37;
-    const double w39 = w22 + w38;
-    const double w40 = w17 + w39;
-    const double w41 = p_l1 * w9;
-    const double w42 = w4 + w41;
-    const double w43 = w42 * w26;
-    const double w44 = w40 + w43;
-    const double w45 = w42 * w24;
-    const double w46 = w44 - w45;
-    const double w47 = w46 - w17;
-    const double w48 = w0 * w47;
-    const double w49 = w25 * v_th1;
-    const double w50 = w4 * w49;
-    const double w51 = p_l1 * w49;
-    const double w52 = w32 * v_th2;
-    const double w53 = p_l2 * w52;
-    const double w54 = w51 + w53;
-    const double w55 = w9 * w54;
-    const double w56 = w50 + w55;
-    const double w57 = v_th1 * w56;
-    const double w58 = w0 * a_th1;
-    const double w59 = w25 * w23;
-    const double w60 = w58 - w59;
-    const double w61 = w4 * w60;
-    const double w62 = p_l1 * w60;
-    const double w63 = w11 * a_th2;
-    const double w64 = w32 * w30;
-    const double w65 = w63 - w64;
-    const double w66 = p_l2 * w65;
-    const double w67 = w62 + w66;
-    const double w68 = w9 * w67;
-    const double w69 = w61 + w68;
-    const double w70 = w69 - w57;
-    const double w71 = w42 * w59;
-    const double w72 = w70 + w71;
-    const double w73 = w42 * w58;
-    const double w74 = w72 + w73;
-    const double w75 = w57 + w74;
-    const double w76 = w25 * w75;
-    const double w77 = w48 - w76;
+    const eomc_real w0 = cos(q_th1);
+    const eomc_real w1 = 0.5 * p_m1;
+    const eomc_real w2 = p_l1 * p_l1;
+    const eomc_real w3 = w1 * w2;
+    const eomc_real w4 = 2.0 * w3;
+    const eomc_real w5 = w0 * v_th1;
+    const eomc_real w6 = w4 * w5;
+    const eomc_real w7 = 0.5 * p_m2;
+    const eomc_real w8 = 2.0 * w7;
+    const eomc_real w9 = p_l1 * w8;
+    const eomc_real w10 = p_l1 * w5;
+    const eomc_real w11 = cos(q_th2);
+    const eomc_real w12 = w11 * v_th2;
+    const eomc_real w13 = p_l2 * w12;
+    const eomc_real w14 = w10 + w13;
+    const eomc_real w15 = w9 * w14;
+    const eomc_real w16 = w6 + w15;
+    const eomc_real w17 = v_th1 * w16;
+    const eomc_real w18 = p_l1 * p_g;
+    const eomc_real w19 = p_m1 * w18;
+    const eomc_real w20 = p_m2 * p_g;
+    const eomc_real w21 = p_l1 * w20;
+    const eomc_real w22 = w19 + w21;
+    const eomc_real w23 = v_th1 * v_th1;
+    const eomc_real w24 = w0 * w23;
+    const eomc_real w25 = sin(q_th1);
+    const eomc_real w26 = w25 * a_th1;
+    const eomc_real w27 = w24 + w26;
+    const eomc_real w28 = w4 * w27;
+    const eomc_real w29 = p_l1 * w27;
+    const eomc_real w30 = v_th2 * v_th2;
+    const eomc_real w31 = w11 * w30;
+    const eomc_real w32 = sin(q_th2);
+    const eomc_real w33 = w32 * a_th2;
+    const eomc_real w34 = w31 + w33;
+    const eomc_real w35 = p_l2 * w34;
+    const eomc_real w36 = w29 + w35;
+    const eomc_real w37 = w9 * w36;
+    const eomc_real w38 = w28 + w37;
+    const eomc_real w39 = w22 + w38;
+    const eomc_real w40 = w17 + w39;
+    const eomc_real w41 = p_l1 * w9;
+    const eomc_real w42 = w4 + w41;
+    const eomc_real w43 = w42 * w26;
+    const eomc_real w44 = w40 + w43;
+    const eomc_real w45 = w42 * w24;
+    const eomc_real w46 = w44 - w45;
+    const eomc_real w47 = w46 - w17;
+    const eomc_real w48 = w0 * w47;
+    const eomc_real w49 = w25 * v_th1;
+    const eomc_real w50 = w4 * w49;
+    const eomc_real w51 = p_l1 * w49;
+    const eomc_real w52 = w32 * v_th2;
+    const eomc_real w53 = p_l2 * w52;
+    const eomc_real w54 = w51 + w53;
+    const eomc_real w55 = w9 * w54;
+    const eomc_real w56 = w50 + w55;
+    const eomc_real w57 = v_th1 * w56;
+    const eomc_real w58 = w0 * a_th1;
+    const eomc_real w59 = w25 * w23;
+    const eomc_real w60 = w58 - w59;
+    const eomc_real w61 = w4 * w60;
+    const eomc_real w62 = p_l1 * w60;
+    const eomc_real w63 = w11 * a_th2;
+    const eomc_real w64 = w32 * w30;
+    const eomc_real w65 = w63 - w64;
+    const eomc_real w66 = p_l2 * w65;
+    const eomc_real w67 = w62 + w66;
+    const eomc_real w68 = w9 * w67;
+    const eomc_real w69 = w61 + w68;
+    const eomc_real w70 = w69 - w57;
+    const eomc_real w71 = w42 * w59;
+    const eomc_real w72 = w70 + w71;
+    const eomc_real w73 = w42 * w58;
+    const eomc_real w74 = w72 + w73;
+    const eomc_real w75 = w57 + w74;
+    const eomc_real w76 = w25 * w75;
+    const eomc_real w77 = w48 - w76;
     dEdq[0] = w77;
-    const double w78 = p_l2 * w9;
-    const double w79 = w25 * a_th2;
-    const double w80 = w0 * w30;
-    const double w81 = w79 - w80;
-    const double w82 = w11 * w81;
-    const double w83 = w25 * w30;
-    const double w84 = w0 * a_th2;
-    const double w85 = w83 + w84;
-    const double w86 = w32 * w85;
-    const double w87 = w82 - w86;
-    const double w88 = w78 * w87;
+    const eomc_real w78 = p_l2 * w9;
+    const eomc_real w79 = w25 * a_th2;
+    const eomc_real w80 = w0 * w30;
+    const eomc_real w81 = w79 - w80;
+    const eomc_real w82 = w11 * w81;
+    const eomc_real w83 = w25 * w30;
+    const eomc_real w84 = w0 * a_th2;
+    const eomc_real w85 = w83 + w84;
+    const eomc_real w86 = w32 * w85;
+    const eomc_real w87 = w82 - w86;
+    const eomc_real w88 = w78 * w87;
     dEdq[1] = w88;
-    const double w89 = w0 * w56;
-    const double w90 = w25 * w16;
-    const double w91 = w90 - w89;
-    const double w92 = w91 - w90;
-    const double w93 = w89 + w92;
+    const eomc_real w89 = w0 * w56;
+    const eomc_real w90 = w25 * w16;
+    const eomc_real w91 = w90 - w89;
+    const eomc_real w92 = w91 - w90;
+    const eomc_real w93 = w89 + w92;
     dEdv[0] = w93;
-    const double w94 = 2.0 * w78;
-    const double w95 = w25 * w11;
-    const double w96 = w0 * w32;
-    const double w97 = w95 - w96;
-    const double w98 = v_th2 * w97;
-    const double w99 = w94 * w98;
+    const eomc_real w94 = 2.0 * w78;
+    const eomc_real w95 = w25 * w11;
+    const eomc_real w96 = w0 * w32;
+    const eomc_real w97 = w95 - w96;
+    const eomc_real w98 = v_th2 * w97;
+    const eomc_real w99 = w94 * w98;
     dEdv[1] = w99;
     dEdt[0] = 0.0;
-    const double w100 = p_l2 * w8;
-    const double w101 = p_l1 * w100;
-    const double w102 = w32 * a_th1;
-    const double w103 = w11 * w23;
-    const double w104 = w102 - w103;
-    const double w105 = w0 * w104;
-    const double w106 = w32 * w23;
-    const double w107 = w11 * a_th1;
-    const double w108 = w106 + w107;
-    const double w109 = w25 * w108;
-    const double w110 = w105 - w109;
-    const double w111 = w101 * w110;
+    const eomc_real w100 = p_l2 * w8;
+    const eomc_real w101 = p_l1 * w100;
+    const eomc_real w102 = w32 * a_th1;
+    const eomc_real w103 = w11 * w23;
+    const eomc_real w104 = w102 - w103;
+    const eomc_real w105 = w0 * w104;
+    const eomc_real w106 = w32 * w23;
+    const eomc_real w107 = w11 * a_th1;
+    const eomc_real w108 = w106 + w107;
+    const eomc_real w109 = w25 * w108;
+    const eomc_real w110 = w105 - w109;
+    const eomc_real w111 = w101 * w110;
     dEdq[2] = w111;
-    const double w112 = v_th2 * w14;
-    const double w113 = w100 * w112;
-    const double w114 = p_l2 * w20;
-    const double w115 = w100 * w36;
-    const double w116 = w114 + w115;
-    const double w117 = w113 + w116;
-    const double w118 = p_l2 * w100;
-    const double w119 = w118 * w33;
-    const double w120 = w117 + w119;
-    const double w121 = w118 * w31;
-    const double w122 = w120 - w121;
-    const double w123 = w122 - w113;
-    const double w124 = w11 * w123;
-    const double w125 = v_th2 * w54;
-    const double w126 = w100 * w125;
-    const double w127 = w67 - w125;
-    const double w128 = w100 * w127;
-    const double w129 = w118 * w64;
-    const double w130 = w128 + w129;
-    const double w131 = w118 * w63;
-    const double w132 = w130 + w131;
-    const double w133 = w126 + w132;
-    const double w134 = w32 * w133;
-    const double w135 = w124 - w134;
+    const eomc_real w112 = v_th2 * w14;
+    const eomc_real w113 = w100 * w112;
+    const eomc_real w114 = p_l2 * w20;
+    const eomc_real w115 = w100 * w36;
+    const eomc_real w116 = w114 + w115;
+    const eomc_real w117 = w113 + w116;
+    const eomc_real w118 = p_l2 * w100;
+    const eomc_real w119 = w118 * w33;
+    const eomc_real w120 = w117 + w119;
+    const eomc_real w121 = w118 * w31;
+    const eomc_real w122 = w120 - w121;
+    const eomc_real w123 = w122 - w113;
+    const eomc_real w124 = w11 * w123;
+    const eomc_real w125 = v_th2 * w54;
+    const eomc_real w126 = w100 * w125;
+    const eomc_real w127 = w67 - w125;
+    const eomc_real w128 = w100 * w127;
+    const eomc_real w129 = w118 * w64;
+    const eomc_real w130 = w128 + w129;
+    const eomc_real w131 = w118 * w63;
+    const eomc_real w132 = w130 + w131;
+    const eomc_real w133 = w126 + w132;
+    const eomc_real w134 = w32 * w133;
+    const eomc_real w135 = w124 - w134;
     dEdq[3] = w135;
-    const double w136 = 2.0 * w101;
-    const double w137 = w96 - w95;
-    const double w138 = v_th1 * w137;
-    const double w139 = w136 * w138;
+    const eomc_real w136 = 2.0 * w101;
+    const eomc_real w137 = w96 - w95;
+    const eomc_real w138 = v_th1 * w137;
+    const eomc_real w139 = w136 * w138;
     dEdv[2] = w139;
-    const double w140 = w11 * w54;
-    const double w141 = w32 * w14;
-    const double w142 = w141 - w140;
-    const double w143 = w142 - w141;
-    const double w144 = w140 + w143;
-    const double w145 = w100 * w144;
+    const eomc_real w140 = w11 * w54;
+    const eomc_real w141 = w32 * w14;
+    const eomc_real w142 = w141 - w140;
+    const eomc_real w143 = w142 - w141;
+    const eomc_real w144 = w140 + w143;
+    const eomc_real w145 = w100 * w144;
     dEdv[3] = w145;
     dEdt[1] = 0.0;
 }
+
+/* The conserved quantity (eomc_model.h: invariant). */
+static void
+double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    const eomc_real p_g = p[4];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = 0.5 * p_m1;
+    const eomc_real w1 = p_l1 * p_l1;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = cos(q_th1);
+    const eomc_real w4 = w3 * v_th1;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = sin(q_th1);
+    const eomc_real w7 = w6 * v_th1;
+    const eomc_real w8 = w7 * w7;
+    const eomc_real w9 = w5 + w8;
+    const eomc_real w10 = w2 * w9;
+    const eomc_real w11 = 0.5 * p_m2;
+    const eomc_real w12 = p_l1 * w4;
+    const eomc_real w13 = cos(q_th2);
+    const eomc_real w14 = w13 * v_th2;
+    const eomc_real w15 = p_l2 * w14;
+    const eomc_real w16 = w12 + w15;
+    const eomc_real w17 = w16 * w16;
+    const eomc_real w18 = p_l1 * w7;
+    const eomc_real w19 = sin(q_th2);
+    const eomc_real w20 = w19 * v_th2;
+    const eomc_real w21 = p_l2 * w20;
+    const eomc_real w22 = w18 + w21;
+    const eomc_real w23 = w22 * w22;
+    const eomc_real w24 = w17 + w23;
+    const eomc_real w25 = w11 * w24;
+    const eomc_real w26 = w10 + w25;
+    const eomc_real w27 = p_l1 * p_g;
+    const eomc_real w28 = p_m1 * w27;
+    const eomc_real w29 = w28 * w3;
+    const eomc_real w30 = p_m2 * p_g;
+    const eomc_real w31 = p_l1 * w3;
+    const eomc_real w32 = p_l2 * w13;
+    const eomc_real w33 = w31 + w32;
+    const eomc_real w34 = w30 * w33;
+    const eomc_real w35 = w29 + w34;
+    const eomc_real w36 = w26 - w35;
+    h[0] = w36;
+}
+
+#endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
  * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
  * must all be positive. */
 static void
-double_pendulum_accel_solve(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a, double *piv)
+double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
 {
-    const double q_th1 = q[0];
-    const double q_th2 = q[1];
-    const double v_th1 = v[0];
-    const double v_th2 = v[1];
-    const double p_l1 = p[2];
-    const double p_l2 = p[3];
-    const double p_m1 = p[0];
-    const double p_m2 = p[1];
-    const double p_g = p[4];
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    const eomc_real p_g = p[4];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m1;
-    const double w1 = p_l1 * p_l1;
-    const double w2 = w0 * w1;
-    const double w3 = 2.0 * w2;
-    const double w4 = 0.5 * p_m2;
-    const double w5 = 2.0 * w4;
-    const double w6 = p_l1 * w5;
-    const double w7 = p_l1 * w6;
-    const double w8 = w3 + w7;
-    const double w9 = p_l2 * w5;
-    const double w10 = p_l1 * w9;
-    const double w11 = p_l2 * w9;
-    const double w12 = 1.0 / w11;
-    const double w13 = w10 * w12;
-    const double w14 = w10 * w13;
-    const double w15 = sin(q_th1);
-    const double w16 = sin(q_th2);
-    const double w17 = w15 * w16;
-    const double w18 = cos(q_th1);
-    const double w19 = cos(q_th2);
-    const double w20 = w18 * w19;
-    const double w21 = w17 + w20;
-    const double w22 = w21 * w21;
-    const double w23 = w14 * w22;
-    const double w24 = w8 - w23;
-    const double w25 = 1e-13 * w8;
-    const double w26 = w24 - w25;
+    const eomc_real w0 = 0.5 * p_m1;
+    const eomc_real w1 = p_l1 * p_l1;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = 2.0 * w2;
+    const eomc_real w4 = 0.5 * p_m2;
+    const eomc_real w5 = 2.0 * w4;
+    const eomc_real w6 = p_l1 * w5;
+    const eomc_real w7 = p_l1 * w6;
+    const eomc_real w8 = w3 + w7;
+    const eomc_real w9 = p_l2 * w5;
+    const eomc_real w10 = p_l1 * w9;
+    const eomc_real w11 = p_l2 * w9;
+    const eomc_real w12 = 1.0 / w11;
+    const eomc_real w13 = w10 * w12;
+    const eomc_real w14 = w10 * w13;
+    const eomc_real w15 = sin(q_th1);
+    const eomc_real w16 = sin(q_th2);
+    const eomc_real w17 = w15 * w16;
+    const eomc_real w18 = cos(q_th1);
+    const eomc_real w19 = cos(q_th2);
+    const eomc_real w20 = w18 * w19;
+    const eomc_real w21 = w17 + w20;
+    const eomc_real w22 = w21 * w21;
+    const eomc_real w23 = w14 * w22;
+    const eomc_real w24 = w8 - w23;
+    const eomc_real w25 = 1e-13 * w8;
+    const eomc_real w26 = w24 - w25;
     piv[0] = w26;
-    const double w27 = 1e-13 * w11;
-    const double w28 = w11 - w27;
+    const eomc_real w27 = 1e-13 * w11;
+    const eomc_real w28 = w11 - w27;
     piv[1] = w28;
-    const double w29 = 1.0 / w24;
-    const double w30 = p_m2 * p_g;
-    const double w31 = p_l2 * w30;
-    const double w32 = w31 * w16;
-    const double w33 = w19 * v_th2;
-    const double w34 = w15 * v_th1;
-    const double w35 = p_l1 * w34;
-    const double w36 = w16 * v_th2;
-    const double w37 = p_l2 * w36;
-    const double w38 = w35 + w37;
-    const double w39 = w33 * w38;
-    const double w40 = v_th1 * v_th1;
-    const double w41 = w18 * w40;
-    const double w42 = p_l1 * w41;
-    const double w43 = v_th2 * v_th2;
-    const double w44 = w19 * w43;
-    const double w45 = p_l2 * w44;
-    const double w46 = w42 + w45;
-    const double w47 = w16 * w46;
-    const double w48 = w39 + w47;
-    const double w49 = w18 * v_th1;
-    const double w50 = p_l1 * w49;
-    const double w51 = p_l2 * w33;
-    const double w52 = w50 + w51;
-    const double w53 = w52 * w36;
-    const double w54 = w15 * w40;
-    const double w55 = p_l1 * w54;
-    const double w56 = w16 * w43;
-    const double w57 = p_l2 * w56;
-    const double w58 = w55 + w57;
-    const double w59 = w19 * w58;
-    const double w60 = w53 + w59;
-    const double w61 = w48 - w60;
-    const double w62 = v_th2 * w38;
-    const double w63 = w19 * w62;
-    const double w64 = v_th2 * w52;
-    const double w65 = w16 * w64;
-    const double w66 = w63 - w65;
-    const double w67 = w61 - w66;
-    const double w68 = w9 * w67;
-    const double w69 = w32 + w68;
-    const double w70 = w21 * w69;
-    const double w71 = w13 * w70;
-    const double w72 = p_l1 * p_g;
-    const double w73 = p_m1 * w72;
-    const double w74 = p_l1 * w30;
-    const double w75 = w73 + w74;
-    const double w76 = w75 * w15;
-    const double w77 = w3 * w34;
-    const double w78 = w6 * w38;
-    const double w79 = w77 + w78;
-    const double w80 = w49 * w79;
-    const double w81 = w3 * w41;
-    const double w82 = w6 * w46;
-    const double w83 = w81 + w82;
-    const double w84 = w15 * w83;
-    const double w85 = w80 + w84;
-    const double w86 = w3 * w49;
-    const double w87 = w6 * w52;
-    const double w88 = w86 + w87;
-    const double w89 = w34 * w88;
-    const double w90 = w3 * w54;
-    const double w91 = w6 * w58;
-    const double w92 = w90 + w91;
-    const double w93 = w18 * w92;
-    const double w94 = w89 + w93;
-    const double w95 = w85 - w94;
-    const double w96 = v_th1 * w79;
-    const double w97 = w18 * w96;
-    const double w98 = v_th1 * w88;
-    const double w99 = w15 * w98;
-    const double w100 = w97 - w99;
-    const double w101 = w95 - w100;
-    const double w102 = w76 + w101;
-    const double w103 = w71 - w102;
-    const double w104 = w29 * w103;
+    const eomc_real w29 = 1.0 / w24;
+    const eomc_real w30 = p_m2 * p_g;
+    const eomc_real w31 = p_l2 * w30;
+    const eomc_real w32 = w31 * w16;
+    const eomc_real w33 = w19 * v_th2;
+    const eomc_real w34 = w15 * v_th1;
+    const eomc_real w35 = p_l1 * w34;
+    const eomc_real w36 = w16 * v_th2;
+    const eomc_real w37 = p_l2 * w36;
+    const eomc_real w38 = w35 + w37;
+    const eomc_real w39 = w33 * w38;
+    const eomc_real w40 = v_th1 * v_th1;
+    const eomc_real w41 = w18 * w40;
+    const eomc_real w42 = p_l1 * w41;
+    const eomc_real w43 = v_th2 * v_th2;
+    const eomc_real w44 = w19 * w43;
+    const eomc_real w45 = p_l2 * w44;
+    const eomc_real w46 = w42 + w45;
+    const eomc_real w47 = w16 * w46;
+    const eomc_real w48 = w39 + w47;
+    const eomc_real w49 = w18 * v_th1;
+    const eomc_real w50 = p_l1 * w49;
+    const eomc_real w51 = p_l2 * w33;
+    const eomc_real w52 = w50 + w51;
+    const eomc_real w53 = w52 * w36;
+    const eomc_real w54 = w15 * w40;
+    const eomc_real w55 = p_l1 * w54;
+    const eomc_real w56 = w16 * w43;
+    const eomc_real w57 = p_l2 * w56;
+    const eomc_real w58 = w55 + w57;
+    const eomc_real w59 = w19 * w58;
+    const eomc_real w60 = w53 + w59;
+    const eomc_real w61 = w48 - w60;
+    const eomc_real w62 = v_th2 * w38;
+    const eomc_real w63 = w19 * w62;
+    const eomc_real w64 = v_th2 * w52;
+    const eomc_real w65 = w16 * w64;
+    const eomc_real w66 = w63 - w65;
+    const eomc_real w67 = w61 - w66;
+    const eomc_real w68 = w9 * w67;
+    const eomc_real w69 = w32 + w68;
+    const eomc_real w70 = w21 * w69;
+    const eomc_real w71 = w13 * w70;
+    const eomc_real w72 = p_l1 * p_g;
+    const eomc_real w73 = p_m1 * w72;
+    const eomc_real w74 = p_l1 * w30;
+    const eomc_real w75 = w73 + w74;
+    const eomc_real w76 = w75 * w15;
+    const eomc_real w77 = w3 * w34;
+    const eomc_real w78 = w6 * w38;
+    const eomc_real w79 = w77 + w78;
+    const eomc_real w80 = w49 * w79;
+    const eomc_real w81 = w3 * w41;
+    const eomc_real w82 = w6 * w46;
+    const eomc_real w83 = w81 + w82;
+    const eomc_real w84 = w15 * w83;
+    const eomc_real w85 = w80 + w84;
+    const eomc_real w86 = w3 * w49;
+    const eomc_real w87 = w6 * w52;
+    const eomc_real w88 = w86 + w87;
+    const eomc_real w89 = w34 * w88;
+    const eomc_real w90 = w3 * w54;
+    const eomc_real w91 = w6 * w58;
+    const eomc_real w92 = w90 + w91;
+    const eomc_real w93 = w18 * w92;
+    const eomc_real w94 = w89 + w93;
+    const eomc_real w95 = w85 - w94;
+    const eomc_real w96 = v_th1 * w79;
+    const eomc_real w97 = w18 * w96;
+    const eomc_real w98 = v_th1 * w88;
+    const eomc_real w99 = w15 * w98;
+    const eomc_real w100 = w97 - w99;
+    const eomc_real w101 = w95 - w100;
+    const eomc_real w102 = w76 + w101;
+    const eomc_real w103 = w71 - w102;
+    const eomc_real w104 = w29 * w103;
     a[0] = w104;
-    const double w105 = w21 * w104;
-    const double w106 = w13 * w105;
-    const double w107 = w12 * w69;
-    const double w108 = w106 + w107;
-    const double w109 = -w108;
+    const eomc_real w105 = w21 * w104;
+    const eomc_real w106 = w13 * w105;
+    const eomc_real w107 = w12 * w69;
+    const eomc_real w108 = w106 + w107;
+    const eomc_real w109 = -w108;
     a[1] = w109;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite). */
 static int
-double_pendulum_accel(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a)
+double_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a)
 {
-    double piv[2];
+    eomc_real piv[2];
     double_pendulum_accel_solve(t, q, v, p, u, a, piv);
     for (int k = 1; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
@@ -544,6 +614,7 @@ double_pendulum_accel(double t, const double *q, const double *v, const double *
     return 0;
 }
 
+#ifndef EOMC_EXTENDED
 const eomc_model double_pendulum_model = {
     EOMC_ABI_VERSION, "double_pendulum", "double_pendulum.yaml", "lagrange", "",
     2, 5, 0, q_names, p_names, u_names, p_default,
@@ -551,9 +622,24 @@ const eomc_model double_pendulum_model = {
     double_pendulum_initial, double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_energy, double_pendulum_jacobian,
     double_pendulum_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
+    double_pendulum_invariant, "E",
+    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &double_pendulum_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext double_pendulum_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &double_pendulum_model, &double_pendulum_model_ext);
+}
 #endif
+#else
+const eomc_model_ext double_pendulum_model_ext = {
+    EOMC_ABI_VERSION, "double_pendulum", double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_accel,
+    NULL, NULL,
+};
+#endif /* EOMC_EXTENDED */

@@ -8,6 +8,10 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * nothing is conserved: the effect 'push' is a force, not a potential.
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (falling_particle_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -16,10 +20,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[1] = {"y"};
 static const char *const p_names[3] = {"m", "g", "f"};
 static const char *const u_names[1] = {NULL};
@@ -27,16 +34,19 @@ static const double p_default[3] = {2.0, 9.81, 5.0};
 
 /* Initial state from the spec's `initial`. */
 static void
-falling_particle_initial(const double *p, double *q, double *v)
+falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
     q[0] = 1e+01;
     v[0] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-falling_particle_inputs(double t, const double *p, double *u, double *dudt)
+falling_particle_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -46,49 +56,50 @@ falling_particle_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-falling_particle_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double p_m = p[0];
-    const double p_g = p[1];
-    const double p_f = p[2];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
+    const eomc_real p_f = p[2];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = 2.0 * w0;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = 2.0 * w0;
     M[0] = w1;
-    const double w2 = p_m * p_g;
-    const double w3 = w2 - p_f;
+    const eomc_real w2 = p_m * p_g;
+    const eomc_real w3 = w2 - p_f;
     h[0] = w3;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-falling_particle_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_y = q[0];
-    const double v_y = v[0];
-    const double p_m = p[0];
-    const double p_g = p[1];
+    const eomc_real q_y = q[0];
+    const eomc_real v_y = v[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = v_y * v_y;
-    const double w2 = w0 * w1;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = v_y * v_y;
+    const eomc_real w2 = w0 * w1;
     TV[0] = w2;
-    const double w3 = p_m * p_g;
-    const double w4 = w3 * q_y;
+    const eomc_real w3 = p_m * p_g;
+    const eomc_real w4 = w3 * q_y;
     TV[1] = w4;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-falling_particle_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+falling_particle_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     (void)q;
     (void)v;
@@ -102,39 +113,42 @@ falling_particle_jacobian(double t, const double *q, const double *v, const doub
     dEdt[0] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
  * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
  * must all be positive. */
 static void
-falling_particle_accel_solve(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a, double *piv)
+falling_particle_accel_solve(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *piv)
 {
-    const double p_m = p[0];
-    const double p_g = p[1];
-    const double p_f = p[2];
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
+    const eomc_real p_f = p[2];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = 2.0 * w0;
-    const double w2 = 1e-13 * w1;
-    const double w3 = w1 - w2;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = 1e-13 * w1;
+    const eomc_real w3 = w1 - w2;
     piv[0] = w3;
-    const double w4 = 1.0 / w1;
-    const double w5 = p_m * p_g;
-    const double w6 = p_f - w5;
-    const double w7 = w4 * w6;
+    const eomc_real w4 = 1.0 / w1;
+    const eomc_real w5 = p_m * p_g;
+    const eomc_real w6 = p_f - w5;
+    const eomc_real w7 = w4 * w6;
     a[0] = w7;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite). */
 static int
-falling_particle_accel(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a)
+falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a)
 {
-    double piv[1];
+    eomc_real piv[1];
     falling_particle_accel_solve(t, q, v, p, u, a, piv);
     for (int k = 0; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
@@ -142,6 +156,7 @@ falling_particle_accel(double t, const double *q, const double *v, const double 
     return 0;
 }
 
+#ifndef EOMC_EXTENDED
 const eomc_model falling_particle_model = {
     EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
@@ -149,9 +164,24 @@ const eomc_model falling_particle_model = {
     falling_particle_initial, falling_particle_inputs, falling_particle_mass_bias, falling_particle_energy, falling_particle_jacobian,
     falling_particle_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
+    NULL, NULL,
+    "nothing is conserved: the effect 'push' is a force, not a potential",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &falling_particle_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext falling_particle_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &falling_particle_model, &falling_particle_model_ext);
+}
 #endif
+#else
+const eomc_model_ext falling_particle_model_ext = {
+    EOMC_ABI_VERSION, "falling_particle", falling_particle_inputs, falling_particle_mass_bias, falling_particle_accel,
+    NULL, NULL,
+};
+#endif /* EOMC_EXTENDED */

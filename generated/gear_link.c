@@ -8,6 +8,10 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * nothing is conserved: the effect 'motor' is a force, not a potential.
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (gear_link_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -16,10 +20,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[1] = {"theta_l"};
 static const char *const p_names[6] = {"Jm", "Jl", "r", "M", "l", "g"};
 static const char *const u_names[1] = {"u"};
@@ -27,161 +34,166 @@ static const double p_default[6] = {0.01, 0.5, 1e+01, 2.0, 0.3, 9.81};
 
 /* Initial state from the spec's `initial`. */
 static void
-gear_link_initial(const double *p, double *q, double *v)
+gear_link_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
     q[0] = 0.2;
     v[0] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-gear_link_inputs(double t, const double *p, double *u, double *dudt)
+gear_link_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
-    const double w0 = 2.0 * t;
-    const double w1 = sin(w0);
-    const double w2 = 0.5 * w1;
+    const eomc_real w0 = 2.0 * t;
+    const eomc_real w1 = sin(w0);
+    const eomc_real w2 = 0.5 * w1;
     u[0] = w2;
-    const double w3 = cos(w0);
+    const eomc_real w3 = cos(w0);
     if (dudt) dudt[0] = w3;
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-gear_link_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double q_theta_l = q[0];
-    const double p_r = p[2];
-    const double p_Jm = p[0];
-    const double p_Jl = p[1];
-    const double p_M = p[3];
-    const double p_g = p[5];
-    const double p_l = p[4];
-    const double u_u = u[0];
+    const eomc_real q_theta_l = q[0];
+    const eomc_real p_r = p[2];
+    const eomc_real p_Jm = p[0];
+    const eomc_real p_Jl = p[1];
+    const eomc_real p_M = p[3];
+    const eomc_real p_g = p[5];
+    const eomc_real p_l = p[4];
+    const eomc_real u_u = u[0];
     (void)v;
     (void)t;
-    const double w0 = 0.5 * p_Jl;
-    const double w1 = 2.0 * w0;
-    const double w2 = 0.5 * p_Jm;
-    const double w3 = 2.0 * p_r;
-    const double w4 = w2 * w3;
-    const double w5 = p_r * w4;
-    const double w6 = w1 + w5;
+    const eomc_real w0 = 0.5 * p_Jl;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = 0.5 * p_Jm;
+    const eomc_real w3 = 2.0 * p_r;
+    const eomc_real w4 = w2 * w3;
+    const eomc_real w5 = p_r * w4;
+    const eomc_real w6 = w1 + w5;
     M[0] = w6;
-    const double w7 = p_M * p_g;
-    const double w8 = w7 * p_l;
-    const double w9 = sin(q_theta_l);
-    const double w10 = w8 * w9;
-    const double w11 = p_r * u_u;
-    const double w12 = w10 - w11;
+    const eomc_real w7 = p_M * p_g;
+    const eomc_real w8 = w7 * p_l;
+    const eomc_real w9 = sin(q_theta_l);
+    const eomc_real w10 = w8 * w9;
+    const eomc_real w11 = p_r * u_u;
+    const eomc_real w12 = w10 - w11;
     h[0] = w12;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-gear_link_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_theta_l = q[0];
-    const double v_theta_l = v[0];
-    const double p_r = p[2];
-    const double p_Jm = p[0];
-    const double p_Jl = p[1];
-    const double p_M = p[3];
-    const double p_g = p[5];
-    const double p_l = p[4];
+    const eomc_real q_theta_l = q[0];
+    const eomc_real v_theta_l = v[0];
+    const eomc_real p_r = p[2];
+    const eomc_real p_Jm = p[0];
+    const eomc_real p_Jl = p[1];
+    const eomc_real p_M = p[3];
+    const eomc_real p_g = p[5];
+    const eomc_real p_l = p[4];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_Jm;
-    const double w1 = p_r * v_theta_l;
-    const double w2 = w1 * w1;
-    const double w3 = w0 * w2;
-    const double w4 = 0.5 * p_Jl;
-    const double w5 = v_theta_l * v_theta_l;
-    const double w6 = w4 * w5;
-    const double w7 = w3 + w6;
+    const eomc_real w0 = 0.5 * p_Jm;
+    const eomc_real w1 = p_r * v_theta_l;
+    const eomc_real w2 = w1 * w1;
+    const eomc_real w3 = w0 * w2;
+    const eomc_real w4 = 0.5 * p_Jl;
+    const eomc_real w5 = v_theta_l * v_theta_l;
+    const eomc_real w6 = w4 * w5;
+    const eomc_real w7 = w3 + w6;
     TV[0] = w7;
-    const double w8 = p_M * p_g;
-    const double w9 = w8 * p_l;
-    const double w10 = cos(q_theta_l);
-    const double w11 = 1.0 - w10;
-    const double w12 = w9 * w11;
+    const eomc_real w8 = p_M * p_g;
+    const eomc_real w9 = w8 * p_l;
+    const eomc_real w10 = cos(q_theta_l);
+    const eomc_real w11 = 1.0 - w10;
+    const eomc_real w12 = w9 * w11;
     TV[1] = w12;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-gear_link_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
-    const double q_theta_l = q[0];
-    const double p_r = p[2];
-    const double p_M = p[3];
-    const double p_g = p[5];
-    const double p_l = p[4];
+    const eomc_real q_theta_l = q[0];
+    const eomc_real p_r = p[2];
+    const eomc_real p_M = p[3];
+    const eomc_real p_g = p[5];
+    const eomc_real p_l = p[4];
     (void)v;
     (void)a;
     (void)u;
     (void)t;
-    const double w0 = p_M * p_g;
-    const double w1 = w0 * p_l;
-    const double w2 = cos(q_theta_l);
-    const double w3 = w1 * w2;
+    const eomc_real w0 = p_M * p_g;
+    const eomc_real w1 = w0 * p_l;
+    const eomc_real w2 = cos(q_theta_l);
+    const eomc_real w3 = w1 * w2;
     dEdq[0] = w3;
     dEdv[0] = 0.0;
-    const double w4 = -p_r;
+    const eomc_real w4 = -p_r;
     dEdu[0] = w4;
     dEdt[0] = 0.0;
 }
+
+#endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
  * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
  * must all be positive. */
 static void
-gear_link_accel_solve(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a, double *piv)
+gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
 {
-    const double q_theta_l = q[0];
-    const double p_r = p[2];
-    const double p_Jm = p[0];
-    const double p_Jl = p[1];
-    const double p_M = p[3];
-    const double p_g = p[5];
-    const double p_l = p[4];
-    const double u_u = u[0];
+    const eomc_real q_theta_l = q[0];
+    const eomc_real p_r = p[2];
+    const eomc_real p_Jm = p[0];
+    const eomc_real p_Jl = p[1];
+    const eomc_real p_M = p[3];
+    const eomc_real p_g = p[5];
+    const eomc_real p_l = p[4];
+    const eomc_real u_u = u[0];
     (void)v;
     (void)t;
-    const double w0 = 0.5 * p_Jl;
-    const double w1 = 2.0 * w0;
-    const double w2 = 0.5 * p_Jm;
-    const double w3 = 2.0 * p_r;
-    const double w4 = w2 * w3;
-    const double w5 = p_r * w4;
-    const double w6 = w1 + w5;
-    const double w7 = 1e-13 * w6;
-    const double w8 = w6 - w7;
+    const eomc_real w0 = 0.5 * p_Jl;
+    const eomc_real w1 = 2.0 * w0;
+    const eomc_real w2 = 0.5 * p_Jm;
+    const eomc_real w3 = 2.0 * p_r;
+    const eomc_real w4 = w2 * w3;
+    const eomc_real w5 = p_r * w4;
+    const eomc_real w6 = w1 + w5;
+    const eomc_real w7 = 1e-13 * w6;
+    const eomc_real w8 = w6 - w7;
     piv[0] = w8;
-    const double w9 = 1.0 / w6;
-    const double w10 = p_r * u_u;
-    const double w11 = p_M * p_g;
-    const double w12 = w11 * p_l;
-    const double w13 = sin(q_theta_l);
-    const double w14 = w12 * w13;
-    const double w15 = w10 - w14;
-    const double w16 = w9 * w15;
+    const eomc_real w9 = 1.0 / w6;
+    const eomc_real w10 = p_r * u_u;
+    const eomc_real w11 = p_M * p_g;
+    const eomc_real w12 = w11 * p_l;
+    const eomc_real w13 = sin(q_theta_l);
+    const eomc_real w14 = w12 * w13;
+    const eomc_real w15 = w10 - w14;
+    const eomc_real w16 = w9 * w15;
     a[0] = w16;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite). */
 static int
-gear_link_accel(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a)
+gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a)
 {
-    double piv[1];
+    eomc_real piv[1];
     gear_link_accel_solve(t, q, v, p, u, a, piv);
     for (int k = 0; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
@@ -189,6 +201,7 @@ gear_link_accel(double t, const double *q, const double *v, const double *p,
     return 0;
 }
 
+#ifndef EOMC_EXTENDED
 const eomc_model gear_link_model = {
     EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "",
     1, 6, 1, q_names, p_names, u_names, p_default,
@@ -196,9 +209,24 @@ const eomc_model gear_link_model = {
     gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
     gear_link_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
+    NULL, NULL,
+    "nothing is conserved: the effect 'motor' is a force, not a potential",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &gear_link_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext gear_link_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &gear_link_model, &gear_link_model_ext);
+}
 #endif
+#else
+const eomc_model_ext gear_link_model_ext = {
+    EOMC_ABI_VERSION, "gear_link", gear_link_inputs, gear_link_mass_bias, gear_link_accel,
+    NULL, NULL,
+};
+#endif /* EOMC_EXTENDED */

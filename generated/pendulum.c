@@ -8,6 +8,11 @@
  * off:     (none) (no code is generated for these)
  *
  * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0
+ * E = T + V is conserved: T and V do not depend on t and every effect is a
+ * potential.
+ *
+ * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
+ * needs are compiled in extended precision instead (pendulum_model_ext).
  */
 #include <math.h>
 #include <stddef.h>
@@ -16,10 +21,13 @@
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
+#define EOMC_WEAK __attribute__((weak))
 #else
 #define EOMC_NOINLINE
+#define EOMC_WEAK
 #endif
 
+#ifndef EOMC_EXTENDED
 static const char *const q_names[1] = {"theta"};
 static const char *const p_names[3] = {"m", "l", "g"};
 static const char *const u_names[1] = {NULL};
@@ -27,16 +35,18 @@ static const double p_default[3] = {1.0, 1.0, 9.81};
 
 /* Initial state from the spec's `initial`. */
 static void
-pendulum_initial(const double *p, double *q, double *v)
+pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
     q[0] = 1.0;
     v[0] = 0.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Input signals u(t) and du/dt. */
 static void
-pendulum_inputs(double t, const double *p, double *u, double *dudt)
+pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
     (void)t;
@@ -46,147 +56,180 @@ pendulum_inputs(double t, const double *p, double *u, double *dudt)
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
 static void
-pendulum_mass_bias(double t, const double *q, const double *v, const double *p,
-    const double *u, double *M, double *h)
+pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
-    const double q_theta = q[0];
-    const double p_m = p[0];
-    const double p_l = p[1];
-    const double p_g = p[2];
+    const eomc_real q_theta = q[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = p_l * p_l;
-    const double w2 = w0 * w1;
-    const double w3 = 2.0 * w2;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = p_l * p_l;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = 2.0 * w2;
     M[0] = w3;
-    const double w4 = p_l * p_g;
-    const double w5 = p_m * w4;
-    const double w6 = sin(q_theta);
-    const double w7 = w5 * w6;
+    const eomc_real w4 = p_l * p_g;
+    const eomc_real w5 = p_m * w4;
+    const eomc_real w6 = sin(q_theta);
+    const eomc_real w7 = w5 * w6;
     h[0] = w7;
 }
 
+#ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
 static void
-pendulum_energy(double t, const double *q, const double *v, const double *p,
-    const double *u, double *TV)
+pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const double q_theta = q[0];
-    const double v_theta = v[0];
-    const double p_m = p[0];
-    const double p_l = p[1];
-    const double p_g = p[2];
+    const eomc_real q_theta = q[0];
+    const eomc_real v_theta = v[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = p_l * p_l;
-    const double w2 = w0 * w1;
-    const double w3 = cos(q_theta);
-    const double w4 = w3 * v_theta;
-    const double w5 = w4 * w4;
-    const double w6 = sin(q_theta);
-    const double w7 = w6 * v_theta;
-    const double w8 = w7 * w7;
-    const double w9 = w5 + w8;
-    const double w10 = w2 * w9;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = p_l * p_l;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = cos(q_theta);
+    const eomc_real w4 = w3 * v_theta;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = sin(q_theta);
+    const eomc_real w7 = w6 * v_theta;
+    const eomc_real w8 = w7 * w7;
+    const eomc_real w9 = w5 + w8;
+    const eomc_real w10 = w2 * w9;
     TV[0] = w10;
-    const double w11 = p_l * p_g;
-    const double w12 = p_m * w11;
-    const double w13 = w12 * w3;
-    const double w14 = -w13;
+    const eomc_real w11 = p_l * p_g;
+    const eomc_real w12 = p_m * w11;
+    const eomc_real w13 = w12 * w3;
+    const eomc_real w14 = -w13;
     TV[1] = w14;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
-pendulum_jacobian(double t, const double *q, const double *v, const double *a,
-    const double *p, const double *u, double *dEdq, double *dEdv,
-    double *dEdu, double *dEdt)
+pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
-    const double q_theta = q[0];
-    const double v_theta = v[0];
-    const double a_theta = a[0];
-    const double p_m = p[0];
-    const double p_l = p[1];
-    const double p_g = p[2];
+    const eomc_real q_theta = q[0];
+    const eomc_real v_theta = v[0];
+    const eomc_real a_theta = a[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
     (void)u;
     (void)t;
     (void)dEdu;
-    const double w0 = cos(q_theta);
-    const double w1 = p_l * p_g;
-    const double w2 = p_m * w1;
-    const double w3 = 0.5 * p_m;
-    const double w4 = p_l * p_l;
-    const double w5 = w3 * w4;
-    const double w6 = 2.0 * w5;
-    const double w7 = 2.0 * w6;
-    const double w8 = (-2.0) * w6;
-    const double w9 = w7 + w8;
-    const double w10 = v_theta * v_theta;
-    const double w11 = w0 * w10;
-    const double w12 = w9 * w11;
-    const double w13 = w2 + w12;
-    const double w14 = sin(q_theta);
-    const double w15 = w14 * a_theta;
-    const double w16 = w7 * w15;
-    const double w17 = w13 + w16;
-    const double w18 = w0 * w17;
-    const double w19 = w14 * w10;
-    const double w20 = w9 * w19;
-    const double w21 = w0 * a_theta;
-    const double w22 = w7 * w21;
-    const double w23 = w20 + w22;
-    const double w24 = w14 * w23;
-    const double w25 = w18 - w24;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = p_l * p_g;
+    const eomc_real w2 = p_m * w1;
+    const eomc_real w3 = 0.5 * p_m;
+    const eomc_real w4 = p_l * p_l;
+    const eomc_real w5 = w3 * w4;
+    const eomc_real w6 = 2.0 * w5;
+    const eomc_real w7 = 2.0 * w6;
+    const eomc_real w8 = (-2.0) * w6;
+    const eomc_real w9 = w7 + w8;
+    const eomc_real w10 = v_theta * v_theta;
+    const eomc_real w11 = w0 * w10;
+    const eomc_real w12 = w9 * w11;
+    const eomc_real w13 = w2 + w12;
+    const eomc_real w14 = sin(q_theta);
+    const eomc_real w15 = w14 * a_theta;
+    const eomc_real w16 = w7 * w15;
+    const eomc_real w17 = w13 + w16;
+    const eomc_real w18 = w0 * w17;
+    const eomc_real w19 = w14 * w10;
+    const eomc_real w20 = w9 * w19;
+    const eomc_real w21 = w0 * a_theta;
+    const eomc_real w22 = w7 * w21;
+    const eomc_real w23 = w20 + w22;
+    const eomc_real w24 = w14 * w23;
+    const eomc_real w25 = w18 - w24;
     dEdq[0] = w25;
-    const double w26 = 2.0 * w9;
-    const double w27 = w14 * w0;
-    const double w28 = w27 * v_theta;
-    const double w29 = w26 * w28;
+    const eomc_real w26 = 2.0 * w9;
+    const eomc_real w27 = w14 * w0;
+    const eomc_real w28 = w27 * v_theta;
+    const eomc_real w29 = w26 * w28;
     dEdv[0] = w29;
     dEdt[0] = 0.0;
 }
+
+/* The conserved quantity (eomc_model.h: invariant). */
+static void
+pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_theta = q[0];
+    const eomc_real v_theta = v[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = p_l * p_l;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = cos(q_theta);
+    const eomc_real w4 = w3 * v_theta;
+    const eomc_real w5 = w4 * w4;
+    const eomc_real w6 = sin(q_theta);
+    const eomc_real w7 = w6 * v_theta;
+    const eomc_real w8 = w7 * w7;
+    const eomc_real w9 = w5 + w8;
+    const eomc_real w10 = w2 * w9;
+    const eomc_real w11 = p_l * p_g;
+    const eomc_real w12 = p_m * w11;
+    const eomc_real w13 = w12 * w3;
+    const eomc_real w14 = w10 - w13;
+    h[0] = w14;
+}
+
+#endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
  * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
  * must all be positive. */
 static void
-pendulum_accel_solve(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a, double *piv)
+pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
 {
-    const double q_theta = q[0];
-    const double p_m = p[0];
-    const double p_l = p[1];
-    const double p_g = p[2];
+    const eomc_real q_theta = q[0];
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
     (void)v;
     (void)u;
     (void)t;
-    const double w0 = 0.5 * p_m;
-    const double w1 = p_l * p_l;
-    const double w2 = w0 * w1;
-    const double w3 = 2.0 * w2;
-    const double w4 = 1e-13 * w3;
-    const double w5 = w3 - w4;
+    const eomc_real w0 = 0.5 * p_m;
+    const eomc_real w1 = p_l * p_l;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = 2.0 * w2;
+    const eomc_real w4 = 1e-13 * w3;
+    const eomc_real w5 = w3 - w4;
     piv[0] = w5;
-    const double w6 = p_l * p_g;
-    const double w7 = p_m * w6;
-    const double w8 = 1.0 / w3;
-    const double w9 = w7 * w8;
-    const double w10 = sin(q_theta);
-    const double w11 = w9 * w10;
-    const double w12 = -w11;
+    const eomc_real w6 = p_l * p_g;
+    const eomc_real w7 = p_m * w6;
+    const eomc_real w8 = 1.0 / w3;
+    const eomc_real w9 = w7 * w8;
+    const eomc_real w10 = sin(q_theta);
+    const eomc_real w11 = w9 * w10;
+    const eomc_real w12 = -w11;
     a[0] = w12;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite). */
 static int
-pendulum_accel(double t, const double *q, const double *v, const double *p,
-    const double *u, double *a)
+pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a)
 {
-    double piv[1];
+    eomc_real piv[1];
     pendulum_accel_solve(t, q, v, p, u, a, piv);
     for (int k = 0; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > 0.0))
@@ -194,6 +237,7 @@ pendulum_accel(double t, const double *q, const double *v, const double *p,
     return 0;
 }
 
+#ifndef EOMC_EXTENDED
 const eomc_model pendulum_model = {
     EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
@@ -201,9 +245,24 @@ const eomc_model pendulum_model = {
     pendulum_initial, pendulum_inputs, pendulum_mass_bias, pendulum_energy, pendulum_jacobian,
     pendulum_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
+    pendulum_invariant, "E",
+    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
 };
 
 #ifdef EOMC_MAIN
 #include "eomc.h"
-int main(int argc, char **argv) { return eomc_main(argc, argv, &pendulum_model); }
+/* The reference solution's functions: this file compiled again with
+ * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
+ * runs but cannot measure its errors. */
+extern const eomc_model_ext pendulum_model_ext EOMC_WEAK;
+int main(int argc, char **argv)
+{
+    return eomc_main(argc, argv, &pendulum_model, &pendulum_model_ext);
+}
 #endif
+#else
+const eomc_model_ext pendulum_model_ext = {
+    EOMC_ABI_VERSION, "pendulum", pendulum_inputs, pendulum_mass_bias, pendulum_accel,
+    NULL, NULL,
+};
+#endif /* EOMC_EXTENDED */

@@ -619,8 +619,9 @@ simulate(Cli *c, eomc_sim *sim, double *x)
 }
 
 int
-eomc_main(int argc, char **argv, const eomc_model *m)
+eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
 {
+    (void)ext;
     const char *slash = argc > 0 ? strrchr(argv[0], '/') : NULL;
     Cli c = {0};
     c.stabilize = -1;

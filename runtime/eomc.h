@@ -80,6 +80,13 @@ int eomc_sim_project(eomc_sim *s, double t, double *q, double *v);
 /* T and V at (t, q, v). */
 void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,
                      double *T, double *V);
+/* The model's conserved quantity (model->invariant_name: E = T + V, or
+ * the energy function h) at (t, q, v); EOMC_EUSAGE when it conserves
+ * none (the message says why). */
+int eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v,
+                       double *h);
+/* Whether input k is held constant (eomc_sim_set), and at which value. */
+int eomc_sim_input_held(const eomc_sim *s, int k, double *value);
 /* The Jacobian of x' = f(t, x), exact, from the generated residual
  * Jacobians: dq''/dx = -M^-1 dE/dx.  dfdx is (2nq x 2nq) row-major; dfdt
  * [2nq] includes the inputs' time derivatives.  Either may be NULL. */
@@ -88,15 +95,25 @@ int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
 
 /* ---- integration ---- */
 
-/* The GSL odeiv2 steppers by name, NULL-terminated. */
+/* The integration methods by name, NULL-terminated (runtime/methods.def). */
 extern const char *const eomc_methods[];
+/* One line about a method, or NULL for an unknown name. */
+const char *eomc_method_description(const char *name);
+/* How a method takes steps: EOMC_STEPS_ADAPTIVE (multistep: only steps
+ * of its own choosing), EOMC_STEPS_EMBEDDED (adaptive, or fixed by the
+ * same stepper), EOMC_STEPS_DOUBLING (GSL's stepper estimates the error
+ * by step doubling, so fixed steps are the method's plain steps: the
+ * methods usually run with fixed steps); -1 for an unknown name. */
+enum { EOMC_STEPS_ADAPTIVE, EOMC_STEPS_EMBEDDED, EOMC_STEPS_DOUBLING };
+int eomc_method_steps(const char *name);
 
 typedef struct eomc_run_opts {
     double t0, t_end;  /* time span */
     double dt;         /* output interval (> 0) */
     const char *method;
     double rtol, atol; /* adaptive tolerances */
-    double h_fixed;    /* > 0: fixed steps (adjusted down to divide dt) */
+    double h_fixed;    /* > 0: fixed steps (adjusted down to divide the span
+                        * t_end - t0 evenly) */
     long max_steps;    /* per run; 0 = no limit */
     int progress;      /* nonzero: when stderr is a terminal and the run
                         * takes over a second, show t on stderr */
@@ -116,8 +133,10 @@ typedef struct eomc_stats {
     double max_residual, max_drift;
 } eomc_stats;
 
-/* Called at every output time, t0 first and t_end last, with the state
- * x [2nq].  A nonzero return stops the integration with that status. */
+/* Called at every output time t0 + k dt, t0 first and t_end last, with
+ * the state x [2nq].  Output times are not step ends: the state there is
+ * the interpolant's (runtime/dense.h), except at t0.  A nonzero return
+ * stops the integration with that status. */
 typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
 
 /* Integrate from x (updated in place to the last state reached).  Returns
@@ -132,8 +151,9 @@ const char *eomc_sim_error(const eomc_sim *s);
 
 /* ---- the standalone simulator ---- */
 
-/* The command line of a built simulator (see `EXE --help`).  Returns the
- * exit status: 0, 2 (usage) or 3 (numerical failure). */
-int eomc_main(int argc, char **argv, const eomc_model *m);
+/* The command line of a built simulator (see `EXE --help`); ext is the
+ * model's extended-precision functions for the reference solution, or
+ * NULL.  Returns the exit status: 0, 2 (usage) or 3 (numerical failure). */
+int eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext);
 
 #endif

@@ -20,11 +20,29 @@
  *   t   time                       q   coordinates            [nq]
  *   v   velocities q'   [nq]       a   accelerations q''      [nq]
  *   p   parameters      [np]       u   input values           [nu]
+ *
+ * The functions are written in the number type eomc_real: double, or,
+ * when the same file is compiled a second time with -DEOMC_EXTENDED,
+ * the extended type eomc_ext.  That second compilation defines
+ * NAME_model_ext (eomc_model_ext below): the functions the reference
+ * solution needs, with the same constants, so that the reference solves
+ * exactly the model the double runs solve (`eomc build` links both).
  */
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 3
+#define EOMC_ABI_VERSION 4
+
+/* The reference's number type: x87 extended precision on x86-64 (64-bit
+ * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
+typedef long double eomc_ext;
+
+#ifdef EOMC_EXTENDED
+typedef eomc_ext eomc_real;
+#include <tgmath.h> /* sin, pow, ... of the argument's type */
+#else
+typedef double eomc_real;
+#endif
 
 typedef struct eomc_model {
     int abi;               /* EOMC_ABI_VERSION of the generator */
@@ -105,7 +123,42 @@ typedef struct eomc_model {
                               const double *p, const double *u, double *dposdq,
                               double *dveldq, double *dveldv, double *dposdu,
                               double *dveldu, double *dposdt, double *dveldt);
+
+    /* ---- the conserved quantity ----
+     * The energy function h = q'.dL/dq' - L (L = T - V), emitted when eomc
+     * could show from the spec that the motion conserves it: T, V and the
+     * constraints free of t and inputs, every effect on a potential, every
+     * velocity constraint homogeneous in q'.  invariant_name is "E" when T
+     * is a quadratic form in q' (then h = T + V) and "h" otherwise
+     * (h = T2 - T0 + V, Jacobi's integral in a rotating frame); NULL, with
+     * invariant NULL, when nothing is conserved.  invariant_note says which
+     * and why, or why not, in one sentence. */
+    void (*invariant)(double t, const double *q, const double *v, const double *p,
+                      const double *u, double *h);
+    const char *invariant_name;
+    const char *invariant_note;
 } eomc_model;
+
+/* What the reference solution evaluates in extended precision (NULL
+ * members as in eomc_model; c_jacobian only when a constraint is not
+ * affine in q'', where Newton's method needs d2f/dq''2). */
+typedef struct eomc_model_ext {
+    int abi;               /* EOMC_ABI_VERSION */
+    const char *name;      /* the model's name, as in eomc_model */
+    void (*inputs)(eomc_ext t, const eomc_ext *p, eomc_ext *u, eomc_ext *dudt);
+    void (*mass_bias)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
+                      const eomc_ext *p, const eomc_ext *u, eomc_ext *M, eomc_ext *h);
+    int (*accel)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
+                 const eomc_ext *u, eomc_ext *a);
+    void (*constraint)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
+                       const eomc_ext *a, const eomc_ext *p, const eomc_ext *u,
+                       eomc_ext *f, eomc_ext *B);
+    void (*c_jacobian)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
+                       const eomc_ext *a, const eomc_ext *p, const eomc_ext *u,
+                       eomc_ext *dfdq, eomc_ext *dfdv, eomc_ext *dfdu, eomc_ext *dfdt,
+                       eomc_ext *dBdq, eomc_ext *dBdv, eomc_ext *dBda, eomc_ext *dBdu,
+                       eomc_ext *dBdt);
+} eomc_model_ext;
 
 /* The relative pivot threshold of both solves (generated and runtime). */
 #define EOMC_PIVOT_TOL 1e-13

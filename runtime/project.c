@@ -14,17 +14,17 @@
  * units.  M is taken once, at the state given.  Second-order constraints
  * have nothing below acceleration level and are left alone.
  */
-#include "simimpl.h"
+#include "project.h"
+#include "linalg.h"
 
-#include <gsl/gsl_linalg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum { PROJ_MAX = 20 };
 #define PROJ_TOL 1e-14     /* relative size of the last correction */
 
 struct Proj {
+    const eomc_model *m;
     int n, nc;
     int npos, nvel;            /* rows at each level */
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
@@ -35,6 +35,12 @@ struct Proj {
     gsl_permutation *perm[2];  /* [npos], [nvel] (at least 1) */
     char *names[2];            /* constraint names of each level, for messages */
 };
+
+static double *
+zeros(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(double));
+}
 
 static char *
 join_names(const eomc_model *m, const int *rows, int nr)
@@ -58,12 +64,13 @@ proj_alloc(const eomc_model *m)
     if (!j)
         return NULL;
     size_t n = (size_t)m->nq, nc = (size_t)m->nc;
+    j->m = m;
     j->n = m->nq, j->nc = m->nc;
     j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
-    j->L = sim_zeros(n * n), j->h = sim_zeros(n), j->f = sim_zeros(nc);
-    j->B = sim_zeros(nc * n), j->pos = sim_zeros(nc), j->vel = sim_zeros(nc);
-    j->zero = sim_zeros(n), j->Y = sim_zeros(nc * n), j->S = sim_zeros(nc * nc);
-    j->mu = sim_zeros(nc);
+    j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
+    j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc);
+    j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
+    j->mu = zeros(nc);
     if (j->pos_rows && j->vel_rows)
         for (int c = 0; c < m->nc; c++) {
             if (m->c_order[c] == 0)
@@ -105,15 +112,20 @@ proj_levels(const Proj *j)
     return j->nvel > 0;
 }
 
-double
-proj_residual(eomc_sim *s, double t, const double *q, const double *v)
+const char *
+proj_names(const Proj *j, int level)
 {
-    Proj *j = s->proj;
+    return j->names[level != 0];
+}
+
+double
+proj_residual(Proj *j, double t, const double *q, const double *v, const double *p,
+              const double *u)
+{
     double r = 0;
     if (j->nvel == 0)
         return 0;
-    sim_inputs_at(s, t);
-    s->m->c_levels(t, q, v, s->p, s->u, j->pos, j->vel);
+    j->m->c_levels(t, q, v, p, u, j->pos, j->vel);
     for (int k = 0; k < j->npos; k++)
         r = fmax(r, fabs(j->pos[j->pos_rows[k]]));
     for (int k = 0; k < j->nvel; k++)
@@ -125,35 +137,33 @@ proj_residual(eomc_sim *s, double t, const double *q, const double *v)
  * it was negligible, 0 after a correction, -1 when G M^-1 G^T is
  * singular. */
 static int
-correct(eomc_sim *s, double t, double *q, double *v, int level)
+correct(Proj *j, double t, double *q, double *v, const double *p, const double *u,
+        int level)
 {
-    Proj *j = s->proj;
-    const eomc_model *m = s->m;
+    const eomc_model *m = j->m;
     int n = j->n, nr = level ? j->nvel : j->npos;
     const int *rows = level ? j->vel_rows : j->pos_rows;
     double *x = level ? v : q, *r = level ? j->vel : j->pos;
-    m->c_levels(t, q, v, s->p, s->u, j->pos, j->vel);
+    m->c_levels(t, q, v, p, u, j->pos, j->vel);
     int zero = 1;
     for (int k = 0; k < nr; k++)
         zero &= r[rows[k]] == 0.0;
     if (zero)
         return 1;
-    m->constraint(t, q, v, j->zero, s->p, s->u, j->f, j->B);
-    gsl_matrix_view L = gsl_matrix_view_array(j->L, (size_t)n, (size_t)n);
+    m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
     for (int k = 0; k < nr; k++) {
         double *y = j->Y + k * n;
         memcpy(y, j->B + rows[k] * n, (size_t)n * sizeof *y);
-        gsl_vector_view yv = gsl_vector_view_array(y, (size_t)n);
-        gsl_linalg_cholesky_svx(&L.matrix, &yv.vector);
+        la_cholesky_solve(j->L, n, y);
     }
     for (int k = 0; k < nr; k++)
         for (int l = 0; l < nr; l++)
-            j->S[k * nr + l] = kkt_dot(j->B + rows[k] * n, j->Y + l * n, n);
-    if (kkt_lu_factor(j->S, nr, j->perm[level]) != 0)
+            j->S[k * nr + l] = la_dot(j->B + rows[k] * n, j->Y + l * n, n);
+    if (la_lu_factor(j->S, nr, j->perm[level]) != 0)
         return -1;
     for (int k = 0; k < nr; k++)
         j->mu[k] = r[rows[k]];
-    kkt_lu_solve(j->S, nr, j->perm[level], j->mu);
+    la_lu_solve(j->S, nr, j->perm[level], j->mu);
     double step = 0;
     for (int i = 0; i < n; i++) {
         double d = 0;
@@ -162,43 +172,33 @@ correct(eomc_sim *s, double t, double *q, double *v, int level)
         x[i] -= d;
         step = fmax(step, fabs(d));
     }
-    return step <= PROJ_TOL * (1 + kkt_max_abs(x, n));
+    return step <= PROJ_TOL * (1 + la_max_abs(x, n));
 }
 
 static int
-project_level(eomc_sim *s, double t, double *q, double *v, int level)
+project_level(Proj *j, double t, double *q, double *v, const double *p, const double *u,
+              int level)
 {
-    Proj *j = s->proj;
     if ((level ? j->nvel : j->npos) == 0)
-        return EOMC_OK;
+        return PROJ_OK;
     int rc = 0;
     for (int it = 0; it < PROJ_MAX && rc == 0; it++)
-        rc = correct(s, t, q, v, level);
-    const char *what = level ? "velocities" : "positions";
-    if (rc < 0)
-        return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
-                                 "constraints %s: they are dependent or degenerate "
-                                 "here", what, j->names[level]);
-    if (rc == 0)
-        return sim_numeric_error(s, t, q, v, "projecting the %s onto the constraints "
-                                 "%s did not converge in %d Gauss-Newton steps", what,
-                                 j->names[level], PROJ_MAX);
-    return EOMC_OK;
+        rc = correct(j, t, q, v, p, u, level);
+    return rc < 0 ? PROJ_SINGULAR : rc == 0 ? PROJ_NO_CONVERGENCE : PROJ_OK;
 }
 
 int
-proj_apply(eomc_sim *s, double t, double *q, double *v)
+proj_apply(Proj *j, double t, double *q, double *v, const double *p, const double *u,
+           int *level)
 {
-    Proj *j = s->proj;
-    int n = j->n;
+    *level = 0;
     if (j->nvel == 0)
-        return EOMC_OK;
-    sim_inputs_at(s, t);
-    s->m->mass_bias(t, q, v, s->p, s->u, j->L, j->h);
-    gsl_matrix_view L = gsl_matrix_view_array(j->L, (size_t)n, (size_t)n);
-    if (gsl_linalg_cholesky_decomp1(&L.matrix) != GSL_SUCCESS)
-        return sim_numeric_error(s, t, q, v, "cannot project onto the constraints: "
-                                 "the mass matrix is not positive definite");
-    int rc = project_level(s, t, q, v, 0);
-    return rc ? rc : project_level(s, t, q, v, 1);
+        return PROJ_OK;
+    j->m->mass_bias(t, q, v, p, u, j->L, j->h);
+    if (la_cholesky_factor(j->L, j->n) != 0)
+        return PROJ_NOT_PD;
+    int rc = project_level(j, t, q, v, p, u, 0);
+    if (rc == PROJ_OK)
+        rc = project_level(j, t, q, v, p, u, *level = 1);
+    return rc;
 }

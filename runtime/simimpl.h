@@ -1,17 +1,15 @@
 /*
- * simimpl.h: the inside of an eomc_sim, shared by sim.c (unconstrained
- * models, integration) and kkt.c (constrained ones).  Not installed.
+ * simimpl.h: the inside of an eomc_sim, for the layers above sim.c
+ * (integrate.c, reference.c, report.c).  Not installed.
  */
 #ifndef EOMC_SIMIMPL_H
 #define EOMC_SIMIMPL_H
 
 #include "eomc.h"
+#include "kkt.h"
+#include "project.h"
 
-#include <gsl/gsl_permutation.h>
 #include <stddef.h>
-
-typedef struct Kkt Kkt;
-typedef struct Proj Proj;
 
 struct eomc_sim {
     const eomc_model *m;
@@ -23,62 +21,32 @@ struct eomc_sim {
     double *M, *h, *a, *Mdiag;            /* [n*n], [n], [n], [n] */
     double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
     double *col;             /* [n] one right-hand side of M y = b */
-    eomc_stats *st;          /* counters of the running integration */
-    int progress;            /* show progress (a terminal, > 1 s) */
-    double t_end, wall0, next_show;
-    int shown;
+    double *fk;              /* [nc] f (scratch) */
     size_t errlen;
     char *err;               /* the last error message */
-    Kkt *kkt;                /* constrained models: work arrays, multipliers */
-    Proj *proj;              /* constrained models: projection's work arrays */
-    double *B0, *B1, *fk;    /* constrained: rows of B before and after a step,
-                              * [nc*n] each, and f [nc] (scratch) */
-    double *x0, *xt, *xerr;  /* [2n] the state before a step, trial states */
-    double t0;               /* the time before the step */
+    Kkt *kkt;                /* constrained models: the solve and multipliers */
+    Proj *proj;              /* constrained models: projection */
     int stabilize;           /* EOMC_STABILIZE_... */
     double alpha, beta;      /* Baumgarte's rates */
 };
-
 
 /* A zeroed array of n doubles (at least one), or NULL. */
 double *sim_zeros(size_t n);
 /* "t = T: CAUSE; state: q1 = .., q1' = .."; returns EOMC_ENUMERIC. */
 int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+/* The message of a usage error; returns EOMC_EUSAGE. */
+int sim_usage_error(eomc_sim *s, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 /* u and du/dt at t into s->u, s->dudt (held inputs constant). */
 void sim_inputs_at(eomc_sim *s, double t);
-
-/* kkt.c: LU of the N x N matrix A in place (GSL), -1 when a pivot is
- * negligible: |U_ii| <= KKT_SINGULAR_TOL max|A_ij|; b = A^-1 b with A so
- * factored; a . b; the largest |x_i|. */
-#define KKT_SINGULAR_TOL 1e-13
-int kkt_lu_factor(double *A, int N, gsl_permutation *perm);
-void kkt_lu_solve(double *A, int N, gsl_permutation *perm, double *b);
-double kkt_dot(const double *a, const double *b, int n);
-double kkt_max_abs(const double *x, int n);
-
-/* kkt.c: NULL-safe; kkt_alloc returns NULL when memory runs out. */
-Kkt *kkt_alloc(const eomc_model *m);
-void kkt_free(Kkt *k);
-/* q'' (and the multipliers, kept in the Kkt) at (t, q, v): inputs already
- * evaluated into s->u. */
-int kkt_accel(eomc_sim *s, double t, const double *q, const double *v, double *a);
-/* The Jacobian of x' = f(t, x) for a constrained model. */
-int kkt_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt);
-const double *kkt_multipliers(const Kkt *k);
-/* Each constraint at its own level (g, phi, or f at a). */
-void kkt_residuals(eomc_sim *s, double t, const double *q, const double *v,
-                   const double *a, double *res);
-
-
-/* project.c: NULL-safe; proj_alloc returns NULL when memory runs out. */
-Proj *proj_alloc(const eomc_model *m);
-void proj_free(Proj *j);
-/* Whether the model has constraints below acceleration level. */
-int proj_levels(const Proj *j);
-/* The largest |g| and |g'| or |phi| at (t, q, v). */
-double proj_residual(eomc_sim *s, double t, const double *q, const double *v);
-/* (q, v) onto the holonomic and velocity-level constraints, in place. */
-int proj_apply(eomc_sim *s, double t, double *q, double *v);
+/* Whether the model has a holonomic or first-order constraint. */
+int sim_has_levels(const eomc_sim *s);
+/* The rows of B = df/dq'' at (t, x) into B [nc*n]; -1 when x is not
+ * finite or the accelerations (needed when f is not affine) fail. */
+int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
+/* The largest |g|, |g'| or |phi| at (t, q, v), 0 without such
+ * constraints. */
+double sim_level_residual(eomc_sim *s, double t, const double *q, const double *v);
 
 #endif

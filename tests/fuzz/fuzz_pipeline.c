@@ -51,11 +51,12 @@ compile(void *ctx)
             const char *why;
             Mech *m = mech_build(s, A, P, D);
             Constraints *c = constraints_build(s, m, A, P, D);
+            Invariant *inv = invariant_derive(s, m, c, A, P, D);
             Eom *e = eom_derive(s, m, form, A, P, D, &why);
             if (e && devnull) {
                 EmitInfo info = {"fuzz", "", jacobian, eliminate};
                 EmitStats st[EMIT_NFUNCS];
-                emit_model(devnull, s, m, e, c, P, D, &info, st);
+                emit_model(devnull, s, m, e, c, inv, P, D, &info, st);
             }
         }
     }

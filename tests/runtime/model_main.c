@@ -8,5 +8,5 @@
 int
 main(int argc, char **argv)
 {
-    return eomc_main(argc, argv, &SIM_MODEL);
+    return eomc_main(argc, argv, &SIM_MODEL, NULL);
 }

@@ -83,6 +83,17 @@ osc_accel(double t, const double *q, const double *v, const double *p,
 
 /* The constraint members of a model without constraints. */
 #define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL
+#define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
+
+/* E = T + V, as eomc emits it for a conservative model. */
+static void
+osc_invariant(double t, const double *q, const double *v, const double *p,
+              const double *u, double *h)
+{
+    double TV[2];
+    osc_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
 
 const eomc_model osc_model = {
     EOMC_ABI_VERSION, "osc", "osc.yaml", "lagrange", "",
@@ -91,6 +102,7 @@ const eomc_model osc_model = {
     osc_initial, no_inputs, osc_mass_bias, osc_energy, osc_jacobian,
     osc_accel,
     NO_CONSTRAINTS,
+    osc_invariant, "E", "E = T + V is conserved",
 };
 
 void
@@ -191,6 +203,7 @@ const eomc_model coupled_model = {
     cp_initial, no_inputs, cp_mass_bias, cp_energy, cp_jacobian,
     NULL,
     NO_CONSTRAINTS,
+    NO_INVARIANT,
 };
 
 /* ---- the driven oscillator: E = m x'' + c x' + k x - u - b t ---- */
@@ -267,6 +280,7 @@ const eomc_model driven_model = {
     dr_initial, dr_inputs, dr_mass_bias, dr_energy, dr_jacobian,
     dr_accel,
     NO_CONSTRAINTS,
+    NO_INVARIANT,
 };
 
 void
@@ -351,6 +365,7 @@ const eomc_model nonpd_model = {
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     np_accel,
     NO_CONSTRAINTS,
+    NO_INVARIANT,
 };
 
 const eomc_model nonpd_gsl_model = {
@@ -360,4 +375,5 @@ const eomc_model nonpd_gsl_model = {
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     NULL,
     NO_CONSTRAINTS,
+    NO_INVARIANT,
 };

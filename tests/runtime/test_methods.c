@@ -9,7 +9,12 @@
  *    GSL's rk2 is the embedded RK2(3) pair, which advances with its
  *    third-order solution: 8; rk4imp 16, rk2imp 4, rk1imp 2); fixed
  *    steps are taken as they are, not rejected, though their local error
- *    estimates exceed rtol = atol = 1e-6; h_used divides dt.
+ *    estimates exceed rtol = atol = 1e-6; h_used divides the span
+ *    t_end - t0 evenly and does not depend on dt;
+ *  - a fixed step costs the method's stages only: rk4 takes 4 right-hand
+ *    sides a step (GSL's stepper, which estimates its error by step
+ *    doubling, takes 12 when adaptive); the implicit ones one Jacobian a
+ *    step and their stages times the Newton iterations.
  */
 #include "../unit/check.h"
 #include "rtest.h"
@@ -154,24 +159,27 @@ fixed_h_used(void)
 {
     eomc_stats st;
     osc_fixed("rk4", 0.025, 0.1, &st);
-    CHECK(fabs(st.h_used - 0.025) < 1e-15, "h = 0.025 divides dt = 0.1: h_used = %.17g",
+    CHECK(fabs(st.h_used - 0.025) < 1e-15, "h = 0.025 divides [0, 2]: h_used = %.17g",
           st.h_used);
     double err = osc_fixed("rk4", 0.03, 0.1, &st);
-    double r = 0.1 / st.h_used;
-    CHECK(st.h_used > 0 && st.h_used <= 0.03 && fabs(r - round(r)) < 1e-9,
-          "h = 0.03 adjusted down to divide dt = 0.1: h_used = %.17g, dt/h_used = %.17g",
-          st.h_used, r);
-    CHECK(st.steps == (long)(2.0 / st.h_used + 0.5) && err < 1e-6,
-          "... and used: %ld steps over [0, 2], error %.3g", st.steps, err);
+    CHECK(st.h_used == 2.0 / 67, "h = 0.03 adjusted down to divide [0, 2]: h_used = 2/67 "
+          "(got %.17g)", st.h_used);
+    CHECK(st.steps == 67 && err < 1e-6, "... and used: %ld steps over [0, 2], error %.3g",
+          st.steps, err);
     err = osc_fixed("rk4", 0.3, 0.25, &st);
-    CHECK(fabs(st.h_used - 0.25) < 1e-15 && err < 1e-2,
-          "h = 0.3 > dt = 0.25: h_used = dt (got %.17g)", st.h_used);
+    CHECK(st.h_used == 2.0 / 7 && st.steps == 7,
+          "h = 0.3 > dt = 0.25: steps of 2/7, not shortened to dt (got %.17g, %ld steps)",
+          st.h_used, st.steps);
+    double err2 = osc_fixed("rk4", 0.3, 2.0, &st);
+    CHECK(st.h_used == 2.0 / 7 && err2 == err,
+          "... the same steps and end state whatever dt (dt = 2: %.17g, error %.3g)",
+          st.h_used, err2);
 }
 
-/* A last interval shorter than dt (t_end = 1.03): h_used still the step
- * of the whole intervals, dividing dt; the end state on the closed form. */
+/* t_end = 1.03 is no multiple of h = 0.04: h_used = 1.03 / 26, the end
+ * state on the closed form. */
 static void
-fixed_sliver(void)
+fixed_uneven(void)
 {
     eomc_sim *s = sim_new(&osc_model);
     eomc_run_opts o = opts_for(&osc_model, 1.03, 0.1, "rk4", 1e-6, 1e-6);
@@ -181,12 +189,44 @@ fixed_sliver(void)
     sim_x0(s, x);
     int rc = eomc_sim_integrate(s, &o, x, NULL, NULL, &st);
     osc_exact(OSC_M, OSC_K, OSC_X0, OSC_V0, 1.03, &xe, &ve);
-    double r = 0.1 / st.h_used;
-    CHECK(rc == EOMC_OK && fabs(x[0] - xe) < 1e-6 && st.h_used > 0 && st.h_used <= 0.04 &&
-              fabs(r - round(r)) < 1e-9,
-          "h = 0.04, dt = 0.1, t_end = 1.03: h_used = %.17g divides dt (dt/h_used = %.17g)",
-          st.h_used, r);
+    CHECK(rc == EOMC_OK && fabs(x[0] - xe) < 1e-6 && st.h_used == 1.03 / 26 &&
+              st.steps == 26,
+          "h = 0.04, t_end = 1.03: 26 steps of %.17g, x(t_end) on the closed form",
+          st.h_used);
     eomc_sim_free(s);
+}
+
+/* rk4 with fixed steps: 4 right-hand sides a step (and one for the start).
+ * The implicit methods: one Jacobian a step, and the stages once per
+ * Newton iteration plus the end's derivative.  The oscillator is linear,
+ * so the simplified Newton iteration with the exact Jacobian is exact
+ * after one iteration; a second one is taken only to measure the
+ * contraction (on the first step, and whenever the carried estimate has
+ * grown stale, as in Hairer and Wanner's RADAU5). */
+static void
+fixed_cost(void)
+{
+    eomc_stats st;
+    osc_fixed("rk4", 0.01, 0.1, &st);
+    CHECK(st.steps == 200 && st.rhs_evals == 4 * st.steps + 1 && st.jac_evals == 0,
+          "rk4, fixed steps: %ld right-hand sides for %ld steps: 4 a step", st.rhs_evals,
+          st.steps);
+    osc_fixed("rk4", 0.01, 2.0, &st);
+    CHECK(st.rhs_evals == 4 * st.steps + 1,
+          "... also with one row at the end (%ld for %ld steps)", st.rhs_evals, st.steps);
+    static const struct { const char *name; int stages; } imp[] = {
+        {"rk1imp", 1}, {"rk2imp", 1}, {"rk4imp", 2},
+    };
+    for (int k = 0; k < 3; k++) {
+        osc_fixed(imp[k].name, 0.01, 0.1, &st);
+        long s = imp[k].stages, stages = st.rhs_evals - 1 - st.steps;
+        CHECK(st.jac_evals == st.steps && stages % s == 0 && stages / s >= st.steps &&
+                  stages / s <= 2 * st.steps,
+              "%s, fixed steps: one Jacobian a step, %ld right-hand sides for %ld steps: "
+              "%.2f Newton iterations of %ld stage%s a step, and the end's derivative",
+              imp[k].name, st.rhs_evals, st.steps, (double)stages / s / st.steps, s,
+              s > 1 ? "s" : "");
+    }
 }
 
 int
@@ -202,6 +242,7 @@ main(void)
     fixed_order("rk2imp", 0.02, 4.0);
     fixed_order("rk1imp", 0.02, 2.0);
     fixed_h_used();
-    fixed_sliver();
+    fixed_uneven();
+    fixed_cost();
     return check_done();
 }

@@ -10,8 +10,14 @@
 #  - an input 1/(1 - t) drives the state to a singularity: step size
 #    underflow just before t = 1;
 #  - a force sqrt(1 - t): the acceleration is not finite past t = 1;
-#  - a mass 1 - t at rest: a zero pivot at t = 1 exactly;
-#  - a constraint whose two roots in x'' merge at t = 1: singular system;
+#  - a mass 1 - t at rest: a pivot that is not positive past t = 1;
+#  - a constraint whose two roots in x'' merge at t = 1: singular system
+#    (its multiplier grows as 1/sqrt(1 - t), and the KKT matrix's pivot
+#    falls below 1e-13 of its largest entry at 1 - t = 1.6e-7);
+# Steps are not cut at output times, so they do not land on t = 1: a
+# step whose stage fails is halved, again and again, and the run stops
+# at the failure within a step-size underflow of it, keeping every row
+# before it.
 #  - a constraint on which Newton's method cycles: no convergence at t = 0;
 #  - --max-steps 5: too many steps;
 #  - Appell's particle on the decelerating branch z' = -a v stops at
@@ -49,6 +55,7 @@ kept() {
   ' "$csv"
 }
 
+rows() { echo $(($(wc -l < "$csv") - 1)); }
 state_named() { printf '%s' "$err" | grep -q "; state: $1"; }
 t_of() { printf '%s' "$err" | sed -n 's/.*error: t = \([-0-9.e+]*\):.*/\1/p' | head -n 1; }
 near() { awk -v a="$1" -v b="$2" -v r="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= r * (b < 0 ? -b : b)) }'; }
@@ -64,18 +71,19 @@ ok $? "u = 1/(1 - t): step size underflow at t = $t, 10 rows kept (exit $st)"
 run nan "$specs/fail_nan.yaml"
 t=$(t_of)
 [ $st -eq 3 ] && printf '%s' "$err" | grep -q "acceleration x'' is not finite" &&
-  near "$t" 1 1e-3 && state_named "x = " && kept "$t" 11
-ok $? "force sqrt(1 - t): acceleration x'' not finite at t = $t, 11 rows kept (exit $st)"
+  near "$t" 1 1e-12 && state_named "x = " && kept "$t" && [ "$(rows)" -ge 10 ]
+ok $? "force sqrt(1 - t): acceleration x'' not finite at t = $t, $(rows) rows kept (exit $st)"
 
 run mass "$specs/fail_mass.yaml"
-[ $st -eq 3 ] && printf '%s' "$err" | grep -q "error: t = 1: mass matrix is singular or not positive definite (pivot 1, coordinate x); state: x = 1, x' = 0" &&
-  kept 1 10
-ok $? "mass 1 - t: singular mass matrix at t = 1 exactly, 10 rows kept (exit $st)"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "mass matrix is singular or not positive definite (pivot 1, coordinate x); state: x = 1, x' = 0" &&
+  near "$t" 1 1e-12 && kept "$t" 10
+ok $? "mass 1 - t: singular mass matrix at t = $t, 10 rows kept (exit $st)"
 
 run fold "$specs/fail_fold.yaml"
 t=$(t_of)
 [ $st -eq 3 ] && printf '%s' "$err" | grep -q "the constrained system is singular: the constraints fold (x)" &&
-  near "$t" 1 1e-9 && state_named "x = " && kept "$t" 10
+  near "$t" 1 1e-6 && state_named "x = " && kept "$t" 10
 ok $? "roots merging at t = 1: singular constrained system at t = $t, 10 rows kept (exit $st)"
 
 run cycle "$specs/fail_cycle.yaml"

@@ -1,0 +1,604 @@
+/*
+ * integrate: the integration driver (eomc_sim_integrate).
+ *
+ * GSL provides the steppers (odeiv2 step types, or fixed.c's, which are
+ * the same kind of object) and the step-size control; this file is the
+ * evolve and driver layers above them.  It is GSL's evolve loop with
+ * three differences:
+ *  - output rows are not step ends: the steps go as the tolerance allows,
+ *    straight to t_end, and each row is read off the interpolant of
+ *    dense.c (so a small --dt costs no steps);
+ *  - the derivative at a step's end is kept for the next step and for
+ *    the interpolant, and recomputed when the state was changed
+ *    (projection), where GSL's evolve would reuse a stale one;
+ *  - after every accepted step of a constrained model, the checks and
+ *    corrections of after_step: a degenerate constraint stops the run,
+ *    the drift is measured, and the state is projected when asked.
+ */
+#include "simimpl.h"
+#include "dense.h"
+#include "fixed.h"
+#include "linalg.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+/* ---- the methods ---- */
+
+typedef struct Method {
+    const char *name;
+    const gsl_odeiv2_step_type *const *adaptive; /* GSL's pointer variable */
+    const gsl_odeiv2_step_type *const *fixed;    /* NULL: no fixed steps */
+    int own_fixed;                               /* fixed is fixed.c's */
+    const char *description;
+} Method;
+
+#define FIXED_GSL(g) &g, 0
+#define FIXED_RK4(g) &fixed_rk4, 1
+#define FIXED_RK1IMP(g) &fixed_rk1imp, 1
+#define FIXED_RK2IMP(g) &fixed_rk2imp, 1
+#define FIXED_RK4IMP(g) &fixed_rk4imp, 1
+#define FIXED_NONE(g) NULL, 0
+static const Method methods[] = {
+#define METHOD(name, gsl, fixed, description) {#name, &gsl, FIXED_##fixed(gsl), description},
+#include "methods.def"
+#undef METHOD
+};
+enum { NMETHODS = sizeof methods / sizeof methods[0] };
+
+const char *const eomc_methods[] = {
+#define METHOD(name, gsl, fixed, description) #name,
+#include "methods.def"
+#undef METHOD
+    NULL,
+};
+
+static const Method *
+find_method(const char *name)
+{
+    for (int k = 0; k < NMETHODS; k++)
+        if (name && strcmp(name, methods[k].name) == 0)
+            return &methods[k];
+    return NULL;
+}
+
+const char *
+eomc_method_description(const char *name)
+{
+    const Method *m = find_method(name);
+    return m ? m->description : NULL;
+}
+
+int
+eomc_method_steps(const char *name)
+{
+    const Method *m = find_method(name);
+    return !m ? -1 : !m->fixed ? EOMC_STEPS_ADAPTIVE : m->own_fixed ? EOMC_STEPS_DOUBLING
+                                                                    : EOMC_STEPS_EMBEDDED;
+}
+
+eomc_run_opts
+eomc_run_defaults(const eomc_model *m)
+{
+    eomc_run_opts o = {0.0, m->t_end, m->dt, m->method, m->rtol, m->atol,
+                       m->h_fixed, 0, 0};
+    return o;
+}
+
+/* ---- one run ---- */
+
+/* A step below this fraction of max(|t|, t_end - t0) makes no progress. */
+#define HMIN_REL 1e-14
+/* The first trial step, as a fraction of the span: the control grows it
+ * by up to 5 a step, so it costs a few steps, and never depends on dt. */
+#define H0_REL 1e-5
+/* An output time within this fraction of dt of t_end is t_end: no sliver
+ * of an interval at the end. */
+#define SLIVER 1e-9
+/* march's status when a row callback stopped the run (not a GSL code). */
+enum { ROW_STOP = -1000 };
+
+typedef struct Run {
+    eomc_sim *s;
+    const eomc_run_opts *o;
+    eomc_stats *st;
+    int n, N;                     /* coordinates, state size 2n */
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_driver *d;         /* step, control; d->e is not used */
+    gsl_odeiv2_step *step;        /* the stepper: d->s, or fixed.c's */
+    double t, *x;                 /* the current state (the caller's array) */
+    double *f0, *f1;              /* x' at the start and the end of a step */
+    double *y0, *yerr;            /* the state before a step, error estimate */
+    double *xt, *xerr;            /* trial states of the degeneracy search */
+    double *B0, *B1;              /* rows of B before and after a step */
+    double *xrow;                 /* an interpolated row */
+    Dense *dense;
+    long k, nrows;                /* the next row, and how many there are */
+    double hmin;
+    eomc_row_fn row;
+    void *ctx;
+    int row_status;               /* the callback's nonzero status: ROW_STOP */
+    int progress, shown;          /* progress on the terminal */
+    double wall0, next_show;
+} Run;
+
+static double
+wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Every 256 right-hand sides: after the first second, t on the terminal
+ * every tenth of a second. */
+static void
+show_progress(Run *r, double t)
+{
+    if (!r->progress || (r->st->rhs_evals & 255))
+        return;
+    double now = wall_seconds();
+    if (now < r->next_show)
+        return;
+    r->next_show = now + 0.1;
+    if (now - r->wall0 < 1.0)
+        return;
+    fprintf(stderr, "\r%s: t = %-12.6g of %g", r->s->m->name, t, r->o->t_end);
+    r->shown = 1;
+}
+
+static int
+rhs(double t, const double *x, double *dxdt, void *ctx)
+{
+    Run *r = ctx;
+    int n = r->n;
+    r->st->rhs_evals++;
+    show_progress(r, t);
+    if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
+        return GSL_EBADFUNC;
+    memcpy(dxdt, x + n, (size_t)n * sizeof *dxdt);
+    return GSL_SUCCESS;
+}
+
+static int
+jac(double t, const double *x, double *dfdx, double *dfdt, void *ctx)
+{
+    Run *r = ctx;
+    r->st->jac_evals++;
+    return eomc_sim_jacobian(r->s, t, x, dfdx, dfdt) == EOMC_OK ? GSL_SUCCESS
+                                                                : GSL_EBADFUNC;
+}
+
+static int
+check_opts(eomc_sim *s, const eomc_run_opts *o)
+{
+    const Method *m = find_method(o->method);
+    if (!m)
+        return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
+    if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
+        return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
+                               o->t0);
+    if (!isfinite(o->dt) || o->dt <= 0)
+        return sim_usage_error(s, "the output interval must be positive, not %g", o->dt);
+    if (!(o->rtol >= 0) || !(o->atol >= 0) || !isfinite(o->rtol) ||
+        !isfinite(o->atol) || (o->rtol == 0 && o->atol == 0 && o->h_fixed <= 0))
+        return sim_usage_error(s, "tolerances must be finite, not negative and not "
+                               "both zero (rtol %g, atol %g)", o->rtol, o->atol);
+    if (!(o->h_fixed >= 0) || !isfinite(o->h_fixed))
+        return sim_usage_error(s, "the fixed step must be positive, not %g", o->h_fixed);
+    if (o->h_fixed > 0 && !m->fixed)
+        return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
+                               "for the one-step methods", o->method);
+    if (o->max_steps < 0)
+        return sim_usage_error(s, "the step limit must be positive, not %ld",
+                               o->max_steps);
+    return EOMC_OK;
+}
+
+/* The message for a stepping status other than success. */
+static int
+step_error(Run *r, int status)
+{
+    eomc_sim *s = r->s;
+    int n = r->n;
+    switch (status) {
+    case GSL_EBADFUNC:
+        return EOMC_ENUMERIC; /* the right-hand side said why */
+    case GSL_EMAXITER:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "too many steps (the limit is "
+                                 "%ld)", r->o->max_steps);
+    case GSL_ENOPROG:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "step size underflow (below "
+                                 "%.3g)", r->hmin);
+    case GSL_FAILURE: /* fixed steps: fixed.c's Newton iteration */
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the fixed %s step of %.3g "
+                                 "failed (an implicit method's Newton iteration did not "
+                                 "converge); take smaller fixed steps", r->o->method,
+                                 r->st->h_used);
+    default:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the integrator failed: %s",
+                                 gsl_strerror(status));
+    }
+}
+
+/* ---- degenerate constraints ----
+ *
+ * A constraint degenerates where its row of B = df/dq'' vanishes (Appell's
+ * cone at v = 0): there the accelerations are not determined, and the
+ * KKT solution can pass smoothly through the point onto another branch
+ * without the integrator noticing.  After each step we compare every row
+ * with the row before it: a row that reversed direction went through zero
+ * or close to it.  The step is then bisected to the reversal, and if the
+ * row is small there relative to its size at either end (not merely
+ * turned by a right angle in one long step), the run stops with an error
+ * at that time and state. */
+
+#define DEGENERATE_TOL 1e-3 /* |B_k| at the reversal, relative to the ends */
+enum { BISECTIONS = 60 };
+
+/* The first row k of B1 that reversed direction since B0, or -1. */
+static int
+reversed_row(const Run *r)
+{
+    int n = r->n;
+    for (int k = 0; k < r->s->m->nc; k++)
+        if (la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
+            return k;
+    return -1;
+}
+
+static double
+row_norm(const double *B, int k, int n)
+{
+    return sqrt(la_dot(B + k * n, B + k * n, n));
+}
+
+/* Row k reversed in the step from (t0, r->y0) to t1: bisect the step for
+ * the reversal; an error there if the row is (nearly) zero. */
+static int
+locate_degeneracy(Run *r, int k, double t0, double t1)
+{
+    int n = r->n, N = r->N;
+    double *Bk0 = r->B0 + k * n, ends = fmax(row_norm(r->B0, k, n), row_norm(r->B1, k, n));
+    double lo = 0, hi = t1 - t0, small = INFINITY;
+    for (int it = 0; it < BISECTIONS; it++) {
+        double h = 0.5 * (lo + hi);
+        memcpy(r->xt, r->y0, (size_t)N * sizeof *r->xt);
+        gsl_odeiv2_step_reset(r->step);
+        if (gsl_odeiv2_step_apply(r->step, t0, h, r->xt, r->xerr, NULL, NULL, &r->sys) !=
+                GSL_SUCCESS ||
+            sim_constraint_rows(r->s, t0 + h, r->xt, r->B1) != 0) {
+            small = 0; /* the solve broke down this close to it */
+            break;
+        }
+        small = fmin(small, row_norm(r->B1, k, n));
+        *(la_dot(Bk0, r->B1 + k * n, n) > 0 ? &lo : &hi) = h;
+    }
+    gsl_odeiv2_step_reset(r->step);
+    if (!(small <= DEGENERATE_TOL * ends))
+        return GSL_SUCCESS; /* the row turned, it did not vanish */
+    memcpy(r->xt, r->y0, (size_t)N * sizeof *r->xt);
+    /* the motion up to the degeneracy is known: a last node there, so that
+     * the rows before it are kept */
+    if (lo > 0 &&
+        gsl_odeiv2_step_apply(r->step, t0, lo, r->xt, r->xerr, NULL, r->xrow, &r->sys) ==
+            GSL_SUCCESS)
+        dense_push(r->dense, t0 + lo, r->xt, r->xrow);
+    gsl_odeiv2_step_reset(r->step);
+    sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
+                      "its row of B = df/dq'' vanishes here (it reverses direction), so "
+                      "the accelerations are no longer determined", r->s->m->c_names[k]);
+    return GSL_EBADFUNC;
+}
+
+/* After each accepted step from t0 of a constrained model: check that no
+ * constraint degenerated, measure the drift, and project when asked.  A
+ * projected state is not the one the stepper produced: its derivative is
+ * evaluated again and a multistep method's history is dropped. */
+static int
+after_step(Run *r, double t0)
+{
+    eomc_sim *s = r->s;
+    int n = r->n;
+    double *x = r->x, t = r->t;
+    if (!s->kkt)
+        return GSL_SUCCESS;
+    if (sim_constraint_rows(s, t, x, r->B1) != 0)
+        return GSL_EBADFUNC;
+    int k = reversed_row(r);
+    if (k >= 0 && locate_degeneracy(r, k, t0, t) != GSL_SUCCESS)
+        return GSL_EBADFUNC;
+    if (sim_has_levels(s)) {
+        double res = sim_level_residual(s, t, x, x + n);
+        r->st->max_drift = fmax(r->st->max_drift, res);
+        if (s->stabilize == EOMC_STABILIZE_PROJECT) {
+            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK)
+                return GSL_EBADFUNC;
+            gsl_odeiv2_step_reset(r->step);
+            res = sim_level_residual(s, t, x, x + n);
+            if (sim_constraint_rows(s, t, x, r->B1) != 0)
+                return GSL_EBADFUNC;
+            int rc = rhs(t, x, r->f1, r);
+            if (rc != GSL_SUCCESS)
+                return rc;
+        }
+        r->st->max_residual = fmax(r->st->max_residual, res);
+    }
+    double *B = r->B0; /* the rows after this step are the next one's start */
+    r->B0 = r->B1, r->B1 = B;
+    return GSL_SUCCESS;
+}
+
+/* ---- rows ---- */
+
+/* The time of row k: t0 + k dt (from k, so no rounding accumulates), the
+ * last one exactly t_end. */
+static double
+row_time(const Run *r, long k)
+{
+    return k == r->nrows - 1 ? r->o->t_end : r->o->t0 + (double)k * r->o->dt;
+}
+
+static long
+row_count(const eomc_run_opts *o)
+{
+    double span = o->t_end - o->t0;
+    if (!(span > 0))
+        return 1;
+    /* rows 0 .. K, K the first k with t0 + k dt within a sliver of t_end */
+    double K = ceil(span / o->dt - SLIVER);
+    if (!(o->t0 + K * o->dt >= o->t_end - SLIVER * o->dt))
+        K += 1;
+    return (long)K + 1;
+}
+
+/* Pass every row whose value is settled to the callback (all up to the
+ * last node when final); ROW_STOP when the callback says stop. */
+static int
+emit_rows(Run *r, int final)
+{
+    while (r->k < r->nrows) {
+        double t = row_time(r, r->k);
+        if (t > dense_last(r->dense) || !dense_ready(r->dense, t, final))
+            return GSL_SUCCESS;
+        dense_eval(r->dense, t, final, r->xrow);
+        /* projected steps, projected rows: the interpolant is only as close
+         * to the constraints as it is to the motion */
+        if (r->s->stabilize == EOMC_STABILIZE_PROJECT &&
+            eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
+            return GSL_EBADFUNC;
+        int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
+        if (rc != EOMC_OK) {
+            r->row_status = rc;
+            return ROW_STOP;
+        }
+        r->k++;
+    }
+    return GSL_SUCCESS;
+}
+
+/* ---- steps ---- */
+
+static int
+budget_left(const Run *r)
+{
+    return r->o->max_steps <= 0 || r->st->steps < r->o->max_steps;
+}
+
+/* One accepted step from r->t of at most *h (adaptive): GSL's evolve,
+ * with rejected steps retried from the same start as its steppers
+ * expect.  *h becomes the size the control suggests next. */
+static int
+adaptive_step(Run *r, double *h)
+{
+    const eomc_run_opts *o = r->o;
+    double t0 = r->t, h0 = *h, left = o->t_end - t0;
+    size_t bytes = (size_t)r->N * sizeof *r->x;
+    memcpy(r->y0, r->x, bytes);
+    if (r->s->kkt)
+        kkt_save_start(r->s->kkt);
+    for (;;) {
+        if (r->s->kkt)
+            kkt_restore_start(r->s->kkt);
+        int final = h0 >= left;
+        if (final)
+            h0 = left;
+        else if (2 * h0 > left) /* two halves, not a step and a sliver */
+            h0 = 0.5 * left;
+        int rc = gsl_odeiv2_step_apply(r->step, t0, h0, r->x, r->yerr, r->f0, r->f1,
+                                       &r->sys);
+        if (rc == GSL_EFAULT)
+            return rc;
+        double h_old = h0;
+        int retry = 0;
+        if (rc != GSL_SUCCESS) {
+            /* the stepper could not, or a stage met a state where the
+             * accelerations fail (past a singularity): halve, to go as
+             * close to it as steps can; the message of the nearest such
+             * state stands if no step gets further */
+            h0 *= 0.5;
+            retry = 1;
+        } else if (gsl_odeiv2_control_hadjust(r->d->c, r->step, r->x, r->yerr, r->f1,
+                                              &h0) == GSL_ODEIV_HADJ_DEC) {
+            retry = 1;
+        }
+        if (retry) {
+            memcpy(r->x, r->y0, bytes);
+            r->st->rejected++;
+            if (!(h0 < h_old) || t0 + h0 == t0 || h0 < r->hmin)
+                return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
+            continue;
+        }
+        r->t = final ? o->t_end : t0 + h_old;
+        if (!final)
+            *h = h0;
+        return GSL_SUCCESS;
+    }
+}
+
+/* One fixed step, from r->t to t1. */
+static int
+fixed_step(Run *r, double t1)
+{
+    double t0 = r->t;
+    memcpy(r->y0, r->x, (size_t)r->N * sizeof *r->x);
+    int rc = gsl_odeiv2_step_apply(r->step, t0, t1 - t0, r->x, r->yerr, r->f0, r->f1,
+                                   &r->sys);
+    if (rc != GSL_SUCCESS) {
+        memcpy(r->x, r->y0, (size_t)r->N * sizeof *r->x);
+        return rc;
+    }
+    r->t = t1;
+    return GSL_SUCCESS;
+}
+
+/* Integrate to t_end, passing rows as they are settled. */
+static int
+march(Run *r)
+{
+    const eomc_run_opts *o = r->o;
+    double span = o->t_end - o->t0, h = H0_REL * span;
+    unsigned long nfixed = 0;
+    if (o->h_fixed > 0) {
+        nfixed = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
+        if (nfixed < 1)
+            nfixed = 1;
+        r->st->h_used = span / (double)nfixed;
+    }
+    for (unsigned long i = 1; r->t < o->t_end; i++) {
+        if (!budget_left(r))
+            return GSL_EMAXITER;
+        double t0 = r->t;
+        int rc;
+        if (nfixed)
+            rc = fixed_step(r, i == nfixed ? o->t_end : o->t0 + (double)i * r->st->h_used);
+        else
+            rc = adaptive_step(r, &h);
+        if (rc != GSL_SUCCESS)
+            return rc;
+        r->st->steps++;
+        if ((rc = after_step(r, t0)) != GSL_SUCCESS)
+            return rc;
+        dense_push(r->dense, r->t, r->x, r->f1);
+        double *f = r->f0; /* this step's end is the next one's start */
+        r->f0 = r->f1, r->f1 = f;
+        if (r->t < o->t_end && !nfixed && fabs(h) < r->hmin)
+            return GSL_ENOPROG;
+        if ((rc = emit_rows(r, 0)) != GSL_SUCCESS)
+            return rc;
+    }
+    return GSL_SUCCESS;
+}
+
+static void
+run_free(Run *r)
+{
+    if (r->step && (!r->d || r->step != r->d->s))
+        gsl_odeiv2_step_free(r->step);
+    if (r->d)
+        gsl_odeiv2_driver_free(r->d);
+    dense_free(r->dense);
+    double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
+                        r->xrow};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        free(arrays[k]);
+}
+
+static int
+run_alloc(Run *r, const Method *m)
+{
+    size_t N = (size_t)r->N, nB = (size_t)r->s->m->nc * (size_t)r->n;
+    double span = r->o->t_end - r->o->t0;
+    r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
+    r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
+                                         span > 0 ? H0_REL * span : 1.0, r->o->atol,
+                                         r->o->rtol);
+    r->step = r->d ? r->d->s : NULL;
+    if (r->d && r->o->h_fixed > 0 && *m->fixed != *m->adaptive) {
+        r->step = gsl_odeiv2_step_alloc(*m->fixed, N);
+        if (r->step)
+            gsl_odeiv2_step_set_driver(r->step, r->d);
+    }
+    double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
+                         &r->B1, &r->xrow};
+    int ok = r->d && r->step && (r->dense = dense_alloc(r->n)) != NULL;
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        ok &= (*arrays[k] = sim_zeros(k < 6 ? N : k < 8 ? nB : N)) != NULL;
+    return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
+                                          r->o->method);
+}
+
+static int
+all_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+int
+eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
+                   void *ctx, eomc_stats *st)
+{
+    eomc_stats local;
+    if (!st)
+        st = &local;
+    memset(st, 0, sizeof *st);
+    int rc = check_opts(s, o);
+    if (rc)
+        return rc;
+    int n = s->n;
+    if (!all_finite(x, 2 * n) || !all_finite(s->p, s->m->np))
+        return sim_numeric_error(s, o->t0, x, x + n,
+                                 "the initial state or a parameter is not finite");
+    Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
+             .row = row, .ctx = ctx};
+    r.nrows = row_count(o);
+    r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
+    r.progress = o->progress && isatty(2);
+    r.wall0 = r.next_show = wall_seconds();
+    if ((rc = run_alloc(&r, find_method(o->method))) != EOMC_OK) {
+        run_free(&r);
+        return rc;
+    }
+
+    struct timespec c0, c1;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+    if (sim_has_levels(s))
+        st->max_residual = st->max_drift = sim_level_residual(s, r.t, x, x + n);
+    rc = row ? row(ctx, r.t, x) : EOMC_OK; /* the initial state, as it is */
+    r.k = 1;
+    if (rc == EOMC_OK && s->kkt && sim_constraint_rows(s, r.t, x, r.B0) != 0)
+        rc = EOMC_ENUMERIC;
+    if (rc == EOMC_OK && r.nrows > 1) {
+        int status = rhs(r.t, x, r.f0, &r);
+        if (status == GSL_SUCCESS) {
+            dense_push(r.dense, r.t, x, r.f0);
+            status = march(&r);
+        }
+        /* the rows up to the last step reached stand, also after a failure */
+        if (status != ROW_STOP) {
+            int flushed = emit_rows(&r, 1);
+            if (status == GSL_SUCCESS)
+                status = flushed;
+        }
+        if (status == ROW_STOP)
+            rc = r.row_status;
+        else if (status != GSL_SUCCESS)
+            rc = step_error(&r, status);
+        else if (!all_finite(x, 2 * n))
+            rc = sim_numeric_error(s, r.t, x, x + n, "the state is not finite");
+    }
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    st->cpu_seconds = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+    if (r.shown)
+        fprintf(stderr, "\r%*s\r", 60, "");
+    run_free(&r);
+    return rc;
+}

@@ -1,0 +1,58 @@
+/*
+ * kkt: the accelerations of a constrained model and their Jacobian, as
+ * pure functions of (t, q, q', p, u) that return a status: what they mean
+ * for a user is said by the caller (sim.c), which knows the time and the
+ * state.  The mathematics is in kkt.c and docs/mechanics.md.
+ */
+#ifndef EOMC_KKT_H
+#define EOMC_KKT_H
+
+#include "eomc_model.h"
+
+typedef struct Kkt Kkt;
+
+enum {
+    KKT_OK,
+    KKT_SINGULAR,  /* the KKT matrix (or B_h^T) is singular */
+    KKT_DEPENDENT, /* elimination: df/dq'' of the dependent coordinates is singular */
+    KKT_NEWTON,    /* Newton's method did not converge */
+};
+/* Newton iterations on a constraint nonlinear in q'', at most. */
+enum { KKT_NEWTON_MAX = 50 };
+
+/* NULL when memory runs out; kkt_free is NULL-safe. */
+Kkt *kkt_alloc(const eomc_model *m);
+void kkt_free(Kkt *k);
+
+/* Baumgarte's weights: a holonomic constraint's f gets wv_hol g' + wp_hol g
+ * and a first-order one's gets wv_first phi.  All zero: off. */
+void kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first);
+
+/* q'' into a and the multipliers (kkt_multipliers) at (t, q, v), with
+ * u the inputs at t. */
+int kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
+              const double *u, double *a);
+const double *kkt_multipliers(const Kkt *k);
+
+/* The Jacobian of x' = (q', q'') at x = (q, v), right after kkt_accel
+ * at the same state gave a: dfdx [2n x 2n] and dfdt [2n] (dudt: the
+ * inputs' time derivatives); either may be NULL. */
+int kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u,
+                 const double *dudt, const double *a, double *dfdx, double *dfdt);
+
+/* Each constraint at its own level (g, phi, or f at a) into res [nc]. */
+void kkt_residuals(Kkt *k, double t, const double *q, const double *v, const double *a,
+                   const double *p, const double *u, double *res);
+
+/* Newton's method on a constraint nonlinear in q'' starts from the last
+ * solution.  Save it (at a step's start) and go back to it (before each
+ * attempt of the step), so that a stage of a rejected attempt, perhaps
+ * past a fold where the branch ends, never decides where the next
+ * attempt's solves start, nor which root they find. */
+void kkt_save_start(Kkt *k);
+void kkt_restore_start(Kkt *k);
+
+/* "rod (y), cone (z)": the constraints and their dependent coordinates. */
+const char *kkt_names(const Kkt *k);
+
+#endif

@@ -1,0 +1,37 @@
+/*
+ * project: move a state back onto its holonomic and velocity-level
+ * constraints, as a pure function of (t, q, q', p, u) that returns a
+ * status; sim.c says what it means.  The mathematics is in project.c.
+ */
+#ifndef EOMC_PROJECT_H
+#define EOMC_PROJECT_H
+
+#include "eomc_model.h"
+
+typedef struct Proj Proj;
+
+enum {
+    PROJ_OK,
+    PROJ_NOT_PD,    /* the mass matrix is not positive definite */
+    PROJ_SINGULAR,  /* G M^-1 G^T is singular at the level */
+    PROJ_NO_CONVERGENCE,
+};
+/* Gauss-Newton corrections per level, at most. */
+enum { PROJ_MAX = 20 };
+
+/* NULL when memory runs out; proj_free is NULL-safe. */
+Proj *proj_alloc(const eomc_model *m);
+void proj_free(Proj *j);
+/* Whether the model has constraints below acceleration level. */
+int proj_levels(const Proj *j);
+/* The largest |g| and |g'| or |phi| at (t, q, v). */
+double proj_residual(Proj *j, double t, const double *q, const double *v,
+                     const double *p, const double *u);
+/* (q, v) onto the holonomic and velocity-level constraints, in place.
+ * On failure *level is 0 (positions) or 1 (velocities). */
+int proj_apply(Proj *j, double t, double *q, double *v, const double *p,
+               const double *u, int *level);
+/* The constraints of a level (0: holonomic, 1: velocity), for messages. */
+const char *proj_names(const Proj *j, int level);
+
+#endif

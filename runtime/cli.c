@@ -5,13 +5,22 @@
  * mistake costs nothing but a message (exit status 2).  Parameters are set
  * before the initial state is computed (it may depend on them), and --init
  * overrides that state afterwards, whatever the order on the line.
+ *
+ * Three things a simulator does: one run written as CSV (the default),
+ * the accelerations at the initial state (--accel), and the
+ * work-precision report of report.c (--work-precision).  A run can also
+ * be measured against the reference solution (--error), which both of
+ * the last two share.
  */
 #include "eomc.h"
+#include "report.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifndef EOMC_VERSION
 #define EOMC_VERSION "unknown"
@@ -21,21 +30,30 @@ typedef struct Cli {
     const char *prog;
     eomc_run_opts run;
     const char *out;
-    int stats, summary, accel, assemble;
+    int stats, summary, accel, assemble, work_precision, error;
     int stabilize;        /* EOMC_STABILIZE_... */
     double alpha, beta;   /* Baumgarte's rates */
-    int rates_given;
-    char **set, **init; /* NAME=VALUE arguments, in order */
+    int rates_given, method_given, fixed_given;
+    char **set, **init;   /* NAME=VALUE arguments, in order */
     int nset, ninit;
+    /* the reference and the report */
+    const char *reference, *reference_out, *csv, *plot;
+    const char **methods; /* NULL-terminated */
+    double *tolerances, *steps, target;
+    int ntolerances, nsteps;
+    const char *report_option; /* the first report-only option given */
 } Cli;
 
 typedef struct Csv {
     FILE *f;
     eomc_sim *sim;
     long rows;
-    double E0, dE; /* first energy, largest change seen */
-    double *res;   /* [nc] constraint residuals of a row */
-    double res_max; /* the largest |residual| written */
+    int invariant;       /* the model conserves h (or E) */
+    double h0, dh;       /* its first value, largest change seen */
+    double *res;         /* [nc] constraint residuals of a row */
+    double res_max;      /* the largest |residual| written */
+    const eomc_reference *ref; /* measure against it, or NULL */
+    double err_max, err_end;
 } Csv;
 
 /* ---- messages ---- */
@@ -104,31 +122,50 @@ list_names(FILE *f, const char *const *names, int n, const char *suffix)
 
 /* ---- options ---- */
 
-static const char *const option_names[] = {
-    "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step",
-    "--max-steps", "--set", "--init", "-o", "--stabilize", "--baumgarte", "--stats",
-    "--summary", "--accel", "--assemble", "--help", "--version",
+enum Option {
+    /* with a value */
+    O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
+    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT,
+    O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
+    /* flags */
+    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_HELP, O_VERSION,
+    NOPTIONS,
+    FIRST_FLAG = O_STATS,
 };
-enum { NOPTIONS = sizeof option_names / sizeof option_names[0], FIRST_FLAG = 12 };
+static const char *const option_names[NOPTIONS] = {
+    "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
+    "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
+    "--reference-out", "--methods", "--tolerances", "--steps", "--csv", "--plot",
+    "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
+    "--error", "--help", "--version",
+};
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
 /* Baumgarte's rates when --baumgarte is not given (1/time units). */
 #define DEFAULT_RATE 10.0
+/* The report's tolerances: 1e-3, 1e-4, ..., 1e-13 (rtol = atol). */
+enum { TOL_FIRST_EXP = 3, TOL_LAST_EXP = 13 };
+/* Its fixed steps: these fractions of the time span. */
+static const double default_steps[] = {1e-2, 1e-3, 1e-4};
 
 static void
 help(const Cli *c, const eomc_model *m)
 {
     printf("usage: %s [OPTION]...\n"
            "Simulate %s (%s, %s form%s%s) and write the trajectory as CSV:\n"
-           "t, each coordinate, each velocity (name'), T, V and E = T + V.\n\n",
-           c->prog, m->name, m->spec, m->form, *m->options ? ", " : "", m->options);
+           "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
+           c->prog, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
+           m->invariant_name && !strcmp(m->invariant_name, "h")
+               ? ", h (the conserved energy function)" : "");
     printf("  --t-end T          end time (default %g)\n"
-           "  --dt T             output interval (default %g)\n"
-           "  --method NAME      GSL odeiv2 stepper (default %s): ",
+           "  --dt T             output interval (default %g); rows between steps\n"
+           "                     are interpolated, so a small dt costs no steps\n"
+           "  --method NAME      integration method (default %s):\n",
            m->t_end, m->dt, m->method);
     for (int k = 0; eomc_methods[k]; k++)
-        printf("%s%s", k ? ", " : "", eomc_methods[k]);
-    printf("\n  --rtol X, --atol X adaptive tolerances (default %g, %g)\n"
-           "  --fixed-step H     fixed steps of at most H, evenly dividing dt\n"
+        printf("                       %-8s %s\n", eomc_methods[k],
+               eomc_method_description(eomc_methods[k]));
+    printf("  --rtol X, --atol X adaptive tolerances (default %g, %g)\n"
+           "  --fixed-step H     fixed steps of at most H, evenly dividing the time span\n"
            "  --max-steps N      fail after N steps\n"
            "  --set NAME=VALUE   a parameter, or an input held constant\n"
            "  --init NAME=VALUE  initial coordinate NAME or velocity NAME'\n"
@@ -144,6 +181,21 @@ help(const Cli *c, const eomc_model *m)
     printf("  --stats            integrator statistics on stderr\n"
            "  --summary          a paragraph about the run on stderr\n"
            "  --accel            print q'' at the initial state and exit\n"
+           "  --error            measure the run's error against the reference solution\n"
+           "  --reference FILE   the reference from FILE (a CSV with this simulator's\n"
+           "                     columns and rows) instead of computing it\n"
+           "  --reference-out FILE  write the reference, in this simulator's columns\n"
+           "  --work-precision   what accuracy costs: run every method over tolerances\n"
+           "                     and fixed steps, and report CPU time against error:\n"
+           "    --methods LIST       comma-separated (default: all)\n"
+           "    --tolerances LIST    rtol = atol of the adaptive runs (default 1e-3, ...,\n"
+           "                         1e-13)\n"
+           "    --steps LIST         fixed steps (default span/100, /1000, /10000, for\n"
+           "                         rk4 rk1imp rk2imp rk4imp; given: every one-step\n"
+           "                         method)\n"
+           "    --csv FILE           one row per run\n"
+           "    --plot FILE          the work-precision diagram, .svg or .png (gnuplot)\n"
+           "    --target ERR         the cheapest setting with error_max <= ERR\n"
            "  --help, --version\n\n");
     printf("coordinates: ");
     list_names(stdout, m->q_names, m->nq, "");
@@ -152,8 +204,8 @@ help(const Cli *c, const eomc_model *m)
         printf("%s%s=%g", k ? ", " : "", m->p_names[k], m->p_default[k]);
     printf("\ninputs: ");
     list_names(stdout, m->u_names, m->nu, "");
-    printf("%s\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
-           "computed so far are kept).\n", m->nu ? "" : "(none)");
+    printf("%s\n%s.\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
+           "computed so far are kept).\n", m->nu ? "" : "(none)", m->invariant_note);
 }
 
 /* The whole string as a finite number. */
@@ -176,43 +228,103 @@ real_option(Cli *c, const char *opt, const char *val, double *x, double lo, int 
     return EOMC_OK;
 }
 
+/* The index of a method by name, or a usage error (-1) suggesting one. */
+static int
+method_index(Cli *c, const char *opt, const char *val)
+{
+    int n = 0;
+    while (eomc_methods[n])
+        n++;
+    for (int j = 0; j < n; j++)
+        if (strcmp(val, eomc_methods[j]) == 0)
+            return j;
+    fprintf(stderr, "%s: %s: unknown method '%s'%s; methods: ", c->prog, opt, val,
+            nearest(val, eomc_methods, n, ""));
+    list_names(stderr, eomc_methods, n, "");
+    fprintf(stderr, "\n");
+    return -1;
+}
+
+/* A comma-separated list of positive numbers, into a new array. */
+static int
+number_list(Cli *c, const char *opt, const char *val, double **out, int *count)
+{
+    size_t cap = strlen(val) / 2 + 2;
+    double *x = calloc(cap, sizeof *x);
+    char *copy = strdup(val), *save = NULL;
+    int n = 0, rc = EOMC_OK;
+    if (!x || !copy)
+        rc = usage(c, "out of memory");
+    for (char *w = copy ? strtok_r(copy, ",", &save) : NULL; w && rc == EOMC_OK;
+         w = strtok_r(NULL, ",", &save))
+        rc = real_option(c, opt, w, &x[n++], 0, 1);
+    if (rc == EOMC_OK && n == 0)
+        rc = usage(c, "%s: expected a comma-separated list of numbers, not '%s'", opt, val);
+    free(copy);
+    free(*out);
+    *out = rc == EOMC_OK ? x : (free(x), NULL);
+    *count = rc == EOMC_OK ? n : 0;
+    return rc;
+}
+
+static int
+method_list(Cli *c, const char *val)
+{
+    size_t cap = strlen(val) / 2 + 2;
+    const char **m = calloc(cap, sizeof *m);
+    char *copy = strdup(val), *save = NULL;
+    int n = 0, rc = EOMC_OK;
+    if (!m || !copy)
+        rc = usage(c, "out of memory");
+    for (char *w = copy ? strtok_r(copy, ",", &save) : NULL; w && rc == EOMC_OK;
+         w = strtok_r(NULL, ",", &save)) {
+        int k = method_index(c, "--methods", w);
+        if (k < 0)
+            rc = EOMC_EUSAGE;
+        else
+            m[n++] = eomc_methods[k];
+    }
+    if (rc == EOMC_OK && n == 0)
+        rc = usage(c, "--methods: expected a comma-separated list of methods");
+    free(copy);
+    free(c->methods);
+    c->methods = rc == EOMC_OK ? m : (free(m), NULL);
+    return rc;
+}
+
 static int
 take_value(Cli *c, int k, const char *val)
 {
     eomc_run_opts *r = &c->run;
     const char *opt = option_names[k];
     double x;
+    if (k >= O_METHODS && k <= O_TARGET && !c->report_option)
+        c->report_option = opt;
     switch (k) {
-    case 0: return real_option(c, opt, val, &r->t_end, 0, 0);
-    case 1: return real_option(c, opt, val, &r->dt, 0, 1);
-    case 2:
-        for (int j = 0; eomc_methods[j]; j++)
-            if (strcmp(val, eomc_methods[j]) == 0) {
-                r->method = eomc_methods[j];
-                return EOMC_OK;
-            }
-        {
-            int n = 0;
-            while (eomc_methods[n])
-                n++;
-            fprintf(stderr, "%s: --method: unknown method '%s'%s; methods: ", c->prog,
-                    val, nearest(val, eomc_methods, n, ""));
-            list_names(stderr, eomc_methods, n, "");
-            fprintf(stderr, "\n");
-        }
-        return EOMC_EUSAGE;
-    case 3: return real_option(c, opt, val, &r->rtol, 0, 0);
-    case 4: return real_option(c, opt, val, &r->atol, 0, 0);
-    case 5: return real_option(c, opt, val, &r->h_fixed, 0, 1);
-    case 6:
+    case O_T_END: return real_option(c, opt, val, &r->t_end, 0, 0);
+    case O_DT: return real_option(c, opt, val, &r->dt, 0, 1);
+    case O_METHOD: {
+        int j = method_index(c, opt, val);
+        if (j < 0)
+            return EOMC_EUSAGE;
+        r->method = eomc_methods[j];
+        c->method_given = 1;
+        return EOMC_OK;
+    }
+    case O_RTOL: return real_option(c, opt, val, &r->rtol, 0, 0);
+    case O_ATOL: return real_option(c, opt, val, &r->atol, 0, 0);
+    case O_FIXED_STEP:
+        c->fixed_given = 1;
+        return real_option(c, opt, val, &r->h_fixed, 0, 1);
+    case O_MAX_STEPS:
         if (real_option(c, opt, val, &x, 1, 0) || x != floor(x) || x > 1e15)
             return usage(c, "%s: '%s' is not a whole number of steps", opt, val);
         r->max_steps = (long)x;
         return EOMC_OK;
-    case 7: c->set[c->nset++] = (char *)val; return EOMC_OK;
-    case 8: c->init[c->ninit++] = (char *)val; return EOMC_OK;
-    case 9: c->out = val; return EOMC_OK;
-    case 10:
+    case O_SET: c->set[c->nset++] = (char *)val; return EOMC_OK;
+    case O_INIT: c->init[c->ninit++] = (char *)val; return EOMC_OK;
+    case O_OUT: c->out = val; return EOMC_OK;
+    case O_STABILIZE:
         for (int j = 0; j < 3; j++)
             if (strcmp(val, stabilize_names[j]) == 0) {
                 c->stabilize = j;
@@ -220,7 +332,7 @@ take_value(Cli *c, int k, const char *val)
             }
         return usage(c, "--stabilize: unknown method '%s'%s; methods: none, baumgarte, "
                      "project", val, nearest(val, stabilize_names, 3, ""));
-    case 11: {
+    case O_BAUMGARTE: {
         char *comma = strchr(val, ','), *a = strndup(val, comma ? (size_t)(comma - val) : 0);
         int bad = !comma || !a || !number(a, &c->alpha) || !number(comma + 1, &c->beta);
         free(a);
@@ -232,6 +344,14 @@ take_value(Cli *c, int k, const char *val)
         c->rates_given = 1;
         return EOMC_OK;
     }
+    case O_REFERENCE: c->reference = val; return EOMC_OK;
+    case O_REFERENCE_OUT: c->reference_out = val; return EOMC_OK;
+    case O_METHODS: return method_list(c, val);
+    case O_TOLERANCES: return number_list(c, opt, val, &c->tolerances, &c->ntolerances);
+    case O_STEPS: return number_list(c, opt, val, &c->steps, &c->nsteps);
+    case O_CSV: c->csv = val; return EOMC_OK;
+    case O_PLOT: c->plot = val; return EOMC_OK;
+    case O_TARGET: return real_option(c, opt, val, &c->target, 0, 1);
     }
     return EOMC_OK;
 }
@@ -243,6 +363,47 @@ find_option(const char *arg, size_t len)
         if (strlen(option_names[k]) == len && strncmp(arg, option_names[k], len) == 0)
             return k;
     return -1;
+}
+
+static int
+ends_with(const char *s, const char *tail)
+{
+    size_t a = strlen(s), b = strlen(tail);
+    return a >= b && strcmp(s + a - b, tail) == 0;
+}
+
+/* What the options say together: conflicts are usage errors. */
+static int
+check_combination(Cli *c)
+{
+    if (c->rates_given && c->stabilize < 0)
+        c->stabilize = EOMC_STABILIZE_BAUMGARTE;
+    if (c->rates_given && c->stabilize != EOMC_STABILIZE_BAUMGARTE)
+        return usage(c, "--baumgarte gives the rates of --stabilize baumgarte, not of "
+                     "--stabilize %s", stabilize_names[c->stabilize]);
+    if (c->stabilize < 0)
+        c->stabilize = EOMC_STABILIZE_NONE;
+    if (c->reference)
+        c->error = 1;
+    if (c->report_option && !c->work_precision)
+        return usage(c, "%s belongs to --work-precision (one run writes its trajectory "
+                     "with -o)", c->report_option);
+    if (c->work_precision) {
+        const char *clash = c->accel ? "--accel" : c->out ? "-o" : c->method_given
+                          ? "--method (--methods chooses the report's)" : c->fixed_given
+                          ? "--fixed-step (--steps chooses the report's)" : NULL;
+        if (clash)
+            return usage(c, "--work-precision does not take %s", clash);
+        if (c->plot && !ends_with(c->plot, ".svg") && !ends_with(c->plot, ".png"))
+            return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
+        if (c->plot && !report_have_gnuplot())
+            return usage(c, "--plot: gnuplot is not installed (Debian: apt-get install "
+                         "gnuplot-nox)");
+    }
+    if (c->accel && (c->error || c->reference_out))
+        return usage(c, "--accel does not integrate: nothing to measure against a "
+                     "reference");
+    return EOMC_OK;
 }
 
 /* Returns EOMC_OK, EOMC_EUSAGE, or -1 when --help or --version was handled. */
@@ -264,17 +425,18 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
         if (k >= FIRST_FLAG) {
             if (eq)
                 return usage(c, "%s takes no value", option_names[k]);
-            if (k == FIRST_FLAG + 4) {
+            if (k == O_HELP) {
                 help(c, m);
                 return -1;
             }
-            if (k == FIRST_FLAG + 5) {
+            if (k == O_VERSION) {
                 printf("%s: model %s from %s, %s form%s%s; eomc runtime %s\n", c->prog,
                        m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
                        EOMC_VERSION);
                 return -1;
             }
-            int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble};
+            int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble,
+                           &c->work_precision, &c->error};
             *flag[k - FIRST_FLAG] = 1;
             continue;
         }
@@ -288,14 +450,7 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
         if (rc)
             return rc;
     }
-    if (c->rates_given && c->stabilize < 0)
-        c->stabilize = EOMC_STABILIZE_BAUMGARTE;
-    if (c->rates_given && c->stabilize != EOMC_STABILIZE_BAUMGARTE)
-        return usage(c, "--baumgarte gives the rates of --stabilize baumgarte, not of "
-                     "--stabilize %s", stabilize_names[c->stabilize]);
-    if (c->stabilize < 0)
-        c->stabilize = EOMC_STABILIZE_NONE;
-    return EOMC_OK;
+    return check_combination(c);
 }
 
 /* NAME=VALUE split; *name is a copy to free. */
@@ -375,6 +530,14 @@ apply_inits(Cli *c, const eomc_model *m, double *x)
 
 /* ---- output ---- */
 
+/* Whether the model's conserved quantity is not E = T + V, so that it
+ * gets a column of its own. */
+static int
+own_invariant_column(const eomc_model *m)
+{
+    return m->invariant && m->invariant_name && strcmp(m->invariant_name, "E") != 0;
+}
+
 static void
 print_header(FILE *f, const eomc_model *m)
 {
@@ -384,6 +547,8 @@ print_header(FILE *f, const eomc_model *m)
     for (int i = 0; i < m->nq; i++)
         fprintf(f, ",%s'", m->q_names[i]);
     fprintf(f, ",T,V,E");
+    if (own_invariant_column(m))
+        fprintf(f, ",%s", m->invariant_name);
     for (int k = 0; k < m->nc; k++)
         fprintf(f, ",lambda[%s]", m->c_names[k]);
     for (int k = 0; k < m->nc; k++)
@@ -399,17 +564,28 @@ write_row(void *ctx, double t, const double *x)
     int n = m->nq, nc = m->nc;
     if (nc > 0 && eomc_sim_residuals(w->sim, t, x, x + n, w->res) != EOMC_OK)
         return EOMC_ENUMERIC;
-    double T, V;
+    double T, V, h = 0;
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
-    double E = T + V;
-    if (w->rows == 0)
-        w->E0 = E;
-    else if (fabs(E - w->E0) > w->dE)
-        w->dE = fabs(E - w->E0);
+    if (w->invariant) {
+        eomc_sim_invariant(w->sim, t, x, x + n, &h);
+        if (w->rows == 0)
+            w->h0 = h;
+        w->dh = fmax(w->dh, fabs(h - w->h0));
+    }
+    if (w->ref && w->rows < w->ref->nrows) {
+        const double *xr = w->ref->x + (size_t)w->rows * (size_t)w->ref->nx;
+        double e = 0;
+        for (int i = 0; i < 2 * n; i++)
+            e = fmax(e, fabs(x[i] - xr[i]));
+        w->err_end = isnan(e) ? INFINITY : e;
+        w->err_max = fmax(w->err_max, w->err_end);
+    }
     fprintf(w->f, "%.17g", t);
     for (int i = 0; i < 2 * n; i++)
         fprintf(w->f, ",%.17g", x[i]);
-    fprintf(w->f, ",%.17g,%.17g,%.17g", T, V, E);
+    fprintf(w->f, ",%.17g,%.17g,%.17g", T, V, T + V);
+    if (own_invariant_column(m))
+        fprintf(w->f, ",%.17g", h);
     const double *lam = eomc_sim_multipliers(w->sim);
     for (int k = 0; k < nc; k++)
         fprintf(w->f, ",%.17g", lam[k]);
@@ -423,13 +599,24 @@ write_row(void *ctx, double t, const double *x)
 }
 
 static void
-print_stats(const eomc_stats *st)
+print_stats(const Csv *w, const eomc_stats *st, int stabilize)
 {
+    const eomc_model *m = eomc_sim_model(w->sim);
     fprintf(stderr, "steps %ld\nrejected %ld\nrhs_evals %ld\njac_evals %ld\n"
             "cpu_seconds %.6f\n", st->steps, st->rejected, st->rhs_evals,
             st->jac_evals, st->cpu_seconds);
     if (st->h_used > 0)
         fprintf(stderr, "h_used %.17g\n", st->h_used);
+    fprintf(stderr, "side_steps %ld\n", st->side_steps);
+    if (m->nc > 0)
+        fprintf(stderr, "max_residual %.3g\n", fmax(st->max_residual, w->res_max));
+    if (stabilize == EOMC_STABILIZE_PROJECT)
+        fprintf(stderr, "max_drift %.3g\n", st->max_drift);
+    if (w->invariant)
+        fprintf(stderr, "invariant_drift %.3g\n", w->dh);
+    if (w->ref)
+        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n",
+                w->err_end, w->err_max, w->ref->error);
 }
 
 /* Print words wrapped at 72 columns. */
@@ -473,8 +660,12 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         "of CPU time. ", st->steps, st->rejected, st->rhs_evals, st->jac_evals,
         st->cpu_seconds);
     ADD("Wrote %ld rows every %g to %s. ", w->rows, c->run.dt, c->out ? c->out : "stdout");
-    ADD("Energy E = T + V started at %.10g; its largest change was %.3g (%.3g relative).",
-        w->E0, w->dE, w->dE / fmax(fabs(w->E0), 1e-300));
+    if (w->invariant)
+        ADD("The conserved quantity %s started at %.10g; its largest change was %.3g "
+            "(%.3g relative).", m->invariant_name, w->h0, w->dh,
+            w->dh / fmax(fabs(w->h0), 1e-300));
+    else
+        ADD("No drift is reported: %s.", m->invariant_note);
     if (m->nc > 0)
         ADD(" The largest constraint residual was %.3g", fmax(st->max_residual, w->res_max));
     if (m->nc > 0 && c->stabilize == EOMC_STABILIZE_PROJECT)
@@ -483,7 +674,12 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         ADD(" with Baumgarte's stabilization (rates %g, %g).", c->alpha, c->beta);
     else if (m->nc > 0)
         ADD(", without stabilization.");
+    if (w->ref)
+        ADD(" Against the reference solution (good to %.2g), the error was at most %.3g "
+            "over the rows and %.3g at t = %g.", w->ref->error, w->err_max, w->err_end,
+            c->run.t_end);
 #undef ADD
+    text[0] = (char)(text[0]); /* the model's name starts the paragraph as it is */
     wrap(stderr, text);
 }
 
@@ -579,53 +775,175 @@ check_consistent(const Cli *c, eomc_sim *sim, const double *x, double *res)
         }
 }
 
+/* Open -o's file (or stdout); NULL after saying why. */
+static FILE *
+open_output(const Cli *c, const char *opt, const char *path)
+{
+    if (!path)
+        return stdout;
+    FILE *f = fopen(path, "w");
+    if (!f)
+        fprintf(stderr, "%s: %s: cannot write '%s': %s\n", c->prog, opt, path,
+                strerror(errno));
+    return f;
+}
+
 static int
-simulate(Cli *c, eomc_sim *sim, double *x)
+close_output(const Cli *c, FILE *f, const char *path)
+{
+    int bad = fflush(f) != 0 || ferror(f);
+    if (f != stdout)
+        bad |= fclose(f) != 0;
+    if (bad)
+        fprintf(stderr, "%s: error writing %s\n", c->prog, path ? path : "stdout");
+    return bad;
+}
+
+/* The reference solution: read (--reference) or computed; written out
+ * when --reference-out asks.  EOMC_OK or an exit status. */
+static int
+get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
+              eomc_reference *ref)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    Csv w = {stdout, sim, 0, 0, 0, calloc((size_t)m->nc + 1, sizeof(double)), 0};
-    check_consistent(c, sim, x, w.res);
-    if (c->out && !(w.f = fopen(c->out, "w"))) {
-        fprintf(stderr, "%s: -o: cannot write '%s'\n", c->prog, c->out);
+    int rc;
+    if (c->reference)
+        rc = eomc_reference_read(sim, c->reference, &c->run, ref);
+    else if (!ext)
+        return usage(c, "this simulator was built without its extended-precision "
+                     "functions, so it cannot compute a reference solution (eomc build "
+                     "links them; or give --reference FILE)");
+    else
+        rc = eomc_reference_compute(sim, ext, &c->run, x, ref);
+    if (rc != EOMC_OK) {
+        fprintf(stderr, "%s: %s%s\n", c->prog, rc == EOMC_ENUMERIC ? "error: " : "",
+                eomc_sim_error(sim));
+        return rc;
+    }
+    if (c->reference_out) {
+        Csv w = {open_output(c, "--reference-out", c->reference_out), sim, 0,
+                 m->invariant != NULL, 0, 0, calloc((size_t)m->nc + 1, sizeof(double)),
+                 0, NULL, 0, 0};
+        if (!w.f || !w.res) {
+            free(w.res);
+            eomc_reference_free(ref);
+            return EOMC_EUSAGE;
+        }
+        print_header(w.f, m);
+        rc = EOMC_OK;
+        for (long k = 0; k < ref->nrows && rc == EOMC_OK; k++)
+            rc = write_row(&w, ref->t[k], ref->x + (size_t)k * (size_t)ref->nx);
+        if (rc != EOMC_OK)
+            fprintf(stderr, "%s: --reference-out: %s\n", c->prog, eomc_sim_error(sim));
+        if (close_output(c, w.f, c->reference_out) && rc == EOMC_OK)
+            rc = EOMC_EUSAGE;
         free(w.res);
+        if (rc != EOMC_OK)
+            eomc_reference_free(ref);
+    }
+    return rc;
+}
+
+static int
+simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    eomc_reference ref = {0};
+    Csv w = {stdout, sim, 0, m->invariant != NULL, 0, 0,
+             calloc((size_t)m->nc + 1, sizeof(double)), 0, NULL, 0, 0};
+    check_consistent(c, sim, x, w.res);
+    int rc = EOMC_OK;
+    if ((c->error || c->reference_out) &&
+        (rc = get_reference(c, sim, ext, x, &ref)) != EOMC_OK) {
+        free(w.res);
+        return rc;
+    }
+    if (c->error)
+        w.ref = &ref;
+    if (!(w.f = open_output(c, "-o", c->out))) {
+        free(w.res);
+        eomc_reference_free(&ref);
         return EOMC_EUSAGE;
     }
     print_header(w.f, m);
     eomc_stats st;
     c->run.progress = 1;
-    int rc = eomc_sim_integrate(sim, &c->run, x, write_row, &w, &st);
-    if (fflush(w.f) != 0 || ferror(w.f)) {
-        fprintf(stderr, "%s: error writing %s\n", c->prog, c->out ? c->out : "stdout");
+    rc = eomc_sim_integrate(sim, &c->run, x, write_row, &w, &st);
+    if (close_output(c, w.f, c->out))
         rc = rc ? rc : EOMC_ENUMERIC;
-    }
-    if (w.f != stdout)
-        fclose(w.f);
     if (rc)
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     if (rc == EOMC_ENUMERIC)
         fprintf(stderr, "%s: the %ld rows computed up to then are kept\n", c->prog,
                 w.rows);
-    if (c->stats) {
-        print_stats(&st);
-        if (m->nc > 0)
-            fprintf(stderr, "max_residual %.3g\n", fmax(st.max_residual, w.res_max));
-        if (c->stabilize == EOMC_STABILIZE_PROJECT)
-            fprintf(stderr, "max_drift %.3g\n", st.max_drift);
-    }
+    if (c->stats)
+        print_stats(&w, &st, c->stabilize);
     if (c->summary && !rc)
         print_summary(c, m, &w, &st);
+    if (c->error && !rc && !c->stats && !c->summary)
+        fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
+                "the %ld rows, %.3g at t = %g (the reference is good to %.2g)\n", c->prog,
+                w.err_max, w.rows, w.err_end, c->run.t_end, ref.error);
+    eomc_reference_free(&ref);
     free(w.res);
+    return rc;
+}
+
+/* "t = 0 to 10, 1001 rows every 0.01, q1 = 1, ...": the report's setting. */
+static void
+describe_setting(const Cli *c, const eomc_model *m, const double *x, char *buf,
+                 size_t len)
+{
+    size_t at = (size_t)snprintf(buf, len, "t = %g to %g, %ld rows every %g", c->run.t0,
+                                 c->run.t_end, eomc_run_rows(&c->run), c->run.dt);
+    for (int i = 0; i < 2 * m->nq && at < len; i++)
+        if (x[i] != 0)
+            at += (size_t)snprintf(buf + at, len - at, ", %s%s = %.6g",
+                                   m->q_names[i % m->nq], i < m->nq ? "" : "'", x[i]);
+    if (c->stabilize != EOMC_STABILIZE_NONE && at < len)
+        snprintf(buf + at, len - at, ", --stabilize %s", stabilize_names[c->stabilize]);
+}
+
+static int
+work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    eomc_reference ref = {0};
+    double tols[TOL_LAST_EXP - TOL_FIRST_EXP + 1], steps[3];
+    double *res = calloc((size_t)m->nc + 1, sizeof *res);
+    check_consistent(c, sim, x, res);
+    free(res);
+    int rc = get_reference(c, sim, ext, x, &ref);
+    if (rc != EOMC_OK)
+        return rc;
+    for (int k = TOL_FIRST_EXP; k <= TOL_LAST_EXP; k++)
+        tols[k - TOL_FIRST_EXP] = pow(10.0, -k);
+    for (int k = 0; k < 3; k++)
+        steps[k] = default_steps[k] * (c->run.t_end - c->run.t0);
+    char setting[1024];
+    describe_setting(c, m, x, setting, sizeof setting);
+    Report r = {
+        .sim = sim, .base = c->run, .x0 = x, .ref = &ref,
+        .methods = c->methods ? c->methods : eomc_methods,
+        .tolerances = c->tolerances ? c->tolerances : tols,
+        .ntolerances = c->tolerances ? c->ntolerances : TOL_LAST_EXP - TOL_FIRST_EXP + 1,
+        .steps = c->steps ? c->steps : steps, .nsteps = c->steps ? c->nsteps : 3,
+        .steps_given = c->steps != NULL, .csv = c->csv, .plot = c->plot,
+        .target = c->target, .prog = c->prog, .setting = setting,
+    };
+    rc = report_run(&r);
+    eomc_reference_free(&ref);
     return rc;
 }
 
 int
 eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
 {
-    (void)ext;
     const char *slash = argc > 0 ? strrchr(argv[0], '/') : NULL;
     Cli c = {0};
     c.stabilize = -1;
     c.alpha = c.beta = DEFAULT_RATE;
+    c.target = NAN;
     c.prog = argc > 0 ? (slash ? slash + 1 : argv[0]) : m->name;
     c.run = eomc_run_defaults(m);
     c.set = calloc((size_t)argc + 1, sizeof *c.set);
@@ -644,11 +962,16 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
             (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
-            rc = c.accel ? print_accel(&c, sim, x) : simulate(&c, sim, x);
+            rc = c.accel            ? print_accel(&c, sim, x)
+                 : c.work_precision ? work_precision(&c, sim, ext, x)
+                                    : simulate(&c, sim, ext, x);
     }
     eomc_sim_free(sim);
     free(x);
     free(c.set);
     free(c.init);
+    free(c.methods);
+    free(c.tolerances);
+    free(c.steps);
     return rc;
 }

@@ -7,6 +7,28 @@
  * f[z_i..z_i+l] over one repeated node are q, q' and q''/2.  Its
  * coefficients are computed once per window of nodes and coordinate and
  * reused for every output time in the window's interval.
+ *
+ * The nodes enter the Newton form nearest first: the interval's two ends,
+ * then the others by their distance from it.  Its partial sums are the
+ * interpolants through the nearest 1, 2, ... 5 nodes, each of higher
+ * degree.  Where steps are long and the motion smooth, each is better
+ * than the one before, and the difference of the last two estimates the
+ * error of the fourth (and bounds the fifth's): the ratio of successive
+ * errors goes as (w d)^3 / 1320 for a motion of frequency w and nodes d
+ * apart, so an estimate from the third and fourth would be hundreds of
+ * times too large and send most of rk8pd's rows to side steps for
+ * nothing.  Where steps are short, the node values' own errors (the
+ * tolerance, which is not smooth from step to step) dominate, and higher
+ * degrees amplify them: there a lower interpolant is better.  dense_eval
+ * takes, coordinate by coordinate, the higher of the two successive
+ * interpolants that differ least inside the interval, and their largest
+ * difference there as its error for the whole interval.
+ *
+ * A velocity is the derivative of its coordinate's polynomial, or, where
+ * that is estimated worse, the Hermite interpolant of q' and q'' alone
+ * (degree up to 9): differentiating amplifies the noise of short steps
+ * by 1/h (msbdf at 1e-13 takes steps of 3e-4 on chain5), which the
+ * direct interpolant does not.
  */
 #include "dense.h"
 
@@ -15,9 +37,11 @@
 #include <string.h>
 
 enum {
-    WINDOW = 4,          /* nodes per interpolant: k - 1 .. k + 2 */
+    WINDOW = 5,          /* nodes per interpolant: k - 2 .. k + 2 */
+    BEFORE = 2,          /* of which before the interval [k, k + 1] */
     KEEP = WINDOW + 1,   /* nodes stored: a window and the next node */
     COEFFS = 3 * WINDOW, /* conditions per coordinate */
+    VCOEFFS = 2 * WINDOW, /* ... per velocity */
 };
 
 struct Dense {
@@ -27,8 +51,17 @@ struct Dense {
     double *x[KEEP], *f[KEEP];  /* [2n] each */
     long win_lo;         /* the window whose coefficients are in coef, or -1 */
     int win_m;           /* its number of nodes */
+    long win_k;          /* the interval it was fitted for */
+    long order[WINDOW];  /* its nodes, nearest the interval first */
     double z[COEFFS];
-    double *coef;        /* [n * COEFFS] */
+    double *coef;        /* [n * COEFFS] q's Newton coefficients */
+    double *vcoef;       /* [n * VCOEFFS] q''s, from q' and q'' alone */
+    /* per coordinate, chosen once per window at its interval's middle:
+     * the number of nodes of q's interpolant (lev[3i]), of the one whose
+     * derivative is q' (lev[3i+1]), of q''s direct one (lev[3i+2], 0 when
+     * the derivative is used), and the error estimates of q and q' */
+    int *lev;            /* [3n] */
+    double *est;         /* [2n] */
 };
 
 Dense *
@@ -38,7 +71,10 @@ dense_alloc(int n)
     if (!d)
         return NULL;
     d->n = n;
-    int ok = (d->coef = calloc((size_t)n * COEFFS, sizeof(double))) != NULL;
+    int ok = (d->coef = calloc((size_t)n * COEFFS, sizeof(double))) != NULL &&
+             (d->vcoef = calloc((size_t)n * VCOEFFS, sizeof(double))) != NULL &&
+             (d->lev = calloc(3 * (size_t)n, sizeof(int))) != NULL &&
+             (d->est = calloc(2 * (size_t)n, sizeof(double))) != NULL;
     for (int k = 0; k < KEEP; k++) {
         ok &= (d->x[k] = calloc(2 * (size_t)n, sizeof(double))) != NULL;
         ok &= (d->f[k] = calloc(2 * (size_t)n, sizeof(double))) != NULL;
@@ -59,6 +95,9 @@ dense_free(Dense *d)
     for (int k = 0; k < KEEP; k++)
         free(d->x[k]), free(d->f[k]);
     free(d->coef);
+    free(d->vcoef);
+    free(d->lev);
+    free(d->est);
     free(d);
 }
 
@@ -110,7 +149,7 @@ static void
 window(const Dense *d, long k, int final, long *lo, int *m)
 {
     long first = d->count > KEEP ? d->count - KEEP : 0, last = d->count - 1;
-    *lo = k > first ? k - 1 : first;
+    *lo = k - BEFORE > first ? k - BEFORE : first;
     if (final && *lo + WINDOW - 1 > last)
         *lo = last - (WINDOW - 1) > first ? last - (WINDOW - 1) : first;
     *m = (int)(last - *lo + 1 < WINDOW ? last - *lo + 1 : WINDOW);
@@ -129,32 +168,131 @@ dense_ready(const Dense *d, double t, int final)
     return m == WINDOW;
 }
 
-/* Newton coefficients of coordinate i's polynomial over the window. */
+/* The window's nodes for interval k, nearest the interval first. */
 static void
-fit(Dense *d, long lo, int m)
+order_nodes(Dense *d, long k, long lo, int m)
+{
+    double mid = 0.5 * (node_t(d, k) + node_t(d, k + 1 < d->count ? k + 1 : k));
+    for (int j = 0; j < m; j++)
+        d->order[j] = lo + j;
+    for (int i = 1; i < m; i++) /* insertion sort by distance from mid */
+        for (int j = i; j > 0 && fabs(node_t(d, d->order[j]) - mid) <
+                                     fabs(node_t(d, d->order[j - 1]) - mid); j--) {
+            long x = d->order[j];
+            d->order[j] = d->order[j - 1], d->order[j - 1] = x;
+        }
+}
+
+/* Newton coefficients of each coordinate's polynomial over the window. */
+static void
+fit(Dense *d, long k, long lo, int m)
 {
     int n = d->n, N = 3 * m;
+    order_nodes(d, k, lo, m);
     for (int j = 0; j < N; j++)
-        d->z[j] = node_t(d, lo + j / 3);
+        d->z[j] = node_t(d, d->order[j / 3]);
     for (int i = 0; i < n; i++) {
         double *c = d->coef + (size_t)i * COEFFS;
         for (int j = 0; j < N; j++)
-            c[j] = d->x[(lo + j / 3) % KEEP][i];
+            c[j] = d->x[d->order[j / 3] % KEEP][i];
         for (int l = 1; l < N; l++)
             for (int j = N - 1; j >= l; j--) {
-                const double *f = d->f[(lo + j / 3) % KEEP];
+                const double *f = d->f[d->order[j / 3] % KEEP];
                 if (d->z[j] == d->z[j - l]) /* one node: q' or q''/2 */
                     c[j] = l == 1 ? f[i] : 0.5 * f[n + i];
                 else
                     c[j] = (c[j] - c[j - 1]) / (d->z[j] - d->z[j - l]);
             }
+        /* q' over the nodes z_v = (t_a, t_a, t_b, t_b, ...): q', q'' */
+        double *cv = d->vcoef + (size_t)i * VCOEFFS;
+        int Nv = 2 * m;
+        for (int j = 0; j < Nv; j++)
+            cv[j] = d->x[d->order[j / 2] % KEEP][n + i];
+        for (int l = 1; l < Nv; l++)
+            for (int j = Nv - 1; j >= l; j--) {
+                double za = node_t(d, d->order[j / 2]), zb = node_t(d, d->order[(j - l) / 2]);
+                cv[j] = za == zb ? d->f[d->order[j / 2] % KEEP][n + i]
+                                 : (cv[j] - cv[j - 1]) / (za - zb);
+            }
     }
     d->win_lo = lo;
     d->win_m = m;
+    d->win_k = k;
+}
+
+/* The interpolants of coordinate i through the nearest 1 .. m nodes at
+ * t: p[j] of q and dp[j] its derivative, pv[j] of q' from q' and q''
+ * alone.  Forward sums of the Newton forms, so that they come out on the
+ * way. */
+static void
+partial_sums(const Dense *d, int i, int m, double t, double *p, double *dp, double *pv)
+{
+    const double *c = d->coef + (size_t)i * COEFFS, *cv = d->vcoef + (size_t)i * VCOEFFS;
+    double w = 1, dw = 0, sum = 0, dsum = 0;
+    for (int j = 0; j < 3 * m; j++) {
+        sum += c[j] * w;
+        dsum += c[j] * dw;
+        dw = dw * (t - d->z[j]) + w;
+        w *= t - d->z[j];
+        if (j % 3 == 2)
+            p[j / 3] = sum, dp[j / 3] = dsum;
+    }
+    w = 1, sum = 0;
+    for (int j = 0; j < 2 * m; j++) {
+        sum += cv[j] * w;
+        w *= t - d->z[3 * (j / 2)];
+        if (j % 2 == 1)
+            pv[j / 2] = sum;
+    }
+}
+
+/* Of the successive interpolants with 1 .. m nodes, whose differences
+ * d[j] = |p[j + 1] - p[j]| are given, the number of nodes of the higher
+ * of the two that differ least, and that difference (infinite for a
+ * single one) into *err. */
+static int
+least_pair(const double *d, int m, double *err)
+{
+    int best = m;
+    *err = INFINITY;
+    for (int j = 0; j + 1 < m; j++)
+        if (d[j] < *err)
+            *err = d[j], best = j + 2;
+    return best;
+}
+
+/* The interpolants to use in the window fitted for interval k, chosen by
+ * their differences at a quarter, the half and three quarters of the
+ * interval (the largest of the three): where an interpolant's error
+ * between two of its nodes is largest, and not at one point, where two
+ * of them might happen to cross. */
+static void
+choose(Dense *d, long k, int m)
+{
+    int n = d->n;
+    double a = node_t(d, k), b = node_t(d, k + 1 < d->count ? k + 1 : k);
+    for (int i = 0; i < n; i++) {
+        double dq[WINDOW] = {0}, ddp[WINDOW] = {0}, dpv[WINDOW] = {0}, edp, epv;
+        for (int s = 1; s <= 3; s++) {
+            double p[WINDOW] = {0}, dp[WINDOW] = {0}, pv[WINDOW] = {0};
+            partial_sums(d, i, m, a + 0.25 * s * (b - a), p, dp, pv);
+            for (int j = 0; j + 1 < m; j++) {
+                dq[j] = fmax(dq[j], fabs(p[j + 1] - p[j]));
+                ddp[j] = fmax(ddp[j], fabs(dp[j + 1] - dp[j]));
+                dpv[j] = fmax(dpv[j], fabs(pv[j + 1] - pv[j]));
+            }
+        }
+        d->lev[3 * i] = least_pair(dq, m, &d->est[i]);
+        d->lev[3 * i + 1] = least_pair(ddp, m, &edp);
+        d->lev[3 * i + 2] = least_pair(dpv, m, &epv);
+        if (edp <= epv)
+            d->lev[3 * i + 2] = 0;
+        d->est[n + i] = fmin(edp, epv);
+    }
 }
 
 void
-dense_eval(Dense *d, double t, int final, double *x)
+dense_eval(Dense *d, double t, int final, double *x, double *err)
 {
     int n = d->n;
     long k = interval(d, t), lo;
@@ -162,20 +300,31 @@ dense_eval(Dense *d, double t, int final, double *x)
     for (long i = k; i <= k + 1 && i < d->count; i++)
         if (node_t(d, i) == t) {
             memcpy(x, d->x[i % KEEP], 2 * (size_t)n * sizeof *x);
+            memset(err, 0, 2 * (size_t)n * sizeof *err);
             return;
         }
     window(d, k, final, &lo, &m);
-    if (lo != d->win_lo || m != d->win_m)
-        fit(d, lo, m);
-    int N = 3 * m;
-    for (int i = 0; i < n; i++) {
-        const double *c = d->coef + (size_t)i * COEFFS;
-        double p = c[N - 1], dp = 0;
-        for (int j = N - 2; j >= 0; j--) {
-            dp = dp * (t - d->z[j]) + p;
-            p = p * (t - d->z[j]) + c[j];
-        }
-        x[i] = p;
-        x[n + i] = dp;
+    if (lo != d->win_lo || m != d->win_m || k != d->win_k) {
+        fit(d, k, lo, m);
+        choose(d, k, m);
     }
+    for (int i = 0; i < n; i++) {
+        double p[WINDOW] = {0}, dp[WINDOW] = {0}, pv[WINDOW] = {0};
+        const int *lev = d->lev + 3 * i;
+        partial_sums(d, i, m, t, p, dp, pv);
+        x[i] = p[lev[0] - 1];
+        x[n + i] = lev[2] ? pv[lev[2] - 1] : dp[lev[1] - 1];
+        err[i] = d->est[i];
+        err[n + i] = d->est[n + i];
+    }
+}
+
+/* The node at the start of the interval holding t. */
+double
+dense_start(const Dense *d, double t, const double **x, const double **dxdt)
+{
+    long k = interval(d, t);
+    *x = d->x[k % KEEP];
+    *dxdt = d->f[k % KEEP];
+    return node_t(d, k);
 }

@@ -5,12 +5,15 @@
  *
  * Each accepted step end is a node with the state x = (q, q') and its
  * derivative x' = (q', q'').  Between nodes k and k + 1 the coordinates
- * are the polynomial through q, q' and q'' at the nodes k - 1 .. k + 2
- * (Hermite interpolation, degree 11: error O(h^12) for smooth motion;
- * fewer nodes at the ends of the run), and the velocities are its
- * derivative.  A cubic through the two ends of a step only would be off
+ * are a polynomial through q, q' and q'' at the nodes nearest them among
+ * k - 2 .. k + 2 (Hermite interpolation of degree up to 14: error
+ * O(h^15) for smooth motion; the degree is chosen per coordinate, see
+ * dense.c), and the velocities are its derivative.  A cubic through the two ends of a step only would be off
  * by far more than a high-order method's error: on chain5 with rk8pd at
- * 1e-10, 2.7e-6 against 1.3e-10 at the step ends.
+ * 1e-10, 2.7e-6 against 1.3e-10 at the step ends.  Where steps are so long
+ * that even this is not good enough (bsimp takes 17 steps for chain5 over
+ * 10 s), its error estimate says so, and the driver computes the row by a
+ * step of its own instead (integrate.c).
  */
 #ifndef EOMC_DENSE_H
 #define EOMC_DENSE_H
@@ -28,8 +31,13 @@ void dense_push(Dense *d, double t, const double *x, const double *dxdt);
  * nodes that decide it are all there (or `final`: no more will come). */
 int dense_ready(const Dense *d, double t, int final);
 /* The state at t (dense_ready), into x [2n]; exactly a node's state at
- * its own time. */
-void dense_eval(Dense *d, double t, int final, double *x);
+ * its own time.  err [2n]: an estimate of its error, entry by entry (the
+ * difference from the interpolant of one node less, which is one order
+ * less accurate; infinite with a single node). */
+void dense_eval(Dense *d, double t, int final, double *x, double *err);
+/* The node at the start of the interval holding t (dense_ready): its
+ * time, state and derivative, for a step from there to t. */
+double dense_start(const Dense *d, double t, const double **x, const double **dxdt);
 /* The time of the last node (-inf without one). */
 double dense_last(const Dense *d);
 

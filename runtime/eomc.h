@@ -121,6 +121,11 @@ typedef struct eomc_run_opts {
 
 /* Defaults from the model's scene. */
 eomc_run_opts eomc_run_defaults(const eomc_model *m);
+/* The output times: rows k = 0 .. eomc_run_rows(o) - 1 at t0 + k dt, the
+ * last one exactly t_end (a time within 1e-9 dt of t_end is t_end: no
+ * sliver of an interval at the end). */
+long eomc_run_rows(const eomc_run_opts *o);
+double eomc_run_row_time(const eomc_run_opts *o, long k);
 
 typedef struct eomc_stats {
     long steps, rejected;    /* accepted and rejected steps */
@@ -131,6 +136,10 @@ typedef struct eomc_stats {
      * t0 and after every step (after projection, when projecting), and
      * the largest found right after a step, before any projection. */
     double max_residual, max_drift;
+    /* Rows computed by a step of their own, from the step end before them,
+     * where the interpolant's error estimate failed the tolerances (long
+     * steps; see runtime/dense.h).  Their right-hand sides are counted. */
+    long side_steps;
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with
@@ -144,6 +153,43 @@ typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
  * passed to `row` stand. */
 int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
                        eomc_row_fn row, void *ctx, eomc_stats *st);
+
+/* ---- the reference solution ----
+ *
+ * The trajectory of a run's output times, computed from the model's
+ * extended-precision functions (eomc_model_ext) by a method that is not
+ * one of those it judges: Gragg-Bulirsch-Stoer extrapolation, in eomc_ext,
+ * to a tolerance refined until two successive solutions agree.  The same
+ * parameters, held inputs and initial state as the double runs; the true
+ * motion, so no stabilization (a consistent start stays on the
+ * constraints).  Or read from a CSV with the simulator's columns. */
+typedef struct eomc_reference {
+    long nrows;           /* output times t0 + k dt and t_end */
+    int nx;               /* 2 nq */
+    double *t, *x;        /* [nrows], [nrows * nx] */
+    double error;         /* its estimated largest error in any entry of x (the
+                           * difference of the last two refinements), or NAN
+                           * when read from a file */
+    double scale;         /* the largest |x| entry over the rows */
+    int refinements;      /* solutions computed */
+    double tolerance;     /* the last one's relative tolerance */
+    long steps, rhs_evals;  /* of the last solution */
+    double cpu_seconds;   /* all solutions */
+    char source[512];     /* how it was made, or the file it came from */
+} eomc_reference;
+
+/* Compute the reference for o's output times from x0 [2 nq].  Returns
+ * EOMC_OK, EOMC_EUSAGE (bad options, or ext NULL or not this model's),
+ * or EOMC_ENUMERIC when the model fails (message as for a run). */
+int eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
+                           const double *x0, eomc_reference *ref);
+/* Read a reference from a CSV whose header names t, every coordinate and
+ * every velocity (name') among its columns (other columns are ignored),
+ * with one row at each of o's output times.  EOMC_EUSAGE with a message
+ * "FILE:LINE: ..." when it does not fit. */
+int eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
+                        eomc_reference *ref);
+void eomc_reference_free(eomc_reference *ref);
 
 /* The last error: "t = 1.25: mass matrix is not positive definite (pivot
  * 2, q2); state q1 = ..., ..." */

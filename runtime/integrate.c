@@ -102,6 +102,9 @@ eomc_run_defaults(const eomc_model *m)
 #define SLIVER 1e-9
 /* march's status when a row callback stopped the run (not a GSL code). */
 enum { ROW_STOP = -1000 };
+/* A side step (a row computed by a step of its own) is split in at most
+ * this many pieces. */
+enum { SIDE_PIECES_MAX = 64 };
 
 typedef struct Run {
     eomc_sim *s;
@@ -116,7 +119,11 @@ typedef struct Run {
     double *y0, *yerr;            /* the state before a step, error estimate */
     double *xt, *xerr;            /* trial states of the degeneracy search */
     double *B0, *B1;              /* rows of B before and after a step */
-    double *xrow;                 /* an interpolated row */
+    double *xrow, *erow;          /* an interpolated row, its error estimate */
+    double *fs, *fs2;             /* a side step's derivatives, in and out */
+    gsl_odeiv2_step *side;        /* the stepper of side steps: the method's own
+                                   * for a one-step method, else side_rk8pd */
+    gsl_odeiv2_step *side_rk8pd;
     Dense *dense;
     long k, nrows;                /* the next row, and how many there are */
     double hmin;
@@ -217,9 +224,9 @@ step_error(Run *r, int status)
                                  "%.3g)", r->hmin);
     case GSL_FAILURE: /* fixed steps: fixed.c's Newton iteration */
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the fixed %s step of %.3g "
-                                 "failed (an implicit method's Newton iteration did not "
-                                 "converge); take smaller fixed steps", r->o->method,
-                                 r->st->h_used);
+                                 "failed (an implicit method's Newton iteration, or "
+                                 "bsimp's extrapolation, did not converge); take smaller "
+                                 "fixed steps", r->o->method, r->st->h_used);
     default:
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the integrator failed: %s",
                                  gsl_strerror(status));
@@ -336,16 +343,15 @@ after_step(Run *r, double t0)
 
 /* ---- rows ---- */
 
-/* The time of row k: t0 + k dt (from k, so no rounding accumulates), the
- * last one exactly t_end. */
-static double
-row_time(const Run *r, long k)
+/* t0 + k dt is computed from k, so no rounding accumulates. */
+double
+eomc_run_row_time(const eomc_run_opts *o, long k)
 {
-    return k == r->nrows - 1 ? r->o->t_end : r->o->t0 + (double)k * r->o->dt;
+    return k == eomc_run_rows(o) - 1 ? o->t_end : o->t0 + (double)k * o->dt;
 }
 
-static long
-row_count(const eomc_run_opts *o)
+long
+eomc_run_rows(const eomc_run_opts *o)
 {
     double span = o->t_end - o->t0;
     if (!(span > 0))
@@ -357,16 +363,70 @@ row_count(const eomc_run_opts *o)
     return (long)K + 1;
 }
 
+/* Whether the interpolant's error estimate err passes the run's test,
+ * |err_i| <= atol + rtol |x_i|, the test of GSL's step control.  Fixed
+ * steps have no tolerance to pass: there the interpolant stands (its
+ * error is that of the node values it passes through, or less). */
+static int
+interpolant_ok(const Run *r, const double *x, const double *err)
+{
+    if (r->o->h_fixed > 0)
+        return 1;
+    for (int i = 0; i < r->N; i++)
+        if (!(err[i] <= r->o->atol + r->o->rtol * fabs(x[i])))
+            return 0;
+    return 1;
+}
+
+/* The row at t by a step of its own from the node before it: 1, 2, 4,
+ * ... pieces until each passes the step control.  It is part of an
+ * accepted step, so the method's truncation error is smaller there; it
+ * leaves the run's steps as they are. */
+static int
+side_step(Run *r, double t, double *x)
+{
+    const double *xk, *fk;
+    double tk = dense_start(r->dense, t, &xk, &fk);
+    size_t bytes = (size_t)r->N * sizeof *x;
+    r->st->side_steps++;
+    for (int pieces = 1; pieces <= SIDE_PIECES_MAX; pieces *= 2) {
+        double h = (t - tk) / pieces;
+        memcpy(x, xk, bytes);
+        memcpy(r->fs, fk, bytes);
+        int p = 0;
+        for (; p < pieces; p++) {
+            double h1 = h, *f = r->fs;
+            if (gsl_odeiv2_step_apply(r->side, tk + p * h, h, x, r->xerr, r->fs, r->fs2,
+                                      &r->sys) != GSL_SUCCESS ||
+                gsl_odeiv2_control_hadjust(r->d->c, r->side, x, r->xerr, r->fs2, &h1) ==
+                    GSL_ODEIV_HADJ_DEC)
+                break;
+            r->fs = r->fs2, r->fs2 = f;
+        }
+        if (p == pieces)
+            return GSL_SUCCESS;
+    }
+    sim_numeric_error(r->s, t, NULL, NULL, "the row at this time could not be computed to "
+                      "the tolerances, neither by interpolation nor by %d steps from "
+                      "t = %.17g", SIDE_PIECES_MAX, tk);
+    return GSL_EBADFUNC;
+}
+
 /* Pass every row whose value is settled to the callback (all up to the
  * last node when final); ROW_STOP when the callback says stop. */
 static int
 emit_rows(Run *r, int final)
 {
     while (r->k < r->nrows) {
-        double t = row_time(r, r->k);
+        double t = eomc_run_row_time(r->o, r->k);
         if (t > dense_last(r->dense) || !dense_ready(r->dense, t, final))
             return GSL_SUCCESS;
-        dense_eval(r->dense, t, final, r->xrow);
+        dense_eval(r->dense, t, final, r->xrow, r->erow);
+        if (!interpolant_ok(r, r->xrow, r->erow)) {
+            int rc = side_step(r, t, r->xrow);
+            if (rc != GSL_SUCCESS)
+                return rc;
+        }
         /* projected steps, projected rows: the interpolant is only as close
          * to the constraints as it is to the motion */
         if (r->s->stabilize == EOMC_STABILIZE_PROJECT &&
@@ -449,6 +509,10 @@ fixed_step(Run *r, double t1)
     memcpy(r->y0, r->x, (size_t)r->N * sizeof *r->x);
     int rc = gsl_odeiv2_step_apply(r->step, t0, t1 - t0, r->x, r->yerr, r->f0, r->f1,
                                    &r->sys);
+    /* bsimp says a step failed by an infinite error estimate, not a status */
+    for (int i = 0; rc == GSL_SUCCESS && i < r->N; i++)
+        if (!isfinite(r->yerr[i]))
+            rc = GSL_FAILURE;
     if (rc != GSL_SUCCESS) {
         memcpy(r->x, r->y0, (size_t)r->N * sizeof *r->x);
         return rc;
@@ -498,13 +562,15 @@ march(Run *r)
 static void
 run_free(Run *r)
 {
+    if (r->side_rk8pd)
+        gsl_odeiv2_step_free(r->side_rk8pd);
     if (r->step && (!r->d || r->step != r->d->s))
         gsl_odeiv2_step_free(r->step);
     if (r->d)
         gsl_odeiv2_driver_free(r->d);
     dense_free(r->dense);
     double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
-                        r->xrow};
+                        r->xrow, r->erow, r->fs, r->fs2};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
 }
@@ -524,11 +590,18 @@ run_alloc(Run *r, const Method *m)
         if (r->step)
             gsl_odeiv2_step_set_driver(r->step, r->d);
     }
+    /* a multistep method's stepper has a history a side step would spoil */
+    r->side = r->step;
+    if (r->d && !m->fixed) {
+        r->side = r->side_rk8pd = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, N);
+        if (r->side)
+            gsl_odeiv2_step_set_driver(r->side, r->d);
+    }
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
-                         &r->B1, &r->xrow};
-    int ok = r->d && r->step && (r->dense = dense_alloc(r->n)) != NULL;
+                         &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2};
+    int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        ok &= (*arrays[k] = sim_zeros(k < 6 ? N : k < 8 ? nB : N)) != NULL;
+        ok &= (*arrays[k] = sim_zeros(k == 6 || k == 7 ? nB : N)) != NULL;
     return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
                                           r->o->method);
 }
@@ -559,7 +632,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
                                  "the initial state or a parameter is not finite");
     Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
              .row = row, .ctx = ctx};
-    r.nrows = row_count(o);
+    r.nrows = eomc_run_rows(o);
     r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
     r.progress = o->progress && isatty(2);
     r.wall0 = r.next_show = wall_seconds();

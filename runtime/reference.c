@@ -1,0 +1,697 @@
+/*
+ * reference: the reference solution (eomc.h), computed in extended
+ * precision by Gragg-Bulirsch-Stoer extrapolation, or read from a file.
+ *
+ * The method.  A step of size H from (t, X) runs the explicit midpoint
+ * rule with n_j = 2j substeps, j = 1 .. LEVELS,
+ *     z_0 = X,  z_1 = z_0 + h f(t, z_0),
+ *     z_(m+1) = z_(m-1) + 2h f(t + m h, z_m),   h = H / n_j,
+ * whose end value T_j1 = z_(n_j) has an error expansion in even powers of
+ * h (Gragg), and extrapolates to h = 0 by Aitken and Neville:
+ *     T_j,k+1 = T_jk + (T_jk - T_(j-1)k) / ((n_j / n_(j-k))^2 - 1).
+ * T_LL is of order 2 LEVELS; |T_LL - T_L,L-1|, which estimates the error
+ * of the lower-order value, controls the step size, so the value kept is
+ * better than the control asks.  Steps end exactly on each output time.
+ * Nothing in it is one of the methods being judged (GSL's bsimp is a
+ * semi-implicit extrapolation with another sequence and control).
+ *
+ * The error test of a component is relative to its magnitude so far,
+ * floored at FLOOR of its group's (coordinates, velocities): scaling the
+ * units of length or time scales every test alike.
+ *
+ * The refinement.  Solutions are computed at the tolerances TOL_FIRST,
+ * TOL_FIRST / TOL_STEP, ... until two successive ones agree to the
+ * rounding of doubles (AGREE_ULPS at the trajectory's largest entry), or
+ * a refinement needs STEP_GROWTH times the steps of the one before (the
+ * step-size control then fights rounding, not truncation), or
+ * MAX_SOLUTIONS were made.  The reference is the last one; its error
+ * estimate is the last difference, which is the error of the solution
+ * before it: the last one improves on it, so the estimate is cautious.
+ * On chain5 (t = 0 .. 10, q1 = 1) the solutions at 1e-15, 1e-16, 1e-17
+ * differ by 1.1e-14 and 8.9e-16, and those at 1e-17, 1e-18, 1e-19 agree
+ * to the last bit of their doubles.
+ *
+ * The arithmetic.  Every right-hand side is the model's own functions
+ * compiled in eomc_ext (eomc_model_ext): accel's unrolled solve, or M and
+ * h with an LU solve; constrained models solve the KKT system (Newton's
+ * method when a constraint is not affine in q'') whatever the doubles use.
+ * GSL has no extended-precision linear algebra, hence linalg.c's la_ext.
+ */
+#include "simimpl.h"
+#include "linalg.h"
+
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+enum {
+    LEVELS = 8,           /* extrapolation order 2 LEVELS = 16 (seq below) */
+    MAX_SOLUTIONS = 5,
+    STEP_BUDGET = 2000000,   /* steps of the first solution before giving up */
+    STEP_GROWTH = 8,      /* a refinement taking more times the steps than the
+                           * solution before it is in rounding's realm: stop */
+    SIDE_PIECES_MAX = 64, /* a side step is split at most this much */
+    NEWTON_MAX = 50,
+};
+#define TOL_FIRST 1e-15   /* relative tolerance of the first solution */
+#define TOL_STEP 10.0     /* each refinement's tolerance is this much tighter */
+/* Two solutions agree when they differ by at most this many units of
+ * double rounding at the trajectory's largest entry: the rows are doubles,
+ * and no reference of doubles is better than that. */
+#define AGREE_ULPS 4.0
+#define FLOOR 1e-6        /* a component's scale is at least this of its group's */
+#define SAFETY 0.9        /* step-size control: aim below the tolerance */
+#define GROW_MAX 4.0      /* ... and change the step by at most these factors */
+#define SHRINK_MAX 0.2
+#define HMIN_REL 1e-15    /* a step below this of the span makes no progress */
+#define SIDE_SLACK 10.0   /* side_step's error test, in tolerances */
+
+typedef struct Ref {
+    eomc_sim *s;
+    const eomc_model *m;
+    const eomc_model_ext *x;
+    int n, N, nc, nu;
+    eomc_ext *p, *u, *dudt;       /* [np], [nu], [nu] */
+    eomc_ext *M, *h, *K, *r;      /* [n*n], [n], [(n+nc)^2], [n+nc] */
+    eomc_ext *f, *B, *a, *lam;    /* [nc], [nc*n], [n], [nc] */
+    eomc_ext *cj[9];              /* c_jacobian's outputs; cj[6] is dBda */
+    int *perm;                    /* [n+nc] */
+    int have_prev;                /* a and lam hold the last solution */
+    eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
+    eomc_ext *z0, *z1, *z2, *c0, *c1;    /* [N] midpoint sums, compensations */
+    eomc_ext *Y, *G, *Y2;         /* [N] side steps' state, x', result */
+    eomc_ext *T;                  /* [LEVELS * N] the extrapolation tableau */
+    eomc_ext *mag;                /* [N] the largest |X_i| so far */
+    double tol;
+    long steps, evals;
+    double fail_t, *fail_x;       /* where a right-hand side failed [N] */
+} Ref;
+
+/* The model's inputs at t into r->u, held ones as the doubles hold them. */
+static void
+inputs_at(Ref *r, eomc_ext t)
+{
+    if (r->nu == 0)
+        return;
+    r->x->inputs(t, r->p, r->u, r->dudt);
+    for (int k = 0; k < r->nu; k++) {
+        double held;
+        if (eomc_sim_input_held(r->s, k, &held))
+            r->u[k] = held;
+    }
+}
+
+/* q'' = -M^-1 h for an unconstrained model; 0 or -1. */
+static int
+accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
+{
+    int n = r->n;
+    if (r->x->accel)
+        return r->x->accel(t, q, v, r->p, r->u, a) == 0 ? 0 : -1;
+    r->x->mass_bias(t, q, v, r->p, r->u, r->M, a);
+    if (la_ext_lu_factor(r->M, n, r->perm) != 0)
+        return -1;
+    la_ext_lu_solve(r->M, n, r->perm, a);
+    for (int i = 0; i < n; i++)
+        a[i] = -a[i];
+    return 0;
+}
+
+/* One Newton step on M a + h + B^T lam = 0, f = 0 at (r->a, r->lam);
+ * the largest relative change, or -1 when the KKT matrix is singular. */
+static eomc_ext
+kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
+{
+    int n = r->n, nc = r->nc, W = n + nc, affine = r->m->c_affine;
+    r->x->constraint(t, q, v, r->a, r->p, r->u, r->f, r->B);
+    eomc_ext **c = r->cj, *dBda = c[6];
+    if (!affine)
+        r->x->c_jacobian(t, q, v, r->a, r->p, r->u, c[0], c[1], c[2], c[3], c[4], c[5],
+                         c[6], c[7], c[8]);
+    for (int i = 0; i < n; i++) {
+        eomc_ext e = r->h[i];
+        for (int j = 0; j < n; j++) {
+            eomc_ext k = r->M[i * n + j];
+            for (int c = 0; !affine && c < nc; c++)
+                k += r->lam[c] * dBda[(c * n + i) * n + j];
+            r->K[i * W + j] = k;
+            e += r->M[i * n + j] * r->a[j];
+        }
+        for (int c = 0; c < nc; c++) {
+            r->K[i * W + n + c] = r->K[(n + c) * W + i] = r->B[c * n + i];
+            e += r->B[c * n + i] * r->lam[c];
+        }
+        r->r[i] = -e;
+    }
+    for (int c = 0; c < nc; c++) {
+        for (int d = 0; d < nc; d++)
+            r->K[(n + c) * W + n + d] = 0;
+        r->r[n + c] = -r->f[c];
+    }
+    if (la_ext_lu_factor(r->K, W, r->perm) != 0)
+        return -1;
+    la_ext_lu_solve(r->K, W, r->perm, r->r);
+    eomc_ext change[2] = {0, 0}, size[2] = {0, 0};
+    for (int i = 0; i < W; i++) {
+        eomc_ext *y = i < n ? &r->a[i] : &r->lam[i - n];
+        *y += r->r[i];
+        change[i >= n] = fmaxl(change[i >= n], fabsl(r->r[i]));
+        size[i >= n] = fmaxl(size[i >= n], fabsl(*y));
+    }
+    /* relative, q'' and lambda apart (their units differ) */
+    return fmaxl(size[0] > 0 ? change[0] / size[0] : change[0],
+                 size[1] > 0 ? change[1] / size[1] : change[1]);
+}
+
+/* q'' of a constrained model: the KKT system, one solve when affine in
+ * q'', else Newton's method from the last solution until its relative
+ * steps reach rounding or stop shrinking (they can go no further); 0, or
+ * -1 when singular or not converging. */
+static int
+accel_kkt(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
+{
+    int n = r->n, nc = r->nc;
+    r->x->mass_bias(t, q, v, r->p, r->u, r->M, r->h);
+    if (r->m->c_affine || !r->have_prev) {
+        memset(r->a, 0, (size_t)n * sizeof *r->a);
+        memset(r->lam, 0, (size_t)nc * sizeof *r->lam);
+    }
+    int done = r->m->c_affine;
+    eomc_ext last = INFINITY, d;
+    for (int it = 0; it < NEWTON_MAX; it++) {
+        if ((d = kkt_step(r, t, q, v)) < 0)
+            return -1;
+        if (done || d <= 16 * LDBL_EPSILON || (it > 2 && d >= last)) {
+            done = 1;
+            break;
+        }
+        last = d;
+    }
+    if (!done)
+        return -1;
+    r->have_prev = 1;
+    memcpy(a, r->a, (size_t)n * sizeof *a);
+    return 0;
+}
+
+/* F = (v, q'') at (t, X); -1 (r->fail_t set) when the model fails there. */
+static int
+rhs(Ref *r, eomc_ext t, const eomc_ext *X, eomc_ext *F)
+{
+    int n = r->n;
+    r->evals++;
+    inputs_at(r, t);
+    memcpy(F, X + n, (size_t)n * sizeof *F);
+    int rc = r->nc ? accel_kkt(r, t, X, X + n, F + n) : accel_free(r, t, X, X + n, F + n);
+    for (int i = 0; rc == 0 && i < n; i++)
+        if (!isfinite(F[n + i]))
+            rc = -1;
+    if (rc) {
+        r->fail_t = (double)t;
+        for (int i = 0; i < r->N; i++)
+            r->fail_x[i] = (double)X[i];
+    }
+    return rc;
+}
+
+/* The error of a step: max_i |T_LL - T_L,L-1| / (tol scale_i). */
+static double
+step_error(const Ref *r, const eomc_ext *hi, const eomc_ext *lo)
+{
+    int n = r->n;
+    eomc_ext group[2] = {0, 0}, worst = 0;
+    for (int i = 0; i < r->N; i++)
+        group[i >= n] = fmaxl(group[i >= n], r->mag[i]);
+    for (int i = 0; i < r->N; i++) {
+        eomc_ext sc = fmaxl(fmaxl(r->mag[i], fabsl(hi[i])), FLOOR * group[i >= n]);
+        eomc_ext d = fabsl(hi[i] - lo[i]);
+        if (d > 0)
+            worst = fmaxl(worst, sc > 0 ? d / (r->tol * sc) : INFINITY);
+    }
+    return (double)worst;
+}
+
+/* The step sequence n_j (Bulirsch's): the weights of the extrapolation
+ * to h = 0 sum in absolute value to 9.1, where the harmonic 2, 4, 6, ...
+ * of the same order gives 119, and rounding errors grow with them. */
+static const int seq[LEVELS] = {2, 4, 6, 8, 12, 16, 24, 32};
+
+/* One extrapolated step of size H from (t, X) with F = f(t, X): T_LL into
+ * out, and its error (> 1: reject).  Row k of r->T holds the latest
+ * T_(.,k+1) of the tableau; the midpoint sums are compensated (Kahan), so
+ * that the n_j additions of a level cost no more than rounding once. */
+static int
+gbs_step(Ref *r, eomc_ext t, eomc_ext H, const eomc_ext *X, const eomc_ext *F,
+         eomc_ext *out, double *err)
+{
+    int N = r->N;
+    eomc_ext *z0 = r->z0, *z1 = r->z1, *c0 = r->c0, *c1 = r->c1, *g = r->z2;
+    for (int j = 0; j < LEVELS; j++) {
+        int nj = seq[j];
+        eomc_ext h = H / nj, den[LEVELS];
+        for (int i = 0; i < N; i++) {
+            z0[i] = X[i];
+            z1[i] = X[i] + h * F[i];
+            c0[i] = c1[i] = 0;
+        }
+        for (int m = 1; m < nj; m++) {
+            if (rhs(r, t + m * h, z1, g) != 0)
+                return -1;
+            for (int i = 0; i < N; i++) { /* z0 := z0 + 2h g, compensated */
+                eomc_ext y = 2 * h * g[i] - c0[i], s = z0[i] + y;
+                c0[i] = (s - z0[i]) - y;
+                z0[i] = s;
+            }
+            eomc_ext *tz = z0, *tc = c0; /* the new value is the next z1 */
+            z0 = z1, c0 = c1, z1 = tz, c1 = tc;
+        }
+        for (int k = 0; k < j; k++) { /* (n_j / n_(j-k-1))^2 - 1 */
+            eomc_ext ratio = (eomc_ext)nj / seq[j - k - 1];
+            den[k] = ratio * ratio - 1;
+        }
+        for (int i = 0; i < N; i++) {
+            eomc_ext c = z1[i] - c1[i]; /* the sum with its lost low part */
+            for (int k = 0; k < j; k++) {
+                eomc_ext *row = r->T + (size_t)k * N;
+                eomc_ext next = c + (c - row[i]) / den[k];
+                row[i] = c;
+                c = next;
+            }
+            r->T[(size_t)j * N + i] = c;
+        }
+    }
+    memcpy(out, r->T + (size_t)(LEVELS - 1) * N, (size_t)N * sizeof *out);
+    *err = step_error(r, out, r->T + (size_t)(LEVELS - 2) * N);
+    return 0;
+}
+
+/* The state at t1 inside an accepted step from (t, r->X): a step of its
+ * own from there, leaving the main steps as they are.  Being part of an
+ * accepted step, its truncation error is smaller than the step's (the
+ * error expansion goes in powers of its size); at tolerances near the
+ * rounding level its estimate can still exceed the tolerance by rounding
+ * alone, so it is split (2, 4, ... equal pieces) only when the estimate
+ * passes SIDE_SLACK times the tolerance.  0 or -1. */
+static int
+side_step(Ref *r, eomc_ext t, eomc_ext t1, eomc_ext *out)
+{
+    int N = r->N;
+    for (int pieces = 1; pieces <= SIDE_PIECES_MAX; pieces *= 2) {
+        eomc_ext h = (t1 - t) / pieces;
+        memcpy(r->Y, r->X, (size_t)N * sizeof *r->Y);
+        memcpy(r->G, r->F, (size_t)N * sizeof *r->G);
+        int p = 0;
+        for (; p < pieces; p++) {
+            double e;
+            if ((p > 0 && rhs(r, t + p * h, r->Y, r->G) != 0) ||
+                gbs_step(r, t + p * h, h, r->Y, r->G, r->Y, &e) != 0 || !(e <= SIDE_SLACK))
+                break;
+        }
+        if (p == pieces) {
+            memcpy(out, r->Y, (size_t)N * sizeof *out);
+            return 0;
+        }
+    }
+    r->fail_t = (double)t;
+    for (int i = 0; i < N; i++)
+        r->fail_x[i] = (double)r->X[i];
+    return -1;
+}
+
+/* One solution at tolerance r->tol: the rows [nrows * N] (doubles).
+ * The steps go as the tolerance allows, not to the output times, so that
+ * rounding accumulates over as few of them as it can; an output time
+ * inside a step gets a side step from the step's start. */
+static int
+solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budget)
+{
+    int N = r->N;
+    long nrows = eomc_run_rows(o), k = 1;
+    for (int i = 0; i < N; i++) {
+        r->X[i] = x0[i];
+        r->mag[i] = fabsl(r->X[i]);
+        rows[i] = x0[i];
+    }
+    r->have_prev = 0;
+    r->steps = r->evals = 0;
+    eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t, H = span / 100;
+    if (nrows > 1 && rhs(r, t, r->X, r->F) != 0)
+        return -1;
+    while (t < t_end) {
+        if (r->steps >= budget)
+            return -2;
+        eomc_ext left = t_end - t, step = H >= left ? left : 2 * H > left ? left / 2 : H;
+        double err;
+        if (gbs_step(r, t, step, r->X, r->F, r->Xn, &err) != 0)
+            err = INFINITY; /* a stage failed: a smaller step may not */
+        double fac = err > 0 ? SAFETY * pow(err, -1.0 / (2 * LEVELS - 1)) : GROW_MAX;
+        fac = fmin(GROW_MAX, fmax(SHRINK_MAX, fac));
+        if (!(err <= 1.0)) {
+            H = step * (isfinite(err) ? fac : 0.5);
+            if (!(t + H > t) || H < HMIN_REL * span) {
+                r->fail_t = (double)t;
+                for (int i = 0; i < N; i++)
+                    r->fail_x[i] = (double)r->X[i];
+                return -1;
+            }
+            continue;
+        }
+        eomc_ext t1 = step == left ? t_end : t + step;
+        for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
+            eomc_ext tk = eomc_run_row_time(o, k), *x = r->Y2;
+            if (tk == t1)
+                x = r->Xn;
+            else if (side_step(r, t, tk, x) != 0)
+                return -1;
+            for (int i = 0; i < N; i++)
+                rows[(size_t)k * N + i] = (double)x[i];
+        }
+        memcpy(r->X, r->Xn, (size_t)N * sizeof *r->X);
+        t = t1;
+        r->steps++;
+        for (int i = 0; i < N; i++)
+            r->mag[i] = fmaxl(r->mag[i], fabsl(r->X[i]));
+        if (rhs(r, t, r->X, r->F) != 0)
+            return -1;
+        H = step * fac;
+    }
+    return 0;
+}
+
+static void
+ref_free(Ref *r)
+{
+    eomc_ext *arrays[] = {r->p,  r->u,  r->dudt, r->M,  r->h,  r->K,  r->r,  r->f,
+                          r->B,  r->a,  r->lam,  r->cj[0], r->X, r->F, r->Xn, r->z0,
+                          r->z1, r->z2, r->c0,   r->c1, r->Y,  r->G,  r->Y2, r->T,
+                          r->mag};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        free(arrays[k]);
+    free(r->perm);
+    free(r->fail_x);
+}
+
+static eomc_ext *
+ext_zeros(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(eomc_ext));
+}
+
+static int
+ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
+{
+    const eomc_model *m = s->m;
+    size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, W = n + nc;
+    size_t N = 2 * n;
+    *r = (Ref){.s = s, .m = m, .x = x, .n = m->nq, .N = 2 * m->nq, .nc = m->nc,
+               .nu = m->nu};
+    /* c_jacobian's nine outputs in one block: dfdq, dfdv [nc n], dfdu
+     * [nc nu], dfdt [nc], dBdq, dBdv, dBda [nc n n], dBdu [nc n nu],
+     * dBdt [nc n] */
+    size_t cj[9] = {nc * n, nc * n, nc * nu, nc, nc * n * n, nc * n * n, nc * n * n,
+                    nc * n * nu, nc * n}, ncj = 0;
+    for (int k = 0; k < 9; k++)
+        ncj += cj[k];
+    eomc_ext **arrays[] = {&r->p,  &r->u,  &r->dudt, &r->M,  &r->h,  &r->K,  &r->r,
+                           &r->f,  &r->B,  &r->a,    &r->lam, &r->cj[0], &r->X, &r->F,
+                           &r->Xn, &r->z0, &r->z1,   &r->z2, &r->c0, &r->c1, &r->Y,
+                           &r->G,  &r->Y2, &r->T,    &r->mag};
+    size_t sizes[] = {(size_t)m->np, nu, nu, n * n, n, W * W, W,
+                      nc, nc * n, n, nc, ncj, N, N,
+                      N, N, N, N, N, N, N,
+                      N, N, LEVELS * N, N};
+    int ok = 1;
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
+        ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
+    ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
+    ok &= (r->fail_x = calloc(N, sizeof *r->fail_x)) != NULL;
+    if (!ok)
+        return -1;
+    for (int k = 1; k < 9; k++)
+        r->cj[k] = r->cj[k - 1] + cj[k - 1];
+    for (int k = 0; k < m->np; k++)
+        r->p[k] = s->p[k];
+    return 0;
+}
+
+static double
+cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Why a solution stopped (solve's -1: the model failed at r->fail_x, or
+ * the steps became too small; -2: too many steps): the doubles' own
+ * message where their solve fails at that state too. */
+static int
+failure(Ref *r, int st)
+{
+    eomc_sim *s = r->s;
+    const double *x = r->fail_x;
+    if (st == -2)
+        return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution took "
+                                 "more than %d steps at tolerance %.0e", STEP_BUDGET,
+                                 r->tol);
+    if (eomc_sim_accel(s, r->fail_t, x, x + r->n, s->a) != EOMC_OK)
+        return EOMC_ENUMERIC; /* that message says why */
+    return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution cannot "
+                             "be continued here at tolerance %.0e: the model fails in "
+                             "extended precision, or its steps became too small",
+                             r->tol);
+}
+
+static double
+max_abs(const double *x, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++)
+        m = fmax(m, fabs(x[i]));
+    return m;
+}
+
+/* The largest |a_i - b_i|. */
+static double
+max_diff(const double *a, const double *b, size_t n)
+{
+    double d = 0;
+    for (size_t i = 0; i < n; i++)
+        d = fmax(d, fabs(a[i] - b[i]));
+    return d;
+}
+
+int
+eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
+                       const double *x0, eomc_reference *ref)
+{
+    const eomc_model *m = s->m;
+    memset(ref, 0, sizeof *ref);
+    if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
+        return sim_usage_error(s, "no extended-precision functions of %s to compute a "
+                               "reference with (the model's C compiled again with "
+                               "-DEOMC_EXTENDED, as eomc build does)", m->name);
+    if (m->nc && !m->c_affine && !ext->c_jacobian)
+        return sim_usage_error(s, "the extended-precision functions of %s lack "
+                               "c_jacobian", m->name);
+    if (!(o->t_end >= o->t0) || !(o->dt > 0) || !isfinite(o->t_end) || !isfinite(o->dt))
+        return sim_usage_error(s, "the reference needs an output interval and an end "
+                               "time after the start");
+    Ref r;
+    long nrows = eomc_run_rows(o);
+    size_t size = (size_t)nrows * (size_t)(2 * m->nq);
+    double *prev = calloc(size, sizeof *prev);
+    ref->t = calloc((size_t)nrows, sizeof *ref->t);
+    ref->x = calloc(size, sizeof *ref->x);
+    if (ref_alloc(&r, s, ext) != 0 || !prev || !ref->t || !ref->x) {
+        ref_free(&r);
+        free(prev);
+        eomc_reference_free(ref);
+        return sim_usage_error(s, "out of memory for a reference of %ld rows", nrows);
+    }
+    ref->nrows = nrows;
+    ref->nx = r.N;
+    for (long k = 0; k < nrows; k++)
+        ref->t[k] = eomc_run_row_time(o, k);
+    double c0 = cpu_now();
+    long budget = STEP_BUDGET;
+    int rc = EOMC_OK;
+    r.tol = TOL_FIRST;
+    for (int k = 0; k < MAX_SOLUTIONS; k++, r.tol /= TOL_STEP) {
+        double *rows = k ? prev : ref->x; /* the new solution goes to prev */
+        int st = solve(&r, o, x0, rows, budget);
+        if (st != 0 && k == 0) {
+            rc = failure(&r, st);
+            break;
+        }
+        if (st != 0)
+            break; /* rounding (or the model) allows no finer one: keep the last */
+        budget = STEP_GROWTH * r.steps;
+        ref->refinements = k + 1;
+        ref->tolerance = r.tol;
+        ref->steps = r.steps;
+        ref->rhs_evals = r.evals;
+        if (k == 0) {
+            ref->scale = max_abs(ref->x, size);
+            continue;
+        }
+        ref->error = max_diff(ref->x, prev, size);
+        memcpy(ref->x, prev, size * sizeof *prev);
+        if (ref->error <= AGREE_ULPS * DBL_EPSILON * ref->scale)
+            break;
+    }
+    if (rc == EOMC_OK && ref->refinements < 2)
+        rc = sim_numeric_error(s, o->t0, x0, x0 + m->nq, "no refinement of the reference "
+                               "solution could be computed at tolerance %.0e, so it cannot "
+                               "say how good it is", r.tol);
+    ref->cpu_seconds = cpu_now() - c0;
+    snprintf(ref->source, sizeof ref->source, "Gragg-Bulirsch-Stoer extrapolation of "
+             "order %d in %d-bit floating point (%s), %d solutions to relative "
+             "tolerance %.0e", 2 * LEVELS, LDBL_MANT_DIG, "long double",
+             ref->refinements, ref->tolerance);
+    free(prev);
+    ref_free(&r);
+    if (rc != EOMC_OK)
+        eomc_reference_free(ref);
+    return rc;
+}
+
+void
+eomc_reference_free(eomc_reference *ref)
+{
+    free(ref->t);
+    free(ref->x);
+    ref->t = ref->x = NULL;
+    ref->nrows = 0;
+}
+
+/* ---- a reference from a file ---- */
+
+/* The index of column name among the header's cols, or -1. */
+static int
+column(char **cols, int ncols, const char *name)
+{
+    for (int k = 0; k < ncols; k++)
+        if (strcmp(cols[k], name) == 0)
+            return k;
+    return -1;
+}
+
+/* Split line at commas in place (the newline cut); the number of fields. */
+static int
+split(char *line, char **fields, int max)
+{
+    int n = 0;
+    line[strcspn(line, "\r\n")] = '\0';
+    for (char *p = line; n < max;) {
+        fields[n++] = p;
+        char *comma = strchr(p, ',');
+        if (!comma)
+            break;
+        *comma = '\0';
+        p = comma + 1;
+    }
+    return n;
+}
+
+int
+eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
+                    eomc_reference *ref)
+{
+    const eomc_model *m = s->m;
+    int n = m->nq, N = 2 * n;
+    memset(ref, 0, sizeof *ref);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return sim_usage_error(s, "--reference: cannot read %s: %s", path, strerror(errno));
+    long nrows = eomc_run_rows(o), line_no = 1;
+    size_t cap = 0, maxf = 0;
+    char *line = NULL, **fields = NULL;
+    int *col = calloc((size_t)N + 1, sizeof *col), rc = EOMC_OK, nf = 0;
+    ssize_t len = getline(&line, &cap, f);
+    if (len > 0)
+        maxf = (size_t)len / 2 + 2;
+    fields = calloc(maxf + 1, sizeof *fields);
+    ref->t = calloc((size_t)nrows, sizeof *ref->t);
+    ref->x = calloc((size_t)nrows * (size_t)N, sizeof *ref->x);
+    if (!col || !fields || !ref->t || !ref->x)
+        rc = sim_usage_error(s, "--reference: out of memory");
+    else if (len <= 0)
+        rc = sim_usage_error(s, "%s:1: empty: expected a header naming t, the coordinates "
+                             "and the velocities", path);
+    else
+        nf = split(line, fields, (int)maxf);
+    char name[256];
+    for (int i = -1; rc == EOMC_OK && i < N; i++) {
+        snprintf(name, sizeof name, "%s%s", i < 0 ? "t" : m->q_names[i % n],
+                 i >= n ? "'" : "");
+        int k = column(fields, nf, name);
+        if (k < 0)
+            rc = sim_usage_error(s, "%s:1: no column '%s': the header must name t, every "
+                                 "coordinate and every velocity (name'), as the "
+                                 "simulator's CSV does", path, name);
+        col[i + 1] = k;
+    }
+    long k = 0;
+    while (rc == EOMC_OK && (len = getline(&line, &cap, f)) > 0) {
+        line_no++;
+        if ((size_t)len / 2 + 2 > maxf) {
+            maxf = (size_t)len / 2 + 2;
+            char **more = realloc(fields, (maxf + 1) * sizeof *fields);
+            if (!more) {
+                rc = sim_usage_error(s, "--reference: out of memory");
+                break;
+            }
+            fields = more;
+        }
+        nf = split(line, fields, (int)maxf);
+        if (k >= nrows) {
+            rc = sim_usage_error(s, "%s:%ld: more rows than the %ld output times of t = %g "
+                                 "to %g every %g", path, line_no, nrows, o->t0, o->t_end,
+                                 o->dt);
+            break;
+        }
+        double *row = ref->x + (size_t)k * (size_t)N;
+        for (int i = -1; i < N && rc == EOMC_OK; i++) {
+            int c = col[i + 1];
+            char *end;
+            double x = c < nf ? strtod(fields[c], &end) : NAN;
+            if (c >= nf || end == fields[c] || *end != '\0' || !isfinite(x))
+                rc = sim_usage_error(s, "%s:%ld: column %d is not a finite number", path,
+                                     line_no, c + 1);
+            else if (i < 0)
+                ref->t[k] = x;
+            else
+                row[i] = x;
+        }
+        double want = eomc_run_row_time(o, k);
+        if (rc == EOMC_OK && !(fabs(ref->t[k] - want) <= 1e-9 * o->dt))
+            rc = sim_usage_error(s, "%s:%ld: a row at t = %.17g where the runs have one at "
+                                 "t = %.17g: the reference needs a row at each output time "
+                                 "(t = %g to %g every %g)", path, line_no, ref->t[k], want,
+                                 o->t0, o->t_end, o->dt);
+        ref->t[k] = want;
+        k++;
+    }
+    if (rc == EOMC_OK && k != nrows)
+        rc = sim_usage_error(s, "%s:%ld: %ld rows where the runs have %ld output times "
+                             "(t = %g to %g every %g)", path, line_no, k, nrows, o->t0,
+                             o->t_end, o->dt);
+    fclose(f);
+    free(line);
+    free(fields);
+    free(col);
+    if (rc != EOMC_OK) {
+        eomc_reference_free(ref);
+        return rc;
+    }
+    ref->nrows = nrows;
+    ref->nx = N;
+    ref->error = NAN;
+    ref->scale = max_abs(ref->x, (size_t)nrows * (size_t)N);
+    snprintf(ref->source, sizeof ref->source, "read from %s", path);
+    return EOMC_OK;
+}

@@ -5,6 +5,7 @@
  *                [--jacobian auto|unrolled|seeded]
  *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST] [--jacobian HOW]
  *   eomc run     SPEC [--form NAME] [--effects LIST] [--jacobian HOW] [simulator options]
+ *   eomc accuracy SPEC [the same]: run's simulator with --work-precision
  *
  * The pipeline: spec_load (YAML -> Spec) -> mech_build (T, V, S, Q) ->
  * a form's residual -> eom_derive (M, h, Jacobians) -> emit_model (C).
@@ -40,6 +41,7 @@ usage(FILE *f)
         "usage: eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]\n"
         "       eomc build SPEC [-o EXE] [--form NAME] [--effects LIST]\n"
         "       eomc run SPEC [--form NAME] [--effects LIST] [SIMULATOR OPTIONS]\n"
+        "       eomc accuracy SPEC [--form NAME] [--effects LIST] [SIMULATOR OPTIONS]\n"
         "       eomc --help | --version\n"
         "\n"
         "  --form NAME      equation form: %s (default lagrange)\n"
@@ -52,7 +54,11 @@ usage(FILE *f)
         "                   using multipliers; --form maggi is lagrange with it\n"
         "  --jacobian HOW   auto (default), unrolled or seeded: how the Jacobian\n"
         "                   of large models is printed (docs: emit.h)\n"
-        "Simulator options (eomc run, and built executables): see `EXE --help`.\n",
+        "Simulator options (eomc run, and built executables): see `EXE --help`.\n"
+        "eomc accuracy runs the simulator's --work-precision report: every method\n"
+        "over tolerances and fixed steps, CPU time against the error measured on a\n"
+        "reference solution (--methods, --tolerances, --steps, --csv, --plot,\n"
+        "--target; see `EXE --help`).\n",
         form_names());
 }
 
@@ -89,15 +95,17 @@ parse_args(int argc, char **argv, Options *o)
     if (!strcmp(argv[1], "--version"))
         printf("eomc %s\n", EOMC_VERSION), exit(0);
     o->cmd = argv[1];
-    static const char *const cmds[] = {"compile", "build", "run"};
-    if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run")) {
-        const char *near = diag_nearest(o->cmd, cmds, 3);
+    static const char *const cmds[] = {"compile", "build", "run", "accuracy"};
+    if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run") &&
+        strcmp(o->cmd, "accuracy")) {
+        const char *near = diag_nearest(o->cmd, cmds, 4);
         if (near)
             fprintf(stderr, "eomc: unknown command '%s'; did you mean '%s'?\n", o->cmd, near),
                 exit(EXIT_USAGE);
-        usage_error("unknown command '%s'; expected compile, build or run", o->cmd);
+        usage_error("unknown command '%s'; expected compile, build, run or accuracy", o->cmd);
     }
-    int run = !strcmp(o->cmd, "run");
+    /* accuracy is run with --work-precision: the simulator takes the rest */
+    int run = !strcmp(o->cmd, "run") || !strcmp(o->cmd, "accuracy");
     o->sim = calloc((size_t)argc + 1, sizeof *o->sim);
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
@@ -324,8 +332,8 @@ spec_stem(const char *path, char *out, size_t len)
         *dot = '\0';
 }
 
-/* `run`: build into the cache unless an identical build is there, then
- * become the simulator. */
+/* `run` and `accuracy`: build into the cache unless an identical build is
+ * there, then become the simulator (with --work-precision for accuracy). */
 static int
 run(const Options *o)
 {
@@ -355,10 +363,13 @@ run(const Options *o)
             return rc;
         }
     }
-    char **argv = calloc((size_t)o->nsim + 2, sizeof *argv);
-    argv[0] = stem; /* messages name the model, not the cache path */
+    char **argv = calloc((size_t)o->nsim + 3, sizeof *argv);
+    int argc = 0;
+    argv[argc++] = stem; /* messages name the model, not the cache path */
+    if (!strcmp(o->cmd, "accuracy"))
+        argv[argc++] = "--work-precision";
     for (int i = 0; i < o->nsim; i++)
-        argv[i + 1] = o->sim[i];
+        argv[argc++] = o->sim[i];
     fflush(stdout);
     execv(exe, argv);
     fprintf(stderr, "eomc: cannot run %s: %s\n", exe, strerror(errno));
@@ -381,7 +392,7 @@ eomc_main(int argc, char **argv)
         }
         rc = build(&o, o.out);
     } else
-        rc = run(&o);
+        rc = run(&o); /* run and accuracy */
     free(o.sim);
     return rc;
 }

@@ -17,18 +17,22 @@
  * errors goes as (w d)^3 / 1320 for a motion of frequency w and nodes d
  * apart, so an estimate from the third and fourth would be hundreds of
  * times too large and send most of rk8pd's rows to side steps for
- * nothing.  Where steps are short, the node values' own errors (the
- * tolerance, which is not smooth from step to step) dominate, and higher
- * degrees amplify them: there a lower interpolant is better.  dense_eval
- * takes, coordinate by coordinate, the higher of the two successive
- * interpolants that differ least inside the interval, and their largest
- * difference there as its error for the whole interval.
+ * nothing.  That is the first look (choose_top): the full interpolant,
+ * and the difference of the last two at 0.3 and 0.7 of the interval (two
+ * points, in case two interpolants cross at one) as its error.
  *
- * A velocity is the derivative of its coordinate's polynomial, or, where
- * that is estimated worse, the Hermite interpolant of q' and q'' alone
- * (degree up to 9): differentiating amplifies the noise of short steps
- * by 1/h (msbdf at 1e-13 takes steps of 3e-4 on chain5), which the
- * direct interpolant does not.
+ * Where steps are short, the node values' own errors (the tolerance,
+ * which is not smooth from step to step) dominate, and higher degrees
+ * amplify them: there a lower interpolant is better.  When the first look
+ * does not satisfy the driver, dense_refine takes, coordinate by
+ * coordinate, the higher of the two successive interpolants that differ
+ * least at a quarter, a half and three quarters of the interval, and
+ * their largest difference there as its error.  A velocity is then the
+ * derivative of its coordinate's polynomial, or, where that is estimated
+ * worse, the Hermite interpolant of q' and q'' alone (degree up to 9):
+ * differentiating amplifies the noise of short steps by 1/h (msbdf at
+ * 1e-13 takes steps of 3e-4 on chain5), which the direct interpolant
+ * does not.
  */
 #include "dense.h"
 
@@ -37,10 +41,10 @@
 #include <string.h>
 
 enum {
-    WINDOW = 5,          /* nodes per interpolant: k - 2 .. k + 2 */
-    BEFORE = 2,          /* of which before the interval [k, k + 1] */
-    KEEP = WINDOW + 1,   /* nodes stored: a window and the next node */
-    COEFFS = 3 * WINDOW, /* conditions per coordinate */
+    WINDOW = 5,           /* nodes per interpolant: k - 2 .. k + 2 */
+    BEFORE = 2,           /* of which before the interval [k, k + 1] */
+    KEEP = WINDOW + 1,    /* nodes stored: a window and the next node */
+    COEFFS = 3 * WINDOW,  /* conditions per coordinate */
     VCOEFFS = 2 * WINDOW, /* ... per velocity */
 };
 
@@ -52,14 +56,15 @@ struct Dense {
     long win_lo;         /* the window whose coefficients are in coef, or -1 */
     int win_m;           /* its number of nodes */
     long win_k;          /* the interval it was fitted for */
+    int refined;         /* dense_refine has chosen for this window */
     long order[WINDOW];  /* its nodes, nearest the interval first */
     double z[COEFFS];
     double *coef;        /* [n * COEFFS] q's Newton coefficients */
     double *vcoef;       /* [n * VCOEFFS] q''s, from q' and q'' alone */
-    /* per coordinate, chosen once per window at its interval's middle:
-     * the number of nodes of q's interpolant (lev[3i]), of the one whose
-     * derivative is q' (lev[3i+1]), of q''s direct one (lev[3i+2], 0 when
-     * the derivative is used), and the error estimates of q and q' */
+    /* per coordinate and window: the number of nodes of q's interpolant
+     * (lev[3i]), of the one whose derivative is q' (lev[3i+1]), of q''s
+     * direct one (lev[3i+2], 0 when the derivative is used), and the
+     * error estimates of q and q' (est[i], est[n+i]) */
     int *lev;            /* [3n] */
     double *est;         /* [2n] */
 };
@@ -168,11 +173,18 @@ dense_ready(const Dense *d, double t, int final)
     return m == WINDOW;
 }
 
+/* The end of interval k (k itself for a single node). */
+static double
+interval_end(const Dense *d, long k)
+{
+    return node_t(d, k + 1 < d->count ? k + 1 : k);
+}
+
 /* The window's nodes for interval k, nearest the interval first. */
 static void
 order_nodes(Dense *d, long k, long lo, int m)
 {
-    double mid = 0.5 * (node_t(d, k) + node_t(d, k + 1 < d->count ? k + 1 : k));
+    double mid = 0.5 * (node_t(d, k) + interval_end(d, k));
     for (int j = 0; j < m; j++)
         d->order[j] = lo + j;
     for (int i = 1; i < m; i++) /* insertion sort by distance from mid */
@@ -203,27 +215,35 @@ fit(Dense *d, long k, long lo, int m)
                 else
                     c[j] = (c[j] - c[j - 1]) / (d->z[j] - d->z[j - l]);
             }
-        /* q' over the nodes z_v = (t_a, t_a, t_b, t_b, ...): q', q'' */
-        double *cv = d->vcoef + (size_t)i * VCOEFFS;
-        int Nv = 2 * m;
-        for (int j = 0; j < Nv; j++)
-            cv[j] = d->x[d->order[j / 2] % KEEP][n + i];
-        for (int l = 1; l < Nv; l++)
-            for (int j = Nv - 1; j >= l; j--) {
-                double za = node_t(d, d->order[j / 2]), zb = node_t(d, d->order[(j - l) / 2]);
-                cv[j] = za == zb ? d->f[d->order[j / 2] % KEEP][n + i]
-                                 : (cv[j] - cv[j - 1]) / (za - zb);
-            }
     }
     d->win_lo = lo;
     d->win_m = m;
     d->win_k = k;
+    d->refined = 0;
+}
+
+/* The same for q' over the nodes z_v = (t_a, t_a, t_b, t_b, ...): q', q''. */
+static void
+fit_velocity(Dense *d, int m)
+{
+    int n = d->n, N = 2 * m;
+    for (int i = 0; i < n; i++) {
+        double *cv = d->vcoef + (size_t)i * VCOEFFS;
+        for (int j = 0; j < N; j++)
+            cv[j] = d->x[d->order[j / 2] % KEEP][n + i];
+        for (int l = 1; l < N; l++)
+            for (int j = N - 1; j >= l; j--) {
+                double za = d->z[3 * (j / 2)], zb = d->z[3 * ((j - l) / 2)];
+                cv[j] = za == zb ? d->f[d->order[j / 2] % KEEP][n + i]
+                                 : (cv[j] - cv[j - 1]) / (za - zb);
+            }
+    }
 }
 
 /* The interpolants of coordinate i through the nearest 1 .. m nodes at
- * t: p[j] of q and dp[j] its derivative, pv[j] of q' from q' and q''
- * alone.  Forward sums of the Newton forms, so that they come out on the
- * way. */
+ * t: p[j] of q and dp[j] its derivative, and pv[j] of q' from q' and q''
+ * alone when pv is not NULL.  Forward sums of the Newton forms, so that
+ * they come out on the way. */
 static void
 partial_sums(const Dense *d, int i, int m, double t, double *p, double *dp, double *pv)
 {
@@ -237,12 +257,34 @@ partial_sums(const Dense *d, int i, int m, double t, double *p, double *dp, doub
         if (j % 3 == 2)
             p[j / 3] = sum, dp[j / 3] = dsum;
     }
+    if (!pv)
+        return;
     w = 1, sum = 0;
     for (int j = 0; j < 2 * m; j++) {
         sum += cv[j] * w;
         w *= t - d->z[3 * (j / 2)];
         if (j % 2 == 1)
             pv[j / 2] = sum;
+    }
+}
+
+/* The first look: the full interpolant, its error the difference from the
+ * one of a node less, the larger at 0.3 and 0.7 of the interval. */
+static void
+choose_top(Dense *d, long k, int m)
+{
+    int n = d->n;
+    double a = node_t(d, k), b = interval_end(d, k);
+    for (int i = 0; i < n; i++) {
+        d->lev[3 * i] = d->lev[3 * i + 1] = m;
+        d->lev[3 * i + 2] = 0;
+        d->est[i] = d->est[n + i] = m > 1 ? 0 : INFINITY;
+        for (int s = 0; s < 2 && m > 1; s++) {
+            double p[WINDOW], dp[WINDOW];
+            partial_sums(d, i, m, a + (s ? 0.7 : 0.3) * (b - a), p, dp, NULL);
+            d->est[i] = fmax(d->est[i], fabs(p[m - 1] - p[m - 2]));
+            d->est[n + i] = fmax(d->est[n + i], fabs(dp[m - 1] - dp[m - 2]));
+        }
     }
 }
 
@@ -261,20 +303,19 @@ least_pair(const double *d, int m, double *err)
     return best;
 }
 
-/* The interpolants to use in the window fitted for interval k, chosen by
- * their differences at a quarter, the half and three quarters of the
- * interval (the largest of the three): where an interpolant's error
- * between two of its nodes is largest, and not at one point, where two
- * of them might happen to cross. */
-static void
-choose(Dense *d, long k, int m)
+void
+dense_refine(Dense *d)
 {
-    int n = d->n;
-    double a = node_t(d, k), b = node_t(d, k + 1 < d->count ? k + 1 : k);
+    int n = d->n, m = d->win_m;
+    long k = d->win_k;
+    if (d->win_lo < 0 || d->refined)
+        return;
+    fit_velocity(d, m);
+    double a = node_t(d, k), b = interval_end(d, k);
     for (int i = 0; i < n; i++) {
         double dq[WINDOW] = {0}, ddp[WINDOW] = {0}, dpv[WINDOW] = {0}, edp, epv;
         for (int s = 1; s <= 3; s++) {
-            double p[WINDOW] = {0}, dp[WINDOW] = {0}, pv[WINDOW] = {0};
+            double p[WINDOW], dp[WINDOW], pv[WINDOW];
             partial_sums(d, i, m, a + 0.25 * s * (b - a), p, dp, pv);
             for (int j = 0; j + 1 < m; j++) {
                 dq[j] = fmax(dq[j], fabs(p[j + 1] - p[j]));
@@ -289,6 +330,7 @@ choose(Dense *d, long k, int m)
             d->lev[3 * i + 2] = 0;
         d->est[n + i] = fmin(edp, epv);
     }
+    d->refined = 1;
 }
 
 void
@@ -306,12 +348,12 @@ dense_eval(Dense *d, double t, int final, double *x, double *err)
     window(d, k, final, &lo, &m);
     if (lo != d->win_lo || m != d->win_m || k != d->win_k) {
         fit(d, k, lo, m);
-        choose(d, k, m);
+        choose_top(d, k, m);
     }
     for (int i = 0; i < n; i++) {
-        double p[WINDOW] = {0}, dp[WINDOW] = {0}, pv[WINDOW] = {0};
+        double p[WINDOW], dp[WINDOW], pv[WINDOW];
         const int *lev = d->lev + 3 * i;
-        partial_sums(d, i, m, t, p, dp, pv);
+        partial_sums(d, i, m, t, p, dp, lev[2] ? pv : NULL);
         x[i] = p[lev[0] - 1];
         x[n + i] = lev[2] ? pv[lev[2] - 1] : dp[lev[1] - 1];
         err[i] = d->est[i];
@@ -319,7 +361,6 @@ dense_eval(Dense *d, double t, int final, double *x, double *err)
     }
 }
 
-/* The node at the start of the interval holding t. */
 double
 dense_start(const Dense *d, double t, const double **x, const double **dxdt)
 {

@@ -35,6 +35,10 @@ int dense_ready(const Dense *d, double t, int final);
  * difference from the interpolant of one node less, which is one order
  * less accurate; infinite with a single node). */
 void dense_eval(Dense *d, double t, int final, double *x, double *err);
+/* A closer look at the interval of the last dense_eval, for when its
+ * estimate was not good enough: the interpolants of fewer nodes too (see
+ * dense.c).  dense_eval at the same interval then uses what it found. */
+void dense_refine(Dense *d);
 /* The node at the start of the interval holding t (dense_ready): its
  * time, state and derivative, for a step from there to t. */
 double dense_start(const Dense *d, double t, const double **x, const double **dxdt);

@@ -423,6 +423,10 @@ emit_rows(Run *r, int final)
             return GSL_SUCCESS;
         dense_eval(r->dense, t, final, r->xrow, r->erow);
         if (!interpolant_ok(r, r->xrow, r->erow)) {
+            dense_refine(r->dense);
+            dense_eval(r->dense, t, final, r->xrow, r->erow);
+        }
+        if (!interpolant_ok(r, r->xrow, r->erow)) {
             int rc = side_step(r, t, r->xrow);
             if (rc != GSL_SUCCESS)
                 return rc;

@@ -30,9 +30,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#define BATCH_MIN 0.005  /* s: a timed batch lasts at least this */
+#define BATCH_MIN 0.01   /* s: a timed batch lasts at least this */
 #define LONG_RUN 0.05    /* s: timed once */
-enum { BATCHES = 3 };
+enum { BATCHES = 5 };
 /* Errors within this factor of the reference's own are not resolved. */
 #define RESOLVED 2.0
 
@@ -490,24 +490,47 @@ ends_with(const char *s, const char *tail)
     return a >= b && strcmp(s + a - b, tail) == 0;
 }
 
-/* One curve per method and kind of steps, through its successful runs
- * (a curve without one is left out). */
-static void
-plot_data(FILE *f, const Entry *e, int n, int *curves, char (*titles)[64])
+/* Colours told apart in print and by most colour-blind readers: one per
+ * method, in eomc_methods order; fixed steps dashed, in the method's. */
+static const char *const colours[] = {
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+    "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000",
+};
+
+static int
+method_number(const char *m)
 {
-    *curves = 0;
+    for (int k = 0; eomc_methods[k]; k++)
+        if (!strcmp(m, eomc_methods[k]))
+            return k;
+    return 0;
+}
+
+/* One curve per method and kind of steps, through its successful runs
+ * (a curve without one is left out); its plot clause into plot. */
+static void
+plot_data(FILE *f, const Entry *e, int n, char *plot, size_t len)
+{
+    int curves = 0;
+    size_t at = 0;
     for (int k = 0; k < n;) {
         int end = k, points = 0;
         while (end < n && e[end].method == e[k].method && (e[end].h > 0) == (e[k].h > 0))
             points += e[end++].status == RUN_OK && e[end - 1].err_max > 0;
         if (points) {
-            snprintf(titles[*curves], 64, "%s%s", e[k].method,
-                     e[k].h > 0 ? " (fixed steps)" : "");
-            fprintf(f, "$d%d << EOD\n", (*curves)++);
+            fprintf(f, "$d%d << EOD\n", curves);
             for (int j = k; j < end; j++)
                 if (e[j].status == RUN_OK && e[j].err_max > 0 && e[j].cpu > 0)
                     fprintf(f, "%.6e %.6e\n", e[j].cpu, e[j].err_max);
             fprintf(f, "EOD\n");
+            int c = method_number(e[k].method), fixed = e[k].h > 0;
+            at += (size_t)snprintf(plot + at, at < len ? len - at : 0,
+                                   "%s$d%d using 1:2 with linespoints linecolor rgb '%s' "
+                                   "dashtype %d pointtype %d pointsize 0.9 title '%s%s'",
+                                   curves ? ", " : "", curves, colours[c % 11],
+                                   fixed ? 2 : 1, fixed ? 6 : 1 + c % 13, e[k].method,
+                                   fixed ? " (fixed steps)" : "");
+            curves++;
         }
         k = end;
     }
@@ -521,8 +544,7 @@ write_plot(const Report *r, const Entry *e, int n)
     int fd = mkstemp(script);
     char *tmp = temp_name(r->plot);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    char (*titles)[64] = calloc((size_t)n + 1, sizeof *titles);
-    if (!f || !tmp || !titles) {
+    if (!f || !tmp) {
         fprintf(stderr, "%s: --plot: cannot write a gnuplot script: %s\n", r->prog,
                 strerror(errno));
         if (f)
@@ -530,7 +552,6 @@ write_plot(const Report *r, const Entry *e, int n)
         if (fd >= 0)
             unlink(script);
         free(tmp);
-        free(titles);
         return EOMC_EUSAGE;
     }
     int png = ends_with(r->plot, ".png");
@@ -538,26 +559,25 @@ write_plot(const Report *r, const Entry *e, int n)
             png ? "pngcairo" : "svg", png ? "" : "dynamic");
     fprintf(f, "set output ");
     gp_string(f, tmp);
-    fprintf(f, "\nset title ");
     char title[512];
-    snprintf(title, sizeof title, "%s: error against CPU time (%s)", m->name, r->setting);
+    snprintf(title, sizeof title, "%s: error against CPU time", m->name);
+    fprintf(f, "\nset title ");
     gp_string(f, title);
-    fprintf(f, " noenhanced\n"
+    fprintf(f, " noenhanced offset 0,1\nset label 1 ");
+    gp_string(f, r->setting);
+    fprintf(f, " at graph 0.5, graph 1.035 center font 'sans,9' noenhanced\n"
                "set logscale xy\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
                "set xlabel 'CPU time per run [s]'\n"
                "set ylabel 'largest error at the output times (error_max)' noenhanced\n"
-               "set grid\nset key outside right top noenhanced\n"
-               "set style data linespoints\n");
-    int curves;
-    plot_data(f, e, n, &curves, titles);
-    fprintf(f, "plot ");
-    for (int c = 0; c < curves; c++) {
-        fprintf(f, "$d%d using 1:2 pointsize 0.8 title ", c);
-        gp_string(f, titles[c]);
-        fprintf(f, ", ");
+               "set grid\nset key outside right top noenhanced\n");
+    size_t len = 256 * (size_t)n + 256;
+    char *plot = malloc(len);
+    if (plot) {
+        plot_data(f, e, n, plot, len);
+        fprintf(f, "plot %s, %.6e with lines dashtype 3 linecolor rgb 'gray40' title "
+                   "'the reference''s own error'\n", plot, r->ref->error);
     }
-    fprintf(f, "%.6e with lines dashtype 2 linecolor rgb 'gray40' title "
-               "'the reference''s own error'\n", r->ref->error);
+    free(plot);
     int bad = ferror(f) | (fclose(f) != 0);
     int status = -1;
     if (!bad) {
@@ -572,7 +592,6 @@ write_plot(const Report *r, const Entry *e, int n)
                 ;
     }
     unlink(script);
-    free(titles);
     int rc = EOMC_OK;
     struct stat st;
     if (bad || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || stat(tmp, &st) != 0 ||

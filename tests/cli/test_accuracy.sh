@@ -1,0 +1,130 @@
+#!/bin/sh
+# eomc accuracy and the simulator's accuracy options, as a user runs them
+# (TAP):
+#  - the CSV has the documented header, one row per run, numbers in every
+#    measured cell; the plot is an SVG naming every method;
+#  - --target names the cheapest run within the target, which this script
+#    finds again from the CSV; the Pareto front has no run beaten by a
+#    cheaper one;
+#  - a run that fails (the step limit) is a row with empty error cells and
+#    its reason in the table; when every run fails, exit status 3;
+#  - --reference-out writes the reference with the simulator's columns,
+#    and --reference FILE reads it back: the same errors; a file that does
+#    not fit is a usage error naming FILE:LINE;
+#  - --error measures one run; --summary says what is conserved, or why
+#    nothing is;
+#  - usage errors (exit 2, no file left): report options without
+#    --work-precision, a plot that is neither .svg nor .png, an unknown
+#    method with a suggestion.
+# usage: test_accuracy.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+header="method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,jac_evals,error_end,error_max,invariant_drift,constraint_residual"
+
+"$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/pend" 2> "$tmp/build.err" ||
+  cat "$tmp/build.err"
+
+# the CSV and the plot, through eomc accuracy
+EOMC_CACHE_DIR="$tmp/cache" "$eomc" accuracy "$src/specs/pendulum.yaml" \
+  --methods rk8pd,rkf45,rk4 --tolerances 1e-4,1e-7,1e-10 --csv "$tmp/wp.csv" \
+  --plot "$tmp/wp.svg" --target 1e-8 > "$tmp/wp.txt" 2> "$tmp/wp.err"; st=$?
+[ $st -eq 0 ] && [ "$(head -n 1 "$tmp/wp.csv")" = "$header" ]
+ok $? "eomc accuracy --csv: exit $st, the header is $header"
+rows=$(($(wc -l < "$tmp/wp.csv") - 1))
+awk -F, 'NR > 1 { if (NF != 12) bad = 1
+  for (i = 4; i <= 11; i++) if ($i !~ /^[0-9.e+-]+$/) bad = 1 }
+  END { exit bad }' "$tmp/wp.csv" && [ "$rows" -eq 12 ]
+ok $? "... 12 runs (3 methods x 3 tolerances, rk4 at 3 fixed steps), every measured cell a number"
+awk -F, 'NR > 1 && ($2 == "") == ($3 == "") { bad = 1 } END { exit bad }' "$tmp/wp.csv"
+ok $? "... each row has a tolerance or a fixed step, not both"
+[ -s "$tmp/wp.svg" ] && grep -q "<svg" "$tmp/wp.svg" && grep -q ">rk8pd<" "$tmp/wp.svg" &&
+  grep -q ">rkf45<" "$tmp/wp.svg" && grep -q ">rk4<" "$tmp/wp.svg" &&
+  grep -q "rk4 (fixed steps)" "$tmp/wp.svg" && grep -q "CPU time" "$tmp/wp.svg"
+ok $? "--plot: an SVG with a curve named for every method, and labelled axes"
+! ls "$tmp"/wp.*.tmp* > /dev/null 2>&1
+ok $? "... and no temporary file left"
+
+# --target: the cheapest row of the CSV with error_max <= 1e-8
+want=$(awk -F, 'NR > 1 && $10 != "" && $10 + 0 <= 1e-8 {
+    if (best == "" || $4 + 0 < best + 0) { best = $4; m = $1; tol = $2; h = $3 } }
+  END { if (tol != "") printf "%s at tolerance %.0e", m, tol; else printf "%s, fixed steps", m }' \
+  "$tmp/wp.csv")
+grep -q "the cheapest measured setting is $want" "$tmp/wp.txt"
+ok $? "--target 1e-8 names the cheapest run within it, as the CSV has it: $want"
+awk '/^Pareto front/ { on = 1; next } on && /^ *[0-9]/ { if (n++ && !($1 + 0 >= c && $2 + 0 < e)) bad = 1; c = $1 + 0; e = $2 + 0 }
+  on && /^$/ { on = 0 } END { exit bad || n < 2 }' "$tmp/wp.txt"
+ok $? "the Pareto front is in order of CPU time, each more accurate than the one before"
+
+# a failed run is a row; all failed: exit 3
+"$tmp/pend" --work-precision --methods rk4 --tolerances 1e-3,1e-12 --steps 0.1 \
+  --max-steps 300 --csv "$tmp/fail.csv" > "$tmp/fail.txt" 2> "$tmp/fail.err"; st=$?
+row=$(grep '^rk4,1e-12,' "$tmp/fail.csv")
+[ $st -eq 0 ] && [ -n "$row" ] && [ "$(echo "$row" | cut -d, -f9-12)" = ",,," ] &&
+  grep -q "failed: t = .*too many steps (the limit is 300)" "$tmp/fail.txt"
+ok $? "a run stopped by --max-steps: a row with empty error cells, its reason in the table (exit $st)"
+"$tmp/pend" --work-precision --methods rk4 --tolerances 1e-12 --steps 0.001 --max-steps 50 \
+  > /dev/null 2> "$tmp/allfail.err"; st=$?
+[ $st -eq 3 ] && grep -q "no run succeeded" "$tmp/allfail.err"
+ok $? "every run failed: exit status 3 (got $st)"
+
+# the reference, out and back in
+"$tmp/pend" --reference-out "$tmp/ref.csv" --error -o /dev/null --t-end 2 --dt 0.1 \
+  --method rkf45 --rtol 1e-6 --atol 1e-6 --stats 2> "$tmp/ref1.err"; st=$?
+[ $st -eq 0 ] && [ "$(head -n 1 "$tmp/ref.csv")" = "t,theta,theta',T,V,E" ] &&
+  [ "$(wc -l < "$tmp/ref.csv")" -eq 22 ]
+ok $? "--reference-out: the simulator's columns, a row at each of the 21 output times"
+"$tmp/pend" --reference "$tmp/ref.csv" -o /dev/null --t-end 2 --dt 0.1 --method rkf45 \
+  --rtol 1e-6 --atol 1e-6 --stats 2> "$tmp/ref2.err"; st=$?
+e1=$(sed -n 's/^error_max //p' "$tmp/ref1.err") e2=$(sed -n 's/^error_max //p' "$tmp/ref2.err")
+[ $st -eq 0 ] && [ -n "$e1" ] && [ "$e1" = "$e2" ] && grep -q "^reference_error nan" "$tmp/ref2.err"
+ok $? "--reference FILE: the same error_max ($e1, $e2); a file's own error is not known"
+"$tmp/pend" --reference "$tmp/ref.csv" -o "$tmp/none.csv" --t-end 2 --dt 0.2 \
+  2> "$tmp/ref3.err"; st=$?
+[ $st -eq 2 ] && grep -q "ref.csv:3: a row at t = 0.10000000000000001 where the runs have one at t = 0.20000000000000001" "$tmp/ref3.err" &&
+  [ ! -e "$tmp/none.csv" ]
+ok $? "--reference FILE on another grid: usage error at FILE:LINE, no output (exit $st)"
+printf 't,theta\n0,1\n' > "$tmp/bad.csv"
+"$tmp/pend" --reference "$tmp/bad.csv" -o /dev/null 2> "$tmp/ref4.err"; st=$?
+[ $st -eq 2 ] && grep -q "bad.csv:1: no column 'theta''" "$tmp/ref4.err"
+ok $? "--reference FILE without a velocity column: usage error naming it (exit $st)"
+
+# --error alone, --summary
+"$tmp/pend" --error -o /dev/null --method rkf45 --rtol 1e-8 --atol 1e-8 2> "$tmp/err.err"
+grep -q "error against the reference solution: at most .* over the 1001 rows" "$tmp/err.err"
+ok $? "--error: one line on stderr with the run's error"
+"$eomc" build "$src/specs/arenstorf.yaml" -o "$tmp/aren" 2> /dev/null
+"$tmp/aren" --summary -o /dev/null 2> "$tmp/aren.err"
+tr '\n' ' ' < "$tmp/aren.err" | grep -q "The conserved quantity h started at -1.4282062"
+ok $? "arenstorf --summary: the conserved quantity is h, Jacobi's, not T + V"
+"$tmp/aren" -o "$tmp/aren.csv" --t-end 0.1
+[ "$(head -n 1 "$tmp/aren.csv")" = "t,x,y,x',y',T,V,E,h" ]
+ok $? "... and its CSV has a column h after E"
+"$eomc" build "$src/tests/sim/specs/cart_pole.yaml" -o "$tmp/cp" 2> /dev/null
+"$tmp/cp" --summary -o /dev/null 2> "$tmp/cp.err"
+tr '\n' ' ' < "$tmp/cp.err" | grep -q "No drift is reported: nothing is conserved: the effect 'drive' is a force, not a potential"
+ok $? "a driven, damped cart-pole: --summary says nothing is conserved, and why"
+
+# usage errors
+"$tmp/pend" --csv "$tmp/x.csv" > /dev/null 2> "$tmp/u1.err"; st=$?
+[ $st -eq 2 ] && grep -q -- "--csv belongs to --work-precision" "$tmp/u1.err" && [ ! -e "$tmp/x.csv" ]
+ok $? "--csv without --work-precision: usage error (exit $st)"
+"$tmp/pend" --work-precision --plot "$tmp/x.pdf" > /dev/null 2> "$tmp/u2.err"; st=$?
+[ $st -eq 2 ] && grep -q "neither .svg nor .png" "$tmp/u2.err"
+ok $? "--plot x.pdf: usage error (exit $st)"
+"$tmp/pend" --work-precision --methods rk8pd,rk8pf > /dev/null 2> "$tmp/u3.err"; st=$?
+[ $st -eq 2 ] && grep -q "unknown method 'rk8pf' (did you mean 'rk8pd'?)" "$tmp/u3.err"
+ok $? "--methods with a typo: usage error with a suggestion (exit $st)"
+"$tmp/pend" --work-precision --method rk8pd > /dev/null 2> "$tmp/u4.err"; st=$?
+[ $st -eq 2 ] && grep -q -- "--methods chooses the report's" "$tmp/u4.err"
+ok $? "--work-precision --method: usage error pointing to --methods (exit $st)"
+"$tmp/pend" --work-precision --tolerances 1e-3,0 > /dev/null 2> "$tmp/u5.err"; st=$?
+[ $st -eq 2 ] && grep -q -- "--tolerances: 0 is out of range" "$tmp/u5.err"
+ok $? "--tolerances with a zero: usage error (exit $st)"
+
+echo "1..$n"
+[ $failed -eq 0 ]

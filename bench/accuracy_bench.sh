@@ -14,13 +14,13 @@ trap 'rm -rf "$dir"' EXIT
 export EOMC_CACHE_DIR="$dir/cache"
 # build once, so that the timing is the report's alone
 "$eomc" accuracy "$src/specs/chain5.yaml" --methods rk8pd --tolerances 1e-3 > /dev/null
-/usr/bin/time -f '%e %U %S' -o "$dir/time" \
-  "$eomc" accuracy "$src/specs/chain5.yaml" --csv "$dir/runs.csv" > "$dir/report.txt"
-set -- $(cat "$dir/time")
-wall=$1 cpu=$(awk -v u="$2" -v s="$3" 'BEGIN { printf "%.2f", u + s }')
+t0=$(date +%s.%N)
+"$eomc" accuracy "$src/specs/chain5.yaml" --csv "$dir/runs.csv" > "$dir/report.txt"
+t1=$(date +%s.%N)
+wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
 runs=$(($(wc -l < "$dir/runs.csv") - 1))
 ref=$(sed -n 's/.*computed in \([0-9.e-]*\) s.*/\1/p' "$dir/report.txt")
-printf 'eomc accuracy specs/chain5.yaml: %s s wall, %s s CPU, %d runs (the reference: %s s)\n' \
-  "$wall" "$cpu" "$runs" "$ref"
+printf 'eomc accuracy specs/chain5.yaml: %s s, %d runs (the reference: %s s)\n' \
+  "$wall" "$runs" "$ref"
 grep -A 20 '^Pareto front' "$dir/report.txt"
 awk -v t="$wall" 'BEGIN { exit !(t < 60) }' || { echo "FAIL: the report took $wall s >= 60 s"; exit 1; }

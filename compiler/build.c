@@ -134,9 +134,10 @@ static char *
 sibling(const char *path, const char *name)
 {
     const char *slash = strrchr(path, '/');
-    size_t dir = slash ? (size_t)(slash - path + 1) : 0, len = dir + strlen(name) + 1;
-    char *out = xmalloc(len);
-    snprintf(out, len, "%.*s%s", (int)dir, path, name);
+    size_t dir = slash ? (size_t)(slash - path + 1) : 0, len = strlen(name) + 1;
+    char *out = xmalloc(dir + len);
+    memcpy(out, path, dir);
+    memcpy(out + dir, name, len);
     return out;
 }
 

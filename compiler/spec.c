@@ -1431,6 +1431,19 @@ load_document(Loader *L)
         diag_error(at, "a spec is one YAML document; this is a second one");
 }
 
+/* The whole spec; apart from spec_load_buffer, so that nothing of its
+ * own lives in the frame that setjmp returns to twice. */
+static void
+load_spec(Loader *L)
+{
+    index_lines(L);
+    load_document(L);
+    yaml_node_t *root = yaml_document_get_root_node(&L->doc);
+    if (!root)
+        diag_error((SrcLoc){L->path, 1, 1}, "the spec is empty");
+    load_root(L, root);
+}
+
 Spec *
 spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprPool *P)
 {
@@ -1449,12 +1462,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprP
     jmp_buf *old = diag_set_jump(&jb);
     Spec *volatile result = NULL;
     if (setjmp(jb) == 0) {
-        index_lines(L);
-        load_document(L);
-        yaml_node_t *root = yaml_document_get_root_node(&L->doc);
-        if (!root)
-            diag_error((SrcLoc){L->path, 1, 1}, "the spec is empty");
-        load_root(L, root);
+        load_spec(L);
         result = L->s;
     }
     diag_set_jump(old);

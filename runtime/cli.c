@@ -471,8 +471,8 @@ apply_sets(Cli *c, eomc_sim *sim)
 {
     const eomc_model *m = eomc_sim_model(sim);
     for (int k = 0; k < c->nset; k++) {
-        char *name;
-        double x;
+        char *name = NULL;
+        double x = 0;
         if (name_value(c, "--set", c->set[k], &name, &x))
             return EOMC_EUSAGE;
         if (eomc_sim_set(sim, name, x) != EOMC_OK) {
@@ -498,8 +498,8 @@ apply_inits(Cli *c, const eomc_model *m, double *x)
 {
     int n = m->nq;
     for (int k = 0; k < c->ninit; k++) {
-        char *name;
-        double val;
+        char *name = NULL;
+        double val = 0;
         if (name_value(c, "--init", c->init[k], &name, &val))
             return EOMC_EUSAGE;
         size_t len = strlen(name);

@@ -25,7 +25,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 /* ---- the methods ---- */
@@ -134,14 +133,6 @@ typedef struct Run {
     double wall0, next_show;
 } Run;
 
-static double
-wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Every 256 right-hand sides: after the first second, t on the terminal
  * every tenth of a second. */
 static void
@@ -149,7 +140,7 @@ show_progress(Run *r, double t)
 {
     if (!r->progress || (r->st->rhs_evals & 255))
         return;
-    double now = wall_seconds();
+    double now = sim_seconds(0);
     if (now < r->next_show)
         return;
     r->next_show = now + 0.1;
@@ -610,15 +601,6 @@ run_alloc(Run *r, const Method *m)
                                           r->o->method);
 }
 
-static int
-all_finite(const double *x, int n)
-{
-    for (int i = 0; i < n; i++)
-        if (!isfinite(x[i]))
-            return 0;
-    return 1;
-}
-
 int
 eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
                    void *ctx, eomc_stats *st)
@@ -631,7 +613,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (rc)
         return rc;
     int n = s->n;
-    if (!all_finite(x, 2 * n) || !all_finite(s->p, s->m->np))
+    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(s->p, s->m->np))
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
@@ -639,14 +621,13 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     r.nrows = eomc_run_rows(o);
     r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
     r.progress = o->progress && isatty(2);
-    r.wall0 = r.next_show = wall_seconds();
+    r.wall0 = r.next_show = sim_seconds(0);
     if ((rc = run_alloc(&r, find_method(o->method))) != EOMC_OK) {
         run_free(&r);
         return rc;
     }
 
-    struct timespec c0, c1;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+    double c0 = sim_seconds(1);
     if (sim_has_levels(s))
         st->max_residual = st->max_drift = sim_level_residual(s, r.t, x, x + n);
     rc = row ? row(ctx, r.t, x) : EOMC_OK; /* the initial state, as it is */
@@ -669,11 +650,10 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             rc = r.row_status;
         else if (status != GSL_SUCCESS)
             rc = step_error(&r, status);
-        else if (!all_finite(x, 2 * n))
+        else if (!sim_all_finite(x, 2 * n))
             rc = sim_numeric_error(s, r.t, x, x + n, "the state is not finite");
     }
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
-    st->cpu_seconds = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+    st->cpu_seconds = sim_seconds(1) - c0;
     if (r.shown)
         fprintf(stderr, "\r%*s\r", 60, "");
     run_free(&r);

@@ -45,7 +45,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 enum {
     LEVELS = 8,           /* extrapolation order 2 LEVELS = 16 (seq below) */
@@ -437,14 +436,6 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     return 0;
 }
 
-static double
-cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Why a solution stopped (solve's -1: the model failed at r->fail_x, or
  * the steps became too small; -2: too many steps): the doubles' own
  * message where their solve fails at that state too. */
@@ -516,7 +507,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     ref->nx = r.N;
     for (long k = 0; k < nrows; k++)
         ref->t[k] = eomc_run_row_time(o, k);
-    double c0 = cpu_now();
+    double c0 = sim_seconds(1);
     long budget = STEP_BUDGET;
     int rc = EOMC_OK;
     r.tol = TOL_FIRST;
@@ -547,7 +538,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
         rc = sim_numeric_error(s, o->t0, x0, x0 + m->nq, "no refinement of the reference "
                                "solution could be computed at tolerance %.0e, so it cannot "
                                "say how good it is", r.tol);
-    ref->cpu_seconds = cpu_now() - c0;
+    ref->cpu_seconds = sim_seconds(1) - c0;
     snprintf(ref->source, sizeof ref->source, "Gragg-Bulirsch-Stoer extrapolation of "
              "order %d in %d-bit floating point (%s), %d solutions to relative "
              "tolerance %.0e", 2 * LEVELS, LDBL_MANT_DIG, "long double",

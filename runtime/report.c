@@ -27,7 +27,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
 #define BATCH_MIN 0.01   /* s: a timed batch lasts at least this */
@@ -208,18 +207,10 @@ plan(const Report *r, int *count)
 
 /* ---- progress ---- */
 
-static double
-wall(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void
 progress(const Report *r, double t0, int k, int n, const Entry *e, int *shown)
 {
-    if (!isatty(2) || wall() - t0 < 1.0)
+    if (!isatty(2) || sim_seconds(0) - t0 < 1.0)
         return;
     char what[64];
     if (e->h > 0)
@@ -643,7 +634,7 @@ int
 report_run(const Report *r)
 {
     const eomc_model *m = r->sim->m;
-    int n;
+    int n = 0;
     Entry *e = plan(r, &n);
     double *x = calloc(2 * (size_t)m->nq, sizeof *x);
     double *res = calloc((size_t)m->nc + 1, sizeof *res);
@@ -654,7 +645,7 @@ report_run(const Report *r)
     }
     print_title(r);
     fflush(stdout);
-    double t0 = wall();
+    double t0 = sim_seconds(0);
     int shown = 0, ok = 0;
     long max_steps = r->base.max_steps > 0 ? r->base.max_steps : REPORT_MAX_STEPS;
     for (int k = 0; k < n; k++) {

@@ -17,6 +17,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 double *
 sim_zeros(size_t n)
@@ -191,13 +192,21 @@ eomc_sim_initial(const eomc_sim *s, double *q, double *v)
     s->m->initial(s->p, q, v);
 }
 
-static int
-all_finite(const double *x, int n)
+int
+sim_all_finite(const double *x, int n)
 {
     for (int i = 0; i < n; i++)
         if (!isfinite(x[i]))
             return 0;
     return 1;
+}
+
+double
+sim_seconds(int cpu)
+{
+    struct timespec ts;
+    clock_gettime(cpu ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* 0.0 when every x[i] is finite, NaN otherwise: x - x is 0 for a finite
@@ -319,7 +328,7 @@ eomc_sim_project(eomc_sim *s, double t, double *q, double *v)
 {
     if (!s->proj)
         return EOMC_OK;
-    if (!all_finite(q, s->n) || !all_finite(v, s->n))
+    if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->n))
         return sim_numeric_error(s, t, q, v, "the state is not finite");
     sim_inputs_at(s, t);
     int level, rc = proj_apply(s->proj, t, q, v, s->p, s->u, &level);
@@ -355,7 +364,7 @@ sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B)
 {
     const eomc_model *m = s->m;
     int n = s->n;
-    if (!all_finite(x, 2 * n))
+    if (!sim_all_finite(x, 2 * n))
         return -1;
     if (!m->c_affine && eomc_sim_accel(s, t, x, x + n, s->a) != EOMC_OK)
         return -1;

@@ -32,6 +32,10 @@ struct eomc_sim {
 
 /* A zeroed array of n doubles (at least one), or NULL. */
 double *sim_zeros(size_t n);
+/* Whether every x[i] is finite. */
+int sim_all_finite(const double *x, int n);
+/* Seconds of the process's CPU time (cpu), or of a monotonic wall clock. */
+double sim_seconds(int cpu);
 /* "t = T: CAUSE; state: q1 = .., q1' = .."; returns EOMC_ENUMERIC. */
 int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));

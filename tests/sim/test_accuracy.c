@@ -15,7 +15,8 @@
  *    lie on the closed form (Kepler's equation solved here);
  *  - the conserved quantity eomc derives: Jacobi's h for Arenstorf's
  *    orbit (against the formula written out here, conserved to 1e-12 over
- *    the period where T + V changes by 0.3), E = T + V for the pendulum,
+ *    the period where T + V changes by 1.9; the orbit back at its start
+ *    after the published period), E = T + V for the pendulum,
  *    nothing for a driven, damped cart-pole (the effect named);
  *  - units: Kepler with lengths in micrometres (a = 1e6) needs the same
  *    reference steps and gets the same relative error estimate.
@@ -445,6 +446,13 @@ invariants(void)
     CHECK(rc == EOMC_OK && d.dh <= 1e-12 * fabs(d.h0) && d.dE > 0.1,
           "arenstorf, rk8pd at 1e-12 over the period: h holds to %.2g (%.2g relative) "
           "where T + V changes by %.2g", d.dh, d.dh / fabs(d.h0), d.dE);
+    double back = 0, x0[4];
+    eomc_sim_initial(s, x0, x0 + 2);
+    for (int i = 0; i < 4; i++)
+        back = fmax(back, fabs(x[i] - x0[i]));
+    CHECK(rc == EOMC_OK && back < 1e-8,
+          "... and after the published period 17.0652165601579625588917206249 it is back "
+          "at its start, to %.2g", back);
     eomc_sim_free(s);
 
     s = eomc_sim_alloc(&pendulum_model);

@@ -849,6 +849,8 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     eomc_reference ref = {0};
+    if (eomc_run_check(sim, &c->run) != EOMC_OK) /* before any file is written */
+        return usage(c, "%s", eomc_sim_error(sim));
     Csv w = {stdout, sim, 0, m->invariant != NULL, 0, 0,
              calloc((size_t)m->nc + 1, sizeof(double)), 0, NULL, 0, 0};
     check_consistent(c, sim, x, w.res);

@@ -148,8 +148,13 @@ typedef struct eomc_stats {
  * stops the integration with that status. */
 typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
 
+/* Whether o can run on s as it is set up: EOMC_OK, or EOMC_EUSAGE with a
+ * message (eomc_sim_integrate checks this first). */
+int eomc_run_check(eomc_sim *s, const eomc_run_opts *o);
+
 /* Integrate from x (updated in place to the last state reached).  Returns
- * EOMC_OK, EOMC_EUSAGE for bad options, or EOMC_ENUMERIC; the rows already
+ * EOMC_OK, EOMC_EUSAGE for bad options (a multistep method with
+ * EOMC_STABILIZE_PROJECT among them), or EOMC_ENUMERIC; the rows already
  * passed to `row` stand. */
 int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
                        eomc_row_fn row, void *ctx, eomc_stats *st);

@@ -172,8 +172,8 @@ jac(double t, const double *x, double *dfdx, double *dfdt, void *ctx)
                                                                 : GSL_EBADFUNC;
 }
 
-static int
-check_opts(eomc_sim *s, const eomc_run_opts *o)
+int
+eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
 {
     const Method *m = find_method(o->method);
     if (!m)
@@ -192,6 +192,13 @@ check_opts(eomc_sim *s, const eomc_run_opts *o)
     if (o->h_fixed > 0 && !m->fixed)
         return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
                                "for the one-step methods", o->method);
+    if (s->stabilize == EOMC_STABILIZE_PROJECT && !m->fixed)
+        return sim_usage_error(s, "%s builds on the history of its steps, which projecting "
+                               "the state after every step would throw away (it would "
+                               "restart at order 1 each time, slow and inaccurate): with "
+                               "--stabilize project use a one-step method (rk2, rk4, "
+                               "rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp)",
+                               o->method);
     if (o->max_steps < 0)
         return sim_usage_error(s, "the step limit must be positive, not %ld",
                                o->max_steps);
@@ -297,7 +304,8 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
 /* After each accepted step from t0 of a constrained model: check that no
  * constraint degenerated, measure the drift, and project when asked.  A
  * projected state is not the one the stepper produced: its derivative is
- * evaluated again and a multistep method's history is dropped. */
+ * evaluated again (multistep methods, whose history it would spoil, are
+ * refused with projection by eomc_run_check). */
 static int
 after_step(Run *r, double t0)
 {
@@ -609,7 +617,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (!st)
         st = &local;
     memset(st, 0, sizeof *st);
-    int rc = check_opts(s, o);
+    int rc = eomc_run_check(s, o);
     if (rc)
         return rc;
     int n = s->n;

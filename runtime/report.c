@@ -153,6 +153,11 @@ measure(const Report *r, Entry *e, double *x, double *res)
     memcpy(x, r->x0, 2 * (size_t)m->nq * sizeof *x);
     int rc = eomc_sim_integrate(r->sim, &o, x, probe_row, &p, &e->st);
     e->cpu = e->st.cpu_seconds;
+    if (rc == EOMC_EUSAGE) { /* a setting this model cannot take (msbdf with projection) */
+        e->status = RUN_SKIPPED;
+        snprintf(e->why, sizeof e->why, "%s", eomc_sim_error(r->sim));
+        return;
+    }
     if (rc != EOMC_OK) {
         e->status = RUN_FAILED;
         snprintf(e->why, sizeof e->why, "%s", eomc_sim_error(r->sim));

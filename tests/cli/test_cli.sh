@@ -115,6 +115,10 @@ usage_err "$tmp/cp" --stabilize project --baumgarte 1,2
 ok $? "--baumgarte with --stabilize project: usage error"
 usage_err "$tmp/pend" --stabilize project && grep -q "no holonomic or first-order" "$tmp/u.err"
 ok $? "--stabilize on a model without constraints: usage error"
+usage_err "$tmp/cp" --method msbdf --stabilize project -o "$tmp/ms.csv" &&
+  grep -q "with --stabilize project use a one-step method (rk2, rk4" "$tmp/u.err" &&
+  [ ! -s "$tmp/ms.csv" ]
+ok $? "--method msbdf --stabilize project: usage error naming the one-step methods"
 
 # failures: exit status 2, no output left
 printf 'coordinates: [x]\nparticles: {p: {mass: 1, position: [x, y]}}\n' > "$tmp/bad.yaml"

@@ -757,22 +757,26 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
 }
 
 /* A start off the constraints is allowed (the drift then starts there),
- * but rarely meant: say so, once, before integrating. */
+ * but rarely meant: say so, once, before integrating.  The test is
+ * relative to each constraint's terms (eomc_sim_inconsistency), so that
+ * it means the same in any units: 1e-8 is far above the rounding of a
+ * state that satisfies the constraints, and far below any violation a
+ * user would have meant. */
 #define INCONSISTENT_TOL 1e-8
 
 static void
-check_consistent(const Cli *c, eomc_sim *sim, const double *x, double *res)
+check_consistent(const Cli *c, eomc_sim *sim, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    if (!has_levels(m) || eomc_sim_residuals(sim, c->run.t0, x, x + m->nq, res) != EOMC_OK)
-        return; /* a failure here is reported by the integration */
-    for (int k = 0; k < m->nc; k++)
-        if (m->c_order[k] <= 1 && !(fabs(res[k]) <= INCONSISTENT_TOL)) {
-            fprintf(stderr, "%s: warning: the initial state violates the constraint %s "
-                    "by %.3g (--assemble projects it onto the constraints)\n", c->prog,
-                    m->c_names[k], res[k]);
-            return;
-        }
+    int worst, level;
+    if (!has_levels(m))
+        return;
+    double e = eomc_sim_inconsistency(sim, c->run.t0, x, x + m->nq, &worst, &level);
+    if (e > INCONSISTENT_TOL && worst >= 0)
+        fprintf(stderr, "%s: warning: the initial state violates the constraint %s at "
+                "%s level, by %.2g of the size of its terms (--assemble projects it "
+                "onto the constraints)\n", c->prog, m->c_names[worst],
+                level ? "velocity" : "position", e);
 }
 
 /* Open -o's file (or stdout); NULL after saying why. */
@@ -853,7 +857,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         return usage(c, "%s", eomc_sim_error(sim));
     Csv w = {stdout, sim, 0, m->invariant != NULL, 0, 0,
              calloc((size_t)m->nc + 1, sizeof(double)), 0, NULL, 0, 0};
-    check_consistent(c, sim, x, w.res);
+    check_consistent(c, sim, x);
     int rc = EOMC_OK;
     if ((c->error || c->reference_out) &&
         (rc = get_reference(c, sim, ext, x, &ref)) != EOMC_OK) {
@@ -912,9 +916,7 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     const eomc_model *m = eomc_sim_model(sim);
     eomc_reference ref = {0};
     double tols[TOL_LAST_EXP - TOL_FIRST_EXP + 1], steps[3];
-    double *res = calloc((size_t)m->nc + 1, sizeof *res);
-    check_consistent(c, sim, x, res);
-    free(res);
+    check_consistent(c, sim, x);
     int rc = get_reference(c, sim, ext, x, &ref);
     if (rc != EOMC_OK)
         return rc;

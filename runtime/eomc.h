@@ -61,6 +61,14 @@ const double *eomc_sim_multipliers(const eomc_sim *s);
  * (first order) or f at the accelerations (second order). */
 int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
                        double *res);
+/* How far (q, v) is from its holonomic and velocity-level constraints,
+ * whatever the model's units: the largest |g|, |g'| or |phi| relative to
+ * the magnitude of its terms (0 when all hold exactly, near rounding when
+ * they hold to it, 1 when one is nowhere near).  *worst gets that
+ * constraint's index (-1 when the model has no such constraint) and
+ * *level 0 when it is its position g, 1 when its g' or phi. */
+double eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
+                              int *worst, int *level);
 
 /* Drift control for the holonomic and first-order constraints, which
  * the solve enforces only at acceleration level:

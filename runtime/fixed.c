@@ -140,7 +140,7 @@ typedef struct Imp {
     double *Z, *F, *dZ, *Y;        /* [s dim] each; Y [dim] */
     double *errlev;                /* [dim] */
     double eta_prev;               /* Newton's last contraction estimate */
-    gsl_permutation *perm;
+    LaLu *lu;                      /* W's */
 } Imp;
 
 static void
@@ -151,8 +151,7 @@ imp_free(void *state)
         return;
     free(m->J), free(m->dfdt), free(m->W), free(m->Z), free(m->F), free(m->dZ);
     free(m->Y), free(m->errlev);
-    if (m->perm)
-        gsl_permutation_free(m->perm);
+    la_lu_free(m->lu);
     free(m);
 }
 
@@ -174,9 +173,9 @@ imp_alloc(size_t dim, const Tableau *tab)
     m->dZ = calloc(sd, sizeof(double));
     m->Y = calloc(dim, sizeof(double));
     m->errlev = calloc(dim, sizeof(double));
-    m->perm = gsl_permutation_alloc(sd);
+    m->lu = la_lu_alloc((int)sd);
     if (!m->J || !m->dfdt || !m->W || !m->Z || !m->F || !m->dZ || !m->Y || !m->errlev ||
-        !m->perm) {
+        !m->lu) {
         imp_free(m);
         return NULL;
     }
@@ -219,7 +218,7 @@ iteration_matrix(Imp *m, double h)
                 for (int c = 0; c < n; c++)
                     m->W[(j * n + r) * sd + k * n + c] =
                         (j * n + r == k * n + c) - h * m->tab->A[j][k] * m->J[r * n + c];
-    return la_lu_factor(m->W, sd, m->perm);
+    return la_lu_factor(m->lu, m->W);
 }
 
 /* The scaled norm of dZ: sqrt(sum (dZ_ji / errlev_i)^2). */
@@ -272,7 +271,7 @@ imp_apply(void *state, size_t dim, double t, double h, double y[], double yerr[]
                     sum += tab->A[j][k] * m->F[k * dim + i];
                 m->dZ[j * dim + i] = -m->Z[j * dim + i] + h * sum;
             }
-        la_lu_solve(m->W, (int)sd, m->perm, m->dZ);
+        la_lu_solve(m->lu, m->dZ);
         for (size_t i = 0; i < sd; i++)
             m->Z[i] += m->dZ[i];
         double prev = norm;

@@ -38,7 +38,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define NEWTON_TOL 1e-13   /* relative size of the last Newton step */
 
 struct Kkt {
     const eomc_model *m;
@@ -46,21 +45,23 @@ struct Kkt {
     double *M, *h, *Mdiag;      /* [n*n], [n], [n] */
     double *dEdq, *dEdv, *dEdu, *dEdt;  /* the residual's partials */
     double wv_hol, wp_hol, wv_first;    /* Baumgarte's weights, 0 when off */
-    double *K, *r;              /* [N*N], [N] */
+    double *K, *r, *dK;         /* [N*N], [N], [N] K's scaling (la_kkt_scaling) */
     double *A, *ra;             /* elimination: [n*n], [n] */
     double *f, *B, *lam;        /* [nc], [nc*n], [nc] */
     double *prev_a, *prev_lam;  /* Newton's start: the last solution */
     int have_prev;
+    double rel;                 /* the last Newton iterate's relative residual */
     double *save_a, *save_lam;  /* kkt_save_start's copy of them */
     int have_save;
     double *dfdq, *dfdv, *dfdu, *dfdt;         /* [nc*n] [nc*n] [nc*nu] [nc] */
     double *dBdq, *dBdv, *dBda, *dBdu, *dBdt;  /* [nc*n*n] x3, [nc*n*nu], [nc*n] */
     double *BH, *G, *E;         /* [nc*nc], [nc*np], [n] */
     double *off;                /* [nc] Baumgarte's terms, else 0 */
+    double *bmax;               /* [nc*n] the largest |B_ci| of the solves so far */
     double *pos, *vel;          /* [nc] the constraints' own levels */
     double *dposdq, *dveldq, *dveldv, *dposdu, *dveldu, *dposdt, *dveldt;
     int *dep, *indep;           /* [nc], [np] */
-    gsl_permutation *permN, *permn, *permc;
+    LaLu *luN, *lun, *luc;      /* K, A, B_h (or B_h^T) */
     char *names;                /* "rod (y), cone (z)" for messages */
 };
 
@@ -81,31 +82,30 @@ kkt_alloc(const eomc_model *m)
     k->m = m;
     k->n = m->nq, k->nc = m->nc, k->N = (int)N, k->np = m->nq - m->nc, k->nu = m->nu;
     double **arrays[] = {
-        &k->M, &k->h, &k->Mdiag, &k->dEdq, &k->dEdv, &k->dEdu, &k->dEdt, &k->K, &k->r,
+        &k->M, &k->h, &k->Mdiag, &k->dEdq, &k->dEdv, &k->dEdu, &k->dEdt, &k->K, &k->r, &k->dK,
         &k->A, &k->ra, &k->f, &k->B, &k->lam, &k->prev_a, &k->prev_lam, &k->save_a,
         &k->save_lam, &k->dfdq,
         &k->dfdv, &k->dfdu, &k->dfdt, &k->dBdq, &k->dBdv, &k->dBda, &k->dBdu, &k->dBdt,
-        &k->BH, &k->G, &k->E, &k->off, &k->pos, &k->vel, &k->dposdq, &k->dveldq,
+        &k->BH, &k->G, &k->E, &k->off, &k->bmax, &k->pos, &k->vel, &k->dposdq, &k->dveldq,
         &k->dveldv, &k->dposdu, &k->dveldu, &k->dposdt, &k->dveldt,
     };
     size_t sizes[] = {
-        n * n, n, n, n * n, n * n, n * nu, n, N * N, N,
+        n * n, n, n, n * n, n * n, n * nu, n, N * N, N, N,
         n * n, n, nc, nc * n, nc, n, nc, n, nc, nc * n,
         nc * n, nc * nu, nc, nc * n * n, nc * n * n, nc * n * n, nc * n * nu, nc * n,
-        nc * nc, nc * n, n, nc, nc, nc, nc * n, nc * n,
+        nc * nc, nc * n, n, nc, nc * n, nc, nc, nc * n, nc * n,
         nc * n, nc * nu, nc * nu, nc, nc,
     };
     int ok = 1;
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
         ok &= (*arrays[i] = zeros(sizes[i])) != NULL;
     k->dep = calloc(nc ? nc : 1, sizeof *k->dep), k->indep = calloc(n, sizeof *k->indep);
-    k->permN = gsl_permutation_alloc(N), k->permn = gsl_permutation_alloc(n);
-    k->permc = gsl_permutation_alloc(nc ? nc : 1);
+    k->luN = la_lu_alloc((int)N), k->lun = la_lu_alloc((int)n), k->luc = la_lu_alloc((int)nc);
     size_t len = 1;
     for (int c = 0; c < m->nc; c++)
         len += strlen(m->c_names[c]) + strlen(m->q_names[m->c_dependent[c]]) + 8;
     k->names = calloc(len, 1);
-    if (!ok || !k->dep || !k->indep || !k->permN || !k->permn || !k->permc || !k->names) {
+    if (!ok || !k->dep || !k->indep || !k->luN || !k->lun || !k->luc || !k->names) {
         kkt_free(k);
         return NULL;
     }
@@ -131,20 +131,17 @@ kkt_free(Kkt *k)
     if (!k)
         return;
     void *arrays[] = {
-        k->M, k->h, k->Mdiag, k->dEdq, k->dEdv, k->dEdu, k->dEdt, k->K, k->r, k->A,
+        k->M, k->h, k->Mdiag, k->dEdq, k->dEdv, k->dEdu, k->dEdt, k->K, k->r, k->dK, k->A,
         k->ra, k->f, k->B, k->lam, k->prev_a, k->prev_lam, k->save_a, k->save_lam, k->dfdq, k->dfdv, k->dfdu,
         k->dfdt, k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off,
-        k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
+        k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
         k->dposdt, k->dveldt, k->dep, k->indep, k->names,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
-    if (k->permN)
-        gsl_permutation_free(k->permN);
-    if (k->permn)
-        gsl_permutation_free(k->permn);
-    if (k->permc)
-        gsl_permutation_free(k->permc);
+    la_lu_free(k->luN);
+    la_lu_free(k->lun);
+    la_lu_free(k->luc);
     free(k);
 }
 
@@ -203,6 +200,14 @@ build_kkt(Kkt *k, int hessian)
     for (int c = 0; c < nc; c++)
         for (int d = 0; d < nc; d++)
             k->K[(n + c) * N + n + d] = 0;
+}
+
+/* K, scaled (la_kkt_scaling), factored; 0 or -1. */
+static int
+factor_kkt(Kkt *k)
+{
+    la_kkt_scaling(k->K, k->n, k->nc, k->dK);
+    return la_lu_factor_scaled(k->luN, k->K, k->dK);
 }
 
 /* Baumgarte's weights of constraint c's levels: f + *wv vel + *wp pos. */
@@ -269,46 +274,78 @@ eval_constraint(Kkt *k, double t, const double *q, const double *v, const double
         k->f[c] += k->off[c];
 }
 
-/* E = M a + h into k->E. */
+/* E = M a + h into k->E, and the magnitude of its terms,
+ * |h_i| + sum_j |M_ij a_j|, into terms [n]. */
 static void
-residual_E(Kkt *k, const double *a)
+residual_E(Kkt *k, const double *a, double *terms)
 {
     int n = k->n;
-    for (int i = 0; i < n; i++)
-        k->E[i] = k->h[i] + la_dot(k->M + i * n, a, n);
+    for (int i = 0; i < n; i++) {
+        double e = k->h[i], mag = fabs(e);
+        for (int j = 0; j < n; j++) {
+            double x = k->M[i * n + j] * a[j];
+            e += x;
+            mag += fabs(x);
+        }
+        k->E[i] = e;
+        terms[i] = mag;
+    }
 }
 
-/* One Newton step on the KKT system at (a, lam); returns 1 when the step
- * was negligible, 0 after a step, -1 if K is singular. */
+/* f_c relative to its terms at a: B_c a and the rest of f. */
+static double
+constraint_relative(const Kkt *k, int c, const double *a)
+{
+    int n = k->n;
+    const double *Bc = k->B + c * n;
+    double lin = la_dot(Bc, a, n), mag = fabs(k->f[c] - lin);
+    for (int i = 0; i < n; i++)
+        mag += fabs(Bc[i] * a[i]);
+    return la_relative(k->f[c], mag);
+}
+
+/* One Newton step on the KKT system at (a, lam); returns 1 when (a, lam)
+ * had settled (la_settled; k->rel is the last iterate's residual), 0
+ * after a step, -1 if K is singular.  An affine system takes its one step
+ * unconditionally. */
 static int
 step_multipliers(Kkt *k, double t, const double *q, const double *v, const double *p,
                  const double *u, double *a)
 {
     const eomc_model *m = k->m;
-    int n = k->n, nc = k->nc, N = k->N;
+    int n = k->n, nc = k->nc;
     eval_constraint(k, t, q, v, a, p, u);
     if (!m->c_affine)
         m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq,
                       k->dBdv, k->dBda, k->dBdu, k->dBdt);
     build_kkt(k, !m->c_affine);
-    residual_E(k, a);
+    double *terms = k->ra; /* free here */
+    residual_E(k, a, terms);
+    double rel = 0;
     for (int i = 0; i < n; i++) {
-        double x = k->E[i];
-        for (int c = 0; c < nc; c++)
+        double x = k->E[i], mag = terms[i];
+        for (int c = 0; c < nc; c++) {
             x += k->B[c * n + i] * k->lam[c];
+            mag += fabs(k->B[c * n + i] * k->lam[c]);
+        }
         k->r[i] = -x;
+        rel = fmax(rel, la_relative(x, mag));
     }
-    for (int c = 0; c < nc; c++)
+    for (int c = 0; c < nc; c++) {
         k->r[n + c] = -k->f[c];
-    if (la_lu_factor(k->K, N, k->permN) != 0)
+        rel = fmax(rel, constraint_relative(k, c, a));
+    }
+    if (!m->c_affine && la_settled(rel, k->rel))
+        return 1;
+    k->rel = rel;
+    if (factor_kkt(k) != 0)
         return -1;
-    la_lu_solve(k->K, N, k->permN, k->r);
+    la_lu_solve(k->luN, k->r);
     for (int i = 0; i < n; i++)
         a[i] += k->r[i];
     for (int c = 0; c < nc; c++)
         k->lam[c] += k->r[n + c];
-    return la_max_abs(k->r, n) <= NEWTON_TOL * (1 + la_max_abs(a, n)) &&
-           la_max_abs(k->r + n, nc) <= NEWTON_TOL * (1 + la_max_abs(k->lam, nc));
+    return 0;
 }
 
 /* B_h into k->BH, factored; g = -B_h^-1 B_v into k->G [nc*np]. */
@@ -319,13 +356,13 @@ null_space(Kkt *k)
     for (int c = 0; c < nc; c++)
         for (int l = 0; l < nc; l++)
             k->BH[c * nc + l] = k->B[c * n + k->dep[l]];
-    if (la_lu_factor(k->BH, nc, k->permc) != 0)
+    if (la_lu_factor(k->luc, k->BH) != 0)
         return -1;
     double *x = k->E; /* free here; n >= nc entries */
     for (int r = 0; r < np; r++) {
         for (int c = 0; c < nc; c++)
             x[c] = k->B[c * n + k->indep[r]];
-        la_lu_solve(k->BH, nc, k->permc, x);
+        la_lu_solve(k->luc, x);
         for (int l = 0; l < nc; l++)
             k->G[l * np + r] = -x[l];
     }
@@ -333,7 +370,8 @@ null_space(Kkt *k)
 }
 
 /* One (frozen-C) Newton step on [C^T E; f] = 0; 1, 0 or -1 as above, -2
- * when B_h is singular. */
+ * when B_h is singular.  Each row of C^T E is measured against its terms
+ * as they enter it. */
 static int
 step_eliminate(Kkt *k, double t, const double *q, const double *v, const double *p,
                const double *u, double *a)
@@ -342,30 +380,38 @@ step_eliminate(Kkt *k, double t, const double *q, const double *v, const double 
     eval_constraint(k, t, q, v, a, p, u);
     if (null_space(k) != 0)
         return -2;
-    residual_E(k, a);
+    double *terms = k->r; /* free here; N >= n entries */
+    residual_E(k, a, terms);
+    double rel = 0;
     for (int r = 0; r < np; r++) {
         int vi = k->indep[r];
-        double e = k->E[vi];
+        double e = k->E[vi], mag = terms[vi];
         for (int j = 0; j < n; j++)
             k->A[r * n + j] = k->M[vi * n + j];
         for (int l = 0; l < nc; l++) {
             double g = k->G[l * np + r];
             e += g * k->E[k->dep[l]];
+            mag += fabs(g) * terms[k->dep[l]];
             for (int j = 0; j < n; j++)
                 k->A[r * n + j] += g * k->M[k->dep[l] * n + j];
         }
         k->ra[r] = -e;
+        rel = fmax(rel, la_relative(e, mag));
     }
     for (int c = 0; c < nc; c++) {
         memcpy(k->A + (np + c) * n, k->B + c * n, (size_t)n * sizeof(double));
         k->ra[np + c] = -k->f[c];
+        rel = fmax(rel, constraint_relative(k, c, a));
     }
-    if (la_lu_factor(k->A, n, k->permn) != 0)
+    if (!k->m->c_affine && la_settled(rel, k->rel))
+        return 1;
+    k->rel = rel;
+    if (la_lu_factor(k->lun, k->A) != 0)
         return -1;
-    la_lu_solve(k->A, n, k->permn, k->ra);
+    la_lu_solve(k->lun, k->ra);
     for (int i = 0; i < n; i++)
         a[i] += k->ra[i];
-    return la_max_abs(k->ra, n) <= NEWTON_TOL * (1 + la_max_abs(a, n));
+    return 0;
 }
 
 /* The multipliers after elimination: B_h^T lambda = -E_h at the solution. */
@@ -375,15 +421,15 @@ eliminated_multipliers(Kkt *k, double t, const double *q, const double *v,
 {
     int n = k->n, nc = k->nc;
     k->m->constraint(t, q, v, a, p, u, k->f, k->B);
-    residual_E(k, a);
+    residual_E(k, a, k->r);
     for (int c = 0; c < nc; c++)
         for (int l = 0; l < nc; l++)
             k->BH[l * nc + c] = k->B[c * n + k->dep[l]]; /* transposed */
-    if (la_lu_factor(k->BH, nc, k->permc) != 0)
+    if (la_lu_factor(k->luc, k->BH) != 0)
         return -1;
     for (int l = 0; l < nc; l++)
         k->lam[l] = -k->E[k->dep[l]];
-    la_lu_solve(k->BH, nc, k->permc, k->lam);
+    la_lu_solve(k->luc, k->lam);
     return 0;
 }
 
@@ -395,7 +441,8 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     int n = k->n, nc = k->nc, rc = 0;
     m->mass_bias(t, q, v, p, u, k->M, k->h);
     baumgarte_offset(k, t, q, v, p, u);
-    int iters = m->c_affine ? 1 : KKT_NEWTON_MAX;
+    int iters = m->c_affine ? 1 : KKT_NEWTON_MAX + 1; /* the next tests a step */
+    k->rel = HUGE_VAL;
     if (m->c_affine || !k->have_prev) { /* one exact step from zero when affine */
         memset(a, 0, (size_t)n * sizeof *a);
         memset(k->lam, 0, (size_t)nc * sizeof *k->lam);
@@ -415,7 +462,29 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     memcpy(k->prev_a, a, (size_t)n * sizeof *a);
     memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
     k->have_prev = 1;
+    for (int i = 0; i < nc * n; i++)
+        k->bmax[i] = fmax(k->bmax[i], fabs(k->B[i]));
     return KKT_OK;
+}
+
+int
+kkt_vanished(const Kkt *k, double *fraction)
+{
+    int n = k->n;
+    for (int c = 0; c < k->nc; c++) {
+        double worst = 0;
+        int seen = 0;
+        for (int i = 0; i < n; i++)
+            if (k->bmax[c * n + i] > 0) {
+                seen = 1;
+                worst = fmax(worst, fabs(k->B[c * n + i]) / k->bmax[c * n + i]);
+            }
+        if (seen && worst <= KKT_VANISHED) {
+            *fraction = worst;
+            return c;
+        }
+    }
+    return -1;
 }
 
 /* dR/dx_j for column j (q_j for j < n, else v_(j-n)) into k->r. */
@@ -465,7 +534,7 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
              const double *dudt, const double *a, double *dfdx, double *dfdt)
 {
     const eomc_model *m = k->m;
-    int n = k->n, N = k->N, W = 2 * n;
+    int n = k->n, W = 2 * n;
     const double *q = x, *v = x + n;
     m->jacobian(t, q, v, a, p, u, k->dEdq, k->dEdv, k->dEdu, k->dEdt);
     m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
@@ -475,7 +544,7 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
      * Newton solve leaves the previous iterate's. */
     m->constraint(t, q, v, a, p, u, k->f, k->B);
     build_kkt(k, !m->c_affine);
-    if (la_lu_factor(k->K, N, k->permN) != 0)
+    if (factor_kkt(k) != 0)
         return KKT_SINGULAR;
     if (dfdx) {
         for (int i = 0; i < n; i++)
@@ -483,14 +552,14 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
                 dfdx[i * W + j] = j == n + i;
         for (int j = 0; j < W; j++) {
             jacobian_column(k, j);
-            la_lu_solve(k->K, N, k->permN, k->r);
+            la_lu_solve(k->luN, k->r);
             for (int i = 0; i < n; i++)
                 dfdx[(n + i) * W + j] = -k->r[i];
         }
     }
     if (dfdt) {
         time_column(k, dudt);
-        la_lu_solve(k->K, N, k->permN, k->r);
+        la_lu_solve(k->luN, k->r);
         for (int i = 0; i < n; i++) {
             dfdt[i] = 0;
             dfdt[n + i] = -k->r[i];

@@ -52,6 +52,18 @@ void kkt_residuals(Kkt *k, double t, const double *q, const double *v, const dou
 void kkt_save_start(Kkt *k);
 void kkt_restore_start(Kkt *k);
 
+/* A constraint row B_c = df_c/dq'' has vanished when each of its entries
+ * has fallen to this fraction of its largest size in the solves so far:
+ * a ratio of like quantities, so it means the same in any units (a row's
+ * size at one instant does not: the constraint may be written times any
+ * factor). */
+#define KKT_VANISHED 1e-6
+/* After a failed kkt_accel: the first constraint whose row (as the
+ * failed solve left it) has vanished, its largest entry's fraction into
+ * *fraction; or -1.  This names the likely cause: two roots of a
+ * constraint merging, or a constraint degenerating. */
+int kkt_vanished(const Kkt *k, double *fraction);
+
 /* "rod (y), cone (z)": the constraints and their dependent coordinates. */
 const char *kkt_names(const Kkt *k);
 

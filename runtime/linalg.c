@@ -3,28 +3,153 @@
  */
 #include "linalg.h"
 
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_permute_vector.h>
 #include <math.h>
+#include <stdlib.h>
+
+struct LaLu {
+    int n;
+    double *A;            /* [n*n] the equilibrated matrix, then its LU */
+    double *row, *col;    /* [n] A_eq = diag(row) A diag(col), powers of 2 */
+    double norm1;         /* ||A_eq||_1, for the condition estimate */
+    int ok;               /* the last factorization succeeded */
+    gsl_permutation perm; /* its data in mem */
+    gsl_vector_view work; /* [3n] for gsl_linalg_invnorm1 */
+    double mem[];
+};
+
+LaLu *
+la_lu_alloc(int n)
+{
+    size_t N = (size_t)(n > 0 ? n : 1);
+    /* doubles: A, row, col, work; then the permutation's size_t */
+    size_t doubles = N * N + 5 * N;
+    LaLu *lu = calloc(1, sizeof *lu + doubles * sizeof(double) + N * sizeof(size_t));
+    if (!lu)
+        return NULL;
+    lu->n = n;
+    lu->A = lu->mem;
+    lu->row = lu->A + N * N;
+    lu->col = lu->row + N;
+    lu->work = gsl_vector_view_array(lu->col + N, 3 * N);
+    lu->perm.size = N;
+    lu->perm.data = (size_t *)(lu->mem + doubles);
+    return lu;
+}
+
+void
+la_lu_free(LaLu *lu)
+{
+    free(lu);
+}
+
+/* 2^-e with 2^e <= x < 2^(e+1): the power of 2 that brings x into [1, 2). */
+static double
+inverse_power(double x)
+{
+    return ldexp(1.0, -ilogb(x));
+}
 
 int
-la_lu_factor(double *A, int n, gsl_permutation *perm)
+la_lu_factor(LaLu *lu, const double *A)
 {
-    double scale = la_max_abs(A, n * n);
-    gsl_matrix_view Av = gsl_matrix_view_array(A, (size_t)n, (size_t)n);
-    int sign;
-    gsl_linalg_LU_decomp(&Av.matrix, perm, &sign);
-    for (int i = 0; i < n; i++)
-        if (!(fabs(A[i * n + i]) > LA_SINGULAR_TOL * scale))
+    return la_lu_factor_scaled(lu, A, NULL);
+}
+
+int
+la_lu_factor_scaled(LaLu *lu, const double *A, const double *d)
+{
+    int n = lu->n;
+    double *E = lu->A;
+    lu->ok = 0;
+    for (int i = 0; i < n; i++) {
+        double di = d ? d[i] : 1, big = 0;
+        for (int j = 0; j < n; j++)
+            big = fmax(big, fabs(di * A[i * n + j] * (d ? d[j] : 1)));
+        if (!(big > 0) || !isfinite(big))
             return -1;
+        lu->row[i] = di * inverse_power(big);
+    }
+    for (int j = 0; j < n; j++) {
+        double big = 0, dj = d ? d[j] : 1;
+        for (int i = 0; i < n; i++)
+            big = fmax(big, fabs(lu->row[i] * A[i * n + j] * dj));
+        if (!(big > 0))
+            return -1;
+        lu->col[j] = dj * inverse_power(big);
+    }
+    lu->norm1 = 0;
+    for (int j = 0; j < n; j++) {
+        double sum = 0;
+        for (int i = 0; i < n; i++)
+            sum += fabs(E[i * n + j] = lu->row[i] * A[i * n + j] * lu->col[j]);
+        lu->norm1 = fmax(lu->norm1, sum);
+    }
+    double scale = la_max_abs(E, n * n);
+    gsl_matrix_view Av = gsl_matrix_view_array(E, (size_t)n, (size_t)n);
+    int sign;
+    gsl_linalg_LU_decomp(&Av.matrix, &lu->perm, &sign);
+    for (int i = 0; i < n; i++)
+        if (!(fabs(E[i * n + i]) > LA_SINGULAR_TOL * scale))
+            return -1;
+    lu->ok = 1;
     return 0;
 }
 
 void
-la_lu_solve(double *LU, int n, gsl_permutation *perm, double *b)
+la_lu_solve(LaLu *lu, double *b)
 {
-    gsl_matrix_view Av = gsl_matrix_view_array(LU, (size_t)n, (size_t)n);
+    int n = lu->n;
+    gsl_matrix_view Av = gsl_matrix_view_array(lu->A, (size_t)n, (size_t)n);
     gsl_vector_view bv = gsl_vector_view_array(b, (size_t)n);
-    gsl_linalg_LU_svx(&Av.matrix, perm, &bv.vector);
+    for (int i = 0; i < n; i++)
+        b[i] *= lu->row[i];
+    gsl_linalg_LU_svx(&Av.matrix, &lu->perm, &bv.vector);
+    for (int j = 0; j < n; j++)
+        b[j] *= lu->col[j];
+}
+
+void
+la_kkt_scaling(const double *K, int n, int nc, double *d)
+{
+    int N = n + nc;
+    for (int i = 0; i < n; i++) {
+        double h = K[i * N + i];
+        d[i] = h > 0 && isfinite(h) ? inverse_power(sqrt(h)) : 1;
+    }
+    for (int c = 0; c < nc; c++) {
+        double big = 0;
+        for (int i = 0; i < n; i++)
+            big = fmax(big, fabs(K[(n + c) * N + i] * d[i]));
+        d[n + c] = big > 0 && isfinite(big) ? inverse_power(big) : 1;
+    }
+}
+
+/* x = A_eq^-1 x or A_eq^-T x, for gsl_linalg_invnorm1.  P A = L U, so
+ * A^T = U^T L^T P. */
+static int
+equilibrated_solve(CBLAS_TRANSPOSE_t trans, gsl_vector *x, void *params)
+{
+    LaLu *lu = params;
+    gsl_matrix_view Av = gsl_matrix_view_array(lu->A, (size_t)lu->n, (size_t)lu->n);
+    if (trans == CblasNoTrans)
+        return gsl_linalg_LU_svx(&Av.matrix, &lu->perm, x);
+    gsl_blas_dtrsv(CblasUpper, CblasTrans, CblasNonUnit, &Av.matrix, x);
+    gsl_blas_dtrsv(CblasLower, CblasTrans, CblasUnit, &Av.matrix, x);
+    return gsl_permute_vector_inverse(&lu->perm, x);
+}
+
+double
+la_lu_rcond(LaLu *lu)
+{
+    double inv = 0;
+    if (!lu->ok || gsl_linalg_invnorm1((size_t)lu->n, equilibrated_solve, lu, &inv,
+                                       &lu->work.vector) != GSL_SUCCESS ||
+        !(inv > 0) || !isfinite(inv))
+        return 0;
+    return 1 / (lu->norm1 * inv);
 }
 
 int
@@ -83,12 +208,60 @@ la_max_abs(const double *x, int n)
     return m;
 }
 
-int
-la_ext_lu_factor(eomc_ext *A, int n, int *perm)
+/* 2^-e bringing x into [1, 2), in extended precision. */
+static eomc_ext
+ext_inverse_power(eomc_ext x)
 {
-    eomc_ext scale = 0;
+    return ldexpl(1.0L, -ilogbl(x));
+}
+
+void
+la_ext_kkt_scaling(const eomc_ext *K, int n, int nc, eomc_ext *d)
+{
+    int N = n + nc;
+    for (int i = 0; i < n; i++) {
+        eomc_ext h = K[i * N + i];
+        d[i] = h > 0 && isfinite(h) ? ext_inverse_power(sqrtl(h)) : 1;
+    }
+    for (int c = 0; c < nc; c++) {
+        eomc_ext big = 0;
+        for (int i = 0; i < n; i++)
+            big = fmaxl(big, fabsl(K[(n + c) * N + i] * d[i]));
+        d[n + c] = big > 0 && isfinite(big) ? ext_inverse_power(big) : 1;
+    }
+}
+
+int
+la_ext_lu_factor(eomc_ext *A, int n, int *perm, eomc_ext *scale, const eomc_ext *d)
+{
+    eomc_ext *row = scale, *col = scale + n;
+    for (int i = 0; i < n * n && d; i++)
+        A[i] *= d[i / n] * d[i % n];
+    for (int i = 0; i < n; i++) {
+        eomc_ext big = 0;
+        for (int j = 0; j < n; j++)
+            big = fmaxl(big, fabsl(A[i * n + j]));
+        if (!(big > 0) || !isfinite(big))
+            return -1;
+        row[i] = ext_inverse_power(big);
+        for (int j = 0; j < n; j++)
+            A[i * n + j] *= row[i];
+        row[i] *= d ? d[i] : 1;
+    }
+    for (int j = 0; j < n; j++) {
+        eomc_ext big = 0;
+        for (int i = 0; i < n; i++)
+            big = fmaxl(big, fabsl(A[i * n + j]));
+        if (!(big > 0))
+            return -1;
+        col[j] = ext_inverse_power(big);
+        for (int i = 0; i < n; i++)
+            A[i * n + j] *= col[j];
+        col[j] *= d ? d[j] : 1;
+    }
+    eomc_ext big = 0;
     for (int i = 0; i < n * n; i++)
-        scale = fmaxl(scale, fabsl(A[i]));
+        big = fmaxl(big, fabsl(A[i]));
     for (int k = 0; k < n; k++) {
         int p = k;
         for (int i = k + 1; i < n; i++)
@@ -102,7 +275,7 @@ la_ext_lu_factor(eomc_ext *A, int n, int *perm)
                 A[p * n + j] = x;
             }
         eomc_ext piv = A[k * n + k];
-        if (!(fabsl(piv) > LA_SINGULAR_TOL * scale))
+        if (!(fabsl(piv) > LA_SINGULAR_TOL * big))
             return -1;
         for (int i = k + 1; i < n; i++) {
             eomc_ext l = A[i * n + k] /= piv;
@@ -114,8 +287,11 @@ la_ext_lu_factor(eomc_ext *A, int n, int *perm)
 }
 
 void
-la_ext_lu_solve(const eomc_ext *LU, int n, const int *perm, eomc_ext *b)
+la_ext_lu_solve(const eomc_ext *LU, int n, const int *perm, const eomc_ext *scale,
+                eomc_ext *b)
 {
+    for (int i = 0; i < n; i++)
+        b[i] *= scale[i];
     for (int k = 0; k < n; k++) {
         eomc_ext x = b[k];
         b[k] = b[perm[k]];
@@ -129,4 +305,6 @@ la_ext_lu_solve(const eomc_ext *LU, int n, const int *perm, eomc_ext *b)
             b[i] -= LU[i * n + j] * b[j];
         b[i] /= LU[i * n + i];
     }
+    for (int j = 0; j < n; j++)
+        b[j] *= scale[n + j];
 }

@@ -11,17 +11,42 @@
 #ifndef EOMC_LINALG_H
 #define EOMC_LINALG_H
 
-#include <gsl/gsl_permutation.h>
+#include <float.h>
+#include <math.h>
 
 #include "eomc_model.h"
 
-/* A pivot is negligible when |U_ii| <= LA_SINGULAR_TOL max|A_ij|. */
+/* A pivot is negligible when |U_ii| <= LA_SINGULAR_TOL max|A_ij|, A
+ * equilibrated (la_lu) or as given (la_ext_lu). */
 #define LA_SINGULAR_TOL 1e-13
 
-/* A = LU in place (partial pivoting); 0, or -1 when a pivot is negligible. */
-int la_lu_factor(double *A, int n, gsl_permutation *perm);
-/* b = A^-1 b with A factored by la_lu_factor. */
-void la_lu_solve(double *LU, int n, gsl_permutation *perm, double *b);
+/*
+ * An LU factorization of a square matrix whose rows and columns may carry
+ * different units (a KKT matrix mixes masses and lengths, an iteration
+ * matrix positions and velocities).  It first equilibrates, as LAPACK's
+ * dgeequb does: each row, then each column, is scaled by a power of 2 to
+ * bring its largest entry near 1.  Rescaling a row or column of A by any
+ * factor then changes neither the pivots' test nor the solution beyond
+ * rounding, and the condition estimate is that of the balanced matrix:
+ * what the problem's units do not decide.
+ */
+typedef struct LaLu LaLu;
+
+/* NULL when memory runs out; la_lu_free is NULL-safe. */
+LaLu *la_lu_alloc(int n);
+void la_lu_free(LaLu *lu);
+/* Factor A [n*n] (left unchanged); 0, or -1 when A has a zero row or
+ * column or a pivot is negligible. */
+int la_lu_factor(LaLu *lu, const double *A);
+/* The same for diag(d) A diag(d), d [n] a symmetric scaling the caller
+ * knows better than the entries' sizes can tell (la_kkt_scaling); the
+ * solve still solves with A. */
+int la_lu_factor_scaled(LaLu *lu, const double *A, const double *d);
+/* b = A^-1 b, A as last factored. */
+void la_lu_solve(LaLu *lu, double *b);
+/* An estimate of 1 / cond_1 of the equilibrated A, as last factored
+ * (Hager and Higham's, a few solves). */
+double la_lu_rcond(LaLu *lu);
 
 /* M = L D L^T in place, M symmetric; 0, or k + 1 for the first pivot
  * d_k <= EOMC_PIVOT_TOL M_kk (M singular or not positive definite).
@@ -35,12 +60,57 @@ int la_cholesky_factor(double *A, int n);
 /* b = A^-1 b with A factored by la_cholesky_factor. */
 void la_cholesky_solve(double *L, int n, double *b);
 
+/*
+ * When a Newton-type iteration (kkt.c's, project.c's) may stop.  Each of
+ * its equations is measured against the magnitude of its terms, so the
+ * test means the same in any units: the iteration stops when the largest
+ * such relative residual is LA_SETTLED_TIGHT (rounding: 16 units of it),
+ * or when it stopped decreasing below LA_SETTLED_LOOSE: then
+ * what is left is the rounding of the equations themselves, which the
+ * magnitude of their terms need not bound.  Quadratic convergence makes
+ * the second case cost one extra iteration; a step's size is not used, as
+ * an ill-conditioned system leaves steps of rounding times its condition
+ * long after its equations hold.
+ */
+#define LA_SETTLED_TIGHT (16 * DBL_EPSILON)
+#define LA_SETTLED_LOOSE 1e-8
+static inline int
+la_settled(double rel, double prev)
+{
+    return rel <= LA_SETTLED_TIGHT || (rel <= LA_SETTLED_LOOSE && rel >= prev);
+}
+/* |r| relative to mag, the magnitude of r's terms: 0 when r is exactly
+ * 0, infinite when r is not but mag is 0. */
+static inline double
+la_relative(double r, double mag)
+{
+    return r == 0 ? 0 : mag > 0 ? fabs(r) / mag : HUGE_VAL;
+}
+
 double la_dot(const double *a, const double *b, int n);
 /* max_i |x_i| */
 double la_max_abs(const double *x, int n);
 
-/* The same LU in extended precision: perm [n] is filled here. */
-int la_ext_lu_factor(eomc_ext *A, int n, int *perm);
-void la_ext_lu_solve(const eomc_ext *LU, int n, const int *perm, eomc_ext *b);
+/*
+ * A KKT matrix K = [H B^T; B 0] (H the mass matrix, plus the constraints'
+ * curvature) needs more than equilibration: when the masses are small
+ * against B's entries, every row and column of K already has its largest
+ * entry in B, yet the motion along the constraints is decided by H alone.
+ * The symmetric scaling d [n + nc] that makes H's diagonal near 1 and then
+ * each row of B's largest entry near 1 balances both, whatever the units:
+ *     d_i = 1 / sqrt(H_ii),   d_(n+c) = 1 / max_i |B_ci d_i|,
+ * as powers of 2; a coordinate without mass keeps d_i = 1 and is left to
+ * the equilibration.  K [(n+nc)^2] is row-major.
+ */
+void la_kkt_scaling(const double *K, int n, int nc, double *d);
+
+/* The same LU, equilibrated the same way, in extended precision, in
+ * place: perm [n] and scale [2n] (the rows', then the columns') are filled
+ * here for la_ext_lu_solve.  d [n] is a symmetric scaling applied first
+ * (la_ext_kkt_scaling), or NULL. */
+int la_ext_lu_factor(eomc_ext *A, int n, int *perm, eomc_ext *scale, const eomc_ext *d);
+void la_ext_kkt_scaling(const eomc_ext *K, int n, int nc, eomc_ext *d);
+void la_ext_lu_solve(const eomc_ext *LU, int n, const int *perm, const eomc_ext *scale,
+                     eomc_ext *b);
 
 #endif

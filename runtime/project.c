@@ -21,8 +21,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PROJ_TOL 1e-14     /* relative size of the last correction */
-
 struct Proj {
     const eomc_model *m;
     int n, nc;
@@ -32,7 +30,7 @@ struct Proj {
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
-    gsl_permutation *perm[2];  /* [npos], [nvel] (at least 1) */
+    LaLu *lu[2];               /* G M^-1 G^T at each level */
     char *names[2];            /* constraint names of each level, for messages */
 };
 
@@ -78,12 +76,12 @@ proj_alloc(const eomc_model *m)
             if (m->c_order[c] <= 1)
                 j->vel_rows[j->nvel++] = c;
         }
-    j->perm[0] = gsl_permutation_alloc((size_t)(j->npos ? j->npos : 1));
-    j->perm[1] = gsl_permutation_alloc((size_t)(j->nvel ? j->nvel : 1));
+    j->lu[0] = la_lu_alloc(j->npos);
+    j->lu[1] = la_lu_alloc(j->nvel);
     j->names[0] = join_names(m, j->pos_rows, j->npos);
     j->names[1] = join_names(m, j->vel_rows, j->nvel);
     if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
-        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->perm[0] || !j->perm[1] || !j->names[0] ||
+        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->lu[0] || !j->lu[1] || !j->names[0] ||
         !j->names[1]) {
         proj_free(j);
         return NULL;
@@ -100,9 +98,8 @@ proj_free(Proj *j)
                       j->vel, j->zero, j->Y, j->S, j->mu, j->names[0], j->names[1]};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
-    for (int l = 0; l < 2; l++)
-        if (j->perm[l])
-            gsl_permutation_free(j->perm[l]);
+    la_lu_free(j->lu[0]);
+    la_lu_free(j->lu[1]);
     free(j);
 }
 
@@ -116,6 +113,47 @@ const char *
 proj_names(const Proj *j, int level)
 {
     return j->names[level != 0];
+}
+
+/* |r_k| over the magnitude of its terms at x (q for positions, v for
+ * velocities): sum_i |B_ki x_i| and the rest of r_k.  B's row is the
+ * constraint's gradient in x, so this is r_k's size against what the
+ * state contributes to it.  0 when r_k is exactly 0. */
+static double
+relative_residual(const double *Bk, const double *x, int n, double rk)
+{
+    double lin = la_dot(Bk, x, n), mag = fabs(rk - lin);
+    for (int i = 0; i < n; i++)
+        mag += fabs(Bk[i] * x[i]);
+    return la_relative(rk, mag);
+}
+
+/* c_levels and B at (t, q, v) into j. */
+static void
+levels(Proj *j, double t, const double *q, const double *v, const double *p,
+       const double *u)
+{
+    j->m->c_levels(t, q, v, p, u, j->pos, j->vel);
+    j->m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
+}
+
+/* The largest relative residual of a level's rows, its row into *worst. */
+static double
+level_residual(const Proj *j, const double *q, const double *v, int level, int *worst)
+{
+    int nr = level ? j->nvel : j->npos;
+    const int *rows = level ? j->vel_rows : j->pos_rows;
+    const double *x = level ? v : q, *r = level ? j->vel : j->pos;
+    double big = 0;
+    for (int k = 0; k < nr; k++) {
+        double e = relative_residual(j->B + rows[k] * j->n, x, j->n, r[rows[k]]);
+        if (e > big || (k == 0 && worst)) {
+            big = e;
+            if (worst)
+                *worst = rows[k];
+        }
+    }
+    return big;
 }
 
 double
@@ -133,24 +171,38 @@ proj_residual(Proj *j, double t, const double *q, const double *v, const double 
     return r;
 }
 
+double
+proj_inconsistency(Proj *j, double t, const double *q, const double *v, const double *p,
+                   const double *u, int *worst, int *level)
+{
+    int w0 = -1, w1 = -1;
+    *worst = -1, *level = 0;
+    if (j->nvel == 0)
+        return 0;
+    levels(j, t, q, v, p, u);
+    double e0 = j->npos ? level_residual(j, q, v, 0, &w0) : 0;
+    double e1 = level_residual(j, q, v, 1, &w1);
+    *level = !(e0 >= e1 && w0 >= 0);
+    *worst = *level ? w1 : w0;
+    return fmax(e0, e1);
+}
+
 /* One Gauss-Newton correction of x (q at level 0, v at level 1): 1 when
- * it was negligible, 0 after a correction, -1 when G M^-1 G^T is
- * singular. */
+ * the level's constraints have settled (la_settled, from *rel, the last
+ * iterate's relative residual), 0 after a correction, -1 when G M^-1 G^T
+ * is singular. */
 static int
 correct(Proj *j, double t, double *q, double *v, const double *p, const double *u,
-        int level)
+        int level, double *rel)
 {
-    const eomc_model *m = j->m;
     int n = j->n, nr = level ? j->nvel : j->npos;
     const int *rows = level ? j->vel_rows : j->pos_rows;
     double *x = level ? v : q, *r = level ? j->vel : j->pos;
-    m->c_levels(t, q, v, p, u, j->pos, j->vel);
-    int zero = 1;
-    for (int k = 0; k < nr; k++)
-        zero &= r[rows[k]] == 0.0;
-    if (zero)
+    levels(j, t, q, v, p, u);
+    double now = level_residual(j, q, v, level, NULL);
+    if (la_settled(now, *rel))
         return 1;
-    m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
+    *rel = now;
     for (int k = 0; k < nr; k++) {
         double *y = j->Y + k * n;
         memcpy(y, j->B + rows[k] * n, (size_t)n * sizeof *y);
@@ -159,20 +211,18 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
     for (int k = 0; k < nr; k++)
         for (int l = 0; l < nr; l++)
             j->S[k * nr + l] = la_dot(j->B + rows[k] * n, j->Y + l * n, n);
-    if (la_lu_factor(j->S, nr, j->perm[level]) != 0)
+    if (la_lu_factor(j->lu[level], j->S) != 0)
         return -1;
     for (int k = 0; k < nr; k++)
         j->mu[k] = r[rows[k]];
-    la_lu_solve(j->S, nr, j->perm[level], j->mu);
-    double step = 0;
+    la_lu_solve(j->lu[level], j->mu);
     for (int i = 0; i < n; i++) {
         double d = 0;
         for (int k = 0; k < nr; k++)
             d += j->Y[k * n + i] * j->mu[k];
         x[i] -= d;
-        step = fmax(step, fabs(d));
     }
-    return step <= PROJ_TOL * (1 + la_max_abs(x, n));
+    return 0;
 }
 
 static int
@@ -182,8 +232,9 @@ project_level(Proj *j, double t, double *q, double *v, const double *p, const do
     if ((level ? j->nvel : j->npos) == 0)
         return PROJ_OK;
     int rc = 0;
-    for (int it = 0; it < PROJ_MAX && rc == 0; it++)
-        rc = correct(j, t, q, v, p, u, level);
+    double rel = HUGE_VAL;
+    for (int it = 0; it <= PROJ_MAX && rc == 0; it++) /* the next tests a correction */
+        rc = correct(j, t, q, v, p, u, level, &rel);
     return rc < 0 ? PROJ_SINGULAR : rc == 0 ? PROJ_NO_CONVERGENCE : PROJ_OK;
 }
 

@@ -24,9 +24,17 @@ Proj *proj_alloc(const eomc_model *m);
 void proj_free(Proj *j);
 /* Whether the model has constraints below acceleration level. */
 int proj_levels(const Proj *j);
-/* The largest |g| and |g'| or |phi| at (t, q, v). */
+/* The largest |g| and |g'| or |phi| at (t, q, v), in the constraints'
+ * own units. */
 double proj_residual(Proj *j, double t, const double *q, const double *v,
                      const double *p, const double *u);
+/* The largest residual of a constraint at position or velocity level
+ * relative to the magnitude of its terms (0 when all hold exactly, 1 or
+ * more when one is nowhere near), that constraint's index into *worst
+ * (-1 when there are none) and its level into *level.  Unlike proj_residual, it does not
+ * depend on the model's units. */
+double proj_inconsistency(Proj *j, double t, const double *q, const double *v,
+                          const double *p, const double *u, int *worst, int *level);
 /* (q, v) onto the holonomic and velocity-level constraints, in place.
  * On failure *level is 0 (positions) or 1 (velocities). */
 int proj_apply(Proj *j, double t, double *q, double *v, const double *p,

@@ -78,6 +78,7 @@ typedef struct Ref {
     eomc_ext *f, *B, *a, *lam;    /* [nc], [nc*n], [n], [nc] */
     eomc_ext *cj[9];              /* c_jacobian's outputs; cj[6] is dBda */
     int *perm;                    /* [n+nc] */
+    eomc_ext *eq, *dK;            /* [2(n+nc)] the LU's equilibration, [n+nc] */
     int have_prev;                /* a and lam hold the last solution */
     eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
     eomc_ext *z0, *z1, *z2, *c0, *c1;    /* [N] midpoint sums, compensations */
@@ -111,9 +112,9 @@ accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a
     if (r->x->accel)
         return r->x->accel(t, q, v, r->p, r->u, a) == 0 ? 0 : -1;
     r->x->mass_bias(t, q, v, r->p, r->u, r->M, a);
-    if (la_ext_lu_factor(r->M, n, r->perm) != 0)
+    if (la_ext_lu_factor(r->M, n, r->perm, r->eq, NULL) != 0)
         return -1;
-    la_ext_lu_solve(r->M, n, r->perm, a);
+    la_ext_lu_solve(r->M, n, r->perm, r->eq, a);
     for (int i = 0; i < n; i++)
         a[i] = -a[i];
     return 0;
@@ -150,9 +151,10 @@ kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
             r->K[(n + c) * W + n + d] = 0;
         r->r[n + c] = -r->f[c];
     }
-    if (la_ext_lu_factor(r->K, W, r->perm) != 0)
+    la_ext_kkt_scaling(r->K, n, nc, r->dK);
+    if (la_ext_lu_factor(r->K, W, r->perm, r->eq, r->dK) != 0)
         return -1;
-    la_ext_lu_solve(r->K, W, r->perm, r->r);
+    la_ext_lu_solve(r->K, W, r->perm, r->eq, r->r);
     eomc_ext change[2] = {0, 0}, size[2] = {0, 0};
     for (int i = 0; i < W; i++) {
         eomc_ext *y = i < n ? &r->a[i] : &r->lam[i - n];
@@ -386,7 +388,7 @@ ref_free(Ref *r)
     eomc_ext *arrays[] = {r->p,  r->u,  r->dudt, r->M,  r->h,  r->K,  r->r,  r->f,
                           r->B,  r->a,  r->lam,  r->cj[0], r->X, r->F, r->Xn, r->z0,
                           r->z1, r->z2, r->c0,   r->c1, r->Y,  r->G,  r->Y2, r->T,
-                          r->mag};
+                          r->mag, r->eq, r->dK};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->perm);
@@ -417,11 +419,11 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     eomc_ext **arrays[] = {&r->p,  &r->u,  &r->dudt, &r->M,  &r->h,  &r->K,  &r->r,
                            &r->f,  &r->B,  &r->a,    &r->lam, &r->cj[0], &r->X, &r->F,
                            &r->Xn, &r->z0, &r->z1,   &r->z2, &r->c0, &r->c1, &r->Y,
-                           &r->G,  &r->Y2, &r->T,    &r->mag};
+                           &r->G,  &r->Y2, &r->T,    &r->mag, &r->eq, &r->dK};
     size_t sizes[] = {(size_t)m->np, nu, nu, n * n, n, W * W, W,
                       nc, nc * n, n, nc, ncj, N, N,
                       N, N, N, N, N, N, N,
-                      N, N, LEVELS * N, N};
+                      N, N, LEVELS * N, N, 2 * W, W};
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;

@@ -234,6 +234,15 @@ static int
 kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
 {
     const char *names = kkt_names(s->kkt);
+    const eomc_model *m = s->m;
+    double fraction;
+    int c = kkt_vanished(s->kkt, &fraction);
+    if (c >= 0 && rc != KKT_DEPENDENT)
+        return sim_numeric_error(s, t, q, v, "the constraint %s (%s) degenerates here: "
+                                 "its df/dq'' has fallen to %.2g of its largest size in the "
+                                 "run (two of its roots in q'' merge, or it no longer "
+                                 "constrains the motion)", m->c_names[c],
+                                 m->q_names[m->c_dependent[c]], fraction);
     switch (rc) {
     case KKT_DEPENDENT:
         return sim_numeric_error(s, t, q, v, "the constraints cannot be solved for their "
@@ -357,6 +366,17 @@ sim_level_residual(eomc_sim *s, double t, const double *q, const double *v)
         return 0;
     sim_inputs_at(s, t);
     return proj_residual(s->proj, t, q, v, s->p, s->u);
+}
+
+double
+eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
+                       int *worst, int *level)
+{
+    *worst = -1, *level = 0;
+    if (!sim_has_levels(s))
+        return 0;
+    sim_inputs_at(s, t);
+    return proj_inconsistency(s->proj, t, q, v, s->p, s->u, worst, level);
 }
 
 int

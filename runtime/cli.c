@@ -773,10 +773,10 @@ check_consistent(const Cli *c, eomc_sim *sim, const double *x)
         return;
     double e = eomc_sim_inconsistency(sim, c->run.t0, x, x + m->nq, &worst, &level);
     if (e > INCONSISTENT_TOL && worst >= 0)
-        fprintf(stderr, "%s: warning: the initial state violates the constraint %s at "
-                "%s level, by %.2g of the size of its terms (--assemble projects it "
-                "onto the constraints)\n", c->prog, m->c_names[worst],
-                level ? "velocity" : "position", e);
+        fprintf(stderr, "%s: warning: the initial %s violate the constraint %s: its "
+                "residual is %.2g of the size of its terms (--assemble projects the state "
+                "onto the constraints)\n", c->prog, level ? "velocities" : "positions",
+                m->c_names[worst], e);
 }
 
 /* Open -o's file (or stdout); NULL after saying why. */

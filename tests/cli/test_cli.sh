@@ -102,10 +102,16 @@ res=$(sed -n 's/^max_residual //p' "$tmp/proj.err")
 awk -v r="$res" 'BEGIN { exit !(r != "" && r < 1e-12) }'
 ok $? "--stabilize project --stats: max_residual $res < 1e-12 over 50 s at rtol 1e-6"
 "$tmp/cp" --init x=1.2 --t-end 0.1 -o /dev/null 2> "$tmp/warn.err"; st=$?
-[ $st -eq 0 ] && grep -q "warning: the initial state violates the constraint rod" "$tmp/warn.err"
+[ $st -eq 0 ] && grep -q "warning: the initial positions violate the constraint rod: its residual is" "$tmp/warn.err"
 ok $? "an initial state off the constraints: a warning naming the constraint, suggesting --assemble"
 "$tmp/cp" --t-end 0.1 -o /dev/null 2> "$tmp/nowarn.err"
 [ ! -s "$tmp/nowarn.err" ]; ok $? "a consistent initial state: no warning"
+"$tmp/cp" --set l=1e6 --t-end 0.1 -o /dev/null 2> "$tmp/nowarn6.err"
+[ ! -s "$tmp/nowarn6.err" ]; ok $? "a consistent initial state with l = 1e6: no warning (the test is relative)"
+# x' = 0.05, y' = 0 at theta0 = 1: a radial velocity of 0.05 sin(1)
+"$tmp/cp" --init "x'=0.05" --t-end 0.1 -o /dev/null 2> "$tmp/warnv.err"; st=$?
+[ $st -eq 0 ] && grep -q "warning: the initial velocities violate the constraint rod: its residual is 1 of" "$tmp/warnv.err"
+ok $? "initial velocities off the constraints: a warning at velocity level"
 usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
 usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
 ok $? "--stabilize with a typo: usage error suggesting project"

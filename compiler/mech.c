@@ -133,10 +133,10 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
         case FORCE_TORQUE:
             add_torque(&s->body[f->body], f, m, P, D);
             break;
-        case FORCE_WORK: /* delta W = sum_i dW/dq_i delta q_i */
+        case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec.c checked) */
             for (int i = 0; i < m->n; i++)
                 m->Q[i] = expr_add(P, m->Q[i],
-                                   diff_partial(D, f->expr, m->q[0][i]));
+                                   diff_partial(D, f->expr, expr_seed(P, i, 0)));
             break;
         }
     }

@@ -180,9 +180,11 @@ accept(Parser *ps, TokKind k)
 
 typedef struct Builtin {
     const char *name;
-    int op;    /* EXPR_ op, or -1 for dot */
+    int op;    /* EXPR_ op, or BUILTIN_DOT, BUILTIN_DELTA */
     int arity;
 } Builtin;
+
+enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2 };
 
 static const Builtin builtins[] = {
     {"sin", EXPR_SIN, 1},   {"cos", EXPR_COS, 1},     {"tan", EXPR_TAN, 1},
@@ -190,7 +192,7 @@ static const Builtin builtins[] = {
     {"atan2", EXPR_ATAN2, 2}, {"sinh", EXPR_SINH, 1}, {"cosh", EXPR_COSH, 1},
     {"tanh", EXPR_TANH, 1}, {"exp", EXPR_EXP, 1},     {"log", EXPR_LOG, 1},
     {"sqrt", EXPR_SQRT, 1}, {"abs", EXPR_ABS, 1},     {"pow", EXPR_POW, 2},
-    {"dot", -1, 1},
+    {"dot", BUILTIN_DOT, 1}, {"delta", BUILTIN_DELTA, 1},
 };
 enum { NBUILTINS = sizeof builtins / sizeof builtins[0] };
 
@@ -223,6 +225,10 @@ describe_leaf(ParseScope *sc, ExprId leaf, char *buf, size_t len)
         break;
     case EXPR_VAR:
         snprintf(buf, len, "the %s '%s%s'", order[nd->b], sc->leaf_name(sc, leaf), primes[nd->b]);
+        break;
+    case EXPR_SEED:
+        snprintf(buf, len, "the variation delta(%s) (only virtual work, `work:`, has "
+                 "variations)", sc->leaf_name(sc, expr_var(sc->P, (int)nd->a, 0)));
         break;
     case EXPR_PARAM:
         snprintf(buf, len, "the parameter '%s'", sc->leaf_name(sc, leaf));
@@ -264,6 +270,35 @@ time_derivative(Parser *ps, ExprId e, size_t off)
                    "derivative is not known (write the signal of t in a define instead)",
                    sc->leaf_name(sc, u));
     diag_error(at(ps, off), "derivatives above the third (q''') are not supported");
+}
+
+/* delta(e): the virtual displacement of e at fixed time,
+ *     delta(e) = sum_i de/dq_i delta(q_i),
+ * with the variations delta(q_i) as EXPR_SEED leaves (kind 0), or an
+ * error at off saying why e has none. */
+static ExprId
+variation(Parser *ps, ExprId e, size_t off)
+{
+    ParseScope *sc = ps->sc;
+    ExprPool *P = sc->P;
+    unsigned deps = expr_deps(P, e);
+    if (deps & DEP_S)
+        diag_error(at(ps, off), "delta() of an expression that holds a variation: virtual "
+                   "work is linear in the variations, so write each as delta(e) of a position e");
+    unsigned moving = DEP_ANY_Q & ~DEP_ORDER(0);
+    if (deps & moving) {
+        char what[200];
+        describe_leaf(sc, expr_find_leaf(P, e, moving), what, sizeof what);
+        diag_error(at(ps, off), "delta() varies positions at a fixed time, and this "
+                   "expression depends on %s: write the force's factor outside, as in "
+                   "-c*r'*delta(r)", what);
+    }
+    ExprId r = EXPR_ZERO;
+    for (int i = 0; i < sc->ncoord; i++)
+        r = expr_add(P, r, expr_mul(P, diff_partial(sc->D, e, expr_var(P, i, 0)),
+                                    expr_seed(P, i, 0)));
+    check_deps(ps, r, NULL, off);
+    return r;
 }
 
 /* ---- constants ---- */
@@ -366,8 +401,10 @@ call(Parser *ps, const char *name, size_t name_off)
         diag_error(at(ps, name_off), "%s takes %d argument%s, not %d", name, b->arity,
                    b->arity == 1 ? "" : "s", n);
     ExprPool *P = ps->sc->P;
-    if (b->op < 0)
+    if (b->op == BUILTIN_DOT)
         return time_derivative(ps, args[0], name_off);
+    if (b->op == BUILTIN_DELTA)
+        return variation(ps, args[0], name_off);
     if (b->arity == 1)
         return finite(ps, expr_unary(P, b->op, args[0]), name, args[0], EXPR_NONE, name_off);
     return finite(ps, expr_binary(P, b->op, args[0], args[1]), name, args[0], args[1], name_off);

@@ -9,7 +9,9 @@
  *   primary = NUMBER | NAME | NAME "(" expr ("," expr)* ")" | "(" expr ")"
  *
  * Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt
- * abs pow, and dot(e), the total time derivative.  Names are resolved by
+ * abs pow, dot(e), the total time derivative, and delta(e), the variation
+ * sum_i de/dq_i delta(q_i) of virtual work (the delta(q_i) are EXPR_SEED
+ * leaves, kind 0; an expression may hold them when `allow` has DEP_S).  Names are resolved by
  * the caller's scope; `t` and `pi` are built in.  Every error is reported
  * through diag_error at its place inside the string.
  */
@@ -40,6 +42,7 @@ struct ParseScope {
      * what it is, for messages: "a mass", "a position". */
     unsigned allow;
     const char *what;
+    int ncoord;  /* coordinates: the variations delta(q_i) */
 };
 
 /* Parse src in scope sc.  Returns the expression; never EXPR_NONE. */

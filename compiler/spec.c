@@ -469,6 +469,7 @@ enum {
     ALLOW_KINETIC = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
     ALLOW_POTENTIAL = DEP_T | DEP_ORDER(0) | DEP_P | DEP_U,
     ALLOW_FORCE = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P | DEP_U,
+    ALLOW_WORK = ALLOW_FORCE | DEP_S, /* forces times variations delta(e) */
     ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
     ALLOW_CONSTRAINT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_P | DEP_U,
     ALLOW_ALL = 0xff,
@@ -549,6 +550,7 @@ load_coordinates(Loader *L, yaml_node_t *seq)
     if (s->nq == 0)
         diag_error(loc_of(L, seq), "a spec needs at least one coordinate");
     s->coord = arena_new_array(L->A, SpecCoord, s->nq);
+    L->sc.ncoord = s->nq;
     for (int i = 0; i < s->nq; i++) {
         yaml_node_t *n = node(L, ITEMS(seq)[i]);
         s->coord[i].name = add_name(L, n, NAME_COORD, i);
@@ -957,6 +959,34 @@ load_applied(Loader *L, yaml_node_t *map, yaml_node_t *v, yaml_node_t *on, SpecF
                    is_body ? "body" : "particle", name, dim);
 }
 
+/* Virtual work W at node v, linear in the variations: W = sum_i Q_i
+ * delta(q_i) with no Q_i holding a variation and nothing left over.  An
+ * error at v otherwise, with the form it should take. */
+#define WORK_HINT "; for example work: \"-c*r'*delta(r) + u*delta(theta_m)\" (a force " \
+                  "times the variation of what it acts along)"
+static ExprId
+work(Loader *L, yaml_node_t *v)
+{
+    ExprPool *P = L->P;
+    ExprId W = expression(L, v, ALLOW_WORK, "a virtual-work expression");
+    if (!(expr_deps(P, W) & DEP_S))
+        diag_error(loc_of(L, v), "virtual work is a sum of forces times variations "
+                   "delta(...), and this expression has none" WORK_HINT);
+    int n = L->s->nq;
+    ExprId *seeds = arena_new_array(L->A, ExprId, n), *zeros = arena_new_array(L->A, ExprId, n);
+    for (int i = 0; i < n; i++) {
+        seeds[i] = expr_seed(P, i, 0), zeros[i] = EXPR_ZERO;
+        if (expr_deps(P, diff_partial(L->sc.D, W, seeds[i])) & DEP_S)
+            diag_error(loc_of(L, v), "virtual work is not linear in the variations here: "
+                       "delta(%s) is multiplied by a variation, or inside a function"
+                       WORK_HINT, L->s->coord[i].name);
+    }
+    if (expr_subst(P, W, n, seeds, zeros) != EXPR_ZERO)
+        diag_error(loc_of(L, v), "a term of this virtual work has no variation: every term is "
+                   "a force times a variation delta(...)" WORK_HINT);
+    return W;
+}
+
 static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
@@ -987,7 +1017,7 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         f->expr = expression(L, v, ALLOW_POTENTIAL, "a potential");
     if ((v = lookup_key(L, map, "work")))
         f->kind = FORCE_WORK, kinds++,
-        f->expr = expression(L, v, ALLOW_FORCE, "a virtual-work expression");
+        f->expr = work(L, v);
     if ((v = lookup_key(L, map, "force")))
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = lookup_key(L, map, "torque")))
@@ -1453,7 +1483,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprP
     L->len = len;
     L->A = A;
     L->P = P;
-    L->sc = (ParseScope){P, diff_new(P), lookup, leaf_name, 0, ""};
+    L->sc = (ParseScope){P, diff_new(P), lookup, leaf_name, 0, "", 0};
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
     L->s->scene = (SpecScene){10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0};

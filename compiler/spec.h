@@ -61,7 +61,7 @@ typedef enum SpecForceKind {
                       * Q_i += F . dr/dq_i */
     FORCE_TORQUE,    /* vec (body frame; planar: vec[0]) on body:
                       * Q_i += tau . dw/dq_i' */
-    FORCE_WORK,      /* expr W: Q_i += dW/dq_i (force factors free of q) */
+    FORCE_WORK,      /* expr W = sum_i Q_i delta(q_i) (seeds): Q_i += dW/d delta(q_i) */
 } SpecForceKind;
 
 typedef struct SpecForce {

@@ -48,7 +48,7 @@ where(const ParseSrc *src, size_t off)
     return (SrcLoc){"test", 1, (int)off + 1};
 }
 
-static ParseScope scope = {NULL, NULL, lookup, leaf_name, 0xff, "an expression"};
+static ParseScope scope = {NULL, NULL, lookup, leaf_name, 0xff, "an expression", 2};
 
 static ExprId
 parse(const char *text)
@@ -127,6 +127,22 @@ test_derivatives(void)
         ok &= check_close(eval(parse("dot(t^2)")), 2 * 0.4, 1e-15);
     }
     CHECK(ok, "x', x'', dot() of compound expressions follow the chain rule");
+    ok = 1;
+    for (int trial = 0; trial < 20; trial++) {
+        randomize();
+        double x = st[0][0], y = st[0][1], xd = st[1][0], dq[2];
+        dq[0] = check_rand(-1, 1), dq[1] = check_rand(-1, 1);
+        double p[1] = {1.7}, u[1] = {0.3};
+        ExprEnv env = {.t = 0.4, .q = {st[0], st[1], st[2], st[3]}, .p = p, .u = u,
+                       .seed = {dq, NULL}};
+        /* delta(e) = de/dx dx + de/dy dy, t, velocities, k and u held */
+        ok &= check_close(expr_eval(P, parse("delta(sin(x)*y*k*u*t)"), &env),
+                          (cos(x) * y * dq[0] + sin(x) * dq[1]) * 1.7 * 0.3 * 0.4, 1e-14);
+        ok &= check_close(expr_eval(P, parse("x'*delta(x^2)"), &env), xd * 2 * x * dq[0],
+                          1e-14);
+    }
+    CHECK(ok, "delta(e) is the variation sum_i de/dq_i delta(q_i) at fixed t, velocities, "
+              "parameters and inputs");
 }
 
 /* Parse text expecting an error; return its column (0 if none) and the

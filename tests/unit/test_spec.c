@@ -69,7 +69,7 @@ test_meaning(void)
         "effects:\n"
         "  gravity: {gravity: [0, -g]}\n"
         "  spring: {potential: 1/2*40*r^2}\n"
-        "  damper: [{work: -c*r'*r}, {force: [0, -c*y'], on: bob}]\n"
+        "  damper: [{work: -c*r'*delta(r)}, {force: [0, -c*y'], on: bob}]\n"
         "initial: {th: 2*pi/10, \"r'\": l/3}\n"
         "scene: {effects: [gravity, damper], t_end: 3, method: msbdf, rtol: 1e-8}\n");
     CHECK(s != NULL, "a spec with defines in any order loads");
@@ -96,6 +96,15 @@ test_meaning(void)
     double ydot = -v[1] * cos(q[0]) + rr * sin(q[0]) * v[0];
     CHECK_NEAR(eval(s->effect[2].force[1].vec[1], 0, q, v, p), -0.25 * ydot, 1e-15,
                "y' inside a force is the total time derivative");
+    /* virtual work: W = -c r' delta(r), evaluated along the variations
+     * (delta th, delta r) = (1, 0) and (0, 1): Q = (0, -c r') */
+    double zero[8] = {0}, d_th[2] = {1, 0}, d_r[2] = {0, 1};
+    ExprEnv env = {.t = 0, .q = {q, v, zero, zero}, .p = p, .u = zero, .seed = {d_th, NULL}};
+    double Q_th = expr_eval(P, s->effect[2].force[0].expr, &env);
+    env.seed[0] = d_r;
+    double Q_r = expr_eval(P, s->effect[2].force[0].expr, &env);
+    CHECK(Q_th == 0 && check_close(Q_r, -0.25 * v[1], 1e-15),
+          "work: -c*r'*delta(r) is -c r' along delta(r), nothing along delta(th)");
     CHECK(spec_select_effects(s, "spring") == 0 && !s->effect[0].enabled &&
           s->effect[1].enabled && !s->effect[2].enabled, "--effects replaces the scene's choice");
     fflush(stdout);

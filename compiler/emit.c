@@ -625,9 +625,9 @@ static const Func f_jac_dv = {
 static const Func f_accel_solve = {
     "accel_solve",
     "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
-    " * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk\n"
-    " * must all be positive.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv", "t, q, v, p, u, a, piv",
+    " * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =\n"
+    " * M_kk.",
+    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv, eomc_real *mkk", "t, q, v, p, u, a, piv, mkk",
     SRC("q", "v", NULL, "p", "u", "t"), NULL,
 };
 
@@ -765,16 +765,22 @@ print_accel(Printer *pr, int n)
 {
     const char *nm = pr->s->name;
     println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M");
-    println(pr, " * singular or not positive definite). */");
+    println(pr, " * singular or not positive definite).  *pivot (unless NULL): the");
+    println(pr, " * smallest d_k / M_kk, compared without dividing in the loop. */");
     char fname[128];
     snprintf(fname, sizeof fname, "%s_accel", nm);
     print_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *a");
-    println(pr, "    eomc_real piv[%d];", n);
-    println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv);", nm);
-    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
-    println(pr, "        if (!(piv[k] > 0.0))");
+               "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+    println(pr, "    eomc_real piv[%d], mkk[%d], dmin = 1, mmin = 1;", n, n);
+    println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
+    println(pr, "    for (int k = %d; k >= 0; k--) { /* in elimination order */", n - 1);
+    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
     println(pr, "            return k + 1;");
+    println(pr, "        if (piv[k] * mmin < dmin * mkk[k])");
+    println(pr, "            dmin = piv[k], mmin = mkk[k];");
+    println(pr, "    }");
+    println(pr, "    if (pivot)");
+    println(pr, "        *pivot = dmin / mmin;");
     println(pr, "    return 0;");
     println(pr, "}\n");
 }
@@ -1064,6 +1070,8 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
         k = 0;
         for (int i = 0; i < n; i++)
             add_out(o, &k, e->piv[i], "piv[%d]", i);
+        for (int i = 0; i < n; i++)
+            add_out(o, &k, e->mkk[i], "mkk[%d]", i);
         for (int i = 0; i < n; i++)
             add_out(o, &k, e->acc[i], "a[%d]", i);
         stats[5].count = print_function(&pr, &f_accel_solve, k, o);

@@ -70,12 +70,13 @@ derive_solve(Eom *e, Arena *A, ExprPool *P)
 #define MO(i, j) e->M[ord[i] * n + ord[j]]
     e->acc = arena_new_array(A, ExprId, n);
     e->piv = arena_new_array(A, ExprId, n);
-    ExprId tol = expr_const(P, EOM_PIVOT_TOL);
+    e->mkk = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++) {
         for (int k = 0; k < j; k++)
             t[k] = expr_mul(P, L[j * n + k], E[j * n + k]);
         ExprId d = minus_sum(P, MO(j, j), t, j);
-        e->piv[ord[j]] = expr_sub(P, d, expr_mul(P, tol, MO(j, j)));
+        e->piv[ord[j]] = d;
+        e->mkk[ord[j]] = MO(j, j);
         inv[j] = expr_div(P, EXPR_ONE, d);
         for (int i = j + 1; i < n; i++) {
             for (int k = 0; k < j; k++)

@@ -26,17 +26,17 @@ typedef struct Eom {
      * too much code. */
     ExprId *jvp_q, *jvp_v; /* [n] */
     /* a = -M^-1 h by an unrolled LDL^T factorization built in the DAG
-     * (structural zeros of M drop out by simplification), and the pivot
-     * margins piv_k = d_k - EOMC_PIVOT_TOL M_kk, all > 0 when M is safely
-     * positive definite.  NULL when n > EOM_SOLVE_MAX. */
-    ExprId *acc, *piv;
+     * (structural zeros of M drop out by simplification), its pivots d_k
+     * and M's diagonal M_kk: M is safely positive definite when every
+     * d_k > EOMC_PIVOT_TOL M_kk, and min d_k / M_kk measures how nearly
+     * singular it is.  NULL when n > EOM_SOLVE_MAX. */
+    ExprId *acc, *piv, *mkk;
 } Eom;
 
 /* Up to this many coordinates the solve is emitted as straight-line code
  * (measured: GSL's Cholesky takes 370 ns at n = 5, the whole budget of a
  * right-hand side three times over).  Must match eomc_model.h. */
 enum { EOM_SOLVE_MAX = 12 };
-#define EOM_PIVOT_TOL 1e-13 /* = EOMC_PIVOT_TOL of eomc_model.h */
 
 /* NULL with *why set if the form does not apply to the model. */
 Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,

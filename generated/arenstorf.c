@@ -306,11 +306,12 @@ arenstorf_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
@@ -319,8 +320,10 @@ arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_mu = p[0];
     (void)u;
     (void)t;
-    piv[0] = 0.9999999999999;
-    piv[1] = 0.9999999999999;
+    piv[0] = 1.0;
+    piv[1] = 1.0;
+    mkk[0] = 1.0;
+    mkk[1] = 1.0;
     const eomc_real w0 = q_x + v_y;
     const eomc_real w1 = v_y + w0;
     const eomc_real w2 = q_x - 1.0;
@@ -360,16 +363,22 @@ arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[2];
-    arenstorf_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 1; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[2], mkk[2], dmin = 1, mmin = 1;
+    arenstorf_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 1; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

@@ -467,11 +467,12 @@ double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
 {
     const eomc_real q_th1 = q[0];
     const eomc_real q_th2 = q[1];
@@ -509,108 +510,112 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w22 = w21 * w21;
     const eomc_real w23 = w14 * w22;
     const eomc_real w24 = w8 - w23;
-    const eomc_real w25 = 1e-13 * w8;
-    const eomc_real w26 = w24 - w25;
-    piv[0] = w26;
-    const eomc_real w27 = 1e-13 * w11;
-    const eomc_real w28 = w11 - w27;
-    piv[1] = w28;
-    const eomc_real w29 = 1.0 / w24;
-    const eomc_real w30 = p_m2 * p_g;
-    const eomc_real w31 = p_l2 * w30;
-    const eomc_real w32 = w31 * w16;
-    const eomc_real w33 = w19 * v_th2;
-    const eomc_real w34 = w15 * v_th1;
-    const eomc_real w35 = p_l1 * w34;
-    const eomc_real w36 = w16 * v_th2;
-    const eomc_real w37 = p_l2 * w36;
-    const eomc_real w38 = w35 + w37;
-    const eomc_real w39 = w33 * w38;
-    const eomc_real w40 = v_th1 * v_th1;
-    const eomc_real w41 = w18 * w40;
-    const eomc_real w42 = p_l1 * w41;
-    const eomc_real w43 = v_th2 * v_th2;
-    const eomc_real w44 = w19 * w43;
-    const eomc_real w45 = p_l2 * w44;
-    const eomc_real w46 = w42 + w45;
-    const eomc_real w47 = w16 * w46;
-    const eomc_real w48 = w39 + w47;
-    const eomc_real w49 = w18 * v_th1;
-    const eomc_real w50 = p_l1 * w49;
-    const eomc_real w51 = p_l2 * w33;
-    const eomc_real w52 = w50 + w51;
-    const eomc_real w53 = w52 * w36;
-    const eomc_real w54 = w15 * w40;
-    const eomc_real w55 = p_l1 * w54;
-    const eomc_real w56 = w16 * w43;
-    const eomc_real w57 = p_l2 * w56;
-    const eomc_real w58 = w55 + w57;
+    piv[0] = w24;
+    piv[1] = w11;
+    mkk[0] = w8;
+    mkk[1] = w11;
+    const eomc_real w25 = 1.0 / w24;
+    const eomc_real w26 = p_m2 * p_g;
+    const eomc_real w27 = p_l2 * w26;
+    const eomc_real w28 = w27 * w16;
+    const eomc_real w29 = w19 * v_th2;
+    const eomc_real w30 = w15 * v_th1;
+    const eomc_real w31 = p_l1 * w30;
+    const eomc_real w32 = w16 * v_th2;
+    const eomc_real w33 = p_l2 * w32;
+    const eomc_real w34 = w31 + w33;
+    const eomc_real w35 = w29 * w34;
+    const eomc_real w36 = v_th1 * v_th1;
+    const eomc_real w37 = w18 * w36;
+    const eomc_real w38 = p_l1 * w37;
+    const eomc_real w39 = v_th2 * v_th2;
+    const eomc_real w40 = w19 * w39;
+    const eomc_real w41 = p_l2 * w40;
+    const eomc_real w42 = w38 + w41;
+    const eomc_real w43 = w16 * w42;
+    const eomc_real w44 = w35 + w43;
+    const eomc_real w45 = w18 * v_th1;
+    const eomc_real w46 = p_l1 * w45;
+    const eomc_real w47 = p_l2 * w29;
+    const eomc_real w48 = w46 + w47;
+    const eomc_real w49 = w48 * w32;
+    const eomc_real w50 = w15 * w36;
+    const eomc_real w51 = p_l1 * w50;
+    const eomc_real w52 = w16 * w39;
+    const eomc_real w53 = p_l2 * w52;
+    const eomc_real w54 = w51 + w53;
+    const eomc_real w55 = w19 * w54;
+    const eomc_real w56 = w49 + w55;
+    const eomc_real w57 = w44 - w56;
+    const eomc_real w58 = v_th2 * w34;
     const eomc_real w59 = w19 * w58;
-    const eomc_real w60 = w53 + w59;
-    const eomc_real w61 = w48 - w60;
-    const eomc_real w62 = v_th2 * w38;
-    const eomc_real w63 = w19 * w62;
-    const eomc_real w64 = v_th2 * w52;
-    const eomc_real w65 = w16 * w64;
-    const eomc_real w66 = w63 - w65;
-    const eomc_real w67 = w61 - w66;
-    const eomc_real w68 = w9 * w67;
-    const eomc_real w69 = w32 + w68;
-    const eomc_real w70 = w21 * w69;
-    const eomc_real w71 = w13 * w70;
-    const eomc_real w72 = p_l1 * p_g;
-    const eomc_real w73 = p_m1 * w72;
-    const eomc_real w74 = p_l1 * w30;
+    const eomc_real w60 = v_th2 * w48;
+    const eomc_real w61 = w16 * w60;
+    const eomc_real w62 = w59 - w61;
+    const eomc_real w63 = w57 - w62;
+    const eomc_real w64 = w9 * w63;
+    const eomc_real w65 = w28 + w64;
+    const eomc_real w66 = w21 * w65;
+    const eomc_real w67 = w13 * w66;
+    const eomc_real w68 = p_l1 * p_g;
+    const eomc_real w69 = p_m1 * w68;
+    const eomc_real w70 = p_l1 * w26;
+    const eomc_real w71 = w69 + w70;
+    const eomc_real w72 = w71 * w15;
+    const eomc_real w73 = w3 * w30;
+    const eomc_real w74 = w6 * w34;
     const eomc_real w75 = w73 + w74;
-    const eomc_real w76 = w75 * w15;
-    const eomc_real w77 = w3 * w34;
-    const eomc_real w78 = w6 * w38;
+    const eomc_real w76 = w45 * w75;
+    const eomc_real w77 = w3 * w37;
+    const eomc_real w78 = w6 * w42;
     const eomc_real w79 = w77 + w78;
-    const eomc_real w80 = w49 * w79;
-    const eomc_real w81 = w3 * w41;
-    const eomc_real w82 = w6 * w46;
-    const eomc_real w83 = w81 + w82;
-    const eomc_real w84 = w15 * w83;
-    const eomc_real w85 = w80 + w84;
-    const eomc_real w86 = w3 * w49;
-    const eomc_real w87 = w6 * w52;
+    const eomc_real w80 = w15 * w79;
+    const eomc_real w81 = w76 + w80;
+    const eomc_real w82 = w3 * w45;
+    const eomc_real w83 = w6 * w48;
+    const eomc_real w84 = w82 + w83;
+    const eomc_real w85 = w30 * w84;
+    const eomc_real w86 = w3 * w50;
+    const eomc_real w87 = w6 * w54;
     const eomc_real w88 = w86 + w87;
-    const eomc_real w89 = w34 * w88;
-    const eomc_real w90 = w3 * w54;
-    const eomc_real w91 = w6 * w58;
-    const eomc_real w92 = w90 + w91;
+    const eomc_real w89 = w18 * w88;
+    const eomc_real w90 = w85 + w89;
+    const eomc_real w91 = w81 - w90;
+    const eomc_real w92 = v_th1 * w75;
     const eomc_real w93 = w18 * w92;
-    const eomc_real w94 = w89 + w93;
-    const eomc_real w95 = w85 - w94;
-    const eomc_real w96 = v_th1 * w79;
-    const eomc_real w97 = w18 * w96;
-    const eomc_real w98 = v_th1 * w88;
-    const eomc_real w99 = w15 * w98;
-    const eomc_real w100 = w97 - w99;
-    const eomc_real w101 = w95 - w100;
-    const eomc_real w102 = w76 + w101;
-    const eomc_real w103 = w71 - w102;
-    const eomc_real w104 = w29 * w103;
-    a[0] = w104;
-    const eomc_real w105 = w21 * w104;
-    const eomc_real w106 = w13 * w105;
-    const eomc_real w107 = w12 * w69;
-    const eomc_real w108 = w106 + w107;
-    const eomc_real w109 = -w108;
-    a[1] = w109;
+    const eomc_real w94 = v_th1 * w84;
+    const eomc_real w95 = w15 * w94;
+    const eomc_real w96 = w93 - w95;
+    const eomc_real w97 = w91 - w96;
+    const eomc_real w98 = w72 + w97;
+    const eomc_real w99 = w67 - w98;
+    const eomc_real w100 = w25 * w99;
+    a[0] = w100;
+    const eomc_real w101 = w21 * w100;
+    const eomc_real w102 = w13 * w101;
+    const eomc_real w103 = w12 * w65;
+    const eomc_real w104 = w102 + w103;
+    const eomc_real w105 = -w104;
+    a[1] = w105;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 double_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[2];
-    double_pendulum_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 1; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[2], mkk[2], dmin = 1, mmin = 1;
+    double_pendulum_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 1; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

@@ -116,12 +116,12 @@ falling_particle_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 falling_particle_accel_solve(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
-    eomc_real *piv)
+    eomc_real *piv, eomc_real *mkk)
 {
     const eomc_real p_m = p[0];
     const eomc_real p_g = p[1];
@@ -132,27 +132,32 @@ falling_particle_accel_solve(eomc_real t, const eomc_real *q,
     (void)t;
     const eomc_real w0 = 0.5 * p_m;
     const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = 1e-13 * w1;
-    const eomc_real w3 = w1 - w2;
-    piv[0] = w3;
-    const eomc_real w4 = 1.0 / w1;
-    const eomc_real w5 = p_m * p_g;
-    const eomc_real w6 = p_f - w5;
-    const eomc_real w7 = w4 * w6;
-    a[0] = w7;
+    piv[0] = w1;
+    mkk[0] = w1;
+    const eomc_real w2 = 1.0 / w1;
+    const eomc_real w3 = p_m * p_g;
+    const eomc_real w4 = p_f - w3;
+    const eomc_real w5 = w2 * w4;
+    a[0] = w5;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[1];
-    falling_particle_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 0; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[1], mkk[1], dmin = 1, mmin = 1;
+    falling_particle_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 0; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

@@ -150,11 +150,12 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
 {
     const eomc_real q_theta_l = q[0];
     const eomc_real p_r = p[2];
@@ -173,31 +174,36 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w4 = w2 * w3;
     const eomc_real w5 = p_r * w4;
     const eomc_real w6 = w1 + w5;
-    const eomc_real w7 = 1e-13 * w6;
-    const eomc_real w8 = w6 - w7;
-    piv[0] = w8;
-    const eomc_real w9 = 1.0 / w6;
-    const eomc_real w10 = p_r * u_u;
-    const eomc_real w11 = p_M * p_g;
-    const eomc_real w12 = w11 * p_l;
-    const eomc_real w13 = sin(q_theta_l);
-    const eomc_real w14 = w12 * w13;
-    const eomc_real w15 = w10 - w14;
-    const eomc_real w16 = w9 * w15;
-    a[0] = w16;
+    piv[0] = w6;
+    mkk[0] = w6;
+    const eomc_real w7 = 1.0 / w6;
+    const eomc_real w8 = p_r * u_u;
+    const eomc_real w9 = p_M * p_g;
+    const eomc_real w10 = w9 * p_l;
+    const eomc_real w11 = sin(q_theta_l);
+    const eomc_real w12 = w10 * w11;
+    const eomc_real w13 = w8 - w12;
+    const eomc_real w14 = w7 * w13;
+    a[0] = w14;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[1];
-    gear_link_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 0; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[1], mkk[1], dmin = 1, mmin = 1;
+    gear_link_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 0; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

@@ -228,11 +228,12 @@ kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
@@ -243,40 +244,46 @@ kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)t;
     const eomc_real w0 = 0.5 * p_m;
     const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = 1e-13 * w1;
-    const eomc_real w3 = w1 - w2;
-    piv[0] = w3;
-    piv[1] = w3;
-    const eomc_real w4 = 1.0 / w1;
-    const eomc_real w5 = (-2.0) * w4;
-    const eomc_real w6 = p_m * p_mu;
-    const eomc_real w7 = q_x * q_x;
-    const eomc_real w8 = q_y * q_y;
-    const eomc_real w9 = w7 + w8;
-    const eomc_real w10 = sqrt(w9);
-    const eomc_real w11 = w6 / w10;
-    const eomc_real w12 = w11 / w10;
-    const eomc_real w13 = 0.5 / w10;
-    const eomc_real w14 = w12 * w13;
-    const eomc_real w15 = q_x * w14;
-    const eomc_real w16 = w5 * w15;
-    a[0] = w16;
-    const eomc_real w17 = q_y * w14;
-    const eomc_real w18 = w5 * w17;
-    a[1] = w18;
+    piv[0] = w1;
+    piv[1] = w1;
+    mkk[0] = w1;
+    mkk[1] = w1;
+    const eomc_real w2 = 1.0 / w1;
+    const eomc_real w3 = (-2.0) * w2;
+    const eomc_real w4 = p_m * p_mu;
+    const eomc_real w5 = q_x * q_x;
+    const eomc_real w6 = q_y * q_y;
+    const eomc_real w7 = w5 + w6;
+    const eomc_real w8 = sqrt(w7);
+    const eomc_real w9 = w4 / w8;
+    const eomc_real w10 = w9 / w8;
+    const eomc_real w11 = 0.5 / w8;
+    const eomc_real w12 = w10 * w11;
+    const eomc_real w13 = q_x * w12;
+    const eomc_real w14 = w3 * w13;
+    a[0] = w14;
+    const eomc_real w15 = q_y * w12;
+    const eomc_real w16 = w3 * w15;
+    a[1] = w16;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 kepler_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[2];
-    kepler_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 1; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[2], mkk[2], dmin = 1, mmin = 1;
+    kepler_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 1; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

@@ -193,11 +193,12 @@ pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_EXTENDED */
 
 /* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); piv[k] = d_k - EOMC_PIVOT_TOL M_kk
- * must all be positive. */
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
 static void
 pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
 {
     const eomc_real q_theta = q[0];
     const eomc_real p_m = p[0];
@@ -210,30 +211,35 @@ pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w1 = p_l * p_l;
     const eomc_real w2 = w0 * w1;
     const eomc_real w3 = 2.0 * w2;
-    const eomc_real w4 = 1e-13 * w3;
-    const eomc_real w5 = w3 - w4;
-    piv[0] = w5;
-    const eomc_real w6 = p_l * p_g;
-    const eomc_real w7 = p_m * w6;
-    const eomc_real w8 = 1.0 / w3;
+    piv[0] = w3;
+    mkk[0] = w3;
+    const eomc_real w4 = p_l * p_g;
+    const eomc_real w5 = p_m * w4;
+    const eomc_real w6 = 1.0 / w3;
+    const eomc_real w7 = w5 * w6;
+    const eomc_real w8 = sin(q_theta);
     const eomc_real w9 = w7 * w8;
-    const eomc_real w10 = sin(q_theta);
-    const eomc_real w11 = w9 * w10;
-    const eomc_real w12 = -w11;
-    a[0] = w12;
+    const eomc_real w10 = -w9;
+    a[0] = w10;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite). */
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
 pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a)
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[1];
-    pendulum_accel_solve(t, q, v, p, u, a, piv);
-    for (int k = 0; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > 0.0))
+    eomc_real piv[1], mkk[1], dmin = 1, mmin = 1;
+    pendulum_accel_solve(t, q, v, p, u, a, piv, mkk);
+    for (int k = 0; k >= 0; k--) { /* in elimination order */
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
+        if (piv[k] * mmin < dmin * mkk[k])
+            dmin = piv[k], mmin = mkk[k];
+    }
+    if (pivot)
+        *pivot = dmin / mmin;
     return 0;
 }
 

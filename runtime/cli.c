@@ -16,6 +16,7 @@
 #include "report.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -608,6 +609,10 @@ print_stats(const Csv *w, const eomc_stats *st, int stabilize)
     if (st->h_used > 0)
         fprintf(stderr, "h_used %.17g\n", st->h_used);
     fprintf(stderr, "side_steps %ld\n", st->side_steps);
+    fprintf(stderr, "max_condition %.3g\nt_condition %.17g\n", st->max_condition,
+            st->t_condition);
+    if (st->invariant_budget > 0)
+        fprintf(stderr, "invariant_budget %.3g\n", st->invariant_budget);
     if (m->nc > 0)
         fprintf(stderr, "max_residual %.3g\n", fmax(st->max_residual, w->res_max));
     if (stabilize == EOMC_STABILIZE_PROJECT)
@@ -779,6 +784,47 @@ check_consistent(const Cli *c, eomc_sim *sim, const double *x)
                 m->c_names[worst], e);
 }
 
+/* The run's solve lost more digits than its tolerance leaves: say so,
+ * with where and what (eomc_stats.ill). */
+static void
+warn_condition(const Cli *c, const eomc_stats *st)
+{
+    if (isnan(st->ill_t))
+        return;
+    int fixed = c->run.h_fixed > 0 || !(c->run.rtol > 0);
+    double tol = fixed ? 1e-8 : c->run.rtol;
+    int kept = (int)lround(-log10(st->max_condition * DBL_EPSILON));
+    fprintf(stderr, "%s: warning: t = %.6g: %s is ill-conditioned (condition %.2g at "
+            "worst, at t = %.6g): q'' keeps about %d of its 16 digits, fewer than the %d "
+            "%s; the motion is probably less accurate than asked\n", c->prog, st->ill_t,
+            st->ill, st->max_condition, st->t_condition, kept > 0 ? kept : 0,
+            (int)lround(-log10(tol)), fixed ? "a fixed-step run should keep" : "its rtol "
+            "asks for");
+}
+
+/* The conserved quantity moves only by the steps' errors, so it may drift
+ * by the sum of what their error estimates make of it (eomc_stats'
+ * invariant_budget).  The estimates of healthy runs account for their
+ * drift to within a factor of 2, bsimp's to within 90 (measured over the
+ * shipped specs, every method, rtol 1e-4 .. 1e-12); beyond DRIFT_SLACK
+ * times, an error the estimates cannot see is at work. */
+#define DRIFT_SLACK 1e3
+
+static void
+warn_drift(const Cli *c, const eomc_model *m, const eomc_stats *st)
+{
+    if (!(st->invariant_budget > 0) ||
+        !(st->invariant_drift > DRIFT_SLACK * st->invariant_budget))
+        return;
+    fprintf(stderr, "%s: warning: the conserved quantity %s drifted by %.3g, %.3g times "
+            "what the steps' own error estimates allow (%.3g): an error the integrator "
+            "cannot see is at work (a solve that loses digits, a force that is not "
+            "smooth, or a model that does not conserve %s); the motion is probably less "
+            "accurate than asked\n", c->prog, m->invariant_name, st->invariant_drift,
+            st->invariant_drift / st->invariant_budget, st->invariant_budget,
+            m->invariant_name);
+}
+
 /* Open -o's file (or stdout); NULL after saying why. */
 static FILE *
 open_output(const Cli *c, const char *opt, const char *path)
@@ -882,6 +928,8 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     if (rc == EOMC_ENUMERIC)
         fprintf(stderr, "%s: the %ld rows computed up to then are kept\n", c->prog,
                 w.rows);
+    warn_condition(c, &st);
+    warn_drift(c, m, &st);
     if (c->stats)
         print_stats(&w, &st, c->stabilize);
     if (c->summary && !rc)

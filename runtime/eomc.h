@@ -70,6 +70,17 @@ int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
 double eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
                               int *worst, int *level);
 
+/* The condition number of the linear system whose solution is q'' at
+ * (t, q, v): the mass matrix balanced by its diagonal (free of the
+ * coordinates' units), or the scaled KKT or elimination matrix of a
+ * constrained model; estimated in the 1-norm from a factorization (Hager
+ * and Higham).  The solve may lose about log10 of it of the 16 digits of
+ * q''.  NAN when the solve fails there.  *what (unless NULL) names the
+ * system and what its nearly singular direction mixes: "the mass matrix
+ * (coordinates th1, th2)"; it stays valid until the next call. */
+double eomc_sim_condition(eomc_sim *s, double t, const double *q, const double *v,
+                          const char **what);
+
 /* Drift control for the holonomic and first-order constraints, which
  * the solve enforces only at acceleration level:
  *   EOMC_STABILIZE_BAUMGARTE  solve g'' + 2 alpha g' + beta^2 g = 0 and
@@ -148,6 +159,25 @@ typedef struct eomc_stats {
      * where the interpolant's error estimate failed the tolerances (long
      * steps; see runtime/dense.h).  Their right-hand sides are counted. */
     long side_steps;
+    /* The conditioning of the linear system solved for q'' (the mass
+     * matrix balanced by its diagonal, or the scaled KKT or elimination
+     * matrix: free of units), estimated after every step: the largest
+     * condition number and its time.  The solve may lose about
+     * log10(condition) of the 16 digits of q''; when that passed what the
+     * tolerance leaves (condition * DBL_EPSILON > rtol; 1e-8 for fixed
+     * steps), ill_t is the first time it did and ill names the system and
+     * the coordinates (and constraints) it mixed there; else ill_t is NAN. */
+    double max_condition, t_condition, ill_t;
+    char ill[512];
+    /* A model that conserves a quantity h (model->invariant), adaptive
+     * steps (and projection, when constrained: otherwise the constraints'
+     * drift moves h too): its largest change over the steps, and its
+     * budget: the sum
+     * over the steps of the change the step's own error estimate makes,
+     * |h(x + err) - h(x)|.  h changes only by the steps' errors, so a
+     * drift well beyond the budget is an error the estimates did not see
+     * (an ill-conditioned solve, a discontinuity).  0 otherwise. */
+    double invariant_drift, invariant_budget;
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with

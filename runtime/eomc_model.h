@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 4
+#define EOMC_ABI_VERSION 5
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -87,10 +87,14 @@ typedef struct eomc_model {
      * failing one in elimination order) is not positive relative to M's
      * diagonal (d_k <= EOMC_PIVOT_TOL * M_kk:
      * M is singular or not positive definite), in which case a is
-     * meaningless.  NULL for large models (nq > 12), where the runtime
-     * factors mass_bias's M with GSL instead, and for constrained ones. */
+     * meaningless.  *pivot, unless NULL, gets min_k d_k / M_kk: the
+     * smallest pivot of M balanced by its diagonal, how nearly singular
+     * it is whatever the coordinates' units (its inverse is a lower
+     * bound on M's condition number).  NULL for large models (nq > 12),
+     * where the runtime factors mass_bias's M with GSL instead, and for
+     * constrained ones. */
     int (*accel)(double t, const double *q, const double *v, const double *p,
-                 const double *u, double *a);
+                 const double *u, double *a, double *pivot);
 
     /* ---- constraints (nc = 0: none; then the rest is NULL or 0) ---- */
     int nc;
@@ -149,7 +153,7 @@ typedef struct eomc_model_ext {
     void (*mass_bias)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                       const eomc_ext *p, const eomc_ext *u, eomc_ext *M, eomc_ext *h);
     int (*accel)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
-                 const eomc_ext *u, eomc_ext *a);
+                 const eomc_ext *u, eomc_ext *a, eomc_ext *pivot);
     void (*constraint)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                        const eomc_ext *a, const eomc_ext *p, const eomc_ext *u,
                        eomc_ext *f, eomc_ext *B);

@@ -130,6 +130,8 @@ typedef struct Run {
     void *ctx;
     int row_status;               /* the callback's nonzero status: ROW_STOP */
     int progress, shown;          /* progress on the terminal */
+    double h0;                    /* the conserved quantity at the start */
+    int have_h0;
     double wall0, next_show;
 } Run;
 
@@ -301,19 +303,80 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
     return GSL_EBADFUNC;
 }
 
-/* After each accepted step from t0 of a constrained model: check that no
- * constraint degenerated, measure the drift, and project when asked.  A
- * projected state is not the one the stepper produced: its derivative is
- * evaluated again (multistep methods, whose history it would spoil, are
- * refused with projection by eomc_run_check). */
+/* The relative error of q'' that a run's tolerance allows: its rtol, or
+ * for fixed steps (and atol alone), half the digits. */
+#define FIXED_COND_TOL 1e-8
+/* The condition is estimated in full (sim_condition: a factorization
+ * and a few solves, some right-hand sides' worth) every WATCH_EVERY
+ * steps, and at any step whose solves had a pivot small enough that the
+ * condition may be within PIVOT_SLACK of the tolerance's limit: the
+ * inverse of the smallest pivot is only about a lower bound (by a factor
+ * of 4 for two coordinates, more for more). */
+enum { WATCH_EVERY = 64 };
+#define PIVOT_SLACK 1e3
+
+/* After each step: the condition of the system solved for q'', and the
+ * first time it passed what the tolerance allows. */
+static void
+watch_condition(Run *r)
+{
+    eomc_stats *st = r->st;
+    double tol = r->o->h_fixed > 0 || !(r->o->rtol > 0) ? FIXED_COND_TOL : r->o->rtol;
+    double pivot = sim_take_pivot(r->s);
+    if (st->steps % WATCH_EVERY != 0 && !(PIVOT_SLACK * DBL_EPSILON > tol * pivot))
+        return;
+    double cond = sim_condition(r->s, r->t, r->x, 0);
+    if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
+        return;
+    st->max_condition = cond, st->t_condition = r->t;
+    if (isnan(st->ill_t) && cond * DBL_EPSILON > tol) {
+        st->ill_t = r->t;
+        sim_condition(r->s, r->t, r->x, 1);
+        snprintf(st->ill, sizeof st->ill, "%s", sim_condition_what(r->s));
+    }
+}
+
+/* After each adaptive step: how far the conserved quantity has moved, and
+ * how far the step's error estimate says it could have (eomc_stats). */
+static void
+watch_invariant(Run *r)
+{
+    eomc_sim *s = r->s;
+    int n = r->n;
+    double h, he;
+    /* without projection a constrained state drifts off its constraints,
+     * and h with it, by more than the steps' errors say: no budget then */
+    if (!s->m->invariant || r->o->h_fixed > 0 ||
+        (s->kkt && s->stabilize != EOMC_STABILIZE_PROJECT) ||
+        eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) != EOMC_OK)
+        return;
+    if (!r->have_h0)
+        r->h0 = h, r->have_h0 = 1;
+    for (int i = 0; i < r->N; i++)
+        r->xt[i] = r->x[i] + r->yerr[i];
+    eomc_sim_invariant(s, r->t, r->xt, r->xt + n, &he);
+    r->st->invariant_drift = fmax(r->st->invariant_drift, fabs(h - r->h0));
+    if (isfinite(he - h))
+        r->st->invariant_budget += fabs(he - h);
+}
+
+/* After each accepted step from t0: watch the conditioning; for a
+ * constrained model, check that no constraint degenerated, measure the
+ * drift, and project when asked.  A projected state is not the one the
+ * stepper produced: its derivative is evaluated again (multistep methods,
+ * whose history it would spoil, are refused with projection by
+ * eomc_run_check). */
 static int
 after_step(Run *r, double t0)
 {
     eomc_sim *s = r->s;
     int n = r->n;
     double *x = r->x, t = r->t;
-    if (!s->kkt)
+    watch_condition(r);
+    if (!s->kkt) {
+        watch_invariant(r);
         return GSL_SUCCESS;
+    }
     if (sim_constraint_rows(s, t, x, r->B1) != 0)
         return GSL_EBADFUNC;
     int k = reversed_row(r);
@@ -335,6 +398,7 @@ after_step(Run *r, double t0)
         }
         r->st->max_residual = fmax(r->st->max_residual, res);
     }
+    watch_invariant(r);
     double *B = r->B0; /* the rows after this step are the next one's start */
     r->B0 = r->B1, r->B1 = B;
     return GSL_SUCCESS;
@@ -617,6 +681,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (!st)
         st = &local;
     memset(st, 0, sizeof *st);
+    st->ill_t = NAN;
     int rc = eomc_run_check(s, o);
     if (rc)
         return rc;
@@ -642,6 +707,11 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     r.k = 1;
     if (rc == EOMC_OK && s->kkt && sim_constraint_rows(s, r.t, x, r.B0) != 0)
         rc = EOMC_ENUMERIC;
+    if (rc == EOMC_OK)
+        watch_condition(&r);
+    if (rc == EOMC_OK && s->m->invariant &&
+        eomc_sim_invariant(s, r.t, x, x + n, &r.h0) == EOMC_OK)
+        r.have_h0 = 1;
     if (rc == EOMC_OK && r.nrows > 1) {
         int status = rhs(r.t, x, r.f0, &r);
         if (status == GSL_SUCCESS) {

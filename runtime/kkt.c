@@ -467,6 +467,24 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     return KKT_OK;
 }
 
+double
+kkt_condition(Kkt *k, double *y)
+{
+    LaLu *lu = k->m->eliminate ? k->lun : k->luN;
+    double rc = la_lu_rcond(lu);
+    if (y) {
+        memset(y, 0, (size_t)k->N * sizeof *y);
+        la_lu_near_null(lu, y);
+    }
+    return rc > 0 ? 1 / rc : rc == 0 && la_lu_ok(lu) ? HUGE_VAL : NAN;
+}
+
+double
+kkt_pivot(const Kkt *k)
+{
+    return la_lu_pivot(k->m->eliminate ? k->lun : k->luN);
+}
+
 int
 kkt_vanished(const Kkt *k, double *fraction)
 {

@@ -15,6 +15,7 @@ struct LaLu {
     double *row, *col;    /* [n] A_eq = diag(row) A diag(col), powers of 2 */
     double norm1;         /* ||A_eq||_1, for the condition estimate */
     int ok;               /* the last factorization succeeded */
+    double pivot;         /* its smallest |U_ii| / max |A_eq| */
     gsl_permutation perm; /* its data in mem */
     gsl_vector_view work; /* [3n] for gsl_linalg_invnorm1 */
     double mem[];
@@ -91,9 +92,12 @@ la_lu_factor_scaled(LaLu *lu, const double *A, const double *d)
     gsl_matrix_view Av = gsl_matrix_view_array(E, (size_t)n, (size_t)n);
     int sign;
     gsl_linalg_LU_decomp(&Av.matrix, &lu->perm, &sign);
-    for (int i = 0; i < n; i++)
+    lu->pivot = HUGE_VAL;
+    for (int i = 0; i < n; i++) {
+        lu->pivot = fmin(lu->pivot, fabs(E[i * n + i]) / scale);
         if (!(fabs(E[i * n + i]) > LA_SINGULAR_TOL * scale))
             return -1;
+    }
     lu->ok = 1;
     return 0;
 }
@@ -109,6 +113,23 @@ la_lu_solve(LaLu *lu, double *b)
     gsl_linalg_LU_svx(&Av.matrix, &lu->perm, &bv.vector);
     for (int j = 0; j < n; j++)
         b[j] *= lu->col[j];
+}
+
+void
+la_lu_near_null(LaLu *lu, double *y)
+{
+    int n = lu->n;
+    gsl_matrix_view Av = gsl_matrix_view_array(lu->A, (size_t)n, (size_t)n);
+    gsl_vector_view yv = gsl_vector_view_array(y, (size_t)n);
+    /* a start with no symmetry the matrix could be orthogonal to */
+    for (int i = 0; i < n; i++)
+        y[i] = 1.0 + 0.1 * (double)i / (double)n;
+    for (int it = 0; it < 2 && lu->ok; it++) {
+        gsl_linalg_LU_svx(&Av.matrix, &lu->perm, &yv.vector);
+        double big = la_max_abs(y, n);
+        for (int i = 0; i < n && big > 0 && isfinite(big); i++)
+            y[i] /= big;
+    }
 }
 
 void
@@ -139,6 +160,18 @@ equilibrated_solve(CBLAS_TRANSPOSE_t trans, gsl_vector *x, void *params)
     gsl_blas_dtrsv(CblasUpper, CblasTrans, CblasNonUnit, &Av.matrix, x);
     gsl_blas_dtrsv(CblasLower, CblasTrans, CblasUnit, &Av.matrix, x);
     return gsl_permute_vector_inverse(&lu->perm, x);
+}
+
+int
+la_lu_ok(const LaLu *lu)
+{
+    return lu->ok;
+}
+
+double
+la_lu_pivot(const LaLu *lu)
+{
+    return lu->ok ? lu->pivot : 0;
 }
 
 double

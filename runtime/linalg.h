@@ -47,6 +47,16 @@ void la_lu_solve(LaLu *lu, double *b);
 /* An estimate of 1 / cond_1 of the equilibrated A, as last factored
  * (Hager and Higham's, a few solves). */
 double la_lu_rcond(LaLu *lu);
+/* Whether the last la_lu_factor succeeded. */
+int la_lu_ok(const LaLu *lu);
+/* The smallest |U_ii| of the last factorization, relative to the
+ * equilibrated matrix's largest entry (free: the singularity test
+ * computes it); its inverse is about a lower bound on the condition. */
+double la_lu_pivot(const LaLu *lu);
+/* The direction y [n] (max |y_i| = 1) that the equilibrated A, as last
+ * factored, most nearly annihilates: two steps of inverse iteration.
+ * Its large entries name the unknowns an ill-conditioned system mixes. */
+void la_lu_near_null(LaLu *lu, double *y);
 
 /* M = L D L^T in place, M symmetric; 0, or k + 1 for the first pivot
  * d_k <= EOMC_PIVOT_TOL M_kk (M singular or not positive definite).

@@ -110,7 +110,7 @@ accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a
 {
     int n = r->n;
     if (r->x->accel)
-        return r->x->accel(t, q, v, r->p, r->u, a) == 0 ? 0 : -1;
+        return r->x->accel(t, q, v, r->p, r->u, a, NULL) == 0 ? 0 : -1;
     r->x->mass_bias(t, q, v, r->p, r->u, r->M, a);
     if (la_ext_lu_factor(r->M, n, r->perm, r->eq, NULL) != 0)
         return -1;

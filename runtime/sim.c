@@ -53,6 +53,9 @@ eomc_sim_alloc(const eomc_model *m)
     s->dEdt = sim_zeros(n);
     s->col = sim_zeros(n);
     s->fk = sim_zeros((size_t)m->nc);
+    s->mlu = la_lu_alloc(m->nq);
+    s->cy = sim_zeros(n + (size_t)m->nc);
+    s->cd = sim_zeros(n);
     /* Room for the cause and every coordinate and velocity by name. */
     s->errlen = 1024;
     for (int i = 0; i < m->nq; i++)
@@ -60,15 +63,18 @@ eomc_sim_alloc(const eomc_model *m)
     for (int k = 0; k < m->nc; k++)
         s->errlen += strlen(m->c_names[k]) + strlen(m->q_names[m->c_dependent[k]]) + 8;
     s->err = calloc(s->errlen, 1);
+    s->cwhat = calloc(s->errlen, 1);
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
-        !s->col || !s->fk || !s->err || (m->nc > 0 && (!s->kkt || !s->proj))) {
+        !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
+        (m->nc > 0 && (!s->kkt || !s->proj))) {
         eomc_sim_free(s);
         return NULL;
     }
     memcpy(s->p, m->p_default, np * sizeof(double));
+    s->pivot = 1;
     return s;
 }
 
@@ -79,11 +85,12 @@ eomc_sim_free(eomc_sim *s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->Mdiag, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
-                      s->fk, s->err};
+                      s->fk, s->err, s->cy, s->cd, s->cwhat};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
     proj_free(s->proj);
+    la_lu_free(s->mlu);
     free(s);
 }
 
@@ -270,13 +277,18 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     if (s->kkt) {
         if ((k = kkt_accel(s->kkt, t, q, v, s->p, s->u, a)) != KKT_OK)
             return kkt_error(s, t, q, v, k);
+        s->pivot = fmin(s->pivot, kkt_pivot(s->kkt));
     } else if (m->accel) {
-        if ((k = m->accel(t, q, v, s->p, s->u, a)) != 0)
+        double pivot;
+        if ((k = m->accel(t, q, v, s->p, s->u, a, &pivot)) != 0)
             return pivot_error(s, t, q, v, k);
+        s->pivot = fmin(s->pivot, pivot);
     } else {
         m->mass_bias(t, q, v, s->p, s->u, s->M, a);
         if ((k = la_ldlt_factor(s->M, n, s->Mdiag)) != 0)
             return pivot_error(s, t, q, v, k);
+        for (int i = 0; i < n; i++) /* d_i / M_ii, d_i on the factor's diagonal */
+            s->pivot = fmin(s->pivot, s->M[i * n + i] / s->Mdiag[i]);
         la_ldlt_solve_neg(s->M, n, a);
     }
     if (nonfinite_sum(a, n) != 0.0)
@@ -377,6 +389,86 @@ eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
         return 0;
     sim_inputs_at(s, t);
     return proj_inconsistency(s->proj, t, q, v, s->p, s->u, worst, level);
+}
+
+/* An entry of a near-null direction this large against its largest
+ * takes part in the ill-conditioning. */
+#define INVOLVED 0.25
+
+double
+sim_condition(eomc_sim *s, double t, const double *x, int describe)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nc = m->nc;
+    double cond;
+    const double *q = x, *v = x + n;
+    if (s->kkt) {
+        if (eomc_sim_accel(s, t, q, v, s->a) != EOMC_OK)
+            return NAN;
+        cond = kkt_condition(s->kkt, describe ? s->cy : NULL);
+    } else {
+        sim_inputs_at(s, t);
+        m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+        for (int i = 0; i < n; i++) {
+            double d = s->M[i * n + i];
+            s->cd[i] = d > 0 && isfinite(d) ? 1 / sqrt(d) : 1;
+        }
+        if (la_lu_factor_scaled(s->mlu, s->M, s->cd) != 0)
+            return NAN;
+        double rc = la_lu_rcond(s->mlu);
+        cond = rc > 0 ? 1 / rc : HUGE_VAL;
+        if (describe)
+            la_lu_near_null(s->mlu, s->cy);
+    }
+    if (!describe)
+        return cond;
+    size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s (coordinates",
+                                                 s->kkt ? "the constrained system" :
+                                                          "the mass matrix");
+    const char *sep = " ";
+    for (int i = 0; i < n && at < len; i++)
+        if (fabs(s->cy[i]) >= INVOLVED)
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", sep, m->q_names[i]),
+                sep = ", ";
+    sep = "; constraints ";
+    for (int c = 0; s->kkt && !m->eliminate && c < nc && at < len; c++)
+        if (fabs(s->cy[n + c]) >= INVOLVED)
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", sep, m->c_names[c]),
+                sep = ", ";
+    if (at < len)
+        snprintf(s->cwhat + at, len - at, ")");
+    return cond;
+}
+
+const char *
+sim_condition_what(const eomc_sim *s)
+{
+    return s->cwhat;
+}
+
+double
+eomc_sim_condition(eomc_sim *s, double t, const double *q, const double *v,
+                   const char **what)
+{
+    int n = s->n;
+    double *x = sim_zeros(2 * (size_t)n); /* sim_condition takes the state whole */
+    if (!x)
+        return NAN;
+    memcpy(x, q, (size_t)n * sizeof *x);
+    memcpy(x + n, v, (size_t)n * sizeof *x);
+    double c = sim_condition(s, t, x, what != NULL);
+    free(x);
+    if (what)
+        *what = s->cwhat;
+    return c;
+}
+
+double
+sim_take_pivot(eomc_sim *s)
+{
+    double p = s->pivot;
+    s->pivot = 1;
+    return p;
 }
 
 int

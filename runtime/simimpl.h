@@ -7,6 +7,7 @@
 
 #include "eomc.h"
 #include "kkt.h"
+#include "linalg.h"
 #include "project.h"
 
 #include <stddef.h>
@@ -22,6 +23,10 @@ struct eomc_sim {
     double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
     double *col;             /* [n] one right-hand side of M y = b */
     double *fk;              /* [nc] f (scratch) */
+    LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
+    double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
+    char *cwhat;             /* what the last sim_condition found ill-conditioned */
+    double pivot;            /* the smallest balanced pivot since sim_take_pivot */
     size_t errlen;
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: the solve and multipliers */
@@ -52,5 +57,17 @@ int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
 /* The largest |g|, |g'| or |phi| at (t, q, v), 0 without such
  * constraints. */
 double sim_level_residual(eomc_sim *s, double t, const double *q, const double *v);
+/* The condition number of the linear system whose solution is q'' at
+ * (t, x): the mass matrix balanced by its diagonal (which makes it free
+ * of the coordinates' units), or the scaled KKT or elimination matrix;
+ * NAN when it cannot be had (the solve failed).  With describe, the names
+ * of what its near-null direction mixes ("the mass matrix (coordinates
+ * th1, th2)") into sim_condition_what. */
+double sim_condition(eomc_sim *s, double t, const double *x, int describe);
+const char *sim_condition_what(const eomc_sim *s);
+/* The smallest pivot of the solves for q'' since the last call, balanced
+ * as sim_condition balances (1 when none): its inverse is about a lower
+ * bound on their condition, had for free from their factorizations. */
+double sim_take_pivot(eomc_sim *s);
 
 #endif

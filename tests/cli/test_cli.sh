@@ -112,6 +112,17 @@ ok $? "an initial state off the constraints: a warning naming the constraint, su
 "$tmp/cp" --init "x'=0.05" --t-end 0.1 -o /dev/null 2> "$tmp/warnv.err"; st=$?
 [ $st -eq 0 ] && grep -q "warning: the initial velocities violate the constraint rod: its residual is 1 of" "$tmp/warnv.err"
 ok $? "initial velocities off the constraints: a warning at velocity level"
+# an ill-conditioned mass matrix: warned once, naming t and the coordinates
+"$eomc" build "$src/specs/double_pendulum.yaml" -o "$tmp/dp" 2> /dev/null
+"$tmp/dp" --set m1=1e-9 --method bsimp --rtol 1e-10 --atol 1e-10 --stats -o /dev/null \
+  2> "$tmp/ill.err"; st=$?
+[ $st -eq 0 ] && [ "$(grep -c warning "$tmp/ill.err")" -eq 1 ] &&
+  grep -q "warning: t = 0.41[0-9]*: the mass matrix (coordinates th1, th2) is ill-conditioned" "$tmp/ill.err" &&
+  grep -q "^max_condition [0-9.]*e+09" "$tmp/ill.err"
+ok $? "m1/m2 = 1e-9: one warning naming t and th1, th2; --stats prints max_condition"
+"$tmp/dp" --stats -o /dev/null 2> "$tmp/well.err"
+! grep -q warning "$tmp/well.err" && grep -q "^max_condition [0-9.]*$" "$tmp/well.err"
+ok $? "the default double pendulum: no warning, a small max_condition"
 usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
 usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
 ok $? "--stabilize with a typo: usage error suggesting project"

@@ -71,13 +71,15 @@ osc_jacobian(double t, const double *q, const double *v, const double *a,
 /* The generator's 1x1 LDL^T: d_0 = M_00, pivot check d_0 > TOL M_00. */
 static int
 osc_accel(double t, const double *q, const double *v, const double *p,
-          const double *u, double *a)
+          const double *u, double *a, double *pivot)
 {
     (void)t;
     (void)v;
     (void)u;
     double M = p[0], h = p[1] * q[0], piv = M - EOMC_PIVOT_TOL * M;
     a[0] = piv > 0.0 ? -h / M : NAN;
+    if (pivot)
+        *pivot = 1.0; /* d_0 / M_00 */
     return piv > 0.0 ? 0 : 1;
 }
 
@@ -103,6 +105,48 @@ const eomc_model osc_model = {
     osc_accel,
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved",
+};
+
+/* ---- the leaky oscillator: m x'' + c x' + k x = 0 that claims to conserve
+ * E = T + V (a model that lies: the drift warning's test) ---- */
+
+static const char *const lk_p[] = {"m", "k", "x0", "c"};
+static const double lk_pdef[] = {OSC_M, OSC_K, OSC_X0, LEAKY_C};
+
+static void
+lk_mass_bias(double t, const double *q, const double *v, const double *p,
+             const double *u, double *M, double *h)
+{
+    (void)t;
+    (void)u;
+    M[0] = p[0];
+    h[0] = p[1] * q[0] + p[3] * v[0];
+}
+
+static void
+lk_jacobian(double t, const double *q, const double *v, const double *a,
+            const double *p, const double *u, double *dEdq, double *dEdv,
+            double *dEdu, double *dEdt)
+{
+    (void)t;
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)u;
+    (void)dEdu;
+    dEdq[0] = p[1];
+    dEdv[0] = p[3];
+    dEdt[0] = 0.0;
+}
+
+const eomc_model leaky_model = {
+    EOMC_ABI_VERSION, "leaky", "leaky.yaml", "lagrange", "",
+    1, 4, 0, osc_q, lk_p, osc_u, lk_pdef,
+    10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
+    osc_initial, no_inputs, lk_mass_bias, osc_energy, lk_jacobian,
+    NULL,
+    NO_CONSTRAINTS,
+    osc_invariant, "E", "E = T + V is conserved (it is not: the model lies)",
 };
 
 void
@@ -265,11 +309,13 @@ dr_jacobian(double t, const double *q, const double *v, const double *a,
 
 static int
 dr_accel(double t, const double *q, const double *v, const double *p,
-         const double *u, double *a)
+         const double *u, double *a, double *pivot)
 {
     double M = p[0], h = p[1] * v[0] + p[2] * q[0] - u[0] - p[5] * t;
     double piv = M - EOMC_PIVOT_TOL * M;
     a[0] = piv > 0.0 ? -h / M : NAN;
+    if (pivot)
+        *pivot = 1.0;
     return piv > 0.0 ? 0 : 1;
 }
 
@@ -347,7 +393,7 @@ np_jacobian(double t, const double *q, const double *v, const double *a,
 
 static int
 np_accel(double t, const double *q, const double *v, const double *p,
-         const double *u, double *a)
+         const double *u, double *a, double *pivot)
 {
     (void)t;
     (void)v;
@@ -355,6 +401,8 @@ np_accel(double t, const double *q, const double *v, const double *p,
     (void)u;
     double M = 1.0 - q[0] * q[0], piv = M - EOMC_PIVOT_TOL * M;
     a[0] = piv > 0.0 ? -0.0 / M : NAN;
+    if (pivot)
+        *pivot = 1.0;
     return piv > 0.0 ? 0 : 1;
 }
 

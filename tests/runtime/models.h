@@ -12,6 +12,8 @@
  *   nonpd_model      (1 - zeta^2) zeta'' = 0 from zeta = 0, zeta' = 1: M
  *                    loses positive definiteness at t = 1; accel member set
  *   nonpd_gsl_model  the same with accel NULL
+ *   leaky_model      m x'' + c x' + k x = 0, p = (m, k, x0, c), c = LEAKY_C:
+ *                    damped, yet it claims to conserve E = T + V
  */
 #ifndef EOMC_TEST_MODELS_H
 #define EOMC_TEST_MODELS_H
@@ -23,6 +25,8 @@ extern const eomc_model coupled_model;
 extern const eomc_model driven_model;
 extern const eomc_model nonpd_model;
 extern const eomc_model nonpd_gsl_model;
+extern const eomc_model leaky_model;
+#define LEAKY_C 1e-3
 
 /* Defaults of osc_model. */
 #define OSC_M 2.0

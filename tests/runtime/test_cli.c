@@ -10,7 +10,12 @@
  *  - numerical failure (M not positive definite at t = 1) exits 3, keeps the
  *    rows computed so far (all finite) and says "t = ..." on stderr.
  *
- * usage: test_cli OSC_SIM DRIVEN_SIM NONPD_SIM NONPD_GSL_SIM
+ *  - the drift warning: the leaky oscillator, which claims to conserve E
+ *    while damped, drifts far beyond what its steps' error estimates
+ *    allow and is warned about (with its drift: E(0) (1 - e^(-c t / m))
+ *    to first order); the honest oscillator is not.
+ *
+ * usage: test_cli OSC_SIM DRIVEN_SIM NONPD_SIM NONPD_GSL_SIM LEAKY_SIM
  */
 #include "../unit/check.h"
 
@@ -22,7 +27,7 @@
 
 #include "models.h"
 
-static const char *osc_sim, *driven_sim, *nonpd_sim[2];
+static const char *osc_sim, *driven_sim, *nonpd_sim[2], *leaky_sim;
 static char dir[] = "/tmp/eomc-rt-cli-XXXXXX";
 static char out_path[64], err_path[64], csv_path[64];
 static char *out, *err; /* the last run's stdout and stderr */
@@ -326,13 +331,35 @@ numeric_failure(const char *sim)
     remove(csv_path);
 }
 
+static void
+drift_warning(void)
+{
+    int st = run(leaky_sim, "-o /dev/null --stats");
+    const char *d = strstr(err, "invariant_drift ");
+    double drift = d ? atof(d + 16) : 0;
+    /* E(0) = k x0^2 / 2 + m v0^2 / 2; the damper takes about the fraction
+     * c t / m of it over t = 10 (average of e^(-c t / m) over the cycle) */
+    double E0 = 0.5 * OSC_K * OSC_X0 * OSC_X0 + 0.5 * OSC_M * OSC_V0 * OSC_V0;
+    double want = E0 * (1 - exp(-LEAKY_C * 10 / OSC_M));
+    CHECK(st == 0 && strstr(err, "warning: the conserved quantity E drifted by") &&
+          strstr(err, "what the steps' own error estimates allow") &&
+          fabs(drift - want) <= 0.2 * want,
+          "a model that claims E while damped: warned, drift %.3g (about %.3g), stderr: %s",
+          drift, want, one_line(err));
+    st = run(osc_sim, "-o /dev/null");
+    CHECK(st == 0 && err[0] == '\0', "the honest oscillator: no warning (stderr: %s)",
+          one_line(err));
+}
+
 int
 main(int argc, char **argv)
 {
-    if (argc != 5) {
-        fprintf(stderr, "usage: test_cli OSC_SIM DRIVEN_SIM NONPD_SIM NONPD_GSL_SIM\n");
+    if (argc != 6) {
+        fprintf(stderr, "usage: test_cli OSC_SIM DRIVEN_SIM NONPD_SIM NONPD_GSL_SIM "
+                "LEAKY_SIM\n");
         return 1;
     }
+    leaky_sim = argv[5];
     osc_sim = argv[1];
     driven_sim = argv[2];
     nonpd_sim[0] = argv[3];
@@ -351,6 +378,7 @@ main(int argc, char **argv)
     usage_errors();
     numeric_failure(nonpd_sim[0]);
     numeric_failure(nonpd_sim[1]);
+    drift_warning();
     free(out);
     free(err);
     remove(out_path);

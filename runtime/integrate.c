@@ -99,8 +99,25 @@ eomc_run_defaults(const eomc_model *m)
 /* An output time within this fraction of dt of t_end is t_end: no sliver
  * of an interval at the end. */
 #define SLIVER 1e-9
-/* march's status when a row callback stopped the run (not a GSL code). */
-enum { ROW_STOP = -1000 };
+/* march's status when a row callback stopped the run, and when the steps
+ * collapsed or ground (not GSL codes). */
+enum { ROW_STOP = -1000, STEP_COLLAPSE = -1001, STEP_GRIND = -1002 };
+/* Steps have collapsed when an accepted step is below COLLAPSE_REL of the
+ * run's typical step (the geometric mean of its accepted steps, once it
+ * has COLLAPSE_AFTER of them): seven orders of magnitude is more than a
+ * smooth motion asks (Kepler's orbit at e = 0.9999 runs 100 time units
+ * with every method without coming near), and a run that went on at such
+ * steps would take ten million times its steps so far to cover as much
+ * time again. */
+#define COLLAPSE_REL 1e-7
+enum { COLLAPSE_AFTER = 100 };
+/* The steps grind when GRIND_WINDOWS windows of GRIND_WINDOW attempts in
+ * a row each had more than half of them rejected, and the last one's
+ * steps were below GRIND_REL of the typical step.  A window that grinds
+ * does not count toward the typical step, which would otherwise sink with
+ * it. */
+enum { GRIND_WINDOW = 100, GRIND_WINDOWS = 20 };
+#define GRIND_REL 1e-3
 /* A side step (a row computed by a step of its own) is split in at most
  * this many pieces. */
 enum { SIDE_PIECES_MAX = 64 };
@@ -132,6 +149,14 @@ typedef struct Run {
     int progress, shown;          /* progress on the terminal */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
+    double log_h;                 /* sum of log(h) over the accepted steps ... */
+    long nh;                      /* ... not cut short by t_end, of windows that
+                                   * did not grind */
+    double h_last;                /* the last such step */
+    long tries, fails;            /* attempts and rejections in this window */
+    double w_log_h;               /* its accepted steps, as log_h and nh */
+    long w_nh;
+    int grinding;                 /* windows in a row that rejected most */
     double wall0, next_show;
 } Run;
 
@@ -207,13 +232,61 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     return EOMC_OK;
 }
 
+/* The run's typical step: the geometric mean of its accepted steps. */
+static double
+typical_step(const Run *r)
+{
+    if (r->nh > 0)
+        return exp(r->log_h / (double)r->nh);
+    return r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0; /* the first window */
+}
+
+/* Why the steps may have collapsed at the current state, as far as the
+ * runtime can see: an ill-conditioned solve (losing more than half the
+ * digits of q''), a vanishing constraint row, or neither. */
+#define LIKELY_COND 1e-8
+static void
+likely_cause(Run *r, char *buf, size_t len)
+{
+    eomc_sim *s = r->s;
+    double c = sim_condition(s, r->t, r->x, 1), fraction;
+    int k;
+    if (c * DBL_EPSILON > LIKELY_COND)
+        snprintf(buf, len, "%s is nearly singular there (condition %.2g)",
+                 sim_condition_what(s), c);
+    else if (s->kkt && !isnan(c) && (k = kkt_vanished(s->kkt, &fraction)) >= 0)
+        snprintf(buf, len, "the constraint %s's row df/dq'' is vanishing there (%.2g of "
+                 "its largest)", s->m->c_names[k], fraction);
+    else if (!isnan(c))
+        snprintf(buf, len, "not the solve for q'', which is well-conditioned there "
+                 "(condition %.2g): a force or the motion that is singular or not smooth "
+                 "there, or a tolerance the method cannot meet", c);
+    else
+        snprintf(buf, len, "the accelerations cannot be computed there");
+}
+
 /* The message for a stepping status other than success. */
 static int
 step_error(Run *r, int status)
 {
     eomc_sim *s = r->s;
     int n = r->n;
+    char cause[1024];
+    if (status == GSL_ENOPROG || status == STEP_COLLAPSE || status == STEP_GRIND)
+        likely_cause(r, cause, sizeof cause);
     switch (status) {
+    case STEP_COLLAPSE:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps collapsed to %.3g, "
+                                 "%.2g of the run's typical step %.3g: the motion is near a "
+                                 "singularity, and the likely cause: %s", r->h_last,
+                                 r->h_last / typical_step(r), typical_step(r), cause);
+    case STEP_GRIND:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps grind: in each of "
+                                 "the last %d windows of %d attempts most were rejected, "
+                                 "and the steps (%.3g lately) fell below %g of the run's "
+                                 "typical step %.3g; the likely cause: %s", GRIND_WINDOWS,
+                                 GRIND_WINDOW, r->h_last, GRIND_REL, typical_step(r),
+                                 cause);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
     case GSL_EMAXITER:
@@ -221,7 +294,7 @@ step_error(Run *r, int status)
                                  "%ld)", r->o->max_steps);
     case GSL_ENOPROG:
         return sim_numeric_error(s, r->t, r->x, r->x + n, "step size underflow (below "
-                                 "%.3g)", r->hmin);
+                                 "%.3g); the likely cause: %s", r->hmin, cause);
     case GSL_FAILURE: /* fixed steps: fixed.c's Newton iteration */
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the fixed %s step of %.3g "
                                  "failed (an implicit method's Newton iteration, or "
@@ -554,16 +627,20 @@ adaptive_step(Run *r, double *h)
                                               &h0) == GSL_ODEIV_HADJ_DEC) {
             retry = 1;
         }
+        r->tries++;
         if (retry) {
             memcpy(r->x, r->y0, bytes);
             r->st->rejected++;
+            r->fails++;
             if (!(h0 < h_old) || t0 + h0 == t0 || h0 < r->hmin)
                 return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
             continue;
         }
         r->t = final ? o->t_end : t0 + h_old;
-        if (!final)
+        if (!final) {
             *h = h0;
+            r->w_log_h += log(h_old), r->w_nh++, r->h_last = h_old;
+        }
         return GSL_SUCCESS;
     }
 }
@@ -586,6 +663,27 @@ fixed_step(Run *r, double t1)
     }
     r->t = t1;
     return GSL_SUCCESS;
+}
+
+/* After an adaptive step: have the steps collapsed, or do they grind? */
+static int
+watch_steps(Run *r)
+{
+    double typ = typical_step(r);
+    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ)
+        return STEP_COLLAPSE;
+    if (r->tries < GRIND_WINDOW)
+        return GSL_SUCCESS;
+    double mean = r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0;
+    if (2 * r->fails > r->tries && r->nh > 0) {
+        r->grinding++;
+    } else {
+        r->log_h += r->w_log_h, r->nh += r->w_nh;
+        r->grinding = 0;
+    }
+    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0;
+    return r->grinding >= GRIND_WINDOWS && mean < GRIND_REL * typ ? STEP_GRIND
+                                                                  : GSL_SUCCESS;
 }
 
 /* Integrate to t_end, passing rows as they are settled. */
@@ -620,6 +718,8 @@ march(Run *r)
         r->f0 = r->f1, r->f1 = f;
         if (r->t < o->t_end && !nfixed && fabs(h) < r->hmin)
             return GSL_ENOPROG;
+        if (!nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
+            return rc;
         if ((rc = emit_rows(r, 0)) != GSL_SUCCESS)
             return rc;
     }

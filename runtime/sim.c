@@ -422,20 +422,22 @@ sim_condition(eomc_sim *s, double t, const double *x, int describe)
     }
     if (!describe)
         return cond;
-    size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s (coordinates",
+    /* "the mass matrix (coordinates th1, th2)", "the constrained system
+     * (coordinates x1; constraints rod1, rod2)": each part only if any */
+    size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s",
                                                  s->kkt ? "the constrained system" :
                                                           "the mass matrix");
-    const char *sep = " ";
+    const char *open = " (coordinates ";
     for (int i = 0; i < n && at < len; i++)
         if (fabs(s->cy[i]) >= INVOLVED)
-            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", sep, m->q_names[i]),
-                sep = ", ";
-    sep = "; constraints ";
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", open, m->q_names[i]),
+                open = ", ";
+    const char *part = open[0] == ',' ? "; constraints " : " (constraints ";
     for (int c = 0; s->kkt && !m->eliminate && c < nc && at < len; c++)
         if (fabs(s->cy[n + c]) >= INVOLVED)
-            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", sep, m->c_names[c]),
-                sep = ", ";
-    if (at < len)
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", part, m->c_names[c]),
+                part = ", ", open = ", ";
+    if (open[0] == ',' && at < len)
         snprintf(s->cwhat + at, len - at, ")");
     return cond;
 }

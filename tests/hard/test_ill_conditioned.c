@@ -9,7 +9,9 @@
  *  - a run at rtol 1e-10 is warned about (eomc_stats.ill_t, .ill), and
  *    rightly: its energy, computed here from the closed form of T + V,
  *    drifts by more than 100 rtol of its terms; the same run with
- *    m1 = m2 is not warned about and holds its energy to 10 rtol.
+ *    m1 = m2 is not warned about and holds its energy to 10 rtol;
+ *  - rk8pd stops where the inner bob whips round, naming the mass matrix
+ *    and th1, th2 as the likely cause.
  */
 #include "hard.h"
 
@@ -98,10 +100,29 @@ runs(void)
     eomc_sim_free(s);
 }
 
+/* rk8pd cannot follow the whip that m1 -> 0 makes of the inner bob: it
+ * stops (exit 3), and names the ill-conditioned mass matrix as the likely
+ * cause. */
+static void
+failure(void)
+{
+    eomc_sim *s = eomc_sim_alloc(&double_pendulum_model);
+    eomc_sim_set(s, "m1", 1e-9);
+    eomc_run_opts o = eomc_run_defaults(&double_pendulum_model);
+    o.rtol = o.atol = 1e-10;
+    Rows r = hard_run(s, &o, NULL);
+    CHECK(r.rc == EOMC_ENUMERIC && strstr(r.error, "the likely cause: the mass matrix "
+                                                   "(coordinates th1, th2) is nearly singular"),
+          "m1/m2 = 1e-9, rk8pd: stops with the likely cause: %s", r.error);
+    hard_free(&r);
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
     estimates();
     runs();
+    failure();
     return check_done();
 }

@@ -80,6 +80,20 @@ t=$(t_of)
   near "$t" 1 1e-12 && kept "$t" 10
 ok $? "mass 1 - t: singular mass matrix at t = $t, 10 rows kept (exit $st)"
 
+run collapse "$specs/fail_collapse.yaml" --stats
+t=$(t_of)
+steps=$(printf '%s' "$err" | sed -n 's/^steps //p')
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "the steps collapsed to .* of the run's typical step .*: the motion is near a singularity, and the likely cause: not the solve for q''" &&
+  near "$t" 100 1e-6 && state_named "x = " && kept "$t" 100 && [ "$steps" -lt 400 ]
+ok $? "u = 1/(100 - t): the steps collapse near t = $t, stopped after $steps steps (underflow took 1434), the likely cause named, rows kept (exit $st)"
+
+run grind "$specs/fail_grind.yaml" --stats
+t=$(t_of)
+steps=$(printf '%s' "$err" | sed -n 's/^steps //p')
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "the steps grind: in each of the last 20 windows of 100 attempts most were rejected" &&
+  near "$t" 3.2 0.01 && state_named "x = " && kept "$t" 321 && [ "$steps" -lt 2000 ]
+ok $? "Coulomb friction sticking at t = $t: the steps grind, stopped after $steps steps (6 million and 4 s without the check), rows kept (exit $st)"
+
 run fold "$specs/fail_fold.yaml"
 t=$(t_of)
 [ $st -eq 3 ] && printf '%s' "$err" | grep -q "the constraint fold (x) degenerates here: its df/dq'' has fallen to" &&

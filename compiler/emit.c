@@ -841,7 +841,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     else
         fprintf(pr->f, "    NULL, NULL,\n    ");
     print_c_string(pr->f, inv->note);
-    println(pr, ",\n};\n");
+    if (s->ncheck)
+        println(pr, ",\n    %d, %s_check, check_what, check_params,\n};\n", s->ncheck, nm);
+    else
+        println(pr, ",\n    0, NULL, NULL, NULL,\n};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
     println(pr, "/* The reference solution's functions: this file compiled again with");
@@ -968,6 +971,55 @@ print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
     free(o);
 }
 
+/* The physical data's conditions on the parameters (Spec.check). */
+static const Func f_check_values = {
+    "check_values", "The values that must be positive (or not negative): check_what.",
+    "const eomc_real *p, eomc_real *chk", "p, chk",
+    SRC(NULL, NULL, NULL, "p", NULL, NULL), NULL,
+};
+
+/* check_values, the check member, and its tables. */
+static void
+print_checks(Printer *pr)
+{
+    const Spec *s = pr->s;
+    const char *nm = s->name;
+    int nk = s->ncheck;
+    if (nk == 0)
+        return;
+    Out *o = calloc((size_t)nk, sizeof *o);
+    int k = 0;
+    for (int i = 0; i < nk; i++)
+        add_out(o, &k, s->check[i].expr, "chk[%d]", i);
+    print_function(pr, &f_check_values, k, o);
+    free(o);
+    for (int t = 0; t < 2; t++) {
+        println(pr, "static const char *const %s[%d] = {", t ? "check_params" : "check_what",
+                nk);
+        for (int i = 0; i < nk; i++) {
+            fprintf(pr->f, "    ");
+            print_c_string(pr->f, t ? s->check[i].params : s->check[i].what);
+            println(pr, ",");
+        }
+        println(pr, "};");
+    }
+    fprintf(pr->f, "static const unsigned char check_strict[%d] = {", nk);
+    for (int i = 0; i < nk; i++)
+        fprintf(pr->f, "%s%d", i ? ", " : "", s->check[i].strict);
+    println(pr, "};\n");
+    println(pr, "/* 0, or k + 1 for the first condition k the parameters p break. */");
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_check", nm);
+    print_head(pr, "static int", fname, "const double *p");
+    println(pr, "    eomc_real chk[%d];", nk);
+    println(pr, "    %s_check_values(p, chk);", nm);
+    println(pr, "    for (int k = 0; k < %d; k++)", nk);
+    println(pr, "        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))");
+    println(pr, "            return k + 1;");
+    println(pr, "    return 0;");
+    println(pr, "}\n");
+}
+
 /* The conserved quantity, when there is one. */
 static const Func f_invariant = {
     "invariant", "The conserved quantity (eomc_model.h: invariant).",
@@ -1079,5 +1131,6 @@ emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraint
     }
     free(o);
     fence(&pr, 1);
+    print_checks(&pr);
     print_model_struct(&pr, s, e, c, inv, info);
 }

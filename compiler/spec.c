@@ -17,6 +17,7 @@
 #include "parse.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -689,17 +690,110 @@ load_inputs(Loader *L, yaml_node_t *map)
                                          "an input signal");
 }
 
-/* A mass: of parameters (a massless point is fine: forces can act on it),
- * and not negative when it is a number (a parameter is checked by the
- * simulator, which tests M). */
+/* ---- physical data ---- */
+
+/* Require e > 0 (strict) or e >= 0 of the parameters, for the physical
+ * datum at n: now, with the parameters' defaults (an error at n, saying
+ * what and the value when it is a single number), and in the simulator
+ * for the values --set gives (Spec.check).  The parameters must be
+ * loaded. */
+static void
+require(Loader *L, ExprId e, int strict, const yaml_node_t *n, int show, const char *fmt,
+        ...)
+{
+    Spec *s = L->s;
+    char what[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    double *p = arena_new_array(L->A, double, s->np + 1);
+    for (int i = 0; i < s->np; i++)
+        p[i] = s->param[i].value;
+    ExprEnv env = {.p = p};
+    double v = expr_eval(L->P, e, &env);
+    if (!(strict ? v > 0 : v >= 0)) {
+        if (show)
+            diag_error(loc_of(L, n), "%s; it is %g", what, v);
+        diag_error(loc_of(L, n), "%s", what);
+    }
+    if (expr_is_const(L->P, e, NULL))
+        return; /* no parameter can change it */
+    char params[512] = "";
+    for (int i = 0; i < s->np; i++)
+        if (expr_depends(L->P, e, expr_param(L->P, i)))
+            snprintf(params + strlen(params), sizeof params - strlen(params), "%s%s",
+                     params[0] ? ", " : "", s->param[i].name);
+    if (s->ncheck == s->capcheck) {
+        s->capcheck = s->capcheck ? 2 * s->capcheck : 16;
+        SpecCheck *c = arena_new_array(L->A, SpecCheck, s->capcheck);
+        if (s->ncheck)
+            memcpy(c, s->check, (size_t)s->ncheck * sizeof *c);
+        s->check = c;
+    }
+    s->check[s->ncheck++] = (SpecCheck){e, strict, arena_strdup(L->A, what),
+                                        arena_strdup(L->A, params), loc_of(L, n)};
+}
+
+/* A mass: of parameters, not negative (a massless point is fine: forces
+ * can act on it). */
 static ExprId
-mass_of(Loader *L, const yaml_node_t *n)
+mass_of(Loader *L, const yaml_node_t *n, const char *kind, const char *name)
 {
     ExprId m = expression(L, n, ALLOW_PARAM, "a mass");
-    double v;
-    if (expr_is_const(L->P, m, &v) && v < 0)
-        diag_error(loc_of(L, n), "a mass cannot be negative (%g)", v);
+    require(L, m, 0, n, 1, "%s '%s': a mass cannot be negative", kind, name);
     return m;
+}
+
+/* Body b's inertia at n, once loaded: a planar moment must be positive; a
+ * 3-D tensor I positive definite (a zero principal moment leaves a
+ * rotation without inertia: the mass matrix is singular), and that of
+ * some distribution of mass: S = tr(I)/2 - I, its second moments
+ * sum m x_i x_j, positive semi-definite, which for principal moments is
+ * the triangle inequality A + B >= C in every order. */
+static void
+require_inertia(Loader *L, const yaml_node_t *n, const SpecBody *b)
+{
+    ExprPool *P = L->P;
+    const ExprId *I = b->inertia;
+    if (b->dim == 2) {
+        require(L, I[0], 1, n, 1, "body '%s': its moment of inertia must be positive",
+                b->name);
+        return;
+    }
+    const char *pd = "body '%s': its inertia must be positive definite (a principal "
+                     "moment of zero or less leaves a rotation with no inertia)";
+    ExprId m2 = expr_sub(P, expr_mul(P, I[0], I[4]), expr_mul(P, I[1], I[3]));
+    ExprId det = EXPR_ZERO, S[9], half = expr_const(P, 0.5);
+    for (int j = 0; j < 3; j++) { /* along the first row */
+        int a = (j + 1) % 3, c = (j + 2) % 3;
+        ExprId minor = expr_sub(P, expr_mul(P, I[3 + a], I[6 + c]),
+                                expr_mul(P, I[3 + c], I[6 + a]));
+        det = expr_add(P, det, expr_mul(P, I[j], minor));
+    }
+    require(L, I[0], 1, n, 0, pd, b->name);
+    require(L, m2, 1, n, 0, pd, b->name);
+    require(L, det, 1, n, 0, pd, b->name);
+    ExprId tr = expr_mul(P, half, expr_add(P, expr_add(P, I[0], I[4]), I[8]));
+    for (int k = 0; k < 9; k++)
+        S[k] = k % 4 == 0 ? expr_sub(P, tr, I[k]) : expr_neg(P, I[k]);
+    const char *real = "body '%s': no distribution of mass has this inertia (its principal "
+                       "moments must satisfy A + B >= C in every order)";
+    for (int k = 0; k < 3; k++) /* every principal minor of S */
+        require(L, S[4 * k], 0, n, 0, real, b->name);
+    for (int k = 0; k < 3; k++) {
+        int a = (k + 1) % 3, c = (k + 2) % 3;
+        require(L, expr_sub(P, expr_mul(P, S[4 * a], S[4 * c]),
+                            expr_mul(P, S[3 * a + c], S[3 * c + a])), 0, n, 0, real, b->name);
+    }
+    ExprId dS = EXPR_ZERO;
+    for (int j = 0; j < 3; j++) {
+        int a = (j + 1) % 3, c = (j + 2) % 3;
+        ExprId minor = expr_sub(P, expr_mul(P, S[3 + a], S[6 + c]),
+                                expr_mul(P, S[3 + c], S[6 + a]));
+        dS = expr_add(P, dS, expr_mul(P, S[j], minor));
+    }
+    require(L, dS, 0, n, 0, real, b->name);
 }
 
 static void
@@ -721,7 +815,7 @@ load_particles(Loader *L, yaml_node_t *map)
             diag_error(loc_of(L, v), "particle '%s' has no mass", pt->name);
         if (!pos)
             diag_error(loc_of(L, v), "particle '%s' has no position", pt->name);
-        pt->mass = mass_of(L, mass);
+        pt->mass = mass_of(L, mass, "particle", pt->name);
         pt->dim = vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
     }
 }
@@ -842,9 +936,10 @@ load_bodies(Loader *L, yaml_node_t *map)
         const char *missing = !mass ? "mass" : !c ? "center" : !in ? "inertia" : NULL;
         if (missing)
             diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
-        b->mass = mass_of(L, mass);
+        b->mass = mass_of(L, mass, "body", b->name);
         b->dim = vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
         load_inertia(L, in, b);
+        require_inertia(L, in, b);
         b->omega[0] = b->omega[1] = b->omega[2] = EXPR_ZERO;
         int how = !!rot + !!om + !!ang;
         if (how > 1)

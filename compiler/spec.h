@@ -106,6 +106,18 @@ typedef struct SpecScene {
     double h_fixed;     /* 0 = adaptive */
 } SpecScene;
 
+/* A condition that physical data must meet, on the parameters: expr > 0
+ * (strict) or expr >= 0.  spec_load checks it with the parameters'
+ * defaults (an error at loc); the generated simulator checks it again for
+ * the values --set gives (a usage error naming what and params). */
+typedef struct SpecCheck {
+    ExprId expr;
+    int strict;
+    const char *what;   /* "particle 'bob': its mass must not be negative" */
+    const char *params; /* the parameters it depends on: "m" */
+    SrcLoc loc;
+} SpecCheck;
+
 /* The integrators the runtime offers (ORDER: runtime/sim.c eomc_methods). */
 extern const char *const spec_methods[];
 
@@ -124,6 +136,8 @@ typedef struct Spec {
     SpecTerm *potential; /* always-on potential-energy terms */
     SpecConstraint *constraint;
     SpecScene scene;
+    int ncheck, capcheck;
+    SpecCheck *check;    /* masses and inertias: what --set must respect */
 } Spec;
 
 /* Load and check a spec.  On bad input, prints the diagnostic and returns

@@ -352,6 +352,34 @@ appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dveldt[0] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+appell_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+}
+
+static const char *const check_what[1] = {
+    "particle 'p': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+appell_check(const double *p)
+{
+    eomc_real chk[1];
+    appell_check_values(p, chk);
+    for (int k = 0; k < 1; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model appell_model = {
     EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -362,6 +390,7 @@ const eomc_model appell_model = {
     appell_constraint, appell_c_levels, appell_c_jacobian, appell_c_levels_jacobian,
     appell_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    1, appell_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

@@ -392,6 +392,7 @@ const eomc_model arenstorf_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     arenstorf_invariant, "h",
     "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t and every effect is a potential",
+    0, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

@@ -298,6 +298,34 @@ cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[0] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+cartesian_pendulum_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+}
+
+static const char *const check_what[1] = {
+    "particle 'bob': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+cartesian_pendulum_check(const double *p)
+{
+    eomc_real chk[1];
+    cartesian_pendulum_check_values(p, chk);
+    for (int k = 0; k < 1; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
@@ -308,6 +336,7 @@ const eomc_model cartesian_pendulum_model = {
     cartesian_pendulum_constraint, cartesian_pendulum_c_levels, cartesian_pendulum_c_jacobian, cartesian_pendulum_c_levels_jacobian,
     cartesian_pendulum_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    1, cartesian_pendulum_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

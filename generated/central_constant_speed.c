@@ -1182,6 +1182,34 @@ central_constant_speed_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[0] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+central_constant_speed_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+}
+
+static const char *const check_what[1] = {
+    "particle 'p': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+central_constant_speed_check(const double *p)
+{
+    eomc_real chk[1];
+    central_constant_speed_check_values(p, chk);
+    for (int k = 0; k < 1; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model central_constant_speed_model = {
     EOMC_ABI_VERSION, "central_constant_speed", "central_constant_speed.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -1192,6 +1220,7 @@ const eomc_model central_constant_speed_model = {
     central_constant_speed_constraint, central_constant_speed_c_levels, central_constant_speed_c_jacobian, central_constant_speed_c_levels_jacobian,
     NULL, NULL,
     "nothing is conserved: the constraint 'speed' is not homogeneous in the velocities, so its force can do work",
+    1, central_constant_speed_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

@@ -2190,6 +2190,46 @@ chain5_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 #ifndef EOMC_EXTENDED
+/* The values that must be positive (or not negative): check_what. */
+static void
+chain5_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+    chk[1] = p_m;
+    chk[2] = p_m;
+    chk[3] = p_m;
+    chk[4] = p_m;
+}
+
+static const char *const check_what[5] = {
+    "particle 'p1': a mass cannot be negative",
+    "particle 'p2': a mass cannot be negative",
+    "particle 'p3': a mass cannot be negative",
+    "particle 'p4': a mass cannot be negative",
+    "particle 'p5': a mass cannot be negative",
+};
+static const char *const check_params[5] = {
+    "m",
+    "m",
+    "m",
+    "m",
+    "m",
+};
+static const unsigned char check_strict[5] = {0, 0, 0, 0, 0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+chain5_check(const double *p)
+{
+    eomc_real chk[5];
+    chain5_check_values(p, chk);
+    for (int k = 0; k < 5; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model chain5_model = {
     EOMC_ABI_VERSION, "chain5", "chain5.yaml", "lagrange", "",
     5, 3, 0, q_names, p_names, u_names, p_default,
@@ -2199,6 +2239,7 @@ const eomc_model chain5_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     chain5_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    5, chain5_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

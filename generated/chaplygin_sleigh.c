@@ -78,8 +78,8 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_m = p[0];
-    const eomc_real p_b = p[2];
     const eomc_real p_J = p[1];
+    const eomc_real p_b = p[2];
     (void)u;
     (void)t;
     const eomc_real w0 = 0.5 * p_m;
@@ -152,8 +152,8 @@ chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_m = p[0];
-    const eomc_real p_b = p[2];
     const eomc_real p_J = p[1];
+    const eomc_real p_b = p[2];
     (void)u;
     (void)t;
     const eomc_real w0 = 0.5 * p_m;
@@ -288,8 +288,8 @@ chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_m = p[0];
-    const eomc_real p_b = p[2];
     const eomc_real p_J = p[1];
+    const eomc_real p_b = p[2];
     (void)u;
     (void)t;
     const eomc_real w0 = 0.5 * p_m;
@@ -480,6 +480,38 @@ chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[0] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+chaplygin_sleigh_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_J = p[1];
+    chk[0] = p_m;
+    chk[1] = p_J;
+}
+
+static const char *const check_what[2] = {
+    "body 'sleigh': a mass cannot be negative",
+    "body 'sleigh': its moment of inertia must be positive",
+};
+static const char *const check_params[2] = {
+    "m",
+    "J",
+};
+static const unsigned char check_strict[2] = {0, 1};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+chaplygin_sleigh_check(const double *p)
+{
+    eomc_real chk[2];
+    chaplygin_sleigh_check_values(p, chk);
+    for (int k = 0; k < 2; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model chaplygin_sleigh_model = {
     EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "",
     3, 5, 0, q_names, p_names, u_names, p_default,
@@ -490,6 +522,7 @@ const eomc_model chaplygin_sleigh_model = {
     chaplygin_sleigh_constraint, chaplygin_sleigh_c_levels, chaplygin_sleigh_c_jacobian, chaplygin_sleigh_c_levels_jacobian,
     chaplygin_sleigh_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    2, chaplygin_sleigh_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

@@ -620,6 +620,38 @@ double_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 #ifndef EOMC_EXTENDED
+/* The values that must be positive (or not negative): check_what. */
+static void
+double_pendulum_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m1 = p[0];
+    const eomc_real p_m2 = p[1];
+    chk[0] = p_m1;
+    chk[1] = p_m2;
+}
+
+static const char *const check_what[2] = {
+    "particle 'bob1': a mass cannot be negative",
+    "particle 'bob2': a mass cannot be negative",
+};
+static const char *const check_params[2] = {
+    "m1",
+    "m2",
+};
+static const unsigned char check_strict[2] = {0, 0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+double_pendulum_check(const double *p)
+{
+    eomc_real chk[2];
+    double_pendulum_check_values(p, chk);
+    for (int k = 0; k < 2; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model double_pendulum_model = {
     EOMC_ABI_VERSION, "double_pendulum", "double_pendulum.yaml", "lagrange", "",
     2, 5, 0, q_names, p_names, u_names, p_default,
@@ -629,6 +661,7 @@ const eomc_model double_pendulum_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     double_pendulum_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    2, double_pendulum_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

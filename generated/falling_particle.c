@@ -162,6 +162,34 @@ falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 #ifndef EOMC_EXTENDED
+/* The values that must be positive (or not negative): check_what. */
+static void
+falling_particle_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+}
+
+static const char *const check_what[1] = {
+    "particle 'ball': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+falling_particle_check(const double *p)
+{
+    eomc_real chk[1];
+    falling_particle_check_values(p, chk);
+    for (int k = 0; k < 1; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model falling_particle_model = {
     EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
@@ -171,6 +199,7 @@ const eomc_model falling_particle_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     NULL, NULL,
     "nothing is conserved: the effect 'push' is a force, not a potential",
+    1, falling_particle_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

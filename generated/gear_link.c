@@ -217,6 +217,7 @@ const eomc_model gear_link_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     NULL, NULL,
     "nothing is conserved: the effect 'motor' is a force, not a potential",
+    0, NULL, NULL, NULL,
 };
 
 #ifdef EOMC_MAIN

@@ -244,6 +244,34 @@ pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 #ifndef EOMC_EXTENDED
+/* The values that must be positive (or not negative): check_what. */
+static void
+pendulum_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    chk[0] = p_m;
+}
+
+static const char *const check_what[1] = {
+    "particle 'bob': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+pendulum_check(const double *p)
+{
+    eomc_real chk[1];
+    pendulum_check_values(p, chk);
+    for (int k = 0; k < 1; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model pendulum_model = {
     EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
@@ -253,6 +281,7 @@ const eomc_model pendulum_model = {
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
     pendulum_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    1, pendulum_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

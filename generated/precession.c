@@ -950,6 +950,76 @@ precession_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[0] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+precession_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    chk[0] = p_A;
+    const eomc_real w0 = p_A * p_B;
+    chk[1] = w0;
+    const eomc_real w1 = p_B * p_C;
+    const eomc_real w2 = p_A * w1;
+    chk[2] = w2;
+    const eomc_real w3 = p_A + p_B;
+    const eomc_real w4 = p_C + w3;
+    const eomc_real w5 = 0.5 * w4;
+    const eomc_real w6 = w5 - p_A;
+    chk[3] = w6;
+    const eomc_real w7 = w5 - p_B;
+    chk[4] = w7;
+    const eomc_real w8 = w5 - p_C;
+    chk[5] = w8;
+    const eomc_real w9 = w7 * w8;
+    chk[6] = w9;
+    const eomc_real w10 = w6 * w8;
+    chk[7] = w10;
+    const eomc_real w11 = w6 * w7;
+    chk[8] = w11;
+    const eomc_real w12 = w6 * w9;
+    chk[9] = w12;
+}
+
+static const char *const check_what[10] = {
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+};
+static const char *const check_params[10] = {
+    "A",
+    "A, B",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+};
+static const unsigned char check_strict[10] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+precession_check(const double *p)
+{
+    eomc_real chk[10];
+    precession_check_values(p, chk);
+    for (int k = 0; k < 10; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model precession_model = {
     EOMC_ABI_VERSION, "precession", "precession.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
@@ -960,6 +1030,7 @@ const eomc_model precession_model = {
     precession_constraint, precession_c_levels, precession_c_jacobian, precession_c_levels_jacobian,
     NULL, NULL,
     "nothing is conserved: the force of the second-order constraint 'precession' can do work",
+    10, precession_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

@@ -1637,6 +1637,80 @@ rolling_disk_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[1] = 0.0;
 }
 
+/* The values that must be positive (or not negative): check_what. */
+static void
+rolling_disk_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_R = p[1];
+    chk[0] = p_m;
+    const eomc_real w0 = p_R * p_R;
+    const eomc_real w1 = p_m * w0;
+    const eomc_real w2 = 0.25 * w1;
+    chk[1] = w2;
+    const eomc_real w3 = w2 * w2;
+    chk[2] = w3;
+    const eomc_real w4 = 0.5 * w1;
+    const eomc_real w5 = w2 * w4;
+    const eomc_real w6 = w2 * w5;
+    chk[3] = w6;
+    const eomc_real w7 = 2.0 * w2;
+    const eomc_real w8 = w4 + w7;
+    const eomc_real w9 = 0.5 * w8;
+    const eomc_real w10 = w9 - w2;
+    chk[4] = w10;
+    chk[5] = w10;
+    const eomc_real w11 = w9 - w4;
+    chk[6] = w11;
+    const eomc_real w12 = w10 * w11;
+    chk[7] = w12;
+    chk[8] = w12;
+    const eomc_real w13 = w10 * w10;
+    chk[9] = w13;
+    const eomc_real w14 = w10 * w12;
+    chk[10] = w14;
+}
+
+static const char *const check_what[11] = {
+    "body 'disk': a mass cannot be negative",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+};
+static const char *const check_params[11] = {
+    "m",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+};
+static const unsigned char check_strict[11] = {0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+static int
+rolling_disk_check(const double *p)
+{
+    eomc_real chk[11];
+    rolling_disk_check_values(p, chk);
+    for (int k = 0; k < 11; k++)
+        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 const eomc_model rolling_disk_model = {
     EOMC_ABI_VERSION, "rolling_disk", "rolling_disk.yaml", "lagrange", "",
     5, 4, 0, q_names, p_names, u_names, p_default,
@@ -1647,6 +1721,7 @@ const eomc_model rolling_disk_model = {
     rolling_disk_constraint, rolling_disk_c_levels, rolling_disk_c_jacobian, rolling_disk_c_levels_jacobian,
     rolling_disk_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    11, rolling_disk_check, check_what, check_params,
 };
 
 #ifdef EOMC_MAIN

@@ -491,6 +491,10 @@ apply_sets(Cli *c, eomc_sim *sim)
         }
         free(name);
     }
+    if (eomc_sim_check(sim) != EOMC_OK) {
+        fprintf(stderr, "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
+        return EOMC_EUSAGE;
+    }
     return EOMC_OK;
 }
 

@@ -41,6 +41,12 @@ const eomc_model *eomc_sim_model(const eomc_sim *s);
 /* Set a parameter, or an input, by name.  An input set here is held at
  * this constant value from then on.  EOMC_EUSAGE for an unknown name. */
 int eomc_sim_set(eomc_sim *s, const char *name, double value);
+/* Whether the parameters make the model physical (model->check: no
+ * negative mass, inertias positive definite and of some distribution of
+ * mass): EOMC_OK, or EOMC_EUSAGE with a message naming the body or
+ * particle and the parameters with their values.  eomc_run_check calls
+ * it. */
+int eomc_sim_check(eomc_sim *s);
 /* Current parameter values [np]. */
 const double *eomc_sim_params(const eomc_sim *s);
 /* Input values at t [nu] (constants or the model's signals). */

@@ -141,6 +141,19 @@ typedef struct eomc_model {
                       const double *u, double *h);
     const char *invariant_name;
     const char *invariant_note;
+
+    /* ---- physical data ----
+     * Conditions the parameters must meet for the masses and inertias to
+     * be physical: no negative mass, positive definite inertias that some
+     * distribution of mass has (eomc checked them with the defaults).
+     * check returns 0, or k + 1 for the first condition the parameters p
+     * break: check_what[k] says what ("body 'top': ..."), check_params[k]
+     * names the parameters it depends on ("A, C").  ncheck = 0: none, and
+     * check NULL. */
+    int ncheck;
+    int (*check)(const double *p);
+    const char *const *check_what;
+    const char *const *check_params;
 } eomc_model;
 
 /* What the reference solution evaluates in extended precision (NULL

@@ -205,6 +205,8 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     const Method *m = find_method(o->method);
     if (!m)
         return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
+    if (eomc_sim_check(s) != EOMC_OK)
+        return EOMC_EUSAGE;
     if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
         return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
                                o->t0);

@@ -94,6 +94,29 @@ eomc_sim_free(eomc_sim *s)
     free(s);
 }
 
+int
+eomc_sim_check(eomc_sim *s)
+{
+    const eomc_model *m = s->m;
+    int k = m->check ? m->check(s->p) : 0;
+    if (k == 0)
+        return EOMC_OK;
+    /* the parameters it names, with their values */
+    char vals[512] = "";
+    const char *names = m->check_params[k - 1];
+    for (int i = 0; i < m->np; i++) {
+        size_t len = strlen(m->p_names[i]);
+        for (const char *at = names; (at = strstr(at, m->p_names[i])) != NULL; at += len)
+            if ((at == names || at[-1] == ' ') && (at[len] == ',' || at[len] == '\0')) {
+                size_t used = strlen(vals);
+                snprintf(vals + used, sizeof vals - used, "%s%s = %g", used ? ", " : "",
+                         m->p_names[i], s->p[i]);
+                break;
+            }
+    }
+    return sim_usage_error(s, "%s (%s)", m->check_what[k - 1], vals);
+}
+
 const eomc_model *
 eomc_sim_model(const eomc_sim *s)
 {

@@ -124,6 +124,19 @@ ok $? "m1/m2 = 1e-9: one warning naming t and th1, th2; --stats prints max_condi
 ! grep -q warning "$tmp/well.err" && grep -q "^max_condition [0-9.]*$" "$tmp/well.err"
 ok $? "the default double pendulum: no warning, a small max_condition"
 usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
+# physical data from --set: exit 2 naming what and the parameters, no output
+rm -f "$tmp/neg.csv"
+usage_err "$tmp/cp" --set m=-1 -o "$tmp/neg.csv" &&
+  grep -q "^cp: --set: particle 'bob': a mass cannot be negative (m = -1)$" "$tmp/u.err" &&
+  [ ! -e "$tmp/neg.csv" ]
+ok $? "--set m=-1: exit 2 naming the particle's mass and m, no output file"
+"$eomc" build "$src/specs/precession.yaml" -o "$tmp/prec" 2> /dev/null
+usage_err "$tmp/prec" --set C=5 --accel &&
+  grep -q "body 'body': no distribution of mass has this inertia .* (A = 1, B = 1.5, C = 5)" "$tmp/u.err"
+ok $? "--set C=5 (A + B < C): exit 2 naming the body and A, B, C with their values"
+usage_err "$tmp/prec" --set A=-1 &&
+  grep -q "body 'body': its inertia must be positive definite .* (A = -1)" "$tmp/u.err"
+ok $? "--set A=-1: exit 2, the inertia is not positive definite"
 usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
 ok $? "--stabilize with a typo: usage error suggesting project"
 usage_err "$tmp/cp" --baumgarte 1 && grep -q "ALPHA,BETA" "$tmp/u.err"

@@ -86,6 +86,8 @@ osc_accel(double t, const double *q, const double *v, const double *p,
 /* The constraint members of a model without constraints. */
 #define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
+/* The physical-data members of a model with nothing to check. */
+#define NO_CHECKS 0, NULL, NULL, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -105,6 +107,7 @@ const eomc_model osc_model = {
     osc_accel,
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved",
+    NO_CHECKS,
 };
 
 /* ---- the leaky oscillator: m x'' + c x' + k x = 0 that claims to conserve
@@ -147,6 +150,7 @@ const eomc_model leaky_model = {
     NULL,
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved (it is not: the model lies)",
+    NO_CHECKS,
 };
 
 void
@@ -248,6 +252,7 @@ const eomc_model coupled_model = {
     NULL,
     NO_CONSTRAINTS,
     NO_INVARIANT,
+    NO_CHECKS,
 };
 
 /* ---- the driven oscillator: E = m x'' + c x' + k x - u - b t ---- */
@@ -327,6 +332,7 @@ const eomc_model driven_model = {
     dr_accel,
     NO_CONSTRAINTS,
     NO_INVARIANT,
+    NO_CHECKS,
 };
 
 void
@@ -414,6 +420,7 @@ const eomc_model nonpd_model = {
     np_accel,
     NO_CONSTRAINTS,
     NO_INVARIANT,
+    NO_CHECKS,
 };
 
 const eomc_model nonpd_gsl_model = {
@@ -424,4 +431,5 @@ const eomc_model nonpd_gsl_model = {
     NULL,
     NO_CONSTRAINTS,
     NO_INVARIANT,
+    NO_CHECKS,
 };

@@ -64,6 +64,25 @@ body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
         gyroscopic(P, b, g);
         e = expr_add(P, e, dot_product(P, 3, w, g));
     }
+    if (b->quat[0] >= 0 && b->dim == 3) {
+        /* w = 2 L e' leaves e' along e without inertia: the mass matrix
+         * would be singular (in that direction only the unit constraint
+         * decides).  1/2 c (e.e')^2, with c = 4 tr(I)/3 (the mean of the
+         * other directions' 4 A, 4 B, 4 C), gives it inertia and is zero,
+         * with every derivative the motion sees, where the constraint
+         * holds (e.e' = 0 and its rate e.e'' + e'.e' = 0).  Its
+         * acceleration energy is 1/2 c (e.e'' + e'.e')^2. */
+        ExprId y = EXPR_ZERO; /* (e.e)/2, whose rate is e.e' */
+        for (int k = 0; k < 4; k++)
+            y = expr_add(P, y, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
+        y = expr_mul(P, half, y);
+        ExprId rate = diff_time(D, y);
+        if (order == 2)
+            rate = diff_time(D, rate);
+        ExprId tr = expr_add(P, expr_add(P, b->inertia[0], b->inertia[4]), b->inertia[8]);
+        ExprId c = expr_mul(P, expr_const(P, 4.0 / 3.0), tr);
+        e = expr_add(P, e, expr_mul(P, half, expr_mul(P, c, expr_powi(P, rate, 2))));
+    }
     return e;
 }
 

@@ -861,19 +861,70 @@ load_inertia(Loader *L, yaml_node_t *n, SpecBody *b)
 /* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
  * axes of the sequence ("zxz": z, then the new x, then the new z):
  *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
+/* The Euler parameters e = (e0, e1, e2, e3) of a rotation, scalar first:
+ * R = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x] with v = (e1, e2, e3), and
+ * in body axes w = 2 L e' with
+ *     L = [-e1  e0  e3 -e2;  -e2 -e3  e0  e1;  -e3  e2 -e1  e0]
+ * (on |e| = 1, which the unit constraint keeps).  The parameters must be
+ * four distinct coordinates. */
+static void
+quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
+{
+    ExprPool *P = L->P;
+    expect_type(L, v, YAML_SEQUENCE_NODE, "the Euler parameters of a rotation");
+    if (NITEMS(v) != 4)
+        diag_error(loc_of(L, v), "a quaternion has 4 Euler parameters [e0, e1, e2, e3] "
+                   "(scalar first), not %d", (int)NITEMS(v));
+    ExprId e[4], d[4];
+    for (int i = 0; i < 4; i++) {
+        yaml_node_t *n = node(L, ITEMS(v)[i]);
+        const char *name = scalar(L, n, "an Euler parameter");
+        Name *nm = find_name(L, name);
+        if (!nm || nm->kind != NAME_COORD)
+            diag_error(loc_of(L, n), "the Euler parameters of a quaternion are coordinates, "
+                       "and '%s' is not one (list it in `coordinates:`)", name);
+        for (int j = 0; j < i; j++)
+            if (b->quat[j] == nm->index)
+                diag_error(loc_of(L, n), "'%s' is already an Euler parameter of this "
+                           "quaternion", name);
+        b->quat[i] = nm->index;
+        e[i] = expr_var(P, nm->index, 0);
+        d[i] = expr_var(P, nm->index, 1);
+    }
+    static const int Lrow[3][4][2] = { /* (sign, index of e) per column */
+        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
+        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
+        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
+    };
+    ExprId two = expr_const(P, 2);
+    for (int r = 0; r < 3; r++) {
+        ExprId w = EXPR_ZERO;
+        for (int c = 0; c < 4; c++) {
+            ExprId t = expr_mul(P, e[Lrow[r][c][1]], d[c]);
+            w = Lrow[r][c][0] > 0 ? expr_add(P, w, t) : expr_sub(P, w, t);
+        }
+        b->omega[r] = expr_mul(P, two, w);
+    }
+    b->quat_loc = loc_of(L, k);
+}
+
 static void
 rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 {
     ExprPool *P = L->P;
     if (NPAIRS(map) != 1)
         diag_error(loc_of(L, map), "a rotation is one sequence of axes with its angles, "
-                   "such as {zxz: [psi, theta, phi]}");
+                   "such as {zxz: [psi, theta, phi]}, or {quaternion: [e0, e1, e2, e3]}");
     yaml_node_t *k = node(L, PAIRS(map)[0].key), *v = node(L, PAIRS(map)[0].value);
     const char *axes = scalar(L, k, "a rotation sequence");
+    if (!strcmp(axes, "quaternion")) {
+        quaternion_omega(L, k, v, b);
+        return;
+    }
     size_t na = strlen(axes);
     if (na < 1 || na > 3 || strspn(axes, "xyz") != na)
         diag_error(loc_of(L, k), "'%s' is not a rotation sequence: 1 to 3 of the axes "
-                   "x, y, z, such as zxz or zyx", axes);
+                   "x, y, z, such as zxz or zyx, or quaternion", axes);
     expect_type(L, v, YAML_SEQUENCE_NODE, "the angles of a rotation");
     if ((size_t)NITEMS(v) != na)
         diag_error(loc_of(L, v), "rotation %s has %zu angles, not %d", axes, na,
@@ -936,6 +987,7 @@ load_bodies(Loader *L, yaml_node_t *map)
         const char *missing = !mass ? "mass" : !c ? "center" : !in ? "inertia" : NULL;
         if (missing)
             diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
+        b->quat[0] = -1;
         b->mass = mass_of(L, mass, "body", b->name);
         b->dim = vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
         load_inertia(L, in, b);
@@ -1213,6 +1265,44 @@ load_constraints(Loader *L, yaml_node_t *map)
                    "freedom of motion", s->nconstraint, s->nq, s->nq == 1 ? "" : "s");
 }
 
+/* A quaternion body's unit constraint, NAME_unit: e.e - 1 = 0, after the
+ * spec's own constraints (holonomic, kept like any other: at acceleration
+ * level, projected by --stabilize project). */
+static void
+add_unit_constraints(Loader *L)
+{
+    Spec *s = L->s;
+    ExprPool *P = L->P;
+    int extra = 0;
+    for (int i = 0; i < s->nbody; i++)
+        extra += s->body[i].quat[0] >= 0;
+    if (!extra)
+        return;
+    SpecConstraint *c = arena_new_array(L->A, SpecConstraint, s->nconstraint + extra);
+    if (s->nconstraint)
+        memcpy(c, s->constraint, (size_t)s->nconstraint * sizeof *c);
+    s->constraint = c;
+    for (int i = 0; i < s->nbody; i++) {
+        const SpecBody *b = &s->body[i];
+        if (b->quat[0] < 0)
+            continue;
+        const char *name = arena_printf(L->A, "%s_unit", b->name);
+        for (int j = 0; j < s->nconstraint; j++)
+            if (!strcmp(s->constraint[j].name, name))
+                diag_error(s->constraint[j].loc, "'%s' is the name of body '%s''s unit "
+                           "quaternion constraint; name this one otherwise", name, b->name);
+        ExprId g = expr_const(P, -1);
+        for (int k = 0; k < 4; k++)
+            g = expr_add(P, g, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
+        s->constraint[s->nconstraint++] = (SpecConstraint){name, b->quat_loc, g, 0, -1,
+                                                           b->quat_loc};
+    }
+    if (s->nconstraint >= s->nq)
+        diag_error(s->constraint[s->nconstraint - 1].loc, "%d constraints (with the unit "
+                   "quaternions') on %d coordinates leave no freedom of motion",
+                   s->nconstraint, s->nq);
+}
+
 static void
 load_initial(Loader *L, yaml_node_t *map)
 {
@@ -1402,6 +1492,7 @@ load_root(Loader *L, yaml_node_t *root)
         load_effects(L, n);
     if ((n = section(L, root, "constraints", 1)))
         load_constraints(L, n);
+    add_unit_constraints(L);
     if ((n = section(L, root, "initial", 1)))
         load_initial(L, n);
     if ((n = section(L, root, "scene", 1)))

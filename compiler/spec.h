@@ -52,6 +52,12 @@ typedef struct SpecBody {
     ExprId center[3];  /* centre of mass, of t, q, p */
     ExprId inertia[9]; /* about the centre, body frame, row-major, of p */
     ExprId omega[3];   /* body-frame angular velocity, of t, q, q', p */
+    /* rotation: {quaternion: [e0, e1, e2, e3]}: the Euler parameters'
+     * coordinates (scalar first), and where; quat[0] = -1 otherwise.
+     * omega = 2 L(e) e', and the spec gets the constraint NAME_unit:
+     * e0^2 + e1^2 + e2^2 + e3^2 - 1 = 0. */
+    int quat[4];
+    SrcLoc quat_loc;
 } SpecBody;
 
 typedef enum SpecForceKind {

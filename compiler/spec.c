@@ -17,6 +17,7 @@
 #include "parse.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1267,7 +1268,10 @@ load_constraints(Loader *L, yaml_node_t *map)
 
 /* A quaternion body's unit constraint, NAME_unit: e.e - 1 = 0, after the
  * spec's own constraints (holonomic, kept like any other: at acceleration
- * level, projected by --stabilize project). */
+ * level, projected by --stabilize project).  For elimination its
+ * dependent coordinate is the Euler parameter largest at the start (with
+ * the defaults), where df/de'' = 2 e is surest not to vanish; no fixed
+ * choice is safe for every orientation. */
 static void
 add_unit_constraints(Loader *L)
 {
@@ -1294,7 +1298,20 @@ add_unit_constraints(Loader *L)
         ExprId g = expr_const(P, -1);
         for (int k = 0; k < 4; k++)
             g = expr_add(P, g, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
-        s->constraint[s->nconstraint++] = (SpecConstraint){name, b->quat_loc, g, 0, -1,
+        double *p = arena_new_array(L->A, double, s->np + 1), best = -1;
+        for (int k = 0; k < s->np; k++)
+            p[k] = s->param[k].value;
+        ExprEnv env = {.p = p};
+        int dep = -1;
+        for (int k = 0; k < 4; k++) {
+            int taken = 0;
+            for (int j = 0; j < s->nconstraint; j++)
+                taken |= s->constraint[j].dependent == b->quat[k];
+            double v = fabs(expr_eval(P, s->coord[b->quat[k]].q0, &env));
+            if (!taken && v > best)
+                best = v, dep = b->quat[k];
+        }
+        s->constraint[s->nconstraint++] = (SpecConstraint){name, b->quat_loc, g, 0, dep,
                                                            b->quat_loc};
     }
     if (s->nconstraint >= s->nq)
@@ -1492,9 +1509,9 @@ load_root(Loader *L, yaml_node_t *root)
         load_effects(L, n);
     if ((n = section(L, root, "constraints", 1)))
         load_constraints(L, n);
-    add_unit_constraints(L);
     if ((n = section(L, root, "initial", 1)))
         load_initial(L, n);
+    add_unit_constraints(L);
     if ((n = section(L, root, "scene", 1)))
         load_scene(L, n);
     if (s->npart == 0 && s->nbody == 0 && s->nkinetic == 0)

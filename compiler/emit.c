@@ -771,16 +771,18 @@ print_accel(Printer *pr, int n)
     snprintf(fname, sizeof fname, "%s_accel", nm);
     print_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
-    println(pr, "    eomc_real piv[%d], mkk[%d], dmin = 1, mmin = 1;", n, n);
+    println(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
     println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
-    println(pr, "    for (int k = %d; k >= 0; k--) { /* in elimination order */", n - 1);
+    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
     println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
     println(pr, "            return k + 1;");
-    println(pr, "        if (piv[k] * mmin < dmin * mkk[k])");
-    println(pr, "            dmin = piv[k], mmin = mkk[k];");
-    println(pr, "    }");
-    println(pr, "    if (pivot)");
+    println(pr, "    if (pivot) {");
+    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
+    println(pr, "        for (int k = 1; k < %d; k++)", n);
+    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
+    println(pr, "                dmin = piv[k], mmin = mkk[k];");
     println(pr, "        *pivot = dmin / mmin;");
+    println(pr, "    }");
     println(pr, "    return 0;");
     println(pr, "}\n");
 }

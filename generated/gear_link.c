@@ -194,16 +194,18 @@ static int
 gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    eomc_real piv[1], mkk[1], dmin = 1, mmin = 1;
+    eomc_real piv[1], mkk[1];
     gear_link_accel_solve(t, q, v, p, u, a, piv, mkk);
-    for (int k = 0; k >= 0; k--) { /* in elimination order */
+    for (int k = 0; k >= 0; k--) /* in elimination order */
         if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
             return k + 1;
-        if (piv[k] * mmin < dmin * mkk[k])
-            dmin = piv[k], mmin = mkk[k];
-    }
-    if (pivot)
+    if (pivot) {
+        eomc_real dmin = piv[0], mmin = mkk[0];
+        for (int k = 1; k < 1; k++)
+            if (piv[k] * mmin < dmin * mkk[k])
+                dmin = piv[k], mmin = mkk[k];
         *pivot = dmin / mmin;
+    }
     return 0;
 }
 

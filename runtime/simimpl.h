@@ -12,6 +12,10 @@
 
 #include <stddef.h>
 
+/* The generated solve reports its smallest balanced pivot at every
+ * PIVOT_EVERY-th call (a power of 2): several per step of any method. */
+enum { PIVOT_EVERY = 4 };
+
 struct eomc_sim {
     const eomc_model *m;
     int n, nu;
@@ -27,6 +31,7 @@ struct eomc_sim {
     double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
     char *cwhat;             /* what the last sim_condition found ill-conditioned */
     double pivot;            /* the smallest balanced pivot since sim_take_pivot */
+    unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
     size_t errlen;
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: the solve and multipliers */

@@ -68,6 +68,7 @@ typedef struct Loader {
     int nnames;
     Define *def;
     int ndef;
+    double *pdef;  /* the parameters' defaults, once loaded (defaults()) */
 } Loader;
 
 /* A scalar being parsed as an expression: where() maps its bytes back. */
@@ -693,6 +694,20 @@ load_inputs(Loader *L, yaml_node_t *map)
 
 /* ---- physical data ---- */
 
+/* The parameters' default values, for evaluating with them; the
+ * parameters must be loaded. */
+static const double *
+defaults(Loader *L)
+{
+    Spec *s = L->s;
+    if (!L->pdef) {
+        L->pdef = arena_new_array(L->A, double, s->np + 1);
+        for (int i = 0; i < s->np; i++)
+            L->pdef[i] = s->param[i].value;
+    }
+    return L->pdef;
+}
+
 /* Require e > 0 (strict) or e >= 0 of the parameters, for the physical
  * datum at n: now, with the parameters' defaults (an error at n, saying
  * what and the value when it is a single number), and in the simulator
@@ -708,10 +723,7 @@ require(Loader *L, ExprId e, int strict, const yaml_node_t *n, int show, const c
     va_start(ap, fmt);
     vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
-    double *p = arena_new_array(L->A, double, s->np + 1);
-    for (int i = 0; i < s->np; i++)
-        p[i] = s->param[i].value;
-    ExprEnv env = {.p = p};
+    ExprEnv env = {.p = defaults(L)};
     double v = expr_eval(L->P, e, &env);
     if (!(strict ? v > 0 : v >= 0)) {
         if (show)
@@ -1298,10 +1310,8 @@ add_unit_constraints(Loader *L)
         ExprId g = expr_const(P, -1);
         for (int k = 0; k < 4; k++)
             g = expr_add(P, g, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
-        double *p = arena_new_array(L->A, double, s->np + 1), best = -1;
-        for (int k = 0; k < s->np; k++)
-            p[k] = s->param[k].value;
-        ExprEnv env = {.p = p};
+        double best = -1;
+        ExprEnv env = {.p = defaults(L)};
         int dep = -1;
         for (int k = 0; k < 4; k++) {
             int taken = 0;

@@ -796,14 +796,13 @@ warn_condition(const Cli *c, const eomc_stats *st)
     if (isnan(st->ill_t))
         return;
     int fixed = c->run.h_fixed > 0 || !(c->run.rtol > 0);
-    double tol = fixed ? 1e-8 : c->run.rtol;
     int kept = (int)lround(-log10(st->max_condition * DBL_EPSILON));
     fprintf(stderr, "%s: warning: t = %.6g: %s is ill-conditioned (condition %.2g at "
             "worst, at t = %.6g): q'' keeps about %d of its 16 digits, fewer than the %d "
             "%s; the motion is probably less accurate than asked\n", c->prog, st->ill_t,
             st->ill, st->max_condition, st->t_condition, kept > 0 ? kept : 0,
-            (int)lround(-log10(tol)), fixed ? "a fixed-step run should keep" : "its rtol "
-            "asks for");
+            (int)lround(-log10(st->cond_tol)), fixed ? "a fixed-step run should keep" :
+            "its rtol asks for");
 }
 
 /* The conserved quantity moves only by the steps' errors, so it may drift

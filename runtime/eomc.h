@@ -170,10 +170,11 @@ typedef struct eomc_stats {
      * matrix: free of units), estimated after every step: the largest
      * condition number and its time.  The solve may lose about
      * log10(condition) of the 16 digits of q''; when that passed what the
-     * tolerance leaves (condition * DBL_EPSILON > rtol; 1e-8 for fixed
-     * steps), ill_t is the first time it did and ill names the system and
-     * the coordinates (and constraints) it mixed there; else ill_t is NAN. */
-    double max_condition, t_condition, ill_t;
+     * tolerance leaves (condition * DBL_EPSILON > cond_tol: the run's rtol,
+     * 1e-8 for fixed steps), ill_t is the first time it did and ill names
+     * the system and the coordinates (and constraints) it mixed there; else
+     * ill_t is NAN. */
+    double max_condition, t_condition, cond_tol, ill_t;
     char ill[512];
     /* A model that conserves a quantity h (model->invariant), adaptive
      * steps (and projection, when constrained: otherwise the constraints'

@@ -251,7 +251,7 @@ static void
 likely_cause(Run *r, char *buf, size_t len)
 {
     eomc_sim *s = r->s;
-    double c = sim_condition(s, r->t, r->x, 1), fraction;
+    double c = sim_condition(s, r->t, r->x, r->x + r->n), fraction;
     int k;
     if (c * DBL_EPSILON > LIKELY_COND)
         snprintf(buf, len, "%s is nearly singular there (condition %.2g)",
@@ -396,17 +396,16 @@ static void
 watch_condition(Run *r)
 {
     eomc_stats *st = r->st;
-    double tol = r->o->h_fixed > 0 || !(r->o->rtol > 0) ? FIXED_COND_TOL : r->o->rtol;
+    double tol = st->cond_tol;
     double pivot = sim_take_pivot(r->s);
     if (st->steps % WATCH_EVERY != 0 && !(PIVOT_SLACK * DBL_EPSILON > tol * pivot))
         return;
-    double cond = sim_condition(r->s, r->t, r->x, 0);
+    double cond = sim_condition(r->s, r->t, r->x, r->x + r->n);
     if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
         return;
     st->max_condition = cond, st->t_condition = r->t;
     if (isnan(st->ill_t) && cond * DBL_EPSILON > tol) {
         st->ill_t = r->t;
-        sim_condition(r->s, r->t, r->x, 1);
         snprintf(st->ill, sizeof st->ill, "%s", sim_condition_what(r->s));
     }
 }
@@ -784,6 +783,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         st = &local;
     memset(st, 0, sizeof *st);
     st->ill_t = NAN;
+    st->cond_tol = o->h_fixed > 0 || !(o->rtol > 0) ? FIXED_COND_TOL : o->rtol;
     int rc = eomc_run_check(s, o);
     if (rc)
         return rc;

@@ -467,22 +467,30 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     return KKT_OK;
 }
 
-double
-kkt_condition(Kkt *k, double *y)
+/* The factorization that gave q'': the KKT matrix, or elimination's. */
+static LaLu *
+solved_lu(const Kkt *k)
 {
-    LaLu *lu = k->m->eliminate ? k->lun : k->luN;
-    double rc = la_lu_rcond(lu);
-    if (y) {
-        memset(y, 0, (size_t)k->N * sizeof *y);
-        la_lu_near_null(lu, y);
-    }
-    return rc > 0 ? 1 / rc : rc == 0 && la_lu_ok(lu) ? HUGE_VAL : NAN;
+    return k->m->eliminate ? k->lun : k->luN;
+}
+
+double
+kkt_condition(Kkt *k)
+{
+    return la_lu_condition(solved_lu(k));
+}
+
+void
+kkt_near_null(Kkt *k, double *y)
+{
+    memset(y, 0, (size_t)k->N * sizeof *y);
+    la_lu_near_null(solved_lu(k), y);
 }
 
 double
 kkt_pivot(const Kkt *k)
 {
-    return la_lu_pivot(k->m->eliminate ? k->lun : k->luN);
+    return la_lu_pivot(solved_lu(k));
 }
 
 int

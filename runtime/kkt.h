@@ -66,10 +66,11 @@ int kkt_vanished(const Kkt *k, double *fraction);
 
 /* The condition number of the system the last kkt_accel solved (the KKT
  * matrix, or the elimination matrix, as scaled and equilibrated: free of
- * units), estimated from its factorization; NAN when none was factored.
- * y [n + nc], when not NULL, gets its near-null direction (la_lu_near_null)
- * over q'' and, with multipliers, lambda (zeros for elimination). */
-double kkt_condition(Kkt *k, double *y);
+ * units), estimated from its factorization (la_lu_condition). */
+double kkt_condition(Kkt *k);
+/* Its near-null direction (la_lu_near_null) into y [n + nc]: over q''
+ * and, with multipliers, lambda (zeros for elimination). */
+void kkt_near_null(Kkt *k, double *y);
 /* The smallest pivot of that factorization (la_lu_pivot): free, and
  * about the inverse of a lower bound on the condition. */
 double kkt_pivot(const Kkt *k);

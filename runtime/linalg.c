@@ -162,12 +162,6 @@ equilibrated_solve(CBLAS_TRANSPOSE_t trans, gsl_vector *x, void *params)
     return gsl_permute_vector_inverse(&lu->perm, x);
 }
 
-int
-la_lu_ok(const LaLu *lu)
-{
-    return lu->ok;
-}
-
 double
 la_lu_pivot(const LaLu *lu)
 {
@@ -175,14 +169,15 @@ la_lu_pivot(const LaLu *lu)
 }
 
 double
-la_lu_rcond(LaLu *lu)
+la_lu_condition(LaLu *lu)
 {
     double inv = 0;
-    if (!lu->ok || gsl_linalg_invnorm1((size_t)lu->n, equilibrated_solve, lu, &inv,
-                                       &lu->work.vector) != GSL_SUCCESS ||
-        !(inv > 0) || !isfinite(inv))
-        return 0;
-    return 1 / (lu->norm1 * inv);
+    if (!lu->ok)
+        return NAN;
+    if (gsl_linalg_invnorm1((size_t)lu->n, equilibrated_solve, lu, &inv, &lu->work.vector) !=
+            GSL_SUCCESS || !isfinite(inv))
+        return HUGE_VAL;
+    return lu->norm1 * inv;
 }
 
 int
@@ -233,10 +228,10 @@ la_dot(const double *a, const double *b, int n)
 }
 
 double
-la_max_abs(const double *x, int n)
+la_max_abs(const double *x, size_t n)
 {
     double m = 0;
-    for (int i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++)
         m = fmax(m, fabs(x[i]));
     return m;
 }

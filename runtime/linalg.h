@@ -13,6 +13,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 
 #include "eomc_model.h"
 
@@ -44,11 +45,10 @@ int la_lu_factor(LaLu *lu, const double *A);
 int la_lu_factor_scaled(LaLu *lu, const double *A, const double *d);
 /* b = A^-1 b, A as last factored. */
 void la_lu_solve(LaLu *lu, double *b);
-/* An estimate of 1 / cond_1 of the equilibrated A, as last factored
- * (Hager and Higham's, a few solves). */
-double la_lu_rcond(LaLu *lu);
-/* Whether the last la_lu_factor succeeded. */
-int la_lu_ok(const LaLu *lu);
+/* An estimate of cond_1 of the equilibrated A, as last factored (Hager
+ * and Higham's, a few solves): HUGE_VAL when it is singular to working
+ * precision, NAN when the last la_lu_factor failed. */
+double la_lu_condition(LaLu *lu);
 /* The smallest |U_ii| of the last factorization, relative to the
  * equilibrated matrix's largest entry (free: the singularity test
  * computes it); its inverse is about a lower bound on the condition. */
@@ -99,7 +99,7 @@ la_relative(double r, double mag)
 
 double la_dot(const double *a, const double *b, int n);
 /* max_i |x_i| */
-double la_max_abs(const double *x, int n);
+double la_max_abs(const double *x, size_t n);
 
 /*
  * A KKT matrix K = [H B^T; B 0] (H the mass matrix, plus the constraints'

@@ -458,15 +458,6 @@ failure(Ref *r, int st)
                              r->tol);
 }
 
-static double
-max_abs(const double *x, size_t n)
-{
-    double m = 0;
-    for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(x[i]));
-    return m;
-}
-
 /* The largest |a_i - b_i|. */
 static double
 max_diff(const double *a, const double *b, size_t n)
@@ -528,7 +519,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
         ref->steps = r.steps;
         ref->rhs_evals = r.evals;
         if (k == 0) {
-            ref->scale = max_abs(ref->x, size);
+            ref->scale = la_max_abs(ref->x, size);
             continue;
         }
         ref->error = max_diff(ref->x, prev, size);
@@ -684,7 +675,7 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
     ref->nrows = nrows;
     ref->nx = N;
     ref->error = NAN;
-    ref->scale = max_abs(ref->x, (size_t)nrows * (size_t)N);
+    ref->scale = la_max_abs(ref->x, (size_t)nrows * (size_t)N);
     snprintf(ref->source, sizeof ref->source, "read from %s", path);
     return EOMC_OK;
 }

@@ -300,7 +300,9 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     if (s->kkt) {
         if ((k = kkt_accel(s->kkt, t, q, v, s->p, s->u, a)) != KKT_OK)
             return kkt_error(s, t, q, v, k);
-        s->pivot = fmin(s->pivot, kkt_pivot(s->kkt));
+        double pivot = kkt_pivot(s->kkt);
+        if (pivot < s->pivot) /* not fmin: a call, in the hottest path */
+            s->pivot = pivot;
     } else if (m->accel) {
         /* the pivot, for the condition watch, at every PIVOT_EVERY-th solve:
          * finding it costs a tenth of a small model's right-hand side */
@@ -314,8 +316,11 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
         m->mass_bias(t, q, v, s->p, s->u, s->M, a);
         if ((k = la_ldlt_factor(s->M, n, s->Mdiag)) != 0)
             return pivot_error(s, t, q, v, k);
-        for (int i = 0; i < n; i++) /* d_i / M_ii, d_i on the factor's diagonal */
-            s->pivot = fmin(s->pivot, s->M[i * n + i] / s->Mdiag[i]);
+        for (int i = 0; i < n; i++) { /* d_i / M_ii, d_i on the factor's diagonal */
+            double pivot = s->M[i * n + i] / s->Mdiag[i];
+            if (pivot < s->pivot)
+                s->pivot = pivot;
+        }
         la_ldlt_solve_neg(s->M, n, a);
     }
     if (nonfinite_sum(a, n) != 0.0)
@@ -423,34 +428,33 @@ eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
 #define INVOLVED 0.25
 
 double
-sim_condition(eomc_sim *s, double t, const double *x, int describe)
+sim_condition(eomc_sim *s, double t, const double *q, const double *v)
 {
     const eomc_model *m = s->m;
-    int n = s->n, nc = m->nc;
-    double cond;
-    const double *q = x, *v = x + n;
-    if (s->kkt) {
-        if (eomc_sim_accel(s, t, q, v, s->a) != EOMC_OK)
-            return NAN;
-        cond = kkt_condition(s->kkt, describe ? s->cy : NULL);
-    } else {
-        sim_inputs_at(s, t);
-        m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-        for (int i = 0; i < n; i++) {
-            double d = s->M[i * n + i];
-            s->cd[i] = d > 0 && isfinite(d) ? 1 / sqrt(d) : 1;
-        }
-        if (la_lu_factor_scaled(s->mlu, s->M, s->cd) != 0)
-            return NAN;
-        double rc = la_lu_rcond(s->mlu);
-        cond = rc > 0 ? 1 / rc : HUGE_VAL;
-        if (describe)
-            la_lu_near_null(s->mlu, s->cy);
+    int n = s->n;
+    if (s->kkt)
+        return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK ? kkt_condition(s->kkt) : NAN;
+    sim_inputs_at(s, t);
+    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    for (int i = 0; i < n; i++) {
+        double d = s->M[i * n + i];
+        s->cd[i] = d > 0 && isfinite(d) ? 1 / sqrt(d) : 1;
     }
-    if (!describe)
-        return cond;
-    /* "the mass matrix (coordinates th1, th2)", "the constrained system
-     * (coordinates x1; constraints rod1, rod2)": each part only if any */
+    la_lu_factor_scaled(s->mlu, s->M, s->cd); /* NAN below if it failed */
+    return la_lu_condition(s->mlu);
+}
+
+/* "the mass matrix (coordinates th1, th2)", "the constrained system
+ * (coordinates x1; constraints rod1, rod2)": each part only if any. */
+const char *
+sim_condition_what(eomc_sim *s)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (s->kkt)
+        kkt_near_null(s->kkt, s->cy);
+    else
+        la_lu_near_null(s->mlu, s->cy);
     size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s",
                                                  s->kkt ? "the constrained system" :
                                                           "the mass matrix");
@@ -460,18 +464,12 @@ sim_condition(eomc_sim *s, double t, const double *x, int describe)
             at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", open, m->q_names[i]),
                 open = ", ";
     const char *part = open[0] == ',' ? "; constraints " : " (constraints ";
-    for (int c = 0; s->kkt && !m->eliminate && c < nc && at < len; c++)
+    for (int c = 0; s->kkt && !m->eliminate && c < m->nc && at < len; c++)
         if (fabs(s->cy[n + c]) >= INVOLVED)
             at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", part, m->c_names[c]),
                 part = ", ", open = ", ";
     if (open[0] == ',' && at < len)
         snprintf(s->cwhat + at, len - at, ")");
-    return cond;
-}
-
-const char *
-sim_condition_what(const eomc_sim *s)
-{
     return s->cwhat;
 }
 
@@ -479,16 +477,9 @@ double
 eomc_sim_condition(eomc_sim *s, double t, const double *q, const double *v,
                    const char **what)
 {
-    int n = s->n;
-    double *x = sim_zeros(2 * (size_t)n); /* sim_condition takes the state whole */
-    if (!x)
-        return NAN;
-    memcpy(x, q, (size_t)n * sizeof *x);
-    memcpy(x + n, v, (size_t)n * sizeof *x);
-    double c = sim_condition(s, t, x, what != NULL);
-    free(x);
+    double c = sim_condition(s, t, q, v);
     if (what)
-        *what = s->cwhat;
+        *what = sim_condition_what(s);
     return c;
 }
 

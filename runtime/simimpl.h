@@ -29,7 +29,7 @@ struct eomc_sim {
     double *fk;              /* [nc] f (scratch) */
     LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
     double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
-    char *cwhat;             /* what the last sim_condition found ill-conditioned */
+    char *cwhat;             /* sim_condition_what's text */
     double pivot;            /* the smallest balanced pivot since sim_take_pivot */
     unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
     size_t errlen;
@@ -63,13 +63,14 @@ int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
  * constraints. */
 double sim_level_residual(eomc_sim *s, double t, const double *q, const double *v);
 /* The condition number of the linear system whose solution is q'' at
- * (t, x): the mass matrix balanced by its diagonal (which makes it free
+ * (t, q, v): the mass matrix balanced by its diagonal (which makes it free
  * of the coordinates' units), or the scaled KKT or elimination matrix;
- * NAN when it cannot be had (the solve failed).  With describe, the names
- * of what its near-null direction mixes ("the mass matrix (coordinates
- * th1, th2)") into sim_condition_what. */
-double sim_condition(eomc_sim *s, double t, const double *x, int describe);
-const char *sim_condition_what(const eomc_sim *s);
+ * NAN when it cannot be had (the solve failed). */
+double sim_condition(eomc_sim *s, double t, const double *q, const double *v);
+/* What the nearly singular direction of the system sim_condition last
+ * factored mixes: "the mass matrix (coordinates th1, th2)"; valid until
+ * the next call. */
+const char *sim_condition_what(eomc_sim *s);
 /* The smallest pivot of the solves for q'' since the last call, balanced
  * as sim_condition balances (1 when none): its inverse is about a lower
  * bound on their condition, had for free from their factorizations. */

@@ -24,18 +24,7 @@ def bvec(y, v):
 
 def kkt(y, v):
     m, ff, gp, g = parts(y, v)
-    b = bvec(y, v)
-    K = mp.zeros(13, 13); r = mp.zeros(13, 1)
-    for i in range(7):
-        for j in range(7):
-            K[i,j] = m[i,j]
-        r[i] = ff[i]
-    for i in range(6):
-        for j in range(7):
-            K[7+i,j] = gp[i,j]; K[j,7+i] = gp[i,j]
-        r[7+i] = -b[i]
-    x = mp.lu_solve(K, r)
-    return [x[i] for i in range(7)], [x[7+i] for i in range(6)]
+    return T.solve(m, ff, gp, bvec(y, v))
 
 def f(x):
     a, _ = kkt(x[:7], x[7:])

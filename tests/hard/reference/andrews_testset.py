@@ -69,6 +69,11 @@ def accel(y, yp):
     gpp = gp_of([y[i] + h*yp[i] for i in range(7)]); gpm = gp_of([y[i] - h*yp[i] for i in range(7)])
     Gdot = (gpp - gpm) / (2*h)
     b = Gdot * mp.matrix(yp)
+    a, lam = solve(m, ff, gp, b)
+    return a, lam, g
+
+def solve(m, ff, gp, b):
+    """q'', lambda from [M G^T; G 0][a; lam] = [f; -b]."""
     K = mp.zeros(13, 13); r = mp.zeros(13, 1)
     for i in range(7):
         for j in range(7):
@@ -79,7 +84,7 @@ def accel(y, yp):
             K[7+i,j] = gp[i,j]; K[j,7+i] = gp[i,j]
         r[7+i] = -b[i]
     x = mp.lu_solve(K, r)
-    return [x[i] for i in range(7)], [x[7+i] for i in range(6)], g
+    return [x[i] for i in range(7)], [x[7+i] for i in range(6)]
 
 if __name__ == '__main__':
     names = ['beta', 'theta', 'gamma', 'phi', 'dlt', 'omega', 'epsilon']

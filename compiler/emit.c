@@ -23,19 +23,19 @@
 
 enum { PART_SIZE = 6000 };
 
-typedef struct Out {
-    ExprId e;
-    char dest[48];
-} Out;
+/* The arrays leaves are read from, in the order their locals are
+ * declared and unused ones are (void)ed: a function reads only those
+ * among its inputs. */
+enum { SRC_Q, SRC_V, SRC_A, SRC_P, SRC_U, SRC_T, SRC_DQ, SRC_DV, NSRC };
+static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv"};
 
-/* What a generated function looks like from outside. */
+/* A function being printed: its list and its signature. */
 typedef struct Func {
-    const char *name;    /* e.g. "mass_bias" */
-    const char *comment;
-    const char *params;  /* C parameter list */
-    const char *args;    /* the parameter names, comma-separated */
-    const char *src[9];  /* names of the q, v, a, -, p, u, t, dq, dv parameters */
-    const char *unused;  /* outputs nothing is written to, or NULL */
+    const LowFunc *low;
+    LowArgs args;
+    char params[600]; /* the C parameter list */
+    char names[300];  /* the parameter names, comma-separated */
+    int has[NSRC];    /* which sources are among the inputs */
 } Func;
 
 typedef struct Printer {
@@ -46,10 +46,10 @@ typedef struct Printer {
     int *temp;  /* temporary number, -1 if not scheduled */
     int *part;  /* the part that computes it */
     int *slot;  /* index in s[], -1 if only its own part uses it */
-    int *ext;   /* NULL, or per node its index in an input array shared[] (-1:
-                 * not there): values computed once by another function */
+    const int *ext; /* NULL, or per node its index in an input array shared[]
+                     * (-1: not there): values computed once by another function */
     int cur;    /* the part being printed */
-    unsigned used; /* bit k: parameter src[k] is read in this part */
+    unsigned used; /* bit k: source k is read in this part */
     int fenced;    /* inside #ifndef EOMC_EXTENDED */
 } Printer;
 
@@ -268,7 +268,7 @@ share(Printer *pr, Sched *S, ExprId e, int part)
 }
 
 static void
-schedule(Printer *pr, Sched *S, int nout, const Out *out)
+schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
 {
     size_t size = expr_pool_size(pr->P);
     S->node = malloc(size * sizeof *S->node);
@@ -319,8 +319,7 @@ mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
 /* Named locals for the leaves part p reads, in a fixed order: t, the
  * coordinates by derivative order, parameters, inputs, seeds. */
 static void
-print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
-             const char *const *src)
+print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
 {
     static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED};
     size_t size = expr_pool_size(pr->P);
@@ -341,41 +340,52 @@ print_leaves(Printer *pr, const Sched *S, int nout, const Out *out,
             if (!mark[id] || nd->op != kinds[k])
                 continue;
             if (nd->op == EXPR_TIME) {
-                pr->used |= 1u << 6;
+                pr->used |= 1u << SRC_T;
                 continue;
             }
-            int arr = nd->op == EXPR_VAR    ? (int)nd->b
-                      : nd->op == EXPR_PARAM  ? 4
-                      : nd->op == EXPR_INPUT  ? 5
-                                              : 7 + (int)nd->b; /* seeds */
+            int arr = nd->op == EXPR_VAR    ? SRC_Q + (int)nd->b
+                      : nd->op == EXPR_PARAM  ? SRC_P
+                      : nd->op == EXPR_INPUT  ? SRC_U
+                                              : SRC_DQ + (int)nd->b; /* seeds */
             char buf[160];
             leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
-            println(pr, "    const eomc_real %s = %s[%u];", buf, src[arr], nd->a);
+            println(pr, "    const eomc_real %s = %s[%u];", buf, src_name[arr], nd->a);
         }
     free(mark);
 }
 
 /* The statements of part p: leaves, temporaries, assignments. */
 static void
-print_part(Printer *pr, const Sched *S, int nout, const Out *out,
-           const Func *fn)
+print_part(Printer *pr, const Sched *S, const Func *fn)
 {
+    const LowFunc *lf = fn->low;
+    const LowArgs *a = &fn->args;
     pr->used = 0;
-    print_leaves(pr, S, nout, out, fn->src);
-    if (S->nparts == 1) {
-        for (int k = 0; k < 9; k++) /* silence -Wunused-parameter */
-            if (fn->src[k] && !(pr->used >> k & 1))
-                println(pr, "    (void)%s;", fn->src[k]);
-        if (fn->unused)
-            println(pr, "    %s", fn->unused);
+    print_leaves(pr, S, lf->nout, lf->out);
+    if (S->nparts == 1) { /* silence -Wunused-parameter */
+        for (int k = 0; k < NSRC; k++)
+            if (fn->has[k] && !(pr->used >> k & 1))
+                println(pr, "    (void)%s;", src_name[k]);
+        for (int k = 0; k < a->nin; k++) /* read through ext, not as leaves */
+            if (!strcmp(a->name[k], "shared"))
+                println(pr, "    (void)%s;", a->name[k]);
+        for (int k = a->nin; k < a->n; k++)
+            if (lower_size(lf, k - a->nin) == 0)
+                println(pr, "    (void)%s;", a->name[k]);
     }
     int k = S->pstart[pr->cur];
     for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1]; i++) {
         for (; k < S->after[i]; k++)
             print_node(pr, S->node[k]);
+        const LowSlot *o = &lf->out[i];
+        const char *arr = a->name[a->nin + o->arg];
         char buf[200];
-        println(pr, "    %s = %s;", out[i].dest, operand(pr, out[i].e, buf, sizeof buf));
+        operand(pr, o->e, buf, sizeof buf);
+        if (a->optional[a->nin + o->arg])
+            println(pr, "    if (%s) %s[%d] = %s;", arr, arr, o->index, buf);
+        else
+            println(pr, "    %s[%d] = %s;", arr, o->index, buf);
     }
 }
 
@@ -393,10 +403,41 @@ print_voids(Printer *pr, const char *args)
     fputc('\n', pr->f);
 }
 
-/* Print `fn` computing the outputs; returns its operation counts. */
-static ExprCount
-print_function(Printer *pr, const Func *fn, int nout, const Out *out)
+/* The C parameter list and names of a signature. */
+static void
+func_of(Func *fn, const LowFunc *lf)
 {
+    fn->low = lf;
+    lower_args(lf->sig, &fn->args);
+    const LowArgs *a = &fn->args;
+    fn->params[0] = fn->names[0] = '\0';
+    memset(fn->has, 0, sizeof fn->has);
+    for (int k = 0; k < a->n; k++) {
+        size_t lp = strlen(fn->params), ln = strlen(fn->names);
+        const char *sep = k ? ", " : "";
+        if (k >= a->nin)
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%seomc_real *%s", sep, a->name[k]);
+        else if (!strcmp(a->name[k], "t"))
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%seomc_real t", sep);
+        else
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%sconst eomc_real *%s", sep,
+                     a->name[k]);
+        snprintf(fn->names + ln, sizeof fn->names - ln, "%s%s", sep, a->name[k]);
+        for (int j = 0; j < NSRC && k < a->nin; j++)
+            if (!strcmp(a->name[k], src_name[j]))
+                fn->has[j] = 1;
+    }
+}
+
+/* Print a lowered function; returns its operation counts. */
+static ExprCount
+print_function(Printer *pr, const LowFunc *lf)
+{
+    Func fnb, *fn = &fnb;
+    func_of(fn, lf);
+    int nout = lf->nout;
+    const LowSlot *out = lf->out;
+    pr->ext = lf->shared;
     size_t size = expr_pool_size(pr->P);
     pr->temp = malloc(size * sizeof *pr->temp);
     pr->part = malloc(size * sizeof *pr->part);
@@ -407,31 +448,34 @@ print_function(Printer *pr, const Func *fn, int nout, const Out *out)
     schedule(pr, &S, nout, out);
     const char *nm = pr->s->name;
     char fname[128];
-    snprintf(fname, sizeof fname, "%s_%s", nm, fn->name);
+    const char *name = lf->sig->name;
+    snprintf(fname, sizeof fname, "%s_%s", nm, name);
+    fence(pr, lf->double_only);
     if (S.nparts == 1) {
-        println(pr, "/* %s */", fn->comment);
+        println(pr, "/* %s */", lf->sig->comment);
         print_head(pr, "static void", fname, fn->params);
         pr->cur = 0;
-        print_part(pr, &S, nout, out, fn);
+        print_part(pr, &S, fn);
         println(pr, "}\n");
     } else {
         for (pr->cur = 0; pr->cur < S.nparts; pr->cur++) {
-            char part[160], params[600];
-            println(pr, "/* %s: part %d of %d */", fn->name, pr->cur + 1, S.nparts);
+            char part[160], params[1024];
+            println(pr, "/* %s: part %d of %d */", name, pr->cur + 1, S.nparts);
             snprintf(part, sizeof part, "%s_part%d", fname, pr->cur + 1);
             snprintf(params, sizeof params, "%s, eomc_real *s", fn->params);
             print_head(pr, "static EOMC_NOINLINE void", part, params);
-            print_voids(pr, fn->args);
-            print_part(pr, &S, nout, out, fn);
+            print_voids(pr, fn->names);
+            print_part(pr, &S, fn);
             println(pr, "}\n");
         }
-        println(pr, "/* %s */", fn->comment);
+        println(pr, "/* %s */", lf->sig->comment);
         print_head(pr, "static void", fname, fn->params);
         println(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
         for (int p = 0; p < S.nparts; p++)
-            println(pr, "    %s_%s_part%d(%s, s);", nm, fn->name, p + 1, fn->args);
+            println(pr, "    %s_%s_part%d(%s, s);", nm, name, p + 1, fn->names);
         println(pr, "}\n");
     }
+    pr->ext = NULL;
     /* exactly what was printed: values from shared[] are counted where made */
     ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
     free(S.node);
@@ -560,185 +604,23 @@ print_tables(Printer *pr)
     println(pr, "");
 }
 
+/* The jacobian member when it is seeded: shared values, then one column
+ * per call of jacobian_dq and jacobian_dv. */
 static void
-add_out(Out *o, int *n, ExprId e, const char *fmt, ...)
+print_seeded_driver(Printer *pr, const Lowered *L)
 {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(o[*n].dest, sizeof o[*n].dest, fmt, ap);
-    va_end(ap);
-    o[(*n)++].e = e;
-}
-
-#define SRC(q, v, a, p, u, t) {q, v, a, NULL, p, u, t, NULL, NULL}
-
-static const Func f_initial = {
-    "initial", "Initial state from the spec's `initial`.",
-    "const eomc_real *p, eomc_real *q, eomc_real *v", "p, q, v",
-    SRC(NULL, NULL, NULL, "p", NULL, NULL), NULL,
-};
-static const Func f_inputs = {
-    "inputs", "Input signals u(t) and du/dt.",
-    "eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt", "t, p, u, dudt",
-    SRC(NULL, NULL, NULL, "p", NULL, "t"), "(void)u;\n    (void)dudt;",
-};
-static const Func f_mass_bias = {
-    "mass_bias",
-    "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h", "t, q, v, p, u, M, h",
-    SRC("q", "v", NULL, "p", "u", "t"), NULL,
-};
-static const Func f_energy = {
-    "energy", "Kinetic energy T and potential energy V.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *TV", "t, q, v, p, u, TV",
-    SRC("q", "v", NULL, "p", "u", "t"), NULL,
-};
-static const Func f_jacobian = {
-    "jacobian",
-    "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt", "t, q, v, a, p, u, dEdq, dEdv, dEdu, dEdt",
-    SRC("q", "v", "a", "p", "u", "t"), "(void)dEdu;",
-};
-
-/* The seeded jacobian (print_seeded_jacobian): shared values, then one
- * column per call. */
-static const Func f_jac_shared = {
-    "jacobian_shared",
-    "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
-    " * dE/dt.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *shared, eomc_real *dEdu, eomc_real *dEdt", "t, q, v, a, p, u, shared, dEdu, dEdt",
-    SRC("q", "v", "a", "p", "u", "t"), NULL,
-};
-static const Func f_jac_dq = {
-    "jacobian_dq",
-    "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, const eomc_real *shared, const eomc_real *dq, eomc_real *dE", "t, q, v, a, p, u, shared, dq, dE",
-    {"q", "v", "a", NULL, "p", "u", "t", "dq", NULL}, "(void)shared;",
-};
-static const Func f_jac_dv = {
-    "jacobian_dv",
-    "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, const eomc_real *shared, const eomc_real *dv, eomc_real *dE", "t, q, v, a, p, u, shared, dv, dE",
-    {"q", "v", "a", NULL, "p", "u", "t", NULL, "dv"}, "(void)shared;",
-};
-
-static const Func f_accel_solve = {
-    "accel_solve",
-    "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
-    " * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =\n"
-    " * M_kk.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv, eomc_real *mkk", "t, q, v, p, u, a, piv, mkk",
-    SRC("q", "v", NULL, "p", "u", "t"), NULL,
-};
-
-static const Func f_constraint = {
-    "constraint",
-    "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f, eomc_real *B",
-    "t, q, v, a, p, u, f, B",
-    SRC("q", "v", "a", "p", "u", "t"), NULL,
-};
-static const Func f_c_levels = {
-    "c_levels",
-    "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel", "t, q, v, p, u, pos, vel",
-    SRC("q", "v", NULL, "p", "u", "t"), NULL,
-};
-static const Func f_c_levels_jacobian = {
-    "c_levels_jacobian",
-    "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
-    " * stabilization adds to df/dx.",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu, eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt",
-    "t, q, v, p, u, dposdq, dveldq, dveldv, dposdu, dveldu, dposdt, dveldt",
-    SRC("q", "v", NULL, "p", "u", "t"), "(void)dposdu;\n    (void)dveldu;",
-};
-static const Func f_c_jacobian = {
-    "c_jacobian",
-    "Partial derivatives of f and of B = df/dq'' (u held fixed).",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt",
-    "t, q, v, a, p, u, dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt",
-    SRC("q", "v", "a", "p", "u", "t"), "(void)dfdu;\n    (void)dBdu;",
-};
-
-static void
-add_count(ExprCount *c, ExprCount d)
-{
-    c->adds += d.adds;
-    c->muls += d.muls;
-    c->divs += d.divs;
-    c->calls += d.calls;
-}
-
-/* The jacobian member as directional derivatives (EMIT_JACOBIAN_SEEDED).
- * The seeded expressions e->jvp_q, e->jvp_v are linear in the seeds; what
- * they need that does not depend on the seeds (sines, products, ...) is
- * the same for every column, so jacobian_shared computes it once into shared[],
- * and jacobian_dq and jacobian_dv compute only the seed-dependent rest,
- * once per column with a unit seed.  Returns the operations printed. */
-static ExprCount
-print_seeded_jacobian(Printer *pr, const Eom *e)
-{
-    ExprPool *P = pr->P;
     const char *nm = pr->s->name;
-    int n = e->n, nu = e->nu, nw = 0, k;
-    size_t size = expr_pool_size(P);
-    ExprId *roots = malloc(2 * (size_t)n * sizeof *roots);
-    for (int i = 0; i < n; i++) {
-        roots[i] = e->jvp_q[i];
-        roots[n + i] = e->jvp_v[i];
-    }
-    /* shared[] holds the seed-free operator nodes that seeded nodes read (and
-     * any seed-free root), numbered by id: deterministic. */
-    unsigned char *mark = calloc(size, 1), *need = calloc(size, 1);
-    expr_mark(P, 2 * n, roots, mark);
-    for (size_t id = 0; id < size; id++) {
-        const ExprNode *nd = expr_node(P, (ExprId)id);
-        if (!mark[id] || is_leaf(nd) || !(nd->deps & DEP_S))
-            continue;
-        int ar = expr_op_arity[nd->op];
-        ExprId ops[2] = {nd->a, nd->b};
-        for (int j = 0; j < ar; j++)
-            if (!(expr_deps(P, ops[j]) & DEP_S) && !is_leaf(expr_node(P, ops[j])))
-                need[ops[j]] = 1;
-    }
-    for (int i = 0; i < 2 * n; i++)
-        if (!(expr_deps(P, roots[i]) & DEP_S) && !is_leaf(expr_node(P, roots[i])))
-            need[roots[i]] = 1;
-    int *ext = malloc(size * sizeof *ext);
-    for (size_t id = 0; id < size; id++)
-        ext[id] = need[id] ? nw++ : -1;
-
-    Out *o = calloc((size_t)nw + (size_t)n * ((size_t)nu + 2) + 1, sizeof *o);
-    k = 0;
-    for (size_t id = 0; id < size; id++)
-        if (need[id])
-            add_out(o, &k, (ExprId)id, "shared[%d]", ext[id]);
-    for (int i = 0; i < n; i++) {
-        for (int j = 0; j < nu; j++)
-            add_out(o, &k, e->dEdu[i * nu + j], "dEdu[%d]", i * nu + j);
-        add_out(o, &k, e->dEdt[i], "dEdt[%d]", i);
-    }
-    Func fs = f_jac_shared;
-    fs.unused = nu ? (nw ? NULL : "(void)shared;") : nw ? "(void)dEdu;" : "(void)shared;\n    (void)dEdu;";
-    ExprCount c = print_function(pr, &fs, k, o);
-    pr->ext = ext;
-    k = 0;
-    for (int i = 0; i < n; i++)
-        add_out(o, &k, e->jvp_q[i], "dE[%d]", i * n);
-    add_count(&c, print_function(pr, &f_jac_dq, k, o));
-    k = 0;
-    for (int i = 0; i < n; i++)
-        add_out(o, &k, e->jvp_v[i], "dE[%d]", i * n);
-    add_count(&c, print_function(pr, &f_jac_dv, k, o));
-    pr->ext = NULL;
-
-    println(pr, "/* %s", f_jacobian.comment);
+    int n = L->n, nw = lower_size(L->jac_shared, 0);
+    Func fj;
+    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL};
+    func_of(&fj, &jac);
+    println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
     println(pr, " * dq = e_j (dq' = e_j): exact, in code about the size of E instead of");
     println(pr, " * %d times that. */", n);
     char fname[128];
     snprintf(fname, sizeof fname, "%s_jacobian", nm);
-    print_head(pr, "static void", fname, f_jacobian.params);
+    print_head(pr, "static void", fname, fj.params);
     println(pr, "    eomc_real shared[%d]; /* values every column needs */", nw ? nw : 1);
     println(pr, "    eomc_real seed[%d];", n);
     println(pr, "    %s_jacobian_shared(t, q, v, a, p, u, shared, dEdu, dEdt);", nm);
@@ -751,18 +633,13 @@ print_seeded_jacobian(Printer *pr, const Eom *e)
     println(pr, "        seed[j] = 0.0;");
     println(pr, "    }");
     println(pr, "}\n");
-    free(o);
-    free(ext);
-    free(need);
-    free(mark);
-    free(roots);
-    return c;
 }
 
 /* The accel member of eomc_model: the solve, then the pivot check. */
 static void
-print_accel(Printer *pr, int n)
+print_accel(Printer *pr, const Lowered *L)
 {
+    int n = lower_size(L->accel_solve, 0);
     const char *nm = pr->s->name;
     println(pr, "/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M");
     println(pr, " * singular or not positive definite).  *pivot (unless NULL): the");
@@ -806,7 +683,7 @@ print_c_string(FILE *f, const char *text)
 
 static void
 print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *c,
-                   const Invariant *inv, const EmitInfo *info)
+                   const Invariant *inv, const Lowered *L, const EmitInfo *info)
 {
     const char *nm = s->name;
     println(pr, "const eomc_model %s_model = {", nm);
@@ -827,7 +704,7 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
             nm, nm, nm, nm, nm);
     if (c)
         println(pr, "    NULL, /* constrained: the runtime solves the KKT system */");
-    else if (e->acc)
+    else if (L->accel_solve)
         println(pr, "    %s_accel,", nm);
     else
         println(pr, "    NULL, /* more than %d coordinates: the runtime solves with GSL */",
@@ -861,7 +738,7 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "#else");
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);
     println(pr, "    EOMC_ABI_VERSION, \"%s\", %s_inputs, %s_mass_bias, %s%s,", nm, nm, nm,
-            !c && e->acc ? nm : "NULL", !c && e->acc ? "_accel" : "");
+            L->accel_solve ? nm : "NULL", L->accel_solve ? "_accel" : "");
     if (c)
         println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
                 c->affine ? "" : "_c_jacobian");
@@ -889,112 +766,13 @@ print_constraint_tables(Printer *pr, const Constraints *c)
     println(pr, "};\n");
 }
 
-/* The derivatives of pos and vel into o; returns the count. */
-static int
-add_levels_jacobian(Printer *pr, const Constraints *c, Diff *D, Out *o)
-{
-    int n = pr->s->nq, nu = pr->s->nu, k = 0;
-    ExprId t = expr_time(pr->P);
-    for (int a = 0; a < c->nc; a++) {
-        ExprId g = c->pos[a] == EXPR_NONE ? EXPR_ZERO : c->pos[a];
-        ExprId w = c->vel[a] == EXPR_NONE ? EXPR_ZERO : c->vel[a];
-        for (int j = 0; j < n; j++) {
-            ExprId qj = expr_var(pr->P, j, 0), vj = expr_var(pr->P, j, 1);
-            add_out(o, &k, diff_partial(D, g, qj), "dposdq[%d]", a * n + j);
-            add_out(o, &k, diff_partial(D, w, qj), "dveldq[%d]", a * n + j);
-            add_out(o, &k, diff_partial(D, w, vj), "dveldv[%d]", a * n + j);
-        }
-        for (int l = 0; l < nu; l++) {
-            ExprId ul = expr_input(pr->P, l);
-            add_out(o, &k, diff_partial(D, g, ul), "dposdu[%d]", a * nu + l);
-            add_out(o, &k, diff_partial(D, w, ul), "dveldu[%d]", a * nu + l);
-        }
-        add_out(o, &k, diff_partial(D, g, t), "dposdt[%d]", a);
-        add_out(o, &k, diff_partial(D, w, t), "dveldt[%d]", a);
-    }
-    return k;
-}
-
-/* constraint, c_levels, c_jacobian and c_levels_jacobian; their counts
- * into stats[0..3]. */
+/* The check member and its tables, after check_values. */
 static void
-print_constraints(Printer *pr, const Constraints *c, Diff *D, EmitStats *stats)
-{
-    const Spec *s = pr->s;
-    int n = s->nq, nu = s->nu, nc = c->nc, k = 0;
-    Out *o = calloc((size_t)(nc * (3 * n * n + n * nu + 3 * n + 2 * nu + 4)), sizeof *o);
-    for (int a = 0; a < nc; a++) {
-        add_out(o, &k, c->f[a], "f[%d]", a);
-        for (int j = 0; j < n; j++)
-            add_out(o, &k, c->B[a * n + j], "B[%d]", a * n + j);
-    }
-    fence(pr, 0);
-    stats[0] = (EmitStats){"constraint", print_function(pr, &f_constraint, k, o)};
-    fence(pr, 1);
-    k = 0;
-    for (int a = 0; a < nc; a++) {
-        add_out(o, &k, c->pos[a] == EXPR_NONE ? EXPR_ZERO : c->pos[a], "pos[%d]", a);
-        add_out(o, &k, c->vel[a] == EXPR_NONE ? EXPR_ZERO : c->vel[a], "vel[%d]", a);
-    }
-    stats[1] = (EmitStats){"c_levels", print_function(pr, &f_c_levels, k, o)};
-    k = 0;
-    ExprId t = expr_time(pr->P);
-    for (int a = 0; a < nc; a++) {
-        ExprId fa = c->f[a];
-        for (int j = 0; j < n; j++) {
-            add_out(o, &k, diff_partial(D, fa, expr_var(pr->P, j, 0)), "dfdq[%d]", a * n + j);
-            add_out(o, &k, diff_partial(D, fa, expr_var(pr->P, j, 1)), "dfdv[%d]", a * n + j);
-        }
-        for (int l = 0; l < nu; l++)
-            add_out(o, &k, diff_partial(D, fa, expr_input(pr->P, l)), "dfdu[%d]", a * nu + l);
-        add_out(o, &k, diff_partial(D, fa, t), "dfdt[%d]", a);
-        for (int i = 0; i < n; i++) {
-            ExprId b = c->B[a * n + i];
-            int row = a * n + i;
-            for (int j = 0; j < n; j++) {
-                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 0)), "dBdq[%d]", row * n + j);
-                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 1)), "dBdv[%d]", row * n + j);
-                add_out(o, &k, diff_partial(D, b, expr_var(pr->P, j, 2)), "dBda[%d]", row * n + j);
-            }
-            for (int l = 0; l < nu; l++)
-                add_out(o, &k, diff_partial(D, b, expr_input(pr->P, l)), "dBdu[%d]", row * nu + l);
-            add_out(o, &k, diff_partial(D, b, t), "dBdt[%d]", row);
-        }
-    }
-    Func fj = f_c_jacobian;
-    fj.unused = nu ? NULL : f_c_jacobian.unused;
-    fence(pr, c->affine); /* Newton's method needs it only when f is not affine */
-    stats[2] = (EmitStats){"c_jacobian", print_function(pr, &fj, k, o)};
-    fence(pr, 1);
-    k = add_levels_jacobian(pr, c, D, o);
-    Func fl = f_c_levels_jacobian;
-    fl.unused = nu ? NULL : f_c_levels_jacobian.unused;
-    stats[3] = (EmitStats){"c_levels_jacobian", print_function(pr, &fl, k, o)};
-    free(o);
-}
-
-/* The physical data's conditions on the parameters (Spec.check). */
-static const Func f_check_values = {
-    "check_values", "The values that must be positive (or not negative): check_what.",
-    "const eomc_real *p, eomc_real *chk", "p, chk",
-    SRC(NULL, NULL, NULL, "p", NULL, NULL), NULL,
-};
-
-/* check_values, the check member, and its tables. */
-static void
-print_checks(Printer *pr)
+print_checks(Printer *pr, const Lowered *L)
 {
     const Spec *s = pr->s;
     const char *nm = s->name;
-    int nk = s->ncheck;
-    if (nk == 0)
-        return;
-    Out *o = calloc((size_t)nk, sizeof *o);
-    int k = 0;
-    for (int i = 0; i < nk; i++)
-        add_out(o, &k, s->check[i].expr, "chk[%d]", i);
-    print_function(pr, &f_check_values, k, o);
-    free(o);
+    int nk = lower_size(L->check_values, 0);
     for (int t = 0; t < 2; t++) {
         println(pr, "static const char *const %s[%d] = {", t ? "check_params" : "check_what",
                 nk);
@@ -1022,117 +800,46 @@ print_checks(Printer *pr)
     println(pr, "}\n");
 }
 
-/* The conserved quantity, when there is one. */
-static const Func f_invariant = {
-    "invariant", "The conserved quantity (eomc_model.h: invariant).",
-    "eomc_real t, const eomc_real *q, const eomc_real *v, const eomc_real *p, "
-    "const eomc_real *u, eomc_real *h", "t, q, v, p, u, h",
-    SRC("q", "v", NULL, "p", "u", "t"), NULL,
+static void
+add_count(ExprCount *c, ExprCount d)
+{
+    c->adds += d.adds;
+    c->muls += d.muls;
+    c->divs += d.divs;
+    c->calls += d.calls;
+}
+
+/* The rows of --stats, in order. */
+static const char *const stat_names[EMIT_NFUNCS] = {
+    "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "constraint",
+    "c_levels", "c_jacobian", "c_levels_jacobian", "invariant",
 };
 
 void
-emit_model(FILE *f, const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
-           const Invariant *inv, ExprPool *P, Diff *D, const EmitInfo *info,
-           EmitStats stats[EMIT_NFUNCS])
+emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Invariant *inv,
+           const Lowered *L, ExprPool *P, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
 {
     Printer pr = {.f = f, .P = P, .s = s};
-    int n = s->nq, nu = s->nu, k;
-    Out *o = calloc((size_t)(2 * n * n + n * nu + 4 * n + 2 * nu + 2), sizeof *o);
+    for (int k = 0; k < EMIT_NFUNCS; k++)
+        stats[k] = (EmitStats){stat_names[k], {0, 0, 0, 0}};
     print_banner(&pr, e, c, inv, info);
     fence(&pr, 1);
     print_tables(&pr);
     if (c)
         print_constraint_tables(&pr, c);
-
-    k = 0;
-    for (int i = 0; i < n; i++)
-        add_out(o, &k, s->coord[i].q0, "q[%d]", i);
-    for (int i = 0; i < n; i++)
-        add_out(o, &k, s->coord[i].v0, "v[%d]", i);
-    stats[0] = (EmitStats){"initial", print_function(&pr, &f_initial, k, o)};
-
-    fence(&pr, 0);
-    k = 0;
-    for (int i = 0; i < nu; i++)
-        add_out(o, &k, s->input[i].expr, "u[%d]", i);
-    for (int i = 0; i < nu; i++)
-        add_out(o, &k, diff_time(D, s->input[i].expr), "if (dudt) dudt[%d]", i);
-    Func fin = f_inputs;
-    fin.unused = nu ? NULL : f_inputs.unused;
-    stats[1] = (EmitStats){"inputs", print_function(&pr, &fin, k, o)};
-
-    k = 0; /* lower triangle and h, then the mirrored upper triangle */
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j <= i; j++)
-            add_out(o, &k, e->M[i * n + j], "M[%d]", i * n + j);
-    for (int i = 0; i < n; i++)
-        add_out(o, &k, e->h[i], "h[%d]", i);
-    for (int i = 0; i < n; i++)
-        for (int j = i + 1; j < n; j++)
-            add_out(o, &k, e->M[i * n + j], "M[%d]", i * n + j);
-    stats[2] = (EmitStats){"mass_bias", print_function(&pr, &f_mass_bias, k, o)};
-
+    for (int k = 0; k < L->nfunc; k++) {
+        const LowFunc *lf = L->func[k];
+        ExprCount n = print_function(&pr, lf);
+        for (int r = 0; r < EMIT_NFUNCS; r++)
+            if (!strcmp(stats[r].function, lf->stat))
+                add_count(&stats[r].count, n);
+        if (lf == L->jac_dv)
+            print_seeded_driver(&pr, L);
+        else if (lf == L->accel_solve)
+            print_accel(&pr, L);
+        else if (lf == L->check_values)
+            print_checks(&pr, L);
+    }
     fence(&pr, 1);
-    k = 0;
-    add_out(o, &k, m->T, "TV[0]");
-    add_out(o, &k, m->V, "TV[1]");
-    stats[3] = (EmitStats){"energy", print_function(&pr, &f_energy, k, o)};
-
-    k = 0;
-    ExprId *jroots = malloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
-    for (int i = 0; i < n * n; i++) {
-        jroots[i] = e->dEdq[i];
-        jroots[n * n + i] = e->dEdv[i];
-    }
-    ExprCount jc = expr_count_ops(P, 2 * n * n, jroots);
-    free(jroots);
-    long jops = jc.adds + jc.muls + jc.divs + jc.calls;
-    int seeded = info->jacobian == EMIT_JACOBIAN_SEEDED ||
-                 (info->jacobian == EMIT_JACOBIAN_AUTO && jops > EMIT_UNROLLED_JACOBIAN_MAX);
-    if (seeded)
-        stats[4] = (EmitStats){"jacobian", print_seeded_jacobian(&pr, e)};
-    for (int i = 0; i < n && !seeded; i++) { /* row by row: rows share their work */
-        for (int j = 0; j < n; j++)
-            add_out(o, &k, e->dEdq[i * n + j], "dEdq[%d]", i * n + j);
-        for (int j = 0; j < n; j++)
-            add_out(o, &k, e->dEdv[i * n + j], "dEdv[%d]", i * n + j);
-        for (int j = 0; j < nu; j++)
-            add_out(o, &k, e->dEdu[i * nu + j], "dEdu[%d]", i * nu + j);
-        add_out(o, &k, e->dEdt[i], "dEdt[%d]", i);
-    }
-    if (!seeded) {
-        Func fj = f_jacobian;
-        fj.unused = nu ? NULL : f_jacobian.unused;
-        stats[4] = (EmitStats){"jacobian", print_function(&pr, &fj, k, o)};
-    }
-
-    stats[5] = (EmitStats){"accel", {0, 0, 0, 0}};
-    stats[6] = (EmitStats){"constraint", {0, 0, 0, 0}};
-    stats[7] = (EmitStats){"c_levels", {0, 0, 0, 0}};
-    stats[8] = (EmitStats){"c_jacobian", {0, 0, 0, 0}};
-    stats[9] = (EmitStats){"c_levels_jacobian", {0, 0, 0, 0}};
-    stats[10] = (EmitStats){"invariant", {0, 0, 0, 0}};
-    if (inv->h != EXPR_NONE) {
-        k = 0;
-        add_out(o, &k, inv->h, "h[0]");
-        stats[10].count = print_function(&pr, &f_invariant, k, o);
-    }
-    if (c)
-        print_constraints(&pr, c, D, stats + 6);
-    if (e->acc && !c) {
-        fence(&pr, 0);
-        k = 0;
-        for (int i = 0; i < n; i++)
-            add_out(o, &k, e->piv[i], "piv[%d]", i);
-        for (int i = 0; i < n; i++)
-            add_out(o, &k, e->mkk[i], "mkk[%d]", i);
-        for (int i = 0; i < n; i++)
-            add_out(o, &k, e->acc[i], "a[%d]", i);
-        stats[5].count = print_function(&pr, &f_accel_solve, k, o);
-        print_accel(&pr, n);
-    }
-    free(o);
-    fence(&pr, 1);
-    print_checks(&pr);
-    print_model_struct(&pr, s, e, c, inv, info);
+    print_model_struct(&pr, s, e, c, inv, L, info);
 }

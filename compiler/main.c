@@ -8,7 +8,8 @@
  *   eomc accuracy SPEC [the same]: run's simulator with --work-precision
  *
  * The pipeline: spec_load (YAML -> Spec) -> mech_build (T, V, S, Q) ->
- * a form's residual -> eom_derive (M, h, Jacobians) -> emit_model (C).
+ * a form's residual -> eom_derive (M, h, Jacobians) -> lower_model (the
+ * functions, as lists of expressions and slots) -> emit_model (C).
  * Files are written under a temporary name and renamed when complete, so
  * a failure never leaves a half-written output behind.
  */
@@ -223,25 +224,26 @@ compile(const Options *o, FILE *out)
                     o->spec, o->form, why);
         } else {
             char opts[256] = "";
-            int jac = EMIT_JACOBIAN_AUTO;
+            int jac = LOWER_JACOBIAN_AUTO;
             if (o->effects)
                 snprintf(opts, sizeof opts, "--effects %s", o->effects);
             if (o->jacobian && strcmp(o->jacobian, "auto")) { /* it changes the code */
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--jacobian %s",
                          len ? " " : "", o->jacobian);
-                jac = o->jacobian[0] == 's' ? EMIT_JACOBIAN_SEEDED : EMIT_JACOBIAN_UNROLLED;
+                jac = o->jacobian[0] == 's' ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
             }
             if (o->eliminate) {
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--eliminate", len ? " " : "");
             }
-            EmitInfo info = {EOMC_VERSION, opts, jac, form->eliminate || o->eliminate};
+            EmitInfo info = {EOMC_VERSION, opts, form->eliminate || o->eliminate};
             EmitStats st[EMIT_NFUNCS];
             if (o->explain)
                 explain(s, form, c, inv, &info);
             if (out) {
-                emit_model(out, s, m, e, c, inv, P, D, &info, st);
+                Lowered *L = lower_model(s, m, e, c, inv, jac, A, P, D);
+                emit_model(out, s, e, c, inv, L, P, &info, st);
                 if (o->stats)
                     print_stats(st);
             }

@@ -54,9 +54,10 @@ compile(void *ctx)
             Invariant *inv = invariant_derive(s, m, c, A, P, D);
             Eom *e = eom_derive(s, m, form, A, P, D, &why);
             if (e && devnull) {
-                EmitInfo info = {"fuzz", "", jacobian, eliminate};
+                EmitInfo info = {"fuzz", "", eliminate};
                 EmitStats st[EMIT_NFUNCS];
-                emit_model(devnull, s, m, e, c, inv, P, D, &info, st);
+                Lowered *L = lower_model(s, m, e, c, inv, jacobian, A, P, D);
+                emit_model(devnull, s, e, c, inv, L, P, &info, st);
             }
         }
     }

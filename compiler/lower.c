@@ -1,0 +1,392 @@
+/*
+ * lower: from the derived model to its list of functions (lower.h).
+ */
+#include "lower.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void
+lower_args(const LowSig *sig, LowArgs *a)
+{
+    a->n = 0;
+    a->nin = -1;
+    for (const char *p = sig->args; *p;) {
+        p += strspn(p, " ");
+        if (*p == '>') {
+            a->nin = a->n;
+            p++;
+            continue;
+        }
+        size_t len = strcspn(p, " ?");
+        if (len == 0)
+            break;
+        if (a->n == LOW_MAX_ARGS || len >= sizeof a->name[0])
+            abort(); /* the signatures are ours */
+        memcpy(a->name[a->n], p, len);
+        a->name[a->n][len] = '\0';
+        p += len;
+        a->optional[a->n] = *p == '?';
+        p += *p == '?';
+        a->n++;
+    }
+    if (a->nin < 0)
+        a->nin = a->n;
+}
+
+/* ---- the signatures ---- */
+
+static const LowSig s_initial = {
+    "initial", "Initial state from the spec's `initial`.", "p > q v",
+};
+static const LowSig s_inputs = {
+    "inputs", "Input signals u(t) and du/dt.", "t p > u dudt?",
+};
+static const LowSig s_mass_bias = {
+    "mass_bias", "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
+    "t q v p u > M h",
+};
+static const LowSig s_energy = {
+    "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV",
+};
+const LowSig lower_jacobian_sig = { /* the seeded one's driver too */
+    "jacobian", "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
+    "t q v a p u > dEdq dEdv dEdu dEdt",
+};
+static const LowSig s_jac_shared = {
+    "jacobian_shared",
+    "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
+    " * dE/dt.",
+    "t q v a p u > shared dEdu dEdt",
+};
+static const LowSig s_jac_dq = {
+    "jacobian_dq",
+    "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
+    "t q v a p u shared dq > dE",
+};
+static const LowSig s_jac_dv = {
+    "jacobian_dv",
+    "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
+    "t q v a p u shared dv > dE",
+};
+static const LowSig s_accel_solve = {
+    "accel_solve",
+    "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
+    " * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =\n"
+    " * M_kk.",
+    "t q v p u > a piv mkk",
+};
+static const LowSig s_constraint = {
+    "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
+    "t q v a p u > f B",
+};
+static const LowSig s_c_levels = {
+    "c_levels", "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
+    "t q v p u > pos vel",
+};
+static const LowSig s_c_jacobian = {
+    "c_jacobian", "Partial derivatives of f and of B = df/dq'' (u held fixed).",
+    "t q v a p u > dfdq dfdv dfdu dfdt dBdq dBdv dBda dBdu dBdt",
+};
+static const LowSig s_c_levels_jacobian = {
+    "c_levels_jacobian",
+    "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
+    " * stabilization adds to df/dx.",
+    "t q v p u > dposdq dveldq dveldv dposdu dveldu dposdt dveldt",
+};
+static const LowSig s_invariant = {
+    "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h",
+};
+static const LowSig s_check_values = {
+    "check_values", "The values that must be positive (or not negative): check_what.",
+    "p > chk",
+};
+
+/* ---- building the lists ---- */
+
+typedef struct Lowering {
+    Lowered *L;
+    Arena *A;
+    ExprPool *P;
+    Diff *D;
+    const Spec *s;
+} Lowering;
+
+static LowFunc *
+func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
+{
+    LowFunc *f = arena_alloc(lw->A, sizeof *f);
+    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL};
+    if (lw->L->nfunc == LOW_MAX_FUNCS)
+        abort();
+    lw->L->func[lw->L->nfunc++] = f;
+    return f;
+}
+
+/* The lists grow by doubling in the arena: at most twice their size. */
+static void
+out(Lowering *lw, LowFunc *f, int arg, int index, ExprId e)
+{
+    if (f->nout == f->cap) {
+        int cap = f->cap ? 2 * f->cap : 16;
+        LowSlot *o = arena_new_array(lw->A, LowSlot, cap);
+        if (f->nout)
+            memcpy(o, f->out, (size_t)f->nout * sizeof *o);
+        f->out = o, f->cap = cap;
+    }
+    f->out[f->nout++] = (LowSlot){e, arg, index};
+}
+
+static ExprId orzero(ExprId e) { return e == EXPR_NONE ? EXPR_ZERO : e; }
+
+static void
+lower_inputs(Lowering *lw)
+{
+    const Spec *s = lw->s;
+    LowFunc *f = func(lw, &s_inputs, "inputs", 0);
+    for (int i = 0; i < s->nu; i++)
+        out(lw, f, 0, i, s->input[i].expr);
+    for (int i = 0; i < s->nu; i++)
+        out(lw, f, 1, i, diff_time(lw->D, s->input[i].expr));
+}
+
+/* The seeded jacobian: the seeded expressions e->jvp_q, e->jvp_v are
+ * linear in the seeds; what they need that does not depend on the seeds
+ * (sines, products, ...) is the same for every column, so jacobian_shared
+ * computes it once into shared[], and jacobian_dq and jacobian_dv compute
+ * only the seed-dependent rest, once per column with a unit seed. */
+static void
+lower_seeded_jacobian(Lowering *lw, const Eom *e)
+{
+    ExprPool *P = lw->P;
+    int n = e->n, nu = e->nu, nw = 0;
+    size_t size = expr_pool_size(P);
+    ExprId *roots = malloc(2 * (size_t)n * sizeof *roots);
+    for (int i = 0; i < n; i++) {
+        roots[i] = e->jvp_q[i];
+        roots[n + i] = e->jvp_v[i];
+    }
+    /* shared[] holds the seed-free operator nodes that seeded nodes read (and
+     * any seed-free root), numbered by id: deterministic. */
+    unsigned char *mark = calloc(size, 1), *need = calloc(size, 1);
+    expr_mark(P, 2 * n, roots, mark);
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        int ar = expr_op_arity[nd->op];
+        if (!mark[id] || ar == 0 || !(nd->deps & DEP_S))
+            continue;
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < ar; j++)
+            if (!(expr_deps(P, ops[j]) & DEP_S) && expr_op_arity[expr_node(P, ops[j])->op])
+                need[ops[j]] = 1;
+    }
+    for (int i = 0; i < 2 * n; i++)
+        if (!(expr_deps(P, roots[i]) & DEP_S) && expr_op_arity[expr_node(P, roots[i])->op])
+            need[roots[i]] = 1;
+    int *shared = arena_new_array(lw->A, int, size);
+    for (size_t id = 0; id < size; id++)
+        shared[id] = need[id] ? nw++ : -1;
+
+    LowFunc *f = func(lw, &s_jac_shared, "jacobian", 1);
+    for (size_t id = 0; id < size; id++)
+        if (need[id])
+            out(lw, f, 0, shared[id], (ExprId)id);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < nu; j++)
+            out(lw, f, 1, i * nu + j, e->dEdu[i * nu + j]);
+        out(lw, f, 2, i, e->dEdt[i]);
+    }
+    lw->L->jac_shared = f;
+    f = func(lw, &s_jac_dq, "jacobian", 1);
+    f->shared = shared;
+    for (int i = 0; i < n; i++)
+        out(lw, f, 0, i * n, e->jvp_q[i]);
+    f = func(lw, &s_jac_dv, "jacobian", 1);
+    f->shared = shared;
+    for (int i = 0; i < n; i++)
+        out(lw, f, 0, i * n, e->jvp_v[i]);
+    lw->L->jac_dv = f;
+    free(need);
+    free(mark);
+    free(roots);
+}
+
+static void
+lower_jacobian(Lowering *lw, const Eom *e, int how)
+{
+    int n = e->n, nu = e->nu;
+    ExprId *jroots = malloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
+    for (int i = 0; i < n * n; i++) {
+        jroots[i] = e->dEdq[i];
+        jroots[n * n + i] = e->dEdv[i];
+    }
+    ExprCount jc = expr_count_ops(lw->P, 2 * n * n, jroots);
+    free(jroots);
+    long jops = jc.adds + jc.muls + jc.divs + jc.calls;
+    if (how == LOWER_JACOBIAN_SEEDED ||
+        (how == LOWER_JACOBIAN_AUTO && jops > LOWER_UNROLLED_JACOBIAN_MAX)) {
+        lower_seeded_jacobian(lw, e);
+        return;
+    }
+    LowFunc *f = func(lw, &lower_jacobian_sig, "jacobian", 1);
+    for (int i = 0; i < n; i++) { /* row by row: rows share their work */
+        for (int j = 0; j < n; j++)
+            out(lw, f, 0, i * n + j, e->dEdq[i * n + j]);
+        for (int j = 0; j < n; j++)
+            out(lw, f, 1, i * n + j, e->dEdv[i * n + j]);
+        for (int j = 0; j < nu; j++)
+            out(lw, f, 2, i * nu + j, e->dEdu[i * nu + j]);
+        out(lw, f, 3, i, e->dEdt[i]);
+    }
+}
+
+/* constraint, c_levels, c_jacobian and c_levels_jacobian. */
+static void
+lower_constraints(Lowering *lw, const Constraints *c)
+{
+    ExprPool *P = lw->P;
+    Diff *D = lw->D;
+    int n = lw->s->nq, nu = lw->s->nu, nc = c->nc;
+    ExprId t = expr_time(P);
+    LowFunc *f = func(lw, &s_constraint, "constraint", 0);
+    for (int a = 0; a < nc; a++) {
+        out(lw, f, 0, a, c->f[a]);
+        for (int j = 0; j < n; j++)
+            out(lw, f, 1, a * n + j, c->B[a * n + j]);
+    }
+    f = func(lw, &s_c_levels, "c_levels", 1);
+    for (int a = 0; a < nc; a++) {
+        out(lw, f, 0, a, orzero(c->pos[a]));
+        out(lw, f, 1, a, orzero(c->vel[a]));
+    }
+    /* Newton's method needs c_jacobian only when f is not affine */
+    f = func(lw, &s_c_jacobian, "c_jacobian", c->affine);
+    for (int a = 0; a < nc; a++) {
+        ExprId fa = c->f[a];
+        for (int j = 0; j < n; j++) {
+            out(lw, f, 0, a * n + j, diff_partial(D, fa, expr_var(P, j, 0)));
+            out(lw, f, 1, a * n + j, diff_partial(D, fa, expr_var(P, j, 1)));
+        }
+        for (int l = 0; l < nu; l++)
+            out(lw, f, 2, a * nu + l, diff_partial(D, fa, expr_input(P, l)));
+        out(lw, f, 3, a, diff_partial(D, fa, t));
+        for (int i = 0; i < n; i++) {
+            ExprId b = c->B[a * n + i];
+            int row = a * n + i;
+            for (int j = 0; j < n; j++) {
+                out(lw, f, 4, row * n + j, diff_partial(D, b, expr_var(P, j, 0)));
+                out(lw, f, 5, row * n + j, diff_partial(D, b, expr_var(P, j, 1)));
+                out(lw, f, 6, row * n + j, diff_partial(D, b, expr_var(P, j, 2)));
+            }
+            for (int l = 0; l < nu; l++)
+                out(lw, f, 7, row * nu + l, diff_partial(D, b, expr_input(P, l)));
+            out(lw, f, 8, row, diff_partial(D, b, t));
+        }
+    }
+    f = func(lw, &s_c_levels_jacobian, "c_levels_jacobian", 1);
+    for (int a = 0; a < nc; a++) {
+        ExprId g = orzero(c->pos[a]), w = orzero(c->vel[a]);
+        for (int j = 0; j < n; j++) {
+            ExprId qj = expr_var(P, j, 0), vj = expr_var(P, j, 1);
+            out(lw, f, 0, a * n + j, diff_partial(D, g, qj));
+            out(lw, f, 1, a * n + j, diff_partial(D, w, qj));
+            out(lw, f, 2, a * n + j, diff_partial(D, w, vj));
+        }
+        for (int l = 0; l < nu; l++) {
+            ExprId ul = expr_input(P, l);
+            out(lw, f, 3, a * nu + l, diff_partial(D, g, ul));
+            out(lw, f, 4, a * nu + l, diff_partial(D, w, ul));
+        }
+        out(lw, f, 5, a, diff_partial(D, g, t));
+        out(lw, f, 6, a, diff_partial(D, w, t));
+    }
+}
+
+Lowered *
+lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
+            const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D)
+{
+    Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
+    *lw.L = (Lowered){0};
+    lw.L->n = s->nq;
+    int n = s->nq;
+
+    LowFunc *f = func(&lw, &s_initial, "initial", 1);
+    for (int i = 0; i < n; i++)
+        out(&lw, f, 0, i, s->coord[i].q0);
+    for (int i = 0; i < n; i++)
+        out(&lw, f, 1, i, s->coord[i].v0);
+
+    lower_inputs(&lw);
+
+    f = func(&lw, &s_mass_bias, "mass_bias", 0);
+    for (int i = 0; i < n; i++) /* lower triangle and h, then the mirrored upper one */
+        for (int j = 0; j <= i; j++)
+            out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+    for (int i = 0; i < n; i++)
+        out(&lw, f, 1, i, e->h[i]);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+
+    f = func(&lw, &s_energy, "energy", 1);
+    out(&lw, f, 0, 0, m->T);
+    out(&lw, f, 0, 1, m->V);
+
+    lower_jacobian(&lw, e, jacobian);
+
+    if (inv->h != EXPR_NONE) {
+        f = func(&lw, &s_invariant, "invariant", 1);
+        out(&lw, f, 0, 0, inv->h);
+    }
+    if (c)
+        lower_constraints(&lw, c);
+    if (e->acc && !c) {
+        f = func(&lw, &s_accel_solve, "accel", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 1, i, e->piv[i]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 2, i, e->mkk[i]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, e->acc[i]);
+        lw.L->accel_solve = f;
+    }
+    if (s->ncheck) {
+        f = func(&lw, &s_check_values, "check", 1);
+        for (int i = 0; i < s->ncheck; i++)
+            out(&lw, f, 0, i, s->check[i].expr);
+        lw.L->check_values = f;
+    }
+    return lw.L;
+}
+
+int
+lower_size(const LowFunc *f, int arg)
+{
+    int size = 0;
+    for (int k = 0; k < f->nout; k++)
+        if (f->out[k].arg == arg && f->out[k].index + 1 > size)
+            size = f->out[k].index + 1;
+    return size;
+}
+
+const LowFunc *
+lower_find(const Lowered *L, const char *name)
+{
+    for (int k = 0; k < L->nfunc; k++)
+        if (!strcmp(L->func[k]->sig->name, name))
+            return L->func[k];
+    return NULL;
+}
+
+/* A value read from shared[] is the same expression computed elsewhere:
+ * evaluated here directly. */
+void
+lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
+{
+    for (int k = 0; k < f->nout; k++) {
+        const LowSlot *o = &f->out[k];
+        if (outs[o->arg])
+            outs[o->arg][o->index] = expr_eval(P, o->e, env);
+    }
+}

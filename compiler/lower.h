@@ -1,0 +1,104 @@
+/*
+ * lower: a derived model as the list of functions the generated C file
+ * defines, each a list of (expression, output slot).
+ *
+ * This is the last step that differentiates (input derivatives, the
+ * constraints' Jacobians, the seeded Jacobian's split into shared and
+ * per-column values).  What comes out is data: the emitter schedules and
+ * prints it, lower_eval evaluates it without any C, and every array size
+ * the C needs is read off it (lower_size).
+ *
+ * A signature is written once, as a string of argument names: inputs,
+ * then `>`, then outputs; `t` is a scalar, every other argument an array;
+ * an output marked `?` may be NULL (its stores are guarded).  For
+ * example "t q v p u > M h".
+ */
+#ifndef EOMC_LOWER_H
+#define EOMC_LOWER_H
+
+#include "constraint.h"
+#include "eom.h"
+#include "invariant.h"
+
+enum { LOW_MAX_ARGS = 16 };
+
+typedef struct LowSig {
+    const char *name;    /* the function's name after the model's: "mass_bias" */
+    const char *comment; /* one sentence (" * " continues a line) */
+    const char *args;    /* "t q v p u > M h" */
+} LowSig;
+
+/* One output: expression e goes to element `index` of output argument
+ * `arg` (counted among the outputs, from 0). */
+typedef struct LowSlot {
+    ExprId e;
+    int arg, index;
+} LowSlot;
+
+typedef struct LowFunc {
+    const LowSig *sig;
+    const char *stat;  /* the row of `--stats` its operations count toward */
+    int double_only;   /* not needed by the reference solution: not compiled
+                        * with -DEOMC_EXTENDED */
+    int nout, cap;
+    LowSlot *out;
+    /* NULL, or per node id its index in the input `shared` (-1: not
+     * there): values another function computed once. */
+    int *shared;
+} LowFunc;
+
+/* The parsed signature: argument names, which are outputs, which may be
+ * NULL. */
+typedef struct LowArgs {
+    int n, nin;               /* arguments, of which the first nin are inputs */
+    char name[LOW_MAX_ARGS][16];
+    int optional[LOW_MAX_ARGS];
+} LowArgs;
+
+void lower_args(const LowSig *sig, LowArgs *a);
+
+/* The jacobian member's signature (the seeded Jacobian's driver has it). */
+extern const LowSig lower_jacobian_sig;
+
+/* The model's functions in the order they are printed. */
+enum { LOW_MAX_FUNCS = 24 };
+
+typedef struct Lowered {
+    int nfunc;
+    LowFunc *func[LOW_MAX_FUNCS];
+    /* the ones the emitter wraps in hand-written C (NULL when absent) */
+    LowFunc *jac_dv;      /* seeded Jacobian: its per-column loop follows */
+    LowFunc *jac_shared;
+    LowFunc *accel_solve; /* the pivot check follows */
+    LowFunc *check_values;
+    int n;                /* coordinates */
+} Lowered;
+
+/* How the jacobian member is computed.  UNROLLED: every entry of dE/dq
+ * and dE/dq' as its own expression, the fastest to run; code grows as
+ * n |E|.  SEEDED: the directional derivatives of E along seeds dq and
+ * dq' as two functions (code ~ |E|) that jacobian calls once per column
+ * with a unit seed: exact all the same, slower to run, far less for the C
+ * compiler.  AUTO: unrolled up to LOWER_UNROLLED_JACOBIAN_MAX operations. */
+enum { LOWER_JACOBIAN_AUTO, LOWER_JACOBIAN_UNROLLED, LOWER_JACOBIAN_SEEDED };
+/* Measured on the chain benchmark (gcc 12, -O2): cc spends ~0.3 ms per
+ * operation, linearly; the seeded Jacobian runs 2-3x slower (N = 20:
+ * 4.5 -> 13 us, N = 50: 47 -> 97 us) but is 6x (N = 20) to 16x (N = 50)
+ * less code.  Up to here the unrolled one costs < 6 s of cc. */
+enum { LOWER_UNROLLED_JACOBIAN_MAX = 20000 };
+
+/* c: the constraints, or NULL. */
+Lowered *lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
+                     const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D);
+
+/* 1 + the highest index stored to output argument `arg` (0 if none). */
+int lower_size(const LowFunc *f, int arg);
+
+/* Evaluate f at env: out[k] is output argument k's array (NULL: skipped).
+ * Tests use it to check a derivation without compiling C. */
+void lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out);
+
+/* The function named `name`, or NULL. */
+const LowFunc *lower_find(const Lowered *L, const char *name);
+
+#endif

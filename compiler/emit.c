@@ -543,6 +543,14 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
     println(pr, " *");
     println(pr, " * form:    %s, E = %s", e->form->name, e->form->formula);
     println(pr, " * options: %s", info->options[0] ? info->options : "(none)");
+    fprintf(pr->f, " * scene:   %s", s->scene.name ? s->scene.name : "(the spec's `scene:`)");
+    for (int i = 0, k = 0; i < s->np; i++)
+        if (s->param[i].fixed) {
+            char num[40];
+            format_const(num, sizeof num, s->param[i].value);
+            fprintf(pr->f, "%s%s = %s", k++ ? ", " : "; fixed: ", s->param[i].name, num);
+        }
+    println(pr, "");
     fprintf(pr->f, " * effects:");
     int any = 0;
     for (int k = 0; k < s->neffect; k++)
@@ -601,6 +609,10 @@ print_tables(Printer *pr)
         fprintf(pr->f, "%s%s", i ? ", " : "", num);
     }
     println(pr, s->np ? "};" : "0.0};");
+    fprintf(pr->f, "static const unsigned char p_fixed[%d] = {", s->np ? s->np : 1);
+    for (int i = 0; i < s->np; i++)
+        fprintf(pr->f, "%s%d", i ? ", " : "", s->param[i].fixed);
+    println(pr, s->np ? "};" : "0};");
     println(pr, "");
 }
 
@@ -693,6 +705,9 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     print_c_string(pr->f, info->options);
     println(pr, ",");
     println(pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", s->nq, s->np, s->nu);
+    fprintf(pr->f, "    ");
+    print_c_string(pr->f, s->scene.name ? s->scene.name : "");
+    println(pr, ", p_fixed,");
     char a[40], b[40], rt[40], at[40], h[40];
     format_const(a, sizeof a, s->scene.t_end);
     format_const(b, sizeof b, s->scene.dt);

@@ -218,6 +218,21 @@ term(const ExprPool *P, ExprId e, ExprId *c, ExprId *x)
     return 1;
 }
 
+/* e as k*r with k a number: a constant is k*1, a product whose first
+ * factor is a constant is split, anything else is 1*e. */
+static void
+numeric(const ExprPool *P, ExprId e, double *k, ExprId *r)
+{
+    const ExprNode *n = &P->node[e];
+    if (n->op == EXPR_CONST) {
+        *k = n->value, *r = EXPR_ONE;
+    } else if (n->op == EXPR_MUL && P->node[n->a].op == EXPR_CONST) {
+        *k = P->node[n->a].value, *r = n->b;
+    } else {
+        *k = 1.0, *r = e;
+    }
+}
+
 /* Fold to a constant only when the result is finite: 1/0 or log(-1) stay
  * symbolic so that the checker upstream can report them. */
 static int
@@ -303,6 +318,13 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
     if (pythagorean(P, a, b))
         return EXPR_ONE;
     ExprId c1, x1, c2, x2;
+    double k1, k2;
+    if (P->node[a].coeff && P->node[b].coeff) { /* 4 m l - 2 m l = 2 m l */
+        numeric(P, a, &k1, &x1);
+        numeric(P, b, &k2, &x2);
+        if (x1 == x2 && foldable(k1 + k2))
+            return expr_mul(P, expr_const(P, k1 + k2), x1);
+    }
     if (term(P, a, &c1, &x1) && term(P, b, &c2, &x2) && x1 == x2)
         return expr_mul(P, expr_add(P, c1, c2), x1); /* c x + d x = (c + d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
@@ -328,6 +350,13 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
     if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
         return expr_neg(P, expr_add(P, P->node[a].a, b));
     ExprId c1, x1, c2, x2;
+    double k1, k2;
+    if (P->node[a].coeff && P->node[b].coeff) {
+        numeric(P, a, &k1, &x1);
+        numeric(P, b, &k2, &x2);
+        if (x1 == x2 && foldable(k1 - k2))
+            return expr_mul(P, expr_const(P, k1 - k2), x1);
+    }
     if (term(P, a, &c1, &x1) && term(P, b, &c2, &x2) && x1 == x2)
         return expr_mul(P, expr_sub(P, c1, c2), x1); /* c x - d x = (c - d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
@@ -430,6 +459,17 @@ expr_mul(ExprPool *P, ExprId a, ExprId b)
         if (op_of(P, b) == EXPR_NEG)
             return expr_mul(P, expr_const(P, -x), P->node[b].a);
     }
+    /* numbers gather in front across products of parameters:
+     * 2*(0.5*m) = m, (2*m)*(3*l) = 6*(m*l) */
+    double k1, k2;
+    ExprId r1, r2;
+    numeric(P, a, &k1, &r1);
+    numeric(P, b, &k2, &r2);
+    if (!ca && !cb && (k1 != 1.0 || k2 != 1.0) && P->node[a].coeff && P->node[b].coeff &&
+        foldable(k1 * k2))
+        return expr_mul(P, expr_const(P, k1 * k2), expr_mul(P, r1, r2));
+    if (ca && !cb && k2 != 1.0 && foldable(x * k2))
+        return expr_mul(P, expr_const(P, x * k2), r2);
     if (!ca && op_of(P, a) == EXPR_NEG)
         return expr_neg(P, expr_mul(P, P->node[a].a, b));
     if (!ca && op_of(P, b) == EXPR_NEG)
@@ -762,6 +802,33 @@ expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from, const ExprId *to)
     free(map);
     free(mark);
     return r;
+}
+
+void
+expr_subst_many(ExprPool *P, int nroots, const ExprId *roots, int n, const ExprId *from,
+                const ExprId *to, ExprId *out)
+{
+    size_t size = P->n;
+    unsigned char *mark = marked(P, nroots, roots);
+    ExprId *map = xmalloc(size * sizeof *map);
+    for (size_t i = 0; i < size; i++)
+        map[i] = (ExprId)i;
+    for (int k = 0; k < n; k++)
+        if (from[k] < size)
+            map[from[k]] = to[k];
+    for (size_t i = 0; i < size; i++) {
+        ExprNode nd = P->node[i];
+        int ar = expr_op_arity[nd.op];
+        if (!mark[i] || map[i] != i || ar == 0)
+            continue;
+        ExprId a = map[nd.a], b = ar == 2 ? map[nd.b] : nd.b;
+        if (a != nd.a || (ar == 2 && b != nd.b))
+            map[i] = rebuild(P, &nd, a, b);
+    }
+    for (int i = 0; i < nroots; i++)
+        out[i] = map[roots[i]];
+    free(map);
+    free(mark);
 }
 
 static void

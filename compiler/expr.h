@@ -124,6 +124,11 @@ void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
 ExprId expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from,
                   const ExprId *to);
 
+/* The same for n roots at once, in one pass: out[i] for roots[i] (out
+ * may be roots). */
+void expr_subst_many(ExprPool *P, int nroots, const ExprId *roots, int n,
+                     const ExprId *from, const ExprId *to, ExprId *out);
+
 /* Operation counts of the nodes reachable from roots, each shared node
  * counted once (as straight-line code would compute it). */
 typedef struct ExprCount {

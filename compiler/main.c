@@ -29,7 +29,8 @@
 enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
-    const char *cmd, *spec, *out, *form, *effects, *jacobian;
+    const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene;
+    char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain;
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
@@ -39,12 +40,17 @@ static void
 usage(FILE *f)
 {
     fprintf(f,
-        "usage: eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]\n"
-        "       eomc build SPEC [-o EXE] [--form NAME] [--effects LIST]\n"
-        "       eomc run SPEC [--form NAME] [--effects LIST] [SIMULATOR OPTIONS]\n"
-        "       eomc accuracy SPEC [--form NAME] [--effects LIST] [SIMULATOR OPTIONS]\n"
+        "usage: eomc compile SPEC [-o FILE.c] [--scene NAME] [--fix NAME=VALUE] [--form NAME]\n"
+        "                    [--effects LIST] [--stats] [--explain]\n"
+        "       eomc build SPEC [-o EXE] [the same]\n"
+        "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
+        "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc --help | --version\n"
         "\n"
+        "  --scene NAME     which of the spec's `scenes:` to compile (default: the first)\n"
+        "  --fix NAME=VALUE make a parameter a constant of the generated code, folded\n"
+        "                   into it (repeatable, or NAME=VALUE,NAME=VALUE; on top of\n"
+        "                   the scene's `fix:`); the simulator's --set refuses it then\n"
         "  --form NAME      equation form: %s (default lagrange)\n"
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
@@ -77,7 +83,8 @@ static _Noreturn void
 unknown_option(const char *a)
 {
     static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
-                                       "--explain", "--eliminate", "--help", "--version"};
+                                       "--explain", "--eliminate", "--help", "--version",
+                                       "--scene", "--fix"};
     const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
     if (!near)
         usage_error("unknown option '%s'", a);
@@ -112,12 +119,20 @@ parse_args(int argc, char **argv, Options *o)
         const char *a = argv[i];
         int has_val = i + 1 < argc;
         if (!strcmp(a, "--form") || !strcmp(a, "--effects") || !strcmp(a, "--jacobian") ||
-            (!run && !strcmp(a, "-o"))) {
+            !strcmp(a, "--scene") || (!run && !strcmp(a, "-o"))) {
             if (!has_val)
                 usage_error("option %s needs a value", a);
             const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects
-                              : a[2] == 'j' ? &o->jacobian : &o->out;
+                              : a[2] == 'j' ? &o->jacobian : a[2] == 's' ? &o->scene
+                              : &o->out;
             *slot = argv[++i];
+        } else if (!strcmp(a, "--fix")) {
+            if (!has_val)
+                usage_error("option %s needs a value", a);
+            const char *v = argv[++i];
+            size_t old = o->fix ? strlen(o->fix) : 0;
+            o->fix = xrealloc(o->fix, old + strlen(v) + 2);
+            snprintf(o->fix + old, strlen(v) + 2, "%s%s", old ? "," : "", v);
         } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
             o->stats = 1;
         } else if (!run && !strcmp(a, "--explain") && !strcmp(o->cmd, "compile")) {
@@ -166,6 +181,19 @@ print_stats(const EmitStats *st)
     }
 }
 
+/* The shortest %g that reads back as v (9.81, not 9.8100000000000005). */
+static const char *
+shortest(double v)
+{
+    static char buf[40];
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(buf, sizeof buf, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    return buf;
+}
+
 /* --explain: what eomc made of the spec. */
 static void
 explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *inv,
@@ -177,6 +205,23 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
     printf("), %d parameters, %d inputs, %d particles, %d bodies\n", s->np, s->nu,
            s->npart, s->nbody);
     printf("form %s: E = %s\n", form->name, form->formula);
+    if (s->nscenes) {
+        int w = 0;
+        for (int k = 0; k < s->nscenes; k++)
+            if ((int)strlen(s->scenes[k].name) > w)
+                w = (int)strlen(s->scenes[k].name);
+        printf("scenes (--scene NAME; the first is the default):\n");
+        for (int k = 0; k < s->nscenes; k++)
+            printf("  %s %-*s  %s\n", s->scene.name == s->scenes[k].name ? "*" : " ", w,
+                   s->scenes[k].name, s->scenes[k].summary);
+    }
+    if (s->nfixed) {
+        printf("fixed (folded into the code):");
+        for (int i = 0; i < s->np; i++)
+            if (s->param[i].fixed)
+                printf(" %s = %s", s->param[i].name, shortest(s->param[i].value));
+        printf("\n");
+    }
     for (int on = 1; on >= 0; on--) {
         int any = 0;
         printf(on ? "effects on:" : "; off (no code):");
@@ -202,7 +247,8 @@ compile(const Options *o, FILE *out)
     ExprPool *P = expr_pool_new();
     Diff *D = diff_new(P);
     int rc = EXIT_USAGE;
-    Spec *s = spec_load(o->spec, A, P);
+    SpecOptions so = {o->scene, o->fix};
+    Spec *s = spec_load(o->spec, &so, A, P);
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
     if (setjmp(jb) != 0) { /* a diagnostic while deriving: nothing emitted */
@@ -346,11 +392,14 @@ run(const Options *o)
         return EXIT_USAGE;
     }
     const char *jac = o->jacobian ? o->jacobian : "auto";
-    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) + 80;
+    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
+                   (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 120;
     text = xrealloc(text, len + extra);
-    len += (size_t)snprintf(text + len, extra, "\n--form %s --effects %s --eliminate %d --jacobian %s",
-                            o->form, o->effects ? o->effects : "(scene)", o->eliminate,
-                            jac);
+    len += (size_t)snprintf(text + len, extra,
+                            "\n--form %s --effects %s --eliminate %d --jacobian %s --scene %s "
+                            "--fix %s", o->form, o->effects ? o->effects : "(scene)",
+                            o->eliminate, jac, o->scene ? o->scene : "(first)",
+                            o->fix ? o->fix : "(none)");
     char stem[200], name[256];
     spec_stem(o->spec, stem, sizeof stem);
     snprintf(name, sizeof name, "sim-%s", stem);
@@ -396,6 +445,7 @@ eomc_main(int argc, char **argv)
     } else
         rc = run(&o); /* run and accuracy */
     free(o.sim);
+    free(o.fix);
     return rc;
 }
 

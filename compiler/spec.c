@@ -69,6 +69,8 @@ typedef struct Loader {
     Define *def;
     int ndef;
     double *pdef;  /* the parameters' defaults, once loaded (defaults()) */
+    const SpecOptions *opt; /* never NULL */
+    yaml_node_t *scene;     /* the scene compiled: its map, or NULL */
 } Loader;
 
 /* A scalar being parsed as an expression: where() maps its bytes back. */
@@ -298,13 +300,16 @@ static const struct {
     {"omega", "in a body"}, {"angle", "in a body"}, {"gravity", "in an effect"},
     {"force", "in an effect"}, {"torque", "in an effect"}, {"work", "in an effect"},
     {"on", "in an effect"}, {"expr", "in a constraint"}, {"dependent", "in a constraint"},
-    {"t_end", "in `scene`"}, {"dt", "in `scene`"}, {"method", "in `scene`"},
-    {"rtol", "in `scene`"}, {"atol", "in `scene`"}, {"fixed_step", "in `scene`"},
+    {"t_end", "in a scene"}, {"dt", "in a scene"}, {"method", "in a scene"},
+    {"rtol", "in a scene"}, {"atol", "in a scene"}, {"fixed_step", "in a scene"},
+    {"fix", "in a scene"}, {"outputs", "in a scene"}, {"events", "in a scene"},
+    {"when", "in an event"}, {"direction", "in an event"}, {"action", "in an event"},
     {"coordinates", "at the top level"}, {"parameters", "at the top level"},
     {"particles", "at the top level"}, {"bodies", "at the top level"},
     {"define", "at the top level"}, {"inputs", "at the top level"},
     {"kinetic", "at the top level"}, {"initial", "at the top level"},
     {"constraints", "at the top level"}, {"scene", "at the top level"},
+    {"scenes", "at the top level"},
 };
 
 static const char *
@@ -475,6 +480,8 @@ enum {
     ALLOW_WORK = ALLOW_FORCE | DEP_S, /* forces times variations delta(e) */
     ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
     ALLOW_CONSTRAINT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_P | DEP_U,
+    ALLOW_OUTPUT = ALLOW_CONSTRAINT,
+    ALLOW_EVENT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
     ALLOW_ALL = 0xff,
 };
 
@@ -725,6 +732,13 @@ require(Loader *L, ExprId e, int strict, const yaml_node_t *n, int show, const c
     va_end(ap);
     ExprEnv env = {.p = defaults(L)};
     double v = expr_eval(L->P, e, &env);
+    for (int i = 0; i < s->np; i++) /* the value may be a scene's choice */
+        if (s->param[i].fixed && expr_depends(L->P, e, expr_param(L->P, i)))
+            snprintf(what + strlen(what), sizeof what - strlen(what), "%s%s fixed at %g",
+                     strstr(what, " fixed at ") ? ", " : " (with ", s->param[i].name,
+                     s->param[i].value);
+    if (strstr(what, " fixed at "))
+        snprintf(what + strlen(what), sizeof what - strlen(what), ")");
     if (!(strict ? v > 0 : v >= 0)) {
         if (show)
             diag_error(loc_of(L, n), "%s; it is %g", what, v);
@@ -1330,40 +1344,6 @@ add_unit_constraints(Loader *L)
                    s->nconstraint, s->nq);
 }
 
-static void
-load_initial(Loader *L, yaml_node_t *map)
-{
-    Spec *s = L->s;
-    for (int i = 0; i < NPAIRS(map); i++) {
-        yaml_node_t *k = node(L, PAIRS(map)[i].key);
-        const char *key = scalar(L, k, "an initial-state name");
-        size_t len = strlen(key);
-        int vel = len > 1 && key[len - 1] == '\'';
-        int found = -1;
-        for (int c = 0; c < s->nq && found < 0; c++)
-            if (strlen(s->coord[c].name) == len - (size_t)vel &&
-                !strncmp(s->coord[c].name, key, len - (size_t)vel))
-                found = c;
-        if (found < 0) {
-            const char **cands = arena_new_array(L->A, const char *, 2 * s->nq);
-            for (int c = 0; c < s->nq; c++) {
-                cands[2 * c] = s->coord[c].name;
-                cands[2 * c + 1] = arena_printf(L->A, "%s'", s->coord[c].name);
-            }
-            const char *near = diag_nearest(key, cands, 2 * s->nq);
-            if (near)
-                diag_error(loc_of(L, k), "'%s' is not a coordinate or velocity; did you mean '%s'?",
-                           key, near);
-            diag_error(loc_of(L, k), "'%s' is not a coordinate (x) or a velocity (x')", key);
-        }
-        ExprId e = expression(L, node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
-        if (vel)
-            s->coord[found].v0 = e;
-        else
-            s->coord[found].q0 = e;
-    }
-}
-
 static const char *
 method_name(Loader *L, yaml_node_t *n)
 {
@@ -1401,21 +1381,332 @@ positive(Loader *L, yaml_node_t *n, const char *what, int zero_ok)
     return v;
 }
 
+/* ---- scenes ---- */
+
+static yaml_node_t *
+section(Loader *L, yaml_node_t *root, const char *key, int map)
+{
+    yaml_node_t *n = lookup_key(L, root, key);
+    if (!n || is_null(n))
+        return NULL;
+    return map ? as_map(L, n, key) : n;
+}
+
+
+/* Command-line errors: no location, "eomc: error: ...". */
+static const SrcLoc cmdline = {NULL, 0, 0};
+
+/* Where `key` of map is written. */
+static SrcLoc
+key_loc(Loader *L, yaml_node_t *map, const char *key)
+{
+    for (int i = 0; i < NPAIRS(map); i++)
+        if (!strcmp(key_of(L, &PAIRS(map)[i]), key))
+            return loc_of(L, node(L, PAIRS(map)[i].key));
+    return loc_of(L, map);
+}
+
+/* The scene to compile: `scene:`, or the named scene of `scenes:` that
+ * --scene picks (the first by default).  Every named scene is listed in
+ * Spec.scenes. */
+static yaml_node_t *
+pick_scene(Loader *L, yaml_node_t *root)
+{
+    Spec *s = L->s;
+    yaml_node_t *one = section(L, root, "scene", 1), *many = section(L, root, "scenes", 1);
+    const char *want = L->opt->scene;
+    if (one && many)
+        diag_error(key_loc(L, root, "scenes"), "a spec has `scene:` (one scene) or "
+                   "`scenes:` (named ones), not both");
+    if (!many) {
+        if (want)
+            diag_error(cmdline, "--scene %s: %s has no named scenes (`scenes:`)", want,
+                       L->path);
+        return one;
+    }
+    check_unique_keys(L, many, "scenes");
+    s->nscenes = NPAIRS(many);
+    if (s->nscenes == 0)
+        diag_error(loc_of(L, many), "`scenes:` is empty: name at least one scene");
+    s->scenes = arena_new_array(L->A, SpecSceneInfo, s->nscenes);
+    const char **names = arena_new_array(L->A, const char *, s->nscenes);
+    int pick = want ? -1 : 0;
+    for (int i = 0; i < s->nscenes; i++) {
+        yaml_node_t *k = node(L, PAIRS(many)[i].key);
+        const char *name = scalar(L, k, "a scene name");
+        if (!is_identifier(name) || strlen(name) > 64)
+            diag_error(loc_of(L, k), "'%s' is not a valid scene name (letters, digits and _, "
+                       "not starting with a digit)", name);
+        as_map(L, node(L, PAIRS(many)[i].value), "a scene");
+        names[i] = s->scenes[i].name = arena_strdup(L->A, name);
+        s->scenes[i].loc = loc_of(L, k);
+        if (want && !strcmp(want, name))
+            pick = i;
+    }
+    if (pick < 0) {
+        const char *near = diag_nearest(want, names, s->nscenes);
+        if (near)
+            diag_error(cmdline, "--scene: unknown scene '%s'; did you mean '%s'?", want, near);
+        char list[1024] = "";
+        for (int i = 0; i < s->nscenes; i++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
+                     names[i]);
+        diag_error(cmdline, "--scene: unknown scene '%s'; the scenes of %s are %s", want,
+                   L->path, list);
+    }
+    s->scene.name = s->scenes[pick].name;
+    return node(L, PAIRS(many)[pick].value);
+}
+
+static int
+find_param(Loader *L, yaml_node_t *n)
+{
+    const char **cands = arena_new_array(L->A, const char *, L->s->np + 1);
+    for (int i = 0; i < L->s->np; i++)
+        cands[i] = L->s->param[i].name;
+    return find_in(L, n, "parameter", "parameters", 1, cands, L->s->np);
+}
+
 static void
-load_scene(Loader *L, yaml_node_t *map)
+fix_param(Loader *L, int i, double v)
+{
+    SpecParam *p = &L->s->param[i];
+    L->s->nfixed += !p->fixed;
+    p->fixed = 1;
+    p->value = v;
+}
+
+/* A scene's `fix: {NAME: VALUE}`: parameters held at a value.  live: the
+ * scene compiled; the others are only checked. */
+static void
+load_fix(Loader *L, yaml_node_t *scene, int live)
+{
+    yaml_node_t *map = lookup_key(L, scene, "fix");
+    if (!map || is_null(map))
+        return;
+    as_map(L, map, "fix");
+    for (int i = 0; i < NPAIRS(map); i++) {
+        int k = find_param(L, node(L, PAIRS(map)[i].key));
+        double v = number(L, node(L, PAIRS(map)[i].value), "a fixed parameter's value");
+        if (live)
+            fix_param(L, k, v);
+    }
+}
+
+/* --fix NAME=VALUE,NAME=VALUE: after the scene's, so they win. */
+static void
+apply_fix_option(Loader *L)
+{
+    Spec *s = L->s;
+    for (const char *p = L->opt->fix; p && *p;) {
+        size_t len = strcspn(p, ",");
+        char item[256];
+        snprintf(item, sizeof item, "%.*s", (int)(len < 255 ? len : 255), p);
+        p += len;
+        p += *p == ',';
+        char *eq = strchr(item, '=');
+        if (!eq || eq == item)
+            diag_error(cmdline, "--fix: expected NAME=VALUE, not '%s'", item);
+        *eq = '\0';
+        int k = -1;
+        for (int i = 0; i < s->np && k < 0; i++)
+            if (!strcmp(s->param[i].name, item))
+                k = i;
+        if (k < 0) {
+            const char **cands = arena_new_array(L->A, const char *, s->np + 1);
+            for (int i = 0; i < s->np; i++)
+                cands[i] = s->param[i].name;
+            const char *near = diag_nearest(item, cands, s->np);
+            if (near)
+                diag_error(cmdline, "--fix: unknown parameter '%s'; did you mean '%s'?", item,
+                           near);
+            diag_error(cmdline, "--fix: '%s' is not a parameter of %s", item, L->path);
+        }
+        char *end;
+        errno = 0;
+        double v = strtod(eq + 1, &end);
+        if (end == eq + 1 || *end || errno == ERANGE || !isfinite(v))
+            diag_error(cmdline, "--fix %s: '%s' is not a finite number", item, eq + 1);
+        fix_param(L, k, v);
+    }
+}
+
+/* A scene's `outputs: {NAME: EXPR}`. */
+static void
+load_outputs(Loader *L, yaml_node_t *map, SpecScene *sc)
+{
+    as_map(L, map, "outputs");
+    sc->noutput = NPAIRS(map);
+    sc->output = arena_new_array(L->A, SpecOutput, sc->noutput + 1);
+    for (int i = 0; i < sc->noutput; i++) {
+        yaml_node_t *k = node(L, PAIRS(map)[i].key);
+        const char *name = scalar(L, k, "an output name");
+        if (!is_identifier(name) || strlen(name) > 64)
+            diag_error(loc_of(L, k), "'%s' is not a valid output name (letters, digits and _, "
+                       "not starting with a digit)", name);
+        for (int c = 0; c < L->s->nq; c++)
+            if (!strcmp(name, L->s->coord[c].name))
+                diag_error(loc_of(L, k), "output '%s' would repeat the column of coordinate "
+                           "'%s': name it differently", name, name);
+        sc->output[i].name = arena_strdup(L->A, name);
+        sc->output[i].loc = loc_of(L, k);
+        sc->output[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_OUTPUT,
+                                        "an output");
+    }
+}
+
+/* The coordinate (x) or velocity (x') a key names: 2 i, or 2 i + 1.
+ * (No node is made: the order of the leaves is the order of first use.) */
+static int
+state_var(Loader *L, yaml_node_t *k, const char *what)
+{
+    Spec *s = L->s;
+    const char *key = scalar(L, k, what);
+    size_t len = strlen(key);
+    int vel = len > 1 && key[len - 1] == '\'';
+    for (int c = 0; c < s->nq; c++)
+        if (strlen(s->coord[c].name) == len - (size_t)vel &&
+            !strncmp(s->coord[c].name, key, len - (size_t)vel))
+            return 2 * c + vel;
+    const char **cands = arena_new_array(L->A, const char *, 2 * s->nq);
+    for (int c = 0; c < s->nq; c++) {
+        cands[2 * c] = s->coord[c].name;
+        cands[2 * c + 1] = arena_printf(L->A, "%s'", s->coord[c].name);
+    }
+    const char *near = diag_nearest(key, cands, 2 * s->nq);
+    if (near)
+        diag_error(loc_of(L, k), "'%s' is not a coordinate or velocity; did you mean '%s'?",
+                   key, near);
+    diag_error(loc_of(L, k), "'%s' is not a coordinate (x) or a velocity (x')", key);
+}
+
+/* `initial:` at the top level, or a scene's, which overrides it (live:
+ * the scene compiled; the others are only checked). */
+static void
+load_initial(Loader *L, yaml_node_t *map, int live)
+{
+    Spec *s = L->s;
+    for (int i = 0; i < NPAIRS(map); i++) {
+        int var = state_var(L, node(L, PAIRS(map)[i].key), "an initial-state name");
+        ExprId e = expression(L, node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
+        if (!live)
+            continue;
+        if (var & 1)
+            s->coord[var / 2].v0 = e;
+        else
+            s->coord[var / 2].q0 = e;
+    }
+}
+
+static void
+load_event(Loader *L, yaml_node_t *k, yaml_node_t *map, SpecEvent *ev)
+{
+    static const char *const keys[] = {"when", "direction", "action", NULL};
+    const char *name = scalar(L, k, "an event name");
+    if (!is_identifier(name) || strlen(name) > 64)
+        diag_error(loc_of(L, k), "'%s' is not a valid event name (letters, digits and _, "
+                   "not starting with a digit)", name);
+    ev->name = arena_strdup(L->A, name);
+    ev->loc = loc_of(L, k);
+    as_map(L, map, "an event");
+    check_keys(L, map, keys, "an event");
+    yaml_node_t *v = lookup_key(L, map, "when");
+    if (!v)
+        diag_error(loc_of(L, map), "event '%s' needs `when:`, the expression whose zero "
+                   "crossing it is", name);
+    ev->when = expression(L, v, ALLOW_EVENT, "an event's `when`");
+    ev->direction = 0;
+    if ((v = lookup_key(L, map, "direction"))) {
+        const char *d = scalar(L, v, "direction");
+        static const char *const dirs[] = {"up", "down", "both"};
+        if (!strcmp(d, "up"))
+            ev->direction = 1;
+        else if (!strcmp(d, "down"))
+            ev->direction = -1;
+        else if (strcmp(d, "both")) {
+            const char *near = diag_nearest(d, dirs, 3);
+            if (near)
+                diag_error(loc_of(L, v), "unknown direction '%s'; did you mean '%s'?", d, near);
+            diag_error(loc_of(L, v), "unknown direction '%s'; expected up, down or both", d);
+        }
+    }
+    ev->action = EVENT_STOP;
+    if (!(v = lookup_key(L, map, "action")))
+        return;
+    if (v->type == YAML_SCALAR_NODE) {
+        const char *a = scalar(L, v, "action");
+        static const char *const acts[] = {"stop", "record", "set"};
+        if (!strcmp(a, "record"))
+            ev->action = EVENT_RECORD;
+        else if (!strcmp(a, "set"))
+            diag_error(loc_of(L, v), "action set needs the values: `action: {set: {\"x'\": "
+                       "EXPR}}`");
+        else if (strcmp(a, "stop")) {
+            const char *near = diag_nearest(a, acts, 3);
+            if (near)
+                diag_error(loc_of(L, v), "unknown action '%s'; did you mean '%s'?", a, near);
+            diag_error(loc_of(L, v), "unknown action '%s'; expected stop, record or "
+                       "{set: {...}}", a);
+        }
+        return;
+    }
+    static const char *const akeys[] = {"set", NULL};
+    as_map(L, v, "an action");
+    check_keys(L, v, akeys, "an action");
+    yaml_node_t *set = lookup_key(L, v, "set");
+    if (!set)
+        diag_error(loc_of(L, v), "an action map is {set: {NAME: EXPR, ...}}");
+    as_map(L, set, "set");
+    if (NPAIRS(set) == 0)
+        diag_error(loc_of(L, set), "`set:` is empty: name what the event changes");
+    ev->action = EVENT_SET;
+    ev->nset = NPAIRS(set);
+    ev->set_var = arena_new_array(L->A, ExprId, ev->nset);
+    ev->set_expr = arena_new_array(L->A, ExprId, ev->nset);
+    for (int i = 0; i < ev->nset; i++) {
+        int var = state_var(L, node(L, PAIRS(set)[i].key), "a coordinate or velocity");
+        ev->set_var[i] = expr_var(L->P, var / 2, var & 1);
+        for (int j = 0; j < i; j++)
+            if (ev->set_var[j] == ev->set_var[i])
+                diag_error(loc_of(L, node(L, PAIRS(set)[i].key)), "'%s' is set twice",
+                           key_of(L, &PAIRS(set)[i]));
+        ev->set_expr[i] = expression(L, node(L, PAIRS(set)[i].value), ALLOW_EVENT,
+                                     "a value an event sets");
+    }
+}
+
+static void
+load_events(Loader *L, yaml_node_t *map, SpecScene *sc)
+{
+    as_map(L, map, "events");
+    sc->nevent = NPAIRS(map);
+    sc->event = arena_new_array(L->A, SpecEvent, sc->nevent + 1);
+    for (int i = 0; i < sc->nevent; i++)
+        load_event(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value), &sc->event[i]);
+}
+
+/* A scene's keys but `fix` (load_fix).  live: the scene compiled, into
+ * Spec.scene and the effects' switches; the other scenes are checked
+ * into a scratch copy, so that a mistake in any of them is found. */
+static void
+load_scene(Loader *L, yaml_node_t *map, int live)
 {
     static const char *const keys[] = {"effects", "t_end", "dt", "method", "rtol", "atol",
-                                       "fixed_step", NULL};
-    SpecScene *sc = &L->s->scene;
+                                       "fixed_step", "fix", "initial", "outputs", "events",
+                                       NULL};
+    SpecScene scratch = L->s->scene, *sc = live ? &L->s->scene : &scratch;
     as_map(L, map, "scene");
-    check_keys(L, map, keys, "scene");
+    check_keys(L, map, keys, "a scene");
     yaml_node_t *v;
     if ((v = lookup_key(L, map, "effects"))) {
         expect_type(L, v, YAML_SEQUENCE_NODE, "the scene's effects");
-        for (int i = 0; i < L->s->neffect; i++)
+        for (int i = 0; i < L->s->neffect && live; i++)
             L->s->effect[i].enabled = 0;
-        for (int i = 0; i < NITEMS(v); i++)
-            L->s->effect[find_effect(L, node(L, ITEMS(v)[i]))].enabled = 1;
+        for (int i = 0; i < NITEMS(v); i++) {
+            int k = find_effect(L, node(L, ITEMS(v)[i]));
+            if (live)
+                L->s->effect[k].enabled = 1;
+        }
     }
     if ((v = lookup_key(L, map, "t_end")))
         sc->t_end = positive(L, v, "t_end", 0);
@@ -1431,6 +1722,130 @@ load_scene(Loader *L, yaml_node_t *map)
         sc->h_fixed = positive(L, v, "fixed_step", 1);
     if (sc->rtol == 0 && sc->atol == 0 && sc->h_fixed == 0)
         diag_error(loc_of(L, map), "rtol and atol cannot both be zero for adaptive steps");
+    if ((v = lookup_key(L, map, "initial")) && !is_null(v))
+        load_initial(L, as_map(L, v, "initial"), live);
+    if ((v = lookup_key(L, map, "outputs")) && !is_null(v))
+        load_outputs(L, v, sc);
+    if ((v = lookup_key(L, map, "events")) && !is_null(v))
+        load_events(L, v, sc);
+}
+
+/* One line for --explain: what a named scene turns on. */
+static const char *
+scene_summary(Loader *L, yaml_node_t *map)
+{
+    char buf[1024] = "";
+    yaml_node_t *v;
+    size_t n;
+#define ADD(...) (n = strlen(buf), snprintf(buf + n, sizeof buf - n, __VA_ARGS__))
+    if ((v = lookup_key(L, map, "effects"))) {
+        ADD("effects:");
+        for (int i = 0; i < NITEMS(v); i++)
+            ADD(" %s", scalar(L, node(L, ITEMS(v)[i]), "an effect"));
+        if (NITEMS(v) == 0)
+            ADD(" (none)");
+    } else {
+        ADD("effects: the spec's");
+    }
+    static const char *const lists[] = {"fix", "initial", "outputs", "events"};
+    for (int j = 0; j < 4; j++) {
+        if (!(v = lookup_key(L, map, lists[j])) || v->type != YAML_MAPPING_NODE)
+            continue;
+        ADD("; %s:", lists[j]);
+        for (int i = 0; i < NPAIRS(v); i++)
+            ADD(" %s", key_of(L, &PAIRS(v)[i]));
+    }
+#undef ADD
+    return arena_strdup(L->A, buf);
+}
+
+/* Fixed parameters become constants everywhere: every expression of the
+ * spec, rebuilt in one pass, folds them (expr_subst_many). */
+static void
+fold_fixed(Loader *L)
+{
+    Spec *s = L->s;
+    if (s->nfixed == 0)
+        return;
+    int cap = 64, n = 0;
+    ExprId **at = arena_new_array(L->A, ExprId *, cap);
+#define VISIT(e)                                                                       \
+    do {                                                                               \
+        if ((e) != EXPR_NONE) {                                                        \
+            if (n == cap) {                                                            \
+                ExprId **bigger = arena_new_array(L->A, ExprId *, 2 * cap);           \
+                memcpy(bigger, at, (size_t)n * sizeof *at);                            \
+                at = bigger, cap *= 2;                                                 \
+            }                                                                          \
+            at[n++] = &(e);                                                            \
+        }                                                                              \
+    } while (0)
+    for (int i = 0; i < s->nq; i++)
+        {
+        VISIT(s->coord[i].q0);
+        VISIT(s->coord[i].v0);
+    }
+    for (int i = 0; i < s->nu; i++)
+        VISIT(s->input[i].expr);
+    for (int i = 0; i < s->npart; i++) {
+        VISIT(s->part[i].mass);
+        for (int k = 0; k < 3; k++)
+            VISIT(s->part[i].pos[k]);
+    }
+    for (int i = 0; i < s->nbody; i++) {
+        SpecBody *b = &s->body[i];
+        VISIT(b->mass);
+        for (int k = 0; k < 3; k++) {
+            VISIT(b->center[k]);
+            VISIT(b->omega[k]);
+        }
+        for (int k = 0; k < 9; k++)
+            VISIT(b->inertia[k]);
+    }
+    for (int i = 0; i < s->neffect; i++)
+        for (int j = 0; j < s->effect[i].nforce; j++) {
+            SpecForce *f = &s->effect[i].force[j];
+            for (int k = 0; k < 3; k++)
+                VISIT(f->vec[k]);
+            VISIT(f->expr);
+        }
+    for (int i = 0; i < s->nkinetic; i++)
+        VISIT(s->kinetic[i].expr);
+    for (int i = 0; i < s->npotential; i++)
+        VISIT(s->potential[i].expr);
+    for (int i = 0; i < s->nconstraint; i++)
+        VISIT(s->constraint[i].expr);
+    for (int i = 0; i < s->ncheck; i++)
+        VISIT(s->check[i].expr);
+    for (int i = 0; i < s->scene.noutput; i++)
+        VISIT(s->scene.output[i].expr);
+    for (int i = 0; i < s->scene.nevent; i++) {
+        SpecEvent *ev = &s->scene.event[i];
+        VISIT(ev->when);
+        for (int k = 0; k < ev->nset; k++)
+            VISIT(ev->set_expr[k]);
+    }
+#undef VISIT
+    ExprId *roots = arena_new_array(L->A, ExprId, n + 1);
+    ExprId *from = arena_new_array(L->A, ExprId, s->nfixed);
+    ExprId *to = arena_new_array(L->A, ExprId, s->nfixed);
+    for (int i = 0; i < n; i++)
+        roots[i] = *at[i];
+    int k = 0;
+    for (int i = 0; i < s->np; i++)
+        if (s->param[i].fixed) {
+            from[k] = expr_param(L->P, i);
+            to[k++] = expr_const(L->P, s->param[i].value);
+        }
+    expr_subst_many(L->P, n, roots, k, from, to, roots);
+    for (int i = 0; i < n; i++)
+        *at[i] = roots[i];
+    /* conditions that no parameter can change any more held when checked */
+    int kept = 0;
+    for (int i = 0; i < s->ncheck; i++)
+        if (!expr_is_const(L->P, s->check[i].expr, NULL))
+            s->check[kept++] = s->check[i];
+    s->ncheck = kept;
 }
 
 /* The spec's name: `name:`, or the file's base name made an identifier. */
@@ -1460,18 +1875,9 @@ spec_name(Loader *L, yaml_node_t *n)
 static const char *const top_keys[] = {
     "name", "description", "parameters", "coordinates", "define", "inputs",
     "particles", "bodies", "kinetic", "potential", "effects", "constraints", "initial",
-    "scene",
+    "scene", "scenes",
     NULL,
 };
-
-static yaml_node_t *
-section(Loader *L, yaml_node_t *root, const char *key, int map)
-{
-    yaml_node_t *n = lookup_key(L, root, key);
-    if (!n || is_null(n))
-        return NULL;
-    return map ? as_map(L, n, key) : n;
-}
 
 static void
 load_root(Loader *L, yaml_node_t *root)
@@ -1505,6 +1911,11 @@ load_root(Loader *L, yaml_node_t *root)
         load_parameters(L, params);
     if (inputs)
         load_inputs(L, inputs);
+    /* fixed values first: the physical data are checked with them */
+    L->scene = pick_scene(L, root);
+    if (L->scene)
+        load_fix(L, L->scene, 1);
+    apply_fix_option(L);
     yaml_node_t *n;
     if ((n = section(L, root, "particles", 1)))
         load_particles(L, n);
@@ -1520,10 +1931,20 @@ load_root(Loader *L, yaml_node_t *root)
     if ((n = section(L, root, "constraints", 1)))
         load_constraints(L, n);
     if ((n = section(L, root, "initial", 1)))
-        load_initial(L, n);
+        load_initial(L, n, 1);
     add_unit_constraints(L);
-    if ((n = section(L, root, "scene", 1)))
-        load_scene(L, n);
+    if (L->scene)
+        load_scene(L, L->scene, 1);
+    if ((n = section(L, root, "scenes", 1)))
+        for (int i = 0; i < s->nscenes; i++) {
+            yaml_node_t *sc = node(L, PAIRS(n)[i].value);
+            s->scenes[i].summary = scene_summary(L, sc);
+            if (sc != L->scene) {
+                load_fix(L, sc, 0);
+                load_scene(L, sc, 0);
+            }
+        }
+    fold_fixed(L);
     if (s->npart == 0 && s->nbody == 0 && s->nkinetic == 0)
         diag_error(loc_of(L, root), "the spec has no kinetic energy: give `particles:`, "
                    "`bodies:` or `kinetic:` terms");
@@ -1688,9 +2109,12 @@ load_spec(Loader *L)
 }
 
 Spec *
-spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprPool *P)
+spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptions *o,
+                 Arena *A, ExprPool *P)
 {
+    static const SpecOptions none = {NULL, NULL};
     Loader *L = arena_alloc(A, sizeof *L);
+    L->opt = o ? o : &none;
     L->path = arena_strdup(A, path);
     L->text = text;
     L->len = len;
@@ -1699,7 +2123,8 @@ spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprP
     L->sc = (ParseScope){P, diff_new(P), lookup, leaf_name, 0, "", 0};
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
-    L->s->scene = (SpecScene){10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0};
+    L->s->scene = (SpecScene){.t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10,
+                              .atol = 1e-10};
     diag_add_source(L->path, text, len);
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
@@ -1716,7 +2141,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, Arena *A, ExprP
 }
 
 Spec *
-spec_load(const char *path, Arena *A, ExprPool *P)
+spec_load(const char *path, const SpecOptions *o, Arena *A, ExprPool *P)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -1745,7 +2170,7 @@ spec_load(const char *path, Arena *A, ExprPool *P)
         fprintf(stderr, "eomc: cannot read %s: %s\n", path, strerror(err));
         return NULL;
     }
-    return spec_load_buffer(path, buf, n, A, P);
+    return spec_load_buffer(path, buf, n, o, A, P);
 }
 
 /* --effects with a typo: the nearest effect, or NULL if none is close. */

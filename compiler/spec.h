@@ -18,7 +18,9 @@
 typedef struct SpecParam {
     const char *name;
     SrcLoc loc;
-    double value; /* default */
+    double value; /* default, or the value it is fixed at */
+    int fixed;    /* fixed by the scene (`fix:`) or --fix: a constant in every
+                   * expression, folded at compile time */
 } SpecParam;
 
 typedef struct SpecCoord {
@@ -105,12 +107,47 @@ typedef struct SpecConstraint {
     SrcLoc dep_loc;   /* of `dependent:` */
 } SpecConstraint;
 
+/* A column the scene adds to the output: NAME = expr of t, q, q', q'',
+ * the inputs and the multipliers. */
+typedef struct SpecOutput {
+    const char *name;
+    SrcLoc loc;
+    ExprId expr;
+} SpecOutput;
+
+enum { EVENT_STOP, EVENT_RECORD, EVENT_SET };
+
+/* A zero crossing of `when` (of t, q, q', p) in a direction (+1 up, -1
+ * down, 0 both), and what it does: stop, record the state, or set
+ * coordinates and velocities (set_var[k] = expr_var(i, 0 or 1)) to
+ * set_expr[k] of the state just before. */
+typedef struct SpecEvent {
+    const char *name;
+    SrcLoc loc;
+    ExprId when;
+    int direction;
+    int action;
+    int nset;
+    ExprId *set_var, *set_expr;
+} SpecEvent;
+
 typedef struct SpecScene {
+    const char *name;   /* NULL: the unnamed `scene:`, or none */
     double t_end, dt;   /* defaults 10, 0.01 */
     const char *method; /* default "rk8pd" */
     double rtol, atol;  /* defaults 1e-10, 1e-10 */
     double h_fixed;     /* 0 = adaptive */
+    int noutput, nevent;
+    SpecOutput *output;
+    SpecEvent *event;
 } SpecScene;
+
+/* Every named scene, for --explain: what each turns on, in one line. */
+typedef struct SpecSceneInfo {
+    const char *name;
+    SrcLoc loc;
+    const char *summary;
+} SpecSceneInfo;
 
 /* A condition that physical data must meet, on the parameters: expr > 0
  * (strict) or expr >= 0.  spec_load checks it with the parameters'
@@ -141,18 +178,29 @@ typedef struct Spec {
     SpecTerm *kinetic;   /* explicit kinetic-energy terms */
     SpecTerm *potential; /* always-on potential-energy terms */
     SpecConstraint *constraint;
-    SpecScene scene;
+    SpecScene scene;     /* the scene compiled */
+    int nscenes;         /* named scenes (`scenes:`), 0 with `scene:` */
+    SpecSceneInfo *scenes;
+    int nfixed;          /* parameters fixed (SpecParam.fixed) */
     int ncheck, capcheck;
     SpecCheck *check;    /* masses and inertias: what --set must respect */
 } Spec;
 
+/* What the command line chooses: a named scene (NULL: the first), and
+ * parameters to fix: "NAME=VALUE,NAME=VALUE" (NULL: none), on top of the
+ * scene's `fix:`. */
+typedef struct SpecOptions {
+    const char *scene;
+    const char *fix;
+} SpecOptions;
+
 /* Load and check a spec.  On bad input, prints the diagnostic and returns
  * NULL; nothing else is left behind.  The Spec lives in A, its
- * expressions in P. */
-Spec *spec_load(const char *path, Arena *A, ExprPool *P);
+ * expressions in P.  o may be NULL (the first scene, nothing fixed). */
+Spec *spec_load(const char *path, const SpecOptions *o, Arena *A, ExprPool *P);
 /* The same from a buffer (fuzzing, tests); `path` is only used in messages. */
 Spec *spec_load_buffer(const char *path, const char *text, size_t len,
-                       Arena *A, ExprPool *P);
+                       const SpecOptions *o, Arena *A, ExprPool *P);
 
 /* Turn effects on or off by name before deriving: `list` is a
  * comma-separated list of effect names ("" = none); returns 0, or -1

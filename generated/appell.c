@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
  *
@@ -36,6 +37,7 @@ static const char *const q_names[3] = {"x", "y", "z"};
 static const char *const p_names[4] = {"m", "g", "a", "v0"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {1.0, 9.81, 0.5, 2.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
 static const char *const c_names[1] = {"cone"};
 static const int c_order[1] = {1};
@@ -81,19 +83,17 @@ appell_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    M[0] = w1;
+    M[0] = p_m;
     M[3] = 0.0;
-    M[4] = w1;
+    M[4] = p_m;
     M[6] = 0.0;
     M[7] = 0.0;
-    M[8] = w1;
+    M[8] = p_m;
     h[0] = 0.0;
     h[1] = 0.0;
-    const eomc_real w2 = p_m * p_g;
-    const eomc_real w3 = -w2;
-    h[2] = w3;
+    const eomc_real w0 = p_m * p_g;
+    const eomc_real w1 = -w0;
+    h[2] = w1;
     M[1] = 0.0;
     M[2] = 0.0;
     M[5] = 0.0;
@@ -383,6 +383,7 @@ appell_check(const double *p)
 const eomc_model appell_model = {
     EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     2.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     appell_initial, appell_inputs, appell_mass_bias, appell_energy, appell_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */

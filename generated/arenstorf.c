@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
  *
@@ -33,6 +34,7 @@ static const char *const q_names[2] = {"x", "y"};
 static const char *const p_names[1] = {"mu"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[1] = {0.012277471};
+static const unsigned char p_fixed[1] = {0};
 
 /* Initial state from the spec's `initial`. */
 static void
@@ -388,6 +390,7 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 const eomc_model arenstorf_model = {
     EOMC_ABI_VERSION, "arenstorf", "arenstorf.yaml", "lagrange", "",
     2, 1, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     17.065216560157964, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     arenstorf_initial, arenstorf_inputs, arenstorf_mass_bias, arenstorf_energy, arenstorf_jacobian,
     arenstorf_accel,

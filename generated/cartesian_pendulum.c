@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
  *
@@ -36,6 +37,7 @@ static const char *const q_names[2] = {"x", "y"};
 static const char *const p_names[4] = {"m", "l", "g", "theta0"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {1.0, 1.0, 9.81, 1.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
 static const char *const c_names[1] = {"rod"};
 static const int c_order[1] = {0};
@@ -83,14 +85,12 @@ cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    M[0] = w1;
+    M[0] = p_m;
     M[2] = 0.0;
-    M[3] = w1;
+    M[3] = p_m;
     h[0] = 0.0;
-    const eomc_real w2 = p_m * p_g;
-    h[1] = w2;
+    const eomc_real w0 = p_m * p_g;
+    h[1] = w0;
     M[1] = 0.0;
 }
 
@@ -329,6 +329,7 @@ cartesian_pendulum_check(const double *p)
 const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */

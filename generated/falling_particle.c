@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: gravity push
  * off:     (none) (no code is generated for these)
  *
@@ -31,6 +32,7 @@ static const char *const q_names[1] = {"y"};
 static const char *const p_names[3] = {"m", "g", "f"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {2.0, 9.81, 5.0};
+static const unsigned char p_fixed[3] = {0, 0, 0};
 
 /* Initial state from the spec's `initial`. */
 static void
@@ -66,12 +68,10 @@ falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    M[0] = w1;
-    const eomc_real w2 = p_m * p_g;
-    const eomc_real w3 = w2 - p_f;
-    h[0] = w3;
+    M[0] = p_m;
+    const eomc_real w0 = p_m * p_g;
+    const eomc_real w1 = w0 - p_f;
+    h[0] = w1;
 }
 
 #ifndef EOMC_EXTENDED
@@ -130,15 +130,13 @@ falling_particle_accel_solve(eomc_real t, const eomc_real *q,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    piv[0] = w1;
-    mkk[0] = w1;
-    const eomc_real w2 = 1.0 / w1;
-    const eomc_real w3 = p_m * p_g;
-    const eomc_real w4 = p_f - w3;
-    const eomc_real w5 = w2 * w4;
-    a[0] = w5;
+    piv[0] = p_m;
+    mkk[0] = p_m;
+    const eomc_real w0 = 1.0 / p_m;
+    const eomc_real w1 = p_m * p_g;
+    const eomc_real w2 = p_f - w1;
+    const eomc_real w3 = w0 * w2;
+    a[0] = w3;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -195,6 +193,7 @@ falling_particle_check(const double *p)
 const eomc_model falling_particle_model = {
     EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     1.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     falling_particle_initial, falling_particle_inputs, falling_particle_mass_bias, falling_particle_energy, falling_particle_jacobian,
     falling_particle_accel,

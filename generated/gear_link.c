@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: gravity motor
  * off:     (none) (no code is generated for these)
  *
@@ -31,6 +32,7 @@ static const char *const q_names[1] = {"theta_l"};
 static const char *const p_names[6] = {"Jm", "Jl", "r", "M", "l", "g"};
 static const char *const u_names[1] = {"u"};
 static const double p_default[6] = {0.01, 0.5, 1e+01, 2.0, 0.3, 9.81};
+static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
 
 /* Initial state from the spec's `initial`. */
 static void
@@ -71,21 +73,17 @@ gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real u_u = u[0];
     (void)v;
     (void)t;
-    const eomc_real w0 = 0.5 * p_Jl;
-    const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = 0.5 * p_Jm;
-    const eomc_real w3 = 2.0 * p_r;
-    const eomc_real w4 = w2 * w3;
-    const eomc_real w5 = p_r * w4;
-    const eomc_real w6 = w1 + w5;
-    M[0] = w6;
-    const eomc_real w7 = p_M * p_g;
-    const eomc_real w8 = w7 * p_l;
-    const eomc_real w9 = sin(q_theta_l);
-    const eomc_real w10 = w8 * w9;
-    const eomc_real w11 = p_r * u_u;
-    const eomc_real w12 = w10 - w11;
-    h[0] = w12;
+    const eomc_real w0 = p_r * p_Jm;
+    const eomc_real w1 = p_r * w0;
+    const eomc_real w2 = p_Jl + w1;
+    M[0] = w2;
+    const eomc_real w3 = p_M * p_g;
+    const eomc_real w4 = w3 * p_l;
+    const eomc_real w5 = sin(q_theta_l);
+    const eomc_real w6 = w4 * w5;
+    const eomc_real w7 = p_r * u_u;
+    const eomc_real w8 = w6 - w7;
+    h[0] = w8;
 }
 
 #ifndef EOMC_EXTENDED
@@ -167,24 +165,20 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real u_u = u[0];
     (void)v;
     (void)t;
-    const eomc_real w0 = 0.5 * p_Jl;
-    const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = 0.5 * p_Jm;
-    const eomc_real w3 = 2.0 * p_r;
-    const eomc_real w4 = w2 * w3;
-    const eomc_real w5 = p_r * w4;
-    const eomc_real w6 = w1 + w5;
-    piv[0] = w6;
-    mkk[0] = w6;
-    const eomc_real w7 = 1.0 / w6;
-    const eomc_real w8 = p_r * u_u;
-    const eomc_real w9 = p_M * p_g;
-    const eomc_real w10 = w9 * p_l;
-    const eomc_real w11 = sin(q_theta_l);
-    const eomc_real w12 = w10 * w11;
-    const eomc_real w13 = w8 - w12;
-    const eomc_real w14 = w7 * w13;
-    a[0] = w14;
+    const eomc_real w0 = p_r * p_Jm;
+    const eomc_real w1 = p_r * w0;
+    const eomc_real w2 = p_Jl + w1;
+    piv[0] = w2;
+    mkk[0] = w2;
+    const eomc_real w3 = 1.0 / w2;
+    const eomc_real w4 = p_r * u_u;
+    const eomc_real w5 = p_M * p_g;
+    const eomc_real w6 = w5 * p_l;
+    const eomc_real w7 = sin(q_theta_l);
+    const eomc_real w8 = w6 * w7;
+    const eomc_real w9 = w4 - w8;
+    const eomc_real w10 = w3 * w9;
+    a[0] = w10;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -213,6 +207,7 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 const eomc_model gear_link_model = {
     EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "",
     1, 6, 1, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
     gear_link_accel,

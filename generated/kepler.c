@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
  *
@@ -32,6 +33,7 @@ static const char *const q_names[2] = {"x", "y"};
 static const char *const p_names[4] = {"mu", "m", "a", "e"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {1.0, 1.0, 1.0, 0.5};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
 /* Initial state from the spec's `initial`. */
 static void
@@ -76,26 +78,24 @@ kepler_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    M[0] = w1;
+    M[0] = p_m;
     M[2] = 0.0;
-    M[3] = w1;
-    const eomc_real w2 = p_m * p_mu;
-    const eomc_real w3 = q_x * q_x;
-    const eomc_real w4 = q_y * q_y;
-    const eomc_real w5 = w3 + w4;
-    const eomc_real w6 = sqrt(w5);
-    const eomc_real w7 = w2 / w6;
-    const eomc_real w8 = w7 / w6;
-    const eomc_real w9 = 0.5 / w6;
-    const eomc_real w10 = w8 * w9;
-    const eomc_real w11 = q_x * w10;
+    M[3] = p_m;
+    const eomc_real w0 = p_m * p_mu;
+    const eomc_real w1 = q_x * q_x;
+    const eomc_real w2 = q_y * q_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = sqrt(w3);
+    const eomc_real w5 = w0 / w4;
+    const eomc_real w6 = w5 / w4;
+    const eomc_real w7 = 0.5 / w4;
+    const eomc_real w8 = w6 * w7;
+    const eomc_real w9 = q_x * w8;
+    const eomc_real w10 = 2.0 * w9;
+    h[0] = w10;
+    const eomc_real w11 = q_y * w8;
     const eomc_real w12 = 2.0 * w11;
-    h[0] = w12;
-    const eomc_real w13 = q_y * w10;
-    const eomc_real w14 = 2.0 * w13;
-    h[1] = w14;
+    h[1] = w12;
     M[1] = 0.0;
 }
 
@@ -242,29 +242,27 @@ kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = 2.0 * w0;
-    piv[0] = w1;
-    piv[1] = w1;
-    mkk[0] = w1;
-    mkk[1] = w1;
-    const eomc_real w2 = 1.0 / w1;
-    const eomc_real w3 = (-2.0) * w2;
-    const eomc_real w4 = p_m * p_mu;
-    const eomc_real w5 = q_x * q_x;
-    const eomc_real w6 = q_y * q_y;
-    const eomc_real w7 = w5 + w6;
-    const eomc_real w8 = sqrt(w7);
-    const eomc_real w9 = w4 / w8;
-    const eomc_real w10 = w9 / w8;
-    const eomc_real w11 = 0.5 / w8;
-    const eomc_real w12 = w10 * w11;
-    const eomc_real w13 = q_x * w12;
-    const eomc_real w14 = w3 * w13;
-    a[0] = w14;
-    const eomc_real w15 = q_y * w12;
-    const eomc_real w16 = w3 * w15;
-    a[1] = w16;
+    piv[0] = p_m;
+    piv[1] = p_m;
+    mkk[0] = p_m;
+    mkk[1] = p_m;
+    const eomc_real w0 = 1.0 / p_m;
+    const eomc_real w1 = (-2.0) * w0;
+    const eomc_real w2 = p_m * p_mu;
+    const eomc_real w3 = q_x * q_x;
+    const eomc_real w4 = q_y * q_y;
+    const eomc_real w5 = w3 + w4;
+    const eomc_real w6 = sqrt(w5);
+    const eomc_real w7 = w2 / w6;
+    const eomc_real w8 = w7 / w6;
+    const eomc_real w9 = 0.5 / w6;
+    const eomc_real w10 = w8 * w9;
+    const eomc_real w11 = q_x * w10;
+    const eomc_real w12 = w1 * w11;
+    a[0] = w12;
+    const eomc_real w13 = q_y * w10;
+    const eomc_real w14 = w1 * w13;
+    a[1] = w14;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -321,6 +319,7 @@ kepler_check(const double *p)
 const eomc_model kepler_model = {
     EOMC_ABI_VERSION, "kepler", "kepler.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     18.84955592153876, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     kepler_initial, kepler_inputs, kepler_mass_bias, kepler_energy, kepler_jacobian,
     kepler_accel,

@@ -4,6 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
+ * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
  *
@@ -32,6 +33,7 @@ static const char *const q_names[1] = {"theta"};
 static const char *const p_names[3] = {"m", "l", "g"};
 static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {1.0, 1.0, 9.81};
+static const unsigned char p_fixed[3] = {0, 0, 0};
 
 /* Initial state from the spec's `initial`. */
 static void
@@ -66,16 +68,14 @@ pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = p_l * p_l;
-    const eomc_real w2 = w0 * w1;
-    const eomc_real w3 = 2.0 * w2;
-    M[0] = w3;
-    const eomc_real w4 = p_l * p_g;
-    const eomc_real w5 = p_m * w4;
-    const eomc_real w6 = sin(q_theta);
-    const eomc_real w7 = w5 * w6;
-    h[0] = w7;
+    const eomc_real w0 = p_l * p_l;
+    const eomc_real w1 = p_m * w0;
+    M[0] = w1;
+    const eomc_real w2 = p_l * p_g;
+    const eomc_real w3 = p_m * w2;
+    const eomc_real w4 = sin(q_theta);
+    const eomc_real w5 = w3 * w4;
+    h[0] = w5;
 }
 
 #ifndef EOMC_EXTENDED
@@ -91,9 +91,9 @@ pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_g = p[2];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = p_l * p_l;
-    const eomc_real w2 = w0 * w1;
+    const eomc_real w0 = p_l * p_l;
+    const eomc_real w1 = p_m * w0;
+    const eomc_real w2 = 0.5 * w1;
     const eomc_real w3 = cos(q_theta);
     const eomc_real w4 = w3 * v_theta;
     const eomc_real w5 = w4 * w4;
@@ -117,46 +117,31 @@ pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     const eomc_real q_theta = q[0];
-    const eomc_real v_theta = v[0];
     const eomc_real a_theta = a[0];
     const eomc_real p_m = p[0];
     const eomc_real p_l = p[1];
     const eomc_real p_g = p[2];
+    (void)v;
     (void)u;
     (void)t;
     (void)dEdu;
     const eomc_real w0 = cos(q_theta);
     const eomc_real w1 = p_l * p_g;
     const eomc_real w2 = p_m * w1;
-    const eomc_real w3 = 0.5 * p_m;
-    const eomc_real w4 = p_l * p_l;
-    const eomc_real w5 = w3 * w4;
-    const eomc_real w6 = 2.0 * w5;
-    const eomc_real w7 = 2.0 * w6;
-    const eomc_real w8 = (-2.0) * w6;
-    const eomc_real w9 = w7 + w8;
-    const eomc_real w10 = v_theta * v_theta;
-    const eomc_real w11 = w0 * w10;
-    const eomc_real w12 = w9 * w11;
-    const eomc_real w13 = w2 + w12;
-    const eomc_real w14 = sin(q_theta);
-    const eomc_real w15 = w14 * a_theta;
-    const eomc_real w16 = w7 * w15;
-    const eomc_real w17 = w13 + w16;
-    const eomc_real w18 = w0 * w17;
-    const eomc_real w19 = w14 * w10;
-    const eomc_real w20 = w9 * w19;
-    const eomc_real w21 = w0 * a_theta;
-    const eomc_real w22 = w7 * w21;
-    const eomc_real w23 = w20 + w22;
-    const eomc_real w24 = w14 * w23;
-    const eomc_real w25 = w18 - w24;
-    dEdq[0] = w25;
-    const eomc_real w26 = 2.0 * w9;
-    const eomc_real w27 = w14 * w0;
-    const eomc_real w28 = w27 * v_theta;
-    const eomc_real w29 = w26 * w28;
-    dEdv[0] = w29;
+    const eomc_real w3 = p_l * p_l;
+    const eomc_real w4 = p_m * w3;
+    const eomc_real w5 = 2.0 * w4;
+    const eomc_real w6 = sin(q_theta);
+    const eomc_real w7 = w6 * a_theta;
+    const eomc_real w8 = w5 * w7;
+    const eomc_real w9 = w2 + w8;
+    const eomc_real w10 = w0 * w9;
+    const eomc_real w11 = w6 * w0;
+    const eomc_real w12 = w11 * a_theta;
+    const eomc_real w13 = w5 * w12;
+    const eomc_real w14 = w10 - w13;
+    dEdq[0] = w14;
+    dEdv[0] = 0.0;
     dEdt[0] = 0.0;
 }
 
@@ -172,9 +157,9 @@ pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_g = p[2];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = p_l * p_l;
-    const eomc_real w2 = w0 * w1;
+    const eomc_real w0 = p_l * p_l;
+    const eomc_real w1 = p_m * w0;
+    const eomc_real w2 = 0.5 * w1;
     const eomc_real w3 = cos(q_theta);
     const eomc_real w4 = w3 * v_theta;
     const eomc_real w5 = w4 * w4;
@@ -207,20 +192,18 @@ pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = p_l * p_l;
-    const eomc_real w2 = w0 * w1;
-    const eomc_real w3 = 2.0 * w2;
-    piv[0] = w3;
-    mkk[0] = w3;
-    const eomc_real w4 = p_l * p_g;
-    const eomc_real w5 = p_m * w4;
-    const eomc_real w6 = 1.0 / w3;
+    const eomc_real w0 = p_l * p_l;
+    const eomc_real w1 = p_m * w0;
+    piv[0] = w1;
+    mkk[0] = w1;
+    const eomc_real w2 = p_l * p_g;
+    const eomc_real w3 = p_m * w2;
+    const eomc_real w4 = 1.0 / w1;
+    const eomc_real w5 = w3 * w4;
+    const eomc_real w6 = sin(q_theta);
     const eomc_real w7 = w5 * w6;
-    const eomc_real w8 = sin(q_theta);
-    const eomc_real w9 = w7 * w8;
-    const eomc_real w10 = -w9;
-    a[0] = w10;
+    const eomc_real w8 = -w7;
+    a[0] = w8;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -277,6 +260,7 @@ pendulum_check(const double *p)
 const eomc_model pendulum_model = {
     EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
+    "", p_fixed,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     pendulum_initial, pendulum_inputs, pendulum_mass_bias, pendulum_energy, pendulum_jacobian,
     pendulum_accel,

@@ -152,10 +152,10 @@ static void
 help(const Cli *c, const eomc_model *m)
 {
     printf("usage: %s [OPTION]...\n"
-           "Simulate %s (%s, %s form%s%s) and write the trajectory as CSV:\n"
+           "Simulate %s (%s, %s form%s%s%s%s) and write the trajectory as CSV:\n"
            "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
            c->prog, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
-           m->invariant_name && !strcmp(m->invariant_name, "h")
+           *m->scene ? ", scene " : "", m->scene, m->invariant_name && !strcmp(m->invariant_name, "h")
                ? ", h (the conserved energy function)" : "");
     printf("  --t-end T          end time (default %g)\n"
            "  --dt T             output interval (default %g); rows between steps\n"
@@ -202,7 +202,8 @@ help(const Cli *c, const eomc_model *m)
     list_names(stdout, m->q_names, m->nq, "");
     printf("\nparameters: ");
     for (int k = 0; k < m->np; k++)
-        printf("%s%s=%g", k ? ", " : "", m->p_names[k], m->p_default[k]);
+        printf("%s%s=%g%s", k ? ", " : "", m->p_names[k], m->p_default[k],
+               m->p_fixed[k] ? " (fixed)" : "");
     printf("\ninputs: ");
     list_names(stdout, m->u_names, m->nu, "");
     printf("%s\n%s.\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
@@ -476,7 +477,15 @@ apply_sets(Cli *c, eomc_sim *sim)
         double x = 0;
         if (name_value(c, "--set", c->set[k], &name, &x))
             return EOMC_EUSAGE;
-        if (eomc_sim_set(sim, name, x) != EOMC_OK) {
+        int fixed = 0;
+        for (int i = 0; i < m->np; i++)
+            fixed |= m->p_fixed[i] && !strcmp(name, m->p_names[i]);
+        int rc = eomc_sim_set(sim, name, x);
+        if (rc != EOMC_OK && fixed) {
+            fprintf(stderr, "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
+            free(name);
+            return EOMC_EUSAGE;
+        } else if (rc != EOMC_OK) {
             const char *hint = nearest(name, m->p_names, m->np, "");
             if (!*hint)
                 hint = nearest(name, m->u_names, m->nu, "");

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 5
+#define EOMC_ABI_VERSION 6
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -56,6 +56,12 @@ typedef struct eomc_model {
     const char *const *p_names;  /* [np] parameter names */
     const char *const *u_names;  /* [nu] input names */
     const double *p_default;     /* [np] default parameter values */
+    /* The scene compiled: its name in the spec's `scenes:`, "" for the
+     * unnamed `scene:`.  p_fixed[k] = 1: parameter k was fixed (the scene's
+     * `fix:` or eomc's --fix) and folded into the code as the constant
+     * p_default[k]; setting it has no effect, so the runtime refuses to. */
+    const char *scene;
+    const unsigned char *p_fixed; /* [np] */
 
     /* Scene defaults: the simulator's options override them. */
     double t_end, dt;      /* end time, output interval */

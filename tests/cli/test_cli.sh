@@ -69,7 +69,7 @@ count=$(find "$tmp/cache" -type f -name 'sim-*' | wc -l)
 # only gravity never reads the push force f, and y'' = -g whatever f is
 "$eomc" compile "$src/specs/falling_particle.yaml" --effects gravity -o "$tmp/grav.c"
 "$eomc" compile "$src/specs/falling_particle.yaml" -o "$tmp/both.c"
-! grep -q 'p_f\|p\[2\]' "$tmp/grav.c" && grep -q 'p_f = p\[2\]' "$tmp/both.c"
+! grep -q 'p_f =\|= p\[2\]' "$tmp/grav.c" && grep -q 'p_f = p\[2\]' "$tmp/both.c"
 ok $? "--effects gravity: no code reads the push force f (the full scene does)"
 got=$("$eomc" run "$src/specs/falling_particle.yaml" --effects gravity --accel --set f=100 --set g=3.5 | accel_of y)
 near "$got" -3.5; ok $? "--effects gravity: y'' = -g = $got with f = 100 set"

@@ -41,7 +41,7 @@ compile(void *ctx)
     Arena *A = arena_new();
     ExprPool *P = expr_pool_new();
     Diff *D = diff_new(P);
-    Spec *s = spec_load_buffer("fuzz.yaml", (const char *)in->data, in->size, A, P);
+    Spec *s = spec_load_buffer("fuzz.yaml", (const char *)in->data, in->size, NULL, A, P);
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
     int small = s && s->nq <= MAX_COORDS && s->nconstraint <= MAX_CONSTRAINTS &&

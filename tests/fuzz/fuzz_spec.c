@@ -17,7 +17,7 @@ load(void *ctx)
     Input *in = ctx;
     Arena *A = arena_new();
     ExprPool *P = expr_pool_new();
-    spec_load_buffer("fuzz.yaml", (const char *)in->data, in->size, A, P);
+    spec_load_buffer("fuzz.yaml", (const char *)in->data, in->size, NULL, A, P);
     diag_forget_sources(); /* they borrow the input and the arena */
     expr_pool_free(P);
     arena_free(A);

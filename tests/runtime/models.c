@@ -83,6 +83,9 @@ osc_accel(double t, const double *q, const double *v, const double *p,
     return piv > 0.0 ? 0 : 1;
 }
 
+/* No parameter is fixed (p_fixed). */
+static const unsigned char no_fixed[8];
+
 /* The constraint members of a model without constraints. */
 #define NO_CONSTRAINTS 0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
@@ -102,6 +105,7 @@ osc_invariant(double t, const double *q, const double *v, const double *p,
 const eomc_model osc_model = {
     EOMC_ABI_VERSION, "osc", "osc.yaml", "lagrange", "",
     1, 3, 0, osc_q, osc_p, osc_u, osc_pdef,
+    "", no_fixed,
     10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     osc_initial, no_inputs, osc_mass_bias, osc_energy, osc_jacobian,
     osc_accel,
@@ -145,6 +149,7 @@ lk_jacobian(double t, const double *q, const double *v, const double *a,
 const eomc_model leaky_model = {
     EOMC_ABI_VERSION, "leaky", "leaky.yaml", "lagrange", "",
     1, 4, 0, osc_q, lk_p, osc_u, lk_pdef,
+    "", no_fixed,
     10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     osc_initial, no_inputs, lk_mass_bias, osc_energy, lk_jacobian,
     NULL,
@@ -247,6 +252,7 @@ cp_jacobian(double t, const double *q, const double *v, const double *a,
 const eomc_model coupled_model = {
     EOMC_ABI_VERSION, "coupled", "coupled.yaml", "lagrange", "",
     2, 5, 0, cp_q, cp_p, osc_u, cp_pdef,
+    "", no_fixed,
     10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cp_initial, no_inputs, cp_mass_bias, cp_energy, cp_jacobian,
     NULL,
@@ -327,6 +333,7 @@ dr_accel(double t, const double *q, const double *v, const double *p,
 const eomc_model driven_model = {
     EOMC_ABI_VERSION, "driven", "driven.yaml", "lagrange", "",
     1, 6, 1, dr_q, dr_p, dr_u, dr_pdef,
+    "", no_fixed,
     5.0, 0.05, "rkf45", 1e-10, 1e-10, 0.0,
     dr_initial, dr_inputs, dr_mass_bias, dr_energy, dr_jacobian,
     dr_accel,
@@ -415,6 +422,7 @@ np_accel(double t, const double *q, const double *v, const double *p,
 const eomc_model nonpd_model = {
     EOMC_ABI_VERSION, "nonpd", "nonpd.yaml", "lagrange", "",
     1, 0, 0, np_q, np_p, osc_u, np_pdef,
+    "", no_fixed,
     2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     np_accel,
@@ -426,6 +434,7 @@ const eomc_model nonpd_model = {
 const eomc_model nonpd_gsl_model = {
     EOMC_ABI_VERSION, "nonpd_gsl", "nonpd_gsl.yaml", "lagrange", "",
     1, 0, 0, np_q, np_p, osc_u, np_pdef,
+    "", no_fixed,
     2.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     np_initial, no_inputs, np_mass_bias, np_energy, np_jacobian,
     NULL,

@@ -21,7 +21,7 @@ static Diff *D;
 static Spec *
 load(const char *text)
 {
-    return spec_load_buffer("b.yaml", text, strlen(text), A, P);
+    return spec_load_buffer("b.yaml", text, strlen(text), NULL, A, P);
 }
 
 typedef struct State {

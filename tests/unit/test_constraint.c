@@ -26,7 +26,7 @@ build(const char *body)
 {
     char text[2048];
     snprintf(text, sizeof text, "coordinates: [x, y, z]\n%s%s", particle, body);
-    Spec *s = spec_load_buffer("c.yaml", text, strlen(text), A, P);
+    Spec *s = spec_load_buffer("c.yaml", text, strlen(text), NULL, A, P);
     if (!s)
         return NULL;
     return constraints_build(s, mech_build(s, A, P, D), A, P, D);

@@ -293,6 +293,31 @@ test_like_terms(void)
           "2 x + 2 y stays 2 (x + y), numerically equal");
 }
 
+/* Numbers gather across products of parameters, and like terms whose
+ * coefficients are parameter expressions are collected: the structure is
+ * asserted (node identity), not only the value. */
+static void
+test_parameter_folding(void)
+{
+    ExprId m = expr_param(P, 0), l = expr_param(P, 1), x = expr_var(P, 0, 0);
+    ExprId half_m = expr_mul(P, expr_const(P, 0.5), m);
+    CHECK(expr_mul(P, expr_const(P, 2.0), half_m) == m, "2*(0.5*m) is the node m");
+    ExprId ml = expr_mul(P, m, l);
+    ExprId six_ml = expr_mul(P, expr_const(P, 6.0), ml);
+    CHECK(expr_mul(P, expr_mul(P, expr_const(P, 2.0), m), expr_mul(P, expr_const(P, 3.0), l)) ==
+          six_ml, "(2*m)*(3*l) is the node 6*(m*l)");
+    ExprId four = expr_mul(P, expr_const(P, 4.0), ml), two = expr_mul(P, expr_const(P, -2.0), ml);
+    CHECK(expr_add(P, four, two) == expr_mul(P, expr_const(P, 2.0), ml),
+          "4*(m*l) + (-2)*(m*l) is the node 2*(m*l)");
+    ExprId twice = expr_mul(P, expr_const(P, 2.0), expr_mul(P, expr_const(P, 2.0), ml));
+    CHECK(expr_sub(P, twice, four) == EXPR_ZERO, "2*(2*(m*l)) - 4*(m*l) is the node 0");
+    ExprId e = expr_mul(P, expr_sub(P, twice, four), expr_unary(P, EXPR_SIN, x));
+    CHECK(e == EXPR_ZERO, "(2*(2 m l) - 4 m l) sin x is 0: no dead code for an entry that is 0");
+    const ExprNode *nd = expr_node(P, six_ml);
+    CHECK(nd->op == EXPR_MUL && expr_node(P, nd->a)->op == EXPR_CONST &&
+          expr_node(P, nd->a)->value == 6.0, "the number stays in front: 6*(m*l)");
+}
+
 int
 main(void)
 {
@@ -306,6 +331,7 @@ main(void)
     test_canonical_products();
     test_pythagorean();
     test_like_terms();
+    test_parameter_folding();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

@@ -41,7 +41,7 @@ enum { N = 3, NU = 1, NC = 1 };
 static Lowered *
 lowered(int jacobian)
 {
-    Spec *s = spec_load_buffer("l.yaml", spec_text, strlen(spec_text), A, P);
+    Spec *s = spec_load_buffer("l.yaml", spec_text, strlen(spec_text), NULL, A, P);
     if (!s)
         return NULL;
     Mech *m = mech_build(s, A, P, D);

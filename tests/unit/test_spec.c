@@ -18,7 +18,7 @@ static ExprPool *P;
 static Spec *
 load(const char *text)
 {
-    return spec_load_buffer("t.yaml", text, strlen(text), A, P);
+    return spec_load_buffer("t.yaml", text, strlen(text), NULL, A, P);
 }
 
 /* Load text expecting an error: "line:col: message" of its first line. */

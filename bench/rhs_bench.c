@@ -54,7 +54,7 @@ jac_calls(Work *w, long calls)
     int n = w->m->nq;
     for (long k = 0; k < calls; k++) {
         w->q[0] = 0.3 + 1e-9 * (double)k;
-        w->m->jacobian(0.0, w->q, w->v, w->a, w->m->p_default, w->u, w->dEdq, w->dEdv,
+        w->m->jacobian(0.0, w->q, w->v, w->a, eomc_sim_params(w->sim), w->u, w->dEdq, w->dEdv,
                        w->dEdu, w->dEdt);
         w->sum += w->dEdq[n * n - 1];
     }

@@ -42,12 +42,15 @@ typedef struct Printer {
     FILE *f;
     ExprPool *P;
     const Spec *s;
+    const Lowered *L;
     /* per node id, for the function being printed */
     int *temp;  /* temporary number, -1 if not scheduled */
     int *part;  /* the part that computes it */
     int *slot;  /* index in s[], -1 if only its own part uses it */
     const int *ext; /* NULL, or per node its index in an input array shared[]
                      * (-1: not there): values computed once by another function */
+    const int *derived; /* NULL, or per node its index in pd[] (-1: not there):
+                         * values of the parameters alone, read from p[np + k] */
     int cur;    /* the part being printed */
     unsigned used; /* bit k: source k is read in this part */
     int fenced;    /* inside #ifndef EOMC_EXTENDED */
@@ -119,6 +122,15 @@ format_const(char *buf, size_t len, double v)
 static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }
 
 static int is_ext(const Printer *pr, ExprId e) { return pr->ext && pr->ext[e] >= 0; }
+static int is_derived(const Printer *pr, ExprId e)
+{
+    return pr->derived && pr->derived[e] >= 0 && !is_ext(pr, e);
+}
+/* Not computed here: a leaf, a shared value or a derived one. */
+static int is_input(const Printer *pr, ExprId e)
+{
+    return is_leaf(expr_node(pr->P, e)) || is_ext(pr, e) || is_derived(pr, e);
+}
 
 static void
 leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
@@ -158,6 +170,8 @@ operand(Printer *pr, ExprId e, char *buf, size_t len)
         leaf_name(pr, nd, buf, len);
     } else if (is_ext(pr, e)) {
         snprintf(buf, len, "shared[%d]", pr->ext[e]);
+    } else if (is_derived(pr, e)) {
+        snprintf(buf, len, "pd%d", pr->derived[e]);
     } else if (pr->part[e] == pr->cur) {
         snprintf(buf, len, "w%d", pr->temp[e]);
     } else {
@@ -237,7 +251,7 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
     while (sp) {
         ExprId e = stack[sp - 1].id;
         const ExprNode *nd = expr_node(pr->P, e);
-        if (is_leaf(nd) || pr->temp[e] >= 0 || is_ext(pr, e)) {
+        if (is_input(pr, e) || pr->temp[e] >= 0) {
             sp--;
         } else if (stack[sp - 1].expanded) {
             sp--;
@@ -262,7 +276,7 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
 static void
 share(Printer *pr, Sched *S, ExprId e, int part)
 {
-    if (!is_leaf(expr_node(pr->P, e)) && !is_ext(pr, e) && pr->part[e] != part &&
+    if (!is_input(pr, e) && pr->part[e] != part &&
         pr->slot[e] < 0)
         pr->slot[e] = S->nslots++;
 }
@@ -312,12 +326,13 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
 static void
 mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
 {
-    if (is_leaf(expr_node(pr->P, e)))
+    if (is_leaf(expr_node(pr->P, e)) || is_derived(pr, e))
         mark[e] = 1;
 }
 
 /* Named locals for the leaves part p reads, in a fixed order: t, the
- * coordinates by derivative order, parameters, inputs, seeds. */
+ * coordinates by derivative order, parameters, inputs, seeds, then the
+ * parameters' derived values (pdK = p[np + K]). */
 static void
 print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
 {
@@ -351,6 +366,12 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
             leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
             println(pr, "    const eomc_real %s = %s[%u];", buf, src_name[arr], nd->a);
+        }
+    for (size_t id = 0; id < size; id++)
+        if (mark[id] && is_derived(pr, (ExprId)id)) {
+            pr->used |= 1u << SRC_P;
+            println(pr, "    const eomc_real pd%d = p[%d];", pr->derived[id],
+                    pr->s->np + pr->derived[id]);
         }
     free(mark);
 }
@@ -438,6 +459,7 @@ print_function(Printer *pr, const LowFunc *lf)
     int nout = lf->nout;
     const LowSlot *out = lf->out;
     pr->ext = lf->shared;
+    pr->derived = lf->per_step ? pr->L->derived : NULL;
     size_t size = expr_pool_size(pr->P);
     pr->temp = malloc(size * sizeof *pr->temp);
     pr->part = malloc(size * sizeof *pr->part);
@@ -476,7 +498,9 @@ print_function(Printer *pr, const LowFunc *lf)
         println(pr, "}\n");
     }
     pr->ext = NULL;
-    /* exactly what was printed: values from shared[] are counted where made */
+    pr->derived = NULL;
+    /* exactly what was printed: values from shared[] and pd[] are counted
+     * where made */
     ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
     free(S.node);
     free(S.after);
@@ -624,7 +648,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     const char *nm = pr->s->name;
     int n = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
-    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL};
+    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1};
     func_of(&fj, &jac);
     println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
@@ -708,6 +732,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     fprintf(pr->f, "    ");
     print_c_string(pr->f, s->scene.name ? s->scene.name : "");
     println(pr, ", p_fixed,");
+    if (L->derive)
+        println(pr, "    %d, %s_derive,", L->nd, nm);
+    else
+        println(pr, "    0, NULL, /* no value of the parameters alone to derive */");
     char a[40], b[40], rt[40], at[40], h[40];
     format_const(a, sizeof a, s->scene.t_end);
     format_const(b, sizeof b, s->scene.dt);
@@ -752,7 +780,8 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "#endif");
     println(pr, "#else");
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);
-    println(pr, "    EOMC_ABI_VERSION, \"%s\", %s_inputs, %s_mass_bias, %s%s,", nm, nm, nm,
+    println(pr, "    EOMC_ABI_VERSION, \"%s\", %s%s, %s_inputs, %s_mass_bias, %s%s,", nm,
+            L->derive ? nm : "NULL", L->derive ? "_derive" : "", nm, nm,
             L->accel_solve ? nm : "NULL", L->accel_solve ? "_accel" : "");
     if (c)
         println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
@@ -827,14 +856,14 @@ add_count(ExprCount *c, ExprCount d)
 /* The rows of --stats, in order. */
 static const char *const stat_names[EMIT_NFUNCS] = {
     "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "constraint",
-    "c_levels", "c_jacobian", "c_levels_jacobian", "invariant",
+    "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive",
 };
 
 void
 emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Invariant *inv,
            const Lowered *L, ExprPool *P, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
 {
-    Printer pr = {.f = f, .P = P, .s = s};
+    Printer pr = {.f = f, .P = P, .s = s, .L = L};
     for (int k = 0; k < EMIT_NFUNCS; k++)
         stats[k] = (EmitStats){stat_names[k], {0, 0, 0, 0}};
     print_banner(&pr, e, c, inv, info);

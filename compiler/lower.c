@@ -97,6 +97,12 @@ static const LowSig s_c_levels_jacobian = {
 static const LowSig s_invariant = {
     "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h",
 };
+static const LowSig s_derive = {
+    "derive",
+    "The values of the parameters alone that the other functions read:\n"
+    " * computed when the parameters change, not at every step.",
+    "p > pd",
+};
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
     "p > chk",
@@ -116,7 +122,9 @@ static LowFunc *
 func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
 {
     LowFunc *f = arena_alloc(lw->A, sizeof *f);
-    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL};
+    /* all but initial and check, which run before derive */
+    int per_step = sig != &s_initial && sig != &s_check_values;
+    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step};
     if (lw->L->nfunc == LOW_MAX_FUNCS)
         abort();
     lw->L->func[lw->L->nfunc++] = f;
@@ -302,6 +310,61 @@ lower_constraints(Lowering *lw, const Constraints *c)
     }
 }
 
+/* The largest subexpressions of the parameters alone (operator nodes
+ * that are coefficients, not constants) that the per-step functions use,
+ * in id order; derive goes first, so that it is printed before them. */
+static void
+lower_derive(Lowering *lw)
+{
+    Lowered *L = lw->L;
+    ExprPool *P = lw->P;
+    size_t size = expr_pool_size(P);
+    int nroots = 0;
+    for (int k = 0; k < L->nfunc; k++)
+        nroots += L->func[k]->per_step ? L->func[k]->nout : 0;
+    ExprId *roots = malloc(((size_t)nroots + 1) * sizeof *roots);
+    nroots = 0;
+    for (int k = 0; k < L->nfunc; k++)
+        for (int i = 0; L->func[k]->per_step && i < L->func[k]->nout; i++)
+            roots[nroots++] = L->func[k]->out[i].e;
+    unsigned char *mark = calloc(size, 1), *want = calloc(size, 1);
+    expr_mark(P, nroots, roots, mark);
+#define DERIVABLE(e) (expr_node(P, e)->coeff && expr_op_arity[expr_node(P, e)->op] > 0)
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        int ar = expr_op_arity[nd->op];
+        if (!mark[id] || nd->coeff || ar == 0)
+            continue;
+        if (DERIVABLE(nd->a))
+            want[nd->a] = 1;
+        if (ar == 2 && DERIVABLE(nd->b))
+            want[nd->b] = 1;
+    }
+    for (int i = 0; i < nroots; i++)
+        if (DERIVABLE(roots[i]))
+            want[roots[i]] = 1;
+#undef DERIVABLE
+    L->derived = arena_new_array(lw->A, int, size);
+    LowFunc *f = func(lw, &s_derive, "derive", 0);
+    f->per_step = 0;
+    for (size_t id = 0; id < size; id++) {
+        L->derived[id] = want[id] ? L->nd : -1;
+        if (want[id])
+            out(lw, f, 0, L->nd++, (ExprId)id);
+    }
+    /* first in the list: printed before its readers */
+    memmove(L->func + 1, L->func, (size_t)(L->nfunc - 1) * sizeof *L->func);
+    L->func[0] = f;
+    L->derive = L->nd ? f : NULL;
+    if (!L->nd) { /* nothing to derive: no function */
+        memmove(L->func, L->func + 1, (size_t)(L->nfunc - 1) * sizeof *L->func);
+        L->nfunc--;
+    }
+    free(want);
+    free(mark);
+    free(roots);
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
             const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D)
@@ -357,6 +420,7 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
             out(&lw, f, 0, i, s->check[i].expr);
         lw.L->check_values = f;
     }
+    lower_derive(&lw);
     return lw.L;
 }
 

@@ -45,6 +45,9 @@ typedef struct LowFunc {
     /* NULL, or per node id its index in the input `shared` (-1: not
      * there): values another function computed once. */
     int *shared;
+    /* Called at every step: reads the parameters' derived values
+     * (Lowered.derived) instead of computing them. */
+    int per_step;
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be
@@ -71,6 +74,12 @@ typedef struct Lowered {
     LowFunc *jac_shared;
     LowFunc *accel_solve; /* the pivot check follows */
     LowFunc *check_values;
+    /* The values of the parameters alone that the per-step functions
+     * need: derive computes them into pd[] when the parameters change,
+     * and derived[id] is node id's index there (-1: not derived). */
+    LowFunc *derive;
+    int *derived;
+    int nd;
     int n;                /* coordinates */
 } Lowered;
 

@@ -43,6 +43,31 @@ static const char *const c_names[1] = {"cone"};
 static const int c_order[1] = {1};
 static const int c_dependent[1] = {2};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+appell_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
+    const eomc_real p_a = p[2];
+    const eomc_real w0 = p_m * p_g;
+    pd[0] = w0;
+    const eomc_real w1 = -w0;
+    pd[1] = w1;
+    const eomc_real w2 = p_a * p_a;
+    pd[2] = w2;
+    const eomc_real w3 = 0.5 * p_m;
+    pd[3] = w3;
+    const eomc_real w4 = 2.0 * w2;
+    pd[4] = w4;
+    const eomc_real w5 = (-2.0) * w2;
+    pd[5] = w5;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 appell_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -78,7 +103,7 @@ appell_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
     const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
+    const eomc_real pd1 = p[5];
     (void)q;
     (void)v;
     (void)u;
@@ -91,9 +116,7 @@ appell_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     M[8] = p_m;
     h[0] = 0.0;
     h[1] = 0.0;
-    const eomc_real w0 = p_m * p_g;
-    const eomc_real w1 = -w0;
-    h[2] = w1;
+    h[2] = pd1;
     M[1] = 0.0;
     M[2] = 0.0;
     M[5] = 0.0;
@@ -109,22 +132,20 @@ appell_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_z = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd3 = p[7];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_z * v_z;
-    const eomc_real w2 = v_x * v_x;
-    const eomc_real w3 = v_y * v_y;
-    const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = w1 + w4;
-    const eomc_real w6 = w0 * w5;
-    TV[0] = w6;
-    const eomc_real w7 = p_m * p_g;
-    const eomc_real w8 = w7 * q_z;
-    const eomc_real w9 = -w8;
-    TV[1] = w9;
+    const eomc_real w0 = v_z * v_z;
+    const eomc_real w1 = v_x * v_x;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = w0 + w3;
+    const eomc_real w5 = pd3 * w4;
+    TV[0] = w5;
+    const eomc_real w6 = pd0 * q_z;
+    const eomc_real w7 = -w6;
+    TV[1] = w7;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -172,21 +193,19 @@ appell_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_z = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd3 = p[7];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_z * v_z;
-    const eomc_real w2 = v_x * v_x;
-    const eomc_real w3 = v_y * v_y;
-    const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = w1 + w4;
-    const eomc_real w6 = w0 * w5;
-    const eomc_real w7 = p_m * p_g;
-    const eomc_real w8 = w7 * q_z;
-    const eomc_real w9 = w6 - w8;
-    h[0] = w9;
+    const eomc_real w0 = v_z * v_z;
+    const eomc_real w1 = v_x * v_x;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = w0 + w3;
+    const eomc_real w5 = pd3 * w4;
+    const eomc_real w6 = pd0 * q_z;
+    const eomc_real w7 = w5 - w6;
+    h[0] = w7;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -203,28 +222,26 @@ appell_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     const eomc_real a_z = a[2];
-    const eomc_real p_a = p[2];
+    const eomc_real pd4 = p[8];
     (void)q;
     (void)u;
     (void)t;
     const eomc_real w0 = v_z * a_z;
     const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = p_a * p_a;
-    const eomc_real w3 = 2.0 * w2;
-    const eomc_real w4 = v_x * a_x;
-    const eomc_real w5 = v_y * a_y;
-    const eomc_real w6 = w4 + w5;
-    const eomc_real w7 = w3 * w6;
-    const eomc_real w8 = w1 - w7;
-    f[0] = w8;
-    const eomc_real w9 = w3 * v_x;
+    const eomc_real w2 = v_x * a_x;
+    const eomc_real w3 = v_y * a_y;
+    const eomc_real w4 = w2 + w3;
+    const eomc_real w5 = pd4 * w4;
+    const eomc_real w6 = w1 - w5;
+    f[0] = w6;
+    const eomc_real w7 = pd4 * v_x;
+    const eomc_real w8 = -w7;
+    B[0] = w8;
+    const eomc_real w9 = pd4 * v_y;
     const eomc_real w10 = -w9;
-    B[0] = w10;
-    const eomc_real w11 = w3 * v_y;
-    const eomc_real w12 = -w11;
-    B[1] = w12;
-    const eomc_real w13 = 2.0 * v_z;
-    B[2] = w13;
+    B[1] = w10;
+    const eomc_real w11 = 2.0 * v_z;
+    B[2] = w11;
 }
 
 #ifndef EOMC_EXTENDED
@@ -236,19 +253,18 @@ appell_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_z = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_a = p[2];
+    const eomc_real pd2 = p[6];
     (void)q;
     (void)u;
     (void)t;
     pos[0] = 0.0;
     const eomc_real w0 = v_z * v_z;
-    const eomc_real w1 = p_a * p_a;
-    const eomc_real w2 = v_x * v_x;
-    const eomc_real w3 = v_y * v_y;
-    const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = w1 * w4;
-    const eomc_real w6 = w0 - w5;
-    vel[0] = w6;
+    const eomc_real w1 = v_x * v_x;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = pd2 * w3;
+    const eomc_real w5 = w0 - w4;
+    vel[0] = w5;
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
@@ -261,7 +277,8 @@ appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     const eomc_real a_z = a[2];
-    const eomc_real p_a = p[2];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
     (void)q;
     (void)v;
     (void)u;
@@ -269,22 +286,19 @@ appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)dfdu;
     (void)dBdu;
     dfdq[0] = 0.0;
-    const eomc_real w0 = p_a * p_a;
-    const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = w1 * a_x;
-    const eomc_real w3 = -w2;
-    dfdv[0] = w3;
+    const eomc_real w0 = pd4 * a_x;
+    const eomc_real w1 = -w0;
+    dfdv[0] = w1;
     dfdq[1] = 0.0;
-    const eomc_real w4 = w1 * a_y;
-    const eomc_real w5 = -w4;
-    dfdv[1] = w5;
+    const eomc_real w2 = pd4 * a_y;
+    const eomc_real w3 = -w2;
+    dfdv[1] = w3;
     dfdq[2] = 0.0;
-    const eomc_real w6 = 2.0 * a_z;
-    dfdv[2] = w6;
+    const eomc_real w4 = 2.0 * a_z;
+    dfdv[2] = w4;
     dfdt[0] = 0.0;
     dBdq[0] = 0.0;
-    const eomc_real w7 = (-2.0) * w0;
-    dBdv[0] = w7;
+    dBdv[0] = pd5;
     dBda[0] = 0.0;
     dBdq[1] = 0.0;
     dBdv[1] = 0.0;
@@ -297,7 +311,7 @@ appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dBdv[3] = 0.0;
     dBda[3] = 0.0;
     dBdq[4] = 0.0;
-    dBdv[4] = w7;
+    dBdv[4] = pd5;
     dBda[4] = 0.0;
     dBdq[5] = 0.0;
     dBdv[5] = 0.0;
@@ -326,7 +340,7 @@ appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_z = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_a = p[2];
+    const eomc_real pd4 = p[8];
     (void)q;
     (void)u;
     (void)t;
@@ -334,20 +348,18 @@ appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)dveldu;
     dposdq[0] = 0.0;
     dveldq[0] = 0.0;
-    const eomc_real w0 = p_a * p_a;
-    const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = w1 * v_x;
-    const eomc_real w3 = -w2;
-    dveldv[0] = w3;
+    const eomc_real w0 = pd4 * v_x;
+    const eomc_real w1 = -w0;
+    dveldv[0] = w1;
     dposdq[1] = 0.0;
     dveldq[1] = 0.0;
-    const eomc_real w4 = w1 * v_y;
-    const eomc_real w5 = -w4;
-    dveldv[1] = w5;
+    const eomc_real w2 = pd4 * v_y;
+    const eomc_real w3 = -w2;
+    dveldv[1] = w3;
     dposdq[2] = 0.0;
     dveldq[2] = 0.0;
-    const eomc_real w6 = 2.0 * v_z;
-    dveldv[2] = w6;
+    const eomc_real w4 = 2.0 * v_z;
+    dveldv[2] = w4;
     dposdt[0] = 0.0;
     dveldt[0] = 0.0;
 }
@@ -384,6 +396,7 @@ const eomc_model appell_model = {
     EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "",
     3, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    6, appell_derive,
     2.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     appell_initial, appell_inputs, appell_mass_bias, appell_energy, appell_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
@@ -407,7 +420,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext appell_model_ext = {
-    EOMC_ABI_VERSION, "appell", appell_inputs, appell_mass_bias, NULL,
+    EOMC_ABI_VERSION, "appell", appell_derive, appell_inputs, appell_mass_bias, NULL,
     appell_constraint, NULL,
 };
 #endif /* EOMC_EXTENDED */

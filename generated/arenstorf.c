@@ -36,6 +36,19 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[1] = {0.012277471};
 static const unsigned char p_fixed[1] = {0};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+arenstorf_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_mu = p[0];
+    const eomc_real w0 = p_mu - 1.0;
+    pd[0] = w0;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 arenstorf_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -69,6 +82,7 @@ arenstorf_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
     (void)u;
     (void)t;
     M[0] = 1.0;
@@ -87,28 +101,27 @@ arenstorf_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w10 = w1 * w9;
     const eomc_real w11 = 2.0 * w10;
     const eomc_real w12 = p_mu + q_x;
-    const eomc_real w13 = p_mu - 1.0;
-    const eomc_real w14 = w12 * w12;
-    const eomc_real w15 = w14 + w2;
-    const eomc_real w16 = sqrt(w15);
-    const eomc_real w17 = w13 / w16;
-    const eomc_real w18 = w17 / w16;
-    const eomc_real w19 = 0.5 / w16;
-    const eomc_real w20 = w18 * w19;
-    const eomc_real w21 = w12 * w20;
-    const eomc_real w22 = (-2.0) * w21;
-    const eomc_real w23 = w11 + w22;
-    const eomc_real w24 = q_x + v_y;
-    const eomc_real w25 = v_y + w24;
-    const eomc_real w26 = w23 - w25;
-    h[0] = w26;
-    const eomc_real w27 = w9 - w20;
-    const eomc_real w28 = q_y * w27;
-    const eomc_real w29 = 2.0 * w28;
-    const eomc_real w30 = q_y - v_x;
-    const eomc_real w31 = v_x - w30;
-    const eomc_real w32 = w29 + w31;
-    h[1] = w32;
+    const eomc_real w13 = w12 * w12;
+    const eomc_real w14 = w13 + w2;
+    const eomc_real w15 = sqrt(w14);
+    const eomc_real w16 = pd0 / w15;
+    const eomc_real w17 = w16 / w15;
+    const eomc_real w18 = 0.5 / w15;
+    const eomc_real w19 = w17 * w18;
+    const eomc_real w20 = w12 * w19;
+    const eomc_real w21 = (-2.0) * w20;
+    const eomc_real w22 = w11 + w21;
+    const eomc_real w23 = q_x + v_y;
+    const eomc_real w24 = v_y + w23;
+    const eomc_real w25 = w22 - w24;
+    h[0] = w25;
+    const eomc_real w26 = w9 - w19;
+    const eomc_real w27 = q_y * w26;
+    const eomc_real w28 = 2.0 * w27;
+    const eomc_real w29 = q_y - v_x;
+    const eomc_real w30 = v_x - w29;
+    const eomc_real w31 = w28 + w30;
+    h[1] = w31;
     M[1] = 0.0;
 }
 
@@ -123,6 +136,7 @@ arenstorf_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
     (void)u;
     (void)t;
     const eomc_real w0 = v_x - q_y;
@@ -132,21 +146,20 @@ arenstorf_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w4 = w1 + w3;
     const eomc_real w5 = 0.5 * w4;
     TV[0] = w5;
-    const eomc_real w6 = p_mu - 1.0;
-    const eomc_real w7 = p_mu + q_x;
-    const eomc_real w8 = w7 * w7;
-    const eomc_real w9 = q_y * q_y;
-    const eomc_real w10 = w8 + w9;
-    const eomc_real w11 = sqrt(w10);
-    const eomc_real w12 = w6 / w11;
-    const eomc_real w13 = q_x - 1.0;
-    const eomc_real w14 = p_mu + w13;
-    const eomc_real w15 = w14 * w14;
-    const eomc_real w16 = w9 + w15;
-    const eomc_real w17 = sqrt(w16);
-    const eomc_real w18 = p_mu / w17;
-    const eomc_real w19 = w12 - w18;
-    TV[1] = w19;
+    const eomc_real w6 = p_mu + q_x;
+    const eomc_real w7 = w6 * w6;
+    const eomc_real w8 = q_y * q_y;
+    const eomc_real w9 = w7 + w8;
+    const eomc_real w10 = sqrt(w9);
+    const eomc_real w11 = pd0 / w10;
+    const eomc_real w12 = q_x - 1.0;
+    const eomc_real w13 = p_mu + w12;
+    const eomc_real w14 = w13 * w13;
+    const eomc_real w15 = w8 + w14;
+    const eomc_real w16 = sqrt(w15);
+    const eomc_real w17 = p_mu / w16;
+    const eomc_real w18 = w11 - w17;
+    TV[1] = w18;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -158,6 +171,7 @@ arenstorf_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
     const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
     (void)v;
     (void)a;
     (void)u;
@@ -190,76 +204,75 @@ arenstorf_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w24 = (-4.0) * w23;
     const eomc_real w25 = w10 + w24;
     const eomc_real w26 = (-1.0) + w25;
-    const eomc_real w27 = p_mu - 1.0;
-    const eomc_real w28 = p_mu + q_x;
-    const eomc_real w29 = w28 * w28;
-    const eomc_real w30 = w29 + w0;
-    const eomc_real w31 = sqrt(w30);
-    const eomc_real w32 = w27 / w31;
-    const eomc_real w33 = w32 / w31;
-    const eomc_real w34 = 0.5 / w31;
-    const eomc_real w35 = w33 * w34;
-    const eomc_real w36 = (-2.0) * w35;
-    const eomc_real w37 = w28 * w33;
-    const eomc_real w38 = w34 / w31;
-    const eomc_real w39 = w37 * w38;
-    const eomc_real w40 = w28 * w34;
-    const eomc_real w41 = w33 / w31;
-    const eomc_real w42 = w40 * w41;
-    const eomc_real w43 = w39 + w42;
-    const eomc_real w44 = 1.0 / w31;
-    const eomc_real w45 = w44 * w40;
-    const eomc_real w46 = w33 * w45;
-    const eomc_real w47 = w43 + w46;
-    const eomc_real w48 = w34 * w47;
-    const eomc_real w49 = w28 * w48;
-    const eomc_real w50 = 4.0 * w49;
-    const eomc_real w51 = w36 + w50;
-    const eomc_real w52 = w26 + w51;
-    dEdq[0] = w52;
-    const eomc_real w53 = (-2.0) * w22;
-    const eomc_real w54 = 2.0 * w48;
-    const eomc_real w55 = w53 + w54;
-    const eomc_real w56 = q_y * w55;
-    const eomc_real w57 = 2.0 * w56;
-    dEdq[1] = w57;
+    const eomc_real w27 = p_mu + q_x;
+    const eomc_real w28 = w27 * w27;
+    const eomc_real w29 = w28 + w0;
+    const eomc_real w30 = sqrt(w29);
+    const eomc_real w31 = pd0 / w30;
+    const eomc_real w32 = w31 / w30;
+    const eomc_real w33 = 0.5 / w30;
+    const eomc_real w34 = w32 * w33;
+    const eomc_real w35 = (-2.0) * w34;
+    const eomc_real w36 = w27 * w32;
+    const eomc_real w37 = w33 / w30;
+    const eomc_real w38 = w36 * w37;
+    const eomc_real w39 = w27 * w33;
+    const eomc_real w40 = w32 / w30;
+    const eomc_real w41 = w39 * w40;
+    const eomc_real w42 = w38 + w41;
+    const eomc_real w43 = 1.0 / w30;
+    const eomc_real w44 = w43 * w39;
+    const eomc_real w45 = w32 * w44;
+    const eomc_real w46 = w42 + w45;
+    const eomc_real w47 = w33 * w46;
+    const eomc_real w48 = w27 * w47;
+    const eomc_real w49 = 4.0 * w48;
+    const eomc_real w50 = w35 + w49;
+    const eomc_real w51 = w26 + w50;
+    dEdq[0] = w51;
+    const eomc_real w52 = (-2.0) * w22;
+    const eomc_real w53 = 2.0 * w47;
+    const eomc_real w54 = w52 + w53;
+    const eomc_real w55 = q_y * w54;
+    const eomc_real w56 = 2.0 * w55;
+    dEdq[1] = w56;
     dEdv[0] = 0.0;
     dEdv[1] = (-2.0);
     dEdt[0] = 0.0;
-    const eomc_real w58 = q_y * w7;
-    const eomc_real w59 = w12 * w58;
-    const eomc_real w60 = q_y * w8;
-    const eomc_real w61 = w15 * w60;
-    const eomc_real w62 = w59 + w61;
-    const eomc_real w63 = w18 * w60;
-    const eomc_real w64 = w7 * w63;
-    const eomc_real w65 = w62 + w64;
-    const eomc_real w66 = w8 * w65;
-    const eomc_real w67 = w2 * w66;
-    const eomc_real w68 = (-4.0) * w67;
-    const eomc_real w69 = q_y * w33;
-    const eomc_real w70 = w38 * w69;
-    const eomc_real w71 = q_y * w34;
-    const eomc_real w72 = w41 * w71;
-    const eomc_real w73 = w70 + w72;
-    const eomc_real w74 = w44 * w71;
-    const eomc_real w75 = w33 * w74;
-    const eomc_real w76 = w73 + w75;
-    const eomc_real w77 = w34 * w76;
-    const eomc_real w78 = w28 * w77;
-    const eomc_real w79 = 4.0 * w78;
-    const eomc_real w80 = w68 + w79;
-    dEdq[2] = w80;
-    const eomc_real w81 = w9 - w35;
-    const eomc_real w82 = 2.0 * w81;
-    const eomc_real w83 = (-1.0) + w82;
-    const eomc_real w84 = (-2.0) * w66;
-    const eomc_real w85 = 2.0 * w77;
-    const eomc_real w86 = w84 + w85;
-    const eomc_real w87 = q_y * w86;
-    const eomc_real w88 = 2.0 * w87;
-    const eomc_real w89 = w83 + w88;
-    dEdq[3] = w89;
+    const eomc_real w57 = q_y * w7;
+    const eomc_real w58 = w12 * w57;
+    const eomc_real w59 = q_y * w8;
+    const eomc_real w60 = w15 * w59;
+    const eomc_real w61 = w58 + w60;
+    const eomc_real w62 = w18 * w59;
+    const eomc_real w63 = w7 * w62;
+    const eomc_real w64 = w61 + w63;
+    const eomc_real w65 = w8 * w64;
+    const eomc_real w66 = w2 * w65;
+    const eomc_real w67 = (-4.0) * w66;
+    const eomc_real w68 = q_y * w32;
+    const eomc_real w69 = w37 * w68;
+    const eomc_real w70 = q_y * w33;
+    const eomc_real w71 = w40 * w70;
+    const eomc_real w72 = w69 + w71;
+    const eomc_real w73 = w43 * w70;
+    const eomc_real w74 = w32 * w73;
+    const eomc_real w75 = w72 + w74;
+    const eomc_real w76 = w33 * w75;
+    const eomc_real w77 = w27 * w76;
+    const eomc_real w78 = 4.0 * w77;
+    const eomc_real w79 = w67 + w78;
+    dEdq[2] = w79;
+    const eomc_real w80 = w9 - w34;
+    const eomc_real w81 = 2.0 * w80;
+    const eomc_real w82 = (-1.0) + w81;
+    const eomc_real w83 = (-2.0) * w65;
+    const eomc_real w84 = 2.0 * w76;
+    const eomc_real w85 = w83 + w84;
+    const eomc_real w86 = q_y * w85;
+    const eomc_real w87 = 2.0 * w86;
+    const eomc_real w88 = w82 + w87;
+    dEdq[3] = w88;
     dEdv[2] = 2.0;
     dEdv[3] = 0.0;
     dEdt[1] = 0.0;
@@ -275,34 +288,34 @@ arenstorf_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
     (void)u;
     (void)t;
-    const eomc_real w0 = p_mu - 1.0;
-    const eomc_real w1 = p_mu + q_x;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = q_y * q_y;
-    const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = sqrt(w4);
-    const eomc_real w6 = w0 / w5;
-    const eomc_real w7 = q_x - 1.0;
-    const eomc_real w8 = p_mu + w7;
-    const eomc_real w9 = w8 * w8;
-    const eomc_real w10 = w3 + w9;
-    const eomc_real w11 = sqrt(w10);
-    const eomc_real w12 = p_mu / w11;
-    const eomc_real w13 = w6 - w12;
-    const eomc_real w14 = v_x - q_y;
-    const eomc_real w15 = v_x * w14;
-    const eomc_real w16 = q_x + v_y;
-    const eomc_real w17 = v_y * w16;
-    const eomc_real w18 = w15 + w17;
-    const eomc_real w19 = w14 * w14;
-    const eomc_real w20 = w16 * w16;
-    const eomc_real w21 = w19 + w20;
-    const eomc_real w22 = 0.5 * w21;
-    const eomc_real w23 = w18 - w22;
-    const eomc_real w24 = w13 + w23;
-    h[0] = w24;
+    const eomc_real w0 = p_mu + q_x;
+    const eomc_real w1 = w0 * w0;
+    const eomc_real w2 = q_y * q_y;
+    const eomc_real w3 = w1 + w2;
+    const eomc_real w4 = sqrt(w3);
+    const eomc_real w5 = pd0 / w4;
+    const eomc_real w6 = q_x - 1.0;
+    const eomc_real w7 = p_mu + w6;
+    const eomc_real w8 = w7 * w7;
+    const eomc_real w9 = w2 + w8;
+    const eomc_real w10 = sqrt(w9);
+    const eomc_real w11 = p_mu / w10;
+    const eomc_real w12 = w5 - w11;
+    const eomc_real w13 = v_x - q_y;
+    const eomc_real w14 = v_x * w13;
+    const eomc_real w15 = q_x + v_y;
+    const eomc_real w16 = v_y * w15;
+    const eomc_real w17 = w14 + w16;
+    const eomc_real w18 = w13 * w13;
+    const eomc_real w19 = w15 * w15;
+    const eomc_real w20 = w18 + w19;
+    const eomc_real w21 = 0.5 * w20;
+    const eomc_real w22 = w17 - w21;
+    const eomc_real w23 = w12 + w22;
+    h[0] = w23;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -320,6 +333,7 @@ arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
     (void)u;
     (void)t;
     piv[0] = 1.0;
@@ -341,27 +355,26 @@ arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w12 = w3 * w11;
     const eomc_real w13 = 2.0 * w12;
     const eomc_real w14 = p_mu + q_x;
-    const eomc_real w15 = p_mu - 1.0;
-    const eomc_real w16 = w14 * w14;
-    const eomc_real w17 = w16 + w4;
-    const eomc_real w18 = sqrt(w17);
-    const eomc_real w19 = w15 / w18;
-    const eomc_real w20 = w19 / w18;
-    const eomc_real w21 = 0.5 / w18;
-    const eomc_real w22 = w20 * w21;
-    const eomc_real w23 = w14 * w22;
-    const eomc_real w24 = (-2.0) * w23;
-    const eomc_real w25 = w13 + w24;
-    const eomc_real w26 = w1 - w25;
-    a[0] = w26;
-    const eomc_real w27 = w11 - w22;
-    const eomc_real w28 = q_y * w27;
-    const eomc_real w29 = 2.0 * w28;
-    const eomc_real w30 = q_y - v_x;
-    const eomc_real w31 = v_x - w30;
-    const eomc_real w32 = w29 + w31;
-    const eomc_real w33 = -w32;
-    a[1] = w33;
+    const eomc_real w15 = w14 * w14;
+    const eomc_real w16 = w15 + w4;
+    const eomc_real w17 = sqrt(w16);
+    const eomc_real w18 = pd0 / w17;
+    const eomc_real w19 = w18 / w17;
+    const eomc_real w20 = 0.5 / w17;
+    const eomc_real w21 = w19 * w20;
+    const eomc_real w22 = w14 * w21;
+    const eomc_real w23 = (-2.0) * w22;
+    const eomc_real w24 = w13 + w23;
+    const eomc_real w25 = w1 - w24;
+    a[0] = w25;
+    const eomc_real w26 = w11 - w21;
+    const eomc_real w27 = q_y * w26;
+    const eomc_real w28 = 2.0 * w27;
+    const eomc_real w29 = q_y - v_x;
+    const eomc_real w30 = v_x - w29;
+    const eomc_real w31 = w28 + w30;
+    const eomc_real w32 = -w31;
+    a[1] = w32;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -391,6 +404,7 @@ const eomc_model arenstorf_model = {
     EOMC_ABI_VERSION, "arenstorf", "arenstorf.yaml", "lagrange", "",
     2, 1, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    1, arenstorf_derive,
     17.065216560157964, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     arenstorf_initial, arenstorf_inputs, arenstorf_mass_bias, arenstorf_energy, arenstorf_jacobian,
     arenstorf_accel,
@@ -413,7 +427,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext arenstorf_model_ext = {
-    EOMC_ABI_VERSION, "arenstorf", arenstorf_inputs, arenstorf_mass_bias, arenstorf_accel,
+    EOMC_ABI_VERSION, "arenstorf", arenstorf_derive, arenstorf_inputs, arenstorf_mass_bias, arenstorf_accel,
     NULL, NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -43,6 +43,25 @@ static const char *const c_names[1] = {"rod"};
 static const int c_order[1] = {0};
 static const int c_dependent[1] = {1};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
+    const eomc_real w0 = p_l * p_l;
+    pd[0] = w0;
+    const eomc_real w1 = 0.5 * p_m;
+    pd[1] = w1;
+    const eomc_real w2 = p_m * p_g;
+    pd[2] = w2;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -80,7 +99,7 @@ cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
     eomc_real *h)
 {
     const eomc_real p_m = p[0];
-    const eomc_real p_g = p[2];
+    const eomc_real pd2 = p[6];
     (void)q;
     (void)v;
     (void)u;
@@ -89,8 +108,7 @@ cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
     M[2] = 0.0;
     M[3] = p_m;
     h[0] = 0.0;
-    const eomc_real w0 = p_m * p_g;
-    h[1] = w0;
+    h[1] = pd2;
     M[1] = 0.0;
 }
 
@@ -103,19 +121,17 @@ cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_y = q[1];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_g = p[2];
+    const eomc_real pd1 = p[5];
+    const eomc_real pd2 = p[6];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_x * v_x;
-    const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 * w3;
-    TV[0] = w4;
-    const eomc_real w5 = p_m * p_g;
-    const eomc_real w6 = w5 * q_y;
-    TV[1] = w6;
+    const eomc_real w0 = v_x * v_x;
+    const eomc_real w1 = v_y * v_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = pd1 * w2;
+    TV[0] = w3;
+    const eomc_real w4 = pd2 * q_y;
+    TV[1] = w4;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -151,19 +167,17 @@ cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
     const eomc_real q_y = q[1];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_g = p[2];
+    const eomc_real pd1 = p[5];
+    const eomc_real pd2 = p[6];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_x * v_x;
-    const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 * w3;
-    const eomc_real w5 = p_m * p_g;
-    const eomc_real w6 = w5 * q_y;
-    const eomc_real w7 = w4 + w6;
-    h[0] = w7;
+    const eomc_real w0 = v_x * v_x;
+    const eomc_real w1 = v_y * v_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = pd1 * w2;
+    const eomc_real w4 = pd2 * q_y;
+    const eomc_real w5 = w3 + w4;
+    h[0] = w5;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -208,20 +222,19 @@ cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_y = q[1];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_l = p[1];
+    const eomc_real pd0 = p[4];
     (void)u;
     (void)t;
     const eomc_real w0 = q_x * q_x;
     const eomc_real w1 = q_y * q_y;
     const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = p_l * p_l;
-    const eomc_real w4 = w2 - w3;
-    pos[0] = w4;
-    const eomc_real w5 = q_x * v_x;
-    const eomc_real w6 = q_y * v_y;
-    const eomc_real w7 = w5 + w6;
-    const eomc_real w8 = 2.0 * w7;
-    vel[0] = w8;
+    const eomc_real w3 = w2 - pd0;
+    pos[0] = w3;
+    const eomc_real w4 = q_x * v_x;
+    const eomc_real w5 = q_y * v_y;
+    const eomc_real w6 = w4 + w5;
+    const eomc_real w7 = 2.0 * w6;
+    vel[0] = w7;
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
@@ -330,6 +343,7 @@ const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    3, cartesian_pendulum_derive,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
@@ -353,7 +367,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext cartesian_pendulum_model_ext = {
-    EOMC_ABI_VERSION, "cartesian_pendulum", cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, NULL,
+    EOMC_ABI_VERSION, "cartesian_pendulum", cartesian_pendulum_derive, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, NULL,
     cartesian_pendulum_constraint, NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -43,6 +43,29 @@ static const char *const c_names[1] = {"blade"};
 static const int c_order[1] = {1};
 static const int c_dependent[1] = {1};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_J = p[1];
+    const eomc_real p_b = p[2];
+    const eomc_real w0 = 0.5 * p_m;
+    pd[0] = w0;
+    const eomc_real w1 = 0.5 * p_J;
+    pd[1] = w1;
+    const eomc_real w2 = p_m * p_b;
+    pd[2] = w2;
+    const eomc_real w3 = 2.0 * w2;
+    pd[3] = w3;
+    const eomc_real w4 = p_b * w2;
+    pd[4] = w4;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 chaplygin_sleigh_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -82,61 +105,61 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_m = p[0];
     const eomc_real p_J = p[1];
     const eomc_real p_b = p[2];
+    const eomc_real pd2 = p[7];
+    const eomc_real pd4 = p[9];
     (void)u;
     (void)t;
     M[0] = p_m;
     M[3] = 0.0;
     M[4] = p_m;
-    const eomc_real w0 = p_m * p_b;
-    const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = w0 * w1;
-    const eomc_real w3 = -w2;
-    M[6] = w3;
-    const eomc_real w4 = cos(q_theta);
-    const eomc_real w5 = w0 * w4;
-    M[7] = w5;
-    const eomc_real w6 = p_b * w0;
-    const eomc_real w7 = w4 * w4;
-    const eomc_real w8 = w6 * w7;
-    const eomc_real w9 = p_J + w8;
-    const eomc_real w10 = w1 * w1;
-    const eomc_real w11 = w6 * w10;
-    const eomc_real w12 = w9 + w11;
-    M[8] = w12;
-    const eomc_real w13 = v_theta * v_theta;
-    const eomc_real w14 = w4 * w13;
-    const eomc_real w15 = w0 * w14;
-    const eomc_real w16 = -w15;
-    h[0] = w16;
-    const eomc_real w17 = w1 * w13;
-    const eomc_real w18 = w0 * w17;
-    const eomc_real w19 = -w18;
-    h[1] = w19;
-    const eomc_real w20 = w1 * v_theta;
-    const eomc_real w21 = p_b * w20;
-    const eomc_real w22 = v_x - w21;
-    const eomc_real w23 = v_theta * w22;
-    const eomc_real w24 = w4 * w23;
-    const eomc_real w25 = w4 * v_theta;
-    const eomc_real w26 = p_b * w25;
-    const eomc_real w27 = v_y + w26;
-    const eomc_real w28 = v_theta * w27;
-    const eomc_real w29 = w1 * w28;
-    const eomc_real w30 = w24 + w29;
-    const eomc_real w31 = w20 * w27;
-    const eomc_real w32 = w4 * w1;
-    const eomc_real w33 = w32 * w13;
-    const eomc_real w34 = p_b * w33;
-    const eomc_real w35 = w31 + w34;
-    const eomc_real w36 = w22 * w25;
-    const eomc_real w37 = w36 - w34;
-    const eomc_real w38 = w35 + w37;
-    const eomc_real w39 = w30 - w38;
-    const eomc_real w40 = w0 * w39;
-    h[2] = w40;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = pd2 * w0;
+    const eomc_real w2 = -w1;
+    M[6] = w2;
+    const eomc_real w3 = cos(q_theta);
+    const eomc_real w4 = pd2 * w3;
+    M[7] = w4;
+    const eomc_real w5 = w3 * w3;
+    const eomc_real w6 = pd4 * w5;
+    const eomc_real w7 = p_J + w6;
+    const eomc_real w8 = w0 * w0;
+    const eomc_real w9 = pd4 * w8;
+    const eomc_real w10 = w7 + w9;
+    M[8] = w10;
+    const eomc_real w11 = v_theta * v_theta;
+    const eomc_real w12 = w3 * w11;
+    const eomc_real w13 = pd2 * w12;
+    const eomc_real w14 = -w13;
+    h[0] = w14;
+    const eomc_real w15 = w0 * w11;
+    const eomc_real w16 = pd2 * w15;
+    const eomc_real w17 = -w16;
+    h[1] = w17;
+    const eomc_real w18 = w0 * v_theta;
+    const eomc_real w19 = p_b * w18;
+    const eomc_real w20 = v_x - w19;
+    const eomc_real w21 = v_theta * w20;
+    const eomc_real w22 = w3 * w21;
+    const eomc_real w23 = w3 * v_theta;
+    const eomc_real w24 = p_b * w23;
+    const eomc_real w25 = v_y + w24;
+    const eomc_real w26 = v_theta * w25;
+    const eomc_real w27 = w0 * w26;
+    const eomc_real w28 = w22 + w27;
+    const eomc_real w29 = w18 * w25;
+    const eomc_real w30 = w3 * w0;
+    const eomc_real w31 = w30 * w11;
+    const eomc_real w32 = p_b * w31;
+    const eomc_real w33 = w29 + w32;
+    const eomc_real w34 = w20 * w23;
+    const eomc_real w35 = w34 - w32;
+    const eomc_real w36 = w33 + w35;
+    const eomc_real w37 = w28 - w36;
+    const eomc_real w38 = pd2 * w37;
+    h[2] = w38;
     M[1] = 0.0;
-    M[2] = w3;
-    M[5] = w5;
+    M[2] = w2;
+    M[5] = w4;
 }
 
 #ifndef EOMC_EXTENDED
@@ -149,29 +172,27 @@ chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_J = p[1];
     const eomc_real p_b = p[2];
+    const eomc_real pd0 = p[5];
+    const eomc_real pd1 = p[6];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = w1 * v_theta;
-    const eomc_real w3 = p_b * w2;
-    const eomc_real w4 = v_x - w3;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = cos(q_theta);
-    const eomc_real w7 = w6 * v_theta;
-    const eomc_real w8 = p_b * w7;
-    const eomc_real w9 = v_y + w8;
-    const eomc_real w10 = w9 * w9;
-    const eomc_real w11 = w5 + w10;
-    const eomc_real w12 = w0 * w11;
-    const eomc_real w13 = 0.5 * p_J;
-    const eomc_real w14 = v_theta * v_theta;
-    const eomc_real w15 = w13 * w14;
-    const eomc_real w16 = w12 + w15;
-    TV[0] = w16;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = w0 * v_theta;
+    const eomc_real w2 = p_b * w1;
+    const eomc_real w3 = v_x - w2;
+    const eomc_real w4 = w3 * w3;
+    const eomc_real w5 = cos(q_theta);
+    const eomc_real w6 = w5 * v_theta;
+    const eomc_real w7 = p_b * w6;
+    const eomc_real w8 = v_y + w7;
+    const eomc_real w9 = w8 * w8;
+    const eomc_real w10 = w4 + w9;
+    const eomc_real w11 = pd0 * w10;
+    const eomc_real w12 = v_theta * v_theta;
+    const eomc_real w13 = pd1 * w12;
+    const eomc_real w14 = w11 + w13;
+    TV[0] = w14;
     TV[1] = 0.0;
 }
 
@@ -188,88 +209,87 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     const eomc_real a_theta = a[2];
-    const eomc_real p_m = p[0];
     const eomc_real p_b = p[2];
+    const eomc_real pd2 = p[7];
+    const eomc_real pd3 = p[8];
+    const eomc_real pd4 = p[9];
     (void)u;
     (void)t;
     (void)dEdu;
     dEdq[0] = 0.0;
     dEdq[1] = 0.0;
-    const eomc_real w0 = p_m * p_b;
-    const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = v_theta * v_theta;
-    const eomc_real w3 = w1 * w2;
-    const eomc_real w4 = cos(q_theta);
-    const eomc_real w5 = w4 * a_theta;
-    const eomc_real w6 = w3 - w5;
-    const eomc_real w7 = w0 * w6;
-    dEdq[2] = w7;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = v_theta * v_theta;
+    const eomc_real w2 = w0 * w1;
+    const eomc_real w3 = cos(q_theta);
+    const eomc_real w4 = w3 * a_theta;
+    const eomc_real w5 = w2 - w4;
+    const eomc_real w6 = pd2 * w5;
+    dEdq[2] = w6;
     dEdv[0] = 0.0;
     dEdv[1] = 0.0;
-    const eomc_real w8 = 2.0 * w0;
-    const eomc_real w9 = w4 * v_theta;
-    const eomc_real w10 = w8 * w9;
-    const eomc_real w11 = -w10;
-    dEdv[2] = w11;
+    const eomc_real w7 = w3 * v_theta;
+    const eomc_real w8 = pd3 * w7;
+    const eomc_real w9 = -w8;
+    dEdv[2] = w9;
     dEdt[0] = 0.0;
     dEdq[3] = 0.0;
     dEdq[4] = 0.0;
-    const eomc_real w12 = w4 * w2;
-    const eomc_real w13 = w1 * a_theta;
-    const eomc_real w14 = w12 + w13;
-    const eomc_real w15 = w0 * w14;
-    const eomc_real w16 = -w15;
-    dEdq[5] = w16;
+    const eomc_real w10 = w3 * w1;
+    const eomc_real w11 = w0 * a_theta;
+    const eomc_real w12 = w10 + w11;
+    const eomc_real w13 = pd2 * w12;
+    const eomc_real w14 = -w13;
+    dEdq[5] = w14;
     dEdv[3] = 0.0;
     dEdv[4] = 0.0;
-    const eomc_real w17 = w1 * v_theta;
-    const eomc_real w18 = w8 * w17;
-    const eomc_real w19 = -w18;
-    dEdv[5] = w19;
+    const eomc_real w15 = w0 * v_theta;
+    const eomc_real w16 = pd3 * w15;
+    const eomc_real w17 = -w16;
+    dEdv[5] = w17;
     dEdt[1] = 0.0;
     dEdq[6] = 0.0;
     dEdq[7] = 0.0;
-    const eomc_real w20 = p_b * w9;
-    const eomc_real w21 = v_y + w20;
-    const eomc_real w22 = v_theta * w21;
-    const eomc_real w23 = p_b * w14;
-    const eomc_real w24 = a_x - w23;
-    const eomc_real w25 = w22 - w24;
-    const eomc_real w26 = w0 * w25;
-    const eomc_real w27 = p_b * w0;
-    const eomc_real w28 = w27 * w12;
-    const eomc_real w29 = w26 - w28;
-    const eomc_real w30 = w27 * w13;
-    const eomc_real w31 = w29 + w30;
-    const eomc_real w32 = w0 * w22;
-    const eomc_real w33 = w31 - w32;
-    const eomc_real w34 = w4 * w33;
-    const eomc_real w35 = w5 - w3;
-    const eomc_real w36 = p_b * w35;
-    const eomc_real w37 = a_y + w36;
-    const eomc_real w38 = p_b * w17;
-    const eomc_real w39 = v_x - w38;
-    const eomc_real w40 = v_theta * w39;
-    const eomc_real w41 = w37 + w40;
-    const eomc_real w42 = w0 * w41;
-    const eomc_real w43 = w27 * w5;
-    const eomc_real w44 = w42 + w43;
-    const eomc_real w45 = w27 * w3;
-    const eomc_real w46 = w44 + w45;
-    const eomc_real w47 = w0 * w40;
-    const eomc_real w48 = w46 - w47;
-    const eomc_real w49 = w1 * w48;
-    const eomc_real w50 = w34 - w49;
-    dEdq[8] = w50;
+    const eomc_real w18 = p_b * w7;
+    const eomc_real w19 = v_y + w18;
+    const eomc_real w20 = v_theta * w19;
+    const eomc_real w21 = p_b * w12;
+    const eomc_real w22 = a_x - w21;
+    const eomc_real w23 = w20 - w22;
+    const eomc_real w24 = pd2 * w23;
+    const eomc_real w25 = pd4 * w10;
+    const eomc_real w26 = w24 - w25;
+    const eomc_real w27 = pd4 * w11;
+    const eomc_real w28 = w26 + w27;
+    const eomc_real w29 = pd2 * w20;
+    const eomc_real w30 = w28 - w29;
+    const eomc_real w31 = w3 * w30;
+    const eomc_real w32 = w4 - w2;
+    const eomc_real w33 = p_b * w32;
+    const eomc_real w34 = a_y + w33;
+    const eomc_real w35 = p_b * w15;
+    const eomc_real w36 = v_x - w35;
+    const eomc_real w37 = v_theta * w36;
+    const eomc_real w38 = w34 + w37;
+    const eomc_real w39 = pd2 * w38;
+    const eomc_real w40 = pd4 * w4;
+    const eomc_real w41 = w39 + w40;
+    const eomc_real w42 = pd4 * w2;
+    const eomc_real w43 = w41 + w42;
+    const eomc_real w44 = pd2 * w37;
+    const eomc_real w45 = w43 - w44;
+    const eomc_real w46 = w0 * w45;
+    const eomc_real w47 = w31 - w46;
+    dEdq[8] = w47;
     dEdv[6] = 0.0;
     dEdv[7] = 0.0;
-    const eomc_real w51 = w4 * w39;
-    const eomc_real w52 = w1 * w21;
-    const eomc_real w53 = w51 + w52;
-    const eomc_real w54 = w53 - w51;
-    const eomc_real w55 = w54 - w52;
-    const eomc_real w56 = w0 * w55;
-    dEdv[8] = w56;
+    const eomc_real w48 = w3 * w36;
+    const eomc_real w49 = w0 * w19;
+    const eomc_real w50 = w48 + w49;
+    const eomc_real w51 = w50 - w48;
+    const eomc_real w52 = w51 - w49;
+    const eomc_real w53 = pd2 * w52;
+    dEdv[8] = w53;
     dEdt[2] = 0.0;
 }
 
@@ -282,29 +302,27 @@ chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[0];
-    const eomc_real p_J = p[1];
     const eomc_real p_b = p[2];
+    const eomc_real pd0 = p[5];
+    const eomc_real pd1 = p[6];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = w1 * v_theta;
-    const eomc_real w3 = p_b * w2;
-    const eomc_real w4 = v_x - w3;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = cos(q_theta);
-    const eomc_real w7 = w6 * v_theta;
-    const eomc_real w8 = p_b * w7;
-    const eomc_real w9 = v_y + w8;
-    const eomc_real w10 = w9 * w9;
-    const eomc_real w11 = w5 + w10;
-    const eomc_real w12 = w0 * w11;
-    const eomc_real w13 = 0.5 * p_J;
-    const eomc_real w14 = v_theta * v_theta;
-    const eomc_real w15 = w13 * w14;
-    const eomc_real w16 = w12 + w15;
-    h[0] = w16;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = w0 * v_theta;
+    const eomc_real w2 = p_b * w1;
+    const eomc_real w3 = v_x - w2;
+    const eomc_real w4 = w3 * w3;
+    const eomc_real w5 = cos(q_theta);
+    const eomc_real w6 = w5 * v_theta;
+    const eomc_real w7 = p_b * w6;
+    const eomc_real w8 = v_y + w7;
+    const eomc_real w9 = w8 * w8;
+    const eomc_real w10 = w4 + w9;
+    const eomc_real w11 = pd0 * w10;
+    const eomc_real w12 = v_theta * v_theta;
+    const eomc_real w13 = pd1 * w12;
+    const eomc_real w14 = w11 + w13;
+    h[0] = w14;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -511,6 +529,7 @@ const eomc_model chaplygin_sleigh_model = {
     EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "",
     3, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    5, chaplygin_sleigh_derive,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     chaplygin_sleigh_initial, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, chaplygin_sleigh_energy, chaplygin_sleigh_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
@@ -534,7 +553,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext chaplygin_sleigh_model_ext = {
-    EOMC_ABI_VERSION, "chaplygin_sleigh", chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, NULL,
+    EOMC_ABI_VERSION, "chaplygin_sleigh", chaplygin_sleigh_derive, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, NULL,
     chaplygin_sleigh_constraint, NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -34,6 +34,29 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {2.0, 9.81, 5.0};
 static const unsigned char p_fixed[3] = {0, 0, 0};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+falling_particle_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_g = p[1];
+    const eomc_real p_f = p[2];
+    const eomc_real w0 = 0.5 * p_m;
+    pd[0] = w0;
+    const eomc_real w1 = p_m * p_g;
+    pd[1] = w1;
+    const eomc_real w2 = w1 - p_f;
+    pd[2] = w2;
+    const eomc_real w3 = 1.0 / p_m;
+    const eomc_real w4 = p_f - w1;
+    const eomc_real w5 = w3 * w4;
+    pd[3] = w5;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -62,16 +85,13 @@ falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
     const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
-    const eomc_real p_f = p[2];
+    const eomc_real pd2 = p[5];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
     M[0] = p_m;
-    const eomc_real w0 = p_m * p_g;
-    const eomc_real w1 = w0 - p_f;
-    h[0] = w1;
+    h[0] = pd2;
 }
 
 #ifndef EOMC_EXTENDED
@@ -82,17 +102,15 @@ falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_y = q[0];
     const eomc_real v_y = v[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
+    const eomc_real pd0 = p[3];
+    const eomc_real pd1 = p[4];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_y * v_y;
-    const eomc_real w2 = w0 * w1;
-    TV[0] = w2;
-    const eomc_real w3 = p_m * p_g;
-    const eomc_real w4 = w3 * q_y;
-    TV[1] = w4;
+    const eomc_real w0 = v_y * v_y;
+    const eomc_real w1 = pd0 * w0;
+    TV[0] = w1;
+    const eomc_real w2 = pd1 * q_y;
+    TV[1] = w2;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -124,19 +142,14 @@ falling_particle_accel_solve(eomc_real t, const eomc_real *q,
     eomc_real *piv, eomc_real *mkk)
 {
     const eomc_real p_m = p[0];
-    const eomc_real p_g = p[1];
-    const eomc_real p_f = p[2];
+    const eomc_real pd3 = p[6];
     (void)q;
     (void)v;
     (void)u;
     (void)t;
     piv[0] = p_m;
     mkk[0] = p_m;
-    const eomc_real w0 = 1.0 / p_m;
-    const eomc_real w1 = p_m * p_g;
-    const eomc_real w2 = p_f - w1;
-    const eomc_real w3 = w0 * w2;
-    a[0] = w3;
+    a[0] = pd3;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -194,6 +207,7 @@ const eomc_model falling_particle_model = {
     EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    4, falling_particle_derive,
     1.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     falling_particle_initial, falling_particle_inputs, falling_particle_mass_bias, falling_particle_energy, falling_particle_jacobian,
     falling_particle_accel,
@@ -216,7 +230,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext falling_particle_model_ext = {
-    EOMC_ABI_VERSION, "falling_particle", falling_particle_inputs, falling_particle_mass_bias, falling_particle_accel,
+    EOMC_ABI_VERSION, "falling_particle", falling_particle_derive, falling_particle_inputs, falling_particle_mass_bias, falling_particle_accel,
     NULL, NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -34,6 +34,37 @@ static const char *const u_names[1] = {"u"};
 static const double p_default[6] = {0.01, 0.5, 1e+01, 2.0, 0.3, 9.81};
 static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+gear_link_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_r = p[2];
+    const eomc_real p_Jm = p[0];
+    const eomc_real p_Jl = p[1];
+    const eomc_real p_M = p[3];
+    const eomc_real p_g = p[5];
+    const eomc_real p_l = p[4];
+    const eomc_real w0 = 0.5 * p_Jm;
+    pd[0] = w0;
+    const eomc_real w1 = 0.5 * p_Jl;
+    pd[1] = w1;
+    const eomc_real w2 = p_M * p_g;
+    const eomc_real w3 = w2 * p_l;
+    pd[2] = w3;
+    const eomc_real w4 = p_r * p_Jm;
+    const eomc_real w5 = p_r * w4;
+    const eomc_real w6 = p_Jl + w5;
+    pd[3] = w6;
+    const eomc_real w7 = -p_r;
+    pd[4] = w7;
+    const eomc_real w8 = 1.0 / w6;
+    pd[5] = w8;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 gear_link_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -65,25 +96,17 @@ gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta_l = q[0];
     const eomc_real p_r = p[2];
-    const eomc_real p_Jm = p[0];
-    const eomc_real p_Jl = p[1];
-    const eomc_real p_M = p[3];
-    const eomc_real p_g = p[5];
-    const eomc_real p_l = p[4];
     const eomc_real u_u = u[0];
+    const eomc_real pd2 = p[8];
+    const eomc_real pd3 = p[9];
     (void)v;
     (void)t;
-    const eomc_real w0 = p_r * p_Jm;
-    const eomc_real w1 = p_r * w0;
-    const eomc_real w2 = p_Jl + w1;
-    M[0] = w2;
-    const eomc_real w3 = p_M * p_g;
-    const eomc_real w4 = w3 * p_l;
-    const eomc_real w5 = sin(q_theta_l);
-    const eomc_real w6 = w4 * w5;
-    const eomc_real w7 = p_r * u_u;
-    const eomc_real w8 = w6 - w7;
-    h[0] = w8;
+    M[0] = pd3;
+    const eomc_real w0 = sin(q_theta_l);
+    const eomc_real w1 = pd2 * w0;
+    const eomc_real w2 = p_r * u_u;
+    const eomc_real w3 = w1 - w2;
+    h[0] = w3;
 }
 
 #ifndef EOMC_EXTENDED
@@ -95,28 +118,22 @@ gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_theta_l = q[0];
     const eomc_real v_theta_l = v[0];
     const eomc_real p_r = p[2];
-    const eomc_real p_Jm = p[0];
-    const eomc_real p_Jl = p[1];
-    const eomc_real p_M = p[3];
-    const eomc_real p_g = p[5];
-    const eomc_real p_l = p[4];
+    const eomc_real pd0 = p[6];
+    const eomc_real pd1 = p[7];
+    const eomc_real pd2 = p[8];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_Jm;
-    const eomc_real w1 = p_r * v_theta_l;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = w0 * w2;
-    const eomc_real w4 = 0.5 * p_Jl;
-    const eomc_real w5 = v_theta_l * v_theta_l;
-    const eomc_real w6 = w4 * w5;
-    const eomc_real w7 = w3 + w6;
-    TV[0] = w7;
-    const eomc_real w8 = p_M * p_g;
-    const eomc_real w9 = w8 * p_l;
-    const eomc_real w10 = cos(q_theta_l);
-    const eomc_real w11 = 1.0 - w10;
-    const eomc_real w12 = w9 * w11;
-    TV[1] = w12;
+    const eomc_real w0 = p_r * v_theta_l;
+    const eomc_real w1 = w0 * w0;
+    const eomc_real w2 = pd0 * w1;
+    const eomc_real w3 = v_theta_l * v_theta_l;
+    const eomc_real w4 = pd1 * w3;
+    const eomc_real w5 = w2 + w4;
+    TV[0] = w5;
+    const eomc_real w6 = cos(q_theta_l);
+    const eomc_real w7 = 1.0 - w6;
+    const eomc_real w8 = pd2 * w7;
+    TV[1] = w8;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -126,22 +143,17 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     const eomc_real q_theta_l = q[0];
-    const eomc_real p_r = p[2];
-    const eomc_real p_M = p[3];
-    const eomc_real p_g = p[5];
-    const eomc_real p_l = p[4];
+    const eomc_real pd2 = p[8];
+    const eomc_real pd4 = p[10];
     (void)v;
     (void)a;
     (void)u;
     (void)t;
-    const eomc_real w0 = p_M * p_g;
-    const eomc_real w1 = w0 * p_l;
-    const eomc_real w2 = cos(q_theta_l);
-    const eomc_real w3 = w1 * w2;
-    dEdq[0] = w3;
+    const eomc_real w0 = cos(q_theta_l);
+    const eomc_real w1 = pd2 * w0;
+    dEdq[0] = w1;
     dEdv[0] = 0.0;
-    const eomc_real w4 = -p_r;
-    dEdu[0] = w4;
+    dEdu[0] = pd4;
     dEdt[0] = 0.0;
 }
 
@@ -157,28 +169,20 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta_l = q[0];
     const eomc_real p_r = p[2];
-    const eomc_real p_Jm = p[0];
-    const eomc_real p_Jl = p[1];
-    const eomc_real p_M = p[3];
-    const eomc_real p_g = p[5];
-    const eomc_real p_l = p[4];
     const eomc_real u_u = u[0];
+    const eomc_real pd2 = p[8];
+    const eomc_real pd3 = p[9];
+    const eomc_real pd5 = p[11];
     (void)v;
     (void)t;
-    const eomc_real w0 = p_r * p_Jm;
-    const eomc_real w1 = p_r * w0;
-    const eomc_real w2 = p_Jl + w1;
-    piv[0] = w2;
-    mkk[0] = w2;
-    const eomc_real w3 = 1.0 / w2;
-    const eomc_real w4 = p_r * u_u;
-    const eomc_real w5 = p_M * p_g;
-    const eomc_real w6 = w5 * p_l;
-    const eomc_real w7 = sin(q_theta_l);
-    const eomc_real w8 = w6 * w7;
-    const eomc_real w9 = w4 - w8;
-    const eomc_real w10 = w3 * w9;
-    a[0] = w10;
+    piv[0] = pd3;
+    mkk[0] = pd3;
+    const eomc_real w0 = p_r * u_u;
+    const eomc_real w1 = sin(q_theta_l);
+    const eomc_real w2 = pd2 * w1;
+    const eomc_real w3 = w0 - w2;
+    const eomc_real w4 = pd5 * w3;
+    a[0] = w4;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -208,6 +212,7 @@ const eomc_model gear_link_model = {
     EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "",
     1, 6, 1, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    6, gear_link_derive,
     1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
     gear_link_accel,
@@ -230,7 +235,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext gear_link_model_ext = {
-    EOMC_ABI_VERSION, "gear_link", gear_link_inputs, gear_link_mass_bias, gear_link_accel,
+    EOMC_ABI_VERSION, "gear_link", gear_link_derive, gear_link_inputs, gear_link_mass_bias, gear_link_accel,
     NULL, NULL,
 };
 #endif /* EOMC_EXTENDED */

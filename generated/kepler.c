@@ -35,6 +35,25 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {1.0, 1.0, 1.0, 0.5};
 static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+kepler_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[1];
+    const eomc_real p_mu = p[0];
+    const eomc_real w0 = p_m * p_mu;
+    pd[0] = w0;
+    const eomc_real w1 = 0.5 * p_m;
+    pd[1] = w1;
+    const eomc_real w2 = 1.0 / p_m;
+    const eomc_real w3 = (-2.0) * w2;
+    pd[2] = w3;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 kepler_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -74,28 +93,27 @@ kepler_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
     const eomc_real p_m = p[1];
-    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[4];
     (void)v;
     (void)u;
     (void)t;
     M[0] = p_m;
     M[2] = 0.0;
     M[3] = p_m;
-    const eomc_real w0 = p_m * p_mu;
-    const eomc_real w1 = q_x * q_x;
-    const eomc_real w2 = q_y * q_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = sqrt(w3);
-    const eomc_real w5 = w0 / w4;
-    const eomc_real w6 = w5 / w4;
-    const eomc_real w7 = 0.5 / w4;
-    const eomc_real w8 = w6 * w7;
-    const eomc_real w9 = q_x * w8;
-    const eomc_real w10 = 2.0 * w9;
-    h[0] = w10;
-    const eomc_real w11 = q_y * w8;
-    const eomc_real w12 = 2.0 * w11;
-    h[1] = w12;
+    const eomc_real w0 = q_x * q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = sqrt(w2);
+    const eomc_real w4 = pd0 / w3;
+    const eomc_real w5 = w4 / w3;
+    const eomc_real w6 = 0.5 / w3;
+    const eomc_real w7 = w5 * w6;
+    const eomc_real w8 = q_x * w7;
+    const eomc_real w9 = 2.0 * w8;
+    h[0] = w9;
+    const eomc_real w10 = q_y * w7;
+    const eomc_real w11 = 2.0 * w10;
+    h[1] = w11;
     M[1] = 0.0;
 }
 
@@ -109,24 +127,22 @@ kepler_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_y = q[1];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[1];
-    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd1 = p[5];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_x * v_x;
-    const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 * w3;
-    TV[0] = w4;
-    const eomc_real w5 = p_m * p_mu;
-    const eomc_real w6 = q_x * q_x;
-    const eomc_real w7 = q_y * q_y;
-    const eomc_real w8 = w6 + w7;
-    const eomc_real w9 = sqrt(w8);
-    const eomc_real w10 = w5 / w9;
-    const eomc_real w11 = -w10;
-    TV[1] = w11;
+    const eomc_real w0 = v_x * v_x;
+    const eomc_real w1 = v_y * v_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = pd1 * w2;
+    TV[0] = w3;
+    const eomc_real w4 = q_x * q_x;
+    const eomc_real w5 = q_y * q_y;
+    const eomc_real w6 = w4 + w5;
+    const eomc_real w7 = sqrt(w6);
+    const eomc_real w8 = pd0 / w7;
+    const eomc_real w9 = -w8;
+    TV[1] = w9;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -137,61 +153,59 @@ kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
-    const eomc_real p_m = p[1];
-    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[4];
     (void)v;
     (void)a;
     (void)u;
     (void)t;
     (void)dEdu;
-    const eomc_real w0 = p_m * p_mu;
-    const eomc_real w1 = q_x * q_x;
-    const eomc_real w2 = q_y * q_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = sqrt(w3);
-    const eomc_real w5 = w0 / w4;
-    const eomc_real w6 = w5 / w4;
-    const eomc_real w7 = 0.5 / w4;
-    const eomc_real w8 = w6 * w7;
-    const eomc_real w9 = 2.0 * w8;
-    const eomc_real w10 = q_x * w6;
-    const eomc_real w11 = w7 / w4;
-    const eomc_real w12 = w10 * w11;
-    const eomc_real w13 = q_x * w7;
-    const eomc_real w14 = w6 / w4;
-    const eomc_real w15 = w13 * w14;
-    const eomc_real w16 = w12 + w15;
-    const eomc_real w17 = 1.0 / w4;
-    const eomc_real w18 = w17 * w13;
-    const eomc_real w19 = w6 * w18;
-    const eomc_real w20 = w16 + w19;
-    const eomc_real w21 = w7 * w20;
-    const eomc_real w22 = q_x * w21;
-    const eomc_real w23 = (-4.0) * w22;
-    const eomc_real w24 = w9 + w23;
-    dEdq[0] = w24;
-    const eomc_real w25 = q_y * w21;
-    const eomc_real w26 = (-4.0) * w25;
-    dEdq[1] = w26;
+    const eomc_real w0 = q_x * q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = sqrt(w2);
+    const eomc_real w4 = pd0 / w3;
+    const eomc_real w5 = w4 / w3;
+    const eomc_real w6 = 0.5 / w3;
+    const eomc_real w7 = w5 * w6;
+    const eomc_real w8 = 2.0 * w7;
+    const eomc_real w9 = q_x * w5;
+    const eomc_real w10 = w6 / w3;
+    const eomc_real w11 = w9 * w10;
+    const eomc_real w12 = q_x * w6;
+    const eomc_real w13 = w5 / w3;
+    const eomc_real w14 = w12 * w13;
+    const eomc_real w15 = w11 + w14;
+    const eomc_real w16 = 1.0 / w3;
+    const eomc_real w17 = w16 * w12;
+    const eomc_real w18 = w5 * w17;
+    const eomc_real w19 = w15 + w18;
+    const eomc_real w20 = w6 * w19;
+    const eomc_real w21 = q_x * w20;
+    const eomc_real w22 = (-4.0) * w21;
+    const eomc_real w23 = w8 + w22;
+    dEdq[0] = w23;
+    const eomc_real w24 = q_y * w20;
+    const eomc_real w25 = (-4.0) * w24;
+    dEdq[1] = w25;
     dEdv[0] = 0.0;
     dEdv[1] = 0.0;
     dEdt[0] = 0.0;
-    const eomc_real w27 = q_y * w6;
-    const eomc_real w28 = w11 * w27;
-    const eomc_real w29 = q_y * w7;
-    const eomc_real w30 = w14 * w29;
-    const eomc_real w31 = w28 + w30;
-    const eomc_real w32 = w17 * w29;
-    const eomc_real w33 = w6 * w32;
-    const eomc_real w34 = w31 + w33;
-    const eomc_real w35 = w7 * w34;
-    const eomc_real w36 = q_x * w35;
-    const eomc_real w37 = (-4.0) * w36;
-    dEdq[2] = w37;
-    const eomc_real w38 = q_y * w35;
-    const eomc_real w39 = (-4.0) * w38;
-    const eomc_real w40 = w9 + w39;
-    dEdq[3] = w40;
+    const eomc_real w26 = q_y * w5;
+    const eomc_real w27 = w10 * w26;
+    const eomc_real w28 = q_y * w6;
+    const eomc_real w29 = w13 * w28;
+    const eomc_real w30 = w27 + w29;
+    const eomc_real w31 = w16 * w28;
+    const eomc_real w32 = w5 * w31;
+    const eomc_real w33 = w30 + w32;
+    const eomc_real w34 = w6 * w33;
+    const eomc_real w35 = q_x * w34;
+    const eomc_real w36 = (-4.0) * w35;
+    dEdq[2] = w36;
+    const eomc_real w37 = q_y * w34;
+    const eomc_real w38 = (-4.0) * w37;
+    const eomc_real w39 = w8 + w38;
+    dEdq[3] = w39;
     dEdv[2] = 0.0;
     dEdv[3] = 0.0;
     dEdt[1] = 0.0;
@@ -206,23 +220,21 @@ kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_y = q[1];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real p_m = p[1];
-    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd1 = p[5];
     (void)u;
     (void)t;
-    const eomc_real w0 = 0.5 * p_m;
-    const eomc_real w1 = v_x * v_x;
-    const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 * w3;
-    const eomc_real w5 = p_m * p_mu;
-    const eomc_real w6 = q_x * q_x;
-    const eomc_real w7 = q_y * q_y;
-    const eomc_real w8 = w6 + w7;
-    const eomc_real w9 = sqrt(w8);
-    const eomc_real w10 = w5 / w9;
-    const eomc_real w11 = w4 - w10;
-    h[0] = w11;
+    const eomc_real w0 = v_x * v_x;
+    const eomc_real w1 = v_y * v_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = pd1 * w2;
+    const eomc_real w4 = q_x * q_x;
+    const eomc_real w5 = q_y * q_y;
+    const eomc_real w6 = w4 + w5;
+    const eomc_real w7 = sqrt(w6);
+    const eomc_real w8 = pd0 / w7;
+    const eomc_real w9 = w3 - w8;
+    h[0] = w9;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -238,7 +250,8 @@ kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
     const eomc_real p_m = p[1];
-    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd2 = p[6];
     (void)v;
     (void)u;
     (void)t;
@@ -246,23 +259,20 @@ kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     piv[1] = p_m;
     mkk[0] = p_m;
     mkk[1] = p_m;
-    const eomc_real w0 = 1.0 / p_m;
-    const eomc_real w1 = (-2.0) * w0;
-    const eomc_real w2 = p_m * p_mu;
-    const eomc_real w3 = q_x * q_x;
-    const eomc_real w4 = q_y * q_y;
-    const eomc_real w5 = w3 + w4;
-    const eomc_real w6 = sqrt(w5);
-    const eomc_real w7 = w2 / w6;
-    const eomc_real w8 = w7 / w6;
-    const eomc_real w9 = 0.5 / w6;
-    const eomc_real w10 = w8 * w9;
-    const eomc_real w11 = q_x * w10;
-    const eomc_real w12 = w1 * w11;
-    a[0] = w12;
-    const eomc_real w13 = q_y * w10;
-    const eomc_real w14 = w1 * w13;
-    a[1] = w14;
+    const eomc_real w0 = q_x * q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = sqrt(w2);
+    const eomc_real w4 = pd0 / w3;
+    const eomc_real w5 = w4 / w3;
+    const eomc_real w6 = 0.5 / w3;
+    const eomc_real w7 = w5 * w6;
+    const eomc_real w8 = q_x * w7;
+    const eomc_real w9 = pd2 * w8;
+    a[0] = w9;
+    const eomc_real w10 = q_y * w7;
+    const eomc_real w11 = pd2 * w10;
+    a[1] = w11;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -320,6 +330,7 @@ const eomc_model kepler_model = {
     EOMC_ABI_VERSION, "kepler", "kepler.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    3, kepler_derive,
     18.84955592153876, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
     kepler_initial, kepler_inputs, kepler_mass_bias, kepler_energy, kepler_jacobian,
     kepler_accel,
@@ -342,7 +353,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext kepler_model_ext = {
-    EOMC_ABI_VERSION, "kepler", kepler_inputs, kepler_mass_bias, kepler_accel,
+    EOMC_ABI_VERSION, "kepler", kepler_derive, kepler_inputs, kepler_mass_bias, kepler_accel,
     NULL, NULL,
 };
 #endif /* EOMC_EXTENDED */

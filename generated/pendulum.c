@@ -35,6 +35,32 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {1.0, 1.0, 9.81};
 static const unsigned char p_fixed[3] = {0, 0, 0};
 
+#endif /* EOMC_EXTENDED */
+
+/* The values of the parameters alone that the other functions read:
+ * computed when the parameters change, not at every step. */
+static void
+pendulum_derive(const eomc_real *p, eomc_real *pd)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_l = p[1];
+    const eomc_real p_g = p[2];
+    const eomc_real w0 = p_l * p_l;
+    const eomc_real w1 = p_m * w0;
+    pd[0] = w1;
+    const eomc_real w2 = 0.5 * w1;
+    pd[1] = w2;
+    const eomc_real w3 = p_l * p_g;
+    const eomc_real w4 = p_m * w3;
+    pd[2] = w4;
+    const eomc_real w5 = 2.0 * w1;
+    pd[3] = w5;
+    const eomc_real w6 = 1.0 / w1;
+    const eomc_real w7 = w4 * w6;
+    pd[4] = w7;
+}
+
+#ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
 static void
 pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
@@ -62,20 +88,15 @@ pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
     const eomc_real q_theta = q[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_l = p[1];
-    const eomc_real p_g = p[2];
+    const eomc_real pd0 = p[3];
+    const eomc_real pd2 = p[5];
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = p_l * p_l;
-    const eomc_real w1 = p_m * w0;
-    M[0] = w1;
-    const eomc_real w2 = p_l * p_g;
-    const eomc_real w3 = p_m * w2;
-    const eomc_real w4 = sin(q_theta);
-    const eomc_real w5 = w3 * w4;
-    h[0] = w5;
+    M[0] = pd0;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = pd2 * w0;
+    h[0] = w1;
 }
 
 #ifndef EOMC_EXTENDED
@@ -86,28 +107,22 @@ pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta = q[0];
     const eomc_real v_theta = v[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_l = p[1];
-    const eomc_real p_g = p[2];
+    const eomc_real pd1 = p[4];
+    const eomc_real pd2 = p[5];
     (void)u;
     (void)t;
-    const eomc_real w0 = p_l * p_l;
-    const eomc_real w1 = p_m * w0;
-    const eomc_real w2 = 0.5 * w1;
-    const eomc_real w3 = cos(q_theta);
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = w0 * v_theta;
+    const eomc_real w2 = w1 * w1;
+    const eomc_real w3 = sin(q_theta);
     const eomc_real w4 = w3 * v_theta;
     const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = sin(q_theta);
-    const eomc_real w7 = w6 * v_theta;
-    const eomc_real w8 = w7 * w7;
-    const eomc_real w9 = w5 + w8;
-    const eomc_real w10 = w2 * w9;
-    TV[0] = w10;
-    const eomc_real w11 = p_l * p_g;
-    const eomc_real w12 = p_m * w11;
-    const eomc_real w13 = w12 * w3;
-    const eomc_real w14 = -w13;
-    TV[1] = w14;
+    const eomc_real w6 = w2 + w5;
+    const eomc_real w7 = pd1 * w6;
+    TV[0] = w7;
+    const eomc_real w8 = pd2 * w0;
+    const eomc_real w9 = -w8;
+    TV[1] = w9;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
@@ -118,29 +133,23 @@ pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta = q[0];
     const eomc_real a_theta = a[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_l = p[1];
-    const eomc_real p_g = p[2];
+    const eomc_real pd2 = p[5];
+    const eomc_real pd3 = p[6];
     (void)v;
     (void)u;
     (void)t;
     (void)dEdu;
     const eomc_real w0 = cos(q_theta);
-    const eomc_real w1 = p_l * p_g;
-    const eomc_real w2 = p_m * w1;
-    const eomc_real w3 = p_l * p_l;
-    const eomc_real w4 = p_m * w3;
-    const eomc_real w5 = 2.0 * w4;
-    const eomc_real w6 = sin(q_theta);
+    const eomc_real w1 = sin(q_theta);
+    const eomc_real w2 = w1 * a_theta;
+    const eomc_real w3 = pd3 * w2;
+    const eomc_real w4 = pd2 + w3;
+    const eomc_real w5 = w0 * w4;
+    const eomc_real w6 = w1 * w0;
     const eomc_real w7 = w6 * a_theta;
-    const eomc_real w8 = w5 * w7;
-    const eomc_real w9 = w2 + w8;
-    const eomc_real w10 = w0 * w9;
-    const eomc_real w11 = w6 * w0;
-    const eomc_real w12 = w11 * a_theta;
-    const eomc_real w13 = w5 * w12;
-    const eomc_real w14 = w10 - w13;
-    dEdq[0] = w14;
+    const eomc_real w8 = pd3 * w7;
+    const eomc_real w9 = w5 - w8;
+    dEdq[0] = w9;
     dEdv[0] = 0.0;
     dEdt[0] = 0.0;
 }
@@ -152,27 +161,21 @@ pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta = q[0];
     const eomc_real v_theta = v[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_l = p[1];
-    const eomc_real p_g = p[2];
+    const eomc_real pd1 = p[4];
+    const eomc_real pd2 = p[5];
     (void)u;
     (void)t;
-    const eomc_real w0 = p_l * p_l;
-    const eomc_real w1 = p_m * w0;
-    const eomc_real w2 = 0.5 * w1;
-    const eomc_real w3 = cos(q_theta);
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = w0 * v_theta;
+    const eomc_real w2 = w1 * w1;
+    const eomc_real w3 = sin(q_theta);
     const eomc_real w4 = w3 * v_theta;
     const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = sin(q_theta);
-    const eomc_real w7 = w6 * v_theta;
-    const eomc_real w8 = w7 * w7;
-    const eomc_real w9 = w5 + w8;
-    const eomc_real w10 = w2 * w9;
-    const eomc_real w11 = p_l * p_g;
-    const eomc_real w12 = p_m * w11;
-    const eomc_real w13 = w12 * w3;
-    const eomc_real w14 = w10 - w13;
-    h[0] = w14;
+    const eomc_real w6 = w2 + w5;
+    const eomc_real w7 = pd1 * w6;
+    const eomc_real w8 = pd2 * w0;
+    const eomc_real w9 = w7 - w8;
+    h[0] = w9;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -186,24 +189,17 @@ pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     eomc_real *mkk)
 {
     const eomc_real q_theta = q[0];
-    const eomc_real p_m = p[0];
-    const eomc_real p_l = p[1];
-    const eomc_real p_g = p[2];
+    const eomc_real pd0 = p[3];
+    const eomc_real pd4 = p[7];
     (void)v;
     (void)u;
     (void)t;
-    const eomc_real w0 = p_l * p_l;
-    const eomc_real w1 = p_m * w0;
-    piv[0] = w1;
-    mkk[0] = w1;
-    const eomc_real w2 = p_l * p_g;
-    const eomc_real w3 = p_m * w2;
-    const eomc_real w4 = 1.0 / w1;
-    const eomc_real w5 = w3 * w4;
-    const eomc_real w6 = sin(q_theta);
-    const eomc_real w7 = w5 * w6;
-    const eomc_real w8 = -w7;
-    a[0] = w8;
+    piv[0] = pd0;
+    mkk[0] = pd0;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = pd4 * w0;
+    const eomc_real w2 = -w1;
+    a[0] = w2;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
@@ -261,6 +257,7 @@ const eomc_model pendulum_model = {
     EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "",
     1, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
+    5, pendulum_derive,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     pendulum_initial, pendulum_inputs, pendulum_mass_bias, pendulum_energy, pendulum_jacobian,
     pendulum_accel,
@@ -283,7 +280,7 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext pendulum_model_ext = {
-    EOMC_ABI_VERSION, "pendulum", pendulum_inputs, pendulum_mass_bias, pendulum_accel,
+    EOMC_ABI_VERSION, "pendulum", pendulum_derive, pendulum_inputs, pendulum_mass_bias, pendulum_accel,
     NULL, NULL,
 };
 #endif /* EOMC_EXTENDED */

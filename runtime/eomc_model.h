@@ -19,7 +19,7 @@
  * Argument names used below:
  *   t   time                       q   coordinates            [nq]
  *   v   velocities q'   [nq]       a   accelerations q''      [nq]
- *   p   parameters      [np]       u   input values           [nu]
+ *   p   parameters [np + nd] (derive) u  input values           [nu]
  *
  * The functions are written in the number type eomc_real: double, or,
  * when the same file is compiled a second time with -DEOMC_EXTENDED,
@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 6
+#define EOMC_ABI_VERSION 7
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -62,6 +62,14 @@ typedef struct eomc_model {
      * p_default[k]; setting it has no effect, so the runtime refuses to. */
     const char *scene;
     const unsigned char *p_fixed; /* [np] */
+    /* Values of the parameters alone (m l^2, g/l, ...) are not computed
+     * at every step: derive(p, p + np) computes nd of them from p[0..np)
+     * into p[np..np+nd), and every function below but initial and check
+     * reads them there.  So the p they are given has np + nd entries, and
+     * derive must run again whenever a parameter changes (the runtime's
+     * eomc_sim does).  nd = 0: derive is NULL, p has np entries. */
+    int nd;
+    void (*derive)(const double *p, double *pd);
 
     /* Scene defaults: the simulator's options override them. */
     double t_end, dt;      /* end time, output interval */
@@ -168,6 +176,7 @@ typedef struct eomc_model {
 typedef struct eomc_model_ext {
     int abi;               /* EOMC_ABI_VERSION */
     const char *name;      /* the model's name, as in eomc_model */
+    void (*derive)(const eomc_ext *p, eomc_ext *pd); /* as in eomc_model */
     void (*inputs)(eomc_ext t, const eomc_ext *p, eomc_ext *u, eomc_ext *dudt);
     void (*mass_bias)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                       const eomc_ext *p, const eomc_ext *u, eomc_ext *M, eomc_ext *h);

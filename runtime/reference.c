@@ -420,7 +420,7 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
                            &r->f,  &r->B,  &r->a,    &r->lam, &r->cj[0], &r->X, &r->F,
                            &r->Xn, &r->z0, &r->z1,   &r->z2, &r->c0, &r->c1, &r->Y,
                            &r->G,  &r->Y2, &r->T,    &r->mag, &r->eq, &r->dK};
-    size_t sizes[] = {(size_t)m->np, nu, nu, n * n, n, W * W, W,
+    size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W,
                       nc, nc * n, n, nc, ncj, N, N,
                       N, N, N, N, N, N, N,
                       N, N, LEVELS * N, N, 2 * W, W};
@@ -435,6 +435,8 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
         r->cj[k] = r->cj[k - 1] + cj[k - 1];
     for (int k = 0; k < m->np; k++)
         r->p[k] = s->p[k];
+    if (r->x->derive) /* in extended precision too */
+        r->x->derive(r->p, r->p + m->np);
     return 0;
 }
 

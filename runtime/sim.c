@@ -25,6 +25,14 @@ sim_zeros(size_t n)
     return calloc(n ? n : 1, sizeof(double));
 }
 
+/* The values of the parameters alone, after any change of them. */
+static void
+sim_derive(eomc_sim *s)
+{
+    if (s->m->derive)
+        s->m->derive(s->p, s->p + s->m->np);
+}
+
 eomc_sim *
 eomc_sim_alloc(const eomc_model *m)
 {
@@ -38,7 +46,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->m = m;
     s->n = m->nq;
     s->nu = m->nu;
-    s->p = sim_zeros(np);
+    s->p = sim_zeros(np + (size_t)m->nd); /* the parameters, then derive's values */
     s->u = sim_zeros(nu);
     s->dudt = sim_zeros(nu);
     s->u_const = sim_zeros(nu);
@@ -74,6 +82,7 @@ eomc_sim_alloc(const eomc_model *m)
         return NULL;
     }
     memcpy(s->p, m->p_default, np * sizeof(double));
+    sim_derive(s);
     s->pivot = 1;
     return s;
 }
@@ -180,6 +189,7 @@ eomc_sim_set(eomc_sim *s, const char *name, double value)
                                        m->scene, *m->scene ? "'" : "");
             }
             s->p[k] = value;
+            sim_derive(s);
             return EOMC_OK;
         }
     for (int k = 0; k < m->nu; k++)

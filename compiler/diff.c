@@ -224,6 +224,7 @@ time_leaf(ExprPool *P, const ExprNode *nd)
             return EXPR_NONE;
         return expr_var(P, (int)nd->a, (int)nd->b + 1);
     case EXPR_INPUT: /* a signal's derivative is not known symbolically */
+    case EXPR_MULT:  /* nor a multiplier's */
         return EXPR_NONE;
     }
     return EXPR_ZERO;

@@ -26,8 +26,8 @@ enum { PART_SIZE = 6000 };
 /* The arrays leaves are read from, in the order their locals are
  * declared and unused ones are (void)ed: a function reads only those
  * among its inputs. */
-enum { SRC_Q, SRC_V, SRC_A, SRC_P, SRC_U, SRC_T, SRC_DQ, SRC_DV, NSRC };
-static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv"};
+enum { SRC_Q, SRC_V, SRC_A, SRC_P, SRC_U, SRC_T, SRC_DQ, SRC_DV, SRC_LAM, NSRC };
+static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "lam"};
 
 /* A function being printed: its list and its signature. */
 typedef struct Func {
@@ -148,6 +148,9 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
         break;
     case EXPR_INPUT:
         snprintf(buf, len, "u_%s", pr->s->input[nd->a].name);
+        break;
+    case EXPR_MULT:
+        snprintf(buf, len, "lam_%s", pr->s->constraint[nd->a].name);
         break;
     default:
         snprintf(buf, len, "t");
@@ -336,7 +339,8 @@ mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
 static void
 print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
 {
-    static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED};
+    static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED,
+                                EXPR_MULT};
     size_t size = expr_pool_size(pr->P);
     unsigned char *mark = calloc(size, 1);
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
@@ -361,6 +365,7 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
             int arr = nd->op == EXPR_VAR    ? SRC_Q + (int)nd->b
                       : nd->op == EXPR_PARAM  ? SRC_P
                       : nd->op == EXPR_INPUT  ? SRC_U
+                      : nd->op == EXPR_MULT   ? SRC_LAM
                                               : SRC_DQ + (int)nd->b; /* seeds */
             char buf[160];
             leaf_name(pr, nd, buf, sizeof buf);
@@ -764,9 +769,14 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         fprintf(pr->f, "    NULL, NULL,\n    ");
     print_c_string(pr->f, inv->note);
     if (s->ncheck)
-        println(pr, ",\n    %d, %s_check, check_what, check_params,\n};\n", s->ncheck, nm);
+        println(pr, ",\n    %d, %s_check, check_what, check_params,", s->ncheck, nm);
     else
-        println(pr, ",\n    0, NULL, NULL, NULL,\n};\n");
+        println(pr, ",\n    0, NULL, NULL, NULL,");
+    if (L->outputs)
+        println(pr, "    %d, out_names, %s_outputs,", s->scene.noutput, nm);
+    else
+        println(pr, "    0, NULL, NULL, /* the scene asks for no outputs */");
+    println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
     println(pr, "/* The reference solution's functions: this file compiled again with");
@@ -856,7 +866,7 @@ add_count(ExprCount *c, ExprCount d)
 /* The rows of --stats, in order. */
 static const char *const stat_names[EMIT_NFUNCS] = {
     "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "constraint",
-    "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive",
+    "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive", "outputs",
 };
 
 void
@@ -871,6 +881,12 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
     print_tables(&pr);
     if (c)
         print_constraint_tables(&pr, c);
+    if (L->outputs) {
+        fprintf(f, "static const char *const out_names[%d] = {", s->scene.noutput);
+        for (int k = 0; k < s->scene.noutput; k++)
+            fprintf(f, "%s\"%s\"", k ? ", " : "", s->scene.output[k].name);
+        println(&pr, "};\n");
+    }
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *lf = L->func[k];
         ExprCount n = print_function(&pr, lf);

@@ -133,7 +133,8 @@ mk(ExprPool *P, int op, ExprId a, ExprId b)
     ExprNode nd = {.op = (uint8_t)op, .a = a, .b = b, .value = 0.0};
     int ar = expr_op_arity[op];
     switch (op) {
-    case EXPR_VAR: nd.deps = (uint8_t)DEP_ORDER(b); break;
+    case EXPR_VAR: nd.deps = (uint16_t)DEP_ORDER(b); break;
+    case EXPR_MULT: nd.deps = DEP_L; break;
     case EXPR_PARAM: nd.deps = DEP_P; break;
     case EXPR_INPUT: nd.deps = DEP_U; break;
     case EXPR_TIME: nd.deps = DEP_T; break;
@@ -164,6 +165,7 @@ ExprId expr_var(ExprPool *P, int coord, int order)
 }
 ExprId expr_param(ExprPool *P, int i) { return mk(P, EXPR_PARAM, (uint32_t)i, 0); }
 ExprId expr_input(ExprPool *P, int i) { return mk(P, EXPR_INPUT, (uint32_t)i, 0); }
+ExprId expr_mult(ExprPool *P, int c) { return mk(P, EXPR_MULT, (uint32_t)c, 0); }
 ExprId expr_time(ExprPool *P) { return mk(P, EXPR_TIME, 0, 0); }
 ExprId
 expr_seed(ExprPool *P, int coord, int kind)
@@ -732,6 +734,7 @@ eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
     case EXPR_INPUT: return env->u[nd->a];
     case EXPR_TIME: return env->t;
     case EXPR_SEED: return env->seed[nd->b] ? env->seed[nd->b][nd->a] : 0.0;
+    case EXPR_MULT: return env->lam ? env->lam[nd->a] : 0.0;
     case EXPR_ADD: return x + y;
     case EXPR_SUB: return x - y;
     case EXPR_MUL: return x * y;

@@ -46,6 +46,7 @@ enum {
     DEP_P = 1 << 5,      /* parameters */
     DEP_U = 1 << 6,      /* inputs */
     DEP_S = 1 << 7,      /* seeds of a directional derivative */
+    DEP_L = 1 << 8,      /* multipliers of the constraints */
 };
 #define DEP_ORDER(k) (DEP_Q << (k))
 #define DEP_ANY_Q (DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_ORDER(3))
@@ -53,7 +54,7 @@ enum {
 typedef struct ExprNode {
     uint8_t op;
     uint8_t coeff; /* depends on parameters and constants only (derived) */
-    uint8_t deps;  /* DEP_ bits of the leaves below (derived) */
+    uint16_t deps; /* DEP_ bits of the leaves below (derived) */
     uint32_t a, b; /* operands, or leaf data: see ops.def */
     uint32_t height; /* 0 for a leaf, else 1 + the operands' highest (derived) */
     double value;  /* EXPR_CONST only */
@@ -81,6 +82,8 @@ ExprId expr_time(ExprPool *P);
 /* The seed component dq_i (kind 0) or dq'_i (kind 1) of a directional
  * derivative (diff_jvp).  Only the emitter gives seeds values. */
 ExprId expr_seed(ExprPool *P, int coord, int kind);
+/* The multiplier of constraint c (outputs only: nothing differentiates it). */
+ExprId expr_mult(ExprPool *P, int c);
 
 /* Simplifying constructors. */
 ExprId expr_add(ExprPool *P, ExprId a, ExprId b);
@@ -115,6 +118,7 @@ typedef struct ExprEnv {
     const double *p;
     const double *u;
     const double *seed[2]; /* seeds dq, dq' of EXPR_SEED; NULL reads as 0 */
+    const double *lam;     /* multipliers of EXPR_MULT; NULL reads as 0 */
 } ExprEnv;
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,

@@ -103,6 +103,10 @@ static const LowSig s_derive = {
     " * computed when the parameters change, not at every step.",
     "p > pd",
 };
+static const LowSig s_outputs = {
+    "outputs", "The scene's outputs, at a state and its accelerations and multipliers.",
+    "t q v a p u lam > out",
+};
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
     "p > chk",
@@ -413,6 +417,12 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
         for (int i = 0; i < n; i++)
             out(&lw, f, 0, i, e->acc[i]);
         lw.L->accel_solve = f;
+    }
+    if (s->scene.noutput) {
+        f = func(&lw, &s_outputs, "outputs", 1);
+        for (int k = 0; k < s->scene.noutput; k++)
+            out(&lw, f, 0, k, s->scene.output[k].expr);
+        lw.L->outputs = f;
     }
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);

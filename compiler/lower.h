@@ -78,6 +78,7 @@ typedef struct Lowered {
      * need: derive computes them into pd[] when the parameters change,
      * and derived[id] is node id's index there (-1: not derived). */
     LowFunc *derive;
+    LowFunc *outputs;     /* the scene's outputs, or NULL */
     int *derived;
     int nd;
     int n;                /* coordinates */

@@ -28,7 +28,7 @@ enum { MAX_HEIGHT = 10000 };
 
 typedef enum {
     T_END, T_NUM, T_NAME, T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
-    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME,
+    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME, T_LBRACKET, T_RBRACKET,
 } TokKind;
 
 typedef struct Token {
@@ -140,9 +140,10 @@ lex(const ParseSrc *src, size_t i)
     if (i >= src->len)
         return t;
     unsigned char c = (unsigned char)s[i];
-    static const char ops[] = "+-*/^(),'";
+    static const char ops[] = "+-*/^(),'[]";
     static const TokKind kinds[] = {T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
-                                    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME};
+                                    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME,
+                                    T_LBRACKET, T_RBRACKET};
     if (isdigit(c) || (c == '.' && i + 1 < src->len && isdigit((unsigned char)s[i + 1]))) {
         t.kind = T_NUM;
         t.len = scan_number(src, i, &t.num) - i;
@@ -232,6 +233,10 @@ describe_leaf(ParseScope *sc, ExprId leaf, char *buf, size_t len)
         break;
     case EXPR_PARAM:
         snprintf(buf, len, "the parameter '%s'", sc->leaf_name(sc, leaf));
+        break;
+    case EXPR_MULT:
+        snprintf(buf, len, "the multiplier lambda[%s] (only a scene's outputs have "
+                 "multipliers)", sc->leaf_name(sc, leaf));
         break;
     default:
         snprintf(buf, len, "the input '%s'", sc->leaf_name(sc, leaf));
@@ -410,6 +415,32 @@ call(Parser *ps, const char *name, size_t name_off)
     return finite(ps, expr_binary(P, b->op, args[0], args[1]), name, args[0], args[1], name_off);
 }
 
+/* lambda[NAME]: the multiplier of constraint NAME. */
+static ExprId
+multiplier(Parser *ps, size_t off)
+{
+    ParseScope *sc = ps->sc;
+    size_t open = ps->tok.off;
+    next(ps); /* [ */
+    if (ps->tok.kind != T_NAME) {
+        char buf[80];
+        diag_error(at(ps, ps->tok.off), "expected a constraint's name after 'lambda[', "
+                   "found %s", tok_text(ps, &ps->tok, buf, sizeof buf));
+    }
+    char name[MAX_NAME + 1];
+    size_t noff = ps->tok.off;
+    memcpy(name, ps->src->text + noff, ps->tok.len);
+    name[ps->tok.len] = '\0';
+    next(ps);
+    expect(ps, T_RBRACKET, "']'", open);
+    if (!sc->multiplier || !(sc->allow & DEP_L))
+        diag_error(at(ps, off), "%s cannot depend on a multiplier (only a scene's outputs "
+                   "have them)", sc->what);
+    ExprId e = sc->multiplier(sc, name, at(ps, noff));
+    check_deps(ps, e, NULL, off);
+    return e;
+}
+
 static ExprId
 name_or_call(Parser *ps)
 {
@@ -420,6 +451,8 @@ name_or_call(Parser *ps)
     next(ps);
     if (ps->tok.kind == T_LPAREN)
         return call(ps, name, off);
+    if (ps->tok.kind == T_LBRACKET && !strcmp(name, "lambda"))
+        return multiplier(ps, off);
     if (find_builtin(name))
         diag_error(at(ps, off), "'%s' is a function: write %s(...)", name, name);
     ParseScope *sc = ps->sc;

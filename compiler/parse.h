@@ -7,6 +7,7 @@
  *   power   = postfix ("^" unary)?      right-associative; -x^2 = -(x^2)
  *   postfix = primary "'"*              x' = dot(x), x'' = dot(dot(x))
  *   primary = NUMBER | NAME | NAME "(" expr ("," expr)* ")" | "(" expr ")"
+ *           | "lambda" "[" NAME "]"    a constraint's multiplier
  *
  * Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt
  * abs pow, dot(e), the total time derivative, and delta(e), the variation
@@ -36,7 +37,10 @@ struct ParseScope {
     Diff *D;
     /* The expression a name stands for; reports unknown names itself. */
     ExprId (*lookup)(ParseScope *sc, const char *name, SrcLoc at);
-    /* The user's name of a leaf (coordinate, parameter, input). */
+    /* lambda[NAME]: the multiplier of constraint NAME (NULL: none here);
+     * reports unknown names itself. */
+    ExprId (*multiplier)(ParseScope *sc, const char *name, SrcLoc at);
+    /* The user's name of a leaf (coordinate, parameter, input, multiplier). */
     const char *(*leaf_name)(ParseScope *sc, ExprId leaf);
     /* What the expression being parsed may depend on (DEP_ bits), and
      * what it is, for messages: "a mass", "a position". */

@@ -462,8 +462,33 @@ leaf_name(ParseScope *sc, ExprId leaf)
     case EXPR_VAR: return L->s->coord[nd->a].name;
     case EXPR_PARAM: return L->s->param[nd->a].name;
     case EXPR_INPUT: return L->s->input[nd->a].name;
+    case EXPR_MULT: return L->s->constraint[nd->a].name;
     }
     return "t";
+}
+
+/* lambda[NAME] */
+static ExprId
+multiplier(ParseScope *sc, const char *name, SrcLoc at)
+{
+    Loader *L = (Loader *)sc;
+    Spec *s = L->s;
+    if (s->nconstraint == 0)
+        diag_error(at, "lambda[%s]: the spec has no constraints, so no multipliers", name);
+    const char **cands = arena_new_array(L->A, const char *, s->nconstraint);
+    for (int c = 0; c < s->nconstraint; c++) {
+        if (!strcmp(s->constraint[c].name, name))
+            return expr_mult(L->P, c);
+        cands[c] = s->constraint[c].name;
+    }
+    const char *near = diag_nearest(name, cands, s->nconstraint);
+    if (near)
+        diag_error(at, "'%s' is not a constraint; did you mean '%s'?", name, near);
+    char list[1024] = "";
+    for (int c = 0; c < s->nconstraint; c++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", c ? ", " : "",
+                 cands[c]);
+    diag_error(at, "'%s' is not a constraint; the constraints are %s", name, list);
 }
 
 /* ---- expressions ---- */
@@ -480,7 +505,7 @@ enum {
     ALLOW_WORK = ALLOW_FORCE | DEP_S, /* forces times variations delta(e) */
     ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
     ALLOW_CONSTRAINT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_P | DEP_U,
-    ALLOW_OUTPUT = ALLOW_CONSTRAINT,
+    ALLOW_OUTPUT = ALLOW_CONSTRAINT | DEP_L,
     ALLOW_EVENT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
     ALLOW_ALL = 0xff,
 };
@@ -2031,6 +2056,11 @@ yaml_failure(Loader *L, yaml_parser_t *yp)
         snprintf(msg, sizeof msg, "a tab character: YAML indents with spaces only");
     else if (yp->error == YAML_READER_ERROR)
         reader_problem(L, yp, msg, sizeof msg);
+    else if (yp->error != YAML_READER_ERROR && b < L->len &&
+             (L->text[b] == '[' || L->text[b] == ']') && yp->context &&
+             strstr(yp->context, "flow"))
+        snprintf(msg + strlen(msg), sizeof msg - strlen(msg),
+                 " (inside { } or [ ], quote an expression with brackets: \"lambda[c]\")");
     else if (yp->problem && !strcmp(yp->problem, "did not find expected key") && yp->context &&
              strstr(yp->context, "block mapping"))
         snprintf(msg + strlen(msg), sizeof msg - strlen(msg),
@@ -2120,7 +2150,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
     L->len = len;
     L->A = A;
     L->P = P;
-    L->sc = (ParseScope){P, diff_new(P), lookup, leaf_name, 0, "", 0};
+    L->sc = (ParseScope){P, diff_new(P), lookup, multiplier, leaf_name, 0, "", 0};
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
     L->s->scene = (SpecScene){.t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10,

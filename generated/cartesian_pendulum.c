@@ -4,7 +4,7 @@
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * options: (none)
- * scene:   (the spec's `scene:`)
+ * scene:   swing
  * effects: gravity
  * off:     (none) (no code is generated for these)
  *
@@ -119,8 +119,8 @@ cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
     const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real v_x = v[0];
     const eomc_real pd1 = p[5];
     const eomc_real pd2 = p[6];
     (void)u;
@@ -165,8 +165,8 @@ cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
     const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real v_x = v[0];
     const eomc_real pd1 = p[5];
     const eomc_real pd2 = p[6];
     (void)u;
@@ -190,10 +190,10 @@ cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
+    const eomc_real v_x = v[0];
+    const eomc_real a_x = a[0];
     (void)p;
     (void)u;
     (void)t;
@@ -220,8 +220,8 @@ cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real v_x = v[0];
     const eomc_real pd0 = p[4];
     (void)u;
     (void)t;
@@ -245,10 +245,10 @@ cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
     eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda,
     eomc_real *dBdu, eomc_real *dBdt)
 {
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
-    const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
+    const eomc_real v_x = v[0];
+    const eomc_real a_x = a[0];
     (void)q;
     (void)p;
     (void)u;
@@ -290,8 +290,8 @@ cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real v_x = v[0];
     (void)p;
     (void)u;
     (void)t;
@@ -342,7 +342,7 @@ cartesian_pendulum_check(const double *p)
 const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
     2, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
+    "swing", p_fixed,
     3, cartesian_pendulum_derive,
     1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
@@ -352,6 +352,7 @@ const eomc_model cartesian_pendulum_model = {
     cartesian_pendulum_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
     1, cartesian_pendulum_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

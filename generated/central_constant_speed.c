@@ -1134,6 +1134,7 @@ const eomc_model central_constant_speed_model = {
     NULL, NULL,
     "nothing is conserved: the constraint 'speed' is not homogeneous in the velocities, so its force can do work",
     1, central_constant_speed_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

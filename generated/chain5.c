@@ -2016,6 +2016,7 @@ const eomc_model chain5_model = {
     chain5_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     5, chain5_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

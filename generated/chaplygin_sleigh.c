@@ -538,6 +538,7 @@ const eomc_model chaplygin_sleigh_model = {
     chaplygin_sleigh_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
     2, chaplygin_sleigh_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

@@ -671,6 +671,7 @@ const eomc_model double_pendulum_model = {
     double_pendulum_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     2, double_pendulum_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

@@ -215,6 +215,7 @@ const eomc_model falling_particle_model = {
     NULL, NULL,
     "nothing is conserved: the effect 'push' is a force, not a potential",
     1, falling_particle_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

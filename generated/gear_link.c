@@ -220,6 +220,7 @@ const eomc_model gear_link_model = {
     NULL, NULL,
     "nothing is conserved: the effect 'motor' is a force, not a potential",
     0, NULL, NULL, NULL,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

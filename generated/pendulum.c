@@ -265,6 +265,7 @@ const eomc_model pendulum_model = {
     pendulum_invariant, "E",
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     1, pendulum_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

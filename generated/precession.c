@@ -1032,6 +1032,7 @@ const eomc_model precession_model = {
     NULL, NULL,
     "nothing is conserved: the force of the second-order constraint 'precession' can do work",
     10, precession_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

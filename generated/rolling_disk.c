@@ -1697,6 +1697,7 @@ const eomc_model rolling_disk_model = {
     rolling_disk_invariant, "E",
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
     7, rolling_disk_check, check_what, check_params,
+    0, NULL, NULL, /* the scene asks for no outputs */
 };
 
 #ifdef EOMC_MAIN

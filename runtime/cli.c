@@ -51,11 +51,25 @@ typedef struct Csv {
     long rows;
     int invariant;       /* the model conserves h (or E) */
     double h0, dh;       /* its first value, largest change seen */
-    double *res;         /* [nc] constraint residuals of a row */
+    double *res;         /* [nc] constraint residuals of a row, then [nout]
+                          * its outputs */
     double res_max;      /* the largest |residual| written */
     const eomc_reference *ref; /* measure against it, or NULL */
+    double *arow;        /* [n] scratch: a row's accelerations */
     double err_max, err_end;
 } Csv;
+
+/* A writer of rows to f (NULL: none yet); w.res NULL when out of memory. */
+static Csv
+csv_new(FILE *f, eomc_sim *sim)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    size_t nres = (size_t)(m->nc + m->nout), n = (size_t)m->nq;
+    Csv w = {.f = f, .sim = sim, .invariant = m->invariant != NULL};
+    w.res = calloc(nres + n + 1, sizeof(double));
+    w.arow = w.res ? w.res + nres : NULL;
+    return w;
+}
 
 /* ---- messages ---- */
 
@@ -567,6 +581,8 @@ print_header(FILE *f, const eomc_model *m)
         fprintf(f, ",lambda[%s]", m->c_names[k]);
     for (int k = 0; k < m->nc; k++)
         fprintf(f, ",res[%s]", m->c_names[k]);
+    for (int k = 0; k < m->nout; k++)
+        fprintf(f, ",%s", m->out_names[k]);
     fprintf(f, "\n");
 }
 
@@ -576,6 +592,13 @@ write_row(void *ctx, double t, const double *x)
     Csv *w = ctx;
     const eomc_model *m = eomc_sim_model(w->sim);
     int n = m->nq, nc = m->nc;
+    double *out = w->res + nc;
+    /* the multipliers and outputs of this very state (it also solves
+     * for its accelerations) */
+    if (m->nout > 0 && eomc_sim_outputs(w->sim, t, x, x + n, out) != EOMC_OK)
+        return EOMC_ENUMERIC;
+    if (nc > 0 && m->nout == 0 && eomc_sim_accel(w->sim, t, x, x + n, w->arow) != EOMC_OK)
+        return EOMC_ENUMERIC;
     if (nc > 0 && eomc_sim_residuals(w->sim, t, x, x + n, w->res) != EOMC_OK)
         return EOMC_ENUMERIC;
     double T, V, h = 0;
@@ -607,6 +630,8 @@ write_row(void *ctx, double t, const double *x)
         fprintf(w->f, ",%.17g", w->res[k]);
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
     }
+    for (int k = 0; k < m->nout; k++)
+        fprintf(w->f, ",%.17g", out[k]);
     fputc('\n', w->f);
     w->rows++;
     return EOMC_OK;
@@ -883,9 +908,7 @@ get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
         return rc;
     }
     if (c->reference_out) {
-        Csv w = {open_output(c, "--reference-out", c->reference_out), sim, 0,
-                 m->invariant != NULL, 0, 0, calloc((size_t)m->nc + 1, sizeof(double)),
-                 0, NULL, 0, 0};
+        Csv w = csv_new(open_output(c, "--reference-out", c->reference_out), sim);
         if (!w.f || !w.res) {
             free(w.res);
             eomc_reference_free(ref);
@@ -913,8 +936,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     eomc_reference ref = {0};
     if (eomc_run_check(sim, &c->run) != EOMC_OK) /* before any file is written */
         return usage(c, "%s", eomc_sim_error(sim));
-    Csv w = {stdout, sim, 0, m->invariant != NULL, 0, 0,
-             calloc((size_t)m->nc + 1, sizeof(double)), 0, NULL, 0, 0};
+    Csv w = csv_new(stdout, sim);
     check_consistent(c, sim, x);
     int rc = EOMC_OK;
     if ((c->error || c->reference_out) &&

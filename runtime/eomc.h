@@ -110,6 +110,11 @@ void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,
  * none (the message says why). */
 int eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v,
                        double *h);
+/* The scene's outputs [model->nout] at (t, q, v), with the accelerations
+ * and multipliers of that state (solved here); EOMC_ENUMERIC when that
+ * solve fails.  A no-op when the scene has none. */
+int eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v,
+                     double *out);
 /* Whether input k is held constant (eomc_sim_set), and at which value. */
 int eomc_sim_input_held(const eomc_sim *s, int k, double *value);
 /* The Jacobian of x' = f(t, x), exact, from the generated residual

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 7
+#define EOMC_ABI_VERSION 8
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -168,6 +168,16 @@ typedef struct eomc_model {
     int (*check)(const double *p);
     const char *const *check_what;
     const char *const *check_params;
+
+    /* ---- the scene's outputs ----
+     * nout columns the scene asks for (`outputs:`), named out_names, after
+     * the standard ones: outputs(t, q, v, a, p, u, lam, out) at a state, a
+     * its accelerations and lam its multipliers [nc] (unused when nc = 0).
+     * nout = 0: none, outputs NULL. */
+    int nout;
+    const char *const *out_names;
+    void (*outputs)(double t, const double *q, const double *v, const double *a,
+                    const double *p, const double *u, const double *lam, double *out);
 } eomc_model;
 
 /* What the reference solution evaluates in extended precision (NULL

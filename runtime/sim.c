@@ -54,6 +54,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->M = sim_zeros(n * n);
     s->h = sim_zeros(n);
     s->a = sim_zeros(n);
+    s->arow = sim_zeros(n);
     s->Mdiag = sim_zeros(n);
     s->dEdq = sim_zeros(n * n);
     s->dEdv = sim_zeros(n * n);
@@ -75,7 +76,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
-        !s->a || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
+        !s->a || !s->arow || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
         (m->nc > 0 && (!s->kkt || !s->proj))) {
         eomc_sim_free(s);
@@ -93,7 +94,7 @@ eomc_sim_free(eomc_sim *s)
     if (!s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
-                      s->a, s->Mdiag, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
+                      s->a, s->arow, s->Mdiag, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
@@ -538,6 +539,20 @@ eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double 
     s->m->energy(t, q, v, s->p, s->u, TV);
     *T = TV[0];
     *V = TV[1];
+}
+
+int
+eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double *out)
+{
+    const eomc_model *m = s->m;
+    if (!m->outputs)
+        return EOMC_OK;
+    /* the accelerations and multipliers of this very state */
+    if (eomc_sim_accel(s, t, q, v, s->arow) != EOMC_OK)
+        return EOMC_ENUMERIC;
+    sim_inputs_at(s, t);
+    m->outputs(t, q, v, s->arow, s->p, s->u, eomc_sim_multipliers(s), out);
+    return EOMC_OK;
 }
 
 int

@@ -19,11 +19,12 @@ enum { PIVOT_EVERY = 4 };
 struct eomc_sim {
     const eomc_model *m;
     int n, nu;
-    double *p;               /* [np] parameter values */
+    double *p;               /* [np + nd] parameter values, then derive's */
     double *u, *dudt;        /* [nu] inputs at the last time asked */
     double *u_const;         /* [nu] held values, where u_held */
     unsigned char *u_held;   /* [nu] */
     double *M, *h, *a, *Mdiag;            /* [n*n], [n], [n], [n] */
+    double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
     double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
     double *col;             /* [n] one right-hand side of M y = b */
     double *fk;              /* [nc] f (scratch) */

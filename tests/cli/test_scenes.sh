@@ -8,7 +8,11 @@
 #  - fixing parameters folds them: fewer operations, and the same motion
 #    as the unfixed code run with --set (fixed steps, so that both runs
 #    take the same steps: only rounding may differ);
-#  - --set of a fixed parameter is a usage error that names the scene.
+#  - --set of a fixed parameter is a usage error that names the scene;
+#  - outputs (specs/cartesian_pendulum.yaml, scene tension) are columns
+#    after the standard ones, equal to their closed forms computed here
+#    from the state columns, and a scene without outputs has no code for
+#    them.
 # usage: test_scenes.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -74,6 +78,29 @@ ok $? "fixed and folded = unfixed with --set, to $worst of each column's scale o
 ok $? "--set of a fixed parameter: exit $st, naming the scene"
 "$eomc" compile "$spec" --scene free --fix A=0.02 --explain | grep -q 'fixed (folded into the code): A = 0.02$'
 ok $? "--fix overrides the scene's fix"
+
+# outputs: the rod's tension 2 l lambda = m (|v|^2 - g y) / l on the
+# circle, the angle, and y'' = -tension y / (m l) - g
+cp="$src/specs/cartesian_pendulum.yaml"
+"$eomc" compile "$cp" -o "$tmp/swing.c"
+"$eomc" compile "$cp" --scene tension -o "$tmp/tension.c"
+! grep -q '_outputs\|lam_' "$tmp/swing.c" && grep -q 'cartesian_pendulum_outputs,' "$tmp/tension.c"
+ok $? "only the scene that asks for outputs has code for them"
+"$eomc" run "$cp" --scene tension --t-end 3 --dt 0.05 > "$tmp/tension.csv"
+head -1 "$tmp/tension.csv" | grep -q ',lambda\[rod\],res\[rod\],tension,theta,ay$'
+ok $? "the outputs are columns after the standard ones: $(head -1 "$tmp/tension.csv")"
+worst=$(awk -F, 'NR > 1 { m = 1; l = 1; g = 9.81
+    x = $2; y = $3; vx = $4; vy = $5
+    T = m * (vx * vx + vy * vy - g * y) / l
+    want[1] = T; want[2] = atan2(x, -y); want[3] = -T * y / (m * l) - g
+    for (k = 1; k <= 3; k++) {
+        d = $(10 + k) - want[k]; if (d < 0) d = -d
+        s = want[k] < 0 ? -want[k] : want[k]; if (s < 1) s = 1
+        if (d / s > w) w = d / s
+    } rows++ }
+    END { if (rows != 61) print "rows?"; else printf "%.3g", w }' "$tmp/tension.csv")
+awk -v w="$worst" 'BEGIN { exit !(w != "rows?" && w <= 1e-9) }'
+ok $? "tension, theta and y'' equal their closed forms from the state, to $worst"
 
 echo "1..$n"
 [ $failed -eq 0 ]

@@ -113,7 +113,7 @@ parse_one(void *ctx)
     Input *in = ctx;
     ExprPool *P = expr_pool_new();
     Diff *D = diff_new(P);
-    ParseScope sc = {P, D, lookup, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U | DEP_S,
+    ParseScope sc = {P, D, lookup, NULL, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U | DEP_S,
                      "an expression", 2};
     ParseSrc src = {(const char *)in->data, in->size, where, NULL};
     jmp_buf jb;

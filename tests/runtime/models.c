@@ -91,6 +91,8 @@ static const unsigned char no_fixed[8];
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
+/* ... and no outputs (they follow the checks). */
+#define NO_OUTPUTS 0, NULL, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -112,6 +114,7 @@ const eomc_model osc_model = {
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved",
     NO_CHECKS,
+    NO_OUTPUTS,
 };
 
 /* ---- the leaky oscillator: m x'' + c x' + k x = 0 that claims to conserve
@@ -156,6 +159,7 @@ const eomc_model leaky_model = {
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved (it is not: the model lies)",
     NO_CHECKS,
+    NO_OUTPUTS,
 };
 
 void
@@ -259,6 +263,7 @@ const eomc_model coupled_model = {
     NO_CONSTRAINTS,
     NO_INVARIANT,
     NO_CHECKS,
+    NO_OUTPUTS,
 };
 
 /* ---- the driven oscillator: E = m x'' + c x' + k x - u - b t ---- */
@@ -340,6 +345,7 @@ const eomc_model driven_model = {
     NO_CONSTRAINTS,
     NO_INVARIANT,
     NO_CHECKS,
+    NO_OUTPUTS,
 };
 
 void
@@ -429,6 +435,7 @@ const eomc_model nonpd_model = {
     NO_CONSTRAINTS,
     NO_INVARIANT,
     NO_CHECKS,
+    NO_OUTPUTS,
 };
 
 const eomc_model nonpd_gsl_model = {
@@ -441,4 +448,5 @@ const eomc_model nonpd_gsl_model = {
     NO_CONSTRAINTS,
     NO_INVARIANT,
     NO_CHECKS,
+    NO_OUTPUTS,
 };

@@ -48,7 +48,7 @@ where(const ParseSrc *src, size_t off)
     return (SrcLoc){"test", 1, (int)off + 1};
 }
 
-static ParseScope scope = {NULL, NULL, lookup, leaf_name, 0xff, "an expression", 2};
+static ParseScope scope = {NULL, NULL, lookup, NULL, leaf_name, 0xff, "an expression", 2};
 
 static ExprId
 parse(const char *text)

@@ -776,6 +776,12 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    %d, out_names, %s_outputs,", s->scene.noutput, nm);
     else
         println(pr, "    0, NULL, NULL, /* the scene asks for no outputs */");
+    if (L->events)
+        println(pr, "    %d, ev_names, ev_direction, ev_action, %s_events, %s%s,",
+                s->scene.nevent, nm, L->last_set ? nm : "NULL",
+                L->last_set ? "_event_set" : "");
+    else
+        println(pr, "    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
@@ -863,10 +869,32 @@ add_count(ExprCount *c, ExprCount d)
     c->calls += d.calls;
 }
 
+/* The event_set member: the reset of event k. */
+static void
+print_event_set(Printer *pr, const Lowered *L)
+{
+    const Spec *s = pr->s;
+    const char *nm = s->name;
+    println(pr, "/* The reset of event k (a `set` event): q1 and v1 hold q and v, and get");
+    println(pr, " * the values the event sets. */");
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_event_set", nm);
+    print_head(pr, "static void", fname, "int k, double t, const double *q, const double *v, "
+               "const double *p, const double *u, double *q1, double *v1");
+    println(pr, "    switch (k) {");
+    for (int k = 0; k < s->scene.nevent; k++)
+        if (L->event_set[k])
+            println(pr, "    case %d:\n        %s_set_%s(t, q, v, p, u, q1, v1);\n"
+                    "        break;", k, nm, s->scene.event[k].name);
+    println(pr, "    }");
+    println(pr, "}\n");
+}
+
 /* The rows of --stats, in order. */
 static const char *const stat_names[EMIT_NFUNCS] = {
     "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "constraint",
     "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive", "outputs",
+    "events",
 };
 
 void
@@ -887,6 +915,19 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
             fprintf(f, "%s\"%s\"", k ? ", " : "", s->scene.output[k].name);
         println(&pr, "};\n");
     }
+    if (L->events) {
+        int ne = s->scene.nevent;
+        fprintf(f, "static const char *const ev_names[%d] = {", ne);
+        for (int k = 0; k < ne; k++)
+            fprintf(f, "%s\"%s\"", k ? ", " : "", s->scene.event[k].name);
+        fprintf(f, "};\nstatic const int ev_direction[%d] = {", ne);
+        for (int k = 0; k < ne; k++)
+            fprintf(f, "%s%d", k ? ", " : "", s->scene.event[k].direction);
+        fprintf(f, "};\nstatic const int ev_action[%d] = {", ne);
+        for (int k = 0; k < ne; k++)
+            fprintf(f, "%s%d", k ? ", " : "", s->scene.event[k].action);
+        println(&pr, "}; /* EOMC_EVENT_STOP, _RECORD, _SET */\n");
+    }
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *lf = L->func[k];
         ExprCount n = print_function(&pr, lf);
@@ -899,6 +940,8 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
             print_accel(&pr, L);
         else if (lf == L->check_values)
             print_checks(&pr, L);
+        if (lf == L->last_set)
+            print_event_set(&pr, L);
     }
     fence(&pr, 1);
     print_model_struct(&pr, s, e, c, inv, L, info);

@@ -107,6 +107,10 @@ static const LowSig s_outputs = {
     "outputs", "The scene's outputs, at a state and its accelerations and multipliers.",
     "t q v a p u lam > out",
 };
+static const LowSig s_events = {
+    "events", "The scene's events: g[k], whose zero crossings they are.",
+    "t q v p u > g",
+};
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
     "p > chk",
@@ -129,9 +133,15 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     /* all but initial and check, which run before derive */
     int per_step = sig != &s_initial && sig != &s_check_values;
     *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step};
-    if (lw->L->nfunc == LOW_MAX_FUNCS)
-        abort();
-    lw->L->func[lw->L->nfunc++] = f;
+    Lowered *L = lw->L;
+    if (L->nfunc == L->cap) {
+        L->cap = L->cap ? 2 * L->cap : 32;
+        LowFunc **bigger = arena_new_array(lw->A, LowFunc *, L->cap);
+        if (L->nfunc)
+            memcpy(bigger, L->func, (size_t)L->nfunc * sizeof *bigger);
+        L->func = bigger;
+    }
+    L->func[L->nfunc++] = f;
     return f;
 }
 
@@ -369,6 +379,35 @@ lower_derive(Lowering *lw)
     free(roots);
 }
 
+/* events, and one reset function set_NAME per `set` event: q1, v1 get
+ * the values it sets, all computed from the state before. */
+static void
+lower_events(Lowering *lw)
+{
+    const SpecScene *sc = &lw->s->scene;
+    LowFunc *f = func(lw, &s_events, "events", 1);
+    for (int k = 0; k < sc->nevent; k++)
+        out(lw, f, 0, k, sc->event[k].when);
+    lw->L->events = f;
+    lw->L->event_set = arena_new_array(lw->A, LowFunc *, sc->nevent);
+    for (int k = 0; k < sc->nevent; k++) {
+        const SpecEvent *ev = &sc->event[k];
+        if (ev->action != EVENT_SET)
+            continue;
+        LowSig *sig = arena_alloc(lw->A, sizeof *sig);
+        sig->name = arena_printf(lw->A, "set_%s", ev->name);
+        sig->comment = arena_printf(lw->A, "Event %s: the coordinates and velocities it "
+                                    "sets (q1, v1 hold the others).", ev->name);
+        sig->args = "t q v p u > q1 v1";
+        f = func(lw, sig, "events", 1);
+        for (int i = 0; i < ev->nset; i++) {
+            const ExprNode *var = expr_node(lw->P, ev->set_var[i]);
+            out(lw, f, (int)var->b, (int)var->a, ev->set_expr[i]);
+        }
+        lw->L->event_set[k] = lw->L->last_set = f;
+    }
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
             const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D)
@@ -424,6 +463,8 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
             out(&lw, f, 0, k, s->scene.output[k].expr);
         lw.L->outputs = f;
     }
+    if (s->scene.nevent)
+        lower_events(&lw);
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
         for (int i = 0; i < s->ncheck; i++)

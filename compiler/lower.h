@@ -64,11 +64,9 @@ void lower_args(const LowSig *sig, LowArgs *a);
 extern const LowSig lower_jacobian_sig;
 
 /* The model's functions in the order they are printed. */
-enum { LOW_MAX_FUNCS = 24 };
-
 typedef struct Lowered {
-    int nfunc;
-    LowFunc *func[LOW_MAX_FUNCS];
+    int nfunc, cap;
+    LowFunc **func;
     /* the ones the emitter wraps in hand-written C (NULL when absent) */
     LowFunc *jac_dv;      /* seeded Jacobian: its per-column loop follows */
     LowFunc *jac_shared;
@@ -79,6 +77,9 @@ typedef struct Lowered {
      * and derived[id] is node id's index there (-1: not derived). */
     LowFunc *derive;
     LowFunc *outputs;     /* the scene's outputs, or NULL */
+    LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
+    LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */
+    LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;
     int nd;
     int n;                /* coordinates */

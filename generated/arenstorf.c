@@ -413,6 +413,7 @@ const eomc_model arenstorf_model = {
     "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t and every effect is a potential",
     0, NULL, NULL, NULL,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -353,6 +353,7 @@ const eomc_model cartesian_pendulum_model = {
     "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
     1, cartesian_pendulum_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

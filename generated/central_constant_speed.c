@@ -1135,6 +1135,7 @@ const eomc_model central_constant_speed_model = {
     "nothing is conserved: the constraint 'speed' is not homogeneous in the velocities, so its force can do work",
     1, central_constant_speed_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -2017,6 +2017,7 @@ const eomc_model chain5_model = {
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     5, chain5_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -672,6 +672,7 @@ const eomc_model double_pendulum_model = {
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     2, double_pendulum_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

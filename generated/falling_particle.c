@@ -216,6 +216,7 @@ const eomc_model falling_particle_model = {
     "nothing is conserved: the effect 'push' is a force, not a potential",
     1, falling_particle_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -221,6 +221,7 @@ const eomc_model gear_link_model = {
     "nothing is conserved: the effect 'motor' is a force, not a potential",
     0, NULL, NULL, NULL,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -339,6 +339,7 @@ const eomc_model kepler_model = {
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     1, kepler_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -1033,6 +1033,7 @@ const eomc_model precession_model = {
     "nothing is conserved: the force of the second-order constraint 'precession' can do work",
     10, precession_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

@@ -266,6 +266,7 @@ const eomc_model swing_model = {
     "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
     1, swing_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
+    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
 };
 
 #ifdef EOMC_MAIN

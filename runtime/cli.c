@@ -39,6 +39,7 @@ typedef struct Cli {
     int nset, ninit;
     /* the reference and the report */
     const char *reference, *reference_out, *csv, *plot;
+    const char *events;   /* --events FILE */
     const char **methods; /* NULL-terminated */
     double *tolerances, *steps, target;
     int ntolerances, nsteps;
@@ -56,8 +57,29 @@ typedef struct Csv {
     double res_max;      /* the largest |residual| written */
     const eomc_reference *ref; /* measure against it, or NULL */
     double *arow;        /* [n] scratch: a row's accelerations */
+    int rebase;          /* an event reset the state at t_reset: h starts */
+    double t_reset;      /* afresh with the first row after it */
+    FILE *events;        /* --events FILE, or NULL */
     double err_max, err_end;
 } Csv;
+
+/* An event as it fires: a row of --events FILE, and a reset ends the
+ * conserved quantity's comparison with the rows before. */
+static int
+write_event(void *ctx, int k, double t, const double *x)
+{
+    Csv *w = ctx;
+    const eomc_model *m = eomc_sim_model(w->sim);
+    if (m->ev_action[k] == EOMC_EVENT_SET)
+        w->rebase = 1, w->t_reset = t;
+    if (!w->events)
+        return EOMC_OK;
+    fprintf(w->events, "%.17g,%s", t, m->ev_names[k]);
+    for (int i = 0; i < 2 * m->nq; i++)
+        fprintf(w->events, ",%.17g", x[i]);
+    fputc('\n', w->events);
+    return EOMC_OK;
+}
 
 /* A writer of rows to f (NULL: none yet); w.res NULL when out of memory. */
 static Csv
@@ -140,7 +162,7 @@ list_names(FILE *f, const char *const *names, int n, const char *suffix)
 enum Option {
     /* with a value */
     O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
-    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT,
+    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
     O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_HELP, O_VERSION,
@@ -150,7 +172,7 @@ enum Option {
 static const char *const option_names[NOPTIONS] = {
     "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
-    "--reference-out", "--methods", "--tolerances", "--steps", "--csv", "--plot",
+    "--reference-out", "--events", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
     "--error", "--help", "--version",
 };
@@ -193,6 +215,18 @@ help(const Cli *c, const eomc_model *m)
                "                     (default %g,%g; implies --stabilize baumgarte)\n"
                "  --assemble         project the initial state onto the constraints "
                "first\n", DEFAULT_RATE, DEFAULT_RATE);
+    if (m->nevent > 0) {
+        static const char *const actions[] = {"stops the run", "is recorded",
+                                              "sets the state"};
+        printf("  --events FILE      each event as it fires, in CSV: t, event, the\n"
+               "                     coordinates and velocities before its action\n"
+               "  the scene's events:\n");
+        for (int k = 0; k < m->nevent; k++)
+            printf("                       %-12s %s (g crossing 0 %s)\n", m->ev_names[k],
+                   actions[m->ev_action[k]], m->ev_direction[k] > 0   ? "upward"
+                                             : m->ev_direction[k] < 0 ? "downward"
+                                                                       : "either way");
+    }
     printf("  --stats            integrator statistics on stderr\n"
            "  --summary          a paragraph about the run on stderr\n"
            "  --accel            print q'' at the initial state and exit\n"
@@ -362,6 +396,7 @@ take_value(Cli *c, int k, const char *val)
     }
     case O_REFERENCE: c->reference = val; return EOMC_OK;
     case O_REFERENCE_OUT: c->reference_out = val; return EOMC_OK;
+    case O_EVENTS: c->events = val; return EOMC_OK;
     case O_METHODS: return method_list(c, val);
     case O_TOLERANCES: return number_list(c, opt, val, &c->tolerances, &c->ntolerances);
     case O_STEPS: return number_list(c, opt, val, &c->steps, &c->nsteps);
@@ -605,8 +640,8 @@ write_row(void *ctx, double t, const double *x)
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
     if (w->invariant) {
         eomc_sim_invariant(w->sim, t, x, x + n, &h);
-        if (w->rows == 0)
-            w->h0 = h;
+        if (w->rows == 0 || (w->rebase && t > w->t_reset))
+            w->h0 = h, w->rebase = 0;
         w->dh = fmax(w->dh, fabs(h - w->h0));
     }
     if (w->ref && w->rows < w->ref->nrows) {
@@ -660,6 +695,11 @@ print_stats(const Csv *w, const eomc_stats *st, int stabilize)
     if (w->ref)
         fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n",
                 w->err_end, w->err_max, w->ref->error);
+    if (m->nevent > 0)
+        fprintf(stderr, "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
+    if (st->stop_event >= 0)
+        fprintf(stderr, "stop_event %s\nt_stop %.17g\n", m->ev_names[st->stop_event],
+                st->t_stop);
 }
 
 /* Print words wrapped at 72 columns. */
@@ -862,6 +902,32 @@ warn_drift(const Cli *c, const eomc_model *m, const eomc_stats *st)
             m->invariant_name);
 }
 
+/* The reference solution follows the equations, not the events that
+ * stop or reset the motion: with those, there is nothing to measure
+ * against. */
+static int
+check_event_options(const Cli *c, const eomc_model *m)
+{
+    int moving = 0;
+    for (int k = 0; k < m->nevent; k++)
+        moving |= m->ev_action[k] != EOMC_EVENT_RECORD;
+    const char *opt = c->work_precision ? "--work-precision"
+                      : c->reference    ? "--reference"
+                      : c->error        ? "--error"
+                      : c->reference_out ? "--reference-out" : NULL;
+    if (moving && opt)
+        return usage(c, "%s: scene %s has events that stop or reset the motion, which the "
+                     "reference solution does not follow (measure the errors on a scene "
+                     "without them)", opt, *m->scene ? m->scene : "(the spec's)");
+    if (c->events && m->nevent == 0)
+        return usage(c, "--events: scene %s has no events", *m->scene ? m->scene
+                                                                     : "(the spec's)");
+    if (c->events && (c->work_precision || c->accel))
+        return usage(c, "--events belongs to a run (not %s)",
+                     c->accel ? "--accel" : "--work-precision");
+    return EOMC_OK;
+}
+
 /* Open -o's file (or stdout); NULL after saying why. */
 static FILE *
 open_output(const Cli *c, const char *opt, const char *path)
@@ -946,16 +1012,38 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     }
     if (c->error)
         w.ref = &ref;
-    if (!(w.f = open_output(c, "-o", c->out))) {
+    /* both files open, or neither is left behind */
+    if (c->events && !(w.events = open_output(c, "--events", c->events))) {
         free(w.res);
         eomc_reference_free(&ref);
         return EOMC_EUSAGE;
     }
+    if (!(w.f = open_output(c, "-o", c->out))) {
+        if (w.events) {
+            fclose(w.events);
+            unlink(c->events);
+        }
+        free(w.res);
+        eomc_reference_free(&ref);
+        return EOMC_EUSAGE;
+    }
+    if (w.events) {
+        fprintf(w.events, "t,event");
+        for (int i = 0; i < m->nq; i++)
+            fprintf(w.events, ",%s", m->q_names[i]);
+        for (int i = 0; i < m->nq; i++)
+            fprintf(w.events, ",%s'", m->q_names[i]);
+        fputc('\n', w.events);
+    }
     print_header(w.f, m);
     eomc_stats st;
     c->run.progress = 1;
+    c->run.on_event = write_event;
+    c->run.event_ctx = &w;
     rc = eomc_sim_integrate(sim, &c->run, x, write_row, &w, &st);
     if (close_output(c, w.f, c->out))
+        rc = rc ? rc : EOMC_ENUMERIC;
+    if (w.events && close_output(c, w.events, c->events))
         rc = rc ? rc : EOMC_ENUMERIC;
     if (rc)
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
@@ -1043,6 +1131,8 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
         rc = EOMC_EUSAGE;
     } else if ((rc = parse_args(&c, argc, argv, m)) != EOMC_OK) {
         rc = rc < 0 ? EOMC_OK : rc;
+    } else if ((rc = check_event_options(&c, m)) != EOMC_OK) {
+        /* said */
     } else if ((rc = apply_sets(&c, sim)) == EOMC_OK &&
                (rc = set_stabilize(&c, sim)) == EOMC_OK) {
         eomc_sim_initial(sim, x, x + m->nq);

@@ -115,6 +115,11 @@ int eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v,
  * solve fails.  A no-op when the scene has none. */
 int eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v,
                      double *out);
+/* The scene's event functions g [model->nevent] at (t, q, v). */
+void eomc_sim_events(eomc_sim *s, double t, const double *q, const double *v, double *g);
+/* Event k's reset at (t, x): x1 [2nq] gets x with what the event sets
+ * (x1 may be x). */
+void eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1);
 /* Whether input k is held constant (eomc_sim_set), and at which value. */
 int eomc_sim_input_held(const eomc_sim *s, int k, double *value);
 /* The Jacobian of x' = f(t, x), exact, from the generated residual
@@ -147,6 +152,12 @@ typedef struct eomc_run_opts {
     long max_steps;    /* per run; 0 = no limit */
     int progress;      /* nonzero: when stderr is a terminal and the run
                         * takes over a second, show t on stderr */
+    /* The scene's events (model->nevent > 0): called as each fires, with
+     * its index k, its time and the state x [2nq] there, before its action
+     * (NULL: not told).  A nonzero return stops the integration with that
+     * status. */
+    int (*on_event)(void *ctx, int k, double t, const double *x);
+    void *event_ctx;
 } eomc_run_opts;
 
 /* Defaults from the model's scene. */
@@ -190,6 +201,12 @@ typedef struct eomc_stats {
      * drift well beyond the budget is an error the estimates did not see
      * (an ill-conditioned solve, a discontinuity).  0 otherwise. */
     double invariant_drift, invariant_budget;
+    /* The scene's events: how many fired, how many evaluations of the
+     * state their location took (steps of their own), and the `stop`
+     * event that ended the run at t_stop (-1: none; the run went to t_end). */
+    long events, event_evals;
+    int stop_event;
+    double t_stop;
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 8
+#define EOMC_ABI_VERSION 9
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -178,7 +178,29 @@ typedef struct eomc_model {
     const char *const *out_names;
     void (*outputs)(double t, const double *q, const double *v, const double *a,
                     const double *p, const double *u, const double *lam, double *out);
+
+    /* ---- the scene's events ----
+     * nevent zero crossings (`events:`), named ev_names: events(t, q, v,
+     * p, u, g) gives g [nevent], and event k fires where g[k] crosses 0 in
+     * ev_direction[k] (+1 up, -1 down, 0 both).  ev_action[k] is what it
+     * does (EOMC_EVENT_...); for a `set` event, event_set(k, ...) writes
+     * the coordinates and velocities it sets into q1 and v1 (which the
+     * caller fills with q and v first), computed from the state before.
+     * nevent = 0: none, the rest NULL; event_set is NULL when no event
+     * sets anything. */
+    int nevent;
+    const char *const *ev_names;
+    const int *ev_direction;
+    const int *ev_action;
+    void (*events)(double t, const double *q, const double *v, const double *p,
+                   const double *u, double *g);
+    void (*event_set)(int k, double t, const double *q, const double *v, const double *p,
+                      const double *u, double *q1, double *v1);
 } eomc_model;
+
+/* What an event does: end the run there, report the state and go on, or
+ * reset coordinates and velocities and start again from there. */
+enum { EOMC_EVENT_STOP, EOMC_EVENT_RECORD, EOMC_EVENT_SET };
 
 /* What the reference solution evaluates in extended precision (NULL
  * members as in eomc_model; c_jacobian only when a constraint is not

@@ -13,10 +13,14 @@
  *    (projection), where GSL's evolve would reuse a stale one;
  *  - after every accepted step of a constrained model, the checks and
  *    corrections of after_step: a degenerate constraint stops the run,
- *    the drift is measured, and the state is projected when asked.
+ *    the drift is measured, and the state is projected when asked;
+ *  - after every accepted step, the scene's events (events.h): one that
+ *    fired is located, reported, and stops the run or resets the state
+ *    and starts the integration again from there (check_events).
  */
 #include "simimpl.h"
 #include "dense.h"
+#include "events.h"
 #include "fixed.h"
 #include "linalg.h"
 
@@ -84,8 +88,8 @@ eomc_method_steps(const char *name)
 eomc_run_opts
 eomc_run_defaults(const eomc_model *m)
 {
-    eomc_run_opts o = {0.0, m->t_end, m->dt, m->method, m->rtol, m->atol,
-                       m->h_fixed, 0, 0};
+    eomc_run_opts o = {.t0 = 0.0, .t_end = m->t_end, .dt = m->dt, .method = m->method,
+                       .rtol = m->rtol, .atol = m->atol, .h_fixed = m->h_fixed};
     return o;
 }
 
@@ -99,9 +103,25 @@ eomc_run_defaults(const eomc_model *m)
 /* An output time within this fraction of dt of t_end is t_end: no sliver
  * of an interval at the end. */
 #define SLIVER 1e-9
-/* march's status when a row callback stopped the run, and when the steps
- * collapsed or ground (not GSL codes). */
-enum { ROW_STOP = -1000, STEP_COLLAPSE = -1001, STEP_GRIND = -1002 };
+/* march's status when a row callback stopped the run, when the steps
+ * collapsed or ground, and when events accumulated or a stop event ended
+ * the run (not GSL codes). */
+enum { ROW_STOP = -1000, STEP_COLLAPSE = -1001, STEP_GRIND = -1002,
+       EVENTS_ACCUMULATE = -1003, EVENT_STOPPED = -1004, EVENT_RETURNED = -1005 };
+/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
+ * a `set` event fires within ACCUMULATE_REL of the time span of the one
+ * before: their times are no longer resolved (the steps between them
+ * would be below the collapse limit of any run), and the next ones come
+ * ever faster. */
+#define ACCUMULATE_REL 1e-9
+/* The first step after a reset: at most this fraction of the time since
+ * the event before, so that the steps resolve the next interval (each
+ * bounce of a ball is shorter than the last by the restitution). */
+#define RESTART_REL 1e-3
+/* The steps after a reset start that small on purpose: they are not
+ * watched for a collapse until this many have grown them again (by up to
+ * 5 each), and events that come too fast are caught as such. */
+enum { RESTART_STEPS = 30 };
 /* Steps have collapsed when an accepted step is below COLLAPSE_REL of the
  * run's typical step (the geometric mean of its accepted steps, once it
  * has COLLAPSE_AFTER of them): seven orders of magnitude is more than a
@@ -158,6 +178,17 @@ typedef struct Run {
     long w_nh;
     int grinding;                 /* windows in a row that rejected most */
     double wall0, next_show;
+    int ne;                       /* events */
+    double *g0, *g1;              /* [ne] g at the step's start and end */
+    double *ge, *te;              /* [ne] scratch: g, and each event's time */
+    double *xe;                   /* [N] the state at an event's trial time */
+    int ev_k;                     /* the event being located */
+    double ev_t0, ev_t1;          /* in the step from ev_t0 to ev_t1 */
+    double last_set;              /* the time of the last `set` event */
+    long nsets;                   /* `set` events so far */
+    unsigned char *held;          /* [ne] reset at g = 0, not yet left it */
+    double gap;                   /* from the `set` event before to the last */
+    long since_reset;             /* steps since the last reset */
 } Run;
 
 /* Every 256 right-hand sides: after the first second, t on the terminal
@@ -289,6 +320,21 @@ step_error(Run *r, int status)
                                  "typical step %.3g; the likely cause: %s", GRIND_WINDOWS,
                                  GRIND_WINDOW, r->h_last, GRIND_REL, typical_step(r),
                                  cause);
+    case EVENT_RETURNED:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
+                                 "holds again at the end of the first step after its "
+                                 "reset at t = %.17g (a step of %.3g): the motion returns "
+                                 "to it faster than the steps can follow (it comes to rest "
+                                 "against it%s)", s->m->ev_names[r->ev_k], r->last_set,
+                                 r->t - r->last_set, r->o->h_fixed > 0
+                                 ? ", or the fixed steps are too long" : "");
+    case EVENTS_ACCUMULATE:
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
+                                 "fired %ld times, the last two %.3g apart, below %g of "
+                                 "the time span: the motion comes to rest against it in "
+                                 "ever shorter intervals (Zeno), which no step can "
+                                 "follow", s->m->ev_names[r->ev_k], r->nsets + 1,
+                                 r->t - r->last_set, ACCUMULATE_REL);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
     case GSL_EMAXITER:
@@ -520,12 +566,9 @@ interpolant_ok(const Run *r, const double *x, const double *err)
  * accepted step, so the method's truncation error is smaller there; it
  * leaves the run's steps as they are. */
 static int
-side_step(Run *r, double t, double *x)
+side_from(Run *r, double tk, const double *xk, const double *fk, double t, double *x)
 {
-    const double *xk, *fk;
-    double tk = dense_start(r->dense, t, &xk, &fk);
     size_t bytes = (size_t)r->N * sizeof *x;
-    r->st->side_steps++;
     for (int pieces = 1; pieces <= SIDE_PIECES_MAX; pieces *= 2) {
         double h = (t - tk) / pieces;
         memcpy(x, xk, bytes);
@@ -543,6 +586,17 @@ side_step(Run *r, double t, double *x)
         if (p == pieces)
             return GSL_SUCCESS;
     }
+    return GSL_EBADFUNC;
+}
+
+static int
+side_step(Run *r, double t, double *x)
+{
+    const double *xk, *fk;
+    double tk = dense_start(r->dense, t, &xk, &fk);
+    r->st->side_steps++;
+    if (side_from(r, tk, xk, fk, t, x) == GSL_SUCCESS)
+        return GSL_SUCCESS;
     sim_numeric_error(r->s, t, NULL, NULL, "the row at this time could not be computed to "
                       "the tolerances, neither by interpolation nor by %d steps from "
                       "t = %.17g", SIDE_PIECES_MAX, tk);
@@ -581,6 +635,178 @@ emit_rows(Run *r, int final)
         r->k++;
     }
     return GSL_SUCCESS;
+}
+
+/* ---- events ---- */
+
+/* The state at t in the step just taken (from ev_t0 to ev_t1), on the
+ * cubic Hermite interpolant through its ends (y0, f0; x, f1): cheap, and
+ * good enough to start the search on the solution from. */
+static void
+hermite(const Run *r, double t, double *x)
+{
+    double h = r->ev_t1 - r->ev_t0, s = (t - r->ev_t0) / h, s2 = s * s, s3 = s2 * s;
+    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
+    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
+    for (int i = 0; i < r->N; i++)
+        x[i] = h00 * r->y0[i] + h10 * h * r->f0[i] + h01 * r->x[i] + h11 * h * r->f1[i];
+}
+
+static double
+g_interpolant(void *ctx, double t)
+{
+    Run *r = ctx;
+    hermite(r, t, r->xe);
+    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
+    return r->ge[r->ev_k];
+}
+
+/* g on the solution: the state at t by a step of its own from the step's
+ * start, controlled as a row's side step is. */
+static double
+g_solution(void *ctx, double t)
+{
+    Run *r = ctx;
+    r->st->event_evals++;
+    if (side_from(r, r->ev_t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
+        return NAN;
+    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
+    return r->ge[r->ev_k];
+}
+
+enum { EV_NONE, EV_STOP, EV_SET };
+
+/* After the step from t0 to r->t: the events that fired in it, in time
+ * order, each reported with the state there.  The first `stop` or `set`
+ * event ends the step at its time: r->t, r->x and r->f1 become the
+ * event's, *what is EV_STOP or EV_SET and *fired its index (else
+ * EV_NONE).  A record event after it in the same step never happened.
+ * Returns GSL_SUCCESS or a failure status. */
+static int
+check_events(Run *r, double t0, int *what, int *fired)
+{
+    eomc_sim *s = r->s;
+    const eomc_model *m = s->m;
+    size_t bytes = (size_t)r->N * sizeof *r->x;
+    int any = 0;
+    r->ev_t0 = t0, r->ev_t1 = r->t;
+    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g1);
+    for (int k = 0; k < r->ne; k++) {
+        r->te[k] = NAN;
+        /* an event reset at g = 0 must leave it away from where it fires
+         * (up for a downward event): back there already, the motion
+         * returned within one step, faster than the steps can follow */
+        int dir = m->ev_direction[k];
+        if (r->held[k] && dir != 0 && (r->g1[k] == 0 || (r->g1[k] < 0) == (dir < 0))) {
+            r->ev_k = k;
+            return EVENT_RETURNED;
+        }
+        r->held[k] = 0;
+        if (!ev_crossed(m->ev_direction[k], r->g0[k], r->g1[k]))
+            continue;
+        int evals;
+        r->ev_k = k;
+        double guess = ev_root(g_interpolant, r, t0, r->g0[k], r->t, r->g1[k], NAN, &evals);
+        r->te[k] = ev_root(g_solution, r, t0, r->g0[k], r->t, r->g1[k], guess, &evals);
+        if (isnan(r->te[k])) {
+            sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s fired in the step "
+                              "from t = %.17g, but the state at its trial times could not "
+                              "be computed", m->ev_names[k], t0);
+            return GSL_EBADFUNC;
+        }
+        any = 1;
+    }
+    memcpy(r->g0, r->g1, (size_t)r->ne * sizeof *r->g0);
+    *what = EV_NONE;
+    while (any) {
+        int k = -1;
+        for (int j = 0; j < r->ne; j++)
+            if (!isnan(r->te[j]) && (k < 0 || r->te[j] < r->te[k]))
+                k = j;
+        if (k < 0)
+            break;
+        double t = r->te[k];
+        r->te[k] = NAN;
+        r->st->events++;
+        if (t == r->ev_t1)
+            memcpy(r->xe, r->x, bytes);
+        else if (side_from(r, t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
+            return GSL_EBADFUNC;
+        int rc = r->o->on_event ? r->o->on_event(r->o->event_ctx, k, t, r->xe) : EOMC_OK;
+        if (rc != EOMC_OK) {
+            r->row_status = rc;
+            return ROW_STOP;
+        }
+        if (m->ev_action[k] == EOMC_EVENT_RECORD)
+            continue;
+        memcpy(r->x, r->xe, bytes);
+        r->t = t;
+        if (t != r->ev_t1 && (rc = rhs(t, r->x, r->f1, r)) != GSL_SUCCESS)
+            return rc;
+        if (s->kkt && sim_constraint_rows(s, t, r->x, r->B0) != 0)
+            return GSL_EBADFUNC;
+        *fired = k;
+        *what = m->ev_action[k] == EOMC_EVENT_STOP ? EV_STOP : EV_SET;
+        return GSL_SUCCESS;
+    }
+    return GSL_SUCCESS;
+}
+
+/* Event k's reset at r->t, after the rows up to it were written: the
+ * integration starts again from the new state, with nothing of the
+ * history before (the interpolant's nodes, a multistep method's past).
+ * The event is held until its g leaves zero. */
+static int
+apply_reset(Run *r, int k)
+{
+    eomc_sim *s = r->s;
+    double span = r->o->t_end - r->o->t0;
+    r->ev_k = k;
+    if (r->nsets > 0 && r->t - r->last_set < ACCUMULATE_REL * span)
+        return EVENTS_ACCUMULATE;
+    r->gap = r->t - r->last_set;
+    r->last_set = r->t;
+    r->nsets++;
+    eomc_sim_event_set(s, k, r->t, r->x, r->x);
+    if (!sim_all_finite(r->x, r->N)) {
+        sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
+                          "finite", s->m->ev_names[k]);
+        return GSL_EBADFUNC;
+    }
+    int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
+    if (rc != GSL_SUCCESS)
+        return rc;
+    dense_clear(r->dense);
+    dense_push(r->dense, r->t, r->x, r->f0);
+    gsl_odeiv2_step_reset(r->step);
+    if (r->side != r->step)
+        gsl_odeiv2_step_reset(r->side);
+    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g0);
+    r->g0[k] = 0;
+    r->held[k] = 1;
+    r->since_reset = 0;
+    if (s->kkt && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
+        return GSL_EBADFUNC;
+    r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
+    return GSL_SUCCESS;
+}
+
+/* A stop event ended the run at r->t: the rows up to it, then a last row
+ * at the event itself. */
+static int
+finish_at_event(Run *r)
+{
+    int rc = emit_rows(r, 1);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= r->t)
+        return EVENT_STOPPED;
+    rc = r->row ? r->row(r->ctx, r->t, r->x) : EOMC_OK;
+    if (rc != EOMC_OK) {
+        r->row_status = rc;
+        return ROW_STOP;
+    }
+    return EVENT_STOPPED;
 }
 
 /* ---- steps ---- */
@@ -671,7 +897,8 @@ static int
 watch_steps(Run *r)
 {
     double typ = typical_step(r);
-    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ)
+    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ &&
+        !(r->nsets > 0 && r->since_reset < RESTART_STEPS))
         return STEP_COLLAPSE;
     if (r->tries < GRIND_WINDOW)
         return GSL_SUCCESS;
@@ -712,11 +939,29 @@ march(Run *r)
         if (rc != GSL_SUCCESS)
             return rc;
         r->st->steps++;
+        r->since_reset++;
         if ((rc = after_step(r, t0)) != GSL_SUCCESS)
+            return rc;
+        int fired = -1, ev = EV_NONE;
+        if (r->ne && (rc = check_events(r, t0, &ev, &fired)) != GSL_SUCCESS)
             return rc;
         dense_push(r->dense, r->t, r->x, r->f1);
         double *f = r->f0; /* this step's end is the next one's start */
         r->f0 = r->f1, r->f1 = f;
+        if (ev == EV_STOP) {
+            r->st->stop_event = fired;
+            return finish_at_event(r);
+        }
+        if (ev == EV_SET) {
+            if ((rc = emit_rows(r, 1)) != GSL_SUCCESS || (rc = apply_reset(r, fired)))
+                return rc;
+            /* a fresh start: a first trial step as at t0, and a fraction of
+             * the interval since the event before, so that the steps grow
+             * again from the event and see g leave zero before they could
+             * cross it a second time (the top of a bounce) */
+            h = fmin(H0_REL * span, RESTART_REL * r->gap);
+            continue;
+        }
         if (r->t < o->t_end && !nfixed && fabs(h) < r->hmin)
             return GSL_ENOPROG;
         if (!nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
@@ -738,9 +983,11 @@ run_free(Run *r)
         gsl_odeiv2_driver_free(r->d);
     dense_free(r->dense);
     double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
-                        r->xrow, r->erow, r->fs, r->fs2};
+                        r->xrow, r->erow, r->fs, r->fs2, r->g0, r->g1, r->ge, r->te,
+                        r->xe};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
+    free(r->held);
 }
 
 static int
@@ -766,10 +1013,14 @@ run_alloc(Run *r, const Method *m)
             gsl_odeiv2_step_set_driver(r->side, r->d);
     }
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
-                         &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2};
+                         &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2, &r->g0, &r->g1,
+                         &r->ge, &r->te, &r->xe};
+    size_t ne = (size_t)r->ne;
+    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N};
     int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        ok &= (*arrays[k] = sim_zeros(k == 6 || k == 7 ? nB : N)) != NULL;
+        ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
+    ok &= (r->held = calloc(ne + 1, 1)) != NULL;
     return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
                                           r->o->method);
 }
@@ -792,7 +1043,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-             .row = row, .ctx = ctx};
+             .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY};
+    st->stop_event = -1;
     r.nrows = eomc_run_rows(o);
     r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
     r.progress = o->progress && isatty(2);
@@ -814,6 +1066,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (rc == EOMC_OK && s->m->invariant &&
         eomc_sim_invariant(s, r.t, x, x + n, &r.h0) == EOMC_OK)
         r.have_h0 = 1;
+    if (rc == EOMC_OK && r.ne) /* an event at exactly 0 here waits to leave it */
+        eomc_sim_events(s, r.t, x, x + n, r.g0);
     if (rc == EOMC_OK && r.nrows > 1) {
         int status = rhs(r.t, x, r.f0, &r);
         if (status == GSL_SUCCESS) {
@@ -821,13 +1075,17 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             status = march(&r);
         }
         /* the rows up to the last step reached stand, also after a failure */
-        if (status != ROW_STOP) {
+        if (status != ROW_STOP && status != EVENT_STOPPED) {
             int flushed = emit_rows(&r, 1);
             if (status == GSL_SUCCESS)
                 status = flushed;
         }
+        if (status == EVENT_STOPPED)
+            st->t_stop = r.t;
         if (status == ROW_STOP)
             rc = r.row_status;
+        else if (status == EVENT_STOPPED)
+            rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
             rc = step_error(&r, status);
         else if (!sim_all_finite(x, 2 * n))

@@ -555,6 +555,28 @@ eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double
     return EOMC_OK;
 }
 
+void
+eomc_sim_events(eomc_sim *s, double t, const double *q, const double *v, double *g)
+{
+    sim_inputs_at(s, t);
+    s->m->events(t, q, v, s->p, s->u, g);
+}
+
+void
+eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    /* the values it sets are computed from the state before: a copy */
+    memcpy(s->arow, x, (size_t)n * sizeof *x);
+    memcpy(s->col, x + n, (size_t)n * sizeof *x);
+    memmove(x1, x, 2 * (size_t)n * sizeof *x);
+    if (m->ev_action[k] != EOMC_EVENT_SET || !m->event_set)
+        return;
+    sim_inputs_at(s, t);
+    m->event_set(k, t, s->arow, s->col, s->p, s->u, x1, x1 + n);
+}
+
 int
 eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, double *h)
 {

@@ -1,0 +1,92 @@
+#!/bin/sh
+# A scene's events against closed forms (TAP), computed here:
+#  - a pendulum released from rest at theta0 reaches theta = 0 after a
+#    quarter period K(sin(theta0/2)) / sqrt(g/l) (K by the arithmetic-
+#    geometric mean): a stop event ends the run there, with a last row at
+#    the event; recorded passes come every half period after it, and
+#    recording changes nothing of the motion;
+#  - a ball dropped from rest at height h with restitution e hits the
+#    floor at t1 = sqrt(2h/g) and then at t1 + (2 v1/g) e (1 - e^k)/(1 - e),
+#    v1 = g t1; where the bounces accumulate (t1 (1 + 2e/(1 - e))) the run
+#    stops with exit status 3, the rows before kept, and never hangs;
+#  - an event the scene does not ask for leaves no trace in its C.
+# usage: test_events.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export EOMC_CACHE_DIR="$tmp/cache"
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+# |got - want| <= tol
+within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
+swing="$src/specs/swing.yaml" ball="$src/specs/bouncing_ball.yaml"
+
+# the quarter period, K(k) = pi / (2 agm(1, sqrt(1 - k^2))), theta0 = 1, g = 9.81, l = 1
+quarter=$(awk 'BEGIN { k = sin(0.5); a = 1; b = sqrt(1 - k * k)
+    for (i = 0; i < 40; i++) { m = (a + b) / 2; b = sqrt(a * b); a = m }
+    printf "%.17g", 3.14159265358979323846 / (2 * a) / sqrt(9.81) }')
+
+"$eomc" run "$swing" --scene quarter > "$tmp/quarter.csv" 2> "$tmp/err"; st=$?
+last=$(tail -1 "$tmp/quarter.csv" | cut -d, -f1)
+[ $st -eq 0 ] && within "$last" "$quarter" 1e-10
+ok $? "stop at theta = 0: the last row is at t = $last, the quarter period $quarter"
+theta=$(tail -1 "$tmp/quarter.csv" | cut -d, -f2)
+before=$(tail -2 "$tmp/quarter.csv" | head -1 | cut -d, -f1)
+within "$theta" 0 1e-12 && awk -v a="$before" -v b="$last" 'BEGIN { exit !(a < b && b - a < 0.01) }'
+ok $? "the last row is the event itself (theta = $theta), after the row at $before"
+
+"$eomc" run "$swing" --scene passes --events "$tmp/passes.csv" > "$tmp/passes_rows.csv"
+"$eomc" run "$swing" --scene free > "$tmp/free_rows.csv"
+cmp -s "$tmp/passes_rows.csv" "$tmp/free_rows.csv"
+ok $? "recording events changes nothing of the motion (the same rows as scene free)"
+head -1 "$tmp/passes.csv" | grep -qx "t,event,theta,theta'"
+ok $? "--events writes the header t,event,theta,theta'"
+worst=$(awk -F, -v q="$quarter" 'NR > 1 { want = q * (2 * (NR - 2) + 1); d = $1 - want
+    if (d < 0) d = -d; if (d > w) w = d; rows++ }
+    END { if (rows != 9) print "rows?"; else printf "%.3g", w }' "$tmp/passes.csv")
+awk -v w="$worst" 'BEGIN { exit !(w != "rows?" && w <= 1e-10) }'
+ok $? "the 9 passes through the bottom come at (2k + 1) T/4, to $worst"
+
+# the bouncing ball: h = 1, g = 9.81, e = 0.5
+"$eomc" run "$ball" --events "$tmp/impacts.csv" > "$tmp/ball.csv"; st=$?
+worst=$(awk -F, 'NR > 1 { g = 9.81; h = 1; e = 0.5; t1 = sqrt(2 * h / g); v1 = g * t1
+    k = NR - 2; want = t1 + 2 * v1 / g * e * (1 - e ^ k) / (1 - e)
+    d = $1 - want; if (d < 0) d = -d; if (d > w) w = d
+    y = $3 < 0 ? -$3 : $3; if (y > wy) wy = y; rows++ }
+    END { if (rows != 3) print "rows?"; else printf "%.3g %.3g", w, wy }' "$tmp/impacts.csv")
+set -- $worst
+[ $st -eq 0 ] && awk -v w="$1" -v y="${2:-1}" 'BEGIN { exit !(w != "rows?" && w <= 1e-10 && y <= 1e-12) }'
+ok $? "the three impacts up to t = 1.2 at their closed-form times, to $1 (y there within ${2:-?} of 0)"
+lowest=$(awk -F, 'NR > 1 && (m == "" || $2 < m) { m = $2 } END { print m }' "$tmp/ball.csv")
+awk -v y="$lowest" 'BEGIN { exit !(y >= -1e-12) }'
+ok $? "the ball never goes through the floor: its lowest row is y = $lowest"
+
+rest=$(awk 'BEGIN { t1 = sqrt(2 / 9.81); printf "%.17g", t1 * (1 + 2 * 0.5 / 0.5) }')
+timeout 60 "$eomc" run "$ball" --t-end 3 > "$tmp/zeno.csv" 2> "$tmp/zeno.err"; st=$?
+at=$(sed -n 's/.*error: t = \([0-9.e+-]*\): the events accumulate.*/\1/p' "$tmp/zeno.err")
+lastrow=$(tail -1 "$tmp/zeno.csv" | cut -d, -f1)
+[ $st -eq 3 ] && within "$at" "$rest" 1e-6 &&
+    awk -v t="$lastrow" -v r="$rest" 'BEGIN { exit !(t <= r && t > r - 0.02) }' &&
+    grep -q 'rows computed up to then are kept' "$tmp/zeno.err"
+ok $? "bounces accumulating at t = $rest: exit $st at t = $at, rows kept up to $lastrow"
+timeout 60 "$eomc" run "$ball" --set e=0 > /dev/null 2> "$tmp/rest.err"; st=$?
+[ $st -eq 3 ] && grep -q 'floor holds again at the end of the first step after its reset' "$tmp/rest.err"
+ok $? "restitution 0 (the ball stays on the floor): exit $st, the cause named"
+
+"$eomc" compile "$swing" --scene free -o "$tmp/free.c"
+"$eomc" compile "$swing" --scene quarter -o "$tmp/quarter.c"
+! grep -q '_events\|ev_names' "$tmp/free.c" && grep -q 'swing_events,' "$tmp/quarter.c" &&
+    ! grep -q '_event_set' "$tmp/quarter.c"
+ok $? "events leave no code in a scene without them, and no reset without a set event"
+
+"$eomc" run "$ball" --error > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q 'reference solution does not follow' "$tmp/err"
+ok $? "--error with events that reset the motion is a usage error (exit $st)"
+"$eomc" run "$swing" --scene free --events "$tmp/none.csv" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && [ ! -e "$tmp/none.csv" ]
+ok $? "--events for a scene without events: exit $st, no file"
+
+echo "1..$n"
+[ $failed -eq 0 ]

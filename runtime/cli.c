@@ -734,7 +734,8 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         ADD("%s%s", i ? ", " : "", m->q_names[i]);
     ADD("%s), equations in %s form from %s. ", m->nq > 8 ? ", ..." : "", m->form,
         m->spec);
-    ADD("Integrated from t = %g to %g with %s", c->run.t0, c->run.t_end, c->run.method);
+    double t_last = st->stop_event >= 0 ? st->t_stop : c->run.t_end;
+    ADD("Integrated from t = %g to %.17g with %s", c->run.t0, t_last, c->run.method);
     if (c->run.h_fixed > 0)
         ADD(" in fixed steps of %g: ", st->h_used);
     else
@@ -743,7 +744,21 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         "of CPU time. ", st->steps, st->rejected, st->rhs_evals, st->jac_evals,
         st->cpu_seconds);
     ADD("Wrote %ld rows every %g to %s. ", w->rows, c->run.dt, c->out ? c->out : "stdout");
-    if (w->invariant)
+    int resets = 0;
+    for (int k = 0; k < m->nevent; k++)
+        resets |= m->ev_action[k] == EOMC_EVENT_SET;
+    if (m->nevent > 0)
+        ADD("%ld event%s fired", st->events, st->events == 1 ? "" : "s");
+    if (st->stop_event >= 0)
+        ADD("; %s stopped the run at t = %.17g (t_end was %g)", m->ev_names[st->stop_event],
+            st->t_stop, c->run.t_end);
+    if (m->nevent > 0)
+        ADD(". ");
+    if (w->invariant && resets && st->events > 0)
+        ADD("The conserved quantity %s, measured afresh after each reset, changed by at "
+            "most %.3g between them (%.3g relative to its last start, %.10g).",
+            m->invariant_name, w->dh, w->dh / fmax(fabs(w->h0), 1e-300), w->h0);
+    else if (w->invariant)
         ADD("The conserved quantity %s started at %.10g; its largest change was %.3g "
             "(%.3g relative).", m->invariant_name, w->h0, w->dh,
             w->dh / fmax(fabs(w->h0), 1e-300));

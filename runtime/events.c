@@ -19,7 +19,7 @@ ev_crossed(int dir, double g0, double g1)
 }
 
 /* The bracket is settled when it is this many units of rounding of t wide:
- * no representable time between its ends decides anything more. */
+ * no time between its ends is worth telling apart any more. */
 #define SETTLED_ULPS 4
 
 double
@@ -27,39 +27,51 @@ ev_root(ev_fn g, void *ctx, double a, double ga, double b, double gb, double gue
         int *evals)
 {
     *evals = 0;
+    int post = sign(gb); /* the side the crossing goes to (0: b is the root) */
     if (gb == 0)
-        guess = NAN; /* nothing to refine below b... */
-    int side = 0; /* which end stayed last time (Illinois halves its g) */
-    while (gb != 0 && *evals < EV_MAX_EVALS) {
-        double width = fabs(b - a), scale = fmax(fabs(a), fabs(b));
-        if (width <= SETTLED_ULPS * DBL_EPSILON * scale)
+        return b;
+    /* Anderson-Bjorck: secant steps on a bracket whose latest point is b;
+     * when the new point falls on b's side again, the other end's g is
+     * scaled down so that the next secant reaches across.  A bisection
+     * whenever three steps did not halve the bracket keeps it safe. */
+    double width0 = fabs(b - a);
+    int since = 0;
+    while (*evals < EV_MAX_EVALS) {
+        double lo = fmin(a, b), hi = fmax(a, b);
+        if (hi - lo <= SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi)))
             break;
         double t;
-        if (*evals == 0 && guess > fmin(a, b) && guess < fmax(a, b))
+        if (*evals == 0 && guess > lo && guess < hi)
             t = guess;
+        else if (since >= 3 && hi - lo > 0.5 * width0)
+            t = 0.5 * (lo + hi), since = 0, width0 = hi - lo;
         else
-            t = b - gb * (b - a) / (gb - ga); /* the secant through the bracket */
-        if (!(t > fmin(a, b) && t < fmax(a, b))) /* rounding: bisect */
-            t = 0.5 * (a + b);
+            t = b - gb * (b - a) / (gb - ga);
+        /* never closer to an end than the bracket is to settling: a point
+         * next to the root at one end is followed by one just across it,
+         * not by a crawl from the other end (Brent's minimum step) */
+        double step = SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi));
+        if (isnan(t))
+            t = 0.5 * (lo + hi);
+        else if (t - lo < step)
+            t = fmin(lo + step, 0.5 * (lo + hi));
+        else if (hi - t < step)
+            t = fmax(hi - step, 0.5 * (lo + hi));
         double gt = g(ctx, t);
         (*evals)++;
         if (isnan(gt))
             return NAN;
-        if (gt == 0) {
-            b = t, gb = 0;
-            break;
+        if (gt == 0)
+            return t;
+        if (sign(gt) == sign(gb)) {
+            double m = 1 - gt / gb;
+            ga *= m > 0 ? m : 0.5;
+        } else {
+            a = b, ga = gb;
         }
-        if (sign(gt) == sign(gb)) { /* the root is in [a, t] */
-            b = t, gb = gt;
-            if (side == -1)
-                ga *= 0.5;
-            side = -1;
-        } else { /* in [t, b] */
-            a = t, ga = gt;
-            if (side == 1)
-                gb *= 0.5;
-            side = 1;
-        }
+        b = t, gb = gt;
+        if (++since >= 3 && fabs(b - a) <= 0.5 * width0)
+            since = 0, width0 = fabs(b - a);
     }
-    return b;
+    return sign(gb) == post ? b : a;
 }

@@ -22,9 +22,10 @@ int ev_crossed(int dir, double g0, double g1);
 typedef double (*ev_fn)(void *ctx, double t);
 
 /* The time in [a, b] where g crosses zero, given g(a) = ga and g(b) = gb
- * of opposite signs or gb = 0, by the Illinois variant of regula falsi
- * (superlinear, and the bracket always holds the root), starting from
- * the trial time guess when it lies inside (a, b).  It stops when the
+ * of opposite signs or gb = 0, by the Anderson-Bjorck variant of regula
+ * falsi (superlinear, and the bracket always holds the root; bisection
+ * when it stalls), starting from the trial time guess when it lies
+ * inside (a, b).  It stops when the
  * bracket is within a few units of rounding of t, or after EV_MAX_EVALS
  * evaluations.  Returns the end of the bracket on the far side of the
  * crossing (g there is 0 or of gb's sign: at or just past it), or NAN

@@ -31,7 +31,7 @@ typedef struct Cli {
     const char *prog;
     eomc_run_opts run;
     const char *out;
-    int stats, summary, accel, assemble, work_precision, error;
+    int stats, summary, accel, assemble, work_precision, error, linearize, equilibrium;
     int stabilize;        /* EOMC_STABILIZE_... */
     double alpha, beta;   /* Baumgarte's rates */
     int rates_given, method_given, fixed_given;
@@ -165,8 +165,8 @@ enum Option {
     O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
-    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_HELP, O_VERSION,
-    NOPTIONS,
+    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_LINEARIZE,
+    O_EQUILIBRIUM, O_HELP, O_VERSION, NOPTIONS,
     FIRST_FLAG = O_STATS,
 };
 static const char *const option_names[NOPTIONS] = {
@@ -174,7 +174,7 @@ static const char *const option_names[NOPTIONS] = {
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
     "--reference-out", "--events", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
-    "--error", "--help", "--version",
+    "--error", "--linearize", "--equilibrium", "--help", "--version",
 };
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
 /* Baumgarte's rates when --baumgarte is not given (1/time units). */
@@ -245,6 +245,12 @@ help(const Cli *c, const eomc_model *m)
            "    --csv FILE           one row per run\n"
            "    --plot FILE          the work-precision diagram, .svg or .png (gnuplot)\n"
            "    --target ERR         the cheapest setting with error_max <= ERR\n"
+           "  --linearize        A = dz'/dz and B = dz'/du at the initial state (or --init),\n"
+           "                     z the coordinates and velocities (a constrained model's\n"
+           "                     independent ones), exact; their eigenvalues\n"
+           "  --equilibrium      an equilibrium (q' = 0, q'' = 0) by Newton's method from\n"
+           "                     the initial coordinates, its linearization and stability\n"
+           "    --csv FILE       (both) A and B as matrix,row,column,value\n"
            "  --help, --version\n\n");
     printf("coordinates: ");
     list_names(stdout, m->q_names, m->nq, "");
@@ -436,9 +442,17 @@ check_combination(Cli *c)
         c->stabilize = EOMC_STABILIZE_NONE;
     if (c->reference)
         c->error = 1;
-    if (c->report_option && !c->work_precision)
-        return usage(c, "%s belongs to --work-precision (one run writes its trajectory "
-                     "with -o)", c->report_option);
+    int linear = c->linearize || c->equilibrium;
+    if (c->report_option && !c->work_precision &&
+        !(linear && !strcmp(c->report_option, "--csv")))
+        return usage(c, "%s belongs to --work-precision%s (one run writes its trajectory "
+                     "with -o)", c->report_option,
+                     strcmp(c->report_option, "--csv") ? "" : ", --linearize or --equilibrium");
+    if (linear && (c->accel || c->work_precision || c->error || c->out || c->events))
+        return usage(c, "--%s does not integrate: it does not take %s",
+                     c->linearize ? "linearize" : "equilibrium",
+                     c->accel ? "--accel" : c->work_precision ? "--work-precision"
+                     : c->error ? "--error" : c->out ? "-o (use --csv FILE)" : "--events");
     if (c->work_precision) {
         const char *clash = c->accel ? "--accel" : c->out ? "-o" : c->method_given
                           ? "--method (--methods chooses the report's)" : c->fixed_given
@@ -487,7 +501,7 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
                 return -1;
             }
             int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble,
-                           &c->work_precision, &c->error};
+                           &c->work_precision, &c->error, &c->linearize, &c->equilibrium};
             *flag[k - FIRST_FLAG] = 1;
             continue;
         }
@@ -854,6 +868,176 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
     return rc;
 }
 
+/* The name of component k of the linearization's state: "theta", "theta'". */
+static void
+state_name(eomc_sim *sim, int k, char *buf, size_t len)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int coord, order;
+    eomc_sim_linear_state(sim, k, &coord, &order);
+    snprintf(buf, len, "%s%s", m->q_names[coord], order ? "'" : "");
+}
+
+/* A labelled matrix [rows x cols] for people. */
+static void
+print_matrix(eomc_sim *sim, const char *title, const double *X, int rows, int cols,
+             int inputs)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    char name[160];
+    int w = 12;
+    for (int k = 0; k < rows; k++) {
+        state_name(sim, k, name, sizeof name);
+        w = (int)strlen(name) + 2 > w ? (int)strlen(name) + 2 : w;
+    }
+    for (int k = 0; k < m->nu && inputs; k++)
+        w = (int)strlen(m->u_names[k]) + 2 > w ? (int)strlen(m->u_names[k]) + 2 : w;
+    printf("%s\n%*s", title, w, "");
+    for (int c = 0; c < cols; c++) {
+        if (inputs)
+            snprintf(name, sizeof name, "%s", m->u_names[c]);
+        else
+            state_name(sim, c, name, sizeof name);
+        printf("%*s", w, name);
+    }
+    printf("\n");
+    for (int r = 0; r < rows; r++) {
+        state_name(sim, r, name, sizeof name);
+        printf("%*s", w, name);
+        for (int c = 0; c < cols; c++)
+            printf(" %*.6g", w - 1, X[r * cols + c]); /* a space even at full width */
+        printf("\n");
+    }
+}
+
+/* The eigenvalues' real parts against their largest modulus: a real part
+ * within this of 0 is rounding (a conservative system's centre). */
+#define EIG_ZERO_REL 1e-9
+
+static int
+cmp_eig(const void *a, const void *b)
+{
+    const double *x = a, *y = b;
+    return x[0] != y[0] ? (x[0] < y[0] ? -1 : 1) : x[1] < y[1] ? -1 : x[1] > y[1];
+}
+
+/* The eigenvalues, sorted, and what they say of stability. */
+static int
+print_eigen(Cli *c, eomc_sim *sim, const double *A, int nl, int verdict)
+{
+    double *re = calloc((size_t)nl, sizeof *re), *im = calloc((size_t)nl, sizeof *im);
+    double *pair = calloc(2 * (size_t)nl, sizeof *pair);
+    int rc = re && im && pair ? eomc_sim_eigenvalues(sim, A, nl, re, im) : EOMC_EUSAGE;
+    if (rc != EOMC_OK) {
+        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+    } else {
+        double big = 0, worst = -HUGE_VAL;
+        for (int k = 0; k < nl; k++) {
+            pair[2 * k] = re[k], pair[2 * k + 1] = im[k];
+            big = fmax(big, hypot(re[k], im[k]));
+            worst = fmax(worst, re[k]);
+        }
+        qsort(pair, (size_t)nl, 2 * sizeof *pair, cmp_eig);
+        printf("eigenvalues of A:\n");
+        for (int k = 0; k < nl; k++) {
+            double r = fabs(pair[2 * k]) <= EIG_ZERO_REL * big ? 0 : pair[2 * k];
+            double i = fabs(pair[2 * k + 1]) <= EIG_ZERO_REL * big ? 0 : pair[2 * k + 1];
+            printf("  %.17g %c %.17gi\n", r, i < 0 ? '-' : '+', fabs(i));
+        }
+        if (verdict && worst > EIG_ZERO_REL * big)
+            printf("unstable: an eigenvalue has the positive real part %.6g\n", worst);
+        else if (verdict && worst < -EIG_ZERO_REL * big)
+            printf("asymptotically stable: every eigenvalue has a negative real part "
+                   "(the largest %.6g)\n", worst);
+        else if (verdict)
+            printf("stable to first order only: no eigenvalue has a positive real part, "
+                   "and some lie on the imaginary axis (within %g of the largest "
+                   "modulus), where the linearization cannot decide\n", EIG_ZERO_REL);
+    }
+    free(re);
+    free(im);
+    free(pair);
+    return rc;
+}
+
+/* --csv FILE: matrix,row,column,value, one row per entry of A and B. */
+static int
+write_linear_csv(Cli *c, eomc_sim *sim, const double *A, const double *B, int nl)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    FILE *f = fopen(c->csv, "w");
+    if (!f) {
+        fprintf(stderr, "%s: --csv: cannot write '%s': %s\n", c->prog, c->csv,
+                strerror(errno));
+        return EOMC_EUSAGE;
+    }
+    char row[160], col[160];
+    fprintf(f, "matrix,row,column,value\n");
+    for (int r = 0; r < nl; r++) {
+        state_name(sim, r, row, sizeof row);
+        for (int k = 0; k < nl; k++) {
+            state_name(sim, k, col, sizeof col);
+            fprintf(f, "A,%s,%s,%.17g\n", row, col, A[r * nl + k]);
+        }
+    }
+    for (int r = 0; r < nl; r++) {
+        state_name(sim, r, row, sizeof row);
+        for (int k = 0; k < m->nu; k++)
+            fprintf(f, "B,%s,%s,%.17g\n", row, m->u_names[k], B[r * m->nu + k]);
+    }
+    if (fclose(f) != 0) {
+        fprintf(stderr, "%s: error writing %s\n", c->prog, c->csv);
+        return EOMC_EUSAGE;
+    }
+    return EOMC_OK;
+}
+
+/* --linearize and --equilibrium. */
+static int
+print_linear(Cli *c, eomc_sim *sim, double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq, nl = eomc_sim_linear_size(sim), nu = m->nu, rc = EOMC_OK, its = 0;
+    double t = c->run.t0;
+    double *A = calloc((size_t)nl * (size_t)nl, sizeof *A);
+    double *B = calloc((size_t)nl * (size_t)(nu ? nu : 1), sizeof *B);
+    if (!A || !B)
+        rc = EOMC_EUSAGE;
+    if (rc == EOMC_OK && c->equilibrium) {
+        rc = eomc_sim_equilibrium(sim, t, x, &its);
+        if (rc == EOMC_OK) {
+            printf("%s: an equilibrium, found by %d Newton step%s:\n", c->prog, its,
+                   its == 1 ? "" : "s");
+            for (int i = 0; i < n; i++)
+                printf("  %s = %.17g\n", m->q_names[i], x[i]);
+        }
+    }
+    if (rc == EOMC_OK)
+        rc = eomc_sim_linearize(sim, t, x, A, B);
+    if (rc == EOMC_OK) {
+        printf("%s: linearized at t = %g,", c->prog, t);
+        for (int i = 0; i < 2 * n; i++)
+            printf("%s %s%s = %.6g", i ? "," : "", m->q_names[i % n], i < n ? "" : "'", x[i]);
+        printf("\n");
+        if (m->nc > 0)
+            printf("in the independent coordinates of the elimination (%d of %d)\n", nl,
+                   2 * n);
+        print_matrix(sim, "A = dz'/dz:", A, nl, nl, 0);
+        if (nu)
+            print_matrix(sim, "B = dz'/du:", B, nl, nu, 1);
+        else
+            printf("B = dz'/du: the model has no inputs\n");
+        rc = print_eigen(c, sim, A, nl, c->equilibrium);
+    } else if (rc != EOMC_EUSAGE || eomc_sim_error(sim)[0]) {
+        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+    }
+    if (rc == EOMC_OK && c->csv)
+        rc = write_linear_csv(c, sim, A, B, nl);
+    free(A);
+    free(B);
+    return rc;
+}
+
 /* A start off the constraints is allowed (the drift then starts there),
  * but rarely meant: say so, once, before integrating.  The test is
  * relative to each constraint's terms (eomc_sim_inconsistency), so that
@@ -1154,6 +1338,7 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
         if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
             (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
             rc = c.accel            ? print_accel(&c, sim, x)
+                 : c.linearize || c.equilibrium ? print_linear(&c, sim, x)
                  : c.work_precision ? work_precision(&c, sim, ext, x)
                                     : simulate(&c, sim, ext, x);
     }

@@ -128,6 +128,27 @@ int eomc_sim_input_held(const eomc_sim *s, int k, double *value);
 int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
                       double *dfdt);
 
+/* ---- linearization and equilibria (linearize.c) ---- */
+
+/* The size nl of the linearization's state: 2 nq, or for a constrained
+ * model the independent coordinates and velocities of the elimination (a
+ * holonomic constraint removes its dependent coordinate and velocity, a
+ * first-order one its dependent velocity). */
+int eomc_sim_linear_size(const eomc_sim *s);
+/* Its k-th component: the coordinate's index and order (0: q, 1: q'). */
+void eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order);
+/* A = dz'/dz [nl x nl] and B = dz'/du [nl x nu] at (t, x) (x [2nq], on
+ * the constraints), exact from the generated Jacobians, row-major. */
+int eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B);
+/* The eigenvalues of A [nl x nl] (re + i im, unordered). */
+int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *im);
+/* An equilibrium (q' = 0, q'' = 0) by Newton's method with the exact
+ * Jacobian from x's coordinates: x [2nq] becomes it (velocities 0);
+ * *iterations counts the Newton steps.  EOMC_ENUMERIC when it does not
+ * converge; EOMC_EUSAGE when the equilibria are not isolated points
+ * (nonholonomic models). */
+int eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations);
+
 /* ---- integration ---- */
 
 /* The integration methods by name, NULL-terminated (runtime/methods.def). */

@@ -13,6 +13,7 @@
  * the last two share.
  */
 #include "eomc.h"
+#include "plot.h"
 #include "report.h"
 
 #include <errno.h>
@@ -43,7 +44,7 @@ typedef struct Cli {
     const char **methods; /* NULL-terminated */
     double *tolerances, *steps, target;
     int ntolerances, nsteps;
-    const char *report_option; /* the first report-only option given */
+    unsigned report_given; /* bit k: option O_METHODS + k (report-only) was given */
 } Cli;
 
 typedef struct Csv {
@@ -60,6 +61,8 @@ typedef struct Csv {
     int rebase;          /* an event reset the state at t_reset: h starts */
     double t_reset;      /* afresh with the first row after it */
     FILE *events;        /* --events FILE, or NULL */
+    FILE *tee;           /* a copy of the rows for --plot, or NULL */
+    double h_first;      /* the conserved quantity at the first row */
     double err_max, err_end;
 } Csv;
 
@@ -354,8 +357,8 @@ take_value(Cli *c, int k, const char *val)
     eomc_run_opts *r = &c->run;
     const char *opt = option_names[k];
     double x;
-    if (k >= O_METHODS && k <= O_TARGET && !c->report_option)
-        c->report_option = opt;
+    if (k >= O_METHODS && k <= O_TARGET)
+        c->report_given |= 1u << (k - O_METHODS);
     switch (k) {
     case O_T_END: return real_option(c, opt, val, &r->t_end, 0, 0);
     case O_DT: return real_option(c, opt, val, &r->dt, 0, 1);
@@ -443,11 +446,25 @@ check_combination(Cli *c)
     if (c->reference)
         c->error = 1;
     int linear = c->linearize || c->equilibrium;
-    if (c->report_option && !c->work_precision &&
-        !(linear && !strcmp(c->report_option, "--csv")))
-        return usage(c, "%s belongs to --work-precision%s (one run writes its trajectory "
-                     "with -o)", c->report_option,
-                     strcmp(c->report_option, "--csv") ? "" : ", --linearize or --equilibrium");
+    int run_plot = c->plot && !c->work_precision && !linear && !c->accel;
+    if (run_plot && !ends_with(c->plot, ".svg") && !ends_with(c->plot, ".png"))
+        return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
+    if (run_plot && !report_have_gnuplot())
+        return usage(c, "--plot: gnuplot is not installed (Debian: apt-get install "
+                     "gnuplot-nox)");
+    for (int k = O_METHODS; k <= O_TARGET && !c->work_precision; k++) {
+        if (!(c->report_given >> (k - O_METHODS) & 1) || (k == O_CSV && linear) ||
+            (k == O_PLOT && run_plot))
+            continue;
+        if (k == O_CSV)
+            return usage(c, "--csv belongs to --work-precision, --linearize or "
+                         "--equilibrium (one run writes its trajectory with -o)");
+        if (k == O_PLOT)
+            return usage(c, "--plot draws a run or the --work-precision report, not %s",
+                         c->accel ? "--accel" : "--linearize or --equilibrium");
+        return usage(c, "%s belongs to --work-precision (one run writes its trajectory "
+                     "with -o)", option_names[k]);
+    }
     if (linear && (c->accel || c->work_precision || c->error || c->out || c->events))
         return usage(c, "--%s does not integrate: it does not take %s",
                      c->linearize ? "linearize" : "equilibrium",
@@ -654,6 +671,8 @@ write_row(void *ctx, double t, const double *x)
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
     if (w->invariant) {
         eomc_sim_invariant(w->sim, t, x, x + n, &h);
+        if (w->rows == 0)
+            w->h_first = h;
         if (w->rows == 0 || (w->rebase && t > w->t_reset))
             w->h0 = h, w->rebase = 0;
         w->dh = fmax(w->dh, fabs(h - w->h0));
@@ -666,22 +685,26 @@ write_row(void *ctx, double t, const double *x)
         w->err_end = isnan(e) ? INFINITY : e;
         w->err_max = fmax(w->err_max, w->err_end);
     }
-    fprintf(w->f, "%.17g", t);
-    for (int i = 0; i < 2 * n; i++)
-        fprintf(w->f, ",%.17g", x[i]);
-    fprintf(w->f, ",%.17g,%.17g,%.17g", T, V, T + V);
-    if (own_invariant_column(m))
-        fprintf(w->f, ",%.17g", h);
-    const double *lam = eomc_sim_multipliers(w->sim);
     for (int k = 0; k < nc; k++)
-        fprintf(w->f, ",%.17g", lam[k]);
-    for (int k = 0; k < nc; k++) {
-        fprintf(w->f, ",%.17g", w->res[k]);
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
+    const double *lam = eomc_sim_multipliers(w->sim);
+    FILE *files[] = {w->f, w->tee};
+    for (int j = 0; j < 2 && files[j]; j++) {
+        FILE *f = files[j];
+        fprintf(f, "%.17g", t);
+        for (int i = 0; i < 2 * n; i++)
+            fprintf(f, ",%.17g", x[i]);
+        fprintf(f, ",%.17g,%.17g,%.17g", T, V, T + V);
+        if (own_invariant_column(m))
+            fprintf(f, ",%.17g", h);
+        for (int k = 0; k < nc; k++)
+            fprintf(f, ",%.17g", lam[k]);
+        for (int k = 0; k < nc; k++)
+            fprintf(f, ",%.17g", w->res[k]);
+        for (int k = 0; k < m->nout; k++)
+            fprintf(f, ",%.17g", out[k]);
+        fputc('\n', f);
     }
-    for (int k = 0; k < m->nout; k++)
-        fprintf(w->f, ",%.17g", out[k]);
-    fputc('\n', w->f);
     w->rows++;
     return EOMC_OK;
 }
@@ -1234,7 +1257,25 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             fprintf(w.events, ",%s'", m->q_names[i]);
         fputc('\n', w.events);
     }
+    /* --plot: a copy of the rows for gnuplot */
+    char data[] = "/tmp/eomc-rows-XXXXXX";
+    int fd = c->plot ? mkstemp(data) : -1;
+    if (c->plot && (fd < 0 || !(w.tee = fdopen(fd, "w")))) {
+        fprintf(stderr, "%s: --plot: cannot write its data: %s\n", c->prog, strerror(errno));
+        if (fd >= 0) {
+            close(fd);
+            unlink(data);
+        }
+        close_output(c, w.f, c->out);
+        if (c->out)
+            unlink(c->out);
+        free(w.res);
+        eomc_reference_free(&ref);
+        return EOMC_EUSAGE;
+    }
     print_header(w.f, m);
+    if (w.tee)
+        print_header(w.tee, m);
     eomc_stats st;
     c->run.progress = 1;
     c->run.on_event = write_event;
@@ -1244,6 +1285,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         rc = rc ? rc : EOMC_ENUMERIC;
     if (w.events && close_output(c, w.events, c->events))
         rc = rc ? rc : EOMC_ENUMERIC;
+
     if (rc)
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     if (rc == EOMC_ENUMERIC)
@@ -1259,6 +1301,16 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
                 "the %ld rows, %.3g at t = %g (the reference is good to %.2g)\n", c->prog,
                 w.err_max, w.rows, w.err_end, c->run.t_end, ref.error);
+    if (w.tee) {
+        int resets = 0;
+        for (int k = 0; k < m->nevent; k++)
+            resets |= m->ev_action[k] == EOMC_EVENT_SET;
+        /* the rows written, also those before a failure */
+        if (fclose(w.tee) != 0 || (w.rows > 0 && plot_trajectory(c->prog, m, data, c->plot,
+                                                                  w.h_first, resets) != EOMC_OK))
+            rc = rc ? rc : EOMC_EUSAGE;
+        unlink(data);
+    }
     eomc_reference_free(&ref);
     free(w.res);
     return rc;

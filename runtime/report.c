@@ -18,6 +18,7 @@
  * does nothing, as a user's would write them.
  */
 #include "report.h"
+#include "plot.h"
 #include "simimpl.h"
 
 #include <errno.h>
@@ -25,8 +26,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #define BATCH_MIN 0.01   /* s: a timed batch lasts at least this */
@@ -451,39 +450,7 @@ write_csv(const Report *r, const Entry *e, int n)
 int
 report_have_gnuplot(void)
 {
-    const char *path = getenv("PATH");
-    if (!path)
-        return 0;
-    char *copy = strdup(path), *save = NULL;
-    int found = 0;
-    for (char *dir = strtok_r(copy, ":", &save); dir && !found;
-         dir = strtok_r(NULL, ":", &save)) {
-        char file[4096];
-        snprintf(file, sizeof file, "%s/gnuplot", *dir ? dir : ".");
-        found = access(file, X_OK) == 0;
-    }
-    free(copy);
-    return found;
-}
-
-/* A string for gnuplot: single quotes, '' for a quote. */
-static void
-gp_string(FILE *f, const char *s)
-{
-    fputc('\'', f);
-    for (; *s; s++) {
-        if (*s == '\'')
-            fputc('\'', f);
-        fputc(*s, f);
-    }
-    fputc('\'', f);
-}
-
-static int
-ends_with(const char *s, const char *tail)
-{
-    size_t a = strlen(s), b = strlen(tail);
-    return a >= b && strcmp(s + a - b, tail) == 0;
+    return plot_have_gnuplot();
 }
 
 /* Colours told apart in print and by most colour-blind readers: one per
@@ -550,17 +517,13 @@ write_plot(const Report *r, const Entry *e, int n)
         free(tmp);
         return EOMC_EUSAGE;
     }
-    int png = ends_with(r->plot, ".png");
-    fprintf(f, "set terminal %s size 1000,650 %s font 'sans,12' background rgb 'white'\n",
-            png ? "pngcairo" : "svg", png ? "" : "dynamic");
-    fprintf(f, "set output ");
-    gp_string(f, tmp);
+    plot_terminal(f, r->plot, tmp, 1000, 650);
     char title[512];
     snprintf(title, sizeof title, "%s: error against CPU time", m->name);
-    fprintf(f, "\nset title ");
-    gp_string(f, title);
+    fprintf(f, "set title ");
+    plot_string(f, title);
     fprintf(f, " noenhanced offset 0,1\nset label 1 ");
-    gp_string(f, r->setting);
+    plot_string(f, r->setting);
     fprintf(f, " at graph 0.5, graph 1.035 center font 'sans,9' noenhanced\n"
                "set logscale xy\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
                "set xlabel 'CPU time per run [s]'\n"
@@ -575,26 +538,13 @@ write_plot(const Report *r, const Entry *e, int n)
     }
     free(plot);
     int bad = ferror(f) | (fclose(f) != 0);
-    int status = -1;
-    if (!bad) {
-        fflush(NULL);
-        pid_t pid = fork();
-        if (pid == 0) {
-            execlp("gnuplot", "gnuplot", script, (char *)NULL);
-            _exit(127);
-        }
-        if (pid > 0)
-            while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-                ;
-    }
-    unlink(script);
-    int rc = EOMC_OK;
-    struct stat st;
-    if (bad || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || stat(tmp, &st) != 0 ||
-        rename(tmp, r->plot) != 0) {
-        fprintf(stderr, "%s: --plot: gnuplot could not write %s\n", r->prog, r->plot);
-        unlink(tmp);
+    int rc;
+    if (bad) {
+        fprintf(stderr, "%s: --plot: cannot write a gnuplot script\n", r->prog);
+        unlink(script);
         rc = EOMC_EUSAGE;
+    } else {
+        rc = plot_finish(r->prog, script, tmp, r->plot);
     }
     free(tmp);
     return rc;

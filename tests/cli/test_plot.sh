@@ -1,0 +1,46 @@
+#!/bin/sh
+# A run's --plot FILE (TAP): gnuplot draws the coordinates against time,
+# the conserved quantity's drift on a second panel when the model has
+# one, and the scene's outputs on a third; .svg and .png; the CSV of the
+# run unchanged by it; and the usage errors (another extension, no
+# gnuplot, --plot with --linearize).
+# usage: test_plot.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export EOMC_CACHE_DIR="$tmp/cache"
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+pend="$src/specs/pendulum.yaml" cp="$src/specs/cartesian_pendulum.yaml"
+if ! command -v gnuplot > /dev/null; then
+    echo "1..0 # SKIP gnuplot is not installed"
+    exit 0
+fi
+
+"$eomc" run "$pend" --t-end 2 --plot "$tmp/p.svg" -o "$tmp/p.csv"; st=$?
+"$eomc" run "$pend" --t-end 2 -o "$tmp/q.csv"
+[ $st -eq 0 ] && grep -q '<svg' "$tmp/p.svg" && grep -q '>theta<' "$tmp/p.svg" &&
+    grep -q 'E - E(t0): drift' "$tmp/p.svg" && cmp -s "$tmp/p.csv" "$tmp/q.csv"
+ok $? "pendulum: an SVG with theta and E's drift; the CSV the same as without --plot"
+"$eomc" run "$cp" --scene tension --t-end 2 --plot "$tmp/c.svg" > /dev/null
+grep -q '>tension<' "$tmp/c.svg" && grep -q '>ay<' "$tmp/c.svg" && grep -q '>outputs<' "$tmp/c.svg"
+ok $? "a scene's outputs on a panel of their own (tension, theta, ay)"
+"$eomc" run "$pend" --t-end 1 --plot "$tmp/p.png" > /dev/null
+head -c 8 "$tmp/p.png" | od -An -c | grep -q 'P   N   G'
+ok $? ".png: a PNG file"
+
+"$eomc" run "$pend" --plot "$tmp/p.pdf" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "neither .svg nor .png" "$tmp/err"
+ok $? "--plot FILE.pdf: exit $st"
+exe=$(find "$tmp/cache" -type f -name 'sim-pendulum*' | head -1)
+PATH=/nonexistent "$exe" --plot "$tmp/x.svg" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q 'gnuplot is not installed' "$tmp/err" && [ ! -e "$tmp/x.svg" ]
+ok $? "no gnuplot: exit $st before anything runs, no file"
+"$eomc" run "$pend" --linearize --plot "$tmp/y.svg" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ]
+ok $? "--plot with --linearize: exit $st"
+
+echo "1..$n"
+[ $failed -eq 0 ]

@@ -160,11 +160,11 @@ write_extended_unit(const char *c_file)
 }
 
 int
-build_executable(const char *c_file, const char *exe)
+build_executable(const char *c_file, const char *exe, int mpi)
 {
-    const char *inc, *lib, *cc = getenv("CC");
+    const char *inc, *lib, *cc = getenv(mpi ? "EOMC_MPICC" : "CC");
     if (!cc || !*cc)
-        cc = "cc";
+        cc = mpi ? "mpicc" : "cc";
     runtime_paths(&inc, &lib);
     if (access(lib, R_OK) != 0) {
         fprintf(stderr, "eomc: runtime library not found at %s "
@@ -189,6 +189,9 @@ build_executable(const char *c_file, const char *exe)
         argv[n++] = (char *)fixed[k];
     n += split_flags(libs, argv + n, 40);
     argv[n++] = "-lm";
+    argv[n++] = "-pthread"; /* sweeps run on threads */
+    if (mpi)
+        argv[n++] = "-DEOMC_MPI";
     argv[n] = NULL;
     int rc = run_cc(argv);
     if (rc == 0 && !special && rename(tmp, exe) != 0) {

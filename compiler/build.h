@@ -15,8 +15,11 @@ int build_is_special(const char *path);
 /* Compile c_file with the runtime into exe (written to a temporary name
  * and renamed when complete), and c_file a second time with
  * EOMC_EXTENDED for the reference solution (through a file model_ext.c
- * written next to it, and removed).  Returns 0, or -1 after printing why. */
-int build_executable(const char *c_file, const char *exe);
+ * written next to it, and removed).  mpi: with $EOMC_MPICC (default
+ * mpicc) and -DEOMC_MPI, so that its main shares a sweep among the ranks
+ * of an MPI job (runtime/eomc_mpi.h).  Returns 0, or -1 after printing
+ * why. */
+int build_executable(const char *c_file, const char *exe, int mpi);
 
 /* Where `eomc run` keeps the simulator for this key; the directory is
  * created.  Returns a malloc'd path, or NULL after printing why. */

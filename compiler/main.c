@@ -31,7 +31,7 @@ enum { EXIT_USAGE = 2 };
 typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
-    int stats, eliminate, explain;
+    int stats, eliminate, explain, mpi;
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
 } Options;
@@ -42,7 +42,7 @@ usage(FILE *f)
     fprintf(f,
         "usage: eomc compile SPEC [-o FILE.c] [--scene NAME] [--fix NAME=VALUE] [--form NAME]\n"
         "                    [--effects LIST] [--stats] [--explain]\n"
-        "       eomc build SPEC [-o EXE] [the same]\n"
+        "       eomc build SPEC [-o EXE] [--mpi] [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc --help | --version\n"
@@ -51,6 +51,8 @@ usage(FILE *f)
         "  --fix NAME=VALUE make a parameter a constant of the generated code, folded\n"
         "                   into it (repeatable, or NAME=VALUE,NAME=VALUE; on top of\n"
         "                   the scene's `fix:`); the simulator's --set refuses it then\n"
+        "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
+        "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
         "  --form NAME      equation form: %s (default lagrange)\n"
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
@@ -84,7 +86,7 @@ unknown_option(const char *a)
 {
     static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
                                        "--explain", "--eliminate", "--help", "--version",
-                                       "--scene", "--fix"};
+                                       "--scene", "--fix", "--mpi"};
     const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
     if (!near)
         usage_error("unknown option '%s'", a);
@@ -137,6 +139,8 @@ parse_args(int argc, char **argv, Options *o)
             o->stats = 1;
         } else if (!run && !strcmp(a, "--explain") && !strcmp(o->cmd, "compile")) {
             o->explain = 1;
+        } else if (!strcmp(a, "--mpi") && !strcmp(o->cmd, "build")) {
+            o->mpi = 1;
         } else if (!strcmp(a, "--eliminate") && !(run && o->spec && o->nsim)) {
             o->eliminate = 1;
         } else if (run && o->spec) {
@@ -345,7 +349,7 @@ build(const Options *o, const char *exe)
     char cfile[sizeof dir + 16];
     snprintf(cfile, sizeof cfile, "%s/model.c", dir);
     int rc = compile_to_file(o, cfile);
-    if (rc == 0 && build_executable(cfile, exe) != 0)
+    if (rc == 0 && build_executable(cfile, exe, o->mpi) != 0)
         rc = 1;
     unlink(cfile);
     rmdir(dir);

@@ -225,9 +225,15 @@ const eomc_model falling_particle_model = {
  * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
  * runs but cannot measure its errors. */
 extern const eomc_model_ext falling_particle_model_ext EOMC_WEAK;
+#ifdef EOMC_MPI /* eomc build --mpi: a sweep over the ranks */
+#include "eomc_mpi.h"
+#define EOMC_MAIN_FN eomc_mpi_main
+#else
+#define EOMC_MAIN_FN eomc_main
+#endif
 int main(int argc, char **argv)
 {
-    return eomc_main(argc, argv, &falling_particle_model, &falling_particle_model_ext);
+    return EOMC_MAIN_FN(argc, argv, &falling_particle_model, &falling_particle_model_ext);
 }
 #endif
 #else

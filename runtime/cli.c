@@ -15,6 +15,7 @@
 #include "eomc.h"
 #include "plot.h"
 #include "report.h"
+#include "sweep.h"
 
 #include <errno.h>
 #include <float.h>
@@ -41,6 +42,9 @@ typedef struct Cli {
     /* the reference and the report */
     const char *reference, *reference_out, *csv, *plot;
     const char *events;   /* --events FILE */
+    char **sweep;         /* --sweep NAME=START:STOP:COUNT, in order */
+    int nsweep, threads;  /* and --threads N */
+    const char *sweep_file;
     const char **methods; /* NULL-terminated */
     double *tolerances, *steps, target;
     int ntolerances, nsteps;
@@ -165,7 +169,8 @@ list_names(FILE *f, const char *const *names, int n, const char *suffix)
 enum Option {
     /* with a value */
     O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
-    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS,
+    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS, O_SWEEP,
+    O_SWEEP_FILE, O_THREADS,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
     O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_LINEARIZE,
@@ -175,11 +180,13 @@ enum Option {
 static const char *const option_names[NOPTIONS] = {
     "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
-    "--reference-out", "--events", "--methods", "--tolerances", "--steps", "--csv", "--plot",
+    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
     "--error", "--linearize", "--equilibrium", "--help", "--version",
 };
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
+/* More threads than this are a typo, not a machine. */
+enum { MAX_THREADS = 1024 };
 /* Baumgarte's rates when --baumgarte is not given (1/time units). */
 #define DEFAULT_RATE 10.0
 /* The report's tolerances: 1e-3, 1e-4, ..., 1e-13 (rtol = atol). */
@@ -248,6 +255,11 @@ help(const Cli *c, const eomc_model *m)
            "    --csv FILE           one row per run\n"
            "    --plot FILE          the work-precision diagram, .svg or .png (gnuplot)\n"
            "    --target ERR         the cheapest setting with error_max <= ERR\n"
+           "  --sweep NAME=START:STOP:COUNT  one run per value (repeatable: a grid, the\n"
+           "                     last one fastest); -o FILE gets the summary: the swept\n"
+           "                     values, status, t, the state and the outputs at the end\n"
+           "  --sweep-file FILE  one run per row of a CSV (a header of parameter names)\n"
+           "  --threads N        run a sweep's runs on N threads (same summary)\n"
            "  --linearize        A = dz'/dz and B = dz'/du at the initial state (or --init),\n"
            "                     z the coordinates and velocities (a constrained model's\n"
            "                     independent ones), exact; their eigenvalues\n"
@@ -406,6 +418,14 @@ take_value(Cli *c, int k, const char *val)
     case O_REFERENCE: c->reference = val; return EOMC_OK;
     case O_REFERENCE_OUT: c->reference_out = val; return EOMC_OK;
     case O_EVENTS: c->events = val; return EOMC_OK;
+    case O_SWEEP: c->sweep[c->nsweep++] = (char *)val; return EOMC_OK;
+    case O_SWEEP_FILE: c->sweep_file = val; return EOMC_OK;
+    case O_THREADS:
+        if (real_option(c, opt, val, &x, 1, 0) || x != floor(x) || x > MAX_THREADS)
+            return usage(c, "--threads: '%s' is not a whole number from 1 to %d", val,
+                         MAX_THREADS);
+        c->threads = (int)x;
+        return EOMC_OK;
     case O_METHODS: return method_list(c, val);
     case O_TOLERANCES: return number_list(c, opt, val, &c->tolerances, &c->ntolerances);
     case O_STEPS: return number_list(c, opt, val, &c->steps, &c->nsteps);
@@ -446,6 +466,21 @@ check_combination(Cli *c)
     if (c->reference)
         c->error = 1;
     int linear = c->linearize || c->equilibrium;
+    if (c->nsweep && c->sweep_file)
+        return usage(c, "--sweep and --sweep-file: one or the other");
+    if (c->nsweep || c->sweep_file) {
+        const char *clash = c->work_precision ? "--work-precision" : c->linearize
+                            ? "--linearize" : c->equilibrium ? "--equilibrium" : c->accel
+                            ? "--accel" : c->error ? "--error" : c->reference_out
+                            ? "--reference-out" : c->events ? "--events" : c->plot
+                            ? "--plot" : c->summary ? "--summary" : c->stats ? "--stats"
+                            : NULL;
+        if (clash)
+            return usage(c, "a sweep (%s) writes one summary row per run: it does not take %s",
+                         c->nsweep ? "--sweep" : "--sweep-file", clash);
+    } else if (c->threads > 1) {
+        return usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
+    }
     int run_plot = c->plot && !c->work_precision && !linear && !c->accel;
     if (run_plot && !ends_with(c->plot, ".svg") && !ends_with(c->plot, ".png"))
         return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
@@ -888,6 +923,200 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
     } else
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     free(a);
+    return rc;
+}
+
+/* ---- sweeps ---- */
+
+static FILE *open_output(const Cli *c, const char *opt, const char *path);
+static int close_output(const Cli *c, FILE *f, const char *path);
+
+typedef struct Plan {
+    int nparam;
+    const char **names;
+    long nruns;
+    double *values;
+} Plan;
+
+static int
+sweep_prepare(void *ctx, eomc_sim *sim)
+{
+    Cli *c = ctx;
+    int rc = apply_sets(c, sim);
+    return rc == EOMC_OK ? set_stabilize(c, sim) : rc;
+}
+
+static int
+sweep_initial(void *ctx, eomc_sim *sim, double *x)
+{
+    Cli *c = ctx;
+    const eomc_model *m = eomc_sim_model(sim);
+    eomc_sim_initial(sim, x, x + m->nq);
+    return apply_inits(c, m, x);
+}
+
+/* A swept name: a parameter, not fixed, not swept twice. */
+static int
+sweep_name(Cli *c, const eomc_model *m, const Plan *pl, const char *name, const char *where)
+{
+    int k = -1;
+    for (int i = 0; i < m->np && k < 0; i++)
+        if (!strcmp(m->p_names[i], name))
+            k = i;
+    if (k < 0) {
+        const char *hint = nearest(name, m->p_names, m->np, "");
+        return usage(c, "%s: '%s' is not a parameter%s", where, name, hint);
+    }
+    if (m->p_fixed[k])
+        return usage(c, "%s: parameter '%s' is fixed in %s%s%s (folded into the code): "
+                     "it cannot be swept", where, name, *m->scene ? "scene '" : "the spec's "
+                     "scene", m->scene, *m->scene ? "'" : "");
+    for (int j = 0; j < pl->nparam; j++)
+        if (!strcmp(pl->names[j], name))
+            return usage(c, "%s: '%s' is swept twice", where, name);
+    return EOMC_OK;
+}
+
+/* --sweep NAME=START:STOP:COUNT ...: the grid, the first sweep slowest. */
+static int
+plan_grid(Cli *c, const eomc_model *m, Plan *pl)
+{
+    double *start = calloc((size_t)c->nsweep, sizeof *start);
+    double *stop = calloc((size_t)c->nsweep, sizeof *stop);
+    long *count = calloc((size_t)c->nsweep, sizeof *count);
+    pl->names = calloc((size_t)c->nsweep, sizeof *pl->names);
+    int rc = start && stop && count && pl->names ? EOMC_OK : usage(c, "out of memory");
+    pl->nruns = 1;
+    for (int j = 0; j < c->nsweep && rc == EOMC_OK; j++) {
+        char *arg = c->sweep[j], *eq = strchr(arg, '='), *end;
+        if (!eq || eq == arg)
+            rc = usage(c, "--sweep: expected NAME=START:STOP:COUNT, not '%s'", arg);
+        else {
+            *eq = '\0';
+            rc = sweep_name(c, m, pl, arg, "--sweep");
+            pl->names[pl->nparam++] = strdup(arg);
+            errno = 0;
+            start[j] = strtod(eq + 1, &end);
+            if (rc == EOMC_OK && *end == ':')
+                stop[j] = strtod(end + 1, &end);
+            if (rc == EOMC_OK && *end == ':')
+                count[j] = strtol(end + 1, &end, 10);
+            if (rc == EOMC_OK && (*end || errno || !isfinite(start[j]) || !isfinite(stop[j]) ||
+                                  count[j] < 1 || count[j] > 1000000))
+                rc = usage(c, "--sweep %s=%s: expected START:STOP:COUNT, two finite numbers "
+                           "and a count from 1 to 1000000", arg, eq + 1);
+            *eq = '=';
+            if (rc == EOMC_OK && pl->nruns > 10000000 / count[j])
+                rc = usage(c, "--sweep: more than 10000000 runs");
+            pl->nruns *= count[j];
+        }
+    }
+    if (rc == EOMC_OK && !(pl->values = calloc((size_t)(pl->nruns * pl->nparam), sizeof(double))))
+        rc = usage(c, "out of memory");
+    for (long r = 0; rc == EOMC_OK && r < pl->nruns; r++) {
+        long rest = r;
+        for (int j = pl->nparam - 1; j >= 0; j--) { /* the last sweep fastest */
+            long i = rest % count[j];
+            rest /= count[j];
+            pl->values[r * pl->nparam + j] =
+                count[j] == 1 ? start[j]
+                              : start[j] + (stop[j] - start[j]) * (double)i / (double)(count[j] - 1);
+        }
+    }
+    free(start);
+    free(stop);
+    free(count);
+    return rc;
+}
+
+/* --sweep-file FILE: a header of parameter names, then one set per row. */
+static int
+plan_file(Cli *c, const eomc_model *m, Plan *pl)
+{
+    FILE *f = fopen(c->sweep_file, "r");
+    if (!f)
+        return usage(c, "--sweep-file: cannot read '%s': %s", c->sweep_file, strerror(errno));
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0, capv = 0;
+    int rc = EOMC_OK;
+    ssize_t got;
+    while (rc == EOMC_OK && (got = getline(&line, &cap, f)) >= 0) {
+        lineno++;
+        line[strcspn(line, "\r\n")] = '\0';
+        if (!*line)
+            continue;
+        if (!pl->names) { /* the header */
+            int cols = 1;
+            for (char *p = line; *p; p++)
+                cols += *p == ',';
+            pl->names = calloc((size_t)cols, sizeof *pl->names);
+            char *save = NULL;
+            for (char *tok = strtok_r(line, ",", &save); tok && rc == EOMC_OK;
+                 tok = strtok_r(NULL, ",", &save)) {
+                char where[4200];
+                snprintf(where, sizeof where, "%s:%ld", c->sweep_file, lineno);
+                rc = sweep_name(c, m, pl, tok, where);
+                pl->names[pl->nparam++] = strdup(tok);
+            }
+            line = NULL, cap = 0; /* the names keep it */
+            continue;
+        }
+        if (pl->nruns == capv) {
+            capv = capv ? 2 * capv : 64;
+            double *v = realloc(pl->values, (size_t)(capv * pl->nparam) * sizeof *v);
+            if (!v) {
+                rc = usage(c, "out of memory");
+                break;
+            }
+            pl->values = v;
+        }
+        char *p = line;
+        for (int j = 0; j < pl->nparam && rc == EOMC_OK; j++) {
+            char *end;
+            errno = 0;
+            double v = strtod(p, &end);
+            if (end == p || errno || !isfinite(v) || (*end != ',' && *end) ||
+                (j < pl->nparam - 1 && *end != ',') || (j == pl->nparam - 1 && *end))
+                rc = usage(c, "%s:%ld: expected %d finite numbers separated by commas",
+                           c->sweep_file, lineno, pl->nparam);
+            pl->values[pl->nruns * pl->nparam + j] = v;
+            p = end + (*end == ',');
+        }
+        pl->nruns++;
+    }
+    free(line);
+    fclose(f);
+    if (rc == EOMC_OK && (!pl->names || pl->nruns == 0))
+        rc = usage(c, "%s: no parameter sets (a header of names, then one row per run)",
+                   c->sweep_file);
+    return rc;
+}
+
+/* --sweep, --sweep-file: every run, and the summary CSV. */
+static int
+sweep(Cli *c, eomc_sim *sim)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    Plan pl = {0};
+    int rc = c->sweep_file ? plan_file(c, m, &pl) : plan_grid(c, m, &pl);
+    FILE *f = NULL;
+    if (rc == EOMC_OK && eomc_run_check(sim, &c->run) != EOMC_OK)
+        rc = usage(c, "%s", eomc_sim_error(sim));
+    if (rc == EOMC_OK && !(f = open_output(c, "-o", c->out)))
+        rc = EOMC_EUSAGE;
+    if (rc == EOMC_OK) {
+        c->run.progress = 0;
+        Sweep sw = {m, &c->run, sweep_prepare, sweep_initial, c, pl.nparam, pl.names,
+                    pl.nruns, pl.values, c->threads, c->prog};
+        rc = sweep_run(&sw, f);
+        if (close_output(c, f, c->out))
+            rc = rc ? rc : EOMC_EUSAGE;
+    }
+    for (int j = 0; j < pl.nparam; j++)
+        free((char *)pl.names[j]);
+    free(pl.names);
+    free(pl.values);
     return rc;
 }
 
@@ -1373,6 +1602,12 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     c.run = eomc_run_defaults(m);
     c.set = calloc((size_t)argc + 1, sizeof *c.set);
     c.init = calloc((size_t)argc + 1, sizeof *c.init);
+    c.sweep = calloc((size_t)argc + 1, sizeof *c.sweep);
+    c.threads = 1;
+    if (sweep_rank() != 0) { /* rank 0 speaks for the job */
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
+            return EOMC_EUSAGE;
+    }
     eomc_sim *sim = eomc_sim_alloc(m);
     double *x = calloc(2 * (size_t)m->nq + 1, sizeof *x);
     int rc;
@@ -1389,7 +1624,9 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
             (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
-            rc = c.accel            ? print_accel(&c, sim, x)
+            rc = c.nsweep || c.sweep_file ? sweep(&c, sim)
+                 : sweep_rank() != 0 ? EOMC_OK /* one run: rank 0's */
+                 : c.accel          ? print_accel(&c, sim, x)
                  : c.linearize || c.equilibrium ? print_linear(&c, sim, x)
                  : c.work_precision ? work_precision(&c, sim, ext, x)
                                     : simulate(&c, sim, ext, x);
@@ -1398,6 +1635,7 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     free(x);
     free(c.set);
     free(c.init);
+    free(c.sweep);
     free(c.methods);
     free(c.tolerances);
     free(c.steps);

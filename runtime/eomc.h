@@ -149,6 +149,19 @@ int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, doubl
  * (nonholonomic models). */
 int eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations);
 
+/* ---- sweeps over many machines ----
+ * A sweep (--sweep, --sweep-file) runs on the threads of one machine; a
+ * simulator built with `eomc build --mpi` also shares its runs among the
+ * ranks of an MPI job through this hook (eomc_mpi.h sets it): rank and
+ * size, and gather, which hands rank 0 every rank's text (their rows),
+ * concatenated by rank with lens[r] the length of rank r's (*all and
+ * *lens malloc'd there; elsewhere left NULL).  0, or -1 on failure. */
+typedef struct eomc_parallel {
+    int rank, size;
+    int (*gather)(const char *mine, size_t len, char **all, size_t **lens);
+} eomc_parallel;
+void eomc_set_parallel(const eomc_parallel *p);
+
 /* ---- integration ---- */
 
 /* The integration methods by name, NULL-terminated (runtime/methods.def). */

@@ -1,0 +1,215 @@
+/*
+ * sweep: runs on threads and ranks, rows in sweep order (sweep.h).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "sweep.h"
+
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const eomc_parallel *parallel;
+
+void
+eomc_set_parallel(const eomc_parallel *p)
+{
+    parallel = p;
+}
+
+int
+sweep_rank(void)
+{
+    return parallel ? parallel->rank : 0;
+}
+
+/* A growing string. */
+typedef struct Text {
+    char *s;
+    size_t len, cap;
+} Text;
+
+static int
+add(Text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int k = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        if (k < 0)
+            return -1;
+        if (t->s && t->len + (size_t)k < t->cap) {
+            t->len += (size_t)k;
+            return 0;
+        }
+        size_t cap = 2 * (t->cap + (size_t)k) + 64;
+        char *s = realloc(t->s, cap);
+        if (!s)
+            return -1;
+        t->s = s, t->cap = cap;
+    }
+}
+
+/* The last row a run reached: what its summary row reports. */
+typedef struct Last {
+    double t;
+    double *x;
+    int n;
+} Last;
+
+static int
+keep_last(void *ctx, double t, const double *x)
+{
+    Last *l = ctx;
+    l->t = t;
+    memcpy(l->x, x, 2 * (size_t)l->n * sizeof *x);
+    return EOMC_OK;
+}
+
+/* A CSV cell for a message: quoted, quotes doubled, on one line. */
+static void
+add_quoted(Text *t, const char *msg)
+{
+    add(t, "\"");
+    for (const char *p = msg; *p; p++)
+        add(t, *p == '"' ? "\"\"" : *p == '\n' || *p == '\r' ? " " : "%c", *p);
+    add(t, "\"");
+}
+
+/* Run k into its row (a malloc'd line). */
+static char *
+one_run(const Sweep *sw, long k)
+{
+    const eomc_model *m = sw->m;
+    int n = m->nq;
+    Text row = {0};
+    for (int j = 0; j < sw->nparam; j++)
+        add(&row, "%s%.17g", j ? "," : "", sw->values[k * sw->nparam + j]);
+    eomc_sim *sim = eomc_sim_alloc(m);
+    double *x = calloc(2 * (size_t)n + 1, sizeof *x), *last = calloc(2 * (size_t)n + 1, sizeof *x);
+    double *out = calloc((size_t)m->nout + 1, sizeof *out);
+    int rc = sim && x && last && out ? sw->prepare(sw->ctx, sim) : EOMC_EUSAGE;
+    for (int j = 0; j < sw->nparam && rc == EOMC_OK; j++)
+        rc = eomc_sim_set(sim, sw->names[j], sw->values[k * sw->nparam + j]);
+    if (rc == EOMC_OK)
+        rc = eomc_sim_check(sim);
+    if (rc == EOMC_OK)
+        rc = sw->initial(sw->ctx, sim, x);
+    Last l = {sw->run->t0, last, n};
+    memcpy(last, x, 2 * (size_t)n * sizeof *x);
+    if (rc == EOMC_OK)
+        rc = eomc_sim_integrate(sim, sw->run, x, keep_last, &l, NULL);
+    if (rc == EOMC_OK && m->nout > 0)
+        rc = eomc_sim_outputs(sim, l.t, last, last + n, out);
+    if (rc == EOMC_OK) {
+        add(&row, "%sok,%.17g", sw->nparam ? "," : "", l.t);
+        for (int i = 0; i < 2 * n; i++)
+            add(&row, ",%.17g", last[i]);
+        for (int i = 0; i < m->nout; i++)
+            add(&row, ",%.17g", out[i]);
+    } else {
+        add(&row, "%s", sw->nparam ? "," : "");
+        add_quoted(&row, sim ? eomc_sim_error(sim) : "out of memory");
+        for (int i = 0; i < 1 + 2 * n + m->nout; i++)
+            add(&row, ",");
+    }
+    add(&row, "\n");
+    eomc_sim_free(sim);
+    free(x);
+    free(last);
+    free(out);
+    return row.s;
+}
+
+typedef struct Pool {
+    const Sweep *sw;
+    long first, step;     /* this rank's runs: first, first + step, ... */
+    long count;           /* how many */
+    atomic_long next;     /* the next of them to take */
+    char **rows;          /* [count] */
+} Pool;
+
+static void *
+worker(void *arg)
+{
+    Pool *p = arg;
+    for (long i; (i = atomic_fetch_add(&p->next, 1)) < p->count;)
+        p->rows[i] = one_run(p->sw, p->first + i * p->step);
+    return NULL;
+}
+
+int
+sweep_run(const Sweep *sw, FILE *f)
+{
+    const eomc_model *m = sw->m;
+    int rank = parallel ? parallel->rank : 0, size = parallel ? parallel->size : 1;
+    Pool p = {sw, rank, size, 0, 0, NULL};
+    p.count = sw->nruns > rank ? (sw->nruns - rank + size - 1) / size : 0;
+    atomic_init(&p.next, 0);
+    p.rows = calloc((size_t)p.count + 1, sizeof *p.rows);
+    if (!p.rows)
+        return EOMC_EUSAGE;
+    int nt = sw->threads < 1 ? 1 : sw->threads;
+    pthread_t *th = calloc((size_t)nt, sizeof *th);
+    int started = 0;
+    for (int k = 1; th && k < nt; k++) /* this thread is the first worker */
+        started += pthread_create(&th[k], NULL, worker, &p) == 0;
+    worker(&p);
+    for (int k = 1; th && k <= started; k++)
+        pthread_join(th[k], NULL);
+    free(th);
+    /* this rank's rows in its order, then rank 0 puts every rank's in
+     * sweep order: run j is row j / size of rank j % size */
+    Text mine = {0};
+    int rc = EOMC_OK;
+    for (long i = 0; i < p.count; i++) {
+        if (!p.rows[i] || add(&mine, "%s", p.rows[i]) != 0)
+            rc = EOMC_EUSAGE;
+        free(p.rows[i]);
+    }
+    free(p.rows);
+    char *all = mine.s;
+    size_t *lens = NULL;
+    if (parallel && parallel->gather(mine.s ? mine.s : "", mine.len, &all, &lens) != 0)
+        rc = EOMC_EUSAGE;
+    if (rank == 0 && rc == EOMC_OK) {
+        for (int j = 0; j < sw->nparam; j++)
+            fprintf(f, "%s,", sw->names[j]);
+        fprintf(f, "status,t");
+        for (int i = 0; i < m->nq; i++)
+            fprintf(f, ",%s", m->q_names[i]);
+        for (int i = 0; i < m->nq; i++)
+            fprintf(f, ",%s'", m->q_names[i]);
+        for (int i = 0; i < m->nout; i++)
+            fprintf(f, ",%s", m->out_names[i]);
+        fprintf(f, "\n");
+        /* the start of each rank's text, then its rows one line at a time */
+        const char **at = calloc((size_t)size, sizeof *at);
+        size_t off = 0;
+        for (int r = 0; at && r < size; r++) {
+            at[r] = (all ? all : "") + off;
+            off += parallel ? lens[r] : mine.len;
+        }
+        for (long j = 0; at && j < sw->nruns; j++) {
+            const char **pr = &at[j % size];
+            const char *end = strchr(*pr, '\n');
+            if (!end) {
+                rc = EOMC_EUSAGE;
+                break;
+            }
+            fwrite(*pr, 1, (size_t)(end - *pr) + 1, f);
+            *pr = end + 1;
+        }
+        free(at);
+    }
+    if (all != mine.s)
+        free(all);
+    free(mine.s);
+    free(lens);
+    if (rc != EOMC_OK && rank == 0)
+        fprintf(stderr, "%s: --sweep: out of memory, or the ranks' rows did not come back\n",
+                sw->prog);
+    return rc;
+}

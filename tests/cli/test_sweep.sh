@@ -1,0 +1,71 @@
+#!/bin/sh
+# Parameter sweeps (TAP): --sweep grids and --sweep-file rows, the
+# summary's header and order, each row equal to the same run made alone
+# with --set, a failing run among good ones (its error as status, the
+# others go on), and the same bytes whatever the threads and, when mpicc
+# is there, the MPI ranks.
+# usage: test_sweep.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+pend="$src/specs/pendulum.yaml"
+"$eomc" build "$pend" -o "$tmp/pend" 2> /dev/null
+
+"$tmp/pend" --sweep g=5:15:3 --sweep l=0.5:1:2 --t-end 1 -o "$tmp/grid.csv"; st=$?
+head -1 "$tmp/grid.csv" | grep -qx "g,l,status,t,theta,theta'" &&
+    [ "$(cut -d, -f1,2 "$tmp/grid.csv" | tail -n +2 | tr '\n' ' ')" = "5,0.5 5,1 10,0.5 10,1 15,0.5 15,1 " ]
+ok $? "the header g,l,status,t,theta,theta', and the grid in order, the last sweep fastest"
+"$tmp/pend" --set g=10 --set l=0.5 --t-end 1 | tail -1 > "$tmp/alone.csv"
+want=$(cut -d, -f1-3 "$tmp/alone.csv")
+got=$(sed -n 4p "$tmp/grid.csv" | cut -d, -f4-6)
+[ $st -eq 0 ] && [ "$got" = "$want" ]
+ok $? "the row g = 10, l = 0.5 is the run made alone with --set: $got"
+
+printf 'm,l\n1,1\n-1,1\n2,0.5\n' > "$tmp/sets.csv"
+"$tmp/pend" --sweep-file "$tmp/sets.csv" --t-end 1 -o "$tmp/file.csv"; st=$?
+sed -n 3p "$tmp/file.csv" | grep -q '^-1,1,"particle .bob.: a mass cannot be negative' &&
+    [ "$(sed -n 2p "$tmp/file.csv" | cut -d, -f3)" = ok ] &&
+    [ "$(sed -n 4p "$tmp/file.csv" | cut -d, -f3)" = ok ] && [ $st -eq 0 ]
+ok $? "--sweep-file: the failing run (m = -1) has its error as status, the others run"
+
+"$tmp/pend" --sweep g=1:20:40 --t-end 2 -o "$tmp/serial.csv"
+"$tmp/pend" --sweep g=1:20:40 --t-end 2 --threads 2 -o "$tmp/threads.csv"
+"$tmp/pend" --sweep g=1:20:40 --t-end 2 --threads 7 -o "$tmp/threads7.csv"
+cmp -s "$tmp/serial.csv" "$tmp/threads.csv" && cmp -s "$tmp/serial.csv" "$tmp/threads7.csv"
+ok $? "--threads 2 and 7: the same bytes as serial (40 runs)"
+
+if command -v mpicc > /dev/null && command -v mpirun > /dev/null; then
+    "$eomc" build "$pend" --mpi -o "$tmp/pend_mpi" 2> "$tmp/mpi.err"; st=$?
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    for k in 2 3; do
+        mpirun --oversubscribe -n $k "$tmp/pend_mpi" --sweep g=1:20:40 --t-end 2 \
+            -o "$tmp/mpi$k.csv" > /dev/null 2>&1
+    done
+    [ $st -eq 0 ] && cmp -s "$tmp/serial.csv" "$tmp/mpi2.csv" &&
+        cmp -s "$tmp/serial.csv" "$tmp/mpi3.csv"
+    ok $? "eomc build --mpi; mpirun -n 2 and -n 3: the same bytes as serial"
+else
+    echo "ok $((n + 1)) # SKIP mpicc or mpirun is not installed"
+    n=$((n + 1))
+fi
+
+"$tmp/pend" --sweep theta0=0:1:2 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "'theta0' is not a parameter" "$tmp/err"
+ok $? "a name that is not a parameter: exit $st"
+"$eomc" build "$src/specs/swing.yaml" -o "$tmp/swing" 2> /dev/null
+"$tmp/swing" --sweep A=0:1:2 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "fixed in scene 'free'" "$tmp/err"
+ok $? "a fixed parameter cannot be swept: exit $st, naming the scene"
+"$tmp/pend" --sweep g=1:2:0 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ]
+ok $? "COUNT 0: exit $st"
+"$tmp/pend" --threads 2 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q 'runs the runs of a sweep' "$tmp/err"
+ok $? "--threads without a sweep: exit $st"
+
+echo "1..$n"
+[ $failed -eq 0 ]

@@ -24,6 +24,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 enum { EXIT_USAGE = 2 };
@@ -145,6 +146,14 @@ parse_args(int argc, char **argv, Options *o)
             o->eliminate = 1;
         } else if (run && o->spec) {
             o->sim[o->nsim++] = argv[i];
+        } else if (!strcmp(a, "--stats") || !strcmp(a, "--explain") || !strcmp(a, "--mpi")) {
+            /* an option of another command: say whose */
+            fprintf(stderr, "eomc %s: %s belongs to `eomc %s` (%s)\n(see eomc --help)\n",
+                    o->cmd, a, a[2] == 'm' ? "build" : "compile",
+                    a[2] == 's' ? "the operation counts of the generated functions"
+                    : a[2] == 'e' ? "what eomc made of the spec"
+                                  : "a simulator for MPI sweeps");
+            exit(EXIT_USAGE);
         } else if (a[0] == '-' && a[1]) {
             unknown_option(a);
         } else if (!o->spec) {
@@ -341,6 +350,25 @@ compile_to_file(const Options *o, const char *path)
 static int
 build(const Options *o, const char *exe)
 {
+    /* the directory exe goes to must be there: the linker would say so
+     * in its own words, and blame the generated code */
+    char *outdir = xmalloc(strlen(exe) + 2);
+    strcpy(outdir, exe);
+    char *slash = strrchr(outdir, '/');
+    if (slash)
+        slash[slash == outdir] = '\0'; /* "/x" -> "/" */
+    else
+        strcpy(outdir, ".");
+    struct stat st;
+    if (stat(outdir, &st) != 0 || !S_ISDIR(st.st_mode) || access(outdir, W_OK) != 0) {
+        int err = errno;
+        fprintf(stderr, "eomc: cannot write %s: the directory '%s' %s\n", exe, outdir,
+                stat(outdir, &st) != 0 ? "does not exist" : !S_ISDIR(st.st_mode)
+                ? "is not a directory" : strerror(err));
+        free(outdir);
+        return EXIT_USAGE;
+    }
+    free(outdir);
     char dir[] = "/tmp/eomc-XXXXXX";
     if (!mkdtemp(dir)) {
         fprintf(stderr, "eomc: cannot create a temporary directory: %s\n", strerror(errno));

@@ -36,7 +36,7 @@ typedef struct Cli {
     int stats, summary, accel, assemble, work_precision, error, linearize, equilibrium;
     int stabilize;        /* EOMC_STABILIZE_... */
     double alpha, beta;   /* Baumgarte's rates */
-    int rates_given, method_given, fixed_given;
+    int rates_given, method_given, fixed_given, t0_given, t_end_given;
     char **set, **init;   /* NAME=VALUE arguments, in order */
     int nset, ninit;
     /* the reference and the report */
@@ -168,7 +168,7 @@ list_names(FILE *f, const char *const *names, int n, const char *suffix)
 
 enum Option {
     /* with a value */
-    O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
+    O_T0, O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
     O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS, O_SWEEP,
     O_SWEEP_FILE, O_THREADS,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
@@ -178,7 +178,7 @@ enum Option {
     FIRST_FLAG = O_STATS,
 };
 static const char *const option_names[NOPTIONS] = {
-    "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
+    "--t0", "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
     "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
@@ -203,7 +203,8 @@ help(const Cli *c, const eomc_model *m)
            c->prog, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
            *m->scene ? ", scene " : "", m->scene, m->invariant_name && !strcmp(m->invariant_name, "h")
                ? ", h (the conserved energy function)" : "");
-    printf("  --t-end T          end time (default %g)\n"
+    printf("  --t0 T             start time (default 0)\n"
+           "  --t-end T          end time, after the start (default %g)\n"
            "  --dt T             output interval (default %g); rows between steps\n"
            "                     are interpolated, so a small dt costs no steps\n"
            "  --method NAME      integration method (default %s):\n",
@@ -372,7 +373,16 @@ take_value(Cli *c, int k, const char *val)
     if (k >= O_METHODS && k <= O_TARGET)
         c->report_given |= 1u << (k - O_METHODS);
     switch (k) {
-    case O_T_END: return real_option(c, opt, val, &r->t_end, 0, 0);
+    case O_T0:
+        if (!number(val, &r->t0))
+            return usage(c, "%s: '%s' is not a finite number", opt, val);
+        c->t0_given = 1;
+        return EOMC_OK;
+    case O_T_END:
+        if (!number(val, &r->t_end))
+            return usage(c, "%s: '%s' is not a finite number", opt, val);
+        c->t_end_given = 1;
+        return EOMC_OK;
     case O_DT: return real_option(c, opt, val, &r->dt, 0, 1);
     case O_METHOD: {
         int j = method_index(c, opt, val);
@@ -388,8 +398,8 @@ take_value(Cli *c, int k, const char *val)
         c->fixed_given = 1;
         return real_option(c, opt, val, &r->h_fixed, 0, 1);
     case O_MAX_STEPS:
-        if (real_option(c, opt, val, &x, 1, 0) || x != floor(x) || x > 1e15)
-            return usage(c, "%s: '%s' is not a whole number of steps", opt, val);
+        if (!number(val, &x) || x != floor(x) || x < 1 || x > 1e15)
+            return usage(c, "%s: '%s' is not a whole number of steps (1 or more)", opt, val);
         r->max_steps = (long)x;
         return EOMC_OK;
     case O_SET: c->set[c->nset++] = (char *)val; return EOMC_OK;
@@ -421,7 +431,7 @@ take_value(Cli *c, int k, const char *val)
     case O_SWEEP: c->sweep[c->nsweep++] = (char *)val; return EOMC_OK;
     case O_SWEEP_FILE: c->sweep_file = val; return EOMC_OK;
     case O_THREADS:
-        if (real_option(c, opt, val, &x, 1, 0) || x != floor(x) || x > MAX_THREADS)
+        if (!number(val, &x) || x != floor(x) || x < 1 || x > MAX_THREADS)
             return usage(c, "--threads: '%s' is not a whole number from 1 to %d", val,
                          MAX_THREADS);
         c->threads = (int)x;
@@ -466,6 +476,12 @@ check_combination(Cli *c)
     if (c->reference)
         c->error = 1;
     int linear = c->linearize || c->equilibrium;
+    /* the spec's t_end must be > 0; a run's end must come after its start
+     * alike (a run of no time writes one row, which no one means) */
+    if (!(c->run.t_end > c->run.t0))
+        return usage(c, "%s %g must be after the start time %g%s",
+                     c->t_end_given ? "--t-end" : "the scene's t_end", c->run.t_end,
+                     c->run.t0, c->t0_given ? " (--t0)" : "");
     if (c->nsweep && c->sweep_file)
         return usage(c, "--sweep and --sweep-file: one or the other");
     if (c->nsweep || c->sweep_file) {
@@ -633,6 +649,13 @@ apply_inits(Cli *c, const eomc_model *m, double *x)
             return EOMC_EUSAGE;
         size_t len = strlen(name);
         int vel = len > 1 && name[len - 1] == '\'', found = -1;
+        if (len > 2 && name[len - 1] == '\'' && name[len - 2] == '\'') {
+            fprintf(stderr, "%s: --init: '%s' is an acceleration: only coordinates (x) and "
+                    "velocities (x') make the initial state; the accelerations follow from "
+                    "the equations\n", c->prog, name);
+            free(name);
+            return EOMC_EUSAGE;
+        }
         if (vel)
             name[len - 1] = '\0';
         for (int i = 0; i < n && found < 0; i++)

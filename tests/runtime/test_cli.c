@@ -305,6 +305,14 @@ usage_errors(void)
     usage_error("--dt=-0.1", "--dt");
     usage_error("--t-end -1", "--t-end");
     usage_error("--rtol -1e-6", "--rtol");
+    /* the end must come after the start, as the spec's t_end > 0 must */
+    usage_error("--t-end 0", "--t-end 0 must be after the start time 0");
+    usage_error("--t0 2 --t-end 1", "--t-end 1 must be after the start time 2 (--t0)");
+    usage_error("--t0 abc", "--t0");
+    /* one message, not two */
+    usage_error("--max-steps 0", "'0' is not a whole number of steps (1 or more)");
+    CHECK(!strstr(err, "out of range"), "--max-steps 0: one message only");
+    usage_error("--init \"x''=1\"", "is an acceleration");
 }
 
 static void

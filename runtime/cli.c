@@ -13,6 +13,7 @@
  * the last two share.
  */
 #include "eomc.h"
+#include "numfmt.h"
 #include "plot.h"
 #include "report.h"
 #include "sweep.h"
@@ -81,9 +82,12 @@ write_event(void *ctx, int k, double t, const double *x)
         w->rebase = 1, w->t_reset = t;
     if (!w->events)
         return EOMC_OK;
-    fprintf(w->events, "%.17g,%s", t, m->ev_names[k]);
-    for (int i = 0; i < 2 * m->nq; i++)
-        fprintf(w->events, ",%.17g", x[i]);
+    num_put(w->events, t);
+    fprintf(w->events, ",%s", m->ev_names[k]);
+    for (int i = 0; i < 2 * m->nq; i++) {
+        fputc(',', w->events);
+        num_put(w->events, x[i]);
+    }
     fputc('\n', w->events);
     return EOMC_OK;
 }
@@ -749,18 +753,20 @@ write_row(void *ctx, double t, const double *x)
     FILE *files[] = {w->f, w->tee};
     for (int j = 0; j < 2 && files[j]; j++) {
         FILE *f = files[j];
-        fprintf(f, "%.17g", t);
+        num_put(f, t);
         for (int i = 0; i < 2 * n; i++)
-            fprintf(f, ",%.17g", x[i]);
-        fprintf(f, ",%.17g,%.17g,%.17g", T, V, T + V);
+            fputc(',', f), num_put(f, x[i]);
+        fputc(',', f), num_put(f, T);
+        fputc(',', f), num_put(f, V);
+        fputc(',', f), num_put(f, T + V);
         if (own_invariant_column(m))
-            fprintf(f, ",%.17g", h);
+            fputc(',', f), num_put(f, h);
         for (int k = 0; k < nc; k++)
-            fprintf(f, ",%.17g", lam[k]);
+            fputc(',', f), num_put(f, lam[k]);
         for (int k = 0; k < nc; k++)
-            fprintf(f, ",%.17g", w->res[k]);
+            fputc(',', f), num_put(f, w->res[k]);
         for (int k = 0; k < m->nout; k++)
-            fprintf(f, ",%.17g", out[k]);
+            fputc(',', f), num_put(f, out[k]);
         fputc('\n', f);
     }
     w->rows++;
@@ -937,12 +943,14 @@ print_accel(Cli *c, eomc_sim *sim, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     double *a = calloc((size_t)m->nq, sizeof *a);
+    char num[NUM_MAX];
     int rc = eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
     if (rc == EOMC_OK) {
         for (int i = 0; i < m->nq; i++)
-            printf("%s'' %.17g\n", m->q_names[i], a[i]);
+            printf("%s'' %s\n", m->q_names[i], num_shortest(num, a[i]));
         for (int k = 0; k < m->nc; k++)
-            printf("lambda[%s] %.17g\n", m->c_names[k], eomc_sim_multipliers(sim)[k]);
+            printf("lambda[%s] %s\n", m->c_names[k],
+                   num_shortest(num, eomc_sim_multipliers(sim)[k]));
     } else
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     free(a);
@@ -1246,19 +1254,19 @@ write_linear_csv(Cli *c, eomc_sim *sim, const double *A, const double *B, int nl
                 strerror(errno));
         return EOMC_EUSAGE;
     }
-    char row[160], col[160];
+    char row[160], col[160], num[NUM_MAX];
     fprintf(f, "matrix,row,column,value\n");
     for (int r = 0; r < nl; r++) {
         state_name(sim, r, row, sizeof row);
         for (int k = 0; k < nl; k++) {
             state_name(sim, k, col, sizeof col);
-            fprintf(f, "A,%s,%s,%.17g\n", row, col, A[r * nl + k]);
+            fprintf(f, "A,%s,%s,%s\n", row, col, num_shortest(num, A[r * nl + k]));
         }
     }
     for (int r = 0; r < nl; r++) {
         state_name(sim, r, row, sizeof row);
         for (int k = 0; k < m->nu; k++)
-            fprintf(f, "B,%s,%s,%.17g\n", row, m->u_names[k], B[r * m->nu + k]);
+            fprintf(f, "B,%s,%s,%s\n", row, m->u_names[k], num_shortest(num, B[r * m->nu + k]));
     }
     if (fclose(f) != 0) {
         fprintf(stderr, "%s: error writing %s\n", c->prog, c->csv);
@@ -1280,11 +1288,12 @@ print_linear(Cli *c, eomc_sim *sim, double *x)
         rc = EOMC_EUSAGE;
     if (rc == EOMC_OK && c->equilibrium) {
         rc = eomc_sim_equilibrium(sim, t, x, &its);
+        char num[NUM_MAX];
         if (rc == EOMC_OK) {
             printf("%s: an equilibrium, found by %d Newton step%s:\n", c->prog, its,
                    its == 1 ? "" : "s");
             for (int i = 0; i < n; i++)
-                printf("  %s = %.17g\n", m->q_names[i], x[i]);
+                printf("  %s = %s\n", m->q_names[i], num_shortest(num, x[i]));
         }
     }
     if (rc == EOMC_OK)

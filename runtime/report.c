@@ -18,6 +18,7 @@
  * does nothing, as a user's would write them.
  */
 #include "report.h"
+#include "numfmt.h"
 #include "plot.h"
 #include "simimpl.h"
 
@@ -231,11 +232,8 @@ progress(const Report *r, double t0, int k, int n, const Entry *e, int *shown)
 static void
 shortest(char *buf, size_t len, double x)
 {
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, len, "%.*g", prec, x);
-        if (strtod(buf, NULL) == x)
-            return;
-    }
+    char num[NUM_MAX];
+    snprintf(buf, len, "%s", num_shortest(num, x));
 }
 
 /* An error, marked ~ when the reference cannot resolve it. */

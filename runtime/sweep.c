@@ -3,6 +3,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "sweep.h"
+#include "numfmt.h"
 
 #include <pthread.h>
 #include <stdarg.h>
@@ -84,9 +85,10 @@ one_run(const Sweep *sw, long k)
 {
     const eomc_model *m = sw->m;
     int n = m->nq;
+    char num[NUM_MAX];
     Text row = {0};
     for (int j = 0; j < sw->nparam; j++)
-        add(&row, "%s%.17g", j ? "," : "", sw->values[k * sw->nparam + j]);
+        add(&row, "%s%s", j ? "," : "", num_shortest(num, sw->values[k * sw->nparam + j]));
     eomc_sim *sim = eomc_sim_alloc(m);
     double *x = calloc(2 * (size_t)n + 1, sizeof *x), *last = calloc(2 * (size_t)n + 1, sizeof *x);
     double *out = calloc((size_t)m->nout + 1, sizeof *out);
@@ -104,11 +106,11 @@ one_run(const Sweep *sw, long k)
     if (rc == EOMC_OK && m->nout > 0)
         rc = eomc_sim_outputs(sim, l.t, last, last + n, out);
     if (rc == EOMC_OK) {
-        add(&row, "%sok,%.17g", sw->nparam ? "," : "", l.t);
+        add(&row, "%sok,%s", sw->nparam ? "," : "", num_shortest(num, l.t));
         for (int i = 0; i < 2 * n; i++)
-            add(&row, ",%.17g", last[i]);
+            add(&row, ",%s", num_shortest(num, last[i]));
         for (int i = 0; i < m->nout; i++)
-            add(&row, ",%.17g", out[i]);
+            add(&row, ",%s", num_shortest(num, out[i]));
     } else {
         add(&row, "%s", sw->nparam ? "," : "");
         add_quoted(&row, sim ? eomc_sim_error(sim) : "out of memory");

@@ -1090,8 +1090,7 @@ plan_file(Cli *c, const eomc_model *m, Plan *pl)
                 rc = sweep_name(c, m, pl, tok, where);
                 pl->names[pl->nparam++] = strdup(tok);
             }
-            line = NULL, cap = 0; /* the names keep it */
-            continue;
+            continue; /* the names are copies: the line is reused */
         }
         if (pl->nruns == capv) {
             capv = capv ? 2 * capv : 64;

@@ -10,6 +10,8 @@
  */
 #include "constraint.h"
 
+#include <string.h>
+
 const char *
 constraint_order_name(int order)
 {
@@ -138,13 +140,17 @@ constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
         "phi(t, q, q') = 0, differentiated once; B = dphi/dq' (Chetaev, Appell)",
         "f(t, q, q', q'') = 0 as written; B = df/dq''",
     };
+    int w = 14; /* the name column, as wide as the longest name */
+    for (int k = 0; k < c->nc; k++)
+        if ((int)strlen(c->spec[k].name) > w)
+            w = (int)strlen(c->spec[k].name);
     for (int k = 0; k < c->nc; k++) {
         const SpecConstraint *sc = &c->spec[k];
         const char *lin = sc->order == 1 ? (c->linear[k] ? ", linear in q'" : ", nonlinear in q'")
                           : sc->order == 2 ? (c->linear[k] ? ", affine in q''"
                                                            : ", nonlinear in q'' (Newton)")
                                            : "";
-        fprintf(f, "  %-14s %s%s: %s; determines %s (%s)\n", sc->name,
+        fprintf(f, "  %-*s %s%s: %s; determines %s (%s)\n", w, sc->name,
                 constraint_order_name(sc->order), lin, how[sc->order],
                 s->coord[c->dependent[k]].name,
                 sc->dependent >= 0 ? "named in the spec" : "chosen: the last coordinate "

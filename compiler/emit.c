@@ -599,8 +599,12 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
         println(pr, " *");
         println(pr, " * constraints, by %s:", info->eliminate
                 ? "elimination (C^T E = 0, f = 0)" : "multipliers (E + B^T lambda = 0, f = 0)");
+        int w = 12; /* the name column, as wide as the longest name */
         for (int k = 0; k < c->nc; k++)
-            println(pr, " *   %-12s %s, determines %s", c->spec[k].name,
+            if ((int)strlen(c->spec[k].name) > w)
+                w = (int)strlen(c->spec[k].name);
+        for (int k = 0; k < c->nc; k++)
+            println(pr, " *   %-*s %s, determines %s", w, c->spec[k].name,
                     constraint_order_name(c->spec[k].order), s->coord[c->dependent[k]].name);
         println(pr, " *   %s in q''", c->affine ? "all affine" : "not all affine (Newton)");
     }

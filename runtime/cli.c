@@ -236,8 +236,12 @@ help(const Cli *c, const eomc_model *m)
         printf("  --events FILE      each event as it fires, in CSV: t, event, the\n"
                "                     coordinates and velocities before its action\n"
                "  the scene's events:\n");
+        int w = 12;
         for (int k = 0; k < m->nevent; k++)
-            printf("                       %-12s %s (g crossing 0 %s)\n", m->ev_names[k],
+            if ((int)strlen(m->ev_names[k]) > w)
+                w = (int)strlen(m->ev_names[k]);
+        for (int k = 0; k < m->nevent; k++)
+            printf("                       %-*s %s (g crossing 0 %s)\n", w, m->ev_names[k],
                    actions[m->ev_action[k]], m->ev_direction[k] > 0   ? "upward"
                                              : m->ev_direction[k] < 0 ? "downward"
                                                                        : "either way");

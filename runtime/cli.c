@@ -20,6 +20,7 @@
 
 #include <errno.h>
 #include <float.h>
+#include <signal.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -67,7 +68,11 @@ typedef struct Csv {
     double t_reset;      /* afresh with the first row after it */
     FILE *events;        /* --events FILE, or NULL */
     FILE *tee;           /* a copy of the rows for --plot, or NULL */
+    char *blk;           /* rows not yet written: whole rows only */
+    size_t blen, bcap;
+    int blk_failed;      /* out of memory: rows go straight to the files */
     double h_first;      /* the conserved quantity at the first row */
+    double t_last;       /* the time of the last row written */
     double err_max, err_end;
 } Csv;
 
@@ -90,6 +95,35 @@ write_event(void *ctx, int k, double t, const double *x)
     }
     fputc('\n', w->events);
     return EOMC_OK;
+}
+
+/* Rows go out in blocks of whole rows, each block one write: a run killed
+ * at any moment (SIGKILL) leaves a CSV of whole rows.  64 KiB: a few
+ * hundred rows of a small model. */
+enum { ROW_BLOCK = 64 << 10 };
+
+static void
+flush_rows(Csv *w)
+{
+    if (w->blen == 0)
+        return;
+    FILE *files[] = {w->f, w->tee};
+    for (int j = 0; j < 2 && files[j]; j++) {
+        fwrite(w->blk, 1, w->blen, files[j]);
+        fflush(files[j]);
+    }
+    w->blen = 0;
+}
+
+/* SIGINT or SIGTERM during a run: the row being written is finished and
+ * the run stops there (write_row), with the conventional exit status. */
+static volatile sig_atomic_t interrupted;
+enum { EOMC_INTERRUPTED = -2 };
+
+static void
+on_signal(int sig)
+{
+    interrupted = sig;
 }
 
 /* A writer of rows to f (NULL: none yet); w.res NULL when out of memory. */
@@ -755,25 +789,55 @@ write_row(void *ctx, double t, const double *x)
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
     const double *lam = eomc_sim_multipliers(w->sim);
     FILE *files[] = {w->f, w->tee};
-    for (int j = 0; j < 2 && files[j]; j++) {
-        FILE *f = files[j];
-        num_put(f, t);
-        for (int i = 0; i < 2 * n; i++)
-            fputc(',', f), num_put(f, x[i]);
-        fputc(',', f), num_put(f, T);
-        fputc(',', f), num_put(f, V);
-        fputc(',', f), num_put(f, T + V);
-        if (own_invariant_column(m))
-            fputc(',', f), num_put(f, h);
-        for (int k = 0; k < nc; k++)
-            fputc(',', f), num_put(f, lam[k]);
-        for (int k = 0; k < nc; k++)
-            fputc(',', f), num_put(f, w->res[k]);
-        for (int k = 0; k < m->nout; k++)
-            fputc(',', f), num_put(f, out[k]);
-        fputc('\n', f);
+    /* the row into the block of whole rows */
+    size_t cells = 1 + 2 * (size_t)n + 4 + 2 * (size_t)nc + (size_t)m->nout;
+    if (w->blen + cells * NUM_MAX + 2 > w->bcap && !w->blk_failed) {
+        size_t cap = 2 * w->bcap + cells * NUM_MAX + ROW_BLOCK;
+        char *b = realloc(w->blk, cap);
+        if (b)
+            w->blk = b, w->bcap = cap;
+        else
+            w->blk_failed = 1, flush_rows(w);
     }
+    char num[NUM_MAX];
+#define CELL(first, v)                                                                 \
+    do {                                                                               \
+        const char *s_ = num_shortest(num, (v));                                       \
+        if (w->blk_failed) {                                                           \
+            for (int j_ = 0; j_ < 2 && files[j_]; j_++)                                \
+                fprintf(files[j_], "%s%s", (first) ? "" : ",", s_);                    \
+        } else {                                                                       \
+            w->blen += (size_t)sprintf(w->blk + w->blen, "%s%s", (first) ? "" : ",", s_); \
+        }                                                                              \
+    } while (0)
+    CELL(1, t);
+    for (int i = 0; i < 2 * n; i++)
+        CELL(0, x[i]);
+    CELL(0, T);
+    CELL(0, V);
+    CELL(0, T + V);
+    if (own_invariant_column(m))
+        CELL(0, h);
+    for (int k = 0; k < nc; k++)
+        CELL(0, lam[k]);
+    for (int k = 0; k < nc; k++)
+        CELL(0, w->res[k]);
+    for (int k = 0; k < m->nout; k++)
+        CELL(0, out[k]);
+#undef CELL
+    if (w->blk_failed)
+        for (int j = 0; j < 2 && files[j]; j++)
+            fputc('\n', files[j]);
+    else
+        w->blk[w->blen++] = '\n';
     w->rows++;
+    w->t_last = t;
+    if (w->blen >= ROW_BLOCK)
+        flush_rows(w);
+    if (interrupted) { /* this row is whole: stop here */
+        flush_rows(w);
+        return EOMC_INTERRUPTED;
+    }
     return EOMC_OK;
 }
 
@@ -1470,6 +1534,8 @@ get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
         rc = EOMC_OK;
         for (long k = 0; k < ref->nrows && rc == EOMC_OK; k++)
             rc = write_row(&w, ref->t[k], ref->x + (size_t)k * (size_t)ref->nx);
+        flush_rows(&w);
+        free(w.blk);
         if (rc != EOMC_OK)
             fprintf(stderr, "%s: --reference-out: %s\n", c->prog, eomc_sim_error(sim));
         if (close_output(c, w.f, c->reference_out) && rc == EOMC_OK)
@@ -1544,7 +1610,36 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     c->run.progress = 1;
     c->run.on_event = write_event;
     c->run.event_ctx = &w;
+    /* whole blocks of rows, one write each: no half row in the file */
+    setvbuf(w.f, NULL, _IONBF, 0);
+    if (w.tee)
+        setvbuf(w.tee, NULL, _IONBF, 0);
+    struct sigaction sa = {0}, old_int, old_term;
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
     rc = eomc_sim_integrate(sim, &c->run, x, write_row, &w, &st);
+    flush_rows(&w);
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    free(w.blk);
+    if (rc == EOMC_INTERRUPTED) {
+        close_output(c, w.f, c->out);
+        if (w.events)
+            close_output(c, w.events, c->events);
+        if (w.tee) {
+            fclose(w.tee);
+            unlink(data);
+        }
+        char num[NUM_MAX];
+        fprintf(stderr, "%s: interrupted at t = %s (%s): the %ld rows up to then are "
+                "written\n", c->prog, num_shortest(num, w.t_last),
+                interrupted == SIGINT ? "SIGINT" : "SIGTERM", w.rows);
+        eomc_reference_free(&ref);
+        free(w.res);
+        return 128 + interrupted; /* 130 for SIGINT, 143 for SIGTERM */
+    }
     if (close_output(c, w.f, c->out))
         rc = rc ? rc : EOMC_ENUMERIC;
     if (w.events && close_output(c, w.events, c->events))

@@ -1,0 +1,41 @@
+#!/bin/sh
+# An interrupted run leaves a CSV of whole rows (TAP): SIGINT and SIGTERM
+# finish the row being written, say `interrupted at t = ...` and exit 130
+# and 143; SIGKILL, which nothing can catch, still leaves only whole rows,
+# because rows are written in blocks of whole rows, one write each.  Every
+# row of the file is checked to have every column.
+# usage: test_interrupt.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+"$eomc" build "$src/specs/chain5.yaml" -o "$tmp/chain5" 2> /dev/null
+whole() { # FILE: every line has the header's number of fields, and there are rows
+    awk -F, 'NR == 1 { n = NF } NF != n || $NF == "" { bad = 1 } END { exit !(NR > 10 && !bad) }' "$1"
+}
+for sig in INT TERM KILL; do
+    "$tmp/chain5" --t-end 1e6 --dt 1e-3 -o "$tmp/$sig.csv" 2> "$tmp/$sig.err" &
+    pid=$!
+    sleep 1
+    kill -$sig $pid
+    wait $pid
+    st=$?
+    case $sig in
+        INT) want=130 ;;
+        TERM) want=143 ;;
+        KILL) want=137 ;;
+    esac
+    rows=$(($(wc -l < "$tmp/$sig.csv") - 1))
+    if [ $sig = KILL ]; then
+        [ $st -eq $want ] && whole "$tmp/$sig.csv"
+    else
+        [ $st -eq $want ] && whole "$tmp/$sig.csv" &&
+            grep -q "interrupted at t = .* (SIG$sig): the $rows rows up to then are written" "$tmp/$sig.err"
+    fi
+    ok $? "SIG$sig: exit $st, $rows whole rows"
+done
+echo "1..$n"
+[ $failed -eq 0 ]

@@ -8,6 +8,7 @@
  * that it lines up in a terminal.
  */
 #include "diag.h"
+#include "../runtime/nearest.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -206,55 +207,10 @@ diag_note(SrcLoc at, const char *fmt, ...)
     va_end(ap);
 }
 
-/* Edit distance with transpositions (optimal string alignment), capped:
- * we only care about small ones, and a swap of two neighbouring letters
- * (`bbo` for `bob`, `t_ned` for `t_end`) is the commonest typo, one edit. */
-static int
-distance(const char *a, const char *b)
-{
-    size_t la = strlen(a), lb = strlen(b);
-    if (la > 64 || lb > 64)
-        return 99;
-    int d[65][65];
-    for (size_t i = 0; i <= la; i++)
-        d[i][0] = (int)i;
-    for (size_t j = 0; j <= lb; j++)
-        d[0][j] = (int)j;
-    for (size_t i = 1; i <= la; i++) {
-        for (size_t j = 1; j <= lb; j++) {
-            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-            if (d[i - 1][j] + 1 < best)
-                best = d[i - 1][j] + 1;
-            if (d[i][j - 1] + 1 < best)
-                best = d[i][j - 1] + 1;
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
-                d[i - 2][j - 2] + 1 < best)
-                best = d[i - 2][j - 2] + 1;
-            d[i][j] = best;
-        }
-    }
-    return d[la][lb];
-}
-
 const char *
 diag_nearest(const char *name, const char *const *cands, int n)
 {
-    const char *best = NULL;
-    int bestd = 99;
-    for (int i = 0; i < n; i++) {
-        int d = distance(name, cands[i]);
-        if (d < bestd) {
-            bestd = d;
-            best = cands[i];
-        }
-    }
-    /* a plausible typo: a third of the length, at least one edit from
-     * three characters on; any one-letter name is one edit from any other,
-     * so short names get no guess */
-    int len = (int)strlen(name), allowed = len / 3;
-    if (allowed < 1 && len >= 3)
-        allowed = 1;
-    return bestd <= allowed ? best : NULL;
+    return nearest_name(name, cands, n);
 }
 
 void

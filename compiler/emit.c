@@ -248,7 +248,7 @@ static void
 schedule_tree(Printer *pr, Sched *S, ExprId root)
 {
     size_t cap = 64, sp = 0;
-    struct { ExprId id; int expanded; } *stack = malloc(cap * sizeof *stack);
+    struct { ExprId id; int expanded; } *stack = xmalloc(cap * sizeof *stack);
     stack[sp].id = root;
     stack[sp++].expanded = 0;
     while (sp) {
@@ -263,7 +263,7 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
         } else {
             stack[sp - 1].expanded = 1;
             if (sp + 2 >= cap)
-                stack = realloc(stack, (cap *= 2) * sizeof *stack);
+                stack = xrealloc(stack, (cap *= 2) * sizeof *stack);
             int ar = expr_op_arity[nd->op];
             ExprId ops[2] = {nd->a, nd->b};
             for (int k = ar - 1; k >= 0; k--) { /* operand a comes first */
@@ -288,10 +288,10 @@ static void
 schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
 {
     size_t size = expr_pool_size(pr->P);
-    S->node = malloc(size * sizeof *S->node);
-    S->after = malloc(((size_t)nout + 1) * sizeof *S->after);
-    S->pstart = malloc(((size_t)nout + 2) * sizeof *S->pstart);
-    S->ostart = malloc(((size_t)nout + 2) * sizeof *S->ostart);
+    S->node = xmalloc(size * sizeof *S->node);
+    S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
+    S->pstart = xmalloc(((size_t)nout + 2) * sizeof *S->pstart);
+    S->ostart = xmalloc(((size_t)nout + 2) * sizeof *S->ostart);
     S->n = S->nparts = S->nslots = 0;
     S->pstart[0] = S->ostart[0] = 0;
     for (int i = 0; i < nout; i++) {
@@ -342,7 +342,8 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
     static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED,
                                 EXPR_MULT};
     size_t size = expr_pool_size(pr->P);
-    unsigned char *mark = calloc(size, 1);
+    unsigned char *mark = xmalloc(size);
+    memset(mark, 0, size);
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
         const ExprNode *nd = expr_node(pr->P, S->node[k]);
         int ar = expr_op_arity[nd->op];
@@ -466,9 +467,9 @@ print_function(Printer *pr, const LowFunc *lf)
     pr->ext = lf->shared;
     pr->derived = lf->per_step ? pr->L->derived : NULL;
     size_t size = expr_pool_size(pr->P);
-    pr->temp = malloc(size * sizeof *pr->temp);
-    pr->part = malloc(size * sizeof *pr->part);
-    pr->slot = malloc(size * sizeof *pr->slot);
+    pr->temp = xmalloc(size * sizeof *pr->temp);
+    pr->part = xmalloc(size * sizeof *pr->part);
+    pr->slot = xmalloc(size * sizeof *pr->slot);
     for (size_t i = 0; i < size; i++)
         pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
     Sched S;

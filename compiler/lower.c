@@ -183,14 +183,16 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
     ExprPool *P = lw->P;
     int n = e->n, nu = e->nu, nw = 0;
     size_t size = expr_pool_size(P);
-    ExprId *roots = malloc(2 * (size_t)n * sizeof *roots);
+    ExprId *roots = xmalloc(2 * (size_t)n * sizeof *roots);
     for (int i = 0; i < n; i++) {
         roots[i] = e->jvp_q[i];
         roots[n + i] = e->jvp_v[i];
     }
     /* shared[] holds the seed-free operator nodes that seeded nodes read (and
      * any seed-free root), numbered by id: deterministic. */
-    unsigned char *mark = calloc(size, 1), *need = calloc(size, 1);
+    unsigned char *mark = xmalloc(size), *need = xmalloc(size);
+    memset(mark, 0, size);
+    memset(need, 0, size);
     expr_mark(P, 2 * n, roots, mark);
     for (size_t id = 0; id < size; id++) {
         const ExprNode *nd = expr_node(P, (ExprId)id);
@@ -237,7 +239,7 @@ static void
 lower_jacobian(Lowering *lw, const Eom *e, int how)
 {
     int n = e->n, nu = e->nu;
-    ExprId *jroots = malloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
+    ExprId *jroots = xmalloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
     for (int i = 0; i < n * n; i++) {
         jroots[i] = e->dEdq[i];
         jroots[n * n + i] = e->dEdv[i];
@@ -336,12 +338,14 @@ lower_derive(Lowering *lw)
     int nroots = 0;
     for (int k = 0; k < L->nfunc; k++)
         nroots += L->func[k]->per_step ? L->func[k]->nout : 0;
-    ExprId *roots = malloc(((size_t)nroots + 1) * sizeof *roots);
+    ExprId *roots = xmalloc(((size_t)nroots + 1) * sizeof *roots);
     nroots = 0;
     for (int k = 0; k < L->nfunc; k++)
         for (int i = 0; L->func[k]->per_step && i < L->func[k]->nout; i++)
             roots[nroots++] = L->func[k]->out[i].e;
-    unsigned char *mark = calloc(size, 1), *want = calloc(size, 1);
+    unsigned char *mark = xmalloc(size), *want = xmalloc(size);
+    memset(mark, 0, size);
+    memset(want, 0, size);
     expr_mark(P, nroots, roots, mark);
 #define DERIVABLE(e) (expr_node(P, e)->coeff && expr_op_arity[expr_node(P, e)->op] > 0)
     for (size_t id = 0; id < size; id++) {

@@ -13,6 +13,7 @@
  * the last two share.
  */
 #include "eomc.h"
+#include "nearest.h"
 #include "numfmt.h"
 #include "plot.h"
 #include "report.h"
@@ -152,46 +153,27 @@ usage(const Cli *c, const char *fmt, ...)
     return EOMC_EUSAGE;
 }
 
-static size_t
-edit_distance(const char *a, const char *b)
-{
-    size_t la = strlen(a), lb = strlen(b), row[64];
-    if (lb >= 64)
-        return (size_t)-1;
-    for (size_t j = 0; j <= lb; j++)
-        row[j] = j;
-    for (size_t i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= lb; j++) {
-            size_t up = row[j], best = diag + (a[i - 1] != b[j - 1]);
-            if (up + 1 < best)
-                best = up + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
-        }
-    }
-    return row[lb];
-}
-
-/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), or "". */
+/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), or "":
+ * the compiler's rule (nearest.h). */
 static const char *
 nearest(const char *word, const char *const *names, int n, const char *suffix)
 {
     static char buf[160];
-    size_t best = (size_t)-1, limit = strlen(word) / 3 + 1;
     buf[0] = '\0';
-    for (int k = 0; k < n; k++) {
-        char cand[128];
-        snprintf(cand, sizeof cand, "%s%s", names[k], suffix);
-        size_t d = edit_distance(word, cand);
-        if (d <= limit && d < best) {
-            best = d;
-            snprintf(buf, sizeof buf, " (did you mean '%s'?)", cand);
+    char *cands = calloc((size_t)(n ? n : 1), NEAREST_MAX + 2);
+    const char **ptrs = calloc((size_t)(n ? n : 1), sizeof *ptrs);
+    if (cands && ptrs) {
+        for (int k = 0; k < n; k++) {
+            char *c = cands + (size_t)k * (NEAREST_MAX + 2);
+            snprintf(c, NEAREST_MAX + 2, "%s%s", names[k], suffix);
+            ptrs[k] = c;
         }
+        const char *near = nearest_name(word, ptrs, n);
+        if (near)
+            snprintf(buf, sizeof buf, " (did you mean '%s'?)", near);
     }
+    free(cands);
+    free(ptrs);
     return buf;
 }
 

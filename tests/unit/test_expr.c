@@ -289,8 +289,14 @@ test_like_terms(void)
     CHECK(f == g && same_at_random_points(f, g), "m x - x = (m - 1) x");
     ExprId y = expr_var(P, 2, 0);
     ExprId h = expr_add(P, expr_mul(P, two, x), expr_mul(P, two, y));
+    /* the structure, not only the value: a product whose first factor is
+     * the number 2 and whose second is the sum x + y itself */
+    const ExprNode *hn = expr_node(P, h);
+    CHECK(hn->op == EXPR_MUL && hn->a == two && hn->b == expr_add(P, x, y) &&
+              expr_node(P, hn->b)->op == EXPR_ADD,
+          "2 x + 2 y stays 2 (x + y): the node is 2 * (x + y)");
     CHECK(same_at_random_points(h, expr_mul(P, two, expr_add(P, x, y))),
-          "2 x + 2 y stays 2 (x + y), numerically equal");
+          "... and equal in value");
 }
 
 /* Numbers gather across products of parameters, and like terms whose

@@ -140,6 +140,29 @@ double_pendulum(void)
     sim_table_free(&t);
 }
 
+/* gear_link's energy written out here: 1/2 (Jm r^2 + Jl) th'^2 +
+ * M g l (1 - cos th), with the spec's Jm = 0.01, r = 10, Jl = 0.5, M = 2,
+ * l = 0.3; conserved with the motor's torque held at 0. */
+static void
+gear_link_energy(void)
+{
+    SimTable t = run(2, "--set u=0 --rtol 1e-12 --atol 1e-12");
+    int cq = sim_column(&t, "theta_l"), cv = sim_column(&t, "theta_l'"), ce = sim_column(&t, "E");
+    double E0 = 0, drift = 0, column = 0;
+    for (int r = 0; r < t.nrow; r++) {
+        double th = sim_at(&t, r, cq), w = sim_at(&t, r, cv);
+        double e = 0.5 * (0.01 * 100 + 0.5) * w * w + 2 * 9.81 * 0.3 * (1 - cos(th));
+        if (r == 0)
+            E0 = e;
+        drift = fmax(drift, fabs(e - E0) / E0);
+        column = fmax(column, fabs(sim_at(&t, r, ce) - e) / E0);
+    }
+    CHECK(t.nrow > 10 && column < 1e-13 && drift < 1e-9, "gear_link (u = 0): the energy "
+          "computed here from the state is conserved to %.2g, and is the CSV's E to %.2g",
+          drift, column);
+    sim_table_free(&t);
+}
+
 static void
 conserved(int which, const char *label, const char *args)
 {
@@ -162,6 +185,7 @@ main(int argc, char **argv)
     pendulum_period();
     double_pendulum();
     conserved(2, "gear_link with u = 0", "--set u=0 --rtol 1e-12 --atol 1e-12");
+    gear_link_energy();
     conserved(4, "chain5", "--rtol 1e-12 --atol 1e-12 --t-end 5");
     return check_done();
 }

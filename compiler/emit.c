@@ -15,6 +15,7 @@
  * Values needed by a later part travel through a stack array s[].
  */
 #include "emit.h"
+#include "../runtime/numfmt.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -105,16 +106,14 @@ print_head(Printer *pr, const char *type, const char *name, const char *params)
     fputs(")\n{\n", pr->f);
 }
 
-/* The shortest %g form that reads back as the same double (9.81, not
- * 9.8100000000000005), made to look like a double to C. */
+/* The shortest text that reads back as the same double (runtime/numfmt.h:
+ * 9.81, not 9.8100000000000005; 10, not 1e+01), made to look like a
+ * double to C. */
 static void
 format_const(char *buf, size_t len, double v)
 {
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, len, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v)
-            break;
-    }
+    char num[NUM_MAX];
+    snprintf(buf, len, "%s", num_shortest(num, v));
     if (!strpbrk(buf, ".eEn"))
         strncat(buf, ".0", len - strlen(buf) - 1);
 }

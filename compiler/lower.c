@@ -363,20 +363,18 @@ lower_derive(Lowering *lw)
             want[roots[i]] = 1;
 #undef DERIVABLE
     L->derived = arena_new_array(lw->A, int, size);
-    LowFunc *f = func(lw, &s_derive, "derive", 0);
-    f->per_step = 0;
-    for (size_t id = 0; id < size; id++) {
-        L->derived[id] = want[id] ? L->nd : -1;
-        if (want[id])
-            out(lw, f, 0, L->nd++, (ExprId)id);
-    }
-    /* first in the list: printed before its readers */
-    memmove(L->func + 1, L->func, (size_t)(L->nfunc - 1) * sizeof *L->func);
-    L->func[0] = f;
-    L->derive = L->nd ? f : NULL;
-    if (!L->nd) { /* nothing to derive: no function */
-        memmove(L->func, L->func + 1, (size_t)(L->nfunc - 1) * sizeof *L->func);
-        L->nfunc--;
+    for (size_t id = 0; id < size; id++)
+        L->derived[id] = want[id] ? L->nd++ : -1;
+    if (L->nd) { /* a function only when there is something to derive */
+        LowFunc *f = func(lw, &s_derive, "derive", 0);
+        f->per_step = 0;
+        for (size_t id = 0; id < size; id++)
+            if (want[id])
+                out(lw, f, 0, L->derived[id], (ExprId)id);
+        /* first in the list: printed before its readers */
+        memmove(L->func + 1, L->func, (size_t)(L->nfunc - 1) * sizeof *L->func);
+        L->func[0] = f;
+        L->derive = f;
     }
     free(want);
     free(mark);

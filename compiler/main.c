@@ -18,6 +18,7 @@
 #include "config.h"
 #include "emit.h"
 #include "invariant.h"
+#include "../runtime/numfmt.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -194,19 +195,6 @@ print_stats(const EmitStats *st)
     }
 }
 
-/* The shortest %g that reads back as v (9.81, not 9.8100000000000005). */
-static const char *
-shortest(double v)
-{
-    static char buf[40];
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, sizeof buf, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v)
-            break;
-    }
-    return buf;
-}
-
 /* --explain: what eomc made of the spec. */
 static void
 explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *inv,
@@ -229,10 +217,11 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
                    s->scenes[k].name, s->scenes[k].summary);
     }
     if (s->nfixed) {
+        char num[NUM_MAX];
         printf("fixed (folded into the code):");
         for (int i = 0; i < s->np; i++)
             if (s->param[i].fixed)
-                printf(" %s = %s", s->param[i].name, shortest(s->param[i].value));
+                printf(" %s = %s", s->param[i].name, num_shortest(num, s->param[i].value));
         printf("\n");
     }
     for (int on = 1; on >= 0; on--) {

@@ -344,7 +344,7 @@ const eomc_model cartesian_pendulum_model = {
     2, 4, 0, q_names, p_names, u_names, p_default,
     "swing", p_fixed,
     3, cartesian_pendulum_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,

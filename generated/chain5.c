@@ -2009,7 +2009,7 @@ const eomc_model chain5_model = {
     5, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     15, chain5_derive,
-    1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
+    10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     chain5_initial, chain5_inputs, chain5_mass_bias, chain5_energy, chain5_jacobian,
     chain5_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,

@@ -530,7 +530,7 @@ const eomc_model chaplygin_sleigh_model = {
     3, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     5, chaplygin_sleigh_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     chaplygin_sleigh_initial, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, chaplygin_sleigh_energy, chaplygin_sleigh_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,

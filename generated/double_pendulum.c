@@ -664,7 +664,7 @@ const eomc_model double_pendulum_model = {
     2, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     18, double_pendulum_derive,
-    1e+01, 0.05, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.05, "rk8pd", 1e-12, 1e-12, 0.0,
     double_pendulum_initial, double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_energy, double_pendulum_jacobian,
     double_pendulum_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,

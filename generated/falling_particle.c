@@ -62,7 +62,7 @@ static void
 falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
-    q[0] = 1e+01;
+    q[0] = 10.0;
     v[0] = 0.0;
 }
 

@@ -31,7 +31,7 @@
 static const char *const q_names[1] = {"theta_l"};
 static const char *const p_names[6] = {"Jm", "Jl", "r", "M", "l", "g"};
 static const char *const u_names[1] = {"u"};
-static const double p_default[6] = {0.01, 0.5, 1e+01, 2.0, 0.3, 9.81};
+static const double p_default[6] = {0.01, 0.5, 10.0, 2.0, 0.3, 9.81};
 static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
 
 #endif /* EOMC_EXTENDED */
@@ -213,7 +213,7 @@ const eomc_model gear_link_model = {
     1, 6, 1, q_names, p_names, u_names, p_default,
     "", p_fixed,
     6, gear_link_derive,
-    1e+01, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
+    10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
     gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
     gear_link_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,

@@ -258,7 +258,7 @@ const eomc_model pendulum_model = {
     1, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     5, pendulum_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     pendulum_initial, pendulum_inputs, pendulum_mass_bias, pendulum_energy, pendulum_jacobian,
     pendulum_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,

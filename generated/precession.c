@@ -1024,7 +1024,7 @@ const eomc_model precession_model = {
     3, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     3, precession_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     precession_initial, precession_inputs, precession_mass_bias, precession_energy, precession_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     1, c_names, c_order, c_dependent, 1, 0,

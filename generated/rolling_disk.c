@@ -1689,7 +1689,7 @@ const eomc_model rolling_disk_model = {
     5, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     13, rolling_disk_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     rolling_disk_initial, rolling_disk_inputs, rolling_disk_mass_bias, rolling_disk_energy, rolling_disk_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
     2, c_names, c_order, c_dependent, 1, 0,

@@ -258,7 +258,7 @@ const eomc_model swing_model = {
     1, 7, 0, q_names, p_names, u_names, p_default,
     "free", p_fixed,
     5, swing_derive,
-    1e+01, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
+    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     swing_initial, swing_inputs, swing_mass_bias, swing_energy, swing_jacobian,
     swing_accel,
     0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,

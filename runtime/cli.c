@@ -54,6 +54,11 @@ typedef struct Cli {
     unsigned report_given; /* bit k: option O_METHODS + k (report-only) was given */
 } Cli;
 
+/* Rows go out in blocks of whole rows, each block one write: a run killed
+ * at any moment (SIGKILL) leaves a CSV of whole rows.  64 KiB: a few
+ * hundred rows of a small model. */
+enum { ROW_BLOCK = 64 << 10 };
+
 typedef struct Csv {
     FILE *f;
     eomc_sim *sim;
@@ -69,9 +74,9 @@ typedef struct Csv {
     double t_reset;      /* afresh with the first row after it */
     FILE *events;        /* --events FILE, or NULL */
     FILE *tee;           /* a copy of the rows for --plot, or NULL */
-    char *blk;           /* rows not yet written: whole rows only */
-    size_t blen, bcap;
-    int blk_failed;      /* out of memory: rows go straight to the files */
+    char *blk;           /* rows not yet written, whole rows only: ROW_BLOCK
+                          * and room for one more (in res's allocation) */
+    size_t blen;
     double h_first;      /* the conserved quantity at the first row */
     double t_last;       /* the time of the last row written */
     double err_max, err_end;
@@ -98,10 +103,6 @@ write_event(void *ctx, int k, double t, const double *x)
     return EOMC_OK;
 }
 
-/* Rows go out in blocks of whole rows, each block one write: a run killed
- * at any moment (SIGKILL) leaves a CSV of whole rows.  64 KiB: a few
- * hundred rows of a small model. */
-enum { ROW_BLOCK = 64 << 10 };
 
 static void
 flush_rows(Csv *w)
@@ -134,8 +135,11 @@ csv_new(FILE *f, eomc_sim *sim)
     const eomc_model *m = eomc_sim_model(sim);
     size_t nres = (size_t)(m->nc + m->nout), n = (size_t)m->nq;
     Csv w = {.f = f, .sim = sim, .invariant = m->invariant != NULL};
-    w.res = calloc(nres + n + 1, sizeof(double));
+    /* a row's cells: t, q, q', T, V, E, h, lambda, res, outputs */
+    size_t cells = 1 + 2 * n + 4 + nres + (size_t)m->nc, row = cells * (NUM_MAX + 1) + 1;
+    w.res = calloc(nres + n + 1 + (ROW_BLOCK + row) / sizeof(double) + 1, sizeof(double));
     w.arow = w.res ? w.res + nres : NULL;
+    w.blk = w.res ? (char *)(w.arow + n + 1) : NULL;
     return w;
 }
 
@@ -479,13 +483,6 @@ find_option(const char *arg, size_t len)
     return -1;
 }
 
-static int
-ends_with(const char *s, const char *tail)
-{
-    size_t a = strlen(s), b = strlen(tail);
-    return a >= b && strcmp(s + a - b, tail) == 0;
-}
-
 /* What the options say together: conflicts are usage errors. */
 static int
 check_combination(Cli *c)
@@ -522,9 +519,9 @@ check_combination(Cli *c)
         return usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
     }
     int run_plot = c->plot && !c->work_precision && !linear && !c->accel;
-    if (run_plot && !ends_with(c->plot, ".svg") && !ends_with(c->plot, ".png"))
+    if (run_plot && !plot_format_ok(c->plot))
         return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
-    if (run_plot && !report_have_gnuplot())
+    if (run_plot && !plot_have_gnuplot())
         return usage(c, "--plot: gnuplot is not installed (Debian: apt-get install "
                      "gnuplot-nox)");
     for (int k = O_METHODS; k <= O_TARGET && !c->work_precision; k++) {
@@ -551,9 +548,9 @@ check_combination(Cli *c)
                           ? "--fixed-step (--steps chooses the report's)" : NULL;
         if (clash)
             return usage(c, "--work-precision does not take %s", clash);
-        if (c->plot && !ends_with(c->plot, ".svg") && !ends_with(c->plot, ".png"))
+        if (c->plot && !plot_format_ok(c->plot))
             return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
-        if (c->plot && !report_have_gnuplot())
+        if (c->plot && !plot_have_gnuplot())
             return usage(c, "--plot: gnuplot is not installed (Debian: apt-get install "
                          "gnuplot-nox)");
     }
@@ -770,28 +767,12 @@ write_row(void *ctx, double t, const double *x)
     for (int k = 0; k < nc; k++)
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
     const double *lam = eomc_sim_multipliers(w->sim);
-    FILE *files[] = {w->f, w->tee};
-    /* the row into the block of whole rows */
-    size_t cells = 1 + 2 * (size_t)n + 4 + 2 * (size_t)nc + (size_t)m->nout;
-    if (w->blen + cells * NUM_MAX + 2 > w->bcap && !w->blk_failed) {
-        size_t cap = 2 * w->bcap + cells * NUM_MAX + ROW_BLOCK;
-        char *b = realloc(w->blk, cap);
-        if (b)
-            w->blk = b, w->bcap = cap;
-        else
-            w->blk_failed = 1, flush_rows(w);
-    }
+    /* the row into the block of whole rows (room for one more row is
+     * always there: csv_new sized it, and it is flushed past ROW_BLOCK) */
     char num[NUM_MAX];
 #define CELL(first, v)                                                                 \
-    do {                                                                               \
-        const char *s_ = num_shortest(num, (v));                                       \
-        if (w->blk_failed) {                                                           \
-            for (int j_ = 0; j_ < 2 && files[j_]; j_++)                                \
-                fprintf(files[j_], "%s%s", (first) ? "" : ",", s_);                    \
-        } else {                                                                       \
-            w->blen += (size_t)sprintf(w->blk + w->blen, "%s%s", (first) ? "" : ",", s_); \
-        }                                                                              \
-    } while (0)
+    (w->blen += (size_t)sprintf(w->blk + w->blen, "%s%s", (first) ? "" : ",",         \
+                                num_shortest(num, (v))))
     CELL(1, t);
     for (int i = 0; i < 2 * n; i++)
         CELL(0, x[i]);
@@ -807,11 +788,7 @@ write_row(void *ctx, double t, const double *x)
     for (int k = 0; k < m->nout; k++)
         CELL(0, out[k]);
 #undef CELL
-    if (w->blk_failed)
-        for (int j = 0; j < 2 && files[j]; j++)
-            fputc('\n', files[j]);
-    else
-        w->blk[w->blen++] = '\n';
+    w->blk[w->blen++] = '\n';
     w->rows++;
     w->t_last = t;
     if (w->blen >= ROW_BLOCK)
@@ -1517,7 +1494,6 @@ get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
         for (long k = 0; k < ref->nrows && rc == EOMC_OK; k++)
             rc = write_row(&w, ref->t[k], ref->x + (size_t)k * (size_t)ref->nx);
         flush_rows(&w);
-        free(w.blk);
         if (rc != EOMC_OK)
             fprintf(stderr, "%s: --reference-out: %s\n", c->prog, eomc_sim_error(sim));
         if (close_output(c, w.f, c->reference_out) && rc == EOMC_OK)
@@ -1605,7 +1581,6 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     flush_rows(&w);
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
-    free(w.blk);
     if (rc == EOMC_INTERRUPTED) {
         close_output(c, w.f, c->out);
         if (w.events)

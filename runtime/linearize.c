@@ -279,10 +279,11 @@ hold_on_constraints(eomc_sim *s, double t, double *x)
     double *pos = calloc((size_t)nc, sizeof *pos), *vel = calloc((size_t)nc, sizeof *vel);
     double *C = calloc((size_t)(2 * nc + 1) * (size_t)(2 * n), sizeof *C);
     double *G = calloc((size_t)(nh * nh), sizeof *G), *r = calloc((size_t)nh, sizeof *r);
+    double *first = calloc((size_t)nh, sizeof *first);
     int *dep = calloc((size_t)nh, sizeof *dep), *row = calloc((size_t)nh, sizeof *row);
     LaLu *lu = la_lu_alloc(nh);
     int rc = -1;
-    if (!pos || !vel || !C || !G || !r || !dep || !row || !lu)
+    if (!pos || !vel || !C || !G || !r || !first || !dep || !row || !lu)
         goto done;
     for (int k = 0, h = 0, rr = 0; k < nc; k++) {
         if (m->c_order[k] == 0)
@@ -307,7 +308,9 @@ hold_on_constraints(eomc_sim *s, double t, double *x)
         la_lu_solve(lu, r);
         for (int a = 0; a < nh; a++) {
             x[dep[a]] += r[a];
-            worst = fmax(worst, fabs(r[a]) / fmax(fabs(x[dep[a]]), DBL_MIN));
+            if (it == 0) /* a coordinate at 0 is measured by the first correction */
+                first[a] = fabs(r[a]);
+            worst = fmax(worst, fabs(r[a]) / fmax(fmax(fabs(x[dep[a]]), first[a]), DBL_MIN));
         }
         if (worst <= EQ_SETTLED || (worst <= EQ_STALL && worst >= prev)) {
             rc = 0;
@@ -321,6 +324,7 @@ done:
     free(C);
     free(G);
     free(r);
+    free(first);
     free(dep);
     free(row);
     la_lu_free(lu);
@@ -332,11 +336,16 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
     const eomc_model *m = s->m;
     int n = s->n, N = 2 * n, nl = eomc_sim_linear_size(s);
-    int nzq = 0, nzv = 0;
-    for (int k = 0; k < nl; k++) {
+    /* the independent coordinates: their place k among the states, and
+     * which coordinate each is */
+    int nzq = 0, nzv = 0, *qk = calloc((size_t)N, sizeof *qk), *qc = calloc((size_t)N, sizeof *qc);
+    for (int k = 0; k < nl && qk && qc; k++) {
         int c, o;
         eomc_sim_linear_state(s, k, &c, &o);
-        o ? nzv++ : nzq++;
+        if (o)
+            nzv++;
+        else
+            qk[nzq] = k, qc[nzq++] = c;
     }
     size_t snl = nl > 0 ? (size_t)nl : 1;
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
@@ -350,7 +359,7 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
     gsl_vector *dz = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
     int rc = EOMC_OK;
     *iterations = 0;
-    if (!Af || !T || !scale || !x0 || !J || !V || !S || !work || !F || !dz) {
+    if (!qk || !qc || !Af || !T || !scale || !x0 || !J || !V || !S || !work || !F || !dz) {
         rc = sim_usage_error(s, "out of memory searching for an equilibrium");
         goto done;
     }
@@ -390,15 +399,11 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
          * derivative along the independent coordinates, (dq''/dx) T */
         for (int i = 0; i < n; i++) {
             gsl_vector_set(F, (size_t)i, -s->a[i]);
-            for (int k = 0, cq = 0; k < nl; k++) {
-                int c, o;
-                eomc_sim_linear_state(s, k, &c, &o);
-                if (o)
-                    continue;
+            for (int cq = 0; cq < nzq; cq++) {
                 double sum = 0;
                 for (int j = 0; j < N; j++)
-                    sum += Af[(n + i) * N + j] * T[j * nl + k];
-                gsl_matrix_set(J, (size_t)i, (size_t)cq++, sum);
+                    sum += Af[(n + i) * N + j] * T[j * nl + qk[cq]];
+                gsl_matrix_set(J, (size_t)i, (size_t)cq, sum);
             }
         }
         /* the least-squares step: robust where J is nearly singular (a
@@ -421,18 +426,13 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
         for (int tries = 0;; tries++, lambda *= 0.5) {
             memcpy(x, x0, (size_t)N * sizeof *x);
             worst = 0;
-            for (int k = 0, cq = 0; k < nl; k++) {
-                int c, o;
-                eomc_sim_linear_state(s, k, &c, &o);
-                if (o)
-                    continue;
+            for (int cq = 0; cq < nzq; cq++) {
                 double step = lambda * gsl_vector_get(dz, (size_t)cq);
                 for (int j = 0; j < n; j++)
-                    x[j] += T[j * nl + k] * step;
+                    x[j] += T[j * nl + qk[cq]] * step;
                 if (it == 1 && tries == 0)
                     scale[cq] = fabs(step);
-                worst = fmax(worst, fabs(step) / fmax(fmax(fabs(x[c]), scale[cq]), DBL_MIN));
-                cq++;
+                worst = fmax(worst, fabs(step) / fmax(fmax(fabs(x[qc[cq]]), scale[cq]), DBL_MIN));
             }
             int ok = hold_on_constraints(s, t, x) == 0 &&
                      eomc_sim_accel(s, t, x, x + n, s->a) == EOMC_OK;
@@ -459,6 +459,8 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
     }
     rc = eomc_sim_accel(s, t, x, x + n, s->a);
 done:
+    free(qk);
+    free(qc);
     free(Af);
     free(T);
     free(scale);

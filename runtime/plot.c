@@ -48,6 +48,12 @@ ends_with(const char *s, const char *tail)
     return a >= b && strcmp(s + a - b, tail) == 0;
 }
 
+int
+plot_format_ok(const char *path)
+{
+    return ends_with(path, ".svg") || ends_with(path, ".png");
+}
+
 void
 plot_terminal(FILE *f, const char *path, const char *tmp, int width, int height)
 {

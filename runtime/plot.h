@@ -15,6 +15,8 @@
 
 /* Whether gnuplot can be run (checked before anything is computed). */
 int plot_have_gnuplot(void);
+/* Whether path names a picture gnuplot is asked for here: .svg or .png. */
+int plot_format_ok(const char *path);
 
 /* A string for gnuplot: single quotes, '' for a quote. */
 void plot_string(FILE *f, const char *s);

@@ -228,14 +228,6 @@ progress(const Report *r, double t0, int k, int n, const Entry *e, int *shown)
 
 /* ---- the table ---- */
 
-/* The shortest %g that reads back as x. */
-static void
-shortest(char *buf, size_t len, double x)
-{
-    char num[NUM_MAX];
-    snprintf(buf, len, "%s", num_shortest(num, x));
-}
-
 /* An error, marked ~ when the reference cannot resolve it. */
 static void
 error_cell(char *buf, size_t len, const Report *r, double err)
@@ -390,9 +382,8 @@ finish_file(const Report *r, FILE *f, const char *tmp, const char *path)
 static void
 csv_num(FILE *f, double x)
 {
-    char buf[40];
-    shortest(buf, sizeof buf, x);
-    fprintf(f, ",%s", buf);
+    fputc(',', f);
+    num_put(f, x);
 }
 
 static int
@@ -443,12 +434,6 @@ write_csv(const Report *r, const Entry *e, int n)
     int rc = finish_file(r, f, tmp, r->csv);
     free(tmp);
     return rc;
-}
-
-int
-report_have_gnuplot(void)
-{
-    return plot_have_gnuplot();
 }
 
 /* Colours told apart in print and by most colour-blind readers: one per

@@ -34,10 +34,6 @@ typedef struct Report {
  * are not tried. */
 #define REPORT_MAX_STEPS 100000
 
-/* Whether gnuplot can be run (checked before the runs, when --plot is
- * given). */
-int report_have_gnuplot(void);
-
 /* The whole report: the table on stdout, then the files.  Returns 0, or
  * an exit status (2: a file could not be written, 3: no run succeeded). */
 int report_run(const Report *r);

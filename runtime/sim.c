@@ -11,6 +11,7 @@
  */
 #include "simimpl.h"
 #include "linalg.h"
+#include "numfmt.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -178,14 +179,10 @@ eomc_sim_set(eomc_sim *s, const char *name, double value)
     for (int k = 0; k < m->np; k++)
         if (strcmp(name, m->p_names[k]) == 0) {
             if (m->p_fixed[k]) {
-                char num[32]; /* the shortest form that reads back the same */
-                for (int prec = 1; prec <= 17; prec++)
-                    if (snprintf(num, sizeof num, "%.*g", prec, m->p_default[k]) > 0 &&
-                        strtod(num, NULL) == m->p_default[k])
-                        break;
+                char num[NUM_MAX];
                 return sim_usage_error(s, "parameter '%s' is fixed at %s in %s%s%s: it was "
                                        "folded into the code (compile without fixing it to "
-                                       "vary it)", name, num,
+                                       "vary it)", name, num_shortest(num, m->p_default[k]),
                                        *m->scene ? "scene '" : "the spec's scene",
                                        m->scene, *m->scene ? "'" : "");
             }

@@ -1113,7 +1113,8 @@ plan_file(Cli *c, const eomc_model *m, Plan *pl)
             for (char *tok = strtok_r(line, ",", &save); tok && rc == EOMC_OK;
                  tok = strtok_r(NULL, ",", &save)) {
                 char where[4200];
-                snprintf(where, sizeof where, "%s:%ld", c->sweep_file, lineno);
+                snprintf(where, sizeof where, "%s:%ld:%ld", c->sweep_file, lineno,
+                         (long)(tok - line) + 1);
                 rc = sweep_name(c, m, pl, tok, where);
                 pl->names[pl->nparam++] = strdup(tok);
             }
@@ -1135,8 +1136,9 @@ plan_file(Cli *c, const eomc_model *m, Plan *pl)
             double v = strtod(p, &end);
             if (end == p || errno || !isfinite(v) || (*end != ',' && *end) ||
                 (j < pl->nparam - 1 && *end != ',') || (j == pl->nparam - 1 && *end))
-                rc = usage(c, "%s:%ld: expected %d finite numbers separated by commas",
-                           c->sweep_file, lineno, pl->nparam);
+                rc = usage(c, "%s:%ld:%ld: expected %d finite numbers separated by commas "
+                           "(the value of %s here)", c->sweep_file, lineno,
+                           (long)(p - line) + 1, pl->nparam, pl->names[j]);
             pl->values[pl->nruns * pl->nparam + j] = v;
             p = end + (*end == ',');
         }

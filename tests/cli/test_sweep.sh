@@ -60,6 +60,10 @@ ok $? "a name that is not a parameter: exit $st"
 "$tmp/swing" --sweep A=0:1:2 > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && grep -q "fixed in scene 'free'" "$tmp/err"
 ok $? "a fixed parameter cannot be swept: exit $st, naming the scene"
+printf 'm,l\n1,x\n' > "$tmp/bad.csv"
+"$tmp/pend" --sweep-file "$tmp/bad.csv" -o "$tmp/none.csv" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "bad.csv:2:3: expected 2 finite numbers" "$tmp/err" && [ ! -e "$tmp/none.csv" ]
+ok $? "a bad value in --sweep-file: FILE:LINE:COLUMN, exit $st, no summary file"
 "$tmp/pend" --sweep g=1:2:0 > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ]
 ok $? "COUNT 0: exit $st"

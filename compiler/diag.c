@@ -24,6 +24,8 @@ static struct {
 static int nsources;
 static jmp_buf *jump_target;
 static FILE *output; /* NULL: stderr */
+static int nerrors;
+static SrcLoc last_error; /* one message per place: a second says less */
 
 void
 diag_add_source(const char *file, const char *text, size_t len)
@@ -180,10 +182,34 @@ report(const char *kind, SrcLoc at, const char *fmt, va_list ap)
 void
 diag_error(SrcLoc at, const char *fmt, ...)
 {
-    va_list ap;
-    va_start(ap, fmt);
-    report("error", at, fmt, ap);
-    va_end(ap);
+    int again = nerrors && at.file && last_error.file && at.line > 0 &&
+                at.line == last_error.line && at.col == last_error.col &&
+                !strcmp(at.file, last_error.file);
+    if (!again) {
+        va_list ap;
+        va_start(ap, fmt);
+        report("error", at, fmt, ap);
+        va_end(ap);
+        nerrors++;
+    }
+    last_error = at;
+    diag_abandon();
+}
+
+int diag_error_count(void) { return nerrors; }
+
+void
+diag_reset_errors(void)
+{
+    nerrors = 0;
+    last_error = (SrcLoc){NULL, 0, 0};
+}
+
+void
+diag_abandon(void)
+{
+    if (nerrors == 0)
+        diag_unreachable(); /* unwinding with nothing said would be a silent failure */
     if (jump_target)
         longjmp(*jump_target, 1);
     exit(2);

@@ -39,6 +39,17 @@ FILE *diag_set_output(FILE *out);
 
 _Noreturn void diag_error(SrcLoc at, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+
+/* Errors printed since the last diag_reset_errors.  A loader that goes on
+ * after an error (to report the independent ones in one run) catches it
+ * with its own diag_set_jump, and stops at the end if any were counted. */
+int diag_error_count(void);
+void diag_reset_errors(void);
+
+/* Unwind to the current target without a message: for input that depends
+ * on something already reported (a define that failed), where a second
+ * message would only repeat the first.  Only after an error was counted. */
+_Noreturn void diag_abandon(void);
 void diag_warning(SrcLoc at, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void diag_note(SrcLoc at, const char *fmt, ...)

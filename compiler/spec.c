@@ -48,6 +48,7 @@ typedef struct Define {
     yaml_node_t *node;
     ExprId value; /* EXPR_NONE until resolved */
     int state;    /* 0 new, 1 being ordered, 2 ordered */
+    int bad;      /* its expression had an error, already reported */
     int *deps;    /* defines it names, and where */
     size_t *dep_off;
     int ndeps;
@@ -69,6 +70,9 @@ typedef struct Loader {
     Define *def;
     int ndef;
     double *pdef;  /* the parameters' defaults, once loaded (defaults()) */
+    char *bad_param; /* per parameter: its value had an error */
+    char *bad_part, *bad_body; /* per particle and body: it had an error */
+    int stop;      /* no use going on: SPEC_MAX_ERRORS reached, or a limit */
     const SpecOptions *opt; /* never NULL */
     yaml_node_t *scene;     /* the scene compiled: its map, or NULL */
 } Loader;
@@ -405,7 +409,7 @@ add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
         diag_error(at, "name '%.20s...' is longer than 64 characters", name);
     if (parse_is_reserved(name))
         diag_error(at, "'%s' is reserved (t, pi and the function names)", name);
-    if (L->nnames >= SPEC_MAX_NAMES)
+    if (L->nnames >= SPEC_MAX_NAMES && (L->stop = 1))
         diag_error(at, "more than %d names (parameters, coordinates, inputs and defines)",
                    SPEC_MAX_NAMES);
     Name *old = find_name(L, name);
@@ -430,6 +434,8 @@ lookup(ParseScope *sc, const char *name, SrcLoc at)
         case NAME_COORD: return expr_var(L->P, nm->index, 0);
         case NAME_INPUT: return expr_input(L->P, nm->index);
         case NAME_DEFINE:
+            if (L->def[nm->index].bad)
+                diag_abandon();
             if (L->def[nm->index].value == EXPR_NONE)
                 diag_unreachable(); /* ordered before its users */
             return L->def[nm->index].value;
@@ -553,7 +559,57 @@ vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId out[3
     return dim;
 }
 
+/* ---- going on after an error ---- */
+
+/* Past this many errors a spec is not worth reading further: later
+ * messages grow likelier to follow from earlier ones (clang's default
+ * -ferror-limit is the same). */
+enum { SPEC_MAX_ERRORS = 20 };
+
+typedef void EntryFn(Loader *L, yaml_node_t *map, int i);
+
+/* f(L, map, i), one entry of a section, so that an error in it is
+ * reported and loading goes on with the next entry: a spec's independent
+ * mistakes are found in one run.  0 if it failed.  What depends on a
+ * failed entry is marked by the caller, and its uses are abandoned
+ * without a second message (diag_abandon). */
+static int
+checked(Loader *L, EntryFn *f, yaml_node_t *map, int i)
+{
+    jmp_buf jb;
+    jmp_buf *outer = diag_set_jump(&jb);
+    if (setjmp(jb)) {
+        diag_set_jump(outer);
+        if (diag_error_count() >= SPEC_MAX_ERRORS && !L->stop) {
+            diag_note((SrcLoc){L->path, 0, 0}, "stopping after %d errors", SPEC_MAX_ERRORS);
+            L->stop = 1;
+        }
+        if (L->stop)
+            diag_abandon();
+        return 0;
+    }
+    f(L, map, i);
+    diag_set_jump(outer);
+    return 1;
+}
+
+/* Stop here if anything so far failed: what follows depends on it. */
+static void
+stop_if_failed(void)
+{
+    if (diag_error_count())
+        diag_abandon();
+}
+
 /* ---- the sections ---- */
+
+static void
+name_parameter(Loader *L, yaml_node_t *map, int i)
+{
+    yaml_node_pair_t *p = &PAIRS(map)[i];
+    L->s->param[i].name = add_name(L, node(L, p->key), NAME_PARAM, i);
+    L->s->param[i].loc = loc_of(L, node(L, p->key));
+}
 
 static void
 name_parameters(Loader *L, yaml_node_t *map)
@@ -561,19 +617,33 @@ name_parameters(Loader *L, yaml_node_t *map)
     Spec *s = L->s;
     s->np = NPAIRS(map);
     s->param = arena_new_array(L->A, SpecParam, s->np);
-    for (int i = 0; i < s->np; i++) {
-        yaml_node_pair_t *p = &PAIRS(map)[i];
-        s->param[i].name = add_name(L, node(L, p->key), NAME_PARAM, i);
-        s->param[i].loc = loc_of(L, node(L, p->key));
-    }
+    for (int i = 0; i < s->np; i++)
+        checked(L, name_parameter, map, i);
+}
+
+static void
+load_parameter(Loader *L, yaml_node_t *map, int i)
+{
+    L->s->param[i].value = number(L, node(L, PAIRS(map)[i].value), "a parameter value");
 }
 
 /* After every name is known, so that `k: 2*x` says x is a coordinate. */
 static void
 load_parameters(Loader *L, yaml_node_t *map)
 {
+    L->bad_param = arena_new_array(L->A, char, L->s->np + 1);
     for (int i = 0; i < L->s->np; i++)
-        L->s->param[i].value = number(L, node(L, PAIRS(map)[i].value), "a parameter value");
+        L->bad_param[i] = !checked(L, load_parameter, map, i);
+}
+
+static void
+name_coordinate(Loader *L, yaml_node_t *seq, int i)
+{
+    Spec *s = L->s;
+    yaml_node_t *n = node(L, ITEMS(seq)[i]);
+    s->coord[i].q0 = s->coord[i].v0 = EXPR_ZERO;
+    s->coord[i].name = add_name(L, n, NAME_COORD, i);
+    s->coord[i].loc = loc_of(L, n);
 }
 
 static void
@@ -586,12 +656,16 @@ load_coordinates(Loader *L, yaml_node_t *seq)
         diag_error(loc_of(L, seq), "a spec needs at least one coordinate");
     s->coord = arena_new_array(L->A, SpecCoord, s->nq);
     L->sc.ncoord = s->nq;
-    for (int i = 0; i < s->nq; i++) {
-        yaml_node_t *n = node(L, ITEMS(seq)[i]);
-        s->coord[i].name = add_name(L, n, NAME_COORD, i);
-        s->coord[i].loc = loc_of(L, n);
-        s->coord[i].q0 = s->coord[i].v0 = EXPR_ZERO;
-    }
+    for (int i = 0; i < s->nq; i++)
+        checked(L, name_coordinate, seq, i);
+}
+
+static void
+name_input(Loader *L, yaml_node_t *map, int i)
+{
+    yaml_node_t *k = node(L, PAIRS(map)[i].key);
+    L->s->input[i].name = add_name(L, k, NAME_INPUT, i);
+    L->s->input[i].loc = loc_of(L, k);
 }
 
 static void
@@ -600,11 +674,16 @@ name_inputs(Loader *L, yaml_node_t *map)
     Spec *s = L->s;
     s->nu = NPAIRS(map);
     s->input = arena_new_array(L->A, SpecInput, s->nu);
-    for (int i = 0; i < s->nu; i++) {
-        yaml_node_t *k = node(L, PAIRS(map)[i].key);
-        s->input[i].name = add_name(L, k, NAME_INPUT, i);
-        s->input[i].loc = loc_of(L, k);
-    }
+    for (int i = 0; i < s->nu; i++)
+        checked(L, name_input, map, i);
+}
+
+static void
+name_define(Loader *L, yaml_node_t *map, int i)
+{
+    L->def[i].node = node(L, PAIRS(map)[i].value);
+    L->def[i].value = EXPR_NONE;
+    L->def[i].name = add_name(L, node(L, PAIRS(map)[i].key), NAME_DEFINE, i);
 }
 
 static void
@@ -612,11 +691,8 @@ name_defines(Loader *L, yaml_node_t *map)
 {
     L->ndef = NPAIRS(map);
     L->def = arena_new_array(L->A, Define, L->ndef);
-    for (int i = 0; i < L->ndef; i++) {
-        L->def[i].name = add_name(L, node(L, PAIRS(map)[i].key), NAME_DEFINE, i);
-        L->def[i].node = node(L, PAIRS(map)[i].value);
-        L->def[i].value = EXPR_NONE;
-    }
+    for (int i = 0; i < L->ndef; i++)
+        checked(L, name_define, map, i);
 }
 
 typedef struct DepCollect {
@@ -671,11 +747,22 @@ define_cycle(Loader *L, const int *stack, const int *edge, int sp, int i)
 }
 
 static void
-resolve_define(Loader *L, Define *d)
+resolve_define_at(Loader *L, yaml_node_t *map, int i)
 {
+    (void)map;
+    Define *d = &L->def[i];
     char what[120];
     snprintf(what, sizeof what, "define '%s'", d->name);
     d->value = expression(L, d->node, ALLOW_ALL, arena_strdup(L->A, what));
+}
+
+/* A define with an error is marked, and so are the defines and the
+ * expressions that use it, silently: the one message is its own. */
+static void
+resolve_define(Loader *L, Define *d)
+{
+    if (!checked(L, resolve_define_at, NULL, (int)(d - L->def)))
+        d->bad = 1;
 }
 
 /* Resolve every define after the defines it names: a depth-first
@@ -717,11 +804,17 @@ resolve_defines(Loader *L)
 }
 
 static void
+load_input(Loader *L, yaml_node_t *map, int i)
+{
+    L->s->input[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_SIGNAL,
+                                     "an input signal");
+}
+
+static void
 load_inputs(Loader *L, yaml_node_t *map)
 {
     for (int i = 0; i < L->s->nu; i++)
-        L->s->input[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_SIGNAL,
-                                         "an input signal");
+        checked(L, load_input, map, i);
 }
 
 /* ---- physical data ---- */
@@ -750,6 +843,9 @@ require(Loader *L, ExprId e, int strict, const yaml_node_t *n, int show, const c
         ...)
 {
     Spec *s = L->s;
+    for (int i = 0; i < s->np; i++) /* no value to check it with: its error is said */
+        if (L->bad_param && L->bad_param[i] && expr_depends(L->P, e, expr_param(L->P, i)))
+            return;
     char what[512];
     va_list ap;
     va_start(ap, fmt);
@@ -849,15 +945,12 @@ require_inertia(Loader *L, const yaml_node_t *n, const SpecBody *b)
 }
 
 static void
-load_particles(Loader *L, yaml_node_t *map)
+load_particle(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"mass", "position", NULL};
-    Spec *s = L->s;
-    s->npart = NPAIRS(map);
-    s->part = arena_new_array(L->A, SpecParticle, s->npart);
-    for (int i = 0; i < s->npart; i++) {
+    {
         yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
-        SpecParticle *pt = &s->part[i];
+        SpecParticle *pt = &L->s->part[i];
         pt->name = arena_strdup(L->A, scalar(L, k, "a particle name"));
         pt->loc = loc_of(L, k);
         as_map(L, v, "a particle");
@@ -870,6 +963,23 @@ load_particles(Loader *L, yaml_node_t *map)
         pt->mass = mass_of(L, mass, "particle", pt->name);
         pt->dim = vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
     }
+}
+
+/* A particle or body that failed keeps a name ("" if even that failed),
+ * so that a force on it is abandoned, not reported as unknown. */
+static void
+load_particles(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->npart = NPAIRS(map);
+    s->part = arena_new_array(L->A, SpecParticle, s->npart);
+    L->bad_part = arena_new_array(L->A, char, s->npart + 1);
+    for (int i = 0; i < s->npart; i++)
+        if (!checked(L, load_particle, map, i)) {
+            L->bad_part[i] = 1;
+            if (!s->part[i].name)
+                s->part[i].name = "";
+        }
 }
 
 /* Inertia about the centre in the body frame: a scalar (planar), three
@@ -1015,14 +1125,12 @@ two_orientations(Loader *L, const SpecBody *b, yaml_node_t *map)
 }
 
 static void
-load_bodies(Loader *L, yaml_node_t *map)
+load_body(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"mass", "center", "inertia", "rotation", "omega",
                                        "angle", NULL};
     Spec *s = L->s;
-    s->nbody = NPAIRS(map);
-    s->body = arena_new_array(L->A, SpecBody, s->nbody);
-    for (int i = 0; i < s->nbody; i++) {
+    {
         yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
         SpecBody *b = &s->body[i];
         b->name = arena_strdup(L->A, scalar(L, k, "a body name"));
@@ -1066,6 +1174,21 @@ load_bodies(Loader *L, yaml_node_t *map)
         else if (vector(L, om, ALLOW_KINETIC, "an angular velocity", b->omega) != 3)
             diag_error(loc_of(L, om), "a 3-D body's angular velocity has 3 components");
     }
+}
+
+static void
+load_bodies(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->nbody = NPAIRS(map);
+    s->body = arena_new_array(L->A, SpecBody, s->nbody);
+    L->bad_body = arena_new_array(L->A, char, s->nbody + 1);
+    for (int i = 0; i < s->nbody; i++)
+        if (!checked(L, load_body, map, i)) {
+            L->bad_body[i] = 1;
+            if (!s->body[i].name)
+                s->body[i].name = "";
+        }
 }
 
 /* A scalar or a sequence of scalars: the terms of an energy. */
@@ -1128,6 +1251,8 @@ find_target(Loader *L, yaml_node_t *n, int *is_body)
     int k = find_in(L, n, "particle or body", "particles and bodies", 0, cands,
                     s->npart + s->nbody);
     *is_body = k >= s->npart;
+    if (*is_body ? L->bad_body[k - s->npart] : L->bad_part[k])
+        diag_abandon(); /* its own error is reported */
     return *is_body ? k - s->npart : k;
 }
 
@@ -1200,11 +1325,11 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         f->kind = FORCE_GRAVITY, kinds++;
         f->dim = vector(L, v, ALLOW_FIELD, "a gravity field", f->vec);
         for (int k = 0; k < L->s->npart; k++)
-            if (L->s->part[k].dim != f->dim)
+            if (!L->bad_part[k] && L->s->part[k].dim != f->dim)
                 diag_error(loc_of(L, v), "gravity has %d components but particle '%s' is %d-D",
                            f->dim, L->s->part[k].name, L->s->part[k].dim);
         for (int k = 0; k < L->s->nbody; k++)
-            if (L->s->body[k].dim != f->dim)
+            if (!L->bad_body[k] && L->s->body[k].dim != f->dim)
                 diag_error(loc_of(L, v), "gravity has %d components but body '%s' is %d-D",
                            f->dim, L->s->body[k].name, L->s->body[k].dim);
         if (L->s->npart + L->s->nbody == 0)
@@ -1230,12 +1355,10 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 }
 
 static void
-load_effects(Loader *L, yaml_node_t *map)
+load_effect(Loader *L, yaml_node_t *map, int i)
 {
     Spec *s = L->s;
-    s->neffect = NPAIRS(map);
-    s->effect = arena_new_array(L->A, SpecEffect, s->neffect);
-    for (int i = 0; i < s->neffect; i++) {
+    {
         yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
         SpecEffect *e = &s->effect[i];
         e->name = arena_strdup(L->A, scalar(L, k, "an effect name"));
@@ -1251,6 +1374,17 @@ load_effects(Loader *L, yaml_node_t *map)
         for (int j = 0; j < e->nforce; j++)
             load_force(L, list ? node(L, ITEMS(v)[j]) : v, &e->force[j]);
     }
+}
+
+static void
+load_effects(Loader *L, yaml_node_t *map)
+{
+    Spec *s = L->s;
+    s->neffect = NPAIRS(map);
+    s->effect = arena_new_array(L->A, SpecEffect, s->neffect);
+    for (int i = 0; i < s->neffect; i++)
+        if (!checked(L, load_effect, map, i) && !s->effect[i].name)
+            s->effect[i].name = "";
 }
 
 static int
@@ -1298,20 +1432,28 @@ load_constraint(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecConstraint *c)
 }
 
 static void
+load_constraint_at(Loader *L, yaml_node_t *map, int i)
+{
+    Spec *s = L->s;
+    SpecConstraint *c = &s->constraint[i];
+    load_constraint(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value), c);
+    for (int j = 0; j < i; j++)
+        if (c->dependent >= 0 && s->constraint[j].dependent == c->dependent)
+            diag_error(c->dep_loc, "coordinate '%s' is already the dependent coordinate "
+                       "of constraint '%s'", s->coord[c->dependent].name,
+                       s->constraint[j].name);
+}
+
+static void
 load_constraints(Loader *L, yaml_node_t *map)
 {
     Spec *s = L->s;
     s->nconstraint = NPAIRS(map);
     s->constraint = arena_new_array(L->A, SpecConstraint, s->nconstraint);
-    for (int i = 0; i < s->nconstraint; i++) {
-        SpecConstraint *c = &s->constraint[i];
-        load_constraint(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value), c);
-        for (int j = 0; j < i; j++)
-            if (c->dependent >= 0 && s->constraint[j].dependent == c->dependent)
-                diag_error(c->dep_loc, "coordinate '%s' is already the dependent coordinate "
-                           "of constraint '%s'", s->coord[c->dependent].name,
-                           s->constraint[j].name);
-    }
+    for (int i = 0; i < s->nconstraint; i++)
+        s->constraint[i].dependent = -1;
+    for (int i = 0; i < s->nconstraint; i++)
+        checked(L, load_constraint_at, map, i);
     if (s->nconstraint >= s->nq) /* at the one too many */
         diag_error(s->constraint[s->nq - 1].loc, "%d constraints on %d coordinate%s leave no "
                    "freedom of motion", s->nconstraint, s->nq, s->nq == 1 ? "" : "s");
@@ -1608,19 +1750,36 @@ state_var(Loader *L, yaml_node_t *k, const char *what)
 /* `initial:` at the top level, or a scene's, which overrides it (live:
  * the scene compiled; the others are only checked). */
 static void
-load_initial(Loader *L, yaml_node_t *map, int live)
+initial_value(Loader *L, yaml_node_t *map, int i, int live)
 {
     Spec *s = L->s;
-    for (int i = 0; i < NPAIRS(map); i++) {
-        int var = state_var(L, node(L, PAIRS(map)[i].key), "an initial-state name");
-        ExprId e = expression(L, node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
-        if (!live)
-            continue;
-        if (var & 1)
-            s->coord[var / 2].v0 = e;
-        else
-            s->coord[var / 2].q0 = e;
-    }
+    int var = state_var(L, node(L, PAIRS(map)[i].key), "an initial-state name");
+    ExprId e = expression(L, node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
+    if (!live)
+        return;
+    if (var & 1)
+        s->coord[var / 2].v0 = e;
+    else
+        s->coord[var / 2].q0 = e;
+}
+
+static void
+initial_live(Loader *L, yaml_node_t *map, int i)
+{
+    initial_value(L, map, i, 1);
+}
+
+static void
+initial_checked(Loader *L, yaml_node_t *map, int i)
+{
+    initial_value(L, map, i, 0);
+}
+
+static void
+load_initial(Loader *L, yaml_node_t *map, int live)
+{
+    for (int i = 0; i < NPAIRS(map); i++)
+        checked(L, live ? initial_live : initial_checked, map, i);
 }
 
 static void
@@ -1905,6 +2064,45 @@ static const char *const top_keys[] = {
 };
 
 static void
+load_kinetic(Loader *L, yaml_node_t *root, int i)
+{
+    (void)i;
+    yaml_node_t *n = section(L, root, "kinetic", 0);
+    if (n)
+        L->s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term",
+                                   &L->s->nkinetic);
+}
+
+static void
+load_potential(Loader *L, yaml_node_t *root, int i)
+{
+    (void)i;
+    yaml_node_t *n = section(L, root, "potential", 0);
+    if (n)
+        L->s->potential = load_terms(L, n, ALLOW_POTENTIAL, "a potential-energy term",
+                                     &L->s->npotential);
+}
+
+static void
+live_scene(Loader *L, yaml_node_t *scene, int i)
+{
+    (void)i;
+    load_scene(L, scene, 1);
+}
+
+/* Every named scene is checked, and summarized for --explain. */
+static void
+other_scene(Loader *L, yaml_node_t *scenes, int i)
+{
+    yaml_node_t *sc = node(L, PAIRS(scenes)[i].value);
+    L->s->scenes[i].summary = scene_summary(L, sc);
+    if (sc != L->scene) {
+        load_fix(L, sc, 0);
+        load_scene(L, sc, 0);
+    }
+}
+
+static void
 load_root(Loader *L, yaml_node_t *root)
 {
     Spec *s = L->s;
@@ -1928,10 +2126,11 @@ load_root(Loader *L, yaml_node_t *root)
     load_coordinates(L, coords);
     if (inputs)
         name_inputs(L, inputs);
-    if (defines) {
+    if (defines)
         name_defines(L, defines);
+    stop_if_failed(); /* everything below is read with these names */
+    if (defines)
         resolve_defines(L);
-    }
     if (params)
         load_parameters(L, params);
     if (inputs)
@@ -1946,29 +2145,22 @@ load_root(Loader *L, yaml_node_t *root)
         load_particles(L, n);
     if ((n = section(L, root, "bodies", 1)))
         load_bodies(L, n);
-    if ((n = section(L, root, "kinetic", 0)))
-        s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term", &s->nkinetic);
-    if ((n = section(L, root, "potential", 0)))
-        s->potential = load_terms(L, n, ALLOW_POTENTIAL, "a potential-energy term",
-                                  &s->npotential);
+    checked(L, load_kinetic, root, 0);
+    checked(L, load_potential, root, 0);
     if ((n = section(L, root, "effects", 1)))
         load_effects(L, n);
     if ((n = section(L, root, "constraints", 1)))
         load_constraints(L, n);
     if ((n = section(L, root, "initial", 1)))
         load_initial(L, n, 1);
-    add_unit_constraints(L);
+    if (diag_error_count() == 0) /* it reads the bodies' and the parameters' values */
+        add_unit_constraints(L);
     if (L->scene)
-        load_scene(L, L->scene, 1);
+        checked(L, live_scene, L->scene, 0);
     if ((n = section(L, root, "scenes", 1)))
-        for (int i = 0; i < s->nscenes; i++) {
-            yaml_node_t *sc = node(L, PAIRS(n)[i].value);
-            s->scenes[i].summary = scene_summary(L, sc);
-            if (sc != L->scene) {
-                load_fix(L, sc, 0);
-                load_scene(L, sc, 0);
-            }
-        }
+        for (int i = 0; i < s->nscenes; i++)
+            checked(L, other_scene, n, i);
+    stop_if_failed();
     fold_fixed(L);
     if (s->npart == 0 && s->nbody == 0 && s->nkinetic == 0)
         diag_error(loc_of(L, root), "the spec has no kinetic energy: give `particles:`, "
@@ -2156,6 +2348,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
     L->s->scene = (SpecScene){.t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10,
                               .atol = 1e-10};
     diag_add_source(L->path, text, len);
+    diag_reset_errors();
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
     Spec *volatile result = NULL;

@@ -9,9 +9,13 @@
 #    SCRATCH/gen/NAME.yaml and compiled from there in the same way;
 #  - cli_NAME.args: the arguments of an eomc command line (OUT stands for
 #    the output file), run from this directory.
+# Where each error must point is written in the case itself, by hand, as a
+# comment `# expect: LINE:COL ...` (one place per error, in order; in the
+# .gen script for a generated spec; none in a .args file means no error
+# names a place), and the golden's places must be those: so that a golden
+# refreshed from eomc's own output cannot bless a wrong location.
 # usage: run_errors.sh EOMC SOURCE_DIR SCRATCH_DIR
-# UPDATE=1 rewrites each NAME.err from what eomc prints (then read the diff:
-# every message must name the right line and column).
+# UPDATE=1 rewrites each NAME.err from what eomc prints (then read the diff).
 set -u
 eomc=$1 src=$2 scratch=$3
 case $eomc in /*) ;; *) eomc="$PWD/$eomc" ;; esac
@@ -22,10 +26,18 @@ mkdir -p "$scratch/gen" || exit 1
 out="$scratch/out.c"
 n=0 failed=0
 
-# check NAME DIR ARG...: run eomc ARG... in DIR and judge it
+# places CASE_FILE NAME: the places the case expects, and those its golden
+# names, each as one line
+expected() { sed -n 's/^# expect: *//p' "$1" | tr -s ' \n' '  ' | sed 's/ $//'; }
+golden() {
+  sed -n "s/^$1\.yaml:\([0-9]*:[0-9]*\): error:.*/\1/p" "$src/$1.err" | tr '\n' ' ' |
+    sed 's/ $//'
+}
+
+# check NAME DIR CASE_FILE ARG...: run eomc ARG... in DIR and judge it
 check() {
-  name=$1 dir=$2
-  shift 2
+  name=$1 dir=$2 case_file=$3
+  shift 3
   rm -f "$out" "$out".*
   (cd "$dir" && exec timeout 10 "$eomc" "$@") > "$scratch/stdout" 2> "$scratch/$name.err"
   st=$?
@@ -46,6 +58,9 @@ check() {
     why="stderr differs from $name.err"
     diff -u "$src/$name.err" "$scratch/$name.err" 2>&1 | sed 's/^/# /'
   fi
+  if [ -z "$why" ] && [ "$(expected "$case_file")" != "$(golden "$name")" ]; then
+    why="$name.err names $(golden "$name" | sed 's/^$/no place/'), the case expects $(expected "$case_file" | sed 's/^$/no place/')"
+  fi
   n=$((n + 1))
   if [ -z "$why" ]; then
     echo "ok $n - $name"
@@ -59,14 +74,14 @@ check() {
 for f in "$src"/*.yaml; do
   name=${f##*/}
   name=${name%.yaml}
-  check "$name" "$src" compile "$name.yaml" -o "$out"
+  check "$name" "$src" "$f" compile "$name.yaml" -o "$out"
 done
 
 for f in "$src"/*.gen; do
   name=${f##*/}
   name=${name%.gen}
   sh "$f" > "$scratch/gen/$name.yaml"
-  check "$name" "$scratch/gen" compile "$name.yaml" -o "$out"
+  check "$name" "$scratch/gen" "$f" compile "$name.yaml" -o "$out"
 done
 
 for f in "$src"/cli_*.args; do
@@ -74,12 +89,12 @@ for f in "$src"/cli_*.args; do
   name=${name%.args}
   set -f # the words of the file, unglobbed
   set --
-  for a in $(cat "$f"); do
+  for a in $(grep -v '^#' "$f"); do
     [ "$a" = OUT ] && a=$out
     set -- "$@" "$a"
   done
   set +f
-  check "$name" "$src" "$@"
+  check "$name" "$src" "$f" "$@"
 done
 
 echo "1..$n"

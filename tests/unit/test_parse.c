@@ -157,6 +157,7 @@ error_column(const char *text, unsigned allow, char *msg, size_t len)
     dup2(fileno(tmp), 2);
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
+    diag_reset_errors(); /* each case is a run of its own: a place may repeat */
     int failed = 0;
     unsigned before = scope.allow;
     scope.allow = allow;

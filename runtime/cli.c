@@ -20,6 +20,7 @@
 #include "sweep.h"
 
 #include <errno.h>
+#include <gsl/gsl_errno.h>
 #include <float.h>
 #include <signal.h>
 #include <math.h>
@@ -1679,8 +1680,8 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     return rc;
 }
 
-int
-eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
+static int
+cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
 {
     const char *slash = argc > 0 ? strrchr(argv[0], '/') : NULL;
     Cli c = {0};
@@ -1728,5 +1729,17 @@ eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     free(c.methods);
     free(c.tolerances);
     free(c.steps);
+    return rc;
+}
+
+/* The simulator is the program for the time it runs, so its GSL errors
+ * come back as statuses and are reported as eomc's (eomc.h); the handler
+ * before it is put back for a program that calls eomc_main and goes on. */
+int
+eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
+{
+    gsl_error_handler_t *before = gsl_set_error_handler_off();
+    int rc = cli_main(argc, argv, m, ext);
+    gsl_set_error_handler(before);
     return rc;
 }

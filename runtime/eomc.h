@@ -17,6 +17,18 @@
  *
  * The first-order state is x = (q, q') of length 2 nq; its derivative is
  * x' = (q', q''(t, q, q')).
+ *
+ * GSL's error handler is the program's: libeomcrt never sets it, and checks
+ * every status where it arises.  Its own solves never reach the handler
+ * (M is factored by GSL's pivoted Cholesky, which only computes; every
+ * other matrix is tested for singularity before it is solved with).  Two
+ * GSL routines it calls can reach it on bad data: the iteration matrix
+ * solve of the implicit methods (bsimp, rk1imp, rk2imp, rk4imp, msbdf),
+ * when I - h J is exactly singular, and the QR iteration of
+ * eomc_sim_eigenvalues, when it does not converge.  Under GSL's default
+ * handler these abort the program, as GSL does everywhere; a program that
+ * wants eomc's status and message instead calls gsl_set_error_handler_off()
+ * first, as eomc_main does for the time it runs.
  */
 #ifndef EOMC_H
 #define EOMC_H

@@ -42,7 +42,7 @@
 struct Kkt {
     const eomc_model *m;
     int n, nc, N, np, nu;       /* N = n + nc unknowns, np = n - nc independent */
-    double *M, *h, *Mdiag;      /* [n*n], [n], [n] */
+    double *M, *h;              /* [n*n], [n] */
     double *dEdq, *dEdv, *dEdu, *dEdt;  /* the residual's partials */
     double wv_hol, wp_hol, wv_first;    /* Baumgarte's weights, 0 when off */
     double *K, *r, *dK;         /* [N*N], [N], [N] K's scaling (la_kkt_scaling) */
@@ -82,7 +82,7 @@ kkt_alloc(const eomc_model *m)
     k->m = m;
     k->n = m->nq, k->nc = m->nc, k->N = (int)N, k->np = m->nq - m->nc, k->nu = m->nu;
     double **arrays[] = {
-        &k->M, &k->h, &k->Mdiag, &k->dEdq, &k->dEdv, &k->dEdu, &k->dEdt, &k->K, &k->r, &k->dK,
+        &k->M, &k->h, &k->dEdq, &k->dEdv, &k->dEdu, &k->dEdt, &k->K, &k->r, &k->dK,
         &k->A, &k->ra, &k->f, &k->B, &k->lam, &k->prev_a, &k->prev_lam, &k->save_a,
         &k->save_lam, &k->dfdq,
         &k->dfdv, &k->dfdu, &k->dfdt, &k->dBdq, &k->dBdv, &k->dBda, &k->dBdu, &k->dBdt,
@@ -90,7 +90,7 @@ kkt_alloc(const eomc_model *m)
         &k->dveldv, &k->dposdu, &k->dveldu, &k->dposdt, &k->dveldt,
     };
     size_t sizes[] = {
-        n * n, n, n, n * n, n * n, n * nu, n, N * N, N, N,
+        n * n, n, n * n, n * n, n * nu, n, N * N, N, N,
         n * n, n, nc, nc * n, nc, n, nc, n, nc, nc * n,
         nc * n, nc * nu, nc, nc * n * n, nc * n * n, nc * n * n, nc * n * nu, nc * n,
         nc * nc, nc * n, n, nc, nc * n, nc, nc, nc * n, nc * n,
@@ -131,7 +131,7 @@ kkt_free(Kkt *k)
     if (!k)
         return;
     void *arrays[] = {
-        k->M, k->h, k->Mdiag, k->dEdq, k->dEdv, k->dEdu, k->dEdt, k->K, k->r, k->dK, k->A,
+        k->M, k->h, k->dEdq, k->dEdv, k->dEdu, k->dEdt, k->K, k->r, k->dK, k->A,
         k->ra, k->f, k->B, k->lam, k->prev_a, k->prev_lam, k->save_a, k->save_lam, k->dfdq, k->dfdv, k->dfdu,
         k->dfdt, k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off,
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,

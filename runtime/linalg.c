@@ -180,42 +180,45 @@ la_lu_condition(LaLu *lu)
     return lu->norm1 * inv;
 }
 
+/* GSL's pivoted LDL^T (pcholesky), not ldlt_decomp or cholesky_decomp1:
+ * those report a singular or indefinite matrix through GSL's error
+ * handler, which aborts the program unless the program turned it off; the
+ * handler is the program's to choose, not ours.  pcholesky only computes,
+ * and its pivots are tested here, relative to M's own diagonal.  perm is
+ * a bijection, so rel[k] is read as M_kk and overwritten once. */
 int
-la_ldlt_factor(double *M, int n, double *diag)
+la_ldlt_factor(double *M, int n, double *rel, size_t *perm)
 {
     for (int i = 0; i < n; i++)
-        diag[i] = M[i * n + i];
+        rel[i] = M[i * n + i];
     gsl_matrix_view Mv = gsl_matrix_view_array(M, (size_t)n, (size_t)n);
-    int rc = gsl_linalg_ldlt_decomp(&Mv.matrix);
-    for (int i = 0; i < n; i++)
-        if (!(M[i * n + i] > EOMC_PIVOT_TOL * diag[i]))
-            return i + 1;
-    return rc == GSL_SUCCESS ? 0 : 1;
+    gsl_permutation p = {(size_t)n, perm};
+    gsl_linalg_pcholesky_decomp(&Mv.matrix, &p);
+    for (int i = 0; i < n; i++) { /* in pivot order: the first bad one is to blame */
+        size_t k = perm[i];
+        double d = M[i * n + i];
+        if (!(d > EOMC_PIVOT_TOL * rel[k]))
+            return (int)k + 1;
+        rel[k] = d / rel[k];
+    }
+    return 0;
 }
 
 void
-la_ldlt_solve_neg(double *LDL, int n, double *b)
+la_ldlt_solve(double *LDL, int n, size_t *perm, double *b)
 {
     gsl_matrix_view L = gsl_matrix_view_array(LDL, (size_t)n, (size_t)n);
+    gsl_permutation p = {(size_t)n, perm};
     gsl_vector_view x = gsl_vector_view_array(b, (size_t)n);
-    gsl_linalg_ldlt_svx(&L.matrix, &x.vector);
-    for (int i = 0; i < n; i++)
-        b[i] = -b[i];
-}
-
-int
-la_cholesky_factor(double *A, int n)
-{
-    gsl_matrix_view L = gsl_matrix_view_array(A, (size_t)n, (size_t)n);
-    return gsl_linalg_cholesky_decomp1(&L.matrix) == GSL_SUCCESS ? 0 : -1;
+    gsl_linalg_pcholesky_svx(&L.matrix, &p, &x.vector);
 }
 
 void
-la_cholesky_solve(double *L, int n, double *b)
+la_ldlt_solve_neg(double *LDL, int n, size_t *perm, double *b)
 {
-    gsl_matrix_view Lv = gsl_matrix_view_array(L, (size_t)n, (size_t)n);
-    gsl_vector_view bv = gsl_vector_view_array(b, (size_t)n);
-    gsl_linalg_cholesky_svx(&Lv.matrix, &bv.vector);
+    la_ldlt_solve(LDL, n, perm, b);
+    for (int i = 0; i < n; i++)
+        b[i] = -b[i];
 }
 
 double

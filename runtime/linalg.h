@@ -58,17 +58,16 @@ double la_lu_pivot(const LaLu *lu);
  * Its large entries name the unknowns an ill-conditioned system mixes. */
 void la_lu_near_null(LaLu *lu, double *y);
 
-/* M = L D L^T in place, M symmetric; 0, or k + 1 for the first pivot
- * d_k <= EOMC_PIVOT_TOL M_kk (M singular or not positive definite).
- * diag [n] is scratch for M's diagonal. */
-int la_ldlt_factor(double *M, int n, double *diag);
-/* b = -M^-1 b with M factored by la_ldlt_factor. */
-void la_ldlt_solve_neg(double *LDL, int n, double *b);
-
-/* A = L L^T in place; 0, or -1 when A is not positive definite. */
-int la_cholesky_factor(double *A, int n);
-/* b = A^-1 b with A factored by la_cholesky_factor. */
-void la_cholesky_solve(double *L, int n, double *b);
+/* P M P^T = L D L^T in place (GSL's pivoted Cholesky), M symmetric; 0,
+ * or k + 1 when the pivot of coordinate k is d <= EOMC_PIVOT_TOL M_kk (M
+ * singular or not positive definite; the first such in pivot order).  On
+ * success rel[k] [n] is that pivot relative to M_kk, the condition watch's
+ * measure; perm [n] is the permutation, for the solves.  Never calls GSL's
+ * error handler. */
+int la_ldlt_factor(double *M, int n, double *rel, size_t *perm);
+/* b = M^-1 b, and b = -M^-1 b, with M factored by la_ldlt_factor. */
+void la_ldlt_solve(double *LDL, int n, size_t *perm, double *b);
+void la_ldlt_solve_neg(double *LDL, int n, size_t *perm, double *b);
 
 /*
  * When a Newton-type iteration (kkt.c's, project.c's) may stop.  Each of

@@ -157,7 +157,7 @@ full_b(eomc_sim *s, double t, const double *x, double *Bf)
         for (int k = 0; k < nu; k++) {
             for (int i = 0; i < n; i++)
                 s->col[i] = s->dEdu[i * nu + k];
-            la_ldlt_solve_neg(s->M, n, s->col);
+            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
             for (int i = 0; i < N; i++)
                 Bf[i * nu + k] = i < n ? 0 : s->col[i - n];
         }
@@ -242,7 +242,14 @@ eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *i
     } else {
         memcpy(M->data, A, (size_t)nl * (size_t)nl * sizeof *A);
         gsl_eigen_nonsymm_params(0, 1, w); /* balanced: A mixes units */
-        if (gsl_eigen_nonsymm(M, ev, w) != GSL_SUCCESS)
+        /* QR iteration takes a NaN for a number and fails on an infinity
+         * through GSL's error handler: neither reaches it */
+        for (size_t k = 0; k < (size_t)nl * (size_t)nl && rc == EOMC_OK; k++)
+            if (!isfinite(A[k]))
+                rc = sim_usage_error(s, "the matrix has a non-finite entry (row %zu, column "
+                                     "%zu): no eigenvalues", k / (size_t)nl + 1,
+                                     k % (size_t)nl + 1);
+        if (rc == EOMC_OK && gsl_eigen_nonsymm(M, ev, w) != GSL_SUCCESS)
             rc = sim_usage_error(s, "the eigenvalues did not converge (QR iteration)");
         for (int k = 0; k < nl && !rc; k++) {
             re[k] = GSL_REAL(gsl_vector_complex_get(ev, (size_t)k));

@@ -26,7 +26,9 @@ struct Proj {
     int n, nc;
     int npos, nvel;            /* rows at each level */
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
-    double *L, *h;             /* [n*n] Cholesky factor of M, [n] */
+    double *L, *h;             /* [n*n] M's pivoted LDL^T factor, [n] */
+    double *rel;               /* [n] its pivots relative to M_kk */
+    size_t *perm;              /* [n] its pivot order */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
@@ -68,7 +70,7 @@ proj_alloc(const eomc_model *m)
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc);
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
-    j->mu = zeros(nc);
+    j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
     if (j->pos_rows && j->vel_rows)
         for (int c = 0; c < m->nc; c++) {
             if (m->c_order[c] == 0)
@@ -81,7 +83,7 @@ proj_alloc(const eomc_model *m)
     j->names[0] = join_names(m, j->pos_rows, j->npos);
     j->names[1] = join_names(m, j->vel_rows, j->nvel);
     if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
-        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->lu[0] || !j->lu[1] || !j->names[0] ||
+        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->lu[0] || !j->lu[1] || !j->names[0] ||
         !j->names[1]) {
         proj_free(j);
         return NULL;
@@ -95,7 +97,8 @@ proj_free(Proj *j)
     if (!j)
         return;
     void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
-                      j->vel, j->zero, j->Y, j->S, j->mu, j->names[0], j->names[1]};
+                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->names[0],
+                      j->names[1]};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
     la_lu_free(j->lu[0]);
@@ -206,7 +209,7 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
     for (int k = 0; k < nr; k++) {
         double *y = j->Y + k * n;
         memcpy(y, j->B + rows[k] * n, (size_t)n * sizeof *y);
-        la_cholesky_solve(j->L, n, y);
+        la_ldlt_solve(j->L, n, j->perm, y);
     }
     for (int k = 0; k < nr; k++)
         for (int l = 0; l < nr; l++)
@@ -246,7 +249,7 @@ proj_apply(Proj *j, double t, double *q, double *v, const double *p, const doubl
     if (j->nvel == 0)
         return PROJ_OK;
     j->m->mass_bias(t, q, v, p, u, j->L, j->h);
-    if (la_cholesky_factor(j->L, j->n) != 0)
+    if (la_ldlt_factor(j->L, j->n, j->rel, j->perm) != 0)
         return PROJ_NOT_PD;
     int rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)

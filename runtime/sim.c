@@ -39,7 +39,6 @@ eomc_sim_alloc(const eomc_model *m)
 {
     if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1)
         return NULL;
-    gsl_set_error_handler_off();
     eomc_sim *s = calloc(1, sizeof *s);
     if (!s)
         return NULL;
@@ -56,7 +55,8 @@ eomc_sim_alloc(const eomc_model *m)
     s->h = sim_zeros(n);
     s->a = sim_zeros(n);
     s->arow = sim_zeros(n);
-    s->Mdiag = sim_zeros(n);
+    s->Mrel = sim_zeros(n);
+    s->Mperm = calloc(n, sizeof *s->Mperm);
     s->dEdq = sim_zeros(n * n);
     s->dEdv = sim_zeros(n * n);
     s->dEdu = sim_zeros(n * nu);
@@ -77,7 +77,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
-        !s->a || !s->arow || !s->Mdiag || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
+        !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
         (m->nc > 0 && (!s->kkt || !s->proj))) {
         eomc_sim_free(s);
@@ -95,7 +95,7 @@ eomc_sim_free(eomc_sim *s)
     if (!s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
-                      s->a, s->arow, s->Mdiag, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
+                      s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
@@ -334,14 +334,12 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
             s->pivot = pivot;
     } else {
         m->mass_bias(t, q, v, s->p, s->u, s->M, a);
-        if ((k = la_ldlt_factor(s->M, n, s->Mdiag)) != 0)
+        if ((k = la_ldlt_factor(s->M, n, s->Mrel, s->Mperm)) != 0)
             return pivot_error(s, t, q, v, k);
-        for (int i = 0; i < n; i++) { /* d_i / M_ii, d_i on the factor's diagonal */
-            double pivot = s->M[i * n + i] / s->Mdiag[i];
-            if (pivot < s->pivot)
-                s->pivot = pivot;
-        }
-        la_ldlt_solve_neg(s->M, n, a);
+        for (int i = 0; i < n; i++)
+            if (s->Mrel[i] < s->pivot)
+                s->pivot = s->Mrel[i];
+        la_ldlt_solve_neg(s->M, n, s->Mperm, a);
     }
     if (nonfinite_sum(a, n) != 0.0)
         for (int i = 0; i < n; i++)
@@ -602,7 +600,7 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
     }
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-    int k = la_ldlt_factor(s->M, n, s->Mdiag);
+    int k = la_ldlt_factor(s->M, n, s->Mrel, s->Mperm);
     if (k)
         return pivot_error(s, t, q, v, k);
     if (dfdx) {
@@ -613,7 +611,7 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
             const double *D = j < n ? s->dEdq : s->dEdv;
             for (int i = 0; i < n; i++)
                 s->col[i] = D[i * n + j % n];
-            la_ldlt_solve_neg(s->M, n, s->col);
+            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
             for (int i = 0; i < n; i++)
                 dfdx[(n + i) * N + j] = s->col[i];
         }
@@ -626,7 +624,7 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
             s->col[i] = b;
             dfdt[i] = 0;
         }
-        la_ldlt_solve_neg(s->M, n, s->col);
+        la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
         memcpy(dfdt + n, s->col, (size_t)n * sizeof *dfdt);
     }
     return EOMC_OK;

@@ -23,7 +23,8 @@ struct eomc_sim {
     double *u, *dudt;        /* [nu] inputs at the last time asked */
     double *u_const;         /* [nu] held values, where u_held */
     unsigned char *u_held;   /* [nu] */
-    double *M, *h, *a, *Mdiag;            /* [n*n], [n], [n], [n] */
+    double *M, *h, *a, *Mrel;             /* [n*n], [n], [n], [n] pivots / M_kk */
+    size_t *Mperm;           /* [n] M's pivot order (la_ldlt_factor) */
     double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
     double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
     double *col;             /* [n] one right-hand side of M y = b */

@@ -7,10 +7,24 @@
  *    and a "t = ..." message when M is not positive definite;
  *  - eomc_sim_jacobian: exact for the oscillator, and against central
  *    differences of eomc_sim_accel in x and t (inputs and explicit t);
- *  - an input set by name is held constant.
+ *  - an input set by name is held constant;
+ *  - eomc_sim_eigenvalues: +-2i, and an error for an infinite entry;
+ *  - the program's GSL error handler stays in place and is never called.
  */
 #include "../unit/check.h"
 #include "rtest.h"
+
+#include <gsl/gsl_errno.h>
+
+/* The program's own GSL error handler: libeomcrt must leave it in place
+ * and never reach it, its statuses checked where they arise. */
+static int gsl_errors;
+static void
+count_gsl_error(const char *reason, const char *file, int line, int gsl_errno)
+{
+    printf("# GSL error handler called: %s (%s:%d, %d)\n", reason, file, line, gsl_errno);
+    gsl_errors++;
+}
 
 static void
 alloc_and_defaults(void)
@@ -293,6 +307,7 @@ nonpd_accel(const eomc_model *m)
 int
 main(void)
 {
+    gsl_set_error_handler(count_gsl_error);
     alloc_and_defaults();
     set_params();
     osc_accel_energy();
@@ -303,5 +318,19 @@ main(void)
     driven_jacobian();
     nonpd_accel(&nonpd_model);
     nonpd_accel(&nonpd_gsl_model);
+    eomc_sim *s = sim_new(&osc_model);
+    double A[4] = {0, 1, -HUGE_VAL, 0}, re[2], im[2];
+    CHECK(eomc_sim_eigenvalues(s, A, 2, re, im) != EOMC_OK && eomc_sim_error(s)[0],
+          "eigenvalues of a matrix with an infinite entry: an error, said (%s)",
+          eomc_sim_error(s));
+    A[2] = -4; /* x'' = -4 x: +-2i */
+    CHECK(eomc_sim_eigenvalues(s, A, 2, re, im) == EOMC_OK && re[0] == 0 && re[1] == 0 &&
+              check_close(fabs(im[0]), 2, 1e-15) && im[0] == -im[1],
+          "eigenvalues of [0 1; -4 0]: +-2i (got %g%+gi, %g%+gi)", re[0], im[0], re[1], im[1]);
+    eomc_sim_free(s);
+    gsl_error_handler_t *now = gsl_set_error_handler(NULL);
+    CHECK(now == count_gsl_error, "the program's GSL error handler is still in place");
+    CHECK(gsl_errors == 0, "GSL's error handler was never called, even where M = 0 (got %d)",
+          gsl_errors);
     return check_done();
 }

@@ -4,12 +4,18 @@
  *
  * The choice, when the spec does not name one: constraints in spec order,
  * each takes the last coordinate (in `coordinates:` order) whose column of
- * df/dq'' is not identically zero and that no earlier constraint took.
- * Whether that block of B is invertible depends on the state; the runtime
- * checks it at every evaluation and names the constraint when it is not.
+ * df/dq'' is not negligible at the initial state and that no earlier
+ * constraint took.  Negligible is relative to the row's own largest entry
+ * there: an entry that is zero only through an identity the DAG does not
+ * apply (sin^2 + cos^2 = 1, as kinematics written with frames leaves
+ * them) is not identically zero as an expression, yet would make the
+ * block singular.  Whether that block of B is invertible depends on the
+ * state; the runtime checks it at every evaluation and names the
+ * constraint when it is not.
  */
 #include "constraint.h"
 
+#include <math.h>
 #include <string.h>
 
 const char *
@@ -62,8 +68,14 @@ to_acceleration(Constraints *c, Diff *D, int a)
     c->f[a] = e;
 }
 
+/* An entry of B's row at the initial state smaller than this, relative
+ * to the row's largest, is taken for zero: rounding of terms that cancel
+ * only through an identity leaves some 1e-16 of them. */
+#define DEPENDENT_NEGLIGIBLE 1e-12
+
 static void
-choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s)
+choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s,
+                 const double *Bnum)
 {
     const SpecConstraint *sc = &c->spec[a];
     int n = c->n, j = sc->dependent;
@@ -72,9 +84,17 @@ choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s)
             diag_error(sc->dep_loc, "constraint '%s' does not involve '%s' at acceleration "
                        "level, so it cannot determine it", sc->name, s->coord[j].name);
     } else {
+        double big = 0;
+        for (int k = 0; k < n; k++)
+            big = fmax(big, fabs(Bnum[a * n + k]));
         for (j = n - 1; j >= 0; j--)
-            if (!taken[j] && c->B[a * n + j] != EXPR_ZERO)
+            if (!taken[j] && c->B[a * n + j] != EXPR_ZERO &&
+                fabs(Bnum[a * n + j]) > DEPENDENT_NEGLIGIBLE * big)
                 break;
+        if (j < 0) /* nothing stands out at the initial state: as written */
+            for (j = n - 1; j >= 0; j--)
+                if (!taken[j] && c->B[a * n + j] != EXPR_ZERO)
+                    break;
         if (j < 0)
             diag_error(sc->loc, "no coordinate is left for constraint '%s' to determine: "
                        "every coordinate it involves is taken by an earlier constraint "
@@ -82,6 +102,30 @@ choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s)
     }
     taken[j] = 1;
     c->dependent[a] = j;
+}
+
+/* B at the spec's initial state: t = 0, q and q' as `initial:` gives
+ * them, q'' = 0, the parameters' values and the inputs at t = 0. */
+static double *
+initial_B(const Constraints *c, const Spec *s, Arena *A, ExprPool *P)
+{
+    int n = c->n, nc = c->nc;
+    double *p = arena_new_array(A, double, s->np + 1);
+    double *q = arena_new_array(A, double, n), *v = arena_new_array(A, double, n);
+    double *acc = arena_new_array(A, double, n), *u = arena_new_array(A, double, s->nu + 1);
+    double *Bnum = arena_new_array(A, double, nc * n);
+    for (int i = 0; i < s->np; i++)
+        p[i] = s->param[i].value;
+    ExprEnv env = {.t = 0, .p = p, .u = u};
+    for (int k = 0; k < s->nu; k++)
+        u[k] = expr_eval(P, s->input[k].expr, &env);
+    for (int i = 0; i < n; i++) {
+        q[i] = expr_eval(P, s->coord[i].q0, &env);
+        v[i] = expr_eval(P, s->coord[i].v0, &env);
+    }
+    env.q[0] = q, env.q[1] = v, env.q[2] = acc;
+    expr_eval_many(P, nc * n, c->B, &env, Bnum);
+    return Bnum;
 }
 
 Constraints *
@@ -118,12 +162,13 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
         c->linear[a] = order == 0 || is_linear_in(D, m, s->constraint[a].expr, order);
         c->affine &= is_linear_in(D, m, c->f[a], 2);
     }
+    double *Bnum = initial_B(c, s, A, P);
     for (int a = 0; a < nc; a++) /* named ones first: they are not negotiable */
         if (s->constraint[a].dependent >= 0)
-            choose_dependent(c, a, taken, s);
+            choose_dependent(c, a, taken, s, Bnum);
     for (int a = 0; a < nc; a++)
         if (s->constraint[a].dependent < 0)
-            choose_dependent(c, a, taken, s);
+            choose_dependent(c, a, taken, s, Bnum);
     return c;
 }
 
@@ -154,6 +199,6 @@ constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
                 constraint_order_name(sc->order), lin, how[sc->order],
                 s->coord[c->dependent[k]].name,
                 sc->dependent >= 0 ? "named in the spec" : "chosen: the last coordinate "
-                "it involves that no earlier constraint took");
+                "it involves at the initial state that no earlier constraint took");
     }
 }

@@ -28,7 +28,7 @@ enum { MAX_HEIGHT = 10000 };
 
 typedef enum {
     T_END, T_NUM, T_NAME, T_PLUS, T_MINUS, T_STAR, T_SLASH, T_CARET,
-    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME, T_LBRACKET, T_RBRACKET,
+    T_LPAREN, T_RPAREN, T_COMMA, T_PRIME, T_LBRACKET, T_RBRACKET, T_DOT,
 } TokKind;
 
 typedef struct Token {
@@ -155,6 +155,10 @@ lex(const ParseSrc *src, size_t i)
         t.len = j - i;
         if (t.len > MAX_NAME)
             diag_error(src->where(src, i), "name is longer than %d characters", MAX_NAME);
+    } else if (c == '.' && i + 1 < src->len && is_name_start((unsigned char)s[i + 1]) &&
+               !not_finite(src, i + 1)) {
+        t.kind = T_DOT; /* a frame's axis: F.x */
+        t.len = 1;
     } else if (c && strchr(ops, c)) {
         t.kind = kinds[strchr(ops, c) - ops];
         t.len = 1;
@@ -186,6 +190,32 @@ typedef struct Builtin {
 } Builtin;
 
 enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2 };
+
+/* The functions of frames, points and vectors: not reserved names (a
+ * parameter may be called omega), functions only when called.  Their
+ * arguments are frames (F), points (P) or values (v). */
+typedef enum {
+    VF_POS, VF_VEL, VF_ACC, VF_OMEGA, VF_ALPHA, VF_VEC, VF_CROSS, VF_NORM,
+} VecFn;
+
+typedef struct VecBuiltin {
+    const char *name;
+    VecFn fn;
+    const char *args, *opt; /* the arguments' kinds, then the optional ones */
+    const char *usage;
+} VecBuiltin;
+
+static const VecBuiltin vec_builtins[] = {
+    {"pos", VF_POS, "P", "P", "pos(P) or pos(P, FROM)"},
+    {"vel", VF_VEL, "P", "F", "vel(P), or vel(P, FRAME) for the point of FRAME at P"},
+    {"acc", VF_ACC, "P", "F", "acc(P), or acc(P, FRAME) for the point of FRAME at P"},
+    {"omega", VF_OMEGA, "F", "F", "omega(F) or omega(F, RELATIVE_TO)"},
+    {"alpha", VF_ALPHA, "F", "F", "alpha(F) or alpha(F, RELATIVE_TO)"},
+    {"vec", VF_VEC, "Fvvv", "", "vec(F, a, b, c), components in F"},
+    {"cross", VF_CROSS, "vv", "", "cross(a, b)"},
+    {"norm", VF_NORM, "v", "", "norm(a)"},
+};
+enum { NVEC_BUILTINS = sizeof vec_builtins / sizeof vec_builtins[0] };
 
 static const Builtin builtins[] = {
     {"sin", EXPR_SIN, 1},   {"cos", EXPR_COS, 1},     {"tan", EXPR_TAN, 1},
@@ -259,6 +289,76 @@ check_deps(Parser *ps, ExprId e, const char *name, size_t off)
     diag_error(at(ps, off), "%s cannot depend on %s", sc->what, what);
 }
 
+/* ---- values ---- */
+
+typedef ParseVal Val;
+
+static Val
+scalar_val(ExprId e)
+{
+    return (Val){0, {e, EXPR_NONE, EXPR_NONE}};
+}
+
+static Val
+vector_val(const ExprId e[3])
+{
+    return (Val){1, {e[0], e[1], e[2]}};
+}
+
+static void
+check_val(Parser *ps, Val v, const char *name, size_t off)
+{
+    for (int i = 0; i < (v.vec ? 3 : 1); i++)
+        check_deps(ps, v.e[i], name, off);
+}
+
+/* v, at off, must be a scalar for `where`: the error says what a vector
+ * could become. */
+static ExprId
+need_scalar(Parser *ps, Val v, size_t off, const char *where)
+{
+    if (v.vec)
+        diag_error(at(ps, off), "this is a vector, and %s takes a scalar: a component is "
+                   "dot(v, F.x), a length norm(v)", where);
+    return v.e[0];
+}
+
+static void
+need_vector(Parser *ps, Val v, size_t off, const char *where)
+{
+    if (!v.vec)
+        diag_error(at(ps, off), "this is a scalar, and %s takes a vector (such as pos(P), "
+                   "vel(P), omega(F), F.x or vec(F, a, b, c))", where);
+}
+
+static ExprId
+dot3(ExprPool *P, const ExprId *a, const ExprId *b)
+{
+    ExprId s = EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        s = expr_add(P, s, expr_mul(P, a[i], b[i]));
+    return s;
+}
+
+static Val
+cross3(ExprPool *P, const ExprId *a, const ExprId *b)
+{
+    ExprId c[3];
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        c[i] = expr_sub(P, expr_mul(P, a[j], b[k]), expr_mul(P, a[k], b[j]));
+    }
+    return vector_val(c);
+}
+
+static Val
+add_val(ExprPool *P, Val a, Val b, int sign)
+{
+    for (int i = 0; i < (a.vec ? 3 : 1); i++)
+        a.e[i] = sign > 0 ? expr_add(P, a.e[i], b.e[i]) : expr_sub(P, a.e[i], b.e[i]);
+    return a;
+}
+
 /* The total time derivative of e, or an error at off saying why not. */
 static ExprId
 time_derivative(Parser *ps, ExprId e, size_t off)
@@ -275,6 +375,16 @@ time_derivative(Parser *ps, ExprId e, size_t off)
                    "derivative is not known (write the signal of t in a define instead)",
                    sc->leaf_name(sc, u));
     diag_error(at(ps, off), "derivatives above the third (q''') are not supported");
+}
+
+/* A vector's derivative is its components' (world components: the world
+ * does not turn). */
+static Val
+time_derivative_val(Parser *ps, Val v, size_t off)
+{
+    for (int i = 0; i < (v.vec ? 3 : 1); i++)
+        v.e[i] = time_derivative(ps, v.e[i], off);
+    return v;
 }
 
 /* delta(e): the virtual displacement of e at fixed time,
@@ -332,8 +442,8 @@ finite(Parser *ps, ExprId e, const char *op, ExprId a, ExprId b, size_t off)
 
 /* ---- the grammar ---- */
 
-static ExprId expr(Parser *ps);
-static ExprId unary(Parser *ps);
+static Val expr(Parser *ps);
+static Val unary(Parser *ps);
 
 /* One level deeper, for the '(', sign or '^' at off: the error points at
  * the one that goes too deep, not at what follows it. */
@@ -366,53 +476,213 @@ expect(Parser *ps, TokKind k, const char *what, size_t open_off)
 static _Noreturn void
 unknown_function(Parser *ps, const char *name, size_t off)
 {
-    const char *names[NBUILTINS];
-    char list[256] = "";
-    for (int i = 0; i < NBUILTINS; i++) {
-        names[i] = builtins[i].name;
+    const char *names[NBUILTINS + NVEC_BUILTINS];
+    char list[512] = "";
+    int n = 0;
+    for (int i = 0; i < NBUILTINS; i++)
+        names[n++] = builtins[i].name;
+    for (int i = 0; i < NVEC_BUILTINS && ps->sc->K; i++)
+        names[n++] = vec_builtins[i].name;
+    for (int i = 0; i < n; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
                  names[i]);
-    }
-    const char *near = diag_nearest(name, names, NBUILTINS);
+    const char *near = diag_nearest(name, names, n);
     if (near)
         diag_error(at(ps, off), "unknown function '%s'; did you mean '%s'?", name, near);
     diag_error(at(ps, off), "unknown function '%s' (the functions are %s)", name, list);
 }
 
-/* NAME "(" expr ("," expr)* ")" with the name already read. */
-static ExprId
-call(Parser *ps, const char *name, size_t name_off)
+/* A name argument: a frame (kind 'F') or a point ('P'). */
+static int
+name_arg(Parser *ps, char kind, const char *fn)
 {
-    const Builtin *b = find_builtin(name);
-    if (!b)
-        unknown_function(ps, name, name_off);
+    ParseScope *sc = ps->sc;
+    if (ps->tok.kind != T_NAME) {
+        char buf[80];
+        diag_error(at(ps, ps->tok.off), "%s takes the name of a %s here, not %s", fn,
+                   kind == 'F' ? "frame" : "point", tok_text(ps, &ps->tok, buf, sizeof buf));
+    }
+    char name[MAX_NAME + 1];
+    size_t off = ps->tok.off;
+    memcpy(name, ps->src->text + off, ps->tok.len);
+    name[ps->tok.len] = '\0';
+    next(ps);
+    return kind == 'F' ? sc->frame(sc, name, at(ps, off)) : sc->point(sc, name, at(ps, off));
+}
+
+/* The velocity (order 1) or acceleration (2) of the point of frame f at
+ * point p: its origin's, and the rigid motion about it. */
+static Val
+frame_point_motion(Parser *ps, int p, int f, int order, size_t off, const char *fn)
+{
+    ParseScope *sc = ps->sc;
+    ExprPool *P = sc->P;
+    int o = kin_origin(sc->K, f);
+    if (o < 0)
+        diag_error(at(ps, off), "%s(P, F) moves P with frame F about F's origin, and this "
+                   "frame has none: give it `origin: POINT`", fn);
+    ExprId rp[3], ro[3], r[3], w[3];
+    kin_pos(sc->K, p, rp);
+    kin_pos(sc->K, o, ro);
+    kin_omega(sc->K, f, w);
+    for (int i = 0; i < 3; i++)
+        r[i] = expr_sub(P, rp[i], ro[i]);
+    Val v = time_derivative_val(ps, vector_val(ro), off);
+    Val wr = cross3(P, w, r);
+    if (order == 1)
+        return add_val(P, v, wr, 1);
+    Val a = time_derivative_val(ps, v, off);
+    Val al = time_derivative_val(ps, vector_val(w), off);
+    a = add_val(P, a, cross3(P, al.e, r), 1);
+    return add_val(P, a, cross3(P, w, wr.e), 1);
+}
+
+/* A call of a vector function, the name read and the '(' current. */
+static Val
+vec_call(Parser *ps, const VecBuiltin *b, size_t name_off)
+{
+    ParseScope *sc = ps->sc;
+    ExprPool *P = sc->P;
     size_t open = ps->tok.off;
     next(ps); /* ( */
     enter(ps, open);
-    ExprId args[2];
+    int idx[4] = {0};
+    Val v[4];
+    size_t voff[4] = {0};
+    int nreq = (int)strlen(b->args), nopt = (int)strlen(b->opt), n = 0;
+    while (n < nreq + nopt && (n < nreq || ps->tok.kind == T_COMMA)) {
+        if (n > 0 && !accept(ps, T_COMMA)) {
+            char buf[80];
+            diag_error(at(ps, ps->tok.off), "expected ',' and more arguments, found %s: %s",
+                       tok_text(ps, &ps->tok, buf, sizeof buf), b->usage);
+        }
+        char kind = n < nreq ? b->args[n] : b->opt[n - nreq];
+        voff[n] = ps->tok.off;
+        if (kind == 'v')
+            v[n] = expr(ps);
+        else
+            idx[n] = name_arg(ps, kind, b->name);
+        n++;
+    }
+    if (ps->tok.kind == T_COMMA)
+        diag_error(at(ps, ps->tok.off), "too many arguments: %s", b->usage);
+    expect(ps, T_RPAREN, "')'", open);
+    ps->depth--;
+    ExprId a[3], c[3];
+    Val r;
+    switch (b->fn) {
+    case VF_POS:
+        kin_pos(sc->K, idx[0], a);
+        if (n == 2) {
+            kin_pos(sc->K, idx[1], c);
+            for (int i = 0; i < 3; i++)
+                a[i] = expr_sub(P, a[i], c[i]);
+        }
+        r = vector_val(a);
+        break;
+    case VF_VEL:
+    case VF_ACC:
+        if (n == 2) {
+            r = frame_point_motion(ps, idx[0], idx[1], b->fn == VF_VEL ? 1 : 2, name_off,
+                                   b->name);
+            break;
+        }
+        kin_pos(sc->K, idx[0], a);
+        r = time_derivative_val(ps, vector_val(a), name_off);
+        if (b->fn == VF_ACC)
+            r = time_derivative_val(ps, r, name_off);
+        break;
+    case VF_OMEGA:
+    case VF_ALPHA:
+        /* relative to G: w_F - w_G, and its rate as G sees it */
+        kin_omega(sc->K, idx[0], a);
+        for (int i = 0; i < 3; i++)
+            c[i] = EXPR_ZERO;
+        if (n == 2)
+            kin_omega(sc->K, idx[1], c);
+        for (int i = 0; i < 3; i++)
+            a[i] = expr_sub(P, a[i], c[i]);
+        r = vector_val(a);
+        if (b->fn == VF_ALPHA) {
+            Val rel = r;
+            r = time_derivative_val(ps, r, name_off);
+            r = add_val(P, r, cross3(P, c, rel.e), -1);
+        }
+        break;
+    case VF_VEC:
+        for (int k = 0; k < 3; k++)
+            a[k] = need_scalar(ps, v[k + 1], voff[k + 1], "a component");
+        kin_to_world(sc->K, idx[0], a, c);
+        r = vector_val(c);
+        break;
+    case VF_CROSS:
+        need_vector(ps, v[0], voff[0], "cross()");
+        need_vector(ps, v[1], voff[1], "cross()");
+        r = cross3(P, v[0].e, v[1].e);
+        break;
+    default: /* VF_NORM */
+        need_vector(ps, v[0], voff[0], "norm()");
+        r = scalar_val(expr_unary(P, EXPR_SQRT, dot3(P, v[0].e, v[0].e)));
+        break;
+    }
+    check_val(ps, r, NULL, name_off);
+    return r;
+}
+
+/* NAME "(" expr ("," expr)* ")" with the name already read. */
+static Val
+call(Parser *ps, const char *name, size_t name_off)
+{
+    const Builtin *b = find_builtin(name);
+    if (!b && ps->sc->K)
+        for (int i = 0; i < NVEC_BUILTINS; i++)
+            if (!strcmp(vec_builtins[i].name, name))
+                return vec_call(ps, &vec_builtins[i], name_off);
+    if (!b)
+        unknown_function(ps, name, name_off);
+    /* dot(e) is the time derivative; dot(a, b) of two vectors, their product */
+    int most = b->op == BUILTIN_DOT && ps->sc->K ? 2 : b->arity;
+    size_t open = ps->tok.off;
+    next(ps); /* ( */
+    enter(ps, open);
+    Val args[2];
+    size_t offs[2] = {0, 0};
     int n = 0;
     if (ps->tok.kind != T_RPAREN) {
         do {
             size_t arg_off = ps->tok.off;
-            ExprId a = expr(ps);
-            if (n == b->arity)
-                diag_error(at(ps, arg_off), "too many arguments: %s takes %d", name, b->arity);
+            Val a = expr(ps);
+            if (n == most)
+                diag_error(at(ps, arg_off), "too many arguments: %s takes %d", name, most);
+            offs[n] = arg_off;
             args[n++] = a;
         } while (accept(ps, T_COMMA));
     }
     expect(ps, T_RPAREN, "')'", open);
     ps->depth--;
+    ExprPool *P = ps->sc->P;
+    if (b->op == BUILTIN_DOT && n == 2) {
+        need_vector(ps, args[0], offs[0], "dot(a, b)");
+        need_vector(ps, args[1], offs[1], "dot(a, b)");
+        return scalar_val(dot3(P, args[0].e, args[1].e));
+    }
     if (n != b->arity)
         diag_error(at(ps, name_off), "%s takes %d argument%s, not %d", name, b->arity,
                    b->arity == 1 ? "" : "s", n);
-    ExprPool *P = ps->sc->P;
     if (b->op == BUILTIN_DOT)
-        return time_derivative(ps, args[0], name_off);
-    if (b->op == BUILTIN_DELTA)
-        return variation(ps, args[0], name_off);
+        return time_derivative_val(ps, args[0], name_off);
+    if (b->op == BUILTIN_DELTA) {
+        for (int i = 0; i < (args[0].vec ? 3 : 1); i++)
+            args[0].e[i] = variation(ps, args[0].e[i], name_off);
+        return args[0];
+    }
+    char where[MAX_NAME + 8];
+    snprintf(where, sizeof where, "%s()", name);
+    ExprId x = need_scalar(ps, args[0], offs[0], where);
     if (b->arity == 1)
-        return finite(ps, expr_unary(P, b->op, args[0]), name, args[0], EXPR_NONE, name_off);
-    return finite(ps, expr_binary(P, b->op, args[0], args[1]), name, args[0], args[1], name_off);
+        return scalar_val(finite(ps, expr_unary(P, b->op, x), name, x, EXPR_NONE, name_off));
+    ExprId y = need_scalar(ps, args[1], offs[1], where);
+    return scalar_val(finite(ps, expr_binary(P, b->op, x, y), name, x, y, name_off));
 }
 
 /* lambda[NAME]: the multiplier of constraint NAME. */
@@ -441,7 +711,27 @@ multiplier(Parser *ps, size_t off)
     return e;
 }
 
-static ExprId
+/* FRAME.x: the axis, the name read and the '.' current. */
+static Val
+frame_axis(Parser *ps, const char *name, size_t off)
+{
+    ParseScope *sc = ps->sc;
+    size_t dot = ps->tok.off;
+    if (!sc->K)
+        diag_error(at(ps, dot), "unexpected '.'");
+    next(ps); /* . */
+    int f = sc->frame(sc, name, at(ps, off));
+    const char *member = ps->src->text + ps->tok.off;
+    if (ps->tok.kind != T_NAME || ps->tok.len != 1 || !strchr("xyz", member[0]))
+        diag_error(at(ps, ps->tok.off), "a frame's axes are %s.x, %s.y and %s.z", name, name,
+                   name);
+    ExprId a[3];
+    kin_axis(sc->K, f, member[0] - 'x', a);
+    next(ps);
+    return vector_val(a);
+}
+
+static Val
 name_or_call(Parser *ps)
 {
     char name[MAX_NAME + 1];
@@ -451,24 +741,26 @@ name_or_call(Parser *ps)
     next(ps);
     if (ps->tok.kind == T_LPAREN)
         return call(ps, name, off);
+    if (ps->tok.kind == T_DOT)
+        return frame_axis(ps, name, off);
     if (ps->tok.kind == T_LBRACKET && !strcmp(name, "lambda"))
-        return multiplier(ps, off);
+        return scalar_val(multiplier(ps, off));
     if (find_builtin(name))
         diag_error(at(ps, off), "'%s' is a function: write %s(...)", name, name);
     ParseScope *sc = ps->sc;
-    ExprId e;
+    Val v;
     if (!strcmp(name, "t"))
-        e = expr_time(sc->P);
+        v = scalar_val(expr_time(sc->P));
     else if (!strcmp(name, "pi"))
-        e = expr_const(sc->P, 3.14159265358979323846);
+        v = scalar_val(expr_const(sc->P, 3.14159265358979323846));
     else
-        e = sc->lookup(sc, name, at(ps, off));
-    check_deps(ps, e, name, off);
-    return e;
+        v = sc->lookup(sc, name, at(ps, off));
+    check_val(ps, v, name, off);
+    return v;
 }
 
-/* primary = NUMBER | NAME | call | "(" expr ")" */
-static ExprId
+/* primary = NUMBER | NAME | call | FRAME.x | "(" expr ")" */
+static Val
 primary(Parser *ps)
 {
     Token t = ps->tok;
@@ -476,13 +768,13 @@ primary(Parser *ps)
     switch (t.kind) {
     case T_NUM:
         next(ps);
-        return expr_const(ps->sc->P, t.num);
+        return scalar_val(expr_const(ps->sc->P, t.num));
     case T_NAME:
         return name_or_call(ps);
     case T_LPAREN: {
         next(ps);
         enter(ps, t.off);
-        ExprId e = expr(ps);
+        Val e = expr(ps);
         expect(ps, T_RPAREN, "')'", t.off);
         ps->depth--;
         return e;
@@ -494,35 +786,39 @@ primary(Parser *ps)
 }
 
 /* postfix = primary "'"* */
-static ExprId
+static Val
 postfix(Parser *ps)
 {
-    ExprId e = primary(ps);
+    Val e = primary(ps);
     while (ps->tok.kind == T_PRIME) {
         size_t prime = ps->tok.off;
         next(ps);
-        e = time_derivative(ps, e, prime);
+        e = time_derivative_val(ps, e, prime);
     }
     return e;
 }
 
 /* power = postfix ("^" unary)? */
-static ExprId
+static Val
 power(Parser *ps)
 {
-    ExprId base = postfix(ps);
+    size_t base_off = ps->tok.off;
+    Val base = postfix(ps);
     if (ps->tok.kind != T_CARET)
         return base;
     size_t caret = ps->tok.off;
     next(ps);
     enter(ps, caret);
-    ExprId ex = unary(ps);
+    size_t ex_off = ps->tok.off;
+    Val ex = unary(ps);
     ps->depth--;
-    return finite(ps, expr_pow(ps->sc->P, base, ex), "^", base, ex, caret);
+    ExprId b = need_scalar(ps, base, base_off, "'^'");
+    ExprId x = need_scalar(ps, ex, ex_off, "'^'");
+    return scalar_val(finite(ps, expr_pow(ps->sc->P, b, x), "^", b, x, caret));
 }
 
 /* unary = ("-" | "+") unary | power */
-static ExprId
+static Val
 unary(Parser *ps)
 {
     if (ps->tok.kind != T_MINUS && ps->tok.kind != T_PLUS)
@@ -531,9 +827,11 @@ unary(Parser *ps)
     size_t sign = ps->tok.off;
     next(ps);
     enter(ps, sign);
-    ExprId e = unary(ps);
+    Val e = unary(ps);
     ps->depth--;
-    return neg ? expr_neg(ps->sc->P, e) : e;
+    for (int i = 0; neg && i < (e.vec ? 3 : 1); i++)
+        e.e[i] = expr_neg(ps->sc->P, e.e[i]);
+    return e;
 }
 
 /* One more binary operator, at the current token. */
@@ -546,23 +844,36 @@ count_operator(Parser *ps)
 }
 
 /* term = unary (("*" | "/") unary)* */
-static ExprId
+static Val
 term(Parser *ps)
 {
     ExprPool *P = ps->sc->P;
-    ExprId e = unary(ps);
+    Val e = unary(ps);
     for (;;) {
         if (ps->tok.kind == T_STAR || ps->tok.kind == T_SLASH)
             count_operator(ps);
         size_t op = ps->tok.off;
         if (accept(ps, T_STAR)) {
-            ExprId f = unary(ps);
-            e = finite(ps, expr_mul(P, e, f), "*", e, f, op);
+            Val f = unary(ps);
+            if (e.vec && f.vec)
+                diag_error(at(ps, op), "'*' of two vectors: write dot(a, b) or cross(a, b)");
+            if (!e.vec && !f.vec) {
+                e.e[0] = finite(ps, expr_mul(P, e.e[0], f.e[0]), "*", e.e[0], f.e[0], op);
+                continue;
+            }
+            Val r = e.vec ? e : f;
+            ExprId k = e.vec ? f.e[0] : e.e[0];
+            for (int i = 0; i < 3; i++)
+                r.e[i] = expr_mul(P, k, r.e[i]);
+            e = r;
         } else if (accept(ps, T_SLASH)) {
-            ExprId d = unary(ps);
-            if (d == EXPR_ZERO)
+            Val d = unary(ps);
+            if (d.vec)
+                diag_error(at(ps, op), "'/' by a vector: only a scalar divides");
+            if (d.e[0] == EXPR_ZERO)
                 diag_error(at(ps, op), "division by zero");
-            e = finite(ps, expr_div(P, e, d), "/", e, d, op);
+            for (int i = 0; i < (e.vec ? 3 : 1); i++)
+                e.e[i] = finite(ps, expr_div(P, e.e[i], d.e[0]), "/", e.e[i], d.e[0], op);
         } else {
             return e;
         }
@@ -570,33 +881,37 @@ term(Parser *ps)
 }
 
 /* expr = term (("+" | "-") term)* */
-static ExprId
+static Val
 expr(Parser *ps)
 {
     ExprPool *P = ps->sc->P;
-    ExprId e = term(ps);
+    Val e = term(ps);
     for (;;) {
         if (ps->tok.kind == T_PLUS || ps->tok.kind == T_MINUS)
             count_operator(ps);
         size_t op = ps->tok.off;
-        ExprId r;
-        if (accept(ps, T_PLUS))
-            r = term(ps), e = finite(ps, expr_add(P, e, r), "+", e, r, op);
-        else if (accept(ps, T_MINUS))
-            r = term(ps), e = finite(ps, expr_sub(P, e, r), "-", e, r, op);
-        else
+        int sign = accept(ps, T_PLUS) ? 1 : accept(ps, T_MINUS) ? -1 : 0;
+        if (!sign)
             return e;
+        Val r = term(ps);
+        if (r.vec != e.vec)
+            diag_error(at(ps, op), "'%c' of a vector and a scalar", sign > 0 ? '+' : '-');
+        for (int i = 0; i < (e.vec ? 3 : 1); i++) {
+            ExprId a = e.e[i];
+            e.e[i] = finite(ps, sign > 0 ? expr_add(P, a, r.e[i]) : expr_sub(P, a, r.e[i]),
+                            sign > 0 ? "+" : "-", a, r.e[i], op);
+        }
     }
 }
 
-ExprId
-parse_expr(ParseScope *sc, const ParseSrc *src)
+ParseVal
+parse_value(ParseScope *sc, const ParseSrc *src)
 {
     Parser ps = {sc, src, {T_END, 0, 0, 0.0}, 0, 0};
     ps.tok = lex(src, 0);
     if (ps.tok.kind == T_END)
         diag_error(at(&ps, 0), "empty expression");
-    ExprId e = expr(&ps);
+    Val e = expr(&ps);
     if (ps.tok.kind != T_END) {
         char buf[80];
         const char *found = tok_text(&ps, &ps.tok, buf, sizeof buf);
@@ -607,21 +922,45 @@ parse_expr(ParseScope *sc, const ParseSrc *src)
             diag_error(at(&ps, ps.tok.off), "unmatched ')'");
         diag_error(at(&ps, ps.tok.off), "unexpected %s", found);
     }
-    if (e != EXPR_NONE && expr_node(sc->P, e)->height > MAX_HEIGHT)
-        diag_error(at(&ps, 0), "expression is nested more than %d levels deep with the "
-                   "defines it uses expanded", MAX_HEIGHT);
+    for (int i = 0; i < (e.vec ? 3 : 1); i++)
+        if (e.e[i] != EXPR_NONE && expr_node(sc->P, e.e[i])->height > MAX_HEIGHT)
+            diag_error(at(&ps, 0), "expression is nested more than %d levels deep with the "
+                       "defines it uses expanded", MAX_HEIGHT);
     return e;
+}
+
+ExprId
+parse_expr(ParseScope *sc, const ParseSrc *src)
+{
+    Val v = parse_value(sc, src);
+    if (v.vec)
+        diag_error(src->where(src, 0), "%s is a scalar, and this is a vector: a component is "
+                   "dot(v, F.x), a length norm(v)", sc->what);
+    return v.e[0];
+}
+
+void
+parse_vector(ParseScope *sc, const ParseSrc *src, ExprId out[3])
+{
+    Val v = parse_value(sc, src);
+    if (!v.vec)
+        diag_error(src->where(src, 0), "%s is a vector, and this is a scalar (write a vector "
+                   "as [x, y, z], or as pos(P), vec(F, a, b, c), ...)", sc->what);
+    for (int i = 0; i < 3; i++)
+        out[i] = v.e[i];
 }
 
 void
 parse_names(const ParseSrc *src,
             void (*fn)(void *ctx, const char *name, size_t len, size_t off), void *ctx)
 {
-    Token t = lex(src, 0);
+    Token t = lex(src, 0), prev = {T_END, 0, 0, 0.0};
     while (t.kind != T_END) {
         Token n = lex(src, t.off + t.len);
-        if (t.kind == T_NAME && n.kind != T_LPAREN)
+        /* not a function's name, nor a frame's axis after F. */
+        if (t.kind == T_NAME && n.kind != T_LPAREN && prev.kind != T_DOT)
             fn(ctx, src->text + t.off, t.len, t.off);
+        prev = t;
         t = n;
     }
 }

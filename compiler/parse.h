@@ -6,14 +6,24 @@
  *   unary   = ("-" | "+") unary | power
  *   power   = postfix ("^" unary)?      right-associative; -x^2 = -(x^2)
  *   postfix = primary "'"*              x' = dot(x), x'' = dot(dot(x))
- *   primary = NUMBER | NAME | NAME "(" expr ("," expr)* ")" | "(" expr ")"
+ *   primary = NUMBER | NAME | NAME "(" args ")" | "(" expr ")"
+ *           | FRAME "." ("x" | "y" | "z")   a frame's axis, a vector
  *           | "lambda" "[" NAME "]"    a constraint's multiplier
  *
  * Functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt
  * abs pow, dot(e), the total time derivative, and delta(e), the variation
  * sum_i de/dq_i delta(q_i) of virtual work (the delta(q_i) are EXPR_SEED
- * leaves, kind 0; an expression may hold them when `allow` has DEP_S).  Names are resolved by
- * the caller's scope; `t` and `pi` are built in.  Every error is reported
+ * leaves, kind 0; an expression may hold them when `allow` has DEP_S).
+ *
+ * A value is a scalar or a vector (three world components).  Vectors come
+ * from frames and points (kin.h): pos(P), pos(P, Q), vel(P), vel(P, F),
+ * acc(P), acc(P, F), omega(F), omega(F, G), alpha(F), alpha(F, G),
+ * vec(F, a, b, c), F.x; they add, subtract, scale, divide by a scalar and
+ * differentiate (' and dot(e): in the world); dot(a, b), cross(a, b) and
+ * norm(a) combine them.  Vector function names are not reserved: they are
+ * functions only when called.  Using a vector where a scalar is expected,
+ * or the reverse, is an error at the place.  Names are resolved by the
+ * caller's scope; `t` and `pi` are built in.  Every error is reported
  * through diag_error at its place inside the string.
  */
 #ifndef EOMC_PARSE_H
@@ -21,6 +31,13 @@
 
 #include "diag.h"
 #include "diff.h"
+#include "kin.h"
+
+/* A scalar (vec = 0, e[0]) or a vector (vec = 1, world components). */
+typedef struct ParseVal {
+    int vec;
+    ExprId e[3];
+} ParseVal;
 
 /* One expression's text and how to locate a byte of it in its file. */
 typedef struct ParseSrc ParseSrc;
@@ -35,8 +52,8 @@ typedef struct ParseScope ParseScope;
 struct ParseScope {
     ExprPool *P;
     Diff *D;
-    /* The expression a name stands for; reports unknown names itself. */
-    ExprId (*lookup)(ParseScope *sc, const char *name, SrcLoc at);
+    /* The value a name stands for; reports unknown names itself. */
+    ParseVal (*lookup)(ParseScope *sc, const char *name, SrcLoc at);
     /* lambda[NAME]: the multiplier of constraint NAME (NULL: none here);
      * reports unknown names itself. */
     ExprId (*multiplier)(ParseScope *sc, const char *name, SrcLoc at);
@@ -47,10 +64,18 @@ struct ParseScope {
     unsigned allow;
     const char *what;
     int ncoord;  /* coordinates: the variations delta(q_i) */
+    /* The frame or point (kin.h) a name stands for; report unknown names
+     * and names of something else themselves.  NULL: none here. */
+    int (*frame)(ParseScope *sc, const char *name, SrcLoc at);
+    int (*point)(ParseScope *sc, const char *name, SrcLoc at);
+    Kin *K;
 };
 
-/* Parse src in scope sc.  Returns the expression; never EXPR_NONE. */
+/* Parse src in scope sc: a scalar (a vector is an error), a vector (a
+ * scalar is an error), or either.  Never EXPR_NONE. */
 ExprId parse_expr(ParseScope *sc, const ParseSrc *src);
+void parse_vector(ParseScope *sc, const ParseSrc *src, ExprId out[3]);
+ParseVal parse_value(ParseScope *sc, const ParseSrc *src);
 
 /* Call fn for every name in src (not function names), in order, with its
  * byte offset: for dependency analysis before parsing.  Reports lexical

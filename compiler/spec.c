@@ -34,22 +34,31 @@ const char *const spec_methods[] = {
 
 enum { MAX_SPEC_BYTES = 16 << 20 };
 
-typedef enum { NAME_PARAM, NAME_COORD, NAME_INPUT, NAME_DEFINE } NameKind;
+typedef enum { NAME_PARAM, NAME_COORD, NAME_INPUT, NAME_DEFINE, NAME_FRAME, NAME_POINT } NameKind;
 
 typedef struct Name {
     const char *name;
     NameKind kind;
-    int index; /* into Spec.param / coord / input, or Loader.def */
+    int index; /* into Spec.param / coord / input, or Loader.def (an item) */
     SrcLoc loc;
 } Name;
 
+/* What names stand for that is built from other names, in the order
+ * their uses require: a define's value (a scalar or a vector), a frame, a
+ * point.  Each names the others it uses, and they are resolved depth
+ * first, after what they use. */
+typedef enum { ITEM_DEFINE, ITEM_FRAME, ITEM_POINT } ItemKind;
+
 typedef struct Define {
     const char *name;
-    yaml_node_t *node;
-    ExprId value; /* EXPR_NONE until resolved */
-    int state;    /* 0 new, 1 being ordered, 2 ordered */
-    int bad;      /* its expression had an error, already reported */
-    int *deps;    /* defines it names, and where */
+    ItemKind kind;
+    yaml_node_t *node; /* a define's scalar; a frame's or point's map */
+    ParseVal value;    /* a define's; value.e[0] = EXPR_NONE until resolved */
+    int kin;           /* a frame's or point's index in kin.h, once resolved */
+    int state;         /* 0 new, 1 being ordered, 2 ordered */
+    int bad;           /* it had an error, already reported */
+    int *deps;         /* items it names, and where (scalar, byte) */
+    yaml_node_t **dep_node;
     size_t *dep_off;
     int ndeps;
 } Define;
@@ -67,11 +76,13 @@ typedef struct Loader {
     Spec *s;
     Name *names;
     int nnames;
-    Define *def;
-    int ndef;
+    Define *def; /* the items: defines, then frames, then points */
+    int ndef, nitem_defs, nframes, npoints;
+    Kin *K;
     double *pdef;  /* the parameters' defaults, once loaded (defaults()) */
     char *bad_param; /* per parameter: its value had an error */
     char *bad_part, *bad_body; /* per particle and body: it had an error */
+    int *body_frame;           /* per body: the frame it is placed by, or -1 */
     int stop;      /* no use going on: SPEC_MAX_ERRORS reached, or a limit */
     const SpecOptions *opt; /* never NULL */
     yaml_node_t *scene;     /* the scene compiled: its map, or NULL */
@@ -389,7 +400,7 @@ find_name(Loader *L, const char *name)
 }
 
 static const char *const kind_names[] = {"a parameter", "a coordinate", "an input",
-                                         "a define"};
+                                         "a define", "a frame", "a point"};
 
 /* Names are looked up by a linear search, and models are dense in their
  * coordinates: a spec with more names than this is refused rather than
@@ -423,40 +434,106 @@ add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
     return L->names[L->nnames - 1].name;
 }
 
-static ExprId
+static int
+is_value_name(const Name *nm)
+{
+    return nm->kind != NAME_FRAME && nm->kind != NAME_POINT;
+}
+
+/* An unknown name where a NameKind `want` (NAME_FRAME, NAME_POINT, or -1
+ * for a value) is expected: the nearest of those names, or their list. */
+static _Noreturn void
+unknown_name(Loader *L, const char *name, int want, SrcLoc at)
+{
+    const char *what = want == NAME_FRAME ? "frame" : want == NAME_POINT ? "point" : "name";
+    const char **cands = arena_new_array(L->A, const char *, L->nnames + 2);
+    int n = 0;
+    for (int i = 0; i < L->nnames; i++)
+        if (want < 0 ? is_value_name(&L->names[i]) : (int)L->names[i].kind == want)
+            cands[n++] = L->names[i].name;
+    if (want == NAME_FRAME)
+        cands[n++] = "world";
+    if (want == NAME_POINT)
+        cands[n++] = "origin";
+    const char *near = diag_nearest(name, cands, n);
+    if (near)
+        diag_error(at, "unknown %s '%s'; did you mean '%s'?", what, name, near);
+    if (n == 0 || n > 12)
+        diag_error(at, "unknown %s '%s'", what, name);
+    char list[1024] = "";
+    for (int i = 0; i < n; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
+                 cands[i]);
+    diag_error(at, "unknown %s '%s' (the %ss here are %s)", what, name, what, list);
+}
+
+/* A resolved item, or abandon: its error is reported. */
+static Define *
+item(Loader *L, const Name *nm)
+{
+    Define *d = &L->def[nm->index];
+    if (d->bad)
+        diag_abandon();
+    if (d->state != 2)
+        diag_unreachable(); /* ordered before its users */
+    return d;
+}
+
+static ParseVal
 lookup(ParseScope *sc, const char *name, SrcLoc at)
 {
     Loader *L = (Loader *)sc;
     Name *nm = find_name(L, name);
+    ExprId e = EXPR_NONE;
     if (nm) {
         switch (nm->kind) {
-        case NAME_PARAM: return expr_param(L->P, nm->index);
-        case NAME_COORD: return expr_var(L->P, nm->index, 0);
-        case NAME_INPUT: return expr_input(L->P, nm->index);
-        case NAME_DEFINE:
-            if (L->def[nm->index].bad)
-                diag_abandon();
-            if (L->def[nm->index].value == EXPR_NONE)
-                diag_unreachable(); /* ordered before its users */
-            return L->def[nm->index].value;
+        case NAME_PARAM: e = expr_param(L->P, nm->index); break;
+        case NAME_COORD: e = expr_var(L->P, nm->index, 0); break;
+        case NAME_INPUT: e = expr_input(L->P, nm->index); break;
+        case NAME_DEFINE: return item(L, nm)->value;
+        case NAME_FRAME:
+            diag_error(at, "'%s' is a frame, not a value: its axes are %s.x, %s.y and %s.z, "
+                       "its angular velocity omega(%s)", name, name, name, name, name);
+        case NAME_POINT:
+            diag_error(at, "'%s' is a point, not a value: its position is pos(%s), its "
+                       "velocity vel(%s)", name, name, name);
         }
+        return (ParseVal){0, {e, EXPR_NONE, EXPR_NONE}};
     }
     if (!strcmp(name, "nan") || !strcmp(name, "NaN") || !strcmp(name, "inf") ||
         !strcmp(name, "Inf") || !strcmp(name, "infinity"))
         diag_error(at, "'%s' is not allowed: every value must be a finite number", name);
-    const char **cands = arena_new_array(L->A, const char *, L->nnames + 1);
-    for (int i = 0; i < L->nnames; i++)
-        cands[i] = L->names[i].name;
-    const char *near = diag_nearest(name, cands, L->nnames);
-    if (near)
-        diag_error(at, "unknown name '%s'; did you mean '%s'?", name, near);
-    if (L->nnames == 0 || L->nnames > 12)
-        diag_error(at, "unknown name '%s'", name);
-    char list[1024] = "";
-    for (int i = 0; i < L->nnames; i++)
-        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
-                 cands[i]);
-    diag_error(at, "unknown name '%s' (the names here are %s)", name, list);
+    unknown_name(L, name, -1, at);
+}
+
+/* A frame or point argument (parse.h): the world and its origin unless a
+ * name of the spec's takes their names. */
+static int
+frame_or_point(Loader *L, const char *name, NameKind want, SrcLoc at)
+{
+    Name *nm = find_name(L, name);
+    if (!nm && want == NAME_FRAME && !strcmp(name, "world"))
+        return KIN_WORLD;
+    if (!nm && want == NAME_POINT && !strcmp(name, "origin"))
+        return KIN_ORIGIN;
+    if (!nm)
+        unknown_name(L, name, (int)want, at);
+    if (nm->kind != want)
+        diag_error(at, "'%s' is %s, not a %s", name, kind_names[nm->kind],
+                   want == NAME_FRAME ? "frame" : "point");
+    return item(L, nm)->kin;
+}
+
+static int
+frame_arg(ParseScope *sc, const char *name, SrcLoc at)
+{
+    return frame_or_point((Loader *)sc, name, NAME_FRAME, at);
+}
+
+static int
+point_arg(ParseScope *sc, const char *name, SrcLoc at)
+{
+    return frame_or_point((Loader *)sc, name, NAME_POINT, at);
 }
 
 static const char *
@@ -557,6 +634,128 @@ vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId out[3
     for (int k = 0; k < dim; k++)
         out[k] = expression(L, node(L, ITEMS(n)[k]), allow, what);
     return dim;
+}
+
+/* A vector in world components: [x, y] or [x, y, z] as vector() reads
+ * it, the name of a point (its position), or a vector expression such as
+ * pos(P) - pos(Q) or -k*vel(P) (3 components). */
+static int
+world_vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId out[3])
+{
+    if (n->type != YAML_SCALAR_NODE)
+        return vector(L, n, allow, what, out);
+    const char *text = scalar(L, n, what);
+    Name *nm = find_name(L, text);
+    if ((nm && nm->kind == NAME_POINT) || (!nm && !strcmp(text, "origin"))) {
+        kin_pos(L->K, frame_or_point(L, text, NAME_POINT, loc_of(L, n)), out);
+        L->sc.allow = allow;
+        L->sc.what = what;
+        for (int k = 0; k < 3; k++) /* what a point moves with may not be allowed here */
+            if (expr_deps(L->P, out[k]) & ~allow) {
+                Scalar sc;
+                scalar_src(L, &sc, n, what);
+                parse_vector(&L->sc, &sc.src, out); /* says what, at the name */
+            }
+        return 3;
+    }
+    Scalar sc;
+    scalar_src(L, &sc, n, what);
+    L->sc.allow = allow;
+    L->sc.what = what;
+    parse_vector(&L->sc, &sc.src, out);
+    return 3;
+}
+
+/* ---- frames and points ---- */
+
+/* One turn of a frame's rotation: {x: ANGLE} (or y, z), about its own
+ * axis as turned so far, or {axis: [ax, ay, az], angle: ANGLE} about a
+ * fixed direction in those axes (any length but zero). */
+static void
+frame_turn(Loader *L, int f, yaml_node_t *t)
+{
+    static const char *const keys[] = {"x", "y", "z", "axis", "angle", NULL};
+    as_map(L, t, "a turn");
+    check_keys(L, t, keys, "a turn");
+    yaml_node_t *ax = lookup_key(L, t, "axis"), *ang = lookup_key(L, t, "angle");
+    if (ax || ang) {
+        if (!ax || !ang || NPAIRS(t) != 2)
+            diag_error(loc_of(L, t), "a turn about a fixed direction is {axis: [ax, ay, az], "
+                       "angle: ANGLE}");
+        ExprId a[3];
+        if (vector(L, ax, ALLOW_PARAM, "an axis", a) != 3)
+            diag_error(loc_of(L, ax), "an axis has 3 components, in the frame's axes as "
+                       "turned so far");
+        ExprId n2 = EXPR_ZERO;
+        for (int k = 0; k < 3; k++)
+            n2 = expr_add(L->P, n2, expr_mul(L->P, a[k], a[k]));
+        if (n2 == EXPR_ZERO)
+            diag_error(loc_of(L, ax), "an axis cannot be zero");
+        ExprId len = expr_unary(L->P, EXPR_SQRT, n2);
+        for (int k = 0; k < 3; k++)
+            a[k] = expr_div(L->P, a[k], len);
+        kin_turn(L->K, f, a, expression(L, ang, ALLOW_POSITION, "an angle"));
+        return;
+    }
+    if (NPAIRS(t) != 1)
+        diag_error(loc_of(L, t), "a turn is one of {x: ANGLE}, {y: ANGLE}, {z: ANGLE} or "
+                   "{axis: [ax, ay, az], angle: ANGLE}");
+    const char *k = key_of(L, &PAIRS(t)[0]);
+    kin_turn_axis(L->K, f, k[0] - 'x',
+                  expression(L, node(L, PAIRS(t)[0].value), ALLOW_POSITION, "an angle"));
+}
+
+/* FRAME: {parent: FRAME, rotation: [TURN, ...], origin: POINT}, every key
+ * optional (the world, no turn, no origin). */
+static void
+build_frame(Loader *L, Define *d)
+{
+    static const char *const keys[] = {"parent", "rotation", "origin", NULL};
+    yaml_node_t *m = d->node, *v;
+    int parent = KIN_WORLD;
+    if (!is_null(m)) {
+        as_map(L, m, "a frame");
+        check_keys(L, m, keys, "a frame");
+    }
+    if (!is_null(m) && (v = lookup_key(L, m, "parent")))
+        parent = frame_or_point(L, scalar(L, v, "a frame"), NAME_FRAME, loc_of(L, v));
+    int f = kin_frame(L->K, parent);
+    if (!is_null(m) && (v = lookup_key(L, m, "rotation"))) {
+        if (v->type == YAML_MAPPING_NODE) {
+            frame_turn(L, f, v);
+        } else {
+            expect_type(L, v, YAML_SEQUENCE_NODE, "a frame's rotation (a list of turns)");
+            for (int i = 0; i < NITEMS(v); i++)
+                frame_turn(L, f, node(L, ITEMS(v)[i]));
+        }
+    }
+    if (!is_null(m) && (v = lookup_key(L, m, "origin")))
+        kin_set_origin(L->K, f, frame_or_point(L, scalar(L, v, "a point"), NAME_POINT,
+                                               loc_of(L, v)));
+    d->kin = f;
+}
+
+/* POINT: {frame: FRAME, from: POINT, at: [x, y, z]}: at from, offset by
+ * at in the frame's axes; every key optional (the world, its origin,
+ * [0, 0, 0]).  An offset of 2 components has z = 0. */
+static void
+build_point(Loader *L, Define *d)
+{
+    static const char *const keys[] = {"frame", "from", "at", NULL};
+    yaml_node_t *m = d->node, *v;
+    int f = KIN_WORLD, from = KIN_ORIGIN;
+    ExprId at[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    if (!is_null(m)) {
+        as_map(L, m, "a point");
+        check_keys(L, m, keys, "a point");
+        if ((v = lookup_key(L, m, "frame")))
+            f = frame_or_point(L, scalar(L, v, "a frame"), NAME_FRAME, loc_of(L, v));
+        if ((v = lookup_key(L, m, "from")))
+            from = frame_or_point(L, scalar(L, v, "a point"), NAME_POINT, loc_of(L, v));
+        if ((v = lookup_key(L, m, "at")))
+            vector(L, v, ALLOW_POSITION, "a point's offset", at);
+    }
+    d->kin = kin_point(L->K, from, f, at);
 }
 
 /* ---- going on after an error ---- */
@@ -678,26 +877,67 @@ name_inputs(Loader *L, yaml_node_t *map)
         checked(L, name_input, map, i);
 }
 
+/* Item `at` of L->def, the i-th pair of map, a define, frame or point. */
 static void
-name_define(Loader *L, yaml_node_t *map, int i)
+name_item(Loader *L, yaml_node_t *map, int i, int at, ItemKind kind)
 {
-    L->def[i].node = node(L, PAIRS(map)[i].value);
-    L->def[i].value = EXPR_NONE;
-    L->def[i].name = add_name(L, node(L, PAIRS(map)[i].key), NAME_DEFINE, i);
+    static const NameKind kinds[] = {NAME_DEFINE, NAME_FRAME, NAME_POINT};
+    Define *d = &L->def[at];
+    d->kind = kind;
+    d->node = node(L, PAIRS(map)[i].value);
+    d->value = (ParseVal){0, {EXPR_NONE, EXPR_NONE, EXPR_NONE}};
+    yaml_node_t *k = node(L, PAIRS(map)[i].key);
+    const char *name = scalar(L, k, "a name");
+    if (kind == ITEM_FRAME && !strcmp(name, "world"))
+        diag_error(loc_of(L, k), "'world' is the inertial frame, there from the start: "
+                   "name this frame otherwise");
+    if (kind == ITEM_POINT && !strcmp(name, "origin"))
+        diag_error(loc_of(L, k), "'origin' is the world's origin, there from the start: "
+                   "name this point otherwise");
+    d->name = add_name(L, k, kinds[kind], at);
 }
 
 static void
-name_defines(Loader *L, yaml_node_t *map)
+name_define(Loader *L, yaml_node_t *map, int i)
 {
-    L->ndef = NPAIRS(map);
-    L->def = arena_new_array(L->A, Define, L->ndef);
-    for (int i = 0; i < L->ndef; i++)
-        checked(L, name_define, map, i);
+    name_item(L, map, i, i, ITEM_DEFINE);
+}
+
+static void
+name_frame(Loader *L, yaml_node_t *map, int i)
+{
+    name_item(L, map, i, L->nitem_defs + i, ITEM_FRAME);
+}
+
+static void
+name_point(Loader *L, yaml_node_t *map, int i)
+{
+    name_item(L, map, i, L->nitem_defs + L->nframes + i, ITEM_POINT);
+}
+
+/* Every define, frame and point named, as items of L->def. */
+static void
+name_items(Loader *L, yaml_node_t *defines, yaml_node_t *frames, yaml_node_t *points)
+{
+    L->nitem_defs = defines ? NPAIRS(defines) : 0;
+    L->nframes = frames ? NPAIRS(frames) : 0;
+    L->npoints = points ? NPAIRS(points) : 0;
+    L->ndef = L->nitem_defs + L->nframes + L->npoints;
+    L->def = arena_new_array(L->A, Define, L->ndef + 1);
+    for (int i = 0; i < L->nitem_defs; i++)
+        checked(L, name_define, defines, i);
+    for (int i = 0; i < L->nframes; i++)
+        checked(L, name_frame, frames, i);
+    for (int i = 0; i < L->npoints; i++)
+        checked(L, name_point, points, i);
+    L->K = kin_new(L->A, L->P, L->sc.D, L->nframes, L->npoints);
+    L->sc.K = L->K;
 }
 
 typedef struct DepCollect {
     Loader *L;
     Define *d;
+    yaml_node_t *node; /* the scalar being read */
     int cap;
 } DepCollect;
 
@@ -711,21 +951,43 @@ collect_dep(void *ctx, const char *name, size_t len, size_t off)
     memcpy(buf, name, len);
     buf[len] = '\0';
     Name *nm = find_name(c->L, buf);
-    if (!nm || nm->kind != NAME_DEFINE)
+    if (!nm || (nm->kind != NAME_DEFINE && nm->kind != NAME_FRAME && nm->kind != NAME_POINT))
         return;
     Define *d = c->d;
     if (d->ndeps == c->cap) {
         int cap = c->cap ? 2 * c->cap : 8;
         int *deps = arena_new_array(c->L->A, int, cap);
         size_t *offs = arena_new_array(c->L->A, size_t, cap);
+        yaml_node_t **nodes = arena_new_array(c->L->A, yaml_node_t *, cap);
         if (d->ndeps) {
             memcpy(deps, d->deps, sizeof *deps * (size_t)d->ndeps);
             memcpy(offs, d->dep_off, sizeof *offs * (size_t)d->ndeps);
+            memcpy(nodes, d->dep_node, sizeof *nodes * (size_t)d->ndeps);
         }
-        d->deps = deps, d->dep_off = offs, c->cap = cap;
+        d->deps = deps, d->dep_off = offs, d->dep_node = nodes, c->cap = cap;
     }
     d->deps[d->ndeps] = nm->index;
+    d->dep_node[d->ndeps] = c->node;
     d->dep_off[d->ndeps++] = off;
+}
+
+/* The names in every scalar under n (a mapping's values, not its keys). */
+static void
+collect_deps(DepCollect *c, yaml_node_t *n)
+{
+    Loader *L = c->L;
+    if (n->type == YAML_SCALAR_NODE) {
+        Scalar sc;
+        scalar_src(L, &sc, n, "a name");
+        c->node = n;
+        parse_names(&sc.src, collect_dep, c);
+    } else if (n->type == YAML_SEQUENCE_NODE) {
+        for (int i = 0; i < NITEMS(n); i++)
+            collect_deps(c, node(L, ITEMS(n)[i]));
+    } else if (n->type == YAML_MAPPING_NODE) {
+        for (int i = 0; i < NPAIRS(n); i++)
+            collect_deps(c, node(L, PAIRS(n)[i].value));
+    }
 }
 
 /* Define i refers to itself: report the cycle at its first step. */
@@ -741,19 +1003,36 @@ define_cycle(Loader *L, const int *stack, const int *edge, int sp, int i)
     snprintf(path + strlen(path), sizeof path - strlen(path), "%s", L->def[i].name);
     Define *d = &L->def[stack[from]];
     Scalar sc;
-    scalar_src(L, &sc, d->node, "a define");
+    scalar_src(L, &sc, d->dep_node[edge[from] - 1], "a define");
     SrcLoc at = scalar_where(&sc.src, d->dep_off[edge[from] - 1]);
-    diag_error(at, "define '%s' refers to itself: %s", L->def[i].name, path);
+    static const char *const kinds[] = {"define", "frame", "point"};
+    diag_error(at, "%s '%s' refers to itself: %s", kinds[L->def[i].kind], L->def[i].name,
+               path);
 }
+
+static void build_frame(Loader *L, Define *d);
+static void build_point(Loader *L, Define *d);
 
 static void
 resolve_define_at(Loader *L, yaml_node_t *map, int i)
 {
     (void)map;
     Define *d = &L->def[i];
+    if (d->kind == ITEM_FRAME) {
+        build_frame(L, d);
+        return;
+    }
+    if (d->kind == ITEM_POINT) {
+        build_point(L, d);
+        return;
+    }
     char what[120];
     snprintf(what, sizeof what, "define '%s'", d->name);
-    d->value = expression(L, d->node, ALLOW_ALL, arena_strdup(L->A, what));
+    Scalar sc;
+    scalar_src(L, &sc, d->node, "a define");
+    L->sc.allow = ALLOW_ALL;
+    L->sc.what = arena_strdup(L->A, what);
+    d->value = parse_value(&L->sc, &sc.src);
 }
 
 /* A define with an error is marked, and so are the defines and the
@@ -771,10 +1050,8 @@ static void
 resolve_defines(Loader *L)
 {
     for (int i = 0; i < L->ndef; i++) {
-        Scalar sc;
-        scalar_src(L, &sc, L->def[i].node, "a define");
-        DepCollect c = {L, &L->def[i], 0};
-        parse_names(&sc.src, collect_dep, &c);
+        DepCollect c = {L, &L->def[i], NULL, 0};
+        collect_deps(&c, L->def[i].node);
     }
     int *stack = arena_new_array(L->A, int, L->ndef + 1);
     int *edge = arena_new_array(L->A, int, L->ndef + 1);
@@ -961,7 +1238,7 @@ load_particle(Loader *L, yaml_node_t *map, int i)
         if (!pos)
             diag_error(loc_of(L, v), "particle '%s' has no position", pt->name);
         pt->mass = mass_of(L, mass, "particle", pt->name);
-        pt->dim = vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
+        pt->dim = world_vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
     }
 }
 
@@ -1111,16 +1388,16 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 static _Noreturn void
 two_orientations(Loader *L, const SpecBody *b, yaml_node_t *map)
 {
-    static const char *const keys[] = {"rotation", "omega", "angle"};
+    static const char *const keys[] = {"rotation", "omega", "angle", "frame"};
     int found[2], n = 0;
     for (int i = 0; i < NPAIRS(map) && n < 2; i++)
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; k < 4; k++)
             if (!strcmp(key_of(L, &PAIRS(map)[i]), keys[k]))
                 found[n++] = i;
     const char *first = key_of(L, &PAIRS(map)[found[0]]);
     const char *second = key_of(L, &PAIRS(map)[found[1]]);
     diag_error(loc_of(L, node(L, PAIRS(map)[found[1]].key)), "body '%s' has both `%s` and "
-               "`%s`; its orientation is exactly one of rotation, omega, angle", b->name,
+               "`%s`; its orientation is exactly one of frame, rotation, omega, angle", b->name,
                first, second);
 }
 
@@ -1128,7 +1405,7 @@ static void
 load_body(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"mass", "center", "inertia", "rotation", "omega",
-                                       "angle", NULL};
+                                       "angle", "frame", NULL};
     Spec *s = L->s;
     {
         yaml_node_t *k = node(L, PAIRS(map)[i].key), *v = node(L, PAIRS(map)[i].value);
@@ -1144,22 +1421,39 @@ load_body(Loader *L, yaml_node_t *map, int i)
         yaml_node_t *mass = lookup_key(L, v, "mass"), *c = lookup_key(L, v, "center");
         yaml_node_t *in = lookup_key(L, v, "inertia"), *rot = lookup_key(L, v, "rotation");
         yaml_node_t *om = lookup_key(L, v, "omega"), *ang = lookup_key(L, v, "angle");
+        yaml_node_t *fr = lookup_key(L, v, "frame");
         const char *missing = !mass ? "mass" : !c ? "center" : !in ? "inertia" : NULL;
         if (missing)
             diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
         b->quat[0] = -1;
         b->mass = mass_of(L, mass, "body", b->name);
+        int how = !!rot + !!om + !!ang + !!fr;
+        if (how > 1)
+            two_orientations(L, b, v);
+        if (fr) { /* placed by a frame: it turns with it, its inertia in its axes */
+            int f = frame_or_point(L, scalar(L, fr, "a frame"), NAME_FRAME, loc_of(L, fr));
+            b->dim = world_vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
+            if (b->dim != 3)
+                diag_error(loc_of(L, c), "a body placed by a frame has a 3-D centre: a point, "
+                           "or [x, y, z]");
+            const char *cn = c->type == YAML_SCALAR_NODE ? scalar(L, c, "a point") : "";
+            Name *nm = find_name(L, cn);
+            if (kin_origin(L->K, f) < 0 && nm && nm->kind == NAME_POINT)
+                kin_set_origin(L->K, f, item(L, nm)->kin); /* vel(P, F) moves with it */
+            L->body_frame[i] = f;
+            load_inertia(L, in, b);
+            require_inertia(L, in, b);
+            kin_omega_local(L->K, f, b->omega);
+            return;
+        }
         b->dim = vector(L, c, ALLOW_POSITION, "a centre of mass", b->center);
         load_inertia(L, in, b);
         require_inertia(L, in, b);
         b->omega[0] = b->omega[1] = b->omega[2] = EXPR_ZERO;
-        int how = !!rot + !!om + !!ang;
-        if (how > 1)
-            two_orientations(L, b, v);
         if (how != 1)
             diag_error(loc_of(L, v), "body '%s' needs exactly one of %s", b->name,
                        b->dim == 2 ? "angle (planar), omega"
-                                   : "rotation (e.g. {zxz: [psi, theta, phi]}), omega");
+                                   : "frame, rotation (e.g. {zxz: [psi, theta, phi]}), omega");
         if (ang && b->dim != 2)
             diag_error(loc_of(L, ang), "`angle` is for planar bodies; a 3-D body takes a "
                        "`rotation` or `omega`");
@@ -1183,6 +1477,9 @@ load_bodies(Loader *L, yaml_node_t *map)
     s->nbody = NPAIRS(map);
     s->body = arena_new_array(L->A, SpecBody, s->nbody);
     L->bad_body = arena_new_array(L->A, char, s->nbody + 1);
+    L->body_frame = arena_new_array(L->A, int, s->nbody + 1);
+    for (int i = 0; i < s->nbody; i++)
+        L->body_frame[i] = -1;
     for (int i = 0; i < s->nbody; i++)
         if (!checked(L, load_body, map, i)) {
             L->bad_body[i] = 1;
@@ -1277,7 +1574,18 @@ load_applied(Loader *L, yaml_node_t *map, yaml_node_t *v, yaml_node_t *on, SpecF
         f->vec[0] = expression(L, v, ALLOW_FORCE, what);
         return;
     }
-    f->dim = vector(L, v, ALLOW_FORCE, what, f->vec);
+    if (torque && v->type == YAML_SCALAR_NODE) { /* a vector: to the body's axes */
+        if (L->body_frame[k] < 0)
+            diag_error(loc_of(L, v), "a torque as a vector needs a body placed by `frame:`; "
+                       "on body '%s', give its components in its axes, [tx, ty, tz]", name);
+        ExprId w[3];
+        world_vector(L, v, ALLOW_FORCE, what, w);
+        kin_to_frame(L->K, L->body_frame[k], w, f->vec);
+        f->dim = 3;
+        return;
+    }
+    f->dim = torque ? vector(L, v, ALLOW_FORCE, what, f->vec)
+                    : world_vector(L, v, ALLOW_FORCE, what, f->vec);
     if (f->dim != dim)
         diag_error(loc_of(L, v), "%s has %d components but %s '%s' is %d-D", what, f->dim,
                    is_body ? "body" : "particle", name, dim);
@@ -2057,7 +2365,7 @@ spec_name(Loader *L, yaml_node_t *n)
 }
 
 static const char *const top_keys[] = {
-    "name", "description", "parameters", "coordinates", "define", "inputs",
+    "name", "description", "parameters", "coordinates", "define", "frames", "points", "inputs",
     "particles", "bodies", "kinetic", "potential", "effects", "constraints", "initial",
     "scene", "scenes",
     NULL,
@@ -2116,21 +2424,23 @@ load_root(Loader *L, yaml_node_t *root)
     yaml_node_t *coords = lookup_key(L, root, "coordinates");
     yaml_node_t *inputs = section(L, root, "inputs", 1);
     yaml_node_t *defines = section(L, root, "define", 1);
+    yaml_node_t *frames = section(L, root, "frames", 1);
+    yaml_node_t *points = section(L, root, "points", 1);
     if (!coords)
         diag_error(loc_of(L, root), "the spec has no `coordinates:`");
     int most = (params ? NPAIRS(params) : 0) + (inputs ? NPAIRS(inputs) : 0) +
-               (defines ? NPAIRS(defines) : 0) + (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
+               (defines ? NPAIRS(defines) : 0) + (frames ? NPAIRS(frames) : 0) +
+               (points ? NPAIRS(points) : 0) +
+               (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
     L->names = arena_new_array(L->A, Name, most + 1);
     if (params)
         name_parameters(L, params);
     load_coordinates(L, coords);
     if (inputs)
         name_inputs(L, inputs);
-    if (defines)
-        name_defines(L, defines);
+    name_items(L, defines, frames, points);
     stop_if_failed(); /* everything below is read with these names */
-    if (defines)
-        resolve_defines(L);
+    resolve_defines(L);
     if (params)
         load_parameters(L, params);
     if (inputs)
@@ -2342,7 +2652,8 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
     L->len = len;
     L->A = A;
     L->P = P;
-    L->sc = (ParseScope){P, diff_new(P), lookup, multiplier, leaf_name, 0, "", 0};
+    L->sc = (ParseScope){P, diff_new(P), lookup, multiplier, leaf_name, 0, "", 0,
+                         frame_arg, point_arg, NULL};
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
     L->s->scene = (SpecScene){.t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10,

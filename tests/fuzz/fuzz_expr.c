@@ -14,7 +14,7 @@
 #include <string.h>
 
 static ExprId
-lookup(ParseScope *sc, const char *name, SrcLoc at)
+lookup_scalar(ParseScope *sc, const char *name, SrcLoc at)
 {
     if (!strcmp(name, "x"))
         return expr_var(sc->P, 0, 0);
@@ -28,6 +28,12 @@ lookup(ParseScope *sc, const char *name, SrcLoc at)
     const char *near = diag_nearest(name, names, 4);
     diag_error(at, "unknown name '%s'%s%s%s", name, near ? "; did you mean '" : "",
                near ? near : "", near ? "'?" : "");
+}
+
+static ParseVal
+lookup(ParseScope *sc, const char *name, SrcLoc at)
+{
+    return (ParseVal){0, {lookup_scalar(sc, name, at), EXPR_NONE, EXPR_NONE}};
 }
 
 static const char *
@@ -114,7 +120,7 @@ parse_one(void *ctx)
     ExprPool *P = expr_pool_new();
     Diff *D = diff_new(P);
     ParseScope sc = {P, D, lookup, NULL, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U | DEP_S,
-                     "an expression", 2};
+                     "an expression", 2, NULL, NULL, NULL};
     ParseSrc src = {(const char *)in->data, in->size, where, NULL};
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);

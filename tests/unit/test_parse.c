@@ -18,7 +18,7 @@ static Diff *D;
 
 /* Scope: coordinates x, y; parameter k; input u. */
 static ExprId
-lookup(ParseScope *sc, const char *name, SrcLoc at)
+lookup_scalar(ParseScope *sc, const char *name, SrcLoc at)
 {
     if (!strcmp(name, "x"))
         return expr_var(sc->P, 0, 0);
@@ -29,6 +29,12 @@ lookup(ParseScope *sc, const char *name, SrcLoc at)
     if (!strcmp(name, "u"))
         return expr_input(sc->P, 0);
     diag_error(at, "unknown name '%s'", name);
+}
+
+static ParseVal
+lookup(ParseScope *sc, const char *name, SrcLoc at)
+{
+    return (ParseVal){0, {lookup_scalar(sc, name, at), EXPR_NONE, EXPR_NONE}};
 }
 
 static const char *
@@ -48,7 +54,8 @@ where(const ParseSrc *src, size_t off)
     return (SrcLoc){"test", 1, (int)off + 1};
 }
 
-static ParseScope scope = {NULL, NULL, lookup, NULL, leaf_name, 0xff, "an expression", 2};
+static ParseScope scope = {NULL, NULL, lookup, NULL, leaf_name, 0xff, "an expression", 2,
+                          NULL, NULL, NULL};
 
 static ExprId
 parse(const char *text)

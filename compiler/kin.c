@@ -1,0 +1,198 @@
+/*
+ * kin: the orientation and angular velocity of frames, the positions of
+ * points (kin.h).
+ *
+ * Turning a frame by angle th about its unit axis a (its own components)
+ * multiplies R on the right by Rodrigues' matrix
+ *     Rk = c I + s [a]x + (1 - c) a a^T,    c = cos th, s = sin th,
+ * and moves its angular velocity, kept in its own components, to the new
+ * axes before adding the new rate:  w = Rk^T w + a th'.  About a
+ * coordinate axis, Rk has its zeros and ones written in, so that a chain
+ * of such turns builds the products a hand derivation would.
+ */
+#include "kin.h"
+
+#include "diag.h"
+
+typedef struct KinFrame {
+    ExprId R[9]; /* row-major, columns the axes in world components */
+    ExprId w[3]; /* angular velocity relative to the world, own components */
+    ExprId ww[3]; /* the same in world components */
+    int origin;  /* a point, or -1 */
+} KinFrame;
+
+struct Kin {
+    ExprPool *P;
+    Diff *D;
+    KinFrame *f;
+    ExprId (*pt)[3];
+    int nf, np, capf, capp;
+};
+
+Kin *
+kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints)
+{
+    Kin *K = arena_alloc(A, sizeof *K);
+    K->P = P, K->D = D;
+    K->capf = nframes + 1, K->capp = npoints + 1;
+    K->f = arena_new_array(A, KinFrame, K->capf);
+    K->pt = arena_alloc(A, sizeof *K->pt * (size_t)K->capp);
+    for (int i = 0; i < 9; i++)
+        K->f[0].R[i] = i % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        K->f[0].w[i] = K->f[0].ww[i] = EXPR_ZERO, K->pt[0][i] = EXPR_ZERO;
+    K->f[0].origin = KIN_ORIGIN;
+    K->nf = K->np = 1;
+    return K;
+}
+
+int
+kin_frame(Kin *K, int parent)
+{
+    if (K->nf == K->capf)
+        diag_unreachable(); /* sized by the loader from the spec */
+    K->f[K->nf] = K->f[parent];
+    K->f[K->nf].origin = -1;
+    return K->nf++;
+}
+
+void kin_set_origin(Kin *K, int f, int p) { K->f[f].origin = p; }
+int kin_origin(const Kin *K, int f) { return K->f[f].origin; }
+
+/* R = R Rk and w = Rk^T w + a th', Rk given.  The world components of
+ * the angular velocity are summed the same way, each rate along its axis
+ * in the world (R a, before the turn): not R w, whose products of R's
+ * entries equal these only through sin^2 + cos^2 = 1, which the DAG does
+ * not know; kept apart, velocities such as v_C + w x r cancel term by
+ * term where they should (a contact point at rest). */
+static void
+turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
+{
+    ExprPool *P = K->P;
+    KinFrame *F = &K->f[f];
+    ExprId R[9], w[3], axis[3];
+    kin_to_world(K, f, a, axis);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            ExprId s = EXPR_ZERO;
+            for (int k = 0; k < 3; k++)
+                s = expr_add(P, s, expr_mul(P, F->R[3 * i + k], Rk[3 * k + j]));
+            R[3 * i + j] = s;
+        }
+    ExprId rate = diff_time(K->D, th);
+    for (int j = 0; j < 3; j++) {
+        ExprId s = expr_mul(P, a[j], rate);
+        for (int k = 0; k < 3; k++)
+            s = expr_add(P, s, expr_mul(P, Rk[3 * k + j], F->w[k]));
+        w[j] = s;
+    }
+    for (int i = 0; i < 9; i++)
+        F->R[i] = R[i];
+    for (int i = 0; i < 3; i++)
+        F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], expr_mul(P, axis[i], rate));
+}
+
+void
+kin_turn_axis(Kin *K, int f, int k, ExprId th)
+{
+    ExprPool *P = K->P;
+    ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
+    int j = (k + 1) % 3, l = (k + 2) % 3;
+    ExprId Rk[9], a[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    for (int i = 0; i < 9; i++)
+        Rk[i] = EXPR_ZERO;
+    a[k] = EXPR_ONE;
+    Rk[3 * k + k] = EXPR_ONE;
+    Rk[3 * j + j] = c, Rk[3 * l + l] = c;
+    Rk[3 * l + j] = s, Rk[3 * j + l] = expr_neg(P, s); /* e_j turns toward e_l */
+    turn_by(K, f, Rk, a, th);
+}
+
+void
+kin_turn(Kin *K, int f, const ExprId a[3], ExprId th)
+{
+    ExprPool *P = K->P;
+    ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
+    ExprId v = expr_sub(P, EXPR_ONE, c), Rk[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            Rk[3 * i + j] = expr_mul(P, v, expr_mul(P, a[i], a[j]));
+    for (int i = 0; i < 3; i++)
+        Rk[4 * i] = expr_add(P, Rk[4 * i], c);
+    /* [a]x: the cross product a x . as a matrix */
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, l = (i + 2) % 3;
+        ExprId sa = expr_mul(P, s, a[i]);
+        Rk[3 * l + j] = expr_add(P, Rk[3 * l + j], sa);
+        Rk[3 * j + l] = expr_sub(P, Rk[3 * j + l], sa);
+    }
+    turn_by(K, f, Rk, a, th);
+}
+
+int
+kin_point(Kin *K, int from, int f, const ExprId at[3])
+{
+    if (K->np == K->capp)
+        diag_unreachable();
+    ExprId r[3];
+    kin_to_world(K, f, at, r);
+    for (int i = 0; i < 3; i++)
+        K->pt[K->np][i] = expr_add(K->P, K->pt[from][i], r[i]);
+    return K->np++;
+}
+
+void
+kin_axis(const Kin *K, int f, int k, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = K->f[f].R[3 * i + k];
+}
+
+void
+kin_omega(const Kin *K, int f, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = K->f[f].ww[i];
+}
+
+void
+kin_omega_local(const Kin *K, int f, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = K->f[f].w[i];
+}
+
+void
+kin_pos(const Kin *K, int p, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = K->pt[p][i];
+}
+
+void
+kin_to_world(const Kin *K, int f, const ExprId v[3], ExprId out[3])
+{
+    ExprId r[3];
+    for (int i = 0; i < 3; i++) {
+        ExprId s = EXPR_ZERO;
+        for (int k = 0; k < 3; k++)
+            s = expr_add(K->P, s, expr_mul(K->P, K->f[f].R[3 * i + k], v[k]));
+        r[i] = s;
+    }
+    for (int i = 0; i < 3; i++)
+        out[i] = r[i];
+}
+
+void
+kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3])
+{
+    ExprId r[3];
+    for (int k = 0; k < 3; k++) {
+        ExprId s = EXPR_ZERO;
+        for (int i = 0; i < 3; i++)
+            s = expr_add(K->P, s, expr_mul(K->P, K->f[f].R[3 * i + k], w[i]));
+        r[k] = s;
+    }
+    for (int k = 0; k < 3; k++)
+        out[k] = r[k];
+}

@@ -1,0 +1,51 @@
+/*
+ * kin: frames and points, as expressions.
+ *
+ * A frame is an orientation: its rotation matrix R (row-major; column k
+ * is its k-th axis in world components) and its angular velocity relative
+ * to the world, kept in its own components, where a rotation sequence's
+ * rates add up without trigonometry (the recursive formula of multibody
+ * codes: w_new = Rk^T w + a angle').  A point is a position in world
+ * components.  Frame 0 is the world and point 0 its origin.  Everything
+ * is exact: the derivatives are the DAG's (diff_time), never numerical.
+ */
+#ifndef EOMC_KIN_H
+#define EOMC_KIN_H
+
+#include "arena.h"
+#include "diff.h"
+
+typedef struct Kin Kin;
+
+/* Room for nframes and npoints besides the world and its origin. */
+Kin *kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints);
+
+enum { KIN_WORLD = 0, KIN_ORIGIN = 0 };
+
+/* A new frame oriented as parent, to be turned by kin_turn*. */
+int kin_frame(Kin *K, int parent);
+/* Turn frame f by angle about its own axis k (0 x, 1 y, 2 z) as built so
+ * far, or about the unit vector a in those components (a constant of the
+ * parameters). */
+void kin_turn_axis(Kin *K, int f, int k, ExprId angle);
+void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
+/* The point from + R_f at. */
+int kin_point(Kin *K, int from, int f, const ExprId at[3]);
+/* A frame's origin: the point whose motion, with the frame's rotation,
+ * gives the velocity of any point moving with the frame (the world's is
+ * point 0); -1 until set. */
+void kin_set_origin(Kin *K, int f, int p);
+int kin_origin(const Kin *K, int f);
+
+/* World components: of frame f's axis k, of f's angular velocity, of
+ * point p's position, and of a vector whose components in f are v. */
+void kin_axis(const Kin *K, int f, int k, ExprId out[3]);
+void kin_omega(const Kin *K, int f, ExprId out[3]);
+void kin_pos(const Kin *K, int p, ExprId out[3]);
+void kin_to_world(const Kin *K, int f, const ExprId v[3], ExprId out[3]);
+/* f's components of a vector given in world components. */
+void kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3]);
+/* f's angular velocity in its own components: a body's omega. */
+void kin_omega_local(const Kin *K, int f, ExprId out[3]);
+
+#endif

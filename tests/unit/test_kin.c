@@ -1,0 +1,161 @@
+/*
+ * Unit tests of kin.c against plain double arithmetic done here:
+ *  - a frame turned by a chain of turns (about x, y, z and fixed axes,
+ *    under a parent) has R = the product of the turns' matrices (Rodrigues'
+ *    formula evaluated here), orthonormal with det +1;
+ *  - its angular velocity, in the world's and its own components, is the
+ *    vee of R' R^T (world) and R^T R' (own), R' by extrapolated central
+ *    differences of R along q(t) = q0 + v t: nothing of kin.c is reused;
+ *  - a point's position is from + R at.
+ */
+#include "check.h"
+#include "kin.h"
+
+#include <string.h>
+
+enum { NQ = 4 };
+
+static ExprPool *P;
+static Diff *D;
+
+/* Rodrigues: the matrix turning by th about unit axis a. */
+static void
+rodrigues(const double a[3], double th, double Rk[9])
+{
+    double c = cos(th), s = sin(th);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            Rk[3 * i + j] = (1 - c) * a[i] * a[j] + (i == j ? c : 0);
+    Rk[1] -= s * a[2], Rk[3] += s * a[2];
+    Rk[2] += s * a[1], Rk[6] -= s * a[1];
+    Rk[5] -= s * a[0], Rk[7] += s * a[0];
+}
+
+static void
+matmul(const double *A, const double *B, double *C)
+{
+    double T[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            T[3 * i + j] = 0;
+            for (int k = 0; k < 3; k++)
+                T[3 * i + j] += A[3 * i + k] * B[3 * k + j];
+        }
+    memcpy(C, T, sizeof T);
+}
+
+/* The turns: parent frame turns about z by q0 then x by q1; the child
+ * turns about y by q2, about the fixed axis (1, 2, 2)/3 by q3, and about
+ * x by q0 + q3 (a rate shared with the parent). */
+static const double axis[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3};
+
+static void
+child_R(const double *q, double R[9])
+{
+    static const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1};
+    double Rk[9];
+    rodrigues(ez, q[0], R);
+    rodrigues(ex, q[1], Rk), matmul(R, Rk, R);
+    rodrigues(ey, q[2], Rk), matmul(R, Rk, R);
+    rodrigues(axis, q[3], Rk), matmul(R, Rk, R);
+    rodrigues(ex, q[0] + q[3], Rk), matmul(R, Rk, R);
+}
+
+int
+main(void)
+{
+    Arena *A = arena_new();
+    P = expr_pool_new();
+    D = diff_new(P);
+    Kin *K = kin_new(A, P, D, 2, 1);
+    ExprId q[NQ];
+    for (int i = 0; i < NQ; i++)
+        q[i] = expr_var(P, i, 0);
+    int parent = kin_frame(K, KIN_WORLD);
+    kin_turn_axis(K, parent, 2, q[0]);
+    kin_turn_axis(K, parent, 0, q[1]);
+    int f = kin_frame(K, parent);
+    kin_turn_axis(K, f, 1, q[2]);
+    ExprId a[3] = {expr_const(P, axis[0]), expr_const(P, axis[1]), expr_const(P, axis[2])};
+    kin_turn(K, f, a, q[3]);
+    kin_turn_axis(K, f, 0, expr_add(P, q[0], q[3]));
+    ExprId at[3] = {expr_const(P, 0.3), q[1], expr_const(P, -1.1)};
+    int pt = kin_point(K, KIN_ORIGIN, f, at);
+
+    ExprId Rx[9], w[3], wl[3], r[3];
+    for (int k = 0; k < 3; k++) {
+        ExprId col[3];
+        kin_axis(K, f, k, col);
+        for (int i = 0; i < 3; i++)
+            Rx[3 * i + k] = col[i];
+    }
+    kin_omega(K, f, w);
+    kin_omega_local(K, f, wl);
+    kin_pos(K, pt, r);
+
+    double worst_R = 0, worst_orth = 0, worst_w = 0, worst_wl = 0, worst_r = 0;
+    for (int trial = 0; trial < 50; trial++) {
+        double q0[NQ], v0[NQ], zero[NQ] = {0};
+        for (int i = 0; i < NQ; i++)
+            q0[i] = check_rand(-3, 3), v0[i] = check_rand(-2, 2);
+        ExprEnv env = {.q = {q0, v0, zero}};
+        double R[9], Rn[9];
+        for (int i = 0; i < 9; i++)
+            R[i] = expr_eval(P, Rx[i], &env);
+        child_R(q0, Rn);
+        for (int i = 0; i < 9; i++)
+            worst_R = fmax(worst_R, fabs(R[i] - Rn[i]));
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double d = (i == j) ? -1 : 0;
+                for (int k = 0; k < 3; k++)
+                    d += R[3 * k + i] * R[3 * k + j];
+                worst_orth = fmax(worst_orth, fabs(d));
+            }
+        /* R' by central differences along q0 + v0 t, of the test's R, with
+         * h and h/2 extrapolated (Richardson): error O(h^4) */
+        double dR[9], Dh[2][9];
+        for (int pass = 0; pass < 2; pass++) {
+            double h = pass ? 5e-4 : 1e-3, qp[NQ], qm[NQ], Rp[9], Rm[9];
+            for (int i = 0; i < NQ; i++)
+                qp[i] = q0[i] + h * v0[i], qm[i] = q0[i] - h * v0[i];
+            child_R(qp, Rp);
+            child_R(qm, Rm);
+            for (int i = 0; i < 9; i++)
+                Dh[pass][i] = (Rp[i] - Rm[i]) / (2 * h);
+        }
+        for (int i = 0; i < 9; i++)
+            dR[i] = (4 * Dh[1][i] - Dh[0][i]) / 3;
+        double W[9] = {0}, Wl[9] = {0}; /* R' R^T and R^T R' */
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                for (int k = 0; k < 3; k++) {
+                    W[3 * i + j] += dR[3 * i + k] * Rn[3 * j + k];
+                    Wl[3 * i + j] += Rn[3 * k + i] * dR[3 * k + j];
+                }
+        double vee[3] = {W[7], W[2], W[3]}, veel[3] = {Wl[7], Wl[2], Wl[3]};
+        for (int i = 0; i < 3; i++) {
+            worst_w = fmax(worst_w, fabs(expr_eval(P, w[i], &env) - vee[i]));
+            worst_wl = fmax(worst_wl, fabs(expr_eval(P, wl[i], &env) - veel[i]));
+        }
+        double atn[3] = {0.3, q0[1], -1.1};
+        for (int i = 0; i < 3; i++) {
+            double ri = 0;
+            for (int k = 0; k < 3; k++)
+                ri += Rn[3 * i + k] * atn[k];
+            worst_r = fmax(worst_r, fabs(expr_eval(P, r[i], &env) - ri));
+        }
+    }
+    CHECK(worst_R <= 1e-14, "R is the product of the turns' Rodrigues matrices (to %.2g)",
+          worst_R);
+    CHECK(worst_orth <= 1e-14, "R^T R = I (to %.2g)", worst_orth);
+    /* extrapolated differences: h^4 |R^(5)| / 480 ~ 1e-12, rounding
+     * eps / h ~ 1e-13 */
+    CHECK(worst_w <= 1e-10, "omega (world) is the vee of R' R^T (to %.2g)", worst_w);
+    CHECK(worst_wl <= 1e-10, "omega (own axes) is the vee of R^T R' (to %.2g)", worst_wl);
+    CHECK(worst_r <= 1e-14, "a point is from + R at (to %.2g)", worst_r);
+    diff_free(D);
+    expr_pool_free(P);
+    arena_free(A);
+    return check_done();
+}

@@ -325,38 +325,62 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
 
 /* ---- printing ---- */
 
+/* The leaves and derived values a part reads, each once: marked in a
+ * byte per node of the pool (allocated once per printer, cleared after
+ * each part by the list, not by a sweep of the pool) and listed. */
+typedef struct LeafSet {
+    unsigned char *mark; /* [pool size] */
+    ExprId *list;
+    size_t n, cap;
+} LeafSet;
+
 static void
-mark_leaf(Printer *pr, ExprId e, unsigned char *mark)
+mark_leaf(Printer *pr, ExprId e, LeafSet *ls)
 {
-    if (is_leaf(expr_node(pr->P, e)) || is_derived(pr, e))
-        mark[e] = 1;
+    if (ls->mark[e] || !(is_leaf(expr_node(pr->P, e)) || is_derived(pr, e)))
+        return;
+    ls->mark[e] = 1;
+    if (ls->n == ls->cap) {
+        ls->cap = ls->cap ? 2 * ls->cap : 64;
+        ls->list = xrealloc(ls->list, ls->cap * sizeof *ls->list);
+    }
+    ls->list[ls->n++] = e;
+}
+
+static int
+cmp_id(const void *x, const void *y)
+{
+    ExprId a = *(const ExprId *)x, b = *(const ExprId *)y;
+    return (a > b) - (a < b);
 }
 
 /* Named locals for the leaves part p reads, in a fixed order: t, the
  * coordinates by derivative order, parameters, inputs, seeds, then the
- * parameters' derived values (pdK = p[np + K]). */
+ * parameters' derived values (pdK = p[np + K]); within a kind, by id. */
 static void
 print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
 {
     static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED,
                                 EXPR_MULT};
     size_t size = expr_pool_size(pr->P);
-    unsigned char *mark = xmalloc(size);
-    memset(mark, 0, size);
+    LeafSet ls = {xmalloc(size), NULL, 0, 0};
+    memset(ls.mark, 0, size);
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
         const ExprNode *nd = expr_node(pr->P, S->node[k]);
         int ar = expr_op_arity[nd->op];
         if (ar >= 1)
-            mark_leaf(pr, nd->a, mark);
+            mark_leaf(pr, nd->a, &ls);
         if (ar >= 2)
-            mark_leaf(pr, nd->b, mark);
+            mark_leaf(pr, nd->b, &ls);
     }
     for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1] && i < nout; i++)
-        mark_leaf(pr, out[i].e, mark);
+        mark_leaf(pr, out[i].e, &ls);
+    if (ls.n)
+        qsort(ls.list, ls.n, sizeof *ls.list, cmp_id);
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
-        for (size_t id = 0; id < size; id++) {
-            const ExprNode *nd = expr_node(pr->P, (ExprId)id);
-            if (!mark[id] || nd->op != kinds[k])
+        for (size_t j = 0; j < ls.n; j++) {
+            const ExprNode *nd = expr_node(pr->P, ls.list[j]);
+            if (nd->op != kinds[k])
                 continue;
             if (nd->op == EXPR_TIME) {
                 pr->used |= 1u << SRC_T;
@@ -372,13 +396,15 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
             pr->used |= 1u << arr;
             println(pr, "    const eomc_real %s = %s[%u];", buf, src_name[arr], nd->a);
         }
-    for (size_t id = 0; id < size; id++)
-        if (mark[id] && is_derived(pr, (ExprId)id)) {
+    for (size_t j = 0; j < ls.n; j++)
+        if (is_derived(pr, ls.list[j])) {
+            ExprId id = ls.list[j];
             pr->used |= 1u << SRC_P;
             println(pr, "    const eomc_real pd%d = p[%d];", pr->derived[id],
                     pr->s->np + pr->derived[id]);
         }
-    free(mark);
+    free(ls.mark);
+    free(ls.list);
 }
 
 /* The statements of part p: leaves, temporaries, assignments. */

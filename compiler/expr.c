@@ -54,6 +54,14 @@ hash_node(const ExprNode *n)
         h *= 1099511628211ull;
         h ^= h >> 29;
     }
+    /* MurmurHash3's finalizer: the table takes the low bits, and without
+     * it nodes made in sequence (ids a, a + 1, ...) fall in runs that
+     * linear probing walks */
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
     return h;
 }
 

@@ -46,6 +46,7 @@ typedef struct Cli {
     /* the reference and the report */
     const char *reference, *reference_out, *csv, *plot;
     const char *events;   /* --events FILE */
+    const char *hold;     /* --hold LIST, for --assemble */
     char **sweep;         /* --sweep NAME=START:STOP:COUNT, in order */
     int nsweep, threads;  /* and --threads N */
     const char *sweep_file;
@@ -195,7 +196,7 @@ enum Option {
     /* with a value */
     O_T0, O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
     O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS, O_SWEEP,
-    O_SWEEP_FILE, O_THREADS,
+    O_SWEEP_FILE, O_THREADS, O_HOLD,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
     O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_LINEARIZE,
@@ -205,7 +206,7 @@ enum Option {
 static const char *const option_names[NOPTIONS] = {
     "--t0", "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
-    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--methods", "--tolerances", "--steps", "--csv", "--plot",
+    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
     "--error", "--linearize", "--equilibrium", "--help", "--version",
 };
@@ -250,7 +251,11 @@ help(const Cli *c, const eomc_model *m)
                "phi' + A phi = 0\n"
                "                     (default %g,%g; implies --stabilize baumgarte)\n"
                "  --assemble         project the initial state onto the constraints "
-               "first\n", DEFAULT_RATE, DEFAULT_RATE);
+               "first\n"
+               "  --hold LIST        with --assemble: keep these coordinates (x) and "
+               "velocities (x')\n"
+               "                     as they are; the others meet the constraints\n",
+               DEFAULT_RATE, DEFAULT_RATE);
     if (m->nevent > 0) {
         static const char *const actions[] = {"stops the run", "is recorded",
                                               "sets the state"};
@@ -434,6 +439,7 @@ take_value(Cli *c, int k, const char *val)
     case O_SET: c->set[c->nset++] = (char *)val; return EOMC_OK;
     case O_INIT: c->init[c->ninit++] = (char *)val; return EOMC_OK;
     case O_OUT: c->out = val; return EOMC_OK;
+    case O_HOLD: c->hold = val; return EOMC_OK;
     case O_STABILIZE:
         for (int j = 0; j < 3; j++)
             if (strcmp(val, stabilize_names[j]) == 0) {
@@ -519,6 +525,9 @@ check_combination(Cli *c)
     } else if (c->threads > 1) {
         return usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
     }
+    if (c->hold && !c->assemble)
+        return usage(c, "--hold belongs to --assemble: it names what the projection "
+                     "onto the constraints keeps as it is");
     int run_plot = c->plot && !c->work_precision && !linear && !c->accel;
     if (run_plot && !plot_format_ok(c->plot))
         return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
@@ -932,6 +941,43 @@ set_stabilize(Cli *c, eomc_sim *sim)
                  eomc_sim_error(sim));
 }
 
+/* --hold LIST into hold [2n]: x marks q_x, x' marks q'_x. */
+static int
+hold_list(Cli *c, const eomc_model *m, unsigned char *hold)
+{
+    int n = m->nq;
+    for (const char *p = c->hold; *p;) {
+        size_t len = strcspn(p, ",");
+        char name[256];
+        if (len == 0 || len >= sizeof name)
+            return usage(c, "--hold: '%s' is not a list of coordinates (x) and velocities "
+                         "(x') separated by commas", c->hold);
+        memcpy(name, p, len);
+        name[len] = '\0';
+        int vel = name[len - 1] == '\'', found = -1;
+        if (vel)
+            name[len - 1] = '\0';
+        for (int i = 0; i < n && found < 0; i++)
+            if (!strcmp(name, m->q_names[i]))
+                found = i;
+        if (found < 0 || (len > 1 && vel && name[len - 2] == '\'')) {
+            if (vel)
+                name[len - 1] = '\'';
+            fprintf(stderr, "%s: --hold: '%s' is not a coordinate or velocity%s; valid "
+                    "names: ", c->prog, name, nearest(name, m->q_names, n, vel ? "'" : ""));
+            list_names(stderr, m->q_names, n, "");
+            fprintf(stderr, ", ");
+            list_names(stderr, m->q_names, n, "'");
+            fprintf(stderr, "\n");
+            return EOMC_EUSAGE;
+        }
+        hold[found + (vel ? n : 0)] = 1;
+        p += len;
+        p += *p == ',';
+    }
+    return EOMC_OK;
+}
+
 /* Project the initial state onto the constraints and say what moved. */
 static int
 assemble(Cli *c, eomc_sim *sim, double *x)
@@ -941,11 +987,21 @@ assemble(Cli *c, eomc_sim *sim, double *x)
     if (!has_levels(m))
         return usage(c, "--assemble: %s has no holonomic or first-order constraint to "
                      "assemble", m->name);
+    unsigned char *hold = calloc(2 * (size_t)n, 1);
     double *x0 = malloc(2 * (size_t)n * sizeof *x0);
-    if (!x0)
+    if (!x0 || !hold) {
+        free(x0);
+        free(hold);
         return usage(c, "out of memory");
+    }
+    if (c->hold && hold_list(c, m, hold) != EOMC_OK) {
+        free(x0);
+        free(hold);
+        return EOMC_EUSAGE;
+    }
     memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
-    int rc = eomc_sim_project(sim, c->run.t0, x, x + n);
+    int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->hold ? hold : NULL);
+    free(hold);
     if (rc != EOMC_OK) {
         fprintf(stderr, "%s: error: --assemble: %s\n", c->prog, eomc_sim_error(sim));
         free(x0);

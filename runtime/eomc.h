@@ -113,6 +113,12 @@ int eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta);
  * the least change in the mass matrix's metric.  A no-op without such
  * constraints; EOMC_ENUMERIC when it cannot converge. */
 int eomc_sim_project(eomc_sim *s, double t, double *q, double *v);
+/* The same keeping what hold [2 nq] marks as it is (hold[i]: q_i,
+ * hold[nq + i]: q'_i): the rest moves, for the least change in the mass
+ * matrix's metric on it.  EOMC_ENUMERIC also when what is left free cannot
+ * meet the constraints (the message says what was held). */
+int eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v,
+                          const unsigned char *hold);
 
 /* T and V at (t, q, v). */
 void eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v,

@@ -26,9 +26,13 @@ struct Proj {
     int n, nc;
     int npos, nvel;            /* rows at each level */
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
-    double *L, *h;             /* [n*n] M's pivoted LDL^T factor, [n] */
+    double *M, *h;             /* [n*n] the mass matrix (the metric), [n] */
+    double *L;                 /* [n*n] the pivoted LDL^T factor of M on what moves */
     double *rel;               /* [n] its pivots relative to M_kk */
     size_t *perm;              /* [n] its pivot order */
+    int *moves, nmoves;        /* [n] the coordinates (or velocities) a level moves */
+    double *col;               /* [n] one solve's right-hand side, on those */
+    const unsigned char *hold; /* [2n] what the caller keeps (q, then v), or NULL */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
@@ -68,6 +72,7 @@ proj_alloc(const eomc_model *m)
     j->n = m->nq, j->nc = m->nc;
     j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
+    j->M = zeros(n * n), j->col = zeros(n), j->moves = calloc(n ? n : 1, sizeof *j->moves);
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc);
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
     j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
@@ -83,7 +88,7 @@ proj_alloc(const eomc_model *m)
     j->names[0] = join_names(m, j->pos_rows, j->npos);
     j->names[1] = join_names(m, j->vel_rows, j->nvel);
     if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
-        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->lu[0] || !j->lu[1] || !j->names[0] ||
+        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->M || !j->col || !j->moves || !j->lu[0] || !j->lu[1] || !j->names[0] ||
         !j->names[1]) {
         proj_free(j);
         return NULL;
@@ -97,8 +102,8 @@ proj_free(Proj *j)
     if (!j)
         return;
     void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
-                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->names[0],
-                      j->names[1]};
+                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->M, j->col,
+                      j->moves, j->names[0], j->names[1]};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
     la_lu_free(j->lu[0]);
@@ -206,10 +211,15 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
     if (la_settled(now, *rel))
         return 1;
     *rel = now;
-    for (int k = 0; k < nr; k++) {
+    for (int k = 0; k < nr; k++) { /* y = M^-1 G_k^T on what moves, 0 on what is held */
         double *y = j->Y + k * n;
-        memcpy(y, j->B + rows[k] * n, (size_t)n * sizeof *y);
-        la_ldlt_solve(j->L, n, j->perm, y);
+        memset(y, 0, (size_t)n * sizeof *y);
+        for (int a = 0; a < j->nmoves; a++)
+            j->col[a] = j->B[rows[k] * n + j->moves[a]];
+        if (j->nmoves)
+            la_ldlt_solve(j->L, j->nmoves, j->perm, j->col);
+        for (int a = 0; a < j->nmoves; a++)
+            y[j->moves[a]] = j->col[a];
     }
     for (int k = 0; k < nr; k++)
         for (int l = 0; l < nr; l++)
@@ -228,13 +238,32 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
     return 0;
 }
 
+/* The level's metric: M on the coordinates (level 0) or velocities (1)
+ * the caller does not hold, factored.  Holding some, the correction is
+ * the smallest in that metric among those that leave them as they are. */
+static int
+metric(Proj *j, int level)
+{
+    int n = j->n, nm = 0;
+    for (int i = 0; i < n; i++)
+        if (!j->hold || !j->hold[level * n + i])
+            j->moves[nm++] = i;
+    j->nmoves = nm;
+    for (int a = 0; a < nm; a++)
+        for (int b = 0; b < nm; b++)
+            j->L[a * nm + b] = j->M[j->moves[a] * n + j->moves[b]];
+    return nm && la_ldlt_factor(j->L, nm, j->rel, j->perm) != 0 ? PROJ_NOT_PD : PROJ_OK;
+}
+
 static int
 project_level(Proj *j, double t, double *q, double *v, const double *p, const double *u,
               int level)
 {
     if ((level ? j->nvel : j->npos) == 0)
         return PROJ_OK;
-    int rc = 0;
+    int rc = metric(j, level);
+    if (rc != PROJ_OK)
+        return rc;
     double rel = HUGE_VAL;
     for (int it = 0; it <= PROJ_MAX && rc == 0; it++) /* the next tests a correction */
         rc = correct(j, t, q, v, p, u, level, &rel);
@@ -245,14 +274,21 @@ int
 proj_apply(Proj *j, double t, double *q, double *v, const double *p, const double *u,
            int *level)
 {
+    return proj_apply_held(j, t, q, v, p, u, NULL, level);
+}
+
+int
+proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const double *u,
+                const unsigned char *hold, int *level)
+{
     *level = 0;
     if (j->nvel == 0)
         return PROJ_OK;
-    j->m->mass_bias(t, q, v, p, u, j->L, j->h);
-    if (la_ldlt_factor(j->L, j->n, j->rel, j->perm) != 0)
-        return PROJ_NOT_PD;
+    j->m->mass_bias(t, q, v, p, u, j->M, j->h);
+    j->hold = hold;
     int rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)
         rc = project_level(j, t, q, v, p, u, *level = 1);
+    j->hold = NULL;
     return rc;
 }

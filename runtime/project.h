@@ -39,6 +39,11 @@ double proj_inconsistency(Proj *j, double t, const double *q, const double *v,
  * On failure *level is 0 (positions) or 1 (velocities). */
 int proj_apply(Proj *j, double t, double *q, double *v, const double *p,
                const double *u, int *level);
+/* The same keeping the coordinates and velocities hold [2n] marks (q_i at
+ * i, q'_i at n + i) as they are: the others move, by the smallest change
+ * in the mass matrix's metric restricted to them. */
+int proj_apply_held(Proj *j, double t, double *q, double *v, const double *p,
+                    const double *u, const unsigned char *hold, int *level);
 /* The constraints of a level (0: holonomic, 1: velocity), for messages. */
 const char *proj_names(const Proj *j, int level);
 

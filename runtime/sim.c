@@ -397,20 +397,36 @@ eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta)
 int
 eomc_sim_project(eomc_sim *s, double t, double *q, double *v)
 {
+    return eomc_sim_project_held(s, t, q, v, NULL);
+}
+
+int
+eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigned char *hold)
+{
     if (!s->proj)
         return EOMC_OK;
     if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->n))
         return sim_numeric_error(s, t, q, v, "the state is not finite");
     sim_inputs_at(s, t);
-    int level, rc = proj_apply(s->proj, t, q, v, s->p, s->u, &level);
+    int level, rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
     const char *what = level ? "velocities" : "positions";
+    int held = 0;
+    for (int i = 0; hold && i < s->n; i++)
+        held |= hold[level * s->n + i];
     switch (rc) {
     case PROJ_OK:
         return EOMC_OK;
     case PROJ_NOT_PD:
         return sim_numeric_error(s, t, q, v, "cannot project onto the constraints: "
-                                 "the mass matrix is not positive definite");
+                                 "the mass matrix is not positive definite%s",
+                                 held ? " on what is not held" : "");
     case PROJ_SINGULAR:
+        if (held)
+            return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
+                                     "constraints %s moving only the %s not held: with "
+                                     "those held they cannot all be met, or they are "
+                                     "dependent here", what, proj_names(s->proj, level),
+                                     what);
         return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
                                  "constraints %s: they are dependent or degenerate "
                                  "here", what, proj_names(s->proj, level));

@@ -96,6 +96,33 @@ ok $? "--explain: a linear first-order constraint, its named dependent, eliminat
 got=$(sed -n 's/^  x 1.2 -> \([^ ]*\) .*/\1/p' "$tmp/asm.err")
 want=$(awk 'BEGIN { y = -cos(1); printf "%.17g", 1.2 / sqrt(1.44 + y * y) }')
 near "$got" "$want"; ok $? "--assemble moves x = 1.2 to x / |(x, y)| = $got and says so"
+# --hold keeps what it names: x = 0.6 held, y alone meets x^2 + y^2 = 1 (on its branch)
+"$tmp/cp" --init x=0.6 --init "x'=0.3" --assemble --hold "x,x'" --accel > /dev/null 2> "$tmp/hold.err"
+goty=$(sed -n 's/^  y [^ ]* -> \([^ ]*\) .*/\1/p' "$tmp/hold.err")
+gotv=$(sed -n "s/^  y' [^ ]* -> \\([^ ]*\\) .*/\\1/p" "$tmp/hold.err")
+! grep -q "^  x" "$tmp/hold.err" && near "$goty" -0.8 &&
+  near "$gotv" "$(awk 'BEGIN { printf "%.17g", -0.6 * 0.3 / -0.8 }')"
+ok $? "--assemble --hold x,x': x and x' stay, y = -0.8 = $goty, y' = -x x'/y = $gotv"
+# the rolling disk started with x' = 0: projected freely, the spin changes too
+# (6 -> 2); holding the angles' rates, only x' moves, to -R phi' cos(psi) = -3
+"$eomc" build "$src/specs/rolling_disk.yaml" -o "$tmp/rd" 2> /dev/null
+"$tmp/rd" --init "x'=0" --assemble --t-end 0.01 -o /dev/null 2> "$tmp/free.err"
+grep -q "^  phi' 6 -> " "$tmp/free.err"
+ok $? "rolling disk, --assemble without --hold: the spin rate moves ($(grep "phi'" "$tmp/free.err"))"
+"$tmp/rd" --init "x'=0" --assemble --hold "phi',psi',theta'" --t-end 0.01 -o /dev/null \
+  2> "$tmp/held.err"
+gotx=$(sed -n "s/^  x' 0 -> \\([^ ]*\\) .*/\\1/p" "$tmp/held.err")
+[ "$(grep -c '^  ' "$tmp/held.err")" -eq 1 ] && near "$gotx" -3
+ok $? "rolling disk, --hold phi',psi',theta': only x' moves, to $gotx = -R phi' cos(psi)"
+usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
+usage_err "$tmp/rd" --hold "x'" -o /dev/null && grep -q "^rd: --hold belongs to --assemble" "$tmp/u.err"
+ok $? "--hold without --assemble: exit 2, saying it belongs to --assemble"
+usage_err "$tmp/rd" --assemble --hold "xx'" -o /dev/null &&
+  grep -q "^rd: --hold: 'xx'' is not a coordinate or velocity (did you mean 'x''?)" "$tmp/u.err"
+ok $? "--hold with an unknown name: exit 2, the nearest name"
+"$tmp/rd" --init "x'=0" --assemble --hold "x',y'" -o /dev/null 2> "$tmp/over.err"; st=$?
+[ $st -eq 3 ] && grep -q "moving only the velocities not held" "$tmp/over.err"
+ok $? "--hold leaving a constraint no freedom: exit 3, saying what was held"
 "$tmp/cp" --method rkf45 --rtol 1e-6 --atol 1e-6 --t-end 50 --stabilize project --stats \
   -o "$tmp/cp.csv" 2> "$tmp/proj.err"
 res=$(sed -n 's/^max_residual //p' "$tmp/proj.err")
@@ -123,7 +150,6 @@ ok $? "m1/m2 = 1e-9: one warning naming t and th1, th2; --stats prints max_condi
 "$tmp/dp" --stats -o /dev/null 2> "$tmp/well.err"
 ! grep -q warning "$tmp/well.err" && grep -q "^max_condition [0-9.]*$" "$tmp/well.err"
 ok $? "the default double pendulum: no warning, a small max_condition"
-usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
 # physical data from --set: exit 2 naming what and the parameters, no output
 rm -f "$tmp/neg.csv"
 usage_err "$tmp/cp" --set m=-1 -o "$tmp/neg.csv" &&

@@ -1,7 +1,9 @@
 /*
  * Fuzz target: the expression parser and the derivative engine.  The
  * input is one expression's text, in a scope with coordinates x and y,
- * parameter k and input u (as tests/unit/test_parse.c).  A parsed
+ * parameter k and input u (as tests/unit/test_parse.c), and a frame F
+ * (turned by x about z, then about a fixed axis by y, origin P) and a
+ * point P (in F, at [k, x, 1]) for vector expressions.  A parsed
  * expression is evaluated, differentiated (d/dt, partials, a gradient, a
  * directional derivative) and the derivatives evaluated: any error is
  * fine, a crash, a sanitizer report, a leak or a hang is not.
@@ -12,6 +14,30 @@
 
 #include <setjmp.h>
 #include <string.h>
+
+enum { FRAME_F = 1, POINT_P = 1 };
+
+static int
+frame(ParseScope *sc, const char *name, SrcLoc at)
+{
+    (void)sc;
+    if (!strcmp(name, "F"))
+        return FRAME_F;
+    if (!strcmp(name, "world"))
+        return KIN_WORLD;
+    diag_error(at, "unknown frame '%s'", name);
+}
+
+static int
+point(ParseScope *sc, const char *name, SrcLoc at)
+{
+    (void)sc;
+    if (!strcmp(name, "P"))
+        return POINT_P;
+    if (!strcmp(name, "origin"))
+        return KIN_ORIGIN;
+    diag_error(at, "unknown point '%s'", name);
+}
 
 static ExprId
 lookup_scalar(ParseScope *sc, const char *name, SrcLoc at)
@@ -119,16 +145,25 @@ parse_one(void *ctx)
     Input *in = ctx;
     ExprPool *P = expr_pool_new();
     Diff *D = diff_new(P);
+    Arena *A = arena_new();
+    Kin *K = kin_new(A, P, D, 1, 1);
+    int f = kin_frame(K, KIN_WORLD);
+    kin_turn_axis(K, f, 2, expr_var(P, 0, 0));
+    ExprId third = expr_const(P, 1.0 / 3), axis[3] = {third, third, expr_const(P, 0.88)};
+    kin_turn(K, f, axis, expr_var(P, 1, 0)); /* not unit: kin takes it as given */
+    ExprId at[3] = {expr_param(P, 0), expr_var(P, 0, 0), EXPR_ONE};
+    kin_set_origin(K, f, kin_point(K, KIN_ORIGIN, f, at));
     ParseScope sc = {P, D, lookup, NULL, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U | DEP_S,
-                     "an expression", 2, NULL, NULL, NULL};
+                     "an expression", 2, frame, point, K};
     ParseSrc src = {(const char *)in->data, in->size, where, NULL};
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
     if (setjmp(jb) == 0) {
         int names = 0;
         parse_names(&src, count_name, &names);
-        ExprId e = parse_expr(&sc, &src);
-        exercise(P, D, e);
+        ParseVal v = parse_value(&sc, &src);
+        for (int i = 0; i < (v.vec ? 3 : 1); i++)
+            exercise(P, D, v.e[i]);
         /* the same text where only parameters and t may appear */
         sc.allow = DEP_P | DEP_T;
         sc.what = "a mass";
@@ -137,6 +172,7 @@ parse_one(void *ctx)
     diag_set_jump(old);
     diff_free(D);
     expr_pool_free(P);
+    arena_free(A);
 }
 
 FUZZ_ENTRY(expr)

@@ -327,6 +327,11 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
         return expr_mul(P, expr_const(P, 2.0), a);
     if (pythagorean(P, a, b))
         return EXPR_ONE;
+    /* (x - a) + a = x: a point offset and brought back (kin.h) */
+    if (op_of(P, a) == EXPR_SUB && P->node[a].b == b)
+        return P->node[a].a;
+    if (op_of(P, b) == EXPR_SUB && P->node[b].b == a)
+        return P->node[b].a;
     ExprId c1, x1, c2, x2;
     double k1, k2;
     if (P->node[a].coeff && P->node[b].coeff) { /* 4 m l - 2 m l = 2 m l */
@@ -359,6 +364,14 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
         return expr_add(P, a, P->node[b].a);
     if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
         return expr_neg(P, expr_add(P, P->node[a].a, b));
+    /* (x + y) - y = x, (x + y) - x = y, x - (x - y) = y: a point's
+     * position less the point it is offset from (kin.h) */
+    if (op_of(P, a) == EXPR_ADD && P->node[a].b == b)
+        return P->node[a].a;
+    if (op_of(P, a) == EXPR_ADD && P->node[a].a == b)
+        return P->node[a].b;
+    if (op_of(P, b) == EXPR_SUB && P->node[b].a == a)
+        return P->node[b].b;
     ExprId c1, x1, c2, x2;
     double k1, k2;
     if (P->node[a].coeff && P->node[b].coeff) {

@@ -283,13 +283,7 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdq[8] = w47;
     dEdv[6] = 0.0;
     dEdv[7] = 0.0;
-    const eomc_real w48 = w3 * w36;
-    const eomc_real w49 = w0 * w19;
-    const eomc_real w50 = w48 + w49;
-    const eomc_real w51 = w50 - w48;
-    const eomc_real w52 = w51 - w49;
-    const eomc_real w53 = pd2 * w52;
-    dEdv[8] = w53;
+    dEdv[8] = 0.0;
     dEdt[2] = 0.0;
 }
 

@@ -299,6 +299,20 @@ test_like_terms(void)
           "... and equal in value");
 }
 
+/* An offset and its return cancel by structure, not only in value: a
+ * point from another and the difference of their positions (kin.h). */
+static void
+test_offsets_cancel(void)
+{
+    ExprId x = expr_var(P, 0, 0), a = expr_mul(P, expr_param(P, 0), expr_unary(P, EXPR_SIN, x));
+    ExprId y = expr_var(P, 1, 0);
+    CHECK(expr_add(P, expr_sub(P, y, a), a) == y, "(y - a) + a is the node y");
+    CHECK(expr_add(P, a, expr_sub(P, y, a)) == y, "a + (y - a) is the node y");
+    CHECK(expr_sub(P, expr_add(P, y, a), a) == y && expr_sub(P, expr_add(P, y, a), y) == a,
+          "(y + a) - a is y, and (y + a) - y is a");
+    CHECK(expr_sub(P, y, expr_sub(P, y, a)) == a, "y - (y - a) is the node a");
+}
+
 /* Numbers gather across products of parameters, and like terms whose
  * coefficients are parameter expressions are collected: the structure is
  * asserted (node identity), not only the value. */
@@ -338,6 +352,7 @@ main(void)
     test_pythagorean();
     test_like_terms();
     test_parameter_folding();
+    test_offsets_cancel();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

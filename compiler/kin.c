@@ -18,14 +18,23 @@ typedef struct KinFrame {
     ExprId R[9]; /* row-major, columns the axes in world components */
     ExprId w[3]; /* angular velocity relative to the world, own components */
     ExprId ww[3]; /* the same in world components */
+    ExprId own[3]; /* its own turns' part of ww: ww = parent's ww + own */
+    int parent;  /* -1 for the world */
     int origin;  /* a point, or -1 */
 } KinFrame;
+
+typedef struct KinPoint {
+    ExprId r[3];   /* position, world components */
+    int from, f;   /* the point it is offset from (-1: the origin), in frame f */
+    ExprId at[3];  /* the offset in f's axes */
+    ExprId off[3]; /* and in the world's: R_f at */
+} KinPoint;
 
 struct Kin {
     ExprPool *P;
     Diff *D;
     KinFrame *f;
-    ExprId (*pt)[3];
+    KinPoint *pt;
     int nf, np, capf, capp;
 };
 
@@ -36,12 +45,16 @@ kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints)
     K->P = P, K->D = D;
     K->capf = nframes + 1, K->capp = npoints + 1;
     K->f = arena_new_array(A, KinFrame, K->capf);
-    K->pt = arena_alloc(A, sizeof *K->pt * (size_t)K->capp);
+    K->pt = arena_new_array(A, KinPoint, K->capp);
     for (int i = 0; i < 9; i++)
         K->f[0].R[i] = i % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
-    for (int i = 0; i < 3; i++)
-        K->f[0].w[i] = K->f[0].ww[i] = EXPR_ZERO, K->pt[0][i] = EXPR_ZERO;
+    for (int i = 0; i < 3; i++) {
+        K->f[0].w[i] = K->f[0].ww[i] = K->f[0].own[i] = EXPR_ZERO;
+        K->pt[0].r[i] = K->pt[0].at[i] = K->pt[0].off[i] = EXPR_ZERO;
+    }
     K->f[0].origin = KIN_ORIGIN;
+    K->f[0].parent = -1;
+    K->pt[0].from = -1;
     K->nf = K->np = 1;
     return K;
 }
@@ -53,6 +66,9 @@ kin_frame(Kin *K, int parent)
         diag_unreachable(); /* sized by the loader from the spec */
     K->f[K->nf] = K->f[parent];
     K->f[K->nf].origin = -1;
+    K->f[K->nf].parent = parent;
+    for (int i = 0; i < 3; i++)
+        K->f[K->nf].own[i] = EXPR_ZERO;
     return K->nf++;
 }
 
@@ -89,7 +105,8 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
     for (int i = 0; i < 9; i++)
         F->R[i] = R[i];
     for (int i = 0; i < 3; i++)
-        F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], expr_mul(P, axis[i], rate));
+        F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], expr_mul(P, axis[i], rate)),
+        F->own[i] = expr_add(P, F->own[i], expr_mul(P, axis[i], rate));
 }
 
 void
@@ -134,10 +151,11 @@ kin_point(Kin *K, int from, int f, const ExprId at[3])
 {
     if (K->np == K->capp)
         diag_unreachable();
-    ExprId r[3];
-    kin_to_world(K, f, at, r);
+    KinPoint *pt = &K->pt[K->np];
+    kin_to_world(K, f, at, pt->off);
     for (int i = 0; i < 3; i++)
-        K->pt[K->np][i] = expr_add(K->P, K->pt[from][i], r[i]);
+        pt->r[i] = expr_add(K->P, K->pt[from].r[i], pt->off[i]), pt->at[i] = at[i];
+    pt->from = from, pt->f = f;
     return K->np++;
 }
 
@@ -166,7 +184,49 @@ void
 kin_pos(const Kin *K, int p, ExprId out[3])
 {
     for (int i = 0; i < 3; i++)
-        out[i] = K->pt[p][i];
+        out[i] = K->pt[p].r[i];
+}
+
+int
+kin_point_link(const Kin *K, int p, int *f, ExprId at[3], ExprId off[3])
+{
+    const KinPoint *pt = &K->pt[p];
+    *f = pt->f;
+    for (int i = 0; i < 3; i++)
+        at[i] = pt->at[i], off[i] = pt->off[i];
+    return pt->from;
+}
+
+/* Sum of own turns from f up to (not including) its ancestor a. */
+static void
+own_up_to(const Kin *K, int f, int a, ExprId out[3])
+{
+    for (; f != a && f > KIN_WORLD; f = K->f[f].parent)
+        for (int i = 0; i < 3; i++)
+            out[i] = expr_add(K->P, out[i], K->f[f].own[i]);
+}
+
+static int
+is_ancestor(const Kin *K, int a, int f)
+{
+    for (; f >= 0; f = K->f[f].parent)
+        if (f == a)
+            return 1;
+    return 0;
+}
+
+void
+kin_omega_rel(const Kin *K, int f, int g, ExprId out[3])
+{
+    int a = g; /* the nearest common ancestor */
+    while (!is_ancestor(K, a, f))
+        a = K->f[a].parent;
+    ExprId up[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    ExprId down[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    own_up_to(K, f, a, up);
+    own_up_to(K, g, a, down);
+    for (int i = 0; i < 3; i++)
+        out[i] = expr_sub(K->P, up[i], down[i]);
 }
 
 void

@@ -47,5 +47,12 @@ void kin_to_world(const Kin *K, int f, const ExprId v[3], ExprId out[3]);
 void kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3]);
 /* f's angular velocity in its own components: a body's omega. */
 void kin_omega_local(const Kin *K, int f, ExprId out[3]);
+/* omega(f) - omega(g) in world components, summed from the turns on the
+ * way between them in the tree of frames (nothing that cancels). */
+void kin_omega_rel(const Kin *K, int f, int g, ExprId out[3]);
+/* Point p's link: the point it is offset from (-1 for the origin), the
+ * frame of the offset, and the offset in that frame's and the world's
+ * axes. */
+int kin_point_link(const Kin *K, int p, int *f, ExprId at[3], ExprId off[3]);
 
 #endif

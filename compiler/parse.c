@@ -527,6 +527,29 @@ frame_point_motion(Parser *ps, int p, int f, int order, size_t off, const char *
     kin_omega(sc->K, f, w);
     for (int i = 0; i < 3; i++)
         r[i] = expr_sub(P, rp[i], ro[i]);
+    int k = p;
+    while (k > KIN_ORIGIN && k != o) {
+        ExprId at[3], o3[3];
+        int fk;
+        k = kin_point_link(sc->K, k, &fk, at, o3);
+    }
+    if (order == 1 && k == o) {
+        /* P offset from the origin O through links o_k = R_fk at_k:
+         * v = vel(P) + sum_k (w_F - w_fk) x o_k - R_fk at_k', the form in
+         * which a contact point's own motion cancels by structure */
+        Val v = time_derivative_val(ps, vector_val(rp), off);
+        for (k = p; k != o;) {
+            ExprId at[3], o3[3], rel[3];
+            int fk, from = kin_point_link(sc->K, k, &fk, at, o3);
+            kin_omega_rel(sc->K, f, fk, rel);
+            v = add_val(P, v, cross3(P, rel, o3), 1);
+            Val rate = time_derivative_val(ps, vector_val(at), off);
+            kin_to_world(sc->K, fk, rate.e, rate.e);
+            v = add_val(P, v, rate, -1);
+            k = from < 0 ? KIN_ORIGIN : from;
+        }
+        return v;
+    }
     Val v = time_derivative_val(ps, vector_val(ro), off);
     Val wr = cross3(P, w, r);
     if (order == 1)

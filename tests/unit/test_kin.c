@@ -6,10 +6,15 @@
  *  - its angular velocity, in the world's and its own components, is the
  *    vee of R' R^T (world) and R^T R' (own), R' by extrapolated central
  *    differences of R along q(t) = q0 + v t: nothing of kin.c is reused;
- *  - a point's position is from + R at.
+ *  - a point's position is from + R at;
+ *  - vel(P, F), the velocity of the point of F at P, through the parser,
+ *    both ways it is formed (P offset from F's origin through a sliding
+ *    link; the same place as a point of its own), against v_O + w_F x
+ *    (r_P - r_O) with v_O and w_F by differences here.
  */
 #include "check.h"
 #include "kin.h"
+#include "parse.h"
 
 #include <string.h>
 
@@ -59,6 +64,131 @@ child_R(const double *q, double R[9])
     rodrigues(ey, q[2], Rk), matmul(R, Rk, R);
     rodrigues(axis, q[3], Rk), matmul(R, Rk, R);
     rodrigues(ex, q[0] + q[3], Rk), matmul(R, Rk, R);
+}
+
+/* vel(P, F): frames B (the child of A below), points O (B's origin), P
+ * (from O, sliding with q3) and Q (P's place, from the world's origin). */
+static int frame_b, point_o, point_p, point_q;
+
+static int
+frame_arg(ParseScope *sc, const char *name, SrcLoc at)
+{
+    (void)sc, (void)name, (void)at;
+    return frame_b;
+}
+
+static int
+point_arg(ParseScope *sc, const char *name, SrcLoc at)
+{
+    (void)sc, (void)at;
+    return name[0] == 'P' ? point_p : point_q;
+}
+
+static ParseVal
+no_names(ParseScope *sc, const char *name, SrcLoc at)
+{
+    (void)sc;
+    diag_error(at, "unknown name '%s'", name);
+}
+
+static const char *
+no_leaf(ParseScope *sc, ExprId leaf)
+{
+    (void)sc, (void)leaf;
+    return "?";
+}
+
+static SrcLoc
+where(const ParseSrc *src, size_t off)
+{
+    (void)src;
+    return (SrcLoc){"test", 1, (int)off + 1};
+}
+
+/* The test's own positions: O = R_A [0, 0, 1], P = O + R_A [0.5, q3, 0]. */
+static void
+positions(const double *q, double rO[3], double rP[3], double RB[9])
+{
+    static const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1};
+    double RA[9], Rk[9];
+    rodrigues(ez, q[0], RA);
+    rodrigues(ex, q[1], Rk), matmul(RA, Rk, RA);
+    rodrigues(ey, q[2], Rk), matmul(RA, Rk, RB);
+    for (int i = 0; i < 3; i++) {
+        rO[i] = RA[3 * i + 2];
+        rP[i] = rO[i] + 0.5 * RA[3 * i] + q[3] * RA[3 * i + 1];
+    }
+}
+
+static void
+test_material_velocity(Arena *A)
+{
+    Kin *K = kin_new(A, P, D, 2, 3);
+    ExprId q[NQ];
+    for (int i = 0; i < NQ; i++)
+        q[i] = expr_var(P, i, 0);
+    int fa = kin_frame(K, KIN_WORLD);
+    kin_turn_axis(K, fa, 2, q[0]);
+    kin_turn_axis(K, fa, 0, q[1]);
+    frame_b = kin_frame(K, fa);
+    kin_turn_axis(K, frame_b, 1, q[2]);
+    ExprId ato[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ONE}, atp[3] = {expr_const(P, 0.5), q[3], EXPR_ZERO};
+    point_o = kin_point(K, KIN_ORIGIN, fa, ato);
+    point_p = kin_point(K, point_o, fa, atp);
+    ExprId rp[3];
+    kin_pos(K, point_p, rp);
+    point_q = kin_point(K, KIN_ORIGIN, KIN_WORLD, rp);
+    kin_set_origin(K, frame_b, point_o);
+    ParseScope sc = {P, D, no_names, NULL, no_leaf, 0xff, "a velocity", NQ, frame_arg,
+                     point_arg, K};
+    ParseSrc sp = {"vel(P, B)", 9, where, NULL}, sq = {"vel(Q, B)", 9, where, NULL};
+    ExprId vp[3], vq[3];
+    parse_vector(&sc, &sp, vp);
+    parse_vector(&sc, &sq, vq);
+    double worst_p = 0, worst_q = 0;
+    for (int trial = 0; trial < 50; trial++) {
+        double q0[NQ], v0[NQ], zero[NQ] = {0};
+        for (int i = 0; i < NQ; i++)
+            q0[i] = check_rand(-3, 3), v0[i] = check_rand(-2, 2);
+        ExprEnv env = {.q = {q0, v0, zero}};
+        /* v_O and R_B' by extrapolated central differences (as above) */
+        double vO[3], dRB[9], Dh[2][12];
+        for (int pass = 0; pass < 2; pass++) {
+            double h = pass ? 5e-4 : 1e-3, qp[NQ], qm[NQ], Op[3], Om[3], Pp[3], Pm[3], Rp[9],
+                   Rm[9];
+            for (int i = 0; i < NQ; i++)
+                qp[i] = q0[i] + h * v0[i], qm[i] = q0[i] - h * v0[i];
+            positions(qp, Op, Pp, Rp);
+            positions(qm, Om, Pm, Rm);
+            for (int i = 0; i < 3; i++)
+                Dh[pass][i] = (Op[i] - Om[i]) / (2 * h);
+            for (int i = 0; i < 9; i++)
+                Dh[pass][3 + i] = (Rp[i] - Rm[i]) / (2 * h);
+        }
+        for (int i = 0; i < 3; i++)
+            vO[i] = (4 * Dh[1][i] - Dh[0][i]) / 3;
+        for (int i = 0; i < 9; i++)
+            dRB[i] = (4 * Dh[1][3 + i] - Dh[0][3 + i]) / 3;
+        double rO[3], rP[3], RB[9], W[9] = {0};
+        positions(q0, rO, rP, RB);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                for (int k = 0; k < 3; k++)
+                    W[3 * i + j] += dRB[3 * i + k] * RB[3 * j + k];
+        double w[3] = {W[7], W[2], W[3]}, r[3], want[3];
+        for (int i = 0; i < 3; i++)
+            r[i] = rP[i] - rO[i];
+        for (int i = 0; i < 3; i++)
+            want[i] = vO[i] + w[(i + 1) % 3] * r[(i + 2) % 3] - w[(i + 2) % 3] * r[(i + 1) % 3];
+        for (int i = 0; i < 3; i++) {
+            worst_p = fmax(worst_p, fabs(expr_eval(P, vp[i], &env) - want[i]));
+            worst_q = fmax(worst_q, fabs(expr_eval(P, vq[i], &env) - want[i]));
+        }
+    }
+    CHECK(worst_p <= 1e-10, "vel(P, B), P linked from B's origin (sliding): v_O + w_B x r "
+          "(to %.2g)", worst_p);
+    CHECK(worst_q <= 1e-10, "vel(Q, B), Q at P's place from the world's origin: the same "
+          "(to %.2g)", worst_q);
 }
 
 int
@@ -154,6 +284,7 @@ main(void)
     CHECK(worst_w <= 1e-10, "omega (world) is the vee of R' R^T (to %.2g)", worst_w);
     CHECK(worst_wl <= 1e-10, "omega (own axes) is the vee of R^T R' (to %.2g)", worst_wl);
     CHECK(worst_r <= 1e-14, "a point is from + R at (to %.2g)", worst_r);
+    test_material_velocity(A);
     diff_free(D);
     expr_pool_free(P);
     arena_free(A);

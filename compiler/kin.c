@@ -28,6 +28,7 @@ typedef struct KinPoint {
     int from, f;   /* the point it is offset from (-1: the origin), in frame f */
     ExprId at[3];  /* the offset in f's axes */
     ExprId off[3]; /* and in the world's: R_f at */
+    ExprId v[3];   /* velocity: v_from + w_f x off + R_f at' */
 } KinPoint;
 
 struct Kin {
@@ -50,7 +51,7 @@ kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints)
         K->f[0].R[i] = i % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
     for (int i = 0; i < 3; i++) {
         K->f[0].w[i] = K->f[0].ww[i] = K->f[0].own[i] = EXPR_ZERO;
-        K->pt[0].r[i] = K->pt[0].at[i] = K->pt[0].off[i] = EXPR_ZERO;
+        K->pt[0].r[i] = K->pt[0].at[i] = K->pt[0].off[i] = K->pt[0].v[i] = EXPR_ZERO;
     }
     K->f[0].origin = KIN_ORIGIN;
     K->f[0].parent = -1;
@@ -152,9 +153,19 @@ kin_point(Kin *K, int from, int f, const ExprId at[3])
     if (K->np == K->capp)
         diag_unreachable();
     KinPoint *pt = &K->pt[K->np];
+    ExprPool *P = K->P;
     kin_to_world(K, f, at, pt->off);
+    ExprId rate[3], slide[3];
     for (int i = 0; i < 3; i++)
-        pt->r[i] = expr_add(K->P, K->pt[from].r[i], pt->off[i]), pt->at[i] = at[i];
+        rate[i] = diff_time(K->D, at[i]);
+    kin_to_world(K, f, rate, slide);
+    const ExprId *w = K->f[f].ww, *o = pt->off;
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        ExprId wxo = expr_sub(P, expr_mul(P, w[j], o[k]), expr_mul(P, w[k], o[j]));
+        pt->r[i] = expr_add(P, K->pt[from].r[i], o[i]), pt->at[i] = at[i];
+        pt->v[i] = expr_add(P, K->pt[from].v[i], expr_add(P, wxo, slide[i]));
+    }
     pt->from = from, pt->f = f;
     return K->np++;
 }
@@ -185,6 +196,13 @@ kin_pos(const Kin *K, int p, ExprId out[3])
 {
     for (int i = 0; i < 3; i++)
         out[i] = K->pt[p].r[i];
+}
+
+void
+kin_vel(const Kin *K, int p, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = K->pt[p].v[i];
 }
 
 int

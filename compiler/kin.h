@@ -47,6 +47,10 @@ void kin_to_world(const Kin *K, int f, const ExprId v[3], ExprId out[3]);
 void kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3]);
 /* f's angular velocity in its own components: a body's omega. */
 void kin_omega_local(const Kin *K, int f, ExprId out[3]);
+/* Point p's velocity, by the links' structure: v_from + w_f x (R_f at) +
+ * R_f at', each w a sum of rates along axes (equal to the time derivative
+ * of kin_pos, and built without differentiating a rotation matrix). */
+void kin_vel(const Kin *K, int p, ExprId out[3]);
 /* omega(f) - omega(g) in world components, summed from the turns on the
  * way between them in the tree of frames (nothing that cancels). */
 void kin_omega_rel(const Kin *K, int f, int g, ExprId out[3]);

@@ -48,9 +48,10 @@ static ExprId
 body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
 {
     SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}};
+    int vel = b->has_center_vel; /* the order-1 form frames give */
     for (int k = 0; k < b->dim; k++)
-        centre.pos[k] = b->center[k];
-    ExprId e = particle_square(P, D, &centre, order), half = expr_const(P, 0.5);
+        centre.pos[k] = vel ? b->center_vel[k] : b->center[k];
+    ExprId e = particle_square(P, D, &centre, order - vel), half = expr_const(P, 0.5);
     int nw = b->dim == 2 ? 1 : 3;
     ExprId w[3], Iw[3];
     for (int i = 0; i < nw; i++)

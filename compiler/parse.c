@@ -537,6 +537,8 @@ frame_point_motion(Parser *ps, int p, int f, int order, size_t off, const char *
         /* P offset from the origin O through links o_k = R_fk at_k:
          * v = vel(P) + sum_k (w_F - w_fk) x o_k - R_fk at_k', the form in
          * which a contact point's own motion cancels by structure */
+        /* vel(P) as the rate of pos(P) here, not kin_vel: a contact point
+         * offset and brought back has a position that simplifies away */
         Val v = time_derivative_val(ps, vector_val(rp), off);
         for (k = p; k != o;) {
             ExprId at[3], o3[3], rel[3];
@@ -550,7 +552,9 @@ frame_point_motion(Parser *ps, int p, int f, int order, size_t off, const char *
         }
         return v;
     }
-    Val v = time_derivative_val(ps, vector_val(ro), off);
+    ExprId vo[3];
+    kin_vel(sc->K, o, vo);
+    Val v = vector_val(vo);
     Val wr = cross3(P, w, r);
     if (order == 1)
         return add_val(P, v, wr, 1);
@@ -610,8 +614,8 @@ vec_call(Parser *ps, const VecBuiltin *b, size_t name_off)
                                    b->name);
             break;
         }
-        kin_pos(sc->K, idx[0], a);
-        r = time_derivative_val(ps, vector_val(a), name_off);
+        kin_vel(sc->K, idx[0], a); /* by the links' structure (kin.h) */
+        r = vector_val(a);
         if (b->fn == VF_ACC)
             r = time_derivative_val(ps, r, name_off);
         break;

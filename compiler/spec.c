@@ -1440,6 +1440,10 @@ load_body(Loader *L, yaml_node_t *map, int i)
             Name *nm = find_name(L, cn);
             if (kin_origin(L->K, f) < 0 && nm && nm->kind == NAME_POINT)
                 kin_set_origin(L->K, f, item(L, nm)->kin); /* vel(P, F) moves with it */
+            if (nm && nm->kind == NAME_POINT) { /* its velocity by the links' structure */
+                kin_vel(L->K, item(L, nm)->kin, b->center_vel);
+                b->has_center_vel = 1;
+            }
             L->body_frame[i] = f;
             load_inertia(L, in, b);
             require_inertia(L, in, b);
@@ -2290,6 +2294,8 @@ fold_fixed(Loader *L)
         for (int k = 0; k < 3; k++) {
             VISIT(b->center[k]);
             VISIT(b->omega[k]);
+            if (b->has_center_vel)
+                VISIT(b->center_vel[k]);
         }
         for (int k = 0; k < 9; k++)
             VISIT(b->inertia[k]);

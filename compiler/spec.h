@@ -52,6 +52,8 @@ typedef struct SpecBody {
     ExprId mass;       /* of p and t */
     int dim;           /* 2 or 3 */
     ExprId center[3];  /* centre of mass, of t, q, p */
+    ExprId center_vel[3]; /* its velocity, when frames give it by their structure */
+    int has_center_vel;   /* (kin.h); 0: the time derivative of center */
     ExprId inertia[9]; /* about the centre, body frame, row-major, of p */
     ExprId omega[3];   /* body-frame angular velocity, of t, q, q', p */
     /* rotation: {quaternion: [e0, e1, e2, e3]}: the Euler parameters'

@@ -142,17 +142,18 @@ test_material_velocity(Arena *A)
     ParseScope sc = {P, D, no_names, NULL, no_leaf, 0xff, "a velocity", NQ, frame_arg,
                      point_arg, K};
     ParseSrc sp = {"vel(P, B)", 9, where, NULL}, sq = {"vel(Q, B)", 9, where, NULL};
-    ExprId vp[3], vq[3];
+    ExprId vp[3], vq[3], kv[3];
     parse_vector(&sc, &sp, vp);
     parse_vector(&sc, &sq, vq);
-    double worst_p = 0, worst_q = 0;
+    kin_vel(K, point_p, kv);
+    double worst_p = 0, worst_q = 0, worst_v = 0;
     for (int trial = 0; trial < 50; trial++) {
         double q0[NQ], v0[NQ], zero[NQ] = {0};
         for (int i = 0; i < NQ; i++)
             q0[i] = check_rand(-3, 3), v0[i] = check_rand(-2, 2);
         ExprEnv env = {.q = {q0, v0, zero}};
         /* v_O and R_B' by extrapolated central differences (as above) */
-        double vO[3], dRB[9], Dh[2][12];
+        double vO[3], vP[3], dRB[9], Dh[2][15];
         for (int pass = 0; pass < 2; pass++) {
             double h = pass ? 5e-4 : 1e-3, qp[NQ], qm[NQ], Op[3], Om[3], Pp[3], Pm[3], Rp[9],
                    Rm[9];
@@ -164,7 +165,11 @@ test_material_velocity(Arena *A)
                 Dh[pass][i] = (Op[i] - Om[i]) / (2 * h);
             for (int i = 0; i < 9; i++)
                 Dh[pass][3 + i] = (Rp[i] - Rm[i]) / (2 * h);
+            for (int i = 0; i < 3; i++)
+                Dh[pass][12 + i] = (Pp[i] - Pm[i]) / (2 * h);
         }
+        for (int i = 0; i < 3; i++)
+            vP[i] = (4 * Dh[1][12 + i] - Dh[0][12 + i]) / 3;
         for (int i = 0; i < 3; i++)
             vO[i] = (4 * Dh[1][i] - Dh[0][i]) / 3;
         for (int i = 0; i < 9; i++)
@@ -183,10 +188,13 @@ test_material_velocity(Arena *A)
         for (int i = 0; i < 3; i++) {
             worst_p = fmax(worst_p, fabs(expr_eval(P, vp[i], &env) - want[i]));
             worst_q = fmax(worst_q, fabs(expr_eval(P, vq[i], &env) - want[i]));
+            worst_v = fmax(worst_v, fabs(expr_eval(P, kv[i], &env) - vP[i]));
         }
     }
     CHECK(worst_p <= 1e-10, "vel(P, B), P linked from B's origin (sliding): v_O + w_B x r "
           "(to %.2g)", worst_p);
+    CHECK(worst_v <= 1e-10, "a point's velocity by its links (kin_vel): the rate of its "
+          "position (to %.2g)", worst_v);
     CHECK(worst_q <= 1e-10, "vel(Q, B), Q at P's place from the world's origin: the same "
           "(to %.2g)", worst_q);
 }

@@ -47,7 +47,7 @@ gyroscopic(ExprPool *P, const SpecBody *b, ExprId out[3])
 static ExprId
 body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
 {
-    SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}};
+    SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}, {0}, 0};
     int vel = b->has_center_vel; /* the order-1 form frames give */
     for (int k = 0; k < b->dim; k++)
         centre.pos[k] = vel ? b->center_vel[k] : b->center[k];
@@ -174,8 +174,12 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     }
     m->T = m->V = m->S = EXPR_ZERO;
     for (int k = 0; k < s->npart; k++) {
-        m->T = expr_add(P, m->T, particle_square(P, D, &s->part[k], 1));
-        m->S = expr_add(P, m->S, particle_square(P, D, &s->part[k], 2));
+        SpecParticle at = s->part[k]; /* at a point: its velocity as frames give it */
+        int vel = at.has_vel;
+        for (int i = 0; vel && i < at.dim; i++)
+            at.pos[i] = at.vel[i];
+        m->T = expr_add(P, m->T, particle_square(P, D, &at, 1 - vel));
+        m->S = expr_add(P, m->S, particle_square(P, D, &at, 2 - vel));
     }
     for (int k = 0; k < s->nbody; k++) {
         m->T = expr_add(P, m->T, body_energy(P, D, &s->body[k], 1));

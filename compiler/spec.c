@@ -1239,6 +1239,11 @@ load_particle(Loader *L, yaml_node_t *map, int i)
             diag_error(loc_of(L, v), "particle '%s' has no position", pt->name);
         pt->mass = mass_of(L, mass, "particle", pt->name);
         pt->dim = world_vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
+        Name *nm = pos->type == YAML_SCALAR_NODE ? find_name(L, scalar(L, pos, "a point")) : NULL;
+        if (nm && nm->kind == NAME_POINT) {
+            kin_vel(L->K, item(L, nm)->kin, pt->vel);
+            pt->has_vel = 1;
+        }
     }
 }
 
@@ -2285,8 +2290,11 @@ fold_fixed(Loader *L)
         VISIT(s->input[i].expr);
     for (int i = 0; i < s->npart; i++) {
         VISIT(s->part[i].mass);
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; k < 3; k++) {
             VISIT(s->part[i].pos[k]);
+            if (s->part[i].has_vel)
+                VISIT(s->part[i].vel[k]);
+        }
     }
     for (int i = 0; i < s->nbody; i++) {
         SpecBody *b = &s->body[i];

@@ -41,6 +41,8 @@ typedef struct SpecParticle {
     ExprId mass;   /* of p and t */
     int dim;       /* 2 or 3 */
     ExprId pos[3]; /* of t, q, p, inputs */
+    ExprId vel[3]; /* at a point of frames: its velocity by their structure */
+    int has_vel;   /* (kin.h); 0: the time derivative of pos */
 } SpecParticle;
 
 /* A rigid body: T = 1/2 m |c'|^2 + 1/2 w.I w with w its body-frame

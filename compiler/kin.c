@@ -14,6 +14,13 @@
 
 #include "diag.h"
 
+/* One turn of a frame: its matrix, unit axis (in the axes before it) and
+ * rate, for angular velocities relative to an ancestor in its axes. */
+typedef struct KinTurn {
+    ExprId Rk[9], a[3], rate;
+    struct KinTurn *next;
+} KinTurn;
+
 typedef struct KinFrame {
     ExprId R[9]; /* row-major, columns the axes in world components */
     ExprId w[3]; /* angular velocity relative to the world, own components */
@@ -21,6 +28,7 @@ typedef struct KinFrame {
     ExprId own[3]; /* its own turns' part of ww: ww = parent's ww + own */
     int parent;  /* -1 for the world */
     int origin;  /* a point, or -1 */
+    KinTurn *turns, *last; /* its own, in order */
 } KinFrame;
 
 typedef struct KinPoint {
@@ -32,6 +40,7 @@ typedef struct KinPoint {
 } KinPoint;
 
 struct Kin {
+    Arena *A;
     ExprPool *P;
     Diff *D;
     KinFrame *f;
@@ -43,7 +52,7 @@ Kin *
 kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints)
 {
     Kin *K = arena_alloc(A, sizeof *K);
-    K->P = P, K->D = D;
+    K->A = A, K->P = P, K->D = D;
     K->capf = nframes + 1, K->capp = npoints + 1;
     K->f = arena_new_array(A, KinFrame, K->capf);
     K->pt = arena_new_array(A, KinPoint, K->capp);
@@ -68,6 +77,7 @@ kin_frame(Kin *K, int parent)
     K->f[K->nf] = K->f[parent];
     K->f[K->nf].origin = -1;
     K->f[K->nf].parent = parent;
+    K->f[K->nf].turns = K->f[K->nf].last = NULL;
     for (int i = 0; i < 3; i++)
         K->f[K->nf].own[i] = EXPR_ZERO;
     return K->nf++;
@@ -97,6 +107,18 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
             R[3 * i + j] = s;
         }
     ExprId rate = diff_time(K->D, th);
+    KinTurn *turn = arena_alloc(K->A, sizeof *turn);
+    for (int i = 0; i < 9; i++)
+        turn->Rk[i] = Rk[i];
+    for (int i = 0; i < 3; i++)
+        turn->a[i] = a[i];
+    turn->rate = rate;
+    turn->next = NULL;
+    if (F->last)
+        F->last->next = turn;
+    else
+        F->turns = turn;
+    F->last = turn;
     for (int j = 0; j < 3; j++) {
         ExprId s = expr_mul(P, a[j], rate);
         for (int k = 0; k < 3; k++)
@@ -155,16 +177,19 @@ kin_point(Kin *K, int from, int f, const ExprId at[3])
     KinPoint *pt = &K->pt[K->np];
     ExprPool *P = K->P;
     kin_to_world(K, f, at, pt->off);
-    ExprId rate[3], slide[3];
-    for (int i = 0; i < 3; i++)
-        rate[i] = diff_time(K->D, at[i]);
-    kin_to_world(K, f, rate, slide);
-    const ExprId *w = K->f[f].ww, *o = pt->off;
+    /* w x (R at) + R at' = R (w_f x at + at'), w_f in f's own axes: the
+     * product formed where at is simple, then turned once */
+    ExprId local[3], turned[3];
+    const ExprId *w = K->f[f].w;
     for (int i = 0; i < 3; i++) {
         int j = (i + 1) % 3, k = (i + 2) % 3;
-        ExprId wxo = expr_sub(P, expr_mul(P, w[j], o[k]), expr_mul(P, w[k], o[j]));
-        pt->r[i] = expr_add(P, K->pt[from].r[i], o[i]), pt->at[i] = at[i];
-        pt->v[i] = expr_add(P, K->pt[from].v[i], expr_add(P, wxo, slide[i]));
+        ExprId wxa = expr_sub(P, expr_mul(P, w[j], at[k]), expr_mul(P, w[k], at[j]));
+        local[i] = expr_add(P, wxa, diff_time(K->D, at[i]));
+    }
+    kin_to_world(K, f, local, turned);
+    for (int i = 0; i < 3; i++) {
+        pt->r[i] = expr_add(P, K->pt[from].r[i], pt->off[i]), pt->at[i] = at[i];
+        pt->v[i] = expr_add(P, K->pt[from].v[i], turned[i]);
     }
     pt->from = from, pt->f = f;
     return K->np++;
@@ -231,6 +256,42 @@ is_ancestor(const Kin *K, int a, int f)
         if (f == a)
             return 1;
     return 0;
+}
+
+int
+kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3])
+{
+    ExprPool *P = K->P;
+    int path[64], np = 0; /* f's ancestors below g, from f up */
+    for (int h = f; h != g; h = K->f[h].parent) {
+        if (h <= KIN_WORLD || np == (int)(sizeof path / sizeof path[0]))
+            return 0; /* g is not an ancestor (or the tree is too deep to care) */
+        path[np++] = h;
+    }
+    ExprId Q[9], w[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    for (int i = 0; i < 9; i++)
+        Q[i] = i % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+    for (int k = np - 1; k >= 0; k--)
+        for (const KinTurn *t = K->f[path[k]].turns; t; t = t->next) {
+            ExprId Qn[9];
+            for (int i = 0; i < 3; i++) {
+                ExprId s = EXPR_ZERO;
+                for (int j = 0; j < 3; j++)
+                    s = expr_add(P, s, expr_mul(P, Q[3 * i + j], t->a[j]));
+                w[i] = expr_add(P, w[i], expr_mul(P, s, t->rate));
+                for (int j = 0; j < 3; j++) {
+                    ExprId q = EXPR_ZERO;
+                    for (int m = 0; m < 3; m++)
+                        q = expr_add(P, q, expr_mul(P, Q[3 * i + m], t->Rk[3 * m + j]));
+                    Qn[3 * i + j] = q;
+                }
+            }
+            for (int i = 0; i < 9; i++)
+                Q[i] = Qn[i];
+        }
+    for (int i = 0; i < 3; i++)
+        out[i] = w[i];
+    return 1;
 }
 
 void

@@ -54,6 +54,9 @@ void kin_vel(const Kin *K, int p, ExprId out[3]);
 /* omega(f) - omega(g) in world components, summed from the turns on the
  * way between them in the tree of frames (nothing that cancels). */
 void kin_omega_rel(const Kin *K, int f, int g, ExprId out[3]);
+/* The same in g's own axes when g is an ancestor of f (1), from the turns
+ * between them alone: 0 otherwise. */
+int kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3]);
 /* Point p's link: the point it is offset from (-1 for the origin), the
  * frame of the offset, and the offset in that frame's and the world's
  * axes. */

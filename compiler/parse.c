@@ -543,8 +543,14 @@ frame_point_motion(Parser *ps, int p, int f, int order, size_t off, const char *
         for (k = p; k != o;) {
             ExprId at[3], o3[3], rel[3];
             int fk, from = kin_point_link(sc->K, k, &fk, at, o3);
-            kin_omega_rel(sc->K, f, fk, rel);
-            v = add_val(P, v, cross3(P, rel, o3), 1);
+            if (kin_omega_rel_in(sc->K, f, fk, rel)) { /* in fk's axes, where at is */
+                Val c = cross3(P, rel, at);
+                kin_to_world(sc->K, fk, c.e, c.e);
+                v = add_val(P, v, c, 1);
+            } else {
+                kin_omega_rel(sc->K, f, fk, rel);
+                v = add_val(P, v, cross3(P, rel, o3), 1);
+            }
             Val rate = time_derivative_val(ps, vector_val(at), off);
             kin_to_world(sc->K, fk, rate.e, rate.e);
             v = add_val(P, v, rate, -1);

@@ -14,6 +14,11 @@
 
 #include "diag.h"
 
+/* A path of frames longer than this (a chain of 64 frames between a link
+ * and the frame it moves with) takes the general form of vel(P, F)
+ * instead of the one in the link's axes: the same value, larger. */
+enum { KIN_PATH_MAX = 64 };
+
 /* One turn of a frame: its matrix, unit axis (in the axes before it) and
  * rate, for angular velocities relative to an ancestor in its axes. */
 typedef struct KinTurn {
@@ -36,7 +41,7 @@ typedef struct KinPoint {
     int from, f;   /* the point it is offset from (-1: the origin), in frame f */
     ExprId at[3];  /* the offset in f's axes */
     ExprId off[3]; /* and in the world's: R_f at */
-    ExprId v[3];   /* velocity: v_from + w_f x off + R_f at' */
+    ExprId v[3];   /* velocity: v_from + R_f (w_f x at + at'), w_f in f's axes */
 } KinPoint;
 
 struct Kin {
@@ -262,10 +267,10 @@ int
 kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3])
 {
     ExprPool *P = K->P;
-    int path[64], np = 0; /* f's ancestors below g, from f up */
+    int path[KIN_PATH_MAX], np = 0; /* f's ancestors below g, from f up */
     for (int h = f; h != g; h = K->f[h].parent) {
-        if (h <= KIN_WORLD || np == (int)(sizeof path / sizeof path[0]))
-            return 0; /* g is not an ancestor (or the tree is too deep to care) */
+        if (h <= KIN_WORLD || np == KIN_PATH_MAX)
+            return 0; /* g is not an ancestor, or the path is too long */
         path[np++] = h;
     }
     ExprId Q[9], w[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};

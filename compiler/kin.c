@@ -53,6 +53,58 @@ struct Kin {
     int nf, np, capf, capp;
 };
 
+/* C = A B, 3 x 3 row-major (C may be A). */
+static void
+matmul3(ExprPool *P, const ExprId *A, const ExprId *B, ExprId *C)
+{
+    ExprId T[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            ExprId s = EXPR_ZERO;
+            for (int k = 0; k < 3; k++)
+                s = expr_add(P, s, expr_mul(P, A[3 * i + k], B[3 * k + j]));
+            T[3 * i + j] = s;
+        }
+    for (int i = 0; i < 9; i++)
+        C[i] = T[i];
+}
+
+/* out = R v, or R^T v (transpose); out may be v. */
+static void
+matvec3(ExprPool *P, const ExprId *R, int transpose, const ExprId *v, ExprId *out)
+{
+    ExprId r[3];
+    for (int i = 0; i < 3; i++) {
+        ExprId s = EXPR_ZERO;
+        for (int k = 0; k < 3; k++)
+            s = expr_add(P, s, expr_mul(P, transpose ? R[3 * k + i] : R[3 * i + k], v[k]));
+        r[i] = s;
+    }
+    for (int i = 0; i < 3; i++)
+        out[i] = r[i];
+}
+
+void
+kin_cross(ExprPool *P, const ExprId *a, const ExprId *b, ExprId *out)
+{
+    ExprId c[3];
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        c[i] = expr_sub(P, expr_mul(P, a[j], b[k]), expr_mul(P, a[k], b[j]));
+    }
+    for (int i = 0; i < 3; i++)
+        out[i] = c[i];
+}
+
+ExprId
+kin_dot(ExprPool *P, const ExprId *a, const ExprId *b)
+{
+    ExprId s = EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        s = expr_add(P, s, expr_mul(P, a[i], b[i]));
+    return s;
+}
+
 Kin *
 kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints)
 {
@@ -102,15 +154,9 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
 {
     ExprPool *P = K->P;
     KinFrame *F = &K->f[f];
-    ExprId R[9], w[3], axis[3];
+    ExprId w[3], axis[3];
     kin_to_world(K, f, a, axis);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            ExprId s = EXPR_ZERO;
-            for (int k = 0; k < 3; k++)
-                s = expr_add(P, s, expr_mul(P, F->R[3 * i + k], Rk[3 * k + j]));
-            R[3 * i + j] = s;
-        }
+    matmul3(P, F->R, Rk, F->R);
     ExprId rate = diff_time(K->D, th);
     KinTurn *turn = arena_alloc(K->A, sizeof *turn);
     for (int i = 0; i < 9; i++)
@@ -124,14 +170,12 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
     else
         F->turns = turn;
     F->last = turn;
-    for (int j = 0; j < 3; j++) {
-        ExprId s = expr_mul(P, a[j], rate);
+    for (int j = 0; j < 3; j++) { /* a th' + Rk^T w */
+        ExprId sum = expr_mul(P, a[j], rate);
         for (int k = 0; k < 3; k++)
-            s = expr_add(P, s, expr_mul(P, Rk[3 * k + j], F->w[k]));
-        w[j] = s;
+            sum = expr_add(P, sum, expr_mul(P, Rk[3 * k + j], F->w[k]));
+        w[j] = sum;
     }
-    for (int i = 0; i < 9; i++)
-        F->R[i] = R[i];
     for (int i = 0; i < 3; i++)
         F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], expr_mul(P, axis[i], rate)),
         F->own[i] = expr_add(P, F->own[i], expr_mul(P, axis[i], rate));
@@ -185,12 +229,9 @@ kin_point(Kin *K, int from, int f, const ExprId at[3])
     /* w x (R at) + R at' = R (w_f x at + at'), w_f in f's own axes: the
      * product formed where at is simple, then turned once */
     ExprId local[3], turned[3];
-    const ExprId *w = K->f[f].w;
-    for (int i = 0; i < 3; i++) {
-        int j = (i + 1) % 3, k = (i + 2) % 3;
-        ExprId wxa = expr_sub(P, expr_mul(P, w[j], at[k]), expr_mul(P, w[k], at[j]));
-        local[i] = expr_add(P, wxa, diff_time(K->D, at[i]));
-    }
+    kin_cross(P, K->f[f].w, at, local);
+    for (int i = 0; i < 3; i++)
+        local[i] = expr_add(P, local[i], diff_time(K->D, at[i]));
     kin_to_world(K, f, local, turned);
     for (int i = 0; i < 3; i++) {
         pt->r[i] = expr_add(P, K->pt[from].r[i], pt->off[i]), pt->at[i] = at[i];
@@ -278,21 +319,11 @@ kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3])
         Q[i] = i % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
     for (int k = np - 1; k >= 0; k--)
         for (const KinTurn *t = K->f[path[k]].turns; t; t = t->next) {
-            ExprId Qn[9];
-            for (int i = 0; i < 3; i++) {
-                ExprId s = EXPR_ZERO;
-                for (int j = 0; j < 3; j++)
-                    s = expr_add(P, s, expr_mul(P, Q[3 * i + j], t->a[j]));
-                w[i] = expr_add(P, w[i], expr_mul(P, s, t->rate));
-                for (int j = 0; j < 3; j++) {
-                    ExprId q = EXPR_ZERO;
-                    for (int m = 0; m < 3; m++)
-                        q = expr_add(P, q, expr_mul(P, Q[3 * i + m], t->Rk[3 * m + j]));
-                    Qn[3 * i + j] = q;
-                }
-            }
-            for (int i = 0; i < 9; i++)
-                Q[i] = Qn[i];
+            ExprId axis[3];
+            matvec3(P, Q, 0, t->a, axis);
+            for (int i = 0; i < 3; i++)
+                w[i] = expr_add(P, w[i], expr_mul(P, axis[i], t->rate));
+            matmul3(P, Q, t->Rk, Q);
         }
     for (int i = 0; i < 3; i++)
         out[i] = w[i];
@@ -316,27 +347,11 @@ kin_omega_rel(const Kin *K, int f, int g, ExprId out[3])
 void
 kin_to_world(const Kin *K, int f, const ExprId v[3], ExprId out[3])
 {
-    ExprId r[3];
-    for (int i = 0; i < 3; i++) {
-        ExprId s = EXPR_ZERO;
-        for (int k = 0; k < 3; k++)
-            s = expr_add(K->P, s, expr_mul(K->P, K->f[f].R[3 * i + k], v[k]));
-        r[i] = s;
-    }
-    for (int i = 0; i < 3; i++)
-        out[i] = r[i];
+    matvec3(K->P, K->f[f].R, 0, v, out);
 }
 
 void
 kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3])
 {
-    ExprId r[3];
-    for (int k = 0; k < 3; k++) {
-        ExprId s = EXPR_ZERO;
-        for (int i = 0; i < 3; i++)
-            s = expr_add(K->P, s, expr_mul(K->P, K->f[f].R[3 * i + k], w[i]));
-        r[k] = s;
-    }
-    for (int k = 0; k < 3; k++)
-        out[k] = r[k];
+    matvec3(K->P, K->f[f].R, 1, w, out);
 }

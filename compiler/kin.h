@@ -17,6 +17,10 @@
 
 typedef struct Kin Kin;
 
+/* a x b and a . b of world-component vectors (out may be a or b). */
+void kin_cross(ExprPool *P, const ExprId *a, const ExprId *b, ExprId *out);
+ExprId kin_dot(ExprPool *P, const ExprId *a, const ExprId *b);
+
 /* Room for nframes and npoints besides the world and its origin. */
 Kin *kin_new(Arena *A, ExprPool *P, Diff *D, int nframes, int npoints);
 

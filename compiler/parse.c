@@ -331,24 +331,12 @@ need_vector(Parser *ps, Val v, size_t off, const char *where)
                    "vel(P), omega(F), F.x or vec(F, a, b, c))", where);
 }
 
-static ExprId
-dot3(ExprPool *P, const ExprId *a, const ExprId *b)
-{
-    ExprId s = EXPR_ZERO;
-    for (int i = 0; i < 3; i++)
-        s = expr_add(P, s, expr_mul(P, a[i], b[i]));
-    return s;
-}
-
 static Val
 cross3(ExprPool *P, const ExprId *a, const ExprId *b)
 {
-    ExprId c[3];
-    for (int i = 0; i < 3; i++) {
-        int j = (i + 1) % 3, k = (i + 2) % 3;
-        c[i] = expr_sub(P, expr_mul(P, a[j], b[k]), expr_mul(P, a[k], b[j]));
-    }
-    return vector_val(c);
+    Val v = {1, {0, 0, 0}};
+    kin_cross(P, a, b, v.e);
+    return v;
 }
 
 static Val
@@ -655,7 +643,7 @@ vec_call(Parser *ps, const VecBuiltin *b, size_t name_off)
         break;
     default: /* VF_NORM */
         need_vector(ps, v[0], voff[0], "norm()");
-        r = scalar_val(expr_unary(P, EXPR_SQRT, dot3(P, v[0].e, v[0].e)));
+        r = scalar_val(expr_unary(P, EXPR_SQRT, kin_dot(P, v[0].e, v[0].e)));
         break;
     }
     check_val(ps, r, NULL, name_off);
@@ -697,7 +685,7 @@ call(Parser *ps, const char *name, size_t name_off)
     if (b->op == BUILTIN_DOT && n == 2) {
         need_vector(ps, args[0], offs[0], "dot(a, b)");
         need_vector(ps, args[1], offs[1], "dot(a, b)");
-        return scalar_val(dot3(P, args[0].e, args[1].e));
+        return scalar_val(kin_dot(P, args[0].e, args[1].e));
     }
     if (n != b->arity)
         diag_error(at(ps, name_off), "%s takes %d argument%s, not %d", name, b->arity,

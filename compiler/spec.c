@@ -2385,24 +2385,17 @@ static const char *const top_keys[] = {
     NULL,
 };
 
+/* `kinetic:` (i = 0) or `potential:` (i = 1) terms. */
 static void
-load_kinetic(Loader *L, yaml_node_t *root, int i)
+load_energy(Loader *L, yaml_node_t *root, int i)
 {
-    (void)i;
-    yaml_node_t *n = section(L, root, "kinetic", 0);
-    if (n)
-        L->s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term",
-                                   &L->s->nkinetic);
-}
-
-static void
-load_potential(Loader *L, yaml_node_t *root, int i)
-{
-    (void)i;
-    yaml_node_t *n = section(L, root, "potential", 0);
-    if (n)
+    yaml_node_t *n = section(L, root, i ? "potential" : "kinetic", 0);
+    if (n && i)
         L->s->potential = load_terms(L, n, ALLOW_POTENTIAL, "a potential-energy term",
                                      &L->s->npotential);
+    else if (n)
+        L->s->kinetic = load_terms(L, n, ALLOW_KINETIC, "a kinetic-energy term",
+                                   &L->s->nkinetic);
 }
 
 static void
@@ -2469,8 +2462,8 @@ load_root(Loader *L, yaml_node_t *root)
         load_particles(L, n);
     if ((n = section(L, root, "bodies", 1)))
         load_bodies(L, n);
-    checked(L, load_kinetic, root, 0);
-    checked(L, load_potential, root, 0);
+    checked(L, load_energy, root, 0);
+    checked(L, load_energy, root, 1);
     if ((n = section(L, root, "effects", 1)))
         load_effects(L, n);
     if ((n = section(L, root, "constraints", 1)))

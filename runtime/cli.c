@@ -669,44 +669,47 @@ apply_sets(Cli *c, eomc_sim *sim)
     return EOMC_OK;
 }
 
+/* NAME (a coordinate) or NAME' (its velocity) given to option opt: its
+ * index in the state (i, or n + i), or -1 when it names neither, said on
+ * stderr with the nearest name. */
+static int
+state_index(Cli *c, const eomc_model *m, const char *opt, const char *name)
+{
+    int n = m->nq;
+    size_t len = strlen(name);
+    if (len > 2 && name[len - 1] == '\'' && name[len - 2] == '\'') {
+        fprintf(stderr, "%s: %s: '%s' is an acceleration: only coordinates (x) and "
+                "velocities (x') make the initial state; the accelerations follow from "
+                "the equations\n", c->prog, opt, name);
+        return -1;
+    }
+    int vel = len > 1 && name[len - 1] == '\'';
+    for (int i = 0; i < n; i++)
+        if (strlen(m->q_names[i]) == len - (size_t)vel &&
+            !strncmp(name, m->q_names[i], len - (size_t)vel))
+            return i + (vel ? n : 0);
+    fprintf(stderr, "%s: %s: '%s' is not a coordinate or velocity%s; valid names: ", c->prog,
+            opt, name, nearest(name, m->q_names, n, vel ? "'" : ""));
+    list_names(stderr, m->q_names, n, "");
+    fprintf(stderr, ", ");
+    list_names(stderr, m->q_names, n, "'");
+    fprintf(stderr, "\n");
+    return -1;
+}
+
 static int
 apply_inits(Cli *c, const eomc_model *m, double *x)
 {
-    int n = m->nq;
     for (int k = 0; k < c->ninit; k++) {
         char *name = NULL;
         double val = 0;
         if (name_value(c, "--init", c->init[k], &name, &val))
             return EOMC_EUSAGE;
-        size_t len = strlen(name);
-        int vel = len > 1 && name[len - 1] == '\'', found = -1;
-        if (len > 2 && name[len - 1] == '\'' && name[len - 2] == '\'') {
-            fprintf(stderr, "%s: --init: '%s' is an acceleration: only coordinates (x) and "
-                    "velocities (x') make the initial state; the accelerations follow from "
-                    "the equations\n", c->prog, name);
-            free(name);
-            return EOMC_EUSAGE;
-        }
-        if (vel)
-            name[len - 1] = '\0';
-        for (int i = 0; i < n && found < 0; i++)
-            if (strcmp(name, m->q_names[i]) == 0)
-                found = i;
-        if (found < 0) {
-            if (vel)
-                name[len - 1] = '\'';
-            const char *hint = nearest(name, m->q_names, n, vel ? "'" : "");
-            fprintf(stderr, "%s: --init: '%s' is not a coordinate or velocity%s; "
-                    "valid names: ", c->prog, name, hint);
-            list_names(stderr, m->q_names, n, "");
-            fprintf(stderr, ", ");
-            list_names(stderr, m->q_names, n, "'");
-            fprintf(stderr, "\n");
-            free(name);
-            return EOMC_EUSAGE;
-        }
-        x[found + (vel ? n : 0)] = val;
+        int i = state_index(c, m, "--init", name);
         free(name);
+        if (i < 0)
+            return EOMC_EUSAGE;
+        x[i] = val;
     }
     return EOMC_OK;
 }
@@ -945,7 +948,6 @@ set_stabilize(Cli *c, eomc_sim *sim)
 static int
 hold_list(Cli *c, const eomc_model *m, unsigned char *hold)
 {
-    int n = m->nq;
     for (const char *p = c->hold; *p;) {
         size_t len = strcspn(p, ",");
         char name[256];
@@ -954,24 +956,10 @@ hold_list(Cli *c, const eomc_model *m, unsigned char *hold)
                          "(x') separated by commas", c->hold);
         memcpy(name, p, len);
         name[len] = '\0';
-        int vel = name[len - 1] == '\'', found = -1;
-        if (vel)
-            name[len - 1] = '\0';
-        for (int i = 0; i < n && found < 0; i++)
-            if (!strcmp(name, m->q_names[i]))
-                found = i;
-        if (found < 0 || (len > 1 && vel && name[len - 2] == '\'')) {
-            if (vel)
-                name[len - 1] = '\'';
-            fprintf(stderr, "%s: --hold: '%s' is not a coordinate or velocity%s; valid "
-                    "names: ", c->prog, name, nearest(name, m->q_names, n, vel ? "'" : ""));
-            list_names(stderr, m->q_names, n, "");
-            fprintf(stderr, ", ");
-            list_names(stderr, m->q_names, n, "'");
-            fprintf(stderr, "\n");
+        int i = state_index(c, m, "--hold", name);
+        if (i < 0)
             return EOMC_EUSAGE;
-        }
-        hold[found + (vel ? n : 0)] = 1;
+        hold[i] = 1;
         p += len;
         p += *p == ',';
     }

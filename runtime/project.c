@@ -33,6 +33,7 @@ struct Proj {
     int *moves, nmoves;        /* [n] the coordinates (or velocities) a level moves */
     double *col;               /* [n] one solve's right-hand side, on those */
     const unsigned char *hold; /* [2n] what the caller keeps (q, then v), or NULL */
+    int factored;              /* L holds M on moves, for this proj_apply */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
@@ -245,6 +246,9 @@ static int
 metric(Proj *j, int level)
 {
     int n = j->n, nm = 0;
+    /* the velocities' metric is the positions' when the same ones move */
+    if (level == 1 && j->factored && (!j->hold || !memcmp(j->hold, j->hold + n, (size_t)n)))
+        return PROJ_OK;
     for (int i = 0; i < n; i++)
         if (!j->hold || !j->hold[level * n + i])
             j->moves[nm++] = i;
@@ -252,7 +256,10 @@ metric(Proj *j, int level)
     for (int a = 0; a < nm; a++)
         for (int b = 0; b < nm; b++)
             j->L[a * nm + b] = j->M[j->moves[a] * n + j->moves[b]];
-    return nm && la_ldlt_factor(j->L, nm, j->rel, j->perm) != 0 ? PROJ_NOT_PD : PROJ_OK;
+    if (nm && la_ldlt_factor(j->L, nm, j->rel, j->perm) != 0)
+        return PROJ_NOT_PD;
+    j->factored = 1;
+    return PROJ_OK;
 }
 
 static int
@@ -286,6 +293,7 @@ proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const 
         return PROJ_OK;
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
     j->hold = hold;
+    j->factored = 0;
     int rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)
         rc = project_level(j, t, q, v, p, u, *level = 1);

@@ -7,8 +7,8 @@
  * initial one (coordinates and velocities moved by up to 0.3 (1 + |x|),
  * time in [0, 1]), projected onto the constraints:
  *  - in extended precision (each model's M, h, B and b in long double,
- *    [M B^T; B 0] [q''; lambda] = [-h; -b] solved here by Gaussian
- *    elimination in long double), q'' and the multipliers agree to 1e-13,
+ *    [M B^T; B 0] [q''; lambda] = [-h; -b] solved by the runtime's
+ *    extended-precision LU), q'' and the multipliers agree to 1e-13,
  *    each component relative to itself (plus a hundredth of its own
  *    largest over the states, for one passing near zero): the derivations
  *    are the same, not only close;
@@ -21,6 +21,7 @@
  */
 #include "../unit/check.h"
 #include "eomc.h"
+#include "linalg.h"
 
 #include <stdlib.h>
 
@@ -30,57 +31,32 @@ enum { NSTATES = 100, MAXN = 64 };
 #define TOL_EXT 1e-13
 #define TOL_DOUBLE 1e-12
 
-/* [M B^T; B 0] [a; lam] = [-h; -b] at (t, q, v) in long double: out[n +
- * nc]; 0, or -1 on a zero pivot. */
+/* [M B^T; B 0] [a; lam] = [-h; -b] at (t, q, v) in long double, by the
+ * runtime's extended-precision LU (linalg.h, the reference solution's):
+ * out[n + nc]; 0, or -1 when the system is singular. */
 static int
 solve_ext(const eomc_model_ext *x, int n, int nc, const long double *p, double t,
           const double *q, const double *v, long double *out)
 {
-    int N = n + nc;
+    int N = n + nc, perm[MAXN];
     long double Q[MAXN], V[MAXN], A0[MAXN] = {0}, M[MAXN * MAXN], h[MAXN], f[MAXN], B[MAXN * MAXN];
-    long double K[MAXN * (MAXN + 1)];
+    long double K[MAXN * MAXN], d[MAXN], scale[2 * MAXN];
     for (int i = 0; i < n; i++)
         Q[i] = q[i], V[i] = v[i];
     x->mass_bias(t, Q, V, p, NULL, M, h);
     if (nc)
         x->constraint(t, Q, V, A0, p, NULL, f, B);
-    for (int i = 0; i < N; i++)
-        for (int j = 0; j <= N; j++) {
-            long double e = 0;
-            if (j == N)
-                e = i < n ? -h[i] : -f[i - n];
-            else if (i < n && j < n)
-                e = M[i * n + j];
-            else if (i < n && j >= n)
-                e = B[(j - n) * n + i];
-            else if (i >= n && j < n)
-                e = B[(i - n) * n + j];
-            K[i * (N + 1) + j] = e;
-        }
-    for (int c = 0; c < N; c++) {
-        int piv = c;
-        for (int r = c + 1; r < N; r++)
-            if (fabsl(K[r * (N + 1) + c]) > fabsl(K[piv * (N + 1) + c]))
-                piv = r;
-        if (K[piv * (N + 1) + c] == 0)
-            return -1;
-        for (int j = 0; j <= N; j++) {
-            long double tmp = K[c * (N + 1) + j];
-            K[c * (N + 1) + j] = K[piv * (N + 1) + j];
-            K[piv * (N + 1) + j] = tmp;
-        }
-        for (int r = c + 1; r < N; r++) {
-            long double m = K[r * (N + 1) + c] / K[c * (N + 1) + c];
-            for (int j = c; j <= N; j++)
-                K[r * (N + 1) + j] -= m * K[c * (N + 1) + j];
-        }
+    for (int i = 0; i < N; i++) {
+        for (int j = 0; j < N; j++)
+            K[i * N + j] = i < n && j < n ? M[i * n + j]
+                         : i < n && j >= n ? B[(j - n) * n + i]
+                         : i >= n && j < n ? B[(i - n) * n + j] : 0;
+        out[i] = i < n ? -h[i] : -f[i - n];
     }
-    for (int r = N - 1; r >= 0; r--) {
-        long double s = K[r * (N + 1) + N];
-        for (int j = r + 1; j < N; j++)
-            s -= K[r * (N + 1) + j] * out[j];
-        out[r] = s / K[r * (N + 1) + r];
-    }
+    la_ext_kkt_scaling(K, n, nc, d);
+    if (la_ext_lu_factor(K, N, perm, scale, d) != 0)
+        return -1;
+    la_ext_lu_solve(K, N, perm, scale, out);
     return 0;
 }
 

@@ -18,7 +18,7 @@ derive_row(Eom *e, Diff *D, const ExprId *accel, const ExprId *leaves,
            ExprId *grad, int i)
 {
     int n = e->n, nu = e->nu, nl = 2 * n + nu + 1;
-    for (int j = 0; j <= i; j++)
+    for (int j = 0; !e->form->mass && j <= i; j++)
         e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, e->E[i], accel[j]);
     diff_gradient(D, e->E[i], nl, leaves, grad);
     for (int j = 0; j < n; j++) {
@@ -113,7 +113,7 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
     e->nu = nu;
     e->form = f;
     e->E = E;
-    e->M = arena_new_array(A, ExprId, n * n);
+    e->M = f->mass ? f->mass(m, A, P) : arena_new_array(A, ExprId, n * n);
     e->h = arena_new_array(A, ExprId, n);
     e->dEdq = arena_new_array(A, ExprId, n * n);
     e->dEdv = arena_new_array(A, ExprId, n * n);

@@ -23,6 +23,7 @@ enum { KIN_PATH_MAX = 64 };
  * rate, for angular velocities relative to an ancestor in its axes. */
 typedef struct KinTurn {
     ExprId Rk[9], a[3], rate;
+    ExprId aw[3]; /* the axis in world components */
     struct KinTurn *next;
 } KinTurn;
 
@@ -162,7 +163,7 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
     for (int i = 0; i < 9; i++)
         turn->Rk[i] = Rk[i];
     for (int i = 0; i < 3; i++)
-        turn->a[i] = a[i];
+        turn->a[i] = a[i], turn->aw[i] = axis[i];
     turn->rate = rate;
     turn->next = NULL;
     if (F->last)
@@ -295,8 +296,8 @@ own_up_to(const Kin *K, int f, int a, ExprId out[3])
             out[i] = expr_add(K->P, out[i], K->f[f].own[i]);
 }
 
-static int
-is_ancestor(const Kin *K, int a, int f)
+int
+kin_is_ancestor(const Kin *K, int a, int f)
 {
     for (; f >= 0; f = K->f[f].parent)
         if (f == a)
@@ -334,7 +335,7 @@ void
 kin_omega_rel(const Kin *K, int f, int g, ExprId out[3])
 {
     int a = g; /* the nearest common ancestor */
-    while (!is_ancestor(K, a, f))
+    while (!kin_is_ancestor(K, a, f))
         a = K->f[a].parent;
     ExprId up[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
     ExprId down[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
@@ -354,4 +355,29 @@ void
 kin_to_frame(const Kin *K, int f, const ExprId w[3], ExprId out[3])
 {
     matvec3(K->P, K->f[f].R, 1, w, out);
+}
+
+int kin_nframes(const Kin *K) { return K->nf; }
+int kin_parent(const Kin *K, int f) { return K->f[f].parent; }
+int kin_npoints(const Kin *K) { return K->np; }
+
+int
+kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
+{
+    const KinTurn *t = K->f[f].turns;
+    for (; t && k > 0; k--)
+        t = t->next;
+    if (!t)
+        return 0;
+    *rate = t->rate;
+    for (int i = 0; i < 3; i++)
+        axis[i] = t->aw[i];
+    return 1;
+}
+
+void
+kin_rotation(const Kin *K, int f, ExprId R[9])
+{
+    for (int i = 0; i < 9; i++)
+        R[i] = K->f[f].R[i];
 }

@@ -66,4 +66,17 @@ int kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3]);
  * axes. */
 int kin_point_link(const Kin *K, int p, int *f, ExprId at[3], ExprId off[3]);
 
+/* The tree's structure, for the recursive form (forms/newton_euler.c).
+ * Frames are numbered after their parents; the world is frame 0, its
+ * parent -1.  kin_is_ancestor counts f as its own ancestor. */
+int kin_nframes(const Kin *K);
+int kin_npoints(const Kin *K);
+int kin_parent(const Kin *K, int f);
+int kin_is_ancestor(const Kin *K, int a, int f);
+/* Frame f's own turn k (0 the first): its rate (the angle's time
+ * derivative) and its axis in world components; 0 past the last turn. */
+int kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3]);
+/* f's rotation matrix, row-major (columns its axes in the world's). */
+void kin_rotation(const Kin *K, int f, ExprId R[9]);
+
 #endif

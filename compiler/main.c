@@ -55,7 +55,9 @@ usage(FILE *f)
         "                   the scene's `fix:`); the simulator's --set refuses it then\n"
         "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
-        "  --form NAME      equation form: %s (default lagrange)\n"
+        "  --form NAME      equation form: %s;\n"
+        "                   default newton-euler for a tree of turning joints\n"
+        "                   (docs/spec.md), lagrange otherwise\n"
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
         "  --stats          print the operation counts of each emitted function\n"
@@ -165,12 +167,10 @@ parse_args(int argc, char **argv, Options *o)
     }
     if (!o->spec)
         usage_error("%s: no spec file given", o->cmd);
-    if (!o->form)
-        o->form = "lagrange";
     if (o->jacobian && strcmp(o->jacobian, "auto") && strcmp(o->jacobian, "unrolled") &&
         strcmp(o->jacobian, "seeded"))
         usage_error("--jacobian must be auto, unrolled or seeded, not '%s'", o->jacobian);
-    if (!form_find(o->form)) {
+    if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,
                 near ? "did you mean '" : "", near ? near : "", near ? "'? " : "",
@@ -265,11 +265,15 @@ compile(const Options *o, FILE *out)
         Mech *m = mech_build(s, A, P, D);
         Constraints *c = constraints_build(s, m, A, P, D);
         Invariant *inv = invariant_derive(s, m, c, A, P, D);
-        const Form *form = form_find(o->form);
+        /* by default the recursive form where the model is a tree of
+         * turning joints (it derives the same M and h in less code), and
+         * Lagrange's everywhere else */
+        const Form *form = o->form ? form_find(o->form)
+                                   : m->tree ? &form_newton_euler : &form_lagrange;
         Eom *e = eom_derive(s, m, form, A, P, D, &why);
         if (!e) {
             fprintf(stderr, "%s: error: form '%s' does not apply: %s\n",
-                    o->spec, o->form, why);
+                    o->spec, form->name, why);
         } else {
             char opts[256] = "";
             int jac = LOWER_JACOBIAN_AUTO;
@@ -413,12 +417,13 @@ run(const Options *o)
         return EXIT_USAGE;
     }
     const char *jac = o->jacobian ? o->jacobian : "auto";
-    size_t extra = strlen(o->form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
+    const char *form = o->form ? o->form : "(default)";
+    size_t extra = strlen(form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
                    (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 120;
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
                             "\n--form %s --effects %s --eliminate %d --jacobian %s --scene %s "
-                            "--fix %s", o->form, o->effects ? o->effects : "(scene)",
+                            "--fix %s", form, o->effects ? o->effects : "(scene)",
                             o->eliminate, jac, o->scene ? o->scene : "(first)",
                             o->fix ? o->fix : "(none)");
     char stem[200], name[256];

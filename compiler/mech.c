@@ -47,7 +47,7 @@ gyroscopic(ExprPool *P, const SpecBody *b, ExprId out[3])
 static ExprId
 body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
 {
-    SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}, {0}, 0};
+    SpecParticle centre = {b->name, b->loc, b->mass, b->dim, {0}, {0}, 0, -1};
     int vel = b->has_center_vel; /* the order-1 form frames give */
     for (int k = 0; k < b->dim; k++)
         centre.pos[k] = vel ? b->center_vel[k] : b->center[k];
@@ -204,5 +204,6 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
                        "energy: it has no inertia, so its row of the mass matrix is zero",
                        s->coord[i].name);
+    m->tree = tree_build(s, m->q[1], A, P, D, &m->tree_why);
     return m;
 }

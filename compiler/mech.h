@@ -9,6 +9,7 @@
 
 #include "diff.h"
 #include "spec.h"
+#include "tree.h"
 
 typedef struct Mech {
     int n;         /* number of coordinates */
@@ -17,6 +18,8 @@ typedef struct Mech {
                     * the spec has explicit kinetic terms (no S for them) */
     ExprId *Q;     /* [n] generalized non-potential forces */
     ExprId *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: the leaf for q_i^(k) */
+    Tree *tree;    /* the masses as a tree of turning joints (tree.h), or */
+    const char *tree_why; /* NULL and why not */
 } Mech;
 
 Mech *mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D);

@@ -932,6 +932,7 @@ name_items(Loader *L, yaml_node_t *defines, yaml_node_t *frames, yaml_node_t *po
         checked(L, name_point, points, i);
     L->K = kin_new(L->A, L->P, L->sc.D, L->nframes, L->npoints);
     L->sc.K = L->K;
+    L->s->kin = L->K;
 }
 
 typedef struct DepCollect {
@@ -1240,8 +1241,10 @@ load_particle(Loader *L, yaml_node_t *map, int i)
         pt->mass = mass_of(L, mass, "particle", pt->name);
         pt->dim = world_vector(L, pos, ALLOW_POSITION, "a position", pt->pos);
         Name *nm = pos->type == YAML_SCALAR_NODE ? find_name(L, scalar(L, pos, "a point")) : NULL;
+        pt->point = -1;
         if (nm && nm->kind == NAME_POINT) {
-            kin_vel(L->K, item(L, nm)->kin, pt->vel);
+            pt->point = item(L, nm)->kin;
+            kin_vel(L->K, pt->point, pt->vel);
             pt->has_vel = 1;
         }
     }
@@ -1431,6 +1434,7 @@ load_body(Loader *L, yaml_node_t *map, int i)
         if (missing)
             diag_error(loc_of(L, v), "body '%s' has no %s", b->name, missing);
         b->quat[0] = -1;
+        b->frame = b->point = -1;
         b->mass = mass_of(L, mass, "body", b->name);
         int how = !!rot + !!om + !!ang + !!fr;
         if (how > 1)
@@ -1446,9 +1450,11 @@ load_body(Loader *L, yaml_node_t *map, int i)
             if (kin_origin(L->K, f) < 0 && nm && nm->kind == NAME_POINT)
                 kin_set_origin(L->K, f, item(L, nm)->kin); /* vel(P, F) moves with it */
             if (nm && nm->kind == NAME_POINT) { /* its velocity by the links' structure */
-                kin_vel(L->K, item(L, nm)->kin, b->center_vel);
+                b->point = item(L, nm)->kin;
+                kin_vel(L->K, b->point, b->center_vel);
                 b->has_center_vel = 1;
             }
+            b->frame = f;
             L->body_frame[i] = f;
             load_inertia(L, in, b);
             require_inertia(L, in, b);

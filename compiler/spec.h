@@ -43,6 +43,7 @@ typedef struct SpecParticle {
     ExprId pos[3]; /* of t, q, p, inputs */
     ExprId vel[3]; /* at a point of frames: its velocity by their structure */
     int has_vel;   /* (kin.h); 0: the time derivative of pos */
+    int point;     /* that point (kin.h), or -1 */
 } SpecParticle;
 
 /* A rigid body: T = 1/2 m |c'|^2 + 1/2 w.I w with w its body-frame
@@ -56,6 +57,7 @@ typedef struct SpecBody {
     ExprId center[3];  /* centre of mass, of t, q, p */
     ExprId center_vel[3]; /* its velocity, when frames give it by their structure */
     int has_center_vel;   /* (kin.h); 0: the time derivative of center */
+    int frame, point;     /* placed by a frame, centre at a point (kin.h); -1: not */
     ExprId inertia[9]; /* about the centre, body frame, row-major, of p */
     ExprId omega[3];   /* body-frame angular velocity, of t, q, q', p */
     /* rotation: {quaternion: [e0, e1, e2, e3]}: the Euler parameters'
@@ -188,6 +190,7 @@ typedef struct Spec {
     int nfixed;          /* parameters fixed (SpecParam.fixed) */
     int ncheck, capcheck;
     SpecCheck *check;    /* masses and inertias: what --set must respect */
+    const struct Kin *kin; /* the frames and points (kin.h) */
 } Spec;
 
 /* What the command line chooses: a named scene (NULL: the first), and

@@ -19,11 +19,15 @@ typedef struct Form {
     ExprId *(*residual)(const Mech *m, Arena *A, ExprPool *P, Diff *D,
                         const char **why);
     int eliminate;       /* constraints by elimination rather than multipliers */
+    /* The mass matrix [n*n], when the form has a cheaper way to it than
+     * dE/dq'' (equal to it); NULL: eom.c differentiates E. */
+    ExprId *(*mass)(const Mech *m, Arena *A, ExprPool *P);
 } Form;
 
 /* maggi is Lagrange's residual with the constraints eliminated (C^T E =
  * 0, f = 0); --eliminate selects elimination for the other forms. */
-extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi;
+extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi,
+    form_newton_euler;
 
 /* The form called `name`, or NULL. */
 const Form *form_find(const char *name);

@@ -27,11 +27,11 @@ lagrange(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_lagrange = {
-    "lagrange", "d/dt(dT/dq') - dT/dq + dV/dq - Q", lagrange, 0,
+    "lagrange", "d/dt(dT/dq') - dT/dq + dV/dq - Q", lagrange, 0, NULL,
 };
 
 /* Maggi's equations: the same residual, constraints eliminated. */
 const Form form_maggi = {
     "maggi", "d/dt(dT/dq') - dT/dq + dV/dq - Q, constraints eliminated (C^T E = 0)",
-    lagrange, 1,
+    lagrange, 1, NULL,
 };

@@ -19,5 +19,5 @@ nielsen(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_nielsen = {
-    "nielsen", "d(T')/dq' - 2 dT/dq + dV/dq - Q", nielsen, 0,
+    "nielsen", "d(T')/dq' - 2 dT/dq + dV/dq - Q", nielsen, 0, NULL,
 };

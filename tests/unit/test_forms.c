@@ -34,10 +34,10 @@ double_pendulum(void)
     s->part = arena_new_array(A, SpecParticle, 2);
     ExprId x1 = expr_mul(P, C(1.1), fn(EXPR_SIN, q(0)));
     ExprId y1 = expr_mul(P, C(-1.1), fn(EXPR_COS, q(0)));
-    s->part[0] = (SpecParticle){"b1", {0}, C(1.3), 2, {x1, y1, 0}, {0}, 0};
+    s->part[0] = (SpecParticle){"b1", {0}, C(1.3), 2, {x1, y1, 0}, {0}, 0, -1};
     s->part[1] = (SpecParticle){"b2", {0}, C(0.7), 2,
         {expr_add(P, x1, expr_mul(P, C(0.9), fn(EXPR_SIN, q(1)))),
-         expr_sub(P, y1, expr_mul(P, C(0.9), fn(EXPR_COS, q(1)))), 0}, {0}, 0};
+         expr_sub(P, y1, expr_mul(P, C(0.9), fn(EXPR_COS, q(1)))), 0}, {0}, 0, -1};
     s->neffect = 1;
     s->effect = arena_new_array(A, SpecEffect, 1);
     SpecForce *g = arena_new_array(A, SpecForce, 1);
@@ -63,7 +63,7 @@ moving_sphere(void)
     s->part[0] = (SpecParticle){"p", {0}, C(2.0), 3, {
         expr_add(P, expr_mul(P, C(0.3), fn(EXPR_SIN, t)), expr_mul(P, rs, fn(EXPR_COS, ph))),
         expr_mul(P, rs, fn(EXPR_SIN, ph)),
-        expr_add(P, expr_mul(P, C(0.1), expr_powi(P, t, 2)), expr_mul(P, r, fn(EXPR_COS, th)))}, {0}, 0};
+        expr_add(P, expr_mul(P, C(0.1), expr_powi(P, t, 2)), expr_mul(P, r, fn(EXPR_COS, th)))}, {0}, 0, -1};
     s->neffect = 2;
     s->effect = arena_new_array(A, SpecEffect, 2);
     SpecForce *f = arena_new_array(A, SpecForce, 2);

@@ -1,0 +1,187 @@
+/*
+ * The recursive Newton-Euler form (forms/newton_euler.c, tree.c) against
+ * Lagrange's equations derived from the energies, at random states of a
+ * branched tree with every kind of turn (coordinate axes, a fixed oblique
+ * axis, a fixed tilt before a turn), a full inertia tensor, a particle at
+ * a point, gravity, a potential, a force, a torque and a damping work:
+ *   - M (composite-rigid-body) and h equal Lagrange's;
+ *   - M is also dE/dq'' of the recursive residual itself;
+ *   - the seeded derivatives of E equal its unrolled Jacobian.
+ * And the models it must refuse, each with its reason.
+ */
+#include "check.h"
+#include "eom.h"
+
+#include <string.h>
+
+static ExprPool *P;
+static Diff *D;
+static Arena *A;
+
+static const char tree_spec[] =
+    "name: branched\n"
+    "parameters: {g: 9.81, k: 3, c: 0.2}\n"
+    "coordinates: [a1, a2, b1, b2, c1, d1]\n"
+    "frames:\n"
+    "  a_axes: {rotation: [{z: a1}, {x: a2}]}\n"
+    "  b_axes: {parent: a_axes, rotation: [{axis: [0.6, 0, 0.8], angle: b1}, {y: b2}]}\n"
+    "  c_axes: {parent: a_axes, rotation: [{x: 0.3}, {z: c1}]}\n"
+    "  d_axes: {parent: b_axes, rotation: [{y: d1}]}\n"
+    "points:\n"
+    "  a_joint: {at: [0.1, -0.2, 0.3]}\n"
+    "  a_c: {frame: a_axes, from: a_joint, at: [0.2, 0.1, -0.5]}\n"
+    "  b_joint: {frame: a_axes, from: a_joint, at: [0, 0.3, -1.0]}\n"
+    "  b_c: {frame: b_axes, from: b_joint, at: [0.1, 0, -0.4]}\n"
+    "  c_joint: {frame: a_axes, from: a_joint, at: [0.4, 0, -0.2]}\n"
+    "  c_c: {frame: c_axes, from: c_joint, at: [0, 0.5, 0]}\n"
+    "  d_joint: {frame: b_axes, from: b_joint, at: [0, 0, -0.8]}\n"
+    "  tip: {frame: d_axes, from: d_joint, at: [0.3, 0, -0.3]}\n"
+    "bodies:\n"
+    "  A: {mass: 2, frame: a_axes, center: a_c, inertia: [0.3, 0.4, 0.5]}\n"
+    "  B: {mass: 1.5, frame: b_axes, center: b_c,\n"
+    "      inertia: [[0.2, 0.01, 0.02], [0.01, 0.3, 0.03], [0.02, 0.03, 0.25]]}\n"
+    "  C: {mass: 0.7, frame: c_axes, center: c_c, inertia: [0.1, 0.1, 0.05]}\n"
+    "particles:\n"
+    "  bob: {mass: 0.4, position: tip}\n"
+    "potential: 1/2*k*a2^2\n"
+    "effects:\n"
+    "  gravity: {gravity: [0, 0, -g]}\n"
+    "  push: {force: [0.3, -0.2, 0.1], on: B}\n"
+    "  twist: {torque: [0.1, 0.2, -0.3], on: C}\n"
+    "  drag: {force: -c*vel(tip), on: bob}\n"
+    "  damp: {work: \"-c*b2'*delta(b2)\"}\n"
+    "scene: {t_end: 1}\n";
+
+static Spec *
+load(const char *text)
+{
+    return spec_load_buffer("tree.yaml", text, strlen(text), NULL, A, P);
+}
+
+static void
+check_agree(const Spec *s)
+{
+    Mech *m = mech_build(s, A, P, D);
+    CHECK(m->tree != NULL, "the branched tree is a tree (%s)", m->tree_why ? m->tree_why : "");
+    if (!m->tree)
+        return;
+    int n = m->n;
+    const char *why = NULL;
+    Eom *lag = eom_derive(s, m, form_find("lagrange"), A, P, D, &why);
+    Eom *ne = eom_derive(s, m, form_find("newton-euler"), A, P, D, &why);
+    CHECK(lag && ne, "both forms apply");
+    if (!lag || !ne)
+        return;
+    double *p = arena_new_array(A, double, s->np + 1);
+    for (int k = 0; k < s->np; k++)
+        p[k] = s->param[k].value;
+    int okM = 1, okh = 1, okdM = 1, okE = 1, jvp = 1;
+    for (int trial = 0; trial < 100; trial++) {
+        double st[4][8], seed[2][8];
+        ExprEnv env = {0};
+        for (int k = 0; k < 4; k++)
+            for (int i = 0; i < n; i++)
+                st[k][i] = check_rand(-2, 2);
+        for (int k = 0; k < 4; k++)
+            env.q[k] = st[k];
+        env.t = check_rand(0, 1);
+        env.p = p;
+        for (int i = 0; i < n * n; i++) {
+            double want = expr_eval(P, lag->M[i], &env);
+            okM &= check_close(expr_eval(P, ne->M[i], &env), want, 1e-13);
+            okdM &= check_close(expr_eval(P, diff_partial(D, ne->E[i / n], m->q[2][i % n]),
+                                          &env), want, 1e-13);
+        }
+        for (int i = 0; i < n; i++) {
+            okh &= check_close(expr_eval(P, ne->h[i], &env), expr_eval(P, lag->h[i], &env),
+                               1e-13);
+            okE &= check_close(expr_eval(P, ne->E[i], &env), expr_eval(P, lag->E[i], &env),
+                               1e-12);
+        }
+        for (int j = 0; j < n; j++)
+            seed[0][j] = check_rand(-1, 1), seed[1][j] = check_rand(-1, 1);
+        env.seed[0] = seed[0];
+        env.seed[1] = seed[1];
+        for (int i = 0; i < n; i++) {
+            double wq = 0, wv = 0;
+            for (int j = 0; j < n; j++) {
+                wq += expr_eval(P, ne->dEdq[i * n + j], &env) * seed[0][j];
+                wv += expr_eval(P, ne->dEdv[i * n + j], &env) * seed[1][j];
+            }
+            jvp &= check_close(expr_eval(P, ne->jvp_q[i], &env), wq, 1e-12);
+            jvp &= check_close(expr_eval(P, ne->jvp_v[i], &env), wv, 1e-12);
+        }
+    }
+    CHECK(okM, "composite-rigid-body M = Lagrange's M (100 states)");
+    CHECK(okdM, "M = dE/dq'' of the recursive residual");
+    CHECK(okh, "recursive h = Lagrange's h");
+    CHECK(okE, "recursive E = Lagrange's E at random q''");
+    CHECK(jvp, "seeded derivatives of the recursive E = its Jacobian times the seeds");
+}
+
+/* Replace the first `from` in text by `to`. */
+static char *
+variant(const char *text, const char *from, const char *to)
+{
+    const char *at = strstr(text, from);
+    CHECK(at != NULL, "variant '%s' found", from);
+    if (!at)
+        return arena_strdup(A, text);
+    return arena_printf(A, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+}
+
+/* A variant of the tree that must be refused for a reason containing
+ * `want`. */
+static void
+check_refused(const char *text, const char *want)
+{
+    Spec *s = load(text);
+    CHECK(s != NULL, "variant loads");
+    if (!s)
+        return;
+    Mech *m = mech_build(s, A, P, D);
+    const char *why = NULL;
+    Eom *e = eom_derive(s, m, form_find("newton-euler"), A, P, D, &why);
+    CHECK(!m->tree && !e && why && strstr(why, want), "refused: %s (%s)", want,
+          why ? why : "applies");
+}
+
+int
+main(void)
+{
+    P = expr_pool_new();
+    D = diff_new(P);
+    A = arena_new();
+    Spec *s = load(tree_spec);
+    CHECK(s != NULL, "the branched tree loads");
+    if (s)
+        check_agree(s);
+    const char *t = tree_spec;
+    /* a point that slides in its frame */
+    check_refused(variant(t, "at: [0, 0.5, 0]}", "at: [0, 0.5 + 0.1*c1, 0]}"),
+                  "slides in a frame");
+    /* a chain through a frame the mass does not turn with */
+    check_refused(variant(t, "c_joint: {frame: a_axes, from: a_joint",
+                          "c_joint: {frame: b_axes, from: b_joint"),
+                  "goes through a frame it does not turn with");
+    check_refused(variant(t, "rotation: [{y: d1}]}", "rotation: [{y: 2*d1}]}"),
+                  "not a coordinate");
+    check_refused(variant(t, "rotation: [{x: 0.3}, {z: c1}]}",
+                          "rotation: [{x: 0.3}, {z: c1}, {x: a2}]}"),
+                  "angle of two turns");
+    /* a second mass that c_axes turns about b_joint, not c_joint */
+    check_refused(variant(variant(t, "  tip: {", "  off: {frame: c_axes, from: b_joint, "
+                                  "at: [0.3, 0, -0.3]}\n  tip: {"),
+                          "  bob: {", "  bob2: {mass: 0.1, position: off}\n  bob: {"),
+                  "about another point");
+    check_refused(variant(t, "center: a_c,", "center: [0.1, 0.2, 0.3],"),
+                  "not placed by a frame with its centre at a point");
+    check_refused(variant(t, "  bob: {mass: 0.4, position: tip}",
+                          "  bob: {mass: 0.4, position: [0, 0, 1]}\n"
+                          "  bob3: {mass: 0.4, position: tip}"),
+                  "particle 'bob' is not at a point");
+    arena_free(A);
+    diff_free(D);
+    expr_pool_free(P);
+    return check_done();
+}

@@ -44,13 +44,15 @@ turns(const Kin *K, int g)
     return 0;
 }
 
-/* Check the chain of m's point and set the pivots of the frames above
- * it (pivot[g][0] == EXPR_NONE: not yet set).  Returns the reason it
- * does not fit, or NULL. */
+/* Check the chain of m's point, mark the frames above it in used[] and
+ * set the pivots of those that turn (pivot[g][0] == EXPR_NONE: not yet
+ * set).  Returns the reason it does not fit, or NULL. */
 static const char *
 hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *used)
 {
-    enum { CHAIN_MAX = 256 }; /* links from the origin; deeper is not a tree we fold */
+    /* the chain is kept on the stack; a longer one is refused, and
+     * Lagrange's form derives the model as before */
+    enum { CHAIN_MAX = 256 };
     int from[CHAIN_MAX], fr[CHAIN_MAX], n = 0;
     for (int p = ms->point; p > KIN_ORIGIN; n++) {
         if (n == CHAIN_MAX)

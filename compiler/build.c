@@ -98,8 +98,9 @@ split_flags(char *flags, char **argv, int max)
     return n;
 }
 
-static int
-run_cc(char **argv)
+/* Start argv[0] on argv; its pid, or -1 after printing why. */
+static pid_t
+start_cc(char **argv)
 {
     pid_t pid = fork();
     if (pid < 0) {
@@ -111,12 +112,23 @@ run_cc(char **argv)
         fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
         _exit(127);
     }
+    return pid;
+}
+
+/* Wait for a compiler started by start_cc: 0 if it succeeded, else -1
+ * after printing why. */
+static int
+wait_cc(pid_t pid, const char *cc)
+{
     int status;
+    if (pid < 0)
+        return -1;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -1;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        fprintf(stderr, "eomc: %s failed on the generated code\n", argv[0]);
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 127) /* 127: said why */
+            fprintf(stderr, "eomc: %s failed on the generated code\n", cc);
         return -1;
     }
     return 0;
@@ -178,22 +190,45 @@ build_executable(const char *c_file, const char *exe, int mpi)
     char *tmp = xmalloc(len);
     int special = build_is_special(exe);
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
+    char *obj = sibling(c_file, "model.o"), *ext_obj = sibling(c_file, "model_ext.o");
     char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS;
     snprintf(incflag, sizeof incflag, "-I%s", inc);
     snprintf(ccbuf, sizeof ccbuf, "%s", cc);
     char *argv[64];
-    int n = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
-    const char *fixed[] = {"-std=c11", "-O2", "-DEOMC_MAIN", incflag, c_file, ext,
-                           lib, "-o", tmp};
-    for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; k++)
-        argv[n++] = (char *)fixed[k];
-    n += split_flags(libs, argv + n, 40);
-    argv[n++] = "-lm";
-    argv[n++] = "-pthread"; /* sweeps run on threads */
-    if (mpi)
-        argv[n++] = "-DEOMC_MPI";
-    argv[n] = NULL;
-    int rc = run_cc(argv);
+    int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
+    /* The two units compile at once (each is most of the time of a large
+     * model's build), then link. */
+    const char *flags[] = {"-std=c11", "-O2", "-DEOMC_MAIN", "-pthread", incflag,
+                           mpi ? "-DEOMC_MPI" : NULL};
+    char *unit_argv[2][32];
+    const char *src[2] = {c_file, ext}, *dst[2] = {obj, ext_obj};
+    pid_t pid[2];
+    for (int u = 0; u < 2; u++) {
+        int n = 0;
+        for (int k = 0; k < ncc; k++)
+            unit_argv[u][n++] = argv[k];
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0] && flags[k]; k++)
+            unit_argv[u][n++] = (char *)flags[k];
+        unit_argv[u][n++] = "-c";
+        unit_argv[u][n++] = (char *)src[u];
+        unit_argv[u][n++] = "-o";
+        unit_argv[u][n++] = (char *)dst[u];
+        unit_argv[u][n] = NULL;
+        pid[u] = start_cc(unit_argv[u]);
+    }
+    int rc = wait_cc(pid[0], cc);
+    rc = wait_cc(pid[1], cc) || rc ? -1 : 0; /* both waited for */
+    if (rc == 0) {
+        int n = ncc;
+        const char *link[] = {obj, ext_obj, lib, "-o", tmp};
+        for (size_t k = 0; k < sizeof link / sizeof link[0]; k++)
+            argv[n++] = (char *)link[k];
+        n += split_flags(libs, argv + n, 40);
+        argv[n++] = "-lm";
+        argv[n++] = "-pthread"; /* sweeps run on threads */
+        argv[n] = NULL;
+        rc = wait_cc(start_cc(argv), cc);
+    }
     if (rc == 0 && !special && rename(tmp, exe) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
         rc = -1;
@@ -201,6 +236,10 @@ build_executable(const char *c_file, const char *exe, int mpi)
     if (rc != 0 && !special)
         unlink(tmp);
     unlink(ext);
+    unlink(obj);
+    unlink(ext_obj);
+    free(obj);
+    free(ext_obj);
     free(ext);
     free(tmp);
     return rc;

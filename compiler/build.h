@@ -15,7 +15,8 @@ int build_is_special(const char *path);
 /* Compile c_file with the runtime into exe (written to a temporary name
  * and renamed when complete), and c_file a second time with
  * EOMC_EXTENDED for the reference solution (through a file model_ext.c
- * written next to it, and removed).  mpi: with $EOMC_MPICC (default
+ * written next to it): the two compilations run at once, their objects
+ * go next to c_file, and everything but exe is removed.  mpi: with $EOMC_MPICC (default
  * mpicc) and -DEOMC_MPI, so that its main shares a sweep among the ranks
  * of an MPI job (runtime/eomc_mpi.h).  Returns 0, or -1 after printing
  * why. */

@@ -621,6 +621,18 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
     println(pr, " *");
     println(pr, " * E(t, q, q', q'') = M(t, q) q'' + h(t, q, q') = 0");
     print_wrapped(pr, inv->note);
+    if (pr->L->jacobian == LOWER_JACOBIAN_NONE) {
+        char why[200];
+        if (strstr(info->options, "--jacobian none"))
+            snprintf(why, sizeof why, "--jacobian none leaves it out");
+        else
+            snprintf(why, sizeof why, "it would be %ld operations, and the scene's "
+                     "method, %s, needs none", pr->L->jacobian_ops, s->scene.method);
+        char note[400];
+        snprintf(note, sizeof note, "No Jacobian of E: %s.  The implicit methods and the "
+                 "linearization refuse this model; --jacobian seeded adds it", why);
+        print_wrapped(pr, note);
+    }
     if (c) {
         println(pr, " *");
         println(pr, " * constraints, by %s:", info->eliminate
@@ -706,6 +718,26 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     println(pr, "}\n");
 }
 
+/* The invariant member when it is E = T + V: energy's two results added,
+ * the same sum in the same order as the expression T + V. */
+static void
+print_energy_sum(Printer *pr)
+{
+    const char *nm = pr->s->name;
+    Func fi;
+    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1};
+    func_of(&fi, &inv);
+    println(pr, "/* %s", lower_invariant_sig.comment);
+    println(pr, " * E = T + V, from energy. */");
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_invariant", nm);
+    print_head(pr, "static void", fname, fi.params);
+    println(pr, "    eomc_real TV[2];");
+    println(pr, "    %s_energy(t, q, v, p, u, TV);", nm);
+    println(pr, "    h[0] = TV[0] + TV[1];");
+    println(pr, "}\n");
+}
+
 /* The accel member of eomc_model: the solve, then the pivot check. */
 static void
 print_accel(Printer *pr, const Lowered *L)
@@ -778,8 +810,12 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     format_const(at, sizeof at, s->scene.atol);
     format_const(h, sizeof h, s->scene.h_fixed);
     println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, rt, at, h);
-    println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
-            nm, nm, nm, nm, nm);
+    if (L->jacobian == LOWER_JACOBIAN_NONE)
+        println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy,\n"
+                "    NULL, /* no Jacobian (the banner says why) */", nm, nm, nm, nm);
+    else
+        println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
+                nm, nm, nm, nm, nm);
     if (c)
         println(pr, "    NULL, /* constrained: the runtime solves the KKT system */");
     else if (L->accel_solve)
@@ -972,6 +1008,11 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
                 add_count(&stats[r].count, n);
         if (lf == L->jac_dv)
             print_seeded_driver(&pr, L);
+        else if (L->invariant_energy && !strcmp(lf->sig->name, "energy")) {
+            print_energy_sum(&pr);
+            for (int r = 0; r < EMIT_NFUNCS; r++)
+                stats[r].count.adds += !strcmp(stats[r].function, "invariant");
+        }
         else if (lf == L->accel_solve)
             print_accel(&pr, L);
         else if (lf == L->check_values)

@@ -94,7 +94,7 @@ static const LowSig s_c_levels_jacobian = {
     " * stabilization adds to df/dx.",
     "t q v p u > dposdq dveldq dveldv dposdu dveldu dposdt dveldt",
 };
-static const LowSig s_invariant = {
+const LowSig lower_invariant_sig = { /* printed by hand when it is T + V */
     "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h",
 };
 static const LowSig s_derive = {
@@ -247,8 +247,16 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     ExprCount jc = expr_count_ops(lw->P, 2 * n * n, jroots);
     free(jroots);
     long jops = jc.adds + jc.muls + jc.divs + jc.calls;
-    if (how == LOWER_JACOBIAN_SEEDED ||
-        (how == LOWER_JACOBIAN_AUTO && jops > LOWER_UNROLLED_JACOBIAN_MAX)) {
+    int large = jops > LOWER_UNROLLED_JACOBIAN_MAX;
+    lw->L->jacobian_ops = jops;
+    if (how == LOWER_JACOBIAN_AUTO)
+        how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
+    else if (how == LOWER_JACOBIAN_SMALL_ONLY)
+        how = large ? LOWER_JACOBIAN_NONE : LOWER_JACOBIAN_UNROLLED;
+    lw->L->jacobian = how;
+    if (how == LOWER_JACOBIAN_NONE)
+        return;
+    if (how == LOWER_JACOBIAN_SEEDED) {
         lower_seeded_jacobian(lw, e);
         return;
     }
@@ -443,8 +451,11 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
 
     lower_jacobian(&lw, e, jacobian);
 
-    if (inv->h != EXPR_NONE) {
-        f = func(&lw, &s_invariant, "invariant", 1);
+    /* E = T + V is what energy computes: the invariant adds its two
+     * results rather than compute them again */
+    lw.L->invariant_energy = inv->h != EXPR_NONE && inv->h == expr_add(P, m->T, m->V);
+    if (inv->h != EXPR_NONE && !lw.L->invariant_energy) {
+        f = func(&lw, &lower_invariant_sig, "invariant", 1);
         out(&lw, f, 0, 0, inv->h);
     }
     if (c)

@@ -62,6 +62,8 @@ void lower_args(const LowSig *sig, LowArgs *a);
 
 /* The jacobian member's signature (the seeded Jacobian's driver has it). */
 extern const LowSig lower_jacobian_sig;
+/* The invariant member's (its sum of energy's T and V has it). */
+extern const LowSig lower_invariant_sig;
 
 /* The model's functions in the order they are printed. */
 typedef struct Lowered {
@@ -83,6 +85,9 @@ typedef struct Lowered {
     int *derived;
     int nd;
     int n;                /* coordinates */
+    int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
+    long jacobian_ops;    /* the unrolled Jacobian's size, which chose it */
+    int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
 } Lowered;
 
 /* How the jacobian member is computed.  UNROLLED: every entry of dE/dq
@@ -90,8 +95,18 @@ typedef struct Lowered {
  * n |E|.  SEEDED: the directional derivatives of E along seeds dq and
  * dq' as two functions (code ~ |E|) that jacobian calls once per column
  * with a unit seed: exact all the same, slower to run, far less for the C
- * compiler.  AUTO: unrolled up to LOWER_UNROLLED_JACOBIAN_MAX operations. */
-enum { LOWER_JACOBIAN_AUTO, LOWER_JACOBIAN_UNROLLED, LOWER_JACOBIAN_SEEDED };
+ * compiler.  NONE: not at all (the member is NULL; the implicit methods
+ * and the linearization refuse the model).  AUTO: unrolled up to
+ * LOWER_UNROLLED_JACOBIAN_MAX operations, seeded beyond.  SMALL_ONLY:
+ * unrolled up to that size, none beyond, for a scene that needs no
+ * Jacobian (the seeded one would still be most of a large model's C). */
+enum {
+    LOWER_JACOBIAN_AUTO,
+    LOWER_JACOBIAN_UNROLLED,
+    LOWER_JACOBIAN_SEEDED,
+    LOWER_JACOBIAN_NONE,
+    LOWER_JACOBIAN_SMALL_ONLY,
+};
 /* Measured on the chain benchmark (gcc 12, -O2): cc spends ~0.3 ms per
  * operation, linearly; the seeded Jacobian runs 2-3x slower (N = 20:
  * 4.5 -> 13 us, N = 50: 47 -> 97 us) but is 6x (N = 20) to 16x (N = 50)

@@ -34,6 +34,7 @@ typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
+    int needs_jacobian; /* what the simulator is asked to do needs it */
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
 } Options;
@@ -65,8 +66,11 @@ usage(FILE *f)
         "                   on stdout; the C goes only to -o FILE then\n"
         "  --eliminate      eliminate the constraints (C^T E = 0, f = 0) instead of\n"
         "                   using multipliers; --form maggi is lagrange with it\n"
-        "  --jacobian HOW   auto (default), unrolled or seeded: how the Jacobian\n"
-        "                   of large models is printed (docs: emit.h)\n"
+        "  --jacobian HOW   auto (default), unrolled, seeded or none: how the\n"
+        "                   Jacobian of the equations is printed.  auto: unrolled\n"
+        "                   for a small model; for a large one seeded if the\n"
+        "                   scene's method is implicit (or eomc run/accuracy is\n"
+        "                   asked for one, or for --linearize), else none\n"
         "Simulator options (eomc run, and built executables): see `EXE --help`.\n"
         "eomc accuracy runs the simulator's --work-precision report: every method\n"
         "over tolerances and fixed steps, CPU time against the error measured on a\n"
@@ -97,6 +101,31 @@ unknown_option(const char *a)
     fprintf(stderr, "eomc: unknown option '%s'; did you mean '%s'?\n(see eomc --help)\n", a,
             near);
     exit(EXIT_USAGE);
+}
+
+/* Whether the simulator options of `eomc run` ask for what solves with
+ * the Jacobian: an implicit method (runtime/methods.def), the
+ * linearization, an equilibrium, or the accuracy report of every method. */
+static int
+sim_needs_jacobian(const Options *o)
+{
+    for (int i = 0; i < o->nsim; i++) {
+        const char *a = o->sim[i], *val = NULL;
+        if (!strcmp(a, "--linearize") || !strcmp(a, "--equilibrium") ||
+            !strcmp(a, "--work-precision"))
+            return 1;
+        if ((!strcmp(a, "--method") || !strcmp(a, "--methods")) && i + 1 < o->nsim)
+            val = o->sim[i + 1];
+        else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10))
+            val = strchr(a, '=') + 1;
+        for (const char *w = val; w && *w; w += strcspn(w, ",") + (w[strcspn(w, ",")] != 0)) {
+            char name[32];
+            snprintf(name, sizeof name, "%.*s", (int)strcspn(w, ","), w);
+            if (spec_method_jacobian(name) == 1)
+                return 1;
+        }
+    }
+    return 0;
 }
 
 static void
@@ -157,6 +186,8 @@ parse_args(int argc, char **argv, Options *o)
                     : a[2] == 'e' ? "what eomc made of the spec"
                                   : "a simulator for MPI sweeps");
             exit(EXIT_USAGE);
+        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout), exit(0); /* `eomc build --help` as `eomc --help` */
         } else if (a[0] == '-' && a[1]) {
             unknown_option(a);
         } else if (!o->spec) {
@@ -168,8 +199,10 @@ parse_args(int argc, char **argv, Options *o)
     if (!o->spec)
         usage_error("%s: no spec file given", o->cmd);
     if (o->jacobian && strcmp(o->jacobian, "auto") && strcmp(o->jacobian, "unrolled") &&
-        strcmp(o->jacobian, "seeded"))
-        usage_error("--jacobian must be auto, unrolled or seeded, not '%s'", o->jacobian);
+        strcmp(o->jacobian, "seeded") && strcmp(o->jacobian, "none"))
+        usage_error("--jacobian must be auto, unrolled, seeded or none, not '%s'",
+                    o->jacobian);
+    o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o);
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,
@@ -276,14 +309,19 @@ compile(const Options *o, FILE *out)
                     o->spec, form->name, why);
         } else {
             char opts[256] = "";
-            int jac = LOWER_JACOBIAN_AUTO;
+            /* the Jacobian of a large model is most of its C: printed only
+             * when the scene's method or the simulator's task needs it */
+            int jac = o->needs_jacobian || spec_method_jacobian(s->scene.method) == 1
+                          ? LOWER_JACOBIAN_AUTO : LOWER_JACOBIAN_SMALL_ONLY;
             if (o->effects)
                 snprintf(opts, sizeof opts, "--effects %s", o->effects);
             if (o->jacobian && strcmp(o->jacobian, "auto")) { /* it changes the code */
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--jacobian %s",
                          len ? " " : "", o->jacobian);
-                jac = o->jacobian[0] == 's' ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
+                jac = o->jacobian[0] == 's'   ? LOWER_JACOBIAN_SEEDED
+                      : o->jacobian[0] == 'n' ? LOWER_JACOBIAN_NONE
+                                              : LOWER_JACOBIAN_UNROLLED;
             }
             if (o->eliminate) {
                 size_t len = strlen(opts);
@@ -422,9 +460,10 @@ run(const Options *o)
                    (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 120;
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
-                            "\n--form %s --effects %s --eliminate %d --jacobian %s --scene %s "
+                            "\n--form %s --effects %s --eliminate %d --jacobian %s%s --scene %s "
                             "--fix %s", form, o->effects ? o->effects : "(scene)",
-                            o->eliminate, jac, o->scene ? o->scene : "(first)",
+                            o->eliminate, jac, o->needs_jacobian ? " (needed)" : "",
+                            o->scene ? o->scene : "(first)",
                             o->fix ? o->fix : "(none)");
     char stem[200], name[256];
     spec_stem(o->spec, stem, sizeof stem);

@@ -26,11 +26,25 @@
 
 /* The runtime's list of integration methods, the one list of them. */
 const char *const spec_methods[] = {
-#define METHOD(name, gsl, fixed, description) #name,
+#define METHOD(name, gsl, fixed, jac, description) #name,
 #include "../runtime/methods.def"
 #undef METHOD
     NULL,
 };
+static const char spec_method_jac[] = {
+#define METHOD(name, gsl, fixed, jac, description) jac,
+#include "../runtime/methods.def"
+#undef METHOD
+};
+
+int
+spec_method_jacobian(const char *name)
+{
+    for (int k = 0; spec_methods[k]; k++)
+        if (!strcmp(spec_methods[k], name))
+            return spec_method_jac[k];
+    return -1;
+}
 
 enum { MAX_SPEC_BYTES = 16 << 20 };
 

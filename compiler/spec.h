@@ -169,6 +169,9 @@ typedef struct SpecCheck {
 
 /* The integrators the runtime offers (ORDER: runtime/sim.c eomc_methods). */
 extern const char *const spec_methods[];
+/* 1 if the method solves with the Jacobian of the equations (the
+ * implicit ones), 0 if not, -1 for a name not among spec_methods. */
+int spec_method_jacobian(const char *name);
 
 typedef struct Spec {
     const char *path;        /* as given */

@@ -148,6 +148,17 @@ appell_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w7;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+appell_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    appell_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 appell_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -182,30 +193,6 @@ appell_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[7] = 0.0;
     dEdv[8] = 0.0;
     dEdt[2] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-appell_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_z = q[2];
-    const eomc_real v_z = v[2];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd3 = p[7];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = v_z * v_z;
-    const eomc_real w1 = v_x * v_x;
-    const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 + w3;
-    const eomc_real w5 = pd3 * w4;
-    const eomc_real w6 = pd0 * q_z;
-    const eomc_real w7 = w5 - w6;
-    h[0] = w7;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -115,6 +115,17 @@ bouncing_ball_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w2;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+bouncing_ball_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    bouncing_ball_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 bouncing_ball_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -131,24 +142,6 @@ bouncing_ball_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdq[0] = 0.0;
     dEdv[0] = 0.0;
     dEdt[0] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-bouncing_ball_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_y = q[0];
-    const eomc_real v_y = v[0];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd1 = p[5];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = v_y * v_y;
-    const eomc_real w1 = pd0 * w0;
-    const eomc_real w2 = pd1 * q_y;
-    const eomc_real w3 = w1 + w2;
-    h[0] = w3;
 }
 
 #endif /* EOMC_EXTENDED */

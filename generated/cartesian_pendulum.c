@@ -134,6 +134,17 @@ cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w4;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    cartesian_pendulum_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 cartesian_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -157,27 +168,6 @@ cartesian_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[2] = 0.0;
     dEdv[3] = 0.0;
     dEdt[1] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
-    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_y = q[1];
-    const eomc_real v_y = v[1];
-    const eomc_real v_x = v[0];
-    const eomc_real pd1 = p[5];
-    const eomc_real pd2 = p[6];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = v_x * v_x;
-    const eomc_real w1 = v_y * v_y;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = pd1 * w2;
-    const eomc_real w4 = pd2 * q_y;
-    const eomc_real w5 = w3 + w4;
-    h[0] = w5;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -523,6 +523,17 @@ chain5_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w65;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+chain5_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    chain5_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -1425,94 +1436,6 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w815 = pd0 * w781;
     dEdv[24] = w815;
     dEdt[4] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-chain5_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_q1 = q[0];
-    const eomc_real q_q2 = q[1];
-    const eomc_real q_q3 = q[2];
-    const eomc_real q_q4 = q[3];
-    const eomc_real q_q5 = q[4];
-    const eomc_real v_q1 = v[0];
-    const eomc_real v_q2 = v[1];
-    const eomc_real v_q3 = v[2];
-    const eomc_real v_q4 = v[3];
-    const eomc_real v_q5 = v[4];
-    const eomc_real pd1 = p[4];
-    const eomc_real pd2 = p[5];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = cos(q_q1);
-    const eomc_real w1 = w0 * v_q1;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = sin(q_q1);
-    const eomc_real w4 = w3 * v_q1;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = w2 + w5;
-    const eomc_real w7 = q_q1 + q_q2;
-    const eomc_real w8 = cos(w7);
-    const eomc_real w9 = v_q1 + v_q2;
-    const eomc_real w10 = w8 * w9;
-    const eomc_real w11 = w1 + w10;
-    const eomc_real w12 = w11 * w11;
-    const eomc_real w13 = sin(w7);
-    const eomc_real w14 = w13 * w9;
-    const eomc_real w15 = w4 + w14;
-    const eomc_real w16 = w15 * w15;
-    const eomc_real w17 = w12 + w16;
-    const eomc_real w18 = w6 + w17;
-    const eomc_real w19 = w7 + q_q3;
-    const eomc_real w20 = cos(w19);
-    const eomc_real w21 = v_q3 + w9;
-    const eomc_real w22 = w20 * w21;
-    const eomc_real w23 = w11 + w22;
-    const eomc_real w24 = w23 * w23;
-    const eomc_real w25 = sin(w19);
-    const eomc_real w26 = w25 * w21;
-    const eomc_real w27 = w15 + w26;
-    const eomc_real w28 = w27 * w27;
-    const eomc_real w29 = w24 + w28;
-    const eomc_real w30 = w18 + w29;
-    const eomc_real w31 = w19 + q_q4;
-    const eomc_real w32 = cos(w31);
-    const eomc_real w33 = v_q4 + w21;
-    const eomc_real w34 = w32 * w33;
-    const eomc_real w35 = w23 + w34;
-    const eomc_real w36 = w35 * w35;
-    const eomc_real w37 = sin(w31);
-    const eomc_real w38 = w37 * w33;
-    const eomc_real w39 = w27 + w38;
-    const eomc_real w40 = w39 * w39;
-    const eomc_real w41 = w36 + w40;
-    const eomc_real w42 = w30 + w41;
-    const eomc_real w43 = w31 + q_q5;
-    const eomc_real w44 = cos(w43);
-    const eomc_real w45 = v_q5 + w33;
-    const eomc_real w46 = w44 * w45;
-    const eomc_real w47 = w35 + w46;
-    const eomc_real w48 = w47 * w47;
-    const eomc_real w49 = sin(w43);
-    const eomc_real w50 = w49 * w45;
-    const eomc_real w51 = w39 + w50;
-    const eomc_real w52 = w51 * w51;
-    const eomc_real w53 = w48 + w52;
-    const eomc_real w54 = w42 + w53;
-    const eomc_real w55 = pd1 * w54;
-    const eomc_real w56 = w0 + w8;
-    const eomc_real w57 = w56 + w20;
-    const eomc_real w58 = w57 + w32;
-    const eomc_real w59 = w58 + w44;
-    const eomc_real w60 = w0 + w56;
-    const eomc_real w61 = w57 + w60;
-    const eomc_real w62 = w58 + w61;
-    const eomc_real w63 = w59 + w62;
-    const eomc_real w64 = pd2 * w63;
-    const eomc_real w65 = w55 - w64;
-    h[0] = w65;
 }
 
 #endif /* EOMC_EXTENDED */

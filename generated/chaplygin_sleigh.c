@@ -196,6 +196,17 @@ chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = 0.0;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    chaplygin_sleigh_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -285,38 +296,6 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[7] = 0.0;
     dEdv[8] = 0.0;
     dEdt[2] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real p_b = p[2];
-    const eomc_real pd0 = p[5];
-    const eomc_real pd1 = p[6];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = sin(q_theta);
-    const eomc_real w1 = w0 * v_theta;
-    const eomc_real w2 = p_b * w1;
-    const eomc_real w3 = v_x - w2;
-    const eomc_real w4 = w3 * w3;
-    const eomc_real w5 = cos(q_theta);
-    const eomc_real w6 = w5 * v_theta;
-    const eomc_real w7 = p_b * w6;
-    const eomc_real w8 = v_y + w7;
-    const eomc_real w9 = w8 * w8;
-    const eomc_real w10 = w4 + w9;
-    const eomc_real w11 = pd0 * w10;
-    const eomc_real w12 = v_theta * v_theta;
-    const eomc_real w13 = pd1 * w12;
-    const eomc_real w14 = w11 + w13;
-    h[0] = w14;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -268,6 +268,17 @@ double_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w29;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    double_pendulum_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 double_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -431,56 +442,6 @@ double_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w124 = pd6 * w123;
     dEdv[3] = w124;
     dEdt[1] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_th1 = q[0];
-    const eomc_real q_th2 = q[1];
-    const eomc_real v_th1 = v[0];
-    const eomc_real v_th2 = v[1];
-    const eomc_real p_l1 = p[2];
-    const eomc_real p_l2 = p[3];
-    const eomc_real pd1 = p[6];
-    const eomc_real pd2 = p[7];
-    const eomc_real pd3 = p[8];
-    const eomc_real pd4 = p[9];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = cos(q_th1);
-    const eomc_real w1 = w0 * v_th1;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = sin(q_th1);
-    const eomc_real w4 = w3 * v_th1;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = w2 + w5;
-    const eomc_real w7 = pd1 * w6;
-    const eomc_real w8 = p_l1 * w1;
-    const eomc_real w9 = cos(q_th2);
-    const eomc_real w10 = w9 * v_th2;
-    const eomc_real w11 = p_l2 * w10;
-    const eomc_real w12 = w8 + w11;
-    const eomc_real w13 = w12 * w12;
-    const eomc_real w14 = p_l1 * w4;
-    const eomc_real w15 = sin(q_th2);
-    const eomc_real w16 = w15 * v_th2;
-    const eomc_real w17 = p_l2 * w16;
-    const eomc_real w18 = w14 + w17;
-    const eomc_real w19 = w18 * w18;
-    const eomc_real w20 = w13 + w19;
-    const eomc_real w21 = pd2 * w20;
-    const eomc_real w22 = w7 + w21;
-    const eomc_real w23 = pd3 * w0;
-    const eomc_real w24 = p_l1 * w0;
-    const eomc_real w25 = p_l2 * w9;
-    const eomc_real w26 = w24 + w25;
-    const eomc_real w27 = pd4 * w26;
-    const eomc_real w28 = w23 + w27;
-    const eomc_real w29 = w22 - w28;
-    h[0] = w29;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -145,6 +145,17 @@ kepler_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w9;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    kepler_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -209,32 +220,6 @@ kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[2] = 0.0;
     dEdv[3] = 0.0;
     dEdt[1] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_x = q[0];
-    const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd1 = p[5];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = v_x * v_x;
-    const eomc_real w1 = v_y * v_y;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = pd1 * w2;
-    const eomc_real w4 = q_x * q_x;
-    const eomc_real w5 = q_y * q_y;
-    const eomc_real w6 = w4 + w5;
-    const eomc_real w7 = sqrt(w6);
-    const eomc_real w8 = pd0 / w7;
-    const eomc_real w9 = w3 - w8;
-    h[0] = w9;
 }
 
 #endif /* EOMC_EXTENDED */

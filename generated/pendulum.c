@@ -125,6 +125,17 @@ pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w9;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    pendulum_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -152,30 +163,6 @@ pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdq[0] = w9;
     dEdv[0] = 0.0;
     dEdt[0] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_theta = q[0];
-    const eomc_real v_theta = v[0];
-    const eomc_real pd1 = p[4];
-    const eomc_real pd2 = p[5];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = cos(q_theta);
-    const eomc_real w1 = w0 * v_theta;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = sin(q_theta);
-    const eomc_real w4 = w3 * v_theta;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = w2 + w5;
-    const eomc_real w7 = pd1 * w6;
-    const eomc_real w8 = pd2 * w0;
-    const eomc_real w9 = w7 - w8;
-    h[0] = w9;
 }
 
 #endif /* EOMC_EXTENDED */

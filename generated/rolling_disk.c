@@ -469,6 +469,17 @@ rolling_disk_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[1] = w46;
 }
 
+/* The conserved quantity (eomc_model.h: invariant).
+ * E = T + V, from energy. */
+static void
+rolling_disk_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    eomc_real TV[2];
+    rolling_disk_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 rolling_disk_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -1198,78 +1209,6 @@ rolling_disk_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[23] = w638;
     dEdv[24] = 0.0;
     dEdt[4] = 0.0;
-}
-
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-rolling_disk_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_psi = q[2];
-    const eomc_real v_psi = v[2];
-    const eomc_real q_theta = q[3];
-    const eomc_real v_theta = v[3];
-    const eomc_real q_phi = q[4];
-    const eomc_real v_phi = v[4];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real p_R = p[1];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd2 = p[6];
-    const eomc_real pd3 = p[7];
-    const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = sin(q_theta);
-    const eomc_real w1 = pd4 * w0;
-    const eomc_real w2 = sin(q_psi);
-    const eomc_real w3 = w2 * w0;
-    const eomc_real w4 = w3 * v_theta;
-    const eomc_real w5 = cos(q_psi);
-    const eomc_real w6 = w5 * v_psi;
-    const eomc_real w7 = cos(q_theta);
-    const eomc_real w8 = w6 * w7;
-    const eomc_real w9 = w4 - w8;
-    const eomc_real w10 = p_R * w9;
-    const eomc_real w11 = v_x + w10;
-    const eomc_real w12 = w11 * w11;
-    const eomc_real w13 = w2 * v_psi;
-    const eomc_real w14 = w13 * w7;
-    const eomc_real w15 = w5 * w0;
-    const eomc_real w16 = w15 * v_theta;
-    const eomc_real w17 = w14 + w16;
-    const eomc_real w18 = p_R * w17;
-    const eomc_real w19 = v_y - w18;
-    const eomc_real w20 = w19 * w19;
-    const eomc_real w21 = w12 + w20;
-    const eomc_real w22 = w7 * v_theta;
-    const eomc_real w23 = w22 * w22;
-    const eomc_real w24 = pd0 * w23;
-    const eomc_real w25 = w21 + w24;
-    const eomc_real w26 = pd5 * w25;
-    const eomc_real w27 = cos(q_phi);
-    const eomc_real w28 = v_theta * w27;
-    const eomc_real w29 = v_psi * w0;
-    const eomc_real w30 = sin(q_phi);
-    const eomc_real w31 = w29 * w30;
-    const eomc_real w32 = w28 + w31;
-    const eomc_real w33 = w32 * w32;
-    const eomc_real w34 = w29 * w27;
-    const eomc_real w35 = v_theta * w30;
-    const eomc_real w36 = w34 - w35;
-    const eomc_real w37 = w36 * w36;
-    const eomc_real w38 = w33 + w37;
-    const eomc_real w39 = pd2 * w38;
-    const eomc_real w40 = v_psi * w7;
-    const eomc_real w41 = w40 + v_phi;
-    const eomc_real w42 = w41 * w41;
-    const eomc_real w43 = pd3 * w42;
-    const eomc_real w44 = w39 + w43;
-    const eomc_real w45 = 0.5 * w44;
-    const eomc_real w46 = w26 + w45;
-    const eomc_real w47 = w1 + w46;
-    h[0] = w47;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -1694,12 +1694,44 @@ describe_setting(const Cli *c, const eomc_model *m, const double *x, char *buf,
         snprintf(buf + at, len - at, ", --stabilize %s", stabilize_names[c->stabilize]);
 }
 
+enum {
+    NMETHODS = 0 /* the methods in methods.def */
+#define METHOD(name, gsl, fixed, jac, description) + 1
+#include "methods.def"
+#undef METHOD
+};
+
 static int
 work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     eomc_reference ref = {0};
     double tols[TOL_LAST_EXP - TOL_FIRST_EXP + 1], steps[3];
+    /* a model built without its Jacobian reports the methods that can run
+     * on it, and says which it left out and why */
+    const char *runnable[NMETHODS + 1];
+    const char *const *methods = c->methods ? c->methods : eomc_methods;
+    if (!m->jacobian) {
+        char left[256] = "";
+        int n = 0;
+        for (int k = 0; methods[k]; k++) {
+            if (eomc_method_jacobian(methods[k]) != 1)
+                runnable[n++] = methods[k];
+            else if (c->methods)
+                return usage(c, "--methods: %s needs the Jacobian of the equations, which "
+                             "%s was built without: rebuild with `eomc build %s --jacobian "
+                             "seeded`", methods[k], m->name, m->spec);
+            else
+                snprintf(left + strlen(left), sizeof left - strlen(left), "%s%s",
+                         *left ? ", " : "", methods[k]);
+        }
+        runnable[n] = NULL;
+        methods = runnable;
+        if (*left)
+            fprintf(stderr, "%s: note: %s left out: they need the Jacobian of the equations, "
+                    "which %s was built without (rebuild with `eomc build %s --jacobian "
+                    "seeded` to report them)\n", c->prog, left, m->name, m->spec);
+    }
     check_consistent(c, sim, x);
     int rc = get_reference(c, sim, ext, x, &ref);
     if (rc != EOMC_OK)
@@ -1712,7 +1744,7 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     describe_setting(c, m, x, setting, sizeof setting);
     Report r = {
         .sim = sim, .base = c->run, .x0 = x, .ref = &ref,
-        .methods = c->methods ? c->methods : eomc_methods,
+        .methods = methods,
         .tolerances = c->tolerances ? c->tolerances : tols,
         .ntolerances = c->tolerances ? c->ntolerances : TOL_LAST_EXP - TOL_FIRST_EXP + 1,
         .steps = c->steps ? c->steps : steps, .nsteps = c->steps ? c->nsteps : 3,

@@ -193,6 +193,12 @@ const char *eomc_method_description(const char *name);
  * methods usually run with fixed steps); -1 for an unknown name. */
 enum { EOMC_STEPS_ADAPTIVE, EOMC_STEPS_EMBEDDED, EOMC_STEPS_DOUBLING };
 int eomc_method_steps(const char *name);
+/* 1 if a method solves with the Jacobian of the equations (the implicit
+ * ones), 0 if not, -1 for an unknown name.  A model built without its
+ * Jacobian (eomc_model.jacobian NULL) refuses them, as it refuses
+ * eomc_sim_jacobian, eomc_sim_linearize and eomc_sim_equilibrium, with
+ * EOMC_EUSAGE and a message that says how to rebuild it. */
+int eomc_method_jacobian(const char *name);
 
 typedef struct eomc_run_opts {
     double t0, t_end;  /* time span */

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 9
+#define EOMC_ABI_VERSION 10
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -90,7 +90,10 @@ typedef struct eomc_model {
                    const double *p, const double *u, double *TV);
     /* Partial derivatives of the residual E at (t, q, v, a), u held fixed:
      * dEdq[i*nq+j] = dE_i/dq_j, dEdv[i*nq+j] = dE_i/dv_j,
-     * dEdu[i*nu+k] = dE_i/du_k, dEdt[i] = dE_i/dt.  (dE/da is M.) */
+     * dEdu[i*nu+k] = dE_i/du_k, dEdt[i] = dE_i/dt.  (dE/da is M.)
+     * NULL when the model was built without it (eomc compile --jacobian
+     * none, or auto on a large model whose scene runs an explicit
+     * method): the implicit methods and the linearization refuse it. */
     void (*jacobian)(double t, const double *q, const double *v,
                      const double *a, const double *p, const double *u,
                      double *dEdq, double *dEdv, double *dEdu, double *dEdt);

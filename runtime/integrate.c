@@ -38,6 +38,7 @@ typedef struct Method {
     const gsl_odeiv2_step_type *const *adaptive; /* GSL's pointer variable */
     const gsl_odeiv2_step_type *const *fixed;    /* NULL: no fixed steps */
     int own_fixed;                               /* fixed is fixed.c's */
+    int jacobian;                                /* solves with the Jacobian */
     const char *description;
 } Method;
 
@@ -48,14 +49,15 @@ typedef struct Method {
 #define FIXED_RK4IMP(g) &fixed_rk4imp, 1
 #define FIXED_NONE(g) NULL, 0
 static const Method methods[] = {
-#define METHOD(name, gsl, fixed, description) {#name, &gsl, FIXED_##fixed(gsl), description},
+#define METHOD(name, gsl, fixed, jac, description) \
+    {#name, &gsl, FIXED_##fixed(gsl), jac, description},
 #include "methods.def"
 #undef METHOD
 };
 enum { NMETHODS = sizeof methods / sizeof methods[0] };
 
 const char *const eomc_methods[] = {
-#define METHOD(name, gsl, fixed, description) #name,
+#define METHOD(name, gsl, fixed, jac, description) #name,
 #include "methods.def"
 #undef METHOD
     NULL,
@@ -83,6 +85,13 @@ eomc_method_steps(const char *name)
     const Method *m = find_method(name);
     return !m ? -1 : !m->fixed ? EOMC_STEPS_ADAPTIVE : m->own_fixed ? EOMC_STEPS_DOUBLING
                                                                     : EOMC_STEPS_EMBEDDED;
+}
+
+int
+eomc_method_jacobian(const char *name)
+{
+    const Method *m = find_method(name);
+    return m ? m->jacobian : -1;
 }
 
 eomc_run_opts
@@ -238,6 +247,8 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
         return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
     if (eomc_sim_check(s) != EOMC_OK)
         return EOMC_EUSAGE;
+    if (m->jacobian && !s->m->jacobian)
+        return sim_no_jacobian(s, o->method);
     if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
         return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
                                o->t0);

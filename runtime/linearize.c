@@ -186,6 +186,8 @@ full_b(eomc_sim *s, double t, const double *x, double *Bf)
 int
 eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
+    if (!s->m->jacobian)
+        return sim_no_jacobian(s, "the linearization");
     int n = s->n, nu = s->nu, N = 2 * n, nl = eomc_sim_linear_size(s);
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
     double *Bf = calloc((size_t)N * (size_t)(nu ? nu : 1), sizeof *Bf);
@@ -342,6 +344,8 @@ int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
     const eomc_model *m = s->m;
+    if (!m->jacobian)
+        return sim_no_jacobian(s, "the equilibrium search");
     int n = s->n, N = 2 * n, nl = eomc_sim_linear_size(s);
     /* the independent coordinates: their place k among the states, and
      * which coordinate each is */

@@ -150,6 +150,15 @@ sim_usage_error(eomc_sim *s, const char *fmt, ...)
     return EOMC_EUSAGE;
 }
 
+int
+sim_no_jacobian(eomc_sim *s, const char *what)
+{
+    return sim_usage_error(s, "%s needs the Jacobian of the equations, which %s was built "
+                           "without (eomc leaves it out of a large model whose scene runs "
+                           "an explicit method): rebuild with `eomc build %s --jacobian "
+                           "seeded`", what, s->m->name, s->m->spec);
+}
+
 /* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." */
 int
 sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
@@ -607,6 +616,8 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
     const eomc_model *m = s->m;
     int n = s->n, nu = s->nu, N = 2 * n;
     const double *q = x, *v = x + n;
+    if (!m->jacobian)
+        return sim_no_jacobian(s, "eomc_sim_jacobian");
     int rc = eomc_sim_accel(s, t, q, v, s->a);
     if (rc)
         return rc;

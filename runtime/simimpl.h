@@ -54,6 +54,9 @@ int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
 /* The message of a usage error; returns EOMC_EUSAGE. */
 int sim_usage_error(eomc_sim *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+/* The usage error of `what` (a method, --linearize) on a model built
+ * without its Jacobian; returns EOMC_EUSAGE. */
+int sim_no_jacobian(eomc_sim *s, const char *what);
 /* u and du/dt at t into s->u, s->dudt (held inputs constant). */
 void sim_inputs_at(eomc_sim *s, double t);
 /* Whether the model has a holonomic or first-order constraint. */

@@ -9,6 +9,9 @@
  *    differences of eomc_sim_accel in x and t (inputs and explicit t);
  *  - an input set by name is held constant;
  *  - eomc_sim_eigenvalues: +-2i, and an error for an infinite entry;
+ *  - a model without its Jacobian: exactly GSL's steppers that call the
+ *    Jacobian, and the linearization, refuse it (EOMC_EUSAGE, the rebuild
+ *    said); the explicit methods run;
  *  - the program's GSL error handler stays in place and is never called.
  */
 #include "../unit/check.h"
@@ -304,6 +307,47 @@ nonpd_accel(const eomc_model *m)
     eomc_sim_free(s);
 }
 
+/* GSL's steppers that take the Jacobian (its manual, "Stepping
+ * Functions": rk1imp, rk2imp, rk4imp, bsimp and msbdf need the jacobian
+ * function; msadams iterates without it). */
+static void
+no_jacobian(void)
+{
+    static const char *const implicit[] = {"rk1imp", "rk2imp", "rk4imp", "bsimp", "msbdf"};
+    eomc_model m = osc_model;
+    m.jacobian = NULL;
+    eomc_sim *s = sim_new(&m);
+    int all = 1, count = 0;
+    for (int k = 0; eomc_methods[k]; k++) {
+        int imp = 0;
+        for (size_t j = 0; j < sizeof implicit / sizeof *implicit; j++)
+            imp |= !strcmp(eomc_methods[k], implicit[j]);
+        count += imp;
+        eomc_run_opts o = eomc_run_defaults(&m);
+        o.method = eomc_methods[k];
+        int st = eomc_run_check(s, &o);
+        const char *e = eomc_sim_error(s);
+        int ok = eomc_method_jacobian(eomc_methods[k]) == imp &&
+                 (imp ? st == EOMC_EUSAGE && strstr(e, eomc_methods[k]) &&
+                            strstr(e, "eomc build osc.yaml --jacobian seeded")
+                      : st == EOMC_OK);
+        if (!ok)
+            printf("# %s: status %d, %s\n", eomc_methods[k], st, e);
+        all &= ok;
+    }
+    CHECK(all && count == 5, "without the Jacobian: the 5 implicit methods refused, saying "
+          "how to rebuild; the others pass eomc_run_check");
+    CHECK(eomc_method_jacobian("nosuch") == -1, "eomc_method_jacobian of an unknown name: -1");
+    double x[2] = {0.5, 0.1}, J[4], B[2], A[4];
+    int it;
+    CHECK(eomc_sim_jacobian(s, 0, x, J, NULL) == EOMC_EUSAGE &&
+              eomc_sim_linearize(s, 0, x, A, B) == EOMC_EUSAGE &&
+              strstr(eomc_sim_error(s), "the linearization needs the Jacobian") &&
+              eomc_sim_equilibrium(s, 0, x, &it) == EOMC_EUSAGE,
+          "without the Jacobian: eomc_sim_jacobian, _linearize and _equilibrium refuse");
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
@@ -318,6 +362,7 @@ main(void)
     driven_jacobian();
     nonpd_accel(&nonpd_model);
     nonpd_accel(&nonpd_gsl_model);
+    no_jacobian();
     eomc_sim *s = sim_new(&osc_model);
     double A[4] = {0, 1, -HUGE_VAL, 0}, re[2], im[2];
     CHECK(eomc_sim_eigenvalues(s, A, 2, re, im) != EOMC_OK && eomc_sim_error(s)[0],

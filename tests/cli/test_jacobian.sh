@@ -1,0 +1,70 @@
+#!/bin/sh
+# The Jacobian of a large model is printed only when something needs it
+# (TAP), on a 4-body tree of 3-axis joints (specs/gen_tree.sh 4: 12
+# coordinates, whose unrolled Jacobian is above the size eomc prints
+# unasked):
+#  - its scene runs rk8pd, so `eomc compile` leaves the Jacobian out and
+#    the banner says why; --jacobian seeded and a scene with an implicit
+#    method put it in;
+#  - the simulator built without it refuses the implicit methods and
+#    --linearize with exit 2 and the rebuild to do; --work-precision leaves
+#    those methods out and says so;
+#  - `eomc run ... --linearize` builds with it: the seeded Jacobian's A
+#    equals the unrolled one's to rounding (two derivations, two codes).
+# usage: test_jacobian.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export EOMC_CACHE_DIR="$tmp/cache"
+n=0 failed=0
+ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+jac_ops() { awk '$1 == "jacobian" { print $6 }' "$1"; }
+
+sh "$src/specs/gen_tree.sh" 4 > "$tmp/tree4.yaml"
+"$eomc" compile "$tmp/tree4.yaml" -o "$tmp/auto.c" --stats 2> "$tmp/auto.stats"
+[ "$(jac_ops "$tmp/auto.stats")" = 0 ] && grep -q '^ \* No Jacobian of E: it would be' "$tmp/auto.c" &&
+    grep -q 'rk8pd, needs none' "$tmp/auto.c" && grep -q '^    NULL, /\* no Jacobian' "$tmp/auto.c"
+ok $? "auto, scene rk8pd: no Jacobian printed, the banner says why, the member is NULL"
+
+"$eomc" compile "$tmp/tree4.yaml" -o "$tmp/seeded.c" --stats --jacobian seeded 2> "$tmp/seeded.stats"
+[ "$(jac_ops "$tmp/seeded.stats")" -gt 0 ] && grep -q '_jacobian_dq(' "$tmp/seeded.c"
+ok $? "--jacobian seeded: printed ($(jac_ops "$tmp/seeded.stats") operations)"
+
+sed 's/^scene: {/scene: {method: bsimp, /' "$tmp/tree4.yaml" > "$tmp/stiff.yaml"
+grep -q '^scene: {method: bsimp, ' "$tmp/stiff.yaml" &&
+    "$eomc" compile "$tmp/stiff.yaml" -o "$tmp/stiff.c" --stats 2> "$tmp/stiff.stats" &&
+    [ "$(jac_ops "$tmp/stiff.stats")" -gt 0 ] && grep -q '_jacobian_dq(' "$tmp/stiff.c"
+ok $? "auto, scene bsimp: the seeded Jacobian printed"
+
+"$eomc" build "$tmp/tree4.yaml" -o "$tmp/tree4"
+for what in "--method msbdf" "--method rk4imp" "--linearize" "--equilibrium"; do
+  "$tmp/tree4" $what --t-end 0.1 > "$tmp/out" 2> "$tmp/err"; st=$?
+  [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q 'needs the Jacobian of the equations' "$tmp/err" &&
+      grep -q "eomc build tree4.yaml --jacobian seeded" "$tmp/err"
+  ok $? "built without it, $what: exit $st, no output, the rebuild said"
+done
+"$tmp/tree4" --method rk8pd --t-end 0.1 > /dev/null
+ok $? "built without it, an explicit method runs"
+"$tmp/tree4" --work-precision --t-end 0.01 --tolerances 1e-6 --steps 0.005 \
+    > "$tmp/wp.out" 2> "$tmp/wp.err"; st=$?
+[ $st -eq 0 ] && grep -q 'note: rk1imp, rk2imp, rk4imp, bsimp, msbdf left out' "$tmp/wp.err" &&
+    grep -q '^rk8pd, adaptive' "$tmp/wp.out" && ! grep -q '^bsimp\|^msbdf' "$tmp/wp.out"
+ok $? "--work-precision without it: the explicit methods reported, the others named as left out"
+
+# eomc run builds with the Jacobian when the task needs it
+init="--init pelvis_a'=0.3 --init spine2_c'=-0.7 --init spine3_b'=0.4"
+"$eomc" run "$tmp/tree4.yaml" --linearize $init --csv "$tmp/a.csv" > /dev/null; st1=$?
+"$eomc" run "$tmp/tree4.yaml" --jacobian unrolled --linearize $init --csv "$tmp/b.csv" \
+    > /dev/null; st2=$?
+# max |a - b| <= 1e-12 max |A|, row by row (the same rows in the same order)
+paste -d, "$tmp/a.csv" "$tmp/b.csv" | awk -F, -v st="$st1$st2" '
+  NR > 1 && $1 == "A" { d = $4 - $8; if (d < 0) d = -d; if (d > m) m = d
+                        a = $4 < 0 ? -$4 : $4; if (a > s) s = a; rows++ }
+  END { printf "# %d entries, max |A| %g, max difference %g\n", rows, s, m
+        exit !(st == "00" && rows == 576 && s > 0 && m <= 1e-12 * s) }'
+ok $? "eomc run --linearize builds with the Jacobian: seeded A = unrolled A to 1e-12"
+
+echo "1..$n"
+[ $failed -eq 0 ]

@@ -626,7 +626,7 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
         if (strstr(info->options, "--jacobian none"))
             snprintf(why, sizeof why, "--jacobian none leaves it out");
         else
-            snprintf(why, sizeof why, "it would be %ld operations, and the scene's "
+            snprintf(why, sizeof why, "it would be %ld operations unrolled, and the scene's "
                      "method, %s, needs none", pr->L->jacobian_ops, s->scene.method);
         char note[400];
         snprintf(note, sizeof note, "No Jacobian of E: %s.  The implicit methods and the "

@@ -913,7 +913,12 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         ADD(" with Baumgarte's stabilization (rates %g, %g).", c->alpha, c->beta);
     else if (m->nc > 0)
         ADD(", without stabilization.");
-    if (w->ref)
+    if (w->ref && isnan(w->ref->error))
+        /* one read with --reference carries no estimate of its own error */
+        ADD(" Against the reference solution read from %s (its own error not known), the "
+            "error was at most %.3g over the rows and %.3g at t = %g.", c->reference,
+            w->err_max, w->err_end, c->run.t_end);
+    else if (w->ref)
         ADD(" Against the reference solution (good to %.2g), the error was at most %.3g "
             "over the rows and %.3g at t = %g.", w->ref->error, w->err_max, w->err_end,
             c->run.t_end);
@@ -1660,10 +1665,17 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         print_stats(&w, &st, c->stabilize);
     if (c->summary && !rc)
         print_summary(c, m, &w, &st);
-    if (c->error && !rc && !c->stats && !c->summary)
+    if (c->error && !rc && !c->stats && !c->summary) {
+        char good[200];
+        if (isnan(ref.error))
+            snprintf(good, sizeof good, "the reference, read from %s, has no estimate of "
+                     "its own error", c->reference);
+        else
+            snprintf(good, sizeof good, "the reference is good to %.2g", ref.error);
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
-                "the %ld rows, %.3g at t = %g (the reference is good to %.2g)\n", c->prog,
-                w.err_max, w.rows, w.err_end, c->run.t_end, ref.error);
+                "the %ld rows, %.3g at t = %g (%s)\n", c->prog, w.err_max, w.rows,
+                w.err_end, c->run.t_end, good);
+    }
     if (w.tee) {
         int resets = 0;
         for (int k = 0; k < m->nevent; k++)

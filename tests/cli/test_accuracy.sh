@@ -83,6 +83,11 @@ ok $? "--reference-out: the simulator's columns, a row at each of the 21 output 
 e1=$(sed -n 's/^error_max //p' "$tmp/ref1.err") e2=$(sed -n 's/^error_max //p' "$tmp/ref2.err")
 [ $st -eq 0 ] && [ -n "$e1" ] && [ "$e1" = "$e2" ] && grep -q "^reference_error nan" "$tmp/ref2.err"
 ok $? "--reference FILE: the same error_max ($e1, $e2); a file's own error is not known"
+"$tmp/pend" --reference "$tmp/ref.csv" -o /dev/null --t-end 2 --dt 0.1 --method rkf45 \
+  --rtol 1e-6 --atol 1e-6 2> "$tmp/ref5.err"; st=$?
+[ $st -eq 0 ] && ! grep -qi "nan" "$tmp/ref5.err" &&
+  grep -q "(the reference, read from $tmp/ref.csv, has no estimate of its own error)" "$tmp/ref5.err"
+ok $? "--reference FILE: the line says the file's own error is not known, never 'good to nan'"
 "$tmp/pend" --reference "$tmp/ref.csv" -o "$tmp/none.csv" --t-end 2 --dt 0.2 \
   2> "$tmp/ref3.err"; st=$?
 [ $st -eq 2 ] && grep -q "ref.csv:3: a row at t = 0.10000000000000001 where the runs have one at t = 0.20000000000000001" "$tmp/ref3.err" &&

@@ -1403,10 +1403,7 @@ print_linear(Cli *c, eomc_sim *sim, double *x)
 /* A start off the constraints is allowed (the drift then starts there),
  * but rarely meant: say so, once, before integrating.  The test is
  * relative to each constraint's terms (eomc_sim_inconsistency), so that
- * it means the same in any units: 1e-8 is far above the rounding of a
- * state that satisfies the constraints, and far below any violation a
- * user would have meant. */
-#define INCONSISTENT_TOL 1e-8
+ * it means the same in any units. */
 
 static void
 check_consistent(const Cli *c, eomc_sim *sim, const double *x)
@@ -1416,11 +1413,33 @@ check_consistent(const Cli *c, eomc_sim *sim, const double *x)
     if (!has_levels(m))
         return;
     double e = eomc_sim_inconsistency(sim, c->run.t0, x, x + m->nq, &worst, &level);
-    if (e > INCONSISTENT_TOL && worst >= 0)
+    if (e > EOMC_INCONSISTENT && worst >= 0)
         fprintf(stderr, "%s: warning: the initial %s violate the constraint %s: its "
                 "residual is %.2g of the size of its terms (--assemble projects the state "
                 "onto the constraints)\n", c->prog, level ? "velocities" : "positions",
                 m->c_names[worst], e);
+}
+
+/* An event's `set` that breaks the constraints is the same mistake as
+ * such a start, made during the run, where its drift would otherwise pass
+ * unseen: say so, for the first one. */
+static void
+warn_reset(const Cli *c, const eomc_model *m, const eomc_stats *st)
+{
+    if (st->reset_event < 0)
+        return;
+    const char *name = m->c_names[st->reset_constraint];
+    fprintf(stderr, "%s: warning: t = %.6g: event %s set %s that violate the constraint %s: "
+            "its residual is %.2g of the size of its terms; ", c->prog, st->reset_t,
+            m->ev_names[st->reset_event], st->reset_level ? "velocities" : "positions",
+            name, st->reset_inconsistency);
+    if (c->stabilize == EOMC_STABILIZE_PROJECT)
+        fprintf(stderr, "the projection after the next step moved the state back onto the "
+                "constraints, changing what the event set\n");
+    else
+        fprintf(stderr, "the motion from there drifts off the constraints (column "
+                "res[%s] shows how far; --stabilize project moves the state back onto "
+                "them)\n", name);
 }
 
 /* The run's solve lost more digits than its tolerance leaves: say so,
@@ -1661,6 +1680,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
                 w.rows);
     warn_condition(c, &st);
     warn_drift(c, m, &st);
+    warn_reset(c, m, &st);
     if (c->stats)
         print_stats(&w, &st, c->stabilize);
     if (c->summary && !rc)

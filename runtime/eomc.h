@@ -87,6 +87,10 @@ int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
  * *level 0 when it is its position g, 1 when its g' or phi. */
 double eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
                               int *worst, int *level);
+/* The inconsistency above which a state is said to be off its
+ * constraints: far above the rounding of a state that satisfies them,
+ * far below any violation a user would have meant. */
+#define EOMC_INCONSISTENT 1e-8
 
 /* The condition number of the linear system whose solution is q'' at
  * (t, q, v): the mass matrix balanced by its diagonal (free of the
@@ -265,6 +269,13 @@ typedef struct eomc_stats {
     long events, event_evals;
     int stop_event;
     double t_stop;
+    /* The first `set` of an event that left the state off its holonomic or
+     * velocity-level constraints (eomc_sim_inconsistency above
+     * EOMC_INCONSISTENT): the event (-1: none did), its time, the
+     * constraint, its level (0: g, 1: g' or phi) and the inconsistency.
+     * The motion goes on from the state as set. */
+    int reset_event, reset_constraint, reset_level;
+    double reset_t, reset_inconsistency;
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with

@@ -763,10 +763,37 @@ check_events(Run *r, double t0, int *what, int *fired)
     return GSL_SUCCESS;
 }
 
+/* How fast event k's g changes along the motion at (t, x), whose
+ * right-hand side is f: a central difference over a probe PROBE_REL of
+ * the step (exact for a g quadratic in the state; the rounding of g
+ * over it is far below PASS_REL of any rate that matters). */
+#define PROBE_REL 1e-6
+static double
+g_rate(Run *r, int k, double t, const double *x, const double *f)
+{
+    double d = PROBE_REL * (r->ev_t1 - r->ev_t0), g[2];
+    for (int side = 0; side < 2; side++) {
+        double s = side ? d : -d;
+        for (int i = 0; i < r->N; i++)
+            r->xe[i] = x[i] + s * f[i];
+        eomc_sim_events(r->s, t + s, r->xe, r->xe + r->n, r->ge);
+        g[side] = r->ge[k];
+    }
+    return (g[1] - g[0]) / (2 * d);
+}
+
+/* A reset passes through its event when it leaves g moving on the way it
+ * crossed at more than PASS_REL of the rate it arrived with (a kick, a
+ * switch of mode).  Anything slower, at rest or turned back (an impact),
+ * is held at g = 0 until it leaves (check_events). */
+#define PASS_REL 1e-6
+
 /* Event k's reset at r->t, after the rows up to it were written: the
  * integration starts again from the new state, with nothing of the
  * history before (the interpolant's nodes, a multistep method's past).
- * The event is held until its g leaves zero. */
+ * The event is held until its g leaves zero, unless the reset passes
+ * through it.  r->f1 is the right-hand side at r->x, the state the event
+ * found. */
 static int
 apply_reset(Run *r, int k)
 {
@@ -778,11 +805,24 @@ apply_reset(Run *r, int k)
     r->gap = r->t - r->last_set;
     r->last_set = r->t;
     r->nsets++;
+    int dir = s->m->ev_direction[k];
+    double arrived = dir ? g_rate(r, k, r->t, r->x, r->f1) : 0;
     eomc_sim_event_set(s, k, r->t, r->x, r->x);
     if (!sim_all_finite(r->x, r->N)) {
         sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
                           "finite", s->m->ev_names[k]);
         return GSL_EBADFUNC;
+    }
+    if (r->st->reset_event < 0 && s->m->nc > 0) {
+        int worst, level;
+        double e = eomc_sim_inconsistency(s, r->t, r->x, r->x + r->n, &worst, &level);
+        if (e > EOMC_INCONSISTENT && worst >= 0) {
+            r->st->reset_event = k;
+            r->st->reset_t = r->t;
+            r->st->reset_constraint = worst;
+            r->st->reset_level = level;
+            r->st->reset_inconsistency = e;
+        }
     }
     int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
@@ -794,7 +834,8 @@ apply_reset(Run *r, int k)
         gsl_odeiv2_step_reset(r->side);
     eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g0);
     r->g0[k] = 0;
-    r->held[k] = 1;
+    r->held[k] = !(dir && dir * arrived > 0 &&
+                   dir * g_rate(r, k, r->t, r->x, r->f0) > PASS_REL * dir * arrived);
     r->since_reset = 0;
     if (s->kkt && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
@@ -1056,6 +1097,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
              .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY};
     st->stop_event = -1;
+    st->reset_event = -1;
     r.nrows = eomc_run_rows(o);
     r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
     r.progress = o->progress && isatty(2);

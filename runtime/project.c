@@ -28,6 +28,9 @@ struct Proj {
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
     double *M, *h;             /* [n*n] the mass matrix (the metric), [n] */
     double *L;                 /* [n*n] the pivoted LDL^T factor of M on what moves */
+    double *F, *Frel;          /* [n*n] that of the whole M, [n]: velocity scales */
+    size_t *Fperm;             /* [n] */
+    int full;                  /* F: -1 not yet factored for this M, 0 failed, 1 holds it */
     double *rel;               /* [n] its pivots relative to M_kk */
     size_t *perm;              /* [n] its pivot order */
     int *moves, nmoves;        /* [n] the coordinates (or velocities) a level moves */
@@ -77,6 +80,7 @@ proj_alloc(const eomc_model *m)
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc);
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
     j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
+    j->F = zeros(n * n), j->Frel = zeros(n), j->Fperm = calloc(n ? n : 1, sizeof *j->Fperm);
     if (j->pos_rows && j->vel_rows)
         for (int c = 0; c < m->nc; c++) {
             if (m->c_order[c] == 0)
@@ -89,7 +93,7 @@ proj_alloc(const eomc_model *m)
     j->names[0] = join_names(m, j->pos_rows, j->npos);
     j->names[1] = join_names(m, j->vel_rows, j->nvel);
     if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
-        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->M || !j->col || !j->moves || !j->lu[0] || !j->lu[1] || !j->names[0] ||
+        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->F || !j->Frel || !j->Fperm || !j->M || !j->col || !j->moves || !j->lu[0] || !j->lu[1] || !j->names[0] ||
         !j->names[1]) {
         proj_free(j);
         return NULL;
@@ -103,7 +107,8 @@ proj_free(Proj *j)
     if (!j)
         return;
     void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
-                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->M, j->col,
+                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
+                      j->Fperm, j->M, j->col,
                       j->moves, j->names[0], j->names[1]};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
@@ -125,16 +130,45 @@ proj_names(const Proj *j, int level)
 }
 
 /* |r_k| over the magnitude of its terms at x (q for positions, v for
- * velocities): sum_i |B_ki x_i| and the rest of r_k.  B's row is the
- * constraint's gradient in x, so this is r_k's size against what the
- * state contributes to it.  0 when r_k is exactly 0. */
+ * velocities): sum_i |B_ki x_i|, or bound (below) when larger, and the
+ * rest of r_k.  B's row is the constraint's gradient in x, so this is
+ * r_k's size against what the state contributes to it.  0 when r_k is
+ * exactly 0. */
 static double
-relative_residual(const double *Bk, const double *x, int n, double rk)
+relative_residual(const double *Bk, const double *x, int n, double rk, double bound)
 {
-    double lin = la_dot(Bk, x, n), mag = fabs(rk - lin);
+    double lin = la_dot(Bk, x, n), terms = 0;
     for (int i = 0; i < n; i++)
-        mag += fabs(Bk[i] * x[i]);
-    return la_relative(rk, mag);
+        terms += fabs(Bk[i] * x[i]);
+    return la_relative(rk, fabs(rk - lin) + fmax(terms, bound));
+}
+
+/* The most B_k v can be for a motion of v's kinetic energy:
+ * |B_k v| <= sqrt(B_k M^-1 B_k^T) sqrt(v^T M v) (Cauchy-Schwarz in the
+ * mass matrix's metric, so free of the coordinates' units).  The terms
+ * B_ki v_i alone are no scale for a velocity constraint: a state that
+ * satisfies it has v along the constraint, and where each term vanishes
+ * too (a Cartesian pendulum at the bottom: x = 0 and y' = 0) rounding
+ * would look like a violation of 100%.  With it, a linear velocity
+ * constraint's relative residual is the cosine of the angle between v
+ * and the constraint's normal in that metric.  0 when M is not positive
+ * definite, leaving the terms. */
+static double
+velocity_bound(Proj *j, const double *Bk, const double *v)
+{
+    int n = j->n;
+    if (j->full < 0) {
+        memcpy(j->F, j->M, (size_t)n * n * sizeof *j->F);
+        j->full = la_ldlt_factor(j->F, n, j->Frel, j->Fperm) == 0;
+    }
+    if (!j->full)
+        return 0;
+    memcpy(j->col, Bk, (size_t)n * sizeof *j->col);
+    la_ldlt_solve(j->F, n, j->Fperm, j->col);
+    double dual = la_dot(Bk, j->col, n), energy = 0;
+    for (int i = 0; i < n; i++)
+        energy += v[i] * la_dot(j->M + i * n, v, n);
+    return sqrt(fmax(dual, 0) * fmax(energy, 0));
 }
 
 /* c_levels and B at (t, q, v) into j. */
@@ -148,14 +182,16 @@ levels(Proj *j, double t, const double *q, const double *v, const double *p,
 
 /* The largest relative residual of a level's rows, its row into *worst. */
 static double
-level_residual(const Proj *j, const double *q, const double *v, int level, int *worst)
+level_residual(Proj *j, const double *q, const double *v, int level, int *worst)
 {
     int nr = level ? j->nvel : j->npos;
     const int *rows = level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
     double big = 0;
     for (int k = 0; k < nr; k++) {
-        double e = relative_residual(j->B + rows[k] * j->n, x, j->n, r[rows[k]]);
+        const double *Bk = j->B + rows[k] * j->n;
+        double e = relative_residual(Bk, x, j->n, r[rows[k]],
+                                     level ? velocity_bound(j, Bk, v) : 0);
         if (e > big || (k == 0 && worst)) {
             big = e;
             if (worst)
@@ -189,6 +225,8 @@ proj_inconsistency(Proj *j, double t, const double *q, const double *v, const do
     if (j->nvel == 0)
         return 0;
     levels(j, t, q, v, p, u);
+    j->m->mass_bias(t, q, v, p, u, j->M, j->h);
+    j->full = -1;
     double e0 = j->npos ? level_residual(j, q, v, 0, &w0) : 0;
     double e1 = level_residual(j, q, v, 1, &w1);
     *level = !(e0 >= e1 && w0 >= 0);
@@ -294,6 +332,7 @@ proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const 
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
     j->hold = hold;
     j->factored = 0;
+    j->full = -1;
     int rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)
         rc = project_level(j, t, q, v, p, u, *level = 1);

@@ -88,5 +88,81 @@ ok $? "--error with events that reset the motion is a usage error (exit $st)"
 [ $st -eq 2 ] && [ ! -e "$tmp/none.csv" ]
 ok $? "--events for a scene without events: exit $st, no file"
 
+# A `set` that does not turn the motion back passes through its event: a
+# particle falling from y = 1 gets x' = 1 as it crosses y = 0.5, at
+# t_h = sqrt(2 * 0.5 / g), and falls on; x(1) = 1 - t_h.
+cat > "$tmp/kick.yaml" <<'YAML'
+name: kick
+parameters: {g: 9.81}
+coordinates: [x, y]
+particles:
+  p: {mass: 1, position: [x, y]}
+effects:
+  gravity: {gravity: [0, -g]}
+initial: {y: 1}
+scene:
+  t_end: 1
+  rtol: 1e-12
+  atol: 1e-12
+  events:
+    half: {when: y - 0.5, direction: down, action: {set: {"x'": 1}}}
+YAML
+th=$(awk 'BEGIN { printf "%.17g", sqrt(1 / 9.81) }')
+"$eomc" run "$tmp/kick.yaml" --events "$tmp/kick_ev.csv" > "$tmp/kick.csv" 2> "$tmp/kick.err"; st=$?
+xend=$(tail -1 "$tmp/kick.csv" | cut -d, -f2) tev=$(sed -n 2p "$tmp/kick_ev.csv" | cut -d, -f1)
+[ $st -eq 0 ] && [ ! -s "$tmp/kick.err" ] && [ "$(wc -l < "$tmp/kick_ev.csv")" -eq 2 ] &&
+  within "$tev" "$th" 1e-12 && within "$xend" "$(awk -v t="$th" 'BEGIN { printf "%.17g", 1 - t }')" 1e-12
+ok $? "a kick passes through its event: once at t = $tev ($th), then x(1) = $xend = 1 - t_h"
+
+# Resets on a constrained model: the pendulum of cartesian_pendulum.yaml
+# (theta0 = 1), an event at the bottom (x = 0, falling).  Turning the bob
+# back (x' = -x') keeps it on the rod: no warning, and it is back at the
+# bottom after another half period, at 3T/4.  Setting y' = 0.001 breaks
+# the velocity constraint g' = 2 (x x' + y y') = 0: the warning's share
+# is the velocity's part along the rod, 0.001 / |v| (|v| at the bottom
+# sqrt(2 g (1 - cos 1))), and without projection g' stays at
+# 2 y y' = -0.002 (the equations hold g'' = 0), so g(2) = -0.002 (2 - T/4).
+cat > "$tmp/rod.yaml" <<'YAML'
+name: rod
+parameters: {m: 1.0, l: 1.0, g: 9.81}
+coordinates: [x, y]
+particles:
+  bob: {mass: m, position: [x, y]}
+effects:
+  gravity: {gravity: [0, -g]}
+constraints:
+  rod: x^2 + y^2 - l^2
+initial: {x: l*sin(1), y: -l*cos(1)}
+scenes:
+  back:
+    t_end: 2
+    rtol: 1e-12
+    atol: 1e-12
+    events:
+      bottom: {when: x, direction: down, action: {set: {"x'": "-x'"}}}
+  off:
+    t_end: 2
+    rtol: 1e-12
+    atol: 1e-12
+    events:
+      bottom: {when: x, direction: down, action: {set: {"y'": 0.001}}}
+YAML
+"$eomc" run "$tmp/rod.yaml" --scene back --events "$tmp/back_ev.csv" > /dev/null 2> "$tmp/back.err"; st=$?
+t1=$(sed -n 2p "$tmp/back_ev.csv" | cut -d, -f1) t2=$(sed -n 3p "$tmp/back_ev.csv" | cut -d, -f1)
+[ $st -eq 0 ] && [ ! -s "$tmp/back.err" ] && within "$t1" "$quarter" 1e-9 &&
+  within "$t2" "$(awk -v q="$quarter" 'BEGIN { printf "%.17g", 3 * q }')" 1e-9
+ok $? "a reset that keeps the constraints: no warning; at the bottom at T/4 = $t1 and 3T/4 = $t2"
+"$eomc" run "$tmp/rod.yaml" --scene off > "$tmp/off.csv" 2> "$tmp/off.err"; st=$?
+share=$(awk 'BEGIN { v = sqrt(2 * 9.81 * (1 - cos(1))); printf "%.2g", 0.001 / sqrt(v * v + 1e-6) }')
+res=$(tail -1 "$tmp/off.csv" | awk -F, '{ print $NF }')
+[ $st -eq 0 ] && grep -q "warning: t = 0.534784: event bottom set velocities that violate the constraint rod: its residual is $share of the size of its terms; the motion from there drifts off the constraints (column res\[rod\] shows how far" "$tmp/off.err" &&
+  within "$res" "$(awk -v q="$quarter" 'BEGIN { printf "%.17g", -0.002 * (2 - q) }')" 1e-9
+ok $? "a reset off the constraints: a warning naming event and constraint (share $share), and g(2) = $res = -0.002 (2 - T/4)"
+"$eomc" run "$tmp/rod.yaml" --scene off --stabilize project > "$tmp/offp.csv" 2> "$tmp/offp.err"; st=$?
+res=$(tail -1 "$tmp/offp.csv" | awk -F, '{ print $NF }')
+[ $st -eq 0 ] && grep -q "the projection after the next step moved the state back onto the constraints" "$tmp/offp.err" &&
+  within "$res" 0 1e-12
+ok $? "the same with --stabilize project: the warning says the projection undid it; g(2) = $res"
+
 echo "1..$n"
 [ $failed -eq 0 ]

@@ -309,8 +309,10 @@ typedef struct eomc_reference {
     int nx;               /* 2 nq */
     double *t, *x;        /* [nrows], [nrows * nx] */
     double error;         /* its estimated largest error in any entry of x (the
-                           * difference of the last two refinements), or NAN
-                           * when read from a file */
+                           * difference of the last two refinements, and at
+                           * least the rounding of x to doubles, half a unit
+                           * in the last place of scale), or NAN when read
+                           * from a file */
     double scale;         /* the largest |x| entry over the rows */
     int refinements;      /* solutions computed */
     double tolerance;     /* the last one's relative tolerance */

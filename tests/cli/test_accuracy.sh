@@ -98,6 +98,15 @@ printf 't,theta\n0,1\n' > "$tmp/bad.csv"
 [ $st -eq 2 ] && grep -q "bad.csv:1: no column 'theta''" "$tmp/ref4.err"
 ok $? "--reference FILE without a velocity column: usage error naming it (exit $st)"
 
+# A motion every method integrates exactly (the falling particle: a
+# parabola): the two refinements agree to every bit, and the reference is
+# still good only to the rounding of its doubles, half a unit in the last
+# place of its largest entry (|y'| = g t_end = 9.81): never "good to 0".
+"$eomc" run "$src/specs/falling_particle.yaml" --error -o /dev/null 2> "$tmp/fall.err"
+half_ulp=$(awk 'BEGIN { printf "%.2g", 0.5 * 2^-52 * 9.81 }')
+grep -q "(the reference is good to $half_ulp)" "$tmp/fall.err"
+ok $? "an exact motion: the reference is good to the rounding of doubles, $half_ulp, not 0"
+
 # --error alone, --summary
 "$tmp/pend" --error -o /dev/null --method rkf45 --rtol 1e-8 --atol 1e-8 2> "$tmp/err.err"
 grep -q "error against the reference solution: at most .* over the 1001 rows" "$tmp/err.err"

@@ -100,7 +100,17 @@ typedef struct Loader {
     int stop;      /* no use going on: SPEC_MAX_ERRORS reached, or a limit */
     const SpecOptions *opt; /* never NULL */
     yaml_node_t *scene;     /* the scene compiled: its map, or NULL */
+    struct AxisCheck *axes; /* fixed axes of parameters, checked once they are loaded */
 } Loader;
+
+/* A turn's axis of parameters, |a|^2 at node n of frame name: frames are
+ * built before the parameters' values are read, so its check waits. */
+typedef struct AxisCheck {
+    ExprId n2;
+    const yaml_node_t *n;
+    const char *name;
+    struct AxisCheck *next;
+} AxisCheck;
 
 /* A scalar being parsed as an expression: where() maps its bytes back. */
 typedef struct Scalar {
@@ -686,7 +696,7 @@ world_vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId
  * axis as turned so far, or {axis: [ax, ay, az], angle: ANGLE} about a
  * fixed direction in those axes (any length but zero). */
 static void
-frame_turn(Loader *L, int f, yaml_node_t *t)
+frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
 {
     static const char *const keys[] = {"x", "y", "z", "axis", "angle", NULL};
     as_map(L, t, "a turn");
@@ -705,6 +715,9 @@ frame_turn(Loader *L, int f, yaml_node_t *t)
             n2 = expr_add(L->P, n2, expr_mul(L->P, a[k], a[k]));
         if (n2 == EXPR_ZERO)
             diag_error(loc_of(L, ax), "an axis cannot be zero");
+        AxisCheck *c = arena_new_array(L->A, AxisCheck, 1);
+        *c = (AxisCheck){n2, ax, name, L->axes};
+        L->axes = c;
         ExprId len = expr_unary(L->P, EXPR_SQRT, n2);
         for (int k = 0; k < 3; k++)
             a[k] = expr_div(L->P, a[k], len);
@@ -736,11 +749,11 @@ build_frame(Loader *L, Define *d)
     int f = kin_frame(L->K, parent);
     if (!is_null(m) && (v = lookup_key(L, m, "rotation"))) {
         if (v->type == YAML_MAPPING_NODE) {
-            frame_turn(L, f, v);
+            frame_turn(L, f, d->name, v);
         } else {
             expect_type(L, v, YAML_SEQUENCE_NODE, "a frame's rotation (a list of turns)");
             for (int i = 0; i < NITEMS(v); i++)
-                frame_turn(L, f, node(L, ITEMS(v)[i]));
+                frame_turn(L, f, d->name, node(L, ITEMS(v)[i]));
         }
     }
     if (!is_null(m) && (v = lookup_key(L, m, "origin")))
@@ -2477,6 +2490,9 @@ load_root(Loader *L, yaml_node_t *root)
     if (L->scene)
         load_fix(L, L->scene, 1);
     apply_fix_option(L);
+    /* an axis of parameters has no direction where they make it zero */
+    for (const AxisCheck *c = L->axes; c; c = c->next)
+        require(L, c->n2, 1, c->n, 0, "frame '%s': an axis cannot be zero", c->name);
     yaml_node_t *n;
     if ((n = section(L, root, "particles", 1)))
         load_particles(L, n);

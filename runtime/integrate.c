@@ -1110,6 +1110,15 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     double c0 = sim_seconds(1);
     if (sim_has_levels(s))
         st->max_residual = st->max_drift = sim_level_residual(s, r.t, x, x + n);
+    /* the equations at the start first: a model that cannot be solved
+     * there (a singular M, a NaN of a parameter's value) writes no row */
+    int status = r.nrows > 1 ? rhs(r.t, x, r.f0, &r) : GSL_SUCCESS;
+    if (status != GSL_SUCCESS) {
+        rc = step_error(&r, status);
+        st->cpu_seconds = sim_seconds(1) - c0;
+        run_free(&r);
+        return rc;
+    }
     rc = row ? row(ctx, r.t, x) : EOMC_OK; /* the initial state, as it is */
     r.k = 1;
     if (rc == EOMC_OK && s->kkt && sim_constraint_rows(s, r.t, x, r.B0) != 0)
@@ -1122,11 +1131,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     if (rc == EOMC_OK && r.ne) /* an event at exactly 0 here waits to leave it */
         eomc_sim_events(s, r.t, x, x + n, r.g0);
     if (rc == EOMC_OK && r.nrows > 1) {
-        int status = rhs(r.t, x, r.f0, &r);
-        if (status == GSL_SUCCESS) {
-            dense_push(r.dense, r.t, x, r.f0);
-            status = march(&r);
-        }
+        dense_push(r.dense, r.t, x, r.f0);
+        status = march(&r);
         /* the rows up to the last step reached stand, also after a failure */
         if (status != ROW_STOP && status != EVENT_STOPPED) {
             int flushed = emit_rows(&r, 1);

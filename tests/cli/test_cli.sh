@@ -169,6 +169,47 @@ ok $? "--set C=5 (A + B < C): exit 2 naming the body and A, B, C with their valu
 usage_err "$tmp/prec" --set A=-1 &&
   grep -q "body 'body': its inertia must be positive definite .* (A = -1)" "$tmp/u.err"
 ok $? "--set A=-1: exit 2, the inertia is not positive definite"
+# a turn's axis of parameters: --set making it zero leaves no direction
+cat > "$tmp/axis.yaml" <<'YAML'
+name: axis
+parameters: {a: 1.0, g: 9.81}
+coordinates: [q]
+frames:
+  arm: {rotation: [{axis: [a, 0, 0], angle: q}]}
+points:
+  tip: {frame: arm, at: [0, 1, 0]}
+particles:
+  bob: {mass: 1, position: tip}
+effects:
+  gravity: {gravity: [0, 0, -g]}
+initial: {q: 0.3}
+scene: {t_end: 1}
+YAML
+"$eomc" build "$tmp/axis.yaml" -o "$tmp/axis" 2> /dev/null
+usage_err "$tmp/axis" --set a=0 -o "$tmp/axis0.csv" &&
+  grep -q "^axis: --set: frame 'arm': an axis cannot be zero (a = 0)$" "$tmp/u.err" &&
+  [ ! -e "$tmp/axis0.csv" ]
+ok $? "--set a=0 zeroing a turn's axis: exit 2 naming the frame and a, no output file"
+# a massless bob (allowed: forces may act on a point) leaves M singular:
+# the run stops at t = 0, where the equations cannot be solved, before any row
+"$tmp/axis" --set a=-2 -o /dev/null; sta=$?
+cat > "$tmp/massless.yaml" <<'YAML'
+name: massless
+parameters: {m: 1.0, g: 9.81}
+coordinates: [q]
+particles:
+  bob: {mass: m, position: [cos(q), sin(q)]}
+effects:
+  gravity: {gravity: [0, -g]}
+initial: {q: 0.3}
+scene: {t_end: 1}
+YAML
+"$eomc" build "$tmp/massless.yaml" -o "$tmp/massless" 2> /dev/null
+"$tmp/massless" --set m=0 -o "$tmp/m0.csv" 2> "$tmp/m0.err"; st=$?
+[ $sta -eq 0 ] && [ $st -eq 3 ] && [ "$(wc -l < "$tmp/m0.csv")" -eq 1 ] &&
+  grep -q "error: t = 0: mass matrix is singular or not positive definite (pivot 1, coordinate q)" "$tmp/m0.err" &&
+  grep -q "the 0 rows computed up to then are kept" "$tmp/m0.err"
+ok $? "a massless bob: exit 3 at t = 0 naming M and q, before any row (the header only)"
 usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp/u.err"
 ok $? "--stabilize with a typo: usage error suggesting project"
 usage_err "$tmp/cp" --baumgarte 1 && grep -q "ALPHA,BETA" "$tmp/u.err"

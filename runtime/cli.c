@@ -80,6 +80,8 @@ typedef struct Csv {
                           * and room for one more (in res's allocation) */
     size_t blen;
     double h_first;      /* the conserved quantity at the first row */
+    double t_max;        /* the largest kinetic energy written: the scale of the
+                          * energy the motion moves about, for the drift's */
     double t_last;       /* the time of the last row written */
     double err_max, err_end;
 } Csv;
@@ -761,6 +763,7 @@ write_row(void *ctx, double t, const double *x)
         return EOMC_ENUMERIC;
     double T, V, h = 0;
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
+    w->t_max = fmax(w->t_max, fabs(T));
     if (w->invariant) {
         eomc_sim_invariant(w->sim, t, x, x + n, &h);
         if (w->rows == 0)
@@ -1467,9 +1470,22 @@ warn_condition(const Cli *c, const eomc_stats *st)
  * times, an error the estimates cannot see is at work. */
 #define DRIFT_SLACK 1e3
 
+/* Fixed steps estimate no error of their own: a conserved quantity that
+ * moved by more than FIXED_DRIFT of the largest kinetic energy has fewer
+ * than two digits right, and the motion is no better. */
+#define FIXED_DRIFT 1e-2
+
 static void
-warn_drift(const Cli *c, const eomc_model *m, const eomc_stats *st)
+warn_drift(const Cli *c, const eomc_model *m, const eomc_stats *st, const Csv *w)
 {
+    if (st->h_used > 0 && w->invariant && w->dh > FIXED_DRIFT * w->t_max) {
+        fprintf(stderr, "%s: warning: fixed steps of %.3g: the conserved quantity %s changed "
+                "by %.3g, %.2g of the largest kinetic energy (%.3g): fewer than two of its "
+                "digits are right, and the motion's are probably no better (shorter "
+                "--fixed-step, or adaptive steps, give more)\n", c->prog, st->h_used,
+                m->invariant_name, w->dh, w->dh / w->t_max, w->t_max);
+        return;
+    }
     if (!(st->invariant_budget > 0) ||
         !(st->invariant_drift > DRIFT_SLACK * st->invariant_budget))
         return;
@@ -1679,7 +1695,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         fprintf(stderr, "%s: the %ld rows computed up to then are kept\n", c->prog,
                 w.rows);
     warn_condition(c, &st);
-    warn_drift(c, m, &st);
+    warn_drift(c, m, &st, &w);
     warn_reset(c, m, &st);
     if (c->stats)
         print_stats(&w, &st, c->stabilize);

@@ -107,6 +107,24 @@ half_ulp=$(awk 'BEGIN { printf "%.2g", 0.5 * 2^-52 * 9.81 }')
 grep -q "(the reference is good to $half_ulp)" "$tmp/fall.err"
 ok $? "an exact motion: the reference is good to the rounding of doubles, $half_ulp, not 0"
 
+# Fixed steps estimate no error: rk4 in steps of 0.5 on the pendulum
+# (period 2.1 s) keeps no digit of its energy, which the run says; in steps
+# of 0.1 it keeps about three, and says nothing.  E = theta'^2/2 - g cos(theta)
+# and T = theta'^2/2 computed here from the rows (m = l = 1).
+for h in 0.5 0.1; do
+  "$tmp/pend" --method rk4 --fixed-step $h --t-end 10 > "$tmp/fix$h.csv" 2> "$tmp/fix$h.err"
+  echo $? >> "$tmp/fix$h.err"
+done
+set -- $(awk -F, 'NR > 1 { e = $3 * $3 / 2 - 9.81 * cos($2); t = $3 * $3 / 2
+    if (NR == 2) e0 = e; d = e - e0; if (d < 0) d = -d; if (d > dh) dh = d; if (t > tm) tm = t }
+    END { printf "%.3g %.3g %.2g", dh, tm, dh / tm }' "$tmp/fix0.5.csv")
+grep -q "warning: fixed steps of 0.5: the conserved quantity E changed by $1, $3 of the largest kinetic energy ($2): fewer than two of its digits are right" "$tmp/fix0.5.err" &&
+  [ "$(tail -1 "$tmp/fix0.5.err")" = 0 ] && [ "$(wc -l < "$tmp/fix0.1.err")" -eq 1 ] &&
+  awk -F, 'NR > 1 { e = $3 * $3 / 2 - 9.81 * cos($2); t = $3 * $3 / 2
+    if (NR == 2) e0 = e; d = e - e0; if (d < 0) d = -d; if (d > dh) dh = d; if (t > tm) tm = t }
+    END { exit !(dh < 0.01 * tm) }' "$tmp/fix0.1.csv"
+ok $? "fixed steps of 0.5 lose E (by $1, $3 of T's largest, $2): a warning; of 0.1: none"
+
 # --error alone, --summary
 "$tmp/pend" --error -o /dev/null --method rkf45 --rtol 1e-8 --atol 1e-8 2> "$tmp/err.err"
 grep -q "error against the reference solution: at most .* over the 1001 rows" "$tmp/err.err"

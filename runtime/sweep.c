@@ -142,6 +142,30 @@ worker(void *arg)
     return NULL;
 }
 
+/* "warning: 2 of 5 runs failed ...; the first: l = 0: t = 0: ..." from
+ * the first failed row: its values, then its status, a quoted CSV cell. */
+static void
+warn_failed(const Sweep *sw, long failed, const char *row)
+{
+    fprintf(stderr, "%s: warning: %ld of %ld runs failed (each row's status says why); "
+            "the first:", sw->prog, failed, sw->nruns);
+    for (int k = 0; k < sw->nparam; k++) {
+        size_t len = strcspn(row, ",");
+        fprintf(stderr, " %s = %.*s%s", sw->names[k], (int)len, row, k + 1 < sw->nparam
+                ? "," : ":");
+        row += len + (row[len] == ',');
+    }
+    fputc(' ', stderr);
+    for (const char *c = row + (*row == '"'); *c && *c != '\n'; c++) {
+        if (*c == '"' && c[1] == '"')
+            c++; /* a quote, doubled inside the cell */
+        else if (*c == '"')
+            break;
+        fputc(*c, stderr);
+    }
+    fputc('\n', stderr);
+}
+
 int
 sweep_run(const Sweep *sw, FILE *f)
 {
@@ -194,6 +218,8 @@ sweep_run(const Sweep *sw, FILE *f)
             at[r] = (all ? all : "") + off;
             off += parallel ? lens[r] : mine.len;
         }
+        long failed = 0;
+        const char *first = NULL;
         for (long j = 0; at && j < sw->nruns; j++) {
             const char **pr = &at[j % size];
             const char *end = strchr(*pr, '\n');
@@ -201,9 +227,18 @@ sweep_run(const Sweep *sw, FILE *f)
                 rc = EOMC_EUSAGE;
                 break;
             }
+            /* its status follows the swept values, numbers without commas */
+            const char *st = *pr;
+            for (int k = 0; k < sw->nparam && st; k++)
+                st = strchr(st, ',') ? strchr(st, ',') + 1 : NULL;
+            if (st && strncmp(st, "ok,", 3) != 0 && failed++ == 0)
+                first = *pr;
             fwrite(*pr, 1, (size_t)(end - *pr) + 1, f);
             *pr = end + 1;
         }
+        /* the rows say which runs failed; so does the run, once, where it is seen */
+        if (failed > 0)
+            warn_failed(sw, failed, first);
         free(at);
     }
     if (all != mine.s)

@@ -31,12 +31,19 @@ sed -n 3p "$tmp/file.csv" | grep -q '^-1,1,"particle .bob.: a mass cannot be neg
     [ "$(sed -n 2p "$tmp/file.csv" | cut -d, -f3)" = ok ] &&
     [ "$(sed -n 4p "$tmp/file.csv" | cut -d, -f3)" = ok ] && [ $st -eq 0 ]
 ok $? "--sweep-file: the failing run (m = -1) has its error as status, the others run"
+# l = 0 makes M = m l^2 = 0: exactly the two runs with it fail, and the
+# sweep says so on stderr, naming the first
+"$tmp/pend" --sweep l=-1:1:3 --sweep g=1:2:2 --t-end 1 -o "$tmp/fail.csv" 2> "$tmp/fail.err"; st=$?
+[ $st -eq 0 ] && [ "$(cut -d, -f3 "$tmp/fail.csv" | grep -c '^ok$')" -eq 4 ] &&
+  grep -qx "pend: warning: 2 of 6 runs failed (each row's status says why); the first: l = 0, g = 1: t = 0: mass matrix is singular or not positive definite (pivot 1, coordinate theta); state: theta = 1, theta' = 0" "$tmp/fail.err"
+ok $? "failed runs: one warning counting them (2 of 6, l = 0) and naming the first"
 
-"$tmp/pend" --sweep g=1:20:40 --t-end 2 -o "$tmp/serial.csv"
+"$tmp/pend" --sweep g=1:20:40 --t-end 2 -o "$tmp/serial.csv" 2> "$tmp/serial.err"
 "$tmp/pend" --sweep g=1:20:40 --t-end 2 --threads 2 -o "$tmp/threads.csv"
 "$tmp/pend" --sweep g=1:20:40 --t-end 2 --threads 7 -o "$tmp/threads7.csv"
-cmp -s "$tmp/serial.csv" "$tmp/threads.csv" && cmp -s "$tmp/serial.csv" "$tmp/threads7.csv"
-ok $? "--threads 2 and 7: the same bytes as serial (40 runs)"
+cmp -s "$tmp/serial.csv" "$tmp/threads.csv" && cmp -s "$tmp/serial.csv" "$tmp/threads7.csv" &&
+  [ -e "$tmp/serial.err" ] && [ ! -s "$tmp/serial.err" ]
+ok $? "--threads 2 and 7: the same bytes as serial (40 runs); no run failed, nothing said"
 
 if [ -z "${EOMC_TEST_NO_MPI:-}" ] && command -v mpicc > /dev/null && command -v mpirun > /dev/null; then
     "$eomc" build "$pend" --mpi -o "$tmp/pend_mpi" 2> "$tmp/mpi.err"; st=$?

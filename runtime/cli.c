@@ -898,14 +898,19 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
             st->t_stop, c->run.t_end);
     if (m->nevent > 0)
         ADD(". ");
+    /* the change against the energy the motion moves about, not against h's
+     * value, which a potential's constant sets anywhere (0 included) */
+    char rel[80] = "";
+    if (w->invariant && w->t_max > 0)
+        snprintf(rel, sizeof rel, " (%.3g of the largest kinetic energy, %.3g)",
+                 w->dh / w->t_max, w->t_max);
     if (w->invariant && resets && st->events > 0)
         ADD("The conserved quantity %s, measured afresh after each reset, changed by at "
-            "most %.3g between them (%.3g relative to its last start, %.10g).",
-            m->invariant_name, w->dh, w->dh / fmax(fabs(w->h0), 1e-300), w->h0);
+            "most %.3g between them%s; it last started at %.10g.", m->invariant_name, w->dh,
+            rel, w->h0);
     else if (w->invariant)
-        ADD("The conserved quantity %s started at %.10g; its largest change was %.3g "
-            "(%.3g relative).", m->invariant_name, w->h0, w->dh,
-            w->dh / fmax(fabs(w->h0), 1e-300));
+        ADD("The conserved quantity %s started at %.10g; its largest change was %.3g%s.",
+            m->invariant_name, w->h0, w->dh, rel);
     else
         ADD("No drift is reported: %s.", m->invariant_note);
     if (m->nc > 0)

@@ -136,6 +136,12 @@ ok $? "arenstorf --summary: the conserved quantity is h, Jacobi's, not T + V"
 "$tmp/aren" -o "$tmp/aren.csv" --t-end 0.1
 [ "$(head -n 1 "$tmp/aren.csv")" = "t,x,y,x',y',T,V,E,h" ]
 ok $? "... and its CSV has a column h after E"
+# released from the horizontal, E = 0 up to rounding: its change is said
+# against the largest kinetic energy, m g l = 9.81 at the bottom (not
+# against E's own value, which would make it 1e+4 "relative")
+"$tmp/pend" --init theta=1.5707963267948966 --summary -o /dev/null 2> "$tmp/flat.err"
+tr '\n' ' ' < "$tmp/flat.err" | grep -q "its largest change was [0-9.e-]* ([0-9.]*e-1[0-9] of the largest kinetic energy, 9.81)\."
+ok $? "--summary: E's change against the largest kinetic energy (9.81), also where E = 0"
 "$eomc" build "$src/tests/sim/specs/cart_pole.yaml" -o "$tmp/cp" 2> /dev/null
 "$tmp/cp" --summary -o /dev/null 2> "$tmp/cp.err"
 tr '\n' ' ' < "$tmp/cp.err" | grep -q "No drift is reported: nothing is conserved: the effect 'drive' is a force, not a potential"

@@ -841,6 +841,10 @@ print_stats(const Csv *w, const eomc_stats *st, int stabilize)
                 w->err_end, w->err_max, w->ref->error);
     if (m->nevent > 0)
         fprintf(stderr, "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
+    if (st->reset_event >= 0)
+        fprintf(stderr, "reset_event %s\nt_reset %.17g\nreset_constraint %s\n"
+                "reset_inconsistency %.3g\n", m->ev_names[st->reset_event], st->reset_t,
+                m->c_names[st->reset_constraint], st->reset_inconsistency);
     if (st->stop_event >= 0)
         fprintf(stderr, "stop_event %s\nt_stop %.17g\n", m->ev_names[st->stop_event],
                 st->t_stop);

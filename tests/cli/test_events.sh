@@ -158,6 +158,12 @@ res=$(tail -1 "$tmp/off.csv" | awk -F, '{ print $NF }')
 [ $st -eq 0 ] && grep -q "warning: t = 0.534784: event bottom set velocities that violate the constraint rod: its residual is $share of the size of its terms; the motion from there drifts off the constraints (column res\[rod\] shows how far" "$tmp/off.err" &&
   within "$res" "$(awk -v q="$quarter" 'BEGIN { printf "%.17g", -0.002 * (2 - q) }')" 1e-9
 ok $? "a reset off the constraints: a warning naming event and constraint (share $share), and g(2) = $res = -0.002 (2 - T/4)"
+"$eomc" run "$tmp/rod.yaml" --scene off --stats -o /dev/null 2> "$tmp/offs.err"
+grep -qx "reset_event bottom" "$tmp/offs.err" && grep -qx "reset_constraint rod" "$tmp/offs.err" &&
+  grep -qx "reset_inconsistency $(awk 'BEGIN { v = sqrt(2 * 9.81 * (1 - cos(1)))
+      printf "%.3g", 0.001 / sqrt(v * v + 1e-6) }')" "$tmp/offs.err" &&
+  within "$(sed -n 's/^t_reset //p' "$tmp/offs.err")" "$quarter" 1e-9
+ok $? "--stats: reset_event, t_reset (T/4), reset_constraint, reset_inconsistency ($share)"
 "$eomc" run "$tmp/rod.yaml" --scene off --stabilize project > "$tmp/offp.csv" 2> "$tmp/offp.err"; st=$?
 res=$(tail -1 "$tmp/offp.csv" | awk -F, '{ print $NF }')
 [ $st -eq 0 ] && grep -q "the projection after the next step moved the state back onto the constraints" "$tmp/offp.err" &&

@@ -114,6 +114,39 @@ ok $? "rolling disk, --assemble without --hold: the spin rate moves ($(grep "phi
 gotx=$(sed -n "s/^  x' 0 -> \\([^ ]*\\) .*/\\1/p" "$tmp/held.err")
 [ "$(grep -c '^  ' "$tmp/held.err")" -eq 1 ] && near "$gotx" -3
 ok $? "rolling disk, --hold phi',psi',theta': only x' moves, to $gotx = -R phi' cos(psi)"
+# A heavy symmetric top on frames (z-x-z turns, its centre a point on the
+# body's axis, inertia [A, A, C] about the centre): steady precession at
+# theta = 0.5 needs A' W^2 cos(theta) - C w3 W + m g l = 0, A' = A + m l^2
+# about the pivot, w3 = phi' + W cos(theta); with the slow root W it stays
+# at theta = 0.5, and with W computed from A alone (the classic slip)
+# theta'' = (A' W^2 s c - C w3 W s + m g l s) / A' there.
+cat > "$tmp/top.yaml" <<'YAML'
+name: top
+parameters: {m: 1.0, l: 0.2, g: 9.81, A: 0.05, C: 0.02}
+coordinates: [psi, theta, phi]
+frames:
+  body_axes: {rotation: [{z: psi}, {x: theta}, {z: phi}]}
+points:
+  centre: {frame: body_axes, at: [0, 0, l]}
+bodies:
+  top: {mass: m, frame: body_axes, center: centre, inertia: [A, A, C]}
+effects:
+  gravity: {gravity: [0, 0, -g]}
+initial: {theta: 0.5, phi': 60}
+scene: {t_end: 2, rtol: 1e-12, atol: 1e-12}
+YAML
+slow() { awk -v A="$1" 'BEGIN { C = 0.02; c = cos(0.5); a = (A - C) * c; b = -0.02 * 60
+    k = 9.81 * 0.2; printf "%.17g", (-b - sqrt(b * b - 4 * a * k)) / (2 * a) }'; }
+W=$(slow 0.09) W0=$(slow 0.05)
+"$eomc" build "$tmp/top.yaml" -o "$tmp/top" 2> /dev/null
+"$tmp/top" --init "psi'=$W" > "$tmp/top.csv"; st=$?
+dev=$(awk -F, -v W="$W" 'NR > 1 { d = $3 - 0.5; if (d < 0) d = -d; if (d > m) m = d
+    e = $5 - W; if (e < 0) e = -e; if (e > m) m = e } END { printf "%.2g", m }' "$tmp/top.csv")
+got=$("$tmp/top" --init "psi'=$W0" --accel | sed -n "s/^theta'' //p")
+want=$(awk -v W="$W0" 'BEGIN { s = sin(0.5); c = cos(0.5); w3 = 60 + W * c
+    printf "%.17g", (0.09 * W * W * s * c - 0.02 * w3 * W * s + 9.81 * 0.2 * s) / 0.09 }')
+[ $st -eq 0 ] && awk -v d="$dev" 'BEGIN { exit !(d <= 1e-10) }' && near "$got" "$want"
+ok $? "a heavy top on frames: steady precession at W = $W holds theta and psi' to $dev; with A alone theta'' = $got"
 usage_err() { "$@" > /dev/null 2> "$tmp/u.err"; [ $? -eq 2 ]; }
 usage_err "$tmp/rd" --hold "x'" -o /dev/null && grep -q "^rd: --hold belongs to --assemble" "$tmp/u.err"
 ok $? "--hold without --assemble: exit 2, saying it belongs to --assemble"

@@ -123,6 +123,11 @@ enum { ROW_STOP = -1000, STEP_COLLAPSE = -1001, STEP_GRIND = -1002,
  * would be below the collapse limit of any run), and the next ones come
  * ever faster. */
 #define ACCUMULATE_REL 1e-9
+/* A reset passes through its event when it leaves g moving on the way it
+ * crossed at more than PASS_REL of the rate it arrived with (a kick, a
+ * switch of mode).  Anything slower, at rest or turned back (an impact),
+ * is held at g = 0 until it leaves (check_events). */
+#define PASS_REL 1e-6
 /* The first step after a reset: at most this fraction of the time since
  * the event before, so that the steps resolve the next interval (each
  * bounce of a ball is shorter than the last by the restitution). */
@@ -197,6 +202,9 @@ typedef struct Run {
     long nsets;                   /* `set` events so far */
     unsigned char *held;          /* [ne] reset at g = 0, not yet left it */
     double gap;                   /* from the `set` event before to the last */
+    double left_rate;             /* g's rate after the last reset, a share of
+                                     its rate on arrival (0 unless on the way
+                                     it crossed, slower than passing) */
     long since_reset;             /* steps since the last reset */
 } Run;
 
@@ -332,6 +340,16 @@ step_error(Run *r, int status)
                                  GRIND_WINDOW, r->h_last, GRIND_REL, typical_step(r),
                                  cause);
     case EVENT_RETURNED:
+        if (r->left_rate > 0) /* moving on, too slowly to pass: not a return */
+            return sim_numeric_error(s, r->t, r->x, r->x + n, "event %s holds still at "
+                                     "the end of the first step after its reset at t = "
+                                     "%.17g: the reset left the motion crossing it at "
+                                     "%.2g of the rate it arrived with, too slow to tell "
+                                     "from resting on it (passing through takes more "
+                                     "than %g); a reset that passes should leave it "
+                                     "faster, one that stops it should turn it back",
+                                     s->m->ev_names[r->ev_k], r->last_set, r->left_rate,
+                                     PASS_REL);
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
                                  "holds again at the end of the first step after its "
                                  "reset at t = %.17g (a step of %.3g): the motion returns "
@@ -764,10 +782,13 @@ check_events(Run *r, double t0, int *what, int *fired)
 }
 
 /* How fast event k's g changes along the motion at (t, x), whose
- * right-hand side is f: a central difference over a probe PROBE_REL of
- * the step (exact for a g quadratic in the state; the rounding of g
- * over it is far below PASS_REL of any rate that matters). */
-#define PROBE_REL 1e-6
+ * right-hand side is f: a central difference along the tangent over a
+ * probe PROBE_REL of the step.  It is exact for a g quadratic in the
+ * state, and otherwise off by (probe)^2 g'''/6, a millionth of what g
+ * changes by over a step; the rounding of g, spread over a probe a
+ * thousandth of the step, stays far below PASS_REL of the rate it arrived
+ * with (a millionth of the step lost 60% of a rate of 1e-8 to it). */
+#define PROBE_REL 1e-3
 static double
 g_rate(Run *r, int k, double t, const double *x, const double *f)
 {
@@ -782,18 +803,12 @@ g_rate(Run *r, int k, double t, const double *x, const double *f)
     return (g[1] - g[0]) / (2 * d);
 }
 
-/* A reset passes through its event when it leaves g moving on the way it
- * crossed at more than PASS_REL of the rate it arrived with (a kick, a
- * switch of mode).  Anything slower, at rest or turned back (an impact),
- * is held at g = 0 until it leaves (check_events). */
-#define PASS_REL 1e-6
-
 /* Event k's reset at r->t, after the rows up to it were written: the
  * integration starts again from the new state, with nothing of the
  * history before (the interpolant's nodes, a multistep method's past).
  * The event is held until its g leaves zero, unless the reset passes
- * through it.  r->f1 is the right-hand side at r->x, the state the event
- * found. */
+ * through it.  r->f0 is the right-hand side at r->x, the state the event
+ * found (march has made the step's end the next one's start). */
 static int
 apply_reset(Run *r, int k)
 {
@@ -806,7 +821,7 @@ apply_reset(Run *r, int k)
     r->last_set = r->t;
     r->nsets++;
     int dir = s->m->ev_direction[k];
-    double arrived = dir ? g_rate(r, k, r->t, r->x, r->f1) : 0;
+    double arrived = dir ? g_rate(r, k, r->t, r->x, r->f0) : 0;
     eomc_sim_event_set(s, k, r->t, r->x, r->x);
     if (!sim_all_finite(r->x, r->N)) {
         sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
@@ -834,8 +849,9 @@ apply_reset(Run *r, int k)
         gsl_odeiv2_step_reset(r->side);
     eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g0);
     r->g0[k] = 0;
-    r->held[k] = !(dir && dir * arrived > 0 &&
-                   dir * g_rate(r, k, r->t, r->x, r->f0) > PASS_REL * dir * arrived);
+    double left = dir && dir * arrived > 0 ? g_rate(r, k, r->t, r->x, r->f0) / arrived : 0;
+    r->held[k] = !(left > PASS_REL);
+    r->left_rate = r->held[k] && left > 0 ? left : 0;
     r->since_reset = 0;
     if (s->kkt && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;

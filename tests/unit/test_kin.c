@@ -10,7 +10,13 @@
  *  - vel(P, F), the velocity of the point of F at P, through the parser,
  *    both ways it is formed (P offset from F's origin through a sliding
  *    link; the same place as a point of its own), against v_O + w_F x
- *    (r_P - r_O) with v_O and w_F by differences here.
+ *    (r_P - r_O) with v_O and w_F by differences here;
+ *  - along q(t) = q0 + v0 t + a0 t^2 / 2: acc(P) and acc(P, B) against
+ *    second differences of P's position and of the point fixed in B at P
+ *    (r_O(t) + R_B(t) R_B(0)^T (r_P(0) - r_O(0))), alpha(B) against first
+ *    differences of B's angular velocity written out here (q0' z + q1'
+ *    R_z x + q2' R_A y), and omega(B, A), alpha(B, A) against q2' R_A y
+ *    and q2'' R_A y (B turns about A's y alone).
  */
 #include "check.h"
 #include "kin.h"
@@ -19,6 +25,8 @@
 #include <string.h>
 
 enum { NQ = 4 };
+/* the step of the differences along the motion (and half of it) */
+#define DIFF_H 2e-3
 
 static ExprPool *P;
 static Diff *D;
@@ -68,13 +76,13 @@ child_R(const double *q, double R[9])
 
 /* vel(P, F): frames B (the child of A below), points O (B's origin), P
  * (from O, sliding with q3) and Q (P's place, from the world's origin). */
-static int frame_b, point_o, point_p, point_q;
+static int frame_a, frame_b, point_o, point_p, point_q;
 
 static int
 frame_arg(ParseScope *sc, const char *name, SrcLoc at)
 {
-    (void)sc, (void)name, (void)at;
-    return frame_b;
+    (void)sc, (void)at;
+    return name[0] == 'A' ? frame_a : frame_b;
 }
 
 static int
@@ -120,6 +128,108 @@ positions(const double *q, double rO[3], double rP[3], double RB[9])
     }
 }
 
+/* B's angular velocity written out: q0' about z, q1' about A's x after
+ * the turn about z, q2' about A's y. */
+static void
+omega_b(const double *q, const double *v, double w[3])
+{
+    double rO[3], rP[3], RB[9], RA[9], Rk[9];
+    static const double ez[3] = {0, 0, 1}, ex[3] = {1, 0, 0};
+    positions(q, rO, rP, RB);
+    rodrigues(ez, q[0], RA);
+    rodrigues(ex, q[1], Rk), matmul(RA, Rk, RA);
+    w[0] = v[1] * cos(q[0]) + v[2] * RA[1];
+    w[1] = v[1] * sin(q[0]) + v[2] * RA[4];
+    w[2] = v[0] + v[2] * RA[7];
+}
+
+/* The state at time t along q0 + v0 t + a0 t^2 / 2. */
+static void
+along(const double *q0, const double *v0, const double *a0, double t, double *q, double *v)
+{
+    for (int i = 0; i < NQ; i++)
+        q[i] = q0[i] + t * v0[i] + 0.5 * t * t * a0[i], v[i] = v0[i] + t * a0[i];
+}
+
+/* Differences over h and h/2 extrapolated (Richardson), the first
+ * derivative of omega_b and the second of P's position and of the point
+ * fixed in B at P: d[0..3) acc(P), d[3..6) acc(P, B), d[6..9) alpha(B). */
+static void
+differences(const double *q0, const double *v0, const double *a0, double d[9])
+{
+    double rO0[3], rP0[3], RB0[9], r0[3], Dh[2][9];
+    positions(q0, rO0, rP0, RB0);
+    for (int i = 0; i < 3; i++) { /* r_P - r_O in B's axes at t = 0 */
+        r0[i] = 0;
+        for (int k = 0; k < 3; k++)
+            r0[i] += RB0[3 * k + i] * (rP0[k] - rO0[k]);
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        double h = pass ? DIFF_H / 2 : DIFF_H, f[3][6], wp[3], wm[3];
+        for (int side = 0; side < 3; side++) { /* t = -h, 0, h */
+            double q[NQ], v[NQ], rO[3], rP[3], RB[9];
+            along(q0, v0, a0, (side - 1) * h, q, v);
+            positions(q, rO, rP, RB);
+            for (int i = 0; i < 3; i++) {
+                f[side][i] = rP[i];
+                f[side][3 + i] = rO[i];
+                for (int k = 0; k < 3; k++)
+                    f[side][3 + i] += RB[3 * i + k] * r0[k];
+            }
+            if (side == 0)
+                omega_b(q, v, wm);
+            else if (side == 2)
+                omega_b(q, v, wp);
+        }
+        for (int i = 0; i < 6; i++)
+            Dh[pass][i] = (f[2][i] - 2 * f[1][i] + f[0][i]) / (h * h);
+        for (int i = 0; i < 3; i++)
+            Dh[pass][6 + i] = (wp[i] - wm[i]) / (2 * h);
+    }
+    for (int i = 0; i < 9; i++)
+        d[i] = (4 * Dh[1][i] - Dh[0][i]) / 3;
+}
+
+static void
+test_accelerations(ParseScope *sc)
+{
+    static const char *const text[] = {"acc(P)", "acc(P, B)", "alpha(B)", "omega(B, A)",
+                                       "alpha(B, A)"};
+    enum { NV = sizeof text / sizeof *text };
+    ExprId e[NV][3];
+    for (int k = 0; k < NV; k++) {
+        ParseSrc src = {text[k], strlen(text[k]), where, NULL};
+        parse_vector(sc, &src, e[k]);
+    }
+    double worst[NV] = {0};
+    for (int trial = 0; trial < 50; trial++) {
+        double q0[NQ], v0[NQ], a0[NQ];
+        for (int i = 0; i < NQ; i++)
+            q0[i] = check_rand(-3, 3), v0[i] = check_rand(-2, 2), a0[i] = check_rand(-2, 2);
+        ExprEnv env = {.q = {q0, v0, a0}};
+        double want[NV][3], d[9], rO[3], rP[3], RB[9];
+        differences(q0, v0, a0, d);
+        memcpy(want, d, sizeof d); /* acc(P), acc(P, B), alpha(B) */
+        positions(q0, rO, rP, RB);
+        for (int i = 0; i < 3; i++) { /* R_A y is R_B y: B turns about it */
+            want[3][i] = v0[2] * RB[3 * i + 1];
+            want[4][i] = a0[2] * RB[3 * i + 1];
+        }
+        for (int k = 0; k < NV; k++)
+            for (int i = 0; i < 3; i++)
+                worst[k] = fmax(worst[k], fabs(expr_eval(P, e[k][i], &env) - want[k][i]));
+    }
+    /* second differences: the rounding of |r| ~ 3 over (h/2)^2 = 1e-6,
+     * times 5/3 by the extrapolation, ~ 1e-9; first differences: the
+     * extrapolated truncation h^4 |w^(5)| / 480 ~ 1e-11; closed forms:
+     * rounding */
+    static const double tol[NV] = {1e-8, 1e-8, 1e-9, 1e-14, 1e-14};
+    for (int k = 0; k < NV; k++)
+        CHECK(worst[k] <= tol[k], "%s against %s (to %.2g)", text[k],
+              k < 2 ? "second differences of positions" : k == 2
+              ? "differences of omega written out" : "its closed form", worst[k]);
+}
+
 static void
 test_material_velocity(Arena *A)
 {
@@ -127,7 +237,7 @@ test_material_velocity(Arena *A)
     ExprId q[NQ];
     for (int i = 0; i < NQ; i++)
         q[i] = expr_var(P, i, 0);
-    int fa = kin_frame(K, KIN_WORLD);
+    int fa = frame_a = kin_frame(K, KIN_WORLD);
     kin_turn_axis(K, fa, 2, q[0]);
     kin_turn_axis(K, fa, 0, q[1]);
     frame_b = kin_frame(K, fa);
@@ -197,6 +307,7 @@ test_material_velocity(Arena *A)
           "position (to %.2g)", worst_v);
     CHECK(worst_q <= 1e-10, "vel(Q, B), Q at P's place from the world's origin: the same "
           "(to %.2g)", worst_q);
+    test_accelerations(&sc);
 }
 
 int

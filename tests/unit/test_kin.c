@@ -16,7 +16,9 @@
  *    (r_O(t) + R_B(t) R_B(0)^T (r_P(0) - r_O(0))), alpha(B) against first
  *    differences of B's angular velocity written out here (q0' z + q1'
  *    R_z x + q2' R_A y), and omega(B, A), alpha(B, A) against q2' R_A y
- *    and q2'' R_A y (B turns about A's y alone).
+ *    and q2'' R_A y (B turns about A's y alone);
+ *  - the vector operations (axes, vec, cross, dot, norm, sums and
+ *    scaling) against the same arithmetic on R_B and r_P done here.
  */
 #include "check.h"
 #include "kin.h"
@@ -231,6 +233,49 @@ test_accelerations(ParseScope *sc)
 }
 
 static void
+test_vector_operations(ParseScope *sc)
+{
+    static const char *const vtext[] = {"cross(B.x, B.y)", "vec(B, 1, -2, 3)",
+                                        "-pos(P)/2 + 3*B.z", "cross(omega(B), vec(B, 0, 0, 1))"};
+    static const char *const stext[] = {"norm(vec(B, 3, 0, 4))", "dot(pos(P), B.y)"};
+    enum { NV = sizeof vtext / sizeof *vtext, NS = sizeof stext / sizeof *stext };
+    ExprId ev[NV][3], es[NS];
+    for (int k = 0; k < NV; k++) {
+        ParseSrc src = {vtext[k], strlen(vtext[k]), where, NULL};
+        parse_vector(sc, &src, ev[k]);
+    }
+    for (int k = 0; k < NS; k++) {
+        ParseSrc src = {stext[k], strlen(stext[k]), where, NULL};
+        es[k] = parse_expr(sc, &src);
+    }
+    double worst = 0;
+    for (int trial = 0; trial < 50; trial++) {
+        double q0[NQ], v0[NQ], zero[NQ] = {0};
+        for (int i = 0; i < NQ; i++)
+            q0[i] = check_rand(-3, 3), v0[i] = check_rand(-2, 2);
+        ExprEnv env = {.q = {q0, v0, zero}};
+        double rO[3], rP[3], R[9], w[3], want[NV][3], swant[NS] = {5, 0};
+        positions(q0, rO, rP, R);
+        omega_b(q0, v0, w);
+        for (int i = 0; i < 3; i++) {
+            int j = (i + 1) % 3, k = (i + 2) % 3;
+            want[0][i] = R[3 * i + 2];
+            want[1][i] = R[3 * i] - 2 * R[3 * i + 1] + 3 * R[3 * i + 2];
+            want[2][i] = -rP[i] / 2 + 3 * R[3 * i + 2];
+            want[3][i] = w[j] * R[3 * k + 2] - w[k] * R[3 * j + 2];
+            swant[1] += rP[i] * R[3 * i + 1];
+        }
+        for (int k = 0; k < NV; k++)
+            for (int i = 0; i < 3; i++)
+                worst = fmax(worst, fabs(expr_eval(P, ev[k][i], &env) - want[k][i]));
+        for (int k = 0; k < NS; k++)
+            worst = fmax(worst, fabs(expr_eval(P, es[k], &env) - swant[k]));
+    }
+    CHECK(worst <= 1e-14, "axes, vec, cross, dot, norm, sums and scaling: the arithmetic "
+          "done here (to %.2g)", worst);
+}
+
+static void
 test_material_velocity(Arena *A)
 {
     Kin *K = kin_new(A, P, D, 2, 3);
@@ -308,6 +353,7 @@ test_material_velocity(Arena *A)
     CHECK(worst_q <= 1e-10, "vel(Q, B), Q at P's place from the world's origin: the same "
           "(to %.2g)", worst_q);
     test_accelerations(&sc);
+    test_vector_operations(&sc);
 }
 
 int

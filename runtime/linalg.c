@@ -231,6 +231,15 @@ la_dot(const double *a, const double *b, int n)
 }
 
 double
+la_quadratic(const double *M, const double *v, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += v[i] * la_dot(M + (size_t)i * n, v, n);
+    return s;
+}
+
+double
 la_max_abs(const double *x, size_t n)
 {
     double m = 0;

@@ -97,6 +97,8 @@ la_relative(double r, double mag)
 }
 
 double la_dot(const double *a, const double *b, int n);
+/* v^T M v, M n x n row-major */
+double la_quadratic(const double *M, const double *v, int n);
 /* max_i |x_i| */
 double la_max_abs(const double *x, size_t n);
 

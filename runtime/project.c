@@ -28,7 +28,7 @@ struct Proj {
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
     double *M, *h;             /* [n*n] the mass matrix (the metric), [n] */
     double *L;                 /* [n*n] the pivoted LDL^T factor of M on what moves */
-    double *F, *Frel;          /* [n*n] that of the whole M, [n]: velocity scales */
+    double *F, *Frel;          /* [n*n] that of the whole M when L is not, [n] */
     size_t *Fperm;             /* [n] */
     int full;                  /* F: -1 not yet factored for this M, 0 failed, 1 holds it */
     double *rel;               /* [n] its pivots relative to M_kk */
@@ -143,32 +143,45 @@ relative_residual(const double *Bk, const double *x, int n, double rk, double bo
     return la_relative(rk, fabs(rk - lin) + fmax(terms, bound));
 }
 
-/* The most B_k v can be for a motion of v's kinetic energy:
- * |B_k v| <= sqrt(B_k M^-1 B_k^T) sqrt(v^T M v) (Cauchy-Schwarz in the
- * mass matrix's metric, so free of the coordinates' units).  The terms
- * B_ki v_i alone are no scale for a velocity constraint: a state that
- * satisfies it has v along the constraint, and where each term vanishes
- * too (a Cartesian pendulum at the bottom: x = 0 and y' = 0) rounding
- * would look like a violation of 100%.  With it, a linear velocity
- * constraint's relative residual is the cosine of the angle between v
- * and the constraint's normal in that metric.  0 when M is not positive
- * definite, leaving the terms. */
-static double
-velocity_bound(Proj *j, const double *Bk, const double *v)
+/* A factor of the whole of M: the level's metric when it is all of M
+ * (nothing held), else one of its own, made once for each M.  NULL when
+ * M is not positive definite. */
+static double *
+whole_factor(Proj *j, size_t **perm)
 {
     int n = j->n;
+    if (j->factored && j->nmoves == n) {
+        *perm = j->perm;
+        return j->L;
+    }
     if (j->full < 0) {
         memcpy(j->F, j->M, (size_t)n * n * sizeof *j->F);
         j->full = la_ldlt_factor(j->F, n, j->Frel, j->Fperm) == 0;
     }
-    if (!j->full)
+    *perm = j->Fperm;
+    return j->full ? j->F : NULL;
+}
+
+/* The most B_k v can be for a motion of v's kinetic energy, given as
+ * v^T M v: |B_k v| <= sqrt(B_k M^-1 B_k^T) sqrt(v^T M v) (Cauchy-Schwarz
+ * in the mass matrix's metric, so free of the coordinates' units).  The
+ * terms B_ki v_i alone are no scale for a velocity constraint: a state
+ * that satisfies it has v along the constraint, and where each term
+ * vanishes too (a Cartesian pendulum at the bottom: x = 0 and y' = 0)
+ * rounding would look like a violation of 100%.  With it, a linear
+ * velocity constraint's relative residual is the cosine of the angle
+ * between v and the constraint's normal in that metric.  0 when M is not
+ * positive definite, leaving the terms. */
+static double
+velocity_bound(Proj *j, const double *Bk, double vMv)
+{
+    size_t *perm;
+    double *LDL = whole_factor(j, &perm);
+    if (!LDL)
         return 0;
-    memcpy(j->col, Bk, (size_t)n * sizeof *j->col);
-    la_ldlt_solve(j->F, n, j->Fperm, j->col);
-    double dual = la_dot(Bk, j->col, n), energy = 0;
-    for (int i = 0; i < n; i++)
-        energy += v[i] * la_dot(j->M + i * n, v, n);
-    return sqrt(fmax(dual, 0) * fmax(energy, 0));
+    memcpy(j->col, Bk, (size_t)j->n * sizeof *j->col);
+    la_ldlt_solve(LDL, j->n, perm, j->col);
+    return sqrt(fmax(la_dot(Bk, j->col, j->n), 0) * fmax(vMv, 0));
 }
 
 /* c_levels and B at (t, q, v) into j. */
@@ -187,11 +200,11 @@ level_residual(Proj *j, const double *q, const double *v, int level, int *worst)
     int nr = level ? j->nvel : j->npos;
     const int *rows = level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
-    double big = 0;
+    double big = 0, vMv = level ? la_quadratic(j->M, v, j->n) : 0;
     for (int k = 0; k < nr; k++) {
         const double *Bk = j->B + rows[k] * j->n;
         double e = relative_residual(Bk, x, j->n, r[rows[k]],
-                                     level ? velocity_bound(j, Bk, v) : 0);
+                                     level ? velocity_bound(j, Bk, vMv) : 0);
         if (e > big || (k == 0 && worst)) {
             big = e;
             if (worst)
@@ -226,7 +239,7 @@ proj_inconsistency(Proj *j, double t, const double *q, const double *v, const do
         return 0;
     levels(j, t, q, v, p, u);
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
-    j->full = -1;
+    j->factored = 0, j->full = -1; /* a new M: no factor of it yet */
     double e0 = j->npos ? level_residual(j, q, v, 0, &w0) : 0;
     double e1 = level_residual(j, q, v, 1, &w1);
     *level = !(e0 >= e1 && w0 >= 0);
@@ -331,8 +344,7 @@ proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const 
         return PROJ_OK;
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
     j->hold = hold;
-    j->factored = 0;
-    j->full = -1;
+    j->factored = 0, j->full = -1;
     int rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)
         rc = project_level(j, t, q, v, p, u, *level = 1);

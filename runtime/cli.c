@@ -80,7 +80,7 @@ typedef struct Csv {
                           * and room for one more (in res's allocation) */
     size_t blen;
     double h_first;      /* the conserved quantity at the first row */
-    double t_max;        /* the largest kinetic energy written: the scale of the
+    double T_max;        /* the largest kinetic energy written: the scale of the
                           * energy the motion moves about, for the drift's */
     double t_last;       /* the time of the last row written */
     double err_max, err_end;
@@ -763,7 +763,7 @@ write_row(void *ctx, double t, const double *x)
         return EOMC_ENUMERIC;
     double T, V, h = 0;
     eomc_sim_energy(w->sim, t, x, x + n, &T, &V);
-    w->t_max = fmax(w->t_max, fabs(T));
+    w->T_max = fmax(w->T_max, fabs(T));
     if (w->invariant) {
         eomc_sim_invariant(w->sim, t, x, x + n, &h);
         if (w->rows == 0)
@@ -905,9 +905,9 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
     /* the change against the energy the motion moves about, not against h's
      * value, which a potential's constant sets anywhere (0 included) */
     char rel[80] = "";
-    if (w->invariant && w->t_max > 0)
+    if (w->invariant && w->T_max > 0)
         snprintf(rel, sizeof rel, " (%.3g of the largest kinetic energy, %.3g)",
-                 w->dh / w->t_max, w->t_max);
+                 w->dh / w->T_max, w->T_max);
     if (w->invariant && resets && st->events > 0)
         ADD("The conserved quantity %s, measured afresh after each reset, changed by at "
             "most %.3g between them%s; it last started at %.10g.", m->invariant_name, w->dh,
@@ -1487,12 +1487,12 @@ warn_condition(const Cli *c, const eomc_stats *st)
 static void
 warn_drift(const Cli *c, const eomc_model *m, const eomc_stats *st, const Csv *w)
 {
-    if (st->h_used > 0 && w->invariant && w->dh > FIXED_DRIFT * w->t_max) {
+    if (st->h_used > 0 && w->invariant && w->dh > FIXED_DRIFT * w->T_max) {
         fprintf(stderr, "%s: warning: fixed steps of %.3g: the conserved quantity %s changed "
                 "by %.3g, %.2g of the largest kinetic energy (%.3g): fewer than two of its "
                 "digits are right, and the motion's are probably no better (shorter "
                 "--fixed-step, or adaptive steps, give more)\n", c->prog, st->h_used,
-                m->invariant_name, w->dh, w->dh / w->t_max, w->t_max);
+                m->invariant_name, w->dh, w->dh / w->T_max, w->T_max);
         return;
     }
     if (!(st->invariant_budget > 0) ||

@@ -20,10 +20,7 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+. "$src/tests/cli/tap.sh"
 header="method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,jac_evals,error_end,error_max,invariant_drift,constraint_residual"
 
 "$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/pend" 2> "$tmp/build.err" ||
@@ -164,5 +161,4 @@ ok $? "--work-precision --method: usage error pointing to --methods (exit $st)"
 [ $st -eq 2 ] && grep -q -- "--tolerances: 0 is out of range" "$tmp/u5.err"
 ok $? "--tolerances with a zero: usage error (exit $st)"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

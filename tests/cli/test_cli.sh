@@ -9,10 +9,7 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+. "$src/tests/cli/tap.sh"
 # |got - want| <= 1e-12 max(1, |want|)
 near() { awk -v g="$1" -v w="$2" 'BEGIN { d = g - w; if (d < 0) d = -d; s = w < 0 ? -w : w; if (s < 1) s = 1; exit !(g != "" && d <= 1e-12 * s) }'; }
 accel_of() { sed -n "s/^$1'' //p"; }
@@ -271,5 +268,4 @@ grep -q "bad.yaml:2:" "$tmp/bad.err"; ok $? "the error names file:line"
 ok $? "gibbs-appell on a spec with explicit kinetic terms: refused (no S), exit 2"
 "$eomc" frobnicate 2> /dev/null; ok $(($? != 2)) "an unknown command exits 2"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -14,13 +14,8 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
-# |got - want| <= tol
-within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
 swing="$src/specs/swing.yaml" ball="$src/specs/bouncing_ball.yaml"
 
 # the quarter period, K(k) = pi / (2 agm(1, sqrt(1 - k^2))), theta0 = 1, g = 9.81, l = 1
@@ -191,5 +186,4 @@ res=$(tail -1 "$tmp/offp.csv" | awk -F, '{ print $NF }')
   within "$res" 0 1e-12
 ok $? "the same with --stabilize project: the warning says the projection undid it; g(2) = $res"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -9,11 +9,7 @@
 # usage: test_examples.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
-within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
+. "$src/tests/cli/tap.sh"
 
 if ! meson install -C "$build" --no-rebuild --destdir "$tmp/stage" --quiet > "$tmp/install.log" 2>&1; then
     cat "$tmp/install.log"
@@ -53,5 +49,4 @@ else
     ok 1 "examples/make builds"
 fi
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

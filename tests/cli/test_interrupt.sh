@@ -8,10 +8,7 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+. "$src/tests/cli/tap.sh"
 "$eomc" build "$src/specs/chain5.yaml" -o "$tmp/chain5" 2> /dev/null
 whole() { # FILE: every line has the header's number of fields, and there are rows
     awk -F, 'NR == 1 { n = NF } NF != n || $NF == "" { bad = 1 } END { exit !(NR > 10 && !bad) }' "$1"
@@ -37,5 +34,4 @@ for sig in INT TERM KILL; do
     fi
     ok $? "SIG$sig: exit $st, $rows whole rows"
 done
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

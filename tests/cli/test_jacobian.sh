@@ -15,11 +15,8 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
 jac_ops() { awk '$1 == "jacobian" { print $6 }' "$1"; }
 
 sh "$src/specs/gen_tree.sh" 4 > "$tmp/tree4.yaml"
@@ -66,5 +63,4 @@ paste -d, "$tmp/a.csv" "$tmp/b.csv" | awk -F, -v st="$st1$st2" '
         exit !(st == "00" && rows == 576 && s > 0 && m <= 1e-12 * s) }'
 ok $? "eomc run --linearize builds with the Jacobian: seeded A = unrolled A to 1e-12"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -8,12 +8,8 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
-within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
 pend="$src/specs/pendulum.yaml"
 
 "$eomc" run "$pend" --linearize --init theta=0.7 --csv "$tmp/lin.csv" > "$tmp/lin.out"; st=$?
@@ -64,5 +60,4 @@ ok $? "--csv without --linearize: a usage error (exit $st), no file"
 [ $st -eq 2 ] && grep -q 'does not integrate' "$tmp/err"
 ok $? "--linearize -o: a usage error (exit $st)"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -8,11 +8,8 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
 pend="$src/specs/pendulum.yaml" cp="$src/specs/cartesian_pendulum.yaml"
 if ! command -v gnuplot > /dev/null; then
     echo "1..0 # SKIP gnuplot is not installed"
@@ -42,5 +39,4 @@ ok $? "no gnuplot: exit $st before anything runs, no file"
 [ $st -eq 2 ]
 ok $? "--plot with --linearize: exit $st"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -17,11 +17,8 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
 spec="$src/specs/swing.yaml"
 total() { awk -v f="$1" '$1 == f { print $6 }'; }
 
@@ -102,5 +99,4 @@ worst=$(awk -F, 'NR > 1 { m = 1; l = 1; g = 9.81
 awk -v w="$worst" 'BEGIN { exit !(w != "rows?" && w <= 1e-9) }'
 ok $? "tension, theta and y'' equal their closed forms from the state, to $worst"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

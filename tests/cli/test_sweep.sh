@@ -8,10 +8,7 @@
 set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+. "$src/tests/cli/tap.sh"
 pend="$src/specs/pendulum.yaml"
 "$eomc" build "$pend" -o "$tmp/pend" 2> /dev/null
 
@@ -78,5 +75,4 @@ ok $? "COUNT 0: exit $st"
 [ $st -eq 2 ] && grep -q 'runs the runs of a sweep' "$tmp/err"
 ok $? "--threads without a sweep: exit $st"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

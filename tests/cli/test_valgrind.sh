@@ -6,10 +6,7 @@
 # usage: test_valgrind.sh VALGRIND EOMC SOURCE_ROOT
 set -u
 valgrind=$1 eomc=$2 src=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+. "$src/tests/cli/tap.sh"
 
 # check WANT_STATUS FILE [ARGS]: valgrind's own errors exit 99
 check() {
@@ -35,5 +32,4 @@ check 2 "$tmp/bad2.yaml"; ok $? "invalid YAML (exit 2): no leak"
 printf 'name: x\ncoordinates: [q]\nkinetic: q'"'"'^2/2\nconstraints:\n  c: q + (1 +\n' > "$tmp/bad3.yaml"
 check 2 "$tmp/bad3.yaml"; ok $? "an expression syntax error in a constraint (exit 2): no leak"
 
-echo "1..$n"
-[ $failed -eq 0 ]
+tap_end

@@ -122,6 +122,41 @@ test_euler_rates(void)
     CHECK(ok, "zxz: p = psi' sin th sin phi + th' cos phi, q = ..., r = psi' cos th + phi'");
 }
 
+/* The Lagrange and Gibbs-Appell equations of s. */
+typedef struct Both {
+    Eom *lag, *ga;
+} Both;
+
+static Both
+derive_both(Spec *s)
+{
+    Mech *m = mech_build(s, A, P, D);
+    const char *why;
+    return (Both){eom_derive(s, m, &form_lagrange, A, P, D, &why),
+                  eom_derive(s, m, &form_gibbs_appell, A, P, D, &why)};
+}
+
+/* A random state of s, q'' from Lagrange in *st and from Gibbs-Appell in
+ * *ga (the same state). */
+static void
+solve_both(const Spec *s, Both e, State *st, State *ga)
+{
+    random_state(st, s);
+    accelerations(e.lag, st);
+    *ga = *st;
+    accelerations(e.ga, ga);
+}
+
+/* I w' + w x I w, the left side of Euler's equations in principal axes. */
+static void
+euler_lhs(const double I[3], const double w[3], const double wd[3], double lhs[3])
+{
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, l = (i + 2) % 3;
+        lhs[i] = I[i] * wd[i] + (w[j] * I[l] * w[l] - w[l] * I[j] * w[j]);
+    }
+}
+
 /* Euler's equations with the torque, for q'' from Lagrange and from
  * Gibbs-Appell. */
 static void
@@ -130,28 +165,20 @@ test_euler_equations(void)
     Spec *s = load(top);
     if (!s)
         return;
-    Mech *m = mech_build(s, A, P, D);
-    const char *why;
-    Eom *lag = eom_derive(s, m, &form_lagrange, A, P, D, &why);
-    Eom *ga = eom_derive(s, m, &form_gibbs_appell, A, P, D, &why);
+    Both e = derive_both(s);
     int ok = 1, agree = 1;
     for (int k = 0; k < 20; k++) {
         State st, st2;
-        random_state(&st, s);
-        accelerations(lag, &st);
-        st2 = st;
-        accelerations(ga, &st2);
-        double w[3], wd[3], I[3] = {0.4, 0.7, 1.1}, tau[3] = {0.3, -0.2, 0.5};
+        solve_both(s, e, &st, &st2);
+        double w[3], wd[3], lhs[3], I[3] = {0.4, 0.7, 1.1}, tau[3] = {0.3, -0.2, 0.5};
         for (int i = 0; i < 3; i++) {
             w[i] = eval(s->body[0].omega[i], &st);
             wd[i] = eval(diff_time(D, s->body[0].omega[i]), &st);
             agree &= check_close(st2.a[i], st.a[i], 1e-11);
         }
-        for (int i = 0; i < 3; i++) {
-            int j = (i + 1) % 3, l = (i + 2) % 3;
-            double lhs = I[i] * wd[i] + (w[j] * I[l] * w[l] - w[l] * I[j] * w[j]);
-            ok &= check_close(lhs, tau[i], 1e-10);
-        }
+        euler_lhs(I, w, wd, lhs);
+        for (int i = 0; i < 3; i++)
+            ok &= check_close(lhs[i], tau[i], 1e-10);
     }
     CHECK(ok, "free body with torque: I w' + w x I w = tau (Lagrange q'')");
     CHECK(agree, "Gibbs-Appell gives the same q'' as Lagrange");
@@ -175,17 +202,11 @@ test_frame_torques(void)
     CHECK(s != NULL, "a body placed by a frame, torques as world vectors: loads");
     if (!s)
         return;
-    Mech *m = mech_build(s, A, P, D);
-    const char *why;
-    Eom *lag = eom_derive(s, m, &form_lagrange, A, P, D, &why);
-    Eom *ga = eom_derive(s, m, &form_gibbs_appell, A, P, D, &why);
+    Both e = derive_both(s);
     double worst = 0, apart = 0;
     for (int k = 0; k < 20; k++) {
         State st, st2;
-        random_state(&st, s);
-        accelerations(lag, &st);
-        st2 = st;
-        accelerations(ga, &st2);
+        solve_both(s, e, &st, &st2);
         /* the body rates and their derivative written out (z-x-z) */
         double ps = st.v[0], th = st.q[1], thd = st.v[1], ph = st.q[2], phd = st.v[2];
         double psd = st.a[0], thdd = st.a[1], phdd = st.a[2];
@@ -196,11 +217,10 @@ test_frame_torques(void)
                         psd * sth * cph + ps * thd * cth * cph - ps * sth * sph * phd -
                         thdd * sph - thd * cph * phd,
                         psd * cth - ps * thd * sth + phdd};
-        double I[3] = {0.4, 0.7, 1.1}, up[3] = {sth * sph, sth * cph, cth};
+        double I[3] = {0.4, 0.7, 1.1}, up[3] = {sth * sph, sth * cph, cth}, lhs[3];
+        euler_lhs(I, w, wd, lhs);
         for (int i = 0; i < 3; i++) {
-            int j = (i + 1) % 3, l = (i + 2) % 3;
-            double lhs = I[i] * wd[i] + (w[j] * I[l] * w[l] - w[l] * I[j] * w[j]);
-            worst = fmax(worst, fabs(lhs - (-0.3 * w[i] + 0.8 * up[i])));
+            worst = fmax(worst, fabs(lhs[i] - (-0.3 * w[i] + 0.8 * up[i])));
             apart = fmax(apart, fabs(st2.a[i] - st.a[i]));
         }
     }

@@ -135,9 +135,8 @@ positions(const double *q, double rO[3], double rP[3], double RB[9])
 static void
 omega_b(const double *q, const double *v, double w[3])
 {
-    double rO[3], rP[3], RB[9], RA[9], Rk[9];
+    double RA[9], Rk[9];
     static const double ez[3] = {0, 0, 1}, ex[3] = {1, 0, 0};
-    positions(q, rO, rP, RB);
     rodrigues(ez, q[0], RA);
     rodrigues(ex, q[1], Rk), matmul(RA, Rk, RA);
     w[0] = v[1] * cos(q[0]) + v[2] * RA[1];

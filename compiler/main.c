@@ -236,8 +236,9 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
     printf("%s (%s): %d coordinate%s (", s->name, s->path, s->nq, s->nq == 1 ? "" : "s");
     for (int i = 0; i < s->nq; i++)
         printf("%s%s", i ? ", " : "", s->coord[i].name);
-    printf("), %d parameters, %d inputs, %d particles, %d bodies\n", s->np, s->nu,
-           s->npart, s->nbody);
+    printf("), %d parameter%s, %d input%s, %d particle%s, %d bod%s\n", s->np,
+           s->np == 1 ? "" : "s", s->nu, s->nu == 1 ? "" : "s", s->npart,
+           s->npart == 1 ? "" : "s", s->nbody, s->nbody == 1 ? "y" : "ies");
     printf("form %s: E = %s\n", form->name, form->formula);
     if (s->nscenes) {
         int w = 0;
@@ -486,6 +487,12 @@ run(const Options *o)
         argv[argc++] = "--work-precision";
     for (int i = 0; i < o->nsim; i++)
         argv[argc++] = o->sim[i];
+    /* the simulator's usage errors and --help name the command typed
+     * ("see eomc run specs/kepler.yaml --help"), not the cached binary */
+    char self[4608]; /* a path, and a scene's name */
+    snprintf(self, sizeof self, "eomc %s %s%s%s", o->cmd, o->spec, o->scene ? " --scene " : "",
+             o->scene ? o->scene : "");
+    setenv("EOMC_RUN_COMMAND", self, 1);
     fflush(stdout);
     execv(exe, argv);
     fprintf(stderr, "eomc: cannot run %s: %s\n", exe, strerror(errno));

@@ -1805,8 +1805,10 @@ load_constraints(Loader *L, yaml_node_t *map)
     for (int i = 0; i < s->nconstraint; i++)
         checked(L, load_constraint_at, map, i);
     if (s->nconstraint >= s->nq) /* at the one too many */
-        diag_error(s->constraint[s->nq - 1].loc, "%d constraints on %d coordinate%s leave no "
-                   "freedom of motion", s->nconstraint, s->nq, s->nq == 1 ? "" : "s");
+        diag_error(s->constraint[s->nq - 1].loc, "%d constraint%s on %d coordinate%s "
+                   "leave%s no freedom of motion", s->nconstraint,
+                   s->nconstraint == 1 ? "" : "s", s->nq, s->nq == 1 ? "" : "s",
+                   s->nconstraint == 1 ? "s" : "");
 }
 
 /* A quaternion body's unit constraint, NAME_unit: e.e - 1 = 0, after the

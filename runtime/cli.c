@@ -35,6 +35,8 @@
 
 typedef struct Cli {
     const char *prog;
+    const char *self;     /* how the user runs it, for --help: prog, or under
+                           * `eomc run` "eomc run SPEC" ($EOMC_RUN_COMMAND) */
     eomc_run_opts run;
     const char *out;
     int stats, summary, accel, assemble, work_precision, error, linearize, equilibrium;
@@ -76,6 +78,8 @@ typedef struct Csv {
     double t_reset;      /* afresh with the first row after it */
     FILE *events;        /* --events FILE, or NULL */
     FILE *tee;           /* a copy of the rows for --plot, or NULL */
+    double *out_max;     /* [nout] each output's largest |value| written (for
+                          * --plot's panels), after the block's room in res */
     char *blk;           /* rows not yet written, whole rows only: ROW_BLOCK
                           * and room for one more (in res's allocation) */
     size_t blen;
@@ -141,13 +145,22 @@ csv_new(FILE *f, eomc_sim *sim)
     Csv w = {.f = f, .sim = sim, .invariant = m->invariant != NULL};
     /* a row's cells: t, q, q', T, V, E, h, lambda, res, outputs */
     size_t cells = 1 + 2 * n + 4 + nres + (size_t)m->nc, row = cells * (NUM_MAX + 1) + 1;
-    w.res = calloc(nres + n + 1 + (ROW_BLOCK + row) / sizeof(double) + 1, sizeof(double));
+    size_t blk = (ROW_BLOCK + row) / sizeof(double) + 1;
+    w.res = calloc(nres + n + 1 + blk + (size_t)m->nout, sizeof(double));
     w.arow = w.res ? w.res + nres : NULL;
     w.blk = w.res ? (char *)(w.arow + n + 1) : NULL;
+    w.out_max = w.res ? w.arow + n + 1 + blk : NULL;
     return w;
 }
 
 /* ---- messages ---- */
+
+/* "s" after a count of n, or "" */
+static const char *
+plural(long n)
+{
+    return n == 1 ? "" : "s";
+}
 
 static int
 usage(const Cli *c, const char *fmt, ...)
@@ -157,7 +170,7 @@ usage(const Cli *c, const char *fmt, ...)
     va_start(ap, fmt);
     vfprintf(stderr, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\n(see %s --help)\n", c->prog);
+    fprintf(stderr, "\n(see %s --help)\n", c->self);
     return EOMC_EUSAGE;
 }
 
@@ -228,7 +241,7 @@ help(const Cli *c, const eomc_model *m)
     printf("usage: %s [OPTION]...\n"
            "Simulate %s (%s, %s form%s%s%s%s) and write the trajectory as CSV:\n"
            "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
-           c->prog, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
+           c->self, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
            *m->scene ? ", scene " : "", m->scene, m->invariant_name && !strcmp(m->invariant_name, "h")
                ? ", h (the conserved energy function)" : "");
     printf("  --t0 T             start time (default 0)\n"
@@ -299,10 +312,13 @@ help(const Cli *c, const eomc_model *m)
            "  --threads N        run a sweep's runs on N threads (same summary)\n"
            "  --linearize        A = dz'/dz and B = dz'/du at the initial state (or --init),\n"
            "                     z the coordinates and velocities (a constrained model's\n"
-           "                     independent ones), exact; their eigenvalues\n"
+           "                     independent ones), exact; A's eigenvalues, the largest\n"
+           "                     real part first; with --sweep, one row per value: the\n"
+           "                     swept values, re1,im1,re2,im2,...\n"
            "  --equilibrium      an equilibrium (q' = 0, q'' = 0) by Newton's method from\n"
            "                     the initial coordinates, its linearization and stability\n"
-           "    --csv FILE       (both) A and B as matrix,row,column,value\n"
+           "    --csv FILE       (both) A, B and the eigenvalues as matrix,row,column,value\n"
+           "                     (eig,K,re,VALUE and eig,K,im,VALUE)\n"
            "  --help, --version\n\n");
     printf("coordinates: ");
     list_names(stdout, m->q_names, m->nq, "");
@@ -515,15 +531,17 @@ check_combination(Cli *c)
     if (c->nsweep && c->sweep_file)
         return usage(c, "--sweep and --sweep-file: one or the other");
     if (c->nsweep || c->sweep_file) {
-        const char *clash = c->work_precision ? "--work-precision" : c->linearize
-                            ? "--linearize" : c->equilibrium ? "--equilibrium" : c->accel
+        const char *clash = c->work_precision ? "--work-precision" : c->equilibrium
+                            ? "--equilibrium" : c->linearize && c->csv
+                            ? "--csv (a sweep of --linearize writes its rows with -o)" : c->accel
                             ? "--accel" : c->error ? "--error" : c->reference_out
                             ? "--reference-out" : c->events ? "--events" : c->plot
                             ? "--plot" : c->summary ? "--summary" : c->stats ? "--stats"
                             : NULL;
         if (clash)
-            return usage(c, "a sweep (%s) writes one summary row per run: it does not take %s",
-                         c->nsweep ? "--sweep" : "--sweep-file", clash);
+            return usage(c, "a sweep (%s) writes one %s row per run: it does not take %s",
+                         c->nsweep ? "--sweep" : "--sweep-file",
+                         c->linearize ? "linearization's" : "summary", clash);
     } else if (c->threads > 1) {
         return usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
     }
@@ -549,7 +567,9 @@ check_combination(Cli *c)
         return usage(c, "%s belongs to --work-precision (one run writes its trajectory "
                      "with -o)", option_names[k]);
     }
-    if (linear && (c->accel || c->work_precision || c->error || c->out || c->events))
+    int swept = c->nsweep || c->sweep_file; /* a sweep's rows go to -o */
+    if (linear && (c->accel || c->work_precision || c->error || (c->out && !swept) ||
+                   c->events))
         return usage(c, "--%s does not integrate: it does not take %s",
                      c->linearize ? "linearize" : "equilibrium",
                      c->accel ? "--accel" : c->work_precision ? "--work-precision"
@@ -782,6 +802,8 @@ write_row(void *ctx, double t, const double *x)
     }
     for (int k = 0; k < nc; k++)
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
+    for (int k = 0; k < m->nout; k++)
+        w->out_max[k] = fmax(w->out_max[k], fabs(out[k]));
     const double *lam = eomc_sim_multipliers(w->sim);
     /* the row into the block of whole rows (room for one more row is
      * always there: csv_new sized it, and it is flushed past ROW_BLOCK) */
@@ -888,10 +910,11 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
         ADD(" in fixed steps of %g: ", st->h_used);
     else
         ADD(" (rtol %g, atol %g): ", c->run.rtol, c->run.atol);
-    ADD("%ld steps (%ld rejected), %ld right-hand sides and %ld Jacobians in %.3g s "
-        "of CPU time. ", st->steps, st->rejected, st->rhs_evals, st->jac_evals,
-        st->cpu_seconds);
-    ADD("Wrote %ld rows every %g to %s. ", w->rows, c->run.dt, c->out ? c->out : "stdout");
+    ADD("%ld step%s (%ld rejected), %ld right-hand side%s and %ld Jacobian%s in %.3g s "
+        "of CPU time. ", st->steps, plural(st->steps), st->rejected, st->rhs_evals,
+        plural(st->rhs_evals), st->jac_evals, plural(st->jac_evals), st->cpu_seconds);
+    ADD("Wrote %ld row%s every %g to %s. ", w->rows, plural(w->rows), c->run.dt,
+        c->out ? c->out : "stdout");
     int resets = 0;
     for (int k = 0; k < m->nevent; k++)
         resets |= m->ev_action[k] == EOMC_EVENT_SET;
@@ -1027,12 +1050,16 @@ assemble(Cli *c, eomc_sim *sim, double *x)
     return EOMC_OK;
 }
 
+static void check_consistent(const Cli *c, eomc_sim *sim, const double *x);
+static void suggest_assembly(Cli *c, eomc_sim *sim, const double *x);
+
 static int
 print_accel(Cli *c, eomc_sim *sim, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     double *a = calloc((size_t)m->nq, sizeof *a);
     char num[NUM_MAX];
+    check_consistent(c, sim, x); /* the accelerations of a state the model never reaches */
     int rc = eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
     if (rc == EOMC_OK) {
         for (int i = 0; i < m->nq; i++)
@@ -1066,13 +1093,63 @@ sweep_prepare(void *ctx, eomc_sim *sim)
     return rc == EOMC_OK ? set_stabilize(c, sim) : rc;
 }
 
+/* Each run's initial state as the single run's: the spec's, --init, and
+ * --assemble's projection (quietly: a sweep's rows say what it did). */
 static int
 sweep_initial(void *ctx, eomc_sim *sim, double *x)
 {
     Cli *c = ctx;
     const eomc_model *m = eomc_sim_model(sim);
     eomc_sim_initial(sim, x, x + m->nq);
-    return apply_inits(c, m, x);
+    int rc = apply_inits(c, m, x);
+    if (rc != EOMC_OK || !c->assemble)
+        return rc;
+    unsigned char *hold = calloc(2 * (size_t)m->nq, 1);
+    if (!hold)
+        return EOMC_EUSAGE;
+    if (!c->hold || (rc = hold_list(c, m, hold)) == EOMC_OK)
+        rc = eomc_sim_project_held(sim, c->run.t0, x, x + m->nq, c->hold ? hold : NULL);
+    free(hold);
+    return rc;
+}
+
+static int sorted_eigen(eomc_sim *sim, const double *A, int nl, double *pair);
+
+/* A sweep of --linearize: each run's eigenvalues, the largest real part
+ * first, as ",re1,im1,re2,im2,...". */
+static int
+linear_cells(void *ctx, eomc_sim *sim, double *x, char **text)
+{
+    Cli *c = ctx;
+    int nl = eomc_sim_linear_size(sim), nu = eomc_sim_model(sim)->nu;
+    double *A = calloc((size_t)nl * (size_t)nl + 1, sizeof *A);
+    double *B = calloc((size_t)nl * (size_t)nu + 1, sizeof *B);
+    double *eig = calloc(2 * (size_t)nl + 1, sizeof *eig);
+    char *cells = calloc(2 * (size_t)nl * (NUM_MAX + 1) + 1, 1), num[NUM_MAX];
+    int rc = A && B && eig && cells ? eomc_sim_linearize(sim, c->run.t0, x, A, B) : EOMC_EUSAGE;
+    if (rc == EOMC_OK)
+        rc = sorted_eigen(sim, A, nl, eig);
+    for (int k = 0, at = 0; rc == EOMC_OK && k < 2 * nl; k++)
+        at += sprintf(cells + at, ",%s", num_shortest(num, eig[k]));
+    free(A);
+    free(B);
+    free(eig);
+    if (rc != EOMC_OK) {
+        free(cells);
+        cells = NULL;
+    }
+    *text = cells;
+    return rc;
+}
+
+/* "re1,im1,re2,im2,...": the columns of linear_cells. */
+static char *
+linear_columns(int nl)
+{
+    char *cols = calloc((size_t)nl * 24 + 1, 1);
+    for (int k = 0, at = 0; cols && k < nl; k++)
+        at += sprintf(cols + at, "%sre%d,im%d", k ? "," : "", k + 1, k + 1);
+    return cols;
 }
 
 /* A swept name: a parameter, not fixed, not swept twice. */
@@ -1198,9 +1275,10 @@ plan_file(Cli *c, const eomc_model *m, Plan *pl)
             double v = strtod(p, &end);
             if (end == p || errno || !isfinite(v) || (*end != ',' && *end) ||
                 (j < pl->nparam - 1 && *end != ',') || (j == pl->nparam - 1 && *end))
-                rc = usage(c, "%s:%ld:%ld: expected %d finite numbers separated by commas "
+                rc = usage(c, "%s:%ld:%ld: expected %d finite number%s separated by commas "
                            "(the value of %s here)", c->sweep_file, lineno,
-                           (long)(p - line) + 1, pl->nparam, pl->names[j]);
+                           (long)(p - line) + 1, pl->nparam, plural(pl->nparam),
+                           pl->names[j]);
             pl->values[pl->nruns * pl->nparam + j] = v;
             p = end + (*end == ',');
         }
@@ -1226,14 +1304,20 @@ sweep(Cli *c, eomc_sim *sim)
         rc = usage(c, "%s", eomc_sim_error(sim));
     if (rc == EOMC_OK && !(f = open_output(c, "-o", c->out)))
         rc = EOMC_EUSAGE;
+    char *columns = NULL;
+    if (rc == EOMC_OK && c->linearize && !(columns = linear_columns(eomc_sim_linear_size(sim))))
+        rc = usage(c, "out of memory");
     if (rc == EOMC_OK) {
         c->run.progress = 0;
         Sweep sw = {m, &c->run, sweep_prepare, sweep_initial, c, pl.nparam, pl.names,
-                    pl.nruns, pl.values, c->threads, c->prog};
+                    pl.nruns, pl.values, c->threads, c->prog,
+                    c->linearize ? linear_cells : NULL, columns,
+                    c->linearize ? 2 * eomc_sim_linear_size(sim) : 0};
         rc = sweep_run(&sw, f);
         if (close_output(c, f, c->out))
             rc = rc ? rc : EOMC_EUSAGE;
     }
+    free(columns);
     for (int j = 0; j < pl.nparam; j++)
         free((char *)pl.names[j]);
     free(pl.names);
@@ -1283,59 +1367,87 @@ print_matrix(eomc_sim *sim, const char *title, const double *X, int rows, int co
     }
 }
 
-/* The eigenvalues' real parts against their largest modulus: a real part
- * within this of 0 is rounding (a conservative system's centre). */
+/* The stability verdict takes a real part within this of the largest
+ * modulus for 0 (a conservative system's centre computes as real parts of
+ * rounding; a defective eigenvalue, as rounding's square root). */
 #define EIG_ZERO_REL 1e-9
 
+/* Largest real part first, the same order everywhere (the printed list,
+ * --csv's eig rows, a sweep's re1, im1, ...); of equal real parts (a
+ * conjugate pair) the positive imaginary part first. */
 static int
 cmp_eig(const void *a, const void *b)
 {
     const double *x = a, *y = b;
-    return x[0] != y[0] ? (x[0] < y[0] ? -1 : 1) : x[1] < y[1] ? -1 : x[1] > y[1];
+    return x[0] != y[0] ? (x[0] > y[0] ? -1 : 1) : x[1] > y[1] ? -1 : x[1] < y[1];
 }
 
-/* The eigenvalues, sorted, and what they say of stability. */
+/* A's eigenvalues into pair [2 nl] (re, im), sorted; EOMC_OK or a status
+ * with the simulator's message. */
 static int
-print_eigen(Cli *c, eomc_sim *sim, const double *A, int nl, int verdict)
+sorted_eigen(eomc_sim *sim, const double *A, int nl, double *pair)
 {
-    double *re = calloc((size_t)nl, sizeof *re), *im = calloc((size_t)nl, sizeof *im);
-    double *pair = calloc(2 * (size_t)nl, sizeof *pair);
-    int rc = re && im && pair ? eomc_sim_eigenvalues(sim, A, nl, re, im) : EOMC_EUSAGE;
-    if (rc != EOMC_OK) {
-        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
-    } else {
-        double big = 0, worst = -HUGE_VAL;
-        for (int k = 0; k < nl; k++) {
-            pair[2 * k] = re[k], pair[2 * k + 1] = im[k];
-            big = fmax(big, hypot(re[k], im[k]));
-            worst = fmax(worst, re[k]);
-        }
+    double *re = calloc((size_t)nl + 1, sizeof *re), *im = calloc((size_t)nl + 1, sizeof *im);
+    int rc = re && im ? eomc_sim_eigenvalues(sim, A, nl, re, im) : EOMC_EUSAGE;
+    for (int k = 0; k < nl && rc == EOMC_OK; k++)
+        pair[2 * k] = re[k], pair[2 * k + 1] = im[k];
+    if (rc == EOMC_OK)
         qsort(pair, (size_t)nl, 2 * sizeof *pair, cmp_eig);
-        printf("eigenvalues of A:\n");
-        for (int k = 0; k < nl; k++) {
-            double r = fabs(pair[2 * k]) <= EIG_ZERO_REL * big ? 0 : pair[2 * k];
-            double i = fabs(pair[2 * k + 1]) <= EIG_ZERO_REL * big ? 0 : pair[2 * k + 1];
-            printf("  %.17g %c %.17gi\n", r, i < 0 ? '-' : '+', fabs(i));
-        }
-        if (verdict && worst > EIG_ZERO_REL * big)
-            printf("unstable: an eigenvalue has the positive real part %.6g\n", worst);
-        else if (verdict && worst < -EIG_ZERO_REL * big)
-            printf("asymptotically stable: every eigenvalue has a negative real part "
-                   "(the largest %.6g)\n", worst);
-        else if (verdict)
-            printf("stable to first order only: no eigenvalue has a positive real part, "
-                   "and some lie on the imaginary axis (within %g of the largest "
-                   "modulus), where the linearization cannot decide\n", EIG_ZERO_REL);
-    }
     free(re);
     free(im);
-    free(pair);
     return rc;
 }
 
-/* --csv FILE: matrix,row,column,value, one row per entry of A and B. */
+/* What the eigenvalues say of an equilibrium's stability, and how the
+ * verdict rounds. */
+static void
+print_verdict(const double *pair, int nl)
+{
+    double big = 0, worst = nl ? pair[0] : 0; /* sorted: the largest real part first */
+    for (int k = 0; k < nl; k++)
+        big = fmax(big, hypot(pair[2 * k], pair[2 * k + 1]));
+    char num[NUM_MAX];
+    num_shortest(num, worst);
+    if (worst > EIG_ZERO_REL * big)
+        printf("unstable: the largest real part, %s, is more than %g of the largest modulus "
+               "(%.6g)\n", num, EIG_ZERO_REL, big);
+    else if (worst < -EIG_ZERO_REL * big)
+        printf("asymptotically stable: every real part is below -%g of the largest modulus "
+               "(%.6g); the largest is %s\n", EIG_ZERO_REL, big, num);
+    else
+        printf("stable to first order only: the largest real part, %s, is within %g of the "
+               "largest modulus (%.6g) of 0, which this verdict counts as 0 (the rounding "
+               "of a centre, or of a defective eigenvalue, reaches that far); on the "
+               "imaginary axis the linearization cannot decide\n", num, EIG_ZERO_REL, big);
+}
+
+/* The eigenvalues, as computed (the shortest text that reads back as the
+ * computed double: nothing rounded away), and for an equilibrium what
+ * they say of stability. */
 static int
-write_linear_csv(Cli *c, eomc_sim *sim, const double *A, const double *B, int nl)
+print_eigen(Cli *c, eomc_sim *sim, const double *A, int nl, int verdict, double *pair)
+{
+    int rc = sorted_eigen(sim, A, nl, pair);
+    if (rc != EOMC_OK) {
+        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+        return rc;
+    }
+    char re[NUM_MAX], im[NUM_MAX];
+    printf("eigenvalues of A (the largest real part first):\n");
+    for (int k = 0; k < nl; k++)
+        printf("  %s %c %si\n", num_shortest(re, pair[2 * k]), pair[2 * k + 1] < 0 ? '-' : '+',
+               num_shortest(im, fabs(pair[2 * k + 1])));
+    if (verdict)
+        print_verdict(pair, nl);
+    return rc;
+}
+
+/* --csv FILE: matrix,row,column,value, one row per entry of A and B, then
+ * two per eigenvalue k (1, 2, ... in the printed order): eig,k,re,VALUE
+ * and eig,k,im,VALUE. */
+static int
+write_linear_csv(Cli *c, eomc_sim *sim, const double *A, const double *B, int nl,
+                 const double *eig)
 {
     const eomc_model *m = eomc_sim_model(sim);
     FILE *f = fopen(c->csv, "w");
@@ -1358,6 +1470,10 @@ write_linear_csv(Cli *c, eomc_sim *sim, const double *A, const double *B, int nl
         for (int k = 0; k < m->nu; k++)
             fprintf(f, "B,%s,%s,%s\n", row, m->u_names[k], num_shortest(num, B[r * m->nu + k]));
     }
+    for (int k = 0; k < nl; k++) {
+        fprintf(f, "eig,%d,re,%s\n", k + 1, num_shortest(num, eig[2 * k]));
+        fprintf(f, "eig,%d,im,%s\n", k + 1, num_shortest(num, eig[2 * k + 1]));
+    }
     if (fclose(f) != 0) {
         fprintf(stderr, "%s: error writing %s\n", c->prog, c->csv);
         return EOMC_EUSAGE;
@@ -1374,7 +1490,8 @@ print_linear(Cli *c, eomc_sim *sim, double *x)
     double t = c->run.t0;
     double *A = calloc((size_t)nl * (size_t)nl, sizeof *A);
     double *B = calloc((size_t)nl * (size_t)(nu ? nu : 1), sizeof *B);
-    if (!A || !B)
+    double *eig = calloc(2 * (size_t)nl + 1, sizeof *eig);
+    if (!A || !B || !eig)
         rc = EOMC_EUSAGE;
     if (rc == EOMC_OK && c->equilibrium) {
         rc = eomc_sim_equilibrium(sim, t, x, &its);
@@ -1401,35 +1518,152 @@ print_linear(Cli *c, eomc_sim *sim, double *x)
             print_matrix(sim, "B = dz'/du:", B, nl, nu, 1);
         else
             printf("B = dz'/du: the model has no inputs\n");
-        rc = print_eigen(c, sim, A, nl, c->equilibrium);
+        rc = print_eigen(c, sim, A, nl, c->equilibrium, eig);
     } else if (rc != EOMC_EUSAGE || eomc_sim_error(sim)[0]) {
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+        int worst, level;
+        if (rc == EOMC_ENUMERIC && !c->equilibrium &&
+            eomc_sim_inconsistency(sim, t, x, x + n, &worst, &level) > EOMC_INCONSISTENT)
+            suggest_assembly(c, sim, x);
     }
     if (rc == EOMC_OK && c->csv)
-        rc = write_linear_csv(c, sim, A, B, nl);
+        rc = write_linear_csv(c, sim, A, B, nl, eig);
     free(A);
     free(B);
+    free(eig);
     return rc;
 }
 
-/* A start off the constraints is allowed (the drift then starts there),
- * but rarely meant: say so, once, before integrating.  The test is
- * relative to each constraint's terms (eomc_sim_inconsistency), so that
- * it means the same in any units. */
+/* The constraints x is off (eomc_sim_inconsistencies above
+ * EOMC_INCONSISTENT), worst first, into buf: "rod (positions: its residual
+ * is 0.12 of the size of its terms), ..."; returns how many. */
+static int
+describe_off(eomc_sim *sim, double t, const double *x, char *buf, size_t len)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int nc = m->nc, off = 0;
+    double *e = calloc((size_t)nc + 1, sizeof *e);
+    int *level = calloc((size_t)nc + 1, sizeof *level);
+    buf[0] = '\0';
+    if (e && level && has_levels(m) &&
+        eomc_sim_inconsistencies(sim, t, x, x + m->nq, e, level) > EOMC_INCONSISTENT) {
+        for (int k = 0; k < nc; k++)
+            off += e[k] > EOMC_INCONSISTENT;
+        size_t at = 0;
+        for (int done = 0; done < off && at < len; done++) { /* the largest left */
+            int k = 0;
+            for (int j = 1; j < nc; j++)
+                k = e[j] > e[k] ? j : k;
+            at += (size_t)snprintf(buf + at, len - at,
+                                   done ? ", %s (%s: %.2g)"
+                                        : "%s (%s: its residual is %.2g of the size of its "
+                                          "terms)", m->c_names[k],
+                                   level[k] ? "velocities" : "positions", e[k]);
+            e[k] = -1;
+        }
+    }
+    free(e);
+    free(level);
+    return off;
+}
 
+/* A start off the constraints is allowed (the drift then starts there),
+ * but rarely meant: say so, once, before integrating, naming every
+ * constraint it violates.  The test is relative to each constraint's terms
+ * (eomc_sim_inconsistencies), so that it means the same in any units. */
 static void
 check_consistent(const Cli *c, eomc_sim *sim, const double *x)
 {
+    char list[2048];
+    int off = describe_off(sim, c->run.t0, x, list, sizeof list);
+    if (off == 1)
+        fprintf(stderr, "%s: warning: the initial state is off the constraint %s; --assemble "
+                "projects the state onto the constraints\n", c->prog, list);
+    else if (off > 1)
+        fprintf(stderr, "%s: warning: the initial state is off %d constraints, worst first: %s; "
+                "--assemble projects the state onto the constraints\n", c->prog, off, list);
+}
+
+/* Whether the trial projection keeping hold [2n] puts x on the
+ * constraints; moved gets what it would change: "x' 5 -> 0, ...". */
+static int
+trial_assembly(const Cli *c, eomc_sim *sim, const double *x, const unsigned char *hold,
+               char *moved, size_t len)
+{
     const eomc_model *m = eomc_sim_model(sim);
-    int worst, level;
-    if (!has_levels(m))
-        return;
-    double e = eomc_sim_inconsistency(sim, c->run.t0, x, x + m->nq, &worst, &level);
-    if (e > EOMC_INCONSISTENT && worst >= 0)
-        fprintf(stderr, "%s: warning: the initial %s violate the constraint %s: its "
-                "residual is %.2g of the size of its terms (--assemble projects the state "
-                "onto the constraints)\n", c->prog, level ? "velocities" : "positions",
-                m->c_names[worst], e);
+    int n = m->nq;
+    double *y = malloc(2 * (size_t)n * sizeof *y);
+    if (!y)
+        return 0;
+    memcpy(y, x, 2 * (size_t)n * sizeof *y);
+    int ok = eomc_sim_project_held(sim, c->run.t0, y, y + n, hold) == EOMC_OK;
+    size_t at = 0;
+    moved[0] = '\0';
+    for (int i = 0; ok && i < 2 * n && at < len; i++)
+        if (y[i] != x[i])
+            at += (size_t)snprintf(moved + at, len - at, "%s%s%s %.6g -> %.6g", at ? ", " : "",
+                                   m->q_names[i % n], i < n ? "" : "'", x[i], y[i]);
+    free(y);
+    return ok;
+}
+
+/* The names hold [2n] marks, as --hold takes them. */
+static void
+hold_names(const eomc_model *m, const unsigned char *hold, char *buf, size_t len)
+{
+    int n = m->nq;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < 2 * n && at < len; i++)
+        if (hold[i])
+            at += (size_t)snprintf(buf + at, len - at, "%s%s%s", at ? "," : "",
+                                   m->q_names[i % n], i < n ? "" : "'");
+}
+
+/* After --linearize refused a state off the constraints: the --assemble
+ * that would put it on them, tried first, with what it would move.  Two
+ * holds make sense: what --init set (the user's values stay; the rest
+ * moves), and the linearization's own coordinates and velocities (only
+ * those the constraints determine move). */
+static void
+suggest_assembly(Cli *c, eomc_sim *sim, const double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq, nl = eomc_sim_linear_size(sim), said = 0;
+    unsigned char *hold[2] = {calloc(2 * (size_t)n, 1), calloc(2 * (size_t)n, 1)};
+    char names[2048], moved[2048];
+    const char *why[2] = {"keeps what --init set and moves the rest onto the constraints",
+                          "keeps the linearization's coordinates and velocities and moves "
+                          "only those the constraints determine"};
+    for (int k = 0; hold[0] && k < c->ninit; k++) { /* NAME=VALUE or NAME'=VALUE */
+        size_t len = strcspn(c->init[k], "=");
+        for (int i = 0; i < 2 * n; i++) {
+            size_t name = strlen(m->q_names[i % n]);
+            if (name + (i >= n) == len && !strncmp(c->init[k], m->q_names[i % n], name) &&
+                (i < n || c->init[k][name] == '\''))
+                hold[0][i] = 1;
+        }
+    }
+    for (int k = 0; hold[1] && k < nl; k++) {
+        int coord, order;
+        eomc_sim_linear_state(sim, k, &coord, &order);
+        hold[1][coord + order * n] = 1;
+    }
+    for (int j = 0; j < 2 && hold[0] && hold[1]; j++) {
+        if ((j == 0 && c->ninit == 0) || (j == 1 && !memcmp(hold[0], hold[1], 2 * (size_t)n)))
+            continue;
+        if (!trial_assembly(c, sim, x, hold[j], moved, sizeof moved))
+            continue;
+        hold_names(m, hold[j], names, sizeof names);
+        fprintf(stderr, "%s: %s --assemble --hold \"%s\" %s: %s\n", c->prog,
+                said++ ? "or" : "to linearize on them,", names, why[j], moved);
+    }
+    if (!said)
+        fprintf(stderr, "%s: --assemble --hold LIST puts the state on the constraints keeping "
+                "LIST as it is (neither what --init set nor the linearization's coordinates "
+                "and velocities can be kept here)\n", c->prog);
+    free(hold[0]);
+    free(hold[1]);
 }
 
 /* An event's `set` that breaks the constraints is the same mistake as
@@ -1601,6 +1835,22 @@ get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
     return rc;
 }
 
+/* After a failure: what the CSV holds. */
+static void
+say_kept(const Cli *c, const Csv *w)
+{
+    char num[NUM_MAX];
+    if (w->rows == 0)
+        fprintf(stderr, "%s: no row was computed: %s holds the header alone\n", c->prog,
+                c->out ? c->out : "stdout");
+    else if (w->rows == 1)
+        fprintf(stderr, "%s: the one row computed, at t = %s, is kept\n", c->prog,
+                num_shortest(num, w->t_last));
+    else
+        fprintf(stderr, "%s: the %ld rows computed up to then, to t = %s, are kept\n",
+                c->prog, w->rows, num_shortest(num, w->t_last));
+}
+
 static int
 simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
 {
@@ -1686,9 +1936,10 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             unlink(data);
         }
         char num[NUM_MAX];
-        fprintf(stderr, "%s: interrupted at t = %s (%s): the %ld rows up to then are "
+        fprintf(stderr, "%s: interrupted at t = %s (%s): the %ld row%s up to then %s "
                 "written\n", c->prog, num_shortest(num, w.t_last),
-                interrupted == SIGINT ? "SIGINT" : "SIGTERM", w.rows);
+                interrupted == SIGINT ? "SIGINT" : "SIGTERM", w.rows, plural(w.rows),
+                w.rows == 1 ? "is" : "are");
         eomc_reference_free(&ref);
         free(w.res);
         return 128 + interrupted; /* 130 for SIGINT, 143 for SIGTERM */
@@ -1701,8 +1952,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     if (rc)
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     if (rc == EOMC_ENUMERIC)
-        fprintf(stderr, "%s: the %ld rows computed up to then are kept\n", c->prog,
-                w.rows);
+        say_kept(c, &w);
     warn_condition(c, &st);
     warn_drift(c, m, &st, &w);
     warn_reset(c, m, &st);
@@ -1718,8 +1968,8 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         else
             snprintf(good, sizeof good, "the reference is good to %.2g", ref.error);
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
-                "the %ld rows, %.3g at t = %g (%s)\n", c->prog, w.err_max, w.rows,
-                w.err_end, c->run.t_end, good);
+                "the %ld row%s, %.3g at t = %g (%s)\n", c->prog, w.err_max, w.rows,
+                plural(w.rows), w.err_end, c->run.t_end, good);
     }
     if (w.tee) {
         int resets = 0;
@@ -1727,7 +1977,8 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             resets |= m->ev_action[k] == EOMC_EVENT_SET;
         /* the rows written, also those before a failure */
         if (fclose(w.tee) != 0 || (w.rows > 0 && plot_trajectory(c->prog, m, data, c->plot,
-                                                                  w.h_first, resets) != EOMC_OK))
+                                                                  w.h_first, resets,
+                                                                  w.out_max) != EOMC_OK))
             rc = rc ? rc : EOMC_EUSAGE;
         unlink(data);
     }
@@ -1822,6 +2073,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     c.alpha = c.beta = DEFAULT_RATE;
     c.target = NAN;
     c.prog = argc > 0 ? (slash ? slash + 1 : argv[0]) : m->name;
+    c.self = getenv("EOMC_RUN_COMMAND") ? getenv("EOMC_RUN_COMMAND") : c.prog;
     c.run = eomc_run_defaults(m);
     c.set = calloc((size_t)argc + 1, sizeof *c.set);
     c.init = calloc((size_t)argc + 1, sizeof *c.init);

@@ -87,6 +87,13 @@ int eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v,
  * *level 0 when it is its position g, 1 when its g' or phi. */
 double eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
                               int *worst, int *level);
+/* Each constraint's inconsistency as eomc_sim_inconsistency measures it,
+ * into e [nc]: for a holonomic one the larger of its two, at g and at g',
+ * for a first-order one its phi's, 0 for a second-order one (nothing of it
+ * lies below acceleration level); level [nc] (unless NULL) gets which (0:
+ * g, 1: g' or phi).  Returns the largest, as eomc_sim_inconsistency does. */
+double eomc_sim_inconsistencies(eomc_sim *s, double t, const double *q, const double *v,
+                                double *e, int *level);
 /* The inconsistency above which a state is said to be off its
  * constraints: far above the rounding of a state that satisfies them,
  * far below any violation a user would have meant. */
@@ -114,7 +121,8 @@ enum { EOMC_STABILIZE_NONE, EOMC_STABILIZE_BAUMGARTE, EOMC_STABILIZE_PROJECT };
 int eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta);
 /* Move (q, v) onto the constraints, in place: q onto every holonomic
  * g = 0, then v onto every g' = 0 and phi = 0, each by Gauss-Newton for
- * the least change in the mass matrix's metric.  A no-op without such
+ * the least change in the mass matrix's metric (a velocity it leaves at
+ * the rounding of those it started from is 0).  A no-op without such
  * constraints; EOMC_ENUMERIC when it cannot converge. */
 int eomc_sim_project(eomc_sim *s, double t, double *q, double *v);
 /* The same keeping what hold [2 nq] marks as it is (hold[i]: q_i,
@@ -160,9 +168,14 @@ int eomc_sim_linear_size(const eomc_sim *s);
 /* Its k-th component: the coordinate's index and order (0: q, 1: q'). */
 void eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order);
 /* A = dz'/dz [nl x nl] and B = dz'/du [nl x nu] at (t, x) (x [2nq], on
- * the constraints), exact from the generated Jacobians, row-major. */
+ * the constraints), exact from the generated Jacobians, row-major.
+ * EOMC_ENUMERIC when x is off its holonomic or velocity-level constraints
+ * (eomc_sim_inconsistency above EOMC_INCONSISTENT): the message names
+ * every one it violates, worst first. */
 int eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B);
-/* The eigenvalues of A [nl x nl] (re + i im, unordered). */
+/* The eigenvalues of A [nl x nl] (re + i im, unordered).  Those that rows
+ * or columns of zeros isolate (a cyclic coordinate's) are exact, taken
+ * out before the QR iteration. */
 int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *im);
 /* An equilibrium (q' = 0, q'' = 0) by Newton's method with the exact
  * Jacobian from x's coordinates: x [2nq] becomes it (velocities 0);

@@ -98,6 +98,50 @@ constraint_rows(eomc_sim *s, double t, const double *x, double *C)
     return r;
 }
 
+/* The componentwise backward error of y as a solution of C y = b [nd]
+ * (Oettli and Prager): the least relative change of C's entries and b's
+ * that makes it exact, max_i |b - C y|_i / (|C| |y| + |b|)_i; 0 for an
+ * exact one.  Free of the rows' and the unknowns' scales. */
+static double
+backward_error(const double *C, int nd, const double *y, const double *b)
+{
+    double worst = 0;
+    for (int i = 0; i < nd; i++) {
+        double r = b[i], mag = fabs(b[i]);
+        for (int j = 0; j < nd; j++)
+            r -= C[i * nd + j] * y[j], mag += fabs(C[i * nd + j] * y[j]);
+        if (r != 0)
+            worst = fmax(worst, mag > 0 ? fabs(r) / mag : HUGE_VAL);
+    }
+    return worst;
+}
+
+/* An entry of a solve's result that is 0 to the solve's accuracy is made
+ * 0: one whose zeroing leaves the solution's componentwise backward error
+ * at rounding (ZERO_BACKWARD units of it on every row, about LU's own).
+ * A cyclic coordinate's influence on a dependent velocity cancels exactly
+ * (a bicycle's heading turns its rolling constraints and their solution
+ * alike), and its rounding, left in T, would couple the coordinate's
+ * zero eigenvalue to the others. */
+#define ZERO_BACKWARD 8
+static void
+clean_zeros(const double *C, int nd, double *y, const double *b, double *trial)
+{
+    double bound = ZERO_BACKWARD * nd * DBL_EPSILON;
+    if (backward_error(C, nd, y, b) > bound)
+        return; /* not a solve accurate to rounding: nothing to tell from 0 */
+    memcpy(trial, y, (size_t)nd * sizeof *y);
+    for (int r = 0; r < nd; r++) {
+        if (y[r] == 0)
+            continue;
+        trial[r] = 0;
+        if (backward_error(C, nd, trial, b) <= bound)
+            y[r] = 0;
+        else
+            trial[r] = y[r];
+    }
+}
+
 /* T [N x nl]: the full perturbation of each reduced one: dx_i = dz for
  * the independent components, dx_d = -C_d^-1 C_i dz for the dependent. */
 static int
@@ -107,7 +151,8 @@ tangent(eomc_sim *s, double t, const double *x, int nl, double *T)
     const eomc_model *m = s->m;
     double *C = calloc((size_t)(nd ? nd : 1) * (size_t)N, sizeof *C);
     double *Cd = calloc((size_t)(nd ? nd * nd : 1), sizeof *Cd);
-    double *col = calloc((size_t)(nd ? nd : 1), sizeof *col);
+    double *col = calloc(3 * (size_t)(nd ? nd : 1), sizeof *col);
+    double *rhs = col + (nd ? nd : 1), *trial = rhs + (nd ? nd : 1);
     int *dep = calloc((size_t)N, sizeof *dep), *ind = calloc((size_t)N, sizeof *ind);
     LaLu *lu = la_lu_alloc(nd ? nd : 1);
     int rc = -1;
@@ -129,9 +174,11 @@ tangent(eomc_sim *s, double t, const double *x, int nl, double *T)
     for (int k = 0; k < nl; k++) {
         T[ind[k] * nl + k] = 1;
         for (int r = 0; r < nd; r++)
-            col[r] = -C[r * N + ind[k]];
-        if (nd)
+            rhs[r] = col[r] = -C[r * N + ind[k]];
+        if (nd) {
             la_lu_solve(lu, col);
+            clean_zeros(Cd, nd, col, rhs, trial);
+        }
         for (int r = 0; r < nd; r++)
             T[dep[r] * nl + k] = col[r];
     }
@@ -189,11 +236,15 @@ eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
     if (!s->m->jacobian)
         return sim_no_jacobian(s, "the linearization");
     int n = s->n, nu = s->nu, N = 2 * n, nl = eomc_sim_linear_size(s);
+    /* off the constraints, the linearization describes no motion of the
+     * model, and its eigenvalues nothing the model does */
+    int rc = sim_off_constraints(s, t, x, x + n, "the linearization");
+    if (rc != EOMC_OK)
+        return rc;
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
     double *Bf = calloc((size_t)N * (size_t)(nu ? nu : 1), sizeof *Bf);
     double *T = calloc((size_t)N * (size_t)nl, sizeof *T);
     int *ind = calloc((size_t)N, sizeof *ind);
-    int rc = EOMC_OK;
     if (!Af || !Bf || !T || !ind) {
         rc = sim_usage_error(s, "out of memory linearizing %s", s->m->name);
         goto done;
@@ -213,13 +264,19 @@ eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
     for (int j = 0, k = 0; j < N; j++)
         if (!dependent(s->m, j))
             ind[k++] = j;
-    /* the reduced rows of A T and of B */
+    /* the reduced rows of A T and of B.  An entry no larger than the
+     * rounding of its own sum (N units of it on the sum of the terms'
+     * magnitudes) is 0 to the accuracy it has, and 0 it is: a cyclic
+     * coordinate's column (a bicycle's heading) then stays exactly 0, and
+     * its eigenvalue exactly 0 (eomc_sim_eigenvalues) */
     for (int r = 0; r < nl; r++) {
         for (int c = 0; c < nl; c++) {
-            double sum = 0;
-            for (int j = 0; j < N; j++)
+            double sum = 0, mag = 0;
+            for (int j = 0; j < N; j++) {
                 sum += Af[ind[r] * N + j] * T[j * nl + c];
-            A[r * nl + c] = sum;
+                mag += fabs(Af[ind[r] * N + j] * T[j * nl + c]);
+            }
+            A[r * nl + c] = fabs(sum) <= N * DBL_EPSILON * mag ? 0 : sum;
         }
         for (int k = 0; k < nu; k++)
             B[r * nu + k] = Bf[ind[r] * nu + k];
@@ -232,28 +289,82 @@ done:
     return rc;
 }
 
+/* Isolate the eigenvalues that rows or columns of zeros give exactly, as
+ * LAPACK's balancing does by permutation (GSL's balancing only scales):
+ * a component k whose column (or row) is 0 off the diagonal among those
+ * left has the eigenvalue A_kk, and the others are those of A without
+ * row and column k (expand det(A - s I) along it).  A cyclic coordinate
+ * (a bicycle's position, heading, wheel angles) is such a column; left in
+ * the QR iteration, the zeros of such a chain form a Jordan block, which
+ * rounding splits into +-1e-8 where the true eigenvalues are 0.
+ * keep [nl] marks those left; returns how many were isolated, their
+ * eigenvalues into re, im [nl] from the end. */
+static int
+isolate(const double *A, int nl, unsigned char *keep, double *re, double *im)
+{
+    int found = 0;
+    memset(keep, 1, (size_t)nl);
+    for (int again = 1; again;) {
+        again = 0;
+        for (int k = 0; k < nl; k++) {
+            if (!keep[k])
+                continue;
+            int col = 1, row = 1;
+            for (int i = 0; i < nl && (col || row); i++)
+                if (keep[i] && i != k) {
+                    col &= A[i * nl + k] == 0;
+                    row &= A[k * nl + i] == 0;
+                }
+            if (col || row) {
+                keep[k] = 0;
+                found++;
+                re[nl - found] = A[k * nl + k], im[nl - found] = 0;
+                again = 1;
+            }
+        }
+    }
+    return found;
+}
+
 int
 eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *im)
 {
-    gsl_matrix *M = gsl_matrix_alloc((size_t)nl, (size_t)nl);
-    gsl_vector_complex *ev = gsl_vector_complex_alloc((size_t)nl);
-    gsl_eigen_nonsymm_workspace *w = gsl_eigen_nonsymm_alloc((size_t)nl);
+    unsigned char *keep = malloc((size_t)nl + 1);
+    /* QR iteration takes a NaN for a number and fails on an infinity
+     * through GSL's error handler: neither reaches it */
+    for (size_t k = 0; k < (size_t)nl * (size_t)nl; k++)
+        if (!isfinite(A[k])) {
+            free(keep);
+            return sim_usage_error(s, "the matrix has a non-finite entry (row %zu, column "
+                                   "%zu): no eigenvalues", k / (size_t)nl + 1,
+                                   k % (size_t)nl + 1);
+        }
+    if (!keep)
+        return sim_usage_error(s, "out of memory for the eigenvalues");
+    int nr = nl - isolate(A, nl, keep, re, im);
+    if (nr == 0) {
+        free(keep);
+        return EOMC_OK;
+    }
+    gsl_matrix *M = gsl_matrix_alloc((size_t)nr, (size_t)nr);
+    gsl_vector_complex *ev = gsl_vector_complex_alloc((size_t)nr);
+    gsl_eigen_nonsymm_workspace *w = gsl_eigen_nonsymm_alloc((size_t)nr);
     int rc = EOMC_OK;
     if (!M || !ev || !w) {
         rc = sim_usage_error(s, "out of memory for the eigenvalues");
     } else {
-        memcpy(M->data, A, (size_t)nl * (size_t)nl * sizeof *A);
+        for (int i = 0, a = 0; i < nl; i++) {
+            if (!keep[i])
+                continue;
+            for (int j = 0, b = 0; j < nl; j++)
+                if (keep[j])
+                    gsl_matrix_set(M, (size_t)a, (size_t)b++, A[i * nl + j]);
+            a++;
+        }
         gsl_eigen_nonsymm_params(0, 1, w); /* balanced: A mixes units */
-        /* QR iteration takes a NaN for a number and fails on an infinity
-         * through GSL's error handler: neither reaches it */
-        for (size_t k = 0; k < (size_t)nl * (size_t)nl && rc == EOMC_OK; k++)
-            if (!isfinite(A[k]))
-                rc = sim_usage_error(s, "the matrix has a non-finite entry (row %zu, column "
-                                     "%zu): no eigenvalues", k / (size_t)nl + 1,
-                                     k % (size_t)nl + 1);
-        if (rc == EOMC_OK && gsl_eigen_nonsymm(M, ev, w) != GSL_SUCCESS)
+        if (gsl_eigen_nonsymm(M, ev, w) != GSL_SUCCESS)
             rc = sim_usage_error(s, "the eigenvalues did not converge (QR iteration)");
-        for (int k = 0; k < nl && !rc; k++) {
+        for (int k = 0; k < nr && !rc; k++) {
             re[k] = GSL_REAL(gsl_vector_complex_get(ev, (size_t)k));
             im[k] = GSL_IMAG(gsl_vector_complex_get(ev, (size_t)k));
         }
@@ -261,6 +372,7 @@ eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *i
     gsl_eigen_nonsymm_free(w);
     gsl_vector_complex_free(ev);
     gsl_matrix_free(M);
+    free(keep);
     return rc;
 }
 
@@ -375,11 +487,11 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
         goto done;
     }
     if (nzv != nzq || nzq == 0) {
-        rc = sim_usage_error(s, "%s has %d independent coordinates but %d independent "
-                             "velocities: its equilibria are not isolated points (a "
+        rc = sim_usage_error(s, "%s has %d independent coordinate%s but %d independent "
+                             "velocit%s: its equilibria are not isolated points (a "
                              "nonholonomic model rests anywhere its forces allow), so "
                              "Newton's method has no single answer to find", m->name, nzq,
-                             nzv);
+                             nzq == 1 ? "" : "s", nzv, nzv == 1 ? "y" : "ies");
         goto done;
     }
     memset(x + n, 0, (size_t)n * sizeof *x);

@@ -22,6 +22,10 @@ const char *
 num_shortest(char *buf, double x)
 {
     char cand[NUM_MAX];
+    if (x == 0) { /* -0 too: the sign of a zero is no number a reader wants */
+        snprintf(buf, NUM_MAX, "0");
+        return buf;
+    }
     reads_back(buf, 17, x);
     for (int prec = 16; prec >= 1; prec--) {
         if (!reads_back(cand, prec, x)) {

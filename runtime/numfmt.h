@@ -13,7 +13,8 @@
 /* Longest output: sign, 17 digits, point, exponent, NUL. */
 enum { NUM_MAX = 32 };
 
-/* x into buf [NUM_MAX]; returns buf. */
+/* x into buf [NUM_MAX]; returns buf.  -0 is "0": it reads back as a zero,
+ * and a sign on a zero (x'' -0) only puzzles. */
 const char *num_shortest(char *buf, double x);
 /* x onto f. */
 void num_put(FILE *f, double x);

@@ -5,6 +5,7 @@
 #include "plot.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -100,16 +101,93 @@ panel(FILE *f, const char *data, const char *ylabel, int first, int last)
     fprintf(f, " using 1:k with lines linewidth 1.5 title columnhead(k)\n");
 }
 
+/* Outputs have no units in the spec, so an axis of their own is the only
+ * safe one: one panel each, up to this many; more are grouped by
+ * magnitude. */
+enum { OUT_PANELS = 6 };
+
+/* The outputs' panels: group [nout] gets each output's panel, 0, 1, ...;
+ * returns how many.  Up to OUT_PANELS outputs, one each; else the
+ * outputs, by their largest |value| over the run (scale), share a panel
+ * with those within a factor of ratio of the smallest in it, ratio 10,
+ * then 100, ... until OUT_PANELS panels are enough: no curve is drawn
+ * flat against another a thousand times its size unless there are too
+ * many to draw apart.  A scale of 0 (or not finite) is its own magnitude,
+ * first. */
+static int
+group_outputs(const double *scale, int nout, int *group)
+{
+    if (nout <= OUT_PANELS) {
+        for (int k = 0; k < nout; k++)
+            group[k] = k;
+        return nout;
+    }
+    int *order = malloc((size_t)nout * sizeof *order), panels = 0;
+    if (!order) {
+        for (int k = 0; k < nout; k++)
+            group[k] = 0;
+        return 1;
+    }
+    /* the outputs by magnitude (insertion: a scene has a few) */
+    for (int k = 0; k < nout; k++) {
+        double sk = isfinite(scale[k]) ? scale[k] : 0;
+        int j = k;
+        for (; j > 0 && (isfinite(scale[order[j - 1]]) ? scale[order[j - 1]] : 0) > sk; j--)
+            order[j] = order[j - 1];
+        order[j] = k;
+    }
+    for (double ratio = 10;; ratio *= 10) {
+        double low = -1;
+        panels = 0;
+        for (int j = 0; j < nout; j++) {
+            double s = isfinite(scale[order[j]]) ? scale[order[j]] : 0;
+            if (panels == 0 || (low == 0 ? s > 0 : s > ratio * low))
+                low = s, panels++;
+            group[order[j]] = panels - 1;
+        }
+        if (panels <= OUT_PANELS)
+            break;
+    }
+    free(order);
+    return panels;
+}
+
+/* Panel g of the outputs: each output in it (columns out0 + k), labelled
+ * with its name when it is alone. */
+static void
+output_panel(FILE *f, const eomc_model *m, const char *data, int out0, const int *group,
+             int g)
+{
+    int count = 0, only = -1;
+    for (int k = 0; k < m->nout; k++)
+        if (group[k] == g)
+            count++, only = k;
+    fprintf(f, "set ylabel ");
+    plot_string(f, count == 1 ? m->out_names[only] : "outputs");
+    fprintf(f, " noenhanced\nplot");
+    for (int k = 0, first = 1; k < m->nout; k++) {
+        if (group[k] != g)
+            continue;
+        fprintf(f, "%s ", first ? "" : ",");
+        plot_string(f, data);
+        fprintf(f, " using 1:%d with lines linewidth 1.5 title columnhead(%d)", out0 + k,
+                out0 + k);
+        first = 0;
+    }
+    fprintf(f, "\n");
+}
+
 int
 plot_trajectory(const char *prog, const eomc_model *m, const char *data, const char *path,
-                double h0, int resets)
+                double h0, int resets, const double *out_scale)
 {
     char script[] = "/tmp/eomc-plot-XXXXXX";
     int fd = mkstemp(script);
     size_t len = strlen(path) + 32;
     char *tmp = malloc(len);
+    int *group = calloc((size_t)m->nout + 1, sizeof *group);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    if (!f || !tmp) {
+    if (!f || !tmp || !group) {
         fprintf(stderr, "%s: --plot: cannot write a gnuplot script: %s\n", prog,
                 strerror(errno));
         if (f)
@@ -117,13 +195,15 @@ plot_trajectory(const char *prog, const eomc_model *m, const char *data, const c
         if (fd >= 0)
             unlink(script);
         free(tmp);
+        free(group);
         return EOMC_EUSAGE;
     }
     snprintf(tmp, len, "%s.tmp%ld", path, (long)getpid());
     int n = m->nq, own_h = m->invariant && strcmp(m->invariant_name, "E") != 0;
     int h_col = m->invariant ? 2 * n + 4 + own_h : 0; /* E = column 2n + 4, or h after it */
     int out0 = 2 * n + 5 + own_h + 2 * m->nc;
-    int panels = 1 + (m->invariant != NULL) + (m->nout > 0);
+    int out_panels = group_outputs(out_scale, m->nout, group);
+    int panels = 1 + (m->invariant != NULL) + out_panels;
     plot_terminal(f, path, tmp, 1000, 330 * panels + 40);
     char title[512];
     snprintf(title, sizeof title, "%s%s%s (%s, %s form)", m->name, *m->scene ? ", scene " : "",
@@ -152,9 +232,10 @@ plot_trajectory(const char *prog, const eomc_model *m, const char *data, const c
         plot_string(f, what);
         fprintf(f, "\n");
     }
-    if (m->nout > 0)
-        panel(f, data, "outputs", out0, out0 + m->nout - 1);
+    for (int g = 0; g < out_panels; g++)
+        output_panel(f, m, data, out0, group, g);
     fprintf(f, "unset multiplot\n");
+    free(group);
     int bad = ferror(f) | (fclose(f) != 0);
     if (bad) {
         fprintf(stderr, "%s: --plot: cannot write a gnuplot script\n", prog);

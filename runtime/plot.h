@@ -3,7 +3,9 @@
  *
  * A run's --plot FILE (.svg or .png) shows the coordinates against time;
  * the conserved quantity's drift on a second panel, when the model has
- * one; the scene's outputs on a third, when it has any.  The data is the
+ * one; then the scene's outputs, each on a panel of its own (outputs have
+ * no units in the spec: nothing says two may share an axis), or with more
+ * than six, grouped by the magnitude of their values.  The data is the
  * run's own CSV.
  */
 #ifndef EOMC_PLOT_H
@@ -30,8 +32,10 @@ void plot_terminal(FILE *f, const char *path, const char *tmp, int width, int he
 int plot_finish(const char *prog, const char *script, const char *tmp, const char *path);
 
 /* A run's plot of the CSV data file (the simulator's columns, m's
- * model), into path.  title: the first line (model and scene). */
+ * model), into path: h0 the conserved quantity's first value, resets
+ * whether events reset the state, out_scale [nout] each output's largest
+ * |value| over the rows (for grouping them). */
 int plot_trajectory(const char *prog, const eomc_model *m, const char *data,
-                    const char *path, double h0, int resets);
+                    const char *path, double h0, int resets, const double *out_scale);
 
 #endif

@@ -37,6 +37,8 @@ struct Proj {
     double *col;               /* [n] one solve's right-hand side, on those */
     const unsigned char *hold; /* [2n] what the caller keeps (q, then v), or NULL */
     int factored;              /* L holds M on moves, for this proj_apply */
+    double vMv0;               /* v^T M v at the start of a velocity projection: the
+                                * scale of its rounding (0 outside one) */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
@@ -193,18 +195,25 @@ levels(Proj *j, double t, const double *q, const double *v, const double *p,
     j->m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
 }
 
-/* The largest relative residual of a level's rows, its row into *worst. */
+/* The largest relative residual of a level's rows, its row into *worst;
+ * each row's into each [nc] (at the constraint's index) unless NULL. */
 static double
-level_residual(Proj *j, const double *q, const double *v, int level, int *worst)
+level_residual(Proj *j, const double *q, const double *v, int level, int *worst,
+               double *each)
 {
     int nr = level ? j->nvel : j->npos;
     const int *rows = level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
-    double big = 0, vMv = level ? la_quadratic(j->M, v, j->n) : 0;
+    /* a projection that takes every velocity to 0 (a wheel held still
+     * stops the bicycle) ends in rounding of the velocities it started
+     * from, not of the zeros it reached */
+    double big = 0, vMv = level ? fmax(la_quadratic(j->M, v, j->n), j->vMv0) : 0;
     for (int k = 0; k < nr; k++) {
         const double *Bk = j->B + rows[k] * j->n;
         double e = relative_residual(Bk, x, j->n, r[rows[k]],
                                      level ? velocity_bound(j, Bk, vMv) : 0);
+        if (each)
+            each[rows[k]] = e;
         if (e > big || (k == 0 && worst)) {
             big = e;
             if (worst)
@@ -233,15 +242,38 @@ double
 proj_inconsistency(Proj *j, double t, const double *q, const double *v, const double *p,
                    const double *u, int *worst, int *level)
 {
+    return proj_inconsistencies(j, t, q, v, p, u, worst, level, NULL, NULL);
+}
+
+double
+proj_inconsistencies(Proj *j, double t, const double *q, const double *v, const double *p,
+                     const double *u, int *worst, int *level, double *each, int *each_level)
+{
     int w0 = -1, w1 = -1;
     *worst = -1, *level = 0;
+    for (int k = 0; k < j->nc && each; k++)
+        each[k] = 0;
+    for (int k = 0; k < j->nc && each_level; k++)
+        each_level[k] = 0;
     if (j->nvel == 0)
         return 0;
     levels(j, t, q, v, p, u);
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
     j->factored = 0, j->full = -1; /* a new M: no factor of it yet */
-    double e0 = j->npos ? level_residual(j, q, v, 0, &w0) : 0;
-    double e1 = level_residual(j, q, v, 1, &w1);
+    double e0 = j->npos ? level_residual(j, q, v, 0, &w0, each) : 0;
+    /* a holonomic constraint's g' after its g: the larger of the two is its
+     * inconsistency (mu is a projection's scratch, free here) */
+    double *e1s = each ? j->mu : NULL;
+    double e1 = level_residual(j, q, v, 1, &w1, e1s);
+    for (int r = 0; r < j->nvel && each; r++) {
+        int k = j->vel_rows[r];
+        int pos = j->m->c_order[k] == 0;
+        if (!pos || e1s[k] > each[k]) {
+            each[k] = e1s[k];
+            if (each_level)
+                each_level[k] = 1;
+        }
+    }
     *level = !(e0 >= e1 && w0 >= 0);
     *worst = *level ? w1 : w0;
     return fmax(e0, e1);
@@ -259,7 +291,7 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
     const int *rows = level ? j->vel_rows : j->pos_rows;
     double *x = level ? v : q, *r = level ? j->vel : j->pos;
     levels(j, t, q, v, p, u);
-    double now = level_residual(j, q, v, level, NULL);
+    double now = level_residual(j, q, v, level, NULL, NULL);
     if (la_settled(now, *rel))
         return 1;
     *rel = now;
@@ -323,8 +355,19 @@ project_level(Proj *j, double t, double *q, double *v, const double *p, const do
     if (rc != PROJ_OK)
         return rc;
     double rel = HUGE_VAL;
+    j->vMv0 = level ? la_quadratic(j->M, v, j->n) : 0;
     for (int it = 0; it <= PROJ_MAX && rc == 0; it++) /* the next tests a correction */
         rc = correct(j, t, q, v, p, u, level, &rel);
+    /* a velocity the projection left at the rounding of those it started
+     * from is 0 to its accuracy, and 0 it is: a state at rest whose
+     * velocities were the corrections' rounding would look, against their
+     * own size, nowhere near its constraints */
+    for (int a = 0; level && rc == 1 && a < j->nmoves; a++) {
+        int i = j->moves[a];
+        if (fabs(v[i]) * sqrt(fmax(j->M[i * j->n + i], 0)) <= LA_SETTLED_TIGHT * sqrt(j->vMv0))
+            v[i] = 0;
+    }
+    j->vMv0 = 0;
     return rc < 0 ? PROJ_SINGULAR : rc == 0 ? PROJ_NO_CONVERGENCE : PROJ_OK;
 }
 

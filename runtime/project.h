@@ -35,6 +35,12 @@ double proj_residual(Proj *j, double t, const double *q, const double *v,
  * depend on the model's units. */
 double proj_inconsistency(Proj *j, double t, const double *q, const double *v,
                           const double *p, const double *u, int *worst, int *level);
+/* The same, with each constraint's into each [nc] (for a holonomic one the
+ * larger of its two levels', g and g'; 0 for a second-order one) and its level
+ * into each_level [nc] (0: g, 1: g' or phi), either NULL if not wanted. */
+double proj_inconsistencies(Proj *j, double t, const double *q, const double *v,
+                            const double *p, const double *u, int *worst, int *level,
+                            double *each, int *each_level);
 /* (q, v) onto the holonomic and velocity-level constraints, in place.
  * On failure *level is 0 (positions) or 1 (velocities). */
 int proj_apply(Proj *j, double t, double *q, double *v, const double *p,

@@ -666,9 +666,9 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
         k++;
     }
     if (rc == EOMC_OK && k != nrows)
-        rc = sim_usage_error(s, "%s:%ld: %ld rows where the runs have %ld output times "
-                             "(t = %g to %g every %g)", path, line_no, k, nrows, o->t0,
-                             o->t_end, o->dt);
+        rc = sim_usage_error(s, "%s:%ld: %ld row%s where the runs have %ld output times "
+                             "(t = %g to %g every %g)", path, line_no, k, k == 1 ? "" : "s",
+                             nrows, o->t0, o->t_end, o->dt);
     fclose(f);
     free(line);
     free(fields);

@@ -466,6 +466,68 @@ eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
     return proj_inconsistency(s->proj, t, q, v, s->p, s->u, worst, level);
 }
 
+double
+eomc_sim_inconsistencies(eomc_sim *s, double t, const double *q, const double *v, double *e,
+                         int *level)
+{
+    int worst, lev;
+    if (!sim_has_levels(s)) {
+        for (int k = 0; k < s->m->nc; k++) {
+            e[k] = 0;
+            if (level)
+                level[k] = 0;
+        }
+        return 0;
+    }
+    sim_inputs_at(s, t);
+    return proj_inconsistencies(s->proj, t, q, v, s->p, s->u, &worst, &lev, e, level);
+}
+
+int
+sim_off_constraints(eomc_sim *s, double t, const double *q, const double *v,
+                    const char *what)
+{
+    const eomc_model *m = s->m;
+    int nc = m->nc;
+    if (!sim_has_levels(s))
+        return EOMC_OK;
+    double *e = sim_zeros((size_t)nc);
+    int *level = calloc((size_t)nc, sizeof *level);
+    if (!e || !level) {
+        free(e);
+        free(level);
+        return sim_usage_error(s, "out of memory checking the constraints");
+    }
+    int rc = EOMC_OK, off = 0;
+    if (eomc_sim_inconsistencies(s, t, q, v, e, level) > EOMC_INCONSISTENT) {
+        for (int k = 0; k < nc; k++)
+            off += e[k] > EOMC_INCONSISTENT;
+        char list[1024];
+        size_t len = 0;
+        /* worst first: each pass takes the largest left */
+        for (int done = 0; done < off && len < sizeof list; done++) {
+            int k = 0;
+            for (int j = 1; j < nc; j++)
+                k = e[j] > e[k] ? j : k;
+            len += (size_t)snprintf(list + len, sizeof list - len,
+                                    done ? ", %s (%s: %.2g)"
+                                         : "%s (%s: its residual is %.2g of the size of its "
+                                           "terms)", m->c_names[k],
+                                    level[k] ? "velocities" : "positions", e[k]);
+            e[k] = -1;
+        }
+        if (off == 1)
+            rc = sim_numeric_error(s, t, q, v, "%s: the state is off the constraint %s", what,
+                                   list);
+        else
+            rc = sim_numeric_error(s, t, q, v, "%s: the state is off %d constraints, worst "
+                                   "first: %s", what, off, list);
+    }
+    free(e);
+    free(level);
+    return rc;
+}
+
 /* An entry of a near-null direction this large against its largest
  * takes part in the ill-conditioning. */
 #define INVOLVED 0.25

@@ -67,6 +67,13 @@ int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
 /* The largest |g|, |g'| or |phi| at (t, q, v), 0 without such
  * constraints. */
 double sim_level_residual(eomc_sim *s, double t, const double *q, const double *v);
+/* EOMC_OK when (q, v) is on its holonomic and velocity-level constraints
+ * (eomc_sim_inconsistency at most EOMC_INCONSISTENT), else EOMC_ENUMERIC
+ * with the message "t = T: WHAT: the state is off 2 constraints, worst
+ * first: c1 (velocities: its residual is 1 of the size of its terms), c2
+ * (positions: 0.3); state: ...", every one it violates. */
+int sim_off_constraints(eomc_sim *s, double t, const double *q, const double *v,
+                        const char *what);
 /* The condition number of the linear system whose solution is q'' at
  * (t, q, v): the mass matrix balanced by its diagonal (which makes it free
  * of the coordinates' units), or the scaled KKT or elimination matrix;

@@ -79,6 +79,32 @@ add_quoted(Text *t, const char *msg)
     add(t, "\"");
 }
 
+/* The row of a sweep of cells (Sweep.cells) after its values: its status,
+ * then its cells (empty when it failed); frees what one_run allocated. */
+static char *
+cells_row(const Sweep *sw, Text *row, eomc_sim *sim, double *x, int rc, double *last,
+          double *out)
+{
+    char *text = NULL;
+    if (rc == EOMC_OK)
+        rc = sw->cells(sw->ctx, sim, x, &text);
+    if (rc == EOMC_OK) {
+        add(row, "%sok%s\n", sw->nparam ? "," : "", text);
+    } else {
+        add(row, "%s", sw->nparam ? "," : "");
+        add_quoted(row, sim ? eomc_sim_error(sim) : "out of memory");
+        for (int i = 0; i < sw->ncells; i++)
+            add(row, ",");
+        add(row, "\n");
+    }
+    free(text);
+    eomc_sim_free(sim);
+    free(x);
+    free(last);
+    free(out);
+    return row->s;
+}
+
 /* Run k into its row (a malloc'd line). */
 static char *
 one_run(const Sweep *sw, long k)
@@ -99,6 +125,8 @@ one_run(const Sweep *sw, long k)
         rc = eomc_sim_check(sim);
     if (rc == EOMC_OK)
         rc = sw->initial(sw->ctx, sim, x);
+    if (sw->cells) /* the row holds its status until rank 0 writes it */
+        return cells_row(sw, &row, sim, x, rc, last, out);
     Last l = {sw->run->t0, last, n};
     memcpy(last, x, 2 * (size_t)n * sizeof *x);
     if (rc == EOMC_OK)
@@ -147,8 +175,9 @@ worker(void *arg)
 static void
 warn_failed(const Sweep *sw, long failed, const char *row)
 {
-    fprintf(stderr, "%s: warning: %ld of %ld runs failed (each row's status says why); "
-            "the first:", sw->prog, failed, sw->nruns);
+    fprintf(stderr, "%s: warning: %ld of %ld run%s failed (%s); the first:", sw->prog, failed,
+            sw->nruns, sw->nruns == 1 ? "" : "s",
+            sw->cells ? "their cells are empty" : "each row's status says why");
     for (int k = 0; k < sw->nparam; k++) {
         size_t len = strcspn(row, ",");
         fprintf(stderr, " %s = %.*s%s", sw->names[k], (int)len, row, k + 1 < sw->nparam
@@ -164,6 +193,26 @@ warn_failed(const Sweep *sw, long failed, const char *row)
         fputc(*c, stderr);
     }
     fputc('\n', stderr);
+}
+
+/* A row of cells as it is written: its values (row .. st), then its
+ * cells, past its status (a quoted CSV cell, or ok). */
+static void
+write_cells(FILE *f, const char *row, const char *st, const char *end)
+{
+    const char *c = st;
+    if (*c == '"') /* past the closing quote: a doubled one is inside */
+        for (c++; *c && !(*c == '"' && c[1] != '"'); c += *c == '"' ? 2 : 1)
+            ;
+    c = strpbrk(c, ",\n");
+    if (st > row) /* the values and their comma */
+        fwrite(row, 1, (size_t)(st - row) - 1, f);
+    if (c && c < end && st > row)
+        fwrite(c, 1, (size_t)(end - c) + 1, f); /* ",cells\n" */
+    else if (c && c < end)
+        fwrite(c + 1, 1, (size_t)(end - c), f);
+    else
+        fputc('\n', f);
 }
 
 int
@@ -203,14 +252,18 @@ sweep_run(const Sweep *sw, FILE *f)
     if (rank == 0 && rc == EOMC_OK) {
         for (int j = 0; j < sw->nparam; j++)
             fprintf(f, "%s,", sw->names[j]);
-        fprintf(f, "status,t");
-        for (int i = 0; i < m->nq; i++)
-            fprintf(f, ",%s", m->q_names[i]);
-        for (int i = 0; i < m->nq; i++)
-            fprintf(f, ",%s'", m->q_names[i]);
-        for (int i = 0; i < m->nout; i++)
-            fprintf(f, ",%s", m->out_names[i]);
-        fprintf(f, "\n");
+        if (sw->cells) {
+            fprintf(f, "%s\n", sw->columns);
+        } else {
+            fprintf(f, "status,t");
+            for (int i = 0; i < m->nq; i++)
+                fprintf(f, ",%s", m->q_names[i]);
+            for (int i = 0; i < m->nq; i++)
+                fprintf(f, ",%s'", m->q_names[i]);
+            for (int i = 0; i < m->nout; i++)
+                fprintf(f, ",%s", m->out_names[i]);
+            fprintf(f, "\n");
+        }
         /* the start of each rank's text, then its rows one line at a time */
         const char **at = calloc((size_t)size, sizeof *at);
         size_t off = 0;
@@ -231,9 +284,13 @@ sweep_run(const Sweep *sw, FILE *f)
             const char *st = *pr;
             for (int k = 0; k < sw->nparam && st; k++)
                 st = strchr(st, ',') ? strchr(st, ',') + 1 : NULL;
-            if (st && strncmp(st, "ok,", 3) != 0 && failed++ == 0)
+            if (st && strncmp(st, "ok,", 3) != 0 && strncmp(st, "ok\n", 3) != 0 &&
+                failed++ == 0)
                 first = *pr;
-            fwrite(*pr, 1, (size_t)(end - *pr) + 1, f);
+            if (sw->cells && st)
+                write_cells(f, *pr, st, end);
+            else
+                fwrite(*pr, 1, (size_t)(end - *pr) + 1, f);
             *pr = end + 1;
         }
         /* the rows say which runs failed; so does the run, once, where it is seen */

@@ -29,13 +29,23 @@ typedef struct Sweep {
     const double *values;       /* [nruns * nparam], in sweep order */
     int threads;                /* >= 1 */
     const char *prog;           /* for messages */
+    /* Instead of integrating (NULL: integrate), each run's own ncells
+     * cells, computed from its initial state x: ",a,b,..." into *text
+     * (malloc'd), EOMC_OK or a status with the simulator's message.  The
+     * header names them after the swept parameters with columns
+     * ("re1,im1,..."). */
+    int (*cells)(void *ctx, eomc_sim *sim, double *x, char **text);
+    const char *columns;
+    int ncells;
 } Sweep;
 
 /* Every run, and the summary CSV on f (written by rank 0 only): the swept
  * parameters' names, status, t, the coordinates, the velocities as name',
  * the outputs at the end.  A failed run's row has its error as status and
- * empty cells.  Returns EOMC_OK (failed runs included), or an exit status
- * when the sweep itself could not run. */
+ * empty cells.  With cells, the swept parameters' names and the columns,
+ * no status: a failed run's cells are empty, and the warning says why.
+ * Returns EOMC_OK (failed runs included), or an exit status when the
+ * sweep itself could not run. */
 int sweep_run(const Sweep *sw, FILE *f);
 
 /* This process's rank in an MPI job (eomc_set_parallel), else 0: only rank

@@ -65,7 +65,7 @@ at=$(sed -n 's/.*error: t = \([0-9.e+-]*\): the events accumulate.*/\1/p' "$tmp/
 lastrow=$(tail -1 "$tmp/zeno.csv" | cut -d, -f1)
 [ $st -eq 3 ] && within "$at" "$rest" 1e-6 &&
     awk -v t="$lastrow" -v r="$rest" 'BEGIN { exit !(t <= r && t > r - 0.02) }' &&
-    grep -q 'rows computed up to then are kept' "$tmp/zeno.err"
+    grep -q "rows computed up to then, to t = $lastrow, are kept" "$tmp/zeno.err"
 ok $? "bounces accumulating at t = $rest: exit $st at t = $at, rows kept up to $lastrow"
 timeout 60 "$eomc" run "$ball" --set e=0 > /dev/null 2> "$tmp/rest.err"; st=$?
 [ $st -eq 3 ] && grep -q 'floor holds again at the end of the first step after its reset' "$tmp/rest.err"
@@ -124,7 +124,8 @@ slow() {
 }
 slow 1e-8; st=$?
 [ $st -eq 3 ] && grep -q 'event half holds still .* crossing it at 1e-08 of the rate it arrived with' "$tmp/slow.err" &&
-  [ "$(wc -l < "$tmp/slow.csv")" -gt 1 ] && grep -q 'rows computed up to then are kept' "$tmp/slow.err"
+  [ "$(wc -l < "$tmp/slow.csv")" -gt 1 ] &&
+  grep -q "rows computed up to then, to t = $(tail -1 "$tmp/slow.csv" | cut -d, -f1), are kept" "$tmp/slow.err"
 ok $? "a reset leaving the crossing at 1e-8 of its rate stops with exit 3 naming that share"
 slow 0.999e-6; st1=$?; slow 1.001e-6; st2=$?
 [ $st1 -eq 3 ] && [ $st2 -eq 0 ] && [ ! -s "$tmp/slow.err" ]

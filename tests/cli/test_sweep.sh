@@ -75,4 +75,15 @@ ok $? "COUNT 0: exit $st"
 [ $st -eq 2 ] && grep -q 'runs the runs of a sweep' "$tmp/err"
 ok $? "--threads without a sweep: exit $st"
 
+# --assemble applies to each run of a sweep, as to a single run: the
+# Cartesian pendulum started off its rod (x = 1.2) is put on it, and
+# without stabilization stays on it, so at the end x^2 + y^2 = l^2 for
+# every l (it was ignored: the runs drifted from 1.2^2 + y^2)
+"$eomc" run "$src/specs/cartesian_pendulum.yaml" --init x=0.6 --assemble --hold x \
+    --sweep l=1:2:3 --t-end 0.5 -o "$tmp/asm.csv" 2> /dev/null; st=$?
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/asm.csv")" -eq 4 ] &&
+    awk -F, 'NR > 1 { d = $4 * $4 + $5 * $5 - $1 * $1; if (d < 0) d = -d
+        if ($2 != "ok" || d > 1e-8 * $1 * $1) bad = 1 } END { exit bad }' "$tmp/asm.csv"
+ok $? "--assemble --hold x in a sweep: each run starts on its rod (x^2 + y^2 = l^2 at the end, l = 1, 1.5, 2)"
+
 tap_end

@@ -10,6 +10,13 @@
  *    (to rounding) in every unit, also upright, where each term of g' is
  *    rounding; a velocity off the rod by 1e-3 reads as its share of the
  *    velocity, 1e-3 / sqrt(1 + 1e-6).
+ *  - Each constraint's own inconsistency (eomc_sim_inconsistencies), on
+ *    the Cartesian double pendulum with bob 1 at 1.2 l1 from the pivot
+ *    and bob 2 moving along rod 2 at u: rod1's position residual against
+ *    its terms, (rho^2 - l1^2) / (3 rho^2 + l1^2) = 0.44 / 5.32 by hand
+ *    (g = rho^2 - l1^2 over |g - B q| + |B q|, B = dg/dq), and rod2's
+ *    velocity share, the cosine 1 / sqrt(1 + m2/m1) in the metric of M
+ *    (g2' = 2 l2 u against |B2| |v| in that metric), in every unit.
  *  - The pendulum with its unit of time made 1e-12 .. 1e12 s
  *    (g = 9.81 / tau^2, t_end = 10 tau, atol = 0): the same rows in units
  *    of tau, each against the elliptic closed form
@@ -130,6 +137,45 @@ consistency(void)
     CHECK(off_worst <= ROUNDING / share && off_level,
           "consistency: a radial velocity of 1e-3 reads as its share 1e-3 / sqrt(1 + 1e-6) at "
           "velocity level in every unit, to %.2g of it", off_worst);
+    eomc_sim_free(s);
+}
+
+/* ---- each constraint's inconsistency ---- */
+
+static void
+inconsistencies(void)
+{
+    eomc_sim *s = eomc_sim_alloc(&cartesian_double_pendulum_model);
+    double worst = 0;
+    int order_ok = 1, cases = 0;
+    const double m2_m1[] = {1.0, 3.0};
+    for (int im = 0; im < COUNT(mass_units); im++)
+        for (int il = 0; il < COUNT(length_units); il++)
+            for (int r = 0; r < COUNT(m2_m1); r++) {
+                double l = length_units[il], m = mass_units[im], u = 0.7 * l;
+                set(s, "m1", m);
+                set(s, "m2", m2_m1[r] * m);
+                set(s, "l1", l);
+                set(s, "l2", 0.8 * l);
+                /* bob 1 at 1.2 l1 at 1 rad from the downward vertical; bob 2
+                 * 0.8 l on from it at 0.3 rad, moving along rod 2 at u */
+                double rho = 1.2 * l, n[2] = {sin(0.3), -cos(0.3)};
+                double q[4] = {rho * sin(1.0), -rho * cos(1.0), 0, 0};
+                q[2] = q[0] + 0.8 * l * n[0], q[3] = q[1] + 0.8 * l * n[1];
+                double v[4] = {0, 0, u * n[0], u * n[1]}, e[2];
+                int level[2], row, lev;
+                double big = eomc_sim_inconsistencies(s, 0.0, q, v, e, level);
+                double one = eomc_sim_inconsistency(s, 0.0, q, v, &row, &lev);
+                double want1 = 0.44 / 5.32, want2 = 1 / sqrt(1 + m2_m1[r]);
+                worst = fmax(worst, fmax(fabs(e[0] / want1 - 1), fabs(e[1] / want2 - 1)));
+                order_ok &= level[0] == 0 && level[1] == 1 && big == one && row == 1 &&
+                            lev == 1 && big == e[1];
+                cases++;
+            }
+    CHECK(worst <= ROUNDING && order_ok,
+          "inconsistencies: rod1's positions 0.44/5.32 and rod2's velocities 1/sqrt(1 + "
+          "m2/m1) each (to %.2g), at their levels, the largest eomc_sim_inconsistency's, in "
+          "%d settings of m, l, m2/m1", worst, cases);
     eomc_sim_free(s);
 }
 
@@ -274,6 +320,7 @@ main(void)
 {
     pendulum_accel();
     consistency();
+    inconsistencies();
     time_scaled_pendulum();
     cartesian_double();
     return check_done();

@@ -36,6 +36,9 @@ main(void)
     CHECK(!strcmp(num_shortest(got, 9.81), "9.81") && !strcmp(num_shortest(got, 1.0), "1") &&
           !strcmp(num_shortest(got, 10.0), "10") && !strcmp(num_shortest(got, 1500.0), "1500"),
           "9.81, 1, 10 and 1500 as written (not 1e+01)");
+    CHECK(!strcmp(num_shortest(got, -0.0), "0") && !strcmp(num_shortest(got, 0.0), "0") &&
+              !strcmp(num_shortest(got, -1e-300), "-1e-300"),
+          "-0 prints as %s, as 0 does (a sign on a zero puzzles: x'' -0); -1e-300 keeps its", got);
     double special[] = {1.0 / 3, -2.0 / 3, 1e-300, 4.9406564584124654e-324, DBL_MAX,
                         -DBL_MIN, 123456789012345678.0, 0.0, -0.0, 1e21, 1e-7};
     int ok = 1;

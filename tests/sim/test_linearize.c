@@ -13,7 +13,10 @@
  *    generated derivative); each column of B the difference over an input
  *    held at u +- h;
  *  - equilibria: the double pendulum's hanging and upside-down states from
- *    nearby starts, the Cartesian pendulum's bottom on its constraint.
+ *    nearby starts, the Cartesian pendulum's bottom on its constraint;
+ *  - a state off the constraints is refused, naming the constraint and
+ *    its share worked out by hand (the Cartesian pendulum's bob at 1.2 l:
+ *    0.44 against terms of 5.32); one on them to rounding is not.
  */
 #include "../unit/check.h"
 #include "eomc.h"
@@ -279,10 +282,33 @@ test_equilibria(void)
     eomc_sim_free(s);
 }
 
+/* The Cartesian pendulum's bob at (1.2, 0) with l = 1: g = x^2 + y^2 - l^2
+ * = 0.44 against its terms |g - B q| + |B q| = 2.44 + 2.88 (B = (2x, 2y)):
+ * 0.083, far off; at (sin 1, -cos 1) on the rod to rounding. */
+static void
+test_off_constraints(void)
+{
+    eomc_sim *s = eomc_sim_alloc(&cartesian_pendulum_model);
+    double off[4] = {1.2, 0, 0, 0.3}, on[4] = {sin(1.0), -cos(1.0), 0.3 * cos(1.0),
+                                               0.3 * sin(1.0)};
+    double A[4], B[1];
+    int rc = eomc_sim_linearize(s, 0, off, A, B);
+    const char *msg = eomc_sim_error(s);
+    CHECK(rc == EOMC_ENUMERIC && strstr(msg, "the linearization: the state is off the "
+                                        "constraint rod (positions: its residual is 0.083 "
+                                        "of the size of its terms)"),
+          "a state off the rod (x = 1.2 l): refused, naming rod and its share 0.44/5.32: %s",
+          msg);
+    rc = eomc_sim_linearize(s, 0, on, A, B);
+    CHECK(rc == EOMC_OK, "a state on the rod to rounding: linearized (status %d)", rc);
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
     test_pendulum();
+    test_off_constraints();
     test_cart_pole();
     test_equilibria();
 #define FD(name)                                                                       \

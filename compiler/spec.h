@@ -146,6 +146,12 @@ typedef struct SpecScene {
     int noutput, nevent;
     SpecOutput *output;
     SpecEvent *event;
+    /* `assemble:`: every run first puts the initial state onto the
+     * holonomic and first-order constraints (1), keeping what hold marks
+     * [2 nq] as it is (hold[i]: q_i, hold[nq + i]: q_i'; NULL: nothing);
+     * 0: runs start as given. */
+    int assemble;
+    unsigned char *hold;
 } SpecScene;
 
 /* Every named scene, for --explain: what each turns on, in one line. */

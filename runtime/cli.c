@@ -161,12 +161,14 @@ usage(const Cli *c, const char *fmt, ...)
     return EOMC_EUSAGE;
 }
 
-/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), or "":
- * the compiler's rule (nearest.h). */
+/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), every
+ * one as near ("'rk4' or 'rkf45'"), or "": the compiler's rule
+ * (nearest.h). */
 static const char *
 nearest(const char *word, const char *const *names, int n, const char *suffix)
 {
-    static char buf[160];
+    static char buf[600];
+    char list[512];
     buf[0] = '\0';
     char *cands = calloc((size_t)(n ? n : 1), NEAREST_MAX + 2);
     const char **ptrs = calloc((size_t)(n ? n : 1), sizeof *ptrs);
@@ -176,9 +178,9 @@ nearest(const char *word, const char *const *names, int n, const char *suffix)
             snprintf(c, NEAREST_MAX + 2, "%s%s", names[k], suffix);
             ptrs[k] = c;
         }
-        const char *near = nearest_name(word, ptrs, n);
+        const char *near = nearest_names(word, ptrs, n, list, sizeof list);
         if (near)
-            snprintf(buf, sizeof buf, " (did you mean '%s'?)", near);
+            snprintf(buf, sizeof buf, " (did you mean %s?)", near);
     }
     free(cands);
     free(ptrs);

@@ -103,6 +103,8 @@ typedef struct Loader {
     SpecScene *scene_into;  /* the scene being read: Spec.scene or a scratch copy */
     int scene_live;         /* it is the scene compiled */
     struct AxisCheck *axes; /* fixed axes of parameters, checked once they are loaded */
+    const char **quat_of;   /* per coordinate: whose Euler parameter it is, or NULL */
+    int capfquat;           /* room in Spec.fquat */
 } Loader;
 
 /* A turn's axis of parameters, |a|^2 at node n of frame name: frames are
@@ -702,15 +704,76 @@ world_vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId
 
 /* ---- frames and points ---- */
 
+/* The Euler parameters [e0, e1, e2, e3] at v, of `owner` ("body 'top'"):
+ * four distinct coordinates, none another quaternion's, into q. */
+static void
+quaternion_coords(Loader *L, yaml_node_t *v, const char *owner, int q[4])
+{
+    expect_type(L, v, YAML_SEQUENCE_NODE, "the Euler parameters of a rotation");
+    if (NITEMS(v) != 4)
+        diag_error(loc_of(L, v), "a quaternion has 4 Euler parameters [e0, e1, e2, e3] "
+                   "(scalar first), not %d", (int)NITEMS(v));
+    for (int i = 0; i < 4; i++) {
+        yaml_node_t *n = node(L, ITEMS(v)[i]);
+        const char *name = scalar(L, n, "an Euler parameter");
+        Name *nm = find_name(L, name);
+        if (!nm || nm->kind != NAME_COORD)
+            diag_error(loc_of(L, n), "the Euler parameters of a quaternion are coordinates, "
+                       "and '%s' is not one (list it in `coordinates:`)", name);
+        for (int j = 0; j < i; j++)
+            if (q[j] == nm->index)
+                diag_error(loc_of(L, n), "'%s' is already an Euler parameter of this "
+                           "quaternion", name);
+        if (L->quat_of[nm->index])
+            diag_error(loc_of(L, n), "'%s' is already an Euler parameter of %s", name,
+                       L->quat_of[nm->index]);
+        q[i] = nm->index;
+    }
+    for (int i = 0; i < 4; i++)
+        L->quat_of[q[i]] = owner;
+}
+
+/* A frame's turn {quaternion: [e0, e1, e2, e3]} (t, its map; v, the
+ * list): the Euler parameters are coordinates, kept in Spec.fquat for the
+ * unit constraint and the inertia along e (mech.c), as a body's are. */
+static void
+frame_quaternion(Loader *L, int f, const char *name, yaml_node_t *t, yaml_node_t *v)
+{
+    Spec *s = L->s;
+    SpecQuat fq = {name, arena_printf(L->A, "frame '%s'", name), {-1, -1, -1, -1},
+                   loc_of(L, node(L, PAIRS(t)[0].key))};
+    quaternion_coords(L, v, fq.owner, fq.q);
+    ExprId e[4];
+    for (int k = 0; k < 4; k++)
+        e[k] = expr_var(L->P, fq.q[k], 0);
+    kin_turn_quaternion(L->K, f, e);
+    if (s->nfquat == L->capfquat) {
+        L->capfquat = L->capfquat ? 2 * L->capfquat : 4;
+        SpecQuat *more = arena_new_array(L->A, SpecQuat, L->capfquat);
+        if (s->nfquat)
+            memcpy(more, s->fquat, (size_t)s->nfquat * sizeof *more);
+        s->fquat = more;
+    }
+    s->fquat[s->nfquat++] = fq;
+}
+
 /* One turn of a frame's rotation: {x: ANGLE} (or y, z), about its own
  * axis as turned so far, or {axis: [ax, ay, az], angle: ANGLE} about a
  * fixed direction in those axes (any length but zero). */
 static void
 frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
 {
-    static const char *const keys[] = {"x", "y", "z", "axis", "angle", NULL};
+    static const char *const keys[] = {"x", "y", "z", "axis", "angle", "quaternion", NULL};
     as_map(L, t, "a turn");
     check_keys(L, t, keys, "a turn");
+    yaml_node_t *qn = lookup_key(L, t, "quaternion");
+    if (qn) {
+        if (NPAIRS(t) != 1)
+            diag_error(loc_of(L, t), "a turn by a quaternion is {quaternion: [e0, e1, e2, "
+                       "e3]}, alone");
+        frame_quaternion(L, f, name, t, qn);
+        return;
+    }
     yaml_node_t *ax = lookup_key(L, t, "axis"), *ang = lookup_key(L, t, "angle");
     if (ax || ang) {
         if (!ax || !ang || NPAIRS(t) != 2)
@@ -735,8 +798,8 @@ frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
         return;
     }
     if (NPAIRS(t) != 1)
-        diag_error(loc_of(L, t), "a turn is one of {x: ANGLE}, {y: ANGLE}, {z: ANGLE} or "
-                   "{axis: [ax, ay, az], angle: ANGLE}");
+        diag_error(loc_of(L, t), "a turn is one of {x: ANGLE}, {y: ANGLE}, {z: ANGLE}, "
+                   "{axis: [ax, ay, az], angle: ANGLE} or {quaternion: [e0, e1, e2, e3]}");
     const char *k = key_of(L, &PAIRS(t)[0]);
     kin_turn_axis(L->K, f, k[0] - 'x',
                   expression(L, node(L, PAIRS(t)[0].value), ALLOW_POSITION, "an angle"));
@@ -1368,9 +1431,6 @@ load_inertia(Loader *L, yaml_node_t *n, SpecBody *b)
                            "(row %d, column %d)", b->name, i + 1, j + 1);
 }
 
-/* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
- * axes of the sequence ("zxz": z, then the new x, then the new z):
- *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
 /* The Euler parameters e = (e0, e1, e2, e3) of a rotation, scalar first:
  * R = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x] with v = (e1, e2, e3), and
  * in body axes w = 2 L e' with
@@ -1381,25 +1441,11 @@ static void
 quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
 {
     ExprPool *P = L->P;
-    expect_type(L, v, YAML_SEQUENCE_NODE, "the Euler parameters of a rotation");
-    if (NITEMS(v) != 4)
-        diag_error(loc_of(L, v), "a quaternion has 4 Euler parameters [e0, e1, e2, e3] "
-                   "(scalar first), not %d", (int)NITEMS(v));
     ExprId e[4], d[4];
+    quaternion_coords(L, v, arena_printf(L->A, "body '%s'", b->name), b->quat);
     for (int i = 0; i < 4; i++) {
-        yaml_node_t *n = node(L, ITEMS(v)[i]);
-        const char *name = scalar(L, n, "an Euler parameter");
-        Name *nm = find_name(L, name);
-        if (!nm || nm->kind != NAME_COORD)
-            diag_error(loc_of(L, n), "the Euler parameters of a quaternion are coordinates, "
-                       "and '%s' is not one (list it in `coordinates:`)", name);
-        for (int j = 0; j < i; j++)
-            if (b->quat[j] == nm->index)
-                diag_error(loc_of(L, n), "'%s' is already an Euler parameter of this "
-                           "quaternion", name);
-        b->quat[i] = nm->index;
-        e[i] = expr_var(P, nm->index, 0);
-        d[i] = expr_var(P, nm->index, 1);
+        e[i] = expr_var(P, b->quat[i], 0);
+        d[i] = expr_var(P, b->quat[i], 1);
     }
     static const int Lrow[3][4][2] = { /* (sign, index of e) per column */
         {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
@@ -1418,6 +1464,9 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
     b->quat_loc = loc_of(L, k);
 }
 
+/* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
+ * axes of the sequence ("zxz": z, then the new x, then the new z):
+ *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
 static void
 rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 {
@@ -1845,51 +1894,64 @@ load_constraints(Loader *L, yaml_node_t *map)
                    "freedom of motion", s->nconstraint, s->nq, s->nq == 1 ? "" : "s");
 }
 
-/* A quaternion body's unit constraint, NAME_unit: e.e - 1 = 0, after the
+/* A quaternion's unit constraint, NAME_unit: e.e - 1 = 0, after the
  * spec's own constraints (holonomic, kept like any other: at acceleration
- * level, projected by --stabilize project).  For elimination its
- * dependent coordinate is the Euler parameter largest at the start (with
- * the defaults), where df/de'' = 2 e is surest not to vanish; no fixed
- * choice is safe for every orientation. */
+ * level, projected by --stabilize project), the bodies' first, then the
+ * frames'.  For elimination its dependent coordinate is the Euler
+ * parameter largest at the start (with the defaults), where
+ * df/de'' = 2 e is surest not to vanish; no fixed choice is safe for
+ * every orientation. */
 static void
 add_unit_constraints(Loader *L)
 {
     Spec *s = L->s;
     ExprPool *P = L->P;
+    SpecQuat *quat = arena_new_array(L->A, SpecQuat, s->nbody + s->nfquat + 1);
     int extra = 0;
     for (int i = 0; i < s->nbody; i++)
-        extra += s->body[i].quat[0] >= 0;
+        if (s->body[i].quat[0] >= 0) {
+            const SpecBody *b = &s->body[i];
+            quat[extra] = (SpecQuat){b->name, arena_printf(L->A, "body '%s'", b->name),
+                                     {b->quat[0], b->quat[1], b->quat[2], b->quat[3]},
+                                     b->quat_loc};
+            extra++;
+        }
+    for (int i = 0; i < s->nfquat; i++)
+        quat[extra++] = s->fquat[i];
     if (!extra)
         return;
+    int nuser = s->nconstraint;
     SpecConstraint *c = arena_new_array(L->A, SpecConstraint, s->nconstraint + extra);
     if (s->nconstraint)
         memcpy(c, s->constraint, (size_t)s->nconstraint * sizeof *c);
     s->constraint = c;
-    for (int i = 0; i < s->nbody; i++) {
-        const SpecBody *b = &s->body[i];
-        if (b->quat[0] < 0)
-            continue;
-        const char *name = arena_printf(L->A, "%s_unit", b->name);
-        for (int j = 0; j < s->nconstraint; j++)
-            if (!strcmp(s->constraint[j].name, name))
-                diag_error(s->constraint[j].loc, "'%s' is the name of body '%s''s unit "
-                           "quaternion constraint; name this one otherwise", name, b->name);
+    for (int i = 0; i < extra; i++) {
+        const SpecQuat *qu = &quat[i];
+        const char *name = arena_printf(L->A, "%s_unit", qu->name);
+        for (int j = 0; j < s->nconstraint; j++) {
+            if (strcmp(s->constraint[j].name, name))
+                continue;
+            if (j < nuser)
+                diag_error(s->constraint[j].loc, "'%s' is the name of %s's unit quaternion "
+                           "constraint; name this one otherwise", name, qu->owner);
+            diag_error(qu->loc, "%s and %s would both have the unit quaternion constraint "
+                       "'%s': rename one", quat[j - nuser].owner, qu->owner, name);
+        }
         ExprId g = expr_const(P, -1);
         for (int k = 0; k < 4; k++)
-            g = expr_add(P, g, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
+            g = expr_add(P, g, expr_powi(P, expr_var(P, qu->q[k], 0), 2));
         double best = -1;
         ExprEnv env = {.p = defaults(L)};
         int dep = -1;
         for (int k = 0; k < 4; k++) {
             int taken = 0;
             for (int j = 0; j < s->nconstraint; j++)
-                taken |= s->constraint[j].dependent == b->quat[k];
-            double v = fabs(expr_eval(P, s->coord[b->quat[k]].q0, &env));
+                taken |= s->constraint[j].dependent == qu->q[k];
+            double v = fabs(expr_eval(P, s->coord[qu->q[k]].q0, &env));
             if (!taken && v > best)
-                best = v, dep = b->quat[k];
+                best = v, dep = qu->q[k];
         }
-        s->constraint[s->nconstraint++] = (SpecConstraint){name, b->quat_loc, g, 0, dep,
-                                                           b->quat_loc};
+        s->constraint[s->nconstraint++] = (SpecConstraint){name, qu->loc, g, 0, dep, qu->loc};
     }
     if (s->nconstraint >= s->nq)
         diag_error(s->constraint[s->nconstraint - 1].loc, "%d constraints (with the unit "
@@ -2630,6 +2692,9 @@ load_root(Loader *L, yaml_node_t *root)
                (points ? NPAIRS(points) : 0) +
                (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
     L->names = arena_new_array(L->A, Name, most + 1);
+    L->quat_of = arena_new_array(L->A, const char *, most + 1);
+    for (int i = 0; i <= most; i++)
+        L->quat_of[i] = NULL;
     if (params)
         name_parameters(L, params);
     load_coordinates(L, coords);

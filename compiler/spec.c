@@ -2932,15 +2932,18 @@ flow_piece(Loader *L, const yaml_node_t *c, int k)
     return node(L, k % 2 ? p->value : p->key);
 }
 
-/* The piece that closes what piece i of c opens, or -1. */
+/* The piece that closes what piece i of c opens, or -1; *last, the last
+ * piece looked at (a later search starts after it: one pass over c). */
 static int
-split_end(Loader *L, const yaml_node_t *c, int i)
+split_end(Loader *L, const yaml_node_t *c, int i, int *last)
 {
     int b = paren_balance(flow_piece(L, c, i));
+    *last = i;
     if (b <= 0)
         return -1;
     for (int j = i + 1; j < flow_pieces(c); j++) {
         yaml_node_t *n = flow_piece(L, c, j);
+        *last = j;
         if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
             return -1;
         if ((b += paren_balance(n)) <= 0)
@@ -2959,7 +2962,8 @@ static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == 
 static void
 split_expression(Loader *L, yaml_node_t *c, int i)
 {
-    const yaml_node_t *a = flow_piece(L, c, i), *z = flow_piece(L, c, split_end(L, c, i));
+    int last;
+    const yaml_node_t *a = flow_piece(L, c, i), *z = flow_piece(L, c, split_end(L, c, i, &last));
     size_t from = byte_at(L, a->start_mark.line, a->start_mark.column);
     size_t to = byte_at(L, z->end_mark.line, z->end_mark.column);
     char q[SPLIT_SHOWN + 8];
@@ -2998,13 +3002,9 @@ check_splits(Loader *L)
                        ? c->data.sequence.style == YAML_FLOW_SEQUENCE_STYLE
                        : c->type == YAML_MAPPING_NODE &&
                              c->data.mapping.style == YAML_FLOW_MAPPING_STYLE;
-        for (int i = 0; flow && i < flow_pieces(c) && !L->stop; i++) {
-            int j = split_end(L, c, i);
-            if (j < 0)
-                continue;
-            checked(L, split_expression, c, i);
-            i = j;
-        }
+        for (int i = 0, last; flow && i < flow_pieces(c) && !L->stop; i = last + 1)
+            if (split_end(L, c, i, &last) >= 0)
+                checked(L, split_expression, c, i);
     }
     stop_if_failed();
 }

@@ -1884,7 +1884,8 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
             (rc = c.assemble ? held_marks(&c, m) : EOMC_OK) == EOMC_OK &&
-            (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
+            (rc = c.assemble && !c.nsweep && !c.sweep_file ? assemble(&c, sim, x)
+                                                           : EOMC_OK) == EOMC_OK)
             rc = c.nsweep || c.sweep_file ? sweep(&c, sim)
                  : sweep_rank() != 0 ? EOMC_OK /* one run: rank 0's */
                  : c.accel          ? print_accel(&c, sim, x)

@@ -346,6 +346,8 @@ static const struct {
     {"t_end", "in a scene"}, {"dt", "in a scene"}, {"method", "in a scene"},
     {"rtol", "in a scene"}, {"atol", "in a scene"}, {"fixed_step", "in a scene"},
     {"fix", "in a scene"}, {"outputs", "in a scene"}, {"events", "in a scene"},
+    {"assemble", "in a scene"}, {"hold", "in a scene's `assemble:`"},
+    {"quaternion", "in a body's rotation or a frame's turns"},
     {"when", "in an event"}, {"direction", "in an event"}, {"action", "in an event"},
     {"coordinates", "at the top level"}, {"parameters", "at the top level"},
     {"particles", "at the top level"}, {"bodies", "at the top level"},

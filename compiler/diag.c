@@ -236,7 +236,8 @@ diag_note(SrcLoc at, const char *fmt, ...)
 const char *
 diag_nearest(const char *name, const char *const *cands, int n)
 {
-    return nearest_name(name, cands, n);
+    static char buf[512];
+    return nearest_names(name, cands, n, buf, sizeof buf);
 }
 
 void

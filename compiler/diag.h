@@ -55,8 +55,10 @@ void diag_warning(SrcLoc at, const char *fmt, ...)
 void diag_note(SrcLoc at, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
-/* Nearest name to `name` among `n` candidates (edit distance), or NULL if
- * none is close enough to be a plausible typo. */
+/* The names among `n` candidates nearest to `name` (edit distance), each
+ * quoted: "'rk4' or 'rkf45'" when several are as near; NULL if none is
+ * close enough to be a plausible typo.  The text lives until the next
+ * call. */
 const char *diag_nearest(const char *name, const char *const *cands, int n);
 
 /* Internal invariant failures: a bug in eomc, not in the user's input. */

@@ -684,6 +684,12 @@ print_tables(Printer *pr)
     for (int i = 0; i < s->np; i++)
         fprintf(pr->f, "%s%d", i ? ", " : "", s->param[i].fixed);
     println(pr, s->np ? "};" : "0};");
+    if (s->scene.assemble && s->scene.hold) { /* what the scene's assembly keeps */
+        fprintf(pr->f, "static const unsigned char a_hold[%d] = {", 2 * s->nq);
+        for (int i = 0; i < 2 * s->nq; i++)
+            fprintf(pr->f, "%s%d", i ? ", " : "", s->scene.hold[i]);
+        println(pr, "};");
+    }
     println(pr, "");
 }
 
@@ -848,6 +854,11 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
                 L->last_set ? "_event_set" : "");
     else
         println(pr, "    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */");
+    if (s->scene.assemble)
+        println(pr, "    1, %s, /* runs start assembled onto the constraints */",
+                s->scene.hold ? "a_hold" : "NULL");
+    else
+        println(pr, "    0, NULL, /* the scene does not assemble */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");

@@ -20,10 +20,13 @@
 enum { KIN_PATH_MAX = 64 };
 
 /* One turn of a frame: its matrix, unit axis (in the axes before it) and
- * rate, for angular velocities relative to an ancestor in its axes. */
+ * rate, for angular velocities relative to an ancestor in its axes.  A
+ * turn by a quaternion has no single axis (rate EXPR_NONE, a and aw zero):
+ * its angular velocity, in the axes before it, is wb. */
 typedef struct KinTurn {
     ExprId Rk[9], a[3], rate;
     ExprId aw[3]; /* the axis in world components */
+    ExprId wb[3]; /* the turn's angular velocity in the axes before it */
     struct KinTurn *next;
 } KinTurn;
 
@@ -149,21 +152,26 @@ int kin_origin(const Kin *K, int f) { return K->f[f].origin; }
  * in the world (R a, before the turn): not R w, whose products of R's
  * entries equal these only through sin^2 + cos^2 = 1, which the DAG does
  * not know; kept apart, velocities such as v_C + w x r cancel term by
- * term where they should (a contact point at rest). */
+ * term where they should (a contact point at rest).  A turn by a
+ * quaternion (th EXPR_NONE) has no axis: its own angular velocity is wa in
+ * the axes after it and wb in those before, in place of a th'. */
 static void
-turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
+turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const ExprId *wa,
+        const ExprId *wb)
 {
     ExprPool *P = K->P;
     KinFrame *F = &K->f[f];
-    ExprId w[3], axis[3];
+    ExprId w[3], axis[3], wbw[3];
     kin_to_world(K, f, a, axis);
+    if (th == EXPR_NONE)
+        kin_to_world(K, f, wb, wbw);
     matmul3(P, F->R, Rk, F->R);
-    ExprId rate = diff_time(K->D, th);
+    ExprId rate = th == EXPR_NONE ? EXPR_NONE : diff_time(K->D, th);
     KinTurn *turn = arena_alloc(K->A, sizeof *turn);
     for (int i = 0; i < 9; i++)
         turn->Rk[i] = Rk[i];
     for (int i = 0; i < 3; i++)
-        turn->a[i] = a[i], turn->aw[i] = axis[i];
+        turn->a[i] = a[i], turn->aw[i] = axis[i], turn->wb[i] = wb ? wb[i] : EXPR_NONE;
     turn->rate = rate;
     turn->next = NULL;
     if (F->last)
@@ -172,14 +180,16 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th)
         F->turns = turn;
     F->last = turn;
     for (int j = 0; j < 3; j++) { /* a th' + Rk^T w */
-        ExprId sum = expr_mul(P, a[j], rate);
+        ExprId sum = th == EXPR_NONE ? wa[j] : expr_mul(P, a[j], rate);
         for (int k = 0; k < 3; k++)
             sum = expr_add(P, sum, expr_mul(P, Rk[3 * k + j], F->w[k]));
         w[j] = sum;
     }
-    for (int i = 0; i < 3; i++)
-        F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], expr_mul(P, axis[i], rate)),
-        F->own[i] = expr_add(P, F->own[i], expr_mul(P, axis[i], rate));
+    for (int i = 0; i < 3; i++) {
+        ExprId own = th == EXPR_NONE ? wbw[i] : expr_mul(P, axis[i], rate);
+        F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], own),
+        F->own[i] = expr_add(P, F->own[i], own);
+    }
 }
 
 void
@@ -195,7 +205,7 @@ kin_turn_axis(Kin *K, int f, int k, ExprId th)
     Rk[3 * k + k] = EXPR_ONE;
     Rk[3 * j + j] = c, Rk[3 * l + l] = c;
     Rk[3 * l + j] = s, Rk[3 * j + l] = expr_neg(P, s); /* e_j turns toward e_l */
-    turn_by(K, f, Rk, a, th);
+    turn_by(K, f, Rk, a, th, NULL, NULL);
 }
 
 void
@@ -216,7 +226,57 @@ kin_turn(Kin *K, int f, const ExprId a[3], ExprId th)
         Rk[3 * l + j] = expr_add(P, Rk[3 * l + j], sa);
         Rk[3 * j + l] = expr_sub(P, Rk[3 * j + l], sa);
     }
-    turn_by(K, f, Rk, a, th);
+    turn_by(K, f, Rk, a, th, NULL, NULL);
+}
+
+/* The Euler parameters e = (e0, v), v = (e1, e2, e3):
+ *     Rk = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x],
+ * and the turn's angular velocity in its own axes 2 L e', in those before
+ * it 2 E e' (= Rk 2 L e' on |e| = 1, written without Rk's products), with
+ *     L = [-e1  e0  e3 -e2;  -e2 -e3  e0  e1;  -e3  e2 -e1  e0],
+ *     E = [-e1  e0 -e3  e2;  -e2  e3  e0 -e1;  -e3 -e2  e1  e0]. */
+void
+kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
+{
+    ExprPool *P = K->P;
+    ExprId Rk[9], d[4], wa[3], wb[3], zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    ExprId two = expr_const(P, 2), sq = expr_powi(P, e[0], 2);
+    for (int k = 1; k < 4; k++)
+        sq = expr_sub(P, sq, expr_powi(P, e[k], 2));
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            Rk[3 * i + j] = expr_mul(P, two, expr_mul(P, e[1 + i], e[1 + j]));
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3, l = (i + 2) % 3;
+        ExprId c = expr_mul(P, two, expr_mul(P, e[0], e[1 + i])); /* 2 e0 [v x] */
+        Rk[4 * i] = expr_add(P, Rk[4 * i], sq);
+        Rk[3 * l + j] = expr_add(P, Rk[3 * l + j], c);
+        Rk[3 * j + l] = expr_sub(P, Rk[3 * j + l], c);
+    }
+    static const int Lrow[3][4][2] = { /* (sign, index of e) per column of L */
+        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
+        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
+        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
+    };
+    static const int Erow[3][4][2] = { /* and of E */
+        {{-1, 1}, {1, 0}, {-1, 3}, {1, 2}},
+        {{-1, 2}, {1, 3}, {1, 0}, {-1, 1}},
+        {{-1, 3}, {-1, 2}, {1, 1}, {1, 0}},
+    };
+    for (int k = 0; k < 4; k++)
+        d[k] = diff_time(K->D, e[k]);
+    for (int r = 0; r < 3; r++) {
+        ExprId a = EXPR_ZERO, b = EXPR_ZERO;
+        for (int c = 0; c < 4; c++) {
+            ExprId ta = expr_mul(P, e[Lrow[r][c][1]], d[c]);
+            ExprId tb = expr_mul(P, e[Erow[r][c][1]], d[c]);
+            a = Lrow[r][c][0] > 0 ? expr_add(P, a, ta) : expr_sub(P, a, ta);
+            b = Erow[r][c][0] > 0 ? expr_add(P, b, tb) : expr_sub(P, b, tb);
+        }
+        wa[r] = expr_mul(P, two, a);
+        wb[r] = expr_mul(P, two, b);
+    }
+    turn_by(K, f, Rk, zero, EXPR_NONE, wa, wb);
 }
 
 int
@@ -321,9 +381,10 @@ kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3])
     for (int k = np - 1; k >= 0; k--)
         for (const KinTurn *t = K->f[path[k]].turns; t; t = t->next) {
             ExprId axis[3];
-            matvec3(P, Q, 0, t->a, axis);
+            matvec3(P, Q, 0, t->rate == EXPR_NONE ? t->wb : t->a, axis);
             for (int i = 0; i < 3; i++)
-                w[i] = expr_add(P, w[i], expr_mul(P, axis[i], t->rate));
+                w[i] = expr_add(P, w[i], t->rate == EXPR_NONE ? axis[i]
+                                                              : expr_mul(P, axis[i], t->rate));
             matmul3(P, Q, t->Rk, Q);
         }
     for (int i = 0; i < 3; i++)

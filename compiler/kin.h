@@ -33,6 +33,11 @@ int kin_frame(Kin *K, int parent);
  * parameters). */
 void kin_turn_axis(Kin *K, int f, int k, ExprId angle);
 void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
+/* Turn frame f by the Euler parameters e = (e0, e1, e2, e3), scalar
+ * first: the rotation (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1,
+ * e2, e3), whose angular velocity 2 L e' (in the turned axes) is exact
+ * where |e| = 1, which a unit constraint must keep (spec.c adds it). */
+void kin_turn_quaternion(Kin *K, int f, const ExprId e[4]);
 /* The point from + R_f at. */
 int kin_point(Kin *K, int from, int f, const ExprId at[3]);
 /* A frame's origin: the point whose motion, with the frame's rotation,
@@ -74,7 +79,8 @@ int kin_npoints(const Kin *K);
 int kin_parent(const Kin *K, int f);
 int kin_is_ancestor(const Kin *K, int a, int f);
 /* Frame f's own turn k (0 the first): its rate (the angle's time
- * derivative) and its axis in world components; 0 past the last turn. */
+ * derivative) and its axis in world components; 0 past the last turn.
+ * A turn by a quaternion has no axis: rate EXPR_NONE, axis zero. */
 int kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3]);
 /* f's rotation matrix, row-major (columns its axes in the world's). */
 void kin_rotation(const Kin *K, int f, ExprId R[9]);

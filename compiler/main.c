@@ -98,7 +98,7 @@ unknown_option(const char *a)
     const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
     if (!near)
         usage_error("unknown option '%s'", a);
-    fprintf(stderr, "eomc: unknown option '%s'; did you mean '%s'?\n(see eomc --help)\n", a,
+    fprintf(stderr, "eomc: unknown option '%s'; did you mean %s?\n(see eomc --help)\n", a,
             near);
     exit(EXIT_USAGE);
 }
@@ -143,7 +143,7 @@ parse_args(int argc, char **argv, Options *o)
         strcmp(o->cmd, "accuracy")) {
         const char *near = diag_nearest(o->cmd, cmds, 4);
         if (near)
-            fprintf(stderr, "eomc: unknown command '%s'; did you mean '%s'?\n", o->cmd, near),
+            fprintf(stderr, "eomc: unknown command '%s'; did you mean %s?\n", o->cmd, near),
                 exit(EXIT_USAGE);
         usage_error("unknown command '%s'; expected compile, build, run or accuracy", o->cmd);
     }
@@ -206,7 +206,7 @@ parse_args(int argc, char **argv, Options *o)
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,
-                near ? "did you mean '" : "", near ? near : "", near ? "'? " : "",
+                near ? "did you mean " : "", near ? near : "", near ? "? " : "",
                 form_names());
         exit(EXIT_USAGE);
     }

@@ -189,6 +189,29 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         m->T = expr_add(P, m->T, s->kinetic[k].expr);
     if (s->nkinetic > 0)
         m->S = EXPR_NONE;
+    ExprId T0 = m->T;
+    for (int k = 0; k < s->nfquat; k++) {
+        /* a frame turned by Euler parameters e: as for a body's
+         * (body_energy), e' along e moves nothing, and 1/2 c (e.e')^2
+         * gives it inertia where the unit constraint alone decides.  c is
+         * the mean inertia of the other directions, a third of the trace
+         * of d2T/de'2 (4 tr(I) for one body on the frame), so that it
+         * scales with the model's units. */
+        const int *q = s->fquat[k].q;
+        ExprId tr = EXPR_ZERO, y = EXPR_ZERO, half = expr_const(P, 0.5);
+        for (int i = 0; i < 4; i++) {
+            ExprId v = m->q[1][q[i]];
+            tr = expr_add(P, tr, diff_partial(D, diff_partial(D, T0, v), v));
+            y = expr_add(P, y, expr_powi(P, m->q[0][q[i]], 2));
+        }
+        ExprId c = expr_mul(P, expr_const(P, 1.0 / 3.0), tr);
+        y = expr_mul(P, half, y); /* its rate is e.e' */
+        ExprId rate = diff_time(D, y);
+        m->T = expr_add(P, m->T, expr_mul(P, half, expr_mul(P, c, expr_powi(P, rate, 2))));
+        if (m->S != EXPR_NONE)
+            m->S = expr_add(P, m->S, expr_mul(P, half, expr_mul(P, c, expr_powi(P,
+                                                                      diff_time(D, rate), 2))));
+    }
     for (int k = 0; k < s->npotential; k++)
         m->V = expr_add(P, m->V, s->potential[k].expr);
     m->Q = arena_new_array(A, ExprId, s->nq);

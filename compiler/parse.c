@@ -236,10 +236,22 @@ find_builtin(const char *name)
     return NULL;
 }
 
+/* Only the names no call tells apart are reserved: a function's name is
+ * a function only when called, so that a bicycle's steer angle can be
+ * delta, and delta(e) its variation beside it. */
 int
 parse_is_reserved(const char *name)
 {
-    return !strcmp(name, "t") || !strcmp(name, "pi") || find_builtin(name) != NULL;
+    return !strcmp(name, "t") || !strcmp(name, "pi");
+}
+
+int
+parse_is_function(const char *name)
+{
+    for (int i = 0; i < NVEC_BUILTINS; i++)
+        if (!strcmp(vec_builtins[i].name, name))
+            return 1;
+    return find_builtin(name) != NULL;
 }
 
 /* ---- dependency checks ---- */
@@ -476,7 +488,7 @@ unknown_function(Parser *ps, const char *name, size_t off)
                  names[i]);
     const char *near = diag_nearest(name, names, n);
     if (near)
-        diag_error(at(ps, off), "unknown function '%s'; did you mean '%s'?", name, near);
+        diag_error(at(ps, off), "unknown function '%s'; did you mean %s?", name, near);
     diag_error(at(ps, off), "unknown function '%s' (the functions are %s)", name, list);
 }
 
@@ -766,8 +778,6 @@ name_or_call(Parser *ps)
         return frame_axis(ps, name, off);
     if (ps->tok.kind == T_LBRACKET && !strcmp(name, "lambda"))
         return scalar_val(multiplier(ps, off));
-    if (find_builtin(name))
-        diag_error(at(ps, off), "'%s' is a function: write %s(...)", name, name);
     ParseScope *sc = ps->sc;
     Val v;
     if (!strcmp(name, "t"))
@@ -948,6 +958,62 @@ parse_value(ParseScope *sc, const ParseSrc *src)
             diag_error(at(&ps, 0), "expression is nested more than %d levels deep with the "
                        "defines it uses expanded", MAX_HEIGHT);
     return e;
+}
+
+/* Is src, the whole of it, a call vec(F, a, b, c)?  Read from its tokens
+ * alone (lexical errors are reported), without parsing. */
+static int
+is_frame_vector(ParseScope *sc, const ParseSrc *src)
+{
+    Token t = lex(src, 0);
+    if (!sc->K || t.kind != T_NAME || t.len != 3 || memcmp(src->text + t.off, "vec", 3))
+        return 0;
+    t = lex(src, t.off + t.len);
+    if (t.kind != T_LPAREN)
+        return 0;
+    for (int depth = 0;; t = lex(src, t.off + t.len)) {
+        if (t.kind == T_END)
+            return 0;
+        depth += (t.kind == T_LPAREN) - (t.kind == T_RPAREN);
+        if (depth == 0)
+            return lex(src, t.off + t.len).kind == T_END;
+    }
+}
+
+int
+parse_frame_vector(ParseScope *sc, const ParseSrc *src, int *frame, ExprId comps[3])
+{
+    if (!is_frame_vector(sc, src))
+        return 0;
+    Parser ps = {sc, src, {T_END, 0, 0, 0.0}, 0, 0};
+    ps.tok = lex(src, 0);
+    next(&ps); /* vec */
+    size_t open = ps.tok.off;
+    next(&ps); /* ( */
+    enter(&ps, open);
+    *frame = name_arg(&ps, 'F', "vec");
+    size_t offs[3];
+    for (int k = 0; k < 3; k++) {
+        if (!accept(&ps, T_COMMA)) {
+            char buf[80];
+            diag_error(at(&ps, ps.tok.off), "expected ',' and more arguments, found %s: "
+                       "vec(F, a, b, c), components in F", tok_text(&ps, &ps.tok, buf,
+                                                                   sizeof buf));
+        }
+        offs[k] = ps.tok.off;
+        comps[k] = need_scalar(&ps, expr(&ps), offs[k], "a component");
+    }
+    if (ps.tok.kind == T_COMMA)
+        diag_error(at(&ps, ps.tok.off), "too many arguments: vec(F, a, b, c), components "
+                   "in F");
+    expect(&ps, T_RPAREN, "')'", open);
+    for (int k = 0; k < 3; k++) {
+        check_deps(&ps, comps[k], NULL, offs[k]);
+        if (expr_node(sc->P, comps[k])->height > MAX_HEIGHT)
+            diag_error(at(&ps, offs[k]), "expression is nested more than %d levels deep "
+                       "with the defines it uses expanded", MAX_HEIGHT);
+    }
+    return 1;
 }
 
 ExprId

@@ -20,8 +20,9 @@
  * acc(P), acc(P, F), omega(F), omega(F, G), alpha(F), alpha(F, G),
  * vec(F, a, b, c), F.x; they add, subtract, scale, divide by a scalar and
  * differentiate (' and dot(e): in the world); dot(a, b), cross(a, b) and
- * norm(a) combine them.  Vector function names are not reserved: they are
- * functions only when called.  Using a vector where a scalar is expected,
+ * norm(a) combine them.  Function names are not reserved: they are
+ * functions only when called (a name followed by "("), so a coordinate
+ * may be called delta or omega.  Using a vector where a scalar is expected,
  * or the reverse, is an error at the place.  Names are resolved by the
  * caller's scope; `t` and `pi` are built in.  Every error is reported
  * through diag_error at its place inside the string.
@@ -77,6 +78,11 @@ ExprId parse_expr(ParseScope *sc, const ParseSrc *src);
 void parse_vector(ParseScope *sc, const ParseSrc *src, ExprId out[3]);
 ParseVal parse_value(ParseScope *sc, const ParseSrc *src);
 
+/* A vector written as vec(F, a, b, c), the whole of src: its frame and
+ * its components in the frame's axes (1), so that an offset keeps the
+ * frame it was written in; 0, with nothing parsed, for anything else. */
+int parse_frame_vector(ParseScope *sc, const ParseSrc *src, int *frame, ExprId comps[3]);
+
 /* Call fn for every name in src (not function names), in order, with its
  * byte offset: for dependency analysis before parsing.  Reports lexical
  * errors. */
@@ -84,7 +90,11 @@ void parse_names(const ParseSrc *src,
                  void (*fn)(void *ctx, const char *name, size_t len, size_t off),
                  void *ctx);
 
-/* Is name reserved by the language (t, pi, a function name)? */
+/* Is name reserved by the language (t, pi)?  Function names are not:
+ * `delta` may name a coordinate, and delta(e) is still the variation. */
 int parse_is_reserved(const char *name);
+/* Is name a function's (sin, dot, delta, pos, ...)?  For the message
+ * about a name that is none of the spec's. */
+int parse_is_function(const char *name);
 
 #endif

@@ -100,7 +100,11 @@ typedef struct Loader {
     int stop;      /* no use going on: SPEC_MAX_ERRORS reached, or a limit */
     const SpecOptions *opt; /* never NULL */
     yaml_node_t *scene;     /* the scene compiled: its map, or NULL */
+    SpecScene *scene_into;  /* the scene being read: Spec.scene or a scratch copy */
+    int scene_live;         /* it is the scene compiled */
     struct AxisCheck *axes; /* fixed axes of parameters, checked once they are loaded */
+    const char **quat_of;   /* per coordinate: whose Euler parameter it is, or NULL */
+    int capfquat;           /* room in Spec.fquat */
 } Loader;
 
 /* A turn's axis of parameters, |a|^2 at node n of frame name: frames are
@@ -342,6 +346,8 @@ static const struct {
     {"t_end", "in a scene"}, {"dt", "in a scene"}, {"method", "in a scene"},
     {"rtol", "in a scene"}, {"atol", "in a scene"}, {"fixed_step", "in a scene"},
     {"fix", "in a scene"}, {"outputs", "in a scene"}, {"events", "in a scene"},
+    {"assemble", "in a scene"}, {"hold", "in a scene's `assemble:`"},
+    {"quaternion", "in a body's rotation or a frame's turns"},
     {"when", "in an event"}, {"direction", "in an event"}, {"action", "in an event"},
     {"coordinates", "at the top level"}, {"parameters", "at the top level"},
     {"particles", "at the top level"}, {"bodies", "at the top level"},
@@ -360,35 +366,40 @@ key_home(const char *key)
     return NULL;
 }
 
-/* Only `allowed` keys (NULL-terminated) may appear in map.  An unknown
- * key gets the nearest allowed one, or where it belongs if it is a key of
+/* Key i of map must be one of `allowed` (NULL-terminated).  An unknown
+ * key gets the nearest allowed ones, or where it belongs if it is a key of
  * another part of the spec, or the list of allowed keys. */
 static void
-check_keys(Loader *L, yaml_node_t *map, const char *const *allowed, const char *where)
+check_key(Loader *L, yaml_node_t *map, int i, const char *const *allowed, const char *where)
 {
     int nallowed = 0;
     while (allowed[nallowed])
         nallowed++;
-    for (int i = 0; i < NPAIRS(map); i++) {
-        const char *k = key_of(L, &PAIRS(map)[i]);
-        int ok = 0;
-        for (int j = 0; j < nallowed && !ok; j++)
-            ok = !strcmp(k, allowed[j]);
-        if (ok)
-            continue;
-        const char *near = diag_nearest(k, allowed, nallowed);
-        SrcLoc at = loc_of(L, node(L, PAIRS(map)[i].key));
-        if (near)
-            diag_error(at, "unknown key '%s' in %s; did you mean '%s'?", k, where, near);
-        const char *home = key_home(k);
-        if (home)
-            diag_error(at, "'%s' is not a key of %s: it belongs %s", k, where, home);
-        char list[512] = "";
-        for (int j = 0; j < nallowed; j++)
-            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
-                     allowed[j]);
-        diag_error(at, "unknown key '%s' in %s; expected one of: %s", k, where, list);
-    }
+    const char *k = key_of(L, &PAIRS(map)[i]);
+    for (int j = 0; j < nallowed; j++)
+        if (!strcmp(k, allowed[j]))
+            return;
+    const char *near = diag_nearest(k, allowed, nallowed);
+    SrcLoc at = loc_of(L, node(L, PAIRS(map)[i].key));
+    if (near)
+        diag_error(at, "unknown key '%s' in %s; did you mean %s?", k, where, near);
+    const char *home = key_home(k);
+    if (home)
+        diag_error(at, "'%s' is not a key of %s: it belongs %s", k, where, home);
+    char list[512] = "";
+    for (int j = 0; j < nallowed; j++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
+                 allowed[j]);
+    diag_error(at, "unknown key '%s' in %s; expected one of: %s", k, where, list);
+}
+
+/* Only `allowed` keys may appear in map: the first that is not is the
+ * error. */
+static void
+check_keys(Loader *L, yaml_node_t *map, const char *const *allowed, const char *where)
+{
+    for (int i = 0; i < NPAIRS(map); i++)
+        check_key(L, map, i, allowed, where);
 }
 
 static yaml_node_t *
@@ -443,7 +454,8 @@ add_name(Loader *L, yaml_node_t *n, NameKind kind, int index)
     if (strlen(name) > 64)
         diag_error(at, "name '%.20s...' is longer than 64 characters", name);
     if (parse_is_reserved(name))
-        diag_error(at, "'%s' is reserved (t, pi and the function names)", name);
+        diag_error(at, "'%s' is reserved: t is the time and pi the number (the only "
+                   "reserved names)", name);
     if (L->nnames >= SPEC_MAX_NAMES && (L->stop = 1))
         diag_error(at, "more than %d names (parameters, coordinates, inputs and defines)",
                    SPEC_MAX_NAMES);
@@ -470,6 +482,8 @@ static _Noreturn void
 unknown_name(Loader *L, const char *name, int want, SrcLoc at)
 {
     const char *what = want == NAME_FRAME ? "frame" : want == NAME_POINT ? "point" : "name";
+    if (want < 0 && parse_is_function(name))
+        diag_error(at, "'%s' is a function: write %s(...)", name, name);
     const char **cands = arena_new_array(L->A, const char *, L->nnames + 2);
     int n = 0;
     for (int i = 0; i < L->nnames; i++)
@@ -481,7 +495,7 @@ unknown_name(Loader *L, const char *name, int want, SrcLoc at)
         cands[n++] = "origin";
     const char *near = diag_nearest(name, cands, n);
     if (near)
-        diag_error(at, "unknown %s '%s'; did you mean '%s'?", what, name, near);
+        diag_error(at, "unknown %s '%s'; did you mean %s?", what, name, near);
     if (n == 0 || n > 12)
         diag_error(at, "unknown %s '%s'", what, name);
     char list[1024] = "";
@@ -590,7 +604,7 @@ multiplier(ParseScope *sc, const char *name, SrcLoc at)
     }
     const char *near = diag_nearest(name, cands, s->nconstraint);
     if (near)
-        diag_error(at, "'%s' is not a constraint; did you mean '%s'?", name, near);
+        diag_error(at, "'%s' is not a constraint; did you mean %s?", name, near);
     char list[1024] = "";
     for (int c = 0; c < s->nconstraint; c++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", c ? ", " : "",
@@ -692,15 +706,76 @@ world_vector(Loader *L, yaml_node_t *n, unsigned allow, const char *what, ExprId
 
 /* ---- frames and points ---- */
 
+/* The Euler parameters [e0, e1, e2, e3] at v, of `owner` ("body 'top'"):
+ * four distinct coordinates, none another quaternion's, into q. */
+static void
+quaternion_coords(Loader *L, yaml_node_t *v, const char *owner, int q[4])
+{
+    expect_type(L, v, YAML_SEQUENCE_NODE, "the Euler parameters of a rotation");
+    if (NITEMS(v) != 4)
+        diag_error(loc_of(L, v), "a quaternion has 4 Euler parameters [e0, e1, e2, e3] "
+                   "(scalar first), not %d", (int)NITEMS(v));
+    for (int i = 0; i < 4; i++) {
+        yaml_node_t *n = node(L, ITEMS(v)[i]);
+        const char *name = scalar(L, n, "an Euler parameter");
+        Name *nm = find_name(L, name);
+        if (!nm || nm->kind != NAME_COORD)
+            diag_error(loc_of(L, n), "the Euler parameters of a quaternion are coordinates, "
+                       "and '%s' is not one (list it in `coordinates:`)", name);
+        for (int j = 0; j < i; j++)
+            if (q[j] == nm->index)
+                diag_error(loc_of(L, n), "'%s' is already an Euler parameter of this "
+                           "quaternion", name);
+        if (L->quat_of[nm->index])
+            diag_error(loc_of(L, n), "'%s' is already an Euler parameter of %s", name,
+                       L->quat_of[nm->index]);
+        q[i] = nm->index;
+    }
+    for (int i = 0; i < 4; i++)
+        L->quat_of[q[i]] = owner;
+}
+
+/* A frame's turn {quaternion: [e0, e1, e2, e3]} (t, its map; v, the
+ * list): the Euler parameters are coordinates, kept in Spec.fquat for the
+ * unit constraint and the inertia along e (mech.c), as a body's are. */
+static void
+frame_quaternion(Loader *L, int f, const char *name, yaml_node_t *t, yaml_node_t *v)
+{
+    Spec *s = L->s;
+    SpecQuat fq = {name, arena_printf(L->A, "frame '%s'", name), {-1, -1, -1, -1},
+                   loc_of(L, node(L, PAIRS(t)[0].key))};
+    quaternion_coords(L, v, fq.owner, fq.q);
+    ExprId e[4];
+    for (int k = 0; k < 4; k++)
+        e[k] = expr_var(L->P, fq.q[k], 0);
+    kin_turn_quaternion(L->K, f, e);
+    if (s->nfquat == L->capfquat) {
+        L->capfquat = L->capfquat ? 2 * L->capfquat : 4;
+        SpecQuat *more = arena_new_array(L->A, SpecQuat, L->capfquat);
+        if (s->nfquat)
+            memcpy(more, s->fquat, (size_t)s->nfquat * sizeof *more);
+        s->fquat = more;
+    }
+    s->fquat[s->nfquat++] = fq;
+}
+
 /* One turn of a frame's rotation: {x: ANGLE} (or y, z), about its own
  * axis as turned so far, or {axis: [ax, ay, az], angle: ANGLE} about a
  * fixed direction in those axes (any length but zero). */
 static void
 frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
 {
-    static const char *const keys[] = {"x", "y", "z", "axis", "angle", NULL};
+    static const char *const keys[] = {"x", "y", "z", "axis", "angle", "quaternion", NULL};
     as_map(L, t, "a turn");
     check_keys(L, t, keys, "a turn");
+    yaml_node_t *qn = lookup_key(L, t, "quaternion");
+    if (qn) {
+        if (NPAIRS(t) != 1)
+            diag_error(loc_of(L, t), "a turn by a quaternion is {quaternion: [e0, e1, e2, "
+                       "e3]}, alone");
+        frame_quaternion(L, f, name, t, qn);
+        return;
+    }
     yaml_node_t *ax = lookup_key(L, t, "axis"), *ang = lookup_key(L, t, "angle");
     if (ax || ang) {
         if (!ax || !ang || NPAIRS(t) != 2)
@@ -725,8 +800,8 @@ frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
         return;
     }
     if (NPAIRS(t) != 1)
-        diag_error(loc_of(L, t), "a turn is one of {x: ANGLE}, {y: ANGLE}, {z: ANGLE} or "
-                   "{axis: [ax, ay, az], angle: ANGLE}");
+        diag_error(loc_of(L, t), "a turn is one of {x: ANGLE}, {y: ANGLE}, {z: ANGLE}, "
+                   "{axis: [ax, ay, az], angle: ANGLE} or {quaternion: [e0, e1, e2, e3]}");
     const char *k = key_of(L, &PAIRS(t)[0]);
     kin_turn_axis(L->K, f, k[0] - 'x',
                   expression(L, node(L, PAIRS(t)[0].value), ALLOW_POSITION, "an angle"));
@@ -762,9 +837,33 @@ build_frame(Loader *L, Define *d)
     d->kin = f;
 }
 
+/* A point's offset written as a vector expression: vec(F, a, b, c) is
+ * the offset [a, b, c] in F's axes (as {frame: F, at: [a, b, c]}, so that
+ * velocities keep the links' structure, kin.h); any other vector, such as
+ * -R*world.z or pos(Q) - pos(P), is its world components. */
+static void
+offset_expression(Loader *L, yaml_node_t *m, yaml_node_t *v, int *f, ExprId at[3])
+{
+    for (int i = 0; i < NPAIRS(m); i++)
+        if (!strcmp(key_of(L, &PAIRS(m)[i]), "frame"))
+            diag_error(loc_of(L, node(L, PAIRS(m)[i].key)), "a point's offset "
+                       "written as a vector expression takes no `frame:` (vec(F, a, b, c) is "
+                       "in F's axes, any other vector in the world's); with `frame:`, give "
+                       "the offset as components [a, b, c] in that frame's axes");
+    Scalar sc;
+    scalar_src(L, &sc, v, "a point's offset");
+    L->sc.allow = ALLOW_POSITION;
+    L->sc.what = "a point's offset";
+    if (!parse_frame_vector(&L->sc, &sc.src, f, at)) {
+        *f = KIN_WORLD;
+        parse_vector(&L->sc, &sc.src, at);
+    }
+}
+
 /* POINT: {frame: FRAME, from: POINT, at: [x, y, z]}: at from, offset by
  * at in the frame's axes; every key optional (the world, its origin,
- * [0, 0, 0]).  An offset of 2 components has z = 0. */
+ * [0, 0, 0]).  An offset of 2 components has z = 0.  `at` may instead be
+ * a vector expression (offset_expression). */
 static void
 build_point(Loader *L, Define *d)
 {
@@ -779,7 +878,9 @@ build_point(Loader *L, Define *d)
             f = frame_or_point(L, scalar(L, v, "a frame"), NAME_FRAME, loc_of(L, v));
         if ((v = lookup_key(L, m, "from")))
             from = frame_or_point(L, scalar(L, v, "a point"), NAME_POINT, loc_of(L, v));
-        if ((v = lookup_key(L, m, "at")))
+        if ((v = lookup_key(L, m, "at")) && v->type == YAML_SCALAR_NODE && !is_null(v))
+            offset_expression(L, m, v, &f, at);
+        else if (v)
             vector(L, v, ALLOW_POSITION, "a point's offset", at);
     }
     d->kin = kin_point(L->K, from, f, at);
@@ -1332,9 +1433,6 @@ load_inertia(Loader *L, yaml_node_t *n, SpecBody *b)
                            "(row %d, column %d)", b->name, i + 1, j + 1);
 }
 
-/* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
- * axes of the sequence ("zxz": z, then the new x, then the new z):
- *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
 /* The Euler parameters e = (e0, e1, e2, e3) of a rotation, scalar first:
  * R = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x] with v = (e1, e2, e3), and
  * in body axes w = 2 L e' with
@@ -1345,25 +1443,11 @@ static void
 quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
 {
     ExprPool *P = L->P;
-    expect_type(L, v, YAML_SEQUENCE_NODE, "the Euler parameters of a rotation");
-    if (NITEMS(v) != 4)
-        diag_error(loc_of(L, v), "a quaternion has 4 Euler parameters [e0, e1, e2, e3] "
-                   "(scalar first), not %d", (int)NITEMS(v));
     ExprId e[4], d[4];
+    quaternion_coords(L, v, arena_printf(L->A, "body '%s'", b->name), b->quat);
     for (int i = 0; i < 4; i++) {
-        yaml_node_t *n = node(L, ITEMS(v)[i]);
-        const char *name = scalar(L, n, "an Euler parameter");
-        Name *nm = find_name(L, name);
-        if (!nm || nm->kind != NAME_COORD)
-            diag_error(loc_of(L, n), "the Euler parameters of a quaternion are coordinates, "
-                       "and '%s' is not one (list it in `coordinates:`)", name);
-        for (int j = 0; j < i; j++)
-            if (b->quat[j] == nm->index)
-                diag_error(loc_of(L, n), "'%s' is already an Euler parameter of this "
-                           "quaternion", name);
-        b->quat[i] = nm->index;
-        e[i] = expr_var(P, nm->index, 0);
-        d[i] = expr_var(P, nm->index, 1);
+        e[i] = expr_var(P, b->quat[i], 0);
+        d[i] = expr_var(P, b->quat[i], 1);
     }
     static const int Lrow[3][4][2] = { /* (sign, index of e) per column */
         {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
@@ -1382,6 +1466,9 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
     b->quat_loc = loc_of(L, k);
 }
 
+/* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
+ * axes of the sequence ("zxz": z, then the new x, then the new z):
+ *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
 static void
 rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 {
@@ -1566,7 +1653,7 @@ find_in(Loader *L, yaml_node_t *n, const char *what, const char *plural, int is_
     else
         snprintf(msg, sizeof msg, "unknown %s '%s'", what, name);
     if (near)
-        diag_error(loc_of(L, n), "%s; did you mean '%s'?", msg, near);
+        diag_error(loc_of(L, n), "%s; did you mean %s?", msg, near);
     if (count == 0 || count > 12)
         diag_error(loc_of(L, n), "%s", msg);
     char list[1024] = "";
@@ -1811,51 +1898,64 @@ load_constraints(Loader *L, yaml_node_t *map)
                    s->nconstraint == 1 ? "s" : "");
 }
 
-/* A quaternion body's unit constraint, NAME_unit: e.e - 1 = 0, after the
+/* A quaternion's unit constraint, NAME_unit: e.e - 1 = 0, after the
  * spec's own constraints (holonomic, kept like any other: at acceleration
- * level, projected by --stabilize project).  For elimination its
- * dependent coordinate is the Euler parameter largest at the start (with
- * the defaults), where df/de'' = 2 e is surest not to vanish; no fixed
- * choice is safe for every orientation. */
+ * level, projected by --stabilize project), the bodies' first, then the
+ * frames'.  For elimination its dependent coordinate is the Euler
+ * parameter largest at the start (with the defaults), where
+ * df/de'' = 2 e is surest not to vanish; no fixed choice is safe for
+ * every orientation. */
 static void
 add_unit_constraints(Loader *L)
 {
     Spec *s = L->s;
     ExprPool *P = L->P;
+    SpecQuat *quat = arena_new_array(L->A, SpecQuat, s->nbody + s->nfquat + 1);
     int extra = 0;
     for (int i = 0; i < s->nbody; i++)
-        extra += s->body[i].quat[0] >= 0;
+        if (s->body[i].quat[0] >= 0) {
+            const SpecBody *b = &s->body[i];
+            quat[extra] = (SpecQuat){b->name, arena_printf(L->A, "body '%s'", b->name),
+                                     {b->quat[0], b->quat[1], b->quat[2], b->quat[3]},
+                                     b->quat_loc};
+            extra++;
+        }
+    for (int i = 0; i < s->nfquat; i++)
+        quat[extra++] = s->fquat[i];
     if (!extra)
         return;
+    int nuser = s->nconstraint;
     SpecConstraint *c = arena_new_array(L->A, SpecConstraint, s->nconstraint + extra);
     if (s->nconstraint)
         memcpy(c, s->constraint, (size_t)s->nconstraint * sizeof *c);
     s->constraint = c;
-    for (int i = 0; i < s->nbody; i++) {
-        const SpecBody *b = &s->body[i];
-        if (b->quat[0] < 0)
-            continue;
-        const char *name = arena_printf(L->A, "%s_unit", b->name);
-        for (int j = 0; j < s->nconstraint; j++)
-            if (!strcmp(s->constraint[j].name, name))
-                diag_error(s->constraint[j].loc, "'%s' is the name of body '%s''s unit "
-                           "quaternion constraint; name this one otherwise", name, b->name);
+    for (int i = 0; i < extra; i++) {
+        const SpecQuat *qu = &quat[i];
+        const char *name = arena_printf(L->A, "%s_unit", qu->name);
+        for (int j = 0; j < s->nconstraint; j++) {
+            if (strcmp(s->constraint[j].name, name))
+                continue;
+            if (j < nuser)
+                diag_error(s->constraint[j].loc, "'%s' is the name of %s's unit quaternion "
+                           "constraint; name this one otherwise", name, qu->owner);
+            diag_error(qu->loc, "%s and %s would both have the unit quaternion constraint "
+                       "'%s': rename one", quat[j - nuser].owner, qu->owner, name);
+        }
         ExprId g = expr_const(P, -1);
         for (int k = 0; k < 4; k++)
-            g = expr_add(P, g, expr_powi(P, expr_var(P, b->quat[k], 0), 2));
+            g = expr_add(P, g, expr_powi(P, expr_var(P, qu->q[k], 0), 2));
         double best = -1;
         ExprEnv env = {.p = defaults(L)};
         int dep = -1;
         for (int k = 0; k < 4; k++) {
             int taken = 0;
             for (int j = 0; j < s->nconstraint; j++)
-                taken |= s->constraint[j].dependent == b->quat[k];
-            double v = fabs(expr_eval(P, s->coord[b->quat[k]].q0, &env));
+                taken |= s->constraint[j].dependent == qu->q[k];
+            double v = fabs(expr_eval(P, s->coord[qu->q[k]].q0, &env));
             if (!taken && v > best)
-                best = v, dep = b->quat[k];
+                best = v, dep = qu->q[k];
         }
-        s->constraint[s->nconstraint++] = (SpecConstraint){name, b->quat_loc, g, 0, dep,
-                                                           b->quat_loc};
+        s->constraint[s->nconstraint++] = (SpecConstraint){name, qu->loc, g, 0, dep, qu->loc};
     }
     if (s->nconstraint >= s->nq)
         diag_error(s->constraint[s->nconstraint - 1].loc, "%d constraints (with the unit "
@@ -1873,7 +1973,7 @@ method_name(Loader *L, yaml_node_t *n)
             return spec_methods[count];
     const char *near = diag_nearest(m, spec_methods, count);
     if (near)
-        diag_error(loc_of(L, n), "unknown method '%s'; did you mean '%s'?", m, near);
+        diag_error(loc_of(L, n), "unknown method '%s'; did you mean %s?", m, near);
     char list[256] = "";
     for (int k = 0; k < count; k++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "",
@@ -1965,7 +2065,7 @@ pick_scene(Loader *L, yaml_node_t *root)
     if (pick < 0) {
         const char *near = diag_nearest(want, names, s->nscenes);
         if (near)
-            diag_error(cmdline, "--scene: unknown scene '%s'; did you mean '%s'?", want, near);
+            diag_error(cmdline, "--scene: unknown scene '%s'; did you mean %s?", want, near);
         char list[1024] = "";
         for (int i = 0; i < s->nscenes; i++)
             snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
@@ -1995,8 +2095,19 @@ fix_param(Loader *L, int i, double v)
     p->value = v;
 }
 
-/* A scene's `fix: {NAME: VALUE}`: parameters held at a value.  live: the
- * scene compiled; the others are only checked. */
+/* A scene's `fix: {NAME: VALUE}`: parameters held at a value.  The
+ * scene compiled (L->scene_live) fixes them; the others are only checked.
+ * Each entry on its own, as every part of a scene: a scene's mistakes are
+ * all found in one run. */
+static void
+fix_entry(Loader *L, yaml_node_t *map, int i)
+{
+    int k = find_param(L, node(L, PAIRS(map)[i].key));
+    double v = number(L, node(L, PAIRS(map)[i].value), "a fixed parameter's value");
+    if (L->scene_live)
+        fix_param(L, k, v);
+}
+
 static void
 load_fix(Loader *L, yaml_node_t *scene, int live)
 {
@@ -2004,12 +2115,17 @@ load_fix(Loader *L, yaml_node_t *scene, int live)
     if (!map || is_null(map))
         return;
     as_map(L, map, "fix");
-    for (int i = 0; i < NPAIRS(map); i++) {
-        int k = find_param(L, node(L, PAIRS(map)[i].key));
-        double v = number(L, node(L, PAIRS(map)[i].value), "a fixed parameter's value");
-        if (live)
-            fix_param(L, k, v);
-    }
+    L->scene_live = live;
+    for (int i = 0; i < NPAIRS(map); i++)
+        checked(L, fix_entry, map, i);
+}
+
+static void
+live_fix(Loader *L, yaml_node_t *scene, int i)
+{
+    (void)i;
+    as_map(L, scene, "scene");
+    load_fix(L, scene, 1);
 }
 
 /* --fix NAME=VALUE,NAME=VALUE: after the scene's, so they win. */
@@ -2037,7 +2153,7 @@ apply_fix_option(Loader *L)
                 cands[i] = s->param[i].name;
             const char *near = diag_nearest(item, cands, s->np);
             if (near)
-                diag_error(cmdline, "--fix: unknown parameter '%s'; did you mean '%s'?", item,
+                diag_error(cmdline, "--fix: unknown parameter '%s'; did you mean %s?", item,
                            near);
             diag_error(cmdline, "--fix: '%s' is not a parameter of %s", item, L->path);
         }
@@ -2050,28 +2166,34 @@ apply_fix_option(Loader *L)
     }
 }
 
-/* A scene's `outputs: {NAME: EXPR}`. */
+/* A scene's `outputs: {NAME: EXPR}`, each on its own. */
+static void
+output_entry(Loader *L, yaml_node_t *map, int i)
+{
+    SpecScene *sc = L->scene_into;
+    yaml_node_t *k = node(L, PAIRS(map)[i].key);
+    const char *name = scalar(L, k, "an output name");
+    if (!is_identifier(name) || strlen(name) > 64)
+        diag_error(loc_of(L, k), "'%s' is not a valid output name (letters, digits and _, "
+                   "not starting with a digit)", name);
+    for (int c = 0; c < L->s->nq; c++)
+        if (!strcmp(name, L->s->coord[c].name))
+            diag_error(loc_of(L, k), "output '%s' would repeat the column of coordinate "
+                       "'%s': name it differently", name, name);
+    sc->output[i].name = arena_strdup(L->A, name);
+    sc->output[i].loc = loc_of(L, k);
+    sc->output[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_OUTPUT,
+                                    "an output");
+}
+
 static void
 load_outputs(Loader *L, yaml_node_t *map, SpecScene *sc)
 {
     as_map(L, map, "outputs");
     sc->noutput = NPAIRS(map);
     sc->output = arena_new_array(L->A, SpecOutput, sc->noutput + 1);
-    for (int i = 0; i < sc->noutput; i++) {
-        yaml_node_t *k = node(L, PAIRS(map)[i].key);
-        const char *name = scalar(L, k, "an output name");
-        if (!is_identifier(name) || strlen(name) > 64)
-            diag_error(loc_of(L, k), "'%s' is not a valid output name (letters, digits and _, "
-                       "not starting with a digit)", name);
-        for (int c = 0; c < L->s->nq; c++)
-            if (!strcmp(name, L->s->coord[c].name))
-                diag_error(loc_of(L, k), "output '%s' would repeat the column of coordinate "
-                           "'%s': name it differently", name, name);
-        sc->output[i].name = arena_strdup(L->A, name);
-        sc->output[i].loc = loc_of(L, k);
-        sc->output[i].expr = expression(L, node(L, PAIRS(map)[i].value), ALLOW_OUTPUT,
-                                        "an output");
-    }
+    for (int i = 0; i < sc->noutput; i++)
+        checked(L, output_entry, map, i);
 }
 
 /* The coordinate (x) or velocity (x') a key names: 2 i, or 2 i + 1.
@@ -2094,7 +2216,7 @@ state_var(Loader *L, yaml_node_t *k, const char *what)
     }
     const char *near = diag_nearest(key, cands, 2 * s->nq);
     if (near)
-        diag_error(loc_of(L, k), "'%s' is not a coordinate or velocity; did you mean '%s'?",
+        diag_error(loc_of(L, k), "'%s' is not a coordinate or velocity; did you mean %s?",
                    key, near);
     diag_error(loc_of(L, k), "'%s' is not a coordinate (x) or a velocity (x')", key);
 }
@@ -2162,7 +2284,7 @@ load_event(Loader *L, yaml_node_t *k, yaml_node_t *map, SpecEvent *ev)
         else if (strcmp(d, "both")) {
             const char *near = diag_nearest(d, dirs, 3);
             if (near)
-                diag_error(loc_of(L, v), "unknown direction '%s'; did you mean '%s'?", d, near);
+                diag_error(loc_of(L, v), "unknown direction '%s'; did you mean %s?", d, near);
             diag_error(loc_of(L, v), "unknown direction '%s'; expected up, down or both", d);
         }
     }
@@ -2180,7 +2302,7 @@ load_event(Loader *L, yaml_node_t *k, yaml_node_t *map, SpecEvent *ev)
         else if (strcmp(a, "stop")) {
             const char *near = diag_nearest(a, acts, 3);
             if (near)
-                diag_error(loc_of(L, v), "unknown action '%s'; did you mean '%s'?", a, near);
+                diag_error(loc_of(L, v), "unknown action '%s'; did you mean %s?", a, near);
             diag_error(loc_of(L, v), "unknown action '%s'; expected stop, record or "
                        "{set: {...}}", a);
         }
@@ -2212,58 +2334,147 @@ load_event(Loader *L, yaml_node_t *k, yaml_node_t *map, SpecEvent *ev)
 }
 
 static void
+event_entry(Loader *L, yaml_node_t *map, int i)
+{
+    load_event(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value),
+               &L->scene_into->event[i]);
+}
+
+static void
 load_events(Loader *L, yaml_node_t *map, SpecScene *sc)
 {
     as_map(L, map, "events");
     sc->nevent = NPAIRS(map);
     sc->event = arena_new_array(L->A, SpecEvent, sc->nevent + 1);
     for (int i = 0; i < sc->nevent; i++)
-        load_event(L, node(L, PAIRS(map)[i].key), node(L, PAIRS(map)[i].value), &sc->event[i]);
+        checked(L, event_entry, map, i);
 }
 
-/* A scene's keys but `fix` (load_fix).  live: the scene compiled, into
- * Spec.scene and the effects' switches; the other scenes are checked
- * into a scratch copy, so that a mistake in any of them is found. */
+/* One of a scene's `effects:`, turned on in the scene compiled. */
 static void
-load_scene(Loader *L, yaml_node_t *map, int live)
+effect_entry(Loader *L, yaml_node_t *seq, int i)
+{
+    int k = find_effect(L, node(L, ITEMS(seq)[i]));
+    if (L->scene_live)
+        L->s->effect[k].enabled = 1;
+}
+
+/* One name of `assemble: {hold: [...]}`: a coordinate (x) or velocity
+ * (x') the assembly keeps as it is. */
+static void
+hold_entry(Loader *L, yaml_node_t *seq, int i)
+{
+    yaml_node_t *k = node(L, ITEMS(seq)[i]);
+    int var = state_var(L, k, "a coordinate or velocity to hold");
+    int n = L->s->nq, at = var & 1 ? n + var / 2 : var / 2;
+    if (L->scene_into->hold[at])
+        diag_error(loc_of(L, k), "'%s' is held twice", scalar(L, k, "a name"));
+    L->scene_into->hold[at] = 1;
+}
+
+/* `assemble: true` (every run puts the initial state onto the
+ * constraints, moving anything), `false` (runs start as given), or
+ * `{hold: [NAME, ...]}` (the assembly keeps these coordinates and
+ * velocities as they are). */
+static void
+load_assemble(Loader *L, yaml_node_t *v, SpecScene *sc)
+{
+    static const char *const keys[] = {"hold", NULL};
+    const char *usage = "`assemble:` is true, false or {hold: [x, y', ...]}";
+    sc->assemble = 0;
+    sc->hold = NULL;
+    if (v->type == YAML_SCALAR_NODE) {
+        const char *b = scalar(L, v, "assemble");
+        if (strcmp(b, "true") && strcmp(b, "false"))
+            diag_error(loc_of(L, v), "%s, not '%s'", usage, b);
+        sc->assemble = !strcmp(b, "true");
+    } else {
+        if (v->type != YAML_MAPPING_NODE)
+            diag_error(loc_of(L, v), "%s", usage);
+        as_map(L, v, "assemble");
+        check_keys(L, v, keys, "`assemble:`");
+        yaml_node_t *h = lookup_key(L, v, "hold");
+        if (!h)
+            diag_error(loc_of(L, v), "%s", usage);
+        expect_type(L, h, YAML_SEQUENCE_NODE, "`hold:`, the names the assembly keeps,");
+        sc->assemble = 1;
+        sc->hold = arena_new_array(L->A, unsigned char, 2 * L->s->nq);
+        memset(sc->hold, 0, 2 * (size_t)L->s->nq);
+        for (int i = 0; i < NITEMS(h); i++)
+            checked(L, hold_entry, h, i);
+    }
+    int levels = 0; /* what an assembly moves the state onto */
+    for (int c = 0; c < L->s->nconstraint; c++)
+        levels |= L->s->constraint[c].order <= 1;
+    for (int b = 0; b < L->s->nbody; b++)
+        levels |= L->s->body[b].quat[0] >= 0;
+    if (sc->assemble && !levels)
+        diag_error(loc_of(L, v), "`assemble:` puts the initial state onto the holonomic and "
+                   "first-order constraints, and this spec has none");
+}
+
+/* Entry i of a scene (L->scene_into, L->scene_live) but `fix`
+ * (load_fix), on its own: an error in one does not hide the others. */
+static void
+scene_entry(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"effects", "t_end", "dt", "method", "rtol", "atol",
                                        "fixed_step", "fix", "initial", "outputs", "events",
-                                       NULL};
-    SpecScene scratch = L->s->scene, *sc = live ? &L->s->scene : &scratch;
-    as_map(L, map, "scene");
-    check_keys(L, map, keys, "a scene");
-    yaml_node_t *v;
-    if ((v = lookup_key(L, map, "effects"))) {
+                                       "assemble", NULL};
+    SpecScene *sc = L->scene_into;
+    int live = L->scene_live;
+    check_key(L, map, i, keys, "a scene");
+    const char *k = key_of(L, &PAIRS(map)[i]);
+    yaml_node_t *v = node(L, PAIRS(map)[i].value);
+    if (!strcmp(k, "effects")) {
         expect_type(L, v, YAML_SEQUENCE_NODE, "the scene's effects");
-        for (int i = 0; i < L->s->neffect && live; i++)
-            L->s->effect[i].enabled = 0;
-        for (int i = 0; i < NITEMS(v); i++) {
-            int k = find_effect(L, node(L, ITEMS(v)[i]));
-            if (live)
-                L->s->effect[k].enabled = 1;
-        }
-    }
-    if ((v = lookup_key(L, map, "t_end")))
+        for (int e = 0; e < L->s->neffect && live; e++)
+            L->s->effect[e].enabled = 0;
+        for (int e = 0; e < NITEMS(v); e++)
+            checked(L, effect_entry, v, e);
+    } else if (!strcmp(k, "t_end")) {
         sc->t_end = positive(L, v, "t_end", 0);
-    if ((v = lookup_key(L, map, "dt")))
+    } else if (!strcmp(k, "dt")) {
         sc->dt = positive(L, v, "dt", 0);
-    if ((v = lookup_key(L, map, "method")))
+    } else if (!strcmp(k, "method")) {
         sc->method = method_name(L, v);
-    if ((v = lookup_key(L, map, "rtol")))
+    } else if (!strcmp(k, "rtol")) {
         sc->rtol = positive(L, v, "rtol", 1);
-    if ((v = lookup_key(L, map, "atol")))
+    } else if (!strcmp(k, "atol")) {
         sc->atol = positive(L, v, "atol", 1);
-    if ((v = lookup_key(L, map, "fixed_step")))
+    } else if (!strcmp(k, "fixed_step")) {
         sc->h_fixed = positive(L, v, "fixed_step", 1);
-    if (sc->rtol == 0 && sc->atol == 0 && sc->h_fixed == 0)
-        diag_error(loc_of(L, map), "rtol and atol cannot both be zero for adaptive steps");
-    if ((v = lookup_key(L, map, "initial")) && !is_null(v))
+    } else if (!strcmp(k, "initial") && !is_null(v)) {
         load_initial(L, as_map(L, v, "initial"), live);
-    if ((v = lookup_key(L, map, "outputs")) && !is_null(v))
+    } else if (!strcmp(k, "outputs") && !is_null(v)) {
         load_outputs(L, v, sc);
-    if ((v = lookup_key(L, map, "events")) && !is_null(v))
+    } else if (!strcmp(k, "events") && !is_null(v)) {
         load_events(L, v, sc);
+    } else if (!strcmp(k, "assemble")) {
+        load_assemble(L, v, sc);
+    }
+}
+
+/* The scene's defaults, before its keys. */
+static const SpecScene scene_defaults = {.t_end = 10.0, .dt = 0.01, .method = "rk8pd",
+                                         .rtol = 1e-10, .atol = 1e-10};
+
+/* A scene's keys but `fix` (load_fix), each on its own.  live: the scene
+ * compiled, into Spec.scene and the effects' switches; the other scenes
+ * are checked into a scratch copy, so that a mistake in any of them is
+ * found. */
+static void
+load_scene(Loader *L, yaml_node_t *map, int live)
+{
+    SpecScene scratch = scene_defaults, *sc = live ? &L->s->scene : &scratch;
+    as_map(L, map, "scene");
+    L->scene_into = sc;
+    L->scene_live = live;
+    int errors = diag_error_count();
+    for (int i = 0; i < NPAIRS(map); i++)
+        checked(L, scene_entry, map, i);
+    if (diag_error_count() == errors && sc->rtol == 0 && sc->atol == 0 && sc->h_fixed == 0)
+        diag_error(loc_of(L, map), "rtol and atol cannot both be zero for adaptive steps");
 }
 
 /* One line for --explain: what a named scene turns on. */
@@ -2274,7 +2485,7 @@ scene_summary(Loader *L, yaml_node_t *map)
     yaml_node_t *v;
     size_t n;
 #define ADD(...) (n = strlen(buf), snprintf(buf + n, sizeof buf - n, __VA_ARGS__))
-    if ((v = lookup_key(L, map, "effects"))) {
+    if ((v = lookup_key(L, map, "effects")) && v->type == YAML_SEQUENCE_NODE) {
         ADD("effects:");
         for (int i = 0; i < NITEMS(v); i++)
             ADD(" %s", scalar(L, node(L, ITEMS(v)[i]), "an effect"));
@@ -2290,6 +2501,15 @@ scene_summary(Loader *L, yaml_node_t *map)
         ADD("; %s:", lists[j]);
         for (int i = 0; i < NPAIRS(v); i++)
             ADD(" %s", key_of(L, &PAIRS(v)[i]));
+    }
+    if ((v = lookup_key(L, map, "assemble")) && v->type == YAML_MAPPING_NODE &&
+        (v = lookup_key(L, v, "hold")) && v->type == YAML_SEQUENCE_NODE) {
+        ADD("; assemble, holding:");
+        for (int i = 0; i < NITEMS(v); i++)
+            ADD(" %s", scalar(L, node(L, ITEMS(v)[i]), "a name"));
+    } else if ((v = lookup_key(L, map, "assemble")) && v->type == YAML_SCALAR_NODE &&
+               !strcmp(scalar(L, v, "assemble"), "true")) {
+        ADD("; assemble");
     }
 #undef ADD
     return arena_strdup(L->A, buf);
@@ -2445,11 +2665,12 @@ static void
 other_scene(Loader *L, yaml_node_t *scenes, int i)
 {
     yaml_node_t *sc = node(L, PAIRS(scenes)[i].value);
-    L->s->scenes[i].summary = scene_summary(L, sc);
     if (sc != L->scene) {
+        as_map(L, sc, "scene");
         load_fix(L, sc, 0);
         load_scene(L, sc, 0);
     }
+    L->s->scenes[i].summary = scene_summary(L, sc);
 }
 
 static void
@@ -2475,6 +2696,9 @@ load_root(Loader *L, yaml_node_t *root)
                (points ? NPAIRS(points) : 0) +
                (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
     L->names = arena_new_array(L->A, Name, most + 1);
+    L->quat_of = arena_new_array(L->A, const char *, most + 1);
+    for (int i = 0; i <= most; i++)
+        L->quat_of[i] = NULL;
     if (params)
         name_parameters(L, params);
     load_coordinates(L, coords);
@@ -2490,7 +2714,7 @@ load_root(Loader *L, yaml_node_t *root)
     /* fixed values first: the physical data are checked with them */
     L->scene = pick_scene(L, root);
     if (L->scene)
-        load_fix(L, L->scene, 1);
+        checked(L, live_fix, L->scene, 0);
     apply_fix_option(L);
     /* an axis of parameters has no direction where they make it zero */
     for (const AxisCheck *c = L->axes; c; c = c->next)
@@ -2672,6 +2896,123 @@ load_document(Loader *L)
         diag_error(at, "a spec is one YAML document; this is a second one");
 }
 
+/* ---- expressions that YAML split ---- */
+
+/* Inside { } and [ ], YAML reads a comma as a separator, also in
+ * dot(a, b): the expression arrives in pieces, and the errors that follow
+ * (an unknown key 'b)', a vector of 6 components) describe only the
+ * symptom.  A piece that opens a parenthesis which a later piece closes
+ * can only be such an expression: it is reported first, quoted as it
+ * should be written, and nothing is read from a document whose structure
+ * is not the one meant. */
+
+/* The parentheses a plain scalar opens and does not close, or 0 for any
+ * other node (a quoted scalar's are the parser's to judge). */
+static int
+paren_balance(const yaml_node_t *n)
+{
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return 0;
+    int b = 0;
+    for (size_t i = 0; i < n->data.scalar.length; i++)
+        b += (n->data.scalar.value[i] == '(') - (n->data.scalar.value[i] == ')');
+    return b;
+}
+
+/* A flow collection's pieces in the order written: a sequence's items, a
+ * mapping's keys and values. */
+static int
+flow_pieces(const yaml_node_t *c)
+{
+    return c->type == YAML_SEQUENCE_NODE ? NITEMS(c) : 2 * NPAIRS(c);
+}
+
+static yaml_node_t *
+flow_piece(Loader *L, const yaml_node_t *c, int k)
+{
+    if (c->type == YAML_SEQUENCE_NODE)
+        return node(L, ITEMS(c)[k]);
+    const yaml_node_pair_t *p = &PAIRS(c)[k / 2];
+    return node(L, k % 2 ? p->value : p->key);
+}
+
+/* The piece that closes what piece i of c opens, or -1; *last, the last
+ * piece looked at (a later search starts after it: one pass over c). */
+static int
+split_end(Loader *L, const yaml_node_t *c, int i, int *last)
+{
+    int b = paren_balance(flow_piece(L, c, i));
+    *last = i;
+    if (b <= 0)
+        return -1;
+    for (int j = i + 1; j < flow_pieces(c); j++) {
+        yaml_node_t *n = flow_piece(L, c, j);
+        *last = j;
+        if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+            return -1;
+        if ((b += paren_balance(n)) <= 0)
+            return b == 0 ? j : -1;
+    }
+    return -1;
+}
+
+enum { SPLIT_SHOWN = 240 }; /* a longer expression is shown cut short */
+
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+/* Pieces i .. split_end of flow collection c are one expression: an error
+ * at its start, with its source text quoted (line breaks and comments
+ * between the pieces dropped). */
+static void
+split_expression(Loader *L, yaml_node_t *c, int i)
+{
+    int last;
+    const yaml_node_t *a = flow_piece(L, c, i), *z = flow_piece(L, c, split_end(L, c, i, &last));
+    size_t from = byte_at(L, a->start_mark.line, a->start_mark.column);
+    size_t to = byte_at(L, z->end_mark.line, z->end_mark.column);
+    char q[SPLIT_SHOWN + 8];
+    size_t n = 0;
+    for (size_t k = from; k < to && n < SPLIT_SHOWN; k++) {
+        char ch = L->text[k];
+        if (ch == '#' && k > from && is_blank(L->text[k - 1])) {
+            while (k + 1 < to && L->text[k + 1] != '\n')
+                k++;
+            continue;
+        }
+        if (is_blank(ch)) { /* a run of blanks is one space */
+            if (n > 0 && q[n - 1] != ' ')
+                q[n++] = ' ';
+            continue;
+        }
+        if (ch == '"' || ch == '\\')
+            q[n++] = '\\';
+        q[n++] = ch;
+    }
+    while (n > 0 && q[n - 1] == ' ')
+        n--;
+    q[n] = '\0';
+    diag_error(loc_of(L, a), "an expression with commas inside %s must be quoted: \"%s%s\" "
+               "(YAML splits it at its commas)", c->type == YAML_SEQUENCE_NODE ? "[ ]" : "{ }",
+               q, n >= SPLIT_SHOWN ? "..." : "");
+}
+
+/* Every split expression of the document, each node once (the node list,
+ * not a walk: aliases share nodes). */
+static void
+check_splits(Loader *L)
+{
+    for (yaml_node_t *c = L->doc.nodes.start; c < L->doc.nodes.top; c++) {
+        int flow = c->type == YAML_SEQUENCE_NODE
+                       ? c->data.sequence.style == YAML_FLOW_SEQUENCE_STYLE
+                       : c->type == YAML_MAPPING_NODE &&
+                             c->data.mapping.style == YAML_FLOW_MAPPING_STYLE;
+        for (int i = 0, last; flow && i < flow_pieces(c) && !L->stop; i = last + 1)
+            if (split_end(L, c, i, &last) >= 0)
+                checked(L, split_expression, c, i);
+    }
+    stop_if_failed();
+}
+
 /* The whole spec; apart from spec_load_buffer, so that nothing of its
  * own lives in the frame that setjmp returns to twice. */
 static void
@@ -2682,6 +3023,7 @@ load_spec(Loader *L)
     yaml_node_t *root = yaml_document_get_root_node(&L->doc);
     if (!root)
         diag_error((SrcLoc){L->path, 1, 1}, "the spec is empty");
+    check_splits(L);
     load_root(L, root);
 }
 
@@ -2701,8 +3043,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
                          frame_arg, point_arg, NULL};
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
-    L->s->scene = (SpecScene){.t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10,
-                              .atol = 1e-10};
+    L->s->scene = scene_defaults;
     diag_add_source(L->path, text, len);
     diag_reset_errors();
     jmp_buf jb;
@@ -2783,7 +3124,7 @@ spec_select_effects(Spec *s, const char *list)
             const char *near = effect_typo(s, p, n);
             fprintf(stderr, "eomc: --effects: unknown effect '%.*s'; ", (int)n, p);
             if (near)
-                fprintf(stderr, "did you mean '%s'? ", near);
+                fprintf(stderr, "did you mean %s? ", near);
             fprintf(stderr, "%s has", s->path);
             for (int i = 0; i < s->neffect; i++)
                 fprintf(stderr, "%s %s", i ? "," : "", s->effect[i].name);

@@ -46,6 +46,18 @@ typedef struct SpecParticle {
     int point;     /* that point (kin.h), or -1 */
 } SpecParticle;
 
+/* A turn by Euler parameters, of a body (`rotation: {quaternion: [...]}`)
+ * or of a frame (a turn {quaternion: [...]}): the parameters' coordinates
+ * (scalar first), whose they are ("body 'top'", "frame 'ball'"), and
+ * where.  Each gets the holonomic constraint NAME_unit:
+ * e0^2 + e1^2 + e2^2 + e3^2 - 1 = 0. */
+typedef struct SpecQuat {
+    const char *name; /* the body's or frame's: its constraint is NAME_unit */
+    const char *owner;
+    int q[4];
+    SrcLoc loc;
+} SpecQuat;
+
 /* A rigid body: T = 1/2 m |c'|^2 + 1/2 w.I w with w its body-frame
  * angular velocity.  Planar bodies (dim 2) have one angle and a scalar
  * inertia (inertia[0], omega[0]). */
@@ -146,6 +158,12 @@ typedef struct SpecScene {
     int noutput, nevent;
     SpecOutput *output;
     SpecEvent *event;
+    /* `assemble:`: every run first puts the initial state onto the
+     * holonomic and first-order constraints (1), keeping what hold marks
+     * [2 nq] as it is (hold[i]: q_i, hold[nq + i]: q_i'; NULL: nothing);
+     * 0: runs start as given. */
+    int assemble;
+    unsigned char *hold;
 } SpecScene;
 
 /* Every named scene, for --explain: what each turns on, in one line. */
@@ -193,6 +211,8 @@ typedef struct Spec {
     int nfixed;          /* parameters fixed (SpecParam.fixed) */
     int ncheck, capcheck;
     SpecCheck *check;    /* masses and inertias: what --set must respect */
+    int nfquat;          /* frames turned by quaternions: each adds to T */
+    SpecQuat *fquat;     /* 1/2 c (e.e')^2 (mech.c) and a unit constraint */
     const struct Kin *kin; /* the frames and points (kin.h) */
 } Spec;
 

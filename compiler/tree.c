@@ -233,6 +233,10 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++) {
             if (rate == EXPR_ZERO) /* a fixed angle: part of the frame's shape */
                 continue;
+            if (rate == EXPR_NONE) {
+                *why = "a frame turns by a quaternion, not by the angle of a turn";
+                return NULL;
+            }
             int i = 0;
             while (i < s->nq && q1[i] != rate)
                 i++;

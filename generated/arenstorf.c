@@ -414,6 +414,7 @@ const eomc_model arenstorf_model = {
     0, NULL, NULL, NULL,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

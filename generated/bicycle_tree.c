@@ -39,6 +39,7 @@ static const char *const p_names[26] = {"R", "mr", "Ir", "Jr", "mb", "b", "c", "
 static const char *const u_names[1] = {NULL};
 static const double p_default[26] = {0.35, 2.0, 0.06, 0.12, 85.0, 0.3, 0.9, 9.2, 11.0, 2.8, 2.4, 1.02, 0.6, 0.3, 4.0, 0.05, 0.2, 0.05, 0.06, 0.02, 0.08, 0.6, 3.0, 0.14, 0.28, 9.81};
 static const unsigned char p_fixed[26] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+static const unsigned char a_hold[16] = {1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 1, 1, 1, 1, 1, 1};
 
 static const char *const c_names[2] = {"roll_x", "roll_y"};
 static const int c_order[2] = {1, 1};
@@ -14694,6 +14695,7 @@ const eomc_model bicycle_tree_model = {
     44, bicycle_tree_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    1, a_hold, /* runs start assembled onto the constraints */
 };
 
 #ifdef EOMC_MAIN

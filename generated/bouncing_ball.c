@@ -272,6 +272,7 @@ const eomc_model bouncing_ball_model = {
     1, bouncing_ball_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     1, ev_names, ev_direction, ev_action, bouncing_ball_events, bouncing_ball_event_set,
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

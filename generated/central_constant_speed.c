@@ -1129,6 +1129,7 @@ const eomc_model central_constant_speed_model = {
     1, central_constant_speed_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

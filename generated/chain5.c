@@ -1941,6 +1941,7 @@ const eomc_model chain5_model = {
     5, chain5_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

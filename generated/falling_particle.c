@@ -217,6 +217,7 @@ const eomc_model falling_particle_model = {
     1, falling_particle_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

@@ -325,6 +325,7 @@ const eomc_model kepler_model = {
     1, kepler_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

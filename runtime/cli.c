@@ -40,6 +40,9 @@ typedef struct Cli {
     eomc_run_opts run;
     const char *out;
     int stats, summary, accel, assemble, work_precision, error, linearize, equilibrium;
+    int no_assemble;      /* --no-assemble: not even the scene's assembly */
+    int scene_assembles;  /* the model's scene says `assemble:` */
+    unsigned char *held;  /* [2nq] what the assembly keeps (held_marks) */
     int stabilize;        /* EOMC_STABILIZE_... */
     double alpha, beta;   /* Baumgarte's rates */
     int rates_given, method_given, fixed_given, t0_given, t_end_given;
@@ -174,12 +177,14 @@ usage(const Cli *c, const char *fmt, ...)
     return EOMC_EUSAGE;
 }
 
-/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), or "":
- * the compiler's rule (nearest.h). */
+/* " (did you mean 'x'?)" for the nearest of names[0..n) (suffixed), every
+ * one as near ("'rk4' or 'rkf45'"), or "": the compiler's rule
+ * (nearest.h). */
 static const char *
 nearest(const char *word, const char *const *names, int n, const char *suffix)
 {
-    static char buf[160];
+    static char buf[600];
+    char list[512];
     buf[0] = '\0';
     char *cands = calloc((size_t)(n ? n : 1), NEAREST_MAX + 2);
     const char **ptrs = calloc((size_t)(n ? n : 1), sizeof *ptrs);
@@ -189,9 +194,9 @@ nearest(const char *word, const char *const *names, int n, const char *suffix)
             snprintf(c, NEAREST_MAX + 2, "%s%s", names[k], suffix);
             ptrs[k] = c;
         }
-        const char *near = nearest_name(word, ptrs, n);
+        const char *near = nearest_names(word, ptrs, n, list, sizeof list);
         if (near)
-            snprintf(buf, sizeof buf, " (did you mean '%s'?)", near);
+            snprintf(buf, sizeof buf, " (did you mean %s?)", near);
     }
     free(cands);
     free(ptrs);
@@ -214,15 +219,16 @@ enum Option {
     O_SWEEP_FILE, O_THREADS, O_HOLD,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
-    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_WORK_PRECISION, O_ERROR, O_LINEARIZE,
-    O_EQUILIBRIUM, O_HELP, O_VERSION, NOPTIONS,
+    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_NO_ASSEMBLE, O_WORK_PRECISION, O_ERROR,
+    O_LINEARIZE, O_EQUILIBRIUM, O_HELP, O_VERSION, NOPTIONS,
     FIRST_FLAG = O_STATS,
 };
 static const char *const option_names[NOPTIONS] = {
     "--t0", "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
     "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--methods", "--tolerances", "--steps", "--csv", "--plot",
-    "--target", "--stats", "--summary", "--accel", "--assemble", "--work-precision",
+    "--target", "--stats", "--summary", "--accel", "--assemble", "--no-assemble",
+    "--work-precision",
     "--error", "--linearize", "--equilibrium", "--help", "--version",
 };
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
@@ -266,11 +272,16 @@ help(const Cli *c, const eomc_model *m)
                "phi' + A phi = 0\n"
                "                     (default %g,%g; implies --stabilize baumgarte)\n"
                "  --assemble         project the initial state onto the constraints "
-               "first\n"
+               "first%s\n"
                "  --hold LIST        with --assemble: keep these coordinates (x) and "
                "velocities (x')\n"
-               "                     as they are; the others meet the constraints\n",
-               DEFAULT_RATE, DEFAULT_RATE);
+               "                     as they are; the others meet the constraints%s\n"
+               "%s",
+               DEFAULT_RATE, DEFAULT_RATE,
+               m->assemble ? "\n                     (the scene does, for every run)" : "",
+               m->assemble ? "\n                     (instead of the scene's list)" : "",
+               m->assemble ? "  --no-assemble      start from the initial state as given, "
+                             "not assembled\n" : "");
     if (m->nevent > 0) {
         static const char *const actions[] = {"stops the run", "is recorded",
                                               "sets the state"};
@@ -545,9 +556,14 @@ check_combination(Cli *c)
     } else if (c->threads > 1) {
         return usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
     }
-    if (c->hold && !c->assemble)
+    if (c->no_assemble && (c->assemble || c->hold))
+        return usage(c, "--no-assemble starts from the initial state as given: it does not "
+                     "take %s", c->assemble ? "--assemble" : "--hold");
+    if (c->hold && !c->assemble && !c->scene_assembles)
         return usage(c, "--hold belongs to --assemble: it names what the projection "
                      "onto the constraints keeps as it is");
+    /* the scene's `assemble:` unless --no-assemble; --hold replaces its list */
+    c->assemble = !c->no_assemble && (c->assemble || c->hold || c->scene_assembles);
     int run_plot = c->plot && !c->work_precision && !linear && !c->accel;
     if (run_plot && !plot_format_ok(c->plot))
         return usage(c, "--plot: '%s' is neither .svg nor .png", c->plot);
@@ -621,7 +637,7 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
                        EOMC_VERSION);
                 return -1;
             }
-            int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble,
+            int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble, &c->no_assemble,
                            &c->work_precision, &c->error, &c->linearize, &c->equilibrium};
             *flag[k - FIRST_FLAG] = 1;
             continue;
@@ -636,6 +652,7 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
         if (rc)
             return rc;
     }
+    c->scene_assembles = m->assemble;
     return check_combination(c);
 }
 
@@ -1006,44 +1023,59 @@ hold_list(Cli *c, const eomc_model *m, unsigned char *hold)
     return EOMC_OK;
 }
 
-/* Project the initial state onto the constraints and say what moved. */
+/* What the assembly keeps, into c->held [2n]: --hold's list, else the
+ * scene's (model->a_hold), else nothing.  An equilibrium has no velocity
+ * (eomc_sim_equilibrium sets them to zero): it keeps held positions only. */
+static int
+held_marks(Cli *c, const eomc_model *m)
+{
+    size_t n = (size_t)m->nq;
+    if (!(c->held = calloc(2 * n, 1)))
+        return usage(c, "out of memory");
+    if (c->hold && hold_list(c, m, c->held) != EOMC_OK)
+        return EOMC_EUSAGE;
+    if (!c->hold && m->a_hold)
+        memcpy(c->held, m->a_hold, 2 * n);
+    if (c->equilibrium)
+        memset(c->held + n, 0, n);
+    return EOMC_OK;
+}
+
+/* Project the initial state onto the constraints (c->held kept) and say
+ * what moved. */
 static int
 assemble(Cli *c, eomc_sim *sim, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
     int n = m->nq, moved = 0;
+    /* the scene's assembly, or --assemble's */
+    const char *who = c->hold || !c->scene_assembles ? "--assemble" : "the scene's assembly";
     if (!has_levels(m))
         return usage(c, "--assemble: %s has no holonomic or first-order constraint to "
                      "assemble", m->name);
-    unsigned char *hold = calloc(2 * (size_t)n, 1);
-    double *x0 = malloc(2 * (size_t)n * sizeof *x0);
-    if (!x0 || !hold) {
-        free(x0);
-        free(hold);
-        return usage(c, "out of memory");
-    }
-    if (c->hold && hold_list(c, m, hold) != EOMC_OK) {
-        free(x0);
-        free(hold);
+    if (!c->held && held_marks(c, m) != EOMC_OK)
         return EOMC_EUSAGE;
-    }
+    double *x0 = malloc(2 * (size_t)n * sizeof *x0);
+    if (!x0)
+        return usage(c, "out of memory");
+    if (c->equilibrium) /* the search starts at rest */
+        memset(x + n, 0, (size_t)n * sizeof *x);
     memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
-    int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->hold ? hold : NULL);
-    free(hold);
+    int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->held);
     if (rc != EOMC_OK) {
-        fprintf(stderr, "%s: error: --assemble: %s\n", c->prog, eomc_sim_error(sim));
+        fprintf(stderr, "%s: error: %s: %s\n", c->prog, who, eomc_sim_error(sim));
         free(x0);
         return rc;
     }
     for (int i = 0; i < 2 * n; i++)
         if (x[i] != x0[i]) {
             if (!moved++)
-                fprintf(stderr, "%s: --assemble moved the initial state onto the "
-                        "constraints:\n", c->prog);
+                fprintf(stderr, "%s: %s moved the initial state onto the "
+                        "constraints:\n", c->prog, who);
             fprintf(stderr, "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
                     i < n ? "" : "'", x0[i], x[i], x[i] - x0[i]);
         }
-    if (!moved)
+    if (!moved && !c->scene_assembles)
         fprintf(stderr, "%s: --assemble: the initial state already satisfies the "
                 "constraints\n", c->prog);
     free(x0);
@@ -1102,14 +1134,10 @@ sweep_initial(void *ctx, eomc_sim *sim, double *x)
     const eomc_model *m = eomc_sim_model(sim);
     eomc_sim_initial(sim, x, x + m->nq);
     int rc = apply_inits(c, m, x);
-    if (rc != EOMC_OK || !c->assemble)
-        return rc;
-    unsigned char *hold = calloc(2 * (size_t)m->nq, 1);
-    if (!hold)
-        return EOMC_EUSAGE;
-    if (!c->hold || (rc = hold_list(c, m, hold)) == EOMC_OK)
-        rc = eomc_sim_project_held(sim, c->run.t0, x, x + m->nq, c->hold ? hold : NULL);
-    free(hold);
+    /* each run assembled with its own parameters, quietly: a failure is
+     * the run's status */
+    if (rc == EOMC_OK && c->assemble)
+        rc = eomc_sim_project_held(sim, c->run.t0, x, x + m->nq, c->held);
     return rc;
 }
 
@@ -2098,7 +2126,9 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
                (rc = set_stabilize(&c, sim)) == EOMC_OK) {
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = apply_inits(&c, m, x)) == EOMC_OK &&
-            (rc = c.assemble ? assemble(&c, sim, x) : EOMC_OK) == EOMC_OK)
+            (rc = c.assemble ? held_marks(&c, m) : EOMC_OK) == EOMC_OK &&
+            (rc = c.assemble && !c.nsweep && !c.sweep_file ? assemble(&c, sim, x)
+                                                           : EOMC_OK) == EOMC_OK)
             rc = c.nsweep || c.sweep_file ? sweep(&c, sim)
                  : sweep_rank() != 0 ? EOMC_OK /* one run: rank 0's */
                  : c.accel          ? print_accel(&c, sim, x)
@@ -2114,6 +2144,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     free(c.methods);
     free(c.tolerances);
     free(c.steps);
+    free(c.held);
     return rc;
 }
 

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 10
+#define EOMC_ABI_VERSION 11
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -199,6 +199,16 @@ typedef struct eomc_model {
                    const double *u, double *g);
     void (*event_set)(int k, double t, const double *q, const double *v, const double *p,
                       const double *u, double *q1, double *v1);
+
+    /* ---- the scene's assembly ----
+     * assemble = 1 (`assemble:`): every run first moves the initial state
+     * onto the holonomic and first-order constraints, keeping what a_hold
+     * [2 nq] marks as it is (a_hold[i]: q_i, a_hold[nq + i]: q_i'; NULL:
+     * nothing held) and moving the rest (eomc_sim_project_held).  0: runs
+     * start as given.  The simulator's --assemble, --hold and
+     * --no-assemble override it. */
+    int assemble;
+    const unsigned char *a_hold;
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

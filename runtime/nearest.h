@@ -13,6 +13,7 @@
 #ifndef EOMC_NEAREST_H
 #define EOMC_NEAREST_H
 
+#include <stdio.h>
 #include <string.h>
 
 /* Names longer than this are never guessed at. */
@@ -44,21 +45,54 @@ nearest_distance(const char *a, const char *b)
     return d[la][lb];
 }
 
-/* The nearest of cands[0..n) to name, or NULL if none is a plausible typo. */
+/* The names of cands[0..n) nearest to name, when that is a plausible
+ * typo: every one at the least distance (`rk45` is one edit from both
+ * `rk4` and `rkf45`: naming one would hide the other), each quoted, in
+ * cands' order and without repeats: "'rk4' or 'rkf45'", "'a', 'b' or
+ * 'c'".  Written to buf (len bytes; past
+ * NEAREST_TIES names, or when buf is full, the list ends with ", ..."),
+ * and returned; NULL if none is close. */
+enum { NEAREST_TIES = 16 };
+
 static inline const char *
-nearest_name(const char *name, const char *const *cands, int n)
+nearest_names(const char *name, const char *const *cands, int n, char *buf, size_t len)
 {
-    const char *best = NULL;
-    int bestd = 99;
+    int bestd = 99, tie[NEAREST_TIES], nt = 0, more = 0;
     for (int i = 0; i < n; i++) {
         int d = nearest_distance(name, cands[i]);
         if (d < bestd)
-            bestd = d, best = cands[i];
+            bestd = d, nt = 0, more = 0;
+        if (d != bestd)
+            continue;
+        int repeat = 0;
+        for (int j = 0; j < nt && !repeat; j++)
+            repeat = !strcmp(cands[tie[j]], cands[i]);
+        if (repeat)
+            continue;
+        if (nt < NEAREST_TIES)
+            tie[nt++] = i;
+        else
+            more = 1;
     }
-    int len = (int)strlen(name), allowed = len / 3;
-    if (allowed < 1 && len >= 3)
+    int chars = (int)strlen(name), allowed = chars / 3;
+    if (allowed < 1 && chars >= 3)
         allowed = 1;
-    return bestd <= allowed ? best : NULL;
+    if (nt == 0 || bestd > allowed || len < 8)
+        return NULL;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < nt; k++) {
+        const char *sep = k == 0 ? "" : k == nt - 1 && !more ? " or " : ", ";
+        size_t need = strlen(sep) + strlen(cands[tie[k]]) + 2;
+        if (at + need + 5 >= len) { /* room for ", ..." kept */
+            more = 1;
+            break;
+        }
+        at += (size_t)snprintf(buf + at, len - at, "%s'%s'", sep, cands[tie[k]]);
+    }
+    if (more)
+        snprintf(buf + at, len - at, "%s...", at ? ", " : "");
+    return buf;
 }
 
 #endif

@@ -52,8 +52,8 @@ lookup_scalar(ParseScope *sc, const char *name, SrcLoc at)
         return expr_input(sc->P, 0);
     static const char *const names[] = {"x", "y", "k", "u"};
     const char *near = diag_nearest(name, names, 4);
-    diag_error(at, "unknown name '%s'%s%s%s", name, near ? "; did you mean '" : "",
-               near ? near : "", near ? "'?" : "");
+    diag_error(at, "unknown name '%s'%s%s%s", name, near ? "; did you mean " : "",
+               near ? near : "", near ? "?" : "");
 }
 
 static ParseVal

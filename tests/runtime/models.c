@@ -91,8 +91,9 @@ static const unsigned char no_fixed[8];
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
-/* ... and no outputs nor events (they follow the checks). */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL
+/* ... and no outputs nor events (they follow the checks), nor the scene's
+ * assembly. */
+#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void

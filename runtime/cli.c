@@ -837,8 +837,9 @@ print_stats(const Csv *w, const eomc_stats *st, int stabilize)
     if (w->invariant)
         fprintf(stderr, "invariant_drift %.3g\n", w->dh);
     if (w->ref)
-        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n",
-                w->err_end, w->err_max, w->ref->error);
+        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n"
+                "reference_method %s\n", w->err_end, w->err_max, w->ref->error,
+                w->ref->method);
     if (m->nevent > 0)
         fprintf(stderr, "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
     if (st->reset_event >= 0)
@@ -931,9 +932,10 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
             "error was at most %.3g over the rows and %.3g at t = %g.", c->reference,
             w->err_max, w->err_end, c->run.t_end);
     else if (w->ref)
-        ADD(" Against the reference solution (good to %.2g), the error was at most %.3g "
-            "over the rows and %.3g at t = %g.", w->ref->error, w->err_max, w->err_end,
-            c->run.t_end);
+        ADD(" Against the reference solution (%s%s, good to %.2g), the error was at "
+            "most %.3g over the rows and %.3g at t = %g.", w->ref->method,
+            w->ref->stiff ? ", as the problem is stiff" : "", w->ref->error, w->err_max,
+            w->err_end, c->run.t_end);
 #undef ADD
     text[0] = (char)(text[0]); /* the model's name starts the paragraph as it is */
     wrap(stderr, text);
@@ -1716,7 +1718,8 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             snprintf(good, sizeof good, "the reference, read from %s, has no estimate of "
                      "its own error", c->reference);
         else
-            snprintf(good, sizeof good, "the reference is good to %.2g", ref.error);
+            snprintf(good, sizeof good, "the reference, by %s%s, is good to %.2g",
+                     ref.method, ref.stiff ? " (the problem is stiff)" : "", ref.error);
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
                 "the %ld rows, %.3g at t = %g (%s)\n", c->prog, w.err_max, w.rows,
                 w.err_end, c->run.t_end, good);

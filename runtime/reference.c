@@ -115,7 +115,7 @@ typedef struct Ref {
     int detect;                   /* watch GBS's steps for stiffness */
     int held;                     /* successive steps held by stability */
     double held_t;                /* where the first of them started */
-    long held_evals;              /* and the right-hand sides spent before it */
+    long held_evals;              /* and the steps' right-hand sides before it */
     int stiff;                    /* GBS found the problem stiff */
     double stiff_t, stiff_hrho;   /* where the last step held ended, its H rho */
     double gbs_evals;             /* what GBS would spend on the first solution */
@@ -124,7 +124,8 @@ typedef struct Ref {
     int dearer;                   /* stiff, but the linearly implicit method was not
                                    * cheaper than GBS (-1: it failed) */
     double tol;
-    long steps, evals;
+    long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
+                                    * the rows' side steps' (stepping) */
     double fail_t, *fail_x;       /* where a right-hand side failed [N] */
 } Ref;
 
@@ -311,11 +312,20 @@ scales(Ref *r)
         r->sc[i] = fmaxl(r->mag[i], FLOOR * group[i >= n]);
 }
 
+/* The right-hand sides of the steps so far, those of the rows' side
+ * steps apart: the methods are compared by them, as both pay for the rows
+ * alike. */
+static long
+stepping(const Ref *r)
+{
+    return r->evals - r->side_evals;
+}
+
 /* Whether GBS's steps are held by stability, after a step of size H
- * from t0 to (t, r->X), with r->F there and e0 right-hand sides spent
- * before it.  A failed estimate (the model failing a little off the
- * solution) counts as not held.  When the problem is found stiff, what
- * GBS would spend on the whole span, at the rate of the steps held. */
+ * from t0 to (t, r->X), with r->F there and e0 right-hand sides spent by
+ * the steps before it.  A failed estimate (the model failing a little off
+ * the solution) counts as not held.  When the problem is found stiff,
+ * what GBS would spend on the whole span, at the rate of the steps held. */
 static int
 held_by_stability(Ref *r, eomc_ext t0, eomc_ext t, eomc_ext H, long e0, eomc_ext t_end)
 {
@@ -333,8 +343,8 @@ held_by_stability(Ref *r, eomc_ext t0, eomc_ext t, eomc_ext H, long e0, eomc_ext
     r->stiff = 1;
     r->stiff_t = (double)t;
     r->stiff_hrho = (double)H * rho;
-    double rate = (double)(r->evals - r->held_evals) / ((double)t - r->held_t);
-    r->gbs_evals = (double)r->evals + rate * (double)(t_end - t);
+    double rate = (double)(stepping(r) - r->held_evals) / ((double)t - r->held_t);
+    r->gbs_evals = (double)stepping(r) + rate * (double)(t_end - t);
     return 1;
 }
 
@@ -348,7 +358,8 @@ held_by_stability(Ref *r, eomc_ext t0, eomc_ext t, eomc_ext H, long e0, eomc_ext
 static int
 solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budget)
 {
-    int N = r->N, implicit = r->method == EXTRAP_LINEARLY_IMPLICIT, need_jacobian = implicit;
+    int N = r->N, implicit = r->method == EXTRAP_LINEARLY_IMPLICIT;
+    int need_jacobian = implicit;
     long nrows = eomc_run_rows(o), k = 1, e0 = 0; /* e0: right-hand sides before a step */
     for (int i = 0; i < N; i++) {
         r->X[i] = x0[i];
@@ -358,14 +369,14 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
     scales(r);
     r->have_prev = 0;
     r->held = 0;
-    r->steps = r->evals = 0;
+    r->steps = r->evals = r->side_evals = 0;
     eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t, H = span / 100;
     if (nrows > 1 && rhs(r, t, r->X, r->F) != 0)
         return -1;
     while (t < t_end) {
         if (r->steps >= budget)
             return -2;
-        if (r->evals > r->eval_budget)
+        if (stepping(r) > r->eval_budget)
             return -4;
         if (need_jacobian && extrap_jacobian(r->ex, t, r->X, r->F, r->sc) != 0)
             return -1;
@@ -391,8 +402,10 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         eomc_ext t1 = step == left ? t_end : t + step, t0 = t;
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
             eomc_ext tk = eomc_run_row_time(o, k), *x = r->Xn;
+            long before = r->evals;
             if (tk != t1 && side_step(r, t, tk, x = r->Y2) != 0)
                 return -1;
+            r->side_evals += r->evals - before;
             for (int i = 0; i < N; i++)
                 rows[(size_t)k * N + i] = (double)x[i];
         }
@@ -406,7 +419,7 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             return -1;
         if (r->detect && !implicit && held_by_stability(r, t0, t, step, e0, t_end))
             return -3;
-        e0 = r->evals;
+        e0 = stepping(r);
         need_jacobian = implicit;
         H = step * fac;
     }
@@ -416,9 +429,9 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
 static void
 ref_free(Ref *r)
 {
-    eomc_ext *arrays[] = {r->p, r->u,   r->dudt, r->M,  r->h,   r->K, r->r, r->f,
-                          r->B, r->a,   r->lam,  r->cj[0], r->X, r->F, r->Xn, r->Y,
-                          r->G, r->Y2,  r->mag,  r->sc, r->eq, r->dK};
+    eomc_ext *arrays[] = {r->p, r->u, r->dudt, r->M,      r->h, r->K, r->r,  r->f,
+                          r->B, r->a, r->lam,  r->cj[0], r->X, r->F, r->Xn, r->Y,
+                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->perm);
@@ -447,12 +460,14 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
                     nc * n * nu, nc * n}, ncj = 0;
     for (int k = 0; k < 9; k++)
         ncj += cj[k];
-    eomc_ext **arrays[] = {&r->p, &r->u,  &r->dudt, &r->M,  &r->h,  &r->K, &r->r, &r->f,
-                           &r->B, &r->a,  &r->lam,  &r->cj[0], &r->X, &r->F, &r->Xn, &r->Y,
-                           &r->G, &r->Y2, &r->mag,  &r->sc, &r->eq, &r->dK};
-    size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W, nc,
-                      nc * n, n, nc, ncj, N, N, N, N,
-                      N, N, N, N, 2 * W, W};
+    eomc_ext **arrays[] = {&r->p, &r->u, &r->dudt, &r->M,      &r->h, &r->K, &r->r,
+                           &r->f, &r->B, &r->a,    &r->lam,    &r->cj[0], &r->X, &r->F,
+                           &r->Xn, &r->Y, &r->G,   &r->Y2,     &r->mag, &r->sc, &r->eq,
+                           &r->dK};
+    size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W,
+                      nc, nc * n, n, nc, ncj, N, N,
+                      N, N, N, N, N, N, 2 * W,
+                      W};
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
@@ -492,9 +507,9 @@ failure(Ref *r, int st)
     if (eomc_sim_accel(s, r->fail_t, x, x + r->n, s->a) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
-                             "cannot be continued here at tolerance %.0e: the model fails "
-                             "in extended precision, or its steps became too small",
-                             method_name(r->method), r->tol);
+                             "cannot be continued here at tolerance %.0e: the model "
+                             "fails in extended precision, or its steps became too "
+                             "small", method_name(r->method), r->tol);
 }
 
 /* Why the method is what it is, once the problem was found stiff. */
@@ -502,20 +517,21 @@ static void
 stiff_note(const Ref *r, char *buf, size_t len)
 {
     const char *li = method_name(EXTRAP_LINEARLY_IMPLICIT);
-    int at = snprintf(buf, len, "; the problem is stiff: from t = %.4g to %.4g, %d steps of "
-                      "Gragg-Bulirsch-Stoer extrapolation were held by stability (up to "
-                      "%.3g times the inverse of the Jacobian's spectral radius, where "
-                      "accuracy alone holds them below %.3g), a pace that would spend %.3g "
-                      "right-hand sides on the first solution", r->held_t, r->stiff_t,
-                      STIFF_STEPS, r->stiff_hrho, EXTRAP_GBS_STIFF, r->gbs_evals);
+    int at = snprintf(buf, len, "; the problem is stiff: from t = %.4g to %.4g, %d steps "
+                      "of Gragg-Bulirsch-Stoer extrapolation were held by stability (up "
+                      "to %.3g times the inverse of the Jacobian's spectral radius, where "
+                      "accuracy alone holds them below %.3g), a pace that would spend "
+                      "%.3g right-hand sides on the first solution", r->held_t,
+                      r->stiff_t, STIFF_STEPS, r->stiff_hrho, EXTRAP_GBS_STIFF,
+                      r->gbs_evals);
     if (at < 0 || (size_t)at >= len)
         return;
     buf += at, len -= (size_t)at;
     if (r->dearer == 0)
         snprintf(buf, len, "; the %s spent %ld", li, r->li_evals);
     else if (r->dearer > 0)
-        snprintf(buf, len, "; the %s would have spent more than 1/%.0f of that, the least "
-                 "it must save to pay (it was stopped)", li, LI_ADVANTAGE);
+        snprintf(buf, len, "; the %s would have spent more than 1/%.0f of that, the "
+                 "least it must save to pay (it was stopped)", li, LI_ADVANTAGE);
     else
         snprintf(buf, len, "; the %s failed", li);
 }
@@ -578,7 +594,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
             r.eval_budget = r.gbs_evals / LI_ADVANTAGE;
             st = solve(&r, o, x0, rows, budget);
             r.eval_budget = INFINITY;
-            r.li_evals = r.evals;
+            r.li_evals = stepping(&r);
             if (st != 0) { /* dearer, or failing where GBS may not: GBS after all */
                 r.method = EXTRAP_GBS;
                 r.dearer = st == -4 ? 1 : -1;
@@ -615,10 +631,10 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     ref->cpu_seconds = sim_seconds(1) - c0;
     ref->method = method_name(r.method);
     ref->stiff = r.method == EXTRAP_LINEARLY_IMPLICIT;
-    int len = snprintf(ref->source, sizeof ref->source, "%s of order %d in %d-bit floating "
-                       "point (long double)%s, %d solutions to relative tolerance %.0e",
-                       ref->method, r.method == EXTRAP_GBS ? 2 * EXTRAP_GBS_LEVELS
-                                                           : EXTRAP_LI_LEVELS,
+    int len = snprintf(ref->source, sizeof ref->source, "%s of order %d in %d-bit "
+                       "floating point (long double)%s, %d solutions to relative "
+                       "tolerance %.0e", ref->method,
+                       ref->stiff ? EXTRAP_LI_LEVELS : 2 * EXTRAP_GBS_LEVELS,
                        LDBL_MANT_DIG, ref->stiff ? " with a finite-difference Jacobian" : "",
                        ref->refinements, ref->tolerance);
     if (r.stiff && len > 0 && (size_t)len < sizeof ref->source)

@@ -12,7 +12,8 @@
 #    and --reference FILE reads it back: the same errors; a file that does
 #    not fit is a usage error naming FILE:LINE;
 #  - --error measures one run; --summary says what is conserved, or why
-#    nothing is;
+#    nothing is; on a stiff spring the report, --stats and --error name the
+#    linearly implicit reference;
 #  - digits by component (a top whose big spin angle hid its nutation
 #    rate's error): the table's digits and worst component, and --errors
 #    FILE's rows, against errors computed here from the run's and the
@@ -107,6 +108,18 @@ ok $? "--reference FILE without a velocity column: usage error naming it (exit $
 half_ulp=$(awk 'BEGIN { printf "%.2g", 0.5 * 2^-52 * 9.81 }')
 grep -q "(the reference, by Gragg-Bulirsch-Stoer extrapolation, is good to $half_ulp)" "$tmp/fall.err"
 ok $? "an exact motion: the reference is good to the rounding of doubles, $half_ulp, not 0"
+
+# The stiff spring (roots -1 and -1e4): the reference is the linearly
+# implicit one, and the report's header, --stats and --error's line say so
+"$eomc" build "$src/tests/hard/specs/stiff_spring.yaml" -o "$tmp/stiff" 2> /dev/null
+"$tmp/stiff" --work-precision --methods msbdf --tolerances 1e-8 > "$tmp/stiff.txt"; st1=$?
+"$tmp/stiff" --error --stats -o /dev/null 2> "$tmp/stiff1.err"; st2=$?
+"$tmp/stiff" --error -o /dev/null 2> "$tmp/stiff2.err"; st3=$?
+[ $st1 -eq 0 ] && [ $st2 -eq 0 ] && [ $st3 -eq 0 ] &&
+  grep -q "^reference: linearly implicit Euler extrapolation of order 8 .*; the problem is stiff: " "$tmp/stiff.txt" &&
+  grep -q "^reference_method linearly implicit Euler extrapolation$" "$tmp/stiff1.err" &&
+  grep -q "(the reference, by linearly implicit Euler extrapolation (the problem is stiff), is good to " "$tmp/stiff2.err"
+ok $? "a stiff spring: the report's header, --stats and --error's line name the linearly implicit reference"
 
 # Fixed steps estimate no error: rk4 in steps of 0.5 on the pendulum
 # (period 2.1 s) keeps no digit of its energy, which the run says; in steps

@@ -1736,10 +1736,13 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
                      ref.method, ref.stiff ? " (the problem is stiff)" : "", ref.error);
         double digits;
         int i = compare_worst(&w.cmp, &digits), n = m->nq;
+        char worst[160] = "; every row is the reference's to the last bit";
+        if (digits < INFINITY) /* each component against its own size (compare.h) */
+            snprintf(worst, sizeof worst, "; %s%s keeps the fewest digits, %.1f",
+                     m->q_names[i % n], i < n ? "" : "'", digits);
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
-                "the %ld rows, %.3g at t = %g (%s); the fewest digits, %.1f, are %s%s's\n",
-                c->prog, w.err_max, w.rows, w.err_end, c->run.t_end, good, digits,
-                m->q_names[i % n], i < n ? "" : "'");
+                "the %ld rows, %.3g at t = %g (%s)%s\n", c->prog, w.err_max, w.rows,
+                w.err_end, c->run.t_end, good, worst);
     }
     if (c->errors && rc != EOMC_INTERRUPTED) {
         FILE *f = open_output(c, "--errors", c->errors);

@@ -322,7 +322,8 @@ typedef struct eomc_reference {
     double cpu_seconds;   /* all solutions */
     const char *method;   /* "Gragg-Bulirsch-Stoer extrapolation", "linearly implicit
                            * Euler extrapolation" or "a file" (static) */
-    int stiff;            /* the problem was found stiff: the second method made it */
+    int stiff;            /* the linearly implicit method made it, the problem being
+                           * stiff (source says why) */
     char source[768];     /* how it was made (and why that method), or the file */
 } eomc_reference;
 

@@ -216,7 +216,7 @@ check_errors() { awk -F, -v errs="$errs" 'BEGIN { n = split(errs, kv, ";")
   END { exit bad || rows != 6 }' "$1"; }
 check_errors "$tmp/errs.csv" && check_errors "$tmp/errs1.csv"
 ok $? "--errors: one row per component with the same error_max, from the report and from one run"
-grep -q "the fewest digits, $digits, are theta''s" "$tmp/top.err"
+grep -q "; theta' keeps the fewest digits, $digits$" "$tmp/top.err"
 ok $? "--error's line names the component with the fewest digits ($digits, theta')"
 
 # usage errors

@@ -35,13 +35,13 @@
  * no more than rounding once.
  *
  * Stiffness.  T_LL of GBS is stable on the negative real axis up to
- * H lambda = -8.6, and along the circle |H lambda| = 4 its error on
- * y' = lambda y is 4e-7 of y (1e-11 at |H lambda| = 2).  A step the
- * reference accepts at a tolerance of 1e-15 or less with H rho >= 4
- * (EXTRAP_GBS_STIFF) therefore carries its fastest mode at 1e-8 of the
- * state or less: the step follows the motion, not that mode, and is held
- * near the stability bound only to keep the mode from growing.  That is
- * what stiffness is.
+ * H lambda = -8.6, and along the circle |H lambda| = 4 its error estimate
+ * on y' = lambda y is 4e-7 of y (1.2e-11 at |H lambda| = 2; computed from
+ * its stability polynomial).  A step the reference accepts at a tolerance
+ * of 1e-15 or less with H rho >= 4 (EXTRAP_GBS_STIFF) therefore carries
+ * its fastest mode at 1e-8 of the state or less: the step follows the
+ * motion, not that mode, and is held near the stability bound only to
+ * keep the mode from growing.  That is what stiffness is.
  *
  * The spectral radius.  Power iteration with products J w taken as
  * difference quotients (f(X + eta D w) - f(X)) / eta, D the components'

@@ -13,6 +13,7 @@
  * the last two share.
  */
 #include "eomc.h"
+#include "compare.h"
 #include "nearest.h"
 #include "numfmt.h"
 #include "plot.h"
@@ -50,6 +51,7 @@ typedef struct Cli {
     int nset, ninit;
     /* the reference and the report */
     const char *reference, *reference_out, *csv, *plot;
+    const char *errors;   /* --errors FILE: the errors by component */
     const char *events;   /* --events FILE */
     const char *hold;     /* --hold LIST, for --assemble */
     char **sweep;         /* --sweep NAME=START:STOP:COUNT, in order */
@@ -91,6 +93,7 @@ typedef struct Csv {
                           * energy the motion moves about, for the drift's */
     double t_last;       /* the time of the last row written */
     double err_max, err_end;
+    Compare cmp;         /* the errors by component, with ref */
 } Csv;
 
 /* An event as it fires: a row of --events FILE, and a reset ends the
@@ -216,7 +219,7 @@ enum Option {
     /* with a value */
     O_T0, O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
     O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS, O_SWEEP,
-    O_SWEEP_FILE, O_THREADS, O_HOLD,
+    O_SWEEP_FILE, O_THREADS, O_HOLD, O_ERRORS,
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
     O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_NO_ASSEMBLE, O_WORK_PRECISION, O_ERROR,
@@ -226,7 +229,7 @@ enum Option {
 static const char *const option_names[NOPTIONS] = {
     "--t0", "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
     "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
-    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--methods", "--tolerances", "--steps", "--csv", "--plot",
+    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--errors", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--no-assemble",
     "--work-precision",
     "--error", "--linearize", "--equilibrium", "--help", "--version",
@@ -305,6 +308,8 @@ help(const Cli *c, const eomc_model *m)
            "  --reference FILE   the reference from FILE (a CSV with this simulator's\n"
            "                     columns and rows) instead of computing it\n"
            "  --reference-out FILE  write the reference, in this simulator's columns\n"
+           "  --errors FILE      each run's errors by coordinate and velocity, as CSV\n"
+           "                     (implies --error; with --work-precision, every run's)\n"
            "  --work-precision   what accuracy costs: run every method over tolerances\n"
            "                     and fixed steps, and report CPU time against error:\n"
            "    --methods LIST       comma-separated (default: all)\n"
@@ -469,6 +474,7 @@ take_value(Cli *c, int k, const char *val)
     case O_INIT: c->init[c->ninit++] = (char *)val; return EOMC_OK;
     case O_OUT: c->out = val; return EOMC_OK;
     case O_HOLD: c->hold = val; return EOMC_OK;
+    case O_ERRORS: c->errors = val; return EOMC_OK;
     case O_STABILIZE:
         for (int j = 0; j < 3; j++)
             if (strcmp(val, stabilize_names[j]) == 0) {
@@ -530,7 +536,7 @@ check_combination(Cli *c)
                      "--stabilize %s", stabilize_names[c->stabilize]);
     if (c->stabilize < 0)
         c->stabilize = EOMC_STABILIZE_NONE;
-    if (c->reference)
+    if (c->reference || c->errors)
         c->error = 1;
     int linear = c->linearize || c->equilibrium;
     /* the spec's t_end must be > 0; a run's end must come after its start
@@ -810,12 +816,9 @@ write_row(void *ctx, double t, const double *x)
         w->dh = fmax(w->dh, fabs(h - w->h0));
     }
     if (w->ref && w->rows < w->ref->nrows) {
-        const double *xr = w->ref->x + (size_t)w->rows * (size_t)w->ref->nx;
-        double e = 0;
-        for (int i = 0; i < 2 * n; i++)
-            e = fmax(e, fabs(x[i] - xr[i]));
-        w->err_end = isnan(e) ? INFINITY : e;
-        w->err_max = fmax(w->err_max, w->err_end);
+        compare_row(&w->cmp, x);
+        w->err_end = w->cmp.err_end;
+        w->err_max = w->cmp.err_max;
     }
     for (int k = 0; k < nc; k++)
         w->res_max = fmax(w->res_max, fabs(w->res[k]));
@@ -876,8 +879,9 @@ print_stats(const Csv *w, const eomc_stats *st, int stabilize)
     if (w->invariant)
         fprintf(stderr, "invariant_drift %.3g\n", w->dh);
     if (w->ref)
-        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n",
-                w->err_end, w->err_max, w->ref->error);
+        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n"
+                "reference_method %s\n", w->err_end, w->err_max, w->ref->error,
+                w->ref->method);
     if (m->nevent > 0)
         fprintf(stderr, "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
     if (st->reset_event >= 0)
@@ -971,9 +975,10 @@ print_summary(const Cli *c, const eomc_model *m, const Csv *w, const eomc_stats 
             "error was at most %.3g over the rows and %.3g at t = %g.", c->reference,
             w->err_max, w->err_end, c->run.t_end);
     else if (w->ref)
-        ADD(" Against the reference solution (good to %.2g), the error was at most %.3g "
-            "over the rows and %.3g at t = %g.", w->ref->error, w->err_max, w->err_end,
-            c->run.t_end);
+        ADD(" Against the reference solution (%s%s, good to %.2g), the error was at "
+            "most %.3g over the rows and %.3g at t = %g.", w->ref->method,
+            w->ref->stiff ? ", as the problem is stiff" : "", w->ref->error, w->err_max,
+            w->err_end, c->run.t_end);
 #undef ADD
     text[0] = (char)(text[0]); /* the model's name starts the paragraph as it is */
     wrap(stderr, text);
@@ -1894,12 +1899,20 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         free(w.res);
         return rc;
     }
+    if (c->error && compare_init(&w.cmp, &ref) != 0) {
+        fprintf(stderr, "%s: out of memory\n", c->prog);
+        free(w.res);
+        eomc_reference_free(&ref);
+        compare_free(&w.cmp);
+        return EOMC_EUSAGE;
+    }
     if (c->error)
         w.ref = &ref;
     /* both files open, or neither is left behind */
     if (c->events && !(w.events = open_output(c, "--events", c->events))) {
         free(w.res);
         eomc_reference_free(&ref);
+        compare_free(&w.cmp);
         return EOMC_EUSAGE;
     }
     if (!(w.f = open_output(c, "-o", c->out))) {
@@ -1909,6 +1922,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         }
         free(w.res);
         eomc_reference_free(&ref);
+        compare_free(&w.cmp);
         return EOMC_EUSAGE;
     }
     if (w.events) {
@@ -1933,6 +1947,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             unlink(c->out);
         free(w.res);
         eomc_reference_free(&ref);
+        compare_free(&w.cmp);
         return EOMC_EUSAGE;
     }
     print_header(w.f, m);
@@ -1969,6 +1984,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
                 interrupted == SIGINT ? "SIGINT" : "SIGTERM", w.rows, plural(w.rows),
                 w.rows == 1 ? "is" : "are");
         eomc_reference_free(&ref);
+        compare_free(&w.cmp);
         free(w.res);
         return 128 + interrupted; /* 130 for SIGINT, 143 for SIGTERM */
     }
@@ -1994,10 +2010,27 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             snprintf(good, sizeof good, "the reference, read from %s, has no estimate of "
                      "its own error", c->reference);
         else
-            snprintf(good, sizeof good, "the reference is good to %.2g", ref.error);
+            snprintf(good, sizeof good, "the reference, by %s%s, is good to %.2g",
+                     ref.method, ref.stiff ? " (the problem is stiff)" : "", ref.error);
+        double digits;
+        int i = compare_worst(&w.cmp, &digits), n = m->nq;
+        char worst[160] = "; every row is the reference's to the last bit";
+        if (digits < INFINITY) /* each component against its own size (compare.h) */
+            snprintf(worst, sizeof worst, "; %s%s keeps the fewest digits, %.1f",
+                     m->q_names[i % n], i < n ? "" : "'", digits);
         fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
-                "the %ld row%s, %.3g at t = %g (%s)\n", c->prog, w.err_max, w.rows,
-                plural(w.rows), w.err_end, c->run.t_end, good);
+                "the %ld row%s, %.3g at t = %g (%s)%s\n", c->prog, w.err_max, w.rows,
+                plural(w.rows), w.err_end, c->run.t_end, good, worst);
+    }
+    if (c->errors && rc != EOMC_INTERRUPTED) {
+        FILE *f = open_output(c, "--errors", c->errors);
+        if (f) {
+            compare_csv_header(f);
+            compare_csv_run(f, m, w.cmp.scale, rc ? NULL : w.cmp.end, rc ? NULL : w.cmp.max,
+                            c->run.method, c->run.rtol, c->run.h_fixed > 0 ? st.h_used : 0);
+        }
+        if (!f || close_output(c, f, c->errors))
+            rc = rc ? rc : EOMC_EUSAGE;
     }
     if (w.tee) {
         int resets = 0;
@@ -2011,6 +2044,7 @@ simulate(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         unlink(data);
     }
     eomc_reference_free(&ref);
+    compare_free(&w.cmp);
     free(w.res);
     return rc;
 }
@@ -2084,7 +2118,7 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         .tolerances = c->tolerances ? c->tolerances : tols,
         .ntolerances = c->tolerances ? c->ntolerances : TOL_LAST_EXP - TOL_FIRST_EXP + 1,
         .steps = c->steps ? c->steps : steps, .nsteps = c->steps ? c->nsteps : 3,
-        .steps_given = c->steps != NULL, .csv = c->csv, .plot = c->plot,
+        .steps_given = c->steps != NULL, .csv = c->csv, .plot = c->plot, .errors = c->errors,
         .target = c->target, .prog = c->prog, .setting = setting,
     };
     rc = report_run(&r);

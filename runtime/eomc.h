@@ -312,8 +312,10 @@ int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
  *
  * The trajectory of a run's output times, computed from the model's
  * extended-precision functions (eomc_model_ext) by a method that is not
- * one of those it judges: Gragg-Bulirsch-Stoer extrapolation, in eomc_ext,
- * to a tolerance refined until two successive solutions agree.  The same
+ * one of those it judges: Gragg-Bulirsch-Stoer extrapolation, or for a
+ * stiff problem the linearly implicit Euler method with extrapolation, in
+ * eomc_ext, to a tolerance refined until two successive solutions agree
+ * (docs/accuracy.md says how stiffness is told).  The same
  * parameters, held inputs and initial state as the double runs; the true
  * motion, so no stabilization (a consistent start stays on the
  * constraints).  Or read from a CSV with the simulator's columns. */
@@ -331,7 +333,11 @@ typedef struct eomc_reference {
     double tolerance;     /* the last one's relative tolerance */
     long steps, rhs_evals;  /* of the last solution */
     double cpu_seconds;   /* all solutions */
-    char source[512];     /* how it was made, or the file it came from */
+    const char *method;   /* "Gragg-Bulirsch-Stoer extrapolation", "linearly implicit
+                           * Euler extrapolation" or "a file" (static) */
+    int stiff;            /* the linearly implicit method made it, the problem being
+                           * stiff (source says why) */
+    char source[768];     /* how it was made (and why that method), or the file */
 } eomc_reference;
 
 /* Compute the reference for o's output times from x0 [2 nq].  Returns

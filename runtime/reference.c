@@ -1,19 +1,32 @@
 /*
  * reference: the reference solution (eomc.h), computed in extended
- * precision by Gragg-Bulirsch-Stoer extrapolation, or read from a file.
+ * precision by extrapolation, or read from a file.
  *
- * The method.  A step of size H from (t, X) runs the explicit midpoint
- * rule with n_j = 2j substeps, j = 1 .. LEVELS,
- *     z_0 = X,  z_1 = z_0 + h f(t, z_0),
- *     z_(m+1) = z_(m-1) + 2h f(t + m h, z_m),   h = H / n_j,
- * whose end value T_j1 = z_(n_j) has an error expansion in even powers of
- * h (Gragg), and extrapolates to h = 0 by Aitken and Neville:
- *     T_j,k+1 = T_jk + (T_jk - T_(j-1)k) / ((n_j / n_(j-k))^2 - 1).
- * T_LL is of order 2 LEVELS; |T_LL - T_L,L-1|, which estimates the error
- * of the lower-order value, controls the step size, so the value kept is
- * better than the control asks.  Steps end exactly on each output time.
- * Nothing in it is one of the methods being judged (GSL's bsimp is a
- * semi-implicit extrapolation with another sequence and control).
+ * The method.  Gragg-Bulirsch-Stoer extrapolation of order 16, or, when
+ * the problem is stiff, the linearly implicit Euler method extrapolated
+ * to order 8 (extrap.c has both).  The error estimate of a step (the
+ * difference of its two highest extrapolations, the error of the lower
+ * one) controls its size, so the value kept is better than the control
+ * asks.  Nothing in it is one of the methods being judged (GSL's bsimp is
+ * a semi-implicit extrapolation of the midpoint rule, in doubles, with
+ * another sequence and control).
+ *
+ * Stiffness.  The first solution starts with GBS and, after every step it
+ * accepts, estimates the spectral radius rho of the Jacobian df/dx
+ * (extrap_spectral_radius, two right-hand sides).  When STIFF_STEPS
+ * successive steps have H rho >= EXTRAP_GBS_STIFF, the steps are held by
+ * stability, not accuracy (extrap.c): the problem is stiff.  The measure
+ * is a ratio of times (H against 1 / rho), so it means the same in any
+ * units; STIFF_STEPS successive steps, as Hairer's DOPRI5 asks, keep one
+ * step's rough estimate from deciding.  The first solution is then
+ * computed again, from the start, by the linearly implicit method, as
+ * long as it spends less than 1 / LI_ADVANTAGE of what GBS would at the
+ * pace of the steps held; if it does, every solution is made by it, and
+ * if not (a problem stiff only mildly, or only for a while), GBS makes
+ * them all, without watching.  The linearly implicit method's Jacobian is
+ * taken by forward differences at the start of every step (the
+ * extended-precision functions have no Jacobian; its accuracy decides
+ * only the stability, extrap.c).
  *
  * The error test of a component is relative to its magnitude so far,
  * floored at FLOOR of its group's (coordinates, velocities): scaling the
@@ -38,6 +51,7 @@
  * GSL has no extended-precision linear algebra, hence linalg.c's la_ext.
  */
 #include "simimpl.h"
+#include "extrap.h"
 #include "linalg.h"
 
 #include <errno.h>
@@ -47,14 +61,27 @@
 #include <string.h>
 
 enum {
-    LEVELS = 8,           /* extrapolation order 2 LEVELS = 16 (seq below) */
     MAX_SOLUTIONS = 5,
     STEP_BUDGET = 2000000,   /* steps of the first solution before giving up */
     STEP_GROWTH = 8,      /* a refinement taking more times the steps than the
                            * solution before it is in rounding's realm: stop */
     SIDE_PIECES_MAX = 64, /* a side step is split at most this much */
     NEWTON_MAX = 50,
+    STIFF_STEPS = 15,     /* successive GBS steps held by stability: stiff */
 };
+/* On a stiff problem the linearly implicit method replaces GBS only when
+ * its first solution spends at most 1 / LI_ADVANTAGE of the right-hand
+ * sides GBS would.  Its right-hand sides cost more: each step also
+ * factors 8 matrices of order 2n and solves with them 51 times (4 times
+ * GBS's time per right-hand side on the 2-state Van der Pol oscillator,
+ * tests/sim/specs/van_der_pol.yaml).  And on a nonlinear stiff problem its
+ * refinements cost more: its extrapolation loses order, and there all its
+ * solutions took 42 times its first, GBS's 6.5 times.  4 x 6.5 = 26: with
+ * eps = 1e-5 GBS's pace would spend 9.7 times its first solution's
+ * right-hand sides, and GBS is the faster (1.7 s against 2.8 s); with
+ * eps = 1e-6 61 times, and it is the slower (13.6 s against 9.9 s, with
+ * an error estimate 14 times larger). */
+#define LI_ADVANTAGE 25.0
 #define TOL_FIRST 1e-15   /* relative tolerance of the first solution */
 #define TOL_STEP 10.0     /* each refinement's tolerance is this much tighter */
 /* Two solutions agree when they differ by at most this many units of
@@ -81,12 +108,24 @@ typedef struct Ref {
     eomc_ext *eq, *dK;            /* [2(n+nc)] the LU's equilibration, [n+nc] */
     int have_prev;                /* a and lam hold the last solution */
     eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
-    eomc_ext *z0, *z1, *z2, *c0, *c1;    /* [N] midpoint sums, compensations */
     eomc_ext *Y, *G, *Y2;         /* [N] side steps' state, x', result */
-    eomc_ext *T;                  /* [LEVELS * N] the extrapolation tableau */
-    eomc_ext *mag;                /* [N] the largest |X_i| so far */
+    eomc_ext *mag, *sc;           /* [N] the largest |X_i| so far, the scales */
+    Extrap *ex;
+    int method;                   /* EXTRAP_GBS or EXTRAP_LINEARLY_IMPLICIT */
+    int detect;                   /* watch GBS's steps for stiffness */
+    int held;                     /* successive steps held by stability */
+    double held_t;                /* where the first of them started */
+    long held_evals;              /* and the steps' right-hand sides before it */
+    int stiff;                    /* GBS found the problem stiff */
+    double stiff_t, stiff_hrho;   /* where the last step held ended, its H rho */
+    double gbs_evals;             /* what GBS would spend on the first solution */
+    double eval_budget;           /* right-hand sides a solution may spend */
+    long li_evals;                /* what it spent on the first solution */
+    int dearer;                   /* stiff, but the linearly implicit method was not
+                                   * cheaper than GBS (-1: it failed) */
     double tol;
-    long steps, evals;
+    long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
+                                    * the rows' side steps' (stepping) */
     double fail_t, *fail_x;       /* where a right-hand side failed [N] */
 } Ref;
 
@@ -218,75 +257,11 @@ rhs(Ref *r, eomc_ext t, const eomc_ext *X, eomc_ext *F)
     return rc;
 }
 
-/* The error of a step: max_i |T_LL - T_L,L-1| / (tol scale_i). */
-static double
-step_error(const Ref *r, const eomc_ext *hi, const eomc_ext *lo)
-{
-    int n = r->n;
-    eomc_ext group[2] = {0, 0}, worst = 0;
-    for (int i = 0; i < r->N; i++)
-        group[i >= n] = fmaxl(group[i >= n], r->mag[i]);
-    for (int i = 0; i < r->N; i++) {
-        eomc_ext sc = fmaxl(fmaxl(r->mag[i], fabsl(hi[i])), FLOOR * group[i >= n]);
-        eomc_ext d = fabsl(hi[i] - lo[i]);
-        if (d > 0)
-            worst = fmaxl(worst, sc > 0 ? d / (r->tol * sc) : INFINITY);
-    }
-    return (double)worst;
-}
-
-/* The step sequence n_j (Bulirsch's): the weights of the extrapolation
- * to h = 0 sum in absolute value to 9.1, where the harmonic 2, 4, 6, ...
- * of the same order gives 119, and rounding errors grow with them. */
-static const int seq[LEVELS] = {2, 4, 6, 8, 12, 16, 24, 32};
-
-/* One extrapolated step of size H from (t, X) with F = f(t, X): T_LL into
- * out, and its error (> 1: reject).  Row k of r->T holds the latest
- * T_(.,k+1) of the tableau; the midpoint sums are compensated (Kahan), so
- * that the n_j additions of a level cost no more than rounding once. */
+/* rhs as extrap.c calls it. */
 static int
-gbs_step(Ref *r, eomc_ext t, eomc_ext H, const eomc_ext *X, const eomc_ext *F,
-         eomc_ext *out, double *err)
+ext_rhs(void *ctx, eomc_ext t, const eomc_ext *X, eomc_ext *F)
 {
-    int N = r->N;
-    eomc_ext *z0 = r->z0, *z1 = r->z1, *c0 = r->c0, *c1 = r->c1, *g = r->z2;
-    for (int j = 0; j < LEVELS; j++) {
-        int nj = seq[j];
-        eomc_ext h = H / nj, den[LEVELS];
-        for (int i = 0; i < N; i++) {
-            z0[i] = X[i];
-            z1[i] = X[i] + h * F[i];
-            c0[i] = c1[i] = 0;
-        }
-        for (int m = 1; m < nj; m++) {
-            if (rhs(r, t + m * h, z1, g) != 0)
-                return -1;
-            for (int i = 0; i < N; i++) { /* z0 := z0 + 2h g, compensated */
-                eomc_ext y = 2 * h * g[i] - c0[i], s = z0[i] + y;
-                c0[i] = (s - z0[i]) - y;
-                z0[i] = s;
-            }
-            eomc_ext *tz = z0, *tc = c0; /* the new value is the next z1 */
-            z0 = z1, c0 = c1, z1 = tz, c1 = tc;
-        }
-        for (int k = 0; k < j; k++) { /* (n_j / n_(j-k-1))^2 - 1 */
-            eomc_ext ratio = (eomc_ext)nj / seq[j - k - 1];
-            den[k] = ratio * ratio - 1;
-        }
-        for (int i = 0; i < N; i++) {
-            eomc_ext c = z1[i] - c1[i]; /* the sum with its lost low part */
-            for (int k = 0; k < j; k++) {
-                eomc_ext *row = r->T + (size_t)k * N;
-                eomc_ext next = c + (c - row[i]) / den[k];
-                row[i] = c;
-                c = next;
-            }
-            r->T[(size_t)j * N + i] = c;
-        }
-    }
-    memcpy(out, r->T + (size_t)(LEVELS - 1) * N, (size_t)N * sizeof *out);
-    *err = step_error(r, out, r->T + (size_t)(LEVELS - 2) * N);
-    return 0;
+    return rhs(ctx, t, X, F);
 }
 
 /* The state at t1 inside an accepted step from (t, r->X): a step of its
@@ -308,7 +283,9 @@ side_step(Ref *r, eomc_ext t, eomc_ext t1, eomc_ext *out)
         for (; p < pieces; p++) {
             double e;
             if ((p > 0 && rhs(r, t + p * h, r->Y, r->G) != 0) ||
-                gbs_step(r, t + p * h, h, r->Y, r->G, r->Y, &e) != 0 || !(e <= SIDE_SLACK))
+                extrap_step(r->ex, r->method, t + p * h, h, r->Y, r->G, r->sc, r->tol,
+                            r->Y, &e) != 0 ||
+                !(e <= SIDE_SLACK))
                 break;
         }
         if (p == pieces) {
@@ -322,33 +299,95 @@ side_step(Ref *r, eomc_ext t, eomc_ext t1, eomc_ext *out)
     return -1;
 }
 
+/* Each component's scale for the error tests: its largest magnitude so
+ * far, at least FLOOR of its group's. */
+static void
+scales(Ref *r)
+{
+    int n = r->n;
+    eomc_ext group[2] = {0, 0};
+    for (int i = 0; i < r->N; i++)
+        group[i >= n] = fmaxl(group[i >= n], r->mag[i]);
+    for (int i = 0; i < r->N; i++)
+        r->sc[i] = fmaxl(r->mag[i], FLOOR * group[i >= n]);
+}
+
+/* The right-hand sides of the steps so far, those of the rows' side
+ * steps apart: the methods are compared by them, as both pay for the rows
+ * alike. */
+static long
+stepping(const Ref *r)
+{
+    return r->evals - r->side_evals;
+}
+
+/* Whether GBS's steps are held by stability, after a step of size H
+ * from t0 to (t, r->X), with r->F there and e0 right-hand sides spent by
+ * the steps before it.  A failed estimate (the model failing a little off
+ * the solution) counts as not held.  When the problem is found stiff,
+ * what GBS would spend on the whole span, at the rate of the steps held. */
+static int
+held_by_stability(Ref *r, eomc_ext t0, eomc_ext t, eomc_ext H, long e0, eomc_ext t_end)
+{
+    double rho;
+    if (extrap_spectral_radius(r->ex, t, r->X, r->F, r->sc, &rho) != 0)
+        rho = 0;
+    if (!((double)H * rho >= EXTRAP_GBS_STIFF)) {
+        r->held = 0;
+        return 0;
+    }
+    if (r->held++ == 0) /* the first of them */
+        r->held_t = (double)t0, r->held_evals = e0;
+    if (r->held < STIFF_STEPS)
+        return 0;
+    r->stiff = 1;
+    r->stiff_t = (double)t;
+    r->stiff_hrho = (double)H * rho;
+    double rate = (double)(stepping(r) - r->held_evals) / ((double)t - r->held_t);
+    r->gbs_evals = (double)stepping(r) + rate * (double)(t_end - t);
+    return 1;
+}
+
 /* One solution at tolerance r->tol: the rows [nrows * N] (doubles).
  * The steps go as the tolerance allows, not to the output times, so that
  * rounding accumulates over as few of them as it can; an output time
- * inside a step gets a side step from the step's start. */
+ * inside a step gets a side step from the step's start (with the
+ * linearly implicit method, from its Jacobian there too).  0, -1 when the
+ * model fails or the steps become too small, -2 over the step budget, -3
+ * when GBS finds the problem stiff (r->detect), -4 over r->eval_budget. */
 static int
 solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budget)
 {
-    int N = r->N;
-    long nrows = eomc_run_rows(o), k = 1;
+    int N = r->N, implicit = r->method == EXTRAP_LINEARLY_IMPLICIT;
+    int need_jacobian = implicit;
+    long nrows = eomc_run_rows(o), k = 1, e0 = 0; /* e0: right-hand sides before a step */
     for (int i = 0; i < N; i++) {
         r->X[i] = x0[i];
         r->mag[i] = fabsl(r->X[i]);
         rows[i] = x0[i];
     }
+    scales(r);
     r->have_prev = 0;
-    r->steps = r->evals = 0;
+    r->held = 0;
+    r->steps = r->evals = r->side_evals = 0;
     eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t, H = span / 100;
     if (nrows > 1 && rhs(r, t, r->X, r->F) != 0)
         return -1;
     while (t < t_end) {
         if (r->steps >= budget)
             return -2;
+        if (stepping(r) > r->eval_budget)
+            return -4;
+        if (need_jacobian && extrap_jacobian(r->ex, t, r->X, r->F, r->sc) != 0)
+            return -1;
+        need_jacobian = 0;
         eomc_ext left = t_end - t, step = H >= left ? left : 2 * H > left ? left / 2 : H;
         double err;
-        if (gbs_step(r, t, step, r->X, r->F, r->Xn, &err) != 0)
+        if (extrap_step(r->ex, r->method, t, step, r->X, r->F, r->sc, r->tol, r->Xn,
+                        &err) != 0)
             err = INFINITY; /* a stage failed: a smaller step may not */
-        double fac = err > 0 ? SAFETY * pow(err, -1.0 / (2 * LEVELS - 1)) : GROW_MAX;
+        double fac = err > 0 ? SAFETY * pow(err, -1.0 / extrap_error_order(r->method))
+                             : GROW_MAX;
         fac = fmin(GROW_MAX, fmax(SHRINK_MAX, fac));
         if (!(err <= 1.0)) {
             H = step * (isfinite(err) ? fac : 0.5);
@@ -360,13 +399,13 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             }
             continue;
         }
-        eomc_ext t1 = step == left ? t_end : t + step;
+        eomc_ext t1 = step == left ? t_end : t + step, t0 = t;
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
-            eomc_ext tk = eomc_run_row_time(o, k), *x = r->Y2;
-            if (tk == t1)
-                x = r->Xn;
-            else if (side_step(r, t, tk, x) != 0)
+            eomc_ext tk = eomc_run_row_time(o, k), *x = r->Xn;
+            long before = r->evals;
+            if (tk != t1 && side_step(r, t, tk, x = r->Y2) != 0)
                 return -1;
+            r->side_evals += r->evals - before;
             for (int i = 0; i < N; i++)
                 rows[(size_t)k * N + i] = (double)x[i];
         }
@@ -375,8 +414,13 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         r->steps++;
         for (int i = 0; i < N; i++)
             r->mag[i] = fmaxl(r->mag[i], fabsl(r->X[i]));
+        scales(r);
         if (rhs(r, t, r->X, r->F) != 0)
             return -1;
+        if (r->detect && !implicit && held_by_stability(r, t0, t, step, e0, t_end))
+            return -3;
+        e0 = stepping(r);
+        need_jacobian = implicit;
         H = step * fac;
     }
     return 0;
@@ -385,14 +429,14 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
 static void
 ref_free(Ref *r)
 {
-    eomc_ext *arrays[] = {r->p,  r->u,  r->dudt, r->M,  r->h,  r->K,  r->r,  r->f,
-                          r->B,  r->a,  r->lam,  r->cj[0], r->X, r->F, r->Xn, r->z0,
-                          r->z1, r->z2, r->c0,   r->c1, r->Y,  r->G,  r->Y2, r->T,
-                          r->mag, r->eq, r->dK};
+    eomc_ext *arrays[] = {r->p, r->u, r->dudt, r->M,      r->h, r->K, r->r,  r->f,
+                          r->B, r->a, r->lam,  r->cj[0], r->X, r->F, r->Xn, r->Y,
+                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->perm);
     free(r->fail_x);
+    extrap_free(r->ex);
 }
 
 static eomc_ext *
@@ -416,19 +460,20 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
                     nc * n * nu, nc * n}, ncj = 0;
     for (int k = 0; k < 9; k++)
         ncj += cj[k];
-    eomc_ext **arrays[] = {&r->p,  &r->u,  &r->dudt, &r->M,  &r->h,  &r->K,  &r->r,
-                           &r->f,  &r->B,  &r->a,    &r->lam, &r->cj[0], &r->X, &r->F,
-                           &r->Xn, &r->z0, &r->z1,   &r->z2, &r->c0, &r->c1, &r->Y,
-                           &r->G,  &r->Y2, &r->T,    &r->mag, &r->eq, &r->dK};
+    eomc_ext **arrays[] = {&r->p, &r->u, &r->dudt, &r->M,      &r->h, &r->K, &r->r,
+                           &r->f, &r->B, &r->a,    &r->lam,    &r->cj[0], &r->X, &r->F,
+                           &r->Xn, &r->Y, &r->G,   &r->Y2,     &r->mag, &r->sc, &r->eq,
+                           &r->dK};
     size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W,
                       nc, nc * n, n, nc, ncj, N, N,
-                      N, N, N, N, N, N, N,
-                      N, N, LEVELS * N, N, 2 * W, W};
+                      N, N, N, N, N, N, 2 * W,
+                      W};
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
     ok &= (r->fail_x = calloc(N, sizeof *r->fail_x)) != NULL;
+    ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (!ok)
         return -1;
     for (int k = 1; k < 9; k++)
@@ -440,6 +485,13 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     return 0;
 }
 
+static const char *
+method_name(int method)
+{
+    return method == EXTRAP_GBS ? "Gragg-Bulirsch-Stoer extrapolation"
+                                : "linearly implicit Euler extrapolation";
+}
+
 /* Why a solution stopped (solve's -1: the model failed at r->fail_x, or
  * the steps became too small; -2: too many steps): the doubles' own
  * message where their solve fails at that state too. */
@@ -449,15 +501,39 @@ failure(Ref *r, int st)
     eomc_sim *s = r->s;
     const double *x = r->fail_x;
     if (st == -2)
-        return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution took "
-                                 "more than %d steps at tolerance %.0e", STEP_BUDGET,
-                                 r->tol);
+        return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
+                                 "took more than %d steps at tolerance %.0e",
+                                 method_name(r->method), STEP_BUDGET, r->tol);
     if (eomc_sim_accel(s, r->fail_t, x, x + r->n, s->a) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
-    return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution cannot "
-                             "be continued here at tolerance %.0e: the model fails in "
-                             "extended precision, or its steps became too small",
-                             r->tol);
+    return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
+                             "cannot be continued here at tolerance %.0e: the model "
+                             "fails in extended precision, or its steps became too "
+                             "small", method_name(r->method), r->tol);
+}
+
+/* Why the method is what it is, once the problem was found stiff. */
+static void
+stiff_note(const Ref *r, char *buf, size_t len)
+{
+    const char *li = method_name(EXTRAP_LINEARLY_IMPLICIT);
+    int at = snprintf(buf, len, "; the problem is stiff: from t = %.4g to %.4g, %d steps "
+                      "of Gragg-Bulirsch-Stoer extrapolation were held by stability (up "
+                      "to %.3g times the inverse of the Jacobian's spectral radius, where "
+                      "accuracy alone holds them below %.3g), a pace that would spend "
+                      "%.3g right-hand sides on the first solution", r->held_t,
+                      r->stiff_t, STIFF_STEPS, r->stiff_hrho, EXTRAP_GBS_STIFF,
+                      r->gbs_evals);
+    if (at < 0 || (size_t)at >= len)
+        return;
+    buf += at, len -= (size_t)at;
+    if (r->dearer == 0)
+        snprintf(buf, len, "; the %s spent %ld", li, r->li_evals);
+    else if (r->dearer > 0)
+        snprintf(buf, len, "; the %s would have spent more than 1/%.0f of that, the "
+                 "least it must save to pay (it was stopped)", li, LI_ADVANTAGE);
+    else
+        snprintf(buf, len, "; the %s failed", li);
 }
 
 /* The largest |a_i - b_i|. */
@@ -505,10 +581,26 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     double c0 = sim_seconds(1);
     long budget = STEP_BUDGET;
     int rc = EOMC_OK;
+    r.method = EXTRAP_GBS;
+    r.detect = 1;
+    r.eval_budget = INFINITY;
     r.tol = TOL_FIRST;
     for (int k = 0; k < MAX_SOLUTIONS; k++, r.tol /= TOL_STEP) {
         double *rows = k ? prev : ref->x; /* the new solution goes to prev */
         int st = solve(&r, o, x0, rows, budget);
+        r.detect = 0;
+        if (st == -3) { /* stiff: the linearly implicit method, if it is cheaper */
+            r.method = EXTRAP_LINEARLY_IMPLICIT;
+            r.eval_budget = r.gbs_evals / LI_ADVANTAGE;
+            st = solve(&r, o, x0, rows, budget);
+            r.eval_budget = INFINITY;
+            r.li_evals = stepping(&r);
+            if (st != 0) { /* dearer, or failing where GBS may not: GBS after all */
+                r.method = EXTRAP_GBS;
+                r.dearer = st == -4 ? 1 : -1;
+                st = solve(&r, o, x0, rows, budget);
+            }
+        }
         if (st != 0 && k == 0) {
             rc = failure(&r, st);
             break;
@@ -534,13 +626,19 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     ref->error = fmax(ref->error, 0.5 * DBL_EPSILON * ref->scale);
     if (rc == EOMC_OK && ref->refinements < 2)
         rc = sim_numeric_error(s, o->t0, x0, x0 + m->nq, "no refinement of the reference "
-                               "solution could be computed at tolerance %.0e, so it cannot "
-                               "say how good it is", r.tol);
+                               "solution (%s) could be computed at tolerance %.0e, so it "
+                               "cannot say how good it is", method_name(r.method), r.tol);
     ref->cpu_seconds = sim_seconds(1) - c0;
-    snprintf(ref->source, sizeof ref->source, "Gragg-Bulirsch-Stoer extrapolation of "
-             "order %d in %d-bit floating point (%s), %d solutions to relative "
-             "tolerance %.0e", 2 * LEVELS, LDBL_MANT_DIG, "long double",
-             ref->refinements, ref->tolerance);
+    ref->method = method_name(r.method);
+    ref->stiff = r.method == EXTRAP_LINEARLY_IMPLICIT;
+    int len = snprintf(ref->source, sizeof ref->source, "%s of order %d in %d-bit "
+                       "floating point (long double)%s, %d solutions to relative "
+                       "tolerance %.0e", ref->method,
+                       ref->stiff ? EXTRAP_LI_LEVELS : 2 * EXTRAP_GBS_LEVELS,
+                       LDBL_MANT_DIG, ref->stiff ? " with a finite-difference Jacobian" : "",
+                       ref->refinements, ref->tolerance);
+    if (r.stiff && len > 0 && (size_t)len < sizeof ref->source)
+        stiff_note(&r, ref->source + len, sizeof ref->source - (size_t)len);
     free(prev);
     ref_free(&r);
     if (rc != EOMC_OK)
@@ -682,5 +780,6 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
     ref->error = NAN;
     ref->scale = la_max_abs(ref->x, (size_t)nrows * (size_t)N);
     snprintf(ref->source, sizeof ref->source, "read from %s", path);
+    ref->method = "a file";
     return EOMC_OK;
 }

@@ -18,6 +18,7 @@
  * does nothing, as a user's would write them.
  */
 #include "report.h"
+#include "compare.h"
 #include "numfmt.h"
 #include "plot.h"
 #include "simimpl.h"
@@ -46,14 +47,16 @@ typedef struct Entry {
     eomc_stats st;
     double cpu;           /* seconds per run */
     double err_end, err_max, drift, residual;
+    double *comp_end, *comp_max; /* [2 nq] each component's (compare.h) */
+    double digits;        /* the fewest digits of a component */
+    int worst;            /* that component */
 } Entry;
 
 /* What a row callback measures against the reference. */
 typedef struct Probe {
     eomc_sim *s;
-    const eomc_reference *ref;
+    Compare *cmp;
     long k;
-    double err_max, err_end;
     int invariant;
     double h0, drift;
     double *res, res_max;
@@ -65,16 +68,9 @@ probe_row(void *ctx, double t, const double *x)
     Probe *p = ctx;
     const eomc_model *m = p->s->m;
     int n = m->nq;
-    if (p->k >= p->ref->nrows)
+    if (p->k >= p->cmp->ref->nrows)
         return EOMC_ENUMERIC; /* cannot happen: the grids are the same */
-    const double *xr = p->ref->x + (size_t)p->k * (size_t)p->ref->nx;
-    double e = 0;
-    for (int i = 0; i < 2 * n; i++)
-        e = fmax(e, fabs(x[i] - xr[i]));
-    if (isnan(e))
-        e = INFINITY;
-    p->err_max = fmax(p->err_max, e);
-    p->err_end = e;
+    compare_row(p->cmp, x);
     if (p->invariant) {
         double h;
         eomc_sim_invariant(p->s, t, x, x + n, &h);
@@ -145,11 +141,12 @@ time_entry(const Report *r, const eomc_run_opts *o, double first, double *x)
 
 /* Run e: measure, then time. */
 static void
-measure(const Report *r, Entry *e, double *x, double *res)
+measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
 {
     const eomc_model *m = r->sim->m;
     eomc_run_opts o = entry_opts(r, e);
-    Probe p = {.s = r->sim, .ref = r->ref, .invariant = m->invariant != NULL, .res = res};
+    Probe p = {.s = r->sim, .cmp = cmp, .invariant = m->invariant != NULL, .res = res};
+    compare_reset(cmp);
     memcpy(x, r->x0, 2 * (size_t)m->nq * sizeof *x);
     int rc = eomc_sim_integrate(r->sim, &o, x, probe_row, &p, &e->st);
     e->cpu = e->st.cpu_seconds;
@@ -167,8 +164,11 @@ measure(const Report *r, Entry *e, double *x, double *res)
         return;
     }
     e->status = RUN_OK;
-    e->err_max = p.err_max;
-    e->err_end = p.err_end;
+    e->err_max = cmp->err_max;
+    e->err_end = cmp->err_end;
+    memcpy(e->comp_end, cmp->end, 2 * (size_t)m->nq * sizeof *cmp->end);
+    memcpy(e->comp_max, cmp->max, 2 * (size_t)m->nq * sizeof *cmp->max);
+    e->worst = compare_worst(cmp, &e->digits);
     e->drift = p.drift;
     e->residual = fmax(p.res_max, e->st.max_residual);
     e->cpu = time_entry(r, &o, e->st.cpu_seconds, x);
@@ -236,15 +236,27 @@ error_cell(char *buf, size_t len, const Report *r, double err)
     snprintf(buf, len, "%s%.2e", unresolved ? "~" : "", err);
 }
 
+/* The worst column's width: the longest velocity's name. */
+static int
+name_width(const eomc_model *m)
+{
+    int w = 5; /* "worst" */
+    for (int i = 0; i < m->nq; i++)
+        if ((int)strlen(m->q_names[i]) + 1 > w)
+            w = (int)strlen(m->q_names[i]) + 1;
+    return w;
+}
+
 static void
 print_block_head(const Report *r, const Entry *e)
 {
     const eomc_model *m = r->sim->m;
     printf("\n%s, %s: %s\n", e->method, e->h > 0 ? "fixed steps" : "adaptive",
            eomc_method_description(e->method));
-    printf("  %-11s %12s %8s %8s %10s %9s %9s %10s %10s %6s",
+    printf("  %-11s %12s %8s %8s %10s %9s %9s %10s %10s %6s %-*s",
            e->h > 0 ? "fixed_step" : "tolerance", "cpu_seconds", "steps", "rejected",
-           "side_steps", "rhs_evals", "jac_evals", "error_end", "error_max", "digits");
+           "side_steps", "rhs_evals", "jac_evals", "error_end", "error_max", "digits",
+           name_width(m), "worst");
     if (m->invariant)
         printf(" %15s", "invariant_drift");
     if (m->nc > 0)
@@ -275,8 +287,11 @@ print_entry(const Report *r, const Entry *e)
     char end[32], max[32];
     error_cell(end, sizeof end, r, e->err_end);
     error_cell(max, sizeof max, r, e->err_max);
-    double digits = e->err_max > 0 ? -log10(e->err_max / r->ref->scale) : INFINITY;
-    printf(" %10s %10s %6.1f", end, max, digits);
+    char worst[128] = "-"; /* no error at all: no worst */
+    if (e->digits < INFINITY)
+        snprintf(worst, sizeof worst, "%s%s", m->q_names[e->worst % m->nq],
+                 e->worst < m->nq ? "" : "'");
+    printf(" %10s %10s %6.1f %-*s", end, max, e->digits, name_width(m), worst);
     if (m->invariant)
         printf(" %15.2e", e->drift);
     if (m->nc > 0)
@@ -436,6 +451,34 @@ write_csv(const Report *r, const Entry *e, int n)
     return rc;
 }
 
+/* --errors FILE: each run's errors, component by component (compare.h). */
+static int
+write_errors(const Report *r, const Entry *e, int n, const double *scale)
+{
+    const eomc_model *m = r->sim->m;
+    char *tmp = temp_name(r->errors);
+    FILE *f = tmp ? fopen(tmp, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "%s: --errors: cannot write %s: %s\n", r->prog, r->errors,
+                strerror(errno));
+        free(tmp);
+        return EOMC_EUSAGE;
+    }
+    compare_csv_header(f);
+    for (int k = 0; k < n; k++) {
+        const Entry *x = &e[k];
+        if (x->status == RUN_SKIPPED)
+            continue;
+        int ok = x->status == RUN_OK;
+        compare_csv_run(f, m, scale, ok ? x->comp_end : NULL, ok ? x->comp_max : NULL,
+                        x->method, x->tol,
+                        x->h > 0 ? (x->st.h_used > 0 ? x->st.h_used : x->h) : 0);
+    }
+    int rc = finish_file(r, f, tmp, r->errors);
+    free(tmp);
+    return rc;
+}
+
 /* Colours told apart in print and by most colour-blind readers: one per
  * method, in eomc_methods order; fixed steps dashed, in the method's. */
 static const char *const colours[] = {
@@ -550,9 +593,10 @@ print_title(const Report *r)
                ref->scale, ref->cpu_seconds);
     printf("%s\n", m->invariant_note);
     printf("cpu_seconds per run; errors are the largest |x - x_ref| over coordinates and "
-           "velocities, at t_end (error_end) and over the rows (error_max); digits = "
-           "-log10(error_max / %.3g); ~ marks an error the reference cannot resolve\n",
-           ref->scale);
+           "velocities, at t_end (error_end) and over the rows (error_max); digits: the "
+           "fewest of any coordinate or velocity (worst), -log10 of its largest error over "
+           "its own largest |x_ref| (at least %g of its group's); ~ marks an error the "
+           "reference cannot resolve\n", COMPARE_FLOOR);
 }
 
 /* A method's tighter settings, after it reached the step limit: they
@@ -574,12 +618,21 @@ report_run(const Report *r)
     const eomc_model *m = r->sim->m;
     int n = 0;
     Entry *e = plan(r, &n);
-    double *x = calloc(2 * (size_t)m->nq, sizeof *x);
+    size_t nx = 2 * (size_t)m->nq;
+    double *x = calloc(nx, sizeof *x);
     double *res = calloc((size_t)m->nc + 1, sizeof *res);
-    if (!e || !x || !res) {
+    double *comps = calloc(2 * nx * (size_t)(n + 1), sizeof *comps);
+    Compare cmp;
+    int cmp_ok = compare_init(&cmp, r->ref) == 0;
+    if (!e || !x || !res || !comps || !cmp_ok) {
         fprintf(stderr, "%s: out of memory\n", r->prog);
-        free(e), free(x), free(res);
+        free(e), free(x), free(res), free(comps);
+        compare_free(&cmp);
         return EOMC_EUSAGE;
+    }
+    for (int k = 0; k < n; k++) {
+        e[k].comp_end = comps + 2 * nx * (size_t)k;
+        e[k].comp_max = e[k].comp_end + nx;
     }
     print_title(r);
     fflush(stdout);
@@ -597,7 +650,7 @@ report_run(const Report *r)
             continue;
         }
         progress(r, t0, k, n, &e[k], &shown);
-        measure(r, &e[k], x, res);
+        measure(r, &e[k], x, res, &cmp);
         if (e[k].status == RUN_OK)
             ok++;
         else if (e[k].st.steps >= max_steps) /* tighter settings need more */
@@ -617,10 +670,13 @@ report_run(const Report *r)
         rc = EOMC_EUSAGE;
     if (r->plot && write_plot(r, e, n) != EOMC_OK)
         rc = EOMC_EUSAGE;
+    if (r->errors && write_errors(r, e, n, cmp.scale) != EOMC_OK)
+        rc = EOMC_EUSAGE;
     if (rc == EOMC_OK && ok == 0) {
         fprintf(stderr, "%s: no run succeeded\n", r->prog);
         rc = EOMC_ENUMERIC;
     }
-    free(e), free(x), free(res);
+    free(e), free(x), free(res), free(comps);
+    compare_free(&cmp);
     return rc;
 }

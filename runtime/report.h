@@ -24,6 +24,7 @@ typedef struct Report {
     int steps_given;             /* --steps: fixed runs of every one-step method,
                                   * not only of those usually run so */
     const char *csv, *plot;      /* files, or NULL */
+    const char *errors;          /* --errors FILE (each run's errors by component), or NULL */
     double target;               /* error_max wanted, or NAN */
     const char *prog;            /* for messages */
     const char *setting;         /* how the runs are set up, for the title */

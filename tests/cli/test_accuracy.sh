@@ -12,7 +12,12 @@
 #    and --reference FILE reads it back: the same errors; a file that does
 #    not fit is a usage error naming FILE:LINE;
 #  - --error measures one run; --summary says what is conserved, or why
-#    nothing is;
+#    nothing is; on a stiff spring the report, --stats and --error name the
+#    linearly implicit reference;
+#  - digits by component (a top whose big spin angle hid its nutation
+#    rate's error): the table's digits and worst component, and --errors
+#    FILE's rows, against errors computed here from the run's and the
+#    reference's CSVs;
 #  - usage errors (exit 2, no file left): report options without
 #    --work-precision, a plot that is neither .svg nor .png, an unknown
 #    method with a suggestion.
@@ -101,8 +106,20 @@ ok $? "--reference FILE without a velocity column: usage error naming it (exit $
 # place of its largest entry (|y'| = g t_end = 9.81): never "good to 0".
 "$eomc" run "$src/specs/falling_particle.yaml" --error -o /dev/null 2> "$tmp/fall.err"
 half_ulp=$(awk 'BEGIN { printf "%.2g", 0.5 * 2^-52 * 9.81 }')
-grep -q "(the reference is good to $half_ulp)" "$tmp/fall.err"
+grep -q "(the reference, by Gragg-Bulirsch-Stoer extrapolation, is good to $half_ulp)" "$tmp/fall.err"
 ok $? "an exact motion: the reference is good to the rounding of doubles, $half_ulp, not 0"
+
+# The stiff spring (roots -1 and -1e4): the reference is the linearly
+# implicit one, and the report's header, --stats and --error's line say so
+"$eomc" build "$src/tests/hard/specs/stiff_spring.yaml" -o "$tmp/stiff" 2> /dev/null
+"$tmp/stiff" --work-precision --methods msbdf --tolerances 1e-8 > "$tmp/stiff.txt"; st1=$?
+"$tmp/stiff" --error --stats -o /dev/null 2> "$tmp/stiff1.err"; st2=$?
+"$tmp/stiff" --error -o /dev/null 2> "$tmp/stiff2.err"; st3=$?
+[ $st1 -eq 0 ] && [ $st2 -eq 0 ] && [ $st3 -eq 0 ] &&
+  grep -q "^reference: linearly implicit Euler extrapolation of order 8 .*; the problem is stiff: " "$tmp/stiff.txt" &&
+  grep -q "^reference_method linearly implicit Euler extrapolation$" "$tmp/stiff1.err" &&
+  grep -q "(the reference, by linearly implicit Euler extrapolation (the problem is stiff), is good to " "$tmp/stiff2.err"
+ok $? "a stiff spring: the report's header, --stats and --error's line name the linearly implicit reference"
 
 # Fixed steps estimate no error: rk4 in steps of 0.5 on the pendulum
 # (period 2.1 s) keeps no digit of its energy, which the run says; in steps
@@ -143,6 +160,64 @@ ok $? "--summary: E's change against the largest kinetic energy (9.81), also whe
 "$tmp/cp" --summary -o /dev/null 2> "$tmp/cp.err"
 tr '\n' ' ' < "$tmp/cp.err" | grep -q "No drift is reported: nothing is conserved: the effect 'drive' is a force, not a potential"
 ok $? "a driven, damped cart-pole: --summary says nothing is conserved, and why"
+
+# Digits by component: a heavy top spinning to 700 rad (phi), whose
+# nutation rate theta' (up to 0.89) rkf45 at 1e-3 gets wrong by 0.05.
+# Against the whole state's largest entry that would read 3.9 digits; each
+# component against its own largest |x_ref| (at least 1e-6 of its group's)
+# gives theta' 1.3, which the table names.  Computed here from the run's
+# CSV and the reference's, both written by the simulator.
+cat > "$tmp/top.yaml" <<'YAML'
+name: top
+parameters: {m: 1.0, l: 0.2, g: 9.81, A: 0.05, C: 0.02}
+coordinates: [psi, theta, phi]
+frames:
+  body_axes: {rotation: [{z: psi}, {x: theta}, {z: phi}]}
+points:
+  centre: {frame: body_axes, at: [0, 0, l]}
+bodies:
+  top: {mass: m, frame: body_axes, center: centre, inertia: [A, A, C]}
+effects:
+  gravity: {gravity: [0, 0, -g]}
+initial: {theta: 0.5, phi': 60}
+scene: {t_end: 12, dt: 0.01, method: rkf45, rtol: 1e-3, atol: 1e-3}
+YAML
+"$eomc" build "$tmp/top.yaml" -o "$tmp/top" 2> /dev/null
+"$tmp/top" --work-precision --methods rkf45 --tolerances 1e-3 --errors "$tmp/errs.csv" \
+  > "$tmp/top.txt"; st1=$?
+"$tmp/top" --reference-out "$tmp/topref.csv" -o "$tmp/toprun.csv" --errors "$tmp/errs1.csv" \
+  2> "$tmp/top.err"; st2=$?
+# per component: largest |x - x_ref|, largest |x_ref|, the floor of its group
+read -r errs worst digits whole <<EOF
+$(awk -F, 'NR == FNR { if (FNR > 1) for (i = 2; i <= 7; i++) { r[FNR, i] = $i
+      a = $i < 0 ? -$i : $i; if (a > s[i]) s[i] = a }; next }
+    FNR == 1 { for (i = 2; i <= 7; i++) name[i] = $i; next }
+    { for (i = 2; i <= 7; i++) { d = $i - r[FNR, i]; if (d < 0) d = -d; if (d > e[i]) e[i] = d } }
+    END { for (i = 2; i <= 7; i++) { g = i <= 4 ? 2 : 5; m = 0
+        for (j = g; j < g + 3; j++) if (s[j] > m) m = s[j]
+        sc = s[i] > 1e-6 * m ? s[i] : 1e-6 * m; dg = -log(e[i] / sc) / log(10)
+        if (i == 2 || dg < best) { best = dg; worst = name[i] }
+        if (e[i] > emax) emax = e[i]; if (s[i] > smax) smax = s[i] }
+      for (i = 2; i <= 7; i++) printf "%s=%.17g;", name[i], e[i]
+      printf " %s %.1f %.1f\n", worst, best, -log(emax / smax) / log(10) }' \
+  "$tmp/topref.csv" "$tmp/toprun.csv")
+EOF
+row=$(grep '^  1e-03 ' "$tmp/top.txt")
+[ $st1 -eq 0 ] && [ $st2 -eq 0 ] && [ "$worst" = "theta'" ] &&
+  awk -v d="$digits" -v w="$whole" 'BEGIN { exit !(d + 2 < w) }' &&
+  [ "$(echo "$row" | awk '{ print $10, $11 }')" = "$digits $worst" ]
+ok $? "the report's digits are the worst component's, named: $worst $digits (against the whole state $whole): $(echo "$row" | awk '{ print $10, $11 }')"
+# --errors: a row per run and component, the same errors as computed here
+check_errors() { awk -F, -v errs="$errs" 'BEGIN { n = split(errs, kv, ";")
+    for (k = 1; k < n; k++) { split(kv[k], p, "="); want[p[1]] = p[2] } }
+  NR == 1 { bad = $0 != "method,tolerance,fixed_step,component,scale,error_end,error_max,digits"; next }
+  { rows++; d = $7 - want[$4]; if (d < 0) d = -d
+    if ($1 != "rkf45" || $2 != "0.001" || $3 != "" || !($4 in want) || d > 1e-12 * want[$4]) bad = 1 }
+  END { exit bad || rows != 6 }' "$1"; }
+check_errors "$tmp/errs.csv" && check_errors "$tmp/errs1.csv"
+ok $? "--errors: one row per component with the same error_max, from the report and from one run"
+grep -q "; theta' keeps the fewest digits, $digits$" "$tmp/top.err"
+ok $? "--error's line names the component with the fewest digits ($digits, theta')"
 
 # usage errors
 "$tmp/pend" --csv "$tmp/x.csv" > /dev/null 2> "$tmp/u1.err"; st=$?

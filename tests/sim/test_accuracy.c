@@ -19,7 +19,15 @@
  *    after the published period), E = T + V for the pendulum,
  *    nothing for a driven, damped cart-pole (the effect named);
  *  - units: Kepler with lengths in micrometres (a = 1e6) needs the same
- *    reference steps and gets the same relative error estimate.
+ *    reference steps and gets the same relative error estimate;
+ *  - stiff problems: the damped spring with roots -1 and -1e4
+ *    (tests/hard/specs/stiff_spring.yaml) gets the linearly implicit
+ *    reference, says so, and lies on the closed form through the
+ *    transient and over the decay, at a small part of GBS's work; in
+ *    milliseconds it is the same reference; Van der Pol's oscillator with
+ *    eps = 1e-6 (tests/sim/specs/van_der_pol.yaml) is on the Bari test
+ *    set's published value at t = 2; the pendulum, chain5 and Kepler stay
+ *    with GBS.
  *
  * usage: test_accuracy SOURCE_ROOT SIM_PENDULUM SIM_CHAIN5 SIM_KEPLER
  */
@@ -33,8 +41,9 @@
 #include <unistd.h>
 
 extern const eomc_model pendulum_model, chain5_model, kepler_model, arenstorf_model,
-    cart_pole_model;
-extern const eomc_model_ext pendulum_model_ext, chain5_model_ext, kepler_model_ext;
+    cart_pole_model, stiff_spring_model, van_der_pol_model;
+extern const eomc_model_ext pendulum_model_ext, chain5_model_ext, kepler_model_ext,
+    stiff_spring_model_ext, van_der_pol_model_ext;
 
 static const char *root, *sim_pendulum, *sim_chain5, *sim_kepler;
 
@@ -116,6 +125,15 @@ kepler_exact(const double *start, double t, double *x)
     x[3] = (double)(b * n * cosl(E) / w);
 }
 
+/* Whether GBS made the reference, as its source says first. */
+static int
+gbs(const eomc_reference *ref)
+{
+    const char *name = "Gragg-Bulirsch-Stoer extrapolation";
+    return !ref->stiff && strncmp(ref->source, name, strlen(name)) == 0 &&
+           strcmp(ref->method, name) == 0;
+}
+
 static void
 reference_vs_mpmath(void)
 {
@@ -133,6 +151,7 @@ reference_vs_mpmath(void)
           "t = 0 .. 10", d);
     CHECK(d <= ref.error + DBL_EPSILON * ref.scale,
           "... within its own error estimate %.2g (plus rounding to doubles)", ref.error);
+    CHECK(gbs(&ref), "... made by GBS, not stiff: %s", ref.source);
     eomc_reference_free(&ref);
     eomc_sim_free(s);
 
@@ -152,6 +171,7 @@ reference_vs_mpmath(void)
     rc = eomc_reference_compute(s, &chain5_model_ext, &o, x, &ref);
     d = rc == EOMC_OK && have ? table_diff(&ref, &tb, 100) : INFINITY;
     CHECK(d <= 2e-15, "... and with rows every 0.01 (between its steps), to %.2g", d);
+    CHECK(gbs(&ref), "... made by GBS: %s", ref.method);
     eomc_reference_free(&ref);
     eomc_sim_free(s);
 
@@ -166,9 +186,9 @@ reference_vs_mpmath(void)
         for (int i = 0; i < 4; i++)
             d = fmax(d, fabs(ref.x[k * 4 + i] - want[i]));
     }
-    CHECK(rc == EOMC_OK && ref.nrows == 4 && d <= 4e-15,
-          "kepler: after 1, 2, 3 periods the reference is on Kepler's equation's "
-          "solution to %.2g", d);
+    CHECK(rc == EOMC_OK && ref.nrows == 4 && d <= 4e-15 && gbs(&ref),
+          "kepler: after 1, 2, 3 periods the reference (%s) is on Kepler's equation's "
+          "solution to %.2g", ref.method, d);
     eomc_reference_free(&ref);
     eomc_sim_free(s);
 }
@@ -507,6 +527,128 @@ scaled_units(void)
     eomc_reference_free(&ref[1]);
 }
 
+/* ---- stiff problems ---- */
+
+/* The damped spring x'' + 10001 x' + 1e4 x = 0 from x = 1, x' = 0: roots
+ * -1 and -1e4, in long double. */
+static void
+spring_exact(long double t, double *x)
+{
+    long double slow = expl(-t), fast = expl(-1e4L * t), d = 1 - 1e-4L;
+    x[0] = (double)((slow - 1e-4L * fast) / d);
+    x[1] = (double)((fast - slow) / d);
+}
+
+/* The largest distance of ref's rows from the spring's closed form, its
+ * time unit `unit` seconds. */
+static double
+spring_diff(const eomc_reference *ref, double unit)
+{
+    double d = 0, want[2];
+    for (long k = 0; k < ref->nrows; k++) {
+        spring_exact((long double)ref->t[k] * unit, want);
+        d = fmax(d, fabs(ref->x[2 * k] - want[0]));
+        d = fmax(d, fabs(ref->x[2 * k + 1] - want[1] * unit)); /* velocity per unit */
+    }
+    return d;
+}
+
+/* Whether the linearly implicit method made the reference, and says
+ * why. */
+static int
+linearly_implicit(const eomc_reference *ref)
+{
+    const char *name = "linearly implicit Euler extrapolation";
+    return ref->stiff && strcmp(ref->method, name) == 0 &&
+           strncmp(ref->source, name, strlen(name)) == 0 &&
+           strstr(ref->source, "the problem is stiff") != NULL;
+}
+
+static void
+stiff_references(void)
+{
+    const eomc_model *m = &stiff_spring_model;
+    eomc_reference ref, ms;
+    double x[2];
+    /* over the decay (the scene: rows every 1 to 100), then through the
+     * transient (rows every 1e-4, its time constant, to 1) */
+    eomc_sim *s = sim_at_start(m, x);
+    eomc_run_opts o = eomc_run_defaults(m);
+    int rc = eomc_reference_compute(s, &stiff_spring_model_ext, &o, x, &ref);
+    double d = rc == EOMC_OK ? spring_diff(&ref, 1) : INFINITY;
+    CHECK(rc == EOMC_OK && linearly_implicit(&ref),
+          "stiff spring: the reference is the linearly implicit one, and says why: %s",
+          rc == EOMC_OK ? ref.source : eomc_sim_error(s));
+    CHECK(d <= ref.error + DBL_EPSILON * ref.scale,
+          "... over t = 0 .. 100 it is on the closed form to %.2g, within its own error "
+          "estimate %.2g (plus rounding to doubles)", d, ref.error);
+    /* the work of msbdf's run at the scene's rtol 1e-8 (a Jacobian counted as
+     * the 2n + 1 right-hand sides of finite differences), against the
+     * reference's last solution: GBS's took 1.7e7 right-hand sides */
+    eomc_stats st;
+    int rc2 = eomc_sim_integrate(s, &o, x, NULL, NULL, &st);
+    double run = (double)st.rhs_evals + 3.0 * (double)st.jac_evals;
+    CHECK(rc2 == EOMC_OK && (double)ref.rhs_evals <= 100 * run,
+          "... its last solution spends %ld right-hand sides, %.1f times the work of "
+          "msbdf's run at rtol 1e-8 (%.0f)", ref.rhs_evals, (double)ref.rhs_evals / run,
+          run);
+    eomc_reference_free(&ref);
+    eomc_sim_initial(s, x, x + 1);
+    o.t_end = 1, o.dt = 1e-4;
+    rc = eomc_reference_compute(s, &stiff_spring_model_ext, &o, x, &ref);
+    d = rc == EOMC_OK ? spring_diff(&ref, 1) : INFINITY;
+    CHECK(rc == EOMC_OK && linearly_implicit(&ref) &&
+              d <= ref.error + DBL_EPSILON * ref.scale,
+          "... with rows every 1e-4 (the fast time constant) to t = 1 to %.2g, within "
+          "%.2g", d, ref.error);
+    eomc_reference_free(&ref);
+    eomc_sim_free(s);
+
+    /* in milliseconds: k = 1e4 / ms^2 = 1e-2, c = 10.001, span 1e5 */
+    s = eomc_sim_alloc(m);
+    eomc_sim_set(s, "k", 1e-2);
+    eomc_sim_set(s, "c", 10.001);
+    eomc_sim_initial(s, x, x + 1);
+    o = eomc_run_defaults(m);
+    o.t_end = 1e5, o.dt = 1e3;
+    rc = eomc_reference_compute(s, &stiff_spring_model_ext, &o, x, &ms);
+    eomc_sim_free(s);
+    s = sim_at_start(m, x);
+    o = eomc_run_defaults(m);
+    rc |= eomc_reference_compute(s, &stiff_spring_model_ext, &o, x, &ref);
+    d = rc == EOMC_OK ? spring_diff(&ms, 1e-3) : INFINITY;
+    /* (1e-3 is no power of 2: rounding may tip a step's acceptance) */
+    CHECK(rc == EOMC_OK && linearly_implicit(&ms) &&
+              labs(ms.steps - ref.steps) <= ref.steps / 50 &&
+              ms.refinements == ref.refinements && d <= ms.error + DBL_EPSILON * ms.scale,
+          "... in milliseconds: the same method, steps (%ld, %ld, within 2 %%) and "
+          "refinements, on the closed form to %.2g", ms.steps, ref.steps, d);
+    eomc_reference_free(&ms);
+    eomc_reference_free(&ref);
+    eomc_sim_free(s);
+
+    /* Van der Pol, eps = 1e-6: the test set's reference at t = 2 (vdpol.f,
+     * revision 1.2 of 2006; its earlier x' was -0.8928097010248125, 1.5e-14
+     * away, which is how well it knows itself) */
+    const double published[2] = {1.706167732170483, -0.8928097010247975}, own = 1.5e-14;
+    m = &van_der_pol_model;
+    s = sim_at_start(m, x);
+    o = eomc_run_defaults(m);
+    rc = eomc_reference_compute(s, &van_der_pol_model_ext, &o, x, &ref);
+    d = INFINITY;
+    if (rc == EOMC_OK && ref.t[ref.nrows - 1] == 2)
+        d = fmax(fabs(ref.x[2 * ref.nrows - 2] - published[0]),
+                 fabs(ref.x[2 * ref.nrows - 1] - published[1]));
+    CHECK(rc == EOMC_OK && linearly_implicit(&ref),
+          "van der pol, eps = 1e-6: the linearly implicit reference (%s)",
+          rc == EOMC_OK ? ref.source : eomc_sim_error(s));
+    CHECK(d <= ref.error + own,
+          "... at t = 2 it is on the test set's published value to %.2g, within its own "
+          "error estimate %.2g and the published value's %.2g", d, ref.error, own);
+    eomc_reference_free(&ref);
+    eomc_sim_free(s);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -521,5 +663,6 @@ main(int argc, char **argv)
     rows_cost_no_steps();
     invariants();
     scaled_units();
+    stiff_references();
     return check_done();
 }

@@ -180,6 +180,8 @@ typedef struct Run {
     eomc_row_fn row;
     void *ctx;
     int row_status;               /* the callback's nonzero status: ROW_STOP */
+    double stop_t;                /* ... the time it was called with */
+    const double *stop_x;         /* ... and the state (kept until march returns) */
     int progress, shown;          /* progress on the terminal */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
@@ -450,6 +452,12 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
     sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
                       "its row of B = df/dq'' vanishes here (it reverses direction), so "
                       "the accelerations are no longer determined", r->s->m->c_names[k]);
+    /* the step through it is not taken: the run ends at its start, the last
+     * state the steps reached to their tolerance (the one step to the
+     * degeneracy evaluates the accelerations where they are not
+     * determined, so its state there may be off) */
+    memcpy(r->x, r->y0, (size_t)N * sizeof *r->x);
+    r->t = t0;
     return GSL_EBADFUNC;
 }
 
@@ -535,8 +543,12 @@ after_step(Run *r, double t0)
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
         if (s->stabilize == EOMC_STABILIZE_PROJECT) {
-            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK)
+            /* a failed projection leaves the step's end as it was */
+            memcpy(r->xt, x, (size_t)r->N * sizeof *x);
+            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
+                memcpy(x, r->xt, (size_t)r->N * sizeof *x);
                 return GSL_EBADFUNC;
+            }
             gsl_odeiv2_step_reset(r->step);
             res = sim_level_residual(s, t, x, x + n);
             if (sim_constraint_rows(s, t, x, r->B1) != 0)
@@ -554,6 +566,17 @@ after_step(Run *r, double t0)
 }
 
 /* ---- rows ---- */
+
+/* A callback (row or on_event) returned status at (t, x): the run stops
+ * there, and x is the state the caller gets back (eomc_sim_integrate). */
+static int
+callback_stop(Run *r, int status, double t, const double *x)
+{
+    r->row_status = status;
+    r->stop_t = t;
+    r->stop_x = x;
+    return ROW_STOP;
+}
 
 /* t0 + k dt is computed from k, so no rounding accumulates. */
 double
@@ -657,10 +680,8 @@ emit_rows(Run *r, int final)
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
-        if (rc != EOMC_OK) {
-            r->row_status = rc;
-            return ROW_STOP;
-        }
+        if (rc != EOMC_OK)
+            return callback_stop(r, rc, t, r->xrow);
         r->k++;
     }
     return GSL_SUCCESS;
@@ -762,10 +783,8 @@ check_events(Run *r, double t0, int *what, int *fired)
         else if (side_from(r, t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
             return GSL_EBADFUNC;
         int rc = r->o->on_event ? r->o->on_event(r->o->event_ctx, k, t, r->xe) : EOMC_OK;
-        if (rc != EOMC_OK) {
-            r->row_status = rc;
-            return ROW_STOP;
-        }
+        if (rc != EOMC_OK)
+            return callback_stop(r, rc, t, r->xe);
         if (m->ev_action[k] == EOMC_EVENT_RECORD)
             continue;
         memcpy(r->x, r->xe, bytes);
@@ -870,11 +889,7 @@ finish_at_event(Run *r)
     if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= r->t)
         return EVENT_STOPPED;
     rc = r->row ? r->row(r->ctx, r->t, r->x) : EOMC_OK;
-    if (rc != EOMC_OK) {
-        r->row_status = rc;
-        return ROW_STOP;
-    }
-    return EVENT_STOPPED;
+    return rc != EOMC_OK ? callback_stop(r, rc, r->t, r->x) : EVENT_STOPPED;
 }
 
 /* ---- steps ---- */
@@ -1102,6 +1117,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         st = &local;
     memset(st, 0, sizeof *st);
     st->ill_t = NAN;
+    st->t_stop = o->t0;
     st->cond_tol = o->h_fixed > 0 || !(o->rtol > 0) ? FIXED_COND_TOL : o->rtol;
     int rc = eomc_run_check(s, o);
     if (rc)
@@ -1155,11 +1171,15 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             if (status == GSL_SUCCESS)
                 status = flushed;
         }
-        if (status == EVENT_STOPPED)
-            st->t_stop = r.t;
-        if (status == ROW_STOP)
+        /* x is where the run stopped: the last state reached (t_end, a stop
+         * event, a failure), or the state a callback stopped it at */
+        st->t_stop = r.t;
+        if (status == ROW_STOP) {
+            st->t_stop = r.stop_t;
+            if (r.stop_x != x)
+                memcpy(x, r.stop_x, (size_t)r.N * sizeof *x);
             rc = r.row_status;
-        else if (status == EVENT_STOPPED)
+        } else if (status == EVENT_STOPPED)
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
             rc = step_error(&r, status);

@@ -2148,7 +2148,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     eomc_sim *sim = eomc_sim_alloc(m);
     double *x = calloc(2 * (size_t)m->nq + 1, sizeof *x);
     int rc;
-    if (!sim || !c.set || !c.init || !x) {
+    if (!sim || !c.set || !c.init || !c.sweep || !x) {
         fprintf(stderr, "%s: out of memory, or a model built for another runtime\n",
                 c.prog);
         rc = EOMC_EUSAGE;

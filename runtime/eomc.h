@@ -278,9 +278,11 @@ typedef struct eomc_stats {
     double invariant_drift, invariant_budget;
     /* The scene's events: how many fired, how many evaluations of the
      * state their location took (steps of their own), and the `stop`
-     * event that ended the run at t_stop (-1: none; the run went to t_end). */
+     * event that ended the run (-1: none). */
     long events, event_evals;
     int stop_event;
+    /* The time of the state eomc_sim_integrate leaves in x: t_end when the
+     * run went to the end, else the time it stopped at (see there). */
     double t_stop;
     /* The first `set` of an event that left the state off its holonomic or
      * velocity-level constraints (eomc_sim_inconsistency above
@@ -301,10 +303,27 @@ typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
  * message (eomc_sim_integrate checks this first). */
 int eomc_run_check(eomc_sim *s, const eomc_run_opts *o);
 
-/* Integrate from x (updated in place to the last state reached).  Returns
- * EOMC_OK, EOMC_EUSAGE for bad options (a multistep method with
- * EOMC_STABILIZE_PROJECT among them), or EOMC_ENUMERIC; the rows already
- * passed to `row` stand. */
+/* Integrate from x.  Returns EOMC_OK, EOMC_EUSAGE for bad options (a
+ * multistep method with EOMC_STABILIZE_PROJECT among them), EOMC_ENUMERIC,
+ * or the nonzero status of a callback that stopped the run; the rows
+ * already passed to `row` stand.  Whatever the ending, x is left at the
+ * state of time st->t_stop:
+ *  - the run went to t_end, or a `stop` event ended it: the state there,
+ *    which is also the last row's (under EOMC_STABILIZE_PROJECT, to the
+ *    rounding of projecting the row again);
+ *  - `row` or on_event returned nonzero: the state that call was given, at
+ *    its time (a row's is the interpolant's, as every row's is).  A
+ *    program that stops on a signal by a flag its handler sets, returned
+ *    from `row`, gets the row it stopped at (eomc_main's SIGINT);
+ *  - a numerical failure (EOMC_ENUMERIC): the last state the steps reached
+ *    to their tolerance, the end of the last accepted step (when a
+ *    constraint degenerated within a step, that step's start).  The
+ *    message's time is where the failure showed, which may differ: a
+ *    trial state past t_stop where the accelerations fail, the
+ *    degeneracy, or a row before t_stop that could not be computed.  No
+ *    row passed lies beyond the failure;
+ *  - no step was taken (bad options, a failure at t0, t_end = t0): x as
+ *    given, t_stop = t0. */
 int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
                        eomc_row_fn row, void *ctx, eomc_stats *st);
 

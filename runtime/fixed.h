@@ -16,8 +16,9 @@
 extern const gsl_odeiv2_step_type *const fixed_rk4;
 /* Implicit Euler, the implicit midpoint rule and the 2-stage Gauss
  * method: a simplified Newton iteration on the stages with the exact
- * Jacobian at the step's start, converged to the driver's tolerances as
- * GSL's own implicit steppers are (the driver must be set). */
+ * Jacobian at the step's start, which must reach the driver's tolerances
+ * as GSL's own implicit steppers' do (the driver must be set), and goes
+ * on to the rounding of the stage values (fixed.c). */
 extern const gsl_odeiv2_step_type *const fixed_rk1imp;
 extern const gsl_odeiv2_step_type *const fixed_rk2imp;
 extern const gsl_odeiv2_step_type *const fixed_rk4imp;

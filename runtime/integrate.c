@@ -142,16 +142,33 @@ enum { RESTART_STEPS = 30 };
  * smooth motion asks (Kepler's orbit at e = 0.9999 runs 100 time units
  * with every method without coming near), and a run that went on at such
  * steps would take ten million times its steps so far to cover as much
- * time again. */
+ * time again.  A stiff motion's fast phases are brief and take their
+ * share of the steps: msbdf on Van der Pol's oscillator at mu = 1e4 and
+ * 3e4 (its steps up to ten billion times shorter in a jump than between)
+ * comes to 3e-6 of typical at worst. */
 #define COLLAPSE_REL 1e-7
 enum { COLLAPSE_AFTER = 100 };
 /* The steps grind when GRIND_WINDOWS windows of GRIND_WINDOW attempts in
- * a row each had more than half of them rejected, and the last one's
- * steps were below GRIND_REL of the typical step.  A window that grinds
- * does not count toward the typical step, which would otherwise sink with
- * it. */
+ * a row each rejected more than GRIND_REJECTED of them and advanced the
+ * run by less than GRIND_REL of the step at a typical instant of it (the
+ * geometric mean of its steps, each weighted by the time it covers) per
+ * attempt: the step control no longer finds the step its error model
+ * predicts, and the run crawls.  (The pace, not the steps' mean: bsimp
+ * alternates long steps and many short ones, and makes its way.)
+ * One-step methods grinding reject more than half (rk8pd's steps
+ * alternate between one that fails and one that passes); the multistep
+ * methods cut their order with the step after a rejection, and reject a
+ * third (msbdf on a top in z-x-z angles at theta = 0: 16% to 44% a
+ * window, at 1e-5 of the typical instant's step, for 12 million steps).
+ * Smooth motion rejects a fifth of its attempts for at most 7 such
+ * windows in a row (Kepler's orbit at e = 0.9999 through periapsis).
+ * Weighted by steps instead of time, the typical step sank with the steps
+ * of the very trouble it was to measure: the top's ten million short
+ * steps became typical.  A window that grinds does not count toward the
+ * collapse's typical step, which would otherwise sink with it. */
 enum { GRIND_WINDOW = 100, GRIND_WINDOWS = 20 };
 #define GRIND_REL 1e-3
+#define GRIND_REJECTED 0.2
 /* A side step (a row computed by a step of its own) is split in at most
  * this many pieces. */
 enum { SIDE_PIECES_MAX = 64 };
@@ -172,25 +189,29 @@ typedef struct Run {
     double *xrow, *erow;          /* an interpolated row, its error estimate */
     double *fs, *fs2;             /* a side step's derivatives, in and out */
     gsl_odeiv2_step *side;        /* the stepper of side steps: the method's own
-                                   * for a one-step method, else side_rk8pd */
-    gsl_odeiv2_step *side_rk8pd;
+                                   * for a one-step method, else side_own */
+    gsl_odeiv2_step *side_own;
     Dense *dense;
     long k, nrows;                /* the next row, and how many there are */
     double hmin;
     eomc_row_fn row;
     void *ctx;
     int row_status;               /* the callback's nonzero status: ROW_STOP */
+    double stop_t;                /* ... the time it was called with */
+    const double *stop_x;         /* ... and the state (kept until march returns) */
     int progress, shown;          /* progress on the terminal */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
     double log_h;                 /* sum of log(h) over the accepted steps ... */
     long nh;                      /* ... not cut short by t_end, of windows that
                                    * did not grind */
+    double sum_h, sum_hlog;       /* sums of h and h log(h) over all of them */
     double h_last;                /* the last such step */
     long tries, fails;            /* attempts and rejections in this window */
-    double w_log_h;               /* its accepted steps, as log_h and nh */
-    long w_nh;
-    int grinding;                 /* windows in a row that rejected most */
+    double w_log_h;               /* sum of log(h) over its accepted steps ... */
+    long w_nh;                    /* ... how many */
+    double w_t0;                  /* the time it started at */
+    int grinding;                 /* windows in a row that ground */
     double wall0, next_show;
     int ne;                       /* events */
     double *g0, *g1;              /* [ne] g at the step's start and end */
@@ -284,13 +305,22 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     return EOMC_OK;
 }
 
-/* The run's typical step: the geometric mean of its accepted steps. */
+/* The run's typical step (COLLAPSE_REL): the geometric mean of its
+ * accepted steps. */
 static double
 typical_step(const Run *r)
 {
     if (r->nh > 0)
         return exp(r->log_h / (double)r->nh);
     return r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0; /* the first window */
+}
+
+/* The step at a typical instant of the run (GRIND_REL): the geometric mean
+ * of its accepted steps, each weighted by the time it covers. */
+static double
+instant_step(const Run *r)
+{
+    return r->sum_h > 0 ? exp(r->sum_hlog / r->sum_h) : 0;
 }
 
 /* Why the steps may have collapsed at the current state, as far as the
@@ -334,11 +364,12 @@ step_error(Run *r, int status)
                                  r->h_last / typical_step(r), typical_step(r), cause);
     case STEP_GRIND:
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps grind: in each of "
-                                 "the last %d windows of %d attempts most were rejected, "
-                                 "and the steps (%.3g lately) fell below %g of the run's "
-                                 "typical step %.3g; the likely cause: %s", GRIND_WINDOWS,
-                                 GRIND_WINDOW, r->h_last, GRIND_REL, typical_step(r),
-                                 cause);
+                                 "the last %d windows of %d attempts more than %g of them "
+                                 "were rejected, and the run advanced by less than %g of "
+                                 "the step at a typical instant of it (%.3g) per attempt "
+                                 "(steps of %.3g lately); the likely cause: %s",
+                                 GRIND_WINDOWS, GRIND_WINDOW, GRIND_REJECTED, GRIND_REL,
+                                 instant_step(r), r->h_last, cause);
     case EVENT_RETURNED:
         if (r->left_rate > 0) /* moving on, too slowly to pass: not a return */
             return sim_numeric_error(s, r->t, r->x, r->x + n, "event %s holds still at "
@@ -450,6 +481,12 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
     sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
                       "its row of B = df/dq'' vanishes here (it reverses direction), so "
                       "the accelerations are no longer determined", r->s->m->c_names[k]);
+    /* the step through it is not taken: the run ends at its start, the last
+     * state the steps reached to their tolerance (the one step to the
+     * degeneracy evaluates the accelerations where they are not
+     * determined, so its state there may be off) */
+    memcpy(r->x, r->y0, (size_t)N * sizeof *r->x);
+    r->t = t0;
     return GSL_EBADFUNC;
 }
 
@@ -535,8 +572,12 @@ after_step(Run *r, double t0)
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
         if (s->stabilize == EOMC_STABILIZE_PROJECT) {
-            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK)
+            /* a failed projection leaves the step's end as it was */
+            memcpy(r->xt, x, (size_t)r->N * sizeof *x);
+            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
+                memcpy(x, r->xt, (size_t)r->N * sizeof *x);
                 return GSL_EBADFUNC;
+            }
             gsl_odeiv2_step_reset(r->step);
             res = sim_level_residual(s, t, x, x + n);
             if (sim_constraint_rows(s, t, x, r->B1) != 0)
@@ -554,6 +595,17 @@ after_step(Run *r, double t0)
 }
 
 /* ---- rows ---- */
+
+/* A callback (row or on_event) returned status at (t, x): the run stops
+ * there, and x is the state the caller gets back (eomc_sim_integrate). */
+static int
+callback_stop(Run *r, int status, double t, const double *x)
+{
+    r->row_status = status;
+    r->stop_t = t;
+    r->stop_x = x;
+    return ROW_STOP;
+}
 
 /* t0 + k dt is computed from k, so no rounding accumulates. */
 double
@@ -657,10 +709,8 @@ emit_rows(Run *r, int final)
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
-        if (rc != EOMC_OK) {
-            r->row_status = rc;
-            return ROW_STOP;
-        }
+        if (rc != EOMC_OK)
+            return callback_stop(r, rc, t, r->xrow);
         r->k++;
     }
     return GSL_SUCCESS;
@@ -762,10 +812,8 @@ check_events(Run *r, double t0, int *what, int *fired)
         else if (side_from(r, t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
             return GSL_EBADFUNC;
         int rc = r->o->on_event ? r->o->on_event(r->o->event_ctx, k, t, r->xe) : EOMC_OK;
-        if (rc != EOMC_OK) {
-            r->row_status = rc;
-            return ROW_STOP;
-        }
+        if (rc != EOMC_OK)
+            return callback_stop(r, rc, t, r->xe);
         if (m->ev_action[k] == EOMC_EVENT_RECORD)
             continue;
         memcpy(r->x, r->xe, bytes);
@@ -870,11 +918,7 @@ finish_at_event(Run *r)
     if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= r->t)
         return EVENT_STOPPED;
     rc = r->row ? r->row(r->ctx, r->t, r->x) : EOMC_OK;
-    if (rc != EOMC_OK) {
-        r->row_status = rc;
-        return ROW_STOP;
-    }
-    return EVENT_STOPPED;
+    return rc != EOMC_OK ? callback_stop(r, rc, r->t, r->x) : EVENT_STOPPED;
 }
 
 /* ---- steps ---- */
@@ -934,6 +978,7 @@ adaptive_step(Run *r, double *h)
         r->t = final ? o->t_end : t0 + h_old;
         if (!final) {
             *h = h0;
+            r->sum_h += h_old, r->sum_hlog += h_old * log(h_old);
             r->w_log_h += log(h_old), r->w_nh++, r->h_last = h_old;
         }
         return GSL_SUCCESS;
@@ -970,16 +1015,16 @@ watch_steps(Run *r)
         return STEP_COLLAPSE;
     if (r->tries < GRIND_WINDOW)
         return GSL_SUCCESS;
-    double mean = r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0;
-    if (2 * r->fails > r->tries && r->nh > 0) {
+    double pace = (r->t - r->w_t0) / (double)r->tries;
+    if ((double)r->fails > GRIND_REJECTED * (double)r->tries &&
+        pace < GRIND_REL * instant_step(r)) {
         r->grinding++;
     } else {
         r->log_h += r->w_log_h, r->nh += r->w_nh;
         r->grinding = 0;
     }
-    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0;
-    return r->grinding >= GRIND_WINDOWS && mean < GRIND_REL * typ ? STEP_GRIND
-                                                                  : GSL_SUCCESS;
+    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0, r->w_t0 = r->t;
+    return r->grinding >= GRIND_WINDOWS ? STEP_GRIND : GSL_SUCCESS;
 }
 
 /* Integrate to t_end, passing rows as they are settled. */
@@ -1043,8 +1088,8 @@ march(Run *r)
 static void
 run_free(Run *r)
 {
-    if (r->side_rk8pd)
-        gsl_odeiv2_step_free(r->side_rk8pd);
+    if (r->side_own)
+        gsl_odeiv2_step_free(r->side_own);
     if (r->step && (!r->d || r->step != r->d->s))
         gsl_odeiv2_step_free(r->step);
     if (r->d)
@@ -1073,10 +1118,15 @@ run_alloc(Run *r, const Method *m)
         if (r->step)
             gsl_odeiv2_step_set_driver(r->step, r->d);
     }
-    /* a multistep method's stepper has a history a side step would spoil */
+    /* a multistep method's stepper has a history a side step would spoil:
+     * its side steps are a one-step method's of the same kind, explicit
+     * for msadams, implicit for msbdf (an explicit one could not take a
+     * stiff problem's side steps, the Van der Pol oscillator's at
+     * stiffness 1e6: not 1e-8 in 64 pieces) */
     r->side = r->step;
     if (r->d && !m->fixed) {
-        r->side = r->side_rk8pd = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, N);
+        r->side = r->side_own = gsl_odeiv2_step_alloc(m->jacobian ? gsl_odeiv2_step_bsimp
+                                                                  : gsl_odeiv2_step_rk8pd, N);
         if (r->side)
             gsl_odeiv2_step_set_driver(r->side, r->d);
     }
@@ -1102,6 +1152,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         st = &local;
     memset(st, 0, sizeof *st);
     st->ill_t = NAN;
+    st->t_stop = o->t0;
     st->cond_tol = o->h_fixed > 0 || !(o->rtol > 0) ? FIXED_COND_TOL : o->rtol;
     int rc = eomc_run_check(s, o);
     if (rc)
@@ -1111,7 +1162,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-             .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY};
+             .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY,
+             .w_t0 = o->t0};
     st->stop_event = -1;
     st->reset_event = -1;
     r.nrows = eomc_run_rows(o);
@@ -1155,11 +1207,15 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             if (status == GSL_SUCCESS)
                 status = flushed;
         }
-        if (status == EVENT_STOPPED)
-            st->t_stop = r.t;
-        if (status == ROW_STOP)
+        /* x is where the run stopped: the last state reached (t_end, a stop
+         * event, a failure), or the state a callback stopped it at */
+        st->t_stop = r.t;
+        if (status == ROW_STOP) {
+            st->t_stop = r.stop_t;
+            if (r.stop_x != x)
+                memcpy(x, r.stop_x, (size_t)r.N * sizeof *x);
             rc = r.row_status;
-        else if (status == EVENT_STOPPED)
+        } else if (status == EVENT_STOPPED)
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
             rc = step_error(&r, status);

@@ -228,11 +228,13 @@ sweep_run(const Sweep *sw, FILE *f)
         return EOMC_EUSAGE;
     int nt = sw->threads < 1 ? 1 : sw->threads;
     pthread_t *th = calloc((size_t)nt, sizeof *th);
+    /* this thread is the first worker; the others are those created, th[0
+     * .. started - 1] (one that cannot be created leaves its runs to them) */
     int started = 0;
-    for (int k = 1; th && k < nt; k++) /* this thread is the first worker */
-        started += pthread_create(&th[k], NULL, worker, &p) == 0;
+    for (int k = 1; th && k < nt; k++)
+        started += pthread_create(&th[started], NULL, worker, &p) == 0;
     worker(&p);
-    for (int k = 1; th && k <= started; k++)
+    for (int k = 0; k < started; k++)
         pthread_join(th[k], NULL);
     free(th);
     /* this rank's rows in its order, then rank 0 puts every rank's in

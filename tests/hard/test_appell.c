@@ -9,7 +9,9 @@
  * determined (past it the KKT solution would slide onto the accelerating
  * branch unnoticed).
  *  - the rows on the closed form up to t*;
- *  - the run stops at t* (exit 3, the constraint named), to 1e-9 of it.
+ *  - the run stops at t* (exit 3, the constraint named), to 1e-9 of it,
+ *    and leaves x at the last state its steps reached before t* (at
+ *    eomc_stats.t_stop, on the closed form).
  */
 #include "hard.h"
 
@@ -41,6 +43,19 @@ main(void)
           tstar, t_stop);
     CHECK(r.nrows == 51 && worst <= 2e-11,
           "... its %ld rows before it on the closed form, to %.2g (<= 2e-11 at rtol 1e-12)", r.nrows, worst);
+    /* the state the run returns: the last one its steps reached, before
+     * the step that went through t* */
+    double x[6];
+    memcpy(x, x0, sizeof x);
+    eomc_stats st;
+    int rc = eomc_sim_integrate(s, &o, x, NULL, NULL, &st);
+    double ts = st.t_stop, xs = v0 * ts - a * g * ts * ts / (2 * (1 + a * a));
+    double xds = v0 - a * g * ts / (1 + a * a);
+    double off = fmax(fmax(fabs(x[0] - xs), fabs(x[2] + a * xs)),
+                      fmax(fabs(x[3] - xds), fabs(x[5] + a * xds)));
+    CHECK(rc == EOMC_ENUMERIC && ts > 0.5 * tstar && ts < tstar && off <= 2e-11,
+          "... x is the last state reached before it, at t_stop = %.15g, on the closed form "
+          "there to %.2g", ts, off);
     hard_free(&r);
     eomc_sim_free(s);
     return check_done();

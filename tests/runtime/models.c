@@ -163,6 +163,37 @@ const eomc_model leaky_model = {
     NO_OUTPUTS,
 };
 
+/* ---- the oscillator with a `stop` event where x falls through 0 ---- */
+
+static const char *const ose_names[] = {"down"};
+static const int ose_direction[] = {-1};
+static const int ose_action[] = {EOMC_EVENT_STOP};
+
+static void
+ose_events(double t, const double *q, const double *v, const double *p, const double *u,
+           double *g)
+{
+    (void)t;
+    (void)v;
+    (void)p;
+    (void)u;
+    g[0] = q[0];
+}
+
+const eomc_model osc_event_model = {
+    EOMC_ABI_VERSION, "osc_event", "osc_event.yaml", "lagrange", "",
+    1, 3, 0, osc_q, osc_p, osc_u, osc_pdef,
+    "", no_fixed, 0, NULL,
+    10.0, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
+    osc_initial, no_inputs, osc_mass_bias, osc_energy, osc_jacobian,
+    osc_accel,
+    NO_CONSTRAINTS,
+    osc_invariant, "E", "E = T + V is conserved",
+    NO_CHECKS,
+    0, NULL, NULL,
+    1, ose_names, ose_direction, ose_action, ose_events, NULL,
+};
+
 void
 osc_exact(double m, double k, double x0, double v0, double t, double *x, double *v)
 {

@@ -4,6 +4,9 @@
  *
  *   osc_model        m x'' + k x = 0; p = (m, k, x0), x(0) = x0, x'(0) = 1/2;
  *                    accel member set
+ *   osc_event_model  the same with the event `down`: g = x, downward, `stop`
+ *                    (it fires at t = (pi/2 + atan(v0 / (w x0))) / w,
+ *                    w = sqrt(k/m))
  *   coupled_model    the double pendulum in absolute angles th1, th2: a
  *                    q-dependent, non-diagonal SPD mass matrix; accel NULL
  *                    (the runtime's GSL Cholesky solve)
@@ -21,6 +24,7 @@
 #include "eomc_model.h"
 
 extern const eomc_model osc_model;
+extern const eomc_model osc_event_model;
 extern const eomc_model coupled_model;
 extern const eomc_model driven_model;
 extern const eomc_model nonpd_model;

@@ -9,10 +9,16 @@
  *  - energy conserved to 1e-9 (rk8pd at 1e-12) by the oscillator over 100
  *    periods and by the double pendulum (accel NULL) over 10 s;
  *  - M losing positive definiteness at t = 1: EOMC_ENUMERIC, finite rows
- *    before the failure time, a "t = ..." message naming the state.
+ *    before the failure time, a "t = ..." message naming the state;
+ *  - after every kind of stop (the row callback, SIGINT through it, an
+ *    event callback, a `stop` event, a failure, t_end), x is the state at
+ *    st.t_stop: the closed form there.
  */
+#define _POSIX_C_SOURCE 200809L
 #include "../unit/check.h"
 #include "rtest.h"
+
+#include <signal.h>
 
 /* The oscillator with rk8pd at 1e-12 from its initial state. */
 static int
@@ -224,6 +230,161 @@ row_stops(void)
     eomc_sim_free(s);
 }
 
+/* ---- where the run stops: x and t_stop (issue 21, item 2) ----
+ * After every kind of stop, x holds the state at st.t_stop, checked
+ * against the oscillator's closed form there (and the nonpd model's
+ * zeta = t). */
+
+/* |x - closed form at t| for the oscillator from its initial state. */
+static double
+osc_off(double t, const double *x)
+{
+    double xe, ve;
+    osc_exact(OSC_M, OSC_K, OSC_X0, OSC_V0, t, &xe, &ve);
+    return fmax(fabs(x[0] - xe), fabs(x[1] - ve));
+}
+
+/* The row callback stops at row 3 (t = 0.3), after two steps have gone
+ * past it (rk8pd takes steps of about 0.5 at 1e-12). */
+static void
+stop_by_row(void)
+{
+    eomc_sim *s = sim_new(&osc_model);
+    eomc_run_opts o = opts_for(&osc_model, 10.0, 0.1, "rk8pd", 1e-12, 1e-12);
+    Rows r;
+    rows_init(&r, 1);
+    r.stop_at = 3;
+    r.stop_status = 42;
+    double x[2];
+    eomc_stats st;
+    sim_x0(s, x);
+    int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
+    CHECK(rc == 42 && r.n == 4 && st.t_stop == r.t[3] &&
+              st.t_stop == eomc_run_row_time(&o, 3),
+          "the row callback stops at row 3: t_stop = %.17g, that row's time", st.t_stop);
+    CHECK(r.n == 4 && memcmp(x, rows_x(&r, 3), sizeof x) == 0 && osc_off(st.t_stop, x) < 1e-10,
+          "... x is that row's state, on the closed form there to %.2g", osc_off(st.t_stop, x));
+    rows_free(&r);
+    rows_init(&r, 1);
+    sim_x0(s, x);
+    rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
+    CHECK(rc == EOMC_OK && st.t_stop == o.t_end && memcmp(x, rows_x(&r, r.n - 1), sizeof x) == 0,
+          "a run to the end: t_stop = t_end = %g, x the last row's state", st.t_stop);
+    rows_free(&r);
+    eomc_sim_free(s);
+}
+
+/* SIGINT, as eomc_main takes it: the handler sets a flag, the row callback
+ * returns nonzero on it; the signal arrives at row 7. */
+static volatile sig_atomic_t got_signal;
+static void
+on_sigint(int sig)
+{
+    got_signal = sig;
+}
+static int
+row_until_signal(void *ctx, double t, const double *x)
+{
+    Rows *r = ctx;
+    rows_add(r, t, x);
+    if (r->n == 8)
+        raise(SIGINT);
+    return got_signal ? 130 : 0;
+}
+
+static void
+stop_by_signal(void)
+{
+    eomc_sim *s = sim_new(&osc_model);
+    eomc_run_opts o = opts_for(&osc_model, 10.0, 0.1, "rkf45", 1e-10, 1e-10);
+    struct sigaction sa = {0}, old;
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old);
+    got_signal = 0;
+    Rows r;
+    rows_init(&r, 1);
+    double x[2];
+    eomc_stats st;
+    sim_x0(s, x);
+    int rc = eomc_sim_integrate(s, &o, x, row_until_signal, &r, &st);
+    sigaction(SIGINT, &old, NULL);
+    CHECK(rc == 130 && r.n == 8 && st.t_stop == r.t[7] &&
+              memcmp(x, rows_x(&r, 7), sizeof x) == 0 && osc_off(st.t_stop, x) < 1e-8,
+          "SIGINT at row 7: stops there, t_stop = %.17g and x that row's state, on the "
+          "closed form to %.2g", st.t_stop, osc_off(st.t_stop, x));
+    rows_free(&r);
+    eomc_sim_free(s);
+}
+
+/* osc_event_model's event: x = 0 falling, at t* below. */
+static double
+down_time(void)
+{
+    double w = sqrt(OSC_K / OSC_M);
+    return (acos(-1.0) / 2 + atan(OSC_V0 / (w * OSC_X0))) / w;
+}
+
+static int
+event_says_stop(void *ctx, int k, double t, const double *x)
+{
+    (void)ctx;
+    (void)k;
+    (void)t;
+    (void)x;
+    return 7;
+}
+
+/* on_event returning nonzero, and the `stop` event itself. */
+static void
+stop_by_event(void)
+{
+    eomc_sim *s = sim_new(&osc_event_model);
+    for (int told = 1; told >= 0; told--) {
+        eomc_run_opts o = opts_for(&osc_event_model, 10.0, 0.1, "rk8pd", 1e-12, 1e-12);
+        o.on_event = told ? event_says_stop : NULL;
+        Rows r;
+        rows_init(&r, 1);
+        double x[2], ts = down_time();
+        eomc_stats st;
+        sim_x0(s, x);
+        int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
+        CHECK(rc == (told ? 7 : EOMC_OK) && st.stop_event == (told ? -1 : 0) &&
+                  fabs(st.t_stop - ts) <= 1e-12 * ts,
+              "%s: rc %d, t_stop = %.17g, the closed form's %.17g", told ?
+              "on_event returns 7 at the event" : "the stop event", rc, st.t_stop, ts);
+        CHECK(osc_off(st.t_stop, x) < 1e-10 && fabs(x[0]) < 1e-10,
+              "... x is the state there: x = %.2g, x' = %.17g, on the closed form to %.2g",
+              x[0], x[1], osc_off(st.t_stop, x));
+        rows_free(&r);
+    }
+    eomc_sim_free(s);
+}
+
+/* A numerical failure: M = 1 - zeta^2 at zeta = t fails at t = 1.  x is
+ * the last state reached, zeta = zeta' t = t_stop, and no row is after it. */
+static void
+stop_by_failure(void)
+{
+    eomc_sim *s = sim_new(&nonpd_model);
+    eomc_run_opts o = eomc_run_defaults(&nonpd_model);
+    Rows r;
+    rows_init(&r, 1);
+    double x[2];
+    eomc_stats st;
+    sim_x0(s, x);
+    int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
+    CHECK(rc == EOMC_ENUMERIC && r.n > 0 && st.t_stop >= r.t[r.n - 1] && st.t_stop < 1.0 &&
+              st.t_stop > 1.0 - 1e-6,
+          "a failure at t = 1: t_stop = %.17g, just before it, at or after the last row "
+          "(%.17g)", st.t_stop, r.n ? r.t[r.n - 1] : NAN);
+    CHECK(fabs(x[0] - st.t_stop) <= 1e-12 && fabs(x[1] - 1.0) <= 1e-12,
+          "... x is the state there: zeta - t_stop = %.2g, zeta' - 1 = %.2g", x[0] - st.t_stop,
+          x[1] - 1.0);
+    rows_free(&r);
+    eomc_sim_free(s);
+}
+
 /* Largest |E - E0| / |E0| over the rows. */
 static double
 energy_drift(eomc_sim *s, const Rows *r)
@@ -313,6 +474,10 @@ main(void)
     max_steps();
     max_steps_exact();
     row_stops();
+    stop_by_row();
+    stop_by_signal();
+    stop_by_event();
+    stop_by_failure();
     energy(&osc_model, 100 * acos(-1.0), 0.05, "oscillator, 100 periods");
     energy(&coupled_model, 10.0, 0.01, "double pendulum (accel NULL), 10 s");
     nonpd(&nonpd_model);

@@ -200,9 +200,9 @@ fixed_uneven(void)
  * The implicit methods: one Jacobian a step, and the stages once per
  * Newton iteration plus the end's derivative.  The oscillator is linear,
  * so the simplified Newton iteration with the exact Jacobian is exact
- * after one iteration; a second one is taken only to measure the
- * contraction (on the first step, and whenever the carried estimate has
- * grown stale, as in Hairer and Wanner's RADAU5). */
+ * after one iteration; a second one measures the contraction, which says
+ * that the first left nothing above rounding (fixed.c solves the stages
+ * to rounding). */
 static void
 fixed_cost(void)
 {

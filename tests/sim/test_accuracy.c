@@ -27,7 +27,11 @@
  *    milliseconds it is the same reference; Van der Pol's oscillator with
  *    eps = 1e-6 (tests/sim/specs/van_der_pol.yaml) is on the Bari test
  *    set's published value at t = 2; the pendulum, chain5 and Kepler stay
- *    with GBS.
+ *    with GBS;
+ *  - fixed implicit steps solve their stages to rounding, not to the
+ *    run's tolerance: rk1imp, rk2imp and rk4imp on the pendulum (mpmath's
+ *    values) at h and h / 10 with rtol = atol = 1e-6, their error falling
+ *    by 10^order.
  *
  * usage: test_accuracy SOURCE_ROOT SIM_PENDULUM SIM_CHAIN5 SIM_KEPLER
  */
@@ -647,6 +651,48 @@ stiff_references(void)
           "error estimate %.2g and the published value's %.2g", d, ref.error, own);
     eomc_reference_free(&ref);
     eomc_sim_free(s);
+/* ---- fixed implicit steps ---- */
+
+/* The pendulum with fixed steps h to t = 10 at rtol = atol = 1e-6: the
+ * largest error at t = 10 against the mpmath table's last row. */
+static double
+pendulum_fixed(const char *method, double h, const Table *tb)
+{
+    double x[2];
+    eomc_sim *s = sim_at_start(&pendulum_model, x);
+    eomc_run_opts o = eomc_run_defaults(&pendulum_model);
+    o.t_end = 10, o.dt = 10, o.method = method, o.h_fixed = h;
+    o.rtol = o.atol = 1e-6;
+    int rc = eomc_sim_integrate(s, &o, x, NULL, NULL, NULL);
+    eomc_sim_free(s);
+    const double *want = tb->v[tb->nrow - 1];
+    return rc == EOMC_OK && want[0] == 10 ? fmax(fabs(x[0] - want[1]), fabs(x[1] - want[2]))
+                                          : NAN;
+}
+
+/* Stopped at the tolerance, the stages' error (the tolerance's, a step)
+ * outweighed the method's (rk4imp: 6.8e-6 at h = 1e-2, 6.0e-6 at 1e-3);
+ * solved to rounding, the error falls as h^order.  The steps: each
+ * method's error at h / 10 well above the rounding of its 10^4 or 10^5
+ * steps. */
+static void
+fixed_implicit_order(void)
+{
+    static const struct {
+        const char *name;
+        int order;
+        double h;
+    } m[] = {{"rk1imp", 1, 1e-3}, {"rk2imp", 2, 1e-3}, {"rk4imp", 4, 1e-2}};
+    Table tb;
+    int have = read_table("pendulum.csv", &tb) == 0 && tb.nrow == 41;
+    for (int k = 0; k < 3; k++) {
+        double e1 = have ? pendulum_fixed(m[k].name, m[k].h, &tb) : NAN;
+        double e2 = have ? pendulum_fixed(m[k].name, m[k].h / 10, &tb) : NAN;
+        double want = pow(10, m[k].order), ratio = e1 / e2;
+        CHECK(ratio > 0.5 * want && ratio < 2 * want,
+              "%s, fixed steps of %g and %g at rtol 1e-6: errors %.3g and %.3g, falling by "
+              "%.3g (10^%d)", m[k].name, m[k].h, m[k].h / 10, e1, e2, ratio, m[k].order);
+    }
 }
 
 int
@@ -664,5 +710,6 @@ main(int argc, char **argv)
     invariants();
     scaled_units();
     stiff_references();
+    fixed_implicit_order();
     return check_done();
 }

@@ -192,6 +192,7 @@ const eomc_model osc_event_model = {
     NO_CHECKS,
     0, NULL, NULL,
     1, ose_names, ose_direction, ose_action, ose_events, NULL,
+    0, NULL, /* no assembly */
 };
 
 void

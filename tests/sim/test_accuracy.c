@@ -651,6 +651,8 @@ stiff_references(void)
           "error estimate %.2g and the published value's %.2g", d, ref.error, own);
     eomc_reference_free(&ref);
     eomc_sim_free(s);
+}
+
 /* ---- fixed implicit steps ---- */
 
 /* The pendulum with fixed steps h to t = 10 at rtol = atol = 1e-6: the

@@ -13,7 +13,9 @@
  * factors (expressions of constants and parameters only, such as m*l^2)
  * collected to the left of a product and out of sums: c*x + c*y =
  * c*(x + y).  Mechanics is full of m and l; this keeps them from being
- * multiplied in again and again.
+ * multiplied in again and again.  And sin(x)^2 + cos(x)^2 = 1 between any
+ * two terms of a sum that differ only there (k R sin^2 + k R cos^2 = k R,
+ * R a product of powers), the form of a squared speed on a circle.
  *
  * All nodes live in one ExprPool and are freed with it.
  */

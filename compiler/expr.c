@@ -10,6 +10,7 @@
 #include "expr.h"
 #include "arena.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1008,6 +1009,147 @@ expr_eval(ExprPool *P, ExprId e, const ExprEnv *env)
     double r;
     expr_eval_many(P, 1, &e, env, &r);
     return r;
+}
+
+/* ---- evaluation with a rounding bound ---- */
+
+/* An error a long double libm function may make, in units of its
+ * result's LDBL_EPSILON: glibc's documented worst cases on x86-64 are 1
+ * to 3 ulps (libm-test-ulps), and a bound that is a little loose only
+ * costs a zero test its margin, never its soundness. */
+enum { CALL_ULPS = 4 };
+
+typedef struct Bounded {
+    long double v, err, mag;
+} Bounded;
+
+/* One node: its value, the bound on its error (first order, Higham's
+ * running error analysis: each operation's rounding plus the operands'
+ * errors carried by its partial derivatives, and their product where the
+ * second order is cheap to keep), and the magnitude of what it is made
+ * of (|x| + |y| for x + y, |x| |y| for x y: the scale at which a sum
+ * that cancels is zero).  err = INFINITY where the first order cannot be
+ * trusted: a branch (sign, atan2's cut) or a singularity within reach. */
+static Bounded
+bound_node(const ExprNode *nd, const Bounded *v, const ExprEnv *env)
+{
+    const long double u = LDBL_EPSILON / 2, call = CALL_ULPS * LDBL_EPSILON;
+    Bounded x = {0, 0, 0}, y = {0, 0, 0}, r = {0, 0, 0};
+    int ar = expr_op_arity[nd->op];
+    if (ar >= 1)
+        x = v[nd->a];
+    if (ar >= 2)
+        y = v[nd->b];
+    long double ax = fabsl(x.v), dfdx = 0;
+    switch (nd->op) {
+    case EXPR_CONST:
+    case EXPR_VAR:
+    case EXPR_PARAM:
+    case EXPR_INPUT:
+    case EXPR_TIME:
+    case EXPR_SEED:
+    case EXPR_MULT:
+        r.v = eval_node(nd, NULL, env); /* doubles: exact in long double */
+        r.mag = fabsl(r.v);
+        return r;
+    case EXPR_ADD:
+    case EXPR_SUB:
+        r.v = nd->op == EXPR_ADD ? x.v + y.v : x.v - y.v;
+        r.err = x.err + y.err + u * fabsl(r.v);
+        r.mag = x.mag + y.mag;
+        return r;
+    case EXPR_MUL:
+        r.v = x.v * y.v;
+        r.err = fabsl(y.v) * x.err + ax * y.err + x.err * y.err + u * fabsl(r.v);
+        r.mag = x.mag * y.mag;
+        return r;
+    case EXPR_DIV:
+        r.v = x.v / y.v;
+        r.err = y.err < fabsl(y.v) ? (x.err + fabsl(r.v) * y.err) / (fabsl(y.v) - y.err) +
+                                         u * fabsl(r.v)
+                                   : INFINITY;
+        r.mag = x.mag / fabsl(y.v);
+        return r;
+    case EXPR_NEG:
+        x.v = -x.v;
+        return x;
+    case EXPR_POWI: {
+        int n = (int32_t)nd->b;
+        r.v = powl(x.v, n);
+        /* |d x^n / dx| = |n x^(n-1)|, taken at the end of x's interval
+         * farther from 0; powl rounds once or a few times */
+        r.err = fabsl((long double)n) * powl(ax + x.err, n - 1) * x.err + call * fabsl(r.v);
+        r.mag = powl(x.mag, n);
+        return r;
+    }
+    case EXPR_POW:
+        r.v = powl(x.v, y.v);
+        r.err = fabsl(y.v * powl(x.v, y.v - 1)) * x.err + fabsl(logl(ax) * r.v) * y.err +
+                call * fabsl(r.v);
+        r.mag = fabsl(r.v);
+        return r;
+    case EXPR_ATAN2: {
+        long double rr = x.v * x.v + y.v * y.v;
+        r.v = atan2l(x.v, y.v);
+        /* across the cut (y < 0, x = 0) the value jumps by 2 pi */
+        r.err = y.v < 0 && fabsl(x.v) <= x.err ? INFINITY
+                : (fabsl(y.v) * x.err + ax * y.err) / rr + call * fabsl(r.v);
+        r.mag = fabsl(r.v);
+        return r;
+    }
+    case EXPR_SIN: r.v = sinl(x.v); dfdx = fabsl(cosl(x.v)); break;
+    case EXPR_COS: r.v = cosl(x.v); dfdx = fabsl(sinl(x.v)); break;
+    case EXPR_TAN: r.v = tanl(x.v); dfdx = 1 + r.v * r.v; break;
+    case EXPR_ASIN: r.v = asinl(x.v); dfdx = 1 / sqrtl(1 - x.v * x.v); break;
+    case EXPR_ACOS: r.v = acosl(x.v); dfdx = 1 / sqrtl(1 - x.v * x.v); break;
+    case EXPR_ATAN: r.v = atanl(x.v); dfdx = 1 / (1 + x.v * x.v); break;
+    case EXPR_SINH: r.v = sinhl(x.v); dfdx = coshl(x.v); break;
+    case EXPR_COSH: r.v = coshl(x.v); dfdx = fabsl(sinhl(x.v)); break;
+    case EXPR_TANH: r.v = tanhl(x.v); dfdx = 1 - r.v * r.v; break;
+    case EXPR_EXP: r.v = expl(x.v); dfdx = r.v; break;
+    case EXPR_LOG: r.v = logl(x.v); dfdx = 1 / ax; break;
+    case EXPR_SQRT: r.v = sqrtl(x.v); dfdx = 1 / (2 * r.v); break;
+    case EXPR_ABS: r.v = ax; dfdx = 1; break;
+    case EXPR_SIGN:
+        r.v = (x.v > 0) - (x.v < 0);
+        r.err = ax <= x.err ? INFINITY : 0; /* the sign is not known */
+        r.mag = fabsl(r.v);
+        return r;
+    }
+    /* a function: first order holds while the error of its argument is
+     * small against the scale its derivative changes on, which a bound
+     * beyond 1 (radians, or relative for exp and log) no longer says */
+    if (x.err > 0 && !(x.err * dfdx < 1 && x.err < 1))
+        r.err = INFINITY;
+    else
+        r.err = (x.err > 0 ? dfdx * x.err : 0) + call * fabsl(r.v);
+    r.mag = fabsl(r.v);
+    return r;
+}
+
+void
+expr_eval_bound(ExprPool *P, ExprId e, int n, const ExprEnv *env, ExprBound *out)
+{
+    unsigned char *mark = marked(P, 1, &e);
+    size_t count = 0;
+    for (size_t i = 0; i <= e; i++)
+        count += mark[i];
+    ExprId *list = xmalloc(count * sizeof *list);
+    count = 0;
+    for (ExprId i = 0; i <= e; i++)
+        if (mark[i])
+            list[count++] = i;
+    free(mark);
+    Bounded *v = xmalloc(((size_t)e + 1) * sizeof *v);
+    for (int k = 0; k < n; k++) {
+        for (size_t i = 0; i < count; i++)
+            v[list[i]] = bound_node(&P->node[list[i]], v, &env[k]);
+        out[k] = (ExprBound){v[e].v, v[e].err, v[e].mag};
+        if (!isfinite(out[k].value) || !isfinite(out[k].mag) || isnan(out[k].err))
+            out[k].err = INFINITY;
+    }
+    free(v);
+    free(list);
 }
 
 /* Rebuild a node over new operands through the simplifying constructors. */

@@ -90,7 +90,8 @@ invariant_velocity_degree(ExprPool *P, ExprId e)
  * states and parameters.  The quantity is free of t when at every one of
  * ZERO_STATES states every derivative is within its rounding bound of 0:
  * a derivative that is not 0 as a function is, at a random state, of the
- * order of the terms it is made of, some 1e16 times the bound.  A state
+ * order of the terms it is made of, orders of magnitude above the bound
+ * (a few long double roundings of those terms, 1e-19 to 1e-15).  A state
  * whose bound cannot be trusted (a branch, a value that is not finite)
  * does not count; with fewer than ZERO_STATES good ones in ZERO_TRIES the
  * quantity is taken to depend on t.  docs/mechanics.md has the details. */
@@ -169,10 +170,11 @@ zero_states(ZeroTest *z)
 }
 
 /* Where e may jump in t though its derivative in t is 0 on both sides:
- * sign(), atan2() across its cut, pow(), or a quotient such as x/|x|
- * whose denominator passes 0 (0/0 at one instant).  Neither the
- * derivative's structure nor its samples see a jump, so t inside one of
- * them is never credited as cancelling.  The operator, or NULL. */
+ * sign(), atan2() across its cut, or a quotient such as x/|x| whose
+ * denominator passes 0 (0/0 at one instant); and pow(), which has no
+ * real value for a negative base.  Neither the derivative's structure
+ * nor its samples see a jump, so t inside one of them is never credited
+ * as cancelling.  The operator, or NULL. */
 static const char *
 may_jump(ExprPool *P, ExprId e)
 {

@@ -10,12 +10,14 @@
 #include "expr.h"
 #include "arena.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 struct ExprPool {
     ExprNode *node;
+    uint8_t *trig; /* per node: its TRIG_ bits (derived, see trig_bits) */
     size_t n, cap;
     uint32_t *table; /* ids + 1; 0 = empty slot */
     size_t tcap;
@@ -89,6 +91,39 @@ rehash(ExprPool *P)
     P->tcap = cap;
 }
 
+/* What the Pythagorean identity (pythagoras, below) looks for, as bits
+ * each node derives from its operands when it is built, so that a sum
+ * with nothing to find costs one test.  Seen as a monomial (a product of
+ * powers, through MUL, POWI and NEG): */
+enum {
+    TRIG_FACTOR = 1, /* it has a factor sin(x) or cos(x) */
+    TRIG_SQUARE = 2, /* it has a factor sin(x)^k or cos(x)^k, k >= 2 */
+    TRIG_SUM = 4,    /* a sum (ADD, SUB, NEG) with such a term */
+};
+
+static uint8_t
+trig_bits(const ExprPool *P, const ExprNode *nd)
+{
+    switch (nd->op) {
+    case EXPR_SIN:
+    case EXPR_COS:
+        return TRIG_FACTOR;
+    case EXPR_MUL:
+        return (P->trig[nd->a] | P->trig[nd->b]) & (TRIG_FACTOR | TRIG_SQUARE);
+    case EXPR_NEG:
+        return P->trig[nd->a];
+    case EXPR_POWI: {
+        int n = (int32_t)nd->b;
+        uint8_t t = P->trig[nd->a] & (TRIG_FACTOR | TRIG_SQUARE);
+        return n < 1 ? 0 : n >= 2 && (t & TRIG_FACTOR) ? t | TRIG_SQUARE : t;
+    }
+    case EXPR_ADD:
+    case EXPR_SUB:
+        return (P->trig[nd->a] | P->trig[nd->b]) & (TRIG_SQUARE | TRIG_SUM) ? TRIG_SUM : 0;
+    }
+    return 0;
+}
+
 static ExprId
 intern(ExprPool *P, ExprNode nd)
 {
@@ -104,9 +139,11 @@ intern(ExprPool *P, ExprNode nd)
     if (P->n == P->cap) {
         P->cap = P->cap ? P->cap * 2 : 1024;
         P->node = xrealloc(P->node, P->cap * sizeof *P->node);
+        P->trig = xrealloc(P->trig, P->cap * sizeof *P->trig);
     }
     ExprId id = (ExprId)P->n++;
     P->node[id] = nd;
+    P->trig[id] = trig_bits(P, &nd);
     P->table[i] = id + 1;
     return id;
 }
@@ -127,6 +164,7 @@ expr_pool_free(ExprPool *P)
     if (!P)
         return;
     free(P->node);
+    free(P->trig);
     free(P->table);
     free(P);
 }
@@ -289,24 +327,203 @@ expr_neg(ExprPool *P, ExprId a)
     return mk(P, EXPR_NEG, a, 0);
 }
 
-/* The argument of e = f(x)^2 for f = SIN or COS, else EXPR_NONE. */
-static ExprId
-square_of(const ExprPool *P, ExprId e, int f)
+/* ---- sin(x)^2 + cos(x)^2 = 1 ----
+ *
+ * Mechanics meets the identity in the square of a velocity: a point at
+ * l (sin q, -cos q) has |r'|^2 = (l cos q q')^2 + (l sin q q')^2, which is
+ * l^2 q'^2.  Folding it by structure keeps t out of a kinetic energy where
+ * it cancels (the invariant then needs no numerical test), and spares the
+ * code the sum.  Two terms of a sum, seen as monomials k * prod b_i^n_i
+ * (k a number, through MUL, POWI and NEG, so (l cos q q')^2 is
+ * l^2 cos(q)^2 q'^2), are partners when they have the same k and differ
+ * only in sin(x)^(p+2) cos(x)^q against sin(x)^p cos(x)^(q+2), for one
+ * argument node x: their sum is k prod b_i^min(n_i, m_i).  The trig bits
+ * keep every other sum to one test; a sum is searched only as far as
+ * PYTH_TERMS terms (the nearest to its root first), a monomial only as far
+ * as PYTH_FACTORS factors. */
+enum { PYTH_TERMS = 32, PYTH_FACTORS = 32 };
+
+typedef struct PythFactor {
+    ExprId base;
+    int n;
+} PythFactor;
+
+typedef struct PythMono {
+    double k;
+    int nf;
+    PythFactor f[PYTH_FACTORS];
+} PythMono;
+
+/* A term of a sum, with the sign it is added with. */
+typedef struct PythTerm {
+    ExprId e;
+    int sign;
+} PythTerm;
+
+/* Append e^n (e within a monomial) to m: 0 when there are too many
+ * factors.  A number to the first power goes to k; to another power it
+ * stays a factor, so that k is exact. */
+static int
+pyth_gather(const ExprPool *P, ExprId e, int n, PythMono *m)
 {
-    const ExprNode *n = &P->node[e];
-    if (n->op != EXPR_POWI || (int32_t)n->b != 2 || op_of(P, n->a) != f)
-        return EXPR_NONE;
-    return P->node[n->a].a;
+    const ExprNode *nd = &P->node[e];
+    switch (nd->op) {
+    case EXPR_NEG:
+        if (n % 2)
+            m->k = -m->k;
+        return pyth_gather(P, nd->a, n, m);
+    case EXPR_MUL:
+        return pyth_gather(P, nd->a, n, m) && pyth_gather(P, nd->b, n, m);
+    case EXPR_POWI: {
+        long k = (long)n * (int32_t)nd->b;
+        return k >= -PYTH_FACTORS && k <= PYTH_FACTORS && pyth_gather(P, nd->a, (int)k, m);
+    }
+    case EXPR_CONST:
+        if (n == 1) {
+            m->k *= nd->value;
+            return 1;
+        }
+        break;
+    }
+    if (m->nf == PYTH_FACTORS)
+        return 0;
+    m->f[m->nf++] = (PythFactor){e, n};
+    return 1;
 }
 
-/* cos(x)^2 + sin(x)^2 = 1 (with c cos^2 + c sin^2 = c (cos^2 + sin^2)
- * below, also for a common coefficient c). */
+/* e as a monomial, its factors sorted by base and merged; 0 if too long. */
 static int
-pythagorean(const ExprPool *P, ExprId a, ExprId b)
+pyth_mono(const ExprPool *P, ExprId e, int sign, PythMono *m)
 {
-    ExprId ca = square_of(P, a, EXPR_COS), sb = square_of(P, b, EXPR_SIN);
-    ExprId cb = square_of(P, b, EXPR_COS), sa = square_of(P, a, EXPR_SIN);
-    return (ca != EXPR_NONE && ca == sb) || (cb != EXPR_NONE && cb == sa);
+    m->k = sign;
+    m->nf = 0;
+    if (!pyth_gather(P, e, 1, m))
+        return 0;
+    for (int i = 1; i < m->nf; i++) { /* insertion sort: monomials are short */
+        PythFactor x = m->f[i];
+        int j = i;
+        for (; j > 0 && m->f[j - 1].base > x.base; j--)
+            m->f[j] = m->f[j - 1];
+        m->f[j] = x;
+    }
+    int k = 0;
+    for (int i = 0; i < m->nf; i++) {
+        if (k && m->f[k - 1].base == m->f[i].base)
+            m->f[k - 1].n += m->f[i].n;
+        else
+            m->f[k++] = m->f[i];
+        if (m->f[k - 1].n == 0)
+            k--;
+    }
+    m->nf = k;
+    return 1;
+}
+
+/* Are x and y partners (see above)?  Their factors are compared in order;
+ * exactly two bases may differ, sin(z) and cos(z) of one z, by 2 each in
+ * opposite directions. */
+static int
+pyth_partners(const ExprPool *P, const PythMono *x, const PythMono *y)
+{
+    if (x->k != y->k)
+        return 0;
+    ExprId base[2];
+    int diff[2], nd = 0, i = 0, j = 0;
+    while (i < x->nf || j < y->nf) {
+        ExprId bx = i < x->nf ? x->f[i].base : EXPR_NONE;
+        ExprId by = j < y->nf ? y->f[j].base : EXPR_NONE;
+        ExprId b = bx < by ? bx : by;
+        int nx = bx == b ? x->f[i++].n : 0, ny = by == b ? y->f[j++].n : 0;
+        if (nx == ny)
+            continue;
+        if (nd == 2)
+            return 0;
+        base[nd] = b;
+        diff[nd++] = nx - ny;
+    }
+    if (nd != 2 || diff[0] + diff[1] != 0 || (diff[0] != 2 && diff[0] != -2))
+        return 0;
+    const ExprNode *u = &P->node[base[0]], *v = &P->node[base[1]];
+    return u->a == v->a && ((u->op == EXPR_SIN && v->op == EXPR_COS) ||
+                            (u->op == EXPR_COS && v->op == EXPR_SIN));
+}
+
+/* The terms of e (added with `sign`) appended to t[*n]: sums that hold a
+ * square (TRIG_SUM) are opened breadth first while there is room; the
+ * rest are terms as they stand. */
+static void
+pyth_terms(const ExprPool *P, ExprId e, int sign, PythTerm *t, int *n, int cap)
+{
+    int first = *n;
+    t[(*n)++] = (PythTerm){e, sign};
+    for (int open = 1; open;) {
+        open = 0;
+        for (int i = first; i < *n; i++) {
+            const ExprNode *nd = &P->node[t[i].e];
+            if (!(P->trig[t[i].e] & TRIG_SUM))
+                continue;
+            if (nd->op == EXPR_NEG) {
+                t[i] = (PythTerm){nd->a, -t[i].sign};
+                open = 1;
+            } else if ((nd->op == EXPR_ADD || nd->op == EXPR_SUB) && *n < cap) {
+                memmove(&t[i + 2], &t[i + 1], (size_t)(*n - i - 1) * sizeof *t);
+                (*n)++;
+                t[i + 1] = (PythTerm){nd->b, nd->op == EXPR_SUB ? -t[i].sign : t[i].sign};
+                t[i] = (PythTerm){nd->a, t[i].sign};
+                open = 1;
+                i++;
+            }
+        }
+    }
+}
+
+/* a + sign*b with one pair of partners (one term from each side) added
+ * into one term, or EXPR_NONE when there is none.  The other terms are
+ * added again in order, which finds any further pairs. */
+static ExprId
+pyth_search(ExprPool *P, ExprId a, ExprId b, int sign)
+{
+    PythTerm t[2 * PYTH_TERMS];
+    int n = 0;
+    pyth_terms(P, a, 1, t, &n, PYTH_TERMS);
+    int na = n;
+    pyth_terms(P, b, sign, t, &n, na + PYTH_TERMS);
+    PythMono x, y;
+    int hit = -1, with = -1;
+    for (int j = na; j < n && hit < 0; j++) {
+        if (!(P->trig[t[j].e] & TRIG_SQUARE) || !pyth_mono(P, t[j].e, t[j].sign, &y))
+            continue;
+        for (int i = 0; i < na && hit < 0; i++)
+            if ((P->trig[t[i].e] & TRIG_SQUARE) && pyth_mono(P, t[i].e, t[i].sign, &x) &&
+                pyth_partners(P, &x, &y))
+                hit = i, with = j;
+    }
+    if (hit < 0)
+        return EXPR_NONE;
+    ExprId sum = EXPR_ZERO, term = EXPR_ONE;
+    for (int i = 0, j = 0; i < x.nf; i++) { /* prod b^min(n, m) */
+        while (j < y.nf && y.f[j].base < x.f[i].base)
+            j++;
+        if (j < y.nf && y.f[j].base == x.f[i].base) {
+            int m = x.f[i].n < y.f[j].n ? x.f[i].n : y.f[j].n;
+            term = expr_mul(P, term, expr_powi(P, x.f[i].base, m));
+        }
+    }
+    term = expr_mul(P, expr_const(P, x.k), term);
+    for (int i = 0; i < n; i++)
+        if (i != hit && i != with)
+            sum = t[i].sign > 0 ? expr_add(P, sum, t[i].e) : expr_sub(P, sum, t[i].e);
+    return expr_add(P, sum, term);
+}
+
+/* The trig bits first: most sums have no square on one side at least. */
+static inline ExprId
+pythagoras(ExprPool *P, ExprId a, ExprId b, int sign)
+{
+    const uint8_t any = TRIG_SQUARE | TRIG_SUM;
+    if (!(P->trig[a] & any) || !(P->trig[b] & any))
+        return EXPR_NONE;
+    return pyth_search(P, a, b, sign);
 }
 
 ExprId
@@ -325,8 +542,9 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
         return expr_sub(P, b, P->node[a].a);
     if (a == b)
         return expr_mul(P, expr_const(P, 2.0), a);
-    if (pythagorean(P, a, b))
-        return EXPR_ONE;
+    ExprId r = pythagoras(P, a, b, 1);
+    if (r != EXPR_NONE)
+        return r;
     /* (x - a) + a = x: a point offset and brought back (kin.h) */
     if (op_of(P, a) == EXPR_SUB && P->node[a].b == b)
         return P->node[a].a;
@@ -364,6 +582,9 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
         return expr_add(P, a, P->node[b].a);
     if (op_of(P, a) == EXPR_NEG) /* -x - y = -(x + y) */
         return expr_neg(P, expr_add(P, P->node[a].a, b));
+    ExprId r = pythagoras(P, a, b, -1);
+    if (r != EXPR_NONE)
+        return r;
     /* (x + y) - y = x, (x + y) - x = y, x - (x - y) = y: a point's
      * position less the point it is offset from (kin.h) */
     if (op_of(P, a) == EXPR_ADD && P->node[a].b == b)
@@ -788,6 +1009,147 @@ expr_eval(ExprPool *P, ExprId e, const ExprEnv *env)
     double r;
     expr_eval_many(P, 1, &e, env, &r);
     return r;
+}
+
+/* ---- evaluation with a rounding bound ---- */
+
+/* An error a long double libm function may make, in units of its
+ * result's LDBL_EPSILON: glibc's documented worst cases on x86-64 are 1
+ * to 3 ulps (libm-test-ulps), and a bound that is a little loose only
+ * costs a zero test its margin, never its soundness. */
+enum { CALL_ULPS = 4 };
+
+typedef struct Bounded {
+    long double v, err, mag;
+} Bounded;
+
+/* One node: its value, the bound on its error (first order, Higham's
+ * running error analysis: each operation's rounding plus the operands'
+ * errors carried by its partial derivatives, and their product where the
+ * second order is cheap to keep), and the magnitude of what it is made
+ * of (|x| + |y| for x + y, |x| |y| for x y: the scale at which a sum
+ * that cancels is zero).  err = INFINITY where the first order cannot be
+ * trusted: a branch (sign, atan2's cut) or a singularity within reach. */
+static Bounded
+bound_node(const ExprNode *nd, const Bounded *v, const ExprEnv *env)
+{
+    const long double u = LDBL_EPSILON / 2, call = CALL_ULPS * LDBL_EPSILON;
+    Bounded x = {0, 0, 0}, y = {0, 0, 0}, r = {0, 0, 0};
+    int ar = expr_op_arity[nd->op];
+    if (ar >= 1)
+        x = v[nd->a];
+    if (ar >= 2)
+        y = v[nd->b];
+    long double ax = fabsl(x.v), dfdx = 0;
+    switch (nd->op) {
+    case EXPR_CONST:
+    case EXPR_VAR:
+    case EXPR_PARAM:
+    case EXPR_INPUT:
+    case EXPR_TIME:
+    case EXPR_SEED:
+    case EXPR_MULT:
+        r.v = eval_node(nd, NULL, env); /* doubles: exact in long double */
+        r.mag = fabsl(r.v);
+        return r;
+    case EXPR_ADD:
+    case EXPR_SUB:
+        r.v = nd->op == EXPR_ADD ? x.v + y.v : x.v - y.v;
+        r.err = x.err + y.err + u * fabsl(r.v);
+        r.mag = x.mag + y.mag;
+        return r;
+    case EXPR_MUL:
+        r.v = x.v * y.v;
+        r.err = fabsl(y.v) * x.err + ax * y.err + x.err * y.err + u * fabsl(r.v);
+        r.mag = x.mag * y.mag;
+        return r;
+    case EXPR_DIV:
+        r.v = x.v / y.v;
+        r.err = y.err < fabsl(y.v) ? (x.err + fabsl(r.v) * y.err) / (fabsl(y.v) - y.err) +
+                                         u * fabsl(r.v)
+                                   : INFINITY;
+        r.mag = x.mag / fabsl(y.v);
+        return r;
+    case EXPR_NEG:
+        x.v = -x.v;
+        return x;
+    case EXPR_POWI: {
+        int n = (int32_t)nd->b;
+        r.v = powl(x.v, n);
+        /* |d x^n / dx| = |n x^(n-1)|, taken at the end of x's interval
+         * farther from 0; powl rounds once or a few times */
+        r.err = fabsl((long double)n) * powl(ax + x.err, n - 1) * x.err + call * fabsl(r.v);
+        r.mag = powl(x.mag, n);
+        return r;
+    }
+    case EXPR_POW:
+        r.v = powl(x.v, y.v);
+        r.err = fabsl(y.v * powl(x.v, y.v - 1)) * x.err + fabsl(logl(ax) * r.v) * y.err +
+                call * fabsl(r.v);
+        r.mag = fabsl(r.v);
+        return r;
+    case EXPR_ATAN2: {
+        long double rr = x.v * x.v + y.v * y.v;
+        r.v = atan2l(x.v, y.v);
+        /* across the cut (y < 0, x = 0) the value jumps by 2 pi */
+        r.err = y.v < 0 && fabsl(x.v) <= x.err ? INFINITY
+                : (fabsl(y.v) * x.err + ax * y.err) / rr + call * fabsl(r.v);
+        r.mag = fabsl(r.v);
+        return r;
+    }
+    case EXPR_SIN: r.v = sinl(x.v); dfdx = fabsl(cosl(x.v)); break;
+    case EXPR_COS: r.v = cosl(x.v); dfdx = fabsl(sinl(x.v)); break;
+    case EXPR_TAN: r.v = tanl(x.v); dfdx = 1 + r.v * r.v; break;
+    case EXPR_ASIN: r.v = asinl(x.v); dfdx = 1 / sqrtl(1 - x.v * x.v); break;
+    case EXPR_ACOS: r.v = acosl(x.v); dfdx = 1 / sqrtl(1 - x.v * x.v); break;
+    case EXPR_ATAN: r.v = atanl(x.v); dfdx = 1 / (1 + x.v * x.v); break;
+    case EXPR_SINH: r.v = sinhl(x.v); dfdx = coshl(x.v); break;
+    case EXPR_COSH: r.v = coshl(x.v); dfdx = fabsl(sinhl(x.v)); break;
+    case EXPR_TANH: r.v = tanhl(x.v); dfdx = 1 - r.v * r.v; break;
+    case EXPR_EXP: r.v = expl(x.v); dfdx = r.v; break;
+    case EXPR_LOG: r.v = logl(x.v); dfdx = 1 / ax; break;
+    case EXPR_SQRT: r.v = sqrtl(x.v); dfdx = 1 / (2 * r.v); break;
+    case EXPR_ABS: r.v = ax; dfdx = 1; break;
+    case EXPR_SIGN:
+        r.v = (x.v > 0) - (x.v < 0);
+        r.err = ax <= x.err ? INFINITY : 0; /* the sign is not known */
+        r.mag = fabsl(r.v);
+        return r;
+    }
+    /* a function: first order holds while the error of its argument is
+     * small against the scale its derivative changes on, which a bound
+     * beyond 1 (radians, or relative for exp and log) no longer says */
+    if (x.err > 0 && !(x.err * dfdx < 1 && x.err < 1))
+        r.err = INFINITY;
+    else
+        r.err = (x.err > 0 ? dfdx * x.err : 0) + call * fabsl(r.v);
+    r.mag = fabsl(r.v);
+    return r;
+}
+
+void
+expr_eval_bound(ExprPool *P, ExprId e, int n, const ExprEnv *env, ExprBound *out)
+{
+    unsigned char *mark = marked(P, 1, &e);
+    size_t count = 0;
+    for (size_t i = 0; i <= e; i++)
+        count += mark[i];
+    ExprId *list = xmalloc(count * sizeof *list);
+    count = 0;
+    for (ExprId i = 0; i <= e; i++)
+        if (mark[i])
+            list[count++] = i;
+    free(mark);
+    Bounded *v = xmalloc(((size_t)e + 1) * sizeof *v);
+    for (int k = 0; k < n; k++) {
+        for (size_t i = 0; i < count; i++)
+            v[list[i]] = bound_node(&P->node[list[i]], v, &env[k]);
+        out[k] = (ExprBound){v[e].v, v[e].err, v[e].mag};
+        if (!isfinite(out[k].value) || !isfinite(out[k].mag) || isnan(out[k].err))
+            out[k].err = INFINITY;
+    }
+    free(v);
+    free(list);
 }
 
 /* Rebuild a node over new operands through the simplifying constructors. */

@@ -13,7 +13,9 @@
  * factors (expressions of constants and parameters only, such as m*l^2)
  * collected to the left of a product and out of sums: c*x + c*y =
  * c*(x + y).  Mechanics is full of m and l; this keeps them from being
- * multiplied in again and again.
+ * multiplied in again and again.  And sin(x)^2 + cos(x)^2 = 1 between any
+ * two terms of a sum that differ only there (k R sin^2 + k R cos^2 = k R,
+ * R a product of powers), the form of a squared speed on a circle.
  *
  * All nodes live in one ExprPool and are freed with it.
  */
@@ -123,6 +125,18 @@ typedef struct ExprEnv {
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
                     const ExprEnv *env, double *out);
+
+/* e evaluated in long double at n environments, each value with a bound
+ * on its rounding error: |value - exact| <= err to first order (Higham's
+ * running error analysis; library functions within a few ulps), and the
+ * magnitude of the terms it is made of (|x| + |y| for x + y, |x| |y| for
+ * x y), the scale against which a value that cancels is small.  err is
+ * INFINITY where the bound cannot be trusted: a sign or a branch cut
+ * within the error of its operand, a value that is not finite. */
+typedef struct ExprBound {
+    long double value, err, mag;
+} ExprBound;
+void expr_eval_bound(ExprPool *P, ExprId e, int n, const ExprEnv *env, ExprBound *out);
 
 /* Replace leaves from[i] by to[i] everywhere in e (memoized per call). */
 ExprId expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from,

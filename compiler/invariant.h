@@ -11,7 +11,11 @@
  * theorem B q' = k phi for degree k).  Second-order constraints are not
  * credited with it.  Split by degree in q', T = T2 + T1 + T0 and
  * h = T2 - T0 + V, which is T + V exactly when T is a quadratic form.
- * docs/mechanics.md has the derivation.
+ * Free of t means by structure (no t left once simplified), or, where t
+ * is written but cancels through an identity the simplifier does not
+ * apply, by a numerical zero test of the partial derivatives in t in long
+ * double at random states (invariant.c); Invariant.test says which.
+ * docs/mechanics.md has the derivation and the test's criterion.
  */
 #ifndef EOMC_INVARIANT_H
 #define EOMC_INVARIANT_H
@@ -22,6 +26,9 @@ typedef struct Invariant {
     ExprId h;          /* the conserved quantity, EXPR_NONE if none */
     const char *name;  /* "E" (h = T + V) or "h"; NULL if none */
     const char *note;  /* one sentence: what is conserved and why, or why not */
+    const char *test;  /* for --explain: which test decided whether T, V and the
+                        * constraints are free of t (the structure, or the
+                        * numerical zero test and what it saw) */
 } Invariant;
 
 /* c: the constraints, or NULL. */

@@ -271,7 +271,7 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
         constraints_explain(stdout, c, s, info->eliminate);
     else
         printf("no constraints: q'' = -M^-1 h\n");
-    printf("%s\n", inv->note);
+    printf("%s\n%s\n", inv->note, inv->test);
 }
 
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).

@@ -63,6 +63,10 @@ chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
     pd[3] = w3;
     const eomc_real w4 = p_b * w2;
     pd[4] = w4;
+    const eomc_real w5 = p_b * p_b;
+    const eomc_real w6 = p_m * w5;
+    const eomc_real w7 = p_J + w6;
+    pd[5] = w7;
 }
 
 #ifndef EOMC_EXTENDED
@@ -103,10 +107,9 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
     const eomc_real p_m = p[0];
-    const eomc_real p_J = p[1];
     const eomc_real p_b = p[2];
     const eomc_real pd2 = p[7];
-    const eomc_real pd4 = p[9];
+    const eomc_real pd5 = p[10];
     (void)u;
     (void)t;
     M[0] = p_m;
@@ -119,44 +122,38 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w3 = cos(q_theta);
     const eomc_real w4 = pd2 * w3;
     M[7] = w4;
-    const eomc_real w5 = w3 * w3;
-    const eomc_real w6 = pd4 * w5;
-    const eomc_real w7 = p_J + w6;
-    const eomc_real w8 = w0 * w0;
-    const eomc_real w9 = pd4 * w8;
-    const eomc_real w10 = w7 + w9;
-    M[8] = w10;
-    const eomc_real w11 = v_theta * v_theta;
-    const eomc_real w12 = w3 * w11;
-    const eomc_real w13 = pd2 * w12;
-    const eomc_real w14 = -w13;
-    h[0] = w14;
-    const eomc_real w15 = w0 * w11;
-    const eomc_real w16 = pd2 * w15;
-    const eomc_real w17 = -w16;
-    h[1] = w17;
-    const eomc_real w18 = w0 * v_theta;
-    const eomc_real w19 = p_b * w18;
-    const eomc_real w20 = v_x - w19;
-    const eomc_real w21 = v_theta * w20;
-    const eomc_real w22 = w3 * w21;
-    const eomc_real w23 = w3 * v_theta;
-    const eomc_real w24 = p_b * w23;
-    const eomc_real w25 = v_y + w24;
-    const eomc_real w26 = v_theta * w25;
-    const eomc_real w27 = w0 * w26;
-    const eomc_real w28 = w22 + w27;
-    const eomc_real w29 = w18 * w25;
-    const eomc_real w30 = w3 * w0;
-    const eomc_real w31 = w30 * w11;
-    const eomc_real w32 = p_b * w31;
-    const eomc_real w33 = w29 + w32;
-    const eomc_real w34 = w20 * w23;
-    const eomc_real w35 = w34 - w32;
-    const eomc_real w36 = w33 + w35;
-    const eomc_real w37 = w28 - w36;
-    const eomc_real w38 = pd2 * w37;
-    h[2] = w38;
+    M[8] = pd5;
+    const eomc_real w5 = v_theta * v_theta;
+    const eomc_real w6 = w3 * w5;
+    const eomc_real w7 = pd2 * w6;
+    const eomc_real w8 = -w7;
+    h[0] = w8;
+    const eomc_real w9 = w0 * w5;
+    const eomc_real w10 = pd2 * w9;
+    const eomc_real w11 = -w10;
+    h[1] = w11;
+    const eomc_real w12 = w0 * v_theta;
+    const eomc_real w13 = p_b * w12;
+    const eomc_real w14 = v_x - w13;
+    const eomc_real w15 = v_theta * w14;
+    const eomc_real w16 = w3 * w15;
+    const eomc_real w17 = w3 * v_theta;
+    const eomc_real w18 = p_b * w17;
+    const eomc_real w19 = v_y + w18;
+    const eomc_real w20 = v_theta * w19;
+    const eomc_real w21 = w0 * w20;
+    const eomc_real w22 = w16 + w21;
+    const eomc_real w23 = w12 * w19;
+    const eomc_real w24 = w3 * w0;
+    const eomc_real w25 = w24 * w5;
+    const eomc_real w26 = p_b * w25;
+    const eomc_real w27 = w23 + w26;
+    const eomc_real w28 = w14 * w17;
+    const eomc_real w29 = w28 - w26;
+    const eomc_real w30 = w27 + w29;
+    const eomc_real w31 = w22 - w30;
+    const eomc_real w32 = pd2 * w31;
+    h[2] = w32;
     M[1] = 0.0;
     M[2] = w2;
     M[5] = w4;
@@ -502,7 +499,7 @@ const eomc_model chaplygin_sleigh_model = {
     EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "",
     3, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
-    5, chaplygin_sleigh_derive,
+    6, chaplygin_sleigh_derive,
     10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     chaplygin_sleigh_initial, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, chaplygin_sleigh_energy, chaplygin_sleigh_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */

@@ -53,11 +53,9 @@ swing_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w3 = p_l * p_g;
     const eomc_real w4 = p_m * w3;
     pd[2] = w4;
-    const eomc_real w5 = 2.0 * w1;
-    pd[3] = w5;
-    const eomc_real w6 = 1.0 / w1;
-    const eomc_real w7 = w4 * w6;
-    pd[4] = w7;
+    const eomc_real w5 = 1.0 / w1;
+    const eomc_real w6 = w4 * w5;
+    pd[3] = w6;
 }
 
 #ifndef EOMC_EXTENDED
@@ -111,18 +109,13 @@ swing_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd2 = p[9];
     (void)u;
     (void)t;
-    const eomc_real w0 = cos(q_theta);
-    const eomc_real w1 = w0 * v_theta;
-    const eomc_real w2 = w1 * w1;
-    const eomc_real w3 = sin(q_theta);
-    const eomc_real w4 = w3 * v_theta;
-    const eomc_real w5 = w4 * w4;
-    const eomc_real w6 = w2 + w5;
-    const eomc_real w7 = pd1 * w6;
-    TV[0] = w7;
-    const eomc_real w8 = pd2 * w0;
-    const eomc_real w9 = -w8;
-    TV[1] = w9;
+    const eomc_real w0 = v_theta * v_theta;
+    const eomc_real w1 = pd1 * w0;
+    TV[0] = w1;
+    const eomc_real w2 = cos(q_theta);
+    const eomc_real w3 = pd2 * w2;
+    const eomc_real w4 = -w3;
+    TV[1] = w4;
 }
 
 /* The conserved quantity (eomc_model.h: invariant).
@@ -143,24 +136,15 @@ swing_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
     const eomc_real q_theta = q[0];
-    const eomc_real a_theta = a[0];
     const eomc_real pd2 = p[9];
-    const eomc_real pd3 = p[10];
     (void)v;
+    (void)a;
     (void)u;
     (void)t;
     (void)dEdu;
     const eomc_real w0 = cos(q_theta);
-    const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = w1 * a_theta;
-    const eomc_real w3 = pd3 * w2;
-    const eomc_real w4 = pd2 + w3;
-    const eomc_real w5 = w0 * w4;
-    const eomc_real w6 = w1 * w0;
-    const eomc_real w7 = w6 * a_theta;
-    const eomc_real w8 = pd3 * w7;
-    const eomc_real w9 = w5 - w8;
-    dEdq[0] = w9;
+    const eomc_real w1 = pd2 * w0;
+    dEdq[0] = w1;
     dEdv[0] = 0.0;
     dEdt[0] = 0.0;
 }
@@ -177,14 +161,14 @@ swing_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta = q[0];
     const eomc_real pd0 = p[7];
-    const eomc_real pd4 = p[11];
+    const eomc_real pd3 = p[10];
     (void)v;
     (void)u;
     (void)t;
     piv[0] = pd0;
     mkk[0] = pd0;
     const eomc_real w0 = sin(q_theta);
-    const eomc_real w1 = pd4 * w0;
+    const eomc_real w1 = pd3 * w0;
     const eomc_real w2 = -w1;
     a[0] = w2;
 }
@@ -244,7 +228,7 @@ const eomc_model swing_model = {
     EOMC_ABI_VERSION, "swing", "swing.yaml", "lagrange", "",
     1, 7, 0, q_names, p_names, u_names, p_default,
     "free", p_fixed,
-    5, swing_derive,
+    4, swing_derive,
     10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     swing_initial, swing_inputs, swing_mass_bias, swing_energy, swing_jacobian,
     swing_accel,

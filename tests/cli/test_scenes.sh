@@ -49,10 +49,16 @@ ok $? "scene free reads no damping c and no drive A, w; damped reads c, shaken w
 fix="A=0.03,w=5.5,g=9.7,l=0.8"
 "$eomc" compile "$spec" --scene shaken --stats -o /dev/null 2> "$tmp/st0"
 "$eomc" compile "$spec" --scene shaken --fix "$fix" --stats -o /dev/null 2> "$tmp/st1"
+# (M = m l^2 (sin^2 + cos^2) folds by structure with the parameters free
+# too, so M and accel may cost the same either way; the Jacobian folds more)
 for f in mass_bias jacobian accel; do
     a=$(total $f < "$tmp/st0") b=$(total $f < "$tmp/st1")
-    [ "$b" -lt "$a" ]; ok $? "--fix $fix: $f takes $b operations instead of $a"
+    if [ $f = jacobian ]; then [ "$b" -lt "$a" ]; else [ "$b" -le "$a" ]; fi
+    ok $? "--fix $fix: $f takes $b operations, unfixed $a"
 done
+"$eomc" compile "$spec" --scene shaken --fix "$fix" -o "$tmp/fixed.c"
+! grep -q 'p_A\b\|p_w\b\|p_g\b\|p_l\b' "$tmp/fixed.c" && grep -q 'p_m = p\[0\]' "$tmp/fixed.c"
+ok $? "--fix $fix: the code reads none of A, w, g, l (it still reads m)"
 "$eomc" build "$spec" --scene shaken --fix "$fix" -o "$tmp/fixed" 2> /dev/null
 run="--method rk4 --fixed-step 0.001 --t-end 5 --dt 0.1"
 "$tmp/shaken" $run --set A=0.03 --set w=5.5 --set g=9.7 --set l=0.8 > "$tmp/set.csv"

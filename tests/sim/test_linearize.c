@@ -27,7 +27,8 @@
 #define SPECS(X)                                                                        \
     X(falling_particle) X(pendulum) X(gear_link) X(double_pendulum) X(chain5) X(kepler) \
     X(arenstorf) X(cartesian_pendulum) X(appell) X(precession) X(central_constant_speed) \
-    X(chaplygin_sleigh) X(rolling_disk) X(swing) X(bouncing_ball) X(bicycle_tree)
+    X(chaplygin_sleigh) X(rolling_disk) X(swing) X(bouncing_ball) X(bicycle_tree) \
+    X(spinning_hoop)
 #define DECLARE(name) extern const eomc_model name##_model;
 SPECS(DECLARE)
 extern const eomc_model cart_pole_model;

@@ -274,6 +274,70 @@ test_pythagorean(void)
           "cos(x)^2 + sin(y)^2 is not folded");
 }
 
+/* Does e still hold sin(x) or cos(x)? */
+static int
+holds_trig(ExprId e, ExprId x)
+{
+    return expr_depends(P, e, expr_unary(P, EXPR_SIN, x)) ||
+           expr_depends(P, e, expr_unary(P, EXPR_COS, x));
+}
+
+/* The identity where mechanics meets it: scaled by anything, squares of
+ * products, among other terms, subtracted, times further powers. */
+static void
+test_pythagorean_terms(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0), z = expr_var(P, 2, 0);
+    ExprId v = expr_var(P, 0, 1), l = expr_param(P, 0);
+    ExprId s = expr_unary(P, EXPR_SIN, x), c = expr_unary(P, EXPR_COS, x);
+    ExprId s2 = expr_powi(P, s, 2), c2 = expr_powi(P, c, 2);
+    CHECK(expr_add(P, expr_mul(P, y, c2), expr_mul(P, s2, y)) == y,
+          "y cos^2 + y sin^2 is the node y (a scale that is not a coefficient)");
+    /* a pendulum's |r'|^2, as mech.c builds it: (l cos x x')^2 + (l sin x x')^2 */
+    ExprId vx = expr_mul(P, l, expr_mul(P, c, v)), vy = expr_mul(P, l, expr_mul(P, s, v));
+    ExprId sq = expr_add(P, expr_mul(P, vx, vx), expr_mul(P, vy, vy));
+    ExprId want = expr_mul(P, expr_powi(P, l, 2), expr_powi(P, v, 2));
+    CHECK(sq == want, "(l cos x x')^2 + (l sin x x')^2 is the node l^2 x'^2");
+    ExprId w = expr_powi(P, expr_mul(P, expr_mul(P, l, c), v), 2);
+    CHECK(expr_add(P, w, expr_powi(P, expr_mul(P, expr_mul(P, l, s), v), 2)) == want,
+          "... also written (l cos x x')^2 with the power outside the product");
+    ExprId three = expr_const(P, 3);
+    ExprId mixed = expr_add(P, expr_add(P, expr_add(P, y, expr_mul(P, three, c2)), z),
+                            expr_mul(P, three, s2));
+    CHECK(!holds_trig(mixed, x) &&
+              same_at_random_points(mixed, expr_add(P, expr_add(P, y, z), three)),
+          "(y + 3 cos^2 + z) + 3 sin^2 = y + z + 3, with no sin or cos left");
+    ExprId chain = expr_mul(P, expr_param(P, 1), c2), other = EXPR_ZERO;
+    for (int k = 0; k < 20; k++) { /* terms with sin x that are not partners */
+        ExprId t = expr_mul(P, expr_const(P, k + 1), expr_mul(P, s, expr_powi(P, y, k + 1)));
+        chain = expr_add(P, chain, t);
+        other = expr_add(P, other, t);
+    }
+    chain = expr_add(P, chain, expr_mul(P, expr_param(P, 1), s2));
+    CHECK(!expr_depends(P, chain, c2) && !expr_depends(P, chain, s2) &&
+              same_at_random_points(chain, expr_add(P, other, expr_param(P, 1))),
+          "p cos^2 + (20 other terms) + p sin^2: the pair 21 terms apart is found");
+    ExprId two = expr_const(P, 2);
+    CHECK(expr_sub(P, expr_mul(P, two, c2), expr_mul(P, expr_const(P, -2), s2)) == two,
+          "2 cos^2 - (-2) sin^2 is the node 2");
+    ExprId d = expr_sub(P, expr_sub(P, y, s2), c2);
+    CHECK(!holds_trig(d, x) && same_at_random_points(d, expr_sub(P, y, EXPR_ONE)),
+          "y - sin^2 - cos^2 = y - 1");
+    ExprId s4 = expr_mul(P, expr_powi(P, s, 4), y), sc = expr_mul(P, expr_mul(P, s2, c2), y);
+    CHECK(expr_add(P, s4, sc) == expr_mul(P, s2, y), "y sin^4 + y sin^2 cos^2 is the node y sin^2");
+    ExprId a = expr_add(P, x, y), b = expr_add(P, y, x);
+    CHECK(expr_add(P, expr_powi(P, expr_unary(P, EXPR_SIN, a), 2),
+                   expr_powi(P, expr_unary(P, EXPR_COS, b), 2)) == EXPR_ONE,
+          "sin(x + y)^2 + cos(y + x)^2 = 1: one argument node");
+    ExprId uneven = expr_add(P, expr_mul(P, two, c2), expr_mul(P, three, s2));
+    CHECK(holds_trig(uneven, x) && !same_at_random_points(uneven, two),
+          "2 cos^2 + 3 sin^2 is left alone (different scales)");
+    ExprId apart = expr_add(P, expr_mul(P, y, c2), expr_mul(P, z, s2));
+    CHECK(holds_trig(apart, x), "y cos^2 + z sin^2 is left alone (different scales)");
+    ExprId cube = expr_add(P, expr_powi(P, c, 3), expr_mul(P, c, s2));
+    CHECK(cube == c, "cos^3 + cos sin^2 is the node cos");
+}
+
 /* c x + d x = (c + d) x for coefficients c, d (constants, parameters). */
 static void
 test_like_terms(void)
@@ -350,6 +414,7 @@ main(void)
     test_subst();
     test_canonical_products();
     test_pythagorean();
+    test_pythagorean_terms();
     test_like_terms();
     test_parameter_folding();
     test_offsets_cancel();

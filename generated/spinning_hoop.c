@@ -570,6 +570,7 @@ const eomc_model spinning_hoop_model = {
     1, spinning_hoop_check, check_what, check_params,
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
+    0, NULL, /* the scene does not assemble */
 };
 
 #ifdef EOMC_MAIN

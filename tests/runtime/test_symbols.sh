@@ -15,7 +15,12 @@ nm=$1 lib=$2 internal=$3
 shift 3
 . "$(dirname "$0")/../cli/tap.sh"
 
-defined() { "$nm" -g --defined-only "$1" | awk 'NF == 3 { print $3 }' | sort -u; }
+# The global symbols lib defines that a C program could name too (not,
+# under -fsanitize=address, its __odr_asan.NAME indicators).
+defined() {
+    "$nm" -g --defined-only "$1" | awk 'NF == 3 && $3 ~ /^[A-Za-z_][A-Za-z0-9_]*$/ { print $3 }' |
+        sort -u
+}
 
 defined "$lib" > "$tmp/exported"
 others=$(grep -v '^eomc_' "$tmp/exported" | tr '\n' ' ')

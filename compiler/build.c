@@ -245,14 +245,82 @@ build_executable(const char *c_file, const char *exe, int mpi)
     return rc;
 }
 
+/* A 64-bit hash of bytes, fed in pieces, eight bytes at a time (a cache
+ * key hashes eomc and the runtime library, megabytes, on every run):
+ * FNV-1a's multiply on words, with the high bits folded back so that a
+ * change anywhere reaches every bit of the next word's product. */
+static const uint64_t hash_prime = 0x100000001b3u;
+
 static uint64_t
-fnv1a(const char *s, size_t n)
+hash_bytes(uint64_t h, const void *data, size_t n)
 {
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < n; i++) {
-        h ^= (unsigned char)s[i];
-        h *= 1099511628211ull;
+    const unsigned char *p = data;
+    for (; n >= 8; p += 8, n -= 8) {
+        uint64_t w;
+        memcpy(&w, p, 8);
+        h = (h ^ w) * hash_prime;
+        h ^= h >> 29;
     }
+    for (; n; p++, n--)
+        h = (h ^ *p) * hash_prime;
+    return h;
+}
+
+/* A string and its length: "ab" + "c" never hashes as "a" + "bc". */
+static uint64_t
+hash_string(uint64_t h, const char *s)
+{
+    size_t n = strlen(s);
+    h = hash_bytes(h, &n, sizeof n);
+    return hash_bytes(h, s, n);
+}
+
+/* A file's bytes and length; a file that cannot be read hashes as that. */
+static uint64_t
+hash_file(uint64_t h, const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return hash_string(h, "(unreadable)");
+    static unsigned char buf[1 << 16];
+    size_t n, total = 0;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) {
+        h = hash_bytes(h, buf, n);
+        total += n;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    h = hash_bytes(h, &total, sizeof total);
+    return bad ? hash_string(h, "(unreadable)") : h;
+}
+
+/* What a built simulator depends on besides its spec and options: eomc's
+ * version and its own bytes (its generator), the C compiler named by $CC,
+ * and the runtime it links: the library's bytes and the headers the
+ * generated code includes.  By content, not by modification time: a
+ * rebuilt runtime with the same bytes reuses the simulators built with
+ * it, a changed one never does, whatever the clocks say.  Computed once
+ * per invocation. */
+static uint64_t
+toolchain_hash(void)
+{
+    static uint64_t h;
+    static int done;
+    if (done)
+        return h;
+    const char *cc = getenv("CC"), *inc, *lib;
+    runtime_paths(&inc, &lib);
+    h = hash_string(0xcbf29ce484222325u, EOMC_VERSION); /* FNV's offset basis */
+    h = hash_string(h, cc ? cc : "cc");
+    h = hash_file(h, "/proc/self/exe");
+    h = hash_file(h, lib);
+    static const char *const headers[] = {"eomc.h", "eomc_model.h", "eomc_mpi.h"};
+    for (size_t k = 0; k < sizeof headers / sizeof headers[0]; k++) {
+        char path[PATH_MAX * 2 + 64];
+        snprintf(path, sizeof path, "%s/%s", inc, headers[k]);
+        h = hash_file(h, path);
+    }
+    done = 1;
     return h;
 }
 
@@ -285,19 +353,10 @@ build_cache_path(const char *name, const char *key, size_t len)
         snprintf(dir, sizeof dir, "%s/eomc", xdg);
     else
         snprintf(dir, sizeof dir, "%s/.cache/eomc", home && *home ? home : "/tmp");
-    /* The key: spec and options (the caller's text), eomc's version, the
-     * C compiler, and the identity of eomc and runtime files (so that a
-     * rebuilt eomc never reuses an old simulator). */
-    const char *cc = getenv("CC"), *inc, *lib;
-    runtime_paths(&inc, &lib);
-    char ident[512];
-    struct stat st1 = {0}, st2 = {0};
-    stat("/proc/self/exe", &st1);
-    stat(lib, &st2);
-    int il = snprintf(ident, sizeof ident, "%s|%s|%lld.%lld|%lld.%lld", EOMC_VERSION,
-                      cc ? cc : "cc", (long long)st1.st_mtime, (long long)st1.st_size,
-                      (long long)st2.st_mtime, (long long)st2.st_size);
-    uint64_t h = fnv1a(key, len) ^ fnv1a(ident, (size_t)il) * 31;
+    /* The key: spec and options (the caller's text), and what else the
+     * simulator is made of (toolchain_hash). */
+    uint64_t h = hash_bytes(toolchain_hash(), &len, sizeof len);
+    h = hash_bytes(h, key, len);
     size_t dl = strlen(dir);
     snprintf(dir + dl, sizeof dir - dl, "/%016llx", (unsigned long long)h);
     if (make_dirs(dir) != 0) {

@@ -1238,7 +1238,8 @@ plan_grid(Cli *c, const eomc_model *m, Plan *pl)
             *eq = '=';
             if (rc == EOMC_OK && pl->nruns > 10000000 / count[j])
                 rc = usage(c, "--sweep: more than 10000000 runs");
-            pl->nruns *= count[j];
+            if (rc == EOMC_OK) /* a bad count is not multiplied in */
+                pl->nruns *= count[j];
         }
     }
     if (rc == EOMC_OK && !(pl->values = calloc((size_t)(pl->nruns * pl->nparam), sizeof(double))))
@@ -1276,18 +1277,21 @@ plan_file(Cli *c, const eomc_model *m, Plan *pl)
         line[strcspn(line, "\r\n")] = '\0';
         if (!*line)
             continue;
-        if (!pl->names) { /* the header */
+        if (!pl->names) { /* the header: a name in every column */
             int cols = 1;
             for (char *p = line; *p; p++)
                 cols += *p == ',';
-            pl->names = calloc((size_t)cols, sizeof *pl->names);
-            char *save = NULL;
-            for (char *tok = strtok_r(line, ",", &save); tok && rc == EOMC_OK;
-                 tok = strtok_r(NULL, ",", &save)) {
+            if (!(pl->names = calloc((size_t)cols, sizeof *pl->names)))
+                rc = usage(c, "out of memory");
+            for (char *tok = line, *next; tok && rc == EOMC_OK; tok = next) {
+                if ((next = strchr(tok, ',')))
+                    *next++ = '\0';
                 char where[4200];
                 snprintf(where, sizeof where, "%s:%ld:%ld", c->sweep_file, lineno,
                          (long)(tok - line) + 1);
-                rc = sweep_name(c, m, pl, tok, where);
+                rc = *tok ? sweep_name(c, m, pl, tok, where)
+                          : usage(c, "%s: an empty name: the header names the parameter of "
+                                  "every column", where);
                 pl->names[pl->nparam++] = strdup(tok);
             }
             continue; /* the names are copies: the line is reused */

@@ -37,6 +37,14 @@
 
 #include "eomc_model.h"
 
+/* What this header declares is the library's whole interface: libeomcrt is
+ * built with -fvisibility=hidden and keeps its other symbols local
+ * (runtime/meson.build), so a program's own la_dot or sim_zeros cannot
+ * clash with its internals. */
+#if defined(__GNUC__)
+#pragma GCC visibility push(default)
+#endif
+
 enum {
     EOMC_OK = 0,
     EOMC_EUSAGE = 2,   /* bad name or value from the user: exit status 2 */
@@ -382,5 +390,9 @@ const char *eomc_sim_error(const eomc_sim *s);
  * model's extended-precision functions for the reference solution, or
  * NULL.  Returns the exit status: 0, 2 (usage) or 3 (numerical failure). */
 int eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext);
+
+#if defined(__GNUC__)
+#pragma GCC visibility pop
+#endif
 
 #endif

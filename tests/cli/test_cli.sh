@@ -245,8 +245,30 @@ usage_err "$tmp/cp" --stabilize projct && grep -q "did you mean 'project'" "$tmp
 ok $? "--stabilize with a typo: usage error suggesting project"
 usage_err "$tmp/cp" --baumgarte 1 && grep -q "ALPHA,BETA" "$tmp/u.err"
 ok $? "--baumgarte 1: usage error asking for ALPHA,BETA"
-usage_err "$tmp/cp" --stabilize project --baumgarte 1,2
-ok $? "--baumgarte with --stabilize project: usage error"
+usage_err "$tmp/cp" --stabilize project --baumgarte 1,2 &&
+  grep -q "^cp: --baumgarte gives the rates of --stabilize baumgarte, not of --stabilize project" "$tmp/u.err"
+ok $? "--baumgarte with --stabilize project: usage error, the rates belong to baumgarte"
+# --baumgarte A,B sets the rates: from a start off the circle (g = x^2 +
+# y^2 - l^2 = 0.06, g' = 0) the residual column res[rod] follows the
+# closed-form solution of g'' + 2A g' + B^2 g = 0, under-, over- and
+# critically damped (the default rates 10,10 would give another curve).
+for rates in 1,2 3,2 2,2; do
+  "$tmp/cp" --baumgarte $rates --init x=0.9 --init y=-0.5 --t-end 3 --dt 0.25 \
+    --rtol 1e-12 --atol 1e-12 -o "$tmp/bg.csv" 2> /dev/null; st=$?
+  got=$(awk -F, -v rates=$rates '
+    NR == 1 { for (i = 1; i <= NF; i++) if ($i == "res[rod]") c = i; next }
+    NR == 2 { g0 = $c; split(rates, r, ","); a = r[1]; b = r[2] }
+    { t = $1
+      if (b > a) { w = sqrt(b * b - a * a); want = g0 * exp(-a * t) * (cos(w * t) + a / w * sin(w * t)) }
+      else if (a > b) { s = sqrt(a * a - b * b); r1 = -a + s; r2 = -a - s
+                        want = g0 * (r2 * exp(r1 * t) - r1 * exp(r2 * t)) / (r2 - r1) }
+      else want = g0 * (1 + a * t) * exp(-a * t)
+      d = ($c - want) / g0; if (d < 0) d = -d; if (d > e) e = d; n++ }
+    END { printf "%d rows, g(0) = %s, largest |g - closed form| %.2g of g(0)", n, g0, e
+          exit !(c && n == 13 && g0 > 0.05 && e <= 1e-9) }' "$tmp/bg.csv")
+  [ $st -eq 0 ]
+  ok $? "--baumgarte $rates: res[rod] = g(t) of g'' + 2A g' + B^2 g = 0: $got"
+done
 usage_err "$tmp/pend" --stabilize project && grep -q "no holonomic or first-order" "$tmp/u.err"
 ok $? "--stabilize on a model without constraints: usage error"
 usage_err "$tmp/cp" --method msbdf --stabilize project -o "$tmp/ms.csv" &&

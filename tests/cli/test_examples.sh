@@ -5,7 +5,8 @@
 # and the Makefile example (pkg-config) built against that install; each
 # program's q'' at theta = 0.5 against -g/l sin(0.5), and the half period
 # against the closed form 2 K(sin(1/2)) / sqrt(g/l) to the 1e-4 output
-# interval it is read at.
+# interval it is read at.  The installed library exports only the eomc_
+# API (tests/runtime/test_symbols.sh checks the built one).
 # usage: test_examples.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -29,6 +30,11 @@ check() { # OUTPUT NAME
     within "$got" "$accel" 1e-12 && within "$per" "$half" 1e-4
     ok $? "$2: theta'' = $got, half period $per (closed form $half)"
 }
+
+lib=$(find "$tmp/stage" -name libeomcrt.a | head -n 1)
+others=$(nm -g --defined-only "$lib" | awk 'NF == 3 && $3 !~ /^eomc_/ { print $3 }' | tr '\n' ' ')
+[ -n "$lib" ] && nm -g --defined-only "$lib" | grep -q ' T eomc_main$' && [ -z "$others" ]
+ok $? "the installed libeomcrt.a exports only eomc_ symbols${others:+, not: $others}"
 
 cp -r "$src/examples/meson" "$tmp/meson"
 if meson setup "$tmp/meson-build" "$tmp/meson" > "$tmp/meson.log" 2>&1 &&

@@ -13,10 +13,22 @@ case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 whole() { # FILE: every line has the header's number of fields, and there are rows
     awk -F, 'NR == 1 { n = NF } NF != n || $NF == "" { bad = 1 } END { exit !(NR > 10 && !bad) }' "$1"
 }
+# FILE PID: wait until FILE holds the header and 10 rows (written in
+# blocks, so this is the first block or more), for at most 2 minutes
+# however slow the machine, or until PID has ended.
+rows_written() {
+    i=0
+    while [ $i -lt 1200 ] && kill -0 "$2" 2> /dev/null; do
+        [ -f "$1" ] && [ "$(wc -l < "$1")" -gt 10 ] && return 0
+        sleep 0.1
+        i=$((i + 1))
+    done
+    return 1
+}
 for sig in INT TERM KILL; do
     "$tmp/chain5" --t-end 1e6 --dt 1e-3 -o "$tmp/$sig.csv" 2> "$tmp/$sig.err" &
     pid=$!
-    sleep 1
+    rows_written "$tmp/$sig.csv" $pid || echo "# no rows after 2 minutes"
     kill -$sig $pid
     wait $pid
     st=$?

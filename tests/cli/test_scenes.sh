@@ -35,8 +35,8 @@ ok $? "the banner names the scene and what it fixes"
 "$tmp/shaken" --help | grep -q '^Simulate swing (swing.yaml, lagrange form, scene shaken)'
 ok $? "the simulator's --help names the scene"
 first=$("$tmp/shaken" --t-end 0.01 | sed -n 2p | cut -d, -f2)
-[ "$first" = "0.10000000000000001" ] || [ "$first" = "0.1" ]
-ok $? "scene shaken starts from its own initial theta = 0.1 ($first)"
+[ "$first" = "0.1" ]
+ok $? "scene shaken starts from its own initial theta = 0.1, written shortest ($first)"
 
 "$eomc" compile "$spec" --scene free -o "$tmp/free.c"
 "$eomc" compile "$spec" --scene shaken -o "$tmp/shaken.c"

@@ -71,6 +71,17 @@ ok $? "a bad value in --sweep-file: FILE:LINE:COLUMN, exit $st, no summary file"
 "$tmp/pend" --sweep g=1:2:0 > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ]
 ok $? "COUNT 0: exit $st"
+# (fuzz_runtime's finds: a header with an empty name read as having fewer
+# columns, and with none freed the values twice after 64 rows; a bad COUNT
+# overflowed the count of runs)
+{ echo 'g,'; seq 70; } > "$tmp/noname.csv"
+"$tmp/pend" --sweep-file "$tmp/noname.csv" -o "$tmp/none.csv" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "noname.csv:1:3: an empty name: the header names the parameter of every column" "$tmp/err" &&
+  [ ! -e "$tmp/none.csv" ]
+ok $? "an empty name in --sweep-file's header: FILE:LINE:COLUMN, exit $st, no summary file"
+"$tmp/pend" --sweep g=1:2:3 --sweep l=1:2:8888888888888888882:8 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "l=1:2:8888888888888888882:8: expected START:STOP:COUNT" "$tmp/err"
+ok $? "a COUNT that is not one: exit $st, naming it"
 "$tmp/pend" --threads 2 > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && grep -q 'runs the runs of a sweep' "$tmp/err"
 ok $? "--threads without a sweep: exit $st"

@@ -23,13 +23,15 @@
 FUZZ_ENTRY(spec);
 FUZZ_ENTRY(expr);
 FUZZ_ENTRY(pipeline);
+FUZZ_ENTRY(runtime);
 #else
 #define FUZZ_ENTRY(name) int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 FUZZ_ENTRY(any);
 #endif
 
 /* Run fn(ctx) on the big stack, with diagnostics silenced; returns when
- * it has. */
+ * it has.  (The compiler's targets; fuzz_runtime calls the simulator's
+ * command line directly.) */
 void fuzz_run(void (*fn)(void *ctx), void *ctx);
 
 #endif

@@ -2,7 +2,7 @@
  * Replay inputs through the fuzz targets without libFuzzer: the
  * 'fuzz-regressions' test (TAP), in every build, sanitizers or not.
  *
- *     fuzz_replay [--spec | --expr | --pipeline] PATH...
+ *     fuzz_replay [--spec | --expr | --pipeline | --runtime] PATH...
  *
  * Each PATH (a file, or a directory whose files are taken in name order)
  * goes through the target named by the option before it.  A crash or a
@@ -97,13 +97,14 @@ main(int argc, char **argv)
         {"--spec", "spec", fuzz_spec},
         {"--expr", "expr", fuzz_expr},
         {"--pipeline", "pipeline", fuzz_pipeline},
+        {"--runtime", "runtime", fuzz_runtime},
     };
     int t = 0;
     for (int i = 1; i < argc; i++) {
         int opt = 0;
-        for (int k = 0; k < 3; k++)
+        for (size_t k = 0; k < sizeof targets / sizeof targets[0]; k++)
             if (!strcmp(argv[i], targets[k].opt))
-                t = k, opt = 1;
+                t = (int)k, opt = 1;
         if (!opt)
             replay(targets[t].fn, targets[t].name, argv[i]);
     }

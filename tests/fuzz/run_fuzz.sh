@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Run the libFuzzer targets for a bounded time each:
 #
-#     tests/fuzz/run_fuzz.sh SECONDS [spec|expr|pipeline]...
+#     tests/fuzz/run_fuzz.sh SECONDS [spec|expr|pipeline|runtime]...
 #
 # Builds the targets in build-fuzz (set up with clang and -Dfuzz=true if
 # it does not exist), assembles seed corpora in a temporary directory
 # (specs/*.yaml, tests/errors/*.yaml, tests/fuzz/regressions/spec and the
 # examples of docs/spec.md for the spec targets; the expressions of specs and
-# tests/fuzz/regressions/expr for the expression target), runs each
-# target for SECONDS, and prints one line per target:
+# tests/fuzz/regressions/expr for the expression target;
+# tests/fuzz/regressions/runtime for the simulator's command line, whose
+# messages are not kept: -close_fd_mask=2), runs each target for SECONDS,
+# and prints one line per target:
 #
 #     fuzz_spec: ok, 60 s, 123456 execs, 789 inputs in the corpus
 #     fuzz_spec: FAILED (crash-...): see /tmp/eomc-fuzz-XXXX/fuzz_spec.log
@@ -21,10 +23,10 @@
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 
-secs=${1:?usage: tests/fuzz/run_fuzz.sh SECONDS [spec|expr|pipeline]...}
+secs=${1:?usage: tests/fuzz/run_fuzz.sh SECONDS [spec|expr|pipeline|runtime]...}
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(spec expr pipeline)
+[ ${#targets[@]} -gt 0 ] || targets=(spec expr pipeline runtime)
 
 if [ ! -d build-fuzz ]; then
   CC=clang meson setup build-fuzz -Dfuzz=true >/dev/null || {
@@ -53,7 +55,7 @@ fi
 
 # Seeds.  Spec targets: the shipped specs, the error cases, the regressions,
 # and the YAML examples of docs/spec.md.
-mkdir -p "$work/seed-spec" "$work/seed-expr"
+mkdir -p "$work/seed-spec" "$work/seed-expr" "$work/seed-runtime"
 for f in specs/*.yaml tests/errors/*.yaml tests/fuzz/regressions/spec/*; do
   [ -f "$f" ] && cp "$f" "$work/seed-spec/$(echo "$f" | tr / _)"
 done
@@ -74,18 +76,22 @@ done
 for f in tests/fuzz/regressions/expr/*; do
   [ -f "$f" ] && cp "$f" "$work/seed-expr/regression-$(basename "$f")"
 done
+for f in tests/fuzz/regressions/runtime/*; do
+  [ -f "$f" ] && cp "$f" "$work/seed-runtime/$(basename "$f")"
+done
 
 failed=0
 for t in "${targets[@]}"; do
   case $t in
-  spec | pipeline) seeds=seed-spec dict=spec.dict max_len=65536 ;;
-  expr) seeds=seed-expr dict=expr.dict max_len=16384 ;;
+  spec | pipeline) seeds=seed-spec dict=spec.dict max_len=65536 quiet= ;;
+  expr) seeds=seed-expr dict=expr.dict max_len=16384 quiet= ;;
+  runtime) seeds=seed-runtime dict=runtime.dict max_len=4096 quiet=-close_fd_mask=2 ;;
   *) echo "run_fuzz: unknown target '$t'"; failed=1; continue ;;
   esac
   mkdir -p "$work/corpus-$t"
   log=$work/fuzz_$t.log
   build-fuzz/tests/fuzz/fuzz_"$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=$max_len -dict=tests/fuzz/$dict -print_final_stats=1 \
+    -max_len=$max_len -dict=tests/fuzz/$dict -print_final_stats=1 $quiet \
     -artifact_prefix="$work/fuzz_$t-" ${FUZZ_ARGS:-} "$work/corpus-$t" "$work/$seeds" >"$log" 2>&1
   rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

@@ -5,7 +5,8 @@
  *  - the CSV: header "t,x,x',T,V,E", rows at k dt and exactly t_end, on the
  *    closed form; --init "x'=2"; -o FILE; options spelled either way;
  *  - the driven oscillator's input: u(0) = 0, or held by --set u=0.7;
- *  - --help, --version, --stats: exit 0;
+ *  - --help, --stats: exit 0; --version names the model and the runtime's
+ *    version, which is meson's project version (PROJECT_VERSION);
  *  - usage errors exit 2 with a message naming the culprit, nothing on stdout;
  *  - numerical failure (M not positive definite at t = 1) exits 3, keeps the
  *    rows computed so far (all finite) and says "t = ..." on stderr.
@@ -239,7 +240,14 @@ options(void)
     CHECK(st == 0 && (strstr(out, "--set") || strstr(err, "--set")),
           "--help exits 0 and describes --set (exit %d)", st);
     st = run(osc_sim, "--version");
-    CHECK(st == 0 && (out[0] || err[0]), "--version exits 0 and prints something (exit %d)", st);
+    char want[512];
+    const char *base = strrchr(osc_sim, '/');
+    snprintf(want, sizeof want, "%s: model %s from %s, %s form; eomc runtime %s\n",
+             base ? base + 1 : osc_sim, osc_model.name, osc_model.spec, osc_model.form,
+             PROJECT_VERSION);
+    CHECK(st == 0 && !strcmp(out, want) && !err[0],
+          "--version: exit 0, the model and meson's project version %s (exit %d: %s)",
+          PROJECT_VERSION, st, one_line(out));
     st = run(osc_sim, "--stats --t-end 1");
     Table t = parse_csv(out);
     CHECK(st == 0 && strstr(err, "steps") && t.nrow == 11,

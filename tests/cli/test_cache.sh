@@ -1,0 +1,92 @@
+#!/bin/sh
+# What `eomc run`'s cache is keyed by (TAP): the spec's text, $CC, and the
+# content of eomc and of the runtime it links (the library and the headers
+# the generated code includes), never their modification times.  A copy
+# of the runtime (EOMC_RUNTIME_LIB, EOMC_RUNTIME_INCLUDE) and of eomc are
+# changed in turn; each case says whether the simulator was built again
+# (a new entry in $EOMC_CACHE_DIR) and checks what it computes.
+# usage: test_cache.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+mkdir -p "$tmp/rt" "$tmp/inc" "$tmp/bin"
+cp "$build/runtime/libeomcrt.a" "$tmp/rt/"
+cp "$src/runtime/eomc.h" "$src/runtime/eomc_model.h" "$src/runtime/eomc_mpi.h" "$tmp/inc/"
+export EOMC_RUNTIME_LIB="$tmp/rt/libeomcrt.a" EOMC_RUNTIME_INCLUDE="$tmp/inc"
+lib=$EOMC_RUNTIME_LIB
+cp "$src/specs/pendulum.yaml" "$tmp/p.yaml"
+
+entries() { find "$tmp/cache" -type f -name 'sim-*' 2> /dev/null | wc -l; }
+# run EOMC: theta'' at theta = 0.5 in got, and in built whether the run
+# added an entry to the cache (1) or not (0)
+run() {
+    before=$(entries)
+    got=$("$1" run "$tmp/p.yaml" --accel --init theta=0.5 | sed -n "s/^theta'' //p")
+    built=$(($(entries) - before))
+}
+# g sin(0.5) for g = $1, to 1e-12
+is_accel() { awk -v g="$got" -v w="$1" 'BEGIN { w = -w * sin(0.5); d = g - w; if (d < 0) d = -d
+    exit !(g != "" && d <= 1e-12 * (w < 0 ? -w : w)) }'; }
+
+run "$eomc"
+[ "$built" -eq 1 ] && is_accel 9.81
+ok $? "first run: built, theta'' = $got = -9.81 sin(0.5)"
+run "$eomc"
+[ "$built" -eq 0 ] && is_accel 9.81
+ok $? "the same run again: not rebuilt"
+
+sed 's/g: 9.81/g: 3.5/' "$src/specs/pendulum.yaml" > "$tmp/p.yaml"
+run "$eomc"
+[ "$built" -eq 1 ] && is_accel 3.5
+ok $? "the spec edited (g = 3.5): rebuilt, theta'' = $got"
+
+touch -d '2001-02-03 04:05:06' "$lib" "$tmp/inc/"*.h
+run "$eomc"
+[ "$built" -eq 0 ] && is_accel 3.5
+ok $? "the runtime's files touched (new times, the same bytes): not rebuilt"
+
+# the runtime rebuilt to other bytes of the same size, at the same time: a
+# digit of the archive's first member header (its date field, which the
+# linker ignores) changed, and the time set back
+c=$(dd if="$lib" bs=1 skip=24 count=1 2> /dev/null)
+[ "$c" = 1 ] && d=2 || d=1
+printf '%s' "$d" | dd of="$lib" bs=1 seek=24 count=1 conv=notrunc 2> /dev/null
+touch -d '2001-02-03 04:05:06' "$lib"
+size=$(wc -c < "$lib")
+run "$eomc"
+[ "$built" -eq 1 ] && is_accel 3.5 && [ "$size" -eq "$(wc -c < "$build/runtime/libeomcrt.a")" ]
+ok $? "the library's bytes changed, its size and time kept: rebuilt"
+
+printf '/* a changed header */\n' >> "$tmp/inc/eomc_model.h"
+touch -d '2001-02-03 04:05:06' "$tmp/inc/eomc_model.h"
+run "$eomc"
+[ "$built" -eq 1 ] && is_accel 3.5
+ok $? "eomc_model.h changed, its time kept: rebuilt"
+
+cp "$eomc" "$tmp/bin/eomc"
+touch -d '2001-02-03 04:05:06' "$tmp/bin/eomc"
+run "$tmp/bin/eomc"
+[ "$built" -eq 0 ] && is_accel 3.5
+ok $? "a copy of eomc (the same bytes, another file and time): not rebuilt"
+printf '\0' >> "$tmp/bin/eomc"
+run "$tmp/bin/eomc"
+[ "$built" -eq 1 ] && is_accel 3.5
+ok $? "eomc's bytes changed: rebuilt"
+
+# another $CC: the one the tests run with and a harmless definition
+cc_run() {
+    before=$(entries)
+    got=$(CC="${CC:-cc} -DEOMC_CACHE_TEST" "$eomc" run "$tmp/p.yaml" --accel --init theta=0.5 |
+          sed -n "s/^theta'' //p")
+    built=$(($(entries) - before))
+}
+cc_run
+[ "$built" -eq 1 ] && is_accel 3.5
+ok $? "another \$CC: rebuilt"
+cc_run
+[ "$built" -eq 0 ] && is_accel 3.5
+ok $? "that \$CC again: not rebuilt"
+
+tap_end

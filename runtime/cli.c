@@ -1712,10 +1712,15 @@ warn_reset(const Cli *c, const eomc_model *m, const eomc_stats *st)
     if (st->reset_event < 0)
         return;
     const char *name = m->c_names[st->reset_constraint];
-    fprintf(stderr, "%s: warning: t = %.6g: event %s set %s that violate the constraint %s: "
-            "its residual is %.2g of the size of its terms; ", c->prog, st->reset_t,
-            m->ev_names[st->reset_event], st->reset_level ? "velocities" : "positions",
-            name, st->reset_inconsistency);
+    if (!strchr(st->reset_off, ',')) /* one constraint */
+        fprintf(stderr, "%s: warning: t = %.6g: event %s set %s that violate the constraint "
+                "%s: its residual is %.2g of the size of its terms; ", c->prog, st->reset_t,
+                m->ev_names[st->reset_event], st->reset_level ? "velocities" : "positions",
+                name, st->reset_inconsistency);
+    else
+        fprintf(stderr, "%s: warning: t = %.6g: event %s set a state off the constraints, "
+                "worst first: %s (each residual as a share of the size of its terms); ",
+                c->prog, st->reset_t, m->ev_names[st->reset_event], st->reset_off);
     if (c->stabilize == EOMC_STABILIZE_PROJECT)
         fprintf(stderr, "the projection after the next step moved the state back onto the "
                 "constraints, changing what the event set\n");

@@ -296,9 +296,13 @@ typedef struct eomc_stats {
      * velocity-level constraints (eomc_sim_inconsistency above
      * EOMC_INCONSISTENT): the event (-1: none did), its time, the
      * constraint, its level (0: g, 1: g' or phi) and the inconsistency.
-     * The motion goes on from the state as set. */
+     * reset_off lists every constraint that set left off, worst first,
+     * each with its level and inconsistency: "plane (velocities: 0.00056),
+     * rod (velocities: 0.00028)".  The motion goes on from the state as
+     * set. */
     int reset_event, reset_constraint, reset_level;
     double reset_t, reset_inconsistency;
+    char reset_off[512];
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with

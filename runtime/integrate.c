@@ -227,6 +227,8 @@ typedef struct Run {
                                      its rate on arrival (0 unless on the way
                                      it crossed, slower than passing) */
     long since_reset;             /* steps since the last reset */
+    double *ce;                   /* [nc] each constraint's inconsistency */
+    int *cl;                      /* [nc] and its level, after a reset */
 } Run;
 
 /* Every 256 right-hand sides: after the first second, t on the terminal
@@ -851,6 +853,38 @@ g_rate(Run *r, int k, double t, const double *x, const double *f)
     return (g[1] - g[0]) / (2 * d);
 }
 
+/* Event k's `set` left the state off its constraints (their
+ * inconsistencies in r->ce, levels in r->cl): the first such is kept in
+ * the statistics, with every constraint it left off, worst first. */
+static void
+note_reset_off(Run *r, int k)
+{
+    eomc_stats *st = r->st;
+    const eomc_model *m = r->s->m;
+    size_t at = 0, len = sizeof st->reset_off;
+    st->reset_event = k;
+    st->reset_t = r->t;
+    st->reset_off[0] = '\0';
+    for (int listed = 0;; listed++) {
+        int worst = -1;
+        for (int j = 0; j < m->nc; j++)
+            if (r->ce[j] > EOMC_INCONSISTENT && (worst < 0 || r->ce[j] > r->ce[worst]))
+                worst = j;
+        if (worst < 0)
+            break;
+        if (!listed) {
+            st->reset_constraint = worst;
+            st->reset_level = r->cl[worst];
+            st->reset_inconsistency = r->ce[worst];
+        }
+        if (at < len)
+            at += (size_t)snprintf(st->reset_off + at, len - at, "%s%s (%s: %.2g)",
+                                   listed ? ", " : "", m->c_names[worst],
+                                   r->cl[worst] ? "velocities" : "positions", r->ce[worst]);
+        r->ce[worst] = 0; /* listed */
+    }
+}
+
 /* Event k's reset at r->t, after the rows up to it were written: the
  * integration starts again from the new state, with nothing of the
  * history before (the interpolant's nodes, a multistep method's past).
@@ -876,17 +910,10 @@ apply_reset(Run *r, int k)
                           "finite", s->m->ev_names[k]);
         return GSL_EBADFUNC;
     }
-    if (r->st->reset_event < 0 && s->m->nc > 0) {
-        int worst, level;
-        double e = eomc_sim_inconsistency(s, r->t, r->x, r->x + r->n, &worst, &level);
-        if (e > EOMC_INCONSISTENT && worst >= 0) {
-            r->st->reset_event = k;
-            r->st->reset_t = r->t;
-            r->st->reset_constraint = worst;
-            r->st->reset_level = level;
-            r->st->reset_inconsistency = e;
-        }
-    }
+    if (r->st->reset_event < 0 && s->m->nc > 0 &&
+        eomc_sim_inconsistencies(s, r->t, r->x, r->x + r->n, r->ce, r->cl) >
+            EOMC_INCONSISTENT)
+        note_reset_off(r, k);
     int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
         return rc;
@@ -1097,10 +1124,11 @@ run_free(Run *r)
     dense_free(r->dense);
     double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
                         r->xrow, r->erow, r->fs, r->fs2, r->g0, r->g1, r->ge, r->te,
-                        r->xe};
+                        r->xe, r->ce};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->held);
+    free(r->cl);
 }
 
 static int
@@ -1132,13 +1160,15 @@ run_alloc(Run *r, const Method *m)
     }
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
                          &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2, &r->g0, &r->g1,
-                         &r->ge, &r->te, &r->xe};
+                         &r->ge, &r->te, &r->xe, &r->ce};
     size_t ne = (size_t)r->ne;
-    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N};
+    size_t nc = (size_t)r->s->m->nc;
+    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N, nc};
     int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     ok &= (r->held = calloc(ne + 1, 1)) != NULL;
+    ok &= (r->cl = calloc(nc + 1, sizeof *r->cl)) != NULL;
     return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
                                           r->o->method);
 }

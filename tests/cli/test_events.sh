@@ -186,5 +186,32 @@ res=$(tail -1 "$tmp/offp.csv" | awk -F, '{ print $NF }')
 [ $st -eq 0 ] && grep -q "the projection after the next step moved the state back onto the constraints" "$tmp/offp.err" &&
   within "$res" 0 1e-12
 ok $? "the same with --stabilize project: the warning says the projection undid it; g(2) = $res"
+# The bob in space, on the rod and in the plane z = 0: a reset of y' and
+# z' at the bottom (0, -l, 0) leaves both velocity constraints, the rod's
+# g' = 2 y y' (share 0.001 / |v|, as above) and the plane's z' (0.002 /
+# |v|, B = (0, 0, 1) against m |v|): the warning names both, worst first.
+cat > "$tmp/rod3.yaml" <<'YAML'
+name: rod3
+parameters: {m: 1.0, l: 1.0, g: 9.81}
+coordinates: [x, y, z]
+particles:
+  bob: {mass: m, position: [x, y, z]}
+effects:
+  gravity: {gravity: [0, -g, 0]}
+constraints:
+  rod: x^2 + y^2 + z^2 - l^2
+  plane: z
+initial: {x: l*sin(1), y: -l*cos(1)}
+scene:
+  t_end: 1
+  rtol: 1e-12
+  atol: 1e-12
+  events:
+    bottom: {when: x, direction: down, action: {set: {"y'": 0.001, "z'": 0.002}}}
+YAML
+"$eomc" run "$tmp/rod3.yaml" -o /dev/null 2> "$tmp/rod3.err"; st=$?
+shares=$(awk 'BEGIN { v = sqrt(2 * 9.81 * (1 - cos(1)) + 5e-6); printf "plane (velocities: %.2g), rod (velocities: %.2g)", 0.002 / v, 0.001 / v }')
+[ $st -eq 0 ] && grep -qF "event bottom set a state off the constraints, worst first: $shares (each residual" "$tmp/rod3.err"
+ok $? "a reset off two constraints: the warning names both, worst first: $shares"
 
 tap_end

@@ -10,7 +10,8 @@
 #    --linearize with exit 2 and the rebuild to do; --work-precision leaves
 #    those methods out and says so;
 #  - `eomc run ... --linearize` builds with it: the seeded Jacobian's A
-#    equals the unrolled one's to rounding (two derivations, two codes).
+#    equals the unrolled one's to rounding (two derivations, two codes),
+#    and its rows of q'' equal central differences of --accel.
 # usage: test_jacobian.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -62,5 +63,29 @@ paste -d, "$tmp/a.csv" "$tmp/b.csv" | awk -F, -v st="$st1$st2" '
   END { printf "# %d entries, max |A| %g, max difference %g\n", rows, s, m
         exit !(st == "00" && rows == 576 && s > 0 && m <= 1e-12 * s) }'
 ok $? "eomc run --linearize builds with the Jacobian: seeded A = unrolled A to 1e-12"
+# ... and both are the motion's: the q'' rows of A at a state set in full
+# against central differences of --accel (step 1e-5: truncation about
+# 1e-10 of |A|), the check independent of either derivation
+states=$(awk -F, 'NR > 1 && $1 == "A" && !seen[$3]++ { print $3 }' "$tmp/a.csv")
+echo "$states" | awk '{ v = index($1, "\047") ? 0.5 * cos(2 * NR + 1) : 0.3 * sin(NR + 1)
+                       printf "%s %.17g\n", $1, v }' > "$tmp/base.txt"
+base=$(awk '{ printf "--init %s=%s ", $1, $2 }' "$tmp/base.txt")
+"$eomc" run "$tmp/tree4.yaml" --linearize $base --csv "$tmp/c.csv" > /dev/null; st=$?
+: > "$tmp/fd.txt"
+while read -r s v; do
+  for sg in 1 -1; do
+    x=$(awk -v v="$v" -v s=$sg 'BEGIN { printf "%.17g", v + s * 1e-5 }')
+    "$eomc" run "$tmp/tree4.yaml" --accel $base --init "$s=$x" 2> /dev/null |
+      awk -v s="$s" -v sg=$sg '{ print sg, s, $1, $2 }' >> "$tmp/fd.txt"
+  done
+done < "$tmp/base.txt"
+got=$(awk -F'[ ,]' -v st=$st 'FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else dn[$2 "|" $3] = $4; next }
+  FNR > 1 && $1 == "A" && $2 ~ /\047$/ { k = $3 "|" $2 "\047"
+    if (!(k in up) || !(k in dn)) miss++
+    d = (up[k] - dn[k]) / 2e-5 - $4; if (d < 0) d = -d; if (d > m) m = d
+    a = $4 < 0 ? -$4 : $4; if (a > s) s = a; n++ }
+  END { printf "%d entries, max |A| %g, max |A - differences| %.2g", n, s, m
+        exit !(st == 0 && n == 288 && !miss && s > 0 && m <= 1e-7 * s) }' "$tmp/fd.txt" "$tmp/c.csv")
+ok $? "--linearize's A against central differences of --accel: $got"
 
 tap_end

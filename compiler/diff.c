@@ -128,14 +128,16 @@ diff_local(ExprPool *P, ExprId f, int k)
         return expr_const(P, -1.0);
     case EXPR_POWI: { /* d(x^n) = n x^(n-1) dx */
         int n = (int32_t)nd.b;
-        return expr_mul(P, expr_const(P, n), expr_powi(P, x, n - 1));
+        ExprId xn1 = expr_powi(P, x, n - 1);
+        return expr_mul(P, expr_const(P, n), xn1);
     }
     case EXPR_POW: /* d(x^y) = y x^(y-1) dx + x^y log(x) dy */
         if (k == 0)
             return expr_mul(P, y, expr_pow(P, x, expr_sub(P, y, EXPR_ONE)));
         return expr_mul(P, f, expr_unary(P, EXPR_LOG, x));
     case EXPR_ATAN2: { /* d atan2(x, y) = (y dx - x dy) / (x^2 + y^2) */
-        ExprId r2 = expr_add(P, expr_powi(P, x, 2), expr_powi(P, y, 2));
+        ExprId y2 = expr_powi(P, y, 2);
+        ExprId r2 = expr_add(P, expr_powi(P, x, 2), y2);
         return k == 0 ? expr_div(P, y, r2) : expr_neg(P, expr_div(P, x, r2));
     }
     case EXPR_SIN: /* d sin x = cos x dx */

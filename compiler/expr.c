@@ -710,8 +710,10 @@ expr_mul(ExprPool *P, ExprId a, ExprId b)
     numeric(P, a, &k1, &r1);
     numeric(P, b, &k2, &r2);
     if (!ca && !cb && (k1 != 1.0 || k2 != 1.0) && P->node[a].coeff && P->node[b].coeff &&
-        foldable(k1 * k2))
-        return expr_mul(P, expr_const(P, k1 * k2), expr_mul(P, r1, r2));
+        foldable(k1 * k2)) {
+        ExprId r = expr_mul(P, r1, r2);
+        return expr_mul(P, expr_const(P, k1 * k2), r);
+    }
     if (ca && !cb && k2 != 1.0 && foldable(x * k2))
         return expr_mul(P, expr_const(P, x * k2), r2);
     if (!ca && op_of(P, a) == EXPR_NEG)

@@ -5,7 +5,9 @@
  * returns the existing id, so common subexpressions are shared by
  * construction.  A node's operands always have smaller ids than the node,
  * so id order is a topological order and ids are deterministic (they only
- * depend on the order of construction calls).
+ * depend on the order of construction calls: so never build nodes in two
+ * operands of one expression whose order C leaves unspecified, such as
+ * two arguments of a call; generated/sequenced.py checks).
  *
  * The constructors simplify: constant folding (only to finite results;
  * -0.0 is stored as 0.0), x+0, x*1, x*0 = 0 (symbolically: no IEEE

@@ -94,7 +94,8 @@ kin_cross(ExprPool *P, const ExprId *a, const ExprId *b, ExprId *out)
     ExprId c[3];
     for (int i = 0; i < 3; i++) {
         int j = (i + 1) % 3, k = (i + 2) % 3;
-        c[i] = expr_sub(P, expr_mul(P, a[j], b[k]), expr_mul(P, a[k], b[j]));
+        ExprId kj = expr_mul(P, a[k], b[j]);
+        c[i] = expr_sub(P, expr_mul(P, a[j], b[k]), kj);
     }
     for (int i = 0; i < 3; i++)
         out[i] = c[i];

@@ -37,7 +37,9 @@ gyroscopic(ExprPool *P, const SpecBody *b, ExprId out[3])
         Iw[i] = dot_product(P, 3, &b->inertia[3 * i], b->omega);
     for (int i = 0; i < 3; i++) {
         int j = (i + 1) % 3, k = (i + 2) % 3;
-        out[i] = expr_sub(P, expr_mul(P, b->omega[j], Iw[k]), expr_mul(P, b->omega[k], Iw[j]));
+        ExprId kj = expr_mul(P, b->omega[k], Iw[j]);
+        ExprId jk = expr_mul(P, b->omega[j], Iw[k]);
+        out[i] = expr_sub(P, jk, kj);
     }
 }
 

@@ -409,9 +409,11 @@ variation(Parser *ps, ExprId e, size_t off)
                    "-c*r'*delta(r)", what);
     }
     ExprId r = EXPR_ZERO;
-    for (int i = 0; i < sc->ncoord; i++)
-        r = expr_add(P, r, expr_mul(P, diff_partial(sc->D, e, expr_var(P, i, 0)),
-                                    expr_seed(P, i, 0)));
+    for (int i = 0; i < sc->ncoord; i++) {
+        ExprId dq = expr_seed(P, i, 0);
+        ExprId de = diff_partial(sc->D, e, expr_var(P, i, 0));
+        r = expr_add(P, r, expr_mul(P, de, dq));
+    }
     check_deps(ps, r, NULL, off);
     return r;
 }

@@ -1317,12 +1317,13 @@ require_inertia(Loader *L, const yaml_node_t *n, const SpecBody *b)
     }
     const char *pd = "body '%s': its inertia must be positive definite (a principal "
                      "moment of zero or less leaves a rotation with no inertia)";
-    ExprId m2 = expr_sub(P, expr_mul(P, I[0], I[4]), expr_mul(P, I[1], I[3]));
+    ExprId m2b = expr_mul(P, I[1], I[3]);
+    ExprId m2 = expr_sub(P, expr_mul(P, I[0], I[4]), m2b);
     ExprId det = EXPR_ZERO, S[9], half = expr_const(P, 0.5);
     for (int j = 0; j < 3; j++) { /* along the first row */
         int a = (j + 1) % 3, c = (j + 2) % 3;
-        ExprId minor = expr_sub(P, expr_mul(P, I[3 + a], I[6 + c]),
-                                expr_mul(P, I[3 + c], I[6 + a]));
+        ExprId ca = expr_mul(P, I[3 + c], I[6 + a]);
+        ExprId minor = expr_sub(P, expr_mul(P, I[3 + a], I[6 + c]), ca);
         det = expr_add(P, det, expr_mul(P, I[j], minor));
     }
     require(L, I[0], 1, n, 0, pd, b->name);
@@ -1337,14 +1338,14 @@ require_inertia(Loader *L, const yaml_node_t *n, const SpecBody *b)
         require(L, S[4 * k], 0, n, 0, real, b->name);
     for (int k = 0; k < 3; k++) {
         int a = (k + 1) % 3, c = (k + 2) % 3;
-        require(L, expr_sub(P, expr_mul(P, S[4 * a], S[4 * c]),
-                            expr_mul(P, S[3 * a + c], S[3 * c + a])), 0, n, 0, real, b->name);
+        ExprId off = expr_mul(P, S[3 * a + c], S[3 * c + a]);
+        require(L, expr_sub(P, expr_mul(P, S[4 * a], S[4 * c]), off), 0, n, 0, real, b->name);
     }
     ExprId dS = EXPR_ZERO;
     for (int j = 0; j < 3; j++) {
         int a = (j + 1) % 3, c = (j + 2) % 3;
-        ExprId minor = expr_sub(P, expr_mul(P, S[3 + a], S[6 + c]),
-                                expr_mul(P, S[3 + c], S[6 + a]));
+        ExprId ca = expr_mul(P, S[3 + c], S[6 + a]);
+        ExprId minor = expr_sub(P, expr_mul(P, S[3 + a], S[6 + c]), ca);
         dS = expr_add(P, dS, expr_mul(P, S[j], minor));
     }
     require(L, dS, 0, n, 0, real, b->name);
@@ -1496,8 +1497,10 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
         ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
         int a = axes[i] - 'x', j = (a + 1) % 3, l = (a + 2) % 3;
         /* R_a^T w: rotate the other two components by -th */
-        ExprId wj = expr_add(P, expr_mul(P, c, w[j]), expr_mul(P, s, w[l]));
-        ExprId wl = expr_sub(P, expr_mul(P, c, w[l]), expr_mul(P, s, w[j]));
+        ExprId sl = expr_mul(P, s, w[l]);
+        ExprId wj = expr_add(P, expr_mul(P, c, w[j]), sl);
+        ExprId sj = expr_mul(P, s, w[j]);
+        ExprId wl = expr_sub(P, expr_mul(P, c, w[l]), sj);
         w[j] = wj, w[l] = wl;
         ExprId rate = diff_time(L->sc.D, th);
         w[a] = expr_add(P, w[a], rate);

@@ -136,7 +136,8 @@ add_inertia(const Kin *K, ExprPool *P, const Mass *ms, TreeFrame *f)
             ExprId t;
             if (i == j) {
                 int a = (i + 1) % 3, b = (i + 2) % 3;
-                t = expr_add(P, expr_mul(P, h[a], c[a]), expr_mul(P, h[b], c[b]));
+                ExprId hb = expr_mul(P, h[b], c[b]);
+                t = expr_add(P, expr_mul(P, h[a], c[a]), hb);
             } else {
                 t = expr_neg(P, expr_mul(P, h[i], c[j]));
             }

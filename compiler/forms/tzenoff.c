@@ -15,8 +15,9 @@ tzenoff(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     ExprId *E = form_applied(m, A, P, D);
     ExprId half = expr_const(P, 0.5), three_halves = expr_const(P, 1.5);
     for (int i = 0; i < m->n; i++) {
-        ExprId r = expr_sub(P, expr_mul(P, half, dT2[i]),
-                            expr_mul(P, three_halves, dT[i]));
+        ExprId b = expr_mul(P, three_halves, dT[i]);
+        ExprId a = expr_mul(P, half, dT2[i]);
+        ExprId r = expr_sub(P, a, b);
         E[i] = expr_add(P, r, E[i]);
     }
     return E;

@@ -900,6 +900,19 @@ typedef void EntryFn(Loader *L, yaml_node_t *map, int i);
  * mistakes are found in one run.  0 if it failed.  What depends on a
  * failed entry is marked by the caller, and its uses are abandoned
  * without a second message (diag_abandon). */
+/* After an entry's error: stop reading past SPEC_MAX_ERRORS.  (Its own
+ * function: no temporary of it lives in checked's frame across longjmp.) */
+static void
+count_error(Loader *L)
+{
+    if (diag_error_count() >= SPEC_MAX_ERRORS && !L->stop) {
+        diag_note((SrcLoc){L->path, 0, 0}, "stopping after %d errors", SPEC_MAX_ERRORS);
+        L->stop = 1;
+    }
+    if (L->stop)
+        diag_abandon();
+}
+
 static int
 checked(Loader *L, EntryFn *f, yaml_node_t *map, int i)
 {
@@ -907,12 +920,7 @@ checked(Loader *L, EntryFn *f, yaml_node_t *map, int i)
     jmp_buf *outer = diag_set_jump(&jb);
     if (setjmp(jb)) {
         diag_set_jump(outer);
-        if (diag_error_count() >= SPEC_MAX_ERRORS && !L->stop) {
-            diag_note((SrcLoc){L->path, 0, 0}, "stopping after %d errors", SPEC_MAX_ERRORS);
-            L->stop = 1;
-        }
-        if (L->stop)
-            diag_abandon();
+        count_error(L);
         return 0;
     }
     f(L, map, i);

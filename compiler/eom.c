@@ -145,7 +145,13 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         zeros[j] = EXPR_ZERO;
     for (int i = 0; i < n; i++)
         e->h[i] = expr_subst(P, E[i], n, m->q[2], zeros);
-    if (n <= EOM_SOLVE_MAX)
+    if (f->solve) {
+        e->acc = arena_new_array(A, ExprId, n);
+        e->piv = arena_new_array(A, ExprId, n);
+        e->mkk = arena_new_array(A, ExprId, n);
+        f->solve(m, e->M, A, P, D, e->acc, e->piv, e->mkk);
+    } else if (n <= EOM_SOLVE_MAX) {
         derive_solve(e, A, P);
+    }
     return e;
 }

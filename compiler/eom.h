@@ -29,7 +29,8 @@ typedef struct Eom {
      * (structural zeros of M drop out by simplification), its pivots d_k
      * and M's diagonal M_kk: M is safely positive definite when every
      * d_k > EOMC_PIVOT_TOL M_kk, and min d_k / M_kk measures how nearly
-     * singular it is.  NULL when n > EOM_SOLVE_MAX. */
+     * singular it is.  NULL when n > EOM_SOLVE_MAX, unless the form has a
+     * solve of its own (forms.h). */
     ExprId *acc, *piv, *mkk;
 } Eom;
 

@@ -76,6 +76,13 @@ static const LowSig s_accel_solve = {
     " * M_kk.",
     "t q v p u > a piv mkk",
 };
+static const LowSig s_accel_recursive = {
+    "accel_solve",
+    "a = -M^-1 h by the form's recursion, M never formed; its pivots\n"
+    " * piv[k] = d_k (those of LDL^T eliminating the leaves first), and\n"
+    " * mkk[k] = M_kk.",
+    "t q v p u > a piv mkk",
+};
 static const LowSig s_constraint = {
     "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
     "t q v a p u > f B",
@@ -461,7 +468,7 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
     if (c)
         lower_constraints(&lw, c);
     if (e->acc && !c) {
-        f = func(&lw, &s_accel_solve, "accel", 0);
+        f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", 0);
         for (int i = 0; i < n; i++)
             out(&lw, f, 1, i, e->piv[i]);
         for (int i = 0; i < n; i++)

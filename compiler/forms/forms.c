@@ -7,7 +7,7 @@
 
 static const Form *const all[] = {
     &form_lagrange, &form_maggi, &form_nielsen, &form_tzenoff, &form_gibbs_appell,
-    &form_newton_euler,
+    &form_newton_euler, &form_articulated,
 };
 
 const Form *
@@ -31,7 +31,7 @@ form_nearest(const char *name)
 const char *
 form_names(void)
 {
-    return "lagrange, maggi, nielsen, tzenoff, gibbs-appell, newton-euler";
+    return "lagrange, maggi, nielsen, tzenoff, gibbs-appell, newton-euler, articulated-body";
 }
 
 ExprId *

@@ -22,12 +22,18 @@ typedef struct Form {
     /* The mass matrix [n*n], when the form has a cheaper way to it than
      * dE/dq'' (equal to it); NULL: eom.c differentiates E. */
     ExprId *(*mass)(const Mech *m, Arena *A, ExprPool *P);
+    /* The accelerations by a recursion of the form's own, for any number
+     * of coordinates, without factoring M (NULL: eom.c factors M, up to
+     * EOM_SOLVE_MAX coordinates).  Writes acc, piv and mkk [n] as eom.h
+     * describes them; M is the form's mass matrix. */
+    void (*solve)(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D,
+                  ExprId *acc, ExprId *piv, ExprId *mkk);
 } Form;
 
 /* maggi is Lagrange's residual with the constraints eliminated (C^T E =
  * 0, f = 0); --eliminate selects elimination for the other forms. */
 extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi,
-    form_newton_euler;
+    form_newton_euler, form_articulated;
 
 /* The form called `name`, or NULL. */
 const Form *form_find(const char *name);

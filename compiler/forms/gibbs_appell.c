@@ -22,5 +22,7 @@ gibbs_appell(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_gibbs_appell = {
-    "gibbs-appell", "dS/dq'' + dV/dq - Q", gibbs_appell, 0, NULL,
+    .name = "gibbs-appell",
+    .formula = "dS/dq'' + dV/dq - Q",
+    .residual = gibbs_appell,
 };

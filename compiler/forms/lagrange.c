@@ -27,11 +27,15 @@ lagrange(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_lagrange = {
-    "lagrange", "d/dt(dT/dq') - dT/dq + dV/dq - Q", lagrange, 0, NULL,
+    .name = "lagrange",
+    .formula = "d/dt(dT/dq') - dT/dq + dV/dq - Q",
+    .residual = lagrange,
 };
 
 /* Maggi's equations: the same residual, constraints eliminated. */
 const Form form_maggi = {
-    "maggi", "d/dt(dT/dq') - dT/dq + dV/dq - Q, constraints eliminated (C^T E = 0)",
-    lagrange, 1, NULL,
+    .name = "maggi",
+    .formula = "d/dt(dT/dq') - dT/dq + dV/dq - Q, constraints eliminated (C^T E = 0)",
+    .residual = lagrange,
+    .eliminate = 1,
 };

@@ -19,90 +19,9 @@
  */
 #include "forms.h"
 
+#include "spatial.h"
+
 #include "../kin.h"
-#include "../tree.h"
-
-typedef struct Sv {
-    ExprId w[3], v[3]; /* angular, linear */
-} Sv;
-
-static void
-sv_zero(Sv *x)
-{
-    for (int i = 0; i < 3; i++)
-        x->w[i] = x->v[i] = EXPR_ZERO;
-}
-
-/* x += s y */
-static void
-sv_axpy(ExprPool *P, Sv *x, ExprId s, const Sv *y)
-{
-    for (int i = 0; i < 3; i++) {
-        x->w[i] = expr_add(P, x->w[i], expr_mul(P, s, y->w[i]));
-        x->v[i] = expr_add(P, x->v[i], expr_mul(P, s, y->v[i]));
-    }
-}
-
-static void
-sv_add(ExprPool *P, Sv *x, const Sv *y)
-{
-    for (int i = 0; i < 3; i++) {
-        x->w[i] = expr_add(P, x->w[i], y->w[i]);
-        x->v[i] = expr_add(P, x->v[i], y->v[i]);
-    }
-}
-
-/* x cross y for motions: (w x w2, w x v2 + v x w2) */
-static void
-cross_motion(ExprPool *P, const Sv *x, const Sv *y, Sv *out)
-{
-    ExprId a[3], b[3];
-    Sv r;
-    kin_cross(P, x->w, y->w, r.w);
-    kin_cross(P, x->w, y->v, a);
-    kin_cross(P, x->v, y->w, b);
-    for (int i = 0; i < 3; i++)
-        r.v[i] = expr_add(P, a[i], b[i]);
-    *out = r;
-}
-
-/* x cross* f for a force f = (n, f): (w x n + v x f, w x f) */
-static void
-cross_force(ExprPool *P, const Sv *x, const Sv *f, Sv *out)
-{
-    ExprId a[3], b[3];
-    Sv r;
-    kin_cross(P, x->w, f->w, a);
-    kin_cross(P, x->v, f->v, b);
-    for (int i = 0; i < 3; i++)
-        r.w[i] = expr_add(P, a[i], b[i]);
-    kin_cross(P, x->w, f->v, r.v);
-    *out = r;
-}
-
-/* The spatial inertia (m, h, I) times a motion: (I w + h x v, m v - h x w). */
-static void
-inertia_times(ExprPool *P, ExprId m, const ExprId *h, const ExprId *I, const Sv *x, Sv *out)
-{
-    ExprId hv[3], hw[3];
-    Sv r;
-    kin_cross(P, h, x->v, hv);
-    kin_cross(P, h, x->w, hw);
-    for (int i = 0; i < 3; i++) {
-        r.w[i] = expr_add(P, kin_dot(P, &I[3 * i], x->w), hv[i]);
-        r.v[i] = expr_sub(P, expr_mul(P, m, x->v[i]), hw[i]);
-    }
-    *out = r;
-}
-
-/* S = (a, p x a) */
-static void
-axis_of(ExprPool *P, const TreeFrame *f, const TreeTurn *t, Sv *S)
-{
-    for (int i = 0; i < 3; i++)
-        S->w[i] = t->a[i];
-    kin_cross(P, f->pivot, t->a, S->v);
-}
 
 /* a . (n - p x f): the moment of the force F about the pivot p along a */
 static ExprId
@@ -115,8 +34,8 @@ moment(ExprPool *P, const ExprId *a, const ExprId *p, const Sv *F)
     return kin_dot(P, a, d);
 }
 
-static ExprId *
-newton_euler(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
+ExprId *
+rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 {
     const Tree *t = m->tree;
     if (!t) {
@@ -137,16 +56,16 @@ newton_euler(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
         for (int k = f->first; k < f->first + f->nturns; k++) {
             int i = t->turn[k].coord;
             Sv S, VS;
-            axis_of(P, f, &t->turn[k], &S);
-            cross_motion(P, &V[g], &S, &VS);
+            sv_turn_axis(P, f, &t->turn[k], &S);
+            sv_cross_motion(P, &V[g], &S, &VS);
             sv_axpy(P, &Acc[g], m->q[1][i], &VS);
             sv_axpy(P, &Acc[g], m->q[2][i], &S);
             sv_axpy(P, &V[g], m->q[1][i], &S);
         }
         Sv IV, IA;
-        inertia_times(P, f->m, f->h, f->I, &V[g], &IV);
-        inertia_times(P, f->m, f->h, f->I, &Acc[g], &IA);
-        cross_force(P, &V[g], &IV, &F[g]);
+        sv_inertia_times(P, f->m, f->h, f->I, &V[g], &IV);
+        sv_inertia_times(P, f->m, f->h, f->I, &Acc[g], &IA);
+        sv_cross_force(P, &V[g], &IV, &F[g]);
         sv_add(P, &F[g], &IA);
     }
     for (int g = nf - 1; g >= 0; g--)
@@ -165,8 +84,8 @@ newton_euler(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 
 /* M_ij = S_i . Ic(g_j) S_j for turn i at or above turn j; 0 for turns
  * on different branches. */
-static ExprId *
-composite_mass(const Mech *m, Arena *A, ExprPool *P)
+ExprId *
+crb_mass(const Mech *m, Arena *A, ExprPool *P)
 {
     const Tree *t = m->tree;
     int n = m->n, nf = t->nframes;
@@ -191,8 +110,8 @@ composite_mass(const Mech *m, Arena *A, ExprPool *P)
         for (int kj = f->first; kj < f->first + f->nturns; kj++) {
             int j = t->turn[kj].coord;
             Sv S, F;
-            axis_of(P, f, &t->turn[kj], &S);
-            inertia_times(P, Ic[g].m, Ic[g].h, Ic[g].I, &S, &F);
+            sv_turn_axis(P, f, &t->turn[kj], &S);
+            sv_inertia_times(P, Ic[g].m, Ic[g].h, Ic[g].I, &S, &F);
             for (int a = g; a >= 0; a = t->frame[a].parent) {
                 const TreeFrame *fa = &t->frame[a];
                 int last = a == g ? kj : fa->first + fa->nturns - 1;
@@ -207,6 +126,8 @@ composite_mass(const Mech *m, Arena *A, ExprPool *P)
 }
 
 const Form form_newton_euler = {
-    "newton-euler", "S . sum(I A + V x* I V) over the subtree + dV/dq - Q (recursive)",
-    newton_euler, 0, composite_mass,
+    .name = "newton-euler",
+    .formula = "S . sum(I A + V x* I V) over the subtree + dV/dq - Q (recursive)",
+    .residual = rne_residual,
+    .mass = crb_mass,
 };

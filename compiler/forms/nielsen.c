@@ -19,5 +19,7 @@ nielsen(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_nielsen = {
-    "nielsen", "d(T')/dq' - 2 dT/dq + dV/dq - Q", nielsen, 0, NULL,
+    .name = "nielsen",
+    .formula = "d(T')/dq' - 2 dT/dq + dV/dq - Q",
+    .residual = nielsen,
 };

@@ -24,5 +24,7 @@ tzenoff(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
 }
 
 const Form form_tzenoff = {
-    "tzenoff", "1/2 d(T'')/dq'' - 3/2 dT/dq + dV/dq - Q", tzenoff, 0, NULL,
+    .name = "tzenoff",
+    .formula = "1/2 d(T'')/dq'' - 3/2 dT/dq + dV/dq - Q",
+    .residual = tzenoff,
 };

@@ -16,7 +16,7 @@ eomc=$1 src=$2
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 export EOMC_CACHE_DIR="$dir/cache"
-"$eomc" build "$src/tests/hard/specs/stiff_spring.yaml" -o "$dir/stiff" 2> /dev/null
+"$eomc" build "$src/tests/hard/specs/stiff_spring.yaml" --jacobian auto -o "$dir/stiff" 2> /dev/null
 best() {
   b=
   for i in 1 2 3 4 5; do

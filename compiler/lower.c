@@ -258,8 +258,6 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     lw->L->jacobian_ops = jops;
     if (how == LOWER_JACOBIAN_AUTO)
         how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
-    else if (how == LOWER_JACOBIAN_SMALL_ONLY)
-        how = large ? LOWER_JACOBIAN_NONE : LOWER_JACOBIAN_UNROLLED;
     lw->L->jacobian = how;
     if (how == LOWER_JACOBIAN_NONE)
         return;

@@ -97,15 +97,12 @@ typedef struct Lowered {
  * with a unit seed: exact all the same, slower to run, far less for the C
  * compiler.  NONE: not at all (the member is NULL; the implicit methods
  * and the linearization refuse the model).  AUTO: unrolled up to
- * LOWER_UNROLLED_JACOBIAN_MAX operations, seeded beyond.  SMALL_ONLY:
- * unrolled up to that size, none beyond, for a scene that needs no
- * Jacobian (the seeded one would still be most of a large model's C). */
+ * LOWER_UNROLLED_JACOBIAN_MAX operations, seeded beyond. */
 enum {
     LOWER_JACOBIAN_AUTO,
     LOWER_JACOBIAN_UNROLLED,
     LOWER_JACOBIAN_SEEDED,
     LOWER_JACOBIAN_NONE,
-    LOWER_JACOBIAN_SMALL_ONLY,
 };
 /* Measured on the chain benchmark (gcc 12, -O2): cc spends ~0.3 ms per
  * operation, linearly; the seeded Jacobian runs 2-3x slower (N = 20:

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -380,7 +380,7 @@ appell_check(const double *p)
 }
 
 const eomc_model appell_model = {
-    EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "--jacobian auto",
     3, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     6, appell_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -401,7 +401,7 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 const eomc_model arenstorf_model = {
-    EOMC_ABI_VERSION, "arenstorf", "arenstorf.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "arenstorf", "arenstorf.yaml", "lagrange", "--jacobian auto",
     2, 1, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     1, arenstorf_derive,

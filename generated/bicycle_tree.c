@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -14655,7 +14655,7 @@ bicycle_tree_check(const double *p)
 }
 
 const eomc_model bicycle_tree_model = {
-    EOMC_ABI_VERSION, "bicycle_tree", "bicycle_tree.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "bicycle_tree", "bicycle_tree.yaml", "lagrange", "--jacobian auto",
     8, 26, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     108, bicycle_tree_derive,

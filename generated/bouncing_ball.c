@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   bounce
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -259,7 +259,7 @@ bouncing_ball_check(const double *p)
 }
 
 const eomc_model bouncing_ball_model = {
-    EOMC_ABI_VERSION, "bouncing_ball", "bouncing_ball.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "bouncing_ball", "bouncing_ball.yaml", "lagrange", "--jacobian auto",
     1, 4, 0, q_names, p_names, u_names, p_default,
     "bounce", p_fixed,
     3, bouncing_ball_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   swing
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -330,7 +330,7 @@ cartesian_pendulum_check(const double *p)
 }
 
 const eomc_model cartesian_pendulum_model = {
-    EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "--jacobian auto",
     2, 4, 0, q_names, p_names, u_names, p_default,
     "swing", p_fixed,
     3, cartesian_pendulum_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -1067,7 +1067,7 @@ central_constant_speed_check(const double *p)
 }
 
 const eomc_model central_constant_speed_model = {
-    EOMC_ABI_VERSION, "central_constant_speed", "central_constant_speed.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "central_constant_speed", "central_constant_speed.yaml", "lagrange", "--jacobian auto",
     3, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     4, central_constant_speed_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -1936,7 +1936,7 @@ chain5_check(const double *p)
 }
 
 const eomc_model chain5_model = {
-    EOMC_ABI_VERSION, "chain5", "chain5.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "chain5", "chain5.yaml", "lagrange", "--jacobian auto",
     5, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     17, chain5_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -496,7 +496,7 @@ chaplygin_sleigh_check(const double *p)
 }
 
 const eomc_model chaplygin_sleigh_model = {
-    EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "--jacobian auto",
     3, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     6, chaplygin_sleigh_derive,

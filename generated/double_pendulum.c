@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -588,7 +588,7 @@ double_pendulum_check(const double *p)
 }
 
 const eomc_model double_pendulum_model = {
-    EOMC_ABI_VERSION, "double_pendulum", "double_pendulum.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "double_pendulum", "double_pendulum.yaml", "lagrange", "--jacobian auto",
     2, 5, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     18, double_pendulum_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity push
  * off:     (none) (no code is generated for these)
@@ -204,7 +204,7 @@ falling_particle_check(const double *p)
 }
 
 const eomc_model falling_particle_model = {
-    EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "--jacobian auto",
     1, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     4, falling_particle_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity motor
  * off:     (none) (no code is generated for these)
@@ -209,7 +209,7 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 const eomc_model gear_link_model = {
-    EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "--jacobian auto",
     1, 6, 1, q_names, p_names, u_names, p_default,
     "", p_fixed,
     6, gear_link_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -312,7 +312,7 @@ kepler_check(const double *p)
 }
 
 const eomc_model kepler_model = {
-    EOMC_ABI_VERSION, "kepler", "kepler.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "kepler", "kepler.yaml", "lagrange", "--jacobian auto",
     2, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     3, kepler_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -225,7 +225,7 @@ pendulum_check(const double *p)
 }
 
 const eomc_model pendulum_model = {
-    EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "pendulum", "pendulum.yaml", "lagrange", "--jacobian auto",
     1, 3, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     4, pendulum_derive,

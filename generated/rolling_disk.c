@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -1561,7 +1561,7 @@ rolling_disk_check(const double *p)
 }
 
 const eomc_model rolling_disk_model = {
-    EOMC_ABI_VERSION, "rolling_disk", "rolling_disk.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "rolling_disk", "rolling_disk.yaml", "lagrange", "--jacobian auto",
     5, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     16, rolling_disk_derive,

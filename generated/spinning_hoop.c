@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -557,7 +557,7 @@ spinning_hoop_check(const double *p)
 }
 
 const eomc_model spinning_hoop_model = {
-    EOMC_ABI_VERSION, "spinning_hoop", "spinning_hoop.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "spinning_hoop", "spinning_hoop.yaml", "lagrange", "--jacobian auto",
     1, 4, 0, q_names, p_names, u_names, p_default,
     "", p_fixed,
     6, spinning_hoop_derive,

@@ -3,7 +3,7 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * options: (none)
+ * options: --jacobian auto
  * scene:   free; fixed: A = 0.0
  * effects: gravity
  * off:     damping (no code is generated for these)
@@ -225,7 +225,7 @@ swing_check(const double *p)
 }
 
 const eomc_model swing_model = {
-    EOMC_ABI_VERSION, "swing", "swing.yaml", "lagrange", "",
+    EOMC_ABI_VERSION, "swing", "swing.yaml", "lagrange", "--jacobian auto",
     1, 7, 0, q_names, p_names, u_names, p_default,
     "free", p_fixed,
     4, swing_derive,

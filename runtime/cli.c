@@ -2099,7 +2099,7 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
             else if (c->methods)
                 return usage(c, "--methods: %s needs the Jacobian of the equations, which "
                              "%s was built without: rebuild with `eomc build %s --jacobian "
-                             "seeded`", methods[k], m->name, m->spec);
+                             "auto`", methods[k], m->name, m->spec);
             else
                 snprintf(left + strlen(left), sizeof left - strlen(left), "%s%s",
                          *left ? ", " : "", methods[k]);
@@ -2109,7 +2109,7 @@ work_precision(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         if (*left)
             fprintf(stderr, "%s: note: %s left out: they need the Jacobian of the equations, "
                     "which %s was built without (rebuild with `eomc build %s --jacobian "
-                    "seeded` to report them)\n", c->prog, left, m->name, m->spec);
+                    "auto` to report them)\n", c->prog, left, m->name, m->spec);
     }
     check_consistent(c, sim, x);
     int rc = get_reference(c, sim, ext, x, &ref);

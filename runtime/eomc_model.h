@@ -92,8 +92,8 @@ typedef struct eomc_model {
      * dEdq[i*nq+j] = dE_i/dq_j, dEdv[i*nq+j] = dE_i/dv_j,
      * dEdu[i*nu+k] = dE_i/du_k, dEdt[i] = dE_i/dt.  (dE/da is M.)
      * NULL when the model was built without it (eomc compile --jacobian
-     * none, or auto on a large model whose scene runs an explicit
-     * method): the implicit methods and the linearization refuse it. */
+     * none, or no --jacobian and a scene whose method needs none): the
+     * implicit methods and the linearization refuse it. */
     void (*jacobian)(double t, const double *q, const double *v,
                      const double *a, const double *p, const double *u,
                      double *dEdq, double *dEdv, double *dEdu, double *dEdt);

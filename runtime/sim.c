@@ -154,9 +154,8 @@ int
 sim_no_jacobian(eomc_sim *s, const char *what)
 {
     return sim_usage_error(s, "%s needs the Jacobian of the equations, which %s was built "
-                           "without (eomc leaves it out of a large model whose scene runs "
-                           "an explicit method): rebuild with `eomc build %s --jacobian "
-                           "seeded`", what, s->m->name, s->m->spec);
+                           "without (eomc leaves it out when the scene's method needs none): "
+                           "rebuild with `eomc build %s --jacobian auto`", what, s->m->name, s->m->spec);
 }
 
 /* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." */

@@ -23,7 +23,7 @@ near() { awk -v g="$1" -v w="$2" 'BEGIN { d = g - w; if (d < 0) d = -d; s = w < 
 cell() { awk -F, -v name="$1" -v row="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) k = i }
     NR == row + 1 { print $k }' "$3"; }
 
-"$eomc" build "$src/specs/bicycle_tree.yaml" -o "$tmp/bike" 2> "$tmp/err"
+"$eomc" build "$src/specs/bicycle_tree.yaml" --jacobian auto -o "$tmp/bike" 2> "$tmp/err"
 ok $? "bicycle_tree with a scene hold builds"
 R=0.35
 wx=$(awk -v R=$R 'BEGIN { printf "%.17g", R * 5 * cos(0.3) }')
@@ -90,7 +90,7 @@ constraints: {rod: x^2 + y^2 - l^2}
 initial: {x: 0.6, y: 0.3, "x'": 1}
 scene: {assemble: {hold: [x, "x'"]}}
 YAML
-"$eomc" build "$tmp/rod.yaml" -o "$tmp/rod" 2> "$tmp/err"
+"$eomc" build "$tmp/rod.yaml" --jacobian auto -o "$tmp/rod" 2> "$tmp/err"
 "$tmp/rod" --equilibrium > "$tmp/eq.out" 2> "$tmp/eq.err"; st=$?
 gy=$(sed -n 's/^  y 0.2999[0-9]* -> \([^ ]*\) .*/\1/p' "$tmp/eq.err")
 ex=$(sed -n 's/^  x = //p' "$tmp/eq.out")

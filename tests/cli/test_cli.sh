@@ -88,7 +88,7 @@ grep -q "roll *first-order, linear in q'.*determines x (named in the spec)" "$tm
 ok $? "--explain: a linear first-order constraint, its named dependent, elimination, no C"
 
 # drift control and assembly on the Cartesian pendulum (l = 1, theta0 = 1)
-"$eomc" build "$src/specs/cartesian_pendulum.yaml" -o "$tmp/cp" 2> /dev/null
+"$eomc" build "$src/specs/cartesian_pendulum.yaml" --jacobian auto -o "$tmp/cp" 2> /dev/null
 "$tmp/cp" --init x=1.2 --assemble --accel > "$tmp/asm.out" 2> "$tmp/asm.err"
 got=$(sed -n 's/^  x 1.2 -> \([^ ]*\) .*/\1/p' "$tmp/asm.err")
 want=$(awk 'BEGIN { y = -cos(1); printf "%.17g", 1.2 / sqrt(1.44 + y * y) }')
@@ -176,7 +176,7 @@ ok $? "initial velocities off the constraints: a warning at velocity level, the 
 [ $st -eq 0 ] && [ ! -s "$tmp/top.err" ]
 ok $? "a consistent start where each term of g' is rounding (upright): no warning"
 # an ill-conditioned mass matrix: warned once, naming t and the coordinates
-"$eomc" build "$src/specs/double_pendulum.yaml" -o "$tmp/dp" 2> /dev/null
+"$eomc" build "$src/specs/double_pendulum.yaml" --jacobian auto -o "$tmp/dp" 2> /dev/null
 "$tmp/dp" --set m1=1e-9 --method bsimp --rtol 1e-10 --atol 1e-10 --stats -o /dev/null \
   2> "$tmp/ill.err"; st=$?
 [ $st -eq 0 ] && [ "$(grep -c warning "$tmp/ill.err")" -eq 1 ] &&

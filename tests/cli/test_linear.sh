@@ -77,7 +77,7 @@ ok $? "--linearize -o: a usage error (exit $st)"
 
 # ---- the Whipple bicycle ----
 whip="$src/tests/sim/specs/whipple.yaml" bench="$src/tests/cli/whipple_benchmark.awk"
-"$eomc" build "$whip" -o "$tmp/whipple" 2> "$tmp/build.err" || cat "$tmp/build.err"
+"$eomc" build "$whip" --jacobian auto -o "$tmp/whipple" 2> "$tmp/build.err" || cat "$tmp/build.err"
 # eig K's re and im from a --csv file
 eig() { sed -n "s/^eig,$2,$3,//p" "$1"; }
 

@@ -47,8 +47,8 @@ ok $? "scene free reads no damping c and no drive A, w; damped reads c, shaken w
 # folding: the shaken scene with A, w, g and l fixed, against the same
 # scene unfixed and run with --set
 fix="A=0.03,w=5.5,g=9.7,l=0.8"
-"$eomc" compile "$spec" --scene shaken --stats -o /dev/null 2> "$tmp/st0"
-"$eomc" compile "$spec" --scene shaken --fix "$fix" --stats -o /dev/null 2> "$tmp/st1"
+"$eomc" compile "$spec" --scene shaken --jacobian auto --stats -o /dev/null 2> "$tmp/st0"
+"$eomc" compile "$spec" --scene shaken --fix "$fix" --jacobian auto --stats -o /dev/null 2> "$tmp/st1"
 # (M = m l^2 (sin^2 + cos^2) folds by structure with the parameters free
 # too, so M and accel may cost the same either way; the Jacobian folds more)
 for f in mass_bias jacobian accel; do

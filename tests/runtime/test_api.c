@@ -329,7 +329,7 @@ no_jacobian(void)
         const char *e = eomc_sim_error(s);
         int ok = eomc_method_jacobian(eomc_methods[k]) == imp &&
                  (imp ? st == EOMC_EUSAGE && strstr(e, eomc_methods[k]) &&
-                            strstr(e, "eomc build osc.yaml --jacobian seeded")
+                            strstr(e, "eomc build osc.yaml --jacobian auto")
                       : st == EOMC_OK);
         if (!ok)
             printf("# %s: status %d, %s\n", eomc_methods[k], st, e);

@@ -41,7 +41,7 @@ ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not o
 run() {
   name=$1 spec=$2
   shift 2
-  [ -x "$tmp/$name" ] || "$eomc" build "$spec" -o "$tmp/$name" 2> "$tmp/$name.build" ||
+  [ -x "$tmp/$name" ] || "$eomc" build "$spec" --jacobian auto -o "$tmp/$name" 2> "$tmp/$name.build" ||
     cat "$tmp/$name.build"
   "$tmp/$name" -o "$tmp/$name.csv" "$@" 2> "$tmp/$name.err"
   st=$?

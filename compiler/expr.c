@@ -526,6 +526,120 @@ pythagoras(ExprPool *P, ExprId a, ExprId b, int sign)
     return pyth_search(P, a, b, sign);
 }
 
+/* Cancellation by structure.  A term of one operand that the other
+ * takes away again, (x - y) - x + y or (a + b*c) - b*c, or the same
+ * product grouped differently, (x y) s - x (y s), leaves work that is
+ * exactly 0 but rounds to noise.  The signed terms of both operands
+ * are gathered through +, - and unary -, a few of them (sums are not
+ * flattened in general: that would rebuild shared partial sums), and when
+ * a term of one is the negated term of the other both go and the sum is
+ * rebuilt from what is left, in its order.  When nothing cancels the sum
+ * is left as it was built. */
+enum { CANCEL_TERMS_MAX = 8 };
+
+typedef struct SignedTerm {
+    ExprId x;
+    int neg;
+} SignedTerm;
+
+/* Append the signed terms of e (negated if neg) to t[*n]; 0 when there
+ * are more than CANCEL_TERMS_MAX. */
+static int
+signed_terms(const ExprPool *P, ExprId e, int neg, SignedTerm *t, int *n)
+{
+    const ExprNode *nd = &P->node[e];
+    switch (nd->op) {
+    case EXPR_ADD:
+        return signed_terms(P, nd->a, neg, t, n) && signed_terms(P, nd->b, neg, t, n);
+    case EXPR_SUB:
+        return signed_terms(P, nd->a, neg, t, n) && signed_terms(P, nd->b, !neg, t, n);
+    case EXPR_NEG:
+        return signed_terms(P, nd->a, !neg, t, n);
+    default:
+        if (*n == CANCEL_TERMS_MAX)
+            return 0;
+        t[(*n)++] = (SignedTerm){e, neg};
+        return 1;
+    }
+}
+
+/* The factors of e through products of any kind, sorted by id: a
+ * product's value whatever its grouping.  0 past CANCEL_FACTORS_MAX. */
+enum { CANCEL_FACTORS_MAX = 16 };
+
+static int
+product_factors(const ExprPool *P, ExprId e, ExprId *f, int *n)
+{
+    const ExprNode *nd = &P->node[e];
+    if (nd->op == EXPR_MUL)
+        return product_factors(P, nd->a, f, n) && product_factors(P, nd->b, f, n);
+    if (*n == CANCEL_FACTORS_MAX)
+        return 0;
+    int k = (*n)++;
+    for (; k > 0 && f[k - 1] > e; k--) /* insertion: products are short */
+        f[k] = f[k - 1];
+    f[k] = e;
+    return 1;
+}
+
+/* x and y are one node, or products of the same factors grouped
+ * differently ((a b) c and a (b c) with a sum among them, which the
+ * canonical product leaves binary). */
+static int
+same_product(const ExprPool *P, ExprId x, ExprId y)
+{
+    if (x == y)
+        return 1;
+    if (P->node[x].op != EXPR_MUL || P->node[y].op != EXPR_MUL)
+        return 0;
+    ExprId fx[CANCEL_FACTORS_MAX], fy[CANCEL_FACTORS_MAX];
+    int nx = 0, ny = 0;
+    if (!product_factors(P, x, fx, &nx) || !product_factors(P, y, fy, &ny) || nx != ny)
+        return 0;
+    for (int i = 0; i < nx; i++)
+        if (fx[i] != fy[i])
+            return 0;
+    return 1;
+}
+
+static int
+is_sum(const ExprPool *P, ExprId e)
+{
+    int op = P->node[e].op;
+    return op == EXPR_ADD || op == EXPR_SUB || op == EXPR_NEG;
+}
+
+/* a + b (sign 1) or a - b (sign -1) with the terms that cancel taken
+ * out, or EXPR_NONE when none do. */
+static ExprId
+cancel_terms(ExprPool *P, ExprId a, ExprId b, int sign)
+{
+    if (!is_sum(P, a) && !is_sum(P, b))
+        return EXPR_NONE;
+    SignedTerm t[2 * CANCEL_TERMS_MAX];
+    int na = 0, nb = 0;
+    if (!signed_terms(P, a, 0, t, &na))
+        return EXPR_NONE;
+    if (!signed_terms(P, b, sign < 0, t + na, &nb))
+        return EXPR_NONE;
+    int n = na + nb, gone = 0;
+    for (int i = 0; i < na; i++)
+        for (int j = na; j < n; j++)
+            if (t[i].x != EXPR_NONE && t[j].x != EXPR_NONE && t[i].neg != t[j].neg &&
+                same_product(P, t[i].x, t[j].x)) {
+                t[i].x = t[j].x = EXPR_NONE;
+                gone = 1;
+                break;
+            }
+    if (!gone)
+        return EXPR_NONE;
+    ExprId r = EXPR_ZERO;
+    for (int i = 0; i < n; i++)
+        if (t[i].x != EXPR_NONE)
+            r = t[i].neg ? expr_sub(P, r, t[i].x) : expr_add(P, r, t[i].x);
+    return r;
+}
+
 ExprId
 expr_add(ExprPool *P, ExprId a, ExprId b)
 {
@@ -562,6 +676,8 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
         return expr_mul(P, expr_add(P, c1, c2), x1); /* c x + d x = (c + d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
         return expr_mul(P, c1, expr_add(P, x1, x2)); /* c x + c y = c (x + y) */
+    if ((r = cancel_terms(P, a, b, 1)) != EXPR_NONE)
+        return r;
     order2(P, &a, &b);
     return mk(P, EXPR_ADD, a, b);
 }
@@ -605,6 +721,8 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
         return expr_mul(P, expr_sub(P, c1, c2), x1); /* c x - d x = (c - d) x */
     if (scaled(P, a, &c1, &x1) && scaled(P, b, &c2, &x2) && c1 == c2)
         return expr_mul(P, c1, expr_sub(P, x1, x2)); /* c x - c y = c (x - y) */
+    if ((r = cancel_terms(P, a, b, -1)) != EXPR_NONE)
+        return r;
     return mk(P, EXPR_SUB, a, b);
 }
 

@@ -65,6 +65,37 @@ test_hashcons(void)
     CHECK(cnt.calls == 1, "a shared sin(x) is counted once (got %ld)", cnt.calls);
 }
 
+/* Work that cancels is 0 by structure (issue 22): the residual's exact
+ * zeros were computed as rounding noise. */
+static void
+test_cancel(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0), z = expr_var(P, 2, 0);
+    ExprId a = expr_unary(P, EXPR_SIN, x), b = expr_mul(P, y, expr_unary(P, EXPR_COS, z));
+    ExprId r = expr_add(P, expr_sub(P, expr_sub(P, a, b), a), b);
+    CHECK(r == EXPR_ZERO, "(a - b) - a + b is the node 0");
+    CHECK(expr_sub(P, expr_add(P, a, b), expr_add(P, b, a)) == EXPR_ZERO, "(a + b) - (b + a) = 0");
+    ExprId c = expr_unary(P, EXPR_EXP, y);
+    CHECK(expr_sub(P, expr_add(P, expr_add(P, a, b), c), b) == expr_add(P, a, c),
+          "(a + b + c) - b = a + c");
+    CHECK(expr_add(P, expr_neg(P, expr_sub(P, b, a)), b) == a, "-(b - a) + b = a");
+    /* the same product grouped differently, a sum among its factors (the
+     * canonical product leaves those binary) */
+    ExprId s = expr_add(P, a, c);
+    ExprId p1 = expr_mul(P, expr_mul(P, x, y), s), p2 = expr_mul(P, x, expr_mul(P, y, s));
+    CHECK(p1 != p2, "(x y) s and x (y s) are two nodes");
+    CHECK(expr_sub(P, expr_add(P, p1, z), p2) == z, "(x y) s + z - x (y s) = z");
+    CHECK(expr_add(P, expr_sub(P, a, p1), p2) == a, "a - (x y) s + x (y s) = a");
+    /* nothing cancels: the sum is built as it was, its parts shared */
+    ExprId ab = expr_add(P, a, b), abc = expr_add(P, ab, c);
+    const ExprNode *n = expr_node(P, abc);
+    CHECK(n->op == EXPR_ADD && (n->a == ab || n->b == ab),
+          "(a + b) + c keeps its partial sum a + b");
+    ExprId r2 = expr_sub(P, ab, expr_mul(P, expr_const(P, 2), b));
+    CHECK(r2 != a && check_close(at(r2, 0.3, 0.7), at(expr_sub(P, a, b), 0.3, 0.7), 1e-15),
+          "(a + b) - 2 b is a - b, not a: a term with another coefficient is another term");
+}
+
 typedef struct Case {
     const char *name;
     int op;
@@ -408,6 +439,7 @@ main(void)
     P = expr_pool_new();
     D = diff_new(P);
     test_hashcons();
+    test_cancel();
     test_derivatives();
     test_powi();
     test_time_derivative();

@@ -626,8 +626,8 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
         if (strstr(info->options, "--jacobian none"))
             snprintf(why, sizeof why, "--jacobian none leaves it out");
         else
-            snprintf(why, sizeof why, "the scene's method, %s, needs none (it would be %ld "
-                     "operations unrolled)", s->scene.method, pr->L->jacobian_ops);
+            snprintf(why, sizeof why, "the scene's method, %s, needs none",
+                     s->scene.method);
         char note[400];
         snprintf(note, sizeof note, "No Jacobian of E: %s.  The implicit methods and the "
                  "linearization refuse this model; --jacobian seeded adds it", why);

@@ -14,12 +14,9 @@
 #include "eom.h"
 
 static void
-derive_row(Eom *e, Diff *D, const ExprId *accel, const ExprId *leaves,
-           ExprId *grad, int i)
+derive_row(Eom *e, Diff *D, const ExprId *leaves, ExprId *grad, int i)
 {
     int n = e->n, nu = e->nu, nl = 2 * n + nu + 1;
-    for (int j = 0; !e->form->mass && j <= i; j++)
-        e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, e->E[i], accel[j]);
     diff_gradient(D, e->E[i], nl, leaves, grad);
     for (int j = 0; j < n; j++) {
         e->dEdq[i * n + j] = grad[j];
@@ -107,39 +104,15 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
     ExprId *E = f->residual(m, A, P, D, why);
     if (!E)
         return NULL;
-    int n = m->n, nu = s->nu, nl = 2 * n + nu + 1;
+    int n = m->n;
     Eom *e = arena_alloc(A, sizeof *e);
-    e->n = n;
-    e->nu = nu;
-    e->form = f;
-    e->E = E;
+    *e = (Eom){.n = n, .nu = s->nu, .form = f, .E = E};
     e->M = f->mass ? f->mass(m, A, P) : arena_new_array(A, ExprId, n * n);
-    e->h = arena_new_array(A, ExprId, n);
-    e->dEdq = arena_new_array(A, ExprId, n * n);
-    e->dEdv = arena_new_array(A, ExprId, n * n);
-    e->dEdu = arena_new_array(A, ExprId, n * nu + 1);
-    e->dEdt = arena_new_array(A, ExprId, n);
-    ExprId *leaves = arena_new_array(A, ExprId, nl);
-    ExprId *grad = arena_new_array(A, ExprId, nl);
-    for (int j = 0; j < n; j++) {
-        leaves[j] = m->q[0][j];
-        leaves[n + j] = m->q[1][j];
-    }
-    for (int k = 0; k < nu; k++)
-        leaves[2 * n + k] = expr_input(P, k);
-    leaves[2 * n + nu] = expr_time(P);
-    for (int i = 0; i < n; i++)
-        derive_row(e, D, m->q[2], leaves, grad, i);
-    ExprId *seed = arena_new_array(A, ExprId, n);
-    e->jvp_q = arena_new_array(A, ExprId, n);
-    e->jvp_v = arena_new_array(A, ExprId, n);
-    for (int j = 0; j < n; j++)
-        seed[j] = expr_seed(P, j, 0);
-    diff_jvp(D, n, E, n, m->q[0], seed, e->jvp_q);
-    for (int j = 0; j < n; j++)
-        seed[j] = expr_seed(P, j, 1);
-    diff_jvp(D, n, E, n, m->q[1], seed, e->jvp_v);
+    for (int i = 0; !f->mass && i < n; i++)
+        for (int j = 0; j <= i; j++)
+            e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, E[i], m->q[2][j]);
     /* h = E at q'' = 0: substitution rebuilds only what depends on q'' */
+    e->h = arena_new_array(A, ExprId, n);
     ExprId *zeros = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++)
         zeros[j] = EXPR_ZERO;
@@ -154,4 +127,36 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         derive_solve(e, A, P);
     }
     return e;
+}
+
+void
+eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    if (e->dEdq)
+        return;
+    int n = e->n, nu = e->nu, nl = 2 * n + nu + 1;
+    e->dEdq = arena_new_array(A, ExprId, n * n);
+    e->dEdv = arena_new_array(A, ExprId, n * n);
+    e->dEdu = arena_new_array(A, ExprId, n * nu + 1);
+    e->dEdt = arena_new_array(A, ExprId, n);
+    ExprId *leaves = arena_new_array(A, ExprId, nl);
+    ExprId *grad = arena_new_array(A, ExprId, nl);
+    for (int j = 0; j < n; j++) {
+        leaves[j] = m->q[0][j];
+        leaves[n + j] = m->q[1][j];
+    }
+    for (int k = 0; k < nu; k++)
+        leaves[2 * n + k] = expr_input(P, k);
+    leaves[2 * n + nu] = expr_time(P);
+    for (int i = 0; i < n; i++)
+        derive_row(e, D, leaves, grad, i);
+    ExprId *seed = arena_new_array(A, ExprId, n);
+    e->jvp_q = arena_new_array(A, ExprId, n);
+    e->jvp_v = arena_new_array(A, ExprId, n);
+    for (int j = 0; j < n; j++)
+        seed[j] = expr_seed(P, j, 0);
+    diff_jvp(D, n, e->E, n, m->q[0], seed, e->jvp_q);
+    for (int j = 0; j < n; j++)
+        seed[j] = expr_seed(P, j, 1);
+    diff_jvp(D, n, e->E, n, m->q[1], seed, e->jvp_v);
 }

@@ -15,7 +15,7 @@ typedef struct Eom {
     ExprId *E;    /* [n] residual */
     ExprId *M;    /* [n*n] row-major; M[j*n+i] is M[i*n+j] (symmetric) */
     ExprId *h;    /* [n] */
-    ExprId *dEdq, *dEdv; /* [n*n] */
+    ExprId *dEdq, *dEdv; /* [n*n], NULL until eom_derive_jacobian */
     ExprId *dEdu; /* [n*nu] */
     ExprId *dEdt; /* [n] */
     /* The same partials as directional derivatives: jvp_q[i] = sum_j
@@ -39,8 +39,12 @@ typedef struct Eom {
  * right-hand side three times over).  Must match eomc_model.h. */
 enum { EOM_SOLVE_MAX = 12 };
 
-/* NULL with *why set if the form does not apply to the model. */
+/* E, M, h and the solve, or NULL with *why set if the form does not
+ * apply to the model.  The partial derivatives are left NULL: most of the
+ * work, and only the Jacobian needs them. */
 Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
                 ExprPool *P, Diff *D, const char **why);
+/* dEdq, dEdv, dEdu, dEdt, jvp_q and jvp_v of e (again: nothing). */
+void eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 
 #endif

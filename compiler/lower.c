@@ -246,6 +246,9 @@ static void
 lower_jacobian(Lowering *lw, const Eom *e, int how)
 {
     int n = e->n, nu = e->nu;
+    lw->L->jacobian = how;
+    if (how == LOWER_JACOBIAN_NONE) /* not derived either (eom_derive_jacobian) */
+        return;
     ExprId *jroots = xmalloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
     for (int i = 0; i < n * n; i++) {
         jroots[i] = e->dEdq[i];
@@ -259,8 +262,6 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     if (how == LOWER_JACOBIAN_AUTO)
         how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
     lw->L->jacobian = how;
-    if (how == LOWER_JACOBIAN_NONE)
-        return;
     if (how == LOWER_JACOBIAN_SEEDED) {
         lower_seeded_jacobian(lw, e);
         return;
@@ -424,7 +425,7 @@ lower_events(Lowering *lw)
 }
 
 Lowered *
-lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
+lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
             const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D)
 {
     Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
@@ -454,6 +455,8 @@ lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
     out(&lw, f, 0, 0, m->T);
     out(&lw, f, 0, 1, m->V);
 
+    if (jacobian != LOWER_JACOBIAN_NONE)
+        eom_derive_jacobian(e, m, A, P, D);
     lower_jacobian(&lw, e, jacobian);
 
     /* E = T + V is what energy computes: the invariant adds its two

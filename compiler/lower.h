@@ -110,8 +110,9 @@ enum {
  * less code.  Up to here the unrolled one costs < 6 s of cc. */
 enum { LOWER_UNROLLED_JACOBIAN_MAX = 20000 };
 
-/* c: the constraints, or NULL. */
-Lowered *lower_model(const Spec *s, const Mech *m, const Eom *e, const Constraints *c,
+/* c: the constraints, or NULL.  Derives e's partial derivatives
+ * (eom_derive_jacobian) when the Jacobian is printed. */
+Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
                      const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none). */

@@ -63,19 +63,19 @@ chain5_derive(const eomc_real *p, eomc_real *pd)
     pd[6] = w8;
     const eomc_real w9 = (-5.0) * w4;
     pd[7] = w9;
-    const eomc_real w10 = 5.0 * w4;
+    const eomc_real w10 = 1.0 / w1;
     pd[8] = w10;
-    const eomc_real w11 = 4.0 * w4;
+    const eomc_real w11 = w1 * w10;
     pd[9] = w11;
-    const eomc_real w12 = 3.0 * w4;
+    const eomc_real w12 = w1 * w11;
     pd[10] = w12;
-    const eomc_real w13 = 2.0 * w1;
+    const eomc_real w13 = 5.0 * w4;
     pd[11] = w13;
-    const eomc_real w14 = 1.0 / w1;
+    const eomc_real w14 = 4.0 * w4;
     pd[12] = w14;
-    const eomc_real w15 = w1 * w14;
+    const eomc_real w15 = 3.0 * w4;
     pd[13] = w15;
-    const eomc_real w16 = w1 * w15;
+    const eomc_real w16 = 2.0 * w1;
     pd[14] = w16;
 }
 
@@ -552,10 +552,10 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd0 = p[3];
     const eomc_real pd2 = p[5];
     const eomc_real pd3 = p[6];
-    const eomc_real pd8 = p[11];
-    const eomc_real pd9 = p[12];
-    const eomc_real pd10 = p[13];
     const eomc_real pd11 = p[14];
+    const eomc_real pd12 = p[15];
+    const eomc_real pd13 = p[16];
+    const eomc_real pd14 = p[17];
     (void)u;
     (void)t;
     (void)dEdu;
@@ -723,7 +723,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w161 = pd0 * w160;
     const eomc_real w162 = w40 + w130;
     const eomc_real w163 = pd0 * w162;
-    const eomc_real w164 = pd10 + w163;
+    const eomc_real w164 = pd13 + w163;
     const eomc_real w165 = w161 + w164;
     const eomc_real w166 = w37 * w151;
     const eomc_real w167 = pd0 * w166;
@@ -755,7 +755,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w193 = pd0 * w192;
     const eomc_real w194 = w34 + w162;
     const eomc_real w195 = pd0 * w194;
-    const eomc_real w196 = pd9 + w195;
+    const eomc_real w196 = pd12 + w195;
     const eomc_real w197 = w193 + w196;
     const eomc_real w198 = w31 * w183;
     const eomc_real w199 = pd0 * w198;
@@ -777,7 +777,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w215 = w26 * w214;
     const eomc_real w216 = pd0 * w215;
     const eomc_real w217 = w207 - w216;
-    const eomc_real w218 = pd8 + w195;
+    const eomc_real w218 = pd11 + w195;
     const eomc_real w219 = a_q1 * w183;
     const eomc_real w220 = pd0 * w219;
     const eomc_real w221 = w218 + w220;
@@ -848,7 +848,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w281 = w26 * w180;
     const eomc_real w282 = w280 - w281;
     const eomc_real w283 = v_q1 * w282;
-    const eomc_real w284 = pd11 * w283;
+    const eomc_real w284 = pd14 * w283;
     const eomc_real w285 = w279 + w284;
     const eomc_real w286 = pd0 * w229;
     const eomc_real w287 = w285 - w286;
@@ -1007,7 +1007,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w429 = w26 * w359;
     const eomc_real w430 = w428 - w429;
     const eomc_real w431 = v_q1 * w430;
-    const eomc_real w432 = pd11 * w431;
+    const eomc_real w432 = pd14 * w431;
     const eomc_real w433 = w427 + w432;
     dEdv[5] = w433;
     dEdv[6] = w427;
@@ -1152,7 +1152,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w563 = w26 * w480;
     const eomc_real w564 = w562 - w563;
     const eomc_real w565 = v_q1 * w564;
-    const eomc_real w566 = pd11 * w565;
+    const eomc_real w566 = pd14 * w565;
     const eomc_real w567 = w561 + w566;
     dEdv[10] = w567;
     dEdv[11] = w561;
@@ -1281,7 +1281,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w681 = w26 * w589;
     const eomc_real w682 = w680 - w681;
     const eomc_real w683 = v_q1 * w682;
-    const eomc_real w684 = pd11 * w683;
+    const eomc_real w684 = pd14 * w683;
     const eomc_real w685 = w679 + w684;
     dEdv[15] = w685;
     dEdv[16] = w679;
@@ -1389,7 +1389,7 @@ chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w778 = w26 * w4;
     const eomc_real w779 = w777 - w778;
     const eomc_real w780 = v_q1 * w779;
-    const eomc_real w781 = pd11 * w780;
+    const eomc_real w781 = pd14 * w780;
     const eomc_real w782 = w776 + w781;
     dEdv[20] = w782;
     dEdv[21] = w776;
@@ -1427,9 +1427,9 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd5 = p[8];
     const eomc_real pd6 = p[9];
     const eomc_real pd7 = p[10];
-    const eomc_real pd12 = p[15];
-    const eomc_real pd13 = p[16];
-    const eomc_real pd14 = p[17];
+    const eomc_real pd8 = p[11];
+    const eomc_real pd9 = p[12];
+    const eomc_real pd10 = p[13];
     (void)u;
     (void)t;
     const eomc_real w0 = q_q1 + q_q2;
@@ -1482,7 +1482,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w47 = w45 + w46;
     const eomc_real w48 = pd0 * w47;
     const eomc_real w49 = w24 * w24;
-    const eomc_real w50 = pd14 * w49;
+    const eomc_real w50 = pd10 * w49;
     const eomc_real w51 = pd0 * w30;
     const eomc_real w52 = w10 + w4;
     const eomc_real w53 = w4 * w52;
@@ -1490,7 +1490,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w55 = w14 * w54;
     const eomc_real w56 = w53 + w55;
     const eomc_real w57 = w24 * w56;
-    const eomc_real w58 = pd14 * w57;
+    const eomc_real w58 = pd10 * w57;
     const eomc_real w59 = w51 - w58;
     const eomc_real w60 = w10 + w52;
     const eomc_real w61 = w10 * w60;
@@ -1500,7 +1500,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w65 = w61 + w64;
     const eomc_real w66 = pd0 * w65;
     const eomc_real w67 = w56 * w56;
-    const eomc_real w68 = pd14 * w67;
+    const eomc_real w68 = pd10 * w67;
     const eomc_real w69 = w66 - w68;
     const eomc_real w70 = 1.0 / w69;
     const eomc_real w71 = w70 * w59;
@@ -1515,7 +1515,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w80 = w14 * w79;
     const eomc_real w81 = w77 + w80;
     const eomc_real w82 = w24 * w81;
-    const eomc_real w83 = pd14 * w82;
+    const eomc_real w83 = pd10 * w82;
     const eomc_real w84 = w78 + w79;
     const eomc_real w85 = w20 * w84;
     const eomc_real w86 = w81 + w85;
@@ -1524,7 +1524,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w89 = w86 + w88;
     const eomc_real w90 = pd0 * w89;
     const eomc_real w91 = w81 * w56;
-    const eomc_real w92 = pd14 * w91;
+    const eomc_real w92 = pd10 * w91;
     const eomc_real w93 = w90 - w92;
     const eomc_real w94 = w93 * w71;
     const eomc_real w95 = w83 + w94;
@@ -1537,7 +1537,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w102 = w99 + w101;
     const eomc_real w103 = pd0 * w102;
     const eomc_real w104 = w81 * w81;
-    const eomc_real w105 = pd14 * w104;
+    const eomc_real w105 = pd10 * w104;
     const eomc_real w106 = w70 * w93;
     const eomc_real w107 = w93 * w106;
     const eomc_real w108 = w105 + w107;
@@ -1569,10 +1569,10 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w134 = w131 + w133;
     const eomc_real w135 = pd0 * w134;
     const eomc_real w136 = w122 * w81;
-    const eomc_real w137 = pd14 * w136;
+    const eomc_real w137 = pd10 * w136;
     const eomc_real w138 = pd0 * w128;
     const eomc_real w139 = w122 * w56;
-    const eomc_real w140 = pd14 * w139;
+    const eomc_real w140 = pd10 * w139;
     const eomc_real w141 = w138 - w140;
     const eomc_real w142 = w70 * w141;
     const eomc_real w143 = w93 * w142;
@@ -1580,7 +1580,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w145 = w135 - w144;
     const eomc_real w146 = w145 * w111;
     const eomc_real w147 = w24 * w122;
-    const eomc_real w148 = pd14 * w147;
+    const eomc_real w148 = pd10 * w147;
     const eomc_real w149 = w141 * w71;
     const eomc_real w150 = w148 + w149;
     const eomc_real w151 = w146 + w150;
@@ -1595,7 +1595,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w160 = w110 * w145;
     const eomc_real w161 = w145 * w160;
     const eomc_real w162 = w122 * w122;
-    const eomc_real w163 = pd14 * w162;
+    const eomc_real w163 = pd10 * w162;
     const eomc_real w164 = w141 * w142;
     const eomc_real w165 = w163 + w164;
     const eomc_real w166 = w161 + w165;
@@ -1754,7 +1754,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w309 = pd0 * w308;
     const eomc_real w310 = w175 + w309;
     const eomc_real w311 = w56 * w310;
-    const eomc_real w312 = pd13 * w311;
+    const eomc_real w312 = pd9 * w311;
     const eomc_real w313 = w235 + w308;
     const eomc_real w314 = w313 - w241;
     const eomc_real w315 = pd0 * w314;
@@ -1762,14 +1762,14 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w317 = w312 - w316;
     const eomc_real w318 = w71 * w317;
     const eomc_real w319 = w24 * w310;
-    const eomc_real w320 = pd13 * w319;
+    const eomc_real w320 = pd9 * w319;
     const eomc_real w321 = w318 - w320;
     const eomc_real w322 = w255 - w292;
     const eomc_real w323 = pd0 * w322;
     const eomc_real w324 = w179 + w323;
     const eomc_real w325 = w106 * w317;
     const eomc_real w326 = w81 * w310;
-    const eomc_real w327 = pd13 * w326;
+    const eomc_real w327 = pd9 * w326;
     const eomc_real w328 = w325 - w327;
     const eomc_real w329 = w324 + w328;
     const eomc_real w330 = w111 * w329;
@@ -1778,7 +1778,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w333 = w181 + w332;
     const eomc_real w334 = w142 * w317;
     const eomc_real w335 = w122 * w310;
-    const eomc_real w336 = pd13 * w335;
+    const eomc_real w336 = pd9 * w335;
     const eomc_real w337 = w334 - w336;
     const eomc_real w338 = w160 * w329;
     const eomc_real w339 = w337 - w338;
@@ -1809,7 +1809,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w361 = w359 - w360;
     const eomc_real w362 = w356 - w361;
     a[3] = w362;
-    const eomc_real w363 = pd12 * w310;
+    const eomc_real w363 = pd8 * w310;
     const eomc_real w364 = w56 * w362;
     const eomc_real w365 = w81 * w354;
     const eomc_real w366 = w364 - w365;
@@ -1817,7 +1817,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w368 = w24 * w345;
     const eomc_real w369 = w367 - w368;
     const eomc_real w370 = w366 + w369;
-    const eomc_real w371 = pd13 * w370;
+    const eomc_real w371 = pd9 * w370;
     const eomc_real w372 = w363 + w371;
     const eomc_real w373 = -w372;
     a[4] = w373;

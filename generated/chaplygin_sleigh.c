@@ -59,13 +59,13 @@ chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
     pd[1] = w1;
     const eomc_real w2 = p_m * p_b;
     pd[2] = w2;
-    const eomc_real w3 = 2.0 * w2;
+    const eomc_real w3 = p_b * w2;
     pd[3] = w3;
-    const eomc_real w4 = p_b * w2;
-    pd[4] = w4;
-    const eomc_real w5 = p_b * p_b;
-    const eomc_real w6 = p_m * w5;
-    const eomc_real w7 = p_J + w6;
+    const eomc_real w4 = p_b * p_b;
+    const eomc_real w5 = p_m * w4;
+    const eomc_real w6 = p_J + w5;
+    pd[4] = w6;
+    const eomc_real w7 = 2.0 * w2;
     pd[5] = w7;
 }
 
@@ -106,7 +106,7 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_theta = v[2];
     const eomc_real p_m = p[0];
     const eomc_real pd2 = p[7];
-    const eomc_real pd5 = p[10];
+    const eomc_real pd4 = p[9];
     (void)u;
     (void)t;
     M[0] = p_m;
@@ -119,7 +119,7 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w3 = cos(q_theta);
     const eomc_real w4 = pd2 * w3;
     M[7] = w4;
-    M[8] = pd5;
+    M[8] = pd4;
     const eomc_real w5 = v_theta * v_theta;
     const eomc_real w6 = w3 * w5;
     const eomc_real w7 = pd2 * w6;
@@ -196,7 +196,7 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_b = p[2];
     const eomc_real pd2 = p[7];
     const eomc_real pd3 = p[8];
-    const eomc_real pd4 = p[9];
+    const eomc_real pd5 = p[10];
     (void)u;
     (void)t;
     (void)dEdu;
@@ -213,7 +213,7 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[0] = 0.0;
     dEdv[1] = 0.0;
     const eomc_real w7 = w3 * v_theta;
-    const eomc_real w8 = pd3 * w7;
+    const eomc_real w8 = pd5 * w7;
     const eomc_real w9 = -w8;
     dEdv[2] = w9;
     dEdt[0] = 0.0;
@@ -228,7 +228,7 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdv[3] = 0.0;
     dEdv[4] = 0.0;
     const eomc_real w15 = w0 * v_theta;
-    const eomc_real w16 = pd3 * w15;
+    const eomc_real w16 = pd5 * w15;
     const eomc_real w17 = -w16;
     dEdv[5] = w17;
     dEdt[1] = 0.0;
@@ -241,9 +241,9 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w22 = a_x - w21;
     const eomc_real w23 = w20 - w22;
     const eomc_real w24 = pd2 * w23;
-    const eomc_real w25 = pd4 * w10;
+    const eomc_real w25 = pd3 * w10;
     const eomc_real w26 = w24 - w25;
-    const eomc_real w27 = pd4 * w11;
+    const eomc_real w27 = pd3 * w11;
     const eomc_real w28 = w26 + w27;
     const eomc_real w29 = pd2 * w20;
     const eomc_real w30 = w28 - w29;
@@ -256,9 +256,9 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w37 = v_theta * w36;
     const eomc_real w38 = w34 + w37;
     const eomc_real w39 = pd2 * w38;
-    const eomc_real w40 = pd4 * w4;
+    const eomc_real w40 = pd3 * w4;
     const eomc_real w41 = w39 + w40;
-    const eomc_real w42 = pd4 * w2;
+    const eomc_real w42 = pd3 * w2;
     const eomc_real w43 = w41 + w42;
     const eomc_real w44 = pd2 * w37;
     const eomc_real w45 = w43 - w44;

@@ -58,9 +58,9 @@ gear_link_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w5 = p_r * w4;
     const eomc_real w6 = p_Jl + w5;
     pd[3] = w6;
-    const eomc_real w7 = -p_r;
+    const eomc_real w7 = 1.0 / w6;
     pd[4] = w7;
-    const eomc_real w8 = 1.0 / w6;
+    const eomc_real w8 = -p_r;
     pd[5] = w8;
 }
 
@@ -144,7 +144,7 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     const eomc_real q_theta_l = q[0];
     const eomc_real pd2 = p[8];
-    const eomc_real pd4 = p[10];
+    const eomc_real pd5 = p[11];
     (void)v;
     (void)a;
     (void)u;
@@ -153,7 +153,7 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w1 = pd2 * w0;
     dEdq[0] = w1;
     dEdv[0] = 0.0;
-    dEdu[0] = pd4;
+    dEdu[0] = pd5;
     dEdt[0] = 0.0;
 }
 
@@ -172,7 +172,7 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real u_u = u[0];
     const eomc_real pd2 = p[8];
     const eomc_real pd3 = p[9];
-    const eomc_real pd5 = p[11];
+    const eomc_real pd4 = p[10];
     (void)v;
     (void)t;
     piv[0] = pd3;
@@ -181,7 +181,7 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w1 = sin(q_theta_l);
     const eomc_real w2 = pd2 * w1;
     const eomc_real w3 = w0 - w2;
-    const eomc_real w4 = pd5 * w3;
+    const eomc_real w4 = pd4 * w3;
     a[0] = w4;
 }
 

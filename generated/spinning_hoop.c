@@ -57,9 +57,9 @@ spinning_hoop_derive(const eomc_real *p, eomc_real *pd)
     pd[2] = w4;
     const eomc_real w5 = p_w * w1;
     pd[3] = w5;
-    const eomc_real w6 = 2.0 * w1;
+    const eomc_real w6 = 1.0 / w1;
     pd[4] = w6;
-    const eomc_real w7 = 1.0 / w1;
+    const eomc_real w7 = 2.0 * w1;
     pd[5] = w7;
 }
 
@@ -215,7 +215,7 @@ spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd0 = p[4];
     const eomc_real pd2 = p[6];
     const eomc_real pd3 = p[7];
-    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
     (void)u;
     (void)dEdu;
     const eomc_real w0 = cos(q_th);
@@ -241,13 +241,13 @@ spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w20 = pd0 * w19;
     const eomc_real w21 = v_th * v_th;
     const eomc_real w22 = w0 * w21;
-    const eomc_real w23 = pd4 * w22;
+    const eomc_real w23 = pd5 * w22;
     const eomc_real w24 = pd2 + w23;
     const eomc_real w25 = w20 + w24;
     const eomc_real w26 = pd0 * w22;
     const eomc_real w27 = w25 - w26;
     const eomc_real w28 = w5 * a_th;
-    const eomc_real w29 = pd4 * w28;
+    const eomc_real w29 = pd5 * w28;
     const eomc_real w30 = w27 + w29;
     const eomc_real w31 = w4 + w9;
     const eomc_real w32 = v_th * w31;
@@ -283,7 +283,7 @@ spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w62 = w46 + w61;
     const eomc_real w63 = w0 * w62;
     const eomc_real w64 = w5 * w21;
-    const eomc_real w65 = pd4 * w64;
+    const eomc_real w65 = pd5 * w64;
     const eomc_real w66 = pd0 * w64;
     const eomc_real w67 = w2 * w16;
     const eomc_real w68 = pd3 * w67;
@@ -328,7 +328,7 @@ spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w106 = pd0 * w105;
     const eomc_real w107 = w5 * w0;
     const eomc_real w108 = w107 * v_th;
-    const eomc_real w109 = pd4 * w108;
+    const eomc_real w109 = pd5 * w108;
     const eomc_real w110 = w106 + w109;
     const eomc_real w111 = w3 * w49;
     const eomc_real w112 = pd0 * w111;
@@ -436,7 +436,7 @@ spinning_hoop_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd0 = p[4];
     const eomc_real pd2 = p[6];
     const eomc_real pd3 = p[7];
-    const eomc_real pd5 = p[9];
+    const eomc_real pd4 = p[8];
     (void)u;
     piv[0] = pd0;
     mkk[0] = pd0;
@@ -500,7 +500,7 @@ spinning_hoop_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w57 = w49 - w56;
     const eomc_real w58 = w40 - w57;
     const eomc_real w59 = w1 + w58;
-    const eomc_real w60 = pd5 * w59;
+    const eomc_real w60 = pd4 * w59;
     const eomc_real w61 = -w60;
     a[0] = w61;
 }

@@ -128,6 +128,8 @@ check_forms_agree(const char *label, const Spec *s)
     for (int f = 0; f < 4; f++) {
         const char *why = NULL;
         e[f] = eom_derive(s, m, form_find(names[f]), A, P, D, &why);
+        if (e[f])
+            eom_derive_jacobian(e[f], m, A, P, D);
         CHECK(e[f] != NULL, "%s: form %s applies", label, names[f]);
         if (!e[f])
             return;

@@ -122,6 +122,7 @@ check_agree(const Spec *s)
     CHECK(lag && ne, "both forms apply");
     if (!lag || !ne)
         return;
+    eom_derive_jacobian(ne, m, A, P, D);
     double *p = arena_new_array(A, double, s->np + 1);
     for (int k = 0; k < s->np; k++)
         p[k] = s->param[k].value;

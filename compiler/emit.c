@@ -597,6 +597,11 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
     println(pr, " * Do not edit; regenerate with `eomc compile`.");
     println(pr, " *");
     println(pr, " * form:    %s, E = %s", e->form->name, e->form->formula);
+    if (info->form_why && strcmp(info->form_why, "--form")) {
+        char note[700];
+        snprintf(note, sizeof note, "The form is %s", info->form_why);
+        print_wrapped(pr, note);
+    }
     println(pr, " * options: %s", info->options[0] ? info->options : "(none)");
     fprintf(pr->f, " * scene:   %s", s->scene.name ? s->scene.name : "(the spec's `scene:`)");
     for (int i = 0, k = 0; i < s->np; i++)

@@ -13,6 +13,8 @@
  */
 #include "eom.h"
 
+#include <stdlib.h>
+
 static void
 derive_row(Eom *e, Diff *D, const ExprId *leaves, ExprId *grad, int i)
 {
@@ -159,4 +161,36 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     for (int j = 0; j < n; j++)
         seed[j] = expr_seed(P, j, 1);
     diff_jvp(D, n, e->E, n, m->q[1], seed, e->jvp_v);
+}
+
+static long
+ops(ExprPool *P, int n, const ExprId *roots)
+{
+    ExprCount c = expr_count_ops(P, n, roots);
+    return c.adds + c.muls + c.divs + c.calls;
+}
+
+long
+eom_cost(ExprPool *P, const Eom *e, int constrained)
+{
+    int n = e->n;
+    ExprId *roots = xmalloc((size_t)(n * n + 3 * n + 1) * sizeof *roots);
+    long cost;
+    if (!constrained && e->acc) {
+        for (int i = 0; i < n; i++)
+            roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i];
+        cost = ops(P, 3 * n, roots);
+    } else {
+        int k = 0;
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j <= i; j++)
+                roots[k++] = e->M[i * n + j];
+        for (int i = 0; i < n; i++)
+            roots[k++] = e->h[i];
+        cost = ops(P, k, roots);
+        if (!constrained) /* LDL^T: n^3/6 multiply-adds, two triangular solves */
+            cost += (long)n * n * n / 3 + 2L * n * n;
+    }
+    free(roots);
+    return cost;
 }

@@ -44,6 +44,12 @@ enum { EOM_SOLVE_MAX = 12 };
  * work, and only the Jacobian needs them. */
 Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
                 ExprPool *P, Diff *D, const char **why);
+/* What one right-hand side of e costs, in operations: the accelerations
+ * where e solves for them (unconstrained), else M and h, plus the dense
+ * factorization the runtime then does (n^3/3 + 2 n^2) when unconstrained.
+ * The constraints' own functions and the KKT solve cost the same whatever
+ * the form, so they are left out. */
+long eom_cost(ExprPool *P, const Eom *e, int constrained);
 /* dEdq, dEdv, dEdu, dEdt, jvp_q and jvp_v of e (again: nothing). */
 void eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 

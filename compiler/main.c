@@ -57,8 +57,8 @@ usage(FILE *f)
         "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
         "  --form NAME      equation form: %s;\n"
-        "                   default newton-euler for a tree of turning joints\n"
-        "                   (docs/spec.md), lagrange otherwise\n"
+        "                   default: the cheapest that applies (fewest operations\n"
+        "                   per right-hand side; --explain says which and why)\n"
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
         "  --stats          print the operation counts of each emitted function\n"
@@ -240,6 +240,7 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
            s->np == 1 ? "" : "s", s->nu, s->nu == 1 ? "" : "s", s->npart,
            s->npart == 1 ? "" : "s", s->nbody, s->nbody == 1 ? "y" : "ies");
     printf("form %s: E = %s\n", form->name, form->formula);
+    printf("  %s\n", strcmp(info->form_why, "--form") ? info->form_why : "chosen by --form");
     if (s->nscenes) {
         int w = 0;
         for (int k = 0; k < s->nscenes; k++)
@@ -274,6 +275,50 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
     printf("%s\n%s\n", inv->note, inv->test);
 }
 
+/* The default form: the one whose right-hand side costs the fewest
+ * operations (eom_cost) among those that apply, the first in --form's
+ * order on a tie.  Elimination (maggi) is a way of handling constraints,
+ * not a form, so it is not a candidate.  On a tree of more than
+ * EOM_SOLVE_MAX coordinates only the recursive forms are: the energy
+ * forms' M and h alone already cost more than the articulated-body solve
+ * there (measured on specs/gen_tree.sh 5 to 30: tree 10's Lagrange M and
+ * h 17 299 operations, its whole articulated-body solve 13 633), and the
+ * runtime would factor their M besides.  Writes the reason to why. */
+static Eom *
+derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, ExprPool *P,
+                Diff *D, char *why, size_t len)
+{
+    enum { NFORMS_MAX = 16 };
+    Eom *e[NFORMS_MAX];
+    long cost[NFORMS_MAX];
+    int nf = 0, best = -1;
+    for (int k = 0; form_at(k) && nf < NFORMS_MAX; k++) {
+        const Form *f = form_at(k);
+        const char *no;
+        if (f->eliminate || (m->tree && m->n > EOM_SOLVE_MAX && !f->mass))
+            continue;
+        if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
+            continue;
+        cost[nf] = eom_cost(P, e[nf], constrained);
+        if (best < 0 || cost[nf] < cost[best])
+            best = nf;
+        nf++;
+    }
+    if (best < 0)
+        return NULL;
+    size_t at = (size_t)snprintf(why, len, "the cheapest that applies: %ld operation%s per "
+                                 "right-hand side", cost[best], cost[best] == 1 ? "" : "s");
+    for (int k = 0, first = 1; k < nf && at < len; k++)
+        if (k != best) {
+            at += (size_t)snprintf(why + at, len - at, "%s%s %ld", first ? " (" : ", ",
+                                   e[k]->form->name, cost[k]);
+            first = 0;
+        }
+    if (nf > 1 && at < len)
+        snprintf(why + at, len - at, ")");
+    return e[best];
+}
+
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
  * Returns 0, or an exit status. */
 static int
@@ -299,12 +344,14 @@ compile(const Options *o, FILE *out)
         Mech *m = mech_build(s, A, P, D);
         Constraints *c = constraints_build(s, m, A, P, D);
         Invariant *inv = invariant_derive(s, m, c, A, P, D);
-        /* by default the recursive form where the model is a tree of
-         * turning joints (it derives the same M and h in less code), and
-         * Lagrange's everywhere else */
-        const Form *form = o->form ? form_find(o->form)
-                                   : m->tree ? &form_newton_euler : &form_lagrange;
-        Eom *e = eom_derive(s, m, form, A, P, D, &why);
+        char picked[600] = "--form";
+        const Form *form = o->form ? form_find(o->form) : &form_lagrange;
+        Eom *e = o->form ? eom_derive(s, m, form, A, P, D, &why)
+                         : derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
+        if (e)
+            form = e->form;
+        else if (!o->form)
+            why = "no form applies";
         if (!e) {
             fprintf(stderr, "%s: error: form '%s' does not apply: %s\n",
                     o->spec, form->name, why);
@@ -330,7 +377,9 @@ compile(const Options *o, FILE *out)
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--eliminate", len ? " " : "");
             }
-            EmitInfo info = {EOMC_VERSION, opts, form->eliminate || o->eliminate};
+            EmitInfo info = {.version = EOMC_VERSION, .options = opts,
+                             .eliminate = form->eliminate || o->eliminate,
+                             .form_why = picked};
             EmitStats st[EMIT_NFUNCS];
             if (o->explain)
                 explain(s, form, c, inv, &info);

@@ -3,6 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
+ * The form is the cheapest that applies: 34 operations per right-hand side
+ * (nielsen 37, tzenoff 43).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)

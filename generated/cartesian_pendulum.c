@@ -3,6 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
+ * The form is the cheapest that applies: 1 operation per right-hand side
+ * (nielsen 1, tzenoff 1, gibbs-appell 1).
  * options: --jacobian auto
  * scene:   swing
  * effects: gravity

@@ -3,6 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
+ * The form is the cheapest that applies: 11 operations per right-hand side
+ * (nielsen 11, tzenoff 11).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity motor

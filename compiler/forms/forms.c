@@ -11,6 +11,12 @@ static const Form *const all[] = {
 };
 
 const Form *
+form_at(int k)
+{
+    return k >= 0 && k < (int)(sizeof all / sizeof all[0]) ? all[k] : NULL;
+}
+
+const Form *
 form_find(const char *name)
 {
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)

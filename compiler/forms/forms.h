@@ -35,6 +35,8 @@ typedef struct Form {
 extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi,
     form_newton_euler, form_articulated;
 
+/* The k-th form of the table (--form's order), NULL past the last. */
+const Form *form_at(int k);
 /* The form called `name`, or NULL. */
 const Form *form_find(const char *name);
 /* Comma-separated list of the form names, for messages. */

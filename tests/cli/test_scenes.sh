@@ -32,7 +32,7 @@ grep -q '^ \* scene:   damped; fixed: A = 0.0$' "$tmp/damped.c"
 ok $? "the banner names the scene and what it fixes"
 
 "$eomc" build "$spec" --scene shaken -o "$tmp/shaken" 2> /dev/null
-"$tmp/shaken" --help | grep -q '^Simulate swing (swing.yaml, lagrange form, scene shaken)'
+"$tmp/shaken" --help | grep -q '^Simulate swing (swing.yaml, [a-z-]* form, scene shaken)'
 ok $? "the simulator's --help names the scene"
 first=$("$tmp/shaken" --t-end 0.01 | sed -n 2p | cut -d, -f2)
 [ "$first" = "0.1" ]

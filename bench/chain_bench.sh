@@ -14,11 +14,16 @@
 # and checks the targets: N = 50 compiles in < 1 s and its C in < 10 s,
 # N = 5 right-hand side <= 130 ns, no allocation.
 #
-# usage: chain_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB
+#   mj_ns      ns per mj_forward of the same chain in MuJoCo (its
+#              contact and limits off; bench/mj_bench.c, when meson found
+#              libmujoco), measured in the same run
+#   ratio      mj_ns / ns_rhs: how many times faster eomc's is
+#
+# usage: chain_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
 # $EOMC_FLAGS: more options for `eomc compile`, e.g. "--jacobian unrolled";
 # $BENCH_N: the N to run (default "2 5 10 20 50").
 set -eu
-eomc=$1 src=$2 inc=$3 lib=$4
+eomc=$1 src=$2 inc=$3 lib=$4 mj=${5:-}
 cc=${CC:-cc}
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
@@ -26,7 +31,8 @@ gsl_libs=$(pkg-config --libs gsl)
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-printf '%4s %10s %8s %8s %8s %8s %8s %7s %9s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs ns_jac
+printf '%4s %10s %8s %8s %8s %8s %8s %7s %9s %9s %6s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs \
+  ns_jac mj_ns ratio
 fail=0
 for n in ${BENCH_N:-2 5 10 20 50}; do
   "$src/specs/gen_chain.sh" "$n" > "$dir/chain$n.yaml"
@@ -49,7 +55,14 @@ for n in ${BENCH_N:-2 5 10 20 50}; do
   set -- $("$dir/bench$n" 2>/dev/null)
   ns=$1 allocs=$2 nsjac=$3
   ct=$(elapsed "$t0" "$t1") cct=$(elapsed "$t2" "$t3")
-  printf '%4d %10s %8d %8d %8d %8s %8s %7d %9s\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" "$allocs" "$nsjac"
+  mjns=- ratio=-
+  if [ -n "$mj" ]; then
+    sh "$src/specs/gen_chain.sh" "$n" --mjcf > "$dir/chain$n.xml"
+    mjns=$("$mj" "$dir/chain$n.xml")
+    ratio=$(awk -v a="$mjns" -v b="$ns" 'BEGIN { printf "%.1f", a / b }')
+  fi
+  printf '%4d %10s %8d %8d %8d %8s %8s %7d %9s %9s %6s\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" \
+    "$allocs" "$nsjac" "$mjns" "$ratio"
   [ "$allocs" -eq 0 ] || { echo "FAIL: N = $n allocates in the right-hand side"; fail=1; }
   if [ "$n" -eq 50 ]; then
     awk -v t="$ct" 'BEGIN { exit !(t < 1) }' || { echo "FAIL: N = 50 compile $ct s >= 1 s"; fail=1; }

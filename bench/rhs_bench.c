@@ -5,6 +5,10 @@
  * member); each the median over stack placements of the best of 9
  * timed runs (see best_ns).  Compiled by chain_bench.sh
  * with -DMODEL=chainN_model and -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc.
+ * With -DMODEL_EXT=treeN_model_ext (the same C compiled a second time with
+ * -DEOMC_EXTENDED, tree_bench.sh) it also prints how far the double q''
+ * is from the model's own long-double solution, relative to its largest
+ * entry (nan where the model has no accel member to run in long double).
  */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
@@ -60,6 +64,45 @@ jac_calls(Work *w, long calls)
         w->sum += w->dEdq[n * n - 1];
     }
 }
+
+#ifdef MODEL_EXT
+extern const eomc_model_ext MODEL_EXT;
+
+static double
+qdd_error(const eomc_model *m, eomc_sim *sim, const double *q, const double *v)
+{
+    const eomc_model_ext *x = &MODEL_EXT;
+    int n = m->nq, np = m->np, nd = m->nd;
+    if (!x->accel || m->nu > 0)
+        return NAN;
+    double *a = calloc((size_t)n, sizeof *a);
+    eomc_ext *p = calloc((size_t)(np + nd + 1), sizeof *p);
+    eomc_ext *qe = calloc((size_t)n, sizeof *qe), *ve = calloc((size_t)n, sizeof *ve);
+    eomc_ext *ae = calloc((size_t)n, sizeof *ae), u[1] = {0};
+    for (int k = 0; k < np; k++)
+        p[k] = m->p_default[k];
+    if (x->derive)
+        x->derive(p, p + np);
+    for (int i = 0; i < n; i++)
+        qe[i] = q[i], ve[i] = v[i];
+    double err = NAN;
+    if (eomc_sim_accel(sim, 0.0, q, v, a) == EOMC_OK && x->accel(0, qe, ve, p, u, ae, NULL) == 0) {
+        eomc_ext dmax = 0, amax = 0;
+        for (int i = 0; i < n; i++) {
+            eomc_ext d = fabsl((eomc_ext)a[i] - ae[i]), s = fabsl(ae[i]);
+            dmax = d > dmax ? d : dmax;
+            amax = s > amax ? s : amax;
+        }
+        err = (double)(dmax / amax);
+    }
+    free(a);
+    free(p);
+    free(qe);
+    free(ve);
+    free(ae);
+    return err;
+}
+#endif
 
 /* ns per call: enough calls for 50 ms, then the best of 9 such runs (the
  * minimum filters out the time other processes take from this one). */
@@ -145,7 +188,14 @@ main(void)
     for (int k = 0; k < 1000; k++)
         eomc_sim_accel(sim, 0.0, q, v, a);
     long allocs = nalloc - before;
-    printf("%.1f %ld %.0f\n", ns_rhs, allocs, ns_jac);
+    for (int i = 0; i < n; i++) /* the timed state, q[0] back where it started */
+        q[i] = 0.3 / (i + 1);
+#ifdef MODEL_EXT
+    double err = qdd_error(m, sim, q, v);
+#else
+    double err = NAN;
+#endif
+    printf("%.1f %ld %.0f %.2g\n", ns_rhs, allocs, ns_jac, err);
     fprintf(stderr, "(checksum %g)\n", sum);
     eomc_sim_free(sim);
     free(q);

@@ -9,20 +9,40 @@
 #   cc_s       time of `cc -O2 -c` on the generated C
 #   build_s    time of `eomc build` (the C, and the simulator: the double
 #              and the extended-precision units compiled at once, linked)
+#   form       the default form eomc picked
+#   ns_rhs     ns per right-hand side of that form (bench/rhs_bench.c)
+#   err        its q'' against the model's own long-double solution, the
+#              largest difference over the largest |q''|
+#   ab_ns, ab_err  the same for --form articulated-body (the recursion,
+#              M never formed), when the default is not it
+#   mj_ns      ns per mj_forward of the same tree in MuJoCo (contact and
+#              limits off; bench/mj_bench.c), when meson found libmujoco
+#   ratio      mj_ns over the faster of ns_rhs and ab_ns
 # and checks issue 13's targets for N = 30: it derives in well under a
 # second (< 0.5 s) and its C compiles in seconds (< 10 s).
 #
-# usage: tree_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE
+# usage: tree_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
 # $BENCH_N: the N to run (default "5 10 20 30").
 set -eu
-eomc=$1 src=$2 inc=$3
+eomc=$1 src=$2 inc=$3 lib=$4 mj=${5:-}
+gsl_libs=$(pkg-config --libs gsl)
+# rhs FILE.c NAME: "ns err" of the model in FILE.c (double and extended)
+rhs() {
+  $cc -std=c11 -O2 -I"$inc" -c "$1" -o "$dir/m.o"
+  $cc -std=c11 -O2 -I"$inc" -DEOMC_EXTENDED -c "$1" -o "$dir/mx.o"
+  $cc -std=c11 -O2 -I"$inc" -DMODEL="$2_model" -DMODEL_EXT="$2_model_ext" \
+    "$src/bench/rhs_bench.c" "$dir/m.o" "$dir/mx.o" "$lib" $gsl_libs -lm \
+    -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/rhs"
+  "$dir/rhs" 2> /dev/null | awk '{ print $1, $4 }'
+}
 cc=${CC:-cc}
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-printf '%4s %6s %10s %8s %8s %8s %8s %8s\n' N coords compile_s ops ops_all lines cc_s build_s
+printf '%4s %6s %10s %8s %8s %8s %8s %8s %17s %9s %8s %9s %8s %9s %6s\n' N coords compile_s ops \
+  ops_all lines cc_s build_s form ns_rhs err ab_ns ab_err mj_ns ratio
 fail=0
 for n in ${BENCH_N:-5 10 20 30}; do
   sh "$src/specs/gen_tree.sh" "$n" > "$dir/tree$n.yaml"
@@ -44,8 +64,23 @@ for n in ${BENCH_N:-5 10 20 30}; do
   "$eomc" build "$dir/tree$n.yaml" -o "$dir/tree$n"
   t4=$(now)
   builds=$(elapsed "$t3" "$t4")
-  printf '%4d %6d %10s %8d %8d %8d %8s %8s\n' "$n" $((3 * n)) "$best" "$ops" "$all" "$lines" \
-    "$ccs" "$builds"
+  form=$(sed -n 's/^ \* form: *\([a-z-]*\),.*/\1/p' "$dir/tree$n.c")
+  set -- $(rhs "$dir/tree$n.c" "tree$n")
+  ns=$1 err=$2 abns=- aberr=-
+  if [ "$form" != articulated-body ]; then
+    "$eomc" compile "$dir/tree$n.yaml" --form articulated-body -o "$dir/ab$n.c"
+    set -- $(rhs "$dir/ab$n.c" "tree$n")
+    abns=$1 aberr=$2
+  fi
+  mjns=- ratio=-
+  if [ -n "$mj" ]; then
+    sh "$src/specs/gen_tree.sh" "$n" --mjcf > "$dir/tree$n.xml"
+    mjns=$("$mj" "$dir/tree$n.xml")
+    ratio=$(awk -v m="$mjns" -v a="$ns" -v b="$abns" \
+      'BEGIN { f = (b != "-" && b + 0 < a + 0) ? b : a; printf "%.1f", m / f }')
+  fi
+  printf '%4d %6d %10s %8d %8d %8d %8s %8s %17s %9s %8s %9s %8s %9s %6s\n' "$n" $((3 * n)) "$best" \
+    "$ops" "$all" "$lines" "$ccs" "$builds" "$form" "$ns" "$err" "$abns" "$aberr" "$mjns" "$ratio"
   if [ "$n" -eq 30 ]; then
     awk -v t="$best" 'BEGIN { exit !(t < 0.5) }' ||
       { echo "target: N = 30 derives in under 0.5 s: NOT MET ($best s)"; fail=1; }

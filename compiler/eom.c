@@ -189,7 +189,7 @@ eom_cost(ExprPool *P, const Eom *e, int constrained)
             roots[k++] = e->h[i];
         cost = ops(P, k, roots);
         if (!constrained) /* LDL^T: n^3/6 multiply-adds, two triangular solves */
-            cost += (long)n * n * n / 3 + 2L * n * n;
+            cost += EOM_DENSE_WEIGHT * ((long)n * n * n / 3 + 2L * n * n);
     }
     free(roots);
     return cost;

@@ -107,9 +107,11 @@ typedef struct eomc_model {
      * meaningless.  *pivot, unless NULL, gets min_k d_k / M_kk: the
      * smallest pivot of M balanced by its diagonal, how nearly singular
      * it is whatever the coordinates' units (its inverse is a lower
-     * bound on M's condition number).  NULL for large models (nq > 12),
-     * where the runtime factors mass_bias's M with GSL instead, and for
-     * constrained ones. */
+     * bound on M's condition number).  The articulated-body form has it
+     * at any size, computed by its recursion (M never formed; its pivots
+     * are those of LDL^T eliminating the leaves first).  NULL for large
+     * models of the other forms (nq > 12), where the runtime factors
+     * mass_bias's M with GSL instead, and for constrained ones. */
     int (*accel)(double t, const double *q, const double *v, const double *p,
                  const double *u, double *a, double *pivot);
 

@@ -36,8 +36,10 @@ typedef struct Eom {
 
 /* Up to this many coordinates the solve is emitted as straight-line code
  * (measured: GSL's Cholesky takes 370 ns at n = 5, the whole budget of a
- * right-hand side three times over).  Must match eomc_model.h. */
-enum { EOM_SOLVE_MAX = 12 };
+ * right-hand side three times over; the 20-link chain's right-hand side
+ * 2.9 us with the runtime's LDL^T, 1.5 us unrolled, for 1.6 s more of
+ * cc -O2).  Must match eomc_model.h. */
+enum { EOM_SOLVE_MAX = 24 };
 
 /* An operation of the runtime's dense LDL^T against one of generated
  * straight-line code (measured, bench/tree_bench.sh, gen_tree 5: 15

@@ -1,8 +1,8 @@
 #!/bin/sh
 # The articulated-body form (forms/articulated.c) as a user runs it (TAP),
-# on a 5-body tree of 3-axis joints (specs/gen_tree.sh 5: 15 coordinates,
-# past the 12 the unrolled solve covers, so Lagrange's form hands its M to
-# the runtime's GSL factorization: two independent solves):
+# on a 5-body tree of 3-axis joints (specs/gen_tree.sh 5: 15 coordinates;
+# Lagrange's form differentiates the energies and factors its M, the
+# articulated-body one recurses over the tree: two independent solves):
 #  - --accel at a state with every angle and rate set agrees with
 #    Lagrange's to 1e-11 of the largest |q''|;
 #  - a run to t = 1 at rtol 1e-12 ends where Lagrange's does, to 1e-8;
@@ -35,7 +35,7 @@ accel_diff() {
 st=$?
 d=$(accel_diff "$tmp/ab.acc" "$tmp/lag.acc")
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
-ok $? "--accel at a full state: articulated-body = lagrange (GSL) to $d of max |q''|"
+ok $? "--accel at a full state: articulated-body = lagrange to $d of max |q''|"
 
 # the last rows of two runs, entry by entry, over the largest |entry|
 row_diff() {

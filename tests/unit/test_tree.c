@@ -8,7 +8,7 @@
  *   - M is also dE/dq'' of the recursive residual itself;
  *   - the seeded derivatives of E equal its unrolled Jacobian.
  * The articulated-body form (forms/articulated.c) on the same tree, and
- * on one of 15 coordinates past the unrolled solve: its q'' solve
+ * on one of 15 coordinates: its q'' solve
  * Lagrange's M q'' = -h (solved here by GSL's LU), the product of its
  * pivots is det M (from GSL's LU) and mkk is M's diagonal.
  * And the models it must refuse, each with its reason.
@@ -58,8 +58,7 @@ static const char tree_spec[] =
     "scene: {t_end: 1}\n";
 
 /* specs/gen_tree.sh 5 with unequal bodies and a frame that does not
- * turn (the head rides on the neck): 15 coordinates, past the unrolled
- * solve. */
+ * turn (the head rides on the neck): 15 coordinates. */
 static const char big_tree_spec[] =
     "name: tree5\n"
     "parameters: {m: 1.0, l: 0.3, g: 9.81}\n"

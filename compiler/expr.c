@@ -806,7 +806,9 @@ canonical_product(ExprPool *P, ExprId a, ExprId b)
 ExprId
 expr_mul(ExprPool *P, ExprId a, ExprId b)
 {
-    double x, y;
+    /* set only where expr_is_const says so: initialized for gcc -O3, which
+     * cannot see that every read is behind its flag */
+    double x = 0, y = 0;
     order2(P, &a, &b);
     int ca = expr_is_const(P, a, &x), cb = expr_is_const(P, b, &y);
     if (ca && cb && foldable(x * y))

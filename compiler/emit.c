@@ -597,7 +597,7 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
     println(pr, " * Do not edit; regenerate with `eomc compile`.");
     println(pr, " *");
     println(pr, " * form:    %s, E = %s", e->form->name, e->form->formula);
-    if (info->form_why && strcmp(info->form_why, "--form")) {
+    if (info->form_why) {
         char note[700];
         snprintf(note, sizeof note, "The form is %s", info->form_why);
         print_wrapped(pr, note);

@@ -17,7 +17,7 @@ typedef struct EmitInfo {
     const char *version;  /* eomc's */
     const char *options;  /* generator options for the banner, "" if none */
     int eliminate;        /* constraints by elimination (Maggi), else multipliers */
-    const char *form_why; /* why this form: "--form" or how it was picked */
+    const char *form_why; /* how the form was picked; NULL: --form chose it */
 } EmitInfo;
 
 /* Operation counts of each emitted function. */

@@ -13,6 +13,7 @@
  */
 #include "eom.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 
 static void
@@ -161,6 +162,66 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     for (int j = 0; j < n; j++)
         seed[j] = expr_seed(P, j, 1);
     diff_jvp(D, n, e->E, n, m->q[1], seed, e->jvp_v);
+}
+
+/* The default form: the one whose right-hand side costs the fewest
+ * operations (eom_cost) among those that apply (eom.h), the first in --form's
+ * order on a tie.  Elimination (maggi) is a way of handling constraints,
+ * not a form, so it is not a candidate.  On a tree of more than
+ * EOM_SOLVE_MAX coordinates only the recursive forms are: the energy
+ * forms' M and h alone already cost more than the articulated-body solve
+ * there (measured on specs/gen_tree.sh 5 to 30: tree 10's Lagrange M and
+ * h 17 299 operations, its whole articulated-body solve 13 633), and the
+ * runtime would factor their M besides.  And a recursive solve past
+ * EOM_STRAIGHT_LINE_MAX operations is not the default while another
+ * form applies: it is one straight-line function whose compilation grows
+ * faster than its size (the 30-body tree's 43 543 operations take 80 s of
+ * cc -O2, against 9 s for the whole Newton-Euler model), until it is
+ * emitted as loops over the model's tables.  Writes the reason to why. */
+Eom *
+eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, ExprPool *P,
+                Diff *D, char *why, size_t len)
+{
+    enum { NFORMS_MAX = 16 };
+    Eom *e[NFORMS_MAX];
+    long cost[NFORMS_MAX];
+    int nf = 0, best = -1;
+    for (int k = 0; form_at(k) && nf < NFORMS_MAX; k++) {
+        const Form *f = form_at(k);
+        const char *no;
+        if (f->eliminate || (m->tree && m->n > EOM_SOLVE_MAX && !f->mass))
+            continue;
+        if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
+            continue;
+        cost[nf] = eom_cost(P, e[nf], constrained);
+        nf++;
+    }
+    for (int pass = 0; pass < 2 && best < 0; pass++) /* pass 1: the long solves too */
+        for (int k = 0; k < nf; k++) {
+            int long_solve = e[k]->form->solve && !constrained &&
+                             cost[k] > EOM_STRAIGHT_LINE_MAX;
+            if ((pass || !long_solve) && (best < 0 || cost[k] < cost[best]))
+                best = k;
+        }
+    if (best < 0)
+        return NULL;
+    int skipped = 0;
+    for (int k = 0; k < nf; k++)
+        skipped |= cost[k] < cost[best];
+    size_t at = (size_t)snprintf(why, len, "the cheapest that applies%s: %ld operation%s per "
+                                 "right-hand side", skipped ? " without a straight-line solve "
+                                 "too long to compile quickly" : "", cost[best],
+                                 cost[best] == 1 ? "" : "s");
+    for (int k = 0, first = 1; k < nf && at < len; k++)
+        if (k != best) {
+            at += (size_t)snprintf(why + at, len - at, "%s%s %ld%s", first ? " (" : ", ",
+                                   e[k]->form->name, cost[k],
+                                   cost[k] < cost[best] ? " in one straight-line solve" : "");
+            first = 0;
+        }
+    if (nf > 1 && at < len)
+        snprintf(why + at, len - at, ")");
+    return e[best];
 }
 
 static long

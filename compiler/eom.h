@@ -49,6 +49,12 @@ enum { EOM_SOLVE_MAX = 24 };
  * of the factorization's 1 575). */
 enum { EOM_DENSE_WEIGHT = 5 };
 
+/* Straight-line code past this many operations is too much for the C
+ * compiler (measured on the chain benchmark, gcc 12 -O2: ~0.3 ms per
+ * operation up to here, faster growth beyond): the Jacobian is seeded
+ * past it (lower.h), and a recursive solve past it is not the default. */
+enum { EOM_STRAIGHT_LINE_MAX = 20000 };
+
 /* E, M, h and the solve, or NULL with *why set if the form does not
  * apply to the model.  The partial derivatives are left NULL: most of the
  * work, and only the Jacobian needs them. */
@@ -61,6 +67,11 @@ Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
  * The constraints' own functions and the KKT solve cost the same whatever
  * the form, so they are left out. */
 long eom_cost(ExprPool *P, const Eom *e, int constrained);
+/* The default form's E, M, h and solve: the cheapest of those that apply
+ * (eom.c says how they are weighed), or NULL if none does; the reason, with
+ * what the others cost, in why[len]. */
+Eom *eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A,
+                         ExprPool *P, Diff *D, char *why, size_t len);
 /* dEdq, dEdv, dEdu, dEdt, jvp_q and jvp_v of e (again: nothing). */
 void eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 

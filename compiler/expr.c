@@ -659,7 +659,9 @@ expr_add(ExprPool *P, ExprId a, ExprId b)
     ExprId r = pythagoras(P, a, b, 1);
     if (r != EXPR_NONE)
         return r;
-    /* (x - a) + a = x: a point offset and brought back (kin.h) */
+    /* (x - a) + a = x: a point offset and brought back (kin.h).  A case
+     * of cancel_terms below, kept because it returns x's own node where
+     * cancel_terms would rebuild x's sum in another grouping */
     if (op_of(P, a) == EXPR_SUB && P->node[a].b == b)
         return P->node[a].a;
     if (op_of(P, b) == EXPR_SUB && P->node[b].b == a)
@@ -702,7 +704,8 @@ expr_sub(ExprPool *P, ExprId a, ExprId b)
     if (r != EXPR_NONE)
         return r;
     /* (x + y) - y = x, (x + y) - x = y, x - (x - y) = y: a point's
-     * position less the point it is offset from (kin.h) */
+     * position less the point it is offset from (kin.h); cases of
+     * cancel_terms kept for the same reason as in expr_add */
     if (op_of(P, a) == EXPR_ADD && P->node[a].b == b)
         return P->node[a].a;
     if (op_of(P, a) == EXPR_ADD && P->node[a].a == b)

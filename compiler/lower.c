@@ -258,7 +258,6 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     free(jroots);
     long jops = jc.adds + jc.muls + jc.divs + jc.calls;
     int large = jops > LOWER_UNROLLED_JACOBIAN_MAX;
-    lw->L->jacobian_ops = jops;
     if (how == LOWER_JACOBIAN_AUTO)
         how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
     lw->L->jacobian = how;

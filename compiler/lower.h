@@ -86,7 +86,6 @@ typedef struct Lowered {
     int nd;
     int n;                /* coordinates */
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
-    long jacobian_ops;    /* the unrolled Jacobian's size, which chose it */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
 } Lowered;
 
@@ -108,7 +107,7 @@ enum {
  * operation, linearly; the seeded Jacobian runs 2-3x slower (N = 20:
  * 4.5 -> 13 us, N = 50: 47 -> 97 us) but is 6x (N = 20) to 16x (N = 50)
  * less code.  Up to here the unrolled one costs < 6 s of cc. */
-enum { LOWER_UNROLLED_JACOBIAN_MAX = 20000 };
+enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
 
 /* c: the constraints, or NULL.  Derives e's partial derivatives
  * (eom_derive_jacobian) when the Jacobian is printed. */

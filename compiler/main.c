@@ -240,7 +240,7 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
            s->np == 1 ? "" : "s", s->nu, s->nu == 1 ? "" : "s", s->npart,
            s->npart == 1 ? "" : "s", s->nbody, s->nbody == 1 ? "y" : "ies");
     printf("form %s: E = %s\n", form->name, form->formula);
-    printf("  %s\n", strcmp(info->form_why, "--form") ? info->form_why : "chosen by --form");
+    printf("  %s\n", info->form_why ? info->form_why : "chosen by --form");
     if (s->nscenes) {
         int w = 0;
         for (int k = 0; k < s->nscenes; k++)
@@ -275,66 +275,6 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
     printf("%s\n%s\n", inv->note, inv->test);
 }
 
-/* The default form: the one whose right-hand side costs the fewest
- * operations (eom_cost) among those that apply, the first in --form's
- * order on a tie.  Elimination (maggi) is a way of handling constraints,
- * not a form, so it is not a candidate.  On a tree of more than
- * EOM_SOLVE_MAX coordinates only the recursive forms are: the energy
- * forms' M and h alone already cost more than the articulated-body solve
- * there (measured on specs/gen_tree.sh 5 to 30: tree 10's Lagrange M and
- * h 17 299 operations, its whole articulated-body solve 13 633), and the
- * runtime would factor their M besides.  And a recursive solve past
- * LOWER_UNROLLED_JACOBIAN_MAX operations is not the default while another
- * form applies: it is one straight-line function whose compilation grows
- * faster than its size (the 30-body tree's 43 543 operations take 80 s of
- * cc -O2, against 9 s for the whole Newton-Euler model), until it is
- * emitted as loops over the model's tables.  Writes the reason to why. */
-static Eom *
-derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, ExprPool *P,
-                Diff *D, char *why, size_t len)
-{
-    enum { NFORMS_MAX = 16 };
-    Eom *e[NFORMS_MAX];
-    long cost[NFORMS_MAX];
-    int nf = 0, best = -1;
-    for (int k = 0; form_at(k) && nf < NFORMS_MAX; k++) {
-        const Form *f = form_at(k);
-        const char *no;
-        if (f->eliminate || (m->tree && m->n > EOM_SOLVE_MAX && !f->mass))
-            continue;
-        if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
-            continue;
-        cost[nf] = eom_cost(P, e[nf], constrained);
-        nf++;
-    }
-    for (int pass = 0; pass < 2 && best < 0; pass++) /* pass 1: the long solves too */
-        for (int k = 0; k < nf; k++) {
-            int long_solve = e[k]->form->solve && !constrained &&
-                             cost[k] > LOWER_UNROLLED_JACOBIAN_MAX;
-            if ((pass || !long_solve) && (best < 0 || cost[k] < cost[best]))
-                best = k;
-        }
-    if (best < 0)
-        return NULL;
-    int skipped = 0;
-    for (int k = 0; k < nf; k++)
-        skipped |= cost[k] < cost[best];
-    size_t at = (size_t)snprintf(why, len, "the cheapest that applies%s: %ld operation%s per "
-                                 "right-hand side", skipped ? " without a straight-line solve "
-                                 "too long to compile quickly" : "", cost[best],
-                                 cost[best] == 1 ? "" : "s");
-    for (int k = 0, first = 1; k < nf && at < len; k++)
-        if (k != best) {
-            at += (size_t)snprintf(why + at, len - at, "%s%s %ld%s", first ? " (" : ", ",
-                                   e[k]->form->name, cost[k],
-                                   cost[k] < cost[best] ? " in one straight-line solve" : "");
-            first = 0;
-        }
-    if (nf > 1 && at < len)
-        snprintf(why + at, len - at, ")");
-    return e[best];
-}
-
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
  * Returns 0, or an exit status. */
 static int
@@ -360,10 +300,10 @@ compile(const Options *o, FILE *out)
         Mech *m = mech_build(s, A, P, D);
         Constraints *c = constraints_build(s, m, A, P, D);
         Invariant *inv = invariant_derive(s, m, c, A, P, D);
-        char picked[600] = "--form";
+        char picked[600];
         const Form *form = o->form ? form_find(o->form) : &form_lagrange;
         Eom *e = o->form ? eom_derive(s, m, form, A, P, D, &why)
-                         : derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
+                         : eom_derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
         if (e)
             form = e->form;
         else if (!o->form)
@@ -395,7 +335,7 @@ compile(const Options *o, FILE *out)
             }
             EmitInfo info = {.version = EOMC_VERSION, .options = opts,
                              .eliminate = form->eliminate || o->eliminate,
-                             .form_why = picked};
+                             .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
             if (o->explain)
                 explain(s, form, c, inv, &info);

@@ -101,18 +101,6 @@ si_add_update(ExprPool *P, Si *Y, const Si *X, const Sv *U, const Sv *W)
         }
 }
 
-/* The turn just above turn k, -1 for the world. */
-static int
-turn_parent(const Tree *t, const int *body, int k)
-{
-    int g = 0;
-    while (!(t->frame[g].first <= k && k < t->frame[g].first + t->frame[g].nturns))
-        g++;
-    return k > t->frame[g].first ? k - 1
-           : t->frame[g].parent >= 0 ? body[t->frame[g].parent]
-                                     : -1;
-}
-
 static void
 articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, ExprId *acc,
             ExprId *piv, ExprId *mkk)
@@ -126,9 +114,13 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
         const TreeFrame *f = &t->frame[g];
         body[g] = f->nturns ? f->first + f->nturns - 1 : f->parent >= 0 ? body[f->parent] : -1;
     }
+    /* up[k]: the turn just above turn k, -1 for the world */
     int *up = arena_new_array(A, int, nt + 1);
-    for (int k = 0; k < nt; k++)
-        up[k] = turn_parent(t, body, k);
+    for (int g = 0; g < nf; g++) {
+        const TreeFrame *f = &t->frame[g];
+        for (int k = f->first; k < f->first + f->nturns; k++)
+            up[k] = k > f->first ? k - 1 : f->parent >= 0 ? body[f->parent] : -1;
+    }
     Sv *S = arena_new_array(A, Sv, nt + 1), *V = arena_new_array(A, Sv, nt + 1);
     Sv *C = arena_new_array(A, Sv, nt + 1), *pA = arena_new_array(A, Sv, nt + 1);
     Sv *U = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);

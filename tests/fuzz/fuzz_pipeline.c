@@ -54,8 +54,7 @@ compile(void *ctx)
             Invariant *inv = invariant_derive(s, m, c, A, P, D);
             Eom *e = eom_derive(s, m, form, A, P, D, &why);
             if (e && devnull) {
-                EmitInfo info = {.version = "fuzz", .options = "", .eliminate = eliminate,
-                                 .form_why = "--form"};
+                EmitInfo info = {.version = "fuzz", .options = "", .eliminate = eliminate};
                 EmitStats st[EMIT_NFUNCS];
                 Lowered *L = lower_model(s, m, e, c, inv, jacobian, A, P, D);
                 emit_model(devnull, s, e, c, inv, L, P, &info, st);

@@ -172,12 +172,7 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
  * forms' M and h alone already cost more than the articulated-body solve
  * there (measured on specs/gen_tree.sh 5 to 30: tree 10's Lagrange M and
  * h 17 299 operations, its whole articulated-body solve 13 633), and the
- * runtime would factor their M besides.  And a recursive solve past
- * EOM_STRAIGHT_LINE_MAX operations is not the default while another
- * form applies: it is one straight-line function whose compilation grows
- * faster than its size (the 30-body tree's 43 543 operations take 80 s of
- * cc -O2, against 9 s for the whole Newton-Euler model), until it is
- * emitted as loops over the model's tables.  Writes the reason to why. */
+ * runtime would factor their M besides.  Writes the reason to why. */
 Eom *
 eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, ExprPool *P,
                 Diff *D, char *why, size_t len)
@@ -196,27 +191,17 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
         cost[nf] = eom_cost(P, e[nf], constrained);
         nf++;
     }
-    for (int pass = 0; pass < 2 && best < 0; pass++) /* pass 1: the long solves too */
-        for (int k = 0; k < nf; k++) {
-            int long_solve = e[k]->form->solve && !constrained &&
-                             cost[k] > EOM_STRAIGHT_LINE_MAX;
-            if ((pass || !long_solve) && (best < 0 || cost[k] < cost[best]))
-                best = k;
-        }
+    for (int k = 0; k < nf; k++)
+        if (best < 0 || cost[k] < cost[best])
+            best = k;
     if (best < 0)
         return NULL;
-    int skipped = 0;
-    for (int k = 0; k < nf; k++)
-        skipped |= cost[k] < cost[best];
-    size_t at = (size_t)snprintf(why, len, "the cheapest that applies%s: %ld operation%s per "
-                                 "right-hand side", skipped ? " without a straight-line solve "
-                                 "too long to compile quickly" : "", cost[best],
-                                 cost[best] == 1 ? "" : "s");
+    size_t at = (size_t)snprintf(why, len, "the cheapest that applies: %ld operation%s per "
+                                 "right-hand side", cost[best], cost[best] == 1 ? "" : "s");
     for (int k = 0, first = 1; k < nf && at < len; k++)
         if (k != best) {
-            at += (size_t)snprintf(why + at, len - at, "%s%s %ld%s", first ? " (" : ", ",
-                                   e[k]->form->name, cost[k],
-                                   cost[k] < cost[best] ? " in one straight-line solve" : "");
+            at += (size_t)snprintf(why + at, len - at, "%s%s %ld", first ? " (" : ", ",
+                                   e[k]->form->name, cost[k]);
             first = 0;
         }
     if (nf > 1 && at < len)

@@ -52,7 +52,7 @@ enum { EOM_DENSE_WEIGHT = 5 };
 /* Straight-line code past this many operations is too much for the C
  * compiler (measured on the chain benchmark, gcc 12 -O2: ~0.3 ms per
  * operation up to here, faster growth beyond): the Jacobian is seeded
- * past it (lower.h), and a recursive solve past it is not the default. */
+ * past it (lower.h). */
 enum { EOM_STRAIGHT_LINE_MAX = 20000 };
 
 /* E, M, h and the solve, or NULL with *why set if the form does not

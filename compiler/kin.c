@@ -437,6 +437,22 @@ kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
     return 1;
 }
 
+int
+kin_turn_local(const Kin *K, int f, int k, ExprId *rate, ExprId a[3], ExprId Rk[9])
+{
+    const KinTurn *t = K->f[f].turns;
+    for (; t && k > 0; k--)
+        t = t->next;
+    if (!t)
+        return 0;
+    *rate = t->rate;
+    for (int i = 0; i < 3; i++)
+        a[i] = t->a[i];
+    for (int i = 0; i < 9; i++)
+        Rk[i] = t->Rk[i];
+    return 1;
+}
+
 void
 kin_rotation(const Kin *K, int f, ExprId R[9])
 {

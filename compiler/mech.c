@@ -142,9 +142,16 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
         switch (f->kind) {
         case FORCE_GRAVITY:
             m->V = expr_add(P, m->V, gravity_potential(s, f, P));
+            if (f->dim == 3 && m->gravity[0] != EXPR_NONE) {
+                for (int i = 0; i < 3; i++)
+                    m->gravity[i] = expr_add(P, m->gravity[i], f->vec[i]);
+            } else {
+                m->gravity[0] = EXPR_NONE;
+            }
             break;
         case FORCE_POTENTIAL:
             m->V = expr_add(P, m->V, f->expr);
+            m->V_rest = expr_add(P, m->V_rest, f->expr);
             break;
         case FORCE_VECTOR:
             if (f->particle >= 0)
@@ -216,6 +223,8 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     }
     for (int k = 0; k < s->npotential; k++)
         m->V = expr_add(P, m->V, s->potential[k].expr);
+    m->V_rest = m->V;
+    m->gravity[0] = m->gravity[1] = m->gravity[2] = EXPR_ZERO;
     m->Q = arena_new_array(A, ExprId, s->nq);
     for (int i = 0; i < s->nq; i++)
         m->Q[i] = EXPR_ZERO;
@@ -229,6 +238,11 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
                        "energy: it has no inertia, so its row of the mass matrix is zero",
                        s->coord[i].name);
+    for (int i = 0; m->gravity[0] != EXPR_NONE && i < 3; i++)
+        if (diff_time(D, m->gravity[i]) != EXPR_ZERO) /* not uniform at every instant */
+            m->gravity[0] = EXPR_NONE;
+    if (m->gravity[0] == EXPR_NONE)
+        m->V_rest = m->V;
     m->tree = tree_build(s, m->q[1], A, P, D, &m->tree_why);
     return m;
 }

@@ -17,6 +17,10 @@ typedef struct Mech {
     ExprId S;      /* acceleration energy 1/2 sum m |r''|^2, EXPR_NONE if
                     * the spec has explicit kinetic terms (no S for them) */
     ExprId *Q;     /* [n] generalized non-potential forces */
+    /* V is V_rest plus the potential of a uniform gravity field (world
+     * components, constant in time) on every mass; gravity[0] is
+     * EXPR_NONE where there is no such split (V_rest = V). */
+    ExprId gravity[3], V_rest;
     ExprId *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: the leaf for q_i^(k) */
     Tree *tree;    /* the masses as a tree of turning joints (tree.h), or */
     const char *tree_why; /* NULL and why not */

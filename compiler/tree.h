@@ -19,9 +19,19 @@
 #include "spec.h"
 #include "diff.h"
 
+/* Each turn also has its own coordinates, for the articulated-body form:
+ * origin at its frame's pivot, axes those of its frame just after it
+ * (turn by turn, the local frames of Featherstone's algorithm).  The axis
+ * is then a constant, and each turn is placed in the one above it by a
+ * rotation that is a constant times its own Rodrigues matrix and a
+ * constant offset. */
 typedef struct TreeTurn {
     int coord;   /* its angle is coordinate coord */
     ExprId a[3]; /* unit axis, world components */
+    int up;      /* the turn above it: its parent body; -1 the world */
+    ExprId al[3]; /* the axis in its own axes */
+    ExprId Q[9]; /* its axes in up's (row-major, columns the axes) */
+    ExprId r[3]; /* its origin from up's, in up's axes */
 } TreeTurn;
 
 typedef struct TreeFrame {
@@ -32,6 +42,11 @@ typedef struct TreeFrame {
      * in this frame: mass m, first moment h = m c, and the rotational
      * inertia I (3 x 3 row-major, symmetric) about the origin. */
     ExprId m, h[3], I[9];
+    /* The same masses in local coordinates: about the origin of the turn
+     * that carries them (the last turn at or above the frame; -1: none,
+     * they do not move), in its axes. */
+    int carrier;
+    ExprId hl[3], Il[9];
 } TreeFrame;
 
 typedef struct Tree {

@@ -33,6 +33,8 @@
 
 #include "spatial.h"
 
+#include "../kin.h"
+
 /* A symmetric 6 x 6 spatial inertia, motion to force, as a full array:
  * row r, column c at [6 r + c], rows and columns (w, v). */
 typedef struct Si {
@@ -101,104 +103,292 @@ si_add_update(ExprPool *P, Si *Y, const Si *X, const Sv *U, const Sv *W)
         }
 }
 
+/* The rigid inertia (m, h, I) about a turn's origin in its axes. */
+typedef struct Rigid {
+    ExprId m, h[3], I[9];
+} Rigid;
+
+/* The 3 x 3 block of X at (row r0, column c0). */
+static void
+si_block(const Si *X, int r0, int c0, ExprId *B)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            B[3 * r + c] = X->e[6 * (r0 + r) + c0 + c];
+}
+
+/* C = X Y with X or Y transposed as asked, 3 x 3. */
+static void
+m3_mul(ExprPool *P, const ExprId *X, int xt, const ExprId *Y, int yt, ExprId *C)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            ExprId s = EXPR_ZERO;
+            for (int k = 0; k < 3; k++) {
+                ExprId x = xt ? X[3 * k + i] : X[3 * i + k];
+                ExprId y = yt ? Y[3 * j + k] : Y[3 * k + j];
+                s = expr_add(P, s, expr_mul(P, x, y));
+            }
+            C[3 * i + j] = s;
+        }
+}
+
+/* Q X Q^T for a 3 x 3 X, symmetric to the bit when X is (sym). */
+static void
+m3_rotate(ExprPool *P, const ExprId *Q, const ExprId *X, int sym, ExprId *out)
+{
+    ExprId QX[9];
+    m3_mul(P, Q, 0, X, 0, QX);
+    m3_mul(P, QX, 0, Q, 1, out);
+    for (int i = 0; sym && i < 3; i++)
+        for (int j = 0; j < i; j++)
+            out[3 * j + i] = out[3 * i + j];
+}
+
+/* [r]x, the cross product r x . as a matrix */
+static void
+m3_cross(ExprPool *P, const ExprId *r, ExprId *Rx)
+{
+    Rx[0] = Rx[4] = Rx[8] = EXPR_ZERO;
+    Rx[1] = expr_neg(P, r[2]), Rx[2] = r[1];
+    Rx[3] = r[2], Rx[5] = expr_neg(P, r[0]);
+    Rx[6] = expr_neg(P, r[1]), Rx[7] = r[0];
+}
+
+/* A motion in up's coordinates in turn t's: w' = Q^T w,
+ * v' = Q^T (v - r x w). */
+static void
+motion_down(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
+{
+    ExprId rw[3], v[3];
+    kin_cross(P, t->r, x->w, rw);
+    for (int i = 0; i < 3; i++)
+        v[i] = expr_sub(P, x->v[i], rw[i]);
+    for (int i = 0; i < 3; i++) {
+        ExprId w = EXPR_ZERO, u = EXPR_ZERO;
+        for (int k = 0; k < 3; k++) {
+            w = expr_add(P, w, expr_mul(P, t->Q[3 * k + i], x->w[k]));
+            u = expr_add(P, u, expr_mul(P, t->Q[3 * k + i], v[k]));
+        }
+        out->w[i] = w, out->v[i] = u;
+    }
+}
+
+/* A force in turn t's coordinates in up's: f' = Q f, n' = Q n + r x f'. */
+static void
+force_up(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
+{
+    ExprId n[3], f[3], rf[3];
+    for (int i = 0; i < 3; i++) {
+        n[i] = f[i] = EXPR_ZERO;
+        for (int k = 0; k < 3; k++) {
+            n[i] = expr_add(P, n[i], expr_mul(P, t->Q[3 * i + k], x->w[k]));
+            f[i] = expr_add(P, f[i], expr_mul(P, t->Q[3 * i + k], x->v[k]));
+        }
+    }
+    kin_cross(P, t->r, f, rf);
+    for (int i = 0; i < 3; i++)
+        out->w[i] = expr_add(P, n[i], rf[i]), out->v[i] = f[i];
+}
+
+/* Y += X^T Ia X, Ia in turn t's coordinates, Y in up's: the blocks
+ * [[A, B], [B^T, C]] turned, A = Q A Q^T ..., then moved by r:
+ *   C' = C,  B' = B + [r]x C,  A' = A + [r]x B^T - B' [r]x. */
+static void
+inertia_up(ExprPool *P, const TreeTurn *t, const Si *Ia, Si *Y)
+{
+    ExprId a[9], b[9], c[9], A[9], B[9], C[9], Rx[9], T[9], U[9];
+    si_block(Ia, 0, 0, a);
+    si_block(Ia, 0, 3, b);
+    si_block(Ia, 3, 3, c);
+    m3_rotate(P, t->Q, a, 1, A);
+    m3_rotate(P, t->Q, b, 0, B);
+    m3_rotate(P, t->Q, c, 1, C);
+    m3_cross(P, t->r, Rx);
+    m3_mul(P, Rx, 0, B, 1, T); /* [r]x B^T */
+    m3_mul(P, Rx, 0, C, 0, U);
+    for (int i = 0; i < 9; i++)
+        B[i] = expr_add(P, B[i], U[i]);
+    m3_mul(P, B, 0, Rx, 0, U); /* B' [r]x */
+    for (int i = 0; i < 3; i++)
+        for (int j = i; j < 3; j++) {
+            ExprId e = expr_add(P, A[3 * i + j], T[3 * i + j]);
+            A[3 * i + j] = A[3 * j + i] = expr_sub(P, e, U[3 * i + j]);
+        }
+    for (int r = 0; r < 3; r++)
+        for (int c2 = 0; c2 < 3; c2++) {
+            ExprId *y = &Y->e[6 * r + c2];
+            *y = expr_add(P, *y, A[3 * r + c2]);
+            y = &Y->e[6 * r + c2 + 3];
+            *y = expr_add(P, *y, B[3 * r + c2]);
+            y = &Y->e[6 * (c2 + 3) + r];
+            *y = expr_add(P, *y, B[3 * r + c2]);
+            y = &Y->e[6 * (r + 3) + c2 + 3];
+            *y = expr_add(P, *y, C[3 * r + c2]);
+        }
+}
+
+/* Y += the rigid inertia X moved from turn t's coordinates to up's:
+ * h' = Q h + m r, I' = Q I Q^T + m (|r|^2 1 - r r^T) + 2 (r . h') 1 ...
+ * in the form I' = J + 2 (r.g) 1 - (g r^T + r g^T) + m (|r|^2 1 - r r^T),
+ * g = Q h. */
+static void
+rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y)
+{
+    ExprId g[3], J[9];
+    for (int i = 0; i < 3; i++) {
+        g[i] = EXPR_ZERO;
+        for (int k = 0; k < 3; k++)
+            g[i] = expr_add(P, g[i], expr_mul(P, t->Q[3 * i + k], X->h[k]));
+    }
+    m3_rotate(P, t->Q, X->I, 1, J);
+    const ExprId *r = t->r;
+    ExprId rg = kin_dot(P, r, g), rr = kin_dot(P, r, r);
+    ExprId two = expr_const(P, 2);
+    ExprId two_rg = expr_mul(P, two, rg), mrr = expr_mul(P, X->m, rr);
+    ExprId diag = expr_add(P, two_rg, mrr);
+    for (int i = 0; i < 3; i++)
+        for (int j = i; j < 3; j++) {
+            ExprId mr = expr_mul(P, X->m, r[j]);
+            ExprId gr = expr_mul(P, g[i], r[j]), rg2 = expr_mul(P, r[i], g[j]);
+            ExprId rmr = expr_mul(P, r[i], mr);
+            ExprId off = expr_add(P, expr_add(P, gr, rg2), rmr);
+            ExprId e = expr_sub(P, J[3 * i + j], off);
+            if (i == j)
+                e = expr_add(P, e, diag);
+            Y->I[3 * i + j] = expr_add(P, Y->I[3 * i + j], e);
+            if (j != i)
+                Y->I[3 * j + i] = Y->I[3 * i + j];
+        }
+    for (int i = 0; i < 3; i++)
+        Y->h[i] = expr_add(P, Y->h[i], expr_add(P, g[i], expr_mul(P, X->m, r[i])));
+    Y->m = expr_add(P, Y->m, X->m);
+}
+
+/* j when a is the coordinate axis e_j, else -1 */
+static int
+axis_index(const ExprId *a)
+{
+    for (int j = 0; j < 3; j++)
+        if (a[j] == EXPR_ONE && a[(j + 1) % 3] == EXPR_ZERO && a[(j + 2) % 3] == EXPR_ZERO)
+            return j;
+    return -1;
+}
+
 static void
 articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, ExprId *acc,
             ExprId *piv, ExprId *mkk)
 {
+    (void)M;
     const Tree *t = m->tree;
-    int nf = t->nframes, nt = t->nturns, n = m->n;
-    /* body[g]: the turn that carries frame g's masses, the last turn at or
-     * above it (-1: none, the masses do not move) */
-    int *body = arena_new_array(A, int, nf + 1);
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        body[g] = f->nturns ? f->first + f->nturns - 1 : f->parent >= 0 ? body[f->parent] : -1;
+    int nf = t->nframes, nt = t->nturns;
+    Rigid *body = arena_new_array(A, Rigid, nt + 1), *comp = arena_new_array(A, Rigid, nt + 1);
+    for (int k = 0; k < nt; k++) {
+        body[k].m = body[k].h[0] = body[k].h[1] = body[k].h[2] = EXPR_ZERO;
+        for (int i = 0; i < 9; i++)
+            body[k].I[i] = EXPR_ZERO;
     }
-    /* up[k]: the turn just above turn k, -1 for the world */
-    int *up = arena_new_array(A, int, nt + 1);
     for (int g = 0; g < nf; g++) {
         const TreeFrame *f = &t->frame[g];
-        for (int k = f->first; k < f->first + f->nturns; k++)
-            up[k] = k > f->first ? k - 1 : f->parent >= 0 ? body[f->parent] : -1;
+        Rigid *b = &body[f->carrier];
+        if (f->carrier < 0)
+            continue;
+        b->m = expr_add(P, b->m, f->m);
+        for (int i = 0; i < 3; i++)
+            b->h[i] = expr_add(P, b->h[i], f->hl[i]);
+        for (int i = 0; i < 9; i++)
+            b->I[i] = expr_add(P, b->I[i], f->Il[i]);
     }
     Sv *S = arena_new_array(A, Sv, nt + 1), *V = arena_new_array(A, Sv, nt + 1);
     Sv *C = arena_new_array(A, Sv, nt + 1), *pA = arena_new_array(A, Sv, nt + 1);
     Sv *U = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
     Si *IA = arena_new_array(A, Si, nt + 1);
     ExprId *Dinv = arena_new_array(A, ExprId, nt + 1), *u = arena_new_array(A, ExprId, nt + 1);
-    ExprId *tau = form_applied(m, A, P, D);
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        for (int k = f->first; k < f->first + f->nturns; k++) {
-            int i = t->turn[k].coord;
-            sv_turn_axis(P, f, &t->turn[k], &S[k]);
-            if (up[k] >= 0) {
-                V[k] = V[up[k]];
-                sv_cross_motion(P, &V[k], &S[k], &C[k]);
-                for (int r = 0; r < 6; r++)
-                    *sv_at(&C[k], r) = expr_mul(P, sv_get(&C[k], r), m->q[1][i]);
-            } else {
-                sv_zero(&V[k]);
-                sv_zero(&C[k]);
-            }
-            sv_axpy(P, &V[k], m->q[1][i], &S[k]);
-            si_zero(&IA[k]);
-            sv_zero(&pA[k]);
+    /* gravity as the world's acceleration upward (Featherstone's a_0 =
+     * -g), where it is uniform: its potential's gradient is not needed */
+    int lift = m->gravity[0] != EXPR_NONE;
+    ExprId *tau = form_gradient(m, lift ? m->V_rest : m->V, 0, A, D);
+    for (int i = 0; i < m->n; i++)
+        tau[i] = expr_sub(P, m->Q[i], tau[i]);
+    Sv a0;
+    sv_zero(&a0);
+    for (int i = 0; lift && i < 3; i++)
+        a0.v[i] = expr_neg(P, m->gravity[i]);
+    for (int k = 0; k < nt; k++) {
+        const TreeTurn *tk = &t->turn[k];
+        ExprId rate = m->q[1][tk->coord];
+        sv_zero(&S[k]);
+        for (int i = 0; i < 3; i++)
+            S[k].w[i] = tk->al[i];
+        sv_zero(&C[k]);
+        if (tk->up >= 0) {
+            Sv vp;
+            motion_down(P, tk, &V[tk->up], &vp);
+            sv_cross_motion(P, &vp, &S[k], &C[k]);
+            for (int r = 0; r < 6; r++)
+                *sv_at(&C[k], r) = expr_mul(P, sv_get(&C[k], r), rate);
+            V[k] = vp;
+        } else {
+            sv_zero(&V[k]);
         }
-    }
-    /* each frame's masses on the turn that carries them, their velocity
-     * product force at that turn's velocity */
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        int k = body[g];
-        if (k < 0)
-            continue;
-        Si X;
-        Sv IV, F;
-        si_rigid(P, &X, f->m, f->h, f->I);
-        for (int i = 0; i < 36; i++)
-            IA[k].e[i] = expr_add(P, IA[k].e[i], X.e[i]);
-        sv_inertia_times(P, f->m, f->h, f->I, &V[k], &IV);
-        sv_cross_force(P, &V[k], &IV, &F);
-        sv_add(P, &pA[k], &F);
+        sv_axpy(P, &V[k], rate, &S[k]);
+        const Rigid *b = &body[k];
+        Sv IV;
+        si_rigid(P, &IA[k], b->m, b->h, b->I);
+        sv_inertia_times(P, b->m, b->h, b->I, &V[k], &IV);
+        sv_cross_force(P, &V[k], &IV, &pA[k]);
+        comp[k] = *b;
     }
     for (int k = nt - 1; k >= 0; k--) {
-        int i = t->turn[k].coord;
+        const TreeTurn *tk = &t->turn[k];
+        int i = tk->coord, p = tk->up;
+        /* M_ii = S^T Ic S, Ic the composite inertia of all the turn moves */
+        ExprId Ia3[3];
+        for (int r = 0; r < 3; r++) {
+            Ia3[r] = EXPR_ZERO;
+            for (int c = 0; c < 3; c++)
+                Ia3[r] = expr_add(P, Ia3[r], expr_mul(P, comp[k].I[3 * r + c], tk->al[c]));
+        }
+        mkk[i] = kin_dot(P, tk->al, Ia3);
+        if (p >= 0)
+            rigid_up(P, tk, &comp[k], &comp[p]);
         si_times(P, &IA[k], &S[k], &U[k]);
         ExprId d = sv_dot(P, &S[k], &U[k]);
         piv[i] = d;
         Dinv[k] = expr_div(P, EXPR_ONE, d);
-        ExprId force = expr_neg(P, tau[i]);
-        u[k] = expr_sub(P, force, sv_dot(P, &S[k], &pA[k]));
-        int p = up[k];
+        u[k] = expr_sub(P, tau[i], sv_dot(P, &S[k], &pA[k]));
         if (p < 0)
             continue;
-        Sv W, Ic, pa;
+        Sv W, Ic, pa, up;
         for (int r = 0; r < 6; r++)
             *sv_at(&W, r) = expr_mul(P, sv_get(&U[k], r), Dinv[k]);
         Si Ia;
         si_zero(&Ia);
         si_add_update(P, &Ia, &IA[k], &U[k], &W);
+        /* Ia S = U - U (S.U) / D = 0: about a coordinate axis that is a
+         * row and a column of exact zeros, which the rounding of the
+         * update would only blur, and which fold through the transforms */
+        int j = axis_index(tk->al);
+        for (int c = 0; j >= 0 && c < 6; c++)
+            Ia.e[6 * j + c] = Ia.e[6 * c + j] = EXPR_ZERO;
         si_times(P, &Ia, &C[k], &Ic);
         pa = pA[k];
         sv_add(P, &pa, &Ic);
         sv_axpy(P, &pa, u[k], &W);
-        for (int e = 0; e < 36; e++)
-            IA[p].e[e] = expr_add(P, IA[p].e[e], Ia.e[e]);
-        sv_add(P, &pA[p], &pa);
+        inertia_up(P, tk, &Ia, &IA[p]);
+        force_up(P, tk, &pa, &up);
+        sv_add(P, &pA[p], &up);
     }
     for (int k = 0; k < nt; k++) {
-        int i = t->turn[k].coord;
-        Sv a = C[k];
-        if (up[k] >= 0)
-            sv_add(P, &a, &Acc[up[k]]);
+        const TreeTurn *tk = &t->turn[k];
+        Sv a;
+        motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &a);
+        sv_add(P, &a, &C[k]);
         ExprId qdd = expr_mul(P, expr_sub(P, u[k], sv_dot(P, &a, &U[k])), Dinv[k]);
-        acc[i] = qdd;
+        acc[tk->coord] = qdd;
         sv_axpy(P, &a, qdd, &S[k]);
         Acc[k] = a;
     }
-    for (int i = 0; i < n; i++)
-        mkk[i] = M[i * n + i];
 }
 
 const Form form_articulated = {

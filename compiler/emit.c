@@ -27,8 +27,9 @@ enum { PART_SIZE = 6000 };
 /* The arrays leaves are read from, in the order their locals are
  * declared and unused ones are (void)ed: a function reads only those
  * among its inputs. */
-enum { SRC_Q, SRC_V, SRC_A, SRC_P, SRC_U, SRC_T, SRC_DQ, SRC_DV, SRC_LAM, NSRC };
-static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "lam"};
+enum { SRC_Q, SRC_V, SRC_A, SRC_P, SRC_U, SRC_T, SRC_DQ, SRC_DV, SRC_DA, SRC_LAM, NSRC };
+static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "da",
+                                           "lam"};
 
 /* A function being printed: its list and its signature. */
 typedef struct Func {
@@ -137,7 +138,7 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
     static const char prefix[] = {'q', 'v', 'a', 'j'};
     switch (nd->op) {
     case EXPR_SEED:
-        snprintf(buf, len, "%s_%s", nd->b ? "dv" : "dq", pr->s->coord[nd->a].name);
+        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b], pr->s->coord[nd->a].name);
         break;
     case EXPR_VAR:
         snprintf(buf, len, "%c_%s", prefix[nd->b], pr->s->coord[nd->a].name);
@@ -729,6 +730,33 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     println(pr, "}\n");
 }
 
+/* The mass_bias member from bias and mass_times: column j of M is E's
+ * derivative along q'' = e_j. */
+static void
+print_mass_columns(Printer *pr, const Lowered *L)
+{
+    const char *nm = pr->s->name;
+    int n = L->n;
+    println(pr, "/* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).");
+    println(pr, " * Column j of M is the derivative of E along q'' = e_j: exact, in code");
+    println(pr, " * about the size of E instead of %d x %d entries.  Off the hot path: the", n, n);
+    println(pr, " * accelerations come from the recursion, which never forms M. */");
+    char fname[128];
+    snprintf(fname, sizeof fname, "%s_mass_bias", nm);
+    print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
+    println(pr, "    eomc_real seed[%d];", n);
+    println(pr, "    %s_bias(t, q, v, p, u, h);", nm);
+    println(pr, "    for (int j = 0; j < %d; j++)", n);
+    println(pr, "        seed[j] = 0.0;");
+    println(pr, "    for (int j = 0; j < %d; j++) {", n);
+    println(pr, "        seed[j] = 1.0;");
+    println(pr, "        %s_mass_times(t, q, v, p, u, seed, M + j);", nm);
+    println(pr, "        seed[j] = 0.0;");
+    println(pr, "    }");
+    println(pr, "}\n");
+}
+
 /* The invariant member when it is E = T + V: energy's two results added,
  * the same sum in the same order as the expression T + V. */
 static void
@@ -1024,6 +1052,8 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
                 add_count(&stats[r].count, n);
         if (lf == L->jac_dv)
             print_seeded_driver(&pr, L);
+        else if (lf == L->mass_times)
+            print_mass_columns(&pr, L);
         else if (L->invariant_energy && !strcmp(lf->sig->name, "energy")) {
             print_energy_sum(&pr);
             for (int r = 0; r < EMIT_NFUNCS; r++)

@@ -83,7 +83,7 @@ ExprId expr_var(ExprPool *P, int coord, int order);
 ExprId expr_param(ExprPool *P, int index);
 ExprId expr_input(ExprPool *P, int index);
 ExprId expr_time(ExprPool *P);
-/* The seed component dq_i (kind 0) or dq'_i (kind 1) of a directional
+/* The seed component dq_i (kind 0), dq'_i (1) or dq''_i (2) of a directional
  * derivative (diff_jvp).  Only the emitter gives seeds values. */
 ExprId expr_seed(ExprPool *P, int coord, int kind);
 /* The multiplier of constraint c (outputs only: nothing differentiates it). */
@@ -121,7 +121,7 @@ typedef struct ExprEnv {
     const double *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: k-th derivative of q_i */
     const double *p;
     const double *u;
-    const double *seed[2]; /* seeds dq, dq' of EXPR_SEED; NULL reads as 0 */
+    const double *seed[3]; /* seeds dq, dq', dq'' of EXPR_SEED; NULL reads as 0 */
     const double *lam;     /* multipliers of EXPR_MULT; NULL reads as 0 */
 } ExprEnv;
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);

@@ -46,6 +46,15 @@ static const LowSig s_mass_bias = {
     "mass_bias", "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
     "t q v p u > M h",
 };
+static const LowSig s_bias = {
+    "bias", "The bias h = E(q'' = 0), for mass_bias.", "t q v p u > h",
+};
+static const LowSig s_mass_times = {
+    "mass_times",
+    "Mx[i*nq] = sum_j M_ij da[j]: the derivative of E along da in q'' (E is\n"
+    " * linear in q''), for mass_bias.",
+    "t q v p u da > Mx",
+};
 static const LowSig s_energy = {
     "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV",
 };
@@ -440,15 +449,31 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
 
     lower_inputs(&lw);
 
-    f = func(&lw, &s_mass_bias, "mass_bias", 0);
-    for (int i = 0; i < n; i++) /* lower triangle and h, then the mirrored upper one */
-        for (int j = 0; j <= i; j++)
-            out(&lw, f, 0, i * n + j, e->M[i * n + j]);
-    for (int i = 0; i < n; i++)
-        out(&lw, f, 1, i, e->h[i]);
-    for (int i = 0; i < n; i++)
-        for (int j = i + 1; j < n; j++)
-            out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+    if (e->acc && e->form->solve && !c) {
+        /* M only off the hot path (conditioning, Jacobians): by columns,
+         * from code that grows as E does, not as n^2 entries */
+        f = func(&lw, &s_bias, "mass_bias", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, e->h[i]);
+        ExprId *seed = arena_new_array(A, ExprId, n), *Mx = arena_new_array(A, ExprId, n);
+        for (int j = 0; j < n; j++)
+            seed[j] = expr_seed(P, j, 2);
+        diff_jvp(D, n, e->E, n, m->q[2], seed, Mx);
+        f = func(&lw, &s_mass_times, "mass_bias", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i * n, Mx[i]);
+        lw.L->mass_times = f;
+    } else {
+        f = func(&lw, &s_mass_bias, "mass_bias", 0);
+        for (int i = 0; i < n; i++) /* lower triangle and h, then the mirrored upper one */
+            for (int j = 0; j <= i; j++)
+                out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 1, i, e->h[i]);
+        for (int i = 0; i < n; i++)
+            for (int j = i + 1; j < n; j++)
+                out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+    }
 
     f = func(&lw, &s_energy, "energy", 1);
     out(&lw, f, 0, 0, m->T);

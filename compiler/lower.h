@@ -73,6 +73,7 @@ typedef struct Lowered {
     LowFunc *jac_dv;      /* seeded Jacobian: its per-column loop follows */
     LowFunc *jac_shared;
     LowFunc *accel_solve; /* the pivot check follows */
+    LowFunc *mass_times;  /* mass_bias by columns follows (bias before it) */
     LowFunc *check_values;
     /* The values of the parameters alone that the per-step functions
      * need: derive computes them into pd[] when the parameters change,

@@ -109,55 +109,6 @@ hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *pivot_p
     return NULL;
 }
 
-/* The spatial inertia of ms about the world origin, added to f. */
-static void
-add_inertia(const Kin *K, ExprPool *P, const Mass *ms, TreeFrame *f)
-{
-    ExprId c[3], R[9], J[9];
-    kin_pos(K, ms->point, c);
-    for (int i = 0; i < 9; i++)
-        J[i] = EXPR_ZERO;
-    if (ms->I) { /* J = R I R^T: the inertia about the centre in world axes */
-        kin_rotation(K, ms->frame, R);
-        ExprId RI[9];
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-                ExprId s = EXPR_ZERO;
-                for (int k = 0; k < 3; k++)
-                    s = expr_add(P, s, expr_mul(P, R[3 * i + k], ms->I[3 * k + j]));
-                RI[3 * i + j] = s;
-            }
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j <= i; j++) {
-                ExprId s = EXPR_ZERO;
-                for (int k = 0; k < 3; k++)
-                    s = expr_add(P, s, expr_mul(P, RI[3 * i + k], R[3 * j + k]));
-                J[3 * i + j] = J[3 * j + i] = s;
-            }
-    }
-    /* about the origin: J + m (|c|^2 1 - c c^T), the parallel-axis term */
-    ExprId h[3];
-    for (int i = 0; i < 3; i++)
-        h[i] = expr_mul(P, ms->m, c[i]);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j <= i; j++) {
-            ExprId t;
-            if (i == j) {
-                int a = (i + 1) % 3, b = (i + 2) % 3;
-                ExprId hb = expr_mul(P, h[b], c[b]);
-                t = expr_add(P, expr_mul(P, h[a], c[a]), hb);
-            } else {
-                t = expr_neg(P, expr_mul(P, h[i], c[j]));
-            }
-            J[3 * i + j] = J[3 * j + i] = expr_add(P, J[3 * i + j], t);
-        }
-    f->m = expr_add(P, f->m, ms->m);
-    for (int i = 0; i < 3; i++)
-        f->h[i] = expr_add(P, f->h[i], h[i]);
-    for (int i = 0; i < 9; i++)
-        f->I[i] = expr_add(P, f->I[i], J[i]);
-}
-
 static int
 nturns_of(const Kin *K, int f)
 {
@@ -286,10 +237,9 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t, const int *kid,
                 if (!constant_in_time(D, tk->r[i]))
                     return moves;
         }
-        for (int i = 0; i < 3; i++)
-            f->hl[i] = EXPR_ZERO;
+        f->m = f->h[0] = f->h[1] = f->h[2] = EXPR_ZERO;
         for (int i = 0; i < 9; i++)
-            f->Il[i] = EXPR_ZERO;
+            f->I[i] = EXPR_ZERO;
     }
     for (int k = 0; k < nm; k++) {
         if (ms[k].frame <= KIN_WORLD)
@@ -334,15 +284,16 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t, const int *kid,
                 }
                 J[3 * i + j] = expr_add(P, J[3 * i + j], e);
             }
+        f->m = expr_add(P, f->m, ms[k].m);
         for (int i = 0; i < 3; i++)
-            f->hl[i] = expr_add(P, f->hl[i], h[i]);
+            f->h[i] = expr_add(P, f->h[i], h[i]);
         for (int i = 0; i < 9; i++)
-            f->Il[i] = expr_add(P, f->Il[i], J[i]);
+            f->I[i] = expr_add(P, f->I[i], J[i]);
     }
     for (int fi = 0; fi < nf; fi++) {
         const TreeFrame *f = &t->frame[fi];
         for (int i = 0; i < 9; i++)
-            if (!constant_in_time(D, f->Il[i]) || (i < 3 && !constant_in_time(D, f->hl[i])))
+            if (!constant_in_time(D, f->I[i]) || (i < 3 && !constant_in_time(D, f->h[i])))
                 return moves;
     }
     return NULL;
@@ -427,10 +378,6 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         kid[index[g]] = g;
         int pg = kin_parent(K, g);
         f->parent = pg > KIN_WORLD ? index[pg] : -1;
-        memcpy(f->pivot, pivot[g], sizeof f->pivot);
-        f->m = f->h[0] = f->h[1] = f->h[2] = EXPR_ZERO;
-        for (int i = 0; i < 9; i++)
-            f->I[i] = EXPR_ZERO;
         f->first = nt;
         ExprId rate, a[3];
         for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++) {
@@ -453,7 +400,6 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
                 return NULL;
             }
             t->turn[nt].coord = i;
-            memcpy(t->turn[nt].a, a, sizeof a);
             at[nt] = (Place){g, k + 1};
             nt++;
         }
@@ -466,9 +412,6 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
                                 s->coord[i].name);
             return NULL;
         }
-    for (int k = 0; k < nm; k++)
-        if (ms[k].frame > KIN_WORLD)
-            add_inertia(K, P, &ms[k], &t->frame[index[ms[k].frame]]);
     if ((*why = localize(K, A, P, D, t, kid, at, pivot, pivot_pt, ms, nm, index)))
         return NULL;
     return t;

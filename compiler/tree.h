@@ -1,17 +1,21 @@
 /*
  * tree: a spec's masses as a tree of rigid bodies on turning joints, for
- * the recursive form (forms/newton_euler.c).
+ * the recursive forms (forms/newton_euler.c, forms/articulated.c).
  *
  * It applies when every coordinate is the angle of one turn of a frame,
  * every mass (a body placed by a frame with its centre at a point, or a
  * particle at a point) hangs from the world through offsets fixed in the
  * frames above it, and all the masses a frame turns are turned about one
  * point, its pivot.  A turn then moves everything below it as one rigid
- * body: its spatial axis S = (a, p x a) (world components, about the
- * world origin; a the turn's unit axis, p the pivot) is the same for all
- * of them, and the mass matrix is sum S_i^T Ic S_j with Ic the inertia of
- * the masses both turns move (Featherstone's composite-rigid-body
- * algorithm).
+ * body, and the turns are the joints of Featherstone's algorithms.
+ *
+ * Each turn has its own coordinates: origin at its frame's pivot, axes
+ * those of its frame just after it.  Its axis is a constant there, and it
+ * sits in the turn above it by a rotation (a constant one, from fixed
+ * turns and frames between, times its own Rodrigues matrix) and a
+ * constant offset; each frame's masses are constants in the coordinates
+ * of the turn that carries them.  So the recursions' transforms are
+ * products with few entries that are not constants, which fold.
  */
 #ifndef EOMC_TREE_H
 #define EOMC_TREE_H
@@ -19,15 +23,8 @@
 #include "spec.h"
 #include "diff.h"
 
-/* Each turn also has its own coordinates, for the articulated-body form:
- * origin at its frame's pivot, axes those of its frame just after it
- * (turn by turn, the local frames of Featherstone's algorithm).  The axis
- * is then a constant, and each turn is placed in the one above it by a
- * rotation that is a constant times its own Rodrigues matrix and a
- * constant offset. */
 typedef struct TreeTurn {
     int coord;   /* its angle is coordinate coord */
-    ExprId a[3]; /* unit axis, world components */
     int up;      /* the turn above it: its parent body; -1 the world */
     ExprId al[3]; /* the axis in its own axes */
     ExprId Q[9]; /* its axes in up's (row-major, columns the axes) */
@@ -37,16 +34,12 @@ typedef struct TreeTurn {
 typedef struct TreeFrame {
     int parent;        /* index among the tree's frames; -1: the world */
     int first, nturns; /* its turns: turn[first .. first + nturns - 1] */
-    ExprId pivot[3];   /* the point its turns turn about, world components */
-    /* The spatial inertia, about the world origin, of the masses placed
-     * in this frame: mass m, first moment h = m c, and the rotational
-     * inertia I (3 x 3 row-major, symmetric) about the origin. */
-    ExprId m, h[3], I[9];
-    /* The same masses in local coordinates: about the origin of the turn
-     * that carries them (the last turn at or above the frame; -1: none,
-     * they do not move), in its axes. */
+    /* The turn that carries the masses placed in this frame (the last
+     * turn at or above it; -1: none, they do not move), and their spatial
+     * inertia about its origin in its axes: mass m, first moment h = m c,
+     * and the rotational inertia I (3 x 3 row-major, symmetric). */
     int carrier;
-    ExprId hl[3], Il[9];
+    ExprId m, h[3], I[9];
 } TreeFrame;
 
 typedef struct Tree {

@@ -103,11 +103,6 @@ si_add_update(ExprPool *P, Si *Y, const Si *X, const Sv *U, const Sv *W)
         }
 }
 
-/* The rigid inertia (m, h, I) about a turn's origin in its axes. */
-typedef struct Rigid {
-    ExprId m, h[3], I[9];
-} Rigid;
-
 /* The 3 x 3 block of X at (row r0, column c0). */
 static void
 si_block(const Si *X, int r0, int c0, ExprId *B)
@@ -155,42 +150,6 @@ m3_cross(ExprPool *P, const ExprId *r, ExprId *Rx)
     Rx[6] = expr_neg(P, r[1]), Rx[7] = r[0];
 }
 
-/* A motion in up's coordinates in turn t's: w' = Q^T w,
- * v' = Q^T (v - r x w). */
-static void
-motion_down(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
-{
-    ExprId rw[3], v[3];
-    kin_cross(P, t->r, x->w, rw);
-    for (int i = 0; i < 3; i++)
-        v[i] = expr_sub(P, x->v[i], rw[i]);
-    for (int i = 0; i < 3; i++) {
-        ExprId w = EXPR_ZERO, u = EXPR_ZERO;
-        for (int k = 0; k < 3; k++) {
-            w = expr_add(P, w, expr_mul(P, t->Q[3 * k + i], x->w[k]));
-            u = expr_add(P, u, expr_mul(P, t->Q[3 * k + i], v[k]));
-        }
-        out->w[i] = w, out->v[i] = u;
-    }
-}
-
-/* A force in turn t's coordinates in up's: f' = Q f, n' = Q n + r x f'. */
-static void
-force_up(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
-{
-    ExprId n[3], f[3], rf[3];
-    for (int i = 0; i < 3; i++) {
-        n[i] = f[i] = EXPR_ZERO;
-        for (int k = 0; k < 3; k++) {
-            n[i] = expr_add(P, n[i], expr_mul(P, t->Q[3 * i + k], x->w[k]));
-            f[i] = expr_add(P, f[i], expr_mul(P, t->Q[3 * i + k], x->v[k]));
-        }
-    }
-    kin_cross(P, t->r, f, rf);
-    for (int i = 0; i < 3; i++)
-        out->w[i] = expr_add(P, n[i], rf[i]), out->v[i] = f[i];
-}
-
 /* Y += X^T Ia X, Ia in turn t's coordinates, Y in up's: the blocks
  * [[A, B], [B^T, C]] turned, A = Q A Q^T ..., then moved by r:
  *   C' = C,  B' = B + [r]x C,  A' = A + [r]x B^T - B' [r]x. */
@@ -228,43 +187,6 @@ inertia_up(ExprPool *P, const TreeTurn *t, const Si *Ia, Si *Y)
         }
 }
 
-/* Y += the rigid inertia X moved from turn t's coordinates to up's:
- * h' = Q h + m r, I' = Q I Q^T + m (|r|^2 1 - r r^T) + 2 (r . h') 1 ...
- * in the form I' = J + 2 (r.g) 1 - (g r^T + r g^T) + m (|r|^2 1 - r r^T),
- * g = Q h. */
-static void
-rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y)
-{
-    ExprId g[3], J[9];
-    for (int i = 0; i < 3; i++) {
-        g[i] = EXPR_ZERO;
-        for (int k = 0; k < 3; k++)
-            g[i] = expr_add(P, g[i], expr_mul(P, t->Q[3 * i + k], X->h[k]));
-    }
-    m3_rotate(P, t->Q, X->I, 1, J);
-    const ExprId *r = t->r;
-    ExprId rg = kin_dot(P, r, g), rr = kin_dot(P, r, r);
-    ExprId two = expr_const(P, 2);
-    ExprId two_rg = expr_mul(P, two, rg), mrr = expr_mul(P, X->m, rr);
-    ExprId diag = expr_add(P, two_rg, mrr);
-    for (int i = 0; i < 3; i++)
-        for (int j = i; j < 3; j++) {
-            ExprId mr = expr_mul(P, X->m, r[j]);
-            ExprId gr = expr_mul(P, g[i], r[j]), rg2 = expr_mul(P, r[i], g[j]);
-            ExprId rmr = expr_mul(P, r[i], mr);
-            ExprId off = expr_add(P, expr_add(P, gr, rg2), rmr);
-            ExprId e = expr_sub(P, J[3 * i + j], off);
-            if (i == j)
-                e = expr_add(P, e, diag);
-            Y->I[3 * i + j] = expr_add(P, Y->I[3 * i + j], e);
-            if (j != i)
-                Y->I[3 * j + i] = Y->I[3 * i + j];
-        }
-    for (int i = 0; i < 3; i++)
-        Y->h[i] = expr_add(P, Y->h[i], expr_add(P, g[i], expr_mul(P, X->m, r[i])));
-    Y->m = expr_add(P, Y->m, X->m);
-}
-
 /* j when a is the coordinate axis e_j, else -1 */
 static int
 axis_index(const ExprId *a)
@@ -281,24 +203,8 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
 {
     (void)M;
     const Tree *t = m->tree;
-    int nf = t->nframes, nt = t->nturns;
-    Rigid *body = arena_new_array(A, Rigid, nt + 1), *comp = arena_new_array(A, Rigid, nt + 1);
-    for (int k = 0; k < nt; k++) {
-        body[k].m = body[k].h[0] = body[k].h[1] = body[k].h[2] = EXPR_ZERO;
-        for (int i = 0; i < 9; i++)
-            body[k].I[i] = EXPR_ZERO;
-    }
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        Rigid *b = &body[f->carrier];
-        if (f->carrier < 0)
-            continue;
-        b->m = expr_add(P, b->m, f->m);
-        for (int i = 0; i < 3; i++)
-            b->h[i] = expr_add(P, b->h[i], f->hl[i]);
-        for (int i = 0; i < 9; i++)
-            b->I[i] = expr_add(P, b->I[i], f->Il[i]);
-    }
+    int nt = t->nturns;
+    Rigid *body = sv_bodies(P, A, t), *comp = arena_new_array(A, Rigid, nt + 1);
     Sv *S = arena_new_array(A, Sv, nt + 1), *V = arena_new_array(A, Sv, nt + 1);
     Sv *C = arena_new_array(A, Sv, nt + 1), *pA = arena_new_array(A, Sv, nt + 1);
     Sv *U = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
@@ -306,14 +212,10 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
     ExprId *Dinv = arena_new_array(A, ExprId, nt + 1), *u = arena_new_array(A, ExprId, nt + 1);
     /* gravity as the world's acceleration upward (Featherstone's a_0 =
      * -g), where it is uniform: its potential's gradient is not needed */
-    int lift = m->gravity[0] != EXPR_NONE;
-    ExprId *tau = form_gradient(m, lift ? m->V_rest : m->V, 0, A, D);
-    for (int i = 0; i < m->n; i++)
-        tau[i] = expr_sub(P, m->Q[i], tau[i]);
     Sv a0;
-    sv_zero(&a0);
-    for (int i = 0; lift && i < 3; i++)
-        a0.v[i] = expr_neg(P, m->gravity[i]);
+    ExprId *tau = sv_applied(m, A, P, D, &a0);
+    for (int i = 0; i < m->n; i++)
+        tau[i] = expr_neg(P, tau[i]);
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
         ExprId rate = m->q[1][tk->coord];
@@ -323,7 +225,7 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
         sv_zero(&C[k]);
         if (tk->up >= 0) {
             Sv vp;
-            motion_down(P, tk, &V[tk->up], &vp);
+            sv_motion_down(P, tk, &V[tk->up], &vp);
             sv_cross_motion(P, &vp, &S[k], &C[k]);
             for (int r = 0; r < 6; r++)
                 *sv_at(&C[k], r) = expr_mul(P, sv_get(&C[k], r), rate);
@@ -351,7 +253,7 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
         }
         mkk[i] = kin_dot(P, tk->al, Ia3);
         if (p >= 0)
-            rigid_up(P, tk, &comp[k], &comp[p]);
+            sv_rigid_up(P, tk, &comp[k], &comp[p]);
         si_times(P, &IA[k], &S[k], &U[k]);
         ExprId d = sv_dot(P, &S[k], &U[k]);
         piv[i] = d;
@@ -376,13 +278,13 @@ articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, Expr
         sv_add(P, &pa, &Ic);
         sv_axpy(P, &pa, u[k], &W);
         inertia_up(P, tk, &Ia, &IA[p]);
-        force_up(P, tk, &pa, &up);
+        sv_force_up(P, tk, &pa, &up);
         sv_add(P, &pA[p], &up);
     }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
         Sv a;
-        motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &a);
+        sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &a);
         sv_add(P, &a, &C[k]);
         ExprId qdd = expr_mul(P, expr_sub(P, u[k], sv_dot(P, &a, &U[k])), Dinv[k]);
         acc[tk->coord] = qdd;

@@ -2,37 +2,27 @@
  * The recursive Newton-Euler form, for a tree of rigid bodies on turning
  * joints (tree.h):
  *     E_i = S_i . F(frame of turn i) + dV/dq_i - Q_i
- * where F(g) is the net spatial force the masses g turns need,
- *     F(g) = sum over g's subtree of  I_k A_k + V_k x* I_k V_k,
- * V and A the frames' spatial velocities and accelerations, built from
- * the world outward (V += S th', A += S th'' + (V x S) th', V before the
- * turn), and the sum taken from the leaves inward.  Spatial vectors are
- * (angular, linear) in world components about the world origin.
+ * where F_i is the net spatial force the masses turn i moves need,
+ *     F_i = sum over the turns below i of  I_k A_k + V_k x* I_k V_k,
+ * V and A the turns' spatial velocities and accelerations, built from
+ * the world outward (V = X V_up + S th', A = X A_up + S th'' + (X V_up x
+ * S) th'), and the sum taken from the leaves inward (F_up += X^T F).
+ * Everything is in each turn's own coordinates (tree.h): S = (axis, 0)
+ * is a constant there, and X (a rotation by the turn's angle after a
+ * constant one, and a constant offset) folds with it.  A uniform gravity
+ * field is the world accelerating upward (A_0 = -g), not a gradient.
  *
  * Its mass matrix is not differentiated out of E: it is the composite-
- * rigid-body sum M_ij = S_i . Ic(g_j) S_j for turn i at or above turn j,
- * Ic(g) the inertia of g's subtree, with S_i . F taken as the moment of
- * F about turn i's pivot along its axis.  The residual and M come from
- * the same inertias, so M = dE/dq'' holds term by term; that it is also
- * Lagrange's M and that E is Lagrange's residual is what
- * tests/unit/test_forms.c checks.
+ * rigid-body sum M_ij = S_i . X Ic_j S_j for turn i at or above turn j,
+ * Ic_j the inertia of all turn j moves.  That it is dE/dq'', Lagrange's
+ * M, and that E is Lagrange's residual is what tests/unit/test_forms.c
+ * and test_tree.c check.
  */
 #include "forms.h"
 
 #include "spatial.h"
 
 #include "../kin.h"
-
-/* a . (n - p x f): the moment of the force F about the pivot p along a */
-static ExprId
-moment(ExprPool *P, const ExprId *a, const ExprId *p, const Sv *F)
-{
-    ExprId pf[3], d[3];
-    kin_cross(P, p, F->v, pf);
-    for (int i = 0; i < 3; i++)
-        d[i] = expr_sub(P, F->w[i], pf[i]);
-    return kin_dot(P, a, d);
-}
 
 ExprId *
 rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
@@ -42,84 +32,77 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
         *why = m->tree_why;
         return NULL;
     }
-    int nf = t->nframes;
-    Sv *V = arena_new_array(A, Sv, nf + 1), *Acc = arena_new_array(A, Sv, nf + 1);
-    Sv *F = arena_new_array(A, Sv, nf + 1);
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        if (f->parent >= 0) {
-            V[g] = V[f->parent], Acc[g] = Acc[f->parent];
+    int nt = t->nturns;
+    Rigid *body = sv_bodies(P, A, t);
+    Sv *V = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
+    Sv *F = arena_new_array(A, Sv, nt + 1), a0;
+    ExprId *E = sv_applied(m, A, P, D, &a0);
+    for (int k = 0; k < nt; k++) {
+        const TreeTurn *tk = &t->turn[k];
+        ExprId rate = m->q[1][tk->coord], acc = m->q[2][tk->coord];
+        Sv S, VS, IV, IA;
+        sv_zero(&S);
+        for (int i = 0; i < 3; i++)
+            S.w[i] = tk->al[i];
+        sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &Acc[k]);
+        if (tk->up >= 0) {
+            sv_motion_down(P, tk, &V[tk->up], &V[k]);
+            sv_cross_motion(P, &V[k], &S, &VS); /* before the turn's own rate */
+            sv_axpy(P, &Acc[k], rate, &VS);
         } else {
-            sv_zero(&V[g]);
-            sv_zero(&Acc[g]);
+            sv_zero(&V[k]);
         }
-        for (int k = f->first; k < f->first + f->nturns; k++) {
-            int i = t->turn[k].coord;
-            Sv S, VS;
-            sv_turn_axis(P, f, &t->turn[k], &S);
-            sv_cross_motion(P, &V[g], &S, &VS);
-            sv_axpy(P, &Acc[g], m->q[1][i], &VS);
-            sv_axpy(P, &Acc[g], m->q[2][i], &S);
-            sv_axpy(P, &V[g], m->q[1][i], &S);
-        }
-        Sv IV, IA;
-        sv_inertia_times(P, f->m, f->h, f->I, &V[g], &IV);
-        sv_inertia_times(P, f->m, f->h, f->I, &Acc[g], &IA);
-        sv_cross_force(P, &V[g], &IV, &F[g]);
-        sv_add(P, &F[g], &IA);
+        sv_axpy(P, &Acc[k], acc, &S);
+        sv_axpy(P, &V[k], rate, &S);
+        const Rigid *b = &body[k];
+        sv_inertia_times(P, b->m, b->h, b->I, &V[k], &IV);
+        sv_inertia_times(P, b->m, b->h, b->I, &Acc[k], &IA);
+        sv_cross_force(P, &V[k], &IV, &F[k]);
+        sv_add(P, &F[k], &IA);
     }
-    for (int g = nf - 1; g >= 0; g--)
-        if (t->frame[g].parent >= 0)
-            sv_add(P, &F[t->frame[g].parent], &F[g]);
-    ExprId *E = form_applied(m, A, P, D);
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        for (int k = f->first; k < f->first + f->nturns; k++) {
-            int i = t->turn[k].coord;
-            E[i] = expr_add(P, moment(P, t->turn[k].a, f->pivot, &F[g]), E[i]);
-        }
+    for (int k = nt - 1; k >= 0; k--) {
+        const TreeTurn *tk = &t->turn[k];
+        Sv up;
+        E[tk->coord] = expr_add(P, kin_dot(P, tk->al, F[k].w), E[tk->coord]);
+        if (tk->up < 0)
+            continue;
+        sv_force_up(P, tk, &F[k], &up);
+        sv_add(P, &F[tk->up], &up);
     }
     return E;
 }
 
-/* M_ij = S_i . Ic(g_j) S_j for turn i at or above turn j; 0 for turns
- * on different branches. */
+/* M_ij = S_i . Ic_j S_j for turn i at or above turn j (Ic_j the
+ * composite inertia of all turn j moves, S_j's force carried up the
+ * turns to i's coordinates); 0 for turns on different branches. */
 ExprId *
 crb_mass(const Mech *m, Arena *A, ExprPool *P)
 {
     const Tree *t = m->tree;
-    int n = m->n, nf = t->nframes;
+    int n = m->n, nt = t->nturns;
     ExprId *M = arena_new_array(A, ExprId, n * n);
     for (int i = 0; i < n * n; i++)
         M[i] = EXPR_ZERO;
-    TreeFrame *Ic = arena_new_array(A, TreeFrame, nf + 1);
-    for (int g = 0; g < nf; g++)
-        Ic[g] = t->frame[g];
-    for (int g = nf - 1; g >= 0; g--) {
-        int p = t->frame[g].parent;
-        if (p < 0)
-            continue;
-        Ic[p].m = expr_add(P, Ic[p].m, Ic[g].m);
+    Rigid *Ic = sv_bodies(P, A, t);
+    for (int k = nt - 1; k >= 0; k--)
+        if (t->turn[k].up >= 0)
+            sv_rigid_up(P, &t->turn[k], &Ic[k], &Ic[t->turn[k].up]);
+    for (int kj = 0; kj < nt; kj++) {
+        const TreeTurn *tj = &t->turn[kj];
+        Sv S, F;
+        sv_zero(&S);
         for (int i = 0; i < 3; i++)
-            Ic[p].h[i] = expr_add(P, Ic[p].h[i], Ic[g].h[i]);
-        for (int i = 0; i < 9; i++)
-            Ic[p].I[i] = expr_add(P, Ic[p].I[i], Ic[g].I[i]);
-    }
-    for (int g = 0; g < nf; g++) {
-        const TreeFrame *f = &t->frame[g];
-        for (int kj = f->first; kj < f->first + f->nturns; kj++) {
-            int j = t->turn[kj].coord;
-            Sv S, F;
-            sv_turn_axis(P, f, &t->turn[kj], &S);
-            sv_inertia_times(P, Ic[g].m, Ic[g].h, Ic[g].I, &S, &F);
-            for (int a = g; a >= 0; a = t->frame[a].parent) {
-                const TreeFrame *fa = &t->frame[a];
-                int last = a == g ? kj : fa->first + fa->nturns - 1;
-                for (int ki = fa->first; ki <= last; ki++) {
-                    int i = t->turn[ki].coord;
-                    M[i * n + j] = M[j * n + i] = moment(P, t->turn[ki].a, fa->pivot, &F);
-                }
-            }
+            S.w[i] = tj->al[i];
+        sv_inertia_times(P, Ic[kj].m, Ic[kj].h, Ic[kj].I, &S, &F);
+        for (int ki = kj;;) { /* F in turn ki's coordinates */
+            int i = t->turn[ki].coord, j = tj->coord;
+            M[i * n + j] = M[j * n + i] = kin_dot(P, t->turn[ki].al, F.w);
+            if (t->turn[ki].up < 0)
+                break;
+            Sv up;
+            sv_force_up(P, &t->turn[ki], &F, &up);
+            F = up;
+            ki = t->turn[ki].up;
         }
     }
     return M;

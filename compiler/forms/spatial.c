@@ -75,18 +75,123 @@ sv_inertia_times(ExprPool *P, ExprId m, const ExprId *h, const ExprId *I, const 
 }
 
 /* S = (a, p x a) */
-void
-sv_turn_axis(ExprPool *P, const TreeFrame *f, const TreeTurn *t, Sv *S)
-{
-    for (int i = 0; i < 3; i++)
-        S->w[i] = t->a[i];
-    kin_cross(P, f->pivot, t->a, S->v);
-}
-
-
 ExprId
 sv_dot(ExprPool *P, const Sv *x, const Sv *y)
 {
     ExprId w = kin_dot(P, x->w, y->w);
     return expr_add(P, w, kin_dot(P, x->v, y->v));
 }
+
+void
+sv_motion_down(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
+{
+    ExprId rw[3], v[3];
+    kin_cross(P, t->r, x->w, rw);
+    for (int i = 0; i < 3; i++)
+        v[i] = expr_sub(P, x->v[i], rw[i]);
+    for (int i = 0; i < 3; i++) {
+        ExprId w = EXPR_ZERO, u = EXPR_ZERO;
+        for (int k = 0; k < 3; k++) {
+            w = expr_add(P, w, expr_mul(P, t->Q[3 * k + i], x->w[k]));
+            u = expr_add(P, u, expr_mul(P, t->Q[3 * k + i], v[k]));
+        }
+        out->w[i] = w, out->v[i] = u;
+    }
+}
+
+void
+sv_force_up(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
+{
+    ExprId n[3], f[3], rf[3];
+    for (int i = 0; i < 3; i++) {
+        n[i] = f[i] = EXPR_ZERO;
+        for (int k = 0; k < 3; k++) {
+            n[i] = expr_add(P, n[i], expr_mul(P, t->Q[3 * i + k], x->w[k]));
+            f[i] = expr_add(P, f[i], expr_mul(P, t->Q[3 * i + k], x->v[k]));
+        }
+    }
+    kin_cross(P, t->r, f, rf);
+    for (int i = 0; i < 3; i++)
+        out->w[i] = expr_add(P, n[i], rf[i]), out->v[i] = f[i];
+}
+
+Rigid *
+sv_bodies(ExprPool *P, Arena *A, const Tree *t)
+{
+    int nt = t->nturns;
+    Rigid *body = arena_new_array(A, Rigid, nt + 1);
+    for (int k = 0; k < nt; k++) {
+        body[k].m = body[k].h[0] = body[k].h[1] = body[k].h[2] = EXPR_ZERO;
+        for (int i = 0; i < 9; i++)
+            body[k].I[i] = EXPR_ZERO;
+    }
+    for (int g = 0; g < t->nframes; g++) {
+        const TreeFrame *f = &t->frame[g];
+        if (f->carrier < 0)
+            continue;
+        Rigid *b = &body[f->carrier];
+        b->m = expr_add(P, b->m, f->m);
+        for (int i = 0; i < 3; i++)
+            b->h[i] = expr_add(P, b->h[i], f->h[i]);
+        for (int i = 0; i < 9; i++)
+            b->I[i] = expr_add(P, b->I[i], f->I[i]);
+    }
+    return body;
+}
+
+ExprId *
+sv_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D, Sv *a0)
+{
+    int lift = m->gravity[0] != EXPR_NONE;
+    ExprId *G = form_gradient(m, lift ? m->V_rest : m->V, 0, A, D);
+    for (int i = 0; i < m->n; i++)
+        G[i] = expr_sub(P, G[i], m->Q[i]);
+    sv_zero(a0);
+    for (int i = 0; lift && i < 3; i++)
+        a0->v[i] = expr_neg(P, m->gravity[i]);
+    return G;
+}
+
+void
+sv_rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y)
+{
+    ExprId g[3], J[9];
+    for (int i = 0; i < 3; i++) {
+        g[i] = EXPR_ZERO;
+        for (int k = 0; k < 3; k++)
+            g[i] = expr_add(P, g[i], expr_mul(P, t->Q[3 * i + k], X->h[k]));
+    }
+    for (int i = 0; i < 3; i++) /* J = Q I Q^T */
+        for (int j = 0; j <= i; j++) {
+            ExprId s = EXPR_ZERO;
+            for (int k = 0; k < 3; k++) {
+                ExprId row = EXPR_ZERO; /* (Q I)_ik */
+                for (int l = 0; l < 3; l++)
+                    row = expr_add(P, row, expr_mul(P, t->Q[3 * i + l], X->I[3 * l + k]));
+                s = expr_add(P, s, expr_mul(P, row, t->Q[3 * j + k]));
+            }
+            J[3 * i + j] = J[3 * j + i] = s;
+        }
+    const ExprId *r = t->r;
+    ExprId rg = kin_dot(P, r, g), rr = kin_dot(P, r, r);
+    ExprId two = expr_const(P, 2);
+    ExprId two_rg = expr_mul(P, two, rg), mrr = expr_mul(P, X->m, rr);
+    ExprId diag = expr_add(P, two_rg, mrr);
+    for (int i = 0; i < 3; i++)
+        for (int j = i; j < 3; j++) {
+            ExprId mr = expr_mul(P, X->m, r[j]);
+            ExprId gr = expr_mul(P, g[i], r[j]), rg2 = expr_mul(P, r[i], g[j]);
+            ExprId rmr = expr_mul(P, r[i], mr);
+            ExprId off = expr_add(P, expr_add(P, gr, rg2), rmr);
+            ExprId e = expr_sub(P, J[3 * i + j], off);
+            if (i == j)
+                e = expr_add(P, e, diag);
+            Y->I[3 * i + j] = expr_add(P, Y->I[3 * i + j], e);
+            if (j != i)
+                Y->I[3 * j + i] = Y->I[3 * i + j];
+        }
+    for (int i = 0; i < 3; i++)
+        Y->h[i] = expr_add(P, Y->h[i], expr_add(P, g[i], expr_mul(P, X->m, r[i])));
+    Y->m = expr_add(P, Y->m, X->m);
+}
+

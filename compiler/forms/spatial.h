@@ -28,8 +28,27 @@ void sv_cross_force(ExprPool *P, const Sv *x, const Sv *f, Sv *out);
  * (I w + h x v, m v - h x w). */
 void sv_inertia_times(ExprPool *P, ExprId m, const ExprId *h, const ExprId *I, const Sv *x,
                       Sv *out);
-/* A turn's axis S = (a, p x a), p the pivot of its frame. */
-void sv_turn_axis(ExprPool *P, const TreeFrame *f, const TreeTurn *t, Sv *S);
+/* In the turns' own coordinates (tree.h's local frames, the articulated-
+ * body form's and the recursive Newton-Euler form's): a motion carried
+ * from up's coordinates into turn t's (w' = Q^T w, v' = Q^T (v - r x w)),
+ * and a force from t's into up's (f' = Q f, n' = Q n + r x f'). */
+void sv_motion_down(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out);
+void sv_force_up(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out);
+/* The rigid inertia (m, first moment h, I) about a turn's origin in its
+ * axes. */
+typedef struct Rigid {
+    ExprId m, h[3], I[9];
+} Rigid;
+/* Y += X carried from turn t's coordinates into up's: h' = Q h + m r,
+ * I' = J + 2 (r.g) 1 - (g r^T + r g^T) + m (|r|^2 1 - r r^T), with
+ * g = Q h and J = Q I Q^T (the parallel-axis rule with a first moment). */
+void sv_rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y);
+/* The masses each turn carries last (zero for a turn inside a frame). */
+Rigid *sv_bodies(ExprPool *P, Arena *A, const Tree *t);
+/* dV/dq - Q, and the world's acceleration a0 that stands for a uniform
+ * gravity field (Featherstone's a_0 = -g; then V's part from it is left
+ * out of the gradient), or zero. */
+ExprId *sv_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D, Sv *a0);
 
 /* The recursive Newton-Euler residual and the composite-rigid-body mass
  * matrix of m->tree (forms/newton_euler.c), which the articulated-body

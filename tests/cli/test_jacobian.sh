@@ -1,8 +1,8 @@
 #!/bin/sh
 # The Jacobian of a large model is printed only when something needs it
 # (TAP), on a 4-body tree of 3-axis joints (specs/gen_tree.sh 4: 12
-# coordinates, whose unrolled Jacobian is above the size eomc prints
-# unasked):
+# coordinates), and a 6-body one (18 coordinates, whose unrolled Jacobian
+# is above the size eomc prints unasked):
 #  - its scene runs rk8pd, so `eomc compile` leaves the Jacobian out and
 #    the banner says why; --jacobian seeded and a scene with an implicit
 #    method put it in;
@@ -30,11 +30,11 @@ ok $? "auto, scene rk8pd: no Jacobian printed, the banner says why, the member i
 [ "$(jac_ops "$tmp/seeded.stats")" -gt 0 ] && grep -q '_jacobian_dq(' "$tmp/seeded.c"
 ok $? "--jacobian seeded: printed ($(jac_ops "$tmp/seeded.stats") operations)"
 
-sed 's/^scene: {/scene: {method: bsimp, /' "$tmp/tree4.yaml" > "$tmp/stiff.yaml"
+sh "$src/specs/gen_tree.sh" 6 | sed 's/^scene: {/scene: {method: bsimp, /' > "$tmp/stiff.yaml"
 grep -q '^scene: {method: bsimp, ' "$tmp/stiff.yaml" &&
     "$eomc" compile "$tmp/stiff.yaml" -o "$tmp/stiff.c" --stats 2> "$tmp/stiff.stats" &&
     [ "$(jac_ops "$tmp/stiff.stats")" -gt 0 ] && grep -q '_jacobian_dq(' "$tmp/stiff.c"
-ok $? "auto, scene bsimp: the seeded Jacobian printed"
+ok $? "auto, scene bsimp, 18 coordinates: the seeded Jacobian printed"
 
 "$eomc" build "$tmp/tree4.yaml" -o "$tmp/tree4"
 for what in "--method msbdf" "--method rk4imp" "--linearize" "--equilibrium"; do
@@ -53,7 +53,8 @@ ok $? "--work-precision without it: the explicit methods reported, the others na
 
 # eomc run builds with the Jacobian when the task needs it
 init="--init pelvis_a'=0.3 --init spine2_c'=-0.7 --init spine3_b'=0.4"
-"$eomc" run "$tmp/tree4.yaml" --linearize $init --csv "$tmp/a.csv" > /dev/null; st1=$?
+"$eomc" run "$tmp/tree4.yaml" --jacobian seeded --linearize $init --csv "$tmp/a.csv" \
+    > /dev/null; st1=$?
 "$eomc" run "$tmp/tree4.yaml" --jacobian unrolled --linearize $init --csv "$tmp/b.csv" \
     > /dev/null; st2=$?
 # max |a - b| <= 1e-12 max |A|, row by row (the same rows in the same order)

@@ -14,15 +14,20 @@
 #   err        its q'' against the model's own long-double solution, the
 #              largest difference over the largest |q''|
 #   ab_ns, ab_err  the same for --form articulated-body (the recursion,
-#              M never formed), when the default is not it
+#              M never formed) in straight-line code, when the default is
+#              not that
+#   tab_ns     ns per right-hand side of --code tables (the same recursion
+#              as loops over the model's tables, runtime/eomc_tree.h)
+#   tab_build  time of `eomc build --code tables`
 #   mj_ns      ns per mj_forward of the same tree in MuJoCo (contact and
 #              limits off; bench/mj_bench.c), when meson found libmujoco
 #   ratio      mj_ns over the faster of ns_rhs and ab_ns
 # and checks issue 13's targets for N = 30: it derives in well under a
-# second (< 0.5 s) and its C compiles in seconds (< 10 s).
+# second (< 0.5 s) and its C compiles in seconds (< 10 s), and issue 22's:
+# with --code tables it builds in under 2 s.
 #
 # usage: tree_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
-# $BENCH_N: the N to run (default "5 10 20 30").
+# $BENCH_N: the N to run (default "5 10 20 30"; gen_tree.sh goes to 200).
 set -eu
 eomc=$1 src=$2 inc=$3 lib=$4 mj=${5:-}
 gsl_libs=$(pkg-config --libs gsl)
@@ -41,8 +46,9 @@ trap 'rm -rf "$dir"' EXIT
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-printf '%4s %6s %10s %8s %8s %8s %8s %8s %17s %9s %8s %9s %8s %9s %6s\n' N coords compile_s ops \
-  ops_all lines cc_s build_s form ns_rhs err ab_ns ab_err mj_ns ratio
+printf '%4s %6s %10s %8s %8s %8s %8s %8s %17s %9s %8s %9s %8s %9s %9s %9s %6s\n' N coords \
+  compile_s ops ops_all lines cc_s build_s form ns_rhs err ab_ns ab_err tab_ns tab_build mj_ns \
+  ratio
 fail=0
 for n in ${BENCH_N:-5 10 20 30}; do
   sh "$src/specs/gen_tree.sh" "$n" > "$dir/tree$n.yaml"
@@ -67,11 +73,18 @@ for n in ${BENCH_N:-5 10 20 30}; do
   form=$(sed -n 's/^ \* form: *\([a-z-]*\),.*/\1/p' "$dir/tree$n.c")
   set -- $(rhs "$dir/tree$n.c" "tree$n")
   ns=$1 err=$2 abns=- aberr=-
-  if [ "$form" != articulated-body ]; then
-    "$eomc" compile "$dir/tree$n.yaml" --form articulated-body -o "$dir/ab$n.c"
+  if [ "$form" != articulated-body ] || grep -q '^#include "eomc_tree.h"' "$dir/tree$n.c"; then
+    "$eomc" compile "$dir/tree$n.yaml" --form articulated-body --code straight -o "$dir/ab$n.c"
     set -- $(rhs "$dir/ab$n.c" "tree$n")
     abns=$1 aberr=$2
   fi
+  "$eomc" compile "$dir/tree$n.yaml" --code tables -o "$dir/tab$n.c"
+  set -- $(rhs "$dir/tab$n.c" "tree$n")
+  tabns=$1
+  t5=$(now)
+  "$eomc" build "$dir/tree$n.yaml" --code tables -o "$dir/tab$n"
+  t6=$(now)
+  tabbuild=$(elapsed "$t5" "$t6")
   mjns=- ratio=-
   if [ -n "$mj" ]; then
     sh "$src/specs/gen_tree.sh" "$n" --mjcf > "$dir/tree$n.xml"
@@ -79,13 +92,17 @@ for n in ${BENCH_N:-5 10 20 30}; do
     ratio=$(awk -v m="$mjns" -v a="$ns" -v b="$abns" \
       'BEGIN { f = (b != "-" && b + 0 < a + 0) ? b : a; printf "%.1f", m / f }')
   fi
-  printf '%4d %6d %10s %8d %8d %8d %8s %8s %17s %9s %8s %9s %8s %9s %6s\n' "$n" $((3 * n)) "$best" \
-    "$ops" "$all" "$lines" "$ccs" "$builds" "$form" "$ns" "$err" "$abns" "$aberr" "$mjns" "$ratio"
+  printf '%4d %6d %10s %8d %8d %8d %8s %8s %17s %9s %8s %9s %8s %9s %9s %9s %6s\n' "$n" \
+    $((3 * n)) "$best" "$ops" "$all" "$lines" "$ccs" "$builds" "$form" "$ns" "$err" "$abns" \
+    "$aberr" "$tabns" "$tabbuild" "$mjns" "$ratio"
   if [ "$n" -eq 30 ]; then
     awk -v t="$best" 'BEGIN { exit !(t < 0.5) }' ||
       { echo "target: N = 30 derives in under 0.5 s: NOT MET ($best s)"; fail=1; }
     awk -v t="$ccs" 'BEGIN { exit !(t < 10) }' ||
       { echo "target: N = 30's C compiles in under 10 s: NOT MET ($ccs s)"; fail=1; }
+    awk -v t="$tabbuild" 'BEGIN { exit !(t < 2) }' ||
+      { echo "target: N = 30 builds with --code tables in under 2 s: NOT MET ($tabbuild s)"
+        fail=1; }
   fi
 done
 exit $fail

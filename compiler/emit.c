@@ -483,6 +483,18 @@ func_of(Func *fn, const LowFunc *lf)
 }
 
 /* Print a lowered function; returns its operation counts. */
+/* derive with tables: their constant numbers first, from NAME_numbers */
+static void
+print_prologue(Printer *pr, const LowFunc *lf)
+{
+    const Lowered *L = pr->L;
+    if (lf != L->derive || !L->tables)
+        return;
+    println(pr, "    for (int k = 0; k < %d; k++) /* the tables' constants */",
+            FORM_TABLE_STRIDE * L->tables->nt + 6);
+    println(pr, "        pd[%d + k] = %s_numbers[k];", L->tree_base, pr->s->name);
+}
+
 static ExprCount
 print_function(Printer *pr, const LowFunc *lf)
 {
@@ -508,6 +520,7 @@ print_function(Printer *pr, const LowFunc *lf)
     if (S.nparts == 1) {
         println(pr, "/* %s */", lf->sig->comment);
         print_head(pr, "static void", fname, fn->params);
+        print_prologue(pr, lf);
         pr->cur = 0;
         print_part(pr, &S, fn);
         println(pr, "}\n");
@@ -525,6 +538,7 @@ print_function(Printer *pr, const LowFunc *lf)
         println(pr, "/* %s */", lf->sig->comment);
         print_head(pr, "static void", fname, fn->params);
         println(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
+        print_prologue(pr, lf);
         for (int p = 0; p < S.nparts; p++)
             println(pr, "    %s_%s_part%d(%s, s);", nm, name, p + 1, fn->names);
         println(pr, "}\n");
@@ -639,6 +653,15 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
                  "linearization refuse this model; --jacobian seeded adds it", why);
         print_wrapped(pr, note);
     }
+    if (pr->L->code == LOWER_CODE_TABLES) {
+        char note[400];
+        snprintf(note, sizeof note, "The accelerations and the mass matrix are loops over "
+                 "the model's tables (eomc_tree.h: %d turns), not straight-line code: %s",
+                 pr->L->tables->nt, strstr(info->options, "--code tables")
+                 ? "--code tables asks for them"
+                 : "the straight-line solve would be too long to compile quickly");
+        print_wrapped(pr, note);
+    }
     if (c) {
         println(pr, " *");
         println(pr, " * constraints, by %s:", info->eliminate
@@ -661,6 +684,8 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
     println(pr, "#include <stddef.h>");
     println(pr, "");
     println(pr, "#include \"eomc_model.h\"");
+    if (pr->L->code == LOWER_CODE_TABLES)
+        println(pr, "#include \"eomc_tree.h\"");
     println(pr, "");
     println(pr, "#if defined(__GNUC__)");
     println(pr, "#define EOMC_NOINLINE __attribute__((noinline))");
@@ -806,6 +831,118 @@ print_accel(Printer *pr, const Lowered *L)
     println(pr, "}\n");
 }
 
+/* The tables' turns, then accel and mass_bias as loops over them
+ * (runtime/eomc_tree.h): tau first, then the recursion. */
+static void
+print_tree_turns(Printer *pr, const Lowered *L)
+{
+    const FormTables *tb = L->tables;
+    println(pr, "/* The turns: the one above (-1: the world), the coordinate, the axis (0-2:");
+    println(pr, " * its own x, y, z; 3: a unit vector), whether a constant rotation comes");
+    println(pr, " * first.  Their numbers are pd[%d ...] (derive). */", L->tree_base);
+    fprintf(pr->f, "static const eomc_tree_turn %s_turns[%d] = {", pr->s->name, tb->nt);
+    for (int k = 0; k < tb->nt; k++) {
+        const int *t = tb->turn + 4 * k;
+        fprintf(pr->f, "%s{%d, %d, %d, %d}", k == 0 ? "\n    " : k % 6 ? ", " : ",\n    ", t[0],
+                t[1], t[2], t[3]);
+    }
+    println(pr, "\n};\n");
+    int nn = FORM_TABLE_STRIDE * tb->nt + 6;
+    println(pr, "/* Their numbers, %d per turn (eomc_tree.h) and a0, where constant; derive",
+            FORM_TABLE_STRIDE);
+    println(pr, " * computes the others (0 here). */");
+    fprintf(pr->f, "static const double %s_numbers[%d] = {", pr->s->name, nn);
+    for (int k = 0; k < nn; k++) {
+        double v = 0;
+        char num[40];
+        expr_is_const(pr->P, tb->num[k], &v);
+        format_const(num, sizeof num, v);
+        fprintf(pr->f, "%s%s", k == 0 ? "\n    " : k % FORM_TABLE_STRIDE ? ", " : ",\n    ", num);
+    }
+    println(pr, "\n};\n");
+}
+
+/* energy in table mode: V from potential, T = q' . M q' / 2 with M q' by
+ * the Newton-Euler recursion at q' = 0, q'' = q' (T is a quadratic form
+ * in q' on a tree). */
+static void
+print_tree_energy(Printer *pr, const Lowered *L)
+{
+    const char *nm = pr->s->name;
+    int n = L->n, nt = L->tables->nt;
+    char fname[128];
+    println(pr, "/* Kinetic energy T and potential energy V: T = q'.M q'/2, with M q' by");
+    println(pr, " * the recursion over the tables. */");
+    snprintf(fname, sizeof fname, "%s_energy", nm);
+    print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, eomc_real *TV");
+    println(pr, "    eomc_real zero[%d], Mv[%d], w[%d * EOMC_TREE_WORK], T = 0.0;", n, n, nt);
+    println(pr, "    %s_potential(t, q, v, p, u, TV + 1);", nm);
+    println(pr, "    for (int j = 0; j < %d; j++)", n);
+    println(pr, "        zero[j] = 0.0;");
+    println(pr, "    eomc_tree_rnea(%s_turns, %d, p + %d, NULL, q, zero, v, w, Mv);", nm, nt,
+            pr->s->np + L->tree_base);
+    println(pr, "    for (int i = 0; i < %d; i++)", n);
+    println(pr, "        T += v[i] * Mv[i];");
+    println(pr, "    TV[0] = 0.5 * T;");
+    println(pr, "}\n");
+}
+
+static void
+print_tree_functions(Printer *pr, const Lowered *L)
+{
+    const char *nm = pr->s->name;
+    int n = L->n, nt = L->tables->nt, np = pr->s->np;
+    char fname[128], dat[64];
+    snprintf(dat, sizeof dat, "p + %d", np + L->tree_base);
+    println(pr, "/* q'' = -M^-1 h by the articulated-body recursion over the tables; 0, or");
+    println(pr, " * k + 1 if the pivot of coordinate k fails (M singular or not positive");
+    println(pr, " * definite).  *pivot (unless NULL): the smallest d_k / M_kk. */");
+    snprintf(fname, sizeof fname, "%s_accel", nm);
+    print_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+    println(pr, "    eomc_real tau[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n, n, nt);
+    println(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
+    println(pr, "    eomc_tree_aba(%s_turns, %d, %s, q, v, tau, w, a, piv, mkk);", nm, nt, dat);
+    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
+    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
+    println(pr, "            return k + 1;");
+    println(pr, "    if (pivot) {");
+    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
+    println(pr, "        for (int k = 1; k < %d; k++)", n);
+    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
+    println(pr, "                dmin = piv[k], mmin = mkk[k];");
+    println(pr, "        *pivot = dmin / mmin;");
+    println(pr, "    }");
+    println(pr, "    return 0;");
+    println(pr, "}\n");
+    println(pr, "/* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0),");
+    println(pr, " * by the Newton-Euler recursion over the tables: h at q'' = 0, column j of");
+    println(pr, " * M at q' = 0, q'' = e_j with no gravity and no forces (E is linear in");
+    println(pr, " * q'').  Off the hot path: the accelerations never form M. */");
+    snprintf(fname, sizeof fname, "%s_mass_bias", nm);
+    print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
+    println(pr, "    eomc_real tau[%d], x[%d], zero[%d], col[%d], w[%d * EOMC_TREE_WORK];", n, n,
+            n, n, nt);
+    println(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
+    println(pr, "    for (int j = 0; j < %d; j++)", n);
+    println(pr, "        x[j] = zero[j] = 0.0;");
+    println(pr, "    eomc_tree_rnea(%s_turns, %d, %s, %s + %d, q, v, zero, w, h);", nm, nt, dat,
+            dat, FORM_TABLE_STRIDE * nt);
+    println(pr, "    for (int i = 0; i < %d; i++)", n);
+    println(pr, "        h[i] -= tau[i];");
+    println(pr, "    for (int j = 0; j < %d; j++) { /* the lower triangle, mirrored */", n);
+    println(pr, "        x[j] = 1.0;");
+    println(pr, "        eomc_tree_rnea(%s_turns, %d, %s, NULL, q, zero, x, w, col);", nm, nt,
+            dat);
+    println(pr, "        for (int i = j; i < %d; i++)", n);
+    println(pr, "            M[i * %d + j] = M[j * %d + i] = col[i];", n, n);
+    println(pr, "        x[j] = 0.0;");
+    println(pr, "    }");
+    println(pr, "}\n");
+}
+
 /* A C string literal for any text: quotes, backslashes and control
  * characters escaped (file names may contain anything). */
 static void
@@ -857,7 +994,7 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
                 nm, nm, nm, nm, nm);
     if (c)
         println(pr, "    NULL, /* constrained: the runtime solves the KKT system */");
-    else if (L->accel_solve)
+    else if (L->accel_solve || L->tau)
         println(pr, "    %s_accel,", nm);
     else
         println(pr, "    NULL, /* more than %d coordinates: the runtime solves with GSL */",
@@ -914,7 +1051,7 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);
     println(pr, "    EOMC_ABI_VERSION, \"%s\", %s%s, %s_inputs, %s_mass_bias, %s%s,", nm,
             L->derive ? nm : "NULL", L->derive ? "_derive" : "", nm, nm,
-            L->accel_solve ? nm : "NULL", L->accel_solve ? "_accel" : "");
+            L->accel_solve || L->tau ? nm : "NULL", L->accel_solve || L->tau ? "_accel" : "");
     if (c)
         println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
                 c->affine ? "" : "_c_jacobian");
@@ -1021,6 +1158,8 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
     for (int k = 0; k < EMIT_NFUNCS; k++)
         stats[k] = (EmitStats){stat_names[k], {0, 0, 0, 0}};
     print_banner(&pr, e, c, inv, info);
+    if (L->code == LOWER_CODE_TABLES)
+        print_tree_turns(&pr, L);
     fence(&pr, 1);
     print_tables(&pr);
     if (c)
@@ -1050,11 +1189,16 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
         for (int r = 0; r < EMIT_NFUNCS; r++)
             if (!strcmp(stats[r].function, lf->stat))
                 add_count(&stats[r].count, n);
+        if (lf == L->potential)
+            print_tree_energy(&pr, L);
         if (lf == L->jac_dv)
             print_seeded_driver(&pr, L);
         else if (lf == L->mass_times)
             print_mass_columns(&pr, L);
-        else if (L->invariant_energy && !strcmp(lf->sig->name, "energy")) {
+        else if (lf == L->tau)
+            print_tree_functions(&pr, L);
+        else if (L->invariant_energy &&
+                 (lf == L->potential || !strcmp(lf->sig->name, "energy"))) {
             print_energy_sum(&pr);
             for (int r = 0; r < EMIT_NFUNCS; r++)
                 stats[r].count.adds += !strcmp(stats[r].function, "invariant");

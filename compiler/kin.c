@@ -24,7 +24,7 @@ enum { KIN_PATH_MAX = 64 };
  * turn by a quaternion has no single axis (rate EXPR_NONE, a and aw zero):
  * its angular velocity, in the axes before it, is wb. */
 typedef struct KinTurn {
-    ExprId Rk[9], a[3], rate;
+    ExprId Rk[9], a[3], rate, th; /* th: the angle (EXPR_NONE: a quaternion) */
     ExprId aw[3]; /* the axis in world components */
     ExprId wb[3]; /* the turn's angular velocity in the axes before it */
     struct KinTurn *next;
@@ -174,6 +174,7 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const E
     for (int i = 0; i < 3; i++)
         turn->a[i] = a[i], turn->aw[i] = axis[i], turn->wb[i] = wb ? wb[i] : EXPR_NONE;
     turn->rate = rate;
+    turn->th = th;
     turn->next = NULL;
     if (F->last)
         F->last->next = turn;
@@ -438,14 +439,14 @@ kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
 }
 
 int
-kin_turn_local(const Kin *K, int f, int k, ExprId *rate, ExprId a[3], ExprId Rk[9])
+kin_turn_local(const Kin *K, int f, int k, ExprId *angle, ExprId a[3], ExprId Rk[9])
 {
     const KinTurn *t = K->f[f].turns;
     for (; t && k > 0; k--)
         t = t->next;
     if (!t)
         return 0;
-    *rate = t->rate;
+    *angle = t->th;
     for (int i = 0; i < 3; i++)
         a[i] = t->a[i];
     for (int i = 0; i < 9; i++)

@@ -82,11 +82,11 @@ int kin_is_ancestor(const Kin *K, int a, int f);
  * derivative) and its axis in world components; 0 past the last turn.
  * A turn by a quaternion has no axis: rate EXPR_NONE, axis zero. */
 int kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3]);
-/* The same turn as it turns f: rate, unit axis a in the axes before it
- * (which the turn leaves where it is, so also in the axes after it), and
- * Rk, the axes after it in the axes before it (row-major, columns the
- * axes).  A quaternion's turn has rate EXPR_NONE and axis zero. */
-int kin_turn_local(const Kin *K, int f, int k, ExprId *rate, ExprId a[3], ExprId Rk[9]);
+/* The same turn as it turns f: its angle, unit axis a in the axes before
+ * it (which the turn leaves where it is, so also in the axes after it),
+ * and Rk, the axes after it in the axes before it (row-major, columns the
+ * axes).  A quaternion's turn has angle EXPR_NONE and axis zero. */
+int kin_turn_local(const Kin *K, int f, int k, ExprId *angle, ExprId a[3], ExprId Rk[9]);
 /* f's rotation matrix, row-major (columns its axes in the world's). */
 void kin_rotation(const Kin *K, int f, ExprId R[9]);
 

@@ -55,6 +55,15 @@ static const LowSig s_mass_times = {
     " * linear in q''), for mass_bias.",
     "t q v p u da > Mx",
 };
+static const LowSig s_potential = {
+    "potential", "Potential energy V, for energy.", "t q v p u > V",
+};
+static const LowSig s_tau = {
+    "tau",
+    "The generalized forces Q - dV/dq but for uniform gravity, which the tables'\n"
+    " * a0 stands for: accel's and mass_bias's loops add the rest.",
+    "t q v p u > tau",
+};
 static const LowSig s_energy = {
     "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV",
 };
@@ -387,12 +396,18 @@ lower_derive(Lowering *lw)
     L->derived = arena_new_array(lw->A, int, size);
     for (size_t id = 0; id < size; id++)
         L->derived[id] = want[id] ? L->nd++ : -1;
+    int ntab = L->tables ? FORM_TABLE_STRIDE * L->tables->nt + 6 : 0;
+    L->tree_base = L->nd;
+    L->nd += ntab;
     if (L->nd) { /* a function only when there is something to derive */
         LowFunc *f = func(lw, &s_derive, "derive", 0);
         f->per_step = 0;
         for (size_t id = 0; id < size; id++)
             if (want[id])
                 out(lw, f, 0, L->derived[id], (ExprId)id);
+        for (int k = 0; k < ntab; k++) /* constants: copied from a table (emit.c) */
+            if (!expr_is_const(P, L->tables->num[k], NULL))
+                out(lw, f, 0, L->tree_base + k, L->tables->num[k]);
         /* first in the list: printed before its readers */
         memmove(L->func + 1, L->func, (size_t)(L->nfunc - 1) * sizeof *L->func);
         L->func[0] = f;
@@ -432,9 +447,30 @@ lower_events(Lowering *lw)
     }
 }
 
+/* Whether the model's accel and mass_bias are loops over its tables. */
+static const FormTables *
+tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A,
+           ExprPool *P, Diff *D)
+{
+    if (code == LOWER_CODE_STRAIGHT || c || !e->acc || e->form != &form_articulated)
+        return NULL;
+    if (code == LOWER_CODE_AUTO) {
+        int n = e->n;
+        ExprId *roots = xmalloc(3 * (size_t)n * sizeof *roots);
+        for (int i = 0; i < n; i++)
+            roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i];
+        ExprCount k = expr_count_ops(P, 3 * n, roots);
+        free(roots);
+        if (k.adds + k.muls + k.divs + k.calls <= LOWER_TABLES_MIN)
+            return NULL;
+    }
+    const char *why;
+    return form_tables(m, A, P, D, &why);
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
-            const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D)
+            const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
 {
     Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
     *lw.L = (Lowered){0};
@@ -449,7 +485,15 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
 
     lower_inputs(&lw);
 
-    if (e->acc && e->form->solve && !c) {
+    const FormTables *tb = tables_for(m, e, c, code, A, P, D);
+    lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;
+    lw.L->tables = tb;
+    if (tb) {
+        f = func(&lw, &s_tau, "accel", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, tb->tau[i]);
+        lw.L->tau = f;
+    } else if (e->acc && e->form->solve && !c) {
         /* M only off the hot path (conditioning, Jacobians): by columns,
          * from code that grows as E does, not as n^2 entries */
         f = func(&lw, &s_bias, "mass_bias", 0);
@@ -475,9 +519,15 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
                 out(&lw, f, 0, i * n + j, e->M[i * n + j]);
     }
 
-    f = func(&lw, &s_energy, "energy", 1);
-    out(&lw, f, 0, 0, m->T);
-    out(&lw, f, 0, 1, m->V);
+    if (tb) { /* T = q' . M q' / 2 by the tables' recursion, energy by hand */
+        f = func(&lw, &s_potential, "energy", 1);
+        out(&lw, f, 0, 0, m->V);
+        lw.L->potential = f;
+    } else {
+        f = func(&lw, &s_energy, "energy", 1);
+        out(&lw, f, 0, 0, m->T);
+        out(&lw, f, 0, 1, m->V);
+    }
 
     if (jacobian != LOWER_JACOBIAN_NONE)
         eom_derive_jacobian(e, m, A, P, D);
@@ -492,7 +542,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
     }
     if (c)
         lower_constraints(&lw, c);
-    if (e->acc && !c) {
+    if (e->acc && !c && !tb) {
         f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", 0);
         for (int i = 0; i < n; i++)
             out(&lw, f, 1, i, e->piv[i]);

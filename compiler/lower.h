@@ -85,6 +85,12 @@ typedef struct Lowered {
     LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;
     int nd;
+    /* code = LOWER_CODE_TABLES: tau, then accel and mass_bias by hand over
+     * the tables, whose numbers are pd[tree_base ...] */
+    int code;
+    const FormTables *tables;
+    LowFunc *tau, *potential;
+    int tree_base;
     int n;                /* coordinates */
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
@@ -110,10 +116,21 @@ enum {
  * less code.  Up to here the unrolled one costs < 6 s of cc. */
 enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
 
+/* How the articulated-body form's accel and mass_bias are written.
+ * STRAIGHT: straight-line code, every constant folded, the fastest to run
+ * and slowest to compile (~0.3 ms of cc -O2 per operation).  TABLES:
+ * loops over the model's tables (runtime/eomc_tree.h, forms.h's
+ * FormTables), a few hundred lines of C whatever the size.  AUTO: tables
+ * when the straight-line solve would pass LOWER_TABLES_MIN operations.
+ * Other forms are always straight-line. */
+enum { LOWER_CODE_AUTO, LOWER_CODE_STRAIGHT, LOWER_CODE_TABLES };
+enum { LOWER_TABLES_MIN = 25000 };
+
 /* c: the constraints, or NULL.  Derives e's partial derivatives
  * (eom_derive_jacobian) when the Jacobian is printed. */
 Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
-                     const Invariant *inv, int jacobian, Arena *A, ExprPool *P, Diff *D);
+                     const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P,
+                     Diff *D);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none). */
 int lower_size(const LowFunc *f, int arg);

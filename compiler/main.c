@@ -2,7 +2,7 @@
  * eomc: the command line.
  *
  *   eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]
- *                [--jacobian auto|unrolled|seeded]
+ *                [--jacobian auto|unrolled|seeded] [--code auto|straight|tables]
  *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST] [--jacobian HOW]
  *   eomc run     SPEC [--form NAME] [--effects LIST] [--jacobian HOW] [simulator options]
  *   eomc accuracy SPEC [the same]: run's simulator with --work-precision
@@ -31,7 +31,7 @@
 enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
-    const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene;
+    const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
     int needs_jacobian; /* what the simulator is asked to do needs it */
@@ -71,12 +71,17 @@ usage(FILE *f)
         "                   for a small model; for a large one seeded if the\n"
         "                   scene's method is implicit (or eomc run/accuracy is\n"
         "                   asked for one, or for --linearize), else none\n"
+        "  --code HOW       auto (default), straight or tables: how the\n"
+        "                   articulated-body form's accelerations and mass matrix\n"
+        "                   are written: straight-line code (fastest to run), or\n"
+        "                   loops over the model's tables (fast to compile).\n"
+        "                   auto: tables past %d operations of straight-line solve\n"
         "Simulator options (eomc run, and built executables): see `EXE --help`.\n"
         "eomc accuracy runs the simulator's --work-precision report: every method\n"
         "over tolerances and fixed steps, CPU time against the error measured on a\n"
         "reference solution (--methods, --tolerances, --steps, --csv, --plot,\n"
         "--target; see `EXE --help`).\n",
-        form_names());
+        form_names(), LOWER_TABLES_MIN);
 }
 
 static _Noreturn void
@@ -94,7 +99,7 @@ unknown_option(const char *a)
 {
     static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
                                        "--explain", "--eliminate", "--help", "--version",
-                                       "--scene", "--fix", "--mpi"};
+                                       "--scene", "--fix", "--mpi", "--code"};
     const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
     if (!near)
         usage_error("unknown option '%s'", a);
@@ -154,11 +159,12 @@ parse_args(int argc, char **argv, Options *o)
         const char *a = argv[i];
         int has_val = i + 1 < argc;
         if (!strcmp(a, "--form") || !strcmp(a, "--effects") || !strcmp(a, "--jacobian") ||
-            !strcmp(a, "--scene") || (!run && !strcmp(a, "-o"))) {
+            !strcmp(a, "--scene") || !strcmp(a, "--code") || (!run && !strcmp(a, "-o"))) {
             if (!has_val)
                 usage_error("option %s needs a value", a);
             const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects
                               : a[2] == 'j' ? &o->jacobian : a[2] == 's' ? &o->scene
+                              : a[2] == 'c' ? &o->code
                               : &o->out;
             *slot = argv[++i];
         } else if (!strcmp(a, "--fix")) {
@@ -202,6 +208,9 @@ parse_args(int argc, char **argv, Options *o)
         strcmp(o->jacobian, "seeded") && strcmp(o->jacobian, "none"))
         usage_error("--jacobian must be auto, unrolled, seeded or none, not '%s'",
                     o->jacobian);
+    if (o->code && strcmp(o->code, "auto") && strcmp(o->code, "straight") &&
+        strcmp(o->code, "tables"))
+        usage_error("--code must be auto, straight or tables, not '%s'", o->code);
     o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o);
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
@@ -231,7 +240,7 @@ print_stats(const EmitStats *st)
 /* --explain: what eomc made of the spec. */
 static void
 explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *inv,
-        const EmitInfo *info)
+        const EmitInfo *info, const Lowered *L)
 {
     printf("%s (%s): %d coordinate%s (", s->name, s->path, s->nq, s->nq == 1 ? "" : "s");
     for (int i = 0; i < s->nq; i++)
@@ -241,6 +250,10 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
            s->npart == 1 ? "" : "s", s->nbody, s->nbody == 1 ? "y" : "ies");
     printf("form %s: E = %s\n", form->name, form->formula);
     printf("  %s\n", info->form_why ? info->form_why : "chosen by --form");
+    if (L && L->code == LOWER_CODE_TABLES)
+        printf("  code: loops over the model's tables (%d turns; eomc_tree.h), %s\n",
+               L->tables->nt, strstr(info->options, "--code tables") ? "as --code asks"
+               : "the straight-line solve being too long to compile quickly");
     if (s->nscenes) {
         int w = 0;
         for (int k = 0; k < s->nscenes; k++)
@@ -329,6 +342,14 @@ compile(const Options *o, FILE *out)
                       : o->jacobian[0] == 'n' ? LOWER_JACOBIAN_NONE
                                               : LOWER_JACOBIAN_UNROLLED;
             }
+            int code = LOWER_CODE_AUTO;
+            if (o->code) {
+                size_t len = strlen(opts);
+                snprintf(opts + len, sizeof opts - len, "%s--code %s", len ? " " : "", o->code);
+                code = !strcmp(o->code, "tables")     ? LOWER_CODE_TABLES
+                       : !strcmp(o->code, "straight") ? LOWER_CODE_STRAIGHT
+                                                      : LOWER_CODE_AUTO;
+            }
             if (o->eliminate) {
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--eliminate", len ? " " : "");
@@ -337,10 +358,10 @@ compile(const Options *o, FILE *out)
                              .eliminate = form->eliminate || o->eliminate,
                              .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
+            Lowered *L = out ? lower_model(s, m, e, c, inv, jac, code, A, P, D) : NULL;
             if (o->explain)
-                explain(s, form, c, inv, &info);
+                explain(s, form, c, inv, &info, L);
             if (out) {
-                Lowered *L = lower_model(s, m, e, c, inv, jac, A, P, D);
                 emit_model(out, s, e, c, inv, L, P, &info, st);
                 if (o->stats)
                     print_stats(st);
@@ -464,13 +485,15 @@ run(const Options *o)
     }
     const char *jac = o->jacobian ? o->jacobian : "auto";
     const char *form = o->form ? o->form : "(default)";
+    const char *code = o->code ? o->code : "auto";
     size_t extra = strlen(form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
+                   strlen(code) +
                    (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 120;
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
-                            "\n--form %s --effects %s --eliminate %d --jacobian %s%s --scene %s "
-                            "--fix %s", form, o->effects ? o->effects : "(scene)",
-                            o->eliminate, jac, o->needs_jacobian ? " (needed)" : "",
+                            "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
+                            "--scene %s --fix %s", form, o->effects ? o->effects : "(scene)",
+                            o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
                             o->scene ? o->scene : "(first)",
                             o->fix ? o->fix : "(none)");
     char stem[200], name[256];

@@ -153,8 +153,8 @@ axes_between(const Kin *K, Arena *A, ExprPool *P, Place a, Place b, ExprId Q[9])
         int f = d == depth ? a.f : path[d];
         int from = d == depth ? a.n : 0, to = d == 0 ? b.n : nturns_of(K, f);
         for (int k = from; k < to; k++) {
-            ExprId rate, axis[3], Rk[9];
-            kin_turn_local(K, f, k, &rate, axis, Rk);
+            ExprId angle, axis[3], Rk[9];
+            kin_turn_local(K, f, k, &angle, axis, Rk);
             mat3_mul(P, Q, Rk, Q);
         }
     }
@@ -220,8 +220,9 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t, const int *kid,
             tk->up = k > f->first ? k - 1 : f->parent >= 0 ? t->frame[f->parent].carrier : -1;
             Place up = tk->up >= 0 ? at[tk->up] : (Place){KIN_WORLD, 0};
             axes_between(K, A, P, up, at[k], tk->Q);
-            ExprId rate, Rk[9];
-            kin_turn_local(K, at[k].f, at[k].n - 1, &rate, tk->al, Rk);
+            axes_between(K, A, P, up, (Place){at[k].f, at[k].n - 1}, tk->Qf);
+            ExprId Rk[9];
+            kin_turn_local(K, at[k].f, at[k].n - 1, &tk->angle, tk->al, Rk);
             if (k > f->first) {
                 tk->r[0] = tk->r[1] = tk->r[2] = EXPR_ZERO;
                 continue;

@@ -27,7 +27,9 @@ typedef struct TreeTurn {
     int coord;   /* its angle is coordinate coord */
     int up;      /* the turn above it: its parent body; -1 the world */
     ExprId al[3]; /* the axis in its own axes */
-    ExprId Q[9]; /* its axes in up's (row-major, columns the axes) */
+    ExprId angle; /* the angle it turns by (a function of its coordinate) */
+    ExprId Qf[9]; /* the axes just before it in up's (a constant) */
+    ExprId Q[9]; /* its axes in up's: Qf Rk(angle) (row-major, columns the axes) */
     ExprId r[3]; /* its origin from up's, in up's axes */
 } TreeTurn;
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Generate the spec of a humanoid-like tree of N rigid bodies (N <= 30),
+# Generate the spec of a humanoid-like tree of N rigid bodies (N <= 200),
 # each on a 3-axis joint (turns about z, x, y of its parent's axes): 3N
 # coordinates, written with frames and points.  The benchmark of large
 # spatial models (bench/tree_bench.sh).
@@ -14,20 +14,28 @@
 # The bodies, in order, each after its parent: the pelvis; a spine of 4,
 # the neck and head; each arm from the top of the spine (clavicle, upper
 # arm, forearm, hand, finger); each leg from the pelvis (thigh, shin,
-# foot, toe, tip); and a jaw chain of 3 on the head.  Body k hangs from its
+# foot, toe, tip); a jaw chain of 3 on the head; past 30, tails of 5 from
+# the pelvis (tail1_1 ... tail1_5, tail2_1 ...).  Body k hangs from its
 # joint, l below its parent's joint in the parent's axes; its centre is
 # l/2 below its own joint.  Gravity acts on all.
 set -eu
 n=${1:?usage: gen_tree.sh N}
-case $n in ''|*[!0-9]*) echo "gen_tree.sh: N must be a whole number from 1 to 30" >&2; exit 2;; esac
-if [ "$n" -lt 1 ] || [ "$n" -gt 30 ]; then
-  echo "gen_tree.sh: N must be a whole number from 1 to 30" >&2; exit 2
+case $n in ''|*[!0-9]*) echo "gen_tree.sh: N must be a whole number from 1 to 200" >&2; exit 2;; esac
+if [ "$n" -lt 1 ] || [ "$n" -gt 200 ]; then
+  echo "gen_tree.sh: N must be a whole number from 1 to 200" >&2; exit 2
 fi
 tree="pelvis:- spine1:pelvis spine2:spine1 spine3:spine2 spine4:spine3 neck:spine4
 head:neck lclav:spine4 luarm:lclav lfarm:luarm lhand:lfarm lfing:lhand rclav:spine4
 ruarm:rclav rfarm:ruarm rhand:rfarm rfing:rhand lthigh:pelvis lshin:lthigh lfoot:lshin
 ltoe:lfoot ltip:ltoe rthigh:pelvis rshin:rthigh rfoot:rshin rtoe:rfoot rtip:rtoe
 jaw1:head jaw2:jaw1 jaw3:jaw2"
+j=31
+while [ "$j" -le "$n" ]; do
+  c=$(((j - 31) / 5 + 1)) i=$(((j - 31) % 5 + 1))
+  if [ "$i" -eq 1 ]; then parent=pelvis; else parent=tail${c}_$((i - 1)); fi
+  tree="$tree tail${c}_$i:$parent"
+  j=$((j + 1))
+done
 list=$(echo $tree | tr ' ' '\n' | head -n "$n")
 if [ "${2:-}" = --mjcf ]; then
   # each body's children nested in it: a body's element is closed after

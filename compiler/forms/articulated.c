@@ -300,3 +300,49 @@ const Form form_articulated = {
     .mass = crb_mass,
     .solve = articulated,
 };
+
+FormTables *
+form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
+{
+    const Tree *t = m->tree;
+    if (!t) {
+        *why = m->tree_why;
+        return NULL;
+    }
+    int nt = t->nturns;
+    for (int k = 0; k < nt; k++)
+        if (t->turn[k].angle != m->q[0][t->turn[k].coord]) {
+            *why = "a turn's angle is not its coordinate itself";
+            return NULL;
+        }
+    FormTables *tb = arena_alloc(A, sizeof *tb);
+    tb->nt = nt;
+    tb->turn = arena_new_array(A, int, 4 * nt + 1);
+    tb->num = arena_new_array(A, ExprId, FORM_TABLE_STRIDE * nt + 6);
+    Rigid *body = sv_bodies(P, A, t);
+    for (int k = 0; k < nt; k++) {
+        const TreeTurn *tk = &t->turn[k];
+        int ax = axis_index(tk->al), fixed = 0;
+        for (int i = 0; i < 9; i++)
+            fixed |= tk->Qf[i] != (i % 4 == 0 ? EXPR_ONE : EXPR_ZERO);
+        int *ti = tb->turn + 4 * k;
+        ti[0] = tk->up, ti[1] = tk->coord, ti[2] = ax < 0 ? 3 : ax, ti[3] = fixed;
+        ExprId *x = tb->num + FORM_TABLE_STRIDE * k;
+        const Rigid *b = &body[k];
+        for (int i = 0; i < 9; i++)
+            x[i] = tk->Qf[i];
+        for (int i = 0; i < 3; i++)
+            x[9 + i] = tk->r[i], x[12 + i] = tk->al[i], x[16 + i] = b->h[i];
+        x[15] = b->m;
+        x[19] = b->I[0], x[20] = b->I[4], x[21] = b->I[8];
+        x[22] = b->I[1], x[23] = b->I[2], x[24] = b->I[5];
+    }
+    Sv a0;
+    tb->tau = sv_applied(m, A, P, D, &a0);
+    for (int i = 0; i < m->n; i++)
+        tb->tau[i] = expr_neg(P, tb->tau[i]);
+    for (int i = 0; i < 3; i++)
+        tb->num[FORM_TABLE_STRIDE * nt + i] = a0.w[i],
+        tb->num[FORM_TABLE_STRIDE * nt + 3 + i] = a0.v[i];
+    return tb;
+}

@@ -30,6 +30,22 @@ typedef struct Form {
                   ExprId *acc, ExprId *piv, ExprId *mkk);
 } Form;
 
+/* The articulated-body form's model as tables, for code that loops over
+ * them (runtime/eomc_tree.h) instead of unrolling the recursion: per turn
+ * four integers (up, coordinate, axis: 0-2 a coordinate axis of its own,
+ * 3 a unit vector; whether a constant rotation precedes it) and
+ * FORM_TABLE_STRIDE numbers (expressions of the parameters), then a0[6];
+ * and the generalized forces the tables leave out.  NULL with *why set
+ * where it cannot be put so. */
+enum { FORM_TABLE_STRIDE = 25 }; /* eomc_tree.h's EOMC_TREE_STRIDE */
+typedef struct FormTables {
+    int nt;
+    int *turn;   /* [4 nt] */
+    ExprId *num; /* [FORM_TABLE_STRIDE nt + 6] */
+    ExprId *tau; /* [n]: Q - dV/dq but for the gravity that a0 stands for */
+} FormTables;
+FormTables *form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why);
+
 /* maggi is Lagrange's residual with the constraints eliminated (C^T E =
  * 0, f = 0); --eliminate selects elimination for the other forms. */
 extern const Form form_lagrange, form_nielsen, form_tzenoff, form_gibbs_appell, form_maggi,

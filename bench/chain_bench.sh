@@ -17,7 +17,11 @@
 #   mj_ns      ns per mj_forward of the same chain in MuJoCo (its
 #              contact and limits off; bench/mj_bench.c, when meson found
 #              libmujoco), measured in the same run
-#   ratio      mj_ns / ns_rhs: how many times faster eomc's is
+#   fr_form, fr_ns  the same chain written with frames (gen_chain.sh N
+#              --frames, a tree the recursive forms apply to): the form
+#              eomc picks for it and ns per right-hand side
+#   ratio      mj_ns over the faster of ns_rhs and fr_ns: how many times
+#              faster eomc's is
 #
 # usage: chain_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
 # $EOMC_FLAGS: more options for `eomc compile`, e.g. "--jacobian unrolled";
@@ -31,8 +35,8 @@ gsl_libs=$(pkg-config --libs gsl)
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-printf '%4s %10s %8s %8s %8s %8s %8s %7s %9s %9s %6s\n' N compile_s ops ops_all lines cc_s ns_rhs allocs \
-  ns_jac mj_ns ratio
+printf '%4s %10s %8s %8s %8s %8s %8s %7s %9s %17s %9s %9s %6s\n' N compile_s ops ops_all lines \
+  cc_s ns_rhs allocs ns_jac fr_form fr_ns mj_ns ratio
 fail=0
 for n in ${BENCH_N:-2 5 10 20 50}; do
   "$src/specs/gen_chain.sh" "$n" > "$dir/chain$n.yaml"
@@ -55,14 +59,24 @@ for n in ${BENCH_N:-2 5 10 20 50}; do
   set -- $("$dir/bench$n" 2>/dev/null)
   ns=$1 allocs=$2 nsjac=$3
   ct=$(elapsed "$t0" "$t1") cct=$(elapsed "$t2" "$t3")
+  sh "$src/specs/gen_chain.sh" "$n" --frames > "$dir/frames$n.yaml"
+  "$eomc" compile "$dir/frames$n.yaml" -o "$dir/frames$n.c"
+  frform=$(sed -n 's/^ \* form: *\([a-z-]*\),.*/\1/p' "$dir/frames$n.c")
+  $cc -std=c11 -O2 -I"$inc" -c "$dir/frames$n.c" -o "$dir/frames$n.o"
+  $cc -std=c11 -O2 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
+    "$dir/frames$n.o" "$lib" $gsl_libs -lm \
+    -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/fbench$n"
+  set -- $("$dir/fbench$n" 2>/dev/null)
+  frns=$1
   mjns=- ratio=-
   if [ -n "$mj" ]; then
     sh "$src/specs/gen_chain.sh" "$n" --mjcf > "$dir/chain$n.xml"
     mjns=$("$mj" "$dir/chain$n.xml")
-    ratio=$(awk -v a="$mjns" -v b="$ns" 'BEGIN { printf "%.1f", a / b }')
+    ratio=$(awk -v a="$mjns" -v b="$ns" -v c="$frns" \
+      'BEGIN { f = c + 0 < b + 0 ? c : b; printf "%.1f", a / f }')
   fi
-  printf '%4d %10s %8d %8d %8d %8s %8s %7d %9s %9s %6s\n' "$n" "$ct" "$ops" "$all" "$lines" "$cct" "$ns" \
-    "$allocs" "$nsjac" "$mjns" "$ratio"
+  printf '%4d %10s %8d %8d %8d %8s %8s %7d %9s %17s %9s %9s %6s\n' "$n" "$ct" "$ops" "$all" "$lines" \
+    "$cct" "$ns" "$allocs" "$nsjac" "$frform" "$frns" "$mjns" "$ratio"
   [ "$allocs" -eq 0 ] || { echo "FAIL: N = $n allocates in the right-hand side"; fail=1; }
   if [ "$n" -eq 50 ]; then
     awk -v t="$ct" 'BEGIN { exit !(t < 1) }' || { echo "FAIL: N = 50 compile $ct s >= 1 s"; fail=1; }

@@ -110,22 +110,19 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
     int n = m->n;
     Eom *e = arena_alloc(A, sizeof *e);
     *e = (Eom){.n = n, .nu = s->nu, .form = f, .E = E};
-    e->M = f->mass ? f->mass(m, A, P) : arena_new_array(A, ExprId, n * n);
-    for (int i = 0; !f->mass && i < n; i++)
-        for (int j = 0; j <= i; j++)
-            e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, E[i], m->q[2][j]);
+    if (!f->solve) /* else only on demand (eom_mass): a recursion never needs it */
+        eom_mass(e, m, A, P, D);
     /* h = E at q'' = 0: substitution rebuilds only what depends on q'' */
     e->h = arena_new_array(A, ExprId, n);
     ExprId *zeros = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++)
         zeros[j] = EXPR_ZERO;
-    for (int i = 0; i < n; i++)
-        e->h[i] = expr_subst(P, E[i], n, m->q[2], zeros);
+    expr_subst_many(P, n, E, n, m->q[2], zeros, e->h);
     if (f->solve) {
         e->acc = arena_new_array(A, ExprId, n);
         e->piv = arena_new_array(A, ExprId, n);
         e->mkk = arena_new_array(A, ExprId, n);
-        f->solve(m, e->M, A, P, D, e->acc, e->piv, e->mkk);
+        f->solve(m, A, P, D, e->acc, e->piv, e->mkk);
     } else if (n <= EOM_SOLVE_MAX) {
         derive_solve(e, A, P);
     }
@@ -188,7 +185,7 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
             continue;
         if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
             continue;
-        cost[nf] = eom_cost(P, e[nf], constrained);
+        cost[nf] = eom_cost(e[nf], m, constrained, A, P, D);
         nf++;
     }
     for (int k = 0; k < nf; k++)
@@ -209,6 +206,20 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
     return e[best];
 }
 
+ExprId *
+eom_mass(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    if (e->M)
+        return e->M;
+    int n = e->n;
+    const Form *f = e->form;
+    e->M = f->mass ? f->mass(m, A, P) : arena_new_array(A, ExprId, n * n);
+    for (int i = 0; !f->mass && i < n; i++)
+        for (int j = 0; j <= i; j++)
+            e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, e->E[i], m->q[2][j]);
+    return e->M;
+}
+
 static long
 ops(ExprPool *P, int n, const ExprId *roots)
 {
@@ -217,7 +228,7 @@ ops(ExprPool *P, int n, const ExprId *roots)
 }
 
 long
-eom_cost(ExprPool *P, const Eom *e, int constrained)
+eom_cost(Eom *e, const Mech *m, int constrained, Arena *A, ExprPool *P, Diff *D)
 {
     int n = e->n;
     ExprId *roots = xmalloc((size_t)(n * n + 3 * n + 1) * sizeof *roots);
@@ -228,6 +239,7 @@ eom_cost(ExprPool *P, const Eom *e, int constrained)
         cost = ops(P, 3 * n, roots);
     } else {
         int k = 0;
+        eom_mass(e, m, A, P, D);
         for (int i = 0; i < n; i++)
             for (int j = 0; j <= i; j++)
                 roots[k++] = e->M[i * n + j];

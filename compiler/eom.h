@@ -13,7 +13,8 @@ typedef struct Eom {
     int n, nu;
     const Form *form;
     ExprId *E;    /* [n] residual */
-    ExprId *M;    /* [n*n] row-major; M[j*n+i] is M[i*n+j] (symmetric) */
+    ExprId *M;    /* [n*n] row-major; M[j*n+i] is M[i*n+j] (symmetric);
+                   * NULL until eom_mass where the form solves for q'' */
     ExprId *h;    /* [n] */
     ExprId *dEdq, *dEdv; /* [n*n], NULL until eom_derive_jacobian */
     ExprId *dEdu; /* [n*nu] */
@@ -66,7 +67,11 @@ Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
  * weighed as EOM_DENSE_WEIGHT straight-line ones) when unconstrained.
  * The constraints' own functions and the KKT solve cost the same whatever
  * the form, so they are left out. */
-long eom_cost(ExprPool *P, const Eom *e, int constrained);
+long eom_cost(Eom *e, const Mech *m, int constrained, Arena *A, ExprPool *P, Diff *D);
+/* e->M, derived on first use where the form solves for q'' itself (its
+ * recursion never forms M; constraints and the cost of a constrained
+ * model need it). */
+ExprId *eom_mass(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* The default form's E, M, h and solve: the cheapest of those that apply
  * (eom.c says how they are weighed), or NULL if none does; the reason, with
  * what the others cost, in why[len]. */

@@ -454,12 +454,14 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A
 {
     if (code == LOWER_CODE_STRAIGHT || c || !e->acc || e->form != &form_articulated)
         return NULL;
-    if (code == LOWER_CODE_AUTO) {
+    if (code == LOWER_CODE_AUTO) { /* the solve, the bias and the energies */
         int n = e->n;
-        ExprId *roots = xmalloc(3 * (size_t)n * sizeof *roots);
+        ExprId *roots = xmalloc((4 * (size_t)n + 2) * sizeof *roots);
         for (int i = 0; i < n; i++)
-            roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i];
-        ExprCount k = expr_count_ops(P, 3 * n, roots);
+            roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i],
+            roots[3 * n + i] = e->h[i];
+        roots[4 * n] = m->T, roots[4 * n + 1] = m->V;
+        ExprCount k = expr_count_ops(P, 4 * n + 2, roots);
         free(roots);
         if (k.adds + k.muls + k.divs + k.calls <= LOWER_TABLES_MIN)
             return NULL;
@@ -508,6 +510,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
             out(&lw, f, 0, i * n, Mx[i]);
         lw.L->mass_times = f;
     } else {
+        eom_mass(e, m, A, P, D);
         f = func(&lw, &s_mass_bias, "mass_bias", 0);
         for (int i = 0; i < n; i++) /* lower triangle and h, then the mirrored upper one */
             for (int j = 0; j <= i; j++)

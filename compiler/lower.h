@@ -120,11 +120,14 @@ enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
  * STRAIGHT: straight-line code, every constant folded, the fastest to run
  * and slowest to compile (~0.3 ms of cc -O2 per operation).  TABLES:
  * loops over the model's tables (runtime/eomc_tree.h, forms.h's
- * FormTables), a few hundred lines of C whatever the size.  AUTO: tables
- * when the straight-line solve would pass LOWER_TABLES_MIN operations.
- * Other forms are always straight-line. */
+ * FormTables), a few hundred lines of C whatever the size, 2-3 times
+ * slower to run.  AUTO: tables when the straight-line solve, bias and
+ * energies would pass LOWER_TABLES_MIN operations (measured, gcc 12 -O2:
+ * gen_tree 30's 27 051 take 11 s of cc, the 200-link chain's 32 206 take
+ * 19 s; with tables each builds in 1-2 s).  Other forms are always
+ * straight-line. */
 enum { LOWER_CODE_AUTO, LOWER_CODE_STRAIGHT, LOWER_CODE_TABLES };
-enum { LOWER_TABLES_MIN = 25000 };
+enum { LOWER_TABLES_MIN = 30000 };
 
 /* c: the constraints, or NULL.  Derives e's partial derivatives
  * (eom_derive_jacobian) when the Jacobian is printed. */

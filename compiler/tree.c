@@ -50,6 +50,16 @@ turns(const Kin *K, int g)
     return 0;
 }
 
+/* The number of frames from the world down to f (the world: 0). */
+static int
+depth(const Kin *K, int f)
+{
+    int d = 0;
+    for (; f > KIN_WORLD; f = kin_parent(K, f))
+        d++;
+    return d;
+}
+
 /* Check the chain of m's point, mark the frames above it in used[] and
  * set the pivots of those that turn (pivot[g][0] == EXPR_NONE: not yet
  * set), and a point there (pivot_pt[g]).  Returns the reason it does not fit, or NULL. */
@@ -83,14 +93,19 @@ hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *pivot_p
         if (!kin_is_ancestor(K, fr[k], ms->frame))
             return arena_printf(A, "the position of '%s' goes through a frame it does not "
                                 "turn with", ms->name);
-    for (int g = ms->frame; g > KIN_WORLD; g = kin_parent(K, g)) {
+    /* the links' frames and g below are all on the way from the world to
+     * the mass's frame: one is an ancestor of another when it is no deeper */
+    int dep[CHAIN_MAX], dg = depth(K, ms->frame);
+    for (int k = 0; k < n; k++)
+        dep[k] = depth(K, fr[k]);
+    for (int g = ms->frame; g > KIN_WORLD; g = kin_parent(K, g), dg--) {
         used[g] = 1;
         /* the links in g's subtree must be the outermost ones */
         int k = 0;
-        while (k < n && kin_is_ancestor(K, g, fr[k]))
+        while (k < n && dep[k] >= dg)
             k++;
         for (int j = k; j < n; j++)
-            if (kin_is_ancestor(K, g, fr[j]))
+            if (dep[j] >= dg)
                 return arena_printf(A, "the position of '%s' leaves a turning frame and "
                                     "enters it again", ms->name);
         if (!turns(K, g))

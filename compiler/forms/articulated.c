@@ -198,10 +198,9 @@ axis_index(const ExprId *a)
 }
 
 static void
-articulated(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D, ExprId *acc,
-            ExprId *piv, ExprId *mkk)
+articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *piv,
+            ExprId *mkk)
 {
-    (void)M;
     const Tree *t = m->tree;
     int nt = t->nturns;
     Rigid *body = sv_bodies(P, A, t), *comp = arena_new_array(A, Rigid, nt + 1);

@@ -25,9 +25,9 @@ typedef struct Form {
     /* The accelerations by a recursion of the form's own, for any number
      * of coordinates, without factoring M (NULL: eom.c factors M, up to
      * EOM_SOLVE_MAX coordinates).  Writes acc, piv and mkk [n] as eom.h
-     * describes them; M is the form's mass matrix. */
-    void (*solve)(const Mech *m, const ExprId *M, Arena *A, ExprPool *P, Diff *D,
-                  ExprId *acc, ExprId *piv, ExprId *mkk);
+     * describes them. */
+    void (*solve)(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *piv,
+                  ExprId *mkk);
 } Form;
 
 /* The articulated-body form's model as tables, for code that loops over

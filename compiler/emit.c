@@ -997,7 +997,8 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     else if (L->accel_solve || L->tau)
         println(pr, "    %s_accel,", nm);
     else
-        println(pr, "    NULL, /* more than %d coordinates: the runtime solves with GSL */",
+        println(pr, "    NULL, /* more than %d coordinates, M too dense to unroll: the runtime "
+                "solves with GSL */",
                 EOM_SOLVE_MAX);
     if (c)
         println(pr, "    %d, c_names, c_order, c_dependent, %d, %d,\n"
@@ -1029,6 +1030,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
                 s->scene.hold ? "a_hold" : "NULL");
     else
         println(pr, "    0, NULL, /* the scene does not assemble */");
+    if (e->mass_parent && !c)
+        println(pr, "    mass_parent, /* M factored by LTDL along this tree */");
+    else
+        println(pr, "    NULL, /* M factored densely (or not at all: accel) */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
@@ -1164,6 +1169,14 @@ emit_model(FILE *f, const Spec *s, const Eom *e, const Constraints *c, const Inv
     print_tables(&pr);
     if (c)
         print_constraint_tables(&pr, c);
+    if (e->mass_parent && !c) {
+        fprintf(f, "/* M's structural nonzeros as a tree: each coordinate's parent (-1: a\n"
+                   " * root); M_ij = 0 unless one is above the other. */\n"
+                   "static const int mass_parent[%d] = {", s->nq);
+        for (int i = 0; i < s->nq; i++)
+            fprintf(f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", e->mass_parent[i]);
+        println(&pr, "};\n");
+    }
     if (L->outputs) {
         fprintf(f, "static const char *const out_names[%d] = {", s->scene.noutput);
         for (int k = 0; k < s->scene.noutput; k++)

@@ -13,8 +13,10 @@
  */
 #include "eom.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static void
 derive_row(Eom *e, Diff *D, const ExprId *leaves, ExprId *grad, int i)
@@ -100,6 +102,69 @@ derive_solve(Eom *e, Arena *A, ExprPool *P)
     }
 }
 
+/* What derive_solve would print, from M's structural zeros: the
+ * multiplications of the factorization and the two solves, fill-in
+ * included (an upper bound: the DAG may cancel more).  In derive_solve's
+ * order, leaves first, a tree's M (M_ij = 0 unless one turn is above the
+ * other) has no fill-in: this is the branch-induced sparsity of
+ * Featherstone's LTDL factorization.  nz is scratch for n * words. */
+static long
+solve_ops(const Eom *e, uint64_t *nz)
+{
+    int n = e->n, words = (n + 63) / 64;
+    long ops = 0;
+#define NZ(i, k) (nz[(size_t)(i) * (size_t)words + (size_t)(k) / 64] >> ((k) % 64) & 1)
+    memset(nz, 0, (size_t)n * (size_t)words * sizeof *nz);
+    for (int i = 0; i < n; i++) /* row i of L, in elimination order: column j < i */
+        for (int j = 0; j < i; j++) {
+            int on = e->M[(n - 1 - i) * n + (n - 1 - j)] != EXPR_ZERO;
+            for (int w = 0; w <= j / 64; w++) { /* k < j (row j has no other) */
+                uint64_t both = nz[(size_t)i * words + w] & nz[(size_t)j * words + w];
+                on |= both != 0;
+                for (; both; both &= both - 1) /* one multiplication per k */
+                    ops++;
+            }
+            if (on)
+                nz[(size_t)i * words + j / 64] |= 1ull << (j % 64);
+        }
+    for (int i = 0; i < n; i++) /* the pivots' sums and the two solves */
+        for (int k = 0; k < i; k++)
+            ops += 3 * (int)NZ(i, k);
+#undef NZ
+    return ops;
+}
+
+/* M's structural nonzeros as a tree: parent[i] = the last j < i with
+ * M_ij not structurally 0, when every such j of every row is on the way
+ * from i to its root (then LTDL has no fill-in), and when LTDL's work
+ * (about half the sum of the squared depths) is at most half a dense
+ * factorization's (n^3/6); else NULL. */
+static int *
+mass_tree(const Eom *e, Arena *A)
+{
+    int n = e->n;
+    int *parent = arena_new_array(A, int, n), *depth = arena_new_array(A, int, n);
+    long work = 0;
+    for (int i = 0; i < n; i++) {
+        parent[i] = -1;
+        for (int j = i - 1; j >= 0 && parent[i] < 0; j--)
+            if (e->M[i * n + j] != EXPR_ZERO)
+                parent[i] = j;
+        depth[i] = parent[i] < 0 ? 0 : depth[parent[i]] + 1;
+        work += (long)depth[i] * depth[i];
+        int on = parent[i]; /* the next ancestor that row i may hold */
+        for (int j = i - 1; j >= 0; j--) {
+            if (j == on) {
+                on = parent[on];
+                continue;
+            }
+            if (e->M[i * n + j] != EXPR_ZERO)
+                return NULL;
+        }
+    }
+    return work <= (long)n * n * n / 6 ? parent : NULL;
+}
+
 Eom *
 eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
            ExprPool *P, Diff *D, const char **why)
@@ -125,6 +190,13 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         f->solve(m, A, P, D, e->acc, e->piv, e->mkk);
     } else if (n <= EOM_SOLVE_MAX) {
         derive_solve(e, A, P);
+    } else {
+        uint64_t *nz = xmalloc((size_t)n * (size_t)((n + 63) / 64) * sizeof *nz);
+        if (solve_ops(e, nz) <= EOM_SPARSE_SOLVE_MAX)
+            derive_solve(e, A, P);
+        else
+            e->mass_parent = mass_tree(e, A);
+        free(nz);
     }
     return e;
 }

@@ -30,9 +30,13 @@ typedef struct Eom {
      * (structural zeros of M drop out by simplification), its pivots d_k
      * and M's diagonal M_kk: M is safely positive definite when every
      * d_k > EOMC_PIVOT_TOL M_kk, and min d_k / M_kk measures how nearly
-     * singular it is.  NULL when n > EOM_SOLVE_MAX, unless the form has a
-     * solve of its own (forms.h). */
+     * singular it is.  NULL when n > EOM_SOLVE_MAX and M is too dense
+     * (EOM_SPARSE_SOLVE_MAX), unless the form has a solve of its own
+     * (forms.h). */
     ExprId *acc, *piv, *mkk;
+    /* Where acc is NULL: M's tree of structural nonzeros (eomc_model.h's
+     * mass_parent), or NULL when M is not so sparse. */
+    int *mass_parent;
 } Eom;
 
 /* Up to this many coordinates the solve is emitted as straight-line code
@@ -41,6 +45,13 @@ typedef struct Eom {
  * 2.9 us with the runtime's LDL^T, 1.5 us unrolled, for 1.6 s more of
  * cc -O2).  Must match eomc_model.h. */
 enum { EOM_SOLVE_MAX = 24 };
+/* Past it, still when M's structural zeros leave the unrolled solve no
+ * more multiplications than a dense one of EOM_SOLVE_MAX coordinates
+ * (24^3/6 for the factorization, 3 * 24^2/2 for the pivots and solves),
+ * so that the code costs the compiler no more: a tree's M factored leaves
+ * first, which has no fill-in (Featherstone's LTDL, the sparsity its
+ * branches give; gen_tree 9, 27 coordinates, 3 106). */
+enum { EOM_SPARSE_SOLVE_MAX = 24 * 24 * 24 / 6 + 3 * 24 * 24 / 2 };
 
 /* An operation of the runtime's dense LDL^T against one of generated
  * straight-line code (measured, bench/tree_bench.sh, gen_tree 5: 15

@@ -10931,6 +10931,7 @@ const eomc_model bicycle_tree_model = {
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     1, a_hold, /* runs start assembled onto the constraints */
+    NULL, /* M factored densely (or not at all: accel) */
 };
 
 #ifdef EOMC_MAIN

@@ -275,6 +275,7 @@ const eomc_model bouncing_ball_model = {
     0, NULL, NULL, /* the scene asks for no outputs */
     1, ev_names, ev_direction, ev_action, bouncing_ball_events, bouncing_ball_event_set,
     0, NULL, /* the scene does not assemble */
+    NULL, /* M factored densely (or not at all: accel) */
 };
 
 #ifdef EOMC_MAIN

@@ -489,6 +489,7 @@ const eomc_model chaplygin_sleigh_model = {
     0, NULL, NULL, /* the scene asks for no outputs */
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
+    NULL, /* M factored densely (or not at all: accel) */
 };
 
 #ifdef EOMC_MAIN

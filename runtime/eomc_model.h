@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 11
+#define EOMC_ABI_VERSION 12
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -211,6 +211,12 @@ typedef struct eomc_model {
      * --no-assemble override it. */
     int assemble;
     const unsigned char *a_hold;
+    /* When accel is NULL and M has the sparsity of a tree: mass_parent[i]
+     * < i is i's parent (-1: a root), and M_ij = 0 unless one of i, j is
+     * an ancestor of the other.  The runtime then factors M by
+     * Featherstone's LTDL, which keeps that sparsity (no fill-in), in
+     * place of the dense factorization.  NULL: dense. */
+    const int *mass_parent;
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

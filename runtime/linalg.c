@@ -204,6 +204,41 @@ la_ldlt_factor(double *M, int n, double *rel, size_t *perm)
     return 0;
 }
 
+int
+la_ltdl_factor(double *M, int n, const int *parent, double *rel)
+{
+    for (int k = 0; k < n; k++)
+        rel[k] = M[k * n + k];
+    for (int k = n - 1; k >= 0; k--) {
+        double d = M[k * n + k];
+        if (!(d > EOMC_PIVOT_TOL * rel[k]))
+            return k + 1;
+        for (int i = parent[k]; i >= 0; i = parent[i]) {
+            double a = M[k * n + i] / d;
+            for (int j = i; j >= 0; j = parent[j])
+                M[i * n + j] -= a * M[k * n + j];
+            M[k * n + i] = a;
+        }
+        rel[k] = d / rel[k];
+    }
+    return 0;
+}
+
+void
+la_ltdl_solve_neg(const double *LDL, int n, const int *parent, double *b)
+{
+    for (int i = n - 1; i >= 0; i--) /* L^T y = b */
+        for (int j = parent[i]; j >= 0; j = parent[j])
+            b[j] -= LDL[i * n + j] * b[i];
+    for (int i = 0; i < n; i++) /* D, then L x = y, and the sign */
+        b[i] /= LDL[i * n + i];
+    for (int i = 0; i < n; i++)
+        for (int j = parent[i]; j >= 0; j = parent[j])
+            b[i] -= LDL[i * n + j] * b[j];
+    for (int i = 0; i < n; i++)
+        b[i] = -b[i];
+}
+
 void
 la_ldlt_solve(double *LDL, int n, size_t *perm, double *b)
 {

@@ -65,6 +65,17 @@ void la_lu_near_null(LaLu *lu, double *y);
  * measure; perm [n] is the permutation, for the solves.  Never calls GSL's
  * error handler. */
 int la_ldlt_factor(double *M, int n, double *rel, size_t *perm);
+/* M = L^T D L in place when M_ij = 0 unless one of i, j is an ancestor
+ * of the other in the tree parent[] (parent[i] < i, -1 a root):
+ * Featherstone's LTDL (Rigid Body Dynamics Algorithms, sec. 6.5), which
+ * has no fill-in, so it costs the sum of the squared depths instead of
+ * n^3/6.  Only the lower triangle's ancestor entries are read and written.
+ * Returns and rel[] as la_ldlt_factor's, in elimination order (the last
+ * coordinate first).  No pivoting: the tree fixes the order, and the
+ * pivot check stops a run whose M is not safely positive definite. */
+int la_ltdl_factor(double *M, int n, const int *parent, double *rel);
+/* b = -M^-1 b with M factored by la_ltdl_factor. */
+void la_ltdl_solve_neg(const double *LDL, int n, const int *parent, double *b);
 /* b = M^-1 b, and b = -M^-1 b, with M factored by la_ldlt_factor. */
 void la_ldlt_solve(double *LDL, int n, size_t *perm, double *b);
 void la_ldlt_solve_neg(double *LDL, int n, size_t *perm, double *b);

@@ -342,12 +342,16 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
             s->pivot = pivot;
     } else {
         m->mass_bias(t, q, v, s->p, s->u, s->M, a);
-        if ((k = la_ldlt_factor(s->M, n, s->Mrel, s->Mperm)) != 0)
+        if ((k = m->mass_parent ? la_ltdl_factor(s->M, n, m->mass_parent, s->Mrel)
+                                : la_ldlt_factor(s->M, n, s->Mrel, s->Mperm)) != 0)
             return pivot_error(s, t, q, v, k);
         for (int i = 0; i < n; i++)
             if (s->Mrel[i] < s->pivot)
                 s->pivot = s->Mrel[i];
-        la_ldlt_solve_neg(s->M, n, s->Mperm, a);
+        if (m->mass_parent)
+            la_ltdl_solve_neg(s->M, n, m->mass_parent, a);
+        else
+            la_ldlt_solve_neg(s->M, n, s->Mperm, a);
     }
     if (nonfinite_sum(a, n) != 0.0)
         for (int i = 0; i < n; i++)

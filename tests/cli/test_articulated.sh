@@ -7,7 +7,17 @@
 #    Lagrange's to 1e-11 of the largest |q''|;
 #  - a run to t = 1 at rtol 1e-12 ends where Lagrange's does, to 1e-8;
 #  - at gimbal lock (the pelvis's x turn at pi/2 lines its z and y turns
-#    up) M is singular: --accel stops with exit 3 and names the pivot.
+#    up) M is singular: --accel stops with exit 3 and names the pivot;
+#  - past 24 coordinates the factored forms still unroll their LDL^T where
+#    M's branch-induced zeros make it no longer than a dense 24 (gen_tree
+#    9, 27 coordinates): newton-euler's --accel from it equals the
+#    articulated-body recursion's to 1e-11; a dense M of 30 (the particle
+#    chain) is left to the runtime (accel member NULL);
+#  - further on, a tree's M goes to the runtime with its tree of nonzeros
+#    (gen_tree 20, 60 coordinates: mass_parent), which factors it by LTDL:
+#    newton-euler's --accel equals the articulated-body recursion's (as
+#    tables) to 1e-11, and at gimbal lock it stops with exit 3 and names
+#    the pivot.
 # usage: test_articulated.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -60,4 +70,56 @@ st=$?
 [ $st -eq 3 ] && grep -q 'mass matrix is singular or not positive definite' "$tmp/err" &&
   grep -q 'coordinate pelvis_' "$tmp/err"
 ok $? "gimbal lock: exit $st, the singular pivot named"
+
+sh "$src/specs/gen_tree.sh" 9 > "$tmp/tree9.yaml"
+init=
+k=0
+for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/tree9.yaml" | tr -d ','); do
+  k=$((k + 1))
+  init="$init --init $c=0.$((k % 7 + 1)) --init $c'=-0.$((k % 5 + 2))"
+done
+"$eomc" compile "$tmp/tree9.yaml" --form newton-euler -o "$tmp/ne9.c" &&
+  grep -q '^    tree9_accel,$' "$tmp/ne9.c"
+st1=$?
+# shellcheck disable=SC2086
+"$eomc" run "$tmp/tree9.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&
+  "$eomc" run "$tmp/tree9.yaml" --form articulated-body $init --accel > "$tmp/ab.acc"
+st=$?
+d=$(awk 'NR == FNR { w[$1] = $2; next }
+       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
+         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
+       END { if (n < 27 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$tmp/ab.acc" "$tmp/ne.acc")
+[ $st1 -eq 0 ] && [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
+ok $? "27 coordinates: newton-euler's unrolled sparse LDL^T = the recursion, to $d"
+sh "$src/specs/gen_chain.sh" 30 > "$tmp/chain30.yaml"
+"$eomc" compile "$tmp/chain30.yaml" --form lagrange -o "$tmp/c30.c" &&
+  grep -q '^    NULL, /\* more than 24 coordinates' "$tmp/c30.c"
+ok $? "a dense M of 30 coordinates: no unrolled solve, the runtime's"
+
+sh "$src/specs/gen_tree.sh" 20 > "$tmp/tree20.yaml"
+init=
+k=0
+for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/tree20.yaml" | tr -d ','); do
+  k=$((k + 1))
+  init="$init --init $c=0.$((k % 7 + 1)) --init $c'=-0.$((k % 5 + 2))"
+done
+"$eomc" compile "$tmp/tree20.yaml" --form newton-euler -o "$tmp/ne20.c" &&
+  grep -q '^    mass_parent, /\* M factored by LTDL' "$tmp/ne20.c"
+st1=$?
+# shellcheck disable=SC2086
+"$eomc" run "$tmp/tree20.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&
+  "$eomc" run "$tmp/tree20.yaml" --code tables $init --accel > "$tmp/ab.acc"
+st=$?
+d=$(awk 'NR == FNR { w[$1] = $2; next }
+       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
+         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
+       END { if (n < 60 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$tmp/ab.acc" "$tmp/ne.acc")
+[ $st1 -eq 0 ] && [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
+ok $? "60 coordinates: newton-euler's M factored by LTDL in the runtime = the recursion, to $d"
+"$eomc" run "$tmp/tree20.yaml" --form newton-euler --init pelvis_b=1.5707963267948966 \
+    --accel > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 3 ] && grep -q 'mass matrix is singular or not positive definite' "$tmp/err" &&
+  grep -q 'coordinate pelvis_' "$tmp/err"
+ok $? "LTDL at gimbal lock: exit $st, the singular pivot named"
 tap_end

@@ -92,8 +92,8 @@ static const unsigned char no_fixed[8];
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* ... and no outputs nor events (they follow the checks), nor the scene's
- * assembly. */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL
+ * assembly, nor a sparse mass matrix. */
+#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void

@@ -110,8 +110,10 @@ typedef struct eomc_model {
      * bound on M's condition number).  The articulated-body form has it
      * at any size, computed by its recursion (M never formed; its pivots
      * are those of LDL^T eliminating the leaves first).  NULL for large
-     * models of the other forms (nq > 24), where the runtime factors
-     * mass_bias's M with GSL instead, and for constrained ones. */
+     * models of the other forms (nq > 24, unless M's structural zeros
+     * keep the unrolled solve as short as a dense one of 24), where the
+     * runtime factors mass_bias's M (by LTDL along mass_parent, or with
+     * GSL), and for constrained ones. */
     int (*accel)(double t, const double *q, const double *v, const double *p,
                  const double *u, double *a, double *pivot);
 

@@ -770,13 +770,15 @@ print_mass_columns(Printer *pr, const Lowered *L)
     snprintf(fname, sizeof fname, "%s_mass_bias", nm);
     print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
-    println(pr, "    eomc_real seed[%d];", n);
+    println(pr, "    eomc_real seed[%d], col[%d];", n, n);
     println(pr, "    %s_bias(t, q, v, p, u, h);", nm);
     println(pr, "    for (int j = 0; j < %d; j++)", n);
     println(pr, "        seed[j] = 0.0;");
-    println(pr, "    for (int j = 0; j < %d; j++) {", n);
+    println(pr, "    for (int j = 0; j < %d; j++) { /* the lower triangle, mirrored */", n);
     println(pr, "        seed[j] = 1.0;");
-    println(pr, "        %s_mass_times(t, q, v, p, u, seed, M + j);", nm);
+    println(pr, "        %s_mass_times(t, q, v, p, u, seed, col);", nm);
+    println(pr, "        for (int i = j; i < %d; i++)", n);
+    println(pr, "            M[i * %d + j] = M[j * %d + i] = col[i];", n, n);
     println(pr, "        seed[j] = 0.0;");
     println(pr, "    }");
     println(pr, "}\n");
@@ -862,26 +864,32 @@ print_tree_turns(Printer *pr, const Lowered *L)
     println(pr, "\n};\n");
 }
 
-/* energy in table mode: V from potential, T = q' . M q' / 2 with M q' by
- * the Newton-Euler recursion at q' = 0, q'' = q' (T is a quadratic form
- * in q' on a tree). */
+/* energy of a tree: V from potential, T = q' . M q' / 2 (T is a
+ * quadratic form in q' on a tree) with M q' by mass_times, or by the
+ * Newton-Euler recursion over the tables at q' = 0, q'' = q'. */
 static void
 print_tree_energy(Printer *pr, const Lowered *L)
 {
     const char *nm = pr->s->name;
-    int n = L->n, nt = L->tables->nt;
+    int n = L->n;
     char fname[128];
     println(pr, "/* Kinetic energy T and potential energy V: T = q'.M q'/2, with M q' by");
-    println(pr, " * the recursion over the tables. */");
+    println(pr, " * %s. */", L->tables ? "the recursion over the tables" : "mass_times");
     snprintf(fname, sizeof fname, "%s_energy", nm);
     print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *TV");
-    println(pr, "    eomc_real zero[%d], Mv[%d], w[%d * EOMC_TREE_WORK], T = 0.0;", n, n, nt);
+    println(pr, "    eomc_real Mv[%d], T = 0.0;", n);
     println(pr, "    %s_potential(t, q, v, p, u, TV + 1);", nm);
-    println(pr, "    for (int j = 0; j < %d; j++)", n);
-    println(pr, "        zero[j] = 0.0;");
-    println(pr, "    eomc_tree_rnea(%s_turns, %d, p + %d, NULL, q, zero, v, w, Mv);", nm, nt,
-            pr->s->np + L->tree_base);
+    if (L->tables) {
+        int nt = L->tables->nt;
+        println(pr, "    eomc_real zero[%d], w[%d * EOMC_TREE_WORK];", n, nt);
+        println(pr, "    for (int j = 0; j < %d; j++)", n);
+        println(pr, "        zero[j] = 0.0;");
+        println(pr, "    eomc_tree_rnea(%s_turns, %d, p + %d, NULL, q, zero, v, w, Mv);", nm, nt,
+                pr->s->np + L->tree_base);
+    } else {
+        println(pr, "    %s_mass_times(t, q, v, p, u, v, Mv);", nm);
+    }
     println(pr, "    for (int i = 0; i < %d; i++)", n);
     println(pr, "        T += v[i] * Mv[i];");
     println(pr, "    TV[0] = 0.5 * T;");

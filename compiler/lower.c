@@ -51,8 +51,8 @@ static const LowSig s_bias = {
 };
 static const LowSig s_mass_times = {
     "mass_times",
-    "Mx[i*nq] = sum_j M_ij da[j]: the derivative of E along da in q'' (E is\n"
-    " * linear in q''), for mass_bias.",
+    "Mx[i] = sum_j M_ij da[j]: the derivative of E along da in q'' (E is\n"
+    " * linear in q''), for mass_bias and energy.",
     "t q v p u da > Mx",
 };
 static const LowSig s_potential = {
@@ -507,7 +507,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
         diff_jvp(D, n, e->E, n, m->q[2], seed, Mx);
         f = func(&lw, &s_mass_times, "mass_bias", 0);
         for (int i = 0; i < n; i++)
-            out(&lw, f, 0, i * n, Mx[i]);
+            out(&lw, f, 0, i, Mx[i]);
         lw.L->mass_times = f;
     } else {
         eom_mass(e, m, A, P, D);
@@ -522,7 +522,9 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
                 out(&lw, f, 0, i * n + j, e->M[i * n + j]);
     }
 
-    if (tb) { /* T = q' . M q' / 2 by the tables' recursion, energy by hand */
+    if (tb || lw.L->mass_times) {
+        /* T = q' . M q' / 2 (a tree's T is a quadratic form in q') by the
+         * tables' recursion or mass_times: energy by hand */
         f = func(&lw, &s_potential, "energy", 1);
         out(&lw, f, 0, 0, m->V);
         lw.L->potential = f;

@@ -5,7 +5,9 @@
 # articulated-body one recurses over the tree: two independent solves):
 #  - --accel at a state with every angle and rate set agrees with
 #    Lagrange's to 1e-11 of the largest |q''|;
-#  - a run to t = 1 at rtol 1e-12 ends where Lagrange's does, to 1e-8;
+#  - a run to t = 1 at rtol 1e-12 ends where Lagrange's does, to 1e-8,
+#    and its energy (T = q'.M q'/2 by the form's mass_times) starts at
+#    Lagrange's, to the 10 digits the summary prints;
 #  - at gimbal lock (the pelvis's x turn at pi/2 lines its z and y turns
 #    up) M is singular: --accel stops with exit 3 and names the pivot;
 #  - past 24 coordinates the factored forms still unroll their LDL^T where
@@ -56,13 +58,18 @@ row_diff() {
 }
 # shellcheck disable=SC2086
 "$eomc" run "$tmp/tree5.yaml" --form articulated-body $init --t-end 1 --rtol 1e-12 \
-    --atol 1e-12 | tail -n 1 > "$tmp/ab.row" &&
-  "$eomc" run "$tmp/tree5.yaml" --form lagrange $init --t-end 1 --rtol 1e-12 --atol 1e-12 |
-    tail -n 1 > "$tmp/lag.row"
+    --atol 1e-12 --summary 2> "$tmp/ab.sum" | tail -n 1 > "$tmp/ab.row" &&
+  "$eomc" run "$tmp/tree5.yaml" --form lagrange $init --t-end 1 --rtol 1e-12 --atol 1e-12 \
+    --summary 2> "$tmp/lag.sum" | tail -n 1 > "$tmp/lag.row"
 st=$?
 d=$(row_diff "$tmp/ab.row" "$tmp/lag.row")
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-8) }'
 ok $? "a run to t = 1: articulated-body ends where lagrange does, to $d"
+# its energy's T is q'.M q'/2 by mass_times; lagrange's is the spec's T
+e1=$(tr '\n' ' ' < "$tmp/ab.sum" | sed -n 's/.*E started at \([-0-9.e+]*\);.*/\1/p')
+e2=$(tr '\n' ' ' < "$tmp/lag.sum" | sed -n 's/.*E started at \([-0-9.e+]*\);.*/\1/p')
+[ -n "$e1" ] && [ "$e1" = "$e2" ]
+ok $? "E = T + V with T = q'.M q'/2: $e1, lagrange's $e2 (the 10 digits printed)"
 
 "$eomc" run "$tmp/tree5.yaml" --form articulated-body --init pelvis_b=1.5707963267948966 \
     --accel > "$tmp/out" 2> "$tmp/err"

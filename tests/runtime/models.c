@@ -193,6 +193,7 @@ const eomc_model osc_event_model = {
     0, NULL, NULL,
     1, ose_names, ose_direction, ose_action, ose_events, NULL,
     0, NULL, /* no assembly */
+    NULL,    /* M dense */
 };
 
 void

@@ -12,6 +12,9 @@
 #    Lagrange's does, to the 10 digits the summary prints;
 #  - --linearize (mass_bias by the recursion's columns) gives the A of the
 #    straight-line articulated-body code to 1e-11 of max |A|;
+#  - units: with the mass unit made 1e-6 kg, the length unit 1e4 m and the
+#    time unit 1e3 s (m * 1e6, l * 1e-4, g * 1e-4 / 1e6, rates / 1e3),
+#    q'' * 1e6 is the same to 1e-11 (no threshold of the loops is absolute);
 #  - the banner says the code is tables, and the default picks tables past
 #    the size of straight-line solve that compiles quickly (gen_tree 40),
 #    not below it (gen_tree 5).
@@ -75,6 +78,20 @@ e2=$(tr '\n' ' ' < "$tmp/lag.sum" | sed -n 's/.*E started at \([-0-9.e+]*\);.*/\
 [ -n "$e1" ] && [ -n "$e2" ] &&
   [ "$e1" = "$e2" ]
 ok $? "E = T + V with T by the recursion: $e1, lagrange's $e2"
+
+# units: every velocity / tau, m * 1e6, l * 1e-4, g * 1e-4 / tau^2, tau = 1e3
+tau=1000
+slow=$(init "$tmp/tree5.yaml" | awk -v tau=$tau '{ for (i = 1; i <= NF; i++) { if ($i ~ /'"'"'=/) {
+  split($i, kv, "="); $i = sprintf("%s=%.17g", kv[1], kv[2] / tau) } } print }')
+# shellcheck disable=SC2086
+"$eomc" run "$tmp/tree5.yaml" --code tables $(init "$tmp/tree5.yaml") --accel > "$tmp/si.acc" &&
+  "$eomc" run "$tmp/tree5.yaml" --code tables $slow --set m=1e6 --set l=0.3e-4 \
+    --set g=9.81e-10 --accel > "$tmp/scaled.acc"
+st=$?
+awk -v tau=$tau '{ printf "%s %.17g\n", $1, $2 * tau * tau }' "$tmp/scaled.acc" > "$tmp/back.acc"
+d=$(accel_diff "$tmp/back.acc" "$tmp/si.acc" 15)
+[ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
+ok $? "units of mass, length and time rescaled: q'' the same to $d"
 
 lin="--init pelvis_a'=0.3 --init spine2_c'=-0.7 --init spine3_b'=0.4"
 # shellcheck disable=SC2086

@@ -423,12 +423,16 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
         eomc_real Dinv = wk[EOMC_TW_DINV], uD = wk[EOMC_TW_SU] * Dinv, W[6], pa[6];
         for (int i = 0; i < 6; i++)
             W[i] = U[i] * Dinv;
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-                A[3 * i + j] -= U[i] * W[j];
+        for (int i = 0; i < 3; i++) { /* A and C symmetric: one triangle, mirrored */
+            for (int j = 0; j < 3; j++)
                 B[3 * i + j] -= U[i] * W[3 + j];
+            for (int j = i; j < 3; j++) {
+                A[3 * i + j] -= U[i] * W[j];
                 Cb[3 * i + j] -= U[3 + i] * W[3 + j];
+                A[3 * j + i] = A[3 * i + j];
+                Cb[3 * j + i] = Cb[3 * i + j];
             }
+        }
         if (t->axis < 3) { /* Ia S = 0: a zero row and column, to the bit */
             int a = t->axis;
             for (int i = 0; i < 3; i++)

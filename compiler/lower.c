@@ -447,11 +447,15 @@ lower_events(Lowering *lw)
     }
 }
 
-/* Whether the model's accel and mass_bias are loops over its tables. */
+/* Whether the model's accel and mass_bias are loops over its tables; *why
+ * when they are asked for and cannot be. */
 static const FormTables *
 tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A,
-           ExprPool *P, Diff *D)
+           ExprPool *P, Diff *D, const char **why)
 {
+    *why = NULL;
+    if (code == LOWER_CODE_TABLES && (c || !e->acc || e->form != &form_articulated))
+        *why = c ? "the model is constrained" : "its form is not articulated-body";
     if (code == LOWER_CODE_STRAIGHT || c || !e->acc || e->form != &form_articulated)
         return NULL;
     if (code == LOWER_CODE_AUTO) { /* the solve, the bias and the energies */
@@ -466,8 +470,11 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A
         if (k.adds + k.muls + k.divs + k.calls <= LOWER_TABLES_MIN)
             return NULL;
     }
-    const char *why;
-    return form_tables(m, A, P, D, &why);
+    const char *no;
+    const FormTables *tb = form_tables(m, A, P, D, &no);
+    if (!tb && code == LOWER_CODE_TABLES)
+        *why = no;
+    return tb;
 }
 
 Lowered *
@@ -487,7 +494,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
 
     lower_inputs(&lw);
 
-    const FormTables *tb = tables_for(m, e, c, code, A, P, D);
+    const FormTables *tb = tables_for(m, e, c, code, A, P, D, &lw.L->tables_why);
     lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;
     lw.L->tables = tb;
     if (tb) {

@@ -89,6 +89,7 @@ typedef struct Lowered {
      * the tables, whose numbers are pd[tree_base ...] */
     int code;
     const FormTables *tables;
+    const char *tables_why; /* --code tables asked, and why they could not be */
     LowFunc *tau, *potential;
     int tree_base;
     int n;                /* coordinates */

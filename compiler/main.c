@@ -360,6 +360,9 @@ compile(const Options *o, FILE *out)
                              .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
             Lowered *L = out ? lower_model(s, m, e, c, inv, jac, code, A, P, D) : NULL;
+            if (L && L->tables_why)
+                fprintf(stderr, "%s: note: --code tables: not here (%s); the code is "
+                        "straight-line\n", o->spec, L->tables_why);
             if (o->explain)
                 explain(s, form, c, inv, &info, L);
             if (out) {

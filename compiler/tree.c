@@ -1,16 +1,22 @@
 /*
- * tree: recognize a tree of rigid bodies on turning joints in a spec's
- * frames and points (tree.h), and gather each frame's spatial inertia.
+ * tree: recognize a tree of rigid bodies on turning and sliding joints in
+ * a spec's frames and points (tree.h), and place each joint and mass in
+ * its own coordinates.
  *
  * Why the pivot is all that is needed: a mass at point P hangs from the
- * origin through links d_1 ... d_L (each fixed in its frame), so
- *     v_P = sum_links w_f(link) x d_link,   w_f = sum_{turns above f} a th'.
+ * origin through links d_1 ... d_L (each fixed in its frame, or sliding
+ * along a constant direction in it), so
+ *     v_P = sum_links (w_f(link) x d_link + d_link'),
+ *     w_f = sum_{turns above f} a th'.
  * A turn of frame g moves the links in g's subtree.  When those are the
  * last links of the chain, from the point p where the chain enters the
- * subtree, its part of the spatial velocity about the world origin,
- * (w, v_P - w x P), is th' (a, a x (P - p) - a x P) = th' (a, p x a):
- * the same for every mass below g exactly when they all enter the
- * subtree at p.
+ * subtree, its part of the velocity of P is th' a x (P - p): the same
+ * rigid motion for every mass below g exactly when they all enter the
+ * subtree at p.  A sliding link moves everything after it on the chain by
+ * d q', along its direction in its frame's axes.  Walking a mass's chain
+ * from the world outward gives its joints in order: at each link, the
+ * turns of the frames it enters (top down), then the link's slide; each
+ * joint's parent is the one before it, the same for every mass.
  */
 #include "tree.h"
 
@@ -25,13 +31,32 @@ typedef struct Place {
 } Place;
 
 /* One mass: a body (I its inertia about its centre in its frame's axes)
- * or a particle (I NULL). */
+ * or a particle (I NULL), and the chain of links it hangs from (link 0
+ * ends at the mass; link k starts at from[k], -1 the origin, lies in
+ * frame fr[k], and slides as slide sl[k], or -1). */
 typedef struct Mass {
     const char *name;
     int frame, point;
     ExprId m;
     const ExprId *I;
+    int n, *from, *fr, *sl;
 } Mass;
+
+/* A sliding link: it ends at point `point`, lies in kin's frame `frame`,
+ * and its offset is c + d q (q coordinate `coord`, c and d constant). */
+typedef struct Slide {
+    int point, frame, coord;
+    ExprId d[3];
+} Slide;
+
+/* What the search finds, by kin's frames. */
+typedef struct Found {
+    ExprId (*pivot)[3]; /* each frame's pivot (EXPR_NONE: not set) */
+    int *pivot_pt;      /* a point there */
+    int *above;         /* the frame is above a mass */
+    Slide *slide;
+    int nslide;
+} Found;
 
 static int
 constant_in_time(Diff *D, ExprId e)
@@ -60,29 +85,69 @@ depth(const Kin *K, int f)
     return d;
 }
 
-/* Check the chain of m's point, mark the frames above it in used[] and
- * set the pivots of those that turn (pivot[g][0] == EXPR_NONE: not yet
- * set), and a point there (pivot_pt[g]).  Returns the reason it does not fit, or NULL. */
+/* A link's offset at = c + d q_i with c and d constant: 1 (with *coord and
+ * d set), 0 when at depends on no coordinate, -1 otherwise. */
+static int
+affine(const Spec *s, ExprPool *P, Diff *D, const ExprId at[3], int *coord, ExprId d[3])
+{
+    int found = -1;
+    for (int i = 0; i < s->nq; i++) {
+        ExprId qi = expr_var(P, i, 0), di[3];
+        int any = 0;
+        for (int k = 0; k < 3; k++)
+            any |= (di[k] = diff_partial(D, at[k], qi)) != EXPR_ZERO;
+        if (!any)
+            continue;
+        if (found >= 0)
+            return -1;
+        found = i;
+        memcpy(d, di, sizeof di);
+    }
+    if (found < 0)
+        return 0;
+    ExprId qi = expr_var(P, found, 0);
+    for (int k = 0; k < 3; k++) {
+        ExprId c = expr_sub(P, at[k], expr_mul(P, d[k], qi));
+        if (!constant_in_time(D, d[k]) || !constant_in_time(D, c))
+            return -1;
+    }
+    *coord = found;
+    return 1;
+}
+
+/* Check the chain of m's point and keep it, mark the frames above it in
+ * found->above, set the pivots of those that turn, and gather its sliding
+ * links.  Returns the reason it does not fit, or NULL. */
 static const char *
-hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *pivot_pt, int *used)
+hang(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Mass *ms, Found *fd)
 {
     /* the chain is kept on the stack; a longer one is refused, and
      * Lagrange's form derives the model as before */
     enum { CHAIN_MAX = 256 };
-    int from[CHAIN_MAX], fr[CHAIN_MAX], n = 0;
+    int from[CHAIN_MAX], fr[CHAIN_MAX], sl[CHAIN_MAX], n = 0;
     for (int p = ms->point; p > KIN_ORIGIN; n++) {
         if (n == CHAIN_MAX)
             return arena_printf(A, "'%s' hangs from more than %d points", ms->name, CHAIN_MAX);
-        ExprId at[3], off[3];
+        ExprId at[3], off[3], d[3];
         from[n] = kin_point_link(K, p, &fr[n], at, off);
+        sl[n] = -1;
+        int varies = 0, coord;
         for (int k = 0; k < 3; k++)
-            if (!constant_in_time(D, at[k]))
-                return arena_printf(A, "the position of '%s' slides in a frame (an offset "
-                                    "moves with the coordinates or time)", ms->name);
+            varies |= !constant_in_time(D, at[k]);
+        if (varies) {
+            if (affine(s, P, D, at, &coord, d) != 1)
+                return arena_printf(A, "the position of '%s' slides in a frame other than "
+                                    "along a constant direction by one coordinate",
+                                    ms->name);
+            int j = 0;
+            while (j < fd->nslide && fd->slide[j].point != p)
+                j++;
+            if (j == fd->nslide)
+                fd->slide[fd->nslide++] = (Slide){p, fr[n], coord, {d[0], d[1], d[2]}};
+            sl[n] = j;
+        }
         p = from[n] < 0 ? KIN_ORIGIN : from[n];
     }
-    /* link 0 ends at the mass, link n - 1 starts at the origin; link k
-     * starts at from[k] and is fixed in frame fr[k] */
     if (ms->frame < 0) { /* a particle: it moves with its deepest link's frame */
         ms->frame = KIN_WORLD;
         for (int k = 0; k < n; k++)
@@ -99,7 +164,7 @@ hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *pivot_p
     for (int k = 0; k < n; k++)
         dep[k] = depth(K, fr[k]);
     for (int g = ms->frame; g > KIN_WORLD; g = kin_parent(K, g), dg--) {
-        used[g] = 1;
+        fd->above[g] = 1;
         /* the links in g's subtree must be the outermost ones */
         int k = 0;
         while (k < n && dep[k] >= dg)
@@ -113,14 +178,21 @@ hang(const Kin *K, Arena *A, Diff *D, Mass *ms, ExprId (*pivot)[3], int *pivot_p
         ExprId p[3];
         int pt = k == 0 ? ms->point : from[k - 1];
         kin_pos(K, pt, p);
-        if (pivot[g][0] == EXPR_NONE) {
-            memcpy(pivot[g], p, sizeof p);
-            pivot_pt[g] = pt;
-        } else if (memcmp(pivot[g], p, sizeof p)) {
+        if (fd->pivot[g][0] == EXPR_NONE) {
+            memcpy(fd->pivot[g], p, sizeof p);
+            fd->pivot_pt[g] = pt;
+        } else if (memcmp(fd->pivot[g], p, sizeof p)) {
             return arena_printf(A, "a frame turns '%s' about another point than the other "
                                 "masses it turns", ms->name);
         }
     }
+    ms->n = n;
+    ms->from = arena_new_array(A, int, n + 1);
+    ms->fr = arena_new_array(A, int, n + 1);
+    ms->sl = arena_new_array(A, int, n + 1);
+    memcpy(ms->from, from, (size_t)n * sizeof *from);
+    memcpy(ms->fr, fr, (size_t)n * sizeof *fr);
+    memcpy(ms->sl, sl, (size_t)n * sizeof *sl);
     return NULL;
 }
 
@@ -211,78 +283,132 @@ offset_in(const Kin *K, Arena *A, ExprPool *P, int p, const ExprId o[3], Place x
     }
 }
 
-/* The turns' and masses' local coordinates (tree.h).  kid: each tree
- * frame's frame in kin; at: each turn's place. */
+/* The joints as they are found: turn ids first (by kin's frames, then
+ * their turns), then the slides. */
+typedef struct Joints {
+    int nturn, n;
+    int *first;     /* per kin frame: the id of its first coordinate turn */
+    int *nct;       /* per kin frame: how many */
+    Place *place;   /* per id: its axes */
+    int *origin;    /* per id: a point at its origin (0: the world's) */
+    int *coord;     /* per id */
+    int *up;        /* per id: the joint before it (-1 the world; -2 not yet seen) */
+} Joints;
+
+/* up[j] = prev, or the reason two masses disagree. */
 static const char *
-localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t, const int *kid,
-         const Place *at, ExprId (*pivot)[3], const int *pivot_pt, const Mass *ms, int nm,
-         const int *index)
+link_joint(Joints *J, Arena *A, const Mass *ms, int prev, int j)
 {
-    static const char *const moves = "a turn's local offset or inertia moves (a tree "
-                                     "eomc cannot yet put in local coordinates)";
-    int nf = t->nframes;
-    typedef ExprId Point3[3];
-    Point3 *o = arena_new_array(A, Point3, nf + 1); /* each frame's origin, world */
-    for (int fi = 0; fi < nf; fi++) {
-        TreeFrame *f = &t->frame[fi];
-        for (int i = 0; i < 3; i++)
-            o[fi][i] = f->nturns ? pivot[kid[fi]][i] : f->parent >= 0 ? o[f->parent][i]
-                                                                      : EXPR_ZERO;
-        f->carrier = f->nturns ? f->first + f->nturns - 1
-                               : f->parent >= 0 ? t->frame[f->parent].carrier : -1;
-        for (int k = f->first; k < f->first + f->nturns; k++) {
-            TreeTurn *tk = &t->turn[k];
-            tk->up = k > f->first ? k - 1 : f->parent >= 0 ? t->frame[f->parent].carrier : -1;
-            Place up = tk->up >= 0 ? at[tk->up] : (Place){KIN_WORLD, 0};
-            axes_between(K, A, P, up, at[k], tk->Q);
-            axes_between(K, A, P, up, (Place){at[k].f, at[k].n - 1}, tk->Qf);
-            ExprId Rk[9];
-            kin_turn_local(K, at[k].f, at[k].n - 1, &tk->angle, tk->al, Rk);
-            if (k > f->first) {
-                tk->r[0] = tk->r[1] = tk->r[2] = EXPR_ZERO;
-                continue;
-            }
-            /* the origin of the frame that holds the turn above */
-            int fu = f->parent;
-            while (fu >= 0 && t->frame[fu].nturns == 0)
-                fu = t->frame[fu].parent;
-            const ExprId zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
-            if (!offset_in(K, A, P, pivot_pt[kid[fi]], fu >= 0 ? o[fu] : zero, up, tk->r))
-                return moves;
-            for (int i = 0; i < 3; i++)
-                if (!constant_in_time(D, tk->r[i]))
-                    return moves;
+    if (J->up[j] == -2)
+        J->up[j] = prev;
+    else if (J->up[j] != prev)
+        return arena_printf(A, "the joints above '%s' come in another order than above the "
+                            "other masses they move", ms->name);
+    return NULL;
+}
+
+/* Walk ms's chain from the world outward: each joint's parent, and the
+ * last one (its carrier) in *carrier (-1: none, it does not move). */
+static const char *
+sequence(const Kin *K, Arena *A, Joints *J, const Mass *ms, int *carrier)
+{
+    int prev = -1, dmax = 0;
+    const char *why;
+    for (int k = ms->n; k >= 0; k--) { /* k = -1: the mass's own frame, at its point */
+        int f = k > 0 ? ms->fr[k - 1] : ms->frame, d = depth(K, f);
+        if (d > dmax) { /* the frames entered: depths dmax + 1 .. d, top down */
+            int *path = arena_new_array(A, int, d - dmax + 1), np = 0;
+            for (int g = f; depth(K, g) > dmax; g = kin_parent(K, g))
+                path[np++] = g;
+            for (int i = np - 1; i >= 0; i--)
+                for (int t = 0; t < J->nct[path[i]]; t++) {
+                    int j = J->first[path[i]] + t;
+                    if ((why = link_joint(J, A, ms, prev, j)))
+                        return why;
+                    prev = j;
+                }
+            dmax = d;
         }
-        f->m = f->h[0] = f->h[1] = f->h[2] = EXPR_ZERO;
+        if (k > 0 && ms->sl[k - 1] >= 0) {
+            int j = J->nturn + ms->sl[k - 1];
+            if ((why = link_joint(J, A, ms, prev, j)))
+                return why;
+            prev = j;
+        }
+    }
+    *carrier = prev;
+    return NULL;
+}
+
+/* Each joint's and mass's local coordinates (tree.h), in `order`. */
+static const char *
+localize(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
+         const Joints *J, const int *order, const int *pos, const Mass *ms, int nm,
+         const int *carrier)
+{
+    static const char *const moves = "a joint's local offset or inertia moves (a tree "
+                                     "eomc cannot yet put in local coordinates)";
+    const ExprId zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    for (int k = 0; k < J->n; k++) {
+        int j = order[k], u = J->up[j];
+        TreeTurn *tk = &t->turn[k];
+        tk->coord = J->coord[j];
+        tk->up = u >= 0 ? pos[u] : -1;
+        tk->slide = j >= J->nturn;
+        Place up = u >= 0 ? J->place[u] : (Place){KIN_WORLD, 0}, at = J->place[j];
+        axes_between(K, A, P, up, at, tk->Q);
+        ExprId uo[3];
+        memcpy(uo, zero, sizeof uo);
+        if (u >= 0 && J->origin[u] > KIN_ORIGIN)
+            kin_pos(K, J->origin[u], uo);
+        if (!offset_in(K, A, P, J->origin[j], uo, up, tk->r))
+            return moves;
+        if (tk->slide) {
+            memcpy(tk->Qf, tk->Q, sizeof tk->Q);
+            tk->angle = EXPR_NONE;
+            ExprId at3[3], off[3]; /* the direction, in its frame's axes: its own */
+            int f, coord;
+            kin_point_link(K, J->origin[j], &f, at3, off);
+            affine(s, P, D, at3, &coord, tk->al);
+            continue;
+        }
+        axes_between(K, A, P, up, (Place){at.f, at.n - 1}, tk->Qf);
+        ExprId Rk[9];
+        kin_turn_local(K, at.f, at.n - 1, &tk->angle, tk->al, Rk);
+        for (int i = 0; i < 3; i++)
+            if (!constant_in_time(D, tk->r[i]))
+                return moves;
+    }
+    for (int k = 0; k < J->n; k++) {
+        TreeTurn *tk = &t->turn[k];
+        tk->m = tk->h[0] = tk->h[1] = tk->h[2] = EXPR_ZERO;
         for (int i = 0; i < 9; i++)
-            f->I[i] = EXPR_ZERO;
+            tk->I[i] = EXPR_ZERO;
     }
     for (int k = 0; k < nm; k++) {
-        if (ms[k].frame <= KIN_WORLD)
+        int c = carrier[k];
+        if (c < 0) /* no joint moves it */
             continue;
-        int fi = index[ms[k].frame], c = t->frame[fi].carrier;
-        if (c < 0)
-            continue;
-        TreeFrame *f = &t->frame[fi];
-        int fc = 0; /* the tree frame of the carrier */
-        while (!(t->frame[fc].first <= c && c < t->frame[fc].first + t->frame[fc].nturns))
-            fc++;
-        ExprId d[3], Q[9], J[9];
-        if (!offset_in(K, A, P, ms[k].point, o[fc], at[c], d))
+        TreeTurn *tc = &t->turn[pos[c]];
+        ExprId o[3], d[3], Q[9], Jm[9];
+        memcpy(o, zero, sizeof o);
+        if (J->origin[c] > KIN_ORIGIN)
+            kin_pos(K, J->origin[c], o);
+        if (!offset_in(K, A, P, ms[k].point, o, J->place[c], d))
             return moves;
-        axes_between(K, A, P, at[c], (Place){ms[k].frame, nturns_of(K, ms[k].frame)}, Q);
+        axes_between(K, A, P, J->place[c], (Place){ms[k].frame, nturns_of(K, ms[k].frame)}, Q);
         for (int i = 0; i < 9; i++)
-            J[i] = EXPR_ZERO;
+            Jm[i] = EXPR_ZERO;
         if (ms[k].I) { /* Q I Q^T */
             ExprId QI[9], Qt[9];
             mat3_mul(P, Q, ms[k].I, QI);
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++)
                     Qt[3 * i + j] = Q[3 * j + i];
-            mat3_mul(P, QI, Qt, J);
+            mat3_mul(P, QI, Qt, Jm);
             for (int i = 0; i < 3; i++) /* symmetric to the bit */
                 for (int j = 0; j < i; j++)
-                    J[3 * j + i] = J[3 * i + j];
+                    Jm[3 * j + i] = Jm[3 * i + j];
         }
         /* about the carrier's origin: J + m (|d|^2 1 - d d^T) */
         ExprId h[3];
@@ -298,18 +424,18 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t, const int *kid,
                 } else {
                     e = expr_neg(P, expr_mul(P, h[i], d[j]));
                 }
-                J[3 * i + j] = expr_add(P, J[3 * i + j], e);
+                Jm[3 * i + j] = expr_add(P, Jm[3 * i + j], e);
             }
-        f->m = expr_add(P, f->m, ms[k].m);
+        tc->m = expr_add(P, tc->m, ms[k].m);
         for (int i = 0; i < 3; i++)
-            f->h[i] = expr_add(P, f->h[i], h[i]);
+            tc->h[i] = expr_add(P, tc->h[i], h[i]);
         for (int i = 0; i < 9; i++)
-            f->I[i] = expr_add(P, f->I[i], J[i]);
+            tc->I[i] = expr_add(P, tc->I[i], Jm[i]);
     }
-    for (int fi = 0; fi < nf; fi++) {
-        const TreeFrame *f = &t->frame[fi];
+    for (int k = 0; k < J->n; k++) {
+        const TreeTurn *tk = &t->turn[k];
         for (int i = 0; i < 9; i++)
-            if (!constant_in_time(D, f->I[i]) || (i < 3 && !constant_in_time(D, f->h[i])))
+            if (!constant_in_time(D, tk->I[i]) || (i < 3 && !constant_in_time(D, tk->h[i])))
                 return moves;
     }
     return NULL;
@@ -328,7 +454,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         *why = "the spec places no mass by frames";
         return NULL;
     }
-    int nm = s->nbody + s->npart, nf = kin_nframes(K);
+    int nm = s->nbody + s->npart, nf = kin_nframes(K), np = kin_npoints(K);
     Mass *ms = arena_new_array(A, Mass, nm);
     for (int k = 0; k < s->nbody; k++) {
         const SpecBody *b = &s->body[k];
@@ -337,7 +463,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
                                 "a point", b->name);
             return NULL;
         }
-        ms[k] = (Mass){b->name, b->frame, b->point, b->mass, b->inertia};
+        ms[k] = (Mass){b->name, b->frame, b->point, b->mass, b->inertia, 0, NULL, NULL, NULL};
     }
     for (int k = 0; k < s->npart; k++) {
         const SpecParticle *pt = &s->part[k];
@@ -345,7 +471,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
             *why = arena_printf(A, "particle '%s' is not at a point", pt->name);
             return NULL;
         }
-        ms[s->nbody + k] = (Mass){pt->name, -1, pt->point, pt->mass, NULL};
+        ms[s->nbody + k] = (Mass){pt->name, -1, pt->point, pt->mass, NULL, 0, NULL, NULL, NULL};
     }
     for (int k = 0; k < nm; k++) {
         int varies = !constant_in_time(D, ms[k].m);
@@ -358,43 +484,34 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         }
     }
     typedef ExprId Point3[3];
-    Point3 *pivot = arena_new_array(A, Point3, nf);
-    int *above = arena_new_array(A, int, nf); /* the frame is above a mass */
-    int *pivot_pt = arena_new_array(A, int, nf);
+    Found fd = {arena_new_array(A, Point3, nf), arena_new_array(A, int, nf),
+                arena_new_array(A, int, nf), arena_new_array(A, Slide, np + 1), 0};
     for (int g = 0; g < nf; g++)
-        pivot[g][0] = EXPR_NONE, above[g] = 0;
+        fd.pivot[g][0] = EXPR_NONE, fd.above[g] = 0;
     for (int k = 0; k < nm; k++)
-        if ((*why = hang(K, A, D, &ms[k], pivot, pivot_pt, above)))
+        if ((*why = hang(s, K, A, P, D, &ms[k], &fd)))
             return NULL;
-    /* the frames that turn a mass, numbered in kin's order (parents first) */
-    int *index = arena_new_array(A, int, nf);
-    Tree *t = arena_alloc(A, sizeof *t);
-    t->nframes = t->nturns = 0;
-    for (int g = 1; g < nf; g++) {
-        index[g] = -1;
-        if (above[g]) {
-            index[g] = t->nframes++;
-            ExprId rate, a[3];
-            for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++)
-                t->nturns++;
-        }
-    }
-    t->frame = arena_new_array(A, TreeFrame, t->nframes + 1);
-    t->turn = arena_new_array(A, TreeTurn, t->nturns + 1);
+    /* the coordinate turns of the frames above a mass, in kin's order */
+    Joints J = {0};
+    J.first = arena_new_array(A, int, nf);
+    J.nct = arena_new_array(A, int, nf);
     int *used = arena_new_array(A, int, s->nq + 1);
     for (int i = 0; i < s->nq; i++)
         used[i] = 0;
-    int *kid = arena_new_array(A, int, t->nframes + 1); /* kin's frame */
-    Place *at = arena_new_array(A, Place, t->nturns + 1); /* each turn's place */
-    int nt = 0;
-    for (int g = 1; g < nf; g++) {
-        if (index[g] < 0)
+    int cap = fd.nslide + 1;
+    for (int g = 0; g < nf; g++) {
+        ExprId rate, a[3];
+        for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++)
+            cap++;
+    }
+    J.place = arena_new_array(A, Place, cap);
+    J.origin = arena_new_array(A, int, cap);
+    J.coord = arena_new_array(A, int, cap);
+    J.up = arena_new_array(A, int, cap);
+    for (int g = 0; g < nf; g++) {
+        J.first[g] = J.nturn, J.nct[g] = 0;
+        if (g == KIN_WORLD || !fd.above[g])
             continue;
-        TreeFrame *f = &t->frame[index[g]];
-        kid[index[g]] = g;
-        int pg = kin_parent(K, g);
-        f->parent = pg > KIN_WORLD ? index[pg] : -1;
-        f->first = nt;
         ExprId rate, a[3];
         for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++) {
             if (rate == EXPR_ZERO) /* a fixed angle: part of the frame's shape */
@@ -415,20 +532,55 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
                                     s->coord[i].name);
                 return NULL;
             }
-            t->turn[nt].coord = i;
-            at[nt] = (Place){g, k + 1};
-            nt++;
+            int j = J.nturn++;
+            J.place[j] = (Place){g, k + 1}, J.origin[j] = fd.pivot_pt[g], J.coord[j] = i;
+            J.nct[g]++;
         }
-        f->nturns = nt - f->first;
     }
-    t->nturns = nt;
-    for (int i = 0; i < s->nq; i++)
-        if (!used[i]) {
-            *why = arena_printf(A, "coordinate '%s' is not the angle of a turn",
-                                s->coord[i].name);
+    J.n = J.nturn + fd.nslide;
+    for (int k = 0; k < fd.nslide; k++) {
+        const Slide *sd = &fd.slide[k];
+        int j = J.nturn + k;
+        if (used[sd->coord]++) {
+            *why = arena_printf(A, "coordinate '%s' moves two joints", s->coord[sd->coord].name);
             return NULL;
         }
-    if ((*why = localize(K, A, P, D, t, kid, at, pivot, pivot_pt, ms, nm, index)))
+        J.place[j] = (Place){sd->frame, nturns_of(K, sd->frame)};
+        J.origin[j] = sd->point, J.coord[j] = sd->coord;
+    }
+    for (int i = 0; i < s->nq; i++)
+        if (!used[i]) {
+            *why = arena_printf(A, "coordinate '%s' is not the angle of a turn or the length "
+                                "of a slide", s->coord[i].name);
+            return NULL;
+        }
+    for (int j = 0; j < J.n; j++)
+        J.up[j] = -2;
+    int *carrier = arena_new_array(A, int, nm);
+    for (int k = 0; k < nm; k++)
+        if ((*why = sequence(K, A, &J, &ms[k], &carrier[k])))
+            return NULL;
+    /* parents first: the smallest id whose parent is placed, each time
+     * (the found order itself when there are no slides) */
+    int *order = arena_new_array(A, int, J.n + 1), *pos = arena_new_array(A, int, J.n + 1);
+    for (int j = 0; j < J.n; j++)
+        pos[j] = -1;
+    for (int placed = 0; placed < J.n;) {
+        int before = placed;
+        for (int j = 0; j < J.n; j++)
+            if (pos[j] < 0 && (J.up[j] == -1 || (J.up[j] >= 0 && pos[J.up[j]] >= 0))) {
+                pos[j] = placed, order[placed++] = j;
+                break;
+            }
+        if (placed == before) {
+            *why = "a joint moves no mass";
+            return NULL;
+        }
+    }
+    Tree *t = arena_alloc(A, sizeof *t);
+    t->nturns = J.n;
+    t->turn = arena_new_array(A, TreeTurn, J.n + 1);
+    if ((*why = localize(s, K, A, P, D, t, &J, order, pos, ms, nm, carrier)))
         return NULL;
     return t;
 }

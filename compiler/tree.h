@@ -1,21 +1,23 @@
 /*
- * tree: a spec's masses as a tree of rigid bodies on turning joints, for
- * the recursive forms (forms/newton_euler.c, forms/articulated.c).
+ * tree: a spec's masses as a tree of rigid bodies on turning and sliding
+ * joints, for the recursive forms (forms/newton_euler.c,
+ * forms/articulated.c).
  *
- * It applies when every coordinate is the angle of one turn of a frame,
- * every mass (a body placed by a frame with its centre at a point, or a
- * particle at a point) hangs from the world through offsets fixed in the
- * frames above it, and all the masses a frame turns are turned about one
- * point, its pivot.  A turn then moves everything below it as one rigid
- * body, and the turns are the joints of Featherstone's algorithms.
+ * It applies when every coordinate is the angle of one turn of a frame or
+ * the length of one slide (a point offset c + d q in its frame), every
+ * mass (a body placed by a frame with its centre at a point, or a particle
+ * at a point) hangs from the world through such offsets in the frames
+ * above it, and all the masses a frame turns are turned about one point,
+ * its pivot.  A joint then moves everything after it as one rigid body,
+ * and the joints are those of Featherstone's algorithms.
  *
- * Each turn has its own coordinates: origin at its frame's pivot, axes
- * those of its frame just after it.  Its axis is a constant there, and it
- * sits in the turn above it by a rotation (a constant one, from fixed
- * turns and frames between, times its own Rodrigues matrix) and a
- * constant offset; each frame's masses are constants in the coordinates
- * of the turn that carries them.  So the recursions' transforms are
- * products with few entries that are not constants, which fold.
+ * Each joint has its own coordinates, where its axis is a constant, and
+ * sits in the joint above it by a rotation (a constant one, from fixed
+ * turns and frames between, times a turn's own Rodrigues matrix) and an
+ * offset (constant, or for a slide affine in its length); the masses each
+ * joint carries are constants in its coordinates.  So the recursions'
+ * transforms are products with few entries that are not constants, which
+ * fold.
  */
 #ifndef EOMC_TREE_H
 #define EOMC_TREE_H
@@ -23,31 +25,30 @@
 #include "spec.h"
 #include "diff.h"
 
+/* A joint: a turn of a frame by a coordinate, or a link that slides by
+ * one (its offset c + d q in its frame's axes).  Its own coordinates:
+ * origin at its frame's pivot (a turn) or the link's end (a slide), axes
+ * those of its frame just after the turn (a slide: its frame's). */
 typedef struct TreeTurn {
-    int coord;   /* its angle is coordinate coord */
-    int up;      /* the turn above it: its parent body; -1 the world */
-    ExprId al[3]; /* the axis in its own axes */
-    ExprId angle; /* the angle it turns by (a function of its coordinate) */
+    int coord;    /* its angle or length is coordinate coord */
+    int up;       /* the joint above it: its parent body; -1 the world */
+    int slide;    /* 1: a slide along al; 0: a turn about al */
+    ExprId al[3]; /* the axis or direction in its own axes (a constant) */
+    ExprId angle; /* a turn's angle (a function of its coordinate); EXPR_NONE */
     ExprId Qf[9]; /* the axes just before it in up's (a constant) */
-    ExprId Q[9]; /* its axes in up's: Qf Rk(angle) (row-major, columns the axes) */
-    ExprId r[3]; /* its origin from up's, in up's axes */
+    ExprId Q[9];  /* its axes in up's: Qf Rk(angle) for a turn, Qf for a slide
+                   * (row-major, columns the axes) */
+    ExprId r[3];  /* its origin from up's, in up's axes (constant for a turn,
+                   * c + d q for a slide) */
+    /* The masses it carries last (whose chain of joints ends with it):
+     * mass m, first moment h = m c and rotational inertia I (3 x 3
+     * row-major, symmetric) about its origin, in its axes. */
+    ExprId m, h[3], I[9];
 } TreeTurn;
 
-typedef struct TreeFrame {
-    int parent;        /* index among the tree's frames; -1: the world */
-    int first, nturns; /* its turns: turn[first .. first + nturns - 1] */
-    /* The turn that carries the masses placed in this frame (the last
-     * turn at or above it; -1: none, they do not move), and their spatial
-     * inertia about its origin in its axes: mass m, first moment h = m c,
-     * and the rotational inertia I (3 x 3 row-major, symmetric). */
-    int carrier;
-    ExprId m, h[3], I[9];
-} TreeFrame;
-
 typedef struct Tree {
-    int nframes, nturns;
-    TreeFrame *frame; /* parents before children */
-    TreeTurn *turn;   /* in frame order, each frame's in turning order */
+    int nturns;
+    TreeTurn *turn; /* parents before children */
 } Tree;
 
 /* The tree, or NULL with *why set to the reason it does not apply.  q1

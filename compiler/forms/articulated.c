@@ -218,9 +218,7 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
         ExprId rate = m->q[1][tk->coord];
-        sv_zero(&S[k]);
-        for (int i = 0; i < 3; i++)
-            S[k].w[i] = tk->al[i];
+        sv_joint_axis(tk, &S[k]);
         sv_zero(&C[k]);
         if (tk->up >= 0) {
             Sv vp;
@@ -243,14 +241,10 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *
     for (int k = nt - 1; k >= 0; k--) {
         const TreeTurn *tk = &t->turn[k];
         int i = tk->coord, p = tk->up;
-        /* M_ii = S^T Ic S, Ic the composite inertia of all the turn moves */
-        ExprId Ia3[3];
-        for (int r = 0; r < 3; r++) {
-            Ia3[r] = EXPR_ZERO;
-            for (int c = 0; c < 3; c++)
-                Ia3[r] = expr_add(P, Ia3[r], expr_mul(P, comp[k].I[3 * r + c], tk->al[c]));
-        }
-        mkk[i] = kin_dot(P, tk->al, Ia3);
+        /* M_ii = S^T Ic S, Ic the composite inertia of all the joint moves */
+        Sv IcS;
+        sv_inertia_times(P, comp[k].m, comp[k].h, comp[k].I, &S[k], &IcS);
+        mkk[i] = sv_dot(P, &S[k], &IcS);
         if (p >= 0)
             sv_rigid_up(P, tk, &comp[k], &comp[p]);
         si_times(P, &IA[k], &S[k], &U[k]);
@@ -269,7 +263,8 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *
         /* Ia S = U - U (S.U) / D = 0: about a coordinate axis that is a
          * row and a column of exact zeros, which the rounding of the
          * update would only blur, and which fold through the transforms */
-        int j = axis_index(tk->al);
+        int j = axis_index(tk->al); /* S's row among (w, v) */
+        j += j >= 0 && tk->slide ? 3 : 0;
         for (int c = 0; j >= 0 && c < 6; c++)
             Ia.e[6 * j + c] = Ia.e[6 * c + j] = EXPR_ZERO;
         si_times(P, &Ia, &C[k], &Ic);
@@ -310,7 +305,10 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     }
     int nt = t->nturns;
     for (int k = 0; k < nt; k++)
-        if (t->turn[k].angle != m->q[0][t->turn[k].coord]) {
+        if (t->turn[k].slide) {
+            *why = "a joint slides (the tables have turns only)";
+            return NULL;
+        } else if (t->turn[k].angle != m->q[0][t->turn[k].coord]) {
             *why = "a turn's angle is not its coordinate itself";
             return NULL;
         }

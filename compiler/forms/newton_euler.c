@@ -41,9 +41,7 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
         const TreeTurn *tk = &t->turn[k];
         ExprId rate = m->q[1][tk->coord], acc = m->q[2][tk->coord];
         Sv S, VS, IV, IA;
-        sv_zero(&S);
-        for (int i = 0; i < 3; i++)
-            S.w[i] = tk->al[i];
+        sv_joint_axis(tk, &S);
         sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &Acc[k]);
         if (tk->up >= 0) {
             sv_motion_down(P, tk, &V[tk->up], &V[k]);
@@ -62,8 +60,9 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     }
     for (int k = nt - 1; k >= 0; k--) {
         const TreeTurn *tk = &t->turn[k];
-        Sv up;
-        E[tk->coord] = expr_add(P, kin_dot(P, tk->al, F[k].w), E[tk->coord]);
+        Sv up, S;
+        sv_joint_axis(tk, &S);
+        E[tk->coord] = expr_add(P, sv_dot(P, &S, &F[k]), E[tk->coord]);
         if (tk->up < 0)
             continue;
         sv_force_up(P, tk, &F[k], &up);
@@ -89,14 +88,13 @@ crb_mass(const Mech *m, Arena *A, ExprPool *P)
             sv_rigid_up(P, &t->turn[k], &Ic[k], &Ic[t->turn[k].up]);
     for (int kj = 0; kj < nt; kj++) {
         const TreeTurn *tj = &t->turn[kj];
-        Sv S, F;
-        sv_zero(&S);
-        for (int i = 0; i < 3; i++)
-            S.w[i] = tj->al[i];
+        Sv S, F, Si;
+        sv_joint_axis(tj, &S);
         sv_inertia_times(P, Ic[kj].m, Ic[kj].h, Ic[kj].I, &S, &F);
         for (int ki = kj;;) { /* F in turn ki's coordinates */
             int i = t->turn[ki].coord, j = tj->coord;
-            M[i * n + j] = M[j * n + i] = kin_dot(P, t->turn[ki].al, F.w);
+            sv_joint_axis(&t->turn[ki], &Si);
+            M[i * n + j] = M[j * n + i] = sv_dot(P, &Si, &F);
             if (t->turn[ki].up < 0)
                 break;
             Sv up;

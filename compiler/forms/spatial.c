@@ -118,25 +118,27 @@ sv_force_up(ExprPool *P, const TreeTurn *t, const Sv *x, Sv *out)
 Rigid *
 sv_bodies(ExprPool *P, Arena *A, const Tree *t)
 {
+    (void)P;
     int nt = t->nturns;
     Rigid *body = arena_new_array(A, Rigid, nt + 1);
     for (int k = 0; k < nt; k++) {
-        body[k].m = body[k].h[0] = body[k].h[1] = body[k].h[2] = EXPR_ZERO;
-        for (int i = 0; i < 9; i++)
-            body[k].I[i] = EXPR_ZERO;
-    }
-    for (int g = 0; g < t->nframes; g++) {
-        const TreeFrame *f = &t->frame[g];
-        if (f->carrier < 0)
-            continue;
-        Rigid *b = &body[f->carrier];
-        b->m = expr_add(P, b->m, f->m);
+        const TreeTurn *tk = &t->turn[k];
+        body[k].m = tk->m;
         for (int i = 0; i < 3; i++)
-            b->h[i] = expr_add(P, b->h[i], f->h[i]);
+            body[k].h[i] = tk->h[i];
         for (int i = 0; i < 9; i++)
-            b->I[i] = expr_add(P, b->I[i], f->I[i]);
+            body[k].I[i] = tk->I[i];
     }
     return body;
+}
+
+void
+sv_joint_axis(const TreeTurn *t, Sv *S)
+{
+    for (int i = 0; i < 3; i++) {
+        S->w[i] = t->slide ? EXPR_ZERO : t->al[i];
+        S->v[i] = t->slide ? t->al[i] : EXPR_ZERO;
+    }
 }
 
 ExprId *

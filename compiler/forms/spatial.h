@@ -43,8 +43,11 @@ typedef struct Rigid {
  * I' = J + 2 (r.g) 1 - (g r^T + r g^T) + m (|r|^2 1 - r r^T), with
  * g = Q h and J = Q I Q^T (the parallel-axis rule with a first moment). */
 void sv_rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y);
-/* The masses each turn carries last (zero for a turn inside a frame). */
+/* The masses each joint carries last (zero for a turn inside a frame). */
 Rigid *sv_bodies(ExprPool *P, Arena *A, const Tree *t);
+/* A joint's axis S in its own coordinates: (a, 0) for a turn, (0, d) for
+ * a slide. */
+void sv_joint_axis(const TreeTurn *t, Sv *S);
 /* dV/dq - Q, and the world's acceleration a0 that stands for a uniform
  * gravity field (Featherstone's a_0 = -g; then V's part from it is left
  * out of the gradient), or zero. */

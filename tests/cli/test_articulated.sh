@@ -19,7 +19,11 @@
 #    (gen_tree 20, 60 coordinates: mass_parent), which factors it by LTDL:
 #    newton-euler's --accel equals the articulated-body recursion's (as
 #    tables) to 1e-11, and at gimbal lock it stops with exit 3 and names
-#    the pivot.
+#    the pivot;
+#  - sliding joints (tests/sim/specs/slide_tree.yaml: a cart on a rail, a
+#    pole turning on it, a slider along the pole, an arm): --accel of the
+#    articulated-body and newton-euler forms equal Lagrange's to 1e-12,
+#    and --code tables says it cannot and writes straight-line code.
 # usage: test_articulated.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -129,4 +133,26 @@ st=$?
 [ $st -eq 3 ] && grep -q 'mass matrix is singular or not positive definite' "$tmp/err" &&
   grep -q 'coordinate pelvis_' "$tmp/err"
 ok $? "LTDL at gimbal lock: exit $st, the singular pivot named"
+
+sl="$src/tests/sim/specs/slide_tree.yaml"
+in="--init x=0.3 --init th=0.4 --init y=0.2 --init ph=-0.5 --init x'=0.7 --init th'=-1.1"
+in="$in --init y'=0.3 --init ph'=0.9"
+# shellcheck disable=SC2086
+"$eomc" run "$sl" --form lagrange $in --accel > "$tmp/sl.lag" &&
+  "$eomc" run "$sl" --form articulated-body $in --accel > "$tmp/sl.ab" &&
+  "$eomc" run "$sl" --form newton-euler $in --accel > "$tmp/sl.ne"
+st=$?
+sl_diff() {
+  awk 'NR == FNR { w[$1] = $2; next }
+       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
+         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
+       END { if (n < 4 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
+}
+d=$(sl_diff "$tmp/sl.lag" "$tmp/sl.ab") d2=$(sl_diff "$tmp/sl.lag" "$tmp/sl.ne")
+[ $st -eq 0 ] && awk -v d="$d2" 'BEGIN { exit !(d < 1e-12) }' &&
+  [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-12) }'
+ok $? "sliding joints: articulated-body and newton-euler --accel = lagrange's, to $d and $d2"
+"$eomc" compile "$sl" --form articulated-body --code tables -o "$tmp/sl.c" 2> "$tmp/sl.err" &&
+  grep -q 'a joint slides' "$tmp/sl.err" && ! grep -q 'eomc_tree' "$tmp/sl.c"
+ok $? "sliding joints: --code tables says the tables cannot, and the code is straight-line"
 tap_end

@@ -101,6 +101,32 @@ static const char big_tree_spec[] =
     "  gravity: {gravity: [0, 0, -g]}\n"
     "scene: {t_end: 1}\n";
 
+/* Sliding joints: a cart on a rail (x, a point mass), a pole turning at
+ * it (th), a slider telescoping along the pole (y), and an arm turning at
+ * the pole's end (ph); a spring on y. */
+static const char slide_spec[] =
+    "name: cartpole\n"
+    "parameters: {M: 1.5, m: 0.4, l: 0.6, g: 9.81, k: 2}\n"
+    "coordinates: [x, th, y, ph]\n"
+    "frames:\n"
+    "  pole_axes: {rotation: [{y: th}]}\n"
+    "  arm_axes: {parent: pole_axes, rotation: [{x: ph}]}\n"
+    "points:\n"
+    "  cart: {at: [x, 0.1, 0]}\n"
+    "  slider: {frame: pole_axes, from: cart, at: [0.05, 0, -0.3 - y]}\n"
+    "  bob: {frame: pole_axes, from: slider, at: [0, 0, -l]}\n"
+    "  tip: {frame: arm_axes, from: bob, at: [0.2, 0, -0.1]}\n"
+    "bodies:\n"
+    "  pole: {mass: m, frame: pole_axes, center: slider, inertia: [0.015, 0.02, 0.01]}\n"
+    "  arm: {mass: 0.3, frame: arm_axes, center: tip, inertia: [0.003, 0.002, 0.004]}\n"
+    "particles:\n"
+    "  cart_mass: {mass: M, position: cart}\n"
+    "potential: 1/2*k*y^2\n"
+    "effects:\n"
+    "  gravity: {gravity: [0, 0, -g]}\n"
+    "  push: {force: [0.3, 0, 0.1], on: arm}\n"
+    "scene: {t_end: 1}\n";
+
 static Spec *
 load(const char *text)
 {
@@ -108,17 +134,17 @@ load(const char *text)
 }
 
 static void
-check_agree(const Spec *s)
+check_agree(const Spec *s, const char *what)
 {
     Mech *m = mech_build(s, A, P, D);
-    CHECK(m->tree != NULL, "the branched tree is a tree (%s)", m->tree_why ? m->tree_why : "");
+    CHECK(m->tree != NULL, "%s is a tree (%s)", what, m->tree_why ? m->tree_why : "");
     if (!m->tree)
         return;
     int n = m->n;
     const char *why = NULL;
     Eom *lag = eom_derive(s, m, form_find("lagrange"), A, P, D, &why);
     Eom *ne = eom_derive(s, m, form_find("newton-euler"), A, P, D, &why);
-    CHECK(lag && ne, "both forms apply");
+    CHECK(lag && ne, "%s: both forms apply", what);
     if (!lag || !ne)
         return;
     eom_derive_jacobian(ne, m, A, P, D);
@@ -162,11 +188,11 @@ check_agree(const Spec *s)
             jvp &= check_close(expr_eval(P, ne->jvp_v[i], &env), wv, 1e-12);
         }
     }
-    CHECK(okM, "composite-rigid-body M = Lagrange's M (100 states)");
-    CHECK(okdM, "M = dE/dq'' of the recursive residual");
-    CHECK(okh, "recursive h = Lagrange's h");
-    CHECK(okE, "recursive E = Lagrange's E at random q''");
-    CHECK(jvp, "seeded derivatives of the recursive E = its Jacobian times the seeds");
+    CHECK(okM, "%s: composite-rigid-body M = Lagrange's M (100 states)", what);
+    CHECK(okdM, "%s: M = dE/dq'' of the recursive residual", what);
+    CHECK(okh, "%s: recursive h = Lagrange's h", what);
+    CHECK(okE, "%s: recursive E = Lagrange's E at random q''", what);
+    CHECK(jvp, "%s: seeded derivatives of the recursive E = its Jacobian times the seeds", what);
 }
 
 /* Lagrange's M and h at a state, solved by GSL's LU: a = -M^-1 h, and
@@ -282,17 +308,26 @@ main(void)
     Spec *s = load(tree_spec);
     CHECK(s != NULL, "the branched tree loads");
     if (s) {
-        check_agree(s);
+        check_agree(s, "the branched tree");
         check_articulated(s, "the branched tree");
+    }
+    Spec *sl = load(slide_spec);
+    CHECK(sl != NULL, "the tree with sliding joints loads");
+    if (sl) {
+        check_agree(sl, "the tree with sliding joints");
+        check_articulated(sl, "the tree with sliding joints");
     }
     Spec *big = load(big_tree_spec);
     CHECK(big != NULL, "the 15-coordinate tree loads");
     if (big)
         check_articulated(big, "the 15-coordinate tree");
     const char *t = tree_spec;
-    /* a point that slides in its frame */
+    /* a point that slides in its frame other than along a line */
+    check_refused(variant(t, "at: [0, 0.5, 0]}", "at: [0, 0.5*cos(c1), 0]}"),
+                  "slides in a frame other than along a constant direction");
+    /* a slide by a coordinate that also turns a frame */
     check_refused(variant(t, "at: [0, 0.5, 0]}", "at: [0, 0.5 + 0.1*c1, 0]}"),
-                  "slides in a frame");
+                  "coordinate 'c1' moves two joints");
     /* a chain through a frame the mass does not turn with */
     check_refused(variant(t, "c_joint: {frame: a_axes, from: a_joint",
                           "c_joint: {frame: b_axes, from: b_joint"),

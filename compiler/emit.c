@@ -839,14 +839,14 @@ static void
 print_tree_turns(Printer *pr, const Lowered *L)
 {
     const FormTables *tb = L->tables;
-    println(pr, "/* The turns: the one above (-1: the world), the coordinate, the axis (0-2:");
-    println(pr, " * its own x, y, z; 3: a unit vector), whether a constant rotation comes");
-    println(pr, " * first.  Their numbers are pd[%d ...] (derive). */", L->tree_base);
+    println(pr, "/* The joints: the one above (-1: the world), the coordinate, the axis (0-2:");
+    println(pr, " * its own x, y, z; 3: a vector), whether a constant rotation comes first,");
+    println(pr, " * whether it slides.  Their numbers are pd[%d ...] (derive). */", L->tree_base);
     fprintf(pr->f, "static const eomc_tree_turn %s_turns[%d] = {", pr->s->name, tb->nt);
     for (int k = 0; k < tb->nt; k++) {
-        const int *t = tb->turn + 4 * k;
-        fprintf(pr->f, "%s{%d, %d, %d, %d}", k == 0 ? "\n    " : k % 6 ? ", " : ",\n    ", t[0],
-                t[1], t[2], t[3]);
+        const int *t = tb->turn + FORM_TABLE_INTS * k;
+        fprintf(pr->f, "%s{%d, %d, %d, %d, %d}", k == 0 ? "\n    " : k % 5 ? ", " : ",\n    ",
+                t[0], t[1], t[2], t[3], t[4]);
     }
     println(pr, "\n};\n");
     int nn = FORM_TABLE_STRIDE * tb->nt + 6;

@@ -316,8 +316,16 @@ compile(const Options *o, FILE *out)
         Invariant *inv = invariant_derive(s, m, c, A, P, D);
         char picked[600];
         const Form *form = o->form ? form_find(o->form) : &form_lagrange;
-        Eom *e = o->form ? eom_derive(s, m, form, A, P, D, &why)
-                         : eom_derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
+        Eom *e = NULL;
+        if (!o->form && o->code && !strcmp(o->code, "tables") && !c) {
+            /* the tables are the articulated-body form's: it, where it applies */
+            const char *no;
+            if ((e = eom_derive(s, m, &form_articulated, A, P, D, &no)))
+                snprintf(picked, sizeof picked, "the one --code tables writes");
+        }
+        if (!e)
+            e = o->form ? eom_derive(s, m, form, A, P, D, &why)
+                        : eom_derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
         if (e)
             form = e->form;
         else if (!o->form)

@@ -37,8 +37,9 @@
 typedef struct eomc_tree_turn {
     int up;    /* the turn above (a lower index), -1: the world */
     int coord; /* the coordinate that is its angle */
-    int axis;  /* 0, 1, 2: its own x, y or z axis; 3: the unit vector in its data */
+    int axis;  /* 0, 1, 2: its own x, y or z axis; 3: the vector in its data */
     int fixed; /* Qf is not the identity */
+    int slide; /* a slide along the vector (axis 3), r = R + Qf axis q; else a turn */
 } eomc_tree_turn;
 
 /* A turn's numbers, EOMC_TREE_STRIDE of them per turn, then a0 [6]. */
@@ -139,6 +140,24 @@ eomc_tree_turn_block(int k, eomc_real c, eomc_real s, eomc_real *X, int sym)
     }
 }
 
+/* Work layout, per turn */
+enum {
+    EOMC_TW_Q = 0,    /* [9] */
+    EOMC_TW_CS = 9,   /* [2] */
+    EOMC_TW_V = 11,   /* [6] velocity */
+    EOMC_TW_C = 17,   /* [6] velocity-product acceleration */
+    EOMC_TW_P = 23,   /* [6] bias force pA */
+    EOMC_TW_A = 29,   /* [9] IA's blocks A, B, C */
+    EOMC_TW_B = 38,   /* [9] */
+    EOMC_TW_CC = 47,  /* [9] */
+    EOMC_TW_U = 56,   /* [6] */
+    EOMC_TW_DINV = 62,
+    EOMC_TW_SU = 63,  /* u */
+    EOMC_TW_ACC = 64, /* [6] acceleration */
+    EOMC_TW_IC = 70,  /* [13] composite rigid inertia: m, h[3], I[9] */
+    EOMC_TW_R = 83,   /* [3] a slide's offset from up */
+};
+
 /* ---- per turn ---- */
 
 /* The turn's place in up: Q (dense) from its angle; *cs = (c, s). */
@@ -146,6 +165,17 @@ static void
 eomc_tree_place(const eomc_tree_turn *t, const eomc_real *d, eomc_real angle, eomc_real *Q,
                 eomc_real *cs)
 {
+    if (t->slide) { /* Q = Qf, and the offset r + Qf d q into the work */
+        const eomc_real *F = d + EOMC_TREE_QF, *a = d + EOMC_TREE_AXIS;
+        eomc_real *r = Q + EOMC_TW_R - EOMC_TW_Q;
+        cs[0] = 1, cs[1] = 0;
+        for (int e = 0; e < 9; e++)
+            Q[e] = t->fixed ? F[e] : (eomc_real)(e % 4 == 0);
+        for (int i = 0; i < 3; i++)
+            r[i] = d[EOMC_TREE_R + i] +
+                   (Q[3 * i] * a[0] + Q[3 * i + 1] * a[1] + Q[3 * i + 2] * a[2]) * angle;
+        return;
+    }
     eomc_real c = cos(angle), s = sin(angle), R[9];
     cs[0] = c, cs[1] = s;
     if (t->axis < 3 && !t->fixed) /* Q is not needed: (c, s) say it all */
@@ -292,30 +322,31 @@ eomc_tree_body_force(const eomc_real *d, const eomc_real *v, const eomc_real *a,
     }
 }
 
-/* The turn's axis as a 3-vector */
+/* The joint's spatial axis S: (a, 0) for a turn, (0, d) for a slide */
 static void
-eomc_tree_axis(const eomc_tree_turn *t, const eomc_real *d, eomc_real *a)
+eomc_tree_axis(const eomc_tree_turn *t, const eomc_real *d, eomc_real *S)
 {
-    for (int i = 0; i < 3; i++)
-        a[i] = t->axis < 3 ? (eomc_real)(i == t->axis) : d[EOMC_TREE_AXIS + i];
+    for (int i = 0; i < 3; i++) {
+        eomc_real a = t->axis < 3 ? (eomc_real)(i == t->axis) : d[EOMC_TREE_AXIS + i];
+        S[i] = t->slide ? 0 : a;
+        S[3 + i] = t->slide ? a : 0;
+    }
 }
 
-/* Work layout, per turn */
-enum {
-    EOMC_TW_Q = 0,    /* [9] */
-    EOMC_TW_CS = 9,   /* [2] */
-    EOMC_TW_V = 11,   /* [6] velocity */
-    EOMC_TW_C = 17,   /* [6] velocity-product acceleration */
-    EOMC_TW_P = 23,   /* [6] bias force pA */
-    EOMC_TW_A = 29,   /* [9] IA's blocks A, B, C */
-    EOMC_TW_B = 38,   /* [9] */
-    EOMC_TW_CC = 47,  /* [9] */
-    EOMC_TW_U = 56,   /* [6] */
-    EOMC_TW_DINV = 62,
-    EOMC_TW_SU = 63,  /* u */
-    EOMC_TW_ACC = 64, /* [6] acceleration */
-    EOMC_TW_IC = 70,  /* [13] composite rigid inertia: m, h[3], I[9] */
-};
+/* The joint's offset from up: constant for a turn, in the work for a slide */
+EOMC_TREE_INLINE const eomc_real *
+eomc_tree_r(const eomc_tree_turn *t, const eomc_real *d, const eomc_real *wk)
+{
+    return t->slide ? wk + EOMC_TW_R : d + EOMC_TREE_R;
+}
+
+/* S . x for 6-vectors */
+EOMC_TREE_INLINE eomc_real
+eomc_tree_dot6(const eomc_real *S, const eomc_real *x)
+{
+    return S[0] * x[0] + S[1] * x[1] + S[2] * x[2] + S[3] * x[3] + S[4] * x[4] + S[5] * x[5];
+}
+
 
 /* The composite rigid inertia Ic (m, h, I) of the turn (in its work)
  * added to up's, Icp: h' = Q h + m r, I' = J + 2 (r.g) 1 - (g r^T + r
@@ -365,21 +396,26 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
         eomc_real *wk = w + EOMC_TREE_WORK * k, *V = wk + EOMC_TW_V, *C = wk + EOMC_TW_C;
-        eomc_real ax[3], rate = v[t->coord];
+        eomc_real ax[6], rate = v[t->coord];
         eomc_tree_place(t, dk, q[t->coord], wk + EOMC_TW_Q, wk + EOMC_TW_CS);
         eomc_tree_axis(t, dk, ax);
         if (t->up >= 0) {
-            eomc_tree_motion_down(t, wk, dk + EOMC_TREE_R,
+            eomc_tree_motion_down(t, wk, eomc_tree_r(t, dk, wk),
                                   w + EOMC_TREE_WORK * t->up + EOMC_TW_V, V);
-            eomc_tree_cross(V, ax, C); /* (w x S, u x S) rate: before its own rate */
-            eomc_tree_cross(V + 3, ax, C + 3);
+            /* V x S rate, V before its own rate: (w x a, v x a) for a turn,
+             * (0, w x d) for a slide */
+            eomc_tree_cross(V, t->slide ? ax + 3 : ax, t->slide ? C + 3 : C);
+            if (t->slide)
+                C[0] = C[1] = C[2] = 0;
+            else
+                eomc_tree_cross(V + 3, ax, C + 3);
             for (int i = 0; i < 6; i++)
                 C[i] *= rate;
         } else {
             for (int i = 0; i < 6; i++)
                 V[i] = C[i] = 0;
         }
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 6; i++)
             V[i] += ax[i] * rate;
         eomc_tree_rigid(dk, wk + EOMC_TW_A, wk + EOMC_TW_B, wk + EOMC_TW_CC);
         if (dk[EOMC_TREE_M] != 0 || dk[EOMC_TREE_I] != 0 || dk[EOMC_TREE_I + 1] != 0 ||
@@ -397,24 +433,33 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
     }
     for (int k = nt - 1; k >= 0; k--) {
         const eomc_tree_turn *t = &T[k];
-        const eomc_real *dk = d + EOMC_TREE_STRIDE * k, *r = dk + EOMC_TREE_R;
+        const eomc_real *dk = d + EOMC_TREE_STRIDE * k, *r = eomc_tree_r(t, dk, w + EOMC_TREE_WORK * k);
         eomc_real *wk = w + EOMC_TREE_WORK * k, *Q = wk + EOMC_TW_Q;
         eomc_real *A = wk + EOMC_TW_A, *B = wk + EOMC_TW_B, *Cb = wk + EOMC_TW_CC;
-        eomc_real *U = wk + EOMC_TW_U, *pA = wk + EOMC_TW_P, ax[3];
+        eomc_real *U = wk + EOMC_TW_U, *pA = wk + EOMC_TW_P, ax[6];
         eomc_tree_axis(t, dk, ax);
         /* M_kk = S . Ic S, and Ic carried up (the parallel-axis rule) */
         eomc_real *Ic = wk + EOMC_TW_IC, Ia3[3];
-        eomc_tree_rot(Ic + 4, 1, ax, Ia3);
-        mkk[t->coord] = ax[0] * Ia3[0] + ax[1] * Ia3[1] + ax[2] * Ia3[2];
-        /* U = IA S, D = S . U, u = tau - S . pA */
-        for (int i = 0; i < 3; i++) {
-            U[i] = A[3 * i] * ax[0] + A[3 * i + 1] * ax[1] + A[3 * i + 2] * ax[2];
-            U[3 + i] = B[i] * ax[0] + B[3 + i] * ax[1] + B[6 + i] * ax[2];
+        if (t->slide) { /* Ic (0, d) = (h x d, m d) */
+            eomc_real dd = ax[3] * ax[3] + ax[4] * ax[4] + ax[5] * ax[5];
+            mkk[t->coord] = Ic[0] * dd;
+        } else {
+            eomc_tree_rot(Ic + 4, 1, ax, Ia3);
+            mkk[t->coord] = ax[0] * Ia3[0] + ax[1] * Ia3[1] + ax[2] * Ia3[2];
         }
-        eomc_real D = ax[0] * U[0] + ax[1] * U[1] + ax[2] * U[2];
+        /* U = IA S, D = S . U, u = tau - S . pA */
+        if (t->slide) {
+            eomc_tree_inertia_times(A, B, Cb, ax, U);
+        } else {
+            for (int i = 0; i < 3; i++) {
+                U[i] = A[3 * i] * ax[0] + A[3 * i + 1] * ax[1] + A[3 * i + 2] * ax[2];
+                U[3 + i] = B[i] * ax[0] + B[3 + i] * ax[1] + B[6 + i] * ax[2];
+            }
+        }
+        eomc_real D = eomc_tree_dot6(ax, U);
         piv[t->coord] = D;
         wk[EOMC_TW_DINV] = 1 / D;
-        wk[EOMC_TW_SU] = tau[t->coord] - (ax[0] * pA[0] + ax[1] * pA[1] + ax[2] * pA[2]);
+        wk[EOMC_TW_SU] = tau[t->coord] - eomc_tree_dot6(ax, pA);
         if (t->up < 0)
             continue;
         eomc_real *wp = w + EOMC_TREE_WORK * t->up;
@@ -433,7 +478,7 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
                 Cb[3 * j + i] = Cb[3 * i + j];
             }
         }
-        if (t->axis < 3) { /* Ia S = 0: a zero row and column, to the bit */
+        if (t->axis < 3 && !t->slide) { /* Ia S = 0: a zero row and column, to the bit */
             int a = t->axis;
             for (int i = 0; i < 3; i++)
                 A[3 * a + i] = A[3 * i + a] = B[3 * a + i] = 0;
@@ -444,7 +489,9 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
         eomc_tree_force_up(t, wk, r, pa, wp + EOMC_TW_P);
         /* IA_up += X^T Ia X: the blocks turned (A = Q A Q^T, ...), then
          * moved by r: C' = C, B' = B + [r]x C, A' = A + [r]x B^T - B' [r]x */
-        if (t->axis < 3 && !t->fixed) {
+        if (t->slide && !t->fixed) {
+            /* no turn */
+        } else if (t->axis < 3 && !t->fixed) {
             eomc_real c = wk[EOMC_TW_CS], s = wk[EOMC_TW_CS + 1];
             eomc_tree_turn_block(t->axis, c, s, A, 1);
             eomc_tree_turn_block(t->axis, c, s, B, 0);
@@ -482,9 +529,9 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
     for (int k = 0; k < nt; k++) {
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
-        eomc_real *wk = w + EOMC_TREE_WORK * k, *acc = wk + EOMC_TW_ACC, ax[3];
+        eomc_real *wk = w + EOMC_TREE_WORK * k, *acc = wk + EOMC_TW_ACC, ax[6];
         eomc_tree_axis(t, dk, ax);
-        eomc_tree_motion_down(t, wk, dk + EOMC_TREE_R,
+        eomc_tree_motion_down(t, wk, eomc_tree_r(t, dk, wk),
                               t->up >= 0 ? w + EOMC_TREE_WORK * t->up + EOMC_TW_ACC : a0, acc);
         eomc_real ua = 0;
         for (int i = 0; i < 6; i++) {
@@ -493,7 +540,7 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
         }
         eomc_real x = (wk[EOMC_TW_SU] - ua) * wk[EOMC_TW_DINV];
         qdd[t->coord] = x;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 6; i++)
             acc[i] += ax[i] * x;
     }
 }
@@ -509,25 +556,29 @@ eomc_tree_rnea(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_r
     static const eomc_real still[6] = {0, 0, 0, 0, 0, 0};
     for (int k = 0; k < nt; k++) {
         const eomc_tree_turn *t = &T[k];
-        const eomc_real *dk = d + EOMC_TREE_STRIDE * k, *r = dk + EOMC_TREE_R;
+        const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
         eomc_real *wk = w + EOMC_TREE_WORK * k, *Q = wk + EOMC_TW_Q;
-        eomc_real *V = wk + EOMC_TW_V, *acc = wk + EOMC_TW_ACC, ax[3], rate = v[t->coord];
+        eomc_real *V = wk + EOMC_TW_V, *acc = wk + EOMC_TW_ACC, ax[6], rate = v[t->coord];
         eomc_tree_place(t, dk, q[t->coord], Q, wk + EOMC_TW_CS);
+        const eomc_real *r = eomc_tree_r(t, dk, wk);
         eomc_tree_axis(t, dk, ax);
         const eomc_real *wu = t->up >= 0 ? w + EOMC_TREE_WORK * t->up : NULL;
         eomc_tree_motion_down(t, wk, r, wu ? wu + EOMC_TW_ACC : a0 ? a0 : still, acc);
         if (wu) {
             eomc_real c[6];
             eomc_tree_motion_down(t, wk, r, wu + EOMC_TW_V, V);
-            eomc_tree_cross(V, ax, c);
-            eomc_tree_cross(V + 3, ax, c + 3);
+            eomc_tree_cross(V, t->slide ? ax + 3 : ax, t->slide ? c + 3 : c);
+            if (t->slide)
+                c[0] = c[1] = c[2] = 0;
+            else
+                eomc_tree_cross(V + 3, ax, c + 3);
             for (int i = 0; i < 6; i++)
                 acc[i] += c[i] * rate;
         } else {
             for (int i = 0; i < 6; i++)
                 V[i] = 0;
         }
-        for (int i = 0; i < 3; i++) {
+        for (int i = 0; i < 6; i++) {
             V[i] += ax[i] * rate;
             acc[i] += ax[i] * a[t->coord];
         }
@@ -536,11 +587,12 @@ eomc_tree_rnea(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_r
     for (int k = nt - 1; k >= 0; k--) {
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
-        eomc_real *wk = w + EOMC_TREE_WORK * k, *F = wk + EOMC_TW_P, ax[3];
+        eomc_real *wk = w + EOMC_TREE_WORK * k, *F = wk + EOMC_TW_P, ax[6];
         eomc_tree_axis(t, dk, ax);
-        out[t->coord] = ax[0] * F[0] + ax[1] * F[1] + ax[2] * F[2];
+        out[t->coord] = eomc_tree_dot6(ax, F);
         if (t->up >= 0)
-            eomc_tree_force_up(t, wk, dk + EOMC_TREE_R, F, w + EOMC_TREE_WORK * t->up + EOMC_TW_P);
+            eomc_tree_force_up(t, wk, eomc_tree_r(t, dk, wk), F,
+                               w + EOMC_TREE_WORK * t->up + EOMC_TW_P);
     }
 }
 

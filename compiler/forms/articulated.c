@@ -305,16 +305,13 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     }
     int nt = t->nturns;
     for (int k = 0; k < nt; k++)
-        if (t->turn[k].slide) {
-            *why = "a joint slides (the tables have turns only)";
-            return NULL;
-        } else if (t->turn[k].angle != m->q[0][t->turn[k].coord]) {
+        if (!t->turn[k].slide && t->turn[k].angle != m->q[0][t->turn[k].coord]) {
             *why = "a turn's angle is not its coordinate itself";
             return NULL;
         }
     FormTables *tb = arena_alloc(A, sizeof *tb);
     tb->nt = nt;
-    tb->turn = arena_new_array(A, int, 4 * nt + 1);
+    tb->turn = arena_new_array(A, int, FORM_TABLE_INTS * nt + 1);
     tb->num = arena_new_array(A, ExprId, FORM_TABLE_STRIDE * nt + 6);
     Rigid *body = sv_bodies(P, A, t);
     for (int k = 0; k < nt; k++) {
@@ -322,14 +319,19 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
         int ax = axis_index(tk->al), fixed = 0;
         for (int i = 0; i < 9; i++)
             fixed |= tk->Qf[i] != (i % 4 == 0 ? EXPR_ONE : EXPR_ZERO);
-        int *ti = tb->turn + 4 * k;
-        ti[0] = tk->up, ti[1] = tk->coord, ti[2] = ax < 0 ? 3 : ax, ti[3] = fixed;
-        ExprId *x = tb->num + FORM_TABLE_STRIDE * k;
+        int *ti = tb->turn + FORM_TABLE_INTS * k;
+        /* a slide: its vector in the numbers (axis 3); its offset at q = 0 */
+        ti[0] = tk->up, ti[1] = tk->coord, ti[2] = ax < 0 || tk->slide ? 3 : ax, ti[3] = fixed;
+        ti[4] = tk->slide;
+        ExprId *x = tb->num + FORM_TABLE_STRIDE * k, r0[3];
         const Rigid *b = &body[k];
+        ExprId zero = EXPR_ZERO;
+        if (tk->slide)
+            expr_subst_many(P, 3, tk->r, 1, &m->q[0][tk->coord], &zero, r0);
         for (int i = 0; i < 9; i++)
             x[i] = tk->Qf[i];
         for (int i = 0; i < 3; i++)
-            x[9 + i] = tk->r[i], x[12 + i] = tk->al[i], x[16 + i] = b->h[i];
+            x[9 + i] = tk->slide ? r0[i] : tk->r[i], x[12 + i] = tk->al[i], x[16 + i] = b->h[i];
         x[15] = b->m;
         x[19] = b->I[0], x[20] = b->I[4], x[21] = b->I[8];
         x[22] = b->I[1], x[23] = b->I[2], x[24] = b->I[5];

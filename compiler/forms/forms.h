@@ -31,16 +31,18 @@ typedef struct Form {
 } Form;
 
 /* The articulated-body form's model as tables, for code that loops over
- * them (runtime/eomc_tree.h) instead of unrolling the recursion: per turn
- * four integers (up, coordinate, axis: 0-2 a coordinate axis of its own,
- * 3 a unit vector; whether a constant rotation precedes it) and
+ * them (runtime/eomc_tree.h) instead of unrolling the recursion: per joint
+ * five integers (up, coordinate, axis: 0-2 a coordinate axis of its own,
+ * 3 a vector; whether a constant rotation precedes it; whether it slides)
+ * and
  * FORM_TABLE_STRIDE numbers (expressions of the parameters), then a0[6];
  * and the generalized forces the tables leave out.  NULL with *why set
  * where it cannot be put so. */
 enum { FORM_TABLE_STRIDE = 25 }; /* eomc_tree.h's EOMC_TREE_STRIDE */
+enum { FORM_TABLE_INTS = 5 };    /* eomc_tree_turn's members */
 typedef struct FormTables {
     int nt;
-    int *turn;   /* [4 nt] */
+    int *turn;   /* [FORM_TABLE_INTS nt] */
     ExprId *num; /* [FORM_TABLE_STRIDE nt + 6] */
     ExprId *tau; /* [n]: Q - dV/dq but for the gravity that a0 stands for */
 } FormTables;

@@ -25,34 +25,36 @@
 
 #include "eomc_model.h"
 
-/* The small helpers are inlined, and the hot ones specialized to a coordinate axis known at compile
- * time (each called as F(0), F(1), F(2) from a switch), so that their
- * index arithmetic folds. */
+/* The small helpers are inlined, and the hot ones specialized to a
+ * coordinate axis known at compile time (each called as F(0), F(1), F(2)
+ * from a switch), so that their index arithmetic folds. */
 #if defined(__GNUC__)
 #define EOMC_TREE_INLINE static inline __attribute__((always_inline))
 #else
 #define EOMC_TREE_INLINE static inline
 #endif
 
+/* A joint: a turn, or a slide (the offset of its origin from up's is
+ * then r + Qf d q, and Q = Qf). */
 typedef struct eomc_tree_turn {
-    int up;    /* the turn above (a lower index), -1: the world */
-    int coord; /* the coordinate that is its angle */
-    int axis;  /* 0, 1, 2: its own x, y or z axis; 3: the vector in its data */
+    int up;    /* the joint above (a lower index), -1: the world */
+    int coord; /* the coordinate that is its angle or length */
+    int axis;  /* 0, 1, 2: a turn about its own x, y or z axis; 3: along or about
+                * the vector in its numbers */
     int fixed; /* Qf is not the identity */
-    int slide; /* a slide along the vector (axis 3), r = R + Qf axis q; else a turn */
+    int slide; /* a slide, along the vector (axis 3) */
 } eomc_tree_turn;
 
-/* A turn's numbers, EOMC_TREE_STRIDE of them per turn, then a0 [6]. */
+/* A joint's numbers, EOMC_TREE_STRIDE of them per joint, then a0 [6]. */
 enum {
     EOMC_TREE_QF = 0,    /* [9] Qf, row-major (columns: its axes in up's) */
-    EOMC_TREE_R = 9,     /* [3] r */
-    EOMC_TREE_AXIS = 12, /* [3] the unit axis (axis 3) */
+    EOMC_TREE_R = 9,     /* [3] r (a slide's at length 0) */
+    EOMC_TREE_AXIS = 12, /* [3] the unit axis of a turn, d of a slide (axis 3) */
     EOMC_TREE_M = 15,    /* the mass the turn carries last (0 inside a frame) */
     EOMC_TREE_H = 16,    /* [3] its first moment about the origin */
     EOMC_TREE_I = 19,    /* [6] its inertia about the origin: xx yy zz xy xz yz */
     EOMC_TREE_STRIDE = 25
 };
-
 
 /* Work space per turn, in eomc_real (the caller's array, nt of them). */
 enum { EOMC_TREE_WORK = 96 };

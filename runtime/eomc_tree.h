@@ -342,11 +342,12 @@ eomc_tree_r(const eomc_tree_turn *t, const eomc_real *d, const eomc_real *wk)
     return t->slide ? wk + EOMC_TW_R : d + EOMC_TREE_R;
 }
 
-/* S . x for 6-vectors */
+/* S . x for a joint's S and a 6-vector: its nonzero half only */
 EOMC_TREE_INLINE eomc_real
-eomc_tree_dot6(const eomc_real *S, const eomc_real *x)
+eomc_tree_sdot(const eomc_tree_turn *t, const eomc_real *S, const eomc_real *x)
 {
-    return S[0] * x[0] + S[1] * x[1] + S[2] * x[2] + S[3] * x[3] + S[4] * x[4] + S[5] * x[5];
+    int o = 3 * t->slide;
+    return S[o] * x[o] + S[o + 1] * x[o + 1] + S[o + 2] * x[o + 2];
 }
 
 
@@ -417,7 +418,7 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
             for (int i = 0; i < 6; i++)
                 V[i] = C[i] = 0;
         }
-        for (int i = 0; i < 6; i++)
+        for (int i = 3 * t->slide; i < 3 + 3 * t->slide; i++) /* S's nonzero half */
             V[i] += ax[i] * rate;
         eomc_tree_rigid(dk, wk + EOMC_TW_A, wk + EOMC_TW_B, wk + EOMC_TW_CC);
         if (dk[EOMC_TREE_M] != 0 || dk[EOMC_TREE_I] != 0 || dk[EOMC_TREE_I + 1] != 0 ||
@@ -458,10 +459,10 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
                 U[3 + i] = B[i] * ax[0] + B[3 + i] * ax[1] + B[6 + i] * ax[2];
             }
         }
-        eomc_real D = eomc_tree_dot6(ax, U);
+        eomc_real D = eomc_tree_sdot(t, ax, U);
         piv[t->coord] = D;
         wk[EOMC_TW_DINV] = 1 / D;
-        wk[EOMC_TW_SU] = tau[t->coord] - eomc_tree_dot6(ax, pA);
+        wk[EOMC_TW_SU] = tau[t->coord] - eomc_tree_sdot(t, ax, pA);
         if (t->up < 0)
             continue;
         eomc_real *wp = w + EOMC_TREE_WORK * t->up;
@@ -542,7 +543,7 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
         }
         eomc_real x = (wk[EOMC_TW_SU] - ua) * wk[EOMC_TW_DINV];
         qdd[t->coord] = x;
-        for (int i = 0; i < 6; i++)
+        for (int i = 3 * t->slide; i < 3 + 3 * t->slide; i++)
             acc[i] += ax[i] * x;
     }
 }
@@ -580,7 +581,7 @@ eomc_tree_rnea(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_r
             for (int i = 0; i < 6; i++)
                 V[i] = 0;
         }
-        for (int i = 0; i < 6; i++) {
+        for (int i = 3 * t->slide; i < 3 + 3 * t->slide; i++) {
             V[i] += ax[i] * rate;
             acc[i] += ax[i] * a[t->coord];
         }
@@ -591,7 +592,7 @@ eomc_tree_rnea(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_r
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
         eomc_real *wk = w + EOMC_TREE_WORK * k, *F = wk + EOMC_TW_P, ax[6];
         eomc_tree_axis(t, dk, ax);
-        out[t->coord] = eomc_tree_dot6(ax, F);
+        out[t->coord] = eomc_tree_sdot(t, ax, F);
         if (t->up >= 0)
             eomc_tree_force_up(t, wk, eomc_tree_r(t, dk, wk), F,
                                w + EOMC_TREE_WORK * t->up + EOMC_TW_P);

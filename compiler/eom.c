@@ -107,17 +107,18 @@ derive_solve(Eom *e, Arena *A, ExprPool *P)
  * included (an upper bound: the DAG may cancel more).  In derive_solve's
  * order, leaves first, a tree's M (M_ij = 0 unless one turn is above the
  * other) has no fill-in: this is the branch-induced sparsity of
- * Featherstone's LTDL factorization.  nz is scratch for n * words. */
+ * Featherstone's LTDL factorization.  on_ij[i * n + j]: M_ij may be
+ * nonzero; nz is scratch for n * words. */
 static long
-solve_ops(const Eom *e, uint64_t *nz)
+solve_ops(int n, const unsigned char *on_ij, uint64_t *nz)
 {
-    int n = e->n, words = (n + 63) / 64;
+    int words = (n + 63) / 64;
     long ops = 0;
 #define NZ(i, k) (nz[(size_t)(i) * (size_t)words + (size_t)(k) / 64] >> ((k) % 64) & 1)
     memset(nz, 0, (size_t)n * (size_t)words * sizeof *nz);
     for (int i = 0; i < n; i++) /* row i of L, in elimination order: column j < i */
         for (int j = 0; j < i; j++) {
-            int on = e->M[(n - 1 - i) * n + (n - 1 - j)] != EXPR_ZERO;
+            int on = on_ij[(n - 1 - i) * n + (n - 1 - j)];
             for (int w = 0; w <= j / 64; w++) { /* k < j (row j has no other) */
                 uint64_t both = nz[(size_t)i * words + w] & nz[(size_t)j * words + w];
                 on |= both != 0;
@@ -192,10 +193,14 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         derive_solve(e, A, P);
     } else {
         uint64_t *nz = xmalloc((size_t)n * (size_t)((n + 63) / 64) * sizeof *nz);
-        if (solve_ops(e, nz) <= EOM_SPARSE_SOLVE_MAX)
+        unsigned char *on = xmalloc((size_t)n * (size_t)n);
+        for (int i = 0; i < n * n; i++)
+            on[i] = e->M[i] != EXPR_ZERO;
+        if (solve_ops(n, on, nz) <= EOM_SPARSE_SOLVE_MAX)
             derive_solve(e, A, P);
         else
             e->mass_parent = mass_tree(e, A);
+        free(on);
         free(nz);
     }
     return e;
@@ -249,12 +254,47 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
     enum { NFORMS_MAX = 16 };
     Eom *e[NFORMS_MAX];
     long cost[NFORMS_MAX];
-    int nf = 0, best = -1;
+    int nf = 0, best = -1, n = m->n;
+    /* On a large tree a form that factors M pays at least the dense
+     * factorization, unless M's tree pattern (M_ij != 0 only where one
+     * joint is above the other) makes the unrolled solve short: priced
+     * from the tree, it is not derived where the articulated-body solve
+     * already costs less (deriving Newton-Euler's M of a 600-coordinate
+     * tree takes seconds and hundreds of megabytes, for nothing). */
+    long dense = EOM_DENSE_WEIGHT * ((long)n * n * n / 3 + 2L * n * n), ab = -1;
+    const char *priced = NULL;
+    Eom *x = NULL; /* the articulated-body form, derived first here */
+    if (!constrained && m->tree && n > EOM_SOLVE_MAX) {
+        const char *no;
+        x = eom_derive(s, m, &form_articulated, A, P, D, &no);
+        ab = x ? eom_cost(x, m, constrained, A, P, D) : -1;
+        if (ab >= 0 && dense > ab) {
+            const Tree *t = m->tree;
+            unsigned char *on = xmalloc((size_t)n * (size_t)n);
+            uint64_t *nz = xmalloc((size_t)n * (size_t)((n + 63) / 64) * sizeof *nz);
+            memset(on, 0, (size_t)n * (size_t)n);
+            for (int k = 0; k < t->nturns; k++)
+                for (int a = k; a >= 0; a = t->turn[a].up)
+                    on[t->turn[k].coord * n + t->turn[a].coord] =
+                        on[t->turn[a].coord * n + t->turn[k].coord] = 1;
+            if (solve_ops(n, on, nz) > EOM_SPARSE_SOLVE_MAX)
+                priced = "newton-euler";
+            free(nz);
+            free(on);
+        }
+    }
     for (int k = 0; form_at(k) && nf < NFORMS_MAX; k++) {
         const Form *f = form_at(k);
         const char *no;
         if (f->eliminate || (m->tree && m->n > EOM_SOLVE_MAX && !f->mass))
             continue;
+        if (priced && !strcmp(f->name, priced))
+            continue;
+        if (f == &form_articulated && x) {
+            e[nf] = x, cost[nf] = ab;
+            nf++;
+            continue;
+        }
         if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
             continue;
         cost[nf] = eom_cost(e[nf], m, constrained, A, P, D);
@@ -273,7 +313,10 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
                                    e[k]->form->name, cost[k]);
             first = 0;
         }
-    if (nf > 1 && at < len)
+    if (priced && at < len)
+        at += (size_t)snprintf(why + at, len - at, "%s%s more than %ld, its dense "
+                               "factorization alone", nf > 1 ? ", " : " (", priced, dense);
+    if ((nf > 1 || priced) && at < len)
         snprintf(why + at, len - at, ")");
     return e[best];
 }

@@ -804,6 +804,25 @@ print_energy_sum(Printer *pr)
     println(pr, "}\n");
 }
 
+/* The end of an accel member: its pivots piv[] against mkk[] (the first
+ * failing one in elimination order), and the smallest d_k / M_kk. */
+static void
+print_pivot_check(Printer *pr, int n)
+{
+    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
+    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
+    println(pr, "            return k + 1;");
+    println(pr, "    if (pivot) {");
+    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
+    println(pr, "        for (int k = 1; k < %d; k++)", n);
+    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
+    println(pr, "                dmin = piv[k], mmin = mkk[k];");
+    println(pr, "        *pivot = dmin / mmin;");
+    println(pr, "    }");
+    println(pr, "    return 0;");
+    println(pr, "}\n");
+}
+
 /* The accel member of eomc_model: the solve, then the pivot check. */
 static void
 print_accel(Printer *pr, const Lowered *L)
@@ -819,18 +838,7 @@ print_accel(Printer *pr, const Lowered *L)
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     println(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
     println(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
-    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
-    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
-    println(pr, "            return k + 1;");
-    println(pr, "    if (pivot) {");
-    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
-    println(pr, "        for (int k = 1; k < %d; k++)", n);
-    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
-    println(pr, "                dmin = piv[k], mmin = mkk[k];");
-    println(pr, "        *pivot = dmin / mmin;");
-    println(pr, "    }");
-    println(pr, "    return 0;");
-    println(pr, "}\n");
+    print_pivot_check(pr, n);
 }
 
 /* The tables' turns, then accel and mass_bias as loops over them
@@ -912,18 +920,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
     println(pr, "    eomc_real tau[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n, n, nt);
     println(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
     println(pr, "    eomc_tree_aba(%s_turns, %d, %s, q, v, tau, w, a, piv, mkk);", nm, nt, dat);
-    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
-    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
-    println(pr, "            return k + 1;");
-    println(pr, "    if (pivot) {");
-    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
-    println(pr, "        for (int k = 1; k < %d; k++)", n);
-    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
-    println(pr, "                dmin = piv[k], mmin = mkk[k];");
-    println(pr, "        *pivot = dmin / mmin;");
-    println(pr, "    }");
-    println(pr, "    return 0;");
-    println(pr, "}\n");
+    print_pivot_check(pr, n);
     println(pr, "/* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0),");
     println(pr, " * by the Newton-Euler recursion over the tables: h at q'' = 0, column j of");
     println(pr, " * M at q' = 0, q'' = e_j with no gravity and no forces (E is linear in");

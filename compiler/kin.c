@@ -57,9 +57,8 @@ struct Kin {
     int nf, np, capf, capp;
 };
 
-/* C = A B, 3 x 3 row-major (C may be A). */
-static void
-matmul3(ExprPool *P, const ExprId *A, const ExprId *B, ExprId *C)
+void
+kin_mat3_mul(ExprPool *P, const ExprId *A, const ExprId *B, ExprId *C)
 {
     ExprId T[9];
     for (int i = 0; i < 3; i++)
@@ -166,7 +165,7 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const E
     kin_to_world(K, f, a, axis);
     if (th == EXPR_NONE)
         kin_to_world(K, f, wb, wbw);
-    matmul3(P, F->R, Rk, F->R);
+    kin_mat3_mul(P, F->R, Rk, F->R);
     ExprId rate = th == EXPR_NONE ? EXPR_NONE : diff_time(K->D, th);
     KinTurn *turn = arena_alloc(K->A, sizeof *turn);
     for (int i = 0; i < 9; i++)
@@ -387,7 +386,7 @@ kin_omega_rel_in(const Kin *K, int f, int g, ExprId out[3])
             for (int i = 0; i < 3; i++)
                 w[i] = expr_add(P, w[i], t->rate == EXPR_NONE ? axis[i]
                                                               : expr_mul(P, axis[i], t->rate));
-            matmul3(P, Q, t->Rk, Q);
+            kin_mat3_mul(P, Q, t->Rk, Q);
         }
     for (int i = 0; i < 3; i++)
         out[i] = w[i];
@@ -424,12 +423,20 @@ int kin_nframes(const Kin *K) { return K->nf; }
 int kin_parent(const Kin *K, int f) { return K->f[f].parent; }
 int kin_npoints(const Kin *K) { return K->np; }
 
-int
-kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
+/* Frame f's own turn k, or NULL past the last. */
+static const KinTurn *
+turn_at(const Kin *K, int f, int k)
 {
     const KinTurn *t = K->f[f].turns;
     for (; t && k > 0; k--)
         t = t->next;
+    return t;
+}
+
+int
+kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
+{
+    const KinTurn *t = turn_at(K, f, k);
     if (!t)
         return 0;
     *rate = t->rate;
@@ -441,9 +448,7 @@ kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3])
 int
 kin_turn_local(const Kin *K, int f, int k, ExprId *angle, ExprId a[3], ExprId Rk[9])
 {
-    const KinTurn *t = K->f[f].turns;
-    for (; t && k > 0; k--)
-        t = t->next;
+    const KinTurn *t = turn_at(K, f, k);
     if (!t)
         return 0;
     *angle = t->th;

@@ -17,6 +17,8 @@
 
 typedef struct Kin Kin;
 
+/* C = A B, 3 x 3 row-major (C may be A or B). */
+void kin_mat3_mul(ExprPool *P, const ExprId *A, const ExprId *B, ExprId *C);
 /* a x b and a . b of world-component vectors (out may be a or b). */
 void kin_cross(ExprPool *P, const ExprId *a, const ExprId *b, ExprId *out);
 ExprId kin_dot(ExprPool *P, const ExprId *a, const ExprId *b);

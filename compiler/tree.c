@@ -206,21 +206,6 @@ nturns_of(const Kin *K, int f)
     return k;
 }
 
-/* C = A B, 3 x 3 row-major (C may be A or B). */
-static void
-mat3_mul(ExprPool *P, const ExprId *X, const ExprId *Y, ExprId *C)
-{
-    ExprId out[9];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            ExprId sum = EXPR_ZERO;
-            for (int k = 0; k < 3; k++)
-                sum = expr_add(P, sum, expr_mul(P, X[3 * i + k], Y[3 * k + j]));
-            out[3 * i + j] = sum;
-        }
-    memcpy(C, out, sizeof out);
-}
-
 /* Q: the axes at place b in the axes at place a, when a's frame is an
  * ancestor of b's (or b's, with a.n <= b.n): the product of the turns
  * from a to b. */
@@ -242,7 +227,7 @@ axes_between(const Kin *K, Arena *A, ExprPool *P, Place a, Place b, ExprId Q[9])
         for (int k = from; k < to; k++) {
             ExprId angle, axis[3], Rk[9];
             kin_turn_local(K, f, k, &angle, axis, Rk);
-            mat3_mul(P, Q, Rk, Q);
+            kin_mat3_mul(P, Q, Rk, Q);
         }
     }
 }
@@ -401,11 +386,11 @@ localize(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
             Jm[i] = EXPR_ZERO;
         if (ms[k].I) { /* Q I Q^T */
             ExprId QI[9], Qt[9];
-            mat3_mul(P, Q, ms[k].I, QI);
+            kin_mat3_mul(P, Q, ms[k].I, QI);
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++)
                     Qt[3 * i + j] = Q[3 * j + i];
-            mat3_mul(P, QI, Qt, Jm);
+            kin_mat3_mul(P, QI, Qt, Jm);
             for (int i = 0; i < 3; i++) /* symmetric to the bit */
                 for (int j = 0; j < i; j++)
                     Jm[3 * j + i] = Jm[3 * i + j];

@@ -13,9 +13,12 @@
  * subtree, its part of the velocity of P is th' a x (P - p): the same
  * rigid motion for every mass below g exactly when they all enter the
  * subtree at p.  A sliding link moves everything after it on the chain by
- * d q', along its direction in its frame's axes.  Walking a mass's chain
+ * d q', along its direction in its frame's axes; a link affine in several
+ * coordinates, c + d_1 q_1 + ... + d_k q_k, is k slides in a row (a
+ * floating base's translation, a rolling wheel's contact point), by
+ * coordinate index, with massless bodies between.  Walking a mass's chain
  * from the world outward gives its joints in order: at each link, the
- * turns of the frames it enters (top down), then the link's slide; each
+ * turns of the frames it enters (top down), then the link's slides; each
  * joint's parent is the one before it, the same for every mass.
  */
 #include "tree.h"
@@ -33,7 +36,8 @@ typedef struct Place {
 /* One mass: a body (I its inertia about its centre in its frame's axes)
  * or a particle (I NULL), and the chain of links it hangs from (link 0
  * ends at the mass; link k starts at from[k], -1 the origin, lies in
- * frame fr[k], and slides as slide sl[k], or -1). */
+ * frame fr[k], and slides as slides sl[k], sl[k] + 1, ... (those of its
+ * point), or not: -1). */
 typedef struct Mass {
     const char *name;
     int frame, point;
@@ -42,8 +46,9 @@ typedef struct Mass {
     int n, *from, *fr, *sl;
 } Mass;
 
-/* A sliding link: it ends at point `point`, lies in kin's frame `frame`,
- * and its offset is c + d q (q coordinate `coord`, c and d constant). */
+/* A slide of a link: the link ends at point `point`, lies in kin's frame
+ * `frame`, and its offset is c + sum d q over its slides (q coordinate
+ * `coord`, c and d constant), which follow each other in the list. */
 typedef struct Slide {
     int point, frame, coord;
     ExprId d[3];
@@ -85,12 +90,16 @@ depth(const Kin *K, int f)
     return d;
 }
 
-/* A link's offset at = c + d q_i with c and d constant: 1 (with *coord and
- * d set), 0 when at depends on no coordinate, -1 otherwise. */
+/* A link's offset at = c + sum_k d_k q_k with c and the d_k constant:
+ * the number of coordinates k (with coord[k] by index and d[k] set; at
+ * most nmax, else -1), 0 when at depends on no coordinate, -1 when it is
+ * not affine so. */
 static int
-affine(const Spec *s, ExprPool *P, Diff *D, const ExprId at[3], int *coord, ExprId d[3])
+affine(const Spec *s, ExprPool *P, Diff *D, const ExprId at[3], int nmax, int *coord,
+       ExprId (*d)[3])
 {
-    int found = -1;
+    int found = 0;
+    ExprId c[3] = {at[0], at[1], at[2]};
     for (int i = 0; i < s->nq; i++) {
         ExprId qi = expr_var(P, i, 0), di[3];
         int any = 0;
@@ -98,21 +107,21 @@ affine(const Spec *s, ExprPool *P, Diff *D, const ExprId at[3], int *coord, Expr
             any |= (di[k] = diff_partial(D, at[k], qi)) != EXPR_ZERO;
         if (!any)
             continue;
-        if (found >= 0)
+        if (found == nmax)
             return -1;
-        found = i;
-        memcpy(d, di, sizeof di);
+        coord[found] = i;
+        for (int k = 0; k < 3; k++) {
+            if (!constant_in_time(D, di[k]))
+                return -1;
+            d[found][k] = di[k];
+            c[k] = expr_sub(P, c[k], expr_mul(P, di[k], qi));
+        }
+        found++;
     }
-    if (found < 0)
-        return 0;
-    ExprId qi = expr_var(P, found, 0);
-    for (int k = 0; k < 3; k++) {
-        ExprId c = expr_sub(P, at[k], expr_mul(P, d[k], qi));
-        if (!constant_in_time(D, d[k]) || !constant_in_time(D, c))
+    for (int k = 0; k < 3; k++)
+        if (!constant_in_time(D, c[k]))
             return -1;
-    }
-    *coord = found;
-    return 1;
+    return found;
 }
 
 /* Check the chain of m's point and keep it, mark the frames above it in
@@ -124,26 +133,30 @@ hang(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Mass *ms, Foun
     /* the chain is kept on the stack; a longer one is refused, and
      * Lagrange's form derives the model as before */
     enum { CHAIN_MAX = 256 };
+    /* a link slides along at most the three directions of space */
+    enum { SLIDES_MAX = 3 };
     int from[CHAIN_MAX], fr[CHAIN_MAX], sl[CHAIN_MAX], n = 0;
     for (int p = ms->point; p > KIN_ORIGIN; n++) {
         if (n == CHAIN_MAX)
             return arena_printf(A, "'%s' hangs from more than %d points", ms->name, CHAIN_MAX);
-        ExprId at[3], off[3], d[3];
+        ExprId at[3], off[3], d[SLIDES_MAX][3];
         from[n] = kin_point_link(K, p, &fr[n], at, off);
         sl[n] = -1;
-        int varies = 0, coord;
+        int varies = 0, coord[SLIDES_MAX], ns;
         for (int k = 0; k < 3; k++)
             varies |= !constant_in_time(D, at[k]);
         if (varies) {
-            if (affine(s, P, D, at, &coord, d) != 1)
-                return arena_printf(A, "the position of '%s' slides in a frame other than "
-                                    "along a constant direction by one coordinate",
-                                    ms->name);
+            if ((ns = affine(s, P, D, at, SLIDES_MAX, coord, d)) <= 0)
+                return arena_printf(A, "the position of '%s' moves in a frame other than "
+                                    "along constant directions by its coordinates (an "
+                                    "offset c + d1 q1 + ... + d%d q%d)", ms->name,
+                                    SLIDES_MAX, SLIDES_MAX);
             int j = 0;
             while (j < fd->nslide && fd->slide[j].point != p)
                 j++;
-            if (j == fd->nslide)
-                fd->slide[fd->nslide++] = (Slide){p, fr[n], coord, {d[0], d[1], d[2]}};
+            for (int k = 0; j == fd->nslide && k < ns; k++)
+                fd->slide[fd->nslide + k] = (Slide){p, fr[n], coord[k], {d[k][0], d[k][1], d[k][2]}};
+            fd->nslide += j == fd->nslide ? ns : 0;
             sl[n] = j;
         }
         p = from[n] < 0 ? KIN_ORIGIN : from[n];
@@ -271,7 +284,8 @@ offset_in(const Kin *K, Arena *A, ExprPool *P, int p, const ExprId o[3], Place x
 /* The joints as they are found: turn ids first (by kin's frames, then
  * their turns), then the slides. */
 typedef struct Joints {
-    int nturn, n;
+    int nturn, n, nslide;
+    const Slide *slide; /* [nslide]: joint nturn + k is slide k */
     int *first;     /* per kin frame: the id of its first coordinate turn */
     int *nct;       /* per kin frame: how many */
     Place *place;   /* per id: its axes */
@@ -314,20 +328,52 @@ sequence(const Kin *K, Arena *A, Joints *J, const Mass *ms, int *carrier)
                 }
             dmax = d;
         }
-        if (k > 0 && ms->sl[k - 1] >= 0) {
-            int j = J->nturn + ms->sl[k - 1];
-            if ((why = link_joint(J, A, ms, prev, j)))
+        for (int j = k > 0 ? ms->sl[k - 1] : -1; j >= 0 && j < J->nslide &&
+                                                   J->slide[j].point == J->slide[ms->sl[k - 1]].point; j++) {
+            if ((why = link_joint(J, A, ms, prev, J->nturn + j)))
                 return why;
-            prev = j;
+            prev = J->nturn + j;
         }
     }
     *carrier = prev;
     return NULL;
 }
 
+/* A wheel: a turn about a coordinate axis of its own that carries a mass
+ * symmetric about that axis (I diagonal with the other two moments the
+ * same expression, h along the axis) and nothing else.  Turning it leaves
+ * its mass where it was, so its coordinates may as well be the axes just
+ * before the turn (Q = Qf): its angle then appears nowhere, and the
+ * derivatives along it are structurally 0 (a rolling wheel's angle is a
+ * symmetry; rounding noise in dE/dangle would split the linearization's
+ * double zero eigenvalue by sqrt(epsilon)). */
+static void
+spin_in_place(Tree *t, int k)
+{
+    TreeTurn *tk = &t->turn[k];
+    int a = -1;
+    for (int j = 0; j < 3; j++)
+        if (tk->al[j] == EXPR_ONE && tk->al[(j + 1) % 3] == EXPR_ZERO &&
+            tk->al[(j + 2) % 3] == EXPR_ZERO)
+            a = j;
+    if (tk->slide || a < 0)
+        return;
+    for (int j = 0; j < t->nturns; j++)
+        if (t->turn[j].up == k)
+            return;
+    int b = (a + 1) % 3, c = (a + 2) % 3;
+    if (tk->h[b] != EXPR_ZERO || tk->h[c] != EXPR_ZERO || tk->I[4 * b] != tk->I[4 * c])
+        return;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (i != j && tk->I[3 * i + j] != EXPR_ZERO)
+                return;
+    memcpy(tk->Q, tk->Qf, sizeof tk->Q);
+}
+
 /* Each joint's and mass's local coordinates (tree.h), in `order`. */
 static const char *
-localize(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
+localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
          const Joints *J, const int *order, const int *pos, const Mass *ms, int nm,
          const int *carrier)
 {
@@ -346,15 +392,29 @@ localize(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
         memcpy(uo, zero, sizeof uo);
         if (u >= 0 && J->origin[u] > KIN_ORIGIN)
             kin_pos(K, J->origin[u], uo);
-        if (!offset_in(K, A, P, J->origin[j], uo, up, tk->r))
-            return moves;
-        if (tk->slide) {
+        const Slide *sd = tk->slide ? &J->slide[j - J->nturn] : NULL;
+        if (sd && sd > J->slide && sd[-1].point == sd->point) {
+            /* a link's later slide: its offset from the one before, in the
+             * same axes (Q = 1), is d q alone */
             memcpy(tk->Qf, tk->Q, sizeof tk->Q);
             tk->angle = EXPR_NONE;
-            ExprId at3[3], off[3]; /* the direction, in its frame's axes: its own */
-            int f, coord;
-            kin_point_link(K, J->origin[j], &f, at3, off);
-            affine(s, P, D, at3, &coord, tk->al);
+            for (int i = 0; i < 3; i++)
+                tk->al[i] = sd->d[i], tk->r[i] = expr_mul(P, sd->d[i], expr_var(P, sd->coord, 0));
+            continue;
+        }
+        if (!offset_in(K, A, P, J->origin[j], uo, up, tk->r))
+            return moves;
+        if (sd) {
+            /* the first: the link's offset but for the later slides' */
+            memcpy(tk->Qf, tk->Q, sizeof tk->Q);
+            tk->angle = EXPR_NONE;
+            for (int i = 0; i < 3; i++)
+                tk->al[i] = sd->d[i];
+            for (const Slide *x = sd + 1; x < J->slide + J->nslide && x->point == sd->point; x++) {
+                ExprId qx = expr_var(P, x->coord, 0), zero0 = EXPR_ZERO, r[3];
+                expr_subst_many(P, 3, tk->r, 1, &qx, &zero0, r);
+                memcpy(tk->r, r, sizeof r);
+            }
             continue;
         }
         axes_between(K, A, P, up, (Place){at.f, at.n - 1}, tk->Qf);
@@ -423,6 +483,8 @@ localize(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
             if (!constant_in_time(D, tk->I[i]) || (i < 3 && !constant_in_time(D, tk->h[i])))
                 return moves;
     }
+    for (int k = 0; k < J->n; k++)
+        spin_in_place(t, k);
     return NULL;
 }
 
@@ -470,7 +532,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
     }
     typedef ExprId Point3[3];
     Found fd = {arena_new_array(A, Point3, nf), arena_new_array(A, int, nf),
-                arena_new_array(A, int, nf), arena_new_array(A, Slide, np + 1), 0};
+                arena_new_array(A, int, nf), arena_new_array(A, Slide, 3 * np + 1), 0};
     for (int g = 0; g < nf; g++)
         fd.pivot[g][0] = EXPR_NONE, fd.above[g] = 0;
     for (int k = 0; k < nm; k++)
@@ -523,6 +585,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         }
     }
     J.n = J.nturn + fd.nslide;
+    J.nslide = fd.nslide, J.slide = fd.slide;
     for (int k = 0; k < fd.nslide; k++) {
         const Slide *sd = &fd.slide[k];
         int j = J.nturn + k;
@@ -565,7 +628,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
     Tree *t = arena_alloc(A, sizeof *t);
     t->nturns = J.n;
     t->turn = arena_new_array(A, TreeTurn, J.n + 1);
-    if ((*why = localize(s, K, A, P, D, t, &J, order, pos, ms, nm, carrier)))
+    if ((*why = localize(K, A, P, D, t, &J, order, pos, ms, nm, carrier)))
         return NULL;
     return t;
 }

@@ -127,6 +127,31 @@ static const char slide_spec[] =
     "  push: {force: [0.3, 0, 0.1], on: arm}\n"
     "scene: {t_end: 1}\n";
 
+/* A floating body: its centre's offset affine in three coordinates (three
+ * slides in a row), oblique directions among them, then three turns,
+ * and a wheel that spins about its own axis (its mass symmetric about it:
+ * tree.c keeps it in the axes before the turn), on an arm. */
+static const char float_spec[] =
+    "name: floating\n"
+    "parameters: {m: 2, g: 9.81}\n"
+    "coordinates: [x, y, z, a, b, c, w, e]\n"
+    "frames:\n"
+    "  body_axes: {rotation: [{z: a}, {x: b}, {y: c}]}\n"
+    "  arm_axes: {parent: body_axes, rotation: [{x: e}]}\n"
+    "  wheel_axes: {parent: arm_axes, rotation: [{y: w}]}\n"
+    "points:\n"
+    "  centre: {at: [0.1 + x + 0.3*z, y - 0.2*x, 0.5 + z]}\n"
+    "  shoulder: {frame: body_axes, from: centre, at: [0.2, 0, 0.1]}\n"
+    "  hub: {frame: arm_axes, from: shoulder, at: [0, 0.3, 0]}\n"
+    "bodies:\n"
+    "  body: {mass: m, frame: body_axes, center: centre, inertia: [[0.3, 0.01, 0.02], [0.01, 0.4, 0.03], [0.02, 0.03, 0.5]]}\n"
+    "  arm: {mass: 0.5, frame: arm_axes, center: shoulder, inertia: [0.01, 0.02, 0.03]}\n"
+    "  wheel: {mass: 0.7, frame: wheel_axes, center: hub, inertia: [0.02, 0.04, 0.02]}\n"
+    "effects:\n"
+    "  gravity: {gravity: [0, 0, -g]}\n"
+    "  push: {force: [0.3, -0.2, 0.1], on: arm}\n"
+    "scene: {t_end: 1}\n";
+
 static Spec *
 load(const char *text)
 {
@@ -317,6 +342,23 @@ main(void)
         check_agree(sl, "the tree with sliding joints");
         check_articulated(sl, "the tree with sliding joints");
     }
+    Spec *fl = load(float_spec);
+    CHECK(fl != NULL, "the floating body loads");
+    if (fl) {
+        check_agree(fl, "the floating body");
+        check_articulated(fl, "the floating body");
+    }
+    if (fl) { /* the wheel's angle w: a symmetry, so structurally absent */
+        Mech *m = mech_build(fl, A, P, D);
+        const char *why = NULL;
+        Eom *ne = eom_derive(fl, m, form_find("newton-euler"), A, P, D, &why);
+        Eom *ab = eom_derive(fl, m, form_find("articulated-body"), A, P, D, &why);
+        int absent = ne && ab, w = 6;
+        for (int i = 0; absent && i < m->n; i++)
+            absent = diff_partial(D, ne->E[i], m->q[0][w]) == EXPR_ZERO &&
+                     diff_partial(D, ab->acc[i], m->q[0][w]) == EXPR_ZERO;
+        CHECK(absent, "the floating body: the wheel's angle appears in no E_i and no q_i''");
+    }
     Spec *big = load(big_tree_spec);
     CHECK(big != NULL, "the 15-coordinate tree loads");
     if (big)
@@ -324,7 +366,7 @@ main(void)
     const char *t = tree_spec;
     /* a point that slides in its frame other than along a line */
     check_refused(variant(t, "at: [0, 0.5, 0]}", "at: [0, 0.5*cos(c1), 0]}"),
-                  "slides in a frame other than along a constant direction");
+                  "moves in a frame other than along constant directions by its coordinates");
     /* a slide by a coordinate that also turns a frame */
     check_refused(variant(t, "at: [0, 0.5, 0]}", "at: [0, 0.5 + 0.1*c1, 0]}"),
                   "coordinate 'c1' moves two joints");

@@ -693,6 +693,10 @@ print_banner(Printer *pr, const Eom *e, const Constraints *c, const Invariant *i
             println(pr, " *   %-*s %s, determines %s", w, c->spec[k].name,
                     constraint_order_name(c->spec[k].order), s->coord[c->dependent[k]].name);
         println(pr, " *   %s in q''", c->affine ? "all affine" : "not all affine (Newton)");
+        if (pr->L->loads)
+            print_wrapped(pr, "The multipliers by unit loads: q'' without the constraints, "
+                          "then M^-1 B^T one row of B at a time by the same recursion (minv), "
+                          "and the nc x nc system B M^-1 B^T; M is never formed (kkt.c).");
     }
     println(pr, " *");
     println(pr, " * Compiled with -DEOMC_EXTENDED, the functions that the reference solution");
@@ -930,6 +934,8 @@ print_tree_functions(Printer *pr, const Lowered *L)
     int n = L->n, nt = L->tables->nt, np = pr->s->np;
     char fname[128], dat[64];
     snprintf(dat, sizeof dat, "p + %d", np + L->tree_base);
+    if (L->loads) /* free_accel and minv: not the reference's */
+        fence(pr, 1);
     println(pr, "/* q'' = -M^-1 h by the articulated-body recursion over the tables; 0, or");
     println(pr, " * k + 1 if the pivot of coordinate k fails (M singular or not positive");
     println(pr, " * definite).  *pivot (unless NULL): the smallest d_k / M_kk. */");
@@ -938,8 +944,27 @@ print_tree_functions(Printer *pr, const Lowered *L)
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     println(pr, "    eomc_real tau[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n, n, nt);
     println(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
-    println(pr, "    eomc_tree_aba(%s_turns, %d, %s, q, v, tau, w, a, piv, mkk);", nm, nt, dat);
+    println(pr, "    eomc_tree_aba(%s_turns, %d, %s, NULL, q, v, tau, w, a, piv, mkk);", nm, nt,
+            dat);
     print_pivot_check(pr, n);
+    if (L->loads) {
+        println(pr, "/* y = M^-1 da by the articulated-body recursion over the tables at rest,");
+        println(pr, " * with no force but the load da: the runtime's unit-load passes. */");
+        snprintf(fname, sizeof fname, "%s_minv", nm);
+        print_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, "
+                   "const eomc_real *v, const eomc_real *p, const eomc_real *u, "
+                   "const eomc_real *da, eomc_real *y");
+        println(pr, "    static const eomc_real still[6] = {0, 0, 0, 0, 0, 0};");
+        println(pr, "    eomc_real zero[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n,
+                n, nt);
+        println(pr, "    (void)t, (void)v, (void)u;");
+        println(pr, "    for (int j = 0; j < %d; j++)", n);
+        println(pr, "        zero[j] = 0.0;");
+        println(pr, "    eomc_tree_aba(%s_turns, %d, %s, still, q, zero, da, w, y, piv, mkk);",
+                nm, nt, dat);
+        println(pr, "}\n");
+        fence(pr, 0); /* mass_bias: the reference's too */
+    }
     println(pr, "/* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0),");
     println(pr, " * by the Newton-Euler recursion over the tables: h at q'' = 0, column j of");
     println(pr, " * M at q' = 0, q'' = e_j with no gravity and no forces (E is linear in");
@@ -1058,6 +1083,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    mass_parent, /* M factored by LTDL along this tree */");
     else
         println(pr, "    NULL, /* M factored densely (or not at all: accel) */");
+    if (L->loads)
+        println(pr, "    %s_accel, %s_minv, /* the multipliers by unit loads */", nm, nm);
+    else
+        println(pr, "    NULL, NULL, /* no unit-load passes */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
@@ -1080,7 +1109,8 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);
     println(pr, "    EOMC_ABI_VERSION, \"%s\", %s%s, %s_inputs, %s_mass_bias, %s%s,", nm,
             L->derive ? nm : "NULL", L->derive ? "_derive" : "", nm, nm,
-            L->accel_solve || L->tau ? nm : "NULL", L->accel_solve || L->tau ? "_accel" : "");
+            (L->accel_solve || L->tau) && !c ? nm : "NULL",
+            (L->accel_solve || L->tau) && !c ? "_accel" : "");
     if (c)
         println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
                 c->affine ? "" : "_c_jacobian");
@@ -1174,7 +1204,7 @@ print_event_set(Printer *pr, const Lowered *L)
 
 /* The rows of --stats, in order. */
 static const char *const stat_names[EMIT_NFUNCS] = {
-    "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "constraint",
+    "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "minv", "constraint",
     "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive", "outputs",
     "events",
 };

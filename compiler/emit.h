@@ -25,7 +25,7 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 14 };
+enum { EMIT_NFUNCS = 15 };
 
 /* Print the lowered model L (lower.h); the spec, form, constraints (or
  * NULL) and invariant give the banner and the tables.  The functions are

@@ -188,7 +188,7 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         e->acc = arena_new_array(A, ExprId, n);
         e->piv = arena_new_array(A, ExprId, n);
         e->mkk = arena_new_array(A, ExprId, n);
-        f->solve(m, A, P, D, e->acc, e->piv, e->mkk);
+        f->solve(m, A, P, D, NULL, e->acc, e->piv, e->mkk);
     } else if (n <= EOM_SOLVE_MAX) {
         derive_solve(e, A, P);
     } else {
@@ -248,7 +248,7 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
  * h 17 299 operations, its whole articulated-body solve 13 633), and the
  * runtime would factor their M besides.  Writes the reason to why. */
 Eom *
-eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, ExprPool *P,
+eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A, ExprPool *P,
                 Diff *D, char *why, size_t len)
 {
     enum { NFORMS_MAX = 16 };
@@ -264,10 +264,10 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
     long dense = EOM_DENSE_WEIGHT * ((long)n * n * n / 3 + 2L * n * n), ab = -1;
     const char *priced = NULL;
     Eom *x = NULL; /* the articulated-body form, derived first here */
-    if (!constrained && m->tree && n > EOM_SOLVE_MAX) {
+    if (!nc && m->tree && n > EOM_SOLVE_MAX) {
         const char *no;
         x = eom_derive(s, m, &form_articulated, A, P, D, &no);
-        ab = x ? eom_cost(x, m, constrained, A, P, D) : -1;
+        ab = x ? eom_cost(x, m, nc, loads, A, P, D) : -1;
         if (ab >= 0 && dense > ab) {
             const Tree *t = m->tree;
             unsigned char *on = xmalloc((size_t)n * (size_t)n);
@@ -297,7 +297,7 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A, Exp
         }
         if (!(e[nf] = eom_derive(s, m, f, A, P, D, &no)))
             continue;
-        cost[nf] = eom_cost(e[nf], m, constrained, A, P, D);
+        cost[nf] = eom_cost(e[nf], m, nc, loads, A, P, D);
         nf++;
     }
     for (int k = 0; k < nf; k++)
@@ -342,16 +342,36 @@ ops(ExprPool *P, int n, const ExprId *roots)
     return c.adds + c.muls + c.divs + c.calls;
 }
 
+ExprId *
+eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    if (e->minv || !e->form->solve)
+        return e->minv;
+    int n = e->n;
+    ExprId *load = arena_new_array(A, ExprId, n), *piv = arena_new_array(A, ExprId, n);
+    ExprId *mkk = arena_new_array(A, ExprId, n);
+    e->minv = arena_new_array(A, ExprId, n);
+    for (int j = 0; j < n; j++)
+        load[j] = expr_seed(P, j, 2);
+    e->form->solve(m, A, P, D, load, e->minv, piv, mkk);
+    return e->minv;
+}
+
 long
-eom_cost(Eom *e, const Mech *m, int constrained, Arena *A, ExprPool *P, Diff *D)
+eom_cost(Eom *e, const Mech *m, int nc, int loads, Arena *A, ExprPool *P, Diff *D)
 {
     int n = e->n;
     ExprId *roots = xmalloc((size_t)(n * n + 3 * n + 1) * sizeof *roots);
     long cost;
-    if (!constrained && e->acc) {
+    if (e->acc && (!nc || (loads && e->form->solve))) {
         for (int i = 0; i < n; i++)
             roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i];
         cost = ops(P, 3 * n, roots);
+        if (nc) { /* one pass of minv per row, B M^-1 B^T, its LU, q'' = a - Y lambda */
+            ExprId *y = eom_minv(e, m, A, P, D);
+            cost += nc * ops(P, n, y) +
+                    EOM_DENSE_WEIGHT * ((long)nc * nc * n + (long)nc * nc * nc / 3 + 2L * nc * n);
+        }
     } else {
         int k = 0;
         eom_mass(e, m, A, P, D);
@@ -361,8 +381,8 @@ eom_cost(Eom *e, const Mech *m, int constrained, Arena *A, ExprPool *P, Diff *D)
         for (int i = 0; i < n; i++)
             roots[k++] = e->h[i];
         cost = ops(P, k, roots);
-        if (!constrained) /* LDL^T: n^3/6 multiply-adds, two triangular solves */
-            cost += EOM_DENSE_WEIGHT * ((long)n * n * n / 3 + 2L * n * n);
+        long N = n + nc; /* LDL^T of M, or LU of the KKT matrix */
+        cost += EOM_DENSE_WEIGHT * (nc ? N * N * N / 3 + 2 * N * N : (long)n * n * n / 3 + 2L * n * n);
     }
     free(roots);
     return cost;

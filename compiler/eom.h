@@ -37,6 +37,11 @@ typedef struct Eom {
     /* Where acc is NULL: M's tree of structural nonzeros (eomc_model.h's
      * mass_parent), or NULL when M is not so sparse. */
     int *mass_parent;
+    /* Where the form solves for q'' itself: minv = M^-1 x for the load x
+     * given as the seeds expr_seed(j, 2), by the same recursion (a
+     * constrained tree's M^-1 B^T, a row of B at a time); NULL until
+     * eom_minv. */
+    ExprId *minv;
 } Eom;
 
 /* Up to this many coordinates the solve is emitted as straight-line code
@@ -72,13 +77,21 @@ enum { EOM_STRAIGHT_LINE_MAX = 20000 };
  * work, and only the Jacobian needs them. */
 Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
                 ExprPool *P, Diff *D, const char **why);
-/* What one right-hand side of e costs, in operations: the accelerations
- * where e solves for them (unconstrained), else M and h, plus the dense
- * factorization the runtime then does (n^3/3 + 2 n^2 operations, each
- * weighed as EOM_DENSE_WEIGHT straight-line ones) when unconstrained.
- * The constraints' own functions and the KKT solve cost the same whatever
- * the form, so they are left out. */
-long eom_cost(Eom *e, const Mech *m, int constrained, Arena *A, ExprPool *P, Diff *D);
+/* What one right-hand side of e costs, in operations, with nc
+ * constraints (0: none), which the runtime may solve by unit loads
+ * (loads: every one affine in q'', with multipliers):
+ * - unconstrained, where e solves for q'': its solve;
+ * - constrained so, where e solves: its solve without the constraints,
+ *   nc passes of minv (M^-1 B^T) and the nc x nc system B M^-1 B^T;
+ * - else M and h, plus the dense factorization the runtime then does:
+ *   LDL^T of M (n^3/3 + 2 n^2) or LU of the KKT matrix ((n + nc)^3 / 3
+ *   + 2 (n + nc)^2), each operation weighed as EOM_DENSE_WEIGHT
+ *   straight-line ones.
+ * The constraints' own functions cost the same whatever the form, so they
+ * are left out. */
+long eom_cost(Eom *e, const Mech *m, int nc, int loads, Arena *A, ExprPool *P, Diff *D);
+/* e->minv, derived on first use (NULL where the form has no solve). */
+ExprId *eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* e->M, derived on first use where the form solves for q'' itself (its
  * recursion never forms M; constraints and the cost of a constrained
  * model need it). */
@@ -86,7 +99,7 @@ ExprId *eom_mass(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* The default form's E, M, h and solve: the cheapest of those that apply
  * (eom.c says how they are weighed), or NULL if none does; the reason, with
  * what the others cost, in why[len]. */
-Eom *eom_derive_cheapest(const Spec *s, const Mech *m, int constrained, Arena *A,
+Eom *eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A,
                          ExprPool *P, Diff *D, char *why, size_t len);
 /* dEdq, dEdv, dEdu, dEdt, jvp_q and jvp_v of e (again: nothing). */
 void eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);

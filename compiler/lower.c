@@ -101,6 +101,13 @@ static const LowSig s_accel_recursive = {
     " * mkk[k] = M_kk.",
     "t q v p u > a piv mkk",
 };
+static const LowSig s_minv = {
+    "minv",
+    "y = M^-1 da by the form's recursion at rest, with no force but the load\n"
+    " * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of\n"
+    " * B at a time.",
+    "t q v p u da > y",
+};
 static const LowSig s_constraint = {
     "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
     "t q v a p u > f B",
@@ -450,13 +457,16 @@ lower_events(Lowering *lw)
 /* Whether the model's accel and mass_bias are loops over its tables; *why
  * when they are asked for and cannot be. */
 static const FormTables *
-tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A,
+tables_for(const Mech *m, const Eom *e, const Constraints *c, int loads, int code, Arena *A,
            ExprPool *P, Diff *D, const char **why)
 {
     *why = NULL;
-    if (code == LOWER_CODE_TABLES && (c || !e->acc || e->form != &form_articulated))
-        *why = c ? "the model is constrained" : "its form is not articulated-body";
-    if (code == LOWER_CODE_STRAIGHT || c || !e->acc || e->form != &form_articulated)
+    int refused = (c && !loads) || !e->acc || e->form != &form_articulated;
+    if (code == LOWER_CODE_TABLES && refused)
+        *why = !e->acc || e->form != &form_articulated
+                   ? "its form is not articulated-body"
+                   : "its constraints are not all affine in q'' with multipliers";
+    if (code == LOWER_CODE_STRAIGHT || refused)
         return NULL;
     if (code == LOWER_CODE_AUTO) { /* the solve, the bias and the energies */
         int n = e->n;
@@ -478,7 +488,7 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int code, Arena *A
 }
 
 Lowered *
-lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
+lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
             const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
 {
     Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
@@ -494,7 +504,10 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
 
     lower_inputs(&lw);
 
-    const FormTables *tb = tables_for(m, e, c, code, A, P, D, &lw.L->tables_why);
+    /* a constrained tree: the multipliers by unit loads (kkt.c) */
+    int loads = c && c->affine && !eliminate && e->acc && e->form->solve;
+    const FormTables *tb = tables_for(m, e, c, loads, code, A, P, D, &lw.L->tables_why);
+    lw.L->loads = loads;
     lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;
     lw.L->tables = tb;
     if (tb) {
@@ -502,7 +515,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
         for (int i = 0; i < n; i++)
             out(&lw, f, 0, i, tb->tau[i]);
         lw.L->tau = f;
-    } else if (e->acc && e->form->solve && !c) {
+    } else if (e->acc && e->form->solve) {
         /* M only off the hot path (conditioning, Jacobians): by columns,
          * from code that grows as E does, not as n^2 entries */
         f = func(&lw, &s_bias, "mass_bias", 0);
@@ -554,8 +567,9 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
     }
     if (c)
         lower_constraints(&lw, c);
-    if (e->acc && !c && !tb) {
-        f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", 0);
+    if (e->acc && (!c || loads) && !tb) {
+        /* constrained: free_accel, which the reference does not use */
+        f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", c != NULL);
         for (int i = 0; i < n; i++)
             out(&lw, f, 1, i, e->piv[i]);
         for (int i = 0; i < n; i++)
@@ -563,6 +577,13 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
         for (int i = 0; i < n; i++)
             out(&lw, f, 0, i, e->acc[i]);
         lw.L->accel_solve = f;
+    }
+    if (loads && !tb) {
+        ExprId *y = eom_minv(e, m, A, P, D);
+        f = func(&lw, &s_minv, "minv", 1);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, y[i]);
+        lw.L->minv = f;
     }
     if (s->scene.noutput) {
         f = func(&lw, &s_outputs, "outputs", 1);

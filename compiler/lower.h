@@ -92,6 +92,14 @@ typedef struct Lowered {
     const char *tables_why; /* --code tables asked, and why they could not be */
     LowFunc *tau, *potential;
     int tree_base;
+    /* Constrained, every constraint affine in q'', with multipliers, and
+     * the form solves for q'' (a tree): accel is the solve without the
+     * constraints (eomc_model's free_accel) and minv = M^-1 da by unit
+     * loads (eomc_model's minv), from which the runtime solves the
+     * multipliers without forming M (kkt.c); with tables both are loops
+     * over them (minv NULL).  loads 0 and minv NULL otherwise. */
+    LowFunc *minv;
+    int loads;
     int n;                /* coordinates */
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
@@ -130,11 +138,12 @@ enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
 enum { LOWER_CODE_AUTO, LOWER_CODE_STRAIGHT, LOWER_CODE_TABLES };
 enum { LOWER_TABLES_MIN = 30000 };
 
-/* c: the constraints, or NULL.  Derives e's partial derivatives
- * (eom_derive_jacobian) when the Jacobian is printed. */
+/* c: the constraints, or NULL; eliminate: they are eliminated (else
+ * multipliers).  Derives e's partial derivatives (eom_derive_jacobian)
+ * when the Jacobian is printed. */
 Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
-                     const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P,
-                     Diff *D);
+                     int eliminate, const Invariant *inv, int jacobian, int code, Arena *A,
+                     ExprPool *P, Diff *D);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none). */
 int lower_size(const LowFunc *f, int arg);

@@ -317,7 +317,8 @@ compile(const Options *o, FILE *out)
         char picked[600];
         const Form *form = o->form ? form_find(o->form) : &form_lagrange;
         Eom *e = NULL;
-        if (!o->form && o->code && !strcmp(o->code, "tables") && !c) {
+        if (!o->form && o->code && !strcmp(o->code, "tables") &&
+            (!c || (c->affine && !o->eliminate))) {
             /* the tables are the articulated-body form's: it, where it applies */
             const char *no;
             if ((e = eom_derive(s, m, &form_articulated, A, P, D, &no)))
@@ -325,7 +326,9 @@ compile(const Options *o, FILE *out)
         }
         if (!e)
             e = o->form ? eom_derive(s, m, form, A, P, D, &why)
-                        : eom_derive_cheapest(s, m, c != NULL, A, P, D, picked, sizeof picked);
+                        : eom_derive_cheapest(s, m, c ? c->nc : 0,
+                                              c && c->affine && !o->eliminate, A, P, D,
+                                              picked, sizeof picked);
         if (e)
             form = e->form;
         else if (!o->form)
@@ -367,7 +370,7 @@ compile(const Options *o, FILE *out)
                              .eliminate = form->eliminate || o->eliminate,
                              .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
-            Lowered *L = out ? lower_model(s, m, e, c, inv, jac, code, A, P, D) : NULL;
+            Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, A, P, D) : NULL;
             if (L && L->tables_why)
                 fprintf(stderr, "%s: note: --code tables: not here (%s); the code is "
                         "straight-line\n", o->spec, L->tables_why);

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 2 operations per right-hand side
- * (nielsen 2, tzenoff 2, gibbs-appell 2).
+ * The form is the cheapest that applies: 267 operations per right-hand side
+ * (nielsen 267, tzenoff 267, gibbs-appell 267).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -398,6 +398,7 @@ const eomc_model appell_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

@@ -276,6 +276,7 @@ const eomc_model bouncing_ball_model = {
     1, ev_names, ev_direction, ev_action, bouncing_ball_events, bouncing_ball_event_set,
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

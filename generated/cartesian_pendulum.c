@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 1 operation per right-hand side
- * (nielsen 1, tzenoff 1, gibbs-appell 1).
+ * The form is the cheapest that applies: 136 operations per right-hand side
+ * (nielsen 136, tzenoff 136, gibbs-appell 136).
  * options: --jacobian auto
  * scene:   swing
  * effects: gravity
@@ -348,6 +348,7 @@ const eomc_model cartesian_pendulum_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
- * The form is the cheapest that applies: 62 operations per right-hand side
- * (lagrange 103, nielsen 116, tzenoff 142).
+ * The form is the cheapest that applies: 327 operations per right-hand side
+ * (lagrange 368, nielsen 381, tzenoff 407).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -885,6 +885,7 @@ const eomc_model central_constant_speed_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

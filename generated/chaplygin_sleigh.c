@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 16 operations per right-hand side
- * (nielsen 37, tzenoff 19, gibbs-appell 16).
+ * The form is the cheapest that applies: 281 operations per right-hand side
+ * (nielsen 302, tzenoff 284, gibbs-appell 281).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -490,6 +490,7 @@ const eomc_model chaplygin_sleigh_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

@@ -242,6 +242,7 @@ const eomc_model pendulum_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

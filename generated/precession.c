@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
- * The form is the cheapest that applies: 71 operations per right-hand side
- * (lagrange 105, nielsen 116, tzenoff 146).
+ * The form is the cheapest that applies: 336 operations per right-hand side
+ * (lagrange 370, nielsen 381, tzenoff 411).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -928,6 +928,7 @@ const eomc_model precession_model = {
     0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
+    NULL, NULL, /* no unit-load passes */
 };
 
 #ifdef EOMC_MAIN

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 12
+#define EOMC_ABI_VERSION 13
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -219,6 +219,18 @@ typedef struct eomc_model {
      * Featherstone's LTDL, which keeps that sparsity (no fill-in), in
      * place of the dense factorization.  NULL: dense. */
     const int *mass_parent;
+    /* A constrained tree (the articulated-body form, every constraint
+     * affine in q'', with multipliers): free_accel is accel without the
+     * constraints (q'' = -M^-1 h, its pivot check and *pivot as accel's),
+     * and minv(t, q, v, p, u, x, y) puts y = M^-1 x, by the same
+     * recursion at rest with no force but the load x (v, u unused).  The
+     * runtime then solves the multipliers from the nc x nc system
+     * B M^-1 B^T, one pass of minv per row of B, and never forms M
+     * (kkt.c).  NULL otherwise. */
+    int (*free_accel)(double t, const double *q, const double *v, const double *p,
+                      const double *u, double *a, double *pivot);
+    void (*minv)(double t, const double *q, const double *v, const double *p,
+                 const double *u, const double *x, double *y);
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

@@ -30,8 +30,11 @@
  * from a switch), so that their index arithmetic folds. */
 #if defined(__GNUC__)
 #define EOMC_TREE_INLINE static inline __attribute__((always_inline))
+/* a constrained model's extended-precision twin has no accel to call it */
+#define EOMC_TREE_MAYBE_UNUSED static __attribute__((unused))
 #else
 #define EOMC_TREE_INLINE static inline
+#define EOMC_TREE_MAYBE_UNUSED static
 #endif
 
 /* A joint: a turn, or a slide (the offset of its origin from up's is
@@ -388,13 +391,15 @@ eomc_tree_composite_up(const eomc_tree_turn *t, const eomc_real *wk, const eomc_
 /* q'' by the articulated-body algorithm, its pivots piv[coord] and
  * mkk[coord] = M's diagonal (by the composite-rigid-body inertias), given
  * tau: the generalized forces other than the uniform gravity that a0
- * stands for. */
-static void
-eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_real *q,
-              const eomc_real *v, const eomc_real *tau, eomc_real *w, eomc_real *qdd,
-              eomc_real *piv, eomc_real *mkk)
+ * stands for.  a0: the world's acceleration, NULL for the tables' own (a
+ * zero one with v = 0 gives q'' = M^-1 tau: a unit-load pass). */
+EOMC_TREE_MAYBE_UNUSED void
+eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_real *a0,
+              const eomc_real *q, const eomc_real *v, const eomc_real *tau, eomc_real *w,
+              eomc_real *qdd, eomc_real *piv, eomc_real *mkk)
 {
-    const eomc_real *a0 = d + EOMC_TREE_STRIDE * nt;
+    if (!a0)
+        a0 = d + EOMC_TREE_STRIDE * nt;
     for (int k = 0; k < nt; k++) {
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;

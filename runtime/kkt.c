@@ -22,6 +22,18 @@
  * way it was solved):  d(q'', lambda)/dx = -K^-1 dR/dx  with
  *     dR/dx = [dE/dx + sum_k lambda_k dB_k/dx; df/dx].
  *
+ * A constrained tree has a cheaper way (eomc_model's free_accel and
+ * minv; with multipliers, every f affine in q''): unit loads.  With a_f =
+ * -M^-1 h its accelerations without the constraints and Y = M^-1 B^T,
+ * one recursion per row of B, q'' = a_f - Y lambda, and f(q'') = 0 is
+ *     (B M^-1 B^T) lambda = f(a_f),
+ * an nc x nc system, symmetric positive definite when M is and B has full
+ * rank (GSL's pivoted Cholesky).  M is never formed: O(n nc) work where
+ * the KKT system costs (n + nc)^3.  Where a pivot of M or of that system
+ * fails, the same state is solved again the dense way, whose messages
+ * name the cause; the condition estimate, the near-null direction and the
+ * Jacobian, which need M, form it on demand (mass_bias).
+ *
  * Baumgarte's stabilization replaces f by f + w_v vel + w_p pos (the
  * constraint's own levels from c_levels; w_v = 2 alpha, w_p = beta^2 for
  * a holonomic one, w_v = alpha for a first-order one).  The offset does
@@ -63,6 +75,14 @@ struct Kkt {
     int *dep, *indep;           /* [nc], [np] */
     LaLu *luN, *lun, *luc;      /* K, A, B_h (or B_h^T) */
     char *names;                /* "rod (y), cone (z)" for messages */
+    /* unit loads (m->minv): Y = (M^-1 B^T)^T [nc*n], S = B M^-1 B^T
+     * [nc*nc], its relative pivots and permutation [nc] */
+    double *Y, *S, *Srel;
+    size_t *Sperm;
+    int by_loads;               /* the last kkt_accel solved so: M not formed */
+    double pivot_loads;         /* its smallest relative pivot, of M or S */
+    double t_last, *q_last, *v_last, *u_last; /* its state, to form M on demand */
+    const double *p_last;
 };
 
 /* A zeroed array of n doubles (at least one), or NULL. */
@@ -101,6 +121,10 @@ kkt_alloc(const eomc_model *m)
         ok &= (*arrays[i] = zeros(sizes[i])) != NULL;
     k->dep = calloc(nc ? nc : 1, sizeof *k->dep), k->indep = calloc(n, sizeof *k->indep);
     k->luN = la_lu_alloc((int)N), k->lun = la_lu_alloc((int)n), k->luc = la_lu_alloc((int)nc);
+    k->Y = zeros(nc * n), k->S = zeros(nc * nc), k->Srel = zeros(nc);
+    k->Sperm = calloc(nc ? nc : 1, sizeof *k->Sperm);
+    k->q_last = zeros(n), k->v_last = zeros(n), k->u_last = zeros(nu);
+    ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
     size_t len = 1;
     for (int c = 0; c < m->nc; c++)
         len += strlen(m->c_names[c]) + strlen(m->q_names[m->c_dependent[c]]) + 8;
@@ -135,7 +159,8 @@ kkt_free(Kkt *k)
         k->ra, k->f, k->B, k->lam, k->prev_a, k->prev_lam, k->save_a, k->save_lam, k->dfdq, k->dfdv, k->dfdu,
         k->dfdt, k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off,
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
-        k->dposdt, k->dveldt, k->dep, k->indep, k->names,
+        k->dposdt, k->dveldt, k->dep, k->indep, k->names, k->Y, k->S, k->Srel, k->Sperm,
+        k->q_last, k->v_last, k->u_last,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
@@ -433,14 +458,73 @@ eliminated_multipliers(Kkt *k, double t, const double *q, const double *v,
     return 0;
 }
 
+/* q'' and the multipliers by unit loads (the top of this file); 0, or -1
+ * when a pivot of M or of B M^-1 B^T fails (a left as garbage). */
+static int
+solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
+            const double *u, double *a)
+{
+    const eomc_model *m = k->m;
+    int n = k->n, nc = k->nc;
+    double pivot = 1;
+    if (m->free_accel(t, q, v, p, u, a, &pivot) != 0)
+        return -1;
+    eval_constraint(k, t, q, v, a, p, u); /* f(a_f) and B */
+    for (int c = 0; c < nc; c++)
+        m->minv(t, q, v, p, u, k->B + c * n, k->Y + c * n);
+    for (int c = 0; c < nc; c++)
+        for (int d = 0; d <= c; d++)
+            k->S[c * nc + d] = k->S[d * nc + c] = la_dot(k->B + c * n, k->Y + d * n, n);
+    if (la_ldlt_factor(k->S, nc, k->Srel, k->Sperm) != 0)
+        return -1;
+    memcpy(k->lam, k->f, (size_t)nc * sizeof *k->lam);
+    la_ldlt_solve(k->S, nc, k->Sperm, k->lam);
+    for (int c = 0; c < nc; c++) {
+        if (k->Srel[c] < pivot)
+            pivot = k->Srel[c];
+        for (int i = 0; i < n; i++)
+            a[i] -= k->Y[c * n + i] * k->lam[c];
+    }
+    k->pivot_loads = pivot;
+    k->t_last = t, k->p_last = p;
+    memcpy(k->q_last, q, (size_t)n * sizeof *q);
+    memcpy(k->v_last, v, (size_t)n * sizeof *v);
+    if (k->nu)
+        memcpy(k->u_last, u, (size_t)k->nu * sizeof *u);
+    return 0;
+}
+
+/* M and h at the state of the last solve by unit loads, which did not
+ * form them; and K from them, factored (0, or -1). */
+static int
+form_dense(Kkt *k)
+{
+    if (!k->by_loads)
+        return 0;
+    k->by_loads = 0;
+    k->m->mass_bias(k->t_last, k->q_last, k->v_last, k->p_last, k->u_last, k->M, k->h);
+    build_kkt(k, 0);
+    return factor_kkt(k);
+}
+
 int
 kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
           const double *u, double *a)
 {
     const eomc_model *m = k->m;
     int n = k->n, nc = k->nc, rc = 0;
-    m->mass_bias(t, q, v, p, u, k->M, k->h);
     baumgarte_offset(k, t, q, v, p, u);
+    k->by_loads = 0;
+    if (m->minv && m->c_affine && !m->eliminate && solve_loads(k, t, q, v, p, u, a) == 0) {
+        k->by_loads = 1;
+        memcpy(k->prev_a, a, (size_t)n * sizeof *a);
+        memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
+        k->have_prev = 1;
+        for (int i = 0; i < nc * n; i++)
+            k->bmax[i] = fmax(k->bmax[i], fabs(k->B[i]));
+        return KKT_OK;
+    }
+    m->mass_bias(t, q, v, p, u, k->M, k->h);
     int iters = m->c_affine ? 1 : KKT_NEWTON_MAX + 1; /* the next tests a step */
     k->rel = HUGE_VAL;
     if (m->c_affine || !k->have_prev) { /* one exact step from zero when affine */
@@ -477,6 +561,8 @@ solved_lu(const Kkt *k)
 double
 kkt_condition(Kkt *k)
 {
+    if (form_dense(k) != 0)
+        return HUGE_VAL;
     return la_lu_condition(solved_lu(k));
 }
 
@@ -484,13 +570,14 @@ void
 kkt_near_null(Kkt *k, double *y)
 {
     memset(y, 0, (size_t)k->N * sizeof *y);
-    la_lu_near_null(solved_lu(k), y);
+    if (form_dense(k) == 0)
+        la_lu_near_null(solved_lu(k), y);
 }
 
 double
 kkt_pivot(const Kkt *k)
 {
-    return la_lu_pivot(solved_lu(k));
+    return k->by_loads ? k->pivot_loads : la_lu_pivot(solved_lu(k));
 }
 
 int
@@ -562,6 +649,10 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
     const eomc_model *m = k->m;
     int n = k->n, W = 2 * n;
     const double *q = x, *v = x + n;
+    if (k->by_loads) { /* M was not formed: at this state, now */
+        k->by_loads = 0;
+        m->mass_bias(t, q, v, p, u, k->M, k->h);
+    }
     m->jacobian(t, q, v, a, p, u, k->dEdq, k->dEdv, k->dEdu, k->dEdt);
     m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
                   k->dBda, k->dBdu, k->dBdt);

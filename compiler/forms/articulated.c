@@ -35,6 +35,8 @@
 
 #include "../kin.h"
 
+#include <string.h>
+
 /* A symmetric 6 x 6 spatial inertia, motion to force, as a full array:
  * row r, column c at [6 r + c], rows and columns (w, v). */
 typedef struct Si {
@@ -198,8 +200,8 @@ axis_index(const ExprId *a)
 }
 
 static void
-articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *piv,
-            ExprId *mkk)
+articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, ExprId *acc,
+            ExprId *piv, ExprId *mkk)
 {
     const Tree *t = m->tree;
     int nt = t->nturns;
@@ -212,12 +214,19 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *
     /* gravity as the world's acceleration upward (Featherstone's a_0 =
      * -g), where it is uniform: its potential's gradient is not needed */
     Sv a0;
-    ExprId *tau = sv_applied(m, A, P, D, &a0);
-    for (int i = 0; i < m->n; i++)
-        tau[i] = expr_neg(P, tau[i]);
+    ExprId *tau;
+    if (load) { /* at rest, the world still: only the load */
+        tau = arena_new_array(A, ExprId, m->n);
+        memcpy(tau, load, (size_t)m->n * sizeof *tau);
+        sv_zero(&a0);
+    } else {
+        tau = sv_applied(m, A, P, D, &a0);
+        for (int i = 0; i < m->n; i++)
+            tau[i] = expr_neg(P, tau[i]);
+    }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
-        ExprId rate = m->q[1][tk->coord];
+        ExprId rate = load ? EXPR_ZERO : m->q[1][tk->coord];
         sv_joint_axis(tk, &S[k]);
         sv_zero(&C[k]);
         if (tk->up >= 0) {

@@ -25,9 +25,11 @@ typedef struct Form {
     /* The accelerations by a recursion of the form's own, for any number
      * of coordinates, without factoring M (NULL: eom.c factors M, up to
      * EOM_SOLVE_MAX coordinates).  Writes acc, piv and mkk [n] as eom.h
-     * describes them. */
-    void (*solve)(const Mech *m, Arena *A, ExprPool *P, Diff *D, ExprId *acc, ExprId *piv,
-                  ExprId *mkk);
+     * describes them.  With load [n] (else NULL), acc = M^-1 load
+     * instead: at rest, no gravity, no force but the load (a constrained
+     * tree's unit-load passes, M^-1 B^T a row at a time). */
+    void (*solve)(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load,
+                  ExprId *acc, ExprId *piv, ExprId *mkk);
 } Form;
 
 /* The articulated-body form's model as tables, for code that loops over

@@ -4,8 +4,11 @@
 # coordinates), each form is compiled with --stats, and what a right-hand
 # side costs is read from the emitted functions' operation counts: the
 # accel function where there is one and no constraint, else mass_bias
-# (plus the runtime's dense LDL^T, 5 (n^3/3 + 2 n^2), when unconstrained:
-# eom.h's EOM_DENSE_WEIGHT).
+# plus the runtime's dense factorization: LDL^T of M, 5 (n^3/3 + 2 n^2),
+# or with nc constraints LU of the KKT matrix, 5 (N^3/3 + 2 N^2), N = n +
+# nc (eom.h's EOM_DENSE_WEIGHT).  A constrained tree solved by unit loads
+# (minv in the C): accel, nc passes of minv, and 5 (nc^2 n + nc^3/3 +
+# 2 nc n) for B M^-1 B^T, its factorization and q'' = a - Y lambda.
 # The default's cost is the least of them, --explain and the banner say
 # it was picked, and --form still forces another.  On tree 20 (60
 # coordinates), where only the recursive forms are candidates, the
@@ -22,9 +25,13 @@ sh "$src/specs/gen_tree.sh" 10 > "$tmp/tree10.yaml"
 cost() {
   "$eomc" compile "$1" ${2:+--form "$2"} --stats -o "$tmp/c.c" 2> "$tmp/stats" || return 0
   n=$(sed -n 's/^static const char \*const q_names\[\([0-9]*\)\].*/\1/p' "$tmp/c.c")
-  con=0; grep -q '^ \* constraints, by' "$tmp/c.c" && con=1
-  awk -v n="$n" -v con="$con" '$1 == "accel" { a = $6 } $1 == "mass_bias" { m = $6 }
-       END { if (!con && a > 0) print a; else if (con) print m;
+  nc=$(sed -n 's/^static const char \*const c_names\[\([0-9]*\)\].*/\1/p' "$tmp/c.c")
+  awk -v n="$n" -v nc="${nc:-0}" '$1 == "accel" { a = $6 } $1 == "mass_bias" { m = $6 }
+       $1 == "minv" { y = $6 }
+       END { N = n + nc
+             if (nc == 0 && a > 0) print a
+             else if (y > 0) print a + nc * y + 5 * (nc * nc * n + int(nc * nc * nc / 3) + 2 * nc * n)
+             else if (nc > 0) print m + 5 * (int(N * N * N / 3) + 2 * N * N)
              else print m + 5 * (int(n * n * n / 3) + 2 * n * n) }' "$tmp/stats"
 }
 for spec in "$src"/specs/*.yaml "$tmp/tree4.yaml" "$tmp/tree10.yaml"; do

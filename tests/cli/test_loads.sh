@@ -1,0 +1,116 @@
+#!/bin/sh
+# Constrained trees by unit loads (TAP): a tree with constraints affine in
+# q'' solved by the articulated-body recursion without the constraints,
+# then M^-1 B^T one row at a time (minv) and the nc x nc system B M^-1 B^T
+# (runtime/kkt.c), M never formed.  Each check sets it against Lagrange's
+# form, whose M is differentiated from the energies and whose KKT system
+# is solved densely: an independent derivation and solve.
+#  - --accel (q'' and the multipliers) of the rolling disk, the bicycle of
+#    specs/ and the Whipple bicycle, straight-line and as loops over the
+#    tables: equal to 1e-12 of the largest entry;
+#  - the banner says so, and the simulator has minv;
+#  - a run of the bicycle to t = 1 (rk8pd at 1e-12) ends where Lagrange's
+#    does (1e-9), and one with msbdf (its Jacobian forms M on demand) too;
+#  - units: the rolling disk with the mass unit 1e-6 kg and the length
+#    unit 1e4 m (m * 1e6, R and x, y * 1e-4, g * 1e-4): q'' the same (x'',
+#    y'' * 1e-4) and the multipliers * 1e2, to 1e-12;
+#  - a constraint written twice makes B M^-1 B^T singular: the run falls
+#    back on the dense KKT solve, which stops it (exit 3) naming the
+#    constraints, as before.
+# usage: test_loads.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+
+# init SPEC: --init for every coordinate and rate
+init() {
+  k=0
+  for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$1" | tr -d ','); do
+    k=$((k + 1))
+    printf ' --init %s=0.%d --init %s'"'"'=-0.%d' "$c" $((k % 7 + 1)) "$c" $((k % 5 + 2))
+  done
+}
+# the largest difference of two `NAME VALUE` listings over the largest
+# |value|, after multiplying the second's NAME by its factor in $3
+# ("x'' 1e-4 lambda[roll_x] 100"); nan unless both have every line
+accel_diff() {
+  awk -v scale="$3" 'BEGIN { ns = split(scale, s, " "); for (i = 1; i < ns; i += 2) f[s[i]] = s[i + 1] }
+       NR == FNR { w[$1] = $2; nw++; next }
+       { x = ($1 in f) ? $2 * f[$1] : $2; d = x - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
+         a = w[$1] < 0 ? -w[$1] : w[$1]; if (a > am) am = a; n++ }
+       END { if (n != nw || n == 0 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
+}
+below() { awk -v d="$1" -v t="$2" 'BEGIN { exit !(d == d + 0 && d < t) }'; }
+
+disk="$src/specs/rolling_disk.yaml" bike="$src/specs/bicycle_tree.yaml"
+whip="$src/tests/sim/specs/whipple.yaml"
+for spec in "$disk" "$bike" "$whip"; do
+  name=$(basename "$spec" .yaml)
+  in=$(init "$spec")
+  for code in straight tables; do
+    # shellcheck disable=SC2086 # $in is a list of options
+    "$eomc" run "$spec" --form articulated-body --code $code $in --accel > "$tmp/ab.acc" 2> /dev/null &&
+      "$eomc" run "$spec" --form lagrange $in --accel > "$tmp/lag.acc" 2> /dev/null
+    st=$?
+    d=$(accel_diff "$tmp/lag.acc" "$tmp/ab.acc" "")
+    [ $st -eq 0 ] && grep -q '^lambda' "$tmp/ab.acc" && below "$d" 1e-12
+    ok $? "$name ($code): q'' and the multipliers by unit loads = lagrange's dense KKT solve to $d"
+  done
+done
+
+"$eomc" compile "$bike" --form articulated-body -o "$tmp/bike.c" &&
+  grep -q '^ \* The multipliers by unit loads' "$tmp/bike.c" &&
+  grep -q 'bicycle_tree_accel, bicycle_tree_minv, /\* the multipliers by unit loads \*/' "$tmp/bike.c" &&
+  "$eomc" compile "$bike" --form lagrange -o "$tmp/lag.c" &&
+  grep -q 'NULL, NULL, /\* no unit-load passes \*/' "$tmp/lag.c"
+ok $? "the banner says the multipliers are by unit loads, and the model has free_accel and minv (lagrange's has neither)"
+
+# the last rows of two runs, entry by entry, over the largest |entry|
+row_diff() {
+  awk -F, 'NR == FNR { n = split($0, w, ","); next }
+           { m = split($0, g, ","); for (i = 2; i <= m; i++) { d = g[i] - w[i]; if (d < 0) d = -d;
+             if (d > dm) dm = d; a = w[i] < 0 ? -w[i] : w[i]; if (a > am) am = a } }
+           END { if (m != n || am == 0) print "nan"; else printf "%.3g\n", dm / am }' \
+    "$1" "$2"
+}
+for method in rk8pd msbdf; do
+  "$eomc" run "$bike" --form articulated-body --t-end 1 --method $method --rtol 1e-12 \
+    --atol 1e-12 -o "$tmp/ab.csv" 2> /dev/null &&
+    "$eomc" run "$bike" --form lagrange --t-end 1 --method $method --rtol 1e-12 --atol 1e-12 \
+      -o "$tmp/lag.csv" 2> /dev/null
+  st=$?
+  tail -1 "$tmp/ab.csv" > "$tmp/ab.last"
+  tail -1 "$tmp/lag.csv" > "$tmp/lag.last"
+  d=$(row_diff "$tmp/lag.last" "$tmp/ab.last")
+  [ $st -eq 0 ] && below "$d" 1e-9
+  ok $? "bicycle_tree with $method to t = 1: by unit loads the last row is lagrange's to $d"
+done
+
+# units: mass 1e-6 kg, length 1e4 m; the disk's state in both
+st0="--init theta=1.2 --init psi=0.3 --init phi=0.4 --init theta'=0.5 --init psi'=1.5 --init phi'=6"
+# shellcheck disable=SC2086 # $st0 is a list of options
+"$eomc" run "$disk" --form articulated-body $st0 --init x=0.2 --init y=-0.1 --init "x'=0.7" \
+  --init "y'=-0.4" --accel > "$tmp/si.acc" 2> /dev/null &&
+  "$eomc" run "$disk" --form articulated-body --set m=1e6 --set R=0.5e-4 --set g=9.81e-4 $st0 \
+    --init x=0.2e-4 --init y=-0.1e-4 --init "x'=0.7e-4" --init "y'=-0.4e-4" --accel \
+    > "$tmp/scaled.acc" 2> /dev/null
+st=$?
+d=$(accel_diff "$tmp/si.acc" "$tmp/scaled.acc" "x'' 1e4 y'' 1e4 lambda[roll_x] 1e-2 lambda[roll_y] 1e-2")
+[ $st -eq 0 ] && below "$d" 1e-12
+ok $? "rolling_disk in kg 1e-6 and m 1e4: q'' and the multipliers rescale exactly (to $d)"
+
+# a constraint written twice: B M^-1 B^T is singular
+sed 's/^  roll_y: \(.*\)$/  roll_y: \1\n  roll_y2: {expr: "\1", dependent: phi}/' "$disk" > "$tmp/twice.yaml"
+"$eomc" run "$tmp/twice.yaml" --form articulated-body --t-end 0.1 -o "$tmp/twice.csv" \
+  > /dev/null 2> "$tmp/twice.err"
+st=$?
+"$eomc" compile "$tmp/twice.yaml" --form articulated-body -o "$tmp/twice.c" 2> /dev/null &&
+  grep -q '_minv, /\* the multipliers by unit loads' "$tmp/twice.c"
+loads=$?
+[ $st -eq 3 ] && [ $loads -eq 0 ] &&
+  grep -q 'the constrained system is singular: the constraints .*roll_y.*roll_y2.* are dependent' "$tmp/twice.err"
+ok $? "roll_y written twice: exit $st, the dense solve's message: $(head -c 160 "$tmp/twice.err")"
+
+tap_end

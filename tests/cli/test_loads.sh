@@ -24,14 +24,6 @@ case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 . "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
 
-# init SPEC: --init for every coordinate and rate
-init() {
-  k=0
-  for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$1" | tr -d ','); do
-    k=$((k + 1))
-    printf ' --init %s=0.%d --init %s'"'"'=-0.%d' "$c" $((k % 7 + 1)) "$c" $((k % 5 + 2))
-  done
-}
 # the largest difference of two `NAME VALUE` listings over the largest
 # |value|, after multiplying the second's NAME by its factor in $3
 # ("x'' 1e-4 lambda[roll_x] 100"); nan unless both have every line

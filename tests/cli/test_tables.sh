@@ -27,14 +27,6 @@ export EOMC_CACHE_DIR="$tmp/cache"
 
 sh "$src/specs/gen_tree.sh" 5 > "$tmp/tree5.yaml"
 cp "$src/tests/sim/specs/branched_tree.yaml" "$tmp/branched.yaml"
-# init SPEC: --init for every coordinate and rate
-init() {
-  k=0
-  for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$1" | tr -d ','); do
-    k=$((k + 1))
-    printf ' --init %s=0.%d --init %s'"'"'=-0.%d' "$c" $((k % 7 + 1)) "$c" $((k % 5 + 2))
-  done
-}
 # the largest difference of two `NAME'' VALUE` listings, over the largest |value|
 accel_diff() {
   awk -v want="$3" 'NR == FNR { w[$1] = $2; next }

@@ -92,8 +92,8 @@ static const unsigned char no_fixed[8];
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* ... and no outputs nor events (they follow the checks), nor the scene's
- * assembly, nor a sparse mass matrix. */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL
+ * assembly, nor a sparse mass matrix, nor unit loads. */
+#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -194,6 +194,7 @@ const eomc_model osc_event_model = {
     1, ose_names, ose_direction, ose_action, ose_events, NULL,
     0, NULL, /* no assembly */
     NULL,    /* M dense */
+    NULL, NULL, /* no unit loads */
 };
 
 void

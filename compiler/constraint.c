@@ -172,6 +172,12 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     return c;
 }
 
+int
+constraints_by_loads(const Constraints *c, int eliminate)
+{
+    return c && c->affine && !eliminate;
+}
+
 void
 constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
 {

@@ -37,6 +37,11 @@ typedef struct Constraints {
 Constraints *constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P,
                                Diff *D);
 
+/* Whether a form that solves for q'' by its own recursion can take the
+ * constraints by unit loads (runtime/kkt.c): there are some, each affine
+ * in q'', and they have multipliers (not eliminated). */
+int constraints_by_loads(const Constraints *c, int eliminate);
+
 /* "holonomic", "first-order", "second-order". */
 const char *constraint_order_name(int order);
 

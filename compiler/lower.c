@@ -505,7 +505,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     lower_inputs(&lw);
 
     /* a constrained tree: the multipliers by unit loads (kkt.c) */
-    int loads = c && c->affine && !eliminate && e->acc && e->form->solve;
+    int loads = constraints_by_loads(c, eliminate) && e->acc && e->form->solve;
     const FormTables *tb = tables_for(m, e, c, loads, code, A, P, D, &lw.L->tables_why);
     lw.L->loads = loads;
     lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;

@@ -317,8 +317,8 @@ compile(const Options *o, FILE *out)
         char picked[600];
         const Form *form = o->form ? form_find(o->form) : &form_lagrange;
         Eom *e = NULL;
-        if (!o->form && o->code && !strcmp(o->code, "tables") &&
-            (!c || (c->affine && !o->eliminate))) {
+        int loads = constraints_by_loads(c, o->eliminate);
+        if (!o->form && o->code && !strcmp(o->code, "tables") && (!c || loads)) {
             /* the tables are the articulated-body form's: it, where it applies */
             const char *no;
             if ((e = eom_derive(s, m, &form_articulated, A, P, D, &no)))
@@ -326,9 +326,8 @@ compile(const Options *o, FILE *out)
         }
         if (!e)
             e = o->form ? eom_derive(s, m, form, A, P, D, &why)
-                        : eom_derive_cheapest(s, m, c ? c->nc : 0,
-                                              c && c->affine && !o->eliminate, A, P, D,
-                                              picked, sizeof picked);
+                        : eom_derive_cheapest(s, m, c ? c->nc : 0, loads, A, P, D, picked,
+                                              sizeof picked);
         if (e)
             form = e->form;
         else if (!o->form)

@@ -154,9 +154,9 @@ hang(const Spec *s, const Kin *K, Arena *A, ExprPool *P, Diff *D, Mass *ms, Foun
             int j = 0;
             while (j < fd->nslide && fd->slide[j].point != p)
                 j++;
-            for (int k = 0; j == fd->nslide && k < ns; k++)
-                fd->slide[fd->nslide + k] = (Slide){p, fr[n], coord[k], {d[k][0], d[k][1], d[k][2]}};
-            fd->nslide += j == fd->nslide ? ns : 0;
+            if (j == fd->nslide) /* the point's first mass: its slides */
+                for (int k = 0; k < ns; k++)
+                    fd->slide[fd->nslide++] = (Slide){p, fr[n], coord[k], {d[k][0], d[k][1], d[k][2]}};
             sl[n] = j;
         }
         p = from[n] < 0 ? KIN_ORIGIN : from[n];
@@ -328,8 +328,9 @@ sequence(const Kin *K, Arena *A, Joints *J, const Mass *ms, int *carrier)
                 }
             dmax = d;
         }
-        for (int j = k > 0 ? ms->sl[k - 1] : -1; j >= 0 && j < J->nslide &&
-                                                   J->slide[j].point == J->slide[ms->sl[k - 1]].point; j++) {
+        int first = k > 0 ? ms->sl[k - 1] : -1; /* the link's slides, in a row */
+        for (int j = first; j >= 0 && j < J->nslide && J->slide[j].point == J->slide[first].point;
+             j++) {
             if ((why = link_joint(J, A, ms, prev, J->nturn + j)))
                 return why;
             prev = J->nturn + j;

@@ -494,36 +494,26 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     return 0;
 }
 
-/* M and h at the state of the last solve by unit loads, which did not
- * form them; and K from them, factored (0, or -1). */
+/* After a solve by unit loads, which did not form it: M (and h) at its
+ * state, and 1; else 0 (the last dense solve's are current). */
 static int
-form_dense(Kkt *k)
+form_mass(Kkt *k)
 {
     if (!k->by_loads)
         return 0;
     k->by_loads = 0;
     k->m->mass_bias(k->t_last, k->q_last, k->v_last, k->p_last, k->u_last, k->M, k->h);
-    build_kkt(k, 0);
-    return factor_kkt(k);
+    return 1;
 }
 
-int
-kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
-          const double *u, double *a)
+/* q'' and the multipliers by the KKT system (or elimination), M formed;
+ * KKT_OK or the failure. */
+static int
+solve_dense(Kkt *k, double t, const double *q, const double *v, const double *p,
+            const double *u, double *a)
 {
     const eomc_model *m = k->m;
     int n = k->n, nc = k->nc, rc = 0;
-    baumgarte_offset(k, t, q, v, p, u);
-    k->by_loads = 0;
-    if (m->minv && m->c_affine && !m->eliminate && solve_loads(k, t, q, v, p, u, a) == 0) {
-        k->by_loads = 1;
-        memcpy(k->prev_a, a, (size_t)n * sizeof *a);
-        memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
-        k->have_prev = 1;
-        for (int i = 0; i < nc * n; i++)
-            k->bmax[i] = fmax(k->bmax[i], fabs(k->B[i]));
-        return KKT_OK;
-    }
     m->mass_bias(t, q, v, p, u, k->M, k->h);
     int iters = m->c_affine ? 1 : KKT_NEWTON_MAX + 1; /* the next tests a step */
     k->rel = HUGE_VAL;
@@ -543,6 +533,20 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
         return KKT_SINGULAR;
     if (rc == 0 && !m->c_affine)
         return KKT_NEWTON;
+    return KKT_OK;
+}
+
+int
+kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
+          const double *u, double *a)
+{
+    const eomc_model *m = k->m;
+    int n = k->n, nc = k->nc, rc;
+    baumgarte_offset(k, t, q, v, p, u);
+    k->by_loads = m->minv && m->c_affine && !m->eliminate &&
+                  solve_loads(k, t, q, v, p, u, a) == 0;
+    if (!k->by_loads && (rc = solve_dense(k, t, q, v, p, u, a)) != KKT_OK)
+        return rc;
     memcpy(k->prev_a, a, (size_t)n * sizeof *a);
     memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
     k->have_prev = 1;
@@ -558,20 +562,29 @@ solved_lu(const Kkt *k)
     return k->m->eliminate ? k->lun : k->luN;
 }
 
+/* The factorization that gave q'', made now after unit loads (its
+ * failure leaves it failed: la_lu_condition is then NAN). */
+static LaLu *
+dense_lu(Kkt *k)
+{
+    if (form_mass(k)) {
+        build_kkt(k, 0);
+        factor_kkt(k);
+    }
+    return solved_lu(k);
+}
+
 double
 kkt_condition(Kkt *k)
 {
-    if (form_dense(k) != 0)
-        return HUGE_VAL;
-    return la_lu_condition(solved_lu(k));
+    return la_lu_condition(dense_lu(k));
 }
 
 void
 kkt_near_null(Kkt *k, double *y)
 {
     memset(y, 0, (size_t)k->N * sizeof *y);
-    if (form_dense(k) == 0)
-        la_lu_near_null(solved_lu(k), y);
+    la_lu_near_null(dense_lu(k), y);
 }
 
 double
@@ -649,10 +662,7 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
     const eomc_model *m = k->m;
     int n = k->n, W = 2 * n;
     const double *q = x, *v = x + n;
-    if (k->by_loads) { /* M was not formed: at this state, now */
-        k->by_loads = 0;
-        m->mass_bias(t, q, v, p, u, k->M, k->h);
-    }
+    form_mass(k); /* after unit loads; K is built and factored below */
     m->jacobian(t, q, v, a, p, u, k->dEdq, k->dEdv, k->dEdu, k->dEdt);
     m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
                   k->dBda, k->dBdu, k->dBdt);

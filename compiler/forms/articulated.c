@@ -35,8 +35,6 @@
 
 #include "../kin.h"
 
-#include <string.h>
-
 /* A symmetric 6 x 6 spatial inertia, motion to force, as a full array:
  * row r, column c at [6 r + c], rows and columns (w, v). */
 typedef struct Si {
@@ -214,15 +212,14 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
     /* gravity as the world's acceleration upward (Featherstone's a_0 =
      * -g), where it is uniform: its potential's gradient is not needed */
     Sv a0;
-    ExprId *tau;
-    if (load) { /* at rest, the world still: only the load */
-        tau = arena_new_array(A, ExprId, m->n);
-        memcpy(tau, load, (size_t)m->n * sizeof *tau);
+    const ExprId *tau = load; /* a load: at rest, the world still */
+    if (load) {
         sv_zero(&a0);
     } else {
-        tau = sv_applied(m, A, P, D, &a0);
+        ExprId *applied = sv_applied(m, A, P, D, &a0);
         for (int i = 0; i < m->n; i++)
-            tau[i] = expr_neg(P, tau[i]);
+            applied[i] = expr_neg(P, applied[i]);
+        tau = applied;
     }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];

@@ -17,3 +17,25 @@ init() {
     printf ' --init %s=0.%d --init %s'"'"'=-0.%d' "$c" $((k % 7 + 1)) "$c" $((k % 5 + 2))
   done
 }
+# accel_diff REF GOT WANT [SCALE]: the largest difference of two `NAME
+# VALUE` listings (--accel's) over REF's largest |value|, GOT's NAME first
+# multiplied by its factor in SCALE ("x'' 1e4 lambda[roll_x] 1e-2");
+# nan unless both list the same number of lines, at least WANT
+accel_diff() {
+  awk -v want="$3" -v scale="${4:-}" '
+       BEGIN { ns = split(scale, s, " "); for (i = 1; i < ns; i += 2) f[s[i]] = s[i + 1] }
+       NR == FNR { w[$1] = $2; nw++; next }
+       { x = ($1 in f) ? $2 * f[$1] : $2; d = x - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
+         a = w[$1] < 0 ? -w[$1] : w[$1]; if (a > am) am = a; n++ }
+       END { if (n < want || n != nw || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
+}
+# row_diff REF GOT [WANT]: the last rows of two runs (one CSV line each),
+# entry by entry after t, over REF's largest |entry|; nan unless they have
+# the same number of columns, at least WANT
+row_diff() {
+  awk -F, -v want="${3:-0}" 'NR == FNR { n = split($0, w, ","); next }
+           { m = split($0, g, ","); for (i = 2; i <= m; i++) { d = g[i] - w[i]; if (d < 0) d = -d;
+             if (d > dm) dm = d; a = w[i] < 0 ? -w[i] : w[i]; if (a > am) am = a } }
+           END { if (m != n || m < want || am == 0) print "nan"; else printf "%.3g\n", dm / am }' \
+    "$1" "$2"
+}

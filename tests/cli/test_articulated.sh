@@ -32,41 +32,22 @@ case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 export EOMC_CACHE_DIR="$tmp/cache"
 
 sh "$src/specs/gen_tree.sh" 5 > "$tmp/tree5.yaml"
-init=
-k=0
-for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/tree5.yaml" | tr -d ','); do
-  k=$((k + 1))
-  init="$init --init $c=0.$((k % 7 + 1)) --init $c'=-0.$((k % 5 + 2))"
-done
-# the largest difference of two `NAME'' VALUE` listings, over the largest |value|
-accel_diff() {
-  awk 'NR == FNR { w[$1] = $2; next }
-       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
-         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
-       END { if (n < 15 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
-}
+init=$(init "$tmp/tree5.yaml")
 # shellcheck disable=SC2086 # $init is a list of options
 "$eomc" run "$tmp/tree5.yaml" --form articulated-body $init --accel > "$tmp/ab.acc" &&
   "$eomc" run "$tmp/tree5.yaml" --form lagrange $init --accel > "$tmp/lag.acc"
 st=$?
-d=$(accel_diff "$tmp/ab.acc" "$tmp/lag.acc")
+d=$(accel_diff "$tmp/ab.acc" "$tmp/lag.acc" 15)
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
 ok $? "--accel at a full state: articulated-body = lagrange to $d of max |q''|"
 
-# the last rows of two runs, entry by entry, over the largest |entry|
-row_diff() {
-  awk -F, 'NR == FNR { n = split($0, w, ","); next }
-           { m = split($0, g, ","); for (i = 2; i <= m; i++) { d = g[i] - w[i]; if (d < 0) d = -d;
-             if (d > dm) dm = d; a = w[i] < 0 ? -w[i] : w[i]; if (a > am) am = a } }
-           END { if (m != n || m < 31 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
-}
 # shellcheck disable=SC2086
 "$eomc" run "$tmp/tree5.yaml" --form articulated-body $init --t-end 1 --rtol 1e-12 \
     --atol 1e-12 --summary 2> "$tmp/ab.sum" | tail -n 1 > "$tmp/ab.row" &&
   "$eomc" run "$tmp/tree5.yaml" --form lagrange $init --t-end 1 --rtol 1e-12 --atol 1e-12 \
     --summary 2> "$tmp/lag.sum" | tail -n 1 > "$tmp/lag.row"
 st=$?
-d=$(row_diff "$tmp/ab.row" "$tmp/lag.row")
+d=$(row_diff "$tmp/ab.row" "$tmp/lag.row" 31)
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-8) }'
 ok $? "a run to t = 1: articulated-body ends where lagrange does, to $d"
 # its energy's T is q'.M q'/2 by mass_times; lagrange's is the spec's T
@@ -83,12 +64,7 @@ st=$?
 ok $? "gimbal lock: exit $st, the singular pivot named"
 
 sh "$src/specs/gen_tree.sh" 9 > "$tmp/tree9.yaml"
-init=
-k=0
-for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/tree9.yaml" | tr -d ','); do
-  k=$((k + 1))
-  init="$init --init $c=0.$((k % 7 + 1)) --init $c'=-0.$((k % 5 + 2))"
-done
+init=$(init "$tmp/tree9.yaml")
 "$eomc" compile "$tmp/tree9.yaml" --form newton-euler -o "$tmp/ne9.c" &&
   grep -q '^    tree9_accel,$' "$tmp/ne9.c"
 st1=$?
@@ -96,10 +72,7 @@ st1=$?
 "$eomc" run "$tmp/tree9.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&
   "$eomc" run "$tmp/tree9.yaml" --form articulated-body $init --accel > "$tmp/ab.acc"
 st=$?
-d=$(awk 'NR == FNR { w[$1] = $2; next }
-       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
-         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
-       END { if (n < 27 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$tmp/ab.acc" "$tmp/ne.acc")
+d=$(accel_diff "$tmp/ab.acc" "$tmp/ne.acc" 27)
 [ $st1 -eq 0 ] && [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
 ok $? "27 coordinates: newton-euler's unrolled sparse LDL^T = the recursion, to $d"
 sh "$src/specs/gen_chain.sh" 30 > "$tmp/chain30.yaml"
@@ -108,12 +81,7 @@ sh "$src/specs/gen_chain.sh" 30 > "$tmp/chain30.yaml"
 ok $? "a dense M of 30 coordinates: no unrolled solve, the runtime's"
 
 sh "$src/specs/gen_tree.sh" 20 > "$tmp/tree20.yaml"
-init=
-k=0
-for c in $(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/tree20.yaml" | tr -d ','); do
-  k=$((k + 1))
-  init="$init --init $c=0.$((k % 7 + 1)) --init $c'=-0.$((k % 5 + 2))"
-done
+init=$(init "$tmp/tree20.yaml")
 "$eomc" compile "$tmp/tree20.yaml" --form newton-euler -o "$tmp/ne20.c" &&
   grep -q '^    mass_parent, /\* M factored by LTDL' "$tmp/ne20.c"
 st1=$?
@@ -121,10 +89,7 @@ st1=$?
 "$eomc" run "$tmp/tree20.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&
   "$eomc" run "$tmp/tree20.yaml" --code tables $init --accel > "$tmp/ab.acc"
 st=$?
-d=$(awk 'NR == FNR { w[$1] = $2; next }
-       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
-         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
-       END { if (n < 60 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$tmp/ab.acc" "$tmp/ne.acc")
+d=$(accel_diff "$tmp/ab.acc" "$tmp/ne.acc" 60)
 [ $st1 -eq 0 ] && [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-11) }'
 ok $? "60 coordinates: newton-euler's M factored by LTDL in the runtime = the recursion, to $d"
 "$eomc" run "$tmp/tree20.yaml" --form newton-euler --init pelvis_b=1.5707963267948966 \
@@ -142,13 +107,7 @@ in="$in --init y'=0.3 --init ph'=0.9"
   "$eomc" run "$sl" --form articulated-body $in --accel > "$tmp/sl.ab" &&
   "$eomc" run "$sl" --form newton-euler $in --accel > "$tmp/sl.ne"
 st=$?
-sl_diff() {
-  awk 'NR == FNR { w[$1] = $2; next }
-       { d = $2 - w[$1]; if (d < 0) d = -d; if (d > dm) dm = d;
-         a = $2 < 0 ? -$2 : $2; if (a > am) am = a; n++ }
-       END { if (n < 4 || am == 0) print "nan"; else printf "%.3g\n", dm / am }' "$1" "$2"
-}
-d=$(sl_diff "$tmp/sl.lag" "$tmp/sl.ab") d2=$(sl_diff "$tmp/sl.lag" "$tmp/sl.ne")
+d=$(accel_diff "$tmp/sl.lag" "$tmp/sl.ab" 4) d2=$(accel_diff "$tmp/sl.lag" "$tmp/sl.ne" 4)
 [ $st -eq 0 ] && awk -v d="$d2" 'BEGIN { exit !(d < 1e-12) }' &&
   [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-12) }'
 ok $? "sliding joints: articulated-body and newton-euler --accel = lagrange's, to $d and $d2"
@@ -156,7 +115,7 @@ ok $? "sliding joints: articulated-body and newton-euler --accel = lagrange's, t
 "$eomc" compile "$sl" --code tables -o "$tmp/sl.c" && grep -q '^#include "eomc_tree.h"' "$tmp/sl.c" &&
   "$eomc" run "$sl" --code tables $in --accel > "$tmp/sl.tab"
 st=$?
-d=$(sl_diff "$tmp/sl.lag" "$tmp/sl.tab")
+d=$(accel_diff "$tmp/sl.lag" "$tmp/sl.tab" 4)
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-12) }'
 ok $? "sliding joints in the tables: --accel = lagrange's, to $d"
 tap_end

@@ -275,8 +275,11 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A, E
             memset(on, 0, (size_t)n * (size_t)n);
             for (int k = 0; k < t->nturns; k++)
                 for (int a = k; a >= 0; a = t->turn[a].up)
-                    on[t->turn[k].coord * n + t->turn[a].coord] =
-                        on[t->turn[a].coord * n + t->turn[k].coord] = 1;
+                    for (int dk = 0; dk < t->turn[k].ndof; dk++)
+                        for (int da = 0; da < t->turn[a].ndof; da++) {
+                            int i = t->turn[k].qc[dk], j = t->turn[a].qc[da];
+                            on[i * n + j] = on[j * n + i] = 1;
+                        }
             if (solve_ops(n, on, nz) > EOM_SPARSE_SOLVE_MAX)
                 priced = "newton-euler";
             free(nz);
@@ -328,7 +331,7 @@ eom_mass(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
         return e->M;
     int n = e->n;
     const Form *f = e->form;
-    e->M = f->mass ? f->mass(m, A, P) : arena_new_array(A, ExprId, n * n);
+    e->M = f->mass ? f->mass(m, A, P, D) : arena_new_array(A, ExprId, n * n);
     for (int i = 0; !f->mass && i < n; i++)
         for (int j = 0; j <= i; j++)
             e->M[i * n + j] = e->M[j * n + i] = diff_partial(D, e->E[i], m->q[2][j]);

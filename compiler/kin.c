@@ -27,6 +27,7 @@ typedef struct KinTurn {
     ExprId Rk[9], a[3], rate, th; /* th: the angle (EXPR_NONE: a quaternion) */
     ExprId aw[3]; /* the axis in world components */
     ExprId wb[3]; /* the turn's angular velocity in the axes before it */
+    ExprId wa[3]; /* and in the axes after it: a th', or 2 L e' */
     struct KinTurn *next;
 } KinTurn;
 
@@ -171,7 +172,8 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const E
     for (int i = 0; i < 9; i++)
         turn->Rk[i] = Rk[i];
     for (int i = 0; i < 3; i++)
-        turn->a[i] = a[i], turn->aw[i] = axis[i], turn->wb[i] = wb ? wb[i] : EXPR_NONE;
+        turn->a[i] = a[i], turn->aw[i] = axis[i], turn->wb[i] = wb ? wb[i] : EXPR_NONE,
+        turn->wa[i] = th == EXPR_NONE ? wa[i] : expr_mul(P, a[i], rate);
     turn->rate = rate;
     turn->th = th;
     turn->next = NULL;
@@ -456,6 +458,17 @@ kin_turn_local(const Kin *K, int f, int k, ExprId *angle, ExprId a[3], ExprId Rk
         a[i] = t->a[i];
     for (int i = 0; i < 9; i++)
         Rk[i] = t->Rk[i];
+    return 1;
+}
+
+int
+kin_turn_omega(const Kin *K, int f, int k, ExprId wa[3])
+{
+    const KinTurn *t = turn_at(K, f, k);
+    if (!t)
+        return 0;
+    for (int i = 0; i < 3; i++)
+        wa[i] = t->wa[i];
     return 1;
 }
 

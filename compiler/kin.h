@@ -89,6 +89,9 @@ int kin_turn_of(const Kin *K, int f, int k, ExprId *rate, ExprId axis[3]);
  * and Rk, the axes after it in the axes before it (row-major, columns the
  * axes).  A quaternion's turn has angle EXPR_NONE and axis zero. */
 int kin_turn_local(const Kin *K, int f, int k, ExprId *angle, ExprId a[3], ExprId Rk[9]);
+/* The same turn's own angular velocity in the axes after it: a th' for
+ * an angle, 2 L e' for a quaternion (kin_turn_quaternion). */
+int kin_turn_omega(const Kin *K, int f, int k, ExprId wa[3]);
 /* f's rotation matrix, row-major (columns its axes in the world's). */
 void kin_rotation(const Kin *K, int f, ExprId R[9]);
 

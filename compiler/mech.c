@@ -181,7 +181,7 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         for (int i = 0; i < s->nq; i++)
             m->q[k][i] = expr_var(P, i, k);
     }
-    m->T = m->V = m->S = EXPR_ZERO;
+    m->T = m->V = m->S = m->T_quat = EXPR_ZERO;
     for (int k = 0; k < s->npart; k++) {
         SpecParticle at = s->part[k]; /* at a point: its velocity as frames give it */
         int vel = at.has_vel;
@@ -216,7 +216,9 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         ExprId c = expr_mul(P, expr_const(P, 1.0 / 3.0), tr);
         y = expr_mul(P, half, y); /* its rate is e.e' */
         ExprId rate = diff_time(D, y);
-        m->T = expr_add(P, m->T, expr_mul(P, half, expr_mul(P, c, expr_powi(P, rate, 2))));
+        ExprId Tq = expr_mul(P, half, expr_mul(P, c, expr_powi(P, rate, 2)));
+        m->T = expr_add(P, m->T, Tq);
+        m->T_quat = expr_add(P, m->T_quat, Tq);
         if (m->S != EXPR_NONE)
             m->S = expr_add(P, m->S, expr_mul(P, half, expr_mul(P, c, expr_powi(P,
                                                                       diff_time(D, rate), 2))));

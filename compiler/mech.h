@@ -14,6 +14,9 @@
 typedef struct Mech {
     int n;         /* number of coordinates */
     ExprId T, V;   /* kinetic and potential energy */
+    /* The part of T that no mass carries: 1/2 c (e.e')^2 per frame turned
+     * by a quaternion (mech.c), which the recursive forms add to theirs. */
+    ExprId T_quat;
     ExprId S;      /* acceleration energy 1/2 sum m |r''|^2, EXPR_NONE if
                     * the spec has explicit kinetic terms (no S for them) */
     ExprId *Q;     /* [n] generalized non-potential forces */

@@ -291,6 +291,8 @@ typedef struct Joints {
     Place *place;   /* per id: its axes */
     int *origin;    /* per id: a point at its origin (0: the world's) */
     int *coord;     /* per id */
+    int *ndof;      /* per id: 1, or 4 for a turn by a quaternion */
+    int (*qc)[4];   /* per id: its coordinates (qc[0] = coord) */
     int *up;        /* per id: the joint before it (-1 the world; -2 not yet seen) */
 } Joints;
 
@@ -385,6 +387,8 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
         int j = order[k], u = J->up[j];
         TreeTurn *tk = &t->turn[k];
         tk->coord = J->coord[j];
+        tk->ndof = J->ndof[j];
+        memcpy(tk->qc, J->qc[j], sizeof tk->qc);
         tk->up = u >= 0 ? pos[u] : -1;
         tk->slide = j >= J->nturn;
         Place up = u >= 0 ? J->place[u] : (Place){KIN_WORLD, 0}, at = J->place[j];
@@ -419,8 +423,12 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
             continue;
         }
         axes_between(K, A, P, up, (Place){at.f, at.n - 1}, tk->Qf);
-        ExprId Rk[9];
+        ExprId Rk[9], wa[3];
         kin_turn_local(K, at.f, at.n - 1, &tk->angle, tk->al, Rk);
+        kin_turn_omega(K, at.f, at.n - 1, wa);
+        for (int d = 0; tk->ndof > 1 && d < tk->ndof; d++) /* a ball's axes */
+            for (int i = 0; i < 3; i++)
+                tk->Sw[d][i] = diff_partial(D, wa[i], expr_var(P, tk->qc[d], 1));
         for (int i = 0; i < 3; i++)
             if (!constant_in_time(D, tk->r[i]))
                 return moves;
@@ -555,6 +563,8 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
     J.place = arena_new_array(A, Place, cap);
     J.origin = arena_new_array(A, int, cap);
     J.coord = arena_new_array(A, int, cap);
+    J.ndof = arena_new_array(A, int, cap);
+    J.qc = arena_alloc(A, (size_t)cap * sizeof *J.qc);
     J.up = arena_new_array(A, int, cap);
     for (int g = 0; g < nf; g++) {
         J.first[g] = J.nturn, J.nct[g] = 0;
@@ -564,24 +574,41 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
         for (int k = 0; kin_turn_of(K, g, k, &rate, a); k++) {
             if (rate == EXPR_ZERO) /* a fixed angle: part of the frame's shape */
                 continue;
-            if (rate == EXPR_NONE) {
-                *why = "a frame turns by a quaternion, not by the angle of a turn";
+            int j = J.nturn, nd = 0;
+            if (rate == EXPR_NONE) { /* a ball: the parameters its rate is made of */
+                ExprId wa[3];
+                kin_turn_omega(K, g, k, wa);
+                for (int i = 0; i < s->nq; i++) {
+                    int in = 0;
+                    for (int r = 0; r < 3; r++)
+                        in |= diff_partial(D, wa[r], q1[i]) != EXPR_ZERO;
+                    if (in && nd < 4)
+                        J.qc[j][nd] = i;
+                    nd += in;
+                }
+            } else {
+                while (nd < s->nq && q1[nd] != rate)
+                    nd++;
+                if (nd == s->nq) {
+                    *why = "a turn's angle is not a coordinate";
+                    return NULL;
+                }
+                J.qc[j][0] = nd, nd = 1;
+            }
+            if (nd != 1 && nd != 4) {
+                *why = "a quaternion's turn does not move by four Euler parameters";
                 return NULL;
             }
-            int i = 0;
-            while (i < s->nq && q1[i] != rate)
-                i++;
-            if (i == s->nq) {
-                *why = "a turn's angle is not a coordinate";
-                return NULL;
-            }
-            if (used[i]++) {
-                *why = arena_printf(A, "coordinate '%s' is the angle of two turns",
-                                    s->coord[i].name);
-                return NULL;
-            }
-            int j = J.nturn++;
-            J.place[j] = (Place){g, k + 1}, J.origin[j] = fd.pivot_pt[g], J.coord[j] = i;
+            for (int d = 0; d < nd; d++)
+                if (used[J.qc[j][d]]++) {
+                    *why = arena_printf(A, nd == 1 ? "coordinate '%s' is the angle of two turns"
+                                                   : "coordinate '%s' moves two joints",
+                                        s->coord[J.qc[j][d]].name);
+                    return NULL;
+                }
+            J.nturn++;
+            J.place[j] = (Place){g, k + 1}, J.origin[j] = fd.pivot_pt[g], J.coord[j] = J.qc[j][0];
+            J.ndof[j] = nd;
             J.nct[g]++;
         }
     }
@@ -595,7 +622,7 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
             return NULL;
         }
         J.place[j] = (Place){sd->frame, nturns_of(K, sd->frame)};
-        J.origin[j] = sd->point, J.coord[j] = sd->coord;
+        J.origin[j] = sd->point, J.coord[j] = J.qc[j][0] = sd->coord, J.ndof[j] = 1;
     }
     for (int i = 0; i < s->nq; i++)
         if (!used[i]) {

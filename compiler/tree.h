@@ -3,7 +3,8 @@
  * joints, for the recursive forms (forms/newton_euler.c,
  * forms/articulated.c).
  *
- * It applies when every coordinate is the angle of one turn of a frame or
+ * It applies when every coordinate is the angle of one turn of a frame,
+ * one of the Euler parameters of a turn by a quaternion (a ball joint), or
  * the length of one slide (a point offset c + d q in its frame), every
  * mass (a body placed by a frame with its centre at a point, or a particle
  * at a point) hangs from the world through such offsets in the frames
@@ -31,6 +32,13 @@
  * those of its frame just after the turn (a slide: its frame's). */
 typedef struct TreeTurn {
     int coord;    /* its angle or length is coordinate coord */
+    /* A ball joint (a turn by a quaternion) has four coordinates, its
+     * Euler parameters qc[0..3] (coord = qc[0]), no single axis (al zero,
+     * angle EXPR_NONE), and its own angular velocity, in its own axes,
+     * is sum_d Sw[d] qc[d]' (2 L e', kin_turn_quaternion).  ndof = 1 for
+     * every other joint (qc[0] = coord). */
+    int ndof, qc[4];
+    ExprId Sw[4][3];
     int up;       /* the joint above it: its parent body; -1 the world */
     int slide;    /* 1: a slide along al; 0: a turn about al */
     ExprId al[3]; /* the axis or direction in its own axes (a constant) */

@@ -197,46 +197,95 @@ axis_index(const ExprId *a)
     return -1;
 }
 
+/* A joint's part of the recursion: its axes, U = IA S, the joint-space
+ * inertia D = S^T IA S (plus what T_quat adds) as L diag(d) L^T (L unit
+ * lower, only for a ball's 4 x 4), and u = tau - S . pA. */
+typedef struct Jt {
+    int nd;
+    Sv S[4], U[4];
+    ExprId u[4], L[16], dinv[4];
+} Jt;
+
+/* x = D^-1 b by the joint's L diag(d) L^T (nd = 1: b / d) */
+static void
+jt_solve(ExprPool *P, const Jt *j, const ExprId *b, ExprId *x)
+{
+    int nd = j->nd;
+    ExprId y[4];
+    for (int i = 0; i < nd; i++) {
+        y[i] = b[i];
+        for (int k = 0; k < i; k++)
+            y[i] = expr_sub(P, y[i], expr_mul(P, j->L[4 * i + k], y[k]));
+    }
+    for (int i = nd - 1; i >= 0; i--) {
+        x[i] = expr_mul(P, y[i], j->dinv[i]);
+        for (int k = i + 1; k < nd; k++)
+            x[i] = expr_sub(P, x[i], expr_mul(P, j->L[4 * k + i], x[k]));
+    }
+}
+
 static void
 articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, ExprId *acc,
             ExprId *piv, ExprId *mkk)
 {
     const Tree *t = m->tree;
-    int nt = t->nturns;
+    int nt = t->nturns, n = m->n;
     Rigid *body = sv_bodies(P, A, t), *comp = arena_new_array(A, Rigid, nt + 1);
-    Sv *S = arena_new_array(A, Sv, nt + 1), *V = arena_new_array(A, Sv, nt + 1);
+    Sv *V = arena_new_array(A, Sv, nt + 1);
     Sv *C = arena_new_array(A, Sv, nt + 1), *pA = arena_new_array(A, Sv, nt + 1);
-    Sv *U = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
+    Sv *Acc = arena_new_array(A, Sv, nt + 1);
     Si *IA = arena_new_array(A, Si, nt + 1);
-    ExprId *Dinv = arena_new_array(A, ExprId, nt + 1), *u = arena_new_array(A, ExprId, nt + 1);
+    Jt *J = arena_new_array(A, Jt, nt + 1);
     /* gravity as the world's acceleration upward (Featherstone's a_0 =
      * -g), where it is uniform: its potential's gradient is not needed */
     Sv a0;
     const ExprId *tau = load; /* a load: at rest, the world still */
+    /* T_quat (mech.h) is no mass's: its M (in a ball's own block) joins
+     * D, and the rest of its terms tau */
+    ExprId *Eq = sv_quat_terms(m, A, P, D), *hq = NULL;
+    if (Eq) {
+        ExprId *zeros = arena_new_array(A, ExprId, n);
+        hq = arena_new_array(A, ExprId, n);
+        for (int i = 0; i < n; i++)
+            zeros[i] = EXPR_ZERO;
+        expr_subst_many(P, n, Eq, n, m->q[2], zeros, hq);
+    }
     if (load) {
         sv_zero(&a0);
     } else {
         ExprId *applied = sv_applied(m, A, P, D, &a0);
-        for (int i = 0; i < m->n; i++)
+        for (int i = 0; i < n; i++)
             applied[i] = expr_neg(P, applied[i]);
+        for (int i = 0; hq && i < n; i++)
+            applied[i] = expr_sub(P, applied[i], hq[i]);
         tau = applied;
     }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
-        ExprId rate = load ? EXPR_ZERO : m->q[1][tk->coord];
-        sv_joint_axis(tk, &S[k]);
+        Jt *jk = &J[k];
+        jk->nd = sv_joint_axes(tk, jk->S);
         sv_zero(&C[k]);
         if (tk->up >= 0) {
             Sv vp;
             sv_motion_down(P, tk, &V[tk->up], &vp);
-            sv_cross_motion(P, &vp, &S[k], &C[k]);
-            for (int r = 0; r < 6; r++)
-                *sv_at(&C[k], r) = expr_mul(P, sv_get(&C[k], r), rate);
+            for (int d = 0; d < jk->nd; d++) {
+                ExprId rate = load ? EXPR_ZERO : m->q[1][tk->qc[d]];
+                Sv x;
+                sv_cross_motion(P, &vp, &jk->S[d], &x);
+                for (int r = 0; r < 6; r++)
+                    *sv_at(&x, r) = expr_mul(P, sv_get(&x, r), rate);
+                if (d == 0)
+                    C[k] = x;
+                else
+                    sv_add(P, &C[k], &x);
+            }
             V[k] = vp;
         } else {
             sv_zero(&V[k]);
         }
-        sv_axpy(P, &V[k], rate, &S[k]);
+        /* a ball's S' e' = 2 L(e') e' = 0: no term of its own */
+        for (int d = 0; d < jk->nd; d++)
+            sv_axpy(P, &V[k], load ? EXPR_ZERO : m->q[1][tk->qc[d]], &jk->S[d]);
         const Rigid *b = &body[k];
         Sv IV;
         si_rigid(P, &IA[k], b->m, b->h, b->I);
@@ -246,49 +295,96 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
     }
     for (int k = nt - 1; k >= 0; k--) {
         const TreeTurn *tk = &t->turn[k];
-        int i = tk->coord, p = tk->up;
+        Jt *jk = &J[k];
+        int nd = jk->nd, p = tk->up;
         /* M_ii = S^T Ic S, Ic the composite inertia of all the joint moves */
-        Sv IcS;
-        sv_inertia_times(P, comp[k].m, comp[k].h, comp[k].I, &S[k], &IcS);
-        mkk[i] = sv_dot(P, &S[k], &IcS);
+        for (int d = 0; d < nd; d++) {
+            Sv IcS;
+            int i = tk->qc[d];
+            sv_inertia_times(P, comp[k].m, comp[k].h, comp[k].I, &jk->S[d], &IcS);
+            mkk[i] = sv_dot(P, &jk->S[d], &IcS);
+            if (Eq)
+                mkk[i] = expr_add(P, mkk[i], diff_partial(D, Eq[i], m->q[2][i]));
+        }
         if (p >= 0)
             sv_rigid_up(P, tk, &comp[k], &comp[p]);
-        si_times(P, &IA[k], &S[k], &U[k]);
-        ExprId d = sv_dot(P, &S[k], &U[k]);
-        piv[i] = d;
-        Dinv[k] = expr_div(P, EXPR_ONE, d);
-        u[k] = expr_sub(P, tau[i], sv_dot(P, &S[k], &pA[k]));
+        for (int d = 0; d < nd; d++)
+            si_times(P, &IA[k], &jk->S[d], &jk->U[d]);
+        /* D = L diag(d) L^T, its pivots those of coordinates qc[0], qc[1], ... */
+        for (int i = 0; i < nd; i++)
+            for (int j = 0; j <= i; j++) {
+                ExprId x = sv_dot(P, &jk->S[i], &jk->U[j]);
+                if (Eq)
+                    x = expr_add(P, x, diff_partial(D, Eq[tk->qc[i]], m->q[2][tk->qc[j]]));
+                for (int l = 0; l < j; l++) {
+                    ExprId ll = expr_mul(P, jk->L[4 * i + l], jk->L[4 * j + l]);
+                    x = expr_sub(P, x, expr_mul(P, ll, piv[tk->qc[l]]));
+                }
+                if (i == j) {
+                    piv[tk->qc[i]] = x;
+                    jk->dinv[i] = expr_div(P, EXPR_ONE, x);
+                } else {
+                    jk->L[4 * i + j] = expr_mul(P, x, jk->dinv[j]);
+                }
+            }
+        for (int d = 0; d < nd; d++)
+            jk->u[d] = expr_sub(P, tau[tk->qc[d]], sv_dot(P, &jk->S[d], &pA[k]));
         if (p < 0)
             continue;
-        Sv W, Ic, pa, up;
-        for (int r = 0; r < 6; r++)
-            *sv_at(&W, r) = expr_mul(P, sv_get(&U[k], r), Dinv[k]);
+        /* W = U D^-1, row by row */
+        Sv W[4], Ic, pa, up;
+        for (int r = 0; r < 6; r++) {
+            ExprId ur[4], wr[4];
+            for (int d = 0; d < nd; d++)
+                ur[d] = sv_get(&jk->U[d], r);
+            if (nd == 1)
+                wr[0] = expr_mul(P, ur[0], jk->dinv[0]);
+            else
+                jt_solve(P, jk, ur, wr);
+            for (int d = 0; d < nd; d++)
+                *sv_at(&W[d], r) = wr[d];
+        }
         Si Ia;
         si_zero(&Ia);
-        si_add_update(P, &Ia, &IA[k], &U[k], &W);
+        si_add_update(P, &Ia, &IA[k], &jk->U[0], &W[0]);
+        for (int d = 1; d < nd; d++) {
+            Si zero;
+            si_zero(&zero);
+            si_add_update(P, &Ia, &zero, &jk->U[d], &W[d]);
+        }
         /* Ia S = U - U (S.U) / D = 0: about a coordinate axis that is a
          * row and a column of exact zeros, which the rounding of the
          * update would only blur, and which fold through the transforms */
-        int j = axis_index(tk->al); /* S's row among (w, v) */
+        int j = nd == 1 ? axis_index(tk->al) : -1; /* S's row among (w, v) */
         j += j >= 0 && tk->slide ? 3 : 0;
         for (int c = 0; j >= 0 && c < 6; c++)
             Ia.e[6 * j + c] = Ia.e[6 * c + j] = EXPR_ZERO;
         si_times(P, &Ia, &C[k], &Ic);
         pa = pA[k];
         sv_add(P, &pa, &Ic);
-        sv_axpy(P, &pa, u[k], &W);
+        for (int d = 0; d < nd; d++)
+            sv_axpy(P, &pa, jk->u[d], &W[d]);
         inertia_up(P, tk, &Ia, &IA[p]);
         sv_force_up(P, tk, &pa, &up);
         sv_add(P, &pA[p], &up);
     }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
+        const Jt *jk = &J[k];
         Sv a;
         sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &a);
         sv_add(P, &a, &C[k]);
-        ExprId qdd = expr_mul(P, expr_sub(P, u[k], sv_dot(P, &a, &U[k])), Dinv[k]);
-        acc[tk->coord] = qdd;
-        sv_axpy(P, &a, qdd, &S[k]);
+        ExprId b[4], qdd[4];
+        for (int d = 0; d < jk->nd; d++)
+            b[d] = expr_sub(P, jk->u[d], sv_dot(P, &a, &jk->U[d]));
+        if (jk->nd == 1)
+            qdd[0] = expr_mul(P, b[0], jk->dinv[0]);
+        else
+            jt_solve(P, jk, b, qdd);
+        for (int d = 0; d < jk->nd; d++) {
+            acc[tk->qc[d]] = qdd[d];
+            sv_axpy(P, &a, qdd[d], &jk->S[d]);
+        }
         Acc[k] = a;
     }
 }
@@ -311,7 +407,10 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     }
     int nt = t->nturns;
     for (int k = 0; k < nt; k++)
-        if (!t->turn[k].slide && t->turn[k].angle != m->q[0][t->turn[k].coord]) {
+        if (t->turn[k].ndof > 1) {
+            *why = "the tables have no ball joints (turns by a quaternion)";
+            return NULL;
+        } else if (!t->turn[k].slide && t->turn[k].angle != m->q[0][t->turn[k].coord]) {
             *why = "a turn's angle is not its coordinate itself";
             return NULL;
         }

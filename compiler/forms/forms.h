@@ -21,7 +21,7 @@ typedef struct Form {
     int eliminate;       /* constraints by elimination rather than multipliers */
     /* The mass matrix [n*n], when the form has a cheaper way to it than
      * dE/dq'' (equal to it); NULL: eom.c differentiates E. */
-    ExprId *(*mass)(const Mech *m, Arena *A, ExprPool *P);
+    ExprId *(*mass)(const Mech *m, Arena *A, ExprPool *P, Diff *D);
     /* The accelerations by a recursion of the form's own, for any number
      * of coordinates, without factoring M (NULL: eom.c factors M, up to
      * EOM_SOLVE_MAX coordinates).  Writes acc, piv and mkk [n] as eom.h

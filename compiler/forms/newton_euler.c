@@ -36,22 +36,28 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     Rigid *body = sv_bodies(P, A, t);
     Sv *V = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
     Sv *F = arena_new_array(A, Sv, nt + 1), a0;
-    ExprId *E = sv_applied(m, A, P, D, &a0);
+    ExprId *E = sv_applied(m, A, P, D, &a0), *Eq = sv_quat_terms(m, A, P, D);
+    for (int i = 0; Eq && i < m->n; i++)
+        E[i] = expr_add(P, E[i], Eq[i]);
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
-        ExprId rate = m->q[1][tk->coord], acc = m->q[2][tk->coord];
-        Sv S, VS, IV, IA;
-        sv_joint_axis(tk, &S);
+        Sv S[4], VS, IV, IA;
+        int nd = sv_joint_axes(tk, S);
         sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &Acc[k]);
         if (tk->up >= 0) {
             sv_motion_down(P, tk, &V[tk->up], &V[k]);
-            sv_cross_motion(P, &V[k], &S, &VS); /* before the turn's own rate */
-            sv_axpy(P, &Acc[k], rate, &VS);
+            for (int d = 0; d < nd; d++) { /* before the joint's own rates */
+                sv_cross_motion(P, &V[k], &S[d], &VS);
+                sv_axpy(P, &Acc[k], m->q[1][tk->qc[d]], &VS);
+            }
         } else {
             sv_zero(&V[k]);
         }
-        sv_axpy(P, &Acc[k], acc, &S);
-        sv_axpy(P, &V[k], rate, &S);
+        /* a ball's S' e' = 2 L(e') e' = 0: no term of its own */
+        for (int d = 0; d < nd; d++)
+            sv_axpy(P, &Acc[k], m->q[2][tk->qc[d]], &S[d]);
+        for (int d = 0; d < nd; d++)
+            sv_axpy(P, &V[k], m->q[1][tk->qc[d]], &S[d]);
         const Rigid *b = &body[k];
         sv_inertia_times(P, b->m, b->h, b->I, &V[k], &IV);
         sv_inertia_times(P, b->m, b->h, b->I, &Acc[k], &IA);
@@ -60,9 +66,12 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     }
     for (int k = nt - 1; k >= 0; k--) {
         const TreeTurn *tk = &t->turn[k];
-        Sv up, S;
-        sv_joint_axis(tk, &S);
-        E[tk->coord] = expr_add(P, sv_dot(P, &S, &F[k]), E[tk->coord]);
+        Sv up, S[4];
+        int nd = sv_joint_axes(tk, S);
+        for (int d = 0; d < nd; d++) {
+            int i = tk->qc[d];
+            E[i] = expr_add(P, sv_dot(P, &S[d], &F[k]), E[i]);
+        }
         if (tk->up < 0)
             continue;
         sv_force_up(P, tk, &F[k], &up);
@@ -75,7 +84,7 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
  * composite inertia of all turn j moves, S_j's force carried up the
  * turns to i's coordinates); 0 for turns on different branches. */
 ExprId *
-crb_mass(const Mech *m, Arena *A, ExprPool *P)
+crb_mass(const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
     const Tree *t = m->tree;
     int n = m->n, nt = t->nturns;
@@ -88,21 +97,36 @@ crb_mass(const Mech *m, Arena *A, ExprPool *P)
             sv_rigid_up(P, &t->turn[k], &Ic[k], &Ic[t->turn[k].up]);
     for (int kj = 0; kj < nt; kj++) {
         const TreeTurn *tj = &t->turn[kj];
-        Sv S, F, Si;
-        sv_joint_axis(tj, &S);
-        sv_inertia_times(P, Ic[kj].m, Ic[kj].h, Ic[kj].I, &S, &F);
-        for (int ki = kj;;) { /* F in turn ki's coordinates */
-            int i = t->turn[ki].coord, j = tj->coord;
-            sv_joint_axis(&t->turn[ki], &Si);
-            M[i * n + j] = M[j * n + i] = sv_dot(P, &Si, &F);
-            if (t->turn[ki].up < 0)
-                break;
-            Sv up;
-            sv_force_up(P, &t->turn[ki], &F, &up);
-            F = up;
-            ki = t->turn[ki].up;
+        Sv S[4], Si[4];
+        int nj = sv_joint_axes(tj, S);
+        for (int dj = 0; dj < nj; dj++) {
+            Sv F;
+            int j = tj->qc[dj];
+            sv_inertia_times(P, Ic[kj].m, Ic[kj].h, Ic[kj].I, &S[dj], &F);
+            for (int ki = kj;;) { /* F in turn ki's coordinates */
+                int ni = sv_joint_axes(&t->turn[ki], Si);
+                for (int di = 0; di < ni; di++) {
+                    int i = t->turn[ki].qc[di];
+                    if (ki != kj || di >= dj) /* a ball's own block: its lower triangle */
+                        M[i * n + j] = M[j * n + i] = sv_dot(P, &Si[di], &F);
+                }
+                if (t->turn[ki].up < 0)
+                    break;
+                Sv up;
+                sv_force_up(P, &t->turn[ki], &F, &up);
+                F = up;
+                ki = t->turn[ki].up;
+            }
         }
     }
+    /* and the inertia T_quat gives e' along e, in each ball's own block */
+    ExprId *Eq = sv_quat_terms(m, A, P, D);
+    for (int k = 0; Eq && k < nt; k++)
+        for (int di = 0; t->turn[k].ndof > 1 && di < t->turn[k].ndof; di++)
+            for (int dj = 0; dj < t->turn[k].ndof; dj++) {
+                int i = t->turn[k].qc[di], j = t->turn[k].qc[dj];
+                M[i * n + j] = expr_add(P, M[i * n + j], diff_partial(D, Eq[i], m->q[2][j]));
+            }
     return M;
 }
 

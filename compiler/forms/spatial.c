@@ -141,6 +141,31 @@ sv_joint_axis(const TreeTurn *t, Sv *S)
     }
 }
 
+int
+sv_joint_axes(const TreeTurn *t, Sv S[4])
+{
+    if (t->ndof == 1) {
+        sv_joint_axis(t, &S[0]);
+        return 1;
+    }
+    for (int d = 0; d < t->ndof; d++)
+        for (int i = 0; i < 3; i++)
+            S[d].w[i] = t->Sw[d][i], S[d].v[i] = EXPR_ZERO;
+    return t->ndof;
+}
+
+ExprId *
+sv_quat_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D)
+{
+    if (m->T_quat == EXPR_ZERO)
+        return NULL;
+    ExprId *dq = form_gradient(m, m->T_quat, 0, A, D);
+    ExprId *dv = form_gradient(m, m->T_quat, 1, A, D);
+    for (int i = 0; i < m->n; i++)
+        dq[i] = expr_sub(P, diff_time(D, dv[i]), dq[i]);
+    return dq;
+}
+
 ExprId *
 sv_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D, Sv *a0)
 {

@@ -48,6 +48,14 @@ Rigid *sv_bodies(ExprPool *P, Arena *A, const Tree *t);
 /* A joint's axis S in its own coordinates: (a, 0) for a turn, (0, d) for
  * a slide. */
 void sv_joint_axis(const TreeTurn *t, Sv *S);
+/* Its axes, one per coordinate (t->ndof of them: a ball's four are its
+ * angular velocity's derivatives along its Euler parameters' rates, (Sw[d],
+ * 0)); returns t->ndof. */
+int sv_joint_axes(const TreeTurn *t, Sv S[4]);
+/* Lagrange's d/dt(dT_quat/dq') - dT_quat/dq for the part of T no mass
+ * carries (mech.h: a quaternion's e' along e), which the recursions over
+ * the masses leave out; NULL when there is none. */
+ExprId *sv_quat_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* dV/dq - Q, and the world's acceleration a0 that stands for a uniform
  * gravity field (Featherstone's a_0 = -g; then V's part from it is left
  * out of the gradient), or zero. */
@@ -57,6 +65,6 @@ ExprId *sv_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D, Sv *a0);
  * matrix of m->tree (forms/newton_euler.c), which the articulated-body
  * form shares. */
 ExprId *rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why);
-ExprId *crb_mass(const Mech *m, Arena *A, ExprPool *P);
+ExprId *crb_mass(const Mech *m, Arena *A, ExprPool *P, Diff *D);
 
 #endif

@@ -16,7 +16,16 @@
 #    y'' * 1e-4) and the multipliers * 1e2, to 1e-12;
 #  - a constraint written twice makes B M^-1 B^T singular: the run falls
 #    back on the dense KKT solve, which stops it (exit 3) naming the
-#    constraints, as before.
+#    constraints, as before;
+#  - ball joints (a frame turned by a quaternion): the Chaplygin ball of
+#    tests/sim/specs/rolling_ball.yaml and the floating body with an arm of
+#    tests/sim/specs/floating_arm.yaml (three slides, a ball, a hinge): q''
+#    and the multipliers of the articulated-body and Newton-Euler forms =
+#    Lagrange's at the initial state (on |e| = 1, e.e' = 0) to 1e-12, but
+#    for the unit constraint's, which the recursion leaves at 0 (to 1e-12 of
+#    Lagrange's, which depends on how T is written off |e| = 1); a run of
+#    the floating body to t = 2 ends where Lagrange's does (1e-9, every
+#    column but that multiplier); the tables refuse ball joints, saying so.
 # usage: test_loads.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -86,5 +95,38 @@ loads=$?
 [ $st -eq 3 ] && [ $loads -eq 0 ] &&
   grep -q 'the constrained system is singular: the constraints .*roll_y.*roll_y2.* are dependent' "$tmp/twice.err"
 ok $? "roll_y written twice: exit $st, the dense solve's message: $(head -c 160 "$tmp/twice.err")"
+
+# ball joints: the unit constraint's multiplier apart
+ball="$src/tests/sim/specs/rolling_ball.yaml" float="$src/tests/sim/specs/floating_arm.yaml"
+for spec in "$ball" "$float"; do
+ for form in articulated-body newton-euler; do
+  name=$(basename "$spec" .yaml)
+  "$eomc" run "$spec" --form $form --accel > "$tmp/ab.acc" 2> /dev/null &&
+    "$eomc" run "$spec" --form lagrange --accel > "$tmp/lag.acc" 2> /dev/null
+  st=$?
+  grep -v '_unit\]' "$tmp/ab.acc" > "$tmp/ab.rest"
+  grep -v '_unit\]' "$tmp/lag.acc" > "$tmp/lag.rest"
+  d=$(accel_diff "$tmp/lag.rest" "$tmp/ab.rest" 6)
+  unit=$(awk 'NR == FNR && /_unit\]/ { u = $2 < 0 ? -$2 : $2 } NR != FNR && /_unit\]/ { l = $2 < 0 ? -$2 : $2 }
+              END { if (l > 0) printf "%.3g\n", u / l; else print "nan" }' "$tmp/ab.acc" "$tmp/lag.acc")
+  [ $st -eq 0 ] && below "$d" 1e-12 && below "$unit" 1e-12
+  ok $? "$name (a ball joint), $form: q'' and the other multipliers = lagrange's to $d; the unit constraint's $unit of lagrange's"
+ done
+done
+"$eomc" run "$float" --form articulated-body -o "$tmp/ab.csv" 2> /dev/null &&
+  "$eomc" run "$float" --form lagrange -o "$tmp/lag.csv" 2> /dev/null
+st=$?
+# every column but the unit constraint's multiplier
+col=$(head -1 "$tmp/ab.csv" | tr ',' '\n' | grep -n '^lambda\[body_axes_unit\]$' | cut -d: -f1)
+tail -1 "$tmp/ab.csv" | cut -d, -f"$col" --complement > "$tmp/ab.last"
+tail -1 "$tmp/lag.csv" | cut -d, -f"$col" --complement > "$tmp/lag.last"
+d=$(row_diff "$tmp/lag.last" "$tmp/ab.last" 20)
+[ $st -eq 0 ] && [ -n "$col" ] && below "$d" 1e-9
+ok $? "floating_arm to t = 2 by the articulated-body form: lagrange's last row to $d"
+"$eomc" compile "$float" --code tables -o "$tmp/fa.c" 2> "$tmp/fa.err"
+st=$?
+[ $st -eq 0 ] && grep -q 'note: --code tables: not here (the tables have no ball joints' "$tmp/fa.err" &&
+  ! grep -q eomc_tree "$tmp/fa.c"
+ok $? "--code tables on a ball joint: straight-line code, and a note that says why"
 
 tap_end

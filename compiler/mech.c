@@ -199,6 +199,23 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     if (s->nkinetic > 0)
         m->S = EXPR_NONE;
     ExprId T0 = m->T;
+    /* the coordinates that are no quaternion's parameters, and zeros */
+    ExprId *rest = NULL, *zeros = NULL;
+    int nrest = 0;
+    if (s->nfquat) {
+        rest = arena_new_array(A, ExprId, s->nq);
+        zeros = arena_new_array(A, ExprId, s->nq);
+        for (int i = 0; i < s->nq; i++) {
+            int quat = 0;
+            for (int k = 0; k < s->nfquat; k++)
+                for (int d = 0; d < 4; d++)
+                    quat |= s->fquat[k].q[d] == i;
+            if (!quat)
+                rest[nrest] = m->q[0][i], zeros[nrest++] = EXPR_ZERO;
+        }
+        if (!nrest)
+            rest = NULL;
+    }
     for (int k = 0; k < s->nfquat; k++) {
         /* a frame turned by Euler parameters e: as for a body's
          * (body_energy), e' along e moves nothing, and 1/2 c (e.e')^2
@@ -212,6 +229,14 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             ExprId v = m->q[1][q[i]];
             tr = expr_add(P, tr, diff_partial(D, diff_partial(D, T0, v), v));
             y = expr_add(P, y, expr_powi(P, m->q[0][q[i]], 2));
+        }
+        /* at the other coordinates' zeros (a quaternion's own kept): on a
+         * tree the trace is a function of every joint below, whose terms
+         * would cost more than the motion's own, and any positive c serves */
+        if (rest) {
+            ExprId trz;
+            expr_subst_many(P, 1, &tr, nrest, rest, zeros, &trz);
+            tr = trz;
         }
         ExprId c = expr_mul(P, expr_const(P, 1.0 / 3.0), tr);
         y = expr_mul(P, half, y); /* its rate is e.e' */

@@ -4,7 +4,7 @@
 #   ops        operation count of the generated mass_bias (adds+muls+divs+calls)
 #   ops_all    of all emitted functions
 #   lines      lines of generated C
-#   cc_s       time of `cc -O2 -c` on the generated C
+#   cc_s       time of `cc -O1 -c` on the generated C (as `eomc build` compiles it)
 #   ns_rhs     ns per right-hand side: generated M and h + the runtime solve
 #   allocs     allocations in 1000 right-hand sides (must be 0)
 #   ns_jac     ns per full Jacobian (the model's jacobian member; the
@@ -47,13 +47,13 @@ for n in ${BENCH_N:-2 5 10 20 50}; do
   all=$(awk 'NR > 1 { s += $6 } END { print s }' "$dir/stats$n")
   lines=$(wc -l < "$dir/chain$n.c")
   t2=$(now)
-  $cc -std=c11 -O2 -I"$inc" -c "$dir/chain$n.c" -o "$dir/chain$n.o"
+  $cc -std=c11 -O1 -I"$inc" -c "$dir/chain$n.c" -o "$dir/chain$n.o"
   t3=$(now)
   if grep -q '^ \* No Jacobian of E' "$dir/chain$n.c"; then
     "$eomc" compile "$dir/chain$n.yaml" -o "$dir/chain$n.c" --jacobian auto ${EOMC_FLAGS:-}
-    $cc -std=c11 -O2 -I"$inc" -c "$dir/chain$n.c" -o "$dir/chain$n.o"
+    $cc -std=c11 -O1 -I"$inc" -c "$dir/chain$n.c" -o "$dir/chain$n.o"
   fi
-  $cc -std=c11 -O2 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
+  $cc -std=c11 -O1 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
     "$dir/chain$n.o" "$lib" $gsl_libs -lm \
     -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/bench$n"
   set -- $("$dir/bench$n" 2>/dev/null)
@@ -62,8 +62,8 @@ for n in ${BENCH_N:-2 5 10 20 50}; do
   sh "$src/specs/gen_chain.sh" "$n" --frames > "$dir/frames$n.yaml"
   "$eomc" compile "$dir/frames$n.yaml" -o "$dir/frames$n.c"
   frform=$(sed -n 's/^ \* form: *\([a-z-]*\),.*/\1/p' "$dir/frames$n.c")
-  $cc -std=c11 -O2 -I"$inc" -c "$dir/frames$n.c" -o "$dir/frames$n.o"
-  $cc -std=c11 -O2 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
+  $cc -std=c11 -O1 -I"$inc" -c "$dir/frames$n.c" -o "$dir/frames$n.o"
+  $cc -std=c11 -O1 -I"$inc" -DMODEL="chain${n}_model" "$src/bench/rhs_bench.c" \
     "$dir/frames$n.o" "$lib" $gsl_libs -lm \
     -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/fbench$n"
   set -- $("$dir/fbench$n" 2>/dev/null)

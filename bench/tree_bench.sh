@@ -6,7 +6,7 @@
 #   ops        operation count of the generated mass_bias
 #   ops_all    of all emitted functions
 #   lines      lines of generated C
-#   cc_s       time of `cc -O2 -c` on the generated C
+#   cc_s       time of `cc -O1 -c` on the generated C (as `eomc build` compiles it)
 #   build_s    time of `eomc build` (the C, and the simulator: the double
 #              and the extended-precision units compiled at once, linked)
 #   form       the default form eomc picked
@@ -33,9 +33,9 @@ eomc=$1 src=$2 inc=$3 lib=$4 mj=${5:-}
 gsl_libs=$(pkg-config --libs gsl)
 # rhs FILE.c NAME: "ns err" of the model in FILE.c (double and extended)
 rhs() {
-  $cc -std=c11 -O2 -I"$inc" -c "$1" -o "$dir/m.o"
-  $cc -std=c11 -O2 -I"$inc" -DEOMC_EXTENDED -c "$1" -o "$dir/mx.o"
-  $cc -std=c11 -O2 -I"$inc" -DMODEL="$2_model" -DMODEL_EXT="$2_model_ext" \
+  $cc -std=c11 -O1 -I"$inc" -c "$1" -o "$dir/m.o"
+  $cc -std=c11 -O1 -I"$inc" -DEOMC_EXTENDED -c "$1" -o "$dir/mx.o"
+  $cc -std=c11 -O1 -I"$inc" -DMODEL="$2_model" -DMODEL_EXT="$2_model_ext" \
     "$src/bench/rhs_bench.c" "$dir/m.o" "$dir/mx.o" "$lib" $gsl_libs -lm \
     -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/rhs"
   "$dir/rhs" 2> /dev/null | awk '{ print $1, $4 }'
@@ -64,7 +64,7 @@ for n in ${BENCH_N:-5 10 20 30}; do
   all=$(awk 'NR > 1 { s += $6 } END { print s }' "$dir/stats$n")
   lines=$(wc -l < "$dir/tree$n.c")
   t2=$(now)
-  $cc -std=c11 -O2 -I"$inc" -c "$dir/tree$n.c" -o "$dir/tree$n.o"
+  $cc -std=c11 -O1 -I"$inc" -c "$dir/tree$n.c" -o "$dir/tree$n.o"
   t3=$(now)
   ccs=$(elapsed "$t2" "$t3")
   "$eomc" build "$dir/tree$n.yaml" -o "$dir/tree$n"

@@ -152,6 +152,24 @@ static const char float_spec[] =
     "  push: {force: [0.3, -0.2, 0.1], on: arm}\n"
     "scene: {t_end: 1}\n";
 
+/* A floating body on a ball joint (a frame turned by a quaternion) and
+ * three slides, with an arm on a hinge. */
+static const char ball_spec[] =
+    "name: ball\n"
+    "parameters: {m: 3.0}\n"
+    "coordinates: [x, y, z, e0, e1, e2, e3, th]\n"
+    "frames:\n"
+    "  body_axes: {rotation: [{quaternion: [e0, e1, e2, e3]}]}\n"
+    "  arm_axes: {parent: body_axes, rotation: [{x: th}]}\n"
+    "points:\n"
+    "  centre: {at: [x, y, z]}\n"
+    "  shoulder: {frame: body_axes, from: centre, at: [0.1, 0.2, 0.05]}\n"
+    "  arm_cm: {frame: arm_axes, from: shoulder, at: [0, 0, -0.2]}\n"
+    "bodies:\n"
+    "  body: {mass: m, frame: body_axes, center: centre, inertia: [0.3, 0.4, 0.5]}\n"
+    "  arm: {mass: 0.5, frame: arm_axes, center: arm_cm, inertia: [0.01, 0.012, 0.003]}\n"
+    "scene: {t_end: 1}\n";
+
 static Spec *
 load(const char *text)
 {
@@ -358,6 +376,27 @@ main(void)
             absent = diff_partial(D, ne->E[i], m->q[0][w]) == EXPR_ZERO &&
                      diff_partial(D, ab->acc[i], m->q[0][w]) == EXPR_ZERO;
         CHECK(absent, "the floating body: the wheel's angle appears in no E_i and no q_i''");
+    }
+    Spec *bs = load(ball_spec);
+    CHECK(bs != NULL, "the floating body on a ball joint loads");
+    if (bs) { /* its joints: three slides, the ball's four parameters, the hinge */
+        Mech *m = mech_build(bs, A, P, D);
+        int balls = 0, order = 1;
+        for (int k = 0; m->tree && k < m->tree->nturns; k++) {
+            const TreeTurn *tk = &m->tree->turn[k];
+            if (tk->ndof == 4) {
+                balls++;
+                for (int d = 0; d < 4; d++)
+                    order &= tk->qc[d] == 3 + d;
+                order &= tk->up >= 0 && m->tree->turn[tk->up].slide;
+            }
+        }
+        const char *why = NULL;
+        CHECK(m->tree && m->tree->nturns == 5 && balls == 1 && order,
+              "a quaternion's turn is one joint of its four parameters, e0..e3 in order, "
+              "below the slides (%s)", m->tree_why ? m->tree_why : "");
+        CHECK(!form_tables(m, A, P, D, &why) && why && strstr(why, "ball joints"),
+              "the tables refuse a ball joint, saying so");
     }
     Spec *big = load(big_tree_spec);
     CHECK(big != NULL, "the 15-coordinate tree loads");

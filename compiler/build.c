@@ -172,7 +172,7 @@ write_extended_unit(const char *c_file)
 }
 
 int
-build_executable(const char *c_file, const char *exe, int mpi)
+build_executable(const char *c_file, const char *exe, int mpi, int units, int twin)
 {
     const char *inc, *lib, *cc = getenv(mpi ? "EOMC_MPICC" : "CC");
     if (!cc || !*cc)
@@ -183,49 +183,63 @@ build_executable(const char *c_file, const char *exe, int mpi)
                         "(set EOMC_RUNTIME_LIB)\n", lib);
         return -1;
     }
-    char *ext = write_extended_unit(c_file);
-    if (!ext)
+    char *ext = twin ? write_extended_unit(c_file) : NULL;
+    if (twin && !ext)
         return -1;
     size_t len = strlen(exe) + 16;
     char *tmp = xmalloc(len);
     int special = build_is_special(exe);
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
-    char *obj = sibling(c_file, "model.o"), *ext_obj = sibling(c_file, "model_ext.o");
+    char *obj[3] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
+                    sibling(c_file, "model_ext.o")};
     char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS;
     snprintf(incflag, sizeof incflag, "-I%s", inc);
     snprintf(ccbuf, sizeof ccbuf, "%s", cc);
     char *argv[64];
     int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
-    /* The two units compile at once (each is most of the time of a large
-     * model's build), then link.  -O1: straight-line generated code runs
-     * as fast as at -O2 (measured, gcc 12: chain5 109 against 115 ns,
-     * gen_tree 10 1 660 against 1 739, bicycle_tree 790 against 802,
-     * gen_tree 30 5 225 against 5 484), which finds nothing more to do in
-     * it, and compiles in two thirds of the time (gen_tree 30: 3.1 against
-     * 4.7 s).  Without -ffast-math the arithmetic is the same to the bit. */
+    /* The units compile at once (each is most of the time of a large
+     * model's build), then link: a large model's two halves
+     * (-DEOMC_UNIT=1, 2: emit.h), and the extended-precision twin.  -O1:
+     * straight-line generated code runs as fast as at -O2 (measured, gcc
+     * 12: chain5 109 against 115 ns, gen_tree 10 1 660 against 1 739,
+     * bicycle_tree 790 against 802, gen_tree 30 5 225 against 5 484),
+     * which finds nothing more to do in it, and compiles in two thirds of
+     * the time (gen_tree 30: 3.1 against 4.7 s).  Without -ffast-math the
+     * arithmetic is the same to the bit. */
     const char *flags[] = {"-std=c11", "-O1", "-DEOMC_MAIN", "-pthread", incflag,
                            mpi ? "-DEOMC_MPI" : NULL};
-    char *unit_argv[2][32];
-    const char *src[2] = {c_file, ext}, *dst[2] = {obj, ext_obj};
-    pid_t pid[2];
-    for (int u = 0; u < 2; u++) {
+    const char *unit_flag[3] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL};
+    const char *src[3] = {c_file, c_file, ext};
+    int use[3] = {1, units == 2, twin};
+    char *unit_argv[3][32];
+    pid_t pid[3];
+    for (int u = 0; u < 3; u++) {
+        if (!use[u])
+            continue;
         int n = 0;
         for (int k = 0; k < ncc; k++)
             unit_argv[u][n++] = argv[k];
         for (size_t k = 0; k < sizeof flags / sizeof flags[0] && flags[k]; k++)
             unit_argv[u][n++] = (char *)flags[k];
+        if (unit_flag[u])
+            unit_argv[u][n++] = (char *)unit_flag[u];
         unit_argv[u][n++] = "-c";
         unit_argv[u][n++] = (char *)src[u];
         unit_argv[u][n++] = "-o";
-        unit_argv[u][n++] = (char *)dst[u];
+        unit_argv[u][n++] = obj[u];
         unit_argv[u][n] = NULL;
         pid[u] = start_cc(unit_argv[u]);
     }
-    int rc = wait_cc(pid[0], cc);
-    rc = wait_cc(pid[1], cc) || rc ? -1 : 0; /* both waited for */
+    int rc = 0;
+    for (int u = 0; u < 3; u++) /* each waited for */
+        if (use[u] && wait_cc(pid[u], cc) != 0)
+            rc = -1;
     if (rc == 0) {
         int n = ncc;
-        const char *link[] = {obj, ext_obj, lib, "-o", tmp};
+        for (int u = 0; u < 3; u++)
+            if (use[u])
+                argv[n++] = obj[u];
+        const char *link[] = {lib, "-o", tmp};
         for (size_t k = 0; k < sizeof link / sizeof link[0]; k++)
             argv[n++] = (char *)link[k];
         n += split_flags(libs, argv + n, 40);
@@ -240,11 +254,13 @@ build_executable(const char *c_file, const char *exe, int mpi)
     }
     if (rc != 0 && !special)
         unlink(tmp);
-    unlink(ext);
-    unlink(obj);
-    unlink(ext_obj);
-    free(obj);
-    free(ext_obj);
+    if (ext)
+        unlink(ext);
+    for (int u = 0; u < 3; u++) {
+        if (use[u])
+            unlink(obj[u]);
+        free(obj[u]);
+    }
     free(ext);
     free(tmp);
     return rc;

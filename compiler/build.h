@@ -13,14 +13,15 @@
 int build_is_special(const char *path);
 
 /* Compile c_file with the runtime into exe (written to a temporary name
- * and renamed when complete), and c_file a second time with
+ * and renamed when complete): as two translation units if units is 2
+ * (-DEOMC_UNIT=1 and 2, emit.h), and, if twin, a second time with
  * EOMC_EXTENDED for the reference solution (through a file model_ext.c
- * written next to it): the two compilations run at once, their objects
- * go next to c_file, and everything but exe is removed.  mpi: with $EOMC_MPICC (default
- * mpicc) and -DEOMC_MPI, so that its main shares a sweep among the ranks
- * of an MPI job (runtime/eomc_mpi.h).  Returns 0, or -1 after printing
- * why. */
-int build_executable(const char *c_file, const char *exe, int mpi);
+ * written next to it).  The compilations run at once, their objects go
+ * next to c_file, and everything but exe is removed.  mpi: with
+ * $EOMC_MPICC (default mpicc) and -DEOMC_MPI, so that its main shares a
+ * sweep among the ranks of an MPI job (runtime/eomc_mpi.h).  Returns 0,
+ * or -1 after printing why. */
+int build_executable(const char *c_file, const char *exe, int mpi, int units, int twin);
 
 /* Where `eomc run` keeps the simulator for this key; the directory is
  * created.  Returns a malloc'd path, or NULL after printing why. */

@@ -31,8 +31,10 @@ enum { EMIT_NFUNCS = 15 };
  * NULL) and invariant give the banner and the tables.  The functions are
  * written in eomc_real (eomc_model.h); those the reference solution needs
  * are also compiled with -DEOMC_EXTENDED, the others are fenced off from
- * it. */
-void emit_model(FILE *out, const Spec *s, const Eom *e, const Constraints *c,
+ * it.  Returns the number of translation units the file makes: 1, or 2
+ * for a large model, whose C compiles as one unit or, with -DEOMC_UNIT=1
+ * and -DEOMC_UNIT=2, as two halves linked together. */
+int emit_model(FILE *out, const Spec *s, const Eom *e, const Constraints *c,
                 const Invariant *inv, const Lowered *L, ExprPool *P, const EmitInfo *info,
                 EmitStats stats[EMIT_NFUNCS]);
 

@@ -4,6 +4,7 @@
  *   eomc compile SPEC [-o FILE.c] [--form NAME] [--effects LIST] [--stats]
  *                [--jacobian auto|unrolled|seeded] [--code auto|straight|tables]
  *   eomc build   SPEC [-o EXE]    [--form NAME] [--effects LIST] [--jacobian HOW]
+ *                [--extended] [--mpi]
  *   eomc run     SPEC [--form NAME] [--effects LIST] [--jacobian HOW] [simulator options]
  *   eomc accuracy SPEC [the same]: run's simulator with --work-precision
  *
@@ -34,7 +35,9 @@ typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
+    int extended;       /* --extended: the extended-precision twin, whatever the size */
     int needs_jacobian; /* what the simulator is asked to do needs it */
+    int needs_twin;     /* ... or the twin: a reference solution it must compute */
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
 } Options;
@@ -45,7 +48,7 @@ usage(FILE *f)
     fprintf(f,
         "usage: eomc compile SPEC [-o FILE.c] [--scene NAME] [--fix NAME=VALUE] [--form NAME]\n"
         "                    [--effects LIST] [--stats] [--explain]\n"
-        "       eomc build SPEC [-o EXE] [--mpi] [the same]\n"
+        "       eomc build SPEC [-o EXE] [--mpi] [--extended] [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc --help | --version\n"
@@ -56,6 +59,12 @@ usage(FILE *f)
         "                   the scene's `fix:`); the simulator's --set refuses it then\n"
         "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
+        "  --extended       (build) also compile the model in extended precision, so\n"
+        "                   that the simulator computes its own reference solution\n"
+        "                   (--error, --work-precision, --reference-out).  Done\n"
+        "                   anyway for a model whose C is one translation unit; a\n"
+        "                   large one (two units) gets it only so, or when eomc\n"
+        "                   run/accuracy is asked for a reference\n"
         "  --form NAME      equation form: %s;\n"
         "                   default: the cheapest that applies (fewest operations\n"
         "                   per right-hand side; --explain says which and why)\n"
@@ -100,7 +109,7 @@ unknown_option(const char *a)
 {
     static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
                                        "--explain", "--eliminate", "--help", "--version",
-                                       "--scene", "--fix", "--mpi", "--code"};
+                                       "--scene", "--fix", "--mpi", "--code", "--extended"};
     const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
     if (!near)
         usage_error("unknown option '%s'", a);
@@ -132,6 +141,23 @@ sim_needs_jacobian(const Options *o)
         }
     }
     return 0;
+}
+
+/* Whether the simulator options of `eomc run` ask for a reference
+ * solution it must compute (none given by --reference FILE). */
+static int
+sim_needs_twin(const Options *o)
+{
+    int needs = 0;
+    for (int i = 0; i < o->nsim; i++) {
+        const char *a = o->sim[i];
+        if (!strcmp(a, "--reference") || !strncmp(a, "--reference=", 12))
+            return 0;
+        needs |= !strcmp(a, "--error") || !strcmp(a, "--work-precision") ||
+                 !strcmp(a, "--errors") || !strncmp(a, "--errors=", 9) ||
+                 !strcmp(a, "--reference-out") || !strncmp(a, "--reference-out=", 16);
+    }
+    return needs;
 }
 
 static void
@@ -181,17 +207,22 @@ parse_args(int argc, char **argv, Options *o)
             o->explain = 1;
         } else if (!strcmp(a, "--mpi") && !strcmp(o->cmd, "build")) {
             o->mpi = 1;
+        } else if (!strcmp(a, "--extended") && strcmp(o->cmd, "compile")) {
+            o->extended = 1;
         } else if (!strcmp(a, "--eliminate") && !(run && o->spec && o->nsim)) {
             o->eliminate = 1;
         } else if (run && o->spec) {
             o->sim[o->nsim++] = argv[i];
-        } else if (!strcmp(a, "--stats") || !strcmp(a, "--explain") || !strcmp(a, "--mpi")) {
+        } else if (!strcmp(a, "--stats") || !strcmp(a, "--explain") || !strcmp(a, "--mpi") ||
+                   !strcmp(a, "--extended")) {
             /* an option of another command: say whose */
+            int build = !strcmp(a, "--mpi") || !strcmp(a, "--extended");
             fprintf(stderr, "eomc %s: %s belongs to `eomc %s` (%s)\n(see eomc --help)\n",
-                    o->cmd, a, a[2] == 'm' ? "build" : "compile",
-                    a[2] == 's' ? "the operation counts of the generated functions"
-                    : a[2] == 'e' ? "what eomc made of the spec"
-                                  : "a simulator for MPI sweeps");
+                    o->cmd, a, build ? "build" : "compile",
+                    !strcmp(a, "--stats")     ? "the operation counts of the generated functions"
+                    : !strcmp(a, "--explain") ? "what eomc made of the spec"
+                    : !strcmp(a, "--mpi")     ? "a simulator for MPI sweeps"
+                                              : "the extended-precision functions");
             exit(EXIT_USAGE);
         } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout), exit(0); /* `eomc build --help` as `eomc --help` */
@@ -213,6 +244,7 @@ parse_args(int argc, char **argv, Options *o)
         strcmp(o->code, "tables"))
         usage_error("--code must be auto, straight or tables, not '%s'", o->code);
     o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o);
+    o->needs_twin = !strcmp(o->cmd, "accuracy") || sim_needs_twin(o);
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,
@@ -291,8 +323,9 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
 
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
  * Returns 0, or an exit status. */
+/* *units (unless NULL): the translation units of the C written (emit.h). */
 static int
-compile(const Options *o, FILE *out)
+compile(const Options *o, FILE *out, int *units)
 {
     Arena *A = arena_new();
     ExprPool *P = expr_pool_new();
@@ -376,7 +409,9 @@ compile(const Options *o, FILE *out)
             if (o->explain)
                 explain(s, form, c, inv, &info, L);
             if (out) {
-                emit_model(out, s, e, c, inv, L, P, &info, st);
+                int nu = emit_model(out, s, e, c, inv, L, P, &info, st);
+                if (units)
+                    *units = nu;
                 if (o->stats)
                     print_stats(st);
             }
@@ -393,7 +428,7 @@ compile(const Options *o, FILE *out)
 /* Write to path.tmpPID, then rename: never a half-written file (but a
  * device such as /dev/null is written in place). */
 static int
-compile_to_file(const Options *o, const char *path)
+compile_to_file(const Options *o, const char *path, int *units)
 {
     size_t len = strlen(path) + 32;
     char *tmp = xmalloc(len);
@@ -405,7 +440,7 @@ compile_to_file(const Options *o, const char *path)
         free(tmp);
         return EXIT_USAGE;
     }
-    int rc = compile(o, f);
+    int rc = compile(o, f, units);
     if (fclose(f) != 0 && rc == 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
         rc = EXIT_USAGE;
@@ -450,8 +485,12 @@ build(const Options *o, const char *exe)
     }
     char cfile[sizeof dir + 16];
     snprintf(cfile, sizeof cfile, "%s/model.c", dir);
-    int rc = compile_to_file(o, cfile);
-    if (rc == 0 && build_executable(cfile, exe, o->mpi) != 0)
+    int units = 1;
+    int rc = compile_to_file(o, cfile, &units);
+    /* The extended-precision twin doubles the compiler's work: a model
+     * of two units (a large one) gets it only when asked for. */
+    int twin = units == 1 || o->extended || o->needs_twin;
+    if (rc == 0 && build_executable(cfile, exe, o->mpi, units, twin) != 0)
         rc = 1;
     unlink(cfile);
     rmdir(dir);
@@ -506,8 +545,10 @@ run(const Options *o)
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
                             "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
-                            "--scene %s --fix %s", form, o->effects ? o->effects : "(scene)",
+                            "--extended %d --scene %s --fix %s", form,
+                            o->effects ? o->effects : "(scene)",
                             o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
+                            o->extended || o->needs_twin,
                             o->scene ? o->scene : "(first)",
                             o->fix ? o->fix : "(none)");
     char stem[200], name[256];
@@ -550,7 +591,8 @@ eomc_main(int argc, char **argv)
     parse_args(argc, argv, &o);
     int rc;
     if (!strcmp(o.cmd, "compile"))
-        rc = o.out ? compile_to_file(&o, o.out) : compile(&o, o.explain ? NULL : stdout);
+        rc = o.out ? compile_to_file(&o, o.out, NULL)
+                   : compile(&o, o.explain ? NULL : stdout, NULL);
     else if (!strcmp(o.cmd, "build")) {
         char def[256];
         if (!o.out) { /* default: the spec's name in the current directory */

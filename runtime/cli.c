@@ -1844,9 +1844,9 @@ get_reference(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x,
     if (c->reference)
         rc = eomc_reference_read(sim, c->reference, &c->run, ref);
     else if (!ext)
-        return usage(c, "this simulator was built without its extended-precision "
-                     "functions, so it cannot compute a reference solution (eomc build "
-                     "links them; or give --reference FILE)");
+        return usage(c, "%s was built without its extended-precision functions, so it "
+                     "cannot compute a reference solution: rebuild with `eomc build %s "
+                     "--extended` (or give --reference FILE)", m->name, m->spec);
     else
         rc = eomc_reference_compute(sim, ext, &c->run, x, ref);
     if (rc != EOMC_OK) {

@@ -1,0 +1,82 @@
+#!/bin/sh
+# How eomc build compiles a large model (TAP), on a 10-body tree of 3-axis
+# joints (specs/gen_tree.sh 10: 30 coordinates, whose articulated-body
+# solve is cut into parts):
+#  - `eomc compile` writes one file that is one translation unit, or two
+#    with -DEOMC_UNIT=1 and -DEOMC_UNIT=2 (some parts marked for the
+#    second); a small model's file (specs/chain5.yaml) has no such marks;
+#  - the two units compiled apart and linked give the same q'' as the
+#    file compiled whole, to the bit, and both are newton-euler's (its
+#    residual and M, factored: another derivation and another solve) to
+#    1e-11 of the largest |q''| (as in test_articulated.sh: forming M
+#    costs digits at this state, 1.9e-12 here, 3.2e-12 between
+#    newton-euler's and lagrange's);
+#  - built without --extended, the simulator runs but refuses --error with
+#    exit 2, no output, and the rebuild to do; with --extended, and from
+#    `eomc run ... --error` (which asks for the twin itself), its error
+#    line is printed; a small model gets its twin unasked;
+#  - --extended belongs to eomc build: eomc compile refuses it (exit 2).
+# usage: test_build.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+cc=${CC:-cc}
+inc="$src/runtime"
+lib="$build/runtime/libeomcrt.a"
+
+sh "$src/specs/gen_tree.sh" 10 > "$tmp/tree10.yaml"
+"$eomc" compile "$tmp/tree10.yaml" -o "$tmp/tree10.c"
+n2=$(grep -c '^/\* [a-z_]*: part [0-9]* of [0-9]*, in the second unit \*/$' "$tmp/tree10.c")
+grep -q '^#if !defined(EOMC_UNIT) || EOMC_UNIT == 1$' "$tmp/tree10.c" &&
+    grep -q '^#if !defined(EOMC_UNIT) || EOMC_UNIT == 2$' "$tmp/tree10.c" && [ "$n2" -ge 3 ]
+ok $? "gen_tree 10: two units, $n2 parts in the second"
+"$eomc" compile "$src/specs/chain5.yaml" -o "$tmp/chain5.c" && ! grep -q 'EOMC_UNIT' "$tmp/chain5.c"
+ok $? "chain5: one unit, no marks"
+
+# the units apart, and the file whole (as a user compiles it)
+flags="-std=c11 -O1 -DEOMC_MAIN -pthread -I$inc"
+gsl=$(pkg-config --libs gsl)
+# shellcheck disable=SC2086 # $flags and $gsl are lists of options
+$cc $flags -DEOMC_UNIT=1 -c "$tmp/tree10.c" -o "$tmp/u1.o" &&
+    $cc $flags -DEOMC_UNIT=2 -c "$tmp/tree10.c" -o "$tmp/u2.o" &&
+    $cc "$tmp/u1.o" "$tmp/u2.o" "$lib" $gsl -lm -pthread -o "$tmp/two" &&
+    $cc $flags -c "$tmp/tree10.c" -o "$tmp/one.o" &&
+    $cc "$tmp/one.o" "$lib" $gsl -lm -pthread -o "$tmp/one"
+ok $? "the two units compile apart and link; the file compiles whole"
+init=$(init "$tmp/tree10.yaml")
+# shellcheck disable=SC2086 # $init is a list of options
+"$tmp/two" $init --accel > "$tmp/two.acc" && "$tmp/one" $init --accel > "$tmp/one.acc" &&
+    "$eomc" run "$tmp/tree10.yaml" --form newton-euler $init --accel > "$tmp/ne.acc"
+st=$?
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/two.acc")" -eq 30 ] && cmp -s "$tmp/two.acc" "$tmp/one.acc"
+ok $? "q'' of the two units equals the whole file's, to the bit"
+d=$(accel_diff "$tmp/ne.acc" "$tmp/two.acc" 30)
+within "$d" 0 1e-11
+ok $? "q'' of the two units equals newton-euler's to $d (<= 1e-11)"
+
+# the extended-precision twin
+"$eomc" build "$tmp/tree10.yaml" -o "$tmp/plain"
+"$tmp/plain" --accel > /dev/null
+ok $? "built without --extended: it runs"
+"$tmp/plain" --error --t-end 0.01 > "$tmp/out" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] &&
+    grep -q 'without its extended-precision functions' "$tmp/err" &&
+    grep -q 'rebuild with `eomc build tree10.yaml --extended`' "$tmp/err"
+ok $? "built without --extended, --error: exit $st, no output, the rebuild said"
+"$eomc" build "$tmp/tree10.yaml" -o "$tmp/twin" --extended &&
+    "$tmp/twin" --error --t-end 0.01 -o /dev/null 2> "$tmp/err1" &&
+    grep -q 'error against the reference solution' "$tmp/err1"
+ok $? "eomc build --extended: --error measures the run"
+"$eomc" run "$tmp/tree10.yaml" --error --t-end 0.01 -o /dev/null 2> "$tmp/err2" &&
+    grep -q 'error against the reference solution' "$tmp/err2"
+ok $? "eomc run --error: built with its twin, unasked"
+"$eomc" build "$src/specs/chain5.yaml" -o "$tmp/chain5" &&
+    "$tmp/chain5" --error --t-end 0.1 -o /dev/null 2> "$tmp/err3" && grep -q 'error against the reference solution' "$tmp/err3"
+ok $? "a small model: its twin built unasked"
+"$eomc" compile "$tmp/tree10.yaml" -o "$tmp/x.c" --extended 2> "$tmp/err4"; st=$?
+[ $st -eq 2 ] && [ ! -e "$tmp/x.c" ] && grep -q -- '--extended belongs to `eomc build`' "$tmp/err4"
+ok $? "eomc compile --extended: exit $st, belongs to eomc build"
+
+tap_end

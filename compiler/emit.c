@@ -251,6 +251,14 @@ print_powi(const char *x, int n, char *rhs, size_t len)
     }
 }
 
+/* After node id's statement: its copy for later parts. */
+static void
+print_share(Printer *pr, ExprId id)
+{
+    if (pr->slot[id] >= 0)
+        println(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
+}
+
 static void
 print_node(Printer *pr, ExprId id)
 {
@@ -281,8 +289,7 @@ print_node(Printer *pr, ExprId id)
             snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
     }
     println(pr, "    const eomc_real w%d = %s;", pr->temp[id], rhs);
-    if (pr->slot[id] >= 0)
-        println(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
+    print_share(pr, id);
 }
 
 /* ---- scheduling ---- */
@@ -290,6 +297,12 @@ print_node(Printer *pr, ExprId id)
 typedef struct Sched {
     ExprId *node;  /* operator nodes in print order */
     int n;
+    /* node[angles, angles_end) are sines and cosines computed together
+     * (schedule_angles): nangle angles, angle_of[k - angles] the one
+     * node k is the sine (2 j) or cosine (2 j + 1) of */
+    int angles, angles_end, nangle;
+    ExprId *angle;
+    int *angle_of;
     int *after;    /* per output: nodes printed before its assignment */
     int *pstart;   /* per part: first node; pstart[nparts] = n */
     int *ostart;   /* per part: first output; ostart[nparts] = nout */
@@ -328,6 +341,89 @@ schedule_tree(Printer *pr, Sched *S, ExprId root)
     free(stack);
 }
 
+/* The sines and cosines whose angles need no other sine or cosine (a
+ * turn's coordinate, a sum of coordinates) come first, all computed by one
+ * call of eomc_sincos (eomc_model.h), which computes several at once
+ * where the machine has vector instructions for it: each angle's
+ * operations, then the angles' sines and cosines.  Fewer than
+ * ANGLES_MIN angles keep their own sin and cos calls. */
+enum { ANGLES_MIN = 2 };
+
+static void
+schedule_angles(Printer *pr, Sched *S, int nout, const LowSlot *out)
+{
+    size_t size = expr_pool_size(pr->P);
+    /* per node: 0 unseen, 1 seen, no sine or cosine in it, 2 one in it */
+    unsigned char *seen = calloc(size, 1);
+    ExprId *trig = xmalloc(size * sizeof *trig), *stack = xmalloc(size * sizeof *stack);
+    size_t ntrig = 0;
+    for (int i = 0; i < nout; i++) { /* post-order, iteratively: DAGs are deep */
+        size_t sp = 0;
+        if (!seen[out[i].e])
+            stack[sp++] = out[i].e;
+        while (sp) {
+            ExprId e = stack[sp - 1];
+            const ExprNode *nd = expr_node(pr->P, e);
+            int ar = is_input(pr, e) ? 0 : expr_op_arity[nd->op];
+            ExprId ops[2] = {nd->a, nd->b};
+            int pushed = 0;
+            for (int k = ar - 1; k >= 0; k--)
+                if (!seen[ops[k]])
+                    stack[sp++] = ops[k], pushed = 1;
+            if (pushed)
+                continue;
+            sp--;
+            if (seen[e])
+                continue;
+            int below = 0;
+            for (int k = 0; k < ar; k++)
+                below |= seen[ops[k]] == 2;
+            int is_trig = ar && (nd->op == EXPR_SIN || nd->op == EXPR_COS);
+            if (is_trig && !below)
+                trig[ntrig++] = e;
+            seen[e] = below || is_trig ? 2 : 1;
+        }
+    }
+    /* the angles, in order of first use; each one's sine and cosine */
+    S->angle = xmalloc((ntrig + 1) * sizeof *S->angle);
+    ExprId(*pair)[2] = xmalloc((ntrig + 1) * sizeof *pair);
+    int na = 0;
+    for (size_t t = 0; t < ntrig; t++) {
+        const ExprNode *nd = expr_node(pr->P, trig[t]);
+        int j = 0;
+        while (j < na && S->angle[j] != nd->a)
+            j++;
+        if (j == na) {
+            S->angle[na] = nd->a;
+            pair[na][0] = pair[na][1] = EXPR_NONE;
+            na++;
+        }
+        pair[j][nd->op == EXPR_COS] = trig[t];
+    }
+    S->nangle = 0;
+    S->angles = S->angles_end = S->n;
+    S->angle_of = NULL;
+    if (na >= ANGLES_MIN) {
+        S->nangle = na;
+        for (int j = 0; j < na; j++)
+            schedule_tree(pr, S, S->angle[j]);
+        S->angles = S->n;
+        S->angle_of = xmalloc(2 * (size_t)na * sizeof *S->angle_of);
+        for (int j = 0; j < na; j++)
+            for (int k = 0; k < 2; k++)
+                if (pair[j][k] != EXPR_NONE) {
+                    S->angle_of[S->n - S->angles] = 2 * j + k;
+                    pr->temp[pair[j][k]] = S->n;
+                    S->node[S->n++] = pair[j][k];
+                }
+        S->angles_end = S->n;
+    }
+    free(pair);
+    free(trig);
+    free(stack);
+    free(seen);
+}
+
 /* A value crossing into another part gets a slot in s[]. */
 static void
 share(Printer *pr, Sched *S, ExprId e, int part)
@@ -344,6 +440,7 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
     S->node = xmalloc(size * sizeof *S->node);
     S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
     S->n = S->nparts = S->nslots = 0;
+    schedule_angles(pr, S, nout, out);
     for (int i = 0; i < nout; i++) {
         schedule_tree(pr, S, out[i].e);
         S->after[i] = S->n;
@@ -357,8 +454,11 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
     S->pstart[0] = S->ostart[0] = 0;
     for (int i = 0; i < nout; i++) {
         while (S->after[i] - S->pstart[S->nparts] > PART_SIZE) {
+            int cut = S->pstart[S->nparts] + PART_SIZE;
+            if (cut > S->angles && cut < S->angles_end) /* not inside the one call */
+                cut = S->angles_end;
             S->nparts++;
-            S->pstart[S->nparts] = S->pstart[S->nparts - 1] + PART_SIZE;
+            S->pstart[S->nparts] = cut;
             S->ostart[S->nparts] = i;
         }
         if (S->after[i] - S->pstart[S->nparts] >= PART_SIZE || i == nout - 1) {
@@ -472,6 +572,29 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
     free(ls.list);
 }
 
+/* The sines and cosines of schedule_angles: the angles into an array,
+ * one call, each value its temporary.  Returns the node after them. */
+static int
+print_angles(Printer *pr, const Sched *S)
+{
+    int na = S->nangle;
+    println(pr, "    eomc_real ang[%d], ang_sin[%d], ang_cos[%d]; /* %d angles at once */", na,
+            na, na, na);
+    for (int j = 0; j < na; j++) {
+        char buf[200];
+        println(pr, "    ang[%d] = %s;", j, operand(pr, S->angle[j], buf, sizeof buf));
+    }
+    println(pr, "    eomc_sincos(%d, ang, ang_sin, ang_cos);", na);
+    for (int k = S->angles; k < S->angles_end; k++) {
+        ExprId id = S->node[k];
+        int a = S->angle_of[k - S->angles];
+        println(pr, "    const eomc_real w%d = ang_%s[%d];", pr->temp[id],
+                a % 2 ? "cos" : "sin", a / 2);
+        print_share(pr, id);
+    }
+    return S->angles_end;
+}
+
 /* The statements of part p: leaves, temporaries, assignments. */
 static void
 print_part(Printer *pr, const Sched *S, const Func *fn)
@@ -494,7 +617,10 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
     int k = S->pstart[pr->cur];
     for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1]; i++) {
         for (; k < S->after[i]; k++)
-            print_node(pr, S->node[k]);
+            if (k == S->angles && S->angles < S->angles_end)
+                k = print_angles(pr, S) - 1;
+            else
+                print_node(pr, S->node[k]);
         const LowSlot *o = &lf->out[i];
         const char *arr = a->name[a->nin + o->arg];
         char buf[200];
@@ -505,7 +631,10 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
             println(pr, "    %s[%d] = %s;", arr, o->index, buf);
     }
     for (; k < S->pstart[pr->cur + 1]; k++) /* a cut inside an output's nodes */
-        print_node(pr, S->node[k]);
+        if (k == S->angles && S->angles < S->angles_end)
+            k = print_angles(pr, S) - 1;
+        else
+            print_node(pr, S->node[k]);
 }
 
 /* (void) every parameter: a part uses only some of them. */
@@ -633,6 +762,8 @@ print_function(Printer *pr, const LowFunc *lf)
      * where made */
     ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
     free(S.node);
+    free(S.angle);
+    free(S.angle_of);
     free(S.after);
     free(S.pstart);
     free(S.ostart);

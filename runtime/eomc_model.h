@@ -44,6 +44,27 @@ typedef eomc_ext eomc_real;
 typedef double eomc_real;
 #endif
 
+/* s[i] = sin(x[i]), c[i] = cos(x[i]) for i < n: generated code computes
+ * the sines and cosines of a function's angles (its turns' coordinates,
+ * their sums) by one call.  In double, libeomcrt's (runtime/sincos.c:
+ * several at once by glibc's vector math where the machine has the
+ * instructions, each within 4 ulp; else one at a time); in extended
+ * precision, one at a time by sinl and cosl. */
+#ifdef EOMC_EXTENDED
+static inline void
+eomc_sincos_ext(int n, const eomc_ext *x, eomc_ext *s, eomc_ext *c)
+{
+    for (int i = 0; i < n; i++)
+        s[i] = sin(x[i]), c[i] = cos(x[i]);
+}
+#define eomc_sincos eomc_sincos_ext
+#else
+#if defined(__GNUC__)
+__attribute__((visibility("default")))
+#endif
+void eomc_sincos(int n, const double *x, double *s, double *c);
+#endif
+
 typedef struct eomc_model {
     int abi;               /* EOMC_ABI_VERSION of the generator */
     const char *name;      /* the spec's name */

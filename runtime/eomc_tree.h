@@ -165,7 +165,31 @@ enum {
 
 /* ---- per turn ---- */
 
-/* The turn's place in up: Q (dense) from its angle; *cs = (c, s). */
+/* Every turn's (cos, sin) of its angle into its work's (c, s), by one
+ * call of eomc_sincos per EOMC_TREE_ANGLES turns (several at once where
+ * the machine has vector instructions: eomc_model.h). */
+enum { EOMC_TREE_ANGLES = 16 };
+
+EOMC_TREE_MAYBE_UNUSED void
+eomc_tree_angles(const eomc_tree_turn *T, int nt, const eomc_real *q, eomc_real *w)
+{
+    eomc_real x[EOMC_TREE_ANGLES], s[EOMC_TREE_ANGLES], c[EOMC_TREE_ANGLES];
+    int turn[EOMC_TREE_ANGLES];
+    for (int k = 0; k < nt;) {
+        int m = 0;
+        for (; k < nt && m < EOMC_TREE_ANGLES; k++)
+            if (!T[k].slide)
+                turn[m] = k, x[m++] = q[T[k].coord];
+        eomc_sincos(m, x, s, c);
+        for (int j = 0; j < m; j++) {
+            eomc_real *cs = w + EOMC_TREE_WORK * turn[j] + EOMC_TW_CS;
+            cs[0] = c[j], cs[1] = s[j];
+        }
+    }
+}
+
+/* The turn's place in up: Q (dense) from its angle, whose (c, s) a turn
+ * finds in *cs (eomc_tree_angles); a slide sets *cs = (1, 0). */
 static void
 eomc_tree_place(const eomc_tree_turn *t, const eomc_real *d, eomc_real angle, eomc_real *Q,
                 eomc_real *cs)
@@ -181,8 +205,7 @@ eomc_tree_place(const eomc_tree_turn *t, const eomc_real *d, eomc_real angle, eo
                    (Q[3 * i] * a[0] + Q[3 * i + 1] * a[1] + Q[3 * i + 2] * a[2]) * angle;
         return;
     }
-    eomc_real c = cos(angle), s = sin(angle), R[9];
-    cs[0] = c, cs[1] = s;
+    eomc_real c = cs[0], s = cs[1], R[9];
     if (t->axis < 3 && !t->fixed) /* Q is not needed: (c, s) say it all */
         return;
     if (t->axis < 3) {
@@ -400,6 +423,7 @@ eomc_tree_aba(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_re
 {
     if (!a0)
         a0 = d + EOMC_TREE_STRIDE * nt;
+    eomc_tree_angles(T, nt, q, w);
     for (int k = 0; k < nt; k++) {
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;
@@ -562,6 +586,7 @@ eomc_tree_rnea(const eomc_tree_turn *T, int nt, const eomc_real *d, const eomc_r
                eomc_real *out)
 {
     static const eomc_real still[6] = {0, 0, 0, 0, 0, 0};
+    eomc_tree_angles(T, nt, q, w);
     for (int k = 0; k < nt; k++) {
         const eomc_tree_turn *t = &T[k];
         const eomc_real *dk = d + EOMC_TREE_STRIDE * k;

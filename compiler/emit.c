@@ -354,8 +354,10 @@ schedule_angles(Printer *pr, Sched *S, int nout, const LowSlot *out)
 {
     size_t size = expr_pool_size(pr->P);
     /* per node: 0 unseen, 1 seen, no sine or cosine in it, 2 one in it */
-    unsigned char *seen = calloc(size, 1);
-    ExprId *trig = xmalloc(size * sizeof *trig), *stack = xmalloc(size * sizeof *stack);
+    unsigned char *seen = xmalloc(size);
+    memset(seen, 0, size);
+    /* a node is pushed once per edge into it at most: 2 per node (arity <= 2) */
+    ExprId *trig = xmalloc(size * sizeof *trig), *stack = xmalloc((2 * size + 1) * sizeof *stack);
     size_t ntrig = 0;
     for (int i = 0; i < nout; i++) { /* post-order, iteratively: DAGs are deep */
         size_t sp = 0;

@@ -99,9 +99,10 @@ split_flags(char *flags, char **argv, int max)
     return n;
 }
 
-/* Start argv[0] on argv; its pid, or -1 after printing why. */
+/* Start argv[0] on argv (quiet: its output to /dev/null, and nothing said
+ * if it cannot run); its pid, or -1 after printing why. */
 static pid_t
-start_cc(char **argv)
+start_cc(char **argv, int quiet)
 {
     pid_t pid = fork();
     if (pid < 0) {
@@ -109,17 +110,20 @@ start_cc(char **argv)
         return -1;
     }
     if (pid == 0) {
+        int null = quiet ? open("/dev/null", O_WRONLY) : -1;
+        if (null >= 0)
+            dup2(null, STDOUT_FILENO), dup2(null, STDERR_FILENO);
         execvp(argv[0], argv);
-        fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
+        if (!quiet)
+            fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
         _exit(127);
     }
     return pid;
 }
 
-/* Wait for a compiler started by start_cc: 0 if it succeeded, else -1
- * after printing why. */
+/* The exit status of pid, or -1 if it did not exit. */
 static int
-wait_cc(pid_t pid, const char *cc)
+exit_status(pid_t pid)
 {
     int status;
     if (pid < 0)
@@ -127,8 +131,19 @@ wait_cc(pid_t pid, const char *cc)
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -1;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        if (!WIFEXITED(status) || WEXITSTATUS(status) != 127) /* 127: said why */
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* Wait for a compiler started by start_cc: 0 if it succeeded, else -1
+ * after printing why. */
+static int
+wait_cc(pid_t pid, const char *cc)
+{
+    if (pid < 0)
+        return -1;
+    int st = exit_status(pid);
+    if (st != 0) {
+        if (st != 127) /* 127: said why */
             fprintf(stderr, "eomc: %s failed on the generated code\n", cc);
         return -1;
     }
@@ -159,21 +174,7 @@ cc_takes_fast_flags(char **argv, int ncc)
     for (size_t k = 0; k < sizeof tail / sizeof tail[0]; k++)
         probe[n++] = (char *)tail[k];
     probe[n] = NULL;
-    pid_t pid = fork();
-    if (pid < 0)
-        return 0;
-    if (pid == 0) {
-        int null = open("/dev/null", O_WRONLY);
-        if (null >= 0)
-            dup2(null, STDOUT_FILENO), dup2(null, STDERR_FILENO);
-        execvp(probe[0], probe);
-        _exit(127);
-    }
-    int status;
-    while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR)
-            return 0;
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    return exit_status(start_cc(probe, 1)) == 0;
 }
 
 int
@@ -273,7 +274,7 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
         unit_argv[u][n++] = "-o";
         unit_argv[u][n++] = obj[u];
         unit_argv[u][n] = NULL;
-        pid[u] = start_cc(unit_argv[u]);
+        pid[u] = start_cc(unit_argv[u], 0);
     }
     int rc = 0;
     for (int u = 0; u < 3; u++) /* each waited for */
@@ -291,7 +292,7 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
         argv[n++] = "-lm";
         argv[n++] = "-pthread"; /* sweeps run on threads */
         argv[n] = NULL;
-        rc = wait_cc(start_cc(argv), cc);
+        rc = wait_cc(start_cc(argv, 0), cc);
     }
     if (rc == 0 && !special && rename(tmp, exe) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));

@@ -597,6 +597,16 @@ print_angles(Printer *pr, const Sched *S)
     return S->angles_end;
 }
 
+/* Node k's statement, or the angles' call where they start; the next k. */
+static int
+print_step(Printer *pr, const Sched *S, int k)
+{
+    if (k == S->angles && S->angles < S->angles_end)
+        return print_angles(pr, S);
+    print_node(pr, S->node[k]);
+    return k + 1;
+}
+
 /* The statements of part p: leaves, temporaries, assignments. */
 static void
 print_part(Printer *pr, const Sched *S, const Func *fn)
@@ -618,11 +628,8 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
     }
     int k = S->pstart[pr->cur];
     for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1]; i++) {
-        for (; k < S->after[i]; k++)
-            if (k == S->angles && S->angles < S->angles_end)
-                k = print_angles(pr, S) - 1;
-            else
-                print_node(pr, S->node[k]);
+        while (k < S->after[i])
+            k = print_step(pr, S, k);
         const LowSlot *o = &lf->out[i];
         const char *arr = a->name[a->nin + o->arg];
         char buf[200];
@@ -632,11 +639,8 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
         else
             println(pr, "    %s[%d] = %s;", arr, o->index, buf);
     }
-    for (; k < S->pstart[pr->cur + 1]; k++) /* a cut inside an output's nodes */
-        if (k == S->angles && S->angles < S->angles_end)
-            k = print_angles(pr, S) - 1;
-        else
-            print_node(pr, S->node[k]);
+    while (k < S->pstart[pr->cur + 1]) /* a cut inside an output's nodes */
+        k = print_step(pr, S, k);
 }
 
 /* (void) every parameter: a part uses only some of them. */

@@ -386,7 +386,7 @@ schedule_angles(Printer *pr, Sched *S, int nout, const LowSlot *out)
             seen[e] = below || is_trig ? 2 : 1;
         }
     }
-    /* the angles, in order of first use; each one's sine and cosine */
+    /* the angles, in order of first use; each one's sine and cosine, */
     S->angle = xmalloc((ntrig + 1) * sizeof *S->angle);
     ExprId(*pair)[2] = xmalloc((ntrig + 1) * sizeof *pair);
     int na = 0;
@@ -402,6 +402,16 @@ schedule_angles(Printer *pr, Sched *S, int nout, const LowSlot *out)
         }
         pair[j][nd->op == EXPR_COS] = trig[t];
     }
+    /* then by height, stably: the vector of the angles ready first does
+     * not wait for the last one (a chain's sum of all its coordinates) */
+    for (int j = 1; j < na; j++)
+        for (int k = j; k > 0 && expr_node(pr->P, S->angle[k - 1])->height >
+                                     expr_node(pr->P, S->angle[k])->height; k--) {
+            ExprId a = S->angle[k], p0 = pair[k][0], p1 = pair[k][1];
+            S->angle[k] = S->angle[k - 1], pair[k][0] = pair[k - 1][0];
+            pair[k][1] = pair[k - 1][1];
+            S->angle[k - 1] = a, pair[k - 1][0] = p0, pair[k - 1][1] = p1;
+        }
     S->nangle = 0;
     S->angles = S->angles_end = S->n;
     S->angle_of = NULL;

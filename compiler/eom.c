@@ -32,28 +32,67 @@ derive_row(Eom *e, Diff *D, const ExprId *leaves, ExprId *grad, int i)
     e->dEdt[i] = grad[2 * n + nu];
 }
 
-/* x - (t[0] + ... + t[k-1]) with the sum as a balanced tree: the solve
- * is a chain of dependent steps, and a tree of depth log k instead of a
- * chain of k subtractions shortens it (latency, not operation count, is
- * what the unrolled solve costs). */
+/* x - (t[0] + ... + t[k-1]), the operands combined as they become ready:
+ * the two with the least height (expr.h) first, x with a sum of terms by
+ * a subtraction, until one is left (Huffman's merge, with the greater
+ * height for the sum of weights).  The solve is a chain of dependent
+ * steps, and each step then waits only one operation for its latest term
+ * (the last pivot's), where a balanced tree waited log k and a chain k:
+ * latency, not operation count, is what the unrolled solve costs.  Ties
+ * keep the terms' order, so the result is deterministic.  t is reordered. */
+typedef struct Ready {
+    ExprId e;
+    uint32_t height;
+    int sign; /* +1 for x and what x is in, -1 for a sum of terms */
+} Ready;
+
+static Ready
+ready(ExprPool *P, ExprId e, int sign)
+{
+    return (Ready){e, expr_node(P, e)->height, sign};
+}
+
+static int
+ready_cmp(const void *pa, const void *pb)
+{
+    const Ready *a = pa, *b = pb;
+    if (a->height != b->height)
+        return a->height < b->height ? -1 : 1;
+    return a->e < b->e ? -1 : a->e > b->e; /* ids: a total, deterministic order */
+}
+
 static ExprId
 minus_sum(ExprPool *P, ExprId x, ExprId *t, int k)
 {
     if (k == 0)
         return x;
-    while (k > 1) {
-        int m = 0;
-        for (int i = 0; i + 1 < k; i += 2)
-            t[m++] = expr_add(P, t[i], t[i + 1]);
-        if (k % 2)
-            t[m++] = t[k - 1];
-        k = m;
+    /* the operands sorted by height in q[0..k], the merged ones in m[]:
+     * a merge is at least as high as the one before it, so the lower of
+     * the two fronts is always the lowest left */
+    Ready *q = xmalloc(2 * ((size_t)k + 1) * sizeof *q), *m = q + k + 1;
+    for (int i = 0; i < k; i++)
+        q[i] = ready(P, t[i], -1);
+    q[k] = ready(P, x, 1);
+    qsort(q, (size_t)k + 1, sizeof *q, ready_cmp);
+    int qi = 0, mi = 0, mn = 0;
+    for (int left = k + 1; left > 1; left--) {
+        Ready r[2];
+        for (int j = 0; j < 2; j++)
+            r[j] = qi <= k && (mi == mn || q[qi].height <= m[mi].height) ? q[qi++] : m[mi++];
+        if (r[0].sign < 0 && r[1].sign < 0)
+            m[mn++] = ready(P, expr_add(P, r[0].e, r[1].e), -1);
+        else if (r[0].sign > 0)
+            m[mn++] = ready(P, expr_sub(P, r[0].e, r[1].e), 1);
+        else
+            m[mn++] = ready(P, expr_sub(P, r[1].e, r[0].e), 1);
     }
-    return expr_sub(P, x, t[0]);
+    ExprId sum = m[mn - 1].e;
+    free(q);
+    return sum;
 }
 
 /* LDL^T of the symmetric M, then a = -L^-T D^-1 L^-1 h:
- *   d_j = M_jj - sum_k<j L_jk e_jk,   e_ik = L_ik d_k
+ *   d_j = M_jj - sum_k<j e_jk^2 / d_k,   e_ik = L_ik d_k
  *   L_ij = (M_ij - sum_k<j L_ik e_jk) / d_j          (i > j)
  * One reciprocal per pivot; everything else multiplies.  Row and column j
  * of the factored matrix are coordinate ord[j] = n-1-j: the last
@@ -74,8 +113,11 @@ derive_solve(Eom *e, Arena *A, ExprPool *P)
     e->piv = arena_new_array(A, ExprId, n);
     e->mkk = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++) {
+        /* L_jk e_jk as e_jk^2 / d_k: the square is ready before the
+         * reciprocal, and the pivots' chain, the longest in the solve,
+         * waits one multiplication after each division, not two */
         for (int k = 0; k < j; k++)
-            t[k] = expr_mul(P, L[j * n + k], E[j * n + k]);
+            t[k] = expr_mul(P, expr_mul(P, E[j * n + k], E[j * n + k]), inv[k]);
         ExprId d = minus_sum(P, MO(j, j), t, j);
         e->piv[ord[j]] = d;
         e->mkk[ord[j]] = MO(j, j);

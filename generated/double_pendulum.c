@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 61 operations per right-hand side
- * (nielsen 102, tzenoff 113, gibbs-appell 66).
+ * The form is the cheapest that applies: 62 operations per right-hand side
+ * (nielsen 103, tzenoff 114, gibbs-appell 67).
  * options: --jacobian auto
  * scene:   (the spec's `scene:`)
  * effects: gravity
@@ -82,14 +82,15 @@ double_pendulum_derive(const eomc_real *p, eomc_real *pd)
     pd[12] = w17;
     const eomc_real w18 = w15 * w17;
     pd[13] = w18;
-    const eomc_real w19 = w15 * w18;
-    pd[14] = w19;
-    const eomc_real w20 = 2.0 * w15;
-    pd[15] = w20;
-    const eomc_real w21 = p_l2 * w7;
-    pd[16] = w21;
-    const eomc_real w22 = 2.0 * w21;
-    pd[17] = w22;
+    const eomc_real w19 = w15 * w15;
+    const eomc_real w20 = w17 * w19;
+    pd[14] = w20;
+    const eomc_real w21 = 2.0 * w15;
+    pd[15] = w21;
+    const eomc_real w22 = p_l2 * w7;
+    pd[16] = w22;
+    const eomc_real w23 = 2.0 * w22;
+    pd[17] = w23;
 }
 
 #ifndef EOMC_EXTENDED

@@ -56,16 +56,16 @@ appell_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_g = p[1];
     const eomc_real p_a = p[2];
     const eomc_real w0 = p_m * p_g;
+    const eomc_real w1 = p_a * p_a;
+    const eomc_real w2 = 0.5 * p_m;
     pd[0] = w0;
-    const eomc_real w1 = -w0;
-    pd[1] = w1;
-    const eomc_real w2 = p_a * p_a;
-    pd[2] = w2;
-    const eomc_real w3 = 0.5 * p_m;
-    pd[3] = w3;
-    const eomc_real w4 = 2.0 * w2;
+    const eomc_real w3 = -w0;
+    pd[2] = w1;
+    pd[3] = w2;
+    const eomc_real w4 = 2.0 * w1;
+    const eomc_real w5 = (-2.0) * w1;
+    pd[1] = w3;
     pd[4] = w4;
-    const eomc_real w5 = (-2.0) * w2;
     pd[5] = w5;
 }
 
@@ -81,8 +81,8 @@ appell_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
     q[2] = 0.0;
     v[0] = p_v0;
     const eomc_real w0 = 0.3 * p_v0;
-    v[1] = w0;
     const eomc_real w1 = p_a * p_v0;
+    v[1] = w0;
     const eomc_real w2 = 1.044030650891055 * w1;
     v[2] = w2;
 }
@@ -141,13 +141,13 @@ appell_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w0 = v_z * v_z;
     const eomc_real w1 = v_x * v_x;
     const eomc_real w2 = v_y * v_y;
-    const eomc_real w3 = w1 + w2;
-    const eomc_real w4 = w0 + w3;
-    const eomc_real w5 = pd3 * w4;
-    TV[0] = w5;
-    const eomc_real w6 = pd0 * q_z;
-    const eomc_real w7 = -w6;
-    TV[1] = w7;
+    const eomc_real w3 = pd0 * q_z;
+    const eomc_real w4 = w1 + w2;
+    const eomc_real w5 = -w3;
+    const eomc_real w6 = w0 + w4;
+    TV[1] = w5;
+    const eomc_real w7 = pd3 * w6;
+    TV[0] = w7;
 }
 
 /* The conserved quantity (eomc_model.h: invariant).
@@ -216,21 +216,21 @@ appell_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = v_z * a_z;
-    const eomc_real w1 = 2.0 * w0;
-    const eomc_real w2 = v_x * a_x;
-    const eomc_real w3 = v_y * a_y;
-    const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = pd4 * w4;
-    const eomc_real w6 = w1 - w5;
-    f[0] = w6;
-    const eomc_real w7 = pd4 * v_x;
-    const eomc_real w8 = -w7;
+    const eomc_real w1 = v_x * a_x;
+    const eomc_real w2 = v_y * a_y;
+    const eomc_real w3 = pd4 * v_x;
+    const eomc_real w4 = pd4 * v_y;
+    const eomc_real w5 = 2.0 * v_z;
+    const eomc_real w6 = 2.0 * w0;
+    const eomc_real w7 = w1 + w2;
+    const eomc_real w8 = -w3;
+    const eomc_real w9 = -w4;
+    B[2] = w5;
+    const eomc_real w10 = pd4 * w7;
     B[0] = w8;
-    const eomc_real w9 = pd4 * v_y;
-    const eomc_real w10 = -w9;
-    B[1] = w10;
-    const eomc_real w11 = 2.0 * v_z;
-    B[2] = w11;
+    B[1] = w9;
+    const eomc_real w11 = w6 - w10;
+    f[0] = w11;
 }
 
 #ifndef EOMC_EXTENDED
@@ -276,15 +276,10 @@ appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)dBdu;
     dfdq[0] = 0.0;
     const eomc_real w0 = pd4 * a_x;
-    const eomc_real w1 = -w0;
-    dfdv[0] = w1;
     dfdq[1] = 0.0;
-    const eomc_real w2 = pd4 * a_y;
-    const eomc_real w3 = -w2;
-    dfdv[1] = w3;
+    const eomc_real w1 = pd4 * a_y;
     dfdq[2] = 0.0;
-    const eomc_real w4 = 2.0 * a_z;
-    dfdv[2] = w4;
+    const eomc_real w2 = 2.0 * a_z;
     dfdt[0] = 0.0;
     dBdq[0] = 0.0;
     dBdv[0] = pd5;
@@ -316,6 +311,11 @@ appell_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dBdv[8] = 2.0;
     dBda[8] = 0.0;
     dBdt[2] = 0.0;
+    const eomc_real w3 = -w0;
+    const eomc_real w4 = -w1;
+    dfdv[0] = w3;
+    dfdv[1] = w4;
+    dfdv[2] = w2;
 }
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
@@ -338,19 +338,19 @@ appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dposdq[0] = 0.0;
     dveldq[0] = 0.0;
     const eomc_real w0 = pd4 * v_x;
-    const eomc_real w1 = -w0;
-    dveldv[0] = w1;
     dposdq[1] = 0.0;
     dveldq[1] = 0.0;
-    const eomc_real w2 = pd4 * v_y;
-    const eomc_real w3 = -w2;
-    dveldv[1] = w3;
+    const eomc_real w1 = pd4 * v_y;
     dposdq[2] = 0.0;
     dveldq[2] = 0.0;
-    const eomc_real w4 = 2.0 * v_z;
-    dveldv[2] = w4;
+    const eomc_real w2 = 2.0 * v_z;
     dposdt[0] = 0.0;
     dveldt[0] = 0.0;
+    const eomc_real w3 = -w0;
+    const eomc_real w4 = -w1;
+    dveldv[0] = w3;
+    dveldv[1] = w4;
+    dveldv[2] = w2;
 }
 
 /* The values that must be positive (or not negative): check_what. */

@@ -51,10 +51,10 @@ bouncing_ball_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_m = p[0];
     const eomc_real p_g = p[1];
     const eomc_real w0 = 0.5 * p_m;
-    pd[0] = w0;
     const eomc_real w1 = p_m * p_g;
-    pd[1] = w1;
     const eomc_real w2 = 1.0 / p_m;
+    pd[0] = w0;
+    pd[1] = w1;
     const eomc_real w3 = w1 * w2;
     const eomc_real w4 = -w3;
     pd[2] = w4;
@@ -111,10 +111,10 @@ bouncing_ball_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = v_y * v_y;
-    const eomc_real w1 = pd0 * w0;
-    TV[0] = w1;
-    const eomc_real w2 = pd1 * q_y;
-    TV[1] = w2;
+    const eomc_real w1 = pd1 * q_y;
+    const eomc_real w2 = pd0 * w0;
+    TV[0] = w2;
+    TV[1] = w1;
 }
 
 /* The conserved quantity (eomc_model.h: invariant).

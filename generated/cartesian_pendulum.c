@@ -56,10 +56,10 @@ cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_l = p[1];
     const eomc_real p_g = p[2];
     const eomc_real w0 = p_l * p_l;
-    pd[0] = w0;
     const eomc_real w1 = 0.5 * p_m;
-    pd[1] = w1;
     const eomc_real w2 = p_m * p_g;
+    pd[0] = w0;
+    pd[1] = w1;
     pd[2] = w2;
 }
 
@@ -71,14 +71,14 @@ cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
     const eomc_real p_l = p[1];
     const eomc_real p_theta0 = p[3];
     const eomc_real w0 = sin(p_theta0);
-    const eomc_real w1 = p_l * w0;
-    q[0] = w1;
-    const eomc_real w2 = cos(p_theta0);
-    const eomc_real w3 = p_l * w2;
-    const eomc_real w4 = -w3;
-    q[1] = w4;
+    const eomc_real w1 = cos(p_theta0);
     v[0] = 0.0;
     v[1] = 0.0;
+    const eomc_real w2 = p_l * w0;
+    const eomc_real w3 = p_l * w1;
+    q[0] = w2;
+    const eomc_real w4 = -w3;
+    q[1] = w4;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -129,11 +129,11 @@ cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)t;
     const eomc_real w0 = v_x * v_x;
     const eomc_real w1 = v_y * v_y;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = pd1 * w2;
-    TV[0] = w3;
-    const eomc_real w4 = pd2 * q_y;
-    TV[1] = w4;
+    const eomc_real w2 = pd2 * q_y;
+    const eomc_real w3 = w0 + w1;
+    TV[1] = w2;
+    const eomc_real w4 = pd1 * w3;
+    TV[0] = w4;
 }
 
 /* The conserved quantity (eomc_model.h: invariant).
@@ -191,17 +191,17 @@ cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
     (void)t;
     const eomc_real w0 = v_x * v_x;
     const eomc_real w1 = q_x * a_x;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = v_y * v_y;
-    const eomc_real w4 = q_y * a_y;
-    const eomc_real w5 = w3 + w4;
-    const eomc_real w6 = w2 + w5;
-    const eomc_real w7 = 2.0 * w6;
-    f[0] = w7;
-    const eomc_real w8 = 2.0 * q_x;
-    B[0] = w8;
-    const eomc_real w9 = 2.0 * q_y;
-    B[1] = w9;
+    const eomc_real w2 = v_y * v_y;
+    const eomc_real w3 = q_y * a_y;
+    const eomc_real w4 = 2.0 * q_x;
+    const eomc_real w5 = 2.0 * q_y;
+    const eomc_real w6 = w0 + w1;
+    const eomc_real w7 = w2 + w3;
+    B[0] = w4;
+    B[1] = w5;
+    const eomc_real w8 = w6 + w7;
+    const eomc_real w9 = 2.0 * w8;
+    f[0] = w9;
 }
 
 #ifndef EOMC_EXTENDED
@@ -219,13 +219,13 @@ cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)t;
     const eomc_real w0 = q_x * q_x;
     const eomc_real w1 = q_y * q_y;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = w2 - pd0;
-    pos[0] = w3;
-    const eomc_real w4 = q_x * v_x;
-    const eomc_real w5 = q_y * v_y;
-    const eomc_real w6 = w4 + w5;
-    const eomc_real w7 = 2.0 * w6;
+    const eomc_real w2 = q_x * v_x;
+    const eomc_real w3 = q_y * v_y;
+    const eomc_real w4 = w0 + w1;
+    const eomc_real w5 = w2 + w3;
+    const eomc_real w6 = w4 - pd0;
+    const eomc_real w7 = 2.0 * w5;
+    pos[0] = w6;
     vel[0] = w7;
 }
 
@@ -248,12 +248,12 @@ cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
     (void)dfdu;
     (void)dBdu;
     const eomc_real w0 = 2.0 * a_x;
-    dfdq[0] = w0;
     const eomc_real w1 = 4.0 * v_x;
-    dfdv[0] = w1;
     const eomc_real w2 = 2.0 * a_y;
-    dfdq[1] = w2;
     const eomc_real w3 = 4.0 * v_y;
+    dfdq[0] = w0;
+    dfdv[0] = w1;
+    dfdq[1] = w2;
     dfdv[1] = w3;
     dfdt[0] = 0.0;
     dBdq[0] = 2.0;
@@ -290,13 +290,13 @@ cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
     (void)dposdu;
     (void)dveldu;
     const eomc_real w0 = 2.0 * q_x;
-    dposdq[0] = w0;
     const eomc_real w1 = 2.0 * v_x;
+    const eomc_real w2 = 2.0 * q_y;
+    const eomc_real w3 = 2.0 * v_y;
+    dposdq[0] = w0;
     dveldq[0] = w1;
     dveldv[0] = w0;
-    const eomc_real w2 = 2.0 * q_y;
     dposdq[1] = w2;
-    const eomc_real w3 = 2.0 * v_y;
     dveldq[1] = w3;
     dveldv[1] = w2;
     dposdt[0] = 0.0;

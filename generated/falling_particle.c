@@ -47,14 +47,14 @@ falling_particle_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_g = p[1];
     const eomc_real p_f = p[2];
     const eomc_real w0 = 0.5 * p_m;
-    pd[0] = w0;
     const eomc_real w1 = p_m * p_g;
+    const eomc_real w2 = 1.0 / p_m;
+    pd[0] = w0;
     pd[1] = w1;
-    const eomc_real w2 = w1 - p_f;
-    pd[2] = w2;
-    const eomc_real w3 = 1.0 / p_m;
+    const eomc_real w3 = w1 - p_f;
     const eomc_real w4 = p_f - w1;
-    const eomc_real w5 = w3 * w4;
+    pd[2] = w3;
+    const eomc_real w5 = w2 * w4;
     pd[3] = w5;
 }
 
@@ -109,10 +109,10 @@ falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = v_y * v_y;
-    const eomc_real w1 = pd0 * w0;
-    TV[0] = w1;
-    const eomc_real w2 = pd1 * q_y;
-    TV[1] = w2;
+    const eomc_real w1 = pd1 * q_y;
+    const eomc_real w2 = pd0 * w0;
+    TV[0] = w2;
+    TV[1] = w1;
 }
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */

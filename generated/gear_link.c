@@ -50,20 +50,20 @@ gear_link_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_g = p[5];
     const eomc_real p_l = p[4];
     const eomc_real w0 = 0.5 * p_Jm;
-    pd[0] = w0;
     const eomc_real w1 = 0.5 * p_Jl;
-    pd[1] = w1;
     const eomc_real w2 = p_M * p_g;
-    const eomc_real w3 = w2 * p_l;
-    pd[2] = w3;
-    const eomc_real w4 = p_r * p_Jm;
-    const eomc_real w5 = p_r * w4;
-    const eomc_real w6 = p_Jl + w5;
-    pd[3] = w6;
-    const eomc_real w7 = 1.0 / w6;
-    pd[4] = w7;
-    const eomc_real w8 = -p_r;
-    pd[5] = w8;
+    const eomc_real w3 = p_r * p_Jm;
+    const eomc_real w4 = -p_r;
+    pd[0] = w0;
+    pd[1] = w1;
+    const eomc_real w5 = w2 * p_l;
+    const eomc_real w6 = p_r * w3;
+    pd[2] = w5;
+    pd[5] = w4;
+    const eomc_real w7 = p_Jl + w6;
+    pd[3] = w7;
+    const eomc_real w8 = 1.0 / w7;
+    pd[4] = w8;
 }
 
 #ifndef EOMC_EXTENDED
@@ -85,10 +85,10 @@ gear_link_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
     (void)p;
     const eomc_real w0 = 2.0 * t;
     const eomc_real w1 = sin(w0);
-    const eomc_real w2 = 0.5 * w1;
-    u[0] = w2;
-    const eomc_real w3 = cos(w0);
-    if (dudt) dudt[0] = w3;
+    const eomc_real w2 = cos(w0);
+    const eomc_real w3 = 0.5 * w1;
+    u[0] = w3;
+    if (dudt) dudt[0] = w2;
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
@@ -105,9 +105,9 @@ gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)t;
     M[0] = pd3;
     const eomc_real w0 = sin(q_theta_l);
-    const eomc_real w1 = pd2 * w0;
-    const eomc_real w2 = p_r * u_u;
-    const eomc_real w3 = w1 - w2;
+    const eomc_real w1 = p_r * u_u;
+    const eomc_real w2 = pd2 * w0;
+    const eomc_real w3 = w2 - w1;
     h[0] = w3;
 }
 
@@ -126,14 +126,14 @@ gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = p_r * v_theta_l;
-    const eomc_real w1 = w0 * w0;
-    const eomc_real w2 = pd0 * w1;
-    const eomc_real w3 = v_theta_l * v_theta_l;
-    const eomc_real w4 = pd1 * w3;
-    const eomc_real w5 = w2 + w4;
-    TV[0] = w5;
-    const eomc_real w6 = cos(q_theta_l);
-    const eomc_real w7 = 1.0 - w6;
+    const eomc_real w1 = v_theta_l * v_theta_l;
+    const eomc_real w2 = cos(q_theta_l);
+    const eomc_real w3 = w0 * w0;
+    const eomc_real w4 = pd1 * w1;
+    const eomc_real w5 = pd0 * w3;
+    const eomc_real w6 = w5 + w4;
+    TV[0] = w6;
+    const eomc_real w7 = 1.0 - w2;
     const eomc_real w8 = pd2 * w7;
     TV[1] = w8;
 }
@@ -152,11 +152,11 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = cos(q_theta_l);
-    const eomc_real w1 = pd2 * w0;
-    dEdq[0] = w1;
     dEdv[0] = 0.0;
     dEdu[0] = pd5;
     dEdt[0] = 0.0;
+    const eomc_real w1 = pd2 * w0;
+    dEdq[0] = w1;
 }
 
 #endif /* EOMC_EXTENDED */

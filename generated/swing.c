@@ -48,15 +48,15 @@ swing_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real p_m = p[0];
     const eomc_real p_g = p[2];
     const eomc_real w0 = p_l * p_l;
-    const eomc_real w1 = p_m * w0;
-    pd[0] = w1;
-    const eomc_real w2 = 0.5 * w1;
-    pd[1] = w2;
-    const eomc_real w3 = p_l * p_g;
-    const eomc_real w4 = p_m * w3;
-    pd[2] = w4;
-    const eomc_real w5 = 1.0 / w1;
-    const eomc_real w6 = w4 * w5;
+    const eomc_real w1 = p_l * p_g;
+    const eomc_real w2 = p_m * w0;
+    const eomc_real w3 = p_m * w1;
+    pd[0] = w2;
+    const eomc_real w4 = 0.5 * w2;
+    pd[2] = w3;
+    const eomc_real w5 = 1.0 / w2;
+    pd[1] = w4;
+    const eomc_real w6 = w3 * w5;
     pd[3] = w6;
 }
 
@@ -112,10 +112,10 @@ swing_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)u;
     (void)t;
     const eomc_real w0 = v_theta * v_theta;
-    const eomc_real w1 = pd1 * w0;
-    TV[0] = w1;
-    const eomc_real w2 = cos(q_theta);
-    const eomc_real w3 = pd2 * w2;
+    const eomc_real w1 = cos(q_theta);
+    const eomc_real w2 = pd1 * w0;
+    TV[0] = w2;
+    const eomc_real w3 = pd2 * w1;
     const eomc_real w4 = -w3;
     TV[1] = w4;
 }
@@ -145,10 +145,10 @@ swing_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     (void)t;
     (void)dEdu;
     const eomc_real w0 = cos(q_theta);
-    const eomc_real w1 = pd2 * w0;
-    dEdq[0] = w1;
     dEdv[0] = 0.0;
     dEdt[0] = 0.0;
+    const eomc_real w1 = pd2 * w0;
+    dEdq[0] = w1;
 }
 
 #endif /* EOMC_EXTENDED */

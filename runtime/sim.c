@@ -360,7 +360,12 @@ accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
     double pivot = 1;
     int want = (++s->solves & (PIVOT_EVERY - 1)) == 0;
     int k = s->m->accel(t, q, v, s->p, s->u, a, want ? &pivot : NULL);
-    if (k != 0 || !isfinite(in + finite_sum(a, n))) {
+    int bad = k != 0 || !isfinite(in);
+    /* q'' one entry at a time, not summed: this test waits for the last
+     * entry, and a sum's chain of additions would add its length */
+    for (int i = 0; i < n && !bad; i++)
+        bad = !isfinite(a[i]);
+    if (bad) {
         if (!isfinite(in) && !inputs_finite(s, t, q, v))
             return state_error(s, t, q, v);
         if (k != 0)

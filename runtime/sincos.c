@@ -60,14 +60,19 @@ sincos4(__m256d x, __m256d *sin_x, __m256d *cos_x)
     __m256d k = _mm256_sub_pd(kr, SPLAT(ROUND));
     __m256d r = _mm256_fnmadd_pd(k, SPLAT(P1), x); /* exact */
     r = _mm256_fnmadd_pd(k, SPLAT(P2), r);
-    r = _mm256_fnmadd_pd(k, SPLAT(P3), r);
+    /* the reduced angle is r - e, e = k P3 (|e| < 2^-88): e moves sin r
+     * by -e cos r = -e (to 2^-176) and cos r by e sin r, below any last
+     * place, so it enters only the sine's last addition, beside the
+     * polynomials instead of ahead of them (4 cycles fewer on the path
+     * that a right-hand side waits on) */
+    __m256d e = _mm256_mul_pd(k, SPLAT(P3));
 
     /* the polynomials by Estrin's scheme: a shorter dependency chain
      * than Horner's, and the latency is what a right-hand side waits on */
     __m256d z = _mm256_mul_pd(r, r), z2 = _mm256_mul_pd(z, z), z4 = _mm256_mul_pd(z2, z2);
     __m256d ps = MADD(z4, MADD(z, SPLAT(S6), SPLAT(S5)),
                       MADD(z2, MADD(z, SPLAT(S4), SPLAT(S3)), MADD(z, SPLAT(S2), SPLAT(S1))));
-    __m256d sin_r = MADD(_mm256_mul_pd(r, z), ps, r);
+    __m256d sin_r = MADD(_mm256_mul_pd(r, z), ps, _mm256_sub_pd(r, e));
     __m256d pc = MADD(z4, MADD(z, SPLAT(C6), SPLAT(C5)),
                       MADD(z2, MADD(z, SPLAT(C4), SPLAT(C3)), MADD(z, SPLAT(C2), SPLAT(C1))));
     /* cos r = 1 - z/2 + z^2 pc, with the rounding of 1 - z/2 added back

@@ -4,7 +4,10 @@
  *  - eomc_sim_set / params / initial: names, values, EOMC_EUSAGE;
  *  - eomc_sim_accel: -k/m x (generated accel member); M a + h = 0 for the
  *    double pendulum (accel NULL: the runtime's own solve); EOMC_ENUMERIC
- *    and a "t = ..." message when M is not positive definite;
+ *    and a "t = ..." message when M is not positive definite; a state
+ *    that is not finite said so, even where x'' is finite and before a
+ *    failed pivot; a state whose sum overflows passes; an infinite x''
+ *    said so;
  *  - eomc_sim_jacobian: exact for the oscillator, and against central
  *    differences of eomc_sim_accel in x and t (inputs and explicit t);
  *  - an input set by name is held constant;
@@ -110,6 +113,30 @@ osc_accel_energy(void)
           eomc_sim_error(s));
     eomc_sim_set(s, "m", -1.0);
     CHECK(eomc_sim_accel(s, 0.0, &x, &v, &a) == EOMC_ENUMERIC, "m = -1: EOMC_ENUMERIC");
+
+    /* osc has a generated solve (accel), whose inputs are tested after it:
+     * a state that is not finite is said so even where x'' is finite
+     * (x'' = -k/m x reads no v), and before a failed pivot */
+    eomc_sim_set(s, "m", 1.0);
+    eomc_sim_set(s, "k", 1.0);
+    const char *state = "the state or an input is not finite";
+    double xs[3] = {0.5, INFINITY, 0.5}, vs[3] = {NAN, 0.0, 0.0}, ts[3] = {0.0, 0.0, NAN};
+    int said = 1;
+    for (int i = 0; i < 3; i++)
+        said &= eomc_sim_accel(s, ts[i], &xs[i], &vs[i], &a) == EOMC_ENUMERIC &&
+                strstr(eomc_sim_error(s), state) != NULL;
+    eomc_sim_set(s, "m", 0.0);
+    said &= eomc_sim_accel(s, 0.0, &xs[0], &vs[0], &a) == EOMC_ENUMERIC &&
+            strstr(eomc_sim_error(s), state) != NULL;
+    CHECK(said, "v = NaN (x'' finite), x = inf, t = NaN, and v = NaN with m = 0: \"%s\"", state);
+    eomc_sim_set(s, "m", 1.0);
+    x = 1e308, v = 1e308; /* finite, though their sum overflows */
+    st = eomc_sim_accel(s, 0.0, &x, &v, &a);
+    CHECK(st == EOMC_OK && a == -1e308, "x = v = 1e308: EOMC_OK, x'' = %g", a);
+    eomc_sim_set(s, "m", 1e-10);
+    st = eomc_sim_accel(s, 0.0, &x, &v, &a);
+    CHECK(st == EOMC_ENUMERIC && strstr(eomc_sim_error(s), "acceleration x'' is not finite"),
+          "m = 1e-10, x = 1e308: %s", eomc_sim_error(s));
     eomc_sim_free(s);
 }
 

@@ -15,6 +15,7 @@
  * a failure never leaves a half-written output behind.
  */
 #include "build.h"
+#include "import.h"
 #include "constraint.h"
 #include "config.h"
 #include "emit.h"
@@ -51,6 +52,7 @@ usage(FILE *f)
         "       eomc build SPEC [-o EXE] [--mpi] [--extended] [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
+        "       eomc import MODEL.xml [-o SPEC.yaml] [--strict]   (MJCF or URDF, by MuJoCo)\n"
         "       eomc --help | --version\n"
         "\n"
         "  --scene NAME     which of the spec's `scenes:` to compile (default: the first)\n"
@@ -170,14 +172,15 @@ parse_args(int argc, char **argv, Options *o)
     if (!strcmp(argv[1], "--version"))
         printf("eomc %s\n", EOMC_VERSION), exit(0);
     o->cmd = argv[1];
-    static const char *const cmds[] = {"compile", "build", "run", "accuracy"};
+    static const char *const cmds[] = {"compile", "build", "run", "accuracy", "import"};
     if (strcmp(o->cmd, "compile") && strcmp(o->cmd, "build") && strcmp(o->cmd, "run") &&
         strcmp(o->cmd, "accuracy")) {
-        const char *near = diag_nearest(o->cmd, cmds, 4);
+        const char *near = diag_nearest(o->cmd, cmds, 5);
         if (near)
             fprintf(stderr, "eomc: unknown command '%s'; did you mean %s?\n", o->cmd, near),
                 exit(EXIT_USAGE);
-        usage_error("unknown command '%s'; expected compile, build, run or accuracy", o->cmd);
+        usage_error("unknown command '%s'; expected compile, build, run, accuracy or import",
+                    o->cmd);
     }
     /* accuracy is run with --work-precision: the simulator takes the rest */
     int run = !strcmp(o->cmd, "run") || !strcmp(o->cmd, "accuracy");
@@ -584,9 +587,56 @@ run(const Options *o)
     return 1;
 }
 
+/* `eomc import MODEL [-o SPEC] [--strict]`: the spec of an MJCF or URDF
+ * model, to SPEC (written whole or not at all) or stdout; --strict makes
+ * what it drops an error. */
+static int
+import_cmd(int argc, char **argv)
+{
+    const char *model = NULL, *out = NULL;
+    int strict = 0;
+    for (int i = 2; i < argc; i++) {
+        if (!strcmp(argv[i], "--strict")) {
+            strict = 1;
+        } else if (!strcmp(argv[i], "-o")) {
+            if (i + 1 >= argc)
+                usage_error("option %s needs a value", "-o");
+            out = argv[++i];
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            unknown_option(argv[i]);
+        } else if (!model) {
+            model = argv[i];
+        } else {
+            usage_error("unexpected argument '%s'", argv[i]);
+        }
+    }
+    if (!model)
+        usage_error("%s: no model file given (MJCF or URDF)", "import");
+    char *text = NULL, err[1200];
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    int rc = import_model(model, mem, stderr, strict, err, sizeof err);
+    fclose(mem);
+    if (rc != 0) {
+        fprintf(stderr, "%s: error: %s\n", model, err);
+        free(text);
+        return EXIT_USAGE;
+    }
+    FILE *f = out ? fopen(out, "w") : stdout;
+    if (!f || fwrite(text, 1, len, f) != len || (out && fclose(f) != 0)) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", out ? out : "stdout", strerror(errno));
+        free(text);
+        return EXIT_USAGE;
+    }
+    free(text);
+    return 0;
+}
+
 static int
 eomc_main(int argc, char **argv)
 {
+    if (argc >= 2 && !strcmp(argv[1], "import"))
+        return import_cmd(argc, argv);
     Options o = {0};
     parse_args(argc, argv, &o);
     int rc;

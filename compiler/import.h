@@ -1,0 +1,22 @@
+/*
+ * import: a robot model in MJCF or URDF, loaded and compiled by MuJoCo
+ * (mj_loadXML), written as an eomc spec (docs/import.md): frames, points
+ * and bodies, names from the model.  MuJoCo decides everything its
+ * compiler decides (defaults, classes, inertias from geoms, units); this
+ * module reads the compiled model and prints, nothing more.
+ */
+#ifndef EOMC_IMPORT_H
+#define EOMC_IMPORT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+/* Whether this eomc was built with MuJoCo (libmujoco-dev). */
+int import_available(void);
+
+/* The spec of the model at path onto out, what it drops named on warn
+ * (with strict, an error); 0, or -1 with the reason in err (MuJoCo's
+ * loader message, or what cannot be imported). */
+int import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len);
+
+#endif

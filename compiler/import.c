@@ -185,7 +185,12 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
 {
     char load_err[1000] = "";
     mjModel *m = mj_loadXML(path, NULL, load_err, sizeof load_err);
-    if (!m) {
+    if (!m) { /* MuJoCo's message on one line: it has line breaks and a trailing one */
+        for (char *c = load_err; *c; c++)
+            if (*c == '\n')
+                *c = ' ';
+        for (size_t k = strlen(load_err); k > 0 && load_err[k - 1] == ' '; k--)
+            load_err[k - 1] = '\0';
         snprintf(err, len, "MuJoCo cannot load it: %s", load_err);
         return -1;
     }

@@ -11,7 +11,7 @@
  * printed as the full tensor in the body's axes.
  *
  * First slice (issue 23): hinge and slide joints, masses and inertias,
- * gravity.  Other joints, damping, stiffness, armature, actuators,
+ * gravity, joint damping and stiffness.  Other joints, armature, actuators,
  * equality constraints and tendons are refused by name; limits, friction
  * loss and contacts are dropped, each named in a warning (--strict: an
  * error).
@@ -139,10 +139,8 @@ refused(const mjModel *m, char *err, size_t len)
         if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE)
             return snprintf(err, len, "joint %s: %s joints are not imported yet", nm,
                             m->jnt_type[j] == mjJNT_BALL ? "ball" : "free");
-        if (m->dof_damping[dof] != 0 || m->jnt_stiffness[j] != 0 || m->dof_armature[dof] != 0)
-            return snprintf(err, len, "joint %s: its %s is not imported yet", nm,
-                            m->dof_damping[dof] != 0 ? "damping" : m->jnt_stiffness[j] != 0
-                            ? "stiffness" : "armature");
+        if (m->dof_armature[dof] != 0)
+            return snprintf(err, len, "joint %s: its armature is not imported yet", nm);
     }
     if (m->nu > 0)
         return snprintf(err, len, "actuator %s: actuators are not imported yet",
@@ -178,6 +176,57 @@ dropped(const mjModel *m, const char *path, FILE *warn)
                      "(eomc simulates smooth dynamics: bodies pass through one another)\n",
                      path, contacts);
     return n;
+}
+
+/* q - ref for joint j: its coordinate alone where ref is 0. */
+static void
+displacement(char *buf, size_t len, const char *coord, double ref)
+{
+    char a[NUM_MAX];
+    if (ref == 0)
+        snprintf(buf, len, "%s", coord);
+    else
+        snprintf(buf, len, "(%s - %s)", coord, num(a, ref));
+}
+
+/* The effects, each named so a scene can pick it: gravity; damping, the
+ * generalized force -b q' on each joint that has it; stiffness, the
+ * potential k/2 (q - springref)^2 (MuJoCo's passive spring force
+ * -k (q - qpos_spring)). */
+static void
+put_effects(const mjModel *m, const char *const *coord, FILE *out)
+{
+    char a[NUM_MAX], d[400];
+    int any = 0;
+    if (!is_zero3(m->opt.gravity)) {
+        fputs("effects:\n  gravity: {gravity: ", out);
+        put_vec(out, m->opt.gravity);
+        fputs("}\n", out);
+        any = 1;
+    }
+    int first = 1;
+    for (int j = 0; j < m->njnt; j++) {
+        double b = m->dof_damping[m->jnt_dofadr[j]];
+        if (b == 0)
+            continue;
+        fprintf(out, "%s%s{work: \"%s*%s'*delta(%s)\"}", any ? "" : "effects:\n",
+                first ? "  damping: [" : ", ", num(a, -b), coord[j], coord[j]);
+        any = 1, first = 0;
+    }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++) {
+        double k = m->jnt_stiffness[j];
+        if (k == 0)
+            continue;
+        displacement(d, sizeof d, coord[j], m->qpos_spring[m->jnt_qposadr[j]]);
+        fprintf(out, "%s%s{potential: \"%s*%s^2\"}", any ? "" : "effects:\n",
+                first ? "  stiffness: [" : ", ", num(a, k / 2), d);
+        any = 1, first = 0;
+    }
+    if (!first)
+        fputs("]\n", out);
 }
 
 int
@@ -336,11 +385,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         }
         fputs("]}\n", out);
     }
-    if (!is_zero3(m->opt.gravity)) {
-        fputs("effects:\n  gravity: {gravity: ", out);
-        put_vec(out, m->opt.gravity);
-        fputs("}\n", out);
-    }
+    put_effects(m, coord, out);
     int any = 0;
     for (int j = 0; j < m->njnt; j++)
         if (m->qpos0[m->jnt_qposadr[j]] != 0) {

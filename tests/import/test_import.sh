@@ -1,6 +1,7 @@
 #!/bin/sh
 # eomc import against MuJoCo itself: each model (MJCF written for these
-# tests, and the benchmark's chain) imported, then q'' of `eomc run --accel`
+# tests: an arm, the same with damping and springs; and the benchmark's
+# chain) imported, then q'' of `eomc run --accel`
 # at 100 random states against mj_forward's qacc at the same state
 # (mj_accel.c: contact, limits, friction loss and equality off), within
 # 1e-10 of the largest |q''|; and the import's refusals.
@@ -12,7 +13,8 @@ eomc=$1 src=$2 mj=$4
 STATES=100 TOL=1e-10
 
 sh "$src/specs/gen_chain.sh" 5 --mjcf > "$tmp/chain5.xml"
-for model in "$src/tests/import/models/arm.xml" "$tmp/chain5.xml"; do
+for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/springs.xml" \
+    "$tmp/chain5.xml"; do
   base=$(basename "$model" .xml)
   "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports ($(head -c 200 "$tmp/err"))"
@@ -56,13 +58,13 @@ XML
 st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: ball joints are not imported yet" "$tmp/err"
 ok $? "a ball joint: refused by name, exit 2, nothing written ($(cat "$tmp/err"))"
-cat > "$tmp/damped.xml" <<'XML'
-<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" damping="0.1"/><geom size="0.1"/></body></worldbody></mujoco>
+cat > "$tmp/armature.xml" <<'XML'
+<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" armature="0.1"/><geom size="0.1"/></body></worldbody></mujoco>
 XML
-"$eomc" import "$tmp/damped.xml" > "$tmp/out" 2> "$tmp/err"
+"$eomc" import "$tmp/armature.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: its damping is not imported yet" "$tmp/err"
-ok $? "damping: refused by name until it is imported, exit 2 ($(cat "$tmp/err"))"
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: its armature is not imported yet" "$tmp/err"
+ok $? "armature: refused by name until it is imported, exit 2 ($(cat "$tmp/err"))"
 # what is dropped is named (limits, friction loss, contacts), and --strict refuses it
 cat > "$tmp/dropped.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" limited="true" range="-1 1" frictionloss="0.2"/>

@@ -27,6 +27,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h> /* strcasecmp */
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -41,6 +42,11 @@ typedef struct Options {
     int needs_twin;     /* ... or the twin: a reference solution it must compute */
     int nsim; /* `run`: options passed on to the simulator */
     char **sim;
+    /* SPEC given as an MJCF or URDF model: its spec as imported, and the
+     * name messages give it */
+    char *imported;
+    size_t imported_len;
+    char imported_name[600];
 } Options;
 
 static void
@@ -53,6 +59,7 @@ usage(FILE *f)
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc import MODEL.xml [-o SPEC.yaml] [--strict]   (MJCF or URDF, by MuJoCo)\n"
+        "  (compile, build, run and accuracy also take MODEL.xml or MODEL.urdf as SPEC)\n"
         "       eomc --help | --version\n"
         "\n"
         "  --scene NAME     which of the spec's `scenes:` to compile (default: the first)\n"
@@ -335,7 +342,9 @@ compile(const Options *o, FILE *out, int *units)
     Diff *D = diff_new(P);
     int rc = EXIT_USAGE;
     SpecOptions so = {o->scene, o->fix};
-    Spec *s = spec_load(o->spec, &so, A, P);
+    Spec *s = o->imported ? spec_load_buffer(o->imported_name, o->imported, o->imported_len,
+                                             &so, A, P)
+                          : spec_load(o->spec, &so, A, P);
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);
     if (setjmp(jb) != 0) { /* a diagnostic while deriving: nothing emitted */
@@ -533,8 +542,9 @@ spec_stem(const char *path, char *out, size_t len)
 static int
 run(const Options *o)
 {
-    size_t len;
-    char *text = read_file(o->spec, &len);
+    size_t len = o->imported_len;
+    char *text = o->imported ? memcpy(xmalloc(len + 1), o->imported, len)
+                             : read_file(o->spec, &len);
     if (!text) {
         fprintf(stderr, "eomc: cannot read %s: %s\n", o->spec, strerror(errno));
         return EXIT_USAGE;
@@ -585,6 +595,33 @@ run(const Options *o)
     execv(exe, argv);
     fprintf(stderr, "eomc: cannot run %s: %s\n", exe, strerror(errno));
     return 1;
+}
+
+/* Whether path names an MJCF or URDF model (.xml, .urdf), not a spec. */
+static int
+is_model_file(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (!strcasecmp(dot, ".xml") || !strcasecmp(dot, ".urdf"));
+}
+
+/* A model file given as SPEC: imported first, as `eomc import` would, and
+ * its spec kept in o; 0, or the exit status. */
+static int
+import_spec(Options *o)
+{
+    if (!is_model_file(o->spec))
+        return 0;
+    char err[1200];
+    FILE *mem = open_memstream(&o->imported, &o->imported_len);
+    int rc = import_model(o->spec, mem, stderr, 0, err, sizeof err);
+    fclose(mem);
+    if (rc != 0) {
+        fprintf(stderr, "%s: error: %s\n", o->spec, err);
+        return EXIT_USAGE;
+    }
+    snprintf(o->imported_name, sizeof o->imported_name, "%s (as imported)", o->spec);
+    return 0;
 }
 
 /* `eomc import MODEL [-o SPEC] [--strict]`: the spec of an MJCF or URDF
@@ -640,6 +677,8 @@ eomc_main(int argc, char **argv)
     Options o = {0};
     parse_args(argc, argv, &o);
     int rc;
+    if ((rc = import_spec(&o)) != 0)
+        return rc;
     if (!strcmp(o.cmd, "compile"))
         rc = o.out ? compile_to_file(&o, o.out, NULL)
                    : compile(&o, o.explain ? NULL : stdout, NULL);
@@ -654,6 +693,7 @@ eomc_main(int argc, char **argv)
         rc = run(&o); /* run and accuracy */
     free(o.sim);
     free(o.fix);
+    free(o.imported);
     return rc;
 }
 

@@ -50,6 +50,14 @@ for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/spring
   ok $? "$base: q'' equals MuJoCo's qacc at $STATES random states within $worst of the largest (<= $TOL)"
 done
 
+# the model file itself where a spec goes: imported first, the same q''
+"$eomc" run "$src/tests/import/models/springs.xml" --accel > "$tmp/direct" 2> "$tmp/err" &&
+  "$eomc" run "$tmp/springs.yaml" --accel > "$tmp/spec" 2>> "$tmp/err" &&
+  [ -s "$tmp/direct" ] && cmp -s "$tmp/direct" "$tmp/spec" &&
+  "$eomc" compile "$src/tests/import/models/springs.xml" 2> "$tmp/err" |
+    grep -q "from springs.xml (as imported)"
+ok $? "eomc run MODEL.xml: the q'' of its imported spec, to the bit; compile names it"
+
 # what the first slice refuses, by name, with exit 2
 cat > "$tmp/ball.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" type="ball"/><geom size="0.1"/></body></worldbody></mujoco>

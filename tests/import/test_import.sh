@@ -1,6 +1,6 @@
 #!/bin/sh
 # eomc import against MuJoCo itself: each model (MJCF written for these
-# tests: an arm, the same with damping and springs; and the benchmark's
+# tests: an arm, the same with damping and springs, a URDF arm; and the benchmark's
 # chain) imported, then q'' of `eomc run --accel`
 # at 100 random states against mj_forward's qacc at the same state
 # (mj_accel.c: contact, limits, friction loss and equality off), within
@@ -14,8 +14,9 @@ STATES=100 TOL=1e-10
 
 sh "$src/specs/gen_chain.sh" 5 --mjcf > "$tmp/chain5.xml"
 for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/springs.xml" \
+    "$src/tests/import/models/planar_arm.urdf" \
     "$tmp/chain5.xml"; do
-  base=$(basename "$model" .xml)
+  base=$(basename "$model"); base=${base%.*}
   "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports ($(head -c 200 "$tmp/err"))"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/$base.yaml" | tr -d ',')

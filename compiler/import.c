@@ -50,12 +50,11 @@ taken(const Names *N, const char *s)
     return 0;
 }
 
-/* An identifier from raw (or from fallback where raw is empty), unique
- * among N's; kept in N. */
-static const char *
-unique(Names *N, const char *raw, const char *fallback)
+/* An identifier from src, in a new string with room for a suffix: every
+ * character but a letter, a digit or _ made _, a leading digit given a _. */
+static char *
+ident(const char *src, size_t *end)
 {
-    const char *src = raw && *raw ? raw : fallback;
     size_t len = strlen(src);
     char *s = xmalloc(len + 16);
     size_t k = 0;
@@ -67,6 +66,17 @@ unique(Names *N, const char *raw, const char *fallback)
         s[k++] = ok ? c : '_';
     }
     s[k] = '\0';
+    *end = k;
+    return s;
+}
+
+/* An identifier from raw (or from fallback where raw is empty), unique
+ * among N's; kept in N. */
+static const char *
+unique(Names *N, const char *raw, const char *fallback)
+{
+    size_t k;
+    char *s = ident(raw && *raw ? raw : fallback, &k);
     for (int d = 2; taken(N, s); d++)
         snprintf(s + k, 16, "_%d", d);
     if (N->n == N->cap) {
@@ -113,20 +123,17 @@ quat_mat(const double *q, double *R)
     R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
 }
 
-/* A constant turn by quaternion q as `{axis: [...], angle: ...}`; 0 if q is
- * the identity (nothing printed). */
-static int
+/* A constant turn by quaternion q, not the identity, as `{axis: [...],
+ * angle: ...}`. */
+static void
 put_fixed_turn(FILE *f, const double *q)
 {
     double w = q[0], s = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (s == 0)
-        return 0;
     double axis[3] = {q[1] / s, q[2] / s, q[3] / s};
     char a[NUM_MAX];
     fputs("{axis: ", f);
     put_vec(f, axis);
     fprintf(f, ", angle: %s}", num(a, 2 * atan2(s, w)));
-    return 1;
 }
 
 /* What this slice cannot import yet, by name: a reason in err, else 0. */
@@ -269,11 +276,15 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         snprintf(fb, sizeof fb, "body%d", b);
         body[b] = unique(&N, m->names + m->name_bodyadr[b], fb);
     }
-    const char *model = m->names; /* the model's name comes first */
+    size_t k;
+    char *model = ident(*m->names ? m->names : "imported", &k); /* the model's name first */
+    const char *dot = strrchr(path, '.');
     fprintf(out, "# Imported by `eomc import` from %s: MuJoCo's compiled model, its\n"
-                 "# bodies, joints, inertias and gravity (docs/import.md).\n", path);
-    fprintf(out, "name: %s\n", *model ? model : "imported");
-    fprintf(out, "description: %s, imported from MJCF or URDF.\n", *model ? model : "a model");
+                 "# bodies, joints, inertias and effects (docs/import.md).\n", path);
+    fprintf(out, "name: %s\n", model);
+    fprintf(out, "description: \"%s, imported from %s.\"\n", model,
+            dot && !strcmp(dot, ".urdf") ? "URDF" : "MJCF");
+    free(model);
     fputs("coordinates: [", out);
     for (int j = 0; j < m->njnt; j++)
         fprintf(out, "%s%s", j ? ", " : "", coord[j]);
@@ -292,13 +303,14 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         fprintf(P, "  %s: {frame: %s, from: %s, at: ", o, axes[p], origin[p]);
         put_vec(P, m->body_pos + 3 * b);
         fputs("}\n", P);
-        if (m->body_quat[4 * b] != 1.0) {
+        const double *bq = m->body_quat + 4 * b;
+        if (bq[1] != 0 || bq[2] != 0 || bq[3] != 0) { /* not a turn by 0 (or 2 pi) */
             snprintf(nm, sizeof nm, "%s_fixed", body[b]);
             const char *fx = unique(&N, nm, nm);
             fprintf(F, "  %s: {parent: %s, rotation: [", fx, cur);
-            if (put_fixed_turn(F, m->body_quat + 4 * b))
-                cur = fx;
+            put_fixed_turn(F, bq);
             fputs("]}\n", F);
+            cur = fx;
         }
         for (int k = 0; k < m->body_jntnum[b]; k++) {
             int j = m->body_jntadr[b] + k;

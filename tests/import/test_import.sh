@@ -51,6 +51,7 @@ for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/spring
   ok $? "$base: q'' equals MuJoCo's qacc at $STATES random states within $worst of the largest (<= $TOL)"
 done
 
+"$eomc" run "$src/tests/import/models/arm.xml" --accel > "$tmp/direct0" 2> /dev/null
 # the model file itself where a spec goes: imported first, the same q''
 "$eomc" run "$src/tests/import/models/springs.xml" --accel > "$tmp/direct" 2> "$tmp/err" &&
   "$eomc" run "$tmp/springs.yaml" --accel > "$tmp/spec" 2>> "$tmp/err" &&
@@ -58,6 +59,13 @@ done
   "$eomc" compile "$src/tests/import/models/springs.xml" 2> "$tmp/err" |
     grep -q "from springs.xml (as imported)"
 ok $? "eomc run MODEL.xml: the q'' of its imported spec, to the bit; compile names it"
+
+# a model's name that is no identifier is made one (it names the C)
+sed 's/<mujoco model="arm">/<mujoco model="9b my-arm">/' "$src/tests/import/models/arm.xml" \
+  > "$tmp/named.xml"
+"$eomc" import "$tmp/named.xml" 2> /dev/null | grep -q '^name: _9b_my_arm$' &&
+  "$eomc" run "$tmp/named.xml" --accel > "$tmp/named" 2> /dev/null && cmp -s "$tmp/named" "$tmp/direct0"
+ok $? "model '9b my-arm': the spec's name _9b_my_arm, and the arm's q''"
 
 # what the first slice refuses, by name, with exit 2
 cat > "$tmp/ball.xml" <<'XML'

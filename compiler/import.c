@@ -10,7 +10,7 @@
  * principal moments about body_ipos in the axes body_iquat turns to, is
  * printed as the full tensor in the body's axes.
  *
- * First slice (issue 23): hinge and slide joints, masses and inertias,
+ * What is imported so far: hinge and slide joints, masses and inertias,
  * gravity, joint damping and stiffness.  Other joints, armature, actuators,
  * equality constraints and tendons are refused by name; limits, friction
  * loss and contacts are dropped, each named in a warning (--strict: an
@@ -160,7 +160,7 @@ refused(const mjModel *m, char *err, size_t len)
     return 0;
 }
 
-/* What eomc drops, as the issue says it must (smooth dynamics only), each
+/* What eomc drops, since it simulates smooth dynamics only, each
  * named on warn; their number. */
 static int
 dropped(const mjModel *m, const char *path, FILE *warn)
@@ -266,7 +266,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     const char **com = xmalloc((size_t)nb * sizeof *com);
     const char **coord = xmalloc(((size_t)m->njnt + 1) * sizeof *coord);
     char fb[64];
-    /* coordinates first: the issue's naming is theirs */
+    /* coordinates first: joints keep their names (docs/import.md) */
     for (int j = 0; j < m->njnt; j++) {
         snprintf(fb, sizeof fb, "%s_joint%d", m->names + m->name_bodyadr[m->jnt_bodyid[j]], j);
         coord[j] = unique(&N, m->names + m->name_jntadr[j], fb);
@@ -316,23 +316,18 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             int j = m->body_jntadr[b] + k;
             double ref = m->qpos0[m->jnt_qposadr[j]];
             const double *ax = m->jnt_axis + 3 * j, *an = m->jnt_pos + 3 * j;
-            char angle[400];
-            snprintf(angle, sizeof angle, ref == 0 ? "%s" : "%s - %s", coord[j], num(a, ref));
+            char angle[400]; /* q - ref, in parentheses where ref is not 0 */
+            displacement(angle, sizeof angle, coord[j], ref);
             if (m->jnt_type[j] == mjJNT_SLIDE) {
                 snprintf(nm, sizeof nm, "%s_at", coord[j]);
                 const char *s = unique(&N, nm, nm);
                 fprintf(P, "  %s: {frame: %s, from: %s, at: [", s, cur, o);
                 for (int c = 0; c < 3; c++) {
-                    int bare = ref == 0; /* the coordinate alone needs no parentheses */
                     fputs(c ? ", " : "", P);
-                    if (ax[c] == 0)
-                        fputs("0", P);
-                    else if (ax[c] == 1 || ax[c] == -1)
-                        fprintf(P, "%s%s%s%s", ax[c] < 0 ? "-" : "", bare ? "" : "(", angle,
-                                bare ? "" : ")");
+                    if (ax[c] == 0 || ax[c] == 1 || ax[c] == -1)
+                        fprintf(P, "%s%s", ax[c] < 0 ? "-" : "", ax[c] ? angle : "0");
                     else
-                        fprintf(P, "%s*%s%s%s", num(a, ax[c]), bare ? "" : "(", angle,
-                                bare ? "" : ")");
+                        fprintf(P, "%s*%s", num(a, ax[c]), angle);
                 }
                 fputs("]}\n", P);
                 o = s;

@@ -605,6 +605,23 @@ is_model_file(const char *path)
     return dot && (!strcasecmp(dot, ".xml") || !strcasecmp(dot, ".urdf"));
 }
 
+/* The spec of the model at path into *text (malloc'd), what it drops
+ * named on stderr; 0, or exit 2 after the error. */
+static int
+import_text(const char *path, int strict, char **text, size_t *len)
+{
+    char err[1200];
+    FILE *mem = open_memstream(text, len);
+    int rc = import_model(path, mem, stderr, strict, err, sizeof err);
+    fclose(mem);
+    if (rc == 0)
+        return 0;
+    fprintf(stderr, "%s: error: %s\n", path, err);
+    free(*text);
+    *text = NULL;
+    return EXIT_USAGE;
+}
+
 /* A model file given as SPEC: imported first, as `eomc import` would, and
  * its spec kept in o; 0, or the exit status. */
 static int
@@ -612,21 +629,14 @@ import_spec(Options *o)
 {
     if (!is_model_file(o->spec))
         return 0;
-    char err[1200];
-    FILE *mem = open_memstream(&o->imported, &o->imported_len);
-    int rc = import_model(o->spec, mem, stderr, 0, err, sizeof err);
-    fclose(mem);
-    if (rc != 0) {
-        fprintf(stderr, "%s: error: %s\n", o->spec, err);
-        return EXIT_USAGE;
-    }
+    int rc = import_text(o->spec, 0, &o->imported, &o->imported_len);
     snprintf(o->imported_name, sizeof o->imported_name, "%s (as imported)", o->spec);
-    return 0;
+    return rc;
 }
 
 /* `eomc import MODEL [-o SPEC] [--strict]`: the spec of an MJCF or URDF
- * model, to SPEC (written whole or not at all) or stdout; --strict makes
- * what it drops an error. */
+ * model, to SPEC (written whole or not at all: path.tmpPID, renamed) or
+ * stdout; --strict makes what it drops an error. */
 static int
 import_cmd(int argc, char **argv)
 {
@@ -649,24 +659,29 @@ import_cmd(int argc, char **argv)
     }
     if (!model)
         usage_error("%s: no model file given (MJCF or URDF)", "import");
-    char *text = NULL, err[1200];
+    char *text = NULL;
     size_t len = 0;
-    FILE *mem = open_memstream(&text, &len);
-    int rc = import_model(model, mem, stderr, strict, err, sizeof err);
-    fclose(mem);
-    if (rc != 0) {
-        fprintf(stderr, "%s: error: %s\n", model, err);
-        free(text);
-        return EXIT_USAGE;
-    }
-    FILE *f = out ? fopen(out, "w") : stdout;
-    if (!f || fwrite(text, 1, len, f) != len || (out && fclose(f) != 0)) {
+    int rc = import_text(model, strict, &text, &len);
+    if (rc != 0)
+        return rc;
+    char tmp[4200] = "";
+    if (out && !build_is_special(out))
+        snprintf(tmp, sizeof tmp, "%s.tmp%ld", out, (long)getpid());
+    const char *path = *tmp ? tmp : out;
+    FILE *f = out ? fopen(path, "w") : stdout;
+    int bad = !f || fwrite(text, 1, len, f) != len;
+    if (out && f && fclose(f) != 0)
+        bad = 1;
+    if (!bad && *tmp && rename(tmp, out) != 0)
+        bad = 1;
+    if (bad) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", out ? out : "stdout", strerror(errno));
-        free(text);
-        return EXIT_USAGE;
+        if (*tmp)
+            unlink(tmp);
+        rc = EXIT_USAGE;
     }
     free(text);
-    return 0;
+    return rc;
 }
 
 static int

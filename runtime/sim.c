@@ -322,6 +322,14 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
     }
 }
 
+/* t + the state's and inputs' entries: finite whenever they all are (and
+ * where it is not, inputs_finite looks one by one). */
+static double
+state_sum(const eomc_sim *s, double t, const double *q, const double *v)
+{
+    return t + finite_sum(q, s->n) + finite_sum(v, s->n) + finite_sum(s->u, s->nu);
+}
+
 static int
 inputs_finite(const eomc_sim *s, double t, const double *q, const double *v)
 {
@@ -354,7 +362,7 @@ static int
 accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
 {
     int n = s->n;
-    double in = t + finite_sum(q, n) + finite_sum(v, n) + finite_sum(s->u, s->nu);
+    double in = state_sum(s, t, q, v);
     /* the pivot, for the condition watch, at every PIVOT_EVERY-th solve:
      * finding it costs a tenth of a small model's right-hand side */
     double pivot = 1;
@@ -386,8 +394,7 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     sim_inputs_at(s, t);
     if (!s->kkt && m->accel)
         return accel_own(s, t, q, v, a);
-    if (!isfinite(t + finite_sum(q, n) + finite_sum(v, n) + finite_sum(s->u, s->nu)) &&
-        !inputs_finite(s, t, q, v))
+    if (!isfinite(state_sum(s, t, q, v)) && !inputs_finite(s, t, q, v))
         return state_error(s, t, q, v);
     if (s->kkt) {
         if ((k = kkt_accel(s->kkt, t, q, v, s->p, s->u, a)) != KKT_OK)

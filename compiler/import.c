@@ -4,17 +4,18 @@
  * MuJoCo places body b in its parent p by a constant offset and turn
  * (body_pos, body_quat), then applies b's joints in order: a hinge turns
  * the body about its axis through its anchor (jnt_pos, in the body's axes)
- * by q - qpos0, a slide moves it along its axis by q - qpos0.  Here that is
- * a frame per turn and a point per offset, so the spec is the tree the
- * recursive forms take: the anchor is each turn's pivot.  The inertia,
- * principal moments about body_ipos in the axes body_iquat turns to, is
- * printed as the full tensor in the body's axes.
+ * by q - qpos0, a ball by its quaternion about the anchor, a slide moves it
+ * along its axis by q - qpos0; a free joint alone places its body in the
+ * world.  Here that is a frame per turn and a point per offset, so the
+ * spec is the tree the recursive forms take: the anchor is each turn's
+ * pivot.  The inertia, principal moments about body_ipos in the axes
+ * body_iquat turns to, is printed as the full tensor in the body's axes.
  *
- * What is imported so far: hinge and slide joints, masses and inertias,
- * gravity, joint damping and stiffness.  Other joints, armature, actuators,
- * equality constraints and tendons are refused by name; limits, friction
- * loss and contacts are dropped, each named in a warning (--strict: an
- * error).
+ * Effects: gravity, damping, stiffness, armature (kinetic terms of one
+ * joint's rates) and actuators (virtual work of an input each).  What the
+ * importer cannot write is refused by name; what eomc does not simulate
+ * (limits, friction loss, control and force ranges, contacts) is dropped,
+ * one warning per kind (--strict: an error).
  */
 #include "import.h"
 
@@ -136,50 +137,142 @@ put_fixed_turn(FILE *f, const double *q)
     fprintf(f, ", angle: %s}", num(a, 2 * atan2(s, w)));
 }
 
-/* What this slice cannot import yet, by name: a reason in err, else 0. */
+/* An element's name for messages: MuJoCo's, or its kind and index. */
+static const char *
+label(const mjModel *m, int type, int id, char *buf, size_t len)
+{
+    const char *nm = mj_id2name(m, type, id);
+    if (nm && *nm)
+        return nm;
+    snprintf(buf, len, "#%d", id);
+    return buf;
+}
+
+/* Does the importer write actuator i as an input (a motor or a servo of
+ * fixed or affine gain and affine bias, on a hinge or slide), or why not. */
+static const char *
+actuator_refused(const mjModel *m, int i)
+{
+    int trn = m->actuator_trntype[i], j = m->actuator_trnid[2 * i];
+    if (trn != mjTRN_JOINT && trn != mjTRN_JOINTINPARENT)
+        return "only actuators on joints are imported (not on tendons, sites, bodies or "
+               "slider-cranks)";
+    if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE)
+        return "only actuators on hinge and slide joints are imported";
+    if (m->actuator_dyntype[i] != mjDYN_NONE)
+        return "its activation dynamics (dyntype) is not imported: the control must be the "
+               "force's input itself";
+    if (m->actuator_gaintype[i] != mjGAIN_FIXED && m->actuator_gaintype[i] != mjGAIN_AFFINE)
+        return "its gain (muscle or user) is not imported";
+    if (m->actuator_biastype[i] != mjBIAS_NONE && m->actuator_biastype[i] != mjBIAS_AFFINE)
+        return "its bias (muscle or user) is not imported";
+    return NULL;
+}
+
+/* What the importer cannot write, by name: a reason in err, else 0. */
 static int
 refused(const mjModel *m, char *err, size_t len)
 {
+    char b[32];
     for (int j = 0; j < m->njnt; j++) {
-        const char *nm = m->names + m->name_jntadr[j];
-        int dof = m->jnt_dofadr[j];
-        if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE)
-            return snprintf(err, len, "joint %s: %s joints are not imported yet", nm,
-                            m->jnt_type[j] == mjJNT_BALL ? "ball" : "free");
-        if (m->dof_armature[dof] != 0)
-            return snprintf(err, len, "joint %s: its armature is not imported yet", nm);
+        const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
+        int type = m->jnt_type[j];
+        if ((type == mjJNT_BALL || type == mjJNT_FREE) && m->jnt_stiffness[j] != 0)
+            return snprintf(err, len, "joint %s: the stiffness of a %s joint is not imported "
+                            "(MuJoCo's spring acts on the rotation vector of its quaternion, "
+                            "which is not smooth where the turn is zero)", nm,
+                            type == mjJNT_BALL ? "ball" : "free");
+        if (type == mjJNT_FREE && m->body_jntnum[m->jnt_bodyid[j]] != 1)
+            return snprintf(err, len, "joint %s: a free joint with other joints in its body",
+                            nm);
     }
-    if (m->nu > 0)
-        return snprintf(err, len, "actuator %s: actuators are not imported yet",
-                        m->names + m->name_actuatoradr[0]);
+    for (int i = 0; i < m->nu; i++) {
+        const char *why = actuator_refused(m, i);
+        if (why)
+            return snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
+                                                                 sizeof b), why);
+    }
     if (m->neq > 0)
         return snprintf(err, len, "equality constraint %s: not imported yet",
-                        m->names + m->name_eqadr[0]);
+                        label(m, mjOBJ_EQUALITY, 0, b, sizeof b));
     if (m->ntendon > 0)
-        return snprintf(err, len, "tendon %s: not imported yet", m->names + m->name_tendonadr[0]);
+        return snprintf(err, len, "tendon %s: not imported yet",
+                        label(m, mjOBJ_TENDON, 0, b, sizeof b));
     return 0;
 }
 
-/* What eomc drops, since it simulates smooth dynamics only, each
- * named on warn; their number. */
+/* Elements something is dropped from, for one warning: the first few
+ * named, the rest counted. */
+enum { DROP_NAMED = 6 };
+typedef struct Drop {
+    int n;
+    char names[DROP_NAMED * 64];
+} Drop;
+
+static void
+drop_add(Drop *d, const char *name)
+{
+    size_t k = strlen(d->names);
+    if (d->n++ < DROP_NAMED)
+        snprintf(d->names + k, sizeof d->names - k, "%s%.60s", k ? ", " : "", name);
+}
+
+/* "dropped: WHAT KIND name" or "dropped: WHAT n KINDs: a, b, ... and k more" */
+static int
+drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const char *kind,
+         const char *why)
+{
+    if (d->n == 0)
+        return 0;
+    if (d->n == 1)
+        fprintf(warn, "%s: warning: dropped: %s %s %s (%s)\n", path, what, kind, d->names, why);
+    else if (d->n <= DROP_NAMED)
+        fprintf(warn, "%s: warning: dropped: %s %d %ss: %s (%s)\n", path, what, d->n, kind,
+                d->names, why);
+    else
+        fprintf(warn, "%s: warning: dropped: %s %d %ss: %s and %d more (%s)\n", path, what,
+                d->n, kind, d->names, d->n - DROP_NAMED, why);
+    return 1;
+}
+
+/* What eomc drops, since it simulates smooth dynamics only, named on
+ * warn, one warning for each kind; the number of kinds. */
 static int
 dropped(const mjModel *m, const char *path, FILE *warn)
 {
-    int n = 0;
+    Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0};
+    char b[32];
     for (int j = 0; j < m->njnt; j++) {
-        const char *nm = m->names + m->name_jntadr[j];
+        const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
         if (m->jnt_limited[j])
-            n++, fprintf(warn, "%s: warning: joint %s: its limits are dropped (eomc simulates "
-                         "smooth dynamics: the joint moves past them)\n", path, nm);
-        if (m->dof_frictionloss[m->jnt_dofadr[j]] != 0)
-            n++, fprintf(warn, "%s: warning: joint %s: its friction loss is dropped (dry "
-                         "friction is not smooth dynamics)\n", path, nm);
+            drop_add(&lim, nm);
+        int any = 0;
+        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++)
+            any |= m->dof_frictionloss[k] != 0;
+        if (any)
+            drop_add(&fric, nm);
     }
+    for (int i = 0; i < m->nu; i++) {
+        const char *nm = label(m, mjOBJ_ACTUATOR, i, b, sizeof b);
+        if (m->actuator_ctrllimited[i])
+            drop_add(&ctrl, nm);
+        if (m->actuator_forcelimited[i])
+            drop_add(&force, nm);
+    }
+    int n = 0;
+    n += drop_say(warn, path, &lim, "the limits of", "joint",
+                  "eomc simulates smooth dynamics: joints move past their limits");
+    n += drop_say(warn, path, &fric, "the friction loss of", "joint",
+                  "dry friction is not smooth dynamics");
+    n += drop_say(warn, path, &ctrl, "the control range of", "actuator",
+                  "an input is applied as given, not clamped");
+    n += drop_say(warn, path, &force, "the force range of", "actuator",
+                  "an actuator's force is not clamped");
     int contacts = 0;
     for (int g = 0; g < m->ngeom; g++)
         contacts += m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
     if (contacts)
-        n++, fprintf(warn, "%s: warning: contacts between its %d colliding geoms are dropped "
+        n++, fprintf(warn, "%s: warning: dropped: contacts between its %d colliding geoms "
                      "(eomc simulates smooth dynamics: bodies pass through one another)\n",
                      path, contacts);
     return n;
@@ -196,14 +289,133 @@ displacement(char *buf, size_t len, const char *coord, double ref)
         snprintf(buf, len, "(%s - %s)", coord, num(a, ref));
 }
 
-/* The effects, each named so a scene can pick it: gravity; damping, the
- * generalized force -b q' on each joint that has it; stiffness, the
- * potential k/2 (q - springref)^2 (MuJoCo's passive spring force
- * -k (q - qpos_spring)). */
+/* Appends c*f to an expression of terms in buf (f NULL: c alone),
+ * nothing for c = 0. */
 static void
-put_effects(const mjModel *m, const char *const *coord, FILE *out)
+term(char *buf, size_t len, double c, const char *f)
 {
-    char a[NUM_MAX], d[400];
+    char a[NUM_MAX];
+    size_t k = strlen(buf);
+    if (c == 0 || k >= len)
+        return;
+    const char *sep = k ? (c < 0 ? " - " : " + ") : (c < 0 ? "-" : "");
+    if (f && fabs(c) == 1)
+        snprintf(buf + k, len - k, "%s%s", sep, f);
+    else
+        snprintf(buf + k, len - k, "%s%s%s%s", sep, num(a, fabs(c)), f ? "*" : "", f ? f : "");
+}
+
+/* Is the expression term() wrote a sum of several? */
+static int
+is_sum(const char *e)
+{
+    return strstr(e, " + ") || strstr(e, " - ");
+}
+
+/* Actuator i's generalized force as virtual work on its joint J, for
+ * MuJoCo's force gain * u + bias of the actuator's length L = gear*J and
+ * velocity V = gear*J' (fixed or affine gain, none or affine bias):
+ * gear*(gain*u + bias)*delta(J). */
+static void
+actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, const char *u)
+{
+    const double *g = m->actuator_gainprm + mjNGAIN * i, *b = m->actuator_biasprm + mjNBIAS * i;
+    double gear = m->actuator_gear[6 * i];
+    char L[300], V[302], gain[700] = "", force[1500] = "", a[NUM_MAX];
+    snprintf(L, sizeof L, "%s%s%s", gear == 1 ? "" : num(a, gear), gear == 1 ? "" : "*", J);
+    snprintf(V, sizeof V, "%s'", L);
+    term(gain, sizeof gain, g[0], NULL);
+    if (m->actuator_gaintype[i] == mjGAIN_AFFINE) {
+        term(gain, sizeof gain, g[1], L);
+        term(gain, sizeof gain, g[2], V);
+    }
+    if (*gain && strcmp(gain, "1")) { /* gain*u, in parentheses where a sum */
+        snprintf(force, sizeof force, is_sum(gain) ? "(%s)*%s" : "%s*%s", gain, u);
+    } else if (*gain) {
+        snprintf(force, sizeof force, "%s", u);
+    }
+    if (m->actuator_biastype[i] == mjBIAS_AFFINE) {
+        term(force, sizeof force, b[0], NULL);
+        term(force, sizeof force, b[1], L);
+        term(force, sizeof force, b[2], V);
+    }
+    if (!*force)
+        snprintf(force, sizeof force, "0");
+    const char *open = is_sum(force) ? "(" : "", *close = *open ? ")" : "";
+    if (gear == 1)
+        snprintf(buf, len, "%s%s%s*delta(%s)", open, force, close, J);
+    else
+        snprintf(buf, len, "%s*%s%s%s*delta(%s)", num(a, gear), open, force, close, J);
+}
+
+/* MuJoCo's velocity of a ball's (or free joint's) rotation is its
+ * angular velocity in the joint's own axes, w = 2 L(e) e' for Euler
+ * parameters e, L = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0]
+ * (docs/import.md).  Row i of L: which parameter times which rate. */
+static const int L_idx[3][4] = {{1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+static const int L_sgn[3][4] = {{-1, 1, 1, -1}, {-1, -1, 1, 1}, {-1, 1, -1, 1}};
+
+/* The rate of dof d of joint j (delta: its variation instead), as an
+ * expression of the coordinates: q' for a hinge or slide, a free joint's
+ * x', y', z', and a component of 2 L(e) e' for a rotation. */
+static void
+dof_rate(char *buf, size_t len, const mjModel *m, const char *const *qn, int j, int d,
+         int delta)
+{
+    const char *const *q = qn + m->jnt_qposadr[j];
+    int type = m->jnt_type[j];
+    if (type == mjJNT_FREE && d < 3) {
+        snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[d]);
+        return;
+    }
+    if (type == mjJNT_FREE)
+        q += 3, d -= 3;
+    if (type != mjJNT_FREE && type != mjJNT_BALL) {
+        snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[0]);
+        return;
+    }
+    size_t k = (size_t)snprintf(buf, len, "(2*(");
+    for (int c = 0; c < 4 && k < len; c++)
+        k += (size_t)snprintf(buf + k, len - k, delta ? "%s%s*delta(%s)" : "%s%s*%s'",
+                              L_sgn[d][c] < 0 ? (c ? " - " : "-") : (c ? " + " : ""),
+                              q[L_idx[d][c]], q[c]);
+    if (k < len)
+        snprintf(buf + k, len - k, "))");
+}
+
+static int
+joint_dofs(const mjModel *m, int j)
+{
+    switch (m->jnt_type[j]) {
+    case mjJNT_FREE: return 6;
+    case mjJNT_BALL: return 3;
+    default: return 1;
+    }
+}
+
+/* Opens effect `name`'s list with its first item, or separates the next. */
+static void
+item(FILE *out, int *any, int *first, const char *name)
+{
+    if (!*any)
+        fputs("effects:\n", out);
+    if (*first)
+        fprintf(out, "  %s: [", name);
+    else
+        fputs(", ", out);
+    *any = 1, *first = 0;
+}
+
+/* The effects, each named so a scene can pick it: gravity; damping, the
+ * generalized force -b v on each dof that has it (v its velocity as
+ * MuJoCo's qvel has it); stiffness, the potential k/2 (q - springref)^2
+ * (MuJoCo's passive spring force -k (q - qpos_spring)); armature, a
+ * rotor's inertia on each dof, 1/2 a v^2 in T; actuators, each one's
+ * force on its joint, its control an input. */
+static void
+put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE *out)
+{
+    char a[NUM_MAX], d[400], r[400], v[400];
     int any = 0;
     if (!is_zero3(m->opt.gravity)) {
         fputs("effects:\n  gravity: {gravity: ", out);
@@ -212,25 +424,48 @@ put_effects(const mjModel *m, const char *const *coord, FILE *out)
         any = 1;
     }
     int first = 1;
-    for (int j = 0; j < m->njnt; j++) {
-        double b = m->dof_damping[m->jnt_dofadr[j]];
-        if (b == 0)
+    for (int j = 0; j < m->njnt; j++)
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            double b = m->dof_damping[m->jnt_dofadr[j] + k];
+            if (b == 0)
+                continue;
+            dof_rate(r, sizeof r, m, qn, j, k, 0);
+            dof_rate(v, sizeof v, m, qn, j, k, 1);
+            item(out, &any, &first, "damping");
+            fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++) { /* hinges and slides (import refuses the rest) */
+        double k = m->jnt_stiffness[j];
+        if (k == 0)
             continue;
-        fprintf(out, "%s%s{work: \"%s*%s'*delta(%s)\"}", any ? "" : "effects:\n",
-                first ? "  damping: [" : ", ", num(a, -b), coord[j], coord[j]);
-        any = 1, first = 0;
+        const char *q = qn[m->jnt_qposadr[j]];
+        displacement(d, sizeof d, q, m->qpos_spring[m->jnt_qposadr[j]]);
+        item(out, &any, &first, "stiffness");
+        fprintf(out, "{potential: \"%s*%s^2\"}", num(a, k / 2), d);
     }
     if (!first)
         fputs("]\n", out);
     first = 1;
-    for (int j = 0; j < m->njnt; j++) {
-        double k = m->jnt_stiffness[j];
-        if (k == 0)
-            continue;
-        displacement(d, sizeof d, coord[j], m->qpos_spring[m->jnt_qposadr[j]]);
-        fprintf(out, "%s%s{potential: \"%s*%s^2\"}", any ? "" : "effects:\n",
-                first ? "  stiffness: [" : ", ", num(a, k / 2), d);
-        any = 1, first = 0;
+    for (int j = 0; j < m->njnt; j++)
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            double arm = m->dof_armature[m->jnt_dofadr[j] + k];
+            if (arm == 0)
+                continue;
+            dof_rate(r, sizeof r, m, qn, j, k, 0);
+            item(out, &any, &first, "armature");
+            fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int i = 0; i < m->nu; i++) {
+        char w[2000];
+        actuator_work(w, sizeof w, m, i, qn[m->jnt_qposadr[m->actuator_trnid[2 * i]]], un[i]);
+        item(out, &any, &first, "actuators");
+        fprintf(out, "{work: \"%s\"}", w);
     }
     if (!first)
         fputs("]\n", out);
@@ -265,11 +500,21 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     const char **origin = xmalloc((size_t)nb * sizeof *origin);
     const char **com = xmalloc((size_t)nb * sizeof *com);
     const char **coord = xmalloc(((size_t)m->njnt + 1) * sizeof *coord);
-    char fb[64];
-    /* coordinates first: joints keep their names (docs/import.md) */
+    const char **qn = xmalloc(((size_t)m->nq + 1) * sizeof *qn);
+    char fb[64], nm[300];
+    /* coordinates first: joints keep their names (docs/import.md); a
+     * ball's are its Euler parameters, a free joint's its position and
+     * those */
+    static const char *const part[7] = {"_x", "_y", "_z", "_qw", "_qx", "_qy", "_qz"};
     for (int j = 0; j < m->njnt; j++) {
         snprintf(fb, sizeof fb, "%s_joint%d", m->names + m->name_bodyadr[m->jnt_bodyid[j]], j);
         coord[j] = unique(&N, m->names + m->name_jntadr[j], fb);
+        int adr = m->jnt_qposadr[j], type = m->jnt_type[j];
+        int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+        for (int d = 0; d < nq; d++) {
+            snprintf(nm, sizeof nm, "%s%s", coord[j], part[d + 7 - nq]);
+            qn[adr + d] = nq == 1 ? coord[j] : unique(&N, nm, nm);
+        }
     }
     body[0] = "world", axes[0] = "world", origin[0] = "origin";
     for (int b = 1; b < nb; b++) {
@@ -286,18 +531,45 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             dot && !strcmp(dot, ".urdf") ? "URDF" : "MJCF");
     free(model);
     fputs("coordinates: [", out);
-    for (int j = 0; j < m->njnt; j++)
-        fprintf(out, "%s%s", j ? ", " : "", coord[j]);
+    for (int q = 0; q < m->nq; q++)
+        fprintf(out, "%s%s", q ? ", " : "", qn[q]);
     fputs("]\n", out);
+    /* an actuator's control: an input u_NAME, 0 as in MuJoCo's mjData
+     * until --set (or a scene) gives it a value or a signal */
+    const char **un = xmalloc(((size_t)m->nu + 1) * sizeof *un);
+    for (int i = 0; i < m->nu; i++) {
+        const char *an = mj_id2name(m, mjOBJ_ACTUATOR, i);
+        snprintf(nm, sizeof nm, "u_%s", an && *an ? an : coord[m->actuator_trnid[2 * i]]);
+        un[i] = unique(&N, nm, nm);
+        fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
+    }
 
     /* frames and points, body by body (parents come first in MuJoCo's order) */
     char *fr = NULL, *pt = NULL;
     size_t frn = 0, ptn = 0;
     FILE *F = open_memstream(&fr, &frn), *P = open_memstream(&pt, &ptn);
-    char a[NUM_MAX], nm[300];
+    char a[NUM_MAX];
     for (int b = 1; b < nb; b++) {
         int p = m->body_parentid[b];
         const char *cur = axes[p];
+        if (m->body_jntnum[b] == 1 && m->jnt_type[m->body_jntadr[b]] == mjJNT_FREE) {
+            /* MuJoCo places it in the world by its coordinates alone:
+             * body_pos and body_quat are only its qpos0 */
+            const char **q = qn + m->jnt_qposadr[m->body_jntadr[b]];
+            snprintf(nm, sizeof nm, "%s_origin", body[b]);
+            origin[b] = unique(&N, nm, nm);
+            fprintf(P, "  %s: {at: [%s, %s, %s]}\n", origin[b], q[0], q[1], q[2]);
+            snprintf(nm, sizeof nm, "%s_axes", coord[m->body_jntadr[b]]);
+            axes[b] = unique(&N, nm, nm);
+            fprintf(F, "  %s: {rotation: [{quaternion: [%s, %s, %s, %s]}]}\n", axes[b], q[3],
+                    q[4], q[5], q[6]);
+            snprintf(nm, sizeof nm, "%s_com", body[b]);
+            com[b] = unique(&N, nm, nm);
+            fprintf(P, "  %s: {frame: %s, from: %s, at: ", com[b], axes[b], origin[b]);
+            put_vec(P, m->body_ipos + 3 * b);
+            fputs("}\n", P);
+            continue;
+        }
         snprintf(nm, sizeof nm, "%s_origin", body[b]);
         const char *o = unique(&N, nm, nm);
         fprintf(P, "  %s: {frame: %s, from: %s, at: ", o, axes[p], origin[p]);
@@ -343,9 +615,15 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             }
             snprintf(nm, sizeof nm, "%s_axes", coord[j]);
             const char *t = unique(&N, nm, nm);
-            fprintf(F, "  %s: {parent: %s, rotation: [{axis: ", t, cur);
-            put_vec(F, ax);
-            fprintf(F, ", angle: \"%s\"}]}\n", angle);
+            if (m->jnt_type[j] == mjJNT_BALL) { /* turned by its Euler parameters */
+                const char **q = qn + m->jnt_qposadr[j];
+                fprintf(F, "  %s: {parent: %s, rotation: [{quaternion: [%s, %s, %s, %s]}]}\n",
+                        t, cur, q[0], q[1], q[2], q[3]);
+            } else {
+                fprintf(F, "  %s: {parent: %s, rotation: [{axis: ", t, cur);
+                put_vec(F, ax);
+                fprintf(F, ", angle: \"%s\"}]}\n", angle);
+            }
             cur = t;
             if (!is_zero3(an)) {
                 double back[3] = {-an[0], -an[1], -an[2]};
@@ -392,19 +670,19 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         }
         fputs("]}\n", out);
     }
-    put_effects(m, coord, out);
+    put_effects(m, qn, un, out);
     int any = 0;
-    for (int j = 0; j < m->njnt; j++)
-        if (m->qpos0[m->jnt_qposadr[j]] != 0) {
-            fprintf(out, "%s  %s: %s\n", any++ ? "" : "initial:\n", coord[j],
-                    num(a, m->qpos0[m->jnt_qposadr[j]]));
-        }
+    for (int q = 0; q < m->nq; q++)
+        if (m->qpos0[q] != 0)
+            fprintf(out, "%s  %s: %s\n", any++ ? "" : "initial:\n", qn[q], num(a, m->qpos0[q]));
     fputs("scene: {t_end: 1, dt: 0.01}\n", out);
     free(body);
     free(axes);
     free(origin);
     free(com);
     free(coord);
+    free(qn);
+    free(un);
     names_free(&N);
     mj_deleteModel(m);
     return 0;

@@ -292,7 +292,8 @@ obstacle(const Spec *s, const Mech *m, const Constraints *c, ZeroTest *z)
                 const SpecEffect *e = &s->effect[k];
                 for (int j = 0; e->enabled && j < e->nforce; j++)
                     if (e->force[j].kind != FORCE_GRAVITY &&
-                        e->force[j].kind != FORCE_POTENTIAL)
+                        e->force[j].kind != FORCE_POTENTIAL &&
+                        e->force[j].kind != FORCE_KINETIC)
                         return arena_printf(A, "the effect '%s' is a force, not a "
                                             "potential", e->name);
             }

@@ -162,6 +162,8 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
         case FORCE_TORQUE:
             add_torque(&s->body[f->body], f, m, P, D);
             break;
+        case FORCE_KINETIC: /* in T (mech_build) */
+            break;
         case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec.c checked) */
             for (int i = 0; i < m->n; i++)
                 m->Q[i] = expr_add(P, m->Q[i],
@@ -181,7 +183,7 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         for (int i = 0; i < s->nq; i++)
             m->q[k][i] = expr_var(P, i, k);
     }
-    m->T = m->V = m->S = m->T_quat = EXPR_ZERO;
+    m->T = m->V = m->S = m->T_joint = EXPR_ZERO;
     for (int k = 0; k < s->npart; k++) {
         SpecParticle at = s->part[k]; /* at a point: its velocity as frames give it */
         int vel = at.has_vel;
@@ -194,9 +196,25 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         m->T = expr_add(P, m->T, body_energy(P, D, &s->body[k], 1));
         m->S = expr_add(P, m->S, body_energy(P, D, &s->body[k], 2));
     }
+    /* kinetic-energy terms no mass carries: the spec's own, and those of
+     * the effects that are on (a rotor's inertia) */
+    int nkin = s->nkinetic;
+    for (int e = 0; e < s->neffect; e++)
+        for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++)
+            nkin += s->effect[e].force[j].kind == FORCE_KINETIC;
+    ExprId *kin = arena_new_array(A, ExprId, nkin + 1);
+    nkin = 0;
     for (int k = 0; k < s->nkinetic; k++)
-        m->T = expr_add(P, m->T, s->kinetic[k].expr);
-    if (s->nkinetic > 0)
+        kin[nkin++] = s->kinetic[k].expr;
+    for (int e = 0; e < s->neffect; e++)
+        for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++)
+            if (s->effect[e].force[j].kind == FORCE_KINETIC)
+                kin[nkin++] = s->effect[e].force[j].expr;
+    for (int k = 0; k < nkin; k++) {
+        m->T = expr_add(P, m->T, kin[k]);
+        m->T_joint = expr_add(P, m->T_joint, kin[k]);
+    }
+    if (nkin > 0)
         m->S = EXPR_NONE;
     ExprId T0 = m->T;
     /* the coordinates that are no quaternion's parameters, and zeros */
@@ -243,7 +261,7 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         ExprId rate = diff_time(D, y);
         ExprId Tq = expr_mul(P, half, expr_mul(P, c, expr_powi(P, rate, 2)));
         m->T = expr_add(P, m->T, Tq);
-        m->T_quat = expr_add(P, m->T_quat, Tq);
+        m->T_joint = expr_add(P, m->T_joint, Tq);
         if (m->S != EXPR_NONE)
             m->S = expr_add(P, m->S, expr_mul(P, half, expr_mul(P, c, expr_powi(P,
                                                                       diff_time(D, rate), 2))));
@@ -270,6 +288,6 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             m->gravity[0] = EXPR_NONE;
     if (m->gravity[0] == EXPR_NONE)
         m->V_rest = m->V;
-    m->tree = tree_build(s, m->q[1], A, P, D, &m->tree_why);
+    m->tree = tree_build(s, m->q[1], nkin, kin, A, P, D, &m->tree_why);
     return m;
 }

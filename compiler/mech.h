@@ -14,11 +14,15 @@
 typedef struct Mech {
     int n;         /* number of coordinates */
     ExprId T, V;   /* kinetic and potential energy */
-    /* The part of T that no mass carries: 1/2 c (e.e')^2 per frame turned
-     * by a quaternion (mech.c), which the recursive forms add to theirs. */
-    ExprId T_quat;
+    /* The part of T that no mass carries: the spec's kinetic terms and
+     * those of the effects that are on, and 1/2 c (e.e')^2 per frame
+     * turned by a quaternion (mech.c).  Where the recursive forms apply,
+     * each moves with one joint's rates (tree.c), and they add its
+     * Lagrange terms to theirs, its inertia in that joint's block. */
+    ExprId T_joint;
     ExprId S;      /* acceleration energy 1/2 sum m |r''|^2, EXPR_NONE if
-                    * the spec has explicit kinetic terms (no S for them) */
+                    * the spec or an effect that is on has kinetic terms
+                    * (no S for them) */
     ExprId *Q;     /* [n] generalized non-potential forces */
     /* V is V_rest plus the potential of a uniform gravity field (world
      * components, constant in time) on every mass; gravity[0] is

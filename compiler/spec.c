@@ -1763,7 +1763,7 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "on", NULL};
+                                       "kinetic", "on", NULL};
     as_map(L, map, "a force");
     check_keys(L, map, keys, "an effect");
     f->loc = loc_of(L, map);
@@ -1790,6 +1790,9 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
     if ((v = lookup_key(L, map, "work")))
         f->kind = FORCE_WORK, kinds++,
         f->expr = work(L, v);
+    if ((v = lookup_key(L, map, "kinetic")))
+        f->kind = FORCE_KINETIC, kinds++,
+        f->expr = expression(L, v, ALLOW_KINETIC, "a kinetic-energy term");
     if ((v = lookup_key(L, map, "force")))
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = lookup_key(L, map, "torque")))
@@ -1798,8 +1801,9 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         diag_error(loc_of(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(loc_of(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work (write a list for several)"
-                   : "an effect item needs one of gravity, potential, force, torque, work");
+                   "potential, force, torque, work, kinetic (write a list for several)"
+                   : "an effect item needs one of gravity, potential, force, torque, work, "
+                   "kinetic");
 }
 
 static void

@@ -88,6 +88,8 @@ typedef enum SpecForceKind {
     FORCE_TORQUE,    /* vec (body frame; planar: vec[0]) on body:
                       * Q_i += tau . dw/dq_i' */
     FORCE_WORK,      /* expr W = sum_i Q_i delta(q_i) (seeds): Q_i += dW/d delta(q_i) */
+    FORCE_KINETIC,   /* expr: added to T while the effect is on (a rotor's
+                      * inertia, MuJoCo's armature) */
 } SpecForceKind;
 
 typedef struct SpecForce {
@@ -97,7 +99,7 @@ typedef struct SpecForce {
     int body;     /* FORCE_VECTOR, FORCE_TORQUE: index into Spec.body, or -1 */
     int dim;      /* FORCE_GRAVITY, FORCE_VECTOR: 2 or 3 */
     ExprId vec[3];
-    ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK */
+    ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK, FORCE_KINETIC */
 } SpecForce;
 
 typedef struct SpecEffect {

@@ -25,6 +25,7 @@
 
 #include "kin.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 /* A place among the turns: kin's frame f after its first n turns (the
@@ -497,15 +498,46 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
     return NULL;
 }
 
+/* Each kinetic-energy term no mass carries must move with one joint's
+ * rates alone, so that its inertia lies in that joint's own block of M
+ * (a rotor's 1/2 a q'^2): the recursions add it there.  NULL, or why
+ * not. */
+static const char *
+joint_local(const Spec *s, Arena *A, ExprPool *P, const Tree *t, const ExprId *q1, int nkin,
+            const ExprId *kin)
+{
+    if (nkin == 0)
+        return NULL;
+    int *joint = arena_new_array(A, int, s->nq);
+    for (int k = 0; k < t->nturns; k++)
+        for (int d = 0; d < t->turn[k].ndof; d++)
+            joint[t->turn[k].qc[d]] = k;
+    size_t npool = expr_pool_size(P);
+    unsigned char *mark = calloc(npool, 1);
+    const char *why = NULL;
+    for (int k = 0; !why && k < nkin; k++) {
+        memset(mark, 0, npool);
+        expr_mark(P, 1, &kin[k], mark);
+        int first = -1;
+        for (int i = 0; !why && i < s->nq; i++)
+            if ((size_t)q1[i] < npool && mark[q1[i]]) {
+                if (first < 0)
+                    first = i;
+                else if (joint[i] != joint[first])
+                    why = arena_printf(A, "a kinetic-energy term moves with the rates of '%s' "
+                                       "and '%s', two joints", s->coord[first].name,
+                                       s->coord[i].name);
+            }
+    }
+    free(mark);
+    return why;
+}
+
 Tree *
-tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
-           const char **why)
+tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *A,
+           ExprPool *P, Diff *D, const char **why)
 {
     const Kin *K = s->kin;
-    if (s->nkinetic > 0) {
-        *why = "the spec has explicit kinetic-energy terms";
-        return NULL;
-    }
     if (!K || s->nbody + s->npart == 0) {
         *why = "the spec places no mass by frames";
         return NULL;
@@ -657,6 +689,8 @@ tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
     t->nturns = J.n;
     t->turn = arena_new_array(A, TreeTurn, J.n + 1);
     if ((*why = localize(K, A, P, D, t, &J, order, pos, ms, nm, carrier)))
+        return NULL;
+    if ((*why = joint_local(s, A, P, t, q1, nkin, kin)))
         return NULL;
     return t;
 }

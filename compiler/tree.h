@@ -10,7 +10,9 @@
  * at a point) hangs from the world through such offsets in the frames
  * above it, and all the masses a frame turns are turned about one point,
  * its pivot.  A joint then moves everything after it as one rigid body,
- * and the joints are those of Featherstone's algorithms.
+ * and the joints are those of Featherstone's algorithms.  Kinetic-energy
+ * terms of the spec's own are allowed where each moves with one joint's
+ * rates (a rotor's inertia): the forms add them in the joint's block.
  *
  * Each joint has its own coordinates, where its axis is a constant, and
  * sits in the joint above it by a rotation (a constant one, from fixed
@@ -60,8 +62,9 @@ typedef struct Tree {
 } Tree;
 
 /* The tree, or NULL with *why set to the reason it does not apply.  q1
- * are the velocity leaves q_i'. */
-Tree *tree_build(const Spec *s, const ExprId *q1, Arena *A, ExprPool *P, Diff *D,
-                 const char **why);
+ * are the velocity leaves q_i'; kin[0..nkin) the kinetic-energy terms no
+ * mass carries, each of which must move with one joint's rates. */
+Tree *tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *A,
+                 ExprPool *P, Diff *D, const char **why);
 
 #endif

@@ -198,7 +198,7 @@ axis_index(const ExprId *a)
 }
 
 /* A joint's part of the recursion: its axes, U = IA S, the joint-space
- * inertia D = S^T IA S (plus what T_quat adds) as L diag(d) L^T (L unit
+ * inertia D = S^T IA S (plus what T_joint adds) as L diag(d) L^T (L unit
  * lower, only for a ball's 4 x 4), and u = tau - S . pA. */
 typedef struct Jt {
     int nd;
@@ -240,9 +240,9 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
      * -g), where it is uniform: its potential's gradient is not needed */
     Sv a0;
     const ExprId *tau = load; /* a load: at rest, the world still */
-    /* T_quat (mech.h) is no mass's: its M (in a ball's own block) joins
-     * D, and the rest of its terms tau */
-    ExprId *Eq = sv_quat_terms(m, A, P, D), *hq = NULL;
+    /* T_joint (mech.h) is no mass's: its M (in each joint's own block)
+     * joins D, and the rest of its terms tau */
+    ExprId *Eq = sv_joint_terms(m, A, P, D), *hq = NULL;
     if (Eq) {
         ExprId *zeros = arena_new_array(A, ExprId, n);
         hq = arena_new_array(A, ExprId, n);
@@ -311,11 +311,13 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
         for (int d = 0; d < nd; d++)
             si_times(P, &IA[k], &jk->S[d], &jk->U[d]);
         /* D = L diag(d) L^T, its pivots those of coordinates qc[0], qc[1], ... */
+        int rotor = 0; /* T_joint adds inertia to D beyond S^T IA S */
         for (int i = 0; i < nd; i++)
             for (int j = 0; j <= i; j++) {
                 ExprId x = sv_dot(P, &jk->S[i], &jk->U[j]);
-                if (Eq)
-                    x = expr_add(P, x, diff_partial(D, Eq[tk->qc[i]], m->q[2][tk->qc[j]]));
+                ExprId xq = Eq ? diff_partial(D, Eq[tk->qc[i]], m->q[2][tk->qc[j]]) : EXPR_ZERO;
+                x = expr_add(P, x, xq);
+                rotor |= xq != EXPR_ZERO;
                 for (int l = 0; l < j; l++) {
                     ExprId ll = expr_mul(P, jk->L[4 * i + l], jk->L[4 * j + l]);
                     x = expr_sub(P, x, expr_mul(P, ll, piv[tk->qc[l]]));
@@ -354,8 +356,9 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
         }
         /* Ia S = U - U (S.U) / D = 0: about a coordinate axis that is a
          * row and a column of exact zeros, which the rounding of the
-         * update would only blur, and which fold through the transforms */
-        int j = nd == 1 ? axis_index(tk->al) : -1; /* S's row among (w, v) */
+         * update would only blur, and which fold through the transforms.
+         * Not with a rotor's inertia in D: then Ia S = U arm / D. */
+        int j = nd == 1 && !rotor ? axis_index(tk->al) : -1; /* S's row among (w, v) */
         j += j >= 0 && tk->slide ? 3 : 0;
         for (int c = 0; j >= 0 && c < 6; c++)
             Ia.e[6 * j + c] = Ia.e[6 * c + j] = EXPR_ZERO;
@@ -414,6 +417,10 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
             *why = "a turn's angle is not its coordinate itself";
             return NULL;
         }
+    if (m->T_joint != EXPR_ZERO) { /* the balls' own terms are refused above */
+        *why = "the tables have no kinetic-energy terms of the spec's own (a rotor's inertia)";
+        return NULL;
+    }
     FormTables *tb = arena_alloc(A, sizeof *tb);
     tb->nt = nt;
     tb->turn = arena_new_array(A, int, FORM_TABLE_INTS * nt + 1);

@@ -36,7 +36,7 @@ rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     Rigid *body = sv_bodies(P, A, t);
     Sv *V = arena_new_array(A, Sv, nt + 1), *Acc = arena_new_array(A, Sv, nt + 1);
     Sv *F = arena_new_array(A, Sv, nt + 1), a0;
-    ExprId *E = sv_applied(m, A, P, D, &a0), *Eq = sv_quat_terms(m, A, P, D);
+    ExprId *E = sv_applied(m, A, P, D, &a0), *Eq = sv_joint_terms(m, A, P, D);
     for (int i = 0; Eq && i < m->n; i++)
         E[i] = expr_add(P, E[i], Eq[i]);
     for (int k = 0; k < nt; k++) {
@@ -119,10 +119,11 @@ crb_mass(const Mech *m, Arena *A, ExprPool *P, Diff *D)
             }
         }
     }
-    /* and the inertia T_quat gives e' along e, in each ball's own block */
-    ExprId *Eq = sv_quat_terms(m, A, P, D);
+    /* and the inertia of T_joint, in each joint's own block: a rotor's, and
+     * e' along e for a ball */
+    ExprId *Eq = sv_joint_terms(m, A, P, D);
     for (int k = 0; Eq && k < nt; k++)
-        for (int di = 0; t->turn[k].ndof > 1 && di < t->turn[k].ndof; di++)
+        for (int di = 0; di < t->turn[k].ndof; di++)
             for (int dj = 0; dj < t->turn[k].ndof; dj++) {
                 int i = t->turn[k].qc[di], j = t->turn[k].qc[dj];
                 M[i * n + j] = expr_add(P, M[i * n + j], diff_partial(D, Eq[i], m->q[2][j]));

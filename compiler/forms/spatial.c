@@ -155,12 +155,12 @@ sv_joint_axes(const TreeTurn *t, Sv S[4])
 }
 
 ExprId *
-sv_quat_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D)
+sv_joint_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
-    if (m->T_quat == EXPR_ZERO)
+    if (m->T_joint == EXPR_ZERO)
         return NULL;
-    ExprId *dq = form_gradient(m, m->T_quat, 0, A, D);
-    ExprId *dv = form_gradient(m, m->T_quat, 1, A, D);
+    ExprId *dq = form_gradient(m, m->T_joint, 0, A, D);
+    ExprId *dv = form_gradient(m, m->T_joint, 1, A, D);
     for (int i = 0; i < m->n; i++)
         dq[i] = expr_sub(P, diff_time(D, dv[i]), dq[i]);
     return dq;

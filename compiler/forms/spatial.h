@@ -52,10 +52,10 @@ void sv_joint_axis(const TreeTurn *t, Sv *S);
  * angular velocity's derivatives along its Euler parameters' rates, (Sw[d],
  * 0)); returns t->ndof. */
 int sv_joint_axes(const TreeTurn *t, Sv S[4]);
-/* Lagrange's d/dt(dT_quat/dq') - dT_quat/dq for the part of T no mass
- * carries (mech.h: a quaternion's e' along e), which the recursions over
- * the masses leave out; NULL when there is none. */
-ExprId *sv_quat_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D);
+/* Lagrange's d/dt(dT_joint/dq') - dT_joint/dq for the part of T no mass
+ * carries (mech.h: a rotor's inertia, a quaternion's e' along e), which
+ * the recursions over the masses leave out; NULL when there is none. */
+ExprId *sv_joint_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* dV/dq - Q, and the world's acceleration a0 that stands for a uniform
  * gravity field (Featherstone's a_0 = -g; then V's part from it is left
  * out of the gradient), or zero. */

@@ -1,10 +1,12 @@
 #!/bin/sh
 # eomc import against MuJoCo itself: each model (MJCF written for these
-# tests: an arm, the same with damping and springs, a URDF arm; and the benchmark's
-# chain) imported, then q'' of `eomc run --accel`
-# at 100 random states against mj_forward's qacc at the same state
-# (mj_accel.c: contact, limits, friction loss and equality off), within
-# 1e-10 of the largest |q''|; and the import's refusals.
+# tests: an arm, the same with damping and springs, a URDF arm, a floating
+# base with a ball joint, armature and actuators; the benchmark's chain;
+# MuJoCo's humanoid where libmujoco-samples is installed) imported, then
+# q'' of `eomc run --accel` at 100 random states and controls against
+# mj_forward's qacc at the same state (mj_accel.c: contact, limits,
+# friction loss, equality and clamping off), within 1e-10 of the largest
+# |q''|; and the import's refusals and warnings.
 #
 # usage: test_import.sh EOMC SOURCE_ROOT BUILD_ROOT MJ_ACCEL
 set -u
@@ -13,36 +15,34 @@ eomc=$1 src=$2 mj=$4
 STATES=100 TOL=1e-10
 
 sh "$src/specs/gen_chain.sh" 5 --mjcf > "$tmp/chain5.xml"
+# MuJoCo's own humanoid where Debian's libmujoco-samples is installed
+samples=/usr/share/mujoco/model
+humanoid=
+[ -e "$samples/humanoid/humanoid.xml" ] && humanoid="$samples/humanoid/humanoid.xml"
 for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/springs.xml" \
-    "$src/tests/import/models/planar_arm.urdf" \
-    "$tmp/chain5.xml"; do
+    "$src/tests/import/models/planar_arm.urdf" "$src/tests/import/models/floating.xml" \
+    "$tmp/chain5.xml" $humanoid; do
   base=$(basename "$model"); base=${base%.*}
   "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports ($(head -c 200 "$tmp/err"))"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/$base.yaml" | tr -d ',')
+  inputs=$(sed -n '/^inputs:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml")
   worst=0 fails=0
   k=0
   while [ $k -lt $STATES ]; do
     k=$((k + 1))
-    # a state: each q and q' uniform in [-1.5, 1.5], from awk's seeded rand
-    set -- $(awk -v seed="$k" -v n="$(echo $coords | wc -w)" \
-      'BEGIN { srand(seed); for (i = 0; i < 2 * n; i++) printf "%.17g ", 3 * rand() - 1.5 }')
-    args= qv="$*" i=0
-    for c in $coords; do
-      i=$((i + 1))
-      eval "q=\${$i}"
-      args="$args --init $c=$q"
-    done
-    for c in $coords; do
-      i=$((i + 1))
-      eval "v=\${$i}"
-      args="$args --init $c'=$v"
-    done
+    # a random state and MuJoCo's q'' there, in eomc's coordinates (mj_accel.c)
+    "$mj" "$model" $k > "$tmp/mj" || fails=$((fails + 1))
+    args=$(awk -v names="$coords" -v inputs="$inputs" 'BEGIN { n = split(names, c, " ")
+        nu = split(inputs, u, " ") }
+      NR == 1 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
+      NR == 2 { for (i = 1; i <= n; i++) printf " --init %s'"'"'=%s", c[i], $i }
+      NR == 3 { for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i }' "$tmp/mj")
     "$eomc" run "$tmp/$base.yaml" --accel $args > "$tmp/eomc" 2>> "$tmp/err" || fails=$((fails + 1))
-    "$mj" "$model" $qv > "$tmp/mj" || fails=$((fails + 1))
-    d=$(awk 'NR == FNR { w[NR] = $1; n = NR; next }
-             { dd = $2 - w[FNR]; if (dd < 0) dd = -dd; if (dd > dm) dm = dd;
-               a = w[FNR] < 0 ? -w[FNR] : w[FNR]; if (a > am) am = a; m++ }
+    # q'' lines only (a quaternion's unit constraint adds its multiplier's)
+    d=$(awk 'NR == FNR { if (FNR > 3) w[++n] = $1; next }
+             $1 ~ /'"''"'$/ { m++; dd = $2 - w[m]; if (dd < 0) dd = -dd; if (dd > dm) dm = dd;
+               a = w[m] < 0 ? -w[m] : w[m]; if (a > am) am = a }
              END { if (m != n || am == 0) print "nan"; else printf "%.3g\n", dm / am }' \
       "$tmp/mj" "$tmp/eomc")
     worst=$(awk -v a="$worst" -v b="$d" 'BEGIN { print (b == "nan" || a == "nan") ? "nan" : (b > a ? b : a) }')
@@ -67,32 +67,39 @@ sed 's/<mujoco model="arm">/<mujoco model="9b my-arm">/' "$src/tests/import/mode
   "$eomc" run "$tmp/named.xml" --accel > "$tmp/named" 2> /dev/null && cmp -s "$tmp/named" "$tmp/direct0"
 ok $? "model '9b my-arm': the spec's name _9b_my_arm, and the arm's q''"
 
-# what the first slice refuses, by name, with exit 2
-cat > "$tmp/ball.xml" <<'XML'
-<mujoco><worldbody><body name="b"><joint name="j" type="ball"/><geom size="0.1"/></body></worldbody></mujoco>
+# what the import cannot write is refused by name, with exit 2 and nothing written
+cat > "$tmp/ballspring.xml" <<'XML'
+<mujoco><worldbody><body name="b"><joint name="j" type="ball" stiffness="2"/><geom size="0.1"/></body></worldbody></mujoco>
 XML
-"$eomc" import "$tmp/ball.xml" > "$tmp/out" 2> "$tmp/err"
+"$eomc" import "$tmp/ballspring.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: ball joints are not imported yet" "$tmp/err"
-ok $? "a ball joint: refused by name, exit 2, nothing written ($(cat "$tmp/err"))"
-cat > "$tmp/armature.xml" <<'XML'
-<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" armature="0.1"/><geom size="0.1"/></body></worldbody></mujoco>
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: the stiffness of a ball joint is not imported" "$tmp/err"
+ok $? "a ball joint's spring: refused by name, exit 2, nothing written ($(cat "$tmp/err"))"
+cat > "$tmp/filter.xml" <<'XML'
+<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
+<actuator><general name="slow" joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>
 XML
-"$eomc" import "$tmp/armature.xml" > "$tmp/out" 2> "$tmp/err"
+"$eomc" import "$tmp/filter.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: its armature is not imported yet" "$tmp/err"
-ok $? "armature: refused by name until it is imported, exit 2 ($(cat "$tmp/err"))"
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "actuator slow: its activation dynamics (dyntype) is not imported" "$tmp/err"
+ok $? "an actuator with activation dynamics: refused by name, exit 2 ($(cat "$tmp/err"))"
 # what is dropped is named (limits, friction loss, contacts), and --strict refuses it
 cat > "$tmp/dropped.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" limited="true" range="-1 1" frictionloss="0.2"/>
-<geom size="0.1"/><body pos="0 0 -0.3"><joint name="k" axis="1 0 0"/><geom size="0.1"/></body></body></worldbody></mujoco>
+<geom size="0.1"/><body pos="0 0 -0.3"><joint name="k" axis="1 0 0" limited="true" range="-1 1"/><geom size="0.1"/>
+<body pos="0 0 -0.3"><joint axis="1 0 0" limited="true" range="-1 1"/><geom size="0.1"/></body></body></body></worldbody>
+<actuator><motor joint="j" ctrllimited="true" ctrlrange="-1 1"/><motor name="m2" joint="k" forcelimited="true" forcerange="-2 2"/></actuator></mujoco>
 XML
 "$eomc" import "$tmp/dropped.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 0 ] && [ -s "$tmp/out" ] && grep -q "joint j: its limits are dropped" "$tmp/err" &&
-  grep -q "joint j: its friction loss is dropped" "$tmp/err" &&
-  grep -q "contacts between its 2 colliding geoms are dropped" "$tmp/err"
-ok $? "limits, friction loss and contacts: each named as dropped, exit 0"
+[ $st -eq 0 ] && [ -s "$tmp/out" ] &&
+  grep -q "warning: dropped: the limits of 3 joints: j, k, #2 (eomc simulates smooth dynamics" "$tmp/err" &&
+  grep -q "warning: dropped: the friction loss of joint j (dry friction" "$tmp/err" &&
+  grep -q "warning: dropped: the control range of actuator #0 (an input is applied as given" "$tmp/err" &&
+  grep -q "warning: dropped: the force range of actuator m2 (an actuator's force is not clamped)" "$tmp/err" &&
+  grep -q "warning: dropped: contacts between its 3 colliding geoms" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 5 ]
+ok $? "limits, friction loss, control and force ranges, contacts: one warning each, naming what is dropped, exit 0"
 "$eomc" import "$tmp/dropped.xml" --strict -o "$tmp/strict.yaml" > "$tmp/out" 2> "$tmp/err"
 st=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/strict.yaml" ] && grep -q "error: --strict" "$tmp/err"

@@ -3,7 +3,8 @@
  * Lagrange's equations derived from the energies, at random states of a
  * branched tree with every kind of turn (coordinate axes, a fixed oblique
  * axis, a fixed tilt before a turn), a full inertia tensor, a particle at
- * a point, gravity, a potential, a force, a torque and a damping work:
+ * a point, gravity, a potential, a force, a torque, a damping work and
+ * rotors' inertias (kinetic terms of one joint's rate each):
  *   - M (composite-rigid-body) and h equal Lagrange's;
  *   - M is also dE/dq'' of the recursive residual itself;
  *   - the seeded derivatives of E equal its unrolled Jacobian.
@@ -55,6 +56,7 @@ static const char tree_spec[] =
     "  twist: {torque: [0.1, 0.2, -0.3], on: C}\n"
     "  drag: {force: -c*vel(tip), on: bob}\n"
     "  damp: {work: \"-c*b2'*delta(b2)\"}\n"
+    "  rotors: [{kinetic: \"1/2*0.05*b2'^2\"}, {kinetic: \"0.02*a1'^2*(1 + a2^2)\"}]\n"
     "scene: {t_end: 1}\n";
 
 /* specs/gen_tree.sh 5 with unequal bodies and a frame that does not
@@ -125,6 +127,7 @@ static const char slide_spec[] =
     "effects:\n"
     "  gravity: {gravity: [0, 0, -g]}\n"
     "  push: {force: [0.3, 0, 0.1], on: arm}\n"
+    "  rotor: {kinetic: \"1/2*0.1*y'^2\"}\n"
     "scene: {t_end: 1}\n";
 
 /* A floating body: its centre's offset affine in three coordinates (three
@@ -423,6 +426,8 @@ main(void)
                                   "at: [0.3, 0, -0.3]}\n  tip: {"),
                           "  bob: {", "  bob2: {mass: 0.1, position: off}\n  bob: {"),
                   "about another point");
+    check_refused(variant(t, "{kinetic: \"1/2*0.05*b2'^2\"}", "{kinetic: \"1/2*0.05*(b2' + c1')^2\"}"),
+                  "moves with the rates of 'b2' and 'c1', two joints");
     check_refused(variant(t, "center: a_c,", "center: [0.1, 0.2, 0.3],"),
                   "not placed by a frame with its centre at a point");
     check_refused(variant(t, "  bob: {mass: 0.4, position: tip}",

@@ -1417,6 +1417,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    %s_accel, %s_minv, /* the multipliers by unit loads */", nm, nm);
     else
         println(pr, "    NULL, NULL, /* no unit-load passes */");
+    if (c)
+        println(pr, "    %s_c_scale,", nm);
+    else
+        println(pr, "    NULL, /* no constraints to scale */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");

@@ -1014,6 +1014,53 @@ expr_binary(ExprPool *P, int op, ExprId a, ExprId b)
 /* ---- traversals ---- */
 
 void
+expr_magnitude_many(ExprPool *P, int nroots, const ExprId *roots, ExprId *out)
+{
+    size_t n = P->n;
+    unsigned char *mark = calloc(n, 1);
+    ExprId *mag = xmalloc(n * sizeof *mag);
+    expr_mark(P, nroots, roots, mark);
+    /* operands have smaller ids than the nodes built from them */
+    for (size_t id = 0; id < n; id++) {
+        if (!mark[id])
+            continue;
+        const ExprNode nd = P->node[id];
+        ExprId e = (ExprId)id, m;
+        switch (nd.op) {
+        case EXPR_CONST:
+            m = expr_const(P, fabs(nd.value));
+            break;
+        case EXPR_ADD:
+        case EXPR_SUB:
+            m = expr_add(P, mag[nd.a], mag[nd.b]);
+            break;
+        case EXPR_MUL:
+            m = expr_mul(P, mag[nd.a], mag[nd.b]);
+            break;
+        case EXPR_DIV:
+            m = expr_div(P, mag[nd.a], expr_unary(P, EXPR_ABS, nd.b));
+            break;
+        case EXPR_NEG:
+            m = mag[nd.a];
+            break;
+        case EXPR_POWI: /* a reciprocal's size is that of 1/|a| */
+            m = (int32_t)nd.b > 0 ? expr_powi(P, mag[nd.a], (int)(int32_t)nd.b)
+                                  : expr_powi(P, expr_unary(P, EXPR_ABS, nd.a),
+                                              (int)(int32_t)nd.b);
+            break;
+        default: /* a leaf or a function: its own size */
+            m = expr_unary(P, EXPR_ABS, e);
+            break;
+        }
+        mag[id] = m;
+    }
+    for (int i = 0; i < nroots; i++)
+        out[i] = roots[i] == EXPR_NONE ? EXPR_NONE : mag[roots[i]];
+    free(mark);
+    free(mag);
+}
+
+void
 expr_mark(ExprPool *P, int n, const ExprId *roots, unsigned char *mark)
 {
     size_t cap = 64, sp = 0;

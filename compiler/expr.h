@@ -149,6 +149,14 @@ ExprId expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from,
 void expr_subst_many(ExprPool *P, int nroots, const ExprId *roots, int n,
                      const ExprId *from, const ExprId *to, ExprId *out);
 
+/* The magnitude of each root's terms, as an expression: every sum and
+ * difference made a sum of its operands' magnitudes, a product the
+ * product of theirs, a quotient over the divisor's |value|, a leaf or a
+ * function's value its absolute value.  What the rounding of the root's
+ * evaluation is relative to (a residual that should be 0 measured
+ * against it), where the root's own value may be 0. */
+void expr_magnitude_many(ExprPool *P, int nroots, const ExprId *roots, ExprId *out);
+
 /* Operation counts of the nodes reachable from roots, each shared node
  * counted once (as straight-line code would compute it). */
 typedef struct ExprCount {

@@ -12,7 +12,8 @@
  * body_iquat turns to, is printed as the full tensor in the body's axes.
  *
  * Effects: gravity, damping, stiffness, armature (kinetic terms of one
- * joint's rates) and actuators (virtual work of an input each).  What the
+ * joint's rates) and actuators (virtual work of an input each); connect
+ * and joint equalities are exact holonomic constraints.  What the
  * importer cannot write is refused by name; what eomc does not simulate
  * (limits, friction loss, control and force ranges, contacts) is dropped,
  * one warning per kind (--strict: an error).
@@ -169,6 +170,12 @@ actuator_refused(const mjModel *m, int i)
     return NULL;
 }
 
+static int
+scalar_joint(const mjModel *m, int j)
+{
+    return m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE;
+}
+
 /* What the importer cannot write, by name: a reason in err, else 0. */
 static int
 refused(const mjModel *m, char *err, size_t len)
@@ -192,9 +199,19 @@ refused(const mjModel *m, char *err, size_t len)
             return snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
                                                                  sizeof b), why);
     }
-    if (m->neq > 0)
-        return snprintf(err, len, "equality constraint %s: not imported yet",
-                        label(m, mjOBJ_EQUALITY, 0, b, sizeof b));
+    for (int e = 0; e < m->neq; e++) {
+        const char *nm = label(m, mjOBJ_EQUALITY, e, b, sizeof b);
+        int type = m->eq_type[e], j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e];
+        if (!m->eq_active[e])
+            continue;
+        if (type != mjEQ_CONNECT && type != mjEQ_JOINT)
+            return snprintf(err, len, "equality constraint %s: %s constraints are not imported "
+                            "yet", nm, type == mjEQ_WELD ? "weld" : type == mjEQ_TENDON
+                            ? "tendon" : "distance");
+        if (type == mjEQ_JOINT && (!scalar_joint(m, j1) || (j2 >= 0 && !scalar_joint(m, j2))))
+            return snprintf(err, len, "equality constraint %s: couples a ball or free joint "
+                            "(a joint coupling is between hinges and slides)", nm);
+    }
     if (m->ntendon > 0)
         return snprintf(err, len, "tendon %s: not imported yet",
                         label(m, mjOBJ_TENDON, 0, b, sizeof b));
@@ -471,6 +488,50 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE
         fputs("]\n", out);
 }
 
+/* The active equality constraints, as holonomic constraints: a connect
+ * as its two anchors' offset, one constraint per world axis (NAME_x,
+ * NAME_y, NAME_z); a joint coupling q1 - q1_0 = c0 + c1 (q2 - q2_0) + ...
+ * + c4 (q2 - q2_0)^4 (q_0 their qpos0; without a second joint, c0). */
+static void
+put_constraints(const mjModel *m, const char *const *qn, const char *const *eqn, FILE *out)
+{
+    char d1[400], d2[400];
+    int any = 0;
+    for (int e = 0; e < m->neq; e++) {
+        if (!m->eq_active[e])
+            continue;
+        fputs(any++ ? "" : "constraints:\n", out);
+        if (m->eq_type[e] == mjEQ_CONNECT) {
+            for (int k = 0; k < 3; k++)
+                fprintf(out, "  %s_%c: \"dot(pos(%s_1, %s_2), world.%c)\"\n", eqn[e], 'x' + k,
+                        eqn[e], eqn[e], 'x' + k);
+            continue;
+        }
+        const double *c = m->eq_data + mjNEQDATA * e;
+        int j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e], q1 = m->jnt_qposadr[j1];
+        displacement(d1, sizeof d1, qn[q1], m->qpos0[q1]);
+        char poly[2000] = "";
+        term(poly, sizeof poly, c[0], NULL);
+        if (j2 >= 0) {
+            int q2 = m->jnt_qposadr[j2];
+            displacement(d2, sizeof d2, qn[q2], m->qpos0[q2]);
+            for (int k = 1; k <= 4; k++) {
+                char f[420];
+                snprintf(f, sizeof f, k == 1 ? "%s" : "%s^%d", d2, k);
+                term(poly, sizeof poly, c[k], f);
+            }
+        }
+        if (!*poly)
+            fprintf(out, "  %s: \"%s\"\n", eqn[e], d1);
+        else if (is_sum(poly))
+            fprintf(out, "  %s: \"%s - (%s)\"\n", eqn[e], d1, poly);
+        else if (poly[0] == '-')
+            fprintf(out, "  %s: \"%s + %s\"\n", eqn[e], d1, poly + 1);
+        else
+            fprintf(out, "  %s: \"%s - %s\"\n", eqn[e], d1, poly);
+    }
+}
+
 int
 import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len)
 {
@@ -643,6 +704,25 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         put_vec(P, m->body_ipos + 3 * b);
         fputs("}\n", P);
     }
+    /* a connect constraint's anchors: on body 1 (eq_data 0..2, in its
+     * axes) and on body 2 (3..5: where MuJoCo's compiler put the same
+     * point at qpos0) */
+    const char **eqn = xmalloc(((size_t)m->neq + 1) * sizeof *eqn);
+    for (int e = 0; e < m->neq; e++) {
+        snprintf(fb, sizeof fb, "equality%d", e);
+        eqn[e] = unique(&N, m->names + m->name_eqadr[e], fb);
+        if (!m->eq_active[e] || m->eq_type[e] != mjEQ_CONNECT)
+            continue;
+        for (int k = 0; k < 2; k++) {
+            int bb = k ? m->eq_obj2id[e] : m->eq_obj1id[e];
+            bb = bb < 0 ? 0 : bb;
+            snprintf(nm, sizeof nm, "%s_%d", eqn[e], k + 1);
+            const char *an = unique(&N, nm, nm);
+            fprintf(P, "  %s: {frame: %s, from: %s, at: ", an, axes[bb], origin[bb]);
+            put_vec(P, m->eq_data + mjNEQDATA * e + 3 * k);
+            fputs("}\n", P);
+        }
+    }
     fclose(F);
     fclose(P);
     if (frn)
@@ -671,11 +751,17 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         fputs("]}\n", out);
     }
     put_effects(m, qn, un, out);
+    put_constraints(m, qn, eqn, out);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
         if (m->qpos0[q] != 0)
             fprintf(out, "%s  %s: %s\n", any++ ? "" : "initial:\n", qn[q], num(a, m->qpos0[q]));
-    fputs("scene: {t_end: 1, dt: 0.01}\n", out);
+    /* MuJoCo starts at qpos0 and lets its soft equality constraints pull
+     * the state onto them; eomc's are exact, so the start is put there */
+    int eq = 0;
+    for (int e = 0; e < m->neq; e++)
+        eq |= m->eq_active[e];
+    fprintf(out, "scene: {t_end: 1, dt: 0.01%s}\n", eq ? ", assemble: true" : "");
     free(body);
     free(axes);
     free(origin);
@@ -683,6 +769,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(coord);
     free(qn);
     free(un);
+    free(eqn);
     names_free(&N);
     mj_deleteModel(m);
     return 0;

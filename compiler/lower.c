@@ -116,6 +116,13 @@ static const LowSig s_c_levels = {
     "c_levels", "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
     "t q v p u > pos vel",
 };
+static const LowSig s_c_scale = {
+    "c_scale",
+    "The magnitude of each holonomic constraint's terms (sums of absolute\n"
+    " * values): what its residual is measured against when the projection\n"
+    " * decides it holds, where q = 0 leaves B q no size.",
+    "t q p u > mag",
+};
 static const LowSig s_c_jacobian = {
     "c_jacobian", "Partial derivatives of f and of B = df/dq'' (u held fixed).",
     "t q v a p u > dfdq dfdv dfdu dfdt dBdq dBdv dBda dBdu dBdt",
@@ -321,6 +328,13 @@ lower_constraints(Lowering *lw, const Constraints *c)
         out(lw, f, 0, a, orzero(c->pos[a]));
         out(lw, f, 1, a, orzero(c->vel[a]));
     }
+    f = func(lw, &s_c_scale, "c_levels", 1);
+    ExprId *g = arena_new_array(lw->A, ExprId, nc + 1), *mag = arena_new_array(lw->A, ExprId, nc + 1);
+    for (int a = 0; a < nc; a++)
+        g[a] = orzero(c->pos[a]);
+    expr_magnitude_many(P, nc, g, mag);
+    for (int a = 0; a < nc; a++)
+        out(lw, f, 0, a, mag[a]);
     /* Newton's method needs c_jacobian only when f is not affine */
     f = func(lw, &s_c_jacobian, "c_jacobian", c->affine);
     for (int a = 0; a < nc; a++) {

@@ -58,9 +58,12 @@ cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w0 = p_l * p_l;
     const eomc_real w1 = 0.5 * p_m;
     const eomc_real w2 = p_m * p_g;
+    const eomc_real w3 = fabs(p_l);
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
+    const eomc_real w4 = w3 * w3;
+    pd[3] = w4;
 }
 
 #ifndef EOMC_EXTENDED
@@ -229,6 +232,27 @@ cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     vel[0] = w7;
 }
 
+/* The magnitude of each holonomic constraint's terms (sums of absolute
+ * values): what its residual is measured against when the projection
+ * decides it holds, where q = 0 leaves B q no size. */
+static void
+cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *mag)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real pd3 = p[7];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = fabs(q_x);
+    const eomc_real w1 = fabs(q_y);
+    const eomc_real w2 = w0 * w0;
+    const eomc_real w3 = w1 * w1;
+    const eomc_real w4 = w2 + w3;
+    const eomc_real w5 = pd3 + w4;
+    mag[0] = w5;
+}
+
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
 cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
@@ -335,7 +359,7 @@ const eomc_model cartesian_pendulum_model = {
     EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "--jacobian auto",
     2, 4, 0, q_names, p_names, u_names, p_default,
     "swing", p_fixed,
-    3, cartesian_pendulum_derive,
+    4, cartesian_pendulum_derive,
     10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
     cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
     NULL, /* constrained: the runtime solves the KKT system */
@@ -349,6 +373,7 @@ const eomc_model cartesian_pendulum_model = {
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
+    cartesian_pendulum_c_scale,
 };
 
 #ifdef EOMC_MAIN

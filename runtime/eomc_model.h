@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 13
+#define EOMC_ABI_VERSION 14
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -252,6 +252,13 @@ typedef struct eomc_model {
                       const double *u, double *a, double *pivot);
     void (*minv)(double t, const double *q, const double *v, const double *p,
                  const double *u, const double *x, double *y);
+    /* mag[k]: the magnitude of holonomic constraint k's terms at (t, q),
+     * every sum made a sum of absolute values (0 for the other
+     * constraints): what its residual is measured against, where B q
+     * says nothing (every coordinate 0, as a model is often drawn).
+     * NULL: B q alone. */
+    void (*c_scale)(double t, const double *q, const double *p, const double *u,
+                    double *mag);
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

@@ -41,6 +41,7 @@ struct Proj {
                                 * scale of its rounding (0 outside one) */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
+    double *scale;             /* [nc] the magnitude of each g_k's terms (c_scale) */
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
     LaLu *lu[2];               /* G M^-1 G^T at each level */
     char *names[2];            /* constraint names of each level, for messages */
@@ -79,7 +80,7 @@ proj_alloc(const eomc_model *m)
     j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
     j->M = zeros(n * n), j->col = zeros(n), j->moves = calloc(n ? n : 1, sizeof *j->moves);
-    j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc);
+    j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc), j->scale = zeros(nc);
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
     j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
     j->F = zeros(n * n), j->Frel = zeros(n), j->Fperm = calloc(n ? n : 1, sizeof *j->Fperm);
@@ -109,7 +110,7 @@ proj_free(Proj *j)
     if (!j)
         return;
     void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
-                      j->vel, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
+                      j->vel, j->scale, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
                       j->Fperm, j->M, j->col,
                       j->moves, j->names[0], j->names[1]};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
@@ -132,7 +133,8 @@ proj_names(const Proj *j, int level)
 }
 
 /* |r_k| over the magnitude of its terms at x (q for positions, v for
- * velocities): sum_i |B_ki x_i|, or bound (below) when larger, and the
+ * velocities): sum_i |B_ki x_i|, or bound when larger (positions: the
+ * magnitude of g_k's own terms, c_scale; velocities: below), and the
  * rest of r_k.  B's row is the constraint's gradient in x, so this is
  * r_k's size against what the state contributes to it.  0 when r_k is
  * exactly 0. */
@@ -193,6 +195,8 @@ levels(Proj *j, double t, const double *q, const double *v, const double *p,
 {
     j->m->c_levels(t, q, v, p, u, j->pos, j->vel);
     j->m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
+    if (j->m->c_scale)
+        j->m->c_scale(t, q, p, u, j->scale);
 }
 
 /* The largest relative residual of a level's rows, its row into *worst;
@@ -211,7 +215,7 @@ level_residual(Proj *j, const double *q, const double *v, int level, int *worst,
     for (int k = 0; k < nr; k++) {
         const double *Bk = j->B + rows[k] * j->n;
         double e = relative_residual(Bk, x, j->n, r[rows[k]],
-                                     level ? velocity_bound(j, Bk, vMv) : 0);
+                                     level ? velocity_bound(j, Bk, vMv) : j->scale[rows[k]]);
         if (each)
             each[rows[k]] = e;
         if (e > big || (k == 0 && worst)) {

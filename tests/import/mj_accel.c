@@ -19,12 +19,33 @@
  *   w = 2 L(e) e',  e' = L(e)^T w / 2,  e'' = (L(e')^T w + L(e)^T w') / 2
  * with L = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0], for a unit e
  * with e.e' = 0 (docs/import.md).
+ *
+ * With equality constraints, MuJoCo's own qacc is soft (its solver
+ * regularizes them), so this takes MuJoCo's parts of the hard-constrained
+ * motion instead: the state is put on the constraints (Newton steps along
+ * -J^T (J J^T)^-1 r on MuJoCo's residuals efc_pos and Jacobian efc_J, the
+ * velocity projected onto J v = 0), and q'' solves
+ *     [M  J^T] [a  ]   [f       ]
+ *     [J  0  ] [lam] = [-J' v   ]
+ * with MuJoCo's M, f = qfrc_smooth and J, by GSL's LU.  J' v is the rate of
+ * J v along the motion, (J(q(s)) v) at s = +-h, +-h/2 (mj_integratePos,
+ * constant v) by central differences and Richardson's extrapolation, its
+ * error O(h^4) = 1e-12 at h = 1e-3.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include <gsl/gsl_linalg.h>
 #include <mujoco/mujoco.h>
+
+enum { NEWTON_MAX = 50, DRAWS_MAX = 100 };
+static const double DIFF_STEP = 1e-3; /* Richardson's h for J' v */
+/* on the constraints: residuals below this, in the test models' lengths
+ * (about 1), where Newton's steps stop at rounding */
+static const double ON_CONSTRAINTS = 1e-12;
 
 /* uniform in [-1.5, 1.5), by splitmix64: the same states everywhere */
 static double
@@ -48,6 +69,140 @@ half_LT(const double *e, const double *w, double *y)
         y[c] = (L[0][c] * w[0] + L[1][c] * w[1] + L[2][c] * w[2]) / 2;
 }
 
+/* The equality rows of the constraint Jacobian and residual at d->qpos
+ * (J: ne x nv, row-major); ne. */
+static int
+eq_rows(const mjModel *m, mjData *d, double *J, double *r)
+{
+    mj_fwdPosition(m, d);
+    int ne = 0, nv = m->nv;
+    for (int i = 0; i < d->nefc; i++)
+        if (d->efc_type[i] == mjCNSTR_EQUALITY) {
+            memcpy(J + (size_t)ne * nv, d->efc_J + (size_t)i * nv, (size_t)nv * sizeof *J);
+            r[ne++] = d->efc_pos[i];
+        }
+    return ne;
+}
+
+/* x -= J^T (J J^T)^-1 J x for x of length nv: b = J x, or the given
+ * residual r where r is not NULL (then x = -J^T (J J^T)^-1 r). */
+static void
+project(int ne, int nv, const double *J, const double *r, double *x)
+{
+    gsl_matrix *A = gsl_matrix_alloc((size_t)ne, (size_t)ne);
+    gsl_vector *b = gsl_vector_alloc((size_t)ne), *y = gsl_vector_alloc((size_t)ne);
+    for (int i = 0; i < ne; i++) {
+        double s = 0;
+        for (int k = 0; k < nv; k++)
+            s += J[i * nv + k] * x[k];
+        gsl_vector_set(b, (size_t)i, r ? r[i] : s);
+        for (int j = 0; j < ne; j++) {
+            double t = 0;
+            for (int k = 0; k < nv; k++)
+                t += J[i * nv + k] * J[j * nv + k];
+            gsl_matrix_set(A, (size_t)i, (size_t)j, t);
+        }
+    }
+    gsl_linalg_cholesky_decomp1(A);
+    gsl_linalg_cholesky_solve(A, b, y);
+    for (int k = 0; k < nv; k++) {
+        double s = 0;
+        for (int i = 0; i < ne; i++)
+            s += J[i * nv + k] * gsl_vector_get(y, (size_t)i);
+        x[k] = r ? -s : x[k] - s;
+    }
+    gsl_matrix_free(A);
+    gsl_vector_free(b);
+    gsl_vector_free(y);
+}
+
+/* J(q(s)) v at q(s) = q moved by s v */
+static void
+jv_at(const mjModel *m, mjData *w, const double *q, const double *v, double s, double *J,
+      double *r, double *out)
+{
+    memcpy(w->qpos, q, (size_t)m->nq * sizeof *q);
+    mj_integratePos(m, w->qpos, v, s);
+    int ne = eq_rows(m, w, J, r), nv = m->nv;
+    for (int i = 0; i < ne; i++) {
+        out[i] = 0;
+        for (int k = 0; k < nv; k++)
+            out[i] += J[i * nv + k] * v[k];
+    }
+}
+
+/* The state put on the equality constraints, and the hard-constrained
+ * q'' there into d->qacc (see the top).  -1 if Newton does not converge. */
+static int
+constrained(const mjModel *m, mjData *d)
+{
+    int nv = m->nv, ne;
+    size_t rows = (size_t)d->nefc + 1;
+    double *J = calloc(rows * (size_t)nv, sizeof *J), *r = calloc(rows, sizeof *r);
+    double *dq = calloc((size_t)nv, sizeof *dq);
+    double last = INFINITY;
+    for (int it = 0;; it++) {
+        ne = eq_rows(m, d, J, r);
+        double rmax = 0;
+        for (int i = 0; i < ne; i++)
+            rmax = fmax(rmax, fabs(r[i]));
+        if (rmax == 0 || rmax >= last || it == NEWTON_MAX)
+            break;
+        last = rmax;
+        project(ne, nv, J, r, dq);
+        mj_integratePos(m, d->qpos, dq, 1);
+    }
+    if (last > ON_CONSTRAINTS) {
+        free(J), free(r), free(dq);
+        return -1;
+    }
+    ne = eq_rows(m, d, J, r);
+    project(ne, nv, J, NULL, d->qvel);
+    mj_forward(m, d);
+    /* J' v by Richardson's extrapolation of central differences */
+    mjData *w = mj_makeData(m);
+    double *Jw = calloc(rows * (size_t)nv, sizeof *Jw), *rw = calloc(rows, sizeof *rw);
+    double *p = calloc(rows, sizeof *p), *n = calloc(rows, sizeof *n);
+    double *g1 = calloc(rows, sizeof *g1), h = DIFF_STEP;
+    jv_at(m, w, d->qpos, d->qvel, h, Jw, rw, p);
+    jv_at(m, w, d->qpos, d->qvel, -h, Jw, rw, n);
+    for (int i = 0; i < ne; i++)
+        g1[i] = (p[i] - n[i]) / (2 * h);
+    jv_at(m, w, d->qpos, d->qvel, h / 2, Jw, rw, p);
+    jv_at(m, w, d->qpos, d->qvel, -h / 2, Jw, rw, n);
+    int W = nv + ne;
+    gsl_matrix *K = gsl_matrix_calloc((size_t)W, (size_t)W);
+    gsl_vector *b = gsl_vector_alloc((size_t)W), *x = gsl_vector_alloc((size_t)W);
+    double *M = calloc((size_t)nv * (size_t)nv, sizeof *M);
+    mj_fullM(m, M, d->qM);
+    for (int i = 0; i < nv; i++) {
+        for (int k = 0; k < nv; k++)
+            gsl_matrix_set(K, (size_t)i, (size_t)k, M[i * nv + k]);
+        gsl_vector_set(b, (size_t)i, d->qfrc_smooth[i]);
+    }
+    for (int i = 0; i < ne; i++) {
+        double g2 = (p[i] - n[i]) / h;
+        gsl_vector_set(b, (size_t)(nv + i), -(4 * g2 - g1[i]) / 3);
+        for (int k = 0; k < nv; k++) {
+            gsl_matrix_set(K, (size_t)(nv + i), (size_t)k, J[i * nv + k]);
+            gsl_matrix_set(K, (size_t)k, (size_t)(nv + i), J[i * nv + k]);
+        }
+    }
+    gsl_permutation *perm = gsl_permutation_alloc((size_t)W);
+    int sign;
+    gsl_linalg_LU_decomp(K, perm, &sign);
+    gsl_linalg_LU_solve(K, perm, b, x);
+    for (int i = 0; i < nv; i++)
+        d->qacc[i] = gsl_vector_get(x, (size_t)i);
+    gsl_permutation_free(perm);
+    gsl_matrix_free(K);
+    gsl_vector_free(b);
+    gsl_vector_free(x);
+    mj_deleteData(w);
+    free(J), free(r), free(dq), free(Jw), free(rw), free(p), free(n), free(g1), free(M);
+    return 0;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -58,23 +213,35 @@ main(int argc, char **argv)
         return 2;
     }
     m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
-                           mjDSBL_EQUALITY | mjDSBL_CLAMPCTRL;
+                           mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
+    m->opt.jacobian = mjJAC_DENSE;
     for (int i = 0; i < m->nu; i++)
         m->actuator_forcelimited[i] = 0;
     mjData *d = mj_makeData(m);
     uint64_t seed = strtoull(argv[2], NULL, 10);
-    for (int i = 0; i < m->nq; i++)
-        d->qpos[i] = uniform(&seed);
-    for (int i = 0; i < m->nv; i++)
-        d->qvel[i] = uniform(&seed);
-    for (int i = 0; i < m->nu; i++)
-        d->ctrl[i] = uniform(&seed);
-    for (int j = 0; j < m->njnt; j++) { /* unit quaternions */
-        int type = m->jnt_type[j];
-        if (type == mjJNT_BALL || type == mjJNT_FREE)
-            mju_normalize4(d->qpos + m->jnt_qposadr[j] + (type == mjJNT_FREE ? 3 : 0));
+    /* with constraints, a draw whose Newton steps do not reach them (a
+     * closed loop that cannot close there) is drawn again */
+    for (int draw = 0;; draw++) {
+        for (int i = 0; i < m->nq; i++)
+            d->qpos[i] = uniform(&seed);
+        for (int i = 0; i < m->nv; i++)
+            d->qvel[i] = uniform(&seed);
+        for (int i = 0; i < m->nu; i++)
+            d->ctrl[i] = uniform(&seed);
+        for (int j = 0; j < m->njnt; j++) { /* unit quaternions */
+            int type = m->jnt_type[j];
+            if (type == mjJNT_BALL || type == mjJNT_FREE)
+                mju_normalize4(d->qpos + m->jnt_qposadr[j] + (type == mjJNT_FREE ? 3 : 0));
+        }
+        mj_forward(m, d);
+        if (!m->neq || constrained(m, d) == 0)
+            break;
+        if (draw == DRAWS_MAX) {
+            fprintf(stderr, "mj_accel: no state of %d drawn converges onto the constraints\n",
+                    DRAWS_MAX);
+            return 3;
+        }
     }
-    mj_forward(m, d);
     double *v = calloc((size_t)m->nq, sizeof *v), *a = calloc((size_t)m->nq, sizeof *a);
     for (int j = 0; j < m->njnt; j++) {
         int type = m->jnt_type[j], q = m->jnt_qposadr[j], dv = m->jnt_dofadr[j];

@@ -21,6 +21,7 @@ humanoid=
 [ -e "$samples/humanoid/humanoid.xml" ] && humanoid="$samples/humanoid/humanoid.xml"
 for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/springs.xml" \
     "$src/tests/import/models/planar_arm.urdf" "$src/tests/import/models/floating.xml" \
+    "$src/tests/import/models/closed.xml" \
     "$tmp/chain5.xml" $humanoid; do
   base=$(basename "$model"); base=${base%.*}
   "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
@@ -51,6 +52,17 @@ for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/spring
   ok $? "$base: q'' equals MuJoCo's qacc at $STATES random states within $worst of the largest (<= $TOL)"
 done
 
+# the closed loop's spec assembles its start (MuJoCo's qpos0: every hinge
+# at 0, where only the magnitude of the constraints' terms measures their
+# residuals) and runs on its constraints
+"$eomc" run "$src/tests/import/models/closed.xml" -o "$tmp/closed.csv" --summary \
+  > /dev/null 2> "$tmp/err"
+st=$?
+res=$(tr '\n' ' ' < "$tmp/err" | sed -n 's/.*largest constraint *residual was \([0-9.e+-]*[0-9]\).*/\1/p')
+[ $st -eq 0 ] && grep -q "assemble: true" "$tmp/closed.yaml" &&
+  awk -v r="$res" 'BEGIN { exit !(r != "" && r + 0 <= 1e-10) }'
+ok $? "closed.xml runs: assembled from qpos0, its constraints held to $res (<= 1e-10)"
+
 "$eomc" run "$src/tests/import/models/arm.xml" --accel > "$tmp/direct0" 2> /dev/null
 # the model file itself where a spec goes: imported first, the same q''
 "$eomc" run "$src/tests/import/models/springs.xml" --accel > "$tmp/direct" 2> "$tmp/err" &&
@@ -75,6 +87,15 @@ XML
 st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: the stiffness of a ball joint is not imported" "$tmp/err"
 ok $? "a ball joint's spring: refused by name, exit 2, nothing written ($(cat "$tmp/err"))"
+cat > "$tmp/weld.xml" <<'XML'
+<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body>
+<body name="c" pos="1 0 0"><joint name="k" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
+<equality><weld name="glue" body1="b" body2="c"/></equality></mujoco>
+XML
+"$eomc" import "$tmp/weld.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "equality constraint glue: weld constraints are not imported yet" "$tmp/err"
+ok $? "a weld: refused by name, exit 2 ($(cat "$tmp/err"))"
 cat > "$tmp/filter.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
 <actuator><general name="slow" joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>

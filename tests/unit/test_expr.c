@@ -246,6 +246,29 @@ test_subst(void)
     CHECK_NEAR(at(h, 0, 0.7), 2 * 0.7 + sin(0.7), 1e-15, "substitution of a constant");
 }
 
+/* The magnitude of terms (lower.c's c_scale): every sum a sum of |terms|,
+ * at a point where the value itself cancels to 0, against the same sum
+ * written out. */
+static void
+test_magnitude(void)
+{
+    ExprId x = expr_var(P, 0, 0), y = expr_var(P, 1, 0);
+    /* g = x - y*(3 - x)/2 + cos(y)/y^2 - 0.5 */
+    ExprId g = expr_sub(P, expr_sub(P, x, expr_div(P, expr_mul(P, y, expr_sub(P,
+                            expr_const(P, 3), x)), expr_const(P, 2))),
+                        expr_const(P, 0.5));
+    g = expr_add(P, g, expr_mul(P, expr_unary(P, EXPR_COS, y), expr_powi(P, y, -2)));
+    ExprId m;
+    expr_magnitude_many(P, 1, &g, &m);
+    double xv = 0.3, yv = -1.1;
+    double want = fabs(xv) + fabs(yv) * (3 + fabs(xv)) / 2 + fabs(cos(yv)) / (yv * yv) + 0.5;
+    CHECK_NEAR(at(m, xv, yv), want, 1e-15, "magnitude of x - y (3 - x)/2 + cos(y)/y^2 - 0.5: "
+               "the sum of its terms' sizes");
+    ExprId zero = EXPR_ZERO, mz;
+    expr_magnitude_many(P, 1, &zero, &mz);
+    CHECK(mz == EXPR_ZERO, "the magnitude of 0 is 0");
+}
+
 /* Pseudo-random points in [lo, hi] (deterministic: a fixed LCG). */
 static double
 rnd(double lo, double hi)
@@ -444,6 +467,7 @@ main(void)
     test_powi();
     test_time_derivative();
     test_subst();
+    test_magnitude();
     test_canonical_products();
     test_pythagorean();
     test_pythagorean_terms();

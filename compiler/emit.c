@@ -740,6 +740,16 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
     const LowFunc *lf = fn->low;
     const LowArgs *a = &fn->args;
     pr->used = 0;
+    for (int k = 0; pr->cur == 0 && k < a->n - a->nin; k++) {
+        const char *arr = a->name[a->nin + k];
+        if (!lf->fill[k])
+            continue;
+        if (a->optional[a->nin + k])
+            println(pr, "    if (%s)", arr);
+        println(pr, "    %sfor (int i = 0; i < %d; i++) /* the nonzeros follow */\n"
+                "    %s    %s[i] = 0.0;", a->optional[a->nin + k] ? "    " : "", lf->fill[k],
+                a->optional[a->nin + k] ? "    " : "", arr);
+    }
     print_leaves(pr, S, lf->nout, lf->out);
     if (S->nparts == 1) { /* silence -Wunused-parameter */
         for (int k = 0; k < NSRC; k++)
@@ -1085,7 +1095,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     const char *nm = pr->s->name;
     int n = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
-    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1};
+    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}};
     func_of(&fj, &jac);
     println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
@@ -1144,7 +1154,7 @@ print_energy_sum(Printer *pr)
 {
     const char *nm = pr->s->name;
     Func fi;
-    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1};
+    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}};
     func_of(&fi, &inv);
     println(pr, "/* %s", lower_invariant_sig.comment);
     println(pr, " * E = T + V, from energy. */");

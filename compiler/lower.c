@@ -171,7 +171,7 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     LowFunc *f = arena_alloc(lw->A, sizeof *f);
     /* all but initial and check, which run before derive */
     int per_step = sig != &s_initial && sig != &s_check_values;
-    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step};
+    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}};
     Lowered *L = lw->L;
     if (L->nfunc == L->cap) {
         L->cap = L->cap ? 2 * L->cap : 32;
@@ -501,6 +501,39 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int loads, int cod
     return tb;
 }
 
+/* Zero slots past which one loop setting the array to 0 is shorter than
+ * their stores (a store is a line of C; the loop is one). */
+enum { LOW_FILL_MIN = 16 };
+
+/* Outputs of mostly zeros filled by a loop (LowFunc.fill), in the
+ * functions the emitter prints slot by slot (not those it wraps in
+ * hand-written loops, nor those reading shared values). */
+static void
+zero_fill(Lowered *L)
+{
+    for (int k = 0; k < L->nfunc; k++) {
+        LowFunc *f = L->func[k];
+        if (f == L->jac_dv || f == L->jac_shared || f == L->accel_solve ||
+            f == L->check_values || f->shared)
+            continue;
+        LowArgs a;
+        lower_args(f->sig, &a);
+        for (int arg = 0; arg < a.n - a.nin; arg++) {
+            int zeros = 0;
+            for (int i = 0; i < f->nout; i++)
+                zeros += f->out[i].arg == arg && f->out[i].e == EXPR_ZERO;
+            if (zeros < LOW_FILL_MIN)
+                continue;
+            f->fill[arg] = lower_size(f, arg);
+            int kept = 0;
+            for (int i = 0; i < f->nout; i++)
+                if (f->out[i].arg != arg || f->out[i].e != EXPR_ZERO)
+                    f->out[kept++] = f->out[i];
+            f->nout = kept;
+        }
+    }
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
             const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
@@ -613,6 +646,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
             out(&lw, f, 0, i, s->check[i].expr);
         lw.L->check_values = f;
     }
+    zero_fill(lw.L);
     lower_derive(&lw);
     return lw.L;
 }
@@ -620,7 +654,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
 int
 lower_size(const LowFunc *f, int arg)
 {
-    int size = 0;
+    int size = f->fill[arg];
     for (int k = 0; k < f->nout; k++)
         if (f->out[k].arg == arg && f->out[k].index + 1 > size)
             size = f->out[k].index + 1;

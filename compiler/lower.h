@@ -48,6 +48,10 @@ typedef struct LowFunc {
     /* Called at every step: reads the parameters' derived values
      * (Lowered.derived) instead of computing them. */
     int per_step;
+    /* Output k's first fill[k] entries are set to 0 first, by a loop, and
+     * its zero slots are not in out: an array of mostly zeros (a
+     * constraint Jacobian's derivatives) is not a line per zero. */
+    int fill[LOW_MAX_ARGS];
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be

@@ -5,6 +5,8 @@
  */
 #include "mech.h"
 
+#include <stdlib.h>
+
 static ExprId
 dot_product(ExprPool *P, int dim, const ExprId *x, const ExprId *y)
 {
@@ -278,11 +280,17 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             add_effect(s, &s->effect[e], m, P, D);
     /* A coordinate whose velocity is not in T has a zero row in M: the
      * spec is wrong, and saying so beats a singular matrix at run time. */
+    /* (by the leaves T reaches, once: a derivative per coordinate would
+     * cost n times T's size) */
+    size_t npool = expr_pool_size(P);
+    unsigned char *in_T = calloc(npool, 1);
+    expr_mark(P, 1, &m->T, in_T);
     for (int i = 0; i < m->n; i++)
-        if (diff_partial(D, m->T, m->q[1][i]) == EXPR_ZERO)
+        if (!in_T[m->q[1][i]])
             diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
                        "energy: it has no inertia, so its row of the mass matrix is zero",
                        s->coord[i].name);
+    free(in_T);
     for (int i = 0; m->gravity[0] != EXPR_NONE && i < 3; i++)
         if (diff_time(D, m->gravity[i]) != EXPR_ZERO) /* not uniform at every instant */
             m->gravity[0] = EXPR_NONE;

@@ -1095,7 +1095,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     const char *nm = pr->s->name;
     int n = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
-    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}};
+    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}};
     func_of(&fj, &jac);
     println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
@@ -1154,7 +1154,7 @@ print_energy_sum(Printer *pr)
 {
     const char *nm = pr->s->name;
     Func fi;
-    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}};
+    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}};
     func_of(&fi, &inv);
     println(pr, "/* %s", lower_invariant_sig.comment);
     println(pr, " * E = T + V, from energy. */");

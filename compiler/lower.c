@@ -171,7 +171,7 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     LowFunc *f = arena_alloc(lw->A, sizeof *f);
     /* all but initial and check, which run before derive */
     int per_step = sig != &s_initial && sig != &s_check_values;
-    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}};
+    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}, {0}};
     Lowered *L = lw->L;
     if (L->nfunc == L->cap) {
         L->cap = L->cap ? 2 * L->cap : 32;
@@ -184,10 +184,44 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     return f;
 }
 
-/* The lists grow by doubling in the arena: at most twice their size. */
+/* Zero slots past which one loop setting the array to 0 is shorter than
+ * their stores (a store is a line of C; the loop is one). */
+enum { LOW_FILL_MIN = 16 };
+
+/* The functions the emitter prints slot by slot: not those it wraps in
+ * hand-written loops (the seeded Jacobian, the solve, the checks; their
+ * fields are set when they are made, before their outputs), nor those
+ * reading shared values. */
+static int
+fillable(const Lowered *L, const LowFunc *f)
+{
+    return f != L->jac_dv && f != L->jac_shared && f != L->accel_solve &&
+           f != L->check_values && !f->shared;
+}
+
+/* The lists grow by doubling in the arena: at most twice their size.  An
+ * output of LOW_FILL_MIN zeros is filled by a loop (LowFunc.fill, its
+ * size so far), and its zeros leave the list: a constraint Jacobian's
+ * derivatives are nc n^2 slots of mostly zeros. */
 static void
 out(Lowering *lw, LowFunc *f, int arg, int index, ExprId e)
 {
+    if (f->fill[arg] && index >= f->fill[arg])
+        f->fill[arg] = index + 1;
+    if (e == EXPR_ZERO && f->fill[arg])
+        return;
+    if (e == EXPR_ZERO && ++f->zeros[arg] == LOW_FILL_MIN && fillable(lw->L, f)) {
+        int kept = 0, size = index + 1;
+        for (int i = 0; i < f->nout; i++) {
+            if (f->out[i].arg == arg && f->out[i].index + 1 > size)
+                size = f->out[i].index + 1;
+            if (f->out[i].arg != arg || f->out[i].e != EXPR_ZERO)
+                f->out[kept++] = f->out[i];
+        }
+        f->nout = kept;
+        f->fill[arg] = size;
+        return;
+    }
     if (f->nout == f->cap) {
         int cap = f->cap ? 2 * f->cap : 16;
         LowSlot *o = arena_new_array(lw->A, LowSlot, cap);
@@ -251,6 +285,7 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
         shared[id] = need[id] ? nw++ : -1;
 
     LowFunc *f = func(lw, &s_jac_shared, "jacobian", 1);
+    lw->L->jac_shared = f; /* before its outputs: fillable() */
     for (size_t id = 0; id < size; id++)
         if (need[id])
             out(lw, f, 0, shared[id], (ExprId)id);
@@ -259,7 +294,6 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
             out(lw, f, 1, i * nu + j, e->dEdu[i * nu + j]);
         out(lw, f, 2, i, e->dEdt[i]);
     }
-    lw->L->jac_shared = f;
     f = func(lw, &s_jac_dq, "jacobian", 1);
     f->shared = shared;
     for (int i = 0; i < n; i++)
@@ -349,6 +383,15 @@ lower_constraints(Lowering *lw, const Constraints *c)
         for (int i = 0; i < n; i++) {
             ExprId b = c->B[a * n + i];
             int row = a * n + i;
+            if (b == EXPR_ZERO) { /* its derivatives too, without taking them */
+                for (int j = 0; j < n; j++)
+                    for (int o = 4; o <= 6; o++)
+                        out(lw, f, o, row * n + j, EXPR_ZERO);
+                for (int l = 0; l < nu; l++)
+                    out(lw, f, 7, row * nu + l, EXPR_ZERO);
+                out(lw, f, 8, row, EXPR_ZERO);
+                continue;
+            }
             for (int j = 0; j < n; j++) {
                 out(lw, f, 4, row * n + j, diff_partial(D, b, expr_var(P, j, 0)));
                 out(lw, f, 5, row * n + j, diff_partial(D, b, expr_var(P, j, 1)));
@@ -501,39 +544,6 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int loads, int cod
     return tb;
 }
 
-/* Zero slots past which one loop setting the array to 0 is shorter than
- * their stores (a store is a line of C; the loop is one). */
-enum { LOW_FILL_MIN = 16 };
-
-/* Outputs of mostly zeros filled by a loop (LowFunc.fill), in the
- * functions the emitter prints slot by slot (not those it wraps in
- * hand-written loops, nor those reading shared values). */
-static void
-zero_fill(Lowered *L)
-{
-    for (int k = 0; k < L->nfunc; k++) {
-        LowFunc *f = L->func[k];
-        if (f == L->jac_dv || f == L->jac_shared || f == L->accel_solve ||
-            f == L->check_values || f->shared)
-            continue;
-        LowArgs a;
-        lower_args(f->sig, &a);
-        for (int arg = 0; arg < a.n - a.nin; arg++) {
-            int zeros = 0;
-            for (int i = 0; i < f->nout; i++)
-                zeros += f->out[i].arg == arg && f->out[i].e == EXPR_ZERO;
-            if (zeros < LOW_FILL_MIN)
-                continue;
-            f->fill[arg] = lower_size(f, arg);
-            int kept = 0;
-            for (int i = 0; i < f->nout; i++)
-                if (f->out[i].arg != arg || f->out[i].e != EXPR_ZERO)
-                    f->out[kept++] = f->out[i];
-            f->nout = kept;
-        }
-    }
-}
-
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
             const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
@@ -617,13 +627,13 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     if (e->acc && (!c || loads) && !tb) {
         /* constrained: free_accel, which the reference does not use */
         f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", c != NULL);
+        lw.L->accel_solve = f; /* before its outputs: fillable() */
         for (int i = 0; i < n; i++)
             out(&lw, f, 1, i, e->piv[i]);
         for (int i = 0; i < n; i++)
             out(&lw, f, 2, i, e->mkk[i]);
         for (int i = 0; i < n; i++)
             out(&lw, f, 0, i, e->acc[i]);
-        lw.L->accel_solve = f;
     }
     if (loads && !tb) {
         ExprId *y = eom_minv(e, m, A, P, D);
@@ -642,11 +652,10 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         lower_events(&lw);
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
+        lw.L->check_values = f; /* before its outputs: fillable() */
         for (int i = 0; i < s->ncheck; i++)
             out(&lw, f, 0, i, s->check[i].expr);
-        lw.L->check_values = f;
     }
-    zero_fill(lw.L);
     lower_derive(&lw);
     return lw.L;
 }

@@ -52,6 +52,7 @@ typedef struct LowFunc {
      * its zero slots are not in out: an array of mostly zeros (a
      * constraint Jacobian's derivatives) is not a line per zero. */
     int fill[LOW_MAX_ARGS];
+    int zeros[LOW_MAX_ARGS]; /* zero slots of each output so far */
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be

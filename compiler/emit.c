@@ -1431,6 +1431,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    %s_c_scale,", nm);
     else
         println(pr, "    NULL, /* no constraints to scale */");
+    if (c && L->held)
+        println(pr, "    c_held,");
+    else
+        println(pr, "    NULL, /* every constraint's row in the unit loads */");
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
@@ -1479,6 +1483,14 @@ print_constraint_tables(Printer *pr, const Constraints *c)
     fprintf(pr->f, "static const int c_dependent[%d] = {", c->nc);
     for (int k = 0; k < c->nc; k++)
         fprintf(pr->f, "%s%d", k ? ", " : "", c->dependent[k]);
+    println(pr, "};\n");
+    if (!pr->L->held)
+        return;
+    println(pr, "/* The recursion's q'' meets these already (a ball's unit quaternion):");
+    println(pr, " * their multipliers are 0, and the unit loads skip them. */");
+    fprintf(pr->f, "static const unsigned char c_held[%d] = {", c->nc);
+    for (int k = 0; k < c->nc; k++)
+        fprintf(pr->f, "%s%d", k ? ", " : "", pr->L->held[k]);
     println(pr, "};\n");
 }
 

@@ -544,6 +544,34 @@ tables_for(const Mech *m, const Eom *e, const Constraints *c, int loads, int cod
     return tb;
 }
 
+/* Lowered.held: a frame's unit quaternion e is met by the articulated
+ * recursion's q'' alone where nothing but the masses and T_joint's
+ * 1/2 c (e.e')^2 acts on e: the masses' forces S^T F have no part along e
+ * (L e = 0), and that term's is c (e.e'' + e'.e'), so q'' keeps e.e'' +
+ * e'.e' = 0 with multiplier 0.  A potential, force or kinetic term of the
+ * spec's own on e may have a part along e (a ball's armature: -2 a |w|^2),
+ * and then the row is solved. */
+static unsigned char *
+held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool *P)
+{
+    if (!c || s->nfquat == 0)
+        return NULL;
+    unsigned char *held = arena_new_array(A, unsigned char, c->nc + 1);
+    unsigned char *inV = calloc(expr_pool_size(P), 1);
+    expr_mark(P, 1, &m->V_rest, inV);
+    int first = c->nc - s->nfquat, any = 0; /* the frames' come last (spec.c) */
+    for (int k = 0; k < c->nc; k++) {
+        held[k] = k >= first;
+        for (int d = 0; held[k] && d < 4; d++) {
+            int i = s->fquat[k - first].q[d];
+            held[k] = !m->in_kinetic[i] && m->Q[i] == EXPR_ZERO && !inV[m->q[0][i]];
+        }
+        any |= held[k];
+    }
+    free(inV);
+    return any ? held : NULL;
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
             const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
@@ -565,6 +593,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     int loads = constraints_by_loads(c, eliminate) && e->acc && e->form->solve;
     const FormTables *tb = tables_for(m, e, c, loads, code, A, P, D, &lw.L->tables_why);
     lw.L->loads = loads;
+    lw.L->held = loads ? held_rows(s, m, c, A, P) : NULL;
     lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;
     lw.L->tables = tb;
     if (tb) {

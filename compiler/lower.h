@@ -105,6 +105,11 @@ typedef struct Lowered {
      * over them (minv NULL).  loads 0 and minv NULL otherwise. */
     LowFunc *minv;
     int loads;
+    /* [nc] with loads: 1 where the recursion's q'' meets the constraint
+     * by itself, its multiplier 0 (a frame's unit quaternion, when no
+     * potential, force or kinetic term of the spec's own acts on its
+     * parameters); NULL: none */
+    unsigned char *held;
     int n;                /* coordinates */
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */

@@ -216,6 +216,14 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         m->T = expr_add(P, m->T, kin[k]);
         m->T_joint = expr_add(P, m->T_joint, kin[k]);
     }
+    m->in_kinetic = arena_new_array(A, unsigned char, s->nq + 1);
+    {
+        unsigned char *mark = calloc(expr_pool_size(P), 1);
+        expr_mark(P, nkin, kin, mark);
+        for (int i = 0; i < s->nq; i++)
+            m->in_kinetic[i] = mark[m->q[0][i]] || mark[m->q[1][i]];
+        free(mark);
+    }
     if (nkin > 0)
         m->S = EXPR_NONE;
     ExprId T0 = m->T;

@@ -24,6 +24,9 @@ typedef struct Mech {
                     * the spec or an effect that is on has kinetic terms
                     * (no S for them) */
     ExprId *Q;     /* [n] generalized non-potential forces */
+    /* [n] 1 where coordinate i or its rate is in a kinetic-energy term
+     * of the spec's or an effect's own (not a mass's) */
+    unsigned char *in_kinetic;
     /* V is V_rest plus the potential of a uniform gravity field (world
      * components, constant in time) on every mass; gravity[0] is
      * EXPR_NONE where there is no such split (V_rest = V). */

@@ -9432,6 +9432,7 @@ const eomc_model bicycle_tree_model = {
     NULL, /* M factored densely (or not at all: accel) */
     bicycle_tree_accel, bicycle_tree_minv, /* the multipliers by unit loads */
     bicycle_tree_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

@@ -374,6 +374,7 @@ const eomc_model cartesian_pendulum_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     cartesian_pendulum_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

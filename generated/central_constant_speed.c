@@ -913,6 +913,7 @@ const eomc_model central_constant_speed_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     central_constant_speed_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

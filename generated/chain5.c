@@ -1721,6 +1721,7 @@ const eomc_model chain5_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     NULL, /* no constraints to scale */
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

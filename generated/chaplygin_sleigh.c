@@ -506,6 +506,7 @@ const eomc_model chaplygin_sleigh_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     chaplygin_sleigh_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

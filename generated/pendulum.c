@@ -244,6 +244,7 @@ const eomc_model pendulum_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     NULL, /* no constraints to scale */
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

@@ -964,6 +964,7 @@ const eomc_model precession_model = {
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
     precession_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

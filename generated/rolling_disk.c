@@ -1471,6 +1471,7 @@ const eomc_model rolling_disk_model = {
     NULL, /* M factored densely (or not at all: accel) */
     rolling_disk_accel, rolling_disk_minv, /* the multipliers by unit loads */
     rolling_disk_c_scale,
+    NULL, /* every constraint's row in the unit loads */
 };
 
 #ifdef EOMC_MAIN

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 14
+#define EOMC_ABI_VERSION 15
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -259,6 +259,12 @@ typedef struct eomc_model {
      * NULL: B q alone. */
     void (*c_scale)(double t, const double *q, const double *p, const double *u,
                     double *mag);
+    /* With free_accel and minv: c_held[k] = 1 where free_accel's q''
+     * already meets constraint k, its multiplier 0 (a ball's unit
+     * quaternion: the recursion puts nothing along e but the inertia that
+     * keeps e.e'' + e'.e' = 0), so the unit loads skip its row.  NULL:
+     * none. */
+    const unsigned char *c_held;
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

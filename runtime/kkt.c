@@ -78,6 +78,8 @@ struct Kkt {
     /* unit loads (m->minv): Y = (M^-1 B^T)^T [nc*n], S = B M^-1 B^T
      * [nc*nc], its relative pivots and permutation [nc] */
     double *Y, *S, *Srel;
+    double *Ylam;               /* [nc] the multipliers of the rows solved, in their order */
+    int *act;                   /* [nc] those rows: the constraints not held (c_held) */
     size_t *Sperm;
     int by_loads;               /* the last kkt_accel solved so: M not formed */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
@@ -122,9 +124,11 @@ kkt_alloc(const eomc_model *m)
     k->dep = calloc(nc ? nc : 1, sizeof *k->dep), k->indep = calloc(n, sizeof *k->indep);
     k->luN = la_lu_alloc((int)N), k->lun = la_lu_alloc((int)n), k->luc = la_lu_alloc((int)nc);
     k->Y = zeros(nc * n), k->S = zeros(nc * nc), k->Srel = zeros(nc);
+    k->Ylam = zeros(nc), k->act = calloc(nc ? (size_t)nc : 1, sizeof *k->act);
     k->Sperm = calloc(nc ? nc : 1, sizeof *k->Sperm);
     k->q_last = zeros(n), k->v_last = zeros(n), k->u_last = zeros(nu);
     ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
+    ok &= k->Ylam && k->act;
     size_t len = 1;
     for (int c = 0; c < m->nc; c++)
         len += strlen(m->c_names[c]) + strlen(m->q_names[m->c_dependent[c]]) + 8;
@@ -160,6 +164,7 @@ kkt_free(Kkt *k)
         k->dfdt, k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off,
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
         k->dposdt, k->dveldt, k->dep, k->indep, k->names, k->Y, k->S, k->Srel, k->Sperm,
+        k->Ylam, k->act,
         k->q_last, k->v_last, k->u_last,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
@@ -465,25 +470,35 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
             const double *u, double *a)
 {
     const eomc_model *m = k->m;
-    int n = k->n, nc = k->nc;
+    int n = k->n, nc = k->nc, na = 0;
     double pivot = 1;
     if (m->free_accel(t, q, v, p, u, a, &pivot) != 0)
         return -1;
     eval_constraint(k, t, q, v, a, p, u); /* f(a_f) and B */
+    /* the rows the recursion does not hold by itself (c_held): a ball's
+     * unit constraint is met by a_f, its multiplier 0 */
     for (int c = 0; c < nc; c++)
-        m->minv(t, q, v, p, u, k->B + c * n, k->Y + c * n);
-    for (int c = 0; c < nc; c++)
-        for (int d = 0; d <= c; d++)
-            k->S[c * nc + d] = k->S[d * nc + c] = la_dot(k->B + c * n, k->Y + d * n, n);
-    if (la_ldlt_factor(k->S, nc, k->Srel, k->Sperm) != 0)
+        if (!m->c_held || !m->c_held[c])
+            k->act[na++] = c;
+        else
+            k->lam[c] = 0;
+    for (int r = 0; r < na; r++)
+        m->minv(t, q, v, p, u, k->B + k->act[r] * n, k->Y + r * n);
+    for (int r = 0; r < na; r++)
+        for (int d = 0; d <= r; d++)
+            k->S[r * na + d] = k->S[d * na + r] = la_dot(k->B + k->act[r] * n, k->Y + d * n, n);
+    if (na && la_ldlt_factor(k->S, na, k->Srel, k->Sperm) != 0)
         return -1;
-    memcpy(k->lam, k->f, (size_t)nc * sizeof *k->lam);
-    la_ldlt_solve(k->S, nc, k->Sperm, k->lam);
-    for (int c = 0; c < nc; c++) {
-        if (k->Srel[c] < pivot)
-            pivot = k->Srel[c];
+    for (int r = 0; r < na; r++)
+        k->Ylam[r] = k->f[k->act[r]];
+    if (na)
+        la_ldlt_solve(k->S, na, k->Sperm, k->Ylam);
+    for (int r = 0; r < na; r++) {
+        k->lam[k->act[r]] = k->Ylam[r];
+        if (k->Srel[r] < pivot)
+            pivot = k->Srel[r];
         for (int i = 0; i < n; i++)
-            a[i] -= k->Y[c * n + i] * k->lam[c];
+            a[i] -= k->Y[r * n + i] * k->Ylam[r];
     }
     k->pivot_loads = pivot;
     k->t_last = t, k->p_last = p;

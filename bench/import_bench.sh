@@ -1,0 +1,56 @@
+#!/bin/sh
+# MuJoCo's own sample models (Debian's libmujoco-samples) imported and
+# built by eomc, timed beside MuJoCo's mj_forward on the same model
+# (issue 23's figures).  One row per model found:
+#   model      the file under /usr/share/mujoco/model
+#   coords     eomc's coordinates (MuJoCo's nq: a free joint has 7)
+#   build_s    wall time of `eomc build MODEL.xml`: import, derive, cc
+#   form       the form eomc chose, and its code (straight or tables)
+#   ns_rhs     ns per right-hand side (bench/rhs_bench.c: eomc_sim_accel,
+#              the constraints' multipliers included) at q_i = 0.3/(i+1)
+#   mj_ns      ns per mj_forward (bench/mj_bench.c: contact, limits and
+#              friction loss off), at MuJoCo's same-rule state
+#   ratio      mj_ns / ns_rhs (above 1: eomc is the faster)
+#
+# usage: import_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
+# $BENCH_MODELS: the models to run (default: the three below).
+set -eu
+eomc=$1 src=$2 inc=$3 lib=$4 mj=${5:-}
+samples=/usr/share/mujoco/model
+gsl_libs=$(pkg-config --libs gsl)
+cc=${CC:-cc}
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
+
+printf '%-28s %6s %8s %-24s %10s %10s %7s\n' model coords build_s form ns_rhs mj_ns ratio
+for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
+    humanoid100/humanoid100.xml}; do
+  model=$samples/$rel
+  if [ ! -e "$model" ]; then
+    echo "$rel: not installed (apt-get install libmujoco-samples)"
+    continue
+  fi
+  t0=$(now)
+  "$eomc" build "$model" -o "$dir/sim" 2> "$dir/build.err" || { cat "$dir/build.err"; exit 1; }
+  t1=$(now)
+  "$eomc" compile "$model" -o "$dir/m.c" 2> /dev/null
+  name=$(sed -n 's/^const eomc_model \([A-Za-z0-9_]*\)_model = {$/\1/p' "$dir/m.c")
+  form=$(sed -n 's/^ \* form: *\([a-z-]*\).*/\1/p' "$dir/m.c" | head -1)
+  code=straight
+  grep -q '#include "eomc_tree.h"' "$dir/m.c" && code=tables
+  coords=$(awk '/^const eomc_model .*_model = \{$/ { getline; getline; split($0, a, ",")
+                print a[1] + 0; exit }' "$dir/m.c")
+  $cc -std=c11 -O1 -I"$inc" -c "$dir/m.c" -o "$dir/m.o"
+  $cc -std=c11 -O1 -I"$inc" -DMODEL="${name}_model" "$src/bench/rhs_bench.c" "$dir/m.o" \
+    "$lib" $gsl_libs -lm -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/rhs"
+  ns=$("$dir/rhs" 2> /dev/null | awk '{ print $1 }')
+  mjns=- ratio=-
+  if [ -n "$mj" ]; then
+    mjns=$("$mj" "$model")
+    ratio=$(awk -v a="$mjns" -v b="$ns" 'BEGIN { printf "%.2f", a / b }')
+  fi
+  printf '%-28s %6s %8s %-24s %10s %10s %7s\n' "$rel" "$coords" \
+    "$(elapsed "$t0" "$t1")" "$form/$code" "$ns" "$mjns" "$ratio"
+done

@@ -7,6 +7,9 @@
  *   mj_accel MODEL SEED   ->   a line of nq coordinates q, a line of nq
  *                              rates q', a line of nu controls (empty
  *                              without actuators), then q'' one per line
+ *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
+ *                              an eomc run), "t x y z" of the whole model's
+ *                              centre of mass there (MuJoCo's kinematics)
  *
  * Controls are neither clamped to their ranges nor forces to theirs, as
  * the import drops both.  The state: each hinge and slide coordinate, each
@@ -203,6 +206,29 @@ constrained(const mjModel *m, mjData *d)
     return 0;
 }
 
+/* The com mode (the top): 0, or 2 on a short line. */
+static int
+centre_of_mass(const mjModel *m)
+{
+    mjData *d = mj_makeData(m);
+    double t;
+    int rc = 0;
+    while (scanf("%lf", &t) == 1) {
+        for (int i = 0; i < m->nq; i++)
+            if (scanf("%lf", &d->qpos[i]) != 1) {
+                fprintf(stderr, "mj_accel: a row has fewer than nq = %d coordinates\n", m->nq);
+                rc = 2;
+                goto done;
+            }
+        mj_fwdPosition(m, d);
+        printf("%.17g %.17g %.17g %.17g\n", t, d->subtree_com[0], d->subtree_com[1],
+               d->subtree_com[2]);
+    }
+done:
+    mj_deleteData(d);
+    return rc;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -212,6 +238,8 @@ main(int argc, char **argv)
         fprintf(stderr, "mj_accel: %s\n", argc == 3 ? err : "usage: mj_accel MODEL SEED");
         return 2;
     }
+    if (!strcmp(argv[2], "com"))
+        return centre_of_mass(m);
     m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
                            mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
     m->opt.jacobian = mjJAC_DENSE;

@@ -744,6 +744,11 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
         const char *arr = a->name[a->nin + k];
         if (!lf->fill[k])
             continue;
+        if (lf->zeroed >> k & 1) {
+            println(pr, "    /* %s's other entries are 0: the caller's (eomc_model.h, c_nz) */",
+                    arr);
+            continue;
+        }
         if (a->optional[a->nin + k])
             println(pr, "    if (%s)", arr);
         println(pr, "    %sfor (int i = 0; i < %d; i++) /* the nonzeros follow */\n"
@@ -1095,7 +1100,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     const char *nm = pr->s->name;
     int n = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
-    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}};
+    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}, 0};
     func_of(&fj, &jac);
     println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
@@ -1154,7 +1159,7 @@ print_energy_sum(Printer *pr)
 {
     const char *nm = pr->s->name;
     Func fi;
-    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}};
+    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}, 0};
     func_of(&fi, &inv);
     println(pr, "/* %s", lower_invariant_sig.comment);
     println(pr, " * E = T + V, from energy. */");
@@ -1435,6 +1440,15 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    c_held,");
     else
         println(pr, "    NULL, /* every constraint's row in the unit loads */");
+    const LowFunc *cf = c ? lower_find(L, "constraint") : NULL;
+    if (cf && cf->fill[1]) {
+        int nnz = 0;
+        for (int i = 0; i < cf->nout; i++)
+            nnz += cf->out[i].arg == 1;
+        println(pr, "    %d, c_nz,", nnz);
+    } else {
+        println(pr, "    0, NULL, /* B dense */");
+    }
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
     println(pr, "#include \"eomc.h\"");
@@ -1468,6 +1482,13 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "#endif /* EOMC_EXTENDED */");
 }
 
+static int
+int_cmp(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
 /* Names, orders and dependent coordinates of the constraints. */
 static void
 print_constraint_tables(Printer *pr, const Constraints *c)
@@ -1484,6 +1505,20 @@ print_constraint_tables(Printer *pr, const Constraints *c)
     for (int k = 0; k < c->nc; k++)
         fprintf(pr->f, "%s%d", k ? ", " : "", c->dependent[k]);
     println(pr, "};\n");
+    const LowFunc *cf = lower_find(pr->L, "constraint");
+    if (cf && cf->fill[1]) { /* B's zeros are a loop: its other entries */
+        int nnz = 0, *nz = xmalloc(((size_t)cf->nout + 1) * sizeof *nz);
+        for (int i = 0; i < cf->nout; i++)
+            if (cf->out[i].arg == 1)
+                nz[nnz++] = cf->out[i].index;
+        qsort(nz, (size_t)nnz, sizeof *nz, int_cmp);
+        println(pr, "/* The entries of B that can be nonzero (the rest are 0 at every state). */");
+        fprintf(pr->f, "static const int c_nz[%d] = {", nnz ? nnz : 1);
+        for (int i = 0; i < nnz; i++)
+            fprintf(pr->f, "%s%d", i ? ", " : "", nz[i]);
+        println(pr, "%s};\n", nnz ? "" : "0");
+        free(nz);
+    }
     if (!pr->L->held)
         return;
     println(pr, "/* The recursion's q'' meets these already (a ball's unit quaternion):");

@@ -171,7 +171,7 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     LowFunc *f = arena_alloc(lw->A, sizeof *f);
     /* all but initial and check, which run before derive */
     int per_step = sig != &s_initial && sig != &s_check_values;
-    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}, {0}};
+    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}, {0}, 0};
     Lowered *L = lw->L;
     if (L->nfunc == L->cap) {
         L->cap = L->cap ? 2 * L->cap : 32;
@@ -352,6 +352,9 @@ lower_constraints(Lowering *lw, const Constraints *c)
     int n = lw->s->nq, nu = lw->s->nu, nc = c->nc;
     ExprId t = expr_time(P);
     LowFunc *f = func(lw, &s_constraint, "constraint", 0);
+    /* B arrives zeroed where it is mostly zeros: on a model of many free
+     * bodies, setting nc n zeros would cost more than the recursion */
+    f->zeroed = 1u << 1;
     for (int a = 0; a < nc; a++) {
         out(lw, f, 0, a, c->f[a]);
         for (int j = 0; j < n; j++)

@@ -53,6 +53,9 @@ typedef struct LowFunc {
      * constraint Jacobian's derivatives) is not a line per zero. */
     int fill[LOW_MAX_ARGS];
     int zeros[LOW_MAX_ARGS]; /* zero slots of each output so far */
+    /* bit k: output k arrives zeroed (the caller's part of the contract:
+     * eomc_model.h's c_nz), so its fill is not printed */
+    unsigned zeroed;
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be

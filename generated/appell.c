@@ -415,6 +415,7 @@ const eomc_model appell_model = {
     NULL, NULL, /* no unit-load passes */
     appell_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

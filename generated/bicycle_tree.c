@@ -9433,6 +9433,7 @@ const eomc_model bicycle_tree_model = {
     bicycle_tree_accel, bicycle_tree_minv, /* the multipliers by unit loads */
     bicycle_tree_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

@@ -375,6 +375,7 @@ const eomc_model cartesian_pendulum_model = {
     NULL, NULL, /* no unit-load passes */
     cartesian_pendulum_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

@@ -914,6 +914,7 @@ const eomc_model central_constant_speed_model = {
     NULL, NULL, /* no unit-load passes */
     central_constant_speed_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

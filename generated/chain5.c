@@ -1722,6 +1722,7 @@ const eomc_model chain5_model = {
     NULL, NULL, /* no unit-load passes */
     NULL, /* no constraints to scale */
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

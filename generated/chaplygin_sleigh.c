@@ -507,6 +507,7 @@ const eomc_model chaplygin_sleigh_model = {
     NULL, NULL, /* no unit-load passes */
     chaplygin_sleigh_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

@@ -965,6 +965,7 @@ const eomc_model precession_model = {
     NULL, NULL, /* no unit-load passes */
     precession_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

@@ -1472,6 +1472,7 @@ const eomc_model rolling_disk_model = {
     rolling_disk_accel, rolling_disk_minv, /* the multipliers by unit loads */
     rolling_disk_c_scale,
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

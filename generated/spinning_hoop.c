@@ -495,6 +495,7 @@ const eomc_model spinning_hoop_model = {
     NULL, NULL, /* no unit-load passes */
     NULL, /* no constraints to scale */
     NULL, /* every constraint's row in the unit loads */
+    0, NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 15
+#define EOMC_ABI_VERSION 16
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -146,7 +146,7 @@ typedef struct eomc_model {
                                  * they are eliminated */
     int c_affine;               /* every f_k is affine in a: f = B a + f(a = 0) */
     int eliminate;              /* 0: multipliers (KKT), 1: elimination (Maggi) */
-    /* f [nc] and B = df/da [nc*nq] at (t, q, v, a). */
+    /* f [nc] and B = df/da [nc*nq] at (t, q, v, a); B as c_nz says. */
     void (*constraint)(double t, const double *q, const double *v, const double *a,
                        const double *p, const double *u, double *f, double *B);
     /* The constraints at their own level: pos[k] = g_k (holonomic, else 0),
@@ -265,6 +265,13 @@ typedef struct eomc_model {
      * keeps e.e'' + e'.e' = 0), so the unit loads skip its row.  NULL:
      * none. */
     const unsigned char *c_held;
+    /* The entries of B = df/da (indices into [nc*nq], ascending) that
+     * constraint can make nonzero, c_nnz of them; the rest are 0 at every
+     * state, and constraint does not store them: its caller's B must hold
+     * 0 there (allocated zeroed, written only by constraint).  c_nz NULL:
+     * constraint stores every entry. */
+    int c_nnz;
+    const int *c_nz;
 } eomc_model;
 
 /* What an event does: end the run there, report the state and go on, or

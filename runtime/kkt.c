@@ -565,8 +565,15 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     memcpy(k->prev_a, a, (size_t)n * sizeof *a);
     memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
     k->have_prev = 1;
-    for (int i = 0; i < nc * n; i++)
-        k->bmax[i] = fmax(k->bmax[i], fabs(k->B[i]));
+    /* (the entries that can be nonzero: a dense pass over nc n would cost
+     * more than the recursion on a model of many free bodies) */
+    int nnz = m->c_nz ? m->c_nnz : nc * n;
+    for (int j = 0; j < nnz; j++) {
+        int i = m->c_nz ? m->c_nz[j] : j;
+        double b = fabs(k->B[i]);
+        if (b > k->bmax[i])
+            k->bmax[i] = b;
+    }
     return KKT_OK;
 }
 

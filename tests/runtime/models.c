@@ -93,7 +93,7 @@ static const unsigned char no_fixed[8];
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* ... and no outputs nor events (they follow the checks), nor the scene's
  * assembly, nor a sparse mass matrix, nor unit loads. */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL
+#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -197,6 +197,7 @@ const eomc_model osc_event_model = {
     NULL, NULL, /* no unit loads */
     NULL,       /* no c_scale: residuals against B q */
     NULL,       /* no rows held */
+    0, NULL,    /* B dense */
 };
 
 void

@@ -39,7 +39,7 @@ solve_ext(const eomc_model_ext *x, int n, int nc, const long double *p, double t
           const double *q, const double *v, long double *out)
 {
     int N = n + nc, perm[MAXN];
-    long double Q[MAXN], V[MAXN], A0[MAXN] = {0}, M[MAXN * MAXN], h[MAXN], f[MAXN], B[MAXN * MAXN];
+    long double Q[MAXN], V[MAXN], A0[MAXN] = {0}, M[MAXN * MAXN], h[MAXN], f[MAXN], B[MAXN * MAXN] = {0};
     long double K[MAXN * MAXN], d[MAXN], scale[2 * MAXN];
     for (int i = 0; i < n; i++)
         Q[i] = q[i], V[i] = v[i];

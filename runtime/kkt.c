@@ -476,9 +476,11 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
         return -1;
     eval_constraint(k, t, q, v, a, p, u); /* f(a_f) and B */
     /* the rows the recursion does not hold by itself (c_held): a ball's
-     * unit constraint is met by a_f, its multiplier 0 */
+     * unit constraint is met by a_f, its multiplier 0; not with
+     * Baumgarte's terms, which ask more of the row than its own level */
+    int baumgarte = baumgarte_on(k);
     for (int c = 0; c < nc; c++)
-        if (!m->c_held || !m->c_held[c])
+        if (!m->c_held || !m->c_held[c] || baumgarte)
             k->act[na++] = c;
         else
             k->lam[c] = 0;

@@ -262,8 +262,8 @@ typedef struct eomc_model {
     /* With free_accel and minv: c_held[k] = 1 where free_accel's q''
      * already meets constraint k, its multiplier 0 (a ball's unit
      * quaternion: the recursion puts nothing along e but the inertia that
-     * keeps e.e'' + e'.e' = 0), so the unit loads skip its row.  NULL:
-     * none. */
+     * keeps e.e'' + e'.e' = 0), so the unit loads skip its row (unless
+     * Baumgarte's stabilization adds to it).  NULL: none. */
     const unsigned char *c_held;
     /* The entries of B = df/da (indices into [nc*nq], ascending) that
      * constraint can make nonzero, c_nnz of them; the rest are 0 at every

@@ -70,7 +70,8 @@ usage(FILE *f)
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
         "  --extended       (build) also compile the model in extended precision, so\n"
         "                   that the simulator computes its own reference solution\n"
-        "                   (--error, --work-precision, --reference-out).  Done\n"
+        "                   (--error, --work-precision, --reference-out,\n"
+        "                   --accel-extended).  Done\n"
         "                   anyway for a model whose C is one translation unit; a\n"
         "                   large one (two units) gets it only so, or when eomc\n"
         "                   run/accuracy is asked for a reference\n"
@@ -153,7 +154,8 @@ sim_needs_jacobian(const Options *o)
 }
 
 /* Whether the simulator options of `eomc run` ask for a reference
- * solution it must compute (none given by --reference FILE). */
+ * solution it must compute (none given by --reference FILE), or q'' in
+ * extended precision. */
 static int
 sim_needs_twin(const Options *o)
 {
@@ -163,6 +165,7 @@ sim_needs_twin(const Options *o)
         if (!strcmp(a, "--reference") || !strncmp(a, "--reference=", 12))
             return 0;
         needs |= !strcmp(a, "--error") || !strcmp(a, "--work-precision") ||
+                 !strcmp(a, "--accel-extended") ||
                  !strcmp(a, "--errors") || !strncmp(a, "--errors=", 9) ||
                  !strcmp(a, "--reference-out") || !strncmp(a, "--reference-out=", 16);
     }

@@ -41,6 +41,7 @@ typedef struct Cli {
     eomc_run_opts run;
     const char *out;
     int stats, summary, accel, assemble, work_precision, error, linearize, equilibrium;
+    int accel_extended; /* --accel-extended: --accel, solved by the twin */
     int no_assemble;      /* --no-assemble: not even the scene's assembly */
     int scene_assembles;  /* the model's scene says `assemble:` */
     unsigned char *held;  /* [2nq] what the assembly keeps (held_marks) */
@@ -223,7 +224,7 @@ enum Option {
     O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
     /* flags */
     O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_NO_ASSEMBLE, O_WORK_PRECISION, O_ERROR,
-    O_LINEARIZE, O_EQUILIBRIUM, O_HELP, O_VERSION, NOPTIONS,
+    O_LINEARIZE, O_EQUILIBRIUM, O_ACCEL_EXTENDED, O_HELP, O_VERSION, NOPTIONS,
     FIRST_FLAG = O_STATS,
 };
 static const char *const option_names[NOPTIONS] = {
@@ -232,7 +233,7 @@ static const char *const option_names[NOPTIONS] = {
     "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--errors", "--methods", "--tolerances", "--steps", "--csv", "--plot",
     "--target", "--stats", "--summary", "--accel", "--assemble", "--no-assemble",
     "--work-precision",
-    "--error", "--linearize", "--equilibrium", "--help", "--version",
+    "--error", "--linearize", "--equilibrium", "--accel-extended", "--help", "--version",
 };
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
 /* More threads than this are a typo, not a machine. */
@@ -304,6 +305,8 @@ help(const Cli *c, const eomc_model *m)
     printf("  --stats            integrator statistics on stderr\n"
            "  --summary          a paragraph about the run on stderr\n"
            "  --accel            print q'' at the initial state and exit\n"
+           "  --accel-extended   the same, solved in the extended precision of the\n"
+           "                     model's twin (eomc build --extended) and rounded\n"
            "  --error            measure the run's error against the reference solution\n"
            "  --reference FILE   the reference from FILE (a CSV with this simulator's\n"
            "                     columns and rows) instead of computing it\n"
@@ -644,8 +647,10 @@ parse_args(Cli *c, int argc, char **argv, const eomc_model *m)
                 return -1;
             }
             int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble, &c->no_assemble,
-                           &c->work_precision, &c->error, &c->linearize, &c->equilibrium};
+                           &c->work_precision, &c->error, &c->linearize, &c->equilibrium,
+                           &c->accel_extended};
             *flag[k - FIRST_FLAG] = 1;
+            c->accel |= c->accel_extended; /* the same, by the twin */
             continue;
         }
         if (eq)
@@ -1091,19 +1096,20 @@ static void check_consistent(const Cli *c, eomc_sim *sim, const double *x);
 static void suggest_assembly(Cli *c, eomc_sim *sim, const double *x);
 
 static int
-print_accel(Cli *c, eomc_sim *sim, const double *x)
+print_accel(Cli *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    double *a = calloc((size_t)m->nq, sizeof *a);
+    double *a = calloc((size_t)m->nq + (size_t)m->nc + 1, sizeof *a), *lam = a + m->nq;
     char num[NUM_MAX];
     check_consistent(c, sim, x); /* the accelerations of a state the model never reaches */
-    int rc = eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
+    int rc = c->accel_extended ? eomc_reference_accel(sim, ext, c->run.t0, x, a, lam)
+                               : eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
     if (rc == EOMC_OK) {
         for (int i = 0; i < m->nq; i++)
             printf("%s'' %s\n", m->q_names[i], num_shortest(num, a[i]));
         for (int k = 0; k < m->nc; k++)
             printf("lambda[%s] %s\n", m->c_names[k],
-                   num_shortest(num, eomc_sim_multipliers(sim)[k]));
+                   num_shortest(num, c->accel_extended ? lam[k] : eomc_sim_multipliers(sim)[k]));
     } else
         fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     free(a);
@@ -2174,7 +2180,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
                                                            : EOMC_OK) == EOMC_OK)
             rc = c.nsweep || c.sweep_file ? sweep(&c, sim)
                  : sweep_rank() != 0 ? EOMC_OK /* one run: rank 0's */
-                 : c.accel          ? print_accel(&c, sim, x)
+                 : c.accel          ? print_accel(&c, sim, ext, x)
                  : c.linearize || c.equilibrium ? print_linear(&c, sim, x)
                  : c.work_precision ? work_precision(&c, sim, ext, x)
                                     : simulate(&c, sim, ext, x);

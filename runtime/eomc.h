@@ -383,6 +383,13 @@ int eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_ru
 int eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
                         eomc_reference *ref);
 void eomc_reference_free(eomc_reference *ref);
+/* q'' [nq] and the multipliers lam [nc] (NULL: not wanted) at (t, x) as
+ * the model's extended-precision functions solve them, rounded to double:
+ * what eomc_sim_accel computes, carried in long double.  EOMC_EUSAGE
+ * when ext is NULL or not this model's, EOMC_ENUMERIC when the solve
+ * fails there. */
+int eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const double *x,
+                         double *a, double *lam);
 
 /* The last error: "t = 1.25: mass matrix is not positive definite (pivot
  * 2, q2); state q1 = ..., ..." */

@@ -646,6 +646,39 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     return rc;
 }
 
+int
+eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const double *x,
+                     double *a, double *lam)
+{
+    const eomc_model *m = s->m;
+    if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
+        return sim_usage_error(s, "no extended-precision functions of %s to compute q'' "
+                               "with (the model's C compiled again with -DEOMC_EXTENDED, "
+                               "as eomc build --extended does)", m->name);
+    if (m->nc && !m->c_affine && !ext->c_jacobian)
+        return sim_usage_error(s, "the extended-precision functions of %s lack "
+                               "c_jacobian", m->name);
+    Ref r;
+    if (ref_alloc(&r, s, ext) != 0) {
+        ref_free(&r);
+        return sim_usage_error(s, "out of memory for the extended-precision q''");
+    }
+    for (int i = 0; i < r.N; i++)
+        r.X[i] = x[i];
+    int rc = rhs(&r, t, r.X, r.F);
+    for (int i = 0; rc == 0 && i < r.n; i++)
+        a[i] = (double)r.F[r.n + i];
+    for (int k = 0; rc == 0 && lam && k < r.nc; k++)
+        lam[k] = (double)r.lam[k];
+    ref_free(&r);
+    if (rc == 0)
+        return EOMC_OK;
+    if (eomc_sim_accel(s, t, x, x + m->nq, s->a) != EOMC_OK)
+        return EOMC_ENUMERIC; /* that message says why */
+    return sim_numeric_error(s, t, x, x + m->nq, "q'' cannot be solved in extended "
+                             "precision here (the doubles' solve can)");
+}
+
 void
 eomc_reference_free(eomc_reference *ref)
 {

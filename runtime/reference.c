@@ -546,19 +546,31 @@ max_diff(const double *a, const double *b, size_t n)
     return d;
 }
 
+/* EOMC_OK when ext is this model's twin with what a solve needs, else
+ * the usage error saying so (what: what it would compute). */
+static int
+twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
+{
+    const eomc_model *m = s->m;
+    if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
+        return sim_usage_error(s, "no extended-precision functions of %s to compute %s "
+                               "with (the model's C compiled again with -DEOMC_EXTENDED, "
+                               "as eomc build does)", m->name, what);
+    if (m->nc && !m->c_affine && !ext->c_jacobian)
+        return sim_usage_error(s, "the extended-precision functions of %s lack "
+                               "c_jacobian", m->name);
+    return EOMC_OK;
+}
+
 int
 eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
                        const double *x0, eomc_reference *ref)
 {
     const eomc_model *m = s->m;
     memset(ref, 0, sizeof *ref);
-    if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
-        return sim_usage_error(s, "no extended-precision functions of %s to compute a "
-                               "reference with (the model's C compiled again with "
-                               "-DEOMC_EXTENDED, as eomc build does)", m->name);
-    if (m->nc && !m->c_affine && !ext->c_jacobian)
-        return sim_usage_error(s, "the extended-precision functions of %s lack "
-                               "c_jacobian", m->name);
+    int rc = twin_fits(s, ext, "a reference");
+    if (rc != EOMC_OK)
+        return rc;
     if (!(o->t_end >= o->t0) || !(o->dt > 0) || !isfinite(o->t_end) || !isfinite(o->dt))
         return sim_usage_error(s, "the reference needs an output interval and an end "
                                "time after the start");
@@ -580,7 +592,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
         ref->t[k] = eomc_run_row_time(o, k);
     double c0 = sim_seconds(1);
     long budget = STEP_BUDGET;
-    int rc = EOMC_OK;
+    rc = EOMC_OK;
     r.method = EXTRAP_GBS;
     r.detect = 1;
     r.eval_budget = INFINITY;
@@ -651,13 +663,9 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
                      double *a, double *lam)
 {
     const eomc_model *m = s->m;
-    if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
-        return sim_usage_error(s, "no extended-precision functions of %s to compute q'' "
-                               "with (the model's C compiled again with -DEOMC_EXTENDED, "
-                               "as eomc build --extended does)", m->name);
-    if (m->nc && !m->c_affine && !ext->c_jacobian)
-        return sim_usage_error(s, "the extended-precision functions of %s lack "
-                               "c_jacobian", m->name);
+    int fits = twin_fits(s, ext, "q''");
+    if (fits != EOMC_OK)
+        return fits;
     Ref r;
     if (ref_alloc(&r, s, ext) != 0) {
         ref_free(&r);

@@ -6,6 +6,7 @@
 #include "mech.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static ExprId
 dot_product(ExprPool *P, int dim, const ExprId *x, const ExprId *y)
@@ -290,15 +291,16 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
      * spec is wrong, and saying so beats a singular matrix at run time. */
     /* (by the leaves T reaches, once: a derivative per coordinate would
      * cost n times T's size) */
+    /* (in the arena: diag_error may end the compilation here) */
     size_t npool = expr_pool_size(P);
-    unsigned char *in_T = calloc(npool, 1);
+    unsigned char *in_T = arena_alloc(A, npool + 1);
+    memset(in_T, 0, npool + 1);
     expr_mark(P, 1, &m->T, in_T);
     for (int i = 0; i < m->n; i++)
         if (!in_T[m->q[1][i]])
             diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
                        "energy: it has no inertia, so its row of the mass matrix is zero",
                        s->coord[i].name);
-    free(in_T);
     for (int i = 0; m->gravity[0] != EXPR_NONE && i < 3; i++)
         if (diff_time(D, m->gravity[i]) != EXPR_ZERO) /* not uniform at every instant */
             m->gravity[0] = EXPR_NONE;

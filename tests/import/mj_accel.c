@@ -238,8 +238,11 @@ main(int argc, char **argv)
         fprintf(stderr, "mj_accel: %s\n", argc == 3 ? err : "usage: mj_accel MODEL SEED");
         return 2;
     }
-    if (!strcmp(argv[2], "com"))
-        return centre_of_mass(m);
+    if (!strcmp(argv[2], "com")) {
+        int rc = centre_of_mass(m);
+        mj_deleteModel(m);
+        return rc;
+    }
     m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
                            mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
     m->opt.jacobian = mjJAC_DENSE;

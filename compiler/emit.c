@@ -1432,10 +1432,10 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    %s_accel, %s_minv, /* the multipliers by unit loads */", nm, nm);
     else
         println(pr, "    NULL, NULL, /* no unit-load passes */");
-    if (c)
+    if (lower_find(L, "c_scale"))
         println(pr, "    %s_c_scale,", nm);
     else
-        println(pr, "    NULL, /* no constraints to scale */");
+        println(pr, "    NULL, /* no holonomic constraint to scale */");
     if (c && L->held)
         println(pr, "    c_held,");
     else

@@ -365,13 +365,19 @@ lower_constraints(Lowering *lw, const Constraints *c)
         out(lw, f, 0, a, orzero(c->pos[a]));
         out(lw, f, 1, a, orzero(c->vel[a]));
     }
-    f = func(lw, &s_c_scale, "c_levels", 1);
-    ExprId *g = arena_new_array(lw->A, ExprId, nc + 1), *mag = arena_new_array(lw->A, ExprId, nc + 1);
+    int holonomic = 0; /* c_scale only where there is a position level */
     for (int a = 0; a < nc; a++)
-        g[a] = orzero(c->pos[a]);
-    expr_magnitude_many(P, nc, g, mag);
-    for (int a = 0; a < nc; a++)
-        out(lw, f, 0, a, mag[a]);
+        holonomic |= c->pos[a] != EXPR_NONE;
+    if (holonomic) {
+        f = func(lw, &s_c_scale, "c_levels", 1);
+        ExprId *g = arena_new_array(lw->A, ExprId, nc + 1);
+        ExprId *mag = arena_new_array(lw->A, ExprId, nc + 1);
+        for (int a = 0; a < nc; a++)
+            g[a] = orzero(c->pos[a]);
+        expr_magnitude_many(P, nc, g, mag);
+        for (int a = 0; a < nc; a++)
+            out(lw, f, 0, a, mag[a]);
+    }
     /* Newton's method needs c_jacobian only when f is not affine */
     f = func(lw, &s_c_jacobian, "c_jacobian", c->affine);
     for (int a = 0; a < nc; a++) {

@@ -6747,21 +6747,6 @@ bicycle_tree_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     vel[1] = w7;
 }
 
-/* The magnitude of each holonomic constraint's terms (sums of absolute
- * values): what its residual is measured against when the projection
- * decides it holds, where q = 0 leaves B q no size. */
-static void
-bicycle_tree_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
-    const eomc_real *u, eomc_real *mag)
-{
-    (void)q;
-    (void)p;
-    (void)u;
-    (void)t;
-    mag[0] = 0.0;
-    mag[1] = 0.0;
-}
-
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
 bicycle_tree_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -9431,7 +9416,7 @@ const eomc_model bicycle_tree_model = {
     1, a_hold, /* runs start assembled onto the constraints */
     NULL, /* M factored densely (or not at all: accel) */
     bicycle_tree_accel, bicycle_tree_minv, /* the multipliers by unit loads */
-    bicycle_tree_c_scale,
+    NULL, /* no holonomic constraint to scale */
     NULL, /* every constraint's row in the unit loads */
     0, NULL, /* B dense */
 };

@@ -670,20 +670,6 @@ central_constant_speed_c_levels(eomc_real t, const eomc_real *q,
     vel[0] = w11;
 }
 
-/* The magnitude of each holonomic constraint's terms (sums of absolute
- * values): what its residual is measured against when the projection
- * decides it holds, where q = 0 leaves B q no size. */
-static void
-central_constant_speed_c_scale(eomc_real t, const eomc_real *q,
-    const eomc_real *p, const eomc_real *u, eomc_real *mag)
-{
-    (void)q;
-    (void)p;
-    (void)u;
-    (void)t;
-    mag[0] = 0.0;
-}
-
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
 central_constant_speed_c_jacobian(eomc_real t, const eomc_real *q,
@@ -912,7 +898,7 @@ const eomc_model central_constant_speed_model = {
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
-    central_constant_speed_c_scale,
+    NULL, /* no holonomic constraint to scale */
     NULL, /* every constraint's row in the unit loads */
     0, NULL, /* B dense */
 };

@@ -243,7 +243,7 @@ const eomc_model pendulum_model = {
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
     NULL, NULL, /* no unit-load passes */
-    NULL, /* no constraints to scale */
+    NULL, /* no holonomic constraint to scale */
     NULL, /* every constraint's row in the unit loads */
     0, NULL, /* B dense */
 };

@@ -900,21 +900,6 @@ rolling_disk_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     vel[1] = w7;
 }
 
-/* The magnitude of each holonomic constraint's terms (sums of absolute
- * values): what its residual is measured against when the projection
- * decides it holds, where q = 0 leaves B q no size. */
-static void
-rolling_disk_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
-    const eomc_real *u, eomc_real *mag)
-{
-    (void)q;
-    (void)p;
-    (void)u;
-    (void)t;
-    mag[0] = 0.0;
-    mag[1] = 0.0;
-}
-
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
 static void
 rolling_disk_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -1470,7 +1455,7 @@ const eomc_model rolling_disk_model = {
     0, NULL, /* the scene does not assemble */
     NULL, /* M factored densely (or not at all: accel) */
     rolling_disk_accel, rolling_disk_minv, /* the multipliers by unit loads */
-    rolling_disk_c_scale,
+    NULL, /* no holonomic constraint to scale */
     NULL, /* every constraint's row in the unit loads */
     0, NULL, /* B dense */
 };

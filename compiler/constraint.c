@@ -5,7 +5,9 @@
  * The choice, when the spec does not name one: constraints in spec order,
  * each takes the last coordinate (in `coordinates:` order) whose column of
  * df/dq'' is not negligible at the initial state and that no earlier
- * constraint took.  Negligible is relative to the row's own largest entry
+ * constraint took.  Where none is left, an augmenting path (Kuhn's
+ * matching) lets earlier constraints give theirs up for others of their
+ * own.  Negligible is relative to the row's own largest entry
  * there: an entry that is zero only through an identity the DAG does not
  * apply (sin^2 + cos^2 = 1, as kinematics written with frames leaves
  * them) is not identically zero as an expression, yet would make the
@@ -73,9 +75,50 @@ to_acceleration(Constraints *c, Diff *D, int a)
  * only through an identity leaves some 1e-16 of them. */
 #define DEPENDENT_NEGLIGIBLE 1e-12
 
+/* Can constraint a determine coordinate j: it involves the acceleration
+ * of q_j and, where anything in its row stands out at the initial state
+ * (big > 0), that entry is not negligible there? */
+static int
+candidate(const Constraints *c, int a, int j, const double *Bnum, double big)
+{
+    return c->B[a * c->n + j] != EXPR_ZERO &&
+           (big == 0 || fabs(Bnum[a * c->n + j]) > DEPENDENT_NEGLIGIBLE * big);
+}
+
+static double
+row_big(const Constraints *c, int a, const double *Bnum)
+{
+    double big = 0;
+    for (int k = 0; k < c->n; k++)
+        big = fmax(big, fabs(Bnum[a * c->n + k]));
+    return big;
+}
+
+/* Kuhn's augmenting path: constraint a takes a candidate coordinate
+ * (seen: tried on this path), its owner moving to another of its own, and
+ * so on; a dependent the spec names stays.  1 if it found one. */
+static int
+augment(Constraints *c, int a, int *owner, unsigned char *seen, const Spec *s,
+        const double *Bnum)
+{
+    double big = row_big(c, a, Bnum);
+    for (int j = c->n - 1; j >= 0; j--) {
+        if (seen[j] || !candidate(c, a, j, Bnum, big))
+            continue;
+        seen[j] = 1;
+        int o = owner[j];
+        if (o < 0 || (s->constraint[o].dependent < 0 && augment(c, o, owner, seen, s, Bnum))) {
+            owner[j] = a;
+            c->dependent[a] = j;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static void
-choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s,
-                 const double *Bnum)
+choose_dependent(Constraints *c, int a, int *owner, const Spec *s, const double *Bnum,
+                 Arena *A)
 {
     const SpecConstraint *sc = &c->spec[a];
     int n = c->n, j = sc->dependent;
@@ -83,25 +126,31 @@ choose_dependent(Constraints *c, int a, unsigned char *taken, const Spec *s,
         if (c->B[a * n + j] == EXPR_ZERO)
             diag_error(sc->dep_loc, "constraint '%s' does not involve '%s' at acceleration "
                        "level, so it cannot determine it", sc->name, s->coord[j].name);
-    } else {
-        double big = 0;
-        for (int k = 0; k < n; k++)
-            big = fmax(big, fabs(Bnum[a * n + k]));
-        for (j = n - 1; j >= 0; j--)
-            if (!taken[j] && c->B[a * n + j] != EXPR_ZERO &&
-                fabs(Bnum[a * n + j]) > DEPENDENT_NEGLIGIBLE * big)
-                break;
-        if (j < 0) /* nothing stands out at the initial state: as written */
-            for (j = n - 1; j >= 0; j--)
-                if (!taken[j] && c->B[a * n + j] != EXPR_ZERO)
-                    break;
-        if (j < 0)
-            diag_error(sc->loc, "no coordinate is left for constraint '%s' to determine: "
-                       "every coordinate it involves is taken by an earlier constraint "
-                       "(name one with `dependent:`)", sc->name);
+        owner[j] = a;
+        c->dependent[a] = j;
+        return;
     }
-    taken[j] = 1;
-    c->dependent[a] = j;
+    double big = row_big(c, a, Bnum);
+    for (j = n - 1; j >= 0; j--)
+        if (owner[j] < 0 && candidate(c, a, j, Bnum, big))
+            break;
+    if (j < 0) /* nothing stands out at the initial state: as written */
+        for (j = n - 1; j >= 0; j--)
+            if (owner[j] < 0 && c->B[a * n + j] != EXPR_ZERO)
+                break;
+    if (j >= 0) {
+        owner[j] = a;
+        c->dependent[a] = j;
+        return;
+    }
+    /* every coordinate it involves is taken: earlier constraints may take
+     * others of their own (a body held by three rows that all involve the
+     * same few joints) */
+    unsigned char *seen = arena_new_array(A, unsigned char, n);
+    if (!augment(c, a, owner, seen, s, Bnum))
+        diag_error(sc->loc, "no coordinate is left for constraint '%s' to determine: "
+                   "every coordinate it involves is taken by an earlier constraint "
+                   "(name one with `dependent:`)", sc->name);
 }
 
 /* B at the spec's initial state: t = 0, q and q' as `initial:` gives
@@ -144,7 +193,7 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     c->dependent = arena_new_array(A, int, nc);
     c->linear = arena_new_array(A, unsigned char, nc);
     c->affine = 1;
-    unsigned char *taken = arena_new_array(A, unsigned char, n);
+    int *owner = arena_new_array(A, int, n); /* the constraint determining q_j, or -1 */
     ExprId *zero = arena_new_array(A, ExprId, n); /* q'' = 0, for b */
     for (int j = 0; j < n; j++)
         zero[j] = EXPR_ZERO;
@@ -163,12 +212,14 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
         c->affine &= is_linear_in(D, m, c->f[a], 2);
     }
     double *Bnum = initial_B(c, s, A, P);
+    for (int j = 0; j < n; j++)
+        owner[j] = -1;
     for (int a = 0; a < nc; a++) /* named ones first: they are not negotiable */
         if (s->constraint[a].dependent >= 0)
-            choose_dependent(c, a, taken, s, Bnum);
+            choose_dependent(c, a, owner, s, Bnum, A);
     for (int a = 0; a < nc; a++)
         if (s->constraint[a].dependent < 0)
-            choose_dependent(c, a, taken, s, Bnum);
+            choose_dependent(c, a, owner, s, Bnum, A);
     return c;
 }
 

@@ -151,15 +151,30 @@ label(const mjModel *m, int type, int id, char *buf, size_t len)
 
 /* Does the importer write actuator i as an input (a motor or a servo of
  * fixed or affine gain and affine bias, on a hinge or slide), or why not. */
+/* Is tendon t fixed: a linear combination of joint coordinates (MuJoCo's
+ * `fixed` tendon), not a spatial path through sites and wrapping geoms? */
+static int
+fixed_tendon(const mjModel *m, int t)
+{
+    for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+        if (m->wrap_type[w] != mjWRAP_JOINT)
+            return 0;
+    return 1;
+}
+
 static const char *
 actuator_refused(const mjModel *m, int i)
 {
     int trn = m->actuator_trntype[i], j = m->actuator_trnid[2 * i];
-    if (trn != mjTRN_JOINT && trn != mjTRN_JOINTINPARENT)
-        return "only actuators on joints are imported (not on tendons, sites, bodies or "
-               "slider-cranks)";
-    if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE)
+    if (trn == mjTRN_TENDON) {
+        if (!fixed_tendon(m, j))
+            return "only actuators on fixed tendons are imported (not on spatial ones)";
+    } else if (trn != mjTRN_JOINT && trn != mjTRN_JOINTINPARENT) {
+        return "only actuators on joints and fixed tendons are imported (not on sites, "
+               "bodies or slider-cranks)";
+    } else if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE) {
         return "only actuators on hinge and slide joints are imported";
+    }
     if (m->actuator_dyntype[i] != mjDYN_NONE)
         return "its activation dynamics (dyntype) is not imported: the control must be the "
                "force's input itself";
@@ -204,17 +219,25 @@ refused(const mjModel *m, char *err, size_t len)
         int type = m->eq_type[e], j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e];
         if (!m->eq_active[e])
             continue;
-        if (type != mjEQ_CONNECT && type != mjEQ_JOINT)
-            return snprintf(err, len, "equality constraint %s: %s constraints are not imported "
-                            "yet", nm, type == mjEQ_WELD ? "weld" : type == mjEQ_TENDON
-                            ? "tendon" : "distance");
+        if (type == mjEQ_DISTANCE) /* MuJoCo 2.2.2 refuses it itself; later ones lack it */
+            return snprintf(err, len, "equality constraint %s: a distance constraint", nm);
         if (type == mjEQ_JOINT && (!scalar_joint(m, j1) || (j2 >= 0 && !scalar_joint(m, j2))))
             return snprintf(err, len, "equality constraint %s: couples a ball or free joint "
                             "(a joint coupling is between hinges and slides)", nm);
+        if (type == mjEQ_TENDON && (!fixed_tendon(m, j1) || (j2 >= 0 && !fixed_tendon(m, j2))))
+            return snprintf(err, len, "equality constraint %s: couples a spatial tendon (only "
+                            "fixed tendons, sums of joint coordinates, are imported)", nm);
     }
-    if (m->ntendon > 0)
-        return snprintf(err, len, "tendon %s: not imported yet",
-                        label(m, mjOBJ_TENDON, 0, b, sizeof b));
+    for (int t = 0; t < m->ntendon; t++) {
+        const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
+        if (!fixed_tendon(m, t) && (m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0))
+            return snprintf(err, len, "tendon %s: the stiffness or damping of a spatial tendon "
+                            "(only fixed tendons, sums of joint coordinates, are imported)", nm);
+        for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+            if (m->wrap_type[w] == mjWRAP_JOINT && !scalar_joint(m, m->wrap_objid[w]))
+                return snprintf(err, len, "tendon %s: a fixed tendon on a ball or free joint",
+                                nm);
+    }
     return 0;
 }
 
@@ -234,20 +257,23 @@ drop_add(Drop *d, const char *name)
         snprintf(d->names + k, sizeof d->names - k, "%s%.60s", k ? ", " : "", name);
 }
 
-/* "dropped: WHAT KIND name" or "dropped: WHAT n KINDs: a, b, ... and k more" */
+/* "dropped: WHAT KIND name" or "dropped: WHAT n KINDs: a, b, ... and k more"
+ * (WHAT may be empty) */
 static int
 drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const char *kind,
          const char *why)
 {
     if (d->n == 0)
         return 0;
+    const char *sp = *what ? " " : "";
     if (d->n == 1)
-        fprintf(warn, "%s: warning: dropped: %s %s %s (%s)\n", path, what, kind, d->names, why);
+        fprintf(warn, "%s: warning: dropped: %s%s%s %s (%s)\n", path, what, sp, kind, d->names,
+                why);
     else if (d->n <= DROP_NAMED)
-        fprintf(warn, "%s: warning: dropped: %s %d %ss: %s (%s)\n", path, what, d->n, kind,
+        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s (%s)\n", path, what, sp, d->n, kind,
                 d->names, why);
     else
-        fprintf(warn, "%s: warning: dropped: %s %d %ss: %s and %d more (%s)\n", path, what,
+        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s and %d more (%s)\n", path, what, sp,
                 d->n, kind, d->names, d->n - DROP_NAMED, why);
     return 1;
 }
@@ -269,6 +295,16 @@ dropped(const mjModel *m, const char *path, FILE *warn)
         if (any)
             drop_add(&fric, nm);
     }
+    Drop tlim = {0}, tfric = {0}, spatial = {0};
+    for (int t = 0; t < m->ntendon; t++) {
+        const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
+        if (m->tendon_limited[t])
+            drop_add(&tlim, nm);
+        if (m->tendon_frictionloss[t] != 0)
+            drop_add(&tfric, nm);
+        if (!fixed_tendon(m, t))
+            drop_add(&spatial, nm);
+    }
     for (int i = 0; i < m->nu; i++) {
         const char *nm = label(m, mjOBJ_ACTUATOR, i, b, sizeof b);
         if (m->actuator_ctrllimited[i])
@@ -279,8 +315,15 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     int n = 0;
     n += drop_say(warn, path, &lim, "the limits of", "joint",
                   "eomc simulates smooth dynamics: joints move past their limits");
+    n += drop_say(warn, path, &tlim, "the limits of", "tendon",
+                  "eomc simulates smooth dynamics: tendons stretch past their limits");
     n += drop_say(warn, path, &fric, "the friction loss of", "joint",
                   "dry friction is not smooth dynamics");
+    n += drop_say(warn, path, &tfric, "the friction loss of", "tendon",
+                  "dry friction is not smooth dynamics");
+    n += drop_say(warn, path, &spatial, "", "spatial tendon",
+                  "nothing acts along it: no stiffness, damping, actuator or equality "
+                  "constraint uses it");
     n += drop_say(warn, path, &ctrl, "the control range of", "actuator",
                   "an input is applied as given, not clamped");
     n += drop_say(warn, path, &force, "the force range of", "actuator",
@@ -410,6 +453,18 @@ joint_dofs(const mjModel *m, int j)
     }
 }
 
+/* k/2*d^2 into buf, without a factor 1 */
+static const char *
+half_square(char *buf, size_t len, double k, const char *d)
+{
+    char a[NUM_MAX];
+    if (k == 2)
+        snprintf(buf, len, "%s^2", d);
+    else
+        snprintf(buf, len, "%s*%s^2", num(a, k / 2), d);
+    return buf;
+}
+
 /* Opens effect `name`'s list with its first item, or separates the next. */
 static void
 item(FILE *out, int *any, int *first, const char *name)
@@ -430,9 +485,10 @@ item(FILE *out, int *any, int *first, const char *name)
  * rotor's inertia on each dof, 1/2 a v^2 in T; actuators, each one's
  * force on its joint, its control an input. */
 static void
-put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE *out)
+put_effects(const mjModel *m, const char *const *qn, const char *const *un,
+            const char *const *tn, FILE *out)
 {
-    char a[NUM_MAX], d[400], r[400], v[400];
+    char a[NUM_MAX], d[400], r[400], v[400], hs[900];
     int any = 0;
     if (!is_zero3(m->opt.gravity)) {
         fputs("effects:\n  gravity: {gravity: ", out);
@@ -451,6 +507,12 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE
             item(out, &any, &first, "damping");
             fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
         }
+    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's: -b L' along L */
+        if (m->tendon_damping[t] != 0) {
+            item(out, &any, &first, "damping");
+            fprintf(out, "{work: \"%s*%s'*delta(%s)\"}", num(a, -m->tendon_damping[t]), tn[t],
+                    tn[t]);
+        }
     if (!first)
         fputs("]\n", out);
     first = 1;
@@ -461,8 +523,14 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE
         const char *q = qn[m->jnt_qposadr[j]];
         displacement(d, sizeof d, q, m->qpos_spring[m->jnt_qposadr[j]]);
         item(out, &any, &first, "stiffness");
-        fprintf(out, "{potential: \"%s*%s^2\"}", num(a, k / 2), d);
+        fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, k, d));
     }
+    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's, about lengthspring */
+        if (m->tendon_stiffness[t] != 0) {
+            displacement(d, sizeof d, tn[t], m->tendon_lengthspring[t]);
+            item(out, &any, &first, "stiffness");
+            fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, m->tendon_stiffness[t], d));
+        }
     if (!first)
         fputs("]\n", out);
     first = 1;
@@ -480,7 +548,9 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE
     first = 1;
     for (int i = 0; i < m->nu; i++) {
         char w[2000];
-        actuator_work(w, sizeof w, m, i, qn[m->jnt_qposadr[m->actuator_trnid[2 * i]]], un[i]);
+        int id = m->actuator_trnid[2 * i];
+        actuator_work(w, sizeof w, m, i, m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
+                      : qn[m->jnt_qposadr[id]], un[i]);
         item(out, &any, &first, "actuators");
         fprintf(out, "{work: \"%s\"}", w);
     }
@@ -488,12 +558,39 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un, FILE
         fputs("]\n", out);
 }
 
-/* The active equality constraints, as holonomic constraints: a connect
- * as its two anchors' offset, one constraint per world axis (NAME_x,
- * NAME_y, NAME_z); a joint coupling q1 - q1_0 = c0 + c1 (q2 - q2_0) + ...
- * + c4 (q2 - q2_0)^4 (q_0 their qpos0; without a second joint, c0). */
+/* Scalar e's displacement from its value at qpos0, for an equality
+ * constraint: joint e's coordinate (joint: nonzero), or fixed tendon e's
+ * length, in parentheses. */
 static void
-put_constraints(const mjModel *m, const char *const *qn, const char *const *eqn, FILE *out)
+scalar_of(char *buf, size_t len, const mjModel *m, const char *const *qn,
+          const char *const *tn, int joint, int e)
+{
+    char a[NUM_MAX];
+    if (joint) {
+        int q = m->jnt_qposadr[e];
+        displacement(buf, len, qn[q], m->qpos0[q]);
+    } else if (m->tendon_length0[e] == 0) {
+        snprintf(buf, len, "%s", tn[e]);
+    } else {
+        snprintf(buf, len, "(%s %s %s)", tn[e], m->tendon_length0[e] < 0 ? "+" : "-",
+                 num(a, fabs(m->tendon_length0[e])));
+    }
+}
+
+/* The active equality constraints, as holonomic constraints:
+ * - a connect as its two anchors' offset, one constraint per world axis
+ *   (NAME_x, NAME_y, NAME_z);
+ * - a weld as the same, and (unless its torquescale is 0, which leaves the
+ *   turn free) the turn R = A^T B from body 1's turned axes A to body 2's B
+ *   held at the identity by its skew part, R - R^T = 2 sin(th) [n]x:
+ *   NAME_rx = dot(A.z, B.y) - dot(A.y, B.z) and its cyclic shifts, whose
+ *   rows span MuJoCo's (the quaternion's vector part, sin(th/2) n) there;
+ * - a joint or tendon coupling s1 - s1_0 = c0 + c1 (s2 - s2_0) + ... +
+ *   c4 (s2 - s2_0)^4 (s_0 their qpos0 values; without a second, c0). */
+static void
+put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
+                const char *const *eqn, const char *const *eqp, const char *const *axes,
+                FILE *out)
 {
     char d1[400], d2[400];
     int any = 0;
@@ -501,20 +598,29 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *eqn,
         if (!m->eq_active[e])
             continue;
         fputs(any++ ? "" : "constraints:\n", out);
-        if (m->eq_type[e] == mjEQ_CONNECT) {
+        int type = m->eq_type[e];
+        const double *c = m->eq_data + mjNEQDATA * e;
+        if (type == mjEQ_CONNECT || type == mjEQ_WELD) {
             for (int k = 0; k < 3; k++)
-                fprintf(out, "  %s_%c: \"dot(pos(%s_1, %s_2), world.%c)\"\n", eqn[e], 'x' + k,
-                        eqn[e], eqn[e], 'x' + k);
+                fprintf(out, "  %s_%c: \"dot(pos(%s, %s), world.%c)\"\n", eqn[e], 'x' + k,
+                        eqp[3 * e], eqp[3 * e + 1], 'x' + k);
+            if (type == mjEQ_CONNECT || c[10] == 0)
+                continue;
+            int b2 = m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e];
+            const char *A = eqp[3 * e + 2], *B = axes[b2];
+            for (int k = 0; k < 3; k++) {
+                char i = (char)('x' + (k + 1) % 3), j = (char)('x' + (k + 2) % 3);
+                fprintf(out, "  %s_r%c: \"dot(%s.%c, %s.%c) - dot(%s.%c, %s.%c)\"\n", eqn[e],
+                        'x' + k, A, j, B, i, A, i, B, j);
+            }
             continue;
         }
-        const double *c = m->eq_data + mjNEQDATA * e;
-        int j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e], q1 = m->jnt_qposadr[j1];
-        displacement(d1, sizeof d1, qn[q1], m->qpos0[q1]);
+        int joint = type == mjEQ_JOINT, s1 = m->eq_obj1id[e], s2 = m->eq_obj2id[e];
+        scalar_of(d1, sizeof d1, m, qn, tn, joint, s1);
         char poly[2000] = "";
         term(poly, sizeof poly, c[0], NULL);
-        if (j2 >= 0) {
-            int q2 = m->jnt_qposadr[j2];
-            displacement(d2, sizeof d2, qn[q2], m->qpos0[q2]);
+        if (s2 >= 0) {
+            scalar_of(d2, sizeof d2, m, qn, tn, joint, s2);
             for (int k = 1; k <= 4; k++) {
                 char f[420];
                 snprintf(f, sizeof f, k == 1 ? "%s" : "%s^%d", d2, k);
@@ -598,9 +704,25 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     /* an actuator's control: an input u_NAME, 0 as in MuJoCo's mjData
      * until --set (or a scene) gives it a value or a signal */
     const char **un = xmalloc(((size_t)m->nu + 1) * sizeof *un);
+    /* a fixed tendon: a define, its length as MuJoCo's ten_length */
+    const char **tn = xmalloc(((size_t)m->ntendon + 1) * sizeof *tn);
+    int defines = 0;
+    for (int t = 0; t < m->ntendon; t++) {
+        snprintf(fb, sizeof fb, "tendon%d", t);
+        tn[t] = unique(&N, m->names + m->name_tendonadr[t], fb);
+        if (!fixed_tendon(m, t))
+            continue;
+        char len_t[4000] = "";
+        for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+            term(len_t, sizeof len_t, m->wrap_prm[w], qn[m->jnt_qposadr[m->wrap_objid[w]]]);
+        fprintf(out, "%s  %s: \"%s\"\n", defines++ ? "" : "define:\n", tn[t],
+                *len_t ? len_t : "0");
+    }
     for (int i = 0; i < m->nu; i++) {
         const char *an = mj_id2name(m, mjOBJ_ACTUATOR, i);
-        snprintf(nm, sizeof nm, "u_%s", an && *an ? an : coord[m->actuator_trnid[2 * i]]);
+        int id = m->actuator_trnid[2 * i];
+        snprintf(nm, sizeof nm, "u_%s", an && *an ? an
+                 : m->actuator_trntype[i] == mjTRN_TENDON ? tn[id] : coord[id]);
         un[i] = unique(&N, nm, nm);
         fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
     }
@@ -704,23 +826,38 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         put_vec(P, m->body_ipos + 3 * b);
         fputs("}\n", P);
     }
-    /* a connect constraint's anchors: on body 1 (eq_data 0..2, in its
-     * axes) and on body 2 (3..5: where MuJoCo's compiler put the same
-     * point at qpos0) */
+    /* a connect's anchors: on body 1 (eq_data 0..2, in its axes) and on
+     * body 2 (3..5: where MuJoCo's compiler put the same point at qpos0).
+     * A weld's the other way round: 3..5 on body 1 (its relpose), 0..2 on
+     * body 2 (its anchor); and body 1's axes turned by the relpose's
+     * quaternion (6..9), which the weld holds on body 2's.  eqp: for each
+     * equality, the two points and that frame. */
     const char **eqn = xmalloc(((size_t)m->neq + 1) * sizeof *eqn);
+    const char **eqp = xmalloc((3 * (size_t)m->neq + 1) * sizeof *eqp);
     for (int e = 0; e < m->neq; e++) {
         snprintf(fb, sizeof fb, "equality%d", e);
         eqn[e] = unique(&N, m->names + m->name_eqadr[e], fb);
-        if (!m->eq_active[e] || m->eq_type[e] != mjEQ_CONNECT)
+        int type = m->eq_type[e];
+        if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD))
             continue;
+        const double *c = m->eq_data + mjNEQDATA * e;
         for (int k = 0; k < 2; k++) {
             int bb = k ? m->eq_obj2id[e] : m->eq_obj1id[e];
             bb = bb < 0 ? 0 : bb;
             snprintf(nm, sizeof nm, "%s_%d", eqn[e], k + 1);
-            const char *an = unique(&N, nm, nm);
+            const char *an = eqp[3 * e + k] = unique(&N, nm, nm);
             fprintf(P, "  %s: {frame: %s, from: %s, at: ", an, axes[bb], origin[bb]);
-            put_vec(P, m->eq_data + mjNEQDATA * e + 3 * k);
+            put_vec(P, c + 3 * (type == mjEQ_WELD ? 1 - k : k));
             fputs("}\n", P);
+        }
+        int b1 = m->eq_obj1id[e] < 0 ? 0 : m->eq_obj1id[e];
+        eqp[3 * e + 2] = axes[b1];
+        if (type == mjEQ_WELD && (c[7] != 0 || c[8] != 0 || c[9] != 0)) {
+            snprintf(nm, sizeof nm, "%s_axes", eqn[e]);
+            eqp[3 * e + 2] = unique(&N, nm, nm);
+            fprintf(F, "  %s: {parent: %s, rotation: [", eqp[3 * e + 2], axes[b1]);
+            put_fixed_turn(F, c + 6);
+            fputs("]}\n", F);
         }
     }
     fclose(F);
@@ -750,8 +887,8 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         }
         fputs("]}\n", out);
     }
-    put_effects(m, qn, un, out);
-    put_constraints(m, qn, eqn, out);
+    put_effects(m, qn, un, tn, out);
+    put_constraints(m, qn, tn, eqn, eqp, axes, out);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
         if (m->qpos0[q] != 0)
@@ -769,7 +906,9 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(coord);
     free(qn);
     free(un);
+    free(tn);
     free(eqn);
+    free(eqp);
     names_free(&N);
     mj_deleteModel(m);
     return 0;

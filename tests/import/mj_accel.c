@@ -73,17 +73,24 @@ half_LT(const double *e, const double *w, double *y)
 }
 
 /* The equality rows of the constraint Jacobian and residual at d->qpos
- * (J: ne x nv, row-major); ne. */
+ * (J: ne x nv, row-major); ne.  A row that is zero everywhere is left
+ * out: a weld's turn with torquescale 0 (MuJoCo scales those rows by it,
+ * and the weld holds only the anchor's position). */
 static int
 eq_rows(const mjModel *m, mjData *d, double *J, double *r)
 {
     mj_fwdPosition(m, d);
     int ne = 0, nv = m->nv;
-    for (int i = 0; i < d->nefc; i++)
-        if (d->efc_type[i] == mjCNSTR_EQUALITY) {
-            memcpy(J + (size_t)ne * nv, d->efc_J + (size_t)i * nv, (size_t)nv * sizeof *J);
+    for (int i = 0; i < d->nefc; i++) {
+        const double *row = d->efc_J + (size_t)i * nv;
+        int any = 0;
+        for (int k = 0; k < nv; k++)
+            any |= row[k] != 0;
+        if (d->efc_type[i] == mjCNSTR_EQUALITY && any) {
+            memcpy(J + (size_t)ne * nv, row, (size_t)nv * sizeof *J);
             r[ne++] = d->efc_pos[i];
         }
+    }
     return ne;
 }
 

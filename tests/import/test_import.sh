@@ -28,7 +28,7 @@ for m in humanoid/humanoid.xml humanoid/22_humanoids.xml humanoid100/humanoid100
 done
 for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/springs.xml" \
     "$src/tests/import/models/planar_arm.urdf" "$src/tests/import/models/floating.xml" \
-    "$src/tests/import/models/closed.xml" "$src/specs/arm.urdf" "$src/specs/floating_base.xml" \
+    "$src/tests/import/models/closed.xml" "$src/tests/import/models/welded.xml" "$src/specs/arm.urdf" "$src/specs/floating_base.xml" \
     "$tmp/chain5.xml" $humanoid; do
   base=$(basename "$model"); base=${base%.*}_${base##*.} # arm.xml and arm.urdf apart
   "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
@@ -69,6 +69,11 @@ for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/spring
     [ $fails -eq 0 ]
   ok $? "$base: q'' equals MuJoCo's qacc at $states random states within $worst of the largest (<= $TOL)${ext:+; against eomc's extended-precision solve: eomc's doubles $own (<= $OWN), MuJoCo's $mjx}"
 done
+
+# the spatial tendon that nothing uses is dropped by name
+"$eomc" import "$src/tests/import/models/welded.xml" 2>&1 > /dev/null |
+  grep -q "warning: dropped: spatial tendon cable (nothing acts along it"
+ok $? "welded.xml: its unused spatial tendon dropped by name"
 
 # the closed loop's spec assembles its start (MuJoCo's qpos0: every hinge
 # at 0, where only the magnitude of the constraints' terms measures their
@@ -125,15 +130,21 @@ XML
 st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "joint j: the stiffness of a ball joint is not imported" "$tmp/err"
 ok $? "a ball joint's spring: refused by name, exit 2, nothing written ($(cat "$tmp/err"))"
-cat > "$tmp/weld.xml" <<'XML'
-<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body>
-<body name="c" pos="1 0 0"><joint name="k" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
-<equality><weld name="glue" body1="b" body2="c"/></equality></mujoco>
+cat > "$tmp/cable.xml" <<'XML'
+<mujoco><worldbody><site name="top" pos="0 0 1"/><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/>
+<site name="tip" pos="0 0 -0.5"/></body></worldbody>
+<tendon><spatial name="cable" stiffness="3"><site site="top"/><site site="tip"/></spatial></tendon></mujoco>
 XML
-"$eomc" import "$tmp/weld.xml" > "$tmp/out" 2> "$tmp/err"
+"$eomc" import "$tmp/cable.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "equality constraint glue: weld constraints are not imported yet" "$tmp/err"
-ok $? "a weld: refused by name, exit 2 ($(cat "$tmp/err"))"
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "tendon cable: the stiffness or damping of a spatial tendon" "$tmp/err"
+ok $? "a spatial tendon's spring: refused by name, exit 2 ($(cat "$tmp/err"))"
+sed 's|stiffness="3"||; s|</tendon>|<fixed name="f"><joint joint="j" coef="1"/></fixed></tendon><equality><tendon name="tie" tendon1="f" tendon2="cable"/></equality>|' \
+  "$tmp/cable.xml" > "$tmp/tie.xml"
+"$eomc" import "$tmp/tie.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "equality constraint tie: couples a spatial tendon" "$tmp/err"
+ok $? "a tendon equality on a spatial tendon: refused by name, exit 2 ($(cat "$tmp/err"))"
 cat > "$tmp/filter.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
 <actuator><general name="slow" joint="j" dyntype="filter" dynprm="0.1"/></actuator></mujoco>
@@ -147,6 +158,7 @@ cat > "$tmp/dropped.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" limited="true" range="-1 1" frictionloss="0.2"/>
 <geom size="0.1"/><body pos="0 0 -0.3"><joint name="k" axis="1 0 0" limited="true" range="-1 1"/><geom size="0.1"/>
 <body pos="0 0 -0.3"><joint axis="1 0 0" limited="true" range="-1 1"/><geom size="0.1"/></body></body></body></worldbody>
+<tendon><fixed name="tf" limited="true" range="-1 1" frictionloss="0.1"><joint joint="j" coef="1"/></fixed></tendon>
 <actuator><motor joint="j" ctrllimited="true" ctrlrange="-1 1"/><motor name="m2" joint="k" forcelimited="true" forcerange="-2 2"/></actuator></mujoco>
 XML
 "$eomc" import "$tmp/dropped.xml" > "$tmp/out" 2> "$tmp/err"
@@ -157,8 +169,10 @@ st=$?
   grep -q "warning: dropped: the control range of actuator #0 (an input is applied as given" "$tmp/err" &&
   grep -q "warning: dropped: the force range of actuator m2 (an actuator's force is not clamped)" "$tmp/err" &&
   grep -q "warning: dropped: contacts between its 3 colliding geoms" "$tmp/err" &&
-  [ $(wc -l < "$tmp/err") -eq 5 ]
-ok $? "limits, friction loss, control and force ranges, contacts: one warning each, naming what is dropped, exit 0"
+  grep -q "warning: dropped: the limits of tendon tf (eomc simulates smooth dynamics: tendons stretch" "$tmp/err" &&
+  grep -q "warning: dropped: the friction loss of tendon tf (dry friction" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 7 ]
+ok $? "limits, friction loss (of joints and tendons), control and force ranges, contacts: one warning each, naming what is dropped, exit 0"
 "$eomc" import "$tmp/dropped.xml" --strict -o "$tmp/strict.yaml" > "$tmp/out" 2> "$tmp/err"
 st=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/strict.yaml" ] && grep -q "error: --strict" "$tmp/err"

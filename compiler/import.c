@@ -41,6 +41,8 @@ import_available(void)
 typedef struct Names {
     char **name;
     int n, cap;
+    FILE *warn; /* where a renamed element is told */
+    const char *path;
 } Names;
 
 static int
@@ -86,6 +88,23 @@ unique(Names *N, const char *raw, const char *fallback)
         N->name = xrealloc(N->name, (size_t)N->cap * sizeof *N->name);
     }
     return N->name[N->n++] = s;
+}
+
+/* unique() for an element's name that the user reads (a joint, body,
+ * tendon, actuator's input or equality): where it had to take a suffix
+ * since another has its name, a warning says so. */
+static const char *
+named(Names *N, const char *kind, const char *raw, const char *fallback)
+{
+    const char *s = unique(N, raw, fallback);
+    size_t k;
+    const char *from = raw && *raw ? raw : fallback;
+    char *want = ident(from, &k);
+    if (strcmp(s, want))
+        fprintf(N->warn, "%s: warning: renamed: %s '%s' is '%s' in the spec ('%s' is another's "
+                "name)\n", N->path, kind, from, s, want);
+    free(want);
+    return s;
 }
 
 static void
@@ -661,7 +680,8 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         mj_deleteModel(m);
         return -1;
     }
-    Names N = {0};
+    /* bodies have a namespace of their own in a spec; the rest share one */
+    Names N = {.warn = warn, .path = path}, NB = N;
     int nb = m->nbody;
     const char **body = xmalloc((size_t)nb * sizeof *body), **axes = xmalloc((size_t)nb * sizeof *axes);
     const char **origin = xmalloc((size_t)nb * sizeof *origin);
@@ -675,18 +695,18 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     static const char *const part[7] = {"_x", "_y", "_z", "_qw", "_qx", "_qy", "_qz"};
     for (int j = 0; j < m->njnt; j++) {
         snprintf(fb, sizeof fb, "%s_joint%d", m->names + m->name_bodyadr[m->jnt_bodyid[j]], j);
-        coord[j] = unique(&N, m->names + m->name_jntadr[j], fb);
+        coord[j] = named(&N, "joint", m->names + m->name_jntadr[j], fb);
         int adr = m->jnt_qposadr[j], type = m->jnt_type[j];
         int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
         for (int d = 0; d < nq; d++) {
             snprintf(nm, sizeof nm, "%s%s", coord[j], part[d + 7 - nq]);
-            qn[adr + d] = nq == 1 ? coord[j] : unique(&N, nm, nm);
+            qn[adr + d] = nq == 1 ? coord[j] : named(&N, "coordinate", nm, nm);
         }
     }
     body[0] = "world", axes[0] = "world", origin[0] = "origin";
     for (int b = 1; b < nb; b++) {
         snprintf(fb, sizeof fb, "body%d", b);
-        body[b] = unique(&N, m->names + m->name_bodyadr[b], fb);
+        body[b] = named(&NB, "body", m->names + m->name_bodyadr[b], fb);
     }
     size_t k;
     char *model = ident(*m->names ? m->names : "imported", &k); /* the model's name first */
@@ -709,7 +729,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     int defines = 0;
     for (int t = 0; t < m->ntendon; t++) {
         snprintf(fb, sizeof fb, "tendon%d", t);
-        tn[t] = unique(&N, m->names + m->name_tendonadr[t], fb);
+        tn[t] = named(&N, "tendon", m->names + m->name_tendonadr[t], fb);
         if (!fixed_tendon(m, t))
             continue;
         char len_t[4000] = "";
@@ -723,7 +743,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         int id = m->actuator_trnid[2 * i];
         snprintf(nm, sizeof nm, "u_%s", an && *an ? an
                  : m->actuator_trntype[i] == mjTRN_TENDON ? tn[id] : coord[id]);
-        un[i] = unique(&N, nm, nm);
+        un[i] = named(&N, "input", nm, nm);
         fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
     }
 
@@ -836,7 +856,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     const char **eqp = xmalloc((3 * (size_t)m->neq + 1) * sizeof *eqp);
     for (int e = 0; e < m->neq; e++) {
         snprintf(fb, sizeof fb, "equality%d", e);
-        eqn[e] = unique(&N, m->names + m->name_eqadr[e], fb);
+        eqn[e] = named(&N, "equality", m->names + m->name_eqadr[e], fb);
         int type = m->eq_type[e];
         if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD))
             continue;
@@ -910,6 +930,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(eqn);
     free(eqp);
     names_free(&N);
+    names_free(&NB);
     mj_deleteModel(m);
     return 0;
 }

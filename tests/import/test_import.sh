@@ -122,6 +122,19 @@ sed 's/<mujoco model="arm">/<mujoco model="9b my-arm">/' "$src/tests/import/mode
   "$eomc" run "$tmp/named.xml" --accel > "$tmp/named" 2> /dev/null && cmp -s "$tmp/named" "$tmp/direct0"
 ok $? "model '9b my-arm': the spec's name _9b_my_arm, and the arm's q''"
 
+# names that collide once made identifiers: the later one takes _2 and
+# the import says so; bodies have their own namespace and keep theirs
+cat > "$tmp/clash.xml" <<'XML'
+<mujoco><worldbody><body name="a-b"><joint name="a-b" axis="0 1 0"/><geom size="0.1"/>
+<body name="x" pos="0 0 -0.3"><joint name="a_b" axis="1 0 0"/><geom size="0.1"/></body></body></worldbody></mujoco>
+XML
+"$eomc" import "$tmp/clash.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '^coordinates: \[a_b, a_b_2\]$' "$tmp/out" && grep -q '^  a_b: {mass:' "$tmp/out" &&
+  grep -q "warning: renamed: joint 'a_b' is 'a_b_2' in the spec ('a_b' is another's name)" "$tmp/err" &&
+  [ $(grep -c renamed "$tmp/err") -eq 1 ]
+ok $? "joints 'a-b' and 'a_b': coordinates a_b and a_b_2, the rename told; body 'a-b' keeps a_b"
+
 # what the import cannot write is refused by name, with exit 2 and nothing written
 cat > "$tmp/ballspring.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" type="ball" stiffness="2"/><geom size="0.1"/></body></worldbody></mujoco>

@@ -838,10 +838,57 @@ print_prologue(Printer *pr, const LowFunc *lf)
     println(pr, "        pd[%d + k] = %s_numbers[k];", L->tree_base, pr->s->name);
 }
 
+/* The shifts of each copy (repeat.h), before the function that loops. */
+static void
+print_shifts(Printer *pr, const LowFunc *lf, int *du_any)
+{
+    *du_any = 0;
+    for (int c = 0; c < lf->ncopy; c++)
+        *du_any |= lf->du[c] != 0;
+    for (int u = 0; u <= *du_any; u++) {
+        const int *d = u ? lf->du : lf->dq;
+        fprintf(pr->f, "static const int %s_%s_%s[%d] = {", pr->s->name, lf->sig->name,
+                u ? "du" : "dq", lf->ncopy);
+        for (int c = 0; c < lf->ncopy; c++)
+            fprintf(pr->f, "%s%d", c ? ", " : "", d[c]);
+        fputs("};\n", pr->f);
+    }
+}
+
+/* The loop over the copies: the first copy's function on each copy's
+ * arrays, every one but t and p shifted (u by its own shift). */
+static void
+print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
+{
+    if (!lf->copy)
+        return;
+    const char *nm = pr->s->name, *name = lf->sig->name;
+    char call[2048] = "";
+    size_t k = 0;
+    for (int i = 0; i < fn->args.n && k < sizeof call; i++) {
+        const char *arg = fn->args.name[i], *sep = i ? ", " : "";
+        if (!strcmp(arg, "t") || !strcmp(arg, "p") || (!strcmp(arg, "u") && !du_any))
+            k += (size_t)snprintf(call + k, sizeof call - k, "%s%s", sep, arg);
+        else
+            k += (size_t)snprintf(call + k, sizeof call - k, "%s%s + %s_%s_%s[c]", sep, arg, nm,
+                                  name, strcmp(arg, "u") ? "dq" : "du");
+    }
+    println(pr, "    for (int c = 0; c < %d; c++) /* copies of one subtree (repeat.c) */",
+            lf->ncopy);
+    println(pr, "        %s_%s(%s);", nm, lf->copy->sig->name, call);
+}
+
 static ExprCount
 print_function(Printer *pr, const LowFunc *lf)
 {
     Func fnb, *fn = &fnb;
+    ExprCount copied = {0};
+    int du_any = 0;
+    if (lf->copy) {
+        copied = print_function(pr, lf->copy);
+        print_shifts(pr, lf, &du_any);
+        fputc('\n', pr->f);
+    }
     func_of(fn, lf);
     int nout = lf->nout;
     const LowSlot *out = lf->out;
@@ -865,6 +912,7 @@ print_function(Printer *pr, const LowFunc *lf)
         println(pr, "/* %s */", lf->sig->comment);
         print_head(pr, "static void", fname, fn->params);
         print_prologue(pr, lf);
+        print_copies(pr, lf, fn, du_any);
         pr->cur = 0;
         print_part(pr, &S, fn);
         println(pr, "}\n");
@@ -900,6 +948,7 @@ print_function(Printer *pr, const LowFunc *lf)
         print_head(pr, "static void", fname, fn->params);
         println(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
         print_prologue(pr, lf);
+        print_copies(pr, lf, fn, du_any);
         for (int p = 0; p < S.nparts; p++)
             println(pr, "    %s_%s_part%d(%s, s);", nm, name, p + 1, fn->names);
         println(pr, "}\n");
@@ -909,6 +958,10 @@ print_function(Printer *pr, const LowFunc *lf)
     /* exactly what was printed: values from shared[] and pd[] are counted
      * where made */
     ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
+    c.adds += lf->ncopy * copied.adds; /* what runs: each copy's */
+    c.muls += lf->ncopy * copied.muls;
+    c.divs += lf->ncopy * copied.divs;
+    c.calls += lf->ncopy * copied.calls;
     free(S.node);
     free(S.angle);
     free(S.angle_of);
@@ -1100,7 +1153,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     const char *nm = pr->s->name;
     int n = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
-    LowFunc jac = {&lower_jacobian_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}, 0};
+    LowFunc jac = {.sig = &lower_jacobian_sig, .double_only = 1, .per_step = 1};
     func_of(&fj, &jac);
     println(pr, "/* %s", lower_jacobian_sig.comment);
     println(pr, " * Column j of dE/dq (dE/dq') is the derivative along the unit seed");
@@ -1159,7 +1212,7 @@ print_energy_sum(Printer *pr)
 {
     const char *nm = pr->s->name;
     Func fi;
-    LowFunc inv = {&lower_invariant_sig, NULL, 1, 0, 0, NULL, NULL, 1, {0}, {0}, 0};
+    LowFunc inv = {.sig = &lower_invariant_sig, .double_only = 1, .per_step = 1};
     func_of(&fi, &inv);
     println(pr, "/* %s", lower_invariant_sig.comment);
     println(pr, " * E = T + V, from energy. */");

@@ -2,6 +2,7 @@
  * lower: from the derived model to its list of functions (lower.h).
  */
 #include "lower.h"
+#include "repeat.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -171,7 +172,7 @@ func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
     LowFunc *f = arena_alloc(lw->A, sizeof *f);
     /* all but initial and check, which run before derive */
     int per_step = sig != &s_initial && sig != &s_check_values;
-    *f = (LowFunc){sig, stat, double_only, 0, 0, NULL, NULL, per_step, {0}, {0}, 0};
+    *f = (LowFunc){.sig = sig, .stat = stat, .double_only = double_only, .per_step = per_step};
     Lowered *L = lw->L;
     if (L->nfunc == L->cap) {
         L->cap = L->cap ? 2 * L->cap : 32;
@@ -695,6 +696,9 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
             out(&lw, f, 0, i, s->check[i].expr);
     }
     lower_derive(&lw);
+    /* after derive, which has seen every copy's parameter values */
+    for (int k = 0; k < lw.L->nfunc; k++)
+        repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
     return lw.L;
 }
 
@@ -705,6 +709,10 @@ lower_size(const LowFunc *f, int arg)
     for (int k = 0; k < f->nout; k++)
         if (f->out[k].arg == arg && f->out[k].index + 1 > size)
             size = f->out[k].index + 1;
+    int copied = f->copy ? lower_size(f->copy, arg) : 0;
+    for (int c = 0; copied && c < f->ncopy; c++)
+        if (copied + f->dq[c] > size)
+            size = copied + f->dq[c];
     return size;
 }
 
@@ -726,5 +734,20 @@ lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out
         const LowSlot *o = &f->out[k];
         if (outs[o->arg])
             outs[o->arg][o->index] = expr_eval(P, o->e, env);
+    }
+    for (int c = 0; f->copy && c < f->ncopy; c++) { /* each copy on its shifted arrays */
+        int d = f->dq[c];
+        ExprEnv ec = *env;
+        for (int k = 0; k <= EXPR_MAX_ORDER; k++)
+            ec.q[k] = env->q[k] ? env->q[k] + d : NULL;
+        for (int k = 0; k < 3; k++)
+            ec.seed[k] = env->seed[k] ? env->seed[k] + d : NULL;
+        ec.u = env->u ? env->u + f->du[c] : NULL;
+        LowArgs a;
+        lower_args(f->sig, &a);
+        double *oc[LOW_MAX_ARGS];
+        for (int k = 0; k < a.n - a.nin; k++) /* (outs has one per output argument) */
+            oc[k] = outs[k] ? outs[k] + d : NULL;
+        lower_eval(P, f->copy, &ec, oc);
     }
 }

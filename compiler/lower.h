@@ -56,6 +56,13 @@ typedef struct LowFunc {
     /* bit k: output k arrives zeroed (the caller's part of the contract:
      * eomc_model.h's c_nz), so its fill is not printed */
     unsigned zeroed;
+    /* NULL, or copies of one subtree (repeat.h): copy's outputs are the
+     * first copy's, and the function runs copy for each c < ncopy with
+     * its coordinate-indexed arrays (q v a, seeds, every output) shifted
+     * by dq[c] and u by du[c] (dq[0] = du[0] = 0); out holds the rest. */
+    struct LowFunc *copy;
+    int ncopy;
+    int *dq, *du;
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be
@@ -158,11 +165,13 @@ Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
                      int eliminate, const Invariant *inv, int jacobian, int code, Arena *A,
                      ExprPool *P, Diff *D);
 
-/* 1 + the highest index stored to output argument `arg` (0 if none). */
+/* 1 + the highest index stored to output argument `arg` (0 if none),
+ * copies included. */
 int lower_size(const LowFunc *f, int arg);
 
-/* Evaluate f at env: out[k] is output argument k's array (NULL: skipped).
- * Tests use it to check a derivation without compiling C. */
+/* Evaluate f at env, as its C does (copies included): out[k] is output
+ * argument k's array (NULL: skipped).  Tests use it to check a derivation
+ * without compiling C. */
 void lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out);
 
 /* The function named `name`, or NULL. */

@@ -1,0 +1,231 @@
+/*
+ * repeat: one copy's code and a loop, where a lowered function's outputs
+ * are identical copies of one subtree (repeat.h).
+ *
+ * Why it is safe: copy c's outputs are accepted only where, with its
+ * coordinates q_{j+d} and inputs u_{i+du} renamed to the first copy's q_j
+ * and u_i, each is the node the first copy stores at its slot shifted by
+ * d.  Then the first copy's expressions, evaluated on arrays shifted by
+ * d (coordinates, their rates and seeds) and du (inputs), are copy c's,
+ * stored at copy c's slots; parameters and time are not renamed and are
+ * read unshifted.
+ */
+#include "repeat.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* union-find over the keys: coordinates 0..n-1, inputs n..n+nu-1 */
+static int
+find(int *up, int x)
+{
+    while (up[x] != x)
+        x = up[x] = up[up[x]];
+    return x;
+}
+
+static void
+unite(int *up, int a, int b)
+{
+    a = find(up, a), b = find(up, b);
+    if (a != b)
+        up[a < b ? b : a] = a < b ? a : b;
+}
+
+/* The coordinates, inputs (as keys, n + index) and outputs of the
+ * outputs' group rooted at a key; ok: a contiguous run of each, so a shift is the whole renaming. */
+typedef struct Group {
+    int qmin, qmax, nq, umin, umax, nu;
+    int nout, ops; /* ops: operations below its outputs and no other group's */
+    int ok;
+} Group;
+
+/* Can f's arrays be shifted at all: no values from another function, no
+ * output that may be NULL or that is zero-filled first, no multipliers. */
+static int
+shiftable(const LowFunc *f)
+{
+    if (f->shared || f->zeroed || strchr(f->sig->args, '?'))
+        return 0;
+    for (int k = 0; k < LOW_MAX_ARGS; k++)
+        if (f->fill[k])
+            return 0;
+    return 1;
+}
+
+/* Does group g's copy of base b (shifted by d, du) store, at each slot,
+ * the node base stores there?  gk: each output's group. */
+static int
+verify(const LowFunc *f, const int *gk, int b, int g, const Group *G, int n,
+       const ExprId *base_e, Arena *A, ExprPool *P)
+{
+    int nq = G[b].nq, nu = G[b].nu, d = G[g].qmin - G[b].qmin;
+    int nl = nq * (EXPR_MAX_ORDER + 1 + 3) + nu, k = 0;
+    ExprId *from = arena_new_array(A, ExprId, nl), *to = arena_new_array(A, ExprId, nl);
+    for (int j = 0; j < nq; j++) {
+        int jc = G[g].qmin + j, j0 = G[b].qmin + j;
+        for (int o = 0; o <= EXPR_MAX_ORDER; o++)
+            from[k] = expr_var(P, jc, o), to[k++] = expr_var(P, j0, o);
+        for (int s = 0; s < 3; s++)
+            from[k] = expr_seed(P, jc, s), to[k++] = expr_seed(P, j0, s);
+    }
+    for (int i = 0; i < nu; i++)
+        from[k] = expr_input(P, G[g].umin - n + i), to[k++] = expr_input(P, G[b].umin - n + i);
+    int nr = G[g].nout, r = 0;
+    ExprId *roots = arena_new_array(A, ExprId, nr), *mapped = arena_new_array(A, ExprId, nr);
+    int *slot = arena_new_array(A, int, nr);
+    for (int o = 0; o < f->nout; o++)
+        if (gk[o] == g)
+            slot[r] = o, roots[r++] = f->out[o].e;
+    expr_subst_many(P, nr, roots, k, from, to, mapped);
+    for (int i = 0; i < nr; i++) {
+        const LowSlot *s = &f->out[slot[i]];
+        int at = s->index - d - G[b].qmin; /* the base's slot, in base_e's rows */
+        if (at < 0 || at >= nq || base_e[s->arg * nq + at] != mapped[i])
+            return 0;
+    }
+    return 1;
+}
+
+int
+repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P)
+{
+    if (!shiftable(f) || f->nout < 2)
+        return 0;
+    size_t size = expr_pool_size(P);
+    unsigned char *mark = calloc(size, 1);
+    int *key = malloc(size * sizeof *key), nk = n + nu;
+    int *up = malloc(((size_t)nk + 1) * sizeof *up);
+    unsigned char *seen = calloc((size_t)nk + 1, 1);
+    ExprId *roots = malloc(((size_t)f->nout + 1) * sizeof *roots);
+    int *gk = malloc(((size_t)f->nout + 1) * sizeof *gk);
+    Group *G = calloc((size_t)nk + 1, sizeof *G);
+    int split = 0;
+    for (int o = 0; o < f->nout; o++)
+        roots[o] = f->out[o].e;
+    expr_mark(P, f->nout, roots, mark);
+    for (int i = 0; i < nk; i++)
+        up[i] = i;
+    /* each node's key: a leaf's own; an operation joins its operands' */
+    for (size_t i = 0; i < size; i++) {
+        key[i] = -1;
+        if (!mark[i])
+            continue;
+        const ExprNode *nd = expr_node(P, (ExprId)i);
+        int ar = expr_op_arity[nd->op];
+        if (nd->op == EXPR_MULT)
+            goto done;
+        if (nd->op == EXPR_VAR || nd->op == EXPR_SEED || nd->op == EXPR_INPUT) {
+            key[i] = nd->op == EXPR_INPUT ? n + (int)nd->a : (int)nd->a;
+            seen[key[i]] = 1;
+        } else if (ar > 0) {
+            int ka = key[nd->a], kb = ar == 2 ? key[nd->b] : -1;
+            if (ka >= 0 && kb >= 0)
+                unite(up, ka, kb);
+            key[i] = ka >= 0 ? ka : kb;
+        }
+    }
+    for (int g = 0; g < nk; g++)
+        G[g] = (Group){.qmin = n, .qmax = -1, .umin = nk, .umax = -1, .ok = 1};
+    for (int x = 0; x < nk; x++) {
+        if (!seen[x])
+            continue;
+        Group *g = &G[find(up, x)];
+        if (x < n)
+            g->nq++, g->qmin = x < g->qmin ? x : g->qmin, g->qmax = x > g->qmax ? x : g->qmax;
+        else
+            g->nu++, g->umin = x < g->umin ? x : g->umin, g->umax = x > g->umax ? x : g->umax;
+    }
+    for (size_t i = 0; i < size; i++)
+        if (key[i] >= 0 && expr_op_arity[expr_node(P, (ExprId)i)->op] > 0)
+            G[find(up, key[i])].ops++;
+    for (int o = 0; o < f->nout; o++) {
+        int k = key[f->out[o].e];
+        gk[o] = k >= 0 ? find(up, k) : -1;
+        if (gk[o] >= 0)
+            G[gk[o]].nout++;
+    }
+    for (int g = 0; g < nk; g++) /* runs that a shift renames */
+        G[g].ok = G[g].nout > 0 && G[g].nq > 0 && G[g].qmax - G[g].qmin + 1 == G[g].nq &&
+                  (G[g].nu == 0 || G[g].umax - G[g].umin + 1 == G[g].nu);
+    /* the base: the group whose copies would save the most code (groups
+     * are rooted at their least key, so in coordinate order) */
+    int best = -1;
+    long best_saved = 0;
+    for (int b = 0; b < nk; b++) {
+        if (!G[b].ok)
+            continue;
+        int like = 0;
+        for (int g = b + 1; g < nk; g++)
+            like += G[g].ok && G[g].nq == G[b].nq && G[g].nu == G[b].nu &&
+                    G[g].nout == G[b].nout;
+        long saved = (long)like * G[b].ops;
+        if (saved > best_saved)
+            best = b, best_saved = saved;
+    }
+    if (best < 0 || best_saved < min_saved)
+        goto done;
+    int b = best, nq = G[b].nq;
+    /* the base's node at each slot, by output argument and coordinate */
+    ExprId *base_e = arena_new_array(A, ExprId, LOW_MAX_ARGS * nq);
+    for (int i = 0; i < LOW_MAX_ARGS * nq; i++)
+        base_e[i] = EXPR_NONE;
+    for (int o = 0; o < f->nout; o++) {
+        const LowSlot *s = &f->out[o];
+        if (gk[o] != b)
+            continue;
+        if (s->index < G[b].qmin || s->index > G[b].qmax)
+            goto done; /* not one slot per coordinate: no shift maps it */
+        base_e[s->arg * nq + s->index - G[b].qmin] = s->e;
+    }
+    int *in = calloc((size_t)nk + 1, sizeof *in), ncopy = 1;
+    long saved = 0;
+    in[b] = 1;
+    for (int g = b + 1; g < nk; g++)
+        if (G[g].ok && G[g].nq == nq && G[g].nu == G[b].nu && G[g].nout == G[b].nout &&
+            verify(f, gk, b, g, G, n, base_e, A, P))
+            in[g] = 1, ncopy++, saved += G[b].ops;
+    if (ncopy > 1 && saved >= min_saved) {
+        LowFunc *c = arena_new_array(A, LowFunc, 1);
+        LowSig *sig = arena_new_array(A, LowSig, 1);
+        *c = *f;
+        sig->name = arena_printf(A, "%s_copy", f->sig->name);
+        sig->comment = "One copy of a subtree that repeats (repeat.c), in the first copy's\n"
+                       " * names: the function after it runs it for each, its arrays shifted.";
+        sig->args = f->sig->args;
+        c->sig = sig;
+        c->out = arena_new_array(A, LowSlot, G[b].nout);
+        c->nout = c->cap = 0;
+        f->ncopy = ncopy;
+        f->dq = arena_new_array(A, int, ncopy);
+        f->du = arena_new_array(A, int, ncopy);
+        LowSlot *rest = arena_new_array(A, LowSlot, f->nout);
+        int nrest = 0;
+        for (int o = 0; o < f->nout; o++) {
+            if (gk[o] == b)
+                c->out[c->nout++] = f->out[o];
+            else if (gk[o] < 0 || !in[gk[o]])
+                rest[nrest++] = f->out[o];
+        }
+        c->cap = c->nout;
+        for (int g = b, k = 0; g < nk; g++)
+            if (in[g]) {
+                f->dq[k] = G[g].qmin - G[b].qmin;
+                f->du[k++] = G[b].nu ? G[g].umin - G[b].umin : 0;
+            }
+        f->out = rest;
+        f->nout = f->cap = nrest;
+        f->copy = c;
+        split = 1;
+    }
+    free(in);
+done:
+    free(mark);
+    free(key);
+    free(up);
+    free(seen);
+    free(roots);
+    free(gk);
+    free(G);
+    return split;
+}

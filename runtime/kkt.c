@@ -81,6 +81,15 @@ struct Kkt {
     double *Ylam;               /* [nc] the multipliers of the rows solved, in their order */
     int *act;                   /* [nc] those rows: the constraints not held (c_held) */
     size_t *Sperm;
+    /* B's nonzero columns, row by row (from c_nz; NULL: every column):
+     * row c's are nzcol[nzrow[c] .. nzrow[c+1]) */
+    int *nzrow, *nzcol;
+    /* the blocks of S (rows coupled through M^-1: a tree's), rows in
+     * block order: blk[r] a row's block (union-find), ord [nc] the rows
+     * by block, bstart [nc+1] each block's first there, Sb [nc*nc] one
+     * block's matrix, Sr [nc] its right-hand side */
+    int *blk, *ord, *bstart;
+    double *Sb, *Sr;
     int by_loads;               /* the last kkt_accel solved so: M not formed */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
     double t_last, *q_last, *v_last, *u_last; /* its state, to form M on demand */
@@ -129,6 +138,21 @@ kkt_alloc(const eomc_model *m)
     k->q_last = zeros(n), k->v_last = zeros(n), k->u_last = zeros(nu);
     ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
     ok &= k->Ylam && k->act;
+    k->blk = calloc(nc + 1, sizeof *k->blk), k->ord = calloc(nc + 1, sizeof *k->ord);
+    k->bstart = calloc(nc + 2, sizeof *k->bstart);
+    k->Sb = zeros(nc * nc), k->Sr = zeros(nc);
+    ok &= k->blk && k->ord && k->bstart && k->Sb && k->Sr;
+    if (ok && m->c_nz) { /* c_nz is in increasing order: row by row */
+        k->nzrow = calloc(nc + 1, sizeof *k->nzrow);
+        k->nzcol = calloc((size_t)m->c_nnz + 1, sizeof *k->nzcol);
+        ok &= k->nzrow && k->nzcol;
+        for (int j = 0; ok && j < m->c_nnz; j++) {
+            k->nzrow[m->c_nz[j] / m->nq + 1]++;
+            k->nzcol[j] = m->c_nz[j] % m->nq;
+        }
+        for (size_t c = 0; ok && c < nc; c++)
+            k->nzrow[c + 1] += k->nzrow[c];
+    }
     size_t len = 1;
     for (int c = 0; c < m->nc; c++)
         len += strlen(m->c_names[c]) + strlen(m->q_names[m->c_dependent[c]]) + 8;
@@ -164,7 +188,7 @@ kkt_free(Kkt *k)
         k->dfdt, k->dBdq, k->dBdv, k->dBda, k->dBdu, k->dBdt, k->BH, k->G, k->E, k->off,
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
         k->dposdt, k->dveldt, k->dep, k->indep, k->names, k->Y, k->S, k->Srel, k->Sperm,
-        k->Ylam, k->act,
+        k->Ylam, k->act, k->nzrow, k->nzcol, k->blk, k->ord, k->bstart, k->Sb, k->Sr,
         k->q_last, k->v_last, k->u_last,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
@@ -463,6 +487,89 @@ eliminated_multipliers(Kkt *k, double t, const double *q, const double *v,
     return 0;
 }
 
+/* B_c . y over B's nonzero columns (the same sum as la_dot: the rest are
+ * exact zeros). */
+static double
+row_dot(const Kkt *k, int c, const double *y)
+{
+    const double *b = k->B + (size_t)c * k->n;
+    if (!k->nzrow)
+        return la_dot(b, y, k->n);
+    double d = 0;
+    for (int j = k->nzrow[c]; j < k->nzrow[c + 1]; j++)
+        d += b[k->nzcol[j]] * y[k->nzcol[j]];
+    return d;
+}
+
+static int
+root(int *up, int x)
+{
+    while (up[x] != x)
+        x = up[x] = up[up[x]];
+    return x;
+}
+
+/* The blocks of S's na rows: rows r and d in one where S_rd is not 0.
+ * M^-1 couples only the coordinates of one tree, and a unit load's
+ * recursion leaves the other trees' at exactly 0, so independent trees'
+ * rows are blocks of their own, solved apart.  k->ord: the rows by block,
+ * each block's in increasing order; start[b] its first; the count. */
+static int
+blocks(Kkt *k, int na, int *start)
+{
+    int *up = k->blk, nb = 0;
+    for (int r = 0; r < na; r++)
+        up[r] = r;
+    for (int r = 0; r < na; r++)
+        for (int d = 0; d < r; d++)
+            if (k->S[r * na + d] != 0) {
+                int a = root(up, r), b = root(up, d);
+                if (a != b)
+                    up[a > b ? a : b] = a < b ? a : b;
+            }
+    int at = 0;
+    for (int r = 0; r < na; r++) /* roots are their block's least row */
+        if (root(up, r) == r) {
+            start[nb++] = at;
+            for (int d = r; d < na; d++)
+                if (root(up, d) == r)
+                    k->ord[at++] = d;
+        }
+    start[nb] = at;
+    return nb;
+}
+
+/* Ylam = S^-1 Ylam, block by block where S has several (blocks()); Srel
+ * the relative pivots.  0, or -1 where a pivot fails. */
+static int
+solve_blocks(Kkt *k, int na)
+{
+    int *start = k->bstart;
+    if (na == 0)
+        return 0;
+    int nb = blocks(k, na, start);
+    if (nb <= 1) {
+        if (la_ldlt_factor(k->S, na, k->Srel, k->Sperm) != 0)
+            return -1;
+        la_ldlt_solve(k->S, na, k->Sperm, k->Ylam);
+        return 0;
+    }
+    for (int b = 0; b < nb; b++) {
+        int s0 = start[b], w = start[b + 1] - s0;
+        for (int i = 0; i < w; i++) {
+            k->Sr[i] = k->Ylam[k->ord[s0 + i]];
+            for (int j = 0; j < w; j++)
+                k->Sb[i * w + j] = k->S[k->ord[s0 + i] * na + k->ord[s0 + j]];
+        }
+        if (la_ldlt_factor(k->Sb, w, k->Srel + s0, k->Sperm + s0) != 0)
+            return -1;
+        la_ldlt_solve(k->Sb, w, k->Sperm + s0, k->Sr);
+        for (int i = 0; i < w; i++)
+            k->Ylam[k->ord[s0 + i]] = k->Sr[i];
+    }
+    return 0;
+}
+
 /* q'' and the multipliers by unit loads (the top of this file); 0, or -1
  * when a pivot of M or of B M^-1 B^T fails (a left as garbage). */
 static int
@@ -488,13 +595,11 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
         m->minv(t, q, v, p, u, k->B + k->act[r] * n, k->Y + r * n);
     for (int r = 0; r < na; r++)
         for (int d = 0; d <= r; d++)
-            k->S[r * na + d] = k->S[d * na + r] = la_dot(k->B + k->act[r] * n, k->Y + d * n, n);
-    if (na && la_ldlt_factor(k->S, na, k->Srel, k->Sperm) != 0)
-        return -1;
+            k->S[r * na + d] = k->S[d * na + r] = row_dot(k, k->act[r], k->Y + d * n);
     for (int r = 0; r < na; r++)
         k->Ylam[r] = k->f[k->act[r]];
-    if (na)
-        la_ldlt_solve(k->S, na, k->Sperm, k->Ylam);
+    if (solve_blocks(k, na) != 0)
+        return -1;
     for (int r = 0; r < na; r++) {
         k->lam[k->act[r]] = k->Ylam[r];
         if (k->Srel[r] < pivot)

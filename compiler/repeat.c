@@ -40,13 +40,26 @@ typedef struct Group {
     int ok;
 } Group;
 
-/* Can f's arrays be shifted at all: no values from another function, no
- * output that may be NULL or that is zero-filled first, no multipliers. */
+/* Can f's arrays be shifted at all: inputs of the state, the parameters
+ * and the seeds only (no values from another function, no multipliers),
+ * no output that may be NULL or that is zero-filled first. */
 static int
 shiftable(const LowFunc *f)
 {
+    static const char *const known[] = {"t", "q", "v", "a", "p", "u", "dq", "dv", "da"};
     if (f->shared || f->zeroed || strchr(f->sig->args, '?'))
         return 0;
+    /* the signature's inputs: the names before '>' (lower.h) */
+    for (const char *c = f->sig->args; *c && *c != '>';) {
+        size_t len = strcspn(c, " >"), i = 0;
+        while (len && i < sizeof known / sizeof *known &&
+               !(strlen(known[i]) == len && !strncmp(c, known[i], len)))
+            i++;
+        if (i == sizeof known / sizeof *known)
+            return 0;
+        c += len;
+        c += strspn(c, " ");
+    }
     for (int k = 0; k < LOW_MAX_ARGS; k++)
         if (f->fill[k])
             return 0;

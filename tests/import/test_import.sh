@@ -1,7 +1,9 @@
 #!/bin/sh
 # eomc import against MuJoCo itself: each model (MJCF written for these
 # tests: an arm, the same with damping and springs, a URDF arm, a floating
-# base with a ball joint, armature and actuators; the benchmark's chain;
+# base with a ball joint, armature and actuators, a closed loop, welds and
+# fixed tendons (their constraints on independent trees: blocks that
+# kkt.c solves apart); the benchmark's chain;
 # MuJoCo's humanoid, 22 humanoids and humanoid100 (616 and 728
 # coordinates) where libmujoco-samples is installed) imported, then
 # q'' of `eomc run --accel` at 100 random states and controls against

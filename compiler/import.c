@@ -157,6 +157,14 @@ put_fixed_turn(FILE *f, const double *q)
     fprintf(f, ", angle: %s}", num(a, 2 * atan2(s, w)));
 }
 
+/* The element an error is about, for its position in the file. */
+static void
+blame(ImportWhere *at, const mjModel *m, int type, int id)
+{
+    const char *nm = mj_id2name(m, type, id);
+    snprintf(at->name, sizeof at->name, "%s", nm ? nm : "");
+}
+
 /* An element's name for messages: MuJoCo's, or its kind and index. */
 static const char *
 label(const mjModel *m, int type, int id, char *buf, size_t len)
@@ -212,25 +220,25 @@ scalar_joint(const mjModel *m, int j)
 
 /* What the importer cannot write, by name: a reason in err, else 0. */
 static int
-refused(const mjModel *m, char *err, size_t len)
+refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
 {
     char b[32];
     for (int j = 0; j < m->njnt; j++) {
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
         int type = m->jnt_type[j];
         if ((type == mjJNT_BALL || type == mjJNT_FREE) && m->jnt_stiffness[j] != 0)
-            return snprintf(err, len, "joint %s: the stiffness of a %s joint is not imported "
+            return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: the stiffness of a %s joint is not imported "
                             "(MuJoCo's spring acts on the rotation vector of its quaternion, "
                             "which is not smooth where the turn is zero)", nm,
                             type == mjJNT_BALL ? "ball" : "free");
         if (type == mjJNT_FREE && m->body_jntnum[m->jnt_bodyid[j]] != 1)
-            return snprintf(err, len, "joint %s: a free joint with other joints in its body",
+            return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: a free joint with other joints in its body",
                             nm);
     }
     for (int i = 0; i < m->nu; i++) {
         const char *why = actuator_refused(m, i);
         if (why)
-            return snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
+            return blame(at, m, mjOBJ_ACTUATOR, i), snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
                                                                  sizeof b), why);
     }
     for (int e = 0; e < m->neq; e++) {
@@ -239,22 +247,22 @@ refused(const mjModel *m, char *err, size_t len)
         if (!m->eq_active[e])
             continue;
         if (type == mjEQ_DISTANCE) /* MuJoCo 2.2.2 refuses it itself; later ones lack it */
-            return snprintf(err, len, "equality constraint %s: a distance constraint", nm);
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: a distance constraint", nm);
         if (type == mjEQ_JOINT && (!scalar_joint(m, j1) || (j2 >= 0 && !scalar_joint(m, j2))))
-            return snprintf(err, len, "equality constraint %s: couples a ball or free joint "
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: couples a ball or free joint "
                             "(a joint coupling is between hinges and slides)", nm);
         if (type == mjEQ_TENDON && (!fixed_tendon(m, j1) || (j2 >= 0 && !fixed_tendon(m, j2))))
-            return snprintf(err, len, "equality constraint %s: couples a spatial tendon (only "
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: couples a spatial tendon (only "
                             "fixed tendons, sums of joint coordinates, are imported)", nm);
     }
     for (int t = 0; t < m->ntendon; t++) {
         const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
         if (!fixed_tendon(m, t) && (m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0))
-            return snprintf(err, len, "tendon %s: the stiffness or damping of a spatial tendon "
+            return blame(at, m, mjOBJ_TENDON, t), snprintf(err, len, "tendon %s: the stiffness or damping of a spatial tendon "
                             "(only fixed tendons, sums of joint coordinates, are imported)", nm);
         for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
             if (m->wrap_type[w] == mjWRAP_JOINT && !scalar_joint(m, m->wrap_objid[w]))
-                return snprintf(err, len, "tendon %s: a fixed tendon on a ball or free joint",
+                return blame(at, m, mjOBJ_TENDON, t), snprintf(err, len, "tendon %s: a fixed tendon on a ball or free joint",
                                 nm);
     }
     return 0;
@@ -658,8 +666,10 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
 }
 
 int
-import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len)
+import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
+             ImportWhere *at)
 {
+    *at = (ImportWhere){0};
     char load_err[1000] = "";
     mjModel *m = mj_loadXML(path, NULL, load_err, sizeof load_err);
     if (!m) { /* MuJoCo's message on one line: it has line breaks and a trailing one */
@@ -669,9 +679,11 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         for (size_t k = strlen(load_err); k > 0 && load_err[k - 1] == ' '; k--)
             load_err[k - 1] = '\0';
         snprintf(err, len, "MuJoCo cannot load it: %s", load_err);
+        const char *ln = strstr(load_err, ", line ");
+        at->line = ln ? atoi(ln + 7) : 0;
         return -1;
     }
-    if (refused(m, err, len)) {
+    if (refused(m, err, len, at)) {
         mj_deleteModel(m);
         return -1;
     }
@@ -944,12 +956,14 @@ import_available(void)
 }
 
 int
-import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len)
+import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
+             ImportWhere *at)
 {
     (void)path;
     (void)out;
     (void)warn;
     (void)strict;
+    *at = (ImportWhere){0};
     snprintf(err, len, "this eomc was built without MuJoCo, which reads MJCF and URDF: "
              "install libmujoco-dev and build it again");
     return -1;

@@ -608,21 +608,74 @@ is_model_file(const char *path)
     return dot && (!strcasecmp(dot, ".xml") || !strcasecmp(dot, ".urdf"));
 }
 
+/* Where in the model file an import error is (ImportWhere): the line
+ * MuJoCo named, or the value of the first `name="NAME"` there; the file's
+ * text is registered with diag so that the error can quote it. */
+static SrcLoc
+import_loc(const char *path, const ImportWhere *at)
+{
+    SrcLoc loc = {path, 0, 0};
+    FILE *f = (at->line > 0 || at->name[0]) ? fopen(path, "rb") : NULL;
+    if (!f)
+        return loc;
+    char *text = NULL;
+    size_t len = 0, cap = 0, got;
+    char chunk[4096];
+    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (len + got + 1 > cap) {
+            cap = 2 * (len + got + 1);
+            text = xrealloc(text, cap);
+        }
+        memcpy(text + len, chunk, got);
+        len += got;
+    }
+    fclose(f);
+    if (!text)
+        return loc;
+    text[len] = '\0';
+    diag_add_source(path, text, len); /* (kept: the error that follows quotes it) */
+    const char *hit = NULL;
+    if (at->line > 0) { /* its first character that is not a blank */
+        const char *c = text;
+        for (int l = 1; l < at->line && (c = strchr(c, '\n')); l++)
+            c++;
+        loc.line = at->line, loc.col = 1;
+        for (; c && (*c == ' ' || *c == '\t'); c++)
+            loc.col++;
+        return loc;
+    }
+    for (int q = 0; q < 2 && !hit; q++) {
+        char want[200];
+        snprintf(want, sizeof want, q ? "name='%s'" : "name=\"%s\"", at->name);
+        hit = strstr(text, want);
+    }
+    if (!hit)
+        return loc;
+    loc.line = 1, loc.col = 1;
+    for (const char *c = text; c < hit + 6; c++) /* to the name's first character */
+        if (*c == '\n')
+            loc.line++, loc.col = 1;
+        else
+            loc.col++;
+    return loc;
+}
+
 /* The spec of the model at path into *text (malloc'd), what it drops
- * named on stderr; 0, or exit 2 after the error. */
+ * named on stderr; 0, or exit 2 after the error (at its place in the
+ * file where that is known). */
 static int
 import_text(const char *path, int strict, char **text, size_t *len)
 {
     char err[1200];
+    ImportWhere at;
     FILE *mem = open_memstream(text, len);
-    int rc = import_model(path, mem, stderr, strict, err, sizeof err);
+    int rc = import_model(path, mem, stderr, strict, err, sizeof err, &at);
     fclose(mem);
     if (rc == 0)
         return 0;
-    fprintf(stderr, "%s: error: %s\n", path, err);
     free(*text);
     *text = NULL;
-    return EXIT_USAGE;
+    diag_error(import_loc(path, &at), "%s", err);
 }
 
 /* A model file given as SPEC: imported first, as `eomc import` would, and

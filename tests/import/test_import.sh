@@ -152,8 +152,16 @@ cat > "$tmp/cable.xml" <<'XML'
 XML
 "$eomc" import "$tmp/cable.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "tendon cable: the stiffness or damping of a spatial tendon" "$tmp/err"
-ok $? "a spatial tendon's spring: refused by name, exit 2 ($(cat "$tmp/err"))"
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] &&
+  grep -q "cable.xml:3:24: error: tendon cable: the stiffness or damping of a spatial tendon" "$tmp/err" &&
+  grep -q '^ *| *\^$' "$tmp/err"
+ok $? "a spatial tendon's spring: refused by name at the element's name (file:line:column, caret), exit 2 ($(cat "$tmp/err"))"
+# MuJoCo's own loader error, at the line it names
+printf '<mujoco>\n  <worldbody>\n    <body>\n      <joint type="bogus"/>\n    </body>\n  </worldbody>\n</mujoco>\n' > "$tmp/bogus.xml"
+"$eomc" import "$tmp/bogus.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "bogus.xml:4:7: error: MuJoCo cannot load it: .*'bogus'" "$tmp/err"
+ok $? "MuJoCo's loader error: at the line it names, first character, exit 2 ($(head -1 "$tmp/err"))"
 sed 's|stiffness="3"||; s|</tendon>|<fixed name="f"><joint joint="j" coef="1"/></fixed></tendon><equality><tendon name="tie" tendon1="f" tendon2="cable"/></equality>|' \
   "$tmp/cable.xml" > "$tmp/tie.xml"
 "$eomc" import "$tmp/tie.xml" > "$tmp/out" 2> "$tmp/err"

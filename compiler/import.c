@@ -355,13 +355,12 @@ dropped(const mjModel *m, const char *path, FILE *warn)
                   "an input is applied as given, not clamped");
     n += drop_say(warn, path, &force, "the force range of", "actuator",
                   "an actuator's force is not clamped");
-    int contacts = 0;
+    Drop geoms = {0};
     for (int g = 0; g < m->ngeom; g++)
-        contacts += m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
-    if (contacts)
-        n++, fprintf(warn, "%s: warning: dropped: contacts between its %d colliding geoms "
-                     "(eomc simulates smooth dynamics: bodies pass through one another)\n",
-                     path, contacts);
+        if (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)
+            drop_add(&geoms, label(m, mjOBJ_GEOM, g, b, sizeof b));
+    n += drop_say(warn, path, &geoms, "the contacts of", "geom",
+                  "eomc simulates smooth dynamics: bodies pass through one another");
     return n;
 }
 

@@ -191,7 +191,7 @@ st=$?
   grep -q "warning: dropped: the friction loss of joint j (dry friction" "$tmp/err" &&
   grep -q "warning: dropped: the control range of actuator #0 (an input is applied as given" "$tmp/err" &&
   grep -q "warning: dropped: the force range of actuator m2 (an actuator's force is not clamped)" "$tmp/err" &&
-  grep -q "warning: dropped: contacts between its 3 colliding geoms" "$tmp/err" &&
+  grep -q "warning: dropped: the contacts of 3 geoms: #0, #1, #2 (eomc simulates smooth dynamics: bodies pass" "$tmp/err" &&
   grep -q "warning: dropped: the limits of tendon tf (eomc simulates smooth dynamics: tendons stretch" "$tmp/err" &&
   grep -q "warning: dropped: the friction loss of tendon tf (dry friction" "$tmp/err" &&
   [ $(wc -l < "$tmp/err") -eq 7 ]

@@ -2,7 +2,8 @@
  * Unit tests of constraint.c: classification by order, the acceleration
  * level f, the virtual-displacement rows B = df/dq'' and b = f(q'' = 0),
  * against formulas differentiated by hand, at random states; the choice
- * of dependent coordinates; and the errors, each at its place.
+ * of dependent coordinates (augmenting paths where the greedy choice runs
+ * out); and the errors, each at its place.
  */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
@@ -134,6 +135,25 @@ test_holonomic(void)
           "named dependents are kept (roll: x), the others choose among the rest (sphere: z)");
 }
 
+/* Where the greedy choice runs out (a takes z, the last it involves,
+ * and b involves z alone), a takes another of its own: x, the last
+ * that is free; with a named on z, b cannot be placed. */
+static void
+test_matching(void)
+{
+    Constraints *c = build("constraints:\n"
+                           "  a: x + z - 1\n"
+                           "  b: z - a\n");
+    CHECK(c && c->dependent[0] == 0 && c->dependent[1] == 2,
+          "a moves from z to x so that b can take z (an augmenting path)");
+    char msg[400];
+    build_error("constraints:\n"
+                "  a: {expr: x + z - 1, dependent: z}\n"
+                "  b: z - a\n", msg, sizeof msg);
+    CHECK(strstr(msg, "error: no coordinate is left for constraint 'b' to determine") != NULL,
+          "a named dependent stays: with a's named z, b has none (%s)", msg);
+}
+
 static void
 test_second_order(void)
 {
@@ -186,6 +206,7 @@ main(void)
     D = diff_new(P);
     test_appell();
     test_holonomic();
+    test_matching();
     test_second_order();
     test_errors();
     diff_free(D);

@@ -873,9 +873,36 @@ print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
             k += (size_t)snprintf(call + k, sizeof call - k, "%s%s + %s_%s_%s[c]", sep, arg, nm,
                                   name, strcmp(arg, "u") ? "dq" : "du");
     }
-    println(pr, "    for (int c = 0; c < %d; c++) /* copies of one subtree (repeat.c) */",
+    if (!lf->zero_skip) {
+        println(pr, "    for (int c = 0; c < %d; c++) /* copies of one subtree (repeat.c) */",
+                lf->ncopy);
+        println(pr, "        %s_%s(%s);", nm, lf->copy->sig->name, call);
+        return;
+    }
+    /* a copy without a load stays at rest: zeros, not its recursion (the
+     * outputs after the loop are stored after these) */
+    const LowArgs *a = &fn->args;
+    int hi = lf->span0 + lf->span;
+    char from[32] = ""; /* " + span0" where it is not 0 */
+    if (lf->span0)
+        snprintf(from, sizeof from, " + %d", lf->span0);
+    println(pr, "    for (int c = 0; c < %d; c++) { /* copies of one subtree (repeat.c) */",
             lf->ncopy);
-    println(pr, "        %s_%s(%s);", nm, lf->copy->sig->name, call);
+    println(pr, "        const int d = %s_%s_dq[c];", nm, name);
+    println(pr, "        int loaded = 0;");
+    for (int i = 0; i < a->nin; i++)
+        if (!strcmp(a->name[i], "dq") || !strcmp(a->name[i], "dv") || !strcmp(a->name[i], "da"))
+            println(pr, "        for (int i = d%s; i < d + %d && !loaded; i++)\n"
+                    "            loaded = %s[i] != 0.0;", from, hi, a->name[i]);
+    println(pr, "        if (loaded) {");
+    println(pr, "            %s_%s(%s);", nm, lf->copy->sig->name, call);
+    println(pr, "            continue;");
+    println(pr, "        }");
+    for (int k = a->nin; k < a->n; k++)
+        if (lower_size(lf->copy, k - a->nin) > 0)
+            println(pr, "        for (int i = d%s; i < d + %d; i++) /* no load: at rest */\n"
+                    "            %s[i] = 0.0;", from, hi, a->name[k]);
+    println(pr, "    }");
 }
 
 static ExprCount

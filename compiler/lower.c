@@ -730,12 +730,8 @@ lower_find(const Lowered *L, const char *name)
 void
 lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
 {
-    for (int k = 0; k < f->nout; k++) {
-        const LowSlot *o = &f->out[k];
-        if (outs[o->arg])
-            outs[o->arg][o->index] = expr_eval(P, o->e, env);
-    }
-    for (int c = 0; f->copy && c < f->ncopy; c++) { /* each copy on its shifted arrays */
+    /* the copies first, as the C runs them (the loop, then the rest) */
+    for (int c = 0; f->copy && c < f->ncopy; c++) {
         int d = f->dq[c];
         ExprEnv ec = *env;
         for (int k = 0; k <= EXPR_MAX_ORDER; k++)
@@ -748,6 +744,21 @@ lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out
         double *oc[LOW_MAX_ARGS];
         for (int k = 0; k < a.n - a.nin; k++) /* (outs has one per output argument) */
             oc[k] = outs[k] ? outs[k] + d : NULL;
-        lower_eval(P, f->copy, &ec, oc);
+        int loaded = !f->zero_skip;
+        for (int k = 0; k < 3 && !loaded; k++)
+            for (int i = f->span0; ec.seed[k] && i < f->span0 + f->span && !loaded; i++)
+                loaded = ec.seed[k][i] != 0.0;
+        if (loaded) {
+            lower_eval(P, f->copy, &ec, oc);
+            continue;
+        }
+        for (int k = 0; k < a.n - a.nin; k++) /* a copy without a load: at rest */
+            for (int i = f->span0; oc[k] && lower_size(f->copy, k) && i < f->span0 + f->span; i++)
+                oc[k][i] = 0.0;
+    }
+    for (int k = 0; k < f->nout; k++) {
+        const LowSlot *o = &f->out[k];
+        if (outs[o->arg])
+            outs[o->arg][o->index] = expr_eval(P, o->e, env);
     }
 }

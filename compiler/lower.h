@@ -63,6 +63,11 @@ typedef struct LowFunc {
     struct LowFunc *copy;
     int ncopy;
     int *dq, *du;
+    /* the first copy's coordinates: span0 .. span0+span-1 (every copy
+     * output's slot is one of them, shifted); zero_skip: its outputs
+     * vanish with its seeds (a unit load's: no load, no motion), so a copy
+     * whose seeds are all 0 stores zeros there instead of running */
+    int span0, span, zero_skip;
 } LowFunc;
 
 /* The parsed signature: argument names, which are outputs, which may be

@@ -100,6 +100,32 @@ verify(const LowFunc *f, const int *gk, int b, int g, const Group *G, int n,
     return 1;
 }
 
+/* Does every output of c vanish where its seeds (coordinates q0 ..
+ * q0+nq-1) are all 0, as expressions (a unit load's recursion: no load,
+ * no motion)?  Then a copy whose seeds are zero may store zeros instead
+ * of running (repeat.h). */
+static int
+vanishes(const LowFunc *c, int q0, int nq, Arena *A, ExprPool *P)
+{
+    int any = 0;
+    for (int k = 0; k < c->nout; k++)
+        any |= (expr_node(P, c->out[k].e)->deps & DEP_S) != 0;
+    if (!any || c->nout == 0)
+        return 0;
+    ExprId *from = arena_new_array(A, ExprId, 3 * nq), *to = arena_new_array(A, ExprId, 3 * nq);
+    ExprId *roots = arena_new_array(A, ExprId, c->nout), *got = arena_new_array(A, ExprId, c->nout);
+    for (int j = 0; j < nq; j++)
+        for (int s = 0; s < 3; s++)
+            from[3 * j + s] = expr_seed(P, q0 + j, s), to[3 * j + s] = EXPR_ZERO;
+    for (int k = 0; k < c->nout; k++)
+        roots[k] = c->out[k].e;
+    expr_subst_many(P, c->nout, roots, 3 * nq, from, to, got);
+    for (int k = 0; k < c->nout; k++)
+        if (got[k] != EXPR_ZERO)
+            return 0;
+    return 1;
+}
+
 int
 repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P)
 {
@@ -229,6 +255,8 @@ repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P)
         f->out = rest;
         f->nout = f->cap = nrest;
         f->copy = c;
+        f->span0 = G[b].qmin, f->span = nq;
+        f->zero_skip = vanishes(c, G[b].qmin, nq, A, P);
         split = 1;
     }
     free(in);

@@ -10,6 +10,9 @@
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
+ *   mj_accel MODEL kinetic ->  for each line "t q_1 .. q_nq q'_1 .. q'_nq" on
+ *                              stdin (eomc's rates), "t T": MuJoCo's kinetic
+ *                              energy there (mj_energyVel: armature included)
  *
  * Controls are neither clamped to their ranges nor forces to theirs, as
  * the import drops both.  The state: each hinge and slide coordinate, each
@@ -61,13 +64,22 @@ uniform(uint64_t *s)
     return 3 * ((double)(z >> 11) * 0x1p-53) - 1.5;
 }
 
+/* L(e) (the top) */
+static void
+L_of(const double *e, double L[3][4])
+{
+    const double rows[3][4] = {{-e[1], e[0], e[3], -e[2]},
+                               {-e[2], -e[3], e[0], e[1]},
+                               {-e[3], e[2], -e[1], e[0]}};
+    memcpy(L, rows, sizeof rows);
+}
+
 /* y = L(e)^T w / 2 */
 static void
 half_LT(const double *e, const double *w, double *y)
 {
-    const double L[3][4] = {{-e[1], e[0], e[3], -e[2]},
-                            {-e[2], -e[3], e[0], e[1]},
-                            {-e[3], e[2], -e[1], e[0]}};
+    double L[3][4];
+    L_of(e, L);
     for (int c = 0; c < 4; c++)
         y[c] = (L[0][c] * w[0] + L[1][c] * w[1] + L[2][c] * w[2]) / 2;
 }
@@ -236,6 +248,54 @@ done:
     return rc;
 }
 
+/* w = 2 L(e) e' (the top) */
+static void
+two_L(const double *e, const double *e1, double *w)
+{
+    double L[3][4];
+    L_of(e, L);
+    for (int r = 0; r < 3; r++)
+        w[r] = 2 * (L[r][0] * e1[0] + L[r][1] * e1[1] + L[r][2] * e1[2] + L[r][3] * e1[3]);
+}
+
+/* The kinetic mode (the top): 0, or 2 on a short line. */
+static int
+kinetic(mjModel *m)
+{
+    m->opt.enableflags |= mjENBL_ENERGY; /* else mj_energyVel leaves 0 */
+    mjData *d = mj_makeData(m);
+    double t, *v = calloc((size_t)m->nq, sizeof *v);
+    int rc = 0;
+    while (scanf("%lf", &t) == 1) {
+        for (int i = 0; i < 2 * m->nq; i++)
+            if (scanf("%lf", i < m->nq ? &d->qpos[i] : &v[i - m->nq]) != 1) {
+                fprintf(stderr, "mj_accel: a row has fewer than 2 nq = %d numbers\n",
+                        2 * m->nq);
+                rc = 2;
+                goto done;
+            }
+        for (int j = 0; j < m->njnt; j++) { /* eomc's rates to MuJoCo's qvel */
+            int type = m->jnt_type[j], q = m->jnt_qposadr[j], dv = m->jnt_dofadr[j];
+            if (type == mjJNT_FREE)
+                for (int k = 0; k < 3; k++)
+                    d->qvel[dv + k] = v[q + k];
+            if (type == mjJNT_FREE)
+                q += 3, dv += 3;
+            if (type == mjJNT_BALL || type == mjJNT_FREE)
+                two_L(d->qpos + q, v + q, d->qvel + dv);
+            else if (type != mjJNT_FREE)
+                d->qvel[dv] = v[q];
+        }
+        mj_fwdPosition(m, d);
+        mj_energyVel(m, d);
+        printf("%.17g %.17g\n", t, d->energy[1]);
+    }
+done:
+    free(v);
+    mj_deleteData(d);
+    return rc;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -245,8 +305,8 @@ main(int argc, char **argv)
         fprintf(stderr, "mj_accel: %s\n", argc == 3 ? err : "usage: mj_accel MODEL SEED");
         return 2;
     }
-    if (!strcmp(argv[2], "com")) {
-        int rc = centre_of_mass(m);
+    if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic")) {
+        int rc = argv[2][0] == 'c' ? centre_of_mass(m) : kinetic(m);
         mj_deleteModel(m);
         return rc;
     }

@@ -72,6 +72,28 @@ for model in "$src/tests/import/models/arm.xml" "$src/tests/import/models/spring
   ok $? "$base: q'' equals MuJoCo's qacc at $states random states within $worst of the largest (<= $TOL)${ext:+; against eomc's extended-precision solve: eomc's doubles $own (<= $OWN), MuJoCo's $mjx}"
 done
 
+# 22 humanoids, the first moving and the other 21 at rest: T of the
+# run's first row (q'.M q'/2 by mass_times, which runs one humanoid's code
+# per copy and stores zeros for a copy at rest: repeat.c) = MuJoCo's
+# kinetic energy there (mj_energyVel, armature included)
+if [ -e "$samples/humanoid/22_humanoids.xml" ]; then
+  model=$samples/humanoid/22_humanoids.xml
+  "$mj" "$model" 1 > "$tmp/mj"
+  coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/22_humanoids_xml.yaml" | tr -d ',')
+  args=$(awk -v names="$coords" 'BEGIN { n = split(names, c, " ") }
+      NR == 1 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
+      NR == 2 { for (i = 1; i <= 28; i++) printf " --init %s'"'"'=%s", c[i], $i }' "$tmp/mj")
+  # shellcheck disable=SC2086 # $args is a list of options
+  "$eomc" run "$tmp/22_humanoids_xml.yaml" $args --t-end 0.01 -o "$tmp/h22.csv" 2> "$tmp/err"
+  st=$?
+  row=$(awk -F, 'NR == 2 { for (i = 1; i <= NF; i++) printf "%s ", $i }' "$tmp/h22.csv")
+  mine=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "T") k = i } NR == 2 { print $k }' "$tmp/h22.csv")
+  theirs=$(echo "$row" | cut -d' ' -f1-1233 | "$mj" "$model" kinetic | cut -d' ' -f2)
+  d=$(awk -v a="$mine" -v b="$theirs" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b <= 0) print "nan"; else printf "%.3g\n", d / b }')
+  [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d != "nan" && d <= 1e-12) }'
+  ok $? "22_humanoids: one moving, 21 at rest: T = $mine, MuJoCo's $theirs (relative $d <= 1e-12)"
+fi
+
 # the spatial tendon that nothing uses is dropped by name
 "$eomc" import "$src/tests/import/models/welded.xml" 2>&1 > /dev/null |
   grep -q "warning: dropped: spatial tendon cable (nothing acts along it"

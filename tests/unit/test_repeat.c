@@ -7,8 +7,9 @@
  *   1, 2), and not the fourth, whose expressions differ;
  *   give, through lower_eval's loop over the shifted arrays, the very
  *   bits of the unsplit function at random states;
- * and a function whose outputs are not one slot per coordinate (the full
- * mass matrix) is not split.
+ * a function whose outputs are not one slot per coordinate (the full
+ * mass matrix) is not split; and a unit load's copies without a load
+ * store zeros only where their outputs vanish with it.
  */
 #include "check.h"
 #include "forms/forms.h"
@@ -51,6 +52,51 @@ uniform(uint64_t *s)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
     z ^= z >> 31;
     return 2 * ((double)(z >> 11) * 0x1p-53) - 1;
+}
+
+/* A unit load's function by hand, "t q v p u da > y", three copies of
+ * y_j = (2 + sin q_j) da_j + q_{j+1} da_{j+1} on pairs (j, j+1): linear in
+ * the load, so a copy without one stores zeros (zero_skip); and the same
+ * plus a constant 1 in every y, which does not vanish with the load. */
+static const LowSig s_load = {"load", "a test's unit load", "t q v p u da > y"};
+
+static LowFunc
+load_function(int affine)
+{
+    LowFunc f = {.sig = &s_load, .per_step = 1};
+    f.out = arena_new_array(A, LowSlot, 6), f.cap = 6;
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 2; k++) {
+            int j = 2 * c + k, o = 2 * c + 1 - k;
+            ExprId e = expr_add(P,
+                expr_mul(P, expr_add(P, expr_const(P, 2), expr_unary(P, EXPR_SIN, expr_var(P, j, 0))),
+                         expr_seed(P, j, 2)),
+                expr_mul(P, expr_var(P, o, 0), expr_seed(P, o, 2)));
+            if (affine)
+                e = expr_add(P, e, EXPR_ONE);
+            f.out[f.nout++] = (LowSlot){e, 0, j};
+        }
+    return f;
+}
+
+static void
+test_zero_skip(void)
+{
+    LowFunc f = load_function(0), g = f;
+    int split = repeat_split(&g, 6, 0, 0, A, P);
+    CHECK(split && g.ncopy == 3 && g.zero_skip && g.span0 == 0 && g.span == 2,
+          "a load's function: three copies, zero_skip (y vanishes with da)");
+    double q[6] = {0.3, -1.1, 2.0, 0.7, -0.4, 1.9}, da[6] = {0, 0, 1.5, -0.5, 0, 0};
+    double want[6], got[6];
+    ExprEnv env = {0, {q, NULL, NULL, NULL}, NULL, NULL, {NULL, NULL, da}, NULL};
+    lower_eval(P, &f, &env, (double *const[]){want});
+    memset(got, 0xff, sizeof got);
+    lower_eval(P, &g, &env, (double *const[]){got});
+    CHECK(!memcmp(want, got, sizeof want) && got[0] == 0 && got[5] == 0,
+          "unloaded copies store zeros, the loaded one its values: the unsplit bits");
+    LowFunc h = load_function(1);
+    CHECK(repeat_split(&h, 6, 0, 0, A, P) && h.ncopy == 3 && !h.zero_skip,
+          "y = ... + 1: copies, but no zero_skip (y does not vanish with the load)");
 }
 
 int
@@ -110,6 +156,7 @@ main(void)
         same &= !memcmp(want, got, sizeof want);
     }
     CHECK(same, "split and unsplit: the same bits of a, piv and mkk at 20 random states");
+    test_zero_skip();
     const LowFunc *mb = lower_find(L, "mass_bias");
     LowFunc h = *mb;
     CHECK(mb && !repeat_split(&h, N, NU, 0, A, P) && !h.copy,

@@ -1,8 +1,9 @@
 /*
- * forms: the table of forms and what they share.
+ * forms: the table of forms.
  */
 #include "forms.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static const Form *const all[] = {
@@ -37,22 +38,11 @@ form_nearest(const char *name)
 const char *
 form_names(void)
 {
-    return "lagrange, maggi, nielsen, tzenoff, gibbs-appell, newton-euler, articulated-body";
-}
-
-ExprId *
-form_gradient(const Mech *m, ExprId f, int order, Arena *A, Diff *D)
-{
-    ExprId *g = arena_new_array(A, ExprId, m->n);
-    diff_gradient(D, f, m->n, m->q[order], g);
-    return g;
-}
-
-ExprId *
-form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D)
-{
-    ExprId *G = form_gradient(m, m->V, 0, A, D);
-    for (int i = 0; i < m->n; i++)
-        G[i] = expr_sub(P, G[i], m->Q[i]);
-    return G;
+    static char names[256]; /* written once, from the table */
+    if (!names[0])
+        for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+            size_t at = strlen(names);
+            snprintf(names + at, sizeof names - at, "%s%s", i ? ", " : "", all[i]->name);
+        }
+    return names;
 }

@@ -64,9 +64,5 @@ const char *form_names(void);
 /* The form a misspelt name most likely meant, or NULL. */
 const char *form_nearest(const char *name);
 
-/* dV/dq_i - Q_i, the part every form shares. */
-ExprId *form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D);
-/* Gradient of f with respect to the leaves q^(order). */
-ExprId *form_gradient(const Mech *m, ExprId f, int order, Arena *A, Diff *D);
 
 #endif

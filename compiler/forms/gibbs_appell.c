@@ -5,6 +5,7 @@
  * no acceleration energy, so such models are refused.
  */
 #include "forms.h"
+#include "form_util.h"
 
 static ExprId *
 gibbs_appell(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)

@@ -5,6 +5,7 @@
  * forward-mode total derivative.
  */
 #include "forms.h"
+#include "form_util.h"
 
 static ExprId *
 lagrange(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)

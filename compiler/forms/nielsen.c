@@ -3,6 +3,7 @@
  *     E_i = d(T')/dq_i' - 2 dT/dq_i + dV/dq_i - Q_i,   T' = dT/dt
  */
 #include "forms.h"
+#include "form_util.h"
 
 static ExprId *
 nielsen(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)

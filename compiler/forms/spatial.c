@@ -2,6 +2,7 @@
  * spatial: spatial vector algebra on expressions (spatial.h).
  */
 #include "spatial.h"
+#include "form_util.h"
 
 #include "../kin.h"
 

@@ -4,6 +4,7 @@
  * T'' contains q'''; only its q'' dependence survives d/dq''.
  */
 #include "forms.h"
+#include "form_util.h"
 
 static ExprId *
 tzenoff(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)

@@ -10,6 +10,7 @@
  */
 #include "check.h"
 #include "eom.h"
+#include "forms/form_util.h"
 
 #include <string.h>
 

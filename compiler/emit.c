@@ -1440,94 +1440,107 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
 {
     const char *nm = s->name;
     println(pr, "const eomc_model %s_model = {", nm);
-    fprintf(pr->f, "    EOMC_ABI_VERSION, \"%s\", ", nm);
+    fprintf(pr->f, "    .abi = EOMC_ABI_VERSION, .name = \"%s\", .spec = ", nm);
     print_c_string(pr->f, base_name(s->path));
-    fprintf(pr->f, ", \"%s\", ", e->form->name);
+    fprintf(pr->f, ", .form = \"%s\",\n    .options = ", e->form->name);
     print_c_string(pr->f, info->options);
     println(pr, ",");
-    println(pr, "    %d, %d, %d, q_names, p_names, u_names, p_default,", s->nq, s->np, s->nu);
-    fprintf(pr->f, "    ");
+    println(pr, "    .nq = %d, .np = %d, .nu = %d,", s->nq, s->np, s->nu);
+    println(pr, "    .q_names = q_names, .p_names = p_names, .u_names = u_names,");
+    fprintf(pr->f, "    .p_default = p_default, .scene = ");
     print_c_string(pr->f, s->scene.name ? s->scene.name : "");
-    println(pr, ", p_fixed,");
+    println(pr, ", .p_fixed = p_fixed,");
     if (L->derive)
-        println(pr, "    %d, %s_derive,", L->nd, nm);
+        println(pr, "    .nd = %d, .derive = %s_derive,", L->nd, nm);
     else
-        println(pr, "    0, NULL, /* no value of the parameters alone to derive */");
+        println(pr, "    .nd = 0, .derive = NULL, /* no value of the parameters alone to derive */");
     char a[40], b[40], rt[40], at[40], h[40];
     format_const(a, sizeof a, s->scene.t_end);
     format_const(b, sizeof b, s->scene.dt);
     format_const(rt, sizeof rt, s->scene.rtol);
     format_const(at, sizeof at, s->scene.atol);
     format_const(h, sizeof h, s->scene.h_fixed);
-    println(pr, "    %s, %s, \"%s\", %s, %s, %s,", a, b, s->scene.method, rt, at, h);
+    println(pr, "    .t_end = %s, .dt = %s, .method = \"%s\", .rtol = %s, .atol = %s, .h_fixed = %s,",
+            a, b, s->scene.method, rt, at, h);
+    println(pr, "    .initial = %s_initial, .inputs = %s_inputs, .mass_bias = %s_mass_bias,\n"
+            "    .energy = %s_energy,", nm, nm, nm, nm);
     if (L->jacobian == LOWER_JACOBIAN_NONE)
-        println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy,\n"
-                "    NULL, /* no Jacobian (the banner says why) */", nm, nm, nm, nm);
+        println(pr, "    .jacobian = NULL, /* no Jacobian (the banner says why) */");
     else
-        println(pr, "    %s_initial, %s_inputs, %s_mass_bias, %s_energy, %s_jacobian,",
-                nm, nm, nm, nm, nm);
+        println(pr, "    .jacobian = %s_jacobian,", nm);
     if (c)
-        println(pr, "    NULL, /* constrained: the runtime solves the KKT system */");
+        println(pr, "    .accel = NULL, /* constrained: the runtime solves the KKT system */");
     else if (L->accel_solve || L->tau)
-        println(pr, "    %s_accel,", nm);
+        println(pr, "    .accel = %s_accel,", nm);
     else
-        println(pr, "    NULL, /* more than %d coordinates, M too dense to unroll: the runtime "
-                "solves with GSL */",
+        println(pr, "    .accel = NULL, /* more than %d coordinates, M too dense to unroll: the "
+                "runtime solves with GSL */",
                 EOM_SOLVE_MAX);
     if (c)
-        println(pr, "    %d, c_names, c_order, c_dependent, %d, %d,\n"
-                "    %s_constraint, %s_c_levels, %s_c_jacobian, %s_c_levels_jacobian,",
+        println(pr, "    .nc = %d, .c_names = c_names, .c_order = c_order, .c_dependent = "
+                "c_dependent,\n"
+                "    .c_affine = %d, .eliminate = %d,\n"
+                "    .constraint = %s_constraint, .c_levels = %s_c_levels, .c_jacobian = "
+                "%s_c_jacobian,\n"
+                "    .c_levels_jacobian = %s_c_levels_jacobian,",
                 c->nc, c->affine, info->eliminate, nm, nm, nm, nm);
     else
-        println(pr, "    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,");
+        println(pr, "    .nc = 0, .c_affine = 1, /* no constraints */");
     if (inv->h != EXPR_NONE)
-        fprintf(pr->f, "    %s_invariant, \"%s\",\n    ", nm, inv->name);
+        fprintf(pr->f, "    .invariant = %s_invariant, .invariant_name = \"%s\",\n", nm,
+                inv->name);
     else
-        fprintf(pr->f, "    NULL, NULL,\n    ");
+        fprintf(pr->f, "    .invariant = NULL, .invariant_name = NULL,\n");
+    fprintf(pr->f, "    .invariant_note = ");
     print_c_string(pr->f, inv->note);
+    println(pr, ",");
     if (s->ncheck)
-        println(pr, ",\n    %d, %s_check, check_what, check_params,", s->ncheck, nm);
+        println(pr, "    .ncheck = %d, .check = %s_check, .check_what = check_what,\n"
+                "    .check_params = check_params,", s->ncheck, nm);
     else
-        println(pr, ",\n    0, NULL, NULL, NULL,");
+        println(pr, "    .ncheck = 0, /* nothing to check of the parameters */");
     if (L->outputs)
-        println(pr, "    %d, out_names, %s_outputs,", s->scene.noutput, nm);
+        println(pr, "    .nout = %d, .out_names = out_names, .outputs = %s_outputs,",
+                s->scene.noutput, nm);
     else
-        println(pr, "    0, NULL, NULL, /* the scene asks for no outputs */");
+        println(pr, "    .nout = 0, /* the scene asks for no outputs */");
     if (L->events)
-        println(pr, "    %d, ev_names, ev_direction, ev_action, %s_events, %s%s,",
+        println(pr, "    .nevent = %d, .ev_names = ev_names, .ev_direction = ev_direction,\n"
+                "    .ev_action = ev_action, .events = %s_events, .event_set = %s%s,",
                 s->scene.nevent, nm, L->last_set ? nm : "NULL",
                 L->last_set ? "_event_set" : "");
     else
-        println(pr, "    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */");
+        println(pr, "    .nevent = 0, /* the scene asks for no events */");
     if (s->scene.assemble)
-        println(pr, "    1, %s, /* runs start assembled onto the constraints */",
-                s->scene.hold ? "a_hold" : "NULL");
+        println(pr, "    .assemble = 1, .a_hold = %s, /* runs start assembled onto the "
+                "constraints */", s->scene.hold ? "a_hold" : "NULL");
     else
-        println(pr, "    0, NULL, /* the scene does not assemble */");
+        println(pr, "    .assemble = 0, /* the scene does not assemble */");
     if (e->mass_parent && !c)
-        println(pr, "    mass_parent, /* M factored by LTDL along this tree */");
+        println(pr, "    .mass_parent = mass_parent, /* M factored by LTDL along this tree */");
     else
-        println(pr, "    NULL, /* M factored densely (or not at all: accel) */");
+        println(pr, "    .mass_parent = NULL, /* M factored densely (or not at all: accel) */");
     if (L->loads)
-        println(pr, "    %s_accel, %s_minv, /* the multipliers by unit loads */", nm, nm);
+        println(pr, "    .free_accel = %s_accel, .minv = %s_minv, /* the multipliers by unit "
+                "loads */", nm, nm);
     else
-        println(pr, "    NULL, NULL, /* no unit-load passes */");
+        println(pr, "    .free_accel = NULL, .minv = NULL, /* no unit-load passes */");
     if (lower_find(L, "c_scale"))
-        println(pr, "    %s_c_scale,", nm);
+        println(pr, "    .c_scale = %s_c_scale,", nm);
     else
-        println(pr, "    NULL, /* no holonomic constraint to scale */");
+        println(pr, "    .c_scale = NULL, /* no holonomic constraint to scale */");
     if (c && L->held)
-        println(pr, "    c_held,");
+        println(pr, "    .c_held = c_held,");
     else
-        println(pr, "    NULL, /* every constraint's row in the unit loads */");
+        println(pr, "    .c_held = NULL, /* every constraint's row in the unit loads */");
     const LowFunc *cf = c ? lower_find(L, "constraint") : NULL;
     if (cf && cf->fill[1]) {
         int nnz = 0;
         for (int i = 0; i < cf->nout; i++)
             nnz += cf->out[i].arg == 1;
-        println(pr, "    %d, c_nz,", nnz);
+        println(pr, "    .c_nnz = %d, .c_nz = c_nz,", nnz);
     } else {
-        println(pr, "    0, NULL, /* B dense */");
+        println(pr, "    .c_nnz = 0, .c_nz = NULL, /* B dense */");
     }
     println(pr, "};\n");
     println(pr, "#ifdef EOMC_MAIN");
@@ -1549,15 +1562,16 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
     println(pr, "#endif");
     println(pr, "#else");
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);
-    println(pr, "    EOMC_ABI_VERSION, \"%s\", %s%s, %s_inputs, %s_mass_bias, %s%s,", nm,
+    println(pr, "    .abi = EOMC_ABI_VERSION, .name = \"%s\", .derive = %s%s, .inputs = %s_inputs,\n"
+            "    .mass_bias = %s_mass_bias, .accel = %s%s,", nm,
             L->derive ? nm : "NULL", L->derive ? "_derive" : "", nm, nm,
             (L->accel_solve || L->tau) && !c ? nm : "NULL",
             (L->accel_solve || L->tau) && !c ? "_accel" : "");
     if (c)
-        println(pr, "    %s_constraint, %s%s,", nm, c->affine ? "NULL" : nm,
-                c->affine ? "" : "_c_jacobian");
+        println(pr, "    .constraint = %s_constraint, .c_jacobian = %s%s,", nm,
+                c->affine ? "NULL" : nm, c->affine ? "" : "_c_jacobian");
     else
-        println(pr, "    NULL, NULL,");
+        println(pr, "    .constraint = NULL, .c_jacobian = NULL,");
     println(pr, "};");
     println(pr, "#endif /* EOMC_EXTENDED */");
 }

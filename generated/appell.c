@@ -382,26 +382,33 @@ appell_check(const double *p)
 }
 
 const eomc_model appell_model = {
-    EOMC_ABI_VERSION, "appell", "appell.yaml", "lagrange", "--jacobian auto",
-    3, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    6, appell_derive,
-    2.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    appell_initial, appell_inputs, appell_mass_bias, appell_energy, appell_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    1, c_names, c_order, c_dependent, 1, 0,
-    appell_constraint, appell_c_levels, appell_c_jacobian, appell_c_levels_jacobian,
-    appell_invariant, "E",
-    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
-    1, appell_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "appell", .spec = "appell.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 3, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 6, .derive = appell_derive,
+    .t_end = 2.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = appell_initial, .inputs = appell_inputs, .mass_bias = appell_mass_bias,
+    .energy = appell_energy,
+    .jacobian = appell_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 1, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = appell_constraint, .c_levels = appell_c_levels, .c_jacobian = appell_c_jacobian,
+    .c_levels_jacobian = appell_c_levels_jacobian,
+    .invariant = appell_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    .ncheck = 1, .check = appell_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -423,7 +430,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext appell_model_ext = {
-    EOMC_ABI_VERSION, "appell", appell_derive, appell_inputs, appell_mass_bias, NULL,
-    appell_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "appell", .derive = appell_derive, .inputs = appell_inputs,
+    .mass_bias = appell_mass_bias, .accel = NULL,
+    .constraint = appell_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

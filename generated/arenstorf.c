@@ -403,25 +403,29 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 const eomc_model arenstorf_model = {
-    EOMC_ABI_VERSION, "arenstorf", "arenstorf.yaml", "lagrange", "--jacobian auto",
-    2, 1, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    1, arenstorf_derive,
-    17.065216560157964, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    arenstorf_initial, arenstorf_inputs, arenstorf_mass_bias, arenstorf_energy, arenstorf_jacobian,
-    arenstorf_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    arenstorf_invariant, "h",
-    "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t and every effect is a potential",
-    0, NULL, NULL, NULL,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "arenstorf", .spec = "arenstorf.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 2, .np = 1, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 1, .derive = arenstorf_derive,
+    .t_end = 17.065216560157964, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = arenstorf_initial, .inputs = arenstorf_inputs, .mass_bias = arenstorf_mass_bias,
+    .energy = arenstorf_energy,
+    .jacobian = arenstorf_jacobian,
+    .accel = arenstorf_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = arenstorf_invariant, .invariant_name = "h",
+    .invariant_note = "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t and every effect is a potential",
+    .ncheck = 0, /* nothing to check of the parameters */
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -443,7 +447,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext arenstorf_model_ext = {
-    EOMC_ABI_VERSION, "arenstorf", arenstorf_derive, arenstorf_inputs, arenstorf_mass_bias, arenstorf_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "arenstorf", .derive = arenstorf_derive, .inputs = arenstorf_inputs,
+    .mass_bias = arenstorf_mass_bias, .accel = arenstorf_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -9399,26 +9399,33 @@ bicycle_tree_check(const double *p)
 }
 
 const eomc_model bicycle_tree_model = {
-    EOMC_ABI_VERSION, "bicycle_tree", "bicycle_tree.yaml", "articulated-body", "--jacobian auto",
-    8, 26, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    200, bicycle_tree_derive,
-    2.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    bicycle_tree_initial, bicycle_tree_inputs, bicycle_tree_mass_bias, bicycle_tree_energy, bicycle_tree_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    2, c_names, c_order, c_dependent, 1, 0,
-    bicycle_tree_constraint, bicycle_tree_c_levels, bicycle_tree_c_jacobian, bicycle_tree_c_levels_jacobian,
-    bicycle_tree_invariant, "E",
-    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
-    44, bicycle_tree_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    1, a_hold, /* runs start assembled onto the constraints */
-    NULL, /* M factored densely (or not at all: accel) */
-    bicycle_tree_accel, bicycle_tree_minv, /* the multipliers by unit loads */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .spec = "bicycle_tree.yaml", .form = "articulated-body",
+    .options = "--jacobian auto",
+    .nq = 8, .np = 26, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 200, .derive = bicycle_tree_derive,
+    .t_end = 2.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = bicycle_tree_initial, .inputs = bicycle_tree_inputs, .mass_bias = bicycle_tree_mass_bias,
+    .energy = bicycle_tree_energy,
+    .jacobian = bicycle_tree_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 2, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = bicycle_tree_constraint, .c_levels = bicycle_tree_c_levels, .c_jacobian = bicycle_tree_c_jacobian,
+    .c_levels_jacobian = bicycle_tree_c_levels_jacobian,
+    .invariant = bicycle_tree_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    .ncheck = 44, .check = bicycle_tree_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 1, .a_hold = a_hold, /* runs start assembled onto the constraints */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = bicycle_tree_accel, .minv = bicycle_tree_minv, /* the multipliers by unit loads */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -9440,7 +9447,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext bicycle_tree_model_ext = {
-    EOMC_ABI_VERSION, "bicycle_tree", bicycle_tree_derive, bicycle_tree_inputs, bicycle_tree_mass_bias, NULL,
-    bicycle_tree_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .derive = bicycle_tree_derive, .inputs = bicycle_tree_inputs,
+    .mass_bias = bicycle_tree_mass_bias, .accel = NULL,
+    .constraint = bicycle_tree_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -261,25 +261,31 @@ bouncing_ball_check(const double *p)
 }
 
 const eomc_model bouncing_ball_model = {
-    EOMC_ABI_VERSION, "bouncing_ball", "bouncing_ball.yaml", "lagrange", "--jacobian auto",
-    1, 4, 0, q_names, p_names, u_names, p_default,
-    "bounce", p_fixed,
-    3, bouncing_ball_derive,
-    1.2, 0.01, "rk8pd", 1e-13, 1e-13, 0.0,
-    bouncing_ball_initial, bouncing_ball_inputs, bouncing_ball_mass_bias, bouncing_ball_energy, bouncing_ball_jacobian,
-    bouncing_ball_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    bouncing_ball_invariant, "E",
-    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
-    1, bouncing_ball_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    1, ev_names, ev_direction, ev_action, bouncing_ball_events, bouncing_ball_event_set,
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 1, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "bounce", .p_fixed = p_fixed,
+    .nd = 3, .derive = bouncing_ball_derive,
+    .t_end = 1.2, .dt = 0.01, .method = "rk8pd", .rtol = 1e-13, .atol = 1e-13, .h_fixed = 0.0,
+    .initial = bouncing_ball_initial, .inputs = bouncing_ball_inputs, .mass_bias = bouncing_ball_mass_bias,
+    .energy = bouncing_ball_energy,
+    .jacobian = bouncing_ball_jacobian,
+    .accel = bouncing_ball_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = bouncing_ball_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    .ncheck = 1, .check = bouncing_ball_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 1, .ev_names = ev_names, .ev_direction = ev_direction,
+    .ev_action = ev_action, .events = bouncing_ball_events, .event_set = bouncing_ball_event_set,
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -301,7 +307,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext bouncing_ball_model_ext = {
-    EOMC_ABI_VERSION, "bouncing_ball", bouncing_ball_derive, bouncing_ball_inputs, bouncing_ball_mass_bias, bouncing_ball_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .derive = bouncing_ball_derive, .inputs = bouncing_ball_inputs,
+    .mass_bias = bouncing_ball_mass_bias, .accel = bouncing_ball_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -356,26 +356,33 @@ cartesian_pendulum_check(const double *p)
 }
 
 const eomc_model cartesian_pendulum_model = {
-    EOMC_ABI_VERSION, "cartesian_pendulum", "cartesian_pendulum.yaml", "lagrange", "--jacobian auto",
-    2, 4, 0, q_names, p_names, u_names, p_default,
-    "swing", p_fixed,
-    4, cartesian_pendulum_derive,
-    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    cartesian_pendulum_initial, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, cartesian_pendulum_energy, cartesian_pendulum_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    1, c_names, c_order, c_dependent, 1, 0,
-    cartesian_pendulum_constraint, cartesian_pendulum_c_levels, cartesian_pendulum_c_jacobian, cartesian_pendulum_c_levels_jacobian,
-    cartesian_pendulum_invariant, "E",
-    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
-    1, cartesian_pendulum_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    cartesian_pendulum_c_scale,
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 2, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "swing", .p_fixed = p_fixed,
+    .nd = 4, .derive = cartesian_pendulum_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = cartesian_pendulum_initial, .inputs = cartesian_pendulum_inputs, .mass_bias = cartesian_pendulum_mass_bias,
+    .energy = cartesian_pendulum_energy,
+    .jacobian = cartesian_pendulum_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 1, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = cartesian_pendulum_constraint, .c_levels = cartesian_pendulum_c_levels, .c_jacobian = cartesian_pendulum_c_jacobian,
+    .c_levels_jacobian = cartesian_pendulum_c_levels_jacobian,
+    .invariant = cartesian_pendulum_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    .ncheck = 1, .check = cartesian_pendulum_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = cartesian_pendulum_c_scale,
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -397,7 +404,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext cartesian_pendulum_model_ext = {
-    EOMC_ABI_VERSION, "cartesian_pendulum", cartesian_pendulum_derive, cartesian_pendulum_inputs, cartesian_pendulum_mass_bias, NULL,
-    cartesian_pendulum_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .derive = cartesian_pendulum_derive, .inputs = cartesian_pendulum_inputs,
+    .mass_bias = cartesian_pendulum_mass_bias, .accel = NULL,
+    .constraint = cartesian_pendulum_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

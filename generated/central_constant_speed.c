@@ -881,26 +881,33 @@ central_constant_speed_check(const double *p)
 }
 
 const eomc_model central_constant_speed_model = {
-    EOMC_ABI_VERSION, "central_constant_speed", "central_constant_speed.yaml", "gibbs-appell", "--jacobian auto",
-    3, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    4, central_constant_speed_derive,
-    5.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    central_constant_speed_initial, central_constant_speed_inputs, central_constant_speed_mass_bias, central_constant_speed_energy, central_constant_speed_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    1, c_names, c_order, c_dependent, 1, 0,
-    central_constant_speed_constraint, central_constant_speed_c_levels, central_constant_speed_c_jacobian, central_constant_speed_c_levels_jacobian,
-    NULL, NULL,
-    "nothing is conserved: the constraint 'speed' is not homogeneous in the velocities, so its force can do work",
-    1, central_constant_speed_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
+    .options = "--jacobian auto",
+    .nq = 3, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 4, .derive = central_constant_speed_derive,
+    .t_end = 5.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = central_constant_speed_initial, .inputs = central_constant_speed_inputs, .mass_bias = central_constant_speed_mass_bias,
+    .energy = central_constant_speed_energy,
+    .jacobian = central_constant_speed_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 1, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = central_constant_speed_constraint, .c_levels = central_constant_speed_c_levels, .c_jacobian = central_constant_speed_c_jacobian,
+    .c_levels_jacobian = central_constant_speed_c_levels_jacobian,
+    .invariant = NULL, .invariant_name = NULL,
+    .invariant_note = "nothing is conserved: the constraint 'speed' is not homogeneous in the velocities, so its force can do work",
+    .ncheck = 1, .check = central_constant_speed_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -922,7 +929,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext central_constant_speed_model_ext = {
-    EOMC_ABI_VERSION, "central_constant_speed", central_constant_speed_derive, central_constant_speed_inputs, central_constant_speed_mass_bias, NULL,
-    central_constant_speed_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .derive = central_constant_speed_derive, .inputs = central_constant_speed_inputs,
+    .mass_bias = central_constant_speed_mass_bias, .accel = NULL,
+    .constraint = central_constant_speed_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

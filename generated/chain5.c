@@ -1704,25 +1704,30 @@ chain5_check(const double *p)
 }
 
 const eomc_model chain5_model = {
-    EOMC_ABI_VERSION, "chain5", "chain5.yaml", "gibbs-appell", "--jacobian auto",
-    5, 3, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    16, chain5_derive,
-    10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
-    chain5_initial, chain5_inputs, chain5_mass_bias, chain5_energy, chain5_jacobian,
-    chain5_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    chain5_invariant, "E",
-    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
-    5, chain5_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
+    .options = "--jacobian auto",
+    .nq = 5, .np = 3, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 16, .derive = chain5_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10, .atol = 1e-10, .h_fixed = 0.0,
+    .initial = chain5_initial, .inputs = chain5_inputs, .mass_bias = chain5_mass_bias,
+    .energy = chain5_energy,
+    .jacobian = chain5_jacobian,
+    .accel = chain5_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = chain5_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    .ncheck = 5, .check = chain5_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -1744,7 +1749,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext chain5_model_ext = {
-    EOMC_ABI_VERSION, "chain5", chain5_derive, chain5_inputs, chain5_mass_bias, chain5_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "chain5", .derive = chain5_derive, .inputs = chain5_inputs,
+    .mass_bias = chain5_mass_bias, .accel = chain5_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

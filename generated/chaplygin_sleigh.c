@@ -474,26 +474,33 @@ chaplygin_sleigh_check(const double *p)
 }
 
 const eomc_model chaplygin_sleigh_model = {
-    EOMC_ABI_VERSION, "chaplygin_sleigh", "chaplygin_sleigh.yaml", "lagrange", "--jacobian auto",
-    3, 5, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    6, chaplygin_sleigh_derive,
-    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    chaplygin_sleigh_initial, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, chaplygin_sleigh_energy, chaplygin_sleigh_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    1, c_names, c_order, c_dependent, 1, 0,
-    chaplygin_sleigh_constraint, chaplygin_sleigh_c_levels, chaplygin_sleigh_c_jacobian, chaplygin_sleigh_c_levels_jacobian,
-    chaplygin_sleigh_invariant, "E",
-    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
-    2, chaplygin_sleigh_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 3, .np = 5, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 6, .derive = chaplygin_sleigh_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = chaplygin_sleigh_initial, .inputs = chaplygin_sleigh_inputs, .mass_bias = chaplygin_sleigh_mass_bias,
+    .energy = chaplygin_sleigh_energy,
+    .jacobian = chaplygin_sleigh_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 1, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = chaplygin_sleigh_constraint, .c_levels = chaplygin_sleigh_c_levels, .c_jacobian = chaplygin_sleigh_c_jacobian,
+    .c_levels_jacobian = chaplygin_sleigh_c_levels_jacobian,
+    .invariant = chaplygin_sleigh_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    .ncheck = 2, .check = chaplygin_sleigh_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -515,7 +522,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext chaplygin_sleigh_model_ext = {
-    EOMC_ABI_VERSION, "chaplygin_sleigh", chaplygin_sleigh_derive, chaplygin_sleigh_inputs, chaplygin_sleigh_mass_bias, NULL,
-    chaplygin_sleigh_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .derive = chaplygin_sleigh_derive, .inputs = chaplygin_sleigh_inputs,
+    .mass_bias = chaplygin_sleigh_mass_bias, .accel = NULL,
+    .constraint = chaplygin_sleigh_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -518,25 +518,30 @@ double_pendulum_check(const double *p)
 }
 
 const eomc_model double_pendulum_model = {
-    EOMC_ABI_VERSION, "double_pendulum", "double_pendulum.yaml", "lagrange", "--jacobian auto",
-    2, 5, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    18, double_pendulum_derive,
-    10.0, 0.05, "rk8pd", 1e-12, 1e-12, 0.0,
-    double_pendulum_initial, double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_energy, double_pendulum_jacobian,
-    double_pendulum_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    double_pendulum_invariant, "E",
-    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
-    2, double_pendulum_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 2, .np = 5, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 18, .derive = double_pendulum_derive,
+    .t_end = 10.0, .dt = 0.05, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = double_pendulum_initial, .inputs = double_pendulum_inputs, .mass_bias = double_pendulum_mass_bias,
+    .energy = double_pendulum_energy,
+    .jacobian = double_pendulum_jacobian,
+    .accel = double_pendulum_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = double_pendulum_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    .ncheck = 2, .check = double_pendulum_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -558,7 +563,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext double_pendulum_model_ext = {
-    EOMC_ABI_VERSION, "double_pendulum", double_pendulum_derive, double_pendulum_inputs, double_pendulum_mass_bias, double_pendulum_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .derive = double_pendulum_derive, .inputs = double_pendulum_inputs,
+    .mass_bias = double_pendulum_mass_bias, .accel = double_pendulum_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -206,25 +206,30 @@ falling_particle_check(const double *p)
 }
 
 const eomc_model falling_particle_model = {
-    EOMC_ABI_VERSION, "falling_particle", "falling_particle.yaml", "lagrange", "--jacobian auto",
-    1, 3, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    4, falling_particle_derive,
-    1.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    falling_particle_initial, falling_particle_inputs, falling_particle_mass_bias, falling_particle_energy, falling_particle_jacobian,
-    falling_particle_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    NULL, NULL,
-    "nothing is conserved: the effect 'push' is a force, not a potential",
-    1, falling_particle_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 1, .np = 3, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 4, .derive = falling_particle_derive,
+    .t_end = 1.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = falling_particle_initial, .inputs = falling_particle_inputs, .mass_bias = falling_particle_mass_bias,
+    .energy = falling_particle_energy,
+    .jacobian = falling_particle_jacobian,
+    .accel = falling_particle_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = NULL, .invariant_name = NULL,
+    .invariant_note = "nothing is conserved: the effect 'push' is a force, not a potential",
+    .ncheck = 1, .check = falling_particle_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -246,7 +251,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext falling_particle_model_ext = {
-    EOMC_ABI_VERSION, "falling_particle", falling_particle_derive, falling_particle_inputs, falling_particle_mass_bias, falling_particle_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "falling_particle", .derive = falling_particle_derive, .inputs = falling_particle_inputs,
+    .mass_bias = falling_particle_mass_bias, .accel = falling_particle_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

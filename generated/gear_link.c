@@ -211,25 +211,29 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 const eomc_model gear_link_model = {
-    EOMC_ABI_VERSION, "gear_link", "gear_link.yaml", "lagrange", "--jacobian auto",
-    1, 6, 1, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    6, gear_link_derive,
-    10.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
-    gear_link_initial, gear_link_inputs, gear_link_mass_bias, gear_link_energy, gear_link_jacobian,
-    gear_link_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    NULL, NULL,
-    "nothing is conserved: the effect 'motor' is a force, not a potential",
-    0, NULL, NULL, NULL,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "gear_link", .spec = "gear_link.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 1, .np = 6, .nu = 1,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 6, .derive = gear_link_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10, .atol = 1e-10, .h_fixed = 0.0,
+    .initial = gear_link_initial, .inputs = gear_link_inputs, .mass_bias = gear_link_mass_bias,
+    .energy = gear_link_energy,
+    .jacobian = gear_link_jacobian,
+    .accel = gear_link_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = NULL, .invariant_name = NULL,
+    .invariant_note = "nothing is conserved: the effect 'motor' is a force, not a potential",
+    .ncheck = 0, /* nothing to check of the parameters */
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -251,7 +255,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext gear_link_model_ext = {
-    EOMC_ABI_VERSION, "gear_link", gear_link_derive, gear_link_inputs, gear_link_mass_bias, gear_link_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "gear_link", .derive = gear_link_derive, .inputs = gear_link_inputs,
+    .mass_bias = gear_link_mass_bias, .accel = gear_link_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -314,25 +314,30 @@ kepler_check(const double *p)
 }
 
 const eomc_model kepler_model = {
-    EOMC_ABI_VERSION, "kepler", "kepler.yaml", "lagrange", "--jacobian auto",
-    2, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    3, kepler_derive,
-    18.84955592153876, 0.1, "rk8pd", 1e-10, 1e-10, 0.0,
-    kepler_initial, kepler_inputs, kepler_mass_bias, kepler_energy, kepler_jacobian,
-    kepler_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    kepler_invariant, "E",
-    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
-    1, kepler_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "kepler", .spec = "kepler.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 2, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 3, .derive = kepler_derive,
+    .t_end = 18.84955592153876, .dt = 0.1, .method = "rk8pd", .rtol = 1e-10, .atol = 1e-10, .h_fixed = 0.0,
+    .initial = kepler_initial, .inputs = kepler_inputs, .mass_bias = kepler_mass_bias,
+    .energy = kepler_energy,
+    .jacobian = kepler_jacobian,
+    .accel = kepler_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = kepler_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    .ncheck = 1, .check = kepler_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -354,7 +359,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext kepler_model_ext = {
-    EOMC_ABI_VERSION, "kepler", kepler_derive, kepler_inputs, kepler_mass_bias, kepler_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "kepler", .derive = kepler_derive, .inputs = kepler_inputs,
+    .mass_bias = kepler_mass_bias, .accel = kepler_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

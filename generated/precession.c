@@ -932,26 +932,33 @@ precession_check(const double *p)
 }
 
 const eomc_model precession_model = {
-    EOMC_ABI_VERSION, "precession", "precession.yaml", "gibbs-appell", "--jacobian auto",
-    3, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    6, precession_derive,
-    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    precession_initial, precession_inputs, precession_mass_bias, precession_energy, precession_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    1, c_names, c_order, c_dependent, 1, 0,
-    precession_constraint, precession_c_levels, precession_c_jacobian, precession_c_levels_jacobian,
-    NULL, NULL,
-    "nothing is conserved: the force of the second-order constraint 'precession' can do work",
-    10, precession_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
+    .options = "--jacobian auto",
+    .nq = 3, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 6, .derive = precession_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = precession_initial, .inputs = precession_inputs, .mass_bias = precession_mass_bias,
+    .energy = precession_energy,
+    .jacobian = precession_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 1, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = precession_constraint, .c_levels = precession_c_levels, .c_jacobian = precession_c_jacobian,
+    .c_levels_jacobian = precession_c_levels_jacobian,
+    .invariant = NULL, .invariant_name = NULL,
+    .invariant_note = "nothing is conserved: the force of the second-order constraint 'precession' can do work",
+    .ncheck = 10, .check = precession_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -973,7 +980,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext precession_model_ext = {
-    EOMC_ABI_VERSION, "precession", precession_derive, precession_inputs, precession_mass_bias, NULL,
-    precession_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "precession", .derive = precession_derive, .inputs = precession_inputs,
+    .mass_bias = precession_mass_bias, .accel = NULL,
+    .constraint = precession_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -1438,26 +1438,33 @@ rolling_disk_check(const double *p)
 }
 
 const eomc_model rolling_disk_model = {
-    EOMC_ABI_VERSION, "rolling_disk", "rolling_disk.yaml", "articulated-body", "--jacobian auto",
-    5, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    18, rolling_disk_derive,
-    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    rolling_disk_initial, rolling_disk_inputs, rolling_disk_mass_bias, rolling_disk_energy, rolling_disk_jacobian,
-    NULL, /* constrained: the runtime solves the KKT system */
-    2, c_names, c_order, c_dependent, 1, 0,
-    rolling_disk_constraint, rolling_disk_c_levels, rolling_disk_c_jacobian, rolling_disk_c_levels_jacobian,
-    rolling_disk_invariant, "E",
-    "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
-    7, rolling_disk_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    rolling_disk_accel, rolling_disk_minv, /* the multipliers by unit loads */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
+    .options = "--jacobian auto",
+    .nq = 5, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 18, .derive = rolling_disk_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = rolling_disk_initial, .inputs = rolling_disk_inputs, .mass_bias = rolling_disk_mass_bias,
+    .energy = rolling_disk_energy,
+    .jacobian = rolling_disk_jacobian,
+    .accel = NULL, /* constrained: the runtime solves the KKT system */
+    .nc = 2, .c_names = c_names, .c_order = c_order, .c_dependent = c_dependent,
+    .c_affine = 1, .eliminate = 0,
+    .constraint = rolling_disk_constraint, .c_levels = rolling_disk_c_levels, .c_jacobian = rolling_disk_c_jacobian,
+    .c_levels_jacobian = rolling_disk_c_levels_jacobian,
+    .invariant = rolling_disk_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T, V and the constraints do not depend on t, every effect is a potential and the constraint forces do no work",
+    .ncheck = 7, .check = rolling_disk_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = rolling_disk_accel, .minv = rolling_disk_minv, /* the multipliers by unit loads */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -1479,7 +1486,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext rolling_disk_model_ext = {
-    EOMC_ABI_VERSION, "rolling_disk", rolling_disk_derive, rolling_disk_inputs, rolling_disk_mass_bias, NULL,
-    rolling_disk_constraint, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .derive = rolling_disk_derive, .inputs = rolling_disk_inputs,
+    .mass_bias = rolling_disk_mass_bias, .accel = NULL,
+    .constraint = rolling_disk_constraint, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

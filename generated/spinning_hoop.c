@@ -477,25 +477,30 @@ spinning_hoop_check(const double *p)
 }
 
 const eomc_model spinning_hoop_model = {
-    EOMC_ABI_VERSION, "spinning_hoop", "spinning_hoop.yaml", "gibbs-appell", "--jacobian auto",
-    1, 4, 0, q_names, p_names, u_names, p_default,
-    "", p_fixed,
-    7, spinning_hoop_derive,
-    200.0, 0.1, "rk8pd", 1e-12, 1e-12, 0.0,
-    spinning_hoop_initial, spinning_hoop_inputs, spinning_hoop_mass_bias, spinning_hoop_energy, spinning_hoop_jacobian,
-    spinning_hoop_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    spinning_hoop_invariant, "h",
-    "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t (t cancels in T, as a numerical test found) and every effect is a potential",
-    1, spinning_hoop_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
+    .options = "--jacobian auto",
+    .nq = 1, .np = 4, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "", .p_fixed = p_fixed,
+    .nd = 7, .derive = spinning_hoop_derive,
+    .t_end = 200.0, .dt = 0.1, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = spinning_hoop_initial, .inputs = spinning_hoop_inputs, .mass_bias = spinning_hoop_mass_bias,
+    .energy = spinning_hoop_energy,
+    .jacobian = spinning_hoop_jacobian,
+    .accel = spinning_hoop_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = spinning_hoop_invariant, .invariant_name = "h",
+    .invariant_note = "h = q'.dT/dq' - T + V = T2 - T0 + V is conserved (T is not a quadratic form in q', so E = T + V is not): T and V do not depend on t (t cancels in T, as a numerical test found) and every effect is a potential",
+    .ncheck = 1, .check = spinning_hoop_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -517,7 +522,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext spinning_hoop_model_ext = {
-    EOMC_ABI_VERSION, "spinning_hoop", spinning_hoop_derive, spinning_hoop_inputs, spinning_hoop_mass_bias, spinning_hoop_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .derive = spinning_hoop_derive, .inputs = spinning_hoop_inputs,
+    .mass_bias = spinning_hoop_mass_bias, .accel = spinning_hoop_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

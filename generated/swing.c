@@ -227,25 +227,30 @@ swing_check(const double *p)
 }
 
 const eomc_model swing_model = {
-    EOMC_ABI_VERSION, "swing", "swing.yaml", "lagrange", "--jacobian auto",
-    1, 7, 0, q_names, p_names, u_names, p_default,
-    "free", p_fixed,
-    4, swing_derive,
-    10.0, 0.01, "rk8pd", 1e-12, 1e-12, 0.0,
-    swing_initial, swing_inputs, swing_mass_bias, swing_energy, swing_jacobian,
-    swing_accel,
-    0, NULL, NULL, NULL, 1, 0, NULL, NULL, NULL, NULL,
-    swing_invariant, "E",
-    "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
-    1, swing_check, check_what, check_params,
-    0, NULL, NULL, /* the scene asks for no outputs */
-    0, NULL, NULL, NULL, NULL, NULL, /* the scene asks for no events */
-    0, NULL, /* the scene does not assemble */
-    NULL, /* M factored densely (or not at all: accel) */
-    NULL, NULL, /* no unit-load passes */
-    NULL, /* no holonomic constraint to scale */
-    NULL, /* every constraint's row in the unit loads */
-    0, NULL, /* B dense */
+    .abi = EOMC_ABI_VERSION, .name = "swing", .spec = "swing.yaml", .form = "lagrange",
+    .options = "--jacobian auto",
+    .nq = 1, .np = 7, .nu = 0,
+    .q_names = q_names, .p_names = p_names, .u_names = u_names,
+    .p_default = p_default, .scene = "free", .p_fixed = p_fixed,
+    .nd = 4, .derive = swing_derive,
+    .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
+    .initial = swing_initial, .inputs = swing_inputs, .mass_bias = swing_mass_bias,
+    .energy = swing_energy,
+    .jacobian = swing_jacobian,
+    .accel = swing_accel,
+    .nc = 0, .c_affine = 1, /* no constraints */
+    .invariant = swing_invariant, .invariant_name = "E",
+    .invariant_note = "E = T + V is conserved: T and V do not depend on t and every effect is a potential",
+    .ncheck = 1, .check = swing_check, .check_what = check_what,
+    .check_params = check_params,
+    .nout = 0, /* the scene asks for no outputs */
+    .nevent = 0, /* the scene asks for no events */
+    .assemble = 0, /* the scene does not assemble */
+    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .c_scale = NULL, /* no holonomic constraint to scale */
+    .c_held = NULL, /* every constraint's row in the unit loads */
+    .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
 #ifdef EOMC_MAIN
@@ -267,7 +272,8 @@ int main(int argc, char **argv)
 #endif
 #else
 const eomc_model_ext swing_model_ext = {
-    EOMC_ABI_VERSION, "swing", swing_derive, swing_inputs, swing_mass_bias, swing_accel,
-    NULL, NULL,
+    .abi = EOMC_ABI_VERSION, .name = "swing", .derive = swing_derive, .inputs = swing_inputs,
+    .mass_bias = swing_mass_bias, .accel = swing_accel,
+    .constraint = NULL, .c_jacobian = NULL,
 };
 #endif /* EOMC_EXTENDED */

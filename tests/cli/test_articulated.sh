@@ -66,7 +66,7 @@ ok $? "gimbal lock: exit $st, the singular pivot named"
 sh "$src/specs/gen_tree.sh" 9 > "$tmp/tree9.yaml"
 init=$(init "$tmp/tree9.yaml")
 "$eomc" compile "$tmp/tree9.yaml" --form newton-euler -o "$tmp/ne9.c" &&
-  grep -q '^    tree9_accel,$' "$tmp/ne9.c"
+  grep -q '^    \.accel = tree9_accel,$' "$tmp/ne9.c"
 st1=$?
 # shellcheck disable=SC2086
 "$eomc" run "$tmp/tree9.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&
@@ -77,13 +77,13 @@ d=$(accel_diff "$tmp/ab.acc" "$tmp/ne.acc" 27)
 ok $? "27 coordinates: newton-euler's unrolled sparse LDL^T = the recursion, to $d"
 sh "$src/specs/gen_chain.sh" 30 > "$tmp/chain30.yaml"
 "$eomc" compile "$tmp/chain30.yaml" --form lagrange -o "$tmp/c30.c" &&
-  grep -q '^    NULL, /\* more than 24 coordinates' "$tmp/c30.c"
+  grep -q '^    \.accel = NULL, /\* more than 24 coordinates' "$tmp/c30.c"
 ok $? "a dense M of 30 coordinates: no unrolled solve, the runtime's"
 
 sh "$src/specs/gen_tree.sh" 20 > "$tmp/tree20.yaml"
 init=$(init "$tmp/tree20.yaml")
 "$eomc" compile "$tmp/tree20.yaml" --form newton-euler -o "$tmp/ne20.c" &&
-  grep -q '^    mass_parent, /\* M factored by LTDL' "$tmp/ne20.c"
+  grep -q '^    \.mass_parent = mass_parent, /\* M factored by LTDL' "$tmp/ne20.c"
 st1=$?
 # shellcheck disable=SC2086
 "$eomc" run "$tmp/tree20.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&

@@ -23,7 +23,7 @@ jac_ops() { awk '$1 == "jacobian" { print $6 }' "$1"; }
 sh "$src/specs/gen_tree.sh" 4 > "$tmp/tree4.yaml"
 "$eomc" compile "$tmp/tree4.yaml" -o "$tmp/auto.c" --stats 2> "$tmp/auto.stats"
 [ "$(jac_ops "$tmp/auto.stats")" = 0 ] && grep -q '^ \* No Jacobian of E: the scene'"'"'s method' "$tmp/auto.c" &&
-    grep -q 'rk8pd, needs none' "$tmp/auto.c" && grep -q '^    NULL, /\* no Jacobian' "$tmp/auto.c"
+    grep -q 'rk8pd, needs none' "$tmp/auto.c" && grep -q '^    \.jacobian = NULL, /\* no Jacobian' "$tmp/auto.c"
 ok $? "auto, scene rk8pd: no Jacobian printed, the banner says why, the member is NULL"
 
 "$eomc" compile "$tmp/tree4.yaml" -o "$tmp/seeded.c" --stats --jacobian seeded 2> "$tmp/seeded.stats"

@@ -1257,17 +1257,7 @@ print_energy_sum(Printer *pr)
 static void
 print_pivot_check(Printer *pr, int n)
 {
-    println(pr, "    for (int k = %d; k >= 0; k--) /* in elimination order */", n - 1);
-    println(pr, "        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))");
-    println(pr, "            return k + 1;");
-    println(pr, "    if (pivot) {");
-    println(pr, "        eomc_real dmin = piv[0], mmin = mkk[0];");
-    println(pr, "        for (int k = 1; k < %d; k++)", n);
-    println(pr, "            if (piv[k] * mmin < dmin * mkk[k])");
-    println(pr, "                dmin = piv[k], mmin = mkk[k];");
-    println(pr, "        *pivot = dmin / mmin;");
-    println(pr, "    }");
-    println(pr, "    return 0;");
+    println(pr, "    return eomc_pivots(%d, piv, mkk, pivot); /* eomc_model.h */", n);
     println(pr, "}\n");
 }
 
@@ -1650,10 +1640,7 @@ print_checks(Printer *pr, const Lowered *L)
     print_head(pr, "static int", fname, "const double *p");
     println(pr, "    eomc_real chk[%d];", nk);
     println(pr, "    %s_check_values(p, chk);", nm);
-    println(pr, "    for (int k = 0; k < %d; k++)", nk);
-    println(pr, "        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))");
-    println(pr, "            return k + 1;");
-    println(pr, "    return 0;");
+    println(pr, "    return eomc_checks(%d, chk, check_strict); /* eomc_model.h */", nk);
     println(pr, "}\n");
 }
 

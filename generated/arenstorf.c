@@ -388,17 +388,7 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     eomc_real piv[2], mkk[2];
     arenstorf_accel_solve(t, q, v, p, u, a, piv, mkk);
-    for (int k = 1; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
-            return k + 1;
-    if (pivot) {
-        eomc_real dmin = piv[0], mmin = mkk[0];
-        for (int k = 1; k < 2; k++)
-            if (piv[k] * mmin < dmin * mkk[k])
-                dmin = piv[k], mmin = mkk[k];
-        *pivot = dmin / mmin;
-    }
-    return 0;
+    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
 }
 
 #ifndef EOMC_EXTENDED

@@ -8374,17 +8374,7 @@ bicycle_tree_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     eomc_real piv[8], mkk[8];
     bicycle_tree_accel_solve(t, q, v, p, u, a, piv, mkk);
-    for (int k = 7; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
-            return k + 1;
-    if (pivot) {
-        eomc_real dmin = piv[0], mmin = mkk[0];
-        for (int k = 1; k < 8; k++)
-            if (piv[k] * mmin < dmin * mkk[k])
-                dmin = piv[k], mmin = mkk[k];
-        *pivot = dmin / mmin;
-    }
-    return 0;
+    return eomc_pivots(8, piv, mkk, pivot); /* eomc_model.h */
 }
 
 /* y = M^-1 da by the form's recursion at rest, with no force but the load
@@ -9392,10 +9382,7 @@ bicycle_tree_check(const double *p)
 {
     eomc_real chk[44];
     bicycle_tree_check_values(p, chk);
-    for (int k = 0; k < 44; k++)
-        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
-            return k + 1;
-    return 0;
+    return eomc_checks(44, chk, check_strict); /* eomc_model.h */
 }
 
 const eomc_model bicycle_tree_model = {

@@ -349,10 +349,7 @@ cartesian_pendulum_check(const double *p)
 {
     eomc_real chk[1];
     cartesian_pendulum_check_values(p, chk);
-    for (int k = 0; k < 1; k++)
-        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
-            return k + 1;
-    return 0;
+    return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
 const eomc_model cartesian_pendulum_model = {

@@ -467,10 +467,7 @@ chaplygin_sleigh_check(const double *p)
 {
     eomc_real chk[2];
     chaplygin_sleigh_check_values(p, chk);
-    for (int k = 0; k < 2; k++)
-        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
-            return k + 1;
-    return 0;
+    return eomc_checks(2, chk, check_strict); /* eomc_model.h */
 }
 
 const eomc_model chaplygin_sleigh_model = {

@@ -163,17 +163,7 @@ falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 {
     eomc_real piv[1], mkk[1];
     falling_particle_accel_solve(t, q, v, p, u, a, piv, mkk);
-    for (int k = 0; k >= 0; k--) /* in elimination order */
-        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
-            return k + 1;
-    if (pivot) {
-        eomc_real dmin = piv[0], mmin = mkk[0];
-        for (int k = 1; k < 1; k++)
-            if (piv[k] * mmin < dmin * mkk[k])
-                dmin = piv[k], mmin = mkk[k];
-        *pivot = dmin / mmin;
-    }
-    return 0;
+    return eomc_pivots(1, piv, mkk, pivot); /* eomc_model.h */
 }
 
 #ifndef EOMC_EXTENDED
@@ -199,10 +189,7 @@ falling_particle_check(const double *p)
 {
     eomc_real chk[1];
     falling_particle_check_values(p, chk);
-    for (int k = 0; k < 1; k++)
-        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
-            return k + 1;
-    return 0;
+    return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
 const eomc_model falling_particle_model = {

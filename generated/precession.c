@@ -925,10 +925,7 @@ precession_check(const double *p)
 {
     eomc_real chk[10];
     precession_check_values(p, chk);
-    for (int k = 0; k < 10; k++)
-        if (check_strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
-            return k + 1;
-    return 0;
+    return eomc_checks(10, chk, check_strict); /* eomc_model.h */
 }
 
 const eomc_model precession_model = {

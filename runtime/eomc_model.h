@@ -303,4 +303,40 @@ typedef struct eomc_model_ext {
 /* The relative pivot threshold of both solves (generated and runtime). */
 #define EOMC_PIVOT_TOL 1e-13
 
+/* The loops every generated model ends its functions with, written once
+ * here (in the model's eomc_real, double or extended) rather than in each
+ * generated file. */
+
+/* A generated accel's pivot check: 0, or k + 1 for the first coordinate k
+ * in elimination order (the last first) whose pivot d_k is not above
+ * EOMC_PIVOT_TOL M_kk (M singular or not positive definite); *pivot
+ * (unless NULL) the smallest d_k / M_kk, compared without dividing in the
+ * loop. */
+static inline int
+eomc_pivots(int n, const eomc_real *piv, const eomc_real *mkk, eomc_real *pivot)
+{
+    for (int k = n - 1; k >= 0; k--)
+        if (!(piv[k] > EOMC_PIVOT_TOL * mkk[k]))
+            return k + 1;
+    if (pivot) {
+        eomc_real dmin = piv[0], mmin = mkk[0];
+        for (int k = 1; k < n; k++)
+            if (piv[k] * mmin < dmin * mkk[k])
+                dmin = piv[k], mmin = mkk[k];
+        *pivot = dmin / mmin;
+    }
+    return 0;
+}
+
+/* A generated check of the parameters: 0, or k + 1 for the first value
+ * chk[k] that is not positive (strict[k]) or is negative. */
+static inline int
+eomc_checks(int n, const eomc_real *chk, const unsigned char *strict)
+{
+    for (int k = 0; k < n; k++)
+        if (strict[k] ? !(chk[k] > 0) : !(chk[k] >= 0))
+            return k + 1;
+    return 0;
+}
+
 #endif

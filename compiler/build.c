@@ -381,7 +381,8 @@ toolchain_hash(void)
     h = hash_string(h, cc ? cc : "cc");
     h = hash_file(h, "/proc/self/exe");
     h = hash_file(h, lib);
-    static const char *const headers[] = {"eomc.h", "eomc_model.h", "eomc_mpi.h", "eomc_tree.h"};
+    static const char *const headers[] = {"eomc.h", "eomc_model.h", "eomc_main.h", "eomc_mpi.h",
+                                          "eomc_tree.h"};
     for (size_t k = 0; k < sizeof headers / sizeof headers[0]; k++) {
         char path[PATH_MAX * 2 + 64];
         snprintf(path, sizeof path, "%s/%s", inc, headers[k]);

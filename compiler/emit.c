@@ -1533,22 +1533,13 @@ print_model_struct(Printer *pr, const Spec *s, const Eom *e, const Constraints *
         println(pr, "    .c_nnz = 0, .c_nz = NULL, /* B dense */");
     }
     println(pr, "};\n");
-    println(pr, "#ifdef EOMC_MAIN");
-    println(pr, "#include \"eomc.h\"");
+    println(pr, "#ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */");
+    println(pr, "#include \"eomc_main.h\"");
     println(pr, "/* The reference solution's functions: this file compiled again with");
     println(pr, " * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator");
     println(pr, " * runs but cannot measure its errors. */");
     println(pr, "extern const eomc_model_ext %s_model_ext EOMC_WEAK;", nm);
-    println(pr, "#ifdef EOMC_MPI /* eomc build --mpi: a sweep over the ranks */");
-    println(pr, "#include \"eomc_mpi.h\"");
-    println(pr, "#define EOMC_MAIN_FN eomc_mpi_main");
-    println(pr, "#else");
-    println(pr, "#define EOMC_MAIN_FN eomc_main");
-    println(pr, "#endif");
-    println(pr, "int main(int argc, char **argv)");
-    println(pr, "{");
-    println(pr, "    return EOMC_MAIN_FN(argc, argv, &%s_model, &%s_model_ext);", nm, nm);
-    println(pr, "}");
+    println(pr, "EOMC_DEFINE_MAIN(%s_model, %s_model_ext)", nm, nm);
     println(pr, "#endif");
     println(pr, "#else");
     println(pr, "const eomc_model_ext %s_model_ext = {", nm);

@@ -226,22 +226,13 @@ const eomc_model gear_link_model = {
     .c_nnz = 0, .c_nz = NULL, /* B dense */
 };
 
-#ifdef EOMC_MAIN
-#include "eomc.h"
+#ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */
+#include "eomc_main.h"
 /* The reference solution's functions: this file compiled again with
  * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator
  * runs but cannot measure its errors. */
 extern const eomc_model_ext gear_link_model_ext EOMC_WEAK;
-#ifdef EOMC_MPI /* eomc build --mpi: a sweep over the ranks */
-#include "eomc_mpi.h"
-#define EOMC_MAIN_FN eomc_mpi_main
-#else
-#define EOMC_MAIN_FN eomc_main
-#endif
-int main(int argc, char **argv)
-{
-    return EOMC_MAIN_FN(argc, argv, &gear_link_model, &gear_link_model_ext);
-}
+EOMC_DEFINE_MAIN(gear_link_model, gear_link_model_ext)
 #endif
 #else
 const eomc_model_ext gear_link_model_ext = {

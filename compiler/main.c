@@ -525,6 +525,7 @@ read_file(const char *path, size_t *len)
         if ((n += k) == cap)
             buf = xrealloc(buf, cap *= 2);
     fclose(f);
+    buf[n] = '\0'; /* (n < cap: the loop grows buf whenever it fills) */
     *len = n;
     return buf;
 }
@@ -615,24 +616,10 @@ static SrcLoc
 import_loc(const char *path, const ImportWhere *at)
 {
     SrcLoc loc = {path, 0, 0};
-    FILE *f = (at->line > 0 || at->name[0]) ? fopen(path, "rb") : NULL;
-    if (!f)
-        return loc;
-    char *text = NULL;
-    size_t len = 0, cap = 0, got;
-    char chunk[4096];
-    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0) {
-        if (len + got + 1 > cap) {
-            cap = 2 * (len + got + 1);
-            text = xrealloc(text, cap);
-        }
-        memcpy(text + len, chunk, got);
-        len += got;
-    }
-    fclose(f);
+    size_t len;
+    char *text = (at->line > 0 || at->name[0]) ? read_file(path, &len) : NULL;
     if (!text)
         return loc;
-    text[len] = '\0';
     diag_add_source(path, text, len); /* (kept: the error that follows quotes it) */
     const char *hit = NULL;
     if (at->line > 0) { /* its first character that is not a blank */

@@ -40,6 +40,14 @@ typedef struct Group {
     int ok;
 } Group;
 
+/* Could group g be a copy of group b: a run of as many coordinates,
+ * inputs and outputs? */
+static int
+alike(const Group *G, int b, int g)
+{
+    return G[g].ok && G[g].nq == G[b].nq && G[g].nu == G[b].nu && G[g].nout == G[b].nout;
+}
+
 /* Can f's arrays be shifted at all: inputs of the state, the parameters
  * and the seeds only (no values from another function, no multipliers),
  * no output that may be NULL or that is zero-filled first. */
@@ -196,8 +204,7 @@ repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P)
             continue;
         int like = 0;
         for (int g = b + 1; g < nk; g++)
-            like += G[g].ok && G[g].nq == G[b].nq && G[g].nu == G[b].nu &&
-                    G[g].nout == G[b].nout;
+            like += alike(G, b, g);
         long saved = (long)like * G[b].ops;
         if (saved > best_saved)
             best = b, best_saved = saved;
@@ -221,8 +228,7 @@ repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P)
     long saved = 0;
     in[b] = 1;
     for (int g = b + 1; g < nk; g++)
-        if (G[g].ok && G[g].nq == nq && G[g].nu == G[b].nu && G[g].nout == G[b].nout &&
-            verify(f, gk, b, g, G, n, base_e, A, P))
+        if (alike(G, b, g) && verify(f, gk, b, g, G, n, base_e, A, P))
             in[g] = 1, ncopy++, saved += G[b].ops;
     if (ncopy > 1 && saved >= min_saved) {
         LowFunc *c = arena_new_array(A, LowFunc, 1);

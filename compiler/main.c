@@ -23,6 +23,7 @@
 #include "../runtime/numfmt.h"
 
 #include <errno.h>
+#include <stddef.h> /* offsetof */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -113,14 +114,78 @@ usage_error(const char *fmt, const char *arg)
     exit(EXIT_USAGE);
 }
 
+/* The commands, a bit each, for the commands that take an option. */
+enum {
+    CMD_COMPILE = 1,
+    CMD_BUILD = 2,
+    CMD_RUN = 4,
+    CMD_ACCURACY = 8,
+    CMD_DERIVE = CMD_COMPILE | CMD_BUILD | CMD_RUN | CMD_ACCURACY,
+};
+
+/* eomc's own options of compile, build, run and accuracy: one table, for
+ * the parse, the checks and the messages (usage() is their help).  What
+ * run and accuracy do not take, after the spec, is the simulator's. */
+typedef struct OptionSpec {
+    const char *name;
+    int cmds; /* the commands that take it */
+    enum { OPT_VALUE, OPT_LIST, OPT_FLAG } kind;
+    size_t field;     /* offsetof(Options, ...): const char *, char * (LIST) or int */
+    const char *what; /* a flag of one command: what it asks for there */
+    const char *const *values; /* a VALUE from a fixed set: the set, NULL-ended */
+    int sim_after;    /* once the simulator's options began, it is theirs */
+} OptionSpec;
+
+/* --jacobian's and --code's values, in lower.h's order of their modes */
+static const char *const jacobian_modes[] = {"auto", "unrolled", "seeded", "none", NULL};
+static const char *const code_modes[] = {"auto", "straight", "tables", NULL};
+
+static const OptionSpec options[] = {
+    {"-o", CMD_COMPILE | CMD_BUILD, OPT_VALUE, offsetof(Options, out), NULL, NULL, 0},
+    {"--form", CMD_DERIVE, OPT_VALUE, offsetof(Options, form), NULL, NULL, 0},
+    {"--effects", CMD_DERIVE, OPT_VALUE, offsetof(Options, effects), NULL, NULL, 0},
+    {"--jacobian", CMD_DERIVE, OPT_VALUE, offsetof(Options, jacobian), NULL, jacobian_modes, 0},
+    {"--scene", CMD_DERIVE, OPT_VALUE, offsetof(Options, scene), NULL, NULL, 0},
+    {"--code", CMD_DERIVE, OPT_VALUE, offsetof(Options, code), NULL, code_modes, 0},
+    {"--fix", CMD_DERIVE, OPT_LIST, offsetof(Options, fix), NULL, NULL, 0},
+    {"--stats", CMD_COMPILE, OPT_FLAG, offsetof(Options, stats),
+     "the operation counts of the generated functions", NULL, 0},
+    {"--explain", CMD_COMPILE, OPT_FLAG, offsetof(Options, explain),
+     "what eomc made of the spec", NULL, 0},
+    {"--mpi", CMD_BUILD, OPT_FLAG, offsetof(Options, mpi), "a simulator for MPI sweeps", NULL, 0},
+    {"--extended", CMD_BUILD | CMD_RUN | CMD_ACCURACY, OPT_FLAG, offsetof(Options, extended),
+     "the extended-precision functions", NULL, 0},
+    {"--eliminate", CMD_DERIVE, OPT_FLAG, offsetof(Options, eliminate), NULL, NULL, 1},
+};
+enum { NOPTIONS = sizeof options / sizeof options[0] };
+
+static const OptionSpec *
+option_find(const char *name)
+{
+    for (int i = 0; i < NOPTIONS; i++)
+        if (!strcmp(options[i].name, name))
+            return &options[i];
+    return NULL;
+}
+
+/* The index of VALUE in a NULL-ended set, or -1. */
+static int
+mode_index(const char *const *set, const char *value)
+{
+    for (int i = 0; set[i]; i++)
+        if (!strcmp(set[i], value))
+            return i;
+    return -1;
+}
+
 /* An option eomc does not know: the nearest one it does, if close. */
 static _Noreturn void
 unknown_option(const char *a)
 {
-    static const char *const opts[] = {"-o", "--form", "--effects", "--jacobian", "--stats",
-                                       "--explain", "--eliminate", "--help", "--version",
-                                       "--scene", "--fix", "--mpi", "--code", "--extended"};
-    const char *near = diag_nearest(a, opts, (int)(sizeof opts / sizeof opts[0]));
+    const char *opts[NOPTIONS + 2] = {"--help", "--version"};
+    for (int i = 0; i < NOPTIONS; i++)
+        opts[i + 2] = options[i].name;
+    const char *near = diag_nearest(a, opts, NOPTIONS + 2);
     if (!near)
         usage_error("unknown option '%s'", a);
     fprintf(stderr, "eomc: unknown option '%s'; did you mean %s?\n(see eomc --help)\n", a,
@@ -195,47 +260,35 @@ parse_args(int argc, char **argv, Options *o)
     /* accuracy is run with --work-precision: the simulator takes the rest */
     int run = !strcmp(o->cmd, "run") || !strcmp(o->cmd, "accuracy");
     o->sim = calloc((size_t)argc + 1, sizeof *o->sim);
+    int cmd = !strcmp(o->cmd, "compile") ? CMD_COMPILE
+              : !strcmp(o->cmd, "build") ? CMD_BUILD
+              : !strcmp(o->cmd, "run") ? CMD_RUN : CMD_ACCURACY;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
-        int has_val = i + 1 < argc;
-        if (!strcmp(a, "--form") || !strcmp(a, "--effects") || !strcmp(a, "--jacobian") ||
-            !strcmp(a, "--scene") || !strcmp(a, "--code") || (!run && !strcmp(a, "-o"))) {
-            if (!has_val)
-                usage_error("option %s needs a value", a);
-            const char **slot = a[2] == 'f' ? &o->form : a[2] == 'e' ? &o->effects
-                              : a[2] == 'j' ? &o->jacobian : a[2] == 's' ? &o->scene
-                              : a[2] == 'c' ? &o->code
-                              : &o->out;
-            *slot = argv[++i];
-        } else if (!strcmp(a, "--fix")) {
-            if (!has_val)
+        const OptionSpec *op = option_find(a);
+        char *field = op ? (char *)o + op->field : NULL;
+        if (op && (op->cmds & cmd) && !(op->sim_after && run && o->spec && o->nsim)) {
+            if (op->kind == OPT_FLAG) {
+                *(int *)(void *)field = 1;
+                continue;
+            }
+            if (i + 1 >= argc)
                 usage_error("option %s needs a value", a);
             const char *v = argv[++i];
-            size_t old = o->fix ? strlen(o->fix) : 0;
-            o->fix = xrealloc(o->fix, old + strlen(v) + 2);
-            snprintf(o->fix + old, strlen(v) + 2, "%s%s", old ? "," : "", v);
-        } else if (!run && !strcmp(a, "--stats") && !strcmp(o->cmd, "compile")) {
-            o->stats = 1;
-        } else if (!run && !strcmp(a, "--explain") && !strcmp(o->cmd, "compile")) {
-            o->explain = 1;
-        } else if (!strcmp(a, "--mpi") && !strcmp(o->cmd, "build")) {
-            o->mpi = 1;
-        } else if (!strcmp(a, "--extended") && strcmp(o->cmd, "compile")) {
-            o->extended = 1;
-        } else if (!strcmp(a, "--eliminate") && !(run && o->spec && o->nsim)) {
-            o->eliminate = 1;
+            if (op->kind == OPT_VALUE) {
+                *(const char **)(void *)field = v;
+            } else { /* comma-joined: "g=9.81,l=1" */
+                char **list = (char **)(void *)field;
+                size_t old = *list ? strlen(*list) : 0;
+                *list = xrealloc(*list, old + strlen(v) + 2);
+                snprintf(*list + old, strlen(v) + 2, "%s%s", old ? "," : "", v);
+            }
         } else if (run && o->spec) {
             o->sim[o->nsim++] = argv[i];
-        } else if (!strcmp(a, "--stats") || !strcmp(a, "--explain") || !strcmp(a, "--mpi") ||
-                   !strcmp(a, "--extended")) {
+        } else if (op && op->what) {
             /* an option of another command: say whose */
-            int build = !strcmp(a, "--mpi") || !strcmp(a, "--extended");
             fprintf(stderr, "eomc %s: %s belongs to `eomc %s` (%s)\n(see eomc --help)\n",
-                    o->cmd, a, build ? "build" : "compile",
-                    !strcmp(a, "--stats")     ? "the operation counts of the generated functions"
-                    : !strcmp(a, "--explain") ? "what eomc made of the spec"
-                    : !strcmp(a, "--mpi")     ? "a simulator for MPI sweeps"
-                                              : "the extended-precision functions");
+                    o->cmd, a, op->cmds & CMD_BUILD ? "build" : "compile", op->what);
             exit(EXIT_USAGE);
         } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout), exit(0); /* `eomc build --help` as `eomc --help` */
@@ -249,12 +302,10 @@ parse_args(int argc, char **argv, Options *o)
     }
     if (!o->spec)
         usage_error("%s: no spec file given", o->cmd);
-    if (o->jacobian && strcmp(o->jacobian, "auto") && strcmp(o->jacobian, "unrolled") &&
-        strcmp(o->jacobian, "seeded") && strcmp(o->jacobian, "none"))
+    if (o->jacobian && mode_index(jacobian_modes, o->jacobian) < 0)
         usage_error("--jacobian must be auto, unrolled, seeded or none, not '%s'",
                     o->jacobian);
-    if (o->code && strcmp(o->code, "auto") && strcmp(o->code, "straight") &&
-        strcmp(o->code, "tables"))
+    if (o->code && mode_index(code_modes, o->code) < 0)
         usage_error("--code must be auto, straight or tables, not '%s'", o->code);
     o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o);
     o->needs_twin = !strcmp(o->cmd, "accuracy") || sim_needs_twin(o);
@@ -396,18 +447,13 @@ compile(const Options *o, FILE *out, int *units)
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--jacobian %s",
                          len ? " " : "", o->jacobian);
-                jac = o->jacobian[0] == 'a'   ? LOWER_JACOBIAN_AUTO
-                      : o->jacobian[0] == 's' ? LOWER_JACOBIAN_SEEDED
-                      : o->jacobian[0] == 'n' ? LOWER_JACOBIAN_NONE
-                                              : LOWER_JACOBIAN_UNROLLED;
+                jac = LOWER_JACOBIAN_AUTO + mode_index(jacobian_modes, o->jacobian);
             }
             int code = LOWER_CODE_AUTO;
             if (o->code) {
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--code %s", len ? " " : "", o->code);
-                code = !strcmp(o->code, "tables")     ? LOWER_CODE_TABLES
-                       : !strcmp(o->code, "straight") ? LOWER_CODE_STRAIGHT
-                                                      : LOWER_CODE_AUTO;
+                code = LOWER_CODE_AUTO + mode_index(code_modes, o->code);
             }
             if (o->eliminate) {
                 size_t len = strlen(opts);
@@ -692,6 +738,8 @@ import_cmd(int argc, char **argv)
             if (i + 1 >= argc)
                 usage_error("option %s needs a value", "-o");
             out = argv[++i];
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout), exit(0); /* import's usage is a line of eomc's */
         } else if (argv[i][0] == '-' && argv[i][1]) {
             unknown_option(argv[i]);
         } else if (!model) {

@@ -10,6 +10,10 @@
  * MAX_OPERATORS binary operators: a longer one is an error suggesting
  * defines, not minutes of work.  The token stream is never stored: the
  * lexer reads one token ahead.
+ *
+ * One file past ~800 lines: the lexer, the grammar and its messages
+ * (each error names what was expected where, with the nearest known
+ * name) are one concept, read together when the grammar changes.
  */
 #include "parse.h"
 

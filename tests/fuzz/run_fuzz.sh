@@ -19,7 +19,8 @@
 # then the work directory (logs, the input that failed) is kept.  Set
 # FUZZ_WORK=DIR to keep corpora and logs in DIR in any case (a later run
 # with the same DIR goes on from its corpora), FUZZ_ARGS to pass more
-# options to libFuzzer (e.g. -len_control=0 -seed=1).
+# options to libFuzzer (e.g. -len_control=0 -seed=1), FUZZ_JOBS=N to run N
+# targets at once.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -80,16 +81,19 @@ for f in tests/fuzz/regressions/runtime/*; do
   [ -f "$f" ] && cp "$f" "$work/seed-runtime/$(basename "$f")"
 done
 
-failed=0
-for t in "${targets[@]}"; do
+# fuzz_one TARGET: run it, and write its line (and, on failure, the
+# first line that says why) to $work/result-TARGET
+fuzz_one() {
+  local t=$1 seeds dict max_len quiet log rc execs size artifact out
   case $t in
   spec | pipeline) seeds=seed-spec dict=spec.dict max_len=65536 quiet= ;;
   expr) seeds=seed-expr dict=expr.dict max_len=16384 quiet= ;;
   runtime) seeds=seed-runtime dict=runtime.dict max_len=4096 quiet=-close_fd_mask=2 ;;
-  *) echo "run_fuzz: unknown target '$t'"; failed=1; continue ;;
+  *) echo "run_fuzz: unknown target '$t' FAILED" > "$work/result-$t"; return ;;
   esac
   mkdir -p "$work/corpus-$t"
   log=$work/fuzz_$t.log
+  out=$work/result-$t
   build-fuzz/tests/fuzz/fuzz_"$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
     -max_len=$max_len -dict=tests/fuzz/$dict -print_final_stats=1 $quiet \
     -artifact_prefix="$work/fuzz_$t-" ${FUZZ_ARGS:-} "$work/corpus-$t" "$work/$seeds" >"$log" 2>&1
@@ -97,11 +101,32 @@ for t in "${targets[@]}"; do
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   size=$(find "$work/corpus-$t" -type f | wc -l)
   if [ "$rc" -eq 0 ]; then
-    echo "fuzz_$t: ok, $secs s, ${execs:-?} execs, $size inputs in the corpus"
+    echo "fuzz_$t: ok, $secs s, ${execs:-?} execs, $size inputs in the corpus" > "$out"
   else
     artifact=$(ls "$work/fuzz_$t-"* 2>/dev/null | head -1)
-    echo "fuzz_$t: FAILED (exit $rc${artifact:+, input $artifact}): see $log"
-    grep -m1 -E '^==[0-9]+==ERROR|SUMMARY|runtime error|internal error|exited' "$log" | sed 's/^/  /'
+    echo "fuzz_$t: FAILED (exit $rc${artifact:+, input $artifact}): see $log" > "$out"
+    grep -m1 -E '^==[0-9]+==ERROR|SUMMARY|runtime error|internal error|exited' "$log" |
+      sed 's/^/  /' >> "$out"
+  fi
+}
+
+# FUZZ_JOBS targets at a time (default 1): each target is one process,
+# so a machine with N cores runs N of them in the time of one
+jobs=${FUZZ_JOBS:-1}
+running=0
+for t in "${targets[@]}"; do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+wait
+failed=0
+for t in "${targets[@]}"; do
+  cat "$work/result-$t"
+  if grep -q FAILED "$work/result-$t"; then
     failed=1
     keep=1
   fi

@@ -38,7 +38,7 @@ void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
 /* Turn frame f by the Euler parameters e = (e0, e1, e2, e3), scalar
  * first: the rotation (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1,
  * e2, e3), whose angular velocity 2 L e' (in the turned axes) is exact
- * where |e| = 1, which a unit constraint must keep (spec.c adds it). */
+ * where |e| = 1, which a unit constraint must keep (spec/constraints.c adds it). */
 void kin_turn_quaternion(Kin *K, int f, const ExprId e[4]);
 /* The point from + R_f at. */
 int kin_point(Kin *K, int from, int f, const ExprId at[3]);

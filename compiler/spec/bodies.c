@@ -128,7 +128,9 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
 
 /* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
  * axes of the sequence ("zxz": z, then the new x, then the new z):
- *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)) */
+ *     w = e_an th_n' + R_an^T (e_a(n-1) th_(n-1)' + R_a(n-1)^T (...)),
+ * the recursion of a frame's turns (kin_rate_turn): a body so turned has
+ * no frame of its own. */
 static void
 rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 {
@@ -153,16 +155,12 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
     ExprId w[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
     for (size_t i = 0; i < na; i++) {
         ExprId th = spec_expr(L, spec_node(L, ITEMS(v)[i]), ALLOW_POSITION, "an angle");
-        ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
-        int a = axes[i] - 'x', j = (a + 1) % 3, l = (a + 2) % 3;
-        /* R_a^T w: rotate the other two components by -th */
-        ExprId sl = expr_mul(P, s, w[l]);
-        ExprId wj = expr_add(P, expr_mul(P, c, w[j]), sl);
-        ExprId sj = expr_mul(P, s, w[j]);
-        ExprId wl = expr_sub(P, expr_mul(P, c, w[l]), sj);
-        w[j] = wj, w[l] = wl;
+        ExprId Rk[9], a[3], own[3];
+        kin_axis_turn(P, axes[i] - 'x', th, Rk, a);
         ExprId rate = diff_time(L->sc.D, th);
-        w[a] = expr_add(P, w[a], rate);
+        for (int k = 0; k < 3; k++)
+            own[k] = expr_mul(P, a[k], rate);
+        kin_rate_turn(P, Rk, own, w);
     }
     for (int i = 0; i < 3; i++)
         b->omega[i] = w[i];

@@ -148,6 +148,20 @@ kin_frame(Kin *K, int parent)
 void kin_set_origin(Kin *K, int f, int p) { K->f[f].origin = p; }
 int kin_origin(const Kin *K, int f) { return K->f[f].origin; }
 
+void
+kin_rate_turn(ExprPool *P, const ExprId Rk[9], const ExprId own[3], ExprId w[3])
+{
+    ExprId r[3];
+    for (int j = 0; j < 3; j++) {
+        ExprId sum = own[j];
+        for (int k = 0; k < 3; k++)
+            sum = expr_add(P, sum, expr_mul(P, Rk[3 * k + j], w[k]));
+        r[j] = sum;
+    }
+    for (int j = 0; j < 3; j++)
+        w[j] = r[j];
+}
+
 /* R = R Rk and w = Rk^T w + a th', Rk given.  The world components of
  * the angular velocity are summed the same way, each rate along its axis
  * in the world (R a, before the turn): not R w, whose products of R's
@@ -182,12 +196,9 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const E
     else
         F->turns = turn;
     F->last = turn;
-    for (int j = 0; j < 3; j++) { /* a th' + Rk^T w */
-        ExprId sum = th == EXPR_NONE ? wa[j] : expr_mul(P, a[j], rate);
-        for (int k = 0; k < 3; k++)
-            sum = expr_add(P, sum, expr_mul(P, Rk[3 * k + j], F->w[k]));
-        w[j] = sum;
-    }
+    for (int i = 0; i < 3; i++)
+        w[i] = F->w[i];
+    kin_rate_turn(P, Rk, turn->wa, w); /* a th' + Rk^T w */
     for (int i = 0; i < 3; i++) {
         ExprId own = th == EXPR_NONE ? wbw[i] : expr_mul(P, axis[i], rate);
         F->w[i] = w[i], F->ww[i] = expr_add(P, F->ww[i], own),
@@ -196,18 +207,25 @@ turn_by(Kin *K, int f, const ExprId Rk[9], const ExprId a[3], ExprId th, const E
 }
 
 void
-kin_turn_axis(Kin *K, int f, int k, ExprId th)
+kin_axis_turn(ExprPool *P, int k, ExprId th, ExprId Rk[9], ExprId a[3])
 {
-    ExprPool *P = K->P;
     ExprId c = expr_unary(P, EXPR_COS, th), s = expr_unary(P, EXPR_SIN, th);
     int j = (k + 1) % 3, l = (k + 2) % 3;
-    ExprId Rk[9], a[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
     for (int i = 0; i < 9; i++)
         Rk[i] = EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        a[i] = EXPR_ZERO;
     a[k] = EXPR_ONE;
     Rk[3 * k + k] = EXPR_ONE;
     Rk[3 * j + j] = c, Rk[3 * l + l] = c;
     Rk[3 * l + j] = s, Rk[3 * j + l] = expr_neg(P, s); /* e_j turns toward e_l */
+}
+
+void
+kin_turn_axis(Kin *K, int f, int k, ExprId th)
+{
+    ExprId Rk[9], a[3];
+    kin_axis_turn(K->P, k, th, Rk, a);
     turn_by(K, f, Rk, a, th, NULL, NULL);
 }
 

@@ -30,6 +30,15 @@ enum { KIN_WORLD = 0, KIN_ORIGIN = 0 };
 
 /* A new frame oriented as parent, to be turned by kin_turn*. */
 int kin_frame(Kin *K, int parent);
+/* The recursion by which turns add up to an angular velocity:
+ * w = Rk^T w + own, w in the axes before the turn on entry and in those
+ * after it on return, own the turn's own angular velocity in the axes
+ * after it (a th', or 2 L e').  Frames turn by it (kin_turn*), and so do
+ * bodies turned by a rotation sequence, which have no frame (spec/). */
+void kin_rate_turn(ExprPool *P, const ExprId Rk[9], const ExprId own[3], ExprId w[3]);
+/* Rk and unit axis a of a turn by th about coordinate axis k (0 x, 1 y,
+ * 2 z), with Rk's zeros and ones written in. */
+void kin_axis_turn(ExprPool *P, int k, ExprId th, ExprId Rk[9], ExprId a[3]);
 /* Turn frame f by angle about its own axis k (0 x, 1 y, 2 z) as built so
  * far, or about the unit vector a in those components (a constant of the
  * parameters). */
@@ -38,7 +47,7 @@ void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
 /* Turn frame f by the Euler parameters e = (e0, e1, e2, e3), scalar
  * first: the rotation (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1,
  * e2, e3), whose angular velocity 2 L e' (in the turned axes) is exact
- * where |e| = 1, which a unit constraint must keep (spec.c adds it). */
+ * where |e| = 1, which a unit constraint must keep (spec/constraints.c adds it). */
 void kin_turn_quaternion(Kin *K, int f, const ExprId e[4]);
 /* The point from + R_f at. */
 int kin_point(Kin *K, int from, int f, const ExprId at[3]);

@@ -569,7 +569,7 @@ held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool
     unsigned char *held = arena_new_array(A, unsigned char, c->nc + 1);
     unsigned char *inV = calloc(expr_pool_size(P), 1);
     expr_mark(P, 1, &m->V_rest, inV);
-    int first = c->nc - s->nfquat, any = 0; /* the frames' come last (spec.c) */
+    int first = c->nc - s->nfquat, any = 0; /* the frames' come last (spec/constraints.c) */
     for (int k = 0; k < c->nc; k++) {
         held[k] = k >= first;
         for (int d = 0; held[k] && d < 4; d++) {

@@ -167,7 +167,7 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
             break;
         case FORCE_KINETIC: /* in T (mech_build) */
             break;
-        case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec.c checked) */
+        case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec/effects.c checked) */
             for (int i = 0; i < m->n; i++)
                 m->Q[i] = expr_add(P, m->Q[i],
                                    diff_partial(D, f->expr, expr_seed(P, i, 0)));

@@ -6,7 +6,8 @@
  * (EXPR_VAR), parameters, inputs and t.  All entities keep the location
  * of their YAML node for later diagnostics.  A Spec that spec_load returns
  * has been checked: bad input never gets past it.  The format is
- * documented in docs/spec.md.
+ * documented in docs/spec.md.  The loader is in spec/, one file per
+ * concept (spec/loader.h); this header is its whole interface.
  */
 #ifndef EOMC_SPEC_H
 #define EOMC_SPEC_H
@@ -14,6 +15,11 @@
 #include "arena.h"
 #include "diag.h"
 #include "expr.h"
+
+/* Every ExprId field of the structs below is visited by
+ * spec_foreach_expr (spec/fold.c), which folding (--fix) and any other
+ * pass over all of a Spec's expressions go through: a new field that
+ * holds an expression must be added there, or it escapes them. */
 
 typedef struct SpecParam {
     const char *name;
@@ -233,6 +239,12 @@ Spec *spec_load(const char *path, const SpecOptions *o, Arena *A, ExprPool *P);
 /* The same from a buffer (fuzzing, tests); `path` is only used in messages. */
 Spec *spec_load_buffer(const char *path, const char *text, size_t len,
                        const SpecOptions *o, Arena *A, ExprPool *P);
+
+/* f(&e, ctx) for every expression field e of s (not EXPR_NONE), which f
+ * may rewrite: initial values, inputs, particles, bodies, effects, energy
+ * terms, constraints, checks, and the scene's outputs and events. */
+typedef void SpecExprFn(ExprId *e, void *ctx);
+void spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx);
 
 /* Turn effects on or off by name before deriving: `list` is a
  * comma-separated list of effect names ("" = none); returns 0, or -1

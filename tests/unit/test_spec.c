@@ -1,5 +1,5 @@
 /*
- * Unit tests of the spec loader (spec.c): what a spec means (values of
+ * Unit tests of the spec loader (spec/): what a spec means (values of
  * its expressions against the formulas written in C), defines in any
  * order, effect selection, and the line:column of errors through YAML's
  * quoting and folding styles.

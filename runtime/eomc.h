@@ -233,8 +233,11 @@ typedef struct eomc_run_opts {
     double h_fixed;    /* > 0: fixed steps (adjusted down to divide the span
                         * t_end - t0 evenly) */
     long max_steps;    /* per run; 0 = no limit */
-    int progress;      /* nonzero: when stderr is a terminal and the run
-                        * takes over a second, show t on stderr */
+    /* How far the run has come, t, now and then: every few hundred
+     * right-hand sides (NULL: not told).  The library prints nothing; the
+     * simulator shows t on a terminal when a run takes over a second. */
+    void (*on_progress)(void *ctx, double t);
+    void *progress_ctx;
     /* The scene's events (model->nevent > 0): called as each fires, with
      * its index k, its time and the state x [2nq] there, before its action
      * (NULL: not told).  A nonzero return stops the integration with that

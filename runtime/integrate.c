@@ -29,7 +29,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 /* ---- the methods ---- */
 
@@ -199,7 +198,6 @@ typedef struct Run {
     int row_status;               /* the callback's nonzero status: ROW_STOP */
     double stop_t;                /* ... the time it was called with */
     const double *stop_x;         /* ... and the state (kept until march returns) */
-    int progress, shown;          /* progress on the terminal */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
     double log_h;                 /* sum of log(h) over the accepted steps ... */
@@ -212,7 +210,6 @@ typedef struct Run {
     long w_nh;                    /* ... how many */
     double w_t0;                  /* the time it started at */
     int grinding;                 /* windows in a row that ground */
-    double wall0, next_show;
     int ne;                       /* events */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -231,22 +228,9 @@ typedef struct Run {
     int *cl;                      /* [nc] and its level, after a reset */
 } Run;
 
-/* Every 256 right-hand sides: after the first second, t on the terminal
- * every tenth of a second. */
-static void
-show_progress(Run *r, double t)
-{
-    if (!r->progress || (r->st->rhs_evals & 255))
-        return;
-    double now = sim_seconds(0);
-    if (now < r->next_show)
-        return;
-    r->next_show = now + 0.1;
-    if (now - r->wall0 < 1.0)
-        return;
-    fprintf(stderr, "\r%s: t = %-12.6g of %g", r->s->m->name, t, r->o->t_end);
-    r->shown = 1;
-}
+/* The caller is told of the progress every PROGRESS_EVERY right-hand
+ * sides (a power of 2): often enough to follow, far too rarely to cost. */
+enum { PROGRESS_EVERY = 256 };
 
 static int
 rhs(double t, const double *x, double *dxdt, void *ctx)
@@ -254,7 +238,8 @@ rhs(double t, const double *x, double *dxdt, void *ctx)
     Run *r = ctx;
     int n = r->n;
     r->st->rhs_evals++;
-    show_progress(r, t);
+    if (r->o->on_progress && (r->st->rhs_evals & (PROGRESS_EVERY - 1)) == 0)
+        r->o->on_progress(r->o->progress_ctx, t);
     if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
         return GSL_EBADFUNC;
     memcpy(dxdt, x + n, (size_t)n * sizeof *dxdt);
@@ -1198,8 +1183,6 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     st->reset_event = -1;
     r.nrows = eomc_run_rows(o);
     r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
-    r.progress = o->progress && isatty(2);
-    r.wall0 = r.next_show = sim_seconds(0);
     if ((rc = run_alloc(&r, find_method(o->method))) != EOMC_OK) {
         run_free(&r);
         return rc;
@@ -1253,8 +1236,6 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             rc = sim_numeric_error(s, r.t, x, x + n, "the state is not finite");
     }
     st->cpu_seconds = sim_seconds(1) - c0;
-    if (r.shown)
-        fprintf(stderr, "\r%*s\r", 60, "");
     run_free(&r);
     return rc;
 }

@@ -101,7 +101,7 @@ entry_opts(const Report *r, const Entry *e)
     if (e->h == 0)
         o.rtol = o.atol = e->tol;
     o.max_steps = r->base.max_steps > 0 ? r->base.max_steps : REPORT_MAX_STEPS;
-    o.progress = 0;
+    o.on_progress = NULL;
     return o;
 }
 

@@ -174,6 +174,7 @@ enum { SIDE_PIECES_MAX = 64 };
 
 typedef struct Run {
     eomc_sim *s;
+    const eomc_model *m;          /* s's */
     const eomc_run_opts *o;
     eomc_stats *st;
     int n, N;                     /* coordinates, state size 2n */
@@ -263,7 +264,7 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
         return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
     if (eomc_sim_check(s) != EOMC_OK)
         return EOMC_EUSAGE;
-    if (m->jacobian && !s->m->jacobian)
+    if (m->jacobian && !eomc_sim_model(s)->jacobian)
         return sim_no_jacobian(s, o->method);
     if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
         return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
@@ -279,7 +280,7 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     if (o->h_fixed > 0 && !m->fixed)
         return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
                                "for the one-step methods", o->method);
-    if (s->stabilize == EOMC_STABILIZE_PROJECT && !m->fixed)
+    if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT && !m->fixed)
         return sim_usage_error(s, "%s builds on the history of its steps, which projecting "
                                "the state after every step would throw away (it would "
                                "restart at order 1 each time, slow and inaccurate): with "
@@ -323,9 +324,9 @@ likely_cause(Run *r, char *buf, size_t len)
     if (c * DBL_EPSILON > LIKELY_COND)
         snprintf(buf, len, "%s is nearly singular there (condition %.2g)",
                  sim_condition_what(s), c);
-    else if (s->kkt && !isnan(c) && (k = kkt_vanished(s->kkt, &fraction)) >= 0)
+    else if (!isnan(c) && (k = sim_vanished(s, &fraction)) >= 0)
         snprintf(buf, len, "the constraint %s's row df/dq'' is vanishing there (%.2g of "
-                 "its largest)", s->m->c_names[k], fraction);
+                 "its largest)", r->m->c_names[k], fraction);
     else if (!isnan(c))
         snprintf(buf, len, "not the solve for q'', which is well-conditioned there "
                  "(condition %.2g): a force or the motion that is singular or not smooth "
@@ -366,13 +367,13 @@ step_error(Run *r, int status)
                                      "from resting on it (passing through takes more "
                                      "than %g); a reset that passes should leave it "
                                      "faster, one that stops it should turn it back",
-                                     s->m->ev_names[r->ev_k], r->last_set, r->left_rate,
+                                     r->m->ev_names[r->ev_k], r->last_set, r->left_rate,
                                      PASS_REL);
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
                                  "holds again at the end of the first step after its "
                                  "reset at t = %.17g (a step of %.3g): the motion returns "
                                  "to it faster than the steps can follow (it comes to rest "
-                                 "against it%s)", s->m->ev_names[r->ev_k], r->last_set,
+                                 "against it%s)", r->m->ev_names[r->ev_k], r->last_set,
                                  r->t - r->last_set, r->o->h_fixed > 0
                                  ? ", or the fixed steps are too long" : "");
     case EVENTS_ACCUMULATE:
@@ -380,7 +381,7 @@ step_error(Run *r, int status)
                                  "fired %ld times, the last two %.3g apart, below %g of "
                                  "the time span: the motion comes to rest against it in "
                                  "ever shorter intervals (Zeno), which no step can "
-                                 "follow", s->m->ev_names[r->ev_k], r->nsets + 1,
+                                 "follow", r->m->ev_names[r->ev_k], r->nsets + 1,
                                  r->t - r->last_set, ACCUMULATE_REL);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
@@ -421,7 +422,7 @@ static int
 reversed_row(const Run *r)
 {
     int n = r->n;
-    for (int k = 0; k < r->s->m->nc; k++)
+    for (int k = 0; k < r->m->nc; k++)
         if (la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
             return k;
     return -1;
@@ -467,7 +468,7 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
     gsl_odeiv2_step_reset(r->step);
     sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
                       "its row of B = df/dq'' vanishes here (it reverses direction), so "
-                      "the accelerations are no longer determined", r->s->m->c_names[k]);
+                      "the accelerations are no longer determined", r->m->c_names[k]);
     /* the step through it is not taken: the run ends at its start, the last
      * state the steps reached to their tolerance (the one step to the
      * degeneracy evaluates the accelerations where they are not
@@ -519,8 +520,8 @@ watch_invariant(Run *r)
     double h, he;
     /* without projection a constrained state drifts off its constraints,
      * and h with it, by more than the steps' errors say: no budget then */
-    if (!s->m->invariant || r->o->h_fixed > 0 ||
-        (s->kkt && s->stabilize != EOMC_STABILIZE_PROJECT) ||
+    if (!r->m->invariant || r->o->h_fixed > 0 ||
+        (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT) ||
         eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) != EOMC_OK)
         return;
     if (!r->have_h0)
@@ -546,7 +547,7 @@ after_step(Run *r, double t0)
     int n = r->n;
     double *x = r->x, t = r->t;
     watch_condition(r);
-    if (!s->kkt) {
+    if (r->m->nc == 0) {
         watch_invariant(r);
         return GSL_SUCCESS;
     }
@@ -558,7 +559,7 @@ after_step(Run *r, double t0)
     if (sim_has_levels(s)) {
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
-        if (s->stabilize == EOMC_STABILIZE_PROJECT) {
+        if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT) {
             /* a failed projection leaves the step's end as it was */
             memcpy(r->xt, x, (size_t)r->N * sizeof *x);
             if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
@@ -692,7 +693,7 @@ emit_rows(Run *r, int final)
         }
         /* projected steps, projected rows: the interpolant is only as close
          * to the constraints as it is to the motion */
-        if (r->s->stabilize == EOMC_STABILIZE_PROJECT &&
+        if (sim_stabilize_method(r->s) == EOMC_STABILIZE_PROJECT &&
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
@@ -752,7 +753,7 @@ static int
 check_events(Run *r, double t0, int *what, int *fired)
 {
     eomc_sim *s = r->s;
-    const eomc_model *m = s->m;
+    const eomc_model *m = r->m;
     size_t bytes = (size_t)r->N * sizeof *r->x;
     int any = 0;
     r->ev_t0 = t0, r->ev_t1 = r->t;
@@ -807,7 +808,7 @@ check_events(Run *r, double t0, int *what, int *fired)
         r->t = t;
         if (t != r->ev_t1 && (rc = rhs(t, r->x, r->f1, r)) != GSL_SUCCESS)
             return rc;
-        if (s->kkt && sim_constraint_rows(s, t, r->x, r->B0) != 0)
+        if (r->m->nc > 0 && sim_constraint_rows(s, t, r->x, r->B0) != 0)
             return GSL_EBADFUNC;
         *fired = k;
         *what = m->ev_action[k] == EOMC_EVENT_STOP ? EV_STOP : EV_SET;
@@ -845,7 +846,7 @@ static void
 note_reset_off(Run *r, int k)
 {
     eomc_stats *st = r->st;
-    const eomc_model *m = r->s->m;
+    const eomc_model *m = r->m;
     size_t at = 0, len = sizeof st->reset_off;
     st->reset_event = k;
     st->reset_t = r->t;
@@ -887,15 +888,15 @@ apply_reset(Run *r, int k)
     r->gap = r->t - r->last_set;
     r->last_set = r->t;
     r->nsets++;
-    int dir = s->m->ev_direction[k];
+    int dir = r->m->ev_direction[k];
     double arrived = dir ? g_rate(r, k, r->t, r->x, r->f0) : 0;
     eomc_sim_event_set(s, k, r->t, r->x, r->x);
     if (!sim_all_finite(r->x, r->N)) {
         sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
-                          "finite", s->m->ev_names[k]);
+                          "finite", r->m->ev_names[k]);
         return GSL_EBADFUNC;
     }
-    if (r->st->reset_event < 0 && s->m->nc > 0 &&
+    if (r->st->reset_event < 0 && r->m->nc > 0 &&
         eomc_sim_inconsistencies(s, r->t, r->x, r->x + r->n, r->ce, r->cl) >
             EOMC_INCONSISTENT)
         note_reset_off(r, k);
@@ -913,7 +914,7 @@ apply_reset(Run *r, int k)
     r->held[k] = !(left > PASS_REL);
     r->left_rate = r->held[k] && left > 0 ? left : 0;
     r->since_reset = 0;
-    if (s->kkt && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
+    if (r->m->nc > 0 && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
     r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
     return GSL_SUCCESS;
@@ -951,11 +952,9 @@ adaptive_step(Run *r, double *h)
     double t0 = r->t, h0 = *h, left = o->t_end - t0;
     size_t bytes = (size_t)r->N * sizeof *r->x;
     memcpy(r->y0, r->x, bytes);
-    if (r->s->kkt)
-        kkt_save_start(r->s->kkt);
+    sim_save_start(r->s);
     for (;;) {
-        if (r->s->kkt)
-            kkt_restore_start(r->s->kkt);
+        sim_restore_start(r->s);
         int final = h0 >= left;
         if (final)
             h0 = left;
@@ -1119,7 +1118,7 @@ run_free(Run *r)
 static int
 run_alloc(Run *r, const Method *m)
 {
-    size_t N = (size_t)r->N, nB = (size_t)r->s->m->nc * (size_t)r->n;
+    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
     double span = r->o->t_end - r->o->t0;
     r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
     r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
@@ -1147,7 +1146,7 @@ run_alloc(Run *r, const Method *m)
                          &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2, &r->g0, &r->g1,
                          &r->ge, &r->te, &r->xe, &r->ce};
     size_t ne = (size_t)r->ne;
-    size_t nc = (size_t)r->s->m->nc;
+    size_t nc = (size_t)r->m->nc;
     size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N, nc};
     int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
@@ -1172,12 +1171,13 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     int rc = eomc_run_check(s, o);
     if (rc)
         return rc;
-    int n = s->n;
-    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(s->p, s->m->np))
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq;
+    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(eomc_sim_params(s), m->np))
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
-    Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-             .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY,
+    Run r = {.s = s, .m = eomc_sim_model(s), .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
+             .row = row, .ctx = ctx, .ne = m->nevent, .last_set = -INFINITY,
              .w_t0 = o->t0};
     st->stop_event = -1;
     st->reset_event = -1;
@@ -1202,11 +1202,11 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     }
     rc = row ? row(ctx, r.t, x) : EOMC_OK; /* the initial state, as it is */
     r.k = 1;
-    if (rc == EOMC_OK && s->kkt && sim_constraint_rows(s, r.t, x, r.B0) != 0)
+    if (rc == EOMC_OK && m->nc > 0 && sim_constraint_rows(s, r.t, x, r.B0) != 0)
         rc = EOMC_ENUMERIC;
     if (rc == EOMC_OK)
         watch_condition(&r);
-    if (rc == EOMC_OK && s->m->invariant &&
+    if (rc == EOMC_OK && m->invariant &&
         eomc_sim_invariant(s, r.t, x, x + n, &r.h0) == EOMC_OK)
         r.have_h0 = 1;
     if (rc == EOMC_OK && r.ne) /* an event at exactly 0 here waits to leave it */

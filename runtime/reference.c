@@ -125,7 +125,8 @@ typedef struct Ref {
     double tol;
     long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
                                     * the rows' side steps' (stepping) */
-    double fail_t, *fail_x;       /* where a right-hand side failed [N] */
+    double fail_t, *fail_x;       /* where a right-hand side failed [N], then
+                                   * room for the doubles' q'' there [n] */
 } Ref;
 
 /* The model's inputs at t into r->u, held ones as the doubles hold them. */
@@ -447,7 +448,7 @@ ext_zeros(size_t n)
 static int
 ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, W = n + nc;
     size_t N = 2 * n;
     *r = (Ref){.s = s, .m = m, .x = x, .n = m->nq, .N = 2 * m->nq, .nc = m->nc,
@@ -471,14 +472,14 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
-    ok &= (r->fail_x = calloc(N, sizeof *r->fail_x)) != NULL;
+    ok &= (r->fail_x = calloc(N + n, sizeof *r->fail_x)) != NULL;
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (!ok)
         return -1;
     for (int k = 1; k < 9; k++)
         r->cj[k] = r->cj[k - 1] + cj[k - 1];
     for (int k = 0; k < m->np; k++)
-        r->p[k] = s->p[k];
+        r->p[k] = eomc_sim_params(s)[k];
     if (r->x->derive) /* in extended precision too */
         r->x->derive(r->p, r->p + m->np);
     return 0;
@@ -503,7 +504,7 @@ failure(Ref *r, int st)
         return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
                                  "took more than %d steps at tolerance %.0e",
                                  method_name(r->method), STEP_BUDGET, r->tol);
-    if (eomc_sim_accel(s, r->fail_t, x, x + r->n, s->a) != EOMC_OK)
+    if (eomc_sim_accel(s, r->fail_t, x, x + r->n, r->fail_x + r->N) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
                              "cannot be continued here at tolerance %.0e: the model "
@@ -550,7 +551,7 @@ max_diff(const double *a, const double *b, size_t n)
 static int
 twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
         return sim_usage_error(s, "no extended-precision functions of %s to compute %s "
                                "with (the model's C compiled again with -DEOMC_EXTENDED, "
@@ -565,7 +566,7 @@ int
 eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
                        const double *x0, eomc_reference *ref)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     memset(ref, 0, sizeof *ref);
     int rc = twin_fits(s, ext, "a reference");
     if (rc != EOMC_OK)
@@ -661,7 +662,7 @@ int
 eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const double *x,
                      double *a, double *lam)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     int fits = twin_fits(s, ext, "q''");
     if (fits != EOMC_OK)
         return fits;
@@ -680,7 +681,7 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
     ref_free(&r);
     if (rc == 0)
         return EOMC_OK;
-    if (eomc_sim_accel(s, t, x, x + m->nq, s->a) != EOMC_OK)
+    if (eomc_sim_accel(s, t, x, x + m->nq, a) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, t, x, x + m->nq, "q'' cannot be solved in extended "
                              "precision here (the doubles' solve can)");

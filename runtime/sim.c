@@ -8,6 +8,10 @@
  * so that a failing factorization comes back as a status, never an abort.
  * The solves below (linalg.c, kkt.c, project.c) return statuses; the
  * messages, which name the time and the state, are made here.
+ *
+ * struct eomc_sim is this file's alone (the layers above use eomc.h and
+ * simimpl.h), so what reads its state is here: that is why the file is
+ * somewhat over 800 lines.
  */
 #include "simimpl.h"
 #include "kkt.h"

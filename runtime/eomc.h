@@ -233,8 +233,11 @@ typedef struct eomc_run_opts {
     double h_fixed;    /* > 0: fixed steps (adjusted down to divide the span
                         * t_end - t0 evenly) */
     long max_steps;    /* per run; 0 = no limit */
-    int progress;      /* nonzero: when stderr is a terminal and the run
-                        * takes over a second, show t on stderr */
+    /* How far the run has come, t, now and then: every few hundred
+     * right-hand sides (NULL: not told).  The library prints nothing; the
+     * simulator shows t on a terminal when a run takes over a second. */
+    void (*on_progress)(void *ctx, double t);
+    void *progress_ctx;
     /* The scene's events (model->nevent > 0): called as each fires, with
      * its index k, its time and the state x [2nq] there, before its action
      * (NULL: not told).  A nonzero return stops the integration with that
@@ -338,6 +341,70 @@ int eomc_run_check(eomc_sim *s, const eomc_run_opts *o);
  *    given, t_stop = t0. */
 int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
                        eomc_row_fn row, void *ctx, eomc_stats *st);
+
+/* ---- one step at a time ----
+ *
+ * The steps of eomc_sim_integrate, one per call, for a loop of one's own
+ * (a front end, a controller in the loop), as GSL's odeiv2 evolve takes
+ * them: eomc_sim_integrate is this loop with output rows read off the
+ * steps.  The same method, tolerances or fixed steps, step control,
+ * checks after each step (drift, projection, degenerate constraints,
+ * conditioning) and events (located, reported through on_event, a `stop`
+ * ending the run, a `set` resetting the state) and progress as o sets
+ * up; o's dt makes no rows here (it must still be positive).
+ *
+ *     eomc_evolve *e = eomc_evolve_alloc(sim, &o, x0);
+ *     eomc_step d;
+ *     do {
+ *         if (eomc_sim_step(sim, e, &d) != EOMC_OK)
+ *             break;                      // eomc_sim_error(sim) says why
+ *         for (double t = ...; t <= d.t1; t += ...)
+ *             eomc_step_eval(&d, t, x);   // the state at t inside the step
+ *     } while (!d.last);
+ *     eomc_evolve_free(e);
+ */
+typedef struct eomc_evolve eomc_evolve;
+
+/* What one accepted step covered, valid until the next eomc_sim_step:
+ * from t0 to t1 (t1 > t0), the state x = (q, q') [nx = 2 nq] and its
+ * derivative x' = (q', q'') at both ends.  x1 is the state the next step
+ * starts from, except after a `set` event (event >= 0 with that action):
+ * the step ends at the event with the state before its reset, and the
+ * next step starts from the state the reset sets (its x0).  Under
+ * EOMC_STABILIZE_PROJECT x1 is the projected end.  The dense output over
+ * the step is the cubic Hermite interpolant through (x0, f0) and (x1,
+ * f1): with h = t1 - t0 and s = (t - t0) / h,
+ *     x(t) = (2s^3 - 3s^2 + 1) x0 + (s^3 - 2s^2 + s) h f0
+ *          + (3s^2 - 2s^3) x1 + (s^3 - s^2) h f1,
+ * exact at both ends, its error O(h^4) inside (eomc_sim_integrate's rows
+ * come from an interpolant of higher order over several steps,
+ * runtime/dense.h). */
+typedef struct eomc_step {
+    int nx;                  /* 2 nq */
+    double t0, t1;
+    const double *x0, *f0;   /* [nx] at t0 */
+    const double *x1, *f1;   /* [nx] at t1 */
+    int event;               /* the `stop` or `set` event that ended the step at
+                              * t1, or -1 (a `record` event is only reported) */
+    int last;                /* the run is over: t1 is t_end, or a `stop` event */
+} eomc_step;
+
+/* Steps of s from x0 [2nq] at o->t0 (o is copied; x0 is not kept).  NULL
+ * when o cannot run on s (eomc_run_check), x0 or a parameter is not
+ * finite, the model fails at the start, or memory runs out: the message
+ * is in eomc_sim_error(s). */
+eomc_evolve *eomc_evolve_alloc(eomc_sim *s, const eomc_run_opts *o, const double *x0);
+void eomc_evolve_free(eomc_evolve *e);
+/* The steps' statistics so far (eomc_stats, as eomc_sim_integrate keeps
+ * them; t_stop: the time reached). */
+const eomc_stats *eomc_evolve_stats(const eomc_evolve *e);
+/* Advance by one accepted step, into *d.  EOMC_OK; EOMC_ENUMERIC with the
+ * message of eomc_sim_integrate's failure; on_event's nonzero status; or
+ * EOMC_EUSAGE once the run is over (d->last was set) or for another
+ * simulator's steps.  After a failure the run is over. */
+int eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d);
+/* The step's dense output at t in [d->t0, d->t1] into x [d->nx]. */
+void eomc_step_eval(const eomc_step *d, double t, double *x);
 
 /* ---- the reference solution ----
  *

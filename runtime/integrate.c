@@ -3,8 +3,12 @@
  *
  * GSL provides the steppers (odeiv2 step types, or fixed.c's, which are
  * the same kind of object) and the step-size control; this file is the
- * evolve and driver layers above them.  It is GSL's evolve loop with
- * three differences:
+ * evolve and driver layers above them: evolve_step takes one accepted
+ * step (eomc_sim_step is it, with its message), and march, the driver,
+ * takes those steps to t_end and reads the rows off them.  Over 800
+ * lines: the two layers share the run's state (Run), which a split would
+ * have to put in a header of its own.  It is GSL's evolve loop with
+ * these differences:
  *  - output rows are not step ends: the steps go as the tolerance allows,
  *    straight to t_end, and each row is read off the interpolant of
  *    dense.c (so a small --dt costs no steps);
@@ -29,7 +33,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 /* ---- the methods ---- */
 
@@ -175,6 +178,7 @@ enum { SIDE_PIECES_MAX = 64 };
 
 typedef struct Run {
     eomc_sim *s;
+    const eomc_model *m;          /* s's */
     const eomc_run_opts *o;
     eomc_stats *st;
     int n, N;                     /* coordinates, state size 2n */
@@ -199,7 +203,6 @@ typedef struct Run {
     int row_status;               /* the callback's nonzero status: ROW_STOP */
     double stop_t;                /* ... the time it was called with */
     const double *stop_x;         /* ... and the state (kept until march returns) */
-    int progress, shown;          /* progress on the terminal */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
     double log_h;                 /* sum of log(h) over the accepted steps ... */
@@ -212,7 +215,6 @@ typedef struct Run {
     long w_nh;                    /* ... how many */
     double w_t0;                  /* the time it started at */
     int grinding;                 /* windows in a row that ground */
-    double wall0, next_show;
     int ne;                       /* events */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -227,26 +229,17 @@ typedef struct Run {
                                      its rate on arrival (0 unless on the way
                                      it crossed, slower than passing) */
     long since_reset;             /* steps since the last reset */
+    double h;                     /* the next adaptive step to try */
+    unsigned long nfixed, i;      /* fixed steps: how many, and the last taken */
+    int pending;                  /* a `set` event whose reset starts the next
+                                   * step (-1: none) */
     double *ce;                   /* [nc] each constraint's inconsistency */
     int *cl;                      /* [nc] and its level, after a reset */
 } Run;
 
-/* Every 256 right-hand sides: after the first second, t on the terminal
- * every tenth of a second. */
-static void
-show_progress(Run *r, double t)
-{
-    if (!r->progress || (r->st->rhs_evals & 255))
-        return;
-    double now = sim_seconds(0);
-    if (now < r->next_show)
-        return;
-    r->next_show = now + 0.1;
-    if (now - r->wall0 < 1.0)
-        return;
-    fprintf(stderr, "\r%s: t = %-12.6g of %g", r->s->m->name, t, r->o->t_end);
-    r->shown = 1;
-}
+/* The caller is told of the progress every PROGRESS_EVERY right-hand
+ * sides (a power of 2): often enough to follow, far too rarely to cost. */
+enum { PROGRESS_EVERY = 256 };
 
 static int
 rhs(double t, const double *x, double *dxdt, void *ctx)
@@ -254,7 +247,8 @@ rhs(double t, const double *x, double *dxdt, void *ctx)
     Run *r = ctx;
     int n = r->n;
     r->st->rhs_evals++;
-    show_progress(r, t);
+    if (r->o->on_progress && (r->st->rhs_evals & (PROGRESS_EVERY - 1)) == 0)
+        r->o->on_progress(r->o->progress_ctx, t);
     if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
         return GSL_EBADFUNC;
     memcpy(dxdt, x + n, (size_t)n * sizeof *dxdt);
@@ -278,7 +272,7 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
         return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
     if (eomc_sim_check(s) != EOMC_OK)
         return EOMC_EUSAGE;
-    if (m->jacobian && !s->m->jacobian)
+    if (m->jacobian && !eomc_sim_model(s)->jacobian)
         return sim_no_jacobian(s, o->method);
     if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
         return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
@@ -294,7 +288,7 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     if (o->h_fixed > 0 && !m->fixed)
         return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
                                "for the one-step methods", o->method);
-    if (s->stabilize == EOMC_STABILIZE_PROJECT && !m->fixed)
+    if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT && !m->fixed)
         return sim_usage_error(s, "%s builds on the history of its steps, which projecting "
                                "the state after every step would throw away (it would "
                                "restart at order 1 each time, slow and inaccurate): with "
@@ -338,9 +332,9 @@ likely_cause(Run *r, char *buf, size_t len)
     if (c * DBL_EPSILON > LIKELY_COND)
         snprintf(buf, len, "%s is nearly singular there (condition %.2g)",
                  sim_condition_what(s), c);
-    else if (s->kkt && !isnan(c) && (k = kkt_vanished(s->kkt, &fraction)) >= 0)
+    else if (!isnan(c) && (k = sim_vanished(s, &fraction)) >= 0)
         snprintf(buf, len, "the constraint %s's row df/dq'' is vanishing there (%.2g of "
-                 "its largest)", s->m->c_names[k], fraction);
+                 "its largest)", r->m->c_names[k], fraction);
     else if (!isnan(c))
         snprintf(buf, len, "not the solve for q'', which is well-conditioned there "
                  "(condition %.2g): a force or the motion that is singular or not smooth "
@@ -381,13 +375,13 @@ step_error(Run *r, int status)
                                      "from resting on it (passing through takes more "
                                      "than %g); a reset that passes should leave it "
                                      "faster, one that stops it should turn it back",
-                                     s->m->ev_names[r->ev_k], r->last_set, r->left_rate,
+                                     r->m->ev_names[r->ev_k], r->last_set, r->left_rate,
                                      PASS_REL);
         return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
                                  "holds again at the end of the first step after its "
                                  "reset at t = %.17g (a step of %.3g): the motion returns "
                                  "to it faster than the steps can follow (it comes to rest "
-                                 "against it%s)", s->m->ev_names[r->ev_k], r->last_set,
+                                 "against it%s)", r->m->ev_names[r->ev_k], r->last_set,
                                  r->t - r->last_set, r->o->h_fixed > 0
                                  ? ", or the fixed steps are too long" : "");
     case EVENTS_ACCUMULATE:
@@ -395,7 +389,7 @@ step_error(Run *r, int status)
                                  "fired %ld times, the last two %.3g apart, below %g of "
                                  "the time span: the motion comes to rest against it in "
                                  "ever shorter intervals (Zeno), which no step can "
-                                 "follow", s->m->ev_names[r->ev_k], r->nsets + 1,
+                                 "follow", r->m->ev_names[r->ev_k], r->nsets + 1,
                                  r->t - r->last_set, ACCUMULATE_REL);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
@@ -436,7 +430,7 @@ static int
 reversed_row(const Run *r)
 {
     int n = r->n;
-    for (int k = 0; k < r->s->m->nc; k++)
+    for (int k = 0; k < r->m->nc; k++)
         if (la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
             return k;
     return -1;
@@ -482,7 +476,7 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
     gsl_odeiv2_step_reset(r->step);
     sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
                       "its row of B = df/dq'' vanishes here (it reverses direction), so "
-                      "the accelerations are no longer determined", r->s->m->c_names[k]);
+                      "the accelerations are no longer determined", r->m->c_names[k]);
     /* the step through it is not taken: the run ends at its start, the last
      * state the steps reached to their tolerance (the one step to the
      * degeneracy evaluates the accelerations where they are not
@@ -534,8 +528,8 @@ watch_invariant(Run *r)
     double h, he;
     /* without projection a constrained state drifts off its constraints,
      * and h with it, by more than the steps' errors say: no budget then */
-    if (!s->m->invariant || r->o->h_fixed > 0 ||
-        (s->kkt && s->stabilize != EOMC_STABILIZE_PROJECT) ||
+    if (!r->m->invariant || r->o->h_fixed > 0 ||
+        (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT) ||
         eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) != EOMC_OK)
         return;
     if (!r->have_h0)
@@ -561,7 +555,7 @@ after_step(Run *r, double t0)
     int n = r->n;
     double *x = r->x, t = r->t;
     watch_condition(r);
-    if (!s->kkt) {
+    if (r->m->nc == 0) {
         watch_invariant(r);
         return GSL_SUCCESS;
     }
@@ -573,7 +567,7 @@ after_step(Run *r, double t0)
     if (sim_has_levels(s)) {
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
-        if (s->stabilize == EOMC_STABILIZE_PROJECT) {
+        if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT) {
             /* a failed projection leaves the step's end as it was */
             memcpy(r->xt, x, (size_t)r->N * sizeof *x);
             if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
@@ -707,7 +701,7 @@ emit_rows(Run *r, int final)
         }
         /* projected steps, projected rows: the interpolant is only as close
          * to the constraints as it is to the motion */
-        if (r->s->stabilize == EOMC_STABILIZE_PROJECT &&
+        if (sim_stabilize_method(r->s) == EOMC_STABILIZE_PROJECT &&
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
@@ -720,17 +714,26 @@ emit_rows(Run *r, int final)
 
 /* ---- events ---- */
 
+/* The cubic Hermite interpolant through (x0, f0) at t0 and (x1, f1) at
+ * t1, at t: x [N] (eomc_step_eval). */
+static void
+cubic(double t0, double t1, const double *x0, const double *f0, const double *x1,
+      const double *f1, int N, double t, double *x)
+{
+    double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s;
+    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
+    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
+    for (int i = 0; i < N; i++)
+        x[i] = h00 * x0[i] + h10 * h * f0[i] + h01 * x1[i] + h11 * h * f1[i];
+}
+
 /* The state at t in the step just taken (from ev_t0 to ev_t1), on the
  * cubic Hermite interpolant through its ends (y0, f0; x, f1): cheap, and
  * good enough to start the search on the solution from. */
 static void
 hermite(const Run *r, double t, double *x)
 {
-    double h = r->ev_t1 - r->ev_t0, s = (t - r->ev_t0) / h, s2 = s * s, s3 = s2 * s;
-    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
-    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
-    for (int i = 0; i < r->N; i++)
-        x[i] = h00 * r->y0[i] + h10 * h * r->f0[i] + h01 * r->x[i] + h11 * h * r->f1[i];
+    cubic(r->ev_t0, r->ev_t1, r->y0, r->f0, r->x, r->f1, r->N, t, x);
 }
 
 static double
@@ -767,7 +770,7 @@ static int
 check_events(Run *r, double t0, int *what, int *fired)
 {
     eomc_sim *s = r->s;
-    const eomc_model *m = s->m;
+    const eomc_model *m = r->m;
     size_t bytes = (size_t)r->N * sizeof *r->x;
     int any = 0;
     r->ev_t0 = t0, r->ev_t1 = r->t;
@@ -822,7 +825,7 @@ check_events(Run *r, double t0, int *what, int *fired)
         r->t = t;
         if (t != r->ev_t1 && (rc = rhs(t, r->x, r->f1, r)) != GSL_SUCCESS)
             return rc;
-        if (s->kkt && sim_constraint_rows(s, t, r->x, r->B0) != 0)
+        if (r->m->nc > 0 && sim_constraint_rows(s, t, r->x, r->B0) != 0)
             return GSL_EBADFUNC;
         *fired = k;
         *what = m->ev_action[k] == EOMC_EVENT_STOP ? EV_STOP : EV_SET;
@@ -860,7 +863,7 @@ static void
 note_reset_off(Run *r, int k)
 {
     eomc_stats *st = r->st;
-    const eomc_model *m = r->s->m;
+    const eomc_model *m = r->m;
     size_t at = 0, len = sizeof st->reset_off;
     st->reset_event = k;
     st->reset_t = r->t;
@@ -887,10 +890,11 @@ note_reset_off(Run *r, int k)
 
 /* Event k's reset at r->t, after the rows up to it were written: the
  * integration starts again from the new state, with nothing of the
- * history before (the interpolant's nodes, a multistep method's past).
+ * history before (a multistep method's past here; march drops the
+ * interpolant's nodes).
  * The event is held until its g leaves zero, unless the reset passes
  * through it.  r->f0 is the right-hand side at r->x, the state the event
- * found (march has made the step's end the next one's start). */
+ * found (evolve_step has made the step's end the next one's start). */
 static int
 apply_reset(Run *r, int k)
 {
@@ -902,23 +906,21 @@ apply_reset(Run *r, int k)
     r->gap = r->t - r->last_set;
     r->last_set = r->t;
     r->nsets++;
-    int dir = s->m->ev_direction[k];
+    int dir = r->m->ev_direction[k];
     double arrived = dir ? g_rate(r, k, r->t, r->x, r->f0) : 0;
     eomc_sim_event_set(s, k, r->t, r->x, r->x);
     if (!sim_all_finite(r->x, r->N)) {
         sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
-                          "finite", s->m->ev_names[k]);
+                          "finite", r->m->ev_names[k]);
         return GSL_EBADFUNC;
     }
-    if (r->st->reset_event < 0 && s->m->nc > 0 &&
+    if (r->st->reset_event < 0 && r->m->nc > 0 &&
         eomc_sim_inconsistencies(s, r->t, r->x, r->x + r->n, r->ce, r->cl) >
             EOMC_INCONSISTENT)
         note_reset_off(r, k);
     int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
         return rc;
-    dense_clear(r->dense);
-    dense_push(r->dense, r->t, r->x, r->f0);
     gsl_odeiv2_step_reset(r->step);
     if (r->side != r->step)
         gsl_odeiv2_step_reset(r->side);
@@ -928,7 +930,7 @@ apply_reset(Run *r, int k)
     r->held[k] = !(left > PASS_REL);
     r->left_rate = r->held[k] && left > 0 ? left : 0;
     r->since_reset = 0;
-    if (s->kkt && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
+    if (r->m->nc > 0 && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
     r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
     return GSL_SUCCESS;
@@ -966,11 +968,9 @@ adaptive_step(Run *r, double *h)
     double t0 = r->t, h0 = *h, left = o->t_end - t0;
     size_t bytes = (size_t)r->N * sizeof *r->x;
     memcpy(r->y0, r->x, bytes);
-    if (r->s->kkt)
-        kkt_save_start(r->s->kkt);
+    sim_save_start(r->s);
     for (;;) {
-        if (r->s->kkt)
-            kkt_restore_start(r->s->kkt);
+        sim_restore_start(r->s);
         int final = h0 >= left;
         if (final)
             h0 = left;
@@ -1054,59 +1054,120 @@ watch_steps(Run *r)
     return r->grinding >= GRIND_WINDOWS ? STEP_GRIND : GSL_SUCCESS;
 }
 
-/* Integrate to t_end, passing rows as they are settled. */
+/* What one accepted step did, for the driver and for eomc_sim_step. */
+typedef struct Taken {
+    int taken;                    /* a step was accepted: t0 .. r->t */
+    double t0;
+    int restarted;                /* a pending reset was applied first: the step
+                                   * started from the state it set */
+    int ev, fired;                /* EV_... and the event that ended the step */
+} Taken;
+
+/* The fixed steps of the span (st->h_used), or none (adaptive): before
+ * the first step. */
+static void
+steps_begin(Run *r)
+{
+    const eomc_run_opts *o = r->o;
+    double span = o->t_end - o->t0;
+    r->h = H0_REL * span;
+    r->pending = -1;
+    if (o->h_fixed > 0) {
+        r->nfixed = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
+        if (r->nfixed < 1)
+            r->nfixed = 1;
+        r->st->h_used = span / (double)r->nfixed;
+    }
+}
+
+/* Whether a step is left to take: before t_end, or a reset to apply. */
+static int
+steps_left(const Run *r)
+{
+    return r->t < r->o->t_end || r->pending >= 0;
+}
+
+/* One accepted step, GSL's evolve with the checks of after_step and the
+ * events: a pending reset applied first, then a fixed or an adaptive
+ * step, and the watch over the steps.  tk says what it did, also when it
+ * fails after the step was accepted (the steps collapsed or ground): that
+ * step's end stands. */
+static int
+evolve_step(Run *r, Taken *tk)
+{
+    const eomc_run_opts *o = r->o;
+    double span = o->t_end - o->t0;
+    int rc;
+    *tk = (Taken){.ev = EV_NONE, .fired = -1};
+    if (r->pending >= 0) {
+        int k = r->pending;
+        r->pending = -1;
+        tk->restarted = 1;
+        if ((rc = apply_reset(r, k)) != GSL_SUCCESS)
+            return rc;
+        /* a fresh start: a first trial step as at t0, and a fraction of
+         * the interval since the event before, so that the steps grow
+         * again from the event and see g leave zero before they could
+         * cross it a second time (the top of a bounce) */
+        r->h = fmin(H0_REL * span, RESTART_REL * r->gap);
+        if (!(r->t < o->t_end))
+            return GSL_SUCCESS;
+    }
+    if (!budget_left(r))
+        return GSL_EMAXITER;
+    double t0 = r->t;
+    r->i++;
+    if (r->nfixed)
+        rc = fixed_step(r, r->i == r->nfixed ? o->t_end : o->t0 + (double)r->i * r->st->h_used);
+    else
+        rc = adaptive_step(r, &r->h);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    r->st->steps++;
+    r->since_reset++;
+    if ((rc = after_step(r, t0)) != GSL_SUCCESS)
+        return rc;
+    if (r->ne && (rc = check_events(r, t0, &tk->ev, &tk->fired)) != GSL_SUCCESS)
+        return rc;
+    double *f = r->f0; /* this step's end is the next one's start */
+    r->f0 = r->f1, r->f1 = f;
+    tk->taken = 1;
+    tk->t0 = t0;
+    if (tk->ev == EV_STOP) {
+        r->st->stop_event = tk->fired;
+        return GSL_SUCCESS;
+    }
+    if (tk->ev == EV_SET) {
+        r->pending = tk->fired;
+        return GSL_SUCCESS;
+    }
+    if (r->t < o->t_end && !r->nfixed && fabs(r->h) < r->hmin)
+        return GSL_ENOPROG;
+    if (!r->nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
+        return rc;
+    return GSL_SUCCESS;
+}
+
+/* Integrate to t_end by evolve_step, passing rows as they are settled:
+ * the step ends are the interpolant's nodes (dense.h). */
 static int
 march(Run *r)
 {
-    const eomc_run_opts *o = r->o;
-    double span = o->t_end - o->t0, h = H0_REL * span;
-    unsigned long nfixed = 0;
-    if (o->h_fixed > 0) {
-        nfixed = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
-        if (nfixed < 1)
-            nfixed = 1;
-        r->st->h_used = span / (double)nfixed;
-    }
-    for (unsigned long i = 1; r->t < o->t_end; i++) {
-        if (!budget_left(r))
-            return GSL_EMAXITER;
-        double t0 = r->t;
-        int rc;
-        if (nfixed)
-            rc = fixed_step(r, i == nfixed ? o->t_end : o->t0 + (double)i * r->st->h_used);
-        else
-            rc = adaptive_step(r, &h);
+    while (steps_left(r)) {
+        Taken tk;
+        int rc = evolve_step(r, &tk);
+        if (tk.restarted) /* the nodes before the reset are another motion's */
+            dense_clear(r->dense);
+        if (tk.restarted && tk.taken)
+            dense_push(r->dense, tk.t0, r->y0, r->f1);
+        if (tk.taken)
+            dense_push(r->dense, r->t, r->x, r->f0);
         if (rc != GSL_SUCCESS)
             return rc;
-        r->st->steps++;
-        r->since_reset++;
-        if ((rc = after_step(r, t0)) != GSL_SUCCESS)
-            return rc;
-        int fired = -1, ev = EV_NONE;
-        if (r->ne && (rc = check_events(r, t0, &ev, &fired)) != GSL_SUCCESS)
-            return rc;
-        dense_push(r->dense, r->t, r->x, r->f1);
-        double *f = r->f0; /* this step's end is the next one's start */
-        r->f0 = r->f1, r->f1 = f;
-        if (ev == EV_STOP) {
-            r->st->stop_event = fired;
+        if (tk.ev == EV_STOP)
             return finish_at_event(r);
-        }
-        if (ev == EV_SET) {
-            if ((rc = emit_rows(r, 1)) != GSL_SUCCESS || (rc = apply_reset(r, fired)))
-                return rc;
-            /* a fresh start: a first trial step as at t0, and a fraction of
-             * the interval since the event before, so that the steps grow
-             * again from the event and see g leave zero before they could
-             * cross it a second time (the top of a bounce) */
-            h = fmin(H0_REL * span, RESTART_REL * r->gap);
-            continue;
-        }
-        if (r->t < o->t_end && !nfixed && fabs(h) < r->hmin)
-            return GSL_ENOPROG;
-        if (!nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
-            return rc;
-        if ((rc = emit_rows(r, 0)) != GSL_SUCCESS)
+        /* before a reset, every row up to the event */
+        if ((rc = emit_rows(r, tk.ev == EV_SET)) != GSL_SUCCESS)
             return rc;
     }
     return GSL_SUCCESS;
@@ -1134,7 +1195,7 @@ run_free(Run *r)
 static int
 run_alloc(Run *r, const Method *m)
 {
-    size_t N = (size_t)r->N, nB = (size_t)r->s->m->nc * (size_t)r->n;
+    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
     double span = r->o->t_end - r->o->t0;
     r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
     r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
@@ -1162,7 +1223,7 @@ run_alloc(Run *r, const Method *m)
                          &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2, &r->g0, &r->g1,
                          &r->ge, &r->te, &r->xe, &r->ce};
     size_t ne = (size_t)r->ne;
-    size_t nc = (size_t)r->s->m->nc;
+    size_t nc = (size_t)r->m->nc;
     size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N, nc};
     int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
@@ -1173,13 +1234,13 @@ run_alloc(Run *r, const Method *m)
                                           r->o->method);
 }
 
-int
-eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
-                   void *ctx, eomc_stats *st)
+/* A run from x at o->t0 set up: the options checked, the work arrays
+ * (r zeroed by the caller; run_free either way).  EOMC_OK or a status
+ * with its message. */
+static int
+run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row, void *ctx,
+         eomc_stats *st)
 {
-    eomc_stats local;
-    if (!st)
-        st = &local;
     memset(st, 0, sizeof *st);
     st->ill_t = NAN;
     st->t_stop = o->t0;
@@ -1187,50 +1248,69 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     int rc = eomc_run_check(s, o);
     if (rc)
         return rc;
-    int n = s->n;
-    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(s->p, s->m->np))
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq;
+    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(eomc_sim_params(s), m->np))
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
-    Run r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-             .row = row, .ctx = ctx, .ne = s->m->nevent, .last_set = -INFINITY,
-             .w_t0 = o->t0};
+    *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
+               .row = row, .ctx = ctx, .ne = m->nevent, .last_set = -INFINITY,
+               .w_t0 = o->t0, .pending = -1};
     st->stop_event = -1;
     st->reset_event = -1;
-    r.nrows = eomc_run_rows(o);
-    r.hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
-    r.progress = o->progress && isatty(2);
-    r.wall0 = r.next_show = sim_seconds(0);
-    if ((rc = run_alloc(&r, find_method(o->method))) != EOMC_OK) {
-        run_free(&r);
-        return rc;
-    }
+    r->nrows = eomc_run_rows(o);
+    r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
+    return run_alloc(r, find_method(o->method));
+}
 
-    double c0 = sim_seconds(1);
+/* The start of a run: the equations at t0 first (a model that cannot be
+ * solved there, a singular M, a NaN of a parameter's value, writes no
+ * row), the first row (the initial state, as it is), and what the
+ * watches start from. */
+static int
+run_start(Run *r)
+{
+    eomc_sim *s = r->s;
+    double *x = r->x;
+    int n = r->n;
     if (sim_has_levels(s))
-        st->max_residual = st->max_drift = sim_level_residual(s, r.t, x, x + n);
-    /* the equations at the start first: a model that cannot be solved
-     * there (a singular M, a NaN of a parameter's value) writes no row */
-    int status = r.nrows > 1 ? rhs(r.t, x, r.f0, &r) : GSL_SUCCESS;
-    if (status != GSL_SUCCESS) {
-        rc = step_error(&r, status);
-        st->cpu_seconds = sim_seconds(1) - c0;
-        run_free(&r);
-        return rc;
-    }
-    rc = row ? row(ctx, r.t, x) : EOMC_OK; /* the initial state, as it is */
-    r.k = 1;
-    if (rc == EOMC_OK && s->kkt && sim_constraint_rows(s, r.t, x, r.B0) != 0)
+        r->st->max_residual = r->st->max_drift = sim_level_residual(s, r->t, x, x + n);
+    int status = r->nrows > 1 ? rhs(r->t, x, r->f0, r) : GSL_SUCCESS;
+    if (status != GSL_SUCCESS)
+        return step_error(r, status);
+    int rc = r->row ? r->row(r->ctx, r->t, x) : EOMC_OK;
+    r->k = 1;
+    if (rc == EOMC_OK && r->m->nc > 0 && sim_constraint_rows(s, r->t, x, r->B0) != 0)
         rc = EOMC_ENUMERIC;
     if (rc == EOMC_OK)
-        watch_condition(&r);
-    if (rc == EOMC_OK && s->m->invariant &&
-        eomc_sim_invariant(s, r.t, x, x + n, &r.h0) == EOMC_OK)
-        r.have_h0 = 1;
-    if (rc == EOMC_OK && r.ne) /* an event at exactly 0 here waits to leave it */
-        eomc_sim_events(s, r.t, x, x + n, r.g0);
+        watch_condition(r);
+    if (rc == EOMC_OK && r->m->invariant &&
+        eomc_sim_invariant(s, r->t, x, x + n, &r->h0) == EOMC_OK)
+        r->have_h0 = 1;
+    if (rc == EOMC_OK && r->ne) /* an event at exactly 0 here waits to leave it */
+        eomc_sim_events(s, r->t, x, x + n, r->g0);
+    return rc;
+}
+
+int
+eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
+                   void *ctx, eomc_stats *st)
+{
+    eomc_stats local;
+    if (!st)
+        st = &local;
+    Run r = {0};
+    int rc = run_open(&r, s, o, x, row, ctx, st);
+    if (rc != EOMC_OK) {
+        run_free(&r);
+        return rc;
+    }
+    double c0 = sim_seconds(1);
+    rc = run_start(&r);
     if (rc == EOMC_OK && r.nrows > 1) {
         dense_push(r.dense, r.t, x, r.f0);
-        status = march(&r);
+        steps_begin(&r);
+        int status = march(&r);
         /* the rows up to the last step reached stand, also after a failure */
         if (status != ROW_STOP && status != EVENT_STOPPED) {
             int flushed = emit_rows(&r, 1);
@@ -1249,12 +1329,96 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
             rc = step_error(&r, status);
-        else if (!sim_all_finite(x, 2 * n))
-            rc = sim_numeric_error(s, r.t, x, x + n, "the state is not finite");
+        else if (!sim_all_finite(x, 2 * r.n))
+            rc = sim_numeric_error(s, r.t, x, x + r.n, "the state is not finite");
     }
     st->cpu_seconds = sim_seconds(1) - c0;
-    if (r.shown)
-        fprintf(stderr, "\r%*s\r", 60, "");
     run_free(&r);
     return rc;
+}
+
+/* ---- one step at a time (eomc_sim_step) ---- */
+
+struct eomc_evolve {
+    Run r;
+    eomc_run_opts o;     /* a copy: r.o */
+    eomc_stats st;       /* r.st */
+    double *x;           /* [2nq] the state: r.x */
+    int over;            /* t_end reached, a stop event, or a failure */
+};
+
+eomc_evolve *
+eomc_evolve_alloc(eomc_sim *s, const eomc_run_opts *o, const double *x0)
+{
+    size_t N = 2 * (size_t)eomc_sim_model(s)->nq;
+    eomc_evolve *e = calloc(1, sizeof *e);
+    double *x = sim_zeros(N);
+    if (!e || !x) {
+        free(e);
+        free(x);
+        sim_usage_error(s, "out of memory setting up the steps");
+        return NULL;
+    }
+    memcpy(x, x0, N * sizeof *x);
+    e->o = *o;
+    e->x = x;
+    int rc = run_open(&e->r, s, &e->o, x, NULL, NULL, &e->st);
+    double c0 = sim_seconds(1);
+    if (rc == EOMC_OK)
+        rc = run_start(&e->r);
+    e->st.cpu_seconds = sim_seconds(1) - c0;
+    if (rc != EOMC_OK) {
+        eomc_evolve_free(e);
+        return NULL;
+    }
+    steps_begin(&e->r);
+    e->over = !(e->r.t < e->o.t_end);
+    return e;
+}
+
+void
+eomc_evolve_free(eomc_evolve *e)
+{
+    if (!e)
+        return;
+    run_free(&e->r);
+    free(e->x);
+    free(e);
+}
+
+const eomc_stats *
+eomc_evolve_stats(const eomc_evolve *e)
+{
+    return &e->st;
+}
+
+int
+eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
+{
+    Run *r = &e->r;
+    if (s != r->s)
+        return sim_usage_error(s, "eomc_sim_step: the steps were set up for another "
+                               "simulator");
+    if (e->over)
+        return sim_usage_error(s, "eomc_sim_step: the run is over, at t = %.17g", r->t);
+    double c0 = sim_seconds(1);
+    Taken tk;
+    int rc = evolve_step(r, &tk);
+    e->st.cpu_seconds += sim_seconds(1) - c0;
+    e->st.t_stop = r->t;
+    if (rc != GSL_SUCCESS) {
+        e->over = 1;
+        return rc == ROW_STOP ? r->row_status : step_error(r, rc);
+    }
+    *d = (eomc_step){.nx = r->N, .t0 = tk.t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
+                     .x1 = r->x, .f1 = r->f0, .event = tk.ev != EV_NONE ? tk.fired : -1,
+                     .last = tk.ev == EV_STOP || !(r->t < e->o.t_end)};
+    e->over = d->last;
+    return EOMC_OK;
+}
+
+void
+eomc_step_eval(const eomc_step *d, double t, double *x)
+{
+    cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
 }

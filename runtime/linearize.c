@@ -43,20 +43,22 @@ dependent(const eomc_model *m, int j)
 int
 eomc_sim_linear_size(const eomc_sim *s)
 {
-    int N = 2 * s->n, size = 0;
+    const eomc_model *m = eomc_sim_model(s);
+    int N = 2 * m->nq, size = 0;
     for (int j = 0; j < N; j++)
-        size += !dependent(s->m, j);
+        size += !dependent(m, j);
     return size;
 }
 
 void
 eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order)
 {
-    int N = 2 * s->n;
+    const eomc_model *m = eomc_sim_model(s);
+    int N = 2 * m->nq;
     for (int j = 0; j < N; j++)
-        if (!dependent(s->m, j) && k-- == 0) {
-            *coord = j % s->n;
-            *order = j / s->n;
+        if (!dependent(m, j) && k-- == 0) {
+            *coord = j % m->nq;
+            *order = j / m->nq;
             return;
         }
     *coord = *order = -1;
@@ -68,8 +70,8 @@ eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order)
 static int
 constraint_rows(eomc_sim *s, double t, const double *x, double *C)
 {
-    const eomc_model *m = s->m;
-    int n = s->n, nc = m->nc, nu = s->nu, N = 2 * n, r = 0;
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq, nc = m->nc, nu = m->nu, N = 2 * n, r = 0;
     if (nc == 0)
         return 0;
     size_t nn = (size_t)nc * (size_t)n;
@@ -79,8 +81,8 @@ constraint_rows(eomc_sim *s, double t, const double *x, double *C)
     double *dposdq = w, *dveldq = w + nn, *dveldv = w + 2 * nn;
     double *dposdu = w + 3 * nn, *dveldu = dposdu + nc * nu, *dposdt = dveldu + nc * nu;
     double *dveldt = dposdt + nc;
-    sim_inputs_at(s, t);
-    m->c_levels_jacobian(t, x, x + n, s->p, s->u, dposdq, dveldq, dveldv, dposdu, dveldu,
+    const double *u = sim_inputs_at(s, t);
+    m->c_levels_jacobian(t, x, x + n, sim_p(s), u, dposdq, dveldq, dveldv, dposdu, dveldu,
                          dposdt, dveldt);
     for (int k = 0; k < nc; k++) {
         if (m->c_order[k] == 0) {
@@ -147,8 +149,8 @@ clean_zeros(const double *C, int nd, double *y, const double *b, double *trial)
 static int
 tangent(eomc_sim *s, double t, const double *x, int nl, double *T)
 {
-    int n = s->n, N = 2 * n, nd = N - nl;
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq, N = 2 * n, nd = N - nl;
     double *C = calloc((size_t)(nd ? nd : 1) * (size_t)N, sizeof *C);
     double *Cd = calloc((size_t)(nd ? nd * nd : 1), sizeof *Cd);
     double *col = calloc(3 * (size_t)(nd ? nd : 1), sizeof *col);
@@ -193,49 +195,13 @@ done:
     return rc;
 }
 
-/* The full B = dx'/du [N x nu] at (t, x), right after the Jacobian at x. */
-static int
-full_b(eomc_sim *s, double t, const double *x, double *Bf)
-{
-    int n = s->n, nu = s->nu, N = 2 * n;
-    if (nu == 0)
-        return 0;
-    if (!s->kkt) { /* dq''/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
-        for (int k = 0; k < nu; k++) {
-            for (int i = 0; i < n; i++)
-                s->col[i] = s->dEdu[i * nu + k];
-            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
-            for (int i = 0; i < N; i++)
-                Bf[i * nu + k] = i < n ? 0 : s->col[i - n];
-        }
-        return 0;
-    }
-    /* the KKT system's time column is linear in the input rates: its
-     * difference with a unit rate and without is B's column */
-    double *rate = calloc((size_t)nu, sizeof *rate), *f0 = calloc((size_t)N, sizeof *f0);
-    double *f1 = calloc((size_t)N, sizeof *f1);
-    int rc = rate && f0 && f1 ? 0 : -1;
-    if (!rc)
-        rc = kkt_jacobian(s->kkt, t, x, s->p, s->u, rate, s->a, NULL, f0) ? -1 : 0;
-    for (int k = 0; k < nu && !rc; k++) {
-        rate[k] = 1;
-        rc = kkt_jacobian(s->kkt, t, x, s->p, s->u, rate, s->a, NULL, f1) ? -1 : 0;
-        rate[k] = 0;
-        for (int i = 0; i < N; i++)
-            Bf[i * nu + k] = f1[i] - f0[i];
-    }
-    free(rate);
-    free(f0);
-    free(f1);
-    return rc;
-}
-
 int
 eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
-    if (!s->m->jacobian)
+    const eomc_model *m = eomc_sim_model(s);
+    if (!m->jacobian)
         return sim_no_jacobian(s, "the linearization");
-    int n = s->n, nu = s->nu, N = 2 * n, nl = eomc_sim_linear_size(s);
+    int n = m->nq, nu = m->nu, N = 2 * n, nl = eomc_sim_linear_size(s);
     /* off the constraints, the linearization describes no motion of the
      * model, and its eigenvalues nothing the model does */
     int rc = sim_off_constraints(s, t, x, x + n, "the linearization");
@@ -246,12 +212,12 @@ eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
     double *T = calloc((size_t)N * (size_t)nl, sizeof *T);
     int *ind = calloc((size_t)N, sizeof *ind);
     if (!Af || !Bf || !T || !ind) {
-        rc = sim_usage_error(s, "out of memory linearizing %s", s->m->name);
+        rc = sim_usage_error(s, "out of memory linearizing %s", m->name);
         goto done;
     }
     if ((rc = eomc_sim_jacobian(s, t, x, Af, NULL)) != EOMC_OK)
         goto done;
-    if (full_b(s, t, x, Bf) != 0) {
+    if (sim_input_jacobian(s, t, x, Bf) != 0) {
         rc = sim_numeric_error(s, t, x, x + n, "the response to the inputs could not be "
                                "solved");
         goto done;
@@ -262,7 +228,7 @@ eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
         goto done;
     }
     for (int j = 0, k = 0; j < N; j++)
-        if (!dependent(s->m, j))
+        if (!dependent(m, j))
             ind[k++] = j;
     /* the reduced rows of A T and of B.  An entry no larger than the
      * rounding of its own sum (N units of it on the sum of the terms'
@@ -391,8 +357,8 @@ enum { EQ_MAX_ITER = 100, EQ_HALVINGS = 40 };
 static int
 hold_on_constraints(eomc_sim *s, double t, double *x)
 {
-    const eomc_model *m = s->m;
-    int n = s->n, nc = m->nc, nh = 0;
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq, nc = m->nc, nh = 0;
     for (int k = 0; k < nc; k++)
         nh += m->c_order[k] == 0;
     if (nh == 0)
@@ -413,8 +379,7 @@ hold_on_constraints(eomc_sim *s, double t, double *x)
     }
     double prev = HUGE_VAL;
     for (int it = 0; it < EQ_MAX_ITER; it++) {
-        sim_inputs_at(s, t);
-        m->c_levels(t, x, x + n, s->p, s->u, pos, vel);
+        m->c_levels(t, x, x + n, sim_p(s), sim_inputs_at(s, t), pos, vel);
         if (constraint_rows(s, t, x, C) < 0)
             goto done;
         double worst = 0;
@@ -455,10 +420,10 @@ done:
 int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     if (!m->jacobian)
         return sim_no_jacobian(s, "the equilibrium search");
-    int n = s->n, N = 2 * n, nl = eomc_sim_linear_size(s);
+    int n = m->nq, N = 2 * n, nl = eomc_sim_linear_size(s);
     /* the independent coordinates: their place k among the states, and
      * which coordinate each is */
     int nzq = 0, nzv = 0, *qk = calloc((size_t)N, sizeof *qk), *qc = calloc((size_t)N, sizeof *qc);
@@ -474,6 +439,7 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
     double *T = calloc((size_t)N * snl, sizeof *T);
     double *scale = calloc(snl, sizeof *scale), *x0 = calloc((size_t)N, sizeof *x0);
+    double *acc = calloc((size_t)n, sizeof *acc); /* q'' at x */
     gsl_matrix *J = gsl_matrix_alloc((size_t)n, (size_t)(nzq ? nzq : 1));
     gsl_matrix *V = gsl_matrix_alloc((size_t)(nzq ? nzq : 1), (size_t)(nzq ? nzq : 1));
     gsl_vector *S = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
@@ -482,7 +448,7 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
     gsl_vector *dz = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
     int rc = EOMC_OK;
     *iterations = 0;
-    if (!qk || !qc || !Af || !T || !scale || !x0 || !J || !V || !S || !work || !F || !dz) {
+    if (!qk || !qc || !Af || !T || !scale || !x0 || !acc || !J || !V || !S || !work || !F || !dz) {
         rc = sim_usage_error(s, "out of memory searching for an equilibrium");
         goto done;
     }
@@ -515,13 +481,13 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
             rc = sim_numeric_error(s, t, x, x + n, "the constraints' rows are singular here");
             goto done;
         }
-        if ((rc = eomc_sim_accel(s, t, x, x + n, s->a)) != EOMC_OK)
+        if ((rc = eomc_sim_accel(s, t, x, x + n, acc)) != EOMC_OK)
             goto done;
         /* F = every acceleration (a dependent coordinate's too: a reduced
          * coordinate may stand still where the motion does not); J = their
          * derivative along the independent coordinates, (dq''/dx) T */
         for (int i = 0; i < n; i++) {
-            gsl_vector_set(F, (size_t)i, -s->a[i]);
+            gsl_vector_set(F, (size_t)i, -acc[i]);
             for (int cq = 0; cq < nzq; cq++) {
                 double sum = 0;
                 for (int j = 0; j < N; j++)
@@ -558,12 +524,12 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
                 worst = fmax(worst, fabs(step) / fmax(fmax(fabs(x[qc[cq]]), scale[cq]), DBL_MIN));
             }
             int ok = hold_on_constraints(s, t, x) == 0 &&
-                     eomc_sim_accel(s, t, x, x + n, s->a) == EOMC_OK;
+                     eomc_sim_accel(s, t, x, x + n, acc) == EOMC_OK;
             double f1 = HUGE_VAL;
             if (ok) {
                 f1 = 0;
                 for (int i = 0; i < n; i++)
-                    f1 += s->a[i] * s->a[i];
+                    f1 += acc[i] * acc[i];
                 f1 = sqrt(f1);
             }
             if (ok && (f1 < f0 || worst <= EQ_STALL))
@@ -580,7 +546,7 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
             break;
         prev = worst;
     }
-    rc = eomc_sim_accel(s, t, x, x + n, s->a);
+    rc = eomc_sim_accel(s, t, x, x + n, acc);
 done:
     free(qk);
     free(qc);
@@ -588,6 +554,7 @@ done:
     free(T);
     free(scale);
     free(x0);
+    free(acc);
     gsl_matrix_free(J);
     gsl_matrix_free(V);
     gsl_vector_free(S);

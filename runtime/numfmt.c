@@ -45,3 +45,9 @@ num_put(FILE *f, double x)
     char buf[NUM_MAX];
     fputs(num_shortest(buf, x), f);
 }
+
+const char *
+num_plural(long n)
+{
+    return n == 1 ? "" : "s";
+}

@@ -18,5 +18,7 @@ enum { NUM_MAX = 32 };
 const char *num_shortest(char *buf, double x);
 /* x onto f. */
 void num_put(FILE *f, double x);
+/* "s" after a count of n, or "": "1 row", "2 rows". */
+const char *num_plural(long n);
 
 #endif

@@ -1,6 +1,6 @@
 /*
  * reference: the reference solution (eomc.h), computed in extended
- * precision by extrapolation, or read from a file.
+ * precision by extrapolation (one read from a file: rows.c).
  *
  * The method.  Gragg-Bulirsch-Stoer extrapolation of order 16, or, when
  * the problem is stiff, the linearly implicit Euler method extrapolated
@@ -54,7 +54,6 @@
 #include "extrap.h"
 #include "linalg.h"
 
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -126,7 +125,8 @@ typedef struct Ref {
     double tol;
     long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
                                     * the rows' side steps' (stepping) */
-    double fail_t, *fail_x;       /* where a right-hand side failed [N] */
+    double fail_t, *fail_x;       /* where a right-hand side failed [N], then
+                                   * room for the doubles' q'' there [n] */
 } Ref;
 
 /* The model's inputs at t into r->u, held ones as the doubles hold them. */
@@ -448,7 +448,7 @@ ext_zeros(size_t n)
 static int
 ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, W = n + nc;
     size_t N = 2 * n;
     *r = (Ref){.s = s, .m = m, .x = x, .n = m->nq, .N = 2 * m->nq, .nc = m->nc,
@@ -472,14 +472,14 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
-    ok &= (r->fail_x = calloc(N, sizeof *r->fail_x)) != NULL;
+    ok &= (r->fail_x = calloc(N + n, sizeof *r->fail_x)) != NULL;
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (!ok)
         return -1;
     for (int k = 1; k < 9; k++)
         r->cj[k] = r->cj[k - 1] + cj[k - 1];
     for (int k = 0; k < m->np; k++)
-        r->p[k] = s->p[k];
+        r->p[k] = eomc_sim_params(s)[k];
     if (r->x->derive) /* in extended precision too */
         r->x->derive(r->p, r->p + m->np);
     return 0;
@@ -504,7 +504,7 @@ failure(Ref *r, int st)
         return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
                                  "took more than %d steps at tolerance %.0e",
                                  method_name(r->method), STEP_BUDGET, r->tol);
-    if (eomc_sim_accel(s, r->fail_t, x, x + r->n, s->a) != EOMC_OK)
+    if (eomc_sim_accel(s, r->fail_t, x, x + r->n, r->fail_x + r->N) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
                              "cannot be continued here at tolerance %.0e: the model "
@@ -551,7 +551,7 @@ max_diff(const double *a, const double *b, size_t n)
 static int
 twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     if (!ext || ext->abi != EOMC_ABI_VERSION || !ext->name || strcmp(ext->name, m->name))
         return sim_usage_error(s, "no extended-precision functions of %s to compute %s "
                                "with (the model's C compiled again with -DEOMC_EXTENDED, "
@@ -566,7 +566,7 @@ int
 eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
                        const double *x0, eomc_reference *ref)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     memset(ref, 0, sizeof *ref);
     int rc = twin_fits(s, ext, "a reference");
     if (rc != EOMC_OK)
@@ -662,7 +662,7 @@ int
 eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const double *x,
                      double *a, double *lam)
 {
-    const eomc_model *m = s->m;
+    const eomc_model *m = eomc_sim_model(s);
     int fits = twin_fits(s, ext, "q''");
     if (fits != EOMC_OK)
         return fits;
@@ -681,7 +681,7 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
     ref_free(&r);
     if (rc == 0)
         return EOMC_OK;
-    if (eomc_sim_accel(s, t, x, x + m->nq, s->a) != EOMC_OK)
+    if (eomc_sim_accel(s, t, x, x + m->nq, a) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, t, x, x + m->nq, "q'' cannot be solved in extended "
                              "precision here (the doubles' solve can)");
@@ -694,133 +694,4 @@ eomc_reference_free(eomc_reference *ref)
     free(ref->x);
     ref->t = ref->x = NULL;
     ref->nrows = 0;
-}
-
-/* ---- a reference from a file ---- */
-
-/* The index of column name among the header's cols, or -1. */
-static int
-column(char **cols, int ncols, const char *name)
-{
-    for (int k = 0; k < ncols; k++)
-        if (strcmp(cols[k], name) == 0)
-            return k;
-    return -1;
-}
-
-/* Split line at commas in place (the newline cut); the number of fields. */
-static int
-split(char *line, char **fields, int max)
-{
-    int n = 0;
-    line[strcspn(line, "\r\n")] = '\0';
-    for (char *p = line; n < max;) {
-        fields[n++] = p;
-        char *comma = strchr(p, ',');
-        if (!comma)
-            break;
-        *comma = '\0';
-        p = comma + 1;
-    }
-    return n;
-}
-
-int
-eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
-                    eomc_reference *ref)
-{
-    const eomc_model *m = s->m;
-    int n = m->nq, N = 2 * n;
-    memset(ref, 0, sizeof *ref);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return sim_usage_error(s, "--reference: cannot read %s: %s", path, strerror(errno));
-    long nrows = eomc_run_rows(o), line_no = 1;
-    size_t cap = 0, maxf = 0;
-    char *line = NULL, **fields = NULL;
-    int *col = calloc((size_t)N + 1, sizeof *col), rc = EOMC_OK, nf = 0;
-    ssize_t len = getline(&line, &cap, f);
-    if (len > 0)
-        maxf = (size_t)len / 2 + 2;
-    fields = calloc(maxf + 1, sizeof *fields);
-    ref->t = calloc((size_t)nrows, sizeof *ref->t);
-    ref->x = calloc((size_t)nrows * (size_t)N, sizeof *ref->x);
-    if (!col || !fields || !ref->t || !ref->x)
-        rc = sim_usage_error(s, "--reference: out of memory");
-    else if (len <= 0)
-        rc = sim_usage_error(s, "%s:1: empty: expected a header naming t, the coordinates "
-                             "and the velocities", path);
-    else
-        nf = split(line, fields, (int)maxf);
-    char name[256];
-    for (int i = -1; rc == EOMC_OK && i < N; i++) {
-        snprintf(name, sizeof name, "%s%s", i < 0 ? "t" : m->q_names[i % n],
-                 i >= n ? "'" : "");
-        int k = column(fields, nf, name);
-        if (k < 0)
-            rc = sim_usage_error(s, "%s:1: no column '%s': the header must name t, every "
-                                 "coordinate and every velocity (name'), as the "
-                                 "simulator's CSV does", path, name);
-        col[i + 1] = k;
-    }
-    long k = 0;
-    while (rc == EOMC_OK && (len = getline(&line, &cap, f)) > 0) {
-        line_no++;
-        if ((size_t)len / 2 + 2 > maxf) {
-            maxf = (size_t)len / 2 + 2;
-            char **more = realloc(fields, (maxf + 1) * sizeof *fields);
-            if (!more) {
-                rc = sim_usage_error(s, "--reference: out of memory");
-                break;
-            }
-            fields = more;
-        }
-        nf = split(line, fields, (int)maxf);
-        if (k >= nrows) {
-            rc = sim_usage_error(s, "%s:%ld: more rows than the %ld output times of t = %g "
-                                 "to %g every %g", path, line_no, nrows, o->t0, o->t_end,
-                                 o->dt);
-            break;
-        }
-        double *row = ref->x + (size_t)k * (size_t)N;
-        for (int i = -1; i < N && rc == EOMC_OK; i++) {
-            int c = col[i + 1];
-            char *end;
-            double x = c < nf ? strtod(fields[c], &end) : NAN;
-            if (c >= nf || end == fields[c] || *end != '\0' || !isfinite(x))
-                rc = sim_usage_error(s, "%s:%ld: column %d is not a finite number", path,
-                                     line_no, c + 1);
-            else if (i < 0)
-                ref->t[k] = x;
-            else
-                row[i] = x;
-        }
-        double want = eomc_run_row_time(o, k);
-        if (rc == EOMC_OK && !(fabs(ref->t[k] - want) <= 1e-9 * o->dt))
-            rc = sim_usage_error(s, "%s:%ld: a row at t = %.17g where the runs have one at "
-                                 "t = %.17g: the reference needs a row at each output time "
-                                 "(t = %g to %g every %g)", path, line_no, ref->t[k], want,
-                                 o->t0, o->t_end, o->dt);
-        ref->t[k] = want;
-        k++;
-    }
-    if (rc == EOMC_OK && k != nrows)
-        rc = sim_usage_error(s, "%s:%ld: %ld row%s where the runs have %ld output times "
-                             "(t = %g to %g every %g)", path, line_no, k, k == 1 ? "" : "s",
-                             nrows, o->t0, o->t_end, o->dt);
-    fclose(f);
-    free(line);
-    free(fields);
-    free(col);
-    if (rc != EOMC_OK) {
-        eomc_reference_free(ref);
-        return rc;
-    }
-    ref->nrows = nrows;
-    ref->nx = N;
-    ref->error = NAN;
-    ref->scale = la_max_abs(ref->x, (size_t)nrows * (size_t)N);
-    snprintf(ref->source, sizeof ref->source, "read from %s", path);
-    ref->method = "a file";
-    return EOMC_OK;
 }

@@ -66,7 +66,7 @@ static int
 probe_row(void *ctx, double t, const double *x)
 {
     Probe *p = ctx;
-    const eomc_model *m = p->s->m;
+    const eomc_model *m = eomc_sim_model(p->s);
     int n = m->nq;
     if (p->k >= p->cmp->ref->nrows)
         return EOMC_ENUMERIC; /* cannot happen: the grids are the same */
@@ -101,7 +101,7 @@ entry_opts(const Report *r, const Entry *e)
     if (e->h == 0)
         o.rtol = o.atol = e->tol;
     o.max_steps = r->base.max_steps > 0 ? r->base.max_steps : REPORT_MAX_STEPS;
-    o.progress = 0;
+    o.on_progress = NULL;
     return o;
 }
 
@@ -110,7 +110,7 @@ static double
 timed_run(const Report *r, const eomc_run_opts *o, double *x)
 {
     eomc_stats st;
-    memcpy(x, r->x0, 2 * (size_t)r->sim->m->nq * sizeof *x);
+    memcpy(x, r->x0, 2 * (size_t)eomc_sim_model(r->sim)->nq * sizeof *x);
     eomc_sim_integrate(r->sim, o, x, no_row, NULL, &st);
     return st.cpu_seconds;
 }
@@ -143,7 +143,7 @@ time_entry(const Report *r, const eomc_run_opts *o, double first, double *x)
 static void
 measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     eomc_run_opts o = entry_opts(r, e);
     Probe p = {.s = r->sim, .cmp = cmp, .invariant = m->invariant != NULL, .res = res};
     compare_reset(cmp);
@@ -250,7 +250,7 @@ name_width(const eomc_model *m)
 static void
 print_block_head(const Report *r, const Entry *e)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     printf("\n%s, %s: %s\n", e->method, e->h > 0 ? "fixed steps" : "adaptive",
            eomc_method_description(e->method));
     printf("  %-11s %12s %8s %8s %10s %9s %9s %10s %10s %6s %-*s",
@@ -267,7 +267,7 @@ print_block_head(const Report *r, const Entry *e)
 static void
 print_entry(const Report *r, const Entry *e)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     char setting[32];
     if (e->h > 0)
         snprintf(setting, sizeof setting, "%.4g", e->st.h_used > 0 ? e->st.h_used : e->h);
@@ -404,7 +404,7 @@ csv_num(FILE *f, double x)
 static int
 write_csv(const Report *r, const Entry *e, int n)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     char *tmp = temp_name(r->csv);
     FILE *f = tmp ? fopen(tmp, "w") : NULL;
     if (!f) {
@@ -455,7 +455,7 @@ write_csv(const Report *r, const Entry *e, int n)
 static int
 write_errors(const Report *r, const Entry *e, int n, const double *scale)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     char *tmp = temp_name(r->errors);
     FILE *f = tmp ? fopen(tmp, "w") : NULL;
     if (!f) {
@@ -528,7 +528,7 @@ plot_data(FILE *f, const Entry *e, int n, char *plot, size_t len)
 static int
 write_plot(const Report *r, const Entry *e, int n)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     char script[] = "/tmp/eomc-plot-XXXXXX";
     int fd = mkstemp(script);
     char *tmp = temp_name(r->plot);
@@ -581,7 +581,7 @@ write_plot(const Report *r, const Entry *e, int n)
 static void
 print_title(const Report *r)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     const eomc_reference *ref = r->ref;
     printf("%s (%s, %s form): %s\n", m->name, m->spec, m->form, r->setting);
     printf("reference: %s", ref->source);
@@ -615,7 +615,7 @@ skip_rest(Entry *e, int k, int n)
 int
 report_run(const Report *r)
 {
-    const eomc_model *m = r->sim->m;
+    const eomc_model *m = eomc_sim_model(r->sim);
     int n = 0;
     Entry *e = plan(r, &n);
     size_t nx = 2 * (size_t)m->nq;

@@ -8,10 +8,16 @@
  * so that a failing factorization comes back as a status, never an abort.
  * The solves below (linalg.c, kkt.c, project.c) return statuses; the
  * messages, which name the time and the state, are made here.
+ *
+ * struct eomc_sim is this file's alone (the layers above use eomc.h and
+ * simimpl.h), so what reads its state is here: that is why the file is
+ * somewhat over 800 lines.
  */
 #include "simimpl.h"
+#include "kkt.h"
 #include "linalg.h"
 #include "numfmt.h"
+#include "project.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -19,6 +25,36 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+
+/* The generated solve reports its smallest balanced pivot at every
+ * PIVOT_EVERY-th call (a power of 2): several per step of any method. */
+enum { PIVOT_EVERY = 4 };
+
+struct eomc_sim {
+    const eomc_model *m;
+    int n, nu;
+    double *p;               /* [np + nd] parameter values, then derive's */
+    double *u, *dudt;        /* [nu] inputs at the last time asked */
+    double *u_const;         /* [nu] held values, where u_held */
+    unsigned char *u_held;   /* [nu] */
+    double *M, *h, *a, *Mrel;             /* [n*n], [n], [n], [n] pivots / M_kk */
+    size_t *Mperm;           /* [n] M's pivot order (la_ldlt_factor) */
+    double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
+    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
+    double *col;             /* [n] one right-hand side of M y = b */
+    double *fk;              /* [nc] f (scratch) */
+    LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
+    double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
+    char *cwhat;             /* sim_condition_what's text */
+    double pivot;            /* the smallest balanced pivot since sim_take_pivot */
+    unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
+    size_t errlen;
+    char *err;               /* the last error message */
+    Kkt *kkt;                /* constrained models: the solve and multipliers */
+    Proj *proj;              /* constrained models: projection */
+    int stabilize;           /* EOMC_STABILIZE_... */
+    double alpha, beta;      /* Baumgarte's rates */
+};
 
 double *
 sim_zeros(size_t n)
@@ -223,17 +259,50 @@ eomc_sim_input_held(const eomc_sim *s, int k, double *value)
     return 1;
 }
 
-void
+const double *
 sim_inputs_at(eomc_sim *s, double t)
 {
     if (s->nu == 0)
-        return;
+        return s->u;
     s->m->inputs(t, s->p, s->u, s->dudt);
     for (int k = 0; k < s->nu; k++)
         if (s->u_held[k]) {
             s->u[k] = s->u_const[k];
             s->dudt[k] = 0;
         }
+    return s->u;
+}
+
+const double *
+sim_p(const eomc_sim *s)
+{
+    return s->p;
+}
+
+int
+sim_stabilize_method(const eomc_sim *s)
+{
+    return s->stabilize;
+}
+
+void
+sim_save_start(eomc_sim *s)
+{
+    if (s->kkt)
+        kkt_save_start(s->kkt);
+}
+
+void
+sim_restore_start(eomc_sim *s)
+{
+    if (s->kkt)
+        kkt_restore_start(s->kkt);
+}
+
+int
+sim_vanished(const eomc_sim *s, double *fraction)
+{
+    return s->kkt ? kkt_vanished(s->kkt, fraction) : -1;
 }
 
 void
@@ -777,4 +846,41 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
         memcpy(dfdt + n, s->col, (size_t)n * sizeof *dfdt);
     }
     return EOMC_OK;
+}
+
+int
+sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
+{
+    int n = s->n, nu = s->nu, N = 2 * n;
+    if (nu == 0)
+        return 0;
+    if (!s->kkt) { /* dq''/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
+        for (int k = 0; k < nu; k++) {
+            for (int i = 0; i < n; i++)
+                s->col[i] = s->dEdu[i * nu + k];
+            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
+            for (int i = 0; i < N; i++)
+                B[i * nu + k] = i < n ? 0 : s->col[i - n];
+        }
+        return 0;
+    }
+    /* the KKT system's time column is linear in the input rates: its
+     * difference with a unit rate and without is B's column */
+    double *rate = calloc((size_t)nu, sizeof *rate), *f0 = calloc((size_t)N, sizeof *f0);
+    double *f1 = calloc((size_t)N, sizeof *f1);
+    int rc = rate && f0 && f1 ? 0 : -1;
+    const double *u = s->u; /* at t: eomc_sim_jacobian computed them */
+    if (!rc)
+        rc = kkt_jacobian(s->kkt, t, x, s->p, u, rate, s->a, NULL, f0) ? -1 : 0;
+    for (int k = 0; k < nu && !rc; k++) {
+        rate[k] = 1;
+        rc = kkt_jacobian(s->kkt, t, x, s->p, u, rate, s->a, NULL, f1) ? -1 : 0;
+        rate[k] = 0;
+        for (int i = 0; i < N; i++)
+            B[i * nu + k] = f1[i] - f0[i];
+    }
+    free(rate);
+    free(f0);
+    free(f1);
+    return rc;
 }

@@ -1,46 +1,17 @@
 /*
- * simimpl.h: the inside of an eomc_sim, for the layers above sim.c
- * (integrate.c, reference.c, report.c).  Not installed.
+ * simimpl.h: the simulator's internal API, for the layers above sim.c
+ * (the driver integrate.c, reference.c, linearize.c, rows.c).  Not
+ * installed, and nothing of it leaves the library (built with
+ * -fvisibility=hidden, runtime/meson.build).  struct eomc_sim is sim.c's
+ * alone: the layers above see it through eomc.h and these functions, and
+ * keep their own work arrays.
  */
 #ifndef EOMC_SIMIMPL_H
 #define EOMC_SIMIMPL_H
 
 #include "eomc.h"
-#include "kkt.h"
-#include "linalg.h"
-#include "project.h"
 
 #include <stddef.h>
-
-/* The generated solve reports its smallest balanced pivot at every
- * PIVOT_EVERY-th call (a power of 2): several per step of any method. */
-enum { PIVOT_EVERY = 4 };
-
-struct eomc_sim {
-    const eomc_model *m;
-    int n, nu;
-    double *p;               /* [np + nd] parameter values, then derive's */
-    double *u, *dudt;        /* [nu] inputs at the last time asked */
-    double *u_const;         /* [nu] held values, where u_held */
-    unsigned char *u_held;   /* [nu] */
-    double *M, *h, *a, *Mrel;             /* [n*n], [n], [n], [n] pivots / M_kk */
-    size_t *Mperm;           /* [n] M's pivot order (la_ldlt_factor) */
-    double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
-    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
-    double *col;             /* [n] one right-hand side of M y = b */
-    double *fk;              /* [nc] f (scratch) */
-    LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
-    double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
-    char *cwhat;             /* sim_condition_what's text */
-    double pivot;            /* the smallest balanced pivot since sim_take_pivot */
-    unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
-    size_t errlen;
-    char *err;               /* the last error message */
-    Kkt *kkt;                /* constrained models: the solve and multipliers */
-    Proj *proj;              /* constrained models: projection */
-    int stabilize;           /* EOMC_STABILIZE_... */
-    double alpha, beta;      /* Baumgarte's rates */
-};
 
 /* A zeroed array of n doubles (at least one), or NULL. */
 double *sim_zeros(size_t n);
@@ -57,8 +28,27 @@ int sim_usage_error(eomc_sim *s, const char *fmt, ...)
 /* The usage error of `what` (a method, --linearize) on a model built
  * without its Jacobian; returns EOMC_EUSAGE. */
 int sim_no_jacobian(eomc_sim *s, const char *what);
-/* u and du/dt at t into s->u, s->dudt (held inputs constant). */
-void sim_inputs_at(eomc_sim *s, double t);
+/* The inputs u at t [nu] (held ones constant), valid until the next
+ * call that evaluates the model. */
+const double *sim_inputs_at(eomc_sim *s, double t);
+/* The parameter array the generated functions take: eomc_sim_params'
+ * [np] values, then the [nd] the model derives from them. */
+const double *sim_p(const eomc_sim *s);
+/* EOMC_STABILIZE_... as eomc_sim_stabilize set it. */
+int sim_stabilize_method(const eomc_sim *s);
+/* B = dx'/du [2nq x nu] at (t, x), row-major, right after
+ * eomc_sim_jacobian at the same (t, x) (M as it factored it); 0, or -1
+ * when the constrained solve fails. */
+int sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B);
+/* A constrained model's Newton start for a nonlinear constraint (kkt.h's
+ * kkt_save_start): saved at a step's start, restored before each attempt;
+ * no-ops without constraints. */
+void sim_save_start(eomc_sim *s);
+void sim_restore_start(eomc_sim *s);
+/* After a failed eomc_sim_accel: the constraint whose row vanished and its
+ * largest entry's fraction (kkt_vanished), or -1 (and without
+ * constraints). */
+int sim_vanished(const eomc_sim *s, double *fraction);
 /* Whether the model has a holonomic or first-order constraint. */
 int sim_has_levels(const eomc_sim *s);
 /* The rows of B = df/dq'' at (t, x) into B [nc*n]; -1 when x is not

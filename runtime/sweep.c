@@ -3,6 +3,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "sweep.h"
+#include "rows.h"
 #include "numfmt.h"
 
 #include <pthread.h>
@@ -252,20 +253,7 @@ sweep_run(const Sweep *sw, FILE *f)
     if (parallel && parallel->gather(mine.s ? mine.s : "", mine.len, &all, &lens) != 0)
         rc = EOMC_EUSAGE;
     if (rank == 0 && rc == EOMC_OK) {
-        for (int j = 0; j < sw->nparam; j++)
-            fprintf(f, "%s,", sw->names[j]);
-        if (sw->cells) {
-            fprintf(f, "%s\n", sw->columns);
-        } else {
-            fprintf(f, "status,t");
-            for (int i = 0; i < m->nq; i++)
-                fprintf(f, ",%s", m->q_names[i]);
-            for (int i = 0; i < m->nq; i++)
-                fprintf(f, ",%s'", m->q_names[i]);
-            for (int i = 0; i < m->nout; i++)
-                fprintf(f, ",%s", m->out_names[i]);
-            fprintf(f, "\n");
-        }
+        rows_sweep_header(f, m, sw->names, sw->nparam, sw->cells ? sw->columns : NULL);
         /* the start of each rank's text, then its rows one line at a time */
         const char **at = calloc((size_t)size, sizeof *at);
         size_t off = 0;

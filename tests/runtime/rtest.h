@@ -95,7 +95,7 @@ opts_for(const eomc_model *m, double t_end, double dt, const char *method,
     o.atol = atol;
     o.h_fixed = 0.0;
     o.max_steps = 0;
-    o.progress = 0;
+    o.on_progress = NULL;
     return o;
 }
 

@@ -1,0 +1,23 @@
+/*
+ * assembly: the initial state and the constraints, as the command line
+ * sees them: --assemble's projection with what it moved, the warning of a
+ * start off the constraints, and the --assemble --hold a refused
+ * linearization would need.
+ */
+#ifndef EOMC_ASSEMBLY_H
+#define EOMC_ASSEMBLY_H
+
+#include "options.h"
+
+/* Whether the model has a constraint below acceleration level. */
+int assembly_has_levels(const eomc_model *m);
+/* Project the initial state x [2nq] onto the constraints (c->held kept)
+ * and say what moved. */
+int assembly_run(Options *c, eomc_sim *sim, double *x);
+/* A warning, once, when x is off its constraints. */
+void assembly_check(const Options *c, eomc_sim *sim, const double *x);
+/* After --linearize refused a state x off the constraints: the
+ * --assemble --hold that would put it on them. */
+void assembly_suggest(Options *c, eomc_sim *sim, const double *x);
+
+#endif

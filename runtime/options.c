@@ -6,6 +6,7 @@
  * order on the line.
  */
 #include "options.h"
+#include "option_table.h"
 #include "nearest.h"
 #include "plot.h"
 
@@ -66,141 +67,14 @@ opt_list_names(FILE *f, const char *const *names, int n, const char *suffix)
 
 /* ---- options ---- */
 
-enum Option {
-    /* with a value */
-    O_T0, O_T_END, O_DT, O_METHOD, O_RTOL, O_ATOL, O_FIXED_STEP, O_MAX_STEPS, O_SET, O_INIT,
-    O_OUT, O_STABILIZE, O_BAUMGARTE, O_REFERENCE, O_REFERENCE_OUT, O_EVENTS, O_SWEEP,
-    O_SWEEP_FILE, O_THREADS, O_HOLD, O_ERRORS,
-    O_METHODS, O_TOLERANCES, O_STEPS, O_CSV, O_PLOT, O_TARGET, /* report only */
-    /* flags */
-    O_STATS, O_SUMMARY, O_ACCEL, O_ASSEMBLE, O_NO_ASSEMBLE, O_WORK_PRECISION, O_ERROR,
-    O_LINEARIZE, O_EQUILIBRIUM, O_ACCEL_EXTENDED, O_HELP, O_VERSION, NOPTIONS,
-    FIRST_FLAG = O_STATS,
-};
-static const char *const option_names[NOPTIONS] = {
-    "--t0", "--t-end", "--dt", "--method", "--rtol", "--atol", "--fixed-step", "--max-steps",
-    "--set", "--init", "-o", "--stabilize", "--baumgarte", "--reference",
-    "--reference-out", "--events", "--sweep", "--sweep-file", "--threads", "--hold", "--errors", "--methods", "--tolerances", "--steps", "--csv", "--plot",
-    "--target", "--stats", "--summary", "--accel", "--assemble", "--no-assemble",
-    "--work-precision",
-    "--error", "--linearize", "--equilibrium", "--accel-extended", "--help", "--version",
-};
 static const char *const stabilize_names[] = {"none", "baumgarte", "project"};
 /* More threads than this are a typo, not a machine. */
 enum { MAX_THREADS = 1024 };
-/* Baumgarte's rates when --baumgarte is not given (1/time units). */
-#define DEFAULT_RATE 10.0
 
 const char *
 opt_stabilize_name(int method)
 {
     return stabilize_names[method];
-}
-
-static void
-help(const Options *c, const eomc_model *m)
-{
-    printf("usage: %s [OPTION]...\n"
-           "Simulate %s (%s, %s form%s%s%s%s) and write the trajectory as CSV:\n"
-           "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
-           c->self, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
-           *m->scene ? ", scene " : "", m->scene, m->invariant_name && !strcmp(m->invariant_name, "h")
-               ? ", h (the conserved energy function)" : "");
-    printf("  --t0 T             start time (default 0)\n"
-           "  --t-end T          end time, after the start (default %g)\n"
-           "  --dt T             output interval (default %g); rows between steps\n"
-           "                     are interpolated, so a small dt costs no steps\n"
-           "  --method NAME      integration method (default %s):\n",
-           m->t_end, m->dt, m->method);
-    for (int k = 0; eomc_methods[k]; k++)
-        printf("                       %-8s %s\n", eomc_methods[k],
-               eomc_method_description(eomc_methods[k]));
-    printf("  --rtol X, --atol X adaptive tolerances (default %g, %g)\n"
-           "  --fixed-step H     fixed steps of at most H, evenly dividing the time span\n"
-           "  --max-steps N      fail after N steps\n"
-           "  --set NAME=VALUE   a parameter, or an input held constant\n"
-           "  --init NAME=VALUE  initial coordinate NAME or velocity NAME'\n"
-           "  -o FILE            write the CSV to FILE instead of stdout\n",
-           m->rtol, m->atol);
-    if (m->nc > 0)
-        printf("  --stabilize NAME   drift control: none (default), baumgarte, project\n"
-               "  --baumgarte A,B    Baumgarte's rates: g'' + 2A g' + B^2 g = 0, "
-               "phi' + A phi = 0\n"
-               "                     (default %g,%g; implies --stabilize baumgarte)\n"
-               "  --assemble         project the initial state onto the constraints "
-               "first%s\n"
-               "  --hold LIST        with --assemble: keep these coordinates (x) and "
-               "velocities (x')\n"
-               "                     as they are; the others meet the constraints%s\n"
-               "%s",
-               DEFAULT_RATE, DEFAULT_RATE,
-               m->assemble ? "\n                     (the scene does, for every run)" : "",
-               m->assemble ? "\n                     (instead of the scene's list)" : "",
-               m->assemble ? "  --no-assemble      start from the initial state as given, "
-                             "not assembled\n" : "");
-    if (m->nevent > 0) {
-        static const char *const actions[] = {"stops the run", "is recorded",
-                                              "sets the state"};
-        printf("  --events FILE      each event as it fires, in CSV: t, event, the\n"
-               "                     coordinates and velocities before its action\n"
-               "  the scene's events:\n");
-        int w = 12;
-        for (int k = 0; k < m->nevent; k++)
-            if ((int)strlen(m->ev_names[k]) > w)
-                w = (int)strlen(m->ev_names[k]);
-        for (int k = 0; k < m->nevent; k++)
-            printf("                       %-*s %s (g crossing 0 %s)\n", w, m->ev_names[k],
-                   actions[m->ev_action[k]], m->ev_direction[k] > 0   ? "upward"
-                                             : m->ev_direction[k] < 0 ? "downward"
-                                                                       : "either way");
-    }
-    printf("  --stats            integrator statistics on stderr\n"
-           "  --summary          a paragraph about the run on stderr\n"
-           "  --accel            print q'' at the initial state and exit\n"
-           "  --accel-extended   the same, solved in the extended precision of the\n"
-           "                     model's twin (eomc build --extended) and rounded\n"
-           "  --error            measure the run's error against the reference solution\n"
-           "  --reference FILE   the reference from FILE (a CSV with this simulator's\n"
-           "                     columns and rows) instead of computing it\n"
-           "  --reference-out FILE  write the reference, in this simulator's columns\n"
-           "  --errors FILE      each run's errors by coordinate and velocity, as CSV\n"
-           "                     (implies --error; with --work-precision, every run's)\n"
-           "  --work-precision   what accuracy costs: run every method over tolerances\n"
-           "                     and fixed steps, and report CPU time against error:\n"
-           "    --methods LIST       comma-separated (default: all)\n"
-           "    --tolerances LIST    rtol = atol of the adaptive runs (default 1e-3, ...,\n"
-           "                         1e-13)\n"
-           "    --steps LIST         fixed steps (default span/100, /1000, /10000, for\n"
-           "                         rk4 rk1imp rk2imp rk4imp; given: every one-step\n"
-           "                         method)\n"
-           "    --csv FILE           one row per run\n"
-           "    --plot FILE          the work-precision diagram, .svg or .png (gnuplot)\n"
-           "    --target ERR         the cheapest setting with error_max <= ERR\n"
-           "  --sweep NAME=START:STOP:COUNT  one run per value (repeatable: a grid, the\n"
-           "                     last one fastest); -o FILE gets the summary: the swept\n"
-           "                     values, status, t, the state and the outputs at the end\n"
-           "  --sweep-file FILE  one run per row of a CSV (a header of parameter names)\n"
-           "  --threads N        run a sweep's runs on N threads (same summary)\n"
-           "  --linearize        A = dz'/dz and B = dz'/du at the initial state (or --init),\n"
-           "                     z the coordinates and velocities (a constrained model's\n"
-           "                     independent ones), exact; A's eigenvalues, the largest\n"
-           "                     real part first; with --sweep, one row per value: the\n"
-           "                     swept values, re1,im1,re2,im2,...\n"
-           "  --equilibrium      an equilibrium (q' = 0, q'' = 0) by Newton's method from\n"
-           "                     the initial coordinates, its linearization and stability\n"
-           "    --csv FILE       (both) A, B and the eigenvalues as matrix,row,column,value\n"
-           "                     (eig,K,re,VALUE and eig,K,im,VALUE)\n"
-           "  --help, --version\n\n");
-    printf("coordinates: ");
-    opt_list_names(stdout, m->q_names, m->nq, "");
-    printf("\nparameters: ");
-    for (int k = 0; k < m->np; k++)
-        printf("%s%s=%g%s", k ? ", " : "", m->p_names[k], m->p_default[k],
-               m->p_fixed[k] ? " (fixed)" : "");
-    printf("\ninputs: ");
-    opt_list_names(stdout, m->u_names, m->nu, "");
-    printf("%s\n%s.\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
-           "computed so far are kept).\n", m->nu ? "" : "(none)", m->invariant_note);
 }
 
 /* The whole string as a finite number. */
@@ -291,7 +165,7 @@ static int
 take_value(Options *c, int k, const char *val)
 {
     eomc_run_opts *r = &c->run;
-    const char *opt = option_names[k];
+    const char *opt = option_name(k);
     double x;
     if (k >= O_METHODS && k <= O_TARGET)
         c->report_given |= 1u << (k - O_METHODS);
@@ -371,15 +245,6 @@ take_value(Options *c, int k, const char *val)
     return EOMC_OK;
 }
 
-static int
-find_option(const char *arg, size_t len)
-{
-    for (int k = 0; k < NOPTIONS; k++)
-        if (strlen(option_names[k]) == len && strncmp(arg, option_names[k], len) == 0)
-            return k;
-    return -1;
-}
-
 /* What the options say together: conflicts are usage errors. */
 static int
 check_combination(Options *c)
@@ -442,7 +307,7 @@ check_combination(Options *c)
             return opt_usage(c, "--plot draws a run or the --work-precision report, not %s",
                          c->accel ? "--accel" : "--linearize or --equilibrium");
         return opt_usage(c, "%s belongs to --work-precision (one run writes its trajectory "
-                     "with -o)", option_names[k]);
+                     "with -o)", option_name(k));
     }
     int swept = c->nsweep || c->sweep_file; /* a sweep's rows go to -o */
     if (linear && (c->accel || c->work_precision || c->error || (c->out && !swept) ||
@@ -648,20 +513,23 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i], *eq = strchr(arg, '='), *val = NULL;
         size_t len = eq && arg[0] == '-' ? (size_t)(eq - arg) : strlen(arg);
-        int k = find_option(arg, len);
+        int k = option_find(arg, len);
         if (k < 0) {
             char name[128];
             snprintf(name, sizeof name, "%.*s", (int)(len < 100 ? len : 100), arg);
             if (arg[0] != '-')
                 return opt_usage(c, "unexpected argument '%s' (options start with --)", arg);
+            const char *names[NOPTIONS];
+            for (int j = 0; j < NOPTIONS; j++)
+                names[j] = option_name(j);
             return opt_usage(c, "unknown option '%s'%s", name,
-                         opt_nearest(name, option_names, NOPTIONS, ""));
+                         opt_nearest(name, names, NOPTIONS, ""));
         }
         if (k >= FIRST_FLAG) {
             if (eq)
-                return opt_usage(c, "%s takes no value", option_names[k]);
+                return opt_usage(c, "%s takes no value", option_name(k));
             if (k == O_HELP) {
-                help(c, m);
+                option_help(c->self, m);
                 return -1;
             }
             if (k == O_VERSION) {
@@ -682,7 +550,7 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
         else if (i + 1 < argc)
             val = argv[++i];
         else
-            return opt_usage(c, "%s needs a value", option_names[k]);
+            return opt_usage(c, "%s needs a value", option_name(k));
         int rc = take_value(c, k, val);
         if (rc)
             return rc;
@@ -698,7 +566,7 @@ opt_init(Options *c, int argc, char **argv, const eomc_model *m)
     const char *slash = argc > 0 ? strrchr(argv[0], '/') : NULL;
     *c = (Options){0};
     c->stabilize = -1;
-    c->alpha = c->beta = DEFAULT_RATE;
+    c->alpha = c->beta = OPTION_DEFAULT_RATE;
     c->target = NAN;
     c->prog = argc > 0 ? (slash ? slash + 1 : argv[0]) : m->name;
     c->self = getenv("EOMC_RUN_COMMAND") ? getenv("EOMC_RUN_COMMAND") : c->prog;

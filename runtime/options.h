@@ -2,9 +2,9 @@
  * options: a simulator's command line, read and checked (eomc_main).
  *
  * Options are read completely and checked before anything runs, so a
- * mistake costs nothing but a message (exit status 2).  The table of
- * options, the help text and the checks of what they say together are
- * here, and nowhere else.
+ * mistake costs nothing but a message (exit status 2).  The checks of
+ * what the options say together are here, and nowhere else; what each
+ * option is, and its help, is in the table of options (option_table.h).
  */
 #ifndef EOMC_OPTIONS_H
 #define EOMC_OPTIONS_H

@@ -27,15 +27,14 @@ typedef struct EmitStats {
 } EmitStats;
 enum { EMIT_NFUNCS = 15 };
 
-/* Print the lowered model L (lower.h); the spec, form, constraints (or
- * NULL) and invariant give the banner and the tables.  The functions are
+/* Print the lowered model L (lower.h), which holds all it prints but the
+ * expressions (in P) and what info says of the run.  The functions are
  * written in eomc_real (eomc_model.h); those the reference solution needs
  * are also compiled with -DEOMC_EXTENDED, the others are fenced off from
  * it.  Returns the number of translation units the file makes: 1, or 2
  * for a large model, whose C compiles as one unit or, with -DEOMC_UNIT=1
  * and -DEOMC_UNIT=2, as two halves linked together. */
-int emit_model(FILE *out, const Spec *s, const Eom *e, const Constraints *c,
-                const Invariant *inv, const Lowered *L, ExprPool *P, const EmitInfo *info,
-                EmitStats stats[EMIT_NFUNCS]);
+int emit_model(FILE *out, const Lowered *L, ExprPool *P, const EmitInfo *info,
+               EmitStats stats[EMIT_NFUNCS]);
 
 #endif

@@ -152,19 +152,19 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
     static const char prefix[] = {'q', 'v', 'a', 'j'};
     switch (nd->op) {
     case EXPR_SEED:
-        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b], pr->s->coord[nd->a].name);
+        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b], pr->md->coord[nd->a]);
         break;
     case EXPR_VAR:
-        snprintf(buf, len, "%c_%s", prefix[nd->b], pr->s->coord[nd->a].name);
+        snprintf(buf, len, "%c_%s", prefix[nd->b], pr->md->coord[nd->a]);
         break;
     case EXPR_PARAM:
-        snprintf(buf, len, "p_%s", pr->s->param[nd->a].name);
+        snprintf(buf, len, "p_%s", pr->md->param[nd->a].name);
         break;
     case EXPR_INPUT:
-        snprintf(buf, len, "u_%s", pr->s->input[nd->a].name);
+        snprintf(buf, len, "u_%s", pr->md->input[nd->a]);
         break;
     case EXPR_MULT:
-        snprintf(buf, len, "lam_%s", pr->s->constraint[nd->a].name);
+        snprintf(buf, len, "lam_%s", pr->md->constraint[nd->a].name);
         break;
     default:
         snprintf(buf, len, "t");
@@ -654,7 +654,7 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
             ExprId id = ls.list[j];
             pr->used |= 1u << SRC_P;
             emit_line(pr, "    const eomc_real pd%d = p[%d];", pr->derived[id],
-                    pr->s->np + pr->derived[id]);
+                    pr->md->np + pr->derived[id]);
         }
     free(ls.mark);
     free(ls.list);
@@ -795,7 +795,7 @@ print_prologue(Printer *pr, const LowFunc *lf)
         return;
     emit_line(pr, "    for (int k = 0; k < %d; k++) /* the tables' constants */",
             FORM_TABLE_STRIDE * L->tables->nt + 6);
-    emit_line(pr, "        pd[%d + k] = %s_numbers[k];", L->tree_base, pr->s->name);
+    emit_line(pr, "        pd[%d + k] = %s_numbers[k];", L->tree_base, pr->md->name);
 }
 
 /* The shifts of each copy (repeat.h), before the function that loops. */
@@ -807,7 +807,7 @@ print_shifts(Printer *pr, const LowFunc *lf, int *du_any)
         *du_any |= lf->du[c] != 0;
     for (int u = 0; u <= *du_any; u++) {
         const int *d = u ? lf->du : lf->dq;
-        fprintf(pr->f, "static const int %s_%s_%s[%d] = {", pr->s->name, lf->sig->name,
+        fprintf(pr->f, "static const int %s_%s_%s[%d] = {", pr->md->name, lf->sig->name,
                 u ? "du" : "dq", lf->ncopy);
         for (int c = 0; c < lf->ncopy; c++)
             fprintf(pr->f, "%s%d", c ? ", " : "", d[c]);
@@ -822,7 +822,7 @@ print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
 {
     if (!lf->copy)
         return;
-    const char *nm = pr->s->name, *name = lf->sig->name;
+    const char *nm = pr->md->name, *name = lf->sig->name;
     char call[2048] = "";
     size_t k = 0;
     for (int i = 0; i < fn->args.n && k < sizeof call; i++) {
@@ -889,7 +889,7 @@ emit_function(Printer *pr, const LowFunc *lf)
         pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
     Sched S;
     schedule(pr, &S, nout, out);
-    const char *nm = pr->s->name;
+    const char *nm = pr->md->name;
     char fname[128];
     const char *name = lf->sig->name;
     snprintf(fname, sizeof fname, "%s_%s", nm, name);

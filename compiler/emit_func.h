@@ -25,7 +25,7 @@ typedef struct Func {
 typedef struct Printer {
     FILE *f;
     ExprPool *P;
-    const Spec *s;
+    const LowModel *md; /* L's: the names */
     const Lowered *L;
     /* per node id, for the function being printed */
     int *temp;  /* temporary number, -1 if not scheduled */

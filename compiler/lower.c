@@ -588,6 +588,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
 {
     Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
     *lw.L = (Lowered){0};
+    lower_describe(lw.L, s, e, c, inv, A);
     lw.L->n = s->nq;
     int n = s->nq;
 

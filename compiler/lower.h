@@ -85,8 +85,72 @@ extern const LowSig lower_jacobian_sig;
 /* The invariant member's (its sum of energy's T and V has it). */
 extern const LowSig lower_invariant_sig;
 
+/* ---- what the emitter prints besides the functions (lower_model.c) ---- */
+
+typedef struct LowParam {
+    const char *name;
+    double value; /* default, or the value it is fixed at */
+    int fixed;    /* a constant of the generated code */
+} LowParam;
+
+typedef struct LowEffect {
+    const char *name;
+    int enabled; /* on in the scene (off: no code) */
+} LowEffect;
+
+typedef struct LowConstraint {
+    const char *name;
+    int order;              /* the spec's: 0 holonomic, 1, 2 */
+    const char *order_name; /* "holonomic", "first-order", "second-order" */
+    int dependent;          /* the coordinate it determines */
+} LowConstraint;
+
+typedef struct LowEvent {
+    const char *name;
+    int direction, action; /* eomc_model.h's */
+} LowEvent;
+
+typedef struct LowCheck {
+    const char *what;   /* "particle 'bob': its mass must not be negative" */
+    const char *params; /* the parameters it depends on: "m" */
+    int strict;         /* expr > 0, else expr >= 0 */
+} LowCheck;
+
+/* The model's names, sizes, the scene's choices and the banner's facts,
+ * copied out of the spec, the form, the constraints and the invariant so
+ * that the emitter prints the lowered model alone. */
+typedef struct LowModel {
+    const char *name;    /* a C identifier: every global's prefix */
+    const char *spec;    /* the spec's file name without directories: output
+                          * must not depend on where eomc was run from */
+    const char *form, *formula;
+    int nq, np, nu, neffect;
+    const char **coord;  /* [nq] names */
+    LowParam *param;     /* [np] */
+    const char **input;  /* [nu] names */
+    LowEffect *effect;   /* [neffect] */
+    /* the scene */
+    const char *scene;   /* NULL: the spec's `scene:` */
+    double t_end, dt, rtol, atol, h_fixed;
+    const char *method;
+    int noutput, nevent, ncheck;
+    const char **output; /* [noutput] names */
+    LowEvent *event;     /* [nevent] */
+    int assemble;
+    unsigned char *hold; /* [2 nq] what assembly keeps, or NULL */
+    LowCheck *check;     /* [ncheck] */
+    /* The constraints (constrained: they were derived); nc names also
+     * name the multipliers. */
+    int constrained, nc, affine;
+    LowConstraint *constraint;
+    const char *invariant;      /* its name, NULL if none */
+    const char *invariant_note; /* one sentence: what is conserved and why, or why not */
+    int *mass_parent; /* [nq] M's tree for an unconstrained model, else NULL */
+} LowModel;
+
 /* The model's functions in the order they are printed. */
 typedef struct Lowered {
+    LowModel model;
     int nfunc, cap;
     LowFunc **func;
     /* the ones the emitter wraps in hand-written C (NULL when absent) */
@@ -169,6 +233,10 @@ enum { LOWER_TABLES_MIN = 30000 };
 Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
                      int eliminate, const Invariant *inv, int jacobian, int code, Arena *A,
                      ExprPool *P, Diff *D);
+
+/* Fill L->model, its strings and arrays in A (lower_model calls it). */
+void lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
+                    const Invariant *inv, Arena *A);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none),
  * copies included. */

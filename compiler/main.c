@@ -184,7 +184,7 @@ compile(const Options *o, FILE *out, int *units)
             if (o->explain)
                 explain(s, form, c, inv, &info, L);
             if (out) {
-                int nu = emit_model(out, s, e, c, inv, L, P, &info, st);
+                int nu = emit_model(out, L, P, &info, st);
                 if (units)
                     *units = nu;
                 if (o->stats)

@@ -57,7 +57,7 @@ compile(void *ctx)
                 EmitInfo info = {.version = "fuzz", .options = "", .eliminate = eliminate};
                 EmitStats st[EMIT_NFUNCS];
                 Lowered *L = lower_model(s, m, e, c, 0, inv, jacobian, LOWER_CODE_AUTO, A, P, D);
-                emit_model(devnull, s, e, c, inv, L, P, &info, st);
+                emit_model(devnull, L, P, &info, st);
             }
         }
     }

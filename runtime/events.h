@@ -1,7 +1,7 @@
 /*
  * events: zero crossings of a scene's event functions, found and located.
  *
- * The driver (integrate.c) evaluates the events' g at every step end.  An
+ * The step layer (evolve.c) evaluates the events' g at every step end.  An
  * event fires in a step where its g crossed zero in its direction; the
  * time is located first on a cheap model of the step (the interpolant),
  * then refined on the true solution (a step from the step's start to the

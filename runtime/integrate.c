@@ -1,606 +1,60 @@
 /*
- * integrate: the integration driver (eomc_sim_integrate).
+ * integrate: the integration driver (eomc_sim_integrate), on the steps of
+ * evolve.h.
  *
- * GSL provides the steppers (odeiv2 step types, or fixed.c's, which are
- * the same kind of object) and the step-size control; this file is the
- * evolve and driver layers above them: evolve_step takes one accepted
- * step (eomc_sim_step is it, with its message), and march, the driver,
- * takes those steps to t_end and reads the rows off them.  Over 800
- * lines: the two layers share the run's state (Run), which a split would
- * have to put in a header of its own.  It is GSL's evolve loop with
- * these differences:
+ * It is GSL's driver with these differences:
  *  - output rows are not step ends: the steps go as the tolerance allows,
  *    straight to t_end, and each row is read off the interpolant of
  *    dense.c (so a small --dt costs no steps);
- *  - the derivative at a step's end is kept for the next step and for
- *    the interpolant, and recomputed when the state was changed
- *    (projection), where GSL's evolve would reuse a stale one;
- *  - after every accepted step of a constrained model, the checks and
- *    corrections of after_step: a degenerate constraint stops the run,
- *    the drift is measured, and the state is projected when asked;
- *  - after every accepted step, the scene's events (events.h): one that
- *    fired is located, reported, and stops the run or resets the state
- *    and starts the integration again from there (check_events).
+ *  - a row the interpolant cannot give to the tolerances is computed by a
+ *    step of its own (side_step);
+ *  - a `set` event's reset starts the interpolant afresh, and a `stop`
+ *    event ends the rows with one at the event itself.
  */
+#include "evolve.h"
 #include "simimpl.h"
 #include "dense.h"
-#include "events.h"
-#include "fixed.h"
-#include "linalg.h"
 
 #include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- the methods ---- */
-
-typedef struct Method {
-    const char *name;
-    const gsl_odeiv2_step_type *const *adaptive; /* GSL's pointer variable */
-    const gsl_odeiv2_step_type *const *fixed;    /* NULL: no fixed steps */
-    int own_fixed;                               /* fixed is fixed.c's */
-    int jacobian;                                /* solves with the Jacobian */
-    const char *description;
-} Method;
-
-#define FIXED_GSL(g) &g, 0
-#define FIXED_RK4(g) &fixed_rk4, 1
-#define FIXED_RK1IMP(g) &fixed_rk1imp, 1
-#define FIXED_RK2IMP(g) &fixed_rk2imp, 1
-#define FIXED_RK4IMP(g) &fixed_rk4imp, 1
-#define FIXED_NONE(g) NULL, 0
-static const Method methods[] = {
-#define METHOD(name, gsl, fixed, jac, description) \
-    {#name, &gsl, FIXED_##fixed(gsl), jac, description},
-#include "methods.def"
-#undef METHOD
-};
-enum { NMETHODS = sizeof methods / sizeof methods[0] };
-
-const char *const eomc_methods[] = {
-#define METHOD(name, gsl, fixed, jac, description) #name,
-#include "methods.def"
-#undef METHOD
-    NULL,
-};
-
-static const Method *
-find_method(const char *name)
-{
-    for (int k = 0; k < NMETHODS; k++)
-        if (name && strcmp(name, methods[k].name) == 0)
-            return &methods[k];
-    return NULL;
-}
-
-const char *
-eomc_method_description(const char *name)
-{
-    const Method *m = find_method(name);
-    return m ? m->description : NULL;
-}
-
-int
-eomc_method_steps(const char *name)
-{
-    const Method *m = find_method(name);
-    return !m ? -1 : !m->fixed ? EOMC_STEPS_ADAPTIVE : m->own_fixed ? EOMC_STEPS_DOUBLING
-                                                                    : EOMC_STEPS_EMBEDDED;
-}
-
-int
-eomc_method_jacobian(const char *name)
-{
-    const Method *m = find_method(name);
-    return m ? m->jacobian : -1;
-}
-
-eomc_run_opts
-eomc_run_defaults(const eomc_model *m)
-{
-    eomc_run_opts o = {.t0 = 0.0, .t_end = m->t_end, .dt = m->dt, .method = m->method,
-                       .rtol = m->rtol, .atol = m->atol, .h_fixed = m->h_fixed};
-    return o;
-}
-
-/* ---- one run ---- */
-
-/* A step below this fraction of max(|t|, t_end - t0) makes no progress. */
-#define HMIN_REL 1e-14
-/* The first trial step, as a fraction of the span: the control grows it
- * by up to 5 a step, so it costs a few steps, and never depends on dt. */
-#define H0_REL 1e-5
 /* An output time within this fraction of dt of t_end is t_end: no sliver
  * of an interval at the end. */
 #define SLIVER 1e-9
-/* march's status when a row callback stopped the run, when the steps
- * collapsed or ground, and when events accumulated or a stop event ended
- * the run (not GSL codes). */
-enum { ROW_STOP = -1000, STEP_COLLAPSE = -1001, STEP_GRIND = -1002,
-       EVENTS_ACCUMULATE = -1003, EVENT_STOPPED = -1004, EVENT_RETURNED = -1005 };
-/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
- * a `set` event fires within ACCUMULATE_REL of the time span of the one
- * before: their times are no longer resolved (the steps between them
- * would be below the collapse limit of any run), and the next ones come
- * ever faster. */
-#define ACCUMULATE_REL 1e-9
-/* A reset passes through its event when it leaves g moving on the way it
- * crossed at more than PASS_REL of the rate it arrived with (a kick, a
- * switch of mode).  Anything slower, at rest or turned back (an impact),
- * is held at g = 0 until it leaves (check_events). */
-#define PASS_REL 1e-6
-/* The first step after a reset: at most this fraction of the time since
- * the event before, so that the steps resolve the next interval (each
- * bounce of a ball is shorter than the last by the restitution). */
-#define RESTART_REL 1e-3
-/* The steps after a reset start that small on purpose: they are not
- * watched for a collapse until this many have grown them again (by up to
- * 5 each), and events that come too fast are caught as such. */
-enum { RESTART_STEPS = 30 };
-/* Steps have collapsed when an accepted step is below COLLAPSE_REL of the
- * run's typical step (the geometric mean of its accepted steps, once it
- * has COLLAPSE_AFTER of them): seven orders of magnitude is more than a
- * smooth motion asks (Kepler's orbit at e = 0.9999 runs 100 time units
- * with every method without coming near), and a run that went on at such
- * steps would take ten million times its steps so far to cover as much
- * time again.  A stiff motion's fast phases are brief and take their
- * share of the steps: msbdf on Van der Pol's oscillator at mu = 1e4 and
- * 3e4 (its steps up to ten billion times shorter in a jump than between)
- * comes to 3e-6 of typical at worst. */
-#define COLLAPSE_REL 1e-7
-enum { COLLAPSE_AFTER = 100 };
-/* The steps grind when GRIND_WINDOWS windows of GRIND_WINDOW attempts in
- * a row each rejected more than GRIND_REJECTED of them and advanced the
- * run by less than GRIND_REL of the step at a typical instant of it (the
- * geometric mean of its steps, each weighted by the time it covers) per
- * attempt: the step control no longer finds the step its error model
- * predicts, and the run crawls.  (The pace, not the steps' mean: bsimp
- * alternates long steps and many short ones, and makes its way.)
- * One-step methods grinding reject more than half (rk8pd's steps
- * alternate between one that fails and one that passes); the multistep
- * methods cut their order with the step after a rejection, and reject a
- * third (msbdf on a top in z-x-z angles at theta = 0: 16% to 44% a
- * window, at 1e-5 of the typical instant's step, for 12 million steps).
- * Smooth motion rejects a fifth of its attempts for at most 7 such
- * windows in a row (Kepler's orbit at e = 0.9999 through periapsis).
- * Weighted by steps instead of time, the typical step sank with the steps
- * of the very trouble it was to measure: the top's ten million short
- * steps became typical.  A window that grinds does not count toward the
- * collapse's typical step, which would otherwise sink with it. */
-enum { GRIND_WINDOW = 100, GRIND_WINDOWS = 20 };
-#define GRIND_REL 1e-3
-#define GRIND_REJECTED 0.2
-/* A side step (a row computed by a step of its own) is split in at most
- * this many pieces. */
-enum { SIDE_PIECES_MAX = 64 };
+/* march's status when a stop event ended the run (not a GSL code, and
+ * not one of the step layer's, evolve.h). */
+enum { EVENT_STOPPED = -1100 };
 
-typedef struct Run {
+typedef struct Driver {
+    eomc_evolve *e;               /* the steps */
     eomc_sim *s;
-    const eomc_model *m;          /* s's */
     const eomc_run_opts *o;
     eomc_stats *st;
     int n, N;                     /* coordinates, state size 2n */
-    gsl_odeiv2_system sys;
-    gsl_odeiv2_driver *d;         /* step, control; d->e is not used */
-    gsl_odeiv2_step *step;        /* the stepper: d->s, or fixed.c's */
-    double t, *x;                 /* the current state (the caller's array) */
-    double *f0, *f1;              /* x' at the start and the end of a step */
-    double *y0, *yerr;            /* the state before a step, error estimate */
-    double *xt, *xerr;            /* trial states of the degeneracy search */
-    double *B0, *B1;              /* rows of B before and after a step */
-    double *xrow, *erow;          /* an interpolated row, its error estimate */
-    double *fs, *fs2;             /* a side step's derivatives, in and out */
-    gsl_odeiv2_step *side;        /* the stepper of side steps: the method's own
-                                   * for a one-step method, else side_own */
-    gsl_odeiv2_step *side_own;
+    double *x;                    /* the current state (the caller's array) */
     Dense *dense;
+    double *xrow, *erow;          /* an interpolated row, its error estimate */
     long k, nrows;                /* the next row, and how many there are */
-    double hmin;
     eomc_row_fn row;
     void *ctx;
-    int row_status;               /* the callback's nonzero status: ROW_STOP */
+    int row_status;               /* a callback's nonzero status: EVOLVE_STOPPED */
     double stop_t;                /* ... the time it was called with */
     const double *stop_x;         /* ... and the state (kept until march returns) */
-    double h0;                    /* the conserved quantity at the start */
-    int have_h0;
-    double log_h;                 /* sum of log(h) over the accepted steps ... */
-    long nh;                      /* ... not cut short by t_end, of windows that
-                                   * did not grind */
-    double sum_h, sum_hlog;       /* sums of h and h log(h) over all of them */
-    double h_last;                /* the last such step */
-    long tries, fails;            /* attempts and rejections in this window */
-    double w_log_h;               /* sum of log(h) over its accepted steps ... */
-    long w_nh;                    /* ... how many */
-    double w_t0;                  /* the time it started at */
-    int grinding;                 /* windows in a row that ground */
-    int ne;                       /* events */
-    double *g0, *g1;              /* [ne] g at the step's start and end */
-    double *ge, *te;              /* [ne] scratch: g, and each event's time */
-    double *xe;                   /* [N] the state at an event's trial time */
-    int ev_k;                     /* the event being located */
-    double ev_t0, ev_t1;          /* in the step from ev_t0 to ev_t1 */
-    double last_set;              /* the time of the last `set` event */
-    long nsets;                   /* `set` events so far */
-    unsigned char *held;          /* [ne] reset at g = 0, not yet left it */
-    double gap;                   /* from the `set` event before to the last */
-    double left_rate;             /* g's rate after the last reset, a share of
-                                     its rate on arrival (0 unless on the way
-                                     it crossed, slower than passing) */
-    long since_reset;             /* steps since the last reset */
-    double h;                     /* the next adaptive step to try */
-    unsigned long nfixed, i;      /* fixed steps: how many, and the last taken */
-    int pending;                  /* a `set` event whose reset starts the next
-                                   * step (-1: none) */
-    double *ce;                   /* [nc] each constraint's inconsistency */
-    int *cl;                      /* [nc] and its level, after a reset */
-} Run;
-
-/* The caller is told of the progress every PROGRESS_EVERY right-hand
- * sides (a power of 2): often enough to follow, far too rarely to cost. */
-enum { PROGRESS_EVERY = 256 };
-
-static int
-rhs(double t, const double *x, double *dxdt, void *ctx)
-{
-    Run *r = ctx;
-    int n = r->n;
-    r->st->rhs_evals++;
-    if (r->o->on_progress && (r->st->rhs_evals & (PROGRESS_EVERY - 1)) == 0)
-        r->o->on_progress(r->o->progress_ctx, t);
-    if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
-        return GSL_EBADFUNC;
-    memcpy(dxdt, x + n, (size_t)n * sizeof *dxdt);
-    return GSL_SUCCESS;
-}
-
-static int
-jac(double t, const double *x, double *dfdx, double *dfdt, void *ctx)
-{
-    Run *r = ctx;
-    r->st->jac_evals++;
-    return eomc_sim_jacobian(r->s, t, x, dfdx, dfdt) == EOMC_OK ? GSL_SUCCESS
-                                                                : GSL_EBADFUNC;
-}
-
-int
-eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
-{
-    const Method *m = find_method(o->method);
-    if (!m)
-        return sim_usage_error(s, "unknown method '%s'", o->method ? o->method : "");
-    if (eomc_sim_check(s) != EOMC_OK)
-        return EOMC_EUSAGE;
-    if (m->jacobian && !eomc_sim_model(s)->jacobian)
-        return sim_no_jacobian(s, o->method);
-    if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
-        return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
-                               o->t0);
-    if (!isfinite(o->dt) || o->dt <= 0)
-        return sim_usage_error(s, "the output interval must be positive, not %g", o->dt);
-    if (!(o->rtol >= 0) || !(o->atol >= 0) || !isfinite(o->rtol) ||
-        !isfinite(o->atol) || (o->rtol == 0 && o->atol == 0 && o->h_fixed <= 0))
-        return sim_usage_error(s, "tolerances must be finite, not negative and not "
-                               "both zero (rtol %g, atol %g)", o->rtol, o->atol);
-    if (!(o->h_fixed >= 0) || !isfinite(o->h_fixed))
-        return sim_usage_error(s, "the fixed step must be positive, not %g", o->h_fixed);
-    if (o->h_fixed > 0 && !m->fixed)
-        return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
-                               "for the one-step methods", o->method);
-    if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT && !m->fixed)
-        return sim_usage_error(s, "%s builds on the history of its steps, which projecting "
-                               "the state after every step would throw away (it would "
-                               "restart at order 1 each time, slow and inaccurate): with "
-                               "--stabilize project use a one-step method (rk2, rk4, "
-                               "rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp)",
-                               o->method);
-    if (o->max_steps < 0)
-        return sim_usage_error(s, "the step limit must be positive, not %ld",
-                               o->max_steps);
-    return EOMC_OK;
-}
-
-/* The run's typical step (COLLAPSE_REL): the geometric mean of its
- * accepted steps. */
-static double
-typical_step(const Run *r)
-{
-    if (r->nh > 0)
-        return exp(r->log_h / (double)r->nh);
-    return r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0; /* the first window */
-}
-
-/* The step at a typical instant of the run (GRIND_REL): the geometric mean
- * of its accepted steps, each weighted by the time it covers. */
-static double
-instant_step(const Run *r)
-{
-    return r->sum_h > 0 ? exp(r->sum_hlog / r->sum_h) : 0;
-}
-
-/* Why the steps may have collapsed at the current state, as far as the
- * runtime can see: an ill-conditioned solve (losing more than half the
- * digits of q''), a vanishing constraint row, or neither. */
-#define LIKELY_COND 1e-8
-static void
-likely_cause(Run *r, char *buf, size_t len)
-{
-    eomc_sim *s = r->s;
-    double c = sim_condition(s, r->t, r->x, r->x + r->n), fraction;
-    int k;
-    if (c * DBL_EPSILON > LIKELY_COND)
-        snprintf(buf, len, "%s is nearly singular there (condition %.2g)",
-                 sim_condition_what(s), c);
-    else if (!isnan(c) && (k = sim_vanished(s, &fraction)) >= 0)
-        snprintf(buf, len, "the constraint %s's row df/dq'' is vanishing there (%.2g of "
-                 "its largest)", r->m->c_names[k], fraction);
-    else if (!isnan(c))
-        snprintf(buf, len, "not the solve for q'', which is well-conditioned there "
-                 "(condition %.2g): a force or the motion that is singular or not smooth "
-                 "there, or a tolerance the method cannot meet", c);
-    else
-        snprintf(buf, len, "the accelerations cannot be computed there");
-}
-
-/* The message for a stepping status other than success. */
-static int
-step_error(Run *r, int status)
-{
-    eomc_sim *s = r->s;
-    int n = r->n;
-    char cause[1024];
-    if (status == GSL_ENOPROG || status == STEP_COLLAPSE || status == STEP_GRIND)
-        likely_cause(r, cause, sizeof cause);
-    switch (status) {
-    case STEP_COLLAPSE:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps collapsed to %.3g, "
-                                 "%.2g of the run's typical step %.3g: the motion is near a "
-                                 "singularity, and the likely cause: %s", r->h_last,
-                                 r->h_last / typical_step(r), typical_step(r), cause);
-    case STEP_GRIND:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps grind: in each of "
-                                 "the last %d windows of %d attempts more than %g of them "
-                                 "were rejected, and the run advanced by less than %g of "
-                                 "the step at a typical instant of it (%.3g) per attempt "
-                                 "(steps of %.3g lately); the likely cause: %s",
-                                 GRIND_WINDOWS, GRIND_WINDOW, GRIND_REJECTED, GRIND_REL,
-                                 instant_step(r), r->h_last, cause);
-    case EVENT_RETURNED:
-        if (r->left_rate > 0) /* moving on, too slowly to pass: not a return */
-            return sim_numeric_error(s, r->t, r->x, r->x + n, "event %s holds still at "
-                                     "the end of the first step after its reset at t = "
-                                     "%.17g: the reset left the motion crossing it at "
-                                     "%.2g of the rate it arrived with, too slow to tell "
-                                     "from resting on it (passing through takes more "
-                                     "than %g); a reset that passes should leave it "
-                                     "faster, one that stops it should turn it back",
-                                     r->m->ev_names[r->ev_k], r->last_set, r->left_rate,
-                                     PASS_REL);
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
-                                 "holds again at the end of the first step after its "
-                                 "reset at t = %.17g (a step of %.3g): the motion returns "
-                                 "to it faster than the steps can follow (it comes to rest "
-                                 "against it%s)", r->m->ev_names[r->ev_k], r->last_set,
-                                 r->t - r->last_set, r->o->h_fixed > 0
-                                 ? ", or the fixed steps are too long" : "");
-    case EVENTS_ACCUMULATE:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
-                                 "fired %ld times, the last two %.3g apart, below %g of "
-                                 "the time span: the motion comes to rest against it in "
-                                 "ever shorter intervals (Zeno), which no step can "
-                                 "follow", r->m->ev_names[r->ev_k], r->nsets + 1,
-                                 r->t - r->last_set, ACCUMULATE_REL);
-    case GSL_EBADFUNC:
-        return EOMC_ENUMERIC; /* the right-hand side said why */
-    case GSL_EMAXITER:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "too many steps (the limit is "
-                                 "%ld)", r->o->max_steps);
-    case GSL_ENOPROG:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "step size underflow (below "
-                                 "%.3g); the likely cause: %s", r->hmin, cause);
-    case GSL_FAILURE: /* fixed steps: fixed.c's Newton iteration */
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the fixed %s step of %.3g "
-                                 "failed (an implicit method's Newton iteration, or "
-                                 "bsimp's extrapolation, did not converge); take smaller "
-                                 "fixed steps", r->o->method, r->st->h_used);
-    default:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the integrator failed: %s",
-                                 gsl_strerror(status));
-    }
-}
-
-/* ---- degenerate constraints ----
- *
- * A constraint degenerates where its row of B = df/dq'' vanishes (Appell's
- * cone at v = 0): there the accelerations are not determined, and the
- * KKT solution can pass smoothly through the point onto another branch
- * without the integrator noticing.  After each step we compare every row
- * with the row before it: a row that reversed direction went through zero
- * or close to it.  The step is then bisected to the reversal, and if the
- * row is small there relative to its size at either end (not merely
- * turned by a right angle in one long step), the run stops with an error
- * at that time and state. */
-
-#define DEGENERATE_TOL 1e-3 /* |B_k| at the reversal, relative to the ends */
-enum { BISECTIONS = 60 };
-
-/* The first row k of B1 that reversed direction since B0, or -1. */
-static int
-reversed_row(const Run *r)
-{
-    int n = r->n;
-    for (int k = 0; k < r->m->nc; k++)
-        if (la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
-            return k;
-    return -1;
-}
-
-static double
-row_norm(const double *B, int k, int n)
-{
-    return sqrt(la_dot(B + k * n, B + k * n, n));
-}
-
-/* Row k reversed in the step from (t0, r->y0) to t1: bisect the step for
- * the reversal; an error there if the row is (nearly) zero. */
-static int
-locate_degeneracy(Run *r, int k, double t0, double t1)
-{
-    int n = r->n, N = r->N;
-    double *Bk0 = r->B0 + k * n, ends = fmax(row_norm(r->B0, k, n), row_norm(r->B1, k, n));
-    double lo = 0, hi = t1 - t0, small = INFINITY;
-    for (int it = 0; it < BISECTIONS; it++) {
-        double h = 0.5 * (lo + hi);
-        memcpy(r->xt, r->y0, (size_t)N * sizeof *r->xt);
-        gsl_odeiv2_step_reset(r->step);
-        if (gsl_odeiv2_step_apply(r->step, t0, h, r->xt, r->xerr, NULL, NULL, &r->sys) !=
-                GSL_SUCCESS ||
-            sim_constraint_rows(r->s, t0 + h, r->xt, r->B1) != 0) {
-            small = 0; /* the solve broke down this close to it */
-            break;
-        }
-        small = fmin(small, row_norm(r->B1, k, n));
-        *(la_dot(Bk0, r->B1 + k * n, n) > 0 ? &lo : &hi) = h;
-    }
-    gsl_odeiv2_step_reset(r->step);
-    if (!(small <= DEGENERATE_TOL * ends))
-        return GSL_SUCCESS; /* the row turned, it did not vanish */
-    memcpy(r->xt, r->y0, (size_t)N * sizeof *r->xt);
-    /* the motion up to the degeneracy is known: a last node there, so that
-     * the rows before it are kept */
-    if (lo > 0 &&
-        gsl_odeiv2_step_apply(r->step, t0, lo, r->xt, r->xerr, NULL, r->xrow, &r->sys) ==
-            GSL_SUCCESS)
-        dense_push(r->dense, t0 + lo, r->xt, r->xrow);
-    gsl_odeiv2_step_reset(r->step);
-    sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
-                      "its row of B = df/dq'' vanishes here (it reverses direction), so "
-                      "the accelerations are no longer determined", r->m->c_names[k]);
-    /* the step through it is not taken: the run ends at its start, the last
-     * state the steps reached to their tolerance (the one step to the
-     * degeneracy evaluates the accelerations where they are not
-     * determined, so its state there may be off) */
-    memcpy(r->x, r->y0, (size_t)N * sizeof *r->x);
-    r->t = t0;
-    return GSL_EBADFUNC;
-}
-
-/* The relative error of q'' that a run's tolerance allows: its rtol, or
- * for fixed steps (and atol alone), half the digits. */
-#define FIXED_COND_TOL 1e-8
-/* The condition is estimated in full (sim_condition: a factorization
- * and a few solves, some right-hand sides' worth) every WATCH_EVERY
- * steps, and at any step whose solves had a pivot small enough that the
- * condition may be within PIVOT_SLACK of the tolerance's limit: the
- * inverse of the smallest pivot is only about a lower bound (by a factor
- * of 4 for two coordinates, more for more). */
-enum { WATCH_EVERY = 64 };
-#define PIVOT_SLACK 1e3
-
-/* After each step: the condition of the system solved for q'', and the
- * first time it passed what the tolerance allows. */
-static void
-watch_condition(Run *r)
-{
-    eomc_stats *st = r->st;
-    double tol = st->cond_tol;
-    double pivot = sim_take_pivot(r->s);
-    if (st->steps % WATCH_EVERY != 0 && !(PIVOT_SLACK * DBL_EPSILON > tol * pivot))
-        return;
-    double cond = sim_condition(r->s, r->t, r->x, r->x + r->n);
-    if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
-        return;
-    st->max_condition = cond, st->t_condition = r->t;
-    if (isnan(st->ill_t) && cond * DBL_EPSILON > tol) {
-        st->ill_t = r->t;
-        snprintf(st->ill, sizeof st->ill, "%s", sim_condition_what(r->s));
-    }
-}
-
-/* After each adaptive step: how far the conserved quantity has moved, and
- * how far the step's error estimate says it could have (eomc_stats). */
-static void
-watch_invariant(Run *r)
-{
-    eomc_sim *s = r->s;
-    int n = r->n;
-    double h, he;
-    /* without projection a constrained state drifts off its constraints,
-     * and h with it, by more than the steps' errors say: no budget then */
-    if (!r->m->invariant || r->o->h_fixed > 0 ||
-        (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT) ||
-        eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) != EOMC_OK)
-        return;
-    if (!r->have_h0)
-        r->h0 = h, r->have_h0 = 1;
-    for (int i = 0; i < r->N; i++)
-        r->xt[i] = r->x[i] + r->yerr[i];
-    eomc_sim_invariant(s, r->t, r->xt, r->xt + n, &he);
-    r->st->invariant_drift = fmax(r->st->invariant_drift, fabs(h - r->h0));
-    if (isfinite(he - h))
-        r->st->invariant_budget += fabs(he - h);
-}
-
-/* After each accepted step from t0: watch the conditioning; for a
- * constrained model, check that no constraint degenerated, measure the
- * drift, and project when asked.  A projected state is not the one the
- * stepper produced: its derivative is evaluated again (multistep methods,
- * whose history it would spoil, are refused with projection by
- * eomc_run_check). */
-static int
-after_step(Run *r, double t0)
-{
-    eomc_sim *s = r->s;
-    int n = r->n;
-    double *x = r->x, t = r->t;
-    watch_condition(r);
-    if (r->m->nc == 0) {
-        watch_invariant(r);
-        return GSL_SUCCESS;
-    }
-    if (sim_constraint_rows(s, t, x, r->B1) != 0)
-        return GSL_EBADFUNC;
-    int k = reversed_row(r);
-    if (k >= 0 && locate_degeneracy(r, k, t0, t) != GSL_SUCCESS)
-        return GSL_EBADFUNC;
-    if (sim_has_levels(s)) {
-        double res = sim_level_residual(s, t, x, x + n);
-        r->st->max_drift = fmax(r->st->max_drift, res);
-        if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT) {
-            /* a failed projection leaves the step's end as it was */
-            memcpy(r->xt, x, (size_t)r->N * sizeof *x);
-            if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
-                memcpy(x, r->xt, (size_t)r->N * sizeof *x);
-                return GSL_EBADFUNC;
-            }
-            gsl_odeiv2_step_reset(r->step);
-            res = sim_level_residual(s, t, x, x + n);
-            if (sim_constraint_rows(s, t, x, r->B1) != 0)
-                return GSL_EBADFUNC;
-            int rc = rhs(t, x, r->f1, r);
-            if (rc != GSL_SUCCESS)
-                return rc;
-        }
-        r->st->max_residual = fmax(r->st->max_residual, res);
-    }
-    watch_invariant(r);
-    double *B = r->B0; /* the rows after this step are the next one's start */
-    r->B0 = r->B1, r->B1 = B;
-    return GSL_SUCCESS;
-}
+} Driver;
 
 /* ---- rows ---- */
 
 /* A callback (row or on_event) returned status at (t, x): the run stops
  * there, and x is the state the caller gets back (eomc_sim_integrate). */
 static int
-callback_stop(Run *r, int status, double t, const double *x)
+callback_stop(Driver *r, int status, double t, const double *x)
 {
     r->row_status = status;
     r->stop_t = t;
     r->stop_x = x;
-    return ROW_STOP;
+    return EVOLVE_STOPPED;
 }
 
 /* t0 + k dt is computed from k, so no rounding accumulates. */
@@ -628,7 +82,7 @@ eomc_run_rows(const eomc_run_opts *o)
  * steps have no tolerance to pass: there the interpolant stands (its
  * error is that of the node values it passes through, or less). */
 static int
-interpolant_ok(const Run *r, const double *x, const double *err)
+interpolant_ok(const Driver *r, const double *x, const double *err)
 {
     if (r->o->h_fixed > 0)
         return 1;
@@ -638,52 +92,26 @@ interpolant_ok(const Run *r, const double *x, const double *err)
     return 1;
 }
 
-/* The row at t by a step of its own from the node before it: 1, 2, 4,
- * ... pieces until each passes the step control.  It is part of an
- * accepted step, so the method's truncation error is smaller there; it
- * leaves the run's steps as they are. */
+/* The row at t by a step of its own from the node before it
+ * (evolve_side). */
 static int
-side_from(Run *r, double tk, const double *xk, const double *fk, double t, double *x)
-{
-    size_t bytes = (size_t)r->N * sizeof *x;
-    for (int pieces = 1; pieces <= SIDE_PIECES_MAX; pieces *= 2) {
-        double h = (t - tk) / pieces;
-        memcpy(x, xk, bytes);
-        memcpy(r->fs, fk, bytes);
-        int p = 0;
-        for (; p < pieces; p++) {
-            double h1 = h, *f = r->fs;
-            if (gsl_odeiv2_step_apply(r->side, tk + p * h, h, x, r->xerr, r->fs, r->fs2,
-                                      &r->sys) != GSL_SUCCESS ||
-                gsl_odeiv2_control_hadjust(r->d->c, r->side, x, r->xerr, r->fs2, &h1) ==
-                    GSL_ODEIV_HADJ_DEC)
-                break;
-            r->fs = r->fs2, r->fs2 = f;
-        }
-        if (p == pieces)
-            return GSL_SUCCESS;
-    }
-    return GSL_EBADFUNC;
-}
-
-static int
-side_step(Run *r, double t, double *x)
+side_step(Driver *r, double t, double *x)
 {
     const double *xk, *fk;
     double tk = dense_start(r->dense, t, &xk, &fk);
     r->st->side_steps++;
-    if (side_from(r, tk, xk, fk, t, x) == GSL_SUCCESS)
+    if (evolve_side(r->e, tk, xk, fk, t, x) == GSL_SUCCESS)
         return GSL_SUCCESS;
     sim_numeric_error(r->s, t, NULL, NULL, "the row at this time could not be computed to "
                       "the tolerances, neither by interpolation nor by %d steps from "
-                      "t = %.17g", SIDE_PIECES_MAX, tk);
+                      "t = %.17g", EVOLVE_SIDE_PIECES, tk);
     return GSL_EBADFUNC;
 }
 
 /* Pass every row whose value is settled to the callback (all up to the
- * last node when final); ROW_STOP when the callback says stop. */
+ * last node when final); EVOLVE_STOPPED when the callback says stop. */
 static int
-emit_rows(Run *r, int final)
+emit_rows(Driver *r, int final)
 {
     while (r->k < r->nrows) {
         double t = eomc_run_row_time(r->o, r->k);
@@ -712,584 +140,72 @@ emit_rows(Run *r, int final)
     return GSL_SUCCESS;
 }
 
-/* ---- events ---- */
-
-/* The cubic Hermite interpolant through (x0, f0) at t0 and (x1, f1) at
- * t1, at t: x [N] (eomc_step_eval). */
-static void
-cubic(double t0, double t1, const double *x0, const double *f0, const double *x1,
-      const double *f1, int N, double t, double *x)
-{
-    double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s;
-    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
-    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
-    for (int i = 0; i < N; i++)
-        x[i] = h00 * x0[i] + h10 * h * f0[i] + h01 * x1[i] + h11 * h * f1[i];
-}
-
-/* The state at t in the step just taken (from ev_t0 to ev_t1), on the
- * cubic Hermite interpolant through its ends (y0, f0; x, f1): cheap, and
- * good enough to start the search on the solution from. */
-static void
-hermite(const Run *r, double t, double *x)
-{
-    cubic(r->ev_t0, r->ev_t1, r->y0, r->f0, r->x, r->f1, r->N, t, x);
-}
-
-static double
-g_interpolant(void *ctx, double t)
-{
-    Run *r = ctx;
-    hermite(r, t, r->xe);
-    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
-    return r->ge[r->ev_k];
-}
-
-/* g on the solution: the state at t by a step of its own from the step's
- * start, controlled as a row's side step is. */
-static double
-g_solution(void *ctx, double t)
-{
-    Run *r = ctx;
-    r->st->event_evals++;
-    if (side_from(r, r->ev_t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
-        return NAN;
-    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
-    return r->ge[r->ev_k];
-}
-
-enum { EV_NONE, EV_STOP, EV_SET };
-
-/* After the step from t0 to r->t: the events that fired in it, in time
- * order, each reported with the state there.  The first `stop` or `set`
- * event ends the step at its time: r->t, r->x and r->f1 become the
- * event's, *what is EV_STOP or EV_SET and *fired its index (else
- * EV_NONE).  A record event after it in the same step never happened.
- * Returns GSL_SUCCESS or a failure status. */
+/* A stop event ended the run at tk->t1: the rows up to it, then a last
+ * row at the event itself. */
 static int
-check_events(Run *r, double t0, int *what, int *fired)
-{
-    eomc_sim *s = r->s;
-    const eomc_model *m = r->m;
-    size_t bytes = (size_t)r->N * sizeof *r->x;
-    int any = 0;
-    r->ev_t0 = t0, r->ev_t1 = r->t;
-    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g1);
-    for (int k = 0; k < r->ne; k++) {
-        r->te[k] = NAN;
-        /* an event reset at g = 0 must leave it away from where it fires
-         * (up for a downward event): back there already, the motion
-         * returned within one step, faster than the steps can follow */
-        int dir = m->ev_direction[k];
-        if (r->held[k] && dir != 0 && (r->g1[k] == 0 || (r->g1[k] < 0) == (dir < 0))) {
-            r->ev_k = k;
-            return EVENT_RETURNED;
-        }
-        r->held[k] = 0;
-        if (!ev_crossed(m->ev_direction[k], r->g0[k], r->g1[k]))
-            continue;
-        int evals;
-        r->ev_k = k;
-        double guess = ev_root(g_interpolant, r, t0, r->g0[k], r->t, r->g1[k], NAN, &evals);
-        r->te[k] = ev_root(g_solution, r, t0, r->g0[k], r->t, r->g1[k], guess, &evals);
-        if (isnan(r->te[k])) {
-            sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s fired in the step "
-                              "from t = %.17g, but the state at its trial times could not "
-                              "be computed", m->ev_names[k], t0);
-            return GSL_EBADFUNC;
-        }
-        any = 1;
-    }
-    memcpy(r->g0, r->g1, (size_t)r->ne * sizeof *r->g0);
-    *what = EV_NONE;
-    while (any) {
-        int k = -1;
-        for (int j = 0; j < r->ne; j++)
-            if (!isnan(r->te[j]) && (k < 0 || r->te[j] < r->te[k]))
-                k = j;
-        if (k < 0)
-            break;
-        double t = r->te[k];
-        r->te[k] = NAN;
-        r->st->events++;
-        if (t == r->ev_t1)
-            memcpy(r->xe, r->x, bytes);
-        else if (side_from(r, t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
-            return GSL_EBADFUNC;
-        int rc = r->o->on_event ? r->o->on_event(r->o->event_ctx, k, t, r->xe) : EOMC_OK;
-        if (rc != EOMC_OK)
-            return callback_stop(r, rc, t, r->xe);
-        if (m->ev_action[k] == EOMC_EVENT_RECORD)
-            continue;
-        memcpy(r->x, r->xe, bytes);
-        r->t = t;
-        if (t != r->ev_t1 && (rc = rhs(t, r->x, r->f1, r)) != GSL_SUCCESS)
-            return rc;
-        if (r->m->nc > 0 && sim_constraint_rows(s, t, r->x, r->B0) != 0)
-            return GSL_EBADFUNC;
-        *fired = k;
-        *what = m->ev_action[k] == EOMC_EVENT_STOP ? EV_STOP : EV_SET;
-        return GSL_SUCCESS;
-    }
-    return GSL_SUCCESS;
-}
-
-/* How fast event k's g changes along the motion at (t, x), whose
- * right-hand side is f: a central difference along the tangent over a
- * probe PROBE_REL of the step.  It is exact for a g quadratic in the
- * state, and otherwise off by (probe)^2 g'''/6, a millionth of what g
- * changes by over a step; the rounding of g, spread over a probe a
- * thousandth of the step, stays far below PASS_REL of the rate it arrived
- * with (a millionth of the step lost 60% of a rate of 1e-8 to it). */
-#define PROBE_REL 1e-3
-static double
-g_rate(Run *r, int k, double t, const double *x, const double *f)
-{
-    double d = PROBE_REL * (r->ev_t1 - r->ev_t0), g[2];
-    for (int side = 0; side < 2; side++) {
-        double s = side ? d : -d;
-        for (int i = 0; i < r->N; i++)
-            r->xe[i] = x[i] + s * f[i];
-        eomc_sim_events(r->s, t + s, r->xe, r->xe + r->n, r->ge);
-        g[side] = r->ge[k];
-    }
-    return (g[1] - g[0]) / (2 * d);
-}
-
-/* Event k's `set` left the state off its constraints (their
- * inconsistencies in r->ce, levels in r->cl): the first such is kept in
- * the statistics, with every constraint it left off, worst first. */
-static void
-note_reset_off(Run *r, int k)
-{
-    eomc_stats *st = r->st;
-    const eomc_model *m = r->m;
-    size_t at = 0, len = sizeof st->reset_off;
-    st->reset_event = k;
-    st->reset_t = r->t;
-    st->reset_off[0] = '\0';
-    for (int listed = 0;; listed++) {
-        int worst = -1;
-        for (int j = 0; j < m->nc; j++)
-            if (r->ce[j] > EOMC_INCONSISTENT && (worst < 0 || r->ce[j] > r->ce[worst]))
-                worst = j;
-        if (worst < 0)
-            break;
-        if (!listed) {
-            st->reset_constraint = worst;
-            st->reset_level = r->cl[worst];
-            st->reset_inconsistency = r->ce[worst];
-        }
-        if (at < len)
-            at += (size_t)snprintf(st->reset_off + at, len - at, "%s%s (%s: %.2g)",
-                                   listed ? ", " : "", m->c_names[worst],
-                                   r->cl[worst] ? "velocities" : "positions", r->ce[worst]);
-        r->ce[worst] = 0; /* listed */
-    }
-}
-
-/* Event k's reset at r->t, after the rows up to it were written: the
- * integration starts again from the new state, with nothing of the
- * history before (a multistep method's past here; march drops the
- * interpolant's nodes).
- * The event is held until its g leaves zero, unless the reset passes
- * through it.  r->f0 is the right-hand side at r->x, the state the event
- * found (evolve_step has made the step's end the next one's start). */
-static int
-apply_reset(Run *r, int k)
-{
-    eomc_sim *s = r->s;
-    double span = r->o->t_end - r->o->t0;
-    r->ev_k = k;
-    if (r->nsets > 0 && r->t - r->last_set < ACCUMULATE_REL * span)
-        return EVENTS_ACCUMULATE;
-    r->gap = r->t - r->last_set;
-    r->last_set = r->t;
-    r->nsets++;
-    int dir = r->m->ev_direction[k];
-    double arrived = dir ? g_rate(r, k, r->t, r->x, r->f0) : 0;
-    eomc_sim_event_set(s, k, r->t, r->x, r->x);
-    if (!sim_all_finite(r->x, r->N)) {
-        sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
-                          "finite", r->m->ev_names[k]);
-        return GSL_EBADFUNC;
-    }
-    if (r->st->reset_event < 0 && r->m->nc > 0 &&
-        eomc_sim_inconsistencies(s, r->t, r->x, r->x + r->n, r->ce, r->cl) >
-            EOMC_INCONSISTENT)
-        note_reset_off(r, k);
-    int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
-    if (rc != GSL_SUCCESS)
-        return rc;
-    gsl_odeiv2_step_reset(r->step);
-    if (r->side != r->step)
-        gsl_odeiv2_step_reset(r->side);
-    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g0);
-    r->g0[k] = 0;
-    double left = dir && dir * arrived > 0 ? g_rate(r, k, r->t, r->x, r->f0) / arrived : 0;
-    r->held[k] = !(left > PASS_REL);
-    r->left_rate = r->held[k] && left > 0 ? left : 0;
-    r->since_reset = 0;
-    if (r->m->nc > 0 && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
-        return GSL_EBADFUNC;
-    r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
-    return GSL_SUCCESS;
-}
-
-/* A stop event ended the run at r->t: the rows up to it, then a last row
- * at the event itself. */
-static int
-finish_at_event(Run *r)
+finish_at_event(Driver *r, const EvolveStep *tk)
 {
     int rc = emit_rows(r, 1);
     if (rc != GSL_SUCCESS)
         return rc;
-    if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= r->t)
+    if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= tk->t1)
         return EVENT_STOPPED;
-    rc = r->row ? r->row(r->ctx, r->t, r->x) : EOMC_OK;
-    return rc != EOMC_OK ? callback_stop(r, rc, r->t, r->x) : EVENT_STOPPED;
+    rc = r->row ? r->row(r->ctx, tk->t1, tk->x1) : EOMC_OK;
+    return rc != EOMC_OK ? callback_stop(r, rc, tk->t1, tk->x1) : EVENT_STOPPED;
 }
 
-/* ---- steps ---- */
-
-static int
-budget_left(const Run *r)
-{
-    return r->o->max_steps <= 0 || r->st->steps < r->o->max_steps;
-}
-
-/* One accepted step from r->t of at most *h (adaptive): GSL's evolve,
- * with rejected steps retried from the same start as its steppers
- * expect.  *h becomes the size the control suggests next. */
-static int
-adaptive_step(Run *r, double *h)
-{
-    const eomc_run_opts *o = r->o;
-    double t0 = r->t, h0 = *h, left = o->t_end - t0;
-    size_t bytes = (size_t)r->N * sizeof *r->x;
-    memcpy(r->y0, r->x, bytes);
-    sim_save_start(r->s);
-    for (;;) {
-        sim_restore_start(r->s);
-        int final = h0 >= left;
-        if (final)
-            h0 = left;
-        else if (2 * h0 > left) /* two halves, not a step and a sliver */
-            h0 = 0.5 * left;
-        int rc = gsl_odeiv2_step_apply(r->step, t0, h0, r->x, r->yerr, r->f0, r->f1,
-                                       &r->sys);
-        if (rc == GSL_EFAULT)
-            return rc;
-        double h_old = h0;
-        int retry = 0;
-        if (rc != GSL_SUCCESS) {
-            /* the stepper could not, or a stage met a state where the
-             * accelerations fail (past a singularity): halve, to go as
-             * close to it as steps can; the message of the nearest such
-             * state stands if no step gets further */
-            h0 *= 0.5;
-            retry = 1;
-        } else if (gsl_odeiv2_control_hadjust(r->d->c, r->step, r->x, r->yerr, r->f1,
-                                              &h0) == GSL_ODEIV_HADJ_DEC) {
-            retry = 1;
-        }
-        r->tries++;
-        if (retry) {
-            memcpy(r->x, r->y0, bytes);
-            r->st->rejected++;
-            r->fails++;
-            if (!(h0 < h_old) || t0 + h0 == t0 || h0 < r->hmin)
-                return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
-            continue;
-        }
-        r->t = final ? o->t_end : t0 + h_old;
-        if (!final) {
-            *h = h0;
-            r->sum_h += h_old, r->sum_hlog += h_old * log(h_old);
-            r->w_log_h += log(h_old), r->w_nh++, r->h_last = h_old;
-        }
-        return GSL_SUCCESS;
-    }
-}
-
-/* One fixed step, from r->t to t1. */
-static int
-fixed_step(Run *r, double t1)
-{
-    double t0 = r->t;
-    memcpy(r->y0, r->x, (size_t)r->N * sizeof *r->x);
-    int rc = gsl_odeiv2_step_apply(r->step, t0, t1 - t0, r->x, r->yerr, r->f0, r->f1,
-                                   &r->sys);
-    /* bsimp says a step failed by an infinite error estimate, not a status */
-    for (int i = 0; rc == GSL_SUCCESS && i < r->N; i++)
-        if (!isfinite(r->yerr[i]))
-            rc = GSL_FAILURE;
-    if (rc != GSL_SUCCESS) {
-        memcpy(r->x, r->y0, (size_t)r->N * sizeof *r->x);
-        return rc;
-    }
-    r->t = t1;
-    return GSL_SUCCESS;
-}
-
-/* After an adaptive step: have the steps collapsed, or do they grind? */
-static int
-watch_steps(Run *r)
-{
-    double typ = typical_step(r);
-    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ &&
-        !(r->nsets > 0 && r->since_reset < RESTART_STEPS))
-        return STEP_COLLAPSE;
-    if (r->tries < GRIND_WINDOW)
-        return GSL_SUCCESS;
-    double pace = (r->t - r->w_t0) / (double)r->tries;
-    if ((double)r->fails > GRIND_REJECTED * (double)r->tries &&
-        pace < GRIND_REL * instant_step(r)) {
-        r->grinding++;
-    } else {
-        r->log_h += r->w_log_h, r->nh += r->w_nh;
-        r->grinding = 0;
-    }
-    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0, r->w_t0 = r->t;
-    return r->grinding >= GRIND_WINDOWS ? STEP_GRIND : GSL_SUCCESS;
-}
-
-/* What one accepted step did, for the driver and for eomc_sim_step. */
-typedef struct Taken {
-    int taken;                    /* a step was accepted: t0 .. r->t */
-    double t0;
-    int restarted;                /* a pending reset was applied first: the step
-                                   * started from the state it set */
-    int ev, fired;                /* EV_... and the event that ended the step */
-} Taken;
-
-/* The fixed steps of the span (st->h_used), or none (adaptive): before
- * the first step. */
-static void
-steps_begin(Run *r)
-{
-    const eomc_run_opts *o = r->o;
-    double span = o->t_end - o->t0;
-    r->h = H0_REL * span;
-    r->pending = -1;
-    if (o->h_fixed > 0) {
-        r->nfixed = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
-        if (r->nfixed < 1)
-            r->nfixed = 1;
-        r->st->h_used = span / (double)r->nfixed;
-    }
-}
-
-/* Whether a step is left to take: before t_end, or a reset to apply. */
-static int
-steps_left(const Run *r)
-{
-    return r->t < r->o->t_end || r->pending >= 0;
-}
-
-/* One accepted step, GSL's evolve with the checks of after_step and the
- * events: a pending reset applied first, then a fixed or an adaptive
- * step, and the watch over the steps.  tk says what it did, also when it
- * fails after the step was accepted (the steps collapsed or ground): that
- * step's end stands. */
-static int
-evolve_step(Run *r, Taken *tk)
-{
-    const eomc_run_opts *o = r->o;
-    double span = o->t_end - o->t0;
-    int rc;
-    *tk = (Taken){.ev = EV_NONE, .fired = -1};
-    if (r->pending >= 0) {
-        int k = r->pending;
-        r->pending = -1;
-        tk->restarted = 1;
-        if ((rc = apply_reset(r, k)) != GSL_SUCCESS)
-            return rc;
-        /* a fresh start: a first trial step as at t0, and a fraction of
-         * the interval since the event before, so that the steps grow
-         * again from the event and see g leave zero before they could
-         * cross it a second time (the top of a bounce) */
-        r->h = fmin(H0_REL * span, RESTART_REL * r->gap);
-        if (!(r->t < o->t_end))
-            return GSL_SUCCESS;
-    }
-    if (!budget_left(r))
-        return GSL_EMAXITER;
-    double t0 = r->t;
-    r->i++;
-    if (r->nfixed)
-        rc = fixed_step(r, r->i == r->nfixed ? o->t_end : o->t0 + (double)r->i * r->st->h_used);
-    else
-        rc = adaptive_step(r, &r->h);
-    if (rc != GSL_SUCCESS)
-        return rc;
-    r->st->steps++;
-    r->since_reset++;
-    if ((rc = after_step(r, t0)) != GSL_SUCCESS)
-        return rc;
-    if (r->ne && (rc = check_events(r, t0, &tk->ev, &tk->fired)) != GSL_SUCCESS)
-        return rc;
-    double *f = r->f0; /* this step's end is the next one's start */
-    r->f0 = r->f1, r->f1 = f;
-    tk->taken = 1;
-    tk->t0 = t0;
-    if (tk->ev == EV_STOP) {
-        r->st->stop_event = tk->fired;
-        return GSL_SUCCESS;
-    }
-    if (tk->ev == EV_SET) {
-        r->pending = tk->fired;
-        return GSL_SUCCESS;
-    }
-    if (r->t < o->t_end && !r->nfixed && fabs(r->h) < r->hmin)
-        return GSL_ENOPROG;
-    if (!r->nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
-        return rc;
-    return GSL_SUCCESS;
-}
+/* ---- the loop ---- */
 
 /* Integrate to t_end by evolve_step, passing rows as they are settled:
  * the step ends are the interpolant's nodes (dense.h). */
 static int
-march(Run *r)
+march(Driver *r)
 {
-    while (steps_left(r)) {
-        Taken tk;
-        int rc = evolve_step(r, &tk);
+    while (evolve_more(r->e)) {
+        EvolveStep tk;
+        int rc = evolve_step(r->e, &tk);
         if (tk.restarted) /* the nodes before the reset are another motion's */
             dense_clear(r->dense);
         if (tk.restarted && tk.taken)
-            dense_push(r->dense, tk.t0, r->y0, r->f1);
+            dense_push(r->dense, tk.t0, tk.x0, tk.f0);
         if (tk.taken)
-            dense_push(r->dense, r->t, r->x, r->f0);
+            dense_push(r->dense, tk.t1, tk.x1, tk.f1);
+        else if (!isnan(tk.reached) && !tk.restarted)
+            dense_push(r->dense, tk.reached, tk.xr, tk.fr);
+        if (rc == EVOLVE_STOPPED) /* on_event said stop */
+            r->row_status = evolve_stopped(r->e, &r->stop_t, &r->stop_x);
         if (rc != GSL_SUCCESS)
             return rc;
-        if (tk.ev == EV_STOP)
-            return finish_at_event(r);
+        if (tk.ev == EVOLVE_STOP)
+            return finish_at_event(r, &tk);
         /* before a reset, every row up to the event */
-        if ((rc = emit_rows(r, tk.ev == EV_SET)) != GSL_SUCCESS)
+        if ((rc = emit_rows(r, tk.ev == EVOLVE_SET)) != GSL_SUCCESS)
             return rc;
     }
     return GSL_SUCCESS;
 }
 
 static void
-run_free(Run *r)
+driver_free(Driver *r)
 {
-    if (r->side_own)
-        gsl_odeiv2_step_free(r->side_own);
-    if (r->step && (!r->d || r->step != r->d->s))
-        gsl_odeiv2_step_free(r->step);
-    if (r->d)
-        gsl_odeiv2_driver_free(r->d);
+    eomc_evolve_free(r->e);
     dense_free(r->dense);
-    double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
-                        r->xrow, r->erow, r->fs, r->fs2, r->g0, r->g1, r->ge, r->te,
-                        r->xe, r->ce};
-    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        free(arrays[k]);
-    free(r->held);
-    free(r->cl);
+    free(r->xrow);
+    free(r->erow);
 }
 
+/* The first row: the initial state, as it is, after the equations at t0
+ * (a model that cannot be solved there writes no row); then what the
+ * steps' watches start from. */
 static int
-run_alloc(Run *r, const Method *m)
+driver_start(Driver *r)
 {
-    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
-    double span = r->o->t_end - r->o->t0;
-    r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
-    r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
-                                         span > 0 ? H0_REL * span : 1.0, r->o->atol,
-                                         r->o->rtol);
-    r->step = r->d ? r->d->s : NULL;
-    if (r->d && r->o->h_fixed > 0 && *m->fixed != *m->adaptive) {
-        r->step = gsl_odeiv2_step_alloc(*m->fixed, N);
-        if (r->step)
-            gsl_odeiv2_step_set_driver(r->step, r->d);
-    }
-    /* a multistep method's stepper has a history a side step would spoil:
-     * its side steps are a one-step method's of the same kind, explicit
-     * for msadams, implicit for msbdf (an explicit one could not take a
-     * stiff problem's side steps, the Van der Pol oscillator's at
-     * stiffness 1e6: not 1e-8 in 64 pieces) */
-    r->side = r->step;
-    if (r->d && !m->fixed) {
-        r->side = r->side_own = gsl_odeiv2_step_alloc(m->jacobian ? gsl_odeiv2_step_bsimp
-                                                                  : gsl_odeiv2_step_rk8pd, N);
-        if (r->side)
-            gsl_odeiv2_step_set_driver(r->side, r->d);
-    }
-    double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
-                         &r->B1, &r->xrow, &r->erow, &r->fs, &r->fs2, &r->g0, &r->g1,
-                         &r->ge, &r->te, &r->xe, &r->ce};
-    size_t ne = (size_t)r->ne;
-    size_t nc = (size_t)r->m->nc;
-    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, N, ne, ne, ne, ne, N, nc};
-    int ok = r->d && r->step && r->side && (r->dense = dense_alloc(r->n)) != NULL;
-    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
-    ok &= (r->held = calloc(ne + 1, 1)) != NULL;
-    ok &= (r->cl = calloc(nc + 1, sizeof *r->cl)) != NULL;
-    return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
-                                          r->o->method);
-}
-
-/* A run from x at o->t0 set up: the options checked, the work arrays
- * (r zeroed by the caller; run_free either way).  EOMC_OK or a status
- * with its message. */
-static int
-run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row, void *ctx,
-         eomc_stats *st)
-{
-    memset(st, 0, sizeof *st);
-    st->ill_t = NAN;
-    st->t_stop = o->t0;
-    st->cond_tol = o->h_fixed > 0 || !(o->rtol > 0) ? FIXED_COND_TOL : o->rtol;
-    int rc = eomc_run_check(s, o);
-    if (rc)
+    int rc = evolve_start(r->e, r->nrows > 1);
+    if (rc != EOMC_OK)
         return rc;
-    const eomc_model *m = eomc_sim_model(s);
-    int n = m->nq;
-    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(eomc_sim_params(s), m->np))
-        return sim_numeric_error(s, o->t0, x, x + n,
-                                 "the initial state or a parameter is not finite");
-    *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-               .row = row, .ctx = ctx, .ne = m->nevent, .last_set = -INFINITY,
-               .w_t0 = o->t0, .pending = -1};
-    st->stop_event = -1;
-    st->reset_event = -1;
-    r->nrows = eomc_run_rows(o);
-    r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
-    return run_alloc(r, find_method(o->method));
-}
-
-/* The start of a run: the equations at t0 first (a model that cannot be
- * solved there, a singular M, a NaN of a parameter's value, writes no
- * row), the first row (the initial state, as it is), and what the
- * watches start from. */
-static int
-run_start(Run *r)
-{
-    eomc_sim *s = r->s;
-    double *x = r->x;
-    int n = r->n;
-    if (sim_has_levels(s))
-        r->st->max_residual = r->st->max_drift = sim_level_residual(s, r->t, x, x + n);
-    int status = r->nrows > 1 ? rhs(r->t, x, r->f0, r) : GSL_SUCCESS;
-    if (status != GSL_SUCCESS)
-        return step_error(r, status);
-    int rc = r->row ? r->row(r->ctx, r->t, x) : EOMC_OK;
+    rc = r->row ? r->row(r->ctx, r->o->t0, r->x) : EOMC_OK;
     r->k = 1;
-    if (rc == EOMC_OK && r->m->nc > 0 && sim_constraint_rows(s, r->t, x, r->B0) != 0)
-        rc = EOMC_ENUMERIC;
-    if (rc == EOMC_OK)
-        watch_condition(r);
-    if (rc == EOMC_OK && r->m->invariant &&
-        eomc_sim_invariant(s, r->t, x, x + n, &r->h0) == EOMC_OK)
-        r->have_h0 = 1;
-    if (rc == EOMC_OK && r->ne) /* an event at exactly 0 here waits to leave it */
-        eomc_sim_events(s, r->t, x, x + n, r->g0);
-    return rc;
+    return rc == EOMC_OK ? evolve_watch(r->e) : rc;
 }
 
 int
@@ -1299,28 +215,39 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     eomc_stats local;
     if (!st)
         st = &local;
-    Run r = {0};
-    int rc = run_open(&r, s, o, x, row, ctx, st);
+    int n = eomc_sim_model(s)->nq;
+    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .x = x, .row = row,
+                .ctx = ctx};
+    int rc = evolve_open(&r.e, s, o, x, st);
+    if (rc == EOMC_OK) {
+        r.nrows = eomc_run_rows(o);
+        r.dense = dense_alloc(n);
+        r.xrow = sim_zeros((size_t)r.N);
+        r.erow = sim_zeros((size_t)r.N);
+        if (!r.dense || !r.xrow || !r.erow)
+            rc = sim_usage_error(s, "out of memory setting up %s", o->method);
+    }
     if (rc != EOMC_OK) {
-        run_free(&r);
+        driver_free(&r);
         return rc;
     }
     double c0 = sim_seconds(1);
-    rc = run_start(&r);
+    rc = driver_start(&r);
     if (rc == EOMC_OK && r.nrows > 1) {
-        dense_push(r.dense, r.t, x, r.f0);
-        steps_begin(&r);
+        dense_push(r.dense, o->t0, x, evolve_rate(r.e));
+        evolve_begin(r.e);
         int status = march(&r);
         /* the rows up to the last step reached stand, also after a failure */
-        if (status != ROW_STOP && status != EVENT_STOPPED) {
+        if (status != EVOLVE_STOPPED && status != EVENT_STOPPED) {
             int flushed = emit_rows(&r, 1);
             if (status == GSL_SUCCESS)
                 status = flushed;
         }
         /* x is where the run stopped: the last state reached (t_end, a stop
          * event, a failure), or the state a callback stopped it at */
-        st->t_stop = r.t;
-        if (status == ROW_STOP) {
+        double t = evolve_time(r.e);
+        st->t_stop = t;
+        if (status == EVOLVE_STOPPED) {
             st->t_stop = r.stop_t;
             if (r.stop_x != x)
                 memcpy(x, r.stop_x, (size_t)r.N * sizeof *x);
@@ -1328,97 +255,11 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         } else if (status == EVENT_STOPPED)
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
-            rc = step_error(&r, status);
-        else if (!sim_all_finite(x, 2 * r.n))
-            rc = sim_numeric_error(s, r.t, x, x + r.n, "the state is not finite");
+            rc = evolve_error(r.e, status);
+        else if (!sim_all_finite(x, r.N))
+            rc = sim_numeric_error(s, t, x, x + n, "the state is not finite");
     }
     st->cpu_seconds = sim_seconds(1) - c0;
-    run_free(&r);
+    driver_free(&r);
     return rc;
-}
-
-/* ---- one step at a time (eomc_sim_step) ---- */
-
-struct eomc_evolve {
-    Run r;
-    eomc_run_opts o;     /* a copy: r.o */
-    eomc_stats st;       /* r.st */
-    double *x;           /* [2nq] the state: r.x */
-    int over;            /* t_end reached, a stop event, or a failure */
-};
-
-eomc_evolve *
-eomc_evolve_alloc(eomc_sim *s, const eomc_run_opts *o, const double *x0)
-{
-    size_t N = 2 * (size_t)eomc_sim_model(s)->nq;
-    eomc_evolve *e = calloc(1, sizeof *e);
-    double *x = sim_zeros(N);
-    if (!e || !x) {
-        free(e);
-        free(x);
-        sim_usage_error(s, "out of memory setting up the steps");
-        return NULL;
-    }
-    memcpy(x, x0, N * sizeof *x);
-    e->o = *o;
-    e->x = x;
-    int rc = run_open(&e->r, s, &e->o, x, NULL, NULL, &e->st);
-    double c0 = sim_seconds(1);
-    if (rc == EOMC_OK)
-        rc = run_start(&e->r);
-    e->st.cpu_seconds = sim_seconds(1) - c0;
-    if (rc != EOMC_OK) {
-        eomc_evolve_free(e);
-        return NULL;
-    }
-    steps_begin(&e->r);
-    e->over = !(e->r.t < e->o.t_end);
-    return e;
-}
-
-void
-eomc_evolve_free(eomc_evolve *e)
-{
-    if (!e)
-        return;
-    run_free(&e->r);
-    free(e->x);
-    free(e);
-}
-
-const eomc_stats *
-eomc_evolve_stats(const eomc_evolve *e)
-{
-    return &e->st;
-}
-
-int
-eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
-{
-    Run *r = &e->r;
-    if (s != r->s)
-        return sim_usage_error(s, "eomc_sim_step: the steps were set up for another "
-                               "simulator");
-    if (e->over)
-        return sim_usage_error(s, "eomc_sim_step: the run is over, at t = %.17g", r->t);
-    double c0 = sim_seconds(1);
-    Taken tk;
-    int rc = evolve_step(r, &tk);
-    e->st.cpu_seconds += sim_seconds(1) - c0;
-    e->st.t_stop = r->t;
-    if (rc != GSL_SUCCESS) {
-        e->over = 1;
-        return rc == ROW_STOP ? r->row_status : step_error(r, rc);
-    }
-    *d = (eomc_step){.nx = r->N, .t0 = tk.t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
-                     .x1 = r->x, .f1 = r->f0, .event = tk.ev != EV_NONE ? tk.fired : -1,
-                     .last = tk.ev == EV_STOP || !(r->t < e->o.t_end)};
-    e->over = d->last;
-    return EOMC_OK;
-}
-
-void
-eomc_step_eval(const eomc_step *d, double t, double *x)
-{
-    cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
 }

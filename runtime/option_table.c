@@ -169,6 +169,15 @@ option_find(const char *arg, size_t len)
     return -1;
 }
 
+int
+option_takes_value(int option)
+{
+    for (int k = 0; k < NROWS; k++)
+        if (rows[k].name && rows[k].option == option)
+            return rows[k].value != NULL;
+    return -1;
+}
+
 const char *
 option_name(int option)
 {

@@ -29,6 +29,10 @@ enum Option {
 
 /* The option arg[0..len) names, or -1. */
 int option_find(const char *arg, size_t len);
+/* Whether its row gives it a value (1) or it is a flag (0); -1: no row.
+ * Parsing goes by the enum (FIRST_FLAG), --help by the row: the runtime
+ * test option_table holds the two to agree. */
+int option_takes_value(int option);
 /* Its name as the user writes it ("--t-end", "-o"). */
 const char *option_name(int option);
 /* --help: the usage, every option the model m has a use for, and the

@@ -17,6 +17,10 @@
 # samples, humanoid, 22_humanoids or humanoid100, each a test of its own
 # (meson's import-*), so that they run side by side and a configuration
 # can leave the two large ones out (.ci/run says which and why).
+# EOMC_TEST_STATES=N: at most N random states a model (the sanitizers'
+# stage of .ci/run: it looks for memory errors and undefined behaviour,
+# which every state's run meets in the same code; the numbers are checked
+# at every state by the other configurations).
 set -u
 eomc=$1 src=$2 mj=$4 part=${5:-small}
 . "$src/tests/cli/tap.sh"
@@ -54,6 +58,9 @@ for model in $models; do
   # loading a simulator of tens of megabytes, and without the extended-
   # precision twin (it would double their build)
   case $base in 22_humanoids_xml | humanoid100_xml) states=20 ext= ;; esac
+  if [ -n "${EOMC_TEST_STATES:-}" ] && [ "$EOMC_TEST_STATES" -lt $states ]; then
+    states=$EOMC_TEST_STATES
+  fi
   while [ $k -lt $states ]; do
     k=$((k + 1))
     # a random state and MuJoCo's q'' there, in eomc's coordinates (mj_accel.c)

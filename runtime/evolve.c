@@ -119,7 +119,7 @@ typedef struct Run {
     double reached;               /* a failed step's motion is known up to here
                                    * (EvolveStep), or NAN ... */
     double *fr;                   /* [N] ... x' there (its state: xt) */
-    int stop_status;              /* on_event's nonzero status: EVOLVE_STOPPED */
+    int stop_status;              /* a callback's nonzero status: EVOLVE_STOPPED */
     double stop_t;                /* ... the time it was called with */
     const double *stop_x;         /* ... and the state (kept until the next step) */
     double h0;                    /* the conserved quantity at the start */
@@ -182,6 +182,18 @@ jac(double t, const double *x, double *dfdx, double *dfdt, void *ctx)
     r->st->jac_evals++;
     return eomc_sim_jacobian(r->s, t, x, dfdx, dfdt) == EOMC_OK ? GSL_SUCCESS
                                                                 : GSL_EBADFUNC;
+}
+
+/* A callback (on_event here, a row's in the driver) returned status at
+ * (t, x): the run stops there, and x is the state the caller gets back
+ * (eomc_sim_integrate). */
+static int
+callback_stop(Run *r, int status, double t, const double *x)
+{
+    r->stop_status = status;
+    r->stop_t = t;
+    r->stop_x = x;
+    return EVOLVE_STOPPED;
 }
 
 /* The run's typical step (COLLAPSE_REL): the geometric mean of its
@@ -474,17 +486,6 @@ after_step(Run *r, double t0)
 }
 
 /* ---- side steps ---- */
-
-/* on_event returned status at (t, x): the run stops there, and x is the
- * state the caller gets back (eomc_sim_integrate). */
-static int
-callback_stop(Run *r, int status, double t, const double *x)
-{
-    r->stop_status = status;
-    r->stop_t = t;
-    r->stop_x = x;
-    return EVOLVE_STOPPED;
-}
 
 /* The state at t by a step of its own from the node before it (a row's,
  * or an event's from the step's start): 1, 2, 4, ... pieces until each
@@ -1119,6 +1120,12 @@ evolve_side(eomc_evolve *e, double tk, const double *xk, const double *fk, doubl
             double *x)
 {
     return side_from(&e->r, tk, xk, fk, t, x);
+}
+
+int
+evolve_stop(eomc_evolve *e, int status, double t, const double *x)
+{
+    return callback_stop(&e->r, status, t, x);
 }
 
 int

@@ -17,18 +17,21 @@
  *  - after every accepted step, the scene's events (stepevents.h): one
  *    that fired is located, reported, and stops the run or resets the
  *    state and starts the integration again from there (check_events);
- *  - the watch over the steps: they stop when they collapse or grind.
- * The stepper, the checks after a step and the watch over the steps all
- * read and change the one step's state (Run), so they stay together here.
- * The events need of it only a step's ends, x' and a side step: their
- * layer (stepevents.c) keeps its own state, is handed the ends, and calls
- * back for the rest, so that no file calls the other's functions both
- * ways; what an event does to the step (its end moved to the event, the
- * stepper restarted after a reset) is done here.
+ *  - the watch over the adaptive steps (stepwatch.h): they stop when
+ *    they collapse or grind.
+ * The stepper and the checks after a step read and change the one step's
+ * state (Run), so they stay together here.  The events and the watch need
+ * of it only what they are handed: a step's ends, and x' and side steps
+ * as callbacks, for the events (stepevents.c); the attempts and the steps'
+ * sizes, for the watch (stepwatch.c).  Each keeps its own state, and
+ * neither calls back into this file but through the callbacks it was
+ * given, so the calls go one way; what an event does to the step (its end
+ * moved to the event, the stepper restarted after a reset) is done here.
  */
 #include "evolve.h"
 #include "simimpl.h"
 #include "stepevents.h"
+#include "stepwatch.h"
 #include "dense.h"
 #include "linalg.h"
 #include "methods.h"
@@ -46,9 +49,6 @@
 /* The first trial step, as a fraction of the span: the control grows it
  * by up to 5 a step, so it costs a few steps, and never depends on dt. */
 #define H0_REL 1e-5
-/* take_step's status when the steps collapsed or ground (not GSL codes;
- * EVOLVE_STOPPED is evolve.h's, the events' stepevents.h's). */
-enum { STEP_COLLAPSE = -1001, STEP_GRIND = -1002 };
 /* The first step after a reset: at most this fraction of the time since
  * the event before, so that the steps resolve the next interval (each
  * bounce of a ball is shorter than the last by the restitution). */
@@ -57,39 +57,6 @@ enum { STEP_COLLAPSE = -1001, STEP_GRIND = -1002 };
  * watched for a collapse until this many have grown them again (by up to
  * 5 each), and events that come too fast are caught as such. */
 enum { RESTART_STEPS = 30 };
-/* Steps have collapsed when an accepted step is below COLLAPSE_REL of the
- * run's typical step (the geometric mean of its accepted steps, once it
- * has COLLAPSE_AFTER of them): seven orders of magnitude is more than a
- * smooth motion asks (Kepler's orbit at e = 0.9999 runs 100 time units
- * with every method without coming near), and a run that went on at such
- * steps would take ten million times its steps so far to cover as much
- * time again.  A stiff motion's fast phases are brief and take their
- * share of the steps: msbdf on Van der Pol's oscillator at mu = 1e4 and
- * 3e4 (its steps up to ten billion times shorter in a jump than between)
- * comes to 3e-6 of typical at worst. */
-#define COLLAPSE_REL 1e-7
-enum { COLLAPSE_AFTER = 100 };
-/* The steps grind when GRIND_WINDOWS windows of GRIND_WINDOW attempts in
- * a row each rejected more than GRIND_REJECTED of them and advanced the
- * run by less than GRIND_REL of the step at a typical instant of it (the
- * geometric mean of its steps, each weighted by the time it covers) per
- * attempt: the step control no longer finds the step its error model
- * predicts, and the run crawls.  (The pace, not the steps' mean: bsimp
- * alternates long steps and many short ones, and makes its way.)
- * One-step methods grinding reject more than half (rk8pd's steps
- * alternate between one that fails and one that passes); the multistep
- * methods cut their order with the step after a rejection, and reject a
- * third (msbdf on a top in z-x-z angles at theta = 0: 16% to 44% a
- * window, at 1e-5 of the typical instant's step, for 12 million steps).
- * Smooth motion rejects a fifth of its attempts for at most 7 such
- * windows in a row (Kepler's orbit at e = 0.9999 through periapsis).
- * Weighted by steps instead of time, the typical step sank with the steps
- * of the very trouble it was to measure: the top's ten million short
- * steps became typical.  A window that grinds does not count toward the
- * collapse's typical step, which would otherwise sink with it. */
-enum { GRIND_WINDOW = 100, GRIND_WINDOWS = 20 };
-#define GRIND_REL 1e-3
-#define GRIND_REJECTED 0.2
 typedef struct Run {
     eomc_sim *s;
     const eomc_model *m;          /* s's */
@@ -117,16 +84,7 @@ typedef struct Run {
     const double *stop_x;         /* ... and the state (kept until the next step) */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
-    double log_h;                 /* sum of log(h) over the accepted steps ... */
-    long nh;                      /* ... not cut short by t_end, of windows that
-                                   * did not grind */
-    double sum_h, sum_hlog;       /* sums of h and h log(h) over all of them */
-    double h_last;                /* the last such step */
-    long tries, fails;            /* attempts and rejections in this window */
-    double w_log_h;               /* sum of log(h) over its accepted steps ... */
-    long w_nh;                    /* ... how many */
-    double w_t0;                  /* the time it started at */
-    int grinding;                 /* windows in a row that ground */
+    StepWatch *watch;             /* the watch over the adaptive steps */
     StepEvents *ev;               /* the scene's events (NULL: none) */
     long since_reset;             /* steps since the last reset (RESTART_STEPS
                                    * before the first: none to watch for) */
@@ -176,24 +134,6 @@ callback_stop(Run *r, int status, double t, const double *x)
     return EVOLVE_STOPPED;
 }
 
-/* The run's typical step (COLLAPSE_REL): the geometric mean of its
- * accepted steps. */
-static double
-typical_step(const Run *r)
-{
-    if (r->nh > 0)
-        return exp(r->log_h / (double)r->nh);
-    return r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0; /* the first window */
-}
-
-/* The step at a typical instant of the run (GRIND_REL): the geometric mean
- * of its accepted steps, each weighted by the time it covers. */
-static double
-instant_step(const Run *r)
-{
-    return r->sum_h > 0 ? exp(r->sum_hlog / r->sum_h) : 0;
-}
-
 /* Why the steps may have collapsed at the current state, as far as the
  * runtime can see: an ill-conditioned solve (losing more than half the
  * digits of q''), a vanishing constraint row, or neither. */
@@ -224,23 +164,14 @@ step_error(Run *r, int status)
 {
     eomc_sim *s = r->s;
     int n = r->n;
-    char cause[1024];
-    if (status == GSL_ENOPROG || status == STEP_COLLAPSE || status == STEP_GRIND)
+    char cause[1024], what[1024];
+    if (status == GSL_ENOPROG || status == STEPWATCH_COLLAPSE || status == STEPWATCH_GRIND)
         likely_cause(r, cause, sizeof cause);
     switch (status) {
-    case STEP_COLLAPSE:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps collapsed to %.3g, "
-                                 "%.2g of the run's typical step %.3g: the motion is near a "
-                                 "singularity, and the likely cause: %s", r->h_last,
-                                 r->h_last / typical_step(r), typical_step(r), cause);
-    case STEP_GRIND:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps grind: in each of "
-                                 "the last %d windows of %d attempts more than %g of them "
-                                 "were rejected, and the run advanced by less than %g of "
-                                 "the step at a typical instant of it (%.3g) per attempt "
-                                 "(steps of %.3g lately); the likely cause: %s",
-                                 GRIND_WINDOWS, GRIND_WINDOW, GRIND_REJECTED, GRIND_REL,
-                                 instant_step(r), r->h_last, cause);
+    case STEPWATCH_COLLAPSE:
+    case STEPWATCH_GRIND:
+        stepwatch_what(r->watch, status, what, sizeof what);
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "%s%s", what, cause);
     case STEPEV_ACCUMULATE:
     case STEPEV_RETURNED:
         return stepev_error(r->ev, status, r->t, r->x);
@@ -575,11 +506,10 @@ adaptive_step(Run *r, double *h)
                                               &h0) == GSL_ODEIV_HADJ_DEC) {
             retry = 1;
         }
-        r->tries++;
+        stepwatch_tried(r->watch, retry);
         if (retry) {
             memcpy(r->x, r->y0, bytes);
             r->st->rejected++;
-            r->fails++;
             if (!(h0 < h_old) || t0 + h0 == t0 || h0 < r->hmin)
                 return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
             continue;
@@ -587,8 +517,7 @@ adaptive_step(Run *r, double *h)
         r->t = final ? o->t_end : t0 + h_old;
         if (!final) {
             *h = h0;
-            r->sum_h += h_old, r->sum_hlog += h_old * log(h_old);
-            r->w_log_h += log(h_old), r->w_nh++, r->h_last = h_old;
+            stepwatch_accepted(r->watch, h_old);
         }
         return GSL_SUCCESS;
     }
@@ -612,28 +541,6 @@ fixed_step(Run *r, double t1)
     }
     r->t = t1;
     return GSL_SUCCESS;
-}
-
-/* After an adaptive step: have the steps collapsed, or do they grind? */
-static int
-watch_steps(Run *r)
-{
-    double typ = typical_step(r);
-    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ &&
-        r->since_reset >= RESTART_STEPS)
-        return STEP_COLLAPSE;
-    if (r->tries < GRIND_WINDOW)
-        return GSL_SUCCESS;
-    double pace = (r->t - r->w_t0) / (double)r->tries;
-    if ((double)r->fails > GRIND_REJECTED * (double)r->tries &&
-        pace < GRIND_REL * instant_step(r)) {
-        r->grinding++;
-    } else {
-        r->log_h += r->w_log_h, r->nh += r->w_nh;
-        r->grinding = 0;
-    }
-    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0, r->w_t0 = r->t;
-    return r->grinding >= GRIND_WINDOWS ? STEP_GRIND : GSL_SUCCESS;
 }
 
 /* The fixed steps of the span (st->h_used), or none (adaptive): before
@@ -716,7 +623,8 @@ take_step(Run *r, EvolveStep *tk)
     }
     if (r->t < o->t_end && !r->nfixed && fabs(r->h) < r->hmin)
         return GSL_ENOPROG;
-    if (!r->nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
+    int restarting = r->since_reset < RESTART_STEPS;
+    if (!r->nfixed && (rc = stepwatch_check(r->watch, r->t, restarting)) != GSL_SUCCESS)
         return rc;
     return GSL_SUCCESS;
 }
@@ -735,6 +643,7 @@ run_free(Run *r)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     stepev_free(r->ev);
+    stepwatch_free(r->watch);
 }
 
 static int
@@ -767,7 +676,7 @@ run_alloc(Run *r, const Method *m)
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
                          &r->B1, &r->fr, &r->fs, &r->fs2};
     size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N};
-    int ok = r->d && r->step && r->side;
+    int ok = r->d && r->step && r->side && (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     if (r->m->nevent > 0) {
@@ -797,7 +706,7 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-               .since_reset = RESTART_STEPS, .w_t0 = o->t0, .pending = -1, .reached = NAN};
+               .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);

@@ -369,3 +369,14 @@ dense_start(const Dense *d, double t, const double **x, const double **dxdt)
     *dxdt = d->f[k % KEEP];
     return node_t(d, k);
 }
+
+void
+dense_cubic(double t0, double t1, const double *x0, const double *f0, const double *x1,
+            const double *f1, int N, double t, double *x)
+{
+    double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s;
+    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
+    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
+    for (int i = 0; i < N; i++)
+        x[i] = h00 * x0[i] + h10 * h * f0[i] + h01 * x1[i] + h11 * h * f1[i];
+}

@@ -44,5 +44,10 @@ void dense_refine(Dense *d);
 double dense_start(const Dense *d, double t, const double **x, const double **dxdt);
 /* The time of the last node (-inf without one). */
 double dense_last(const Dense *d);
+/* The cubic Hermite interpolant of one step alone, through (x0, f0) at t0
+ * and (x1, f1) at t1, at t: x [N].  Cheap, for where a step's own ends
+ * are enough (an event's first look, eomc_step_eval). */
+void dense_cubic(double t0, double t1, const double *x0, const double *f0,
+                 const double *x1, const double *f1, int N, double t, double *x);
 
 #endif

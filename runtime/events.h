@@ -1,7 +1,7 @@
 /*
  * events: zero crossings of a scene's event functions, found and located.
  *
- * The step layer (evolve.c) evaluates the events' g at every step end.  An
+ * The events of the steps (stepevents.c) evaluate g at every step end.  An
  * event fires in a step where its g crossed zero in its direction; the
  * time is located first on a cheap model of the step (the interpolant),
  * then refined on the true solution (a step from the step's start to the
@@ -14,8 +14,8 @@
 /* Whether g went from g0 to g1 across zero in direction dir (+1 up, -1
  * down, 0 either): g0 on one side, g1 on the other or exactly 0.  A g0
  * of exactly 0 is never a crossing: it is an event that has just fired
- * (the driver sets it so), which must leave zero before it can fire
- * again. */
+ * (a reset sets it so, stepevents.c), which must leave zero before it
+ * can fire again. */
 int ev_crossed(int dir, double g0, double g1);
 
 /* g(t) of one event; NAN when it cannot be evaluated there. */

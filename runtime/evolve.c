@@ -14,17 +14,25 @@
  *  - after every accepted step of a constrained model, the checks and
  *    corrections of after_step: a degenerate constraint stops the run,
  *    the drift is measured, and the state is projected when asked;
- *  - after every accepted step, the scene's events (events.h): one that
- *    fired is located, reported, and stops the run or resets the state
- *    and starts the integration again from there (check_events);
- *  - the watch over the steps: they stop when they collapse or grind.
- * Over 800 lines: the stepper, the checks after a step, the events that
- * may end it and the watch over the steps all read and change the one
- * step's state (Run), which a split would have to share through a header.
+ *  - after every accepted step, the scene's events (stepevents.h): one
+ *    that fired is located, reported, and stops the run or resets the
+ *    state and starts the integration again from there (check_events);
+ *  - the watch over the adaptive steps (stepwatch.h): they stop when
+ *    they collapse or grind.
+ * The stepper and the checks after a step read and change the one step's
+ * state (Run), so they stay together here.  The events and the watch need
+ * of it only what they are handed: a step's ends, and x' and side steps
+ * as callbacks, for the events (stepevents.c); the attempts and the steps'
+ * sizes, for the watch (stepwatch.c).  Each keeps its own state, and
+ * neither calls back into this file but through the callbacks it was
+ * given, so the calls go one way; what an event does to the step (its end
+ * moved to the event, the stepper restarted after a reset) is done here.
  */
 #include "evolve.h"
 #include "simimpl.h"
-#include "events.h"
+#include "stepevents.h"
+#include "stepwatch.h"
+#include "dense.h"
 #include "linalg.h"
 #include "methods.h"
 
@@ -41,21 +49,6 @@
 /* The first trial step, as a fraction of the span: the control grows it
  * by up to 5 a step, so it costs a few steps, and never depends on dt. */
 #define H0_REL 1e-5
-/* take_step's status when the steps collapsed or ground, and when events
- * accumulated (not GSL codes; EVOLVE_STOPPED is evolve.h's). */
-enum { STEP_COLLAPSE = -1001, STEP_GRIND = -1002, EVENTS_ACCUMULATE = -1003,
-       EVENT_RETURNED = -1005 };
-/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
- * a `set` event fires within ACCUMULATE_REL of the time span of the one
- * before: their times are no longer resolved (the steps between them
- * would be below the collapse limit of any run), and the next ones come
- * ever faster. */
-#define ACCUMULATE_REL 1e-9
-/* A reset passes through its event when it leaves g moving on the way it
- * crossed at more than PASS_REL of the rate it arrived with (a kick, a
- * switch of mode).  Anything slower, at rest or turned back (an impact),
- * is held at g = 0 until it leaves (check_events). */
-#define PASS_REL 1e-6
 /* The first step after a reset: at most this fraction of the time since
  * the event before, so that the steps resolve the next interval (each
  * bounce of a ball is shorter than the last by the restitution). */
@@ -64,39 +57,6 @@ enum { STEP_COLLAPSE = -1001, STEP_GRIND = -1002, EVENTS_ACCUMULATE = -1003,
  * watched for a collapse until this many have grown them again (by up to
  * 5 each), and events that come too fast are caught as such. */
 enum { RESTART_STEPS = 30 };
-/* Steps have collapsed when an accepted step is below COLLAPSE_REL of the
- * run's typical step (the geometric mean of its accepted steps, once it
- * has COLLAPSE_AFTER of them): seven orders of magnitude is more than a
- * smooth motion asks (Kepler's orbit at e = 0.9999 runs 100 time units
- * with every method without coming near), and a run that went on at such
- * steps would take ten million times its steps so far to cover as much
- * time again.  A stiff motion's fast phases are brief and take their
- * share of the steps: msbdf on Van der Pol's oscillator at mu = 1e4 and
- * 3e4 (its steps up to ten billion times shorter in a jump than between)
- * comes to 3e-6 of typical at worst. */
-#define COLLAPSE_REL 1e-7
-enum { COLLAPSE_AFTER = 100 };
-/* The steps grind when GRIND_WINDOWS windows of GRIND_WINDOW attempts in
- * a row each rejected more than GRIND_REJECTED of them and advanced the
- * run by less than GRIND_REL of the step at a typical instant of it (the
- * geometric mean of its steps, each weighted by the time it covers) per
- * attempt: the step control no longer finds the step its error model
- * predicts, and the run crawls.  (The pace, not the steps' mean: bsimp
- * alternates long steps and many short ones, and makes its way.)
- * One-step methods grinding reject more than half (rk8pd's steps
- * alternate between one that fails and one that passes); the multistep
- * methods cut their order with the step after a rejection, and reject a
- * third (msbdf on a top in z-x-z angles at theta = 0: 16% to 44% a
- * window, at 1e-5 of the typical instant's step, for 12 million steps).
- * Smooth motion rejects a fifth of its attempts for at most 7 such
- * windows in a row (Kepler's orbit at e = 0.9999 through periapsis).
- * Weighted by steps instead of time, the typical step sank with the steps
- * of the very trouble it was to measure: the top's ten million short
- * steps became typical.  A window that grinds does not count toward the
- * collapse's typical step, which would otherwise sink with it. */
-enum { GRIND_WINDOW = 100, GRIND_WINDOWS = 20 };
-#define GRIND_REL 1e-3
-#define GRIND_REJECTED 0.2
 typedef struct Run {
     eomc_sim *s;
     const eomc_model *m;          /* s's */
@@ -119,41 +79,19 @@ typedef struct Run {
     double reached;               /* a failed step's motion is known up to here
                                    * (EvolveStep), or NAN ... */
     double *fr;                   /* [N] ... x' there (its state: xt) */
-    int stop_status;              /* on_event's nonzero status: EVOLVE_STOPPED */
+    int stop_status;              /* a callback's nonzero status: EVOLVE_STOPPED */
     double stop_t;                /* ... the time it was called with */
     const double *stop_x;         /* ... and the state (kept until the next step) */
     double h0;                    /* the conserved quantity at the start */
     int have_h0;
-    double log_h;                 /* sum of log(h) over the accepted steps ... */
-    long nh;                      /* ... not cut short by t_end, of windows that
-                                   * did not grind */
-    double sum_h, sum_hlog;       /* sums of h and h log(h) over all of them */
-    double h_last;                /* the last such step */
-    long tries, fails;            /* attempts and rejections in this window */
-    double w_log_h;               /* sum of log(h) over its accepted steps ... */
-    long w_nh;                    /* ... how many */
-    double w_t0;                  /* the time it started at */
-    int grinding;                 /* windows in a row that ground */
-    int ne;                       /* events */
-    double *g0, *g1;              /* [ne] g at the step's start and end */
-    double *ge, *te;              /* [ne] scratch: g, and each event's time */
-    double *xe;                   /* [N] the state at an event's trial time */
-    int ev_k;                     /* the event being located */
-    double ev_t0, ev_t1;          /* in the step from ev_t0 to ev_t1 */
-    double last_set;              /* the time of the last `set` event */
-    long nsets;                   /* `set` events so far */
-    unsigned char *held;          /* [ne] reset at g = 0, not yet left it */
-    double gap;                   /* from the `set` event before to the last */
-    double left_rate;             /* g's rate after the last reset, a share of
-                                     its rate on arrival (0 unless on the way
-                                     it crossed, slower than passing) */
-    long since_reset;             /* steps since the last reset */
+    StepWatch *watch;             /* the watch over the adaptive steps */
+    StepEvents *ev;               /* the scene's events (NULL: none) */
+    long since_reset;             /* steps since the last reset (RESTART_STEPS
+                                   * before the first: none to watch for) */
     double h;                     /* the next adaptive step to try */
     unsigned long nfixed, i;      /* fixed steps: how many, and the last taken */
     int pending;                  /* a `set` event whose reset starts the next
                                    * step (-1: none) */
-    double *ce;                   /* [nc] each constraint's inconsistency */
-    int *cl;                      /* [nc] and its level, after a reset */
 } Run;
 
 /* The caller is told of the progress every PROGRESS_EVERY right-hand
@@ -184,22 +122,16 @@ jac(double t, const double *x, double *dfdx, double *dfdt, void *ctx)
                                                                 : GSL_EBADFUNC;
 }
 
-/* The run's typical step (COLLAPSE_REL): the geometric mean of its
- * accepted steps. */
-static double
-typical_step(const Run *r)
+/* A callback (on_event here, a row's in the driver) returned status at
+ * (t, x): the run stops there, and x is the state the caller gets back
+ * (eomc_sim_integrate). */
+static int
+callback_stop(Run *r, int status, double t, const double *x)
 {
-    if (r->nh > 0)
-        return exp(r->log_h / (double)r->nh);
-    return r->w_nh ? exp(r->w_log_h / (double)r->w_nh) : 0; /* the first window */
-}
-
-/* The step at a typical instant of the run (GRIND_REL): the geometric mean
- * of its accepted steps, each weighted by the time it covers. */
-static double
-instant_step(const Run *r)
-{
-    return r->sum_h > 0 ? exp(r->sum_hlog / r->sum_h) : 0;
+    r->stop_status = status;
+    r->stop_t = t;
+    r->stop_x = x;
+    return EVOLVE_STOPPED;
 }
 
 /* Why the steps may have collapsed at the current state, as far as the
@@ -232,48 +164,17 @@ step_error(Run *r, int status)
 {
     eomc_sim *s = r->s;
     int n = r->n;
-    char cause[1024];
-    if (status == GSL_ENOPROG || status == STEP_COLLAPSE || status == STEP_GRIND)
+    char cause[1024], what[1024];
+    if (status == GSL_ENOPROG || status == STEPWATCH_COLLAPSE || status == STEPWATCH_GRIND)
         likely_cause(r, cause, sizeof cause);
     switch (status) {
-    case STEP_COLLAPSE:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps collapsed to %.3g, "
-                                 "%.2g of the run's typical step %.3g: the motion is near a "
-                                 "singularity, and the likely cause: %s", r->h_last,
-                                 r->h_last / typical_step(r), typical_step(r), cause);
-    case STEP_GRIND:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the steps grind: in each of "
-                                 "the last %d windows of %d attempts more than %g of them "
-                                 "were rejected, and the run advanced by less than %g of "
-                                 "the step at a typical instant of it (%.3g) per attempt "
-                                 "(steps of %.3g lately); the likely cause: %s",
-                                 GRIND_WINDOWS, GRIND_WINDOW, GRIND_REJECTED, GRIND_REL,
-                                 instant_step(r), r->h_last, cause);
-    case EVENT_RETURNED:
-        if (r->left_rate > 0) /* moving on, too slowly to pass: not a return */
-            return sim_numeric_error(s, r->t, r->x, r->x + n, "event %s holds still at "
-                                     "the end of the first step after its reset at t = "
-                                     "%.17g: the reset left the motion crossing it at "
-                                     "%.2g of the rate it arrived with, too slow to tell "
-                                     "from resting on it (passing through takes more "
-                                     "than %g); a reset that passes should leave it "
-                                     "faster, one that stops it should turn it back",
-                                     r->m->ev_names[r->ev_k], r->last_set, r->left_rate,
-                                     PASS_REL);
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
-                                 "holds again at the end of the first step after its "
-                                 "reset at t = %.17g (a step of %.3g): the motion returns "
-                                 "to it faster than the steps can follow (it comes to rest "
-                                 "against it%s)", r->m->ev_names[r->ev_k], r->last_set,
-                                 r->t - r->last_set, r->o->h_fixed > 0
-                                 ? ", or the fixed steps are too long" : "");
-    case EVENTS_ACCUMULATE:
-        return sim_numeric_error(s, r->t, r->x, r->x + n, "the events accumulate: %s "
-                                 "fired %ld times, the last two %.3g apart, below %g of "
-                                 "the time span: the motion comes to rest against it in "
-                                 "ever shorter intervals (Zeno), which no step can "
-                                 "follow", r->m->ev_names[r->ev_k], r->nsets + 1,
-                                 r->t - r->last_set, ACCUMULATE_REL);
+    case STEPWATCH_COLLAPSE:
+    case STEPWATCH_GRIND:
+        stepwatch_what(r->watch, status, what, sizeof what);
+        return sim_numeric_error(s, r->t, r->x, r->x + n, "%s%s", what, cause);
+    case STEPEV_ACCUMULATE:
+    case STEPEV_RETURNED:
+        return stepev_error(r->ev, status, r->t, r->x);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
     case GSL_EMAXITER:
@@ -475,17 +376,6 @@ after_step(Run *r, double t0)
 
 /* ---- side steps ---- */
 
-/* on_event returned status at (t, x): the run stops there, and x is the
- * state the caller gets back (eomc_sim_integrate). */
-static int
-callback_stop(Run *r, int status, double t, const double *x)
-{
-    r->stop_status = status;
-    r->stop_t = t;
-    r->stop_x = x;
-    return EVOLVE_STOPPED;
-}
-
 /* The state at t by a step of its own from the node before it (a row's,
  * or an event's from the step's start): 1, 2, 4, ... pieces until each
  * passes the step control.  It is part of an
@@ -515,223 +405,59 @@ side_from(Run *r, double tk, const double *xk, const double *fk, double t, doubl
     return GSL_EBADFUNC;
 }
 
-/* ---- events ---- */
+/* ---- events (stepevents.h) ---- */
 
-/* The cubic Hermite interpolant through (x0, f0) at t0 and (x1, f1) at
- * t1, at t: x [N] (eomc_step_eval). */
-static void
-cubic(double t0, double t1, const double *x0, const double *f0, const double *x1,
-      const double *f1, int N, double t, double *x)
+static int
+side_motion(void *ctx, double tk, const double *xk, const double *fk, double t, double *x)
 {
-    double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s;
-    double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
-    double h01 = 3 * s2 - 2 * s3, h11 = s3 - s2;
-    for (int i = 0; i < N; i++)
-        x[i] = h00 * x0[i] + h10 * h * f0[i] + h01 * x1[i] + h11 * h * f1[i];
+    return side_from(ctx, tk, xk, fk, t, x);
 }
 
-/* The state at t in the step just taken (from ev_t0 to ev_t1), on the
- * cubic Hermite interpolant through its ends (y0, f0; x, f1): cheap, and
- * good enough to start the search on the solution from. */
-static void
-hermite(const Run *r, double t, double *x)
-{
-    cubic(r->ev_t0, r->ev_t1, r->y0, r->f0, r->x, r->f1, r->N, t, x);
-}
-
-static double
-g_interpolant(void *ctx, double t)
-{
-    Run *r = ctx;
-    hermite(r, t, r->xe);
-    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
-    return r->ge[r->ev_k];
-}
-
-/* g on the solution: the state at t by a step of its own from the step's
- * start, controlled as a row's side step is. */
-static double
-g_solution(void *ctx, double t)
-{
-    Run *r = ctx;
-    r->st->event_evals++;
-    if (side_from(r, r->ev_t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
-        return NAN;
-    eomc_sim_events(r->s, t, r->xe, r->xe + r->n, r->ge);
-    return r->ge[r->ev_k];
-}
-
-/* After the step from t0 to r->t: the events that fired in it, in time
- * order, each reported with the state there.  The first `stop` or `set`
- * event ends the step at its time: r->t, r->x and r->f1 become the
- * event's, *what is EVOLVE_STOP or EVOLVE_SET and *fired its index (else
- * EVOLVE_NONE).  A record event after it in the same step never happened.
- * Returns GSL_SUCCESS or a failure status. */
+/* After the step from t0 to r->t: the events that fired in it.  One that
+ * ends the step moves the step's end to it: r->t, r->x and r->f1 become
+ * the event's, *what is EVOLVE_STOP or EVOLVE_SET and *fired its index
+ * (else they are left as they are).  Returns GSL_SUCCESS or a failure
+ * status. */
 static int
 check_events(Run *r, double t0, int *what, int *fired)
 {
-    eomc_sim *s = r->s;
-    const eomc_model *m = r->m;
-    size_t bytes = (size_t)r->N * sizeof *r->x;
-    int any = 0;
-    r->ev_t0 = t0, r->ev_t1 = r->t;
-    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g1);
-    for (int k = 0; k < r->ne; k++) {
-        r->te[k] = NAN;
-        /* an event reset at g = 0 must leave it away from where it fires
-         * (up for a downward event): back there already, the motion
-         * returned within one step, faster than the steps can follow */
-        int dir = m->ev_direction[k];
-        if (r->held[k] && dir != 0 && (r->g1[k] == 0 || (r->g1[k] < 0) == (dir < 0))) {
-            r->ev_k = k;
-            return EVENT_RETURNED;
-        }
-        r->held[k] = 0;
-        if (!ev_crossed(m->ev_direction[k], r->g0[k], r->g1[k]))
-            continue;
-        int evals;
-        r->ev_k = k;
-        double guess = ev_root(g_interpolant, r, t0, r->g0[k], r->t, r->g1[k], NAN, &evals);
-        r->te[k] = ev_root(g_solution, r, t0, r->g0[k], r->t, r->g1[k], guess, &evals);
-        if (isnan(r->te[k])) {
-            sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s fired in the step "
-                              "from t = %.17g, but the state at its trial times could not "
-                              "be computed", m->ev_names[k], t0);
-            return GSL_EBADFUNC;
-        }
-        any = 1;
-    }
-    memcpy(r->g0, r->g1, (size_t)r->ne * sizeof *r->g0);
-    *what = EVOLVE_NONE;
-    while (any) {
-        int k = -1;
-        for (int j = 0; j < r->ne; j++)
-            if (!isnan(r->te[j]) && (k < 0 || r->te[j] < r->te[k]))
-                k = j;
-        if (k < 0)
-            break;
-        double t = r->te[k];
-        r->te[k] = NAN;
-        r->st->events++;
-        if (t == r->ev_t1)
-            memcpy(r->xe, r->x, bytes);
-        else if (side_from(r, t0, r->y0, r->f0, t, r->xe) != GSL_SUCCESS)
-            return GSL_EBADFUNC;
-        int rc = r->o->on_event ? r->o->on_event(r->o->event_ctx, k, t, r->xe) : EOMC_OK;
-        if (rc != EOMC_OK)
-            return callback_stop(r, rc, t, r->xe);
-        if (m->ev_action[k] == EOMC_EVENT_RECORD)
-            continue;
-        memcpy(r->x, r->xe, bytes);
-        r->t = t;
-        if (t != r->ev_t1 && (rc = rhs(t, r->x, r->f1, r)) != GSL_SUCCESS)
-            return rc;
-        if (r->m->nc > 0 && sim_constraint_rows(s, t, r->x, r->B0) != 0)
-            return GSL_EBADFUNC;
-        *fired = k;
-        *what = m->ev_action[k] == EOMC_EVENT_STOP ? EVOLVE_STOP : EVOLVE_SET;
+    StepevSpan sp = {.t0 = t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f0, .x1 = r->x,
+                     .f1 = r->f1};
+    StepevHit hit;
+    int rc = stepev_check(r->ev, &sp, &hit);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    if (hit.status != EOMC_OK)
+        return callback_stop(r, hit.status, hit.t, hit.x);
+    if (hit.k < 0)
         return GSL_SUCCESS;
-    }
+    memcpy(r->x, hit.x, (size_t)r->N * sizeof *r->x);
+    r->t = hit.t;
+    if (hit.t != sp.t1 && (rc = rhs(hit.t, r->x, r->f1, r)) != GSL_SUCCESS)
+        return rc;
+    if (r->m->nc > 0 && sim_constraint_rows(r->s, hit.t, r->x, r->B0) != 0)
+        return GSL_EBADFUNC;
+    *fired = hit.k;
+    *what = r->m->ev_action[hit.k] == EOMC_EVENT_STOP ? EVOLVE_STOP : EVOLVE_SET;
     return GSL_SUCCESS;
 }
 
-/* How fast event k's g changes along the motion at (t, x), whose
- * right-hand side is f: a central difference along the tangent over a
- * probe PROBE_REL of the step.  It is exact for a g quadratic in the
- * state, and otherwise off by (probe)^2 g'''/6, a millionth of what g
- * changes by over a step; the rounding of g, spread over a probe a
- * thousandth of the step, stays far below PASS_REL of the rate it arrived
- * with (a millionth of the step lost 60% of a rate of 1e-8 to it). */
-#define PROBE_REL 1e-3
-static double
-g_rate(Run *r, int k, double t, const double *x, const double *f)
-{
-    double d = PROBE_REL * (r->ev_t1 - r->ev_t0), g[2];
-    for (int side = 0; side < 2; side++) {
-        double s = side ? d : -d;
-        for (int i = 0; i < r->N; i++)
-            r->xe[i] = x[i] + s * f[i];
-        eomc_sim_events(r->s, t + s, r->xe, r->xe + r->n, r->ge);
-        g[side] = r->ge[k];
-    }
-    return (g[1] - g[0]) / (2 * d);
-}
-
-/* Event k's `set` left the state off its constraints (their
- * inconsistencies in r->ce, levels in r->cl): the first such is kept in
- * the statistics, with every constraint it left off, worst first. */
-static void
-note_reset_off(Run *r, int k)
-{
-    eomc_stats *st = r->st;
-    const eomc_model *m = r->m;
-    size_t at = 0, len = sizeof st->reset_off;
-    st->reset_event = k;
-    st->reset_t = r->t;
-    st->reset_off[0] = '\0';
-    for (int listed = 0;; listed++) {
-        int worst = -1;
-        for (int j = 0; j < m->nc; j++)
-            if (r->ce[j] > EOMC_INCONSISTENT && (worst < 0 || r->ce[j] > r->ce[worst]))
-                worst = j;
-        if (worst < 0)
-            break;
-        if (!listed) {
-            st->reset_constraint = worst;
-            st->reset_level = r->cl[worst];
-            st->reset_inconsistency = r->ce[worst];
-        }
-        if (at < len)
-            at += (size_t)snprintf(st->reset_off + at, len - at, "%s%s (%s: %.2g)",
-                                   listed ? ", " : "", m->c_names[worst],
-                                   r->cl[worst] ? "velocities" : "positions", r->ce[worst]);
-        r->ce[worst] = 0; /* listed */
-    }
-}
-
-/* Event k's reset at r->t, after the rows up to it were written: the
- * integration starts again from the new state, with nothing of the
- * history before (a multistep method's past here; the driver drops its
- * interpolant's nodes).
- * The event is held until its g leaves zero, unless the reset passes
- * through it.  r->f0 is the right-hand side at r->x, the state the event
- * found (take_step has made the step's end the next one's start). */
+/* Event k's reset at r->t (stepev_reset): the integration starts again
+ * from the new state, with nothing of the history before (a multistep
+ * method's past here; the driver drops its interpolant's nodes).  r->f0
+ * is the right-hand side at r->x, the state the event found (take_step
+ * has made the step's end the next one's start). */
 static int
 apply_reset(Run *r, int k)
 {
-    eomc_sim *s = r->s;
-    double span = r->o->t_end - r->o->t0;
-    r->ev_k = k;
-    if (r->nsets > 0 && r->t - r->last_set < ACCUMULATE_REL * span)
-        return EVENTS_ACCUMULATE;
-    r->gap = r->t - r->last_set;
-    r->last_set = r->t;
-    r->nsets++;
-    int dir = r->m->ev_direction[k];
-    double arrived = dir ? g_rate(r, k, r->t, r->x, r->f0) : 0;
-    eomc_sim_event_set(s, k, r->t, r->x, r->x);
-    if (!sim_all_finite(r->x, r->N)) {
-        sim_numeric_error(s, r->t, r->x, r->x + r->n, "event %s set a value that is not "
-                          "finite", r->m->ev_names[k]);
-        return GSL_EBADFUNC;
-    }
-    if (r->st->reset_event < 0 && r->m->nc > 0 &&
-        eomc_sim_inconsistencies(s, r->t, r->x, r->x + r->n, r->ce, r->cl) >
-            EOMC_INCONSISTENT)
-        note_reset_off(r, k);
-    int rc = rhs(r->t, r->x, r->f0, r); /* f0: the next step's start */
+    int rc = stepev_reset(r->ev, k, r->t, r->x, r->f0); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
         return rc;
     gsl_odeiv2_step_reset(r->step);
     if (r->side != r->step)
         gsl_odeiv2_step_reset(r->side);
-    eomc_sim_events(s, r->t, r->x, r->x + r->n, r->g0);
-    r->g0[k] = 0;
-    double left = dir && dir * arrived > 0 ? g_rate(r, k, r->t, r->x, r->f0) / arrived : 0;
-    r->held[k] = !(left > PASS_REL);
-    r->left_rate = r->held[k] && left > 0 ? left : 0;
     r->since_reset = 0;
-    if (r->m->nc > 0 && sim_constraint_rows(s, r->t, r->x, r->B0) != 0)
+    if (r->m->nc > 0 && sim_constraint_rows(r->s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
     r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
     return GSL_SUCCESS;
@@ -780,11 +506,10 @@ adaptive_step(Run *r, double *h)
                                               &h0) == GSL_ODEIV_HADJ_DEC) {
             retry = 1;
         }
-        r->tries++;
+        stepwatch_tried(r->watch, retry);
         if (retry) {
             memcpy(r->x, r->y0, bytes);
             r->st->rejected++;
-            r->fails++;
             if (!(h0 < h_old) || t0 + h0 == t0 || h0 < r->hmin)
                 return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
             continue;
@@ -792,8 +517,7 @@ adaptive_step(Run *r, double *h)
         r->t = final ? o->t_end : t0 + h_old;
         if (!final) {
             *h = h0;
-            r->sum_h += h_old, r->sum_hlog += h_old * log(h_old);
-            r->w_log_h += log(h_old), r->w_nh++, r->h_last = h_old;
+            stepwatch_accepted(r->watch, h_old);
         }
         return GSL_SUCCESS;
     }
@@ -817,28 +541,6 @@ fixed_step(Run *r, double t1)
     }
     r->t = t1;
     return GSL_SUCCESS;
-}
-
-/* After an adaptive step: have the steps collapsed, or do they grind? */
-static int
-watch_steps(Run *r)
-{
-    double typ = typical_step(r);
-    if (r->nh + r->w_nh >= COLLAPSE_AFTER && r->h_last < COLLAPSE_REL * typ &&
-        !(r->nsets > 0 && r->since_reset < RESTART_STEPS))
-        return STEP_COLLAPSE;
-    if (r->tries < GRIND_WINDOW)
-        return GSL_SUCCESS;
-    double pace = (r->t - r->w_t0) / (double)r->tries;
-    if ((double)r->fails > GRIND_REJECTED * (double)r->tries &&
-        pace < GRIND_REL * instant_step(r)) {
-        r->grinding++;
-    } else {
-        r->log_h += r->w_log_h, r->nh += r->w_nh;
-        r->grinding = 0;
-    }
-    r->tries = r->fails = 0, r->w_log_h = 0, r->w_nh = 0, r->w_t0 = r->t;
-    return r->grinding >= GRIND_WINDOWS ? STEP_GRIND : GSL_SUCCESS;
 }
 
 /* The fixed steps of the span (st->h_used), or none (adaptive): before
@@ -886,7 +588,7 @@ take_step(Run *r, EvolveStep *tk)
          * the interval since the event before, so that the steps grow
          * again from the event and see g leave zero before they could
          * cross it a second time (the top of a bounce) */
-        r->h = fmin(H0_REL * span, RESTART_REL * r->gap);
+        r->h = fmin(H0_REL * span, RESTART_REL * stepev_gap(r->ev));
         if (!(r->t < o->t_end))
             return GSL_SUCCESS;
     }
@@ -904,7 +606,7 @@ take_step(Run *r, EvolveStep *tk)
     r->since_reset++;
     if ((rc = after_step(r, t0)) != GSL_SUCCESS)
         return rc;
-    if (r->ne && (rc = check_events(r, t0, &tk->ev, &tk->fired)) != GSL_SUCCESS)
+    if (r->ev && (rc = check_events(r, t0, &tk->ev, &tk->fired)) != GSL_SUCCESS)
         return rc;
     double *f = r->f0; /* this step's end is the next one's start */
     r->f0 = r->f1, r->f1 = f;
@@ -921,7 +623,8 @@ take_step(Run *r, EvolveStep *tk)
     }
     if (r->t < o->t_end && !r->nfixed && fabs(r->h) < r->hmin)
         return GSL_ENOPROG;
-    if (!r->nfixed && (rc = watch_steps(r)) != GSL_SUCCESS)
+    int restarting = r->since_reset < RESTART_STEPS;
+    if (!r->nfixed && (rc = stepwatch_check(r->watch, r->t, restarting)) != GSL_SUCCESS)
         return rc;
     return GSL_SUCCESS;
 }
@@ -936,11 +639,11 @@ run_free(Run *r)
     if (r->d)
         gsl_odeiv2_driver_free(r->d);
     double *arrays[] = {r->f0, r->f1, r->y0, r->yerr, r->xt, r->xerr, r->B0, r->B1,
-                        r->fr, r->fs, r->fs2, r->g0, r->g1, r->ge, r->te, r->xe, r->ce};
+                        r->fr, r->fs, r->fs2};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
-    free(r->held);
-    free(r->cl);
+    stepev_free(r->ev);
+    stepwatch_free(r->watch);
 }
 
 static int
@@ -971,16 +674,15 @@ run_alloc(Run *r, const Method *m)
             gsl_odeiv2_step_set_driver(r->side, r->d);
     }
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
-                         &r->B1, &r->fr, &r->fs, &r->fs2, &r->g0, &r->g1, &r->ge, &r->te,
-                         &r->xe, &r->ce};
-    size_t ne = (size_t)r->ne;
-    size_t nc = (size_t)r->m->nc;
-    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N, ne, ne, ne, ne, N, nc};
-    int ok = r->d && r->step && r->side;
+                         &r->B1, &r->fr, &r->fs, &r->fs2};
+    size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N};
+    int ok = r->d && r->step && r->side && (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
-    ok &= (r->held = calloc(ne + 1, 1)) != NULL;
-    ok &= (r->cl = calloc(nc + 1, sizeof *r->cl)) != NULL;
+    if (r->m->nevent > 0) {
+        StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r};
+        ok &= (r->ev = stepev_alloc(r->s, r->o, r->st, motion)) != NULL;
+    }
     return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
                                           r->o->method);
 }
@@ -1004,8 +706,7 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-               .ne = m->nevent, .last_set = -INFINITY, .w_t0 = o->t0, .pending = -1,
-               .reached = NAN};
+               .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
@@ -1040,8 +741,8 @@ run_watch(Run *r)
     watch_condition(r);
     if (r->m->invariant && eomc_sim_invariant(s, r->t, x, x + n, &r->h0) == EOMC_OK)
         r->have_h0 = 1;
-    if (r->ne) /* an event at exactly 0 here waits to leave it */
-        eomc_sim_events(s, r->t, x, x + n, r->g0);
+    if (r->ev)
+        stepev_start(r->ev, r->t, x);
     return EOMC_OK;
 }
 
@@ -1119,6 +820,12 @@ evolve_side(eomc_evolve *e, double tk, const double *xk, const double *fk, doubl
             double *x)
 {
     return side_from(&e->r, tk, xk, fk, t, x);
+}
+
+int
+evolve_stop(eomc_evolve *e, int status, double t, const double *x)
+{
+    return callback_stop(&e->r, status, t, x);
 }
 
 int
@@ -1210,5 +917,5 @@ eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
 void
 eomc_step_eval(const eomc_step *d, double t, double *x)
 {
-    cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
+    dense_cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
 }

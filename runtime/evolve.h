@@ -11,8 +11,8 @@
 
 #include "eomc.h"
 
-/* evolve_step's status when on_event's nonzero status stopped the run
- * (evolve_stopped).  Every status from it down to -1099 is the step
+/* evolve_step's and evolve_stop's status when a callback's nonzero status
+ * stopped the run (evolve_stopped).  Every status from it down to -1099 is the step
  * layer's own; evolve_error says what the others mean. */
 enum { EVOLVE_STOPPED = -1000 };
 /* A side step (a state computed by a step of its own) is split in at
@@ -62,8 +62,13 @@ const double *evolve_rate(const eomc_evolve *e);
  * failure status, without a message. */
 int evolve_side(eomc_evolve *e, double tk, const double *xk, const double *fk, double t,
                 double *x);
-/* After EVOLVE_STOPPED: on_event's status, the time and the state it
- * was called with (valid until the next step). */
+/* A callback of the driver's (a row's) returned status at (t, x): the run
+ * stops there, as when on_event stops it, with x the state the caller gets
+ * back (kept, not copied).  Returns EVOLVE_STOPPED. */
+int evolve_stop(eomc_evolve *e, int status, double t, const double *x);
+/* After EVOLVE_STOPPED: the callback's status, the time and the state it
+ * was called with (valid until the next step, or as long as the caller
+ * keeps the state it gave evolve_stop). */
 int evolve_stopped(const eomc_evolve *e, double *t, const double **x);
 /* The message of a stepping status other than success; returns the
  * EOMC_ status. */

@@ -39,23 +39,9 @@ typedef struct Driver {
     long k, nrows;                /* the next row, and how many there are */
     eomc_row_fn row;
     void *ctx;
-    int row_status;               /* a callback's nonzero status: EVOLVE_STOPPED */
-    double stop_t;                /* ... the time it was called with */
-    const double *stop_x;         /* ... and the state (kept until march returns) */
 } Driver;
 
 /* ---- rows ---- */
-
-/* A callback (row or on_event) returned status at (t, x): the run stops
- * there, and x is the state the caller gets back (eomc_sim_integrate). */
-static int
-callback_stop(Driver *r, int status, double t, const double *x)
-{
-    r->row_status = status;
-    r->stop_t = t;
-    r->stop_x = x;
-    return EVOLVE_STOPPED;
-}
 
 /* t0 + k dt is computed from k, so no rounding accumulates. */
 double
@@ -134,7 +120,7 @@ emit_rows(Driver *r, int final)
             return GSL_EBADFUNC;
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
         if (rc != EOMC_OK)
-            return callback_stop(r, rc, t, r->xrow);
+            return evolve_stop(r->e, rc, t, r->xrow); /* xrow: the driver's until it returns */
         r->k++;
     }
     return GSL_SUCCESS;
@@ -151,7 +137,7 @@ finish_at_event(Driver *r, const EvolveStep *tk)
     if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= tk->t1)
         return EVENT_STOPPED;
     rc = r->row ? r->row(r->ctx, tk->t1, tk->x1) : EOMC_OK;
-    return rc != EOMC_OK ? callback_stop(r, rc, tk->t1, tk->x1) : EVENT_STOPPED;
+    return rc != EOMC_OK ? evolve_stop(r->e, rc, tk->t1, tk->x1) : EVENT_STOPPED;
 }
 
 /* ---- the loop ---- */
@@ -172,8 +158,6 @@ march(Driver *r)
             dense_push(r->dense, tk.t1, tk.x1, tk.f1);
         else if (!isnan(tk.reached) && !tk.restarted)
             dense_push(r->dense, tk.reached, tk.xr, tk.fr);
-        if (rc == EVOLVE_STOPPED) /* on_event said stop */
-            r->row_status = evolve_stopped(r->e, &r->stop_t, &r->stop_x);
         if (rc != GSL_SUCCESS)
             return rc;
         if (tk.ev == EVOLVE_STOP)
@@ -247,11 +231,11 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
          * event, a failure), or the state a callback stopped it at */
         double t = evolve_time(r.e);
         st->t_stop = t;
-        if (status == EVOLVE_STOPPED) {
-            st->t_stop = r.stop_t;
-            if (r.stop_x != x)
-                memcpy(x, r.stop_x, (size_t)r.N * sizeof *x);
-            rc = r.row_status;
+        if (status == EVOLVE_STOPPED) { /* a callback (a row's or on_event) said stop */
+            const double *stop_x;
+            rc = evolve_stopped(r.e, &st->t_stop, &stop_x);
+            if (stop_x != x)
+                memcpy(x, stop_x, (size_t)r.N * sizeof *x);
         } else if (status == EVENT_STOPPED)
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)

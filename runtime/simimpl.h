@@ -1,8 +1,8 @@
 /*
  * simimpl.h: the simulator's internal API, for the layers above sim.c
- * (the steps evolve.c, reference.c, linearize.c, rows.c).  Not
- * installed, and nothing of it leaves the library (built with
- * -fvisibility=hidden, runtime/meson.build).  struct eomc_sim is sim.c's
+ * (the steps evolve.c and stepevents.c, reference.c, linearize.c,
+ * rows.c).  Not installed, and nothing of it leaves the library (built
+ * with -fvisibility=hidden, runtime/meson.build).  struct eomc_sim is sim.c's
  * alone: the layers above see it through eomc.h and these functions, and
  * keep their own work arrays.
  */

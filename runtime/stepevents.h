@@ -1,0 +1,80 @@
+/*
+ * stepevents.h: the scene's events in the steps, for the step layer
+ * above (evolve.c).  After each accepted step, the events that fired in
+ * it are located (events.h) and reported through on_event, and the first
+ * `stop` or `set` among them ends the step; a `set` event's reset is
+ * applied here, and watched (an event held at g = 0 until it leaves it,
+ * events that accumulate).  The events' state (g at the step's ends, the
+ * held events, the resets so far) is stepevents.c's alone; the step's
+ * state stays evolve.c's, which hands this layer a step's ends
+ * (StepevSpan) and the two things it needs of the motion as callbacks
+ * (StepevMotion), so that the calls go one way.  Not installed, and
+ * nothing of it leaves the library (runtime/meson.build).
+ */
+#ifndef EOMC_STEPEVENTS_H
+#define EOMC_STEPEVENTS_H
+
+#include "eomc.h"
+
+/* Failure statuses of stepev_check and stepev_reset besides GSL's, in
+ * the step layer's range (evolve.h), which passes them on; stepev_error
+ * says what they mean. */
+enum { STEPEV_ACCUMULATE = -1003, STEPEV_RETURNED = -1005 };
+
+/* The motion, from the step layer. */
+typedef struct StepevMotion {
+    /* x' at (t, x) into f (gsl_odeiv2_system's function): GSL_SUCCESS or
+     * a failure status */
+    int (*rate)(double t, const double *x, double *f, void *ctx);
+    /* The state at t into x by a step of its own from (tk, xk, fk)
+     * (evolve_side): GSL_SUCCESS or a failure status */
+    int (*side)(void *ctx, double tk, const double *xk, const double *fk, double t,
+                double *x);
+    void *ctx;
+} StepevMotion;
+
+/* An accepted step: the state x and x' at t0 and at t1. */
+typedef struct StepevSpan {
+    double t0, t1;
+    const double *x0, *f0, *x1, *f1;
+} StepevSpan;
+
+/* What ends a step (stepev_check). */
+typedef struct StepevHit {
+    int k;               /* the `stop` or `set` event that ends it at t, or -1 */
+    int status;          /* on_event's nonzero status, which stops the run at
+                          * (t, x) instead; else EOMC_OK */
+    double t;
+    const double *x;     /* [2nq] the state there: this layer's, valid until
+                          * its next call */
+} StepevHit;
+
+typedef struct StepEvents StepEvents;
+
+/* The events of s's model for a run of o, counted in st (o and st are
+ * kept); NULL when memory runs out. */
+StepEvents *stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st,
+                         StepevMotion motion);
+void stepev_free(StepEvents *v);
+/* g at the run's start (t, x): an event at exactly 0 there waits to
+ * leave it. */
+void stepev_start(StepEvents *v, double t, const double *x);
+/* After the step sp (its arrays are read during the call only): the
+ * events that fired in it, in time order, each reported with the state
+ * there.  The first `stop` or `set` event, or an on_event that returned
+ * nonzero, ends the step: *hit says which and where; a `record` event
+ * after it in the same step never happened.  GSL_SUCCESS or a failure
+ * status. */
+int stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit);
+/* Event k's reset at t, of x [2nq] in place, after the rows up to it were
+ * written; f [2nq] is x' there before it and becomes x' after.  The event
+ * is held until its g leaves zero, unless the reset passes through it.
+ * GSL_SUCCESS or a failure status. */
+int stepev_reset(StepEvents *v, int k, double t, double *x, double *f);
+/* The time from the `set` event before the last one to the last. */
+double stepev_gap(const StepEvents *v);
+/* The message of STEPEV_ACCUMULATE or STEPEV_RETURNED, the run having
+ * stopped at (t, x); returns EOMC_ENUMERIC. */
+int stepev_error(const StepEvents *v, int status, double t, const double *x);
+
+#endif

@@ -27,6 +27,7 @@ typedef struct Printer {
     ExprPool *P;
     const LowModel *md; /* L's: the names */
     const Lowered *L;
+    const LowFunc *lf; /* the function being printed */
     /* per node id, for the function being printed */
     int *temp;  /* temporary number, -1 if not scheduled */
     int *part;  /* the part that computes it */

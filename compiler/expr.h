@@ -127,6 +127,11 @@ typedef struct ExprEnv {
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
                     const ExprEnv *env, double *out);
+/* Node e alone: an operator from its operands' values (operand[0] is
+ * a's, operand[1] b's; NULL for a leaf), a leaf from env.  The arithmetic
+ * of expr_eval, one node at a time, for an evaluator that keeps its own
+ * values (lower_eval). */
+double expr_eval_node(const ExprPool *P, ExprId e, const double *operand, const ExprEnv *env);
 
 /* e evaluated in long double at n environments, each value with a bound
  * on its rounding error: |value - exact| <= err to first order (Higham's

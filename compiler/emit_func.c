@@ -188,10 +188,11 @@ operand(Printer *pr, ExprId e, char *buf, size_t len)
     return buf;
 }
 
+/* expr.h's EXPR_POWI_MUL_MAX: what the evaluators compute */
 static void
 print_powi(const char *x, int n, char *rhs, size_t len)
 {
-    if (n > 4) {
+    if (n > EXPR_POWI_MUL_MAX) {
         snprintf(rhs, len, "pow(%s, %d)", x, n);
         return;
     }

@@ -1137,6 +1137,21 @@ expr_depends(ExprPool *P, ExprId e, ExprId leaf)
     return r;
 }
 
+/* x^n as the generated C computes it (emit_func.c's print_powi): a
+ * product of n factors left to right, rounded at each, up to
+ * EXPR_POWI_MUL_MAX, else pow, so that an evaluation here is the C's to
+ * the last bit. */
+static double
+powi(double x, int n)
+{
+    if (n > EXPR_POWI_MUL_MAX)
+        return pow(x, n);
+    double r = x;
+    for (int k = 1; k < n; k++)
+        r *= x;
+    return r;
+}
+
 /* One node from its operands' values x (a's) and y (b's), a leaf from
  * env: the one place the evaluators compute an operator. */
 static double
@@ -1154,7 +1169,7 @@ apply(const ExprNode *nd, double x, double y, const ExprEnv *env)
     case EXPR_SUB: return x - y;
     case EXPR_MUL: return x * y;
     case EXPR_DIV: return x / y;
-    case EXPR_POWI: return pow(x, (int32_t)nd->b);
+    case EXPR_POWI: return powi(x, (int32_t)nd->b);
     case EXPR_POW: return pow(x, y);
     case EXPR_ATAN2: return atan2(x, y);
     }

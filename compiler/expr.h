@@ -115,6 +115,12 @@ ExprId expr_find_leaf(ExprPool *P, ExprId e, unsigned deps);
 /* Does e contain the given leaf (a VAR, PARAM, INPUT or TIME node)? */
 int expr_depends(ExprPool *P, ExprId e, ExprId leaf);
 
+/* A POWI node of exponent n up to this is computed as x * x * ... * x
+ * (n factors, left to right), as the C prints it: shorter than a call of
+ * pow.  Past it, pow(x, n).  expr_eval and expr_eval_node compute it so
+ * too. */
+enum { EXPR_POWI_MUL_MAX = 4 };
+
 /* Numerical evaluation (tests, checks, constant parameters). */
 typedef struct ExprEnv {
     double t;

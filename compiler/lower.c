@@ -729,7 +729,7 @@ lower_find(const Lowered *L, const char *name)
     return NULL;
 }
 
-/* The copies' loop, as the C runs it (print_copies in emit_func.c): each
+/* The copies' loop, as the C runs it (the loop the emitter prints): each
  * copy's function on arrays shifted by its dq[c] (u by du[c]); a copy
  * whose seeds are all 0 stores zeros if zero_skip. */
 static void

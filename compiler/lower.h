@@ -4,9 +4,16 @@
  *
  * This is the last step that differentiates (input derivatives, the
  * constraints' Jacobians, the seeded Jacobian's split into shared and
- * per-column values).  What comes out is data: the emitter schedules and
- * prints it, lower_eval evaluates it without any C, and every array size
- * the C needs is read off it (lower_size).
+ * per-column values).  What comes out is data, and every array size the
+ * C needs is read off it (lower_size).
+ *
+ * lower_schedule (lower_schedule.c) makes a function the flat list of
+ * steps its C runs, as CasADi's SX functions are: which operator nodes,
+ * in which order, where each output is stored.  The emitter prints that
+ * list (naming the temporaries, cutting it into C functions), and
+ * lower_eval evaluates the same list without any C: what the tests
+ * evaluate is what the C computes, step for step, not another walk of
+ * the DAG.
  *
  * A signature is written once, as a string of argument names: inputs,
  * then `>`, then outputs; `t` is a scalar, every other argument an array;

@@ -1,25 +1,22 @@
 /*
  * emit_func: the printer of one function, for emit.c (emit_func.h).
  *
- * A function is a list of outputs (an expression and the C lvalue it goes
- * to).  We schedule the operator nodes the outputs need depth-first, in
- * output order, then (in a function printed whole) in the order they could
- * start on a core that runs them out of order (order_by_start), and print
- * one `const double` temporary per node; each output is assigned as soon
- * as its value exists.  All cleverness is in the DAG; this is a plain
- * loop.
+ * A function's schedule (lower_schedule: which operator nodes, in which
+ * order, and where each output is stored) is the lower layer's, so that
+ * lower_eval evaluates the very list printed here.  This file names it:
+ * one `const double` temporary per node, the leaves' locals, the shared[]
+ * and pd[] values other functions computed, the guarded stores to
+ * optional outputs, the zero fills and the loop over copies.
  *
  * Very large functions (the Jacobian of a 50-link chain has ~70 000
- * nodes) are cut into parts of at most PART_SIZE temporaries, each its own
- * non-inlined C function: the C compiler's register allocator is
+ * nodes) are cut into parts of at most LOWER_PART_SIZE temporaries, each
+ * its own non-inlined C function: the C compiler's register allocator is
  * superlinear in function size, and parts keep `cc -O2` time linear.
  * A part ends after an output, or inside one output's nodes when they
  * alone are too many (a recursive solve writes q'' only at its end).
  * Values needed by a later part travel through a stack array s[].
- *
- * One file past ~800 lines: the schedule (which node, in which order,
- * in which part) and the printing of the temporaries decide together
- * what each part reads and stores, and are changed together.
+ * Cutting is the printer's: a C function's size is a C compiler's
+ * concern, and the list is the same whole or cut.
  */
 #include "emit_func.h"
 #include "../runtime/numfmt.h"
@@ -28,12 +25,6 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* gcc -O2's time per statement grows with the function: on the 30-body
- * tree's articulated-body solve, parts of 6000 took 11.7 s of cc, of 1500
- * 7.6 s (its register allocation alone 4.2 -> 0.6 s), for no loss of
- * speed. */
-enum { PART_SIZE = 1500 };
 
 /* the names of the sources (emit_func.h's SRC_*) */
 static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "da",
@@ -143,7 +134,7 @@ static int is_derived(const Printer *pr, ExprId e)
 /* Not computed here: a leaf, a shared value or a derived one. */
 static int is_input(const Printer *pr, ExprId e)
 {
-    return is_leaf(expr_node(pr->P, e)) || is_ext(pr, e) || is_derived(pr, e);
+    return !lower_computed(pr->P, pr->lf, e);
 }
 
 static void
@@ -197,10 +188,11 @@ operand(Printer *pr, ExprId e, char *buf, size_t len)
     return buf;
 }
 
+/* expr.h's EXPR_POWI_MUL_MAX: what the evaluators compute */
 static void
 print_powi(const char *x, int n, char *rhs, size_t len)
 {
-    if (n > 4) {
+    if (n > EXPR_POWI_MUL_MAX) {
         snprintf(rhs, len, "pow(%s, %d)", x, n);
         return;
     }
@@ -253,255 +245,25 @@ print_node(Printer *pr, ExprId id)
     print_share(pr, id);
 }
 
-/* ---- scheduling ---- */
+/* ---- parts ---- */
 
+/* The schedule (lower_schedule) as the printer walks it: the nodes
+ * numbered in order (their temporaries), each store after so many of
+ * them, and the parts it is cut in. */
 typedef struct Sched {
-    ExprId *node;  /* operator nodes in print order */
+    const LowSched *low;
+    int copies;    /* the copies' loop comes first */
+    int nfill, fill[LOW_MAX_ARGS]; /* the output arguments zero-filled first */
+    ExprId *node;  /* the NODE steps in order */
     int n;
-    /* node[angles, angles_end) are sines and cosines computed together
-     * (schedule_angles): nangle angles, angle_of[k - angles] the one
-     * node k is the sine (2 j) or cosine (2 j + 1) of */
-    int angles, angles_end, nangle;
-    ExprId *angle;
-    int *angle_of;
-    int *after;    /* per output: nodes printed before its assignment */
-    int *order;    /* the outputs in print order (NULL: as listed) */
+    int *order;    /* per store: the output it stores */
+    int *after;    /* per store: nodes printed before it */
     int *pstart;   /* per part: first node; pstart[nparts] = n */
-    int *ostart;   /* per part: first output; ostart[nparts] = nout */
+    int *ostart;   /* per part: first store; ostart[nparts] = nout */
     int nparts, nslots;
 } Sched;
 
-/* Append the unscheduled operator nodes that root needs, operands first. */
-static void
-schedule_tree(Printer *pr, Sched *S, ExprId root)
-{
-    size_t cap = 64, sp = 0;
-    struct { ExprId id; int expanded; } *stack = xmalloc(cap * sizeof *stack);
-    stack[sp].id = root;
-    stack[sp++].expanded = 0;
-    while (sp) {
-        ExprId e = stack[sp - 1].id;
-        const ExprNode *nd = expr_node(pr->P, e);
-        if (is_input(pr, e) || pr->temp[e] >= 0) {
-            sp--;
-        } else if (stack[sp - 1].expanded) {
-            sp--;
-            pr->temp[e] = S->n;
-            S->node[S->n++] = e;
-        } else {
-            stack[sp - 1].expanded = 1;
-            if (sp + 2 >= cap)
-                stack = xrealloc(stack, (cap *= 2) * sizeof *stack);
-            int ar = expr_op_arity[nd->op];
-            ExprId ops[2] = {nd->a, nd->b};
-            for (int k = ar - 1; k >= 0; k--) { /* operand a comes first */
-                stack[sp].id = ops[k];
-                stack[sp++].expanded = 0;
-            }
-        }
-    }
-    free(stack);
-}
-
-/* The sines and cosines whose angles need no other sine or cosine (a
- * turn's coordinate, a sum of coordinates) come first, all computed by one
- * call of eomc_sincos (eomc_model.h), which computes several at once
- * where the machine has vector instructions for it: each angle's
- * operations, then the angles' sines and cosines.  Fewer than
- * ANGLES_MIN angles keep their own sin and cos calls. */
-enum { ANGLES_MIN = 2 };
-
-static void
-schedule_angles(Printer *pr, Sched *S, int nout, const LowSlot *out)
-{
-    size_t size = expr_pool_size(pr->P);
-    /* per node: 0 unseen, 1 seen, no sine or cosine in it, 2 one in it */
-    unsigned char *seen = xmalloc(size);
-    memset(seen, 0, size);
-    /* a node is pushed once per edge into it at most: 2 per node (arity <= 2) */
-    ExprId *trig = xmalloc(size * sizeof *trig), *stack = xmalloc((2 * size + 1) * sizeof *stack);
-    size_t ntrig = 0;
-    for (int i = 0; i < nout; i++) { /* post-order, iteratively: DAGs are deep */
-        size_t sp = 0;
-        if (!seen[out[i].e])
-            stack[sp++] = out[i].e;
-        while (sp) {
-            ExprId e = stack[sp - 1];
-            const ExprNode *nd = expr_node(pr->P, e);
-            int ar = is_input(pr, e) ? 0 : expr_op_arity[nd->op];
-            ExprId ops[2] = {nd->a, nd->b};
-            int pushed = 0;
-            for (int k = ar - 1; k >= 0; k--)
-                if (!seen[ops[k]])
-                    stack[sp++] = ops[k], pushed = 1;
-            if (pushed)
-                continue;
-            sp--;
-            if (seen[e])
-                continue;
-            int below = 0;
-            for (int k = 0; k < ar; k++)
-                below |= seen[ops[k]] == 2;
-            int is_trig = ar && (nd->op == EXPR_SIN || nd->op == EXPR_COS);
-            if (is_trig && !below)
-                trig[ntrig++] = e;
-            seen[e] = below || is_trig ? 2 : 1;
-        }
-    }
-    /* the angles, in order of first use; each one's sine and cosine, */
-    S->angle = xmalloc((ntrig + 1) * sizeof *S->angle);
-    ExprId(*pair)[2] = xmalloc((ntrig + 1) * sizeof *pair);
-    int na = 0;
-    for (size_t t = 0; t < ntrig; t++) {
-        const ExprNode *nd = expr_node(pr->P, trig[t]);
-        int j = 0;
-        while (j < na && S->angle[j] != nd->a)
-            j++;
-        if (j == na) {
-            S->angle[na] = nd->a;
-            pair[na][0] = pair[na][1] = EXPR_NONE;
-            na++;
-        }
-        pair[j][nd->op == EXPR_COS] = trig[t];
-    }
-    /* then by height, stably: the vector of the angles ready first does
-     * not wait for the last one (a chain's sum of all its coordinates) */
-    for (int j = 1; j < na; j++)
-        for (int k = j; k > 0 && expr_node(pr->P, S->angle[k - 1])->height >
-                                     expr_node(pr->P, S->angle[k])->height; k--) {
-            ExprId a = S->angle[k], p0 = pair[k][0], p1 = pair[k][1];
-            S->angle[k] = S->angle[k - 1], pair[k][0] = pair[k - 1][0];
-            pair[k][1] = pair[k - 1][1];
-            S->angle[k - 1] = a, pair[k - 1][0] = p0, pair[k - 1][1] = p1;
-        }
-    S->nangle = 0;
-    S->angles = S->angles_end = S->n;
-    S->angle_of = NULL;
-    if (na >= ANGLES_MIN) {
-        S->nangle = na;
-        for (int j = 0; j < na; j++)
-            schedule_tree(pr, S, S->angle[j]);
-        S->angles = S->n;
-        S->angle_of = xmalloc(2 * (size_t)na * sizeof *S->angle_of);
-        for (int j = 0; j < na; j++)
-            for (int k = 0; k < 2; k++)
-                if (pair[j][k] != EXPR_NONE) {
-                    S->angle_of[S->n - S->angles] = 2 * j + k;
-                    pr->temp[pair[j][k]] = S->n;
-                    S->node[S->n++] = pair[j][k];
-                }
-        S->angles_end = S->n;
-    }
-    free(pair);
-    free(trig);
-    free(stack);
-    free(seen);
-}
-
 /* A value crossing into another part gets a slot in s[]. */
-/* Latencies in cycles on a current x86-64 core (an addition or a
- * multiplication 3 to 4, a division 13 to 15, a libm call some 20): only
- * their ratios matter. */
-enum { LAT_ADD = 3, LAT_MUL = 3, LAT_DIV = 13, LAT_CALL = 20 };
-
-static int
-latency(int op)
-{
-    switch (op) {
-    case EXPR_ADD: case EXPR_SUB: case EXPR_NEG: return LAT_ADD;
-    case EXPR_MUL: case EXPR_POWI: return LAT_MUL; /* powi 2: x * x, the most common */
-    case EXPR_DIV: return LAT_DIV;
-    default: return LAT_CALL;
-    }
-}
-
-typedef struct Start {
-    int at, k; /* the cycle a node could start, its place depth-first */
-} Start;
-
-static int
-start_cmp(const void *pa, const void *pb)
-{
-    const Start *a = pa, *b = pb;
-    return a->at != b->at ? (a->at > b->at) - (a->at < b->at) : (a->k > b->k) - (a->k < b->k);
-}
-
-/* A core runs instructions out of order, but only within a window of a
- * few hundred after the oldest one it waits on.  Depth-first, a solve's
- * chain of dependent pivots comes first and fills that window, and the
- * independent work printed after it (the bias's terms) waits behind it.
- * So the nodes after the angles are printed in the order they could
- * start, by the latencies above, depth-first order breaking ties (a
- * topological order still: a node starts after its operands), and are
- * numbered so; each output is stored when its value is done.  The
- * angles' sines and cosines count as ready at the start, as the leaves:
- * counting their call's latency put the work that needs none of them
- * first, which measured slower (chain 5: 80 against 77 ns).  Chain 5's
- * right-hand side: 80 -> 75 ns.  Only for a function printed whole: a cut
- * one keeps its parts depth-first, which keeps the values they share
- * few. */
-static void
-order_by_start(Printer *pr, Sched *S, int nout, const LowSlot *out)
-{
-    int n = S->n, from = S->angles_end;
-    int *done = xmalloc(((size_t)n + 1) * sizeof *done);
-    Start *st = xmalloc(((size_t)n + 1) * sizeof *st);
-    for (int k = 0; k < n; k++) {
-        const ExprNode *nd = expr_node(pr->P, S->node[k]);
-        int at = 0;
-        if (k >= S->angles && k < S->angles_end) {
-            done[k] = 0;
-        } else {
-            int ar = expr_op_arity[nd->op];
-            ExprId ops[2] = {nd->a, nd->b};
-            for (int j = 0; j < ar; j++) {
-                int t = is_input(pr, ops[j]) ? -1 : pr->temp[ops[j]];
-                if (t >= 0 && done[t] > at)
-                    at = done[t];
-            }
-            done[k] = at + latency(nd->op);
-        }
-        st[k] = (Start){at, k};
-    }
-    qsort(st + from, (size_t)(n - from), sizeof *st, start_cmp);
-    ExprId *node = xmalloc(((size_t)n + 1) * sizeof *node);
-    for (int k = from; k < n; k++)
-        node[k] = S->node[st[k].k];
-    for (int k = from; k < n; k++) {
-        S->node[k] = node[k];
-        pr->temp[node[k]] = k;
-    }
-    /* an output's store when its value is done, by the same order: after
-     * the nodes that could start before, its place depth-first breaking
-     * ties (a leaf's: done at once) */
-    Start *os = xmalloc(((size_t)nout + 1) * sizeof *os);
-    for (int i = 0; i < nout; i++) {
-        int t = is_input(pr, out[i].e) ? -1 : pr->temp[out[i].e];
-        Start key = {t < 0 ? 0 : done[t >= from ? st[t].k : t], S->after[i]};
-        int lo = from, hi = n; /* the first node after key */
-        while (lo < hi) {
-            int mid = lo + (hi - lo) / 2;
-            if (start_cmp(&st[mid], &key) < 0)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        if (t >= 0 && lo <= t)
-            lo = t + 1;
-        os[i] = (Start){lo < S->angles_end ? S->angles_end : lo, i};
-    }
-    qsort(os, (size_t)nout, sizeof *os, start_cmp);
-    S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
-    for (int i = 0; i < nout; i++) {
-        S->order[i] = os[i].k;
-        S->after[os[i].k] = os[i].at;
-    }
-    free(os);
-    free(node);
-    free(st);
-    free(done);
-}
-
 static void
 share(Printer *pr, Sched *S, ExprId e, int part)
 {
@@ -510,21 +272,37 @@ share(Printer *pr, Sched *S, ExprId e, int part)
         pr->slot[e] = S->nslots++;
 }
 
+/* Number the list's nodes, and cut it in parts of at most
+ * LOWER_PART_SIZE nodes. */
 static void
-schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
+schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *out)
 {
-    size_t size = expr_pool_size(pr->P);
-    S->node = xmalloc(size * sizeof *S->node);
+    S->low = low;
+    S->node = xmalloc(((size_t)low->nnode + 1) * sizeof *S->node);
+    S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
     S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
-    S->n = S->nparts = S->nslots = 0;
-    S->order = NULL;
-    schedule_angles(pr, S, nout, out);
-    for (int i = 0; i < nout; i++) {
-        schedule_tree(pr, S, out[i].e);
-        S->after[i] = S->n;
+    S->n = S->nparts = S->nslots = S->copies = S->nfill = 0;
+    int nst = 0;
+    for (int k = 0; k < low->nstep; k++) {
+        const LowStep *st = &low->step[k];
+        switch (st->kind) {
+        case LOW_STEP_COPIES:
+            S->copies = 1;
+            break;
+        case LOW_STEP_FILL:
+            S->fill[S->nfill++] = st->i;
+            break;
+        case LOW_STEP_NODE:
+            pr->temp[st->id] = S->n;
+            S->node[S->n++] = st->id;
+            break;
+        case LOW_STEP_STORE:
+            S->order[nst] = st->i;
+            S->after[nst++] = S->n;
+            break;
+        }
     }
-    if (S->n < PART_SIZE) { /* printed whole */
-        order_by_start(pr, S, nout, out);
+    if (low->whole) {
         S->pstart = xmalloc(2 * sizeof *S->pstart);
         S->ostart = xmalloc(2 * sizeof *S->ostart);
         S->nparts = 1;
@@ -533,26 +311,26 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
         S->ostart[1] = nout;
         return;
     }
-    /* Cut after an output once a part has PART_SIZE nodes, and inside
+    /* Cut after a store once a part has LOWER_PART_SIZE nodes, and inside
      * one output's nodes where they alone would pass it (a recursive
      * solve's outputs come only at its end). */
-    size_t cap = (size_t)nout + 2 + (size_t)S->n / PART_SIZE + 1;
+    size_t cap = (size_t)nout + 2 + (size_t)S->n / LOWER_PART_SIZE + 1;
     S->pstart = xmalloc(cap * sizeof *S->pstart);
     S->ostart = xmalloc(cap * sizeof *S->ostart);
     S->pstart[0] = S->ostart[0] = 0;
-    for (int i = 0; i < nout; i++) {
-        while (S->after[i] - S->pstart[S->nparts] > PART_SIZE) {
-            int cut = S->pstart[S->nparts] + PART_SIZE;
-            if (cut > S->angles && cut < S->angles_end) /* not inside the one call */
-                cut = S->angles_end;
+    for (int j = 0; j < nout; j++) {
+        while (S->after[j] - S->pstart[S->nparts] > LOWER_PART_SIZE) {
+            int cut = S->pstart[S->nparts] + LOWER_PART_SIZE;
+            if (cut > low->angles && cut < low->angles_end) /* not inside the one call */
+                cut = low->angles_end;
             S->nparts++;
             S->pstart[S->nparts] = cut;
-            S->ostart[S->nparts] = i;
+            S->ostart[S->nparts] = j;
         }
-        if (S->after[i] - S->pstart[S->nparts] >= PART_SIZE || i == nout - 1) {
+        if (S->after[j] - S->pstart[S->nparts] >= LOWER_PART_SIZE || j == nout - 1) {
             S->nparts++;
-            S->pstart[S->nparts] = S->after[i];
-            S->ostart[S->nparts] = i + 1;
+            S->pstart[S->nparts] = S->after[j];
+            S->ostart[S->nparts] = j + 1;
         }
     }
     if (S->nparts == 0) { /* no outputs */
@@ -571,8 +349,8 @@ schedule(Printer *pr, Sched *S, int nout, const LowSlot *out)
             if (ar >= 2)
                 share(pr, S, nd->b, p);
         }
-        for (int i = S->ostart[p]; i < S->ostart[p + 1]; i++)
-            share(pr, S, out[i].e, p);
+        for (int j = S->ostart[p]; j < S->ostart[p + 1]; j++)
+            share(pr, S, out[S->order[j]].e, p);
     }
 }
 
@@ -626,8 +404,8 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
         if (ar >= 2)
             mark_leaf(pr, nd->b, &ls);
     }
-    for (int i = S->ostart[pr->cur]; i < S->ostart[pr->cur + 1] && i < nout; i++)
-        mark_leaf(pr, out[i].e, &ls);
+    for (int j = S->ostart[pr->cur]; j < S->ostart[pr->cur + 1] && j < nout; j++)
+        mark_leaf(pr, out[S->order[j]].e, &ls);
     if (ls.n)
         qsort(ls.list, ls.n, sizeof *ls.list, cmp_id);
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
@@ -665,29 +443,30 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
 static int
 print_angles(Printer *pr, const Sched *S)
 {
-    int na = S->nangle;
+    const LowSched *low = S->low;
+    int na = low->nangle;
     emit_line(pr, "    eomc_real ang[%d], ang_sin[%d], ang_cos[%d]; /* %d angles at once */", na,
             na, na, na);
     for (int j = 0; j < na; j++) {
         char buf[200];
-        emit_line(pr, "    ang[%d] = %s;", j, operand(pr, S->angle[j], buf, sizeof buf));
+        emit_line(pr, "    ang[%d] = %s;", j, operand(pr, low->angle[j], buf, sizeof buf));
     }
     emit_line(pr, "    eomc_sincos(%d, ang, ang_sin, ang_cos);", na);
-    for (int k = S->angles; k < S->angles_end; k++) {
+    for (int k = low->angles; k < low->angles_end; k++) {
         ExprId id = S->node[k];
-        int a = S->angle_of[k - S->angles];
+        int a = low->angle_of[k - low->angles];
         emit_line(pr, "    const eomc_real w%d = ang_%s[%d];", pr->temp[id],
                 a % 2 ? "cos" : "sin", a / 2);
         print_share(pr, id);
     }
-    return S->angles_end;
+    return low->angles_end;
 }
 
 /* Node k's statement, or the angles' call where they start; the next k. */
 static int
 print_step(Printer *pr, const Sched *S, int k)
 {
-    if (k == S->angles && S->angles < S->angles_end)
+    if (k == S->low->angles && S->low->angles < S->low->angles_end)
         return print_angles(pr, S);
     print_node(pr, S->node[k]);
     return k + 1;
@@ -700,10 +479,9 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
     const LowFunc *lf = fn->low;
     const LowArgs *a = &fn->args;
     pr->used = 0;
-    for (int k = 0; pr->cur == 0 && k < a->n - a->nin; k++) {
+    for (int j = 0; pr->cur == 0 && j < S->nfill; j++) {
+        int k = S->fill[j];
         const char *arr = a->name[a->nin + k];
-        if (!lf->fill[k])
-            continue;
         if (lf->zeroed >> k & 1) {
             emit_line(pr, "    /* %s's other entries are 0: the caller's (eomc_model.h, c_nz) */",
                     arr);
@@ -729,8 +507,8 @@ print_part(Printer *pr, const Sched *S, const Func *fn)
     }
     int k = S->pstart[pr->cur];
     for (int j = S->ostart[pr->cur]; j < S->ostart[pr->cur + 1]; j++) {
-        int i = S->order ? S->order[j] : j;
-        while (k < S->after[i])
+        int i = S->order[j];
+        while (k < S->after[j])
             k = print_step(pr, S, k);
         const LowSlot *o = &lf->out[i];
         const char *arr = a->name[a->nin + o->arg];
@@ -820,8 +598,6 @@ print_shifts(Printer *pr, const LowFunc *lf, int *du_any)
 static void
 print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
 {
-    if (!lf->copy)
-        return;
     const char *nm = pr->md->name, *name = lf->sig->name;
     char call[2048] = "";
     size_t k = 0;
@@ -879,16 +655,18 @@ emit_function(Printer *pr, const LowFunc *lf)
     emit_func_of(fn, lf);
     int nout = lf->nout;
     const LowSlot *out = lf->out;
+    pr->lf = lf;
     pr->ext = lf->shared;
-    pr->derived = lf->per_step ? pr->L->derived : NULL;
+    pr->derived = lf->derived;
     size_t size = expr_pool_size(pr->P);
     pr->temp = xmalloc(size * sizeof *pr->temp);
     pr->part = xmalloc(size * sizeof *pr->part);
     pr->slot = xmalloc(size * sizeof *pr->slot);
     for (size_t i = 0; i < size; i++)
         pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
+    LowSched *low = lower_schedule(pr->P, lf);
     Sched S;
-    schedule(pr, &S, nout, out);
+    schedule(pr, &S, low, nout, out);
     const char *nm = pr->md->name;
     char fname[128];
     const char *name = lf->sig->name;
@@ -899,7 +677,8 @@ emit_function(Printer *pr, const LowFunc *lf)
         emit_line(pr, "/* %s */", lf->sig->comment);
         emit_head(pr, "static void", fname, fn->params);
         print_prologue(pr, lf);
-        print_copies(pr, lf, fn, du_any);
+        if (S.copies)
+            print_copies(pr, lf, fn, du_any);
         pr->cur = 0;
         print_part(pr, &S, fn);
         emit_line(pr, "}\n");
@@ -935,11 +714,13 @@ emit_function(Printer *pr, const LowFunc *lf)
         emit_head(pr, "static void", fname, fn->params);
         emit_line(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
         print_prologue(pr, lf);
-        print_copies(pr, lf, fn, du_any);
+        if (S.copies)
+            print_copies(pr, lf, fn, du_any);
         for (int p = 0; p < S.nparts; p++)
             emit_line(pr, "    %s_%s_part%d(%s, s);", nm, name, p + 1, fn->names);
         emit_line(pr, "}\n");
     }
+    pr->lf = NULL;
     pr->ext = NULL;
     pr->derived = NULL;
     /* exactly what was printed: values from shared[] and pd[] are counted
@@ -949,9 +730,8 @@ emit_function(Printer *pr, const LowFunc *lf)
     c.muls += lf->ncopy * copied.muls;
     c.divs += lf->ncopy * copied.divs;
     c.calls += lf->ncopy * copied.calls;
+    lower_sched_free(low);
     free(S.node);
-    free(S.angle);
-    free(S.angle_of);
     free(S.after);
     free(S.order);
     free(S.pstart);

@@ -1,7 +1,8 @@
 /*
- * emit_func: print one lowered function (lower.h) as scheduled C, for
- * emit.c, which prints the model file around the functions.  The rest of
- * the compiler calls emit.h.
+ * emit_func: print one lowered function (lower.h) as C, step by step
+ * as its schedule (lower_schedule) lists them, for emit.c, which prints
+ * the model file around the functions.  The rest of the compiler calls
+ * emit.h.
  */
 #ifndef EOMC_EMIT_FUNC_H
 #define EOMC_EMIT_FUNC_H
@@ -27,6 +28,7 @@ typedef struct Printer {
     ExprPool *P;
     const LowModel *md; /* L's: the names */
     const Lowered *L;
+    const LowFunc *lf; /* the function being printed */
     /* per node id, for the function being printed */
     int *temp;  /* temporary number, -1 if not scheduled */
     int *part;  /* the part that computes it */

@@ -1137,15 +1137,26 @@ expr_depends(ExprPool *P, ExprId e, ExprId leaf)
     return r;
 }
 
+/* x^n as the generated C computes it (emit_func.c's print_powi): a
+ * product of n factors left to right, rounded at each, up to
+ * EXPR_POWI_MUL_MAX, else pow, so that an evaluation here is the C's to
+ * the last bit. */
 static double
-eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
+powi(double x, int n)
 {
-    double x = 0, y = 0;
-    int ar = expr_op_arity[nd->op];
-    if (ar >= 1 && nd->op != EXPR_POWI)
-        x = v[nd->a];
-    if (ar >= 2)
-        y = v[nd->b];
+    if (n > EXPR_POWI_MUL_MAX)
+        return pow(x, n);
+    double r = x;
+    for (int k = 1; k < n; k++)
+        r *= x;
+    return r;
+}
+
+/* One node from its operands' values x (a's) and y (b's), a leaf from
+ * env: the one place the evaluators compute an operator. */
+static double
+apply(const ExprNode *nd, double x, double y, const ExprEnv *env)
+{
     switch (nd->op) {
     case EXPR_CONST: return nd->value;
     case EXPR_VAR: return env->q[nd->b][nd->a];
@@ -1158,11 +1169,26 @@ eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
     case EXPR_SUB: return x - y;
     case EXPR_MUL: return x * y;
     case EXPR_DIV: return x / y;
-    case EXPR_POWI: return pow(v[nd->a], (int32_t)nd->b);
+    case EXPR_POWI: return powi(x, (int32_t)nd->b);
     case EXPR_POW: return pow(x, y);
     case EXPR_ATAN2: return atan2(x, y);
     }
     return apply1(nd->op, x);
+}
+
+double
+expr_eval_node(const ExprPool *P, ExprId e, const double *operand, const ExprEnv *env)
+{
+    const ExprNode *nd = &P->node[e];
+    int ar = expr_op_arity[nd->op];
+    return apply(nd, ar >= 1 ? operand[0] : 0.0, ar >= 2 ? operand[1] : 0.0, env);
+}
+
+static double
+eval_node(const ExprNode *nd, const double *v, const ExprEnv *env)
+{
+    int ar = expr_op_arity[nd->op];
+    return apply(nd, ar >= 1 ? v[nd->a] : 0.0, ar >= 2 ? v[nd->b] : 0.0, env);
 }
 
 void

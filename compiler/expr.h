@@ -115,6 +115,12 @@ ExprId expr_find_leaf(ExprPool *P, ExprId e, unsigned deps);
 /* Does e contain the given leaf (a VAR, PARAM, INPUT or TIME node)? */
 int expr_depends(ExprPool *P, ExprId e, ExprId leaf);
 
+/* A POWI node of exponent n up to this is computed as x * x * ... * x
+ * (n factors, left to right), as the C prints it: shorter than a call of
+ * pow.  Past it, pow(x, n).  expr_eval and expr_eval_node compute it so
+ * too. */
+enum { EXPR_POWI_MUL_MAX = 4 };
+
 /* Numerical evaluation (tests, checks, constant parameters). */
 typedef struct ExprEnv {
     double t;
@@ -127,6 +133,11 @@ typedef struct ExprEnv {
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,
                     const ExprEnv *env, double *out);
+/* Node e alone: an operator from its operands' values (operand[0] is
+ * a's, operand[1] b's; NULL for a leaf), a leaf from env.  The arithmetic
+ * of expr_eval, one node at a time, for an evaluator that keeps its own
+ * values (lower_eval). */
+double expr_eval_node(const ExprPool *P, ExprId e, const double *operand, const ExprEnv *env);
 
 /* e evaluated in long double at n environments, each value with a bound
  * on its rounding error: |value - exact| <= err to first order (Higham's

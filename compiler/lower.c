@@ -470,6 +470,9 @@ lower_derive(Lowering *lw)
     L->derived = arena_new_array(lw->A, int, size);
     for (size_t id = 0; id < size; id++)
         L->derived[id] = want[id] ? L->nd++ : -1;
+    for (int k = 0; k < L->nfunc; k++) /* (derive, made below, computes them) */
+        if (L->func[k]->per_step)
+            L->func[k]->derived = L->derived;
     int ntab = L->tables ? FORM_TABLE_STRIDE * L->tables->nt + 6 : 0;
     L->tree_base = L->nd;
     L->nd += ntab;
@@ -726,13 +729,15 @@ lower_find(const Lowered *L, const char *name)
     return NULL;
 }
 
-/* A value read from shared[] is the same expression computed elsewhere:
- * evaluated here directly. */
-void
-lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
+/* The copies' loop, as the C runs it (the loop the emitter prints): each
+ * copy's function on arrays shifted by its dq[c] (u by du[c]); a copy
+ * whose seeds are all 0 stores zeros if zero_skip. */
+static void
+eval_copies(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
 {
-    /* the copies first, as the C runs them (the loop, then the rest) */
-    for (int c = 0; f->copy && c < f->ncopy; c++) {
+    LowArgs a;
+    lower_args(f->sig, &a);
+    for (int c = 0; c < f->ncopy; c++) {
         int d = f->dq[c];
         ExprEnv ec = *env;
         for (int k = 0; k <= EXPR_MAX_ORDER; k++)
@@ -740,8 +745,6 @@ lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out
         for (int k = 0; k < 3; k++)
             ec.seed[k] = env->seed[k] ? env->seed[k] + d : NULL;
         ec.u = env->u ? env->u + f->du[c] : NULL;
-        LowArgs a;
-        lower_args(f->sig, &a);
         double *oc[LOW_MAX_ARGS];
         for (int k = 0; k < a.n - a.nin; k++) /* (outs has one per output argument) */
             oc[k] = outs[k] ? outs[k] + d : NULL;
@@ -757,9 +760,82 @@ lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out
             for (int i = f->span0; oc[k] && lower_size(f->copy, k) && i < f->span0 + f->span; i++)
                 oc[k][i] = 0.0;
     }
-    for (int k = 0; k < f->nout; k++) {
-        const LowSlot *o = &f->out[k];
-        if (outs[o->arg])
-            outs[o->arg][o->index] = expr_eval(P, o->e, env);
+}
+
+/* The values f reads but does not compute, by node id: leaves from env,
+ * and the values another function computes (shared[], pd[]), which the C
+ * reads and which are evaluated here on the DAG instead (expr_eval_many:
+ * the same arithmetic, node by node). */
+static void
+eval_inputs(ExprPool *P, const LowFunc *f, const LowSched *S, const ExprEnv *env, double *v)
+{
+    size_t size = expr_pool_size(P);
+    unsigned char *seen = xmalloc(size);
+    memset(seen, 0, size);
+    ExprId *far = xmalloc(size * sizeof *far);
+    int nfar = 0;
+    for (int k = 0; k < S->nstep; k++) {
+        const LowStep *st = &S->step[k];
+        ExprId ops[2];
+        int nop = 0;
+        if (st->kind == LOW_STEP_NODE) {
+            const ExprNode *nd = expr_node(P, st->id);
+            nop = expr_op_arity[nd->op];
+            ops[0] = nd->a, ops[1] = nd->b;
+        } else if (st->kind == LOW_STEP_STORE) {
+            nop = 1, ops[0] = f->out[st->i].e;
+        }
+        for (int j = 0; j < nop; j++) {
+            ExprId e = ops[j];
+            if (seen[e] || lower_computed(P, f, e))
+                continue;
+            seen[e] = 1;
+            if (expr_op_arity[expr_node(P, e)->op] == 0)
+                v[e] = expr_eval_node(P, e, NULL, env);
+            else
+                far[nfar++] = e;
+        }
     }
+    double *val = xmalloc(((size_t)nfar + 1) * sizeof *val);
+    expr_eval_many(P, nfar, far, env, val);
+    for (int j = 0; j < nfar; j++)
+        v[far[j]] = val[j];
+    free(val);
+    free(far);
+    free(seen);
+}
+
+void
+lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
+{
+    LowSched *S = lower_schedule(P, f);
+    double *v = xmalloc(expr_pool_size(P) * sizeof *v); /* by node id */
+    eval_inputs(P, f, S, env, v);
+    for (int k = 0; k < S->nstep; k++) {
+        const LowStep *st = &S->step[k];
+        switch (st->kind) {
+        case LOW_STEP_COPIES:
+            eval_copies(P, f, env, outs);
+            break;
+        case LOW_STEP_FILL: /* unless the caller zeroed it, as in the C */
+            for (int i = 0; outs[st->i] && !(f->zeroed >> st->i & 1) && i < f->fill[st->i]; i++)
+                outs[st->i][i] = 0.0;
+            break;
+        case LOW_STEP_NODE: {
+            const ExprNode *nd = expr_node(P, st->id);
+            int ar = expr_op_arity[nd->op];
+            double x[2] = {ar >= 1 ? v[nd->a] : 0.0, ar >= 2 ? v[nd->b] : 0.0};
+            v[st->id] = expr_eval_node(P, st->id, x, env);
+            break;
+        }
+        case LOW_STEP_STORE: {
+            const LowSlot *o = &f->out[st->i];
+            if (outs[o->arg])
+                outs[o->arg][o->index] = v[o->e];
+            break;
+        }
+        }
+    }
+    free(v);
+    lower_sched_free(S);
 }

@@ -4,9 +4,16 @@
  *
  * This is the last step that differentiates (input derivatives, the
  * constraints' Jacobians, the seeded Jacobian's split into shared and
- * per-column values).  What comes out is data: the emitter schedules and
- * prints it, lower_eval evaluates it without any C, and every array size
- * the C needs is read off it (lower_size).
+ * per-column values).  What comes out is data, and every array size the
+ * C needs is read off it (lower_size).
+ *
+ * lower_schedule (lower_schedule.c) makes a function the flat list of
+ * steps its C runs, as CasADi's SX functions are: which operator nodes,
+ * in which order, where each output is stored.  The emitter prints that
+ * list (naming the temporaries, cutting it into C functions), and
+ * lower_eval evaluates the same list without any C: what the tests
+ * evaluate is what the C computes, step for step, not another walk of
+ * the DAG.
  *
  * A signature is written once, as a string of argument names: inputs,
  * then `>`, then outputs; `t` is a scalar, every other argument an array;
@@ -48,6 +55,9 @@ typedef struct LowFunc {
     /* Called at every step: reads the parameters' derived values
      * (Lowered.derived) instead of computing them. */
     int per_step;
+    /* per_step's: NULL until lower_model has derived them, then
+     * Lowered.derived (per node id its index in pd[], -1: not there) */
+    const int *derived;
     /* Output k's first fill[k] entries are set to 0 first, by a loop, and
      * its zero slots are not in out: an array of mostly zeros (a
      * constraint Jacobian's derivatives) is not a line per zero. */
@@ -79,6 +89,57 @@ typedef struct LowArgs {
 } LowArgs;
 
 void lower_args(const LowSig *sig, LowArgs *a);
+
+/* ---- a function as the steps its C runs (lower_schedule.c) ---- */
+
+/* Does f compute e (an operator node not read from shared[] or pd[])? */
+int lower_computed(ExprPool *P, const LowFunc *f, ExprId e);
+
+/* A function of more operator nodes than this is printed in parts of at
+ * most as many (emit_func.c), each a C function of its own: gcc -O2's
+ * time per statement grows with the function; on the 30-body tree's
+ * articulated-body solve, parts of 6000 took 11.7 s of cc, of 1500 7.6 s
+ * (its register allocation alone 4.2 -> 0.6 s), for no loss of speed.
+ * The schedule depends on it: only a function printed whole has its
+ * nodes in the order they could start. */
+enum { LOWER_PART_SIZE = 1500 };
+
+enum {
+    LOW_STEP_COPIES, /* run f->copy once per copy (LowFunc.copy), first */
+    LOW_STEP_FILL,   /* output argument i's first fill[i] entries = 0
+                      * (printed as a comment where f->zeroed says so) */
+    LOW_STEP_NODE,   /* compute operator node id from its operands */
+    LOW_STEP_STORE,  /* store out[i] (once its value is computed) */
+};
+
+typedef struct LowStep {
+    int kind; /* LOW_STEP_* */
+    ExprId id;
+    int i;
+} LowStep;
+
+/* The one order in which a function's values are computed: the emitter
+ * prints it (naming a temporary per node, cutting it into parts) and
+ * lower_eval evaluates it.  Operands that f does not compute
+ * (lower_computed) are leaves, shared[] or pd[] values, read where used. */
+typedef struct LowSched {
+    int nstep;
+    LowStep *step;
+    int nnode; /* LOW_STEP_NODE steps */
+    /* The nodes numbered angles .. angles_end-1, counted among the
+     * NODE steps, are sines and cosines computed by one eomc_sincos call
+     * from nangle angles: angle_of[k - angles] is 2 j for the sine of
+     * angle[j], 2 j + 1 for its cosine.  The angles themselves are
+     * computed before. */
+    int nangle, angles, angles_end;
+    ExprId *angle;
+    int *angle_of;
+    int whole; /* fewer than LOWER_PART_SIZE nodes: in start order */
+} LowSched;
+
+/* f's schedule (lower_sched_free frees it). */
+LowSched *lower_schedule(ExprPool *P, const LowFunc *f);
+void lower_sched_free(LowSched *S);
 
 /* The jacobian member's signature (the seeded Jacobian's driver has it). */
 extern const LowSig lower_jacobian_sig;
@@ -242,9 +303,11 @@ void lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *
  * copies included. */
 int lower_size(const LowFunc *f, int arg);
 
-/* Evaluate f at env, as its C does (copies included): out[k] is output
- * argument k's array (NULL: skipped).  Tests use it to check a derivation
- * without compiling C. */
+/* Evaluate f at env by running its schedule (lower_schedule: the list
+ * its C is printed from), each node from its operands' values by
+ * expr_eval_node, copies and fills included: out[k] is output argument
+ * k's array (NULL: skipped).  Tests use it to check a derivation without
+ * compiling C. */
 void lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out);
 
 /* The function named `name`, or NULL. */

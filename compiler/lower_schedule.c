@@ -1,0 +1,343 @@
+/*
+ * lower_schedule: a lowered function as the flat list of steps its C runs
+ * (lower.h's LowSched), which the emitter prints and lower_eval evaluates:
+ * what is computed is decided once, here, and both follow it.
+ *
+ * The operator nodes the outputs need are listed depth-first, in output
+ * order; the sines and cosines of the angles computed together come
+ * first (schedule_angles); then, in a function printed whole, the nodes
+ * are reordered by when they could start on a core that runs them out of
+ * order (order_by_start).  Each output is stored as soon as its value
+ * exists.  All cleverness is in the DAG; this is a plain loop.
+ */
+#include "lower.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int
+lower_computed(ExprPool *P, const LowFunc *f, ExprId e)
+{
+    return expr_op_arity[expr_node(P, e)->op] > 0 && !(f->shared && f->shared[e] >= 0) &&
+           !(f->derived && f->derived[e] >= 0);
+}
+
+/* The schedule being built: the operator nodes in order, and per node id
+ * its place among them (-1: not scheduled). */
+typedef struct Build {
+    ExprPool *P;
+    const LowFunc *f;
+    LowSched *S;
+    ExprId *node;
+    int n;
+    int *place;
+    int *after; /* per output: nodes listed before its store */
+    int *order; /* the outputs in store order (NULL: as listed) */
+} Build;
+
+static int
+is_input(const Build *b, ExprId e)
+{
+    return !lower_computed(b->P, b->f, e);
+}
+
+/* Append the unscheduled operator nodes that root needs, operands first. */
+static void
+schedule_tree(Build *b, ExprId root)
+{
+    size_t cap = 64, sp = 0;
+    struct { ExprId id; int expanded; } *stack = xmalloc(cap * sizeof *stack);
+    stack[sp].id = root;
+    stack[sp++].expanded = 0;
+    while (sp) {
+        ExprId e = stack[sp - 1].id;
+        const ExprNode *nd = expr_node(b->P, e);
+        if (is_input(b, e) || b->place[e] >= 0) {
+            sp--;
+        } else if (stack[sp - 1].expanded) {
+            sp--;
+            b->place[e] = b->n;
+            b->node[b->n++] = e;
+        } else {
+            stack[sp - 1].expanded = 1;
+            if (sp + 2 >= cap)
+                stack = xrealloc(stack, (cap *= 2) * sizeof *stack);
+            int ar = expr_op_arity[nd->op];
+            ExprId ops[2] = {nd->a, nd->b};
+            for (int k = ar - 1; k >= 0; k--) { /* operand a comes first */
+                stack[sp].id = ops[k];
+                stack[sp++].expanded = 0;
+            }
+        }
+    }
+    free(stack);
+}
+
+/* The sines and cosines whose angles need no other sine or cosine (a
+ * turn's coordinate, a sum of coordinates) come first, all computed by one
+ * call of eomc_sincos (eomc_model.h), which computes several at once
+ * where the machine has vector instructions for it: each angle's
+ * operations, then the angles' sines and cosines.  Fewer than
+ * ANGLES_MIN angles keep their own sin and cos calls. */
+enum { ANGLES_MIN = 2 };
+
+static void
+schedule_angles(Build *b)
+{
+    ExprPool *P = b->P;
+    LowSched *S = b->S;
+    int nout = b->f->nout;
+    const LowSlot *out = b->f->out;
+    size_t size = expr_pool_size(P);
+    /* per node: 0 unseen, 1 seen, no sine or cosine in it, 2 one in it */
+    unsigned char *seen = xmalloc(size);
+    memset(seen, 0, size);
+    /* a node is pushed once per edge into it at most: 2 per node (arity <= 2) */
+    ExprId *trig = xmalloc(size * sizeof *trig), *stack = xmalloc((2 * size + 1) * sizeof *stack);
+    size_t ntrig = 0;
+    for (int i = 0; i < nout; i++) { /* post-order, iteratively: DAGs are deep */
+        size_t sp = 0;
+        if (!seen[out[i].e])
+            stack[sp++] = out[i].e;
+        while (sp) {
+            ExprId e = stack[sp - 1];
+            const ExprNode *nd = expr_node(P, e);
+            int ar = is_input(b, e) ? 0 : expr_op_arity[nd->op];
+            ExprId ops[2] = {nd->a, nd->b};
+            int pushed = 0;
+            for (int k = ar - 1; k >= 0; k--)
+                if (!seen[ops[k]])
+                    stack[sp++] = ops[k], pushed = 1;
+            if (pushed)
+                continue;
+            sp--;
+            if (seen[e])
+                continue;
+            int below = 0;
+            for (int k = 0; k < ar; k++)
+                below |= seen[ops[k]] == 2;
+            int is_trig = ar && (nd->op == EXPR_SIN || nd->op == EXPR_COS);
+            if (is_trig && !below)
+                trig[ntrig++] = e;
+            seen[e] = below || is_trig ? 2 : 1;
+        }
+    }
+    /* the angles, in order of first use; each one's sine and cosine, */
+    S->angle = xmalloc((ntrig + 1) * sizeof *S->angle);
+    ExprId(*pair)[2] = xmalloc((ntrig + 1) * sizeof *pair);
+    int na = 0;
+    for (size_t t = 0; t < ntrig; t++) {
+        const ExprNode *nd = expr_node(P, trig[t]);
+        int j = 0;
+        while (j < na && S->angle[j] != nd->a)
+            j++;
+        if (j == na) {
+            S->angle[na] = nd->a;
+            pair[na][0] = pair[na][1] = EXPR_NONE;
+            na++;
+        }
+        pair[j][nd->op == EXPR_COS] = trig[t];
+    }
+    /* then by height, stably: the vector of the angles ready first does
+     * not wait for the last one (a chain's sum of all its coordinates) */
+    for (int j = 1; j < na; j++)
+        for (int k = j; k > 0 && expr_node(P, S->angle[k - 1])->height >
+                                     expr_node(P, S->angle[k])->height; k--) {
+            ExprId a = S->angle[k], p0 = pair[k][0], p1 = pair[k][1];
+            S->angle[k] = S->angle[k - 1], pair[k][0] = pair[k - 1][0];
+            pair[k][1] = pair[k - 1][1];
+            S->angle[k - 1] = a, pair[k - 1][0] = p0, pair[k - 1][1] = p1;
+        }
+    S->nangle = 0;
+    S->angles = S->angles_end = b->n;
+    S->angle_of = NULL;
+    if (na >= ANGLES_MIN) {
+        S->nangle = na;
+        for (int j = 0; j < na; j++)
+            schedule_tree(b, S->angle[j]);
+        S->angles = b->n;
+        S->angle_of = xmalloc(2 * (size_t)na * sizeof *S->angle_of);
+        for (int j = 0; j < na; j++)
+            for (int k = 0; k < 2; k++)
+                if (pair[j][k] != EXPR_NONE) {
+                    S->angle_of[b->n - S->angles] = 2 * j + k;
+                    b->place[pair[j][k]] = b->n;
+                    b->node[b->n++] = pair[j][k];
+                }
+        S->angles_end = b->n;
+    }
+    free(pair);
+    free(trig);
+    free(stack);
+    free(seen);
+}
+
+/* Latencies in cycles on a current x86-64 core (an addition or a
+ * multiplication 3 to 4, a division 13 to 15, a libm call some 20): only
+ * their ratios matter. */
+enum { LAT_ADD = 3, LAT_MUL = 3, LAT_DIV = 13, LAT_CALL = 20 };
+
+static int
+latency(int op)
+{
+    switch (op) {
+    case EXPR_ADD: case EXPR_SUB: case EXPR_NEG: return LAT_ADD;
+    case EXPR_MUL: case EXPR_POWI: return LAT_MUL; /* powi 2: x * x, the most common */
+    case EXPR_DIV: return LAT_DIV;
+    default: return LAT_CALL;
+    }
+}
+
+typedef struct Start {
+    int at, k; /* the cycle a node could start, its place depth-first */
+} Start;
+
+static int
+start_cmp(const void *pa, const void *pb)
+{
+    const Start *a = pa, *b = pb;
+    return a->at != b->at ? (a->at > b->at) - (a->at < b->at) : (a->k > b->k) - (a->k < b->k);
+}
+
+/* A core runs instructions out of order, but only within a window of a
+ * few hundred after the oldest one it waits on.  Depth-first, a solve's
+ * chain of dependent pivots comes first and fills that window, and the
+ * independent work printed after it (the bias's terms) waits behind it.
+ * So the nodes after the angles are listed in the order they could
+ * start, by the latencies above, depth-first order breaking ties (a
+ * topological order still: a node starts after its operands); each
+ * output is stored when its value is done.  The angles' sines and
+ * cosines count as ready at the start, as the leaves: counting their
+ * call's latency put the work that needs none of them first, which
+ * measured slower (chain 5: 80 against 77 ns).  Chain 5's right-hand
+ * side: 80 -> 75 ns.  Only for a function printed whole: a cut one keeps
+ * its parts depth-first, which keeps the values they share few. */
+static void
+order_by_start(Build *b)
+{
+    ExprPool *P = b->P;
+    const LowSched *S = b->S;
+    int nout = b->f->nout;
+    const LowSlot *out = b->f->out;
+    int n = b->n, from = S->angles_end;
+    int *done = xmalloc(((size_t)n + 1) * sizeof *done);
+    Start *st = xmalloc(((size_t)n + 1) * sizeof *st);
+    for (int k = 0; k < n; k++) {
+        const ExprNode *nd = expr_node(P, b->node[k]);
+        int at = 0;
+        if (k >= S->angles && k < S->angles_end) {
+            done[k] = 0;
+        } else {
+            int ar = expr_op_arity[nd->op];
+            ExprId ops[2] = {nd->a, nd->b};
+            for (int j = 0; j < ar; j++) {
+                int t = is_input(b, ops[j]) ? -1 : b->place[ops[j]];
+                if (t >= 0 && done[t] > at)
+                    at = done[t];
+            }
+            done[k] = at + latency(nd->op);
+        }
+        st[k] = (Start){at, k};
+    }
+    qsort(st + from, (size_t)(n - from), sizeof *st, start_cmp);
+    ExprId *node = xmalloc(((size_t)n + 1) * sizeof *node);
+    for (int k = from; k < n; k++)
+        node[k] = b->node[st[k].k];
+    for (int k = from; k < n; k++) {
+        b->node[k] = node[k];
+        b->place[node[k]] = k;
+    }
+    /* an output's store when its value is done, by the same order: after
+     * the nodes that could start before, its place depth-first breaking
+     * ties (a leaf's: done at once) */
+    Start *os = xmalloc(((size_t)nout + 1) * sizeof *os);
+    for (int i = 0; i < nout; i++) {
+        int t = is_input(b, out[i].e) ? -1 : b->place[out[i].e];
+        Start key = {t < 0 ? 0 : done[t >= from ? st[t].k : t], b->after[i]};
+        int lo = from, hi = n; /* the first node after key */
+        while (lo < hi) {
+            int mid = lo + (hi - lo) / 2;
+            if (start_cmp(&st[mid], &key) < 0)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        if (t >= 0 && lo <= t)
+            lo = t + 1;
+        os[i] = (Start){lo < S->angles_end ? S->angles_end : lo, i};
+    }
+    qsort(os, (size_t)nout, sizeof *os, start_cmp);
+    b->order = xmalloc(((size_t)nout + 1) * sizeof *b->order);
+    for (int i = 0; i < nout; i++) {
+        b->order[i] = os[i].k;
+        b->after[os[i].k] = os[i].at;
+    }
+    free(os);
+    free(node);
+    free(st);
+    free(done);
+}
+
+static void
+add_step(LowSched *S, int kind, ExprId id, int i)
+{
+    S->step[S->nstep++] = (LowStep){kind, id, i};
+}
+
+LowSched *
+lower_schedule(ExprPool *P, const LowFunc *f)
+{
+    size_t size = expr_pool_size(P);
+    int nout = f->nout;
+    LowSched *S = xmalloc(sizeof *S);
+    memset(S, 0, sizeof *S);
+    Build b = {P, f, S, xmalloc(size * sizeof *b.node), 0, xmalloc(size * sizeof *b.place),
+               xmalloc(((size_t)nout + 1) * sizeof *b.after), NULL};
+    for (size_t i = 0; i < size; i++)
+        b.place[i] = -1;
+    schedule_angles(&b);
+    for (int i = 0; i < nout; i++) {
+        schedule_tree(&b, f->out[i].e);
+        b.after[i] = b.n;
+    }
+    S->whole = b.n < LOWER_PART_SIZE;
+    if (S->whole)
+        order_by_start(&b);
+    S->nnode = b.n;
+    /* the copies' loop, the fills, then the nodes with each store after
+     * the nodes listed before it */
+    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + (size_t)b.n + (size_t)nout) *
+                      sizeof *S->step);
+    if (f->copy)
+        add_step(S, LOW_STEP_COPIES, EXPR_NONE, 0);
+    LowArgs a;
+    lower_args(f->sig, &a);
+    for (int k = 0; k < a.n - a.nin; k++)
+        if (f->fill[k])
+            add_step(S, LOW_STEP_FILL, EXPR_NONE, k);
+    int k = 0;
+    for (int j = 0; j < nout; j++) {
+        int i = b.order ? b.order[j] : j;
+        for (; k < b.after[i]; k++)
+            add_step(S, LOW_STEP_NODE, b.node[k], 0);
+        add_step(S, LOW_STEP_STORE, EXPR_NONE, i);
+    }
+    for (; k < b.n; k++)
+        add_step(S, LOW_STEP_NODE, b.node[k], 0);
+    free(b.node);
+    free(b.place);
+    free(b.after);
+    free(b.order);
+    return S;
+}
+
+void
+lower_sched_free(LowSched *S)
+{
+    if (!S)
+        return;
+    free(S->step);
+    free(S->angle);
+    free(S->angle_of);
+    free(S);
+}

@@ -40,8 +40,7 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
   form=$(sed -n 's/^ \* form: *\([a-z-]*\).*/\1/p' "$dir/m.c" | head -1)
   code=straight
   grep -q '#include "eomc_tree.h"' "$dir/m.c" && code=tables
-  coords=$(awk '/^const eomc_model .*_model = \{$/ { getline; getline; split($0, a, ",")
-                print a[1] + 0; exit }' "$dir/m.c")
+  coords=$(sed -n 's/^ *\.nq = \([0-9]*\),.*/\1/p' "$dir/m.c" | head -1)
   $cc -std=c11 -O1 -I"$inc" -c "$dir/m.c" -o "$dir/m.o"
   $cc -std=c11 -O1 -I"$inc" -DMODEL="${name}_model" "$src/bench/rhs_bench.c" "$dir/m.o" \
     "$lib" $gsl_libs -lm -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/rhs"

@@ -77,22 +77,32 @@ skip_properties(const char *s, size_t i, size_t end, size_t *line, size_t *col)
 SrcLoc
 spec_scalar_where(const ParseSrc *src, size_t off)
 {
-    const Scalar *sc = (const Scalar *)src;
+    /* The parser asks for every name's place as it reads, left to right:
+     * going on from the last answer (the Scalar is the loader's, not
+     * const; only the parser's view of it is) keeps reading an
+     * expression linear in its length, where starting over each time
+     * was quadratic (a 10 000-term sum: 0.23 s, 6 s instrumented). */
+    Scalar *sc = (Scalar *)src;
     const Loader *L = sc->L;
     const yaml_node_t *n = sc->node;
     size_t line = n->start_mark.line, col = n->start_mark.column;
-    size_t i = byte_at(L, line, col), end = L->len;
+    size_t i = byte_at(L, line, col), end = L->len, k = 0;
     const char *s = L->text, *v = src->text;
     yaml_scalar_style_t style = n->data.scalar.style;
-    i = skip_properties(s, i, end, &line, &col);
-    if (style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE) {
-        i++, col++;
-    } else if (style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE) {
-        while (i < end && s[i] != '\n')
-            i++;
-        i++, line++, col = 0;
+    if (sc->k > 0 && sc->k <= off) {
+        k = sc->k, i = sc->i, line = sc->line, col = sc->col;
+    } else {
+        i = skip_properties(s, i, end, &line, &col);
+        if (style == YAML_SINGLE_QUOTED_SCALAR_STYLE ||
+            style == YAML_DOUBLE_QUOTED_SCALAR_STYLE) {
+            i++, col++;
+        } else if (style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE) {
+            while (i < end && s[i] != '\n')
+                i++;
+            i++, line++, col = 0;
+        }
     }
-    for (size_t k = 0; k < off && k < src->len && i < end;) {
+    while (k < off && k < src->len && i < end) {
         unsigned char c = (unsigned char)s[i], vc = (unsigned char)v[k];
         size_t step = 1, vstep = 1;
         if (style == YAML_DOUBLE_QUOTED_SCALAR_STYLE && c == '\\') {
@@ -114,6 +124,7 @@ spec_scalar_where(const ParseSrc *src, size_t off)
         }
         k += vstep;
     }
+    sc->k = k, sc->i = i, sc->line = line, sc->col = col;
     return (SrcLoc){L->path, (int)line + 1, (int)col + 1};
 }
 
@@ -302,6 +313,7 @@ spec_scalar_src(Loader *L, Scalar *sc, const yaml_node_t *n, const char *what)
     sc->src = (ParseSrc){text, n->data.scalar.length, spec_scalar_where, NULL};
     sc->L = L;
     sc->node = n;
+    sc->k = sc->i = sc->line = sc->col = 0;
 }
 
 /* ---- going on after an error ---- */

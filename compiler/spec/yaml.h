@@ -20,6 +20,9 @@ typedef struct Scalar {
     ParseSrc src; /* first */
     const Loader *L;
     const yaml_node_t *node;
+    /* where spec_scalar_where last stopped: value byte k is source byte
+     * i, at line and col (0-based; all 0 with k 0: not yet asked) */
+    size_t k, i, line, col;
 } Scalar;
 
 /* Read L->text into L->doc: one document, not nested too deep, no

@@ -272,7 +272,66 @@ typedef struct eomc_model {
      * constraint stores every entry. */
     int c_nnz;
     const int *c_nz;
+
+    /* ---- what a run's page draws (--animate, the scene's `view:`) ----
+     * ndraw items (eomc_draw_item: each body, each particle, the points
+     * and frames the view names); draw(t, q, p, u, X) puts item k's pose
+     * at X[EOMC_POSE k ...]: its position, then the rotation matrix from
+     * its frame to the world's, row-major (the identity for a particle or
+     * a point).  A body's pose is its frame's (the frame that places it,
+     * else its centre turned by its rotation); draw_mass(p, D) puts each
+     * body item's mass, centre in that frame [3] and inertia about the
+     * centre in that frame [9] at D[EOMC_DRAW_MASS k ...] (unused for
+     * other kinds), from which a body without shapes is drawn as the
+     * uniform box of the same mass and inertia.  nshape shapes (imported
+     * geoms) are drawn in place of it.  view_links [2 nlink] joins items
+     * by segments (a rod from a joint to a bob), view_trace [ntrace]
+     * leaves each item's path behind it, view_frames draws the frame
+     * items' axes, view_camera [9] is the camera's position, target and
+     * up (NULL: fitted to the motion).  ndraw = 0: nothing to draw, the
+     * rest NULL. */
+    int ndraw;
+    const struct eomc_draw_item *draw_items;
+    void (*draw)(double t, const double *q, const double *p, const double *u, double *X);
+    void (*draw_mass)(const double *p, double *D);
+    int nshape;
+    const struct eomc_shape *shapes;
+    int nlink, ntrace, view_frames;
+    const int *view_links, *view_trace;
+    const double *view_camera;
 } eomc_model;
+
+/* A pose: position [3], rotation matrix [9] (row-major, to the world). */
+enum { EOMC_POSE = 12 };
+/* A body's mass [1], centre [3] and inertia [9] in its frame (draw_mass). */
+enum { EOMC_DRAW_MASS = 13 };
+enum { EOMC_DRAW_BODY, EOMC_DRAW_PARTICLE, EOMC_DRAW_POINT, EOMC_DRAW_FRAME };
+
+typedef struct eomc_draw_item {
+    const char *name; /* the spec's; "origin" for the world's origin */
+    int kind;         /* EOMC_DRAW_* */
+    int dim;          /* 2: in the plane z = 0, turning about z; or 3 */
+} eomc_draw_item;
+
+/* MuJoCo's geom types that a body's shapes may have. */
+enum {
+    EOMC_SHAPE_BOX,
+    EOMC_SHAPE_SPHERE,
+    EOMC_SHAPE_CAPSULE,
+    EOMC_SHAPE_CYLINDER,
+    EOMC_SHAPE_ELLIPSOID
+};
+
+/* A shape of a body item, in the body's frame. */
+typedef struct eomc_shape {
+    int item;        /* the body's index among the draw items */
+    int type;        /* EOMC_SHAPE_* */
+    double size[3];  /* box: half-sizes; sphere: radius; capsule and cylinder:
+                      * radius, half-length along z; ellipsoid: semi-axes */
+    double pos[3];   /* its centre */
+    double quat[4];  /* its turn, scalar first */
+    double rgba[4];  /* colour and opacity, each in [0, 1] */
+} eomc_shape;
 
 /* What an event does: end the run there, report the state and go on, or
  * reset coordinates and velocities and start again from there. */

@@ -91,9 +91,11 @@ static const unsigned char no_fixed[8];
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
+/* Nothing to draw (--animate): the members after c_nz. */
+#define NO_DRAW 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL
 /* ... and no outputs nor events (they follow the checks), nor the scene's
- * assembly, nor a sparse mass matrix, nor unit loads. */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL
+ * assembly, nor a sparse mass matrix, nor unit loads, nor drawing. */
+#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL, NO_DRAW
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -198,6 +200,7 @@ const eomc_model osc_event_model = {
     NULL,       /* no c_scale: residuals against B q */
     NULL,       /* no rows held */
     0, NULL,    /* B dense */
+    NO_DRAW,
 };
 
 void

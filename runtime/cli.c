@@ -10,6 +10,7 @@
  * linearization (stability.c).
  */
 #include "eomc.h"
+#include "animate.h"
 #include "assembly.h"
 #include "compare.h"
 #include "numfmt.h"
@@ -245,6 +246,23 @@ after_run(Options *c, Rows *w, const eomc_stats *st, const eomc_reference *ref,
     return rc;
 }
 
+/* The rows of a run with --animate: each to the CSV, then, written, to
+ * the page's collection (the outputs are the row's). */
+typedef struct AnimRows {
+    Rows *w;
+    Anim *a;
+} AnimRows;
+
+static int
+animate_row(void *ctx, double t, const double *x)
+{
+    AnimRows *r = ctx;
+    int rc = rows_write(r->w, t, x);
+    if (rc == EOMC_OK || rc == SIGNALS_STOPPED)
+        anim_row(r->a, t, x, r->w->res + eomc_sim_model(r->w->sim)->nc);
+    return rc;
+}
+
 /* One run written as CSV: the reference when measured against one, the
  * files, the run, what is said of it; one cleanup. */
 static int
@@ -257,7 +275,9 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     char data[] = "/tmp/eomc-rows-XXXXXX";
     int fd = -1;
     Rows w = rows_new(NULL, sim);
-    int rc = w.res ? EOMC_OK : opt_usage(c, "out of memory");
+    Anim *anim = c->animate ? anim_new(sim, c->animate) : NULL;
+    int rc = w.res && (anim || !c->animate) ? EOMC_OK : opt_usage(c, "out of memory");
+    AnimRows ar = {&w, anim};
     if (rc == EOMC_OK)
         assembly_check(c, sim, x);
     if (rc == EOMC_OK && (c->error || c->reference_out))
@@ -278,7 +298,8 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         c->run.on_event = rows_event;
         c->run.event_ctx = &w;
         signals_catch();
-        rc = eomc_sim_integrate(sim, &c->run, x, rows_write, &w, &st);
+        rc = anim ? eomc_sim_integrate(sim, &c->run, x, animate_row, &ar, &st)
+                  : eomc_sim_integrate(sim, &c->run, x, rows_write, &w, &st);
         summary_progress_end(&pr);
         c->run.on_progress = NULL; /* pr is gone */
         rows_flush(&w);
@@ -293,7 +314,12 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         } else {
             rc = after_run(c, &w, &st, &ref, data, rc);
         }
+        /* the page of the rows written, also those before a failure or
+         * a signal, as the CSV has them */
+        if (anim && anim_write(anim, c->prog) != EOMC_OK)
+            rc = rc ? rc : EOMC_EUSAGE;
     }
+    anim_free(anim);
     if (w.tee)
         fclose(w.tee);
     if (fd >= 0)

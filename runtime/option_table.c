@@ -71,6 +71,10 @@ static const Row rows[] = {
     {"--set", O_SET, "NAME=VALUE", "a parameter, or an input held constant", .when = ANY},
     {"--init", O_INIT, "NAME=VALUE", "initial coordinate NAME or velocity NAME'", .when = ANY},
     {"-o", O_OUT, "FILE", "write the CSV to FILE instead of stdout", .when = ANY},
+    {"--animate", O_ANIMATE, "FILE.html",
+     "also write the motion as a page for a web browser,\n"
+     "self-contained, offline (three.js: libjs-three)",
+     .when = ANY},
     {"--stabilize", O_STABILIZE, "NAME", "drift control: none (default), baumgarte, project",
      .when = CONSTRAINED},
     {"--baumgarte", O_BAUMGARTE, "A,B",

@@ -8,6 +8,7 @@
 #include "options.h"
 #include "option_table.h"
 #include "nearest.h"
+#include "animate.h"
 #include "plot.h"
 
 #include <float.h>
@@ -227,6 +228,7 @@ take_value(Options *c, int k, const char *val)
     case O_REFERENCE: c->reference = val; return EOMC_OK;
     case O_REFERENCE_OUT: c->reference_out = val; return EOMC_OK;
     case O_EVENTS: c->events = val; return EOMC_OK;
+    case O_ANIMATE: c->animate = val; return EOMC_OK;
     case O_SWEEP: c->sweep[c->nsweep++] = (char *)val; return EOMC_OK;
     case O_SWEEP_FILE: c->sweep_file = val; return EOMC_OK;
     case O_THREADS:
@@ -507,6 +509,24 @@ check_event_options(const Options *c, const eomc_model *m)
     return EOMC_OK;
 }
 
+/* --animate: one run, of a model with something to draw, and three.js
+ * there to draw it with; all known before the run starts. */
+static int
+check_animate(const Options *c, const eomc_model *m)
+{
+    if (!c->animate)
+        return EOMC_OK;
+    const char *clash = c->nsweep ? "--sweep" : c->sweep_file ? "--sweep-file"
+                        : c->work_precision ? "--work-precision" : c->accel ? "--accel"
+                        : c->linearize ? "--linearize" : c->equilibrium ? "--equilibrium"
+                        : NULL;
+    if (clash)
+        return opt_usage(c, "--animate draws one run: it does not take %s", clash);
+    char buf[1024];
+    const char *why = anim_cannot(m, buf, sizeof buf);
+    return why ? opt_usage(c, "%s", why) : EOMC_OK;
+}
+
 int
 opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
 {
@@ -557,7 +577,9 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
     }
     c->scene_assembles = m->assemble;
     int rc = check_combination(c);
-    return rc == EOMC_OK ? check_event_options(c, m) : rc;
+    if (rc == EOMC_OK)
+        rc = check_event_options(c, m);
+    return rc == EOMC_OK ? check_animate(c, m) : rc;
 }
 
 int

@@ -31,6 +31,7 @@ typedef struct Options {
     const char *reference, *reference_out, *csv, *plot;
     const char *errors;   /* --errors FILE: the errors by component */
     const char *events;   /* --events FILE */
+    const char *animate;  /* --animate FILE.html */
     const char *hold;     /* --hold LIST, for --assemble */
     char **sweep;         /* --sweep NAME=START:STOP:COUNT, in order */
     int nsweep, threads;  /* and --threads N */

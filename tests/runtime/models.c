@@ -203,6 +203,139 @@ const eomc_model osc_event_model = {
     NO_DRAW,
 };
 
+/* ---- a pendulum to draw (--animate): a bob of mass m on a rod of mass mr
+ * (a uniform box of half-sizes ROD_W, l/2, ROD_D hanging from the pivot),
+ * turning by theta about z; its items: the pivot ("origin", a point), the
+ * bob (a particle), the rod (a body in its frame, turned by theta), the
+ * link pivot-bob and the bob's trace; outputs x_bob, y_bob ---- */
+
+#define ROD_W 0.04
+#define ROD_D 0.02
+static const char *const pd_q[] = {"theta"};
+static const char *const pd_p[] = {"m", "l", "g", "mr"};
+static const double pd_pdef[] = {1.0, 1.0, 9.81, 0.5};
+
+static void
+pd_initial(const double *p, double *q, double *v)
+{
+    (void)p;
+    q[0] = 1.0;
+    v[0] = 0.0;
+}
+
+/* the rod's moment about the pivot: mr (w^2 + (l/2)^2) / 3 + mr (l/2)^2 */
+static double
+pd_rod_izz(const double *p)
+{
+    double hl = p[1] / 2;
+    return p[3] * (ROD_W * ROD_W + hl * hl) / 3 + p[3] * hl * hl;
+}
+
+static void
+pd_mass_bias(double t, const double *q, const double *v, const double *p,
+             const double *u, double *M, double *h)
+{
+    (void)t;
+    (void)v;
+    (void)u;
+    M[0] = p[0] * p[1] * p[1] + pd_rod_izz(p);
+    h[0] = (p[0] + p[3] / 2) * p[1] * p[2] * sin(q[0]);
+}
+
+static void
+pd_energy(double t, const double *q, const double *v, const double *p,
+          const double *u, double *TV)
+{
+    (void)t;
+    (void)u;
+    TV[0] = 0.5 * (p[0] * p[1] * p[1] + pd_rod_izz(p)) * v[0] * v[0];
+    TV[1] = -(p[0] + p[3] / 2) * p[1] * p[2] * cos(q[0]);
+}
+
+static void
+pd_invariant(double t, const double *q, const double *v, const double *p,
+             const double *u, double *h)
+{
+    double TV[2];
+    pd_energy(t, q, v, p, u, TV);
+    h[0] = TV[0] + TV[1];
+}
+
+static const char *const pd_out[] = {"x_bob", "y_bob"};
+
+static void
+pd_outputs(double t, const double *q, const double *v, const double *a, const double *p,
+           const double *u, const double *lam, double *out)
+{
+    (void)t;
+    (void)v;
+    (void)a;
+    (void)u;
+    (void)lam;
+    out[0] = p[1] * sin(q[0]);
+    out[1] = -p[1] * cos(q[0]);
+}
+
+static const eomc_draw_item pd_items[] = {
+    {"origin", EOMC_DRAW_POINT, 2},
+    {"bob", EOMC_DRAW_PARTICLE, 2},
+    {"rod", EOMC_DRAW_BODY, 2},
+};
+static const int pd_links[] = {0, 1};
+static const int pd_trace[] = {1};
+
+static void
+pd_draw(double t, const double *q, const double *p, const double *u, double *X)
+{
+    (void)t;
+    (void)u;
+    double s = sin(q[0]), c = cos(q[0]);
+    for (int k = 0; k < 3; k++) { /* at the origin, unturned */
+        double *x = X + k * EOMC_POSE;
+        for (int i = 0; i < EOMC_POSE; i++)
+            x[i] = i >= 3 && (i - 3) % 4 == 0;
+    }
+    X[EOMC_POSE + 0] = p[1] * s; /* the bob */
+    X[EOMC_POSE + 1] = -p[1] * c;
+    double *R = X + 2 * EOMC_POSE + 3; /* the rod: turned by theta about z */
+    R[0] = c, R[1] = -s, R[3] = s, R[4] = c;
+}
+
+/* the rod's mass, centre (0, -l/2, 0) and inertia about it, in its frame */
+static void
+pd_draw_mass(const double *p, double *D)
+{
+    double *d = D + 2 * EOMC_DRAW_MASS, m = p[3];
+    double a[3] = {ROD_W, p[1] / 2, ROD_D};
+    for (int i = 0; i < EOMC_DRAW_MASS; i++)
+        d[i] = 0;
+    d[0] = m;
+    d[2] = -p[1] / 2;
+    for (int i = 0; i < 3; i++)
+        d[4 + 4 * i] = m * (a[(i + 1) % 3] * a[(i + 1) % 3] + a[(i + 2) % 3] * a[(i + 2) % 3]) / 3;
+}
+
+const eomc_model draw_model = {
+    EOMC_ABI_VERSION, "drawn", "drawn.yaml", "lagrange", "",
+    1, 4, 0, pd_q, pd_p, osc_u, pd_pdef,
+    "", no_fixed, 0, NULL,
+    2.0, 0.01, "rk8pd", 1e-10, 1e-10, 0.0,
+    pd_initial, no_inputs, pd_mass_bias, pd_energy, NULL,
+    NULL,
+    NO_CONSTRAINTS,
+    pd_invariant, "E", "E = T + V is conserved",
+    NO_CHECKS,
+    2, pd_out, pd_outputs,
+    0, NULL, NULL, NULL, NULL, NULL, /* no events */
+    0, NULL, /* no assembly */
+    NULL,    /* M dense */
+    NULL, NULL, /* no unit loads */
+    NULL,       /* no c_scale */
+    NULL,       /* no rows held */
+    0, NULL,    /* B dense */
+    3, pd_items, pd_draw, pd_draw_mass, 0, NULL, 1, 1, 0, pd_links, pd_trace, NULL,
+};
+
 void
 osc_exact(double m, double k, double x0, double v0, double t, double *x, double *v)
 {

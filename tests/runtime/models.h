@@ -17,6 +17,10 @@
  *   nonpd_gsl_model  the same with accel NULL
  *   leaky_model      m x'' + c x' + k x = 0, p = (m, k, x0, c), c = LEAKY_C:
  *                    damped, yet it claims to conserve E = T + V
+ *   draw_model       a pendulum with its drawing filled in (--animate): a bob
+ *                    (a particle) on a rod (a body drawn as its equivalent
+ *                    box, half-sizes 0.04, l/2, 0.02), a link and a trace;
+ *                    p = (m, l, g, mr), theta(0) = 1; outputs x_bob, y_bob
  */
 #ifndef EOMC_TEST_MODELS_H
 #define EOMC_TEST_MODELS_H
@@ -30,6 +34,7 @@ extern const eomc_model driven_model;
 extern const eomc_model nonpd_model;
 extern const eomc_model nonpd_gsl_model;
 extern const eomc_model leaky_model;
+extern const eomc_model draw_model;
 #define LEAKY_C 1e-3
 
 /* Defaults of osc_model. */

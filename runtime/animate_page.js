@@ -155,7 +155,9 @@
     });
     var geo = new THREE.BufferGeometry();
     geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-    var line = new THREE.Line(geo, new THREE.LineBasicMaterial({color: colour(k)}));
+    /* the item's colour, paler: the item itself stands out on its path */
+    var c = new THREE.Color(colour(k)).lerp(new THREE.Color(0xffffff), 0.6);
+    var line = new THREE.Line(geo, new THREE.LineBasicMaterial({color: c}));
     line.frustumCulled = false;
     scene.add(line);
     return geo;

@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""page_check.py: what tests/cli/test_animate.sh reads of a run's page and
+of a screenshot of it (python3's standard library only).
+
+  page_check.py json PAGE KEY           a value of the page's JSON block
+  page_check.py frames PAGE             frames kept, the last frame's t, and
+                                        the trajectory's bytes
+  page_check.py pixel PAGE PNG CSV T X Y ITEM W H
+      where the CSV's row at t = T puts the point (column X, column Y, 0)
+      (a column name, or a number times a column: 0.5*sin(theta)), through
+      the page's camera (position, target, up, vertical fov; aspect W / H),
+      against the centroid of the pixels of ITEM's colour near it: prints
+      "projected_x projected_y found_x found_y error count"
+"""
+import json
+import math
+import re
+import struct
+import sys
+import zlib
+
+
+def page_json(path):
+    text = open(path, encoding='utf-8').read()
+    m = re.search(r'<script id="eomc-data" type="application/json">\n(.*?)\n</script>',
+                  text, re.S)
+    return json.loads(m.group(1)), m.group(1)
+
+
+def png(path):
+    """Width, height and rows of RGB triples of an 8-bit RGB or RGBA PNG."""
+    data = open(path, 'rb').read()
+    assert data[:8] == b'\x89PNG\r\n\x1a\n'
+    at, idat = 8, b''
+    while at < len(data):
+        n, kind = struct.unpack('>I4s', data[at:at + 8])
+        body = data[at + 8:at + 8 + n]
+        if kind == b'IHDR':
+            w, h, depth, ctype, _, _, interlace = struct.unpack('>IIBBBBB', body)
+            assert depth == 8 and ctype in (2, 6) and interlace == 0
+        elif kind == b'IDAT':
+            idat += body
+        at += 12 + n
+    bpp = 3 if ctype == 2 else 4
+    raw, stride = zlib.decompress(idat), w * bpp
+    rows, prev, at = [], bytearray(stride), 0
+    for _ in range(h):
+        f, line = raw[at], bytearray(raw[at + 1:at + 1 + stride])
+        at += 1 + stride
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[j:j + 3]) for j in range(0, stride, bpp)])
+        prev = line
+    return w, h, rows
+
+
+def csv_row(path, t):
+    lines = open(path).read().split('\n')
+    names = lines[0].split(',')
+    best = None
+    for line in lines[1:]:
+        if line:
+            row = dict(zip(names, map(float, line.split(','))))
+            if best is None or abs(row['t'] - t) < abs(best['t'] - t):
+                best = row
+    return best
+
+
+def value(expr, row):
+    """A column, or FACTOR*sin(COL) / FACTOR*cos(COL) / FACTOR*COL."""
+    factor = 1.0
+    if '*' in expr:
+        f, expr = expr.split('*', 1)
+        factor = float(f)
+    m = re.match(r'(sin|cos)\((.*)\)$', expr)
+    if m:
+        return factor * getattr(math, m.group(1))(row[m.group(2)])
+    return factor * row[expr]
+
+
+def sub(a, b):
+    return [a[i] - b[i] for i in range(3)]
+
+
+def dot(a, b):
+    return sum(a[i] * b[i] for i in range(3))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def unit(a):
+    n = math.sqrt(dot(a, a))
+    return [x / n for x in a]
+
+
+def project(cam, p, w, h):
+    """The standard perspective projection (as gluLookAt and gluPerspective)."""
+    f = unit(sub(cam['target'], cam['position']))
+    r = unit(cross(f, cam['up']))
+    u = cross(r, f)
+    d = sub(p, cam['position'])
+    th = math.tan(math.radians(cam['fov']) / 2)
+    nx = dot(d, r) / (dot(d, f) * th * w / h)
+    ny = dot(d, u) / (dot(d, f) * th)
+    return (nx + 1) / 2 * w, (1 - ny) / 2 * h
+
+
+PALETTE = [0xd62728, 0x1f77b4, 0x2ca02c, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2,
+           0x17becf, 0xbcbd22, 0x7f7f7f]  # animate_page.js's
+
+
+def like(px, rgb):
+    """A saturated pixel whose channels are ordered as rgb's: the item's
+    colour lit or shaded, not the grid, the links nor a pale trace."""
+    if max(px) - min(px) < 90:
+        return False
+    order = sorted(range(3), key=lambda i: rgb[i])
+    return sorted(range(3), key=lambda i: px[i]) == order and \
+        abs((px[order[2]] - px[order[1]]) - (rgb[order[2]] - rgb[order[1]])) < 90
+
+
+def main():
+    cmd, page = sys.argv[1], sys.argv[2]
+    d, text = page_json(page)
+    if cmd == 'json':
+        v = d
+        for k in sys.argv[3].split('.'):
+            v = v[int(k)] if isinstance(v, list) else v[k]
+        print(json.dumps(v))
+    elif cmd == 'frames':
+        traj = text[text.index('"frames":'):]
+        print(len(d['frames']), d['frames'][-1][0], len(traj))
+    elif cmd == 'pixel':
+        shot, csv, t, xe, ye, item, w, h = sys.argv[3:11]
+        row = csv_row(csv, float(t))
+        px, py = project(d['camera'], [value(xe, row), value(ye, row), 0.0], int(w), int(h))
+        rgb = PALETTE[int(item) % len(PALETTE)]
+        rgb = ((rgb >> 16) & 255, (rgb >> 8) & 255, rgb & 255)
+        W, H, rows = png(shot)
+        sx, sy, n, R = 0.0, 0.0, 0, 20
+        for y in range(max(0, int(py) - R), min(H, int(py) + R + 1)):
+            for x in range(max(0, int(px) - R), min(W, int(px) + R + 1)):
+                if like(rows[y][x], rgb):
+                    sx, sy, n = sx + x + 0.5, sy + y + 0.5, n + 1
+        fx, fy = (sx / n, sy / n) if n else (float('nan'), float('nan'))
+        print('%.2f %.2f %.2f %.2f %.2f %d' % (px, py, fx, fy, math.hypot(fx - px, fy - py), n))
+
+
+main()

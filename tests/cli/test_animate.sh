@@ -34,7 +34,7 @@ cmp -s "$tmp/plain.csv" "$tmp/p.csv"
 ok $? "the CSV is the same with --animate"
 [ -s "$tmp/p.html" ] && [ ! -e "$tmp/p.html.tmp" ] && [ ! -s "$tmp/err" ]
 ok $? "the page written, no FILE.tmp left, nothing said"
-grep -q 'http' "$tmp/p.html" && ! grep -qE '<script[^>]* src=' "$tmp/p.html"
+grep -q 'REVISION' "$tmp/p.html" && grep -q 'var OrbitControls = function' "$tmp/p.html" && ! grep -qE '<script[^>]* src=' "$tmp/p.html"
 ok $? "three.js inlined: no script loaded from elsewhere"
 rows=$(($(wc -l < "$tmp/p.csv") - 1))
 set -- $($check frames "$tmp/p.html")

@@ -539,6 +539,24 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     } else {
         emit_line(pr, "    .c_nnz = 0, .c_nz = NULL, /* B dense */");
     }
+    if (md->ndraw) {
+        emit_line(pr, "    .ndraw = %d, .draw_items = draw_items, .draw = %s_draw,", md->ndraw, nm);
+        if (L->draw_mass)
+            emit_line(pr, "    .draw_mass = %s_draw_mass,", nm);
+        else
+            emit_line(pr, "    .draw_mass = NULL, /* no bodies */");
+        if (md->nshape)
+            emit_line(pr, "    .nshape = %d, .shapes = shapes,", md->nshape);
+        else
+            emit_line(pr, "    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */");
+        emit_line(pr, "    .nlink = %d, .view_links = %s, .ntrace = %d, .view_trace = %s,",
+                  md->nlink, md->nlink ? "view_links" : "NULL", md->ntrace,
+                  md->ntrace ? "view_trace" : "NULL");
+        emit_line(pr, "    .view_frames = %d, .view_camera = %s,", md->view_frames,
+                  md->has_camera ? "view_camera" : "NULL");
+    } else {
+        emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
+    }
     emit_line(pr, "};\n");
     emit_line(pr, "#ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */");
     emit_line(pr, "#include \"eomc_main.h\"");
@@ -673,6 +691,72 @@ print_event_set(Printer *pr, const Lowered *L)
     emit_line(pr, "}\n");
 }
 
+/* doubles, shortest round-trip, comma-separated */
+static void
+print_doubles(FILE *f, const double *x, int n)
+{
+    for (int i = 0; i < n; i++) {
+        char num[40];
+        emit_const(num, sizeof num, x[i]);
+        fprintf(f, "%s%s", i ? ", " : "", num);
+    }
+}
+
+/* What a run's page draws: the items, the shapes, the view. */
+static void
+print_draw_tables(Printer *pr)
+{
+    const LowModel *md = pr->md;
+    FILE *f = pr->f;
+    static const char *const kinds[] = {"EOMC_DRAW_BODY", "EOMC_DRAW_PARTICLE",
+                                        "EOMC_DRAW_POINT", "EOMC_DRAW_FRAME"};
+    static const char *const types[] = {"EOMC_SHAPE_BOX", "EOMC_SHAPE_SPHERE",
+                                        "EOMC_SHAPE_CAPSULE", "EOMC_SHAPE_CYLINDER",
+                                        "EOMC_SHAPE_ELLIPSOID"};
+    emit_line(pr, "/* What a run's page draws (--animate): draw's items, in order. */");
+    emit_line(pr, "static const eomc_draw_item draw_items[%d] = {", md->ndraw);
+    for (int k = 0; k < md->ndraw; k++) {
+        fprintf(f, "    {");
+        print_c_string(f, md->draw_item[k].name);
+        emit_line(pr, ", %s, %d},", kinds[md->draw_item[k].kind], md->draw_item[k].dim);
+    }
+    emit_line(pr, "};");
+    if (md->nshape) {
+        emit_line(pr, "static const eomc_shape shapes[%d] = {", md->nshape);
+        for (int k = 0; k < md->nshape; k++) {
+            const LowShape *sh = &md->shape[k];
+            fprintf(f, "    {%d, %s, {", sh->body, types[sh->type]);
+            print_doubles(f, sh->size, 3);
+            fprintf(f, "}, {");
+            print_doubles(f, sh->pos, 3);
+            fprintf(f, "}, {");
+            print_doubles(f, sh->quat, 4);
+            fprintf(f, "}, {");
+            print_doubles(f, sh->rgba, 4);
+            emit_line(pr, "}},");
+        }
+        emit_line(pr, "};");
+    }
+    if (md->nlink) {
+        fprintf(f, "static const int view_links[%d] = {", 2 * md->nlink);
+        for (int k = 0; k < 2 * md->nlink; k++)
+            fprintf(f, "%s%d", k ? ", " : "", md->view_link[k]);
+        emit_line(pr, "};");
+    }
+    if (md->ntrace) {
+        fprintf(f, "static const int view_trace[%d] = {", md->ntrace);
+        for (int k = 0; k < md->ntrace; k++)
+            fprintf(f, "%s%d", k ? ", " : "", md->view_trace[k]);
+        emit_line(pr, "};");
+    }
+    if (md->has_camera) {
+        fprintf(f, "static const double view_camera[9] = {");
+        print_doubles(f, md->camera, 9);
+        emit_line(pr, "}; /* position, target, up */");
+    }
+    emit_line(pr, "");
+}
+
 /* The rows of --stats, in order. */
 static const char *const stat_names[EMIT_NFUNCS] = {
     "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "minv", "constraint",
@@ -723,6 +807,8 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
             fprintf(f, "%s%d", k ? ", " : "", md->event[k].action);
         emit_line(&pr, "}; /* EOMC_EVENT_STOP, _RECORD, _SET */\n");
     }
+    if (md->ndraw)
+        print_draw_tables(&pr);
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *lf = L->func[k];
         ExprCount n = emit_function(&pr, lf);

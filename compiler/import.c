@@ -368,6 +368,58 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     return n;
 }
 
+/* Body b's geoms as its `shapes:` (spec.md), in the frame its pose is
+ * drawn in: its axes at its centre of mass, so at geom_pos - body_ipos.
+ * Planes, height fields and meshes are not drawn; *skipped counts them.
+ * Colours are rounded to 3 decimals (MuJoCo keeps floats). */
+static void
+put_shapes(const mjModel *m, int b, FILE *out, int *skipped)
+{
+    static const char *const types[mjNGEOMTYPES] = {
+        [mjGEOM_SPHERE] = "sphere", [mjGEOM_CAPSULE] = "capsule",
+        [mjGEOM_ELLIPSOID] = "ellipsoid", [mjGEOM_CYLINDER] = "cylinder", [mjGEOM_BOX] = "box"};
+    static const int nsize[mjNGEOMTYPES] = {
+        [mjGEOM_SPHERE] = 1, [mjGEOM_CAPSULE] = 2, [mjGEOM_ELLIPSOID] = 3,
+        [mjGEOM_CYLINDER] = 2, [mjGEOM_BOX] = 3};
+    char a[NUM_MAX];
+    int n = 0;
+    for (int g = 0; g < m->ngeom; g++) {
+        if (m->geom_bodyid[g] != b)
+            continue;
+        int t = m->geom_type[g];
+        if (t < 0 || t >= mjNGEOMTYPES || !types[t]) {
+            ++*skipped;
+            continue;
+        }
+        fprintf(out, "%s{type: %s, size: [", n++ ? ", " : ", shapes: [", types[t]);
+        for (int k = 0; k < nsize[t]; k++)
+            fprintf(out, "%s%s", k ? ", " : "", num(a, m->geom_size[3 * g + k]));
+        fputs("]", out);
+        double pos[3];
+        for (int k = 0; k < 3; k++)
+            pos[k] = m->geom_pos[3 * g + k] - m->body_ipos[3 * b + k];
+        if (!is_zero3(pos)) {
+            fputs(", pos: ", out);
+            put_vec(out, pos);
+        }
+        const double *gq = m->geom_quat + 4 * g;
+        if (gq[1] != 0 || gq[2] != 0 || gq[3] != 0) {
+            fputs(", quat: [", out);
+            for (int k = 0; k < 4; k++)
+                fprintf(out, "%s%s", k ? ", " : "", num(a, gq[k]));
+            fputs("]", out);
+        }
+        fputs(", rgba: [", out);
+        for (int k = 0; k < 4; k++) {
+            double c = round(1000 * (double)m->geom_rgba[4 * g + k]) / 1000;
+            fprintf(out, "%s%s", k ? ", " : "", num(a, c < 0 ? 0 : c > 1 ? 1 : c));
+        }
+        fputs("]}", out);
+    }
+    if (n)
+        fputs("]", out);
+}
+
 /* q - ref for joint j: its coordinate alone where ref is 0. */
 static void
 displacement(char *buf, size_t len, const char *coord, double ref)
@@ -903,6 +955,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(fr);
     free(pt);
     fputs("bodies:\n", out);
+    int unshaped = 0; /* geoms of types that are not drawn */
     for (int b = 1; b < nb; b++) {
         if (m->body_mass[b] == 0)
             continue;
@@ -920,8 +973,14 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             fputs(r ? ", " : "", out);
             put_vec(out, I + 3 * r);
         }
-        fputs("]}\n", out);
+        fputs("]", out);
+        put_shapes(m, b, out, &unshaped);
+        fputs("}\n", out);
     }
+    if (unshaped)
+        fprintf(warn, "%s: note: not drawn: %d geom%s (planes, height fields and meshes; "
+                "--animate draws boxes, spheres, capsules, cylinders and ellipsoids)\n", path,
+                unshaped, unshaped == 1 ? "" : "s");
     put_effects(m, qn, un, tn, out);
     put_constraints(m, qn, tn, eqn, eqp, axes, out);
     int any = 0;

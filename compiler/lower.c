@@ -2,6 +2,7 @@
  * lower: from the derived model to its list of functions (lower.h).
  */
 #include "lower.h"
+#include "kin.h"
 #include "repeat.h"
 
 #include <stdlib.h>
@@ -150,6 +151,16 @@ static const LowSig s_outputs = {
 static const LowSig s_events = {
     "events", "The scene's events: g[k], whose zero crossings they are.",
     "t q v p u > g",
+};
+static const LowSig s_draw = {
+    "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
+    " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
+    "t q p u > X",
+};
+static const LowSig s_draw_mass = {
+    "draw_mass", "Each body item k's mass, centre and inertia about it in its frame\n"
+    " * at D[13 k ...], from which a body without shapes is drawn.",
+    "p > D",
 };
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
@@ -585,6 +596,92 @@ held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool
     return any ? held : NULL;
 }
 
+/* The draw items' poses (draw) and the bodies' masses (draw_mass): a body
+ * at its centre of mass, turned as the frame that places it, else by its
+ * rotation (a sequence, a quaternion, a planar angle about z; a body given
+ * by `omega:` alone is not turned); a particle or point at its position, a
+ * frame at its origin (the world's if it has none) with its rotation; z = 0
+ * in the plane.  Computed from p alone, not per step: the page calls them
+ * once per frame.  Fixed parameters are folded into the frames' and points'
+ * expressions here (the spec's own are already). */
+static void
+lower_draw(Lowering *lw)
+{
+    const Spec *s = lw->s;
+    ExprPool *P = lw->P;
+    const Kin *K = s->kin;
+    const SpecView *v = &s->view;
+    int ni = v->nitem, nx = EOMC_POSE_SIZE * ni;
+    ExprId *X = arena_new_array(lw->A, ExprId, nx + 1);
+    for (int k = 0; k < ni; k++) {
+        const SpecDrawItem *it = &v->item[k];
+        ExprId *pos = X + EOMC_POSE_SIZE * k, *R = pos + 3;
+        for (int j = 0; j < 9; j++)
+            R[j] = j % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+        pos[0] = pos[1] = pos[2] = EXPR_ZERO;
+        int frame = -1;
+        if (it->kind == SPEC_DRAW_BODY) {
+            const SpecBody *b = &s->body[it->index];
+            for (int j = 0; j < it->dim; j++)
+                pos[j] = b->center[j];
+            if (b->frame >= 0) {
+                frame = b->frame;
+            } else if (b->has_rot) {
+                for (int j = 0; j < 9; j++)
+                    R[j] = b->rot[j];
+            } else if (b->dim == 2 && b->angle != EXPR_NONE) {
+                ExprId c = expr_unary(P, EXPR_COS, b->angle);
+                ExprId sn = expr_unary(P, EXPR_SIN, b->angle);
+                R[0] = c, R[1] = expr_neg(P, sn), R[3] = sn, R[4] = c;
+            }
+        } else if (it->kind == SPEC_DRAW_PARTICLE) {
+            for (int j = 0; j < it->dim; j++)
+                pos[j] = s->part[it->index].pos[j];
+        } else if (it->kind == SPEC_DRAW_POINT) {
+            kin_pos(K, it->index, pos);
+        } else {
+            frame = it->index;
+            int o = kin_origin(K, frame);
+            kin_pos(K, o < 0 ? KIN_ORIGIN : o, pos);
+        }
+        if (frame >= 0)
+            kin_rotation(K, frame, R);
+    }
+    int nd = EOMC_DRAW_MASS_SIZE * s->nbody;
+    ExprId *D = arena_new_array(lw->A, ExprId, nd + 1);
+    for (int k = 0; k < s->nbody; k++) { /* the bodies are the first items */
+        const SpecBody *b = &s->body[k];
+        ExprId *d = D + EOMC_DRAW_MASS_SIZE * k;
+        d[0] = b->mass;
+        d[1] = d[2] = d[3] = EXPR_ZERO; /* the pose is at the centre */
+        for (int j = 0; j < 9; j++)
+            d[4 + j] = b->dim == 2 ? (j == 8 ? b->inertia[0] : EXPR_ZERO) : b->inertia[j];
+    }
+    if (s->nfixed) { /* the frames' and points' expressions */
+        ExprId *from = arena_new_array(lw->A, ExprId, s->nfixed);
+        ExprId *to = arena_new_array(lw->A, ExprId, s->nfixed);
+        int nf = 0;
+        for (int i = 0; i < s->np; i++)
+            if (s->param[i].fixed) {
+                from[nf] = expr_param(P, i);
+                to[nf++] = expr_const(P, s->param[i].value);
+            }
+        expr_subst_many(P, nx, X, nf, from, to, X);
+    }
+    LowFunc *f = func(lw, &s_draw, "draw", 1);
+    f->per_step = 0;
+    for (int i = 0; i < nx; i++)
+        out(lw, f, 0, i, orzero(X[i]));
+    lw->L->draw = f;
+    if (s->nbody) {
+        f = func(lw, &s_draw_mass, "draw", 1);
+        f->per_step = 0;
+        for (int i = 0; i < nd; i++)
+            out(lw, f, 0, i, orzero(D[i]));
+        lw->L->draw_mass = f;
+    }
+}
+
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
             const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
@@ -699,6 +796,8 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         for (int i = 0; i < s->ncheck; i++)
             out(&lw, f, 0, i, s->check[i].expr);
     }
+    if (s->view.nitem)
+        lower_draw(&lw);
     lower_derive(&lw);
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++)

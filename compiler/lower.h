@@ -173,6 +173,15 @@ typedef struct LowEvent {
     int direction, action; /* eomc_model.h's */
 } LowEvent;
 
+/* What a run's page draws (eomc_model.h's eomc_draw_item, eomc_shape and
+ * the view's members; EOMC_POSE and EOMC_DRAW_MASS are these sizes). */
+enum { EOMC_POSE_SIZE = 12, EOMC_DRAW_MASS_SIZE = 13 };
+typedef struct LowDrawItem {
+    const char *name;
+    int kind, dim; /* eomc_model.h's EOMC_DRAW_* order */
+} LowDrawItem;
+typedef SpecShape LowShape; /* .body is its item: the bodies come first */
+
 typedef struct LowCheck {
     const char *what;   /* "particle 'bob': its mass must not be negative" */
     const char *params; /* the parameters it depends on: "m" */
@@ -209,6 +218,13 @@ typedef struct LowModel {
     const char *invariant;      /* its name, NULL if none */
     const char *invariant_note; /* one sentence: what is conserved and why, or why not */
     int *mass_parent; /* [nq] M's tree for an unconstrained model, else NULL */
+    /* what a run's page draws: ndraw 0, nothing */
+    int ndraw, nshape, nlink, ntrace, view_frames, has_camera;
+    LowDrawItem *draw_item; /* [ndraw] */
+    LowShape *shape;        /* [nshape] */
+    int *view_link;         /* [2 nlink] */
+    int *view_trace;        /* [ntrace] */
+    double camera[9];
 } LowModel;
 
 /* The model's functions in the order they are printed. */
@@ -228,6 +244,7 @@ typedef struct Lowered {
     LowFunc *derive;
     LowFunc *outputs;     /* the scene's outputs, or NULL */
     LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
+    LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */
     LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;

@@ -86,4 +86,23 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
         md->mass_parent = arena_new_array(A, int, s->nq);
         memcpy(md->mass_parent, e->mass_parent, (size_t)s->nq * sizeof *md->mass_parent);
     }
+    const SpecView *v = &s->view;
+    md->ndraw = v->nitem;
+    md->draw_item = arena_new_array(A, LowDrawItem, v->nitem + 1);
+    for (int k = 0; k < v->nitem; k++) /* SPEC_DRAW_* is EOMC_DRAW_*'s order */
+        md->draw_item[k] = (LowDrawItem){dup(A, v->item[k].name), v->item[k].kind,
+                                         v->item[k].dim};
+    md->nshape = v->nitem ? s->nshape : 0;
+    md->shape = arena_new_array(A, LowShape, s->nshape + 1);
+    if (s->nshape)
+        memcpy(md->shape, s->shape, (size_t)s->nshape * sizeof *md->shape);
+    md->nlink = v->nlink, md->ntrace = v->ntrace, md->view_frames = v->frames;
+    md->view_link = arena_new_array(A, int, 2 * v->nlink + 1);
+    if (v->nlink)
+        memcpy(md->view_link, v->link, 2 * (size_t)v->nlink * sizeof *md->view_link);
+    md->view_trace = arena_new_array(A, int, v->ntrace + 1);
+    if (v->ntrace)
+        memcpy(md->view_trace, v->trace, (size_t)v->ntrace * sizeof *md->view_trace);
+    md->has_camera = v->has_camera;
+    memcpy(md->camera, v->camera, sizeof md->camera);
 }

@@ -84,7 +84,47 @@ typedef struct SpecBody {
      * e0^2 + e1^2 + e2^2 + e3^2 - 1 = 0. */
     int quat[4];
     SrcLoc quat_loc;
+    /* What it is drawn at (--animate): turned by a rotation sequence or
+     * quaternion, rot is its rotation matrix (row-major, body to world) and
+     * has_rot 1; planar with an `angle:`, angle is it (else EXPR_NONE).
+     * A body placed by a frame is drawn with the frame's rotation; one
+     * given by `omega:` alone is drawn unturned (nothing says where it
+     * points). */
+    ExprId rot[9];
+    int has_rot;
+    ExprId angle;
 } SpecBody;
+
+/* A shape a body is drawn as (`shapes:`), in its frame: numbers only. */
+enum { SPEC_SHAPE_BOX, SPEC_SHAPE_SPHERE, SPEC_SHAPE_CAPSULE, SPEC_SHAPE_CYLINDER,
+       SPEC_SHAPE_ELLIPSOID };
+typedef struct SpecShape {
+    int body, type;  /* Spec.body's index; SPEC_SHAPE_* (eomc_model.h's order) */
+    double size[3];  /* box: half-sizes; sphere: radius; capsule, cylinder:
+                      * radius, half-length; ellipsoid: semi-axes (unused 0) */
+    double pos[3], quat[4], rgba[4];
+} SpecShape;
+
+/* What a run's page draws: every body, every particle, then the points and
+ * frames the scene's `view:` names (eomc_model.h's draw items, same order). */
+enum { SPEC_DRAW_BODY, SPEC_DRAW_PARTICLE, SPEC_DRAW_POINT, SPEC_DRAW_FRAME };
+typedef struct SpecDrawItem {
+    const char *name;
+    int kind;  /* SPEC_DRAW_* */
+    int index; /* into Spec.body or Spec.part, or kin.h's point or frame */
+    int dim;   /* 2 (z = 0, turning about z) or 3 */
+} SpecDrawItem;
+
+typedef struct SpecView {
+    int nitem;
+    SpecDrawItem *item;
+    int nlink, ntrace;
+    int *link;         /* [2 nlink] item indices */
+    int *trace;        /* [ntrace] */
+    int frames;        /* draw the frame items' axes */
+    int has_camera;
+    double camera[9];  /* position, target, up */
+} SpecView;
 
 typedef enum SpecForceKind {
     FORCE_GRAVITY,   /* vec: field g; V -= m_k g . r_k for every particle */
@@ -222,6 +262,9 @@ typedef struct Spec {
     int nfquat;          /* frames turned by quaternions: each adds to T */
     SpecQuat *fquat;     /* 1/2 c (e.e')^2 (mech.c) and a unit constraint */
     const struct Kin *kin; /* the frames and points (kin.h) */
+    int nshape;
+    SpecShape *shape;    /* the bodies' `shapes:` */
+    SpecView view;       /* the compiled scene's `view:` and the draw items */
 } Spec;
 
 /* What the command line chooses: a named scene (NULL: the first), and

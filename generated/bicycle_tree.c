@@ -51,6 +51,14 @@ static const char *const c_names[2] = {"roll_x", "roll_y"};
 static const int c_order[2] = {1, 1};
 static const int c_dependent[2] = {4, 1};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[4] = {
+    {"rear", EOMC_DRAW_BODY, 3},
+    {"rear_frame", EOMC_DRAW_BODY, 3},
+    {"fork", EOMC_DRAW_BODY, 3},
+    {"front", EOMC_DRAW_BODY, 3},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -9385,6 +9393,321 @@ bicycle_tree_check(const double *p)
     return eomc_checks(44, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+bicycle_tree_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_psi = q[2];
+    const eomc_real q_lean = q[3];
+    const eomc_real q_rs = q[4];
+    const eomc_real q_pitch = q[5];
+    const eomc_real q_steer = q[6];
+    const eomc_real q_fs = q[7];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real p_lam = p[13];
+    const eomc_real p_R = p[0];
+    const eomc_real p_b = p[5];
+    const eomc_real p_c = p[6];
+    const eomc_real p_w = p[11];
+    const eomc_real p_h = p[12];
+    const eomc_real p_e = p[15];
+    const eomc_real p_d = p[16];
+    const eomc_real p_f = p[20];
+    const eomc_real p_k = p[21];
+    (void)u;
+    (void)t;
+    eomc_real ang[7], ang_sin[7], ang_cos[7]; /* 7 angles at once */
+    ang[0] = q_psi;
+    ang[1] = q_lean;
+    ang[2] = q_rs;
+    ang[3] = q_pitch;
+    ang[4] = q_steer;
+    ang[5] = p_lam;
+    ang[6] = q_fs;
+    eomc_sincos(7, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    const eomc_real w6 = ang_sin[3];
+    const eomc_real w7 = ang_cos[3];
+    const eomc_real w8 = ang_sin[4];
+    const eomc_real w9 = ang_cos[4];
+    const eomc_real w10 = ang_sin[5];
+    const eomc_real w11 = ang_cos[5];
+    const eomc_real w12 = ang_sin[6];
+    const eomc_real w13 = ang_cos[6];
+    const eomc_real w14 = w0 * w2;
+    const eomc_real w15 = w1 * w2;
+    const eomc_real w16 = p_R * w3;
+    const eomc_real w17 = w1 * w5;
+    const eomc_real w18 = w0 * w3;
+    const eomc_real w19 = w1 * w4;
+    const eomc_real w20 = w0 * w5;
+    const eomc_real w21 = w1 * w3;
+    const eomc_real w22 = w0 * w4;
+    const eomc_real w23 = w3 * w4;
+    X[10] = w2;
+    const eomc_real w24 = w3 * w5;
+    const eomc_real w25 = w1 * w7;
+    const eomc_real w26 = w1 * w6;
+    const eomc_real w27 = w0 * w7;
+    const eomc_real w28 = w0 * w6;
+    const eomc_real w29 = w3 * w7;
+    const eomc_real w30 = w3 * w6;
+    X[22] = w2;
+    const eomc_real w31 = w10 * w10;
+    const eomc_real w32 = 1.0 - w9;
+    const eomc_real w33 = w10 * w11;
+    const eomc_real w34 = w11 * w11;
+    const eomc_real w35 = w2 * w8;
+    const eomc_real w36 = w2 * w9;
+    const eomc_real w37 = p_R * w14;
+    const eomc_real w38 = p_R * w15;
+    X[2] = w16;
+    const eomc_real w39 = w14 * w4;
+    const eomc_real w40 = -w18;
+    const eomc_real w41 = w14 * w5;
+    const eomc_real w42 = w15 * w4;
+    X[7] = w21;
+    const eomc_real w43 = w15 * w5;
+    const eomc_real w44 = -w23;
+    X[11] = w24;
+    const eomc_real w45 = w14 * w6;
+    const eomc_real w46 = w14 * w7;
+    const eomc_real w47 = w15 * w6;
+    const eomc_real w48 = w15 * w7;
+    const eomc_real w49 = p_c * w29;
+    const eomc_real w50 = p_b * w30;
+    X[19] = w21;
+    const eomc_real w51 = -w30;
+    X[23] = w29;
+    const eomc_real w52 = w31 * w32;
+    const eomc_real w53 = w18 * w8;
+    const eomc_real w54 = w34 * w32;
+    const eomc_real w55 = w21 * w8;
+    const eomc_real w56 = p_h * w29;
+    const eomc_real w57 = p_w * w30;
+    const eomc_real w58 = w11 * w35;
+    const eomc_real w59 = w29 * w32;
+    const eomc_real w60 = w30 * w32;
+    const eomc_real w61 = w10 * w35;
+    const eomc_real w62 = w18 * w9;
+    const eomc_real w63 = w21 * w9;
+    const eomc_real w64 = w30 * w8;
+    const eomc_real w65 = w29 * w8;
+    const eomc_real w66 = q_x + w37;
+    const eomc_real w67 = q_y - w38;
+    const eomc_real w68 = w17 - w39;
+    X[4] = w40;
+    const eomc_real w69 = w19 + w41;
+    const eomc_real w70 = w20 + w42;
+    const eomc_real w71 = w22 - w43;
+    X[9] = w44;
+    const eomc_real w72 = w25 - w45;
+    const eomc_real w73 = w26 + w46;
+    const eomc_real w74 = w27 + w47;
+    const eomc_real w75 = w28 - w48;
+    const eomc_real w76 = w49 - w50;
+    X[16] = w40;
+    X[21] = w51;
+    const eomc_real w77 = w9 + w52;
+    const eomc_real w78 = w11 * w53;
+    const eomc_real w79 = w10 * w53;
+    const eomc_real w80 = w9 + w54;
+    const eomc_real w81 = w11 * w55;
+    const eomc_real w82 = w10 * w55;
+    const eomc_real w83 = w56 - w57;
+    const eomc_real w84 = w33 * w59;
+    const eomc_real w85 = w33 * w60;
+    const eomc_real w86 = w11 * w64;
+    const eomc_real w87 = w10 * w65;
+    X[0] = w66;
+    X[1] = w67;
+    X[3] = w68;
+    X[5] = w69;
+    X[6] = w70;
+    X[8] = w71;
+    const eomc_real w88 = p_b * w72;
+    const eomc_real w89 = p_c * w73;
+    const eomc_real w90 = p_b * w74;
+    const eomc_real w91 = p_c * w75;
+    const eomc_real w92 = w16 + w76;
+    X[15] = w72;
+    X[17] = w73;
+    X[18] = w74;
+    X[20] = w75;
+    const eomc_real w93 = p_w * w72;
+    const eomc_real w94 = p_h * w73;
+    const eomc_real w95 = w72 * w77;
+    const eomc_real w96 = w73 * w32;
+    const eomc_real w97 = w72 * w32;
+    const eomc_real w98 = w73 * w80;
+    const eomc_real w99 = p_w * w74;
+    const eomc_real w100 = p_h * w75;
+    const eomc_real w101 = w74 * w77;
+    const eomc_real w102 = w75 * w32;
+    const eomc_real w103 = w74 * w32;
+    const eomc_real w104 = w75 * w80;
+    const eomc_real w105 = w16 + w83;
+    const eomc_real w106 = w30 * w77;
+    const eomc_real w107 = w29 * w80;
+    const eomc_real w108 = w85 + w61;
+    const eomc_real w109 = w73 * w8;
+    const eomc_real w110 = w72 * w8;
+    const eomc_real w111 = w74 * w8;
+    const eomc_real w112 = w75 * w8;
+    const eomc_real w113 = w86 + w36;
+    const eomc_real w114 = w88 + w89;
+    const eomc_real w115 = w90 + w91;
+    X[14] = w92;
+    const eomc_real w116 = w93 + w94;
+    const eomc_real w117 = w95 - w78;
+    const eomc_real w118 = w33 * w96;
+    const eomc_real w119 = w33 * w97;
+    const eomc_real w120 = w99 + w100;
+    const eomc_real w121 = w101 + w81;
+    const eomc_real w122 = w33 * w102;
+    const eomc_real w123 = w33 * w103;
+    const eomc_real w124 = w58 - w106;
+    const eomc_real w125 = w107 - w108;
+    const eomc_real w126 = w10 * w109;
+    const eomc_real w127 = w11 * w110;
+    const eomc_real w128 = w11 * w111;
+    const eomc_real w129 = w10 * w112;
+    const eomc_real w130 = w113 + w87;
+    const eomc_real w131 = w66 + w114;
+    const eomc_real w132 = w67 + w115;
+    const eomc_real w133 = w66 + w116;
+    const eomc_real w134 = w117 + w118;
+    const eomc_real w135 = w119 + w79;
+    const eomc_real w136 = w67 + w120;
+    const eomc_real w137 = w121 + w122;
+    const eomc_real w138 = w123 - w82;
+    const eomc_real w139 = w124 + w84;
+    const eomc_real w140 = p_d * w125;
+    const eomc_real w141 = w127 + w62;
+    const eomc_real w142 = w63 - w128;
+    X[34] = w130;
+    X[35] = w125;
+    const eomc_real w143 = p_k * w125;
+    const eomc_real w144 = w125 * w12;
+    X[46] = w130;
+    const eomc_real w145 = w125 * w13;
+    X[12] = w131;
+    X[13] = w132;
+    const eomc_real w146 = p_e * w134;
+    const eomc_real w147 = w135 + w98;
+    const eomc_real w148 = p_e * w137;
+    const eomc_real w149 = w138 + w104;
+    const eomc_real w150 = p_e * w139;
+    X[27] = w134;
+    const eomc_real w151 = w126 - w141;
+    X[30] = w137;
+    const eomc_real w152 = w142 + w129;
+    X[33] = w139;
+    const eomc_real w153 = p_f * w134;
+    const eomc_real w154 = p_f * w137;
+    const eomc_real w155 = p_f * w139;
+    const eomc_real w156 = w134 * w13;
+    const eomc_real w157 = w134 * w12;
+    const eomc_real w158 = w137 * w13;
+    const eomc_real w159 = w137 * w12;
+    const eomc_real w160 = w139 * w13;
+    const eomc_real w161 = w139 * w12;
+    const eomc_real w162 = p_d * w147;
+    const eomc_real w163 = p_d * w149;
+    const eomc_real w164 = w150 - w140;
+    X[28] = w151;
+    X[29] = w147;
+    X[31] = w152;
+    X[32] = w149;
+    const eomc_real w165 = p_k * w147;
+    const eomc_real w166 = p_k * w149;
+    const eomc_real w167 = w155 - w143;
+    const eomc_real w168 = w147 * w12;
+    X[40] = w151;
+    const eomc_real w169 = w147 * w13;
+    const eomc_real w170 = w149 * w12;
+    X[43] = w152;
+    const eomc_real w171 = w149 * w13;
+    const eomc_real w172 = w160 - w144;
+    const eomc_real w173 = w161 + w145;
+    const eomc_real w174 = w146 - w162;
+    const eomc_real w175 = w148 - w163;
+    const eomc_real w176 = w105 + w164;
+    const eomc_real w177 = w153 - w165;
+    const eomc_real w178 = w154 - w166;
+    const eomc_real w179 = w105 + w167;
+    const eomc_real w180 = w156 - w168;
+    const eomc_real w181 = w157 + w169;
+    const eomc_real w182 = w158 - w170;
+    const eomc_real w183 = w159 + w171;
+    X[45] = w172;
+    X[47] = w173;
+    const eomc_real w184 = w133 + w174;
+    const eomc_real w185 = w136 + w175;
+    X[26] = w176;
+    const eomc_real w186 = w133 + w177;
+    const eomc_real w187 = w136 + w178;
+    X[24] = w184;
+    X[25] = w185;
+    X[36] = w186;
+    X[37] = w187;
+    X[38] = w179;
+    X[39] = w180;
+    X[41] = w181;
+    X[42] = w182;
+    X[44] = w183;
+}
+
+/* Each body item k's mass, centre and inertia about it in its frame
+ * at D[13 k ...], from which a body without shapes is drawn. */
+static void
+bicycle_tree_draw_mass(const eomc_real *p, eomc_real *D)
+{
+    for (int i = 0; i < 52; i++) /* the nonzeros follow */
+        D[i] = 0.0;
+    const eomc_real p_mr = p[1];
+    const eomc_real p_Ir = p[2];
+    const eomc_real p_Jr = p[3];
+    const eomc_real p_mb = p[4];
+    const eomc_real p_Bxx = p[7];
+    const eomc_real p_Byy = p[8];
+    const eomc_real p_Bzz = p[9];
+    const eomc_real p_Bxz = p[10];
+    const eomc_real p_mf = p[14];
+    const eomc_real p_F1 = p[17];
+    const eomc_real p_F2 = p[18];
+    const eomc_real p_F3 = p[19];
+    const eomc_real p_mw = p[22];
+    const eomc_real p_If = p[23];
+    const eomc_real p_Jf = p[24];
+    D[0] = p_mr;
+    D[4] = p_Ir;
+    D[8] = p_Jr;
+    D[12] = p_Ir;
+    D[13] = p_mb;
+    D[17] = p_Bxx;
+    D[19] = p_Bxz;
+    D[21] = p_Byy;
+    D[23] = p_Bxz;
+    D[25] = p_Bzz;
+    D[26] = p_mf;
+    D[30] = p_F1;
+    D[34] = p_F2;
+    D[38] = p_F3;
+    D[39] = p_mw;
+    D[43] = p_If;
+    D[47] = p_Jf;
+    D[51] = p_If;
+}
+
 const eomc_model bicycle_tree_model = {
     .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .spec = "bicycle_tree.yaml", .form = "articulated-body",
     .options = "--jacobian auto",
@@ -9413,6 +9736,11 @@ const eomc_model bicycle_tree_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 4, .draw_items = draw_items, .draw = bicycle_tree_draw,
+    .draw_mass = bicycle_tree_draw_mass,
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -41,6 +41,11 @@ static const char *const ev_names[1] = {"floor"};
 static const int ev_direction[1] = {-1};
 static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -247,6 +252,30 @@ bouncing_ball_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_y = q[0];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = 0.0;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
 const eomc_model bouncing_ball_model = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -273,6 +302,11 @@ const eomc_model bouncing_ball_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = bouncing_ball_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -45,6 +45,11 @@ static const char *const c_names[1] = {"rod"};
 static const int c_order[1] = {0};
 static const int c_dependent[1] = {1};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"bob", EOMC_DRAW_PARTICLE, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -352,6 +357,31 @@ cartesian_pendulum_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = q_x;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -380,6 +410,11 @@ const eomc_model cartesian_pendulum_model = {
     .c_scale = cartesian_pendulum_c_scale,
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = cartesian_pendulum_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -45,6 +45,11 @@ static const char *const c_names[1] = {"speed"};
 static const int c_order[1] = {1};
 static const int c_dependent[1] = {2};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"p", EOMC_DRAW_PARTICLE, 3},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -877,6 +882,44 @@ central_constant_speed_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_r = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = q_r * w1;
+    const eomc_real w5 = q_r * w0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w6 = w4 * w3;
+    const eomc_real w7 = w4 * w2;
+    X[0] = w6;
+    X[1] = w7;
+    X[2] = w5;
+}
+
 const eomc_model central_constant_speed_model = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto",
@@ -905,6 +948,11 @@ const eomc_model central_constant_speed_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = central_constant_speed_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

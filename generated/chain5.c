@@ -37,6 +37,15 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {1.0, 1.0, 9.81};
 static const unsigned char p_fixed[3] = {0, 0, 0};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[5] = {
+    {"p1", EOMC_DRAW_PARTICLE, 2},
+    {"p2", EOMC_DRAW_PARTICLE, 2},
+    {"p3", EOMC_DRAW_PARTICLE, 2},
+    {"p4", EOMC_DRAW_PARTICLE, 2},
+    {"p5", EOMC_DRAW_PARTICLE, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -1690,6 +1699,93 @@ chain5_check(const double *p)
     return eomc_checks(5, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    for (int i = 0; i < 60; i++) /* the nonzeros follow */
+        X[i] = 0.0;
+    const eomc_real q_q1 = q[0];
+    const eomc_real q_q2 = q[1];
+    const eomc_real q_q3 = q[2];
+    const eomc_real q_q4 = q[3];
+    const eomc_real q_q5 = q[4];
+    const eomc_real p_l = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = q_q1 + q_q2;
+    const eomc_real w1 = w0 + q_q3;
+    const eomc_real w2 = w1 + q_q4;
+    const eomc_real w3 = w2 + q_q5;
+    eomc_real ang[5], ang_sin[5], ang_cos[5]; /* 5 angles at once */
+    ang[0] = q_q1;
+    ang[1] = w0;
+    ang[2] = w1;
+    ang[3] = w2;
+    ang[4] = w3;
+    eomc_sincos(5, ang, ang_sin, ang_cos);
+    const eomc_real w4 = ang_sin[0];
+    const eomc_real w5 = ang_cos[0];
+    const eomc_real w6 = ang_sin[1];
+    const eomc_real w7 = ang_cos[1];
+    const eomc_real w8 = ang_sin[2];
+    const eomc_real w9 = ang_cos[2];
+    const eomc_real w10 = ang_sin[3];
+    const eomc_real w11 = ang_cos[3];
+    const eomc_real w12 = ang_sin[4];
+    const eomc_real w13 = ang_cos[4];
+    const eomc_real w14 = p_l * w4;
+    const eomc_real w15 = p_l * w5;
+    X[3] = 1.0;
+    X[7] = 1.0;
+    X[11] = 1.0;
+    const eomc_real w16 = w4 + w6;
+    const eomc_real w17 = w5 + w7;
+    X[0] = w14;
+    X[15] = 1.0;
+    X[19] = 1.0;
+    X[23] = 1.0;
+    X[27] = 1.0;
+    X[31] = 1.0;
+    X[35] = 1.0;
+    X[39] = 1.0;
+    X[43] = 1.0;
+    X[47] = 1.0;
+    X[51] = 1.0;
+    X[55] = 1.0;
+    X[59] = 1.0;
+    const eomc_real w18 = -w15;
+    const eomc_real w19 = p_l * w16;
+    const eomc_real w20 = p_l * w17;
+    const eomc_real w21 = w16 + w8;
+    const eomc_real w22 = w17 + w9;
+    X[1] = w18;
+    X[12] = w19;
+    const eomc_real w23 = -w20;
+    const eomc_real w24 = p_l * w21;
+    const eomc_real w25 = p_l * w22;
+    const eomc_real w26 = w21 + w10;
+    const eomc_real w27 = w22 + w11;
+    X[13] = w23;
+    X[24] = w24;
+    const eomc_real w28 = -w25;
+    const eomc_real w29 = p_l * w26;
+    const eomc_real w30 = p_l * w27;
+    const eomc_real w31 = w26 + w12;
+    const eomc_real w32 = w27 + w13;
+    X[25] = w28;
+    X[36] = w29;
+    const eomc_real w33 = -w30;
+    const eomc_real w34 = p_l * w31;
+    const eomc_real w35 = p_l * w32;
+    X[37] = w33;
+    X[48] = w34;
+    const eomc_real w36 = -w35;
+    X[49] = w36;
+}
+
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto",
@@ -1715,6 +1811,11 @@ const eomc_model chain5_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 5, .draw_items = draw_items, .draw = chain5_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -45,6 +45,11 @@ static const char *const c_names[1] = {"blade"};
 static const int c_order[1] = {1};
 static const int c_dependent[1] = {1};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"sleigh", EOMC_DRAW_BODY, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -470,6 +475,61 @@ chaplygin_sleigh_check(const double *p)
     return eomc_checks(2, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_theta = q[2];
+    const eomc_real q_y = q[1];
+    const eomc_real p_b = p[2];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = sin(q_theta);
+    X[2] = 0.0;
+    X[5] = 0.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w2 = p_b * w0;
+    const eomc_real w3 = p_b * w1;
+    X[3] = w0;
+    const eomc_real w4 = -w1;
+    X[6] = w1;
+    X[7] = w0;
+    const eomc_real w5 = q_x + w2;
+    const eomc_real w6 = q_y + w3;
+    X[0] = w5;
+    X[1] = w6;
+    X[4] = w4;
+}
+
+/* Each body item k's mass, centre and inertia about it in its frame
+ * at D[13 k ...], from which a body without shapes is drawn. */
+static void
+chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real p_J = p[1];
+    D[0] = p_m;
+    D[1] = 0.0;
+    D[2] = 0.0;
+    D[3] = 0.0;
+    D[4] = 0.0;
+    D[5] = 0.0;
+    D[6] = 0.0;
+    D[7] = 0.0;
+    D[8] = 0.0;
+    D[9] = 0.0;
+    D[10] = 0.0;
+    D[11] = 0.0;
+    D[12] = p_J;
+}
+
 const eomc_model chaplygin_sleigh_model = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -498,6 +558,11 @@ const eomc_model chaplygin_sleigh_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = chaplygin_sleigh_draw,
+    .draw_mass = chaplygin_sleigh_draw_mass,
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

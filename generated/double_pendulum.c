@@ -37,6 +37,15 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[5] = {1.0, 1.0, 1.0, 1.0, 9.81};
 static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[3] = {
+    {"bob1", EOMC_DRAW_PARTICLE, 2},
+    {"bob2", EOMC_DRAW_PARTICLE, 2},
+    {"origin", EOMC_DRAW_POINT, 3},
+};
+static const int view_links[4] = {2, 0, 0, 1};
+static const int view_trace[1] = {1};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -504,6 +513,51 @@ double_pendulum_check(const double *p)
     return eomc_checks(2, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    for (int i = 0; i < 36; i++) /* the nonzeros follow */
+        X[i] = 0.0;
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th1;
+    ang[1] = q_th2;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = p_l1 * w0;
+    const eomc_real w5 = p_l1 * w1;
+    X[3] = 1.0;
+    X[7] = 1.0;
+    X[11] = 1.0;
+    const eomc_real w6 = p_l2 * w2;
+    const eomc_real w7 = p_l2 * w3;
+    X[0] = w4;
+    X[15] = 1.0;
+    X[19] = 1.0;
+    X[23] = 1.0;
+    X[27] = 1.0;
+    X[31] = 1.0;
+    X[35] = 1.0;
+    const eomc_real w8 = -w5;
+    const eomc_real w9 = w4 + w6;
+    const eomc_real w10 = w5 + w7;
+    X[1] = w8;
+    X[12] = w9;
+    const eomc_real w11 = -w10;
+    X[13] = w11;
+}
+
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -529,6 +583,11 @@ const eomc_model double_pendulum_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 3, .draw_items = draw_items, .draw = double_pendulum_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 2, .view_links = view_links, .ntrace = 1, .view_trace = view_trace,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

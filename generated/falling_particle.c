@@ -36,6 +36,11 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {2.0, 9.81, 5.0};
 static const unsigned char p_fixed[3] = {0, 0, 0};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -192,6 +197,30 @@ falling_particle_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_y = q[0];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = 0.0;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -217,6 +246,11 @@ const eomc_model falling_particle_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = falling_particle_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

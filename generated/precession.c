@@ -45,6 +45,11 @@ static const char *const c_names[1] = {"precession"};
 static const int c_order[1] = {2};
 static const int c_dependent[1] = {1};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"body", EOMC_DRAW_BODY, 3},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -928,6 +933,53 @@ precession_check(const double *p)
     return eomc_checks(10, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+precession_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    (void)q;
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = 0.0;
+    X[1] = 0.0;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+/* Each body item k's mass, centre and inertia about it in its frame
+ * at D[13 k ...], from which a body without shapes is drawn. */
+static void
+precession_draw_mass(const eomc_real *p, eomc_real *D)
+{
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    D[0] = 1.0;
+    D[1] = 0.0;
+    D[2] = 0.0;
+    D[3] = 0.0;
+    D[4] = p_A;
+    D[5] = 0.0;
+    D[6] = 0.0;
+    D[7] = 0.0;
+    D[8] = p_B;
+    D[9] = 0.0;
+    D[10] = 0.0;
+    D[11] = 0.0;
+    D[12] = p_C;
+}
+
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto",
@@ -956,6 +1008,11 @@ const eomc_model precession_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = precession_draw,
+    .draw_mass = precession_draw_mass,
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

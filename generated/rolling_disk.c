@@ -50,6 +50,11 @@ static const char *const c_names[2] = {"roll_x", "roll_y"};
 static const int c_order[2] = {1, 1};
 static const int c_dependent[2] = {4, 1};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"disk", EOMC_DRAW_BODY, 3},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -1424,6 +1429,96 @@ rolling_disk_check(const double *p)
     return eomc_checks(7, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+rolling_disk_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_psi = q[2];
+    const eomc_real q_theta = q[3];
+    const eomc_real q_phi = q[4];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real p_R = p[1];
+    (void)u;
+    (void)t;
+    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
+    ang[0] = q_psi;
+    ang[1] = q_theta;
+    ang[2] = q_phi;
+    eomc_sincos(3, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    const eomc_real w6 = w0 * w3;
+    const eomc_real w7 = w1 * w3;
+    const eomc_real w8 = p_R * w2;
+    const eomc_real w9 = w1 * w5;
+    const eomc_real w10 = w1 * w4;
+    const eomc_real w11 = w0 * w2;
+    const eomc_real w12 = w0 * w5;
+    const eomc_real w13 = w0 * w4;
+    const eomc_real w14 = w1 * w2;
+    const eomc_real w15 = w2 * w4;
+    const eomc_real w16 = w2 * w5;
+    X[11] = w3;
+    const eomc_real w17 = p_R * w6;
+    const eomc_real w18 = p_R * w7;
+    X[2] = w8;
+    const eomc_real w19 = w6 * w4;
+    const eomc_real w20 = w6 * w5;
+    X[5] = w11;
+    const eomc_real w21 = w7 * w4;
+    const eomc_real w22 = w7 * w5;
+    const eomc_real w23 = -w14;
+    X[9] = w15;
+    X[10] = w16;
+    const eomc_real w24 = q_x - w17;
+    const eomc_real w25 = q_y + w18;
+    const eomc_real w26 = w9 - w19;
+    const eomc_real w27 = w10 + w20;
+    const eomc_real w28 = w12 + w21;
+    const eomc_real w29 = w22 - w13;
+    X[0] = w24;
+    X[1] = w25;
+    X[3] = w26;
+    X[8] = w23;
+    const eomc_real w30 = -w27;
+    X[4] = w30;
+    X[6] = w28;
+    X[7] = w29;
+}
+
+/* Each body item k's mass, centre and inertia about it in its frame
+ * at D[13 k ...], from which a body without shapes is drawn. */
+static void
+rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
+{
+    const eomc_real p_R = p[1];
+    const eomc_real p_m = p[0];
+    D[0] = p_m;
+    D[1] = 0.0;
+    D[2] = 0.0;
+    D[3] = 0.0;
+    const eomc_real w0 = p_R * p_R;
+    D[5] = 0.0;
+    D[6] = 0.0;
+    D[7] = 0.0;
+    D[9] = 0.0;
+    D[10] = 0.0;
+    D[11] = 0.0;
+    const eomc_real w1 = p_m * w0;
+    const eomc_real w2 = 0.25 * w1;
+    const eomc_real w3 = 0.5 * w1;
+    D[4] = w2;
+    D[8] = w2;
+    D[12] = w3;
+}
+
 const eomc_model rolling_disk_model = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
     .options = "--jacobian auto",
@@ -1452,6 +1547,11 @@ const eomc_model rolling_disk_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = rolling_disk_draw,
+    .draw_mass = rolling_disk_draw_mass,
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -38,6 +38,11 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {0.1, 0.5, 9.81, 6.0};
 static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"bead", EOMC_DRAW_PARTICLE, 3},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -463,6 +468,45 @@ spinning_hoop_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_th = q[0];
+    const eomc_real p_w = p[3];
+    const eomc_real p_R = p[1];
+    (void)u;
+    const eomc_real w0 = p_w * t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th;
+    ang[1] = w0;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w1 = ang_sin[0];
+    const eomc_real w2 = ang_cos[0];
+    const eomc_real w3 = ang_sin[1];
+    const eomc_real w4 = ang_cos[1];
+    const eomc_real w5 = w1 * w4;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = p_R * w2;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w8 = p_R * w5;
+    const eomc_real w9 = p_R * w6;
+    const eomc_real w10 = -w7;
+    X[0] = w8;
+    X[1] = w9;
+    X[2] = w10;
+}
+
 const eomc_model spinning_hoop_model = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto",
@@ -488,6 +532,11 @@ const eomc_model spinning_hoop_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = spinning_hoop_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

@@ -37,6 +37,11 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[7] = {1.0, 1.0, 9.81, 0.2, 0.0, 6.0, 1.0};
 static const unsigned char p_fixed[7] = {0, 0, 0, 0, 1, 0, 0};
 
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"bob", EOMC_DRAW_PARTICLE, 2},
+};
+
 #endif /* EOMC_EXTENDED */
 
 /* The values of the parameters alone that the other functions read:
@@ -213,6 +218,35 @@ swing_check(const double *p)
     return eomc_checks(1, chk, check_strict); /* eomc_model.h */
 }
 
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+static void
+swing_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_theta = q[0];
+    const eomc_real p_l = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = cos(q_theta);
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w2 = p_l * w0;
+    const eomc_real w3 = p_l * w1;
+    X[0] = w2;
+    const eomc_real w4 = -w3;
+    X[1] = w4;
+}
+
 const eomc_model swing_model = {
     .abi = EOMC_ABI_VERSION, .name = "swing", .spec = "swing.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -238,6 +272,11 @@ const eomc_model swing_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .ndraw = 1, .draw_items = draw_items, .draw = swing_draw,
+    .draw_mass = NULL, /* no bodies */
+    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
+    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .view_frames = 0, .view_camera = NULL,
 };
 
 #ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */

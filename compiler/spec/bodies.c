@@ -6,6 +6,7 @@
 #include "checks.h"
 #include "frames.h"
 #include "names.h"
+#include "view.h"
 
 #include <string.h>
 
@@ -124,6 +125,29 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
         b->omega[r] = expr_mul(P, two, w);
     }
     b->quat_loc = spec_loc(L, k);
+    /* R = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], for drawing it */
+    ExprId e00 = expr_mul(P, e[0], e[0]), vv = EXPR_ZERO;
+    for (int i = 1; i < 4; i++) {
+        ExprId sq = expr_mul(P, e[i], e[i]);
+        vv = expr_add(P, vv, sq);
+    }
+    ExprId diag = expr_sub(P, e00, vv);
+    static const int cross[9] = {0, -3, 2, 3, 0, -1, -2, 1, 0}; /* [v x]: sign * index */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            ExprId vivj = expr_mul(P, e[i + 1], e[j + 1]);
+            ExprId r = expr_mul(P, two, vivj);
+            if (i == j)
+                r = expr_add(P, diag, r);
+            int c = cross[3 * i + j];
+            if (c) {
+                ExprId ev = expr_mul(P, e[0], e[c > 0 ? c : -c]);
+                ExprId t2 = expr_mul(P, two, ev);
+                r = c > 0 ? expr_add(P, r, t2) : expr_sub(P, r, t2);
+            }
+            b->rot[3 * i + j] = r;
+        }
+    b->has_rot = 1;
 }
 
 /* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
@@ -153,6 +177,8 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
         diag_error(spec_loc(L, v), "rotation %s has %zu angles, not %d", axes, na,
                    (int)NITEMS(v));
     ExprId w[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    ExprId R[9] = {EXPR_ONE, EXPR_ZERO, EXPR_ZERO, EXPR_ZERO, EXPR_ONE, EXPR_ZERO,
+                   EXPR_ZERO, EXPR_ZERO, EXPR_ONE};
     for (size_t i = 0; i < na; i++) {
         ExprId th = spec_expr(L, spec_node(L, ITEMS(v)[i]), ALLOW_POSITION, "an angle");
         ExprId Rk[9], a[3], own[3];
@@ -161,9 +187,13 @@ rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
         for (int k = 0; k < 3; k++)
             own[k] = expr_mul(P, a[k], rate);
         kin_rate_turn(P, Rk, own, w);
+        kin_mat3_mul(P, R, Rk, R); /* the axes after the turn, for drawing it */
     }
     for (int i = 0; i < 3; i++)
         b->omega[i] = w[i];
+    for (int k = 0; k < 9; k++)
+        b->rot[k] = R[k];
+    b->has_rot = 1;
 }
 
 /* More than one of rotation, omega, angle: at the second one written. */
@@ -187,7 +217,7 @@ static void
 load_body(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"mass", "center", "inertia", "rotation", "omega",
-                                       "angle", "frame", NULL};
+                                       "angle", "frame", "shapes", NULL};
     Spec *s = L->s;
     {
         yaml_node_t *k = spec_node(L, PAIRS(map)[i].key), *v = spec_node(L, PAIRS(map)[i].value);
@@ -209,6 +239,10 @@ load_body(Loader *L, yaml_node_t *map, int i)
             diag_error(spec_loc(L, v), "body '%s' has no %s", b->name, missing);
         b->quat[0] = -1;
         b->frame = b->point = -1;
+        b->angle = EXPR_NONE;
+        yaml_node_t *shapes = spec_lookup(L, v, "shapes");
+        if (shapes && !spec_is_null(shapes))
+            spec_load_shapes(L, shapes, i);
         b->mass = spec_mass(L, mass, "body", b->name);
         int how = !!rot + !!om + !!ang + !!fr;
         if (how > 1)
@@ -247,8 +281,10 @@ load_body(Loader *L, yaml_node_t *map, int i)
         if (ang && b->dim != 2)
             diag_error(spec_loc(L, ang), "`angle` is for planar bodies; a 3-D body takes a "
                        "`rotation` or `omega`");
-        if (ang)
-            b->omega[0] = diff_time(L->sc.D, spec_expr(L, ang, ALLOW_POSITION, "an angle"));
+        if (ang) {
+            b->angle = spec_expr(L, ang, ALLOW_POSITION, "an angle");
+            b->omega[0] = diff_time(L->sc.D, b->angle);
+        }
         else if (rot && b->dim != 2)
             rotation_omega(L, spec_map(L, rot, "a rotation"), b);
         else if (rot)

@@ -41,8 +41,12 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
             if (b->has_center_vel)
                 VISIT(b->center_vel[k]);
         }
-        for (int k = 0; k < 9; k++)
+        for (int k = 0; k < 9; k++) {
             VISIT(b->inertia[k]);
+            if (b->has_rot)
+                VISIT(b->rot[k]);
+        }
+        VISIT(b->angle);
     }
     for (int i = 0; i < s->neffect; i++)
         for (int j = 0; j < s->effect[i].nforce; j++) {

@@ -12,6 +12,7 @@
 #include "frames.h"
 #include "names.h"
 #include "scene.h"
+#include "view.h"
 #include "yaml.h"
 
 #include <errno.h>
@@ -101,6 +102,7 @@ load_root(Loader *L, yaml_node_t *root)
         spec_load_particles(L, n);
     if ((n = spec_section(L, root, "bodies", 1)))
         spec_load_bodies(L, n);
+    spec_draw_items(L);
     spec_checked(L, spec_load_energy, root, 0);
     spec_checked(L, spec_load_energy, root, 1);
     if ((n = spec_section(L, root, "effects", 1)))

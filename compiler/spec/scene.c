@@ -6,6 +6,7 @@
 
 #include "effects.h"
 #include "names.h"
+#include "view.h"
 
 #include <errno.h>
 #include <math.h>
@@ -462,7 +463,7 @@ scene_entry(Loader *L, yaml_node_t *map, int i)
 {
     static const char *const keys[] = {"effects", "t_end", "dt", "method", "rtol", "atol",
                                        "fixed_step", "fix", "initial", "outputs", "events",
-                                       "assemble", NULL};
+                                       "assemble", "view", NULL};
     SpecScene *sc = L->scene_into;
     int live = L->scene_live;
     spec_check_key(L, map, i, keys, "a scene");
@@ -494,6 +495,8 @@ scene_entry(Loader *L, yaml_node_t *map, int i)
         load_events(L, v, sc);
     } else if (!strcmp(k, "assemble")) {
         load_assemble(L, v, sc);
+    } else if (!strcmp(k, "view") && !spec_is_null(v)) {
+        spec_load_view(L, v, live);
     }
 }
 

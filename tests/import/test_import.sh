@@ -250,4 +250,24 @@ ok $? "--strict: the same model refused, exit 2, no file written"
 st=$?
 [ $st -eq 2 ] && grep -q "nosuch.xml: error: MuJoCo cannot load it" "$tmp/err"
 ok $? "a missing file: MuJoCo's message, exit 2"
+# geoms become the body's shapes, in its axes at its centre of mass
+# (geom_pos - body_ipos), in MuJoCo's sizes; a mesh is not drawn, with a note
+cat > "$tmp/shapes.xml" <<'XML'
+<mujoco><asset><mesh name="tet" vertex="0 0 0  1 0 0  0 1 0  0 0 1"/></asset>
+<worldbody><body name="b"><joint name="j" axis="0 1 0"/>
+<inertial pos="0 0 -0.1" mass="1" diaginertia="0.1 0.1 0.1"/>
+<geom type="box" size="0.1 0.2 0.3" pos="0.5 0 0" rgba="1 0 0 0.5" contype="0" conaffinity="0"/>
+<geom type="ellipsoid" size="0.1 0.2 0.3" quat="0 0 0 1" contype="0" conaffinity="0"/>
+<geom type="mesh" mesh="tet" contype="0" conaffinity="0"/>
+</body></worldbody></mujoco>
+XML
+"$eomc" import "$tmp/shapes.xml" -o "$tmp/shapes.yaml" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q 'shapes: \[{type: box, size: \[0.1, 0.2, 0.3\], pos: \[0.5, 0, 0.1\], rgba: \[1, 0, 0, 0.5\]}, {type: ellipsoid, size: \[0.1, 0.2, 0.3\], pos: \[0, 0, 0.1\], quat: \[0, 0, 0, 1\], rgba: \[0.5, 0.5, 0.5, 1\]}\]}$' "$tmp/shapes.yaml" &&
+  grep -q "shapes.xml: note: not drawn: 1 geom (planes, height fields and meshes" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 1 ] &&
+  "$eomc" compile "$tmp/shapes.yaml" -o "$tmp/shapes.c" 2> /dev/null &&
+  grep -q '^    {0, EOMC_SHAPE_BOX, {0.1, 0.2, 0.3}, {0.5, 0.0, 0.1}, {1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.5}},$' "$tmp/shapes.c" &&
+  grep -q '^    .nshape = 2, .shapes = shapes,$' "$tmp/shapes.c"
+ok $? "geoms: a box and an ellipsoid as shapes at geom_pos - body_ipos, the mesh noted; in the C ($(cat "$tmp/err"))"
 tap_end

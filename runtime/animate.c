@@ -260,7 +260,10 @@ put_json(FILE *f, const Anim *a)
     for (int k = 0; k < m->ndraw; k++) {
         const eomc_draw_item *it = &m->draw_items[k];
         int kind = it->kind >= 0 && it->kind < 4 ? it->kind : EOMC_DRAW_POINT;
-        planar &= it->dim == 2;
+        /* the bodies and particles decide: a point, a frame or the origin
+         * is 3-D for the compiler, yet in a planar spec it lies in z = 0 */
+        if (kind == EOMC_DRAW_BODY || kind == EOMC_DRAW_PARTICLE)
+            planar &= it->dim == 2;
         fprintf(f, "%s{\"name\":", k ? "," : "");
         put_str(f, it->name);
         fprintf(f, ",\"kind\":\"%s\",\"dim\":%d", kind_names[kind], it->dim);

@@ -257,10 +257,8 @@ kin_turn(Kin *K, int f, const ExprId a[3], ExprId th)
  *     L = [-e1  e0  e3 -e2;  -e2 -e3  e0  e1;  -e3  e2 -e1  e0],
  *     E = [-e1  e0 -e3  e2;  -e2  e3  e0 -e1;  -e3 -e2  e1  e0]. */
 void
-kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
+kin_quat_matrix(ExprPool *P, const ExprId e[4], ExprId Rk[9])
 {
-    ExprPool *P = K->P;
-    ExprId Rk[9], d[4], wa[3], wb[3], zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
     ExprId two = expr_const(P, 2), sq = expr_powi(P, e[0], 2);
     for (int k = 1; k < 4; k++)
         sq = expr_sub(P, sq, expr_powi(P, e[k], 2));
@@ -274,6 +272,15 @@ kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
         Rk[3 * l + j] = expr_add(P, Rk[3 * l + j], c);
         Rk[3 * j + l] = expr_sub(P, Rk[3 * j + l], c);
     }
+}
+
+void
+kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
+{
+    ExprPool *P = K->P;
+    ExprId Rk[9], d[4], wa[3], wb[3], zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    ExprId two = expr_const(P, 2);
+    kin_quat_matrix(P, e, Rk);
     static const int Lrow[3][4][2] = { /* (sign, index of e) per column of L */
         {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
         {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},

@@ -49,6 +49,10 @@ void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
  * e2, e3), whose angular velocity 2 L e' (in the turned axes) is exact
  * where |e| = 1, which a unit constraint must keep (spec/constraints.c adds it). */
 void kin_turn_quaternion(Kin *K, int f, const ExprId e[4]);
+/* The rotation matrix of the Euler parameters e (scalar first), row-major:
+ * (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1, e2, e3).  A frame's
+ * turn (kin_turn_quaternion) and a body's own quaternion share it. */
+void kin_quat_matrix(ExprPool *P, const ExprId e[4], ExprId R[9]);
 /* The point from + R_f at. */
 int kin_point(Kin *K, int from, int f, const ExprId at[3]);
 /* A frame's origin: the point whose motion, with the frame's rotation,

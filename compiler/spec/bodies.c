@@ -125,28 +125,7 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
         b->omega[r] = expr_mul(P, two, w);
     }
     b->quat_loc = spec_loc(L, k);
-    /* R = (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], for drawing it */
-    ExprId e00 = expr_mul(P, e[0], e[0]), vv = EXPR_ZERO;
-    for (int i = 1; i < 4; i++) {
-        ExprId sq = expr_mul(P, e[i], e[i]);
-        vv = expr_add(P, vv, sq);
-    }
-    ExprId diag = expr_sub(P, e00, vv);
-    static const int cross[9] = {0, -3, 2, 3, 0, -1, -2, 1, 0}; /* [v x]: sign * index */
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            ExprId vivj = expr_mul(P, e[i + 1], e[j + 1]);
-            ExprId r = expr_mul(P, two, vivj);
-            if (i == j)
-                r = expr_add(P, diag, r);
-            int c = cross[3 * i + j];
-            if (c) {
-                ExprId ev = expr_mul(P, e[0], e[c > 0 ? c : -c]);
-                ExprId t2 = expr_mul(P, two, ev);
-                r = c > 0 ? expr_add(P, r, t2) : expr_sub(P, r, t2);
-            }
-            b->rot[3 * i + j] = r;
-        }
+    kin_quat_matrix(P, e, b->rot); /* for drawing it */
     b->has_rot = 1;
 }
 

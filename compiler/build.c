@@ -215,7 +215,8 @@ write_extended_unit(const char *c_file)
 }
 
 int
-build_executable(const char *c_file, const char *exe, int mpi, int units, int twin)
+build_executable(const char *c_file, const char *exe, int mpi, int units, int twin,
+                 int shared)
 {
     const char *inc, *lib, *cc = getenv(mpi ? "EOMC_MPICC" : "CC");
     if (!cc || !*cc)
@@ -249,8 +250,8 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
      * which finds nothing more to do in it, and compiles in two thirds of
      * the time (gen_tree 30: 3.1 against 4.7 s).  Without -ffast-math the
      * arithmetic is the same to the bit. */
-    const char *flags[] = {"-std=c11", "-O1", "-DEOMC_MAIN", "-pthread", incflag,
-                           mpi ? "-DEOMC_MPI" : NULL};
+    const char *flags[] = {"-std=c11", "-O1", shared ? "-DEOMC_SHARED" : "-DEOMC_MAIN",
+                           "-pthread", incflag, shared ? "-fPIC" : mpi ? "-DEOMC_MPI" : NULL};
     const char *unit_flag[3] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL};
     int fast = units == 2 && cc_takes_fast_flags(argv, ncc);
     const char *src[3] = {c_file, c_file, ext};
@@ -285,9 +286,18 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
         for (int u = 0; u < 3; u++)
             if (use[u])
                 argv[n++] = obj[u];
-        const char *link[] = {lib, "-o", tmp};
-        for (size_t k = 0; k < sizeof link / sizeof link[0]; k++)
-            argv[n++] = (char *)link[k];
+        /* A library holds the whole runtime, not just what the model
+         * calls: its caller (Python) reaches the API by name.  libeomcrt.a
+         * is built position-independent (meson's b_staticpic). */
+        const char *link[] = {"-o", tmp};
+        const char *lib_link[] = {"-shared", "-Wl,--whole-archive", lib,
+                                  "-Wl,--no-whole-archive", "-o", tmp};
+        const char *const *lk = shared ? lib_link : link;
+        size_t nlk = shared ? sizeof lib_link / sizeof *lib_link : sizeof link / sizeof *link;
+        if (!shared)
+            argv[n++] = (char *)lib;
+        for (size_t k = 0; k < nlk; k++)
+            argv[n++] = (char *)lk[k];
         n += split_flags(libs, argv + n, 40);
         argv[n++] = "-lm";
         argv[n++] = "-pthread"; /* sweeps run on threads */

@@ -18,7 +18,7 @@ cmdline_usage(FILE *f)
     fprintf(f,
         "usage: eomc compile SPEC [-o FILE.c] [--scene NAME] [--fix NAME=VALUE] [--form NAME]\n"
         "                    [--effects LIST] [--stats] [--explain]\n"
-        "       eomc build SPEC [-o EXE] [--mpi] [--extended] [the same]\n"
+        "       eomc build SPEC [-o EXE] [--mpi | --shared] [--extended] [--cache] [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc import MODEL.xml [-o SPEC.yaml] [--strict]   (MJCF or URDF, by MuJoCo)\n"
@@ -31,6 +31,10 @@ cmdline_usage(FILE *f)
         "                   the scene's `fix:`); the simulator's --set refuses it then\n"
         "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
+        "  --shared         (build) a shared library of the model and the runtime\n"
+        "                   (default -o libSPEC.so), which the Python package loads\n"
+        "  --cache          (build) into eomc's cache, as run does (nothing is built\n"
+        "                   when an identical build is there); prints its path\n"
         "  --extended       (build) also compile the model in extended precision, so\n"
         "                   that the simulator computes its own reference solution\n"
         "                   (--error, --work-precision, --reference-out,\n"
@@ -115,6 +119,10 @@ static const OptionSpec options[] = {
     {"--explain", CMD_COMPILE, OPT_FLAG, offsetof(Options, explain),
      "what eomc made of the spec", NULL, 0},
     {"--mpi", CMD_BUILD, OPT_FLAG, offsetof(Options, mpi), "a simulator for MPI sweeps", NULL, 0},
+    {"--shared", CMD_BUILD, OPT_FLAG, offsetof(Options, shared),
+     "a shared library of the model, for Python", NULL, 0},
+    {"--cache", CMD_BUILD, OPT_FLAG, offsetof(Options, cache),
+     "a build kept in eomc's cache", NULL, 0},
     {"--extended", CMD_BUILD | CMD_RUN | CMD_ACCURACY, OPT_FLAG, offsetof(Options, extended),
      "the extended-precision functions", NULL, 0},
     {"--eliminate", CMD_DERIVE, OPT_FLAG, offsetof(Options, eliminate), NULL, NULL, 1},
@@ -264,6 +272,12 @@ cmdline_parse(int argc, char **argv, Options *o)
     }
     if (!o->spec)
         cmdline_usage_error("%s: no spec file given", o->cmd);
+    if (o->shared && o->mpi)
+        cmdline_usage_error("%s: --shared and --mpi cannot go together (a library has no "
+                            "main for mpirun to start)", "build");
+    if (o->cache && o->out)
+        cmdline_usage_error("%s: --cache and -o cannot go together (the cache names the "
+                            "file)", "build");
     if (o->jacobian && mode_index(jacobian_modes, o->jacobian) < 0)
         cmdline_usage_error("--jacobian must be auto, unrolled, seeded or none, not '%s'",
                     o->jacobian);

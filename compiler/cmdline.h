@@ -16,6 +16,8 @@ typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
+    int shared;         /* --shared: a shared library (for Python), not a simulator */
+    int cache;          /* --cache: built into eomc's cache (as run's), its path printed */
     int extended;       /* --extended: the extended-precision twin, whatever the size */
     int needs_jacobian; /* what the simulator is asked to do needs it */
     int needs_twin;     /* ... or the twin: a reference solution it must compute */

@@ -558,7 +558,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
     emit_line(pr, "};\n");
-    emit_line(pr, "#ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */");
+    emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
+    emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
     emit_line(pr, "#include \"eomc_main.h\"");
     emit_line(pr, "/* The reference solution's functions: this file compiled again with");
     emit_line(pr, " * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator");

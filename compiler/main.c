@@ -265,7 +265,7 @@ build(const Options *o, const char *exe)
     /* The extended-precision twin doubles the compiler's work: a model
      * of two units (a large one) gets it only when asked for. */
     int twin = units == 1 || o->extended || o->needs_twin;
-    if (rc == 0 && build_executable(cfile, exe, o->mpi, units, twin) != 0)
+    if (rc == 0 && build_executable(cfile, exe, o->mpi, units, twin, o->shared) != 0)
         rc = 1;
     unlink(cfile);
     rmdir(dir);
@@ -301,47 +301,61 @@ spec_stem(const char *path, char *out, size_t len)
         *dot = '\0';
 }
 
-/* `run` and `accuracy`: build into the cache unless an identical build is
- * there, then become the simulator (with --work-precision for accuracy). */
-static int
-run(const Options *o)
+/* The build in eomc's cache for o's spec and options (name: the file's
+ * name there), built unless an identical build is there.  A malloc'd
+ * path, or NULL with *rc the exit status after saying why. */
+static char *
+cached_build(const Options *o, const char *name, int *rc)
 {
     size_t len = o->imported_len;
     char *text = o->imported ? memcpy(xmalloc(len + 1), o->imported, len)
                              : read_file(o->spec, &len);
+    *rc = EXIT_USAGE;
     if (!text) {
         fprintf(stderr, "eomc: cannot read %s: %s\n", o->spec, strerror(errno));
-        return EXIT_USAGE;
+        return NULL;
     }
     const char *jac = o->jacobian ? o->jacobian : "auto";
     const char *form = o->form ? o->form : "(default)";
     const char *code = o->code ? o->code : "auto";
     size_t extra = strlen(form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
                    strlen(code) +
-                   (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 120;
+                   (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 140;
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
                             "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
-                            "--extended %d --scene %s --fix %s", form,
+                            "--extended %d --scene %s --fix %s%s", form,
                             o->effects ? o->effects : "(scene)",
                             o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
                             o->extended || o->needs_twin,
                             o->scene ? o->scene : "(first)",
-                            o->fix ? o->fix : "(none)");
+                            o->fix ? o->fix : "(none)", o->shared ? " --shared" : "");
+    char *path = build_cache_path(name, text, len);
+    free(text);
+    if (!path) {
+        *rc = 1;
+        return NULL;
+    }
+    *rc = 0;
+    if (access(path, o->shared ? R_OK : X_OK) != 0 && (*rc = build(o, path)) != 0) {
+        free(path);
+        return NULL;
+    }
+    return path;
+}
+
+/* `run` and `accuracy`: build into the cache unless an identical build is
+ * there, then become the simulator (with --work-precision for accuracy). */
+static int
+run(const Options *o)
+{
     char stem[200], name[256];
     spec_stem(o->spec, stem, sizeof stem);
     snprintf(name, sizeof name, "sim-%s", stem);
-    char *exe = build_cache_path(name, text, len);
-    free(text);
+    int rc;
+    char *exe = cached_build(o, name, &rc);
     if (!exe)
-        return 1;
-    if (access(exe, X_OK) != 0) {
-        int rc = build(o, exe);
-        if (rc != 0) {
-            free(exe);
-            return rc;
-        }
-    }
+        return rc;
     char **argv = calloc((size_t)o->nsim + 3, sizeof *argv);
     int argc = 0;
     argv[argc++] = stem; /* messages name the model, not the cache path */
@@ -503,12 +517,19 @@ eomc_main(int argc, char **argv)
         rc = o.out ? compile_to_file(&o, o.out, NULL)
                    : compile(&o, o.explain ? NULL : stdout, NULL);
     else if (!strcmp(o.cmd, "build")) {
-        char def[256];
-        if (!o.out) { /* default: the spec's name in the current directory */
-            spec_stem(o.spec, def, sizeof def);
-            o.out = def;
+        char stem[200], def[256];
+        spec_stem(o.spec, stem, sizeof stem);
+        /* default: the spec's name in the current directory (a library's,
+         * libNAME.so) */
+        snprintf(def, sizeof def, o.shared ? "lib%s.so" : "%s", stem);
+        if (o.cache) {
+            char *path = cached_build(&o, o.shared ? def : stem, &rc);
+            if (path)
+                printf("%s\n", path);
+            free(path);
+        } else {
+            rc = build(&o, o.out ? o.out : def);
         }
-        rc = build(&o, o.out);
     } else
         rc = run(&o); /* run and accuracy */
     free(o.sim);

@@ -1818,7 +1818,8 @@ const eomc_model chain5_model = {
     .view_frames = 0, .view_camera = NULL,
 };
 
-#ifdef EOMC_MAIN /* a simulator: eomc_main.h's main (with -DEOMC_MPI, MPI's) */
+#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main
+   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */
 #include "eomc_main.h"
 /* The reference solution's functions: this file compiled again with
  * -DEOMC_EXTENDED and linked (eomc build does); without it the simulator

@@ -58,6 +58,16 @@ eomc_sim *eomc_sim_alloc(const eomc_model *m);
 void eomc_sim_free(eomc_sim *s);
 const eomc_model *eomc_sim_model(const eomc_sim *s);
 
+/* A model's sizes and names by kind, for a caller that does not read
+ * eomc_model's layout (the Python package, through ctypes): kind "q"
+ * (coordinates), "p" (parameters), "u" (inputs), "c" (constraints), "out"
+ * (the scene's outputs) or "event".  The count, or -1 for another kind;
+ * the k-th name, or NULL out of range.  eomc_model_text: "name", "spec",
+ * "form", "scene", "method" or "invariant" (NULL: none, or another). */
+int eomc_model_count(const eomc_model *m, const char *kind);
+const char *eomc_model_name(const eomc_model *m, const char *kind, int k);
+const char *eomc_model_text(const eomc_model *m, const char *what);
+
 /* Set a parameter, or an input, by name.  An input set here is held at
  * this constant value from then on.  EOMC_EUSAGE for an unknown name. */
 int eomc_sim_set(eomc_sim *s, const char *name, double value);

@@ -90,4 +90,39 @@ cc_run
 [ "$built" -eq 0 ] && is_accel 3.5
 ok $? "that \$CC again: not rebuilt"
 
+# eomc build --cache: the same cache, a library kept beside the simulators
+# (--shared: the model under fixed names and the whole runtime API, no main)
+unset EOMC_RUNTIME_LIB EOMC_RUNTIME_INCLUDE
+libs() { find "$tmp/cache" -type f -name 'lib*.so' 2> /dev/null | wc -l; }
+before=$(libs)
+path=$("$eomc" build "$tmp/p.yaml" --shared --cache)
+[ $? = 0 ] && [ "$(libs)" -eq $((before + 1)) ] && [ -f "$path" ] &&
+    case $path in "$tmp/cache/"*/libp.so) true ;; *) false ;; esac
+ok $? "build --shared --cache: built into the cache, its path printed ($path)"
+stamp=$(stat -c %Y.%i "$path")
+again=$("$eomc" build "$tmp/p.yaml" --shared --cache)
+[ "$again" = "$path" ] && [ "$(stat -c %Y.%i "$path")" = "$stamp" ] && [ "$(libs)" -eq $((before + 1)) ]
+ok $? "the same build again: the same path, nothing built"
+other=$("$eomc" build "$tmp/p.yaml" --shared --cache --fix g=9.81)
+[ -f "$other" ] && [ "$other" != "$path" ]
+ok $? "other options (--fix): another entry"
+syms=$(nm -D --defined-only "$path" | awk '{ print $3 }')
+for s in eomc_shared_model eomc_shared_model_ext eomc_main_mem eomc_sim_accel eomc_model_count; do
+    echo "$syms" | grep -qx "$s" || echo "missing $s"
+done > "$tmp/missing"
+[ ! -s "$tmp/missing" ] && ! echo "$syms" | grep -qx main &&
+    ! echo "$syms" | grep -v '^eomc_' | grep -v '^pendulum_model' | grep -q .
+ok $? "the library exports the model by fixed names and eomc.h's API, and no main ($(tr '\n' ' ' < "$tmp/missing"))"
+sim=$("$eomc" build "$tmp/p.yaml" --cache)
+[ -x "$sim" ] && [ "$("$sim" --accel --init theta=0.5 | sed -n "s/^theta'' //p")" = "$got" ]
+ok $? "build --cache without --shared: a simulator in the cache, which runs"
+"$eomc" build "$tmp/p.yaml" --shared --mpi 2> "$tmp/err"
+[ $? = 2 ] && grep -q -- '--shared and --mpi cannot go together' "$tmp/err"
+ok $? "--shared with --mpi: exit 2 ($(head -1 "$tmp/err"))"
+"$eomc" build "$tmp/p.yaml" --cache -o "$tmp/x" 2> "$tmp/err"
+[ $? = 2 ] && grep -q -- '--cache and -o cannot go together' "$tmp/err" && [ ! -e "$tmp/x" ]
+ok $? "--cache with -o: exit 2"
+(cd "$tmp" && "$eomc" build p.yaml --shared) && [ -f "$tmp/libp.so" ]
+ok $? "build --shared names its library libSPEC.so by default"
+
 tap_end

@@ -1,0 +1,81 @@
+"""The runtime's C API (runtime/eomc.h) in a model's shared library, through ctypes.
+
+``eomc build --shared`` makes one library holding the model, its
+extended-precision twin when built, and the whole runtime; it names the
+model ``eomc_shared_model()`` whatever the spec calls it.  Every call here
+goes to that library, so two models loaded side by side share nothing but
+the process (GSL's error handler, which is turned off once: eomc checks
+every status itself and must never abort Python).  ctypes lets go of the
+GIL for each foreign call, so runs in threads proceed at once.
+"""
+
+import ctypes
+
+_c_double_p = ctypes.POINTER(ctypes.c_double)
+
+
+class Library:
+    """One model's library: its functions with their C signatures."""
+
+    def __init__(self, path):
+        self.path = path
+        lib = ctypes.CDLL(path)
+        self.lib = lib
+
+        def fn(name, restype, *argtypes):
+            f = getattr(lib, name)
+            f.restype, f.argtypes = restype, list(argtypes)
+            return f
+
+        vp, cp, i, d = ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_double
+        self.model = fn("eomc_shared_model", vp)()
+        self.model_ext = fn("eomc_shared_model_ext", vp)()  # None: built without
+        self.count = fn("eomc_model_count", i, vp, cp)
+        self.name = fn("eomc_model_name", cp, vp, cp, i)
+        self.text = fn("eomc_model_text", cp, vp, cp)
+        self.sim_alloc = fn("eomc_sim_alloc", vp, vp)
+        self.sim_free = fn("eomc_sim_free", None, vp)
+        self.sim_set = fn("eomc_sim_set", i, vp, cp, d)
+        self.sim_check = fn("eomc_sim_check", i, vp)
+        self.sim_params = fn("eomc_sim_params", _c_double_p, vp)
+        self.sim_initial = fn("eomc_sim_initial", None, vp, _c_double_p, _c_double_p)
+        self.sim_accel = fn("eomc_sim_accel", i, vp, d, _c_double_p, _c_double_p, _c_double_p)
+        self.sim_multipliers = fn("eomc_sim_multipliers", _c_double_p, vp)
+        self.sim_error = fn("eomc_sim_error", cp, vp)
+        self.main_mem = fn("eomc_main_mem", i, i, ctypes.POINTER(cp), vp, vp,
+                           ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t),
+                           ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t))
+        self.free = fn("eomc_free", None, vp)
+        # eomc reports GSL's errors as its own statuses; GSL's default
+        # handler would abort the interpreter (runtime/eomc.h)
+        fn("gsl_set_error_handler_off", vp)()
+
+    def names(self, kind):
+        n = self.count(self.model, kind.encode())
+        return [self.name(self.model, kind.encode(), k).decode() for k in range(n)]
+
+    def model_text(self, what):
+        s = self.text(self.model, what.encode())
+        return s.decode() if s is not None else None
+
+    def main(self, argv):
+        """The simulator's command line on argv (argv[0] names the model in
+        messages): (exit status, stdout text, stderr text)."""
+        args = (ctypes.c_char_p * (len(argv) + 1))(*[a.encode() for a in argv], None)
+        out, err = ctypes.c_void_p(), ctypes.c_void_p()
+        nout, nerr = ctypes.c_size_t(), ctypes.c_size_t()
+        status = self.main_mem(len(argv), args, self.model, self.model_ext,
+                               ctypes.byref(out), ctypes.byref(nout),
+                               ctypes.byref(err), ctypes.byref(nerr))
+        try:
+            o = ctypes.string_at(out, nout.value).decode() if out.value else ""
+            e = ctypes.string_at(err, nerr.value).decode() if err.value else ""
+        finally:
+            self.free(out)
+            self.free(err)
+        return status, o, e
+
+
+def as_doubles(a):
+    """A C double* to a contiguous float64 numpy array's data."""
+    return a.ctypes.data_as(_c_double_p)

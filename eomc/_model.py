@@ -1,0 +1,362 @@
+"""A loaded model: parameters, accelerations, and the simulator's tasks.
+
+Direct calls (``set``, ``accel``, ``initial``) go to the runtime's API on
+the model's own simulator object.  Runs and the other tasks go to the
+simulator's command line inside the library, with the parameters set so
+far passed as ``--set NAME=VALUE``: the numbers are those ``eomc run``
+writes to its CSV, read back exactly (``repr`` of a float and eomc's
+shortest-digits output both round-trip).
+"""
+
+import os
+import tempfile
+import threading
+
+import numpy as np
+
+from . import _build
+from ._errors import EomcError, NumericalFailure, UsageError, raise_for, warn_lines
+from ._lib import Library, as_doubles
+
+__all__ = ["load", "Model", "Run", "Linearization"]
+
+
+def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None):
+    """A model from a spec (``.yaml``), an MJCF or URDF model (``.xml``,
+    ``.urdf``), or a library ``eomc build --shared`` made (``.so``).
+
+    A spec is built as ``eomc build SPEC --shared`` (with ``--scene``,
+    ``--form``, ``--fix NAME=VALUE`` from the dict ``fix``, ``--extended``,
+    ``--jacobian``), into eomc's cache, the same one ``eomc run`` uses.
+    A spec eomc cannot read raises :class:`SpecError` with its place."""
+    if spec.endswith(".so"):
+        if scene or form or fix or extended or jacobian:
+            raise UsageError("%s is built already: scene, form, fix, extended and "
+                             "jacobian are a spec's" % spec)
+        return Model(spec)
+    return Model(_build.build(spec, scene, form, fix, extended, jacobian))
+
+
+def _number(v):
+    """A value as the command line reads it back exactly."""
+    if isinstance(v, (bool, np.bool_)):
+        raise UsageError("a number was expected, not %r" % (v,))
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    return repr(float(v))
+
+
+def _options(kw):
+    """Keywords as the simulator's options: name_x=V is --name-x V; True a
+    flag; None or False nothing; a dict NAME=VALUE pairs, each its own
+    option (init, set; sweep={"theta0": "0.1:3:30"}); a list or tuple comma-joined (methods, tolerances)."""
+    argv = []
+    for key, value in kw.items():
+        if value is None or value is False:
+            continue
+        flag = "--" + key.replace("_", "-")
+        if value is True:
+            argv.append(flag)
+        elif isinstance(value, dict):
+            for name, v in value.items():
+                argv += [flag, "%s=%s" % (name, v if isinstance(v, str) else _number(v))]
+        elif isinstance(value, (list, tuple)):
+            argv += [flag, ",".join(v if isinstance(v, str) else _number(v) for v in value)]
+        elif isinstance(value, str):
+            argv += [flag, value]
+        else:
+            argv += [flag, _number(value)]
+    return argv
+
+
+def _table(text):
+    """A CSV's columns by name: numbers as float64 arrays (read exactly),
+    other columns (a report's method names) as arrays of str."""
+    lines = text.splitlines()
+    if not lines:
+        return [], {}
+    columns = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:] if line]
+    data = {}
+    for j, name in enumerate(columns):
+        cells = [r[j] if j < len(r) else "" for r in rows]
+        try:
+            data[name] = np.array([float(c) for c in cells], dtype=np.float64)
+        except ValueError:
+            data[name] = np.array(cells, dtype=str)
+    return columns, data
+
+
+class Run:
+    """A run's rows, by column name: ``t``, each coordinate, each velocity
+    (``name'``), ``T``, ``V``, ``E`` (or the conserved quantity), the
+    multipliers ``lambda[c]`` and residuals ``res[c]`` of constraints, and
+    the scene's outputs, as float64 numpy arrays; or the rows of a report
+    or sweep, by its columns.  ``messages`` holds what eomc said on stderr
+    (warnings, --stats, --summary); ``stats`` the ``--stats`` lines as a
+    dict; ``text`` what went to stdout besides the rows."""
+
+    def __init__(self, columns, data, messages="", text=""):
+        self.columns, self._data = columns, data
+        self.messages, self.text = messages, text
+        self.stats = {}
+        for line in messages.splitlines():
+            parts = line.split()
+            if len(parts) == 2:
+                try:
+                    self.stats[parts[0]] = float(parts[1])
+                except ValueError:
+                    pass
+
+    def __getitem__(self, name):
+        try:
+            return self._data[name]
+        except KeyError:
+            raise KeyError("%r is not a column; the columns are %s"
+                           % (name, ", ".join(self.columns))) from None
+
+    def __contains__(self, name):
+        return name in self._data
+
+    def __iter__(self):
+        return iter(self.columns)
+
+    def __len__(self):
+        return len(self._data[self.columns[0]]) if self.columns else 0
+
+    def keys(self):
+        return list(self.columns)
+
+    def array(self):
+        """All numeric columns as one 2-D array (rows by columns)."""
+        return np.column_stack([self._data[c] for c in self.columns
+                                if self._data[c].dtype == np.float64])
+
+    def __repr__(self):
+        return "<eomc.Run: %d rows, columns %s>" % (len(self), ", ".join(self.columns))
+
+
+class Linearization:
+    """z' = A z + B u at a state: ``A`` (n x n), ``B`` (n x nu), ``states``
+    (z's components: coordinates and ``name'`` velocities, a constrained
+    model's independent ones), ``inputs``, and A's ``eigenvalues`` (complex,
+    the largest real part first), as the command line's ``--csv`` has them.
+    For an equilibrium also ``q`` (the coordinates found, by name),
+    ``iterations`` and ``verdict`` (the command line's line on stability)."""
+
+    def __init__(self, csv_text, text=""):
+        A, B, eig = {}, {}, {}
+        states, inputs = [], []
+        for line in csv_text.splitlines()[1:]:
+            kind, row, col, value = line.split(",")
+            if kind == "eig":
+                k = int(row)
+                eig.setdefault(k, [0.0, 0.0])[0 if col == "re" else 1] = float(value)
+                continue
+            if row not in states:
+                states.append(row)
+            if kind == "A":
+                A[row, col] = float(value)
+            else:
+                if col not in inputs:
+                    inputs.append(col)
+                B[row, col] = float(value)
+        n = len(states)
+        self.states, self.inputs = states, inputs
+        self.A = np.array([[A.get((r, c), 0.0) for c in states] for r in states]).reshape(n, n)
+        self.B = np.array([[B.get((r, c), 0.0) for c in inputs]
+                           for r in states]).reshape(n, len(inputs))
+        self.eigenvalues = np.array([complex(*eig[k]) for k in sorted(eig)])
+        self.text = text
+        self.q, self.iterations, self.verdict = {}, None, None
+        lines = text.splitlines()
+        for i, line in enumerate(lines):
+            if "an equilibrium, found by" in line:
+                self.iterations = int(line.split("found by")[1].split()[0])
+                for item in lines[i + 1:]:
+                    if not item.startswith("  ") or " = " not in item:
+                        break
+                    name, value = item.strip().split(" = ")
+                    self.q[name] = float(value)
+            if "stable" in line.split(":")[0]:
+                self.verdict = line
+        self.stable = None if self.verdict is None else not self.verdict.startswith("unstable")
+
+
+class Model:
+    """One model in its shared library (see :func:`load`)."""
+
+    def __init__(self, path):
+        self._lib = lib = Library(path)
+        self.path = path
+        self.name = lib.model_text("name")
+        self.spec = lib.model_text("spec")
+        self.form = lib.model_text("form")
+        self.scene = lib.model_text("scene")
+        self.coordinates = lib.names("q")
+        self.parameters = lib.names("p")
+        self.inputs = lib.names("u")
+        self.constraints = lib.names("c")
+        self.outputs = lib.names("out")
+        self.events = lib.names("event")
+        self.extended = bool(lib.model_ext)
+        self._sim = lib.sim_alloc(lib.model)
+        if not self._sim:
+            raise EomcError("%s: out of memory, or a model built for another runtime" % path)
+        self._sim_u = None    # another simulator, for accel with inputs given
+        self._sets = {}       # what set() set, in order: each run's --set
+        self._lock = threading.Lock()
+
+    def __del__(self):
+        lib = getattr(self, "_lib", None)
+        for s in (getattr(self, "_sim", None), getattr(self, "_sim_u", None)):
+            if lib is not None and s:
+                lib.sim_free(s)
+
+    def __repr__(self):
+        return "<eomc.Model %s: %d coordinates, form %s>" % (self.name, len(self.coordinates),
+                                                            self.form)
+
+    def _error(self, sim):
+        return self._lib.sim_error(sim).decode()
+
+    # ---- parameters and accelerations, by the API ----
+
+    def set(self, **values):
+        """Set parameters, or inputs held constant from then on, by name.
+        Unknown names and unphysical values raise UsageError (eomc's
+        message, with "did you mean"); nothing is set then."""
+        with self._lock:
+            trial = self._lib.sim_alloc(self._lib.model)
+            try:
+                for name, v in list(self._sets.items()) + list(values.items()):
+                    if self._lib.sim_set(trial, name.encode(), float(v)) != 0:
+                        raise UsageError(self._error(trial))
+                if self._lib.sim_check(trial) != 0:
+                    raise UsageError(self._error(trial))
+            finally:
+                self._lib.sim_free(trial)
+            for name, v in values.items():
+                self._sets[name] = float(v)
+                for s in (self._sim, self._sim_u):
+                    if s:
+                        self._lib.sim_set(s, name.encode(), float(v))
+
+    @property
+    def params(self):
+        """The parameters' current values, by name."""
+        p = self._lib.sim_params(self._sim)
+        return {name: p[k] for k, name in enumerate(self.parameters)}
+
+    def initial(self):
+        """The scene's initial state for the current parameters: (q, v)."""
+        n = len(self.coordinates)
+        q, v = np.zeros(n), np.zeros(n)
+        with self._lock:
+            self._lib.sim_initial(self._sim, as_doubles(q), as_doubles(v))
+        return q, v
+
+    def accel(self, q, v, u=None, t=0.0, multipliers=False):
+        """q'' at (t, q, v), with the inputs u held at these values (else
+        the model's own); with multipliers=True, (q'', lambda) for a
+        constrained model.  A singular system raises NumericalFailure."""
+        n = len(self.coordinates)
+        q = np.ascontiguousarray(q, dtype=np.float64)
+        v = np.ascontiguousarray(v, dtype=np.float64)
+        if q.shape != (n,) or v.shape != (n,):
+            raise UsageError("accel: q and v need %d entries each (%s), not %s and %s"
+                             % (n, ", ".join(self.coordinates), q.shape, v.shape))
+        a = np.zeros(n)
+        with self._lock:
+            sim = self._sim
+            if u is not None:
+                u = np.atleast_1d(np.asarray(u, dtype=np.float64))
+                if u.shape != (len(self.inputs),):
+                    raise UsageError("accel: u needs %d entries (%s)" % (
+                        len(self.inputs), ", ".join(self.inputs) or "the model has no inputs"))
+                if not self._sim_u:
+                    self._sim_u = self._lib.sim_alloc(self._lib.model)
+                    for name, val in self._sets.items():
+                        self._lib.sim_set(self._sim_u, name.encode(), val)
+                sim = self._sim_u
+                for name, val in zip(self.inputs, u):
+                    self._lib.sim_set(sim, name.encode(), float(val))
+            if self._lib.sim_accel(sim, float(t), as_doubles(q), as_doubles(v),
+                                   as_doubles(a)) != 0:
+                raise NumericalFailure(self._error(sim), float(t))
+            lam = None
+            if multipliers:
+                p = self._lib.sim_multipliers(sim)
+                lam = np.array([p[k] for k in range(len(self.constraints))]) if p else np.zeros(0)
+        return (a, lam) if multipliers else a
+
+    # ---- the simulator's tasks, by its command line ----
+
+    def _call(self, options, stacklevel=3):
+        argv = [self.name]
+        for name, v in self._sets.items():
+            argv += ["--set", "%s=%r" % (name, v)]
+        argv += options
+        status, out, err = self._lib.main(argv)
+        warn_lines(err, stacklevel=stacklevel + 1)
+        return status, out, err
+
+    def run(self, t_end=None, dt=None, method=None, rtol=None, init=None, **options):
+        """Integrate the scene (its t_end, dt, method and tolerances unless
+        given; init: {coordinate or "name'": value}) and return the rows as
+        a :class:`Run`.  Other keywords are simulator options (``atol``,
+        ``t0``, ``fixed_step``, ``max_steps``, ``stabilize``, ``assemble``,
+        ``stats``, ``summary``, ``error``, ``sweep``, ...).  A run that fails
+        raises NumericalFailure, with the rows computed before it."""
+        kw = dict(t_end=t_end, dt=dt, method=method, rtol=rtol, init=init)
+        kw.update(options)
+        status, out, err = self._call(_options(kw))
+        columns, data = _table(out) if status in (0, 3) else ([], {})
+        r = Run(columns, data, err)
+        raise_for(status, err, r)
+        return r
+
+    def _with_csv(self, flag, options, name="out.csv", extra=()):
+        with tempfile.TemporaryDirectory(prefix="eomc-py-") as d:
+            path = os.path.join(d, name)
+            status, out, err = self._call(_options(options) + list(extra) + [flag, path],
+                                          stacklevel=4)
+            raise_for(status, err)
+            with open(path) as f:
+                return f.read(), out, err
+
+    def linearize(self, init=None, **options):
+        """A and B at the initial state (or init), and A's eigenvalues: a
+        :class:`Linearization` (the command line's --linearize)."""
+        options.update(init=init, linearize=True)
+        csv, out, _ = self._with_csv("--csv", options)
+        return Linearization(csv, out)
+
+    def equilibrium(self, init=None, **options):
+        """An equilibrium by Newton's method from the initial coordinates (or
+        init), with its linearization (``.q``, ``.A``, ``.eigenvalues``,
+        ``.stable``): the command line's --equilibrium."""
+        options.update(init=init, equilibrium=True)
+        csv, out, _ = self._with_csv("--csv", options)
+        return Linearization(csv, out)
+
+    def accuracy(self, methods=None, tolerances=None, **options):
+        """The work-precision report (``eomc accuracy``): one row per run,
+        by the report's CSV columns; ``.text`` is the printed table."""
+        options.update(methods=methods, tolerances=tolerances, work_precision=True)
+        csv, out, err = self._with_csv("--csv", options)
+        columns, data = _table(csv)
+        return Run(columns, data, err, out)
+
+    def reference(self, init=None, **options):
+        """The reference solution the accuracy report measures against, at
+        the run's output times: a :class:`Run` with t, coordinates and
+        velocities (computed in extended precision; the library needs its
+        twin, which a small model always has and a large one gets from
+        ``load(..., extended=True)``)."""
+        options.update(init=init)
+        # the run beside it is not wanted: its rows go nowhere
+        csv, out, err = self._with_csv("--reference-out", options, "reference.csv",
+                                       ["-o", os.devnull])
+        columns, data = _table(csv)
+        return Run(columns, data, err)

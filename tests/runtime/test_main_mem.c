@@ -9,8 +9,9 @@
  *  - numerical failures (the non-positive-definite mass matrix at t = 1,
  *    --max-steps 3): status 3, "error" and the time on err, eomc_main's
  *    text; the rows computed up to then on out;
- *  - four threads at once, each its own t_end (one of them failing),
- *    several calls each: each thread's texts and status are its own
+ *  - a sweep on threads of its own: its rows on out, as -o's file;
+ *  - five threads at once, each its own t_end (one of them failing, one
+ *    a sweep on threads of its own), several calls each: each thread's texts and status are its own
  *    single-threaded ones;
  *  - nothing reaches the process's fd 1 and fd 2 during any of it.
  */
@@ -183,8 +184,12 @@ main(void)
         {.m = &nonpd_model, .args = {"--t-end", "2"}},                /* fails at t = 1 */
         {.m = &osc_model, .args = {"--max-steps", "3", "--t-end", "10"}},
         {.m = &osc_model, .args = {"--bogus"}},
+        /* a sweep on threads of its own, whose rows it writes */
+        {.m = &osc_model, .args = {"--sweep", "k=1:4:7", "--threads", "3", "--t-end", "2"}},
     };
-    enum { NJOBS = sizeof jobs / sizeof *jobs, NTHREADS = 4 };
+    enum { NJOBS = sizeof jobs / sizeof *jobs, NTHREADS = 5 };
+    /* at once: t_end 1, 2.5 and 4, the failing nonpd, the sweep */
+    const int on_thread[NTHREADS] = {0, 1, 2, 3, 6};
     for (int k = 0; k < NJOBS; k++)
         run_main(&jobs[k], k);
 
@@ -249,22 +254,27 @@ main(void)
     CHECK(strcmp(bad->err, bad->main_err) == 0, "--bogus: err is eomc_main's stderr");
     CHECK(help_rc == 0 && strstr(help_out, "usage: x [OPTION]...") == help_out &&
           help_len == strlen(help_out) && *help_err == '\0', "--help: status 0, usage on out");
+    Job *sw = &jobs[6];
+    CHECK(sw->rc == 0 && sw->main_rc == 0 && strcmp(sw->out, sw->file) == 0 &&
+          lines(sw->out) == 1 + 7 && *sw->err == '\0',
+          "--sweep on 3 threads: 7 rows, out is -o's file (%d lines)", lines(sw->out));
     eomc_free(help_out);
     eomc_free(help_err);
 
-    /* (c) four threads at once: t_end 1, 2.5, 4 and the failing nonpd */
+    /* (c) threads at once, each its own command line */
     pthread_t th[NTHREADS];
     quiet_begin();
     int started = 0;
     for (int k = 0; k < NTHREADS; k++)
-        started += pthread_create(&th[k], NULL, thread_job, &jobs[k]) == 0;
+        started += pthread_create(&th[k], NULL, thread_job, &jobs[on_thread[k]]) == 0;
     for (int k = 0; k < started; k++)
         pthread_join(th[k], NULL);
     quiet = quiet_end();
     CHECK(started == NTHREADS, "%d threads started", started);
     for (int k = 0; k < started; k++)
-        CHECK(jobs[k].agree, "thread %d: %d calls, each its single-threaded out, err and "
-              "status", k, REPEATS);
+        CHECK(jobs[on_thread[k]].agree, "thread %d (%s %s): %d calls, each its single-threaded "
+              "out, err and status", k, jobs[on_thread[k]].args[0], jobs[on_thread[k]].args[1],
+              REPEATS);
     CHECK(*quiet == '\0', "nothing on fd 1 or fd 2 from the threads (got %zu bytes)",
           strlen(quiet));
     free(quiet);

@@ -3,6 +3,7 @@
  */
 #include "animate.h"
 #include "animate_page.h" /* anim_page_js: animate_page.js, built in */
+#include "io.h"
 #include "simimpl.h"
 
 #include <errno.h>
@@ -384,7 +385,7 @@ anim_write(Anim *a, const char *prog)
     char *tmp = malloc(len), path[4096];
     FILE *f = tmp ? (snprintf(tmp, len, "%s.tmp", a->path), fopen(tmp, "w")) : NULL;
     if (!f) {
-        fprintf(stderr, "%s: --animate: cannot write %s: %s\n", prog, tmp ? tmp : a->path,
+        fprintf(io_err(), "%s: --animate: cannot write %s: %s\n", prog, tmp ? tmp : a->path,
                 strerror(errno));
         free(tmp);
         return EOMC_EUSAGE;
@@ -401,7 +402,7 @@ anim_write(Anim *a, const char *prog)
         fputs("<script>\n", f);
         snprintf(path, sizeof path, "%s/%s", anim_three_dir(), three_files[k]);
         if (copy_file(f, path) != 0) {
-            fprintf(stderr, "%s: --animate: cannot read %s\n", prog, path);
+            fprintf(io_err(), "%s: --animate: cannot read %s\n", prog, path);
             bad = 1;
         }
         fputs("\n</script>\n", f);
@@ -413,11 +414,11 @@ anim_write(Anim *a, const char *prog)
         fputs(anim_page_js[k], f);
     fputs("\n</script>\n</body></html>\n", f);
     if (fclose(f) != 0 && !bad) {
-        fprintf(stderr, "%s: --animate: cannot write %s: %s\n", prog, tmp, strerror(errno));
+        fprintf(io_err(), "%s: --animate: cannot write %s: %s\n", prog, tmp, strerror(errno));
         bad = 1;
     }
     if (!bad && rename(tmp, a->path) != 0) {
-        fprintf(stderr, "%s: --animate: cannot write %s: %s\n", prog, a->path,
+        fprintf(io_err(), "%s: --animate: cannot write %s: %s\n", prog, a->path,
                 strerror(errno));
         bad = 1;
     }

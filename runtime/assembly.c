@@ -3,6 +3,7 @@
  * (assembly.h).
  */
 #include "assembly.h"
+#include "io.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -39,20 +40,20 @@ assembly_run(Options *c, eomc_sim *sim, double *x)
     memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
     int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->held);
     if (rc != EOMC_OK) {
-        fprintf(stderr, "%s: error: %s: %s\n", c->prog, who, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: error: %s: %s\n", c->prog, who, eomc_sim_error(sim));
         free(x0);
         return rc;
     }
     for (int i = 0; i < 2 * n; i++)
         if (x[i] != x0[i]) {
             if (!moved++)
-                fprintf(stderr, "%s: %s moved the initial state onto the "
+                fprintf(io_err(), "%s: %s moved the initial state onto the "
                         "constraints:\n", c->prog, who);
-            fprintf(stderr, "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
+            fprintf(io_err(), "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
                     i < n ? "" : "'", x0[i], x[i], x[i] - x0[i]);
         }
     if (!moved && !c->scene_assembles)
-        fprintf(stderr, "%s: --assemble: the initial state already satisfies the "
+        fprintf(io_err(), "%s: --assemble: the initial state already satisfies the "
                 "constraints\n", c->prog);
     free(x0);
     return EOMC_OK;
@@ -101,10 +102,11 @@ assembly_check(const Options *c, eomc_sim *sim, const double *x)
     char list[2048];
     int off = describe_off(sim, c->run.t0, x, list, sizeof list);
     if (off == 1)
-        fprintf(stderr, "%s: warning: the initial state is off the constraint %s; --assemble "
+        fprintf(io_err(), "%s: warning: the initial state is off the constraint %s; --assemble "
                 "projects the state onto the constraints\n", c->prog, list);
     else if (off > 1)
-        fprintf(stderr, "%s: warning: the initial state is off %d constraints, worst first: %s; "
+        fprintf(io_err(),
+                "%s: warning: the initial state is off %d constraints, worst first: %s; "
                 "--assemble projects the state onto the constraints\n", c->prog, off, list);
 }
 
@@ -179,11 +181,12 @@ assembly_suggest(Options *c, eomc_sim *sim, const double *x)
         if (!trial_assembly(c, sim, x, hold[j], moved, sizeof moved))
             continue;
         hold_names(m, hold[j], names, sizeof names);
-        fprintf(stderr, "%s: %s --assemble --hold \"%s\" %s: %s\n", c->prog,
+        fprintf(io_err(), "%s: %s --assemble --hold \"%s\" %s: %s\n", c->prog,
                 said++ ? "or" : "to linearize on them,", names, why[j], moved);
     }
     if (!said)
-        fprintf(stderr, "%s: --assemble --hold LIST puts the state on the constraints keeping "
+        fprintf(io_err(),
+                "%s: --assemble --hold LIST puts the state on the constraints keeping "
                 "LIST as it is (neither what --init set nor the linearization's coordinates "
                 "and velocities can be kept here)\n", c->prog);
     free(hold[0]);

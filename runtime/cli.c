@@ -13,6 +13,7 @@
 #include "animate.h"
 #include "assembly.h"
 #include "compare.h"
+#include "io.h"
 #include "numfmt.h"
 #include "options.h"
 #include "plan.h"
@@ -48,12 +49,12 @@ print_accel(Options *c, eomc_sim *sim, const eomc_model_ext *ext, const double *
                                : eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
     if (rc == EOMC_OK) {
         for (int i = 0; i < m->nq; i++)
-            printf("%s'' %s\n", m->q_names[i], num_shortest(num, a[i]));
+            fprintf(io_out(), "%s'' %s\n", m->q_names[i], num_shortest(num, a[i]));
         for (int k = 0; k < m->nc; k++)
-            printf("lambda[%s] %s\n", m->c_names[k],
-                   num_shortest(num, c->accel_extended ? lam[k] : eomc_sim_multipliers(sim)[k]));
+            fprintf(io_out(), "lambda[%s] %s\n", m->c_names[k],
+                    num_shortest(num, c->accel_extended ? lam[k] : eomc_sim_multipliers(sim)[k]));
     } else
-        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: error: %s\n", c->prog, eomc_sim_error(sim));
     free(a);
     return rc;
 }
@@ -128,7 +129,7 @@ get_reference(Options *c, eomc_sim *sim, const eomc_model_ext *ext, const double
     else
         rc = eomc_reference_compute(sim, ext, &c->run, x, ref);
     if (rc != EOMC_OK) {
-        fprintf(stderr, "%s: %s%s\n", c->prog, rc == EOMC_ENUMERIC ? "error: " : "",
+        fprintf(io_err(), "%s: %s%s\n", c->prog, rc == EOMC_ENUMERIC ? "error: " : "",
                 eomc_sim_error(sim));
         return rc;
     }
@@ -145,7 +146,7 @@ get_reference(Options *c, eomc_sim *sim, const eomc_model_ext *ext, const double
             rc = rows_write(&w, ref->t[k], ref->x + (size_t)k * (size_t)ref->nx);
         rows_flush(&w);
         if (rc != EOMC_OK)
-            fprintf(stderr, "%s: --reference-out: %s\n", c->prog, eomc_sim_error(sim));
+            fprintf(io_err(), "%s: --reference-out: %s\n", c->prog, eomc_sim_error(sim));
         if (rows_close(c->prog, w.f, c->reference_out) && rc == EOMC_OK)
             rc = EOMC_EUSAGE;
         rows_free(&w);
@@ -173,7 +174,7 @@ open_files(const Options *c, Rows *w, char *data, int *fd)
         return EOMC_EUSAGE;
     }
     if (c->plot && ((*fd = mkstemp(data)) < 0 || !(w->tee = fdopen(*fd, "w")))) {
-        fprintf(stderr, "%s: --plot: cannot write its data: %s\n", c->prog, strerror(errno));
+        fprintf(io_err(), "%s: --plot: cannot write its data: %s\n", c->prog, strerror(errno));
         if (*fd >= 0)
             close(*fd);
         rows_close(c->prog, w->f, c->out);
@@ -191,8 +192,11 @@ open_files(const Options *c, Rows *w, char *data, int *fd)
     rows_header(w->f, m);
     if (w->tee)
         rows_header(w->tee, m);
-    /* whole blocks of rows, one write each: no half row in the file */
-    setvbuf(w->f, NULL, _IONBF, 0);
+    /* whole blocks of rows, one write each: no half row in the file (a
+     * stream in memory, eomc_main_mem's, has no file, and glibc's cannot
+     * be unbuffered) */
+    if (fileno(w->f) >= 0)
+        setvbuf(w->f, NULL, _IONBF, 0);
     if (w->tee)
         setvbuf(w->tee, NULL, _IONBF, 0);
     return EOMC_OK;
@@ -212,7 +216,7 @@ after_run(Options *c, Rows *w, const eomc_stats *st, const eomc_reference *ref,
         rc = rc ? rc : EOMC_ENUMERIC;
     w->f = w->events = NULL;
     if (rc)
-        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(w->sim));
+        fprintf(io_err(), "%s: error: %s\n", c->prog, eomc_sim_error(w->sim));
     if (rc == EOMC_ENUMERIC)
         summary_kept(c, w);
     summary_warnings(c, m, st, w);
@@ -264,9 +268,11 @@ animate_row(void *ctx, double t, const double *x)
 }
 
 /* One run written as CSV: the reference when measured against one, the
- * files, the run, what is said of it; one cleanup. */
+ * files, the run, what is said of it; one cleanup.  SIGINT and SIGTERM
+ * stop the run at a row when catch_signals (eomc_main: the program's
+ * signals); a caller that is not a program keeps its own handlers. */
 static int
-simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
+simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int catch_signals)
 {
     if (eomc_run_check(sim, &c->run) != EOMC_OK) /* before any file is written */
         return opt_usage(c, "%s", eomc_sim_error(sim));
@@ -283,7 +289,7 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     if (rc == EOMC_OK && (c->error || c->reference_out))
         rc = get_reference(c, sim, ext, x, &ref);
     if (rc == EOMC_OK && c->error && compare_init(&w.cmp, &ref) != 0) {
-        fprintf(stderr, "%s: out of memory\n", c->prog);
+        fprintf(io_err(), "%s: out of memory\n", c->prog);
         rc = EOMC_EUSAGE;
     }
     if (c->error)
@@ -297,13 +303,15 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         c->run.progress_ctx = &pr;
         c->run.on_event = rows_event;
         c->run.event_ctx = &w;
-        signals_catch();
+        if (catch_signals)
+            signals_catch();
         rc = anim ? eomc_sim_integrate(sim, &c->run, x, animate_row, &ar, &st)
                   : eomc_sim_integrate(sim, &c->run, x, rows_write, &w, &st);
         summary_progress_end(&pr);
         c->run.on_progress = NULL; /* pr is gone */
         rows_flush(&w);
-        signals_restore();
+        if (catch_signals)
+            signals_restore();
         if (rc == SIGNALS_STOPPED) {
             int sig = signals_caught();
             rows_close(c->prog, w.f, c->out);
@@ -379,7 +387,7 @@ work_precision(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
         runnable[n] = NULL;
         methods = runnable;
         if (*left)
-            fprintf(stderr, "%s: note: %s left out: they need the Jacobian of the equations, "
+            fprintf(io_err(), "%s: note: %s left out: they need the Jacobian of the equations, "
                     "which %s was built without (rebuild with `eomc build %s --jacobian "
                     "auto` to report them)\n", c->prog, left, m->name, m->spec);
     }
@@ -407,13 +415,16 @@ work_precision(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
     return rc;
 }
 
+/* program: the caller is a program of its own (eomc_main), whose signals
+ * stop a run (simulate) and whose MPI ranks other than 0 are silenced;
+ * not under eomc_main_mem, whose caller keeps its handlers and streams. */
 static int
-cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
+cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, int program)
 {
     Options c;
     int ok = opt_init(&c, argc, argv, m) == 0;
-    if (sweep_rank() != 0) { /* rank 0 speaks for the job */
-        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
+    if (program && sweep_rank() != 0) { /* rank 0 speaks for the job */
+        if (io_silence() != 0) {
             opt_free(&c);
             return EOMC_EUSAGE;
         }
@@ -422,7 +433,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
     double *x = calloc(2 * (size_t)m->nq + 1, sizeof *x);
     int rc;
     if (!sim || !ok || !x) {
-        fprintf(stderr, "%s: out of memory, or a model built for another runtime\n",
+        fprintf(io_err(), "%s: out of memory, or a model built for another runtime\n",
                 c.prog);
         rc = EOMC_EUSAGE;
     } else if ((rc = opt_parse(&c, argc, argv, m)) != EOMC_OK) {
@@ -439,7 +450,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
                  : c.accel          ? print_accel(&c, sim, ext, x)
                  : c.linearize || c.equilibrium ? stab_print(&c, sim, x)
                  : c.work_precision ? work_precision(&c, sim, ext, x)
-                                    : simulate(&c, sim, ext, x);
+                                    : simulate(&c, sim, ext, x, program);
     }
     eomc_sim_free(sim);
     free(x);
@@ -454,7 +465,62 @@ int
 eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
 {
     gsl_error_handler_t *before = gsl_set_error_handler_off();
-    int rc = cli_main(argc, argv, m, ext);
+    int rc = cli_main(argc, argv, m, ext, 1);
     gsl_set_error_handler(before);
     return rc;
+}
+
+/* A stream's text, closed: *text (NULL when it could not be kept) and
+ * *len (unless NULL).  -1 when it could not. */
+static int
+mem_close(FILE *f, char **text, size_t *size, size_t *len)
+{
+    int bad = fclose(f) != 0 || !*text;
+    if (bad) {
+        free(*text);
+        *text = NULL;
+        *size = 0;
+    }
+    if (len)
+        *len = *size;
+    return bad ? -1 : 0;
+}
+
+/* The command line for a caller that is not a program (the Python
+ * package, through ctypes, from several threads at once): the calling
+ * thread's streams are memory (io.h), so nothing reaches the process's
+ * stdout and stderr and threads keep their text apart; the process's
+ * signal handlers and GSL's error handler are the caller's; and it never
+ * leaves the job to an MPI rank (the caller is one process). */
+int
+eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
+              char **out, size_t *out_len, char **err, size_t *err_len)
+{
+    size_t nout = 0, nerr = 0;
+    *out = *err = NULL;
+    FILE *fo = open_memstream(out, &nout), *fe = fo ? open_memstream(err, &nerr) : NULL;
+    if (!fe) {
+        if (fo)
+            fclose(fo);
+        free(*out);
+        *out = NULL;
+        if (out_len)
+            *out_len = 0;
+        if (err_len)
+            *err_len = 0;
+        return EOMC_EUSAGE;
+    }
+    IoSaved saved;
+    io_set(fo, fe, &saved);
+    int rc = cli_main(argc, argv, m, ext, 0);
+    io_restore(&saved);
+    int bad = mem_close(fo, out, &nout, out_len);
+    bad |= mem_close(fe, err, &nerr, err_len);
+    return bad && rc == EOMC_OK ? EOMC_EUSAGE : rc;
+}
+
+void
+eomc_free(void *p)
+{
+    free(p);
 }

@@ -479,6 +479,20 @@ const char *eomc_sim_error(const eomc_sim *s);
  * NULL.  Returns the exit status: 0, 2 (usage) or 3 (numerical failure). */
 int eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext);
 
+/* The simulator's command line (eomc_main) with what it would print on
+ * stdout and stderr returned as text instead: *out and *err get malloc'd,
+ * NUL-terminated text (free with eomc_free), out_len and err_len (unless
+ * NULL) its length.  Files named on the line (-o FILE, --csv FILE, ...)
+ * are written as eomc_main writes them.  For a caller that is not a
+ * program of its own (the Python package): it installs no signal handler,
+ * leaves GSL's error handler as it is (turn it off first:
+ * gsl_set_error_handler_off), never exits, and its streams are the
+ * calling thread's, so calls in several threads at once keep their text
+ * apart.  Returns the exit status, as eomc_main. */
+int eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
+                  char **out, size_t *out_len, char **err, size_t *err_len);
+void eomc_free(void *p);
+
 #if defined(__GNUC__)
 #pragma GCC visibility pop
 #endif

@@ -5,6 +5,7 @@
  * lists (methods, events) and defaults filled in where a row asks.
  */
 #include "option_table.h"
+#include "io.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -196,22 +197,22 @@ methods_list(const eomc_model *m)
 {
     (void)m; /* the methods are the runtime's, the same for every model */
     for (int k = 0; eomc_methods[k]; k++)
-        printf("%*s%-*s %s\n", LIST_COL, "", METHOD_W, eomc_methods[k],
-               eomc_method_description(eomc_methods[k]));
+        fprintf(io_out(), "%*s%-*s %s\n", LIST_COL, "", METHOD_W, eomc_methods[k],
+                eomc_method_description(eomc_methods[k]));
 }
 
 static void
 events_list(const eomc_model *m)
 {
     static const char *const actions[] = {"stops the run", "is recorded", "sets the state"};
-    printf("%*sthe scene's events:\n", INDENT, "");
+    fprintf(io_out(), "%*sthe scene's events:\n", INDENT, "");
     int w = EVENT_W;
     for (int k = 0; k < m->nevent; k++)
         if ((int)strlen(m->ev_names[k]) > w)
             w = (int)strlen(m->ev_names[k]);
     for (int k = 0; k < m->nevent; k++)
-        printf("%*s%-*s %s (g crossing 0 %s)\n", LIST_COL, "", w, m->ev_names[k],
-               actions[m->ev_action[k]], m->ev_direction[k] > 0   ? "upward"
+        fprintf(io_out(), "%*s%-*s %s (g crossing 0 %s)\n", LIST_COL, "", w, m->ev_names[k],
+                actions[m->ev_action[k]], m->ev_direction[k] > 0   ? "upward"
                                          : m->ev_direction[k] < 0 ? "downward"
                                                                    : "either way");
 }
@@ -250,13 +251,13 @@ help_lines(const char *help, int first, int col, const char *dflt)
         size_t len = strcspn(p, "\n");
         const char *mark = strstr(p, MARK);
         if (!first)
-            printf("%*s", col, "");
+            fprintf(io_out(), "%*s", col, "");
         first = 0;
         size_t at = mark ? (size_t)(mark - p) : len, after = at + strlen(MARK);
         if (at < len)
-            printf("%.*s%s%.*s\n", (int)at, p, dflt, (int)(len - after), p + after);
+            fprintf(io_out(), "%.*s%s%.*s\n", (int)at, p, dflt, (int)(len - after), p + after);
         else
-            printf("%.*s\n", (int)len, p);
+            fprintf(io_out(), "%.*s\n", (int)len, p);
         p += len;
         p += *p == '\n';
     }
@@ -265,12 +266,12 @@ help_lines(const char *help, int first, int col, const char *dflt)
 void
 option_help(const char *self, const eomc_model *m)
 {
-    printf("usage: %s [OPTION]...\n"
-           "Simulate %s (%s, %s form%s%s%s%s) and write the trajectory as CSV:\n"
-           "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
-           self, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
-           *m->scene ? ", scene " : "", m->scene,
-           m->invariant_name && !strcmp(m->invariant_name, "h")
+    fprintf(io_out(), "usage: %s [OPTION]...\n"
+            "Simulate %s (%s, %s form%s%s%s%s) and write the trajectory as CSV:\n"
+            "t, each coordinate, each velocity (name'), T, V and E = T + V%s.\n\n",
+            self, m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
+            *m->scene ? ", scene " : "", m->scene,
+            m->invariant_name && !strcmp(m->invariant_name, "h")
                ? ", h (the conserved energy function)" : "");
     int col = COL;
     for (int k = 0; k < NROWS; k++) {
@@ -294,25 +295,26 @@ option_help(const char *self, const eomc_model *m)
                                 rows[k + 1].value ? rows[k + 1].value : "");
         col = r->col ? r->col : COL;
         if (!*r->help) {
-            printf("%s\n", label);
+            fprintf(io_out(), "%s\n", label);
             continue;
         }
         /* past the column, two spaces keep the label and its help apart */
-        printf("%-*s%s", col, label, len < col ? "" : "  ");
+        fprintf(io_out(), "%-*s%s", col, label, len < col ? "" : "  ");
         help_lines(r->help, 1, col, dflt);
         if (r->list)
             r->list(m);
     }
-    printf("\ncoordinates: ");
+    fprintf(io_out(), "\ncoordinates: ");
     for (int k = 0; k < m->nq; k++)
-        printf("%s%s", k ? ", " : "", m->q_names[k]);
-    printf("\nparameters: ");
+        fprintf(io_out(), "%s%s", k ? ", " : "", m->q_names[k]);
+    fprintf(io_out(), "\nparameters: ");
     for (int k = 0; k < m->np; k++)
-        printf("%s%s=%g%s", k ? ", " : "", m->p_names[k], m->p_default[k],
-               m->p_fixed[k] ? " (fixed)" : "");
-    printf("\ninputs: ");
+        fprintf(io_out(), "%s%s=%g%s", k ? ", " : "", m->p_names[k], m->p_default[k],
+                m->p_fixed[k] ? " (fixed)" : "");
+    fprintf(io_out(), "\ninputs: ");
     for (int k = 0; k < m->nu; k++)
-        printf("%s%s", k ? ", " : "", m->u_names[k]);
-    printf("%s\n%s.\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
-           "computed so far are kept).\n", m->nu ? "" : "(none)", m->invariant_note);
+        fprintf(io_out(), "%s%s", k ? ", " : "", m->u_names[k]);
+    fprintf(io_out(),
+            "%s\n%s.\nExit status: 0 done, 2 usage error, 3 numerical failure (the rows "
+            "computed so far are kept).\n", m->nu ? "" : "(none)", m->invariant_note);
 }

@@ -6,6 +6,7 @@
  * order on the line.
  */
 #include "options.h"
+#include "io.h"
 #include "option_table.h"
 #include "nearest.h"
 #include "animate.h"
@@ -25,11 +26,11 @@ int
 opt_usage(const Options *c, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "%s: ", c->prog);
+    fprintf(io_err(), "%s: ", c->prog);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vfprintf(io_err(), fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\n(see %s --help)\n", c->self);
+    fprintf(io_err(), "\n(see %s --help)\n", c->self);
     return EOMC_EUSAGE;
 }
 
@@ -39,7 +40,9 @@ opt_usage(const Options *c, const char *fmt, ...)
 const char *
 opt_nearest(const char *word, const char *const *names, int n, const char *suffix)
 {
-    static char buf[600];
+    /* the thread's own: simulators run in several threads at once
+     * (eomc_main_mem) */
+    static _Thread_local char buf[600];
     char list[512];
     buf[0] = '\0';
     char *cands = calloc((size_t)(n ? n : 1), NEAREST_MAX + 2);
@@ -108,10 +111,10 @@ method_index(Options *c, const char *opt, const char *val)
     for (int j = 0; j < n; j++)
         if (strcmp(val, eomc_methods[j]) == 0)
             return j;
-    fprintf(stderr, "%s: %s: unknown method '%s'%s; methods: ", c->prog, opt, val,
+    fprintf(io_err(), "%s: %s: unknown method '%s'%s; methods: ", c->prog, opt, val,
             opt_nearest(val, eomc_methods, n, ""));
-    opt_list_names(stderr, eomc_methods, n, "");
-    fprintf(stderr, "\n");
+    opt_list_names(io_err(), eomc_methods, n, "");
+    fprintf(io_err(), "\n");
     return -1;
 }
 
@@ -363,26 +366,26 @@ opt_apply_sets(Options *c, eomc_sim *sim)
             fixed |= m->p_fixed[i] && !strcmp(name, m->p_names[i]);
         int rc = eomc_sim_set(sim, name, x);
         if (rc != EOMC_OK && fixed) {
-            fprintf(stderr, "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
+            fprintf(io_err(), "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
             free(name);
             return EOMC_EUSAGE;
         } else if (rc != EOMC_OK) {
             const char *hint = opt_nearest(name, m->p_names, m->np, "");
             if (!*hint)
                 hint = opt_nearest(name, m->u_names, m->nu, "");
-            fprintf(stderr, "%s: --set: '%s' is not a parameter or input%s; "
+            fprintf(io_err(), "%s: --set: '%s' is not a parameter or input%s; "
                     "parameters: ", c->prog, name, hint);
-            opt_list_names(stderr, m->p_names, m->np, "");
-            fprintf(stderr, m->nu ? "; inputs: " : "; no inputs");
-            opt_list_names(stderr, m->u_names, m->nu, "");
-            fprintf(stderr, "\n");
+            opt_list_names(io_err(), m->p_names, m->np, "");
+            fprintf(io_err(), m->nu ? "; inputs: " : "; no inputs");
+            opt_list_names(io_err(), m->u_names, m->nu, "");
+            fprintf(io_err(), "\n");
             free(name);
             return EOMC_EUSAGE;
         }
         free(name);
     }
     if (eomc_sim_check(sim) != EOMC_OK) {
-        fprintf(stderr, "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: --set: %s\n", c->prog, eomc_sim_error(sim));
         return EOMC_EUSAGE;
     }
     return EOMC_OK;
@@ -397,7 +400,7 @@ state_index(Options *c, const eomc_model *m, const char *opt, const char *name)
     int n = m->nq;
     size_t len = strlen(name);
     if (len > 2 && name[len - 1] == '\'' && name[len - 2] == '\'') {
-        fprintf(stderr, "%s: %s: '%s' is an acceleration: only coordinates (x) and "
+        fprintf(io_err(), "%s: %s: '%s' is an acceleration: only coordinates (x) and "
                 "velocities (x') make the initial state; the accelerations follow from "
                 "the equations\n", c->prog, opt, name);
         return -1;
@@ -407,12 +410,12 @@ state_index(Options *c, const eomc_model *m, const char *opt, const char *name)
         if (strlen(m->q_names[i]) == len - (size_t)vel &&
             !strncmp(name, m->q_names[i], len - (size_t)vel))
             return i + (vel ? n : 0);
-    fprintf(stderr, "%s: %s: '%s' is not a coordinate or velocity%s; valid names: ", c->prog,
+    fprintf(io_err(), "%s: %s: '%s' is not a coordinate or velocity%s; valid names: ", c->prog,
             opt, name, opt_nearest(name, m->q_names, n, vel ? "'" : ""));
-    opt_list_names(stderr, m->q_names, n, "");
-    fprintf(stderr, ", ");
-    opt_list_names(stderr, m->q_names, n, "'");
-    fprintf(stderr, "\n");
+    opt_list_names(io_err(), m->q_names, n, "");
+    fprintf(io_err(), ", ");
+    opt_list_names(io_err(), m->q_names, n, "'");
+    fprintf(io_err(), "\n");
     return -1;
 }
 
@@ -553,9 +556,10 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
                 return -1;
             }
             if (k == O_VERSION) {
-                printf("%s: model %s from %s, %s form%s%s; eomc runtime %s\n", c->prog,
-                       m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
-                       EOMC_VERSION);
+                fprintf(io_out(),
+                        "%s: model %s from %s, %s form%s%s; eomc runtime %s\n", c->prog,
+                        m->name, m->spec, m->form, *m->options ? ", " : "", m->options,
+                        EOMC_VERSION);
                 return -1;
             }
             int *flag[] = {&c->stats, &c->summary, &c->accel, &c->assemble, &c->no_assemble,

@@ -47,9 +47,11 @@ plan_grid(Options *c, const eomc_model *m, Plan *pl)
         if (!eq || eq == arg)
             rc = opt_usage(c, "--sweep: expected NAME=START:STOP:COUNT, not '%s'", arg);
         else {
-            *eq = '\0';
-            rc = sweep_name(c, m, pl, arg, "--sweep");
-            pl->names[pl->nparam++] = strdup(arg);
+            /* the name copied out, argv left as it is: the caller's, maybe
+             * read-only or shared by threads (eomc_main_mem) */
+            char *name = strndup(arg, (size_t)(eq - arg));
+            rc = name ? sweep_name(c, m, pl, name, "--sweep") : opt_usage(c, "out of memory");
+            pl->names[pl->nparam++] = name;
             errno = 0;
             start[j] = strtod(eq + 1, &end);
             if (rc == EOMC_OK && *end == ':')
@@ -59,8 +61,7 @@ plan_grid(Options *c, const eomc_model *m, Plan *pl)
             if (rc == EOMC_OK && (*end || errno || !isfinite(start[j]) || !isfinite(stop[j]) ||
                                   count[j] < 1 || count[j] > 1000000))
                 rc = opt_usage(c, "--sweep %s=%s: expected START:STOP:COUNT, two finite numbers "
-                           "and a count from 1 to 1000000", arg, eq + 1);
-            *eq = '=';
+                           "and a count from 1 to 1000000", name, eq + 1);
             if (rc == EOMC_OK && pl->nruns > 10000000 / count[j])
                 rc = opt_usage(c, "--sweep: more than 10000000 runs");
             if (rc == EOMC_OK) /* a bad count is not multiplied in */

@@ -3,6 +3,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "plot.h"
+#include "io.h"
 
 #include <errno.h>
 #include <math.h>
@@ -83,7 +84,7 @@ plot_finish(const char *prog, const char *script, const char *tmp, const char *p
     struct stat st;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || stat(tmp, &st) != 0 ||
         rename(tmp, path) != 0) {
-        fprintf(stderr, "%s: --plot: gnuplot could not write %s\n", prog, path);
+        fprintf(io_err(), "%s: --plot: gnuplot could not write %s\n", prog, path);
         unlink(tmp);
         return EOMC_EUSAGE;
     }
@@ -188,7 +189,7 @@ plot_trajectory(const char *prog, const eomc_model *m, const char *data, const c
     int *group = calloc((size_t)m->nout + 1, sizeof *group);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f || !tmp || !group) {
-        fprintf(stderr, "%s: --plot: cannot write a gnuplot script: %s\n", prog,
+        fprintf(io_err(), "%s: --plot: cannot write a gnuplot script: %s\n", prog,
                 strerror(errno));
         if (f)
             fclose(f);
@@ -238,7 +239,7 @@ plot_trajectory(const char *prog, const eomc_model *m, const char *data, const c
     free(group);
     int bad = ferror(f) | (fclose(f) != 0);
     if (bad) {
-        fprintf(stderr, "%s: --plot: cannot write a gnuplot script\n", prog);
+        fprintf(io_err(), "%s: --plot: cannot write a gnuplot script\n", prog);
         unlink(script);
         free(tmp);
         return EOMC_EUSAGE;

@@ -19,6 +19,7 @@
  */
 #include "report.h"
 #include "compare.h"
+#include "io.h"
 #include "numfmt.h"
 #include "plot.h"
 #include "simimpl.h"
@@ -215,14 +216,15 @@ plan(const Report *r, int *count)
 static void
 progress(const Report *r, double t0, int k, int n, const Entry *e, int *shown)
 {
-    if (!isatty(2) || sim_seconds(0) - t0 < 1.0)
+    if (!io_err_tty() || sim_seconds(0) - t0 < 1.0)
         return;
     char what[64];
     if (e->h > 0)
         snprintf(what, sizeof what, "fixed steps %.3g", e->h);
     else
         snprintf(what, sizeof what, "tolerance %.0e", e->tol);
-    fprintf(stderr, "\r%s: run %d of %d: %s, %s%-10s", r->prog, k + 1, n, e->method, what, "");
+    fprintf(io_err(),
+            "\r%s: run %d of %d: %s, %s%-10s", r->prog, k + 1, n, e->method, what, "");
     *shown = 1;
 }
 
@@ -251,17 +253,17 @@ static void
 print_block_head(const Report *r, const Entry *e)
 {
     const eomc_model *m = eomc_sim_model(r->sim);
-    printf("\n%s, %s: %s\n", e->method, e->h > 0 ? "fixed steps" : "adaptive",
-           eomc_method_description(e->method));
-    printf("  %-11s %12s %8s %8s %10s %9s %9s %10s %10s %6s %-*s",
-           e->h > 0 ? "fixed_step" : "tolerance", "cpu_seconds", "steps", "rejected",
-           "side_steps", "rhs_evals", "jac_evals", "error_end", "error_max", "digits",
-           name_width(m), "worst");
+    fprintf(io_out(), "\n%s, %s: %s\n", e->method, e->h > 0 ? "fixed steps" : "adaptive",
+            eomc_method_description(e->method));
+    fprintf(io_out(), "  %-11s %12s %8s %8s %10s %9s %9s %10s %10s %6s %-*s",
+            e->h > 0 ? "fixed_step" : "tolerance", "cpu_seconds", "steps", "rejected",
+            "side_steps", "rhs_evals", "jac_evals", "error_end", "error_max", "digits",
+            name_width(m), "worst");
     if (m->invariant)
-        printf(" %15s", "invariant_drift");
+        fprintf(io_out(), " %15s", "invariant_drift");
     if (m->nc > 0)
-        printf(" %19s", "constraint_residual");
-    printf("\n");
+        fprintf(io_out(), " %19s", "constraint_residual");
+    fprintf(io_out(), "\n");
 }
 
 static void
@@ -273,15 +275,15 @@ print_entry(const Report *r, const Entry *e)
         snprintf(setting, sizeof setting, "%.4g", e->st.h_used > 0 ? e->st.h_used : e->h);
     else
         snprintf(setting, sizeof setting, "%.0e", e->tol);
-    printf("  %-11s", setting);
+    fprintf(io_out(), "  %-11s", setting);
     if (e->status == RUN_SKIPPED) {
-        printf(" not run: %s\n", e->why);
+        fprintf(io_out(), " not run: %s\n", e->why);
         return;
     }
-    printf(" %12.4g %8ld %8ld %10ld %9ld %9ld", e->cpu, e->st.steps, e->st.rejected,
-           e->st.side_steps, e->st.rhs_evals, e->st.jac_evals);
+    fprintf(io_out(), " %12.4g %8ld %8ld %10ld %9ld %9ld", e->cpu, e->st.steps, e->st.rejected,
+            e->st.side_steps, e->st.rhs_evals, e->st.jac_evals);
     if (e->status == RUN_FAILED) {
-        printf("  failed: %s\n", e->why);
+        fprintf(io_out(), "  failed: %s\n", e->why);
         return;
     }
     char end[32], max[32];
@@ -291,12 +293,12 @@ print_entry(const Report *r, const Entry *e)
     if (e->digits < INFINITY)
         snprintf(worst, sizeof worst, "%s%s", m->q_names[e->worst % m->nq],
                  e->worst < m->nq ? "" : "'");
-    printf(" %10s %10s %6.1f %-*s", end, max, e->digits, name_width(m), worst);
+    fprintf(io_out(), " %10s %10s %6.1f %-*s", end, max, e->digits, name_width(m), worst);
     if (m->invariant)
-        printf(" %15.2e", e->drift);
+        fprintf(io_out(), " %15.2e", e->drift);
     if (m->nc > 0)
-        printf(" %19.2e", e->residual);
-    printf("\n");
+        fprintf(io_out(), " %19.2e", e->residual);
+    fprintf(io_out(), "\n");
 }
 
 static void
@@ -328,8 +330,8 @@ print_front(const Report *r, Entry *e, int n)
             int t = order[j];
             order[j] = order[j - 1], order[j - 1] = t;
         }
-    printf("\nPareto front (no other setting is both faster and more accurate):\n");
-    printf("  %12s %10s  %s\n", "cpu_seconds", "error_max", "setting");
+    fprintf(io_out(), "\nPareto front (no other setting is both faster and more accurate):\n");
+    fprintf(io_out(), "  %12s %10s  %s\n", "cpu_seconds", "error_max", "setting");
     double best = INFINITY;
     for (int i = 0; i < m; i++) {
         const Entry *x = &e[order[i]];
@@ -339,7 +341,7 @@ print_front(const Report *r, Entry *e, int n)
         char what[128], err[32];
         describe_setting(x, what, sizeof what);
         error_cell(err, sizeof err, r, x->err_max);
-        printf("  %12.4g %10s  %s\n", x->cpu, err, what);
+        fprintf(io_out(), "  %12.4g %10s  %s\n", x->cpu, err, what);
     }
     if (!isnan(r->target)) {
         const Entry *pick = NULL, *closest = NULL;
@@ -353,18 +355,21 @@ print_front(const Report *r, Entry *e, int n)
         char what[128];
         if (pick) {
             describe_setting(pick, what, sizeof what);
-            printf("\ntarget error_max <= %.3g: the cheapest measured setting is %s, "
-                   "%.4g s of CPU time per run (error_max %.2e)\n", r->target, what,
-                   pick->cpu, pick->err_max);
+            fprintf(io_out(),
+                    "\ntarget error_max <= %.3g: the cheapest measured setting is %s, "
+                    "%.4g s of CPU time per run (error_max %.2e)\n", r->target, what,
+                    pick->cpu, pick->err_max);
         } else if (closest) {
             describe_setting(closest, what, sizeof what);
-            printf("\ntarget error_max <= %.3g: no measured setting reaches it; the most "
-                   "accurate is %s (error_max %.2e, %.4g s)\n", r->target, what,
-                   closest->err_max, closest->cpu);
+            fprintf(io_out(),
+                    "\ntarget error_max <= %.3g: no measured setting reaches it; the most "
+                    "accurate is %s (error_max %.2e, %.4g s)\n", r->target, what,
+                    closest->err_max, closest->cpu);
         }
         if (r->target <= RESOLVED * r->ref->error)
-            printf("(the reference is good to %.2e only: errors near the target cannot be "
-                   "told apart from its own)\n", r->ref->error);
+            fprintf(io_out(),
+                    "(the reference is good to %.2e only: errors near the target cannot be "
+                    "told apart from its own)\n", r->ref->error);
     }
     free(order);
 }
@@ -387,7 +392,7 @@ finish_file(const Report *r, FILE *f, const char *tmp, const char *path)
 {
     int bad = ferror(f) | (fclose(f) != 0);
     if (bad || rename(tmp, path) != 0) {
-        fprintf(stderr, "%s: cannot write %s: %s\n", r->prog, path, strerror(errno));
+        fprintf(io_err(), "%s: cannot write %s: %s\n", r->prog, path, strerror(errno));
         unlink(tmp);
         return EOMC_EUSAGE;
     }
@@ -408,7 +413,7 @@ write_csv(const Report *r, const Entry *e, int n)
     char *tmp = temp_name(r->csv);
     FILE *f = tmp ? fopen(tmp, "w") : NULL;
     if (!f) {
-        fprintf(stderr, "%s: --csv: cannot write %s: %s\n", r->prog, r->csv,
+        fprintf(io_err(), "%s: --csv: cannot write %s: %s\n", r->prog, r->csv,
                 strerror(errno));
         free(tmp);
         return EOMC_EUSAGE;
@@ -459,7 +464,7 @@ write_errors(const Report *r, const Entry *e, int n, const double *scale)
     char *tmp = temp_name(r->errors);
     FILE *f = tmp ? fopen(tmp, "w") : NULL;
     if (!f) {
-        fprintf(stderr, "%s: --errors: cannot write %s: %s\n", r->prog, r->errors,
+        fprintf(io_err(), "%s: --errors: cannot write %s: %s\n", r->prog, r->errors,
                 strerror(errno));
         free(tmp);
         return EOMC_EUSAGE;
@@ -534,7 +539,7 @@ write_plot(const Report *r, const Entry *e, int n)
     char *tmp = temp_name(r->plot);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f || !tmp) {
-        fprintf(stderr, "%s: --plot: cannot write a gnuplot script: %s\n", r->prog,
+        fprintf(io_err(), "%s: --plot: cannot write a gnuplot script: %s\n", r->prog,
                 strerror(errno));
         if (f)
             fclose(f);
@@ -566,7 +571,7 @@ write_plot(const Report *r, const Entry *e, int n)
     int bad = ferror(f) | (fclose(f) != 0);
     int rc;
     if (bad) {
-        fprintf(stderr, "%s: --plot: cannot write a gnuplot script\n", r->prog);
+        fprintf(io_err(), "%s: --plot: cannot write a gnuplot script\n", r->prog);
         unlink(script);
         rc = EOMC_EUSAGE;
     } else {
@@ -583,20 +588,22 @@ print_title(const Report *r)
 {
     const eomc_model *m = eomc_sim_model(r->sim);
     const eomc_reference *ref = r->ref;
-    printf("%s (%s, %s form): %s\n", m->name, m->spec, m->form, r->setting);
-    printf("reference: %s", ref->source);
+    fprintf(io_out(), "%s (%s, %s form): %s\n", m->name, m->spec, m->form, r->setting);
+    fprintf(io_out(), "reference: %s", ref->source);
     if (isnan(ref->error))
-        printf("; its own error is not known\n");
+        fprintf(io_out(), "; its own error is not known\n");
     else
-        printf(";\n  its error is at most %.2e (%.1f digits of the largest entry, %.3g), "
-               "computed in %.3g s\n", ref->error, -log10(ref->error / ref->scale),
-               ref->scale, ref->cpu_seconds);
-    printf("%s\n", m->invariant_note);
-    printf("cpu_seconds per run; errors are the largest |x - x_ref| over coordinates and "
-           "velocities, at t_end (error_end) and over the rows (error_max); digits: the "
-           "fewest of any coordinate or velocity (worst), -log10 of its largest error over "
-           "its own largest |x_ref| (at least %g of its group's); ~ marks an error the "
-           "reference cannot resolve\n", COMPARE_FLOOR);
+        fprintf(io_out(),
+                ";\n  its error is at most %.2e (%.1f digits of the largest entry, %.3g), "
+                "computed in %.3g s\n", ref->error, -log10(ref->error / ref->scale),
+                ref->scale, ref->cpu_seconds);
+    fprintf(io_out(), "%s\n", m->invariant_note);
+    fprintf(io_out(),
+            "cpu_seconds per run; errors are the largest |x - x_ref| over coordinates and "
+            "velocities, at t_end (error_end) and over the rows (error_max); digits: the "
+            "fewest of any coordinate or velocity (worst), -log10 of its largest error over "
+            "its own largest |x_ref| (at least %g of its group's); ~ marks an error the "
+            "reference cannot resolve\n", COMPARE_FLOOR);
 }
 
 /* A method's tighter settings, after it reached the step limit: they
@@ -625,7 +632,7 @@ report_run(const Report *r)
     Compare cmp;
     int cmp_ok = compare_init(&cmp, r->ref) == 0;
     if (!e || !x || !res || !comps || !cmp_ok) {
-        fprintf(stderr, "%s: out of memory\n", r->prog);
+        fprintf(io_err(), "%s: out of memory\n", r->prog);
         free(e), free(x), free(res), free(comps);
         compare_free(&cmp);
         return EOMC_EUSAGE;
@@ -635,7 +642,7 @@ report_run(const Report *r)
         e[k].comp_max = e[k].comp_end + nx;
     }
     print_title(r);
-    fflush(stdout);
+    fflush(io_out());
     double t0 = sim_seconds(0);
     int shown = 0, ok = 0;
     long max_steps = r->base.max_steps > 0 ? r->base.max_steps : REPORT_MAX_STEPS;
@@ -657,14 +664,14 @@ report_run(const Report *r)
             skip_rest(e, k, n);
     }
     if (shown)
-        fprintf(stderr, "\r%*s\r", 72, "");
+        fprintf(io_err(), "\r%*s\r", 72, "");
     for (int k = 0; k < n; k++) {
         if (k == 0 || e[k].method != e[k - 1].method || (e[k].h > 0) != (e[k - 1].h > 0))
             print_block_head(r, &e[k]);
         print_entry(r, &e[k]);
     }
     print_front(r, e, n);
-    fflush(stdout);
+    fflush(io_out());
     int rc = EOMC_OK;
     if (r->csv && write_csv(r, e, n) != EOMC_OK)
         rc = EOMC_EUSAGE;
@@ -673,7 +680,7 @@ report_run(const Report *r)
     if (r->errors && write_errors(r, e, n, cmp.scale) != EOMC_OK)
         rc = EOMC_EUSAGE;
     if (rc == EOMC_OK && ok == 0) {
-        fprintf(stderr, "%s: no run succeeded\n", r->prog);
+        fprintf(io_err(), "%s: no run succeeded\n", r->prog);
         rc = EOMC_ENUMERIC;
     }
     free(e), free(x), free(res), free(comps);

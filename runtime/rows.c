@@ -2,6 +2,7 @@
  * rows: the CSVs a simulator writes and reads (rows.h).
  */
 #include "rows.h"
+#include "io.h"
 #include "linalg.h"
 #include "numfmt.h"
 #include "signals.h"
@@ -208,10 +209,10 @@ FILE *
 rows_open(const char *prog, const char *opt, const char *path)
 {
     if (!path)
-        return stdout;
+        return io_out();
     FILE *f = fopen(path, "w");
     if (!f)
-        fprintf(stderr, "%s: %s: cannot write '%s': %s\n", prog, opt, path,
+        fprintf(io_err(), "%s: %s: cannot write '%s': %s\n", prog, opt, path,
                 strerror(errno));
     return f;
 }
@@ -220,10 +221,10 @@ int
 rows_close(const char *prog, FILE *f, const char *path)
 {
     int bad = fflush(f) != 0 || ferror(f);
-    if (f != stdout)
+    if (f != io_out())
         bad |= fclose(f) != 0;
     if (bad)
-        fprintf(stderr, "%s: error writing %s\n", prog, path ? path : "stdout");
+        fprintf(io_err(), "%s: error writing %s\n", prog, path ? path : "stdout");
     return bad;
 }
 

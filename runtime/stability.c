@@ -3,6 +3,7 @@
  */
 #include "stability.h"
 #include "assembly.h"
+#include "io.h"
 #include "numfmt.h"
 
 #include <errno.h>
@@ -34,21 +35,22 @@ print_matrix(eomc_sim *sim, const char *title, const double *X, int rows, int co
     }
     for (int k = 0; k < m->nu && inputs; k++)
         w = (int)strlen(m->u_names[k]) + 2 > w ? (int)strlen(m->u_names[k]) + 2 : w;
-    printf("%s\n%*s", title, w, "");
+    fprintf(io_out(), "%s\n%*s", title, w, "");
     for (int c = 0; c < cols; c++) {
         if (inputs)
             snprintf(name, sizeof name, "%s", m->u_names[c]);
         else
             state_name(sim, c, name, sizeof name);
-        printf("%*s", w, name);
+        fprintf(io_out(), "%*s", w, name);
     }
-    printf("\n");
+    fprintf(io_out(), "\n");
     for (int r = 0; r < rows; r++) {
         state_name(sim, r, name, sizeof name);
-        printf("%*s", w, name);
+        fprintf(io_out(), "%*s", w, name);
         for (int c = 0; c < cols; c++)
-            printf(" %*.6g", w - 1, X[r * cols + c]); /* a space even at full width */
-        printf("\n");
+            fprintf(io_out(),
+                    " %*.6g", w - 1, X[r * cols + c]); /* a space even at full width */
+        fprintf(io_out(), "\n");
     }
 }
 
@@ -94,16 +96,19 @@ print_verdict(const double *pair, int nl)
     char num[NUM_MAX];
     num_shortest(num, worst);
     if (worst > EIG_ZERO_REL * big)
-        printf("unstable: the largest real part, %s, is more than %g of the largest modulus "
-               "(%.6g)\n", num, EIG_ZERO_REL, big);
+        fprintf(io_out(),
+                "unstable: the largest real part, %s, is more than %g of the largest modulus "
+                "(%.6g)\n", num, EIG_ZERO_REL, big);
     else if (worst < -EIG_ZERO_REL * big)
-        printf("asymptotically stable: every real part is below -%g of the largest modulus "
-               "(%.6g); the largest is %s\n", EIG_ZERO_REL, big, num);
+        fprintf(io_out(),
+                "asymptotically stable: every real part is below -%g of the largest modulus "
+                "(%.6g); the largest is %s\n", EIG_ZERO_REL, big, num);
     else
-        printf("stable to first order only: the largest real part, %s, is within %g of the "
-               "largest modulus (%.6g) of 0, which this verdict counts as 0 (the rounding "
-               "of a centre, or of a defective eigenvalue, reaches that far); on the "
-               "imaginary axis the linearization cannot decide\n", num, EIG_ZERO_REL, big);
+        fprintf(io_out(),
+                "stable to first order only: the largest real part, %s, is within %g of the "
+                "largest modulus (%.6g) of 0, which this verdict counts as 0 (the rounding "
+                "of a centre, or of a defective eigenvalue, reaches that far); on the "
+                "imaginary axis the linearization cannot decide\n", num, EIG_ZERO_REL, big);
 }
 
 /* The eigenvalues, as computed (the shortest text that reads back as the
@@ -114,14 +119,15 @@ print_eigen(Options *c, eomc_sim *sim, const double *A, int nl, int verdict, dou
 {
     int rc = sorted_eigen(sim, A, nl, pair);
     if (rc != EOMC_OK) {
-        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: error: %s\n", c->prog, eomc_sim_error(sim));
         return rc;
     }
     char re[NUM_MAX], im[NUM_MAX];
-    printf("eigenvalues of A (the largest real part first):\n");
+    fprintf(io_out(), "eigenvalues of A (the largest real part first):\n");
     for (int k = 0; k < nl; k++)
-        printf("  %s %c %si\n", num_shortest(re, pair[2 * k]), pair[2 * k + 1] < 0 ? '-' : '+',
-               num_shortest(im, fabs(pair[2 * k + 1])));
+        fprintf(io_out(),
+                "  %s %c %si\n", num_shortest(re, pair[2 * k]), pair[2 * k + 1] < 0 ? '-' : '+',
+                num_shortest(im, fabs(pair[2 * k + 1])));
     if (verdict)
         print_verdict(pair, nl);
     return rc;
@@ -137,7 +143,7 @@ write_linear_csv(Options *c, eomc_sim *sim, const double *A, const double *B, in
     const eomc_model *m = eomc_sim_model(sim);
     FILE *f = fopen(c->csv, "w");
     if (!f) {
-        fprintf(stderr, "%s: --csv: cannot write '%s': %s\n", c->prog, c->csv,
+        fprintf(io_err(), "%s: --csv: cannot write '%s': %s\n", c->prog, c->csv,
                 strerror(errno));
         return EOMC_EUSAGE;
     }
@@ -160,7 +166,7 @@ write_linear_csv(Options *c, eomc_sim *sim, const double *A, const double *B, in
         fprintf(f, "eig,%d,im,%s\n", k + 1, num_shortest(num, eig[2 * k + 1]));
     }
     if (fclose(f) != 0) {
-        fprintf(stderr, "%s: error writing %s\n", c->prog, c->csv);
+        fprintf(io_err(), "%s: error writing %s\n", c->prog, c->csv);
         return EOMC_EUSAGE;
     }
     return EOMC_OK;
@@ -182,30 +188,32 @@ stab_print(Options *c, eomc_sim *sim, double *x)
         rc = eomc_sim_equilibrium(sim, t, x, &its);
         char num[NUM_MAX];
         if (rc == EOMC_OK) {
-            printf("%s: an equilibrium, found by %d Newton step%s:\n", c->prog, its,
-                   its == 1 ? "" : "s");
+            fprintf(io_out(), "%s: an equilibrium, found by %d Newton step%s:\n", c->prog, its,
+                    its == 1 ? "" : "s");
             for (int i = 0; i < n; i++)
-                printf("  %s = %s\n", m->q_names[i], num_shortest(num, x[i]));
+                fprintf(io_out(), "  %s = %s\n", m->q_names[i], num_shortest(num, x[i]));
         }
     }
     if (rc == EOMC_OK)
         rc = eomc_sim_linearize(sim, t, x, A, B);
     if (rc == EOMC_OK) {
-        printf("%s: linearized at t = %g,", c->prog, t);
+        fprintf(io_out(), "%s: linearized at t = %g,", c->prog, t);
         for (int i = 0; i < 2 * n; i++)
-            printf("%s %s%s = %.6g", i ? "," : "", m->q_names[i % n], i < n ? "" : "'", x[i]);
-        printf("\n");
+            fprintf(io_out(),
+                    "%s %s%s = %.6g", i ? "," : "", m->q_names[i % n], i < n ? "" : "'", x[i]);
+        fprintf(io_out(), "\n");
         if (m->nc > 0)
-            printf("in the independent coordinates of the elimination (%d of %d)\n", nl,
-                   2 * n);
+            fprintf(io_out(),
+                    "in the independent coordinates of the elimination (%d of %d)\n", nl,
+                    2 * n);
         print_matrix(sim, "A = dz'/dz:", A, nl, nl, 0);
         if (nu)
             print_matrix(sim, "B = dz'/du:", B, nl, nu, 1);
         else
-            printf("B = dz'/du: the model has no inputs\n");
+            fprintf(io_out(), "B = dz'/du: the model has no inputs\n");
         rc = print_eigen(c, sim, A, nl, c->equilibrium, eig);
     } else if (rc != EOMC_EUSAGE || eomc_sim_error(sim)[0]) {
-        fprintf(stderr, "%s: error: %s\n", c->prog, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: error: %s\n", c->prog, eomc_sim_error(sim));
         int worst, level;
         if (rc == EOMC_ENUMERIC && !c->equilibrium &&
             eomc_sim_inconsistency(sim, t, x, x + n, &worst, &level) > EOMC_INCONSISTENT)

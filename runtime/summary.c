@@ -2,6 +2,7 @@
  * summary: a run's report on stderr (summary.h).
  */
 #include "summary.h"
+#include "io.h"
 #include "numfmt.h"
 
 #include <float.h>
@@ -30,7 +31,7 @@ enum { PROGRESS_WIDTH = 60 };
 void
 summary_progress_start(Progress *p, const eomc_model *m, double t_end)
 {
-    *p = (Progress){.name = m->name, .t_end = t_end, .tty = isatty(2)};
+    *p = (Progress){.name = m->name, .t_end = t_end, .tty = io_err_tty()};
     p->wall0 = p->next_show = wall_seconds();
 }
 
@@ -46,7 +47,7 @@ summary_progress(void *ctx, double t)
     p->next_show = now + PROGRESS_EVERY;
     if (now - p->wall0 < PROGRESS_AFTER)
         return;
-    fprintf(stderr, "\r%s: t = %-12.6g of %g", p->name, t, p->t_end);
+    fprintf(io_err(), "\r%s: t = %-12.6g of %g", p->name, t, p->t_end);
     p->shown = 1;
 }
 
@@ -54,7 +55,7 @@ void
 summary_progress_end(Progress *p)
 {
     if (p->shown)
-        fprintf(stderr, "\r%*s\r", PROGRESS_WIDTH, "");
+        fprintf(io_err(), "\r%*s\r", PROGRESS_WIDTH, "");
     p->shown = 0;
 }
 
@@ -62,34 +63,34 @@ void
 summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
 {
     const eomc_model *m = eomc_sim_model(w->sim);
-    fprintf(stderr, "steps %ld\nrejected %ld\nrhs_evals %ld\njac_evals %ld\n"
+    fprintf(io_err(), "steps %ld\nrejected %ld\nrhs_evals %ld\njac_evals %ld\n"
             "cpu_seconds %.6f\n", st->steps, st->rejected, st->rhs_evals,
             st->jac_evals, st->cpu_seconds);
     if (st->h_used > 0)
-        fprintf(stderr, "h_used %.17g\n", st->h_used);
-    fprintf(stderr, "side_steps %ld\n", st->side_steps);
-    fprintf(stderr, "max_condition %.3g\nt_condition %.17g\n", st->max_condition,
+        fprintf(io_err(), "h_used %.17g\n", st->h_used);
+    fprintf(io_err(), "side_steps %ld\n", st->side_steps);
+    fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\n", st->max_condition,
             st->t_condition);
     if (st->invariant_budget > 0)
-        fprintf(stderr, "invariant_budget %.3g\n", st->invariant_budget);
+        fprintf(io_err(), "invariant_budget %.3g\n", st->invariant_budget);
     if (m->nc > 0)
-        fprintf(stderr, "max_residual %.3g\n", fmax(st->max_residual, w->res_max));
+        fprintf(io_err(), "max_residual %.3g\n", fmax(st->max_residual, w->res_max));
     if (stabilize == EOMC_STABILIZE_PROJECT)
-        fprintf(stderr, "max_drift %.3g\n", st->max_drift);
+        fprintf(io_err(), "max_drift %.3g\n", st->max_drift);
     if (w->invariant)
-        fprintf(stderr, "invariant_drift %.3g\n", w->dh);
+        fprintf(io_err(), "invariant_drift %.3g\n", w->dh);
     if (w->ref)
-        fprintf(stderr, "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n"
+        fprintf(io_err(), "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n"
                 "reference_method %s\n", w->err_end, w->err_max, w->ref->error,
                 w->ref->method);
     if (m->nevent > 0)
-        fprintf(stderr, "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
+        fprintf(io_err(), "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
     if (st->reset_event >= 0)
-        fprintf(stderr, "reset_event %s\nt_reset %.17g\nreset_constraint %s\n"
+        fprintf(io_err(), "reset_event %s\nt_reset %.17g\nreset_constraint %s\n"
                 "reset_inconsistency %.3g\n", m->ev_names[st->reset_event], st->reset_t,
                 m->c_names[st->reset_constraint], st->reset_inconsistency);
     if (st->stop_event >= 0)
-        fprintf(stderr, "stop_event %s\nt_stop %.17g\n", m->ev_names[st->stop_event],
+        fprintf(io_err(), "stop_event %s\nt_stop %.17g\n", m->ev_names[st->stop_event],
                 st->t_stop);
 }
 
@@ -181,7 +182,7 @@ summary_text(const Options *c, const eomc_model *m, const Rows *w, const eomc_st
             w->err_end, c->run.t_end);
 #undef ADD
     text[0] = (char)(text[0]); /* the model's name starts the paragraph as it is */
-    wrap(stderr, text);
+    wrap(io_err(), text);
 }
 
 /* An event's `set` that breaks the constraints is the same mistake as
@@ -194,19 +195,19 @@ warn_reset(const Options *c, const eomc_model *m, const eomc_stats *st)
         return;
     const char *name = m->c_names[st->reset_constraint];
     if (!strchr(st->reset_off, ',')) /* one constraint */
-        fprintf(stderr, "%s: warning: t = %.6g: event %s set %s that violate the constraint "
+        fprintf(io_err(), "%s: warning: t = %.6g: event %s set %s that violate the constraint "
                 "%s: its residual is %.2g of the size of its terms; ", c->prog, st->reset_t,
                 m->ev_names[st->reset_event], st->reset_level ? "velocities" : "positions",
                 name, st->reset_inconsistency);
     else
-        fprintf(stderr, "%s: warning: t = %.6g: event %s set a state off the constraints, "
+        fprintf(io_err(), "%s: warning: t = %.6g: event %s set a state off the constraints, "
                 "worst first: %s (each residual as a share of the size of its terms); ",
                 c->prog, st->reset_t, m->ev_names[st->reset_event], st->reset_off);
     if (c->stabilize == EOMC_STABILIZE_PROJECT)
-        fprintf(stderr, "the projection after the next step moved the state back onto the "
+        fprintf(io_err(), "the projection after the next step moved the state back onto the "
                 "constraints, changing what the event set\n");
     else
-        fprintf(stderr, "the motion from there drifts off the constraints (column "
+        fprintf(io_err(), "the motion from there drifts off the constraints (column "
                 "res[%s] shows how far; --stabilize project moves the state back onto "
                 "them)\n", name);
 }
@@ -220,7 +221,7 @@ warn_condition(const Options *c, const eomc_stats *st)
         return;
     int fixed = c->run.h_fixed > 0 || !(c->run.rtol > 0);
     int kept = (int)lround(-log10(st->max_condition * DBL_EPSILON));
-    fprintf(stderr, "%s: warning: t = %.6g: %s is ill-conditioned (condition %.2g at "
+    fprintf(io_err(), "%s: warning: t = %.6g: %s is ill-conditioned (condition %.2g at "
             "worst, at t = %.6g): q'' keeps about %d of its 16 digits, fewer than the %d "
             "%s; the motion is probably less accurate than asked\n", c->prog, st->ill_t,
             st->ill, st->max_condition, st->t_condition, kept > 0 ? kept : 0,
@@ -245,7 +246,7 @@ static void
 warn_drift(const Options *c, const eomc_model *m, const eomc_stats *st, const Rows *w)
 {
     if (st->h_used > 0 && w->invariant && w->dh > FIXED_DRIFT * w->T_max) {
-        fprintf(stderr, "%s: warning: fixed steps of %.3g: the conserved quantity %s changed "
+        fprintf(io_err(), "%s: warning: fixed steps of %.3g: the conserved quantity %s changed "
                 "by %.3g, %.2g of the largest kinetic energy (%.3g): fewer than two of its "
                 "digits are right, and the motion's are probably no better (shorter "
                 "--fixed-step, or adaptive steps, give more)\n", c->prog, st->h_used,
@@ -255,7 +256,7 @@ warn_drift(const Options *c, const eomc_model *m, const eomc_stats *st, const Ro
     if (!(st->invariant_budget > 0) ||
         !(st->invariant_drift > DRIFT_SLACK * st->invariant_budget))
         return;
-    fprintf(stderr, "%s: warning: the conserved quantity %s drifted by %.3g, %.3g times "
+    fprintf(io_err(), "%s: warning: the conserved quantity %s drifted by %.3g, %.3g times "
             "what the steps' own error estimates allow (%.3g): an error the integrator "
             "cannot see is at work (a solve that loses digits, a force that is not "
             "smooth, or a model that does not conserve %s); the motion is probably less "
@@ -270,13 +271,13 @@ summary_kept(const Options *c, const Rows *w)
 {
     char num[NUM_MAX];
     if (w->rows == 0)
-        fprintf(stderr, "%s: no row was computed: %s holds the header alone\n", c->prog,
+        fprintf(io_err(), "%s: no row was computed: %s holds the header alone\n", c->prog,
                 c->out ? c->out : "stdout");
     else if (w->rows == 1)
-        fprintf(stderr, "%s: the one row computed, at t = %s, is kept\n", c->prog,
+        fprintf(io_err(), "%s: the one row computed, at t = %s, is kept\n", c->prog,
                 num_shortest(num, w->t_last));
     else
-        fprintf(stderr, "%s: the %ld rows computed up to then, to t = %s, are kept\n",
+        fprintf(io_err(), "%s: the %ld rows computed up to then, to t = %s, are kept\n",
                 c->prog, w->rows, num_shortest(num, w->t_last));
 }
 
@@ -304,7 +305,7 @@ summary_error(const Options *c, const eomc_model *m, const Rows *w, const eomc_r
     if (digits < INFINITY) /* each component against its own size (compare.h) */
         snprintf(worst, sizeof worst, "; %s%s keeps the fewest digits, %.1f",
                  m->q_names[i % n], i < n ? "" : "'", digits);
-    fprintf(stderr, "%s: error against the reference solution: at most %.3g over "
+    fprintf(io_err(), "%s: error against the reference solution: at most %.3g over "
             "the %ld row%s, %.3g at t = %g (%s)%s\n", c->prog, w->err_max, w->rows,
             num_plural(w->rows), w->err_end, c->run.t_end, good, worst);
 }
@@ -313,7 +314,7 @@ void
 summary_interrupted(const Options *c, const Rows *w, int sig)
 {
     char num[NUM_MAX];
-    fprintf(stderr, "%s: interrupted at t = %s (%s): the %ld row%s up to then %s "
+    fprintf(io_err(), "%s: interrupted at t = %s (%s): the %ld row%s up to then %s "
             "written\n", c->prog, num_shortest(num, w->t_last),
             sig == SIGINT ? "SIGINT" : "SIGTERM", w->rows, num_plural(w->rows),
             w->rows == 1 ? "is" : "are");

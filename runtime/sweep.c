@@ -3,6 +3,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "sweep.h"
+#include "io.h"
 #include "rows.h"
 #include "numfmt.h"
 
@@ -160,6 +161,8 @@ typedef struct Pool {
     long count;           /* how many */
     atomic_long next;     /* the next of them to take */
     char **rows;          /* [count] */
+    FILE *out, *err;      /* the starting thread's streams (io.h), which its
+                           * workers print on: eomc_main_mem keeps them */
 } Pool;
 
 static void *
@@ -171,29 +174,39 @@ worker(void *arg)
     return NULL;
 }
 
+/* A worker on a thread of its own (the starting thread is the first
+ * worker): it prints where the starting thread would. */
+static void *
+worker_thread(void *arg)
+{
+    Pool *p = arg;
+    io_set(p->out, p->err, NULL); /* the thread ends with the sweep */
+    return worker(p);
+}
+
 /* "warning: 2 of 5 runs failed ...; the first: l = 0: t = 0: ..." from
  * the first failed row: its values, then its status, a quoted CSV cell. */
 static void
 warn_failed(const Sweep *sw, long failed, const char *row)
 {
-    fprintf(stderr, "%s: warning: %ld of %ld run%s failed (%s); the first:", sw->prog, failed,
+    fprintf(io_err(), "%s: warning: %ld of %ld run%s failed (%s); the first:", sw->prog, failed,
             sw->nruns, sw->nruns == 1 ? "" : "s",
             sw->cells ? "their cells are empty" : "each row's status says why");
     for (int k = 0; k < sw->nparam; k++) {
         size_t len = strcspn(row, ",");
-        fprintf(stderr, " %s = %.*s%s", sw->names[k], (int)len, row, k + 1 < sw->nparam
+        fprintf(io_err(), " %s = %.*s%s", sw->names[k], (int)len, row, k + 1 < sw->nparam
                 ? "," : ":");
         row += len + (row[len] == ',');
     }
-    fputc(' ', stderr);
+    fputc(' ', io_err());
     for (const char *c = row + (*row == '"'); *c && *c != '\n'; c++) {
         if (*c == '"' && c[1] == '"')
             c++; /* a quote, doubled inside the cell */
         else if (*c == '"')
             break;
-        fputc(*c, stderr);
+        fputc(*c, io_err());
     }
-    fputc('\n', stderr);
+    fputc('\n', io_err());
 }
 
 /* A row of cells as it is written: its values (row .. st), then its
@@ -221,7 +234,7 @@ sweep_run(const Sweep *sw, FILE *f)
 {
     const eomc_model *m = sw->m;
     int rank = parallel ? parallel->rank : 0, size = parallel ? parallel->size : 1;
-    Pool p = {sw, rank, size, 0, 0, NULL};
+    Pool p = {sw, rank, size, 0, 0, NULL, io_out(), io_err()};
     p.count = sw->nruns > rank ? (sw->nruns - rank + size - 1) / size : 0;
     atomic_init(&p.next, 0);
     p.rows = calloc((size_t)p.count + 1, sizeof *p.rows);
@@ -233,7 +246,7 @@ sweep_run(const Sweep *sw, FILE *f)
      * .. started - 1] (one that cannot be created leaves its runs to them) */
     int started = 0;
     for (int k = 1; th && k < nt; k++)
-        started += pthread_create(&th[started], NULL, worker, &p) == 0;
+        started += pthread_create(&th[started], NULL, worker_thread, &p) == 0;
     worker(&p);
     for (int k = 0; k < started; k++)
         pthread_join(th[k], NULL);
@@ -293,7 +306,7 @@ sweep_run(const Sweep *sw, FILE *f)
     free(mine.s);
     free(lens);
     if (rc != EOMC_OK && rank == 0)
-        fprintf(stderr, "%s: --sweep: out of memory, or the ranks' rows did not come back\n",
+        fprintf(io_err(), "%s: --sweep: out of memory, or the ranks' rows did not come back\n",
                 sw->prog);
     return rc;
 }

@@ -362,6 +362,8 @@ put_json(FILE *f, const Anim *a)
     put_num(f, ext);
     fputs(",\"centre\":", f);
     put_nums(f, c, 3);
+    fputs(",\"low\":", f); /* the motion's lowest corner: the grid's height */
+    put_nums(f, lo, 3);
     fprintf(f, ",\"stride\":%ld,\"rows\":%ld,\"width\":%d,\"frames\":[", a->stride, a->seen,
             a->width);
     for (long j = 0; j < nf; j++) {

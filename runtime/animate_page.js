@@ -54,12 +54,18 @@
   camera.lookAt(controls.target);
   controls.update();
 
-  /* a grid through the motion's centre: the plane z = 0 for a planar
-   * scene, else the horizontal plane under the motion (z up) */
-  var g = Math.pow(10, Math.ceil(Math.log(ext * 2) / Math.LN10));
-  var grid = new THREE.GridHelper(g, 20, 0xc8c8c8, 0xe0e0e0);
+  /* a grid of cells 10^k or 5 * 10^k wide, its lines through the world's
+   * origin, under the motion's centre: for a planar scene the plane z = 0,
+   * 40 cells across; else the horizontal plane through the motion's lowest
+   * point (z up), about 1.6 extents across, short of the default camera
+   * (a line that reaches behind the camera may not be drawn at all) */
+  var cell = Math.pow(10, Math.floor(Math.log(ext) / Math.LN10));
+  if (ext < 5 * cell) cell /= 2;
+  var cells = D.planar ? 40 : 2 * Math.ceil(0.8 * ext / cell);
+  var grid = new THREE.GridHelper(cells * cell, cells, 0xdadada, 0xdadada);
   grid.rotation.x = Math.PI / 2;
-  grid.position.set(D.centre[0], D.centre[1], D.planar ? -ext * 1e-3 : D.centre[2] - ext / 2);
+  grid.position.set(Math.round(D.centre[0] / cell) * cell, Math.round(D.centre[1] / cell) * cell,
+                    D.planar ? -ext * 1e-3 : D.low[2] - ext * 1e-3);
   scene.add(grid);
 
   var radius = 0.02 * ext;

@@ -6,14 +6,26 @@ of a screenshot of it (python3's standard library only).
   page_check.py frames PAGE             frames kept, the last frame's t, and
                                         the trajectory's bytes
   page_check.py pixel PAGE PNG CSV T X Y ITEM W H
-      where the CSV's row at t = T puts the point (column X, column Y, 0)
-      (a column name, or a number times a column: 0.5*sin(theta)), through
-      the page's camera (position, target, up, vertical fov; aspect W / H),
-      against the centroid of the pixels of ITEM's colour near it: prints
-      "projected_x projected_y found_x found_y error count"
+      where the CSV's row at t = T puts the point (X, Y, 0), X and Y
+      expressions of its columns (Python's, with math's functions:
+      0.5*sin(theta), sin(th1) + sin(th2)), through the page's camera
+      (position, target, up, vertical fov; aspect W / H), against the
+      centroid of the pixels of ITEM's colour (the palette's) near it:
+      prints "projected_x projected_y found_x found_y error count"
+  page_check.py at PAGE PNG CSV T X Y Z COLOUR W H [R]
+      the same for the point (X, Y, Z), against the pixels of COLOUR
+      (#rrggbb, or an item's index for the palette's) within R px
+      (default 20); prints "projected_x projected_y found_x found_y error
+      count hit", hit 1 when the pixel at the projected point is COLOUR's
+  page_check.py line PAGE PNG CSV T X0 Y0 Z0 X1 Y1 Z1 COLOUR W H
+      the segment between two points, projected: of the pixels on it
+      (sampled every px, strictly inside its ends), how many have a pixel
+      of COLOUR within 1 px: prints "sampled found"
 """
 import json
+import marshal
 import math
+import os
 import re
 import struct
 import sys
@@ -27,8 +39,46 @@ def page_json(path):
     return json.loads(m.group(1)), m.group(1)
 
 
+class Image:
+    """Rows of RGB triples (rows[y][x]) over the bytes of a decoded image."""
+    def __init__(self, w, h, rgb):
+        self.w, self.h, self.rgb = w, h, rgb
+
+    def __len__(self):
+        return self.h
+
+    def __getitem__(self, y):
+        return Row(self, y)
+
+
+class Row:
+    def __init__(self, im, y):
+        self.im, self.at = im, 3 * im.w * y
+
+    def __len__(self):
+        return self.im.w
+
+    def __getitem__(self, x):
+        o = self.at + 3 * x
+        return tuple(self.im.rgb[o:o + 3])
+
+
 def png(path):
-    """Width, height and rows of RGB triples of an 8-bit RGB or RGBA PNG."""
+    """Width, height and rows of RGB triples of an 8-bit RGB or RGBA PNG
+    (kept decoded beside it, PATH.rgb, for the next check of it)."""
+    cache = path + '.rgb'
+    if os.path.exists(cache) and os.path.getmtime(cache) >= os.path.getmtime(path):
+        with open(cache, 'rb') as f:
+            w, h, rgb = marshal.load(f)
+    else:
+        w, h, rows = decode_png(path)
+        rgb = b''.join(bytes(c for px in row for c in px) for row in rows)
+        with open(cache, 'wb') as f:
+            marshal.dump((w, h, rgb), f)
+    return w, h, Image(w, h, rgb)
+
+
+def decode_png(path):
     data = open(path, 'rb').read()
     assert data[:8] == b'\x89PNG\r\n\x1a\n'
     at, idat = 8, b''
@@ -78,15 +128,10 @@ def csv_row(path, t):
 
 
 def value(expr, row):
-    """A column, or FACTOR*sin(COL) / FACTOR*cos(COL) / FACTOR*COL."""
-    factor = 1.0
-    if '*' in expr:
-        f, expr = expr.split('*', 1)
-        factor = float(f)
-    m = re.match(r'(sin|cos)\((.*)\)$', expr)
-    if m:
-        return factor * getattr(math, m.group(1))(row[m.group(2)])
-    return factor * row[expr]
+    """An expression of the row's columns (those named as identifiers)."""
+    env = {k: getattr(math, k) for k in dir(math) if not k.startswith('_')}
+    env.update({k: v for k, v in row.items() if k.isidentifier()})
+    return float(eval(expr, {'__builtins__': {}}, env))
 
 
 def sub(a, b):
@@ -132,6 +177,30 @@ def like(px, rgb):
         abs((px[order[2]] - px[order[1]]) - (rgb[order[2]] - rgb[order[1]])) < 90
 
 
+def dominant(px, rgb):
+    """A pixel whose strongest channel is rgb's, by 60 or more: an axis's
+    line (three.js's AxesHelper shades x from red to orange, y from green,
+    z from blue), thin and blended with the background."""
+    i = max(range(3), key=lambda k: rgb[k])
+    return px[i] - max(px[k] for k in range(3) if k != i) >= 60
+
+
+def rgb_of(spec):
+    c = int(spec[1:], 16) if spec.startswith('#') else PALETTE[int(spec) % len(PALETTE)]
+    return ((c >> 16) & 255, (c >> 8) & 255, c & 255)
+
+
+def centroid(rows, px, py, rgb, R):
+    H, W = len(rows), len(rows[0])
+    sx, sy, n = 0.0, 0.0, 0
+    for y in range(max(0, int(py) - R), min(H, int(py) + R + 1)):
+        for x in range(max(0, int(px) - R), min(W, int(px) + R + 1)):
+            if like(rows[y][x], rgb):
+                sx, sy, n = sx + x + 0.5, sy + y + 0.5, n + 1
+    fx, fy = (sx / n, sy / n) if n else (float('nan'), float('nan'))
+    return fx, fy, n
+
+
 def main():
     cmd, page = sys.argv[1], sys.argv[2]
     d, text = page_json(page)
@@ -147,16 +216,38 @@ def main():
         shot, csv, t, xe, ye, item, w, h = sys.argv[3:11]
         row = csv_row(csv, float(t))
         px, py = project(d['camera'], [value(xe, row), value(ye, row), 0.0], int(w), int(h))
-        rgb = PALETTE[int(item) % len(PALETTE)]
-        rgb = ((rgb >> 16) & 255, (rgb >> 8) & 255, rgb & 255)
-        W, H, rows = png(shot)
-        sx, sy, n, R = 0.0, 0.0, 0, 20
-        for y in range(max(0, int(py) - R), min(H, int(py) + R + 1)):
-            for x in range(max(0, int(px) - R), min(W, int(px) + R + 1)):
-                if like(rows[y][x], rgb):
-                    sx, sy, n = sx + x + 0.5, sy + y + 0.5, n + 1
-        fx, fy = (sx / n, sy / n) if n else (float('nan'), float('nan'))
+        rgb = rgb_of(item)
+        fx, fy, n = centroid(png(shot)[2], px, py, rgb, 20)
         print('%.2f %.2f %.2f %.2f %.2f %d' % (px, py, fx, fy, math.hypot(fx - px, fy - py), n))
+    elif cmd == 'at':
+        shot, csv, t, xe, ye, ze, col, w, h = sys.argv[3:12]
+        R = int(sys.argv[12]) if len(sys.argv) > 12 else 20
+        row = csv_row(csv, float(t))
+        px, py = project(d['camera'], [value(e, row) for e in (xe, ye, ze)], int(w), int(h))
+        rgb, rows = rgb_of(col), png(shot)[2]
+        fx, fy, n = centroid(rows, px, py, rgb, R)
+        hit = 0 <= int(py) < len(rows) and 0 <= int(px) < len(rows[0]) and \
+            like(rows[int(py)][int(px)], rgb)
+        print('%.2f %.2f %.2f %.2f %.2f %d %d' % (px, py, fx, fy, math.hypot(fx - px, fy - py),
+                                                  n, hit))
+    elif cmd == 'line':
+        shot, csv, t = sys.argv[3:6]
+        ends, (col, w, h) = sys.argv[6:12], sys.argv[12:15]
+        row = csv_row(csv, float(t))
+        a = project(d['camera'], [value(e, row) for e in ends[:3]], int(w), int(h))
+        b = project(d['camera'], [value(e, row) for e in ends[3:]], int(w), int(h))
+        rgb, rows = rgb_of(col), png(shot)[2]
+        H, W = len(rows), len(rows[0])
+        m = int(math.hypot(b[0] - a[0], b[1] - a[1]))
+        sampled = found = 0
+        for i in range(2, m - 1):
+            x = a[0] + (b[0] - a[0]) * i / m
+            y = a[1] + (b[1] - a[1]) * i / m
+            sampled += 1
+            found += any(dominant(rows[yy][xx], rgb)
+                         for yy in range(max(0, int(y) - 1), min(H, int(y) + 2))
+                         for xx in range(max(0, int(x) - 1), min(W, int(x) + 2)))
+        print(sampled, found)
 
 
 main()

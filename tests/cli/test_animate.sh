@@ -6,12 +6,18 @@
 # (the equivalent box's half-sizes from the inertia, a frame per row,
 # the outputs); the size budget on a long run; the rows kept by a failed
 # run (exit 3); the usage errors before any run (no three.js, nothing to
-# draw, --animate with --accel); `eomc run` passing it through.  In
-# headless chromium (skipped without it): the page loads with no error
-# and says it is ready, and at t = 0.5 and 1.5 the bob (a particle) and
-# the rod's centre (a body) are at the pixels where the CSV's values put
-# them through the page's camera (page_check.py projects them; the
-# colours are the page's palette).
+# draw, --animate with --accel).  `eomc run --animate` on real models:
+# specs/double_pendulum.yaml (planar), specs/rolling_disk.yaml with
+# lean's axes (3-D) and tests/cli/animate_shapes.xml (MJCF geoms: a
+# capsule, a box, a sphere; skipped if eomc has no MuJoCo).  In headless
+# chromium (skipped without it): the page loads with no error and says it
+# is ready; at two times each, where the CSV's coordinates put things
+# (the test computes the positions from the coordinates and the model's
+# geometry, projects them through the page's camera: page_check.py), the
+# screenshot has their colours (the page's palette, a geom's rgba):
+# rtsim-draw's bob and rod, the double pendulum's two bobs, the rolling
+# disk's centre (default 3-D camera), its plane and lean's three axes,
+# and the MJCF's capsule (and its cap), box and ball.
 # usage: test_animate.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -77,12 +83,45 @@ ok $? "--animate with --accel: exit 2"
 "$sim" --help | grep -q -- '--animate FILE.html'
 ok $? "--help lists --animate"
 
-# eomc run passes it to the simulator: a page, or (until the compiler
-# fills the drawing members) the usage error
-"$eomc" run "$src/specs/pendulum.yaml" --t-end 0.1 -o /dev/null --animate "$tmp/e.html" 2> "$tmp/err"
+# eomc run writes the pages of real specs: the double pendulum (planar:
+# its two bobs, rods from the origin, bob2 traced), the rolling disk (3-D:
+# its body as the equivalent box; here with `view: {frames: [lean]}`), and
+# an imported MJCF's geoms (tests/cli/animate_shapes.xml: a capsule, a box
+# and a sphere on two hinges)
+"$eomc" run "$src/specs/double_pendulum.yaml" --t-end 4 -o "$tmp/dp.csv" \
+    --animate "$tmp/dp.html" 2> "$tmp/err"
 st=$?
-{ [ $st = 0 ] && [ -s "$tmp/e.html" ]; } || { [ $st = 2 ] && grep -q 'nothing to draw' "$tmp/err"; }
-ok $? "eomc run --animate reaches the simulator (exit $st)"
+[ $st = 0 ] && [ -s "$tmp/dp.html" ] && [ ! -s "$tmp/err" ] &&
+[ "$($check json "$tmp/dp.html" items.1.name)" = '"bob2"' ] &&
+[ "$($check json "$tmp/dp.html" links)" = '[[2, 0], [0, 1]]' ] &&
+[ "$($check json "$tmp/dp.html" traces)" = '[1]' ] &&
+[ "$($check json "$tmp/dp.html" planar)" = true ]
+ok $? "eomc run specs/double_pendulum.yaml --animate: a planar page, its view's links and trace (exit $st)"
+sed 's/^scene: {t_end: 10,/scene: {view: {frames: [lean]}, t_end: 10,/' \
+    "$src/specs/rolling_disk.yaml" > "$tmp/rolling_disk.yaml"
+"$eomc" run "$tmp/rolling_disk.yaml" --t-end 4 -o "$tmp/rd.csv" --animate "$tmp/rd.html" 2> "$tmp/err"
+st=$?
+[ $st = 0 ] && [ ! -s "$tmp/err" ] && grep -q 'frames: \[lean\]' "$tmp/rolling_disk.yaml" &&
+[ "$($check json "$tmp/rd.html" planar)" = false ] &&
+[ "$($check json "$tmp/rd.html" camera.up)" = '[0, 0, 1]' ] &&
+[ "$($check json "$tmp/rd.html" axes)" = 1 ] &&
+[ "$($check json "$tmp/rd.html" items.1.kind)" = '"frame"' ]
+ok $? "eomc run rolling_disk --animate: a 3-D page (z up), lean's axes (exit $st)"
+mjcf=0
+"$eomc" import "$src/tests/cli/animate_shapes.xml" > /dev/null 2> "$tmp/err"
+st=$?
+if [ $st = 0 ] || ! grep -q 'libmujoco-dev' "$tmp/err"; then
+    mjcf=1
+    "$eomc" run "$src/tests/cli/animate_shapes.xml" --t-end 2 -o "$tmp/mj.csv" \
+        --animate "$tmp/mj.html" 2> "$tmp/err"
+    st=$?
+    [ $st = 0 ] && [ ! -s "$tmp/err" ] &&
+    [ "$($check json "$tmp/mj.html" shapes.0.type)/$($check json "$tmp/mj.html" shapes.1.type)/$($check json "$tmp/mj.html" shapes.2.type)" = 2/0/1 ]
+    ok $? "eomc run MODEL.xml --animate: the geoms as shapes, a capsule, a box, a sphere (exit $st)"
+else
+    echo "ok $((n + 1)) # SKIP eomc import needs MuJoCo: $(head -1 "$tmp/err")"
+    n=$((n + 1))
+fi
 
 # the page in a real browser
 chromium=$(command -v chromium || command -v chromium-browser || true)
@@ -116,4 +155,96 @@ for t in 0.5 1.5; do
     within "$5" 0 3 && [ "$6" -ge 100 ]
     ok $? "t = $t: the rod's centre is where the CSV puts it ($5 px off)"
 done
+
+# at() T EXPECT X Y Z COLOUR WHAT [R]: in the screenshot $shot of page
+# $page at t = T, the point (X, Y, Z) (expressions of $csv's columns at
+# T) projected through the page's camera by page_check.py: EXPECT centre,
+# the centroid of COLOUR's pixels within R px (20) is within 3 px of it
+# (with 20 pixels or more); EXPECT box, within 6 px (a box's visible
+# faces are not symmetric about its centre), and the pixel at it is
+# COLOUR's; EXPECT on, the pixel at it is COLOUR's; EXPECT off, it is not
+at() {
+    t=$1 expect=$2 what=$7
+    set -- $($check at "$page" "$shot" "$csv" "$1" "$3" "$4" "$5" "$6" $W $H ${8:-20})
+    echo "# t = $t: $what projects to ($1, $2), its colour's centroid ($3, $4): $5 px, $6 px, hit $7"
+    case $expect in
+    centre) within "$5" 0 3 && [ "$6" -ge 20 ] ;;
+    box) within "$5" 0 6 && [ "$7" = 1 ] ;;
+    on) [ "$7" = 1 ] ;;
+    off) [ "$7" = 0 ] ;;
+    esac
+    case $expect in
+    on) verdict="is drawn in its colour" ;;
+    off) verdict="is not drawn in its colour" ;;
+    *) verdict="is where the CSV puts it" ;;
+    esac
+    ok $? "t = $t: $what $verdict ($expect: $5 px, hit $7)"
+}
+
+# the double pendulum: th1 and th2 from the downward vertical, rods of
+# length 1 (the spec's l1, l2); bob1 the palette's colour 0, bob2 its 1
+page=$tmp/dp.html csv=$tmp/dp.csv
+for t in 1.5 3; do
+    shot=$tmp/dp$t.png
+    browse "file://$page#t=$t" --screenshot="$shot" > /dev/null
+    at $t centre 'sin(th1)' '-cos(th1)' 0 0 "the double pendulum's bob1"
+    at $t centre 'sin(th1) + sin(th2)' '-cos(th1) - cos(th2)' 0 1 "the double pendulum's bob2"
+done
+
+# the rolling disk, through the default 3-D camera: its centre is R = 0.5
+# above the contact (x, y, 0) along lean's y, lean = Rz(psi) Rx(theta);
+# the equivalent box of a thin disk (a square in the disk's plane) is the
+# palette's colour 0.  The square's plane: points 0.3 from the centre
+# along lean's x and y are on it, 0.6 along lean's z are off it (t = 2.5,
+# where it faces the camera).  lean's axes at the world's origin (three.js's
+# AxesHelper, 0.15 extents long: x red, y green, z blue): along each, the
+# pixels of its colour, and none along -z
+page=$tmp/rd.html csv=$tmp/rd.csv
+cx='x - 0.5*sin(psi)*cos(theta)' cy='y + 0.5*cos(psi)*cos(theta)' cz='0.5*sin(theta)'
+lx='cos(psi)' ly='sin(psi)' lz=0
+yx='-sin(psi)*cos(theta)' yy='cos(psi)*cos(theta)' yz='sin(theta)'
+zx='sin(psi)*sin(theta)' zy='-cos(psi)*sin(theta)' zz='cos(theta)'
+axis=$(awk -v e="$($check json "$page" extent)" 'BEGIN { print 0.15 * e }')
+for t in 1 2.5; do
+    shot=$tmp/rd$t.png
+    browse "file://$page#t=$t" --screenshot="$shot" > /dev/null
+    at $t centre "$cx" "$cy" "$cz" 0 "the rolling disk's centre"
+    for a in "x $lx $ly $lz #ff0000" "y $yx $yy $yz #00ff00" "z $zx $zy $zz #0000ff" \
+        "-z -($zx) -($zy) -($zz) #0000ff"; do
+        set -- $a
+        set -- "$1" $($check line "$page" "$shot" "$csv" $t 0 0 0 \
+            "$axis*($2)" "$axis*($3)" "$axis*($4)" "$5" $W $H)
+        echo "# t = $t: lean's $1 axis: $3 of $2 pixels along it of its colour"
+        case $1 in
+        -z) [ "$2" -ge 20 ] && [ "$3" = 0 ]
+            ok $? "t = $t: nothing blue along lean's -z ($3 of $2 pixels)" ;;
+        *) [ "$2" -ge 20 ] && [ "$3" -ge $(($2 * 9 / 10)) ]
+            ok $? "t = $t: lean's $1 axis is drawn where the CSV turns it ($3 of $2 pixels)" ;;
+        esac
+    done
+done
+t=2.5
+for s in 1 -1; do
+    at $t on "$cx + $s*0.3*$lx" "$cy + $s*0.3*$ly" "$cz" 0 "a point 0.3*$s along lean's x from the disk's centre" 3
+    at $t on "$cx + $s*0.3*$yx" "$cy + $s*0.3*$yy" "$cz + $s*0.3*$yz" 0 "a point 0.3*$s along lean's y from the disk's centre" 3
+    at $t off "$cx + $s*0.6*$zx" "$cy + $s*0.6*$zy" "$cz + $s*0.6*$zz" 0 "a point 0.6*$s along lean's z from the disk's centre" 3
+done
+
+# the MJCF's geoms in their rgba: hinge1 turns the arm about y at
+# (0, 0, 1), R_y(q)(x, 0, z) = (x cos q + z sin q, 0, z cos q - x sin q);
+# the capsule from the pivot to 0.6 along the arm (radius 0.05), a point
+# 0.045 behind the pivot on its axis is on its cap; the box at 0.6; the
+# ball 0.4 below the tip in the tip's axes, turned by hinge1 + hinge2
+if [ $mjcf = 1 ]; then
+    page=$tmp/mj.html csv=$tmp/mj.csv
+    for t in 0.5 1; do
+        shot=$tmp/mj$t.png
+        browse "file://$page#t=$t" --screenshot="$shot" > /dev/null
+        at $t centre '0.3*cos(hinge1)' 0 '1 - 0.3*sin(hinge1)' '#e61a1a' "the capsule's centre"
+        at $t on '-0.045*cos(hinge1)' 0 '1 + 0.045*sin(hinge1)' '#e61a1a' "the capsule's cap at the pivot"
+        at $t box '0.6*cos(hinge1)' 0 '1 - 0.6*sin(hinge1)' '#1ab31a' "the box's centre"
+        at $t centre '0.6*cos(hinge1) - 0.4*sin(hinge1 + hinge2)' 0 \
+            '1 - 0.6*sin(hinge1) - 0.4*cos(hinge1 + hinge2)' '#1a33e6' "the ball's centre"
+    done
+fi
 tap_end

@@ -32,7 +32,8 @@ cmdline_usage(FILE *f)
         "  --mpi            (build) with mpicc, for sweeps over the ranks of an MPI\n"
         "                   job: mpirun -n K EXE --sweep ... (OpenMPI: libopenmpi-dev)\n"
         "  --shared         (build) a shared library of the model and the runtime\n"
-        "                   (default -o libSPEC.so), which the Python package loads\n"
+        "                   (default -o libSPEC.so), which the Python package loads;\n"
+        "                   with the Jacobian (--jacobian auto) unless told none\n"
         "  --cache          (build) into eomc's cache, as run does (nothing is built\n"
         "                   when an identical build is there); prints its path\n"
         "  --extended       (build) also compile the model in extended precision, so\n"
@@ -283,7 +284,9 @@ cmdline_parse(int argc, char **argv, Options *o)
                     o->jacobian);
     if (o->code && mode_index(code_modes, o->code) < 0)
         cmdline_usage_error("--code must be auto, straight or tables, not '%s'", o->code);
-    o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o);
+    /* a library serves every task (linearization, implicit methods):
+     * it has the Jacobian unless --jacobian none says not */
+    o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o) || o->shared;
     o->needs_twin = !strcmp(o->cmd, "accuracy") || sim_needs_twin(o);
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);

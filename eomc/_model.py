@@ -8,6 +8,7 @@ writes to its CSV, read back exactly (``repr`` of a float and eomc's
 shortest-digits output both round-trip).
 """
 
+import math
 import os
 import tempfile
 import threading
@@ -70,8 +71,9 @@ def _options(kw):
 
 
 def _table(text):
-    """A CSV's columns by name: numbers as float64 arrays (read exactly),
-    other columns (a report's method names) as arrays of str."""
+    """A CSV's columns by name: numbers as float64 arrays (read exactly,
+    empty cells NaN), other columns (a report's method names, a sweep's
+    status) as arrays of str."""
     lines = text.splitlines()
     if not lines:
         return [], {}
@@ -80,8 +82,11 @@ def _table(text):
     data = {}
     for j, name in enumerate(columns):
         cells = [r[j] if j < len(r) else "" for r in rows]
-        try:
-            data[name] = np.array([float(c) for c in cells], dtype=np.float64)
+        try:  # an empty cell of a number's column is NaN (a report's fixed_step)
+            data[name] = np.array([float(c) if c else math.nan for c in cells],
+                                  dtype=np.float64)
+            if not any(cells):
+                raise ValueError
         except ValueError:
             data[name] = np.array(cells, dtype=str)
     return columns, data

@@ -55,4 +55,29 @@ else
     ok 1 "examples/make builds"
 fi
 
+# examples/python: the package as installed (no PYTHONPATH into the
+# source tree; the installed eomc on the PATH builds the spec), its sweep's
+# period at theta0 = 1 against the closed form 4 K(sin(1/2)) / sqrt(g/l)
+# computed here (the sweep's t is the stop event's, located to the bit)
+py=${EOMC_PYTHON:-python3}
+site=$(dirname "$(find "$tmp/stage" -path '*/eomc/__init__.py' | head -n 1)")
+if ! "$py" -c 'import numpy' 2> /dev/null; then
+    echo "ok - examples/python # SKIP no python3 with numpy (python3-numpy)"
+elif [ -z "$site" ] || [ "$site" = . ]; then
+    echo "not ok - examples/python: meson install put no eomc package in the stage"
+else
+    # the example finds its spec at ../../specs/swing.yaml, as in the repository
+    mkdir -p "$tmp/specs" "$tmp/py/examples" && cp "$src/specs/swing.yaml" "$tmp/specs/" &&
+        cp "$src/examples/python/pendulum_period.py" "$tmp/py/examples/"
+    (cd "$tmp" && EOMC_CACHE_DIR="$tmp/pycache" PYTHONPATH="$(dirname "$site")" \
+        "$py" "$tmp/py/examples/pendulum_period.py") > "$tmp/py.out" 2>&1
+    st=$?
+    got=$(awk '$1 == "1.0000" { print $2 }' "$tmp/py.out")
+    full=$(awk 'BEGIN { k = sin(0.5); a = 1; b = sqrt(1 - k * k)
+        for (i = 0; i < 40; i++) { m = (a + b) / 2; b = sqrt(a * b); a = m }
+        printf "%.17g", 4 * 3.14159265358979323846 / (2 * a) / sqrt(9.81) }')
+    [ $st = 0 ] && within "$got" "$full" 1e-12
+    ok $? "examples/python with the installed package: period $got at theta0 = 1 (closed form $full)"
+fi
+
 tap_end

@@ -46,4 +46,26 @@ for sig in INT TERM KILL; do
     fi
     ok $? "SIG$sig: exit $st, $rows whole rows"
 done
+# --animate: an interrupted run's page has the rows its CSV has, the last
+# at the CSV's last time (the page is written after the signal, from the
+# rows the CSV got); skipped without three.js
+three=${EOMC_THREE_DIR:-/usr/share/javascript/three}
+if [ -f "$three/three.min.js" ] && [ -f "$three/examples/js/controls/OrbitControls.js" ]; then
+    "$tmp/chain5" --t-end 1e6 --dt 0.01 -o "$tmp/anim.csv" --animate "$tmp/anim.html" \
+        2> "$tmp/anim.err" &
+    pid=$!
+    rows_written "$tmp/anim.csv" $pid || echo "# no rows after 2 minutes"
+    kill -INT $pid
+    wait $pid
+    st=$?
+    rows=$(($(wc -l < "$tmp/anim.csv") - 1))
+    last=$(tail -1 "$tmp/anim.csv" | cut -d, -f1)
+    set -- $(python3 "$src/tests/cli/page_check.py" frames "$tmp/anim.html")
+    [ $st -eq 130 ] && whole "$tmp/anim.csv" && [ "${1:-}" = "$rows" ] &&
+        awk -v a="${2:-x}" -v b="$last" 'BEGIN { exit !(a + 0 == b + 0) }' &&
+        [ ! -e "$tmp/anim.html.tmp" ]
+    ok $? "SIGINT with --animate: exit $st, the page has the CSV's $rows rows (${1:-no} frames, the last at t = ${2:-?}, the CSV's $last)"
+else
+    echo "ok - SIGINT with --animate # SKIP three.js is not installed (libjs-three)"
+fi
 tap_end

@@ -236,3 +236,18 @@ def test_nothing_printed_to_the_process(capfd, chain5):
         chain5.run(method="nope")
     out, err = capfd.readouterr()
     assert out == "" and err == ""
+
+
+def test_an_urdf_model_is_the_cli_to_the_bit():
+    # through MuJoCo's loader (eomc built with libmujoco-dev), as eomc run takes it
+    import subprocess
+    import eomc._build
+    probe = subprocess.run([eomc._build.compiler(), "import", spec("arm.urdf")],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if probe.returncode != 0:
+        pytest.skip("eomc cannot import URDF here: " + probe.stderr.strip())
+    status, columns, rows, _ = cli_csv(spec("arm.urdf"), "--t-end", "1", "--init", "shoulder=0.4")
+    m = eomc.load(spec("arm.urdf"))
+    r = m.run(t_end=1, init={"shoulder": 0.4})
+    assert status == 0 and m.coordinates == ["base_yaw", "shoulder", "elbow"]
+    assert r.columns == columns and all(same_bits(r[c], rows[:, j]) for j, c in enumerate(columns))

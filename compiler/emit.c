@@ -762,7 +762,7 @@ print_draw_tables(Printer *pr)
 static const char *const stat_names[EMIT_NFUNCS] = {
     "initial", "inputs", "mass_bias", "energy", "jacobian", "accel", "minv", "constraint",
     "c_levels", "c_jacobian", "c_levels_jacobian", "invariant", "derive", "outputs",
-    "events",
+    "events", "draw",
 };
 
 /* Everything after the banner and the includes. */

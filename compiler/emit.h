@@ -25,7 +25,7 @@ typedef struct EmitStats {
     const char *function;
     ExprCount count;
 } EmitStats;
-enum { EMIT_NFUNCS = 15 };
+enum { EMIT_NFUNCS = 16 };
 
 /* Print the lowered model L (lower.h), which holds all it prints but the
  * expressions (in P) and what info says of the run.  The functions are

@@ -121,7 +121,7 @@ typedef struct SpecView {
     int nlink, ntrace;
     int *link;         /* [2 nlink] item indices */
     int *trace;        /* [ntrace] */
-    int frames;        /* draw the frame items' axes */
+    int frames;        /* 1: draw the frame items' axes; 2 (`frames: true`): each body's too */
     int has_camera;
     double camera[9];  /* position, target, up */
 } SpecView;

@@ -124,7 +124,7 @@
                        r[6], r[7], r[8], b.centre[2], 0, 0, 0, 1);
         o.add(box);
       }
-      if (D.axes) o.add(new THREE.AxesHelper(ext * 0.1));
+      if (D.axes === 2) o.add(new THREE.AxesHelper(ext * 0.1)); /* frames: true */
     } else if (it.kind === 'frame' && D.axes) {
       o.add(new THREE.AxesHelper(ext * 0.15));
     }

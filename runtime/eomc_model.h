@@ -287,7 +287,7 @@ typedef struct eomc_model {
      * geoms) are drawn in place of it.  view_links [2 nlink] joins items
      * by segments (a rod from a joint to a bob), view_trace [ntrace]
      * leaves each item's path behind it, view_frames draws the frame
-     * items' axes, view_camera [9] is the camera's position, target and
+     * items' axes (1), and also each body's own (2), view_camera [9] is the camera's position, target and
      * up (NULL: fitted to the motion).  ndraw = 0: nothing to draw, the
      * rest NULL. */
     int ndraw;

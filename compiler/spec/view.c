@@ -207,7 +207,7 @@ load_view(Loader *L, yaml_node_t *m, SpecView *v)
         } else {
             const char *b = spec_scalar(L, n, "`frames:` (true, false or a list of frames)");
             if (!strcmp(b, "true"))
-                v->frames = 1;
+                v->frames = 2; /* every frame's axes, and each body's own */
             else if (strcmp(b, "false"))
                 diag_error(spec_loc(L, n), "`frames:` is true, false or a list of frames, "
                            "not '%s'", b);

@@ -107,6 +107,17 @@ st=$?
 [ "$($check json "$tmp/rd.html" axes)" = 1 ] &&
 [ "$($check json "$tmp/rd.html" items.1.kind)" = '"frame"' ]
 ok $? "eomc run rolling_disk --animate: a 3-D page (z up), lean's axes (exit $st)"
+sed 's/^scene: {t_end: 10,/scene: {view: {frames: true}, t_end: 10,/' \
+    "$src/specs/rolling_disk.yaml" > "$tmp/rolling_all.yaml"
+"$eomc" run "$tmp/rolling_all.yaml" --t-end 0.1 -o /dev/null --animate "$tmp/ra.html" 2> "$tmp/err"
+st=$?
+nframes=$(awk '/^frames:/ { f = 1; next } /^[a-z]/ { f = 0 } f && /^  [a-z_]+:/' \
+    "$src/specs/rolling_disk.yaml" | wc -l)
+drawn=$($check json "$tmp/ra.html" items |
+    python3 -c 'import json, sys; print(sum(i["kind"] == "frame" for i in json.load(sys.stdin)))')
+[ $st = 0 ] && [ "$($check json "$tmp/ra.html" axes)" = 2 ] && [ "$drawn" = "$nframes" ] &&
+    [ "$nframes" -ge 2 ]
+ok $? "view: {frames: true}: every frame of the spec drawn ($nframes), and the bodies' own axes (axes 2)"
 mjcf=0
 "$eomc" import "$src/tests/cli/animate_shapes.xml" > /dev/null 2> "$tmp/err"
 st=$?

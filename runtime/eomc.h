@@ -488,7 +488,8 @@ int eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *
  * leaves GSL's error handler as it is (turn it off first:
  * gsl_set_error_handler_off), never exits, and its streams are the
  * calling thread's, so calls in several threads at once keep their text
- * apart.  Returns the exit status, as eomc_main. */
+ * apart.  Returns the exit status, as eomc_main (2, with *out and *err
+ * NULL, when memory for the text runs out). */
 int eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
                   char **out, size_t *out_len, char **err, size_t *err_len);
 void eomc_free(void *p);

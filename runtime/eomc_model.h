@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 17
+#define EOMC_ABI_VERSION 18
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -299,6 +299,24 @@ typedef struct eomc_model {
     int nlink, ntrace, view_frames;
     const int *view_links, *view_trace;
     const double *view_camera;
+
+    /* Taylor's method (--method taylor; runtime/eomc_taylor.h has the
+     * recurrences).  The series of every value mass_bias computes (and of
+     * the event functions), slot s's normalized Taylor coefficients about
+     * t0 at T[s (K + 1) + j], j = 0 .. K.  taylor(k, K, t0, p, u, T)
+     * brings every slot to order k from their orders 0 .. k-1 and what the
+     * caller wrote first: coefficient k of q_i at slot taylor_q[i] and of
+     * q_i' at slot taylor_v[i] (-1: no value reads it).  Then coefficient
+     * k of M_ij is at slot taylor_M[i nq + j], of h_i at taylor_h[i] and
+     * of event function g_e at taylor_g[e] (-1: zero at every order).  p
+     * is as mass_bias's (with the derived values); u the inputs, held
+     * constant (Taylor's method refuses signals).  taylor is NULL where it
+     * was not generated, and taylor_why says why ("the model has
+     * constraints"); else taylor_why is NULL. */
+    int taylor_nslot;
+    const int *taylor_q, *taylor_v, *taylor_M, *taylor_h, *taylor_g;
+    void (*taylor)(int k, int K, double t0, const double *p, const double *u, double *T);
+    const char *taylor_why;
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */

@@ -1,0 +1,347 @@
+/*
+ * eomc_taylor.h: the Taylor coefficients of each operation, order by
+ * order, for the generated `taylor` function (eomc_model.h) of Taylor's
+ * method (--method taylor).
+ *
+ * A value w(t) near t0 is held as its normalized Taylor coefficients
+ * w[j] = w^(j)(t0) / j!, j = 0 .. K.  Each function below computes one
+ * coefficient, c[k], of its result from the coefficients 0 .. k of its
+ * operands and 0 .. k-1 of itself (and of its auxiliary series, which it
+ * also brings to order k): the standard recurrences of automatic
+ * differentiation in Taylor mode (Griewank and Walther, "Evaluating
+ * Derivatives", ch. 13; Jorba and Zou 2005, section 2), which follow from
+ * the Leibniz rule for products and from a first-order ODE for each
+ * elementary function (sin' = cos, exp' = exp, ...).  At k = 0 they are
+ * the plain values.  Calling them for k = 0, 1, 2, ... over the nodes of a
+ * DAG in topological order gives every node's series to order K in
+ * O(K^2) per nonlinear node.
+ *
+ * Functions of a series whose value is 0 where the function is not
+ * analytic (sqrt, log, a real power, a division by a series with b[0] =
+ * 0) return non-finite coefficients, as the plain operation would; the
+ * stepper checks every coefficient it uses.
+ *
+ * Everything is static inline on eomc_real (double, or extended in the
+ * model's twin): the loops over the order are the only code, and the
+ * generated function is a straight list of calls.
+ */
+#ifndef EOMC_TAYLOR_H
+#define EOMC_TAYLOR_H
+
+#include <math.h>
+
+#include "eomc_model.h"
+
+#if defined(EOMC_EXTENDED)
+#define EOMC_TAY_F(name) name##l
+#else
+#define EOMC_TAY_F(name) name
+#endif
+
+/* A value that does not depend on t: v, then zeros. */
+static inline void
+eomc_tay_const(eomc_real *c, eomc_real v, int k)
+{
+    c[k] = k == 0 ? v : 0;
+}
+
+/* t itself, expanded about t0: t0, 1, then zeros. */
+static inline void
+eomc_tay_time(eomc_real *c, eomc_real t0, int k)
+{
+    c[k] = k == 0 ? t0 : k == 1 ? 1 : 0;
+}
+
+static inline void
+eomc_tay_add(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
+{
+    c[k] = a[k] + b[k];
+}
+
+static inline void
+eomc_tay_sub(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
+{
+    c[k] = a[k] - b[k];
+}
+
+static inline void
+eomc_tay_neg(eomc_real *c, const eomc_real *a, int k)
+{
+    c[k] = -a[k];
+}
+
+/* A value that is constant in t times a series (a coefficient of the
+ * spec's: m*l^2): one product, not a convolution. */
+static inline void
+eomc_tay_scale(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
+{
+    c[k] = a[0] * b[k];
+}
+
+/* c = a b: c_k = sum_{j=0..k} a_j b_{k-j}. */
+static inline void
+eomc_tay_mul(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
+{
+    eomc_real s = 0;
+    for (int j = 0; j <= k; j++)
+        s += a[j] * b[k - j];
+    c[k] = s;
+}
+
+/* c = a^2, the convolution's symmetric half. */
+static inline void
+eomc_tay_sqr(eomc_real *c, const eomc_real *a, int k)
+{
+    eomc_real s = 0;
+    for (int j = 0; j < (k + 1) / 2; j++)
+        s += a[j] * a[k - j];
+    s *= 2;
+    if (k % 2 == 0)
+        s += a[k / 2] * a[k / 2];
+    c[k] = s;
+}
+
+/* c = a / b: from c b = a, c_k = (a_k - sum_{j=1..k} b_j c_{k-j}) / b_0. */
+static inline void
+eomc_tay_div(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
+{
+    eomc_real s = a[k];
+    for (int j = 1; j <= k; j++)
+        s -= b[j] * c[k - j];
+    c[k] = s / b[0];
+}
+
+/* c = 1 / a. */
+static inline void
+eomc_tay_inv(eomc_real *c, const eomc_real *a, int k)
+{
+    eomc_real s = k == 0 ? 1 : 0;
+    for (int j = 1; j <= k; j++)
+        s -= a[j] * c[k - j];
+    c[k] = s / a[0];
+}
+
+/* c = sqrt(a): from c^2 = a, c_k = (a_k - sum_{j=1..k-1} c_j c_{k-j}) / (2 c_0). */
+static inline void
+eomc_tay_sqrt(eomc_real *c, const eomc_real *a, int k)
+{
+    if (k == 0) {
+        c[0] = EOMC_TAY_F(sqrt)(a[0]);
+        return;
+    }
+    eomc_real s = a[k];
+    for (int j = 1; j < k; j++)
+        s -= c[j] * c[k - j];
+    c[k] = s / (2 * c[0]);
+}
+
+/* c = exp(a): c' = c a', so k c_k = sum_{j=1..k} j a_j c_{k-j}. */
+static inline void
+eomc_tay_exp(eomc_real *c, const eomc_real *a, int k)
+{
+    if (k == 0) {
+        c[0] = EOMC_TAY_F(exp)(a[0]);
+        return;
+    }
+    eomc_real s = 0;
+    for (int j = 1; j <= k; j++)
+        s += j * a[j] * c[k - j];
+    c[k] = s / k;
+}
+
+/* c = log(a): a c' = a', so c_k = (a_k - (1/k) sum_{j=1..k-1} j c_j a_{k-j}) / a_0. */
+static inline void
+eomc_tay_log(eomc_real *c, const eomc_real *a, int k)
+{
+    if (k == 0) {
+        c[0] = EOMC_TAY_F(log)(a[0]);
+        return;
+    }
+    eomc_real s = 0;
+    for (int j = 1; j < k; j++)
+        s += j * c[j] * a[k - j];
+    c[k] = (a[k] - s / k) / a[0];
+}
+
+/* c = a^e, e constant in t (e[0] its value): a c' = e c a', so
+ * k a_0 c_k = sum_{j=0..k-1} (e (k - j) - j) a_{k-j} c_j. */
+static inline void
+eomc_tay_powc(eomc_real *c, const eomc_real *a, const eomc_real *e, int k)
+{
+    if (k == 0) {
+        c[0] = EOMC_TAY_F(pow)(a[0], e[0]);
+        return;
+    }
+    eomc_real s = 0;
+    for (int j = 0; j < k; j++)
+        s += (e[0] * (k - j) - j) * a[k - j] * c[j];
+    c[k] = s / (k * a[0]);
+}
+
+/* s = sin(a), c = cos(a) together: s' = c a', c' = -s a'. */
+static inline void
+eomc_tay_sincos(eomc_real *s, eomc_real *c, const eomc_real *a, int k)
+{
+    if (k == 0) {
+        s[0] = EOMC_TAY_F(sin)(a[0]);
+        c[0] = EOMC_TAY_F(cos)(a[0]);
+        return;
+    }
+    eomc_real ss = 0, cc = 0;
+    for (int j = 1; j <= k; j++) {
+        ss += j * a[j] * c[k - j];
+        cc += j * a[j] * s[k - j];
+    }
+    s[k] = ss / k;
+    c[k] = -cc / k;
+}
+
+/* s = sinh(a), c = cosh(a) together: s' = c a', c' = s a'. */
+static inline void
+eomc_tay_sinhcosh(eomc_real *s, eomc_real *c, const eomc_real *a, int k)
+{
+    if (k == 0) {
+        s[0] = EOMC_TAY_F(sinh)(a[0]);
+        c[0] = EOMC_TAY_F(cosh)(a[0]);
+        return;
+    }
+    eomc_real ss = 0, cc = 0;
+    for (int j = 1; j <= k; j++) {
+        ss += j * a[j] * c[k - j];
+        cc += j * a[j] * s[k - j];
+    }
+    s[k] = ss / k;
+    c[k] = cc / k;
+}
+
+/* y = tan(a) with w = 1 + y^2 (sign = 1), or y = tanh(a) with w = 1 - y^2
+ * (sign = -1): y' = w a', so k y_k = sum_{j=1..k} j a_j w_{k-j}; then w
+ * is brought to order k. */
+static inline void
+eomc_tay_tan_(eomc_real *y, eomc_real *w, const eomc_real *a, int k, int sign)
+{
+    if (k == 0) {
+        y[0] = sign > 0 ? EOMC_TAY_F(tan)(a[0]) : EOMC_TAY_F(tanh)(a[0]);
+    } else {
+        eomc_real s = 0;
+        for (int j = 1; j <= k; j++)
+            s += j * a[j] * w[k - j];
+        y[k] = s / k;
+    }
+    eomc_real q = 0;
+    for (int j = 0; j <= k; j++)
+        q += y[j] * y[k - j];
+    w[k] = (k == 0 ? 1 : 0) + sign * q;
+}
+
+static inline void
+eomc_tay_tan(eomc_real *y, eomc_real *w, const eomc_real *a, int k)
+{
+    eomc_tay_tan_(y, w, a, k, 1);
+}
+
+static inline void
+eomc_tay_tanh(eomc_real *y, eomc_real *w, const eomc_real *a, int k)
+{
+    eomc_tay_tan_(y, w, a, k, -1);
+}
+
+/* y with y' = sign a' / w, w's series known to order k:
+ * k w_0 y_k = sign k a_k - sum_{j=1..k-1} j y_j w_{k-j}. */
+static inline void
+eomc_tay_quotient_rate_(eomc_real *y, const eomc_real *w, const eomc_real *a, int k,
+                        int sign)
+{
+    eomc_real s = 0;
+    for (int j = 1; j < k; j++)
+        s += j * y[j] * w[k - j];
+    y[k] = (sign * a[k] - s / k) / w[0];
+}
+
+/* y = asin(a) (sign 1) or acos(a) (sign -1), with r = 1 - a^2 and
+ * s = sqrt(r): y' = sign a' / s. */
+static inline void
+eomc_tay_asin_(eomc_real *y, eomc_real *r, eomc_real *s, const eomc_real *a, int k,
+               int sign)
+{
+    eomc_real q = 0;
+    for (int j = 0; j <= k; j++)
+        q += a[j] * a[k - j];
+    r[k] = (k == 0 ? 1 : 0) - q;
+    eomc_tay_sqrt(s, r, k);
+    if (k == 0)
+        y[0] = sign > 0 ? EOMC_TAY_F(asin)(a[0]) : EOMC_TAY_F(acos)(a[0]);
+    else
+        eomc_tay_quotient_rate_(y, s, a, k, sign);
+}
+
+static inline void
+eomc_tay_asin(eomc_real *y, eomc_real *r, eomc_real *s, const eomc_real *a, int k)
+{
+    eomc_tay_asin_(y, r, s, a, k, 1);
+}
+
+static inline void
+eomc_tay_acos(eomc_real *y, eomc_real *r, eomc_real *s, const eomc_real *a, int k)
+{
+    eomc_tay_asin_(y, r, s, a, k, -1);
+}
+
+/* y = atan(a), with w = 1 + a^2: y' = a' / w. */
+static inline void
+eomc_tay_atan(eomc_real *y, eomc_real *w, const eomc_real *a, int k)
+{
+    eomc_real q = 0;
+    for (int j = 0; j <= k; j++)
+        q += a[j] * a[k - j];
+    w[k] = (k == 0 ? 1 : 0) + q;
+    if (k == 0)
+        y[0] = EOMC_TAY_F(atan)(a[0]);
+    else
+        eomc_tay_quotient_rate_(y, w, a, k, 1);
+}
+
+/* y = atan2(b, a) (the angle of the point (a, b)), with w = a^2 + b^2:
+ * y' = (a b' - b a') / w, so
+ * k w_0 y_k = sum_{j=1..k} j (a_{k-j} b_j - b_{k-j} a_j) - sum_{j=1..k-1} j y_j w_{k-j}. */
+static inline void
+eomc_tay_atan2(eomc_real *y, eomc_real *w, const eomc_real *b, const eomc_real *a, int k)
+{
+    eomc_real q = 0;
+    for (int j = 0; j <= k; j++)
+        q += a[j] * a[k - j] + b[j] * b[k - j];
+    w[k] = q;
+    if (k == 0) {
+        y[0] = EOMC_TAY_F(atan2)(b[0], a[0]);
+        return;
+    }
+    eomc_real s = 0;
+    for (int j = 1; j <= k; j++)
+        s += j * (a[k - j] * b[j] - b[k - j] * a[j]);
+    for (int j = 1; j < k; j++)
+        s -= j * y[j] * w[k - j];
+    y[k] = s / (k * w[0]);
+}
+
+/* c = |a| = sign(a_0) a, where a_0 != 0 (at a_0 = 0 |a| has no Taylor
+ * series; the sign of the first nonzero coefficient is taken, the side
+ * the motion goes to). */
+static inline void
+eomc_tay_abs(eomc_real *c, const eomc_real *a, int k)
+{
+    int j = 0;
+    while (j < k && a[j] == 0)
+        j++;
+    c[k] = a[j] < 0 ? -a[k] : a[k];
+}
+
+/* c = sign(a): constant while a keeps its sign. */
+static inline void
+eomc_tay_sign(eomc_real *c, const eomc_real *a, int k)
+{
+    c[k] = k == 0 ? (a[0] > 0) - (a[0] < 0) : 0;
+}
+
+#undef EOMC_TAY_F
+
+#endif

@@ -91,8 +91,10 @@ static const unsigned char no_fixed[8];
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
-/* Nothing to draw (--animate): the members after c_nz. */
-#define NO_DRAW 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL
+/* Nothing to draw (--animate): the members after c_nz; and no Taylor
+ * series (the last members). */
+#define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, "a hand-written test model"
+#define NO_DRAW 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NO_TAYLOR
 /* ... and no outputs nor events (they follow the checks), nor the scene's
  * assembly, nor a sparse mass matrix, nor unit loads, nor drawing. */
 #define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL, NO_DRAW
@@ -334,6 +336,7 @@ const eomc_model draw_model = {
     NULL,       /* no rows held */
     0, NULL,    /* B dense */
     3, pd_items, pd_draw, pd_draw_mass, 0, NULL, 1, 1, 0, pd_links, pd_trace, NULL,
+    NO_TAYLOR,
 };
 
 void

@@ -302,6 +302,9 @@ typedef struct eomc_stats {
      * event that ended the run (-1: none). */
     long events, event_evals;
     int stop_event;
+    /* Taylor's method: the sum of the orders of its steps (their mean is
+     * order_sum / steps); 0 for the other methods. */
+    long order_sum;
     /* The time of the state eomc_sim_integrate leaves in x: t_end when the
      * run went to the end, else the time it stopped at (see there). */
     double t_stop;

@@ -18,7 +18,10 @@
  *    that fired is located, reported, and stops the run or resets the
  *    state and starts the integration again from there (check_events);
  *  - the watch over the adaptive steps (stepwatch.h): they stop when
- *    they collapse or grind.
+ *    they collapse or grind;
+ *  - Taylor's method (taylor.h) in place of GSL's stepper: a step is the
+ *    series through its start, to the length the series allows, and its
+ *    polynomial is the step's dense output, for the events and the rows.
  * The stepper and the checks after a step read and change the one step's
  * state (Run), so they stay together here.  The events and the watch need
  * of it only what they are handed: a step's ends, and x' and side steps
@@ -35,6 +38,7 @@
 #include "dense.h"
 #include "linalg.h"
 #include "methods.h"
+#include "taylor.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -92,6 +96,9 @@ typedef struct Run {
     unsigned long nfixed, i;      /* fixed steps: how many, and the last taken */
     int pending;                  /* a `set` event whose reset starts the next
                                    * step (-1: none) */
+    Taylor *taylor;               /* Taylor's method: the step's series (NULL:
+                                   * GSL's stepper) */
+    Taylor *taylor_side;          /* ... a side step's, from elsewhere */
 } Run;
 
 /* The caller is told of the progress every PROGRESS_EVERY right-hand
@@ -376,6 +383,29 @@ after_step(Run *r, double t0)
 
 /* ---- side steps ---- */
 
+/* Taylor's method: the state at t from (tk, xk), t past tk.  Inside the
+ * step just taken, from its start, the step's own polynomial (a row, an
+ * event's location); else series of their own, each as long as it
+ * allows. */
+static int
+taylor_side(Run *r, double tk, const double *xk, double t, double *x)
+{
+    if (tk == taylor_start(r->taylor) && !memcmp(xk, r->y0, (size_t)r->N * sizeof *xk)) {
+        taylor_eval(r->taylor, t - tk, x);
+        return GSL_SUCCESS;
+    }
+    memcpy(x, xk, (size_t)r->N * sizeof *x);
+    for (int piece = 0; tk < t && piece < EVOLVE_SIDE_PIECES; piece++) {
+        double h;
+        if (taylor_series(r->taylor_side, tk, x, t - tk, &h) != 0)
+            return GSL_EBADFUNC;
+        double t1 = h >= t - tk ? t : tk + h;
+        taylor_eval(r->taylor_side, t1 - tk, x);
+        tk = t1;
+    }
+    return tk < t ? GSL_EBADFUNC : GSL_SUCCESS;
+}
+
 /* The state at t by a step of its own from the node before it (a row's,
  * or an event's from the step's start): 1, 2, 4, ... pieces until each
  * passes the step control.  It is part of an
@@ -385,6 +415,8 @@ static int
 side_from(Run *r, double tk, const double *xk, const double *fk, double t, double *x)
 {
     size_t bytes = (size_t)r->N * sizeof *x;
+    if (r->taylor)
+        return taylor_side(r, tk, xk, t, x);
     for (int pieces = 1; pieces <= EVOLVE_SIDE_PIECES; pieces *= 2) {
         double h = (t - tk) / pieces;
         memcpy(x, xk, bytes);
@@ -453,8 +485,9 @@ apply_reset(Run *r, int k)
     int rc = stepev_reset(r->ev, k, r->t, r->x, r->f0); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
         return rc;
-    gsl_odeiv2_step_reset(r->step);
-    if (r->side != r->step)
+    if (r->step)
+        gsl_odeiv2_step_reset(r->step);
+    if (r->side && r->side != r->step)
         gsl_odeiv2_step_reset(r->side);
     r->since_reset = 0;
     if (r->m->nc > 0 && sim_constraint_rows(r->s, r->t, r->x, r->B0) != 0)
@@ -523,6 +556,41 @@ adaptive_step(Run *r, double *h)
     }
 }
 
+/* One step of Taylor's method from r->t: the series through the state,
+ * as far as it allows (to t_end at most, in two halves rather than a
+ * step and a sliver), its value there, and the error its last term
+ * estimates (for the conserved quantity's budget).  The series is the
+ * step's dense output (taylor_side).  A series that cannot be computed
+ * (M not positive definite, a coefficient not finite) is the
+ * right-hand side's failure at the step's start: rhs there says why. */
+static int
+taylor_step(Run *r)
+{
+    double t0 = r->t, left = r->o->t_end - t0, h;
+    memcpy(r->y0, r->x, (size_t)r->N * sizeof *r->x);
+    if (taylor_series(r->taylor, t0, r->x, left, &h) != 0)
+        return GSL_EBADFUNC;
+    int final = h >= left;
+    if (!final && 2 * h > left)
+        h = 0.5 * left;
+    taylor_eval(r->taylor, final ? left : h, r->x);
+    taylor_error(r->taylor, final ? left : h, r->yerr);
+    r->st->order_sum += taylor_order(r->taylor);
+    r->t = final ? r->o->t_end : t0 + h;
+    int rc = rhs(r->t, r->x, r->f1, r);
+    if (rc != GSL_SUCCESS) {
+        memcpy(r->x, r->y0, (size_t)r->N * sizeof *r->x);
+        r->t = t0;
+        return rc;
+    }
+    if (!final) {
+        r->h = h;
+        stepwatch_tried(r->watch, 0);
+        stepwatch_accepted(r->watch, h);
+    }
+    return GSL_SUCCESS;
+}
+
 /* One fixed step, from r->t to t1. */
 static int
 fixed_step(Run *r, double t1)
@@ -576,7 +644,7 @@ take_step(Run *r, EvolveStep *tk)
     const eomc_run_opts *o = r->o;
     double span = o->t_end - o->t0;
     int rc;
-    *tk = (EvolveStep){.ev = EVOLVE_NONE, .fired = -1, .reached = NAN};
+    *tk = (EvolveStep){.ev = EVOLVE_NONE, .fired = -1, .reached = NAN, .series = r->taylor};
     r->reached = NAN;
     if (r->pending >= 0) {
         int k = r->pending;
@@ -596,7 +664,9 @@ take_step(Run *r, EvolveStep *tk)
         return GSL_EMAXITER;
     double t0 = r->t;
     r->i++;
-    if (r->nfixed)
+    if (r->taylor)
+        rc = taylor_step(r);
+    else if (r->nfixed)
         rc = fixed_step(r, r->i == r->nfixed ? o->t_end : o->t0 + (double)r->i * r->st->h_used);
     else
         rc = adaptive_step(r, &r->h);
@@ -612,7 +682,7 @@ take_step(Run *r, EvolveStep *tk)
     r->f0 = r->f1, r->f1 = f;
     *tk = (EvolveStep){.taken = 1, .t0 = t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
                        .x1 = r->x, .f1 = r->f0, .restarted = tk->restarted, .ev = tk->ev,
-                       .fired = tk->fired, .reached = NAN};
+                       .fired = tk->fired, .reached = NAN, .series = r->taylor};
     if (tk->ev == EVOLVE_STOP) {
         r->st->stop_event = tk->fired;
         return GSL_SUCCESS;
@@ -644,6 +714,30 @@ run_free(Run *r)
         free(arrays[k]);
     stepev_free(r->ev);
     stepwatch_free(r->watch);
+    taylor_free(r->taylor);
+    taylor_free(r->taylor_side);
+}
+
+/* run_alloc's for Taylor's method: the series (the step's and the side
+ * steps'), the work arrays, the watch and the events. */
+static int
+taylor_alloc_run(Run *r)
+{
+    size_t N = (size_t)r->N;
+    r->taylor = taylor_alloc(r->s, r->o);
+    r->taylor_side = taylor_alloc(r->s, r->o);
+    double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->fr,
+                         &r->fs, &r->fs2};
+    int ok = r->taylor && r->taylor_side &&
+             (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        ok &= (*arrays[k] = sim_zeros(N)) != NULL;
+    if (r->m->nevent > 0) {
+        StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r};
+        ok &= (r->ev = stepev_alloc(r->s, r->o, r->st, motion)) != NULL;
+    }
+    return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
+                                          r->o->method);
 }
 
 static int
@@ -652,6 +746,8 @@ run_alloc(Run *r, const Method *m)
     size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
     double span = r->o->t_end - r->o->t0;
     r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
+    if (!*m->adaptive) /* Taylor's method: its own steps, no GSL stepper */
+        return taylor_alloc_run(r);
     r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
                                          span > 0 ? H0_REL * span : 1.0, r->o->atol,
                                          r->o->rtol);

@@ -34,6 +34,10 @@ typedef struct EvolveStep {
     double reached;               /* no step taken, but the motion is known up to
                                    * this time (the failure is past it), or NAN */
     const double *xr, *fr;        /* ... the state and x' there */
+    const struct Taylor *series;  /* Taylor's method (set for every step, taken or
+                                   * not): the step's series, valid on t0 .. t1
+                                   * until the next step (taylor.h: taylor_eval),
+                                   * its dense output; else NULL */
 } EvolveStep;
 
 /* The steps of s from x [2nq] at o->t0, into *e (eomc_evolve_free it

@@ -9,11 +9,14 @@
  *  - a row the interpolant cannot give to the tolerances is computed by a
  *    step of its own (side_step);
  *  - a `set` event's reset starts the interpolant afresh, and a `stop`
- *    event ends the rows with one at the event itself.
+ *    event ends the rows with one at the event itself;
+ *  - Taylor's method's rows are its steps' own polynomials (taylor.h),
+ *    no interpolant and no side step.
  */
 #include "evolve.h"
 #include "simimpl.h"
 #include "dense.h"
+#include "taylor.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -126,12 +129,33 @@ emit_rows(Driver *r, int final)
     return GSL_SUCCESS;
 }
 
+/* Taylor's method: every row up to the step's end tk->t1, from the step's
+ * series (EVOLVE_STOPPED when the callback says stop). */
+static int
+series_rows(Driver *r, const EvolveStep *tk)
+{
+    while (r->k < r->nrows) {
+        double t = eomc_run_row_time(r->o, r->k);
+        if (t > tk->t1)
+            return GSL_SUCCESS;
+        if (t == tk->t1)
+            memcpy(r->xrow, tk->x1, (size_t)r->N * sizeof *r->xrow);
+        else
+            taylor_eval(tk->series, t - tk->t0, r->xrow);
+        int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
+        if (rc != EOMC_OK)
+            return evolve_stop(r->e, rc, t, r->xrow);
+        r->k++;
+    }
+    return GSL_SUCCESS;
+}
+
 /* A stop event ended the run at tk->t1: the rows up to it, then a last
  * row at the event itself. */
 static int
 finish_at_event(Driver *r, const EvolveStep *tk)
 {
-    int rc = emit_rows(r, 1);
+    int rc = tk->series ? series_rows(r, tk) : emit_rows(r, 1);
     if (rc != GSL_SUCCESS)
         return rc;
     if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= tk->t1)
@@ -150,6 +174,15 @@ march(Driver *r)
     while (evolve_more(r->e)) {
         EvolveStep tk;
         int rc = evolve_step(r->e, &tk);
+        if (tk.series) { /* Taylor's method: each step's own polynomial */
+            if (rc != GSL_SUCCESS)
+                return rc;
+            if (tk.taken && tk.ev == EVOLVE_STOP)
+                return finish_at_event(r, &tk);
+            if (tk.taken && (rc = series_rows(r, &tk)) != GSL_SUCCESS)
+                return rc;
+            continue;
+        }
         if (tk.restarted) /* the nodes before the reset are another motion's */
             dense_clear(r->dense);
         if (tk.restarted && tk.taken)

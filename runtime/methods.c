@@ -6,9 +6,13 @@
 #include "methods.h"
 #include "simimpl.h"
 #include "fixed.h"
+#include "taylor.h"
 
 #include <math.h>
 #include <string.h>
+
+/* Taylor's method has no GSL step type: its null one marks it (Method). */
+static const gsl_odeiv2_step_type *const eomc_taylor_series = NULL;
 
 #define FIXED_GSL(g) &g, 0
 #define FIXED_RK4(g) &fixed_rk4, 1
@@ -104,5 +108,7 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     if (o->max_steps < 0)
         return sim_usage_error(s, "the step limit must be positive, not %ld",
                                o->max_steps);
+    if (!*m->adaptive)
+        return taylor_check(s, o);
     return EOMC_OK;
 }

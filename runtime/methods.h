@@ -9,7 +9,9 @@
 
 typedef struct Method {
     const char *name;
-    const gsl_odeiv2_step_type *const *adaptive; /* GSL's pointer variable */
+    const gsl_odeiv2_step_type *const *adaptive; /* GSL's pointer variable; it
+                                                  * holds NULL for Taylor's method
+                                                  * (taylor.h), which is not GSL's */
     const gsl_odeiv2_step_type *const *fixed;    /* NULL: no fixed steps */
     int own_fixed;                               /* fixed is fixed.c's */
     int jacobian;                                /* solves with the Jacobian */

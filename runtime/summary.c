@@ -69,6 +69,8 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
     if (st->h_used > 0)
         fprintf(io_err(), "h_used %.17g\n", st->h_used);
     fprintf(io_err(), "side_steps %ld\n", st->side_steps);
+    if (st->order_sum > 0) /* Taylor's method: its orders, on average */
+        fprintf(io_err(), "order_mean %.3g\n", (double)st->order_sum / (double)st->steps);
     fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\n", st->max_condition,
             st->t_condition);
     if (st->invariant_budget > 0)

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "models.h"
+#include "eomc_taylor.h"
 
 /* ---- the harmonic oscillator: E = m x'' + k x ---- */
 
@@ -83,6 +84,25 @@ osc_accel(double t, const double *q, const double *v, const double *p,
     return piv > 0.0 ? 0 : 1;
 }
 
+/* Taylor's method's series, as eomc would generate them: slot 0 is x
+ * (the caller's), 1 is M = m, 2 is k, 3 is h = k x. */
+static const int osc_taylor_q[] = {0}, osc_taylor_v[] = {-1}, osc_taylor_M[] = {1},
+                 osc_taylor_h[] = {3}, osc_taylor_g[] = {0};
+
+static void
+osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
+{
+    (void)t0;
+    (void)u;
+    const int S = K + 1;
+    eomc_tay_const(T + 1 * S, p[0], k);
+    eomc_tay_const(T + 2 * S, p[1], k);
+    eomc_tay_scale(T + 3 * S, T + 2 * S, T + 0 * S, k);
+}
+
+#define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \
+    osc_taylor, NULL
+
 /* No parameter is fixed (p_fixed). */
 static const unsigned char no_fixed[8];
 
@@ -94,10 +114,13 @@ static const unsigned char no_fixed[8];
 /* Nothing to draw (--animate): the members after c_nz; and no Taylor
  * series (the last members). */
 #define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, "a hand-written test model"
-#define NO_DRAW 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NO_TAYLOR
+#define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, __VA_ARGS__
+#define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)
 /* ... and no outputs nor events (they follow the checks), nor the scene's
- * assembly, nor a sparse mass matrix, nor unit loads, nor drawing. */
-#define NO_OUTPUTS 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL, NO_DRAW
+ * assembly, nor a sparse mass matrix, nor unit loads, nor drawing (but
+ * for the Taylor series given). */
+#define NO_OUTPUTS_BUT(...) 0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL, NO_DRAW_BUT(__VA_ARGS__)
+#define NO_OUTPUTS NO_OUTPUTS_BUT(NO_TAYLOR)
 
 /* E = T + V, as eomc emits it for a conservative model. */
 static void
@@ -119,7 +142,7 @@ const eomc_model osc_model = {
     NO_CONSTRAINTS,
     osc_invariant, "E", "E = T + V is conserved",
     NO_CHECKS,
-    NO_OUTPUTS,
+    NO_OUTPUTS_BUT(OSC_TAYLOR),
 };
 
 /* ---- the leaky oscillator: m x'' + c x' + k x = 0 that claims to conserve
@@ -202,7 +225,7 @@ const eomc_model osc_event_model = {
     NULL,       /* no c_scale: residuals against B q */
     NULL,       /* no rows held */
     0, NULL,    /* B dense */
-    NO_DRAW,
+    NO_DRAW_BUT(OSC_TAYLOR),
 };
 
 /* ---- a pendulum to draw (--animate): a bob of mass m on a rod of mass mr

@@ -1,5 +1,6 @@
 /*
- * Every GSL stepper of eomc_methods[] through eomc_sim_integrate:
+ * Every method of eomc_methods[] (GSL's steppers, and Taylor's method on
+ * the oscillator's hand-written series) through eomc_sim_integrate:
  *  - adaptive, on the oscillator, against x(t) = x0 cos(wt) + v0/w sin(wt)
  *    at t_end, each with a tolerance fit to its order;
  *  - the explicit Runge-Kutta methods count their attempts, accepted and
@@ -39,6 +40,7 @@ static const Method methods[] = {
     {"rkck", 1e-12, 1e-9, 0, 6},    {"rk8pd", 1e-12, 1e-10, 0, 13},  {"rk1imp", 1e-8, 1e-3, 1, 0},
     {"rk2imp", 1e-12, 1e-7, 1, 0},  {"rk4imp", 1e-12, 1e-9, 1, 0},   {"bsimp", 1e-12, 1e-10, 1, 0},
     {"msadams", 1e-12, 1e-9, 0, 0}, {"msbdf", 1e-12, 1e-8, 1, 0},
+    {"taylor", 1e-12, 1e-12, 0, 0}, /* the oscillator's hand-written series (models.c) */
 };
 enum { NMETHODS = sizeof methods / sizeof methods[0] };
 
@@ -57,7 +59,7 @@ method_list(void)
     int n = 0, known = 1;
     for (; eomc_methods[n]; n++)
         known &= method_named(eomc_methods[n]) != NULL;
-    CHECK(n == NMETHODS && known, "eomc_methods[] lists the %d GSL steppers (got %d)", NMETHODS,
+    CHECK(n == NMETHODS && known, "eomc_methods[] lists the %d methods (got %d)", NMETHODS,
           n);
     int all = 1;
     for (int i = 0; i < NMETHODS; i++) {

@@ -1,0 +1,286 @@
+/*
+ * taylor: Taylor's method, the series of the motion through a state.
+ *
+ * The model's generated `taylor` function brings the series of every
+ * value of M(q) and h(t, q, q') one order further at each call
+ * (eomc_taylor.h's recurrences on the DAG).  The accelerations' series
+ * follows from M q'' = -h order by order:
+ *     M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}),
+ * so M is factored once per step (at the state itself, as eomc_sim_accel
+ * factors it: GSL's pivoted Cholesky with the same pivot test) and never
+ * inverted symbolically; then q_{k+1} = q'_k / (k + 1) and
+ * q'_{k+1} = a_k / (k + 1), which the next call reads.
+ *
+ * The order and the step are Jorba and Zou's ("A software package for
+ * the numerical integration of ODEs by means of high-order Taylor
+ * methods", Exp. Math. 14, 2005, sec. 3.2): order p = ceil(-ln(eps)/2 +
+ * 1) for the relative tolerance eps = rtol, and the step
+ *     h = rho / e^2 * exp(-0.7 / (p - 1)),
+ * rho = min over the state's components i and the last two orders j =
+ * p - 1, p of (S_i / |x_ij|)^(1/j), where S_i + atol / rtol is the
+ * component's own scale: its size over the step (step_size) plus what
+ * GSL's test, atol + rtol |x_i|, adds over rtol.  Then the series' last
+ * terms are about e^-2p S_i, about rtol S_i: the local error a GSL method
+ * with these tolerances allows, so the tolerance means what it means for
+ * the other methods.  rho is a time (a ratio of coefficients of the same
+ * component, to the power 1/j), so rescaling the units of mass, length or
+ * time rescales h with them (with atol 0, or atol rescaled too).
+ */
+#include "taylor.h"
+#include "simimpl.h"
+#include "linalg.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The highest order: rtol 1e-16 asks for 20; this leaves room for the
+ * extended precision twin's tighter tolerances. */
+enum { TAYLOR_MAX_ORDER = 40 };
+/* ... and the lowest: a polynomial of degree 1 is Euler's method, whose
+ * step rule above would have no second coefficient to compare. */
+enum { TAYLOR_MIN_ORDER = 2 };
+/* Jorba and Zou's safety factor, exp(-0.7 / (p - 1)), has this 0.7. */
+#define TAYLOR_SAFETY 0.7
+
+struct Taylor {
+    eomc_sim *s;
+    const eomc_model *m;
+    int n, N, p;        /* coordinates, state size, the order */
+    double rtol, atol;
+    double *T;          /* [nslot (KMAX + 1)] the model's series */
+    double *X;          /* [(p + 1) N] the state's: X[j N + i], x_i's coefficient j */
+    double *A;          /* [p n] the accelerations', A[k n + i] */
+    double *M0;         /* [n n] M_0, factored */
+    double *rel;        /* [n] the factorization's relative pivots */
+    size_t *perm;       /* [n] its permutation */
+    double *b;          /* [n] a right-hand side */
+    double *S;          /* [N] the components' scales (step_size) */
+    double t0;          /* the last series' start */
+};
+
+int
+taylor_check(eomc_sim *s, const eomc_run_opts *o)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    if (!m->taylor)
+        return sim_usage_error(s, "--method taylor: %s has no Taylor series: %s", m->name,
+                               m->taylor_why ? m->taylor_why : "it was generated without them");
+    for (int k = 0; k < m->nu; k++) {
+        double v;
+        if (!eomc_sim_input_held(s, k, &v))
+            return sim_usage_error(s, "--method taylor: input %s is a signal of time, whose "
+                                   "series Taylor's method does not take; hold it constant "
+                                   "(--set %s=VALUE) or choose another method",
+                                   m->u_names[k], m->u_names[k]);
+    }
+    if (!(o->rtol > 0))
+        return sim_usage_error(s, "--method taylor: --rtol must be positive (the order "
+                               "comes from it), not %g", o->rtol);
+    return EOMC_OK;
+}
+
+Taylor *
+taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    Taylor *tp = calloc(1, sizeof *tp);
+    if (!tp)
+        return NULL;
+    int n = m->nq, K = TAYLOR_MAX_ORDER;
+    double p = ceil(-0.5 * log(o->rtol) + 1);
+    *tp = (Taylor){.s = s, .m = m, .n = n, .N = 2 * n, .rtol = o->rtol, .atol = o->atol,
+                   .p = p < TAYLOR_MIN_ORDER ? TAYLOR_MIN_ORDER
+                        : p > TAYLOR_MAX_ORDER ? TAYLOR_MAX_ORDER : (int)p};
+    tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
+    tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
+    tp->A = sim_zeros((size_t)(K + 1) * (size_t)n);
+    tp->M0 = sim_zeros((size_t)n * (size_t)n);
+    tp->rel = sim_zeros((size_t)n);
+    tp->b = sim_zeros((size_t)n);
+    tp->S = sim_zeros((size_t)tp->N);
+    tp->perm = calloc((size_t)n + 1, sizeof *tp->perm);
+    if (!tp->T || !tp->X || !tp->A || !tp->M0 || !tp->rel || !tp->b || !tp->perm || !tp->S) {
+        taylor_free(tp);
+        return NULL;
+    }
+    return tp;
+}
+
+void
+taylor_free(Taylor *tp)
+{
+    if (!tp)
+        return;
+    free(tp->T);
+    free(tp->X);
+    free(tp->A);
+    free(tp->M0);
+    free(tp->rel);
+    free(tp->b);
+    free(tp->S);
+    free(tp->perm);
+    free(tp);
+}
+
+/* Slot s's coefficient k. */
+static double
+coef(const Taylor *tp, int slot, int k)
+{
+    return slot < 0 ? 0 : tp->T[(size_t)slot * (TAYLOR_MAX_ORDER + 1) + (size_t)k];
+}
+
+/* Write the state's coefficient k into the series the model reads. */
+static void
+put_state(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    const double *xk = tp->X + (size_t)k * (size_t)tp->N;
+    for (int i = 0; i < tp->n; i++) {
+        if (m->taylor_q[i] >= 0)
+            tp->T[(size_t)m->taylor_q[i] * (TAYLOR_MAX_ORDER + 1) + (size_t)k] = xk[i];
+        if (m->taylor_v[i] >= 0)
+            tp->T[(size_t)m->taylor_v[i] * (TAYLOR_MAX_ORDER + 1) + (size_t)k] = xk[tp->n + i];
+    }
+}
+
+/* The radius of the state's series by its last two terms: the least over
+ * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j), or, for S
+ * NULL, of (|x_im| / |x_ij|)^(1/(j - m)) with x_im the component's first
+ * coefficient that is not 0 (its size where it starts from rest or from
+ * 0).  INFINITY when no component has a last term. */
+static double
+radius(const Taylor *tp, const double *S)
+{
+    int p = tp->p, N = tp->N;
+    double rho = INFINITY;
+    for (int i = 0; i < N; i++) {
+        int m = 0;
+        if (!S)
+            while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
+                m++;
+        double scale = S ? S[i] : fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
+        if (!(scale > 0))
+            continue;
+        for (int j = p - 1; j <= p; j++) {
+            double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
+            if (c > 0 && j > m)
+                rho = fmin(rho, pow(scale / c, 1.0 / (j - (S ? 0 : m))));
+        }
+    }
+    return rho;
+}
+
+/* Component i's size over a step of h: its series' largest term there,
+ * plus atol / rtol (GSL's atol + rtol |x_i|, over rtol). */
+static void
+scales(Taylor *tp, double h, double *S)
+{
+    int p = tp->p, N = tp->N;
+    for (int i = 0; i < N; i++) {
+        double big = 0, hj = 1;
+        for (int j = 0; j <= p; j++, hj *= h)
+            big = fmax(big, fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]) * hj);
+        S[i] = big + tp->atol / tp->rtol;
+    }
+}
+
+/* The step the series allows (Jorba and Zou, above), with each
+ * component's scale its size over the step rather than at its start: a
+ * component passing through 0 (a pendulum at the bottom) is measured
+ * against how far it moves, not against its vanishing value.  The scales
+ * and the step depend on each other; from the step their first terms
+ * allow, SCALE_ROUNDS rounds of the two settle it (each moves h by a
+ * p-th root of the round before's change). */
+enum { SCALE_ROUNDS = 2 };
+static double
+step_size(Taylor *tp)
+{
+    double factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
+    double h = radius(tp, NULL) * factor;
+    for (int r = 0; r < SCALE_ROUNDS && isfinite(h); r++) {
+        scales(tp, h, tp->S);
+        h = radius(tp, tp->S) * factor;
+    }
+    return h;
+}
+
+int
+taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, N = tp->N, p = tp->p;
+    const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0);
+    memcpy(tp->X, x, (size_t)N * sizeof *x);
+    tp->t0 = t0;
+    for (int k = 0; k < p; k++) {
+        put_state(tp, k);
+        m->taylor(k, TAYLOR_MAX_ORDER, t0, par, u, tp->T);
+        if (k == 0) {
+            for (int i = 0; i < n * n; i++)
+                tp->M0[i] = coef(tp, m->taylor_M[i], 0);
+            if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
+                return -1;
+        }
+        /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b */
+        for (int i = 0; i < n; i++) {
+            double bi = coef(tp, m->taylor_h[i], k);
+            for (int j = 1; j <= k; j++) {
+                const double *a = tp->A + (size_t)(k - j) * (size_t)n;
+                for (int l = 0; l < n; l++) {
+                    int slot = m->taylor_M[i * n + l];
+                    if (slot >= 0)
+                        bi += coef(tp, slot, j) * a[l];
+                }
+            }
+            tp->b[i] = bi;
+        }
+        la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
+        double *ak = tp->A + (size_t)k * (size_t)n;
+        memcpy(ak, tp->b, (size_t)n * sizeof *ak);
+        double *next = tp->X + (size_t)(k + 1) * (size_t)N;
+        const double *cur = tp->X + (size_t)k * (size_t)N;
+        for (int i = 0; i < n; i++) {
+            next[i] = cur[n + i] / (k + 1);
+            next[n + i] = ak[i] / (k + 1);
+        }
+        if (!sim_all_finite(next, N))
+            return -1;
+    }
+    double hs = step_size(tp);
+    *h = hs < hmax ? hs : hmax;
+    return 0;
+}
+
+void
+taylor_eval(const Taylor *tp, double tau, double *x)
+{
+    int N = tp->N;
+    memcpy(x, tp->X + (size_t)tp->p * (size_t)N, (size_t)N * sizeof *x);
+    for (int j = tp->p - 1; j >= 0; j--) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        for (int i = 0; i < N; i++)
+            x[i] = x[i] * tau + c[i];
+    }
+}
+
+void
+taylor_error(const Taylor *tp, double h, double *err)
+{
+    const double *c = tp->X + (size_t)tp->p * (size_t)tp->N;
+    double hp = pow(fabs(h), tp->p);
+    for (int i = 0; i < tp->N; i++)
+        err[i] = fabs(c[i]) * hp;
+}
+
+double
+taylor_start(const Taylor *tp)
+{
+    return tp->t0;
+}
+
+int
+taylor_order(const Taylor *tp)
+{
+    return tp->p;
+}

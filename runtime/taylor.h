@@ -1,0 +1,41 @@
+/*
+ * taylor.h: Taylor's method (--method taylor), for the step layer
+ * (evolve.c): the series of the solution through a state, to an order
+ * the tolerance sets, from the model's generated `taylor` function (the
+ * series of M and h, eomc_model.h) and one factorization of M per step;
+ * the step from the decay of the last coefficients (Jorba and Zou); the
+ * step's polynomial as its dense output.  Not installed.
+ */
+#ifndef EOMC_TAYLOR_STEP_H
+#define EOMC_TAYLOR_STEP_H
+
+#include "eomc.h"
+
+typedef struct Taylor Taylor;
+
+/* Whether s's model can run Taylor's method with o: EOMC_OK, or
+ * EOMC_EUSAGE with the message saying why not (no generated series and
+ * why, an input that is not held constant, rtol not positive). */
+int taylor_check(eomc_sim *s, const eomc_run_opts *o);
+/* For o's tolerances (taylor_check passed); NULL when memory runs out. */
+Taylor *taylor_alloc(eomc_sim *s, const eomc_run_opts *o);
+void taylor_free(Taylor *tp);
+/* The series of the motion through (t0, x) [2nq], to the order the
+ * tolerance sets, and the step it allows (at most hmax): *h.  The
+ * polynomial stays until the next call (taylor_eval).  0, or -1 when M
+ * at x is not safely positive definite or a coefficient is not finite
+ * (the caller says so: eomc_sim_accel at x names the cause of the
+ * first). */
+int taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h);
+/* The last series' value at t0 + tau into x [2nq]: Horner's rule. */
+void taylor_eval(const Taylor *tp, double tau, double *x);
+/* An estimate of the error of the last series' value at t0 + h, per
+ * component, into err [2nq]: its last term, |x_p| h^p, which bounds the
+ * ones left out where the step rule holds (they shrink by e^-2 or more
+ * each). */
+void taylor_error(const Taylor *tp, double h, double *err);
+/* The last series' start and order. */
+double taylor_start(const Taylor *tp);
+int taylor_order(const Taylor *tp);
+
+#endif

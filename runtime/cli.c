@@ -391,6 +391,26 @@ work_precision(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
                     "which %s was built without (rebuild with `eomc build %s --jacobian "
                     "auto` to report them)\n", c->prog, left, m->name, m->spec);
     }
+    /* nor Taylor's method without the model's series: the same, saying why */
+    const char *with_series[NMETHODS + 1];
+    if (!m->taylor) {
+        int n = 0, left = 0;
+        for (int k = 0; methods[k]; k++) {
+            if (strcmp(methods[k], "taylor"))
+                with_series[n++] = methods[k];
+            else if (c->methods)
+                return opt_usage(c, "--methods: taylor needs the model's Taylor series, which "
+                                 "%s has none of: %s", m->name,
+                                 m->taylor_why ? m->taylor_why : "not generated");
+            else
+                left = 1;
+        }
+        with_series[n] = NULL;
+        methods = with_series;
+        if (left)
+            fprintf(io_err(), "%s: note: taylor left out: %s has no Taylor series (%s)\n",
+                    c->prog, m->name, m->taylor_why ? m->taylor_why : "not generated");
+    }
     assembly_check(c, sim, x);
     int rc = get_reference(c, sim, ext, x, &ref);
     if (rc != EOMC_OK)

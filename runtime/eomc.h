@@ -288,6 +288,7 @@ typedef struct eomc_stats {
      * ill_t is NAN. */
     double max_condition, t_condition, cond_tol, ill_t;
     char ill[512];
+    long condition_estimates; /* how many (each a factorization and a few solves) */
     /* A model that conserves a quantity h (model->invariant), adaptive
      * steps (and projection, when constrained: otherwise the constraints'
      * drift moves h too): its largest change over the steps, and its

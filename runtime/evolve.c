@@ -96,6 +96,7 @@ typedef struct Run {
     unsigned long nfixed, i;      /* fixed steps: how many, and the last taken */
     int pending;                  /* a `set` event whose reset starts the next
                                    * step (-1: none) */
+    double cond_pivot;            /* the pivot at the last condition estimate */
     Taylor *taylor;               /* Taylor's method: the step's series (NULL:
                                    * GSL's stepper) */
     Taylor *taylor_side;          /* ... a side step's, from elsewhere */
@@ -285,9 +286,15 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
  * steps, and at any step whose solves had a pivot small enough that the
  * condition may be within PIVOT_SLACK of the tolerance's limit: the
  * inverse of the smallest pivot is only about a lower bound (by a factor
- * of 4 for two coordinates, more for more). */
+ * of 4 for two coordinates, more for more).  A run whose pivots stay
+ * that small (a chain at 1e-12: every step) would estimate at every step,
+ * a quarter of its work besides the right-hand sides, so after an
+ * estimate the pivot must fall below PIVOT_DROP of the pivot then before
+ * it triggers another: the condition grows about as the pivot shrinks,
+ * and the estimate every WATCH_EVERY steps catches the rest. */
 enum { WATCH_EVERY = 64 };
 #define PIVOT_SLACK 1e3
+#define PIVOT_DROP 0.5
 
 /* After each step: the condition of the system solved for q'', and the
  * first time it passed what the tolerance allows. */
@@ -297,8 +304,11 @@ watch_condition(Run *r)
     eomc_stats *st = r->st;
     double tol = st->cond_tol;
     double pivot = sim_take_pivot(r->s);
-    if (st->steps % WATCH_EVERY != 0 && !(PIVOT_SLACK * DBL_EPSILON > tol * pivot))
+    if (st->steps % WATCH_EVERY != 0 &&
+        !(PIVOT_SLACK * DBL_EPSILON > tol * pivot && pivot < PIVOT_DROP * r->cond_pivot))
         return;
+    r->cond_pivot = pivot;
+    st->condition_estimates++;
     double cond = sim_condition(r->s, r->t, r->x, r->x + r->n);
     if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
         return;
@@ -802,7 +812,8 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-               .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN};
+               .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
+               .cond_pivot = INFINITY};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);

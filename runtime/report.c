@@ -263,6 +263,8 @@ print_block_head(const Report *r, const Entry *e)
         fprintf(io_out(), " %15s", "invariant_drift");
     if (m->nc > 0)
         fprintf(io_out(), " %19s", "constraint_residual");
+    if (!strcmp(e->method, "taylor")) /* its order follows the tolerance */
+        fprintf(io_out(), " %10s", "order_mean");
     fprintf(io_out(), "\n");
 }
 
@@ -298,6 +300,8 @@ print_entry(const Report *r, const Entry *e)
         fprintf(io_out(), " %15.2e", e->drift);
     if (m->nc > 0)
         fprintf(io_out(), " %19.2e", e->residual);
+    if (e->st.order_sum > 0)
+        fprintf(io_out(), " %10.3g", (double)e->st.order_sum / (double)e->st.steps);
     fprintf(io_out(), "\n");
 }
 
@@ -419,7 +423,8 @@ write_csv(const Report *r, const Entry *e, int n)
         return EOMC_EUSAGE;
     }
     fprintf(f, "method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,"
-               "jac_evals,error_end,error_max,invariant_drift,constraint_residual\n");
+               "jac_evals,error_end,error_max,invariant_drift,constraint_residual,"
+               "order_mean\n");
     for (int k = 0; k < n; k++) {
         const Entry *x = &e[k];
         if (x->status == RUN_SKIPPED)
@@ -447,6 +452,10 @@ write_csv(const Report *r, const Entry *e, int n)
             fprintf(f, ",");
         if (x->status == RUN_OK && m->nc > 0)
             csv_num(f, x->residual);
+        else
+            fprintf(f, ",");
+        if (x->st.order_sum > 0) /* Taylor's method's mean order */
+            csv_num(f, (double)x->st.order_sum / (double)x->st.steps);
         else
             fprintf(f, ",");
         fprintf(f, "\n");

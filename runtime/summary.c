@@ -71,8 +71,8 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
     fprintf(io_err(), "side_steps %ld\n", st->side_steps);
     if (st->order_sum > 0) /* Taylor's method: its orders, on average */
         fprintf(io_err(), "order_mean %.3g\n", (double)st->order_sum / (double)st->steps);
-    fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\n", st->max_condition,
-            st->t_condition);
+    fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\ncondition_estimates %ld\n",
+            st->max_condition, st->t_condition, st->condition_estimates);
     if (st->invariant_budget > 0)
         fprintf(io_err(), "invariant_budget %.3g\n", st->invariant_budget);
     if (m->nc > 0)

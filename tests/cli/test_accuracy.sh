@@ -26,7 +26,7 @@ set -u
 eomc=$1 src=$2 build=$3
 case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 . "$src/tests/cli/tap.sh"
-header="method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,jac_evals,error_end,error_max,invariant_drift,constraint_residual"
+header="method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,jac_evals,error_end,error_max,invariant_drift,constraint_residual,order_mean"
 
 "$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/pend" 2> "$tmp/build.err" ||
   cat "$tmp/build.err"
@@ -38,7 +38,7 @@ EOMC_CACHE_DIR="$tmp/cache" "$eomc" accuracy "$src/specs/pendulum.yaml" \
 [ $st -eq 0 ] && [ "$(head -n 1 "$tmp/wp.csv")" = "$header" ]
 ok $? "eomc accuracy --csv: exit $st, the header is $header"
 rows=$(($(wc -l < "$tmp/wp.csv") - 1))
-awk -F, 'NR > 1 { if (NF != 12) bad = 1
+awk -F, 'NR > 1 { if (NF != 13) bad = 1
   for (i = 4; i <= 11; i++) if ($i !~ /^[0-9.e+-]+$/) bad = 1 }
   END { exit bad }' "$tmp/wp.csv" && [ "$rows" -eq 12 ]
 ok $? "... 12 runs (3 methods x 3 tolerances, rk4 at 3 fixed steps), every measured cell a number"

@@ -234,12 +234,12 @@ measure_row(void *ctx, double t, const double *x)
 typedef struct Report {
     int nrow;
     char method[64][16];
-    double v[64][12];
+    double v[64][13];
 } Report;
 
 static const char *const report_header =
     "method,tolerance,fixed_step,cpu_seconds,steps,rejected,rhs_evals,jac_evals,"
-    "error_end,error_max,invariant_drift,constraint_residual";
+    "error_end,error_max,invariant_drift,constraint_residual,order_mean";
 enum { R_TOL = 1, R_FIXED = 2, R_STEPS = 4, R_END = 8, R_MAX = 9 };
 
 static int
@@ -261,7 +261,7 @@ read_report(const char *path, Report *r)
             break;
         snprintf(r->method[r->nrow], 16, "%.*s", (int)(comma - p), p);
         p = comma + 1;
-        for (int c = 1; c < 12; c++) {
+        for (int c = 1; c < 13; c++) {
             char *end;
             double x = strtod(p, &end);
             r->v[r->nrow][c] = end == p ? NAN : x;

@@ -242,7 +242,7 @@ enum {
 };
 typedef struct LowTayStep {
     const char *call; /* "mul": eomc_tay_mul */
-    int nslot;
+    int nslot, nres;  /* slots, of which the first nres are written */
     int slot[4];
     int src, index;
     double value;
@@ -263,7 +263,6 @@ typedef struct LowTaylor {
     int *h_slot;          /* [nq] */
     int *g_slot;          /* [nevent] */
     int nevent;
-    int reads_p, reads_u, reads_t; /* which of p, u, t0 a step reads */
 } LowTaylor;
 
 /* The model's functions in the order they are printed. */

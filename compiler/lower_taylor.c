@@ -49,7 +49,14 @@ call(Build *b, const char *name, int n, int s0, int s1, int s2, int s3)
         b->step = xrealloc(b->step, (size_t)b->cap * sizeof *b->step);
     }
     LowTayStep *st = &b->step[b->nstep++];
-    *st = (LowTayStep){.call = name, .nslot = n, .slot = {s0, s1, s2, s3},
+    /* sincos and sinhcosh write two series, the others one and their
+     * auxiliary ones */
+    static const char *const two[] = {"sincos", "sinhcosh", "tan", "tanh", "atan", "atan2"};
+    int nres = !strcmp(name, "asin") || !strcmp(name, "acos") ? 3 : 1;
+    for (size_t j = 0; j < sizeof two / sizeof two[0]; j++)
+        if (!strcmp(name, two[j]))
+            nres = 2;
+    *st = (LowTayStep){.call = name, .nslot = n, .nres = nres, .slot = {s0, s1, s2, s3},
                        .src = LOW_TAY_SRC_NONE};
     return st;
 }
@@ -340,12 +347,6 @@ lower_taylor(const Lowered *L, ExprPool *P, Arena *A)
         for (int k = 0; L->events && k < L->events->nout; k++) {
             const LowSlot *o = &L->events->out[k];
             ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
-        }
-        for (int k = 0; k < b.nstep; k++) {
-            int src = b.step[k].src;
-            ty->reads_p |= src == LOW_TAY_SRC_P;
-            ty->reads_u |= src == LOW_TAY_SRC_U;
-            ty->reads_t |= src == LOW_TAY_SRC_T;
         }
     }
     free(mark);

@@ -392,7 +392,7 @@ toolchain_hash(void)
     h = hash_file(h, "/proc/self/exe");
     h = hash_file(h, lib);
     static const char *const headers[] = {"eomc.h", "eomc_model.h", "eomc_main.h", "eomc_mpi.h",
-                                          "eomc_tree.h"};
+                                          "eomc_tree.h", "eomc_taylor.h"};
     for (size_t k = 0; k < sizeof headers / sizeof headers[0]; k++) {
         char path[PATH_MAX * 2 + 64];
         snprintf(path, sizeof path, "%s/%s", inc, headers[k]);

@@ -140,6 +140,8 @@ print_banner(Printer *pr, const EmitInfo *info)
     emit_line(pr, "#include \"eomc_model.h\"");
     if (pr->L->code == LOWER_CODE_TABLES)
         emit_line(pr, "#include \"eomc_tree.h\"");
+    if (!pr->L->taylor->why)
+        emit_line(pr, "#include \"eomc_taylor.h\"");
     emit_line(pr, "");
     emit_line(pr, "#if defined(__GNUC__)");
     emit_line(pr, "#define EOMC_NOINLINE __attribute__((noinline))");
@@ -557,6 +559,18 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     } else {
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
+    const LowTaylor *ty = L->taylor;
+    if (ty->why) {
+        fprintf(pr->f, "    .taylor_nslot = 0, .taylor = NULL, .taylor_why = ");
+        print_c_string(pr->f, ty->why);
+        emit_line(pr, ",");
+    } else {
+        emit_line(pr, "    .taylor_nslot = %d, .taylor_q = taylor_q, .taylor_v = taylor_v,",
+                  ty->nslot);
+        emit_line(pr, "    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = %s,",
+                  ty->nevent ? "taylor_g" : "NULL");
+        emit_line(pr, "    .taylor = %s_taylor, .taylor_why = NULL, /* Taylor's method */", nm);
+    }
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -838,6 +852,7 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
             print_event_set(&pr, L);
     }
     emit_fence(&pr, 1);
+    emit_taylor(&pr, L->taylor);
     print_model_struct(&pr, L, info);
     if (pr.unit2) {
         emit_unit2_swap(&pr);

@@ -70,5 +70,8 @@ void emit_func_of(Func *fn, const LowFunc *lf);
 /* Print a lowered function (and, first, the one its copies call); its
  * operation counts, each copy's included. */
 ExprCount emit_function(Printer *pr, const LowFunc *lf);
+/* The taylor member and its tables (emit_taylor.c), in double only;
+ * nothing when ty->why says why there is none. */
+void emit_taylor(Printer *pr, const LowTaylor *ty);
 
 #endif

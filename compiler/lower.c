@@ -802,6 +802,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++)
         repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
+    lw.L->taylor = lower_taylor(lw.L, P, A); /* from the lists as they are printed */
     return lw.L;
 }
 

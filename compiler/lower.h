@@ -227,6 +227,44 @@ typedef struct LowModel {
     double camera[9];
 } LowModel;
 
+/* ---- Taylor's method: the series program (lower_taylor.c) ---- */
+
+/* One call of runtime/eomc_taylor.h, printed
+ * eomc_tay_CALL(T + slot[0] * S, ..., [value,] k): slot[0 .. nslot-1] are
+ * its series arguments in the call's order (results, auxiliary series,
+ * operands), then, for const and time, the value (src). */
+enum {
+    LOW_TAY_SRC_NONE,  /* no value argument */
+    LOW_TAY_SRC_CONST, /* value */
+    LOW_TAY_SRC_P,     /* p[index] */
+    LOW_TAY_SRC_U,     /* u[index] */
+    LOW_TAY_SRC_T,     /* t0 */
+};
+typedef struct LowTayStep {
+    const char *call; /* "mul": eomc_tay_mul */
+    int nslot, nres;  /* slots, of which the first nres are written */
+    int slot[4];
+    int src, index;
+    double value;
+} LowTayStep;
+
+/* The program of the model's taylor member (eomc_model.h): nstep calls
+ * over nslot series, in an order where every operand is computed before
+ * it is read; the caller writes the slots of q and q' (q_slot, v_slot,
+ * -1: nothing reads it).  M_slot[i nq + j], h_slot[i], g_slot[e]: the
+ * results (-1: zero at every order).  why: NULL, or why there is no
+ * program (one sentence), and then nothing else is set. */
+typedef struct LowTaylor {
+    const char *why;
+    int nslot, nstep;
+    LowTayStep *step;
+    int *q_slot, *v_slot; /* [nq] */
+    int *M_slot;          /* [nq nq] */
+    int *h_slot;          /* [nq] */
+    int *g_slot;          /* [nevent] */
+    int nevent;
+} LowTaylor;
+
 /* The model's functions in the order they are printed. */
 typedef struct Lowered {
     LowModel model;
@@ -272,6 +310,7 @@ typedef struct Lowered {
     int n;                /* coordinates */
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
+    LowTaylor *taylor;    /* the taylor member's program, or why there is none */
 } Lowered;
 
 /* How the jacobian member is computed.  UNROLLED: every entry of dE/dq
@@ -317,6 +356,10 @@ Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
 /* Fill L->model, its strings and arrays in A (lower_model calls it). */
 void lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
                     const Invariant *inv, Arena *A);
+
+/* The taylor member's program from L's mass_bias and events (or, in
+ * ->why, why not): lower_model calls it last. */
+LowTaylor *lower_taylor(const Lowered *L, ExprPool *P, Arena *A);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none),
  * copies included. */

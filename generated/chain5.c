@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -1786,6 +1787,225 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[49] = w36;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias and events compute, slot s's at T[s (K + 1)
+ * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 213 slots, 198 calls. */
+static void
+chain5_taylor(int k, int K, double t0, const double *p, const double *u,
+    double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_sincos(T + 1 * S, T + 2 * S, T, k);
+    eomc_tay_add(T + 4 * S, T, T + 3 * S, k);
+    eomc_tay_sincos(T + 5 * S, T + 6 * S, T + 4 * S, k);
+    eomc_tay_add(T + 7 * S, T + 1 * S, T + 5 * S, k);
+    eomc_tay_add(T + 8 * S, T + 2 * S, T + 6 * S, k);
+    eomc_tay_add(T + 10 * S, T + 4 * S, T + 9 * S, k);
+    eomc_tay_sincos(T + 11 * S, T + 12 * S, T + 10 * S, k);
+    eomc_tay_add(T + 13 * S, T + 7 * S, T + 11 * S, k);
+    eomc_tay_add(T + 14 * S, T + 8 * S, T + 12 * S, k);
+    eomc_tay_add(T + 16 * S, T + 10 * S, T + 15 * S, k);
+    eomc_tay_sincos(T + 17 * S, T + 18 * S, T + 16 * S, k);
+    eomc_tay_add(T + 19 * S, T + 13 * S, T + 17 * S, k);
+    eomc_tay_add(T + 20 * S, T + 14 * S, T + 18 * S, k);
+    eomc_tay_add(T + 22 * S, T + 16 * S, T + 21 * S, k);
+    eomc_tay_sincos(T + 23 * S, T + 24 * S, T + 22 * S, k);
+    eomc_tay_add(T + 25 * S, T + 19 * S, T + 23 * S, k);
+    eomc_tay_add(T + 26 * S, T + 20 * S, T + 24 * S, k);
+    eomc_tay_sqr(T + 32 * S, T + 27 * S, k);
+    eomc_tay_const(T + 33 * S, p[3], k);
+    eomc_tay_mul(T + 34 * S, T + 1 * S, T + 32 * S, k);
+    eomc_tay_mul(T + 35 * S, T + 2 * S, T + 32 * S, k);
+    eomc_tay_add(T + 36 * S, T + 27 * S, T + 28 * S, k);
+    eomc_tay_mul(T + 37 * S, T + 6 * S, T + 36 * S, k);
+    eomc_tay_mul(T + 38 * S, T + 5 * S, T + 36 * S, k);
+    eomc_tay_mul(T + 39 * S, T + 36 * S, T + 38 * S, k);
+    eomc_tay_mul(T + 40 * S, T + 36 * S, T + 37 * S, k);
+    eomc_tay_add(T + 41 * S, T + 29 * S, T + 36 * S, k);
+    eomc_tay_mul(T + 42 * S, T + 12 * S, T + 41 * S, k);
+    eomc_tay_mul(T + 43 * S, T + 11 * S, T + 41 * S, k);
+    eomc_tay_mul(T + 44 * S, T + 41 * S, T + 43 * S, k);
+    eomc_tay_mul(T + 45 * S, T + 41 * S, T + 42 * S, k);
+    eomc_tay_add(T + 46 * S, T + 30 * S, T + 41 * S, k);
+    eomc_tay_mul(T + 47 * S, T + 18 * S, T + 46 * S, k);
+    eomc_tay_mul(T + 48 * S, T + 17 * S, T + 46 * S, k);
+    eomc_tay_mul(T + 49 * S, T + 46 * S, T + 48 * S, k);
+    eomc_tay_mul(T + 50 * S, T + 46 * S, T + 47 * S, k);
+    eomc_tay_add(T + 51 * S, T + 31 * S, T + 46 * S, k);
+    eomc_tay_mul(T + 52 * S, T + 24 * S, T + 51 * S, k);
+    eomc_tay_mul(T + 53 * S, T + 23 * S, T + 51 * S, k);
+    eomc_tay_mul(T + 54 * S, T + 51 * S, T + 53 * S, k);
+    eomc_tay_mul(T + 55 * S, T + 51 * S, T + 52 * S, k);
+    eomc_tay_const(T + 56 * S, p[5], k);
+    eomc_tay_const(T + 57 * S, p[7], k);
+    eomc_tay_scale(T + 58 * S, T + 56 * S, T + 23 * S, k);
+    eomc_tay_const(T + 59 * S, p[8], k);
+    eomc_tay_scale(T + 60 * S, T + 57 * S, T + 17 * S, k);
+    eomc_tay_sub(T + 61 * S, T + 58 * S, T + 60 * S, k);
+    eomc_tay_const(T + 62 * S, p[9], k);
+    eomc_tay_scale(T + 63 * S, T + 59 * S, T + 11 * S, k);
+    eomc_tay_sub(T + 64 * S, T + 61 * S, T + 63 * S, k);
+    eomc_tay_const(T + 65 * S, p[10], k);
+    eomc_tay_scale(T + 66 * S, T + 62 * S, T + 5 * S, k);
+    eomc_tay_sub(T + 67 * S, T + 64 * S, T + 66 * S, k);
+    eomc_tay_scale(T + 68 * S, T + 65 * S, T + 1 * S, k);
+    eomc_tay_sub(T + 69 * S, T + 67 * S, T + 68 * S, k);
+    eomc_tay_mul(T + 70 * S, T + 23 * S, T + 25 * S, k);
+    eomc_tay_mul(T + 71 * S, T + 24 * S, T + 26 * S, k);
+    eomc_tay_add(T + 72 * S, T + 70 * S, T + 71 * S, k);
+    eomc_tay_add(T + 73 * S, T + 19 * S, T + 25 * S, k);
+    eomc_tay_mul(T + 74 * S, T + 17 * S, T + 73 * S, k);
+    eomc_tay_add(T + 75 * S, T + 72 * S, T + 74 * S, k);
+    eomc_tay_add(T + 76 * S, T + 20 * S, T + 26 * S, k);
+    eomc_tay_mul(T + 77 * S, T + 18 * S, T + 76 * S, k);
+    eomc_tay_add(T + 78 * S, T + 75 * S, T + 77 * S, k);
+    eomc_tay_add(T + 79 * S, T + 13 * S, T + 73 * S, k);
+    eomc_tay_mul(T + 80 * S, T + 11 * S, T + 79 * S, k);
+    eomc_tay_add(T + 81 * S, T + 78 * S, T + 80 * S, k);
+    eomc_tay_add(T + 82 * S, T + 14 * S, T + 76 * S, k);
+    eomc_tay_mul(T + 83 * S, T + 12 * S, T + 82 * S, k);
+    eomc_tay_add(T + 84 * S, T + 81 * S, T + 83 * S, k);
+    eomc_tay_add(T + 85 * S, T + 7 * S, T + 79 * S, k);
+    eomc_tay_mul(T + 86 * S, T + 5 * S, T + 85 * S, k);
+    eomc_tay_add(T + 87 * S, T + 84 * S, T + 86 * S, k);
+    eomc_tay_add(T + 88 * S, T + 8 * S, T + 82 * S, k);
+    eomc_tay_mul(T + 89 * S, T + 6 * S, T + 88 * S, k);
+    eomc_tay_add(T + 90 * S, T + 87 * S, T + 89 * S, k);
+    eomc_tay_scale(T + 91 * S, T + 33 * S, T + 90 * S, k);
+    eomc_tay_add(T + 92 * S, T + 5 * S, T + 11 * S, k);
+    eomc_tay_add(T + 93 * S, T + 17 * S, T + 92 * S, k);
+    eomc_tay_add(T + 94 * S, T + 23 * S, T + 93 * S, k);
+    eomc_tay_mul(T + 95 * S, T + 23 * S, T + 94 * S, k);
+    eomc_tay_add(T + 96 * S, T + 6 * S, T + 12 * S, k);
+    eomc_tay_add(T + 97 * S, T + 18 * S, T + 96 * S, k);
+    eomc_tay_add(T + 98 * S, T + 24 * S, T + 97 * S, k);
+    eomc_tay_mul(T + 99 * S, T + 24 * S, T + 98 * S, k);
+    eomc_tay_add(T + 100 * S, T + 95 * S, T + 99 * S, k);
+    eomc_tay_add(T + 101 * S, T + 93 * S, T + 94 * S, k);
+    eomc_tay_mul(T + 102 * S, T + 17 * S, T + 101 * S, k);
+    eomc_tay_add(T + 103 * S, T + 100 * S, T + 102 * S, k);
+    eomc_tay_add(T + 104 * S, T + 97 * S, T + 98 * S, k);
+    eomc_tay_mul(T + 105 * S, T + 18 * S, T + 104 * S, k);
+    eomc_tay_add(T + 106 * S, T + 103 * S, T + 105 * S, k);
+    eomc_tay_add(T + 107 * S, T + 92 * S, T + 101 * S, k);
+    eomc_tay_mul(T + 108 * S, T + 11 * S, T + 107 * S, k);
+    eomc_tay_add(T + 109 * S, T + 106 * S, T + 108 * S, k);
+    eomc_tay_add(T + 110 * S, T + 96 * S, T + 104 * S, k);
+    eomc_tay_mul(T + 111 * S, T + 12 * S, T + 110 * S, k);
+    eomc_tay_add(T + 112 * S, T + 109 * S, T + 111 * S, k);
+    eomc_tay_add(T + 113 * S, T + 5 * S, T + 107 * S, k);
+    eomc_tay_mul(T + 114 * S, T + 5 * S, T + 113 * S, k);
+    eomc_tay_add(T + 115 * S, T + 112 * S, T + 114 * S, k);
+    eomc_tay_add(T + 116 * S, T + 6 * S, T + 110 * S, k);
+    eomc_tay_mul(T + 117 * S, T + 6 * S, T + 116 * S, k);
+    eomc_tay_add(T + 118 * S, T + 115 * S, T + 117 * S, k);
+    eomc_tay_scale(T + 119 * S, T + 33 * S, T + 118 * S, k);
+    eomc_tay_scale(T + 120 * S, T + 33 * S, T + 84 * S, k);
+    eomc_tay_scale(T + 121 * S, T + 33 * S, T + 112 * S, k);
+    eomc_tay_add(T + 122 * S, T + 11 * S, T + 17 * S, k);
+    eomc_tay_add(T + 123 * S, T + 23 * S, T + 122 * S, k);
+    eomc_tay_mul(T + 124 * S, T + 23 * S, T + 123 * S, k);
+    eomc_tay_add(T + 125 * S, T + 12 * S, T + 18 * S, k);
+    eomc_tay_add(T + 126 * S, T + 24 * S, T + 125 * S, k);
+    eomc_tay_mul(T + 127 * S, T + 24 * S, T + 126 * S, k);
+    eomc_tay_add(T + 128 * S, T + 124 * S, T + 127 * S, k);
+    eomc_tay_add(T + 129 * S, T + 122 * S, T + 123 * S, k);
+    eomc_tay_mul(T + 130 * S, T + 17 * S, T + 129 * S, k);
+    eomc_tay_add(T + 131 * S, T + 128 * S, T + 130 * S, k);
+    eomc_tay_add(T + 132 * S, T + 125 * S, T + 126 * S, k);
+    eomc_tay_mul(T + 133 * S, T + 18 * S, T + 132 * S, k);
+    eomc_tay_add(T + 134 * S, T + 131 * S, T + 133 * S, k);
+    eomc_tay_add(T + 135 * S, T + 11 * S, T + 129 * S, k);
+    eomc_tay_mul(T + 136 * S, T + 11 * S, T + 135 * S, k);
+    eomc_tay_add(T + 137 * S, T + 134 * S, T + 136 * S, k);
+    eomc_tay_add(T + 138 * S, T + 12 * S, T + 132 * S, k);
+    eomc_tay_mul(T + 139 * S, T + 12 * S, T + 138 * S, k);
+    eomc_tay_add(T + 140 * S, T + 137 * S, T + 139 * S, k);
+    eomc_tay_scale(T + 141 * S, T + 33 * S, T + 140 * S, k);
+    eomc_tay_scale(T + 142 * S, T + 33 * S, T + 78 * S, k);
+    eomc_tay_scale(T + 143 * S, T + 33 * S, T + 106 * S, k);
+    eomc_tay_scale(T + 144 * S, T + 33 * S, T + 134 * S, k);
+    eomc_tay_add(T + 145 * S, T + 18 * S, T + 24 * S, k);
+    eomc_tay_add(T + 146 * S, T + 18 * S, T + 145 * S, k);
+    eomc_tay_mul(T + 147 * S, T + 18 * S, T + 146 * S, k);
+    eomc_tay_add(T + 148 * S, T + 17 * S, T + 23 * S, k);
+    eomc_tay_add(T + 149 * S, T + 17 * S, T + 148 * S, k);
+    eomc_tay_mul(T + 150 * S, T + 17 * S, T + 149 * S, k);
+    eomc_tay_mul(T + 151 * S, T + 23 * S, T + 148 * S, k);
+    eomc_tay_mul(T + 152 * S, T + 24 * S, T + 145 * S, k);
+    eomc_tay_add(T + 153 * S, T + 151 * S, T + 152 * S, k);
+    eomc_tay_add(T + 154 * S, T + 150 * S, T + 153 * S, k);
+    eomc_tay_add(T + 155 * S, T + 147 * S, T + 154 * S, k);
+    eomc_tay_scale(T + 156 * S, T + 33 * S, T + 155 * S, k);
+    eomc_tay_scale(T + 157 * S, T + 33 * S, T + 72 * S, k);
+    eomc_tay_scale(T + 158 * S, T + 33 * S, T + 100 * S, k);
+    eomc_tay_scale(T + 159 * S, T + 33 * S, T + 128 * S, k);
+    eomc_tay_scale(T + 160 * S, T + 33 * S, T + 153 * S, k);
+    eomc_tay_add(T + 161 * S, T + 34 * S, T + 39 * S, k);
+    eomc_tay_add(T + 162 * S, T + 35 * S, T + 40 * S, k);
+    eomc_tay_add(T + 163 * S, T + 44 * S, T + 161 * S, k);
+    eomc_tay_add(T + 164 * S, T + 45 * S, T + 162 * S, k);
+    eomc_tay_add(T + 165 * S, T + 49 * S, T + 163 * S, k);
+    eomc_tay_add(T + 166 * S, T + 50 * S, T + 164 * S, k);
+    eomc_tay_add(T + 167 * S, T + 54 * S, T + 165 * S, k);
+    eomc_tay_add(T + 168 * S, T + 55 * S, T + 166 * S, k);
+    eomc_tay_mul(T + 169 * S, T + 23 * S, T + 168 * S, k);
+    eomc_tay_mul(T + 170 * S, T + 24 * S, T + 167 * S, k);
+    eomc_tay_add(T + 171 * S, T + 166 * S, T + 168 * S, k);
+    eomc_tay_mul(T + 172 * S, T + 17 * S, T + 171 * S, k);
+    eomc_tay_add(T + 173 * S, T + 165 * S, T + 167 * S, k);
+    eomc_tay_mul(T + 174 * S, T + 18 * S, T + 173 * S, k);
+    eomc_tay_add(T + 175 * S, T + 164 * S, T + 171 * S, k);
+    eomc_tay_mul(T + 176 * S, T + 11 * S, T + 175 * S, k);
+    eomc_tay_add(T + 177 * S, T + 163 * S, T + 173 * S, k);
+    eomc_tay_mul(T + 178 * S, T + 12 * S, T + 177 * S, k);
+    eomc_tay_add(T + 179 * S, T + 162 * S, T + 175 * S, k);
+    eomc_tay_mul(T + 180 * S, T + 5 * S, T + 179 * S, k);
+    eomc_tay_add(T + 181 * S, T + 161 * S, T + 177 * S, k);
+    eomc_tay_mul(T + 182 * S, T + 6 * S, T + 181 * S, k);
+    eomc_tay_sub(T + 183 * S, T + 169 * S, T + 170 * S, k);
+    eomc_tay_add(T + 184 * S, T + 172 * S, T + 183 * S, k);
+    eomc_tay_sub(T + 185 * S, T + 184 * S, T + 174 * S, k);
+    eomc_tay_scale(T + 186 * S, T + 33 * S, T + 185 * S, k);
+    eomc_tay_add(T + 187 * S, T + 61 * S, T + 186 * S, k);
+    eomc_tay_scale(T + 188 * S, T + 33 * S, T + 183 * S, k);
+    eomc_tay_add(T + 189 * S, T + 58 * S, T + 188 * S, k);
+    eomc_tay_add(T + 190 * S, T + 1 * S, T + 85 * S, k);
+    eomc_tay_mul(T + 191 * S, T + 1 * S, T + 190 * S, k);
+    eomc_tay_add(T + 192 * S, T + 90 * S, T + 191 * S, k);
+    eomc_tay_add(T + 193 * S, T + 2 * S, T + 88 * S, k);
+    eomc_tay_mul(T + 194 * S, T + 2 * S, T + 193 * S, k);
+    eomc_tay_add(T + 195 * S, T + 192 * S, T + 194 * S, k);
+    eomc_tay_scale(T + 196 * S, T + 33 * S, T + 195 * S, k);
+    eomc_tay_add(T + 197 * S, T + 176 * S, T + 185 * S, k);
+    eomc_tay_sub(T + 198 * S, T + 197 * S, T + 178 * S, k);
+    eomc_tay_scale(T + 199 * S, T + 33 * S, T + 198 * S, k);
+    eomc_tay_add(T + 200 * S, T + 180 * S, T + 198 * S, k);
+    eomc_tay_sub(T + 201 * S, T + 200 * S, T + 182 * S, k);
+    eomc_tay_scale(T + 202 * S, T + 33 * S, T + 201 * S, k);
+    eomc_tay_add(T + 203 * S, T + 35 * S, T + 179 * S, k);
+    eomc_tay_add(T + 204 * S, T + 34 * S, T + 181 * S, k);
+    eomc_tay_mul(T + 205 * S, T + 1 * S, T + 203 * S, k);
+    eomc_tay_add(T + 206 * S, T + 201 * S, T + 205 * S, k);
+    eomc_tay_mul(T + 207 * S, T + 2 * S, T + 204 * S, k);
+    eomc_tay_sub(T + 208 * S, T + 206 * S, T + 207 * S, k);
+    eomc_tay_scale(T + 209 * S, T + 33 * S, T + 208 * S, k);
+    eomc_tay_add(T + 210 * S, T + 69 * S, T + 209 * S, k);
+    eomc_tay_add(T + 211 * S, T + 67 * S, T + 202 * S, k);
+    eomc_tay_add(T + 212 * S, T + 64 * S, T + 199 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[5] = {0, 3, 9, 15, 21};
+static const int taylor_v[5] = {27, 28, 29, 30, 31};
+static const int taylor_M[25] = {196, 91, 120, 142, 157, 91, 119, 121, 143, 158, 120, 121, 141, 144, 159, 142, 143, 144, 156, 160,
+    157, 158, 159, 160, 33};
+static const int taylor_h[5] = {210, 211, 212, 187, 189};
+
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto",
@@ -1816,6 +2036,9 @@ const eomc_model chain5_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .taylor_nslot = 213, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = chain5_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -558,6 +559,65 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[13] = w11;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias and events compute, slot s's at T[s (K + 1)
+ * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 45 slots, 39 calls. */
+static void
+double_pendulum_taylor(int k, int K, double t0, const double *p,
+    const double *u, double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_const(T, p[2], k);
+    eomc_tay_sincos(T + 2 * S, T + 3 * S, T + 1 * S, k);
+    eomc_tay_const(T + 4 * S, p[3], k);
+    eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 5 * S, k);
+    eomc_tay_sqr(T + 10 * S, T + 8 * S, k);
+    eomc_tay_mul(T + 11 * S, T + 2 * S, T + 10 * S, k);
+    eomc_tay_mul(T + 12 * S, T + 3 * S, T + 10 * S, k);
+    eomc_tay_sqr(T + 13 * S, T + 9 * S, k);
+    eomc_tay_mul(T + 14 * S, T + 6 * S, T + 13 * S, k);
+    eomc_tay_mul(T + 15 * S, T + 7 * S, T + 13 * S, k);
+    eomc_tay_const(T + 16 * S, p[9], k);
+    eomc_tay_const(T + 17 * S, p[10], k);
+    eomc_tay_const(T + 18 * S, p[11], k);
+    eomc_tay_scale(T + 19 * S, T + 18 * S, T + 6 * S, k);
+    eomc_tay_const(T + 20 * S, p[12], k);
+    eomc_tay_scale(T + 21 * S, T + 20 * S, T + 2 * S, k);
+    eomc_tay_const(T + 22 * S, p[14], k);
+    eomc_tay_mul(T + 23 * S, T + 2 * S, T + 6 * S, k);
+    eomc_tay_mul(T + 24 * S, T + 3 * S, T + 7 * S, k);
+    eomc_tay_add(T + 25 * S, T + 23 * S, T + 24 * S, k);
+    eomc_tay_const(T + 26 * S, p[15], k);
+    eomc_tay_scale(T + 27 * S, T + 26 * S, T + 25 * S, k);
+    eomc_tay_const(T + 28 * S, p[16], k);
+    eomc_tay_scale(T + 29 * S, T, T + 11 * S, k);
+    eomc_tay_scale(T + 30 * S, T, T + 12 * S, k);
+    eomc_tay_scale(T + 31 * S, T + 4 * S, T + 14 * S, k);
+    eomc_tay_add(T + 32 * S, T + 29 * S, T + 31 * S, k);
+    eomc_tay_scale(T + 33 * S, T + 4 * S, T + 15 * S, k);
+    eomc_tay_add(T + 34 * S, T + 30 * S, T + 33 * S, k);
+    eomc_tay_mul(T + 35 * S, T + 2 * S, T + 34 * S, k);
+    eomc_tay_mul(T + 36 * S, T + 3 * S, T + 32 * S, k);
+    eomc_tay_sub(T + 37 * S, T + 35 * S, T + 36 * S, k);
+    eomc_tay_scale(T + 38 * S, T + 17 * S, T + 37 * S, k);
+    eomc_tay_add(T + 39 * S, T + 21 * S, T + 38 * S, k);
+    eomc_tay_mul(T + 40 * S, T + 6 * S, T + 34 * S, k);
+    eomc_tay_mul(T + 41 * S, T + 7 * S, T + 32 * S, k);
+    eomc_tay_sub(T + 42 * S, T + 40 * S, T + 41 * S, k);
+    eomc_tay_scale(T + 43 * S, T + 16 * S, T + 42 * S, k);
+    eomc_tay_add(T + 44 * S, T + 19 * S, T + 43 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[2] = {1, 5};
+static const int taylor_v[2] = {8, 9};
+static const int taylor_M[4] = {22, 27, 27, 28};
+static const int taylor_h[2] = {39, 44};
+
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -588,6 +648,9 @@ const eomc_model double_pendulum_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 2, .view_links = view_links, .ntrace = 1, .view_trace = view_trace,
     .view_frames = 0, .view_camera = NULL,
+    .taylor_nslot = 45, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = double_pendulum_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

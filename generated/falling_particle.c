@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -221,6 +222,28 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias and events compute, slot s's at T[s (K + 1)
+ * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 2 slots, 2 calls. */
+static void
+falling_particle_taylor(int k, int K, double t0, const double *p,
+    const double *u, double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_const(T, p[0], k);
+    eomc_tay_const(T + 1 * S, p[5], k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[1] = {-1};
+static const int taylor_v[1] = {-1};
+static const int taylor_M[1] = {0};
+static const int taylor_h[1] = {1};
+
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -251,6 +274,9 @@ const eomc_model falling_particle_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .taylor_nslot = 2, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = falling_particle_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -200,6 +201,33 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 #ifndef EOMC_EXTENDED
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias and events compute, slot s's at T[s (K + 1)
+ * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 10 slots, 8 calls. */
+static void
+gear_link_taylor(int k, int K, double t0, const double *p, const double *u,
+    double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    eomc_tay_const(T, p[2], k);
+    eomc_tay_const(T + 2 * S, p[8], k);
+    eomc_tay_const(T + 3 * S, u[0], k);
+    eomc_tay_mul(T + 4 * S, T, T + 3 * S, k);
+    eomc_tay_const(T + 5 * S, p[9], k);
+    eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 1 * S, k);
+    eomc_tay_scale(T + 8 * S, T + 2 * S, T + 6 * S, k);
+    eomc_tay_sub(T + 9 * S, T + 8 * S, T + 4 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[1] = {1};
+static const int taylor_v[1] = {-1};
+static const int taylor_M[1] = {5};
+static const int taylor_h[1] = {9};
+
 const eomc_model gear_link_model = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .spec = "gear_link.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -225,6 +253,9 @@ const eomc_model gear_link_model = {
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
     .ndraw = 0, /* no particle or body to draw */
+    .taylor_nslot = 10, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = gear_link_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

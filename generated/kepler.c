@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -330,6 +331,42 @@ kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias and events compute, slot s's at T[s (K + 1)
+ * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 18 slots, 16 calls. */
+static void
+kepler_taylor(int k, int K, double t0, const double *p, const double *u,
+    double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_const(T, 0.5, k);
+    eomc_tay_const(T + 1 * S, p[1], k);
+    eomc_tay_const(T + 4 * S, p[4], k);
+    eomc_tay_const(T + 5 * S, 2.0, k);
+    eomc_tay_sqr(T + 6 * S, T + 2 * S, k);
+    eomc_tay_sqr(T + 7 * S, T + 3 * S, k);
+    eomc_tay_add(T + 8 * S, T + 6 * S, T + 7 * S, k);
+    eomc_tay_sqrt(T + 9 * S, T + 8 * S, k);
+    eomc_tay_div(T + 10 * S, T + 4 * S, T + 9 * S, k);
+    eomc_tay_div(T + 11 * S, T + 10 * S, T + 9 * S, k);
+    eomc_tay_div(T + 12 * S, T, T + 9 * S, k);
+    eomc_tay_mul(T + 13 * S, T + 11 * S, T + 12 * S, k);
+    eomc_tay_mul(T + 14 * S, T + 3 * S, T + 13 * S, k);
+    eomc_tay_scale(T + 15 * S, T + 5 * S, T + 14 * S, k);
+    eomc_tay_mul(T + 16 * S, T + 2 * S, T + 13 * S, k);
+    eomc_tay_scale(T + 17 * S, T + 5 * S, T + 16 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[2] = {2, 3};
+static const int taylor_v[2] = {-1, -1};
+static const int taylor_M[4] = {1, -1, -1, 1};
+static const int taylor_h[2] = {17, 15};
+
 const eomc_model kepler_model = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .spec = "kepler.yaml", .form = "lagrange",
     .options = "--jacobian auto",
@@ -360,6 +397,9 @@ const eomc_model kepler_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .taylor_nslot = 18, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = kepler_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -1,0 +1,168 @@
+/*
+ * emit_taylor: the model's taylor member (eomc_model.h) and its tables,
+ * printed from the program lower_taylor made (lower.h's LowTaylor): one
+ * call of runtime/eomc_taylor.h per step, slot s being the series at
+ * T + s * S.  Compiled in double only.
+ */
+#include "emit_func.h"
+
+#include <string.h>
+
+/* A slot's series, "T + s * S". */
+static void
+print_slot(FILE *f, int s)
+{
+    if (s == 0)
+        fputs("T", f);
+    else
+        fprintf(f, "T + %d * S", s);
+}
+
+/* "static const int NAME[n] = {...};", twenty a line. */
+static void
+print_ints(Printer *pr, const char *name, const int *x, int n)
+{
+    fprintf(pr->f, "static const int %s[%d] = {", name, n);
+    for (int i = 0; i < n; i++)
+        fprintf(pr->f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", x[i]);
+    emit_line(pr, "};");
+}
+
+/* Calls first .. end-1 of the program, after the locals they need. */
+static void
+print_calls(Printer *pr, const LowTaylor *ty, int first, int end, const char *prefix)
+{
+    FILE *f = pr->f;
+    int reads_t = 0, reads_p = 0, reads_u = 0;
+    for (int i = first; i < end; i++) {
+        reads_t |= ty->step[i].src == LOW_TAY_SRC_T;
+        reads_p |= ty->step[i].src == LOW_TAY_SRC_P;
+        reads_u |= ty->step[i].src == LOW_TAY_SRC_U;
+    }
+    emit_line(pr, "    const int S = K + 1;");
+    if (first == end)
+        emit_line(pr, "    (void)k, (void)S, (void)T;");
+    if (!reads_t)
+        emit_line(pr, "    (void)t0;");
+    if (!reads_p)
+        emit_line(pr, "    (void)p;");
+    if (!reads_u)
+        emit_line(pr, "    (void)u;");
+    for (int i = first; i < end; i++) {
+        const LowTayStep *st = &ty->step[i];
+        fprintf(f, "    %s%s(", prefix, st->call);
+        for (int j = 0; j < st->nslot; j++) {
+            if (j)
+                fputs(", ", f);
+            print_slot(f, st->slot[j]);
+        }
+        char num[40];
+        switch (st->src) {
+        case LOW_TAY_SRC_CONST:
+            emit_const(num, sizeof num, st->value);
+            fprintf(f, ", %s", num);
+            break;
+        case LOW_TAY_SRC_P:
+            fprintf(f, ", p[%d]", st->index);
+            break;
+        case LOW_TAY_SRC_U:
+            fprintf(f, ", u[%d]", st->index);
+            break;
+        case LOW_TAY_SRC_T:
+            fputs(", t0", f);
+            break;
+        }
+        emit_line(pr, ", k);");
+    }
+}
+
+/* Each recurrence the program calls as a function of its own, for a
+ * program cut into parts: inlined at each of thousands of calls, their
+ * loops multiply the C compiler's time (a chain of 50 links, 12 213
+ * calls: 16 s of cc -O1 inlined, 7 s through these, 2 s without Taylor). */
+static void
+print_wrappers(Printer *pr, const LowTaylor *ty)
+{
+    emit_line(pr, "/* The recurrences the parts below call, each compiled once: inlined at");
+    emit_line(pr, " * every call, their loops would multiply the C compiler's time. */");
+    for (int i = 0; i < ty->nstep; i++) {
+        const LowTayStep *st = &ty->step[i];
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = !strcmp(ty->step[j].call, st->call);
+        if (seen)
+            continue;
+        char params[300] = "", args[200] = "";
+        size_t pl = 0, al = 0;
+        for (int j = 0; j < st->nslot; j++) {
+            pl += (size_t)snprintf(params + pl, sizeof params - pl, "%sdouble *s%d",
+                                   j < st->nres ? "" : "const ", j);
+            pl += (size_t)snprintf(params + pl, sizeof params - pl, ", ");
+            al += (size_t)snprintf(args + al, sizeof args - al, "s%d, ", j);
+        }
+        if (st->src != LOW_TAY_SRC_NONE) {
+            pl += (size_t)snprintf(params + pl, sizeof params - pl, "double v, ");
+            al += (size_t)snprintf(args + al, sizeof args - al, "v, ");
+        }
+        snprintf(params + pl, sizeof params - pl, "int k");
+        char fname[64];
+        snprintf(fname, sizeof fname, "tay_%s", st->call);
+        emit_head(pr, "static EOMC_NOINLINE void", fname, params);
+        emit_line(pr, "    eomc_tay_%s(%sk);", st->call, args);
+        emit_line(pr, "}\n");
+    }
+}
+
+void
+emit_taylor(Printer *pr, const LowTaylor *ty)
+{
+    if (ty->why)
+        return;
+    const LowModel *md = pr->md;
+    int n = md->nq;
+    emit_line(pr, "/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0");
+    emit_line(pr, " * of every value mass_bias and events compute, slot s's at T[s (K + 1)");
+    emit_line(pr, " * ...], from their orders 0 .. k-1 and the caller's coefficient k of q");
+    emit_line(pr, " * and q' (taylor_q, taylor_v): %d slots, %d calls. */", ty->nslot,
+              ty->nstep);
+    /* cut as emit_func.c cuts a long function (LOWER_PART_SIZE): each
+     * part a C function of its own, taylor calling them in turn */
+    int nparts = (ty->nstep + LOWER_PART_SIZE - 1) / LOWER_PART_SIZE;
+    if (nparts < 1)
+        nparts = 1;
+    const char *params = "int k, int K, double t0, const double *p, const double *u, double *T";
+    char fname[160];
+    if (nparts > 1)
+        print_wrappers(pr, ty);
+    for (int part = 0; part < nparts; part++) {
+        int first = part * LOWER_PART_SIZE, end = first + LOWER_PART_SIZE;
+        if (end > ty->nstep)
+            end = ty->nstep;
+        if (nparts > 1) {
+            snprintf(fname, sizeof fname, "%s_taylor_%d", md->name, part + 1);
+            emit_line(pr, "/* Calls %d .. %d of taylor. */", first, end - 1);
+            emit_head(pr, "static EOMC_NOINLINE void", fname, params);
+        } else {
+            snprintf(fname, sizeof fname, "%s_taylor", md->name);
+            emit_head(pr, "static void", fname, params);
+        }
+        print_calls(pr, ty, first, end, nparts > 1 ? "tay_" : "eomc_tay_");
+        emit_line(pr, "}\n");
+    }
+    if (nparts > 1) {
+        snprintf(fname, sizeof fname, "%s_taylor", md->name);
+        emit_head(pr, "static void", fname, params);
+        for (int part = 0; part < nparts; part++)
+            emit_line(pr, "    %s_taylor_%d(k, K, t0, p, u, T);", md->name, part + 1);
+        emit_line(pr, "}\n");
+    }
+    emit_line(pr, "/* The slots of q and q' the caller writes, and those of M (row-major),");
+    emit_line(pr, " * h and the event functions g (-1: none, or zero at every order). */");
+    print_ints(pr, "taylor_q", ty->q_slot, n);
+    print_ints(pr, "taylor_v", ty->v_slot, n);
+    print_ints(pr, "taylor_M", ty->M_slot, n * n);
+    print_ints(pr, "taylor_h", ty->h_slot, n);
+    if (ty->nevent)
+        print_ints(pr, "taylor_g", ty->g_slot, ty->nevent);
+    emit_line(pr, "");
+}

@@ -1,0 +1,359 @@
+/*
+ * lower_taylor: the program of the model's taylor member (eomc_model.h),
+ * Taylor's method's series of M, h and the event functions g, as a list
+ * of calls of runtime/eomc_taylor.h (lower.h's LowTaylor) that the
+ * emitter prints.
+ *
+ * Every node that mass_bias or events computes gets a slot, its series:
+ * one slot per DAG node (the DAG is hash-consed, so a shared value is one
+ * series), in id order, which is a topological order.  Leaves are written
+ * by the caller (q, q') or are constant in t (constants, parameters,
+ * derived values, inputs held), but t itself.  An operator is one call,
+ * with auxiliary slots where its recurrence needs a second series (tan's
+ * 1 + tan^2, asin's 1 - a^2 and its root) or where it is written with
+ * others (an integer power by squaring, a real power of a varying
+ * exponent as exp(b log a)).  The sine and the cosine of one angle are
+ * one call (each needs the other's series), and so are sinh and cosh.
+ * A product by a value constant in t is a scale, not a convolution.
+ */
+#include "lower.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct Build {
+    ExprPool *P;
+    const int *derived; /* per node id its index in pd[], -1: not derived */
+    int np;
+    int *slot;          /* per node id, -1: none */
+    unsigned char *konst; /* per node id: constant in t */
+    int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
+    int nslot;
+    LowTayStep *step;
+    int nstep, cap;
+    const char *why;
+} Build;
+
+static int
+new_slot(Build *b)
+{
+    return b->nslot++;
+}
+
+/* Append the call eomc_tay_CALL(slots..., k). */
+static LowTayStep *
+call(Build *b, const char *name, int n, int s0, int s1, int s2, int s3)
+{
+    if (b->nstep == b->cap) {
+        b->cap = b->cap ? 2 * b->cap : 64;
+        b->step = xrealloc(b->step, (size_t)b->cap * sizeof *b->step);
+    }
+    LowTayStep *st = &b->step[b->nstep++];
+    /* sincos and sinhcosh write two series, the others one and their
+     * auxiliary ones */
+    static const char *const two[] = {"sincos", "sinhcosh", "tan", "tanh", "atan", "atan2"};
+    int nres = !strcmp(name, "asin") || !strcmp(name, "acos") ? 3 : 1;
+    for (size_t j = 0; j < sizeof two / sizeof two[0]; j++)
+        if (!strcmp(name, two[j]))
+            nres = 2;
+    *st = (LowTayStep){.call = name, .nslot = n, .nres = nres, .slot = {s0, s1, s2, s3},
+                       .src = LOW_TAY_SRC_NONE};
+    return st;
+}
+
+/* A series constant in t: the value from src. */
+static int
+constant(Build *b, int src, int index, double value)
+{
+    int s = new_slot(b);
+    LowTayStep *st = call(b, "const", 1, s, -1, -1, -1);
+    st->src = src, st->index = index, st->value = value;
+    return s;
+}
+
+static int power_aux(Build *b, int base, int m);
+
+/* dst = base^m, m >= 2, by squaring. */
+static void
+power_into(Build *b, int dst, int base, int m)
+{
+    if (m % 2 == 0)
+        call(b, "sqr", 2, dst, power_aux(b, base, m / 2), -1, -1);
+    else
+        call(b, "mul", 3, dst, power_aux(b, base, m - 1), base, -1);
+}
+
+/* base^m in a slot of its own (base itself for m = 1). */
+static int
+power_aux(Build *b, int base, int m)
+{
+    if (m == 1)
+        return base;
+    int s = new_slot(b);
+    power_into(b, s, base, m);
+    return s;
+}
+
+/* The sine (which 0) or cosine (1) of a, or hyperbolic (2, 3): both made
+ * by one call where the first of them is met. */
+static int
+pair_slot(Build *b, ExprId a, int which)
+{
+    int *p = &b->pair[4 * (size_t)a + (which & 2)];
+    if (p[0] < 0) {
+        p[0] = new_slot(b);
+        p[1] = new_slot(b);
+        call(b, which & 2 ? "sinhcosh" : "sincos", 3, p[0], p[1], b->slot[a], -1);
+    }
+    return p[which & 1];
+}
+
+/* Node id's slot, its operands' slots made before. */
+static void
+build_node(Build *b, ExprId id)
+{
+    const ExprNode *nd = expr_node(b->P, id);
+    int ar = expr_op_arity[nd->op];
+    if (b->derived && b->derived[id] >= 0) {
+        b->slot[id] = constant(b, LOW_TAY_SRC_P, b->np + b->derived[id], 0);
+        b->konst[id] = 1;
+        return;
+    }
+    int A = ar > 0 ? b->slot[nd->a] : -1, B = ar > 1 ? b->slot[nd->b] : -1;
+    b->konst[id] = ar > 0 && b->konst[nd->a] && (ar < 2 || b->konst[nd->b]);
+    int c = -1;
+    switch (nd->op) {
+    case EXPR_CONST:
+        c = constant(b, LOW_TAY_SRC_CONST, 0, nd->value);
+        b->konst[id] = 1;
+        break;
+    case EXPR_PARAM:
+        c = constant(b, LOW_TAY_SRC_P, (int)nd->a, 0);
+        b->konst[id] = 1;
+        break;
+    case EXPR_INPUT: /* held constant over a step (the runtime refuses signals) */
+        c = constant(b, LOW_TAY_SRC_U, (int)nd->a, 0);
+        b->konst[id] = 1;
+        break;
+    case EXPR_TIME:
+        c = new_slot(b);
+        call(b, "time", 1, c, -1, -1, -1)->src = LOW_TAY_SRC_T;
+        break;
+    case EXPR_VAR:
+        if (nd->b > 1) {
+            b->why = "its mass matrix or bias reads accelerations";
+            return;
+        }
+        c = new_slot(b); /* the caller's */
+        break;
+    case EXPR_SEED:
+    case EXPR_MULT:
+        b->why = "its mass matrix or bias reads a seed or a multiplier";
+        return;
+    case EXPR_ADD:
+    case EXPR_SUB:
+        c = new_slot(b);
+        call(b, nd->op == EXPR_ADD ? "add" : "sub", 3, c, A, B, -1);
+        break;
+    case EXPR_MUL:
+        c = new_slot(b);
+        if (b->konst[nd->a] && !b->konst[nd->b])
+            call(b, "scale", 3, c, A, B, -1);
+        else if (b->konst[nd->b] && !b->konst[nd->a])
+            call(b, "scale", 3, c, B, A, -1);
+        else if (A == B)
+            call(b, "sqr", 2, c, A, -1, -1);
+        else
+            call(b, "mul", 3, c, A, B, -1);
+        break;
+    case EXPR_DIV:
+        c = new_slot(b);
+        call(b, "div", 3, c, A, B, -1);
+        break;
+    case EXPR_NEG:
+        c = new_slot(b);
+        call(b, "neg", 2, c, A, -1, -1);
+        break;
+    case EXPR_POWI: {
+        int n = (int32_t)nd->b, m = n < 0 ? -n : n;
+        c = new_slot(b);
+        if (n > 0)
+            power_into(b, c, A, m);
+        else
+            call(b, "inv", 2, c, power_aux(b, A, m), -1, -1);
+        break;
+    }
+    case EXPR_POW:
+        c = new_slot(b);
+        if (b->konst[nd->b]) {
+            call(b, "powc", 3, c, A, B, -1);
+        } else { /* a^b = exp(b log a) */
+            int l = new_slot(b);
+            call(b, "log", 2, l, A, -1, -1);
+            int e = new_slot(b);
+            call(b, "mul", 3, e, B, l, -1);
+            call(b, "exp", 2, c, e, -1, -1);
+        }
+        break;
+    case EXPR_ATAN2: { /* atan2(a, b): the angle of the point (b, a) */
+        c = new_slot(b);
+        int w = new_slot(b);
+        call(b, "atan2", 4, c, w, A, B);
+        break;
+    }
+    case EXPR_SIN:
+    case EXPR_COS:
+    case EXPR_SINH:
+    case EXPR_COSH: {
+        int which = nd->op == EXPR_SIN ? 0 : nd->op == EXPR_COS ? 1 : nd->op == EXPR_SINH ? 2 : 3;
+        c = pair_slot(b, nd->a, which);
+        break;
+    }
+    case EXPR_TAN:
+    case EXPR_TANH:
+    case EXPR_ATAN: {
+        c = new_slot(b);
+        int w = new_slot(b);
+        call(b, nd->op == EXPR_TAN ? "tan" : nd->op == EXPR_TANH ? "tanh" : "atan", 3, c, w, A,
+             -1);
+        break;
+    }
+    case EXPR_ASIN:
+    case EXPR_ACOS: {
+        c = new_slot(b);
+        int r = new_slot(b), s = new_slot(b);
+        call(b, nd->op == EXPR_ASIN ? "asin" : "acos", 4, c, r, s, A);
+        break;
+    }
+    case EXPR_EXP:
+    case EXPR_LOG:
+    case EXPR_SQRT:
+    case EXPR_ABS:
+    case EXPR_SIGN: {
+        static const char *const name[] = {"exp", "log", "sqrt", "abs", "sign"};
+        c = new_slot(b);
+        call(b, name[nd->op - EXPR_EXP], 2, c, A, -1, -1);
+        break;
+    }
+    default:
+        b->why = "its mass matrix or bias has an operation without a Taylor recurrence";
+        return;
+    }
+    b->slot[id] = c;
+}
+
+/* The reason, or NULL: what the program cannot be built from. */
+static const char *
+refused(const Lowered *L, const LowFunc *mb)
+{
+    if (L->model.constrained)
+        return "the model has constraints, and eomc does not yet generate the series of "
+               "their equations";
+    if (L->code == LOWER_CODE_TABLES)
+        return "its mass matrix and bias are loops over the model's tables (--code tables), "
+               "not expressions; --code straight gives the expressions";
+    if (L->mass_times || !mb)
+        return "its form computes the mass matrix by columns (mass_times), not as the "
+               "expressions of its entries";
+    if (mb->copy || (L->events && L->events->copy))
+        return "its mass matrix repeats the code of one subtree for several copies "
+               "(repeat.h), which the Taylor program does not unroll";
+    return NULL;
+}
+
+LowTaylor *
+lower_taylor(const Lowered *L, ExprPool *P, Arena *A)
+{
+    LowTaylor *ty = arena_alloc(A, sizeof *ty);
+    *ty = (LowTaylor){0};
+    const LowFunc *mb = lower_find(L, "mass_bias");
+    if ((ty->why = refused(L, mb)))
+        return ty;
+    int n = L->n, ne = L->events ? L->model.nevent : 0;
+    size_t size = expr_pool_size(P);
+    Build b = {.P = P, .derived = mb->derived, .np = L->model.np};
+    b.slot = xmalloc(size * sizeof *b.slot);
+    b.konst = xmalloc(size);
+    b.pair = xmalloc(4 * size * sizeof *b.pair);
+    memset(b.slot, -1, size * sizeof *b.slot);
+    memset(b.konst, 0, size);
+    memset(b.pair, -1, 4 * size * sizeof *b.pair);
+
+    /* the nodes the outputs need, down to the leaves and derived values
+     * (an output that is 0 needs none: its slot is -1) */
+    int nroot = mb->nout + (L->events ? L->events->nout : 0);
+    ExprId *stack = xmalloc(((size_t)nroot + 1) * sizeof *stack);
+    size_t sp = 0, cap = (size_t)nroot + 1;
+    for (int k = 0; k < mb->nout; k++)
+        if (mb->out[k].e != EXPR_ZERO)
+            stack[sp++] = mb->out[k].e;
+    for (int k = 0; L->events && k < L->events->nout; k++)
+        if (L->events->out[k].e != EXPR_ZERO)
+            stack[sp++] = L->events->out[k].e;
+    unsigned char *mark = xmalloc(size);
+    memset(mark, 0, size);
+    while (sp) {
+        ExprId e = stack[--sp];
+        if (mark[e])
+            continue;
+        mark[e] = 1;
+        const ExprNode *nd = expr_node(P, e);
+        int ar = expr_op_arity[nd->op];
+        if (ar == 0 || (b.derived && b.derived[e] >= 0))
+            continue;
+        if (sp + 2 >= cap)
+            stack = xrealloc(stack, (cap *= 2) * sizeof *stack);
+        stack[sp++] = nd->a;
+        if (ar == 2)
+            stack[sp++] = nd->b;
+    }
+    for (size_t id = 0; id < size && !b.why; id++)
+        if (mark[id])
+            build_node(&b, (ExprId)id);
+
+    if (b.why) {
+        ty->why = b.why;
+    } else {
+        ty->nslot = b.nslot;
+        ty->nstep = b.nstep;
+        ty->step = arena_new_array(A, LowTayStep, b.nstep + 1);
+        if (b.nstep)
+            memcpy(ty->step, b.step, (size_t)b.nstep * sizeof *b.step);
+        ty->q_slot = arena_new_array(A, int, n + 1);
+        ty->v_slot = arena_new_array(A, int, n + 1);
+        ty->M_slot = arena_new_array(A, int, n * n + 1);
+        ty->h_slot = arena_new_array(A, int, n + 1);
+        ty->g_slot = arena_new_array(A, int, ne + 1);
+        ty->nevent = ne;
+        for (int i = 0; i < n; i++)
+            ty->q_slot[i] = ty->v_slot[i] = ty->h_slot[i] = -1;
+        for (int i = 0; i < n * n; i++)
+            ty->M_slot[i] = -1;
+        for (size_t id = 0; id < size; id++) {
+            const ExprNode *nd = expr_node(P, (ExprId)id);
+            if (mark[id] && nd->op == EXPR_VAR)
+                (nd->b ? ty->v_slot : ty->q_slot)[nd->a] = b.slot[id];
+        }
+        for (int k = 0; k < mb->nout; k++) {
+            const LowSlot *o = &mb->out[k];
+            int s = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+            if (o->arg == 0)
+                ty->M_slot[o->index] = s;
+            else
+                ty->h_slot[o->index] = s;
+        }
+        for (int e = 0; e < ne; e++)
+            ty->g_slot[e] = -1;
+        for (int k = 0; L->events && k < L->events->nout; k++) {
+            const LowSlot *o = &L->events->out[k];
+            ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+        }
+    }
+    free(mark);
+    free(stack);
+    free(b.step);
+    free(b.pair);
+    free(b.konst);
+    free(b.slot);
+    return ty;
+}

@@ -1,0 +1,153 @@
+/*
+ * The taylor member (eomc_model.h; compiler/lower_taylor.c prints its
+ * program) of shipped and test specs, checked independently of the
+ * recurrences it calls: q(t) and q'(t) are made up as cubic polynomials
+ * in tau = t - t0 (not a motion, and not consistent with each other),
+ * their coefficients written into the caller's slots, taylor called for
+ * k = 0 .. K, and the series it leaves for each M_ij, h_i and g_e summed
+ * at small tau.  Those sums must equal what the model's own mass_bias and
+ * events compute at q(tau), q'(tau), t0 + tau: the truncation is
+ * O(tau^(K+1)), far below rounding at |tau| <= 2e-2, so they agree to
+ * rounding of the values' scale.  A constrained model has no taylor
+ * member, and says why.
+ */
+#include "../unit/check.h"
+#include "eomc_model.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define MODELS(X)                                                                       \
+    X(pendulum) X(double_pendulum) X(chain5) X(spinning_hoop) X(kepler) X(arenstorf)   \
+    X(swing) X(gear_link) X(bouncing_ball) X(falling_particle) X(sleeping_top_euler) \
+    X(forced_hoop) X(taylor_ops)
+#define DECLARE(name) extern const eomc_model name##_model;
+MODELS(DECLARE)
+extern const eomc_model cartesian_pendulum_model;
+#define ENTRY(name) &name##_model,
+static const eomc_model *const models[] = {MODELS(ENTRY)};
+
+enum { NMAX = 8, PMAX = 256, EMAX = 8, UMAX = 8, K = 12, DEG = 3 };
+
+/* The agreement required, relative to the largest |value| of M, h or g
+ * (at least 1): a few hundred ulps of sums over the order and of the
+ * terms that cancel in h. */
+#define TOL 1e-13
+
+/* sum_j c[j] tau^j, j = 0 .. K, by Horner's rule. */
+static double
+series_at(const double *c, double tau)
+{
+    double s = 0;
+    for (int j = K; j >= 0; j--)
+        s = s * tau + c[j];
+    return s;
+}
+
+/* Slot s's series at tau (s < 0: zero at every order). */
+static double
+slot_at(const double *T, int s, double tau)
+{
+    return s < 0 ? 0 : series_at(T + s * (K + 1), tau);
+}
+
+/* The largest error of the series of M, h and g at taus, against the
+ * model's own functions, relative to their scale. */
+static double
+check_model(const eomc_model *m, double t0, double *worst_scale)
+{
+    int n = m->nq, ne = m->nevent;
+    double p[PMAX], u[UMAX + 1] = {0};
+    memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
+    if (m->derive)
+        m->derive(p, p + m->np);
+    if (m->nu)
+        m->inputs(t0, p, u, NULL); /* held over the step */
+    /* q_i(tau) and q_i'(tau): cubics of made-up coefficients */
+    double qc[NMAX][K + 1], vc[NMAX][K + 1];
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j <= K; j++) {
+            qc[i][j] = j <= DEG ? check_rand(-0.6, 0.6) : 0;
+            vc[i][j] = j <= DEG ? check_rand(-0.8, 0.8) : 0;
+        }
+    double *T = calloc((size_t)m->taylor_nslot * (K + 1) + 1, sizeof *T);
+    for (int k = 0; k <= K; k++) {
+        for (int i = 0; i < n; i++) {
+            if (m->taylor_q[i] >= 0)
+                T[m->taylor_q[i] * (K + 1) + k] = qc[i][k];
+            if (m->taylor_v[i] >= 0)
+                T[m->taylor_v[i] * (K + 1) + k] = vc[i][k];
+        }
+        m->taylor(k, K, t0, p, u, T);
+    }
+    static const double taus[] = {1e-2, -1.5e-2, 2e-2, 0};
+    double worst = 0;
+    *worst_scale = 0;
+    for (size_t t = 0; t < sizeof taus / sizeof taus[0]; t++) {
+        double tau = taus[t], q[NMAX], v[NMAX], M[NMAX * NMAX], h[NMAX], g[EMAX];
+        for (int i = 0; i < n; i++) {
+            q[i] = series_at(qc[i], tau);
+            v[i] = series_at(vc[i], tau);
+        }
+        m->mass_bias(t0 + tau, q, v, p, u, M, h);
+        if (ne)
+            m->events(t0 + tau, q, v, p, u, g);
+        double scale = 1;
+        for (int i = 0; i < n * n; i++)
+            scale = fmax(scale, fabs(M[i]));
+        for (int i = 0; i < n; i++)
+            scale = fmax(scale, fabs(h[i]));
+        for (int e = 0; e < ne; e++)
+            scale = fmax(scale, fabs(g[e]));
+        double err = 0;
+        for (int i = 0; i < n * n; i++)
+            err = fmax(err, fabs(slot_at(T, m->taylor_M[i], tau) - M[i]));
+        for (int i = 0; i < n; i++)
+            err = fmax(err, fabs(slot_at(T, m->taylor_h[i], tau) - h[i]));
+        for (int e = 0; e < ne; e++)
+            err = fmax(err, fabs(slot_at(T, m->taylor_g[e], tau) - g[e]));
+        if (!(err / scale <= worst)) /* NaN included */
+            worst = err / scale, *worst_scale = scale;
+    }
+    free(T);
+    return worst;
+}
+
+int
+main(void)
+{
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        const eomc_model *m = models[k];
+        CHECK(m->taylor && !m->taylor_why && m->nq <= NMAX && m->nevent <= EMAX &&
+                  m->nu <= UMAX && m->np + m->nd <= PMAX,
+              "%s: a taylor member", m->name);
+        if (!m->taylor)
+            continue;
+        int ok = 1; /* every slot the tables name is one */
+        for (int i = 0; i < m->nq * m->nq; i++)
+            ok &= m->taylor_M[i] < m->taylor_nslot;
+        for (int i = 0; i < m->nq; i++)
+            ok &= m->taylor_h[i] < m->taylor_nslot && m->taylor_q[i] < m->taylor_nslot &&
+                  m->taylor_v[i] < m->taylor_nslot;
+        for (int e = 0; e < m->nevent; e++)
+            ok &= m->taylor_g[e] < m->taylor_nslot;
+        CHECK(ok && (m->nevent == 0 || m->taylor_g), "%s: its %d slots", m->name,
+              m->taylor_nslot);
+        if (!ok)
+            continue;
+        double worst = 0;
+        for (int r = 0; r < 3; r++) { /* three made-up curves, at t0 = 0.3, 1.7, 4.1 */
+            double scale, err = check_model(m, 0.3 + 1.4 * r + 0.1 * r * r, &scale);
+            if (!(err <= worst))
+                worst = err;
+        }
+        printf("# %s: largest error %.2e of the values' scale\n", m->name, worst);
+        CHECK(worst <= TOL, "%s: the series of M, h and g sum to mass_bias and events "
+              "at |tau| <= 2e-2 (%.2e)", m->name, worst);
+    }
+    const eomc_model *c = &cartesian_pendulum_model;
+    CHECK(!c->taylor && c->taylor_why && strstr(c->taylor_why, "constraints"),
+          "cartesian_pendulum: no taylor member, and why: %s",
+          c->taylor_why ? c->taylor_why : "(none)");
+    return check_done();
+}

@@ -36,6 +36,9 @@ cmdline_usage(FILE *f)
         "                   with the Jacobian (--jacobian auto) unless told none\n"
         "  --cache          (build) into eomc's cache, as run does (nothing is built\n"
         "                   when an identical build is there); prints its path\n"
+        "  --taylor         the series of Taylor's method (--method taylor), also when\n"
+        "                   the scene's method is another; done anyway for a library\n"
+        "                   (--shared) and when eomc run/accuracy is asked for taylor\n"
         "  --extended       (build) also compile the model in extended precision, so\n"
         "                   that the simulator computes its own reference solution\n"
         "                   (--error, --work-precision, --reference-out,\n"
@@ -120,6 +123,7 @@ static const OptionSpec options[] = {
     {"--explain", CMD_COMPILE, OPT_FLAG, offsetof(Options, explain),
      "what eomc made of the spec", NULL, 0},
     {"--mpi", CMD_BUILD, OPT_FLAG, offsetof(Options, mpi), "a simulator for MPI sweeps", NULL, 0},
+    {"--taylor", CMD_DERIVE, OPT_FLAG, offsetof(Options, taylor), NULL, NULL, 0},
     {"--shared", CMD_BUILD, OPT_FLAG, offsetof(Options, shared),
      "a shared library of the model, for Python", NULL, 0},
     {"--cache", CMD_BUILD, OPT_FLAG, offsetof(Options, cache),
@@ -187,6 +191,34 @@ sim_needs_jacobian(const Options *o)
         }
     }
     return 0;
+}
+
+/* Whether the simulator options of `eomc run` name Taylor's method
+ * (--method taylor, or taylor among --methods). */
+static int
+sim_names_taylor(const Options *o)
+{
+    for (int i = 0; i < o->nsim; i++) {
+        const char *a = o->sim[i], *val = NULL;
+        if ((!strcmp(a, "--method") || !strcmp(a, "--methods")) && i + 1 < o->nsim)
+            val = o->sim[i + 1];
+        else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10))
+            val = strchr(a, '=') + 1;
+        for (const char *w = val; w && *w; w += strcspn(w, ",") + (w[strcspn(w, ",")] != 0))
+            if (strcspn(w, ",") == 6 && !strncmp(w, "taylor", 6))
+                return 1;
+    }
+    return 0;
+}
+
+/* Whether the accuracy report's methods are its default, all of them. */
+static int
+sim_default_methods(const Options *o)
+{
+    for (int i = 0; i < o->nsim; i++)
+        if (!strcmp(o->sim[i], "--methods") || !strncmp(o->sim[i], "--methods=", 10))
+            return 0;
+    return 1;
 }
 
 /* Whether the simulator options of `eomc run` ask for a reference
@@ -288,6 +320,12 @@ cmdline_parse(int argc, char **argv, Options *o)
      * it has the Jacobian unless --jacobian none says not */
     o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o) || o->shared;
     o->needs_twin = !strcmp(o->cmd, "accuracy") || sim_needs_twin(o);
+    /* the series are much of a large model's C: printed when asked, when
+     * the run names taylor, for the report of every method, and for a
+     * library (which serves every task); or when the scene's method is
+     * taylor (main.c) */
+    o->needs_taylor = o->taylor || o->shared || sim_names_taylor(o) ||
+                      (!strcmp(o->cmd, "accuracy") && sim_default_methods(o));
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,

@@ -17,6 +17,8 @@ typedef struct Options {
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
     int shared;         /* --shared: a shared library (for Python), not a simulator */
+    int taylor;         /* --taylor: the series of Taylor's method, whatever the scene */
+    int needs_taylor;   /* ... or what the simulator is asked to do needs them */
     int cache;          /* --cache: built into eomc's cache (as run's), its path printed */
     int extended;       /* --extended: the extended-precision twin, whatever the size */
     int needs_jacobian; /* what the simulator is asked to do needs it */

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 267 operations per right-hand side
  * (nielsen 267, tzenoff 267, gibbs-appell 267).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -411,7 +411,7 @@ appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 const eomc_model appell_model = {
     .abi = EOMC_ABI_VERSION, .name = "appell", .spec = "appell.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 34 operations per right-hand side
  * (nielsen 37, tzenoff 43).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -453,7 +453,7 @@ static const int taylor_h[2] = {39, 41};
 
 const eomc_model arenstorf_model = {
     .abi = EOMC_ABI_VERSION, .name = "arenstorf", .spec = "arenstorf.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 2, .np = 1, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -6,7 +6,7 @@
  * The form is the cheapest that applies: 3372 operations per right-hand side
  * (lagrange 5129, nielsen 5379, tzenoff 5484, gibbs-appell 4496, newton-euler
  * 3575).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -9710,7 +9710,7 @@ bicycle_tree_draw_mass(const eomc_real *p, eomc_real *D)
 
 const eomc_model bicycle_tree_model = {
     .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .spec = "bicycle_tree.yaml", .form = "articulated-body",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 8, .np = 26, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 4 operations per right-hand side
  * (nielsen 4, tzenoff 4, gibbs-appell 4).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   bounce
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -302,7 +302,7 @@ static const int taylor_g[1] = {1};
 
 const eomc_model bouncing_ball_model = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "bounce", .p_fixed = p_fixed,

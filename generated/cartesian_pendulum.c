@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 136 operations per right-hand side
  * (nielsen 136, tzenoff 136, gibbs-appell 136).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   swing
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -384,7 +384,7 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 2, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "swing", .p_fixed = p_fixed,

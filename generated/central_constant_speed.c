@@ -5,7 +5,7 @@
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
  * The form is the cheapest that applies: 327 operations per right-hand side
  * (lagrange 368, nielsen 381, tzenoff 407).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -922,7 +922,7 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 const eomc_model central_constant_speed_model = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

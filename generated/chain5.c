@@ -5,7 +5,7 @@
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
  * The form is the cheapest that applies: 326 operations per right-hand side
  * (lagrange 394, nielsen 410, tzenoff 437).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -2008,7 +2008,7 @@ static const int taylor_h[5] = {210, 211, 212, 187, 189};
 
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 5, .np = 3, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 281 operations per right-hand side
  * (nielsen 302, tzenoff 284, gibbs-appell 281).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -532,7 +532,7 @@ chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
 
 const eomc_model chaplygin_sleigh_model = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 3, .np = 5, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 62 operations per right-hand side
  * (nielsen 103, tzenoff 114, gibbs-appell 67).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -620,7 +620,7 @@ static const int taylor_h[2] = {39, 44};
 
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 2, .np = 5, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

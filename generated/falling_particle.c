@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 4 operations per right-hand side
  * (nielsen 4, tzenoff 4, gibbs-appell 4).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity push
  * off:     (none) (no code is generated for these)
@@ -246,7 +246,7 @@ static const int taylor_h[1] = {1};
 
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 3, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 11 operations per right-hand side
  * (nielsen 11, tzenoff 11).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity motor
  * off:     (none) (no code is generated for these)
@@ -230,7 +230,7 @@ static const int taylor_h[1] = {9};
 
 const eomc_model gear_link_model = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .spec = "gear_link.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 6, .nu = 1,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 15 operations per right-hand side
  * (nielsen 15, tzenoff 15, gibbs-appell 15).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -369,7 +369,7 @@ static const int taylor_h[2] = {17, 15};
 
 const eomc_model kepler_model = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .spec = "kepler.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 2, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

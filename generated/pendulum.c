@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 9 operations per right-hand side
  * (nielsen 9, tzenoff 9, gibbs-appell 9).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -274,7 +274,7 @@ static const int taylor_h[1] = {5};
 
 const eomc_model pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "pendulum", .spec = "pendulum.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 3, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

@@ -5,7 +5,7 @@
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
  * The form is the cheapest that applies: 336 operations per right-hand side
  * (lagrange 370, nielsen 381, tzenoff 411).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -982,7 +982,7 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
 
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

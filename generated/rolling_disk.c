@@ -6,7 +6,7 @@
  * The form is the cheapest that applies: 564 operations per right-hand side
  * (lagrange 1269, nielsen 1293, tzenoff 1332, gibbs-appell 1182, newton-euler
  * 1166).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
  * off:     (none) (no code is generated for these)
@@ -1521,7 +1521,7 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
 
 const eomc_model rolling_disk_model = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 5, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

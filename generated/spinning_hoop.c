@@ -5,7 +5,7 @@
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
  * The form is the cheapest that applies: 44 operations per right-hand side
  * (lagrange 68, nielsen 85, tzenoff 87).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: gravity
  * off:     (none) (no code is generated for these)
@@ -568,7 +568,7 @@ static const int taylor_h[1] = {42};
 
 const eomc_model spinning_hoop_model = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,

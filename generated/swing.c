@@ -5,7 +5,7 @@
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
  * The form is the cheapest that applies: 9 operations per right-hand side
  * (nielsen 9, tzenoff 9, gibbs-appell 9).
- * options: --jacobian auto
+ * options: --jacobian auto --taylor
  * scene:   free; fixed: A = 0.0
  * effects: gravity
  * off:     damping (no code is generated for these)
@@ -274,7 +274,7 @@ static const int taylor_h[1] = {5};
 
 const eomc_model swing_model = {
     .abi = EOMC_ABI_VERSION, .name = "swing", .spec = "swing.yaml", .form = "lagrange",
-    .options = "--jacobian auto",
+    .options = "--jacobian auto --taylor",
     .nq = 1, .np = 7, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "free", .p_fixed = p_fixed,

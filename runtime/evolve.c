@@ -61,6 +61,9 @@
  * watched for a collapse until this many have grown them again (by up to
  * 5 each), and events that come too fast are caught as such. */
 enum { RESTART_STEPS = 30 };
+/* ... growing by at most this much a step, as GSL's control grows them
+ * (for Taylor's method, which has no such control). */
+#define RESTART_GROWTH 5.0
 typedef struct Run {
     eomc_sim *s;
     const eomc_model *m;          /* s's */
@@ -576,14 +579,21 @@ adaptive_step(Run *r, double *h)
 static int
 taylor_step(Run *r)
 {
-    double t0 = r->t, left = r->o->t_end - t0, h;
+    double t0 = r->t, left = r->o->t_end - t0, h, hmax = left;
+    /* after an event's reset, as for the other methods: the first step
+     * the restart's (take_step), each next at most RESTART_GROWTH times
+     * the one before, so that the steps see g leave zero before they could
+     * cross it again (a bounce's parabola has an infinite radius: its
+     * series would step straight through the floor) */
+    if (r->since_reset < RESTART_STEPS)
+        hmax = fmin(hmax, r->since_reset == 0 ? r->h : RESTART_GROWTH * r->h);
     memcpy(r->y0, r->x, (size_t)r->N * sizeof *r->x);
-    if (taylor_series(r->taylor, t0, r->x, left, &h) != 0)
+    if (taylor_series(r->taylor, t0, r->x, hmax, &h) != 0)
         return GSL_EBADFUNC;
     int final = h >= left;
     if (!final && 2 * h > left)
         h = 0.5 * left;
-    taylor_eval(r->taylor, final ? left : h, r->x);
+    taylor_advance(r->taylor, final ? left : h, r->x);
     taylor_error(r->taylor, final ? left : h, r->yerr);
     r->st->order_sum += taylor_order(r->taylor);
     r->t = final ? r->o->t_end : t0 + h;

@@ -50,12 +50,17 @@ struct Taylor {
     double rtol, atol;
     double *T;          /* [nslot (KMAX + 1)] the model's series */
     double *X;          /* [(p + 1) N] the state's: X[j N + i], x_i's coefficient j */
-    double *A;          /* [p n] the accelerations', A[k n + i] */
+    double *A;          /* [n (KMAX + 1)] the accelerations', A[i (KMAX + 1) + k] */
     double *M0;         /* [n n] M_0, factored */
     double *rel;        /* [n] the factorization's relative pivots */
     size_t *perm;       /* [n] its permutation */
     double *b;          /* [n] a right-hand side */
     double *S;          /* [N] the components' scales (step_size) */
+    double *d;          /* [N] a step's change (value) */
+    double *comp;       /* [N] the rounding the state's additions lost so far */
+    double *comp0;      /* [N] ... up to the last series' start (value) */
+    double *xlast;      /* [N] the state taylor_advance left: the compensation
+                         * holds while the next series starts there */
     double t0;          /* the last series' start */
 };
 
@@ -99,8 +104,13 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     tp->rel = sim_zeros((size_t)n);
     tp->b = sim_zeros((size_t)n);
     tp->S = sim_zeros((size_t)tp->N);
+    tp->d = sim_zeros((size_t)tp->N);
+    tp->comp = sim_zeros((size_t)tp->N);
+    tp->comp0 = sim_zeros((size_t)tp->N);
+    tp->xlast = sim_zeros((size_t)tp->N);
     tp->perm = calloc((size_t)n + 1, sizeof *tp->perm);
-    if (!tp->T || !tp->X || !tp->A || !tp->M0 || !tp->rel || !tp->b || !tp->perm || !tp->S) {
+    if (!tp->T || !tp->X || !tp->A || !tp->M0 || !tp->rel || !tp->b || !tp->perm || !tp->S ||
+        !tp->d || !tp->comp || !tp->comp0 || !tp->xlast) {
         taylor_free(tp);
         return NULL;
     }
@@ -119,6 +129,10 @@ taylor_free(Taylor *tp)
     free(tp->rel);
     free(tp->b);
     free(tp->S);
+    free(tp->d);
+    free(tp->comp);
+    free(tp->comp0);
+    free(tp->xlast);
     free(tp->perm);
     free(tp);
 }
@@ -154,18 +168,30 @@ radius(const Taylor *tp, const double *S)
 {
     int p = tp->p, N = tp->N;
     double rho = INFINITY;
+    if (S) { /* for each order the least ratio, then its root: one pow each */
+        for (int j = p - 1; j <= p; j++) {
+            double least = INFINITY;
+            for (int i = 0; i < N; i++) {
+                double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
+                if (S[i] > 0 && c > 0)
+                    least = fmin(least, S[i] / c);
+            }
+            if (least < INFINITY)
+                rho = fmin(rho, pow(least, 1.0 / j));
+        }
+        return rho;
+    }
     for (int i = 0; i < N; i++) {
         int m = 0;
-        if (!S)
-            while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
-                m++;
-        double scale = S ? S[i] : fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
+        while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
+            m++;
+        double scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
         if (!(scale > 0))
             continue;
         for (int j = p - 1; j <= p; j++) {
             double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
             if (c > 0 && j > m)
-                rho = fmin(rho, pow(scale / c, 1.0 / (j - (S ? 0 : m))));
+                rho = fmin(rho, pow(scale / c, 1.0 / (j - m)));
         }
     }
     return rho;
@@ -211,6 +237,11 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     const eomc_model *m = tp->m;
     int n = tp->n, N = tp->N, p = tp->p;
     const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0);
+    /* a start the last advance did not leave (an event's reset, a side
+     * step's own start) owes nothing */
+    if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0)
+        memset(tp->comp, 0, (size_t)N * sizeof *tp->comp);
+    memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
     memcpy(tp->X, x, (size_t)N * sizeof *x);
     tp->t0 = t0;
     for (int k = 0; k < p; k++) {
@@ -222,27 +253,29 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
             if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
                 return -1;
         }
-        /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b */
+        /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b: each
+         * entry's series against the accelerations' (A: coordinate by
+         * coordinate, a convolution of two contiguous arrays) */
         for (int i = 0; i < n; i++) {
             double bi = coef(tp, m->taylor_h[i], k);
-            for (int j = 1; j <= k; j++) {
-                const double *a = tp->A + (size_t)(k - j) * (size_t)n;
-                for (int l = 0; l < n; l++) {
-                    int slot = m->taylor_M[i * n + l];
-                    if (slot >= 0)
-                        bi += coef(tp, slot, j) * a[l];
-                }
+            for (int l = 0; l < n; l++) {
+                int slot = m->taylor_M[i * n + l];
+                if (slot < 0 || k == 0)
+                    continue;
+                const double *ms = tp->T + (size_t)slot * (TAYLOR_MAX_ORDER + 1);
+                const double *al = tp->A + (size_t)l * (TAYLOR_MAX_ORDER + 1);
+                for (int j = 1; j <= k; j++)
+                    bi += ms[j] * al[k - j];
             }
             tp->b[i] = bi;
         }
         la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
-        double *ak = tp->A + (size_t)k * (size_t)n;
-        memcpy(ak, tp->b, (size_t)n * sizeof *ak);
         double *next = tp->X + (size_t)(k + 1) * (size_t)N;
         const double *cur = tp->X + (size_t)k * (size_t)N;
         for (int i = 0; i < n; i++) {
+            tp->A[(size_t)i * (TAYLOR_MAX_ORDER + 1) + (size_t)k] = tp->b[i];
             next[i] = cur[n + i] / (k + 1);
-            next[n + i] = ak[i] / (k + 1);
+            next[n + i] = tp->b[i] / (k + 1);
         }
         if (!sim_all_finite(next, N))
             return -1;
@@ -252,16 +285,37 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     return 0;
 }
 
+/* The change over tau, sum_{j>=1} x_j tau^j, by Horner's rule into d,
+ * less what the state's rounding owes (comp); then the start plus it. */
+static void
+value(const Taylor *tp, double tau, double *x, double *d)
+{
+    int N = tp->N;
+    memcpy(d, tp->X + (size_t)tp->p * (size_t)N, (size_t)N * sizeof *d);
+    for (int j = tp->p - 1; j >= 1; j--) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        for (int i = 0; i < N; i++)
+            d[i] = d[i] * tau + c[i];
+    }
+    for (int i = 0; i < N; i++) {
+        d[i] = d[i] * tau - tp->comp0[i];
+        x[i] = tp->X[i] + d[i];
+    }
+}
+
 void
 taylor_eval(const Taylor *tp, double tau, double *x)
 {
-    int N = tp->N;
-    memcpy(x, tp->X + (size_t)tp->p * (size_t)N, (size_t)N * sizeof *x);
-    for (int j = tp->p - 1; j >= 0; j--) {
-        const double *c = tp->X + (size_t)j * (size_t)N;
-        for (int i = 0; i < N; i++)
-            x[i] = x[i] * tau + c[i];
-    }
+    value(tp, tau, x, tp->d);
+}
+
+void
+taylor_advance(Taylor *tp, double tau, double *x)
+{
+    value(tp, tau, x, tp->d);
+    for (int i = 0; i < tp->N; i++) /* Kahan: what x's addition lost */
+        tp->comp[i] = (x[i] - tp->X[i]) - tp->d[i];
+    memcpy(tp->xlast, x, (size_t)tp->N * sizeof *x);
 }
 
 void

@@ -27,8 +27,15 @@ void taylor_free(Taylor *tp);
  * (the caller says so: eomc_sim_accel at x names the cause of the
  * first). */
 int taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h);
-/* The last series' value at t0 + tau into x [2nq]: Horner's rule. */
+/* The last series' value at t0 + tau into x [2nq]: Horner's rule on the
+ * change, added to the start with what the additions of the steps before
+ * lost (taylor_advance). */
 void taylor_eval(const Taylor *tp, double tau, double *x);
+/* The same for the step's end, which the next series starts from: the
+ * rounding of this addition is kept (Kahan's compensated summation), so
+ * that a long run's state does not drift by half an ulp a step; it holds
+ * while the next series starts from x. */
+void taylor_advance(Taylor *tp, double tau, double *x);
 /* An estimate of the error of the last series' value at t0 + h, per
  * component, into err [2nq]: its last term, |x_p| h^p, which bounds the
  * ones left out where the step rule holds (they shrink by e^-2 or more

@@ -1,0 +1,87 @@
+#!/bin/sh
+# Taylor's method (--method taylor) on shipped specs, against values got
+# without it (TAP):
+#  - the pendulum released from rest (specs/swing.yaml, scene quarter)
+#    stops at the bottom after a quarter period, K(sin(theta0/2)) /
+#    sqrt(g/l) computed here by the arithmetic-geometric mean;
+#  - the bouncing ball's impacts at t1 = sqrt(2h/g) and then every
+#    2 v1 e^k / g;
+#  - the Kepler orbit of e = 0.6 over 100 periods: its energy
+#    v^2/2 - mu/r, computed here from the rows, stays within 1e-13 of its
+#    start (rk8pd at 1e-14, 5e-12 on the 2-core build machine);
+#  - chain5 from q1 = 1: the report's error_max against the reference in
+#    extended precision (GBS, long double), order_mean from the tolerance,
+#    no side step;
+#  - refusals, each naming its cause: a constrained model, fixed steps.
+# usage: test_taylor.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+tight="--method taylor --rtol 1e-15 --atol 1e-15"
+
+# a relative difference of $1 from $2 within $3
+near() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d
+    exit !(g != "" && d <= tol * (w < 0 ? -w : w)) }'; }
+
+# the quarter period at theta0 = 1 (the scene's), l = 1, g = 9.81
+"$eomc" run "$src/specs/swing.yaml" --scene quarter $tight -o "$tmp/q.csv" 2> "$tmp/q.err"
+st=$?
+got=$(tail -1 "$tmp/q.csv" | cut -d, -f1)
+want=$(awk 'BEGIN { a = 1; b = cos(0.5)
+    for (i = 0; i < 40; i++) { m = (a + b) / 2; b = sqrt(a * b); a = m }
+    printf "%.17g", 3.14159265358979323846 / (2 * a) / sqrt(9.81) }')
+[ $st = 0 ] && near "$got" "$want" 1e-15
+ok $? "swing, scene quarter: the stop at t = $got, the closed form's $want (to 1e-15)"
+
+# the bouncing ball: h = 1, g = 9.81, e = 0.5 (the spec's)
+"$eomc" run "$src/specs/bouncing_ball.yaml" $tight --events "$tmp/ev.csv" -o /dev/null \
+    2> "$tmp/bb.err"
+st=$?
+impacts=$(awk -F, 'NR > 1 { printf "%s ", $1 }' "$tmp/ev.csv")
+set -- $impacts
+nimp=$#
+bad=$(awk -v list="$impacts" 'BEGIN { g = 9.81; h = 1; e = 0.5; n = split(list, t, " ")
+    t1 = sqrt(2 * h / g); v = g * t1; w = t1; bad = 0
+    for (k = 1; k <= n; k++) { d = t[k] - w; if (d < 0) d = -d
+        if (d > 1e-15 * w) bad++
+        v *= e; w += 2 * v / g }
+    print bad }')
+[ $st = 0 ] && [ "$nimp" = 3 ] && [ "$bad" = 0 ]
+ok $? "bouncing ball: $nimp impacts ($impacts) at the closed form's times to 1e-15 ($bad off)"
+
+# Kepler, e = 0.6, 100 periods of 2 pi
+"$eomc" run "$src/specs/kepler.yaml" --set e=0.6 $tight --t-end 628.3185307179587 \
+    --dt 6.283185307179586 -o "$tmp/k.csv" 2> "$tmp/k.err"
+st=$?
+drift=$(awk -F, 'NR > 1 { e = ($4 * $4 + $5 * $5) / 2 - 1 / sqrt($2 * $2 + $3 * $3)
+    if (NR == 2) e0 = e; d = (e - e0) / e0; if (d < 0) d = -d; if (d > m) m = d }
+    END { printf "%.3g", m }' "$tmp/k.csv")
+[ $st = 0 ] && [ "$(wc -l < "$tmp/k.csv")" = 102 ] && awk -v d="$drift" 'BEGIN { exit !(d < 1e-13) }'
+ok $? "Kepler, e = 0.6, 100 periods: the energy within $drift of its start (< 1e-13)"
+
+# chain5 against the extended-precision reference
+"$eomc" accuracy "$src/specs/chain5.yaml" --init q1=1.0 --methods taylor --tolerances 1e-8,1e-13 \
+    --csv "$tmp/c5.csv" > "$tmp/c5.txt" 2> "$tmp/c5.err"
+st=$?
+set -- $(awk -F, 'NR > 1 { printf "%s %s %s ", $10, $13, $6 }' "$tmp/c5.csv")
+[ $st = 0 ] && awk -v e8="$1" -v e13="$4" 'BEGIN { exit !(e8 < 1e-7 && e13 < 3e-13) }' &&
+    [ "$2" = 11 ] && [ "$5" = 16 ] && [ "$3" = 0 ] && [ "$6" = 0 ]
+ok $? "chain5, q1 = 1: error_max $1 at 1e-8 (order $2), $4 at 1e-13 (order $5), against the reference; rejected steps $3, $6"
+
+# refusals
+"$eomc" run "$src/specs/cartesian_pendulum.yaml" --method taylor -o "$tmp/r.csv" 2> "$tmp/r.err"
+st=$?
+[ $st = 2 ] && grep -q "has no Taylor series: the model has constraints" "$tmp/r.err" &&
+    [ ! -s "$tmp/r.csv" ]
+ok $? "a constrained model: exit 2, naming why ($(head -1 "$tmp/r.err"))"
+"$eomc" run "$src/specs/pendulum.yaml" --method taylor --fixed-step 0.01 > /dev/null 2> "$tmp/f.err"
+[ $? = 2 ] && grep -q "taylor chooses its own steps" "$tmp/f.err"
+ok $? "--fixed-step with taylor: exit 2"
+"$eomc" run "$src/specs/pendulum.yaml" --method taylor --rtol 0 --atol 1e-9 > /dev/null \
+    2> "$tmp/z.err"
+[ $? = 2 ] && grep -q "rtol must be positive" "$tmp/z.err"
+ok $? "--rtol 0 with taylor: exit 2"
+
+tap_end

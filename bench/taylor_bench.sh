@@ -1,0 +1,61 @@
+#!/bin/sh
+# Taylor's method beside rk8pd, measured in the same run (issue 26's
+# targets; `meson test -C build --benchmark taylor`):
+#  - chain5 from q1 = 1 (t = 0 to 10, 1001 rows): the report's error_max
+#    against the extended-precision reference and CPU time of each method
+#    over tolerances 1e-8 .. 1e-16, and for each error level the cheapest
+#    run of each that reaches it;
+#  - Kepler, e = 0.6: the energy's largest relative change over 100,
+#    1 000 and 10 000 periods (rows once a period, computed here from
+#    them), taylor at 1e-15 and rk8pd at 1e-14 (its tightest that does
+#    not grind), with CPU time.
+# Prints the figures; the targets are the issue's, and the lines say which
+# are met.  usage: taylor_bench.sh EOMC SOURCE_ROOT
+set -eu
+eomc=$1 src=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+export EOMC_CACHE_DIR="$dir/cache"
+
+echo "chain5, q1 = 1: error_max against the reference and CPU seconds"
+"$eomc" accuracy "$src/specs/chain5.yaml" --init q1=1.0 --methods taylor,rk8pd \
+    --tolerances 1e-8,1e-10,1e-12,1e-13,1e-14,1e-15,1e-16 --csv "$dir/c5.csv" > "$dir/c5.txt"
+awk -F, 'NR > 1 { printf "  %-7s rtol %-6s error_max %-9.3g cpu %.3g ms%s\n", $1, $2, $10, $4 * 1e3,
+    $13 != "" ? sprintf(", order %s", $13) : "" }' "$dir/c5.csv"
+scale=$(sed -n 's/.*digits of the largest entry, \([0-9.e+-]*\)).*/\1/p' "$dir/c5.txt")
+for level in 1e-12 1e-13 "$(awk -v s="$scale" 'BEGIN { printf "%.3g", 1e-15 * s }')"; do
+    awk -F, -v lev="$level" 'NR > 1 && $10 != "" && $10 <= lev {
+        if (!($1 in best) || $4 < best[$1]) best[$1] = $4 }
+        END { t = ("taylor" in best) ? sprintf("%.3g ms", best["taylor"] * 1e3) : "not reached"
+              r = ("rk8pd" in best) ? sprintf("%.3g ms", best["rk8pd"] * 1e3) : "not reached"
+              printf "  error_max <= %s: taylor %s, rk8pd %s\n", lev, t, r }' "$dir/c5.csv"
+done
+rkbest=$(awk -F, 'NR > 1 && $1 == "rk8pd" && $10 != "" { if (min == "" || $10 < min) { min = $10; t = $4 } }
+    END { print min, t }' "$dir/c5.csv")
+set -- $rkbest
+awk -F, -v e="$1" -v t="$2" 'NR > 1 && $1 == "taylor" && $10 != "" && $10 <= 1e-13 {
+    if (c == "" || $4 < c) c = $4 }
+    END {
+        if (c == "") verdict = "missed (not reached)"
+        else if (c <= t / 4) verdict = sprintf("met (%.3g ms)", c * 1e3)
+        else verdict = sprintf("missed (%.3g ms, %.1f times the quarter)", c * 1e3, c / (t / 4))
+        printf "  target: error_max <= 1e-13 in at most a quarter of the time rk8pd takes to its best (%.3g in %.3g ms): %s\n", e, t * 1e3, verdict
+    }' "$dir/c5.csv"
+
+echo "Kepler, e = 0.6: the energy's largest relative change, rows once a period"
+period=6.283185307179586
+for n in 100 1000 10000; do
+    t_end=$(awk -v n="$n" -v p="$period" 'BEGIN { printf "%.17g", n * p }')
+    for m in "taylor 1e-15" "rk8pd 1e-14"; do
+        set -- $m
+        "$eomc" run "$src/specs/kepler.yaml" --set e=0.6 --method "$1" --rtol "$2" --atol "$2" \
+            --t-end "$t_end" --dt "$period" --stats -o "$dir/k.csv" 2> "$dir/k.err"
+        cpu=$(sed -n 's/^cpu_seconds //p' "$dir/k.err")
+        steps=$(sed -n 's/^steps //p' "$dir/k.err")
+        awk -F, -v n="$n" -v m="$1" -v tol="$2" -v cpu="$cpu" -v steps="$steps" 'NR > 1 {
+            e = ($4 * $4 + $5 * $5) / 2 - 1 / sqrt($2 * $2 + $3 * $3)
+            if (NR == 2) e0 = e; d = (e - e0) / e0; if (d < 0) d = -d; if (d > mx) mx = d }
+            END { printf "  %5d periods: %-6s at %s: %.3g (%d steps, %.3g s)\n", n, m, tol, mx,
+                  steps, cpu }' "$dir/k.csv"
+    done
+done

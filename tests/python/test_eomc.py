@@ -251,3 +251,13 @@ def test_an_urdf_model_is_the_cli_to_the_bit():
     r = m.run(t_end=1, init={"shoulder": 0.4})
     assert status == 0 and m.coordinates == ["base_yaw", "shoulder", "elbow"]
     assert r.columns == columns and all(same_bits(r[c], rows[:, j]) for j, c in enumerate(columns))
+
+
+def test_taylor_from_python_is_the_cli_to_the_bit(pendulum):
+    opts = ("--method", "taylor", "--rtol", "1e-14", "--atol", "1e-14")
+    status, columns, rows, _ = cli_csv(spec("pendulum.yaml"), *opts)
+    r = pendulum.run(method="taylor", rtol=1e-14, atol=1e-14, stats=True)
+    assert status == 0 and r.columns == columns
+    assert all(same_bits(r[c], rows[:, j]) for j, c in enumerate(columns))
+    # its order from the tolerance (docs/accuracy.md), and rows off its polynomials
+    assert r.stats["order_mean"] == 18 and r.stats["side_steps"] == 0

@@ -10,6 +10,7 @@
 
 #include "eomc_taylor.h"
 
+
 #ifndef TAYLOR_OPS_ENUM
 #define TAYLOR_OPS_ENUM
 enum {

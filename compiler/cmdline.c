@@ -172,13 +172,24 @@ cmdline_unknown_option(const char *a)
  * the Jacobian: an implicit method (runtime/methods.def), the
  * linearization, an equilibrium, or the accuracy report of every method. */
 static int
-sim_needs_jacobian(const Options *o)
+implicit(const char *method)
+{
+    return spec_method_jacobian(method) == 1;
+}
+
+static int
+is_taylor(const char *method)
+{
+    return !strcmp(method, "taylor");
+}
+
+/* Whether a method the simulator options of `eomc run` name (--method M,
+ * --methods M1,M2,...) is one that want() says yes to. */
+static int
+sim_names_method(const Options *o, int (*want)(const char *method))
 {
     for (int i = 0; i < o->nsim; i++) {
         const char *a = o->sim[i], *val = NULL;
-        if (!strcmp(a, "--linearize") || !strcmp(a, "--equilibrium") ||
-            !strcmp(a, "--work-precision"))
-            return 1;
         if ((!strcmp(a, "--method") || !strcmp(a, "--methods")) && i + 1 < o->nsim)
             val = o->sim[i + 1];
         else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10))
@@ -186,29 +197,21 @@ sim_needs_jacobian(const Options *o)
         for (const char *w = val; w && *w; w += strcspn(w, ",") + (w[strcspn(w, ",")] != 0)) {
             char name[32];
             snprintf(name, sizeof name, "%.*s", (int)strcspn(w, ","), w);
-            if (spec_method_jacobian(name) == 1)
+            if (want(name))
                 return 1;
         }
     }
     return 0;
 }
 
-/* Whether the simulator options of `eomc run` name Taylor's method
- * (--method taylor, or taylor among --methods). */
 static int
-sim_names_taylor(const Options *o)
+sim_needs_jacobian(const Options *o)
 {
-    for (int i = 0; i < o->nsim; i++) {
-        const char *a = o->sim[i], *val = NULL;
-        if ((!strcmp(a, "--method") || !strcmp(a, "--methods")) && i + 1 < o->nsim)
-            val = o->sim[i + 1];
-        else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10))
-            val = strchr(a, '=') + 1;
-        for (const char *w = val; w && *w; w += strcspn(w, ",") + (w[strcspn(w, ",")] != 0))
-            if (strcspn(w, ",") == 6 && !strncmp(w, "taylor", 6))
-                return 1;
-    }
-    return 0;
+    for (int i = 0; i < o->nsim; i++)
+        if (!strcmp(o->sim[i], "--linearize") || !strcmp(o->sim[i], "--equilibrium") ||
+            !strcmp(o->sim[i], "--work-precision"))
+            return 1;
+    return sim_names_method(o, implicit);
 }
 
 /* Whether the accuracy report's methods are its default, all of them. */
@@ -324,7 +327,7 @@ cmdline_parse(int argc, char **argv, Options *o)
      * the run names taylor, for the report of every method, and for a
      * library (which serves every task); or when the scene's method is
      * taylor (main.c) */
-    o->needs_taylor = o->taylor || o->shared || sim_names_taylor(o) ||
+    o->needs_taylor = o->taylor || o->shared || sim_names_method(o, is_taylor) ||
                       (!strcmp(o->cmd, "accuracy") && sim_default_methods(o));
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);

@@ -684,7 +684,8 @@ lower_draw(Lowering *lw)
 
 Lowered *
 lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
-            const Invariant *inv, int jacobian, int code, Arena *A, ExprPool *P, Diff *D)
+            const Invariant *inv, int jacobian, int code, int taylor, Arena *A, ExprPool *P,
+            Diff *D)
 {
     Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
     *lw.L = (Lowered){0};
@@ -802,7 +803,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++)
         repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
-    lw.L->taylor = lower_taylor(lw.L, P, A); /* from the lists as they are printed */
+    lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
     return lw.L;
 }
 

@@ -350,16 +350,17 @@ enum { LOWER_TABLES_MIN = 30000 };
  * multipliers).  Derives e's partial derivatives (eom_derive_jacobian)
  * when the Jacobian is printed. */
 Lowered *lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c,
-                     int eliminate, const Invariant *inv, int jacobian, int code, Arena *A,
-                     ExprPool *P, Diff *D);
+                     int eliminate, const Invariant *inv, int jacobian, int code, int taylor,
+                     Arena *A, ExprPool *P, Diff *D);
 
 /* Fill L->model, its strings and arrays in A (lower_model calls it). */
 void lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
                     const Invariant *inv, Arena *A);
 
 /* The taylor member's program from L's mass_bias and events (or, in
- * ->why, why not): lower_model calls it last. */
-LowTaylor *lower_taylor(const Lowered *L, ExprPool *P, Arena *A);
+ * ->why, why not: a model it cannot do, or one it was not wanted for):
+ * lower_model calls it last. */
+LowTaylor *lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A);
 
 /* 1 + the highest index stored to output argument `arg` (0 if none),
  * copies included. */

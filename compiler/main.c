@@ -181,14 +181,9 @@ compile(const Options *o, FILE *out, int *units)
                              .eliminate = form->eliminate || o->eliminate,
                              .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
-            Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, A, P, D) : NULL;
-            /* Taylor's method's series only when wanted: a chain of 50
-             * links compiles in 2 s without them, 7 to 9 with */
-            if (L && L->taylor && !L->taylor->why && !o->needs_taylor &&
-                strcmp(s->scene.method, "taylor"))
-                L->taylor->why = "it was built without them (eomc writes them when the "
-                                 "scene's method is taylor, for eomc run --method taylor, and "
-                                 "with eomc build --taylor)";
+            int taylor = o->needs_taylor || !strcmp(s->scene.method, "taylor");
+            Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, taylor, A,
+                                           P, D) : NULL;
             if (L && L->tables_why)
                 fprintf(stderr, "%s: note: --code tables: not here (%s); the code is "
                         "straight-line\n", o->spec, L->tables_why);

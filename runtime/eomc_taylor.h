@@ -178,6 +178,20 @@ eomc_tay_powc(eomc_real *c, const eomc_real *a, const eomc_real *e, int k)
     c[k] = s / (k * a[0]);
 }
 
+/* The recurrence of sincos and sinhcosh at k > 0: s' = c a' and
+ * c' = sign s a' (sign -1 for sin and cos, 1 for sinh and cosh). */
+static inline void
+eomc_tay_pair_(eomc_real *s, eomc_real *c, const eomc_real *a, int k, int sign)
+{
+    eomc_real ss = 0, cc = 0;
+    for (int j = 1; j <= k; j++) {
+        ss += j * a[j] * c[k - j];
+        cc += j * a[j] * s[k - j];
+    }
+    s[k] = ss / k;
+    c[k] = sign * cc / k;
+}
+
 /* s = sin(a), c = cos(a) together: s' = c a', c' = -s a'. */
 static inline void
 eomc_tay_sincos(eomc_real *s, eomc_real *c, const eomc_real *a, int k)
@@ -185,15 +199,9 @@ eomc_tay_sincos(eomc_real *s, eomc_real *c, const eomc_real *a, int k)
     if (k == 0) {
         s[0] = EOMC_TAY_F(sin)(a[0]);
         c[0] = EOMC_TAY_F(cos)(a[0]);
-        return;
+    } else {
+        eomc_tay_pair_(s, c, a, k, -1);
     }
-    eomc_real ss = 0, cc = 0;
-    for (int j = 1; j <= k; j++) {
-        ss += j * a[j] * c[k - j];
-        cc += j * a[j] * s[k - j];
-    }
-    s[k] = ss / k;
-    c[k] = -cc / k;
 }
 
 /* s = sinh(a), c = cosh(a) together: s' = c a', c' = s a'. */
@@ -203,15 +211,9 @@ eomc_tay_sinhcosh(eomc_real *s, eomc_real *c, const eomc_real *a, int k)
     if (k == 0) {
         s[0] = EOMC_TAY_F(sinh)(a[0]);
         c[0] = EOMC_TAY_F(cosh)(a[0]);
-        return;
+    } else {
+        eomc_tay_pair_(s, c, a, k, 1);
     }
-    eomc_real ss = 0, cc = 0;
-    for (int j = 1; j <= k; j++) {
-        ss += j * a[j] * c[k - j];
-        cc += j * a[j] * s[k - j];
-    }
-    s[k] = ss / k;
-    c[k] = cc / k;
 }
 
 /* y = tan(a) with w = 1 + y^2 (sign = 1), or y = tanh(a) with w = 1 - y^2

@@ -738,36 +738,20 @@ run_free(Run *r)
     taylor_free(r->taylor_side);
 }
 
-/* run_alloc's for Taylor's method: the series (the step's and the side
- * steps'), the work arrays, the watch and the events. */
+/* The steppers of a run: GSL's driver, the stepper (fixed.c's for fixed
+ * steps) and the stepper of side steps; or, for Taylor's method, which
+ * has no GSL stepper, its series (the step's and the side steps').
+ * Whether all were made. */
 static int
-taylor_alloc_run(Run *r)
+steppers_alloc(Run *r, const Method *m)
 {
     size_t N = (size_t)r->N;
-    r->taylor = taylor_alloc(r->s, r->o);
-    r->taylor_side = taylor_alloc(r->s, r->o);
-    double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->fr,
-                         &r->fs, &r->fs2};
-    int ok = r->taylor && r->taylor_side &&
-             (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
-    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
-        ok &= (*arrays[k] = sim_zeros(N)) != NULL;
-    if (r->m->nevent > 0) {
-        StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r};
-        ok &= (r->ev = stepev_alloc(r->s, r->o, r->st, motion)) != NULL;
-    }
-    return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",
-                                          r->o->method);
-}
-
-static int
-run_alloc(Run *r, const Method *m)
-{
-    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
     double span = r->o->t_end - r->o->t0;
-    r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
-    if (!*m->adaptive) /* Taylor's method: its own steps, no GSL stepper */
-        return taylor_alloc_run(r);
+    if (!*m->adaptive) {
+        r->taylor = taylor_alloc(r->s, r->o);
+        r->taylor_side = taylor_alloc(r->s, r->o);
+        return r->taylor && r->taylor_side;
+    }
     r->d = gsl_odeiv2_driver_alloc_y_new(&r->sys, *m->adaptive,
                                          span > 0 ? H0_REL * span : 1.0, r->o->atol,
                                          r->o->rtol);
@@ -789,10 +773,18 @@ run_alloc(Run *r, const Method *m)
         if (r->side)
             gsl_odeiv2_step_set_driver(r->side, r->d);
     }
+    return r->d && r->step && r->side;
+}
+
+static int
+run_alloc(Run *r, const Method *m)
+{
+    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
+    r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
                          &r->B1, &r->fr, &r->fs, &r->fs2};
     size_t sizes[] = {N, N, N, N, N, N, nB, nB, N, N, N};
-    int ok = r->d && r->step && r->side && (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
+    int ok = steppers_alloc(r, m) && (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     if (r->m->nevent > 0) {

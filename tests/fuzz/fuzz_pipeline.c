@@ -56,7 +56,7 @@ compile(void *ctx)
             if (e && devnull) {
                 EmitInfo info = {.version = "fuzz", .options = "", .eliminate = eliminate};
                 EmitStats st[EMIT_NFUNCS];
-                Lowered *L = lower_model(s, m, e, c, 0, inv, jacobian, LOWER_CODE_AUTO, A, P, D);
+                Lowered *L = lower_model(s, m, e, c, 0, inv, jacobian, LOWER_CODE_AUTO, 1, A, P, D);
                 emit_model(devnull, L, P, &info, st);
             }
         }

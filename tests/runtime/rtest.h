@@ -54,6 +54,24 @@ rows_add(void *ctx, double t, const double *x)
     return r->n++ == r->stop_at ? r->stop_status : 0;
 }
 
+/* A whole file as a malloc'd string ("" if it cannot be read). */
+static inline char *
+slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    size_t n = 0, cap = 4096, k;
+    char *buf = malloc(cap);
+    if (!buf)
+        exit(1);
+    while (f && (k = fread(buf + n, 1, cap - n - 1, f)) > 0)
+        if ((n += k) == cap - 1 && !(buf = realloc(buf, cap *= 2)))
+            exit(1);
+    buf[n] = '\0';
+    if (f)
+        fclose(f);
+    return buf;
+}
+
 /* Row i's state. */
 static inline const double *
 rows_x(const Rows *r, int i)

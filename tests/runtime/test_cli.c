@@ -26,30 +26,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "models.h"
+#include "rtest.h"
 
 static const char *osc_sim, *driven_sim, *nonpd_sim[2], *leaky_sim;
 static char dir[] = "/tmp/eomc-rt-cli-XXXXXX";
 static char out_path[64], err_path[64], csv_path[64];
 static char *out, *err; /* the last run's stdout and stderr */
 
-/* A whole file as a malloc'd string ("" if it cannot be read). */
-static char *
-slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    size_t n = 0, cap = 4096, k;
-    char *buf = malloc(cap);
-    if (!buf)
-        exit(1);
-    while (f && (k = fread(buf + n, 1, cap - n - 1, f)) > 0)
-        if ((n += k) == cap - 1 && !(buf = realloc(buf, cap *= 2)))
-            exit(1);
-    buf[n] = '\0';
-    if (f)
-        fclose(f);
-    return buf;
-}
 
 /* Run `EXE ARGS` (ARGS as the shell reads them); its exit status, with
  * stdout and stderr in out and err. */

@@ -24,27 +24,10 @@
 #include <unistd.h>
 
 #include "eomc.h"
-#include "models.h"
+#include "rtest.h"
 
 static char dir[] = "/tmp/eomc-rt-mem-XXXXXX";
 
-/* A whole file as a malloc'd string ("" if it cannot be read). */
-static char *
-slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    size_t n = 0, cap = 4096, k;
-    char *buf = malloc(cap);
-    if (!buf)
-        exit(1);
-    while (f && (k = fread(buf + n, 1, cap - n - 1, f)) > 0)
-        if ((n += k) == cap - 1 && !(buf = realloc(buf, cap *= 2)))
-            exit(1);
-    buf[n] = '\0';
-    if (f)
-        fclose(f);
-    return buf;
-}
 
 /* fd 1 and fd 2 into a file of their own for a while (quiet_begin ..
  * quiet_end), to see that nothing reaches them. */

@@ -39,7 +39,7 @@ lowered(Spec *s)
     if (!e)
         return NULL;
     return lower_model(s, m, e, c, e->form->eliminate, inv, LOWER_JACOBIAN_NONE,
-                       LOWER_CODE_STRAIGHT, A, P, D);
+                       LOWER_CODE_STRAIGHT, 0, A, P, D);
 }
 
 static void

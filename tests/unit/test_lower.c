@@ -49,7 +49,7 @@ lowered(int jacobian)
     Invariant *inv = invariant_derive(s, m, c, A, P, D);
     const char *why;
     Eom *e = eom_derive(s, m, form_find("lagrange"), A, P, D, &why);
-    return lower_model(s, m, e, c, 0, inv, jacobian, LOWER_CODE_STRAIGHT, A, P, D);
+    return lower_model(s, m, e, c, 0, inv, jacobian, LOWER_CODE_STRAIGHT, 0, A, P, D);
 }
 
 static const double pdef[] = {1.3, 0.4, 0.7, 9.81, 0.3, 0.5, 2.0};

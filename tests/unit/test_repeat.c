@@ -113,7 +113,7 @@ main(void)
     Invariant *inv = invariant_derive(s, m, NULL, A, P, D);
     const char *why;
     Eom *e = eom_derive(s, m, form_find("lagrange"), A, P, D, &why);
-    Lowered *L = lower_model(s, m, e, NULL, 0, inv, LOWER_JACOBIAN_NONE, LOWER_CODE_STRAIGHT,
+    Lowered *L = lower_model(s, m, e, NULL, 0, inv, LOWER_JACOBIAN_NONE, LOWER_CODE_STRAIGHT, 0,
                              A, P, D);
     const LowFunc *f = lower_find(L, "accel_solve");
     CHECK(f && !f->copy, "accel_solve: straight-line as lowered (below REPEAT_MIN_SAVED)");

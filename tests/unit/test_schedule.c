@@ -39,7 +39,7 @@ lowered(const char *path, int jacobian)
                                  sizeof why);
     if (!e)
         return NULL;
-    return lower_model(s, m, e, c, e->form->eliminate, inv, jacobian, LOWER_CODE_STRAIGHT, A,
+    return lower_model(s, m, e, c, e->form->eliminate, inv, jacobian, LOWER_CODE_STRAIGHT, 0, A,
                        P, D);
 }
 

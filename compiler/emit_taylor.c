@@ -121,8 +121,14 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     const LowModel *md = pr->md;
     int n = md->nq;
     emit_line(pr, "/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0");
-    emit_line(pr, " * of every value mass_bias and events compute, slot s's at T[s (K + 1)");
-    emit_line(pr, " * ...], from their orders 0 .. k-1 and the caller's coefficient k of q");
+    if (ty->nc) {
+        emit_line(pr, " * of every value mass_bias, events, constraint (at q'' = 0) and");
+        emit_line(pr, " * c_levels compute, slot s's at T[s (K + 1) ...], from their orders");
+        emit_line(pr, " * 0 .. k-1 and the caller's coefficient k of q");
+    } else {
+        emit_line(pr, " * of every value mass_bias and events compute, slot s's at T[s (K + 1)");
+        emit_line(pr, " * ...], from their orders 0 .. k-1 and the caller's coefficient k of q");
+    }
     emit_line(pr, " * and q' (taylor_q, taylor_v): %d slots, %d calls. */", ty->nslot,
               ty->nstep);
     /* cut as emit_func.c cuts a long function (LOWER_PART_SIZE): each
@@ -164,5 +170,13 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     print_ints(pr, "taylor_h", ty->h_slot, n);
     if (ty->nevent)
         print_ints(pr, "taylor_g", ty->g_slot, ty->nevent);
+    if (ty->nc) {
+        emit_line(pr, "/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at");
+        emit_line(pr, " * q'' = 0, and their own levels (c_levels' pos and vel). */");
+        print_ints(pr, "taylor_B", ty->B_slot, ty->nc * n);
+        print_ints(pr, "taylor_b", ty->b_slot, ty->nc);
+        print_ints(pr, "taylor_pos", ty->pos_slot, ty->nc);
+        print_ints(pr, "taylor_vel", ty->vel_slot, ty->nc);
+    }
     emit_line(pr, "");
 }

@@ -479,6 +479,7 @@ lower_derive(Lowering *lw)
             want[roots[i]] = 1;
 #undef DERIVABLE
     L->derived = arena_new_array(lw->A, int, size);
+    L->derived_ids = size;
     for (size_t id = 0; id < size; id++)
         L->derived[id] = want[id] ? L->nd++ : -1;
     for (int k = 0; k < L->nfunc; k++) /* (derive, made below, computes them) */

@@ -252,8 +252,10 @@ typedef struct LowTayStep {
  * over nslot series, in an order where every operand is computed before
  * it is read; the caller writes the slots of q and q' (q_slot, v_slot,
  * -1: nothing reads it).  M_slot[i nq + j], h_slot[i], g_slot[e]: the
- * results (-1: zero at every order).  why: NULL, or why there is no
- * program (one sentence), and then nothing else is set. */
+ * results (-1: zero at every order); with constraints also B_slot[c nq +
+ * i] (B = df/dq''), b_slot[c] (f at q'' = 0), pos_slot[c] and
+ * vel_slot[c] (c_levels').  why: NULL, or why there is no program (one
+ * sentence), and then nothing else is set. */
 typedef struct LowTaylor {
     const char *why;
     int nslot, nstep;
@@ -262,7 +264,9 @@ typedef struct LowTaylor {
     int *M_slot;          /* [nq nq] */
     int *h_slot;          /* [nq] */
     int *g_slot;          /* [nevent] */
-    int nevent;
+    int nevent, nc;
+    int *B_slot;          /* [nc nq] */
+    int *b_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;
 
 /* The model's functions in the order they are printed. */
@@ -286,6 +290,7 @@ typedef struct Lowered {
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */
     LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;
+    size_t derived_ids; /* derived's length: the pool's size when it was made */
     int nd;
     /* code = LOWER_CODE_TABLES: tau, then accel and mass_bias by hand over
      * the tables, whose numbers are pd[tree_base ...] */

@@ -15,16 +15,26 @@
  * exponent as exp(b log a)).  The sine and the cosine of one angle are
  * one call (each needs the other's series), and so are sinh and cosh.
  * A product by a value constant in t is a scale, not a convolution.
+ *
+ * With constraints, every one affine in q'' (f = B q'' + b), the program
+ * also has the series of B, of b and of the constraints' own levels
+ * (c_levels: Baumgarte's stabilization adds them to f): b is f's DAG
+ * with the accelerations read as 0, and the runtime solves the KKT
+ * system order by order.  A constraint nonlinear in q'' would need
+ * Newton's solve at every order; it is refused by name.
  */
 #include "lower.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 typedef struct Build {
     ExprPool *P;
     const int *derived; /* per node id its index in pd[], -1: not derived */
+    size_t nderived;    /* derived's length */
     int np;
+    int accel_zero;     /* q'' reads as 0 (f's DAG gives b = f at q'' = 0) */
     int *slot;          /* per node id, -1: none */
     unsigned char *konst; /* per node id: constant in t */
     int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
@@ -108,13 +118,19 @@ pair_slot(Build *b, ExprId a, int which)
     return p[which & 1];
 }
 
+static int
+is_derived(const Build *b, ExprId id)
+{
+    return b->derived && (size_t)id < b->nderived && b->derived[id] >= 0;
+}
+
 /* Node id's slot, its operands' slots made before. */
 static void
 build_node(Build *b, ExprId id)
 {
     const ExprNode *nd = expr_node(b->P, id);
     int ar = expr_op_arity[nd->op];
-    if (b->derived && b->derived[id] >= 0) {
+    if (is_derived(b, id)) {
         b->slot[id] = constant(b, LOW_TAY_SRC_P, b->np + b->derived[id], 0);
         b->konst[id] = 1;
         return;
@@ -140,6 +156,11 @@ build_node(Build *b, ExprId id)
         call(b, "time", 1, c, -1, -1, -1)->src = LOW_TAY_SRC_T;
         break;
     case EXPR_VAR:
+        if (nd->b > 1 && b->accel_zero) { /* only f reads them: b = f at q'' = 0 */
+            c = constant(b, LOW_TAY_SRC_CONST, 0, 0);
+            b->konst[id] = 1;
+            break;
+        }
         if (nd->b > 1) {
             b->why = "its mass matrix or bias reads accelerations";
             return;
@@ -242,13 +263,59 @@ build_node(Build *b, ExprId id)
     b->slot[id] = c;
 }
 
+/* Whether e reads an acceleration (seen: per node id, zeroed by the
+ * caller, shared by its calls). */
+static int
+reads_accel(ExprPool *P, ExprId e, unsigned char *seen)
+{
+    if (seen[e])
+        return 0;
+    seen[e] = 1;
+    const ExprNode *nd = expr_node(P, e);
+    int ar = expr_op_arity[nd->op];
+    if (nd->op == EXPR_VAR)
+        return nd->b > 1;
+    return (ar > 0 && reads_accel(P, nd->a, seen)) || (ar > 1 && reads_accel(P, nd->b, seen));
+}
+
+/* The name of the first constraint whose B = df/dq'' reads q'' (f is not
+ * affine in q''), or NULL. */
+static const char *
+nonlinear_constraint(const Lowered *L, const LowFunc *cf, ExprPool *P)
+{
+    if (L->model.affine)
+        return NULL;
+    int n = L->n;
+    unsigned char *seen = xmalloc(expr_pool_size(P));
+    const char *name = NULL;
+    for (int c = 0; c < L->model.nc && !name; c++) {
+        memset(seen, 0, expr_pool_size(P));
+        for (int k = 0; k < cf->nout && !name; k++) {
+            const LowSlot *o = &cf->out[k];
+            if (o->arg == 1 && o->index / n == c && reads_accel(P, o->e, seen))
+                name = L->model.constraint[c].name;
+        }
+    }
+    free(seen);
+    return name;
+}
+
 /* The reason, or NULL: what the program cannot be built from. */
 static const char *
-refused(const Lowered *L, const LowFunc *mb)
+refused(const Lowered *L, const LowFunc *mb, const LowFunc *cf, ExprPool *P, Arena *A)
 {
-    if (L->model.constrained)
-        return "the model has constraints, and eomc does not yet generate the series of "
-               "their equations";
+    if (L->model.constrained && !cf)
+        return "its constraints have no expressions (eomc_model's constraint)";
+    const char *name = cf ? nonlinear_constraint(L, cf, P) : NULL;
+    if (name) {
+        const char *fmt = "its constraint '%s' is nonlinear in q'', whose series would need "
+                          "Newton's method at every order, which eomc does not yet generate "
+                          "(constraints affine in q'' have them)";
+        size_t len = strlen(fmt) + strlen(name);
+        char *why = arena_alloc(A, len);
+        snprintf(why, len, fmt, name);
+        return why;
+    }
     if (L->code == LOWER_CODE_TABLES)
         return "its mass matrix and bias are loops over the model's tables (--code tables), "
                "not expressions; --code straight gives the expressions";
@@ -267,7 +334,9 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
     LowTaylor *ty = arena_alloc(A, sizeof *ty);
     *ty = (LowTaylor){0};
     const LowFunc *mb = lower_find(L, "mass_bias");
-    if ((ty->why = refused(L, mb)))
+    const LowFunc *cf = L->model.constrained ? lower_find(L, "constraint") : NULL;
+    const LowFunc *lv = L->model.constrained ? lower_find(L, "c_levels") : NULL;
+    if ((ty->why = refused(L, mb, cf, P, A)))
         return ty;
     /* the series are much of a large model's C: a chain of 50 links
      * compiles in 2 s without them, 7 to 9 with */
@@ -276,9 +345,10 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
                   "taylor, for eomc run --method taylor, and with eomc build --taylor)";
         return ty;
     }
-    int n = L->n, ne = L->events ? L->model.nevent : 0;
+    int n = L->n, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
     size_t size = expr_pool_size(P);
-    Build b = {.P = P, .derived = mb->derived, .np = L->model.np};
+    Build b = {.P = P, .derived = mb->derived, .nderived = L->derived_ids, .np = L->model.np,
+               .accel_zero = cf != NULL};
     b.slot = xmalloc(size * sizeof *b.slot);
     b.konst = xmalloc(size);
     b.pair = xmalloc(4 * size * sizeof *b.pair);
@@ -288,15 +358,16 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
 
     /* the nodes the outputs need, down to the leaves and derived values
      * (an output that is 0 needs none: its slot is -1) */
-    int nroot = mb->nout + (L->events ? L->events->nout : 0);
+    const LowFunc *roots[] = {mb, L->events, cf, lv};
+    int nroot = 0;
+    for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++)
+        nroot += roots[r] ? roots[r]->nout : 0;
     ExprId *stack = xmalloc(((size_t)nroot + 1) * sizeof *stack);
     size_t sp = 0, cap = (size_t)nroot + 1;
-    for (int k = 0; k < mb->nout; k++)
-        if (mb->out[k].e != EXPR_ZERO)
-            stack[sp++] = mb->out[k].e;
-    for (int k = 0; L->events && k < L->events->nout; k++)
-        if (L->events->out[k].e != EXPR_ZERO)
-            stack[sp++] = L->events->out[k].e;
+    for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++)
+        for (int k = 0; roots[r] && k < roots[r]->nout; k++)
+            if (roots[r]->out[k].e != EXPR_ZERO)
+                stack[sp++] = roots[r]->out[k].e;
     unsigned char *mark = xmalloc(size);
     memset(mark, 0, size);
     while (sp) {
@@ -306,7 +377,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         mark[e] = 1;
         const ExprNode *nd = expr_node(P, e);
         int ar = expr_op_arity[nd->op];
-        if (ar == 0 || (b.derived && b.derived[e] >= 0))
+        if (ar == 0 || is_derived(&b, e))
             continue;
         if (sp + 2 >= cap)
             stack = xrealloc(stack, (cap *= 2) * sizeof *stack);
@@ -338,7 +409,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             ty->M_slot[i] = -1;
         for (size_t id = 0; id < size; id++) {
             const ExprNode *nd = expr_node(P, (ExprId)id);
-            if (mark[id] && nd->op == EXPR_VAR)
+            if (mark[id] && nd->op == EXPR_VAR && nd->b < 2) /* q'' is f's, read as 0 */
                 (nd->b ? ty->v_slot : ty->q_slot)[nd->a] = b.slot[id];
         }
         for (int k = 0; k < mb->nout; k++) {
@@ -354,6 +425,25 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         for (int k = 0; L->events && k < L->events->nout; k++) {
             const LowSlot *o = &L->events->out[k];
             ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+        }
+        ty->nc = nc;
+        ty->B_slot = arena_new_array(A, int, nc * n + 1);
+        ty->b_slot = arena_new_array(A, int, nc + 1);
+        ty->pos_slot = arena_new_array(A, int, nc + 1);
+        ty->vel_slot = arena_new_array(A, int, nc + 1);
+        for (int i = 0; i < nc * n; i++)
+            ty->B_slot[i] = -1;
+        for (int c = 0; c < nc; c++)
+            ty->b_slot[c] = ty->pos_slot[c] = ty->vel_slot[c] = -1;
+        for (int k = 0; cf && k < cf->nout; k++) {
+            const LowSlot *o = &cf->out[k];
+            (o->arg == 0 ? ty->b_slot : ty->B_slot)[o->index] =
+                o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+        }
+        for (int k = 0; lv && k < lv->nout; k++) {
+            const LowSlot *o = &lv->out[k];
+            (o->arg == 0 ? ty->pos_slot : ty->vel_slot)[o->index] =
+                o->e == EXPR_ZERO ? -1 : b.slot[o->e];
         }
     }
     free(mark);

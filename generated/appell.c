@@ -25,6 +25,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -409,6 +410,59 @@ appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias, events, constraint (at q'' = 0) and
+ * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
+ * 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 29 slots, 26 calls. */
+static void
+appell_taylor(int k, int K, double t0, const double *p, const double *u,
+    double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_const(T, 2.0, k);
+    eomc_tay_const(T + 1 * S, p[0], k);
+    eomc_tay_const(T + 2 * S, p[5], k);
+    eomc_tay_sqr(T + 4 * S, T + 3 * S, k);
+    eomc_tay_const(T + 5 * S, p[6], k);
+    eomc_tay_sqr(T + 7 * S, T + 6 * S, k);
+    eomc_tay_sqr(T + 9 * S, T + 8 * S, k);
+    eomc_tay_add(T + 10 * S, T + 7 * S, T + 9 * S, k);
+    eomc_tay_scale(T + 11 * S, T + 5 * S, T + 10 * S, k);
+    eomc_tay_sub(T + 12 * S, T + 4 * S, T + 11 * S, k);
+    eomc_tay_const(T + 13 * S, 0.0, k);
+    eomc_tay_const(T + 14 * S, 0.0, k);
+    eomc_tay_const(T + 15 * S, 0.0, k);
+    eomc_tay_scale(T + 16 * S, T, T + 3 * S, k);
+    eomc_tay_scale(T + 17 * S, T + 15 * S, T + 3 * S, k);
+    eomc_tay_scale(T + 18 * S, T, T + 17 * S, k);
+    eomc_tay_scale(T + 19 * S, T + 13 * S, T + 6 * S, k);
+    eomc_tay_scale(T + 20 * S, T + 14 * S, T + 8 * S, k);
+    eomc_tay_add(T + 21 * S, T + 19 * S, T + 20 * S, k);
+    eomc_tay_const(T + 22 * S, p[8], k);
+    eomc_tay_scale(T + 23 * S, T + 22 * S, T + 21 * S, k);
+    eomc_tay_sub(T + 24 * S, T + 18 * S, T + 23 * S, k);
+    eomc_tay_scale(T + 25 * S, T + 22 * S, T + 6 * S, k);
+    eomc_tay_neg(T + 26 * S, T + 25 * S, k);
+    eomc_tay_scale(T + 27 * S, T + 22 * S, T + 8 * S, k);
+    eomc_tay_neg(T + 28 * S, T + 27 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[3] = {-1, -1, -1};
+static const int taylor_v[3] = {6, 8, 3};
+static const int taylor_M[9] = {1, -1, -1, -1, 1, -1, -1, -1, 1};
+static const int taylor_h[3] = {-1, -1, 2};
+/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
+ * q'' = 0, and their own levels (c_levels' pos and vel). */
+static const int taylor_B[3] = {26, 28, 16};
+static const int taylor_b[1] = {24};
+static const int taylor_pos[1] = {-1};
+static const int taylor_vel[1] = {12};
+
 const eomc_model appell_model = {
     .abi = EOMC_ABI_VERSION, .name = "appell", .spec = "appell.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -442,7 +496,10 @@ const eomc_model appell_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
-    .taylor_nslot = 0, .taylor = NULL, .taylor_why = "the model has constraints, and eomc does not yet generate the series of their equations",
+    .taylor_nslot = 29, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = appell_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -25,6 +25,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -382,6 +383,57 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias, events, constraint (at q'' = 0) and
+ * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
+ * 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 28 slots, 24 calls. */
+static void
+cartesian_pendulum_taylor(int k, int K, double t0, const double *p,
+    const double *u, double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_const(T, p[0], k);
+    eomc_tay_const(T + 3 * S, 2.0, k);
+    eomc_tay_sqr(T + 4 * S, T + 1 * S, k);
+    eomc_tay_sqr(T + 5 * S, T + 2 * S, k);
+    eomc_tay_add(T + 6 * S, T + 4 * S, T + 5 * S, k);
+    eomc_tay_const(T + 7 * S, p[4], k);
+    eomc_tay_sub(T + 8 * S, T + 6 * S, T + 7 * S, k);
+    eomc_tay_const(T + 10 * S, 0.0, k);
+    eomc_tay_const(T + 12 * S, 0.0, k);
+    eomc_tay_sqr(T + 13 * S, T + 11 * S, k);
+    eomc_tay_sqr(T + 14 * S, T + 9 * S, k);
+    eomc_tay_const(T + 15 * S, p[6], k);
+    eomc_tay_scale(T + 16 * S, T + 3 * S, T + 1 * S, k);
+    eomc_tay_mul(T + 17 * S, T + 1 * S, T + 11 * S, k);
+    eomc_tay_scale(T + 18 * S, T + 3 * S, T + 2 * S, k);
+    eomc_tay_mul(T + 19 * S, T + 2 * S, T + 9 * S, k);
+    eomc_tay_add(T + 20 * S, T + 17 * S, T + 19 * S, k);
+    eomc_tay_scale(T + 21 * S, T + 3 * S, T + 20 * S, k);
+    eomc_tay_scale(T + 22 * S, T + 12 * S, T + 1 * S, k);
+    eomc_tay_add(T + 23 * S, T + 13 * S, T + 22 * S, k);
+    eomc_tay_scale(T + 24 * S, T + 10 * S, T + 2 * S, k);
+    eomc_tay_add(T + 25 * S, T + 14 * S, T + 24 * S, k);
+    eomc_tay_add(T + 26 * S, T + 23 * S, T + 25 * S, k);
+    eomc_tay_scale(T + 27 * S, T + 3 * S, T + 26 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[2] = {1, 2};
+static const int taylor_v[2] = {11, 9};
+static const int taylor_M[4] = {0, -1, -1, 0};
+static const int taylor_h[2] = {-1, 15};
+/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
+ * q'' = 0, and their own levels (c_levels' pos and vel). */
+static const int taylor_B[2] = {16, 18};
+static const int taylor_b[1] = {27};
+static const int taylor_pos[1] = {8};
+static const int taylor_vel[1] = {21};
+
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -415,7 +467,10 @@ const eomc_model cartesian_pendulum_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
-    .taylor_nslot = 0, .taylor = NULL, .taylor_why = "the model has constraints, and eomc does not yet generate the series of their equations",
+    .taylor_nslot = 28, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = cartesian_pendulum_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -25,6 +25,7 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
+#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -980,6 +981,141 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = p_C;
 }
 
+/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
+ * of every value mass_bias, events, constraint (at q'' = 0) and
+ * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
+ * 0 .. k-1 and the caller's coefficient k of q
+ * and q' (taylor_q, taylor_v): 115 slots, 108 calls. */
+static void
+precession_taylor(int k, int K, double t0, const double *p, const double *u,
+    double *T)
+{
+    const int S = K + 1;
+    (void)t0;
+    (void)u;
+    eomc_tay_sincos(T + 2 * S, T + 3 * S, T + 1 * S, k);
+    eomc_tay_mul(T + 4 * S, T, T + 2 * S, k);
+    eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 5 * S, k);
+    eomc_tay_mul(T + 8 * S, T + 4 * S, T + 6 * S, k);
+    eomc_tay_mul(T + 10 * S, T + 9 * S, T + 7 * S, k);
+    eomc_tay_add(T + 11 * S, T + 8 * S, T + 10 * S, k);
+    eomc_tay_mul(T + 12 * S, T + 4 * S, T + 7 * S, k);
+    eomc_tay_mul(T + 13 * S, T + 6 * S, T + 9 * S, k);
+    eomc_tay_sub(T + 14 * S, T + 12 * S, T + 13 * S, k);
+    eomc_tay_mul(T + 15 * S, T, T + 3 * S, k);
+    eomc_tay_add(T + 17 * S, T + 15 * S, T + 16 * S, k);
+    eomc_tay_const(T + 18 * S, 1.5, k);
+    eomc_tay_const(T + 19 * S, p[0], k);
+    eomc_tay_const(T + 20 * S, p[1], k);
+    eomc_tay_const(T + 21 * S, p[2], k);
+    eomc_tay_const(T + 22 * S, p[3], k);
+    eomc_tay_const(T + 23 * S, 0.0, k);
+    eomc_tay_scale(T + 24 * S, T + 23 * S, T + 2 * S, k);
+    eomc_tay_mul(T + 25 * S, T, T + 9 * S, k);
+    eomc_tay_mul(T + 26 * S, T + 25 * S, T + 3 * S, k);
+    eomc_tay_add(T + 27 * S, T + 24 * S, T + 26 * S, k);
+    eomc_tay_mul(T + 28 * S, T + 7 * S, T + 27 * S, k);
+    eomc_tay_mul(T + 29 * S, T + 8 * S, T + 16 * S, k);
+    eomc_tay_sub(T + 30 * S, T + 28 * S, T + 29 * S, k);
+    eomc_tay_const(T + 31 * S, 0.0, k);
+    eomc_tay_mul(T + 32 * S, T + 10 * S, T + 16 * S, k);
+    eomc_tay_scale(T + 33 * S, T + 31 * S, T + 6 * S, k);
+    eomc_tay_add(T + 34 * S, T + 32 * S, T + 33 * S, k);
+    eomc_tay_sub(T + 35 * S, T + 30 * S, T + 34 * S, k);
+    eomc_tay_mul(T + 36 * S, T + 11 * S, T + 35 * S, k);
+    eomc_tay_mul(T + 37 * S, T + 6 * S, T + 27 * S, k);
+    eomc_tay_mul(T + 38 * S, T + 12 * S, T + 16 * S, k);
+    eomc_tay_add(T + 39 * S, T + 37 * S, T + 38 * S, k);
+    eomc_tay_scale(T + 40 * S, T + 31 * S, T + 7 * S, k);
+    eomc_tay_mul(T + 41 * S, T + 13 * S, T + 16 * S, k);
+    eomc_tay_sub(T + 42 * S, T + 40 * S, T + 41 * S, k);
+    eomc_tay_add(T + 43 * S, T + 39 * S, T + 42 * S, k);
+    eomc_tay_mul(T + 44 * S, T + 14 * S, T + 43 * S, k);
+    eomc_tay_sub(T + 45 * S, T + 36 * S, T + 44 * S, k);
+    eomc_tay_sqr(T + 46 * S, T + 11 * S, k);
+    eomc_tay_sqr(T + 47 * S, T + 14 * S, k);
+    eomc_tay_add(T + 48 * S, T + 46 * S, T + 47 * S, k);
+    eomc_tay_mul(T + 49 * S, T + 17 * S, T + 48 * S, k);
+    eomc_tay_add(T + 50 * S, T + 45 * S, T + 49 * S, k);
+    eomc_tay_powc(T + 51 * S, T + 48 * S, T + 18 * S, k);
+    eomc_tay_scale(T + 52 * S, T + 22 * S, T + 51 * S, k);
+    eomc_tay_sub(T + 53 * S, T + 50 * S, T + 52 * S, k);
+    eomc_tay_mul(T + 54 * S, T + 4 * S, T + 9 * S, k);
+    eomc_tay_mul(T + 55 * S, T + 14 * S, T + 17 * S, k);
+    eomc_tay_const(T + 56 * S, p[4], k);
+    eomc_tay_scale(T + 57 * S, T + 56 * S, T + 55 * S, k);
+    eomc_tay_mul(T + 58 * S, T + 11 * S, T + 17 * S, k);
+    eomc_tay_const(T + 59 * S, p[5], k);
+    eomc_tay_scale(T + 60 * S, T + 59 * S, T + 58 * S, k);
+    eomc_tay_mul(T + 61 * S, T + 11 * S, T + 14 * S, k);
+    eomc_tay_const(T + 62 * S, p[6], k);
+    eomc_tay_scale(T + 63 * S, T + 62 * S, T + 61 * S, k);
+    eomc_tay_mul(T + 64 * S, T + 2 * S, T + 7 * S, k);
+    eomc_tay_mul(T + 65 * S, T + 11 * S, T + 64 * S, k);
+    eomc_tay_mul(T + 66 * S, T + 2 * S, T + 6 * S, k);
+    eomc_tay_mul(T + 67 * S, T + 14 * S, T + 66 * S, k);
+    eomc_tay_sub(T + 68 * S, T + 65 * S, T + 67 * S, k);
+    eomc_tay_mul(T + 69 * S, T + 6 * S, T + 11 * S, k);
+    eomc_tay_mul(T + 70 * S, T + 7 * S, T + 14 * S, k);
+    eomc_tay_add(T + 71 * S, T + 69 * S, T + 70 * S, k);
+    eomc_tay_neg(T + 72 * S, T + 71 * S, k);
+    eomc_tay_mul(T + 73 * S, T + 25 * S, T + 7 * S, k);
+    eomc_tay_mul(T + 74 * S, T + 73 * S, T + 3 * S, k);
+    eomc_tay_sub(T + 75 * S, T + 74 * S, T + 29 * S, k);
+    eomc_tay_sub(T + 76 * S, T + 75 * S, T + 32 * S, k);
+    eomc_tay_mul(T + 77 * S, T, T + 6 * S, k);
+    eomc_tay_mul(T + 78 * S, T + 77 * S, T + 9 * S, k);
+    eomc_tay_mul(T + 79 * S, T + 78 * S, T + 3 * S, k);
+    eomc_tay_add(T + 80 * S, T + 38 * S, T + 79 * S, k);
+    eomc_tay_sub(T + 81 * S, T + 80 * S, T + 41 * S, k);
+    eomc_tay_sqr(T + 82 * S, T + 3 * S, k);
+    eomc_tay_scale(T + 83 * S, T + 21 * S, T + 82 * S, k);
+    eomc_tay_sqr(T + 84 * S, T + 7 * S, k);
+    eomc_tay_mul(T + 85 * S, T + 2 * S, T + 84 * S, k);
+    eomc_tay_scale(T + 86 * S, T + 20 * S, T + 85 * S, k);
+    eomc_tay_sqr(T + 87 * S, T + 6 * S, k);
+    eomc_tay_mul(T + 88 * S, T + 2 * S, T + 87 * S, k);
+    eomc_tay_scale(T + 89 * S, T + 19 * S, T + 88 * S, k);
+    eomc_tay_add(T + 90 * S, T + 86 * S, T + 89 * S, k);
+    eomc_tay_mul(T + 91 * S, T + 2 * S, T + 90 * S, k);
+    eomc_tay_add(T + 92 * S, T + 83 * S, T + 91 * S, k);
+    eomc_tay_mul(T + 93 * S, T + 66 * S, T + 7 * S, k);
+    eomc_tay_const(T + 94 * S, p[7], k);
+    eomc_tay_scale(T + 95 * S, T + 94 * S, T + 93 * S, k);
+    eomc_tay_scale(T + 96 * S, T + 19 * S, T + 84 * S, k);
+    eomc_tay_scale(T + 97 * S, T + 20 * S, T + 87 * S, k);
+    eomc_tay_add(T + 98 * S, T + 96 * S, T + 97 * S, k);
+    eomc_tay_scale(T + 99 * S, T + 21 * S, T + 3 * S, k);
+    eomc_tay_scale(T + 100 * S, T + 21 * S, T + 54 * S, k);
+    eomc_tay_scale(T + 101 * S, T + 19 * S, T + 81 * S, k);
+    eomc_tay_scale(T + 102 * S, T + 20 * S, T + 76 * S, k);
+    eomc_tay_sub(T + 103 * S, T + 63 * S, T + 100 * S, k);
+    eomc_tay_add(T + 104 * S, T + 60 * S, T + 102 * S, k);
+    eomc_tay_add(T + 105 * S, T + 57 * S, T + 101 * S, k);
+    eomc_tay_mul(T + 106 * S, T + 3 * S, T + 103 * S, k);
+    eomc_tay_mul(T + 107 * S, T + 7 * S, T + 105 * S, k);
+    eomc_tay_mul(T + 108 * S, T + 6 * S, T + 105 * S, k);
+    eomc_tay_mul(T + 109 * S, T + 6 * S, T + 104 * S, k);
+    eomc_tay_sub(T + 110 * S, T + 107 * S, T + 109 * S, k);
+    eomc_tay_mul(T + 111 * S, T + 7 * S, T + 104 * S, k);
+    eomc_tay_add(T + 112 * S, T + 108 * S, T + 111 * S, k);
+    eomc_tay_mul(T + 113 * S, T + 2 * S, T + 112 * S, k);
+    eomc_tay_add(T + 114 * S, T + 106 * S, T + 113 * S, k);
+}
+
+/* The slots of q and q' the caller writes, and those of M (row-major),
+ * h and the event functions g (-1: none, or zero at every order). */
+static const int taylor_q[3] = {-1, 1, 5};
+static const int taylor_v[3] = {0, 9, 16};
+static const int taylor_M[9] = {92, 95, 99, 95, 98, -1, 99, -1, 21};
+static const int taylor_h[3] = {114, 110, 103};
+/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
+ * q'' = 0, and their own levels (c_levels' pos and vel). */
+static const int taylor_B[3] = {68, 72, -1};
+static const int taylor_b[1] = {53};
+static const int taylor_pos[1] = {-1};
+static const int taylor_vel[1] = {-1};
+
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -1013,7 +1149,10 @@ const eomc_model precession_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
-    .taylor_nslot = 0, .taylor = NULL, .taylor_why = "the model has constraints, and eomc does not yet generate the series of their equations",
+    .taylor_nslot = 115, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = precession_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

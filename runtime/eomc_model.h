@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 18
+#define EOMC_ABI_VERSION 19
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -310,11 +310,16 @@ typedef struct eomc_model {
      * k of M_ij is at slot taylor_M[i nq + j], of h_i at taylor_h[i] and
      * of event function g_e at taylor_g[e] (-1: zero at every order).  p
      * is as mass_bias's (with the derived values); u the inputs, held
-     * constant (Taylor's method refuses signals).  taylor is NULL where it
-     * was not generated, and taylor_why says why ("the model has
-     * constraints"); else taylor_why is NULL. */
+     * constant (Taylor's method refuses signals).  With constraints
+     * (each affine in q'': f = B q'' + b) also coefficient k of B_ci at
+     * taylor_B[c nq + i], of b_c (f at q'' = 0) at taylor_b[c], and of
+     * c_levels' pos_c and vel_c at taylor_pos[c] and taylor_vel[c] (NULL
+     * when nc = 0).  taylor is NULL where it was not generated, and
+     * taylor_why says why ("its constraint 'cubic' is nonlinear in
+     * q''"); else taylor_why is NULL. */
     int taylor_nslot;
     const int *taylor_q, *taylor_v, *taylor_M, *taylor_h, *taylor_g;
+    const int *taylor_B, *taylor_b, *taylor_pos, *taylor_vel;
     void (*taylor)(int k, int K, double t0, const double *p, const double *u, double *T);
     const char *taylor_why;
 } eomc_model;

@@ -378,7 +378,8 @@ after_step(Run *r, double t0)
                 memcpy(x, r->xt, (size_t)r->N * sizeof *x);
                 return GSL_EBADFUNC;
             }
-            gsl_odeiv2_step_reset(r->step);
+            if (r->step) /* Taylor's series starts afresh from x anyway */
+                gsl_odeiv2_step_reset(r->step);
             res = sim_level_residual(s, t, x, x + n);
             if (sim_constraint_rows(s, t, x, r->B1) != 0)
                 return GSL_EBADFUNC;

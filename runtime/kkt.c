@@ -264,9 +264,8 @@ factor_kkt(Kkt *k)
     return la_lu_factor_scaled(k->luN, k->K, k->dK);
 }
 
-/* Baumgarte's weights of constraint c's levels: f + *wv vel + *wp pos. */
-static void
-baumgarte_weights(const Kkt *k, int c, double *wv, double *wp)
+void
+kkt_baumgarte_weights(const Kkt *k, int c, double *wv, double *wp)
 {
     int order = k->m->c_order[c];
     *wv = order == 0 ? k->wv_hol : order == 1 ? k->wv_first : 0;
@@ -290,7 +289,7 @@ baumgarte_offset(Kkt *k, double t, const double *q, const double *v, const doubl
     k->m->c_levels(t, q, v, p, u, k->pos, k->vel);
     for (int c = 0; c < k->nc; c++) {
         double wv, wp;
-        baumgarte_weights(k, c, &wv, &wp);
+        kkt_baumgarte_weights(k, c, &wv, &wp);
         k->off[c] = wv * k->vel[c] + wp * k->pos[c];
     }
 }
@@ -307,7 +306,7 @@ baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const dou
                             k->dveldu, k->dposdt, k->dveldt);
     for (int c = 0; c < k->nc; c++) {
         double wv, wp;
-        baumgarte_weights(k, c, &wv, &wp);
+        kkt_baumgarte_weights(k, c, &wv, &wp);
         for (int j = 0; j < n; j++) {
             k->dfdq[c * n + j] += wv * k->dveldq[c * n + j] + wp * k->dposdq[c * n + j];
             k->dfdv[c * n + j] += wv * k->dveldv[c * n + j];

@@ -28,6 +28,9 @@ void kkt_free(Kkt *k);
  * and a first-order one's gets wv_first phi.  All zero: off. */
 void kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first);
 
+/* Constraint c's weights: its f gets *wv vel + *wp pos (0 when off). */
+void kkt_baumgarte_weights(const Kkt *k, int c, double *wv, double *wp);
+
 /* q'' into a and the multipliers (kkt_multipliers) at (t, q, v), with
  * u the inputs at t. */
 int kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,

@@ -98,12 +98,16 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     if (o->h_fixed > 0 && !m->fixed)
         return sim_usage_error(s, "%s chooses its own steps and orders: fixed steps are "
                                "for the one-step methods", o->method);
-    if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT && !m->fixed)
+    /* the multistep methods: no fixed steps, and GSL's (Taylor's method
+     * has neither, and is a one-step method: its series starts afresh
+     * from each step's end, projected or not) */
+    int multistep = !m->fixed && *m->adaptive;
+    if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT && multistep)
         return sim_usage_error(s, "%s builds on the history of its steps, which projecting "
                                "the state after every step would throw away (it would "
                                "restart at order 1 each time, slow and inaccurate): with "
                                "--stabilize project use a one-step method (rk2, rk4, "
-                               "rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp)",
+                               "rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, taylor)",
                                o->method);
     if (o->max_steps < 0)
         return sim_usage_error(s, "the step limit must be positive, not %ld",

@@ -510,6 +510,14 @@ sim_has_levels(const eomc_sim *s)
     return s->proj && proj_levels(s->proj);
 }
 
+void
+sim_baumgarte(const eomc_sim *s, int c, double *wv, double *wp)
+{
+    *wv = *wp = 0;
+    if (s->kkt)
+        kkt_baumgarte_weights(s->kkt, c, wv, wp);
+}
+
 int
 eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta)
 {

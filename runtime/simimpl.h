@@ -49,6 +49,9 @@ void sim_restore_start(eomc_sim *s);
  * largest entry's fraction (kkt_vanished), or -1 (and without
  * constraints). */
 int sim_vanished(const eomc_sim *s, double *fraction);
+/* Baumgarte's weights of constraint c as the stabilization set them (0
+ * when off): its f gets *wv vel + *wp pos (kkt.c). */
+void sim_baumgarte(const eomc_sim *s, int c, double *wv, double *wp);
 /* Whether the model has a holonomic or first-order constraint. */
 int sim_has_levels(const eomc_sim *s);
 /* The rows of B = df/dq'' at (t, x) into B [nc*n]; -1 when x is not

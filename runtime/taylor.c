@@ -11,6 +11,17 @@
  * inverted symbolically; then q_{k+1} = q'_k / (k + 1) and
  * q'_{k+1} = a_k / (k + 1), which the next call reads.
  *
+ * With constraints f = B(t, q, q') q'' + b(t, q, q') = 0 (each affine in
+ * q'', with Baumgarte's terms w_v vel + w_p pos added to b when asked)
+ * the same holds for the KKT system: (a_k, lambda_k) solve
+ *     [M_0 B_0^T; B_0 0] [a_k; lambda_k]
+ *         = -[h_k + sum_{j=1..k} (M_j a_{k-j} + B_j^T lambda_{k-j});
+ *             b_k + sum_{j=1..k} B_j a_{k-j}],
+ * one LU of the KKT matrix per step, scaled and equilibrated as
+ * eomc_sim_accel's (la_kkt_scaling).  Models whose constraints are
+ * eliminated (Maggi) solve the same motion (C^T E = 0 and f = 0 hold
+ * where E + B^T lambda = 0 and f = 0 do), so they take this way too.
+ *
  * The order and the step are Jorba and Zou's ("A software package for
  * the numerical integration of ODEs by means of high-order Taylor
  * methods", Exp. Math. 14, 2005, sec. 3.2): order p = ceil(-ln(eps)/2 +
@@ -65,6 +76,13 @@ struct Taylor {
     double *xlast;      /* [N] the state taylor_advance left: the compensation
                          * holds while the next series starts there */
     double t0;          /* the last series' start */
+    /* with constraints (nc > 0; else NULL) */
+    int nc;
+    double *K, *dK, *r; /* [(n + nc)^2] the KKT matrix at the start, its scaling,
+                         * [n + nc] a right-hand side */
+    LaLu *lu;           /* its factorization */
+    double *L;          /* [nc (p + 1)] the multipliers', L[c (p + 1) + k] */
+    double *wv, *wp;    /* [nc] Baumgarte's weights (sim_baumgarte) */
 };
 
 int
@@ -117,6 +135,22 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
         taylor_free(tp);
         return NULL;
     }
+    int nc = tp->nc = m->nc, nk = n + nc;
+    if (nc == 0)
+        return tp;
+    tp->K = sim_zeros((size_t)nk * (size_t)nk);
+    tp->dK = sim_zeros((size_t)nk);
+    tp->r = sim_zeros((size_t)nk);
+    tp->L = sim_zeros((size_t)(K + 1) * (size_t)nc);
+    tp->wv = sim_zeros((size_t)nc);
+    tp->wp = sim_zeros((size_t)nc);
+    tp->lu = la_lu_alloc(nk);
+    if (!tp->K || !tp->dK || !tp->r || !tp->L || !tp->wv || !tp->wp || !tp->lu) {
+        taylor_free(tp);
+        return NULL;
+    }
+    for (int c = 0; c < nc; c++)
+        sim_baumgarte(s, c, &tp->wv[c], &tp->wp[c]);
     return tp;
 }
 
@@ -137,6 +171,13 @@ taylor_free(Taylor *tp)
     free(tp->comp0);
     free(tp->xlast);
     free(tp->perm);
+    free(tp->K);
+    free(tp->dK);
+    free(tp->r);
+    free(tp->L);
+    free(tp->wv);
+    free(tp->wp);
+    la_lu_free(tp->lu);
     free(tp);
 }
 
@@ -236,6 +277,99 @@ step_size(Taylor *tp)
     return h;
 }
 
+/* sum_{j=1..k} (M_j a_{k-j})_i */
+static double
+mass_terms(const Taylor *tp, int i, int k)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, p = tp->p;
+    double sum = 0;
+    for (int l = 0; l < n && k > 0; l++) {
+        int slot = m->taylor_M[i * n + l];
+        if (slot < 0)
+            continue;
+        const double *ms = tp->T + (size_t)slot * (p + 1);
+        const double *al = tp->A + (size_t)l * (p + 1);
+        for (int j = 1; j <= k; j++)
+            sum += ms[j] * al[k - j];
+    }
+    return sum;
+}
+
+/* Coefficient k of the accelerations into tp->b, unconstrained:
+ * M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}), M_0 factored at k = 0.
+ * 0, or -1 when M_0 is not safely positive definite. */
+static int
+mass_order(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n;
+    if (k == 0) {
+        for (int i = 0; i < n * n; i++)
+            tp->M0[i] = coef(tp, m->taylor_M[i], 0);
+        if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
+            return -1;
+    }
+    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b: each
+     * entry's series against the accelerations' (A: coordinate by
+     * coordinate, a convolution of two contiguous arrays) */
+    for (int i = 0; i < n; i++)
+        tp->b[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
+    la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
+    return 0;
+}
+
+/* The same with constraints: (a_k, lambda_k) into tp->b and tp->L from
+ * the KKT system (above), factored at k = 0.  0, or -1 when it is
+ * singular. */
+static int
+kkt_order(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, nc = tp->nc, nk = n + nc, p = tp->p;
+    if (k == 0) {
+        memset(tp->K, 0, (size_t)nk * (size_t)nk * sizeof *tp->K);
+        for (int i = 0; i < n; i++)
+            for (int l = 0; l < n; l++)
+                tp->K[i * nk + l] = coef(tp, m->taylor_M[i * n + l], 0);
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < n; i++)
+                tp->K[(n + c) * nk + i] = tp->K[i * nk + n + c] =
+                    coef(tp, m->taylor_B[c * n + i], 0);
+        la_kkt_scaling(tp->K, n, nc, tp->dK);
+        if (la_lu_factor_scaled(tp->lu, tp->K, tp->dK) != 0)
+            return -1;
+    }
+    for (int i = 0; i < n; i++)
+        tp->r[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
+    for (int c = 0; c < nc; c++) {
+        double rc = coef(tp, m->taylor_b[c], k) + tp->wv[c] * coef(tp, m->taylor_vel[c], k) +
+                    tp->wp[c] * coef(tp, m->taylor_pos[c], k);
+        const double *lam = tp->L + (size_t)c * (p + 1);
+        for (int i = 0; i < n && k > 0; i++) {
+            int slot = m->taylor_B[c * n + i];
+            if (slot < 0)
+                continue;
+            const double *bs = tp->T + (size_t)slot * (p + 1);
+            const double *ai = tp->A + (size_t)i * (p + 1);
+            double bl = 0, ba = 0;
+            for (int j = 1; j <= k; j++) {
+                bl += bs[j] * lam[k - j];
+                ba += bs[j] * ai[k - j];
+            }
+            tp->r[i] += bl;
+            rc += ba;
+        }
+        tp->r[n + c] = rc;
+    }
+    la_lu_solve(tp->lu, tp->r);
+    for (int i = 0; i < n; i++)
+        tp->b[i] = -tp->r[i];
+    for (int c = 0; c < nc; c++)
+        tp->L[(size_t)c * (p + 1) + (size_t)k] = -tp->r[n + c];
+    return 0;
+}
+
 int
 taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 {
@@ -252,29 +386,12 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     for (int k = 0; k < p; k++) {
         put_state(tp, k);
         m->taylor(k, p, t0, par, u, tp->T);
-        if (k == 0) {
-            for (int i = 0; i < n * n; i++)
-                tp->M0[i] = coef(tp, m->taylor_M[i], 0);
-            if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
+        if (tp->nc > 0) {
+            if (kkt_order(tp, k) != 0)
                 return -1;
+        } else if (mass_order(tp, k) != 0) {
+            return -1;
         }
-        /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b: each
-         * entry's series against the accelerations' (A: coordinate by
-         * coordinate, a convolution of two contiguous arrays) */
-        for (int i = 0; i < n; i++) {
-            double bi = coef(tp, m->taylor_h[i], k);
-            for (int l = 0; l < n; l++) {
-                int slot = m->taylor_M[i * n + l];
-                if (slot < 0 || k == 0)
-                    continue;
-                const double *ms = tp->T + (size_t)slot * (p + 1);
-                const double *al = tp->A + (size_t)l * (p + 1);
-                for (int j = 1; j <= k; j++)
-                    bi += ms[j] * al[k - j];
-            }
-            tp->b[i] = bi;
-        }
-        la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
         double *next = tp->X + (size_t)(k + 1) * (size_t)N;
         const double *cur = tp->X + (size_t)k * (size_t)N;
         for (int i = 0; i < n; i++) {

@@ -6,7 +6,7 @@
  * tests/hard/specs/car_axis.yaml.  Two small masses (k = 5e-4) on springs,
  * an axle between them, a time-dependent holonomic constraint: stiff, and
  * a DAE of index 3 in the test set's formulation.
- *  - rk8pd at rtol 1e-12 with projection, and without: the 8 state entries
+ *  - rk8pd and taylor at rtol 1e-12 with projection, and without: the 8 state entries
  *    and the 2 multipliers (the test set's lambda is eomc's -lambda) at
  *    t = 3 against the reference;
  *  - msbdf at rtol 1e-8 (its own formulation: no projection, which it
@@ -56,17 +56,25 @@ int
 main(void)
 {
     Rows r;
-    double lam = 0, e = run("rk8pd", 1e-12, EOMC_STABILIZE_PROJECT, &lam, &r);
-    CHECK(e <= 2e-11 && lam <= 1e-13,
-          "car axis, rk8pd rtol 1e-12 with projection: state at t = 3 within %.2g of the "
-          "test set's reference (<= 2e-11), multipliers within %.2g (<= 1e-13), %ld steps", e, lam,
-          r.st.steps);
-    hard_free(&r);
-    e = run("rk8pd", 1e-12, EOMC_STABILIZE_NONE, &lam, &r);
-    CHECK(e <= 2e-11 && lam <= 1e-13 && r.st.max_residual <= 1e-11,
-          "car axis, rk8pd rtol 1e-12 unstabilized: within %.2g and %.2g, constraints held "
-          "to %.2g", e, lam, r.st.max_residual);
-    hard_free(&r);
+    double lam = 0, e;
+    /* rk8pd, and Taylor's method (issue 26: the series of the KKT
+     * system) to the same bounds; Taylor measured 4.8e-12 and 4.3e-15 in
+     * 269 steps, the constraints held to 2.1e-14 unstabilized */
+    static const char *const methods[] = {"rk8pd", "taylor"};
+    for (int k = 0; k < 2; k++) {
+        const char *me = methods[k];
+        e = run(me, 1e-12, EOMC_STABILIZE_PROJECT, &lam, &r);
+        CHECK(e <= 2e-11 && lam <= 1e-13,
+              "car axis, %s rtol 1e-12 with projection: state at t = 3 within %.2g of the "
+              "test set's reference (<= 2e-11), multipliers within %.2g (<= 1e-13), %ld steps",
+              me, e, lam, r.st.steps);
+        hard_free(&r);
+        e = run(me, 1e-12, EOMC_STABILIZE_NONE, &lam, &r);
+        CHECK(e <= 2e-11 && lam <= 1e-13 && r.st.max_residual <= 1e-11,
+              "car axis, %s rtol 1e-12 unstabilized: within %.2g and %.2g, constraints held "
+              "to %.2g", me, e, lam, r.st.max_residual);
+        hard_free(&r);
+    }
     e = run("msbdf", 1e-8, EOMC_STABILIZE_NONE, NULL, &r);
     CHECK(e <= 1e-4, "car axis, msbdf rtol 1e-8: within %.2g of the reference (<= 1e-4), "
           "%ld steps", e, r.st.steps);

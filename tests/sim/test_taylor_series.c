@@ -8,8 +8,11 @@
  * at small tau.  Those sums must equal what the model's own mass_bias and
  * events compute at q(tau), q'(tau), t0 + tau: the truncation is
  * O(tau^(K+1)), far below rounding at |tau| <= 2e-2, so they agree to
- * rounding of the values' scale.  A constrained model has no taylor
- * member, and says why.
+ * rounding of the values' scale.  Constrained models' series of B and b
+ * (f at q'' = 0) and of the constraints' own levels are checked the same
+ * way against constraint (called with q'' = 0) and c_levels.  A model
+ * whose constraint is nonlinear in q'' has no taylor member, and says
+ * why.
  */
 #include "../unit/check.h"
 #include "eomc_model.h"
@@ -20,14 +23,15 @@
 #define MODELS(X)                                                                       \
     X(pendulum) X(double_pendulum) X(chain5) X(spinning_hoop) X(kepler) X(arenstorf)   \
     X(swing) X(gear_link) X(bouncing_ball) X(falling_particle) X(sleeping_top_euler) \
-    X(forced_hoop) X(taylor_ops)
+    X(forced_hoop) X(taylor_ops) X(cartesian_pendulum) X(appell) X(precession)                \
+    X(chaplygin_sleigh) X(central_constant_speed) X(car_axis) X(andrews)
 #define DECLARE(name) extern const eomc_model name##_model;
 MODELS(DECLARE)
-extern const eomc_model cartesian_pendulum_model;
+extern const eomc_model cubic_model;
 #define ENTRY(name) &name##_model,
 static const eomc_model *const models[] = {MODELS(ENTRY)};
 
-enum { NMAX = 8, PMAX = 256, EMAX = 8, UMAX = 8, K = 12, DEG = 3 };
+enum { NMAX = 8, CMAX = 8, PMAX = 256, EMAX = 8, UMAX = 8, K = 12, DEG = 3 };
 
 /* The agreement required, relative to the largest |value| of M, h or g
  * (at least 1): a few hundred ulps of sums over the order and of the
@@ -51,12 +55,13 @@ slot_at(const double *T, int s, double tau)
     return s < 0 ? 0 : series_at(T + s * (K + 1), tau);
 }
 
-/* The largest error of the series of M, h and g at taus, against the
- * model's own functions, relative to their scale. */
+/* The largest error of the series of M, h, g and the constraints' B, b,
+ * pos and vel at taus, against the model's own functions, relative to
+ * their scale. */
 static double
 check_model(const eomc_model *m, double t0, double *worst_scale)
 {
-    int n = m->nq, ne = m->nevent;
+    int n = m->nq, ne = m->nevent, nc = m->nc;
     double p[PMAX], u[UMAX + 1] = {0};
     memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
     if (m->derive)
@@ -85,6 +90,7 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
     *worst_scale = 0;
     for (size_t t = 0; t < sizeof taus / sizeof taus[0]; t++) {
         double tau = taus[t], q[NMAX], v[NMAX], M[NMAX * NMAX], h[NMAX], g[EMAX];
+        double a0[NMAX] = {0}, f[CMAX], B[CMAX * NMAX] = {0}, pos[CMAX], vel[CMAX];
         for (int i = 0; i < n; i++) {
             q[i] = series_at(qc[i], tau);
             v[i] = series_at(vc[i], tau);
@@ -92,6 +98,10 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
         m->mass_bias(t0 + tau, q, v, p, u, M, h);
         if (ne)
             m->events(t0 + tau, q, v, p, u, g);
+        if (nc) { /* f at q'' = 0 is b */
+            m->constraint(t0 + tau, q, v, a0, p, u, f, B);
+            m->c_levels(t0 + tau, q, v, p, u, pos, vel);
+        }
         double scale = 1;
         for (int i = 0; i < n * n; i++)
             scale = fmax(scale, fabs(M[i]));
@@ -99,6 +109,11 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
             scale = fmax(scale, fabs(h[i]));
         for (int e = 0; e < ne; e++)
             scale = fmax(scale, fabs(g[e]));
+        for (int c = 0; c < nc; c++) {
+            scale = fmax(scale, fmax(fabs(f[c]), fmax(fabs(pos[c]), fabs(vel[c]))));
+            for (int i = 0; i < n; i++)
+                scale = fmax(scale, fabs(B[c * n + i]));
+        }
         double err = 0;
         for (int i = 0; i < n * n; i++)
             err = fmax(err, fabs(slot_at(T, m->taylor_M[i], tau) - M[i]));
@@ -106,6 +121,13 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
             err = fmax(err, fabs(slot_at(T, m->taylor_h[i], tau) - h[i]));
         for (int e = 0; e < ne; e++)
             err = fmax(err, fabs(slot_at(T, m->taylor_g[e], tau) - g[e]));
+        for (int c = 0; c < nc; c++) {
+            err = fmax(err, fabs(slot_at(T, m->taylor_b[c], tau) - f[c]));
+            err = fmax(err, fabs(slot_at(T, m->taylor_pos[c], tau) - pos[c]));
+            err = fmax(err, fabs(slot_at(T, m->taylor_vel[c], tau) - vel[c]));
+            for (int i = 0; i < n; i++)
+                err = fmax(err, fabs(slot_at(T, m->taylor_B[c * n + i], tau) - B[c * n + i]));
+        }
         if (!(err / scale <= worst)) /* NaN included */
             worst = err / scale, *worst_scale = scale;
     }
@@ -119,7 +141,7 @@ main(void)
     for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
         const eomc_model *m = models[k];
         CHECK(m->taylor && !m->taylor_why && m->nq <= NMAX && m->nevent <= EMAX &&
-                  m->nu <= UMAX && m->np + m->nd <= PMAX,
+                  m->nc <= CMAX && m->nu <= UMAX && m->np + m->nd <= PMAX,
               "%s: a taylor member", m->name);
         if (!m->taylor)
             continue;
@@ -131,6 +153,13 @@ main(void)
                   m->taylor_v[i] < m->taylor_nslot;
         for (int e = 0; e < m->nevent; e++)
             ok &= m->taylor_g[e] < m->taylor_nslot;
+        ok &= m->nc == 0 || (m->taylor_B && m->taylor_b && m->taylor_pos && m->taylor_vel);
+        for (int c = 0; ok && c < m->nc; c++) {
+            ok &= m->taylor_b[c] < m->taylor_nslot && m->taylor_pos[c] < m->taylor_nslot &&
+                  m->taylor_vel[c] < m->taylor_nslot;
+            for (int i = 0; i < m->nq; i++)
+                ok &= m->taylor_B[c * m->nq + i] < m->taylor_nslot;
+        }
         CHECK(ok && (m->nevent == 0 || m->taylor_g), "%s: its %d slots", m->name,
               m->taylor_nslot);
         if (!ok)
@@ -142,12 +171,12 @@ main(void)
                 worst = err;
         }
         printf("# %s: largest error %.2e of the values' scale\n", m->name, worst);
-        CHECK(worst <= TOL, "%s: the series of M, h and g sum to mass_bias and events "
-              "at |tau| <= 2e-2 (%.2e)", m->name, worst);
+        CHECK(worst <= TOL, "%s: the series of M, h%s sum to mass_bias%s "
+              "at |tau| <= 2e-2 (%.2e)", m->name, m->nc ? ", g, B, b, pos and vel" : " and g",
+              m->nc ? ", events, constraint and c_levels" : " and events", worst);
     }
-    const eomc_model *c = &cartesian_pendulum_model;
-    CHECK(!c->taylor && c->taylor_why && strstr(c->taylor_why, "constraints"),
-          "cartesian_pendulum: no taylor member, and why: %s",
-          c->taylor_why ? c->taylor_why : "(none)");
+    const eomc_model *c = &cubic_model;
+    CHECK(!c->taylor && c->taylor_why && strstr(c->taylor_why, "constraint 'cubic' is nonlinear"),
+          "cubic: no taylor member, and why: %s", c->taylor_why ? c->taylor_why : "(none)");
     return check_done();
 }

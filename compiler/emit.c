@@ -569,9 +569,11 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                   ty->nslot);
         emit_line(pr, "    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = %s,",
                   ty->nevent ? "taylor_g" : "NULL");
-        if (ty->nc)
-            emit_line(pr, "    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, "
-                      ".taylor_vel = taylor_vel,");
+        if (ty->nc) {
+            emit_line(pr, "    .taylor_a = %s, .taylor_B = taylor_B, .taylor_f = taylor_f,",
+                      ty->nonlinear ? "taylor_a" : "NULL");
+            emit_line(pr, "    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,");
+        }
         emit_line(pr, "    .taylor = %s_taylor, .taylor_why = NULL, /* Taylor's method */", nm);
     }
     emit_line(pr, "};\n");

@@ -171,10 +171,17 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     if (ty->nevent)
         print_ints(pr, "taylor_g", ty->g_slot, ty->nevent);
     if (ty->nc) {
-        emit_line(pr, "/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at");
-        emit_line(pr, " * q'' = 0, and their own levels (c_levels' pos and vel). */");
+        if (ty->nonlinear) {
+            emit_line(pr, "/* The constraints: the slots of q'' the caller writes, B = df/dq''");
+            emit_line(pr, " * (row-major), f at that q'', and their own levels (c_levels' pos");
+            emit_line(pr, " * and vel). */");
+            print_ints(pr, "taylor_a", ty->a_slot, n);
+        } else {
+            emit_line(pr, "/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at");
+            emit_line(pr, " * q'' = 0, and their own levels (c_levels' pos and vel). */");
+        }
         print_ints(pr, "taylor_B", ty->B_slot, ty->nc * n);
-        print_ints(pr, "taylor_b", ty->b_slot, ty->nc);
+        print_ints(pr, "taylor_f", ty->f_slot, ty->nc);
         print_ints(pr, "taylor_pos", ty->pos_slot, ty->nc);
         print_ints(pr, "taylor_vel", ty->vel_slot, ty->nc);
     }

@@ -253,9 +253,10 @@ typedef struct LowTayStep {
  * it is read; the caller writes the slots of q and q' (q_slot, v_slot,
  * -1: nothing reads it).  M_slot[i nq + j], h_slot[i], g_slot[e]: the
  * results (-1: zero at every order); with constraints also B_slot[c nq +
- * i] (B = df/dq''), b_slot[c] (f at q'' = 0), pos_slot[c] and
- * vel_slot[c] (c_levels').  why: NULL, or why there is no program (one
- * sentence), and then nothing else is set. */
+ * i] (B = df/dq''), f_slot[c], pos_slot[c] and vel_slot[c] (c_levels'):
+ * f at q'' = 0 when every constraint is affine in q'', else (nonlinear)
+ * at the q'' the caller writes into a_slot[i].  why: NULL, or why there
+ * is no program (one sentence), and then nothing else is set. */
 typedef struct LowTaylor {
     const char *why;
     int nslot, nstep;
@@ -264,9 +265,10 @@ typedef struct LowTaylor {
     int *M_slot;          /* [nq nq] */
     int *h_slot;          /* [nq] */
     int *g_slot;          /* [nevent] */
-    int nevent, nc;
+    int nevent, nc, nonlinear;
+    int *a_slot;          /* [nq] */
     int *B_slot;          /* [nc nq] */
-    int *b_slot, *pos_slot, *vel_slot; /* [nc] */
+    int *f_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;
 
 /* The model's functions in the order they are printed. */

@@ -16,12 +16,12 @@
  * one call (each needs the other's series), and so are sinh and cosh.
  * A product by a value constant in t is a scale, not a convolution.
  *
- * With constraints, every one affine in q'' (f = B q'' + b), the program
- * also has the series of B, of b and of the constraints' own levels
- * (c_levels: Baumgarte's stabilization adds them to f): b is f's DAG
- * with the accelerations read as 0, and the runtime solves the KKT
- * system order by order.  A constraint nonlinear in q'' would need
- * Newton's solve at every order; it is refused by name.
+ * With constraints the program also has the series of f, of B = df/dq''
+ * and of the constraints' own levels (c_levels: Baumgarte's
+ * stabilization adds them to f), and the runtime solves the KKT system
+ * order by order.  When every constraint is affine in q'' (f = B q'' +
+ * b), f's DAG is read with the accelerations 0, which gives b; when one
+ * is not, the accelerations are slots the caller writes, as q and q'.
  */
 #include "lower.h"
 
@@ -35,6 +35,7 @@ typedef struct Build {
     size_t nderived;    /* derived's length */
     int np;
     int accel_zero;     /* q'' reads as 0 (f's DAG gives b = f at q'' = 0) */
+    int accel_slot;     /* q'' is the caller's (f nonlinear in q'') */
     int *slot;          /* per node id, -1: none */
     unsigned char *konst; /* per node id: constant in t */
     int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
@@ -161,7 +162,7 @@ build_node(Build *b, ExprId id)
             b->konst[id] = 1;
             break;
         }
-        if (nd->b > 1) {
+        if (nd->b > 1 && !b->accel_slot) {
             b->why = "its mass matrix or bias reads accelerations";
             return;
         }
@@ -263,59 +264,12 @@ build_node(Build *b, ExprId id)
     b->slot[id] = c;
 }
 
-/* Whether e reads an acceleration (seen: per node id, zeroed by the
- * caller, shared by its calls). */
-static int
-reads_accel(ExprPool *P, ExprId e, unsigned char *seen)
-{
-    if (seen[e])
-        return 0;
-    seen[e] = 1;
-    const ExprNode *nd = expr_node(P, e);
-    int ar = expr_op_arity[nd->op];
-    if (nd->op == EXPR_VAR)
-        return nd->b > 1;
-    return (ar > 0 && reads_accel(P, nd->a, seen)) || (ar > 1 && reads_accel(P, nd->b, seen));
-}
-
-/* The name of the first constraint whose B = df/dq'' reads q'' (f is not
- * affine in q''), or NULL. */
-static const char *
-nonlinear_constraint(const Lowered *L, const LowFunc *cf, ExprPool *P)
-{
-    if (L->model.affine)
-        return NULL;
-    int n = L->n;
-    unsigned char *seen = xmalloc(expr_pool_size(P));
-    const char *name = NULL;
-    for (int c = 0; c < L->model.nc && !name; c++) {
-        memset(seen, 0, expr_pool_size(P));
-        for (int k = 0; k < cf->nout && !name; k++) {
-            const LowSlot *o = &cf->out[k];
-            if (o->arg == 1 && o->index / n == c && reads_accel(P, o->e, seen))
-                name = L->model.constraint[c].name;
-        }
-    }
-    free(seen);
-    return name;
-}
-
 /* The reason, or NULL: what the program cannot be built from. */
 static const char *
-refused(const Lowered *L, const LowFunc *mb, const LowFunc *cf, ExprPool *P, Arena *A)
+refused(const Lowered *L, const LowFunc *mb, const LowFunc *cf)
 {
     if (L->model.constrained && !cf)
         return "its constraints have no expressions (eomc_model's constraint)";
-    const char *name = cf ? nonlinear_constraint(L, cf, P) : NULL;
-    if (name) {
-        const char *fmt = "its constraint '%s' is nonlinear in q'', whose series would need "
-                          "Newton's method at every order, which eomc does not yet generate "
-                          "(constraints affine in q'' have them)";
-        size_t len = strlen(fmt) + strlen(name);
-        char *why = arena_alloc(A, len);
-        snprintf(why, len, fmt, name);
-        return why;
-    }
     if (L->code == LOWER_CODE_TABLES)
         return "its mass matrix and bias are loops over the model's tables (--code tables), "
                "not expressions; --code straight gives the expressions";
@@ -336,7 +290,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
     const LowFunc *mb = lower_find(L, "mass_bias");
     const LowFunc *cf = L->model.constrained ? lower_find(L, "constraint") : NULL;
     const LowFunc *lv = L->model.constrained ? lower_find(L, "c_levels") : NULL;
-    if ((ty->why = refused(L, mb, cf, P, A)))
+    if ((ty->why = refused(L, mb, cf)))
         return ty;
     /* the series are much of a large model's C: a chain of 50 links
      * compiles in 2 s without them, 7 to 9 with */
@@ -348,7 +302,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
     int n = L->n, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
     size_t size = expr_pool_size(P);
     Build b = {.P = P, .derived = mb->derived, .nderived = L->derived_ids, .np = L->model.np,
-               .accel_zero = cf != NULL};
+               .accel_zero = cf && L->model.affine, .accel_slot = cf && !L->model.affine};
     b.slot = xmalloc(size * sizeof *b.slot);
     b.konst = xmalloc(size);
     b.pair = xmalloc(4 * size * sizeof *b.pair);
@@ -403,14 +357,17 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         ty->h_slot = arena_new_array(A, int, n + 1);
         ty->g_slot = arena_new_array(A, int, ne + 1);
         ty->nevent = ne;
+        ty->a_slot = arena_new_array(A, int, n + 1);
         for (int i = 0; i < n; i++)
-            ty->q_slot[i] = ty->v_slot[i] = ty->h_slot[i] = -1;
+            ty->q_slot[i] = ty->v_slot[i] = ty->h_slot[i] = ty->a_slot[i] = -1;
         for (int i = 0; i < n * n; i++)
             ty->M_slot[i] = -1;
         for (size_t id = 0; id < size; id++) {
             const ExprNode *nd = expr_node(P, (ExprId)id);
-            if (mark[id] && nd->op == EXPR_VAR && nd->b < 2) /* q'' is f's, read as 0 */
+            if (mark[id] && nd->op == EXPR_VAR && nd->b < 2)
                 (nd->b ? ty->v_slot : ty->q_slot)[nd->a] = b.slot[id];
+            else if (mark[id] && nd->op == EXPR_VAR && b.accel_slot)
+                ty->a_slot[nd->a] = b.slot[id];
         }
         for (int k = 0; k < mb->nout; k++) {
             const LowSlot *o = &mb->out[k];
@@ -427,17 +384,18 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
         }
         ty->nc = nc;
+        ty->nonlinear = b.accel_slot;
         ty->B_slot = arena_new_array(A, int, nc * n + 1);
-        ty->b_slot = arena_new_array(A, int, nc + 1);
+        ty->f_slot = arena_new_array(A, int, nc + 1);
         ty->pos_slot = arena_new_array(A, int, nc + 1);
         ty->vel_slot = arena_new_array(A, int, nc + 1);
         for (int i = 0; i < nc * n; i++)
             ty->B_slot[i] = -1;
         for (int c = 0; c < nc; c++)
-            ty->b_slot[c] = ty->pos_slot[c] = ty->vel_slot[c] = -1;
+            ty->f_slot[c] = ty->pos_slot[c] = ty->vel_slot[c] = -1;
         for (int k = 0; cf && k < cf->nout; k++) {
             const LowSlot *o = &cf->out[k];
-            (o->arg == 0 ? ty->b_slot : ty->B_slot)[o->index] =
+            (o->arg == 0 ? ty->f_slot : ty->B_slot)[o->index] =
                 o->e == EXPR_ZERO ? -1 : b.slot[o->e];
         }
         for (int k = 0; lv && k < lv->nout; k++) {

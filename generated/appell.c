@@ -459,7 +459,7 @@ static const int taylor_h[3] = {-1, -1, 2};
 /* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
  * q'' = 0, and their own levels (c_levels' pos and vel). */
 static const int taylor_B[3] = {26, 28, 16};
-static const int taylor_b[1] = {24};
+static const int taylor_f[1] = {24};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {12};
 
@@ -498,7 +498,8 @@ const eomc_model appell_model = {
     .view_frames = 0, .view_camera = NULL,
     .taylor_nslot = 29, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
-    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = appell_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 

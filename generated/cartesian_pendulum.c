@@ -430,7 +430,7 @@ static const int taylor_h[2] = {-1, 15};
 /* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
  * q'' = 0, and their own levels (c_levels' pos and vel). */
 static const int taylor_B[2] = {16, 18};
-static const int taylor_b[1] = {27};
+static const int taylor_f[1] = {27};
 static const int taylor_pos[1] = {8};
 static const int taylor_vel[1] = {21};
 
@@ -469,7 +469,8 @@ const eomc_model cartesian_pendulum_model = {
     .view_frames = 0, .view_camera = NULL,
     .taylor_nslot = 28, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
-    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = cartesian_pendulum_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 

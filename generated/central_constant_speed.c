@@ -1045,7 +1045,7 @@ static const int taylor_h[3] = {108, 104, 100};
 /* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
  * q'' = 0, and their own levels (c_levels' pos and vel). */
 static const int taylor_B[3] = {55, 80, 81};
-static const int taylor_b[1] = {79};
+static const int taylor_f[1] = {79};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {29};
 
@@ -1084,7 +1084,8 @@ const eomc_model central_constant_speed_model = {
     .view_frames = 0, .view_camera = NULL,
     .taylor_nslot = 109, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
-    .taylor_B = taylor_B, .taylor_b = taylor_b, .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = central_constant_speed_taylor, .taylor_why = NULL, /* Taylor's method */
 };
 

@@ -311,15 +311,17 @@ typedef struct eomc_model {
      * of event function g_e at taylor_g[e] (-1: zero at every order).  p
      * is as mass_bias's (with the derived values); u the inputs, held
      * constant (Taylor's method refuses signals).  With constraints
-     * (each affine in q'': f = B q'' + b) also coefficient k of B_ci at
-     * taylor_B[c nq + i], of b_c (f at q'' = 0) at taylor_b[c], and of
-     * c_levels' pos_c and vel_c at taylor_pos[c] and taylor_vel[c] (NULL
-     * when nc = 0).  taylor is NULL where it was not generated, and
-     * taylor_why says why ("its constraint 'cubic' is nonlinear in
-     * q''"); else taylor_why is NULL. */
+     * also coefficient k of B_ci at taylor_B[c nq + i], of f_c at
+     * taylor_f[c], and of c_levels' pos_c and vel_c at taylor_pos[c] and
+     * taylor_vel[c] (NULL when nc = 0).  When every constraint is affine
+     * in q'', taylor_a is NULL and f is taken at q'' = 0 (it is then b in
+     * f = B q'' + b); else f and B are taken at the q'' the caller writes,
+     * coefficient k of q_i'' at slot taylor_a[i] (-1: none).  taylor is
+     * NULL where it was not generated, and taylor_why says why ("its form
+     * computes the mass matrix by columns"); else taylor_why is NULL. */
     int taylor_nslot;
     const int *taylor_q, *taylor_v, *taylor_M, *taylor_h, *taylor_g;
-    const int *taylor_B, *taylor_b, *taylor_pos, *taylor_vel;
+    const int *taylor_a, *taylor_B, *taylor_f, *taylor_pos, *taylor_vel;
     void (*taylor)(int k, int K, double t0, const double *p, const double *u, double *T);
     const char *taylor_why;
 } eomc_model;

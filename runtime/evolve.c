@@ -594,6 +594,9 @@ taylor_step(Run *r)
     int final = h >= left;
     if (!final && 2 * h > left)
         h = 0.5 * left;
+    double cut = taylor_event_cut(r->taylor, final ? left : h);
+    if (cut < (final ? left : h))
+        h = cut, final = 0;
     taylor_advance(r->taylor, final ? left : h, r->x);
     taylor_error(r->taylor, final ? left : h, r->yerr);
     r->st->order_sum += taylor_order(r->taylor);

@@ -18,7 +18,15 @@
  *         = -[h_k + sum_{j=1..k} (M_j a_{k-j} + B_j^T lambda_{k-j});
  *             b_k + sum_{j=1..k} B_j a_{k-j}],
  * one LU of the KKT matrix per step, scaled and equilibrated as
- * eomc_sim_accel's (la_kkt_scaling).  Models whose constraints are
+ * eomc_sim_accel's (la_kkt_scaling).  When a constraint is nonlinear in
+ * q'', B depends on q'' too: a_0 and lambda_0 are eomc_sim_accel's
+ * (Newton's method), and for k >= 1 coefficient k of f and of B are
+ * affine in a_k, f_k = f_k|(a_k = 0) + B_0 a_k and B_k = B_k|(a_k = 0) +
+ * dB/dq'' a_k, so the same system holds with M_0 + sum_c lambda_0c
+ * dB_c/dq'' in M_0's place, f_k|(a_k = 0) for the second row (the
+ * program computes it with 0 written for a_k), and B_k|(a_k = 0) in the
+ * sum; the program then runs again at order k with a_k written, so that
+ * the orders above see it.  Models whose constraints are
  * eliminated (Maggi) solve the same motion (C^T E = 0 and f = 0 hold
  * where E + B^T lambda = 0 and f = 0 do), so they take this way too.
  *
@@ -40,6 +48,7 @@
 #include "taylor.h"
 #include "simimpl.h"
 #include "linalg.h"
+#include "polyroots.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -83,6 +92,9 @@ struct Taylor {
     LaLu *lu;           /* its factorization */
     double *L;          /* [nc (p + 1)] the multipliers', L[c (p + 1) + k] */
     double *wv, *wp;    /* [nc] Baumgarte's weights (sim_baumgarte) */
+    double *J;          /* a constraint nonlinear in q'' (m->taylor_a): c_jacobian's
+                         * outputs, dB/dq'' at (dBda) among them; else NULL */
+    double *dBda;
 };
 
 int
@@ -100,6 +112,9 @@ taylor_check(eomc_sim *s, const eomc_run_opts *o)
                                    "(--set %s=VALUE) or choose another method",
                                    m->u_names[k], m->u_names[k]);
     }
+    if (m->taylor_a && !m->c_jacobian)
+        return sim_usage_error(s, "--method taylor: %s has a constraint nonlinear in q'' "
+                               "but no c_jacobian, whose dB/dq'' the series need", m->name);
     if (!(o->rtol > 0))
         return sim_usage_error(s, "--method taylor: --rtol must be positive (the order "
                                "comes from it), not %g", o->rtol);
@@ -151,6 +166,15 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     }
     for (int c = 0; c < nc; c++)
         sim_baumgarte(s, c, &tp->wv[c], &tp->wp[c]);
+    if (m->taylor_a) { /* dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt */
+        size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
+        tp->J = sim_zeros(2 * cn + nc * nu + nc + 3 * cn * n + cn * nu + cn);
+        if (!tp->J) {
+            taylor_free(tp);
+            return NULL;
+        }
+        tp->dBda = tp->J + 2 * cn + nc * nu + nc + 2 * cn * n;
+    }
     return tp;
 }
 
@@ -178,6 +202,7 @@ taylor_free(Taylor *tp)
     free(tp->wv);
     free(tp->wp);
     la_lu_free(tp->lu);
+    free(tp->J);
     free(tp);
 }
 
@@ -200,6 +225,38 @@ put_state(Taylor *tp, int k)
         if (m->taylor_v[i] >= 0)
             tp->T[(size_t)m->taylor_v[i] * (tp->p + 1) + (size_t)k] = xk[tp->n + i];
     }
+}
+
+/* Coefficient k of q'' (ak; NULL: 0) into the series the constraints
+ * read, where one is nonlinear in q''. */
+static void
+put_accel(Taylor *tp, int k, const double *ak)
+{
+    for (int i = 0; i < tp->n; i++)
+        if (tp->m->taylor_a[i] >= 0)
+            tp->T[(size_t)tp->m->taylor_a[i] * (tp->p + 1) + (size_t)k] = ak ? ak[i] : 0;
+}
+
+/* a_0 into tp->b and lambda_0 into the multipliers' series by Newton's
+ * method (eomc_sim_accel, from the last solution, as every method's
+ * solves), and dB/dq'' there; 0, or -1 when it fails. */
+static int
+newton_start(Taylor *tp, double t0, const double *x)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, nc = tp->nc;
+    if (eomc_sim_accel(tp->s, t0, x, x + n, tp->b) != EOMC_OK)
+        return -1;
+    const double *lam = eomc_sim_multipliers(tp->s);
+    for (int c = 0; c < nc; c++)
+        tp->L[(size_t)c * (tp->p + 1)] = lam[c];
+    size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
+    double *J = tp->J;
+    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0), J, J + cn,
+                  J + 2 * cn, J + 2 * cn + nc * nu, J + 2 * cn + nc * nu + nc,
+                  J + 2 * cn + nc * nu + nc + cn * n, tp->dBda, tp->dBda + cn * n,
+                  tp->dBda + cn * n + cn * nu);
+    return 0;
 }
 
 /* The radius of the state's series by its last two terms: the least over
@@ -336,14 +393,22 @@ kkt_order(Taylor *tp, int k)
             for (int i = 0; i < n; i++)
                 tp->K[(n + c) * nk + i] = tp->K[i * nk + n + c] =
                     coef(tp, m->taylor_B[c * n + i], 0);
+        for (int c = 0; c < nc && tp->dBda; c++) { /* + sum_c lambda_0c dB_c/dq'' */
+            double lc = tp->L[(size_t)c * (p + 1)];
+            for (int i = 0; i < n; i++)
+                for (int l = 0; l < n; l++)
+                    tp->K[i * nk + l] += lc * tp->dBda[((size_t)c * n + i) * n + l];
+        }
         la_kkt_scaling(tp->K, n, nc, tp->dK);
         if (la_lu_factor_scaled(tp->lu, tp->K, tp->dK) != 0)
             return -1;
+        if (tp->dBda) /* a_0 and lambda_0 are Newton's */
+            return 0;
     }
     for (int i = 0; i < n; i++)
         tp->r[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
     for (int c = 0; c < nc; c++) {
-        double rc = coef(tp, m->taylor_b[c], k) + tp->wv[c] * coef(tp, m->taylor_vel[c], k) +
+        double rc = coef(tp, m->taylor_f[c], k) + tp->wv[c] * coef(tp, m->taylor_vel[c], k) +
                     tp->wp[c] * coef(tp, m->taylor_pos[c], k);
         const double *lam = tp->L + (size_t)c * (p + 1);
         for (int i = 0; i < n && k > 0; i++) {
@@ -358,7 +423,8 @@ kkt_order(Taylor *tp, int k)
                 ba += bs[j] * ai[k - j];
             }
             tp->r[i] += bl;
-            rc += ba;
+            if (!tp->dBda) /* else f_k has these terms already */
+                rc += ba;
         }
         tp->r[n + c] = rc;
     }
@@ -385,12 +451,20 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     tp->t0 = t0;
     for (int k = 0; k < p; k++) {
         put_state(tp, k);
+        if (tp->dBda && k == 0 && newton_start(tp, t0, x) != 0)
+            return -1;
+        if (tp->dBda)
+            put_accel(tp, k, k == 0 ? tp->b : NULL);
         m->taylor(k, p, t0, par, u, tp->T);
         if (tp->nc > 0) {
             if (kkt_order(tp, k) != 0)
                 return -1;
         } else if (mass_order(tp, k) != 0) {
             return -1;
+        }
+        if (tp->dBda && k > 0) { /* order k again, with a_k */
+            put_accel(tp, k, tp->b);
+            m->taylor(k, p, t0, par, u, tp->T);
         }
         double *next = tp->X + (size_t)(k + 1) * (size_t)N;
         const double *cur = tp->X + (size_t)k * (size_t)N;
@@ -447,6 +521,24 @@ taylor_error(const Taylor *tp, double h, double *err)
     double hp = pow(fabs(h), tp->p);
     for (int i = 0; i < tp->N; i++)
         err[i] = fabs(c[i]) * hp;
+}
+
+double
+taylor_event_cut(const Taylor *tp, double h)
+{
+    const eomc_model *m = tp->m;
+    double c[TAYLOR_MAX_ORDER + 1], hcut = h;
+    for (int e = 0; e < m->nevent && m->taylor_g; e++) {
+        if (m->taylor_g[e] < 0)
+            continue;
+        /* g's series has the orders the program reached, 0 .. p - 1 */
+        double hj = 1, cut;
+        for (int j = 0; j < tp->p; j++, hj *= h)
+            c[j] = coef(tp, m->taylor_g[e], j) * hj;
+        if (poly_first_roots(c, tp->p - 1, &cut) == 2)
+            hcut = fmin(hcut, cut * h);
+    }
+    return hcut;
 }
 
 double

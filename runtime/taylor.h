@@ -41,6 +41,12 @@ void taylor_advance(Taylor *tp, double tau, double *x);
  * ones left out where the step rule holds (they shrink by e^-2 or more
  * each). */
 void taylor_error(const Taylor *tp, double h, double *err);
+/* Where a step of h from the last series' start must end so that no
+ * event's g crosses zero twice in it: before the second root of g's
+ * series in (0, h] (polyroots.h), of any event; h when none has two.
+ * Both crossings of a pair that fit in one step leave g with the same
+ * sign at its ends, where the events of the steps (stepevents.h) look. */
+double taylor_event_cut(const Taylor *tp, double h);
 /* The last series' start and order. */
 double taylor_start(const Taylor *tp);
 int taylor_order(const Taylor *tp);

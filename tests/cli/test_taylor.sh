@@ -12,6 +12,11 @@
 #  - chain5 from q1 = 1: the report's error_max against the reference in
 #    extended precision (GBS, long double), order_mean from the tolerance,
 #    no side step;
+#  - an event that grazes (tests/sim/specs/graze.yaml: x = cos t, the
+#    event x = 0.999): the crossings 0.089 apart around each maximum both
+#    fall in one step, where g has one sign at its ends; the step ends
+#    between the roots of g's series, and all 7 crossings up to t = 20
+#    come out at their closed forms 2 pi k -+ acos(0.999);
 #  - the Cartesian pendulum (a holonomic constraint, by multipliers and,
 #    built with --eliminate, by elimination) released from rest at 1 rad:
 #    at the quarter period above, x = 0, y = -l and x' = -sqrt(2 g l (1 -
@@ -19,7 +24,11 @@
 #  - the same from a state off the rod with Baumgarte's rates 5, 5: the
 #    residual g = x^2 + y^2 - l^2 obeys g'' + 10 g' + 25 g = 0, so from
 #    rest g(t) = g0 (1 + 5 t) e^(-5t);
-#  - refusals, each naming its cause: a constraint nonlinear in q'', fixed
+#  - constraints nonlinear in q'': cubic.yaml's particle falls with the
+#    constant x'' that is the root of x'' + (x''^3 + x'' + g)(3 x''^2 + 1)
+#    = 0 (bisection here), and cubic_spring.yaml's motion at t = 2 is
+#    rk8pd's (Newton's method at every stage) at rtol 1e-14;
+#  - refusals, each naming its cause: a model without series, fixed
 #    steps.
 # usage: test_taylor.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
@@ -78,6 +87,17 @@ set -- $(awk -F, 'NR > 1 { printf "%s %s %s ", $10, $13, $6 }' "$tmp/c5.csv")
     [ "$2" = 11 ] && [ "$5" = 16 ] && [ "$3" = 0 ] && [ "$6" = 0 ]
 ok $? "chain5, q1 = 1: error_max $1 at 1e-8 (order $2), $4 at 1e-13 (order $5), against the reference; rejected steps $3, $6"
 
+# the grazing event's 7 crossings, acos(0.999) then 2 pi k -+ acos(0.999)
+"$eomc" run "$src/tests/sim/specs/graze.yaml" $tight --events "$tmp/gr.csv" -o /dev/null \
+    2> "$tmp/gr.err"
+st=$?
+set -- $(awk -F, 'NR > 1 { n++; a = atan2(sqrt(1 - 0.999^2), 0.999); k = int(n / 2)
+    want = 2 * 3.14159265358979323846 * k + (n % 2 ? a : -a)
+    d = $1 - want; d = d < 0 ? -d : d; if (d > m) m = d } END { printf "%d %.2g", n, m }' \
+    "$tmp/gr.csv")
+[ $st = 0 ] && [ "$1" = 7 ] && awk -v d="$2" 'BEGIN { exit !(d <= 2e-14) }'
+ok $? "graze: $1 crossings of x = 0.999 (want 7), at the closed form's times within $2 (<= 2e-14)"
+
 # the Cartesian pendulum at the quarter period (the swing's above: l = 1,
 # g = 9.81, theta0 = 1), by multipliers and by elimination
 cp="$src/specs/cartesian_pendulum.yaml"
@@ -104,12 +124,33 @@ rel=$(tail -1 "$tmp/b.csv" | awk -F, '{ g = $2 * $2 + $3 * $3 - 1; g0 = 0.49 + c
 [ $st = 0 ] && awk -v r="$rel" 'BEGIN { exit !(r != "" && r <= 1e-13) }'
 ok $? "cartesian_pendulum, Baumgarte 5, 5 from off the rod: g(0.5) within $rel of g0 (1 + 5t) e^(-5t) (<= 1e-13)"
 
-# refusals
-"$eomc" run "$src/tests/sim/specs/cubic.yaml" --method taylor -o "$tmp/r.csv" 2> "$tmp/r.err"
+# a constraint nonlinear in q'': from rest at 0, x = x'' t^2 / 2 and
+# y = (x''^3 + x'') t^2 / 2 at t = 10 (m = 1.5, g = 9.81)
+"$eomc" run "$src/tests/sim/specs/cubic.yaml" $tight -o "$tmp/cu.csv" 2> "$tmp/cu.err"
 st=$?
-[ $st = 2 ] && grep -q "has no Taylor series: its constraint 'cubic' is nonlinear in q''" \
+rel=$(tail -1 "$tmp/cu.csv" | awk -F, '{ lo = -10; hi = 10; g = 9.81
+    for (i = 0; i < 200; i++) { a = (lo + hi) / 2; r = a + (a^3 + a + g) * (3 * a^2 + 1)
+        if (r > 0) hi = a; else lo = a }
+    x = a * $1^2 / 2; y = (a^3 + a) * $1^2 / 2; d = ($2 - x) / x; e = ($3 - y) / y
+    d = d < 0 ? -d : d; e = e < 0 ? -e : e; printf "%.2g", (d > e ? d : e) }')
+[ $st = 0 ] && awk -v r="$rel" 'BEGIN { exit !(r != "" && r <= 1e-15) }'
+ok $? "cubic (nonlinear in q''): x and y at t = 10 within $rel of the closed form (<= 1e-15)"
+cs="$src/tests/sim/specs/cubic_spring.yaml"
+"$eomc" run "$cs" --method rk8pd --rtol 1e-14 --atol 0 -o "$tmp/cs8.csv" 2> /dev/null &&
+    "$eomc" run "$cs" --method taylor --rtol 1e-14 --atol 0 -o "$tmp/cst.csv" 2> /dev/null
+st=$?
+diff=$(paste -d, "$tmp/cs8.csv" "$tmp/cst.csv" | awk -F, 'NR > 1 { for (i = 2; i <= 5; i++) {
+    d = $i - $(i + 10); d = d < 0 ? -d : d; if (d > m) m = d } } END { printf "%.2g", m }')
+[ $st = 0 ] && [ "$(wc -l < "$tmp/cst.csv")" = 202 ] &&
+    awk -v d="$diff" 'BEGIN { exit !(d != "" && d <= 1e-12) }'
+ok $? "cubic_spring (nonlinear in q''): taylor's rows within $diff of rk8pd's, both at 1e-14 (<= 1e-12)"
+
+# refusals
+"$eomc" run "$src/specs/rolling_disk.yaml" --method taylor -o "$tmp/r.csv" 2> "$tmp/r.err"
+st=$?
+[ $st = 2 ] && grep -q "has no Taylor series: its form computes the mass matrix by columns" \
     "$tmp/r.err" && [ ! -s "$tmp/r.csv" ]
-ok $? "a constraint nonlinear in q'': exit 2, naming it ($(head -1 "$tmp/r.err"))"
+ok $? "a form without the expressions of M: exit 2, naming why ($(head -1 "$tmp/r.err"))"
 "$eomc" run "$src/specs/pendulum.yaml" --method taylor --fixed-step 0.01 > /dev/null 2> "$tmp/f.err"
 [ $? = 2 ] && grep -q "taylor chooses its own steps" "$tmp/f.err"
 ok $? "--fixed-step with taylor: exit 2"

@@ -101,7 +101,7 @@ osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
 }
 
 #define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \
-    NULL, NULL, NULL, NULL, osc_taylor, NULL
+    NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL
 
 /* No parameter is fixed (p_fixed). */
 static const unsigned char no_fixed[8];
@@ -113,7 +113,7 @@ static const unsigned char no_fixed[8];
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* Nothing to draw (--animate): the members after c_nz; and no Taylor
  * series (the last members). */
-#define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
+#define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
     "a hand-written test model"
 #define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, __VA_ARGS__
 #define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)

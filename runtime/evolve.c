@@ -792,7 +792,8 @@ run_alloc(Run *r, const Method *m)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     if (r->m->nevent > 0) {
-        StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r};
+        StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r,
+                               .steps_split_pairs = r->taylor != NULL};
         ok &= (r->ev = stepev_alloc(r->s, r->o, r->st, motion)) != NULL;
     }
     return ok ? EOMC_OK : sim_usage_error(r->s, "out of memory setting up %s",

@@ -4,7 +4,12 @@
  * An event fires in a step where its g crossed zero (events.h).  Its time
  * is located first on the step's cubic Hermite interpolant (dense.h),
  * cheap and good enough to start from, then on the solution: a side step
- * from the step's start, the step layer's (StepevMotion).  The layer
+ * from the step's start, the step layer's (StepevMotion).  An event
+ * whose g has the same sign at both ends of a step may have crossed
+ * twice in it (a grazing motion, a long step): the cubic Hermite
+ * polynomial of g through its values and rates at the ends (polyroots.h)
+ * says where to look, a point between its first two roots, and g on the
+ * solution there says whether the motion did cross.  The layer
  * sits between the steps (evolve.c) and the root search (events.c, which
  * knows no model): it knows the model's events, and the step only by the
  * ends it is handed, so that the stepper, the step's state and the watch
@@ -43,6 +48,11 @@ struct StepEvents {
     int ne;                       /* events */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
+    double *te2;                  /* [ne] a second crossing in the step (a pair,
+                                   * both in the event's direction), or NAN */
+    double *gd0, *gd1;            /* [ne] g's rates at the step's ends (pairs) */
+    double *xs, *fs, *gs;         /* [N], [N], [ne]: the solution inside a step,
+                                   * its rate, and g or g's rate there (pair) */
     double *xe;                   /* [N] the state at an event's trial time */
     int ev_k;                     /* the event being located */
     StepevSpan sp;                /* the step it is located in (its arrays
@@ -67,9 +77,10 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     const eomc_model *m = eomc_sim_model(s);
     *v = (StepEvents){.s = s, .m = m, .o = o, .st = st, .mo = motion, .n = m->nq,
                       .N = 2 * m->nq, .ne = m->nevent, .last_set = -INFINITY};
-    double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce};
-    size_t ne = (size_t)v->ne, nc = (size_t)m->nc;
-    size_t sizes[] = {ne, ne, ne, ne, (size_t)v->N, nc};
+    double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce, &v->te2, &v->gd0,
+                         &v->gd1, &v->xs, &v->fs, &v->gs};
+    size_t ne = (size_t)v->ne, nc = (size_t)m->nc, N = (size_t)v->N;
+    size_t sizes[] = {ne, ne, ne, ne, N, nc, ne, ne, ne, N, N, ne};
     int ok = 1;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
@@ -87,7 +98,8 @@ stepev_free(StepEvents *v)
 {
     if (!v)
         return;
-    double *arrays[] = {v->g0, v->g1, v->ge, v->te, v->xe, v->ce};
+    double *arrays[] = {v->g0, v->g1, v->ge, v->te, v->xe, v->ce, v->te2, v->gd0, v->gd1,
+                        v->xs, v->fs, v->gs};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(v->held);
@@ -132,6 +144,116 @@ g_solution(void *ctx, double t)
     return v->ge[v->ev_k];
 }
 
+/* How fast each event's g changes along the motion at (t, x), whose
+ * right-hand side is f, into out [ne]: a central difference along the
+ * tangent over a probe PROBE_REL of the step in hand (v->sp).  It is
+ * exact for a g quadratic in the state, and otherwise off by (probe)^2
+ * g'''/6, a millionth of what g changes by over a step; the rounding of
+ * g, spread over a probe a thousandth of the step, stays far below
+ * PASS_REL of the rate it arrived with (a millionth of the step lost 60%
+ * of a rate of 1e-8 to it). */
+#define PROBE_REL 1e-3
+static void
+g_rates(StepEvents *v, double t, const double *x, const double *f, double *out)
+{
+    double d = PROBE_REL * (v->sp.t1 - v->sp.t0);
+    for (int side = 0; side < 2; side++) {
+        double s = side ? d : -d;
+        for (int i = 0; i < v->N; i++)
+            v->xe[i] = x[i] + s * f[i];
+        eomc_sim_events(v->s, t + s, v->xe, v->xe + v->n, side ? v->ge : out);
+    }
+    for (int k = 0; k < v->ne; k++)
+        out[k] = (v->ge[k] - out[k]) / (2 * d);
+}
+
+/* Event k's alone (gd1 is scratch outside stepev_check). */
+static double
+g_rate(StepEvents *v, int k, double t, const double *x, const double *f)
+{
+    g_rates(v, t, x, f, v->gd1);
+    return v->gd1[k];
+}
+
+/* g of event k on the solution at t and its rate there into *g and *gd:
+ * a side step from the step's start, then g_rates.  GSL_SUCCESS or a
+ * failure status. */
+static int
+g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
+{
+    const StepevSpan *sp = &v->sp;
+    v->st->event_evals++;
+    int rc = v->mo.side(v->mo.ctx, sp->t0, sp->x0, sp->f0, t, v->xs);
+    if (rc == GSL_SUCCESS)
+        rc = v->mo.rate(t, v->xs, v->fs, v->mo.ctx);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    eomc_sim_events(v->s, t, v->xs, v->xs + v->n, v->gs);
+    *g = v->gs[k];
+    g_rates(v, t, v->xs, v->fs, v->gs);
+    *gd = v->gs[k];
+    return GSL_SUCCESS;
+}
+
+/* Bisections of g's turning point in a step, at most: they shrink the
+ * bracket to 2^-EXTREMUM_ITERS of the step, where g differs from its
+ * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
+enum { EXTREMUM_ITERS = 12 };
+
+/* Event k, of one sign at both ends of the step, crossing twice inside
+ * it: g heads for 0 at the step's start and away from it at its end
+ * (gd0, gd1), so it turns in between.  The turning point is found on the
+ * solution by bisection on the sign of g's rate, starting where the cubic
+ * through g and its rates at the ends turns; where g there has crossed
+ * 0, each crossing on either side of it in k's direction is located on
+ * the solution, the first into te[k] and a second into te2[k].
+ * GSL_SUCCESS, or a failure status where the solution cannot be
+ * computed. */
+static int
+pair(StepEvents *v, int k, int *any)
+{
+    const StepevSpan *sp = &v->sp;
+    double t0 = sp->t0, t1 = sp->t1, h = t1 - t0, g0 = v->g0[k], g1 = v->g1[k];
+    double side = g0 > 0 ? 1 : -1;
+    if (g0 == 0 || !(side * v->gd0[k] < 0 && side * v->gd1[k] > 0))
+        return GSL_SUCCESS;
+    /* the cubic's turning point: c1 + 2 c2 tau + 3 c3 tau^2 = 0 in (0, 1) */
+    double d0 = v->gd0[k] * h, d1 = v->gd1[k] * h;
+    double c2 = 3 * (g1 - g0) - 2 * d0 - d1, c3 = 2 * (g0 - g1) + d0 + d1;
+    double qa = 3 * c3, qb = 2 * c2, disc = qb * qb - 4 * qa * d0, tau = 0.5;
+    if (qa != 0 && disc >= 0) {
+        double r1 = (-qb - sqrt(disc)) / (2 * qa), r2 = (-qb + sqrt(disc)) / (2 * qa);
+        tau = r1 > 0 && r1 < 1 ? r1 : r2 > 0 && r2 < 1 ? r2 : 0.5;
+    } else if (qa == 0 && qb != 0 && -d0 / qb > 0 && -d0 / qb < 1) {
+        tau = -d0 / qb;
+    }
+    double lo = t0, hi = t1, tc = NAN, gc = NAN;
+    for (int it = 0; it < EXTREMUM_ITERS && isnan(tc); it++) {
+        double tm = it == 0 ? t0 + tau * h : 0.5 * (lo + hi), gm, dm;
+        int rc = g_and_rate(v, k, tm, &gm, &dm);
+        if (rc != GSL_SUCCESS)
+            return rc;
+        if (gm == 0 || (gm > 0) != (g0 > 0))
+            tc = tm, gc = gm;
+        else if (side * dm < 0) /* still heading for 0: the turn is later */
+            lo = tm;
+        else
+            hi = tm;
+    }
+    if (isnan(tc)) /* it turned short of 0 */
+        return GSL_SUCCESS;
+    int dir = v->m->ev_direction[k], evals, there = ev_crossed(dir, g0, gc);
+    int back = ev_crossed(dir, gc, g1);
+    double first = there ? ev_root(g_solution, v, t0, g0, tc, gc, NAN, &evals) : NAN;
+    double second = back ? ev_root(g_solution, v, tc, gc, t1, g1, NAN, &evals) : NAN;
+    if ((there && isnan(first)) || (back && isnan(second)))
+        return GSL_EBADFUNC;
+    v->te[k] = there ? first : second;
+    v->te2[k] = there ? second : NAN;
+    *any |= !isnan(v->te[k]);
+    return GSL_SUCCESS;
+}
+
 int
 stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
 {
@@ -143,8 +265,9 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
     *hit = (StepevHit){.k = -1, .status = EOMC_OK, .t = NAN};
     v->sp = *sp;
     eomc_sim_events(s, t1, x1, x1 + v->n, v->g1);
+    int rates = 0; /* gd0, gd1 at this step's ends */
     for (int k = 0; k < v->ne; k++) {
-        v->te[k] = NAN;
+        v->te[k] = v->te2[k] = NAN;
         /* an event reset at g = 0 must leave it away from where it fires
          * (up for a downward event): back there already, the motion
          * returned within one step, faster than the steps can follow */
@@ -154,8 +277,22 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             return STEPEV_RETURNED;
         }
         v->held[k] = 0;
-        if (!ev_crossed(m->ev_direction[k], v->g0[k], v->g1[k]))
+        if (!ev_crossed(m->ev_direction[k], v->g0[k], v->g1[k])) {
+            if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
+                continue;
+            if (!rates++) {
+                g_rates(v, t0, sp->x0, sp->f0, v->gd0);
+                g_rates(v, t1, sp->x1, sp->f1, v->gd1);
+            }
+            v->ev_k = k;
+            if (pair(v, k, &any) != GSL_SUCCESS) { /* (a side step's failure) */
+                sim_numeric_error(s, t1, x1, x1 + v->n, "event %s may have crossed twice "
+                                  "in the step from t = %.17g, but the state inside it "
+                                  "could not be computed", m->ev_names[k], t0);
+                return GSL_EBADFUNC;
+            }
             continue;
+        }
         int evals;
         v->ev_k = k;
         double guess = ev_root(g_interpolant, v, t0, v->g0[k], t1, v->g1[k], NAN, &evals);
@@ -188,8 +325,10 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             *hit = (StepevHit){.k = -1, .status = rc, .t = t, .x = v->xe};
             return GSL_SUCCESS;
         }
-        if (m->ev_action[k] == EOMC_EVENT_RECORD)
+        if (m->ev_action[k] == EOMC_EVENT_RECORD) {
+            v->te[k] = v->te2[k], v->te2[k] = NAN; /* the pair's second, if any */
             continue;
+        }
         *hit = (StepevHit){.k = k, .status = EOMC_OK, .t = t, .x = v->xe};
         return GSL_SUCCESS;
     }
@@ -197,29 +336,6 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
 }
 
 /* ---- reset ---- */
-
-/* How fast event k's g changes along the motion at (t, x), whose
- * right-hand side is f: a central difference along the tangent over a
- * probe PROBE_REL of the step the event was found in.  It is exact for a
- * g quadratic in the state, and otherwise off by (probe)^2 g'''/6, a
- * millionth of what g changes by over a step; the rounding of g, spread
- * over a probe a thousandth of the step, stays far below PASS_REL of the
- * rate it arrived with (a millionth of the step lost 60% of a rate of
- * 1e-8 to it). */
-#define PROBE_REL 1e-3
-static double
-g_rate(StepEvents *v, int k, double t, const double *x, const double *f)
-{
-    double d = PROBE_REL * (v->sp.t1 - v->sp.t0), g[2];
-    for (int side = 0; side < 2; side++) {
-        double s = side ? d : -d;
-        for (int i = 0; i < v->N; i++)
-            v->xe[i] = x[i] + s * f[i];
-        eomc_sim_events(v->s, t + s, v->xe, v->xe + v->n, v->ge);
-        g[side] = v->ge[k];
-    }
-    return (g[1] - g[0]) / (2 * d);
-}
 
 /* Event k's `set` at t left the state off its constraints (their
  * inconsistencies in v->ce, levels in v->cl): the first such is kept in

@@ -31,6 +31,10 @@ typedef struct StepevMotion {
     int (*side)(void *ctx, double tk, const double *xk, const double *fk, double t,
                 double *x);
     void *ctx;
+    /* the steps already end between any two crossings of an event
+     * (Taylor's method cuts them at the roots of g's series): no pair
+     * of crossings can hide inside one, and none is looked for */
+    int steps_split_pairs;
 } StepevMotion;
 
 /* An accepted step: the state x and x' at t0 and at t1. */
@@ -61,7 +65,11 @@ void stepev_free(StepEvents *v);
 void stepev_start(StepEvents *v, double t, const double *x);
 /* After the step sp (its arrays are read during the call only): the
  * events that fired in it, in time order, each reported with the state
- * there.  The first `stop` or `set` event, or an on_event that returned
+ * there.  An event whose g has one sign at both ends of a step may still
+ * have crossed twice, there and back: where g heads for 0 at the step's
+ * start and away at its end, g on the solution where it turns decides,
+ * and each crossing found fires as any other (unless the motion says its
+ * steps split such pairs already).  The first `stop` or `set` event, or an on_event that returned
  * nonzero, ends the step: *hit says which and where; a `record` event
  * after it in the same step never happened.  GSL_SUCCESS or a failure
  * status. */

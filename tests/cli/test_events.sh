@@ -9,7 +9,11 @@
 #    floor at t1 = sqrt(2h/g) and then at t1 + (2 v1/g) e (1 - e^k)/(1 - e),
 #    v1 = g t1; where the bounces accumulate (t1 (1 + 2e/(1 - e))) the run
 #    stops with exit status 3, the rows before kept, and never hangs;
-#  - an event the scene does not ask for leaves no trace in its C.
+#  - an event the scene does not ask for leaves no trace in its C;
+#  - a grazing event (tests/sim/specs/graze.yaml: x = cos t, the event
+#    x = 0.999) crosses twice 0.089 apart around each maximum, inside one
+#    step where the steps are long: every method finds all 7 crossings up
+#    to t = 20 (3 of them upward), at 2 pi k -+ acos(0.999).
 # usage: test_events.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -213,5 +217,27 @@ YAML
 shares=$(awk 'BEGIN { v = sqrt(2 * 9.81 * (1 - cos(1)) + 5e-6); printf "plane (velocities: %.2g), rod (velocities: %.2g)", 0.002 / v, 0.001 / v }')
 [ $st -eq 0 ] && grep -qF "event bottom set a state off the constraints, worst first: $shares (each residual" "$tmp/rod3.err"
 ok $? "a reset off two constraints: the warning names both, worst first: $shares"
+
+# the grazing pairs, each method at rtol 1e-12 and 1e-8 (longer steps);
+# the error in a crossing's time is g's over its rate there,
+# sin(acos(0.999)) = 0.0447, and each bound about 5 times what the method
+# measured
+for mb in rk8pd:1e-12:5e-11 rkf45:1e-12:2e-9 msadams:1e-12:1e-8 msbdf:1e-12:5e-7 \
+          bsimp:1e-12:5e-11 rk4imp:1e-12:2e-9 taylor:1e-12:5e-12 rk8pd:1e-8:1e-6 \
+          rkf45:1e-8:1.5e-5 msadams:1e-8:3e-5 msbdf:1e-8:2e-4 bsimp:1e-8:5e-6 rk4imp:1e-8:2e-6 \
+          taylor:1e-8:2e-8; do
+  m=${mb%%:*} rest=${mb#*:}
+  tol=${rest%%:*} bound=${rest#*:}
+  "$eomc" run "$src/tests/sim/specs/graze.yaml" --method "$m" --rtol "$tol" --atol "$tol" \
+      --events "$tmp/graze.csv" -o /dev/null 2> "$tmp/graze.err"
+  st=$?
+  set -- $(awk -F, 'NR > 1 { a = atan2(sqrt(1 - 0.999^2), 0.999)
+      if ($2 == "top") { n++; k = int(n / 2); want = 2 * 3.14159265358979323846 * k + (n % 2 ? a : -a) }
+      else { u++; want = 2 * 3.14159265358979323846 * u - a }
+      d = $1 - want; d = d < 0 ? -d : d; if (d > m) m = d } END { printf "%d %d %.2g", n, u, m }' \
+      "$tmp/graze.csv")
+  [ $st = 0 ] && [ "$1" = 7 ] && [ "$2" = 3 ] && awk -v d="$3" -v b="$bound" 'BEGIN { exit !(d <= b) }'
+  ok $? "graze, $m at $tol: $1 crossings of x = 0.999 (7), $2 upward (3), within $3 of 2 pi k -+ acos(0.999) (<= $bound)"
+done
 
 tap_end

@@ -184,15 +184,18 @@ is_taylor(const char *method)
 }
 
 /* Whether a method the simulator options of `eomc run` name (--method M,
- * --methods M1,M2,...) is one that want() says yes to. */
+ * --methods M1,M2,..., --reference-method M) is one that want() says yes
+ * to. */
 static int
 sim_names_method(const Options *o, int (*want)(const char *method))
 {
     for (int i = 0; i < o->nsim; i++) {
         const char *a = o->sim[i], *val = NULL;
-        if ((!strcmp(a, "--method") || !strcmp(a, "--methods")) && i + 1 < o->nsim)
+        if ((!strcmp(a, "--method") || !strcmp(a, "--methods") ||
+             !strcmp(a, "--reference-method")) && i + 1 < o->nsim)
             val = o->sim[i + 1];
-        else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10))
+        else if (!strncmp(a, "--method=", 9) || !strncmp(a, "--methods=", 10) ||
+                 !strncmp(a, "--reference-method=", 19))
             val = strchr(a, '=') + 1;
         for (const char *w = val; w && *w; w += strcspn(w, ",") + (w[strcspn(w, ",")] != 0)) {
             char name[32];

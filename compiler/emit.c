@@ -432,6 +432,35 @@ print_c_string(FILE *f, const char *text)
     fputc('"', f);
 }
 
+/* The taylor members of the model struct (ext: the twin's, which has
+ * no taylor_why). */
+static void
+print_taylor_members(Printer *pr, const LowTaylor *ty, const char *nm, int ext)
+{
+    if (ty->why) {
+        fprintf(pr->f, "    .taylor_nslot = 0, .taylor = NULL");
+        if (!ext) {
+            fprintf(pr->f, ", .taylor_why = ");
+            print_c_string(pr->f, ty->why);
+        }
+        emit_line(pr, ",");
+        return;
+    }
+    emit_line(pr, "    .taylor_nslot = %d, .taylor_q = taylor_q, .taylor_v = taylor_v,",
+              ty->nslot);
+    emit_line(pr, "    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = %s,",
+              ty->nevent ? "taylor_g" : "NULL");
+    if (ty->nc) {
+        emit_line(pr, "    .taylor_a = %s, .taylor_B = taylor_B, .taylor_f = taylor_f,",
+                  ty->nonlinear ? "taylor_a" : "NULL");
+        emit_line(pr, "    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,");
+    }
+    if (ext)
+        emit_line(pr, "    .taylor = %s_taylor, /* Taylor's method in extended precision */", nm);
+    else
+        emit_line(pr, "    .taylor = %s_taylor, .taylor_why = NULL, /* Taylor's method */", nm);
+}
+
 static void
 print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
 {
@@ -559,23 +588,7 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     } else {
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
-    const LowTaylor *ty = L->taylor;
-    if (ty->why) {
-        fprintf(pr->f, "    .taylor_nslot = 0, .taylor = NULL, .taylor_why = ");
-        print_c_string(pr->f, ty->why);
-        emit_line(pr, ",");
-    } else {
-        emit_line(pr, "    .taylor_nslot = %d, .taylor_q = taylor_q, .taylor_v = taylor_v,",
-                  ty->nslot);
-        emit_line(pr, "    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = %s,",
-                  ty->nevent ? "taylor_g" : "NULL");
-        if (ty->nc) {
-            emit_line(pr, "    .taylor_a = %s, .taylor_B = taylor_B, .taylor_f = taylor_f,",
-                      ty->nonlinear ? "taylor_a" : "NULL");
-            emit_line(pr, "    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,");
-        }
-        emit_line(pr, "    .taylor = %s_taylor, .taylor_why = NULL, /* Taylor's method */", nm);
-    }
+    print_taylor_members(pr, L->taylor, nm, 0);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -598,6 +611,7 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                 md->affine ? "NULL" : nm, md->affine ? "" : "_c_jacobian");
     else
         emit_line(pr, "    .constraint = NULL, .c_jacobian = NULL,");
+    print_taylor_members(pr, L->taylor, nm, 1);
     emit_line(pr, "};");
     emit_line(pr, "#endif /* EOMC_EXTENDED */");
 }
@@ -856,8 +870,9 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
         if (lf == L->last_set)
             print_event_set(&pr, L);
     }
-    emit_fence(&pr, 1);
+    emit_fence(&pr, 0); /* the series: the twin's too */
     emit_taylor(&pr, L->taylor);
+    emit_fence(&pr, 1);
     print_model_struct(&pr, L, info);
     if (pr.unit2) {
         emit_unit2_swap(&pr);

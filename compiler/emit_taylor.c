@@ -2,7 +2,8 @@
  * emit_taylor: the model's taylor member (eomc_model.h) and its tables,
  * printed from the program lower_taylor made (lower.h's LowTaylor): one
  * call of runtime/eomc_taylor.h per step, slot s being the series at
- * T + s * S.  Compiled in double only.
+ * T + s * S.  Compiled in both precisions: the extended-precision twin
+ * sums the same series (a reference by Taylor's method, reference.c).
  */
 #include "emit_func.h"
 
@@ -95,13 +96,13 @@ print_wrappers(Printer *pr, const LowTaylor *ty)
         char params[300] = "", args[200] = "";
         size_t pl = 0, al = 0;
         for (int j = 0; j < st->nslot; j++) {
-            pl += (size_t)snprintf(params + pl, sizeof params - pl, "%sdouble *s%d",
+            pl += (size_t)snprintf(params + pl, sizeof params - pl, "%seomc_real *s%d",
                                    j < st->nres ? "" : "const ", j);
             pl += (size_t)snprintf(params + pl, sizeof params - pl, ", ");
             al += (size_t)snprintf(args + al, sizeof args - al, "s%d, ", j);
         }
         if (st->src != LOW_TAY_SRC_NONE) {
-            pl += (size_t)snprintf(params + pl, sizeof params - pl, "double v, ");
+            pl += (size_t)snprintf(params + pl, sizeof params - pl, "eomc_real v, ");
             al += (size_t)snprintf(args + al, sizeof args - al, "v, ");
         }
         snprintf(params + pl, sizeof params - pl, "int k");
@@ -136,7 +137,8 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     int nparts = (ty->nstep + LOWER_PART_SIZE - 1) / LOWER_PART_SIZE;
     if (nparts < 1)
         nparts = 1;
-    const char *params = "int k, int K, double t0, const double *p, const double *u, double *T";
+    const char *params = "int k, int K, eomc_real t0, const eomc_real *p, const eomc_real *u, "
+                         "eomc_real *T";
     char fname[160];
     if (nparts > 1)
         print_wrappers(pr, ty);

@@ -392,14 +392,13 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
 }
 
-#ifndef EOMC_EXTENDED
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 42 slots, 38 calls. */
 static void
-arenstorf_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+arenstorf_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -451,6 +450,7 @@ static const int taylor_v[2] = {16, 17};
 static const int taylor_M[4] = {0, -1, -1, 0};
 static const int taylor_h[2] = {39, 41};
 
+#ifndef EOMC_EXTENDED
 const eomc_model arenstorf_model = {
     .abi = EOMC_ABI_VERSION, .name = "arenstorf", .spec = "arenstorf.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -495,5 +495,8 @@ const eomc_model_ext arenstorf_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "arenstorf", .derive = arenstorf_derive, .inputs = arenstorf_inputs,
     .mass_bias = arenstorf_mass_bias, .accel = arenstorf_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 42, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = arenstorf_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

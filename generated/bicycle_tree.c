@@ -9708,6 +9708,9 @@ bicycle_tree_draw_mass(const eomc_real *p, eomc_real *D)
     D[51] = p_If;
 }
 
+#endif /* EOMC_EXTENDED */
+
+#ifndef EOMC_EXTENDED
 const eomc_model bicycle_tree_model = {
     .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .spec = "bicycle_tree.yaml", .form = "articulated-body",
     .options = "--jacobian auto --taylor",
@@ -9758,5 +9761,6 @@ const eomc_model_ext bicycle_tree_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "bicycle_tree", .derive = bicycle_tree_derive, .inputs = bicycle_tree_inputs,
     .mass_bias = bicycle_tree_mass_bias, .accel = NULL,
     .constraint = bicycle_tree_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 0, .taylor = NULL,
 };
 #endif /* EOMC_EXTENDED */

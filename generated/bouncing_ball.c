@@ -277,13 +277,15 @@ bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 3 slots, 2 calls. */
 static void
-bouncing_ball_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -300,6 +302,7 @@ static const int taylor_M[1] = {0};
 static const int taylor_h[1] = {2};
 static const int taylor_g[1] = {1};
 
+#ifndef EOMC_EXTENDED
 const eomc_model bouncing_ball_model = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -350,5 +353,8 @@ const eomc_model_ext bouncing_ball_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .derive = bouncing_ball_derive, .inputs = bouncing_ball_inputs,
     .mass_bias = bouncing_ball_mass_bias, .accel = bouncing_ball_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 3, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
+    .taylor = bouncing_ball_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

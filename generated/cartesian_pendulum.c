@@ -383,14 +383,16 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 28 slots, 24 calls. */
 static void
-cartesian_pendulum_taylor(int k, int K, double t0, const double *p,
-    const double *u, double *T)
+cartesian_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -434,6 +436,7 @@ static const int taylor_f[1] = {27};
 static const int taylor_pos[1] = {8};
 static const int taylor_vel[1] = {21};
 
+#ifndef EOMC_EXTENDED
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -488,5 +491,10 @@ const eomc_model_ext cartesian_pendulum_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .derive = cartesian_pendulum_derive, .inputs = cartesian_pendulum_inputs,
     .mass_bias = cartesian_pendulum_mass_bias, .accel = NULL,
     .constraint = cartesian_pendulum_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 28, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = cartesian_pendulum_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -921,14 +921,16 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[2] = w5;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 109 slots, 101 calls. */
 static void
-central_constant_speed_taylor(int k, int K, double t0, const double *p,
-    const double *u, double *T)
+central_constant_speed_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -1049,6 +1051,7 @@ static const int taylor_f[1] = {79};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {29};
 
+#ifndef EOMC_EXTENDED
 const eomc_model central_constant_speed_model = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -1103,5 +1106,10 @@ const eomc_model_ext central_constant_speed_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .derive = central_constant_speed_derive, .inputs = central_constant_speed_inputs,
     .mass_bias = central_constant_speed_mass_bias, .accel = NULL,
     .constraint = central_constant_speed_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 109, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = central_constant_speed_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -1787,13 +1787,15 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[49] = w36;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 213 slots, 198 calls. */
 static void
-chain5_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+chain5_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -2006,6 +2008,7 @@ static const int taylor_M[25] = {196, 91, 120, 142, 157, 91, 119, 121, 143, 158,
     157, 158, 159, 160, 33};
 static const int taylor_h[5] = {210, 211, 212, 187, 189};
 
+#ifndef EOMC_EXTENDED
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -2055,5 +2058,8 @@ const eomc_model_ext chain5_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .derive = chain5_derive, .inputs = chain5_inputs,
     .mass_bias = chain5_mass_bias, .accel = chain5_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 213, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = chain5_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -531,14 +531,16 @@ chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = p_J;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 34 slots, 29 calls. */
 static void
-chaplygin_sleigh_taylor(int k, int K, double t0, const double *p,
-    const double *u, double *T)
+chaplygin_sleigh_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -587,6 +589,7 @@ static const int taylor_f[1] = {24};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {10};
 
+#ifndef EOMC_EXTENDED
 const eomc_model chaplygin_sleigh_model = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -641,5 +644,10 @@ const eomc_model_ext chaplygin_sleigh_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .derive = chaplygin_sleigh_derive, .inputs = chaplygin_sleigh_inputs,
     .mass_bias = chaplygin_sleigh_mass_bias, .accel = NULL,
     .constraint = chaplygin_sleigh_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 34, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = chaplygin_sleigh_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

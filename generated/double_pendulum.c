@@ -559,13 +559,15 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[13] = w11;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 45 slots, 39 calls. */
 static void
-double_pendulum_taylor(int k, int K, double t0, const double *p,
-    const double *u, double *T)
+double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -618,6 +620,7 @@ static const int taylor_v[2] = {8, 9};
 static const int taylor_M[4] = {22, 27, 27, 28};
 static const int taylor_h[2] = {39, 44};
 
+#ifndef EOMC_EXTENDED
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -667,5 +670,8 @@ const eomc_model_ext double_pendulum_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .derive = double_pendulum_derive, .inputs = double_pendulum_inputs,
     .mass_bias = double_pendulum_mass_bias, .accel = double_pendulum_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 45, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = double_pendulum_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

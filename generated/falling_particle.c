@@ -222,13 +222,15 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 2 slots, 2 calls. */
 static void
-falling_particle_taylor(int k, int K, double t0, const double *p,
-    const double *u, double *T)
+falling_particle_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -244,6 +246,7 @@ static const int taylor_v[1] = {-1};
 static const int taylor_M[1] = {0};
 static const int taylor_h[1] = {1};
 
+#ifndef EOMC_EXTENDED
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -293,5 +296,8 @@ const eomc_model_ext falling_particle_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .derive = falling_particle_derive, .inputs = falling_particle_inputs,
     .mass_bias = falling_particle_mass_bias, .accel = falling_particle_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 2, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = falling_particle_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -200,14 +200,13 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     return eomc_pivots(1, piv, mkk, pivot); /* eomc_model.h */
 }
 
-#ifndef EOMC_EXTENDED
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 10 slots, 8 calls. */
 static void
-gear_link_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+gear_link_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -228,6 +227,7 @@ static const int taylor_v[1] = {-1};
 static const int taylor_M[1] = {5};
 static const int taylor_h[1] = {9};
 
+#ifndef EOMC_EXTENDED
 const eomc_model gear_link_model = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .spec = "gear_link.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -272,5 +272,8 @@ const eomc_model_ext gear_link_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .derive = gear_link_derive, .inputs = gear_link_inputs,
     .mass_bias = gear_link_mass_bias, .accel = gear_link_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 10, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = gear_link_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -331,13 +331,15 @@ kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 18 slots, 16 calls. */
 static void
-kepler_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -367,6 +369,7 @@ static const int taylor_v[2] = {-1, -1};
 static const int taylor_M[4] = {1, -1, -1, 1};
 static const int taylor_h[2] = {17, 15};
 
+#ifndef EOMC_EXTENDED
 const eomc_model kepler_model = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .spec = "kepler.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -416,5 +419,8 @@ const eomc_model_ext kepler_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .derive = kepler_derive, .inputs = kepler_inputs,
     .mass_bias = kepler_mass_bias, .accel = kepler_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 18, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = kepler_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

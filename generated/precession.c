@@ -981,14 +981,16 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = p_C;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 115 slots, 108 calls. */
 static void
-precession_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+precession_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -1116,6 +1118,7 @@ static const int taylor_f[1] = {53};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {-1};
 
+#ifndef EOMC_EXTENDED
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -1170,5 +1173,10 @@ const eomc_model_ext precession_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .derive = precession_derive, .inputs = precession_inputs,
     .mass_bias = precession_mass_bias, .accel = NULL,
     .constraint = precession_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 115, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
+    .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
+    .taylor = precession_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -1519,6 +1519,9 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = w3;
 }
 
+#endif /* EOMC_EXTENDED */
+
+#ifndef EOMC_EXTENDED
 const eomc_model rolling_disk_model = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
     .options = "--jacobian auto --taylor",
@@ -1569,5 +1572,6 @@ const eomc_model_ext rolling_disk_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .derive = rolling_disk_derive, .inputs = rolling_disk_inputs,
     .mass_bias = rolling_disk_mass_bias, .accel = NULL,
     .constraint = rolling_disk_constraint, .c_jacobian = NULL,
+    .taylor_nslot = 0, .taylor = NULL,
 };
 #endif /* EOMC_EXTENDED */

@@ -508,13 +508,15 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[2] = w10;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 43 slots, 39 calls. */
 static void
-spinning_hoop_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
     (void)u;
@@ -566,6 +568,7 @@ static const int taylor_v[1] = {10};
 static const int taylor_M[1] = {19};
 static const int taylor_h[1] = {42};
 
+#ifndef EOMC_EXTENDED
 const eomc_model spinning_hoop_model = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -615,5 +618,8 @@ const eomc_model_ext spinning_hoop_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .derive = spinning_hoop_derive, .inputs = spinning_hoop_inputs,
     .mass_bias = spinning_hoop_mass_bias, .accel = spinning_hoop_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 43, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = spinning_hoop_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -248,13 +248,15 @@ swing_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[1] = w4;
 }
 
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
  * and q' (taylor_q, taylor_v): 6 slots, 4 calls. */
 static void
-swing_taylor(int k, int K, double t0, const double *p, const double *u,
-    double *T)
+swing_taylor(int k, int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T)
 {
     const int S = K + 1;
     (void)t0;
@@ -272,6 +274,7 @@ static const int taylor_v[1] = {-1};
 static const int taylor_M[1] = {3};
 static const int taylor_h[1] = {5};
 
+#ifndef EOMC_EXTENDED
 const eomc_model swing_model = {
     .abi = EOMC_ABI_VERSION, .name = "swing", .spec = "swing.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -321,5 +324,8 @@ const eomc_model_ext swing_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "swing", .derive = swing_derive, .inputs = swing_inputs,
     .mass_bias = swing_mass_bias, .accel = swing_accel,
     .constraint = NULL, .c_jacobian = NULL,
+    .taylor_nslot = 6, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
+    .taylor = swing_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */

@@ -127,7 +127,7 @@ get_reference(Options *c, eomc_sim *sim, const eomc_model_ext *ext, const double
                      "cannot compute a reference solution: rebuild with `eomc build %s "
                      "--extended` (or give --reference FILE)", m->name, m->spec);
     else
-        rc = eomc_reference_compute(sim, ext, &c->run, x, ref);
+        rc = eomc_reference_compute_by(sim, ext, &c->run, x, c->reference_method, ref);
     if (rc != EOMC_OK) {
         fprintf(io_err(), "%s: %s%s\n", c->prog, rc == EOMC_ENUMERIC ? "error: " : "",
                 eomc_sim_error(sim));

@@ -446,7 +446,8 @@ typedef struct eomc_reference {
     long steps, rhs_evals;  /* of the last solution */
     double cpu_seconds;   /* all solutions */
     const char *method;   /* "Gragg-Bulirsch-Stoer extrapolation", "linearly implicit
-                           * Euler extrapolation" or "a file" (static) */
+                           * Euler extrapolation", "Taylor's method" or "a file"
+                           * (static) */
     int stiff;            /* the linearly implicit method made it, the problem being
                            * stiff (source says why) */
     char source[768];     /* how it was made (and why that method), or the file */
@@ -457,6 +458,15 @@ typedef struct eomc_reference {
  * or EOMC_ENUMERIC when the model fails (message as for a run). */
 int eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
                            const double *x0, eomc_reference *ref);
+/* The same, made by extrapolation (EOMC_REFERENCE_EXTRAPOLATION, what
+ * eomc_reference_compute does) or by Taylor's method in extended
+ * precision on the twin's series (EOMC_REFERENCE_TAYLOR: a second way
+ * that shares nothing with the first but the model's functions; the
+ * model built with its series, every constraint affine in q'', every
+ * input held). */
+enum { EOMC_REFERENCE_EXTRAPOLATION, EOMC_REFERENCE_TAYLOR };
+int eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
+                              const double *x0, int how, eomc_reference *ref);
 /* Read a reference from a CSV whose header names t, every coordinate and
  * every velocity (name') among its columns (other columns are ignored),
  * with one row at each of o's output times.  EOMC_EUSAGE with a message

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 19
+#define EOMC_ABI_VERSION 20
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -382,6 +382,14 @@ typedef struct eomc_model_ext {
                        eomc_ext *dfdq, eomc_ext *dfdv, eomc_ext *dfdu, eomc_ext *dfdt,
                        eomc_ext *dBdq, eomc_ext *dBdv, eomc_ext *dBda, eomc_ext *dBdu,
                        eomc_ext *dBdt);
+    /* Taylor's series in extended precision (the reference by Taylor's
+     * method), members as in eomc_model, with the same slot tables;
+     * taylor NULL where the doubles have none. */
+    int taylor_nslot;
+    const int *taylor_q, *taylor_v, *taylor_M, *taylor_h, *taylor_g;
+    const int *taylor_a, *taylor_B, *taylor_f, *taylor_pos, *taylor_vel;
+    void (*taylor)(int k, int K, eomc_ext t0, const eomc_ext *p, const eomc_ext *u,
+                   eomc_ext *T);
 } eomc_model_ext;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

@@ -111,6 +111,11 @@ static const Row rows[] = {
      .when = ANY},
     {"--reference-out", O_REFERENCE_OUT, "FILE", "write the reference, in this simulator's columns",
      .when = ANY},
+    {"--reference-method", O_REFERENCE_METHOD, "HOW",
+     "how the reference is computed: extrapolation (the\n"
+     "default) or taylor (Taylor's method in the same\n"
+     "extended precision, a second and independent way)",
+     .when = ANY},
     {"--errors", O_ERRORS, "FILE",
      "each run's errors by coordinate and velocity, as CSV\n"
      "(implies --error; with --work-precision, every run's)",

@@ -230,6 +230,16 @@ take_value(Options *c, int k, const char *val)
     }
     case O_REFERENCE: c->reference = val; return EOMC_OK;
     case O_REFERENCE_OUT: c->reference_out = val; return EOMC_OK;
+    case O_REFERENCE_METHOD: {
+        static const char *const ways[] = {"extrapolation", "taylor"};
+        for (int j = 0; j < 2; j++)
+            if (strcmp(val, ways[j]) == 0) {
+                c->reference_method = j; /* EOMC_REFERENCE_EXTRAPOLATION, _TAYLOR */
+                return EOMC_OK;
+            }
+        return opt_usage(c, "--reference-method: unknown way '%s'%s; ways: extrapolation, "
+                         "taylor", val, opt_nearest(val, ways, 2, ""));
+    }
     case O_EVENTS: c->events = val; return EOMC_OK;
     case O_ANIMATE: c->animate = val; return EOMC_OK;
     case O_SWEEP: c->sweep[c->nsweep++] = (char *)val; return EOMC_OK;

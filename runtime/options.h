@@ -29,6 +29,7 @@ typedef struct Options {
     int nset, ninit;
     /* the reference and the report */
     const char *reference, *reference_out, *csv, *plot;
+    int reference_method; /* EOMC_REFERENCE_... (--reference-method) */
     const char *errors;   /* --errors FILE: the errors by component */
     const char *events;   /* --events FILE */
     const char *animate;  /* --animate FILE.html */

@@ -44,6 +44,13 @@
  * differ by 1.1e-14 and 8.9e-16, and those at 1e-17, 1e-18, 1e-19 agree
  * to the last bit of their doubles.
  *
+ * Taylor's method (eomc_reference_compute_by, --reference-method taylor)
+ * is the second way: the same refinements, each solution summed from the
+ * twin's own Taylor series in extended precision (reftaylor.c), for a
+ * reference that shares nothing with extrapolation but the model's
+ * functions.  Two references made so independently agreeing is the
+ * check of both (tests/sim/test_accuracy.c).
+ *
  * The arithmetic.  Every right-hand side is the model's own functions
  * compiled in eomc_ext (eomc_model_ext): accel's unrolled solve, or M and
  * h with an LU solve; constrained models solve the KKT system (Newton's
@@ -53,6 +60,7 @@
 #include "simimpl.h"
 #include "extrap.h"
 #include "linalg.h"
+#include "reftaylor.h"
 
 #include <float.h>
 #include <math.h>
@@ -127,6 +135,7 @@ typedef struct Ref {
                                     * the rows' side steps' (stepping) */
     double fail_t, *fail_x;       /* where a right-hand side failed [N], then
                                    * room for the doubles' q'' there [n] */
+    RefTaylor *rt;                /* Taylor's method makes the solutions, or NULL */
 } Ref;
 
 /* The model's inputs at t into r->u, held ones as the doubles hold them. */
@@ -426,6 +435,53 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
     return 0;
 }
 
+/* A solution by Taylor's method (reftaylor.h) at r->tol, as solve's:
+ * rows at o's output times off each step's polynomial.  0; -1 where the
+ * series fails or the steps become too small (r->fail_t, r->fail_x); -2
+ * after budget steps. */
+static int
+solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budget)
+{
+    int N = r->N;
+    long nrows = eomc_run_rows(o), k = 1;
+    for (int i = 0; i < N; i++) {
+        r->X[i] = x0[i];
+        r->mag[i] = fabsl(r->X[i]);
+        rows[i] = x0[i];
+    }
+    scales(r);
+    r->steps = r->evals = r->side_evals = 0;
+    eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t;
+    while (t < t_end) {
+        if (r->steps >= budget)
+            return -2;
+        inputs_at(r, t);
+        eomc_ext left = t_end - t, h;
+        r->evals++;
+        if (reftaylor_series(r->rt, t, r->X, r->p, r->u, r->tol, r->sc, left, &h) != 0 ||
+            !(h > HMIN_REL * span)) {
+            r->fail_t = (double)t;
+            for (int i = 0; i < N; i++)
+                r->fail_x[i] = (double)r->X[i];
+            return -1;
+        }
+        eomc_ext step = h >= left ? left : 2 * h > left ? left / 2 : h;
+        eomc_ext t1 = step == left ? t_end : t + step;
+        for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
+            reftaylor_eval(r->rt, eomc_run_row_time(o, k) - t, r->Y2);
+            for (int i = 0; i < N; i++)
+                rows[(size_t)k * N + i] = (double)r->Y2[i];
+        }
+        reftaylor_eval(r->rt, step, r->X);
+        t = t1;
+        r->steps++;
+        for (int i = 0; i < N; i++)
+            r->mag[i] = fmaxl(r->mag[i], fabsl(r->X[i]));
+        scales(r);
+    }
+    return 0;
+}
+
 static void
 ref_free(Ref *r)
 {
@@ -437,6 +493,7 @@ ref_free(Ref *r)
     free(r->perm);
     free(r->fail_x);
     extrap_free(r->ex);
+    reftaylor_free(r->rt);
 }
 
 static eomc_ext *
@@ -486,10 +543,11 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
 }
 
 static const char *
-method_name(int method)
+method_name(const Ref *r)
 {
-    return method == EXTRAP_GBS ? "Gragg-Bulirsch-Stoer extrapolation"
-                                : "linearly implicit Euler extrapolation";
+    return r->rt ? "Taylor's method"
+           : r->method == EXTRAP_GBS ? "Gragg-Bulirsch-Stoer extrapolation"
+                                     : "linearly implicit Euler extrapolation";
 }
 
 /* Why a solution stopped (solve's -1: the model failed at r->fail_x, or
@@ -503,20 +561,20 @@ failure(Ref *r, int st)
     if (st == -2)
         return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
                                  "took more than %d steps at tolerance %.0e",
-                                 method_name(r->method), STEP_BUDGET, r->tol);
+                                 method_name(r), STEP_BUDGET, r->tol);
     if (eomc_sim_accel(s, r->fail_t, x, x + r->n, r->fail_x + r->N) != EOMC_OK)
         return EOMC_ENUMERIC; /* that message says why */
     return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
                              "cannot be continued here at tolerance %.0e: the model "
                              "fails in extended precision, or its steps became too "
-                             "small", method_name(r->method), r->tol);
+                             "small", method_name(r), r->tol);
 }
 
 /* Why the method is what it is, once the problem was found stiff. */
 static void
 stiff_note(const Ref *r, char *buf, size_t len)
 {
-    const char *li = method_name(EXTRAP_LINEARLY_IMPLICIT);
+    const char *li = "linearly implicit Euler extrapolation";
     int at = snprintf(buf, len, "; the problem is stiff: from t = %.4g to %.4g, %d steps "
                       "of Gragg-Bulirsch-Stoer extrapolation were held by stability (up "
                       "to %.3g times the inverse of the Jacobian's spectral radius, where "
@@ -562,13 +620,47 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
     return EOMC_OK;
 }
 
+/* EOMC_OK when the twin can make the reference by Taylor's method, else
+ * the usage error saying why not. */
+static int
+taylor_fits(eomc_sim *s, const eomc_model_ext *ext)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    if (!ext->taylor)
+        return sim_usage_error(s, "--reference-method taylor: %s has no Taylor series: %s",
+                               m->name, m->taylor_why ? m->taylor_why : "its twin has none");
+    if (ext->taylor_a)
+        return sim_usage_error(s, "--reference-method taylor: a constraint of %s is "
+                               "nonlinear in q'', which the reference by Taylor's method "
+                               "does not take; extrapolation does", m->name);
+    for (int k = 0; k < m->nu; k++) {
+        double v;
+        if (!eomc_sim_input_held(s, k, &v))
+            return sim_usage_error(s, "--reference-method taylor: input %s is a signal of "
+                                   "time, whose series Taylor's method does not take",
+                                   m->u_names[k]);
+    }
+    return EOMC_OK;
+}
+
 int
 eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
                        const double *x0, eomc_reference *ref)
 {
+    return eomc_reference_compute_by(s, ext, o, x0, EOMC_REFERENCE_EXTRAPOLATION, ref);
+}
+
+int
+eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
+                          const double *x0, int how, eomc_reference *ref)
+{
     const eomc_model *m = eomc_sim_model(s);
     memset(ref, 0, sizeof *ref);
     int rc = twin_fits(s, ext, "a reference");
+    if (rc == EOMC_OK && how == EOMC_REFERENCE_TAYLOR)
+        rc = taylor_fits(s, ext);
+    if (rc == EOMC_OK && how != EOMC_REFERENCE_EXTRAPOLATION && how != EOMC_REFERENCE_TAYLOR)
+        rc = sim_usage_error(s, "unknown way %d to compute a reference", how);
     if (rc != EOMC_OK)
         return rc;
     if (!(o->t_end >= o->t0) || !(o->dt > 0) || !isfinite(o->t_end) || !isfinite(o->dt))
@@ -580,7 +672,10 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     double *prev = calloc(size, sizeof *prev);
     ref->t = calloc((size_t)nrows, sizeof *ref->t);
     ref->x = calloc(size, sizeof *ref->x);
-    if (ref_alloc(&r, s, ext) != 0 || !prev || !ref->t || !ref->x) {
+    int alloc = ref_alloc(&r, s, ext);
+    if (alloc == 0 && how == EOMC_REFERENCE_TAYLOR && !(r.rt = reftaylor_alloc(ext, r.n, r.nc)))
+        alloc = -1;
+    if (alloc != 0 || !prev || !ref->t || !ref->x) {
         ref_free(&r);
         free(prev);
         eomc_reference_free(ref);
@@ -599,7 +694,7 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     r.tol = TOL_FIRST;
     for (int k = 0; k < MAX_SOLUTIONS; k++, r.tol /= TOL_STEP) {
         double *rows = k ? prev : ref->x; /* the new solution goes to prev */
-        int st = solve(&r, o, x0, rows, budget);
+        int st = r.rt ? solve_taylor(&r, o, x0, rows, budget) : solve(&r, o, x0, rows, budget);
         r.detect = 0;
         if (st == -3) { /* stiff: the linearly implicit method, if it is cheaper */
             r.method = EXTRAP_LINEARLY_IMPLICIT;
@@ -639,14 +734,15 @@ eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_op
     if (rc == EOMC_OK && ref->refinements < 2)
         rc = sim_numeric_error(s, o->t0, x0, x0 + m->nq, "no refinement of the reference "
                                "solution (%s) could be computed at tolerance %.0e, so it "
-                               "cannot say how good it is", method_name(r.method), r.tol);
+                               "cannot say how good it is", method_name(&r), r.tol);
     ref->cpu_seconds = sim_seconds(1) - c0;
-    ref->method = method_name(r.method);
+    ref->method = method_name(&r);
     ref->stiff = r.method == EXTRAP_LINEARLY_IMPLICIT;
     int len = snprintf(ref->source, sizeof ref->source, "%s of order %d in %d-bit "
                        "floating point (long double)%s, %d solutions to relative "
                        "tolerance %.0e", ref->method,
-                       ref->stiff ? EXTRAP_LI_LEVELS : 2 * EXTRAP_GBS_LEVELS,
+                       r.rt ? reftaylor_order(r.rt)
+                       : ref->stiff ? EXTRAP_LI_LEVELS : 2 * EXTRAP_GBS_LEVELS,
                        LDBL_MANT_DIG, ref->stiff ? " with a finite-difference Jacobian" : "",
                        ref->refinements, ref->tolerance);
     if (r.stiff && len > 0 && (size_t)len < sizeof ref->source)

@@ -28,8 +28,16 @@
 #    constant x'' that is the root of x'' + (x''^3 + x'' + g)(3 x''^2 + 1)
 #    = 0 (bisection here), and cubic_spring.yaml's motion at t = 2 is
 #    rk8pd's (Newton's method at every stage) at rtol 1e-14;
+#  - the reference by Taylor's method in extended precision
+#    (--reference-method taylor) against the reference by extrapolation,
+#    two ways that share nothing but the model's functions: on seven
+#    specs (chain5 from q1 = 1, Kepler, Arenstorf's orbit, the double
+#    pendulum, the Cartesian pendulum, precession's second-order
+#    constraint, the car axis) their rows differ by no more than the sum
+#    of the errors each claims;
 #  - refusals, each naming its cause: a model without series, fixed
-#    steps.
+#    steps, a reference by Taylor's method of a constraint nonlinear in
+#    q''.
 # usage: test_taylor.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -145,7 +153,37 @@ diff=$(paste -d, "$tmp/cs8.csv" "$tmp/cst.csv" | awk -F, 'NR > 1 { for (i = 2; i
     awk -v d="$diff" 'BEGIN { exit !(d != "" && d <= 1e-12) }'
 ok $? "cubic_spring (nonlinear in q''): taylor's rows within $diff of rk8pd's, both at 1e-14 (<= 1e-12)"
 
+# the two references, each with the error it claims (the report's "its
+# error is at most E"), over the coordinates and velocities (the columns
+# named q and q' in the CSV)
+for spec in "specs/chain5.yaml --init q1=1.0" specs/kepler.yaml specs/arenstorf.yaml \
+            specs/double_pendulum.yaml specs/cartesian_pendulum.yaml specs/precession.yaml \
+            tests/hard/specs/car_axis.yaml; do
+  set -- $spec
+  file=$1 name=$(basename "$1" .yaml)
+  shift
+  for how in extrapolation taylor; do
+    "$eomc" accuracy "$src/$file" "$@" --methods rk8pd --tolerances 1e-6 --reference-method $how \
+        --reference-out "$tmp/ref_$how.csv" > "$tmp/ref_$how.txt" 2> /dev/null || echo failed
+  done
+  ea=$(sed -n 's/.*its error is at most \([0-9.e+-]*\).*/\1/p' "$tmp/ref_extrapolation.txt")
+  eb=$(sed -n 's/.*its error is at most \([0-9.e+-]*\).*/\1/p' "$tmp/ref_taylor.txt")
+  d=$(paste -d, "$tmp/ref_extrapolation.csv" "$tmp/ref_taylor.csv" | awk -F, 'NR == 1 {
+      h = NF / 2; for (i = 2; i <= h; i++) if ($i ~ /\047$/) n++; next }
+      { for (i = 2; i <= 1 + 2 * n; i++) { x = $i - $(i + h); x = x < 0 ? -x : x; if (x > m) m = x } }
+      END { if (n == 0) print "none"; else printf "%.3g", m }')
+  grep -q "by Taylor's method\|reference: Taylor's method" "$tmp/ref_taylor.txt" &&
+      awk -v d="$d" -v a="$ea" -v b="$eb" 'BEGIN { exit !(d != "none" && a != "" && b != "" && d <= a + b) }'
+  ok $? "$name: the references by extrapolation and by Taylor's method differ by $d, within the errors they claim ($ea + $eb)"
+done
+
 # refusals
+"$eomc" run "$src/tests/sim/specs/cubic.yaml" --error --reference-method taylor -o "$tmp/r.csv" \
+    2> "$tmp/r.err"
+st=$?
+[ $st = 2 ] && grep -q "reference-method taylor: a constraint of cubic is nonlinear in q''" \
+    "$tmp/r.err" && [ ! -s "$tmp/r.csv" ]
+ok $? "a reference by Taylor's method of a constraint nonlinear in q'': exit 2, naming why"
 "$eomc" run "$src/specs/rolling_disk.yaml" --method taylor -o "$tmp/r.csv" 2> "$tmp/r.err"
 st=$?
 [ $st = 2 ] && grep -q "has no Taylor series: its form computes the mass matrix by columns" \

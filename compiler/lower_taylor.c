@@ -29,13 +29,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* How an acceleration q'' reads: nowhere (an unconstrained model's
+ * functions have none), as 0 (every constraint affine: f's DAG then gives
+ * b = f at q'' = 0), or as a series the caller writes (taylor_a: a
+ * constraint nonlinear in q''). */
+enum { ACCEL_NONE, ACCEL_ZERO, ACCEL_SLOT };
+
 typedef struct Build {
     ExprPool *P;
     const int *derived; /* per node id its index in pd[], -1: not derived */
     size_t nderived;    /* derived's length */
     int np;
-    int accel_zero;     /* q'' reads as 0 (f's DAG gives b = f at q'' = 0) */
-    int accel_slot;     /* q'' is the caller's (f nonlinear in q'') */
+    int accel;          /* how q'' reads (only constraint's f reads it) */
     int *slot;          /* per node id, -1: none */
     unsigned char *konst; /* per node id: constant in t */
     int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
@@ -157,12 +162,12 @@ build_node(Build *b, ExprId id)
         call(b, "time", 1, c, -1, -1, -1)->src = LOW_TAY_SRC_T;
         break;
     case EXPR_VAR:
-        if (nd->b > 1 && b->accel_zero) { /* only f reads them: b = f at q'' = 0 */
+        if (nd->b > 1 && b->accel == ACCEL_ZERO) {
             c = constant(b, LOW_TAY_SRC_CONST, 0, 0);
             b->konst[id] = 1;
             break;
         }
-        if (nd->b > 1 && !b->accel_slot) {
+        if (nd->b > 1 && b->accel == ACCEL_NONE) {
             b->why = "its mass matrix or bias reads accelerations";
             return;
         }
@@ -302,7 +307,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
     int n = L->n, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
     size_t size = expr_pool_size(P);
     Build b = {.P = P, .derived = mb->derived, .nderived = L->derived_ids, .np = L->model.np,
-               .accel_zero = cf && L->model.affine, .accel_slot = cf && !L->model.affine};
+               .accel = !cf ? ACCEL_NONE : L->model.affine ? ACCEL_ZERO : ACCEL_SLOT};
     b.slot = xmalloc(size * sizeof *b.slot);
     b.konst = xmalloc(size);
     b.pair = xmalloc(4 * size * sizeof *b.pair);
@@ -366,7 +371,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             const ExprNode *nd = expr_node(P, (ExprId)id);
             if (mark[id] && nd->op == EXPR_VAR && nd->b < 2)
                 (nd->b ? ty->v_slot : ty->q_slot)[nd->a] = b.slot[id];
-            else if (mark[id] && nd->op == EXPR_VAR && b.accel_slot)
+            else if (mark[id] && nd->op == EXPR_VAR && b.accel == ACCEL_SLOT)
                 ty->a_slot[nd->a] = b.slot[id];
         }
         for (int k = 0; k < mb->nout; k++) {
@@ -384,7 +389,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
         }
         ty->nc = nc;
-        ty->nonlinear = b.accel_slot;
+        ty->nonlinear = b.accel == ACCEL_SLOT;
         ty->B_slot = arena_new_array(A, int, nc * n + 1);
         ty->f_slot = arena_new_array(A, int, nc + 1);
         ty->pos_slot = arena_new_array(A, int, nc + 1);

@@ -592,13 +592,15 @@ taylor_step(Run *r)
     if (taylor_series(r->taylor, t0, r->x, hmax, &h) != 0)
         return GSL_EBADFUNC;
     int final = h >= left;
-    if (!final && 2 * h > left)
+    if (final)
+        h = left;
+    else if (2 * h > left)
         h = 0.5 * left;
-    double cut = taylor_event_cut(r->taylor, final ? left : h);
-    if (cut < (final ? left : h))
+    double cut = taylor_event_cut(r->taylor, h);
+    if (cut < h)
         h = cut, final = 0;
-    taylor_advance(r->taylor, final ? left : h, r->x);
-    taylor_error(r->taylor, final ? left : h, r->yerr);
+    taylor_advance(r->taylor, h, r->x);
+    taylor_error(r->taylor, h, r->yerr);
     r->st->order_sum += taylor_order(r->taylor);
     r->t = final ? r->o->t_end : t0 + h;
     int rc = rhs(r->t, r->x, r->f1, r);

@@ -18,20 +18,18 @@
  * own motion.
  */
 #include "reftaylor.h"
+#include "taylor.h"
 #include "linalg.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* As taylor.c's: rtol 1e-19 asks for 23. */
-enum { MAX_ORDER = 40, MIN_ORDER = 2, SCALE_ROUNDS = 2 };
-#define SAFETY 0.7L
 
 struct RefTaylor {
     const eomc_model_ext *x;
     int n, N, nc, nk, p;
-    eomc_ext *T;       /* [nslot (MAX_ORDER + 1)] the twin's series, stride p + 1 */
+    eomc_ext *T;       /* [nslot (TAYLOR_MAX_ORDER + 1)] the twin's series, stride p + 1 */
     eomc_ext *X;       /* [(p + 1) N] the state's, X[j N + i] */
     eomc_ext *A, *L;   /* [n (p + 1)], [nc (p + 1)]: the accelerations', the multipliers' */
     eomc_ext *K, *r;   /* [nk nk] M_0 or the KKT matrix, factored; [nk] a right-hand side */
@@ -52,7 +50,7 @@ reftaylor_alloc(const eomc_model_ext *x, int n, int nc)
     RefTaylor *rt = calloc(1, sizeof *rt);
     if (!rt)
         return NULL;
-    size_t K1 = MAX_ORDER + 1, nk = (size_t)(n + nc), N = 2 * (size_t)n;
+    size_t K1 = TAYLOR_MAX_ORDER + 1, nk = (size_t)(n + nc), N = 2 * (size_t)n;
     *rt = (RefTaylor){.x = x, .n = n, .N = 2 * n, .nc = nc, .nk = n + nc};
     rt->T = zeros((size_t)x->taylor_nslot * K1);
     rt->X = zeros(K1 * N);
@@ -180,8 +178,7 @@ reftaylor_series(RefTaylor *rt, eomc_ext t0, const eomc_ext *x, const eomc_ext *
 {
     const eomc_model_ext *tw = rt->x;
     int n = rt->n, N = rt->N;
-    eomc_ext want = ceill(-0.5L * logl(rtol) + 1);
-    rt->p = want < MIN_ORDER ? MIN_ORDER : want > MAX_ORDER ? MAX_ORDER : (int)want;
+    rt->p = taylor_order_for((double)rtol);
     int P = rt->p, p1 = P + 1;
     memcpy(rt->X, x, (size_t)N * sizeof *x);
     for (int k = 0; k < P; k++) {
@@ -208,8 +205,8 @@ reftaylor_series(RefTaylor *rt, eomc_ext t0, const eomc_ext *x, const eomc_ext *
                 return -1;
     }
     /* the step: each component against its size over it, at least sc */
-    eomc_ext factor = expl(-2.0L - SAFETY / (P - 1)), step = radius(rt, NULL) * factor;
-    for (int round = 0; round < SCALE_ROUNDS && isfinite(step); round++) {
+    eomc_ext factor = expl(-2.0L - (eomc_ext)TAYLOR_SAFETY / (P - 1)), step = radius(rt, NULL) * factor;
+    for (int round = 0; round < TAYLOR_SCALE_ROUNDS && isfinite(step); round++) {
         for (int i = 0; i < N; i++) {
             eomc_ext big = sc[i], hj = 1;
             for (int j = 0; j <= P; j++, hj *= step)

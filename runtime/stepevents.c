@@ -51,6 +51,8 @@ struct StepEvents {
     double *te2;                  /* [ne] a second crossing in the step (a pair,
                                    * both in the event's direction), or NAN */
     double *gd0, *gd1;            /* [ne] g's rates at the step's ends (pairs) */
+    int have_gd0;                 /* gd0 holds the rates at this step's start: the
+                                   * last step's end, left as it was */
     double *xs, *fs, *gs;         /* [N], [N], [ne]: the solution inside a step,
                                    * its rate, and g or g's rate there (pair) */
     double *xe;                   /* [N] the state at an event's trial time */
@@ -111,6 +113,7 @@ void
 stepev_start(StepEvents *v, double t, const double *x)
 {
     eomc_sim_events(v->s, t, x, x + v->n, v->g0);
+    v->have_gd0 = 0;
 }
 
 double
@@ -281,7 +284,8 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
                 continue;
             if (!rates++) {
-                g_rates(v, t0, sp->x0, sp->f0, v->gd0);
+                if (!v->have_gd0)
+                    g_rates(v, t0, sp->x0, sp->f0, v->gd0);
                 g_rates(v, t1, sp->x1, sp->f1, v->gd1);
             }
             v->ev_k = k;
@@ -306,6 +310,9 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
         any = 1;
     }
     memcpy(v->g0, v->g1, (size_t)v->ne * sizeof *v->g0);
+    /* the next step starts at this one's end (a reset says otherwise) */
+    if ((v->have_gd0 = rates > 0))
+        memcpy(v->gd0, v->gd1, (size_t)v->ne * sizeof *v->gd0);
     while (any) {
         int k = -1;
         for (int j = 0; j < v->ne; j++)
@@ -376,6 +383,7 @@ stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
     const eomc_model *m = v->m;
     double span = v->o->t_end - v->o->t0;
     v->ev_k = k;
+    v->have_gd0 = 0; /* the state the next step starts from is the reset's */
     if (v->nsets > 0 && t - v->last_set < ACCUMULATE_REL * span)
         return STEPEV_ACCUMULATE;
     v->gap = t - v->last_set;

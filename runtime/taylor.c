@@ -54,14 +54,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The highest order: rtol 1e-16 asks for 20; this leaves room for the
- * extended precision twin's tighter tolerances. */
-enum { TAYLOR_MAX_ORDER = 40 };
-/* ... and the lowest: a polynomial of degree 1 is Euler's method, whose
- * step rule above would have no second coefficient to compare. */
-enum { TAYLOR_MIN_ORDER = 2 };
-/* Jorba and Zou's safety factor, exp(-0.7 / (p - 1)), has this 0.7. */
-#define TAYLOR_SAFETY 0.7
 
 struct Taylor {
     eomc_sim *s;
@@ -98,6 +90,14 @@ struct Taylor {
 };
 
 int
+taylor_order_for(double rtol)
+{
+    double p = ceil(-0.5 * log(rtol) + 1);
+    return p < TAYLOR_MIN_ORDER ? TAYLOR_MIN_ORDER : p > TAYLOR_MAX_ORDER ? TAYLOR_MAX_ORDER
+                                                                          : (int)p;
+}
+
+int
 taylor_check(eomc_sim *s, const eomc_run_opts *o)
 {
     const eomc_model *m = eomc_sim_model(s);
@@ -129,10 +129,8 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     if (!tp)
         return NULL;
     int n = m->nq, K = TAYLOR_MAX_ORDER;
-    double p = ceil(-0.5 * log(o->rtol) + 1);
     *tp = (Taylor){.s = s, .m = m, .n = n, .N = 2 * n, .rtol = o->rtol, .atol = o->atol,
-                   .p = p < TAYLOR_MIN_ORDER ? TAYLOR_MIN_ORDER
-                        : p > TAYLOR_MAX_ORDER ? TAYLOR_MAX_ORDER : (int)p};
+                   .p = taylor_order_for(o->rtol)};
     tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
     tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
     tp->A = sim_zeros((size_t)(K + 1) * (size_t)n);
@@ -319,37 +317,42 @@ scales(Taylor *tp, double h, double *S)
  * component passing through 0 (a pendulum at the bottom) is measured
  * against how far it moves, not against its vanishing value.  The scales
  * and the step depend on each other; from the step their first terms
- * allow, SCALE_ROUNDS rounds of the two settle it (each moves h by a
- * p-th root of the round before's change). */
-enum { SCALE_ROUNDS = 2 };
+ * allow, TAYLOR_SCALE_ROUNDS rounds of the two settle it. */
 static double
 step_size(Taylor *tp)
 {
     double factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
     double h = radius(tp, NULL) * factor;
-    for (int r = 0; r < SCALE_ROUNDS && isfinite(h); r++) {
+    for (int r = 0; r < TAYLOR_SCALE_ROUNDS && isfinite(h); r++) {
         scales(tp, h, tp->S);
         h = radius(tp, tp->S) * factor;
     }
     return h;
 }
 
-/* sum_{j=1..k} (M_j a_{k-j})_i */
+/* sum + sum_{j=1..k} c_j b_{k-j}, c slot's series (none for slot -1), b
+ * a series of the same stride: the terms of order k of a product whose
+ * factor b is not yet known at order k. */
+static double
+conv(const Taylor *tp, int slot, const double *b, int k, double sum)
+{
+    if (slot < 0)
+        return sum;
+    const double *c = tp->T + (size_t)slot * (size_t)(tp->p + 1);
+    for (int j = 1; j <= k; j++)
+        sum += c[j] * b[k - j];
+    return sum;
+}
+
+/* sum_{j=1..k} (M_j a_{k-j})_i: each entry's series against the
+ * accelerations' (A: coordinate by coordinate, contiguous). */
 static double
 mass_terms(const Taylor *tp, int i, int k)
 {
-    const eomc_model *m = tp->m;
-    int n = tp->n, p = tp->p;
+    int n = tp->n;
     double sum = 0;
-    for (int l = 0; l < n && k > 0; l++) {
-        int slot = m->taylor_M[i * n + l];
-        if (slot < 0)
-            continue;
-        const double *ms = tp->T + (size_t)slot * (p + 1);
-        const double *al = tp->A + (size_t)l * (p + 1);
-        for (int j = 1; j <= k; j++)
-            sum += ms[j] * al[k - j];
-    }
+    for (int l = 0; l < n; l++)
+        sum = conv(tp, tp->m->taylor_M[i * n + l], tp->A + (size_t)l * (tp->p + 1), k, sum);
     return sum;
 }
 
@@ -367,9 +370,7 @@ mass_order(Taylor *tp, int k)
         if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
             return -1;
     }
-    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b: each
-     * entry's series against the accelerations' (A: coordinate by
-     * coordinate, a convolution of two contiguous arrays) */
+    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b */
     for (int i = 0; i < n; i++)
         tp->b[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
     la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
@@ -411,20 +412,11 @@ kkt_order(Taylor *tp, int k)
         double rc = coef(tp, m->taylor_f[c], k) + tp->wv[c] * coef(tp, m->taylor_vel[c], k) +
                     tp->wp[c] * coef(tp, m->taylor_pos[c], k);
         const double *lam = tp->L + (size_t)c * (p + 1);
-        for (int i = 0; i < n && k > 0; i++) {
+        for (int i = 0; i < n; i++) {
             int slot = m->taylor_B[c * n + i];
-            if (slot < 0)
-                continue;
-            const double *bs = tp->T + (size_t)slot * (p + 1);
-            const double *ai = tp->A + (size_t)i * (p + 1);
-            double bl = 0, ba = 0;
-            for (int j = 1; j <= k; j++) {
-                bl += bs[j] * lam[k - j];
-                ba += bs[j] * ai[k - j];
-            }
-            tp->r[i] += bl;
+            tp->r[i] += conv(tp, slot, lam, k, 0);
             if (!tp->dBda) /* else f_k has these terms already */
-                rc += ba;
+                rc += conv(tp, slot, tp->A + (size_t)i * (p + 1), k, 0);
         }
         tp->r[n + c] = rc;
     }

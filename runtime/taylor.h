@@ -13,6 +13,22 @@
 
 typedef struct Taylor Taylor;
 
+/* The highest order: rtol 1e-16 asks for 20; this leaves room for the
+ * extended-precision reference's tighter tolerances (reftaylor.c) ... */
+enum { TAYLOR_MAX_ORDER = 40 };
+/* ... and the lowest: a polynomial of degree 1 is Euler's method, whose
+ * step rule would have no second coefficient to compare. */
+enum { TAYLOR_MIN_ORDER = 2 };
+/* Jorba and Zou's safety factor, exp(-0.7 / (p - 1)), has this 0.7. */
+#define TAYLOR_SAFETY 0.7
+/* Rounds of the step and the components' scales over it settling each
+ * other (each moves the step by a p-th root of the round before's
+ * change). */
+enum { TAYLOR_SCALE_ROUNDS = 2 };
+/* The order for the relative tolerance rtol > 0 (Jorba and Zou's
+ * ceil(-ln(rtol)/2 + 1), within those bounds). */
+int taylor_order_for(double rtol);
+
 /* Whether s's model can run Taylor's method with o: EOMC_OK, or
  * EOMC_EUSAGE with the message saying why not (no generated series and
  * why, an input that is not held constant, rtol not positive). */

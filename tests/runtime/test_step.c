@@ -6,7 +6,8 @@
  *    h^4 / 384 max |x''''|, of the closed form;
  *  - the last step ends exactly at t_end, and its state is
  *    eomc_sim_integrate's to the last bit, with as many steps and
- *    right-hand sides (adaptive rk8pd, msbdf, and fixed rk4 steps);
+ *    right-hand sides (adaptive rk8pd, msbdf, taylor, and fixed rk4
+ *    steps);
  *  - a `stop` event ends the steps at its closed-form time, as
  *    eomc_sim_integrate stops there;
  *  - once the run is over, another step is a usage error.
@@ -125,6 +126,8 @@ main(void)
     stepwise(&o, "rk8pd at 1e-10", 1e-8);
     o = opts_for(&osc_model, 10.0, 0.1, "msbdf", 1e-9, 1e-9);
     stepwise(&o, "msbdf at 1e-9", 1e-5);
+    o = opts_for(&osc_model, 10.0, 0.1, "taylor", 1e-12, 1e-12);
+    stepwise(&o, "taylor at 1e-12", 1e-10);
     o = opts_for(&osc_model, 10.0, 0.1, "rk4", 0, 0);
     o.h_fixed = 0.01;
     stepwise(&o, "rk4, fixed steps of 0.01", 1e-6);

@@ -7,10 +7,11 @@
  *    for the tolerance;
  *  - units: the same motion with time in another unit (k scaled, so w
  *    is; atol 0) takes the same steps, its rows on the closed form;
- *  - the steps one at a time (eomc_sim_step) end where the run's do;
  *  - a `stop` event at its closed-form time, within a few ulp;
  *  - the refusals, each naming its cause: a model without series, rtol
  *    0, fixed steps.
+ * The steps one at a time (eomc_sim_step) are test_step.c's, with the
+ * other methods'.
  */
 #include "../unit/check.h"
 #include "rtest.h"
@@ -95,32 +96,6 @@ units(void)
           "(%.3g, %.3g)", steps[0], steps[1], worst[0], worst[1]);
 }
 
-/* The steps one at a time end where the run does, to the bit. */
-static void
-stepwise(void)
-{
-    eomc_sim *s = sim_new(&osc_model);
-    eomc_run_opts o = opts_for(&osc_model, 3.0, 0.1, "taylor", 1e-12, 1e-12);
-    double x0[2], xi[2];
-    sim_x0(s, x0);
-    memcpy(xi, x0, sizeof xi);
-    eomc_evolve *e = eomc_evolve_alloc(s, &o, x0);
-    eomc_step d = {0};
-    int rc = e ? EOMC_OK : EOMC_EUSAGE;
-    long steps = 0;
-    while (rc == EOMC_OK && !d.last)
-        if ((rc = eomc_sim_step(s, e, &d)) == EOMC_OK)
-            steps++;
-    eomc_stats st;
-    int rci = eomc_sim_integrate(s, &o, xi, NULL, NULL, &st);
-    CHECK(rc == EOMC_OK && rci == EOMC_OK && d.t1 == 3.0 && xi[0] == d.x1[0] &&
-              xi[1] == d.x1[1] && steps == st.steps,
-          "eomc_sim_step: %ld steps to t_end, the state eomc_sim_integrate ends at (%ld steps)",
-          steps, st.steps);
-    eomc_evolve_free(e);
-    eomc_sim_free(s);
-}
-
 /* The `stop` event where x falls through 0, at
  * t = (pi/2 + atan(v0 / (w x0))) / w. */
 static void
@@ -168,7 +143,6 @@ main(void)
 {
     accuracy();
     units();
-    stepwise();
     stop_event();
     refusals();
     return check_done();

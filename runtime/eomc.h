@@ -386,13 +386,15 @@ typedef struct eomc_evolve eomc_evolve;
  * the step ends at the event with the state before its reset, and the
  * next step starts from the state the reset sets (its x0).  Under
  * EOMC_STABILIZE_PROJECT x1 is the projected end.  The dense output over
- * the step is the cubic Hermite interpolant through (x0, f0) and (x1,
- * f1): with h = t1 - t0 and s = (t - t0) / h,
+ * the step (eomc_step_eval) is exact at both ends.  Inside, under Taylor's
+ * method it is the step's own polynomial, the one its rows and events
+ * use, to the method's order; under the other methods it is the cubic
+ * Hermite interpolant through (x0, f0) and (x1, f1): with h = t1 - t0 and
+ * s = (t - t0) / h,
  *     x(t) = (2s^3 - 3s^2 + 1) x0 + (s^3 - 2s^2 + s) h f0
  *          + (3s^2 - 2s^3) x1 + (s^3 - s^2) h f1,
- * exact at both ends, its error O(h^4) inside (eomc_sim_integrate's rows
- * come from an interpolant of higher order over several steps,
- * runtime/dense.h). */
+ * its error O(h^4) (eomc_sim_integrate's rows come from an interpolant of
+ * higher order over several steps, runtime/dense.h). */
 typedef struct eomc_step {
     int nx;                  /* 2 nq */
     double t0, t1;
@@ -401,6 +403,8 @@ typedef struct eomc_step {
     int event;               /* the `stop` or `set` event that ended the step at
                               * t1, or -1 (a `record` event is only reported) */
     int last;                /* the run is over: t1 is t_end, or a `stop` event */
+    const void *series;      /* the runtime's own: Taylor's method's polynomial
+                              * over the step (NULL under the other methods) */
 } eomc_step;
 
 /* Steps of s from x0 [2nq] at o->t0 (o is copied; x0 is not kept).  NULL

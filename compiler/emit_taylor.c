@@ -93,7 +93,7 @@ print_wrappers(Printer *pr, const LowTaylor *ty)
             seen = !strcmp(ty->step[j].call, st->call);
         if (seen)
             continue;
-        char params[300] = "", args[200] = "";
+        char params[600] = "", args[300] = "";
         size_t pl = 0, al = 0;
         for (int j = 0; j < st->nslot; j++) {
             pl += (size_t)snprintf(params + pl, sizeof params - pl, "%seomc_real *s%d",

@@ -240,10 +240,13 @@ enum {
     LOW_TAY_SRC_U,     /* u[index] */
     LOW_TAY_SRC_T,     /* t0 */
 };
+/* The most slots of a call: four products at once (mul4, lower_taylor). */
+#define LOW_TAY_MAX_SLOTS 12
+
 typedef struct LowTayStep {
     const char *call; /* "mul": eomc_tay_mul */
     int nslot, nres;  /* slots, of which the first nres are written */
-    int slot[4];
+    int slot[LOW_TAY_MAX_SLOTS];
     int src, index;
     double value;
 } LowTayStep;

@@ -431,25 +431,25 @@ appell_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 5 * S, p[6], k);
     eomc_tay_sqr(T + 7 * S, T + 6 * S, k);
     eomc_tay_sqr(T + 9 * S, T + 8 * S, k);
-    eomc_tay_add(T + 10 * S, T + 7 * S, T + 9 * S, k);
-    eomc_tay_scale(T + 11 * S, T + 5 * S, T + 10 * S, k);
-    eomc_tay_sub(T + 12 * S, T + 4 * S, T + 11 * S, k);
     eomc_tay_const(T + 13 * S, 0.0, k);
     eomc_tay_const(T + 14 * S, 0.0, k);
     eomc_tay_const(T + 15 * S, 0.0, k);
+    eomc_tay_const(T + 22 * S, p[8], k);
+    eomc_tay_add(T + 10 * S, T + 7 * S, T + 9 * S, k);
     eomc_tay_scale(T + 16 * S, T, T + 3 * S, k);
     eomc_tay_scale(T + 17 * S, T + 15 * S, T + 3 * S, k);
-    eomc_tay_scale(T + 18 * S, T, T + 17 * S, k);
     eomc_tay_scale(T + 19 * S, T + 13 * S, T + 6 * S, k);
     eomc_tay_scale(T + 20 * S, T + 14 * S, T + 8 * S, k);
+    eomc_tay_scale(T + 25 * S, T + 22 * S, T + 6 * S, k);
+    eomc_tay_scale(T + 27 * S, T + 22 * S, T + 8 * S, k);
+    eomc_tay_scale(T + 11 * S, T + 5 * S, T + 10 * S, k);
+    eomc_tay_scale(T + 18 * S, T, T + 17 * S, k);
     eomc_tay_add(T + 21 * S, T + 19 * S, T + 20 * S, k);
-    eomc_tay_const(T + 22 * S, p[8], k);
+    eomc_tay_neg(T + 26 * S, T + 25 * S, k);
+    eomc_tay_neg(T + 28 * S, T + 27 * S, k);
+    eomc_tay_sub(T + 12 * S, T + 4 * S, T + 11 * S, k);
     eomc_tay_scale(T + 23 * S, T + 22 * S, T + 21 * S, k);
     eomc_tay_sub(T + 24 * S, T + 18 * S, T + 23 * S, k);
-    eomc_tay_scale(T + 25 * S, T + 22 * S, T + 6 * S, k);
-    eomc_tay_neg(T + 26 * S, T + 25 * S, k);
-    eomc_tay_scale(T + 27 * S, T + 22 * S, T + 8 * S, k);
-    eomc_tay_neg(T + 28 * S, T + 27 * S, k);
 }
 
 /* The slots of q and q' the caller writes, and those of M (row-major),

@@ -389,7 +389,7 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 28 slots, 24 calls. */
+ * and q' (taylor_q, taylor_v): 28 slots, 23 calls. */
 static void
 cartesian_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -401,23 +401,22 @@ cartesian_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 3 * S, 2.0, k);
     eomc_tay_sqr(T + 4 * S, T + 1 * S, k);
     eomc_tay_sqr(T + 5 * S, T + 2 * S, k);
-    eomc_tay_add(T + 6 * S, T + 4 * S, T + 5 * S, k);
     eomc_tay_const(T + 7 * S, p[4], k);
-    eomc_tay_sub(T + 8 * S, T + 6 * S, T + 7 * S, k);
     eomc_tay_const(T + 10 * S, 0.0, k);
     eomc_tay_const(T + 12 * S, 0.0, k);
     eomc_tay_sqr(T + 13 * S, T + 11 * S, k);
     eomc_tay_sqr(T + 14 * S, T + 9 * S, k);
     eomc_tay_const(T + 15 * S, p[6], k);
+    eomc_tay_mul2(T + 17 * S, T + 19 * S, T + 1 * S, T + 11 * S, T + 2 * S, T + 9 * S, k);
+    eomc_tay_add(T + 6 * S, T + 4 * S, T + 5 * S, k);
     eomc_tay_scale(T + 16 * S, T + 3 * S, T + 1 * S, k);
-    eomc_tay_mul(T + 17 * S, T + 1 * S, T + 11 * S, k);
     eomc_tay_scale(T + 18 * S, T + 3 * S, T + 2 * S, k);
-    eomc_tay_mul(T + 19 * S, T + 2 * S, T + 9 * S, k);
     eomc_tay_add(T + 20 * S, T + 17 * S, T + 19 * S, k);
-    eomc_tay_scale(T + 21 * S, T + 3 * S, T + 20 * S, k);
     eomc_tay_scale(T + 22 * S, T + 12 * S, T + 1 * S, k);
-    eomc_tay_add(T + 23 * S, T + 13 * S, T + 22 * S, k);
     eomc_tay_scale(T + 24 * S, T + 10 * S, T + 2 * S, k);
+    eomc_tay_sub(T + 8 * S, T + 6 * S, T + 7 * S, k);
+    eomc_tay_scale(T + 21 * S, T + 3 * S, T + 20 * S, k);
+    eomc_tay_add(T + 23 * S, T + 13 * S, T + 22 * S, k);
     eomc_tay_add(T + 25 * S, T + 14 * S, T + 24 * S, k);
     eomc_tay_add(T + 26 * S, T + 23 * S, T + 25 * S, k);
     eomc_tay_scale(T + 27 * S, T + 3 * S, T + 26 * S, k);

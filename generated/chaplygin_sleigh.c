@@ -537,7 +537,7 @@ chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
  * 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 34 slots, 29 calls. */
+ * and q' (taylor_q, taylor_v): 34 slots, 24 calls. */
 static void
 chaplygin_sleigh_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -547,33 +547,28 @@ chaplygin_sleigh_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     (void)u;
     eomc_tay_const(T, p[0], k);
     eomc_tay_sincos(T + 2 * S, T + 3 * S, T + 1 * S, k);
-    eomc_tay_neg(T + 5 * S, T + 2 * S, k);
-    eomc_tay_mul(T + 7 * S, T + 2 * S, T + 6 * S, k);
-    eomc_tay_mul(T + 9 * S, T + 3 * S, T + 8 * S, k);
-    eomc_tay_sub(T + 10 * S, T + 9 * S, T + 7 * S, k);
     eomc_tay_const(T + 11 * S, 0.0, k);
     eomc_tay_const(T + 12 * S, 0.0, k);
-    eomc_tay_mul(T + 13 * S, T + 2 * S, T + 4 * S, k);
-    eomc_tay_mul(T + 14 * S, T + 3 * S, T + 4 * S, k);
     eomc_tay_sqr(T + 15 * S, T + 4 * S, k);
-    eomc_tay_mul(T + 16 * S, T + 3 * S, T + 15 * S, k);
-    eomc_tay_mul(T + 17 * S, T + 2 * S, T + 15 * S, k);
-    eomc_tay_mul(T + 18 * S, T + 13 * S, T + 8 * S, k);
-    eomc_tay_scale(T + 19 * S, T + 12 * S, T + 3 * S, k);
-    eomc_tay_sub(T + 20 * S, T + 19 * S, T + 18 * S, k);
-    eomc_tay_mul(T + 21 * S, T + 14 * S, T + 6 * S, k);
-    eomc_tay_scale(T + 22 * S, T + 11 * S, T + 2 * S, k);
-    eomc_tay_add(T + 23 * S, T + 21 * S, T + 22 * S, k);
-    eomc_tay_sub(T + 24 * S, T + 20 * S, T + 23 * S, k);
     eomc_tay_const(T + 25 * S, p[7], k);
-    eomc_tay_scale(T + 26 * S, T + 25 * S, T + 2 * S, k);
-    eomc_tay_neg(T + 27 * S, T + 26 * S, k);
-    eomc_tay_scale(T + 28 * S, T + 25 * S, T + 3 * S, k);
     eomc_tay_const(T + 29 * S, p[9], k);
+    eomc_tay_neg(T + 5 * S, T + 2 * S, k);
+    eomc_tay_scale(T + 19 * S, T + 12 * S, T + 3 * S, k);
+    eomc_tay_scale(T + 22 * S, T + 11 * S, T + 2 * S, k);
+    eomc_tay_scale(T + 26 * S, T + 25 * S, T + 2 * S, k);
+    eomc_tay_scale(T + 28 * S, T + 25 * S, T + 3 * S, k);
+    eomc_tay_mul4(T + 7 * S, T + 9 * S, T + 13 * S, T + 14 * S, T + 2 * S, T + 6 * S, T + 3 * S, T + 8 * S, T + 2 * S, T + 4 * S, T + 3 * S, T + 4 * S, k);
+    eomc_tay_mul2(T + 16 * S, T + 17 * S, T + 3 * S, T + 15 * S, T + 2 * S, T + 15 * S, k);
+    eomc_tay_sub(T + 10 * S, T + 9 * S, T + 7 * S, k);
+    eomc_tay_neg(T + 27 * S, T + 26 * S, k);
     eomc_tay_scale(T + 30 * S, T + 25 * S, T + 16 * S, k);
-    eomc_tay_neg(T + 31 * S, T + 30 * S, k);
     eomc_tay_scale(T + 32 * S, T + 25 * S, T + 17 * S, k);
+    eomc_tay_mul2(T + 18 * S, T + 21 * S, T + 13 * S, T + 8 * S, T + 14 * S, T + 6 * S, k);
+    eomc_tay_sub(T + 20 * S, T + 19 * S, T + 18 * S, k);
+    eomc_tay_add(T + 23 * S, T + 21 * S, T + 22 * S, k);
+    eomc_tay_neg(T + 31 * S, T + 30 * S, k);
     eomc_tay_neg(T + 33 * S, T + 32 * S, k);
+    eomc_tay_sub(T + 24 * S, T + 20 * S, T + 23 * S, k);
 }
 
 /* The slots of q and q' the caller writes, and those of M (row-major),

@@ -564,7 +564,7 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 45 slots, 39 calls. */
+ * and q' (taylor_q, taylor_v): 45 slots, 32 calls. */
 static void
 double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -577,39 +577,32 @@ double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 4 * S, p[3], k);
     eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 5 * S, k);
     eomc_tay_sqr(T + 10 * S, T + 8 * S, k);
-    eomc_tay_mul(T + 11 * S, T + 2 * S, T + 10 * S, k);
-    eomc_tay_mul(T + 12 * S, T + 3 * S, T + 10 * S, k);
     eomc_tay_sqr(T + 13 * S, T + 9 * S, k);
-    eomc_tay_mul(T + 14 * S, T + 6 * S, T + 13 * S, k);
-    eomc_tay_mul(T + 15 * S, T + 7 * S, T + 13 * S, k);
     eomc_tay_const(T + 16 * S, p[9], k);
     eomc_tay_const(T + 17 * S, p[10], k);
     eomc_tay_const(T + 18 * S, p[11], k);
-    eomc_tay_scale(T + 19 * S, T + 18 * S, T + 6 * S, k);
     eomc_tay_const(T + 20 * S, p[12], k);
-    eomc_tay_scale(T + 21 * S, T + 20 * S, T + 2 * S, k);
     eomc_tay_const(T + 22 * S, p[14], k);
-    eomc_tay_mul(T + 23 * S, T + 2 * S, T + 6 * S, k);
-    eomc_tay_mul(T + 24 * S, T + 3 * S, T + 7 * S, k);
-    eomc_tay_add(T + 25 * S, T + 23 * S, T + 24 * S, k);
     eomc_tay_const(T + 26 * S, p[15], k);
-    eomc_tay_scale(T + 27 * S, T + 26 * S, T + 25 * S, k);
     eomc_tay_const(T + 28 * S, p[16], k);
+    eomc_tay_scale(T + 19 * S, T + 18 * S, T + 6 * S, k);
+    eomc_tay_scale(T + 21 * S, T + 20 * S, T + 2 * S, k);
+    eomc_tay_mul4(T + 11 * S, T + 12 * S, T + 14 * S, T + 15 * S, T + 2 * S, T + 10 * S, T + 3 * S, T + 10 * S, T + 6 * S, T + 13 * S, T + 7 * S, T + 13 * S, k);
+    eomc_tay_mul2(T + 23 * S, T + 24 * S, T + 2 * S, T + 6 * S, T + 3 * S, T + 7 * S, k);
+    eomc_tay_add(T + 25 * S, T + 23 * S, T + 24 * S, k);
     eomc_tay_scale(T + 29 * S, T, T + 11 * S, k);
     eomc_tay_scale(T + 30 * S, T, T + 12 * S, k);
     eomc_tay_scale(T + 31 * S, T + 4 * S, T + 14 * S, k);
-    eomc_tay_add(T + 32 * S, T + 29 * S, T + 31 * S, k);
     eomc_tay_scale(T + 33 * S, T + 4 * S, T + 15 * S, k);
+    eomc_tay_scale(T + 27 * S, T + 26 * S, T + 25 * S, k);
+    eomc_tay_add(T + 32 * S, T + 29 * S, T + 31 * S, k);
     eomc_tay_add(T + 34 * S, T + 30 * S, T + 33 * S, k);
-    eomc_tay_mul(T + 35 * S, T + 2 * S, T + 34 * S, k);
-    eomc_tay_mul(T + 36 * S, T + 3 * S, T + 32 * S, k);
+    eomc_tay_mul4(T + 35 * S, T + 36 * S, T + 40 * S, T + 41 * S, T + 2 * S, T + 34 * S, T + 3 * S, T + 32 * S, T + 6 * S, T + 34 * S, T + 7 * S, T + 32 * S, k);
     eomc_tay_sub(T + 37 * S, T + 35 * S, T + 36 * S, k);
-    eomc_tay_scale(T + 38 * S, T + 17 * S, T + 37 * S, k);
-    eomc_tay_add(T + 39 * S, T + 21 * S, T + 38 * S, k);
-    eomc_tay_mul(T + 40 * S, T + 6 * S, T + 34 * S, k);
-    eomc_tay_mul(T + 41 * S, T + 7 * S, T + 32 * S, k);
     eomc_tay_sub(T + 42 * S, T + 40 * S, T + 41 * S, k);
+    eomc_tay_scale(T + 38 * S, T + 17 * S, T + 37 * S, k);
     eomc_tay_scale(T + 43 * S, T + 16 * S, T + 42 * S, k);
+    eomc_tay_add(T + 39 * S, T + 21 * S, T + 38 * S, k);
     eomc_tay_add(T + 44 * S, T + 19 * S, T + 43 * S, k);
 }
 

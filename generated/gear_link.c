@@ -213,10 +213,10 @@ gear_link_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T, p[2], k);
     eomc_tay_const(T + 2 * S, p[8], k);
     eomc_tay_const(T + 3 * S, u[0], k);
-    eomc_tay_mul(T + 4 * S, T, T + 3 * S, k);
     eomc_tay_const(T + 5 * S, p[9], k);
     eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 1 * S, k);
     eomc_tay_scale(T + 8 * S, T + 2 * S, T + 6 * S, k);
+    eomc_tay_mul(T + 4 * S, T, T + 3 * S, k);
     eomc_tay_sub(T + 9 * S, T + 8 * S, T + 4 * S, k);
 }
 

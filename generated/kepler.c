@@ -336,7 +336,7 @@ kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 18 slots, 16 calls. */
+ * and q' (taylor_q, taylor_v): 18 slots, 15 calls. */
 static void
 kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -353,12 +353,11 @@ kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_add(T + 8 * S, T + 6 * S, T + 7 * S, k);
     eomc_tay_sqrt(T + 9 * S, T + 8 * S, k);
     eomc_tay_div(T + 10 * S, T + 4 * S, T + 9 * S, k);
-    eomc_tay_div(T + 11 * S, T + 10 * S, T + 9 * S, k);
     eomc_tay_div(T + 12 * S, T, T + 9 * S, k);
+    eomc_tay_div(T + 11 * S, T + 10 * S, T + 9 * S, k);
     eomc_tay_mul(T + 13 * S, T + 11 * S, T + 12 * S, k);
-    eomc_tay_mul(T + 14 * S, T + 3 * S, T + 13 * S, k);
+    eomc_tay_mul2(T + 14 * S, T + 16 * S, T + 3 * S, T + 13 * S, T + 2 * S, T + 13 * S, k);
     eomc_tay_scale(T + 15 * S, T + 5 * S, T + 14 * S, k);
-    eomc_tay_mul(T + 16 * S, T + 2 * S, T + 13 * S, k);
     eomc_tay_scale(T + 17 * S, T + 5 * S, T + 16 * S, k);
 }
 

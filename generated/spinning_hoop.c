@@ -513,7 +513,7 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 43 slots, 39 calls. */
+ * and q' (taylor_q, taylor_v): 43 slots, 31 calls. */
 static void
 spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -522,39 +522,31 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     (void)u;
     eomc_tay_const(T, p[3], k);
     eomc_tay_time(T + 1 * S, t0, k);
-    eomc_tay_scale(T + 2 * S, T, T + 1 * S, k);
     eomc_tay_sincos(T + 4 * S, T + 5 * S, T + 3 * S, k);
-    eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 2 * S, k);
-    eomc_tay_mul(T + 8 * S, T + 4 * S, T + 7 * S, k);
-    eomc_tay_mul(T + 9 * S, T + 4 * S, T + 6 * S, k);
-    eomc_tay_mul(T + 11 * S, T + 7 * S, T + 5 * S, k);
-    eomc_tay_mul(T + 12 * S, T + 11 * S, T + 10 * S, k);
-    eomc_tay_scale(T + 13 * S, T, T + 9 * S, k);
-    eomc_tay_sub(T + 14 * S, T + 12 * S, T + 13 * S, k);
-    eomc_tay_mul(T + 15 * S, T + 6 * S, T + 5 * S, k);
-    eomc_tay_mul(T + 16 * S, T + 15 * S, T + 10 * S, k);
-    eomc_tay_scale(T + 17 * S, T, T + 8 * S, k);
-    eomc_tay_add(T + 18 * S, T + 16 * S, T + 17 * S, k);
     eomc_tay_const(T + 19 * S, p[4], k);
-    eomc_tay_scale(T + 20 * S, T, T + 15 * S, k);
-    eomc_tay_mul(T + 21 * S, T + 8 * S, T + 10 * S, k);
-    eomc_tay_add(T + 22 * S, T + 20 * S, T + 21 * S, k);
-    eomc_tay_mul(T + 23 * S, T + 10 * S, T + 22 * S, k);
-    eomc_tay_scale(T + 24 * S, T, T + 18 * S, k);
-    eomc_tay_scale(T + 25 * S, T, T + 11 * S, k);
-    eomc_tay_mul(T + 26 * S, T + 9 * S, T + 10 * S, k);
-    eomc_tay_sub(T + 27 * S, T + 25 * S, T + 26 * S, k);
-    eomc_tay_mul(T + 28 * S, T + 10 * S, T + 27 * S, k);
-    eomc_tay_scale(T + 29 * S, T, T + 14 * S, k);
     eomc_tay_sqr(T + 30 * S, T + 10 * S, k);
     eomc_tay_const(T + 31 * S, p[6], k);
+    eomc_tay_scale(T + 2 * S, T, T + 1 * S, k);
     eomc_tay_scale(T + 32 * S, T + 31 * S, T + 4 * S, k);
     eomc_tay_mul(T + 33 * S, T + 4 * S, T + 5 * S, k);
+    eomc_tay_sincos(T + 6 * S, T + 7 * S, T + 2 * S, k);
     eomc_tay_mul(T + 34 * S, T + 33 * S, T + 30 * S, k);
+    eomc_tay_mul4(T + 8 * S, T + 9 * S, T + 11 * S, T + 15 * S, T + 4 * S, T + 7 * S, T + 4 * S, T + 6 * S, T + 7 * S, T + 5 * S, T + 6 * S, T + 5 * S, k);
+    eomc_tay_scale(T + 13 * S, T, T + 9 * S, k);
+    eomc_tay_scale(T + 17 * S, T, T + 8 * S, k);
+    eomc_tay_scale(T + 20 * S, T, T + 15 * S, k);
+    eomc_tay_scale(T + 25 * S, T, T + 11 * S, k);
+    eomc_tay_mul4(T + 12 * S, T + 16 * S, T + 21 * S, T + 26 * S, T + 11 * S, T + 10 * S, T + 15 * S, T + 10 * S, T + 8 * S, T + 10 * S, T + 9 * S, T + 10 * S, k);
+    eomc_tay_sub(T + 14 * S, T + 12 * S, T + 13 * S, k);
+    eomc_tay_add(T + 18 * S, T + 16 * S, T + 17 * S, k);
+    eomc_tay_add(T + 22 * S, T + 20 * S, T + 21 * S, k);
+    eomc_tay_sub(T + 27 * S, T + 25 * S, T + 26 * S, k);
+    eomc_tay_scale(T + 24 * S, T, T + 18 * S, k);
+    eomc_tay_scale(T + 29 * S, T, T + 14 * S, k);
+    eomc_tay_mul2(T + 23 * S, T + 28 * S, T + 10 * S, T + 22 * S, T + 10 * S, T + 27 * S, k);
     eomc_tay_add(T + 35 * S, T + 23 * S, T + 24 * S, k);
     eomc_tay_add(T + 36 * S, T + 28 * S, T + 29 * S, k);
-    eomc_tay_mul(T + 37 * S, T + 15 * S, T + 36 * S, k);
-    eomc_tay_mul(T + 38 * S, T + 11 * S, T + 35 * S, k);
+    eomc_tay_mul2(T + 37 * S, T + 38 * S, T + 15 * S, T + 36 * S, T + 11 * S, T + 35 * S, k);
     eomc_tay_add(T + 39 * S, T + 34 * S, T + 37 * S, k);
     eomc_tay_sub(T + 40 * S, T + 39 * S, T + 38 * S, k);
     eomc_tay_scale(T + 41 * S, T + 19 * S, T + 40 * S, k);

@@ -88,6 +88,43 @@ eomc_tay_mul(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
     c[k] = s;
 }
 
+/* Two and four products at once (c = a b, c1 = a1 b1, ...): one loop
+ * over the order with a sum for each, added up in eomc_tay_mul's order,
+ * so the same bits.  Alone, a product's loop waits on its own sum at
+ * every term; side by side the sums go at the machine's pace (the
+ * products of one level of the program, lower_taylor.c). */
+static inline void
+eomc_tay_mul2(eomc_real *c, eomc_real *c1, const eomc_real *a, const eomc_real *b,
+              const eomc_real *a1, const eomc_real *b1, int k)
+{
+    eomc_real s = 0, s1 = 0;
+    for (int j = 0; j <= k; j++) {
+        s += a[j] * b[k - j];
+        s1 += a1[j] * b1[k - j];
+    }
+    c[k] = s;
+    c1[k] = s1;
+}
+
+static inline void
+eomc_tay_mul4(eomc_real *c, eomc_real *c1, eomc_real *c2, eomc_real *c3,
+              const eomc_real *a, const eomc_real *b, const eomc_real *a1,
+              const eomc_real *b1, const eomc_real *a2, const eomc_real *b2,
+              const eomc_real *a3, const eomc_real *b3, int k)
+{
+    eomc_real s = 0, s1 = 0, s2 = 0, s3 = 0;
+    for (int j = 0; j <= k; j++) {
+        s += a[j] * b[k - j];
+        s1 += a1[j] * b1[k - j];
+        s2 += a2[j] * b2[k - j];
+        s3 += a3[j] * b3[k - j];
+    }
+    c[k] = s;
+    c1[k] = s1;
+    c2[k] = s2;
+    c3[k] = s3;
+}
+
 /* c = a^2, the convolution's symmetric half. */
 static inline void
 eomc_tay_sqr(eomc_real *c, const eomc_real *a, int k)

@@ -16,13 +16,15 @@
 enum {
     OP_CONST, OP_TIME, OP_ADD, OP_SUB, OP_NEG, OP_SCALE, OP_MUL, OP_SQR, OP_DIV, OP_INV,
     OP_SQRT, OP_EXP, OP_LOG, OP_POWC, OP_SINCOS, OP_SINHCOSH, OP_TAN, OP_TANH, OP_ASIN,
-    OP_ACOS, OP_ATAN, OP_ATAN2, OP_ABS, OP_SIGN
+    OP_ACOS, OP_ATAN, OP_ATAN2, OP_ABS, OP_SIGN, OP_MUL2, OP_MUL4
 };
 enum { TAY_KMAX = 32 }; /* the longest series a case asks for, plus one */
 #endif
 
 /* y: the result; u, v: the auxiliary series (cos of sincos, w of tan,
  * r and s of asin, ...), left alone by the operations without them.
+ * mul2 gives a b and a^2 (y, u); mul4 a b, a^2, b^2 and b a (y, u, v,
+ * and the last kept here), products side by side.
  * p: the constant of const (its value), time (t0) and powc (the
  * exponent). */
 void TAY_RUN(int op, int K, const eomc_real *a, const eomc_real *b, eomc_real p,
@@ -33,6 +35,7 @@ TAY_RUN(int op, int K, const eomc_real *a, const eomc_real *b, eomc_real p, eomc
         eomc_real *u, eomc_real *v)
 {
     eomc_real e[TAY_KMAX] = {p}; /* powc's exponent, a series constant in t */
+    eomc_real w[TAY_KMAX];       /* mul4's fourth product */
     for (int k = 0; k <= K; k++)
         switch (op) {
         case OP_CONST: eomc_tay_const(y, p, k); break;
@@ -59,5 +62,7 @@ TAY_RUN(int op, int K, const eomc_real *a, const eomc_real *b, eomc_real p, eomc
         case OP_ATAN2: eomc_tay_atan2(y, u, a, b, k); break;
         case OP_ABS: eomc_tay_abs(y, a, k); break;
         case OP_SIGN: eomc_tay_sign(y, a, k); break;
+        case OP_MUL2: eomc_tay_mul2(y, u, a, b, a, a, k); break;
+        case OP_MUL4: eomc_tay_mul4(y, u, v, w, a, b, a, a, b, b, b, a, k); break;
         }
 }

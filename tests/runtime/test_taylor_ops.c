@@ -12,7 +12,9 @@
  * - every operation (the linear ones, const, abs and sign too) of a
  *   composed argument (a polynomial with a nonzero value at 0, so that
  *   each k = 0 path is taken, or a + b exp(c t)), and of two such
- *   arguments for mul, div and atan2 (in three quadrants),
+ *   arguments for mul, div and atan2 (in three quadrants), and for the
+ *   products two and four at once (mul2, mul4), which also give mul's
+ *   bits exactly, in both precisions,
  *   against the Cauchy integral c_k = 1/(2 pi i) \oint f(z) z^(-k-1) dz
  *   on the circle |z| = r, by the trapezoidal rule on N points in long
  *   double complex (csinl, clogl, casinl, ...): a method that shares
@@ -119,6 +121,7 @@ static cld f_neg(cld a, cld b, const Ctx *x) { (void)b, (void)x; return -a; }
 static cld f_scale(cld a, cld b, const Ctx *x) { (void)a; return x->a0 * b; }
 static cld f_mul(cld a, cld b, const Ctx *x) { (void)x; return a * b; }
 static cld f_sqr(cld a, cld b, const Ctx *x) { (void)b, (void)x; return a * a; }
+static cld f_b2(cld a, cld b, const Ctx *x) { (void)a, (void)x; return b * b; }
 static cld f_div(cld a, cld b, const Ctx *x) { (void)x; return a / b; }
 static cld f_inv(cld a, cld b, const Ctx *x) { (void)b, (void)x; return 1 / a; }
 static cld f_sqrt(cld a, cld b, const Ctx *x) { (void)b, (void)x; return csqrtl(a); }
@@ -340,8 +343,8 @@ err_scaled(const long double *c, const long double *ref, long double r)
 
 static const char *const OUT[3] = {"", " (aux 1)", " (aux 2)"};
 
-static double worst[OP_SIGN + 1], worst_ext[OP_SIGN + 1], worst_rel[OP_SIGN + 1];
-static int has_closed[OP_SIGN + 1];
+static double worst[OP_MUL4 + 1], worst_ext[OP_MUL4 + 1], worst_rel[OP_MUL4 + 1];
+static int has_closed[OP_MUL4 + 1];
 
 static void
 run_case(const Case *cs)
@@ -397,10 +400,40 @@ run_case(const Case *cs)
     }
 }
 
-static const char *const OPNAME[OP_SIGN + 1] = {
+static const char *const OPNAME[OP_MUL4 + 1] = {
     "const", "time", "add", "sub", "neg", "scale", "mul", "sqr", "div", "inv", "sqrt", "exp",
     "log", "powc", "sincos", "sinhcosh", "tan", "tanh", "asin", "acos", "atan", "atan2", "abs",
-    "sign"};
+    "sign", "mul2", "mul4"};
+
+/* mul2 and mul4 give each product's bits as mul alone does: the same
+ * sums in the same order (double and extended). */
+static void
+side_by_side(const Opnd *pa, const Opnd *pb, const char *name)
+{
+    long double a[TAY_KMAX], b[TAY_KMAX], one[3][TAY_KMAX], y[3][TAY_KMAX];
+    double ad[TAY_KMAX], bd[TAY_KMAX], oned[3][TAY_KMAX], yd[3][TAY_KMAX];
+    opnd_coef(pa, a);
+    opnd_coef(pb, b);
+    for (int k = 0; k <= K; k++)
+        ad[k] = (double)a[k], bd[k] = (double)b[k];
+    taylor_run(OP_MUL, K, ad, bd, 0, oned[0], NULL, NULL);
+    taylor_run(OP_MUL, K, ad, ad, 0, oned[1], NULL, NULL);
+    taylor_run(OP_MUL, K, bd, bd, 0, oned[2], NULL, NULL);
+    taylor_run_ext(OP_MUL, K, a, b, 0, one[0], NULL, NULL);
+    taylor_run_ext(OP_MUL, K, a, a, 0, one[1], NULL, NULL);
+    taylor_run_ext(OP_MUL, K, b, b, 0, one[2], NULL, NULL);
+    for (int op = OP_MUL2; op <= OP_MUL4; op++) {
+        int n = op == OP_MUL2 ? 2 : 3;
+        taylor_run(op, K, ad, bd, 0, yd[0], yd[1], yd[2]);
+        taylor_run_ext(op, K, a, b, 0, y[0], y[1], y[2]);
+        int same = 1;
+        for (int o = 0; o < n; o++) /* == on values: a long double has padding bytes */
+            for (int k = 0; k <= K; k++)
+                same &= yd[o][k] == oned[o][k] && y[o][k] == one[o][k];
+        CHECK(same, "%s (%s): each product's coefficients, orders 0..%d, mul's to the bit, in "
+              "double and extended", OPNAME[op], name, K);
+    }
+}
 
 int
 main(void)
@@ -435,6 +468,9 @@ main(void)
         {"1.7 EA", OP_SCALE, &C17, &EA, 0, 5, {f_scale}, {0}},
         {"PA EA", OP_MUL, &PA, &EA, 0, 4, {f_mul}, {0}},
         {"EA NE", OP_MUL, &EA, &NE, 0, 4, {f_mul}, {0}},
+        {"PA EA, PA^2 (mul2)", OP_MUL2, &PA, &EA, 0, 2, {f_mul, f_sqr}, {0}},
+        {"PA EA, PA^2, EA^2 (mul4)", OP_MUL4, &PA, &EA, 0, 2, {f_mul, f_sqr, f_b2}, {0}},
+        {"EA NE, EA^2, NE^2 (mul4)", OP_MUL4, &EA, &NE, 0, 4, {f_mul, f_sqr, f_b2}, {0}},
         {"PA^2", OP_SQR, &PA, NULL, 0, 2, {f_sqr}, {0}},
         {"EA^2", OP_SQR, &EA, NULL, 0, 4, {f_sqr}, {0}},
         {"PA / EA", OP_DIV, &PA, &EA, 0, 2.2L, {f_div}, {0}},
@@ -492,7 +528,9 @@ main(void)
         }
         run_case(cs);
     }
-    for (int op = 0; op <= OP_SIGN; op++)
+    side_by_side(&PA, &EA, "PA, EA");
+    side_by_side(&EA, &NE, "EA, NE");
+    for (int op = 0; op <= OP_MUL4; op++)
     {
         char rel[64] = "";
         if (has_closed[op])

@@ -289,6 +289,12 @@ typedef struct eomc_stats {
     double max_condition, t_condition, cond_tol, ill_t;
     char ill[512];
     long condition_estimates; /* how many (each a factorization and a few solves) */
+    /* The time the checks after each step took (the condition above, the
+     * conserved quantity's budget below, a constrained model's drift and
+     * degenerate rows; not a projection asked for), on the monotonic
+     * clock: part of cpu_seconds, and what the run's figures cost beside
+     * the method. */
+    double monitor_seconds;
     /* A model that conserves a quantity h (model->invariant), adaptive
      * steps (and projection, when constrained: otherwise the constraints'
      * drift moves h too): its largest change over the steps, and its

@@ -100,6 +100,9 @@ typedef struct Run {
     int pending;                  /* a `set` event whose reset starts the next
                                    * step (-1: none) */
     double cond_pivot;            /* the pivot at the last condition estimate */
+    long inv_rhs, inv_steps;      /* rhs_evals and steps at the conserved
+                                   * quantity's last look (watch_invariant) */
+    int inv_now;                  /* look at the next step (the first) */
     Taylor *taylor;               /* Taylor's method: the step's series (NULL:
                                    * GSL's stepper) */
     Taylor *taylor_side;          /* ... a side step's, from elsewhere */
@@ -312,7 +315,9 @@ watch_condition(Run *r)
         return;
     r->cond_pivot = pivot;
     st->condition_estimates++;
+    double c0 = sim_seconds(0);
     double cond = sim_condition(r->s, r->t, r->x, r->x + r->n);
+    st->monitor_seconds += sim_seconds(0) - c0;
     if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
         return;
     st->max_condition = cond, st->t_condition = r->t;
@@ -322,28 +327,48 @@ watch_condition(Run *r)
     }
 }
 
-/* After each adaptive step: how far the conserved quantity has moved, and
- * how far the step's error estimate says it could have (eomc_stats). */
+/* The conserved quantity is looked at once INVARIANT_EVERY right-hand
+ * sides have been spent since the last look, and at the first step; at
+ * every step of a scene with events, whose steps differ too much for one
+ * to stand for others (an event's step, those after its reset):
+ * two evaluations of h, each costing less than a right-hand side, at
+ * every step of a method that takes 3 (rk2) were 15 % of a chain's run. */
+enum { INVARIANT_EVERY = 50 };
+
+/* After an adaptive step, now and then (above): how far the conserved
+ * quantity has moved, and how far the step's error estimate says it could
+ * have (eomc_stats), that step's change standing for each of the steps
+ * since the last look (their errors change slowly from step to step, and
+ * the drift is held against the budget only within a factor 1000). */
 static void
 watch_invariant(Run *r)
 {
     eomc_sim *s = r->s;
+    eomc_stats *st = r->st;
     int n = r->n;
     double h, he;
     /* without projection a constrained state drifts off its constraints,
      * and h with it, by more than the steps' errors say: no budget then */
     if (!r->m->invariant || r->o->h_fixed > 0 ||
-        (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT) ||
-        eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) != EOMC_OK)
+        (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT))
         return;
-    if (!r->have_h0)
-        r->h0 = h, r->have_h0 = 1;
-    for (int i = 0; i < r->N; i++)
-        r->xt[i] = r->x[i] + r->yerr[i];
-    eomc_sim_invariant(s, r->t, r->xt, r->xt + n, &he);
-    r->st->invariant_drift = fmax(r->st->invariant_drift, fabs(h - r->h0));
-    if (isfinite(he - h))
-        r->st->invariant_budget += fabs(he - h);
+    if (!r->inv_now && !r->ev && st->rhs_evals - r->inv_rhs < INVARIANT_EVERY)
+        return;
+    r->inv_now = 0;
+    double c0 = sim_seconds(0);
+    long stood = st->steps - r->inv_steps;
+    r->inv_rhs = st->rhs_evals, r->inv_steps = st->steps;
+    if (eomc_sim_invariant(s, r->t, r->x, r->x + n, &h) == EOMC_OK) {
+        if (!r->have_h0)
+            r->h0 = h, r->have_h0 = 1;
+        for (int i = 0; i < r->N; i++)
+            r->xt[i] = r->x[i] + r->yerr[i];
+        eomc_sim_invariant(s, r->t, r->xt, r->xt + n, &he);
+        st->invariant_drift = fmax(st->invariant_drift, fabs(h - r->h0));
+        if (isfinite(he - h))
+            st->invariant_budget += (double)stood * fabs(he - h);
+    }
+    st->monitor_seconds += sim_seconds(0) - c0;
 }
 
 /* After each accepted step from t0: watch the conditioning; for a
@@ -363,6 +388,8 @@ after_step(Run *r, double t0)
         watch_invariant(r);
         return GSL_SUCCESS;
     }
+    /* the constrained checks' time, as the watches' (eomc_stats) */
+    double c0 = sim_seconds(0);
     if (sim_constraint_rows(s, t, x, r->B1) != 0)
         return GSL_EBADFUNC;
     int k = reversed_row(r);
@@ -372,6 +399,8 @@ after_step(Run *r, double t0)
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
         if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT) {
+            /* projecting is the method's, asked for, not a check's */
+            r->st->monitor_seconds += sim_seconds(0) - c0;
             /* a failed projection leaves the step's end as it was */
             memcpy(r->xt, x, (size_t)r->N * sizeof *x);
             if (eomc_sim_project(s, t, x, x + n) != EOMC_OK) {
@@ -386,9 +415,11 @@ after_step(Run *r, double t0)
             int rc = rhs(t, x, r->f1, r);
             if (rc != GSL_SUCCESS)
                 return rc;
+            c0 = sim_seconds(0);
         }
         r->st->max_residual = fmax(r->st->max_residual, res);
     }
+    r->st->monitor_seconds += sim_seconds(0) - c0;
     watch_invariant(r);
     double *B = r->B0; /* the rows after this step are the next one's start */
     r->B0 = r->B1, r->B1 = B;
@@ -822,7 +853,7 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
                                  "the initial state or a parameter is not finite");
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
                .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
-               .cond_pivot = INFINITY};
+               .cond_pivot = INFINITY, .inv_now = 1};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);

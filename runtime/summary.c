@@ -73,6 +73,7 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
         fprintf(io_err(), "order_mean %.3g\n", (double)st->order_sum / (double)st->steps);
     fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\ncondition_estimates %ld\n",
             st->max_condition, st->t_condition, st->condition_estimates);
+    fprintf(io_err(), "monitor_seconds %.6f\n", st->monitor_seconds);
     if (st->invariant_budget > 0)
         fprintf(io_err(), "invariant_budget %.3g\n", st->invariant_budget);
     if (m->nc > 0)

@@ -314,6 +314,14 @@ cmdline_parse(int argc, char **argv, Options *o)
     if (o->shared && o->mpi)
         cmdline_usage_error("%s: --shared and --mpi cannot go together (a library has no "
                             "main for mpirun to start)", "build");
+    /* "-o -" is stdout, where compile writes without -o; a simulator
+     * cannot go there */
+    if (o->out && !strcmp(o->out, "-")) {
+        if (strcmp(o->cmd, "compile") != 0)
+            cmdline_usage_error("%s: -o -: an executable cannot be written to stdout; name "
+                                "a file", o->cmd);
+        o->out = NULL;
+    }
     if (o->cache && o->out)
         cmdline_usage_error("%s: --cache and -o cannot go together (the cache names the "
                             "file)", "build");

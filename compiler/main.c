@@ -472,6 +472,8 @@ import_cmd(int argc, char **argv)
             if (i + 1 >= argc)
                 cmdline_usage_error("option %s needs a value", "-o");
             out = argv[++i];
+            if (!strcmp(out, "-")) /* stdout, as without -o */
+                out = NULL;
         } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             cmdline_usage(stdout), exit(0); /* import's usage is a line of eomc's */
         } else if (argv[i][0] == '-' && argv[i][1]) {

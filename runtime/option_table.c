@@ -71,7 +71,7 @@ static const Row rows[] = {
     {"--max-steps", O_MAX_STEPS, "N", "fail after N steps", .when = ANY},
     {"--set", O_SET, "NAME=VALUE", "a parameter, or an input held constant", .when = ANY},
     {"--init", O_INIT, "NAME=VALUE", "initial coordinate NAME or velocity NAME'", .when = ANY},
-    {"-o", O_OUT, "FILE", "write the CSV to FILE instead of stdout", .when = ANY},
+    {"-o", O_OUT, "FILE", "write the CSV to FILE instead of stdout (- for stdout)", .when = ANY},
     {"--animate", O_ANIMATE, "FILE.html",
      "also write the motion as a page for a web browser,\n"
      "self-contained, offline (three.js: libjs-three)",

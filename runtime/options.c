@@ -205,7 +205,7 @@ take_value(Options *c, int k, const char *val)
         return EOMC_OK;
     case O_SET: c->set[c->nset++] = (char *)val; return EOMC_OK;
     case O_INIT: c->init[c->ninit++] = (char *)val; return EOMC_OK;
-    case O_OUT: c->out = val; return EOMC_OK;
+    case O_OUT: c->out = strcmp(val, "-") ? val : NULL; return EOMC_OK; /* "-": stdout */
     case O_HOLD: c->hold = val; return EOMC_OK;
     case O_ERRORS: c->errors = val; return EOMC_OK;
     case O_STABILIZE:

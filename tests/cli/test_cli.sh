@@ -315,4 +315,16 @@ grep -q "3 parameters, 0 inputs, 1 particle, 0 bodies$" "$tmp/explain.out" &&
   tr '\n' ' ' < "$tmp/sum.err" | grep -q "1 step (0 rejected), 5 right-hand sides and 0 Jacobians"
 ok $? "plurals: 1 particle, 1 input, 1 step (--explain, --summary)"
 
+# "-o -" is stdout (for the CSV and the C; test_import.sh: a spec), and names
+# no file; a simulator cannot be written there
+(cd "$tmp" && "$eomc" run "$src/specs/pendulum.yaml" --t-end 0.05 -o - > dash.csv &&
+  "$eomc" run "$src/specs/pendulum.yaml" --t-end 0.05 > plain.csv &&
+  "$eomc" compile "$src/specs/pendulum.yaml" -o - > dash.c)
+[ -s "$tmp/dash.csv" ] && cmp -s "$tmp/dash.csv" "$tmp/plain.csv" && cmp -s "$tmp/dash.c" "$tmp/a.c" &&
+  [ ! -e "$tmp/-" ]
+ok $? "-o - writes the CSV and the C to stdout, the same bytes as without -o, and no file '-'"
+(cd "$tmp" && "$eomc" build "$src/specs/pendulum.yaml" -o - > /dev/null 2> dash.err); st=$?
+[ $st -eq 2 ] && grep -q "cannot be written to stdout" "$tmp/dash.err" && [ ! -e "$tmp/-" ]
+ok $? "build -o -: exit 2, an executable cannot be written to stdout"
+
 tap_end

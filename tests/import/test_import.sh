@@ -169,6 +169,12 @@ sed 's/<mujoco model="arm">/<mujoco model="9b my-arm">/' "$src/tests/import/mode
 "$eomc" import "$tmp/named.xml" 2> /dev/null | grep -q '^name: _9b_my_arm$' &&
   "$eomc" run "$tmp/named.xml" --accel > "$tmp/named" 2> /dev/null && cmp -s "$tmp/named" "$tmp/direct0"
 ok $? "model '9b my-arm': the spec's name _9b_my_arm, and the arm's q''"
+abs=$eomc # run in $tmp, where a file "-" would be made
+case $abs in /*) ;; *) abs=$(pwd)/$abs ;; esac
+(cd "$tmp" && "$abs" import named.xml -o - > dash.yaml 2> /dev/null &&
+  "$abs" import named.xml > plain.yaml 2> /dev/null)
+[ -s "$tmp/dash.yaml" ] && cmp -s "$tmp/dash.yaml" "$tmp/plain.yaml" && [ ! -e "$tmp/-" ]
+ok $? "import -o -: the spec on stdout, as without -o, and no file '-'"
 
 # names that collide once made identifiers: the later one takes _2 and
 # the import says so; bodies have their own namespace and keep theirs

@@ -217,8 +217,12 @@ kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
 
 /* q'' of a constrained model: the KKT system, one solve when affine in
  * q'', else Newton's method from the last solution until its relative
- * steps reach rounding or stop shrinking (they can go no further); 0, or
- * -1 when singular or not converging. */
+ * steps reach rounding, or stop shrinking below NEWTON_LOOSE (they can go
+ * no further: quadratic convergence would have taken the next one to
+ * rounding).  Far from the solution the steps may grow for a while (the
+ * cubic constraint from rest: 1, 0.54, 0.76, 1.8, then 0.10, 7e-5, 6e-11,
+ * 4e-20), which is no stall.  0, or -1 when singular or not converging. */
+#define NEWTON_LOOSE 1e-10L
 static int
 accel_kkt(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
 {
@@ -233,7 +237,7 @@ accel_kkt(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
     for (int it = 0; it < NEWTON_MAX; it++) {
         if ((d = kkt_step(r, t, q, v)) < 0)
             return -1;
-        if (done || d <= 16 * LDBL_EPSILON || (it > 2 && d >= last)) {
+        if (done || d <= 16 * LDBL_EPSILON || (it > 2 && d >= last && d <= NEWTON_LOOSE)) {
             done = 1;
             break;
         }

@@ -186,7 +186,8 @@ schedule(Build *b)
         }
     }
     if (!twice) {
-        memcpy(b->step, out, (size_t)m * sizeof *out);
+        if (m > 0) /* else no program (every output 0), and b->step is NULL */
+            memcpy(b->step, out, (size_t)m * sizeof *out);
         b->nstep = m;
     }
     free(mul);

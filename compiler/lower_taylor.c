@@ -133,17 +133,17 @@ pair_slot(Build *b, ExprId a, int which)
 }
 
 /* The program in levels (above), each level's products grouped: the
- * steps of b reordered in place.  A slot with two writers (none is made
- * now) would make the order matter beyond reads: the program is then
- * left as it is. */
+ * steps of b reordered in place, a level's other calls first, in their
+ * order, then its products.  A slot with two writers (none is made now)
+ * would make the order matter beyond reads: the program is then left as
+ * it is. */
 static void
 schedule(Build *b)
 {
-    int n = b->nstep;
+    int n = b->nstep, top = 0, twice = 0;
     int *writer = xmalloc(((size_t)b->nslot + 1) * sizeof *writer);
     int *level = xmalloc(((size_t)n + 1) * sizeof *level);
     memset(writer, -1, ((size_t)b->nslot + 1) * sizeof *writer);
-    int top = 0, twice = 0;
     for (int i = 0; i < n; i++) {
         const LowTayStep *st = &b->step[i];
         level[i] = 0;
@@ -157,43 +157,56 @@ schedule(Build *b)
         }
         top = level[i] > top ? level[i] : top;
     }
-    LowTayStep *out = xmalloc(((size_t)n + 1) * sizeof *out);
-    int *mul = xmalloc(((size_t)n + 1) * sizeof *mul), m = 0;
-    for (int l = 0; l <= top && !twice; l++) {
-        for (int i = 0; i < n; i++)
-            if (level[i] == l && strcmp(b->step[i].call, "mul") != 0)
-                out[m++] = b->step[i];
-        /* the level's products, in fours, then a two, then one */
-        int nmul = 0;
-        for (int i = 0; i < n; i++)
-            if (level[i] == l && !strcmp(b->step[i].call, "mul"))
-                mul[nmul++] = i;
-        for (int i = 0; i < nmul;) {
-            int g = nmul - i >= 4 ? 4 : nmul - i >= 2 ? 2 : 1;
-            LowTayStep *st = &out[m++];
-            *st = b->step[mul[i]];
-            if (g > 1) {
-                *st = (LowTayStep){.call = g == 4 ? "mul4" : "mul2", .nslot = 3 * g, .nres = g,
-                                   .src = LOW_TAY_SRC_NONE};
-                for (int j = 0; j < g; j++) {
-                    const LowTayStep *one = &b->step[mul[i + j]];
-                    st->slot[j] = one->slot[0];
-                    st->slot[g + 2 * j] = one->slot[1];
-                    st->slot[g + 2 * j + 1] = one->slot[2];
-                }
-            }
-            i += g;
-        }
-    }
-    if (!twice) {
-        if (m > 0) /* else no program (every output 0), and b->step is NULL */
-            memcpy(b->step, out, (size_t)m * sizeof *out);
-        b->nstep = m;
-    }
-    free(mul);
-    free(out);
-    free(level);
     free(writer);
+    if (twice || n == 0) {
+        free(level);
+        return;
+    }
+    /* the steps by level, each level's in program order, its products
+     * after the rest (a counting sort: a large model has thousands of
+     * levels and hundreds of thousands of calls) */
+    int *start = xmalloc(((size_t)top + 2) * sizeof *start);
+    int *order = xmalloc((size_t)n * sizeof *order);
+    memset(start, 0, ((size_t)top + 2) * sizeof *start);
+    for (int i = 0; i < n; i++)
+        start[level[i] + 1]++;
+    for (int l = 0; l <= top; l++)
+        start[l + 1] += start[l];
+    for (int pass = 0; pass < 2; pass++) /* the rest, then the products */
+        for (int i = 0; i < n; i++)
+            if ((strcmp(b->step[i].call, "mul") == 0) == pass)
+                order[start[level[i]]++] = i;
+    LowTayStep *out = xmalloc((size_t)n * sizeof *out);
+    int m = 0;
+    for (int at = 0; at < n;) {
+        const LowTayStep *st = &b->step[order[at]];
+        /* a run of products of one level: in fours, then a two, then one */
+        int g = 1;
+        while (g < 4 && at + g < n && level[order[at + g]] == level[order[at]] &&
+               !strcmp(st->call, "mul") && !strcmp(b->step[order[at + g]].call, "mul"))
+            g++;
+        g = g == 3 ? 2 : g;
+        if (g == 1) {
+            out[m++] = *st;
+        } else {
+            LowTayStep *grp = &out[m++];
+            *grp = (LowTayStep){.call = g == 4 ? "mul4" : "mul2", .nslot = 3 * g, .nres = g,
+                                .src = LOW_TAY_SRC_NONE};
+            for (int j = 0; j < g; j++) {
+                const LowTayStep *one = &b->step[order[at + j]];
+                grp->slot[j] = one->slot[0];
+                grp->slot[g + 2 * j] = one->slot[1];
+                grp->slot[g + 2 * j + 1] = one->slot[2];
+            }
+        }
+        at += g;
+    }
+    memcpy(b->step, out, (size_t)m * sizeof *out);
+    b->nstep = m;
+    free(out);
+    free(order);
+    free(start);
+    free(level);
 }
 
 static int

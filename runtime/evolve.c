@@ -101,8 +101,8 @@ typedef struct Run {
                                    * step (-1: none) */
     double cond_pivot;            /* the pivot at the last condition estimate */
     long inv_rhs, inv_steps;      /* rhs_evals and steps at the conserved
-                                   * quantity's last look (watch_invariant) */
-    int inv_now;                  /* look at the next step (the first) */
+                                   * quantity's last look (watch_invariant;
+                                   * steps 0: none yet) */
     Taylor *taylor;               /* Taylor's method: the step's series (NULL:
                                    * GSL's stepper) */
     Taylor *taylor_side;          /* ... a side step's, from elsewhere */
@@ -352,9 +352,8 @@ watch_invariant(Run *r)
     if (!r->m->invariant || r->o->h_fixed > 0 ||
         (r->m->nc > 0 && sim_stabilize_method(s) != EOMC_STABILIZE_PROJECT))
         return;
-    if (!r->inv_now && !r->ev && st->rhs_evals - r->inv_rhs < INVARIANT_EVERY)
+    if (r->inv_steps > 0 && !r->ev && st->rhs_evals - r->inv_rhs < INVARIANT_EVERY)
         return;
-    r->inv_now = 0;
     double c0 = sim_seconds(0);
     long stood = st->steps - r->inv_steps;
     r->inv_rhs = st->rhs_evals, r->inv_steps = st->steps;
@@ -853,7 +852,7 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
                                  "the initial state or a parameter is not finite");
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
                .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
-               .cond_pivot = INFINITY, .inv_now = 1};
+               .cond_pivot = INFINITY};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);

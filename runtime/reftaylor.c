@@ -25,7 +25,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 struct RefTaylor {
     const eomc_model_ext *x;
     int n, N, nc, nk, p;
@@ -205,7 +204,8 @@ reftaylor_series(RefTaylor *rt, eomc_ext t0, const eomc_ext *x, const eomc_ext *
                 return -1;
     }
     /* the step: each component against its size over it, at least sc */
-    eomc_ext factor = expl(-2.0L - (eomc_ext)TAYLOR_SAFETY / (P - 1)), step = radius(rt, NULL) * factor;
+    eomc_ext factor = expl(-2.0L - (eomc_ext)TAYLOR_SAFETY / (P - 1));
+    eomc_ext step = radius(rt, NULL) * factor;
     for (int round = 0; round < TAYLOR_SCALE_ROUNDS && isfinite(step); round++) {
         for (int i = 0; i < N; i++) {
             eomc_ext big = sc[i], hj = 1;

@@ -54,7 +54,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 struct Taylor {
     eomc_sim *s;
     const eomc_model *m;

@@ -25,9 +25,8 @@ ln -s "$eomc" "$tmp/a/eomc"
 # the flags compiler/meson.build gives the compiler (c_std, project
 # arguments, -ffp-contract=off), nothing else
 if ! "$other" -std=c11 -O0 -D_POSIX_C_SOURCE=200809L -ffp-contract=off \
-    -I"$build/compiler" -I"$src/compiler" $(pkg-config --cflags yaml-0.1) \
-    "$src"/compiler/*.c "$src"/compiler/spec/*.c "$src"/compiler/forms/*.c \
-    "$src/runtime/numfmt.c" \
+    -I"$build/compiler" -I"$src/compiler" -I"$src" $(pkg-config --cflags yaml-0.1) \
+    "$src"/compiler/*/*.c "$src/runtime/base/numfmt.c" \
     -o "$tmp/b/eomc" $(pkg-config --libs yaml-0.1) -lm -pthread 2>"$tmp/cc.log"; then
   echo "1..1"
   echo "not ok 1 - $other cannot build eomc"

@@ -33,7 +33,7 @@
 
 #include "spatial.h"
 
-#include "../kin.h"
+#include "expr/kin.h"
 
 /* A symmetric 6 x 6 spatial inertia, motion to force, as a full array:
  * row r, column c at [6 r + c], rows and columns (w, v). */

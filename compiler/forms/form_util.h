@@ -5,7 +5,7 @@
 #ifndef EOMC_FORM_UTIL_H
 #define EOMC_FORM_UTIL_H
 
-#include "../mech.h"
+#include "mechanics/mech.h"
 
 /* dV/dq_i - Q_i, the part every form shares. */
 ExprId *form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D);

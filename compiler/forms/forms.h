@@ -9,7 +9,7 @@
 #ifndef EOMC_FORMS_H
 #define EOMC_FORMS_H
 
-#include "../mech.h"
+#include "mechanics/mech.h"
 
 typedef struct Form {
     const char *name;    /* --form NAME */

@@ -22,7 +22,7 @@
 
 #include "spatial.h"
 
-#include "../kin.h"
+#include "expr/kin.h"
 
 ExprId *
 rne_residual(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)

@@ -4,7 +4,7 @@
 #include "spatial.h"
 #include "form_util.h"
 
-#include "../kin.h"
+#include "expr/kin.h"
 
 void
 sv_zero(Sv *x)

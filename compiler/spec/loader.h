@@ -17,9 +17,9 @@
 #ifndef EOMC_SPEC_LOADER_H
 #define EOMC_SPEC_LOADER_H
 
-#include "../kin.h"
-#include "../parse.h"
-#include "../spec.h"
+#include "expr/kin.h"
+#include "expr/parse.h"
+#include "spec.h"
 
 #include <yaml.h>
 

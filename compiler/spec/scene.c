@@ -17,13 +17,13 @@
 /* The runtime's list of integration methods, the one list of them. */
 const char *const spec_methods[] = {
 #define METHOD(name, gsl, fixed, jac, description) #name,
-#include "../../runtime/methods.def"
+#include "runtime/base/methods.def"
 #undef METHOD
     NULL,
 };
 static const char spec_method_jac[] = {
 #define METHOD(name, gsl, fixed, jac, description) jac,
-#include "../../runtime/methods.def"
+#include "runtime/base/methods.def"
 #undef METHOD
 };
 

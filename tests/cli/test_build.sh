@@ -23,7 +23,7 @@ case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 . "$src/tests/cli/tap.sh"
 export EOMC_CACHE_DIR="$tmp/cache"
 cc=${CC:-cc}
-inc="$src/runtime"
+inc="$src/runtime/include"
 lib="$build/runtime/libeomcrt.a"
 
 sh "$src/specs/gen_tree.sh" 10 > "$tmp/tree10.yaml"

@@ -13,8 +13,8 @@ case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
 export EOMC_CACHE_DIR="$tmp/cache"
 mkdir -p "$tmp/rt" "$tmp/inc" "$tmp/bin"
 cp "$build/runtime/libeomcrt.a" "$tmp/rt/"
-cp "$src/runtime/eomc.h" "$src/runtime/eomc_model.h" "$src/runtime/eomc_main.h" \
-  "$src/runtime/eomc_mpi.h" "$src/runtime/eomc_taylor.h" "$tmp/inc/"
+cp "$src/runtime/include/eomc.h" "$src/runtime/include/eomc_model.h" "$src/runtime/include/eomc_main.h" \
+  "$src/runtime/include/eomc_mpi.h" "$src/runtime/include/eomc_taylor.h" "$tmp/inc/"
 export EOMC_RUNTIME_LIB="$tmp/rt/libeomcrt.a" EOMC_RUNTIME_INCLUDE="$tmp/inc"
 lib=$EOMC_RUNTIME_LIB
 cp "$src/specs/pendulum.yaml" "$tmp/p.yaml"

@@ -10,7 +10,7 @@
  */
 #include "fuzz.h"
 
-#include "parse.h"
+#include "expr/parse.h"
 
 #include <setjmp.h>
 #include <string.h>

@@ -8,9 +8,9 @@
  */
 #include "fuzz.h"
 
-#include "constraint.h"
-#include "emit.h"
-#include "spec.h"
+#include "mechanics/constraint.h"
+#include "emit/emit.h"
+#include "spec/spec.h"
 
 #include <setjmp.h>
 #include <stdio.h>

@@ -6,7 +6,7 @@
  */
 #include "fuzz.h"
 
-#include "diag.h"
+#include "base/diag.h"
 
 #include <pthread.h>
 #include <stdio.h>

@@ -4,7 +4,7 @@
  */
 #include "fuzz.h"
 
-#include "spec.h"
+#include "spec/spec.h"
 
 typedef struct Input {
     const uint8_t *data;

@@ -9,7 +9,7 @@
  *    saves evaluations; g failing (NAN) gives NAN.
  */
 #include "../unit/check.h"
-#include "../../runtime/events.h"
+#include "step/events.h"
 
 #include <float.h>
 #include <math.h>

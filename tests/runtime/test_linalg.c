@@ -11,7 +11,7 @@
  *    6 (coordinate 5, the first bad pivot from the leaves up).
  */
 #include "../unit/check.h"
-#include "../../runtime/linalg.h"
+#include "model/linalg.h"
 
 #include <gsl/gsl_linalg.h>
 #include <string.h>

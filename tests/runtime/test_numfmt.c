@@ -4,7 +4,7 @@
  * precision); the issue's 0.05 prints as 0.05.
  */
 #include "../unit/check.h"
-#include "../../runtime/numfmt.h"
+#include "base/numfmt.h"
 
 #include <float.h>
 #include <stdlib.h>

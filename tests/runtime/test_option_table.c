@@ -5,7 +5,7 @@
  * take no value).
  */
 #include "../unit/check.h"
-#include "../../runtime/option_table.h"
+#include "front/option_table.h"
 
 #include <string.h>
 

@@ -11,7 +11,7 @@
  *    count and the cut as the roots say.
  */
 #include "../unit/check.h"
-#include "../../runtime/polyroots.h"
+#include "step/polyroots.h"
 
 #include <math.h>
 

@@ -21,7 +21,7 @@
  */
 #include "../unit/check.h"
 #include "eomc.h"
-#include "linalg.h"
+#include "model/linalg.h"
 
 #include <stdlib.h>
 

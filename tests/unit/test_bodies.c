@@ -14,7 +14,7 @@
  *    compound pendulum: (J + m d^2) theta'' = -m g d sin(theta).
  */
 #include "check.h"
-#include "eom.h"
+#include "forms/eom.h"
 
 #include <string.h>
 

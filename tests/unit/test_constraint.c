@@ -7,7 +7,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
-#include "constraint.h"
+#include "mechanics/constraint.h"
 
 #include <setjmp.h>
 #include <stdlib.h>

@@ -15,8 +15,8 @@
  */
 #include "check.h"
 #include "forms/forms.h"
-#include "lower.h"
-#include "../../runtime/eomc_model.h"
+#include "lower/lower.h"
+#include "runtime/include/eomc_model.h"
 
 #include <math.h>
 #include <string.h>

@@ -4,8 +4,8 @@
  * total time derivative) against central finite differences.
  */
 #include "check.h"
-#include "diff.h"
-#include "expr.h"
+#include "expr/diff.h"
+#include "expr/expr.h"
 
 #include <string.h>
 

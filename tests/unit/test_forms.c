@@ -9,7 +9,7 @@
  * a particle in spherical coordinates with a time-dependent support.
  */
 #include "check.h"
-#include "eom.h"
+#include "forms/eom.h"
 #include "forms/form_util.h"
 
 #include <string.h>

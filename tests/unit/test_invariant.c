@@ -22,7 +22,7 @@
  *    and refuses a sign it cannot know.
  */
 #include "check.h"
-#include "invariant.h"
+#include "mechanics/invariant.h"
 
 #include <float.h>
 #include <string.h>

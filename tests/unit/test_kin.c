@@ -21,8 +21,8 @@
  *    scaling) against the same arithmetic on R_B and r_P done here.
  */
 #include "check.h"
-#include "kin.h"
-#include "parse.h"
+#include "expr/kin.h"
+#include "expr/parse.h"
 
 #include <string.h>
 

@@ -12,7 +12,7 @@
  */
 #include "check.h"
 #include "forms/forms.h"
-#include "lower.h"
+#include "lower/lower.h"
 
 #include <string.h>
 

@@ -6,7 +6,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
-#include "parse.h"
+#include "expr/parse.h"
 
 #include <setjmp.h>
 #include <stdlib.h>

@@ -13,7 +13,7 @@
  */
 #include "check.h"
 #include "forms/forms.h"
-#include "repeat.h"
+#include "lower/repeat.h"
 
 #include <stdint.h>
 #include <string.h>

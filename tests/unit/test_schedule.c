@@ -15,7 +15,7 @@
  */
 #include "check.h"
 #include "forms/forms.h"
-#include "lower.h"
+#include "lower/lower.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -6,7 +6,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
-#include "mech.h"
+#include "mechanics/mech.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -15,7 +15,7 @@
  * And the models it must refuse, each with its reason.
  */
 #include "check.h"
-#include "eom.h"
+#include "forms/eom.h"
 
 #include <gsl/gsl_linalg.h>
 #include <string.h>

@@ -1,0 +1,1034 @@
+/*
+ * import: MuJoCo's compiled model (mjModel) printed as an eomc spec.
+ *
+ * MuJoCo places body b in its parent p by a constant offset and turn
+ * (body_pos, body_quat), then applies b's joints in order: a hinge turns
+ * the body about its axis through its anchor (jnt_pos, in the body's axes)
+ * by q - qpos0, a ball by its quaternion about the anchor, a slide moves it
+ * along its axis by q - qpos0; a free joint alone places its body in the
+ * world.  Here that is a frame per turn and a point per offset, so the
+ * spec is the tree the recursive forms take: the anchor is each turn's
+ * pivot.  The inertia, principal moments about body_ipos in the axes
+ * body_iquat turns to, is printed as the full tensor in the body's axes.
+ *
+ * Effects: gravity, damping, stiffness, armature (kinetic terms of one
+ * joint's rates) and actuators (virtual work of an input each); connect
+ * and joint equalities are exact holonomic constraints.  What the
+ * importer cannot write is refused by name; what eomc does not simulate
+ * (limits, friction loss, control and force ranges, contacts) is dropped,
+ * one warning per kind (--strict: an error).
+ *
+ * One file past ~800 lines: every element of mjModel it prints shares the
+ * naming (identifiers, collisions, renames) and the placement in the
+ * tree above, and it is the one file that knows MuJoCo's structures.
+ */
+#include "import.h"
+
+#include "runtime/base/numfmt.h"
+#include "base/arena.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef EOMC_HAVE_MUJOCO
+#include <mujoco/mujoco.h>
+
+int
+import_available(void)
+{
+    return 1;
+}
+
+/* Names: identifiers made of the model's, unique (a later duplicate gets
+ * _2, _3, ...). */
+typedef struct Names {
+    char **name;
+    int n, cap;
+    FILE *warn; /* where a renamed element is told */
+    const char *path;
+} Names;
+
+static int
+taken(const Names *N, const char *s)
+{
+    for (int i = 0; i < N->n; i++)
+        if (!strcmp(N->name[i], s))
+            return 1;
+    return 0;
+}
+
+/* An identifier from src, in a new string with room for a suffix: every
+ * character but a letter, a digit or _ made _, a leading digit given a _. */
+static char *
+ident(const char *src, size_t *end)
+{
+    size_t len = strlen(src);
+    char *s = xmalloc(len + 16);
+    size_t k = 0;
+    if (!((src[0] >= 'a' && src[0] <= 'z') || (src[0] >= 'A' && src[0] <= 'Z') || src[0] == '_'))
+        s[k++] = '_';
+    for (size_t i = 0; i < len; i++) {
+        char c = src[i];
+        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        s[k++] = ok ? c : '_';
+    }
+    s[k] = '\0';
+    *end = k;
+    return s;
+}
+
+/* An identifier from raw (or from fallback where raw is empty), unique
+ * among N's; kept in N. */
+static const char *
+unique(Names *N, const char *raw, const char *fallback)
+{
+    size_t k;
+    char *s = ident(raw && *raw ? raw : fallback, &k);
+    for (int d = 2; taken(N, s); d++)
+        snprintf(s + k, 16, "_%d", d);
+    if (N->n == N->cap) {
+        N->cap = N->cap ? 2 * N->cap : 64;
+        N->name = xrealloc(N->name, (size_t)N->cap * sizeof *N->name);
+    }
+    return N->name[N->n++] = s;
+}
+
+/* unique() for an element's name that the user reads (a joint, body,
+ * tendon, actuator's input or equality): where it had to take a suffix
+ * since another has its name, a warning says so. */
+static const char *
+named(Names *N, const char *kind, const char *raw, const char *fallback)
+{
+    const char *s = unique(N, raw, fallback);
+    size_t k;
+    const char *from = raw && *raw ? raw : fallback;
+    char *want = ident(from, &k);
+    if (strcmp(s, want))
+        fprintf(N->warn, "%s: warning: renamed: %s '%s' is '%s' in the spec ('%s' is another's "
+                "name)\n", N->path, kind, from, s, want);
+    free(want);
+    return s;
+}
+
+static void
+names_free(Names *N)
+{
+    for (int i = 0; i < N->n; i++)
+        free(N->name[i]);
+    free(N->name);
+}
+
+static const char *
+num(char *buf, double x)
+{
+    return num_shortest(buf, x);
+}
+
+static void
+put_vec(FILE *f, const double *v)
+{
+    char a[NUM_MAX], b[NUM_MAX], c[NUM_MAX];
+    fprintf(f, "[%s, %s, %s]", num(a, v[0]), num(b, v[1]), num(c, v[2]));
+}
+
+static int
+is_zero3(const double *v)
+{
+    return v[0] == 0 && v[1] == 0 && v[2] == 0;
+}
+
+/* R (row-major) of a unit quaternion (w, x, y, z). */
+static void
+quat_mat(const double *q, double *R)
+{
+    double w = q[0], x = q[1], y = q[2], z = q[3];
+    R[0] = 1 - 2 * (y * y + z * z), R[1] = 2 * (x * y - w * z), R[2] = 2 * (x * z + w * y);
+    R[3] = 2 * (x * y + w * z), R[4] = 1 - 2 * (x * x + z * z), R[5] = 2 * (y * z - w * x);
+    R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
+}
+
+/* A constant turn by quaternion q, not the identity, as `{axis: [...],
+ * angle: ...}`. */
+static void
+put_fixed_turn(FILE *f, const double *q)
+{
+    double w = q[0], s = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    double axis[3] = {q[1] / s, q[2] / s, q[3] / s};
+    char a[NUM_MAX];
+    fputs("{axis: ", f);
+    put_vec(f, axis);
+    fprintf(f, ", angle: %s}", num(a, 2 * atan2(s, w)));
+}
+
+/* The element an error is about, for its position in the file. */
+static void
+blame(ImportWhere *at, const mjModel *m, int type, int id)
+{
+    const char *nm = mj_id2name(m, type, id);
+    snprintf(at->name, sizeof at->name, "%s", nm ? nm : "");
+}
+
+/* An element's name for messages: MuJoCo's, or its kind and index. */
+static const char *
+label(const mjModel *m, int type, int id, char *buf, size_t len)
+{
+    const char *nm = mj_id2name(m, type, id);
+    if (nm && *nm)
+        return nm;
+    snprintf(buf, len, "#%d", id);
+    return buf;
+}
+
+/* Does the importer write actuator i as an input (a motor or a servo of
+ * fixed or affine gain and affine bias, on a hinge or slide), or why not. */
+/* Is tendon t fixed: a linear combination of joint coordinates (MuJoCo's
+ * `fixed` tendon), not a spatial path through sites and wrapping geoms? */
+static int
+fixed_tendon(const mjModel *m, int t)
+{
+    for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+        if (m->wrap_type[w] != mjWRAP_JOINT)
+            return 0;
+    return 1;
+}
+
+static const char *
+actuator_refused(const mjModel *m, int i)
+{
+    int trn = m->actuator_trntype[i], j = m->actuator_trnid[2 * i];
+    if (trn == mjTRN_TENDON) {
+        if (!fixed_tendon(m, j))
+            return "only actuators on fixed tendons are imported (not on spatial ones)";
+    } else if (trn != mjTRN_JOINT && trn != mjTRN_JOINTINPARENT) {
+        return "only actuators on joints and fixed tendons are imported (not on sites, "
+               "bodies or slider-cranks)";
+    } else if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE) {
+        return "only actuators on hinge and slide joints are imported";
+    }
+    if (m->actuator_dyntype[i] != mjDYN_NONE)
+        return "its activation dynamics (dyntype) is not imported: the control must be the "
+               "force's input itself";
+    if (m->actuator_gaintype[i] != mjGAIN_FIXED && m->actuator_gaintype[i] != mjGAIN_AFFINE)
+        return "its gain (muscle or user) is not imported";
+    if (m->actuator_biastype[i] != mjBIAS_NONE && m->actuator_biastype[i] != mjBIAS_AFFINE)
+        return "its bias (muscle or user) is not imported";
+    return NULL;
+}
+
+static int
+scalar_joint(const mjModel *m, int j)
+{
+    return m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE;
+}
+
+/* What the importer cannot write, by name: a reason in err, else 0. */
+static int
+refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
+{
+    char b[32];
+    for (int j = 0; j < m->njnt; j++) {
+        const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
+        int type = m->jnt_type[j];
+        if ((type == mjJNT_BALL || type == mjJNT_FREE) && m->jnt_stiffness[j] != 0)
+            return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: the stiffness of a %s joint is not imported "
+                            "(MuJoCo's spring acts on the rotation vector of its quaternion, "
+                            "which is not smooth where the turn is zero)", nm,
+                            type == mjJNT_BALL ? "ball" : "free");
+        if (type == mjJNT_FREE && m->body_jntnum[m->jnt_bodyid[j]] != 1)
+            return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: a free joint with other joints in its body",
+                            nm);
+    }
+    for (int i = 0; i < m->nu; i++) {
+        const char *why = actuator_refused(m, i);
+        if (why)
+            return blame(at, m, mjOBJ_ACTUATOR, i), snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
+                                                                 sizeof b), why);
+    }
+    for (int e = 0; e < m->neq; e++) {
+        const char *nm = label(m, mjOBJ_EQUALITY, e, b, sizeof b);
+        int type = m->eq_type[e], j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e];
+        if (!m->eq_active[e])
+            continue;
+        if (type == mjEQ_DISTANCE) /* MuJoCo 2.2.2 refuses it itself; later ones lack it */
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: a distance constraint", nm);
+        if (type == mjEQ_JOINT && (!scalar_joint(m, j1) || (j2 >= 0 && !scalar_joint(m, j2))))
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: couples a ball or free joint "
+                            "(a joint coupling is between hinges and slides)", nm);
+        if (type == mjEQ_TENDON && (!fixed_tendon(m, j1) || (j2 >= 0 && !fixed_tendon(m, j2))))
+            return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: couples a spatial tendon (only "
+                            "fixed tendons, sums of joint coordinates, are imported)", nm);
+    }
+    for (int t = 0; t < m->ntendon; t++) {
+        const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
+        if (!fixed_tendon(m, t) && (m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0))
+            return blame(at, m, mjOBJ_TENDON, t), snprintf(err, len, "tendon %s: the stiffness or damping of a spatial tendon "
+                            "(only fixed tendons, sums of joint coordinates, are imported)", nm);
+        for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+            if (m->wrap_type[w] == mjWRAP_JOINT && !scalar_joint(m, m->wrap_objid[w]))
+                return blame(at, m, mjOBJ_TENDON, t), snprintf(err, len, "tendon %s: a fixed tendon on a ball or free joint",
+                                nm);
+    }
+    return 0;
+}
+
+/* Elements something is dropped from, for one warning: the first few
+ * named, the rest counted. */
+enum { DROP_NAMED = 6 };
+typedef struct Drop {
+    int n;
+    char names[DROP_NAMED * 64];
+} Drop;
+
+static void
+drop_add(Drop *d, const char *name)
+{
+    size_t k = strlen(d->names);
+    if (d->n++ < DROP_NAMED)
+        snprintf(d->names + k, sizeof d->names - k, "%s%.60s", k ? ", " : "", name);
+}
+
+/* "dropped: WHAT KIND name" or "dropped: WHAT n KINDs: a, b, ... and k more"
+ * (WHAT may be empty) */
+static int
+drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const char *kind,
+         const char *why)
+{
+    if (d->n == 0)
+        return 0;
+    const char *sp = *what ? " " : "";
+    if (d->n == 1)
+        fprintf(warn, "%s: warning: dropped: %s%s%s %s (%s)\n", path, what, sp, kind, d->names,
+                why);
+    else if (d->n <= DROP_NAMED)
+        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s (%s)\n", path, what, sp, d->n, kind,
+                d->names, why);
+    else
+        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s and %d more (%s)\n", path, what, sp,
+                d->n, kind, d->names, d->n - DROP_NAMED, why);
+    return 1;
+}
+
+/* What eomc drops, since it simulates smooth dynamics only, named on
+ * warn, one warning for each kind; the number of kinds. */
+static int
+dropped(const mjModel *m, const char *path, FILE *warn)
+{
+    Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0};
+    char b[32];
+    for (int j = 0; j < m->njnt; j++) {
+        const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
+        if (m->jnt_limited[j])
+            drop_add(&lim, nm);
+        int any = 0;
+        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++)
+            any |= m->dof_frictionloss[k] != 0;
+        if (any)
+            drop_add(&fric, nm);
+    }
+    Drop tlim = {0}, tfric = {0}, spatial = {0};
+    for (int t = 0; t < m->ntendon; t++) {
+        const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
+        if (m->tendon_limited[t])
+            drop_add(&tlim, nm);
+        if (m->tendon_frictionloss[t] != 0)
+            drop_add(&tfric, nm);
+        if (!fixed_tendon(m, t))
+            drop_add(&spatial, nm);
+    }
+    for (int i = 0; i < m->nu; i++) {
+        const char *nm = label(m, mjOBJ_ACTUATOR, i, b, sizeof b);
+        if (m->actuator_ctrllimited[i])
+            drop_add(&ctrl, nm);
+        if (m->actuator_forcelimited[i])
+            drop_add(&force, nm);
+    }
+    int n = 0;
+    n += drop_say(warn, path, &lim, "the limits of", "joint",
+                  "eomc simulates smooth dynamics: joints move past their limits");
+    n += drop_say(warn, path, &tlim, "the limits of", "tendon",
+                  "eomc simulates smooth dynamics: tendons stretch past their limits");
+    n += drop_say(warn, path, &fric, "the friction loss of", "joint",
+                  "dry friction is not smooth dynamics");
+    n += drop_say(warn, path, &tfric, "the friction loss of", "tendon",
+                  "dry friction is not smooth dynamics");
+    n += drop_say(warn, path, &spatial, "", "spatial tendon",
+                  "nothing acts along it: no stiffness, damping, actuator or equality "
+                  "constraint uses it");
+    n += drop_say(warn, path, &ctrl, "the control range of", "actuator",
+                  "an input is applied as given, not clamped");
+    n += drop_say(warn, path, &force, "the force range of", "actuator",
+                  "an actuator's force is not clamped");
+    Drop geoms = {0};
+    for (int g = 0; g < m->ngeom; g++)
+        if (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)
+            drop_add(&geoms, label(m, mjOBJ_GEOM, g, b, sizeof b));
+    n += drop_say(warn, path, &geoms, "the contacts of", "geom",
+                  "eomc simulates smooth dynamics: bodies pass through one another");
+    return n;
+}
+
+/* Body b's geoms as its `shapes:` (spec.md), in the frame its pose is
+ * drawn in: its axes at its centre of mass, so at geom_pos - body_ipos.
+ * Planes, height fields and meshes are not drawn; *skipped counts them.
+ * Colours are rounded to 3 decimals (MuJoCo keeps floats). */
+static void
+put_shapes(const mjModel *m, int b, FILE *out, int *skipped)
+{
+    static const char *const types[mjNGEOMTYPES] = {
+        [mjGEOM_SPHERE] = "sphere", [mjGEOM_CAPSULE] = "capsule",
+        [mjGEOM_ELLIPSOID] = "ellipsoid", [mjGEOM_CYLINDER] = "cylinder", [mjGEOM_BOX] = "box"};
+    static const int nsize[mjNGEOMTYPES] = {
+        [mjGEOM_SPHERE] = 1, [mjGEOM_CAPSULE] = 2, [mjGEOM_ELLIPSOID] = 3,
+        [mjGEOM_CYLINDER] = 2, [mjGEOM_BOX] = 3};
+    char a[NUM_MAX];
+    int n = 0;
+    for (int g = 0; g < m->ngeom; g++) {
+        if (m->geom_bodyid[g] != b)
+            continue;
+        int t = m->geom_type[g];
+        if (t < 0 || t >= mjNGEOMTYPES || !types[t]) {
+            ++*skipped;
+            continue;
+        }
+        fprintf(out, "%s{type: %s, size: [", n++ ? ", " : ", shapes: [", types[t]);
+        for (int k = 0; k < nsize[t]; k++)
+            fprintf(out, "%s%s", k ? ", " : "", num(a, m->geom_size[3 * g + k]));
+        fputs("]", out);
+        double pos[3];
+        for (int k = 0; k < 3; k++)
+            pos[k] = m->geom_pos[3 * g + k] - m->body_ipos[3 * b + k];
+        if (!is_zero3(pos)) {
+            fputs(", pos: ", out);
+            put_vec(out, pos);
+        }
+        const double *gq = m->geom_quat + 4 * g;
+        if (gq[1] != 0 || gq[2] != 0 || gq[3] != 0) {
+            fputs(", quat: [", out);
+            for (int k = 0; k < 4; k++)
+                fprintf(out, "%s%s", k ? ", " : "", num(a, gq[k]));
+            fputs("]", out);
+        }
+        fputs(", rgba: [", out);
+        for (int k = 0; k < 4; k++) {
+            double c = round(1000 * (double)m->geom_rgba[4 * g + k]) / 1000;
+            fprintf(out, "%s%s", k ? ", " : "", num(a, c < 0 ? 0 : c > 1 ? 1 : c));
+        }
+        fputs("]}", out);
+    }
+    if (n)
+        fputs("]", out);
+}
+
+/* q - ref for joint j: its coordinate alone where ref is 0. */
+static void
+displacement(char *buf, size_t len, const char *coord, double ref)
+{
+    char a[NUM_MAX];
+    if (ref == 0)
+        snprintf(buf, len, "%s", coord);
+    else
+        snprintf(buf, len, "(%s - %s)", coord, num(a, ref));
+}
+
+/* Appends c*f to an expression of terms in buf (f NULL: c alone),
+ * nothing for c = 0. */
+static void
+term(char *buf, size_t len, double c, const char *f)
+{
+    char a[NUM_MAX];
+    size_t k = strlen(buf);
+    if (c == 0 || k >= len)
+        return;
+    const char *sep = k ? (c < 0 ? " - " : " + ") : (c < 0 ? "-" : "");
+    if (f && fabs(c) == 1)
+        snprintf(buf + k, len - k, "%s%s", sep, f);
+    else
+        snprintf(buf + k, len - k, "%s%s%s%s", sep, num(a, fabs(c)), f ? "*" : "", f ? f : "");
+}
+
+/* Is the expression term() wrote a sum of several? */
+static int
+is_sum(const char *e)
+{
+    return strstr(e, " + ") || strstr(e, " - ");
+}
+
+/* Actuator i's generalized force as virtual work on its joint J, for
+ * MuJoCo's force gain * u + bias of the actuator's length L = gear*J and
+ * velocity V = gear*J' (fixed or affine gain, none or affine bias):
+ * gear*(gain*u + bias)*delta(J). */
+static void
+actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, const char *u)
+{
+    const double *g = m->actuator_gainprm + mjNGAIN * i, *b = m->actuator_biasprm + mjNBIAS * i;
+    double gear = m->actuator_gear[6 * i];
+    char L[300], V[302], gain[700] = "", force[1500] = "", a[NUM_MAX];
+    snprintf(L, sizeof L, "%s%s%s", gear == 1 ? "" : num(a, gear), gear == 1 ? "" : "*", J);
+    snprintf(V, sizeof V, "%s'", L);
+    term(gain, sizeof gain, g[0], NULL);
+    if (m->actuator_gaintype[i] == mjGAIN_AFFINE) {
+        term(gain, sizeof gain, g[1], L);
+        term(gain, sizeof gain, g[2], V);
+    }
+    if (*gain && strcmp(gain, "1")) { /* gain*u, in parentheses where a sum */
+        snprintf(force, sizeof force, is_sum(gain) ? "(%s)*%s" : "%s*%s", gain, u);
+    } else if (*gain) {
+        snprintf(force, sizeof force, "%s", u);
+    }
+    if (m->actuator_biastype[i] == mjBIAS_AFFINE) {
+        term(force, sizeof force, b[0], NULL);
+        term(force, sizeof force, b[1], L);
+        term(force, sizeof force, b[2], V);
+    }
+    if (!*force)
+        snprintf(force, sizeof force, "0");
+    const char *open = is_sum(force) ? "(" : "", *close = *open ? ")" : "";
+    if (gear == 1)
+        snprintf(buf, len, "%s%s%s*delta(%s)", open, force, close, J);
+    else
+        snprintf(buf, len, "%s*%s%s%s*delta(%s)", num(a, gear), open, force, close, J);
+}
+
+/* MuJoCo's velocity of a ball's (or free joint's) rotation is its
+ * angular velocity in the joint's own axes, w = 2 L(e) e' for Euler
+ * parameters e, L = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0]
+ * (docs/import.md).  Row i of L: which parameter times which rate. */
+static const int L_idx[3][4] = {{1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+static const int L_sgn[3][4] = {{-1, 1, 1, -1}, {-1, -1, 1, 1}, {-1, 1, -1, 1}};
+
+/* The rate of dof d of joint j (delta: its variation instead), as an
+ * expression of the coordinates: q' for a hinge or slide, a free joint's
+ * x', y', z', and a component of 2 L(e) e' for a rotation. */
+static void
+dof_rate(char *buf, size_t len, const mjModel *m, const char *const *qn, int j, int d,
+         int delta)
+{
+    const char *const *q = qn + m->jnt_qposadr[j];
+    int type = m->jnt_type[j];
+    if (type == mjJNT_FREE && d < 3) {
+        snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[d]);
+        return;
+    }
+    if (type == mjJNT_FREE)
+        q += 3, d -= 3;
+    if (type != mjJNT_FREE && type != mjJNT_BALL) {
+        snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[0]);
+        return;
+    }
+    size_t k = (size_t)snprintf(buf, len, "(2*(");
+    for (int c = 0; c < 4 && k < len; c++)
+        k += (size_t)snprintf(buf + k, len - k, delta ? "%s%s*delta(%s)" : "%s%s*%s'",
+                              L_sgn[d][c] < 0 ? (c ? " - " : "-") : (c ? " + " : ""),
+                              q[L_idx[d][c]], q[c]);
+    if (k < len)
+        snprintf(buf + k, len - k, "))");
+}
+
+static int
+joint_dofs(const mjModel *m, int j)
+{
+    switch (m->jnt_type[j]) {
+    case mjJNT_FREE: return 6;
+    case mjJNT_BALL: return 3;
+    default: return 1;
+    }
+}
+
+/* k/2*d^2 into buf, without a factor 1 */
+static const char *
+half_square(char *buf, size_t len, double k, const char *d)
+{
+    char a[NUM_MAX];
+    if (k == 2)
+        snprintf(buf, len, "%s^2", d);
+    else
+        snprintf(buf, len, "%s*%s^2", num(a, k / 2), d);
+    return buf;
+}
+
+/* Opens effect `name`'s list with its first item, or separates the next. */
+static void
+item(FILE *out, int *any, int *first, const char *name)
+{
+    if (!*any)
+        fputs("effects:\n", out);
+    if (*first)
+        fprintf(out, "  %s: [", name);
+    else
+        fputs(", ", out);
+    *any = 1, *first = 0;
+}
+
+/* The effects, each named so a scene can pick it: gravity; damping, the
+ * generalized force -b v on each dof that has it (v its velocity as
+ * MuJoCo's qvel has it); stiffness, the potential k/2 (q - springref)^2
+ * (MuJoCo's passive spring force -k (q - qpos_spring)); armature, a
+ * rotor's inertia on each dof, 1/2 a v^2 in T; actuators, each one's
+ * force on its joint, its control an input. */
+static void
+put_effects(const mjModel *m, const char *const *qn, const char *const *un,
+            const char *const *tn, FILE *out)
+{
+    char a[NUM_MAX], d[400], r[400], v[400], hs[900];
+    int any = 0;
+    if (!is_zero3(m->opt.gravity)) {
+        fputs("effects:\n  gravity: {gravity: ", out);
+        put_vec(out, m->opt.gravity);
+        fputs("}\n", out);
+        any = 1;
+    }
+    int first = 1;
+    for (int j = 0; j < m->njnt; j++)
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            double b = m->dof_damping[m->jnt_dofadr[j] + k];
+            if (b == 0)
+                continue;
+            dof_rate(r, sizeof r, m, qn, j, k, 0);
+            dof_rate(v, sizeof v, m, qn, j, k, 1);
+            item(out, &any, &first, "damping");
+            fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
+        }
+    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's: -b L' along L */
+        if (m->tendon_damping[t] != 0) {
+            item(out, &any, &first, "damping");
+            fprintf(out, "{work: \"%s*%s'*delta(%s)\"}", num(a, -m->tendon_damping[t]), tn[t],
+                    tn[t]);
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++) { /* hinges and slides (import refuses the rest) */
+        double k = m->jnt_stiffness[j];
+        if (k == 0)
+            continue;
+        const char *q = qn[m->jnt_qposadr[j]];
+        displacement(d, sizeof d, q, m->qpos_spring[m->jnt_qposadr[j]]);
+        item(out, &any, &first, "stiffness");
+        fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, k, d));
+    }
+    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's, about lengthspring */
+        if (m->tendon_stiffness[t] != 0) {
+            displacement(d, sizeof d, tn[t], m->tendon_lengthspring[t]);
+            item(out, &any, &first, "stiffness");
+            fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, m->tendon_stiffness[t], d));
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++)
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            double arm = m->dof_armature[m->jnt_dofadr[j] + k];
+            if (arm == 0)
+                continue;
+            dof_rate(r, sizeof r, m, qn, j, k, 0);
+            item(out, &any, &first, "armature");
+            fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int i = 0; i < m->nu; i++) {
+        char w[2000];
+        int id = m->actuator_trnid[2 * i];
+        actuator_work(w, sizeof w, m, i, m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
+                      : qn[m->jnt_qposadr[id]], un[i]);
+        item(out, &any, &first, "actuators");
+        fprintf(out, "{work: \"%s\"}", w);
+    }
+    if (!first)
+        fputs("]\n", out);
+}
+
+/* Scalar e's displacement from its value at qpos0, for an equality
+ * constraint: joint e's coordinate (joint: nonzero), or fixed tendon e's
+ * length, in parentheses. */
+static void
+scalar_of(char *buf, size_t len, const mjModel *m, const char *const *qn,
+          const char *const *tn, int joint, int e)
+{
+    char a[NUM_MAX];
+    if (joint) {
+        int q = m->jnt_qposadr[e];
+        displacement(buf, len, qn[q], m->qpos0[q]);
+    } else if (m->tendon_length0[e] == 0) {
+        snprintf(buf, len, "%s", tn[e]);
+    } else {
+        snprintf(buf, len, "(%s %s %s)", tn[e], m->tendon_length0[e] < 0 ? "+" : "-",
+                 num(a, fabs(m->tendon_length0[e])));
+    }
+}
+
+/* The active equality constraints, as holonomic constraints:
+ * - a connect as its two anchors' offset, one constraint per world axis
+ *   (NAME_x, NAME_y, NAME_z);
+ * - a weld as the same, and (unless its torquescale is 0, which leaves the
+ *   turn free) the turn R = A^T B from body 1's turned axes A to body 2's B
+ *   held at the identity by its skew part, R - R^T = 2 sin(th) [n]x:
+ *   NAME_rx = dot(A.z, B.y) - dot(A.y, B.z) and its cyclic shifts, whose
+ *   rows span MuJoCo's (the quaternion's vector part, sin(th/2) n) there;
+ * - a joint or tendon coupling s1 - s1_0 = c0 + c1 (s2 - s2_0) + ... +
+ *   c4 (s2 - s2_0)^4 (s_0 their qpos0 values; without a second, c0). */
+static void
+put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
+                const char *const *eqn, const char *const *eqp, const char *const *axes,
+                FILE *out)
+{
+    char d1[400], d2[400];
+    int any = 0;
+    for (int e = 0; e < m->neq; e++) {
+        if (!m->eq_active[e])
+            continue;
+        fputs(any++ ? "" : "constraints:\n", out);
+        int type = m->eq_type[e];
+        const double *c = m->eq_data + mjNEQDATA * e;
+        if (type == mjEQ_CONNECT || type == mjEQ_WELD) {
+            for (int k = 0; k < 3; k++)
+                fprintf(out, "  %s_%c: \"dot(pos(%s, %s), world.%c)\"\n", eqn[e], 'x' + k,
+                        eqp[3 * e], eqp[3 * e + 1], 'x' + k);
+            if (type == mjEQ_CONNECT || c[10] == 0)
+                continue;
+            int b2 = m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e];
+            const char *A = eqp[3 * e + 2], *B = axes[b2];
+            for (int k = 0; k < 3; k++) {
+                char i = (char)('x' + (k + 1) % 3), j = (char)('x' + (k + 2) % 3);
+                fprintf(out, "  %s_r%c: \"dot(%s.%c, %s.%c) - dot(%s.%c, %s.%c)\"\n", eqn[e],
+                        'x' + k, A, j, B, i, A, i, B, j);
+            }
+            continue;
+        }
+        int joint = type == mjEQ_JOINT, s1 = m->eq_obj1id[e], s2 = m->eq_obj2id[e];
+        scalar_of(d1, sizeof d1, m, qn, tn, joint, s1);
+        char poly[2000] = "";
+        term(poly, sizeof poly, c[0], NULL);
+        if (s2 >= 0) {
+            scalar_of(d2, sizeof d2, m, qn, tn, joint, s2);
+            for (int k = 1; k <= 4; k++) {
+                char f[420];
+                snprintf(f, sizeof f, k == 1 ? "%s" : "%s^%d", d2, k);
+                term(poly, sizeof poly, c[k], f);
+            }
+        }
+        if (!*poly)
+            fprintf(out, "  %s: \"%s\"\n", eqn[e], d1);
+        else if (is_sum(poly))
+            fprintf(out, "  %s: \"%s - (%s)\"\n", eqn[e], d1, poly);
+        else if (poly[0] == '-')
+            fprintf(out, "  %s: \"%s + %s\"\n", eqn[e], d1, poly + 1);
+        else
+            fprintf(out, "  %s: \"%s - %s\"\n", eqn[e], d1, poly);
+    }
+}
+
+int
+import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
+             ImportWhere *at)
+{
+    *at = (ImportWhere){0};
+    char load_err[1000] = "";
+    mjModel *m = mj_loadXML(path, NULL, load_err, sizeof load_err);
+    if (!m) { /* MuJoCo's message on one line: it has line breaks and a trailing one */
+        for (char *c = load_err; *c; c++)
+            if (*c == '\n')
+                *c = ' ';
+        for (size_t k = strlen(load_err); k > 0 && load_err[k - 1] == ' '; k--)
+            load_err[k - 1] = '\0';
+        snprintf(err, len, "MuJoCo cannot load it: %s", load_err);
+        const char *ln = strstr(load_err, ", line ");
+        at->line = ln ? atoi(ln + 7) : 0;
+        return -1;
+    }
+    if (refused(m, err, len, at)) {
+        mj_deleteModel(m);
+        return -1;
+    }
+    if (dropped(m, path, warn) && strict) {
+        snprintf(err, len, "--strict: the elements named above would be dropped");
+        mj_deleteModel(m);
+        return -1;
+    }
+    /* bodies have a namespace of their own in a spec; the rest share one */
+    Names N = {.warn = warn, .path = path}, NB = N;
+    int nb = m->nbody;
+    const char **body = xmalloc((size_t)nb * sizeof *body), **axes = xmalloc((size_t)nb * sizeof *axes);
+    const char **origin = xmalloc((size_t)nb * sizeof *origin);
+    const char **com = xmalloc((size_t)nb * sizeof *com);
+    const char **coord = xmalloc(((size_t)m->njnt + 1) * sizeof *coord);
+    const char **qn = xmalloc(((size_t)m->nq + 1) * sizeof *qn);
+    char fb[64], nm[300];
+    /* coordinates first: joints keep their names (docs/import.md); a
+     * ball's are its Euler parameters, a free joint's its position and
+     * those */
+    static const char *const part[7] = {"_x", "_y", "_z", "_qw", "_qx", "_qy", "_qz"};
+    for (int j = 0; j < m->njnt; j++) {
+        snprintf(fb, sizeof fb, "%s_joint%d", m->names + m->name_bodyadr[m->jnt_bodyid[j]], j);
+        coord[j] = named(&N, "joint", m->names + m->name_jntadr[j], fb);
+        int adr = m->jnt_qposadr[j], type = m->jnt_type[j];
+        int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+        for (int d = 0; d < nq; d++) {
+            snprintf(nm, sizeof nm, "%s%s", coord[j], part[d + 7 - nq]);
+            qn[adr + d] = nq == 1 ? coord[j] : named(&N, "coordinate", nm, nm);
+        }
+    }
+    body[0] = "world", axes[0] = "world", origin[0] = "origin";
+    for (int b = 1; b < nb; b++) {
+        snprintf(fb, sizeof fb, "body%d", b);
+        body[b] = named(&NB, "body", m->names + m->name_bodyadr[b], fb);
+    }
+    size_t k;
+    char *model = ident(*m->names ? m->names : "imported", &k); /* the model's name first */
+    const char *dot = strrchr(path, '.');
+    fprintf(out, "# Imported by `eomc import` from %s: MuJoCo's compiled model, its\n"
+                 "# bodies, joints, inertias and effects (docs/import.md).\n", path);
+    fprintf(out, "name: %s\n", model);
+    fprintf(out, "description: \"%s, imported from %s.\"\n", model,
+            dot && !strcmp(dot, ".urdf") ? "URDF" : "MJCF");
+    free(model);
+    fputs("coordinates: [", out);
+    for (int q = 0; q < m->nq; q++)
+        fprintf(out, "%s%s", q ? ", " : "", qn[q]);
+    fputs("]\n", out);
+    /* an actuator's control: an input u_NAME, 0 as in MuJoCo's mjData
+     * until --set (or a scene) gives it a value or a signal */
+    const char **un = xmalloc(((size_t)m->nu + 1) * sizeof *un);
+    /* a fixed tendon: a define, its length as MuJoCo's ten_length */
+    const char **tn = xmalloc(((size_t)m->ntendon + 1) * sizeof *tn);
+    int defines = 0;
+    for (int t = 0; t < m->ntendon; t++) {
+        snprintf(fb, sizeof fb, "tendon%d", t);
+        tn[t] = named(&N, "tendon", m->names + m->name_tendonadr[t], fb);
+        if (!fixed_tendon(m, t))
+            continue;
+        char len_t[4000] = "";
+        for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
+            term(len_t, sizeof len_t, m->wrap_prm[w], qn[m->jnt_qposadr[m->wrap_objid[w]]]);
+        fprintf(out, "%s  %s: \"%s\"\n", defines++ ? "" : "define:\n", tn[t],
+                *len_t ? len_t : "0");
+    }
+    for (int i = 0; i < m->nu; i++) {
+        const char *an = mj_id2name(m, mjOBJ_ACTUATOR, i);
+        int id = m->actuator_trnid[2 * i];
+        snprintf(nm, sizeof nm, "u_%s", an && *an ? an
+                 : m->actuator_trntype[i] == mjTRN_TENDON ? tn[id] : coord[id]);
+        un[i] = named(&N, "input", nm, nm);
+        fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
+    }
+
+    /* frames and points, body by body (parents come first in MuJoCo's order) */
+    char *fr = NULL, *pt = NULL;
+    size_t frn = 0, ptn = 0;
+    FILE *F = open_memstream(&fr, &frn), *P = open_memstream(&pt, &ptn);
+    char a[NUM_MAX];
+    for (int b = 1; b < nb; b++) {
+        int p = m->body_parentid[b];
+        const char *cur = axes[p];
+        if (m->body_jntnum[b] == 1 && m->jnt_type[m->body_jntadr[b]] == mjJNT_FREE) {
+            /* MuJoCo places it in the world by its coordinates alone:
+             * body_pos and body_quat are only its qpos0 */
+            const char **q = qn + m->jnt_qposadr[m->body_jntadr[b]];
+            snprintf(nm, sizeof nm, "%s_origin", body[b]);
+            origin[b] = unique(&N, nm, nm);
+            fprintf(P, "  %s: {at: [%s, %s, %s]}\n", origin[b], q[0], q[1], q[2]);
+            snprintf(nm, sizeof nm, "%s_axes", coord[m->body_jntadr[b]]);
+            axes[b] = unique(&N, nm, nm);
+            fprintf(F, "  %s: {rotation: [{quaternion: [%s, %s, %s, %s]}]}\n", axes[b], q[3],
+                    q[4], q[5], q[6]);
+            snprintf(nm, sizeof nm, "%s_com", body[b]);
+            com[b] = unique(&N, nm, nm);
+            fprintf(P, "  %s: {frame: %s, from: %s, at: ", com[b], axes[b], origin[b]);
+            put_vec(P, m->body_ipos + 3 * b);
+            fputs("}\n", P);
+            continue;
+        }
+        snprintf(nm, sizeof nm, "%s_origin", body[b]);
+        const char *o = unique(&N, nm, nm);
+        fprintf(P, "  %s: {frame: %s, from: %s, at: ", o, axes[p], origin[p]);
+        put_vec(P, m->body_pos + 3 * b);
+        fputs("}\n", P);
+        const double *bq = m->body_quat + 4 * b;
+        if (bq[1] != 0 || bq[2] != 0 || bq[3] != 0) { /* not a turn by 0 (or 2 pi) */
+            snprintf(nm, sizeof nm, "%s_fixed", body[b]);
+            const char *fx = unique(&N, nm, nm);
+            fprintf(F, "  %s: {parent: %s, rotation: [", fx, cur);
+            put_fixed_turn(F, bq);
+            fputs("]}\n", F);
+            cur = fx;
+        }
+        for (int k = 0; k < m->body_jntnum[b]; k++) {
+            int j = m->body_jntadr[b] + k;
+            double ref = m->qpos0[m->jnt_qposadr[j]];
+            const double *ax = m->jnt_axis + 3 * j, *an = m->jnt_pos + 3 * j;
+            char angle[400]; /* q - ref, in parentheses where ref is not 0 */
+            displacement(angle, sizeof angle, coord[j], ref);
+            if (m->jnt_type[j] == mjJNT_SLIDE) {
+                snprintf(nm, sizeof nm, "%s_at", coord[j]);
+                const char *s = unique(&N, nm, nm);
+                fprintf(P, "  %s: {frame: %s, from: %s, at: [", s, cur, o);
+                for (int c = 0; c < 3; c++) {
+                    fputs(c ? ", " : "", P);
+                    if (ax[c] == 0 || ax[c] == 1 || ax[c] == -1)
+                        fprintf(P, "%s%s", ax[c] < 0 ? "-" : "", ax[c] ? angle : "0");
+                    else
+                        fprintf(P, "%s*%s", num(a, ax[c]), angle);
+                }
+                fputs("]}\n", P);
+                o = s;
+                continue;
+            }
+            if (!is_zero3(an)) { /* the turn's pivot, then back to the origin */
+                snprintf(nm, sizeof nm, "%s_anchor", coord[j]);
+                const char *an_pt = unique(&N, nm, nm);
+                fprintf(P, "  %s: {frame: %s, from: %s, at: ", an_pt, cur, o);
+                put_vec(P, an);
+                fputs("}\n", P);
+                o = an_pt;
+            }
+            snprintf(nm, sizeof nm, "%s_axes", coord[j]);
+            const char *t = unique(&N, nm, nm);
+            if (m->jnt_type[j] == mjJNT_BALL) { /* turned by its Euler parameters */
+                const char **q = qn + m->jnt_qposadr[j];
+                fprintf(F, "  %s: {parent: %s, rotation: [{quaternion: [%s, %s, %s, %s]}]}\n",
+                        t, cur, q[0], q[1], q[2], q[3]);
+            } else {
+                fprintf(F, "  %s: {parent: %s, rotation: [{axis: ", t, cur);
+                put_vec(F, ax);
+                fprintf(F, ", angle: \"%s\"}]}\n", angle);
+            }
+            cur = t;
+            if (!is_zero3(an)) {
+                double back[3] = {-an[0], -an[1], -an[2]};
+                snprintf(nm, sizeof nm, "%s_origin", coord[j]);
+                const char *bo = unique(&N, nm, nm);
+                fprintf(P, "  %s: {frame: %s, from: %s, at: ", bo, cur, o);
+                put_vec(P, back);
+                fputs("}\n", P);
+                o = bo;
+            }
+        }
+        axes[b] = cur;
+        origin[b] = o;
+        snprintf(nm, sizeof nm, "%s_com", body[b]);
+        com[b] = unique(&N, nm, nm);
+        fprintf(P, "  %s: {frame: %s, from: %s, at: ", com[b], cur, o);
+        put_vec(P, m->body_ipos + 3 * b);
+        fputs("}\n", P);
+    }
+    /* a connect's anchors: on body 1 (eq_data 0..2, in its axes) and on
+     * body 2 (3..5: where MuJoCo's compiler put the same point at qpos0).
+     * A weld's the other way round: 3..5 on body 1 (its relpose), 0..2 on
+     * body 2 (its anchor); and body 1's axes turned by the relpose's
+     * quaternion (6..9), which the weld holds on body 2's.  eqp: for each
+     * equality, the two points and that frame. */
+    const char **eqn = xmalloc(((size_t)m->neq + 1) * sizeof *eqn);
+    const char **eqp = xmalloc((3 * (size_t)m->neq + 1) * sizeof *eqp);
+    for (int e = 0; e < m->neq; e++) {
+        snprintf(fb, sizeof fb, "equality%d", e);
+        eqn[e] = named(&N, "equality", m->names + m->name_eqadr[e], fb);
+        int type = m->eq_type[e];
+        if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD))
+            continue;
+        const double *c = m->eq_data + mjNEQDATA * e;
+        for (int k = 0; k < 2; k++) {
+            int bb = k ? m->eq_obj2id[e] : m->eq_obj1id[e];
+            bb = bb < 0 ? 0 : bb;
+            snprintf(nm, sizeof nm, "%s_%d", eqn[e], k + 1);
+            const char *an = eqp[3 * e + k] = unique(&N, nm, nm);
+            fprintf(P, "  %s: {frame: %s, from: %s, at: ", an, axes[bb], origin[bb]);
+            put_vec(P, c + 3 * (type == mjEQ_WELD ? 1 - k : k));
+            fputs("}\n", P);
+        }
+        int b1 = m->eq_obj1id[e] < 0 ? 0 : m->eq_obj1id[e];
+        eqp[3 * e + 2] = axes[b1];
+        if (type == mjEQ_WELD && (c[7] != 0 || c[8] != 0 || c[9] != 0)) {
+            snprintf(nm, sizeof nm, "%s_axes", eqn[e]);
+            eqp[3 * e + 2] = unique(&N, nm, nm);
+            fprintf(F, "  %s: {parent: %s, rotation: [", eqp[3 * e + 2], axes[b1]);
+            put_fixed_turn(F, c + 6);
+            fputs("]}\n", F);
+        }
+    }
+    fclose(F);
+    fclose(P);
+    if (frn)
+        fprintf(out, "frames:\n%s", fr);
+    fprintf(out, "points:\n%s", pt);
+    free(fr);
+    free(pt);
+    fputs("bodies:\n", out);
+    int unshaped = 0; /* geoms of types that are not drawn */
+    for (int b = 1; b < nb; b++) {
+        if (m->body_mass[b] == 0)
+            continue;
+        double R[9], I[9], d[3] = {m->body_inertia[3 * b], m->body_inertia[3 * b + 1],
+                                   m->body_inertia[3 * b + 2]};
+        quat_mat(m->body_iquat + 4 * b, R);
+        for (int r = 0; r < 3; r++) /* one triangle, mirrored: symmetric exactly */
+            for (int c = r; c < 3; c++)
+                I[3 * r + c] = I[3 * c + r] = R[3 * r] * d[0] * R[3 * c] +
+                                              R[3 * r + 1] * d[1] * R[3 * c + 1] +
+                                              R[3 * r + 2] * d[2] * R[3 * c + 2];
+        fprintf(out, "  %s: {mass: %s, frame: %s, center: %s, inertia: [", body[b],
+                num(a, m->body_mass[b]), axes[b], com[b]);
+        for (int r = 0; r < 3; r++) {
+            fputs(r ? ", " : "", out);
+            put_vec(out, I + 3 * r);
+        }
+        fputs("]", out);
+        put_shapes(m, b, out, &unshaped);
+        fputs("}\n", out);
+    }
+    if (unshaped)
+        fprintf(warn, "%s: note: not drawn: %d geom%s (planes, height fields and meshes; "
+                "--animate draws boxes, spheres, capsules, cylinders and ellipsoids)\n", path,
+                unshaped, unshaped == 1 ? "" : "s");
+    put_effects(m, qn, un, tn, out);
+    put_constraints(m, qn, tn, eqn, eqp, axes, out);
+    int any = 0;
+    for (int q = 0; q < m->nq; q++)
+        if (m->qpos0[q] != 0)
+            fprintf(out, "%s  %s: %s\n", any++ ? "" : "initial:\n", qn[q], num(a, m->qpos0[q]));
+    /* MuJoCo starts at qpos0 and lets its soft equality constraints pull
+     * the state onto them; eomc's are exact, so the start is put there */
+    int eq = 0;
+    for (int e = 0; e < m->neq; e++)
+        eq |= m->eq_active[e];
+    fprintf(out, "scene: {t_end: 1, dt: 0.01%s}\n", eq ? ", assemble: true" : "");
+    free(body);
+    free(axes);
+    free(origin);
+    free(com);
+    free(coord);
+    free(qn);
+    free(un);
+    free(tn);
+    free(eqn);
+    free(eqp);
+    names_free(&N);
+    names_free(&NB);
+    mj_deleteModel(m);
+    return 0;
+}
+
+#else
+
+int
+import_available(void)
+{
+    return 0;
+}
+
+int
+import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
+             ImportWhere *at)
+{
+    (void)path;
+    (void)out;
+    (void)warn;
+    (void)strict;
+    *at = (ImportWhere){0};
+    snprintf(err, len, "this eomc was built without MuJoCo, which reads MJCF and URDF: "
+             "install libmujoco-dev and build it again");
+    return -1;
+}
+
+#endif

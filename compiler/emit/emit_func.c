@@ -1,0 +1,744 @@
+/*
+ * emit_func: the printer of one function, for emit.c (emit_func.h).
+ *
+ * A function's schedule (lower_schedule: which operator nodes, in which
+ * order, and where each output is stored) is the lower layer's, so that
+ * lower_eval evaluates the very list printed here.  This file names it:
+ * one `const double` temporary per node, the leaves' locals, the shared[]
+ * and pd[] values other functions computed, the guarded stores to
+ * optional outputs, the zero fills and the loop over copies.
+ *
+ * Very large functions (the Jacobian of a 50-link chain has ~70 000
+ * nodes) are cut into parts of at most LOWER_PART_SIZE temporaries, each
+ * its own non-inlined C function: the C compiler's register allocator is
+ * superlinear in function size, and parts keep `cc -O2` time linear.
+ * A part ends after an output, or inside one output's nodes when they
+ * alone are too many (a recursive solve writes q'' only at its end).
+ * Values needed by a later part travel through a stack array s[].
+ * Cutting is the printer's: a C function's size is a C compiler's
+ * concern, and the list is the same whole or cut.
+ */
+#include "emit_func.h"
+#include "runtime/base/numfmt.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* the names of the sources (emit_func.h's SRC_*) */
+static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "da",
+                                           "lam"};
+
+
+
+void
+emit_line(Printer *pr, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(pr->f, fmt, ap);
+    va_end(ap);
+    fputc('\n', pr->f);
+}
+
+/* What follows is compiled in double only (1: the functions the
+ * reference solution does not need), or in both precisions (0). */
+void
+emit_fence(Printer *pr, int double_only)
+{
+    if (double_only && !pr->fenced)
+        emit_line(pr, "#ifndef EOMC_EXTENDED");
+    else if (!double_only && pr->fenced)
+        emit_line(pr, "#endif /* EOMC_EXTENDED */\n");
+    pr->fenced = double_only;
+}
+
+/* Swap the stream and fence being printed with the second unit's. */
+void
+emit_unit2_swap(Printer *pr)
+{
+    FILE *f = pr->f;
+    pr->f = pr->unit2, pr->unit2 = f;
+    int fenced = pr->fenced;
+    pr->fenced = pr->fenced2, pr->fenced2 = fenced;
+}
+
+/* A part of a function compiled in double only or in both precisions
+ * goes to the second unit, fenced so. */
+static void
+unit2_begin(Printer *pr, int double_only)
+{
+    emit_unit2_swap(pr);
+    emit_fence(pr, double_only);
+    pr->nunit2++;
+}
+
+static void
+unit2_end(Printer *pr)
+{
+    emit_unit2_swap(pr);
+}
+
+
+/* "TYPE\nNAME(PARAMS)" then tail, the comma-separated parameters wrapped. */
+void
+emit_decl(Printer *pr, const char *type, const char *name, const char *params,
+           const char *tail)
+{
+    fprintf(pr->f, "%s\n%s(", type, name);
+    int col = (int)strlen(name) + 1;
+    for (const char *p = params; *p;) {
+        int len = (int)strcspn(p, ",");
+        if (p != params && col + 2 + len + 1 > WRAP) {
+            fputs(",\n    ", pr->f);
+            col = 4;
+        } else if (p != params) {
+            fputs(", ", pr->f);
+            col += 2;
+        }
+        fprintf(pr->f, "%.*s", len, p);
+        col += len;
+        p += len;
+        p += strspn(p, ", ");
+    }
+    fprintf(pr->f, ")%s\n", tail);
+}
+
+/* "TYPE\nNAME(PARAMS)\n{" */
+void
+emit_head(Printer *pr, const char *type, const char *name, const char *params)
+{
+    emit_decl(pr, type, name, params, "\n{");
+}
+
+/* The shortest text that reads back as the same double (runtime/numfmt.h:
+ * 9.81, not 9.8100000000000005; 10, not 1e+01), made to look like a
+ * double to C. */
+void
+emit_const(char *buf, size_t len, double v)
+{
+    char num[NUM_MAX];
+    snprintf(buf, len, "%s", num_shortest(num, v));
+    if (!strpbrk(buf, ".eEn"))
+        strncat(buf, ".0", len - strlen(buf) - 1);
+}
+
+static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }
+
+static int is_ext(const Printer *pr, ExprId e) { return pr->ext && pr->ext[e] >= 0; }
+static int is_derived(const Printer *pr, ExprId e)
+{
+    return pr->derived && pr->derived[e] >= 0 && !is_ext(pr, e);
+}
+/* Not computed here: a leaf, a shared value or a derived one. */
+static int is_input(const Printer *pr, ExprId e)
+{
+    return !lower_computed(pr->P, pr->lf, e);
+}
+
+static void
+leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
+{
+    static const char prefix[] = {'q', 'v', 'a', 'j'};
+    switch (nd->op) {
+    case EXPR_SEED:
+        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b], pr->md->coord[nd->a]);
+        break;
+    case EXPR_VAR:
+        snprintf(buf, len, "%c_%s", prefix[nd->b], pr->md->coord[nd->a]);
+        break;
+    case EXPR_PARAM:
+        snprintf(buf, len, "p_%s", pr->md->param[nd->a].name);
+        break;
+    case EXPR_INPUT:
+        snprintf(buf, len, "u_%s", pr->md->input[nd->a]);
+        break;
+    case EXPR_MULT:
+        snprintf(buf, len, "lam_%s", pr->md->constraint[nd->a].name);
+        break;
+    default:
+        snprintf(buf, len, "t");
+    }
+}
+
+/* The spelling of an operand: a constant (negative ones in parentheses so
+ * that `x - -1` never appears), a leaf's local, a value computed by
+ * another function (shared[]), a temporary of this part, or a value shared from
+ * an earlier part. */
+static const char *
+operand(Printer *pr, ExprId e, char *buf, size_t len)
+{
+    const ExprNode *nd = expr_node(pr->P, e);
+    if (nd->op == EXPR_CONST) {
+        char num[40];
+        emit_const(num, sizeof num, nd->value);
+        snprintf(buf, len, nd->value < 0 ? "(%s)" : "%s", num);
+    } else if (is_leaf(nd)) {
+        leaf_name(pr, nd, buf, len);
+    } else if (is_ext(pr, e)) {
+        snprintf(buf, len, "shared[%d]", pr->ext[e]);
+    } else if (is_derived(pr, e)) {
+        snprintf(buf, len, "pd%d", pr->derived[e]);
+    } else if (pr->part[e] == pr->cur) {
+        snprintf(buf, len, "w%d", pr->temp[e]);
+    } else {
+        snprintf(buf, len, "s[%d]", pr->slot[e]);
+    }
+    return buf;
+}
+
+/* expr.h's EXPR_POWI_MUL_MAX: what the evaluators compute */
+static void
+print_powi(const char *x, int n, char *rhs, size_t len)
+{
+    if (n > EXPR_POWI_MUL_MAX) {
+        snprintf(rhs, len, "pow(%s, %d)", x, n);
+        return;
+    }
+    rhs[0] = '\0';
+    for (int k = 0; k < n; k++) {
+        if (k)
+            strncat(rhs, " * ", len - strlen(rhs) - 1);
+        strncat(rhs, x, len - strlen(rhs) - 1);
+    }
+}
+
+/* After node id's statement: its copy for later parts. */
+static void
+print_share(Printer *pr, ExprId id)
+{
+    if (pr->slot[id] >= 0)
+        emit_line(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
+}
+
+static void
+print_node(Printer *pr, ExprId id)
+{
+    const ExprNode *nd = expr_node(pr->P, id);
+    char ba[200], bb[200], rhs[512];
+    const char *x = NULL, *y = NULL;
+    int ar = expr_op_arity[nd->op];
+    if (ar >= 1)
+        x = operand(pr, nd->a, ba, sizeof ba);
+    if (ar >= 2)
+        y = operand(pr, nd->b, bb, sizeof bb);
+    const char *sp = expr_op_spelling[nd->op];
+    switch (expr_op_kind[nd->op]) {
+    case OPK_INFIX:
+        snprintf(rhs, sizeof rhs, "%s %s %s", x, sp, y);
+        break;
+    case OPK_PREFIX:
+        snprintf(rhs, sizeof rhs, "-%s", x);
+        break;
+    default:
+        if (nd->op == EXPR_POWI)
+            print_powi(x, (int32_t)nd->b, rhs, sizeof rhs);
+        else if (nd->op == EXPR_SIGN)
+            snprintf(rhs, sizeof rhs, "(eomc_real)((%s > 0) - (%s < 0))", x, x);
+        else if (ar == 2)
+            snprintf(rhs, sizeof rhs, "%s(%s, %s)", sp, x, y);
+        else
+            snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
+    }
+    emit_line(pr, "    const eomc_real w%d = %s;", pr->temp[id], rhs);
+    print_share(pr, id);
+}
+
+/* ---- parts ---- */
+
+/* The schedule (lower_schedule) as the printer walks it: the nodes
+ * numbered in order (their temporaries), each store after so many of
+ * them, and the parts it is cut in. */
+typedef struct Sched {
+    const LowSched *low;
+    int copies;    /* the copies' loop comes first */
+    int nfill, fill[LOW_MAX_ARGS]; /* the output arguments zero-filled first */
+    ExprId *node;  /* the NODE steps in order */
+    int n;
+    int *order;    /* per store: the output it stores */
+    int *after;    /* per store: nodes printed before it */
+    int *pstart;   /* per part: first node; pstart[nparts] = n */
+    int *ostart;   /* per part: first store; ostart[nparts] = nout */
+    int nparts, nslots;
+} Sched;
+
+/* A value crossing into another part gets a slot in s[]. */
+static void
+share(Printer *pr, Sched *S, ExprId e, int part)
+{
+    if (!is_input(pr, e) && pr->part[e] != part &&
+        pr->slot[e] < 0)
+        pr->slot[e] = S->nslots++;
+}
+
+/* Number the list's nodes, and cut it in parts of at most
+ * LOWER_PART_SIZE nodes. */
+static void
+schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *out)
+{
+    S->low = low;
+    S->node = xmalloc(((size_t)low->nnode + 1) * sizeof *S->node);
+    S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
+    S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
+    S->n = S->nparts = S->nslots = S->copies = S->nfill = 0;
+    int nst = 0;
+    for (int k = 0; k < low->nstep; k++) {
+        const LowStep *st = &low->step[k];
+        switch (st->kind) {
+        case LOW_STEP_COPIES:
+            S->copies = 1;
+            break;
+        case LOW_STEP_FILL:
+            S->fill[S->nfill++] = st->i;
+            break;
+        case LOW_STEP_NODE:
+            pr->temp[st->id] = S->n;
+            S->node[S->n++] = st->id;
+            break;
+        case LOW_STEP_STORE:
+            S->order[nst] = st->i;
+            S->after[nst++] = S->n;
+            break;
+        }
+    }
+    if (low->whole) {
+        S->pstart = xmalloc(2 * sizeof *S->pstart);
+        S->ostart = xmalloc(2 * sizeof *S->ostart);
+        S->nparts = 1;
+        S->pstart[0] = S->ostart[0] = 0;
+        S->pstart[1] = S->n;
+        S->ostart[1] = nout;
+        return;
+    }
+    /* Cut after a store once a part has LOWER_PART_SIZE nodes, and inside
+     * one output's nodes where they alone would pass it (a recursive
+     * solve's outputs come only at its end). */
+    size_t cap = (size_t)nout + 2 + (size_t)S->n / LOWER_PART_SIZE + 1;
+    S->pstart = xmalloc(cap * sizeof *S->pstart);
+    S->ostart = xmalloc(cap * sizeof *S->ostart);
+    S->pstart[0] = S->ostart[0] = 0;
+    for (int j = 0; j < nout; j++) {
+        while (S->after[j] - S->pstart[S->nparts] > LOWER_PART_SIZE) {
+            int cut = S->pstart[S->nparts] + LOWER_PART_SIZE;
+            if (cut > low->angles && cut < low->angles_end) /* not inside the one call */
+                cut = low->angles_end;
+            S->nparts++;
+            S->pstart[S->nparts] = cut;
+            S->ostart[S->nparts] = j;
+        }
+        if (S->after[j] - S->pstart[S->nparts] >= LOWER_PART_SIZE || j == nout - 1) {
+            S->nparts++;
+            S->pstart[S->nparts] = S->after[j];
+            S->ostart[S->nparts] = j + 1;
+        }
+    }
+    if (S->nparts == 0) { /* no outputs */
+        S->nparts = 1;
+        S->pstart[1] = S->ostart[1] = 0;
+    }
+    for (int p = 0; p < S->nparts; p++)
+        for (int k = S->pstart[p]; k < S->pstart[p + 1]; k++)
+            pr->part[S->node[k]] = p;
+    for (int p = 0; p < S->nparts; p++) {
+        for (int k = S->pstart[p]; k < S->pstart[p + 1]; k++) {
+            const ExprNode *nd = expr_node(pr->P, S->node[k]);
+            int ar = expr_op_arity[nd->op];
+            if (ar >= 1)
+                share(pr, S, nd->a, p);
+            if (ar >= 2)
+                share(pr, S, nd->b, p);
+        }
+        for (int j = S->ostart[p]; j < S->ostart[p + 1]; j++)
+            share(pr, S, out[S->order[j]].e, p);
+    }
+}
+
+/* ---- printing ---- */
+
+/* The leaves and derived values a part reads, each once: marked in a
+ * byte per node of the pool (allocated once per printer, cleared after
+ * each part by the list, not by a sweep of the pool) and listed. */
+typedef struct LeafSet {
+    unsigned char *mark; /* [pool size] */
+    ExprId *list;
+    size_t n, cap;
+} LeafSet;
+
+static void
+mark_leaf(Printer *pr, ExprId e, LeafSet *ls)
+{
+    if (ls->mark[e] || !(is_leaf(expr_node(pr->P, e)) || is_derived(pr, e)))
+        return;
+    ls->mark[e] = 1;
+    if (ls->n == ls->cap) {
+        ls->cap = ls->cap ? 2 * ls->cap : 64;
+        ls->list = xrealloc(ls->list, ls->cap * sizeof *ls->list);
+    }
+    ls->list[ls->n++] = e;
+}
+
+static int
+cmp_id(const void *x, const void *y)
+{
+    ExprId a = *(const ExprId *)x, b = *(const ExprId *)y;
+    return (a > b) - (a < b);
+}
+
+/* Named locals for the leaves part p reads, in a fixed order: t, the
+ * coordinates by derivative order, parameters, inputs, seeds, then the
+ * parameters' derived values (pdK = p[np + K]); within a kind, by id. */
+static void
+print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
+{
+    static const int kinds[] = {EXPR_TIME, EXPR_VAR, EXPR_PARAM, EXPR_INPUT, EXPR_SEED,
+                                EXPR_MULT};
+    size_t size = expr_pool_size(pr->P);
+    LeafSet ls = {xmalloc(size), NULL, 0, 0};
+    memset(ls.mark, 0, size);
+    for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        int ar = expr_op_arity[nd->op];
+        if (ar >= 1)
+            mark_leaf(pr, nd->a, &ls);
+        if (ar >= 2)
+            mark_leaf(pr, nd->b, &ls);
+    }
+    for (int j = S->ostart[pr->cur]; j < S->ostart[pr->cur + 1] && j < nout; j++)
+        mark_leaf(pr, out[S->order[j]].e, &ls);
+    if (ls.n)
+        qsort(ls.list, ls.n, sizeof *ls.list, cmp_id);
+    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
+        for (size_t j = 0; j < ls.n; j++) {
+            const ExprNode *nd = expr_node(pr->P, ls.list[j]);
+            if (nd->op != kinds[k])
+                continue;
+            if (nd->op == EXPR_TIME) {
+                pr->used |= 1u << SRC_T;
+                continue;
+            }
+            int arr = nd->op == EXPR_VAR    ? SRC_Q + (int)nd->b
+                      : nd->op == EXPR_PARAM  ? SRC_P
+                      : nd->op == EXPR_INPUT  ? SRC_U
+                      : nd->op == EXPR_MULT   ? SRC_LAM
+                                              : SRC_DQ + (int)nd->b; /* seeds */
+            char buf[160];
+            leaf_name(pr, nd, buf, sizeof buf);
+            pr->used |= 1u << arr;
+            emit_line(pr, "    const eomc_real %s = %s[%u];", buf, src_name[arr], nd->a);
+        }
+    for (size_t j = 0; j < ls.n; j++)
+        if (is_derived(pr, ls.list[j])) {
+            ExprId id = ls.list[j];
+            pr->used |= 1u << SRC_P;
+            emit_line(pr, "    const eomc_real pd%d = p[%d];", pr->derived[id],
+                    pr->md->np + pr->derived[id]);
+        }
+    free(ls.mark);
+    free(ls.list);
+}
+
+/* The sines and cosines of schedule_angles: the angles into an array,
+ * one call, each value its temporary.  Returns the node after them. */
+static int
+print_angles(Printer *pr, const Sched *S)
+{
+    const LowSched *low = S->low;
+    int na = low->nangle;
+    emit_line(pr, "    eomc_real ang[%d], ang_sin[%d], ang_cos[%d]; /* %d angles at once */", na,
+            na, na, na);
+    for (int j = 0; j < na; j++) {
+        char buf[200];
+        emit_line(pr, "    ang[%d] = %s;", j, operand(pr, low->angle[j], buf, sizeof buf));
+    }
+    emit_line(pr, "    eomc_sincos(%d, ang, ang_sin, ang_cos);", na);
+    for (int k = low->angles; k < low->angles_end; k++) {
+        ExprId id = S->node[k];
+        int a = low->angle_of[k - low->angles];
+        emit_line(pr, "    const eomc_real w%d = ang_%s[%d];", pr->temp[id],
+                a % 2 ? "cos" : "sin", a / 2);
+        print_share(pr, id);
+    }
+    return low->angles_end;
+}
+
+/* Node k's statement, or the angles' call where they start; the next k. */
+static int
+print_step(Printer *pr, const Sched *S, int k)
+{
+    if (k == S->low->angles && S->low->angles < S->low->angles_end)
+        return print_angles(pr, S);
+    print_node(pr, S->node[k]);
+    return k + 1;
+}
+
+/* The statements of part p: leaves, temporaries, assignments. */
+static void
+print_part(Printer *pr, const Sched *S, const Func *fn)
+{
+    const LowFunc *lf = fn->low;
+    const LowArgs *a = &fn->args;
+    pr->used = 0;
+    for (int j = 0; pr->cur == 0 && j < S->nfill; j++) {
+        int k = S->fill[j];
+        const char *arr = a->name[a->nin + k];
+        if (lf->zeroed >> k & 1) {
+            emit_line(pr, "    /* %s's other entries are 0: the caller's (eomc_model.h, c_nz) */",
+                    arr);
+            continue;
+        }
+        if (a->optional[a->nin + k])
+            emit_line(pr, "    if (%s)", arr);
+        emit_line(pr, "    %sfor (int i = 0; i < %d; i++) /* the nonzeros follow */\n"
+                "    %s    %s[i] = 0.0;", a->optional[a->nin + k] ? "    " : "", lf->fill[k],
+                a->optional[a->nin + k] ? "    " : "", arr);
+    }
+    print_leaves(pr, S, lf->nout, lf->out);
+    if (S->nparts == 1) { /* silence -Wunused-parameter */
+        for (int k = 0; k < NSRC; k++)
+            if (fn->has[k] && !(pr->used >> k & 1))
+                emit_line(pr, "    (void)%s;", src_name[k]);
+        for (int k = 0; k < a->nin; k++) /* read through ext, not as leaves */
+            if (!strcmp(a->name[k], "shared"))
+                emit_line(pr, "    (void)%s;", a->name[k]);
+        for (int k = a->nin; k < a->n; k++)
+            if (lower_size(lf, k - a->nin) == 0)
+                emit_line(pr, "    (void)%s;", a->name[k]);
+    }
+    int k = S->pstart[pr->cur];
+    for (int j = S->ostart[pr->cur]; j < S->ostart[pr->cur + 1]; j++) {
+        int i = S->order[j];
+        while (k < S->after[j])
+            k = print_step(pr, S, k);
+        const LowSlot *o = &lf->out[i];
+        const char *arr = a->name[a->nin + o->arg];
+        char buf[200];
+        operand(pr, o->e, buf, sizeof buf);
+        if (a->optional[a->nin + o->arg])
+            emit_line(pr, "    if (%s) %s[%d] = %s;", arr, arr, o->index, buf);
+        else
+            emit_line(pr, "    %s[%d] = %s;", arr, o->index, buf);
+    }
+    while (k < S->pstart[pr->cur + 1]) /* a cut inside an output's nodes */
+        k = print_step(pr, S, k);
+}
+
+/* (void) every parameter: a part uses only some of them. */
+static void
+print_voids(Printer *pr, const char *args)
+{
+    fprintf(pr->f, "    (void)s;");
+    for (const char *p = args; *p;) {
+        size_t n = strcspn(p, ", ");
+        fprintf(pr->f, " (void)%.*s;", (int)n, p);
+        p += n;
+        p += strspn(p, ", ");
+    }
+    fputc('\n', pr->f);
+}
+
+/* The C parameter list and names of a signature. */
+void
+emit_func_of(Func *fn, const LowFunc *lf)
+{
+    fn->low = lf;
+    lower_args(lf->sig, &fn->args);
+    const LowArgs *a = &fn->args;
+    fn->params[0] = fn->names[0] = '\0';
+    memset(fn->has, 0, sizeof fn->has);
+    for (int k = 0; k < a->n; k++) {
+        size_t lp = strlen(fn->params), ln = strlen(fn->names);
+        const char *sep = k ? ", " : "";
+        if (k >= a->nin)
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%seomc_real *%s", sep, a->name[k]);
+        else if (!strcmp(a->name[k], "t"))
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%seomc_real t", sep);
+        else
+            snprintf(fn->params + lp, sizeof fn->params - lp, "%sconst eomc_real *%s", sep,
+                     a->name[k]);
+        snprintf(fn->names + ln, sizeof fn->names - ln, "%s%s", sep, a->name[k]);
+        for (int j = 0; j < NSRC && k < a->nin; j++)
+            if (!strcmp(a->name[k], src_name[j]))
+                fn->has[j] = 1;
+    }
+}
+
+/* Print a lowered function; returns its operation counts. */
+/* derive with tables: their constant numbers first, from NAME_numbers */
+static void
+print_prologue(Printer *pr, const LowFunc *lf)
+{
+    const Lowered *L = pr->L;
+    if (lf != L->derive || !L->tables)
+        return;
+    emit_line(pr, "    for (int k = 0; k < %d; k++) /* the tables' constants */",
+            FORM_TABLE_STRIDE * L->tables->nt + 6);
+    emit_line(pr, "        pd[%d + k] = %s_numbers[k];", L->tree_base, pr->md->name);
+}
+
+/* The shifts of each copy (repeat.h), before the function that loops. */
+static void
+print_shifts(Printer *pr, const LowFunc *lf, int *du_any)
+{
+    *du_any = 0;
+    for (int c = 0; c < lf->ncopy; c++)
+        *du_any |= lf->du[c] != 0;
+    for (int u = 0; u <= *du_any; u++) {
+        const int *d = u ? lf->du : lf->dq;
+        fprintf(pr->f, "static const int %s_%s_%s[%d] = {", pr->md->name, lf->sig->name,
+                u ? "du" : "dq", lf->ncopy);
+        for (int c = 0; c < lf->ncopy; c++)
+            fprintf(pr->f, "%s%d", c ? ", " : "", d[c]);
+        fputs("};\n", pr->f);
+    }
+}
+
+/* The loop over the copies: the first copy's function on each copy's
+ * arrays, every one but t and p shifted (u by its own shift). */
+static void
+print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
+{
+    const char *nm = pr->md->name, *name = lf->sig->name;
+    char call[2048] = "";
+    size_t k = 0;
+    for (int i = 0; i < fn->args.n && k < sizeof call; i++) {
+        const char *arg = fn->args.name[i], *sep = i ? ", " : "";
+        if (!strcmp(arg, "t") || !strcmp(arg, "p") || (!strcmp(arg, "u") && !du_any))
+            k += (size_t)snprintf(call + k, sizeof call - k, "%s%s", sep, arg);
+        else
+            k += (size_t)snprintf(call + k, sizeof call - k, "%s%s + %s_%s_%s[c]", sep, arg, nm,
+                                  name, strcmp(arg, "u") ? "dq" : "du");
+    }
+    if (!lf->zero_skip) {
+        emit_line(pr, "    for (int c = 0; c < %d; c++) /* copies of one subtree (repeat.c) */",
+                lf->ncopy);
+        emit_line(pr, "        %s_%s(%s);", nm, lf->copy->sig->name, call);
+        return;
+    }
+    /* a copy without a load stays at rest: zeros, not its recursion (the
+     * outputs after the loop are stored after these) */
+    const LowArgs *a = &fn->args;
+    int hi = lf->span0 + lf->span;
+    char from[32] = ""; /* " + span0" where it is not 0 */
+    if (lf->span0)
+        snprintf(from, sizeof from, " + %d", lf->span0);
+    emit_line(pr, "    for (int c = 0; c < %d; c++) { /* copies of one subtree (repeat.c) */",
+            lf->ncopy);
+    emit_line(pr, "        const int d = %s_%s_dq[c];", nm, name);
+    emit_line(pr, "        int loaded = 0;");
+    for (int i = 0; i < a->nin; i++)
+        if (!strcmp(a->name[i], "dq") || !strcmp(a->name[i], "dv") || !strcmp(a->name[i], "da"))
+            emit_line(pr, "        for (int i = d%s; i < d + %d && !loaded; i++)\n"
+                    "            loaded = %s[i] != 0.0;", from, hi, a->name[i]);
+    emit_line(pr, "        if (loaded) {");
+    emit_line(pr, "            %s_%s(%s);", nm, lf->copy->sig->name, call);
+    emit_line(pr, "            continue;");
+    emit_line(pr, "        }");
+    for (int k = a->nin; k < a->n; k++)
+        if (lower_size(lf->copy, k - a->nin) > 0)
+            emit_line(pr, "        for (int i = d%s; i < d + %d; i++) /* no load: at rest */\n"
+                    "            %s[i] = 0.0;", from, hi, a->name[k]);
+    emit_line(pr, "    }");
+}
+
+ExprCount
+emit_function(Printer *pr, const LowFunc *lf)
+{
+    Func fnb, *fn = &fnb;
+    ExprCount copied = {0};
+    int du_any = 0;
+    if (lf->copy) {
+        copied = emit_function(pr, lf->copy);
+        print_shifts(pr, lf, &du_any);
+        fputc('\n', pr->f);
+    }
+    emit_func_of(fn, lf);
+    int nout = lf->nout;
+    const LowSlot *out = lf->out;
+    pr->lf = lf;
+    pr->ext = lf->shared;
+    pr->derived = lf->derived;
+    size_t size = expr_pool_size(pr->P);
+    pr->temp = xmalloc(size * sizeof *pr->temp);
+    pr->part = xmalloc(size * sizeof *pr->part);
+    pr->slot = xmalloc(size * sizeof *pr->slot);
+    for (size_t i = 0; i < size; i++)
+        pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
+    LowSched *low = lower_schedule(pr->P, lf);
+    Sched S;
+    schedule(pr, &S, low, nout, out);
+    const char *nm = pr->md->name;
+    char fname[128];
+    const char *name = lf->sig->name;
+    snprintf(fname, sizeof fname, "%s_%s", nm, name);
+    emit_fence(pr, lf->double_only);
+    if (S.nparts == 1) {
+        pr->nodes[0] += S.n;
+        emit_line(pr, "/* %s */", lf->sig->comment);
+        emit_head(pr, "static void", fname, fn->params);
+        print_prologue(pr, lf);
+        if (S.copies)
+            print_copies(pr, lf, fn, du_any);
+        pr->cur = 0;
+        print_part(pr, &S, fn);
+        emit_line(pr, "}\n");
+    } else {
+        char params[1024];
+        snprintf(params, sizeof params, "%s, eomc_real *s", fn->params);
+        char *in2 = xmalloc((size_t)S.nparts);
+        for (pr->cur = 0; pr->cur < S.nparts; pr->cur++) {
+            char part[160];
+            int second = in2[pr->cur] = pr->unit2 && pr->nodes[1] < pr->nodes[0];
+            pr->nodes[second] += S.pstart[pr->cur + 1] - S.pstart[pr->cur];
+            snprintf(part, sizeof part, "%s_part%d", fname, pr->cur + 1);
+            if (second)
+                unit2_begin(pr, lf->double_only);
+            emit_line(pr, "/* %s: part %d of %d%s */", name, pr->cur + 1, S.nparts,
+                    second ? ", in the second unit" : "");
+            emit_head(pr, second ? "EOMC_PART void" : "static EOMC_NOINLINE void", part,
+                       params);
+            print_voids(pr, fn->names);
+            print_part(pr, &S, fn);
+            emit_line(pr, "}\n");
+            if (second)
+                unit2_end(pr);
+        }
+        for (int p = 0; p < S.nparts; p++) { /* called before they are defined */
+            char part[160];
+            snprintf(part, sizeof part, "%s_part%d", fname, p + 1);
+            if (in2[p])
+                emit_decl(pr, "EOMC_PART void", part, params, ";");
+        }
+        free(in2);
+        emit_line(pr, "/* %s */", lf->sig->comment);
+        emit_head(pr, "static void", fname, fn->params);
+        emit_line(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
+        print_prologue(pr, lf);
+        if (S.copies)
+            print_copies(pr, lf, fn, du_any);
+        for (int p = 0; p < S.nparts; p++)
+            emit_line(pr, "    %s_%s_part%d(%s, s);", nm, name, p + 1, fn->names);
+        emit_line(pr, "}\n");
+    }
+    pr->lf = NULL;
+    pr->ext = NULL;
+    pr->derived = NULL;
+    /* exactly what was printed: values from shared[] and pd[] are counted
+     * where made */
+    ExprCount c = expr_count_list(pr->P, (size_t)S.n, S.node);
+    c.adds += lf->ncopy * copied.adds; /* what runs: each copy's */
+    c.muls += lf->ncopy * copied.muls;
+    c.divs += lf->ncopy * copied.divs;
+    c.calls += lf->ncopy * copied.calls;
+    lower_sched_free(low);
+    free(S.node);
+    free(S.after);
+    free(S.order);
+    free(S.pstart);
+    free(S.ostart);
+    free(pr->temp);
+    free(pr->part);
+    free(pr->slot);
+    return c;
+}
+

@@ -1,0 +1,943 @@
+/*
+ * lower: from the derived model to its list of functions (lower.h).
+ */
+#include "lower.h"
+#include "expr/kin.h"
+#include "repeat.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void
+lower_args(const LowSig *sig, LowArgs *a)
+{
+    a->n = 0;
+    a->nin = -1;
+    for (const char *p = sig->args; *p;) {
+        p += strspn(p, " ");
+        if (*p == '>') {
+            a->nin = a->n;
+            p++;
+            continue;
+        }
+        size_t len = strcspn(p, " ?");
+        if (len == 0)
+            break;
+        if (a->n == LOW_MAX_ARGS || len >= sizeof a->name[0])
+            abort(); /* the signatures are ours */
+        memcpy(a->name[a->n], p, len);
+        a->name[a->n][len] = '\0';
+        p += len;
+        a->optional[a->n] = *p == '?';
+        p += *p == '?';
+        a->n++;
+    }
+    if (a->nin < 0)
+        a->nin = a->n;
+}
+
+/* ---- the signatures ---- */
+
+static const LowSig s_initial = {
+    "initial", "Initial state from the spec's `initial`.", "p > q v",
+};
+static const LowSig s_inputs = {
+    "inputs", "Input signals u(t) and du/dt.", "t p > u dudt?",
+};
+static const LowSig s_mass_bias = {
+    "mass_bias", "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
+    "t q v p u > M h",
+};
+static const LowSig s_bias = {
+    "bias", "The bias h = E(q'' = 0), for mass_bias.", "t q v p u > h",
+};
+static const LowSig s_mass_times = {
+    "mass_times",
+    "Mx[i] = sum_j M_ij da[j]: the derivative of E along da in q'' (E is\n"
+    " * linear in q''), for mass_bias and energy.",
+    "t q v p u da > Mx",
+};
+static const LowSig s_potential = {
+    "potential", "Potential energy V, for energy.", "t q v p u > V",
+};
+static const LowSig s_tau = {
+    "tau",
+    "The generalized forces Q - dV/dq but for uniform gravity, which the tables'\n"
+    " * a0 stands for: accel's and mass_bias's loops add the rest.",
+    "t q v p u > tau",
+};
+static const LowSig s_energy = {
+    "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV",
+};
+const LowSig lower_jacobian_sig = { /* the seeded one's driver too */
+    "jacobian", "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
+    "t q v a p u > dEdq dEdv dEdu dEdt",
+};
+static const LowSig s_jac_shared = {
+    "jacobian_shared",
+    "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
+    " * dE/dt.",
+    "t q v a p u > shared dEdu dEdt",
+};
+static const LowSig s_jac_dq = {
+    "jacobian_dq",
+    "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
+    "t q v a p u shared dq > dE",
+};
+static const LowSig s_jac_dv = {
+    "jacobian_dv",
+    "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
+    "t q v a p u shared dv > dE",
+};
+static const LowSig s_accel_solve = {
+    "accel_solve",
+    "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
+    " * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =\n"
+    " * M_kk.",
+    "t q v p u > a piv mkk",
+};
+static const LowSig s_accel_recursive = {
+    "accel_solve",
+    "a = -M^-1 h by the form's recursion, M never formed; its pivots\n"
+    " * piv[k] = d_k (those of LDL^T eliminating the leaves first), and\n"
+    " * mkk[k] = M_kk.",
+    "t q v p u > a piv mkk",
+};
+static const LowSig s_minv = {
+    "minv",
+    "y = M^-1 da by the form's recursion at rest, with no force but the load\n"
+    " * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of\n"
+    " * B at a time.",
+    "t q v p u da > y",
+};
+static const LowSig s_constraint = {
+    "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
+    "t q v a p u > f B",
+};
+static const LowSig s_c_levels = {
+    "c_levels", "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
+    "t q v p u > pos vel",
+};
+static const LowSig s_c_scale = {
+    "c_scale",
+    "The magnitude of each holonomic constraint's terms (sums of absolute\n"
+    " * values): what its residual is measured against when the projection\n"
+    " * decides it holds, where q = 0 leaves B q no size.",
+    "t q p u > mag",
+};
+static const LowSig s_c_jacobian = {
+    "c_jacobian", "Partial derivatives of f and of B = df/dq'' (u held fixed).",
+    "t q v a p u > dfdq dfdv dfdu dfdt dBdq dBdv dBda dBdu dBdt",
+};
+static const LowSig s_c_levels_jacobian = {
+    "c_levels_jacobian",
+    "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
+    " * stabilization adds to df/dx.",
+    "t q v p u > dposdq dveldq dveldv dposdu dveldu dposdt dveldt",
+};
+const LowSig lower_invariant_sig = { /* printed by hand when it is T + V */
+    "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h",
+};
+static const LowSig s_derive = {
+    "derive",
+    "The values of the parameters alone that the other functions read:\n"
+    " * computed when the parameters change, not at every step.",
+    "p > pd",
+};
+static const LowSig s_outputs = {
+    "outputs", "The scene's outputs, at a state and its accelerations and multipliers.",
+    "t q v a p u lam > out",
+};
+static const LowSig s_events = {
+    "events", "The scene's events: g[k], whose zero crossings they are.",
+    "t q v p u > g",
+};
+static const LowSig s_draw = {
+    "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
+    " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
+    "t q p u > X",
+};
+static const LowSig s_draw_mass = {
+    "draw_mass", "Each body item k's mass, centre and inertia about it in its frame\n"
+    " * at D[13 k ...], from which a body without shapes is drawn.",
+    "p > D",
+};
+static const LowSig s_check_values = {
+    "check_values", "The values that must be positive (or not negative): check_what.",
+    "p > chk",
+};
+
+/* ---- building the lists ---- */
+
+typedef struct Lowering {
+    Lowered *L;
+    Arena *A;
+    ExprPool *P;
+    Diff *D;
+    const Spec *s;
+} Lowering;
+
+static LowFunc *
+func(Lowering *lw, const LowSig *sig, const char *stat, int double_only)
+{
+    LowFunc *f = arena_alloc(lw->A, sizeof *f);
+    /* all but initial and check, which run before derive */
+    int per_step = sig != &s_initial && sig != &s_check_values;
+    *f = (LowFunc){.sig = sig, .stat = stat, .double_only = double_only, .per_step = per_step};
+    Lowered *L = lw->L;
+    if (L->nfunc == L->cap) {
+        L->cap = L->cap ? 2 * L->cap : 32;
+        LowFunc **bigger = arena_new_array(lw->A, LowFunc *, L->cap);
+        if (L->nfunc)
+            memcpy(bigger, L->func, (size_t)L->nfunc * sizeof *bigger);
+        L->func = bigger;
+    }
+    L->func[L->nfunc++] = f;
+    return f;
+}
+
+/* Zero slots past which one loop setting the array to 0 is shorter than
+ * their stores (a store is a line of C; the loop is one). */
+enum { LOW_FILL_MIN = 16 };
+
+/* The functions the emitter prints slot by slot: not those it wraps in
+ * hand-written loops (the seeded Jacobian, the solve, the checks; their
+ * fields are set when they are made, before their outputs), nor those
+ * reading shared values. */
+static int
+fillable(const Lowered *L, const LowFunc *f)
+{
+    return f != L->jac_dv && f != L->jac_shared && f != L->accel_solve &&
+           f != L->check_values && !f->shared;
+}
+
+/* The lists grow by doubling in the arena: at most twice their size.  An
+ * output of LOW_FILL_MIN zeros is filled by a loop (LowFunc.fill, its
+ * size so far), and its zeros leave the list: a constraint Jacobian's
+ * derivatives are nc n^2 slots of mostly zeros. */
+static void
+out(Lowering *lw, LowFunc *f, int arg, int index, ExprId e)
+{
+    if (f->fill[arg] && index >= f->fill[arg])
+        f->fill[arg] = index + 1;
+    if (e == EXPR_ZERO && f->fill[arg])
+        return;
+    if (e == EXPR_ZERO && ++f->zeros[arg] == LOW_FILL_MIN && fillable(lw->L, f)) {
+        int kept = 0, size = index + 1;
+        for (int i = 0; i < f->nout; i++) {
+            if (f->out[i].arg == arg && f->out[i].index + 1 > size)
+                size = f->out[i].index + 1;
+            if (f->out[i].arg != arg || f->out[i].e != EXPR_ZERO)
+                f->out[kept++] = f->out[i];
+        }
+        f->nout = kept;
+        f->fill[arg] = size;
+        return;
+    }
+    if (f->nout == f->cap) {
+        int cap = f->cap ? 2 * f->cap : 16;
+        LowSlot *o = arena_new_array(lw->A, LowSlot, cap);
+        if (f->nout)
+            memcpy(o, f->out, (size_t)f->nout * sizeof *o);
+        f->out = o, f->cap = cap;
+    }
+    f->out[f->nout++] = (LowSlot){e, arg, index};
+}
+
+static ExprId orzero(ExprId e) { return e == EXPR_NONE ? EXPR_ZERO : e; }
+
+static void
+lower_inputs(Lowering *lw)
+{
+    const Spec *s = lw->s;
+    LowFunc *f = func(lw, &s_inputs, "inputs", 0);
+    for (int i = 0; i < s->nu; i++)
+        out(lw, f, 0, i, s->input[i].expr);
+    for (int i = 0; i < s->nu; i++)
+        out(lw, f, 1, i, diff_time(lw->D, s->input[i].expr));
+}
+
+/* The seeded jacobian: the seeded expressions e->jvp_q, e->jvp_v are
+ * linear in the seeds; what they need that does not depend on the seeds
+ * (sines, products, ...) is the same for every column, so jacobian_shared
+ * computes it once into shared[], and jacobian_dq and jacobian_dv compute
+ * only the seed-dependent rest, once per column with a unit seed. */
+static void
+lower_seeded_jacobian(Lowering *lw, const Eom *e)
+{
+    ExprPool *P = lw->P;
+    int n = e->n, nu = e->nu, nw = 0;
+    size_t size = expr_pool_size(P);
+    ExprId *roots = xmalloc(2 * (size_t)n * sizeof *roots);
+    for (int i = 0; i < n; i++) {
+        roots[i] = e->jvp_q[i];
+        roots[n + i] = e->jvp_v[i];
+    }
+    /* shared[] holds the seed-free operator nodes that seeded nodes read (and
+     * any seed-free root), numbered by id: deterministic. */
+    unsigned char *mark = xmalloc(size), *need = xmalloc(size);
+    memset(mark, 0, size);
+    memset(need, 0, size);
+    expr_mark(P, 2 * n, roots, mark);
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        int ar = expr_op_arity[nd->op];
+        if (!mark[id] || ar == 0 || !(nd->deps & DEP_S))
+            continue;
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < ar; j++)
+            if (!(expr_deps(P, ops[j]) & DEP_S) && expr_op_arity[expr_node(P, ops[j])->op])
+                need[ops[j]] = 1;
+    }
+    for (int i = 0; i < 2 * n; i++)
+        if (!(expr_deps(P, roots[i]) & DEP_S) && expr_op_arity[expr_node(P, roots[i])->op])
+            need[roots[i]] = 1;
+    int *shared = arena_new_array(lw->A, int, size);
+    for (size_t id = 0; id < size; id++)
+        shared[id] = need[id] ? nw++ : -1;
+
+    LowFunc *f = func(lw, &s_jac_shared, "jacobian", 1);
+    lw->L->jac_shared = f; /* before its outputs: fillable() */
+    for (size_t id = 0; id < size; id++)
+        if (need[id])
+            out(lw, f, 0, shared[id], (ExprId)id);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < nu; j++)
+            out(lw, f, 1, i * nu + j, e->dEdu[i * nu + j]);
+        out(lw, f, 2, i, e->dEdt[i]);
+    }
+    f = func(lw, &s_jac_dq, "jacobian", 1);
+    f->shared = shared;
+    for (int i = 0; i < n; i++)
+        out(lw, f, 0, i * n, e->jvp_q[i]);
+    f = func(lw, &s_jac_dv, "jacobian", 1);
+    f->shared = shared;
+    for (int i = 0; i < n; i++)
+        out(lw, f, 0, i * n, e->jvp_v[i]);
+    lw->L->jac_dv = f;
+    free(need);
+    free(mark);
+    free(roots);
+}
+
+static void
+lower_jacobian(Lowering *lw, const Eom *e, int how)
+{
+    int n = e->n, nu = e->nu;
+    lw->L->jacobian = how;
+    if (how == LOWER_JACOBIAN_NONE) /* not derived either (eom_derive_jacobian) */
+        return;
+    ExprId *jroots = xmalloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
+    for (int i = 0; i < n * n; i++) {
+        jroots[i] = e->dEdq[i];
+        jroots[n * n + i] = e->dEdv[i];
+    }
+    ExprCount jc = expr_count_ops(lw->P, 2 * n * n, jroots);
+    free(jroots);
+    long jops = jc.adds + jc.muls + jc.divs + jc.calls;
+    int large = jops > LOWER_UNROLLED_JACOBIAN_MAX;
+    if (how == LOWER_JACOBIAN_AUTO)
+        how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
+    lw->L->jacobian = how;
+    if (how == LOWER_JACOBIAN_SEEDED) {
+        lower_seeded_jacobian(lw, e);
+        return;
+    }
+    LowFunc *f = func(lw, &lower_jacobian_sig, "jacobian", 1);
+    for (int i = 0; i < n; i++) { /* row by row: rows share their work */
+        for (int j = 0; j < n; j++)
+            out(lw, f, 0, i * n + j, e->dEdq[i * n + j]);
+        for (int j = 0; j < n; j++)
+            out(lw, f, 1, i * n + j, e->dEdv[i * n + j]);
+        for (int j = 0; j < nu; j++)
+            out(lw, f, 2, i * nu + j, e->dEdu[i * nu + j]);
+        out(lw, f, 3, i, e->dEdt[i]);
+    }
+}
+
+/* constraint, c_levels, c_jacobian and c_levels_jacobian. */
+static void
+lower_constraints(Lowering *lw, const Constraints *c)
+{
+    ExprPool *P = lw->P;
+    Diff *D = lw->D;
+    int n = lw->s->nq, nu = lw->s->nu, nc = c->nc;
+    ExprId t = expr_time(P);
+    LowFunc *f = func(lw, &s_constraint, "constraint", 0);
+    /* B arrives zeroed where it is mostly zeros: on a model of many free
+     * bodies, setting nc n zeros would cost more than the recursion */
+    f->zeroed = 1u << 1;
+    for (int a = 0; a < nc; a++) {
+        out(lw, f, 0, a, c->f[a]);
+        for (int j = 0; j < n; j++)
+            out(lw, f, 1, a * n + j, c->B[a * n + j]);
+    }
+    f = func(lw, &s_c_levels, "c_levels", 1);
+    for (int a = 0; a < nc; a++) {
+        out(lw, f, 0, a, orzero(c->pos[a]));
+        out(lw, f, 1, a, orzero(c->vel[a]));
+    }
+    int holonomic = 0; /* c_scale only where there is a position level */
+    for (int a = 0; a < nc; a++)
+        holonomic |= c->pos[a] != EXPR_NONE;
+    if (holonomic) {
+        f = func(lw, &s_c_scale, "c_levels", 1);
+        ExprId *g = arena_new_array(lw->A, ExprId, nc + 1);
+        ExprId *mag = arena_new_array(lw->A, ExprId, nc + 1);
+        for (int a = 0; a < nc; a++)
+            g[a] = orzero(c->pos[a]);
+        expr_magnitude_many(P, nc, g, mag);
+        for (int a = 0; a < nc; a++)
+            out(lw, f, 0, a, mag[a]);
+    }
+    /* Newton's method needs c_jacobian only when f is not affine */
+    f = func(lw, &s_c_jacobian, "c_jacobian", c->affine);
+    for (int a = 0; a < nc; a++) {
+        ExprId fa = c->f[a];
+        for (int j = 0; j < n; j++) {
+            out(lw, f, 0, a * n + j, diff_partial(D, fa, expr_var(P, j, 0)));
+            out(lw, f, 1, a * n + j, diff_partial(D, fa, expr_var(P, j, 1)));
+        }
+        for (int l = 0; l < nu; l++)
+            out(lw, f, 2, a * nu + l, diff_partial(D, fa, expr_input(P, l)));
+        out(lw, f, 3, a, diff_partial(D, fa, t));
+        for (int i = 0; i < n; i++) {
+            ExprId b = c->B[a * n + i];
+            int row = a * n + i;
+            if (b == EXPR_ZERO) { /* its derivatives too, without taking them */
+                for (int j = 0; j < n; j++)
+                    for (int o = 4; o <= 6; o++)
+                        out(lw, f, o, row * n + j, EXPR_ZERO);
+                for (int l = 0; l < nu; l++)
+                    out(lw, f, 7, row * nu + l, EXPR_ZERO);
+                out(lw, f, 8, row, EXPR_ZERO);
+                continue;
+            }
+            for (int j = 0; j < n; j++) {
+                out(lw, f, 4, row * n + j, diff_partial(D, b, expr_var(P, j, 0)));
+                out(lw, f, 5, row * n + j, diff_partial(D, b, expr_var(P, j, 1)));
+                out(lw, f, 6, row * n + j, diff_partial(D, b, expr_var(P, j, 2)));
+            }
+            for (int l = 0; l < nu; l++)
+                out(lw, f, 7, row * nu + l, diff_partial(D, b, expr_input(P, l)));
+            out(lw, f, 8, row, diff_partial(D, b, t));
+        }
+    }
+    f = func(lw, &s_c_levels_jacobian, "c_levels_jacobian", 1);
+    for (int a = 0; a < nc; a++) {
+        ExprId g = orzero(c->pos[a]), w = orzero(c->vel[a]);
+        for (int j = 0; j < n; j++) {
+            ExprId qj = expr_var(P, j, 0), vj = expr_var(P, j, 1);
+            out(lw, f, 0, a * n + j, diff_partial(D, g, qj));
+            out(lw, f, 1, a * n + j, diff_partial(D, w, qj));
+            out(lw, f, 2, a * n + j, diff_partial(D, w, vj));
+        }
+        for (int l = 0; l < nu; l++) {
+            ExprId ul = expr_input(P, l);
+            out(lw, f, 3, a * nu + l, diff_partial(D, g, ul));
+            out(lw, f, 4, a * nu + l, diff_partial(D, w, ul));
+        }
+        out(lw, f, 5, a, diff_partial(D, g, t));
+        out(lw, f, 6, a, diff_partial(D, w, t));
+    }
+}
+
+/* The largest subexpressions of the parameters alone (operator nodes
+ * that are coefficients, not constants) that the per-step functions use,
+ * in id order; derive goes first, so that it is printed before them. */
+static void
+lower_derive(Lowering *lw)
+{
+    Lowered *L = lw->L;
+    ExprPool *P = lw->P;
+    size_t size = expr_pool_size(P);
+    int nroots = 0;
+    for (int k = 0; k < L->nfunc; k++)
+        nroots += L->func[k]->per_step ? L->func[k]->nout : 0;
+    ExprId *roots = xmalloc(((size_t)nroots + 1) * sizeof *roots);
+    nroots = 0;
+    for (int k = 0; k < L->nfunc; k++)
+        for (int i = 0; L->func[k]->per_step && i < L->func[k]->nout; i++)
+            roots[nroots++] = L->func[k]->out[i].e;
+    unsigned char *mark = xmalloc(size), *want = xmalloc(size);
+    memset(mark, 0, size);
+    memset(want, 0, size);
+    expr_mark(P, nroots, roots, mark);
+#define DERIVABLE(e) (expr_node(P, e)->coeff && expr_op_arity[expr_node(P, e)->op] > 0)
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        int ar = expr_op_arity[nd->op];
+        if (!mark[id] || nd->coeff || ar == 0)
+            continue;
+        if (DERIVABLE(nd->a))
+            want[nd->a] = 1;
+        if (ar == 2 && DERIVABLE(nd->b))
+            want[nd->b] = 1;
+    }
+    for (int i = 0; i < nroots; i++)
+        if (DERIVABLE(roots[i]))
+            want[roots[i]] = 1;
+#undef DERIVABLE
+    L->derived = arena_new_array(lw->A, int, size);
+    L->derived_ids = size;
+    for (size_t id = 0; id < size; id++)
+        L->derived[id] = want[id] ? L->nd++ : -1;
+    for (int k = 0; k < L->nfunc; k++) /* (derive, made below, computes them) */
+        if (L->func[k]->per_step)
+            L->func[k]->derived = L->derived;
+    int ntab = L->tables ? FORM_TABLE_STRIDE * L->tables->nt + 6 : 0;
+    L->tree_base = L->nd;
+    L->nd += ntab;
+    if (L->nd) { /* a function only when there is something to derive */
+        LowFunc *f = func(lw, &s_derive, "derive", 0);
+        f->per_step = 0;
+        for (size_t id = 0; id < size; id++)
+            if (want[id])
+                out(lw, f, 0, L->derived[id], (ExprId)id);
+        for (int k = 0; k < ntab; k++) /* constants: copied from a table (emit.c) */
+            if (!expr_is_const(P, L->tables->num[k], NULL))
+                out(lw, f, 0, L->tree_base + k, L->tables->num[k]);
+        /* first in the list: printed before its readers */
+        memmove(L->func + 1, L->func, (size_t)(L->nfunc - 1) * sizeof *L->func);
+        L->func[0] = f;
+        L->derive = f;
+    }
+    free(want);
+    free(mark);
+    free(roots);
+}
+
+/* events, and one reset function set_NAME per `set` event: q1, v1 get
+ * the values it sets, all computed from the state before. */
+static void
+lower_events(Lowering *lw)
+{
+    const SpecScene *sc = &lw->s->scene;
+    LowFunc *f = func(lw, &s_events, "events", 1);
+    for (int k = 0; k < sc->nevent; k++)
+        out(lw, f, 0, k, sc->event[k].when);
+    lw->L->events = f;
+    lw->L->event_set = arena_new_array(lw->A, LowFunc *, sc->nevent);
+    for (int k = 0; k < sc->nevent; k++) {
+        const SpecEvent *ev = &sc->event[k];
+        if (ev->action != EVENT_SET)
+            continue;
+        LowSig *sig = arena_alloc(lw->A, sizeof *sig);
+        sig->name = arena_printf(lw->A, "set_%s", ev->name);
+        sig->comment = arena_printf(lw->A, "Event %s: the coordinates and velocities it "
+                                    "sets (q1, v1 hold the others).", ev->name);
+        sig->args = "t q v p u > q1 v1";
+        f = func(lw, sig, "events", 1);
+        for (int i = 0; i < ev->nset; i++) {
+            const ExprNode *var = expr_node(lw->P, ev->set_var[i]);
+            out(lw, f, (int)var->b, (int)var->a, ev->set_expr[i]);
+        }
+        lw->L->event_set[k] = lw->L->last_set = f;
+    }
+}
+
+/* Whether the model's accel and mass_bias are loops over its tables; *why
+ * when they are asked for and cannot be. */
+static const FormTables *
+tables_for(const Mech *m, const Eom *e, const Constraints *c, int loads, int code, Arena *A,
+           ExprPool *P, Diff *D, const char **why)
+{
+    *why = NULL;
+    int refused = (c && !loads) || !e->acc || e->form != &form_articulated;
+    if (code == LOWER_CODE_TABLES && refused)
+        *why = !e->acc || e->form != &form_articulated
+                   ? "its form is not articulated-body"
+                   : "its constraints are not all affine in q'' with multipliers";
+    if (code == LOWER_CODE_STRAIGHT || refused)
+        return NULL;
+    if (code == LOWER_CODE_AUTO) { /* the solve, the bias and the energies */
+        int n = e->n;
+        ExprId *roots = xmalloc((4 * (size_t)n + 2) * sizeof *roots);
+        for (int i = 0; i < n; i++)
+            roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i],
+            roots[3 * n + i] = e->h[i];
+        roots[4 * n] = m->T, roots[4 * n + 1] = m->V;
+        ExprCount k = expr_count_ops(P, 4 * n + 2, roots);
+        free(roots);
+        if (k.adds + k.muls + k.divs + k.calls <= LOWER_TABLES_MIN)
+            return NULL;
+    }
+    const char *no;
+    const FormTables *tb = form_tables(m, A, P, D, &no);
+    if (!tb && code == LOWER_CODE_TABLES)
+        *why = no;
+    return tb;
+}
+
+/* Lowered.held: a frame's unit quaternion e is met by the articulated
+ * recursion's q'' alone where nothing but the masses and T_joint's
+ * 1/2 c (e.e')^2 acts on e: the masses' forces S^T F have no part along e
+ * (L e = 0), and that term's is c (e.e'' + e'.e'), so q'' keeps e.e'' +
+ * e'.e' = 0 with multiplier 0.  A potential, force or kinetic term of the
+ * spec's own on e may have a part along e (a ball's armature: -2 a |w|^2),
+ * and then the row is solved. */
+static unsigned char *
+held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool *P)
+{
+    if (!c || s->nfquat == 0)
+        return NULL;
+    unsigned char *held = arena_new_array(A, unsigned char, c->nc + 1);
+    unsigned char *inV = calloc(expr_pool_size(P), 1);
+    expr_mark(P, 1, &m->V_rest, inV);
+    int first = c->nc - s->nfquat, any = 0; /* the frames' come last (spec/constraints.c) */
+    for (int k = 0; k < c->nc; k++) {
+        held[k] = k >= first;
+        for (int d = 0; held[k] && d < 4; d++) {
+            int i = s->fquat[k - first].q[d];
+            held[k] = !m->in_kinetic[i] && m->Q[i] == EXPR_ZERO && !inV[m->q[0][i]];
+        }
+        any |= held[k];
+    }
+    free(inV);
+    return any ? held : NULL;
+}
+
+/* The draw items' poses (draw) and the bodies' masses (draw_mass): a body
+ * at its centre of mass, turned as the frame that places it, else by its
+ * rotation (a sequence, a quaternion, a planar angle about z; a body given
+ * by `omega:` alone is not turned); a particle or point at its position, a
+ * frame at its origin (the world's if it has none) with its rotation; z = 0
+ * in the plane.  Computed from p alone, not per step: the page calls them
+ * once per frame.  Fixed parameters are folded into the frames' and points'
+ * expressions here (the spec's own are already). */
+static void
+lower_draw(Lowering *lw)
+{
+    const Spec *s = lw->s;
+    ExprPool *P = lw->P;
+    const Kin *K = s->kin;
+    const SpecView *v = &s->view;
+    int ni = v->nitem, nx = EOMC_POSE_SIZE * ni;
+    ExprId *X = arena_new_array(lw->A, ExprId, nx + 1);
+    for (int k = 0; k < ni; k++) {
+        const SpecDrawItem *it = &v->item[k];
+        ExprId *pos = X + EOMC_POSE_SIZE * k, *R = pos + 3;
+        for (int j = 0; j < 9; j++)
+            R[j] = j % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+        pos[0] = pos[1] = pos[2] = EXPR_ZERO;
+        int frame = -1;
+        if (it->kind == SPEC_DRAW_BODY) {
+            const SpecBody *b = &s->body[it->index];
+            for (int j = 0; j < it->dim; j++)
+                pos[j] = b->center[j];
+            if (b->frame >= 0) {
+                frame = b->frame;
+            } else if (b->has_rot) {
+                for (int j = 0; j < 9; j++)
+                    R[j] = b->rot[j];
+            } else if (b->dim == 2 && b->angle != EXPR_NONE) {
+                ExprId c = expr_unary(P, EXPR_COS, b->angle);
+                ExprId sn = expr_unary(P, EXPR_SIN, b->angle);
+                R[0] = c, R[1] = expr_neg(P, sn), R[3] = sn, R[4] = c;
+            }
+        } else if (it->kind == SPEC_DRAW_PARTICLE) {
+            for (int j = 0; j < it->dim; j++)
+                pos[j] = s->part[it->index].pos[j];
+        } else if (it->kind == SPEC_DRAW_POINT) {
+            kin_pos(K, it->index, pos);
+        } else {
+            frame = it->index;
+            int o = kin_origin(K, frame);
+            kin_pos(K, o < 0 ? KIN_ORIGIN : o, pos);
+        }
+        if (frame >= 0)
+            kin_rotation(K, frame, R);
+    }
+    int nd = EOMC_DRAW_MASS_SIZE * s->nbody;
+    ExprId *D = arena_new_array(lw->A, ExprId, nd + 1);
+    for (int k = 0; k < s->nbody; k++) { /* the bodies are the first items */
+        const SpecBody *b = &s->body[k];
+        ExprId *d = D + EOMC_DRAW_MASS_SIZE * k;
+        d[0] = b->mass;
+        d[1] = d[2] = d[3] = EXPR_ZERO; /* the pose is at the centre */
+        for (int j = 0; j < 9; j++)
+            d[4 + j] = b->dim == 2 ? (j == 8 ? b->inertia[0] : EXPR_ZERO) : b->inertia[j];
+    }
+    if (s->nfixed) { /* the frames' and points' expressions */
+        ExprId *from = arena_new_array(lw->A, ExprId, s->nfixed);
+        ExprId *to = arena_new_array(lw->A, ExprId, s->nfixed);
+        int nf = 0;
+        for (int i = 0; i < s->np; i++)
+            if (s->param[i].fixed) {
+                from[nf] = expr_param(P, i);
+                to[nf++] = expr_const(P, s->param[i].value);
+            }
+        expr_subst_many(P, nx, X, nf, from, to, X);
+    }
+    LowFunc *f = func(lw, &s_draw, "draw", 1);
+    f->per_step = 0;
+    for (int i = 0; i < nx; i++)
+        out(lw, f, 0, i, orzero(X[i]));
+    lw->L->draw = f;
+    if (s->nbody) {
+        f = func(lw, &s_draw_mass, "draw", 1);
+        f->per_step = 0;
+        for (int i = 0; i < nd; i++)
+            out(lw, f, 0, i, orzero(D[i]));
+        lw->L->draw_mass = f;
+    }
+}
+
+Lowered *
+lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int eliminate,
+            const Invariant *inv, int jacobian, int code, int taylor, Arena *A, ExprPool *P,
+            Diff *D)
+{
+    Lowering lw = {arena_alloc(A, sizeof(Lowered)), A, P, D, s};
+    *lw.L = (Lowered){0};
+    lower_describe(lw.L, s, e, c, inv, A);
+    lw.L->n = s->nq;
+    int n = s->nq;
+
+    LowFunc *f = func(&lw, &s_initial, "initial", 1);
+    for (int i = 0; i < n; i++)
+        out(&lw, f, 0, i, s->coord[i].q0);
+    for (int i = 0; i < n; i++)
+        out(&lw, f, 1, i, s->coord[i].v0);
+
+    lower_inputs(&lw);
+
+    /* a constrained tree: the multipliers by unit loads (kkt.c) */
+    int loads = constraints_by_loads(c, eliminate) && e->acc && e->form->solve;
+    const FormTables *tb = tables_for(m, e, c, loads, code, A, P, D, &lw.L->tables_why);
+    lw.L->loads = loads;
+    lw.L->held = loads ? held_rows(s, m, c, A, P) : NULL;
+    lw.L->code = tb ? LOWER_CODE_TABLES : LOWER_CODE_STRAIGHT;
+    lw.L->tables = tb;
+    if (tb) {
+        f = func(&lw, &s_tau, "accel", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, tb->tau[i]);
+        lw.L->tau = f;
+    } else if (e->acc && e->form->solve) {
+        /* M only off the hot path (conditioning, Jacobians): by columns,
+         * from code that grows as E does, not as n^2 entries */
+        f = func(&lw, &s_bias, "mass_bias", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, e->h[i]);
+        ExprId *seed = arena_new_array(A, ExprId, n), *Mx = arena_new_array(A, ExprId, n);
+        for (int j = 0; j < n; j++)
+            seed[j] = expr_seed(P, j, 2);
+        diff_jvp(D, n, e->E, n, m->q[2], seed, Mx);
+        f = func(&lw, &s_mass_times, "mass_bias", 0);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, Mx[i]);
+        lw.L->mass_times = f;
+    } else {
+        eom_mass(e, m, A, P, D);
+        f = func(&lw, &s_mass_bias, "mass_bias", 0);
+        for (int i = 0; i < n; i++) /* lower triangle and h, then the mirrored upper one */
+            for (int j = 0; j <= i; j++)
+                out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 1, i, e->h[i]);
+        for (int i = 0; i < n; i++)
+            for (int j = i + 1; j < n; j++)
+                out(&lw, f, 0, i * n + j, e->M[i * n + j]);
+    }
+
+    if (tb || lw.L->mass_times) {
+        /* T = q' . M q' / 2 (a tree's T is a quadratic form in q') by the
+         * tables' recursion or mass_times: energy by hand */
+        f = func(&lw, &s_potential, "energy", 1);
+        out(&lw, f, 0, 0, m->V);
+        lw.L->potential = f;
+    } else {
+        f = func(&lw, &s_energy, "energy", 1);
+        out(&lw, f, 0, 0, m->T);
+        out(&lw, f, 0, 1, m->V);
+    }
+
+    if (jacobian != LOWER_JACOBIAN_NONE)
+        eom_derive_jacobian(e, m, A, P, D);
+    lower_jacobian(&lw, e, jacobian);
+
+    /* E = T + V is what energy computes: the invariant adds its two
+     * results rather than compute them again */
+    lw.L->invariant_energy = inv->h != EXPR_NONE && inv->h == expr_add(P, m->T, m->V);
+    if (inv->h != EXPR_NONE && !lw.L->invariant_energy) {
+        f = func(&lw, &lower_invariant_sig, "invariant", 1);
+        out(&lw, f, 0, 0, inv->h);
+    }
+    if (c)
+        lower_constraints(&lw, c);
+    if (e->acc && (!c || loads) && !tb) {
+        /* constrained: free_accel, which the reference does not use */
+        f = func(&lw, e->form->solve ? &s_accel_recursive : &s_accel_solve, "accel", c != NULL);
+        lw.L->accel_solve = f; /* before its outputs: fillable() */
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 1, i, e->piv[i]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 2, i, e->mkk[i]);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, e->acc[i]);
+    }
+    if (loads && !tb) {
+        ExprId *y = eom_minv(e, m, A, P, D);
+        f = func(&lw, &s_minv, "minv", 1);
+        for (int i = 0; i < n; i++)
+            out(&lw, f, 0, i, y[i]);
+        lw.L->minv = f;
+    }
+    if (s->scene.noutput) {
+        f = func(&lw, &s_outputs, "outputs", 1);
+        for (int k = 0; k < s->scene.noutput; k++)
+            out(&lw, f, 0, k, s->scene.output[k].expr);
+        lw.L->outputs = f;
+    }
+    if (s->scene.nevent)
+        lower_events(&lw);
+    if (s->ncheck) {
+        f = func(&lw, &s_check_values, "check", 1);
+        lw.L->check_values = f; /* before its outputs: fillable() */
+        for (int i = 0; i < s->ncheck; i++)
+            out(&lw, f, 0, i, s->check[i].expr);
+    }
+    if (s->view.nitem)
+        lower_draw(&lw);
+    lower_derive(&lw);
+    /* after derive, which has seen every copy's parameter values */
+    for (int k = 0; k < lw.L->nfunc; k++)
+        repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
+    lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
+    return lw.L;
+}
+
+int
+lower_size(const LowFunc *f, int arg)
+{
+    int size = f->fill[arg];
+    for (int k = 0; k < f->nout; k++)
+        if (f->out[k].arg == arg && f->out[k].index + 1 > size)
+            size = f->out[k].index + 1;
+    int copied = f->copy ? lower_size(f->copy, arg) : 0;
+    for (int c = 0; copied && c < f->ncopy; c++)
+        if (copied + f->dq[c] > size)
+            size = copied + f->dq[c];
+    return size;
+}
+
+const LowFunc *
+lower_find(const Lowered *L, const char *name)
+{
+    for (int k = 0; k < L->nfunc; k++)
+        if (!strcmp(L->func[k]->sig->name, name))
+            return L->func[k];
+    return NULL;
+}
+
+/* The copies' loop, as the C runs it (the loop the emitter prints): each
+ * copy's function on arrays shifted by its dq[c] (u by du[c]); a copy
+ * whose seeds are all 0 stores zeros if zero_skip. */
+static void
+eval_copies(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
+{
+    LowArgs a;
+    lower_args(f->sig, &a);
+    for (int c = 0; c < f->ncopy; c++) {
+        int d = f->dq[c];
+        ExprEnv ec = *env;
+        for (int k = 0; k <= EXPR_MAX_ORDER; k++)
+            ec.q[k] = env->q[k] ? env->q[k] + d : NULL;
+        for (int k = 0; k < 3; k++)
+            ec.seed[k] = env->seed[k] ? env->seed[k] + d : NULL;
+        ec.u = env->u ? env->u + f->du[c] : NULL;
+        double *oc[LOW_MAX_ARGS];
+        for (int k = 0; k < a.n - a.nin; k++) /* (outs has one per output argument) */
+            oc[k] = outs[k] ? outs[k] + d : NULL;
+        int loaded = !f->zero_skip;
+        for (int k = 0; k < 3 && !loaded; k++)
+            for (int i = f->span0; ec.seed[k] && i < f->span0 + f->span && !loaded; i++)
+                loaded = ec.seed[k][i] != 0.0;
+        if (loaded) {
+            lower_eval(P, f->copy, &ec, oc);
+            continue;
+        }
+        for (int k = 0; k < a.n - a.nin; k++) /* a copy without a load: at rest */
+            for (int i = f->span0; oc[k] && lower_size(f->copy, k) && i < f->span0 + f->span; i++)
+                oc[k][i] = 0.0;
+    }
+}
+
+/* The values f reads but does not compute, by node id: leaves from env,
+ * and the values another function computes (shared[], pd[]), which the C
+ * reads and which are evaluated here on the DAG instead (expr_eval_many:
+ * the same arithmetic, node by node). */
+static void
+eval_inputs(ExprPool *P, const LowFunc *f, const LowSched *S, const ExprEnv *env, double *v)
+{
+    size_t size = expr_pool_size(P);
+    unsigned char *seen = xmalloc(size);
+    memset(seen, 0, size);
+    ExprId *far = xmalloc(size * sizeof *far);
+    int nfar = 0;
+    for (int k = 0; k < S->nstep; k++) {
+        const LowStep *st = &S->step[k];
+        ExprId ops[2];
+        int nop = 0;
+        if (st->kind == LOW_STEP_NODE) {
+            const ExprNode *nd = expr_node(P, st->id);
+            nop = expr_op_arity[nd->op];
+            ops[0] = nd->a, ops[1] = nd->b;
+        } else if (st->kind == LOW_STEP_STORE) {
+            nop = 1, ops[0] = f->out[st->i].e;
+        }
+        for (int j = 0; j < nop; j++) {
+            ExprId e = ops[j];
+            if (seen[e] || lower_computed(P, f, e))
+                continue;
+            seen[e] = 1;
+            if (expr_op_arity[expr_node(P, e)->op] == 0)
+                v[e] = expr_eval_node(P, e, NULL, env);
+            else
+                far[nfar++] = e;
+        }
+    }
+    double *val = xmalloc(((size_t)nfar + 1) * sizeof *val);
+    expr_eval_many(P, nfar, far, env, val);
+    for (int j = 0; j < nfar; j++)
+        v[far[j]] = val[j];
+    free(val);
+    free(far);
+    free(seen);
+}
+
+void
+lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
+{
+    LowSched *S = lower_schedule(P, f);
+    double *v = xmalloc(expr_pool_size(P) * sizeof *v); /* by node id */
+    eval_inputs(P, f, S, env, v);
+    for (int k = 0; k < S->nstep; k++) {
+        const LowStep *st = &S->step[k];
+        switch (st->kind) {
+        case LOW_STEP_COPIES:
+            eval_copies(P, f, env, outs);
+            break;
+        case LOW_STEP_FILL: /* unless the caller zeroed it, as in the C */
+            for (int i = 0; outs[st->i] && !(f->zeroed >> st->i & 1) && i < f->fill[st->i]; i++)
+                outs[st->i][i] = 0.0;
+            break;
+        case LOW_STEP_NODE: {
+            const ExprNode *nd = expr_node(P, st->id);
+            int ar = expr_op_arity[nd->op];
+            double x[2] = {ar >= 1 ? v[nd->a] : 0.0, ar >= 2 ? v[nd->b] : 0.0};
+            v[st->id] = expr_eval_node(P, st->id, x, env);
+            break;
+        }
+        case LOW_STEP_STORE: {
+            const LowSlot *o = &f->out[st->i];
+            if (outs[o->arg])
+                outs[o->arg][o->index] = v[o->e];
+            break;
+        }
+        }
+    }
+    free(v);
+    lower_sched_free(S);
+}

@@ -1,0 +1,194 @@
+/*
+ * assembly: the initial state put on the constraints, or told off them
+ * (assembly.h).
+ */
+#include "assembly.h"
+#include "base/io.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Whether the model has a constraint below acceleration level. */
+int
+assembly_has_levels(const eomc_model *m)
+{
+    for (int k = 0; k < m->nc; k++)
+        if (m->c_order[k] <= 1)
+            return 1;
+    return 0;
+}
+
+/* Project the initial state onto the constraints (c->held kept) and say
+ * what moved. */
+int
+assembly_run(Options *c, eomc_sim *sim, double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq, moved = 0;
+    /* the scene's assembly, or --assemble's */
+    const char *who = c->hold || !c->scene_assembles ? "--assemble" : "the scene's assembly";
+    if (!assembly_has_levels(m))
+        return opt_usage(c, "--assemble: %s has no holonomic or first-order constraint to "
+                     "assemble", m->name);
+    if (!c->held && opt_held_marks(c, m) != EOMC_OK)
+        return EOMC_EUSAGE;
+    double *x0 = malloc(2 * (size_t)n * sizeof *x0);
+    if (!x0)
+        return opt_usage(c, "out of memory");
+    if (c->equilibrium) /* the search starts at rest */
+        memset(x + n, 0, (size_t)n * sizeof *x);
+    memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
+    int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->held);
+    if (rc != EOMC_OK) {
+        fprintf(io_err(), "%s: error: %s: %s\n", c->prog, who, eomc_sim_error(sim));
+        free(x0);
+        return rc;
+    }
+    for (int i = 0; i < 2 * n; i++)
+        if (x[i] != x0[i]) {
+            if (!moved++)
+                fprintf(io_err(), "%s: %s moved the initial state onto the "
+                        "constraints:\n", c->prog, who);
+            fprintf(io_err(), "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
+                    i < n ? "" : "'", x0[i], x[i], x[i] - x0[i]);
+        }
+    if (!moved && !c->scene_assembles)
+        fprintf(io_err(), "%s: --assemble: the initial state already satisfies the "
+                "constraints\n", c->prog);
+    free(x0);
+    return EOMC_OK;
+}
+
+/* The constraints x is off (eomc_sim_inconsistencies above
+ * EOMC_INCONSISTENT), worst first, into buf: "rod (positions: its residual
+ * is 0.12 of the size of its terms), ..."; returns how many. */
+static int
+describe_off(eomc_sim *sim, double t, const double *x, char *buf, size_t len)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int nc = m->nc, off = 0;
+    double *e = calloc((size_t)nc + 1, sizeof *e);
+    int *level = calloc((size_t)nc + 1, sizeof *level);
+    buf[0] = '\0';
+    if (e && level && assembly_has_levels(m) &&
+        eomc_sim_inconsistencies(sim, t, x, x + m->nq, e, level) > EOMC_INCONSISTENT) {
+        for (int k = 0; k < nc; k++)
+            off += e[k] > EOMC_INCONSISTENT;
+        size_t at = 0;
+        for (int done = 0; done < off && at < len; done++) { /* the largest left */
+            int k = 0;
+            for (int j = 1; j < nc; j++)
+                k = e[j] > e[k] ? j : k;
+            at += (size_t)snprintf(buf + at, len - at,
+                                   done ? ", %s (%s: %.2g)"
+                                        : "%s (%s: its residual is %.2g of the size of its "
+                                          "terms)", m->c_names[k],
+                                   level[k] ? "velocities" : "positions", e[k]);
+            e[k] = -1;
+        }
+    }
+    free(e);
+    free(level);
+    return off;
+}
+
+/* A start off the constraints is allowed (the drift then starts there),
+ * but rarely meant: say so, once, before integrating, naming every
+ * constraint it violates.  The test is relative to each constraint's terms
+ * (eomc_sim_inconsistencies), so that it means the same in any units. */
+void
+assembly_check(const Options *c, eomc_sim *sim, const double *x)
+{
+    char list[2048];
+    int off = describe_off(sim, c->run.t0, x, list, sizeof list);
+    if (off == 1)
+        fprintf(io_err(), "%s: warning: the initial state is off the constraint %s; --assemble "
+                "projects the state onto the constraints\n", c->prog, list);
+    else if (off > 1)
+        fprintf(io_err(),
+                "%s: warning: the initial state is off %d constraints, worst first: %s; "
+                "--assemble projects the state onto the constraints\n", c->prog, off, list);
+}
+
+/* Whether the trial projection keeping hold [2n] puts x on the
+ * constraints; moved gets what it would change: "x' 5 -> 0, ...". */
+static int
+trial_assembly(const Options *c, eomc_sim *sim, const double *x, const unsigned char *hold,
+               char *moved, size_t len)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq;
+    double *y = malloc(2 * (size_t)n * sizeof *y);
+    if (!y)
+        return 0;
+    memcpy(y, x, 2 * (size_t)n * sizeof *y);
+    int ok = eomc_sim_project_held(sim, c->run.t0, y, y + n, hold) == EOMC_OK;
+    size_t at = 0;
+    moved[0] = '\0';
+    for (int i = 0; ok && i < 2 * n && at < len; i++)
+        if (y[i] != x[i])
+            at += (size_t)snprintf(moved + at, len - at, "%s%s%s %.6g -> %.6g", at ? ", " : "",
+                                   m->q_names[i % n], i < n ? "" : "'", x[i], y[i]);
+    free(y);
+    return ok;
+}
+
+/* The names hold [2n] marks, as --hold takes them. */
+static void
+hold_names(const eomc_model *m, const unsigned char *hold, char *buf, size_t len)
+{
+    int n = m->nq;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < 2 * n && at < len; i++)
+        if (hold[i])
+            at += (size_t)snprintf(buf + at, len - at, "%s%s%s", at ? "," : "",
+                                   m->q_names[i % n], i < n ? "" : "'");
+}
+
+/* After --linearize refused a state off the constraints: the --assemble
+ * that would put it on them, tried first, with what it would move.  Two
+ * holds make sense: what --init set (the user's values stay; the rest
+ * moves), and the linearization's own coordinates and velocities (only
+ * those the constraints determine move). */
+void
+assembly_suggest(Options *c, eomc_sim *sim, const double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    int n = m->nq, nl = eomc_sim_linear_size(sim), said = 0;
+    unsigned char *hold[2] = {calloc(2 * (size_t)n, 1), calloc(2 * (size_t)n, 1)};
+    char names[2048], moved[2048];
+    const char *why[2] = {"keeps what --init set and moves the rest onto the constraints",
+                          "keeps the linearization's coordinates and velocities and moves "
+                          "only those the constraints determine"};
+    for (int k = 0; hold[0] && k < c->ninit; k++) { /* NAME=VALUE or NAME'=VALUE */
+        size_t len = strcspn(c->init[k], "=");
+        for (int i = 0; i < 2 * n; i++) {
+            size_t name = strlen(m->q_names[i % n]);
+            if (name + (i >= n) == len && !strncmp(c->init[k], m->q_names[i % n], name) &&
+                (i < n || c->init[k][name] == '\''))
+                hold[0][i] = 1;
+        }
+    }
+    for (int k = 0; hold[1] && k < nl; k++) {
+        int coord, order;
+        eomc_sim_linear_state(sim, k, &coord, &order);
+        hold[1][coord + order * n] = 1;
+    }
+    for (int j = 0; j < 2 && hold[0] && hold[1]; j++) {
+        if ((j == 0 && c->ninit == 0) || (j == 1 && !memcmp(hold[0], hold[1], 2 * (size_t)n)))
+            continue;
+        if (!trial_assembly(c, sim, x, hold[j], moved, sizeof moved))
+            continue;
+        hold_names(m, hold[j], names, sizeof names);
+        fprintf(io_err(), "%s: %s --assemble --hold \"%s\" %s: %s\n", c->prog,
+                said++ ? "or" : "to linearize on them,", names, why[j], moved);
+    }
+    if (!said)
+        fprintf(io_err(),
+                "%s: --assemble --hold LIST puts the state on the constraints keeping "
+                "LIST as it is (neither what --init set nor the linearization's coordinates "
+                "and velocities can be kept here)\n", c->prog);
+    free(hold[0]);
+    free(hold[1]);
+}

@@ -1,0 +1,894 @@
+/*
+ * sim: the simulator object: a model, its parameters and inputs, the
+ * accelerations, the exact Jacobian of the first-order system, drift
+ * control, and the messages of everything that can fail.
+ *
+ * Every work array is allocated in eomc_sim_alloc: the right-hand side and
+ * the Jacobian run without allocating.  GSL's error handler is turned off
+ * so that a failing factorization comes back as a status, never an abort.
+ * The solves below (linalg.c, kkt.c, project.c) return statuses; the
+ * messages, which name the time and the state, are made here.
+ *
+ * struct eomc_sim is this file's alone (the layers above use eomc.h and
+ * simimpl.h), so what reads its state is here: that is why the file is
+ * somewhat over 800 lines.
+ */
+#include "simimpl.h"
+#include "kkt.h"
+#include "linalg.h"
+#include "base/numfmt.h"
+#include "project.h"
+
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* The generated solve reports its smallest balanced pivot at every
+ * PIVOT_EVERY-th call (a power of 2): several per step of any method. */
+enum { PIVOT_EVERY = 4 };
+
+struct eomc_sim {
+    const eomc_model *m;
+    int n, nu;
+    double *p;               /* [np + nd] parameter values, then derive's */
+    double *u, *dudt;        /* [nu] inputs at the last time asked */
+    double *u_const;         /* [nu] held values, where u_held */
+    unsigned char *u_held;   /* [nu] */
+    double *M, *h, *a, *Mrel;             /* [n*n], [n], [n], [n] pivots / M_kk */
+    size_t *Mperm;           /* [n] M's pivot order (la_ldlt_factor) */
+    double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
+    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
+    double *col;             /* [n] one right-hand side of M y = b */
+    double *fk;              /* [nc] f (scratch) */
+    LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
+    double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
+    char *cwhat;             /* sim_condition_what's text */
+    double pivot;            /* the smallest balanced pivot since sim_take_pivot */
+    unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
+    size_t errlen;
+    char *err;               /* the last error message */
+    Kkt *kkt;                /* constrained models: the solve and multipliers */
+    Proj *proj;              /* constrained models: projection */
+    int stabilize;           /* EOMC_STABILIZE_... */
+    double alpha, beta;      /* Baumgarte's rates */
+};
+
+double *
+sim_zeros(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(double));
+}
+
+/* The values of the parameters alone, after any change of them. */
+static void
+sim_derive(eomc_sim *s)
+{
+    if (s->m->derive)
+        s->m->derive(s->p, s->p + s->m->np);
+}
+
+eomc_sim *
+eomc_sim_alloc(const eomc_model *m)
+{
+    if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1)
+        return NULL;
+    eomc_sim *s = calloc(1, sizeof *s);
+    if (!s)
+        return NULL;
+    size_t n = (size_t)m->nq, nu = (size_t)m->nu, np = (size_t)m->np;
+    s->m = m;
+    s->n = m->nq;
+    s->nu = m->nu;
+    s->p = sim_zeros(np + (size_t)m->nd); /* the parameters, then derive's values */
+    s->u = sim_zeros(nu);
+    s->dudt = sim_zeros(nu);
+    s->u_const = sim_zeros(nu);
+    s->u_held = calloc(nu ? nu : 1, 1);
+    s->M = sim_zeros(n * n);
+    s->h = sim_zeros(n);
+    s->a = sim_zeros(n);
+    s->arow = sim_zeros(n);
+    s->Mrel = sim_zeros(n);
+    s->Mperm = calloc(n, sizeof *s->Mperm);
+    s->dEdq = sim_zeros(n * n);
+    s->dEdv = sim_zeros(n * n);
+    s->dEdu = sim_zeros(n * nu);
+    s->dEdt = sim_zeros(n);
+    s->col = sim_zeros(n);
+    s->fk = sim_zeros((size_t)m->nc);
+    s->mlu = la_lu_alloc(m->nq);
+    s->cy = sim_zeros(n + (size_t)m->nc);
+    s->cd = sim_zeros(n);
+    /* Room for the cause and every coordinate and velocity by name. */
+    s->errlen = 1024;
+    for (int i = 0; i < m->nq; i++)
+        s->errlen += 2 * (strlen(m->q_names[i]) + 32);
+    for (int k = 0; k < m->nc; k++)
+        s->errlen += strlen(m->c_names[k]) + strlen(m->q_names[m->c_dependent[k]]) + 8;
+    s->err = calloc(s->errlen, 1);
+    s->cwhat = calloc(s->errlen, 1);
+    s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
+    s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
+    if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
+        !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
+        !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
+        (m->nc > 0 && (!s->kkt || !s->proj))) {
+        eomc_sim_free(s);
+        return NULL;
+    }
+    memcpy(s->p, m->p_default, np * sizeof(double));
+    sim_derive(s);
+    s->pivot = 1;
+    return s;
+}
+
+void
+eomc_sim_free(eomc_sim *s)
+{
+    if (!s)
+        return;
+    void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
+                      s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
+                      s->fk, s->err, s->cy, s->cd, s->cwhat};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        free(arrays[k]);
+    kkt_free(s->kkt);
+    proj_free(s->proj);
+    la_lu_free(s->mlu);
+    free(s);
+}
+
+int
+eomc_sim_check(eomc_sim *s)
+{
+    const eomc_model *m = s->m;
+    int k = m->check ? m->check(s->p) : 0;
+    if (k == 0)
+        return EOMC_OK;
+    /* the parameters it names, with their values */
+    char vals[512] = "";
+    const char *names = m->check_params[k - 1];
+    for (int i = 0; i < m->np; i++) {
+        size_t len = strlen(m->p_names[i]);
+        for (const char *at = names; (at = strstr(at, m->p_names[i])) != NULL; at += len)
+            if ((at == names || at[-1] == ' ') && (at[len] == ',' || at[len] == '\0')) {
+                size_t used = strlen(vals);
+                snprintf(vals + used, sizeof vals - used, "%s%s = %g", used ? ", " : "",
+                         m->p_names[i], s->p[i]);
+                break;
+            }
+    }
+    return sim_usage_error(s, "%s (%s)", m->check_what[k - 1], vals);
+}
+
+const eomc_model *
+eomc_sim_model(const eomc_sim *s)
+{
+    return s->m;
+}
+
+const char *
+eomc_sim_error(const eomc_sim *s)
+{
+    return s->err;
+}
+
+int
+sim_usage_error(eomc_sim *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->err, s->errlen, fmt, ap);
+    va_end(ap);
+    return EOMC_EUSAGE;
+}
+
+int
+sim_no_jacobian(eomc_sim *s, const char *what)
+{
+    return sim_usage_error(s, "%s needs the Jacobian of the equations, which %s was built "
+                           "without (eomc leaves it out when the scene's method needs none): "
+                           "rebuild with `eomc build %s --jacobian auto`", what, s->m->name, s->m->spec);
+}
+
+/* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." */
+int
+sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
+                  const char *fmt, ...)
+{
+    size_t len = 0, cap = s->errlen;
+    len += (size_t)snprintf(s->err, cap, "t = %.17g: ", t);
+    va_list ap;
+    va_start(ap, fmt);
+    if (len < cap)
+        len += (size_t)vsnprintf(s->err + len, cap - len, fmt, ap);
+    va_end(ap);
+    if (q && v)
+        for (int k = 0; k < 2 * s->n && len < cap; k++) {
+            int i = k % s->n;
+            len += (size_t)snprintf(s->err + len, cap - len, "%s%s%s = %.17g",
+                                    k ? ", " : "; state: ", s->m->q_names[i],
+                                    k < s->n ? "" : "'", k < s->n ? q[i] : v[i]);
+        }
+    return EOMC_ENUMERIC;
+}
+
+int
+eomc_sim_set(eomc_sim *s, const char *name, double value)
+{
+    const eomc_model *m = s->m;
+    for (int k = 0; k < m->np; k++)
+        if (strcmp(name, m->p_names[k]) == 0) {
+            if (m->p_fixed[k]) {
+                char num[NUM_MAX];
+                return sim_usage_error(s, "parameter '%s' is fixed at %s in %s%s%s: it was "
+                                       "folded into the code (compile without fixing it to "
+                                       "vary it)", name, num_shortest(num, m->p_default[k]),
+                                       *m->scene ? "scene '" : "the spec's scene",
+                                       m->scene, *m->scene ? "'" : "");
+            }
+            s->p[k] = value;
+            sim_derive(s);
+            return EOMC_OK;
+        }
+    for (int k = 0; k < m->nu; k++)
+        if (strcmp(name, m->u_names[k]) == 0) {
+            s->u_const[k] = value;
+            s->u_held[k] = 1;
+            return EOMC_OK;
+        }
+    return sim_usage_error(s, "'%s' is neither a parameter nor an input of %s", name,
+                           m->name);
+}
+
+const double *
+eomc_sim_params(const eomc_sim *s)
+{
+    return s->p;
+}
+
+int
+eomc_sim_input_held(const eomc_sim *s, int k, double *value)
+{
+    if (k < 0 || k >= s->nu || !s->u_held[k])
+        return 0;
+    *value = s->u_const[k];
+    return 1;
+}
+
+const double *
+sim_inputs_at(eomc_sim *s, double t)
+{
+    if (s->nu == 0)
+        return s->u;
+    s->m->inputs(t, s->p, s->u, s->dudt);
+    for (int k = 0; k < s->nu; k++)
+        if (s->u_held[k]) {
+            s->u[k] = s->u_const[k];
+            s->dudt[k] = 0;
+        }
+    return s->u;
+}
+
+const double *
+sim_p(const eomc_sim *s)
+{
+    return s->p;
+}
+
+int
+sim_stabilize_method(const eomc_sim *s)
+{
+    return s->stabilize;
+}
+
+void
+sim_save_start(eomc_sim *s)
+{
+    if (s->kkt)
+        kkt_save_start(s->kkt);
+}
+
+void
+sim_restore_start(eomc_sim *s)
+{
+    if (s->kkt)
+        kkt_restore_start(s->kkt);
+}
+
+int
+sim_vanished(const eomc_sim *s, double *fraction)
+{
+    return s->kkt ? kkt_vanished(s->kkt, fraction) : -1;
+}
+
+void
+eomc_sim_inputs(eomc_sim *s, double t, double *u)
+{
+    sim_inputs_at(s, t);
+    if (s->nu)
+        memcpy(u, s->u, (size_t)s->nu * sizeof *u);
+}
+
+void
+eomc_sim_initial(const eomc_sim *s, double *q, double *v)
+{
+    s->m->initial(s->p, q, v);
+}
+
+int
+sim_all_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+double
+sim_seconds(int cpu)
+{
+    struct timespec ts;
+    clock_gettime(cpu ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The sum of x[0..n-1], by two running sums: finite whenever every x[i]
+ * is, and also when one overflows, which the callers then look at one by
+ * one (sim_all_finite).  One addition per entry and half the depth of one
+ * sum, for the checks on every right-hand side: the last one waits for
+ * q'' and is on the path of a small model's call. */
+static inline double
+finite_sum(const double *x, int n)
+{
+    double z0 = 0.0, z1 = 0.0;
+    int i = 0;
+    for (; i + 1 < n; i += 2) {
+        z0 += x[i];
+        z1 += x[i + 1];
+    }
+    if (i < n)
+        z0 += x[i];
+    return z0 + z1;
+}
+
+static int
+pivot_error(eomc_sim *s, double t, const double *q, const double *v, int k)
+{
+    return sim_numeric_error(s, t, q, v,
+                             "mass matrix is singular or not positive definite "
+                             "(pivot %d, coordinate %s)", k, s->m->q_names[k - 1]);
+}
+
+/* The message of a kkt.c status. */
+static int
+kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
+{
+    const char *names = kkt_names(s->kkt);
+    const eomc_model *m = s->m;
+    double fraction;
+    int c = kkt_vanished(s->kkt, &fraction);
+    if (c >= 0 && rc != KKT_DEPENDENT)
+        return sim_numeric_error(s, t, q, v, "the constraint %s (%s) degenerates here: "
+                                 "its df/dq'' has fallen to %.2g of its largest size in the "
+                                 "run (two of its roots in q'' merge, or it no longer "
+                                 "constrains the motion)", m->c_names[c],
+                                 m->q_names[m->c_dependent[c]], fraction);
+    switch (rc) {
+    case KKT_DEPENDENT:
+        return sim_numeric_error(s, t, q, v, "the constraints cannot be solved for their "
+                                 "dependent coordinates (df/dq'' of the dependent ones is "
+                                 "singular): %s", names);
+    case KKT_NEWTON:
+        return sim_numeric_error(s, t, q, v, "Newton's method on the constraints %s did "
+                                 "not converge in %d iterations", names, KKT_NEWTON_MAX);
+    default:
+        return sim_numeric_error(s, t, q, v, "the constrained system is singular: the "
+                                 "constraints %s are dependent or degenerate here", names);
+    }
+}
+
+/* t + the state's and inputs' entries: finite whenever they all are (and
+ * where it is not, inputs_finite looks one by one). */
+static double
+state_sum(const eomc_sim *s, double t, const double *q, const double *v)
+{
+    return t + finite_sum(q, s->n) + finite_sum(v, s->n) + finite_sum(s->u, s->nu);
+}
+
+static int
+inputs_finite(const eomc_sim *s, double t, const double *q, const double *v)
+{
+    return isfinite(t) && sim_all_finite(q, s->n) && sim_all_finite(v, s->n) &&
+           sim_all_finite(s->u, s->nu);
+}
+
+static int
+state_error(eomc_sim *s, double t, const double *q, const double *v)
+{
+    return sim_numeric_error(s, t, q, v, "the state or an input is not finite");
+}
+
+static int
+accel_error(eomc_sim *s, double t, const double *q, const double *v, const double *a)
+{
+    for (int i = 0; i < s->n; i++)
+        if (!isfinite(a[i]))
+            return sim_numeric_error(s, t, q, v, "acceleration %s'' is not finite",
+                                     s->m->q_names[i]);
+    return EOMC_OK; /* the sum overflowed, no entry did */
+}
+
+/* A model with its own solve (the accel member, straight-line code) is
+ * called before its inputs are checked, and one test after it covers
+ * both: a non-finite input makes the solve fail or q'' non-finite, never
+ * pass unseen, and the check's branch then sits at the end instead of
+ * ahead of the work, which saves a small model a twentieth of its call. */
+static int
+accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
+{
+    int n = s->n;
+    double in = state_sum(s, t, q, v);
+    /* the pivot, for the condition watch, at every PIVOT_EVERY-th solve:
+     * finding it costs a tenth of a small model's right-hand side */
+    double pivot = 1;
+    int want = (++s->solves & (PIVOT_EVERY - 1)) == 0;
+    int k = s->m->accel(t, q, v, s->p, s->u, a, want ? &pivot : NULL);
+    int bad = k != 0 || !isfinite(in);
+    /* q'' one entry at a time, not summed: this test waits for the last
+     * entry, and a sum's chain of additions would add its length */
+    for (int i = 0; i < n && !bad; i++)
+        bad = !isfinite(a[i]);
+    if (bad) {
+        if (!isfinite(in) && !inputs_finite(s, t, q, v))
+            return state_error(s, t, q, v);
+        if (k != 0)
+            return pivot_error(s, t, q, v, k);
+        if ((k = accel_error(s, t, q, v, a)) != EOMC_OK)
+            return k;
+    }
+    if (pivot < s->pivot) /* not fmin: a call, in the hottest path */
+        s->pivot = pivot;
+    return EOMC_OK;
+}
+
+int
+eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *a)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, k;
+    sim_inputs_at(s, t);
+    if (!s->kkt && m->accel)
+        return accel_own(s, t, q, v, a);
+    if (!isfinite(state_sum(s, t, q, v)) && !inputs_finite(s, t, q, v))
+        return state_error(s, t, q, v);
+    if (s->kkt) {
+        if ((k = kkt_accel(s->kkt, t, q, v, s->p, s->u, a)) != KKT_OK)
+            return kkt_error(s, t, q, v, k);
+        double pivot = kkt_pivot(s->kkt);
+        if (pivot < s->pivot) /* not fmin: a call, in the hottest path */
+            s->pivot = pivot;
+    } else {
+        m->mass_bias(t, q, v, s->p, s->u, s->M, a);
+        if ((k = m->mass_parent ? la_ltdl_factor(s->M, n, m->mass_parent, s->Mrel)
+                                : la_ldlt_factor(s->M, n, s->Mrel, s->Mperm)) != 0)
+            return pivot_error(s, t, q, v, k);
+        for (int i = 0; i < n; i++)
+            if (s->Mrel[i] < s->pivot)
+                s->pivot = s->Mrel[i];
+        if (m->mass_parent)
+            la_ltdl_solve_neg(s->M, n, m->mass_parent, a);
+        else
+            la_ldlt_solve_neg(s->M, n, s->Mperm, a);
+    }
+    return isfinite(finite_sum(a, n)) ? EOMC_OK : accel_error(s, t, q, v, a);
+}
+
+const double *
+eomc_sim_multipliers(const eomc_sim *s)
+{
+    return s->kkt ? kkt_multipliers(s->kkt) : NULL;
+}
+
+int
+eomc_sim_residuals(eomc_sim *s, double t, const double *q, const double *v, double *res)
+{
+    if (!s->kkt)
+        return EOMC_OK;
+    int rc = eomc_sim_accel(s, t, q, v, s->a);
+    if (rc == EOMC_OK)
+        kkt_residuals(s->kkt, t, q, v, s->a, s->p, s->u, res);
+    return rc;
+}
+
+int
+sim_has_levels(const eomc_sim *s)
+{
+    return s->proj && proj_levels(s->proj);
+}
+
+void
+sim_baumgarte(const eomc_sim *s, int c, double *wv, double *wp)
+{
+    *wv = *wp = 0;
+    if (s->kkt)
+        kkt_baumgarte_weights(s->kkt, c, wv, wp);
+}
+
+int
+eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta)
+{
+    if (method < EOMC_STABILIZE_NONE || method > EOMC_STABILIZE_PROJECT)
+        return sim_usage_error(s, "unknown stabilization method %d", method);
+    if (method != EOMC_STABILIZE_NONE && !sim_has_levels(s))
+        return sim_usage_error(s, "%s has no holonomic or first-order constraint to "
+                               "stabilize", s->m->name);
+    if (!(alpha >= 0 && beta >= 0 && isfinite(alpha) && isfinite(beta)))
+        return sim_usage_error(s, "Baumgarte's rates must be finite and not negative, "
+                               "not %g, %g", alpha, beta);
+    s->stabilize = method;
+    s->alpha = alpha;
+    s->beta = beta;
+    if (s->kkt) {
+        int on = method == EOMC_STABILIZE_BAUMGARTE;
+        kkt_set_baumgarte(s->kkt, on ? 2 * alpha : 0, on ? beta * beta : 0,
+                          on ? alpha : 0);
+    }
+    return EOMC_OK;
+}
+
+int
+eomc_sim_project(eomc_sim *s, double t, double *q, double *v)
+{
+    return eomc_sim_project_held(s, t, q, v, NULL);
+}
+
+int
+eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigned char *hold)
+{
+    if (!s->proj)
+        return EOMC_OK;
+    if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->n))
+        return sim_numeric_error(s, t, q, v, "the state is not finite");
+    sim_inputs_at(s, t);
+    int level, rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
+    const char *what = level ? "velocities" : "positions";
+    int held = 0;
+    for (int i = 0; hold && i < s->n; i++)
+        held |= hold[level * s->n + i];
+    switch (rc) {
+    case PROJ_OK:
+        return EOMC_OK;
+    case PROJ_NOT_PD:
+        return sim_numeric_error(s, t, q, v, "cannot project onto the constraints: "
+                                 "the mass matrix is not positive definite%s",
+                                 held ? " on what is not held" : "");
+    case PROJ_SINGULAR:
+        if (held)
+            return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
+                                     "constraints %s moving only the %s not held: with "
+                                     "those held they cannot all be met, or they are "
+                                     "dependent here", what, proj_names(s->proj, level),
+                                     what);
+        return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
+                                 "constraints %s: they are dependent or degenerate "
+                                 "here", what, proj_names(s->proj, level));
+    default:
+        return sim_numeric_error(s, t, q, v, "projecting the %s onto the constraints "
+                                 "%s did not converge in %d Gauss-Newton steps", what,
+                                 proj_names(s->proj, level), PROJ_MAX);
+    }
+}
+
+double
+sim_level_residual(eomc_sim *s, double t, const double *q, const double *v)
+{
+    if (!sim_has_levels(s))
+        return 0;
+    sim_inputs_at(s, t);
+    return proj_residual(s->proj, t, q, v, s->p, s->u);
+}
+
+double
+eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
+                       int *worst, int *level)
+{
+    *worst = -1, *level = 0;
+    if (!sim_has_levels(s))
+        return 0;
+    sim_inputs_at(s, t);
+    return proj_inconsistency(s->proj, t, q, v, s->p, s->u, worst, level);
+}
+
+double
+eomc_sim_inconsistencies(eomc_sim *s, double t, const double *q, const double *v, double *e,
+                         int *level)
+{
+    int worst, lev;
+    if (!sim_has_levels(s)) {
+        for (int k = 0; k < s->m->nc; k++) {
+            e[k] = 0;
+            if (level)
+                level[k] = 0;
+        }
+        return 0;
+    }
+    sim_inputs_at(s, t);
+    return proj_inconsistencies(s->proj, t, q, v, s->p, s->u, &worst, &lev, e, level);
+}
+
+int
+sim_off_constraints(eomc_sim *s, double t, const double *q, const double *v,
+                    const char *what)
+{
+    const eomc_model *m = s->m;
+    int nc = m->nc;
+    if (!sim_has_levels(s))
+        return EOMC_OK;
+    double *e = sim_zeros((size_t)nc);
+    int *level = calloc((size_t)nc, sizeof *level);
+    if (!e || !level) {
+        free(e);
+        free(level);
+        return sim_usage_error(s, "out of memory checking the constraints");
+    }
+    int rc = EOMC_OK, off = 0;
+    if (eomc_sim_inconsistencies(s, t, q, v, e, level) > EOMC_INCONSISTENT) {
+        for (int k = 0; k < nc; k++)
+            off += e[k] > EOMC_INCONSISTENT;
+        char list[1024];
+        size_t len = 0;
+        /* worst first: each pass takes the largest left */
+        for (int done = 0; done < off && len < sizeof list; done++) {
+            int k = 0;
+            for (int j = 1; j < nc; j++)
+                k = e[j] > e[k] ? j : k;
+            len += (size_t)snprintf(list + len, sizeof list - len,
+                                    done ? ", %s (%s: %.2g)"
+                                         : "%s (%s: its residual is %.2g of the size of its "
+                                           "terms)", m->c_names[k],
+                                    level[k] ? "velocities" : "positions", e[k]);
+            e[k] = -1;
+        }
+        if (off == 1)
+            rc = sim_numeric_error(s, t, q, v, "%s: the state is off the constraint %s", what,
+                                   list);
+        else
+            rc = sim_numeric_error(s, t, q, v, "%s: the state is off %d constraints, worst "
+                                   "first: %s", what, off, list);
+    }
+    free(e);
+    free(level);
+    return rc;
+}
+
+/* An entry of a near-null direction this large against its largest
+ * takes part in the ill-conditioning. */
+#define INVOLVED 0.25
+
+double
+sim_condition(eomc_sim *s, double t, const double *q, const double *v)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (s->kkt)
+        return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK ? kkt_condition(s->kkt) : NAN;
+    sim_inputs_at(s, t);
+    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    for (int i = 0; i < n; i++) {
+        double d = s->M[i * n + i];
+        s->cd[i] = d > 0 && isfinite(d) ? 1 / sqrt(d) : 1;
+    }
+    la_lu_factor_scaled(s->mlu, s->M, s->cd); /* NAN below if it failed */
+    return la_lu_condition(s->mlu);
+}
+
+/* "the mass matrix (coordinates th1, th2)", "the constrained system
+ * (coordinates x1; constraints rod1, rod2)": each part only if any. */
+const char *
+sim_condition_what(eomc_sim *s)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (s->kkt)
+        kkt_near_null(s->kkt, s->cy);
+    else
+        la_lu_near_null(s->mlu, s->cy);
+    size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s",
+                                                 s->kkt ? "the constrained system" :
+                                                          "the mass matrix");
+    const char *open = " (coordinates ";
+    for (int i = 0; i < n && at < len; i++)
+        if (fabs(s->cy[i]) >= INVOLVED)
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", open, m->q_names[i]),
+                open = ", ";
+    const char *part = open[0] == ',' ? "; constraints " : " (constraints ";
+    for (int c = 0; s->kkt && !m->eliminate && c < m->nc && at < len; c++)
+        if (fabs(s->cy[n + c]) >= INVOLVED)
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", part, m->c_names[c]),
+                part = ", ", open = ", ";
+    if (open[0] == ',' && at < len)
+        snprintf(s->cwhat + at, len - at, ")");
+    return s->cwhat;
+}
+
+double
+eomc_sim_condition(eomc_sim *s, double t, const double *q, const double *v,
+                   const char **what)
+{
+    double c = sim_condition(s, t, q, v);
+    if (what)
+        *what = sim_condition_what(s);
+    return c;
+}
+
+double
+sim_take_pivot(eomc_sim *s)
+{
+    double p = s->pivot;
+    s->pivot = 1;
+    return p;
+}
+
+int
+sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (!sim_all_finite(x, 2 * n))
+        return -1;
+    if (!m->c_affine && eomc_sim_accel(s, t, x, x + n, s->a) != EOMC_OK)
+        return -1;
+    if (m->c_affine)
+        memset(s->a, 0, (size_t)n * sizeof *s->a);
+    sim_inputs_at(s, t);
+    m->constraint(t, x, x + n, s->a, s->p, s->u, s->fk, B);
+    return 0;
+}
+
+void
+eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double *T,
+                double *V)
+{
+    double TV[2];
+    sim_inputs_at(s, t);
+    s->m->energy(t, q, v, s->p, s->u, TV);
+    *T = TV[0];
+    *V = TV[1];
+}
+
+int
+eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double *out)
+{
+    const eomc_model *m = s->m;
+    if (!m->outputs)
+        return EOMC_OK;
+    /* the accelerations and multipliers of this very state */
+    if (eomc_sim_accel(s, t, q, v, s->arow) != EOMC_OK)
+        return EOMC_ENUMERIC;
+    sim_inputs_at(s, t);
+    m->outputs(t, q, v, s->arow, s->p, s->u, eomc_sim_multipliers(s), out);
+    return EOMC_OK;
+}
+
+void
+eomc_sim_events(eomc_sim *s, double t, const double *q, const double *v, double *g)
+{
+    sim_inputs_at(s, t);
+    s->m->events(t, q, v, s->p, s->u, g);
+}
+
+void
+eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    /* the values it sets are computed from the state before: a copy */
+    memcpy(s->arow, x, (size_t)n * sizeof *x);
+    memcpy(s->col, x + n, (size_t)n * sizeof *x);
+    memmove(x1, x, 2 * (size_t)n * sizeof *x);
+    if (m->ev_action[k] != EOMC_EVENT_SET || !m->event_set)
+        return;
+    sim_inputs_at(s, t);
+    m->event_set(k, t, s->arow, s->col, s->p, s->u, x1, x1 + n);
+}
+
+int
+eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, double *h)
+{
+    if (!s->m->invariant)
+        return sim_usage_error(s, "%s conserves no quantity that eomc knows of: %s",
+                               s->m->name, s->m->invariant_note);
+    sim_inputs_at(s, t);
+    s->m->invariant(t, q, v, s->p, s->u, h);
+    return EOMC_OK;
+}
+
+/* dq''/dx = -M^-1 [dE/dq, dE/dv] and dq''/dt = -M^-1 (dE/dt + dE/du u'),
+ * each column solved with the factored M. */
+int
+eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nu = s->nu, N = 2 * n;
+    const double *q = x, *v = x + n;
+    if (!m->jacobian)
+        return sim_no_jacobian(s, "eomc_sim_jacobian");
+    int rc = eomc_sim_accel(s, t, q, v, s->a);
+    if (rc)
+        return rc;
+    if (s->kkt) {
+        rc = kkt_jacobian(s->kkt, t, x, s->p, s->u, s->dudt, s->a, dfdx, dfdt);
+        return rc == KKT_OK ? EOMC_OK : kkt_error(s, t, q, v, rc);
+    }
+    m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
+    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    int k = la_ldlt_factor(s->M, n, s->Mrel, s->Mperm);
+    if (k)
+        return pivot_error(s, t, q, v, k);
+    if (dfdx) {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < N; j++)
+                dfdx[i * N + j] = j == n + i;
+        for (int j = 0; j < N; j++) {
+            const double *D = j < n ? s->dEdq : s->dEdv;
+            for (int i = 0; i < n; i++)
+                s->col[i] = D[i * n + j % n];
+            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
+            for (int i = 0; i < n; i++)
+                dfdx[(n + i) * N + j] = s->col[i];
+        }
+    }
+    if (dfdt) {
+        for (int i = 0; i < n; i++) {
+            double b = s->dEdt[i];
+            for (int k2 = 0; k2 < nu; k2++)
+                b += s->dEdu[i * nu + k2] * s->dudt[k2];
+            s->col[i] = b;
+            dfdt[i] = 0;
+        }
+        la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
+        memcpy(dfdt + n, s->col, (size_t)n * sizeof *dfdt);
+    }
+    return EOMC_OK;
+}
+
+int
+sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
+{
+    int n = s->n, nu = s->nu, N = 2 * n;
+    if (nu == 0)
+        return 0;
+    if (!s->kkt) { /* dq''/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
+        for (int k = 0; k < nu; k++) {
+            for (int i = 0; i < n; i++)
+                s->col[i] = s->dEdu[i * nu + k];
+            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
+            for (int i = 0; i < N; i++)
+                B[i * nu + k] = i < n ? 0 : s->col[i - n];
+        }
+        return 0;
+    }
+    /* the KKT system's time column is linear in the input rates: its
+     * difference with a unit rate and without is B's column */
+    double *rate = calloc((size_t)nu, sizeof *rate), *f0 = calloc((size_t)N, sizeof *f0);
+    double *f1 = calloc((size_t)N, sizeof *f1);
+    int rc = rate && f0 && f1 ? 0 : -1;
+    const double *u = s->u; /* at t: eomc_sim_jacobian computed them */
+    if (!rc)
+        rc = kkt_jacobian(s->kkt, t, x, s->p, u, rate, s->a, NULL, f0) ? -1 : 0;
+    for (int k = 0; k < nu && !rc; k++) {
+        rate[k] = 1;
+        rc = kkt_jacobian(s->kkt, t, x, s->p, u, rate, s->a, NULL, f1) ? -1 : 0;
+        rate[k] = 0;
+        for (int i = 0; i < N; i++)
+            B[i * nu + k] = f1[i] - f0[i];
+    }
+    free(rate);
+    free(f0);
+    free(f1);
+    return rc;
+}

@@ -1,0 +1,282 @@
+/*
+ * integrate: the integration driver (eomc_sim_integrate), on the steps of
+ * evolve.h.
+ *
+ * It is GSL's driver with these differences:
+ *  - output rows are not step ends: the steps go as the tolerance allows,
+ *    straight to t_end, and each row is read off the interpolant of
+ *    dense.c (so a small --dt costs no steps);
+ *  - a row the interpolant cannot give to the tolerances is computed by a
+ *    step of its own (side_step);
+ *  - a `set` event's reset starts the interpolant afresh, and a `stop`
+ *    event ends the rows with one at the event itself;
+ *  - Taylor's method's rows are its steps' own polynomials (taylor.h),
+ *    no interpolant and no side step.
+ */
+#include "evolve.h"
+#include "model/simimpl.h"
+#include "dense.h"
+#include "taylor.h"
+
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* An output time within this fraction of dt of t_end is t_end: no sliver
+ * of an interval at the end. */
+#define SLIVER 1e-9
+/* march's status when a stop event ended the run (not a GSL code, and
+ * not one of the step layer's, evolve.h). */
+enum { EVENT_STOPPED = -1100 };
+
+typedef struct Driver {
+    eomc_evolve *e;               /* the steps */
+    eomc_sim *s;
+    const eomc_run_opts *o;
+    eomc_stats *st;
+    int n, N;                     /* coordinates, state size 2n */
+    double *x;                    /* the current state (the caller's array) */
+    Dense *dense;
+    double *xrow, *erow;          /* an interpolated row, its error estimate */
+    long k, nrows;                /* the next row, and how many there are */
+    eomc_row_fn row;
+    void *ctx;
+} Driver;
+
+/* ---- rows ---- */
+
+/* t0 + k dt is computed from k, so no rounding accumulates. */
+double
+eomc_run_row_time(const eomc_run_opts *o, long k)
+{
+    return k == eomc_run_rows(o) - 1 ? o->t_end : o->t0 + (double)k * o->dt;
+}
+
+long
+eomc_run_rows(const eomc_run_opts *o)
+{
+    double span = o->t_end - o->t0;
+    if (!(span > 0))
+        return 1;
+    /* rows 0 .. K, K the first k with t0 + k dt within a sliver of t_end */
+    double K = ceil(span / o->dt - SLIVER);
+    if (!(o->t0 + K * o->dt >= o->t_end - SLIVER * o->dt))
+        K += 1;
+    return (long)K + 1;
+}
+
+/* Whether the interpolant's error estimate err passes the run's test,
+ * |err_i| <= atol + rtol |x_i|, the test of GSL's step control.  Fixed
+ * steps have no tolerance to pass: there the interpolant stands (its
+ * error is that of the node values it passes through, or less). */
+static int
+interpolant_ok(const Driver *r, const double *x, const double *err)
+{
+    if (r->o->h_fixed > 0)
+        return 1;
+    for (int i = 0; i < r->N; i++)
+        if (!(err[i] <= r->o->atol + r->o->rtol * fabs(x[i])))
+            return 0;
+    return 1;
+}
+
+/* The row at t by a step of its own from the node before it
+ * (evolve_side). */
+static int
+side_step(Driver *r, double t, double *x)
+{
+    const double *xk, *fk;
+    double tk = dense_start(r->dense, t, &xk, &fk);
+    r->st->side_steps++;
+    if (evolve_side(r->e, tk, xk, fk, t, x) == GSL_SUCCESS)
+        return GSL_SUCCESS;
+    sim_numeric_error(r->s, t, NULL, NULL, "the row at this time could not be computed to "
+                      "the tolerances, neither by interpolation nor by %d steps from "
+                      "t = %.17g", EVOLVE_SIDE_PIECES, tk);
+    return GSL_EBADFUNC;
+}
+
+/* Pass every row whose value is settled to the callback (all up to the
+ * last node when final); EVOLVE_STOPPED when the callback says stop. */
+static int
+emit_rows(Driver *r, int final)
+{
+    while (r->k < r->nrows) {
+        double t = eomc_run_row_time(r->o, r->k);
+        if (t > dense_last(r->dense) || !dense_ready(r->dense, t, final))
+            return GSL_SUCCESS;
+        dense_eval(r->dense, t, final, r->xrow, r->erow);
+        if (!interpolant_ok(r, r->xrow, r->erow)) {
+            dense_refine(r->dense);
+            dense_eval(r->dense, t, final, r->xrow, r->erow);
+        }
+        if (!interpolant_ok(r, r->xrow, r->erow)) {
+            int rc = side_step(r, t, r->xrow);
+            if (rc != GSL_SUCCESS)
+                return rc;
+        }
+        /* projected steps, projected rows: the interpolant is only as close
+         * to the constraints as it is to the motion */
+        if (sim_stabilize_method(r->s) == EOMC_STABILIZE_PROJECT &&
+            eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
+            return GSL_EBADFUNC;
+        int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
+        if (rc != EOMC_OK)
+            return evolve_stop(r->e, rc, t, r->xrow); /* xrow: the driver's until it returns */
+        r->k++;
+    }
+    return GSL_SUCCESS;
+}
+
+/* Taylor's method: every row up to the step's end tk->t1, from the step's
+ * series (EVOLVE_STOPPED when the callback says stop). */
+static int
+series_rows(Driver *r, const EvolveStep *tk)
+{
+    while (r->k < r->nrows) {
+        double t = eomc_run_row_time(r->o, r->k);
+        if (t > tk->t1)
+            return GSL_SUCCESS;
+        if (t == tk->t1)
+            memcpy(r->xrow, tk->x1, (size_t)r->N * sizeof *r->xrow);
+        else
+            taylor_eval(tk->series, t - tk->t0, r->xrow);
+        int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
+        if (rc != EOMC_OK)
+            return evolve_stop(r->e, rc, t, r->xrow);
+        r->k++;
+    }
+    return GSL_SUCCESS;
+}
+
+/* A stop event ended the run at tk->t1: the rows up to it, then a last
+ * row at the event itself. */
+static int
+finish_at_event(Driver *r, const EvolveStep *tk)
+{
+    int rc = tk->series ? series_rows(r, tk) : emit_rows(r, 1);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= tk->t1)
+        return EVENT_STOPPED;
+    rc = r->row ? r->row(r->ctx, tk->t1, tk->x1) : EOMC_OK;
+    return rc != EOMC_OK ? evolve_stop(r->e, rc, tk->t1, tk->x1) : EVENT_STOPPED;
+}
+
+/* ---- the loop ---- */
+
+/* Integrate to t_end by evolve_step, passing rows as they are settled:
+ * the step ends are the interpolant's nodes (dense.h). */
+static int
+march(Driver *r)
+{
+    while (evolve_more(r->e)) {
+        EvolveStep tk;
+        int rc = evolve_step(r->e, &tk);
+        if (tk.series) { /* Taylor's method: each step's own polynomial */
+            if (rc != GSL_SUCCESS)
+                return rc;
+            if (tk.taken && tk.ev == EVOLVE_STOP)
+                return finish_at_event(r, &tk);
+            if (tk.taken && (rc = series_rows(r, &tk)) != GSL_SUCCESS)
+                return rc;
+            continue;
+        }
+        if (tk.restarted) /* the nodes before the reset are another motion's */
+            dense_clear(r->dense);
+        if (tk.restarted && tk.taken)
+            dense_push(r->dense, tk.t0, tk.x0, tk.f0);
+        if (tk.taken)
+            dense_push(r->dense, tk.t1, tk.x1, tk.f1);
+        else if (!isnan(tk.reached) && !tk.restarted)
+            dense_push(r->dense, tk.reached, tk.xr, tk.fr);
+        if (rc != GSL_SUCCESS)
+            return rc;
+        if (tk.ev == EVOLVE_STOP)
+            return finish_at_event(r, &tk);
+        /* before a reset, every row up to the event */
+        if ((rc = emit_rows(r, tk.ev == EVOLVE_SET)) != GSL_SUCCESS)
+            return rc;
+    }
+    return GSL_SUCCESS;
+}
+
+static void
+driver_free(Driver *r)
+{
+    eomc_evolve_free(r->e);
+    dense_free(r->dense);
+    free(r->xrow);
+    free(r->erow);
+}
+
+/* The first row: the initial state, as it is, after the equations at t0
+ * (a model that cannot be solved there writes no row); then what the
+ * steps' watches start from. */
+static int
+driver_start(Driver *r)
+{
+    int rc = evolve_start(r->e, r->nrows > 1);
+    if (rc != EOMC_OK)
+        return rc;
+    rc = r->row ? r->row(r->ctx, r->o->t0, r->x) : EOMC_OK;
+    r->k = 1;
+    return rc == EOMC_OK ? evolve_watch(r->e) : rc;
+}
+
+int
+eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
+                   void *ctx, eomc_stats *st)
+{
+    eomc_stats local;
+    if (!st)
+        st = &local;
+    int n = eomc_sim_model(s)->nq;
+    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .x = x, .row = row,
+                .ctx = ctx};
+    int rc = evolve_open(&r.e, s, o, x, st);
+    if (rc == EOMC_OK) {
+        r.nrows = eomc_run_rows(o);
+        r.dense = dense_alloc(n);
+        r.xrow = sim_zeros((size_t)r.N);
+        r.erow = sim_zeros((size_t)r.N);
+        if (!r.dense || !r.xrow || !r.erow)
+            rc = sim_usage_error(s, "out of memory setting up %s", o->method);
+    }
+    if (rc != EOMC_OK) {
+        driver_free(&r);
+        return rc;
+    }
+    double c0 = sim_seconds(1);
+    rc = driver_start(&r);
+    if (rc == EOMC_OK && r.nrows > 1) {
+        dense_push(r.dense, o->t0, x, evolve_rate(r.e));
+        evolve_begin(r.e);
+        int status = march(&r);
+        /* the rows up to the last step reached stand, also after a failure */
+        if (status != EVOLVE_STOPPED && status != EVENT_STOPPED) {
+            int flushed = emit_rows(&r, 1);
+            if (status == GSL_SUCCESS)
+                status = flushed;
+        }
+        /* x is where the run stopped: the last state reached (t_end, a stop
+         * event, a failure), or the state a callback stopped it at */
+        double t = evolve_time(r.e);
+        st->t_stop = t;
+        if (status == EVOLVE_STOPPED) { /* a callback (a row's or on_event) said stop */
+            const double *stop_x;
+            rc = evolve_stopped(r.e, &st->t_stop, &stop_x);
+            if (stop_x != x)
+                memcpy(x, stop_x, (size_t)r.N * sizeof *x);
+        } else if (status == EVENT_STOPPED)
+            rc = EOMC_OK;
+        else if (status != GSL_SUCCESS)
+            rc = evolve_error(r.e, status);
+        else if (!sim_all_finite(x, r.N))
+            rc = sim_numeric_error(s, t, x, x + n, "the state is not finite");
+    }
+    st->cpu_seconds = sim_seconds(1) - c0;
+    driver_free(&r);
+    return rc;
+}

@@ -1,0 +1,439 @@
+/*
+ * stepevents: the scene's events in the steps (stepevents.h).
+ *
+ * An event fires in a step where its g crossed zero (events.h).  Its time
+ * is located first on the step's cubic Hermite interpolant (dense.h),
+ * cheap and good enough to start from, then on the solution: a side step
+ * from the step's start, the step layer's (StepevMotion).  An event
+ * whose g has the same sign at both ends of a step may have crossed
+ * twice in it (a grazing motion, a long step): the cubic Hermite
+ * polynomial of g through its values and rates at the ends (polyroots.h)
+ * says where to look, a point between its first two roots, and g on the
+ * solution there says whether the motion did cross.  The layer
+ * sits between the steps (evolve.c) and the root search (events.c, which
+ * knows no model): it knows the model's events, and the step only by the
+ * ends it is handed, so that the stepper, the step's state and the watch
+ * over the steps stay evolve.c's alone.
+ */
+#include "stepevents.h"
+#include "model/simimpl.h"
+#include "events.h"
+#include "dense.h"
+
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
+ * a `set` event fires within ACCUMULATE_REL of the time span of the one
+ * before: their times are no longer resolved (the steps between them
+ * would be below the collapse limit of any run), and the next ones come
+ * ever faster. */
+#define ACCUMULATE_REL 1e-9
+/* A reset passes through its event when it leaves g moving on the way it
+ * crossed at more than PASS_REL of the rate it arrived with (a kick, a
+ * switch of mode).  Anything slower, at rest or turned back (an impact),
+ * is held at g = 0 until it leaves (stepev_check). */
+#define PASS_REL 1e-6
+
+struct StepEvents {
+    eomc_sim *s;
+    const eomc_model *m;          /* s's */
+    const eomc_run_opts *o;
+    eomc_stats *st;
+    StepevMotion mo;
+    int n, N;                     /* coordinates, state size 2n */
+    int ne;                       /* events */
+    double *g0, *g1;              /* [ne] g at the step's start and end */
+    double *ge, *te;              /* [ne] scratch: g, and each event's time */
+    double *te2;                  /* [ne] a second crossing in the step (a pair,
+                                   * both in the event's direction), or NAN */
+    double *gd0, *gd1;            /* [ne] g's rates at the step's ends (pairs) */
+    int have_gd0;                 /* gd0 holds the rates at this step's start: the
+                                   * last step's end, left as it was */
+    double *xs, *fs, *gs;         /* [N], [N], [ne]: the solution inside a step,
+                                   * its rate, and g or g's rate there (pair) */
+    double *xe;                   /* [N] the state at an event's trial time */
+    int ev_k;                     /* the event being located */
+    StepevSpan sp;                /* the step it is located in (its arrays
+                                   * during stepev_check only) */
+    double last_set;              /* the time of the last `set` event */
+    long nsets;                   /* `set` events so far */
+    unsigned char *held;          /* [ne] reset at g = 0, not yet left it */
+    double gap;                   /* from the `set` event before to the last */
+    double left_rate;             /* g's rate after the last reset, a share of
+                                     its rate on arrival (0 unless on the way
+                                     it crossed, slower than passing) */
+    double *ce;                   /* [nc] each constraint's inconsistency */
+    int *cl;                      /* [nc] and its level, after a reset */
+};
+
+StepEvents *
+stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion motion)
+{
+    StepEvents *v = calloc(1, sizeof *v);
+    if (!v)
+        return NULL;
+    const eomc_model *m = eomc_sim_model(s);
+    *v = (StepEvents){.s = s, .m = m, .o = o, .st = st, .mo = motion, .n = m->nq,
+                      .N = 2 * m->nq, .ne = m->nevent, .last_set = -INFINITY};
+    double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce, &v->te2, &v->gd0,
+                         &v->gd1, &v->xs, &v->fs, &v->gs};
+    size_t ne = (size_t)v->ne, nc = (size_t)m->nc, N = (size_t)v->N;
+    size_t sizes[] = {ne, ne, ne, ne, N, nc, ne, ne, ne, N, N, ne};
+    int ok = 1;
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
+    ok &= (v->held = calloc(ne + 1, 1)) != NULL;
+    ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
+    if (!ok) {
+        stepev_free(v);
+        return NULL;
+    }
+    return v;
+}
+
+void
+stepev_free(StepEvents *v)
+{
+    if (!v)
+        return;
+    double *arrays[] = {v->g0, v->g1, v->ge, v->te, v->xe, v->ce, v->te2, v->gd0, v->gd1,
+                        v->xs, v->fs, v->gs};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
+        free(arrays[k]);
+    free(v->held);
+    free(v->cl);
+    free(v);
+}
+
+void
+stepev_start(StepEvents *v, double t, const double *x)
+{
+    eomc_sim_events(v->s, t, x, x + v->n, v->g0);
+    v->have_gd0 = 0;
+}
+
+double
+stepev_gap(const StepEvents *v)
+{
+    return v->gap;
+}
+
+/* ---- located ---- */
+
+static double
+g_interpolant(void *ctx, double t)
+{
+    StepEvents *v = ctx;
+    const StepevSpan *sp = &v->sp;
+    dense_cubic(sp->t0, sp->t1, sp->x0, sp->f0, sp->x1, sp->f1, v->N, t, v->xe);
+    eomc_sim_events(v->s, t, v->xe, v->xe + v->n, v->ge);
+    return v->ge[v->ev_k];
+}
+
+/* g on the solution: the state at t by a step of its own from the step's
+ * start, controlled as a row's side step is. */
+static double
+g_solution(void *ctx, double t)
+{
+    StepEvents *v = ctx;
+    v->st->event_evals++;
+    if (v->mo.side(v->mo.ctx, v->sp.t0, v->sp.x0, v->sp.f0, t, v->xe) != GSL_SUCCESS)
+        return NAN;
+    eomc_sim_events(v->s, t, v->xe, v->xe + v->n, v->ge);
+    return v->ge[v->ev_k];
+}
+
+/* How fast each event's g changes along the motion at (t, x), whose
+ * right-hand side is f, into out [ne]: a central difference along the
+ * tangent over a probe PROBE_REL of the step in hand (v->sp).  It is
+ * exact for a g quadratic in the state, and otherwise off by (probe)^2
+ * g'''/6, a millionth of what g changes by over a step; the rounding of
+ * g, spread over a probe a thousandth of the step, stays far below
+ * PASS_REL of the rate it arrived with (a millionth of the step lost 60%
+ * of a rate of 1e-8 to it). */
+#define PROBE_REL 1e-3
+static void
+g_rates(StepEvents *v, double t, const double *x, const double *f, double *out)
+{
+    double d = PROBE_REL * (v->sp.t1 - v->sp.t0);
+    for (int side = 0; side < 2; side++) {
+        double s = side ? d : -d;
+        for (int i = 0; i < v->N; i++)
+            v->xe[i] = x[i] + s * f[i];
+        eomc_sim_events(v->s, t + s, v->xe, v->xe + v->n, side ? v->ge : out);
+    }
+    for (int k = 0; k < v->ne; k++)
+        out[k] = (v->ge[k] - out[k]) / (2 * d);
+}
+
+/* Event k's alone (gd1 is scratch outside stepev_check). */
+static double
+g_rate(StepEvents *v, int k, double t, const double *x, const double *f)
+{
+    g_rates(v, t, x, f, v->gd1);
+    return v->gd1[k];
+}
+
+/* g of event k on the solution at t and its rate there into *g and *gd:
+ * a side step from the step's start, then g_rates.  GSL_SUCCESS or a
+ * failure status. */
+static int
+g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
+{
+    const StepevSpan *sp = &v->sp;
+    v->st->event_evals++;
+    int rc = v->mo.side(v->mo.ctx, sp->t0, sp->x0, sp->f0, t, v->xs);
+    if (rc == GSL_SUCCESS)
+        rc = v->mo.rate(t, v->xs, v->fs, v->mo.ctx);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    eomc_sim_events(v->s, t, v->xs, v->xs + v->n, v->gs);
+    *g = v->gs[k];
+    g_rates(v, t, v->xs, v->fs, v->gs);
+    *gd = v->gs[k];
+    return GSL_SUCCESS;
+}
+
+/* Bisections of g's turning point in a step, at most: they shrink the
+ * bracket to 2^-EXTREMUM_ITERS of the step, where g differs from its
+ * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
+enum { EXTREMUM_ITERS = 12 };
+
+/* Event k, of one sign at both ends of the step, crossing twice inside
+ * it: g heads for 0 at the step's start and away from it at its end
+ * (gd0, gd1), so it turns in between.  The turning point is found on the
+ * solution by bisection on the sign of g's rate, starting where the cubic
+ * through g and its rates at the ends turns; where g there has crossed
+ * 0, each crossing on either side of it in k's direction is located on
+ * the solution, the first into te[k] and a second into te2[k].
+ * GSL_SUCCESS, or a failure status where the solution cannot be
+ * computed. */
+static int
+pair(StepEvents *v, int k, int *any)
+{
+    const StepevSpan *sp = &v->sp;
+    double t0 = sp->t0, t1 = sp->t1, h = t1 - t0, g0 = v->g0[k], g1 = v->g1[k];
+    double side = g0 > 0 ? 1 : -1;
+    if (g0 == 0 || !(side * v->gd0[k] < 0 && side * v->gd1[k] > 0))
+        return GSL_SUCCESS;
+    /* the cubic's turning point: c1 + 2 c2 tau + 3 c3 tau^2 = 0 in (0, 1) */
+    double d0 = v->gd0[k] * h, d1 = v->gd1[k] * h;
+    double c2 = 3 * (g1 - g0) - 2 * d0 - d1, c3 = 2 * (g0 - g1) + d0 + d1;
+    double qa = 3 * c3, qb = 2 * c2, disc = qb * qb - 4 * qa * d0, tau = 0.5;
+    if (qa != 0 && disc >= 0) {
+        double r1 = (-qb - sqrt(disc)) / (2 * qa), r2 = (-qb + sqrt(disc)) / (2 * qa);
+        tau = r1 > 0 && r1 < 1 ? r1 : r2 > 0 && r2 < 1 ? r2 : 0.5;
+    } else if (qa == 0 && qb != 0 && -d0 / qb > 0 && -d0 / qb < 1) {
+        tau = -d0 / qb;
+    }
+    double lo = t0, hi = t1, tc = NAN, gc = NAN;
+    for (int it = 0; it < EXTREMUM_ITERS && isnan(tc); it++) {
+        double tm = it == 0 ? t0 + tau * h : 0.5 * (lo + hi), gm, dm;
+        int rc = g_and_rate(v, k, tm, &gm, &dm);
+        if (rc != GSL_SUCCESS)
+            return rc;
+        if (gm == 0 || (gm > 0) != (g0 > 0))
+            tc = tm, gc = gm;
+        else if (side * dm < 0) /* still heading for 0: the turn is later */
+            lo = tm;
+        else
+            hi = tm;
+    }
+    if (isnan(tc)) /* it turned short of 0 */
+        return GSL_SUCCESS;
+    int dir = v->m->ev_direction[k], evals, there = ev_crossed(dir, g0, gc);
+    int back = ev_crossed(dir, gc, g1);
+    double first = there ? ev_root(g_solution, v, t0, g0, tc, gc, NAN, &evals) : NAN;
+    double second = back ? ev_root(g_solution, v, tc, gc, t1, g1, NAN, &evals) : NAN;
+    if ((there && isnan(first)) || (back && isnan(second)))
+        return GSL_EBADFUNC;
+    v->te[k] = there ? first : second;
+    v->te2[k] = there ? second : NAN;
+    *any |= !isnan(v->te[k]);
+    return GSL_SUCCESS;
+}
+
+int
+stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
+{
+    eomc_sim *s = v->s;
+    const eomc_model *m = v->m;
+    double t0 = sp->t0, t1 = sp->t1;
+    const double *x1 = sp->x1;
+    int any = 0;
+    *hit = (StepevHit){.k = -1, .status = EOMC_OK, .t = NAN};
+    v->sp = *sp;
+    eomc_sim_events(s, t1, x1, x1 + v->n, v->g1);
+    int rates = 0; /* gd0, gd1 at this step's ends */
+    for (int k = 0; k < v->ne; k++) {
+        v->te[k] = v->te2[k] = NAN;
+        /* an event reset at g = 0 must leave it away from where it fires
+         * (up for a downward event): back there already, the motion
+         * returned within one step, faster than the steps can follow */
+        int dir = m->ev_direction[k];
+        if (v->held[k] && dir != 0 && (v->g1[k] == 0 || (v->g1[k] < 0) == (dir < 0))) {
+            v->ev_k = k;
+            return STEPEV_RETURNED;
+        }
+        v->held[k] = 0;
+        if (!ev_crossed(m->ev_direction[k], v->g0[k], v->g1[k])) {
+            if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
+                continue;
+            if (!rates++) {
+                if (!v->have_gd0)
+                    g_rates(v, t0, sp->x0, sp->f0, v->gd0);
+                g_rates(v, t1, sp->x1, sp->f1, v->gd1);
+            }
+            v->ev_k = k;
+            if (pair(v, k, &any) != GSL_SUCCESS) { /* (a side step's failure) */
+                sim_numeric_error(s, t1, x1, x1 + v->n, "event %s may have crossed twice "
+                                  "in the step from t = %.17g, but the state inside it "
+                                  "could not be computed", m->ev_names[k], t0);
+                return GSL_EBADFUNC;
+            }
+            continue;
+        }
+        int evals;
+        v->ev_k = k;
+        double guess = ev_root(g_interpolant, v, t0, v->g0[k], t1, v->g1[k], NAN, &evals);
+        v->te[k] = ev_root(g_solution, v, t0, v->g0[k], t1, v->g1[k], guess, &evals);
+        if (isnan(v->te[k])) {
+            sim_numeric_error(s, t1, x1, x1 + v->n, "event %s fired in the step from t = "
+                              "%.17g, but the state at its trial times could not be "
+                              "computed", m->ev_names[k], t0);
+            return GSL_EBADFUNC;
+        }
+        any = 1;
+    }
+    memcpy(v->g0, v->g1, (size_t)v->ne * sizeof *v->g0);
+    /* the next step starts at this one's end (a reset says otherwise) */
+    if ((v->have_gd0 = rates > 0))
+        memcpy(v->gd0, v->gd1, (size_t)v->ne * sizeof *v->gd0);
+    while (any) {
+        int k = -1;
+        for (int j = 0; j < v->ne; j++)
+            if (!isnan(v->te[j]) && (k < 0 || v->te[j] < v->te[k]))
+                k = j;
+        if (k < 0)
+            break;
+        double t = v->te[k];
+        v->te[k] = NAN;
+        v->st->events++;
+        if (t == t1)
+            memcpy(v->xe, x1, (size_t)v->N * sizeof *v->xe);
+        else if (v->mo.side(v->mo.ctx, t0, sp->x0, sp->f0, t, v->xe) != GSL_SUCCESS)
+            return GSL_EBADFUNC;
+        int rc = v->o->on_event ? v->o->on_event(v->o->event_ctx, k, t, v->xe) : EOMC_OK;
+        if (rc != EOMC_OK) {
+            *hit = (StepevHit){.k = -1, .status = rc, .t = t, .x = v->xe};
+            return GSL_SUCCESS;
+        }
+        if (m->ev_action[k] == EOMC_EVENT_RECORD) {
+            v->te[k] = v->te2[k], v->te2[k] = NAN; /* the pair's second, if any */
+            continue;
+        }
+        *hit = (StepevHit){.k = k, .status = EOMC_OK, .t = t, .x = v->xe};
+        return GSL_SUCCESS;
+    }
+    return GSL_SUCCESS;
+}
+
+/* ---- reset ---- */
+
+/* Event k's `set` at t left the state off its constraints (their
+ * inconsistencies in v->ce, levels in v->cl): the first such is kept in
+ * the statistics, with every constraint it left off, worst first. */
+static void
+note_reset_off(StepEvents *v, int k, double t)
+{
+    eomc_stats *st = v->st;
+    const eomc_model *m = v->m;
+    size_t at = 0, len = sizeof st->reset_off;
+    st->reset_event = k;
+    st->reset_t = t;
+    st->reset_off[0] = '\0';
+    for (int listed = 0;; listed++) {
+        int worst = -1;
+        for (int j = 0; j < m->nc; j++)
+            if (v->ce[j] > EOMC_INCONSISTENT && (worst < 0 || v->ce[j] > v->ce[worst]))
+                worst = j;
+        if (worst < 0)
+            break;
+        if (!listed) {
+            st->reset_constraint = worst;
+            st->reset_level = v->cl[worst];
+            st->reset_inconsistency = v->ce[worst];
+        }
+        if (at < len)
+            at += (size_t)snprintf(st->reset_off + at, len - at, "%s%s (%s: %.2g)",
+                                   listed ? ", " : "", m->c_names[worst],
+                                   v->cl[worst] ? "velocities" : "positions", v->ce[worst]);
+        v->ce[worst] = 0; /* listed */
+    }
+}
+
+int
+stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
+{
+    eomc_sim *s = v->s;
+    const eomc_model *m = v->m;
+    double span = v->o->t_end - v->o->t0;
+    v->ev_k = k;
+    v->have_gd0 = 0; /* the state the next step starts from is the reset's */
+    if (v->nsets > 0 && t - v->last_set < ACCUMULATE_REL * span)
+        return STEPEV_ACCUMULATE;
+    v->gap = t - v->last_set;
+    v->last_set = t;
+    v->nsets++;
+    int dir = m->ev_direction[k];
+    double arrived = dir ? g_rate(v, k, t, x, f) : 0;
+    eomc_sim_event_set(s, k, t, x, x);
+    if (!sim_all_finite(x, v->N)) {
+        sim_numeric_error(s, t, x, x + v->n, "event %s set a value that is not finite",
+                          m->ev_names[k]);
+        return GSL_EBADFUNC;
+    }
+    if (v->st->reset_event < 0 && m->nc > 0 &&
+        eomc_sim_inconsistencies(s, t, x, x + v->n, v->ce, v->cl) > EOMC_INCONSISTENT)
+        note_reset_off(v, k, t);
+    int rc = v->mo.rate(t, x, f, v->mo.ctx);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    eomc_sim_events(s, t, x, x + v->n, v->g0);
+    v->g0[k] = 0;
+    double left = dir && dir * arrived > 0 ? g_rate(v, k, t, x, f) / arrived : 0;
+    v->held[k] = !(left > PASS_REL);
+    v->left_rate = v->held[k] && left > 0 ? left : 0;
+    return GSL_SUCCESS;
+}
+
+int
+stepev_error(const StepEvents *v, int status, double t, const double *x)
+{
+    eomc_sim *s = v->s;
+    const char *name = v->m->ev_names[v->ev_k];
+    if (status == STEPEV_ACCUMULATE)
+        return sim_numeric_error(s, t, x, x + v->n, "the events accumulate: %s fired %ld "
+                                 "times, the last two %.3g apart, below %g of the time "
+                                 "span: the motion comes to rest against it in ever "
+                                 "shorter intervals (Zeno), which no step can follow",
+                                 name, v->nsets + 1, t - v->last_set, ACCUMULATE_REL);
+    if (v->left_rate > 0) /* moving on, too slowly to pass: not a return */
+        return sim_numeric_error(s, t, x, x + v->n, "event %s holds still at the end of "
+                                 "the first step after its reset at t = %.17g: the reset "
+                                 "left the motion crossing it at %.2g of the rate it "
+                                 "arrived with, too slow to tell from resting on it "
+                                 "(passing through takes more than %g); a reset that "
+                                 "passes should leave it faster, one that stops it should "
+                                 "turn it back", name, v->last_set, v->left_rate, PASS_REL);
+    return sim_numeric_error(s, t, x, x + v->n, "the events accumulate: %s holds again at "
+                             "the end of the first step after its reset at t = %.17g (a "
+                             "step of %.3g): the motion returns to it faster than the steps "
+                             "can follow (it comes to rest against it%s)", name, v->last_set,
+                             t - v->last_set, v->o->h_fixed > 0
+                             ? ", or the fixed steps are too long" : "");
+}

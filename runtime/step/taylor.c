@@ -1,0 +1,545 @@
+/*
+ * taylor: Taylor's method, the series of the motion through a state.
+ *
+ * The model's generated `taylor` function brings the series of every
+ * value of M(q) and h(t, q, q') one order further at each call
+ * (eomc_taylor.h's recurrences on the DAG).  The accelerations' series
+ * follows from M q'' = -h order by order:
+ *     M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}),
+ * so M is factored once per step (at the state itself, as eomc_sim_accel
+ * factors it: GSL's pivoted Cholesky with the same pivot test) and never
+ * inverted symbolically; then q_{k+1} = q'_k / (k + 1) and
+ * q'_{k+1} = a_k / (k + 1), which the next call reads.
+ *
+ * With constraints f = B(t, q, q') q'' + b(t, q, q') = 0 (each affine in
+ * q'', with Baumgarte's terms w_v vel + w_p pos added to b when asked)
+ * the same holds for the KKT system: (a_k, lambda_k) solve
+ *     [M_0 B_0^T; B_0 0] [a_k; lambda_k]
+ *         = -[h_k + sum_{j=1..k} (M_j a_{k-j} + B_j^T lambda_{k-j});
+ *             b_k + sum_{j=1..k} B_j a_{k-j}],
+ * one LU of the KKT matrix per step, scaled and equilibrated as
+ * eomc_sim_accel's (la_kkt_scaling).  When a constraint is nonlinear in
+ * q'', B depends on q'' too: a_0 and lambda_0 are eomc_sim_accel's
+ * (Newton's method), and for k >= 1 coefficient k of f and of B are
+ * affine in a_k, f_k = f_k|(a_k = 0) + B_0 a_k and B_k = B_k|(a_k = 0) +
+ * dB/dq'' a_k, so the same system holds with M_0 + sum_c lambda_0c
+ * dB_c/dq'' in M_0's place, f_k|(a_k = 0) for the second row (the
+ * program computes it with 0 written for a_k), and B_k|(a_k = 0) in the
+ * sum; the program then runs again at order k with a_k written, so that
+ * the orders above see it.  Models whose constraints are
+ * eliminated (Maggi) solve the same motion (C^T E = 0 and f = 0 hold
+ * where E + B^T lambda = 0 and f = 0 do), so they take this way too.
+ *
+ * The order and the step are Jorba and Zou's ("A software package for
+ * the numerical integration of ODEs by means of high-order Taylor
+ * methods", Exp. Math. 14, 2005, sec. 3.2): order p = ceil(-ln(eps)/2 +
+ * 1) for the relative tolerance eps = rtol, and the step
+ *     h = rho / e^2 * exp(-0.7 / (p - 1)),
+ * rho = min over the state's components i and the last two orders j =
+ * p - 1, p of (S_i / |x_ij|)^(1/j), where S_i + atol / rtol is the
+ * component's own scale: its size over the step (step_size) plus what
+ * GSL's test, atol + rtol |x_i|, adds over rtol.  Then the series' last
+ * terms are about e^-2p S_i, about rtol S_i: the local error a GSL method
+ * with these tolerances allows, so the tolerance means what it means for
+ * the other methods.  rho is a time (a ratio of coefficients of the same
+ * component, to the power 1/j), so rescaling the units of mass, length or
+ * time rescales h with them (with atol 0, or atol rescaled too).
+ */
+#include "taylor.h"
+#include "model/simimpl.h"
+#include "model/linalg.h"
+#include "polyroots.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct Taylor {
+    eomc_sim *s;
+    const eomc_model *m;
+    int n, N, p;        /* coordinates, state size, the order */
+    double rtol, atol;
+    double *T;          /* [nslot (p + 1)] the model's series, slot s's from
+                         * T[s (p + 1)]: the order's stride, not the largest
+                         * order's, so that a chain's 200 series of order 16
+                         * (27 KB) stay in the first-level cache */
+    double *X;          /* [(p + 1) N] the state's: X[j N + i], x_i's coefficient j */
+    double *A;          /* [n (p + 1)] the accelerations', A[i (p + 1) + k] */
+    double *M0;         /* [n n] M_0, factored */
+    double *rel;        /* [n] the factorization's relative pivots */
+    size_t *perm;       /* [n] its permutation */
+    double *b;          /* [n] a right-hand side */
+    double *S;          /* [N] the components' scales (step_size) */
+    double *d;          /* [N] a step's change (value) */
+    double *comp;       /* [N] the rounding the state's additions lost so far */
+    double *comp0;      /* [N] ... up to the last series' start (value) */
+    double *xlast;      /* [N] the state taylor_advance left: the compensation
+                         * holds while the next series starts there */
+    double t0;          /* the last series' start */
+    /* with constraints (nc > 0; else NULL) */
+    int nc;
+    double *K, *dK, *r; /* [(n + nc)^2] the KKT matrix at the start, its scaling,
+                         * [n + nc] a right-hand side */
+    LaLu *lu;           /* its factorization */
+    double *L;          /* [nc (p + 1)] the multipliers', L[c (p + 1) + k] */
+    double *wv, *wp;    /* [nc] Baumgarte's weights (sim_baumgarte) */
+    double *J;          /* a constraint nonlinear in q'' (m->taylor_a): c_jacobian's
+                         * outputs, dB/dq'' at (dBda) among them; else NULL */
+    double *dBda;
+};
+
+int
+taylor_order_for(double rtol)
+{
+    double p = ceil(-0.5 * log(rtol) + 1);
+    return p < TAYLOR_MIN_ORDER ? TAYLOR_MIN_ORDER : p > TAYLOR_MAX_ORDER ? TAYLOR_MAX_ORDER
+                                                                          : (int)p;
+}
+
+int
+taylor_check(eomc_sim *s, const eomc_run_opts *o)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    if (!m->taylor)
+        return sim_usage_error(s, "--method taylor: %s has no Taylor series: %s", m->name,
+                               m->taylor_why ? m->taylor_why : "it was generated without them");
+    for (int k = 0; k < m->nu; k++) {
+        double v;
+        if (!eomc_sim_input_held(s, k, &v))
+            return sim_usage_error(s, "--method taylor: input %s is a signal of time, whose "
+                                   "series Taylor's method does not take; hold it constant "
+                                   "(--set %s=VALUE) or choose another method",
+                                   m->u_names[k], m->u_names[k]);
+    }
+    if (m->taylor_a && !m->c_jacobian)
+        return sim_usage_error(s, "--method taylor: %s has a constraint nonlinear in q'' "
+                               "but no c_jacobian, whose dB/dq'' the series need", m->name);
+    if (!(o->rtol > 0))
+        return sim_usage_error(s, "--method taylor: --rtol must be positive (the order "
+                               "comes from it), not %g", o->rtol);
+    return EOMC_OK;
+}
+
+Taylor *
+taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    Taylor *tp = calloc(1, sizeof *tp);
+    if (!tp)
+        return NULL;
+    int n = m->nq, K = TAYLOR_MAX_ORDER;
+    *tp = (Taylor){.s = s, .m = m, .n = n, .N = 2 * n, .rtol = o->rtol, .atol = o->atol,
+                   .p = taylor_order_for(o->rtol)};
+    tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
+    tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
+    tp->A = sim_zeros((size_t)(K + 1) * (size_t)n);
+    tp->M0 = sim_zeros((size_t)n * (size_t)n);
+    tp->rel = sim_zeros((size_t)n);
+    tp->b = sim_zeros((size_t)n);
+    tp->S = sim_zeros((size_t)tp->N);
+    tp->d = sim_zeros((size_t)tp->N);
+    tp->comp = sim_zeros((size_t)tp->N);
+    tp->comp0 = sim_zeros((size_t)tp->N);
+    tp->xlast = sim_zeros((size_t)tp->N);
+    tp->perm = calloc((size_t)n + 1, sizeof *tp->perm);
+    if (!tp->T || !tp->X || !tp->A || !tp->M0 || !tp->rel || !tp->b || !tp->perm || !tp->S ||
+        !tp->d || !tp->comp || !tp->comp0 || !tp->xlast) {
+        taylor_free(tp);
+        return NULL;
+    }
+    int nc = tp->nc = m->nc, nk = n + nc;
+    if (nc == 0)
+        return tp;
+    tp->K = sim_zeros((size_t)nk * (size_t)nk);
+    tp->dK = sim_zeros((size_t)nk);
+    tp->r = sim_zeros((size_t)nk);
+    tp->L = sim_zeros((size_t)(K + 1) * (size_t)nc);
+    tp->wv = sim_zeros((size_t)nc);
+    tp->wp = sim_zeros((size_t)nc);
+    tp->lu = la_lu_alloc(nk);
+    if (!tp->K || !tp->dK || !tp->r || !tp->L || !tp->wv || !tp->wp || !tp->lu) {
+        taylor_free(tp);
+        return NULL;
+    }
+    for (int c = 0; c < nc; c++)
+        sim_baumgarte(s, c, &tp->wv[c], &tp->wp[c]);
+    if (m->taylor_a) { /* dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt */
+        size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
+        tp->J = sim_zeros(2 * cn + nc * nu + nc + 3 * cn * n + cn * nu + cn);
+        if (!tp->J) {
+            taylor_free(tp);
+            return NULL;
+        }
+        tp->dBda = tp->J + 2 * cn + nc * nu + nc + 2 * cn * n;
+    }
+    return tp;
+}
+
+void
+taylor_free(Taylor *tp)
+{
+    if (!tp)
+        return;
+    free(tp->T);
+    free(tp->X);
+    free(tp->A);
+    free(tp->M0);
+    free(tp->rel);
+    free(tp->b);
+    free(tp->S);
+    free(tp->d);
+    free(tp->comp);
+    free(tp->comp0);
+    free(tp->xlast);
+    free(tp->perm);
+    free(tp->K);
+    free(tp->dK);
+    free(tp->r);
+    free(tp->L);
+    free(tp->wv);
+    free(tp->wp);
+    la_lu_free(tp->lu);
+    free(tp->J);
+    free(tp);
+}
+
+/* Slot s's coefficient k. */
+static double
+coef(const Taylor *tp, int slot, int k)
+{
+    return slot < 0 ? 0 : tp->T[(size_t)slot * (tp->p + 1) + (size_t)k];
+}
+
+/* Write the state's coefficient k into the series the model reads. */
+static void
+put_state(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    const double *xk = tp->X + (size_t)k * (size_t)tp->N;
+    for (int i = 0; i < tp->n; i++) {
+        if (m->taylor_q[i] >= 0)
+            tp->T[(size_t)m->taylor_q[i] * (tp->p + 1) + (size_t)k] = xk[i];
+        if (m->taylor_v[i] >= 0)
+            tp->T[(size_t)m->taylor_v[i] * (tp->p + 1) + (size_t)k] = xk[tp->n + i];
+    }
+}
+
+/* Coefficient k of q'' (ak; NULL: 0) into the series the constraints
+ * read, where one is nonlinear in q''. */
+static void
+put_accel(Taylor *tp, int k, const double *ak)
+{
+    for (int i = 0; i < tp->n; i++)
+        if (tp->m->taylor_a[i] >= 0)
+            tp->T[(size_t)tp->m->taylor_a[i] * (tp->p + 1) + (size_t)k] = ak ? ak[i] : 0;
+}
+
+/* a_0 into tp->b and lambda_0 into the multipliers' series by Newton's
+ * method (eomc_sim_accel, from the last solution, as every method's
+ * solves), and dB/dq'' there; 0, or -1 when it fails. */
+static int
+newton_start(Taylor *tp, double t0, const double *x)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, nc = tp->nc;
+    if (eomc_sim_accel(tp->s, t0, x, x + n, tp->b) != EOMC_OK)
+        return -1;
+    const double *lam = eomc_sim_multipliers(tp->s);
+    for (int c = 0; c < nc; c++)
+        tp->L[(size_t)c * (tp->p + 1)] = lam[c];
+    size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
+    double *J = tp->J;
+    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0), J, J + cn,
+                  J + 2 * cn, J + 2 * cn + nc * nu, J + 2 * cn + nc * nu + nc,
+                  J + 2 * cn + nc * nu + nc + cn * n, tp->dBda, tp->dBda + cn * n,
+                  tp->dBda + cn * n + cn * nu);
+    return 0;
+}
+
+/* The radius of the state's series by its last two terms: the least over
+ * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j), or, for S
+ * NULL, of (|x_im| / |x_ij|)^(1/(j - m)) with x_im the component's first
+ * coefficient that is not 0 (its size where it starts from rest or from
+ * 0).  INFINITY when no component has a last term. */
+static double
+radius(const Taylor *tp, const double *S)
+{
+    int p = tp->p, N = tp->N;
+    double rho = INFINITY;
+    if (S) { /* for each order the least ratio, then its root: one pow each */
+        for (int j = p - 1; j <= p; j++) {
+            double least = INFINITY;
+            for (int i = 0; i < N; i++) {
+                double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
+                if (S[i] > 0 && c > 0)
+                    least = fmin(least, S[i] / c);
+            }
+            if (least < INFINITY)
+                rho = fmin(rho, pow(least, 1.0 / j));
+        }
+        return rho;
+    }
+    for (int i = 0; i < N; i++) {
+        int m = 0;
+        while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
+            m++;
+        double scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
+        if (!(scale > 0))
+            continue;
+        for (int j = p - 1; j <= p; j++) {
+            double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
+            if (c > 0 && j > m)
+                rho = fmin(rho, pow(scale / c, 1.0 / (j - m)));
+        }
+    }
+    return rho;
+}
+
+/* Component i's size over a step of h: its series' largest term there,
+ * plus atol / rtol (GSL's atol + rtol |x_i|, over rtol). */
+static void
+scales(Taylor *tp, double h, double *S)
+{
+    int p = tp->p, N = tp->N;
+    for (int i = 0; i < N; i++) {
+        double big = 0, hj = 1;
+        for (int j = 0; j <= p; j++, hj *= h) {
+            double term = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]) * hj;
+            big = term > big ? term : big;
+        }
+        S[i] = big + tp->atol / tp->rtol;
+    }
+}
+
+/* The step the series allows (Jorba and Zou, above), with each
+ * component's scale its size over the step rather than at its start: a
+ * component passing through 0 (a pendulum at the bottom) is measured
+ * against how far it moves, not against its vanishing value.  The scales
+ * and the step depend on each other; from the step their first terms
+ * allow, TAYLOR_SCALE_ROUNDS rounds of the two settle it. */
+static double
+step_size(Taylor *tp)
+{
+    double factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
+    double h = radius(tp, NULL) * factor;
+    for (int r = 0; r < TAYLOR_SCALE_ROUNDS && isfinite(h); r++) {
+        scales(tp, h, tp->S);
+        h = radius(tp, tp->S) * factor;
+    }
+    return h;
+}
+
+/* sum + sum_{j=1..k} c_j b_{k-j}, c slot's series (none for slot -1), b
+ * a series of the same stride: the terms of order k of a product whose
+ * factor b is not yet known at order k. */
+static double
+conv(const Taylor *tp, int slot, const double *b, int k, double sum)
+{
+    if (slot < 0)
+        return sum;
+    const double *c = tp->T + (size_t)slot * (size_t)(tp->p + 1);
+    for (int j = 1; j <= k; j++)
+        sum += c[j] * b[k - j];
+    return sum;
+}
+
+/* sum_{j=1..k} (M_j a_{k-j})_i: each entry's series against the
+ * accelerations' (A: coordinate by coordinate, contiguous). */
+static double
+mass_terms(const Taylor *tp, int i, int k)
+{
+    int n = tp->n;
+    double sum = 0;
+    for (int l = 0; l < n; l++)
+        sum = conv(tp, tp->m->taylor_M[i * n + l], tp->A + (size_t)l * (tp->p + 1), k, sum);
+    return sum;
+}
+
+/* Coefficient k of the accelerations into tp->b, unconstrained:
+ * M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}), M_0 factored at k = 0.
+ * 0, or -1 when M_0 is not safely positive definite. */
+static int
+mass_order(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n;
+    if (k == 0) {
+        for (int i = 0; i < n * n; i++)
+            tp->M0[i] = coef(tp, m->taylor_M[i], 0);
+        if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
+            return -1;
+    }
+    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b */
+    for (int i = 0; i < n; i++)
+        tp->b[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
+    la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
+    return 0;
+}
+
+/* The same with constraints: (a_k, lambda_k) into tp->b and tp->L from
+ * the KKT system (above), factored at k = 0.  0, or -1 when it is
+ * singular. */
+static int
+kkt_order(Taylor *tp, int k)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, nc = tp->nc, nk = n + nc, p = tp->p;
+    if (k == 0) {
+        memset(tp->K, 0, (size_t)nk * (size_t)nk * sizeof *tp->K);
+        for (int i = 0; i < n; i++)
+            for (int l = 0; l < n; l++)
+                tp->K[i * nk + l] = coef(tp, m->taylor_M[i * n + l], 0);
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < n; i++)
+                tp->K[(n + c) * nk + i] = tp->K[i * nk + n + c] =
+                    coef(tp, m->taylor_B[c * n + i], 0);
+        for (int c = 0; c < nc && tp->dBda; c++) { /* + sum_c lambda_0c dB_c/dq'' */
+            double lc = tp->L[(size_t)c * (p + 1)];
+            for (int i = 0; i < n; i++)
+                for (int l = 0; l < n; l++)
+                    tp->K[i * nk + l] += lc * tp->dBda[((size_t)c * n + i) * n + l];
+        }
+        la_kkt_scaling(tp->K, n, nc, tp->dK);
+        if (la_lu_factor_scaled(tp->lu, tp->K, tp->dK) != 0)
+            return -1;
+        if (tp->dBda) /* a_0 and lambda_0 are Newton's */
+            return 0;
+    }
+    for (int i = 0; i < n; i++)
+        tp->r[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
+    for (int c = 0; c < nc; c++) {
+        double rc = coef(tp, m->taylor_f[c], k) + tp->wv[c] * coef(tp, m->taylor_vel[c], k) +
+                    tp->wp[c] * coef(tp, m->taylor_pos[c], k);
+        const double *lam = tp->L + (size_t)c * (p + 1);
+        for (int i = 0; i < n; i++) {
+            int slot = m->taylor_B[c * n + i];
+            tp->r[i] += conv(tp, slot, lam, k, 0);
+            if (!tp->dBda) /* else f_k has these terms already */
+                rc += conv(tp, slot, tp->A + (size_t)i * (p + 1), k, 0);
+        }
+        tp->r[n + c] = rc;
+    }
+    la_lu_solve(tp->lu, tp->r);
+    for (int i = 0; i < n; i++)
+        tp->b[i] = -tp->r[i];
+    for (int c = 0; c < nc; c++)
+        tp->L[(size_t)c * (p + 1) + (size_t)k] = -tp->r[n + c];
+    return 0;
+}
+
+int
+taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, N = tp->N, p = tp->p;
+    const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0);
+    /* a start the last advance did not leave (an event's reset, a side
+     * step's own start) owes nothing */
+    if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0)
+        memset(tp->comp, 0, (size_t)N * sizeof *tp->comp);
+    memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
+    memcpy(tp->X, x, (size_t)N * sizeof *x);
+    tp->t0 = t0;
+    for (int k = 0; k < p; k++) {
+        put_state(tp, k);
+        if (tp->dBda && k == 0 && newton_start(tp, t0, x) != 0)
+            return -1;
+        if (tp->dBda)
+            put_accel(tp, k, k == 0 ? tp->b : NULL);
+        m->taylor(k, p, t0, par, u, tp->T);
+        if (tp->nc > 0) {
+            if (kkt_order(tp, k) != 0)
+                return -1;
+        } else if (mass_order(tp, k) != 0) {
+            return -1;
+        }
+        if (tp->dBda && k > 0) { /* order k again, with a_k */
+            put_accel(tp, k, tp->b);
+            m->taylor(k, p, t0, par, u, tp->T);
+        }
+        double *next = tp->X + (size_t)(k + 1) * (size_t)N;
+        const double *cur = tp->X + (size_t)k * (size_t)N;
+        for (int i = 0; i < n; i++) {
+            tp->A[(size_t)i * (p + 1) + (size_t)k] = tp->b[i];
+            next[i] = cur[n + i] / (k + 1);
+            next[n + i] = tp->b[i] / (k + 1);
+        }
+        if (!sim_all_finite(next, N))
+            return -1;
+    }
+    double hs = step_size(tp);
+    *h = hs < hmax ? hs : hmax;
+    return 0;
+}
+
+/* The change over tau, sum_{j>=1} x_j tau^j, by Horner's rule into d,
+ * less what the state's rounding owes (comp); then the start plus it. */
+static void
+value(const Taylor *tp, double tau, double *x, double *d)
+{
+    int N = tp->N;
+    memcpy(d, tp->X + (size_t)tp->p * (size_t)N, (size_t)N * sizeof *d);
+    for (int j = tp->p - 1; j >= 1; j--) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        for (int i = 0; i < N; i++)
+            d[i] = d[i] * tau + c[i];
+    }
+    for (int i = 0; i < N; i++) {
+        d[i] = d[i] * tau - tp->comp0[i];
+        x[i] = tp->X[i] + d[i];
+    }
+}
+
+void
+taylor_eval(const Taylor *tp, double tau, double *x)
+{
+    value(tp, tau, x, tp->d);
+}
+
+void
+taylor_advance(Taylor *tp, double tau, double *x)
+{
+    value(tp, tau, x, tp->d);
+    for (int i = 0; i < tp->N; i++) /* Kahan: what x's addition lost */
+        tp->comp[i] = (x[i] - tp->X[i]) - tp->d[i];
+    memcpy(tp->xlast, x, (size_t)tp->N * sizeof *x);
+}
+
+void
+taylor_error(const Taylor *tp, double h, double *err)
+{
+    const double *c = tp->X + (size_t)tp->p * (size_t)tp->N;
+    double hp = pow(fabs(h), tp->p);
+    for (int i = 0; i < tp->N; i++)
+        err[i] = fabs(c[i]) * hp;
+}
+
+double
+taylor_event_cut(const Taylor *tp, double h)
+{
+    const eomc_model *m = tp->m;
+    double c[TAYLOR_MAX_ORDER + 1], hcut = h;
+    for (int e = 0; e < m->nevent && m->taylor_g; e++) {
+        if (m->taylor_g[e] < 0)
+            continue;
+        /* g's series has the orders the program reached, 0 .. p - 1 */
+        double hj = 1, cut;
+        for (int j = 0; j < tp->p; j++, hj *= h)
+            c[j] = coef(tp, m->taylor_g[e], j) * hj;
+        if (poly_first_roots(c, tp->p - 1, &cut) == 2)
+            hcut = fmin(hcut, cut * h);
+    }
+    return hcut;
+}
+
+double
+taylor_start(const Taylor *tp)
+{
+    return tp->t0;
+}
+
+int
+taylor_order(const Taylor *tp)
+{
+    return tp->p;
+}

@@ -4,7 +4,10 @@
  * model structs, the main of a simulator, and the cut of a large model
  * into two translation units.
  */
+#include "emit.h"
 #include "emit_func.h"
+#include "emit_taylor.h"
+#include "printer.h"
 #include "runtime/base/numfmt.h"
 
 #include <math.h>

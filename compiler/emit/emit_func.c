@@ -19,50 +19,15 @@
  * concern, and the list is the same whole or cut.
  */
 #include "emit_func.h"
-#include "runtime/base/numfmt.h"
+#include "lower/lower_schedule.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* the names of the sources (emit_func.h's SRC_*) */
 static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "da",
                                            "lam"};
-
-
-
-void
-emit_line(Printer *pr, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(pr->f, fmt, ap);
-    va_end(ap);
-    fputc('\n', pr->f);
-}
-
-/* What follows is compiled in double only (1: the functions the
- * reference solution does not need), or in both precisions (0). */
-void
-emit_fence(Printer *pr, int double_only)
-{
-    if (double_only && !pr->fenced)
-        emit_line(pr, "#ifndef EOMC_EXTENDED");
-    else if (!double_only && pr->fenced)
-        emit_line(pr, "#endif /* EOMC_EXTENDED */\n");
-    pr->fenced = double_only;
-}
-
-/* Swap the stream and fence being printed with the second unit's. */
-void
-emit_unit2_swap(Printer *pr)
-{
-    FILE *f = pr->f;
-    pr->f = pr->unit2, pr->unit2 = f;
-    int fenced = pr->fenced;
-    pr->fenced = pr->fenced2, pr->fenced2 = fenced;
-}
 
 /* A part of a function compiled in double only or in both precisions
  * goes to the second unit, fenced so. */
@@ -78,50 +43,6 @@ static void
 unit2_end(Printer *pr)
 {
     emit_unit2_swap(pr);
-}
-
-
-/* "TYPE\nNAME(PARAMS)" then tail, the comma-separated parameters wrapped. */
-void
-emit_decl(Printer *pr, const char *type, const char *name, const char *params,
-           const char *tail)
-{
-    fprintf(pr->f, "%s\n%s(", type, name);
-    int col = (int)strlen(name) + 1;
-    for (const char *p = params; *p;) {
-        int len = (int)strcspn(p, ",");
-        if (p != params && col + 2 + len + 1 > WRAP) {
-            fputs(",\n    ", pr->f);
-            col = 4;
-        } else if (p != params) {
-            fputs(", ", pr->f);
-            col += 2;
-        }
-        fprintf(pr->f, "%.*s", len, p);
-        col += len;
-        p += len;
-        p += strspn(p, ", ");
-    }
-    fprintf(pr->f, ")%s\n", tail);
-}
-
-/* "TYPE\nNAME(PARAMS)\n{" */
-void
-emit_head(Printer *pr, const char *type, const char *name, const char *params)
-{
-    emit_decl(pr, type, name, params, "\n{");
-}
-
-/* The shortest text that reads back as the same double (runtime/numfmt.h:
- * 9.81, not 9.8100000000000005; 10, not 1e+01), made to look like a
- * double to C. */
-void
-emit_const(char *buf, size_t len, double v)
-{
-    char num[NUM_MAX];
-    snprintf(buf, len, "%s", num_shortest(num, v));
-    if (!strpbrk(buf, ".eEn"))
-        strncat(buf, ".0", len - strlen(buf) - 1);
 }
 
 static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }

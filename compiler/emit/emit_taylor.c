@@ -1,11 +1,12 @@
 /*
  * emit_taylor: the model's taylor member (eomc_model.h) and its tables,
- * printed from the program lower_taylor made (lower.h's LowTaylor): one
+ * printed from the program lower_taylor made (lowered.h's LowTaylor): one
  * call of runtime/eomc_taylor.h per step, slot s being the series at
  * T + s * S.  Compiled in both precisions: the extended-precision twin
  * sums the same series (a reference by Taylor's method, reference.c).
  */
-#include "emit_func.h"
+#include "emit_taylor.h"
+#include "lower/lower_schedule.h"
 
 #include <string.h>
 

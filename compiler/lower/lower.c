@@ -3,38 +3,12 @@
  */
 #include "lower.h"
 #include "expr/kin.h"
+#include "lower_describe.h"
+#include "lower_taylor.h"
 #include "repeat.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-void
-lower_args(const LowSig *sig, LowArgs *a)
-{
-    a->n = 0;
-    a->nin = -1;
-    for (const char *p = sig->args; *p;) {
-        p += strspn(p, " ");
-        if (*p == '>') {
-            a->nin = a->n;
-            p++;
-            continue;
-        }
-        size_t len = strcspn(p, " ?");
-        if (len == 0)
-            break;
-        if (a->n == LOW_MAX_ARGS || len >= sizeof a->name[0])
-            abort(); /* the signatures are ours */
-        memcpy(a->name[a->n], p, len);
-        a->name[a->n][len] = '\0';
-        p += len;
-        a->optional[a->n] = *p == '?';
-        p += *p == '?';
-        a->n++;
-    }
-    if (a->nin < 0)
-        a->nin = a->n;
-}
 
 /* ---- the signatures ---- */
 
@@ -806,138 +780,4 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
     lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
     return lw.L;
-}
-
-int
-lower_size(const LowFunc *f, int arg)
-{
-    int size = f->fill[arg];
-    for (int k = 0; k < f->nout; k++)
-        if (f->out[k].arg == arg && f->out[k].index + 1 > size)
-            size = f->out[k].index + 1;
-    int copied = f->copy ? lower_size(f->copy, arg) : 0;
-    for (int c = 0; copied && c < f->ncopy; c++)
-        if (copied + f->dq[c] > size)
-            size = copied + f->dq[c];
-    return size;
-}
-
-const LowFunc *
-lower_find(const Lowered *L, const char *name)
-{
-    for (int k = 0; k < L->nfunc; k++)
-        if (!strcmp(L->func[k]->sig->name, name))
-            return L->func[k];
-    return NULL;
-}
-
-/* The copies' loop, as the C runs it (the loop the emitter prints): each
- * copy's function on arrays shifted by its dq[c] (u by du[c]); a copy
- * whose seeds are all 0 stores zeros if zero_skip. */
-static void
-eval_copies(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
-{
-    LowArgs a;
-    lower_args(f->sig, &a);
-    for (int c = 0; c < f->ncopy; c++) {
-        int d = f->dq[c];
-        ExprEnv ec = *env;
-        for (int k = 0; k <= EXPR_MAX_ORDER; k++)
-            ec.q[k] = env->q[k] ? env->q[k] + d : NULL;
-        for (int k = 0; k < 3; k++)
-            ec.seed[k] = env->seed[k] ? env->seed[k] + d : NULL;
-        ec.u = env->u ? env->u + f->du[c] : NULL;
-        double *oc[LOW_MAX_ARGS];
-        for (int k = 0; k < a.n - a.nin; k++) /* (outs has one per output argument) */
-            oc[k] = outs[k] ? outs[k] + d : NULL;
-        int loaded = !f->zero_skip;
-        for (int k = 0; k < 3 && !loaded; k++)
-            for (int i = f->span0; ec.seed[k] && i < f->span0 + f->span && !loaded; i++)
-                loaded = ec.seed[k][i] != 0.0;
-        if (loaded) {
-            lower_eval(P, f->copy, &ec, oc);
-            continue;
-        }
-        for (int k = 0; k < a.n - a.nin; k++) /* a copy without a load: at rest */
-            for (int i = f->span0; oc[k] && lower_size(f->copy, k) && i < f->span0 + f->span; i++)
-                oc[k][i] = 0.0;
-    }
-}
-
-/* The values f reads but does not compute, by node id: leaves from env,
- * and the values another function computes (shared[], pd[]), which the C
- * reads and which are evaluated here on the DAG instead (expr_eval_many:
- * the same arithmetic, node by node). */
-static void
-eval_inputs(ExprPool *P, const LowFunc *f, const LowSched *S, const ExprEnv *env, double *v)
-{
-    size_t size = expr_pool_size(P);
-    unsigned char *seen = xmalloc(size);
-    memset(seen, 0, size);
-    ExprId *far = xmalloc(size * sizeof *far);
-    int nfar = 0;
-    for (int k = 0; k < S->nstep; k++) {
-        const LowStep *st = &S->step[k];
-        ExprId ops[2];
-        int nop = 0;
-        if (st->kind == LOW_STEP_NODE) {
-            const ExprNode *nd = expr_node(P, st->id);
-            nop = expr_op_arity[nd->op];
-            ops[0] = nd->a, ops[1] = nd->b;
-        } else if (st->kind == LOW_STEP_STORE) {
-            nop = 1, ops[0] = f->out[st->i].e;
-        }
-        for (int j = 0; j < nop; j++) {
-            ExprId e = ops[j];
-            if (seen[e] || lower_computed(P, f, e))
-                continue;
-            seen[e] = 1;
-            if (expr_op_arity[expr_node(P, e)->op] == 0)
-                v[e] = expr_eval_node(P, e, NULL, env);
-            else
-                far[nfar++] = e;
-        }
-    }
-    double *val = xmalloc(((size_t)nfar + 1) * sizeof *val);
-    expr_eval_many(P, nfar, far, env, val);
-    for (int j = 0; j < nfar; j++)
-        v[far[j]] = val[j];
-    free(val);
-    free(far);
-    free(seen);
-}
-
-void
-lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
-{
-    LowSched *S = lower_schedule(P, f);
-    double *v = xmalloc(expr_pool_size(P) * sizeof *v); /* by node id */
-    eval_inputs(P, f, S, env, v);
-    for (int k = 0; k < S->nstep; k++) {
-        const LowStep *st = &S->step[k];
-        switch (st->kind) {
-        case LOW_STEP_COPIES:
-            eval_copies(P, f, env, outs);
-            break;
-        case LOW_STEP_FILL: /* unless the caller zeroed it, as in the C */
-            for (int i = 0; outs[st->i] && !(f->zeroed >> st->i & 1) && i < f->fill[st->i]; i++)
-                outs[st->i][i] = 0.0;
-            break;
-        case LOW_STEP_NODE: {
-            const ExprNode *nd = expr_node(P, st->id);
-            int ar = expr_op_arity[nd->op];
-            double x[2] = {ar >= 1 ? v[nd->a] : 0.0, ar >= 2 ? v[nd->b] : 0.0};
-            v[st->id] = expr_eval_node(P, st->id, x, env);
-            break;
-        }
-        case LOW_STEP_STORE: {
-            const LowSlot *o = &f->out[st->i];
-            if (outs[o->arg])
-                outs[o->arg][o->index] = v[o->e];
-            break;
-        }
-        }
-    }
-    free(v);
-    lower_sched_free(S);
 }

@@ -1,9 +1,9 @@
 /*
  * lower_describe: the lowered model's own copy of what the emitter prints
- * besides the functions (lower.h's LowModel), so that emit reads neither
+ * besides the functions (lowered.h's LowModel), so that emit reads neither
  * the spec nor the form, the constraints or the invariant.
  */
-#include "lower.h"
+#include "lower_describe.h"
 
 #include <string.h>
 

@@ -1,7 +1,7 @@
 /*
  * lower_taylor: the program of the model's taylor member (eomc_model.h),
  * Taylor's method's series of M, h and the event functions g, as a list
- * of calls of runtime/eomc_taylor.h (lower.h's LowTaylor) that the
+ * of calls of runtime/eomc_taylor.h (lowered.h's LowTaylor) that the
  * emitter prints.
  *
  * Every node that mass_bias or events computes gets a slot, its series:
@@ -31,7 +31,7 @@
  * b), f's DAG is read with the accelerations 0, which gives b; when one
  * is not, the accelerations are slots the caller writes, as q and q'.
  */
-#include "lower.h"
+#include "lower_taylor.h"
 
 #include <stdio.h>
 #include <stdlib.h>

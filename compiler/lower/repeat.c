@@ -57,7 +57,7 @@ shiftable(const LowFunc *f)
     static const char *const known[] = {"t", "q", "v", "a", "p", "u", "dq", "dv", "da"};
     if (f->shared || f->zeroed || strchr(f->sig->args, '?'))
         return 0;
-    /* the signature's inputs: the names before '>' (lower.h) */
+    /* the signature's inputs: the names before '>' (lowered.h) */
     for (const char *c = f->sig->args; *c && *c != '>';) {
         size_t len = strcspn(c, " >"), i = 0;
         while (len && i < sizeof known / sizeof *known &&

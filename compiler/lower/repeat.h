@@ -16,7 +16,7 @@
 #ifndef EOMC_REPEAT_H
 #define EOMC_REPEAT_H
 
-#include "lower.h"
+#include "lowered.h"
 
 /* Below this many operations that the loop saves (the copies' code but
  * the first's), a function stays straight-line: a small model's C stays

@@ -13,6 +13,7 @@
 #include "check.h"
 #include "forms/forms.h"
 #include "lower/lower.h"
+#include "lower/lower_schedule.h"
 
 #include <string.h>
 

@@ -13,6 +13,8 @@
  */
 #include "check.h"
 #include "forms/forms.h"
+#include "lower/lower.h"
+#include "lower/lower_schedule.h"
 #include "lower/repeat.h"
 
 #include <stdint.h>

@@ -16,6 +16,7 @@
 #include "check.h"
 #include "forms/forms.h"
 #include "lower/lower.h"
+#include "lower/lower_schedule.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -18,7 +18,7 @@
 #              M never formed) in straight-line code, when the default is
 #              not that
 #   tab_ns     ns per right-hand side of --code tables (the same recursion
-#              as loops over the model's tables, runtime/eomc_tree.h)
+#              as loops over the model's tables, runtime/include/eomc_tree.h)
 #   tab_build  time of `eomc build --code tables`
 #   mj_ns      ns per mj_forward of the same tree in MuJoCo (contact and
 #              limits off; bench/mj_bench.c), when meson found libmujoco

@@ -1,4 +1,4 @@
-"""The runtime's C API (runtime/eomc.h) in a model's shared library, through ctypes.
+"""The runtime's C API (runtime/include/eomc.h) in a model's shared library, through ctypes.
 
 ``eomc build --shared`` makes one library holding the model, its
 extended-precision twin when built, and the whole runtime; it names the
@@ -47,7 +47,7 @@ class Library:
                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t))
         self.free = fn("eomc_free", None, vp)
         # eomc reports GSL's errors as its own statuses; GSL's default
-        # handler would abort the interpreter (runtime/eomc.h)
+        # handler would abort the interpreter (runtime/include/eomc.h)
         fn("gsl_set_error_handler_off", vp)()
 
     def names(self, kind):

@@ -19,7 +19,7 @@ int build_is_special(const char *path);
  * written next to it).  The compilations run at once, their objects go
  * next to c_file, and everything but exe is removed.  mpi: with
  * $EOMC_MPICC (default mpicc) and -DEOMC_MPI, so that its main shares a
- * sweep among the ranks of an MPI job (runtime/eomc_mpi.h).  shared: a
+ * sweep among the ranks of an MPI job (runtime/include/eomc_mpi.h).  shared: a
  * shared library instead (-DEOMC_SHARED: no main, the model under fixed
  * names, eomc_main.h) holding the whole runtime, for the Python package.
  * Returns 0, or -1 after printing why. */

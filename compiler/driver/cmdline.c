@@ -169,7 +169,7 @@ cmdline_unknown_option(const char *a)
 }
 
 /* Whether the simulator options of `eomc run` ask for what solves with
- * the Jacobian: an implicit method (runtime/methods.def), the
+ * the Jacobian: an implicit method (runtime/base/methods.def), the
  * linearization, an equilibrium, or the accuracy report of every method. */
 static int
 implicit(const char *method)

@@ -291,7 +291,7 @@ print_accel(Printer *pr, const Lowered *L)
 }
 
 /* The tables' turns, then accel and mass_bias as loops over them
- * (runtime/eomc_tree.h): tau first, then the recursion. */
+ * (runtime/include/eomc_tree.h): tau first, then the recursion. */
 static void
 print_tree_turns(Printer *pr, const Lowered *L)
 {

@@ -1,6 +1,6 @@
 /*
  * emit: print a derived model as straight-line C implementing
- * runtime/eomc_model.h.  One `const double` temporary per shared DAG node
+ * runtime/include/eomc_model.h.  One `const double` temporary per shared DAG node
  * reachable from a function's outputs (dead nodes are never printed),
  * numbered in emission order; leaves get named locals (q_x, v_x, a_x,
  * p_x, u_x); constants print in the shortest form that reads back

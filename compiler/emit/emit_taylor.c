@@ -1,7 +1,7 @@
 /*
  * emit_taylor: the model's taylor member (eomc_model.h) and its tables,
  * printed from the program lower_taylor made (lowered.h's LowTaylor): one
- * call of runtime/eomc_taylor.h per step, slot s being the series at
+ * call of runtime/include/eomc_taylor.h per step, slot s being the series at
  * T + s * S.  Compiled in both precisions: the extended-precision twin
  * sums the same series (a reference by Taylor's method, reference.c).
  */

@@ -70,7 +70,7 @@ emit_head(Printer *pr, const char *type, const char *name, const char *params)
     emit_decl(pr, type, name, params, "\n{");
 }
 
-/* The shortest text that reads back as the same double (runtime/numfmt.h:
+/* The shortest text that reads back as the same double (runtime/base/numfmt.h:
  * 9.81, not 9.8100000000000005; 10, not 1e+01), made to look like a
  * double to C. */
 void

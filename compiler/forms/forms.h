@@ -33,7 +33,7 @@ typedef struct Form {
 } Form;
 
 /* The articulated-body form's model as tables, for code that loops over
- * them (runtime/eomc_tree.h) instead of unrolling the recursion: per joint
+ * them (runtime/include/eomc_tree.h) instead of unrolling the recursion: per joint
  * five integers (up, coordinate, axis: 0-2 a coordinate axis of its own,
  * 3 a vector; whether a constant rotation precedes it; whether it slides)
  * and

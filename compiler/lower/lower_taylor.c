@@ -1,7 +1,7 @@
 /*
  * lower_taylor: the program of the model's taylor member (eomc_model.h),
  * Taylor's method's series of M, h and the event functions g, as a list
- * of calls of runtime/eomc_taylor.h (lowered.h's LowTaylor) that the
+ * of calls of runtime/include/eomc_taylor.h (lowered.h's LowTaylor) that the
  * emitter prints.
  *
  * Every node that mass_bias or events computes gets a slot, its series:

@@ -159,7 +159,7 @@ typedef struct LowModel {
 
 /* ---- Taylor's method: the series program (lower_taylor.c) ---- */
 
-/* One call of runtime/eomc_taylor.h, printed
+/* One call of runtime/include/eomc_taylor.h, printed
  * eomc_tay_CALL(T + slot[0] * S, ..., [value,] k): slot[0 .. nslot-1] are
  * its series arguments in the call's order (results, auxiliary series,
  * operands), then, for const and time, the value (src). */
@@ -276,7 +276,7 @@ enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
 /* How the articulated-body form's accel and mass_bias are written.
  * STRAIGHT: straight-line code, every constant folded, the fastest to run
  * and slowest to compile (~0.3 ms of cc -O2 per operation).  TABLES:
- * loops over the model's tables (runtime/eomc_tree.h, forms.h's
+ * loops over the model's tables (runtime/include/eomc_tree.h, forms.h's
  * FormTables), a few hundred lines of C whatever the size, 2-3 times
  * slower to run.  AUTO: tables when the straight-line solve, bias and
  * energies would pass LOWER_TABLES_MIN operations (measured, gcc 12 -O2:

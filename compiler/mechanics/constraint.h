@@ -38,7 +38,7 @@ Constraints *constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool 
                                Diff *D);
 
 /* Whether a form that solves for q'' by its own recursion can take the
- * constraints by unit loads (runtime/kkt.c): there are some, each affine
+ * constraints by unit loads (runtime/model/kkt.c): there are some, each affine
  * in q'', and they have multipliers (not eliminated). */
 int constraints_by_loads(const Constraints *c, int eliminate);
 

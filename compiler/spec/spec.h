@@ -233,7 +233,7 @@ typedef struct SpecCheck {
     SrcLoc loc;
 } SpecCheck;
 
-/* The integrators the runtime offers (ORDER: runtime/sim.c eomc_methods). */
+/* The integrators the runtime offers (ORDER: runtime/model/sim.c eomc_methods). */
 extern const char *const spec_methods[];
 /* 1 if the method solves with the Jacobian of the equations (the
  * implicit ones), 0 if not, -1 for a name not among spec_methods. */

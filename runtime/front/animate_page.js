@@ -1,7 +1,7 @@
 /*
  * animate_page.js: the script of a run's page (--animate FILE.html),
- * built into the runtime (runtime/embed.py) and written after the JSON
- * block #eomc-data that runtime/animate.c writes: the draw items, shapes,
+ * built into the runtime (runtime/front/embed.py) and written after the JSON
+ * block #eomc-data that runtime/front/animate.c writes: the draw items, shapes,
  * links, traces, camera, output names and the frames, each frame
  * [t, outputs..., then per item its position (3) and, for bodies and
  * frames, its rotation matrix to the world (9, row-major)].

@@ -217,7 +217,7 @@ void eomc_set_parallel(const eomc_parallel *p);
 
 /* ---- integration ---- */
 
-/* The integration methods by name, NULL-terminated (runtime/methods.def). */
+/* The integration methods by name, NULL-terminated (runtime/base/methods.def). */
 extern const char *const eomc_methods[];
 /* One line about a method, or NULL for an unknown name. */
 const char *eomc_method_description(const char *name);
@@ -275,7 +275,7 @@ typedef struct eomc_stats {
     double max_residual, max_drift;
     /* Rows computed by a step of their own, from the step end before them,
      * where the interpolant's error estimate failed the tolerances (long
-     * steps; see runtime/dense.h).  Their right-hand sides are counted. */
+     * steps; see runtime/step/dense.h).  Their right-hand sides are counted. */
     long side_steps;
     /* The conditioning of the linear system solved for q'' (the mass
      * matrix balanced by its diagonal, or the scaled KKT or elimination
@@ -330,7 +330,7 @@ typedef struct eomc_stats {
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with
  * the state x [2nq].  Output times are not step ends: the state there is
- * the interpolant's (runtime/dense.h), except at t0.  A nonzero return
+ * the interpolant's (runtime/step/dense.h), except at t0.  A nonzero return
  * stops the integration with that status. */
 typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
 
@@ -400,7 +400,7 @@ typedef struct eomc_evolve eomc_evolve;
  *     x(t) = (2s^3 - 3s^2 + 1) x0 + (s^3 - 2s^2 + s) h f0
  *          + (3s^2 - 2s^3) x1 + (s^3 - s^2) h f1,
  * its error O(h^4) (eomc_sim_integrate's rows come from an interpolant of
- * higher order over several steps, runtime/dense.h). */
+ * higher order over several steps, runtime/step/dense.h). */
 typedef struct eomc_step {
     int nx;                  /* 2 nq */
     double t0, t1;

@@ -46,7 +46,7 @@ typedef double eomc_real;
 
 /* s[i] = sin(x[i]), c[i] = cos(x[i]) for i < n: generated code computes
  * the sines and cosines of a function's angles (its turns' coordinates,
- * their sums) by one call.  In double, libeomcrt's (runtime/sincos.c:
+ * their sums) by one call.  In double, libeomcrt's (runtime/base/sincos.c:
  * 4 at once where the machine has AVX2 and FMA, each within 1.5 ulp; else
  * one at a time by the C library); in extended precision, one at a time
  * by sinl and cosl. */
@@ -300,7 +300,7 @@ typedef struct eomc_model {
     const int *view_links, *view_trace;
     const double *view_camera;
 
-    /* Taylor's method (--method taylor; runtime/eomc_taylor.h has the
+    /* Taylor's method (--method taylor; runtime/include/eomc_taylor.h has the
      * recurrences).  The series of every value mass_bias computes (and of
      * the event functions), slot s's normalized Taylor coefficients about
      * t0 at T[s (K + 1) + j], j = 0 .. K.  taylor(k, K, t0, p, u, T)

@@ -2,7 +2,7 @@
  * eomc_mpi.h: a sweep over the ranks of an MPI job.  `eomc build --mpi`
  * compiles the generated simulator with mpicc and -DEOMC_MPI, and its
  * main is then eomc_mpi_main: MPI_Init, the ranks share the sweep's runs
- * (runtime/sweep.c: run j on rank j mod size), rank 0 gathers the rows and
+ * (runtime/front/sweep.c: run j on rank j mod size), rank 0 gathers the rows and
  * writes the summary in sweep order, MPI_Finalize.  A run that is not a
  * sweep is done by rank 0 alone.  Header-only, so that the runtime library
  * itself never needs MPI.

@@ -2,7 +2,7 @@
 # Constrained trees by unit loads (TAP): a tree with constraints affine in
 # q'' solved by the articulated-body recursion without the constraints,
 # then M^-1 B^T one row at a time (minv) and the nc x nc system B M^-1 B^T
-# (runtime/kkt.c), M never formed.  Each check sets it against Lagrange's
+# (runtime/model/kkt.c), M never formed.  Each check sets it against Lagrange's
 # form, whose M is differentiated from the energies and whose KKT system
 # is solved densely: an independent derivation and solve.
 #  - --accel (q'' and the multipliers) of the rolling disk, the bicycle of

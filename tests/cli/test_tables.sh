@@ -1,6 +1,6 @@
 #!/bin/sh
 # The articulated-body form as loops over the model's tables (--code
-# tables, runtime/eomc_tree.h) as a user runs it (TAP).  Each check sets
+# tables, runtime/include/eomc_tree.h) as a user runs it (TAP).  Each check sets
 # it against Lagrange's form, derived by differentiating the energies and
 # solved by factoring M: an independent derivation and solve.
 #  - --accel at a state with every angle and rate set, on a 5-body tree of

@@ -1,5 +1,5 @@
 /*
- * runtime/events.c on functions whose roots are known:
+ * runtime/step/events.c on functions whose roots are known:
  *  - ev_crossed: each direction, a landing on exactly 0, and a start at 0
  *    (an event that has just fired) that never counts;
  *  - ev_root: cos t in [1, 2] gives pi/2, t^3 - 2 in [0, 2] gives 2^(1/3),

@@ -1,5 +1,5 @@
 /*
- * runtime/linalg.c's LTDL (la_ltdl_factor, la_ltdl_solve_neg) on a
+ * runtime/model/linalg.c's LTDL (la_ltdl_factor, la_ltdl_solve_neg) on a
  * random tree of 40 coordinates: M is built as L^T D L from a unit lower
  * triangular L whose off-diagonal entries sit only between a coordinate
  * and its ancestors, and a positive D, so it has exactly a tree's

@@ -1,5 +1,5 @@
 /*
- * runtime/numfmt.c: every number printed reads back as the same double,
+ * runtime/base/numfmt.c: every number printed reads back as the same double,
  * and no shorter %g does (checked here by trying every shorter
  * precision); the issue's 0.05 prints as 0.05.
  */

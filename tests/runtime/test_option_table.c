@@ -1,5 +1,5 @@
 /*
- * runtime/option_table.c: every option of enum Option has a row, found
+ * runtime/front/option_table.c: every option of enum Option has a row, found
  * again by its name, and the row's value (what --help shows) agrees with
  * the enum's order (what parsing goes by: the options from FIRST_FLAG on
  * take no value).

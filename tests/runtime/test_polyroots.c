@@ -1,5 +1,5 @@
 /*
- * runtime/polyroots.c (Taylor's method's events), on polynomials built
+ * runtime/step/polyroots.c (Taylor's method's events), on polynomials built
  * from known roots, c = k prod (x - r_i), expanded here:
  *  - two roots in (0, 1], close or far apart, with roots outside beside
  *    them: 2, and the cut lies strictly between the first two;

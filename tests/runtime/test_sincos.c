@@ -1,7 +1,7 @@
 /*
- * eomc_sincos (runtime/sincos.c), which generated code calls for the sines
+ * eomc_sincos (runtime/base/sincos.c), which generated code calls for the sines
  * and cosines of a function's angles, several at once where the machine
- * has vector instructions: every value within 2 ulp (runtime/sincos.c
+ * has vector instructions: every value within 2 ulp (runtime/base/sincos.c
  * measures 1.5; the C library's scalar functions, used elsewhere, are
  * within 1) of sinl and cosl in extended precision, for every count from 1
  * to 19 (whole vectors and the lanes left over), for angles up to 1e5,

@@ -1,5 +1,5 @@
 /*
- * Taylor's method (--method taylor; runtime/taylor.c) on the oscillator
+ * Taylor's method (--method taylor; runtime/step/taylor.c) on the oscillator
  * m x'' + k x = 0 with its hand-written series (models.c), against the
  * closed form x0 cos(w t) + v0 / w sin(w t), w = sqrt(k/m):
  *  - every row (the steps' own polynomials) within the tolerance of the

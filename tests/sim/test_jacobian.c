@@ -1,5 +1,5 @@
 /*
- * The jacobian member (compiler/emit.h) of every shipped spec, in both
+ * The jacobian member (compiler/emit/emit.h) of every shipped spec, in both
  * ways eomc prints it: the unrolled matrices (generated/NAME.c, what these
  * small models get by default) and `eomc compile --jacobian seeded`, which
  * loops over unit seeds of the directional derivative of E.  Each is

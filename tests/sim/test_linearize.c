@@ -1,5 +1,5 @@
 /*
- * Linearization and equilibria (runtime/linearize.c) against independent
+ * Linearization and equilibria (runtime/analysis/linearize.c) against independent
  * values:
  *  - the pendulum's eigenvalues: +-i sqrt(g/l) at the bottom, +-sqrt(g/l)
  *    at the top;

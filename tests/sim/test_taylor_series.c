@@ -1,5 +1,5 @@
 /*
- * The taylor member (eomc_model.h; compiler/lower_taylor.c prints its
+ * The taylor member (eomc_model.h; compiler/lower/lower_taylor.c prints its
  * program) of shipped and test specs, checked independently of the
  * recurrences it calls: q(t) and q'(t) are made up as cubic polynomials
  * in tau = t - t0 (not a motion, and not consistent with each other),

@@ -99,10 +99,11 @@ split_flags(char *flags, char **argv, int max)
     return n;
 }
 
-/* Start argv[0] on argv (quiet: its output to /dev/null, and nothing said
- * if it cannot run); its pid, or -1 after printing why. */
+/* Start argv[0] on argv in directory dir (NULL: this one; quiet: its
+ * output to /dev/null, and nothing said if it cannot run); its pid, or -1
+ * after printing why. */
 static pid_t
-start_cc(char **argv, int quiet)
+start_cc(char **argv, const char *dir, int quiet)
 {
     pid_t pid = fork();
     if (pid < 0) {
@@ -113,6 +114,11 @@ start_cc(char **argv, int quiet)
         int null = quiet ? open("/dev/null", O_WRONLY) : -1;
         if (null >= 0)
             dup2(null, STDOUT_FILENO), dup2(null, STDERR_FILENO);
+        if (dir && chdir(dir) != 0) {
+            if (!quiet)
+                fprintf(stderr, "eomc: cannot enter %s: %s\n", dir, strerror(errno));
+            _exit(127);
+        }
         execvp(argv[0], argv);
         if (!quiet)
             fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
@@ -174,7 +180,7 @@ cc_takes_fast_flags(char **argv, int ncc)
     for (size_t k = 0; k < sizeof tail / sizeof tail[0]; k++)
         probe[n++] = (char *)tail[k];
     probe[n] = NULL;
-    return exit_status(start_cc(probe, 1)) == 0;
+    return exit_status(start_cc(probe, NULL, 1)) == 0;
 }
 
 int
@@ -236,8 +242,9 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
     char *obj[3] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
                     sibling(c_file, "model_ext.o")};
-    char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS;
-    snprintf(incflag, sizeof incflag, "-I%s", inc);
+    char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS, incabs[PATH_MAX];
+    /* absolute: the units compile in the C file's directory */
+    snprintf(incflag, sizeof incflag, "-I%s", realpath(inc, incabs) ? incabs : inc);
     snprintf(ccbuf, sizeof ccbuf, "%s", cc);
     char *argv[64];
     int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
@@ -254,6 +261,18 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
                            "-pthread", incflag, shared ? "-fPIC" : mpi ? "-DEOMC_MPI" : NULL};
     const char *unit_flag[3] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL};
     int fast = units == 2 && cc_takes_fast_flags(argv, ncc);
+    /* Each unit compiles in the directory of the C, named relative to it,
+     * so that the command line of the same C is the same from one build
+     * to the next, wherever its directory: a compiler cache (CC="ccache
+     * cc") then finds it (ccache hashes the file names it is given).  The
+     * objects are siblings of the C, and the link names them in full. */
+    const char *slash = strrchr(c_file, '/');
+    char *dir = NULL;
+    if (slash) {
+        dir = xmalloc((size_t)(slash - c_file) + 2);
+        memcpy(dir, c_file, (size_t)(slash - c_file) + 1);
+        dir[slash - c_file + 1] = '\0';
+    }
     const char *src[3] = {c_file, c_file, ext};
     int use[3] = {1, units == 2, twin};
     char *unit_argv[3][32];
@@ -271,11 +290,11 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
         for (int k = 0; fast && k < NFAST; k++)
             unit_argv[u][n++] = (char *)fast_flags[k];
         unit_argv[u][n++] = "-c";
-        unit_argv[u][n++] = (char *)src[u];
+        unit_argv[u][n++] = (char *)(dir ? src[u] + strlen(dir) : src[u]);
         unit_argv[u][n++] = "-o";
-        unit_argv[u][n++] = obj[u];
+        unit_argv[u][n++] = dir ? obj[u] + strlen(dir) : obj[u];
         unit_argv[u][n] = NULL;
-        pid[u] = start_cc(unit_argv[u], 0);
+        pid[u] = start_cc(unit_argv[u], dir, 0);
     }
     int rc = 0;
     for (int u = 0; u < 3; u++) /* each waited for */
@@ -302,7 +321,7 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
         argv[n++] = "-lm";
         argv[n++] = "-pthread"; /* sweeps run on threads */
         argv[n] = NULL;
-        rc = wait_cc(start_cc(argv, 0), cc);
+        rc = wait_cc(start_cc(argv, NULL, 0), cc);
     }
     if (rc == 0 && !special && rename(tmp, exe) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
@@ -319,6 +338,7 @@ build_executable(const char *c_file, const char *exe, int mpi, int units, int tw
     }
     free(ext);
     free(tmp);
+    free(dir);
     return rc;
 }
 

@@ -15,7 +15,11 @@
 #    exit 2, no output, and the rebuild to do; with --extended, and from
 #    `eomc run ... --error` (which asks for the twin itself), its error
 #    line is printed; a small model gets its twin unasked;
-#  - --extended belongs to eomc build: eomc compile refuses it (exit 2).
+#  - --extended belongs to eomc build: eomc compile refuses it (exit 2);
+#  - each unit compiles in the directory of its C, by names relative to it,
+#    so that two builds of one model in two temporary directories give $CC
+#    the same command line (recorded by a wrapper), and ccache, where it is
+#    installed, serves the second from its cache.
 # usage: test_build.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -78,5 +82,33 @@ ok $? "a small model: its twin built unasked"
 "$eomc" compile "$tmp/tree10.yaml" -o "$tmp/x.c" --extended 2> "$tmp/err4"; st=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/x.c" ] && grep -q -- '--extended belongs to `eomc build`' "$tmp/err4"
 ok $? "eomc compile --extended: exit $st, belongs to eomc build"
+
+# the same command line for the same C, from one build to the next
+cat > "$tmp/rec.sh" <<EOF
+#!/bin/sh
+case " \$* " in *" -c "*) echo "\$(pwd | sed 's|/eomc-[^/]*\$|/eomc-X|') \$*" >> "$tmp/cc.log" ;; esac
+exec $cc "\$@"
+EOF
+for k in 1 2; do
+  EOMC_CACHE_DIR="$tmp/cache-rec$k" CC="sh $tmp/rec.sh" "$eomc" build "$src/specs/pendulum.yaml" \
+    -o "$tmp/rec$k" || echo "build $k failed" >> "$tmp/cc.log"
+done
+# (the twin's unit too: two compiles a build, at once, in either order)
+[ "$(wc -l < "$tmp/cc.log")" -eq 4 ] && ! grep -q ' /tmp/eomc-' "$tmp/cc.log" &&
+  [ "$(sed -n 1,2p "$tmp/cc.log" | sort)" = "$(sed -n 3,4p "$tmp/cc.log" | sort)" ] &&
+  grep -q '^/tmp/eomc-X .* -c model.c -o model.o$' "$tmp/cc.log"
+ok $? "two builds of one model: the same compile commands, in the C's directory, by relative names"
+if command -v ccache > /dev/null; then
+  for k in 1 2; do
+    CCACHE_DIR="$tmp/ccache" EOMC_CACHE_DIR="$tmp/cache-cc$k" CC="ccache ${cc#ccache }" \
+      "$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/cc$k" || echo failed
+  done
+  hits=$(CCACHE_DIR="$tmp/ccache" ccache -s | sed -n 's/^ *Hits: *\([0-9]*\) .*/\1/p')
+  [ "$hits" = 2 ] && cmp -s "$tmp/cc1" "$tmp/cc2"
+  ok $? "ccache: the second build's two compiles served from the cache ($hits hits), the same simulator"
+else
+  n=$((n + 1))
+  echo "ok $n # SKIP ccache not installed"
+fi
 
 tap_end

@@ -4,9 +4,11 @@
  * (test_import.sh).  Contact, joint limits, friction loss and equality
  * constraints are off: the smooth dynamics eomc imports.
  *
- *   mj_accel MODEL SEED   ->   a line of nq coordinates q, a line of nq
- *                              rates q', a line of nu controls (empty
- *                              without actuators), then q'' one per line
+ *   mj_accel MODEL SEED [COUNT] ->  a line of nq coordinates q, a line of
+ *                              nq rates q', a line of nu controls (empty
+ *                              without actuators), then q'' one per line;
+ *                              with COUNT, a block so for each seed SEED ..
+ *                              SEED + COUNT - 1 (one process, one load)
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
@@ -296,27 +298,12 @@ done:
     return rc;
 }
 
-int
-main(int argc, char **argv)
+/* The state of one seed and MuJoCo's q'' there, printed; 3 if no state
+ * drawn meets the constraints. */
+static int
+one_state(mjModel *m, mjData *d, uint64_t seed)
 {
-    char err[1000] = "";
-    mjModel *m = argc == 3 ? mj_loadXML(argv[1], NULL, err, sizeof err) : NULL;
-    if (!m) {
-        fprintf(stderr, "mj_accel: %s\n", argc == 3 ? err : "usage: mj_accel MODEL SEED");
-        return 2;
-    }
-    if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic")) {
-        int rc = argv[2][0] == 'c' ? centre_of_mass(m) : kinetic(m);
-        mj_deleteModel(m);
-        return rc;
-    }
-    m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
-                           mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
-    m->opt.jacobian = mjJAC_DENSE;
-    for (int i = 0; i < m->nu; i++)
-        m->actuator_forcelimited[i] = 0;
-    mjData *d = mj_makeData(m);
-    uint64_t seed = strtoull(argv[2], NULL, 10);
+    mj_resetData(m, d); /* as a new one: nothing warm-started from the last */
     /* with constraints, a draw whose Newton steps do not reach them (a
      * closed loop that cannot close there) is drawn again */
     for (int draw = 0;; draw++) {
@@ -371,7 +358,36 @@ main(int argc, char **argv)
         printf("%.17g\n", a[i]);
     free(v);
     free(a);
+    return 0;
+}
+
+int
+main(int argc, char **argv)
+{
+    char err[1000] = "";
+    mjModel *m = argc == 3 || argc == 4 ? mj_loadXML(argv[1], NULL, err, sizeof err) : NULL;
+    if (!m) {
+        fprintf(stderr, "mj_accel: %s\n",
+                argc == 3 || argc == 4 ? err : "usage: mj_accel MODEL SEED [COUNT]");
+        return 2;
+    }
+    if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic")) {
+        int rc = argv[2][0] == 'c' ? centre_of_mass(m) : kinetic(m);
+        mj_deleteModel(m);
+        return rc;
+    }
+    m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
+                           mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
+    m->opt.jacobian = mjJAC_DENSE;
+    for (int i = 0; i < m->nu; i++)
+        m->actuator_forcelimited[i] = 0;
+    mjData *d = mj_makeData(m);
+    uint64_t seed = strtoull(argv[2], NULL, 10);
+    long count = argc == 4 ? strtol(argv[3], NULL, 10) : 1;
+    int rc = 0;
+    for (long k = 0; k < count && rc == 0; k++)
+        rc = one_state(m, d, seed + (uint64_t)k);
     mj_deleteData(d);
     mj_deleteModel(m);
-    return 0;
+    return rc;
 }

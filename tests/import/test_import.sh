@@ -61,29 +61,59 @@ for model in $models; do
   if [ -n "${EOMC_TEST_STATES:-}" ] && [ "$EOMC_TEST_STATES" -lt $states ]; then
     states=$EOMC_TEST_STATES
   fi
-  while [ $k -lt $states ]; do
+  # the random states and MuJoCo's q'' there, in eomc's coordinates
+  # (mj_accel.c: one process for them all, a block of 3 + nq lines each),
+  # and each state as eomc's options, a line each
+  "$mj" "$model" 1 "$states" > "$tmp/mj" || fails=$((fails + 1))
+  nq=$(echo $coords | wc -w)
+  awk -v names="$coords" -v inputs="$inputs" -v nq="$nq" 'BEGIN { n = split(names, c, " ")
+      nu = split(inputs, u, " ") }
+    { r = (NR - 1) % (nq + 3) }
+    r == 0 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
+    r == 1 { for (i = 1; i <= n; i++) printf " --init %s'"'"'=%s", c[i], $i }
+    r == 2 { for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i; printf "\n" }' \
+    "$tmp/mj" > "$tmp/args"
+  [ "$(wc -l < "$tmp/args")" -eq "$states" ] || fails=$((fails + 1))
+  : > "$tmp/eomc" && : > "$tmp/ext"
+  while IFS= read -r args; do
     k=$((k + 1))
-    # a random state and MuJoCo's q'' there, in eomc's coordinates (mj_accel.c)
-    "$mj" "$model" $k > "$tmp/mj" || fails=$((fails + 1))
-    args=$(awk -v names="$coords" -v inputs="$inputs" 'BEGIN { n = split(names, c, " ")
-        nu = split(inputs, u, " ") }
-      NR == 1 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
-      NR == 2 { for (i = 1; i <= n; i++) printf " --init %s'"'"'=%s", c[i], $i }
-      NR == 3 { for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i }' "$tmp/mj")
-    "$eomc" run "$tmp/$base.yaml" --accel $args > "$tmp/eomc" 2>> "$tmp/err" || fails=$((fails + 1))
-    # q'' lines only (a quaternion's unit constraint adds its multiplier's)
-    sed -n "/'' /p" "$tmp/eomc" > "$tmp/eomc.q"
-    tail -n +4 "$tmp/mj" | awk '{ print "q" NR "\x27\x27", $1 }' > "$tmp/mj.q"
-    awk '{ print "q" NR "\x27\x27", $2 }' "$tmp/eomc.q" > "$tmp/eomc.n"
-    worst=$(worse "$worst" "$(accel_diff "$tmp/mj.q" "$tmp/eomc.n" 1)")
+    # (the q'' lines only: a quaternion's unit constraint adds its multiplier's)
+    # shellcheck disable=SC2086 # $args is a list of options
+    "$eomc" run "$tmp/$base.yaml" --accel $args < /dev/null > "$tmp/one" 2>> "$tmp/err" ||
+      fails=$((fails + 1))
+    sed -n "/'' /s/^/$k /p" "$tmp/one" >> "$tmp/eomc"
     if [ -n "$ext" ]; then # and the extended-precision solve of the same state
-      "$eomc" run "$tmp/$base.yaml" --accel-extended $args > "$tmp/ext" 2>> "$tmp/err" ||
-        fails=$((fails + 1))
-      sed -n "/'' /p" "$tmp/ext" | awk '{ print "q" NR "\x27\x27", $2 }' > "$tmp/ext.n"
-      own=$(worse "$own" "$(accel_diff "$tmp/ext.n" "$tmp/eomc.n" 1)")
-      mjx=$(worse "$mjx" "$(accel_diff "$tmp/ext.n" "$tmp/mj.q" 1)")
+      # shellcheck disable=SC2086
+      "$eomc" run "$tmp/$base.yaml" --accel-extended $args < /dev/null > "$tmp/one" \
+        2>> "$tmp/err" || fails=$((fails + 1))
+      sed -n "/'' /s/^/$k /p" "$tmp/one" >> "$tmp/ext"
     fi
-  done
+  done < "$tmp/args"
+  # per state, the largest difference over the reference's largest |q''|
+  # (tap.sh's accel_diff, to 3 digits; nan where the counts differ), and
+  # the worst over the states: eomc's against MuJoCo's; with the twin,
+  # eomc's doubles and MuJoCo's against eomc's extended-precision solve
+  set -- $(awk -v nq="$nq" -v states="$states" -v ext="$ext" '
+    function diff(ref, got, k,   i, d, dm, am) {
+      if (cnt[ref, k] != nq || cnt[got, k] != nq) return "nan"
+      for (i = 1; i <= nq; i++) {
+        d = val[got, k, i] - val[ref, k, i]; if (d < 0) d = -d; if (d > dm) dm = d
+        d = val[ref, k, i] < 0 ? -val[ref, k, i] : val[ref, k, i]; if (d > am) am = d
+      }
+      return am == 0 ? "nan" : sprintf("%.3g", dm / am)
+    }
+    function worse(a, b) { return (a == "nan" || b == "nan") ? "nan" : (b + 0 > a + 0 ? b : a) }
+    FILENAME ~ /\/mj$/ { r = (FNR - 1) % (nq + 3); k = int((FNR - 1) / (nq + 3)) + 1
+                         if (r >= 3) { cnt["mj", k]++; val["mj", k, r - 2] = $1 }; next }
+    { src = FILENAME ~ /\/ext$/ ? "ext" : "eomc"; cnt[src, $1]++; val[src, $1, cnt[src, $1]] = $3 }
+    END { w = o = x = 0
+          for (k = 1; k <= states; k++) {
+            w = worse(w, diff("mj", "eomc", k))
+            if (ext != "") { o = worse(o, diff("ext", "eomc", k)); x = worse(x, diff("ext", "mj", k)) }
+          }
+          print w, o, x }' "$tmp/mj" "$tmp/eomc" "$tmp/ext")
+  worst=$1 own=$2 mjx=$3
+  [ "$k" -eq "$states" ] || fails=$((fails + 1))
   awk -v w="$worst" -v t="$TOL" -v o="$own" -v x="$ext" -v ot="$OWN" \
     'BEGIN { exit !(w != "nan" && w <= t && (x == "" || (o != "nan" && o <= ot))) }' &&
     [ $fails -eq 0 ]

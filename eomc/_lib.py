@@ -13,6 +13,11 @@ import ctypes
 
 _c_double_p = ctypes.POINTER(ctypes.c_double)
 
+# EOMC_INCONSISTENT of runtime/include/eomc.h: a state whose constraint is
+# off by more than this share of its terms is said to be off it (the
+# tests read the header to keep the two the same)
+INCONSISTENT = 1e-8
+
 
 class Library:
     """One model's library: its functions with their C signatures."""
@@ -41,6 +46,8 @@ class Library:
         self.sim_initial = fn("eomc_sim_initial", None, vp, _c_double_p, _c_double_p)
         self.sim_accel = fn("eomc_sim_accel", i, vp, d, _c_double_p, _c_double_p, _c_double_p)
         self.sim_multipliers = fn("eomc_sim_multipliers", _c_double_p, vp)
+        self.sim_inconsistencies = fn("eomc_sim_inconsistencies", d, vp, d, _c_double_p,
+                                      _c_double_p, _c_double_p, ctypes.POINTER(i))
         self.sim_error = fn("eomc_sim_error", cp, vp)
         self.main_mem = fn("eomc_main_mem", i, i, ctypes.POINTER(cp), vp, vp,
                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t),

@@ -8,16 +8,19 @@ writes to its CSV, read back exactly (``repr`` of a float and eomc's
 shortest-digits output both round-trip).
 """
 
+import ctypes
 import math
 import os
 import tempfile
 import threading
+import warnings
 
 import numpy as np
 
 from . import _build
-from ._errors import EomcError, NumericalFailure, UsageError, raise_for, warn_lines
-from ._lib import Library, as_doubles
+from ._errors import (EomcError, EomcWarning, NumericalFailure, UsageError, raise_for,
+                      warn_lines)
+from ._lib import INCONSISTENT, Library, as_doubles
 
 __all__ = ["load", "Model", "Run", "Linearization"]
 
@@ -45,6 +48,21 @@ def _number(v):
     if isinstance(v, (int, np.integer)):
         return str(int(v))
     return repr(float(v))
+
+
+def _set_value(name, v):
+    """A value given to set() as a double, or UsageError naming it: a
+    NaN or an infinity would be taken, and blamed on every later call."""
+    try:
+        if isinstance(v, (bool, np.bool_)):
+            raise TypeError
+        x = float(v)
+    except (TypeError, ValueError):
+        raise UsageError("set: %s = %r: a number was expected; nothing was set"
+                         % (name, v)) from None
+    if not math.isfinite(x):
+        raise UsageError("set: %s = %r is not a finite number; nothing was set" % (name, x))
+    return x
 
 
 def _options(kw):
@@ -99,7 +117,9 @@ class Run:
     the scene's outputs, as float64 numpy arrays; or the rows of a report
     or sweep, by its columns.  ``messages`` holds what eomc said on stderr
     (warnings, --stats, --summary); ``stats`` the ``--stats`` lines as a
-    dict; ``text`` what went to stdout besides the rows."""
+    dict of floats, each the figure to the last bit (eomc prints them in
+    the shortest digits that read back); ``text`` what went to stdout
+    besides the rows."""
 
     def __init__(self, columns, data, messages="", text=""):
         self.columns, self._data = columns, data
@@ -197,7 +217,7 @@ class Model:
         self.name = lib.model_text("name")
         self.spec = lib.model_text("spec")
         self.form = lib.model_text("form")
-        self.scene = lib.model_text("scene")
+        self.scene = lib.model_text("scene") or None  # None: the spec's unnamed `scene:`
         self.coordinates = lib.names("q")
         self.parameters = lib.names("p")
         self.inputs = lib.names("u")
@@ -210,6 +230,9 @@ class Model:
             raise EomcError("%s: out of memory, or a model built for another runtime" % path)
         self._sim_u = None    # another simulator, for accel with inputs given
         self._sets = {}       # what set() set, in order: each run's --set
+        nc = len(self.constraints)  # accel's check of its state, under the lock
+        self._off, self._off_level = np.zeros(nc), (ctypes.c_int * nc)()
+        self._off_e = as_doubles(self._off)
         self._lock = threading.Lock()
 
     def __del__(self):
@@ -229,23 +252,26 @@ class Model:
 
     def set(self, **values):
         """Set parameters, or inputs held constant from then on, by name.
-        Unknown names and unphysical values raise UsageError (eomc's
-        message, with "did you mean"); nothing is set then."""
+        Unknown names, values that are not finite numbers and unphysical
+        values (a negative mass, an impossible inertia) raise UsageError
+        naming the value (eomc's message, with "did you mean"); nothing is
+        set then."""
+        values = {name: _set_value(name, v) for name, v in values.items()}
         with self._lock:
             trial = self._lib.sim_alloc(self._lib.model)
             try:
                 for name, v in list(self._sets.items()) + list(values.items()):
-                    if self._lib.sim_set(trial, name.encode(), float(v)) != 0:
+                    if self._lib.sim_set(trial, name.encode(), v) != 0:
                         raise UsageError(self._error(trial))
                 if self._lib.sim_check(trial) != 0:
                     raise UsageError(self._error(trial))
             finally:
                 self._lib.sim_free(trial)
             for name, v in values.items():
-                self._sets[name] = float(v)
+                self._sets[name] = v
                 for s in (self._sim, self._sim_u):
                     if s:
-                        self._lib.sim_set(s, name.encode(), float(v))
+                        self._lib.sim_set(s, name.encode(), v)
 
     @property
     def params(self):
@@ -264,7 +290,9 @@ class Model:
     def accel(self, q, v, u=None, t=0.0, multipliers=False):
         """q'' at (t, q, v), with the inputs u held at these values (else
         the model's own); with multipliers=True, (q'', lambda) for a
-        constrained model.  A singular system raises NumericalFailure."""
+        constrained model.  A singular system raises NumericalFailure; a
+        state off the holonomic or velocity constraints (a quaternion whose
+        norm is not 1) gives an EomcWarning, as a run's start does."""
         n = len(self.coordinates)
         q = np.ascontiguousarray(q, dtype=np.float64)
         v = np.ascontiguousarray(v, dtype=np.float64)
@@ -286,6 +314,12 @@ class Model:
                 sim = self._sim_u
                 for name, val in zip(self.inputs, u):
                     self._lib.sim_set(sim, name.encode(), float(val))
+            off = self._off_constraints(sim, float(t), q, v)
+            if off:
+                warnings.warn("%s: warning: accel: %s: q'' there is not that of a motion on "
+                              "the constraints (run(init=..., assemble=True) projects a "
+                              "state onto them)" % (self.name, off), EomcWarning,
+                              stacklevel=2)
             if self._lib.sim_accel(sim, float(t), as_doubles(q), as_doubles(v),
                                    as_doubles(a)) != 0:
                 raise NumericalFailure(self._error(sim), float(t))
@@ -294,6 +328,28 @@ class Model:
                 p = self._lib.sim_multipliers(sim)
                 lam = np.array([p[k] for k in range(len(self.constraints))]) if p else np.zeros(0)
         return (a, lam) if multipliers else a
+
+    def _off_constraints(self, sim, t, q, v):
+        """The constraints (q, v) is off, worst first, as `eomc run` says of
+        an initial state off them ("the state is off the constraint rod
+        (positions: its residual is 0.12 of the size of its terms)"), or
+        "": the runtime's eomc_sim_inconsistencies, each constraint's
+        residual relative to its terms, above EOMC_INCONSISTENT."""
+        if not self.constraints:
+            return ""
+        e, level = self._off, self._off_level
+        if not self._lib.sim_inconsistencies(sim, t, as_doubles(q), as_doubles(v),
+                                             self._off_e, level) > INCONSISTENT:
+            return ""
+        off = [k for k in np.argsort(-e, kind="stable") if e[k] > INCONSISTENT]
+        said = ["%s (%s: %s%.2g%s)" % (self.constraints[k],
+                                       "velocities" if level[k] else "positions",
+                                       "" if j else "its residual is ", e[k],
+                                       "" if j else " of the size of its terms")
+                for j, k in enumerate(off)]
+        if len(off) == 1:
+            return "the state is off the constraint " + said[0]
+        return "the state is off %d constraints, worst first: %s" % (len(off), ", ".join(said))
 
     # ---- the simulator's tasks, by its command line ----
 
@@ -311,10 +367,15 @@ class Model:
         given; init: {coordinate or "name'": value}) and return the rows as
         a :class:`Run`.  Other keywords are simulator options (``atol``,
         ``t0``, ``fixed_step``, ``max_steps``, ``stabilize``, ``assemble``,
-        ``stats``, ``summary``, ``error``, ``sweep``, ...).  A run that fails
-        raises NumericalFailure, with the rows computed before it."""
+        ``stats``, ``summary``, ``error``, ``sweep``, ...); ``error=True``
+        (or ``reference``, ``errors``) implies ``stats=True``, so that ``.stats``
+        has ``error_end``, ``error_max`` and ``reference_error``.  A run
+        that fails raises NumericalFailure, with the rows computed before
+        it."""
         kw = dict(t_end=t_end, dt=dt, method=method, rtol=rtol, init=init)
         kw.update(options)
+        if kw.get("error") or kw.get("reference") or kw.get("errors"):  # into .stats
+            kw["stats"] = True
         status, out, err = self._call(_options(kw))
         columns, data = _table(out) if status in (0, 3) else ([], {})
         r = Run(columns, data, err)

@@ -224,7 +224,9 @@ after_run(Options *c, Rows *w, const eomc_stats *st, const eomc_reference *ref,
         summary_stats(w, st, c->stabilize);
     if (c->summary && !rc)
         summary_text(c, m, w, st);
-    if (c->error && !rc && !c->stats && !c->summary)
+    /* with --stats too: its lines carry the figures, not the component
+     * that keeps the fewest digits */
+    if (c->error && !rc && !c->summary)
         summary_error(c, m, w, ref);
     if (c->errors) {
         FILE *f = rows_open(c->prog, "--errors", c->errors);

@@ -59,6 +59,16 @@ summary_progress_end(Progress *p)
     p->shown = 0;
 }
 
+/* "name value" of --stats: a figure in the shortest digits that read back
+ * as the same double (numfmt.h), so that a program reading the lines (the
+ * Python package's Run.stats) gets the figure itself, not 3 digits of it. */
+static void
+put_stat(const char *name, double x)
+{
+    char num[NUM_MAX];
+    fprintf(io_err(), "%s %s\n", name, num_shortest(num, x));
+}
+
 void
 summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
 {
@@ -67,34 +77,40 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
             "cpu_seconds %.6f\n", st->steps, st->rejected, st->rhs_evals,
             st->jac_evals, st->cpu_seconds);
     if (st->h_used > 0)
-        fprintf(io_err(), "h_used %.17g\n", st->h_used);
+        put_stat("h_used", st->h_used);
     fprintf(io_err(), "side_steps %ld\n", st->side_steps);
     if (st->order_sum > 0) /* Taylor's method: its orders, on average */
-        fprintf(io_err(), "order_mean %.3g\n", (double)st->order_sum / (double)st->steps);
-    fprintf(io_err(), "max_condition %.3g\nt_condition %.17g\ncondition_estimates %ld\n",
-            st->max_condition, st->t_condition, st->condition_estimates);
+        put_stat("order_mean", (double)st->order_sum / (double)st->steps);
+    put_stat("max_condition", st->max_condition);
+    put_stat("t_condition", st->t_condition);
+    fprintf(io_err(), "condition_estimates %ld\n", st->condition_estimates);
     fprintf(io_err(), "monitor_seconds %.6f\n", st->monitor_seconds);
     if (st->invariant_budget > 0)
-        fprintf(io_err(), "invariant_budget %.3g\n", st->invariant_budget);
+        put_stat("invariant_budget", st->invariant_budget);
     if (m->nc > 0)
-        fprintf(io_err(), "max_residual %.3g\n", fmax(st->max_residual, w->res_max));
+        put_stat("max_residual", fmax(st->max_residual, w->res_max));
     if (stabilize == EOMC_STABILIZE_PROJECT)
-        fprintf(io_err(), "max_drift %.3g\n", st->max_drift);
+        put_stat("max_drift", st->max_drift);
     if (w->invariant)
-        fprintf(io_err(), "invariant_drift %.3g\n", w->dh);
-    if (w->ref)
-        fprintf(io_err(), "error_end %.3g\nerror_max %.3g\nreference_error %.3g\n"
-                "reference_method %s\n", w->err_end, w->err_max, w->ref->error,
-                w->ref->method);
+        put_stat("invariant_drift", w->dh);
+    if (w->ref) {
+        put_stat("error_end", w->err_end);
+        put_stat("error_max", w->err_max);
+        put_stat("reference_error", w->ref->error);
+        fprintf(io_err(), "reference_method %s\n", w->ref->method);
+    }
     if (m->nevent > 0)
         fprintf(io_err(), "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
-    if (st->reset_event >= 0)
-        fprintf(io_err(), "reset_event %s\nt_reset %.17g\nreset_constraint %s\n"
-                "reset_inconsistency %.3g\n", m->ev_names[st->reset_event], st->reset_t,
-                m->c_names[st->reset_constraint], st->reset_inconsistency);
-    if (st->stop_event >= 0)
-        fprintf(io_err(), "stop_event %s\nt_stop %.17g\n", m->ev_names[st->stop_event],
-                st->t_stop);
+    if (st->reset_event >= 0) {
+        fprintf(io_err(), "reset_event %s\n", m->ev_names[st->reset_event]);
+        put_stat("t_reset", st->reset_t);
+        fprintf(io_err(), "reset_constraint %s\n", m->c_names[st->reset_constraint]);
+        put_stat("reset_inconsistency", st->reset_inconsistency);
+    }
+    if (st->stop_event >= 0) {
+        fprintf(io_err(), "stop_event %s\n", m->ev_names[st->stop_event]);
+        put_stat("t_stop", st->t_stop);
+    }
 }
 
 /* Print words wrapped at 72 columns. */

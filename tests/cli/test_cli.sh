@@ -181,10 +181,11 @@ ok $? "a consistent start where each term of g' is rounding (upright): no warnin
   2> "$tmp/ill.err"; st=$?
 [ $st -eq 0 ] && [ "$(grep -c warning "$tmp/ill.err")" -eq 1 ] &&
   grep -q "warning: t = 0.41[0-9]*: the mass matrix (coordinates th1, th2) is ill-conditioned" "$tmp/ill.err" &&
-  grep -q "^max_condition [0-9.]*e+09" "$tmp/ill.err"
+  awk '/^max_condition / { c = $2 } END { exit !(c >= 1e9 && c < 1e10) }' "$tmp/ill.err"
 ok $? "m1/m2 = 1e-9: one warning naming t and th1, th2; --stats prints max_condition"
 "$tmp/dp" --stats -o /dev/null 2> "$tmp/well.err"
-! grep -q warning "$tmp/well.err" && grep -q "^max_condition [0-9.]*$" "$tmp/well.err"
+! grep -q warning "$tmp/well.err" &&
+  awk '/^max_condition / { c = $2 } END { exit !(c > 0 && c < 1000) }' "$tmp/well.err"
 ok $? "the default double pendulum: no warning, a small max_condition"
 # physical data from --set: exit 2 naming what and the parameters, no output
 rm -f "$tmp/neg.csv"

@@ -17,6 +17,7 @@
 #include "model/simimpl.h"
 #include "model/kkt.h"
 #include "model/linalg.h"
+#include "base/numfmt.h"
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
@@ -25,6 +26,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 /* Whether component j of x = (q, q') is determined by the constraints:
@@ -342,15 +344,116 @@ eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *i
     return rc;
 }
 
+/* ---- how far a state is from rest ---- */
+
+/* Jz [n x nl] = dq''/dz at (t, x), z the linearization's state: the q''
+ * rows of the simulator's Jacobian along T [N x nl] (Af [N x N] its
+ * workspace). */
+static int
+accel_jacobian(eomc_sim *s, double t, const double *x, int nl, double *Af, double *T,
+               double *Jz)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq, N = 2 * n, rc = eomc_sim_jacobian(s, t, x, Af, NULL);
+    if (rc != EOMC_OK)
+        return rc;
+    if (tangent(s, t, x, nl, T) != 0)
+        return sim_numeric_error(s, t, x, x + n, "the constraints' rows are singular here");
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < nl; k++) {
+            double sum = 0;
+            for (int j = 0; j < N; j++)
+                sum += Af[(n + i) * N + j] * T[j * nl + k];
+            Jz[i * nl + k] = sum;
+        }
+    return EOMC_OK;
+}
+
+/* reach [n]: sum_k |Jz_ik| w_k, what q''_i would change by if every z_k
+ * moved by w_k [nl]. */
+static void
+accel_reach(int n, int nl, const double *Jz, const double *w, double *reach)
+{
+    for (int i = 0; i < n; i++) {
+        reach[i] = 0;
+        for (int k = 0; k < nl; k++)
+            reach[i] += fabs(Jz[i * nl + k]) * w[k];
+    }
+}
+
+/* The largest |acc_i| / floor_i [n] (0 where acc_i is 0, infinite where
+ * only floor_i is), its i into *worst. */
+static double
+accel_ratio(int n, const double *acc, const double *reach, int *worst)
+{
+    double big = 0;
+    *worst = 0;
+    for (int i = 0; i < n; i++) {
+        double r = acc[i] == 0 ? 0 : reach[i] > 0 ? fabs(acc[i]) / reach[i] : HUGE_VAL;
+        if (r > big)
+            big = r, *worst = i;
+    }
+    return big;
+}
+
+double
+eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int *worst)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq, N = 2 * n, nl = eomc_sim_linear_size(s);
+    *worst = -1;
+    if (!m->jacobian) {
+        sim_no_jacobian(s, "the test for rest");
+        return NAN;
+    }
+    size_t snl = nl > 0 ? (size_t)nl : 1;
+    double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
+    double *T = calloc((size_t)N * snl, sizeof *T), *Jz = calloc((size_t)n * snl, sizeof *Jz);
+    double *w = calloc(snl, sizeof *w), *reach = calloc((size_t)n, sizeof *reach);
+    double r = NAN;
+    if (!Af || !T || !Jz || !w || !reach)
+        sim_usage_error(s, "out of memory testing %s for rest", m->name);
+    else if (eomc_sim_accel(s, t, x, x + n, acc) == EOMC_OK &&
+             accel_jacobian(s, t, x, nl, Af, T, Jz) == EOMC_OK) {
+        for (int k = 0; k < nl; k++) {
+            int coord, order;
+            eomc_sim_linear_state(s, k, &coord, &order);
+            w[k] = fabs(x[order * n + coord]);
+        }
+        accel_reach(n, nl, Jz, w, reach);
+        r = accel_ratio(n, acc, reach, worst);
+    }
+    free(Af);
+    free(T);
+    free(Jz);
+    free(w);
+    free(reach);
+    return r;
+}
+
 /* ---- equilibria ---- */
 
 /* Newton's method stops when its step is this many units of rounding of
- * the coordinate (or of the first step's size, for a coordinate near 0),
- * or when steps below 1e-8 of that stop shrinking; it gives up after
- * EQ_MAX_ITER iterations. */
+ * the coordinate (or of the coordinate's scale, for one near 0), or when
+ * steps below 1e-8 of that stop shrinking; it gives up after EQ_MAX_ITER
+ * iterations.  Where it stops, q'' must be 0 (EOMC_ACCEL_ZERO, eomc.h)
+ * for what it found to be an equilibrium. */
 enum { EQ_MAX_ITER = 100, EQ_HALVINGS = 40 };
 #define EQ_SETTLED (16 * DBL_EPSILON)
 #define EQ_STALL 1e-8
+/* Newton's method runs away when its full step has not shrunk in
+ * EQ_RUNAWAY steps running, each taking it farther from the start: it
+ * then follows q'' down a slope that reaches 0 only at infinity (on
+ * f ~ 1/z Newton's step doubles z; on f ~ exp(-z) it adds 1), where near
+ * a root its steps shrink.  Eight: on f ~ 1/z, 256 times as far out as
+ * where the run began.  Not shrinking means by less than EQ_SHRUNK: at a
+ * root of multiplicity m the steps shrink by (m - 1)/m each, so only a
+ * root of multiplicity above 100 is taken for a runaway.  Damped steps
+ * (which may crawl round to a root far from the start) are not counted;
+ * EQ_MAX_ITER steps, the last EQ_RUNAWAY of them or more each farther
+ * out, are a runaway too. */
+enum { EQ_RUNAWAY = 8 };
+#define EQ_SHRUNK 0.99
 
 /* Put the dependent coordinates of the holonomic constraints back on
  * g(q) = 0 (the independent ones held): Newton on the dependent columns. */
@@ -417,6 +520,52 @@ done:
     return rc;
 }
 
+/* The weights of the accelerations at (t, x), whatever the units of the
+ * coordinates: wt [n] gets sqrt(M_ii), the diagonal of the mass matrix
+ * (M_ii q''_i^2 is a power per time whatever coordinate i measures; a
+ * coordinate without inertia, which a constrained model may have, weighs
+ * nothing).  M [n x n] and h [n] are workspace. */
+static void
+weights(eomc_sim *s, double t, const double *x, double *M, double *h, double *wt)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq;
+    m->mass_bias(t, x, x + n, sim_p(s), sim_inputs_at(s, t), M, h);
+    for (int i = 0; i < n; i++)
+        wt[i] = M[i * n + i] > 0 ? sqrt(M[i * n + i]) : 0;
+}
+
+/* sqrt(sum_i (wt_i acc_i)^2). */
+static double
+weighed(int n, const double *acc, const double *wt)
+{
+    double sum = 0;
+    for (int i = 0; i < n; i++)
+        sum += (wt[i] * acc[i]) * (wt[i] * acc[i]);
+    return sqrt(sum);
+}
+
+/* The message of a runaway, how as it says, naming the coordinate that
+ * has gone farthest from the start relative to its scale. */
+static int
+runaway_error(eomc_sim *s, double t, double *x, const double *z0, const double *S,
+              const int *qc, int nzq, const char *how)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    int far = 0;
+    double most = -1;
+    for (int cq = 0; cq < nzq; cq++) {
+        double d = S[cq] > 0 ? fabs(x[qc[cq]] - z0[cq]) / S[cq] : 0;
+        if (d > most)
+            most = d, far = cq;
+    }
+    char a[NUM_MAX], b[NUM_MAX];
+    return sim_numeric_error(s, t, x, x + m->nq, "Newton's method runs away: %s (%s from %s "
+                             "to %s), and q'' does not reach 0 that way: no equilibrium was "
+                             "found there (try another --init)", how, m->q_names[qc[far]],
+                             num_shortest(a, z0[far]), num_shortest(b, x[qc[far]]));
+}
+
 int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
@@ -435,20 +584,30 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
         else
             qk[nzq] = k, qc[nzq++] = c;
     }
-    size_t snl = nl > 0 ? (size_t)nl : 1;
+    size_t snl = nl > 0 ? (size_t)nl : 1, szq = nzq > 0 ? (size_t)nzq : 1;
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
-    double *T = calloc((size_t)N * snl, sizeof *T);
-    double *scale = calloc(snl, sizeof *scale), *x0 = calloc((size_t)N, sizeof *x0);
+    double *T = calloc((size_t)N * snl, sizeof *T), *Jz = calloc((size_t)n * snl, sizeof *Jz);
+    double *x0 = calloc((size_t)N, sizeof *x0), *w = calloc(snl, sizeof *w);
+    /* scales from the start, none from the iterate (which a runaway
+     * inflates): z0 [nzq] the independent coordinates there, S [nzq] each
+     * one's scale (the larger of its value there and its first Newton
+     * step; a coordinate with neither takes its first nonzero step), R0
+     * [n] each acceleration's (its value there, and what the coordinates'
+     * values there would change it by) */
+    double *S = calloc(szq, sizeof *S), *z0 = calloc(szq, sizeof *z0);
+    double *R0 = calloc((size_t)n, sizeof *R0);
+    double *reach = calloc((size_t)n, sizeof *reach);
     double *acc = calloc((size_t)n, sizeof *acc); /* q'' at x */
-    gsl_matrix *J = gsl_matrix_alloc((size_t)n, (size_t)(nzq ? nzq : 1));
-    gsl_matrix *V = gsl_matrix_alloc((size_t)(nzq ? nzq : 1), (size_t)(nzq ? nzq : 1));
-    gsl_vector *S = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
-    gsl_vector *work = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
-    gsl_vector *F = gsl_vector_alloc((size_t)n);
-    gsl_vector *dz = gsl_vector_alloc((size_t)(nzq ? nzq : 1));
+    double *M = calloc((size_t)n * (size_t)n, sizeof *M), *h = calloc((size_t)n, sizeof *h);
+    double *wt = calloc((size_t)n, sizeof *wt); /* the rows' weights (weights) */
+    gsl_matrix *J = gsl_matrix_alloc((size_t)n, szq);
+    gsl_matrix *V = gsl_matrix_alloc(szq, szq);
+    gsl_vector *Sv = gsl_vector_alloc(szq), *work = gsl_vector_alloc(szq);
+    gsl_vector *F = gsl_vector_alloc((size_t)n), *dz = gsl_vector_alloc(szq);
     int rc = EOMC_OK;
     *iterations = 0;
-    if (!qk || !qc || !Af || !T || !scale || !x0 || !acc || !J || !V || !S || !work || !F || !dz) {
+    if (!qk || !qc || !Af || !T || !Jz || !x0 || !w || !S || !z0 || !R0 || !reach || !acc ||
+        !M || !h || !wt || !J || !V || !Sv || !work || !F || !dz) {
         rc = sim_usage_error(s, "out of memory searching for an equilibrium");
         goto done;
     }
@@ -466,51 +625,80 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
                                "to put it on them");
         goto done;
     }
-    double prev = HUGE_VAL;
+    for (int cq = 0; cq < nzq; cq++)
+        z0[cq] = x[qc[cq]];
+    double prev = HUGE_VAL, prev_full = HUGE_VAL, prev_far = 0;
+    int growing = 0, outward = 0;
+    char how[160];
     for (int it = 1;; it++) {
         *iterations = it;
+        if (it > EQ_MAX_ITER && outward >= EQ_RUNAWAY) {
+            snprintf(how, sizeof how, "in %d iterations it found no equilibrium, and each of "
+                     "its last %d steps took it farther from the start", EQ_MAX_ITER, outward);
+            rc = runaway_error(s, t, x, z0, S, qc, nzq, how);
+            goto done;
+        }
         if (it > EQ_MAX_ITER) {
             rc = sim_numeric_error(s, t, x, x + n, "Newton's method found no equilibrium in "
                                    "%d iterations from the start given (try another --init)",
                                    EQ_MAX_ITER);
             goto done;
         }
-        if ((rc = eomc_sim_jacobian(s, t, x, Af, NULL)) != EOMC_OK)
+        if ((rc = accel_jacobian(s, t, x, nl, Af, T, Jz)) != EOMC_OK)
             goto done;
-        if (tangent(s, t, x, nl, T) != 0) {
-            rc = sim_numeric_error(s, t, x, x + n, "the constraints' rows are singular here");
-            goto done;
-        }
         if ((rc = eomc_sim_accel(s, t, x, x + n, acc)) != EOMC_OK)
             goto done;
+        if (it == 1) {
+            for (int k = 0; k < nl; k++)
+                w[k] = 0;
+            for (int cq = 0; cq < nzq; cq++)
+                w[qk[cq]] = fabs(z0[cq]);
+            accel_reach(n, nl, Jz, w, R0);
+            for (int i = 0; i < n; i++)
+                R0[i] += fabs(acc[i]);
+        }
         /* F = every acceleration (a dependent coordinate's too: a reduced
          * coordinate may stand still where the motion does not); J = their
-         * derivative along the independent coordinates, (dq''/dx) T */
+         * derivative along the independent coordinates, (dq''/dx) T.  Each
+         * row weighted by sqrt(M_ii), each column in the units of its
+         * coordinate's scale once it has one: the least-squares step, and
+         * the directions it drops, are then the same in any units */
+        weights(s, t, x, M, h, wt);
+        double f0 = weighed(n, acc, wt);
         for (int i = 0; i < n; i++) {
-            gsl_vector_set(F, (size_t)i, -acc[i]);
-            for (int cq = 0; cq < nzq; cq++) {
-                double sum = 0;
-                for (int j = 0; j < N; j++)
-                    sum += Af[(n + i) * N + j] * T[j * nl + qk[cq]];
-                gsl_matrix_set(J, (size_t)i, (size_t)cq, sum);
-            }
+            gsl_vector_set(F, (size_t)i, -wt[i] * acc[i]);
+            for (int cq = 0; cq < nzq; cq++)
+                gsl_matrix_set(J, (size_t)i, (size_t)cq,
+                               wt[i] * Jz[i * nl + qk[cq]] * (S[cq] > 0 ? S[cq] : 1));
         }
         /* the least-squares step: robust where J is nearly singular (a
          * flat direction) */
-        if (gsl_linalg_SV_decomp(J, V, S, work) != GSL_SUCCESS ||
-            !(gsl_vector_get(S, 0) > 0)) {
+        if (gsl_linalg_SV_decomp(J, V, Sv, work) != GSL_SUCCESS ||
+            !(gsl_vector_get(Sv, 0) > 0)) {
             rc = sim_numeric_error(s, t, x, x + n, "the accelerations do not depend on the "
                                    "coordinates here: no Newton step");
             goto done;
         }
-        for (size_t k = 1; k < S->size; k++) /* drop what rounding cannot resolve */
-            if (gsl_vector_get(S, k) < 1e3 * DBL_EPSILON * gsl_vector_get(S, 0))
-                gsl_vector_set(S, k, 0);
-        gsl_linalg_SV_solve(J, V, S, F, dz);
+        for (size_t k = 1; k < Sv->size; k++) /* drop what rounding cannot resolve */
+            if (gsl_vector_get(Sv, k) < 1e3 * DBL_EPSILON * gsl_vector_get(Sv, 0))
+                gsl_vector_set(Sv, k, 0);
+        gsl_linalg_SV_solve(J, V, Sv, F, dz);
+        for (int cq = 0; cq < nzq; cq++)
+            if (S[cq] > 0)
+                gsl_vector_set(dz, (size_t)cq, gsl_vector_get(dz, (size_t)cq) * S[cq]);
+        /* the full step's size, relative to the coordinates' scales */
+        double full = 0;
+        for (int cq = 0; cq < nzq; cq++) {
+            double step = fabs(gsl_vector_get(dz, (size_t)cq));
+            if (S[cq] == 0)
+                S[cq] = fmax(fabs(z0[cq]), step);
+            if (step > 0)
+                full = fmax(full, S[cq] > 0 ? step / S[cq] : HUGE_VAL);
+        }
         /* damped: the full step, or halves of it, until the accelerations
-         * shrink (a step past a fold of the constraints, or overshooting a
-         * maximum, comes back) */
-        double f0 = gsl_blas_dnrm2(F), worst = 0, lambda = 1;
+         * shrink, weighed as here (a step past a fold of the constraints,
+         * or overshooting a maximum, comes back) */
+        double worst = 0, lambda = 1;
         memcpy(x0, x, (size_t)N * sizeof *x);
         for (int tries = 0;; tries++, lambda *= 0.5) {
             memcpy(x, x0, (size_t)N * sizeof *x);
@@ -519,19 +707,11 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
                 double step = lambda * gsl_vector_get(dz, (size_t)cq);
                 for (int j = 0; j < n; j++)
                     x[j] += T[j * nl + qk[cq]] * step;
-                if (it == 1 && tries == 0)
-                    scale[cq] = fabs(step);
-                worst = fmax(worst, fabs(step) / fmax(fmax(fabs(x[qc[cq]]), scale[cq]), DBL_MIN));
+                worst = fmax(worst, fabs(step) / fmax(fmax(fabs(x[qc[cq]]), S[cq]), DBL_MIN));
             }
             int ok = hold_on_constraints(s, t, x) == 0 &&
                      eomc_sim_accel(s, t, x, x + n, acc) == EOMC_OK;
-            double f1 = HUGE_VAL;
-            if (ok) {
-                f1 = 0;
-                for (int i = 0; i < n; i++)
-                    f1 += acc[i] * acc[i];
-                f1 = sqrt(f1);
-            }
+            double f1 = ok ? weighed(n, acc, wt) : HUGE_VAL;
             if (ok && (f1 < f0 || worst <= EQ_STALL))
                 break;
             if (tries == EQ_HALVINGS) {
@@ -542,22 +722,71 @@ eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
                 goto done;
             }
         }
+        /* a runaway (EQ_RUNAWAY): full steps that do not shrink, each
+         * farther out */
+        double far = 0;
+        for (int cq = 0; cq < nzq; cq++)
+            if (S[cq] > 0)
+                far = fmax(far, fabs(x[qc[cq]] - z0[cq]) / S[cq]);
+        outward = far > prev_far ? outward + 1 : 0;
+        growing = outward && lambda == 1 && full >= EQ_SHRUNK * prev_full ? growing + 1 : 0;
+        prev_full = full, prev_far = far;
+        if (growing >= EQ_RUNAWAY) {
+            snprintf(how, sizeof how, "%d full Newton steps running did not shrink, each "
+                     "taking it farther from the start", growing);
+            rc = runaway_error(s, t, x, z0, S, qc, nzq, how);
+            goto done;
+        }
         if (worst <= EQ_SETTLED || (worst <= EQ_STALL && worst >= prev))
             break;
         prev = worst;
     }
-    rc = eomc_sim_accel(s, t, x, x + n, acc);
+    /* found only where q'' is 0: each q''_i within EOMC_ACCEL_ZERO of the
+     * larger of its scale at the start, R0_i, and what the coordinates'
+     * values here would change it by (their rounding reaches that far).
+     * Steps stop shrinking also at a minimum of |q''| that is not 0 (the
+     * least-squares step drops the direction that would reduce it), and
+     * far out where q'' only falls as a coordinate grows (a force on a
+     * longer lever, divided by an inertia that grows as its square). */
+    if ((rc = accel_jacobian(s, t, x, nl, Af, T, Jz)) != EOMC_OK ||
+        (rc = eomc_sim_accel(s, t, x, x + n, acc)) != EOMC_OK)
+        goto done;
+    for (int k = 0; k < nl; k++)
+        w[k] = 0;
+    for (int cq = 0; cq < nzq; cq++)
+        w[qk[cq]] = fabs(x[qc[cq]]);
+    accel_reach(n, nl, Jz, w, reach);
+    for (int i = 0; i < n; i++)
+        reach[i] = fmax(reach[i], R0[i]);
+    int bad;
+    double ratio = accel_ratio(n, acc, reach, &bad);
+    if (ratio > EOMC_ACCEL_ZERO) {
+        char a[NUM_MAX];
+        rc = sim_numeric_error(s, t, x, x + n, "Newton's method stopped making progress "
+                               "after %d steps where q'' is not 0 (%s'' = %s, where rounding "
+                               "would leave at most %.2g): no equilibrium there (try another "
+                               "--init)", *iterations, m->q_names[bad],
+                               num_shortest(a, acc[bad]), EOMC_ACCEL_ZERO * reach[bad]);
+    }
 done:
     free(qk);
     free(qc);
     free(Af);
     free(T);
-    free(scale);
+    free(Jz);
     free(x0);
+    free(w);
+    free(S);
+    free(z0);
+    free(R0);
+    free(reach);
     free(acc);
+    free(M);
+    free(h);
+    free(wt);
     gsl_matrix_free(J);
     gsl_matrix_free(V);
-    gsl_vector_free(S);
+    gsl_vector_free(Sv);
     gsl_vector_free(work);
     gsl_vector_free(F);
     gsl_vector_free(dz);

@@ -172,6 +172,65 @@ write_linear_csv(Options *c, eomc_sim *sim, const double *A, const double *B, in
     return EOMC_OK;
 }
 
+/* The whole turns of q beyond (-pi, pi], and into *w the value there.  In
+ * long double, so that 2 pi's rounding, times the turns, stays below the
+ * value's own. */
+static long
+turns(double q, double *w)
+{
+    const long double two_pi = 6.283185307179586476925286766559L;
+    long double r = remainderl((long double)q, two_pi); /* in [-pi, pi] */
+    if (r <= -two_pi / 2)
+        r += two_pi;
+    *w = (double)r;
+    return lroundl(((long double)q - r) / two_pi);
+}
+
+/* After an equilibrium's coordinates, those beyond (-pi, pi] as angles
+ * would read them ("1.5707963267948966 + 2 pi"): nothing tells eomc which
+ * coordinates are angles, so it leaves them as they are. */
+static void
+print_turns(Options *c, const eomc_model *m, const double *x)
+{
+    int said = 0;
+    char num[NUM_MAX];
+    for (int i = 0; i < m->nq; i++) {
+        double w;
+        long k = turns(x[i], &w);
+        if (k == 0)
+            continue;
+        if (!said++)
+            fprintf(io_out(), "%s: the coordinates are as Newton's method left them, not "
+                    "wrapped (eomc cannot tell an angle from a length); as angles,", c->prog);
+        fprintf(io_out(), "%s %s = %s %c %ld pi", said > 1 ? "," : "", m->q_names[i],
+                num_shortest(num, w), k < 0 ? '-' : '+', 2 * labs(k));
+    }
+    if (said)
+        fprintf(io_out(), "\n");
+}
+
+/* --linearize at a state where q'' is not 0: say so, and what A and B
+ * then are.  q'' counts as 0 within EOMC_ACCEL_ZERO of what the state's
+ * own values would change it by (eomc_sim_accel_residual), so an
+ * equilibrium, or a steady motion (a bicycle running upright), passes. */
+static void
+rest_note(Options *c, eomc_sim *sim, double t, const double *x)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    double *acc = calloc((size_t)m->nq, sizeof *acc);
+    int worst;
+    double r = acc ? eomc_sim_accel_residual(sim, t, x, acc, &worst) : NAN;
+    char num[NUM_MAX];
+    if (r > EOMC_ACCEL_ZERO)
+        fprintf(io_err(), "%s: warning: t = %g: q'' is not 0 here (%s'' = %s): the state is "
+                "no equilibrium and no steady motion, so A and B describe the motion through "
+                "it only near it and for a short time (z' = z0' + A (z - z0) + B (u - u0), "
+                "z0' not 0), and A's eigenvalues say how nearby motions part from it at "
+                "first, not whether anything is stable\n", c->prog, t, m->q_names[worst],
+                num_shortest(num, acc[worst]));
+    free(acc);
+}
+
 /* --linearize and --equilibrium. */
 int
 stab_print(Options *c, eomc_sim *sim, double *x)
@@ -192,10 +251,13 @@ stab_print(Options *c, eomc_sim *sim, double *x)
                     its == 1 ? "" : "s");
             for (int i = 0; i < n; i++)
                 fprintf(io_out(), "  %s = %s\n", m->q_names[i], num_shortest(num, x[i]));
+            print_turns(c, m, x);
         }
     }
     if (rc == EOMC_OK)
         rc = eomc_sim_linearize(sim, t, x, A, B);
+    if (rc == EOMC_OK && !c->equilibrium)
+        rest_note(c, sim, t, x);
     if (rc == EOMC_OK) {
         fprintf(io_out(), "%s: linearized at t = %g,", c->prog, t);
         for (int i = 0; i < 2 * n; i++)

@@ -197,10 +197,30 @@ int eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double
 int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *im);
 /* An equilibrium (q' = 0, q'' = 0) by Newton's method with the exact
  * Jacobian from x's coordinates: x [2nq] becomes it (velocities 0);
- * *iterations counts the Newton steps.  EOMC_ENUMERIC when it does not
- * converge; EOMC_EUSAGE when the equilibria are not isolated points
- * (nonholonomic models). */
+ * *iterations counts the Newton steps.  Found only where q'' is 0 (each
+ * q''_i within EOMC_ACCEL_ZERO of its scale at the start, or of what the
+ * rounding of the coordinates found would change it by).  EOMC_ENUMERIC
+ * when it does not converge, when it stops where q'' is not 0, and when
+ * it runs away (its full steps not shrinking, each farther from the
+ * start); EOMC_EUSAGE when the equilibria are not isolated points
+ * (nonholonomic models).  The coordinates are left as found, not wrapped
+ * (nothing says which are angles). */
 int eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations);
+/* How far q'' at (t, x) (on the constraints) is from 0, whatever the
+ * units: the largest |q''_i| relative to sum_k |dq''_i/dz_k| |z_k| (z the
+ * linearization's state), what q''_i would change by if every z_k moved
+ * by its own size.  0 where q'' is 0, at most EOMC_ACCEL_ZERO where it is
+ * 0 to the rounding of z (an equilibrium, or a steady motion); q'' [nq]
+ * into acc, that coordinate into *worst.  NAN when q'' or its Jacobian
+ * fails (the message says why). */
+double eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc,
+                               int *worst);
+/* q'' counts as 0 up to 1024 units of rounding (DBL_EPSILON) of that
+ * scale: at the equilibria found from random starts on the specs of
+ * specs/ and tests/sim/specs the most was 15, and the points where a
+ * search stopped with q'' not 0 (a minimum of |q''|, or far out on a
+ * runaway) were 1e8 units and more. */
+#define EOMC_ACCEL_ZERO (1024 * 2.220446049250313e-16)
 
 /* ---- sweeps over many machines ----
  * A sweep (--sweep, --sweep-file) runs on the threads of one machine; a

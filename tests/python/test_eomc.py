@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import eomc
-from conftest import cli_csv, same_bits, spec
+from conftest import SOURCE, cli_csv, same_bits, spec
 
 
 @pytest.fixture(scope="module")
@@ -111,6 +111,28 @@ def test_linearize_the_pendulum_at_rest(pendulum):
     np.testing.assert_allclose(sorted(lin.eigenvalues.imag), [-math.sqrt(9.81), math.sqrt(9.81)],
                                rtol=1e-15)
     assert np.all(np.abs(lin.eigenvalues.real) <= 1e-15)
+
+
+def test_linearize_away_from_rest_warns(pendulum):
+    # at theta = 0.7 q'' = -g/l sin(0.7), not 0: an EomcWarning names it,
+    # and A is still the Jacobian there, [[0, 1], [-g/l cos(0.7), 0]]
+    with pytest.warns(eomc.EomcWarning, match=r"q'' is not 0 here \(theta'' = ") as said:
+        lin = pendulum.linearize(init={"theta": 0.7})
+    text = str(said[0].message)
+    got = float(text.split("theta'' = ")[1].split(")")[0])
+    assert abs(got + 9.81 * math.sin(0.7)) <= 1e-15 * 9.81
+    np.testing.assert_allclose(lin.A, [[0.0, 1.0], [-9.81 * math.cos(0.7), 0.0]], rtol=1e-14)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # at rest: nothing to say
+        pendulum.linearize(init={"theta": 0.0})
+
+
+def test_equilibrium_that_runs_away_raises():
+    # the arm of tests/sim/specs/arm4.yaml from shoulder = 1.5: Newton's
+    # method follows q'' out along the slide, where it only falls as 1/extend
+    m = eomc.load(os.path.join(SOURCE, "tests", "sim", "specs", "arm4.yaml"))
+    with pytest.raises(eomc.NumericalFailure, match="Newton's method runs away"):
+        m.equilibrium()
 
 
 def test_equilibrium_of_the_double_pendulum():

@@ -14,6 +14,7 @@
  *    held at u +- h;
  *  - equilibria: the double pendulum's hanging and upside-down states from
  *    nearby starts, the Cartesian pendulum's bottom on its constraint;
+ *    how far from rest a state is (the pendulum at pi and at 0.7);
  *  - a state off the constraints is refused, naming the constraint and
  *    its share worked out by hand (the Cartesian pendulum's bob at 1.2 l:
  *    0.44 against terms of 5.32); one on them to rounding is not.
@@ -228,6 +229,18 @@ test_pendulum(void)
     CHECK(fabs(im[0]) < 1e-15 * w && check_close(fabs(re[0]), w, 1e-14) &&
           check_close(fabs(re[1]), w, 1e-14) && re[0] * re[1] < 0,
           "pendulum at the top: eigenvalues +-sqrt(g/l) = +-%.17g", fabs(re[0]));
+    /* how far from rest: at the top -g/l sin(pi) is rounding, against
+     * what theta's own size would change q'' by, g/l pi; at 0.7 it is
+     * -g/l sin(0.7) against g/l cos(0.7) 0.7 */
+    double acc[1];
+    int worst;
+    double top = eomc_sim_accel_residual(s, 0, x, acc, &worst);
+    x[0] = 0.7;
+    double off = eomc_sim_accel_residual(s, 0, x, acc, &worst);
+    CHECK(top <= EOMC_ACCEL_ZERO && check_close(off, tan(0.7) / 0.7, 1e-14) && worst == 0 &&
+          check_close(acc[0], -9.81 * sin(0.7), 1e-15),
+          "eomc_sim_accel_residual: %.2g at the top (rounding), %.17g = tan(0.7)/0.7 at 0.7",
+          top, off);
     eomc_sim_free(s);
 }
 

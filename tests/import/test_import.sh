@@ -365,4 +365,15 @@ st=$?
   ! grep -q "^ground:" "$tmp/out" && ! grep -q "shapes:.*cylinder" "$tmp/out" &&
   grep -q '^  fore: {mass: 0.32, .*shapes: \[{type: box, size: \[0.1, 0.02, 0.02\]' "$tmp/out"
 ok $? "a URDF whose visual mesh is missing: imported without its visuals, saying why ($(head -c 300 "$tmp/err"))"
+# a URDF's own <mujoco><compiler>: discardvisual="false" joins its
+# attributes (MuJoCo reads the first <mujoco> only); its own discardvisual
+# stands
+cp "$src/tests/import/models/visual_arm_tip.obj" "$tmp/"
+sed 's|<robot name="visual_arm">|<robot name="visual_arm"><mujoco><compiler balanceinertia="true"/></mujoco>|' \
+  "$src/tests/import/models/visual_arm.urdf" > "$tmp/own.urdf"
+sed 's|balanceinertia="true"|discardvisual="true"|' "$tmp/own.urdf" > "$tmp/discard.urdf"
+"$eomc" import "$tmp/own.urdf" 2> /dev/null | grep -q '^  - {type: cylinder, size: \[0.1, 0.05\]' &&
+  "$eomc" import "$tmp/discard.urdf" > "$tmp/out" 2> "$tmp/err" && ! grep -q "^ground:" "$tmp/out" &&
+  ! grep -q "visuals\|boxes" "$tmp/err"
+ok $? "a URDF's own <mujoco><compiler ...>: its visuals kept; with discardvisual=\"true\", not"
 tap_end

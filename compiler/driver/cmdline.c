@@ -246,6 +246,50 @@ sim_needs_twin(const Options *o)
     return needs;
 }
 
+/* The value of option name among the simulator's options at i (`name V`
+ * or `name=V`), or NULL. */
+static const char *
+sim_value(const Options *o, int i, const char *name)
+{
+    size_t n = strlen(name);
+    if (strncmp(o->sim[i], name, n))
+        return NULL;
+    if (!o->sim[i][n])
+        return i + 1 < o->nsim ? o->sim[i + 1] : NULL;
+    return o->sim[i][n] == '=' ? o->sim[i] + n + 1 : NULL;
+}
+
+/* What the simulator options of `eomc run` ask of Taylor's method (the
+ * Options members run_method, run_integrates, taylor_reference): as the
+ * simulator reads them, the last --method wins; --accel,
+ * --accel-extended, --linearize, --equilibrium, --work-precision,
+ * --help and --version take no step of it. */
+static void
+sim_taylor_use(Options *o)
+{
+    static const char *const still[] = {"--accel", "--accel-extended", "--linearize",
+                                        "--equilibrium", "--work-precision", "--help", "-h",
+                                        "--version", NULL};
+    int run = !strcmp(o->cmd, "run"), integrates = run, by_taylor = 0, given = 0;
+    int computed = !strcmp(o->cmd, "accuracy"); /* a reference the run computes */
+    const char *v;
+    for (int i = 0; i < o->nsim; i++) {
+        const char *a = o->sim[i];
+        for (int k = 0; still[k]; k++)
+            if (!strcmp(a, still[k]))
+                integrates = 0;
+        if ((v = sim_value(o, i, "--method")))
+            o->run_method = v;
+        if ((v = sim_value(o, i, "--reference-method")))
+            by_taylor = !strcmp(v, "taylor");
+        given |= sim_value(o, i, "--reference") != NULL;
+        computed |= !strcmp(a, "--error") || !strcmp(a, "--work-precision") ||
+                    sim_value(o, i, "--errors") || sim_value(o, i, "--reference-out");
+    }
+    o->run_integrates = integrates;
+    o->taylor_reference = by_taylor && computed && !given;
+}
+
 void
 cmdline_parse(int argc, char **argv, Options *o)
 {
@@ -340,6 +384,7 @@ cmdline_parse(int argc, char **argv, Options *o)
      * taylor (main.c) */
     o->needs_taylor = o->taylor || o->shared || sim_names_method(o, is_taylor) ||
                       (!strcmp(o->cmd, "accuracy") && sim_default_methods(o));
+    sim_taylor_use(o);
     if (o->form && !form_find(o->form)) {
         const char *near = form_nearest(o->form);
         fprintf(stderr, "eomc: unknown form '%s'; %s%s%svalid forms: %s\n", o->form,

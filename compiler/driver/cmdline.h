@@ -19,6 +19,13 @@ typedef struct Options {
     int shared;         /* --shared: a shared library (for Python), not a simulator */
     int taylor;         /* --taylor: the series of Taylor's method, whatever the scene */
     int needs_taylor;   /* ... or what the simulator is asked to do needs them */
+    /* `run`: the method its simulator options name (the last --method; NULL:
+     * the scene's), whether it integrates with it (not --accel, --linearize,
+     * --equilibrium, --help, ... alone), and whether they ask for a
+     * reference by Taylor's method that the run computes: what refuses a
+     * model without Taylor series before it is built (main.c) */
+    const char *run_method;
+    int run_integrates, taylor_reference;
     int cache;          /* --cache: built into eomc's cache (as run's), its path printed */
     int extended;       /* --extended: the extended-precision twin, whatever the size */
     int needs_jacobian; /* what the simulator is asked to do needs it */

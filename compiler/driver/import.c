@@ -27,6 +27,7 @@
 #include "runtime/base/numfmt.h"
 #include "base/arena.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -161,12 +162,31 @@ put_fixed_turn(FILE *f, const double *q)
     fprintf(f, ", angle: %s}", num(a, 2 * atan2(s, w)));
 }
 
-/* The element an error is about, for its position in the file. */
+/* The element an error is about, for its position in the file: its name,
+ * and the MJCF elements an object of its type is written as, in which
+ * section (a joint in a body, not an equality's `<joint>`; an actuator's
+ * `<motor>`, not the `<site>` of the same name it acts at). */
 static void
 blame(ImportWhere *at, const mjModel *m, int type, int id)
 {
     const char *nm = mj_id2name(m, type, id);
     snprintf(at->name, sizeof at->name, "%s", nm ? nm : "");
+    switch (type) {
+    case mjOBJ_JOINT:
+        at->tags = "joint freejoint", at->section = "worldbody";
+        break;
+    case mjOBJ_ACTUATOR:
+        at->tags = "general motor position velocity cylinder muscle adhesion intvelocity "
+                   "damper plugin";
+        at->section = "actuator";
+        break;
+    case mjOBJ_EQUALITY:
+        at->tags = "connect weld joint tendon distance flex", at->section = "equality";
+        break;
+    case mjOBJ_TENDON:
+        at->tags = "fixed spatial", at->section = "tendon";
+        break;
+    }
 }
 
 /* An element's name for messages: MuJoCo's, or its kind and index. */
@@ -277,7 +297,7 @@ refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
 enum { DROP_NAMED = 6 };
 typedef struct Drop {
     int n;
-    char names[DROP_NAMED * 64];
+    char names[DROP_NAMED * 104];
 } Drop;
 
 static void
@@ -285,7 +305,26 @@ drop_add(Drop *d, const char *name)
 {
     size_t k = strlen(d->names);
     if (d->n++ < DROP_NAMED)
-        snprintf(d->names + k, sizeof d->names - k, "%s%.60s", k ? ", " : "", name);
+        snprintf(d->names + k, sizeof d->names - k, "%s%.100s", k ? ", " : "", name);
+}
+
+/* "LEVEL: HEADING KIND name (WHY)", or "LEVEL: HEADING n KINDs: a, b, ...
+ * and k more (WHY)"; 1, or 0 where d is empty. */
+static int
+drop_tell(FILE *warn, const char *path, const char *level, const char *heading, const Drop *d,
+          const char *kind, const char *why)
+{
+    if (d->n == 0)
+        return 0;
+    if (d->n == 1)
+        fprintf(warn, "%s: %s: %s %s %s (%s)\n", path, level, heading, kind, d->names, why);
+    else if (d->n <= DROP_NAMED)
+        fprintf(warn, "%s: %s: %s %d %ss: %s (%s)\n", path, level, heading, d->n, kind,
+                d->names, why);
+    else
+        fprintf(warn, "%s: %s: %s %d %ss: %s and %d more (%s)\n", path, level, heading, d->n,
+                kind, d->names, d->n - DROP_NAMED, why);
+    return 1;
 }
 
 /* "dropped: WHAT KIND name" or "dropped: WHAT n KINDs: a, b, ... and k more"
@@ -294,19 +333,9 @@ static int
 drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const char *kind,
          const char *why)
 {
-    if (d->n == 0)
-        return 0;
-    const char *sp = *what ? " " : "";
-    if (d->n == 1)
-        fprintf(warn, "%s: warning: dropped: %s%s%s %s (%s)\n", path, what, sp, kind, d->names,
-                why);
-    else if (d->n <= DROP_NAMED)
-        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s (%s)\n", path, what, sp, d->n, kind,
-                d->names, why);
-    else
-        fprintf(warn, "%s: warning: dropped: %s%s%d %ss: %s and %d more (%s)\n", path, what, sp,
-                d->n, kind, d->names, d->n - DROP_NAMED, why);
-    return 1;
+    char heading[100];
+    snprintf(heading, sizeof heading, "dropped:%s%s", *what ? " " : "", what);
+    return drop_tell(warn, path, "warning", heading, d, kind, why);
 }
 
 /* What eomc drops, since it simulates smooth dynamics only, named on
@@ -368,56 +397,149 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     return n;
 }
 
-/* Body b's geoms as its `shapes:` (spec.md), in the frame its pose is
- * drawn in: its axes at its centre of mass, so at geom_pos - body_ipos.
- * Planes, height fields and meshes are not drawn; *skipped counts them.
- * Colours are rounded to 3 decimals (MuJoCo keeps floats). */
-static void
-put_shapes(const mjModel *m, int b, FILE *out, int *skipped)
+/* Geoms the page cannot draw as they are, for a warning each kind: meshes
+ * (drawn as the box that bounds them), planes and height fields (not
+ * drawn). */
+typedef struct Unshaped {
+    Drop meshes, planes;
+} Unshaped;
+
+/* Is g one of a URDF's <visual>s: MuJoCo gives them no contacts
+ * (contype = conaffinity = 0), its <collision>s contacts. */
+static int
+visual(const mjModel *m, int g)
+{
+    return m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0;
+}
+
+/* Is geom g drawn?  All are, but in a URDF whose visuals were kept: a
+ * link's <collision>s are drawn only where its body has no <visual> (the
+ * same link twice, the coarser over the finer, otherwise). */
+static int
+drawn(const mjModel *m, int g, int urdf_visuals)
+{
+    if (!urdf_visuals || visual(m, g))
+        return 1;
+    int b = m->geom_bodyid[g];
+    for (int k = m->body_geomadr[b]; k < m->body_geomadr[b] + m->body_geomnum[b]; k++)
+        if (visual(m, k))
+            return 0;
+    return 1;
+}
+
+/* Geom g as a shape (spec.md's `shapes:`) at pos, turned by quat, after
+ * sep: 0, or -1 where the page cannot draw it (a plane, a height field;
+ * told in *u), a mesh drawn as the box that bounds it (MuJoCo's geom_size
+ * of a mesh: the half-sizes of its bounding box about its centroid, in
+ * its principal axes, which geom_pos and geom_quat place).  Colours are
+ * rounded to 3 decimals (MuJoCo keeps floats). */
+static int
+put_shape(const mjModel *m, int g, const double *pos, const double *quat, const char *sep,
+          FILE *out, Unshaped *u)
 {
     static const char *const types[mjNGEOMTYPES] = {
         [mjGEOM_SPHERE] = "sphere", [mjGEOM_CAPSULE] = "capsule",
-        [mjGEOM_ELLIPSOID] = "ellipsoid", [mjGEOM_CYLINDER] = "cylinder", [mjGEOM_BOX] = "box"};
+        [mjGEOM_ELLIPSOID] = "ellipsoid", [mjGEOM_CYLINDER] = "cylinder", [mjGEOM_BOX] = "box",
+        [mjGEOM_MESH] = "box"};
     static const int nsize[mjNGEOMTYPES] = {
         [mjGEOM_SPHERE] = 1, [mjGEOM_CAPSULE] = 2, [mjGEOM_ELLIPSOID] = 3,
-        [mjGEOM_CYLINDER] = 2, [mjGEOM_BOX] = 3};
-    char a[NUM_MAX];
-    int n = 0;
-    for (int g = 0; g < m->ngeom; g++) {
-        if (m->geom_bodyid[g] != b)
-            continue;
-        int t = m->geom_type[g];
-        if (t < 0 || t >= mjNGEOMTYPES || !types[t]) {
-            ++*skipped;
-            continue;
-        }
-        fprintf(out, "%s{type: %s, size: [", n++ ? ", " : ", shapes: [", types[t]);
-        for (int k = 0; k < nsize[t]; k++)
-            fprintf(out, "%s%s", k ? ", " : "", num(a, m->geom_size[3 * g + k]));
+        [mjGEOM_CYLINDER] = 2, [mjGEOM_BOX] = 3, [mjGEOM_MESH] = 3};
+    char a[NUM_MAX], b[32], nm[200];
+    int t = m->geom_type[g];
+    const double *size = m->geom_size + 3 * g;
+    int ok = t >= 0 && t < mjNGEOMTYPES && types[t];
+    for (int k = 0; ok && k < nsize[t]; k++)
+        ok = size[k] > 0 && isfinite(size[k]); /* spec.md: sizes > 0 */
+    const char *bn = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+    const char *of = m->geom_bodyid[g] == 0 ? "the world" : bn && *bn ? bn : "an unnamed body";
+    if (!ok) {
+        snprintf(nm, sizeof nm, "%s of %s (%s)", label(m, mjOBJ_GEOM, g, b, sizeof b), of,
+                 t == mjGEOM_PLANE ? "a plane" : t == mjGEOM_HFIELD ? "a height field"
+                 : "a size of 0");
+        drop_add(&u->planes, nm);
+        return -1;
+    }
+    if (t == mjGEOM_MESH) {
+        const char *mesh = mj_id2name(m, mjOBJ_MESH, m->geom_dataid[g]);
+        snprintf(nm, sizeof nm, "%s of %s (mesh %s)", label(m, mjOBJ_GEOM, g, b, sizeof b), of,
+                 mesh && *mesh ? mesh : "unnamed");
+        drop_add(&u->meshes, nm);
+    }
+    fprintf(out, "%s{type: %s, size: [", sep, types[t]);
+    for (int k = 0; k < nsize[t]; k++)
+        fprintf(out, "%s%s", k ? ", " : "", num(a, size[k]));
+    fputs("]", out);
+    if (!is_zero3(pos)) {
+        fputs(", pos: ", out);
+        put_vec(out, pos);
+    }
+    if (quat[1] != 0 || quat[2] != 0 || quat[3] != 0) {
+        fputs(", quat: [", out);
+        for (int k = 0; k < 4; k++)
+            fprintf(out, "%s%s", k ? ", " : "", num(a, quat[k]));
         fputs("]", out);
+    }
+    fputs(", rgba: [", out);
+    for (int k = 0; k < 4; k++) {
+        double c = round(1000 * (double)m->geom_rgba[4 * g + k]) / 1000;
+        fprintf(out, "%s%s", k ? ", " : "", num(a, c < 0 ? 0 : c > 1 ? 1 : c));
+    }
+    fputs("]}", out);
+    return 0;
+}
+
+/* Body b's geoms as its `shapes:` (spec.md), in the frame its pose is
+ * drawn in: its axes at its centre of mass, so at geom_pos - body_ipos. */
+static void
+put_shapes(const mjModel *m, int b, int urdf_visuals, FILE *out, Unshaped *u)
+{
+    int n = 0;
+    for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; g++) {
+        if (!drawn(m, g, urdf_visuals))
+            continue;
         double pos[3];
         for (int k = 0; k < 3; k++)
             pos[k] = m->geom_pos[3 * g + k] - m->body_ipos[3 * b + k];
-        if (!is_zero3(pos)) {
-            fputs(", pos: ", out);
-            put_vec(out, pos);
-        }
-        const double *gq = m->geom_quat + 4 * g;
-        if (gq[1] != 0 || gq[2] != 0 || gq[3] != 0) {
-            fputs(", quat: [", out);
-            for (int k = 0; k < 4; k++)
-                fprintf(out, "%s%s", k ? ", " : "", num(a, gq[k]));
-            fputs("]", out);
-        }
-        fputs(", rgba: [", out);
-        for (int k = 0; k < 4; k++) {
-            double c = round(1000 * (double)m->geom_rgba[4 * g + k]) / 1000;
-            fprintf(out, "%s%s", k ? ", " : "", num(a, c < 0 ? 0 : c > 1 ? 1 : c));
-        }
-        fputs("]}", out);
+        if (put_shape(m, g, pos, m->geom_quat + 4 * g, n ? ", " : ", shapes: [", out, u) == 0)
+            n++;
     }
     if (n)
         fputs("]", out);
+}
+
+/* The geoms fixed to the world that no body of the spec carries, as its
+ * `ground:` (spec.md), in the world's axes: the world body's (a URDF's
+ * root link, which MuJoCo fuses into it) and those of bodies welded to
+ * it without mass (placed by MuJoCo's kinematics at qpos0). */
+static void
+put_ground(const mjModel *m, int urdf_visuals, FILE *out, Unshaped *u)
+{
+    mjData *d = NULL;
+    int n = 0;
+    for (int g = 0; g < m->ngeom; g++) {
+        int b = m->geom_bodyid[g];
+        if (m->body_weldid[b] != 0 || (b != 0 && m->body_mass[b] != 0) ||
+            !drawn(m, g, urdf_visuals))
+            continue;
+        double pos[3], quat[4];
+        if (b == 0) { /* in the world's axes already */
+            memcpy(pos, m->geom_pos + 3 * g, sizeof pos);
+            memcpy(quat, m->geom_quat + 4 * g, sizeof quat);
+        } else {
+            if (!d) {
+                d = mj_makeData(m);
+                mj_kinematics(m, d);
+            }
+            memcpy(pos, d->geom_xpos + 3 * g, sizeof pos);
+            mju_mat2Quat(quat, d->geom_xmat + 9 * g);
+        }
+        if (put_shape(m, g, pos, quat, n ? "\n  - " : "ground:\n  - ", out, u) == 0)
+            n++;
+    }
+    if (n)
+        fputs("\n", out);
+    if (d)
+        mj_deleteData(d);
 }
 
 /* q - ref for joint j: its coordinate alone where ref is 0. */
@@ -720,22 +842,190 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
     }
 }
 
+/* The file's text, NUL-ended, or NULL. */
+static char *
+slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 1 << 16, n = 0, k;
+    char *buf = xmalloc(cap);
+    while ((k = fread(buf + n, 1, cap - n - 1, f)) > 0)
+        if ((n += k) == cap - 1)
+            buf = xrealloc(buf, cap *= 2);
+    fclose(f);
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+/* The end of the tag that starts at lt ('<'): its '>', quoted values
+ * skipped; NULL if it has none. */
+static const char *
+tag_end(const char *lt)
+{
+    for (const char *c = lt; *c; c++) {
+        if (*c == '"' || *c == '\'') {
+            const char *q = strchr(c + 1, *c);
+            if (!q)
+                return NULL;
+            c = q;
+        } else if (*c == '>') {
+            return c;
+        }
+    }
+    return NULL;
+}
+
+/* Does the tag at lt ('<') have this name (not a longer one)? */
+static int
+tag_is(const char *lt, const char *name)
+{
+    size_t n = strlen(name);
+    char after = lt[1 + n];
+    return !strncmp(lt + 1, name, n) &&
+           (after == '>' || after == '/' || after == ' ' || after == '\t' || after == '\n' ||
+            after == '\r');
+}
+
+/* The root element's start tag: its '<' past the XML declaration,
+ * comments and a doctype; NULL if there is none. */
+static const char *
+root_tag(const char *text)
+{
+    const char *c = text;
+    for (;;) {
+        c += strspn(c, " \t\r\n");
+        if (!strncmp(c, "\xef\xbb\xbf", 3)) /* a UTF-8 byte-order mark */
+            c += 3;
+        else if (!strncmp(c, "<?", 2))
+            c = (c = strstr(c, "?>")) ? c + 2 : NULL;
+        else if (!strncmp(c, "<!--", 4))
+            c = (c = strstr(c, "-->")) ? c + 3 : NULL;
+        else if (!strncmp(c, "<!", 2))
+            c = (c = tag_end(c)) ? c + 1 : NULL;
+        else
+            return *c == '<' ? c : NULL;
+        if (!c)
+            return NULL;
+    }
+}
+
+/* A URDF's text with MuJoCo told to keep its <visual>s: MuJoCo's own
+ * compiler option discardvisual="false", which its URDF reader takes from
+ * a <mujoco><compiler .../></mujoco> in the <robot> (URDF's default is to
+ * discard them).  Put in the file's own <mujoco> element where it has
+ * one (MuJoCo reads the first only), else as a new one first in <robot>,
+ * without a line break: MuJoCo's line numbers stay the file's.  NULL
+ * where the file says discardvisual itself (its choice stands) or the
+ * tags are not found.  malloc'd, its length in *outlen. */
+static char *
+keep_visuals(const char *text, size_t len, const char *root, size_t *outlen)
+{
+    static const char *const attr = " discardvisual=\"false\"";
+    static const char *const compiler = "<compiler discardvisual=\"false\"/>";
+    static const char *const element = "<mujoco><compiler discardvisual=\"false\"/></mujoco>";
+    const char *re = tag_end(root), *at = NULL, *ins = NULL;
+    if (!re || re[-1] == '/' || strstr(text, "discardvisual"))
+        return NULL;
+    for (const char *c = re; !at && (c = strstr(c, "<mujoco")); c++) {
+        const char *e = tag_is(c, "mujoco") ? tag_end(c) : NULL;
+        if (!e || e[-1] == '/')
+            continue; /* <mujoco/>: nothing in it, one of ours goes first */
+        const char *close = strstr(e, "</mujoco");
+        const char *cp = strstr(e, "<compiler");
+        if (cp && (!close || cp < close) && tag_is(cp, "compiler"))
+            at = cp + strlen("<compiler"), ins = attr;
+        else
+            at = e + 1, ins = compiler;
+    }
+    if (!at)
+        at = re + 1, ins = element;
+    size_t head = (size_t)(at - text), n = strlen(ins);
+    char *out = xmalloc(len + n + 1);
+    memcpy(out, text, head);
+    memcpy(out + head, ins, n);
+    memcpy(out + head + n, at, len - head + 1);
+    *outlen = len + n;
+    return out;
+}
+
+/* mj_loadXML of text in place of the file at path: MuJoCo's virtual file
+ * system holds it under the file's name, and MuJoCo looks there before it
+ * reads the disk (mesh files are still read from the model's folder). */
+static mjModel *
+load_text(const char *path, const char *text, size_t len, char *err, int errlen)
+{
+    mjVFS *vfs = xmalloc(sizeof *vfs); /* 2 MB of names: not on the stack */
+    mj_defaultVFS(vfs);
+    mjModel *m = NULL;
+    if (len > 0 && len < (size_t)INT_MAX && mj_makeEmptyFileVFS(vfs, path, (int)len) == 0) {
+        memcpy(vfs->filedata[mj_findFileVFS(vfs, path)], text, len);
+        m = mj_loadXML(path, vfs, err, errlen);
+    } else {
+        snprintf(err, (size_t)errlen, "the file does not fit MuJoCo's virtual file system");
+    }
+    mj_deleteVFS(vfs);
+    free(vfs);
+    return m;
+}
+
+/* MuJoCo's model of the file at path, or NULL with its message in err.  A
+ * URDF is loaded with its <visual>s kept (*urdf_visuals 1), for drawing:
+ * MuJoCo gives them no mass and no contacts, so the dynamics are those
+ * of the file as MuJoCo loads it by default.  Where MuJoCo cannot load
+ * them (a mesh file it cannot read), the URDF is loaded as it is, with a
+ * warning saying why its visuals are not drawn; where the URDF itself
+ * cannot be loaded, the error is that load's, on the file's own lines. */
+static mjModel *
+load(const char *path, FILE *warn, int *urdf_visuals, char *err, int errlen)
+{
+    size_t len = 0, mlen;
+    char *text = slurp(path, &len), *mod = NULL;
+    const char *root = text ? root_tag(text) : NULL;
+    *urdf_visuals = 0;
+    if (root && tag_is(root, "robot"))
+        mod = keep_visuals(text, len, root, &mlen);
+    mjModel *m = NULL;
+    if (mod) {
+        char why[1000] = "";
+        m = load_text(path, mod, mlen, why, sizeof why);
+        *urdf_visuals = m != NULL;
+        if (!m && (m = mj_loadXML(path, NULL, err, errlen))) {
+            for (char *c = why; *c; c++)
+                if (*c == '\n')
+                    *c = ' ';
+            for (size_t k = strlen(why); k > 0 && why[k - 1] == ' '; k--)
+                why[k - 1] = '\0';
+            fprintf(warn, "%s: warning: the URDF's visuals are not drawn: MuJoCo cannot load "
+                    "them (%s); each link is drawn as its collision geoms, else as the box "
+                    "of its mass and inertia\n", path, why);
+        }
+    } else {
+        m = mj_loadXML(path, NULL, err, errlen);
+    }
+    free(mod);
+    free(text);
+    return m;
+}
+
 int
 import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
              ImportWhere *at)
 {
     *at = (ImportWhere){0};
     char load_err[1000] = "";
-    mjModel *m = mj_loadXML(path, NULL, load_err, sizeof load_err);
+    int urdf_visuals = 0;
+    mjModel *m = load(path, warn, &urdf_visuals, load_err, sizeof load_err);
     if (!m) { /* MuJoCo's message on one line: it has line breaks and a trailing one */
+        import_where_parse(load_err, at);
         for (char *c = load_err; *c; c++)
             if (*c == '\n')
                 *c = ' ';
         for (size_t k = strlen(load_err); k > 0 && load_err[k - 1] == ' '; k--)
             load_err[k - 1] = '\0';
         snprintf(err, len, "MuJoCo cannot load it: %s", load_err);
-        const char *ln = strstr(load_err, ", line ");
-        at->line = ln ? atoi(ln + 7) : 0;
         return -1;
     }
     if (refused(m, err, len, at)) {
@@ -955,7 +1245,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(fr);
     free(pt);
     fputs("bodies:\n", out);
-    int unshaped = 0; /* geoms of types that are not drawn */
+    Unshaped u = {0};
     for (int b = 1; b < nb; b++) {
         if (m->body_mass[b] == 0)
             continue;
@@ -974,13 +1264,15 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             put_vec(out, I + 3 * r);
         }
         fputs("]", out);
-        put_shapes(m, b, out, &unshaped);
+        put_shapes(m, b, urdf_visuals, out, &u);
         fputs("}\n", out);
     }
-    if (unshaped)
-        fprintf(warn, "%s: note: not drawn: %d geom%s (planes, height fields and meshes; "
-                "--animate draws boxes, spheres, capsules, cylinders and ellipsoids)\n", path,
-                unshaped, unshaped == 1 ? "" : "s");
+    put_ground(m, urdf_visuals, out, &u);
+    drop_tell(warn, path, "warning", "drawn as boxes:", &u.meshes, "mesh geom",
+              "--animate draws no meshes: each is drawn as the box that bounds it");
+    drop_tell(warn, path, "note", "not drawn:", &u.planes, "geom",
+              "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
+              "planes or height fields");
     put_effects(m, qn, un, tn, out);
     put_constraints(m, qn, tn, eqn, eqp, axes, out);
     int any = 0;

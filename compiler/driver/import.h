@@ -8,20 +8,13 @@
 #ifndef EOMC_IMPORT_H
 #define EOMC_IMPORT_H
 
+#include "import_where.h"
+
 #include <stddef.h>
 #include <stdio.h>
 
 /* Whether this eomc was built with MuJoCo (libmujoco-dev). */
 int import_available(void);
-
-/* Where an import error points, for its file:line:column: the line in
- * MuJoCo's loader message, else the name of the element at fault (its
- * first `name="..."` in the file is where the caller points); 0 and ""
- * where neither is known (an unnamed element). */
-typedef struct ImportWhere {
-    int line;
-    char name[128];
-} ImportWhere;
 
 /* The spec of the model at path onto out, what it drops named on warn
  * (with strict, an error); 0, or -1 with the reason in err (MuJoCo's

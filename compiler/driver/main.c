@@ -99,6 +99,37 @@ explain(const Spec *s, const Form *form, const Constraints *c, const Invariant *
     printf("%s\n%s\n", inv->note, inv->test);
 }
 
+/* The spec's file name without directory and extension. */
+static void
+spec_stem(const char *path, char *out, size_t len)
+{
+    const char *b = strrchr(path, '/');
+    snprintf(out, len, "%s", b ? b + 1 : path);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
+}
+
+/* Whether `eomc run` would be refused for want of Taylor series, which the
+ * model's lowering says it has not (why): its simulator refuses to take a
+ * step of Taylor's method, or to compute a reference by it, without them.
+ * Said here, as the simulator says it, before any C is compiled. */
+static int
+refuse_taylor(const Options *o, const Spec *s, const char *why)
+{
+    const char *method = o->run_method ? o->run_method : s->scene.method;
+    const char *opt = o->run_integrates && !strcmp(method, "taylor") ? "--method taylor"
+                      : o->taylor_reference ? "--reference-method taylor" : NULL;
+    if (!why || !opt)
+        return 0;
+    char stem[200];
+    spec_stem(o->spec, stem, sizeof stem);
+    fprintf(stderr, "%s: %s: %s has no Taylor series: %s\n(see eomc %s %s%s%s --help)\n", stem,
+            opt, s->name, why, o->cmd, o->spec, o->scene ? " --scene " : "",
+            o->scene ? o->scene : "");
+    return 1;
+}
+
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
  * Returns 0, or an exit status. */
 /* *units (unless NULL): the translation units of the C written (emit.h). */
@@ -184,19 +215,23 @@ compile(const Options *o, FILE *out, int *units)
             int taylor = o->needs_taylor || !strcmp(s->scene.method, "taylor");
             Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, taylor, A,
                                            P, D) : NULL;
-            if (L && L->tables_why)
-                fprintf(stderr, "%s: note: --code tables: not here (%s); the code is "
-                        "straight-line\n", o->spec, L->tables_why);
-            if (o->explain)
-                explain(s, form, c, inv, &info, L);
-            if (out) {
-                int nu = emit_model(out, L, P, &info, st);
-                if (units)
-                    *units = nu;
-                if (o->stats)
-                    print_stats(st);
+            if (L && refuse_taylor(o, s, L->taylor->why)) {
+                rc = EXIT_USAGE;
+            } else {
+                if (L && L->tables_why)
+                    fprintf(stderr, "%s: note: --code tables: not here (%s); the code is "
+                            "straight-line\n", o->spec, L->tables_why);
+                if (o->explain)
+                    explain(s, form, c, inv, &info, L);
+                if (out) {
+                    int nu = emit_model(out, L, P, &info, st);
+                    if (units)
+                        *units = nu;
+                    if (o->stats)
+                        print_stats(st);
+                }
+                rc = 0;
             }
-            rc = 0;
         }
     }
     diag_set_jump(old);
@@ -296,17 +331,6 @@ read_file(const char *path, size_t *len)
     return buf;
 }
 
-/* The spec's file name without directory and extension. */
-static void
-spec_stem(const char *path, char *out, size_t len)
-{
-    const char *b = strrchr(path, '/');
-    snprintf(out, len, "%s", b ? b + 1 : path);
-    char *dot = strrchr(out, '.');
-    if (dot && dot != out)
-        *dot = '\0';
-}
-
 /* The build in eomc's cache for o's spec and options (name: the file's
  * name there), built unless an identical build is there.  A malloc'd
  * path, or NULL with *rc the exit status after saying why. */
@@ -389,44 +413,6 @@ is_model_file(const char *path)
     return dot && (!strcasecmp(dot, ".xml") || !strcasecmp(dot, ".urdf"));
 }
 
-/* Where in the model file an import error is (ImportWhere): the line
- * MuJoCo named, or the value of the first `name="NAME"` there; the file's
- * text is registered with diag so that the error can quote it. */
-static SrcLoc
-import_loc(const char *path, const ImportWhere *at)
-{
-    SrcLoc loc = {path, 0, 0};
-    size_t len;
-    char *text = (at->line > 0 || at->name[0]) ? read_file(path, &len) : NULL;
-    if (!text)
-        return loc;
-    diag_add_source(path, text, len); /* (kept: the error that follows quotes it) */
-    const char *hit = NULL;
-    if (at->line > 0) { /* its first character that is not a blank */
-        const char *c = text;
-        for (int l = 1; l < at->line && (c = strchr(c, '\n')); l++)
-            c++;
-        loc.line = at->line, loc.col = 1;
-        for (; c && (*c == ' ' || *c == '\t'); c++)
-            loc.col++;
-        return loc;
-    }
-    for (int q = 0; q < 2 && !hit; q++) {
-        char want[200];
-        snprintf(want, sizeof want, q ? "name='%s'" : "name=\"%s\"", at->name);
-        hit = strstr(text, want);
-    }
-    if (!hit)
-        return loc;
-    loc.line = 1, loc.col = 1;
-    for (const char *c = text; c < hit + 6; c++) /* to the name's first character */
-        if (*c == '\n')
-            loc.line++, loc.col = 1;
-        else
-            loc.col++;
-    return loc;
-}
-
 /* The spec of the model at path into *text (malloc'd), what it drops
  * named on stderr; 0, or exit 2 after the error (at its place in the
  * file where that is known). */
@@ -442,7 +428,7 @@ import_text(const char *path, int strict, char **text, size_t *len)
         return 0;
     free(*text);
     *text = NULL;
-    diag_error(import_loc(path, &at), "%s", err);
+    diag_error(import_where_find(path, &at), "%s", err);
 }
 
 /* A model file given as SPEC: imported first, as `eomc import` would, and

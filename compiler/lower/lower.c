@@ -575,8 +575,8 @@ held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool
  * at its centre of mass, turned as the frame that places it, else by its
  * rotation (a sequence, a quaternion, a planar angle about z; a body given
  * by `omega:` alone is not turned); a particle or point at its position, a
- * frame at its origin (the world's if it has none) with its rotation; z = 0
- * in the plane.  Computed from p alone, not per step: the page calls them
+ * frame at its origin (the world's if it has none) with its rotation, the
+ * ground at the world's origin in its axes; z = 0 in the plane.  Computed from p alone, not per step: the page calls them
  * once per frame.  Fixed parameters are folded into the frames' and points'
  * expressions here (the spec's own are already). */
 static void
@@ -614,6 +614,7 @@ lower_draw(Lowering *lw)
                 pos[j] = s->part[it->index].pos[j];
         } else if (it->kind == SPEC_DRAW_POINT) {
             kin_pos(K, it->index, pos);
+        } else if (it->kind == SPEC_DRAW_GROUND) { /* the world's origin and axes */
         } else {
             frame = it->index;
             int o = kin_origin(K, frame);

@@ -90,7 +90,9 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
     md->ndraw = v->nitem;
     md->draw_item = arena_new_array(A, LowDrawItem, v->nitem + 1);
     for (int k = 0; k < v->nitem; k++) /* SPEC_DRAW_* is EOMC_DRAW_*'s order */
-        md->draw_item[k] = (LowDrawItem){dup(A, v->item[k].name), v->item[k].kind,
+        md->draw_item[k] = (LowDrawItem){dup(A, v->item[k].name),
+                                         v->item[k].kind == SPEC_DRAW_GROUND ? SPEC_DRAW_BODY
+                                                                             : v->item[k].kind,
                                          v->item[k].dim};
     md->nshape = v->nitem ? s->nshape : 0;
     md->shape = arena_new_array(A, LowShape, s->nshape + 1);

@@ -48,8 +48,8 @@ spec_name(Loader *L, yaml_node_t *n)
 
 static const char *const top_keys[] = {
     "name", "description", "parameters", "coordinates", "define", "frames", "points", "inputs",
-    "particles", "bodies", "kinetic", "potential", "effects", "constraints", "initial",
-    "scene", "scenes",
+    "particles", "bodies", "ground", "kinetic", "potential", "effects", "constraints",
+    "initial", "scene", "scenes",
     NULL,
 };
 
@@ -102,7 +102,7 @@ load_root(Loader *L, yaml_node_t *root)
         spec_load_particles(L, n);
     if ((n = spec_section(L, root, "bodies", 1)))
         spec_load_bodies(L, n);
-    spec_draw_items(L);
+    spec_draw_items(L, spec_section(L, root, "ground", 0));
     spec_checked(L, spec_load_energy, root, 0);
     spec_checked(L, spec_load_energy, root, 1);
     if ((n = spec_section(L, root, "effects", 1)))

@@ -55,7 +55,7 @@ typedef struct Loader {
     AxisCheck *axes;        /* fixed axes of parameters, checked once they are loaded */
     const char **quat_of;   /* per coordinate: whose Euler parameter it is, or NULL */
     int capfquat;           /* room in Spec.fquat */
-    int shape_body;         /* the body whose `shapes:` are being read */
+    int shape_body;         /* the draw item whose shapes are being read */
 } Loader;
 
 #endif

@@ -95,19 +95,23 @@ typedef struct SpecBody {
     ExprId angle;
 } SpecBody;
 
-/* A shape a body is drawn as (`shapes:`), in its frame: numbers only. */
+/* A shape a body is drawn as (`shapes:`), in its frame, or the ground
+ * (`ground:`), in the world's: numbers only. */
 enum { SPEC_SHAPE_BOX, SPEC_SHAPE_SPHERE, SPEC_SHAPE_CAPSULE, SPEC_SHAPE_CYLINDER,
        SPEC_SHAPE_ELLIPSOID };
 typedef struct SpecShape {
-    int body, type;  /* Spec.body's index; SPEC_SHAPE_* (eomc_model.h's order) */
+    int body, type;  /* the draw item's index (a body's is its Spec.body index: the
+                      * bodies come first); SPEC_SHAPE_* (eomc_model.h's order) */
     double size[3];  /* box: half-sizes; sphere: radius; capsule, cylinder:
                       * radius, half-length; ellipsoid: semi-axes (unused 0) */
     double pos[3], quat[4], rgba[4];
 } SpecShape;
 
-/* What a run's page draws: every body, every particle, then the points and
- * frames the scene's `view:` names (eomc_model.h's draw items, same order). */
-enum { SPEC_DRAW_BODY, SPEC_DRAW_PARTICLE, SPEC_DRAW_POINT, SPEC_DRAW_FRAME };
+/* What a run's page draws: every body, every particle, the ground (where
+ * `ground:` gives it shapes), then the points and frames the scene's
+ * `view:` names (eomc_model.h's draw items, same order; the ground is
+ * drawn as a body that does not move, EOMC_DRAW_BODY). */
+enum { SPEC_DRAW_BODY, SPEC_DRAW_PARTICLE, SPEC_DRAW_POINT, SPEC_DRAW_FRAME, SPEC_DRAW_GROUND };
 typedef struct SpecDrawItem {
     const char *name;
     int kind;  /* SPEC_DRAW_* */

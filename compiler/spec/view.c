@@ -90,17 +90,34 @@ spec_load_shapes(Loader *L, yaml_node_t *seq, int body)
 }
 
 void
-spec_draw_items(Loader *L)
+spec_draw_items(Loader *L, yaml_node_t *ground)
 {
     Spec *s = L->s;
     SpecView *v = &s->view;
     v->nitem = s->nbody + s->npart;
-    v->item = arena_new_array(L->A, SpecDrawItem, v->nitem + 1);
-    for (int i = 0; i < s->nbody; i++)
+    v->item = arena_new_array(L->A, SpecDrawItem, v->nitem + 2);
+    int planar = v->nitem > 0;
+    for (int i = 0; i < s->nbody; i++) {
         v->item[i] = (SpecDrawItem){s->body[i].name, SPEC_DRAW_BODY, i, s->body[i].dim};
-    for (int i = 0; i < s->npart; i++)
+        planar &= s->body[i].dim == 2;
+    }
+    for (int i = 0; i < s->npart; i++) {
         v->item[s->nbody + i] = (SpecDrawItem){s->part[i].name, SPEC_DRAW_PARTICLE, i,
                                                s->part[i].dim};
+        planar &= s->part[i].dim == 2;
+    }
+    if (ground && !spec_is_null(ground)) {
+        /* an item of its own, drawn as a body that never moves: at the
+         * world's origin, in its axes (in the plane where all is planar) */
+        spec_expect(L, ground, YAML_SEQUENCE_NODE, "`ground:` (a list of shapes)");
+        int k = v->nitem, before = s->nshape;
+        for (int i = 0; i < NITEMS(ground); i++) {
+            L->shape_body = k;
+            spec_checked(L, load_shape, ground, i);
+        }
+        if (s->nshape > before)
+            v->item[v->nitem++] = (SpecDrawItem){"ground", SPEC_DRAW_GROUND, 0, planar ? 2 : 3};
+    }
 }
 
 /* The item that name n stands for in v, added if it is a point or a frame
@@ -109,8 +126,8 @@ static int
 item_of(Loader *L, SpecView *v, yaml_node_t *n)
 {
     const char *name = spec_scalar(L, n, "a name to draw");
-    for (int k = 0; k < v->nitem; k++)
-        if (!strcmp(v->item[k].name, name))
+    for (int k = 0; k < v->nitem; k++) /* (the ground is no name of the spec's) */
+        if (v->item[k].kind != SPEC_DRAW_GROUND && !strcmp(v->item[k].name, name))
             return k;
     int kind = -1, index = 0;
     if (!strcmp(name, "origin")) {
@@ -126,7 +143,8 @@ item_of(Loader *L, SpecView *v, yaml_node_t *n)
         const char **cands = arena_new_array(L->A, const char *, v->nitem + L->ndef + 1);
         int nc = 0;
         for (int k = 0; k < v->nitem; k++)
-            cands[nc++] = v->item[k].name;
+            if (v->item[k].kind != SPEC_DRAW_GROUND)
+                cands[nc++] = v->item[k].name;
         cands[nc++] = "origin";
         for (int k = 0; k < L->ndef; k++)
             if (L->def[k].kind == ITEM_FRAME || L->def[k].kind == ITEM_POINT)
@@ -215,7 +233,8 @@ load_view(Loader *L, yaml_node_t *m, SpecView *v)
                 if (L->def[k].kind == ITEM_FRAME) {
                     int seen = 0;
                     for (int j = 0; j < v->nitem; j++)
-                        seen |= !strcmp(v->item[j].name, L->def[k].name);
+                        seen |= v->item[j].kind != SPEC_DRAW_GROUND &&
+                                !strcmp(v->item[j].name, L->def[k].name);
                     if (seen)
                         continue;
                     Name *nm = spec_find_name(L, L->def[k].name);

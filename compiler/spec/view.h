@@ -12,8 +12,9 @@
 /* Body `body`'s `shapes:` (a list), appended to Spec.shape. */
 void spec_load_shapes(Loader *L, yaml_node_t *seq, int body);
 /* The draw items every spec has: its bodies, then its particles (into
- * Spec.view, after both are loaded). */
-void spec_draw_items(Loader *L);
+ * Spec.view, after both are loaded), then the ground where the spec's
+ * `ground:` (a list of shapes, or NULL) draws shapes fixed to the world. */
+void spec_draw_items(Loader *L, yaml_node_t *ground);
 /* A scene's `view:`: into Spec.view when live (the scene compiled), else
  * only checked. */
 void spec_load_view(Loader *L, yaml_node_t *v, int live);

@@ -246,6 +246,7 @@ static const struct {
     {"when", "in an event"}, {"direction", "in an event"}, {"action", "in an event"},
     {"coordinates", "at the top level"}, {"parameters", "at the top level"},
     {"particles", "at the top level"}, {"bodies", "at the top level"},
+    {"ground", "at the top level"},
     {"define", "at the top level"}, {"inputs", "at the top level"},
     {"kinetic", "at the top level"}, {"initial", "at the top level"},
     {"constraints", "at the top level"}, {"scene", "at the top level"},

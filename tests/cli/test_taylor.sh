@@ -35,9 +35,9 @@
 #    pendulum, the Cartesian pendulum, precession's second-order
 #    constraint, the car axis) their rows differ by no more than the sum
 #    of the errors each claims;
-#  - refusals, each naming its cause: a model without series, fixed
-#    steps, a reference by Taylor's method of a constraint nonlinear in
-#    q''.
+#  - refusals, each naming its cause: a model without series (before
+#    its C is compiled: no cc runs), fixed steps, a reference by Taylor's
+#    method of a constraint nonlinear in q''.
 # usage: test_taylor.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -223,6 +223,28 @@ st=$?
 [ $st = 2 ] && grep -q "has no Taylor series: its form computes the mass matrix by columns" \
     "$tmp/r.err" && [ ! -s "$tmp/r.csv" ]
 ok $? "a form without the expressions of M: exit 2, naming why ($(head -1 "$tmp/r.err"))"
+# ... refused before anything is built: no C compiler run (a CC that
+# records its calls; a cache of its own, where no build of it can be),
+# the simulator's message; as is a reference by Taylor's method that the
+# run would compute; --accel takes no step of it, so it runs
+printf '#!/bin/sh\necho "$*" >> "%s/cc.calls"\nexec %s "$@"\n' "$tmp" "${CC:-cc}" > "$tmp/cc"
+chmod +x "$tmp/cc"
+: > "$tmp/cc.calls"
+for how in "--method taylor" "--method=rk4 --method taylor" "--error --reference-method taylor"; do
+  # shellcheck disable=SC2086 # $how is a list of options
+  CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" $how \
+    -o "$tmp/r.csv" 2> "$tmp/r.err"
+  st=$?
+  opt=$(echo "$how" | sed 's/.* \(--[a-z-]*method taylor\)$/\1/')
+  [ $st = 2 ] && [ ! -s "$tmp/cc.calls" ] && [ ! -s "$tmp/r.csv" ] &&
+    grep -q "^rolling_disk: $opt: rolling_disk has no Taylor series: its form computes the mass matrix by columns" "$tmp/r.err" &&
+    grep -q "^(see eomc run .*rolling_disk.yaml --help)$" "$tmp/r.err"
+  ok $? "$how, a model without series: refused before it is built, no cc run ($(wc -l < "$tmp/cc.calls") calls; $(head -1 "$tmp/r.err"))"
+done
+CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" --method taylor \
+  --accel > "$tmp/r.out" 2> "$tmp/r.err"
+[ $? = 0 ] && [ -s "$tmp/cc.calls" ] && grep -q "^theta'' " "$tmp/r.out"
+ok $? "--method taylor --accel, the same model: built and run (it takes no step)"
 "$eomc" run "$src/specs/pendulum.yaml" --method taylor --fixed-step 0.01 > /dev/null 2> "$tmp/f.err"
 [ $? = 2 ] && grep -q "taylor chooses its own steps" "$tmp/f.err"
 ok $? "--fixed-step with taylor: exit 2"

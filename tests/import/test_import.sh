@@ -35,7 +35,8 @@ sh "$src/specs/gen_chain.sh" 5 --mjcf > "$tmp/chain5.xml"
 samples=/usr/share/mujoco/model
 case $part in
 small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs.xml
-         $src/tests/import/models/planar_arm.urdf $src/tests/import/models/floating.xml
+         $src/tests/import/models/planar_arm.urdf $src/tests/import/models/visual_arm.urdf
+         $src/tests/import/models/floating.xml
          $src/tests/import/models/closed.xml $src/tests/import/models/welded.xml
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
 humanoid | 22_humanoids) models=$samples/humanoid/$part.xml ;;
@@ -287,10 +288,17 @@ st=$?
 [ $st -eq 2 ] && grep -q "nosuch.xml: error: MuJoCo cannot load it" "$tmp/err"
 ok $? "a missing file: MuJoCo's message, exit 2"
 # geoms become the body's shapes, in its axes at its centre of mass
-# (geom_pos - body_ipos), in MuJoCo's sizes; a mesh is not drawn, with a note
+# (geom_pos - body_ipos), in MuJoCo's sizes; a mesh is drawn as the box
+# that bounds it, with a warning naming it; the world's geoms, and those of
+# a body welded to it without mass, are the spec's ground, in the world's
+# axes (the body's placed by its pos and euler turn); a plane is not drawn,
+# with a note naming it
 cat > "$tmp/shapes.xml" <<'XML'
 <mujoco><asset><mesh name="tet" vertex="0 0 0  1 0 0  0 1 0  0 0 1"/></asset>
-<worldbody><body name="b"><joint name="j" axis="0 1 0"/>
+<worldbody><geom name="floor" type="plane" size="1 1 0.1" contype="0" conaffinity="0"/>
+<geom name="post" type="cylinder" size="0.05 0.5" pos="0 0 0.5" contype="0" conaffinity="0"/>
+<body name="stand" pos="1 0 0" euler="0 0 90"><geom type="box" size="0.2 0.1 0.01" pos="0.1 0 0" mass="0" contype="0" conaffinity="0"/></body>
+<body name="b"><joint name="j" axis="0 1 0"/>
 <inertial pos="0 0 -0.1" mass="1" diaginertia="0.1 0.1 0.1"/>
 <geom type="box" size="0.1 0.2 0.3" pos="0.5 0 0" rgba="1 0 0 0.5" contype="0" conaffinity="0"/>
 <geom type="ellipsoid" size="0.1 0.2 0.3" quat="0 0 0 1" contype="0" conaffinity="0"/>
@@ -299,11 +307,73 @@ cat > "$tmp/shapes.xml" <<'XML'
 XML
 "$eomc" import "$tmp/shapes.xml" -o "$tmp/shapes.yaml" 2> "$tmp/err"
 st=$?
-[ $st -eq 0 ] && grep -q 'shapes: \[{type: box, size: \[0.1, 0.2, 0.3\], pos: \[0.5, 0, 0.1\], rgba: \[1, 0, 0, 0.5\]}, {type: ellipsoid, size: \[0.1, 0.2, 0.3\], pos: \[0, 0, 0.1\], quat: \[0, 0, 0, 1\], rgba: \[0.5, 0.5, 0.5, 1\]}\]}$' "$tmp/shapes.yaml" &&
-  grep -q "shapes.xml: note: not drawn: 1 geom (planes, height fields and meshes" "$tmp/err" &&
-  [ $(wc -l < "$tmp/err") -eq 1 ] &&
+# the mesh's box, from the spec: every corner of the tetrahedron (in b's
+# axes from its centre of mass, so + [0, 0, 0.1]) inside it, and touching
+# each of its faces (to 1e-6: MuJoCo keeps a mesh in floats)
+box=$(sed -n '/^  b: /s/.*{type: box, size: \[\([^]]*\)\], pos: \[\([^]]*\)\], quat: \[\([^]]*\)\].*/\1, \2, \3/p' "$tmp/shapes.yaml")
+bounds=$(echo "$box" | awk -F', ' '{
+    w = $7; x = $8; y = $9; z = $10
+    R[1,1] = 1-2*(y*y+z*z); R[1,2] = 2*(x*y-w*z); R[1,3] = 2*(x*z+w*y)
+    R[2,1] = 2*(x*y+w*z); R[2,2] = 1-2*(x*x+z*z); R[2,3] = 2*(y*z-w*x)
+    R[3,1] = 2*(x*z-w*y); R[3,2] = 2*(y*z+w*x); R[3,3] = 1-2*(x*x+y*y)
+    split("0 0 0.1 1 0 0.1 0 1 0.1 0 0 1.1", v, " ")
+    bad = NF != 10
+    for (c = 0; c < 4; c++)
+      for (i = 1; i <= 3; i++) {
+        b = 0 # the corner in the box axes: R^T (v - pos)
+        for (j = 1; j <= 3; j++) b += R[j,i] * (v[3*c+j] - $(3+j))
+        b = b < 0 ? -b : b
+        if (b > $i + 1e-6) bad = 1
+        if (b > top[i]) top[i] = b
+      }
+    for (i = 1; i <= 3; i++) if (top[i] < $i - 1e-6) bad = 1
+    print bad ? "no" : "yes" }')
+[ $st -eq 0 ] && grep -q 'shapes: \[{type: box, size: \[0.1, 0.2, 0.3\], pos: \[0.5, 0, 0.1\], rgba: \[1, 0, 0, 0.5\]}, {type: ellipsoid, size: \[0.1, 0.2, 0.3\], pos: \[0, 0, 0.1\], quat: \[0, 0, 0, 1\], rgba: \[0.5, 0.5, 0.5, 1\]}, {type: box, ' "$tmp/shapes.yaml" &&
+  [ "$bounds" = yes ] &&
+  grep -q '^  - {type: cylinder, size: \[0.05, 0.5\], pos: \[0, 0, 0.5\], rgba: \[0.5, 0.5, 0.5, 1\]}$' "$tmp/shapes.yaml" &&
+  grep -q '^  - {type: box, size: \[0.2, 0.1, 0.01\], pos: \[1, 0.1, 0\], quat: \[0.707106781186547[0-9]*, 0, 0, 0.707106781186547[0-9]*\]' "$tmp/shapes.yaml" &&
+  grep -q "shapes.xml: warning: drawn as boxes: mesh geom #5 of b (mesh tet) (--animate draws no meshes" "$tmp/err" &&
+  grep -q "shapes.xml: note: not drawn: geom floor of the world (a plane)" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 2 ] &&
   "$eomc" compile "$tmp/shapes.yaml" -o "$tmp/shapes.c" 2> /dev/null &&
   grep -q '^    {0, EOMC_SHAPE_BOX, {0.1, 0.2, 0.3}, {0.5, 0.0, 0.1}, {1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.5}},$' "$tmp/shapes.c" &&
-  grep -q '^    .nshape = 2, .shapes = shapes,$' "$tmp/shapes.c"
-ok $? "geoms: a box and an ellipsoid as shapes at geom_pos - body_ipos, the mesh noted; in the C ($(cat "$tmp/err"))"
+  grep -q '^    {"ground", EOMC_DRAW_BODY, 3},$' "$tmp/shapes.c" &&
+  grep -q '^    {1, EOMC_SHAPE_CYLINDER, {0.05, 0.5, 0.0}, {0.0, 0.0, 0.5}, ' "$tmp/shapes.c" &&
+  grep -q '^    .nshape = 5, .shapes = shapes,$' "$tmp/shapes.c"
+ok $? "geoms: shapes at geom_pos - body_ipos, the mesh as a box bounding it ($bounds), the world's and a welded body's as the ground, the plane noted; in the C ($(cat "$tmp/err"))"
+
+# a URDF's visuals drawn (MuJoCo discards them unless told): the fixed
+# root link's as the ground, at its <origin>; a link's box at half its
+# URDF size; on a link with both, the visual, not the collision box; the
+# mesh as a box, named; the dynamics are MuJoCo's without the visuals
+# (q'' against mj_forward above: visual_arm_urdf)
+va=$tmp/visual_arm_urdf.yaml
+"$eomc" import "$src/tests/import/models/visual_arm.urdf" 2> "$tmp/err" > /dev/null
+grep -q '^  - {type: cylinder, size: \[0.1, 0.05\], pos: \[0, 0, 0.05\], rgba: \[0.8, 0.1, 0.1, 1\]}$' "$va" &&
+  grep -q '^  upper: .*shapes: \[{type: box, size: \[0.15, 0.025, 0.025\], rgba: \[0.6, 0.6, 0.65, 1\]}, {type: sphere, size: \[0.04\], pos: \[-0.15, 0, 0\]' "$va" &&
+  grep -q '^  fore: {mass: 0.32, .*shapes: \[{type: cylinder, size: \[0.02, 0.12\], [^]]*\], quat: \[[^]]*\], rgba: \[0.5, 0.5, 0.5, 1\]}\]}$' "$va" &&
+  grep -q '^  tip: {mass: 0.4, .*shapes: \[{type: box, size: \[0.0199999[0-9]*, 0.0299999[0-9]*, 0.0399999[0-9]*\], .*{type: sphere, size: \[0.015\]' "$va" &&
+  grep -q "visual_arm.urdf: warning: drawn as boxes: mesh geom #5 of tip (mesh visual_arm_tip)" "$tmp/err"
+ok $? "visual_arm.urdf: its visuals drawn, the root link's as the ground, a mesh as a box, named ($(grep boxes "$tmp/err"))"
+# where MuJoCo cannot load the visuals (a mesh file missing), the URDF as
+# MuJoCo loads it by default, with a warning saying why
+sed 's|package://visual_arm/meshes/visual_arm_tip.obj|missing.obj|' \
+  "$src/tests/import/models/visual_arm.urdf" > "$tmp/nomesh.urdf"
+"$eomc" import "$tmp/nomesh.urdf" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q "nomesh.urdf: warning: the URDF's visuals are not drawn: MuJoCo cannot load them (.*missing" "$tmp/err" &&
+  ! grep -q "^ground:" "$tmp/out" && ! grep -q "shapes:.*cylinder" "$tmp/out" &&
+  grep -q '^  fore: {mass: 0.32, .*shapes: \[{type: box, size: \[0.1, 0.02, 0.02\]' "$tmp/out"
+ok $? "a URDF whose visual mesh is missing: imported without its visuals, saying why ($(head -c 300 "$tmp/err"))"
+# a URDF's own <mujoco><compiler>: discardvisual="false" joins its
+# attributes (MuJoCo reads the first <mujoco> only); its own discardvisual
+# stands
+cp "$src/tests/import/models/visual_arm_tip.obj" "$tmp/"
+sed 's|<robot name="visual_arm">|<robot name="visual_arm"><mujoco><compiler balanceinertia="true"/></mujoco>|' \
+  "$src/tests/import/models/visual_arm.urdf" > "$tmp/own.urdf"
+sed 's|balanceinertia="true"|discardvisual="true"|' "$tmp/own.urdf" > "$tmp/discard.urdf"
+"$eomc" import "$tmp/own.urdf" 2> /dev/null | grep -q '^  - {type: cylinder, size: \[0.1, 0.05\]' &&
+  "$eomc" import "$tmp/discard.urdf" > "$tmp/out" 2> "$tmp/err" && ! grep -q "^ground:" "$tmp/out" &&
+  ! grep -q "visuals\|boxes" "$tmp/err"
+ok $? "a URDF's own <mujoco><compiler ...>: its visuals kept; with discardvisual=\"true\", not"
 tap_end

@@ -305,6 +305,52 @@ turned_bodies(void)
     CHECK(max_diff(Dm, want3, 13) == 0, "planar: draw_mass's inertia about z");
 }
 
+/* A planar slab, a particle, a point the view names, and `ground:`: the
+ * ground is an item of its own after the particle and before the view's
+ * point, drawn as a body at the world's origin in its axes, planar where
+ * all else is; its shapes in the world's axes; a view's "ground" is the
+ * spec's point of that name, not it. */
+static const char *const ground_text =
+    "coordinates: [x, th]\n"
+    "points:\n"
+    "  ground: {at: [1, 2]}\n"
+    "bodies:\n"
+    "  slab: {mass: 2, center: [x, 0], inertia: 0.1, angle: th,\n"
+    "         shapes: [{type: box, size: [0.2, 0.1, 0.05]}]}\n"
+    "particles:\n"
+    "  bead: {mass: 1, position: [0, x]}\n"
+    "ground:\n"
+    "  - {type: box, size: [1, 1, 0.1], pos: [0, -1, 0]}\n"
+    "  - {type: cylinder, size: [0.1, 0.5], quat: [0, 1, 0, 0], rgba: [1, 0, 0, 1]}\n"
+    "scene: {view: {links: [[ground, bead]]}}\n";
+
+static void
+ground(void)
+{
+    Spec *s = spec_load_buffer("ground.yaml", ground_text, strlen(ground_text), NULL, A, P);
+    Lowered *L = lowered(s);
+    CHECK(L != NULL, "ground: the spec lowers");
+    if (!L)
+        return;
+    const LowModel *md = &L->model;
+    CHECK(md->ndraw == 4 && !strcmp(md->draw_item[2].name, "ground") &&
+          md->draw_item[2].kind == EOMC_DRAW_BODY && md->draw_item[2].dim == 2 &&
+          !strcmp(md->draw_item[3].name, "ground") && md->draw_item[3].kind == EOMC_DRAW_POINT,
+          "ground: slab, bead, the ground (a planar body), then the view's point 'ground'");
+    CHECK(md->nlink == 1 && md->view_link[0] == 3 && md->view_link[1] == 1,
+          "ground: the view's link is from the point named ground, not from the ground");
+    CHECK(md->nshape == 3 && md->shape[0].body == 0 && md->shape[1].body == 2 &&
+          md->shape[1].size[2] == 0.1 && md->shape[1].pos[1] == -1 &&
+          md->shape[2].body == 2 && md->shape[2].type == EOMC_SHAPE_CYLINDER &&
+          md->shape[2].quat[1] == 1 && md->shape[2].rgba[0] == 1,
+          "ground: the slab's box, then the ground's box and cylinder, as written");
+    double q[2] = {0.3, 0.7}, X[4 * EOMC_POSE];
+    draw(L, q, NULL, X);
+    double want[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, pt[3] = {1, 2, 0};
+    CHECK(max_diff(X + 2 * EOMC_POSE, want, 12) == 0 && max_diff(X + 3 * EOMC_POSE, pt, 3) == 0,
+          "ground: at the origin, unturned; the point at (1, 2, 0)");
+}
+
 int
 main(int argc, char **argv)
 {
@@ -318,6 +364,7 @@ main(int argc, char **argv)
     double_pendulum(argv[1]);
     rolling_disk(argv[2]);
     turned_bodies();
+    ground();
     diff_free(D);
     expr_pool_free(P);
     arena_free(A);

@@ -120,6 +120,11 @@ refuse_taylor(const Options *o, const Spec *s, const char *why)
     const char *method = o->run_method ? o->run_method : s->scene.method;
     const char *opt = o->run_integrates && !strcmp(method, "taylor") ? "--method taylor"
                       : o->taylor_reference ? "--reference-method taylor" : NULL;
+    if (why && !opt && !strcmp(o->cmd, "build") && !strcmp(s->scene.method, "taylor"))
+        /* the simulator is still of use with another --method */
+        fprintf(stderr, "%s: warning: the scene's method is taylor, but %s has no Taylor "
+                "series (%s): its simulator will refuse to run without another --method\n",
+                o->spec, s->name, why);
     if (!why || !opt)
         return 0;
     char stem[200];

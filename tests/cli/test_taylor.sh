@@ -245,6 +245,14 @@ CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk
   --accel > "$tmp/r.out" 2> "$tmp/r.err"
 [ $? = 0 ] && [ -s "$tmp/cc.calls" ] && grep -q "^theta'' " "$tmp/r.out"
 ok $? "--method taylor --accel, the same model: built and run (it takes no step)"
+# eomc build of a scene whose method is taylor, on a model without series:
+# built (its simulator runs with another --method), with a warning naming why
+sed 's/method: rk8pd/method: taylor/' "$src/specs/rolling_disk.yaml" > "$tmp/disk_taylor.yaml"
+"$eomc" build "$tmp/disk_taylor.yaml" -o "$tmp/disk_taylor" 2> "$tmp/b.err"
+st=$?
+[ $st = 0 ] && grep -q "warning: the scene's method is taylor, but rolling_disk has no Taylor series (its form computes the mass matrix by columns" "$tmp/b.err" &&
+  "$tmp/disk_taylor" --method rk8pd --t-end 0.1 > /dev/null
+ok $? "eomc build, a scene's method taylor without series: built, warned ($(head -1 "$tmp/b.err"))"
 "$eomc" run "$src/specs/pendulum.yaml" --method taylor --fixed-step 0.01 > /dev/null 2> "$tmp/f.err"
 [ $? = 2 ] && grep -q "taylor chooses its own steps" "$tmp/f.err"
 ok $? "--fixed-step with taylor: exit 2"

@@ -383,9 +383,9 @@ look_at(Look *l, const Anim *a, const char *prog)
             ok &= (i >= nsize[type] || (z[i] > 0 && isfinite(z[i]))) && isfinite(z[3 + i]);
         l->shown[k] = (char)ok;
         if (!ok)
-            fprintf(io_err(), "%s: --animate: warning: a shape of %s has size [%g, %g, %g] at "
+            fprintf(io_err(), "%s: --animate: warning: a shape of '%s' has size [%g, %g, %g] at "
                     "[%g, %g, %g] with these parameters (a size must be positive): it is not "
-                    "drawn\n", prog,
+                    "drawn (its body is drawn as its uniform solid if none is)\n", prog,
                     m->shapes[k].item >= 0 && m->shapes[k].item < nd
                         ? m->draw_items[m->shapes[k].item].name : "no item",
                     z[0], z[1], z[2], z[3], z[4], z[5]);
@@ -396,8 +396,8 @@ look_at(Look *l, const Anim *a, const char *prog)
     for (int k = 0; k < nd; k++) {
         const eomc_draw_item *it = &m->draw_items[k];
         int shaped = 0;
-        for (int s = 0; s < ns; s++)
-            shaped |= m->shapes[s].item == k;
+        for (int s = 0; s < ns; s++) /* else its solid stands for it */
+            shaped |= m->shapes[s].item == k && l->shown[s];
         l->solid[k] = -1;
         if (it->kind == EOMC_DRAW_BODY && !shaped && D) {
             const double *d = D + (size_t)k * EOMC_DRAW_MASS;

@@ -152,6 +152,21 @@ grep -q '^    omega: \[p, q, r\]' "$tmp/prec_omega.yaml" && [ $st = 0 ] &&
     grep -q "warning: body 'body' is drawn unturned" "$tmp/err" &&
     [ "$($check json "$tmp/po.html" items.0.unturned)" = true ]
 ok $? "a body given by omega: alone: its page is written with a warning naming it ($(head -1 "$tmp/err"))"
+# shapes of parameters follow --set: the sleigh's blade is b behind its
+# centre of mass (specs/chaplygin_sleigh.yaml); with b < 0 no size is
+# positive: a warning, and the sleigh drawn as its solid instead
+sleigh() { # sleigh B: the blade's position on the page with b = B
+    "$eomc" run "$src/specs/chaplygin_sleigh.yaml" --t-end 0.1 --set b=$1 -o /dev/null \
+        --animate "$tmp/cs.html" 2> "$tmp/err$1"
+    $check json "$tmp/cs.html" shapes.1.pos 2> /dev/null
+}
+blade05=$(sleigh 0.5) blade1=$(sleigh 1)
+sleigh -1 > /dev/null
+[ "$blade05" = "[-0.5, 0, 0.015]" ] && [ "$blade1" = "[-1, 0, 0.03]" ] && [ ! -s "$tmp/err1" ] &&
+    grep -q "warning: a shape of 'sleigh' has size \[-0.9, -0.3, -0.02\]" "$tmp/err-1" &&
+    [ "$($check json "$tmp/cs.html" shapes)" = "[]" ] &&
+    [ "$($check json "$tmp/cs.html" items.0.solid.type)" = '"cylinder"' ]
+ok $? "the sleigh's blade follows --set b: at $blade05 for b = 0.5, at $blade1 for b = 1; b = -1: $(head -c 70 "$tmp/err-1")..."
 # a 3-D fall (tests/cli/animate_fall.yaml, 5 m in 0.9 s): the ground is the
 # model's, z = 0; the followed scene's camera follows the ball
 for sc in fixed followed; do

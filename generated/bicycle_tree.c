@@ -53,10 +53,10 @@ static const int c_dependent[2] = {4, 1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[4] = {
-    {"rear", EOMC_DRAW_BODY, 3},
-    {"rear_frame", EOMC_DRAW_BODY, 3},
-    {"fork", EOMC_DRAW_BODY, 3},
-    {"front", EOMC_DRAW_BODY, 3},
+    {"rear", EOMC_DRAW_BODY, 3, 0},
+    {"rear_frame", EOMC_DRAW_BODY, 3, 0},
+    {"fork", EOMC_DRAW_BODY, 3, 0},
+    {"front", EOMC_DRAW_BODY, 3, 0},
 };
 
 #endif /* EOMC_EXTENDED */

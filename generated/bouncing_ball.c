@@ -44,7 +44,7 @@ static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"ball", EOMC_DRAW_PARTICLE, 2},
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
 #endif /* EOMC_EXTENDED */

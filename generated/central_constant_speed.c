@@ -48,7 +48,7 @@ static const int c_dependent[1] = {2};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"p", EOMC_DRAW_PARTICLE, 3},
+    {"p", EOMC_DRAW_PARTICLE, 3, 0},
 };
 
 #endif /* EOMC_EXTENDED */

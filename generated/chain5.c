@@ -40,11 +40,11 @@ static const unsigned char p_fixed[3] = {0, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[5] = {
-    {"p1", EOMC_DRAW_PARTICLE, 2},
-    {"p2", EOMC_DRAW_PARTICLE, 2},
-    {"p3", EOMC_DRAW_PARTICLE, 2},
-    {"p4", EOMC_DRAW_PARTICLE, 2},
-    {"p5", EOMC_DRAW_PARTICLE, 2},
+    {"p1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p2", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p3", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p4", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p5", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
 #endif /* EOMC_EXTENDED */

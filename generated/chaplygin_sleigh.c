@@ -47,9 +47,15 @@ static const int c_order[1] = {1};
 static const int c_dependent[1] = {1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"sleigh", EOMC_DRAW_BODY, 2},
+static const eomc_draw_item draw_items[2] = {
+    {"sleigh", EOMC_DRAW_BODY, 2, 0},
+    {"blade", EOMC_DRAW_POINT, 3, 0},
 };
+static const eomc_shape shapes[2] = {
+    {0, EOMC_SHAPE_BOX, {0.45, 0.15, 0.01}, {-0.2, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}, {0.75, 0.55, 0.3, 1.0}},
+    {0, EOMC_SHAPE_BOX, {0.175, 0.015, 0.015}, {-0.5, 0.0, 0.015}, {1.0, 0.0, 0.0, 0.0}, {0.2, 0.2, 0.25, 1.0}},
+};
+static const int view_trace[1] = {1};
 
 #endif /* EOMC_EXTENDED */
 
@@ -58,12 +64,12 @@ static const eomc_draw_item draw_items[1] = {
 static void
 chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
 {
+    const eomc_real p_b = p[2];
     const eomc_real p_m = p[0];
     const eomc_real p_J = p[1];
-    const eomc_real p_b = p[2];
     const eomc_real w0 = 0.5 * p_m;
     const eomc_real w1 = 0.5 * p_J;
-    const eomc_real w2 = p_m * p_b;
+    const eomc_real w2 = p_b * p_m;
     const eomc_real w3 = p_b * p_b;
     pd[0] = w0;
     pd[1] = w1;
@@ -149,10 +155,10 @@ static void
 chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
     const eomc_real p_b = p[2];
     const eomc_real pd0 = p[5];
     const eomc_real pd1 = p[6];
@@ -194,10 +200,10 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
     eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
 {
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     const eomc_real a_theta = a[2];
@@ -287,10 +293,10 @@ chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
     eomc_real *B)
 {
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     (void)p;
@@ -300,16 +306,16 @@ chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w1 = sin(q_theta);
     B[2] = 0.0;
     const eomc_real w2 = w0 * a_y;
-    const eomc_real w3 = w1 * v_theta;
-    const eomc_real w4 = w0 * v_theta;
-    const eomc_real w5 = w1 * a_x;
+    const eomc_real w3 = v_y * w1;
+    const eomc_real w4 = w1 * a_x;
+    const eomc_real w5 = v_x * w0;
     const eomc_real w6 = -w1;
     B[1] = w0;
-    const eomc_real w7 = w3 * v_y;
-    const eomc_real w8 = w4 * v_x;
+    const eomc_real w7 = w3 * v_theta;
+    const eomc_real w8 = w5 * v_theta;
     B[0] = w6;
     const eomc_real w9 = w2 - w7;
-    const eomc_real w10 = w8 + w5;
+    const eomc_real w10 = w4 + w8;
     const eomc_real w11 = w9 - w10;
     f[0] = w11;
 }
@@ -320,17 +326,17 @@ static void
 chaplygin_sleigh_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
-    const eomc_real q_theta = q[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
     (void)p;
     (void)u;
     (void)t;
     pos[0] = 0.0;
     const eomc_real w0 = cos(q_theta);
     const eomc_real w1 = sin(q_theta);
-    const eomc_real w2 = w0 * v_y;
-    const eomc_real w3 = w1 * v_x;
+    const eomc_real w2 = v_y * w0;
+    const eomc_real w3 = v_x * w1;
     const eomc_real w4 = w2 - w3;
     vel[0] = w4;
 }
@@ -342,10 +348,10 @@ chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
     eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt)
 {
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
     const eomc_real a_x = a[0];
     const eomc_real a_y = a[1];
     (void)p;
@@ -388,27 +394,29 @@ chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dBdt[2] = 0.0;
     const eomc_real w2 = w0 * v_theta;
     const eomc_real w3 = w1 * v_theta;
-    const eomc_real w4 = w0 * a_x;
-    const eomc_real w5 = w1 * a_y;
-    const eomc_real w6 = w1 * v_y;
-    const eomc_real w7 = w0 * v_x;
-    const eomc_real w8 = -w0;
-    const eomc_real w9 = -w1;
-    const eomc_real w10 = -w2;
-    const eomc_real w11 = -w3;
-    const eomc_real w12 = w3 * v_x;
-    const eomc_real w13 = w2 * v_y;
-    const eomc_real w14 = w6 + w7;
-    dfdv[0] = w10;
-    dfdv[1] = w11;
-    dBdq[2] = w8;
-    dBdq[5] = w9;
-    const eomc_real w15 = w12 - w4;
-    const eomc_real w16 = w5 + w13;
-    const eomc_real w17 = -w14;
-    const eomc_real w18 = w15 - w16;
-    dfdq[2] = w18;
-    dfdv[2] = w17;
+    const eomc_real w4 = v_x * w1;
+    const eomc_real w5 = w0 * a_x;
+    const eomc_real w6 = w1 * a_y;
+    const eomc_real w7 = v_y * w0;
+    const eomc_real w8 = v_y * w1;
+    const eomc_real w9 = v_x * w0;
+    const eomc_real w10 = -w0;
+    const eomc_real w11 = -w1;
+    const eomc_real w12 = -w2;
+    const eomc_real w13 = -w3;
+    const eomc_real w14 = w4 * v_theta;
+    const eomc_real w15 = w7 * v_theta;
+    const eomc_real w16 = w8 + w9;
+    dfdv[0] = w12;
+    dfdv[1] = w13;
+    dBdq[2] = w10;
+    dBdq[5] = w11;
+    const eomc_real w17 = w14 - w5;
+    const eomc_real w18 = w6 + w15;
+    const eomc_real w19 = -w16;
+    const eomc_real w20 = w17 - w18;
+    dfdq[2] = w20;
+    dfdv[2] = w19;
 }
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
@@ -419,9 +427,9 @@ chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
     eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
     eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt)
 {
-    const eomc_real q_theta = q[2];
     const eomc_real v_x = v[0];
     const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
     (void)p;
     (void)u;
     (void)t;
@@ -439,8 +447,8 @@ chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldt[0] = 0.0;
     const eomc_real w2 = -w0;
     dveldv[1] = w1;
-    const eomc_real w3 = w0 * v_y;
-    const eomc_real w4 = w1 * v_x;
+    const eomc_real w3 = v_y * w0;
+    const eomc_real w4 = v_x * w1;
     dveldv[0] = w2;
     const eomc_real w5 = w3 + w4;
     const eomc_real w6 = -w5;
@@ -483,8 +491,8 @@ chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
     const eomc_real q_x = q[0];
-    const eomc_real q_theta = q[2];
     const eomc_real q_y = q[1];
+    const eomc_real q_theta = q[2];
     const eomc_real p_b = p[2];
     (void)u;
     (void)t;
@@ -496,6 +504,18 @@ chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[9] = 0.0;
     X[10] = 0.0;
     X[11] = 1.0;
+    X[12] = q_x;
+    X[13] = q_y;
+    X[14] = 0.0;
+    X[15] = 1.0;
+    X[16] = 0.0;
+    X[17] = 0.0;
+    X[18] = 0.0;
+    X[19] = 1.0;
+    X[20] = 0.0;
+    X[21] = 0.0;
+    X[22] = 0.0;
+    X[23] = 1.0;
     const eomc_real w2 = p_b * w0;
     const eomc_real w3 = p_b * w1;
     X[3] = w0;
@@ -531,6 +551,33 @@ chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = p_J;
 }
 
+/* Each shape k's size and position at S[6 k ...], where some depend on
+ * the parameters (the shapes' table has their numbers at the defaults). */
+static void
+chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S)
+{
+    const eomc_real p_b = p[2];
+    const eomc_real w0 = 0.9 * p_b;
+    const eomc_real w1 = (-0.4) * p_b;
+    const eomc_real w2 = 0.3 * p_b;
+    S[4] = 0.0;
+    const eomc_real w3 = 0.02 * p_b;
+    S[5] = 0.0;
+    const eomc_real w4 = 0.35 * p_b;
+    const eomc_real w5 = -p_b;
+    const eomc_real w6 = 0.03 * p_b;
+    S[0] = w0;
+    S[3] = w1;
+    S[1] = w2;
+    S[2] = w3;
+    S[6] = w4;
+    S[9] = w5;
+    S[7] = w6;
+    S[10] = 0.0;
+    S[8] = w6;
+    S[11] = w6;
+}
+
 #endif /* EOMC_EXTENDED */
 
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
@@ -545,41 +592,41 @@ chaplygin_sleigh_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const int S = K + 1;
     (void)t0;
     (void)u;
-    eomc_tay_const(T, p[0], k);
-    eomc_tay_sincos(T + 2 * S, T + 3 * S, T + 1 * S, k);
+    eomc_tay_const(T + 2 * S, p[0], k);
+    eomc_tay_sincos(T + 4 * S, T + 5 * S, T + 3 * S, k);
     eomc_tay_const(T + 11 * S, 0.0, k);
     eomc_tay_const(T + 12 * S, 0.0, k);
-    eomc_tay_sqr(T + 15 * S, T + 4 * S, k);
+    eomc_tay_sqr(T + 13 * S, T + 6 * S, k);
     eomc_tay_const(T + 25 * S, p[7], k);
     eomc_tay_const(T + 29 * S, p[9], k);
-    eomc_tay_neg(T + 5 * S, T + 2 * S, k);
-    eomc_tay_scale(T + 19 * S, T + 12 * S, T + 3 * S, k);
-    eomc_tay_scale(T + 22 * S, T + 11 * S, T + 2 * S, k);
-    eomc_tay_scale(T + 26 * S, T + 25 * S, T + 2 * S, k);
-    eomc_tay_scale(T + 28 * S, T + 25 * S, T + 3 * S, k);
-    eomc_tay_mul4(T + 7 * S, T + 9 * S, T + 13 * S, T + 14 * S, T + 2 * S, T + 6 * S, T + 3 * S, T + 8 * S, T + 2 * S, T + 4 * S, T + 3 * S, T + 4 * S, k);
-    eomc_tay_mul2(T + 16 * S, T + 17 * S, T + 3 * S, T + 15 * S, T + 2 * S, T + 15 * S, k);
-    eomc_tay_sub(T + 10 * S, T + 9 * S, T + 7 * S, k);
+    eomc_tay_neg(T + 7 * S, T + 4 * S, k);
+    eomc_tay_scale(T + 16 * S, T + 12 * S, T + 5 * S, k);
+    eomc_tay_scale(T + 20 * S, T + 11 * S, T + 4 * S, k);
+    eomc_tay_scale(T + 26 * S, T + 25 * S, T + 4 * S, k);
+    eomc_tay_scale(T + 28 * S, T + 25 * S, T + 5 * S, k);
+    eomc_tay_mul4(T + 8 * S, T + 9 * S, T + 14 * S, T + 15 * S, T, T + 4 * S, T + 1 * S, T + 5 * S, T + 5 * S, T + 13 * S, T + 4 * S, T + 13 * S, k);
+    eomc_tay_mul2(T + 17 * S, T + 21 * S, T + 1 * S, T + 4 * S, T, T + 5 * S, k);
+    eomc_tay_sub(T + 10 * S, T + 9 * S, T + 8 * S, k);
     eomc_tay_neg(T + 27 * S, T + 26 * S, k);
-    eomc_tay_scale(T + 30 * S, T + 25 * S, T + 16 * S, k);
-    eomc_tay_scale(T + 32 * S, T + 25 * S, T + 17 * S, k);
-    eomc_tay_mul2(T + 18 * S, T + 21 * S, T + 13 * S, T + 8 * S, T + 14 * S, T + 6 * S, k);
-    eomc_tay_sub(T + 20 * S, T + 19 * S, T + 18 * S, k);
-    eomc_tay_add(T + 23 * S, T + 21 * S, T + 22 * S, k);
+    eomc_tay_scale(T + 30 * S, T + 25 * S, T + 14 * S, k);
+    eomc_tay_scale(T + 32 * S, T + 25 * S, T + 15 * S, k);
+    eomc_tay_mul2(T + 18 * S, T + 22 * S, T + 17 * S, T + 6 * S, T + 21 * S, T + 6 * S, k);
+    eomc_tay_sub(T + 19 * S, T + 16 * S, T + 18 * S, k);
+    eomc_tay_add(T + 23 * S, T + 20 * S, T + 22 * S, k);
     eomc_tay_neg(T + 31 * S, T + 30 * S, k);
     eomc_tay_neg(T + 33 * S, T + 32 * S, k);
-    eomc_tay_sub(T + 24 * S, T + 20 * S, T + 23 * S, k);
+    eomc_tay_sub(T + 24 * S, T + 19 * S, T + 23 * S, k);
 }
 
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
-static const int taylor_q[3] = {-1, -1, 1};
-static const int taylor_v[3] = {6, 8, 4};
-static const int taylor_M[9] = {0, -1, 27, -1, 0, 28, 27, 28, 29};
+static const int taylor_q[3] = {-1, -1, 3};
+static const int taylor_v[3] = {0, 1, 6};
+static const int taylor_M[9] = {2, -1, 27, -1, 2, 28, 27, 28, 29};
 static const int taylor_h[3] = {31, 33, -1};
 /* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at
  * q'' = 0, and their own levels (c_levels' pos and vel). */
-static const int taylor_B[3] = {5, 3, -1};
+static const int taylor_B[3] = {7, 5, -1};
 static const int taylor_f[1] = {24};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {10};
@@ -613,11 +660,12 @@ const eomc_model chaplygin_sleigh_model = {
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
-    .ndraw = 1, .draw_items = draw_items, .draw = chaplygin_sleigh_draw,
+    .ndraw = 2, .draw_items = draw_items, .draw = chaplygin_sleigh_draw,
     .draw_mass = chaplygin_sleigh_draw_mass,
-    .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
-    .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
+    .nshape = 2, .shapes = shapes,
+    .nlink = 0, .view_links = NULL, .ntrace = 1, .view_trace = view_trace,
     .view_frames = 0, .view_camera = NULL,
+    .draw_shapes = chaplygin_sleigh_draw_shapes,
     .taylor_nslot = 34, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

@@ -40,9 +40,9 @@ static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[3] = {
-    {"bob1", EOMC_DRAW_PARTICLE, 2},
-    {"bob2", EOMC_DRAW_PARTICLE, 2},
-    {"origin", EOMC_DRAW_POINT, 3},
+    {"bob1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"bob2", EOMC_DRAW_PARTICLE, 2, 0},
+    {"origin", EOMC_DRAW_POINT, 3, 0},
 };
 static const int view_links[4] = {2, 0, 0, 1};
 static const int view_trace[1] = {1};

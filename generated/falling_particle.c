@@ -39,7 +39,7 @@ static const unsigned char p_fixed[3] = {0, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"ball", EOMC_DRAW_PARTICLE, 2},
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
 #endif /* EOMC_EXTENDED */

@@ -52,7 +52,7 @@ static const int c_dependent[2] = {4, 1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"disk", EOMC_DRAW_BODY, 3},
+    {"disk", EOMC_DRAW_BODY, 3, 0},
 };
 
 #endif /* EOMC_EXTENDED */

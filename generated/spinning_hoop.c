@@ -41,7 +41,7 @@ static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"bead", EOMC_DRAW_PARTICLE, 3},
+    {"bead", EOMC_DRAW_PARTICLE, 3, 0},
 };
 
 #endif /* EOMC_EXTENDED */

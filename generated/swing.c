@@ -40,7 +40,7 @@ static const unsigned char p_fixed[7] = {0, 0, 0, 0, 1, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
-    {"bob", EOMC_DRAW_PARTICLE, 2},
+    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
 #endif /* EOMC_EXTENDED */

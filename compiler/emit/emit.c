@@ -588,6 +588,18 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                   md->ntrace ? "view_trace" : "NULL");
         emit_line(pr, "    .view_frames = %d, .view_camera = %s,", md->view_frames,
                   md->has_camera ? "view_camera" : "NULL");
+        if (md->view_follow >= 0) {
+            fprintf(pr->f, "    .view_follow = ");
+            print_c_string(pr->f, md->draw_item[md->view_follow].name);
+            emit_line(pr, ",");
+        }
+        if (md->view_floor != 0) {
+            char num[40];
+            emit_const(num, sizeof num, md->view_floor);
+            emit_line(pr, "    .view_floor = %s,", num);
+        }
+        if (L->draw_shapes)
+            emit_line(pr, "    .draw_shapes = %s_draw_shapes,", nm);
     } else {
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
@@ -755,7 +767,8 @@ print_draw_tables(Printer *pr)
     for (int k = 0; k < md->ndraw; k++) {
         fprintf(f, "    {");
         print_c_string(f, md->draw_item[k].name);
-        emit_line(pr, ", %s, %d},", kinds[md->draw_item[k].kind], md->draw_item[k].dim);
+        emit_line(pr, ", %s, %d, %d},", kinds[md->draw_item[k].kind], md->draw_item[k].dim,
+                  md->draw_item[k].unturned);
     }
     emit_line(pr, "};");
     if (md->nshape) {

@@ -136,6 +136,11 @@ static const LowSig s_draw_mass = {
     " * at D[13 k ...], from which a body without shapes is drawn.",
     "p > D",
 };
+static const LowSig s_draw_shapes = {
+    "draw_shapes", "Each shape k's size and position at S[6 k ...], where some depend on\n"
+    " * the parameters (the shapes' table has their numbers at the defaults).",
+    "p > S",
+};
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
     "p > chk",
@@ -655,6 +660,25 @@ lower_draw(Lowering *lw)
         for (int i = 0; i < nd; i++)
             out(lw, f, 0, i, orzero(D[i]));
         lw->L->draw_mass = f;
+    }
+    int ns = 0; /* shapes of parameters: sized when the page is written */
+    for (int k = 0; k < s->nshape; k++)
+        for (int j = 0; j < 3; j++)
+            ns += s->shape[k].esize[j] != EXPR_NONE || s->shape[k].epos[j] != EXPR_NONE;
+    if (ns) {
+        f = func(lw, &s_draw_shapes, "draw", 1);
+        f->per_step = 0;
+        for (int k = 0; k < s->nshape; k++) {
+            const SpecShape *sh = &s->shape[k];
+            for (int j = 0; j < 3; j++) {
+                ExprId e = sh->esize[j], x = sh->epos[j];
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + j,
+                    e != EXPR_NONE ? e : expr_const(P, sh->size[j]));
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + 3 + j,
+                    x != EXPR_NONE ? x : expr_const(P, sh->pos[j]));
+            }
+        }
+        lw->L->draw_shapes = f;
     }
 }
 

@@ -93,7 +93,7 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
         md->draw_item[k] = (LowDrawItem){dup(A, v->item[k].name),
                                          v->item[k].kind == SPEC_DRAW_GROUND ? SPEC_DRAW_BODY
                                                                              : v->item[k].kind,
-                                         v->item[k].dim};
+                                         v->item[k].dim, v->item[k].unturned};
     md->nshape = v->nitem ? s->nshape : 0;
     md->shape = arena_new_array(A, LowShape, s->nshape + 1);
     if (s->nshape)
@@ -107,4 +107,6 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
         memcpy(md->view_trace, v->trace, (size_t)v->ntrace * sizeof *md->view_trace);
     md->has_camera = v->has_camera;
     memcpy(md->camera, v->camera, sizeof md->camera);
+    md->view_follow = v->follow;
+    md->view_floor = v->floor;
 }

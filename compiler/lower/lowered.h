@@ -105,10 +105,11 @@ typedef struct LowEvent {
 
 /* What a run's page draws (eomc_model.h's eomc_draw_item, eomc_shape and
  * the view's members; EOMC_POSE and EOMC_DRAW_MASS are these sizes). */
-enum { EOMC_POSE_SIZE = 12, EOMC_DRAW_MASS_SIZE = 13 };
+enum { EOMC_POSE_SIZE = 12, EOMC_DRAW_MASS_SIZE = 13, EOMC_SHAPE_NUMS_SIZE = 6 };
 typedef struct LowDrawItem {
     const char *name;
     int kind, dim; /* eomc_model.h's EOMC_DRAW_* order */
+    int unturned;  /* a body turned by `omega:` alone, drawn unturned */
 } LowDrawItem;
 typedef SpecShape LowShape; /* .body is its item: the bodies come first */
 
@@ -155,6 +156,8 @@ typedef struct LowModel {
     int *view_link;         /* [2 nlink] */
     int *view_trace;        /* [ntrace] */
     double camera[9];
+    int view_follow;    /* the item the camera follows, or -1 */
+    double view_floor; /* the floor's height: where the page's grid lies */
 } LowModel;
 
 /* ---- Taylor's method: the series program (lower_taylor.c) ---- */
@@ -222,6 +225,7 @@ typedef struct Lowered {
     LowFunc *outputs;     /* the scene's outputs, or NULL */
     LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
     LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
+    LowFunc *draw_shapes;      /* the shapes' sizes and positions of parameters, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */
     LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;

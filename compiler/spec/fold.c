@@ -48,6 +48,11 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
         }
         VISIT(b->angle);
     }
+    for (int i = 0; i < s->nshape; i++)
+        for (int k = 0; k < 3; k++) {
+            VISIT(s->shape[i].esize[k]);
+            VISIT(s->shape[i].epos[k]);
+        }
     for (int i = 0; i < s->neffect; i++)
         for (int j = 0; j < s->effect[i].nforce; j++) {
             SpecForce *fo = &s->effect[i].force[j];

@@ -105,6 +105,9 @@ typedef struct SpecShape {
     double size[3];  /* box: half-sizes; sphere: radius; capsule, cylinder:
                       * radius, half-length; ellipsoid: semi-axes (unused 0) */
     double pos[3], quat[4], rgba[4];
+    /* a size or position of parameters (its number: at their defaults),
+     * else EXPR_NONE */
+    ExprId esize[3], epos[3];
 } SpecShape;
 
 /* What a run's page draws: every body, every particle, the ground (where
@@ -117,6 +120,7 @@ typedef struct SpecDrawItem {
     int kind;  /* SPEC_DRAW_* */
     int index; /* into Spec.body or Spec.part, or kin.h's point or frame */
     int dim;   /* 2 (z = 0, turning about z) or 3 */
+    int unturned; /* a body turned by `omega:` alone: nothing says where it points */
 } SpecDrawItem;
 
 typedef struct SpecView {
@@ -128,6 +132,8 @@ typedef struct SpecView {
     int frames;        /* 1: draw the frame items' axes; 2 (`frames: true`): each body's too */
     int has_camera;
     double camera[9];  /* position, target, up */
+    int follow;        /* the item the camera follows, or -1 */
+    double floor;      /* the floor's height (3-D): where the grid lies */
 } SpecView;
 
 typedef enum SpecForceKind {

@@ -3,6 +3,7 @@
  */
 #include "view.h"
 
+#include "checks.h"
 #include "names.h"
 #include "yaml.h"
 
@@ -13,6 +14,22 @@ static const char *const shape_types[] = {"box", "sphere", "capsule", "cylinder"
 static const int shape_sizes[] = {3, 1, 2, 2, 3};
 static const char *const shape_size_what[] = {
     "half-sizes", "radius", "radius and half-length", "radius and half-length", "semi-axes"};
+
+/* A shape's size or position at n: a number, or an expression of the
+ * parameters (*e; else EXPR_NONE), its number then their defaults'. */
+static double
+shape_number(Loader *L, yaml_node_t *n, const char *what, ExprId *e)
+{
+    *e = spec_expr(L, n, ALLOW_PARAM, what);
+    double v;
+    if (expr_is_const(L->P, *e, &v))
+        *e = EXPR_NONE;
+    else
+        v = expr_eval(L->P, *e, &(ExprEnv){.p = spec_defaults(L)});
+    if (!isfinite(v))
+        diag_error(spec_loc(L, n), "%s is not a finite number (%g)", what, v);
+    return v;
+}
 
 /* n numbers of a list at v, into out. */
 static void
@@ -36,7 +53,9 @@ load_shape(Loader *L, yaml_node_t *seq, int i)
     if (!ty)
         diag_error(spec_loc(L, m), "a shape has no type (box, sphere, capsule, cylinder or "
                    "ellipsoid)");
-    SpecShape sh = {.body = L->shape_body, .quat = {1, 0, 0, 0}, .rgba = {0.5, 0.6, 0.8, 1}};
+    SpecShape sh = {.body = L->shape_body, .quat = {1, 0, 0, 0}, .rgba = {0.5, 0.6, 0.8, 1},
+                    .esize = {EXPR_NONE, EXPR_NONE, EXPR_NONE},
+                    .epos = {EXPR_NONE, EXPR_NONE, EXPR_NONE}};
     sh.type = spec_find_in(L, ty, "shape type", "shape types", 1, (const char **)shape_types, 5);
     if (!sz)
         diag_error(spec_loc(L, m), "a %s has no size (its %s)", shape_types[sh.type],
@@ -49,13 +68,20 @@ load_shape(Loader *L, yaml_node_t *seq, int i)
                    NITEMS(sz));
     for (int k = 0; k < ns; k++) {
         yaml_node_t *e = spec_node(L, ITEMS(sz)[k]);
-        sh.size[k] = spec_number(L, e, "a shape's size");
+        sh.size[k] = shape_number(L, e, "a shape's size", &sh.esize[k]);
         if (!(sh.size[k] > 0))
-            diag_error(spec_loc(L, e), "a shape's size must be positive, not %g", sh.size[k]);
+            diag_error(spec_loc(L, e), "a shape's size must be positive, not %g%s", sh.size[k],
+                       sh.esize[k] != EXPR_NONE ? " (with the parameters' defaults)" : "");
     }
     yaml_node_t *v;
-    if ((v = spec_lookup(L, m, "pos")))
-        numbers(L, v, 3, "a shape's pos", sh.pos);
+    if ((v = spec_lookup(L, m, "pos"))) {
+        spec_expect(L, v, YAML_SEQUENCE_NODE, "a shape's pos");
+        if (NITEMS(v) != 3)
+            diag_error(spec_loc(L, v), "a shape's pos has 3 numbers, not %d", NITEMS(v));
+        for (int k = 0; k < 3; k++)
+            sh.pos[k] = shape_number(L, spec_node(L, ITEMS(v)[k]), "a shape's pos",
+                                     &sh.epos[k]);
+    }
     if ((v = spec_lookup(L, m, "quat"))) {
         numbers(L, v, 4, "a shape's quat", sh.quat);
         double nq = sqrt(sh.quat[0] * sh.quat[0] + sh.quat[1] * sh.quat[1] +
@@ -96,14 +122,20 @@ spec_draw_items(Loader *L, yaml_node_t *ground)
     SpecView *v = &s->view;
     v->nitem = s->nbody + s->npart;
     v->item = arena_new_array(L->A, SpecDrawItem, v->nitem + 2);
+    v->follow = -1;
     int planar = v->nitem > 0;
     for (int i = 0; i < s->nbody; i++) {
-        v->item[i] = (SpecDrawItem){s->body[i].name, SPEC_DRAW_BODY, i, s->body[i].dim};
-        planar &= s->body[i].dim == 2;
+        const SpecBody *b = &s->body[i];
+        int turns = 0; /* by omega alone: nothing says where it points */
+        for (int k = 0; k < 3; k++)
+            turns |= b->omega[k] != EXPR_ZERO;
+        int unturned = turns && b->frame < 0 && !b->has_rot && b->angle == EXPR_NONE;
+        v->item[i] = (SpecDrawItem){b->name, SPEC_DRAW_BODY, i, b->dim, unturned};
+        planar &= b->dim == 2;
     }
     for (int i = 0; i < s->npart; i++) {
         v->item[s->nbody + i] = (SpecDrawItem){s->part[i].name, SPEC_DRAW_PARTICLE, i,
-                                               s->part[i].dim};
+                                               s->part[i].dim, 0};
         planar &= s->part[i].dim == 2;
     }
     if (ground && !spec_is_null(ground)) {
@@ -116,7 +148,8 @@ spec_draw_items(Loader *L, yaml_node_t *ground)
             spec_checked(L, load_shape, ground, i);
         }
         if (s->nshape > before)
-            v->item[v->nitem++] = (SpecDrawItem){"ground", SPEC_DRAW_GROUND, 0, planar ? 2 : 3};
+            v->item[v->nitem++] = (SpecDrawItem){"ground", SPEC_DRAW_GROUND, 0, planar ? 2 : 3,
+                                                 0};
     }
 }
 
@@ -154,9 +187,20 @@ item_of(Loader *L, SpecView *v, yaml_node_t *n)
     }
     SpecDrawItem *bigger = arena_new_array(L->A, SpecDrawItem, v->nitem + 1);
     memcpy(bigger, v->item, (size_t)v->nitem * sizeof *bigger);
-    bigger[v->nitem] = (SpecDrawItem){arena_strdup(L->A, name), kind, index, 3};
+    bigger[v->nitem] = (SpecDrawItem){arena_strdup(L->A, name), kind, index, 3, 0};
     v->item = bigger;
     return v->nitem++;
+}
+
+/* Is every body and particle planar?  (The page then looks at z = 0.) */
+static int
+is_planar(const SpecView *v)
+{
+    int planar = v->nitem > 0;
+    for (int k = 0; k < v->nitem; k++)
+        if (v->item[k].kind == SPEC_DRAW_BODY || v->item[k].kind == SPEC_DRAW_PARTICLE)
+            planar &= v->item[k].dim == 2;
+    return planar;
 }
 
 static void
@@ -167,9 +211,7 @@ load_camera(Loader *L, yaml_node_t *m, SpecView *v)
     spec_check_keys(L, m, keys, "the camera");
     static const char *const what[] = {"the camera's position", "the camera's target",
                                        "the camera's up"};
-    int planar = v->nitem > 0;
-    for (int k = 0; k < v->nitem; k++)
-        planar &= v->item[k].dim == 2;
+    int planar = is_planar(v);
     double up[3] = {0, planar, !planar};
     memcpy(v->camera + 6, up, sizeof up);
     for (int j = 0; j < 3; j++) {
@@ -187,7 +229,8 @@ load_camera(Loader *L, yaml_node_t *m, SpecView *v)
 static void
 load_view(Loader *L, yaml_node_t *m, SpecView *v)
 {
-    static const char *const keys[] = {"links", "trace", "frames", "camera", NULL};
+    static const char *const keys[] = {"links", "trace", "frames", "camera", "follow",
+                                       "floor", NULL};
     spec_map(L, m, "a view");
     spec_check_keys(L, m, keys, "a view");
     yaml_node_t *n;
@@ -241,13 +284,21 @@ load_view(Loader *L, yaml_node_t *m, SpecView *v)
                     SpecDrawItem *bigger = arena_new_array(L->A, SpecDrawItem, v->nitem + 1);
                     memcpy(bigger, v->item, (size_t)v->nitem * sizeof *bigger);
                     bigger[v->nitem++] = (SpecDrawItem){L->def[k].name, SPEC_DRAW_FRAME,
-                                                        spec_item(L, nm)->kin, 3};
+                                                        spec_item(L, nm)->kin, 3, 0};
                     v->item = bigger;
                 }
         }
     }
     if ((n = spec_lookup(L, m, "camera")))
         load_camera(L, n, v);
+    if ((n = spec_lookup(L, m, "follow")) && !spec_is_null(n))
+        v->follow = item_of(L, v, n);
+    if ((n = spec_lookup(L, m, "floor"))) {
+        if (is_planar(v))
+            diag_error(spec_key_loc(L, m, "floor"), "`floor:` is for a 3-D page: a planar "
+                       "page's grid is the plane of the motion, z = 0");
+        v->floor = spec_number(L, n, "the floor's height");
+    }
 }
 
 void

@@ -37,9 +37,14 @@ int anim_row(Anim *a, double t, const double *x, const double *out);
  * after saying why on stderr (prog: the simulator's name). */
 int anim_write(Anim *a, const char *prog);
 void anim_free(Anim *a);
-/* The uniform box of mass mass and inertia I [9] (about its centre,
- * symmetric): half-sizes half [3] along the columns of R [9] (row-major,
- * a rotation).  0, or -1 when I is not physical (then a small cube). */
-int anim_equivalent_box(double mass, const double *I, double *half, double *R);
+/* The uniform solid of mass mass and inertia I [9] (about its centre,
+ * symmetric) that a body without shapes is drawn as: a cylinder when two
+ * principal moments are equal and the third is not (a disk, a wheel, a
+ * rod; also a planar body's moment about z alone: a disk in the plane),
+ * else a box.  half [3]: the box's half-sizes along the columns of R [9]
+ * (row-major, a rotation), or the cylinder's radius, radius and
+ * half-length along R's third column.  EOMC_SHAPE_BOX or
+ * EOMC_SHAPE_CYLINDER; -1 when I is not physical (half all 0). */
+int anim_equivalent_solid(double mass, const double *I, double *half, double *R);
 
 #endif

@@ -7,9 +7,12 @@
  * frames, its rotation matrix to the world (9, row-major)].
  *
  * Frames are shown as they are (the nearest frame to a time, never
- * interpolated).  #t=T in the URL opens paused at the frame nearest T.
- * After the first render the title becomes "eomc ready"; errors go to
- * <pre id="errors"> (the page's first script catches them).
+ * interpolated).  #t=T in the URL opens paused at the frame nearest T;
+ * #follow=NAME has the camera follow that item (#follow=none: not the
+ * view's).  After the first render the title becomes "eomc ready"; errors
+ * go to <pre id="errors"> (the page's first script catches them).
+ * Without WebGL the page says so in its text, and its title is
+ * "eomc: no WebGL".
  */
 (function () {
   'use strict';
@@ -32,7 +35,24 @@
     off += it.kind === 'body' || it.kind === 'frame' ? 12 : 3;
   });
 
-  var renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  /* the page draws with WebGL: without it, it says so where it is read */
+  var renderer = null;
+  try {
+    renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  } catch (e) { renderer = null; }
+  if (!renderer) {
+    var no = document.createElement('div');
+    no.id = 'nowebgl';
+    no.style.cssText = 'margin:2em;max-width:40em;font:15px sans-serif;line-height:1.4';
+    no.textContent = 'This page draws the motion of \'' + D.name + '\' with WebGL, and this ' +
+      'browser gives it no WebGL: it is turned off, or no graphics driver supports it. ' +
+      'Open the page in a browser with WebGL on. A headless Chromium has WebGL in ' +
+      'software with --enable-unsafe-swiftshader.';
+    document.body.insertBefore(no, errors);
+    errors.style.position = 'static';
+    document.title = 'eomc: no WebGL';
+    return;
+  }
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setSize(window.innerWidth, window.innerHeight);
   renderer.setClearColor(0xf7f7f7);
@@ -55,17 +75,31 @@
   controls.update();
 
   /* a grid of cells 10^k or 5 * 10^k wide, its lines through the world's
-   * origin, under the motion's centre: for a planar scene the plane z = 0,
-   * 40 cells across; else the horizontal plane through the motion's lowest
-   * point (z up), about 1.6 extents across, short of the default camera
-   * (a line that reaches behind the camera may not be drawn at all) */
+   * origin, under the motion's centre (or the item the camera follows):
+   * for a planar scene the plane z = 0, 40 cells across; else the model's
+   * ground, the plane across the camera's up (its axis nearest it: z
+   * unless the view says otherwise) at the height D.floor (0 unless the
+   * view says otherwise), about 1.6 extents across, short of the default
+   * camera (a line that reaches behind the camera may not be drawn at
+   * all).  A hair below the plane, not to hide what lies on it. */
   var cell = Math.pow(10, Math.floor(Math.log(ext) / Math.LN10));
   if (ext < 5 * cell) cell /= 2;
   var cells = D.planar ? 40 : 2 * Math.ceil(0.8 * ext / cell);
   var grid = new THREE.GridHelper(cells * cell, cells, 0xdadada, 0xdadada);
-  grid.rotation.x = Math.PI / 2;
-  grid.position.set(Math.round(D.centre[0] / cell) * cell, Math.round(D.centre[1] / cell) * cell,
-                    D.planar ? -ext * 1e-3 : D.low[2] - ext * 1e-3);
+  var upAxis = 2;
+  if (!D.planar)
+    [0, 1].forEach(function (i) {
+      if (Math.abs(C.up[i]) > Math.abs(C.up[upAxis])) upAxis = i;
+    });
+  var upSign = D.planar || C.up[upAxis] >= 0 ? 1 : -1;
+  if (upAxis === 2) grid.rotation.x = Math.PI / 2; /* GridHelper lies across y */
+  else if (upAxis === 0) grid.rotation.z = Math.PI / 2;
+  function placeGrid(c) { /* under c, by whole cells */
+    var p = [0, 1, 2].map(function (i) { return Math.round(c[i] / cell) * cell; });
+    p[upAxis] = (D.planar ? 0 : D.floor) - upSign * ext * 1e-3;
+    grid.position.set(p[0], p[1], p[2]);
+  }
+  placeGrid(D.centre);
   scene.add(grid);
 
   var radius = 0.02 * ext;
@@ -103,6 +137,29 @@
     return outer;
   }
 
+  /* a body without shapes: the uniform solid of its mass and inertia, in
+   * its principal axes; a cylinder (along the axes' z) with a darker spoke
+   * along their x, so that its turn about its axis shows */
+  function solidMesh(b, c) {
+    var h = b.half, r = b.rot, grp = new THREE.Group();
+    if (b.type === 'cylinder') {
+      var cyl = new THREE.Mesh(new THREE.CylinderGeometry(h[0], h[0], 2 * h[2], 48), lit(c));
+      cyl.rotation.x = Math.PI / 2;
+      grp.add(cyl);
+      var dark = new THREE.Color(c).lerp(new THREE.Color(0x000000), 0.45).getHex();
+      var spoke = new THREE.Mesh(new THREE.BoxGeometry(h[0], 0.12 * h[0],
+                                                       2 * h[2] + 0.04 * h[0]), lit(dark));
+      spoke.position.x = h[0] / 2;
+      grp.add(spoke);
+    } else {
+      grp.add(new THREE.Mesh(new THREE.BoxGeometry(2 * h[0], 2 * h[1], 2 * h[2]), lit(c)));
+    }
+    grp.matrixAutoUpdate = false;
+    grp.matrix.set(r[0], r[1], r[2], b.centre[0], r[3], r[4], r[5], b.centre[1],
+                   r[6], r[7], r[8], b.centre[2], 0, 0, 0, 1);
+    return grp;
+  }
+
   /* one object per item, placed by its pose at each frame */
   var objs = D.items.map(function (it, k) {
     var o = new THREE.Group();
@@ -115,15 +172,7 @@
       D.shapes.forEach(function (s) {
         if (s.item === k) { o.add(shapeMesh(s)); shaped = true; }
       });
-      if (!shaped && it.box) {
-        var b = it.box, h = b.half, r = b.rot;
-        var box = new THREE.Mesh(new THREE.BoxGeometry(2 * h[0], 2 * h[1], 2 * h[2]),
-                                 lit(colour(k)));
-        box.matrixAutoUpdate = false;
-        box.matrix.set(r[0], r[1], r[2], b.centre[0], r[3], r[4], r[5], b.centre[1],
-                       r[6], r[7], r[8], b.centre[2], 0, 0, 0, 1);
-        o.add(box);
-      }
+      if (!shaped && it.solid) o.add(solidMesh(it.solid, colour(k)));
       if (D.axes === 2) o.add(new THREE.AxesHelper(ext * 0.1)); /* frames: true */
     } else if (it.kind === 'frame' && D.axes) {
       o.add(new THREE.AxesHelper(ext * 0.15));
@@ -169,8 +218,49 @@
     return geo;
   });
 
+  /* the camera following item fk: it moves as the item moves (the mouse
+   * still orbits and zooms about it).  Started by the view's `follow:`
+   * with the view's camera as given, else aimed at the item from where the
+   * camera looks, at the distance that frames everything drawn about the
+   * item over the motion: at least a tenth of the motion's extent, so
+   * that a lone particle is not blown up to fill the view. */
+  var FOLLOW_LEAST = 0.1;
+  var fk = -1, fpos = null;
+  function posOf(k, j) { var a = at[k]; return [F[j][a], F[j][a + 1], F[j][a + 2]]; }
+  function reachOf(it) { return it.reach + (it.kind === 'particle' ? radius : 0); }
+  function follow(k, j, aim) {
+    fk = k;
+    if (k < 0) return;
+    fpos = posOf(k, j);
+    if (!aim) return;
+    var far = FOLLOW_LEAST * ext;
+    F.forEach(function (f, jj) {
+      var c = posOf(k, jj);
+      D.items.forEach(function (it, i) {
+        var a = at[i], d = Math.hypot(f[a] - c[0], f[a + 1] - c[1], f[a + 2] - c[2]);
+        if (isFinite(d)) far = Math.max(far, d + reachOf(it));
+      });
+    });
+    var dir = camera.position.clone().sub(controls.target).normalize();
+    var dist = far / Math.sin(C.fov * Math.PI / 360);
+    controls.target.set(fpos[0], fpos[1], fpos[2]);
+    camera.position.copy(controls.target).addScaledVector(dir, dist);
+    camera.lookAt(controls.target);
+  }
+  function followTo(j) {
+    if (fk < 0) return;
+    var p = posOf(fk, j);
+    if (!p.every(isFinite)) return;
+    var d = new THREE.Vector3(p[0] - fpos[0], p[1] - fpos[1], p[2] - fpos[2]);
+    camera.position.add(d);
+    controls.target.add(d);
+    fpos = p;
+    placeGrid([controls.target.x, controls.target.y, controls.target.z]);
+  }
+
   function update(j) {
     place(j);
+    followTo(j);
     var f = F[j];
     D.links.forEach(function (l, i) {
       for (var e = 0; e < 2; e++)
@@ -203,13 +293,35 @@
   slider.id = 'time';
   slider.type = 'range'; slider.min = 0; slider.max = nf - 1; slider.step = 1;
   slider.style.flex = '1';
-  bar.appendChild(play); bar.appendChild(speed); bar.appendChild(slider);
+  var follows = document.createElement('select');
+  follows.id = 'follow';
+  follows.title = 'the item the camera follows';
+  [{name: 'fixed camera', k: -1}].concat(D.items.map(function (it, k) {
+    return {name: 'follow ' + it.name, k: k};
+  })).forEach(function (e) {
+    var o = document.createElement('option');
+    o.value = e.k; o.textContent = e.name;
+    follows.appendChild(o);
+  });
+  bar.appendChild(play); bar.appendChild(speed); bar.appendChild(follows);
+  bar.appendChild(slider);
   document.body.appendChild(bar);
   var readout = document.createElement('pre');
   readout.id = 'readout';
   readout.style.cssText = 'position:absolute;top:6px;left:8px;margin:0;padding:2px 4px;' +
     'background:rgba(255,255,255,0.7);pointer-events:none';
   document.body.appendChild(readout);
+  /* what is not drawn as the model has it */
+  var notes = document.createElement('div');
+  notes.id = 'notes';
+  notes.style.cssText = 'position:absolute;top:6px;right:8px;max-width:45%;text-align:right;' +
+    'color:#963;background:rgba(255,255,255,0.7);pointer-events:none';
+  D.items.forEach(function (it) {
+    if (it.unturned)
+      notes.textContent += 'body \'' + it.name + '\' is drawn unturned: the model gives ' +
+        'its angular velocity, not its orientation. ';
+  });
+  document.body.appendChild(notes);
 
   var t0 = F[0][0], t1 = F[nf - 1][0];
   function nearest(t) { /* the frame nearest t (times ascend) */
@@ -221,6 +333,17 @@
   var m = /[#&]t=([-+0-9.eE]+)/.exec(window.location.hash);
   if (m) { playing = false; time = Math.min(t1, Math.max(t0, parseFloat(m[1]))); }
   frame = nearest(time);
+  var want = /[#&]follow=([^&]*)/.exec(window.location.hash), fstart = D.follow;
+  if (want) {
+    fstart = -1;
+    D.items.forEach(function (it, k) {
+      if (it.name === decodeURIComponent(want[1])) fstart = k;
+    });
+  }
+  /* the view's own camera, following the view's item, starts as given */
+  follow(fstart, 0, !(C.given && fstart === D.follow)); /* the view's camera is at t0's */
+  follows.value = fk;
+  follows.onchange = function () { follow(parseInt(follows.value, 10), frame, true); };
   function label() { play.textContent = playing ? 'pause' : 'play'; }
   label();
   play.onclick = function () {

@@ -31,7 +31,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 20
+#define EOMC_ABI_VERSION 21
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -287,9 +287,15 @@ typedef struct eomc_model {
      * geoms) are drawn in place of it.  view_links [2 nlink] joins items
      * by segments (a rod from a joint to a bob), view_trace [ntrace]
      * leaves each item's path behind it, view_frames draws the frame
-     * items' axes (1), and also each body's own (2), view_camera [9] is the camera's position, target and
-     * up (NULL: fitted to the motion).  ndraw = 0: nothing to draw, the
-     * rest NULL. */
+     * items' axes (1), and also each body's own (2), view_camera [9] is
+     * the camera's position, target and up (NULL: fitted to the motion),
+     * view_follow names the item the camera follows (NULL: none), and
+     * view_floor is the height of the floor (3-D: the plane its grid
+     * lies in, across the camera's up).  draw_shapes(p, S), where a
+     * shape's size or position depends on parameters, puts shape k's size
+     * [3] and position [3] at S[EOMC_SHAPE_NUMS k ...] (NULL: the shapes'
+     * numbers are all there is).  ndraw = 0: nothing to draw, the rest
+     * NULL. */
     int ndraw;
     const struct eomc_draw_item *draw_items;
     void (*draw)(double t, const double *q, const double *p, const double *u, double *X);
@@ -299,6 +305,9 @@ typedef struct eomc_model {
     int nlink, ntrace, view_frames;
     const int *view_links, *view_trace;
     const double *view_camera;
+    const char *view_follow;
+    double view_floor;
+    void (*draw_shapes)(const double *p, double *S);
 
     /* Taylor's method (--method taylor; runtime/include/eomc_taylor.h has the
      * recurrences).  The series of every value mass_bias computes (and of
@@ -330,12 +339,16 @@ typedef struct eomc_model {
 enum { EOMC_POSE = 12 };
 /* A body's mass [1], centre [3] and inertia [9] in its frame (draw_mass). */
 enum { EOMC_DRAW_MASS = 13 };
+/* A shape's size [3] and position [3] (draw_shapes). */
+enum { EOMC_SHAPE_NUMS = 6 };
 enum { EOMC_DRAW_BODY, EOMC_DRAW_PARTICLE, EOMC_DRAW_POINT, EOMC_DRAW_FRAME };
 
 typedef struct eomc_draw_item {
     const char *name; /* the spec's; "origin" for the world's origin */
     int kind;         /* EOMC_DRAW_* */
     int dim;          /* 2: in the plane z = 0, turning about z; or 3 */
+    int unturned;     /* 1: a body whose orientation the model does not give
+                       * (`omega:` alone), drawn unturned */
 } eomc_draw_item;
 
 /* MuJoCo's geom types that a body's shapes may have. */

@@ -20,7 +20,18 @@ of a screenshot of it (python3's standard library only).
   page_check.py line PAGE PNG CSV T X0 Y0 Z0 X1 Y1 Z1 COLOUR W H
       the segment between two points, projected: of the pixels on it
       (sampled every px, strictly inside its ends), how many have a pixel
-      of COLOUR within 1 px: prints "sampled found"
+      of COLOUR within 1 px (COLOUR grid: the grid's pale grey): prints
+      "sampled found"
+  page_check.py near PAGE PNG X Y COLOUR R
+      the centroid of COLOUR's pixels within R px of the pixel (X, Y):
+      prints "found_x found_y error count"
+  page_check.py box PAGE PNG CSV T X Y Z TURN A B C COLOUR W H
+      a box of half-sizes A, B, C centred at (X, Y, Z), its axes turned by
+      TURN (intrinsic turns about the axes of a sequence, the angles
+      expressions of the CSV's columns: zxz:psi:theta:phi), its silhouette
+      (the hull of its 8 corners, projected): of the pixels 3 px or more
+      inside it and of those 3 to 30 px outside it, how many are COLOUR's:
+      prints "inside found_inside outside found_outside"
 """
 import json
 import marshal
@@ -185,6 +196,51 @@ def dominant(px, rgb):
     return px[i] - max(px[k] for k in range(3) if k != i) >= 60
 
 
+def grey(px):
+    """A pixel of the grid's lines (0xdadada, blended with the 0xf7f7f7
+    background), not the background itself."""
+    return max(px) - min(px) <= 8 and 180 <= px[0] <= 238
+
+
+def turn(seq, angles):
+    """The rotation matrix of intrinsic turns about seq's axes."""
+    R = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    for axis, a in zip(seq, angles):
+        c, s = math.cos(a), math.sin(a)
+        i = 'xyz'.index(axis)
+        j, k = (i + 1) % 3, (i + 2) % 3
+        T = [[0.0] * 3 for _ in range(3)]
+        T[i][i] = 1.0
+        T[j][j], T[j][k], T[k][j], T[k][k] = c, -s, s, c
+        R = [[sum(R[r][m] * T[m][q] for m in range(3)) for q in range(3)] for r in range(3)]
+    return R
+
+
+def hull(points):
+    """The convex hull of 2-D points, counter-clockwise (monotone chain)."""
+    pts = sorted(set(points))
+    def half(seq):
+        h = []
+        for p in seq:
+            while len(h) >= 2 and ((h[-1][0] - h[-2][0]) * (p[1] - h[-2][1]) -
+                                   (h[-1][1] - h[-2][1]) * (p[0] - h[-2][0])) <= 0:
+                h.pop()
+            h.append(p)
+        return h
+    lower, upper = half(pts), half(reversed(pts))
+    return lower[:-1] + upper[:-1]
+
+
+def signed_distance(poly, x, y):
+    """Distance from (x, y) to a convex polygon's boundary: > 0 inside."""
+    d = float('inf')
+    for i in range(len(poly)):
+        (ax, ay), (bx, by) = poly[i], poly[(i + 1) % len(poly)]
+        n = math.hypot(bx - ax, by - ay)
+        d = min(d, ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / n)
+    return d
+
+
 def rgb_of(spec):
     c = int(spec[1:], 16) if spec.startswith('#') else PALETTE[int(spec) % len(PALETTE)]
     return ((c >> 16) & 255, (c >> 8) & 255, c & 255)
@@ -236,18 +292,61 @@ def main():
         row = csv_row(csv, float(t))
         a = project(d['camera'], [value(e, row) for e in ends[:3]], int(w), int(h))
         b = project(d['camera'], [value(e, row) for e in ends[3:]], int(w), int(h))
-        rgb, rows = rgb_of(col), png(shot)[2]
+        rows = png(shot)[2]
         H, W = len(rows), len(rows[0])
+        if col == 'grid':
+            found_at = grey
+        else:
+            rgb = rgb_of(col)
+            found_at = lambda px: dominant(px, rgb)  # noqa: E731
         m = int(math.hypot(b[0] - a[0], b[1] - a[1]))
         sampled = found = 0
         for i in range(2, m - 1):
             x = a[0] + (b[0] - a[0]) * i / m
             y = a[1] + (b[1] - a[1]) * i / m
             sampled += 1
-            found += any(dominant(rows[yy][xx], rgb)
+            found += any(found_at(rows[yy][xx])
                          for yy in range(max(0, int(y) - 1), min(H, int(y) + 2))
                          for xx in range(max(0, int(x) - 1), min(W, int(x) + 2)))
         print(sampled, found)
+    elif cmd == 'near':
+        shot, px, py, col, R = sys.argv[3:8]
+        px, py = float(px), float(py)
+        fx, fy, n = centroid(png(shot)[2], px, py, rgb_of(col), int(R))
+        print('%.2f %.2f %.2f %d' % (fx, fy, math.hypot(fx - px, fy - py), n))
+    elif cmd == 'box':
+        shot, csv, t, xe, ye, ze, how, ha, hb, hc, col, w, h = sys.argv[3:16]
+        row = csv_row(csv, float(t))
+        c = [value(e, row) for e in (xe, ye, ze)]
+        seq, *angles = how.split(':')
+        R = turn(seq, [value(e, row) for e in angles])
+        half = [float(ha), float(hb), float(hc)]
+        corners = []
+        for sx in (-1, 1):
+            for sy in (-1, 1):
+                for sz in (-1, 1):
+                    b = [sx * half[0], sy * half[1], sz * half[2]]
+                    corners.append(project(d['camera'], [c[r] + sum(R[r][k] * b[k]
+                                                                    for k in range(3))
+                                                         for r in range(3)], int(w), int(h)))
+        poly = hull([(round(x, 6), round(y, 6)) for x, y in corners])
+        rgb, rows = rgb_of(col), png(shot)[2]
+        H, W = len(rows), len(rows[0])
+        x0 = max(0, int(min(p[0] for p in poly)) - 30)
+        x1 = min(W, int(max(p[0] for p in poly)) + 31)
+        y0 = max(0, int(min(p[1] for p in poly)) - 30)
+        y1 = min(H, int(max(p[1] for p in poly)) + 31)
+        n_in = f_in = n_out = f_out = 0
+        for y in range(y0, y1):
+            for x in range(x0, x1):
+                s = signed_distance(poly, x + 0.5, y + 0.5)
+                if s >= 3:
+                    n_in += 1
+                    f_in += like(rows[y][x], rgb)
+                elif -30 <= s <= -3:
+                    n_out += 1
+                    f_out += like(rows[y][x], rgb)
+        print(n_in, f_in, n_out, f_out)
 
 
 main()

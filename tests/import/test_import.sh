@@ -337,7 +337,7 @@ bounds=$(echo "$box" | awk -F', ' '{
   [ $(wc -l < "$tmp/err") -eq 2 ] &&
   "$eomc" compile "$tmp/shapes.yaml" -o "$tmp/shapes.c" 2> /dev/null &&
   grep -q '^    {0, EOMC_SHAPE_BOX, {0.1, 0.2, 0.3}, {0.5, 0.0, 0.1}, {1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.5}},$' "$tmp/shapes.c" &&
-  grep -q '^    {"ground", EOMC_DRAW_BODY, 3},$' "$tmp/shapes.c" &&
+  grep -q '^    {"ground", EOMC_DRAW_BODY, 3, 0},$' "$tmp/shapes.c" &&
   grep -q '^    {1, EOMC_SHAPE_CYLINDER, {0.05, 0.5, 0.0}, {0.0, 0.0, 0.5}, ' "$tmp/shapes.c" &&
   grep -q '^    .nshape = 5, .shapes = shapes,$' "$tmp/shapes.c"
 ok $? "geoms: shapes at geom_pos - body_ipos, the mesh as a box bounding it ($bounds), the world's and a welded body's as the ground, the plane noted; in the C ($(cat "$tmp/err"))"

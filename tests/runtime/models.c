@@ -115,7 +115,8 @@ static const unsigned char no_fixed[8];
  * series (the last members). */
 #define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
     "a hand-written test model"
-#define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, __VA_ARGS__
+#define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NULL, 0.0, NULL, \
+    __VA_ARGS__
 #define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)
 /* ... and no outputs nor events (they follow the checks), nor the scene's
  * assembly, nor a sparse mass matrix, nor unit loads, nor drawing (but
@@ -303,9 +304,9 @@ pd_outputs(double t, const double *q, const double *v, const double *a, const do
 }
 
 static const eomc_draw_item pd_items[] = {
-    {"origin", EOMC_DRAW_POINT, 2},
-    {"bob", EOMC_DRAW_PARTICLE, 2},
-    {"rod", EOMC_DRAW_BODY, 2},
+    {"origin", EOMC_DRAW_POINT, 2, 0},
+    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
+    {"rod", EOMC_DRAW_BODY, 2, 0},
 };
 static const int pd_links[] = {0, 1};
 static const int pd_trace[] = {1};
@@ -360,6 +361,7 @@ const eomc_model draw_model = {
     NULL,       /* no rows held */
     0, NULL,    /* B dense */
     3, pd_items, pd_draw, pd_draw_mass, 0, NULL, 1, 1, 0, pd_links, pd_trace, NULL,
+    NULL, 0.0, NULL, /* not followed, the ground at 0, no shapes of parameters */
     NO_TAYLOR,
 };
 

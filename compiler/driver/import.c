@@ -402,6 +402,8 @@ dropped(const mjModel *m, const char *path, FILE *warn)
  * drawn). */
 typedef struct Unshaped {
     Drop meshes, planes;
+    int floors;   /* planes of the world across z: the page's grid stands for them */
+    double floor; /* the first one's height */
 } Unshaped;
 
 /* Is g one of a URDF's <visual>s: MuJoCo gives them no contacts
@@ -452,7 +454,18 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
         ok = size[k] > 0 && isfinite(size[k]); /* spec.md: sizes > 0 */
     const char *bn = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
     const char *of = m->geom_bodyid[g] == 0 ? "the world" : bn && *bn ? bn : "an unnamed body";
+    /* a plane of the world whose normal is z (exactly: a floor is written
+     * unturned, or turned about z) is the page's floor: its grid is drawn
+     * at its height (view: floor:) */
+    const double *gq = quat;
     if (!ok) {
+        if (t == mjGEOM_PLANE && m->geom_bodyid[g] == 0 &&
+            gq[1] * gq[3] + gq[0] * gq[2] == 0 && gq[2] * gq[3] - gq[0] * gq[1] == 0) {
+            if (!u->floors++)
+                u->floor = pos[2];
+            if (pos[2] == u->floor)
+                return -1;
+        }
         snprintf(nm, sizeof nm, "%s of %s (%s)", label(m, mjOBJ_GEOM, g, b, sizeof b), of,
                  t == mjGEOM_PLANE ? "a plane" : t == mjGEOM_HFIELD ? "a height field"
                  : "a size of 0");
@@ -1284,7 +1297,10 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     int eq = 0;
     for (int e = 0; e < m->neq; e++)
         eq |= m->eq_active[e];
-    fprintf(out, "scene: {t_end: 1, dt: 0.01%s}\n", eq ? ", assemble: true" : "");
+    fprintf(out, "scene: {t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
+    if (u.floors && u.floor != 0) /* the page's grid is at z = 0 unless told */
+        fprintf(out, ", view: {floor: %s}", num(a, u.floor));
+    fputs("}\n", out);
     free(body);
     free(axes);
     free(origin);

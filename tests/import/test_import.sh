@@ -291,11 +291,13 @@ ok $? "a missing file: MuJoCo's message, exit 2"
 # (geom_pos - body_ipos), in MuJoCo's sizes; a mesh is drawn as the box
 # that bounds it, with a warning naming it; the world's geoms, and those of
 # a body welded to it without mass, are the spec's ground, in the world's
-# axes (the body's placed by its pos and euler turn); a plane is not drawn,
-# with a note naming it
+# axes (the body's placed by its pos and euler turn); a plane of the world
+# across z is the page's floor (view: floor: its height), another plane is
+# not drawn, with a note naming it
 cat > "$tmp/shapes.xml" <<'XML'
 <mujoco><asset><mesh name="tet" vertex="0 0 0  1 0 0  0 1 0  0 0 1"/></asset>
-<worldbody><geom name="floor" type="plane" size="1 1 0.1" contype="0" conaffinity="0"/>
+<worldbody><geom name="floor" type="plane" size="1 1 0.1" pos="0 0 -0.5" euler="0 0 30" contype="0" conaffinity="0"/>
+<geom name="wall" type="plane" size="1 1 0.1" pos="2 0 0" euler="0 90 0" contype="0" conaffinity="0"/>
 <geom name="post" type="cylinder" size="0.05 0.5" pos="0 0 0.5" contype="0" conaffinity="0"/>
 <body name="stand" pos="1 0 0" euler="0 0 90"><geom type="box" size="0.2 0.1 0.01" pos="0.1 0 0" mass="0" contype="0" conaffinity="0"/></body>
 <body name="b"><joint name="j" axis="0 1 0"/>
@@ -332,15 +334,16 @@ bounds=$(echo "$box" | awk -F', ' '{
   [ "$bounds" = yes ] &&
   grep -q '^  - {type: cylinder, size: \[0.05, 0.5\], pos: \[0, 0, 0.5\], rgba: \[0.5, 0.5, 0.5, 1\]}$' "$tmp/shapes.yaml" &&
   grep -q '^  - {type: box, size: \[0.2, 0.1, 0.01\], pos: \[1, 0.1, 0\], quat: \[0.707106781186547[0-9]*, 0, 0, 0.707106781186547[0-9]*\]' "$tmp/shapes.yaml" &&
-  grep -q "shapes.xml: warning: drawn as boxes: mesh geom #5 of b (mesh tet) (--animate draws no meshes" "$tmp/err" &&
-  grep -q "shapes.xml: note: not drawn: geom floor of the world (a plane)" "$tmp/err" &&
+  grep -q "shapes.xml: warning: drawn as boxes: mesh geom #6 of b (mesh tet) (--animate draws no meshes" "$tmp/err" &&
+  grep -q "shapes.xml: note: not drawn: geom wall of the world (a plane)" "$tmp/err" &&
+  grep -q '^scene: {t_end: 1, dt: 0.01, view: {floor: -0.5}}$' "$tmp/shapes.yaml" &&
   [ $(wc -l < "$tmp/err") -eq 2 ] &&
   "$eomc" compile "$tmp/shapes.yaml" -o "$tmp/shapes.c" 2> /dev/null &&
   grep -q '^    {0, EOMC_SHAPE_BOX, {0.1, 0.2, 0.3}, {0.5, 0.0, 0.1}, {1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.5}},$' "$tmp/shapes.c" &&
   grep -q '^    {"ground", EOMC_DRAW_BODY, 3, 0},$' "$tmp/shapes.c" &&
   grep -q '^    {1, EOMC_SHAPE_CYLINDER, {0.05, 0.5, 0.0}, {0.0, 0.0, 0.5}, ' "$tmp/shapes.c" &&
   grep -q '^    .nshape = 5, .shapes = shapes,$' "$tmp/shapes.c"
-ok $? "geoms: shapes at geom_pos - body_ipos, the mesh as a box bounding it ($bounds), the world's and a welded body's as the ground, the plane noted; in the C ($(cat "$tmp/err"))"
+ok $? "geoms: shapes at geom_pos - body_ipos, the mesh as a box bounding it ($bounds), the world's and a welded body's as the ground, the floor plane as view: floor, the wall noted; in the C ($(cat "$tmp/err"))"
 
 # a URDF's visuals drawn (MuJoCo discards them unless told): the fixed
 # root link's as the ground, at its <origin>; a link's box at half its

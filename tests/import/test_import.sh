@@ -39,11 +39,13 @@ small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs
          $src/tests/import/models/floating.xml
          $src/tests/import/models/closed.xml $src/tests/import/models/welded.xml
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
+robots) r=$src/tests/import/models/robots # written for the robots benchmark too
+        models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml" ;;
 humanoid | 22_humanoids) models=$samples/humanoid/$part.xml ;;
 humanoid100) models=$samples/humanoid100/$part.xml ;;
 *) echo "test_import.sh: no part '$part'" >&2; exit 2 ;;
 esac
-if [ "$part" != small ] && [ ! -e "$models" ]; then
+if [ "$part" != small ] && [ "$part" != robots ] && [ ! -e "$models" ]; then
   echo "1..0 # SKIP $models: libmujoco-samples is not installed"
   exit 0
 fi

@@ -1093,16 +1093,25 @@ load(const char *path, const char *text, size_t len, int edited, FILE *warn, int
     return m;
 }
 
+static void
+mimic_add(void *drop, const char *joint)
+{
+    drop_add(drop, *joint ? joint : "(unnamed)");
+}
+
 /* The model at path, as load() loads it; with floating, a URDF whose root
- * links have free joints (import_urdf.h).  NULL with the reason in err,
+ * links have free joints (import_urdf.h).  A URDF's joints with a <mimic>,
+ * which MuJoCo's reader ignores, into *mimic.  NULL with the reason in err,
  * *mujoco set where it is MuJoCo's loader message. */
 static mjModel *
-load_model(const char *path, int floating, FILE *warn, int *urdf_visuals, char *err,
-           size_t errlen, int *mujoco)
+load_model(const char *path, int floating, FILE *warn, int *urdf_visuals, Drop *mimic,
+           char *err, size_t errlen, int *mujoco)
 {
     size_t len = 0, flen;
     char *text = slurp(path, &len), *edit = NULL;
     *mujoco = 0;
+    if (text && urdf_is(text))
+        urdf_mimics(text, mimic_add, mimic);
     if (floating && text && !urdf_is(text)) {
         snprintf(err, errlen, "--floating frees the root link of a URDF, which MuJoCo welds to "
                  "the world; an MJCF says itself how its bodies move: give its root body a "
@@ -1129,8 +1138,9 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     *at = (ImportWhere){0};
     char load_err[1000] = "";
     int urdf_visuals = 0, mujoco;
-    mjModel *m = load_model(path, floating, warn, &urdf_visuals, load_err, sizeof load_err,
-                            &mujoco);
+    Drop mimic = {0};
+    mjModel *m = load_model(path, floating, warn, &urdf_visuals, &mimic, load_err,
+                            sizeof load_err, &mujoco);
     if (!m && !mujoco) {
         snprintf(err, len, "%s", load_err);
         return -1;
@@ -1149,7 +1159,10 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
         mj_deleteModel(m);
         return -1;
     }
-    if (dropped(m, path, warn) && strict) {
+    int drops = dropped(m, path, warn);
+    drops += drop_say(warn, path, &mimic, "the <mimic> of", "joint",
+                      "MuJoCo's URDF reader ignores it: the joint moves on its own");
+    if (drops && strict) {
         snprintf(err, len, "--strict: the elements named above would be dropped");
         mj_deleteModel(m);
         return -1;

@@ -146,6 +146,32 @@ next_tag(const char *c)
     return NULL;
 }
 
+/* A walk through a text's tags: each start or end tag in turn, with the
+ * depth of its element (the root's 0). */
+typedef struct Walk {
+    const char *lt, *gt; /* the tag's '<' and '>' */
+    int depth;
+    int empty; /* a start tag that ends itself, <x/> */
+    int open;  /* elements open after it */
+} Walk;
+
+/* The next tag into *w (zeroed to start at text); 0 at the end. */
+static int
+walk(Walk *w, const char *text)
+{
+    const char *c = next_tag(w->lt ? w->gt + 1 : text);
+    if (!c || !(w->gt = tag_end(c)))
+        return 0;
+    w->lt = c;
+    if (c[1] == '/') {
+        w->depth = --w->open, w->empty = 0;
+    } else {
+        w->depth = w->open, w->empty = w->gt[-1] == '/';
+        w->open += !w->empty;
+    }
+    return 1;
+}
+
 /* The value of attribute key of the tag from lt to its end gt into buf
  * (as written, entities and all, truncated to len); 1, or 0 if it has
  * none. */
@@ -219,27 +245,26 @@ urdf_floating(const char *text, size_t len, size_t *outlen, char *err, size_t er
      * (depth 2), and where </robot> is */
     NameList links = {0}, joints = {0}, children = {0};
     const char *end = NULL;
-    int depth = 0, in_joint = 0;
+    int in_joint = 0;
     char name[NAME_MAX_LEN];
-    for (const char *c = next_tag(text), *gt; c && (gt = tag_end(c)); c = next_tag(gt + 1)) {
+    for (Walk w = {0}; walk(&w, text);) {
+        const char *c = w.lt;
         if (c[1] == '/') {
-            if (--depth == 0 && tag_is(c + 1, "robot"))
+            if (w.depth == 0 && tag_is(c + 1, "robot"))
                 end = c;
-            in_joint &= depth > 1;
+            in_joint &= w.depth > 1;
             continue;
         }
-        int empty = gt[-1] == '/';
-        if (depth == 1 && tag_is(c, "link") && tag_attr(c, gt, "name", name, sizeof name))
+        if (w.depth == 1 && tag_is(c, "link") && tag_attr(c, w.gt, "name", name, sizeof name))
             add(&links, name);
-        if (depth == 1 && tag_is(c, "joint")) {
-            if (tag_attr(c, gt, "name", name, sizeof name))
+        if (w.depth == 1 && tag_is(c, "joint")) {
+            if (tag_attr(c, w.gt, "name", name, sizeof name))
                 add(&joints, name);
-            in_joint = !empty;
+            in_joint = !w.empty;
         }
-        if (depth == 2 && in_joint && tag_is(c, "child") &&
-            tag_attr(c, gt, "link", name, sizeof name))
+        if (w.depth == 2 && in_joint && tag_is(c, "child") &&
+            tag_attr(c, w.gt, "link", name, sizeof name))
             add(&children, name);
-        depth += !empty;
     }
     /* each root, joined to the world; the joint named after its link, or
      * LINK_floating (LINK_floating_2, ...) where a joint has that name */
@@ -285,4 +310,25 @@ urdf_floating(const char *text, size_t len, size_t *outlen, char *err, size_t er
     names_free(&joints);
     names_free(&children);
     return out;
+}
+
+int
+urdf_mimics(const char *text, void (*each)(void *ctx, const char *joint), void *ctx)
+{
+    char name[NAME_MAX_LEN] = "";
+    int n = 0, in_joint = 0;
+    for (Walk w = {0}; walk(&w, text);) {
+        if (w.lt[1] == '/') {
+            in_joint &= w.depth > 1;
+            continue;
+        }
+        if (w.depth == 1 && tag_is(w.lt, "joint")) {
+            in_joint = !w.empty;
+            if (!tag_attr(w.lt, w.gt, "name", name, sizeof name))
+                name[0] = '\0';
+        }
+        if (w.depth == 2 && in_joint && tag_is(w.lt, "mimic"))
+            each(ctx, name), n++;
+    }
+    return n;
 }

@@ -26,4 +26,8 @@ char *urdf_keep_visuals(const char *text, size_t len, size_t *outlen);
  * root is the link `world`, which MuJoCo takes for the world itself). */
 char *urdf_floating(const char *text, size_t len, size_t *outlen, char *err, size_t errlen);
 
+/* Each joint of the URDF with a <mimic> (which MuJoCo's URDF reader
+ * ignores), by name, to each(ctx, name); how many. */
+int urdf_mimics(const char *text, void (*each)(void *ctx, const char *joint), void *ctx);
+
 #endif

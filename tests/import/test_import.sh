@@ -69,7 +69,7 @@ if [ "$part" != small ] && [ ! -e "$models" ]; then
 fi
 for model in $models; do
   base=$(basename "$model"); base=${base%.*}_${base##*.} # arm.xml and arm.urdf apart
-  opts= ref=$model
+  opts='' ref=$model
   [ "$base" = legged_urdf ] && opts=--floating ref=$tmp/legged_floating.urdf
   # shellcheck disable=SC2086 # $opts: none, or one option
   "$eomc" import "$model" $opts -o "$tmp/$base.yaml" 2> "$tmp/err"
@@ -394,6 +394,19 @@ set -- $par
 [ $st -eq 0 ] && grep -q "^t,trunk_x,trunk_y,trunk_z,trunk_qw,trunk_qx,trunk_qy,trunk_qz,left_hip,left_knee,right_hip,right_knee," "$tmp/legged.csv" &&
   awk -v c="$1" -v s="$swing" -v x="${2:-0}" 'BEGIN { exit !(c != "nan" && c <= 1e-11 && s > 0.2 && x > 0.2) }'
 ok $? "eomc run legged.urdf --floating, the legs swinging ($swing rad): its centre of mass on a parabola, second differences within $1 m of (0, 0, -g h^2) (<= 1e-11)"
+# a URDF joint's <mimic> (a coupling MuJoCo's reader ignores): dropped by
+# name, --strict refuses it; one in a comment is no mimic
+sed 's|<joint name="right_knee" type="revolute">|&<mimic joint="left_knee" multiplier="1"/>|
+     s|<joint name="right_hip" type="continuous">|&<!-- <mimic joint="left_hip"/> -->|' \
+  "$models_dir/legged.urdf" > "$tmp/mimic.urdf"
+"$eomc" import "$tmp/mimic.urdf" --floating > "$tmp/out" 2> "$tmp/err"
+st=$?
+"$eomc" import "$tmp/mimic.urdf" --strict > "$tmp/out2" 2> "$tmp/err2"
+st2=$?
+[ $st -eq 0 ] && [ $(grep -c "<mimic>" "$tmp/err") -eq 1 ] &&
+  grep -q "warning: dropped: the <mimic> of joint right_knee (MuJoCo's URDF reader ignores it: the joint moves on its own)" "$tmp/err" &&
+  [ $st2 -eq 2 ] && [ ! -s "$tmp/out2" ] && grep -q "error: --strict" "$tmp/err2"
+ok $? "a URDF joint's <mimic>: dropped by name (--strict: exit 2) ($(grep "<mimic>" "$tmp/err"))"
 # --floating on an MJCF, on a URDF whose root is the link world (MuJoCo's
 # world itself), and on a spec: refused, exit 2, nothing written
 "$eomc" import "$models_dir/arm.xml" --floating -o "$tmp/f.yaml" > /dev/null 2> "$tmp/err"

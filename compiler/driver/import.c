@@ -839,7 +839,8 @@ put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *
                 term(sum, sizeof sum, torque ? -rho * box[k] * (pow4(box[i]) + pow4(box[j])) / 64.0
                                              : -0.5 * rho * box[i] * box[j], x2);
             size_t n = strlen(vec);
-            snprintf(vec + n, sizeof vec - n, "%s(%s)*%s.%c", k ? " + " : "", sum, P, 'x' + k);
+            snprintf(vec + n, sizeof vec - n, "%s(%s)*%s.%c", k ? " + " : "", *sum ? sum : "0",
+                     P, 'x' + k);
         }
         fprintf(out, "{%s: \"%s\", on: %s}", torque ? "torque" : "force", vec, body);
         fputs(torque ? "" : ", ", out);

@@ -21,7 +21,8 @@ cmdline_usage(FILE *f)
         "       eomc build SPEC [-o EXE] [--mpi | --shared] [--extended] [--cache] [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
-        "       eomc import MODEL.xml [-o SPEC.yaml] [--strict]   (MJCF or URDF, by MuJoCo)\n"
+        "       eomc import MODEL.xml [-o SPEC.yaml] [--strict] [--floating]\n"
+        "                                  (MJCF or URDF, read by MuJoCo)\n"
         "  (compile, build, run and accuracy also take MODEL.xml or MODEL.urdf as SPEC)\n"
         "       eomc --help | --version\n"
         "\n"
@@ -51,6 +52,9 @@ cmdline_usage(FILE *f)
         "                   per right-hand side; --explain says which and why)\n"
         "  --effects LIST   comma-separated effects to turn on, replacing the\n"
         "                   scene's choice (\"\" = none)\n"
+        "  --floating       (a URDF given as SPEC, and import) give the URDF's root\n"
+        "                   link a free joint: MuJoCo welds it to the world\n"
+        "  --strict         (import) what eomc drops from the model is an error\n"
         "  --stats          print the operation counts of each emitted function\n"
         "  --explain        (compile) say how the model was classified and derived,\n"
         "                   on stdout; the C goes only to -o FILE then\n"
@@ -131,6 +135,7 @@ static const OptionSpec options[] = {
     {"--extended", CMD_BUILD | CMD_RUN | CMD_ACCURACY, OPT_FLAG, offsetof(Options, extended),
      "the extended-precision functions", NULL, 0},
     {"--eliminate", CMD_DERIVE, OPT_FLAG, offsetof(Options, eliminate), NULL, NULL, 1},
+    {"--floating", CMD_DERIVE, OPT_FLAG, offsetof(Options, floating), NULL, NULL, 0},
 };
 enum { NOPTIONS = sizeof options / sizeof options[0] };
 

@@ -16,6 +16,7 @@ typedef struct Options {
     const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
+    int floating;       /* --floating: a URDF given as SPEC with its root link free */
     int shared;         /* --shared: a shared library (for Python), not a simulator */
     int taylor;         /* --taylor: the series of Taylor's method, whatever the scene */
     int needs_taylor;   /* ... or what the simulator is asked to do needs them */

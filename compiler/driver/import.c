@@ -11,18 +11,21 @@
  * pivot.  The inertia, principal moments about body_ipos in the axes
  * body_iquat turns to, is printed as the full tensor in the body's axes.
  *
- * Effects: gravity, damping, stiffness, armature (kinetic terms of one
- * joint's rates) and actuators (virtual work of an input each); connect
- * and joint equalities are exact holonomic constraints.  What the
- * importer cannot write is refused by name; what eomc does not simulate
- * (limits, friction loss, control and force ranges, contacts) is dropped,
- * one warning per kind (--strict: an error).
+ * Effects: gravity, damping, stiffness, fluid (MuJoCo's inertia-box
+ * model of the medium), armature (kinetic terms of one joint's rates) and
+ * actuators (virtual work of an input each); connect and joint equalities
+ * are exact holonomic constraints.  What the model's <flag>s disable is
+ * left out, as mj_forward leaves it out, with a note.  What the importer
+ * cannot write is refused by name; what eomc does not simulate (limits,
+ * friction loss, control and force ranges, contacts) is dropped, one
+ * warning per kind (--strict: an error).
  *
  * One file past ~800 lines: every element of mjModel it prints shares the
  * naming (identifiers, collisions, renames) and the placement in the
  * tree above, and it is the one file that knows MuJoCo's structures.
  */
 #include "import.h"
+#include "import_urdf.h"
 
 #include "runtime/base/numfmt.h"
 #include "base/arena.h"
@@ -242,7 +245,92 @@ scalar_joint(const mjModel *m, int j)
     return m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE;
 }
 
-/* What the importer cannot write, by name: a reason in err, else 0. */
+/* MuJoCo's <option><flag>s (mjOption's disableflags): what its mj_forward
+ * leaves out, the spec leaves out too (docs/import.md lists every flag). */
+static int
+disabled(const mjModel *m, int bits)
+{
+    return (m->opt.disableflags & bits) != 0;
+}
+
+static int
+gravity_on(const mjModel *m)
+{
+    return !disabled(m, mjDSBL_GRAVITY) && !is_zero3(m->opt.gravity);
+}
+
+/* springs, damping and fluid forces (mj_passive) */
+static int
+passive_on(const mjModel *m)
+{
+    return !disabled(m, mjDSBL_PASSIVE);
+}
+
+/* The actuators MuJoCo applies: none where actuation is disabled. */
+static int
+actuators(const mjModel *m)
+{
+    return disabled(m, mjDSBL_ACTUATION) ? 0 : m->nu;
+}
+
+/* Does equality constraint e hold: active, and not disabled (the flag
+ * equality, or constraint, which disables every constraint)? */
+static int
+eq_on(const mjModel *m, int e)
+{
+    return m->eq_active[e] && !disabled(m, mjDSBL_EQUALITY | mjDSBL_CONSTRAINT);
+}
+
+enum { FLUID_NONE, FLUID_BOX, FLUID_ELLIPSOID };
+
+/* MuJoCo's fluid forces (opt.density, opt.viscosity, mj_passive) on body b:
+ * by the box of its inertia, by its geoms' ellipsoids where one of them
+ * has fluidshape="ellipsoid" (geom_fluid[0] > 0), or none (no medium,
+ * passive forces off, no mass, or a body welded to the world, on which a
+ * force does nothing). */
+static int
+fluid_model(const mjModel *m, int b)
+{
+    if (!passive_on(m) || !(m->opt.viscosity > 0 || m->opt.density > 0) ||
+        m->body_mass[b] < mjMINVAL || m->body_weldid[b] == 0)
+        return FLUID_NONE;
+    for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; g++)
+        if (m->geom_fluid[mjNFLUID * g] > 0)
+            return FLUID_ELLIPSOID;
+    return FLUID_BOX;
+}
+
+/* What MuJoCo's flags leave out of this model, as a list for a note:
+ * "gravity (flag gravity), ..."; empty where they leave out nothing it
+ * has. */
+static void
+left_out(const mjModel *m, char *buf, size_t len)
+{
+    int passive = m->opt.density > 0 || m->opt.viscosity > 0, eqs = 0;
+    for (int j = 0; j < m->njnt; j++)
+        passive |= m->jnt_stiffness[j] != 0;
+    for (int k = 0; k < m->nv; k++)
+        passive |= m->dof_damping[k] != 0;
+    for (int t = 0; t < m->ntendon; t++)
+        passive |= m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0;
+    for (int e = 0; e < m->neq; e++)
+        eqs |= m->eq_active[e];
+    const char *what[4] = {
+        disabled(m, mjDSBL_GRAVITY) && !is_zero3(m->opt.gravity) ? "gravity (flag gravity)" : NULL,
+        disabled(m, mjDSBL_PASSIVE) && passive
+            ? "springs, damping and fluid forces (flag passive)" : NULL,
+        disabled(m, mjDSBL_ACTUATION) && m->nu ? "actuators (flag actuation)" : NULL,
+        !eqs ? NULL : disabled(m, mjDSBL_CONSTRAINT) ? "equality constraints (flag constraint)"
+        : disabled(m, mjDSBL_EQUALITY) ? "equality constraints (flag equality)" : NULL};
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < 4; i++)
+        if (what[i] && k < len)
+            k += (size_t)snprintf(buf + k, len - k, "%s%s", k ? ", " : "", what[i]);
+}
+
+/* What the importer cannot write, by name: a reason in err, else 0.  What
+ * a flag disables is not refused: it is left out. */
 static int
 refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
 {
@@ -250,7 +338,8 @@ refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
     for (int j = 0; j < m->njnt; j++) {
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
         int type = m->jnt_type[j];
-        if ((type == mjJNT_BALL || type == mjJNT_FREE) && m->jnt_stiffness[j] != 0)
+        if ((type == mjJNT_BALL || type == mjJNT_FREE) && m->jnt_stiffness[j] != 0 &&
+            passive_on(m))
             return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: the stiffness of a %s joint is not imported "
                             "(MuJoCo's spring acts on the rotation vector of its quaternion, "
                             "which is not smooth where the turn is zero)", nm,
@@ -259,7 +348,7 @@ refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
             return blame(at, m, mjOBJ_JOINT, j), snprintf(err, len, "joint %s: a free joint with other joints in its body",
                             nm);
     }
-    for (int i = 0; i < m->nu; i++) {
+    for (int i = 0; i < actuators(m); i++) {
         const char *why = actuator_refused(m, i);
         if (why)
             return blame(at, m, mjOBJ_ACTUATOR, i), snprintf(err, len, "actuator %s: %s", label(m, mjOBJ_ACTUATOR, i, b,
@@ -268,7 +357,7 @@ refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
     for (int e = 0; e < m->neq; e++) {
         const char *nm = label(m, mjOBJ_EQUALITY, e, b, sizeof b);
         int type = m->eq_type[e], j1 = m->eq_obj1id[e], j2 = m->eq_obj2id[e];
-        if (!m->eq_active[e])
+        if (!eq_on(m, e))
             continue;
         if (type == mjEQ_DISTANCE) /* MuJoCo 2.2.2 refuses it itself; later ones lack it */
             return blame(at, m, mjOBJ_EQUALITY, e), snprintf(err, len, "equality constraint %s: a distance constraint", nm);
@@ -281,7 +370,8 @@ refused(const mjModel *m, char *err, size_t len, ImportWhere *at)
     }
     for (int t = 0; t < m->ntendon; t++) {
         const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
-        if (!fixed_tendon(m, t) && (m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0))
+        if (!fixed_tendon(m, t) && (m->tendon_stiffness[t] != 0 || m->tendon_damping[t] != 0) &&
+            passive_on(m))
             return blame(at, m, mjOBJ_TENDON, t), snprintf(err, len, "tendon %s: the stiffness or damping of a spatial tendon "
                             "(only fixed tendons, sums of joint coordinates, are imported)", nm);
         for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
@@ -339,35 +429,40 @@ drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const ch
 }
 
 /* What eomc drops, since it simulates smooth dynamics only, named on
- * warn, one warning for each kind; the number of kinds. */
+ * warn, one warning for each kind; the number of kinds.  What MuJoCo's
+ * flags disable (limits, friction loss, contacts, the clamping of
+ * controls) it does not compute either: nothing is dropped there. */
 static int
 dropped(const mjModel *m, const char *path, FILE *warn)
 {
     Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0};
     char b[32];
+    int limits = !disabled(m, mjDSBL_LIMIT | mjDSBL_CONSTRAINT);
+    int friction = !disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT);
+    int contacts = !disabled(m, mjDSBL_CONTACT | mjDSBL_CONSTRAINT);
     for (int j = 0; j < m->njnt; j++) {
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
-        if (m->jnt_limited[j])
+        if (m->jnt_limited[j] && limits)
             drop_add(&lim, nm);
         int any = 0;
         for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++)
             any |= m->dof_frictionloss[k] != 0;
-        if (any)
+        if (any && friction)
             drop_add(&fric, nm);
     }
     Drop tlim = {0}, tfric = {0}, spatial = {0};
     for (int t = 0; t < m->ntendon; t++) {
         const char *nm = label(m, mjOBJ_TENDON, t, b, sizeof b);
-        if (m->tendon_limited[t])
+        if (m->tendon_limited[t] && limits)
             drop_add(&tlim, nm);
-        if (m->tendon_frictionloss[t] != 0)
+        if (m->tendon_frictionloss[t] != 0 && friction)
             drop_add(&tfric, nm);
         if (!fixed_tendon(m, t))
             drop_add(&spatial, nm);
     }
-    for (int i = 0; i < m->nu; i++) {
+    for (int i = 0; i < actuators(m); i++) {
         const char *nm = label(m, mjOBJ_ACTUATOR, i, b, sizeof b);
-        if (m->actuator_ctrllimited[i])
+        if (m->actuator_ctrllimited[i] && !disabled(m, mjDSBL_CLAMPCTRL))
             drop_add(&ctrl, nm);
         if (m->actuator_forcelimited[i])
             drop_add(&force, nm);
@@ -388,12 +483,23 @@ dropped(const mjModel *m, const char *path, FILE *warn)
                   "an input is applied as given, not clamped");
     n += drop_say(warn, path, &force, "the force range of", "actuator",
                   "an actuator's force is not clamped");
-    Drop geoms = {0};
-    for (int g = 0; g < m->ngeom; g++)
+    Drop geoms = {0}, pairs = {0};
+    for (int g = 0; g < m->ngeom && contacts; g++)
         if (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)
             drop_add(&geoms, label(m, mjOBJ_GEOM, g, b, sizeof b));
+    for (int p = 0; p < m->npair && contacts; p++) /* <contact><pair>: whatever contype says */
+        drop_add(&pairs, label(m, mjOBJ_PAIR, p, b, sizeof b));
     n += drop_say(warn, path, &geoms, "the contacts of", "geom",
                   "eomc simulates smooth dynamics: bodies pass through one another");
+    n += drop_say(warn, path, &pairs, "", "contact pair",
+                  "eomc simulates smooth dynamics: its geoms pass through one another");
+    Drop fluid = {0};
+    for (int bb = 1; bb < m->nbody; bb++)
+        if (fluid_model(m, bb) == FLUID_ELLIPSOID)
+            drop_add(&fluid, label(m, mjOBJ_BODY, bb, b, sizeof b));
+    n += drop_say(warn, path, &fluid, "the fluid forces on", "body",
+                  "MuJoCo's ellipsoid model of a body's geoms, fluidshape=\"ellipsoid\", is not "
+                  "imported; its inertia-box model, the default, is");
     return n;
 }
 
@@ -695,26 +801,74 @@ item(FILE *out, int *any, int *first, const char *name)
     *any = 1, *first = 0;
 }
 
+static double
+pow4(double x)
+{
+    return x * x * x * x;
+}
+
+/* MuJoCo's fluid forces on body b by its inertia box
+ * (mj_inertiaBoxFluidModel): the box of b's mass and principal moments
+ * (sides b_k), its centre's velocity v through the medium and its angular
+ * velocity w in its principal axes P (the defines flow[0..5]), and for
+ * each axis k (i, j the other two, d the box's mean side)
+ *   force_k  = -3 pi d mu v_k - rho/2 b_i b_j |v_k| v_k
+ *   torque_k = -pi d^3 mu w_k - rho b_k (b_i^4 + b_j^4)/64 |w_k| w_k
+ * at its centre: a force and a torque item of the effect fluid. */
+static void
+put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *const *flow,
+          FILE *out)
+{
+    const double *I = m->body_inertia + 3 * b, mu = m->opt.viscosity, rho = m->opt.density;
+    double box[3];
+    for (int k = 0; k < 3; k++) /* as MuJoCo computes it, to the last bit */
+        box[k] = sqrt(fmax(mjMINVAL, I[(k + 1) % 3] + I[(k + 2) % 3] - I[k]) /
+                      m->body_mass[b] * 6.0);
+    double diam = (box[0] + box[1] + box[2]) / 3.0;
+    for (int torque = 0; torque < 2; torque++) {
+        char vec[2000] = "";
+        for (int k = 0; k < 3; k++) {
+            int i = k == 0 ? 1 : 0, j = k == 2 ? 1 : 2;
+            const char *x = flow[3 * torque + k];
+            char x2[300], sum[700] = "";
+            snprintf(x2, sizeof x2, "abs(%s)*%s", x, x);
+            if (mu > 0)
+                term(sum, sizeof sum, torque ? -mjPI * diam * diam * diam * mu
+                                             : -3.0 * mjPI * diam * mu, x);
+            if (rho > 0)
+                term(sum, sizeof sum, torque ? -rho * box[k] * (pow4(box[i]) + pow4(box[j])) / 64.0
+                                             : -0.5 * rho * box[i] * box[j], x2);
+            size_t n = strlen(vec);
+            snprintf(vec + n, sizeof vec - n, "%s(%s)*%s.%c", k ? " + " : "", *sum ? sum : "0",
+                     P, 'x' + k);
+        }
+        fprintf(out, "{%s: \"%s\", on: %s}", torque ? "torque" : "force", vec, body);
+        fputs(torque ? "" : ", ", out);
+    }
+}
+
 /* The effects, each named so a scene can pick it: gravity; damping, the
  * generalized force -b v on each dof that has it (v its velocity as
  * MuJoCo's qvel has it); stiffness, the potential k/2 (q - springref)^2
- * (MuJoCo's passive spring force -k (q - qpos_spring)); armature, a
- * rotor's inertia on each dof, 1/2 a v^2 in T; actuators, each one's
- * force on its joint, its control an input. */
+ * (MuJoCo's passive spring force -k (q - qpos_spring)); fluid, MuJoCo's
+ * forces of the medium; armature, a rotor's inertia on each dof, 1/2 a
+ * v^2 in T; actuators, each one's force on its joint, its control an
+ * input.  What MuJoCo's flags disable is not written. */
 static void
 put_effects(const mjModel *m, const char *const *qn, const char *const *un,
-            const char *const *tn, FILE *out)
+            const char *const *tn, const char *const *body, const char *const *principal,
+            const char *const *flow, FILE *out)
 {
     char a[NUM_MAX], d[400], r[400], v[400], hs[900];
     int any = 0;
-    if (!is_zero3(m->opt.gravity)) {
+    if (gravity_on(m)) {
         fputs("effects:\n  gravity: {gravity: ", out);
         put_vec(out, m->opt.gravity);
         fputs("}\n", out);
         any = 1;
     }
-    int first = 1;
-    for (int j = 0; j < m->njnt; j++)
+    int first = 1, passive = passive_on(m);
+    for (int j = 0; j < m->njnt && passive; j++)
         for (int k = 0; k < joint_dofs(m, j); k++) {
             double b = m->dof_damping[m->jnt_dofadr[j] + k];
             if (b == 0)
@@ -724,7 +878,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
             item(out, &any, &first, "damping");
             fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
         }
-    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's: -b L' along L */
+    for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's: -b L' along L */
         if (m->tendon_damping[t] != 0) {
             item(out, &any, &first, "damping");
             fprintf(out, "{work: \"%s*%s'*delta(%s)\"}", num(a, -m->tendon_damping[t]), tn[t],
@@ -733,7 +887,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
     if (!first)
         fputs("]\n", out);
     first = 1;
-    for (int j = 0; j < m->njnt; j++) { /* hinges and slides (import refuses the rest) */
+    for (int j = 0; j < m->njnt && passive; j++) { /* hinges and slides (import refuses the rest) */
         double k = m->jnt_stiffness[j];
         if (k == 0)
             continue;
@@ -742,11 +896,19 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
         item(out, &any, &first, "stiffness");
         fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, k, d));
     }
-    for (int t = 0; t < m->ntendon; t++) /* a fixed tendon's, about lengthspring */
+    for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's, about lengthspring */
         if (m->tendon_stiffness[t] != 0) {
             displacement(d, sizeof d, tn[t], m->tendon_lengthspring[t]);
             item(out, &any, &first, "stiffness");
             fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, m->tendon_stiffness[t], d));
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int b = 1; b < m->nbody; b++)
+        if (fluid_model(m, b) == FLUID_BOX) {
+            item(out, &any, &first, "fluid");
+            put_fluid(m, b, body[b], principal[b], flow + 6 * b, out);
         }
     if (!first)
         fputs("]\n", out);
@@ -763,7 +925,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
     if (!first)
         fputs("]\n", out);
     first = 1;
-    for (int i = 0; i < m->nu; i++) {
+    for (int i = 0; i < actuators(m); i++) {
         char w[2000];
         int id = m->actuator_trnid[2 * i];
         actuator_work(w, sizeof w, m, i, m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
@@ -812,7 +974,7 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
     char d1[400], d2[400];
     int any = 0;
     for (int e = 0; e < m->neq; e++) {
-        if (!m->eq_active[e])
+        if (!eq_on(m, e))
             continue;
         fputs(any++ ? "" : "constraints:\n", out);
         int type = m->eq_type[e];
@@ -873,97 +1035,6 @@ slurp(const char *path, size_t *len)
     return buf;
 }
 
-/* The end of the tag that starts at lt ('<'): its '>', quoted values
- * skipped; NULL if it has none. */
-static const char *
-tag_end(const char *lt)
-{
-    for (const char *c = lt; *c; c++) {
-        if (*c == '"' || *c == '\'') {
-            const char *q = strchr(c + 1, *c);
-            if (!q)
-                return NULL;
-            c = q;
-        } else if (*c == '>') {
-            return c;
-        }
-    }
-    return NULL;
-}
-
-/* Does the tag at lt ('<') have this name (not a longer one)? */
-static int
-tag_is(const char *lt, const char *name)
-{
-    size_t n = strlen(name);
-    char after = lt[1 + n];
-    return !strncmp(lt + 1, name, n) &&
-           (after == '>' || after == '/' || after == ' ' || after == '\t' || after == '\n' ||
-            after == '\r');
-}
-
-/* The root element's start tag: its '<' past the XML declaration,
- * comments and a doctype; NULL if there is none. */
-static const char *
-root_tag(const char *text)
-{
-    const char *c = text;
-    for (;;) {
-        c += strspn(c, " \t\r\n");
-        if (!strncmp(c, "\xef\xbb\xbf", 3)) /* a UTF-8 byte-order mark */
-            c += 3;
-        else if (!strncmp(c, "<?", 2))
-            c = (c = strstr(c, "?>")) ? c + 2 : NULL;
-        else if (!strncmp(c, "<!--", 4))
-            c = (c = strstr(c, "-->")) ? c + 3 : NULL;
-        else if (!strncmp(c, "<!", 2))
-            c = (c = tag_end(c)) ? c + 1 : NULL;
-        else
-            return *c == '<' ? c : NULL;
-        if (!c)
-            return NULL;
-    }
-}
-
-/* A URDF's text with MuJoCo told to keep its <visual>s: MuJoCo's own
- * compiler option discardvisual="false", which its URDF reader takes from
- * a <mujoco><compiler .../></mujoco> in the <robot> (URDF's default is to
- * discard them).  Put in the file's own <mujoco> element where it has
- * one (MuJoCo reads the first only), else as a new one first in <robot>,
- * without a line break: MuJoCo's line numbers stay the file's.  NULL
- * where the file says discardvisual itself (its choice stands) or the
- * tags are not found.  malloc'd, its length in *outlen. */
-static char *
-keep_visuals(const char *text, size_t len, const char *root, size_t *outlen)
-{
-    static const char *const attr = " discardvisual=\"false\"";
-    static const char *const compiler = "<compiler discardvisual=\"false\"/>";
-    static const char *const element = "<mujoco><compiler discardvisual=\"false\"/></mujoco>";
-    const char *re = tag_end(root), *at = NULL, *ins = NULL;
-    if (!re || re[-1] == '/' || strstr(text, "discardvisual"))
-        return NULL;
-    for (const char *c = re; !at && (c = strstr(c, "<mujoco")); c++) {
-        const char *e = tag_is(c, "mujoco") ? tag_end(c) : NULL;
-        if (!e || e[-1] == '/')
-            continue; /* <mujoco/>: nothing in it, one of ours goes first */
-        const char *close = strstr(e, "</mujoco");
-        const char *cp = strstr(e, "<compiler");
-        if (cp && (!close || cp < close) && tag_is(cp, "compiler"))
-            at = cp + strlen("<compiler"), ins = attr;
-        else
-            at = e + 1, ins = compiler;
-    }
-    if (!at)
-        at = re + 1, ins = element;
-    size_t head = (size_t)(at - text), n = strlen(ins);
-    char *out = xmalloc(len + n + 1);
-    memcpy(out, text, head);
-    memcpy(out + head, ins, n);
-    memcpy(out + head + n, at, len - head + 1);
-    *outlen = len + n;
-    return out;
-}
-
 /* mj_loadXML of text in place of the file at path: MuJoCo's virtual file
  * system holds it under the file's name, and MuJoCo looks there before it
  * reads the disk (mesh files are still read from the model's folder). */
@@ -984,28 +1055,29 @@ load_text(const char *path, const char *text, size_t len, char *err, int errlen)
     return m;
 }
 
-/* MuJoCo's model of the file at path, or NULL with its message in err.  A
- * URDF is loaded with its <visual>s kept (*urdf_visuals 1), for drawing:
- * MuJoCo gives them no mass and no contacts, so the dynamics are those
- * of the file as MuJoCo loads it by default.  Where MuJoCo cannot load
- * them (a mesh file it cannot read), the URDF is loaded as it is, with a
- * warning saying why its visuals are not drawn; where the URDF itself
- * cannot be loaded, the error is that load's, on the file's own lines. */
+/* MuJoCo's model of the file at path, its text (NULL: unread, MuJoCo
+ * reads the file and says why it cannot), or NULL with MuJoCo's message in
+ * err.  A URDF is loaded with its <visual>s kept (*urdf_visuals 1), for
+ * drawing: MuJoCo gives them no mass and no contacts, so the dynamics are
+ * those of the file as MuJoCo loads it by default.  Where MuJoCo cannot
+ * load them (a mesh file it cannot read), the URDF is loaded as it is
+ * (edited, the text as given), with a warning saying why its visuals are
+ * not drawn; where the URDF itself cannot be loaded, the error is that
+ * load's, on the file's own lines. */
 static mjModel *
-load(const char *path, FILE *warn, int *urdf_visuals, char *err, int errlen)
+load(const char *path, const char *text, size_t len, int edited, FILE *warn, int *urdf_visuals,
+     char *err, int errlen)
 {
-    size_t len = 0, mlen;
-    char *text = slurp(path, &len), *mod = NULL;
-    const char *root = text ? root_tag(text) : NULL;
+    size_t mlen;
+    char *mod = text && urdf_is(text) ? urdf_keep_visuals(text, len, &mlen) : NULL;
     *urdf_visuals = 0;
-    if (root && tag_is(root, "robot"))
-        mod = keep_visuals(text, len, root, &mlen);
     mjModel *m = NULL;
     if (mod) {
         char why[1000] = "";
         m = load_text(path, mod, mlen, why, sizeof why);
         *urdf_visuals = m != NULL;
-        if (!m && (m = mj_loadXML(path, NULL, err, errlen))) {
+        if (!m && (m = edited ? load_text(path, text, len, err, errlen)
+                              : mj_loadXML(path, NULL, err, errlen))) {
             for (char *c = why; *c; c++)
                 if (*c == '\n')
                     *c = ' ';
@@ -1016,21 +1088,64 @@ load(const char *path, FILE *warn, int *urdf_visuals, char *err, int errlen)
                     "of its mass and inertia\n", path, why);
         }
     } else {
-        m = mj_loadXML(path, NULL, err, errlen);
+        m = edited ? load_text(path, text, len, err, errlen) : mj_loadXML(path, NULL, err, errlen);
     }
     free(mod);
+    return m;
+}
+
+static void
+mimic_add(void *drop, const char *joint)
+{
+    drop_add(drop, *joint ? joint : "(unnamed)");
+}
+
+/* The model at path, as load() loads it; with floating, a URDF whose root
+ * links have free joints (import_urdf.h).  A URDF's joints with a <mimic>,
+ * which MuJoCo's reader ignores, into *mimic.  NULL with the reason in err,
+ * *mujoco set where it is MuJoCo's loader message. */
+static mjModel *
+load_model(const char *path, int floating, FILE *warn, int *urdf_visuals, Drop *mimic,
+           char *err, size_t errlen, int *mujoco)
+{
+    size_t len = 0, flen;
+    char *text = slurp(path, &len), *edit = NULL;
+    *mujoco = 0;
+    if (text && urdf_is(text))
+        urdf_mimics(text, mimic_add, mimic);
+    if (floating && text && !urdf_is(text)) {
+        snprintf(err, errlen, "--floating frees the root link of a URDF, which MuJoCo welds to "
+                 "the world; an MJCF says itself how its bodies move: give its root body a "
+                 "<freejoint/>");
+        free(text);
+        return NULL;
+    }
+    if (floating && text && !(edit = urdf_floating(text, len, &flen, err, errlen))) {
+        free(text);
+        return NULL;
+    }
+    *mujoco = 1;
+    mjModel *m = load(path, edit ? edit : text, edit ? flen : len, edit != NULL, warn,
+                      urdf_visuals, err, (int)errlen);
+    free(edit);
     free(text);
     return m;
 }
 
 int
-import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
-             ImportWhere *at)
+import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+             size_t len, ImportWhere *at)
 {
     *at = (ImportWhere){0};
     char load_err[1000] = "";
-    int urdf_visuals = 0;
-    mjModel *m = load(path, warn, &urdf_visuals, load_err, sizeof load_err);
+    int urdf_visuals = 0, mujoco;
+    Drop mimic = {0};
+    mjModel *m = load_model(path, floating, warn, &urdf_visuals, &mimic, load_err,
+                            sizeof load_err, &mujoco);
+    if (!m && !mujoco) {
+        snprintf(err, len, "%s", load_err);
+        return -1;
+    }
     if (!m) { /* MuJoCo's message on one line: it has line breaks and a trailing one */
         import_where_parse(load_err, at);
         for (char *c = load_err; *c; c++)
@@ -1045,11 +1160,19 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         mj_deleteModel(m);
         return -1;
     }
-    if (dropped(m, path, warn) && strict) {
+    int drops = dropped(m, path, warn);
+    drops += drop_say(warn, path, &mimic, "the <mimic> of", "joint",
+                      "MuJoCo's URDF reader ignores it: the joint moves on its own");
+    if (drops && strict) {
         snprintf(err, len, "--strict: the elements named above would be dropped");
         mj_deleteModel(m);
         return -1;
     }
+    char off[300];
+    left_out(m, off, sizeof off);
+    if (*off)
+        fprintf(warn, "%s: note: left out, as the model's <option><flag> disables them in "
+                "MuJoCo too: %s\n", path, off);
     /* bodies have a namespace of their own in a spec; the rest share one */
     Names N = {.warn = warn, .path = path}, NB = N;
     int nb = m->nbody;
@@ -1083,6 +1206,8 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     const char *dot = strrchr(path, '.');
     fprintf(out, "# Imported by `eomc import` from %s: MuJoCo's compiled model, its\n"
                  "# bodies, joints, inertias and effects (docs/import.md).\n", path);
+    if (*off) /* MuJoCo's flags: docs/import.md */
+        fprintf(out, "# Left out, as the model's <option><flag> disables them: %s.\n", off);
     fprintf(out, "name: %s\n", model);
     fprintf(out, "description: \"%s, imported from %s.\"\n", model,
             dot && !strcmp(dot, ".urdf") ? "URDF" : "MJCF");
@@ -1096,7 +1221,9 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     const char **un = xmalloc(((size_t)m->nu + 1) * sizeof *un);
     /* a fixed tendon: a define, its length as MuJoCo's ten_length */
     const char **tn = xmalloc(((size_t)m->ntendon + 1) * sizeof *tn);
-    int defines = 0;
+    char *df = NULL;
+    size_t dfn = 0;
+    FILE *D = open_memstream(&df, &dfn); /* the defines, printed after the inputs */
     for (int t = 0; t < m->ntendon; t++) {
         snprintf(fb, sizeof fb, "tendon%d", t);
         tn[t] = named(&N, "tendon", m->names + m->name_tendonadr[t], fb);
@@ -1105,10 +1232,9 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         char len_t[4000] = "";
         for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++)
             term(len_t, sizeof len_t, m->wrap_prm[w], qn[m->jnt_qposadr[m->wrap_objid[w]]]);
-        fprintf(out, "%s  %s: \"%s\"\n", defines++ ? "" : "define:\n", tn[t],
-                *len_t ? len_t : "0");
+        fprintf(D, "  %s: \"%s\"\n", tn[t], *len_t ? len_t : "0");
     }
-    for (int i = 0; i < m->nu; i++) {
+    for (int i = 0; i < actuators(m); i++) {
         const char *an = mj_id2name(m, mjOBJ_ACTUATOR, i);
         int id = m->actuator_trnid[2 * i];
         snprintf(nm, sizeof nm, "u_%s", an && *an ? an
@@ -1216,6 +1342,40 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         put_vec(P, m->body_ipos + 3 * b);
         fputs("}\n", P);
     }
+    /* a body in a medium: its principal axes P (body_iquat in its axes),
+     * and the defines BODY_vx .. BODY_vz and BODY_wx .. BODY_wz, its
+     * centre's velocity through the medium (less the wind) and its
+     * angular velocity in them, by which MuJoCo's fluid forces act */
+    const char **principal = xmalloc((size_t)nb * sizeof *principal);
+    const char **flow = xmalloc(6 * (size_t)nb * sizeof *flow);
+    char wind[300] = "", c1[NUM_MAX], c2[NUM_MAX];
+    if (!is_zero3(m->opt.wind))
+        snprintf(wind, sizeof wind, " - vec(world, %s, %s, %s)", num(a, m->opt.wind[0]),
+                 num(c1, m->opt.wind[1]), num(c2, m->opt.wind[2]));
+    for (int b = 1; b < nb; b++) {
+        const double *iq = m->body_iquat + 4 * b;
+        principal[b] = axes[b];
+        if (fluid_model(m, b) != FLUID_BOX)
+            continue;
+        if (iq[1] != 0 || iq[2] != 0 || iq[3] != 0) {
+            snprintf(nm, sizeof nm, "%s_principal", body[b]);
+            principal[b] = unique(&N, nm, nm);
+            fprintf(F, "  %s: {parent: %s, rotation: [", principal[b], axes[b]);
+            put_fixed_turn(F, iq);
+            fputs("]}\n", F);
+        }
+        for (int k = 0; k < 6; k++) {
+            char x = (char)('x' + k % 3);
+            snprintf(nm, sizeof nm, "%s_%c%c", body[b], k < 3 ? 'v' : 'w', x);
+            flow[6 * b + k] = unique(&N, nm, nm);
+            if (k < 3)
+                fprintf(D, "  %s: \"dot(vel(%s)%s, %s.%c)\"\n", flow[6 * b + k], com[b], wind,
+                        principal[b], x);
+            else
+                fprintf(D, "  %s: \"dot(omega(%s), %s.%c)\"\n", flow[6 * b + k], principal[b],
+                        principal[b], x);
+        }
+    }
     /* a connect's anchors: on body 1 (eq_data 0..2, in its axes) and on
      * body 2 (3..5: where MuJoCo's compiler put the same point at qpos0).
      * A weld's the other way round: 3..5 on body 1 (its relpose), 0..2 on
@@ -1228,7 +1388,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
         snprintf(fb, sizeof fb, "equality%d", e);
         eqn[e] = named(&N, "equality", m->names + m->name_eqadr[e], fb);
         int type = m->eq_type[e];
-        if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD))
+        if (!eq_on(m, e) || (type != mjEQ_CONNECT && type != mjEQ_WELD))
             continue;
         const double *c = m->eq_data + mjNEQDATA * e;
         for (int k = 0; k < 2; k++) {
@@ -1250,11 +1410,15 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
             fputs("]}\n", F);
         }
     }
+    fclose(D);
     fclose(F);
     fclose(P);
+    if (dfn)
+        fprintf(out, "define:\n%s", df);
     if (frn)
         fprintf(out, "frames:\n%s", fr);
     fprintf(out, "points:\n%s", pt);
+    free(df);
     free(fr);
     free(pt);
     fputs("bodies:\n", out);
@@ -1286,7 +1450,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     drop_tell(warn, path, "note", "not drawn:", &u.planes, "geom",
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
-    put_effects(m, qn, un, tn, out);
+    put_effects(m, qn, un, tn, body, principal, flow, out);
     put_constraints(m, qn, tn, eqn, eqp, axes, out);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
@@ -1296,7 +1460,7 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
      * the state onto them; eomc's are exact, so the start is put there */
     int eq = 0;
     for (int e = 0; e < m->neq; e++)
-        eq |= m->eq_active[e];
+        eq |= eq_on(m, e);
     fprintf(out, "scene: {t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
     if (u.floors && u.floor != 0) /* the page's grid is at z = 0 unless told */
         fprintf(out, ", view: {floor: %s}", num(a, u.floor));
@@ -1311,6 +1475,8 @@ import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, siz
     free(tn);
     free(eqn);
     free(eqp);
+    free(principal);
+    free(flow);
     names_free(&N);
     names_free(&NB);
     mj_deleteModel(m);
@@ -1326,10 +1492,11 @@ import_available(void)
 }
 
 int
-import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
-             ImportWhere *at)
+import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+             size_t len, ImportWhere *at)
 {
     (void)path;
+    (void)floating;
     (void)out;
     (void)warn;
     (void)strict;

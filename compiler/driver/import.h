@@ -17,9 +17,10 @@
 int import_available(void);
 
 /* The spec of the model at path onto out, what it drops named on warn
- * (with strict, an error); 0, or -1 with the reason in err (MuJoCo's
- * loader message, or what cannot be imported) and where it is in *at. */
-int import_model(const char *path, FILE *out, FILE *warn, int strict, char *err, size_t len,
-                 ImportWhere *at);
+ * (with strict, an error); with floating, a URDF's root links given free
+ * joints.  0, or -1 with the reason in err (MuJoCo's loader message, or
+ * what cannot be imported) and where it is in *at. */
+int import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+                 size_t len, ImportWhere *at);
 
 #endif

@@ -422,12 +422,12 @@ is_model_file(const char *path)
  * named on stderr; 0, or exit 2 after the error (at its place in the
  * file where that is known). */
 static int
-import_text(const char *path, int strict, char **text, size_t *len)
+import_text(const char *path, int floating, int strict, char **text, size_t *len)
 {
     char err[1200];
     ImportWhere at;
     FILE *mem = open_memstream(text, len);
-    int rc = import_model(path, mem, stderr, strict, err, sizeof err, &at);
+    int rc = import_model(path, floating, mem, stderr, strict, err, sizeof err, &at);
     fclose(mem);
     if (rc == 0)
         return 0;
@@ -441,24 +441,30 @@ import_text(const char *path, int strict, char **text, size_t *len)
 static int
 import_spec(Options *o)
 {
+    if (!is_model_file(o->spec) && o->floating)
+        cmdline_usage_error("--floating is for a URDF given where the spec goes, and '%s' is "
+                            "a spec", o->spec);
     if (!is_model_file(o->spec))
         return 0;
-    int rc = import_text(o->spec, 0, &o->imported, &o->imported_len);
+    int rc = import_text(o->spec, o->floating, 0, &o->imported, &o->imported_len);
     snprintf(o->imported_name, sizeof o->imported_name, "%s (as imported)", o->spec);
     return rc;
 }
 
-/* `eomc import MODEL [-o SPEC] [--strict]`: the spec of an MJCF or URDF
- * model, to SPEC (written whole or not at all: path.tmpPID, renamed) or
- * stdout; --strict makes what it drops an error. */
+/* `eomc import MODEL [-o SPEC] [--strict] [--floating]`: the spec of an
+ * MJCF or URDF model, to SPEC (written whole or not at all: path.tmpPID,
+ * renamed) or stdout; --strict makes what it drops an error; --floating
+ * gives a URDF's root link a free joint. */
 static int
 import_cmd(int argc, char **argv)
 {
     const char *model = NULL, *out = NULL;
-    int strict = 0;
+    int strict = 0, floating = 0;
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--strict")) {
             strict = 1;
+        } else if (!strcmp(argv[i], "--floating")) {
+            floating = 1;
         } else if (!strcmp(argv[i], "-o")) {
             if (i + 1 >= argc)
                 cmdline_usage_error("option %s needs a value", "-o");
@@ -479,7 +485,7 @@ import_cmd(int argc, char **argv)
         cmdline_usage_error("%s: no model file given (MJCF or URDF)", "import");
     char *text = NULL;
     size_t len = 0;
-    int rc = import_text(model, strict, &text, &len);
+    int rc = import_text(model, floating, strict, &text, &len);
     if (rc != 0)
         return rc;
     char tmp[4200] = "";

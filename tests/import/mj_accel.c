@@ -17,7 +17,9 @@
  *                              energy there (mj_energyVel: armature included)
  *
  * Controls are neither clamped to their ranges nor forces to theirs, as
- * the import drops both.  The state: each hinge and slide coordinate, each
+ * the import drops both.  The model's own <option><flag>s stand otherwise
+ * (gravity, passive forces, actuation, equality constraints disabled: the
+ * import leaves out what they disable).  The state: each hinge and slide coordinate, each
  * qvel entry and each control uniform
  * in [-1.5, 1.5] (splitmix64, seeded); a ball's or free joint's quaternion
  * four such numbers normalized.  eomc's coordinates are MuJoCo's qpos;
@@ -304,6 +306,8 @@ static int
 one_state(mjModel *m, mjData *d, uint64_t seed)
 {
     mj_resetData(m, d); /* as a new one: nothing warm-started from the last */
+    /* the model's own <flag>s may disable them (docs/import.md) */
+    int equalities = m->neq && !(m->opt.disableflags & (mjDSBL_EQUALITY | mjDSBL_CONSTRAINT));
     /* with constraints, a draw whose Newton steps do not reach them (a
      * closed loop that cannot close there) is drawn again */
     for (int draw = 0;; draw++) {
@@ -319,7 +323,7 @@ one_state(mjModel *m, mjData *d, uint64_t seed)
                 mju_normalize4(d->qpos + m->jnt_qposadr[j] + (type == mjJNT_FREE ? 3 : 0));
         }
         mj_forward(m, d);
-        if (!m->neq || constrained(m, d) == 0)
+        if (!equalities || constrained(m, d) == 0)
             break;
         if (draw == DRAWS_MAX) {
             fprintf(stderr, "mj_accel: no state of %d drawn converges onto the constraints\n",

@@ -31,6 +31,23 @@ OWN=1e-12
 worse() { awk -v a="$1" -v b="$2" 'BEGIN { print (b == "nan" || a == "nan") ? "nan" : (b > a ? b : a) }'; }
 
 sh "$src/specs/gen_chain.sh" 5 --mjcf > "$tmp/chain5.xml"
+# MuJoCo's <option><flag>s, each model loaded with some disabled: what they
+# disable is left out of the spec as MuJoCo leaves it out (fluid.xml's
+# gravity and passive forces, then its actuators; closed.xml's equality
+# constraints, by the flag equality and by constraint)
+models_dir=$src/tests/import/models
+flagged() { # MODEL NAME FLAGS: MODEL with <flag FLAGS/> in its <option .../>
+  sed "s|<option \(.*\)/>|<option \1><flag $3/></option>|" "$models_dir/$1" > "$tmp/$2.xml"
+}
+flagged fluid.xml fluid_unforced 'gravity="disable" passive="disable"'
+flagged fluid.xml fluid_unactuated 'actuation="disable"'
+flagged closed.xml closed_noequality 'equality="disable"'
+flagged closed.xml closed_noconstraint 'constraint="disable"'
+# legged.urdf is imported with --floating, its trunk free; MuJoCo's q'' is
+# that of the same file with the trunk joined to the world by a joint of
+# type floating, written here
+sed 's|</robot>|<link name="world"/><joint name="trunk" type="floating"><parent link="world"/><child link="trunk"/></joint></robot>|' \
+  "$models_dir/legged.urdf" > "$tmp/legged_floating.urdf"
 # MuJoCo's own humanoid where Debian's libmujoco-samples is installed
 samples=/usr/share/mujoco/model
 case $part in
@@ -38,6 +55,9 @@ small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs
          $src/tests/import/models/planar_arm.urdf $src/tests/import/models/visual_arm.urdf
          $src/tests/import/models/floating.xml
          $src/tests/import/models/closed.xml $src/tests/import/models/welded.xml
+         $src/tests/import/models/fluid.xml $tmp/fluid_unforced.xml $tmp/fluid_unactuated.xml
+         $tmp/closed_noequality.xml $tmp/closed_noconstraint.xml
+         $src/tests/import/models/legged.urdf
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
 robots) r=$src/tests/import/models/robots # written for the robots benchmark too
         models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml" ;;
@@ -51,8 +71,11 @@ if [ "$part" != small ] && [ "$part" != robots ] && [ ! -e "$models" ]; then
 fi
 for model in $models; do
   base=$(basename "$model"); base=${base%.*}_${base##*.} # arm.xml and arm.urdf apart
-  "$eomc" import "$model" -o "$tmp/$base.yaml" 2> "$tmp/err"
-  ok $? "$base: imports ($(head -c 200 "$tmp/err"))"
+  opts='' ref=$model
+  [ "$base" = legged_urdf ] && opts=--floating ref=$tmp/legged_floating.urdf
+  # shellcheck disable=SC2086 # $opts: none, or one option
+  "$eomc" import "$model" $opts -o "$tmp/$base.yaml" 2> "$tmp/err"
+  ok $? "$base: imports${opts:+ $opts} ($(head -c 200 "$tmp/err"))"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/$base.yaml" | tr -d ',')
   inputs=$(sed -n '/^inputs:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml")
   worst=0 fails=0 own=0 mjx=0 ext=1
@@ -67,7 +90,7 @@ for model in $models; do
   # the random states and MuJoCo's q'' there, in eomc's coordinates
   # (mj_accel.c: one process for them all, a block of 3 + nq lines each),
   # and each state as eomc's options, a line each
-  "$mj" "$model" 1 "$states" > "$tmp/mj" || fails=$((fails + 1))
+  "$mj" "$ref" 1 "$states" > "$tmp/mj" || fails=$((fails + 1))
   nq=$(echo $coords | wc -w)
   awk -v names="$coords" -v inputs="$inputs" -v nq="$nq" 'BEGIN { n = split(names, c, " ")
       nu = split(inputs, u, " ") }
@@ -285,6 +308,145 @@ ok $? "limits, friction loss (of joints and tendons), control and force ranges, 
 st=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/strict.yaml" ] && grep -q "error: --strict" "$tmp/err"
 ok $? "--strict: the same model refused, exit 2, no file written"
+# MuJoCo's flags that turn off what eomc drops (limits, friction loss,
+# contacts, the clamping of controls; constraint: all but the clamping):
+# nothing is dropped there, as MuJoCo computes none of it either
+sed 's|<mujoco>|<mujoco><option><flag limit="disable" frictionloss="disable" contact="disable" clampctrl="disable"/></option>|' \
+  "$tmp/dropped.xml" > "$tmp/dropped_off.xml"
+sed 's|<mujoco>|<mujoco><option><flag constraint="disable"/></option>|' "$tmp/dropped.xml" > "$tmp/dropped_nocon.xml"
+"$eomc" import "$tmp/dropped_off.xml" > /dev/null 2> "$tmp/err"
+st=$?
+"$eomc" import "$tmp/dropped_nocon.xml" > /dev/null 2> "$tmp/err2"
+st2=$?
+[ $st -eq 0 ] && [ $st2 -eq 0 ] && [ $(wc -l < "$tmp/err") -eq 1 ] &&
+  grep -q "warning: dropped: the force range of actuator m2" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err2") -eq 2 ] && grep -q "the force range of actuator m2" "$tmp/err2" &&
+  grep -q "the control range of actuator #0" "$tmp/err2"
+ok $? "flags limit, frictionloss, contact, clampctrl disabled: only the force range is dropped; constraint disabled: the force and control ranges ($(cat "$tmp/err" "$tmp/err2" | tr '\n' ' '))"
+# a flag that leaves something out says so, in a note and in the spec
+"$eomc" import "$tmp/fluid_unforced.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q "note: left out, as the model's <option><flag> disables them in MuJoCo too: gravity (flag gravity), springs, damping and fluid forces (flag passive)$" "$tmp/err" &&
+  grep -q "^# Left out, as the model's <option><flag> disables them: gravity (flag gravity), springs" "$tmp/out" &&
+  grep -q "^  actuators:" "$tmp/out" && ! grep -q "^  gravity:\|^  damping:\|^  stiffness:\|^  fluid:" "$tmp/out"
+ok $? "flags gravity and passive disabled: no gravity, damping, stiffness, fluid in the spec, the actuators kept, a note says why"
+"$eomc" import "$tmp/closed_noconstraint.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && ! grep -q "^constraints:\|assemble" "$tmp/out" &&
+  grep -q "note: left out, .*: equality constraints (flag constraint)$" "$tmp/err" && [ $(wc -l < "$tmp/err") -eq 1 ]
+ok $? "flag constraint disabled: no constraints, nothing dropped (contacts off too), a note ($(cat "$tmp/err"))"
+# what a flag disables is not refused: a ball joint's spring with passive
+# forces off, an actuator with activation dynamics with actuation off
+cat > "$tmp/offrefused.xml" <<'XML'
+<mujoco><option><flag passive="disable" actuation="disable"/></option><worldbody><body name="b"><joint name="j" type="ball" stiffness="2"/><geom size="0.1"/>
+<body pos="0 0 -0.3"><joint name="k" axis="0 1 0"/><geom size="0.1"/></body></body></worldbody>
+<actuator><general name="slow" joint="k" dyntype="filter" dynprm="0.1"/></actuator></mujoco>
+XML
+"$eomc" import "$tmp/offrefused.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && ! grep -q "^inputs:\|^  stiffness:\|^  actuators:" "$tmp/out" &&
+  grep -q "springs, damping and fluid forces (flag passive), actuators (flag actuation)$" "$tmp/err"
+ok $? "a ball's spring with passive forces disabled, a filtered actuator with actuation disabled: left out, not refused ($(cat "$tmp/err"))"
+# <contact><pair>: contacts whatever the geoms' contype, dropped by name;
+# MuJoCo's ellipsoid fluid model (a geom's fluidshape): its body's fluid
+# forces dropped by name, the other bodies' imported; --strict refuses both
+cat > "$tmp/pairs.xml" <<'XML'
+<mujoco><option density="1000"/><worldbody><geom name="floor" type="plane" size="1 1 0.1" contype="0" conaffinity="0"/>
+<body name="ball" pos="0 0 1"><freejoint/><geom name="g" size="0.1" contype="0" conaffinity="0" fluidshape="ellipsoid"/></body>
+<body name="box" pos="1 0 1"><freejoint/><geom size="0.1 0.2 0.3" type="box" contype="0" conaffinity="0"/></body></worldbody>
+<contact><pair name="bounce" geom1="floor" geom2="g"/></contact></mujoco>
+XML
+"$eomc" import "$tmp/pairs.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+"$eomc" import "$tmp/pairs.xml" --strict > "$tmp/out2" 2> "$tmp/err2"
+st2=$?
+[ $st -eq 0 ] && grep -q "warning: dropped: contact pair bounce (eomc simulates smooth dynamics" "$tmp/err" &&
+  grep -q "warning: dropped: the fluid forces on body ball (MuJoCo's ellipsoid model" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 2 ] && grep -q '^  fluid: \[{force: ".*", on: box}, {torque: ".*", on: box}\]$' "$tmp/out" &&
+  [ $st2 -eq 2 ] && [ ! -s "$tmp/out2" ] && grep -q "error: --strict" "$tmp/err2"
+ok $? "a contact pair and an ellipsoid fluid model: dropped by name (--strict: exit 2), the box's fluid imported ($(cat "$tmp/err" | tr '\n' ' '))"
+
+# --floating: the URDF's root link free.  The spec has the trunk's free
+# joint first; without it, the trunk is the world's (no body).  Run so
+# (eomc run ROBOT.urdf --floating), legs swinging from their initial
+# rates, nothing but gravity acts on the whole: its centre of mass (by
+# MuJoCo's kinematics of the floating URDF) moves on a parabola, its second
+# differences over the rows' step h are (0, 0, -g h^2)
+"$eomc" import "$models_dir/legged.urdf" > "$tmp/fixed.yaml" 2> /dev/null
+grep -q '^coordinates: \[trunk_x, trunk_y, trunk_z, trunk_qw, trunk_qx, trunk_qy, trunk_qz, left_hip, left_knee, right_hip, right_knee\]$' "$tmp/legged_urdf.yaml" &&
+  grep -q '^  trunk: {mass: 4, frame: trunk_axes, center: trunk_com' "$tmp/legged_urdf.yaml" &&
+  grep -q '^coordinates: \[left_hip, left_knee, right_hip, right_knee\]$' "$tmp/fixed.yaml" &&
+  ! grep -q '^  trunk:' "$tmp/fixed.yaml"
+ok $? "legged.urdf --floating: the trunk a free body (trunk_x .. trunk_qz); without it, fixed to the world"
+"$eomc" run "$models_dir/legged.urdf" --floating --init "left_hip'=3" --init "right_knee'=-2" \
+  --init "trunk_x'=0.4" --rtol 1e-12 --atol 1e-12 -o "$tmp/legged.csv" 2> "$tmp/err"
+st=$?
+cut -d, -f1-12 "$tmp/legged.csv" | tail -n +2 | tr ',' ' ' | "$mj" "$tmp/legged_floating.urdf" com > "$tmp/com"
+par=$(awk '{ t[NR] = $1; x[NR] = $2; y[NR] = $3; z[NR] = $4 }
+  END { if (NR < 101) { print "nan"; exit }
+        for (i = 2; i < NR; i++) {
+          h = t[i + 1] - t[i]
+          d = z[i + 1] - 2 * z[i] + z[i - 1] + 9.81 * h * h; e = x[i + 1] - 2 * x[i] + x[i - 1]
+          f = y[i + 1] - 2 * y[i] + y[i - 1]
+          d = d < 0 ? -d : d; e = e < 0 ? -e : e; f = f < 0 ? -f : f
+          m = d > m ? d : m; m = e > m ? e : m; m = f > m ? f : m; s = x[NR] - x[1] }
+        printf "%.3g %.3g\n", m, s }' "$tmp/com")
+swing=$(awk -F, 'NR == 2 { a = $9 } END { d = $9 - a; print (d < 0 ? -d : d) }' "$tmp/legged.csv")
+set -- $par
+[ $st -eq 0 ] && grep -q "^t,trunk_x,trunk_y,trunk_z,trunk_qw,trunk_qx,trunk_qy,trunk_qz,left_hip,left_knee,right_hip,right_knee," "$tmp/legged.csv" &&
+  awk -v c="$1" -v s="$swing" -v x="${2:-0}" 'BEGIN { exit !(c != "nan" && c <= 1e-11 && s > 0.2 && x > 0.2) }'
+ok $? "eomc run legged.urdf --floating, the legs swinging ($swing rad): its centre of mass on a parabola, second differences within $1 m of (0, 0, -g h^2) (<= 1e-11)"
+# a URDF joint's <mimic> (a coupling MuJoCo's reader ignores): dropped by
+# name, --strict refuses it; one in a comment is no mimic
+sed 's|<joint name="right_knee" type="revolute">|&<mimic joint="left_knee" multiplier="1"/>|
+     s|<joint name="right_hip" type="continuous">|&<!-- <mimic joint="left_hip"/> -->|' \
+  "$models_dir/legged.urdf" > "$tmp/mimic.urdf"
+"$eomc" import "$tmp/mimic.urdf" --floating > "$tmp/out" 2> "$tmp/err"
+st=$?
+"$eomc" import "$tmp/mimic.urdf" --strict > "$tmp/out2" 2> "$tmp/err2"
+st2=$?
+[ $st -eq 0 ] && [ $(grep -c "<mimic>" "$tmp/err") -eq 1 ] &&
+  grep -q "warning: dropped: the <mimic> of joint right_knee (MuJoCo's URDF reader ignores it: the joint moves on its own)" "$tmp/err" &&
+  [ $st2 -eq 2 ] && [ ! -s "$tmp/out2" ] && grep -q "error: --strict" "$tmp/err2"
+ok $? "a URDF joint's <mimic>: dropped by name (--strict: exit 2) ($(grep "<mimic>" "$tmp/err"))"
+# --floating on an MJCF, on a URDF whose root is the link world (MuJoCo's
+# world itself), and on a spec: refused, exit 2, nothing written
+"$eomc" import "$models_dir/arm.xml" --floating -o "$tmp/f.yaml" > /dev/null 2> "$tmp/err"
+st=$?
+sed 's|<robot name="legged">|<robot name="legged"><link name="world"/><joint name="w" type="fixed"><parent link="world"/><child link="trunk"/></joint>|' \
+  "$models_dir/legged.urdf" > "$tmp/world.urdf"
+"$eomc" import "$tmp/world.urdf" --floating > "$tmp/out" 2> "$tmp/err2"
+st2=$?
+"$eomc" run "$tmp/fixed.yaml" --floating > /dev/null 2> "$tmp/err3"
+st3=$?
+[ $st -eq 2 ] && [ ! -e "$tmp/f.yaml" ] &&
+  grep -q "arm.xml: error: --floating frees the root link of a URDF, which MuJoCo welds to the world; an MJCF says itself how its bodies move: give its root body a <freejoint/>" "$tmp/err" &&
+  [ $st2 -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "world.urdf: error: --floating: the URDF's root link is 'world'" "$tmp/err2" &&
+  [ $st3 -eq 2 ] && grep -q "eomc: --floating is for a URDF given where the spec goes" "$tmp/err3"
+ok $? "--floating on an MJCF, on a URDF rooted at the link world, on a spec: refused by name, exit 2 ($(cat "$tmp/err" "$tmp/err2" "$tmp/err3" | tr '\n' ' '))"
+
+# docs/import.md lists what eomc does with every flag, option and model
+# field of the MuJoCo it is built with (its mjmodel.h): a MuJoCo that adds
+# one is noticed here
+header=$(printf '#include <mujoco/mjmodel.h>\n' | cc -E -x c - 2> /dev/null |
+  sed -n 's|^# [0-9]* "\(.*/mjmodel\.h\)".*|\1|p' | head -1)
+names=$(awk '/^typedef enum mjtDisableBit_/, /} mjtDisableBit;/ { if (match($0, /mjDSBL_[A-Z]+/)) print "flag " tolower(substr($0, RSTART + 7, RLENGTH - 7)) }
+  /^typedef enum mjtEnableBit_/, /} mjtEnableBit;/ { if (match($0, /mjENBL_[A-Z]+/)) print "flag " tolower(substr($0, RSTART + 7, RLENGTH - 7)) }
+  /^struct mjOption_/, /^};/ { if (match($0, /[a-z_0-9]+(\[[A-Za-z0-9]+\])?;/)) { f = substr($0, RSTART, RLENGTH); sub(/[[;].*/, "", f); print "option " f } }
+  /^struct mjModel_/, /^};/ { if ($0 ~ /\*/ && match($0, /[a-z_A-Z0-9]+;/)) print "field " substr($0, RSTART, RLENGTH - 1)
+                            else if ($0 ~ /^  mj[A-Z][a-z]+ +[a-z]+;/ && match($0, /[a-z]+;/)) print "field " substr($0, RSTART, RLENGTH - 1) }' "$header")
+# a flag as a row of the flags' table, in its MJCF spelling (| `gravity="disable"` |),
+# an option in the first cell of a row, a field anywhere
+missing=$(echo "$names" | while read -r kind name; do
+  case $kind in
+  flag) pat="^| \`$name=\"\(disable\|enable\)\"\` |" ;;
+  option) pat="^| [^|]*\`$name\`" ;;
+  *) pat="\`$name\`" ;;
+  esac
+  grep -q "$pat" "$src/docs/import.md" || printf '%s %s, ' "$kind" "$name"; done)
+count=$(echo "$names" | grep -c .)
+[ -n "$header" ] && [ "$count" -gt 300 ] && [ -z "$missing" ]
+ok $? "docs/import.md names each of the $count flags, options and model fields of $header${missing:+; not: $missing}"
 "$eomc" import "$tmp/nosuch.xml" > "$tmp/out" 2> "$tmp/err"
 st=$?
 [ $st -eq 2 ] && grep -q "nosuch.xml: error: MuJoCo cannot load it" "$tmp/err"

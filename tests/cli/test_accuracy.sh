@@ -243,7 +243,7 @@ state_diff() {
         d = $i - w; if (d < 0) d = -d; if (d > dm) dm = d } }
     END { printf "%.17g\n", dm }' "$1" "${2:-$1}"
 }
-stat() { sed -n "s/^$1 //p" "$2"; }
+stat_of() { sed -n "s/^$1 //p" "$2"; }
 "$eomc" import "$src/tests/cli/rest_biped.xml" > /dev/null 2> "$tmp/imp.err"; st=$?
 if [ $st = 0 ] || ! grep -q 'libmujoco-dev' "$tmp/imp.err"; then
   export EOMC_CACHE_DIR="$tmp/cache"
@@ -253,8 +253,8 @@ if [ $st = 0 ] || ! grep -q 'libmujoco-dev' "$tmp/imp.err"; then
   "$eomc" build "$biped" --extended -o "$tmp/biped" 2> /dev/null
   "$tmp/biped" $span --error --stats --reference-out "$tmp/bref.csv" -o "$tmp/brun.csv" \
     2> "$tmp/biped.err"; st=$?
-  refe=$(stat reference_error "$tmp/biped.err") emax=$(stat error_max "$tmp/biped.err")
-  steps=$(stat reference_steps "$tmp/biped.err")
+  refe=$(stat_of reference_error "$tmp/biped.err") emax=$(stat_of error_max "$tmp/biped.err")
+  steps=$(stat_of reference_steps "$tmp/biped.err")
   # the reference's rows and the closed form are each rounded to doubles
   bound=$(awk -v e="$refe" 'BEGIN { printf "%.3g", e + 2^-52 * 9.81 }')
   dref=$(state_diff "$tmp/bref.csv" "" freefall) drun=$(state_diff "$tmp/brun.csv" "" freefall)
@@ -289,7 +289,7 @@ if [ $st = 0 ] || ! grep -q 'libmujoco-dev' "$tmp/imp.err"; then
     2> "$tmp/grip.err"; st=$?
   "$tmp/grip" --method rk8pd --rtol 1e-13 --atol 1e-13 -o "$tmp/gtight.csv" 2> /dev/null
   dref=$(state_diff "$tmp/gtight.csv" "$tmp/gref.csv") drun=$(state_diff "$tmp/gtight.csv" "$tmp/grun.csv")
-  emax=$(stat error_max "$tmp/grip.err")
+  emax=$(stat_of error_max "$tmp/grip.err")
   fingers=$(awk -F, 'NR > 1 { d = $5 - $6; if (d < 0) d = -d; if (d > dm) dm = d; if ($5 > f) f = $5 }
     END { printf "%.3g %.3g", dm, f }' "$tmp/gref.csv")
   [ $st -eq 0 ] && within "$dref" 0 1e-12 && [ "$(sed -n '1s/^t,j1,j2,j3,f1,f2,.*/ok/p' "$tmp/gref.csv")" = ok ] &&

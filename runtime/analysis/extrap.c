@@ -119,20 +119,6 @@ extrap_error_order(int method)
     return method == EXTRAP_GBS ? 2 * EXTRAP_GBS_LEVELS - 1 : EXTRAP_LI_LEVELS;
 }
 
-/* The error of a step: max_i |hi_i - lo_i| / (tol max(scale_i, |hi_i|)). */
-static double
-step_error(const Extrap *e, const eomc_ext *hi, const eomc_ext *lo, const eomc_ext *scale,
-           double tol)
-{
-    eomc_ext worst = 0;
-    for (int i = 0; i < e->N; i++) {
-        eomc_ext sc = fmaxl(scale[i], fabsl(hi[i])), d = fabsl(hi[i] - lo[i]);
-        if (d > 0)
-            worst = fmaxl(worst, sc > 0 ? d / (tol * sc) : INFINITY);
-    }
-    return (double)worst;
-}
-
 /* s := s + y, with c the low part lost so far (the sum is s - c). */
 static inline void
 kahan_add(eomc_ext *s, eomc_ext *c, eomc_ext y)
@@ -227,15 +213,16 @@ li_step(Extrap *e, eomc_ext t, eomc_ext H, const eomc_ext *X, const eomc_ext *F)
 
 int
 extrap_step(Extrap *e, int method, eomc_ext t, eomc_ext H, const eomc_ext *X,
-            const eomc_ext *F, const eomc_ext *scale, double tol, eomc_ext *out,
-            double *err)
+            const eomc_ext *F, eomc_ext *out, eomc_ext *est)
 {
     int L = method == EXTRAP_GBS ? EXTRAP_GBS_LEVELS : EXTRAP_LI_LEVELS, N = e->N;
     int rc = method == EXTRAP_GBS ? gbs_step(e, t, H, X, F) : li_step(e, t, H, X, F);
     if (rc != 0)
         return -1;
-    memcpy(out, e->T + (size_t)(L - 1) * N, (size_t)N * sizeof *out);
-    *err = step_error(e, out, e->T + (size_t)(L - 2) * N, scale, tol);
+    const eomc_ext *hi = e->T + (size_t)(L - 1) * N, *lo = e->T + (size_t)(L - 2) * N;
+    for (int i = 0; i < N; i++)
+        est[i] = hi[i] - lo[i];
+    memcpy(out, hi, (size_t)N * sizeof *out);
     return 0;
 }
 

@@ -15,10 +15,9 @@
  *    resolve them.
  *
  * A step's error estimate is the difference of the tableau's last two
- * values, each component's relative to tol max(scale_i, |x_i|): > 1 asks
- * for a smaller step.  The scale is the caller's (positive, in each
- * component's own units), so scaling the units of the state scales
- * every test alike.
+ * values, by component: the caller judges it against the sizes it
+ * chooses (the reference, against the magnitudes of the solution's
+ * components and groups, the step's end included).
  */
 #ifndef EOMC_EXTRAP_H
 #define EOMC_EXTRAP_H
@@ -46,12 +45,12 @@ Extrap *extrap_alloc(int N, ExtrapRhs f, void *ctx);
 void extrap_free(Extrap *e);
 
 /* One step of method from (t, X), F = f(t, X), of size H: the
- * extrapolated value into out (which may be X), its error estimate
- * into *err.  0, or -1 when f fails at a stage or (linearly implicit) the
- * iteration matrix is singular: a smaller step may do. */
+ * extrapolated value into out (which may be X), its error estimate by
+ * component into est [N] (not out).  0, or -1 when f fails at a stage or
+ * (linearly implicit) the iteration matrix is singular: a smaller step
+ * may do. */
 int extrap_step(Extrap *e, int method, eomc_ext t, eomc_ext H, const eomc_ext *X,
-                const eomc_ext *F, const eomc_ext *scale, double tol, eomc_ext *out,
-                double *err);
+                const eomc_ext *F, eomc_ext *out, eomc_ext *est);
 /* The order of the error estimate in H (the local error of the lower of
  * the two values it compares), for the step-size control. */
 int extrap_error_order(int method);

@@ -29,8 +29,9 @@
  * only the stability, extrap.c).
  *
  * The error test of a component is relative to its magnitude so far,
- * floored at FLOOR of its group's (coordinates, velocities): scaling the
- * units of length or time scales every test alike.
+ * floored at FLOOR of its group's (coordinates, velocities), and below
+ * that at the group's rounding (step_error): scaling the units of length
+ * or time scales every test alike.
  *
  * The refinement.  Solutions are computed at the tolerances TOL_FIRST,
  * TOL_FIRST / TOL_STEP, ... until two successive ones agree to the
@@ -116,6 +117,7 @@ typedef struct Ref {
     int have_prev;                /* a and lam hold the last solution */
     eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
     eomc_ext *Y, *G, *Y2;         /* [N] side steps' state, x', result */
+    eomc_ext *D;                  /* [N] a step's error estimate */
     eomc_ext *mag, *sc;           /* [N] the largest |X_i| so far, the scales */
     Extrap *ex;
     int method;                   /* EXTRAP_GBS or EXTRAP_LINEARLY_IMPLICIT */
@@ -277,6 +279,44 @@ ext_rhs(void *ctx, eomc_ext t, const eomc_ext *X, eomc_ext *F)
     return rhs(ctx, t, X, F);
 }
 
+/* The error of a step ending at x with estimate d, in tolerances: each
+ * component's |d_i| against tol times its magnitude over the solution so
+ * far, the step's end included; a component within FLOOR of its group's
+ * (coordinates, velocities; the end included again) against tol FLOOR of
+ * the group, or one rounding of the group in eomc_ext where that is more.
+ *  - The end counts for the group: at a start from rest every velocity
+ *    is 0 so far, and a q'' that is 0 in exact arithmetic (of a body
+ *    symmetric about a plane, of a finger coupled to another) comes out
+ *    as rounding (1e-17 to 1e-40), which against a scale of 0, or its own
+ *    size, is an error of any size: no step could be taken.  The first
+ *    step's own motion gives the group its scale.
+ *  - tol FLOOR is 1e-21 of the group at the first tolerance, below long
+ *    double's resolution.  Such a component is the rounding of the
+ *    group's terms (a ball joint's quaternion rates on a falling base),
+ *    and judged finer than that the steps were held by rounding, not
+ *    truncation (2890 steps of a rigid fall where 111 do,
+ *    tests/cli/rest_biped.xml), or no refinement could be made at all.
+ *    The others keep tol alone: long double resolves more than its
+ *    rounding of the group in a component of the group's size (the
+ *    Arenstorf orbit's reference at 1e-19 is 6.8e-15 from Taylor's; with
+ *    every component held to the group's rounding, 4.8e-13). */
+static double
+step_error(const Ref *r, const eomc_ext *x, const eomc_ext *d)
+{
+    int n = r->n;
+    eomc_ext group[2] = {0, 0}, worst = 0;
+    for (int i = 0; i < r->N; i++)
+        group[i >= n] = fmaxl(group[i >= n], fmaxl(r->mag[i], fabsl(x[i])));
+    for (int i = 0; i < r->N; i++) {
+        eomc_ext own = fmaxl(r->mag[i], fabsl(x[i])), least = FLOOR * group[i >= n];
+        eomc_ext allowed = own > least ? r->tol * own
+                                       : fmaxl(r->tol * least, LDBL_EPSILON * group[i >= n]);
+        if (d[i] != 0)
+            worst = fmaxl(worst, allowed > 0 ? fabsl(d[i]) / allowed : INFINITY);
+    }
+    return (double)worst;
+}
+
 /* The state at t1 inside an accepted step from (t, r->X): a step of its
  * own from there, leaving the main steps as they are.  Being part of an
  * accepted step, its truncation error is smaller than the step's (the
@@ -294,11 +334,9 @@ side_step(Ref *r, eomc_ext t, eomc_ext t1, eomc_ext *out)
         memcpy(r->G, r->F, (size_t)N * sizeof *r->G);
         int p = 0;
         for (; p < pieces; p++) {
-            double e;
             if ((p > 0 && rhs(r, t + p * h, r->Y, r->G) != 0) ||
-                extrap_step(r->ex, r->method, t + p * h, h, r->Y, r->G, r->sc, r->tol,
-                            r->Y, &e) != 0 ||
-                !(e <= SIDE_SLACK))
+                extrap_step(r->ex, r->method, t + p * h, h, r->Y, r->G, r->Y, r->D) != 0 ||
+                !(step_error(r, r->Y, r->D) <= SIDE_SLACK))
                 break;
         }
         if (p == pieces) {
@@ -312,8 +350,10 @@ side_step(Ref *r, eomc_ext t, eomc_ext t1, eomc_ext *out)
     return -1;
 }
 
-/* Each component's scale for the error tests: its largest magnitude so
- * far, at least FLOOR of its group's. */
+/* Each component's scale for the difference quotients (the Jacobian, the
+ * spectral radius) and Taylor's step rule: its largest magnitude so far,
+ * at least FLOOR of its group's; 0 for a group still at 0 (extrap.c then
+ * takes another's). */
 static void
 scales(Ref *r)
 {
@@ -395,10 +435,9 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             return -1;
         need_jacobian = 0;
         eomc_ext left = t_end - t, step = H >= left ? left : 2 * H > left ? left / 2 : H;
-        double err;
-        if (extrap_step(r->ex, r->method, t, step, r->X, r->F, r->sc, r->tol, r->Xn,
-                        &err) != 0)
-            err = INFINITY; /* a stage failed: a smaller step may not */
+        double err = INFINITY; /* a stage failed: a smaller step may not */
+        if (extrap_step(r->ex, r->method, t, step, r->X, r->F, r->Xn, r->D) == 0)
+            err = step_error(r, r->Xn, r->D);
         double fac = err > 0 ? SAFETY * pow(err, -1.0 / extrap_error_order(r->method))
                              : GROW_MAX;
         fac = fmin(GROW_MAX, fmax(SHRINK_MAX, fac));
@@ -491,7 +530,7 @@ ref_free(Ref *r)
 {
     eomc_ext *arrays[] = {r->p, r->u, r->dudt, r->M,      r->h, r->K, r->r,  r->f,
                           r->B, r->a, r->lam,  r->cj[0], r->X, r->F, r->Xn, r->Y,
-                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK};
+                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK, r->D};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->perm);
@@ -524,11 +563,11 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     eomc_ext **arrays[] = {&r->p, &r->u, &r->dudt, &r->M,      &r->h, &r->K, &r->r,
                            &r->f, &r->B, &r->a,    &r->lam,    &r->cj[0], &r->X, &r->F,
                            &r->Xn, &r->Y, &r->G,   &r->Y2,     &r->mag, &r->sc, &r->eq,
-                           &r->dK};
+                           &r->dK, &r->D};
     size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W,
                       nc, nc * n, n, nc, ncj, N, N,
                       N, N, N, N, N, N, 2 * W,
-                      W};
+                      W, N};
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;

@@ -98,6 +98,9 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
         put_stat("error_max", w->err_max);
         put_stat("reference_error", w->ref->error);
         fprintf(io_err(), "reference_method %s\n", w->ref->method);
+        if (w->ref->refinements > 0) /* computed, not read */
+            fprintf(io_err(), "reference_steps %ld\nreference_rhs_evals %ld\n",
+                    w->ref->steps, w->ref->rhs_evals);
     }
     if (m->nevent > 0)
         fprintf(io_err(), "events %ld\nevent_evals %ld\n", st->events, st->event_evals);

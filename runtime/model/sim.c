@@ -420,6 +420,12 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
     const eomc_model *m = s->m;
     double fraction;
     int c = kkt_vanished(s->kkt, &fraction);
+    if (c >= 0 && rc != KKT_DEPENDENT)
+        return sim_numeric_error(s, t, q, v, "the constraint %s (%s) degenerates here: "
+                                 "its df/dq'' has fallen to %.2g of its largest size in the "
+                                 "run (two of its roots in q'' merge, or it no longer "
+                                 "constrains the motion)", m->c_names[c],
+                                 m->q_names[m->c_dependent[c]], fraction);
     if (rc == KKT_SINGULAR || rc == KKT_DEPENDENT) {
         const unsigned char *drop = depend_dropped(s->dep);
         int nr = 0, dims;
@@ -433,12 +439,6 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
                                      "df/dq'' span %d dimension%s)", dep, dims,
                                      dims == 1 ? "" : "s");
     }
-    if (c >= 0 && rc != KKT_DEPENDENT)
-        return sim_numeric_error(s, t, q, v, "the constraint %s (%s) degenerates here: "
-                                 "its df/dq'' has fallen to %.2g of its largest size in the "
-                                 "run (two of its roots in q'' merge, or it no longer "
-                                 "constrains the motion)", m->c_names[c],
-                                 m->q_names[m->c_dependent[c]], fraction);
     switch (rc) {
     case KKT_DEPENDENT:
         return sim_numeric_error(s, t, q, v, "the constraints cannot be solved for their "
@@ -491,6 +491,19 @@ int
 sim_choose_rows(eomc_sim *s, double t, const double *q, const double *v)
 {
     return !s->dep || s->chosen ? EOMC_OK : choose_rows(s, t, q, v);
+}
+
+int
+sim_start_rows(eomc_sim *s, double t, const double *q, const double *v)
+{
+    if (!s->dep)
+        return EOMC_OK;
+    if (depend_dropped(s->dep)) {
+        depend_clear(s->dep);
+        if (use_rows(s) != EOMC_OK)
+            return EOMC_EUSAGE;
+    }
+    return choose_rows(s, t, q, v);
 }
 
 const unsigned char *

@@ -62,6 +62,9 @@ int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
  * not happened yet (again after the parameters changed); EOMC_OK, or the
  * error (an eliminating model whose rows are dependent there). */
 int sim_choose_rows(eomc_sim *s, double t, const double *q, const double *v);
+/* The same, chosen again at (t, q, v) whatever was chosen before: where a
+ * run starts (eomc_sim_integrate), so that each run's are its own start's. */
+int sim_start_rows(eomc_sim *s, double t, const double *q, const double *v);
 /* The rows left out of the solves as dependent on the others, drop [nc]
  * (1: left out, its multiplier 0), or NULL when none are (or they are not
  * chosen yet). */

@@ -196,7 +196,7 @@ fb=$(awk -F, -v drop="res[$drop]" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i 
            r = $a < 0 ? -$a : $a; if (r > big) big = r; n++ }
   END { printf "%.3g %.3g %.3g %d", md, mk, big, (d && n == 501) }' "$tmp/fourbar.csv")
 err=$(tr '\n' ' ' < "$tmp/err" | sed -n 's/.*the error was at *most \([0-9.e+-]*[0-9]\) over the rows.*/\1/p')
-set -- $fb
+set -- $fb nan nan nan 0 # (a run that wrote no CSV: the defaults)
 [ $st -eq 0 ] && [ "$4" -eq 1 ] &&
   awk -v d="$1" -v k="$2" -v big="$3" -v e="$err" \
     'BEGIN { exit !(d <= 2 * k && k <= 0.4e-9 && e != "" && e + 0 <= 1e-9 * big) }'

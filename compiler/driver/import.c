@@ -829,6 +829,7 @@ eq_rows_at(const mjModel *m, const mjData *d, int e, double *v, double *size)
     for (int i = 0; i < 3; i++) /* X1^T (p1 - p2): column i of X1 is its axis i */
         v[i] = X1[i] * (p[0][0] - p[1][0]) + X1[3 + i] * (p[0][1] - p[1][1]) +
                X1[6 + i] * (p[0][2] - p[1][2]);
+    v[3] = v[4] = v[5] = 0;
     if (!weld)
         return;
     quat_mat(c + 6, R); /* A = X1 R: body 1's axes turned by the relpose */
@@ -880,6 +881,11 @@ empty_rows(const mjModel *m, unsigned char *empty)
     }
     for (int e = 0; e < ne; e++)
         for (int r = 0; r < 6; r++) {
+            int type = m->eq_type[e];
+            if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD)) {
+                empty[6 * e + r] = 0;
+                continue;
+            }
             double s = r < 3 ? size : 1;
             empty[6 * e + r] = hi[6 * e + r] - lo[6 * e + r] <= CONST_MOVES * s &&
                                fabs(hi[6 * e + r]) <= CONST_MOVES * s &&

@@ -498,6 +498,7 @@ sim_start_rows(eomc_sim *s, double t, const double *q, const double *v)
 {
     if (!s->dep)
         return EOMC_OK;
+    s->chosen = 0;
     if (depend_dropped(s->dep)) {
         depend_clear(s->dep);
         if (use_rows(s) != EOMC_OK)

@@ -956,23 +956,132 @@ scalar_of(char *buf, size_t len, const mjModel *m, const char *const *qn,
     }
 }
 
+/* A row of a connect or weld that has one value at every pose constrains
+ * nothing (a planar linkage's connect across its plane), and eomc refuses
+ * a constraint free of the coordinates: it is found at CONST_POSES poses
+ * drawn at random (every hinge and ball turned anywhere, every slide and
+ * free position moved by up to 1) besides qpos0, and dropped with a note
+ * where it moves by less than CONST_MOVES of the model's size there (its
+ * anchors' largest distance from the origin; 1 for a turn's rows): rounding
+ * leaves 1e-16 of it, a row that moves moves by a fraction of a link's
+ * length.  A row constant but not 0 there is kept (the constraint cannot
+ * hold; the spec's check then names it). */
+enum { CONST_POSES = 8 };
+#define CONST_MOVES 1e-9
+
+/* The values at d's pose of equality e's rows as put_constraints writes
+ * them: the anchors' offset in body 1's axes, then a weld's turn; the
+ * size they are measured against into *size (at least what it was). */
+static void
+eq_rows_at(const mjModel *m, const mjData *d, int e, double *v, double *size)
+{
+    const double *c = m->eq_data + mjNEQDATA * e;
+    int weld = m->eq_type[e] == mjEQ_WELD;
+    int b[2] = {m->eq_obj1id[e] < 0 ? 0 : m->eq_obj1id[e],
+                m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e]};
+    double p[2][3], A[9], R[9];
+    for (int k = 0; k < 2; k++) {
+        const double *X = d->xmat + 9 * b[k], *x = d->xpos + 3 * b[k];
+        const double *an = c + 3 * (weld ? 1 - k : k);
+        for (int i = 0; i < 3; i++)
+            p[k][i] = x[i] + X[3 * i] * an[0] + X[3 * i + 1] * an[1] + X[3 * i + 2] * an[2];
+        *size = fmax(*size, sqrt(p[k][0] * p[k][0] + p[k][1] * p[k][1] + p[k][2] * p[k][2]));
+    }
+    const double *X1 = d->xmat + 9 * b[0], *X2 = d->xmat + 9 * b[1];
+    for (int i = 0; i < 3; i++) /* X1^T (p1 - p2): column i of X1 is its axis i */
+        v[i] = X1[i] * (p[0][0] - p[1][0]) + X1[3 + i] * (p[0][1] - p[1][1]) +
+               X1[6 + i] * (p[0][2] - p[1][2]);
+    v[3] = v[4] = v[5] = 0;
+    if (!weld)
+        return;
+    quat_mat(c + 6, R); /* A = X1 R: body 1's axes turned by the relpose */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            A[3 * i + j] = X1[3 * i] * R[j] + X1[3 * i + 1] * R[3 + j] + X1[3 * i + 2] * R[6 + j];
+    for (int k = 0; k < 3; k++) { /* dot(A.j, B.i) - dot(A.i, B.j) */
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        v[3 + k] = 0;
+        for (int r = 0; r < 3; r++)
+            v[3 + k] += A[3 * r + j] * X2[3 * r + i] - A[3 * r + i] * X2[3 * r + j];
+    }
+}
+
+/* empty[6 e + r]: row r of connect or weld e has one value, 0, at every
+ * pose (above). */
+static void
+empty_rows(const mjModel *m, unsigned char *empty)
+{
+    mjData *d = mj_makeData(m);
+    int ne = m->neq;
+    double *lo = xmalloc(12 * ((size_t)ne + 1) * sizeof *lo), *hi = lo + 6 * ne;
+    double size = 0, v[6];
+    unsigned long long x = 0x9e3779b97f4a7c15u; /* a fixed seed: the same spec every time */
+    for (int pose = 0; pose <= CONST_POSES; pose++) {
+        mju_copy(d->qpos, m->qpos0, m->nq);
+        for (int j = 0; pose > 0 && j < m->njnt; j++) {
+            int type = m->jnt_type[j], q = m->jnt_qposadr[j];
+            int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+            for (int k = 0; k < nq; k++) { /* in [-1, 1) */
+                x = x * 6364136223846793005u + 1442695040888963407u; /* Knuth's MMIX */
+                double r = (double)(x >> 11) * 0x1p-52 - 1;
+                d->qpos[q + k] = type == mjJNT_HINGE ? r * mjPI : r;
+            }
+            if (type == mjJNT_BALL || type == mjJNT_FREE)
+                mju_normalize4(d->qpos + q + nq - 4);
+        }
+        mj_kinematics(m, d);
+        for (int e = 0; e < ne; e++) {
+            int type = m->eq_type[e];
+            if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD))
+                continue;
+            eq_rows_at(m, d, e, v, &size);
+            for (int r = 0; r < 6; r++) {
+                lo[6 * e + r] = pose ? fmin(lo[6 * e + r], v[r]) : v[r];
+                hi[6 * e + r] = pose ? fmax(hi[6 * e + r], v[r]) : v[r];
+            }
+        }
+    }
+    for (int e = 0; e < ne; e++)
+        for (int r = 0; r < 6; r++) {
+            int type = m->eq_type[e];
+            if (!m->eq_active[e] || (type != mjEQ_CONNECT && type != mjEQ_WELD)) {
+                empty[6 * e + r] = 0;
+                continue;
+            }
+            double s = r < 3 ? size : 1;
+            empty[6 * e + r] = hi[6 * e + r] - lo[6 * e + r] <= CONST_MOVES * s &&
+                               fabs(hi[6 * e + r]) <= CONST_MOVES * s &&
+                               fabs(lo[6 * e + r]) <= CONST_MOVES * s;
+        }
+    free(lo);
+    mj_deleteData(d);
+}
+
 /* The active equality constraints, as holonomic constraints:
- * - a connect as its two anchors' offset, one constraint per world axis
- *   (NAME_x, NAME_y, NAME_z);
+ * - a connect as its two anchors' offset in body 1's axes, one constraint
+ *   per axis (NAME_x, NAME_y, NAME_z): a planar loop's rows across its
+ *   plane are then the same at every pose, wherever the loop turns, and
+ *   are dropped (empty_rows), where in the world's axes they would be
+ *   dependent on the others with weights that change with the pose;
  * - a weld as the same, and (unless its torquescale is 0, which leaves the
  *   turn free) the turn R = A^T B from body 1's turned axes A to body 2's B
  *   held at the identity by its skew part, R - R^T = 2 sin(th) [n]x:
  *   NAME_rx = dot(A.z, B.y) - dot(A.y, B.z) and its cyclic shifts, whose
  *   rows span MuJoCo's (the quaternion's vector part, sin(th/2) n) there;
  * - a joint or tendon coupling s1 - s1_0 = c0 + c1 (s2 - s2_0) + ... +
- *   c4 (s2 - s2_0)^4 (s_0 their qpos0 values; without a second, c0). */
+ *   c4 (s2 - s2_0)^4 (s_0 their qpos0 values; without a second, c0).
+ * The rows of a connect or weld that constrain nothing are named in a
+ * note on warn. */
 static void
 put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
                 const char *const *eqn, const char *const *eqp, const char *const *axes,
-                FILE *out)
+                FILE *out, const char *path, FILE *warn)
 {
     char d1[400], d2[400];
     int any = 0;
+    unsigned char *empty = xmalloc(6 * ((size_t)m->neq + 1));
+    empty_rows(m, empty);
+    Drop dropped_rows = {0};
     for (int e = 0; e < m->neq; e++) {
         if (!eq_on(m, e))
             continue;
@@ -980,17 +1089,25 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
         int type = m->eq_type[e];
         const double *c = m->eq_data + mjNEQDATA * e;
         if (type == mjEQ_CONNECT || type == mjEQ_WELD) {
-            for (int k = 0; k < 3; k++)
-                fprintf(out, "  %s_%c: \"dot(pos(%s, %s), world.%c)\"\n", eqn[e], 'x' + k,
-                        eqp[3 * e], eqp[3 * e + 1], 'x' + k);
-            if (type == mjEQ_CONNECT || c[10] == 0)
-                continue;
-            int b2 = m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e];
-            const char *A = eqp[3 * e + 2], *B = axes[b2];
-            for (int k = 0; k < 3; k++) {
-                char i = (char)('x' + (k + 1) % 3), j = (char)('x' + (k + 2) % 3);
-                fprintf(out, "  %s_r%c: \"dot(%s.%c, %s.%c) - dot(%s.%c, %s.%c)\"\n", eqn[e],
-                        'x' + k, A, j, B, i, A, i, B, j);
+            int b1 = m->eq_obj1id[e] < 0 ? 0 : m->eq_obj1id[e];
+            char row[300];
+            for (int k = 0; k < 6; k++) {
+                if (k >= 3 && (type == mjEQ_CONNECT || c[10] == 0))
+                    break;
+                int i = (k + 1) % 3, j = (k + 2) % 3;
+                snprintf(row, sizeof row, k < 3 ? "%s_%c" : "%s_r%c", eqn[e], 'x' + k % 3);
+                if (empty[6 * e + k]) {
+                    drop_add(&dropped_rows, row);
+                    continue;
+                }
+                if (k < 3)
+                    fprintf(out, "  %s: \"dot(pos(%s, %s), %s.%c)\"\n", row, eqp[3 * e],
+                            eqp[3 * e + 1], axes[b1], 'x' + k);
+                else
+                    fprintf(out, "  %s: \"dot(%s.%c, %s.%c) - dot(%s.%c, %s.%c)\"\n", row,
+                            eqp[3 * e + 2], 'x' + j, axes[m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e]],
+                            'x' + i, eqp[3 * e + 2], 'x' + i,
+                            axes[m->eq_obj2id[e] < 0 ? 0 : m->eq_obj2id[e]], 'x' + j);
             }
             continue;
         }
@@ -1015,6 +1132,10 @@ put_constraints(const mjModel *m, const char *const *qn, const char *const *tn,
         else
             fprintf(out, "  %s: \"%s - %s\"\n", eqn[e], d1, poly);
     }
+    drop_tell(warn, path, "note", "dropped:", &dropped_rows, "constraint row",
+              "0 at every pose, it constrains nothing: a planar loop's row across its "
+              "plane");
+    free(empty);
 }
 
 /* The file's text, NUL-ended, or NULL. */
@@ -1451,7 +1572,7 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
     put_effects(m, qn, un, tn, body, principal, flow, out);
-    put_constraints(m, qn, tn, eqn, eqp, axes, out);
+    put_constraints(m, qn, tn, eqn, eqp, axes, out, path, warn);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
         if (m->qpos0[q] != 0)

@@ -13,7 +13,10 @@
  * them) is not identically zero as an expression, yet would make the
  * block singular.  Whether that block of B is invertible depends on the
  * state; the runtime checks it at every evaluation and names the
- * constraint when it is not.
+ * constraint when it is not.  A row that is a combination of the rows
+ * before it at the initial state (a planar loop's third row) can have no
+ * coordinate of its own: it shares one, and the runtime leaves it out of
+ * its solves (runtime/model/depend.c), or refuses to eliminate it.
  */
 #include "constraint.h"
 
@@ -116,9 +119,45 @@ augment(Constraints *c, int a, int *owner, unsigned char *seen, const Spec *s,
     return 0;
 }
 
+/* A row whose part outside the span of the rows before it (each at unit
+ * length) is at most this of its length is a combination of them: rounding
+ * leaves 1e-16 of a row that is one exactly. */
+#define DEPENDENT_ROW 1e-9
+
+/* dep[a]: row a of B at the initial state is a combination of the rows
+ * before it, by Gram-Schmidt (twice, for orthogonality to rounding) onto
+ * an orthonormal basis of theirs. */
+static unsigned char *
+dependent_rows(const Constraints *c, const double *Bnum, Arena *A)
+{
+    int n = c->n, nc = c->nc, nb = 0;
+    double *Q = arena_new_array(A, double, nc * n), *r = arena_new_array(A, double, n);
+    unsigned char *dep = arena_new_array(A, unsigned char, nc);
+    for (int a = 0; a < nc; a++) {
+        double len = 0, rest = 0;
+        for (int j = 0; j < n; j++)
+            len = hypot(len, r[j] = Bnum[a * n + j]);
+        for (int pass = 0; pass < 2; pass++)
+            for (int b = 0; b < nb; b++) {
+                double d = 0;
+                for (int j = 0; j < n; j++)
+                    d += Q[b * n + j] * r[j];
+                for (int j = 0; j < n; j++)
+                    r[j] -= d * Q[b * n + j];
+            }
+        for (int j = 0; j < n; j++)
+            rest = hypot(rest, r[j]);
+        dep[a] = !(rest > DEPENDENT_ROW * len);
+        for (int j = 0; !dep[a] && j < n; j++)
+            Q[nb * n + j] = r[j] / rest;
+        nb += !dep[a];
+    }
+    return dep;
+}
+
 static void
 choose_dependent(Constraints *c, int a, int *owner, const Spec *s, const double *Bnum,
-                 Arena *A)
+                 const unsigned char *dep, Arena *A)
 {
     const SpecConstraint *sc = &c->spec[a];
     int n = c->n, j = sc->dependent;
@@ -147,10 +186,17 @@ choose_dependent(Constraints *c, int a, int *owner, const Spec *s, const double 
      * others of their own (a body held by three rows that all involve the
      * same few joints) */
     unsigned char *seen = arena_new_array(A, unsigned char, n);
-    if (!augment(c, a, owner, seen, s, Bnum))
+    if (augment(c, a, owner, seen, s, Bnum))
+        return;
+    if (!dep[a])
         diag_error(sc->loc, "no coordinate is left for constraint '%s' to determine: "
                    "every coordinate it involves is taken by an earlier constraint "
                    "(name one with `dependent:`)", sc->name);
+    for (j = n - 1; j >= 0; j--) /* dependent on them: it shares one */
+        if (c->B[a * n + j] != EXPR_ZERO) {
+            c->dependent[a] = j;
+            return;
+        }
 }
 
 /* B at the spec's initial state: t = 0, q and q' as `initial:` gives
@@ -212,14 +258,15 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
         c->affine &= is_linear_in(D, m, c->f[a], 2);
     }
     double *Bnum = initial_B(c, s, A, P);
+    unsigned char *dep = dependent_rows(c, Bnum, A);
     for (int j = 0; j < n; j++)
         owner[j] = -1;
     for (int a = 0; a < nc; a++) /* named ones first: they are not negotiable */
         if (s->constraint[a].dependent >= 0)
-            choose_dependent(c, a, owner, s, Bnum, A);
+            choose_dependent(c, a, owner, s, Bnum, dep, A);
     for (int a = 0; a < nc; a++)
         if (s->constraint[a].dependent < 0)
-            choose_dependent(c, a, owner, s, Bnum, A);
+            choose_dependent(c, a, owner, s, Bnum, dep, A);
     return c;
 }
 
@@ -252,6 +299,18 @@ constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
                           : sc->order == 2 ? (c->linear[k] ? ", affine in q''"
                                                            : ", nonlinear in q'' (Newton)")
                                            : "";
+        int shared = -1;
+        for (int j = 0; j < k && shared < 0; j++)
+            if (c->dependent[j] == c->dependent[k])
+                shared = j;
+        if (shared >= 0) {
+            fprintf(f, "  %-*s %s%s: %s; shares %s with %s (a combination of the rows "
+                    "before it at the initial state: the runtime leaves a dependent row out "
+                    "of its solves, and cannot eliminate it)\n", w, sc->name,
+                    constraint_order_name(sc->order), lin, how[sc->order],
+                    s->coord[c->dependent[k]].name, c->spec[shared].name);
+            continue;
+        }
         fprintf(f, "  %-*s %s%s: %s; determines %s (%s)\n", w, sc->name,
                 constraint_order_name(sc->order), lin, how[sc->order],
                 s->coord[c->dependent[k]].name,

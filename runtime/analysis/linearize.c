@@ -207,8 +207,17 @@ eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
     /* off the constraints, the linearization describes no motion of the
      * model, and its eigenvalues nothing the model does */
     int rc = sim_off_constraints(s, t, x, x + n, "the linearization");
+    if (rc == EOMC_OK)
+        rc = sim_choose_rows(s, t, x, x + n);
     if (rc != EOMC_OK)
         return rc;
+    /* the state it keeps leaves out one coordinate for each constraint
+     * (its dependent one): a row left out determines none */
+    if (sim_dropped_rows(s))
+        return sim_usage_error(s, "the linearization needs independent constraints, and "
+                               "these are dependent (%s; the simulations leave the dependent "
+                               "rows out): write the model without them",
+                               sim_dropped_note(s));
     double *Af = calloc((size_t)N * (size_t)N, sizeof *Af);
     double *Bf = calloc((size_t)N * (size_t)(nu ? nu : 1), sizeof *Bf);
     double *T = calloc((size_t)N * (size_t)nl, sizeof *T);

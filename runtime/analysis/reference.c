@@ -176,6 +176,8 @@ static eomc_ext
 kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
 {
     int n = r->n, nc = r->nc, W = n + nc, affine = r->m->c_affine;
+    /* the rows the doubles leave out, left out here too (kkt.c) */
+    const unsigned char *drop = sim_dropped_rows(r->s);
     r->x->constraint(t, q, v, r->a, r->p, r->u, r->f, r->B);
     eomc_ext **c = r->cj, *dBda = c[6];
     if (!affine)
@@ -191,15 +193,15 @@ kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
             e += r->M[i * n + j] * r->a[j];
         }
         for (int c = 0; c < nc; c++) {
-            r->K[i * W + n + c] = r->K[(n + c) * W + i] = r->B[c * n + i];
+            r->K[i * W + n + c] = r->K[(n + c) * W + i] = drop && drop[c] ? 0 : r->B[c * n + i];
             e += r->B[c * n + i] * r->lam[c];
         }
         r->r[i] = -e;
     }
     for (int c = 0; c < nc; c++) {
         for (int d = 0; d < nc; d++)
-            r->K[(n + c) * W + n + d] = 0;
-        r->r[n + c] = -r->f[c];
+            r->K[(n + c) * W + n + d] = c == d && drop && drop[c];
+        r->r[n + c] = drop && drop[c] ? 0 : -r->f[c];
     }
     la_ext_kkt_scaling(r->K, n, nc, r->dK);
     if (la_ext_lu_factor(r->K, W, r->perm, r->eq, r->dK) != 0)
@@ -704,6 +706,9 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
         rc = taylor_fits(s, ext);
     if (rc == EOMC_OK && how != EOMC_REFERENCE_EXTRAPOLATION && how != EOMC_REFERENCE_TAYLOR)
         rc = sim_usage_error(s, "unknown way %d to compute a reference", how);
+    /* the constraint rows the doubles' solves use, where they start */
+    if (rc == EOMC_OK)
+        rc = sim_choose_rows(s, o->t0, x0, x0 + m->nq);
     if (rc != EOMC_OK)
         return rc;
     if (!(o->t_end >= o->t0) || !(o->dt > 0) || !isfinite(o->t_end) || !isfinite(o->dt))
@@ -716,7 +721,8 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
     ref->t = calloc((size_t)nrows, sizeof *ref->t);
     ref->x = calloc(size, sizeof *ref->x);
     int alloc = ref_alloc(&r, s, ext);
-    if (alloc == 0 && how == EOMC_REFERENCE_TAYLOR && !(r.rt = reftaylor_alloc(ext, r.n, r.nc)))
+    if (alloc == 0 && how == EOMC_REFERENCE_TAYLOR &&
+        !(r.rt = reftaylor_alloc(ext, r.n, r.nc, sim_dropped_rows(s))))
         alloc = -1;
     if (alloc != 0 || !prev || !ref->t || !ref->x) {
         ref_free(&r);
@@ -803,6 +809,8 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
 {
     const eomc_model *m = eomc_sim_model(s);
     int fits = twin_fits(s, ext, "q''");
+    if (fits == EOMC_OK)
+        fits = sim_choose_rows(s, t, x, x + m->nq);
     if (fits != EOMC_OK)
         return fits;
     Ref r;

@@ -35,6 +35,7 @@ struct RefTaylor {
     eomc_ext *eq, *dK; /* [2 nk] its equilibration, [nk] its KKT scaling */
     int *perm;         /* [nk] */
     eomc_ext *S;       /* [N] the scales of the step rule */
+    const unsigned char *drop; /* [nc] rows left out, as the doubles' solves do, or NULL */
 };
 
 static eomc_ext *
@@ -44,13 +45,13 @@ zeros(size_t n)
 }
 
 RefTaylor *
-reftaylor_alloc(const eomc_model_ext *x, int n, int nc)
+reftaylor_alloc(const eomc_model_ext *x, int n, int nc, const unsigned char *drop)
 {
     RefTaylor *rt = calloc(1, sizeof *rt);
     if (!rt)
         return NULL;
     size_t K1 = TAYLOR_MAX_ORDER + 1, nk = (size_t)(n + nc), N = 2 * (size_t)n;
-    *rt = (RefTaylor){.x = x, .n = n, .N = 2 * n, .nc = nc, .nk = n + nc};
+    *rt = (RefTaylor){.x = x, .n = n, .N = 2 * n, .nc = nc, .nk = n + nc, .drop = drop};
     rt->T = zeros((size_t)x->taylor_nslot * K1);
     rt->X = zeros(K1 * N);
     rt->A = zeros(K1 * (size_t)n);
@@ -118,10 +119,12 @@ order(RefTaylor *rt, int k)
         for (int i = 0; i < n; i++)
             for (int l = 0; l < n; l++)
                 rt->K[i * nk + l] = coef(rt, x->taylor_M[i * n + l], 0);
-        for (int c = 0; c < nc; c++)
+        for (int c = 0; c < nc; c++) /* a row left out: as kkt.c */
             for (int i = 0; i < n; i++)
                 rt->K[(n + c) * nk + i] = rt->K[i * nk + n + c] =
-                    coef(rt, x->taylor_B[c * n + i], 0);
+                    rt->drop && rt->drop[c] ? 0 : coef(rt, x->taylor_B[c * n + i], 0);
+        for (int c = 0; rt->drop && c < nc; c++)
+            rt->K[(n + c) * nk + n + c] = rt->drop[c];
         if (nc)
             la_ext_kkt_scaling(rt->K, n, nc, rt->dK);
         if (la_ext_lu_factor(rt->K, nk, rt->perm, rt->eq, nc ? rt->dK : NULL) != 0)
@@ -139,7 +142,7 @@ order(RefTaylor *rt, int k)
         eomc_ext s = coef(rt, x->taylor_f[c], k);
         for (int i = 0; i < n; i++)
             s += conv(rt, x->taylor_B[c * n + i], rt->A + (size_t)i * p1, k);
-        rt->r[n + c] = s;
+        rt->r[n + c] = rt->drop && rt->drop[c] ? 0 : s;
     }
     la_ext_lu_solve(rt->K, nk, rt->perm, rt->eq, rt->r);
     return 0;

@@ -13,8 +13,10 @@
 typedef struct RefTaylor RefTaylor;
 
 /* For the twin x of a model of n coordinates and nc constraints (every
- * one affine in q'': x->taylor_a NULL); NULL when memory runs out. */
-RefTaylor *reftaylor_alloc(const eomc_model_ext *x, int n, int nc);
+ * one affine in q'': x->taylor_a NULL), drop [nc] the rows the doubles'
+ * solves leave out (sim_dropped_rows; NULL: none); NULL when memory runs
+ * out. */
+RefTaylor *reftaylor_alloc(const eomc_model_ext *x, int n, int nc, const unsigned char *drop);
 void reftaylor_free(RefTaylor *rt);
 /* The series through (t0, x) [2n], parameters p and inputs u held, to
  * the order the relative tolerance rtol sets, and the step it allows (at

@@ -4,6 +4,7 @@
  */
 #include "assembly.h"
 #include "base/io.h"
+#include "model/simimpl.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -101,6 +102,13 @@ assembly_check(const Options *c, eomc_sim *sim, const double *x)
 {
     char list[2048];
     int off = describe_off(sim, c->run.t0, x, list, sizeof list);
+    /* the constraint rows the solves use, chosen here if nothing chose
+     * them yet (an eliminating model's refusal is the solve's to say) */
+    if (sim_choose_rows(sim, c->run.t0, x, x + eomc_sim_model(sim)->nq) == EOMC_OK &&
+        *sim_dropped_note(sim))
+        fprintf(io_err(), "%s: note: constraints dependent at the start: %s; the solves "
+                "leave the dependent rows out (their multipliers are 0), and the run stops "
+                "if one of them no longer holds\n", c->prog, sim_dropped_note(sim));
     if (off == 1)
         fprintf(io_err(), "%s: warning: the initial state is off the constraint %s; --assemble "
                 "projects the state onto the constraints\n", c->prog, list);

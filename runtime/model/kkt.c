@@ -34,6 +34,14 @@
  * name the cause; the condition estimate, the near-null direction and the
  * Jacobian, which need M, form it on demand (mass_bias).
  *
+ * Rows dependent on the others (kkt_set_dropped: the simulator finds
+ * them at the start) are left out of every solve as though the model did
+ * not have them: in K a dropped row c and its column are 0 but for a 1 on
+ * the diagonal, with 0 on the right, so lambda_c = 0 and the rest is the
+ * system of the kept rows, at the same size and with the same code; the
+ * unit loads skip the row.  The kept rows span the dropped ones, so q''
+ * meets those too (sim.c watches that they stay met).
+ *
  * Baumgarte's stabilization replaces f by f + w_v vel + w_p pos (the
  * constraint's own levels from c_levels; w_v = 2 alpha, w_p = beta^2 for
  * a holonomic one, w_v = alpha for a first-order one).  The offset does
@@ -94,6 +102,7 @@ struct Kkt {
     double pivot_loads;         /* its smallest relative pivot, of M or S */
     double t_last, *q_last, *v_last, *u_last; /* its state, to form M on demand */
     const double *p_last;
+    const unsigned char *drop;  /* [nc] rows left out of the solves, or NULL */
 };
 
 /* A zeroed array of n doubles (at least one), or NULL. */
@@ -200,6 +209,19 @@ kkt_free(Kkt *k)
 }
 
 void
+kkt_set_dropped(Kkt *k, const unsigned char *drop)
+{
+    k->drop = drop;
+}
+
+/* Whether row c is left out of the solves. */
+static int
+dropped(const Kkt *k, int c)
+{
+    return k->drop && k->drop[c];
+}
+
+void
 kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first)
 {
     k->wv_hol = wv_hol;
@@ -249,11 +271,11 @@ build_kkt(Kkt *k, int hessian)
             k->K[i * N + j] = x;
         }
         for (int c = 0; c < nc; c++)
-            k->K[i * N + n + c] = k->K[(n + c) * N + i] = k->B[c * n + i];
+            k->K[i * N + n + c] = k->K[(n + c) * N + i] = dropped(k, c) ? 0 : k->B[c * n + i];
     }
     for (int c = 0; c < nc; c++)
         for (int d = 0; d < nc; d++)
-            k->K[(n + c) * N + n + d] = 0;
+            k->K[(n + c) * N + n + d] = c == d && dropped(k, c);
 }
 
 /* K, scaled (la_kkt_scaling), factored; 0 or -1. */
@@ -385,8 +407,9 @@ step_multipliers(Kkt *k, double t, const double *q, const double *v, const doubl
         rel = fmax(rel, la_relative(x, mag));
     }
     for (int c = 0; c < nc; c++) {
-        k->r[n + c] = -k->f[c];
-        rel = fmax(rel, constraint_relative(k, c, a));
+        k->r[n + c] = dropped(k, c) ? 0 : -k->f[c];
+        if (!dropped(k, c))
+            rel = fmax(rel, constraint_relative(k, c, a));
     }
     if (!m->c_affine && la_settled(rel, k->rel))
         return 1;
@@ -586,7 +609,7 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
      * Baumgarte's terms, which ask more of the row than its own level */
     int baumgarte = baumgarte_on(k);
     for (int c = 0; c < nc; c++)
-        if (!m->c_held || !m->c_held[c] || baumgarte)
+        if ((!m->c_held || !m->c_held[c] || baumgarte) && !dropped(k, c))
             k->act[na++] = c;
         else
             k->lam[c] = 0;
@@ -728,6 +751,8 @@ kkt_vanished(const Kkt *k, double *fraction)
     for (int c = 0; c < k->nc; c++) {
         double worst = 0;
         int seen = 0;
+        if (dropped(k, c))
+            continue;
         for (int i = 0; i < n; i++)
             if (k->bmax[c * n + i] > 0) {
                 seen = 1;
@@ -755,7 +780,7 @@ jacobian_column(Kkt *k, int j)
         k->r[i] = x;
     }
     for (int c = 0; c < nc; c++)
-        k->r[n + c] = df[c * n + jj];
+        k->r[n + c] = dropped(k, c) ? 0 : df[c * n + jj];
 }
 
 /* dR/dt, with the inputs' derivatives, into k->r. */
@@ -779,7 +804,7 @@ time_column(Kkt *k, const double *dudt)
         double x = k->dfdt[c];
         for (int l = 0; l < nu; l++)
             x += k->dfdu[c * nu + l] * dudt[l];
-        k->r[n + c] = x;
+        k->r[n + c] = dropped(k, c) ? 0 : x;
     }
 }
 
@@ -832,4 +857,10 @@ kkt_residuals(Kkt *k, double t, const double *q, const double *v, const double *
     m->constraint(t, q, v, a, p, u, k->f, k->B);
     for (int c = 0; c < k->nc; c++)
         res[c] = m->c_order[c] == 0 ? k->pos[c] : m->c_order[c] == 1 ? k->vel[c] : k->f[c];
+}
+
+const double *
+kkt_rows(const Kkt *k)
+{
+    return k->B;
 }

@@ -24,6 +24,14 @@ enum { KKT_NEWTON_MAX = 50 };
 Kkt *kkt_alloc(const eomc_model *m);
 void kkt_free(Kkt *k);
 
+/* Rows left out of the solves: drop [nc] (1: dropped; the caller's, read
+ * at each solve; NULL: none).  A dropped row's multiplier is 0 and q''
+ * solves the kept rows alone (kkt.c); with multipliers only (the
+ * simulator refuses to drop rows of an eliminating model). */
+void kkt_set_dropped(Kkt *k, const unsigned char *drop);
+/* The rows B = df/dq'' [nc*n] of the last solve (its last iterate). */
+const double *kkt_rows(const Kkt *k);
+
 /* Baumgarte's weights: a holonomic constraint's f gets wv_hol g' + wp_hol g
  * and a first-order one's gets wv_first phi.  All zero: off. */
 void kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first);

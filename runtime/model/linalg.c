@@ -180,6 +180,101 @@ la_lu_condition(LaLu *lu)
     return lu->norm1 * inv;
 }
 
+struct LaRank {
+    int nr, n;
+    gsl_matrix *A;        /* [n x nr] the scaled rows as columns, then QR */
+    gsl_vector *tau, *norm, *w; /* [min(n, nr)], [nr], [nr] */
+    gsl_permutation *perm; /* [nr] */
+};
+
+LaRank *
+la_rank_alloc(int nr, int n)
+{
+    LaRank *w = calloc(1, sizeof *w);
+    if (!w)
+        return NULL;
+    size_t R = (size_t)(nr > 0 ? nr : 1), N = (size_t)(n > 0 ? n : 1);
+    w->nr = nr, w->n = n;
+    w->A = gsl_matrix_alloc(N, R);
+    w->tau = gsl_vector_alloc(R < N ? R : N);
+    w->norm = gsl_vector_alloc(R);
+    w->w = gsl_vector_alloc(R);
+    w->perm = gsl_permutation_alloc(R);
+    if (!w->A || !w->tau || !w->norm || !w->w || !w->perm) {
+        la_rank_free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void
+la_rank_free(LaRank *w)
+{
+    if (!w)
+        return;
+    if (w->A)
+        gsl_matrix_free(w->A);
+    if (w->tau)
+        gsl_vector_free(w->tau);
+    if (w->norm)
+        gsl_vector_free(w->norm);
+    if (w->w)
+        gsl_vector_free(w->w);
+    if (w->perm)
+        gsl_permutation_free(w->perm);
+    free(w);
+}
+
+int
+la_rank_rows(LaRank *w, const double *B, int n, const int *rows, int nr, const double *d,
+             unsigned char *keep, unsigned char *involved)
+{
+    if (nr <= 0)
+        return 0;
+    /* views of the workspace at this size (nr <= w->nr, n == w->n) */
+    gsl_matrix_view Av = gsl_matrix_submatrix(w->A, 0, 0, (size_t)n, (size_t)nr);
+    gsl_matrix *A = &Av.matrix;
+    size_t m = (size_t)(nr < n ? nr : n);
+    gsl_vector_view tau = gsl_vector_subvector(w->tau, 0, m);
+    gsl_vector_view norm = gsl_vector_subvector(w->norm, 0, (size_t)nr);
+    gsl_permutation perm = {(size_t)nr, w->perm->data};
+    for (int r = 0; r < nr; r++) {
+        const double *b = B + (size_t)rows[r] * n;
+        double len = 0;
+        for (int i = 0; i < n; i++)
+            len = hypot(len, b[i] * (d ? d[i] : 1));
+        for (int i = 0; i < n; i++)
+            gsl_matrix_set(A, (size_t)i, (size_t)r, len > 0 ? b[i] * (d ? d[i] : 1) / len : 0);
+    }
+    int sign, rank = 0;
+    gsl_linalg_QRPT_decomp(A, &tau.vector, &perm, &sign, &norm.vector);
+    while ((size_t)rank < m && fabs(gsl_matrix_get(A, (size_t)rank, (size_t)rank)) > LA_DEPENDENT)
+        rank++;
+    for (int k = 0; k < nr; k++) {
+        int row = rows[perm.data[k]];
+        if (keep)
+            keep[row] = k < rank;
+        if (involved)
+            involved[row] = k >= rank;
+    }
+    /* dependent column k: A_k = (kept columns) R11^-1 R[0 .. rank, k] */
+    double *c = w->w->data;
+    for (int k = rank; involved && k < nr; k++) {
+        double big = 0;
+        for (int i = rank - 1; i >= 0; i--) {
+            double x = gsl_matrix_get(A, (size_t)i, (size_t)k);
+            for (int j = i + 1; j < rank; j++)
+                x -= gsl_matrix_get(A, (size_t)i, (size_t)j) * c[j];
+            c[i] = x / gsl_matrix_get(A, (size_t)i, (size_t)i);
+            big = fmax(big, fabs(c[i]));
+        }
+        for (int i = 0; i < rank; i++)
+            if (fabs(c[i]) > LA_INVOLVED * big)
+                involved[rows[perm.data[i]]] = 1;
+    }
+    return rank;
+}
+
 /* GSL's pivoted LDL^T (pcholesky), not ldlt_decomp or cholesky_decomp1:
  * those report a singular or indefinite matrix through GSL's error
  * handler, which aborts the program unless the program turned it off; the

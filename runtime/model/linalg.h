@@ -58,6 +58,34 @@ double la_lu_pivot(const LaLu *lu);
  * Its large entries name the unknowns an ill-conditioned system mixes. */
 void la_lu_near_null(LaLu *lu, double *y);
 
+/*
+ * Which rows of B = df/dq'' are independent: QR with column pivoting
+ * (GSL's QRPT) of B^T, B's columns first scaled by d (1/sqrt(M_ii): the
+ * kinetic-energy metric, free of the coordinates' units) and each row then
+ * brought to unit length (free of the constraint's own factor).  In pivot
+ * order each R_kk is the part of a row independent of the rows before it;
+ * a row whose part is at most LA_DEPENDENT is dependent on them.  The
+ * multipliers' system B M^-1 B^T has about the squares of these as its
+ * pivots, so the rows it would call singular (LA_SINGULAR_TOL, EOMC_PIVOT_TOL)
+ * are the ones called dependent here.
+ */
+#define LA_DEPENDENT 3e-7 /* about sqrt(LA_SINGULAR_TOL) */
+/* A row takes part in a dependent row's combination of the independent
+ * ones when its coefficient there is above this of the largest. */
+#define LA_INVOLVED 1e-6
+typedef struct LaRank LaRank;
+/* Room for up to nr rows of n entries; NULL when memory runs out. */
+LaRank *la_rank_alloc(int nr, int n);
+void la_rank_free(LaRank *w);
+/* The rows rows[0 .. nr) of B [* x n], scaled as above (d [n], or NULL
+ * for none): their rank.  keep[rows[i]] (unless NULL) is 1 for the
+ * independent rows QR's pivots keep, 0 for the others, each dependent on
+ * the kept ones; involved[rows[i]] (unless NULL) is 1 for each row that
+ * takes part in a dependency: a dependent row, and the kept rows its
+ * combination uses.  A row of zeros is dependent, a combination of none. */
+int la_rank_rows(LaRank *w, const double *B, int n, const int *rows, int nr, const double *d,
+                 unsigned char *keep, unsigned char *involved);
+
 /* P M P^T = L D L^T in place (GSL's pivoted Cholesky), M symmetric; 0,
  * or k + 1 when the pivot of coordinate k is d <= EOMC_PIVOT_TOL M_kk (M
  * singular or not positive definite; the first such in pivot order).  On

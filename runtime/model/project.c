@@ -12,7 +12,10 @@
  * already supplies it).  The kinetic-energy metric makes the correction
  * what a constraint impulse would do, independent of the coordinates'
  * units.  M is taken once, at the state given.  Second-order constraints
- * have nothing below acceleration level and are left alone.
+ * have nothing below acceleration level and are left alone.  Rows left out
+ * of the solves (proj_set_dropped) are left out of the corrections too,
+ * and of the test that they have settled: the kept rows span them; their
+ * residuals are still measured with the others'.
  */
 #include "project.h"
 #include "linalg.h"
@@ -26,6 +29,8 @@ struct Proj {
     int n, nc;
     int npos, nvel;            /* rows at each level */
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
+    int nfix[2], *fix_rows[2]; /* each level's rows the corrections use: [nc]
+                                * the kept ones of pos_rows, vel_rows */
     double *M, *h;             /* [n*n] the mass matrix (the metric), [n] */
     double *L;                 /* [n*n] the pivoted LDL^T factor of M on what moves */
     double *F, *Frel;          /* [n*n] that of the whole M when L is not, [n] */
@@ -78,6 +83,7 @@ proj_alloc(const eomc_model *m)
     j->m = m;
     j->n = m->nq, j->nc = m->nc;
     j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
+    j->fix_rows[0] = calloc(nc, sizeof(int)), j->fix_rows[1] = calloc(nc, sizeof(int));
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
     j->M = zeros(n * n), j->col = zeros(n), j->moves = calloc(n ? n : 1, sizeof *j->moves);
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc), j->scale = zeros(nc);
@@ -91,13 +97,10 @@ proj_alloc(const eomc_model *m)
             if (m->c_order[c] <= 1)
                 j->vel_rows[j->nvel++] = c;
         }
-    j->lu[0] = la_lu_alloc(j->npos);
-    j->lu[1] = la_lu_alloc(j->nvel);
-    j->names[0] = join_names(m, j->pos_rows, j->npos);
-    j->names[1] = join_names(m, j->vel_rows, j->nvel);
-    if (!j->pos_rows || !j->vel_rows || !j->L || !j->h || !j->f || !j->B || !j->pos ||
-        !j->vel || !j->zero || !j->Y || !j->S || !j->mu || !j->rel || !j->perm || !j->F || !j->Frel || !j->Fperm || !j->M || !j->col || !j->moves || !j->lu[0] || !j->lu[1] || !j->names[0] ||
-        !j->names[1]) {
+    if (!j->pos_rows || !j->vel_rows || !j->fix_rows[0] || !j->fix_rows[1] || !j->L ||
+        !j->h || !j->f || !j->B || !j->pos || !j->vel || !j->zero || !j->Y || !j->S ||
+        !j->mu || !j->rel || !j->perm || !j->F || !j->Frel || !j->Fperm || !j->M ||
+        !j->col || !j->moves || proj_set_dropped(j, NULL) != 0) {
         proj_free(j);
         return NULL;
     }
@@ -109,7 +112,7 @@ proj_free(Proj *j)
 {
     if (!j)
         return;
-    void *arrays[] = {j->pos_rows, j->vel_rows, j->L, j->h, j->f, j->B, j->pos,
+    void *arrays[] = {j->pos_rows, j->vel_rows, j->fix_rows[0], j->fix_rows[1], j->L, j->h, j->f, j->B, j->pos,
                       j->vel, j->scale, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
                       j->Fperm, j->M, j->col,
                       j->moves, j->names[0], j->names[1]};
@@ -118,6 +121,33 @@ proj_free(Proj *j)
     la_lu_free(j->lu[0]);
     la_lu_free(j->lu[1]);
     free(j);
+}
+
+int
+proj_set_dropped(Proj *j, const unsigned char *drop)
+{
+    for (int level = 0; level < 2; level++) {
+        int nr = level ? j->nvel : j->npos, nf = 0;
+        const int *rows = level ? j->vel_rows : j->pos_rows;
+        for (int k = 0; k < nr; k++)
+            if (!drop || !drop[rows[k]])
+                j->fix_rows[level][nf++] = rows[k];
+        j->nfix[level] = nf;
+        la_lu_free(j->lu[level]);
+        free(j->names[level]);
+        j->lu[level] = la_lu_alloc(nf);
+        j->names[level] = join_names(j->m, j->fix_rows[level], nf);
+        if (!j->lu[level] || !j->names[level])
+            return -1;
+    }
+    return 0;
+}
+
+const int *
+proj_rows(const Proj *j, int level, int *nr)
+{
+    *nr = j->nfix[level != 0];
+    return j->fix_rows[level != 0];
 }
 
 int
@@ -199,14 +229,15 @@ levels(Proj *j, double t, const double *q, const double *v, const double *p,
         j->m->c_scale(t, q, p, u, j->scale);
 }
 
-/* The largest relative residual of a level's rows, its row into *worst;
- * each row's into each [nc] (at the constraint's index) unless NULL. */
+/* The largest relative residual of a level's rows (fix: the kept ones
+ * alone), its row into *worst; each row's into each [nc] (at the
+ * constraint's index) unless NULL. */
 static double
-level_residual(Proj *j, const double *q, const double *v, int level, int *worst,
+level_residual(Proj *j, const double *q, const double *v, int level, int fix, int *worst,
                double *each)
 {
-    int nr = level ? j->nvel : j->npos;
-    const int *rows = level ? j->vel_rows : j->pos_rows;
+    int nr = fix ? j->nfix[level] : level ? j->nvel : j->npos;
+    const int *rows = fix ? j->fix_rows[level] : level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
     /* a projection that takes every velocity to 0 (a wheel held still
      * stops the bicycle) ends in rounding of the velocities it started
@@ -264,11 +295,11 @@ proj_inconsistencies(Proj *j, double t, const double *q, const double *v, const 
     levels(j, t, q, v, p, u);
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
     j->factored = 0, j->full = -1; /* a new M: no factor of it yet */
-    double e0 = j->npos ? level_residual(j, q, v, 0, &w0, each) : 0;
+    double e0 = j->npos ? level_residual(j, q, v, 0, 0, &w0, each) : 0;
     /* a holonomic constraint's g' after its g: the larger of the two is its
      * inconsistency (mu is a projection's scratch, free here) */
     double *e1s = each ? j->mu : NULL;
-    double e1 = level_residual(j, q, v, 1, &w1, e1s);
+    double e1 = level_residual(j, q, v, 1, 0, &w1, e1s);
     for (int r = 0; r < j->nvel && each; r++) {
         int k = j->vel_rows[r];
         int pos = j->m->c_order[k] == 0;
@@ -291,11 +322,11 @@ static int
 correct(Proj *j, double t, double *q, double *v, const double *p, const double *u,
         int level, double *rel)
 {
-    int n = j->n, nr = level ? j->nvel : j->npos;
-    const int *rows = level ? j->vel_rows : j->pos_rows;
+    int n = j->n, nr = j->nfix[level];
+    const int *rows = j->fix_rows[level];
     double *x = level ? v : q, *r = level ? j->vel : j->pos;
     levels(j, t, q, v, p, u);
-    double now = level_residual(j, q, v, level, NULL, NULL);
+    double now = level_residual(j, q, v, level, 1, NULL, NULL);
     if (la_settled(now, *rel))
         return 1;
     *rel = now;
@@ -353,7 +384,7 @@ static int
 project_level(Proj *j, double t, double *q, double *v, const double *p, const double *u,
               int level)
 {
-    if ((level ? j->nvel : j->npos) == 0)
+    if (j->nfix[level] == 0)
         return PROJ_OK;
     int rc = metric(j, level);
     if (rc != PROJ_OK)

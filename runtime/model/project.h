@@ -22,6 +22,13 @@ enum { PROJ_MAX = 20 };
 /* NULL when memory runs out; proj_free is NULL-safe. */
 Proj *proj_alloc(const eomc_model *m);
 void proj_free(Proj *j);
+/* Rows left out of the projections (drop [nc], 1: dropped; NULL: none),
+ * still measured by proj_residual and proj_inconsistencies; 0, or -1 when
+ * memory runs out. */
+int proj_set_dropped(Proj *j, const unsigned char *drop);
+/* The rows a level's projection uses (0: holonomic, 1: velocity), their
+ * count into *nr. */
+const int *proj_rows(const Proj *j, int level, int *nr);
 /* Whether the model has constraints below acceleration level. */
 int proj_levels(const Proj *j);
 /* The largest |g| and |g'| or |phi| at (t, q, v), in the constraints'
@@ -50,7 +57,8 @@ int proj_apply(Proj *j, double t, double *q, double *v, const double *p,
  * in the mass matrix's metric restricted to them. */
 int proj_apply_held(Proj *j, double t, double *q, double *v, const double *p,
                     const double *u, const unsigned char *hold, int *level);
-/* The constraints of a level (0: holonomic, 1: velocity), for messages. */
+/* The constraints a level's projection uses (0: holonomic, 1: velocity),
+ * for messages. */
 const char *proj_names(const Proj *j, int level);
 
 #endif

@@ -14,6 +14,7 @@
  * somewhat over 800 lines.
  */
 #include "simimpl.h"
+#include "depend.h"
 #include "kkt.h"
 #include "linalg.h"
 #include "base/numfmt.h"
@@ -54,6 +55,12 @@ struct eomc_sim {
     Proj *proj;              /* constrained models: projection */
     int stabilize;           /* EOMC_STABILIZE_... */
     double alpha, beta;      /* Baumgarte's rates */
+    /* the rows the solves use, chosen at the first state solved
+     * (choose_rows), again after the parameters change */
+    Depend *dep;
+    int chosen;
+    double *Bc, *ce;         /* [nc*n] B there, [nc] the rows' residuals (the watch) */
+    int *cl, *crow;          /* [nc] their levels, a list of rows */
 };
 
 double *
@@ -112,10 +119,16 @@ eomc_sim_alloc(const eomc_model *m)
     s->cwhat = calloc(s->errlen, 1);
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
+    s->dep = m->nc > 0 ? depend_alloc(m) : NULL;
+    s->Bc = sim_zeros((size_t)m->nc * n);
+    s->ce = sim_zeros((size_t)m->nc);
+    s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
+    s->crow = calloc((size_t)m->nc + 1, sizeof *s->crow);
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
-        (m->nc > 0 && (!s->kkt || !s->proj))) {
+        !s->Bc || !s->ce || !s->cl || !s->crow ||
+        (m->nc > 0 && (!s->kkt || !s->proj || !s->dep))) {
         eomc_sim_free(s);
         return NULL;
     }
@@ -132,11 +145,12 @@ eomc_sim_free(eomc_sim *s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
-                      s->fk, s->err, s->cy, s->cd, s->cwhat};
+                      s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
     proj_free(s->proj);
+    depend_free(s->dep);
     la_lu_free(s->mlu);
     free(s);
 }
@@ -216,6 +230,17 @@ sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
     return EOMC_ENUMERIC;
 }
 
+/* The solves and projections told which rows depend_dropped leaves out. */
+static int
+use_rows(eomc_sim *s)
+{
+    const unsigned char *drop = depend_dropped(s->dep);
+    kkt_set_dropped(s->kkt, drop);
+    if (proj_set_dropped(s->proj, drop) != 0)
+        return sim_usage_error(s, "out of memory for the constraints' projection");
+    return EOMC_OK;
+}
+
 int
 eomc_sim_set(eomc_sim *s, const char *name, double value)
 {
@@ -232,6 +257,12 @@ eomc_sim_set(eomc_sim *s, const char *name, double value)
             }
             s->p[k] = value;
             sim_derive(s);
+            if (s->dep && depend_dropped(s->dep)) { /* chosen again at the next start */
+                depend_clear(s->dep);
+                if (use_rows(s) != EOMC_OK)
+                    return EOMC_EUSAGE;
+            }
+            s->chosen = 0;
             return EOMC_OK;
         }
     for (int k = 0; k < m->nu; k++)
@@ -363,7 +394,25 @@ pivot_error(eomc_sim *s, double t, const double *q, const double *v, int k)
                              "(pivot %d, coordinate %s)", k, s->m->q_names[k - 1]);
 }
 
-/* The message of a kkt.c status. */
+/* Of the rows rows [nr] at B and (t, q, v), the dependent ones and
+ * those their combinations use (depend_involved), "" if none; into *dims
+ * the dimensions those span. */
+static const char *
+dependent_rows(eomc_sim *s, double t, const double *q, const double *v, const double *B,
+               const int *rows, int nr, int *dims)
+{
+    int rank, inv = 0;
+    sim_inputs_at(s, t);
+    s->m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    const char *names = depend_involved(s->dep, B, s->M, rows, nr, &rank);
+    for (const char *c = names; *names && c; c = strchr(c + 1, ','))
+        inv++;
+    *dims = inv - (nr - rank);
+    return names;
+}
+
+/* The message of a kkt.c status: a singular system names the rows at
+ * fault, those dependent here among the rows it solves. */
 static int
 kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
 {
@@ -377,6 +426,19 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
                                  "run (two of its roots in q'' merge, or it no longer "
                                  "constrains the motion)", m->c_names[c],
                                  m->q_names[m->c_dependent[c]], fraction);
+    if (rc == KKT_SINGULAR || rc == KKT_DEPENDENT) {
+        const unsigned char *drop = depend_dropped(s->dep);
+        int nr = 0, dims;
+        for (int k = 0; k < m->nc; k++)
+            if (!drop || !drop[k])
+                s->crow[nr++] = k;
+        const char *dep = dependent_rows(s, t, q, v, kkt_rows(s->kkt), s->crow, nr, &dims);
+        if (*dep)
+            return sim_numeric_error(s, t, q, v, "the constrained system is singular: the "
+                                     "constraints %s are dependent here (their rows "
+                                     "df/dq'' span %d dimension%s)", dep, dims,
+                                     dims == 1 ? "" : "s");
+    }
     switch (rc) {
     case KKT_DEPENDENT:
         return sim_numeric_error(s, t, q, v, "the constraints cannot be solved for their "
@@ -386,9 +448,95 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
         return sim_numeric_error(s, t, q, v, "Newton's method on the constraints %s did "
                                  "not converge in %d iterations", names, KKT_NEWTON_MAX);
     default:
-        return sim_numeric_error(s, t, q, v, "the constrained system is singular: the "
-                                 "constraints %s are dependent or degenerate here", names);
+        return sim_numeric_error(s, t, q, v, "the constrained system is singular, though "
+                                 "the rows df/dq'' of its constraints %s are independent "
+                                 "here: the mass matrix is singular on the motions they "
+                                 "allow", names);
     }
+}
+
+/* The rows the solves use, chosen where the model is first solved
+ * (depend.c): B at (t, q, v), at any q'' (every f affine in q''), and M
+ * to scale it.  A model with a constraint nonlinear in q'' keeps every
+ * row; an eliminating one cannot leave a row out (each determines a
+ * coordinate), and is refused where its rows are dependent. */
+static int
+choose_rows(eomc_sim *s, double t, const double *q, const double *v)
+{
+    const eomc_model *m = s->m;
+    int n = s->n;
+    if (!sim_all_finite(q, n) || !sim_all_finite(v, n))
+        return EOMC_OK; /* the solve says so; chosen at the next state */
+    s->chosen = 1;
+    if (!m->c_affine)
+        return EOMC_OK;
+    sim_inputs_at(s, t);
+    memset(s->col, 0, (size_t)n * sizeof *s->col);
+    m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
+    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+    if (depend_choose(s->dep, s->Bc, s->M) == DEPEND_DROPPED && m->eliminate) {
+        s->chosen = 0;
+        int rc = sim_numeric_error(s, t, q, v, "the constraints are dependent here (%s), and "
+                                   "elimination needs independent ones (each determines a "
+                                   "coordinate): build the model without --eliminate, with "
+                                   "multipliers, which leave the dependent rows out",
+                                   depend_note(s->dep));
+        depend_clear(s->dep);
+        return rc;
+    }
+    return use_rows(s);
+}
+
+int
+sim_choose_rows(eomc_sim *s, double t, const double *q, const double *v)
+{
+    return !s->dep || s->chosen ? EOMC_OK : choose_rows(s, t, q, v);
+}
+
+int
+sim_start_rows(eomc_sim *s, double t, const double *q, const double *v)
+{
+    if (!s->dep)
+        return EOMC_OK;
+    s->chosen = 0;
+    if (depend_dropped(s->dep)) {
+        depend_clear(s->dep);
+        if (use_rows(s) != EOMC_OK)
+            return EOMC_EUSAGE;
+    }
+    return choose_rows(s, t, q, v);
+}
+
+const unsigned char *
+sim_dropped_rows(const eomc_sim *s)
+{
+    return s->dep ? depend_dropped(s->dep) : NULL;
+}
+
+const char *
+sim_dropped_note(const eomc_sim *s)
+{
+    return sim_dropped_rows(s) ? depend_note(s->dep) : "";
+}
+
+int
+sim_dropped_watch(eomc_sim *s, double t, const double *q, const double *v)
+{
+    const unsigned char *drop = sim_dropped_rows(s);
+    double kept;
+    if (!drop || !sim_has_levels(s))
+        return EOMC_OK;
+    eomc_sim_inconsistencies(s, t, q, v, s->ce, s->cl);
+    int c = depend_watch(s->dep, s->ce, &kept);
+    if (c < 0)
+        return EOMC_OK;
+    return sim_numeric_error(s, t, q, v, "the constraint %s no longer holds: it was left out "
+                             "of the solves at the start as dependent on the others (%s), "
+                             "but its residual is %.2g of the size of its terms (%s), the "
+                             "others' at most %.2g: the constraints are not dependent here, "
+                             "and the motion does not meet it", s->m->c_names[c],
+                             depend_note(s->dep), s->ce[c],
+                             s->cl[c] ? "velocities" : "positions", kept);
 }
 
 /* t + the state's and inputs' entries: finite whenever they all are (and
@@ -466,6 +614,8 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     if (!isfinite(state_sum(s, t, q, v)) && !inputs_finite(s, t, q, v))
         return state_error(s, t, q, v);
     if (s->kkt) {
+        if (!s->chosen && (k = choose_rows(s, t, q, v)) != EOMC_OK)
+            return k;
         if ((k = kkt_accel(s->kkt, t, q, v, s->p, s->u, a)) != KKT_OK)
             return kkt_error(s, t, q, v, k);
         double pivot = kkt_pivot(s->kkt);
@@ -540,6 +690,27 @@ eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta)
     return EOMC_OK;
 }
 
+/* A level's projection found G M^-1 G^T singular at (t, q, v): the rows
+ * dependent there, or every row of the level where none is (the metric
+ * then is at fault). */
+static int
+project_singular(eomc_sim *s, double t, const double *q, const double *v, int level)
+{
+    const char *what = level ? "velocities" : "positions";
+    int nr, dims;
+    const int *rows = proj_rows(s->proj, level, &nr);
+    sim_inputs_at(s, t);
+    memset(s->col, 0, (size_t)s->n * sizeof *s->col);
+    s->m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
+    const char *dep = dependent_rows(s, t, q, v, s->Bc, rows, nr, &dims);
+    if (*dep)
+        return sim_numeric_error(s, t, q, v, "cannot project the %s onto the constraints: "
+                                 "%s are dependent here (their rows span %d dimension%s)",
+                                 what, dep, dims, dims == 1 ? "" : "s");
+    return sim_numeric_error(s, t, q, v, "cannot project the %s onto the constraints %s: "
+                             "they are degenerate here", what, proj_names(s->proj, level));
+}
+
 int
 eomc_sim_project(eomc_sim *s, double t, double *q, double *v)
 {
@@ -553,8 +724,11 @@ eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigne
         return EOMC_OK;
     if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->n))
         return sim_numeric_error(s, t, q, v, "the state is not finite");
+    int level, rc = sim_choose_rows(s, t, q, v);
+    if (rc != EOMC_OK)
+        return rc;
     sim_inputs_at(s, t);
-    int level, rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
+    rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
     const char *what = level ? "velocities" : "positions";
     int held = 0;
     for (int i = 0; hold && i < s->n; i++)
@@ -573,9 +747,7 @@ eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigne
                                      "those held they cannot all be met, or they are "
                                      "dependent here", what, proj_names(s->proj, level),
                                      what);
-        return sim_numeric_error(s, t, q, v, "cannot project the %s onto the "
-                                 "constraints %s: they are dependent or degenerate "
-                                 "here", what, proj_names(s->proj, level));
+        return project_singular(s, t, q, v, level);
     default:
         return sim_numeric_error(s, t, q, v, "projecting the %s onto the constraints "
                                  "%s did not converge in %d Gauss-Newton steps", what,

@@ -57,6 +57,24 @@ int sim_has_levels(const eomc_sim *s);
 /* The rows of B = df/dq'' at (t, x) into B [nc*n]; -1 when x is not
  * finite or the accelerations (needed when f is not affine) fail. */
 int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
+/* The constraint rows the solves use (model/depend.c): chosen where the
+ * model is first solved or projected, or here at (t, q, v) if that has
+ * not happened yet (again after the parameters changed); EOMC_OK, or the
+ * error (an eliminating model whose rows are dependent there). */
+int sim_choose_rows(eomc_sim *s, double t, const double *q, const double *v);
+/* The same, chosen again at (t, q, v) whatever was chosen before: where a
+ * run starts (eomc_sim_integrate), so that each run's are its own start's. */
+int sim_start_rows(eomc_sim *s, double t, const double *q, const double *v);
+/* The rows left out of the solves as dependent on the others, drop [nc]
+ * (1: left out, its multiplier 0), or NULL when none are (or they are not
+ * chosen yet). */
+const unsigned char *sim_dropped_rows(const eomc_sim *s);
+/* Those rows and the ones they depend on, "loop_z, dependent on loop_x,
+ * loop_y"; "" when none are left out. */
+const char *sim_dropped_note(const eomc_sim *s);
+/* After a step: EOMC_OK while every row left out follows the kept ones
+ * (depend_watch), else EOMC_ENUMERIC with the message naming it. */
+int sim_dropped_watch(eomc_sim *s, double t, const double *q, const double *v);
 /* The largest |g|, |g'| or |phi| at (t, q, v), 0 without such
  * constraints. */
 double sim_level_residual(eomc_sim *s, double t, const double *q, const double *v);

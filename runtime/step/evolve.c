@@ -223,13 +223,16 @@ step_error(Run *r, int status)
 #define DEGENERATE_TOL 1e-3 /* |B_k| at the reversal, relative to the ends */
 enum { BISECTIONS = 60 };
 
-/* The first row k of B1 that reversed direction since B0, or -1. */
+/* The first row k of B1 that reversed direction since B0, or -1; not a
+ * row left out of the solves (sim_dropped_rows: the kept rows decide the
+ * motion, and sim_dropped_watch watches it). */
 static int
 reversed_row(const Run *r)
 {
     int n = r->n;
+    const unsigned char *drop = sim_dropped_rows(r->s);
     for (int k = 0; k < r->m->nc; k++)
-        if (la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
+        if ((!drop || !drop[k]) && la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
             return k;
     return -1;
 }
@@ -397,6 +400,9 @@ after_step(Run *r, double t0)
     if (sim_has_levels(s)) {
         double res = sim_level_residual(s, t, x, x + n);
         r->st->max_drift = fmax(r->st->max_drift, res);
+        /* the rows left out still hold (the kept ones span them) */
+        if (sim_dropped_watch(s, t, x, x + n) != EOMC_OK)
+            return GSL_EBADFUNC;
         if (sim_stabilize_method(s) == EOMC_STABILIZE_PROJECT) {
             /* projecting is the method's, asked for, not a check's */
             r->st->monitor_seconds += sim_seconds(0) - c0;

@@ -235,7 +235,10 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     int n = eomc_sim_model(s)->nq;
     Driver r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .x = x, .row = row,
                 .ctx = ctx};
-    int rc = evolve_open(&r.e, s, o, x, st);
+    /* the constraint rows this run's solves use, chosen where it starts */
+    int rc = sim_start_rows(s, o->t0, x, x + n);
+    if (rc == EOMC_OK)
+        rc = evolve_open(&r.e, s, o, x, st);
     if (rc == EOMC_OK) {
         r.nrows = eomc_run_rows(o);
         r.dense = dense_alloc(n);

@@ -384,6 +384,9 @@ kkt_order(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
     int n = tp->n, nc = tp->nc, nk = n + nc, p = tp->p;
+    /* a row left out of the solves: its row and column 0, a 1 between,
+     * 0 on the right, its multiplier 0 at every order (kkt.c) */
+    const unsigned char *drop = sim_dropped_rows(tp->s);
     if (k == 0) {
         memset(tp->K, 0, (size_t)nk * (size_t)nk * sizeof *tp->K);
         for (int i = 0; i < n; i++)
@@ -392,7 +395,9 @@ kkt_order(Taylor *tp, int k)
         for (int c = 0; c < nc; c++)
             for (int i = 0; i < n; i++)
                 tp->K[(n + c) * nk + i] = tp->K[i * nk + n + c] =
-                    coef(tp, m->taylor_B[c * n + i], 0);
+                    drop && drop[c] ? 0 : coef(tp, m->taylor_B[c * n + i], 0);
+        for (int c = 0; drop && c < nc; c++)
+            tp->K[(n + c) * nk + n + c] = drop[c];
         for (int c = 0; c < nc && tp->dBda; c++) { /* + sum_c lambda_0c dB_c/dq'' */
             double lc = tp->L[(size_t)c * (p + 1)];
             for (int i = 0; i < n; i++)
@@ -417,7 +422,7 @@ kkt_order(Taylor *tp, int k)
             if (!tp->dBda) /* else f_k has these terms already */
                 rc += conv(tp, slot, tp->A + (size_t)i * (p + 1), k, 0);
         }
-        tp->r[n + c] = rc;
+        tp->r[n + c] = drop && drop[c] ? 0 : rc;
     }
     la_lu_solve(tp->lu, tp->r);
     for (int i = 0; i < n; i++)
@@ -440,6 +445,8 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
     memcpy(tp->X, x, (size_t)N * sizeof *x);
     tp->t0 = t0;
+    if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
+        return -1; /* the rows its solves use, where they are not chosen yet */
     for (int k = 0; k < p; k++) {
         put_state(tp, k);
         if (tp->dBda && k == 0 && newton_start(tp, t0, x) != 0)

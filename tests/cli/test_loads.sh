@@ -14,9 +14,11 @@
 #  - units: the rolling disk with the mass unit 1e-6 kg and the length
 #    unit 1e4 m (m * 1e6, R and x, y * 1e-4, g * 1e-4): q'' the same (x'',
 #    y'' * 1e-4) and the multipliers * 1e2, to 1e-12;
-#  - a constraint written twice makes B M^-1 B^T singular: the run falls
-#    back on the dense KKT solve, which stops it (exit 3) naming the
-#    constraints, as before;
+#  - a constraint written twice: its rows are dependent, the second is
+#    left out of the solves with a note naming both, its multiplier 0, and
+#    q'' and the other multipliers are the disk's own (1e-12); a run to
+#    t = 0.1 goes through; by elimination it is refused, naming both (each
+#    would determine a coordinate of its own);
 #  - ball joints (a frame turned by a quaternion): the Chaplygin ball of
 #    tests/sim/specs/rolling_ball.yaml and the floating body with an arm of
 #    tests/sim/specs/floating_arm.yaml (three slides, a ball, a hinge): q''
@@ -84,7 +86,7 @@ d=$(accel_diff "$tmp/si.acc" "$tmp/scaled.acc" 1 "x'' 1e4 y'' 1e4 lambda[roll_x]
 [ $st -eq 0 ] && below "$d" 1e-12
 ok $? "rolling_disk in kg 1e-6 and m 1e4: q'' and the multipliers rescale exactly (to $d)"
 
-# a constraint written twice: B M^-1 B^T is singular
+# a constraint written twice: dependent rows, the second left out
 sed 's/^  roll_y: \(.*\)$/  roll_y: \1\n  roll_y2: {expr: "\1", dependent: phi}/' "$disk" > "$tmp/twice.yaml"
 "$eomc" run "$tmp/twice.yaml" --form articulated-body --t-end 0.1 -o "$tmp/twice.csv" \
   > /dev/null 2> "$tmp/twice.err"
@@ -92,9 +94,20 @@ st=$?
 "$eomc" compile "$tmp/twice.yaml" --form articulated-body -o "$tmp/twice.c" 2> /dev/null &&
   grep -q '_minv, /\* the multipliers by unit loads' "$tmp/twice.c"
 loads=$?
-[ $st -eq 3 ] && [ $loads -eq 0 ] &&
-  grep -q 'the constrained system is singular: the constraints .*roll_y.*roll_y2.* are dependent' "$tmp/twice.err"
-ok $? "roll_y written twice: exit $st, the dense solve's message: $(head -c 160 "$tmp/twice.err")"
+"$eomc" run "$tmp/twice.yaml" --form articulated-body --accel > "$tmp/twice.acc" 2> /dev/null &&
+  "$eomc" run "$disk" --form articulated-body --accel > "$tmp/once.acc" 2> /dev/null
+acc=$?
+grep -v 'roll_y2' "$tmp/twice.acc" > "$tmp/twice.rest"
+d=$(accel_diff "$tmp/once.acc" "$tmp/twice.rest" 7)
+[ $st -eq 0 ] && [ $loads -eq 0 ] && [ $acc -eq 0 ] && below "$d" 1e-12 &&
+  grep -q '^lambda\[roll_y2\] 0$' "$tmp/twice.acc" &&
+  grep -q 'note: constraints dependent at the start: roll_y2, dependent on roll_y; the solves leave the dependent rows out' "$tmp/twice.err" &&
+  [ "$(wc -l < "$tmp/twice.csv")" -eq 12 ]
+ok $? "roll_y written twice: roll_y2 left out (its multiplier 0), q'' and the rest the disk's to $d, the run goes on ($(head -c 160 "$tmp/twice.err"))"
+"$eomc" run "$tmp/twice.yaml" --form lagrange --eliminate --accel > /dev/null 2> "$tmp/elim.err"
+st=$?
+[ $st -eq 3 ] && grep -q 'error: t = 0: the constraints are dependent here (roll_y2, dependent on roll_y), and elimination needs independent ones' "$tmp/elim.err"
+ok $? "roll_y written twice, eliminated: refused, naming the two, exit $st ($(head -c 200 "$tmp/elim.err"))"
 
 # ball joints: the unit constraint's multiplier apart
 ball="$src/tests/sim/specs/rolling_ball.yaml" float="$src/tests/sim/specs/floating_arm.yaml"

@@ -41,6 +41,14 @@
  * J v along the motion, (J(q(s)) v) at s = +-h, +-h/2 (mj_integratePos,
  * constant v) by central differences and Richardson's extrapolation, its
  * error O(h^4) = 1e-12 at h = 1e-3.
+ *
+ * J's rows may be dependent (a planar loop closed by a connect's three
+ * world rows: rank 2), where J J^T and the system above are singular, yet
+ * q'' is unique: the rows a pivoted QR of J^T (rows scaled to unit length)
+ * finds dependent, |R_kk| <= DEPENDENT, are left out of every solve, the
+ * same rows at the shifted states of J' v.  That q'' is also the limit of
+ * MuJoCo's own as its regularization goes to 0 (its multipliers are the
+ * least-squares ones, its accelerations these).
  */
 #include <math.h>
 #include <stdint.h>
@@ -48,6 +56,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 #include <mujoco/mujoco.h>
 
@@ -56,6 +65,9 @@ static const double DIFF_STEP = 1e-3; /* Richardson's h for J' v */
 /* on the constraints: residuals below this, in the test models' lengths
  * (about 1), where Newton's steps stop at rounding */
 static const double ON_CONSTRAINTS = 1e-12;
+/* a row of J (at unit length) whose part independent of the rows before
+ * it in QR's order is below this is dependent: rounding leaves 1e-16 */
+static const double DEPENDENT = 1e-9;
 
 /* uniform in [-1.5, 1.5), by splitmix64: the same states everywhere */
 static double
@@ -110,9 +122,56 @@ eq_rows(const mjModel *m, mjData *d, double *J, double *r)
     return ne;
 }
 
-/* x -= J^T (J J^T)^-1 J x for x of length nv: b = J x, or the given
- * residual r where r is not NULL (then x = -J^T (J J^T)^-1 r). */
+/* The rows of J [ne x nv] that QR with column pivoting of J^T (each row
+ * at unit length) finds independent, in their own order, into keep;
+ * their count. */
+static int
+independent(int ne, int nv, const double *J, int *keep)
+{
+    if (ne == 0)
+        return 0;
+    gsl_matrix *A = gsl_matrix_alloc((size_t)nv, (size_t)ne);
+    gsl_vector *tau = gsl_vector_alloc((size_t)(ne < nv ? ne : nv));
+    gsl_vector *norm = gsl_vector_alloc((size_t)ne);
+    gsl_permutation *p = gsl_permutation_alloc((size_t)ne);
+    for (int i = 0; i < ne; i++) {
+        double s = 0;
+        for (int k = 0; k < nv; k++)
+            s += J[i * nv + k] * J[i * nv + k];
+        for (int k = 0; k < nv; k++)
+            gsl_matrix_set(A, (size_t)k, (size_t)i, J[i * nv + k] / sqrt(s));
+    }
+    int sign, rank = 0;
+    gsl_linalg_QRPT_decomp(A, tau, p, &sign, norm);
+    char *kept = calloc((size_t)ne, 1);
+    for (int k = 0; k < ne && k < nv; k++)
+        if (fabs(gsl_matrix_get(A, (size_t)k, (size_t)k)) > DEPENDENT)
+            kept[gsl_permutation_get(p, (size_t)k)] = 1, rank++;
+    for (int i = 0, r = 0; i < ne; i++)
+        if (kept[i])
+            keep[r++] = i;
+    free(kept);
+    gsl_matrix_free(A);
+    gsl_vector_free(tau);
+    gsl_vector_free(norm);
+    gsl_permutation_free(p);
+    return rank;
+}
+
+/* J's and r's rows keep [nk] moved to the top. */
 static void
+compact(int nk, int nv, const int *keep, double *J, double *r)
+{
+    for (int i = 0; i < nk; i++) {
+        memmove(J + (size_t)i * nv, J + (size_t)keep[i] * nv, (size_t)nv * sizeof *J);
+        r[i] = r[keep[i]];
+    }
+}
+
+/* x -= J^T (J J^T)^-1 J x for x of length nv: b = J x, or the given
+ * residual r where r is not NULL (then x = -J^T (J J^T)^-1 r); 0, or -1
+ * where J J^T is singular (a draw that Newton took to a singular pose). */
+static int
 project(int ne, int nv, const double *J, const double *r, double *x)
 {
     gsl_matrix *A = gsl_matrix_alloc((size_t)ne, (size_t)ne);
@@ -129,7 +188,12 @@ project(int ne, int nv, const double *J, const double *r, double *x)
             gsl_matrix_set(A, (size_t)i, (size_t)j, t);
         }
     }
-    gsl_linalg_cholesky_decomp1(A);
+    if (gsl_linalg_cholesky_decomp1(A) != GSL_SUCCESS) {
+        gsl_matrix_free(A);
+        gsl_vector_free(b);
+        gsl_vector_free(y);
+        return -1;
+    }
     gsl_linalg_cholesky_solve(A, b, y);
     for (int k = 0; k < nv; k++) {
         double s = 0;
@@ -140,6 +204,7 @@ project(int ne, int nv, const double *J, const double *r, double *x)
     gsl_matrix_free(A);
     gsl_vector_free(b);
     gsl_vector_free(y);
+    return 0;
 }
 
 /* J(q(s)) v at q(s) = q moved by s v */
@@ -166,6 +231,7 @@ constrained(const mjModel *m, mjData *d)
     size_t rows = (size_t)d->nefc + 1;
     double *J = calloc(rows * (size_t)nv, sizeof *J), *r = calloc(rows, sizeof *r);
     double *dq = calloc((size_t)nv, sizeof *dq);
+    int *keep = calloc(rows, sizeof *keep), nk;
     double last = INFINITY;
     for (int it = 0;; it++) {
         ne = eq_rows(m, d, J, r);
@@ -175,15 +241,23 @@ constrained(const mjModel *m, mjData *d)
         if (rmax == 0 || rmax >= last || it == NEWTON_MAX)
             break;
         last = rmax;
-        project(ne, nv, J, r, dq);
+        nk = independent(ne, nv, J, keep);
+        compact(nk, nv, keep, J, r);
+        if (project(nk, nv, J, r, dq) != 0)
+            break;
         mj_integratePos(m, d->qpos, dq, 1);
     }
     if (last > ON_CONSTRAINTS) {
-        free(J), free(r), free(dq);
+        free(J), free(r), free(dq), free(keep);
         return -1;
     }
     ne = eq_rows(m, d, J, r);
-    project(ne, nv, J, NULL, d->qvel);
+    nk = independent(ne, nv, J, keep);
+    compact(nk, nv, keep, J, r);
+    if (project(nk, nv, J, NULL, d->qvel) != 0) {
+        free(J), free(r), free(dq), free(keep);
+        return -1;
+    }
     mj_forward(m, d);
     /* J' v by Richardson's extrapolation of central differences */
     mjData *w = mj_makeData(m);
@@ -192,11 +266,11 @@ constrained(const mjModel *m, mjData *d)
     double *g1 = calloc(rows, sizeof *g1), h = DIFF_STEP;
     jv_at(m, w, d->qpos, d->qvel, h, Jw, rw, p);
     jv_at(m, w, d->qpos, d->qvel, -h, Jw, rw, n);
-    for (int i = 0; i < ne; i++)
-        g1[i] = (p[i] - n[i]) / (2 * h);
+    for (int i = 0; i < nk; i++)
+        g1[i] = (p[keep[i]] - n[keep[i]]) / (2 * h);
     jv_at(m, w, d->qpos, d->qvel, h / 2, Jw, rw, p);
     jv_at(m, w, d->qpos, d->qvel, -h / 2, Jw, rw, n);
-    int W = nv + ne;
+    int W = nv + nk;
     gsl_matrix *K = gsl_matrix_calloc((size_t)W, (size_t)W);
     gsl_vector *b = gsl_vector_alloc((size_t)W), *x = gsl_vector_alloc((size_t)W);
     double *M = calloc((size_t)nv * (size_t)nv, sizeof *M);
@@ -206,8 +280,8 @@ constrained(const mjModel *m, mjData *d)
             gsl_matrix_set(K, (size_t)i, (size_t)k, M[i * nv + k]);
         gsl_vector_set(b, (size_t)i, d->qfrc_smooth[i]);
     }
-    for (int i = 0; i < ne; i++) {
-        double g2 = (p[i] - n[i]) / h;
+    for (int i = 0; i < nk; i++) {
+        double g2 = (p[keep[i]] - n[keep[i]]) / h;
         gsl_vector_set(b, (size_t)(nv + i), -(4 * g2 - g1[i]) / 3);
         for (int k = 0; k < nv; k++) {
             gsl_matrix_set(K, (size_t)(nv + i), (size_t)k, J[i * nv + k]);
@@ -226,6 +300,7 @@ constrained(const mjModel *m, mjData *d)
     gsl_vector_free(x);
     mj_deleteData(w);
     free(J), free(r), free(dq), free(Jw), free(rw), free(p), free(n), free(g1), free(M);
+    free(keep);
     return 0;
 }
 
@@ -383,6 +458,7 @@ main(int argc, char **argv)
     m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
                            mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
     m->opt.jacobian = mjJAC_DENSE;
+    gsl_set_error_handler_off(); /* a singular draw is drawn again */
     for (int i = 0; i < m->nu; i++)
         m->actuator_forcelimited[i] = 0;
     mjData *d = mj_makeData(m);

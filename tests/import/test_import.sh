@@ -3,7 +3,9 @@
 # tests: an arm, the same with damping and springs, a URDF arm, a floating
 # base with a ball joint, armature and actuators, a closed loop, welds and
 # fixed tendons (their constraints on independent trees: blocks that
-# kkt.c solves apart); the benchmark's chain;
+# kkt.c solves apart), a four-bar linkage whose connect has a dependent
+# row, a gripper whose connects have a row that constrains nothing; the
+# benchmark's chain;
 # MuJoCo's humanoid, 22 humanoids and humanoid100 (616 and 728
 # coordinates) where libmujoco-samples is installed) imported, then
 # q'' of `eomc run --accel` at 100 random states and controls against
@@ -58,9 +60,10 @@ small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs
          $src/tests/import/models/fluid.xml $tmp/fluid_unforced.xml $tmp/fluid_unactuated.xml
          $tmp/closed_noequality.xml $tmp/closed_noconstraint.xml
          $src/tests/import/models/legged.urdf
+         $src/tests/import/models/fourbar.xml $src/tests/import/models/gripper.xml
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
 robots) r=$src/tests/import/models/robots # written for the robots benchmark too
-        models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml" ;;
+        models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml $r/fourbar.xml" ;;
 humanoid | 22_humanoids) models=$samples/humanoid/$part.xml ;;
 humanoid100) models=$samples/humanoid100/$part.xml ;;
 *) echo "test_import.sh: no part '$part'" >&2; exit 2 ;;
@@ -194,6 +197,54 @@ res=$(tr '\n' ' ' < "$tmp/err" | sed -n 's/.*largest constraint *residual was \(
 [ $st -eq 0 ] && grep -q "assemble: true" "$tmp/closed_xml.yaml" &&
   awk -v r="$res" 'BEGIN { exit !(r != "" && r + 0 <= 1e-10) }'
 ok $? "closed.xml runs: assembled from qpos0, its constraints held to $res (<= 1e-10)"
+
+# the gripper: each connect's row across the fingers' plane is 0 at every
+# pose, dropped at import with a note (as eomc would refuse it), the two
+# that move kept, the joint equality as it was
+"$eomc" import "$src/tests/import/models/gripper.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] &&
+  grep -q "gripper.xml: note: dropped: 2 constraint rows: left_loop_x, right_loop_x (0 at every pose" "$tmp/err" &&
+  [ "$(sed -n '/^constraints:/,/^[a-z]/s/^  \([a-z_]*\):.*/\1/p' "$tmp/out" | tr '\n' ' ')" = \
+    "left_loop_y left_loop_z right_loop_y right_loop_z mirror " ]
+ok $? "gripper.xml: the connects' rows across the plane dropped with a note, exit $st ($(grep note "$tmp/err"))"
+
+# the four-bar: the connect's three rows (in the coupler's axes, none of
+# them constant: the hinges turn about (1 1 1)) have rank 2, found at the
+# start, the dependent one left out with a note.  Over 5 s, the crank
+# driven round 15 times and the base turning, the row left out stays as
+# well met as the two kept (its largest residual in the CSV at most twice
+# theirs, all below 1e-9 of the coupler's 0.4: no stabilization), and
+# --error measures the run against the reference, which leaves the same
+# row out, within 1e-9 of the largest coordinate (the crank's, 92 rad)
+"$eomc" run "$src/tests/import/models/fourbar.xml" --set u_drive=1 --init "turn'=1" --t-end 5 \
+  --error -o "$tmp/fourbar.csv" --summary > /dev/null 2> "$tmp/err"
+st=$?
+drop=$(sed -n 's/.*note: constraints dependent at the start: \(loop_[xyz]\), dependent on loop_[xyz], loop_[xyz]; the solves leave the dependent rows out.*/\1/p' "$tmp/err")
+fb=$(awk -F, -v drop="res[$drop]" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i ~ /^res\[loop_/) c[i] = 1; if ($i == drop) d = i; if ($i == "a") a = i } }
+  NR > 1 { for (i in c) { r = $i < 0 ? -$i : $i; if (i == d && r > md) md = r; if (i != d && r > mk) mk = r }
+           r = $a < 0 ? -$a : $a; if (r > big) big = r; n++ }
+  END { printf "%.3g %.3g %.3g %d", md, mk, big, (d && n == 501) }' "$tmp/fourbar.csv")
+err=$(tr '\n' ' ' < "$tmp/err" | sed -n 's/.*the error was at *most \([0-9.e+-]*[0-9]\) over the rows.*/\1/p')
+set -- $fb nan nan nan 0 # (a run that wrote no CSV: the defaults)
+[ $st -eq 0 ] && [ "$4" -eq 1 ] &&
+  awk -v d="$1" -v k="$2" -v big="$3" -v e="$err" \
+    'BEGIN { exit !(d <= 2 * k && k <= 0.4e-9 && e != "" && e + 0 <= 1e-9 * big) }'
+ok $? "fourbar.xml over 5 s: $drop left out, held to $1 (the others to $2) of 0.4; the error against the reference $err, the crank at $3 rad ($(grep note "$tmp/err" | head -c 120))"
+# the same by Taylor's method (its series' KKT solves leave the row out
+# too) and against Taylor's reference in extended precision: at t = 2 the
+# state of the run above, within 1e-9 of the crank's angle
+"$eomc" run "$src/tests/import/models/fourbar.xml" --set u_drive=1 --init "turn'=1" --t-end 2 \
+  --method taylor --error --reference-method taylor -o "$tmp/fourbar_taylor.csv" --summary \
+  > /dev/null 2> "$tmp/err"
+st=$?
+err=$(tr '\n' ' ' < "$tmp/err" | sed -n 's/.*the error was at *most \([0-9.e+-]*[0-9]\) over the rows.*/\1/p')
+d=$(awk -F, 'NR == FNR && $1 == 2 { for (i = 2; i <= 9; i++) x[i] = $i }
+  NR != FNR && FNR > 1 && $1 == 2 { for (i = 2; i <= 9; i++) { e = $i - x[i]; e = e < 0 ? -e : e; if (e > m) m = e
+                                                              a = $i < 0 ? -$i : $i; if (a > big) big = a }; n++ }
+  END { if (n != 1 || big == 0) print "nan"; else printf "%.3g\n", m / big }' "$tmp/fourbar.csv" "$tmp/fourbar_taylor.csv")
+[ $st -eq 0 ] && awk -v d="$d" -v e="$err" 'BEGIN { exit !(d != "nan" && d + 0 <= 1e-9 && e != "" && e + 0 <= 1e-7) }'
+ok $? "fourbar.xml by Taylor's method to t = 2: rk8pd's state to $d, the error against Taylor's reference $err"
 
 # the shipped floating base, its motors driving the legs: no force but
 # gravity acts on the whole, so its centre of mass falls as a stone

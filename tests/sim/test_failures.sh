@@ -28,7 +28,14 @@
 #  - --max-steps 5: too many steps;
 #  - Appell's particle on the decelerating branch z' = -a v stops at
 #    t* = v0 (1 + a^2) / (a g), where the cone degenerates: the run ends
-#    there with that error, not with NaN or a jump to the other branch.
+#    there with that error, not with NaN or a jump to the other branch;
+#  - a bead started where a ring and a rail touch, their rows dependent
+#    there alone: the rail's row is left out of the solves, and the run
+#    stops at the first step, where the bead leaves the rail, naming the
+#    rail and the ring (not the pendulum beside them);
+#  - a bead carried up a ring by a rail, put by an event at the top, where
+#    the two rows are dependent: the constrained system is singular there,
+#    and the message names the ring and the rail alone.
 # usage: test_failures.sh EOMC SOURCE_ROOT
 set -u
 eomc=$1 src=$2
@@ -140,6 +147,20 @@ ok $? "appell, decelerating: stops at t = $t (t* = $tstar) where the cone degene
 last=$(tail -n 1 "$csv" | cut -d, -f5)
 awk -v v="$last" 'BEGIN { exit !(v > 0) }'
 ok $? "appell, decelerating: x' stays positive up to the last row ($last): no jump to the other branch"
+
+run dependent "$specs/fail_dependent.yaml"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "note: constraints dependent at the start: rail, dependent on ring; the solves leave" &&
+  printf '%s' "$err" | grep -q "error: t = [0-9.e-]*: the constraint rail no longer holds: it was left out of the solves at the start as dependent on the others (rail, dependent on ring), but its residual is" &&
+  ! printf '%s' "$err" | grep -q "pendulum" &&
+  awk -v t="$t" 'BEGIN { exit !(t > 0 && t < 0.1) }' && state_named "x = " && kept "$t" 1
+ok $? "a ring and a rail touching at the start: the rail left out, the run stopped at t = $t where the bead leaves it, naming the two (exit $st)"
+
+run tangent "$specs/fail_tangent.yaml"
+t=$(t_of)
+[ $st -eq 3 ] && printf '%s' "$err" | grep -q "error: t = 1: the constrained system is singular: the constraints ring, rail are dependent here (their rows df/dq'' span 1 dimension); state: x = 0, y = 1" &&
+  near "$t" 1 1e-12 && kept "$t" 11
+ok $? "a ring and a rail made to touch at t = 1: singular there, the message naming the two alone (exit $st)"
 
 echo "1..$n"
 [ $failed -eq 0 ]

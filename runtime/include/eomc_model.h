@@ -18,7 +18,8 @@
  *
  * Argument names used below:
  *   t   time                       q   coordinates            [nq]
- *   v   velocities q'   [nq]       a   accelerations q''      [nq]
+ *   v   speeds [nv]: q' unless nv   a   their rates v'        [nv]
+ *       (below) says otherwise
  *   p   parameters [np + nd] (derive) u  input values           [nu]
  *
  * The functions are written in the number type eomc_real: double, or,
@@ -31,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 21
+#define EOMC_ABI_VERSION 22
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -228,7 +229,7 @@ typedef struct eomc_model {
     /* ---- the scene's assembly ----
      * assemble = 1 (`assemble:`): every run first moves the initial state
      * onto the holonomic and first-order constraints, keeping what a_hold
-     * [2 nq] marks as it is (a_hold[i]: q_i, a_hold[nq + i]: q_i'; NULL:
+     * [nq + nv] marks as it is (a_hold[i]: q_i, a_hold[nq + k]: v_k; NULL:
      * nothing held) and moving the rest (eomc_sim_project_held).  0: runs
      * start as given.  The simulator's --assemble, --hold and
      * --no-assemble override it. */
@@ -333,6 +334,30 @@ typedef struct eomc_model {
     const int *taylor_a, *taylor_B, *taylor_f, *taylor_pos, *taylor_vel;
     void (*taylor)(int k, int K, double t0, const double *p, const double *u, double *T);
     const char *taylor_why;
+
+    /* ---- the speeds ----
+     * The speeds v and the kinematic equation q' = W(q) v.  nv = 0: the
+     * speeds are the coordinates' rates, v = q' (nv is then nq in all
+     * that follows, and v_names, qdot, qdot_jacobian and quat are NULL).
+     * Otherwise nv speeds, named v_names (the state's column names:
+     * "x'" for a coordinate's rate, "root_wx" for a component of a body's
+     * angular velocity), and qdot(q, v, qd) puts q' [nq].  A free or ball
+     * joint's turn is a unit quaternion of four coordinates whose speeds
+     * are the body's angular velocity in its own axes, three of them, so
+     * nv < nq.  Every function of the model takes v [nv] and works in the speeds:
+     * M is nv x nv, h and a have nv entries, a = v', B = df/da is nc x nv,
+     * and each derivative by q has nq columns, by v or a nv columns.
+     * qdot_jacobian(q, v, dqdq, dqdv) puts dq'/dq [nq*nq] and dq'/dv
+     * [nq*nv].  quat [4 nquat] lists the coordinates of each unit
+     * quaternion (e0 e1 e2 e3, scalar first): q' = W(q) v keeps |e| = 1
+     * exactly, and the steps renormalize e against the drift of
+     * integration (no constraint of the model says so). */
+    int nv;
+    const char *const *v_names;  /* [nv] */
+    void (*qdot)(const double *q, const double *v, double *qd);
+    void (*qdot_jacobian)(const double *q, const double *v, double *dqdq, double *dqdv);
+    int nquat;
+    const int *quat;
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */
@@ -382,6 +407,7 @@ typedef struct eomc_model_ext {
     int abi;               /* EOMC_ABI_VERSION */
     const char *name;      /* the model's name, as in eomc_model */
     void (*derive)(const eomc_ext *p, eomc_ext *pd); /* as in eomc_model */
+    void (*qdot)(const eomc_ext *q, const eomc_ext *v, eomc_ext *qd); /* as in eomc_model */
     void (*inputs)(eomc_ext t, const eomc_ext *p, eomc_ext *u, eomc_ext *dudt);
     void (*mass_bias)(eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                       const eomc_ext *p, const eomc_ext *u, eomc_ext *M, eomc_ext *h);

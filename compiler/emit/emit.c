@@ -36,6 +36,7 @@ print_names(Printer *pr, const char *array, int n, const char *(*name)(const Low
 static const char *coord_name(const LowModel *md, int i) { return md->coord[i]; }
 static const char *param_name(const LowModel *md, int i) { return md->param[i].name; }
 static const char *input_name(const LowModel *md, int i) { return md->input[i]; }
+static const char *speed_name(const LowModel *md, int i) { return md->v_names[i]; }
 
 /* A sentence in the banner, " * " lines wrapped before WRAP. */
 static void
@@ -174,9 +175,16 @@ print_tables(Printer *pr)
     for (int i = 0; i < md->np; i++)
         fprintf(pr->f, "%s%d", i ? ", " : "", md->param[i].fixed);
     emit_line(pr, md->np ? "};" : "0};");
+    if (md->nspeed) {
+        print_names(pr, "v_names", md->nv, speed_name);
+        fprintf(pr->f, "static const int quat[%d] = {", 4 * md->nquat);
+        for (int i = 0; i < 4 * md->nquat; i++)
+            fprintf(pr->f, "%s%d", i ? ", " : "", md->quat[i]);
+        emit_line(pr, "};");
+    }
     if (md->assemble && md->hold) { /* what the scene's assembly keeps */
-        fprintf(pr->f, "static const unsigned char a_hold[%d] = {", 2 * md->nq);
-        for (int i = 0; i < 2 * md->nq; i++)
+        fprintf(pr->f, "static const unsigned char a_hold[%d] = {", md->nq + md->nv);
+        for (int i = 0; i < md->nq + md->nv; i++)
             fprintf(pr->f, "%s%d", i ? ", " : "", md->hold[i]);
         emit_line(pr, "};");
     }
@@ -220,7 +228,7 @@ static void
 print_mass_columns(Printer *pr, const Lowered *L)
 {
     const char *nm = pr->md->name;
-    int n = L->n;
+    int n = L->nv;
     emit_line(pr, "/* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).");
     emit_line(pr, " * Column j of M is the derivative of E along q'' = e_j: exact, in code");
     emit_line(pr, " * about the size of E instead of %d x %d entries.  Off the hot path: the", n, n);
@@ -328,7 +336,7 @@ static void
 print_tree_energy(Printer *pr, const Lowered *L)
 {
     const char *nm = pr->md->name;
-    int n = L->n;
+    int n = L->nv;
     char fname[128];
     emit_line(pr, "/* Kinetic energy T and potential energy V: T = q'.M q'/2, with M q' by");
     emit_line(pr, " * %s. */", L->tables ? "the recursion over the tables" : "mass_times");
@@ -604,6 +612,9 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
     print_taylor_members(pr, L->taylor, nm, 0);
+    if (md->nspeed)
+        emit_line(pr, "    .nv = %d, .v_names = v_names, .qdot = %s_qdot, .qdot_jacobian = "
+                  "%s_qdot_jacobian,\n    .nquat = %d, .quat = quat,", md->nv, nm, nm, md->nquat);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -626,6 +637,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                 md->affine ? "NULL" : nm, md->affine ? "" : "_c_jacobian");
     else
         emit_line(pr, "    .constraint = NULL, .c_jacobian = NULL,");
+    if (md->nspeed)
+        emit_line(pr, "    .qdot = %s_qdot,", nm);
     print_taylor_members(pr, L->taylor, nm, 1);
     emit_line(pr, "};");
     emit_line(pr, "#endif /* EOMC_EXTENDED */");
@@ -833,8 +846,8 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
     if (md->mass_parent) {
         fprintf(f, "/* M's structural nonzeros as a tree: each coordinate's parent (-1: a\n"
                    " * root); M_ij = 0 unless one is above the other. */\n"
-                   "static const int mass_parent[%d] = {", md->nq);
-        for (int i = 0; i < md->nq; i++)
+                   "static const int mass_parent[%d] = {", md->nv);
+        for (int i = 0; i < md->nv; i++)
             fprintf(f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", md->mass_parent[i]);
         emit_line(&pr, "};\n");
     }

@@ -63,8 +63,9 @@ leaf_name(Printer *pr, const ExprNode *nd, char *buf, size_t len)
 {
     static const char prefix[] = {'q', 'v', 'a', 'j'};
     switch (nd->op) {
-    case EXPR_SEED:
-        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b], pr->md->coord[nd->a]);
+    case EXPR_SEED: /* dq by coordinate, dv and da by velocity slot */
+        snprintf(buf, len, "%s_%s", src_name[SRC_DQ + nd->b],
+                 pr->md->coord[nd->b ? pr->md->vcoord[nd->a] : (int)nd->a]);
         break;
     case EXPR_VAR:
         snprintf(buf, len, "%c_%s", prefix[nd->b], pr->md->coord[nd->a]);
@@ -346,7 +347,9 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
             char buf[160];
             leaf_name(pr, nd, buf, sizeof buf);
             pr->used |= 1u << arr;
-            emit_line(pr, "    const eomc_real %s = %s[%u];", buf, src_name[arr], nd->a);
+            /* a rate of coordinate (or speed) c is velocity slot vslot[c] */
+            int at = nd->op == EXPR_VAR && nd->b > 0 ? pr->md->vslot[nd->a] : (int)nd->a;
+            emit_line(pr, "    const eomc_real %s = %s[%d];", buf, src_name[arr], at);
         }
     for (size_t j = 0; j < ls.n; j++)
         if (is_derived(pr, ls.list[j])) {

@@ -221,7 +221,9 @@ time_leaf(ExprPool *P, const ExprNode *nd)
     switch (nd->op) {
     case EXPR_TIME:
         return EXPR_ONE;
-    case EXPR_VAR: /* d/dt q^(k) = q^(k+1) */
+    case EXPR_VAR: /* d/dt q^(k) = q^(k+1), or the rate of a coordinate that has one */
+        if (nd->b == 0 && expr_rate(P, (int)nd->a) != EXPR_NONE)
+            return expr_rate(P, (int)nd->a);
         if (nd->b + 1 > EXPR_MAX_ORDER)
             return EXPR_NONE;
         return expr_var(P, (int)nd->a, (int)nd->b + 1);
@@ -230,6 +232,12 @@ time_leaf(ExprPool *P, const ExprNode *nd)
         return EXPR_NONE;
     }
     return EXPR_ZERO;
+}
+
+ExprPool *
+diff_pool(const Diff *D)
+{
+    return D->P;
 }
 
 ExprId

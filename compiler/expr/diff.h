@@ -26,6 +26,7 @@ typedef struct Diff Diff;
 
 Diff *diff_new(ExprPool *P);
 void diff_free(Diff *D);
+ExprPool *diff_pool(const Diff *D);
 
 ExprId diff_partial(Diff *D, ExprId e, ExprId leaf);
 ExprId diff_time(Diff *D, ExprId e);

@@ -26,6 +26,8 @@ struct ExprPool {
     size_t n, cap;
     uint32_t *table; /* ids + 1; 0 = empty slot */
     size_t tcap;
+    ExprId *rate;    /* per coordinate: its rate where it is not a speed (expr_set_rate) */
+    int nrate;
 };
 
 const char *const expr_op_spelling[EXPR_NOPS] = {
@@ -171,7 +173,34 @@ expr_pool_free(ExprPool *P)
     free(P->node);
     free(P->trig);
     free(P->table);
+    free(P->rate);
     free(P);
+}
+
+void
+expr_set_rate(ExprPool *P, int coord, ExprId rate)
+{
+    if (coord >= P->nrate) {
+        int cap = 2 * coord + 8;
+        P->rate = xrealloc(P->rate, (size_t)cap * sizeof *P->rate);
+        for (int i = P->nrate; i < cap; i++)
+            P->rate[i] = EXPR_NONE;
+        P->nrate = cap;
+    }
+    P->rate[coord] = rate;
+}
+
+void
+expr_clear_rates(ExprPool *P)
+{
+    for (int i = 0; i < P->nrate; i++)
+        P->rate[i] = EXPR_NONE;
+}
+
+ExprId
+expr_rate(const ExprPool *P, int coord)
+{
+    return coord < P->nrate ? P->rate[coord] : EXPR_NONE;
 }
 
 size_t expr_pool_size(const ExprPool *P) { return P->n; }

@@ -89,6 +89,19 @@ ExprId expr_seed(ExprPool *P, int coord, int kind);
 /* The multiplier of constraint c (outputs only: nothing differentiates it). */
 ExprId expr_mult(ExprPool *P, int c);
 
+/* A coordinate whose rate is not a speed of its own: q_coord' = rate, an
+ * expression of the coordinates and the speeds (a unit quaternion's
+ * Euler parameters, whose rates are 1/2 e (x) (0, w) in the body's angular
+ * velocity w).  diff_time then takes rate for the coordinate's derivative,
+ * and the coordinate has no leaves of order 1 and up.  Set it before any
+ * derivative of an expression that holds the coordinate.  expr_rate is
+ * EXPR_NONE where the coordinate's rate is its own leaf, q_coord'. */
+void expr_set_rate(ExprPool *P, int coord, ExprId rate);
+ExprId expr_rate(const ExprPool *P, int coord);
+/* Every coordinate's rate its own leaf again (a pool that serves one spec
+ * at a time: spec_load starts so). */
+void expr_clear_rates(ExprPool *P);
+
 /* Simplifying constructors. */
 ExprId expr_add(ExprPool *P, ExprId a, ExprId b);
 ExprId expr_sub(ExprPool *P, ExprId a, ExprId b);

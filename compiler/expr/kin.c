@@ -307,6 +307,40 @@ kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
     turn_by(K, f, Rk, zero, EXPR_NONE, wa, wb);
 }
 
+void
+kin_quat_rates(ExprPool *P, const ExprId e[4], const ExprId w[3], ExprId ed[4])
+{
+    static const int Lrow[3][4][2] = { /* (sign, index of e) per column of L */
+        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
+        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
+        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
+    };
+    ExprId half = expr_const(P, 0.5);
+    for (int c = 0; c < 4; c++) {
+        ExprId x = EXPR_ZERO;
+        for (int r = 0; r < 3; r++) {
+            ExprId t = expr_mul(P, e[Lrow[r][c][1]], w[r]);
+            x = Lrow[r][c][0] > 0 ? expr_add(P, x, t) : expr_sub(P, x, t);
+        }
+        ed[c] = expr_mul(P, half, x);
+    }
+}
+
+void
+kin_turn_quaternion_speeds(Kin *K, int f, const ExprId e[4], const ExprId w[3])
+{
+    ExprPool *P = K->P;
+    ExprId Rk[9], wa[3], wb[3], zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
+    kin_quat_matrix(P, e, Rk);
+    for (int r = 0; r < 3; r++) {
+        wa[r] = w[r];
+        wb[r] = EXPR_ZERO;
+        for (int c = 0; c < 3; c++)
+            wb[r] = expr_add(P, wb[r], expr_mul(P, Rk[3 * r + c], w[c]));
+    }
+    turn_by(K, f, Rk, zero, EXPR_NONE, wa, wb);
+}
+
 int
 kin_point(Kin *K, int from, int f, const ExprId at[3])
 {

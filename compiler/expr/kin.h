@@ -49,6 +49,13 @@ void kin_turn(Kin *K, int f, const ExprId a[3], ExprId angle);
  * e2, e3), whose angular velocity 2 L e' (in the turned axes) is exact
  * where |e| = 1, which a unit constraint must keep (spec/constraints.c adds it). */
 void kin_turn_quaternion(Kin *K, int f, const ExprId e[4]);
+/* The same turn whose angular velocity is the speeds w (in the turned
+ * axes), and the Euler parameters' rates e' = 1/2 e (x) (0, w)
+ * (kin_quat_rates, expr_set_rate): nothing to keep, |e| is constant. */
+void kin_turn_quaternion_speeds(Kin *K, int f, const ExprId e[4], const ExprId w[3]);
+/* ed = 1/2 e (x) (0, w) = 1/2 L^T w: the rates of the Euler parameters e
+ * turning at w in the turned axes; L e' = w/2 and e.e' = 0 for any e. */
+void kin_quat_rates(ExprPool *P, const ExprId e[4], const ExprId w[3], ExprId ed[4]);
 /* The rotation matrix of the Euler parameters e (scalar first), row-major:
  * (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1, e2, e3).  A frame's
  * turn (kin_turn_quaternion) and a body's own quaternion share it. */

@@ -398,6 +398,7 @@ const Form form_articulated = {
     .residual = rne_residual,
     .mass = crb_mass,
     .solve = articulated,
+    .speeds = 1,
 };
 
 FormTables *
@@ -406,6 +407,10 @@ form_tables(const Mech *m, Arena *A, ExprPool *P, Diff *D, const char **why)
     const Tree *t = m->tree;
     if (!t) {
         *why = m->tree_why;
+        return NULL;
+    }
+    if (m->speeds) { /* the tables index q and v alike */
+        *why = "the tables have no ball joints (turns by a quaternion)";
         return NULL;
     }
     int nt = t->nturns;

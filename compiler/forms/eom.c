@@ -212,6 +212,11 @@ Eom *
 eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
            ExprPool *P, Diff *D, const char **why)
 {
+    if (m->speeds && !f->speeds) {
+        *why = "its equations are in the coordinates' rates, and a quaternion here has speeds "
+               "(its angular velocity); gibbs-appell and the recursive forms take them";
+        return NULL;
+    }
     ExprId *E = f->residual(m, A, P, D, why);
     if (!E)
         return NULL;

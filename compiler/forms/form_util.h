@@ -9,7 +9,8 @@
 
 /* dV/dq_i - Q_i, the part every form shares. */
 ExprId *form_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D);
-/* Gradient of f with respect to the leaves q^(order). */
+/* Gradient of f with respect to the leaves q^(order); for order 0 with
+ * speeds, by the slots' virtual displacements (df/dq dq'/dv, v held). */
 ExprId *form_gradient(const Mech *m, ExprId f, int order, Arena *A, Diff *D);
 
 #endif

@@ -19,6 +19,10 @@ typedef struct Form {
     ExprId *(*residual)(const Mech *m, Arena *A, ExprPool *P, Diff *D,
                         const char **why);
     int eliminate;       /* constraints by elimination rather than multipliers */
+    /* It takes speeds that are no coordinate's rates (a quaternion's
+     * angular velocity, mech.h): its residual is a balance of forces
+     * along each slot's virtual speed, not Lagrange's in coordinates. */
+    int speeds;
     /* The mass matrix [n*n], when the form has a cheaper way to it than
      * dE/dq'' (equal to it); NULL: eom.c differentiates E. */
     ExprId *(*mass)(const Mech *m, Arena *A, ExprPool *P, Diff *D);

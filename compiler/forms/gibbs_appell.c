@@ -26,4 +26,5 @@ const Form form_gibbs_appell = {
     .name = "gibbs-appell",
     .formula = "dS/dq'' + dV/dq - Q",
     .residual = gibbs_appell,
+    .speeds = 1,
 };

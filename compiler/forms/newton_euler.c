@@ -136,4 +136,5 @@ const Form form_newton_euler = {
     .formula = "S . sum(I A + V x* I V) over the subtree + dV/dq - Q (recursive)",
     .residual = rne_residual,
     .mass = crb_mass,
+    .speeds = 1,
 };

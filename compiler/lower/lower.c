@@ -15,6 +15,12 @@
 static const LowSig s_initial = {
     "initial", "Initial state from the spec's `initial`.", "p > q v",
 };
+static const LowSig s_qdot = {
+    "qdot", "The coordinates' rates q' = W(q) v: a quaternion's 1/2 e (x) (0, w).", "q v > qd",
+};
+static const LowSig s_qdot_jacobian = {
+    "qdot_jacobian", "dq'/dq [nq*nq] and dq'/dv [nq*nv].", "q v > dqdq dqdv",
+};
 static const LowSig s_inputs = {
     "inputs", "Input signals u(t) and du/dt.", "t p > u dudt?",
 };
@@ -691,13 +697,30 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     *lw.L = (Lowered){0};
     lower_describe(lw.L, s, e, c, inv, A);
     lw.L->n = s->nq;
-    int n = s->nq;
+    lw.L->nv = s->nv;
+    int n = s->nv; /* the velocity slots: every function but initial's q and qdot's */
 
     LowFunc *f = func(&lw, &s_initial, "initial", 1);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < s->nq; i++)
         out(&lw, f, 0, i, s->coord[i].q0);
-    for (int i = 0; i < n; i++)
-        out(&lw, f, 1, i, s->coord[i].v0);
+    for (int j = 0; j < s->nv; j++) {
+        int c = s->vcoord[j];
+        out(&lw, f, 1, j, c < s->nq ? s->coord[c].v0 : s->speed[c - s->nq].v0);
+    }
+    if (s->nspeed) {
+        f = func(&lw, &s_qdot, "qdot", 0);
+        for (int i = 0; i < s->nq; i++)
+            out(&lw, f, 0, i, m->rate[i]);
+        lw.L->qdot = f;
+        f = func(&lw, &s_qdot_jacobian, "qdot", 1);
+        for (int i = 0; i < s->nq; i++) {
+            for (int j = 0; j < s->nq; j++)
+                out(&lw, f, 0, i * s->nq + j, diff_partial(D, m->rate[i], m->q[0][j]));
+            for (int j = 0; j < s->nv; j++)
+                out(&lw, f, 1, i * s->nv + j, diff_partial(D, m->rate[i], m->q[1][j]));
+        }
+        lw.L->qdot_jacobian = f;
+    }
 
     lower_inputs(&lw);
 
@@ -801,7 +824,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         lower_draw(&lw);
     lower_derive(&lw);
     /* after derive, which has seen every copy's parameter values */
-    for (int k = 0; k < lw.L->nfunc; k++)
+    for (int k = 0; s->nspeed == 0 && k < lw.L->nfunc; k++) /* its shifts are q's and v's */
         repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
     lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
     return lw.L;

@@ -32,9 +32,28 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
     md->form = dup(A, e->form->name);
     md->formula = dup(A, e->form->formula);
     md->nq = s->nq, md->np = s->np, md->nu = s->nu, md->neffect = s->neffect;
-    md->coord = arena_new_array(A, const char *, s->nq);
+    md->coord = arena_new_array(A, const char *, s->nq + s->nspeed);
     for (int i = 0; i < s->nq; i++)
         md->coord[i] = dup(A, s->coord[i].name);
+    for (int k = 0; k < s->nspeed; k++)
+        md->coord[s->nq + k] = dup(A, s->speed[k].name);
+    md->nv = s->nv, md->nspeed = s->nspeed;
+    md->vslot = arena_new_array(A, int, s->nq + s->nspeed);
+    memcpy(md->vslot, s->vslot, (size_t)(s->nq + s->nspeed) * sizeof *md->vslot);
+    md->vcoord = arena_new_array(A, int, s->nv);
+    memcpy(md->vcoord, s->vcoord, (size_t)s->nv * sizeof *md->vcoord);
+    md->v_names = arena_new_array(A, const char *, s->nv);
+    for (int j = 0; j < s->nv; j++)
+        md->v_names[j] = s->vcoord[j] < s->nq ? arena_printf(A, "%s'", md->coord[s->vcoord[j]])
+                                              : md->coord[s->vcoord[j]];
+    md->quat = arena_new_array(A, int, 4 * (s->nfquat + s->nbody) + 1);
+    for (int k = 0; k < s->nfquat + s->nbody; k++) {
+        const int *q = k < s->nfquat ? s->fquat[k].q : s->body[k - s->nfquat].quat;
+        int sp = k < s->nfquat ? s->fquat[k].speed : s->body[k - s->nfquat].quat_speed;
+        if (q[0] < 0 || sp < 0)
+            continue;
+        memcpy(md->quat + 4 * md->nquat++, q, 4 * sizeof *q);
+    }
     md->param = arena_new_array(A, LowParam, s->np);
     for (int i = 0; i < s->np; i++)
         md->param[i] = (LowParam){dup(A, s->param[i].name), s->param[i].value,
@@ -61,8 +80,8 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
                                   sc->event[k].action};
     md->assemble = sc->assemble;
     if (sc->hold) {
-        md->hold = arena_new_array(A, unsigned char, 2 * s->nq);
-        memcpy(md->hold, sc->hold, 2 * (size_t)s->nq);
+        md->hold = arena_new_array(A, unsigned char, s->nq + s->nv);
+        memcpy(md->hold, sc->hold, (size_t)(s->nq + s->nv));
     }
     md->ncheck = s->ncheck;
     md->check = arena_new_array(A, LowCheck, s->ncheck);

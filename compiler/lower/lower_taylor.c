@@ -358,6 +358,8 @@ build_node(Build *b, ExprId id)
 static const char *
 refused(const Lowered *L, const LowFunc *mb, const LowFunc *cf)
 {
+    if (L->model.nspeed)
+        return "a quaternion has speeds (its angular velocity), which the series do not take yet";
     if (L->model.constrained && !cf)
         return "its constraints have no expressions (eomc_model's constraint)";
     if (L->code == LOWER_CODE_TABLES)

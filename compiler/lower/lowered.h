@@ -128,7 +128,15 @@ typedef struct LowModel {
                           * must not depend on where eomc was run from */
     const char *form, *formula;
     int nq, np, nu, neffect;
-    const char **coord;  /* [nq] names */
+    const char **coord;  /* [nq + nspeed] names: the coordinates', then the speeds' */
+    /* The speeds (spec.h): nspeed 0, nv = nq and vslot[i] = i.  Else a
+     * leaf of order 1 and up of coordinate c is velocity slot vslot[c]
+     * (c < nq + nspeed), v_names [nv] the slots' column names ("x'",
+     * "root_wx"), and quat [4 nquat] the Euler parameters of each
+     * quaternion with speeds. */
+    int nv, nspeed, nquat;
+    int *vslot, *vcoord, *quat; /* vcoord [nv]: slot j's leaf coordinate (spec.h) */
+    const char **v_names;
     LowParam *param;     /* [np] */
     const char **input;  /* [nu] names */
     LowEffect *effect;   /* [neffect] */
@@ -140,7 +148,7 @@ typedef struct LowModel {
     const char **output; /* [noutput] names */
     LowEvent *event;     /* [nevent] */
     int assemble;
-    unsigned char *hold; /* [2 nq] what assembly keeps, or NULL */
+    unsigned char *hold; /* [nq + nv] what assembly keeps, or NULL */
     LowCheck *check;     /* [ncheck] */
     /* The constraints (constrained: they were derived); nc names also
      * name the multipliers. */
@@ -252,6 +260,9 @@ typedef struct Lowered {
      * parameters); NULL: none */
     unsigned char *held;
     int n;                /* coordinates */
+    int nv;               /* velocity slots (n without speeds) */
+    LowFunc *qdot;        /* q' = W(q) v and its Jacobian, with speeds (else NULL) */
+    LowFunc *qdot_jacobian;
     int jacobian;         /* how it was lowered: _UNROLLED, _SEEDED or _NONE */
     int invariant_energy; /* the invariant is T + V: energy's sum, not a function */
     LowTaylor *taylor;    /* the taylor member's program, or why there is none */

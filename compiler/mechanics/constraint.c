@@ -228,6 +228,10 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
     if (s->nconstraint == 0)
         return NULL;
+    if (s->nspeed) /* B's columns would be the slots, and initial_B's state the coordinates' */
+        diag_error(s->constraint[0].loc, "constraints on a model whose quaternions have speeds "
+                   "are not derived yet: write each `quaternion:` without its `speeds:` (its "
+                   "rates are then coordinates' and a unit constraint keeps it)");
     Constraints *c = arena_new_array(A, Constraints, 1);
     int nc = c->nc = s->nconstraint, n = c->n = s->nq;
     c->spec = s->constraint;

@@ -133,7 +133,7 @@ static void
 zero_states(ZeroTest *z)
 {
     const Spec *s = z->s;
-    int n = s->nq;
+    int n = s->nq + s->nspeed; /* by leaf index: the speeds after the coordinates */
     unsigned long long x = 0x9E3779B97F4A7C15ull;
     double *p0 = arena_new_array(z->A, double, s->np + 1);
     double *u0 = arena_new_array(z->A, double, s->nu + 1);
@@ -144,8 +144,8 @@ zero_states(ZeroTest *z)
         u0[k] = expr_eval(z->P, s->input[k].expr, &e0);
     double *c0 = arena_new_array(z->A, double, 2 * n + 1); /* q and q' at the start */
     for (int i = 0; i < n; i++) {
-        c0[i] = expr_eval(z->P, s->coord[i].q0, &e0);
-        c0[n + i] = expr_eval(z->P, s->coord[i].v0, &e0);
+        c0[i] = i < s->nq ? expr_eval(z->P, s->coord[i].q0, &e0) : 0;
+        c0[n + i] = expr_eval(z->P, i < s->nq ? s->coord[i].v0 : s->speed[i - s->nq].v0, &e0);
     }
     z->env = arena_new_array(z->A, ExprEnv, ZERO_TRIES);
     for (int j = 0; j < ZERO_TRIES; j++) {

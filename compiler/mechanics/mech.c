@@ -70,7 +70,7 @@ body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
         gyroscopic(P, b, g);
         e = expr_add(P, e, dot_product(P, 3, w, g));
     }
-    if (b->quat[0] >= 0 && b->dim == 3) {
+    if (b->quat[0] >= 0 && b->quat_speed < 0 && b->dim == 3) {
         /* w = 2 L e' leaves e' along e without inertia: the mass matrix
          * would be singular (in that direction only the unit constraint
          * decides).  1/2 c (e.e')^2, with c = 4 tr(I)/3 (the mean of the
@@ -92,21 +92,21 @@ body_energy(ExprPool *P, Diff *D, const SpecBody *b, int order)
     return e;
 }
 
-/* Q_i += F . dr/dq_i for a force at a point r(t, q). */
+/* Qq_i += F . dr/dq_i for a force at a point r(t, q). */
 static void
 add_point_force(const ExprId *r, int dim, const SpecForce *f, Mech *m, ExprPool *P,
-                Diff *D)
+                Diff *D, ExprId *Qq)
 {
-    for (int i = 0; i < m->n; i++) {
+    for (int i = 0; i < m->nq; i++) {
         ExprId J[3];
         for (int k = 0; k < dim; k++)
             J[k] = diff_partial(D, r[k], m->q[0][i]);
-        m->Q[i] = expr_add(P, m->Q[i], dot_product(P, dim, f->vec, J));
+        Qq[i] = expr_add(P, Qq[i], dot_product(P, dim, f->vec, J));
     }
 }
 
-/* Q_i += tau . dw/dq_i': the virtual rotation of the body is
- * (dw/dq') delta q. */
+/* Q_j += tau . dw/dv_j: the virtual rotation of the body is
+ * (dw/dv) delta v, in any speeds. */
 static void
 add_torque(const SpecBody *b, const SpecForce *f, Mech *m, ExprPool *P, Diff *D)
 {
@@ -138,7 +138,7 @@ gravity_potential(const Spec *s, const SpecForce *f, ExprPool *P)
 }
 
 static void
-add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
+add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D, ExprId *Qq)
 {
     for (int j = 0; j < e->nforce; j++) {
         const SpecForce *f = &e->force[j];
@@ -158,9 +158,9 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
             break;
         case FORCE_VECTOR:
             if (f->particle >= 0)
-                add_point_force(s->part[f->particle].pos, f->dim, f, m, P, D);
+                add_point_force(s->part[f->particle].pos, f->dim, f, m, P, D, Qq);
             else
-                add_point_force(s->body[f->body].center, f->dim, f, m, P, D);
+                add_point_force(s->body[f->body].center, f->dim, f, m, P, D, Qq);
             break;
         case FORCE_TORQUE:
             add_torque(&s->body[f->body], f, m, P, D);
@@ -168,9 +168,8 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D)
         case FORCE_KINETIC: /* in T (mech_build) */
             break;
         case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec/effects.c checked) */
-            for (int i = 0; i < m->n; i++)
-                m->Q[i] = expr_add(P, m->Q[i],
-                                   diff_partial(D, f->expr, expr_seed(P, i, 0)));
+            for (int i = 0; i < m->nq; i++)
+                Qq[i] = expr_add(P, Qq[i], diff_partial(D, f->expr, expr_seed(P, i, 0)));
             break;
         }
     }
@@ -180,12 +179,20 @@ Mech *
 mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
 {
     Mech *m = arena_alloc(A, sizeof *m);
-    m->n = s->nq;
-    for (int k = 0; k <= EXPR_MAX_ORDER; k++) {
-        m->q[k] = arena_new_array(A, ExprId, s->nq);
-        for (int i = 0; i < s->nq; i++)
-            m->q[k][i] = expr_var(P, i, k);
+    m->n = s->nv;
+    m->nq = s->nq;
+    m->speeds = s->nspeed > 0;
+    m->q[0] = arena_new_array(A, ExprId, s->nq);
+    for (int i = 0; i < s->nq; i++)
+        m->q[0][i] = expr_var(P, i, 0);
+    for (int k = 1; k <= EXPR_MAX_ORDER; k++) {
+        m->q[k] = arena_new_array(A, ExprId, s->nv);
+        for (int j = 0; j < s->nv; j++)
+            m->q[k][j] = expr_var(P, s->vcoord[j], k);
     }
+    m->rate = arena_new_array(A, ExprId, s->nq);
+    for (int i = 0; i < s->nq; i++)
+        m->rate[i] = diff_time(D, m->q[0][i]);
     m->T = m->V = m->S = m->T_joint = EXPR_ZERO;
     for (int k = 0; k < s->npart; k++) {
         SpecParticle at = s->part[k]; /* at a point: its velocity as frames give it */
@@ -222,7 +229,7 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         unsigned char *mark = calloc(expr_pool_size(P), 1);
         expr_mark(P, nkin, kin, mark);
         for (int i = 0; i < s->nq; i++)
-            m->in_kinetic[i] = mark[m->q[0][i]] || mark[m->q[1][i]];
+            m->in_kinetic[i] = mark[m->q[0][i]] || (s->vslot[i] >= 0 && mark[m->q[1][s->vslot[i]]]);
         free(mark);
     }
     if (nkin > 0)
@@ -246,6 +253,8 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
             rest = NULL;
     }
     for (int k = 0; k < s->nfquat; k++) {
+        if (s->fquat[k].speed >= 0) /* turned by its speeds: no e' along e */
+            continue;
         /* a frame turned by Euler parameters e: as for a body's
          * (body_energy), e' along e moves nothing, and 1/2 c (e.e')^2
          * gives it inertia where the unit constraint alone decides.  c is
@@ -281,12 +290,24 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
         m->V = expr_add(P, m->V, s->potential[k].expr);
     m->V_rest = m->V;
     m->gravity[0] = m->gravity[1] = m->gravity[2] = EXPR_ZERO;
-    m->Q = arena_new_array(A, ExprId, s->nq);
-    for (int i = 0; i < s->nq; i++)
-        m->Q[i] = EXPR_ZERO;
+    m->Q = arena_new_array(A, ExprId, s->nv);
+    for (int j = 0; j < s->nv; j++)
+        m->Q[j] = EXPR_ZERO;
+    /* forces by the coordinates' virtual displacements, then in the
+     * speeds: Q_j = sum_i Qq_i dq_i'/dv_j (the same array without speeds) */
+    ExprId *Qq = m->Q;
+    if (m->speeds) {
+        Qq = arena_new_array(A, ExprId, s->nq);
+        for (int i = 0; i < s->nq; i++)
+            Qq[i] = EXPR_ZERO;
+    }
     for (int e = 0; e < s->neffect; e++)
         if (s->effect[e].enabled)
-            add_effect(s, &s->effect[e], m, P, D);
+            add_effect(s, &s->effect[e], m, P, D, Qq);
+    for (int i = 0; m->speeds && i < s->nq; i++)
+        for (int j = 0; Qq[i] != EXPR_ZERO && j < s->nv; j++)
+            m->Q[j] = expr_add(P, m->Q[j], expr_mul(P, Qq[i], diff_partial(D, m->rate[i],
+                                                                         m->q[1][j])));
     /* A coordinate whose velocity is not in T has a zero row in M: the
      * spec is wrong, and saying so beats a singular matrix at run time. */
     /* (by the leaves T reaches, once: a derivative per coordinate would
@@ -296,11 +317,18 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     unsigned char *in_T = arena_alloc(A, npool + 1);
     memset(in_T, 0, npool + 1);
     expr_mark(P, 1, &m->T, in_T);
-    for (int i = 0; i < m->n; i++)
-        if (!in_T[m->q[1][i]])
-            diag_error(s->coord[i].loc, "coordinate '%s' does not appear in the kinetic "
+    for (int j = 0; j < m->n; j++) {
+        int c = s->vcoord[j];
+        if (in_T[m->q[1][j]])
+            continue;
+        if (c < s->nq)
+            diag_error(s->coord[c].loc, "coordinate '%s' does not appear in the kinetic "
                        "energy: it has no inertia, so its row of the mass matrix is zero",
-                       s->coord[i].name);
+                       s->coord[c].name);
+        diag_error(s->speed[c - s->nq].loc, "speed '%s' does not appear in the kinetic energy: "
+                   "it has no inertia, so its row of the mass matrix is zero",
+                   s->speed[c - s->nq].name);
+    }
     for (int i = 0; m->gravity[0] != EXPR_NONE && i < 3; i++)
         if (diff_time(D, m->gravity[i]) != EXPR_ZERO) /* not uniform at every instant */
             m->gravity[0] = EXPR_NONE;

@@ -292,8 +292,8 @@ typedef struct Joints {
     Place *place;   /* per id: its axes */
     int *origin;    /* per id: a point at its origin (0: the world's) */
     int *coord;     /* per id */
-    int *ndof;      /* per id: 1, or 4 for a turn by a quaternion */
-    int (*qc)[4];   /* per id: its coordinates (qc[0] = coord) */
+    int *ndof;      /* per id: 1, or 4 (3) for a turn by a quaternion (with speeds) */
+    int (*qc)[4];   /* per id: its velocity slots (Spec.vcoord) */
     int *up;        /* per id: the joint before it (-1 the world; -2 not yet seen) */
 } Joints;
 
@@ -379,7 +379,7 @@ spin_in_place(Tree *t, int k)
 static const char *
 localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
          const Joints *J, const int *order, const int *pos, const Mass *ms, int nm,
-         const int *carrier)
+         const int *carrier, const ExprId *q1)
 {
     static const char *const moves = "a joint's local offset or inertia moves (a tree "
                                      "eomc cannot yet put in local coordinates)";
@@ -429,7 +429,7 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
         kin_turn_omega(K, at.f, at.n - 1, wa);
         for (int d = 0; tk->ndof > 1 && d < tk->ndof; d++) /* a ball's axes */
             for (int i = 0; i < 3; i++)
-                tk->Sw[d][i] = diff_partial(D, wa[i], expr_var(P, tk->qc[d], 1));
+                tk->Sw[d][i] = diff_partial(D, wa[i], q1[tk->qc[d]]);
         for (int i = 0; i < 3; i++)
             if (!constant_in_time(D, tk->r[i]))
                 return moves;
@@ -498,6 +498,20 @@ localize(const Kin *K, Arena *A, ExprPool *P, Diff *D, Tree *t,
     return NULL;
 }
 
+/* The name of velocity slot j: its coordinate's, or its speed's. */
+static const char *
+slot_name(const Spec *s, int j)
+{
+    int c = s->vcoord[j];
+    return c < s->nq ? s->coord[c].name : s->speed[c - s->nq].name;
+}
+
+static int
+m_speeds(const Spec *s)
+{
+    return s->nspeed > 0;
+}
+
 /* Each kinetic-energy term no mass carries must move with one joint's
  * rates alone, so that its inertia lies in that joint's own block of M
  * (a rotor's 1/2 a q'^2): the recursions add it there.  NULL, or why
@@ -508,7 +522,7 @@ joint_local(const Spec *s, Arena *A, ExprPool *P, const Tree *t, const ExprId *q
 {
     if (nkin == 0)
         return NULL;
-    int *joint = arena_new_array(A, int, s->nq);
+    int *joint = arena_new_array(A, int, s->nv);
     for (int k = 0; k < t->nturns; k++)
         for (int d = 0; d < t->turn[k].ndof; d++)
             joint[t->turn[k].qc[d]] = k;
@@ -519,15 +533,19 @@ joint_local(const Spec *s, Arena *A, ExprPool *P, const Tree *t, const ExprId *q
         memset(mark, 0, npool);
         expr_mark(P, 1, &kin[k], mark);
         int first = -1;
-        for (int i = 0; !why && i < s->nq; i++)
+        for (int i = 0; !why && i < s->nv; i++)
             if ((size_t)q1[i] < npool && mark[q1[i]]) {
                 if (first < 0)
                     first = i;
                 else if (joint[i] != joint[first])
                     why = arena_printf(A, "a kinetic-energy term moves with the rates of '%s' "
-                                       "and '%s', two joints", s->coord[first].name,
-                                       s->coord[i].name);
+                                       "and '%s', two joints", slot_name(s, first),
+                                       slot_name(s, i));
             }
+        for (int i = 0; !why && m_speeds(s) && i < s->nq; i++)
+            if (s->vslot[i] < 0 && (size_t)expr_var(P, i, 0) < npool && mark[expr_var(P, i, 0)])
+                why = arena_printf(A, "a kinetic-energy term depends on '%s', an Euler "
+                                   "parameter turned by speeds", s->coord[i].name);
     }
     free(mark);
     return why;
@@ -583,8 +601,8 @@ tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *
     Joints J = {0};
     J.first = arena_new_array(A, int, nf);
     J.nct = arena_new_array(A, int, nf);
-    int *used = arena_new_array(A, int, s->nq + 1);
-    for (int i = 0; i < s->nq; i++)
+    int *used = arena_new_array(A, int, s->nv + 1);
+    for (int i = 0; i < s->nv; i++)
         used[i] = 0;
     int cap = fd.nslide + 1;
     for (int g = 0; g < nf; g++) {
@@ -610,7 +628,7 @@ tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *
             if (rate == EXPR_NONE) { /* a ball: the parameters its rate is made of */
                 ExprId wa[3];
                 kin_turn_omega(K, g, k, wa);
-                for (int i = 0; i < s->nq; i++) {
+                for (int i = 0; i < s->nv; i++) {
                     int in = 0;
                     for (int r = 0; r < 3; r++)
                         in |= diff_partial(D, wa[r], q1[i]) != EXPR_ZERO;
@@ -619,27 +637,29 @@ tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *
                     nd += in;
                 }
             } else {
-                while (nd < s->nq && q1[nd] != rate)
+                while (nd < s->nv && q1[nd] != rate)
                     nd++;
-                if (nd == s->nq) {
+                if (nd == s->nv) {
                     *why = "a turn's angle is not a coordinate";
                     return NULL;
                 }
                 J.qc[j][0] = nd, nd = 1;
             }
-            if (nd != 1 && nd != 4) {
+            int speeds = nd == 3 && s->vcoord[J.qc[j][0]] >= s->nq;
+            if (nd != 1 && nd != 4 && !speeds) {
                 *why = "a quaternion's turn does not move by four Euler parameters";
                 return NULL;
             }
             for (int d = 0; d < nd; d++)
                 if (used[J.qc[j][d]]++) {
                     *why = arena_printf(A, nd == 1 ? "coordinate '%s' is the angle of two turns"
-                                                   : "coordinate '%s' moves two joints",
-                                        s->coord[J.qc[j][d]].name);
+                                                   : "'%s' moves two joints",
+                                        slot_name(s, J.qc[j][d]));
                     return NULL;
                 }
             J.nturn++;
-            J.place[j] = (Place){g, k + 1}, J.origin[j] = fd.pivot_pt[g], J.coord[j] = J.qc[j][0];
+            J.place[j] = (Place){g, k + 1}, J.origin[j] = fd.pivot_pt[g];
+            J.coord[j] = nd == 1 ? s->vcoord[J.qc[j][0]] : -1;
             J.ndof[j] = nd;
             J.nct[g]++;
         }
@@ -649,17 +669,18 @@ tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *
     for (int k = 0; k < fd.nslide; k++) {
         const Slide *sd = &fd.slide[k];
         int j = J.nturn + k;
-        if (used[sd->coord]++) {
+        if (s->vslot[sd->coord] < 0 || used[s->vslot[sd->coord]]++) {
             *why = arena_printf(A, "coordinate '%s' moves two joints", s->coord[sd->coord].name);
             return NULL;
         }
         J.place[j] = (Place){sd->frame, nturns_of(K, sd->frame)};
-        J.origin[j] = sd->point, J.coord[j] = J.qc[j][0] = sd->coord, J.ndof[j] = 1;
+        J.origin[j] = sd->point, J.coord[j] = sd->coord, J.qc[j][0] = s->vslot[sd->coord];
+        J.ndof[j] = 1;
     }
-    for (int i = 0; i < s->nq; i++)
+    for (int i = 0; i < s->nv; i++)
         if (!used[i]) {
-            *why = arena_printf(A, "coordinate '%s' is not the angle of a turn or the length "
-                                "of a slide", s->coord[i].name);
+            *why = arena_printf(A, "'%s' is not the rate of a turn, a slide or a ball joint",
+                                slot_name(s, i));
             return NULL;
         }
     for (int j = 0; j < J.n; j++)
@@ -688,7 +709,7 @@ tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *
     Tree *t = arena_alloc(A, sizeof *t);
     t->nturns = J.n;
     t->turn = arena_new_array(A, TreeTurn, J.n + 1);
-    if ((*why = localize(K, A, P, D, t, &J, order, pos, ms, nm, carrier)))
+    if ((*why = localize(K, A, P, D, t, &J, order, pos, ms, nm, carrier, q1)))
         return NULL;
     if ((*why = joint_local(s, A, P, t, q1, nkin, kin)))
         return NULL;

@@ -33,12 +33,14 @@
  * origin at its frame's pivot (a turn) or the link's end (a slide), axes
  * those of its frame just after the turn (a slide: its frame's). */
 typedef struct TreeTurn {
-    int coord;    /* its angle or length is coordinate coord */
-    /* A ball joint (a turn by a quaternion) has four coordinates, its
-     * Euler parameters qc[0..3] (coord = qc[0]), no single axis (al zero,
-     * angle EXPR_NONE), and its own angular velocity, in its own axes,
-     * is sum_d Sw[d] qc[d]' (2 L e', kin_turn_quaternion).  ndof = 1 for
-     * every other joint (qc[0] = coord). */
+    int coord;    /* its angle or length is coordinate coord (-1: a ball) */
+    /* Its velocity slots qc (mech.h; the coordinates' rates without
+     * speeds).  A ball joint (a turn by a quaternion) has four, its Euler
+     * parameters' rates, or three, its speeds (`speeds:`: the angular
+     * velocity in its own axes), no single axis (al zero, angle
+     * EXPR_NONE), and its own angular velocity, in its own axes, is
+     * sum_d Sw[d] qc[d]' (2 L e', kin_turn_quaternion; the unit axes for
+     * speeds).  ndof = 1 for every other joint (qc[0] the slot of coord). */
     int ndof, qc[4];
     ExprId Sw[4][3];
     int up;       /* the joint above it: its parent body; -1 the world */
@@ -62,7 +64,7 @@ typedef struct Tree {
 } Tree;
 
 /* The tree, or NULL with *why set to the reason it does not apply.  q1
- * are the velocity leaves q_i'; kin[0..nkin) the kinetic-energy terms no
+ * are the velocity slots' leaves (mech.h); kin[0..nkin) the kinetic-energy terms no
  * mass carries, each of which must move with one joint's rates. */
 Tree *tree_build(const Spec *s, const ExprId *q1, int nkin, const ExprId *kin, Arena *A,
                  ExprPool *P, Diff *D, const char **why);

@@ -101,7 +101,7 @@ load_inertia(Loader *L, yaml_node_t *n, SpecBody *b)
  * (on |e| = 1, which the unit constraint keeps).  The parameters must be
  * four distinct coordinates. */
 static void
-quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
+quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, yaml_node_t *sp, SpecBody *b)
 {
     ExprPool *P = L->P;
     ExprId e[4], d[4];
@@ -109,6 +109,13 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
     for (int i = 0; i < 4; i++) {
         e[i] = expr_var(P, b->quat[i], 0);
         d[i] = expr_var(P, b->quat[i], 1);
+    }
+    b->quat_loc = spec_loc(L, k);
+    kin_quat_matrix(P, e, b->rot); /* for drawing it */
+    b->has_rot = 1;
+    if (sp) { /* its speeds are omega, and e' follows from them */
+        spec_quaternion_speeds(L, sp, b->quat, &b->quat_speed, b->omega);
+        return;
     }
     static const int Lrow[3][4][2] = { /* (sign, index of e) per column */
         {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
@@ -124,9 +131,6 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, SpecBody *b)
         }
         b->omega[r] = expr_mul(P, two, w);
     }
-    b->quat_loc = spec_loc(L, k);
-    kin_quat_matrix(P, e, b->rot); /* for drawing it */
-    b->has_rot = 1;
 }
 
 /* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the
@@ -138,15 +142,24 @@ static void
 rotation_omega(Loader *L, yaml_node_t *map, SpecBody *b)
 {
     ExprPool *P = L->P;
+    yaml_node_t *qn = spec_lookup(L, map, "quaternion"), *sp = spec_lookup(L, map, "speeds");
+    if (qn && sp && NPAIRS(map) == 2) {
+        quaternion_omega(L, spec_node(L, PAIRS(map)[0].key), qn, sp, b);
+        return;
+    }
     if (NPAIRS(map) != 1)
         diag_error(spec_loc(L, map), "a rotation is one sequence of axes with its angles, "
-                   "such as {zxz: [psi, theta, phi]}, or {quaternion: [e0, e1, e2, e3]}");
+                   "such as {zxz: [psi, theta, phi]}, or {quaternion: [e0, e1, e2, e3]} with "
+                   "its speeds {..., speeds: [wx, wy, wz]} or alone");
     yaml_node_t *k = spec_node(L, PAIRS(map)[0].key), *v = spec_node(L, PAIRS(map)[0].value);
     const char *axes = spec_scalar(L, k, "a rotation sequence");
     if (!strcmp(axes, "quaternion")) {
-        quaternion_omega(L, k, v, b);
+        quaternion_omega(L, k, v, NULL, b);
         return;
     }
+    if (!strcmp(axes, "speeds"))
+        diag_error(spec_loc(L, k), "`speeds:` are a quaternion's: {quaternion: [e0, e1, e2, "
+                   "e3], speeds: [wx, wy, wz]}");
     size_t na = strlen(axes);
     if (na < 1 || na > 3 || strspn(axes, "xyz") != na)
         diag_error(spec_loc(L, k), "'%s' is not a rotation sequence: 1 to 3 of the axes "
@@ -217,6 +230,7 @@ load_body(Loader *L, yaml_node_t *map, int i)
         if (missing)
             diag_error(spec_loc(L, v), "body '%s' has no %s", b->name, missing);
         b->quat[0] = -1;
+        b->quat_speed = -1;
         b->frame = b->point = -1;
         b->angle = EXPR_NONE;
         yaml_node_t *shapes = spec_lookup(L, v, "shapes");

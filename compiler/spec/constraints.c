@@ -77,10 +77,11 @@ spec_load_constraints(Loader *L, yaml_node_t *map)
         s->constraint[i].dependent = -1;
     for (int i = 0; i < s->nconstraint; i++)
         spec_checked(L, load_constraint_at, map, i);
-    if (s->nconstraint >= s->nq) /* at the one too many */
-        diag_error(s->constraint[s->nq - 1].loc, "%d constraint%s on %d coordinate%s "
+    if (s->nconstraint >= s->nv) /* at the one too many */
+        diag_error(s->constraint[s->nv - 1].loc, "%d constraint%s on %d %s%s "
                    "leave%s no freedom of motion", s->nconstraint,
-                   s->nconstraint == 1 ? "" : "s", s->nq, s->nq == 1 ? "" : "s",
+                   s->nconstraint == 1 ? "" : "s", s->nv,
+                   s->nspeed ? "speed" : "coordinate", s->nv == 1 ? "" : "s",
                    s->nconstraint == 1 ? "s" : "");
 }
 
@@ -99,15 +100,16 @@ spec_unit_constraints(Loader *L)
     SpecQuat *quat = arena_new_array(L->A, SpecQuat, s->nbody + s->nfquat + 1);
     int extra = 0;
     for (int i = 0; i < s->nbody; i++)
-        if (s->body[i].quat[0] >= 0) {
+        if (s->body[i].quat[0] >= 0 && s->body[i].quat_speed < 0) {
             const SpecBody *b = &s->body[i];
             quat[extra] = (SpecQuat){b->name, arena_printf(L->A, "body '%s'", b->name),
                                      {b->quat[0], b->quat[1], b->quat[2], b->quat[3]},
-                                     b->quat_loc};
+                                     b->quat_loc, -1};
             extra++;
         }
     for (int i = 0; i < s->nfquat; i++)
-        quat[extra++] = s->fquat[i];
+        if (s->fquat[i].speed < 0) /* with speeds, |e| keeps its value */
+            quat[extra++] = s->fquat[i];
     if (!extra)
         return;
     int nuser = s->nconstraint;

@@ -22,6 +22,8 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
         VISIT(s->coord[i].q0);
         VISIT(s->coord[i].v0);
     }
+    for (int k = 0; k < s->nspeed; k++)
+        VISIT(s->speed[k].v0);
     for (int i = 0; i < s->nu; i++)
         VISIT(s->input[i].expr);
     for (int i = 0; i < s->npart; i++) {

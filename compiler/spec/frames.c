@@ -37,20 +37,130 @@ spec_quaternion_coords(Loader *L, yaml_node_t *v, const char *owner, int q[4])
         L->quat_of[q[i]] = owner;
 }
 
-/* A frame's turn {quaternion: [e0, e1, e2, e3]} (t, its map; v, the
- * list): the Euler parameters are coordinates, kept in Spec.fquat for the
- * unit constraint and the inertia along e (mech.c), as a body's are. */
+/* ---- speeds ---- */
+
+/* The `speeds:` beside a `quaternion:` in map m (a turn, a rotation), or
+ * NULL. */
+static yaml_node_t *
+speeds_of(Loader *L, yaml_node_t *m)
+{
+    if (!m || m->type != YAML_MAPPING_NODE || !spec_lookup(L, m, "quaternion"))
+        return NULL;
+    return spec_lookup(L, m, "speeds");
+}
+
+/* Speed k's name at n, or only count it (L->s->speed NULL). */
 static void
-frame_quaternion(Loader *L, int f, const char *name, yaml_node_t *t, yaml_node_t *v)
+name_speed(Loader *L, yaml_node_t *n, int k)
+{
+    Spec *s = L->s;
+    if (!s->speed || n->type != YAML_SCALAR_NODE)
+        return;
+    s->speed[k] = (SpecSpeed){spec_add_name(L, n, NAME_SPEED, k), spec_loc(L, n), EXPR_ZERO};
+}
+
+static int
+scan_speeds(Loader *L, yaml_node_t *sp, int k)
+{
+    if (!sp || sp->type != YAML_SEQUENCE_NODE)
+        return k;
+    for (int i = 0; i < NITEMS(sp); i++)
+        name_speed(L, spec_node(L, ITEMS(sp)[i]), k++);
+    return k;
+}
+
+/* Every speed of the frames' turns and the bodies' rotations, counted
+ * (L->s->speed NULL) or named, speed k the k-th met: all names are known
+ * before any expression is read (names.h).  Malformed lists are left to
+ * the frame or body they are in.  Returns how many. */
+static int
+all_speeds(Loader *L, yaml_node_t *frames, yaml_node_t *bodies)
+{
+    int k = 0;
+    for (int i = 0; frames && frames->type == YAML_MAPPING_NODE && i < NPAIRS(frames); i++) {
+        yaml_node_t *f = spec_node(L, PAIRS(frames)[i].value), *r;
+        if (f->type != YAML_MAPPING_NODE || !(r = spec_lookup(L, f, "rotation")))
+            continue;
+        if (r->type == YAML_MAPPING_NODE)
+            k = scan_speeds(L, speeds_of(L, r), k);
+        for (int j = 0; r->type == YAML_SEQUENCE_NODE && j < NITEMS(r); j++)
+            k = scan_speeds(L, speeds_of(L, spec_node(L, ITEMS(r)[j])), k);
+    }
+    for (int i = 0; bodies && bodies->type == YAML_MAPPING_NODE && i < NPAIRS(bodies); i++) {
+        yaml_node_t *b = spec_node(L, PAIRS(bodies)[i].value), *r;
+        if (b->type == YAML_MAPPING_NODE && (r = spec_lookup(L, b, "rotation")))
+            k = scan_speeds(L, speeds_of(L, r), k);
+    }
+    return k;
+}
+
+int
+spec_count_speeds(Loader *L, yaml_node_t *frames, yaml_node_t *bodies)
+{
+    return all_speeds(L, frames, bodies);
+}
+
+void
+spec_name_speeds(Loader *L, yaml_node_t *frames, yaml_node_t *bodies)
+{
+    Spec *s = L->s;
+    s->speed = NULL;
+    int n = all_speeds(L, frames, bodies);
+    s->speed = arena_new_array(L->A, SpecSpeed, n + 1);
+    s->nspeed = all_speeds(L, frames, bodies);
+}
+
+/* `speeds: [wx, wy, wz]` beside the quaternion q of `owner` (sp, the
+ * list; named by spec_name_speeds): its angular velocity in the turned
+ * axes, w, and the Euler parameters' rates e' = 1/2 e (x) (0, w) from
+ * them, so that |e| keeps its value and no constraint is needed. */
+void
+spec_quaternion_speeds(Loader *L, yaml_node_t *sp, const int q[4], int *first, ExprId w[3])
+{
+    Spec *s = L->s;
+    spec_expect(L, sp, YAML_SEQUENCE_NODE, "the speeds of a quaternion");
+    if (NITEMS(sp) != 3)
+        diag_error(spec_loc(L, sp), "a quaternion has 3 speeds [wx, wy, wz], its angular "
+                   "velocity in its own turned axes, not %d", (int)NITEMS(sp));
+    for (int i = 0; i < 3; i++) {
+        yaml_node_t *n = spec_node(L, ITEMS(sp)[i]);
+        Name *nm = spec_find_name(L, spec_scalar(L, n, "a speed's name"));
+        if (!nm || nm->kind != NAME_SPEED || nm->loc.line != spec_loc(L, n).line ||
+            nm->loc.col != spec_loc(L, n).col)
+            diag_unreachable(); /* all_speeds named it here */
+        if (i == 0)
+            *first = nm->index;
+        w[i] = expr_var(L->P, s->nq + nm->index, 1);
+    }
+    ExprId e[4], ed[4];
+    for (int c = 0; c < 4; c++)
+        e[c] = expr_var(L->P, q[c], 0);
+    kin_quat_rates(L->P, e, w, ed);
+    for (int c = 0; c < 4; c++)
+        expr_set_rate(L->P, q[c], ed[c]);
+}
+
+/* A frame's turn {quaternion: [e0, e1, e2, e3]} (t, its map; v, the
+ * list), and its `speeds:` (sp, or NULL): the Euler parameters are
+ * coordinates, kept in Spec.fquat for the unit constraint and the inertia
+ * along e (mech.c), as a body's are, or turned by the speeds. */
+static void
+frame_quaternion(Loader *L, int f, const char *name, yaml_node_t *t, yaml_node_t *v,
+                 yaml_node_t *sp)
 {
     Spec *s = L->s;
     SpecQuat fq = {name, arena_printf(L->A, "frame '%s'", name), {-1, -1, -1, -1},
-                   spec_loc(L, spec_node(L, PAIRS(t)[0].key))};
+                   spec_loc(L, spec_node(L, PAIRS(t)[0].key)), -1};
     spec_quaternion_coords(L, v, fq.owner, fq.q);
-    ExprId e[4];
+    ExprId e[4], w[3];
     for (int k = 0; k < 4; k++)
         e[k] = expr_var(L->P, fq.q[k], 0);
-    kin_turn_quaternion(L->K, f, e);
+    if (sp) {
+        spec_quaternion_speeds(L, sp, fq.q, &fq.speed, w);
+        kin_turn_quaternion_speeds(L->K, f, e, w);
+    } else {
+        kin_turn_quaternion(L->K, f, e);
+    }
     if (s->nfquat == L->capfquat) {
         L->capfquat = L->capfquat ? 2 * L->capfquat : 4;
         SpecQuat *more = arena_new_array(L->A, SpecQuat, L->capfquat);
@@ -67,17 +177,21 @@ frame_quaternion(Loader *L, int f, const char *name, yaml_node_t *t, yaml_node_t
 static void
 frame_turn(Loader *L, int f, const char *name, yaml_node_t *t)
 {
-    static const char *const keys[] = {"x", "y", "z", "axis", "angle", "quaternion", NULL};
+    static const char *const keys[] = {"x", "y", "z", "axis", "angle", "quaternion", "speeds",
+                                       NULL};
     spec_map(L, t, "a turn");
     spec_check_keys(L, t, keys, "a turn");
-    yaml_node_t *qn = spec_lookup(L, t, "quaternion");
+    yaml_node_t *qn = spec_lookup(L, t, "quaternion"), *sp = speeds_of(L, t);
     if (qn) {
-        if (NPAIRS(t) != 1)
+        if (NPAIRS(t) != 1 + !!sp)
             diag_error(spec_loc(L, t), "a turn by a quaternion is {quaternion: [e0, e1, e2, "
-                       "e3]}, alone");
-        frame_quaternion(L, f, name, t, qn);
+                       "e3]}, with its speeds {..., speeds: [wx, wy, wz]} or alone");
+        frame_quaternion(L, f, name, t, qn, sp);
         return;
     }
+    if (spec_lookup(L, t, "speeds"))
+        diag_error(spec_loc(L, spec_lookup(L, t, "speeds")), "`speeds:` are a quaternion's: "
+                   "{quaternion: [e0, e1, e2, e3], speeds: [wx, wy, wz]}");
     yaml_node_t *ax = spec_lookup(L, t, "axis"), *ang = spec_lookup(L, t, "angle");
     if (ax || ang) {
         if (!ax || !ang || NPAIRS(t) != 2)
@@ -389,4 +503,50 @@ spec_resolve_defines(Loader *L)
             }
         }
     }
+}
+
+/* Spec.nv, vcoord and vslot (spec.h): a quaternion with speeds gives its
+ * three where its first Euler parameter is, its parameters no slot. */
+void
+spec_velocity_slots(Loader *L)
+{
+    Spec *s = L->s;
+    int nc = s->nq + s->nspeed;
+    s->vslot = arena_new_array(L->A, int, nc + 1);
+    s->vcoord = arena_new_array(L->A, int, nc + 1);
+    int *first = arena_new_array(L->A, int, s->nq + 1); /* speed of a quaternion's e0, or -1 */
+    for (int i = 0; i < s->nq; i++)
+        first[i] = -2; /* its own rate */
+    for (int k = 0; k < s->nfquat + s->nbody; k++) {
+        const int *q = k < s->nfquat ? s->fquat[k].q : s->body[k - s->nfquat].quat;
+        int sp = k < s->nfquat ? s->fquat[k].speed : s->body[k - s->nfquat].quat_speed;
+        if (q[0] < 0 || sp < 0)
+            continue;
+        int lo = q[0];
+        for (int d = 1; d < 4; d++)
+            lo = q[d] < lo ? q[d] : lo;
+        for (int d = 0; d < 4; d++)
+            first[q[d]] = q[d] == lo ? sp : -1;
+    }
+    int nv = 0;
+    for (int i = 0; i < s->nq; i++) {
+        s->vslot[i] = first[i] == -2 ? nv : -1;
+        if (first[i] == -2)
+            s->vcoord[nv++] = i;
+        for (int d = 0; first[i] >= 0 && d < 3; d++) {
+            s->vslot[s->nq + first[i] + d] = nv;
+            s->vcoord[nv++] = s->nq + first[i] + d;
+        }
+    }
+    s->nv = nv;
+}
+
+void
+spec_plain_slots(Spec *s, Arena *A)
+{
+    s->nv = s->nq;
+    s->vcoord = arena_new_array(A, int, s->nq + 1);
+    s->vslot = arena_new_array(A, int, s->nq + 1);
+    for (int i = 0; i < s->nq; i++)
+        s->vcoord[i] = s->vslot[i] = i;
 }

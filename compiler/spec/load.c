@@ -69,12 +69,14 @@ load_root(Loader *L, yaml_node_t *root)
     yaml_node_t *defines = spec_section(L, root, "define", 1);
     yaml_node_t *frames = spec_section(L, root, "frames", 1);
     yaml_node_t *points = spec_section(L, root, "points", 1);
+    yaml_node_t *bodies = spec_section(L, root, "bodies", 1);
     if (!coords)
         diag_error(spec_loc(L, root), "the spec has no `coordinates:`");
     int most = (params ? NPAIRS(params) : 0) + (inputs ? NPAIRS(inputs) : 0) +
                (defines ? NPAIRS(defines) : 0) + (frames ? NPAIRS(frames) : 0) +
                (points ? NPAIRS(points) : 0) +
-               (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0);
+               (coords->type == YAML_SEQUENCE_NODE ? NITEMS(coords) : 0) +
+               spec_count_speeds(L, frames, bodies);
     L->names = arena_new_array(L->A, Name, most + 1);
     L->quat_of = arena_new_array(L->A, const char *, most + 1);
     for (int i = 0; i <= most; i++)
@@ -85,6 +87,7 @@ load_root(Loader *L, yaml_node_t *root)
     if (inputs)
         spec_name_inputs(L, inputs);
     spec_name_items(L, defines, frames, points);
+    spec_name_speeds(L, frames, bodies);
     spec_stop_if_failed(); /* everything below is read with these names */
     spec_resolve_defines(L);
     if (params)
@@ -100,8 +103,9 @@ load_root(Loader *L, yaml_node_t *root)
     yaml_node_t *n;
     if ((n = spec_section(L, root, "particles", 1)))
         spec_load_particles(L, n);
-    if ((n = spec_section(L, root, "bodies", 1)))
-        spec_load_bodies(L, n);
+    if (bodies)
+        spec_load_bodies(L, bodies);
+    spec_velocity_slots(L);
     spec_draw_items(L, spec_section(L, root, "ground", 0));
     spec_checked(L, spec_load_energy, root, 0);
     spec_checked(L, spec_load_energy, root, 1);
@@ -146,6 +150,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
     L->A = A;
     L->P = P;
     L->sc = spec_scope(P);
+    expr_clear_rates(P); /* an earlier spec's speeds are not this one's */
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
     L->s->scene = spec_scene_defaults;

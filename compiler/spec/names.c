@@ -29,7 +29,7 @@ spec_find_name(Loader *L, const char *name)
 }
 
 static const char *const kind_names[] = {"a parameter", "a coordinate", "an input",
-                                         "a define", "a frame", "a point"};
+                                         "a define", "a frame", "a point", "a speed"};
 
 /* Names are looked up by a linear search, and models are dense in their
  * coordinates: a spec with more names than this is refused rather than
@@ -121,6 +121,7 @@ lookup(ParseScope *sc, const char *name, SrcLoc at)
         switch (nm->kind) {
         case NAME_PARAM: e = expr_param(L->P, nm->index); break;
         case NAME_COORD: e = expr_var(L->P, nm->index, 0); break;
+        case NAME_SPEED: e = expr_var(L->P, L->s->nq + nm->index, 1); break;
         case NAME_INPUT: e = expr_input(L->P, nm->index); break;
         case NAME_DEFINE: return spec_item(L, nm)->value;
         case NAME_FRAME:
@@ -174,7 +175,10 @@ leaf_name(ParseScope *sc, ExprId leaf)
     Loader *L = (Loader *)sc;
     const ExprNode *nd = expr_node(L->P, leaf);
     switch (nd->op) {
-    case EXPR_VAR: return L->s->coord[nd->a].name;
+    case EXPR_VAR: /* a coordinate, or a speed past them */
+        if ((int)nd->a >= L->s->nq)
+            return L->s->speed[(int)nd->a - L->s->nq].name;
+        return L->s->coord[nd->a].name;
     case EXPR_PARAM: return L->s->param[nd->a].name;
     case EXPR_INPUT: return L->s->input[nd->a].name;
     case EXPR_MULT: return L->s->constraint[nd->a].name;

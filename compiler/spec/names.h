@@ -12,12 +12,14 @@
 
 #include "yaml.h"
 
-typedef enum { NAME_PARAM, NAME_COORD, NAME_INPUT, NAME_DEFINE, NAME_FRAME, NAME_POINT } NameKind;
+typedef enum {
+    NAME_PARAM, NAME_COORD, NAME_INPUT, NAME_DEFINE, NAME_FRAME, NAME_POINT, NAME_SPEED
+} NameKind;
 
 struct Name {
     const char *name;
     NameKind kind;
-    int index; /* into Spec.param / coord / input, or Loader.def (an item) */
+    int index; /* into Spec.param / coord / input / speed, or Loader.def (an item) */
     SrcLoc loc;
 };
 

@@ -239,8 +239,10 @@ load_outputs(Loader *L, yaml_node_t *map, SpecScene *sc)
         spec_checked(L, output_entry, map, i);
 }
 
-/* The coordinate (x) or velocity (x') a key names: 2 i, or 2 i + 1.
- * (No node is made: the order of the leaves is the order of first use.) */
+/* The coordinate (x), velocity (x') or speed (wx) a key names: 2 c, or
+ * 2 c + 1 for the leaf coordinate c of a velocity or speed (a speed's is
+ * nq + k).  (No node is made: the order of the leaves is the order of
+ * first use.) */
 static int
 state_var(Loader *L, yaml_node_t *k, const char *what)
 {
@@ -250,14 +252,24 @@ state_var(Loader *L, yaml_node_t *k, const char *what)
     int vel = len > 1 && key[len - 1] == '\'';
     for (int c = 0; c < s->nq; c++)
         if (strlen(s->coord[c].name) == len - (size_t)vel &&
-            !strncmp(s->coord[c].name, key, len - (size_t)vel))
+            !strncmp(s->coord[c].name, key, len - (size_t)vel)) {
+            if (vel && s->vslot[c] < 0)
+                diag_error(spec_loc(L, k), "'%s' is an Euler parameter whose rate its "
+                           "quaternion's speeds give: name a speed", s->coord[c].name);
             return 2 * c + vel;
-    const char **cands = arena_new_array(L->A, const char *, 2 * s->nq);
+        }
+    for (int j = 0; j < s->nspeed; j++)
+        if (!strcmp(s->speed[j].name, key))
+            return 2 * (s->nq + j) + 1;
+    int nc = 2 * s->nq + s->nspeed;
+    const char **cands = arena_new_array(L->A, const char *, nc);
     for (int c = 0; c < s->nq; c++) {
         cands[2 * c] = s->coord[c].name;
         cands[2 * c + 1] = arena_printf(L->A, "%s'", s->coord[c].name);
     }
-    const char *near = diag_nearest(key, cands, 2 * s->nq);
+    for (int j = 0; j < s->nspeed; j++)
+        cands[2 * s->nq + j] = s->speed[j].name;
+    const char *near = diag_nearest(key, cands, nc);
     if (near)
         diag_error(spec_loc(L, k), "'%s' is not a coordinate or velocity; did you mean %s?",
                    key, near);
@@ -274,7 +286,9 @@ initial_value(Loader *L, yaml_node_t *map, int i, int live)
     ExprId e = spec_expr(L, spec_node(L, PAIRS(map)[i].value), ALLOW_PARAM, "an initial value");
     if (!live)
         return;
-    if (var & 1)
+    if (var & 1 && var / 2 >= s->nq)
+        s->speed[var / 2 - s->nq].v0 = e;
+    else if (var & 1)
         s->coord[var / 2].v0 = e;
     else
         s->coord[var / 2].q0 = e;
@@ -409,7 +423,7 @@ hold_entry(Loader *L, yaml_node_t *seq, int i)
 {
     yaml_node_t *k = spec_node(L, ITEMS(seq)[i]);
     int var = state_var(L, k, "a coordinate or velocity to hold");
-    int n = L->s->nq, at = var & 1 ? n + var / 2 : var / 2;
+    int n = L->s->nq, at = var & 1 ? n + L->s->vslot[var / 2] : var / 2;
     if (L->scene_into->hold[at])
         diag_error(spec_loc(L, k), "'%s' is held twice", spec_scalar(L, k, "a name"));
     L->scene_into->hold[at] = 1;
@@ -441,8 +455,8 @@ load_assemble(Loader *L, yaml_node_t *v, SpecScene *sc)
             diag_error(spec_loc(L, v), "%s", usage);
         spec_expect(L, h, YAML_SEQUENCE_NODE, "`hold:`, the names the assembly keeps,");
         sc->assemble = 1;
-        sc->hold = arena_new_array(L->A, unsigned char, 2 * L->s->nq);
-        memset(sc->hold, 0, 2 * (size_t)L->s->nq);
+        sc->hold = arena_new_array(L->A, unsigned char, L->s->nq + L->s->nv);
+        memset(sc->hold, 0, (size_t)(L->s->nq + L->s->nv));
         for (int i = 0; i < NITEMS(h); i++)
             spec_checked(L, hold_entry, h, i);
     }

@@ -62,7 +62,21 @@ typedef struct SpecQuat {
     const char *owner;
     int q[4];
     SrcLoc loc;
+    /* Its first speed (SpecSpeed, three in a row: `speeds:`), whose rates
+     * the Euler parameters' are (no unit constraint, no inertia along e);
+     * -1: the parameters' rates are coordinates' (the unit constraint). */
+    int speed;
 } SpecQuat;
+
+/* A speed that is no coordinate's rate: a component of the angular
+ * velocity, in its own turned axes, of a frame or body turned by a
+ * quaternion with `speeds:`.  Speed k is the leaf expr_var(nq + k, 1),
+ * its rate expr_var(nq + k, 2), and has no coordinate (order 0). */
+typedef struct SpecSpeed {
+    const char *name;
+    SrcLoc loc;
+    ExprId v0;       /* initial value: an expression of p */
+} SpecSpeed;
 
 /* A rigid body: T = 1/2 m |c'|^2 + 1/2 w.I w with w its body-frame
  * angular velocity.  Planar bodies (dim 2) have one angle and a scalar
@@ -84,6 +98,7 @@ typedef struct SpecBody {
      * e0^2 + e1^2 + e2^2 + e3^2 - 1 = 0. */
     int quat[4];
     SrcLoc quat_loc;
+    int quat_speed;    /* as SpecQuat.speed */
     /* What it is drawn at (--animate): turned by a rotation sequence or
      * quaternion, rot is its rotation matrix (row-major, body to world) and
      * has_rot 1; planar with an `angle:`, angle is it (else EXPR_NONE).
@@ -218,7 +233,7 @@ typedef struct SpecScene {
     SpecEvent *event;
     /* `assemble:`: every run first puts the initial state onto the
      * holonomic and first-order constraints (1), keeping what hold marks
-     * [2 nq] as it is (hold[i]: q_i, hold[nq + i]: q_i'; NULL: nothing);
+     * [nq + nv] as it is (hold[i]: q_i, hold[nq + j]: velocity slot j; NULL: nothing);
      * 0: runs start as given. */
     int assemble;
     unsigned char *hold;
@@ -269,6 +284,16 @@ typedef struct Spec {
     int nfixed;          /* parameters fixed (SpecParam.fixed) */
     int ncheck, capcheck;
     SpecCheck *check;    /* masses and inertias: what --set must respect */
+    int nspeed;          /* speeds that are no coordinate's rate */
+    SpecSpeed *speed;
+    /* The velocity slots, nv of them: vcoord[j] is the leaf coordinate of
+     * slot j, i for coordinate i's rate or nq + k for speed k, in the
+     * order of the coordinates with a quaternion's three speeds where its
+     * first Euler parameter is.  Without speeds, nv = nq and vcoord[i] =
+     * i.  vslot[c] (c < nq + nspeed) is c's slot, -1 for an Euler
+     * parameter that has speeds. */
+    int nv;
+    int *vcoord, *vslot;
     int nfquat;          /* frames turned by quaternions: each adds to T */
     SpecQuat *fquat;     /* 1/2 c (e.e')^2 (mech.c) and a unit constraint */
     const struct Kin *kin; /* the frames and points (kin.h) */
@@ -292,6 +317,11 @@ Spec *spec_load(const char *path, const SpecOptions *o, Arena *A, ExprPool *P);
 /* The same from a buffer (fuzzing, tests); `path` is only used in messages. */
 Spec *spec_load_buffer(const char *path, const char *text, size_t len,
                        const SpecOptions *o, Arena *A, ExprPool *P);
+
+/* Spec.nv, vcoord and vslot for a spec without speeds (nv = nq, every
+ * slot its coordinate's rate): for a Spec built by hand (tests); the
+ * loader sets them itself. */
+void spec_plain_slots(Spec *s, Arena *A);
 
 /* f(&e, ctx) for every expression field e of s (not EXPR_NONE), which f
  * may rewrite: initial values, inputs, particles, bodies, effects, energy

@@ -451,6 +451,16 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
             return EOMC_EUSAGE;
         }
     }
+    if (m->nv) { /* eomc_sim_alloc refuses it */
+        int k = 0; /* the first speed that is no rate (x' is a rate) */
+        while (k + 1 < m->nv && strchr(m->v_names[k], '\''))
+            k++;
+        fprintf(io_err(), "%s: error: model '%s' has speeds that are no coordinate's rates "
+                "(a quaternion's angular velocity, '%s'), which this runtime does not run "
+                "yet\n", c.prog, m->name, m->v_names[k]);
+        opt_free(&c);
+        return EOMC_EUSAGE;
+    }
     eomc_sim *sim = eomc_sim_alloc(m);
     double *x = calloc(2 * (size_t)m->nq + 1, sizeof *x);
     int rc;

@@ -80,7 +80,8 @@ sim_derive(eomc_sim *s)
 eomc_sim *
 eomc_sim_alloc(const eomc_model *m)
 {
-    if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1)
+    /* speeds that are no coordinate's rates (nv > 0): not run here yet */
+    if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1 || m->nv)
         return NULL;
     eomc_sim *s = calloc(1, sizeof *s);
     if (!s)

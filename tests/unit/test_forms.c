@@ -30,6 +30,7 @@ double_pendulum(void)
     s->path = "dp.yaml";
     s->name = "dp";
     s->nq = 2;
+    spec_plain_slots(s, A);
     s->coord = arena_new_array(A, SpecCoord, 2);
     s->npart = 2;
     s->part = arena_new_array(A, SpecParticle, 2);
@@ -56,6 +57,7 @@ moving_sphere(void)
     s->path = "ms.yaml";
     s->name = "ms";
     s->nq = 3;
+    spec_plain_slots(s, A);
     s->coord = arena_new_array(A, SpecCoord, 3);
     s->npart = 1;
     s->part = arena_new_array(A, SpecParticle, 1);

@@ -274,6 +274,14 @@ kin_quat_matrix(ExprPool *P, const ExprId e[4], ExprId Rk[9])
     }
 }
 
+/* L(e) = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0], w = 2 L e' in the
+ * turned axes: (sign, index of e) per entry. */
+static const int Lrow[3][4][2] = {
+    {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
+    {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
+    {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
+};
+
 void
 kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
 {
@@ -281,11 +289,6 @@ kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
     ExprId Rk[9], d[4], wa[3], wb[3], zero[3] = {EXPR_ZERO, EXPR_ZERO, EXPR_ZERO};
     ExprId two = expr_const(P, 2);
     kin_quat_matrix(P, e, Rk);
-    static const int Lrow[3][4][2] = { /* (sign, index of e) per column of L */
-        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
-        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
-        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
-    };
     static const int Erow[3][4][2] = { /* and of E */
         {{-1, 1}, {1, 0}, {-1, 3}, {1, 2}},
         {{-1, 2}, {1, 3}, {1, 0}, {-1, 1}},
@@ -310,11 +313,6 @@ kin_turn_quaternion(Kin *K, int f, const ExprId e[4])
 void
 kin_quat_rates(ExprPool *P, const ExprId e[4], const ExprId w[3], ExprId ed[4])
 {
-    static const int Lrow[3][4][2] = { /* (sign, index of e) per column of L */
-        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
-        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
-        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
-    };
     ExprId half = expr_const(P, 0.5);
     for (int c = 0; c < 4; c++) {
         ExprId x = EXPR_ZERO;

@@ -218,17 +218,9 @@ compile(const Options *o, FILE *out, int *units)
                              .form_why = o->form ? NULL : picked};
             EmitStats st[EMIT_NFUNCS];
             int taylor = o->needs_taylor || !strcmp(s->scene.method, "taylor");
-            /* not derived yet in the speeds' slots (eom_derive_jacobian) */
-            int nojac = s->nspeed && jac != LOWER_JACOBIAN_NONE;
-            Lowered *L = out && !nojac ? lower_model(s, m, e, c, info.eliminate, inv, jac, code,
-                                                     taylor, A, P, D) : NULL;
-            if (nojac) {
-                fprintf(stderr, "%s: error: the Jacobian of E (implicit methods, --linearize, "
-                        "--equilibrium, --jacobian) is not derived yet for a model whose "
-                        "quaternions have speeds ('%s'): use an explicit method\n", o->spec,
-                        s->speed[0].name);
-                rc = EXIT_USAGE;
-            } else if (L && refuse_taylor(o, s, L->taylor->why)) {
+            Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, taylor, A,
+                                           P, D) : NULL;
+            if (L && refuse_taylor(o, s, L->taylor->why)) {
                 rc = EXIT_USAGE;
             } else {
                 if (L && L->tables_why)

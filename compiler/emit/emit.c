@@ -197,7 +197,7 @@ static void
 print_seeded_driver(Printer *pr, const Lowered *L)
 {
     const char *nm = pr->md->name;
-    int n = L->n, nw = lower_size(L->jac_shared, 0);
+    int n = L->nv, nq = L->n, nw = lower_size(L->jac_shared, 0);
     Func fj;
     LowFunc jac = {.sig = &lower_jacobian_sig, .double_only = 1, .per_step = 1};
     emit_func_of(&fj, &jac);
@@ -209,16 +209,29 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     snprintf(fname, sizeof fname, "%s_jacobian", nm);
     emit_head(pr, "static void", fname, fj.params);
     emit_line(pr, "    eomc_real shared[%d]; /* values every column needs */", nw ? nw : 1);
-    emit_line(pr, "    eomc_real seed[%d];", n);
+    emit_line(pr, "    eomc_real seed[%d];", nq > n ? nq : n);
     emit_line(pr, "    %s_jacobian_shared(t, q, v, a, p, u, shared, dEdu, dEdt);", nm);
-    emit_line(pr, "    for (int j = 0; j < %d; j++)", n);
+    emit_line(pr, "    for (int j = 0; j < %d; j++)", nq > n ? nq : n);
     emit_line(pr, "        seed[j] = 0.0;");
-    emit_line(pr, "    for (int j = 0; j < %d; j++) {", n);
-    emit_line(pr, "        seed[j] = 1.0;");
-    emit_line(pr, "        %s_jacobian_dq(t, q, v, a, p, u, shared, seed, dEdq + j);", nm);
-    emit_line(pr, "        %s_jacobian_dv(t, q, v, a, p, u, shared, seed, dEdv + j);", nm);
-    emit_line(pr, "        seed[j] = 0.0;");
-    emit_line(pr, "    }");
+    if (nq == n) { /* a column of each at a time */
+        emit_line(pr, "    for (int j = 0; j < %d; j++) {", n);
+        emit_line(pr, "        seed[j] = 1.0;");
+        emit_line(pr, "        %s_jacobian_dq(t, q, v, a, p, u, shared, seed, dEdq + j);", nm);
+        emit_line(pr, "        %s_jacobian_dv(t, q, v, a, p, u, shared, seed, dEdv + j);", nm);
+        emit_line(pr, "        seed[j] = 0.0;");
+        emit_line(pr, "    }");
+    } else { /* nq columns of dE/dq, nv of dE/dv */
+        emit_line(pr, "    for (int j = 0; j < %d; j++) {", nq);
+        emit_line(pr, "        seed[j] = 1.0;");
+        emit_line(pr, "        %s_jacobian_dq(t, q, v, a, p, u, shared, seed, dEdq + j);", nm);
+        emit_line(pr, "        seed[j] = 0.0;");
+        emit_line(pr, "    }");
+        emit_line(pr, "    for (int j = 0; j < %d; j++) {", n);
+        emit_line(pr, "        seed[j] = 1.0;");
+        emit_line(pr, "        %s_jacobian_dv(t, q, v, a, p, u, shared, seed, dEdv + j);", nm);
+        emit_line(pr, "        seed[j] = 0.0;");
+        emit_line(pr, "    }");
+    }
     emit_line(pr, "}\n");
 }
 

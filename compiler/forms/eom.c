@@ -21,15 +21,15 @@
 static void
 derive_row(Eom *e, Diff *D, const ExprId *leaves, ExprId *grad, int i)
 {
-    int n = e->n, nu = e->nu, nl = 2 * n + nu + 1;
+    int n = e->n, nq = e->nq, nu = e->nu, nl = nq + n + nu + 1;
     diff_gradient(D, e->E[i], nl, leaves, grad);
-    for (int j = 0; j < n; j++) {
-        e->dEdq[i * n + j] = grad[j];
-        e->dEdv[i * n + j] = grad[n + j];
-    }
+    for (int j = 0; j < nq; j++)
+        e->dEdq[i * nq + j] = grad[j];
+    for (int j = 0; j < n; j++)
+        e->dEdv[i * n + j] = grad[nq + j];
     for (int k = 0; k < nu; k++)
-        e->dEdu[i * nu + k] = grad[2 * n + k];
-    e->dEdt[i] = grad[2 * n + nu];
+        e->dEdu[i * nu + k] = grad[nq + n + k];
+    e->dEdt[i] = grad[nq + n + nu];
 }
 
 /* x - (t[0] + ... + t[k-1]), the operands combined as they become ready:
@@ -222,7 +222,7 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         return NULL;
     int n = m->n;
     Eom *e = arena_alloc(A, sizeof *e);
-    *e = (Eom){.n = n, .nu = s->nu, .form = f, .E = E};
+    *e = (Eom){.n = n, .nq = m->nq, .nu = s->nu, .form = f, .E = E};
     if (!f->solve) /* else only on demand (eom_mass): a recursion never needs it */
         eom_mass(e, m, A, P, D);
     /* h = E at q'' = 0: substitution rebuilds only what depends on q'' */
@@ -258,28 +258,28 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
     if (e->dEdq)
         return;
-    int n = e->n, nu = e->nu, nl = 2 * n + nu + 1;
-    e->dEdq = arena_new_array(A, ExprId, n * n);
+    int n = e->n, nq = e->nq, nu = e->nu, nl = nq + n + nu + 1;
+    e->dEdq = arena_new_array(A, ExprId, n * nq);
     e->dEdv = arena_new_array(A, ExprId, n * n);
     e->dEdu = arena_new_array(A, ExprId, n * nu + 1);
     e->dEdt = arena_new_array(A, ExprId, n);
     ExprId *leaves = arena_new_array(A, ExprId, nl);
     ExprId *grad = arena_new_array(A, ExprId, nl);
-    for (int j = 0; j < n; j++) {
+    for (int j = 0; j < nq; j++)
         leaves[j] = m->q[0][j];
-        leaves[n + j] = m->q[1][j];
-    }
+    for (int j = 0; j < n; j++)
+        leaves[nq + j] = m->q[1][j];
     for (int k = 0; k < nu; k++)
-        leaves[2 * n + k] = expr_input(P, k);
-    leaves[2 * n + nu] = expr_time(P);
+        leaves[nq + n + k] = expr_input(P, k);
+    leaves[nq + n + nu] = expr_time(P);
     for (int i = 0; i < n; i++)
         derive_row(e, D, leaves, grad, i);
-    ExprId *seed = arena_new_array(A, ExprId, n);
+    ExprId *seed = arena_new_array(A, ExprId, nq > n ? nq : n);
     e->jvp_q = arena_new_array(A, ExprId, n);
     e->jvp_v = arena_new_array(A, ExprId, n);
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < nq; j++)
         seed[j] = expr_seed(P, j, 0);
-    diff_jvp(D, n, e->E, n, m->q[0], seed, e->jvp_q);
+    diff_jvp(D, n, e->E, nq, m->q[0], seed, e->jvp_q);
     for (int j = 0; j < n; j++)
         seed[j] = expr_seed(P, j, 1);
     diff_jvp(D, n, e->E, n, m->q[1], seed, e->jvp_v);

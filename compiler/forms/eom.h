@@ -10,18 +10,19 @@
 #include "forms.h"
 
 typedef struct Eom {
-    int n, nu;
+    int n, nu;    /* velocity slots (mech.h), inputs */
+    int nq;       /* coordinates: dEdq's columns */
     const Form *form;
     ExprId *E;    /* [n] residual */
     ExprId *M;    /* [n*n] row-major; M[j*n+i] is M[i*n+j] (symmetric);
                    * NULL until eom_mass where the form solves for q'' */
     ExprId *h;    /* [n] */
-    ExprId *dEdq, *dEdv; /* [n*n], NULL until eom_derive_jacobian */
+    ExprId *dEdq, *dEdv; /* [n*nq], [n*n]; NULL until eom_derive_jacobian */
     ExprId *dEdu; /* [n*nu] */
     ExprId *dEdt; /* [n] */
     /* The same partials as directional derivatives: jvp_q[i] = sum_j
-     * dE_i/dq_j dq_j and jvp_v[i] = sum_j dE_i/dq'_j dq'_j over the seeds
-     * expr_seed(j, 0) = dq_j and expr_seed(j, 1) = dq'_j.  About the size
+     * dE_i/dq_j dq_j and jvp_v[i] = sum_j dE_i/dv_j dv_j over the seeds
+     * expr_seed(j, 0) = dq_j (j < nq) and expr_seed(j, 1) = dv_j (j < n).  About the size
      * of E itself, where dEdq and dEdv grow as n |E|: the emitter prints
      * these and loops over unit seeds when the unrolled matrices would be
      * too much code. */

@@ -294,7 +294,7 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
     f = func(lw, &s_jac_dq, "jacobian", 1);
     f->shared = shared;
     for (int i = 0; i < n; i++)
-        out(lw, f, 0, i * n, e->jvp_q[i]);
+        out(lw, f, 0, i * e->nq, e->jvp_q[i]);
     f = func(lw, &s_jac_dv, "jacobian", 1);
     f->shared = shared;
     for (int i = 0; i < n; i++)
@@ -308,16 +308,16 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
 static void
 lower_jacobian(Lowering *lw, const Eom *e, int how)
 {
-    int n = e->n, nu = e->nu;
+    int n = e->n, nq = e->nq, nu = e->nu;
     lw->L->jacobian = how;
     if (how == LOWER_JACOBIAN_NONE) /* not derived either (eom_derive_jacobian) */
         return;
-    ExprId *jroots = xmalloc(2 * (size_t)n * (size_t)n * sizeof *jroots);
-    for (int i = 0; i < n * n; i++) {
+    ExprId *jroots = xmalloc((size_t)n * (size_t)(nq + n) * sizeof *jroots);
+    for (int i = 0; i < n * nq; i++)
         jroots[i] = e->dEdq[i];
-        jroots[n * n + i] = e->dEdv[i];
-    }
-    ExprCount jc = expr_count_ops(lw->P, 2 * n * n, jroots);
+    for (int i = 0; i < n * n; i++)
+        jroots[n * nq + i] = e->dEdv[i];
+    ExprCount jc = expr_count_ops(lw->P, n * (nq + n), jroots);
     free(jroots);
     long jops = jc.adds + jc.muls + jc.divs + jc.calls;
     int large = jops > LOWER_UNROLLED_JACOBIAN_MAX;
@@ -330,8 +330,8 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     }
     LowFunc *f = func(lw, &lower_jacobian_sig, "jacobian", 1);
     for (int i = 0; i < n; i++) { /* row by row: rows share their work */
-        for (int j = 0; j < n; j++)
-            out(lw, f, 0, i * n + j, e->dEdq[i * n + j]);
+        for (int j = 0; j < nq; j++)
+            out(lw, f, 0, i * nq + j, e->dEdq[i * nq + j]);
         for (int j = 0; j < n; j++)
             out(lw, f, 1, i * n + j, e->dEdv[i * n + j]);
         for (int j = 0; j < nu; j++)

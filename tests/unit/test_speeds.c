@@ -9,7 +9,9 @@
  *     equals that of the same model written in the Euler parameters' rates
  *     (their unit constraint met by the recursion itself, mech.h), turned
  *     into w' = 2 L(e) e'' - L(e) L(e')^T w, and the kinetic energies agree;
- *   - the Newton-Euler and Gibbs-Appell residuals in speeds vanish there.
+ *   - the Newton-Euler and Gibbs-Appell residuals in speeds vanish there;
+ *   - the Jacobian dE/dq [nv x nq], dE/dv [nv x nv], unrolled and seeded,
+ *     equals central differences of E.
  */
 #include "check.h"
 #include "forms/eom.h"
@@ -159,6 +161,62 @@ main(void)
             worst_ga = fmax(worst_ga, fabs(expr_eval(sp.P, ga->E[j], &env)));
         }
     }
+    /* dE/dq [7 x 8] and dE/dv [7 x 7] (unrolled and seeded) against
+     * central differences of E, at states off the unit sphere too (E is
+     * defined for any e; dE/dq_j holds the speeds) */
+    eom_derive_jacobian(ne, sp.m, A, sp.P, sp.D);
+    double worst_jq = 0, worst_jv = 0, worst_seed = 0;
+    for (int trial = 0; trial < 5; trial++) {
+        double q[8], v[11] = {0}, acc[11] = {0}, dq[8] = {0}, dv[11] = {0};
+        for (int i = 0; i < 8; i++)
+            q[i] = check_rand(-1, 1);
+        for (int i = 0; i < 11; i++)
+            v[i] = i < 3 || i >= 7 ? check_rand(-2, 2) : 0, acc[i] = v[i] ? check_rand(-1, 1) : 0;
+        ExprEnv env = {.p = p, .t = 0.3};
+        env.q[0] = q, env.q[1] = v, env.q[2] = acc;
+        env.seed[0] = dq, env.seed[1] = dv;
+        for (int i = 0; i < 7; i++) {
+            double scale = 1;
+            for (int j = 0; j < 8; j++)
+                scale = fmax(scale, fabs(expr_eval(sp.P, ne->dEdq[i * 8 + j], &env)));
+            for (int j = 0; j < 8; j++) { /* coordinates */
+                double hstep = 1e-6, keep = q[j];
+                q[j] = keep + hstep;
+                double up = expr_eval(sp.P, ne->E[i], &env);
+                q[j] = keep - hstep;
+                double down = expr_eval(sp.P, ne->E[i], &env);
+                q[j] = keep;
+                double fd = (up - down) / (2 * hstep);
+                worst_jq = fmax(worst_jq, fabs(expr_eval(sp.P, ne->dEdq[i * 8 + j], &env) - fd) /
+                                              scale);
+                dq[j] = 1;
+                worst_seed = fmax(worst_seed, fabs(expr_eval(sp.P, ne->jvp_q[i], &env) -
+                                                   expr_eval(sp.P, ne->dEdq[i * 8 + j], &env)));
+                dq[j] = 0;
+            }
+            for (int j = 0; j < 7; j++) { /* slots, at their leaves */
+                int leaf = s->vcoord[j];
+                double hstep = 1e-6, keep = v[leaf];
+                v[leaf] = keep + hstep;
+                double up = expr_eval(sp.P, ne->E[i], &env);
+                v[leaf] = keep - hstep;
+                double down = expr_eval(sp.P, ne->E[i], &env);
+                v[leaf] = keep;
+                double fd = (up - down) / (2 * hstep);
+                worst_jv = fmax(worst_jv, fabs(expr_eval(sp.P, ne->dEdv[i * 7 + j], &env) - fd) /
+                                              scale);
+                dv[j] = 1;
+                worst_seed = fmax(worst_seed, fabs(expr_eval(sp.P, ne->jvp_v[i], &env) -
+                                                   expr_eval(sp.P, ne->dEdv[i * 7 + j], &env)));
+                dv[j] = 0;
+            }
+        }
+    }
+    /* central differences at h = 1e-6: truncation ~h^2 |E'''|, rounding ~1e-16/h */
+    CHECK(worst_jq < 1e-8, "dE/dq [7 x 8] = central differences (worst %.2g)", worst_jq);
+    CHECK(worst_jv < 1e-8, "dE/dv [7 x 7] = central differences (worst %.2g)", worst_jv);
+    CHECK(worst_seed < 1e-13, "the seeded columns = the unrolled ones (worst %.2g)", worst_seed);
+
     CHECK(worst_rate < 1e-15, "e' = 1/2 e (x) (0, w) (worst %.2g)", worst_rate);
     CHECK(worst_a < 1e-12, "q'' in speeds = q'' in the Euler parameters' rates, turned into w' "
           "(50 states; worst %.2g of max |q''|)", worst_a);

@@ -126,7 +126,8 @@ print_banner(Printer *pr, const EmitInfo *info)
                 w = (int)strlen(md->constraint[k].name);
         for (int k = 0; k < md->nc; k++)
             emit_line(pr, " *   %-*s %s, determines %s", w, md->constraint[k].name,
-                    md->constraint[k].order_name, md->coord[md->constraint[k].dependent]);
+                    md->constraint[k].order_name,
+                    md->coord[md->vcoord[md->constraint[k].dependent]]);
         emit_line(pr, " *   %s in q''", md->affine ? "all affine" : "not all affine (Newton)");
         if (pr->L->loads)
             print_wrapped(pr, "The multipliers by unit loads: q'' without the constraints, "

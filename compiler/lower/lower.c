@@ -346,8 +346,16 @@ lower_constraints(Lowering *lw, const Constraints *c)
 {
     ExprPool *P = lw->P;
     Diff *D = lw->D;
-    int n = lw->s->nq, nu = lw->s->nu, nc = c->nc;
+    const Spec *s = lw->s;
+    int n = s->nv, nq = s->nq, nu = s->nu, nc = c->nc; /* B's columns: velocity slots */
     ExprId t = expr_time(P);
+    /* the leaves: q_j (j < nq), and slot j's speed and its rate */
+    ExprId *q0 = arena_new_array(lw->A, ExprId, nq), *v1 = arena_new_array(lw->A, ExprId, n);
+    ExprId *v2 = arena_new_array(lw->A, ExprId, n);
+    for (int j = 0; j < nq; j++)
+        q0[j] = expr_var(P, j, 0);
+    for (int j = 0; j < n; j++)
+        v1[j] = expr_var(P, s->vcoord[j], 1), v2[j] = expr_var(P, s->vcoord[j], 2);
     LowFunc *f = func(lw, &s_constraint, "constraint", 0);
     /* B arrives zeroed where it is mostly zeros: on a model of many free
      * bodies, setting nc n zeros would cost more than the recursion */
@@ -379,9 +387,16 @@ lower_constraints(Lowering *lw, const Constraints *c)
     f = func(lw, &s_c_jacobian, "c_jacobian", c->affine);
     for (int a = 0; a < nc; a++) {
         ExprId fa = c->f[a];
-        for (int j = 0; j < n; j++) {
-            out(lw, f, 0, a * n + j, diff_partial(D, fa, expr_var(P, j, 0)));
-            out(lw, f, 1, a * n + j, diff_partial(D, fa, expr_var(P, j, 1)));
+        if (nq == n) { /* interleaved as ever: the same nodes in the same order */
+            for (int j = 0; j < n; j++) {
+                out(lw, f, 0, a * n + j, diff_partial(D, fa, q0[j]));
+                out(lw, f, 1, a * n + j, diff_partial(D, fa, v1[j]));
+            }
+        } else {
+            for (int j = 0; j < nq; j++)
+                out(lw, f, 0, a * nq + j, diff_partial(D, fa, q0[j]));
+            for (int j = 0; j < n; j++)
+                out(lw, f, 1, a * n + j, diff_partial(D, fa, v1[j]));
         }
         for (int l = 0; l < nu; l++)
             out(lw, f, 2, a * nu + l, diff_partial(D, fa, expr_input(P, l)));
@@ -390,18 +405,28 @@ lower_constraints(Lowering *lw, const Constraints *c)
             ExprId b = c->B[a * n + i];
             int row = a * n + i;
             if (b == EXPR_ZERO) { /* its derivatives too, without taking them */
-                for (int j = 0; j < n; j++)
+                for (int j = 0; j < (nq > n ? nq : n); j++)
                     for (int o = 4; o <= 6; o++)
-                        out(lw, f, o, row * n + j, EXPR_ZERO);
+                        if (j < (o == 4 ? nq : n))
+                            out(lw, f, o, row * (o == 4 ? nq : n) + j, EXPR_ZERO);
                 for (int l = 0; l < nu; l++)
                     out(lw, f, 7, row * nu + l, EXPR_ZERO);
                 out(lw, f, 8, row, EXPR_ZERO);
                 continue;
             }
-            for (int j = 0; j < n; j++) {
-                out(lw, f, 4, row * n + j, diff_partial(D, b, expr_var(P, j, 0)));
-                out(lw, f, 5, row * n + j, diff_partial(D, b, expr_var(P, j, 1)));
-                out(lw, f, 6, row * n + j, diff_partial(D, b, expr_var(P, j, 2)));
+            if (nq == n) {
+                for (int j = 0; j < n; j++) {
+                    out(lw, f, 4, row * n + j, diff_partial(D, b, q0[j]));
+                    out(lw, f, 5, row * n + j, diff_partial(D, b, v1[j]));
+                    out(lw, f, 6, row * n + j, diff_partial(D, b, v2[j]));
+                }
+            } else {
+                for (int j = 0; j < nq; j++)
+                    out(lw, f, 4, row * nq + j, diff_partial(D, b, q0[j]));
+                for (int j = 0; j < n; j++) {
+                    out(lw, f, 5, row * n + j, diff_partial(D, b, v1[j]));
+                    out(lw, f, 6, row * n + j, diff_partial(D, b, v2[j]));
+                }
             }
             for (int l = 0; l < nu; l++)
                 out(lw, f, 7, row * nu + l, diff_partial(D, b, expr_input(P, l)));
@@ -411,11 +436,19 @@ lower_constraints(Lowering *lw, const Constraints *c)
     f = func(lw, &s_c_levels_jacobian, "c_levels_jacobian", 1);
     for (int a = 0; a < nc; a++) {
         ExprId g = orzero(c->pos[a]), w = orzero(c->vel[a]);
-        for (int j = 0; j < n; j++) {
-            ExprId qj = expr_var(P, j, 0), vj = expr_var(P, j, 1);
-            out(lw, f, 0, a * n + j, diff_partial(D, g, qj));
-            out(lw, f, 1, a * n + j, diff_partial(D, w, qj));
-            out(lw, f, 2, a * n + j, diff_partial(D, w, vj));
+        if (nq == n) {
+            for (int j = 0; j < n; j++) {
+                out(lw, f, 0, a * n + j, diff_partial(D, g, q0[j]));
+                out(lw, f, 1, a * n + j, diff_partial(D, w, q0[j]));
+                out(lw, f, 2, a * n + j, diff_partial(D, w, v1[j]));
+            }
+        } else {
+            for (int j = 0; j < nq; j++) {
+                out(lw, f, 0, a * nq + j, diff_partial(D, g, q0[j]));
+                out(lw, f, 1, a * nq + j, diff_partial(D, w, q0[j]));
+            }
+            for (int j = 0; j < n; j++)
+                out(lw, f, 2, a * n + j, diff_partial(D, w, v1[j]));
         }
         for (int l = 0; l < nu; l++) {
             ExprId ul = expr_input(P, l);
@@ -569,12 +602,17 @@ held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool
     unsigned char *held = arena_new_array(A, unsigned char, c->nc + 1);
     unsigned char *inV = calloc(expr_pool_size(P), 1);
     expr_mark(P, 1, &m->V_rest, inV);
-    int first = c->nc - s->nfquat, any = 0; /* the frames' come last (spec/constraints.c) */
+    /* the frames' come last (spec/constraints.c), but for those with speeds */
+    int *unit = arena_new_array(A, int, s->nfquat + 1), nunit = 0, any = 0;
+    for (int k = 0; k < s->nfquat; k++)
+        if (s->fquat[k].speed < 0)
+            unit[nunit++] = k;
+    int first = c->nc - nunit;
     for (int k = 0; k < c->nc; k++) {
         held[k] = k >= first;
         for (int d = 0; held[k] && d < 4; d++) {
-            int i = s->fquat[k - first].q[d];
-            held[k] = !m->in_kinetic[i] && m->Q[i] == EXPR_ZERO && !inV[m->q[0][i]];
+            int i = s->fquat[unit[k - first]].q[d];
+            held[k] = !m->in_kinetic[i] && m->Q[s->vslot[i]] == EXPR_ZERO && !inV[m->q[0][i]];
         }
         any |= held[k];
     }

@@ -23,6 +23,14 @@
 #include <math.h>
 #include <string.h>
 
+/* Velocity slot j's name: its coordinate's, or its speed's. */
+static const char *
+slot_name(const Spec *s, int j)
+{
+    int c = s->vcoord[j];
+    return c < s->nq ? s->coord[c].name : s->speed[c - s->nq].name;
+}
+
 const char *
 constraint_order_name(int order)
 {
@@ -34,9 +42,10 @@ constraint_order_name(int order)
 static int
 is_linear_in(Diff *D, const Mech *m, ExprId e, int order)
 {
-    for (int j = 0; j < m->n; j++) {
+    int n = order == 0 ? m->nq : m->n; /* coordinates, or velocity slots */
+    for (int j = 0; j < n; j++) {
         ExprId d = diff_partial(D, e, m->q[order][j]);
-        for (int k = 0; k < m->n; k++)
+        for (int k = 0; k < n; k++)
             if (diff_partial(D, d, m->q[order][k]) != EXPR_ZERO)
                 return 0;
     }
@@ -160,11 +169,15 @@ choose_dependent(Constraints *c, int a, int *owner, const Spec *s, const double 
                  const unsigned char *dep, Arena *A)
 {
     const SpecConstraint *sc = &c->spec[a];
-    int n = c->n, j = sc->dependent;
+    int n = c->n, j = sc->dependent >= 0 ? s->vslot[sc->dependent] : -1;
+    if (sc->dependent >= 0 && j < 0)
+        diag_error(sc->dep_loc, "'%s' is an Euler parameter whose rate its quaternion's speeds "
+                   "give: it cannot be a dependent coordinate", s->coord[sc->dependent].name);
     if (j >= 0) {
         if (c->B[a * n + j] == EXPR_ZERO)
             diag_error(sc->dep_loc, "constraint '%s' does not involve '%s' at acceleration "
-                       "level, so it cannot determine it", sc->name, s->coord[j].name);
+                       "level, so it cannot determine it", sc->name,
+                       s->coord[sc->dependent].name);
         owner[j] = a;
         c->dependent[a] = j;
         return;
@@ -204,20 +217,22 @@ choose_dependent(Constraints *c, int a, int *owner, const Spec *s, const double 
 static double *
 initial_B(const Constraints *c, const Spec *s, Arena *A, ExprPool *P)
 {
-    int n = c->n, nc = c->nc;
+    int n = c->n, nc = c->nc, nl = s->nq + s->nspeed; /* leaves: the speeds' after q's */
     double *p = arena_new_array(A, double, s->np + 1);
-    double *q = arena_new_array(A, double, n), *v = arena_new_array(A, double, n);
-    double *acc = arena_new_array(A, double, n), *u = arena_new_array(A, double, s->nu + 1);
+    double *q = arena_new_array(A, double, nl), *v = arena_new_array(A, double, nl);
+    double *acc = arena_new_array(A, double, nl), *u = arena_new_array(A, double, s->nu + 1);
     double *Bnum = arena_new_array(A, double, nc * n);
     for (int i = 0; i < s->np; i++)
         p[i] = s->param[i].value;
     ExprEnv env = {.t = 0, .p = p, .u = u};
     for (int k = 0; k < s->nu; k++)
         u[k] = expr_eval(P, s->input[k].expr, &env);
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < s->nq; i++) {
         q[i] = expr_eval(P, s->coord[i].q0, &env);
         v[i] = expr_eval(P, s->coord[i].v0, &env);
     }
+    for (int k = 0; k < s->nspeed; k++)
+        v[s->nq + k] = expr_eval(P, s->speed[k].v0, &env);
     env.q[0] = q, env.q[1] = v, env.q[2] = acc;
     expr_eval_many(P, nc * n, c->B, &env, Bnum);
     return Bnum;
@@ -228,12 +243,8 @@ constraints_build(const Spec *s, const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
     if (s->nconstraint == 0)
         return NULL;
-    if (s->nspeed) /* B's columns would be the slots, and initial_B's state the coordinates' */
-        diag_error(s->constraint[0].loc, "constraints on a model whose quaternions have speeds "
-                   "are not derived yet: write each `quaternion:` without its `speeds:` (its "
-                   "rates are then coordinates' and a unit constraint keeps it)");
     Constraints *c = arena_new_array(A, Constraints, 1);
-    int nc = c->nc = s->nconstraint, n = c->n = s->nq;
+    int nc = c->nc = s->nconstraint, n = c->n = s->nv; /* B's columns: the velocity slots */
     c->spec = s->constraint;
     c->f = arena_new_array(A, ExprId, nc);
     c->b = arena_new_array(A, ExprId, nc);
@@ -312,12 +323,12 @@ constraints_explain(FILE *f, const Constraints *c, const Spec *s, int eliminate)
                     "before it at the initial state: the runtime leaves a dependent row out "
                     "of its solves, and cannot eliminate it)\n", w, sc->name,
                     constraint_order_name(sc->order), lin, how[sc->order],
-                    s->coord[c->dependent[k]].name, c->spec[shared].name);
+                    slot_name(s, c->dependent[k]), c->spec[shared].name);
             continue;
         }
         fprintf(f, "  %-*s %s%s: %s; determines %s (%s)\n", w, sc->name,
                 constraint_order_name(sc->order), lin, how[sc->order],
-                s->coord[c->dependent[k]].name,
+                slot_name(s, c->dependent[k]),
                 sc->dependent >= 0 ? "named in the spec" : "chosen: the last coordinate "
                 "it involves at the initial state that no earlier constraint took");
     }

@@ -11,11 +11,16 @@
  *     into w' = 2 L(e) e'' - L(e) L(e')^T w, and the kinetic energies agree;
  *   - the Newton-Euler and Gibbs-Appell residuals in speeds vanish there;
  *   - the Jacobian dE/dq [nv x nq], dE/dv [nv x nv], unrolled and seeded,
- *     equals central differences of E.
+ *     equals central differences of E;
+ *   - constraints in speeds: a free top whose tip three constraints hold
+ *     at the origin, solved here by its KKT system (GSL's LU), turns as
+ *     the same top on a ball joint (a tree, no constraint) does.
  */
 #include "check.h"
 #include "forms/eom.h"
+#include "mechanics/constraint.h"
 
+#include <gsl/gsl_linalg.h>
 #include <string.h>
 
 static Arena *A;
@@ -66,6 +71,107 @@ Lmat(const double *e, double L[12])
     const double r[12] = {-e[1], e[0], e[3], -e[2], -e[2], -e[3], e[0], e[1],
                           -e[3], e[2], -e[1], e[0]};
     memcpy(L, r, sizeof r);
+}
+
+static const char free_top[] =
+    "name: free_top\n"
+    "parameters: {g: 9.81}\n"
+    "coordinates: [x, y, z, e0, e1, e2, e3]\n"
+    "frames:\n"
+    "  top_axes: {rotation: {quaternion: [e0, e1, e2, e3], speeds: [wx, wy, wz]}}\n"
+    "points:\n"
+    "  tip: {at: [x, y, z]}\n"
+    "  c: {frame: top_axes, from: tip, at: [0.1, 0.05, 0.4]}\n"
+    "bodies:\n"
+    "  T: {mass: 1.5, frame: top_axes, center: c,\n"
+    "      inertia: [[0.2, 0.01, 0], [0.01, 0.25, 0.02], [0, 0.02, 0.1]]}\n"
+    "effects:\n"
+    "  gravity: {gravity: [0, 0, -g]}\n"
+    "constraints: {tip_x: x, tip_y: y, tip_z: z}\n"
+    "initial: {e0: 1}\n"
+    "scene: {t_end: 1}\n";
+
+static const char ball_top[] =
+    "name: ball_top\n"
+    "parameters: {g: 9.81}\n"
+    "coordinates: [e0, e1, e2, e3]\n"
+    "frames:\n"
+    "  top_axes: {rotation: {quaternion: [e0, e1, e2, e3], speeds: [wx, wy, wz]}}\n"
+    "points:\n"
+    "  c: {frame: top_axes, at: [0.1, 0.05, 0.4]}\n"
+    "bodies:\n"
+    "  T: {mass: 1.5, frame: top_axes, center: c,\n"
+    "      inertia: [[0.2, 0.01, 0], [0.01, 0.25, 0.02], [0, 0.02, 0.1]]}\n"
+    "effects:\n"
+    "  gravity: {gravity: [0, 0, -g]}\n"
+    "initial: {e0: 1}\n"
+    "scene: {t_end: 1}\n";
+
+/* The free top's KKT solve against the ball joint's recursion. */
+static void
+check_constrained(void)
+{
+    Model fr = load(free_top), bl = load(ball_top);
+    CHECK(fr.m && bl.m, "the free top and the top on a ball joint load");
+    if (!fr.m || !bl.m)
+        return;
+    const char *why = NULL;
+    Constraints *c = constraints_build(fr.s, fr.m, A, fr.P, fr.D);
+    Eom *ne = eom_derive(fr.s, fr.m, form_find("newton-euler"), A, fr.P, fr.D, &why);
+    Eom *ab = eom_derive(bl.s, bl.m, form_find("articulated-body"), A, bl.P, bl.D, &why);
+    CHECK(c && c->n == 6 && c->nc == 3 && ne && ne->M && ab && ab->acc,
+          "three constraints on six speeds; both forms apply");
+    if (!c || !ne || !ne->M || !ab || !ab->acc)
+        return;
+    double p[1] = {9.81}, worst = 0;
+    gsl_matrix *K = gsl_matrix_alloc(9, 9);
+    gsl_vector *r = gsl_vector_alloc(9), *x = gsl_vector_alloc(9);
+    gsl_permutation *perm = gsl_permutation_alloc(9);
+    for (int trial = 0; trial < 20; trial++) {
+        double q[7] = {0}, v[10] = {0}, zero[10] = {0}, n2 = 0;
+        for (int i = 3; i < 7; i++)
+            q[i] = check_rand(-1, 1), n2 += q[i] * q[i];
+        for (int i = 3; i < 7; i++)
+            q[i] /= sqrt(n2);
+        for (int i = 7; i < 10; i++)
+            v[i] = check_rand(-3, 3);
+        ExprEnv env = {.p = p};
+        env.q[0] = q, env.q[1] = v, env.q[2] = zero;
+        gsl_matrix_set_zero(K);
+        for (int i = 0; i < 6; i++) {
+            for (int j = 0; j < 6; j++)
+                gsl_matrix_set(K, i, j, expr_eval(fr.P, ne->M[i * 6 + j], &env));
+            gsl_vector_set(r, i, -expr_eval(fr.P, ne->h[i], &env));
+        }
+        for (int a = 0; a < 3; a++) {
+            for (int j = 0; j < 6; j++) {
+                double b = expr_eval(fr.P, c->B[a * 6 + j], &env);
+                gsl_matrix_set(K, 6 + a, j, b), gsl_matrix_set(K, j, 6 + a, b);
+            }
+            gsl_vector_set(r, 6 + a, -expr_eval(fr.P, c->b[a], &env));
+        }
+        int sign;
+        gsl_linalg_LU_decomp(K, perm, &sign);
+        gsl_linalg_LU_solve(K, perm, r, x);
+        /* the ball: q = e, its slots the speeds (leaves 4, 5, 6) */
+        double qb[4] = {q[3], q[4], q[5], q[6]}, vb[7] = {0, 0, 0, 0, v[7], v[8], v[9]};
+        double zb[7] = {0};
+        ExprEnv eb = {.p = p};
+        eb.q[0] = qb, eb.q[1] = vb, eb.q[2] = zb;
+        double amax = 0, want[3];
+        for (int k = 0; k < 3; k++)
+            want[k] = expr_eval(bl.P, ab->acc[k], &eb), amax = fmax(amax, fabs(want[k]));
+        for (int k = 0; k < 3; k++)
+            worst = fmax(worst, fabs(gsl_vector_get(x, 3 + k) - want[k]) / amax);
+        for (int k = 0; k < 3; k++) /* the tip stays */
+            worst = fmax(worst, fabs(gsl_vector_get(x, k)) / amax);
+    }
+    gsl_permutation_free(perm);
+    gsl_vector_free(x);
+    gsl_vector_free(r);
+    gsl_matrix_free(K);
+    CHECK(worst < 1e-12, "the held free top's w' (KKT in speeds) = the ball joint's (20 states; "
+          "worst %.2g of max |w'|)", worst);
 }
 
 int
@@ -217,6 +323,7 @@ main(void)
     CHECK(worst_jv < 1e-8, "dE/dv [7 x 7] = central differences (worst %.2g)", worst_jv);
     CHECK(worst_seed < 1e-13, "the seeded columns = the unrolled ones (worst %.2g)", worst_seed);
 
+    check_constrained();
     CHECK(worst_rate < 1e-15, "e' = 1/2 e (x) (0, w) (worst %.2g)", worst_rate);
     CHECK(worst_a < 1e-12, "q'' in speeds = q'' in the Euler parameters' rates, turned into w' "
           "(50 states; worst %.2g of max |q''|)", worst_a);

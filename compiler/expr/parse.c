@@ -394,7 +394,9 @@ time_derivative_val(Parser *ps, Val v, size_t off)
 /* delta(e): the virtual displacement of e at fixed time,
  *     delta(e) = sum_i de/dq_i delta(q_i),
  * with the variations delta(q_i) as EXPR_SEED leaves (kind 0), or an
- * error at off saying why e has none. */
+ * error at off saying why e has none.  Of a speed that is no coordinate's
+ * rate (a quaternion's w, leaf ncoord + k), its own virtual rotation, the
+ * seed ncoord + k. */
 static ExprId
 variation(Parser *ps, ExprId e, size_t off)
 {
@@ -404,6 +406,9 @@ variation(Parser *ps, ExprId e, size_t off)
     if (deps & DEP_S)
         diag_error(at(ps, off), "delta() of an expression that holds a variation: virtual "
                    "work is linear in the variations, so write each as delta(e) of a position e");
+    const ExprNode *nd = expr_node(P, e);
+    if (nd->op == EXPR_VAR && nd->b == 1 && (int)nd->a >= sc->ncoord) /* a speed's virtual */
+        return expr_seed(P, (int)nd->a, 0);                          /* rotation */
     unsigned moving = DEP_ANY_Q & ~DEP_ORDER(0);
     if (deps & moving) {
         char what[200];

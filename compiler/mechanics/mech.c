@@ -170,6 +170,10 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D, Ex
         case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec/effects.c checked) */
             for (int i = 0; i < m->nq; i++)
                 Qq[i] = expr_add(P, Qq[i], diff_partial(D, f->expr, expr_seed(P, i, 0)));
+            for (int j = 0; m->speeds && j < m->n; j++) /* and delta(w), a speed's own */
+                if (s->vcoord[j] >= m->nq)
+                    m->Q[j] = expr_add(P, m->Q[j], diff_partial(D, f->expr,
+                                                                 expr_seed(P, s->vcoord[j], 0)));
             break;
         }
     }

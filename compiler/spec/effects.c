@@ -95,14 +95,15 @@ work(Loader *L, yaml_node_t *v)
     if (!(expr_deps(P, W) & DEP_S))
         diag_error(spec_loc(L, v), "virtual work is a sum of forces times variations "
                    "delta(...), and this expression has none" WORK_HINT);
-    int n = L->s->nq;
+    const Spec *s = L->s;
+    int n = s->nq + s->nspeed; /* the coordinates' variations, then the speeds' */
     ExprId *seeds = arena_new_array(L->A, ExprId, n), *zeros = arena_new_array(L->A, ExprId, n);
     for (int i = 0; i < n; i++) {
         seeds[i] = expr_seed(P, i, 0), zeros[i] = EXPR_ZERO;
         if (expr_deps(P, diff_partial(L->sc.D, W, seeds[i])) & DEP_S)
             diag_error(spec_loc(L, v), "virtual work is not linear in the variations here: "
                        "delta(%s) is multiplied by a variation, or inside a function"
-                       WORK_HINT, L->s->coord[i].name);
+                       WORK_HINT, i < s->nq ? s->coord[i].name : s->speed[i - s->nq].name);
     }
     if (expr_subst(P, W, n, seeds, zeros) != EXPR_ZERO)
         diag_error(spec_loc(L, v), "a term of this virtual work has no variation: every term is "

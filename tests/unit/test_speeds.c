@@ -1,7 +1,8 @@
 /*
  * Speeds (spec.h: a quaternion's `speeds:`, its angular velocity in its
  * own axes, in place of its Euler parameters' rates), on a free body that
- * carries an arm on an oblique hinge:
+ * carries an arm on an oblique hinge, with a virtual work on its speeds
+ * (delta(wx): the virtual rotation about its x axis):
  *   - the forms that take speeds apply, Lagrange's refuses with its reason;
  *   - the Euler parameters' rates are 1/2 e (x) (0, w), the quaternion
  *     product written out here;
@@ -43,6 +44,7 @@ static const char speeds_spec[] =
     "  C: {mass: 0.5, frame: arm_axes, center: arm_c, inertia: [0.05, 0.01, 0.05]}\n"
     "effects:\n"
     "  gravity: {gravity: [0, 0, -g]}\n"
+    "  spin: {work: \"-0.3*wx*delta(wx) + 0.2*delta(wz)\"}\n"
     "initial: {e0: 1, wx: 0.5}\n"
     "scene: {t_end: 1}\n";
 
@@ -200,6 +202,14 @@ main(void)
                                at + strlen(", speeds: [wx, wy, wz]"));
     char *init = strstr(plain, ", wx: 0.5");
     memmove(init, init + strlen(", wx: 0.5"), strlen(init + strlen(", wx: 0.5")) + 1);
+    /* the work by the Euler parameters' variations: w = 2 L e', the
+     * virtual rotation 2 L delta(e) */
+    const char *spin = "-0.3*wx*delta(wx) + 0.2*delta(wz)";
+    char *sp_at = strstr(plain, spin);
+    plain = arena_printf(A, "%.*s%s%s", (int)(sp_at - plain), plain,
+                         "-0.3*(2*(-e1*e0' + e0*e1' + e3*e2' - e2*e3'))*(2*(-e1*delta(e0) + "
+                         "e0*delta(e1) + e3*delta(e2) - e2*delta(e3))) + 0.2*2*(-e3*delta(e0) + "
+                         "e2*delta(e1) - e1*delta(e2) + e0*delta(e3))", sp_at + strlen(spin));
     Model qm = load(plain);
     Eom *ab0 = qm.m ? eom_derive(qm.s, qm.m, form_find("articulated-body"), A, qm.P, qm.D, &why)
                     : NULL;

@@ -33,6 +33,13 @@
  * differentiating amplifies the noise of short steps by 1/h (msbdf at
  * 1e-13 takes steps of 3e-4 on chain5), which the direct interpolant
  * does not.
+ *
+ * A state whose speeds are not its coordinates' rates (dense_alloc's nv >
+ * 0: a unit quaternion and its body's angular velocity) has no q'' at the
+ * nodes, and a coordinate's rate is not a component of the state: there
+ * every component x_i is interpolated alike, through x_i and x_i' at the
+ * nodes (the velocities' interpolant above, degree up to 9), with the same
+ * first look and the same refinement (fit_first, choose_first, refine_first).
  */
 #include "dense.h"
 
@@ -49,7 +56,9 @@ enum {
 };
 
 struct Dense {
-    int n;               /* coordinates; states have 2n entries */
+    int n;               /* coordinates */
+    int N;               /* the state's entries: 2n, or n + nv */
+    int first;           /* nv > 0: every entry from its value and rate alone */
     long count;          /* nodes pushed; node i is slot i % KEEP */
     double t[KEEP];
     double *x[KEEP], *f[KEEP];  /* [2n] each */
@@ -60,29 +69,34 @@ struct Dense {
     long order[WINDOW];  /* its nodes, nearest the interval first */
     double z[COEFFS];
     double *coef;        /* [n * COEFFS] q's Newton coefficients */
-    double *vcoef;       /* [n * VCOEFFS] q''s, from q' and q'' alone */
+    double *vcoef;       /* [n * VCOEFFS] q''s, from q' and q'' alone; with first,
+                          * [N * VCOEFFS] each entry's from its value and rate */
     /* per coordinate and window: the number of nodes of q's interpolant
      * (lev[3i]), of the one whose derivative is q' (lev[3i+1]), of q''s
      * direct one (lev[3i+2], 0 when the derivative is used), and the
-     * error estimates of q and q' (est[i], est[n+i]) */
-    int *lev;            /* [3n] */
-    double *est;         /* [2n] */
+     * error estimates of q and q' (est[i], est[n+i]); with first, entry
+     * i's number of nodes lev[i] and its estimate est[i] */
+    int *lev;            /* [3n], or [N] */
+    double *est;         /* [2n], or [N] */
 };
 
 Dense *
-dense_alloc(int n)
+dense_alloc(int n, int nv)
 {
     Dense *d = calloc(1, sizeof *d);
     if (!d)
         return NULL;
     d->n = n;
+    d->first = nv > 0;
+    d->N = d->first ? n + nv : 2 * n;
+    size_t N = (size_t)d->N, each = d->first ? N : (size_t)n;
     int ok = (d->coef = calloc((size_t)n * COEFFS, sizeof(double))) != NULL &&
-             (d->vcoef = calloc((size_t)n * VCOEFFS, sizeof(double))) != NULL &&
-             (d->lev = calloc(3 * (size_t)n, sizeof(int))) != NULL &&
-             (d->est = calloc(2 * (size_t)n, sizeof(double))) != NULL;
+             (d->vcoef = calloc(each * VCOEFFS, sizeof(double))) != NULL &&
+             (d->lev = calloc(3 * (size_t)n + N, sizeof(int))) != NULL &&
+             (d->est = calloc(2 * (size_t)n + N, sizeof(double))) != NULL;
     for (int k = 0; k < KEEP; k++) {
-        ok &= (d->x[k] = calloc(2 * (size_t)n, sizeof(double))) != NULL;
-        ok &= (d->f[k] = calloc(2 * (size_t)n, sizeof(double))) != NULL;
+        ok &= (d->x[k] = calloc(N, sizeof(double))) != NULL;
+        ok &= (d->f[k] = calloc(N, sizeof(double))) != NULL;
     }
     if (!ok) {
         dense_free(d);
@@ -118,8 +132,8 @@ dense_push(Dense *d, double t, const double *x, const double *dxdt)
 {
     int slot = (int)(d->count % KEEP);
     d->t[slot] = t;
-    memcpy(d->x[slot], x, 2 * (size_t)d->n * sizeof *x);
-    memcpy(d->f[slot], dxdt, 2 * (size_t)d->n * sizeof *dxdt);
+    memcpy(d->x[slot], x, (size_t)d->N * sizeof *x);
+    memcpy(d->f[slot], dxdt, (size_t)d->N * sizeof *dxdt);
     d->count++;
 }
 
@@ -303,6 +317,82 @@ least_pair(const double *d, int m, double *err)
     return best;
 }
 
+/* ---- every entry from its value and rate (nv > 0) ---- */
+
+/* Newton coefficients of each entry over the window's nodes, each twice
+ * (z = t_a, t_a, t_b, t_b, ...): its value, then its rate. */
+static void
+fit_first(Dense *d, long k, long lo, int m)
+{
+    int N = 2 * m;
+    order_nodes(d, k, lo, m);
+    for (int j = 0; j < N; j++)
+        d->z[j] = node_t(d, d->order[j / 2]);
+    for (int i = 0; i < d->N; i++) {
+        double *c = d->vcoef + (size_t)i * VCOEFFS;
+        for (int j = 0; j < N; j++)
+            c[j] = d->x[d->order[j / 2] % KEEP][i];
+        for (int l = 1; l < N; l++)
+            for (int j = N - 1; j >= l; j--)
+                c[j] = d->z[j] == d->z[j - l] ? d->f[d->order[j / 2] % KEEP][i]
+                                              : (c[j] - c[j - 1]) / (d->z[j] - d->z[j - l]);
+    }
+    d->win_lo = lo;
+    d->win_m = m;
+    d->win_k = k;
+    d->refined = 0;
+}
+
+/* Entry i's interpolants through the nearest 1 .. m nodes at t, p[j]. */
+static void
+first_sums(const Dense *d, int i, int m, double t, double *p)
+{
+    const double *c = d->vcoef + (size_t)i * VCOEFFS;
+    double w = 1, sum = 0;
+    for (int j = 0; j < 2 * m; j++) {
+        sum += c[j] * w;
+        w *= t - d->z[j];
+        if (j % 2 == 1)
+            p[j / 2] = sum;
+    }
+}
+
+/* choose_top's first look, entry by entry. */
+static void
+choose_first(Dense *d, long k, int m)
+{
+    double a = node_t(d, k), b = interval_end(d, k);
+    for (int i = 0; i < d->N; i++) {
+        d->lev[i] = m;
+        d->est[i] = m > 1 ? 0 : INFINITY;
+        for (int s = 0; s < 2 && m > 1; s++) {
+            double p[WINDOW];
+            first_sums(d, i, m, a + (s ? 0.7 : 0.3) * (b - a), p);
+            d->est[i] = fmax(d->est[i], fabs(p[m - 1] - p[m - 2]));
+        }
+    }
+}
+
+/* dense_refine's closer look, entry by entry. */
+static void
+refine_first(Dense *d)
+{
+    int m = d->win_m;
+    long k = d->win_k;
+    double a = node_t(d, k), b = interval_end(d, k);
+    for (int i = 0; i < d->N; i++) {
+        double dp[WINDOW] = {0};
+        for (int s = 1; s <= 3; s++) {
+            double p[WINDOW];
+            first_sums(d, i, m, a + 0.25 * s * (b - a), p);
+            for (int j = 0; j + 1 < m; j++)
+                dp[j] = fmax(dp[j], fabs(p[j + 1] - p[j]));
+        }
+        d->lev[i] = least_pair(dp, m, &d->est[i]);
+    }
+    d->refined = 1;
+}
+
 void
 dense_refine(Dense *d)
 {
@@ -310,6 +400,10 @@ dense_refine(Dense *d)
     long k = d->win_k;
     if (d->win_lo < 0 || d->refined)
         return;
+    if (d->first) {
+        refine_first(d);
+        return;
+    }
     fit_velocity(d, m);
     double a = node_t(d, k), b = interval_end(d, k);
     for (int i = 0; i < n; i++) {
@@ -341,11 +435,24 @@ dense_eval(Dense *d, double t, int final, double *x, double *err)
     int m;
     for (long i = k; i <= k + 1 && i < d->count; i++)
         if (node_t(d, i) == t) {
-            memcpy(x, d->x[i % KEEP], 2 * (size_t)n * sizeof *x);
-            memset(err, 0, 2 * (size_t)n * sizeof *err);
+            memcpy(x, d->x[i % KEEP], (size_t)d->N * sizeof *x);
+            memset(err, 0, (size_t)d->N * sizeof *err);
             return;
         }
     window(d, k, final, &lo, &m);
+    if (d->first) {
+        if (lo != d->win_lo || m != d->win_m || k != d->win_k) {
+            fit_first(d, k, lo, m);
+            choose_first(d, k, m);
+        }
+        for (int i = 0; i < d->N; i++) {
+            double p[WINDOW];
+            first_sums(d, i, m, t, p);
+            x[i] = p[d->lev[i] - 1];
+            err[i] = d->est[i];
+        }
+        return;
+    }
     if (lo != d->win_lo || m != d->win_m || k != d->win_k) {
         fit(d, k, lo, m);
         choose_top(d, k, m);

@@ -20,18 +20,21 @@
 
 typedef struct Dense Dense;
 
-/* For states of n coordinates (x of 2n); NULL when memory runs out. */
-Dense *dense_alloc(int n);
+/* For states of n coordinates and their rates (x of 2n, nv = 0), or of n
+ * coordinates and nv speeds that are not their rates (x of n + nv: each
+ * entry is then interpolated from its value and rate alone, dense.c);
+ * NULL when memory runs out. */
+Dense *dense_alloc(int n, int nv);
 void dense_free(Dense *d);
 /* Forget every node (a new run). */
 void dense_clear(Dense *d);
-/* A node at t, after the last one: x [2n] and x' [2n]. */
+/* A node at t, after the last one: x [N] and x' [N] (N = 2n, or n + nv). */
 void dense_push(Dense *d, double t, const double *x, const double *dxdt);
 /* Whether the value at t is settled: t lies between stored nodes and the
  * nodes that decide it are all there (or `final`: no more will come). */
 int dense_ready(const Dense *d, double t, int final);
-/* The state at t (dense_ready), into x [2n]; exactly a node's state at
- * its own time.  err [2n]: an estimate of its error, entry by entry (the
+/* The state at t (dense_ready), into x [N]; exactly a node's state at
+ * its own time.  err [N]: an estimate of its error, entry by entry (the
  * difference from the interpolant of one node less, which is one order
  * less accurate; infinite with a single node). */
 void dense_eval(Dense *d, double t, int final, double *x, double *err);

@@ -11,10 +11,13 @@
  *  - a `set` event's reset starts the interpolant afresh, and a `stop`
  *    event ends the rows with one at the event itself;
  *  - Taylor's method's rows are its steps' own polynomials (taylor.h),
- *    no interpolant and no side step.
+ *    no interpolant and no side step;
+ *  - a row's unit quaternions are renormalized, as the steps' ends are
+ *    (the exact motion has |e| = 1; the interpolant is off it by its error).
  */
 #include "evolve.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 #include "dense.h"
 #include "taylor.h"
 
@@ -35,7 +38,7 @@ typedef struct Driver {
     eomc_sim *s;
     const eomc_run_opts *o;
     eomc_stats *st;
-    int n, N;                     /* coordinates, state size 2n */
+    int n, N;                     /* coordinates, state size nq + nv */
     double *x;                    /* the current state (the caller's array) */
     Dense *dense;
     double *xrow, *erow;          /* an interpolated row, its error estimate */
@@ -116,8 +119,10 @@ emit_rows(Driver *r, int final)
             if (rc != GSL_SUCCESS)
                 return rc;
         }
-        /* projected steps, projected rows: the interpolant is only as close
-         * to the constraints as it is to the motion */
+        /* renormalized steps, renormalized rows; projected steps, projected
+         * rows: the interpolant is only as close to the unit quaternions and
+         * the constraints as it is to the motion */
+        state_normalize(eomc_sim_model(r->s), r->xrow, NULL);
         if (sim_stabilize_method(r->s) == EOMC_STABILIZE_PROJECT &&
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
@@ -232,16 +237,22 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     eomc_stats local;
     if (!st)
         st = &local;
-    int n = eomc_sim_model(s)->nq;
-    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .x = x, .row = row,
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq;
+    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = eomc_nx(m), .x = x, .row = row,
                 .ctx = ctx};
+    /* a unit quaternion starts at length 1: the motion keeps |e|, and the
+     * steps renormalize it (a start off 1 is the caller's to warn about:
+     * eomc_main does) */
+    if (sim_all_finite(x, r.N))
+        state_normalize(m, x, NULL);
     /* the constraint rows this run's solves use, chosen where it starts */
     int rc = sim_start_rows(s, o->t0, x, x + n);
     if (rc == EOMC_OK)
         rc = evolve_open(&r.e, s, o, x, st);
     if (rc == EOMC_OK) {
         r.nrows = eomc_run_rows(o);
-        r.dense = dense_alloc(n);
+        r.dense = dense_alloc(n, m->nv > 0 ? m->nv : 0);
         r.xrow = sim_zeros((size_t)r.N);
         r.erow = sim_zeros((size_t)r.N);
         if (!r.dense || !r.xrow || !r.erow)

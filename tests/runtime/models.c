@@ -100,8 +100,11 @@ osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
     eomc_tay_scale(T + 3 * S, T + 2 * S, T + 0 * S, k);
 }
 
+/* The last members: the speeds are the coordinates' rates (nv = 0). */
+#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL
+
 #define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \
-    NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL
+    NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL, NO_SPEEDS
 
 /* No parameter is fixed (p_fixed). */
 static const unsigned char no_fixed[8];
@@ -112,9 +115,9 @@ static const unsigned char no_fixed[8];
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* Nothing to draw (--animate): the members after c_nz; and no Taylor
- * series (the last members). */
+ * series (the last members but the speeds). */
 #define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
-    "a hand-written test model"
+    "a hand-written test model", NO_SPEEDS
 #define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NULL, 0.0, NULL, \
     __VA_ARGS__
 #define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)

@@ -44,8 +44,8 @@ assembly_run(Options *c, eomc_sim *sim, double *x)
     memcpy(x0, x, (size_t)nx * sizeof *x0);
     int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->held);
     if (rc != EOMC_OK) {
-        fprintf(io_err(), "%s: %s: %s: %s\n", c->prog, rc == EOMC_EUSAGE ? "--hold" : "error",
-                who, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: %s%s: %s\n", c->prog, rc == EOMC_EUSAGE ? "" : "error: ", who,
+                eomc_sim_error(sim));
         free(x0);
         return rc;
     }

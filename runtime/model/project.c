@@ -373,10 +373,15 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
         j->w[i] = d;
     }
     if (level == 0 && j->m->nv > 0) { /* dq = W(q) d, e back to length 1 */
-        state_qdot(j->m, q, j->w, j->dq);
+        const eomc_model *m = j->m;
+        state_qdot(m, q, j->w, j->dq);
         for (int i = 0; i < j->nq; i++)
             q[i] -= j->dq[i];
-        state_normalize(j->m, q, NULL);
+        for (int g = 0; g < m->nquat; g++) { /* those it moved: a held one stays */
+            const int *e = m->quat + 4 * g;
+            if (j->dq[e[0]] != 0 || j->dq[e[1]] != 0 || j->dq[e[2]] != 0 || j->dq[e[3]] != 0)
+                state_normalize_quat(m, q, g);
+        }
     } else {
         for (int i = 0; i < n; i++)
             x[i] -= j->w[i];

@@ -250,6 +250,25 @@ sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd)
     state_qdot(s->m, q, v, qd);
 }
 
+int
+sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nv = s->nv;
+    if (m->nv == 0 || !m->qdot_jacobian)
+        return -1;
+    m->qdot_jacobian(x, x + n, s->dqdq, s->dqdv);
+    for (int i = 0; i < n; i++) {
+        double d = 0;
+        for (int j = 0; j < n; j++)
+            d += s->dqdq[i * n + j] * f[j];
+        for (int k = 0; k < nv; k++)
+            d += s->dqdv[i * nv + k] * f[n + k];
+        qdd[i] = d;
+    }
+    return 0;
+}
+
 /* The solves and projections told which rows depend_dropped leaves out. */
 static int
 use_rows(eomc_sim *s)

@@ -25,6 +25,10 @@ int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* q' = W(q) v into qd [nq] (v itself when the speeds are the rates). */
 void sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd);
+/* q'' = dq'/dq q' + dq'/dv v' into qdd [nq] at x [nx] with x' = f [nx]
+ * (qdot_jacobian); 0, or -1 when the model has no qdot_jacobian.  For a
+ * model whose speeds are not the rates (dense output). */
+int sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd);
 /* The message of a usage error; returns EOMC_EUSAGE. */
 int sim_usage_error(eomc_sim *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

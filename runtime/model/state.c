@@ -109,22 +109,29 @@ state_quat_norm(const eomc_model *m, const double *q, int j)
 }
 
 double
+state_normalize_quat(const eomc_model *m, double *q, int j)
+{
+    const int *e = m->quat + 4 * j;
+    double len = state_quat_norm(m, q, j);
+    if (!(len > 0) || !isfinite(len))
+        return 0;
+    double d = fabs(len - 1);
+    for (int i = 0; i < 4 && d > UNIT_ROUNDING * DBL_EPSILON; i++)
+        q[e[i]] /= len;
+    return d;
+}
+
+double
 state_normalize(const eomc_model *m, double *q, int *which)
 {
     double worst = 0;
     if (which)
         *which = -1;
     for (int j = 0; j < m->nquat; j++) {
-        const int *e = m->quat + 4 * j;
-        double len = state_quat_norm(m, q, j);
-        if (!(len > 0) || !isfinite(len))
-            continue;
-        double d = fabs(len - 1);
+        double d = state_normalize_quat(m, q, j);
         if (which && (*which < 0 || d > worst))
             *which = j;
         worst = fmax(worst, d);
-        for (int i = 0; i < 4 && d > UNIT_ROUNDING * DBL_EPSILON; i++)
-            q[e[i]] /= len;
     }
     return worst;
 }

@@ -44,6 +44,8 @@ void state_qdot(const eomc_model *m, const double *q, const double *v, double *q
  * whose length is 0 or not finite is left as it is (the right-hand side
  * then says why the state fails). */
 double state_normalize(const eomc_model *m, double *q, int *which);
+/* The same for quaternion j alone: its ||e| - 1| before. */
+double state_normalize_quat(const eomc_model *m, double *q, int j);
 /* The same in extended precision (the reference). */
 eomc_ext state_normalize_ext(const eomc_model *m, eomc_ext *q);
 /* Quaternion j's length in q. */

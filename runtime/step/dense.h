@@ -28,8 +28,11 @@ Dense *dense_alloc(int n, int nv);
 void dense_free(Dense *d);
 /* Forget every node (a new run). */
 void dense_clear(Dense *d);
-/* A node at t, after the last one: x [N] and x' [N] (N = 2n, or n + nv). */
-void dense_push(Dense *d, double t, const double *x, const double *dxdt);
+/* A node at t, after the last one: x [N] and x' [N] (N = 2n, or n + nv);
+ * with speeds of their own, qdd [n] the coordinates' second derivatives
+ * there, or NULL when they cannot be had (then the coordinates too are
+ * interpolated from their values and rates alone). */
+void dense_push(Dense *d, double t, const double *x, const double *dxdt, const double *qdd);
 /* Whether the value at t is settled: t lies between stored nodes and the
  * nodes that decide it are all there (or `final`: no more will come). */
 int dense_ready(const Dense *d, double t, int final);

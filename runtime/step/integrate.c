@@ -42,6 +42,7 @@ typedef struct Driver {
     double *x;                    /* the current state (the caller's array) */
     Dense *dense;
     double *xrow, *erow;          /* an interpolated row, its error estimate */
+    double *qdd;                  /* [nq] a node's q'' (speeds of their own), or NULL */
     long k, nrows;                /* the next row, and how many there are */
     eomc_row_fn row;
     void *ctx;
@@ -171,6 +172,15 @@ finish_at_event(Driver *r, const EvolveStep *tk)
 
 /* ---- the loop ---- */
 
+/* A node of the interpolant at (t, x) with x' = f: with speeds of their
+ * own, the coordinates' q'' too, where the model can give it. */
+static void
+push_node(Driver *r, double t, const double *x, const double *f)
+{
+    int have = r->qdd && sim_qddot(r->s, x, f, r->qdd) == 0;
+    dense_push(r->dense, t, x, f, have ? r->qdd : NULL);
+}
+
 /* Integrate to t_end by evolve_step, passing rows as they are settled:
  * the step ends are the interpolant's nodes (dense.h). */
 static int
@@ -191,11 +201,11 @@ march(Driver *r)
         if (tk.restarted) /* the nodes before the reset are another motion's */
             dense_clear(r->dense);
         if (tk.restarted && tk.taken)
-            dense_push(r->dense, tk.t0, tk.x0, tk.f0);
+            push_node(r, tk.t0, tk.x0, tk.f0);
         if (tk.taken)
-            dense_push(r->dense, tk.t1, tk.x1, tk.f1);
+            push_node(r, tk.t1, tk.x1, tk.f1);
         else if (!isnan(tk.reached) && !tk.restarted)
-            dense_push(r->dense, tk.reached, tk.xr, tk.fr);
+            push_node(r, tk.reached, tk.xr, tk.fr);
         if (rc != GSL_SUCCESS)
             return rc;
         if (tk.ev == EVOLVE_STOP)
@@ -214,6 +224,7 @@ driver_free(Driver *r)
     dense_free(r->dense);
     free(r->xrow);
     free(r->erow);
+    free(r->qdd);
 }
 
 /* The first row: the initial state, as it is, after the equations at t0
@@ -255,7 +266,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         r.dense = dense_alloc(n, m->nv > 0 ? m->nv : 0);
         r.xrow = sim_zeros((size_t)r.N);
         r.erow = sim_zeros((size_t)r.N);
-        if (!r.dense || !r.xrow || !r.erow)
+        r.qdd = m->nv > 0 && m->qdot_jacobian ? sim_zeros((size_t)n) : NULL;
+        if (!r.dense || !r.xrow || !r.erow || (m->nv > 0 && m->qdot_jacobian && !r.qdd))
             rc = sim_usage_error(s, "out of memory setting up %s", o->method);
     }
     if (rc != EOMC_OK) {
@@ -265,7 +277,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     double c0 = sim_seconds(1);
     rc = driver_start(&r);
     if (rc == EOMC_OK && r.nrows > 1) {
-        dense_push(r.dense, o->t0, x, evolve_rate(r.e));
+        push_node(&r, o->t0, x, evolve_rate(r.e));
         evolve_begin(r.e);
         int status = march(&r);
         /* the rows up to the last step reached stand, also after a failure */

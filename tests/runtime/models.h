@@ -71,6 +71,7 @@ void driven_exact(double m, double k, double A, double w, double x0, double v0,
  *                    I2, I3, g), I1 < I2 < I3 by default; started at
  *                    freebody_start; accel NULL (the runtime's LDL^T)
  *   freebody_accel_model  the same with its own accel
+ *   freebody_series_model the same claiming Taylor series (a stub)
  *   top_model        the heavy symmetric top: the free body (p = (m, A, C,
  *                    l, g), inertia diag(A, A, C)) whose tip, at -l along
  *                    its axis, is held at the origin by three holonomic
@@ -81,6 +82,7 @@ void driven_exact(double m, double k, double A, double w, double x0, double v0,
  * with -DEOMC_EXTENDED) are what the reference evaluates. */
 extern const eomc_model freebody_model;
 extern const eomc_model freebody_accel_model;
+extern const eomc_model freebody_series_model; /* Taylor series it must not be given */
 extern const eomc_model top_model;
 extern const eomc_model top_loads_model;
 extern const eomc_model_ext freebody_model_ext;

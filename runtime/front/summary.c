@@ -290,15 +290,21 @@ warn_condition(const Options *c, const eomc_stats *st)
 static void
 warn_quaternion(const Options *c, const eomc_model *m, const eomc_stats *st)
 {
-    const char *e0 = st->quat_name ? st->quat_name : "";
     if (m->nquat == 0)
         return;
+    char q4[4 * STATE_NAME_MAX + 8] = "";
+    for (int j = 0; j < m->nquat; j++) { /* the one whose drift st names */
+        const int *e = m->quat + 4 * j;
+        if (st->quat_name && !strcmp(st->quat_name, m->q_names[e[0]]))
+            snprintf(q4, sizeof q4, "(%s, %s, %s, %s)", m->q_names[e[0]], m->q_names[e[1]],
+                     m->q_names[e[2]], m->q_names[e[3]]);
+    }
     if (st->h_used > 0 && st->quat_drift > FIXED_DRIFT)
-        fprintf(io_err(), "%s: warning: fixed steps of %.3g: the unit quaternion of %s moved "
-                "off length 1 by %.3g in a step (at t = %.6g) before it was renormalized: "
-                "fewer than two digits of the orientation are right there (shorter "
-                "--fixed-step, or adaptive steps, give more)\n", c->prog, st->h_used, e0,
-                st->quat_drift, st->quat_t);
+        fprintf(io_err(), "%s: warning: fixed steps of %.3g: the unit quaternion %s moved off "
+                "length 1 by %.3g in a step (at t = %.6g) before it was renormalized: fewer "
+                "than two digits of the orientation are right there (shorter --fixed-step, "
+                "or adaptive steps, give more)\n", c->prog, st->h_used, q4, st->quat_drift,
+                st->quat_t);
     else if (st->quat_ratio > DRIFT_SLACK)
         fprintf(io_err(), "%s: warning: a step moved a unit quaternion's length by %.3g times "
                 "what the step's own error estimate allows: an error the integrator cannot "

@@ -286,6 +286,45 @@ fb_no_series(int k, int K, double t0, const double *p, const double *u, double *
 const eomc_model freebody_series_model = {FREEBODY_COMMON, .name = "freebody_series",
                                           .taylor = fb_no_series};
 
+/* ---- the free body bouncing on the floor z = 0 (its centre: an
+ * elastic `set` of z'), with the output wz_rate = wz' ---- */
+
+static const char *const fb_ev[] = {"floor"};
+static const int fb_ev_dir[] = {-1};
+static const int fb_ev_act[] = {EOMC_EVENT_SET};
+static const char *const fb_out[] = {"wz_rate"};
+
+static void
+fb_events(double t, const double *q, const double *v, const double *p, const double *u,
+          double *g)
+{
+    (void)t, (void)v, (void)p, (void)u;
+    g[0] = q[2];
+}
+
+static void
+fb_event_set(int k, double t, const double *q, const double *v, const double *p,
+             const double *u, double *q1, double *v1)
+{
+    (void)k, (void)t, (void)q, (void)p, (void)u, (void)q1;
+    v1[2] = -v[2];
+}
+
+static void
+fb_outputs(double t, const double *q, const double *v, const double *a, const double *p,
+           const double *u, const double *lam, double *out)
+{
+    (void)t, (void)q, (void)v, (void)p, (void)u, (void)lam;
+    out[0] = a[5];
+}
+
+const eomc_model freebody_bounce_model = {
+    FREEBODY_COMMON, .name = "freebody_bounce", .taylor_why = NO_SERIES,
+    .nout = 1, .out_names = fb_out, .outputs = fb_outputs,
+    .nevent = 1, .ev_names = fb_ev, .ev_direction = fb_ev_dir, .ev_action = fb_ev_act,
+    .events = fb_events, .event_set = fb_event_set,
+};
+
 /* ---- the top ---- */
 
 static const char *const top_p[] = {"m", "A", "C", "l", "g"};

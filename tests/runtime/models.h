@@ -72,6 +72,9 @@ void driven_exact(double m, double k, double A, double w, double x0, double v0,
  *                    freebody_start; accel NULL (the runtime's LDL^T)
  *   freebody_accel_model  the same with its own accel
  *   freebody_series_model the same claiming Taylor series (a stub)
+ *   freebody_bounce_model the same bouncing on the floor: event floor (g =
+ *                    root_z, down) sets root_z' to -root_z'; output wz_rate
+ *                    (root_wz')
  *   top_model        the heavy symmetric top: the free body (p = (m, A, C,
  *                    l, g), inertia diag(A, A, C)) whose tip, at -l along
  *                    its axis, is held at the origin by three holonomic
@@ -83,6 +86,7 @@ void driven_exact(double m, double k, double A, double w, double x0, double v0,
 extern const eomc_model freebody_model;
 extern const eomc_model freebody_accel_model;
 extern const eomc_model freebody_series_model; /* Taylor series it must not be given */
+extern const eomc_model freebody_bounce_model;
 extern const eomc_model top_model;
 extern const eomc_model top_loads_model;
 extern const eomc_model_ext freebody_model_ext;

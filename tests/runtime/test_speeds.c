@@ -22,6 +22,8 @@
  *    renormalized), and with its turn held (only the centre moves); with
  *    its centre held (the rows then dependent) and a quaternion held in
  *    part, refused;
+ *  - an event's `set` of a speed (the body bouncing on the floor) and an
+ *    output of v': the parabolas between bounces, Euler's v';
  *  - the reference solution (extended precision) against the closed form:
  *    its estimated error bounds its true one.
  */
@@ -439,6 +441,58 @@ reference(void)
     eomc_sim_free(s);
 }
 
+/* The symmetric body bouncing on the floor: its centre's height the
+ * parabolas between elastic bounces, its turn the closed form's (the
+ * bounce sets the speed root_z' alone); the output wz_rate, v' [6]'s
+ * last, Euler's at each row. */
+static void
+bounce(void)
+{
+    const eomc_model *m = &freebody_bounce_model;
+    eomc_sim *s = sim_new(m);
+    eomc_sim_set(s, "I2", FREEBODY_I1);
+    double x[NX], x0[NX], p[5], ex[NX];
+    sim_x0(s, x);
+    memcpy(x0, x, sizeof x);
+    params(s, p);
+    eomc_run_opts o = opts_for(m, 2.0, 0.05, "rk8pd", 1e-12, 1e-12);
+    Rows r;
+    eomc_stats st;
+    rows_init_model(&r, m);
+    int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
+    double g = p[4], err = 0, out_err = 0;
+    for (int i = 0; i < r.n; i++) {
+        const double *y = rows_x(&r, i);
+        double t = r.t[i], tb = 0, z = x0[2], vz = x0[NQ + 2];
+        /* the bounces before t: each where the parabola reaches 0 */
+        for (;;) {
+            double hit = tb + (vz + sqrt(vz * vz + 2 * g * z)) / g;
+            if (hit > t)
+                break;
+            vz = -(vz - g * (hit - tb)), z = 0, tb = hit;
+        }
+        freebody_exact(p, x0, x0 + NQ, t, ex, ex + NQ);
+        ex[2] = z + vz * (t - tb) - g * (t - tb) * (t - tb) / 2;
+        ex[NQ + 2] = vz - g * (t - tb);
+        for (int j = 0; j < NX; j++)
+            err = fmax(err, fabs(y[j] - ex[j]));
+    }
+    /* the output at the rows' states, of the asymmetric body (wz' not 0) */
+    eomc_sim_set(s, "I2", FREEBODY_I2);
+    for (int i = 0; i < r.n; i++) {
+        const double *y = rows_x(&r, i);
+        double out, want = -(FREEBODY_I2 - FREEBODY_I1) * y[NQ + 3] * y[NQ + 4] / FREEBODY_I3;
+        eomc_sim_outputs(s, r.t[i], y, y + NQ, &out);
+        out_err = fmax(out_err, fabs(out - want));
+    }
+    CHECK(rc == EOMC_OK && r.n == 41 && st.events == 2 && err < 1e-9 &&
+              out_err <= 4 * DBL_EPSILON,
+          "freebody bouncing: 2 bounces, the rows on the parabolas and the turn's closed form "
+          "(%.2g), the output wz_rate Euler's (%.2g)", err, out_err);
+    rows_free(&r);
+    eomc_sim_free(s);
+}
+
 /* Linearization and Taylor's method refuse the speeds by name. */
 static void
 refusals(void)
@@ -480,6 +534,7 @@ main(void)
     top_run(&top_model, "rk8pd", 1e-10, 0, 1, 1e-7, NULL);
     top_run(&top_loads_model, "rk4", 1e-12, 1e-3, 1, 1e-6, NULL);
     top_same();
+    bounce();
     projection();
     reference();
     refusals();

@@ -46,6 +46,8 @@ struct eomc_sim {
                               * (eomc_sim_outputs), an event's q */
     double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians [nv*nq], [nv*nv], ... */
     double *dqdq, *dqdv;     /* [nq*nq], [nq*nv] qdot_jacobian's (nv > 0) */
+    double *wtw, *wrel, *wzero;           /* [nv*nv], [nv], [nv]: sim_speeds_of's */
+    size_t *wperm;                        /* [nv] */
     double *col;             /* [max(nq, nv)] one right-hand side of M y = b */
     double *fk;              /* [nc] f (scratch) */
     LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
@@ -113,6 +115,10 @@ eomc_sim_alloc(const eomc_model *m)
     s->dEdt = sim_zeros(nv);
     s->dqdq = sim_zeros(m->nv > 0 ? n * n : 0);
     s->dqdv = sim_zeros(m->nv > 0 ? n * nv : 0);
+    s->wtw = sim_zeros(m->nv > 0 ? nv * nv : 0);
+    s->wrel = sim_zeros(nv);
+    s->wzero = sim_zeros(nv);
+    s->wperm = calloc(nv, sizeof *s->wperm);
     s->col = sim_zeros(most);
     s->fk = sim_zeros((size_t)m->nc);
     s->mlu = la_lu_alloc((int)nv);
@@ -137,7 +143,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->crow = calloc((size_t)m->nc + 1, sizeof *s->crow);
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
-        !s->dqdq || !s->dqdv ||
+        !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
         !s->Bc || !s->ce || !s->cl || !s->crow ||
         (m->nc > 0 && (!s->kkt || !s->proj || !s->dep))) {
@@ -158,7 +164,7 @@ eomc_sim_free(eomc_sim *s)
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow,
-                      s->dqdq, s->dqdv};
+                      s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
@@ -248,6 +254,33 @@ void
 sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd)
 {
     state_qdot(s->m, q, v, qd);
+}
+
+int
+sim_speeds_of(eomc_sim *s, const double *q, const double *qd, double *v)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nv = s->nv;
+    if (m->nv == 0 || !m->qdot_jacobian)
+        return -1;
+    m->qdot_jacobian(q, s->wzero, s->dqdq, s->dqdv); /* W = dq'/dv, whatever v */
+    const double *W = s->dqdv;
+    for (int a = 0; a < nv; a++) {
+        double b = 0;
+        for (int i = 0; i < n; i++)
+            b += W[i * nv + a] * qd[i];
+        v[a] = b;
+        for (int c = 0; c <= a; c++) {
+            double w = 0;
+            for (int i = 0; i < n; i++)
+                w += W[i * nv + a] * W[i * nv + c];
+            s->wtw[a * nv + c] = s->wtw[c * nv + a] = w;
+        }
+    }
+    if (la_ldlt_factor(s->wtw, nv, s->wrel, s->wperm) != 0)
+        return -1;
+    la_ldlt_solve(s->wtw, nv, s->wperm, v);
+    return 0;
 }
 
 int

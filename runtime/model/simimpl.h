@@ -29,6 +29,11 @@ void sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd);
  * (qdot_jacobian); 0, or -1 when the model has no qdot_jacobian.  For a
  * model whose speeds are not the rates (dense output). */
 int sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd);
+/* The speeds v [nv] whose q' = W(q) v is nearest qd [nq] (least squares:
+ * W^T W v = W^T qd, W from qdot_jacobian); 0, or -1 without
+ * qdot_jacobian or where W^T W is not positive definite.  For a model
+ * whose speeds are not the rates (dense output). */
+int sim_speeds_of(eomc_sim *s, const double *q, const double *qd, double *v);
 /* The message of a usage error; returns EOMC_EUSAGE. */
 int sim_usage_error(eomc_sim *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

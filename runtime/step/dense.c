@@ -40,8 +40,12 @@
  * caller (dense_push's qdd), so it is interpolated as above; a speed is
  * not any coordinate's rate, and is interpolated from its value and rate
  * alone, as a velocity's direct interpolant above, with the same first
- * look and the same refinement.  Without q'' (the model has no
- * qdot_jacobian) a coordinate is interpolated so too.
+ * look and the same refinement; or, where that is estimated worse and the
+ * caller can turn rates into speeds (dense_set_speeds: v = W(q)^+ q', W
+ * of full column rank), from the coordinates' polynomials' derivative, as
+ * a velocity is, its estimate the speeds of the derivatives of one node
+ * less.  Without q'' (the model has no qdot_jacobian) a coordinate is
+ * interpolated from its value and rate too.
  */
 #include "dense.h"
 
@@ -86,6 +90,12 @@ struct Dense {
      * interpolant. */
     int *lev;            /* [3n], or [N] */
     double *est;         /* [N] */
+    /* speeds of their own from the coordinates' derivative (dense_set_speeds) */
+    int (*to_speeds)(void *ctx, const double *q, const double *qd, double *v);
+    void *to_ctx;
+    unsigned char *vsrc; /* [nv] 1: speed k from it, 0: from its value and rate */
+    double *esta;        /* [nv] its estimate so */
+    double *qt, *dqt, *dql, *vt, *vl; /* [n] [n] [n] [nv] [nv] scratch */
 };
 
 Dense *
@@ -103,7 +113,10 @@ dense_alloc(int n, int nv)
     int ok = (d->coef = calloc((size_t)n * COEFFS, sizeof(double))) != NULL &&
              (d->vcoef = calloc(N * VCOEFFS, sizeof(double))) != NULL &&
              (d->lev = calloc(3 * (size_t)n + N, sizeof(int))) != NULL &&
-             (d->est = calloc(N, sizeof(double))) != NULL;
+             (d->est = calloc(N, sizeof(double))) != NULL &&
+             (d->vsrc = calloc((size_t)d->nv, 1)) != NULL &&
+             (d->esta = calloc((size_t)d->nv, sizeof(double))) != NULL &&
+             (d->qt = calloc(3 * (size_t)n + 2 * (size_t)d->nv, sizeof(double))) != NULL;
     for (int k = 0; k < KEEP; k++) {
         ok &= (d->x[k] = calloc(N, sizeof(double))) != NULL;
         ok &= (d->f[k] = calloc(N, sizeof(double))) != NULL;
@@ -113,6 +126,7 @@ dense_alloc(int n, int nv)
         dense_free(d);
         return NULL;
     }
+    d->dqt = d->qt + n, d->dql = d->dqt + n, d->vt = d->dql + n, d->vl = d->vt + d->nv;
     dense_clear(d);
     return d;
 }
@@ -128,7 +142,18 @@ dense_free(Dense *d)
     free(d->vcoef);
     free(d->lev);
     free(d->est);
+    free(d->vsrc);
+    free(d->esta);
+    free(d->qt);
     free(d);
+}
+
+void
+dense_set_speeds(Dense *d, int (*to_speeds)(void *ctx, const double *q, const double *qd,
+                                             double *v), void *ctx)
+{
+    d->to_speeds = to_speeds;
+    d->to_ctx = ctx;
 }
 
 void
@@ -319,6 +344,52 @@ entry_sums(const Dense *d, int c, int m, double t, double *p)
         pair_sums(d, c, m, t, p);
 }
 
+/* Speeds of their own at t from the coordinates' polynomials of m nodes,
+ * W(q)^+ q', into d->vt, and from the derivatives of one node less (same
+ * q) into d->vl: 0, or -1 when they cannot be had. */
+static int
+derived_speeds(Dense *d, int m, double t)
+{
+    if (!d->to_speeds || !d->second || m < 2)
+        return -1;
+    for (int i = 0; i < d->n; i++) {
+        double p[WINDOW], dp[WINDOW];
+        partial_sums(d, i, m, t, p, dp);
+        d->qt[i] = p[m - 1], d->dqt[i] = dp[m - 1], d->dql[i] = dp[m - 2];
+    }
+    return d->to_speeds(d->to_ctx, d->qt, d->dqt, d->vt) ||
+                   d->to_speeds(d->to_ctx, d->qt, d->dql, d->vl)
+               ? -1
+               : 0;
+}
+
+/* Each speed's estimate from the derivative, the larger at 0.3 and 0.7 of
+ * interval k, into d->esta (infinite where it cannot be had). */
+static void
+derived_estimates(Dense *d, long k, int m)
+{
+    double a = node_t(d, k), b = interval_end(d, k);
+    for (int j = 0; j < d->nv; j++)
+        d->esta[j] = 0;
+    for (int s = 0; s < 2; s++) {
+        int ok = derived_speeds(d, m, a + (s ? 0.7 : 0.3) * (b - a)) == 0;
+        for (int j = 0; j < d->nv; j++)
+            d->esta[j] = ok ? fmax(d->esta[j], fabs(d->vt[j] - d->vl[j])) : INFINITY;
+    }
+}
+
+/* Each speed from whichever of its two interpolants is estimated better. */
+static void
+choose_speeds(Dense *d)
+{
+    for (int j = 0; j < d->nv; j++) {
+        double *e = d->est + d->n + j;
+        d->vsrc[j] = d->esta[j] < *e;
+        if (d->vsrc[j])
+            *e = d->esta[j];
+    }
+}
+
 /* The first look: the full interpolant, its error the difference from the
  * one of a node less, the larger at 0.3 and 0.7 of the interval. */
 static void
@@ -336,6 +407,8 @@ choose_top(Dense *d, long k, int m)
                 d->est[c] = fmax(d->est[c], fabs(p[m - 1] - p[m - 2]));
             }
         }
+        derived_estimates(d, k, m);
+        choose_speeds(d);
         return;
     }
     for (int i = 0; i < n; i++) {
@@ -383,6 +456,7 @@ refine_entries(Dense *d)
         }
         d->lev[c] = least_pair(dp, m, &d->est[c]);
     }
+    choose_speeds(d); /* the derivative's estimate as the first look made it */
 }
 
 void
@@ -441,12 +515,18 @@ dense_eval(Dense *d, double t, int final, double *x, double *err)
         choose_top(d, k, m);
     }
     if (d->speeds) {
+        int derived = 0;
         for (int c = 0; c < d->N; c++) {
             double p[WINDOW];
             entry_sums(d, c, m, t, p);
             x[c] = p[d->lev[c] - 1];
             err[c] = d->est[c];
+            derived |= c >= n && d->vsrc[c - n];
         }
+        if (derived && derived_speeds(d, m, t) == 0)
+            for (int j = 0; j < d->nv; j++)
+                if (d->vsrc[j])
+                    x[n + j] = d->vt[j];
         return;
     }
     for (int i = 0; i < n; i++) {

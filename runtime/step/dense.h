@@ -26,6 +26,12 @@ typedef struct Dense Dense;
  * NULL when memory runs out. */
 Dense *dense_alloc(int n, int nv);
 void dense_free(Dense *d);
+/* With speeds of their own: how to turn the coordinates' rates qd [n] at
+ * q into speeds v [nv] (least squares, v = W(q)^+ qd; 0, or nonzero where
+ * it cannot), for a speed interpolated as the derivative of the
+ * coordinates' polynomials where that is estimated better (dense.c). */
+void dense_set_speeds(Dense *d, int (*to_speeds)(void *ctx, const double *q,
+                                                  const double *qd, double *v), void *ctx);
 /* Forget every node (a new run). */
 void dense_clear(Dense *d);
 /* A node at t, after the last one: x [N] and x' [N] (N = 2n, or n + nv);

@@ -172,6 +172,13 @@ finish_at_event(Driver *r, const EvolveStep *tk)
 
 /* ---- the loop ---- */
 
+/* Speeds from the coordinates' rates, for the interpolant (dense.h). */
+static int
+to_speeds(void *ctx, const double *q, const double *qd, double *v)
+{
+    return sim_speeds_of(ctx, q, qd, v);
+}
+
 /* A node of the interpolant at (t, x) with x' = f: with speeds of their
  * own, the coordinates' q'' too, where the model can give it. */
 static void
@@ -267,6 +274,8 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
         r.xrow = sim_zeros((size_t)r.N);
         r.erow = sim_zeros((size_t)r.N);
         r.qdd = m->nv > 0 && m->qdot_jacobian ? sim_zeros((size_t)n) : NULL;
+        if (r.dense && r.qdd)
+            dense_set_speeds(r.dense, to_speeds, s);
         if (!r.dense || !r.xrow || !r.erow || (m->nv > 0 && m->qdot_jacobian && !r.qdd))
             rc = sim_usage_error(s, "out of memory setting up %s", o->method);
     }

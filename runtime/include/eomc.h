@@ -476,6 +476,8 @@ typedef struct eomc_step {
     int last;                /* the run is over: t1 is t_end, or a `stop` event */
     const void *series;      /* the runtime's own: Taylor's method's polynomial
                               * over the step (NULL under the other methods) */
+    const eomc_model *model; /* the model stepped: eomc_step_eval renormalizes its
+                              * unit quaternions, as the rows are */
 } eomc_step;
 
 /* Steps of s from x0 [nx] at o->t0 (o is copied; x0 is not kept).  NULL
@@ -492,7 +494,9 @@ const eomc_stats *eomc_evolve_stats(const eomc_evolve *e);
  * EOMC_EUSAGE once the run is over (d->last was set) or for another
  * simulator's steps.  After a failure the run is over. */
 int eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d);
-/* The step's dense output at t in [d->t0, d->t1] into x [d->nx]. */
+/* The step's dense output at t in [d->t0, d->t1] into x [d->nx], each unit
+ * quaternion renormalized (model->quat: the cubic is off |e| = 1 by its
+ * error inside the step). */
 void eomc_step_eval(const eomc_step *d, double t, double *x);
 
 /* ---- the reference solution ----

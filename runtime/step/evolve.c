@@ -1112,7 +1112,7 @@ eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
     *d = (eomc_step){.nx = r->N, .t0 = tk.t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
                      .x1 = r->x, .f1 = r->f0, .event = tk.ev != EVOLVE_NONE ? tk.fired : -1,
                      .last = tk.ev == EVOLVE_STOP || !(r->t < e->o.t_end),
-                     .series = tk.series};
+                     .series = tk.series, .model = r->m};
     e->over = d->last;
     return EOMC_OK;
 }
@@ -1125,4 +1125,6 @@ eomc_step_eval(const eomc_step *d, double t, double *x)
         return;
     }
     dense_cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
+    if (d->model)
+        state_normalize(d->model, x, NULL);
 }

@@ -24,6 +24,8 @@
  *    part, refused;
  *  - an event's `set` of a speed (the body bouncing on the floor) and an
  *    output of v': the parabolas between bounces, Euler's v';
+ *  - one step at a time (eomc_sim_step): the ends on the closed form, the
+ *    dense output inside renormalized;
  *  - the reference solution (extended precision) against the closed form:
  *    its estimated error bounds its true one.
  */
@@ -496,6 +498,45 @@ bounce(void)
     eomc_sim_free(s);
 }
 
+/* One step at a time: each step's ends and its dense output inside on the
+ * symmetric body's closed form (the cubic to its O(h^4)), the quaternion
+ * inside renormalized. */
+static void
+steps(void)
+{
+    const eomc_model *m = &freebody_model;
+    eomc_sim *s = sim_new(m);
+    eomc_sim_set(s, "I2", FREEBODY_I1);
+    double x0[NX], x[NX], ex[NX], p[5];
+    sim_x0(s, x0);
+    params(s, p);
+    eomc_run_opts o = opts_for(m, 2.0, 0.1, "rk8pd", 1e-12, 1e-12);
+    eomc_evolve *e = eomc_evolve_alloc(s, &o, x0);
+    eomc_step d = {0};
+    double ends = 0, inside = 0, unit = 0;
+    int rc = e ? EOMC_OK : EOMC_ENUMERIC, n = 0;
+    while (e && (rc = eomc_sim_step(s, e, &d)) == EOMC_OK) {
+        n++;
+        freebody_exact(p, x0, x0 + NQ, d.t1, ex, ex + NQ);
+        for (int j = 0; j < NX; j++)
+            ends = fmax(ends, fabs(d.x1[j] - ex[j]));
+        double t = 0.5 * (d.t0 + d.t1);
+        eomc_step_eval(&d, t, x);
+        freebody_exact(p, x0, x0 + NQ, t, ex, ex + NQ);
+        for (int j = 0; j < NX; j++)
+            inside = fmax(inside, fabs(x[j] - ex[j]));
+        unit = fmax(unit, fabs(sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5] + x[6] * x[6]) - 1));
+        if (d.last)
+            break;
+    }
+    CHECK(rc == EOMC_OK && n > 5 && d.nx == NX && ends < 1e-9 && inside < 1e-5 &&
+              unit <= UNIT_ROUNDING * DBL_EPSILON,
+          "eomc_sim_step: %d steps of nx = 13, their ends on the closed form (%.2g), the cubic "
+          "inside to %.2g, its quaternion of length 1 (%.2g)", n, ends, inside, unit);
+    eomc_evolve_free(e);
+    eomc_sim_free(s);
+}
+
 /* Linearization and Taylor's method refuse the speeds by name. */
 static void
 refusals(void)
@@ -539,6 +580,7 @@ main(void)
     top_run(&top_loads_model, "rk4", 1e-12, 1e-3, 1, 1e-6, NULL);
     top_same();
     bounce();
+    steps();
     projection();
     reference();
     refusals();

@@ -61,6 +61,10 @@ struct Proj {
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *scale;             /* [nc] the magnitude of each g_k's terms (c_scale) */
+    /* with speeds of their own, g's gradient dg/dq [nc*nq] from
+     * c_levels_jacobian (NULL without it), for g's terms dg/dq_i q_i as B
+     * gives them where the speeds are the rates; and its other outputs */
+    double *dgdq, *lj;
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
     LaLu *lu[2];               /* G M^-1 G^T at each level */
     char *names[2];            /* constraint names of each level, for messages */
@@ -102,6 +106,13 @@ proj_alloc(const eomc_model *m)
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
     j->M = zeros(n * n), j->col = zeros(n), j->moves = calloc(n ? n : 1, sizeof *j->moves);
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc), j->scale = zeros(nc);
+    /* dg/dq, then c_levels_jacobian's other outputs: dveldq, dveldv, dposdu,
+     * dveldu, dposdt, dveldt */
+    size_t nu = (size_t)m->nu, lj = nc * nq + nc * n + 2 * nc * nu + 2 * nc;
+    int gradient = m->nv > 0 && m->c_levels_jacobian;
+    if (gradient)
+        j->dgdq = zeros(nc * nq + lj);
+    j->lj = j->dgdq ? j->dgdq + nc * nq : NULL;
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
     j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
     j->F = zeros(n * n), j->Frel = zeros(n), j->Fperm = calloc(n ? n : 1, sizeof *j->Fperm);
@@ -115,7 +126,8 @@ proj_alloc(const eomc_model *m)
     if (!j->pos_rows || !j->vel_rows || !j->fix_rows[0] || !j->fix_rows[1] || !j->L ||
         !j->h || !j->f || !j->B || !j->pos || !j->vel || !j->zero || !j->Y || !j->S ||
         !j->mu || !j->rel || !j->perm || !j->F || !j->Frel || !j->Fperm || !j->M ||
-        !j->col || !j->moves || !j->hv || !j->w || !j->dq || proj_set_dropped(j, NULL) != 0) {
+        !j->col || !j->moves || !j->hv || !j->w || !j->dq || (gradient && !j->dgdq) ||
+        proj_set_dropped(j, NULL) != 0) {
         proj_free(j);
         return NULL;
     }
@@ -130,7 +142,7 @@ proj_free(Proj *j)
     void *arrays[] = {j->pos_rows, j->vel_rows, j->fix_rows[0], j->fix_rows[1], j->L, j->h, j->f, j->B, j->pos,
                       j->vel, j->scale, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
                       j->Fperm, j->M, j->col,
-                      j->moves, j->names[0], j->names[1], j->hv, j->w, j->dq};
+                      j->moves, j->names[0], j->names[1], j->hv, j->w, j->dq, j->dgdq};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
     la_lu_free(j->lu[0]);
@@ -238,10 +250,18 @@ static void
 levels(Proj *j, double t, const double *q, const double *v, const double *p,
        const double *u)
 {
-    j->m->c_levels(t, q, v, p, u, j->pos, j->vel);
-    j->m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
-    if (j->m->c_scale)
-        j->m->c_scale(t, q, p, u, j->scale);
+    const eomc_model *m = j->m;
+    m->c_levels(t, q, v, p, u, j->pos, j->vel);
+    m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
+    if (m->c_scale)
+        m->c_scale(t, q, p, u, j->scale);
+    if (j->dgdq) { /* dposdq, dveldq, dveldv, dposdu, dveldu, dposdt, dveldt */
+        size_t nc = (size_t)j->nc, nq = (size_t)j->nq, nu = (size_t)m->nu;
+        double *d = j->lj;
+        m->c_levels_jacobian(t, q, v, p, u, j->dgdq, d, d + nc * nq, d + nc * (nq + j->n),
+                             d + nc * (nq + j->n + nu), d + nc * (nq + j->n + 2 * nu),
+                             d + nc * (nq + j->n + 2 * nu + 1));
+    }
 }
 
 /* The largest relative residual of a level's rows (fix: the kept ones
@@ -254,16 +274,19 @@ level_residual(Proj *j, const double *q, const double *v, int level, int fix, in
     int nr = fix ? j->nfix[level] : level ? j->nvel : j->npos;
     const int *rows = fix ? j->fix_rows[level] : level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
-    /* with speeds of their own, B's rows are not dg/dq, and g's terms are
-     * c_scale's alone */
-    int terms = level || j->m->nv == 0;
+    /* with speeds of their own, B's rows are not dg/dq: g's terms are
+     * dg/dq_i q_i from c_levels_jacobian's gradient, else c_scale's alone */
+    int own = !level && j->m->nv > 0;
     /* a projection that takes every velocity to 0 (a wheel held still
      * stops the bicycle) ends in rounding of the velocities it started
      * from, not of the zeros it reached */
     double big = 0, vMv = level ? fmax(la_quadratic(j->M, v, j->n), j->vMv0) : 0;
     for (int k = 0; k < nr; k++) {
-        const double *Bk = j->B + rows[k] * j->n;
-        double e = relative_residual(Bk, x, terms ? j->n : 0, r[rows[k]],
+        const double *Bk = j->B + rows[k] * j->n, *Gk = Bk;
+        int len = !own ? j->n : j->dgdq ? j->nq : 0;
+        if (own && j->dgdq)
+            Gk = j->dgdq + rows[k] * j->nq;
+        double e = relative_residual(Gk, x, len, r[rows[k]],
                                      level ? velocity_bound(j, Bk, vMv) : j->scale[rows[k]]);
         if (each)
             each[rows[k]] = e;

@@ -497,12 +497,13 @@ top_minv(double t, const double *q, const double *v, const double *p, const doub
     .constraint = top_constraint, .c_levels = top_levels,                                \
     .c_jacobian = top_c_jacobian, .c_levels_jacobian = top_c_levels_jacobian,            \
     .invariant = top_invariant, .invariant_name = "E",                                   \
-    .invariant_note = "E = T + V is conserved", .c_scale = top_scale,                     \
+    .invariant_note = "E = T + V is conserved",                                          \
     .taylor_why = NO_SERIES, .nv = 6, .v_names = fb_v, .qdot = fb_qdot,                  \
     .qdot_jacobian = fb_qdot_jacobian, .nquat = 1, .quat = fb_quat
 
-const eomc_model top_model = {TOP_COMMON, .name = "top"};
-const eomc_model top_loads_model = {TOP_COMMON, .name = "top_loads",
+const eomc_model top_model = {TOP_COMMON, .name = "top", .c_scale = top_scale};
+const eomc_model top_noscale_model = {TOP_COMMON, .name = "top_noscale"};
+const eomc_model top_loads_model = {TOP_COMMON, .name = "top_loads", .c_scale = top_scale,
                                     .free_accel = top_free_accel, .minv = top_minv};
 
 #else /* the twins: what the reference evaluates */

@@ -81,6 +81,8 @@ void driven_exact(double m, double k, double A, double w, double x0, double v0,
  *                    constraints tip_x, tip_y, tip_z; started at top_start
  *                    (tilted by TOP_TILT about x, spinning); the KKT solve
  *   top_loads_model  the same with free_accel and minv: unit loads
+ *   top_noscale_model the same without c_scale (g's terms from
+ *                    c_levels_jacobian's gradient)
  * Their twins freebody_model_ext and top_model_ext (the same file compiled
  * with -DEOMC_EXTENDED) are what the reference evaluates. */
 extern const eomc_model freebody_model;
@@ -89,6 +91,7 @@ extern const eomc_model freebody_series_model; /* Taylor series it must not be g
 extern const eomc_model freebody_bounce_model;
 extern const eomc_model top_model;
 extern const eomc_model top_loads_model;
+extern const eomc_model top_noscale_model; /* c_scale NULL */
 extern const eomc_model_ext freebody_model_ext;
 extern const eomc_model_ext top_model_ext;
 

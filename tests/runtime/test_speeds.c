@@ -406,6 +406,32 @@ projection(void)
     eomc_sim_free(s);
 }
 
+/* Without c_scale, the positions' residuals are measured against g's terms
+ * dg/dq_i q_i (c_levels_jacobian's gradient), as B's where the speeds are
+ * the rates: a residual of 1e-6 of l is about that against the terms
+ * (|z| + 2 l here), not 1, and the projection is as good. */
+static void
+no_scale(void)
+{
+    eomc_sim *a = sim_new(&top_model), *b = sim_new(&top_noscale_model);
+    double x[NX], y[NX], p[5];
+    sim_x0(a, x);
+    params(a, p);
+    x[2] += 1e-6 * p[3]; /* the centre off the tip by 1e-6 of l, up */
+    int wa, wb, la, lb;
+    double ea = eomc_sim_inconsistency(a, 0, x, x + NQ, &wa, &la);
+    double eb = eomc_sim_inconsistency(b, 0, x, x + NQ, &wb, &lb);
+    memcpy(y, x, sizeof x);
+    int rc = eomc_sim_project(b, 0, y, y + NQ);
+    CHECK(ea > 1e-6 / 8 && ea < 1e-6 && eb > 1e-6 / 8 && eb < 1e-6 && wa == 2 && wb == 2 &&
+              la == 0 && lb == 0 &&
+              rc == EOMC_OK && top_residual(p, y) <= 1e-14,
+          "top without c_scale: tip_z off by 1e-6 of l measured %.2g (with c_scale %.2g), "
+          "projected onto the tip (%.2g)", eb, ea, top_residual(p, y));
+    eomc_sim_free(a);
+    eomc_sim_free(b);
+}
+
 /* The reference of the symmetric body: its estimate bounds its error. */
 static void
 reference(void)
@@ -582,6 +608,7 @@ main(void)
     bounce();
     steps();
     projection();
+    no_scale();
     reference();
     refusals();
     return check_done();

@@ -19,11 +19,14 @@
  * dq = W(q) d (q' = W(q) v for a motion of d in unit time), each unit
  * quaternion then renormalized (the exact positions have |e| = 1; the
  * correction is tangent to it, to first order).  Holding coordinates
- * holds the speeds that move only them (hold_speeds).  Second-order constraints
- * have nothing below acceleration level and are left alone.  Rows left out
- * of the solves (proj_set_dropped) are left out of the corrections too,
- * and of the test that they have settled: the kept rows span them; their
- * residuals are still measured with the others'.
+ * holds the speeds that move only them (hold_speeds).  A position's
+ * residual is measured against g's terms dg/dq_i q_i from
+ * c_levels_jacobian's gradient, where B (dg/dq W) gives no such terms.
+ *
+ * Second-order constraints have nothing below acceleration level and are
+ * left alone.  Rows left out of the solves (proj_set_dropped) are left out
+ * of the corrections too, and of the test that they have settled: the kept
+ * rows span them; their residuals are still measured with the others'.
  */
 #include "project.h"
 #include "linalg.h"

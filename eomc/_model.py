@@ -111,8 +111,9 @@ def _table(text):
 
 
 class Run:
-    """A run's rows, by column name: ``t``, each coordinate, each velocity
-    (``name'``), ``T``, ``V``, ``E`` (or the conserved quantity), the
+    """A run's rows, by column name: ``t``, each coordinate, each speed (a
+    coordinate's velocity ``name'``, or a speed of its own such as a free
+    body's ``root_wx``: ``Model.speeds``), ``T``, ``V``, ``E`` (or the conserved quantity), the
     multipliers ``lambda[c]`` and residuals ``res[c]`` of constraints, and
     the scene's outputs, as float64 numpy arrays; or the rows of a report
     or sweep, by its columns.  ``messages`` holds what eomc said on stderr
@@ -219,6 +220,9 @@ class Model:
         self.form = lib.model_text("form")
         self.scene = lib.model_text("scene") or None  # None: the spec's unnamed `scene:`
         self.coordinates = lib.names("q")
+        # the speeds' own names (a free joint's angular velocity), or the
+        # coordinates' velocities name' where the speeds are their rates
+        self.speeds = lib.names("v") or [q + "'" for q in self.coordinates]
         self.parameters = lib.names("p")
         self.inputs = lib.names("u")
         self.constraints = lib.names("c")
@@ -242,8 +246,10 @@ class Model:
                 lib.sim_free(s)
 
     def __repr__(self):
-        return "<eomc.Model %s: %d coordinates, form %s>" % (self.name, len(self.coordinates),
-                                                            self.form)
+        own = self.speeds != [q + "'" for q in self.coordinates]
+        return "<eomc.Model %s: %d coordinates%s, form %s>" % (
+            self.name, len(self.coordinates),
+            " and %d speeds" % len(self.speeds) if own else "", self.form)
 
     def _error(self, sim):
         return self._lib.sim_error(sim).decode()
@@ -280,26 +286,29 @@ class Model:
         return {name: p[k] for k, name in enumerate(self.parameters)}
 
     def initial(self):
-        """The scene's initial state for the current parameters: (q, v)."""
-        n = len(self.coordinates)
-        q, v = np.zeros(n), np.zeros(n)
+        """The scene's initial state for the current parameters: (q, v), v
+        the speeds (``speeds``: the coordinates' velocities, or a free
+        body's own, fewer than its coordinates)."""
+        q, v = np.zeros(len(self.coordinates)), np.zeros(len(self.speeds))
         with self._lock:
             self._lib.sim_initial(self._sim, as_doubles(q), as_doubles(v))
         return q, v
 
     def accel(self, q, v, u=None, t=0.0, multipliers=False):
-        """q'' at (t, q, v), with the inputs u held at these values (else
-        the model's own); with multipliers=True, (q'', lambda) for a
+        """The speeds' rates v' at (t, q, v) (q'' where the speeds are the
+        coordinates' velocities), with the inputs u held at these values
+        (else the model's own); with multipliers=True, (v', lambda) for a
         constrained model.  A singular system raises NumericalFailure; a
         state off the holonomic or velocity constraints (a quaternion whose
         norm is not 1) gives an EomcWarning, as a run's start does."""
-        n = len(self.coordinates)
+        n, nv = len(self.coordinates), len(self.speeds)
         q = np.ascontiguousarray(q, dtype=np.float64)
         v = np.ascontiguousarray(v, dtype=np.float64)
-        if q.shape != (n,) or v.shape != (n,):
-            raise UsageError("accel: q and v need %d entries each (%s), not %s and %s"
-                             % (n, ", ".join(self.coordinates), q.shape, v.shape))
-        a = np.zeros(n)
+        if q.shape != (n,) or v.shape != (nv,):
+            raise UsageError("accel: q needs %d entries (%s) and v %d (%s), not %s and %s"
+                             % (n, ", ".join(self.coordinates), nv, ", ".join(self.speeds),
+                                q.shape, v.shape))
+        a = np.zeros(nv)
         with self._lock:
             sim = self._sim
             if u is not None:
@@ -364,7 +373,8 @@ class Model:
 
     def run(self, t_end=None, dt=None, method=None, rtol=None, init=None, **options):
         """Integrate the scene (its t_end, dt, method and tolerances unless
-        given; init: {coordinate or "name'": value}) and return the rows as
+        given; init: {coordinate or speed: value}, a speed by its name in
+        ``speeds``, "x'" or "root_wx") and return the rows as
         a :class:`Run`.  Other keywords are simulator options (``atol``,
         ``t0``, ``fixed_step``, ``max_steps``, ``stabilize``, ``assemble``,
         ``stats``, ``summary``, ``error``, ``sweep``, ...); ``error=True``

@@ -4,15 +4,16 @@
  */
 #include "compare.h"
 #include "base/numfmt.h"
+#include "model/state.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 int
-compare_init(Compare *c, const eomc_reference *ref)
+compare_init(Compare *c, const eomc_reference *ref, int n)
 {
-    int nx = ref->nx, n = nx / 2;
+    int nx = ref->nx;
     size_t N = (size_t)(nx > 0 ? nx : 1);
     *c = (Compare){.ref = ref, .nx = nx};
     c->scale = calloc(3 * N, sizeof *c->scale);
@@ -105,8 +106,8 @@ void
 compare_csv_run(FILE *f, const eomc_model *m, const double *scale, const double *end,
                 const double *max, const char *method, double tol, double h)
 {
-    int n = m->nq;
-    for (int i = 0; i < 2 * n; i++) {
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < eomc_nx(m); i++) {
         fprintf(f, "%s", method);
         if (h > 0) {
             fputc(',', f);
@@ -115,7 +116,7 @@ compare_csv_run(FILE *f, const eomc_model *m, const double *scale, const double 
             cell(f, tol);
             fputc(',', f);
         }
-        fprintf(f, ",%s%s", m->q_names[i % n], i < n ? "" : "'");
+        fprintf(f, ",%s", state_name(m, i, name, sizeof name));
         cell(f, scale[i]);
         if (end && max) {
             cell(f, end[i]);

@@ -4,7 +4,7 @@
  * run, its largest and its last.  Its digits are -log10 of the largest
  * against the component's own scale: its largest |x_ref,i| over the
  * reference's rows, at least COMPARE_FLOOR of the largest of its group
- * (the coordinates, or the velocities: the units differ between them).
+ * (the coordinates, or the speeds: the units differ between them).
  * A big component then no longer hides a small one's error (a top
  * spinning to 739 rad, its nutation rate wrong by 1.31 out of 1.57, read
  * 2.6 digits against the whole state), and one that stays near 0 is
@@ -23,16 +23,17 @@
 
 typedef struct Compare {
     const eomc_reference *ref;
-    int nx;              /* 2 nq */
+    int nx;              /* nq + nv */
     long k;              /* the next row */
     double *scale;       /* [nx] each component's scale (above) */
     double *max, *end;   /* [nx] its largest error over the rows, its last */
     double err_max, err_end; /* the largest over the components */
 } Compare;
 
-/* For runs against ref (nx = ref->nx components); 0, or -1 when memory
- * runs out (compare_free is safe either way). */
-int compare_init(Compare *c, const eomc_reference *ref);
+/* For runs against ref (nx = ref->nx components, the first nq of them
+ * the coordinates); 0, or -1 when memory runs out (compare_free is safe
+ * either way). */
+int compare_init(Compare *c, const eomc_reference *ref, int nq);
 void compare_free(Compare *c);
 /* Forget the rows measured: a new run. */
 void compare_reset(Compare *c);

@@ -17,6 +17,7 @@
 #include "model/simimpl.h"
 #include "model/kkt.h"
 #include "model/linalg.h"
+#include "model/state.h"
 #include "base/numfmt.h"
 
 #include <gsl/gsl_eigen.h>
@@ -42,11 +43,27 @@ dependent(const eomc_model *m, int j)
     return 0;
 }
 
+/* A model whose speeds are not its coordinates' rates has no
+ * linearization here (eomc.h): EOMC_EUSAGE naming what it would need. */
+static int
+no_speeds(eomc_sim *s, const char *what)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    return sim_usage_error(s, "%s of %s is not available: its speeds are not its "
+                           "coordinates' rates (%s, ...: a free or ball joint's angular "
+                           "velocity, whose coordinates are a unit quaternion), and the "
+                           "runtime linearizes only where the state is a vector space, "
+                           "not in each quaternion's tangent space", what, m->name,
+                           state_own_speed(m));
+}
+
 int
 eomc_sim_linear_size(const eomc_sim *s)
 {
     const eomc_model *m = eomc_sim_model(s);
     int N = 2 * m->nq, size = 0;
+    if (m->nv > 0) /* refused by every function below: the whole state */
+        return eomc_nx(m);
     for (int j = 0; j < N; j++)
         size += !dependent(m, j);
     return size;
@@ -57,6 +74,11 @@ eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order)
 {
     const eomc_model *m = eomc_sim_model(s);
     int N = 2 * m->nq;
+    if (m->nv > 0) { /* the whole state, as eomc_sim_linear_size */
+        *coord = k < m->nq ? k : k - m->nq;
+        *order = k >= m->nq;
+        return;
+    }
     for (int j = 0; j < N; j++)
         if (!dependent(m, j) && k-- == 0) {
             *coord = j % m->nq;
@@ -201,6 +223,8 @@ int
 eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
     const eomc_model *m = eomc_sim_model(s);
+    if (m->nv > 0)
+        return no_speeds(s, "the linearization");
     if (!m->jacobian)
         return sim_no_jacobian(s, "the linearization");
     int n = m->nq, nu = m->nu, N = 2 * n, nl = eomc_sim_linear_size(s);
@@ -411,6 +435,10 @@ eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int
     const eomc_model *m = eomc_sim_model(s);
     int n = m->nq, N = 2 * n, nl = eomc_sim_linear_size(s);
     *worst = -1;
+    if (m->nv > 0) {
+        no_speeds(s, "the test for rest");
+        return NAN;
+    }
     if (!m->jacobian) {
         sim_no_jacobian(s, "the test for rest");
         return NAN;
@@ -579,6 +607,8 @@ int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
     const eomc_model *m = eomc_sim_model(s);
+    if (m->nv > 0)
+        return no_speeds(s, "the equilibrium search");
     if (!m->jacobian)
         return sim_no_jacobian(s, "the equilibrium search");
     int n = m->nq, N = 2 * n, nl = eomc_sim_linear_size(s);

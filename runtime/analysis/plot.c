@@ -200,9 +200,10 @@ plot_trajectory(const char *prog, const eomc_model *m, const char *data, const c
         return EOMC_EUSAGE;
     }
     snprintf(tmp, len, "%s.tmp%ld", path, (long)getpid());
-    int n = m->nq, own_h = m->invariant && strcmp(m->invariant_name, "E") != 0;
-    int h_col = m->invariant ? 2 * n + 4 + own_h : 0; /* E = column 2n + 4, or h after it */
-    int out0 = 2 * n + 5 + own_h + 2 * m->nc;
+    int n = m->nq, nx = eomc_nx(m), own_h = m->invariant && strcmp(m->invariant_name, "E") != 0;
+    /* E = column nx + 4 (t, the state, T, V), or h after it */
+    int h_col = m->invariant ? nx + 4 + own_h : 0;
+    int out0 = nx + 5 + own_h + 2 * m->nc;
     int out_panels = group_outputs(out_scale, m->nout, group);
     int panels = 1 + (m->invariant != NULL) + out_panels;
     plot_terminal(f, path, tmp, 1000, 330 * panels + 40);

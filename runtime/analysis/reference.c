@@ -57,8 +57,12 @@
  * h with an LU solve; constrained models solve the KKT system (Newton's
  * method when a constraint is not affine in q'') whatever the doubles use.
  * GSL has no extended-precision linear algebra, hence linalg.c's la_ext.
+ * A model whose speeds are not its coordinates' rates has its q' from the
+ * twin's qdot, and its unit quaternions renormalized after every step and
+ * in every row, in eomc_ext, as the double runs renormalize theirs.
  */
 #include "model/simimpl.h"
+#include "model/state.h"
 #include "extrap.h"
 #include "model/linalg.h"
 #include "reftaylor.h"
@@ -107,13 +111,13 @@ typedef struct Ref {
     eomc_sim *s;
     const eomc_model *m;
     const eomc_model_ext *x;
-    int n, N, nc, nu;
+    int n, nv, N, nc, nu;         /* coordinates, speeds, N = n + nv, ... */
     eomc_ext *p, *u, *dudt;       /* [np], [nu], [nu] */
-    eomc_ext *M, *h, *K, *r;      /* [n*n], [n], [(n+nc)^2], [n+nc] */
-    eomc_ext *f, *B, *a, *lam;    /* [nc], [nc*n], [n], [nc] */
+    eomc_ext *M, *h, *K, *r;      /* [nv*nv], [nv], [(nv+nc)^2], [nv+nc] */
+    eomc_ext *f, *B, *a, *lam;    /* [nc], [nc*nv], [nv], [nc] */
     eomc_ext *cj[9];              /* c_jacobian's outputs; cj[6] is dBda */
-    int *perm;                    /* [n+nc] */
-    eomc_ext *eq, *dK;            /* [2(n+nc)] the LU's equilibration, [n+nc] */
+    int *perm;                    /* [nv+nc] */
+    eomc_ext *eq, *dK;            /* [2(nv+nc)] the LU's equilibration, [nv+nc] */
     int have_prev;                /* a and lam hold the last solution */
     eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
     eomc_ext *Y, *G, *Y2;         /* [N] side steps' state, x', result */
@@ -136,7 +140,7 @@ typedef struct Ref {
     long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
                                     * the rows' side steps' (stepping) */
     double fail_t, *fail_x;       /* where a right-hand side failed [N], then
-                                   * room for the doubles' q'' there [n] */
+                                   * room for the doubles' q'' there [nv] */
     RefTaylor *rt;                /* Taylor's method makes the solutions, or NULL */
 } Ref;
 
@@ -158,7 +162,7 @@ inputs_at(Ref *r, eomc_ext t)
 static int
 accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
 {
-    int n = r->n;
+    int n = r->nv;
     if (r->x->accel)
         return r->x->accel(t, q, v, r->p, r->u, a, NULL) == 0 ? 0 : -1;
     r->x->mass_bias(t, q, v, r->p, r->u, r->M, a);
@@ -175,7 +179,7 @@ accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a
 static eomc_ext
 kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
 {
-    int n = r->n, nc = r->nc, W = n + nc, affine = r->m->c_affine;
+    int n = r->nv, nc = r->nc, W = n + nc, affine = r->m->c_affine;
     /* the rows the doubles leave out, left out here too (kkt.c) */
     const unsigned char *drop = sim_dropped_rows(r->s);
     r->x->constraint(t, q, v, r->a, r->p, r->u, r->f, r->B);
@@ -230,7 +234,7 @@ kkt_step(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v)
 static int
 accel_kkt(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
 {
-    int n = r->n, nc = r->nc;
+    int n = r->nv, nc = r->nc;
     r->x->mass_bias(t, q, v, r->p, r->u, r->M, r->h);
     if (r->m->c_affine || !r->have_prev) {
         memset(r->a, 0, (size_t)n * sizeof *r->a);
@@ -254,17 +258,20 @@ accel_kkt(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
     return 0;
 }
 
-/* F = (v, q'') at (t, X); -1 (r->fail_t set) when the model fails there. */
+/* F = (q', v') at (t, X); -1 (r->fail_t set) when the model fails there. */
 static int
 rhs(Ref *r, eomc_ext t, const eomc_ext *X, eomc_ext *F)
 {
     int n = r->n;
     r->evals++;
     inputs_at(r, t);
-    memcpy(F, X + n, (size_t)n * sizeof *F);
+    if (r->m->nv > 0)
+        r->x->qdot(X, X + n, F);
+    else
+        memcpy(F, X + n, (size_t)n * sizeof *F);
     int rc = r->nc ? accel_kkt(r, t, X, X + n, F + n) : accel_free(r, t, X, X + n, F + n);
-    for (int i = 0; rc == 0 && i < n; i++)
-        if (!isfinite(F[n + i]))
+    for (int i = 0; rc == 0 && i < r->N; i++)
+        if (!isfinite(F[i]))
             rc = -1;
     if (rc) {
         r->fail_t = (double)t;
@@ -416,10 +423,11 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
     int N = r->N, implicit = r->method == EXTRAP_LINEARLY_IMPLICIT;
     int need_jacobian = implicit;
     long nrows = eomc_run_rows(o), k = 1, e0 = 0; /* e0: right-hand sides before a step */
+    memcpy(rows, x0, (size_t)N * sizeof *rows);
+    state_normalize(r->m, rows, NULL); /* the start of eomc_sim_integrate's run */
     for (int i = 0; i < N; i++) {
-        r->X[i] = x0[i];
+        r->X[i] = rows[i];
         r->mag[i] = fabsl(r->X[i]);
-        rows[i] = x0[i];
     }
     scales(r);
     r->have_prev = 0;
@@ -454,11 +462,14 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             continue;
         }
         eomc_ext t1 = step == left ? t_end : t + step, t0 = t;
+        /* the unit quaternions back to length 1, as the doubles' steps do */
+        state_normalize_ext(r->m, r->Xn);
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
             eomc_ext tk = eomc_run_row_time(o, k), *x = r->Xn;
             long before = r->evals;
             if (tk != t1 && side_step(r, t, tk, x = r->Y2) != 0)
                 return -1;
+            state_normalize_ext(r->m, x); /* as the step's end, below */
             r->side_evals += r->evals - before;
             for (int i = 0; i < N; i++)
                 rows[(size_t)k * N + i] = (double)x[i];
@@ -551,14 +562,14 @@ static int
 ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
 {
     const eomc_model *m = eomc_sim_model(s);
-    size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, W = n + nc;
-    size_t N = 2 * n;
-    *r = (Ref){.s = s, .m = m, .x = x, .n = m->nq, .N = 2 * m->nq, .nc = m->nc,
+    size_t nq = (size_t)m->nq, n = (size_t)eomc_nv(m), nc = (size_t)m->nc;
+    size_t nu = (size_t)m->nu, W = n + nc, N = nq + n;
+    *r = (Ref){.s = s, .m = m, .x = x, .n = m->nq, .nv = (int)n, .N = (int)N, .nc = m->nc,
                .nu = m->nu};
-    /* c_jacobian's nine outputs in one block: dfdq, dfdv [nc n], dfdu
-     * [nc nu], dfdt [nc], dBdq, dBdv, dBda [nc n n], dBdu [nc n nu],
-     * dBdt [nc n] */
-    size_t cj[9] = {nc * n, nc * n, nc * nu, nc, nc * n * n, nc * n * n, nc * n * n,
+    /* c_jacobian's nine outputs in one block (n: the speeds): dfdq [nc
+     * nq], dfdv [nc n], dfdu [nc nu], dfdt [nc], dBdq [nc n nq], dBdv,
+     * dBda [nc n n], dBdu [nc n nu], dBdt [nc n] */
+    size_t cj[9] = {nc * nq, nc * n, nc * nu, nc, nc * n * nq, nc * n * n, nc * n * n,
                     nc * n * nu, nc * n}, ncj = 0;
     for (int k = 0; k < 9; k++)
         ncj += cj[k];
@@ -662,6 +673,9 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
     if (m->nc && !m->c_affine && !ext->c_jacobian)
         return sim_usage_error(s, "the extended-precision functions of %s lack "
                                "c_jacobian", m->name);
+    if (m->nv > 0 && !ext->qdot)
+        return sim_usage_error(s, "the extended-precision functions of %s lack qdot, its "
+                               "kinematic equation q' = W(q) v", m->name);
     return EOMC_OK;
 }
 
@@ -674,6 +688,10 @@ taylor_fits(eomc_sim *s, const eomc_model_ext *ext)
     if (!ext->taylor)
         return sim_usage_error(s, "--reference-method taylor: %s has no Taylor series: %s",
                                m->name, m->taylor_why ? m->taylor_why : "its twin has none");
+    if (m->nv > 0)
+        return sim_usage_error(s, "--reference-method taylor: %s's speeds are not its "
+                               "coordinates' rates, which Taylor's method does not take; "
+                               "extrapolation does", m->name);
     if (ext->taylor_a)
         return sim_usage_error(s, "--reference-method taylor: a constraint of %s is "
                                "nonlinear in q'', which the reference by Taylor's method "
@@ -716,7 +734,7 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
                                "time after the start");
     Ref r;
     long nrows = eomc_run_rows(o);
-    size_t size = (size_t)nrows * (size_t)(2 * m->nq);
+    size_t size = (size_t)nrows * (size_t)eomc_nx(m);
     double *prev = calloc(size, sizeof *prev);
     ref->t = calloc((size_t)nrows, sizeof *ref->t);
     ref->x = calloc(size, sizeof *ref->x);
@@ -821,7 +839,7 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
     for (int i = 0; i < r.N; i++)
         r.X[i] = x[i];
     int rc = rhs(&r, t, r.X, r.F);
-    for (int i = 0; rc == 0 && i < r.n; i++)
+    for (int i = 0; rc == 0 && i < r.nv; i++)
         a[i] = (double)r.F[r.n + i];
     for (int k = 0; rc == 0 && lam && k < r.nc; k++)
         lam[k] = (double)r.lam[k];

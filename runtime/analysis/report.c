@@ -23,6 +23,7 @@
 #include "base/numfmt.h"
 #include "plot.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 
 #include <errno.h>
 #include <float.h>
@@ -48,7 +49,7 @@ typedef struct Entry {
     eomc_stats st;
     double cpu;           /* seconds per run */
     double err_end, err_max, drift, residual;
-    double *comp_end, *comp_max; /* [2 nq] each component's (compare.h) */
+    double *comp_end, *comp_max; /* [nx] each component's (compare.h) */
     double digits;        /* the fewest digits of a component */
     int worst;            /* that component */
 } Entry;
@@ -106,12 +107,12 @@ entry_opts(const Report *r, const Entry *e)
     return o;
 }
 
-/* One timed run, its CPU seconds; x is scratch [2n]. */
+/* One timed run, its CPU seconds; x is scratch [nx]. */
 static double
 timed_run(const Report *r, const eomc_run_opts *o, double *x)
 {
     eomc_stats st;
-    memcpy(x, r->x0, 2 * (size_t)eomc_sim_model(r->sim)->nq * sizeof *x);
+    memcpy(x, r->x0, (size_t)eomc_nx(eomc_sim_model(r->sim)) * sizeof *x);
     eomc_sim_integrate(r->sim, o, x, no_row, NULL, &st);
     return st.cpu_seconds;
 }
@@ -148,7 +149,7 @@ measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
     eomc_run_opts o = entry_opts(r, e);
     Probe p = {.s = r->sim, .cmp = cmp, .invariant = m->invariant != NULL, .res = res};
     compare_reset(cmp);
-    memcpy(x, r->x0, 2 * (size_t)m->nq * sizeof *x);
+    memcpy(x, r->x0, (size_t)eomc_nx(m) * sizeof *x);
     int rc = eomc_sim_integrate(r->sim, &o, x, probe_row, &p, &e->st);
     e->cpu = e->st.cpu_seconds;
     if (rc == EOMC_EUSAGE) { /* a setting this model cannot take (msbdf with projection) */
@@ -167,8 +168,8 @@ measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
     e->status = RUN_OK;
     e->err_max = cmp->err_max;
     e->err_end = cmp->err_end;
-    memcpy(e->comp_end, cmp->end, 2 * (size_t)m->nq * sizeof *cmp->end);
-    memcpy(e->comp_max, cmp->max, 2 * (size_t)m->nq * sizeof *cmp->max);
+    memcpy(e->comp_end, cmp->end, (size_t)eomc_nx(m) * sizeof *cmp->end);
+    memcpy(e->comp_max, cmp->max, (size_t)eomc_nx(m) * sizeof *cmp->max);
     e->worst = compare_worst(cmp, &e->digits);
     e->drift = p.drift;
     e->residual = fmax(p.res_max, e->st.max_residual);
@@ -238,14 +239,15 @@ error_cell(char *buf, size_t len, const Report *r, double err)
     snprintf(buf, len, "%s%.2e", unresolved ? "~" : "", err);
 }
 
-/* The worst column's width: the longest velocity's name. */
+/* The worst column's width: the longest name of the state's. */
 static int
 name_width(const eomc_model *m)
 {
     int w = 5; /* "worst" */
-    for (int i = 0; i < m->nq; i++)
-        if ((int)strlen(m->q_names[i]) + 1 > w)
-            w = (int)strlen(m->q_names[i]) + 1;
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < eomc_nx(m); i++)
+        if ((int)strlen(state_name(m, i, name, sizeof name)) > w)
+            w = (int)strlen(name);
     return w;
 }
 
@@ -293,8 +295,7 @@ print_entry(const Report *r, const Entry *e)
     error_cell(max, sizeof max, r, e->err_max);
     char worst[128] = "-"; /* no error at all: no worst */
     if (e->digits < INFINITY)
-        snprintf(worst, sizeof worst, "%s%s", m->q_names[e->worst % m->nq],
-                 e->worst < m->nq ? "" : "'");
+        state_name(m, e->worst, worst, sizeof worst);
     fprintf(io_out(), " %10s %10s %6.1f %-*s", end, max, e->digits, name_width(m), worst);
     if (m->invariant)
         fprintf(io_out(), " %15.2e", e->drift);
@@ -634,12 +635,12 @@ report_run(const Report *r)
     const eomc_model *m = eomc_sim_model(r->sim);
     int n = 0;
     Entry *e = plan(r, &n);
-    size_t nx = 2 * (size_t)m->nq;
+    size_t nx = (size_t)eomc_nx(m);
     double *x = calloc(nx, sizeof *x);
     double *res = calloc((size_t)m->nc + 1, sizeof *res);
     double *comps = calloc(2 * nx * (size_t)(n + 1), sizeof *comps);
     Compare cmp;
-    int cmp_ok = compare_init(&cmp, r->ref) == 0;
+    int cmp_ok = compare_init(&cmp, r->ref, m->nq) == 0;
     if (!e || !x || !res || !comps || !cmp_ok) {
         fprintf(io_err(), "%s: out of memory\n", r->prog);
         free(e), free(x), free(res), free(comps);

@@ -14,7 +14,7 @@ typedef struct Report {
     eomc_sim *sim;
     eomc_run_opts base;          /* span, rows, rtol/atol of fixed-step Newton
                                   * iterations, max_steps (0: REPORT_MAX_STEPS) */
-    const double *x0;            /* the initial state [2 nq] */
+    const double *x0;            /* the initial state [nq + nv] */
     const eomc_reference *ref;
     const char *const *methods;  /* NULL-terminated */
     const double *tolerances;    /* rtol = atol of the adaptive runs */

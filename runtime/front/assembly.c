@@ -5,7 +5,9 @@
 #include "assembly.h"
 #include "base/io.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,7 +27,8 @@ int
 assembly_run(Options *c, eomc_sim *sim, double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    int n = m->nq, moved = 0;
+    int n = m->nq, nx = eomc_nx(m), moved = 0;
+    char name[STATE_NAME_MAX];
     /* the scene's assembly, or --assemble's */
     const char *who = c->hold || !c->scene_assembles ? "--assemble" : "the scene's assembly";
     if (!assembly_has_levels(m))
@@ -33,25 +36,26 @@ assembly_run(Options *c, eomc_sim *sim, double *x)
                      "assemble", m->name);
     if (!c->held && opt_held_marks(c, m) != EOMC_OK)
         return EOMC_EUSAGE;
-    double *x0 = malloc(2 * (size_t)n * sizeof *x0);
+    double *x0 = malloc((size_t)nx * sizeof *x0);
     if (!x0)
         return opt_usage(c, "out of memory");
     if (c->equilibrium) /* the search starts at rest */
-        memset(x + n, 0, (size_t)n * sizeof *x);
-    memcpy(x0, x, 2 * (size_t)n * sizeof *x0);
+        memset(x + n, 0, (size_t)(nx - n) * sizeof *x);
+    memcpy(x0, x, (size_t)nx * sizeof *x0);
     int rc = eomc_sim_project_held(sim, c->run.t0, x, x + n, c->held);
     if (rc != EOMC_OK) {
-        fprintf(io_err(), "%s: error: %s: %s\n", c->prog, who, eomc_sim_error(sim));
+        fprintf(io_err(), "%s: %s%s: %s\n", c->prog, rc == EOMC_EUSAGE ? "" : "error: ", who,
+                eomc_sim_error(sim));
         free(x0);
         return rc;
     }
-    for (int i = 0; i < 2 * n; i++)
+    for (int i = 0; i < nx; i++)
         if (x[i] != x0[i]) {
             if (!moved++)
                 fprintf(io_err(), "%s: %s moved the initial state onto the "
                         "constraints:\n", c->prog, who);
-            fprintf(io_err(), "  %s%s %.17g -> %.17g (%+.3g)\n", m->q_names[i % n],
-                    i < n ? "" : "'", x0[i], x[i], x[i] - x0[i]);
+            fprintf(io_err(), "  %s %.17g -> %.17g (%+.3g)\n",
+                    state_name(m, i, name, sizeof name), x0[i], x[i], x[i] - x0[i]);
         }
     if (!moved && !c->scene_assembles)
         fprintf(io_err(), "%s: --assemble: the initial state already satisfies the "
@@ -118,40 +122,41 @@ assembly_check(const Options *c, eomc_sim *sim, const double *x)
                 "--assemble projects the state onto the constraints\n", c->prog, off, list);
 }
 
-/* Whether the trial projection keeping hold [2n] puts x on the
+/* Whether the trial projection keeping hold [nx] puts x on the
  * constraints; moved gets what it would change: "x' 5 -> 0, ...". */
 static int
 trial_assembly(const Options *c, eomc_sim *sim, const double *x, const unsigned char *hold,
                char *moved, size_t len)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    int n = m->nq;
-    double *y = malloc(2 * (size_t)n * sizeof *y);
+    int n = m->nq, nx = eomc_nx(m);
+    char name[STATE_NAME_MAX];
+    double *y = malloc((size_t)nx * sizeof *y);
     if (!y)
         return 0;
-    memcpy(y, x, 2 * (size_t)n * sizeof *y);
+    memcpy(y, x, (size_t)nx * sizeof *y);
     int ok = eomc_sim_project_held(sim, c->run.t0, y, y + n, hold) == EOMC_OK;
     size_t at = 0;
     moved[0] = '\0';
-    for (int i = 0; ok && i < 2 * n && at < len; i++)
+    for (int i = 0; ok && i < nx && at < len; i++)
         if (y[i] != x[i])
-            at += (size_t)snprintf(moved + at, len - at, "%s%s%s %.6g -> %.6g", at ? ", " : "",
-                                   m->q_names[i % n], i < n ? "" : "'", x[i], y[i]);
+            at += (size_t)snprintf(moved + at, len - at, "%s%s %.6g -> %.6g", at ? ", " : "",
+                                   state_name(m, i, name, sizeof name), x[i], y[i]);
     free(y);
     return ok;
 }
 
-/* The names hold [2n] marks, as --hold takes them. */
+/* The names hold [nx] marks, as --hold takes them. */
 static void
 hold_names(const eomc_model *m, const unsigned char *hold, char *buf, size_t len)
 {
-    int n = m->nq;
     size_t at = 0;
+    char name[STATE_NAME_MAX];
     buf[0] = '\0';
-    for (int i = 0; i < 2 * n && at < len; i++)
+    for (int i = 0; i < eomc_nx(m) && at < len; i++)
         if (hold[i])
-            at += (size_t)snprintf(buf + at, len - at, "%s%s%s", at ? "," : "",
-                                   m->q_names[i % n], i < n ? "" : "'");
+            at += (size_t)snprintf(buf + at, len - at, "%s%s", at ? "," : "",
+                                   state_name(m, i, name, sizeof name));
 }
 
 /* After --linearize refused a state off the constraints: the --assemble
@@ -163,20 +168,19 @@ void
 assembly_suggest(Options *c, eomc_sim *sim, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    int n = m->nq, nl = eomc_sim_linear_size(sim), said = 0;
-    unsigned char *hold[2] = {calloc(2 * (size_t)n, 1), calloc(2 * (size_t)n, 1)};
+    int n = m->nq, nx = eomc_nx(m), nl = eomc_sim_linear_size(sim), said = 0;
+    unsigned char *hold[2] = {calloc((size_t)nx, 1), calloc((size_t)nx, 1)};
     char names[2048], moved[2048];
     const char *why[2] = {"keeps what --init set and moves the rest onto the constraints",
                           "keeps the linearization's coordinates and velocities and moves "
                           "only those the constraints determine"};
     for (int k = 0; hold[0] && k < c->ninit; k++) { /* NAME=VALUE or NAME'=VALUE */
+        char name[STATE_NAME_MAX];
         size_t len = strcspn(c->init[k], "=");
-        for (int i = 0; i < 2 * n; i++) {
-            size_t name = strlen(m->q_names[i % n]);
-            if (name + (i >= n) == len && !strncmp(c->init[k], m->q_names[i % n], name) &&
-                (i < n || c->init[k][name] == '\''))
-                hold[0][i] = 1;
-        }
+        snprintf(name, sizeof name, "%.*s", (int)len, c->init[k]);
+        int rate, i = state_find(m, name, &rate);
+        if (i >= 0 && !rate)
+            hold[0][i] = 1;
     }
     for (int k = 0; hold[1] && k < nl; k++) {
         int coord, order;
@@ -184,7 +188,7 @@ assembly_suggest(Options *c, eomc_sim *sim, const double *x)
         hold[1][coord + order * n] = 1;
     }
     for (int j = 0; j < 2 && hold[0] && hold[1]; j++) {
-        if ((j == 0 && c->ninit == 0) || (j == 1 && !memcmp(hold[0], hold[1], 2 * (size_t)n)))
+        if ((j == 0 && c->ninit == 0) || (j == 1 && !memcmp(hold[0], hold[1], (size_t)nx)))
             continue;
         if (!trial_assembly(c, sim, x, hold[j], moved, sizeof moved))
             continue;
@@ -199,4 +203,29 @@ assembly_suggest(Options *c, eomc_sim *sim, const double *x)
                 "and velocities can be kept here)\n", c->prog);
     free(hold[0]);
     free(hold[1]);
+}
+
+int
+assembly_unit(const Options *c, const eomc_model *m, double *x, int quiet)
+{
+    for (int j = 0; j < m->nquat; j++) {
+        const int *e = m->quat + 4 * j;
+        double len = state_quat_norm(m, x, j);
+        char q4[4 * STATE_NAME_MAX + 8];
+        snprintf(q4, sizeof q4, "(%s, %s, %s, %s)", m->q_names[e[0]], m->q_names[e[1]],
+                 m->q_names[e[2]], m->q_names[e[3]]);
+        if (!(len > 0) || !isfinite(len)) {
+            if (!quiet)
+                fprintf(io_err(), "%s: the unit quaternion %s of the initial state has "
+                        "length %g: it is no rotation (set its four coordinates, e.g. "
+                        "%s=1 and the others 0)\n", c->prog, q4, len, m->q_names[e[0]]);
+            return EOMC_EUSAGE;
+        }
+        if (fabs(len - 1) > EOMC_INCONSISTENT && !quiet)
+            fprintf(io_err(), "%s: warning: the unit quaternion %s of the initial state has "
+                    "length %.17g, not 1: it is divided by its length (a rotation's four "
+                    "coordinates are set together)\n", c->prog, q4, len);
+    }
+    state_normalize(m, x, NULL);
+    return EOMC_OK;
 }

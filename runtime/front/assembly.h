@@ -11,9 +11,14 @@
 
 /* Whether the model has a constraint below acceleration level. */
 int assembly_has_levels(const eomc_model *m);
-/* Project the initial state x [2nq] onto the constraints (c->held kept)
- * and say what moved. */
+/* Project the initial state x [nq + nv] onto the constraints (c->held
+ * kept) and say what moved. */
 int assembly_run(Options *c, eomc_sim *sim, double *x);
+/* The initial state's unit quaternions divided by their lengths, with a
+ * warning (unless quiet) for one whose length was not 1 to
+ * EOMC_INCONSISTENT; EOMC_EUSAGE, said unless quiet, for one of length 0
+ * or not finite (no rotation). */
+int assembly_unit(const Options *c, const eomc_model *m, double *x, int quiet);
 /* A warning, once, when x is off its constraints. */
 void assembly_check(const Options *c, eomc_sim *sim, const double *x);
 /* After --linearize refused a state x off the constraints: the

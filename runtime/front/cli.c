@@ -15,6 +15,7 @@
 #include "analysis/compare.h"
 #include "base/io.h"
 #include "base/numfmt.h"
+#include "model/state.h"
 #include "options.h"
 #include "plan.h"
 #include "analysis/plot.h"
@@ -42,14 +43,16 @@ static int
 print_accel(Options *c, eomc_sim *sim, const eomc_model_ext *ext, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    double *a = calloc((size_t)m->nq + (size_t)m->nc + 1, sizeof *a), *lam = a + m->nq;
-    char num[NUM_MAX];
+    int nv = eomc_nv(m);
+    double *a = calloc((size_t)nv + (size_t)m->nc + 1, sizeof *a), *lam = a + nv;
+    char num[NUM_MAX], name[STATE_NAME_MAX];
     assembly_check(c, sim, x); /* the accelerations of a state the model never reaches */
     int rc = c->accel_extended ? eomc_reference_accel(sim, ext, c->run.t0, x, a, lam)
                                : eomc_sim_accel(sim, c->run.t0, x, x + m->nq, a);
     if (rc == EOMC_OK) {
-        for (int i = 0; i < m->nq; i++)
-            fprintf(io_out(), "%s'' %s\n", m->q_names[i], num_shortest(num, a[i]));
+        for (int i = 0; i < nv; i++) /* each speed's rate: x'', root_wx' */
+            fprintf(io_out(), "%s %s\n", state_rate(m, i, name, sizeof name),
+                    num_shortest(num, a[i]));
         for (int k = 0; k < m->nc; k++)
             fprintf(io_out(), "lambda[%s] %s\n", m->c_names[k],
                     num_shortest(num, c->accel_extended ? lam[k] : eomc_sim_multipliers(sim)[k]));
@@ -76,6 +79,8 @@ sweep_initial(void *ctx, eomc_sim *sim, double *x)
     const eomc_model *m = eomc_sim_model(sim);
     eomc_sim_initial(sim, x, x + m->nq);
     int rc = opt_apply_inits(c, m, x);
+    if (rc == EOMC_OK) /* quietly: a run's failure is its row's status */
+        rc = assembly_unit(c, m, x, 1);
     /* each run assembled with its own parameters, quietly: a failure is
      * the run's status */
     if (rc == EOMC_OK && c->assemble)
@@ -290,7 +295,7 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int ca
         assembly_check(c, sim, x);
     if (rc == EOMC_OK && (c->error || c->reference_out))
         rc = get_reference(c, sim, ext, x, &ref);
-    if (rc == EOMC_OK && c->error && compare_init(&w.cmp, &ref) != 0) {
+    if (rc == EOMC_OK && c->error && compare_init(&w.cmp, &ref, eomc_sim_model(sim)->nq) != 0) {
         fprintf(io_err(), "%s: out of memory\n", c->prog);
         rc = EOMC_EUSAGE;
     }
@@ -347,10 +352,11 @@ describe_setting(const Options *c, const eomc_model *m, const double *x, char *b
 {
     size_t at = (size_t)snprintf(buf, len, "t = %g to %g, %ld rows every %g", c->run.t0,
                                  c->run.t_end, eomc_run_rows(&c->run), c->run.dt);
-    for (int i = 0; i < 2 * m->nq && at < len; i++)
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < eomc_nx(m) && at < len; i++)
         if (x[i] != 0)
-            at += (size_t)snprintf(buf + at, len - at, ", %s%s = %.6g",
-                                   m->q_names[i % m->nq], i < m->nq ? "" : "'", x[i]);
+            at += (size_t)snprintf(buf + at, len - at, ", %s = %.6g",
+                                   state_name(m, i, name, sizeof name), x[i]);
     if (c->stabilize != EOMC_STABILIZE_NONE && at < len)
         snprintf(buf + at, len - at, ", --stabilize %s", opt_stabilize_name(c->stabilize));
 }
@@ -451,18 +457,8 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
             return EOMC_EUSAGE;
         }
     }
-    if (m->nv) { /* eomc_sim_alloc refuses it */
-        int k = 0; /* the first speed that is no rate (x' is a rate) */
-        while (k + 1 < m->nv && strchr(m->v_names[k], '\''))
-            k++;
-        fprintf(io_err(), "%s: error: model '%s' has speeds that are no coordinate's rates "
-                "(a quaternion's angular velocity, '%s'), which this runtime does not run "
-                "yet\n", c.prog, m->name, m->v_names[k]);
-        opt_free(&c);
-        return EOMC_EUSAGE;
-    }
     eomc_sim *sim = eomc_sim_alloc(m);
-    double *x = calloc(2 * (size_t)m->nq + 1, sizeof *x);
+    double *x = calloc((size_t)eomc_nx(m) + 1, sizeof *x);
     int rc;
     if (!sim || !ok || !x) {
         fprintf(io_err(), "%s: out of memory, or a model built for another runtime\n",
@@ -474,6 +470,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
                (rc = opt_stabilize(&c, sim)) == EOMC_OK) {
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = opt_apply_inits(&c, m, x)) == EOMC_OK &&
+            (rc = assembly_unit(&c, m, x, 0)) == EOMC_OK &&
             (rc = c.assemble ? opt_held_marks(&c, m) : EOMC_OK) == EOMC_OK &&
             (rc = c.assemble && !c.nsweep && !c.sweep_file ? assembly_run(&c, sim, x)
                                                            : EOMC_OK) == EOMC_OK)

@@ -12,9 +12,9 @@
 static int
 kind_of(const eomc_model *m, const char *kind, int *n, const char *const **names)
 {
-    static const char *const kinds[] = {"q", "p", "u", "c", "out", "event"};
+    static const char *const kinds[] = {"q", "p", "u", "c", "out", "event", "v"};
     int k = 0;
-    while (k < 6 && strcmp(kinds[k], kind))
+    while (k < 7 && strcmp(kinds[k], kind))
         k++;
     switch (k) {
     case 0: *n = m->nq, *names = m->q_names; return 1;
@@ -23,6 +23,8 @@ kind_of(const eomc_model *m, const char *kind, int *n, const char *const **names
     case 3: *n = m->nc, *names = m->c_names; return 1;
     case 4: *n = m->nout, *names = m->out_names; return 1;
     case 5: *n = m->nevent, *names = m->ev_names; return 1;
+    /* the speeds' own names: none when they are the rates, named q' */
+    case 6: *n = m->nv, *names = m->v_names; return 1;
     default: return 0;
     }
 }

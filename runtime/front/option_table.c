@@ -312,6 +312,11 @@ option_help(const char *self, const eomc_model *m)
     fprintf(io_out(), "\ncoordinates: ");
     for (int k = 0; k < m->nq; k++)
         fprintf(io_out(), "%s%s", k ? ", " : "", m->q_names[k]);
+    if (m->nv > 0) { /* speeds of their own, not the rates x' */
+        fprintf(io_out(), "\nspeeds: ");
+        for (int k = 0; k < m->nv; k++)
+            fprintf(io_out(), "%s%s", k ? ", " : "", m->v_names[k]);
+    }
     fprintf(io_out(), "\nparameters: ");
     for (int k = 0; k < m->np; k++)
         fprintf(io_out(), "%s%s=%g%s", k ? ", " : "", m->p_names[k], m->p_default[k],

@@ -9,6 +9,7 @@
 #include "base/io.h"
 #include "option_table.h"
 #include "base/nearest.h"
+#include "model/state.h"
 #include "animate.h"
 #include "analysis/plot.h"
 
@@ -401,25 +402,37 @@ opt_apply_sets(Options *c, eomc_sim *sim)
     return EOMC_OK;
 }
 
-/* NAME (a coordinate) or NAME' (its velocity) given to option opt: its
- * index in the state (i, or n + i), or -1 when it names neither, said on
- * stderr with the opt_nearest name. */
+/* NAME (a coordinate) or a speed's name (NAME', a coordinate's velocity;
+ * the model's own, "root_wx", where the speeds are not the rates) given to
+ * option opt: its index in the state (i, or nq + k), or -1 when it names
+ * neither, said on stderr with the opt_nearest name. */
 static int
 state_index(Options *c, const eomc_model *m, const char *opt, const char *name)
 {
-    int n = m->nq;
-    size_t len = strlen(name);
-    if (len > 2 && name[len - 1] == '\'' && name[len - 2] == '\'') {
+    int n = m->nq, rate, i = state_find(m, name, &rate);
+    const char *speeds = state_speed_word(m, 1);
+    if (i >= 0 && rate) {
         fprintf(io_err(), "%s: %s: '%s' is an acceleration: only coordinates (x) and "
-                "velocities (x') make the initial state; the accelerations follow from "
-                "the equations\n", c->prog, opt, name);
+                "%s (%s) make the initial state; the accelerations follow from "
+                "the equations\n", c->prog, opt, name, speeds, m->nv > 0 ? m->v_names[0] : "x'");
         return -1;
     }
+    if (i >= 0)
+        return i;
+    size_t len = strlen(name);
     int vel = len > 1 && name[len - 1] == '\'';
-    for (int i = 0; i < n; i++)
-        if (strlen(m->q_names[i]) == len - (size_t)vel &&
-            !strncmp(name, m->q_names[i], len - (size_t)vel))
-            return i + (vel ? n : 0);
+    if (m->nv > 0) { /* the speeds have names of their own */
+        const char *near = opt_nearest(name, m->v_names, m->nv, "");
+        if (!*near)
+            near = opt_nearest(name, m->q_names, n, "");
+        fprintf(io_err(), "%s: %s: '%s' is not a coordinate or speed%s; valid names: ",
+                c->prog, opt, name, near);
+        opt_list_names(io_err(), m->q_names, n, "");
+        fprintf(io_err(), ", ");
+        opt_list_names(io_err(), m->v_names, m->nv, "");
+        fprintf(io_err(), "\n");
+        return -1;
+    }
     fprintf(io_err(), "%s: %s: '%s' is not a coordinate or velocity%s; valid names: ", c->prog,
             opt, name, opt_nearest(name, m->q_names, n, vel ? "'" : ""));
     opt_list_names(io_err(), m->q_names, n, "");
@@ -456,7 +469,7 @@ opt_stabilize(Options *c, eomc_sim *sim)
                  eomc_sim_error(sim));
 }
 
-/* --hold LIST into hold [2n]: x marks q_x, x' marks q'_x. */
+/* --hold LIST into hold [nq + nv]: x marks q_x, a speed's name the speed. */
 static int
 hold_list(Options *c, const eomc_model *m, unsigned char *hold)
 {
@@ -478,21 +491,22 @@ hold_list(Options *c, const eomc_model *m, unsigned char *hold)
     return EOMC_OK;
 }
 
-/* What the assembly keeps, into c->held [2n]: --hold's list, else the
- * scene's (model->a_hold), else nothing.  An equilibrium has no velocity
- * (eomc_sim_equilibrium sets them to zero): it keeps held positions only. */
+/* What the assembly keeps, into c->held [nq + nv]: --hold's list, else
+ * the scene's (model->a_hold), else nothing.  An equilibrium has no
+ * velocity (eomc_sim_equilibrium sets them to zero): it keeps held
+ * positions only. */
 int
 opt_held_marks(Options *c, const eomc_model *m)
 {
-    size_t n = (size_t)m->nq;
-    if (!(c->held = calloc(2 * n, 1)))
+    size_t n = (size_t)m->nq, nx = (size_t)eomc_nx(m);
+    if (!(c->held = calloc(nx, 1)))
         return opt_usage(c, "out of memory");
     if (c->hold && hold_list(c, m, c->held) != EOMC_OK)
         return EOMC_EUSAGE;
     if (!c->hold && m->a_hold)
-        memcpy(c->held, m->a_hold, 2 * n);
+        memcpy(c->held, m->a_hold, nx);
     if (c->equilibrium)
-        memset(c->held + n, 0, n);
+        memset(c->held + n, 0, nx - n);
     return EOMC_OK;
 }
 
@@ -524,6 +538,21 @@ check_event_options(const Options *c, const eomc_model *m)
 
 /* --animate: one run, of a model with something to draw, and three.js
  * there to draw it with; all known before the run starts. */
+/* A model whose speeds are not its coordinates' rates has no
+ * linearization (eomc.h, linearize.c): refused before anything runs. */
+static int
+check_speeds(const Options *c, const eomc_model *m)
+{
+    if (m->nv == 0 || !(c->linearize || c->equilibrium))
+        return EOMC_OK;
+    return opt_usage(c, "--%s: %s's speeds are not its coordinates' rates (%s, ...: a free "
+                     "or ball joint's angular velocity, whose coordinates are a unit "
+                     "quaternion), and the runtime linearizes only where the state is a "
+                     "vector space, not in each quaternion's tangent space",
+                     c->linearize ? "linearize" : "equilibrium", m->name,
+                     state_own_speed(m));
+}
+
 static int
 check_animate(const Options *c, const eomc_model *m)
 {
@@ -593,6 +622,8 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
     int rc = check_combination(c);
     if (rc == EOMC_OK)
         rc = check_event_options(c, m);
+    if (rc == EOMC_OK)
+        rc = check_speeds(c, m);
     return rc == EOMC_OK ? check_animate(c, m) : rc;
 }
 

@@ -21,7 +21,7 @@ typedef struct Options {
     int accel_extended; /* --accel-extended: --accel, solved by the twin */
     int no_assemble;      /* --no-assemble: not even the scene's assembly */
     int scene_assembles;  /* the model's scene says `assemble:` */
-    unsigned char *held;  /* [2nq] what the assembly keeps (held_marks) */
+    unsigned char *held;  /* [nq + nv] what the assembly keeps (held_marks) */
     int stabilize;        /* EOMC_STABILIZE_... */
     double alpha, beta;   /* Baumgarte's rates */
     int rates_given, method_given, fixed_given, t0_given, t_end_given;
@@ -55,9 +55,9 @@ int opt_parse(Options *c, int argc, char **argv, const eomc_model *m);
 int opt_apply_sets(Options *c, eomc_sim *sim);
 /* --stabilize and --baumgarte into sim. */
 int opt_stabilize(Options *c, eomc_sim *sim);
-/* --init's values over the initial state x [2nq]. */
+/* --init's values over the initial state x [nq + nv]. */
 int opt_apply_inits(Options *c, const eomc_model *m, double *x);
-/* What the assembly keeps, into c->held [2nq]: --hold's list, else the
+/* What the assembly keeps, into c->held [nq + nv]: --hold's list, else the
  * scene's, else nothing. */
 int opt_held_marks(Options *c, const eomc_model *m);
 /* "none", "baumgarte", "project" (EOMC_STABILIZE_...). */

@@ -7,6 +7,7 @@
 #include "base/numfmt.h"
 #include "signals.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 
 #include <errno.h>
 #include <math.h>
@@ -31,7 +32,7 @@ rows_event(void *ctx, int k, double t, const double *x)
         return EOMC_OK;
     num_put(w->events, t);
     fprintf(w->events, ",%s", m->ev_names[k]);
-    for (int i = 0; i < 2 * m->nq; i++) {
+    for (int i = 0; i < eomc_nx(m); i++) {
         fputc(',', w->events);
         num_put(w->events, x[i]);
     }
@@ -58,10 +59,10 @@ Rows
 rows_new(FILE *f, eomc_sim *sim)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    size_t nres = (size_t)(m->nc + m->nout), n = (size_t)m->nq;
+    size_t nres = (size_t)(m->nc + m->nout), n = (size_t)eomc_nv(m), nx = (size_t)eomc_nx(m);
     Rows w = {.f = f, .sim = sim, .invariant = m->invariant != NULL};
-    /* a row's cells: t, q, q', T, V, E, h, lambda, res, outputs */
-    size_t cells = 1 + 2 * n + 4 + nres + (size_t)m->nc, row = cells * (NUM_MAX + 1) + 1;
+    /* a row's cells: t, q, v, T, V, E, h, lambda, res, outputs */
+    size_t cells = 1 + nx + 4 + nres + (size_t)m->nc, row = cells * (NUM_MAX + 1) + 1;
     size_t blk = (ROW_BLOCK + row) / sizeof(double) + 1;
     w.res = calloc(nres + n + 1 + blk + (size_t)m->nout, sizeof(double));
     w.arow = w.res ? w.res + nres : NULL;
@@ -85,14 +86,21 @@ own_invariant_column(const eomc_model *m)
     return m->invariant && m->invariant_name && strcmp(m->invariant_name, "E") != 0;
 }
 
+/* ",q1,q2,q1',q2'": the state's names (the speeds' own, where they are not
+ * the rates). */
+static void
+state_header(FILE *f, const eomc_model *m)
+{
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < eomc_nx(m); i++)
+        fprintf(f, ",%s", state_name(m, i, name, sizeof name));
+}
+
 void
 rows_header(FILE *f, const eomc_model *m)
 {
     fprintf(f, "t");
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s", m->q_names[i]);
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s'", m->q_names[i]);
+    state_header(f, m);
     fprintf(f, ",T,V,E");
     if (own_invariant_column(m))
         fprintf(f, ",%s", m->invariant_name);
@@ -148,7 +156,7 @@ rows_write(void *ctx, double t, const double *x)
     (w->blen += (size_t)sprintf(w->blk + w->blen, "%s%s", (first) ? "" : ",",         \
                                 num_shortest(num, (v))))
     CELL(1, t);
-    for (int i = 0; i < 2 * n; i++)
+    for (int i = 0; i < n + eomc_nv(m); i++)
         CELL(0, x[i]);
     CELL(0, T);
     CELL(0, V);
@@ -178,10 +186,7 @@ void
 rows_events_header(FILE *f, const eomc_model *m)
 {
     fprintf(f, "t,event");
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s", m->q_names[i]);
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s'", m->q_names[i]);
+    state_header(f, m);
     fputc('\n', f);
 }
 
@@ -196,10 +201,7 @@ rows_sweep_header(FILE *f, const eomc_model *m, const char *const *names, int np
         return;
     }
     fprintf(f, "status,t");
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s", m->q_names[i]);
-    for (int i = 0; i < m->nq; i++)
-        fprintf(f, ",%s'", m->q_names[i]);
+    state_header(f, m);
     for (int i = 0; i < m->nout; i++)
         fprintf(f, ",%s", m->out_names[i]);
     fprintf(f, "\n");
@@ -262,7 +264,7 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
                     eomc_reference *ref)
 {
     const eomc_model *m = eomc_sim_model(s);
-    int n = m->nq, N = 2 * n;
+    int N = eomc_nx(m);
     memset(ref, 0, sizeof *ref);
     FILE *f = fopen(path, "r");
     if (!f)
@@ -284,15 +286,17 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
                              "and the velocities", path);
     else
         nf = split(line, fields, (int)maxf);
-    char name[256];
+    char name[STATE_NAME_MAX];
     for (int i = -1; rc == EOMC_OK && i < N; i++) {
-        snprintf(name, sizeof name, "%s%s", i < 0 ? "t" : m->q_names[i % n],
-                 i >= n ? "'" : "");
+        if (i < 0)
+            snprintf(name, sizeof name, "t");
+        else
+            state_name(m, i, name, sizeof name);
         int k = column(fields, nf, name);
         if (k < 0)
             rc = sim_usage_error(s, "%s:1: no column '%s': the header must name t, every "
-                                 "coordinate and every velocity (name'), as the "
-                                 "simulator's CSV does", path, name);
+                                 "coordinate and every %s, as the simulator's CSV does",
+                                 path, name, state_speed_word(m, 0));
         col[i + 1] = k;
     }
     long k = 0;

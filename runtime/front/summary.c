@@ -4,6 +4,7 @@
 #include "summary.h"
 #include "base/io.h"
 #include "base/numfmt.h"
+#include "model/state.h"
 
 #include <float.h>
 #include <math.h>
@@ -91,6 +92,10 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
         put_stat("max_residual", fmax(st->max_residual, w->res_max));
     if (stabilize == EOMC_STABILIZE_PROJECT)
         put_stat("max_drift", st->max_drift);
+    if (m->nquat > 0) { /* the unit quaternions' lengths before renormalizing */
+        put_stat("quat_drift", st->quat_drift);
+        put_stat("quat_ratio", st->quat_ratio);
+    }
     if (w->invariant)
         put_stat("invariant_drift", w->dh);
     if (w->ref) {
@@ -146,8 +151,14 @@ summary_text(const Options *c, const eomc_model *m, const Rows *w, const eomc_st
     ADD("%s: %d coordinate%s (", m->name, m->nq, m->nq == 1 ? "" : "s");
     for (int i = 0; i < m->nq && i < 8; i++)
         ADD("%s%s", i ? ", " : "", m->q_names[i]);
-    ADD("%s), equations in %s form from %s. ", m->nq > 8 ? ", ..." : "", m->form,
-        m->spec);
+    ADD("%s)", m->nq > 8 ? ", ..." : "");
+    if (m->nv > 0) { /* speeds of their own */
+        ADD(" and %d speed%s (", m->nv, m->nv == 1 ? "" : "s");
+        for (int i = 0; i < m->nv && i < 8; i++)
+            ADD("%s%s", i ? ", " : "", m->v_names[i]);
+        ADD("%s)", m->nv > 8 ? ", ..." : "");
+    }
+    ADD(", equations in %s form from %s. ", m->form, m->spec);
     double t_last = st->stop_event >= 0 ? st->t_stop : c->run.t_end;
     ADD("Integrated from t = %g to %.17g with %s", c->run.t0, t_last, c->run.method);
     if (c->run.h_fixed > 0)
@@ -192,6 +203,12 @@ summary_text(const Options *c, const eomc_model *m, const Rows *w, const eomc_st
         ADD(" with Baumgarte's stabilization (rates %g, %g).", c->alpha, c->beta);
     else if (m->nc > 0)
         ADD(", without stabilization.");
+    if (m->nquat > 0)
+        ADD(" The unit quaternion%s %s renormalized after every step; %s length had "
+            "drifted from 1 by at most %.3g before (%s's, at t = %.6g).",
+            m->nquat == 1 ? "" : "s", m->nquat == 1 ? "was" : "were",
+            m->nquat == 1 ? "its" : "their", st->quat_drift,
+            st->quat_name ? st->quat_name : m->q_names[m->quat[0]], st->quat_t);
     if (w->ref && isnan(w->ref->error))
         /* one read with --reference carries no estimate of its own error */
         ADD(" Against the reference solution read from %s (its own error not known), the "
@@ -264,6 +281,38 @@ warn_condition(const Options *c, const eomc_stats *st)
  * than two digits right, and the motion is no better. */
 #define FIXED_DRIFT 1e-2
 
+/* A unit quaternion's length moves only by the steps' errors: a step
+ * that moved it by more than DRIFT_SLACK times what its own error
+ * estimate allows (eomc_stats' quat_ratio) had an error the estimate did
+ * not see; fixed steps, which estimate none, are told when a step moved
+ * it by more than FIXED_DRIFT (fewer than two digits of the orientation
+ * right in that step). */
+static void
+warn_quaternion(const Options *c, const eomc_model *m, const eomc_stats *st)
+{
+    if (m->nquat == 0)
+        return;
+    char q4[4 * STATE_NAME_MAX + 8] = "";
+    for (int j = 0; j < m->nquat; j++) { /* the one whose drift st names */
+        const int *e = m->quat + 4 * j;
+        if (st->quat_name && !strcmp(st->quat_name, m->q_names[e[0]]))
+            snprintf(q4, sizeof q4, "(%s, %s, %s, %s)", m->q_names[e[0]], m->q_names[e[1]],
+                     m->q_names[e[2]], m->q_names[e[3]]);
+    }
+    if (st->h_used > 0 && st->quat_drift > FIXED_DRIFT)
+        fprintf(io_err(), "%s: warning: fixed steps of %.3g: the unit quaternion %s moved off "
+                "length 1 by %.3g in a step (at t = %.6g) before it was renormalized: fewer "
+                "than two digits of the orientation are right there (shorter --fixed-step, "
+                "or adaptive steps, give more)\n", c->prog, st->h_used, q4, st->quat_drift,
+                st->quat_t);
+    else if (st->quat_ratio > DRIFT_SLACK)
+        fprintf(io_err(), "%s: warning: a step moved a unit quaternion's length by %.3g times "
+                "what the step's own error estimate allows: an error the integrator cannot "
+                "see is at work (a solve that loses digits, a force that is not smooth); "
+                "the motion is probably less accurate than asked\n", c->prog,
+                st->quat_ratio);
+}
+
 static void
 warn_drift(const Options *c, const eomc_model *m, const eomc_stats *st, const Rows *w)
 {
@@ -308,6 +357,7 @@ summary_warnings(const Options *c, const eomc_model *m, const eomc_stats *st, co
 {
     warn_condition(c, st);
     warn_drift(c, m, st, w);
+    warn_quaternion(c, m, st);
     warn_reset(c, m, st);
 }
 
@@ -322,11 +372,12 @@ summary_error(const Options *c, const eomc_model *m, const Rows *w, const eomc_r
         snprintf(good, sizeof good, "the reference, by %s%s, is good to %.2g",
                  ref->method, ref->stiff ? " (the problem is stiff)" : "", ref->error);
     double digits;
-    int i = compare_worst(&w->cmp, &digits), n = m->nq;
-    char worst[160] = "; every row is the reference's to the last bit";
+    int i = compare_worst(&w->cmp, &digits);
+    char worst[160 + STATE_NAME_MAX] = "; every row is the reference's to the last bit";
+    char name[STATE_NAME_MAX];
     if (digits < INFINITY) /* each component against its own size (compare.h) */
-        snprintf(worst, sizeof worst, "; %s%s keeps the fewest digits, %.1f",
-                 m->q_names[i % n], i < n ? "" : "'", digits);
+        snprintf(worst, sizeof worst, "; %s keeps the fewest digits, %.1f",
+                 state_name(m, i, name, sizeof name), digits);
     fprintf(io_err(), "%s: error against the reference solution: at most %.3g over "
             "the %ld row%s, %.3g at t = %g (%s)%s\n", c->prog, w->err_max, w->rows,
             num_plural(w->rows), w->err_end, c->run.t_end, good, worst);

@@ -59,7 +59,7 @@ add(Text *t, const char *fmt, ...)
 typedef struct Last {
     double t;
     double *x;
-    int n;
+    int nx;     /* the state's entries */
 } Last;
 
 static int
@@ -67,7 +67,7 @@ keep_last(void *ctx, double t, const double *x)
 {
     Last *l = ctx;
     l->t = t;
-    memcpy(l->x, x, 2 * (size_t)l->n * sizeof *x);
+    memcpy(l->x, x, (size_t)l->nx * sizeof *x);
     return EOMC_OK;
 }
 
@@ -112,13 +112,13 @@ static char *
 one_run(const Sweep *sw, long k)
 {
     const eomc_model *m = sw->m;
-    int n = m->nq;
+    int n = m->nq, nx = eomc_nx(m);
     char num[NUM_MAX];
     Text row = {0};
     for (int j = 0; j < sw->nparam; j++)
         add(&row, "%s%s", j ? "," : "", num_shortest(num, sw->values[k * sw->nparam + j]));
     eomc_sim *sim = eomc_sim_alloc(m);
-    double *x = calloc(2 * (size_t)n + 1, sizeof *x), *last = calloc(2 * (size_t)n + 1, sizeof *x);
+    double *x = calloc((size_t)nx + 1, sizeof *x), *last = calloc((size_t)nx + 1, sizeof *x);
     double *out = calloc((size_t)m->nout + 1, sizeof *out);
     int rc = sim && x && last && out ? sw->prepare(sw->ctx, sim) : EOMC_EUSAGE;
     for (int j = 0; j < sw->nparam && rc == EOMC_OK; j++)
@@ -129,22 +129,22 @@ one_run(const Sweep *sw, long k)
         rc = sw->initial(sw->ctx, sim, x);
     if (sw->cells) /* the row holds its status until rank 0 writes it */
         return cells_row(sw, &row, sim, x, rc, last, out);
-    Last l = {sw->run->t0, last, n};
-    memcpy(last, x, 2 * (size_t)n * sizeof *x);
+    Last l = {sw->run->t0, last, nx};
+    memcpy(last, x, (size_t)nx * sizeof *x);
     if (rc == EOMC_OK)
         rc = eomc_sim_integrate(sim, sw->run, x, keep_last, &l, NULL);
     if (rc == EOMC_OK && m->nout > 0)
         rc = eomc_sim_outputs(sim, l.t, last, last + n, out);
     if (rc == EOMC_OK) {
         add(&row, "%sok,%s", sw->nparam ? "," : "", num_shortest(num, l.t));
-        for (int i = 0; i < 2 * n; i++)
+        for (int i = 0; i < nx; i++)
             add(&row, ",%s", num_shortest(num, last[i]));
         for (int i = 0; i < m->nout; i++)
             add(&row, ",%s", num_shortest(num, out[i]));
     } else {
         add(&row, "%s", sw->nparam ? "," : "");
         add_quoted(&row, sim ? eomc_sim_error(sim) : "out of memory");
-        for (int i = 0; i < 1 + 2 * n + m->nout; i++)
+        for (int i = 0; i < 1 + nx + m->nout; i++)
             add(&row, ",");
     }
     add(&row, "\n");

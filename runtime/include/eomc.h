@@ -15,8 +15,13 @@
  *         fprintf(stderr, "%s\n", eomc_sim_error(sim));
  *     eomc_sim_free(sim);
  *
- * The first-order state is x = (q, q') of length 2 nq; its derivative is
- * x' = (q', q''(t, q, q')).
+ * The first-order state is x = (q, v) of length nx = nq + nv, the
+ * coordinates and then the speeds (eomc_nv, eomc_nx below); its derivative
+ * is x' = (q', v'): q' = v and v' = q'' for a model whose speeds are its
+ * coordinates' rates (model->nv = 0), q' = W(q) v (model->qdot) and v' the
+ * speeds' rates otherwise (a free or ball joint's angular velocity).  Below,
+ * "q''" and "the accelerations" are v' [nv], the mass matrix is nv x nv,
+ * and a "velocity" is a speed.
  *
  * GSL's error handler is the program's: libeomcrt never sets it, and checks
  * every status where it arises.  Its own solves never reach the handler
@@ -53,6 +58,19 @@ enum {
 
 typedef struct eomc_sim eomc_sim;
 
+/* The number of speeds, nv: the model's nv, or nq when its speeds are its
+ * coordinates' rates (model->nv = 0); and the state's size nq + nv. */
+static inline int
+eomc_nv(const eomc_model *m)
+{
+    return m->nv > 0 ? m->nv : m->nq;
+}
+static inline int
+eomc_nx(const eomc_model *m)
+{
+    return m->nq + eomc_nv(m);
+}
+
 /* NULL if the model's ABI does not match this runtime or memory runs out. */
 eomc_sim *eomc_sim_alloc(const eomc_model *m);
 void eomc_sim_free(eomc_sim *s);
@@ -60,8 +78,10 @@ const eomc_model *eomc_sim_model(const eomc_sim *s);
 
 /* A model's sizes and names by kind, for a caller that does not read
  * eomc_model's layout (the Python package, through ctypes): kind "q"
- * (coordinates), "p" (parameters), "u" (inputs), "c" (constraints), "out"
- * (the scene's outputs) or "event".  The count, or -1 for another kind;
+ * (coordinates), "v" (the speeds' names: model->nv of them, none when the
+ * speeds are the coordinates' rates, which are named q'), "p"
+ * (parameters), "u" (inputs), "c" (constraints), "out" (the scene's
+ * outputs) or "event".  The count, or -1 for another kind;
  * the k-th name, or NULL out of range.  eomc_model_text: "name", "spec",
  * "form", "scene", "method" or "invariant" (NULL: none, or another). */
 int eomc_model_count(const eomc_model *m, const char *kind);
@@ -143,9 +163,13 @@ int eomc_sim_stabilize(eomc_sim *s, int method, double alpha, double beta);
  * the rounding of those it started from is 0).  A no-op without such
  * constraints; EOMC_ENUMERIC when it cannot converge. */
 int eomc_sim_project(eomc_sim *s, double t, double *q, double *v);
-/* The same keeping what hold [2 nq] marks as it is (hold[i]: q_i,
- * hold[nq + i]: q'_i): the rest moves, for the least change in the mass
- * matrix's metric on it.  EOMC_ENUMERIC also when what is left free cannot
+/* The same keeping what hold [nx] marks as it is (hold[i]: q_i,
+ * hold[nq + k]: speed k): the rest moves, for the least change in the mass
+ * matrix's metric on it.  With speeds that are not the coordinates' rates,
+ * a speed moves the positions unless every coordinate it moves (a column
+ * of W(q)) is held, and a held coordinate that a moving speed would move
+ * is refused (EOMC_EUSAGE: a unit quaternion's four coordinates are held
+ * together or not at all).  EOMC_ENUMERIC also when what is left free cannot
  * meet the constraints (the message says what was held). */
 int eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v,
                           const unsigned char *hold);
@@ -165,18 +189,25 @@ int eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v,
                      double *out);
 /* The scene's event functions g [model->nevent] at (t, q, v). */
 void eomc_sim_events(eomc_sim *s, double t, const double *q, const double *v, double *g);
-/* Event k's reset at (t, x): x1 [2nq] gets x with what the event sets
+/* Event k's reset at (t, x): x1 [nx] gets x with what the event sets
  * (x1 may be x). */
 void eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1);
 /* Whether input k is held constant (eomc_sim_set), and at which value. */
 int eomc_sim_input_held(const eomc_sim *s, int k, double *value);
 /* The Jacobian of x' = f(t, x), exact, from the generated residual
- * Jacobians: dq''/dx = -M^-1 dE/dx.  dfdx is (2nq x 2nq) row-major; dfdt
- * [2nq] includes the inputs' time derivatives.  Either may be NULL. */
+ * Jacobians: dv'/dx = -M^-1 dE/dx, and dq'/dx = [0, I] or, with speeds
+ * that are not the rates, [dq'/dq, W(q)] (model->qdot_jacobian).  dfdx is
+ * (nx x nx) row-major; dfdt [nx] includes the inputs' time derivatives.
+ * Either may be NULL. */
 int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
                       double *dfdt);
 
-/* ---- linearization and equilibria (linearize.c) ---- */
+/* ---- linearization and equilibria (linearize.c) ----
+ * A model whose speeds are not its coordinates' rates (model->nv > 0: a
+ * free or ball joint's unit quaternion) has none here: each function
+ * below refuses it with EOMC_EUSAGE, its message naming the speeds.  (Its
+ * state space is not a vector space: a linearization would be taken in
+ * each quaternion's tangent space, which this runtime does not do.) */
 
 /* The size nl of the linearization's state: 2 nq, or for a constrained
  * model the independent coordinates and velocities of the elimination (a
@@ -185,7 +216,7 @@ int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
 int eomc_sim_linear_size(const eomc_sim *s);
 /* Its k-th component: the coordinate's index and order (0: q, 1: q'). */
 void eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order);
-/* A = dz'/dz [nl x nl] and B = dz'/du [nl x nu] at (t, x) (x [2nq], on
+/* A = dz'/dz [nl x nl] and B = dz'/du [nl x nu] at (t, x) (x [nx], on
  * the constraints), exact from the generated Jacobians, row-major.
  * EOMC_ENUMERIC when x is off its holonomic or velocity-level constraints
  * (eomc_sim_inconsistency above EOMC_INCONSISTENT): the message names
@@ -196,7 +227,7 @@ int eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double
  * out before the QR iteration. */
 int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, double *im);
 /* An equilibrium (q' = 0, q'' = 0) by Newton's method with the exact
- * Jacobian from x's coordinates: x [2nq] becomes it (velocities 0);
+ * Jacobian from x's coordinates: x [nx] becomes it (velocities 0);
  * *iterations counts the Newton steps.  Found only where q'' is 0 (each
  * q''_i within EOMC_ACCEL_ZERO of its scale at the start, or of what the
  * rounding of the coordinates found would change it by).  EOMC_ENUMERIC
@@ -269,7 +300,7 @@ typedef struct eomc_run_opts {
     void (*on_progress)(void *ctx, double t);
     void *progress_ctx;
     /* The scene's events (model->nevent > 0): called as each fires, with
-     * its index k, its time and the state x [2nq] there, before its action
+     * its index k, its time and the state x [nx] there, before its action
      * (NULL: not told).  A nonzero return stops the integration with that
      * status. */
     int (*on_event)(void *ctx, int k, double t, const double *x);
@@ -346,10 +377,24 @@ typedef struct eomc_stats {
     int reset_event, reset_constraint, reset_level;
     double reset_t, reset_inconsistency;
     char reset_off[512];
+    /* A model with unit quaternions (model->nquat > 0): after every step
+     * each is renormalized; quat_drift is the largest ||e| - 1| found
+     * before that (a pure number: |e| is 1 in the exact motion), the step's
+     * own change of |e| for the one-step methods, the drift of the
+     * method's own history for the multistep ones (msadams, msbdf: they
+     * continue from their history, not from the state renormalized, which
+     * only the rows and the checks see).  quat_ratio: the largest ratio
+     * of a step's change of |e| to the change its own error estimate
+     * allows (the estimate's length over e's four components): above
+     * about 1 the steps' errors are not what their estimates say
+     * (adaptive one-step methods; 0 otherwise); quat_t, the time of
+     * quat_drift's step, quat_name its first coordinate ("root_e0"). */
+    double quat_drift, quat_ratio, quat_t;
+    const char *quat_name;
 } eomc_stats;
 
 /* Called at every output time t0 + k dt, t0 first and t_end last, with
- * the state x [2nq].  Output times are not step ends: the state there is
+ * the state x [nx].  Output times are not step ends: the state there is
  * the interpolant's (runtime/step/dense.h), except at t0.  A nonzero return
  * stops the integration with that status. */
 typedef int (*eomc_row_fn)(void *ctx, double t, const double *x);
@@ -406,7 +451,7 @@ int eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x,
 typedef struct eomc_evolve eomc_evolve;
 
 /* What one accepted step covered, valid until the next eomc_sim_step:
- * from t0 to t1 (t1 > t0), the state x = (q, q') [nx = 2 nq] and its
+ * from t0 to t1 (t1 > t0), the state x = (q, v) [nx = nq + nv] and its
  * derivative x' = (q', q'') at both ends.  x1 is the state the next step
  * starts from, except after a `set` event (event >= 0 with that action):
  * the step ends at the event with the state before its reset, and the
@@ -422,7 +467,7 @@ typedef struct eomc_evolve eomc_evolve;
  * its error O(h^4) (eomc_sim_integrate's rows come from an interpolant of
  * higher order over several steps, runtime/step/dense.h). */
 typedef struct eomc_step {
-    int nx;                  /* 2 nq */
+    int nx;                  /* nq + nv */
     double t0, t1;
     const double *x0, *f0;   /* [nx] at t0 */
     const double *x1, *f1;   /* [nx] at t1 */
@@ -431,9 +476,11 @@ typedef struct eomc_step {
     int last;                /* the run is over: t1 is t_end, or a `stop` event */
     const void *series;      /* the runtime's own: Taylor's method's polynomial
                               * over the step (NULL under the other methods) */
+    const eomc_model *model; /* the model stepped: eomc_step_eval renormalizes its
+                              * unit quaternions, as the rows are */
 } eomc_step;
 
-/* Steps of s from x0 [2nq] at o->t0 (o is copied; x0 is not kept).  NULL
+/* Steps of s from x0 [nx] at o->t0 (o is copied; x0 is not kept).  NULL
  * when o cannot run on s (eomc_run_check), x0 or a parameter is not
  * finite, the model fails at the start, or memory runs out: the message
  * is in eomc_sim_error(s). */
@@ -447,7 +494,9 @@ const eomc_stats *eomc_evolve_stats(const eomc_evolve *e);
  * EOMC_EUSAGE once the run is over (d->last was set) or for another
  * simulator's steps.  After a failure the run is over. */
 int eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d);
-/* The step's dense output at t in [d->t0, d->t1] into x [d->nx]. */
+/* The step's dense output at t in [d->t0, d->t1] into x [d->nx], each unit
+ * quaternion renormalized (model->quat: the cubic is off |e| = 1 by its
+ * error inside the step). */
 void eomc_step_eval(const eomc_step *d, double t, double *x);
 
 /* ---- the reference solution ----
@@ -463,7 +512,7 @@ void eomc_step_eval(const eomc_step *d, double t, double *x);
  * constraints).  Or read from a CSV with the simulator's columns. */
 typedef struct eomc_reference {
     long nrows;           /* output times t0 + k dt and t_end */
-    int nx;               /* 2 nq */
+    int nx;               /* nq + nv */
     double *t, *x;        /* [nrows], [nrows * nx] */
     double error;         /* its estimated largest error in any entry of x (the
                            * difference of the last two refinements, and at
@@ -483,7 +532,7 @@ typedef struct eomc_reference {
     char source[768];     /* how it was made (and why that method), or the file */
 } eomc_reference;
 
-/* Compute the reference for o's output times from x0 [2 nq].  Returns
+/* Compute the reference for o's output times from x0 [nx].  Returns
  * EOMC_OK, EOMC_EUSAGE (bad options, or ext NULL or not this model's),
  * or EOMC_ENUMERIC when the model fails (message as for a run). */
 int eomc_reference_compute(eomc_sim *s, const eomc_model_ext *ext, const eomc_run_opts *o,
@@ -504,7 +553,7 @@ int eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc
 int eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
                         eomc_reference *ref);
 void eomc_reference_free(eomc_reference *ref);
-/* q'' [nq] and the multipliers lam [nc] (NULL: not wanted) at (t, x) as
+/* q'' [nv] and the multipliers lam [nc] (NULL: not wanted) at (t, x) as
  * the model's extended-precision functions solve them, rounded to double:
  * what eomc_sim_accel computes, carried in long double.  EOMC_EUSAGE
  * when ext is NULL or not this model's, EOMC_ENUMERIC when the solve

@@ -62,12 +62,12 @@ depend_alloc(const eomc_model *m)
         return NULL;
     size_t nc = (size_t)m->nc + 1;
     w->m = m;
-    w->n = m->nq, w->nc = m->nc;
+    w->n = eomc_nv(m), w->nc = m->nc;
     w->len = 64;
     for (int c = 0; c < m->nc; c++)
         w->len += strlen(m->c_names[c]) + 2;
-    w->rank = la_rank_alloc(m->nc, m->nq);
-    w->d = calloc((size_t)m->nq + 1, sizeof *w->d);
+    w->rank = la_rank_alloc(m->nc, eomc_nv(m));
+    w->d = calloc((size_t)eomc_nv(m) + 1, sizeof *w->d);
     w->rows = calloc(nc, sizeof *w->rows);
     w->keep = calloc(nc, 1), w->inv = calloc(nc, 1), w->drop = calloc(nc, 1);
     w->note = calloc(w->len, 1), w->names = calloc(w->len, 1);

@@ -17,7 +17,11 @@
  * is the same, convergence is linear instead of quadratic).  The
  * multipliers follow from the dependent rows: B_h^T lambda = -E_h.
  *
- * The Jacobian of x' = (q', q''(t, q, q')) follows by differentiating the
+ * In the speeds: q'' stands for v' [nv] throughout (a model whose speeds
+ * are not its coordinates' rates has M nv x nv and B nc x nv, and its
+ * derivatives by q nq columns, eomc_model.h), so n below is nv.
+ *
+ * The Jacobian of v'(t, q, v) follows by differentiating the
  * KKT system at the solution (it is the same function q''(x) whichever
  * way it was solved):  d(q'', lambda)/dx = -K^-1 dR/dx  with
  *     dR/dx = [dE/dx + sum_k lambda_k dB_k/dx; df/dx].
@@ -52,16 +56,17 @@
  */
 #include "kkt.h"
 #include "linalg.h"
+#include "state.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-
 struct Kkt {
     const eomc_model *m;
-    int n, nc, N, np, nu;       /* N = n + nc unknowns, np = n - nc independent */
+    int n, nq, nc, N, np, nu;   /* n = nv speeds, nq coordinates; N = n + nc unknowns,
+                                 * np = n - nc independent */
     double *M, *h;              /* [n*n], [n] */
     double *dEdq, *dEdv, *dEdu, *dEdt;  /* the residual's partials */
     double wv_hol, wp_hol, wv_first;    /* Baumgarte's weights, 0 when off */
@@ -73,8 +78,9 @@ struct Kkt {
     double rel;                 /* the last Newton iterate's relative residual */
     double *save_a, *save_lam;  /* kkt_save_start's copy of them */
     int have_save;
-    double *dfdq, *dfdv, *dfdu, *dfdt;         /* [nc*n] [nc*n] [nc*nu] [nc] */
-    double *dBdq, *dBdv, *dBda, *dBdu, *dBdt;  /* [nc*n*n] x3, [nc*n*nu], [nc*n] */
+    double *dfdq, *dfdv, *dfdu, *dfdt;         /* [nc*nq] [nc*n] [nc*nu] [nc] */
+    double *dBdq, *dBdv, *dBda, *dBdu, *dBdt;  /* [nc*n*nq], [nc*n*n] x2, [nc*n*nu],
+                                                * [nc*n] */
     double *BH, *G, *E;         /* [nc*nc], [nc*np], [n] */
     double *off;                /* [nc] Baumgarte's terms, else 0 */
     double *bmax;               /* [nc*n] the largest |B_ci| of the solves so far */
@@ -100,7 +106,8 @@ struct Kkt {
     double *Sb, *Sr;
     int by_loads;               /* the last kkt_accel solved so: M not formed */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
-    double t_last, *q_last, *v_last, *u_last; /* its state, to form M on demand */
+    double t_last, *q_last, *v_last, *u_last; /* its state [nq], [n], [nu], to form M
+                                               * on demand */
     const double *p_last;
     const unsigned char *drop;  /* [nc] rows left out of the solves, or NULL */
 };
@@ -118,9 +125,11 @@ kkt_alloc(const eomc_model *m)
     Kkt *k = calloc(1, sizeof *k);
     if (!k)
         return NULL;
-    size_t n = (size_t)m->nq, nc = (size_t)m->nc, nu = (size_t)m->nu, N = n + nc;
+    size_t n = (size_t)eomc_nv(m), nq = (size_t)m->nq, nc = (size_t)m->nc;
+    size_t nu = (size_t)m->nu, N = n + nc;
     k->m = m;
-    k->n = m->nq, k->nc = m->nc, k->N = (int)N, k->np = m->nq - m->nc, k->nu = m->nu;
+    k->n = (int)n, k->nq = m->nq, k->nc = m->nc, k->N = (int)N, k->np = (int)n - m->nc;
+    k->nu = m->nu;
     double **arrays[] = {
         &k->M, &k->h, &k->dEdq, &k->dEdv, &k->dEdu, &k->dEdt, &k->K, &k->r, &k->dK,
         &k->A, &k->ra, &k->f, &k->B, &k->lam, &k->prev_a, &k->prev_lam, &k->save_a,
@@ -130,10 +139,10 @@ kkt_alloc(const eomc_model *m)
         &k->dveldv, &k->dposdu, &k->dveldu, &k->dposdt, &k->dveldt,
     };
     size_t sizes[] = {
-        n * n, n, n * n, n * n, n * nu, n, N * N, N, N,
-        n * n, n, nc, nc * n, nc, n, nc, n, nc, nc * n,
-        nc * n, nc * nu, nc, nc * n * n, nc * n * n, nc * n * n, nc * n * nu, nc * n,
-        nc * nc, nc * n, n, nc, nc * n, nc, nc, nc * n, nc * n,
+        n * n, n, n * nq, n * n, n * nu, n, N * N, N, N,
+        n * n, n, nc, nc * n, nc, n, nc, n, nc, nc * nq,
+        nc * n, nc * nu, nc, nc * n * nq, nc * n * n, nc * n * n, nc * n * nu, nc * n,
+        nc * nc, nc * n, n, nc, nc * n, nc, nc, nc * nq, nc * nq,
         nc * n, nc * nu, nc * nu, nc, nc,
     };
     int ok = 1;
@@ -144,7 +153,7 @@ kkt_alloc(const eomc_model *m)
     k->Y = zeros(nc * n), k->S = zeros(nc * nc), k->Srel = zeros(nc);
     k->Ylam = zeros(nc), k->act = calloc(nc ? (size_t)nc : 1, sizeof *k->act);
     k->Sperm = calloc(nc ? nc : 1, sizeof *k->Sperm);
-    k->q_last = zeros(n), k->v_last = zeros(n), k->u_last = zeros(nu);
+    k->q_last = zeros(nq), k->v_last = zeros(n), k->u_last = zeros(nu);
     ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
     ok &= k->Ylam && k->act;
     k->blk = calloc(nc + 1, sizeof *k->blk), k->ord = calloc(nc + 1, sizeof *k->ord);
@@ -156,15 +165,17 @@ kkt_alloc(const eomc_model *m)
         k->nzcol = calloc((size_t)m->c_nnz + 1, sizeof *k->nzcol);
         ok &= k->nzrow && k->nzcol;
         for (int j = 0; ok && j < m->c_nnz; j++) {
-            k->nzrow[m->c_nz[j] / m->nq + 1]++;
-            k->nzcol[j] = m->c_nz[j] % m->nq;
+            k->nzrow[m->c_nz[j] / (int)n + 1]++;
+            k->nzcol[j] = m->c_nz[j] % (int)n;
         }
         for (size_t c = 0; ok && c < nc; c++)
             k->nzrow[c + 1] += k->nzrow[c];
     }
     size_t len = 1;
+    char dep[STATE_NAME_MAX];
     for (int c = 0; c < m->nc; c++)
-        len += strlen(m->c_names[c]) + strlen(m->q_names[m->c_dependent[c]]) + 8;
+        len += strlen(m->c_names[c]) +
+               strlen(kkt_dependent_name(m, c, dep, sizeof dep)) + 8;
     k->names = calloc(len, 1);
     if (!ok || !k->dep || !k->indep || !k->luN || !k->lun || !k->luc || !k->names) {
         kkt_free(k);
@@ -174,9 +185,9 @@ kkt_alloc(const eomc_model *m)
         k->dep[c] = m->c_dependent[c];
         size_t at = strlen(k->names);
         snprintf(k->names + at, len - at, "%s%s (%s)", c ? ", " : "", m->c_names[c],
-                 m->q_names[k->dep[c]]);
+                 kkt_dependent_name(m, c, dep, sizeof dep));
     }
-    for (int i = 0, r = 0; i < m->nq; i++) {
+    for (int i = 0, r = 0; i < k->n; i++) {
         int dependent = 0;
         for (int c = 0; c < m->nc; c++)
             dependent |= k->dep[c] == i;
@@ -321,7 +332,7 @@ static void
 baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const double *p,
                    const double *u)
 {
-    int n = k->n, nu = k->nu;
+    int n = k->n, nq = k->nq, nu = k->nu;
     if (!baumgarte_on(k))
         return;
     k->m->c_levels_jacobian(t, q, v, p, u, k->dposdq, k->dveldq, k->dveldv, k->dposdu,
@@ -329,10 +340,10 @@ baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const dou
     for (int c = 0; c < k->nc; c++) {
         double wv, wp;
         kkt_baumgarte_weights(k, c, &wv, &wp);
-        for (int j = 0; j < n; j++) {
-            k->dfdq[c * n + j] += wv * k->dveldq[c * n + j] + wp * k->dposdq[c * n + j];
+        for (int j = 0; j < nq; j++)
+            k->dfdq[c * nq + j] += wv * k->dveldq[c * nq + j] + wp * k->dposdq[c * nq + j];
+        for (int j = 0; j < n; j++)
             k->dfdv[c * n + j] += wv * k->dveldv[c * n + j];
-        }
         for (int l = 0; l < nu; l++)
             k->dfdu[c * nu + l] += wv * k->dveldu[c * nu + l] + wp * k->dposdu[c * nu + l];
         k->dfdt[c] += wv * k->dveldt[c] + wp * k->dposdt[c];
@@ -631,7 +642,7 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     }
     k->pivot_loads = pivot;
     k->t_last = t, k->p_last = p;
-    memcpy(k->q_last, q, (size_t)n * sizeof *q);
+    memcpy(k->q_last, q, (size_t)k->nq * sizeof *q);
     memcpy(k->v_last, v, (size_t)n * sizeof *v);
     if (k->nu)
         memcpy(k->u_last, u, (size_t)k->nu * sizeof *u);
@@ -766,21 +777,22 @@ kkt_vanished(const Kkt *k, double *fraction)
     return -1;
 }
 
-/* dR/dx_j for column j (q_j for j < n, else v_(j-n)) into k->r. */
+/* dR/dx_j for column j (q_j for j < nq, else v_(j-nq)) into k->r. */
 static void
 jacobian_column(Kkt *k, int j)
 {
-    int n = k->n, nc = k->nc, jj = j % n;
-    const double *dE = j < n ? k->dEdq : k->dEdv, *dB = j < n ? k->dBdq : k->dBdv;
-    const double *df = j < n ? k->dfdq : k->dfdv;
+    int n = k->n, nc = k->nc, byq = j < k->nq, jj = byq ? j : j - k->nq;
+    int w = byq ? k->nq : n; /* the derivatives' columns */
+    const double *dE = byq ? k->dEdq : k->dEdv, *dB = byq ? k->dBdq : k->dBdv;
+    const double *df = byq ? k->dfdq : k->dfdv;
     for (int i = 0; i < n; i++) {
-        double x = dE[i * n + jj];
+        double x = dE[i * w + jj];
         for (int c = 0; c < nc; c++)
-            x += k->lam[c] * dB[(c * n + i) * n + jj];
+            x += k->lam[c] * dB[(c * n + i) * w + jj];
         k->r[i] = x;
     }
     for (int c = 0; c < nc; c++)
-        k->r[n + c] = dropped(k, c) ? 0 : df[c * n + jj];
+        k->r[n + c] = dropped(k, c) ? 0 : df[c * w + jj];
 }
 
 /* dR/dt, with the inputs' derivatives, into k->r. */
@@ -813,8 +825,8 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
              const double *dudt, const double *a, double *dfdx, double *dfdt)
 {
     const eomc_model *m = k->m;
-    int n = k->n, W = 2 * n;
-    const double *q = x, *v = x + n;
+    int n = k->n, nq = k->nq, W = nq + n;
+    const double *q = x, *v = x + nq;
     form_mass(k); /* after unit loads; K is built and factored below */
     m->jacobian(t, q, v, a, p, u, k->dEdq, k->dEdv, k->dEdu, k->dEdt);
     m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
@@ -826,24 +838,18 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
     build_kkt(k, !m->c_affine);
     if (factor_kkt(k) != 0)
         return KKT_SINGULAR;
-    if (dfdx) {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < W; j++)
-                dfdx[i * W + j] = j == n + i;
+    if (dfdx)
         for (int j = 0; j < W; j++) {
             jacobian_column(k, j);
             la_lu_solve(k->luN, k->r);
             for (int i = 0; i < n; i++)
-                dfdx[(n + i) * W + j] = -k->r[i];
+                dfdx[(nq + i) * W + j] = -k->r[i];
         }
-    }
     if (dfdt) {
         time_column(k, dudt);
         la_lu_solve(k->luN, k->r);
-        for (int i = 0; i < n; i++) {
-            dfdt[i] = 0;
-            dfdt[n + i] = -k->r[i];
-        }
+        for (int i = 0; i < n; i++)
+            dfdt[nq + i] = -k->r[i];
     }
     return KKT_OK;
 }
@@ -863,4 +869,13 @@ const double *
 kkt_rows(const Kkt *k)
 {
     return k->B;
+}
+
+const char *
+kkt_dependent_name(const eomc_model *m, int c, char *buf, size_t len)
+{
+    if (m->nv > 0)
+        return state_speed(m, m->c_dependent[c], buf, len);
+    snprintf(buf, len, "%s", m->q_names[m->c_dependent[c]]);
+    return buf;
 }

@@ -1,13 +1,16 @@
 /*
  * kkt: the accelerations of a constrained model and their Jacobian, as
- * pure functions of (t, q, q', p, u) that return a status: what they mean
+ * pure functions of (t, q, v, p, u) that return a status: what they mean
  * for a user is said by the caller (sim.c), which knows the time and the
- * state.  The mathematics is in kkt.c and docs/mechanics.md.
+ * state.  The mathematics is in kkt.c and docs/mechanics.md.  "q''" is
+ * the speeds' rates v' [nv] (eomc.h), n below nv.
  */
 #ifndef EOMC_KKT_H
 #define EOMC_KKT_H
 
 #include "eomc_model.h"
+
+#include <stddef.h>
 
 typedef struct Kkt Kkt;
 
@@ -45,9 +48,10 @@ int kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *
               const double *u, double *a);
 const double *kkt_multipliers(const Kkt *k);
 
-/* The Jacobian of x' = (q', q'') at x = (q, v), right after kkt_accel
- * at the same state gave a: dfdx [2n x 2n] and dfdt [2n] (dudt: the
- * inputs' time derivatives); either may be NULL. */
+/* The Jacobian of x' = (q', v') at x = (q, v), right after kkt_accel
+ * at the same state gave a: its rows of v', rows nq .. nq + n - 1 of dfdx
+ * [(nq + n) x (nq + n)] and entries nq .. of dfdt (dudt: the inputs' time
+ * derivatives); the caller's the rows of q'.  Either may be NULL. */
 int kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u,
                  const double *dudt, const double *a, double *dfdx, double *dfdt);
 
@@ -88,5 +92,8 @@ double kkt_pivot(const Kkt *k);
 
 /* "rod (y), cone (z)": the constraints and their dependent coordinates. */
 const char *kkt_names(const Kkt *k);
+/* The name of constraint c's dependent coordinate (its speed, where the
+ * speeds are not the rates) into buf. */
+const char *kkt_dependent_name(const eomc_model *m, int c, char *buf, size_t len);
 
 #endif

@@ -11,14 +11,26 @@
  * a holonomic constraint and dphi/dq' for a first-order one, so the model
  * already supplies it).  The kinetic-energy metric makes the correction
  * what a constraint impulse would do, independent of the coordinates'
- * units.  M is taken once, at the state given.  Second-order constraints
- * have nothing below acceleration level and are left alone.  Rows left out
- * of the solves (proj_set_dropped) are left out of the corrections too,
- * and of the test that they have settled: the kept rows span them; their
- * residuals are still measured with the others'.
+ * units.  M is taken once, at the state given.
+ *
+ * In the speeds (eomc.h): with speeds that are not the coordinates' rates,
+ * M is nv x nv and G's rows are dg/dq W(q), so the position correction is
+ * a displacement d of the speeds' space, moved into the coordinates as
+ * dq = W(q) d (q' = W(q) v for a motion of d in unit time), each unit
+ * quaternion then renormalized (the exact positions have |e| = 1; the
+ * correction is tangent to it, to first order).  Holding coordinates
+ * holds the speeds that move only them (hold_speeds).  A position's
+ * residual is measured against g's terms dg/dq_i q_i from
+ * c_levels_jacobian's gradient, where B (dg/dq W) gives no such terms.
+ *
+ * Second-order constraints have nothing below acceleration level and are
+ * left alone.  Rows left out of the solves (proj_set_dropped) are left out
+ * of the corrections too, and of the test that they have settled: the kept
+ * rows span them; their residuals are still measured with the others'.
  */
 #include "project.h"
 #include "linalg.h"
+#include "state.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -26,7 +38,7 @@
 
 struct Proj {
     const eomc_model *m;
-    int n, nc;
+    int n, nq, nc;             /* n = nv: the speeds (n below), nq coordinates */
     int npos, nvel;            /* rows at each level */
     int *pos_rows, *vel_rows;  /* [nc] constraint indices */
     int nfix[2], *fix_rows[2]; /* each level's rows the corrections use: [nc]
@@ -40,13 +52,22 @@ struct Proj {
     size_t *perm;              /* [n] its pivot order */
     int *moves, nmoves;        /* [n] the coordinates (or velocities) a level moves */
     double *col;               /* [n] one solve's right-hand side, on those */
-    const unsigned char *hold; /* [2n] what the caller keeps (q, then v), or NULL */
+    const unsigned char *hold; /* [2n] what stays: the speeds whose positions (then
+                                * whose velocities) the corrections keep, or NULL */
+    unsigned char *hv;         /* [2n] hold_speeds' (hold points here or is NULL) */
+    double *w, *dq;            /* [n] a direction of the speeds, [nq] W(q) times it */
+    int held_q, held_v;        /* hold_speeds' refusal: a held coordinate, a speed
+                                * not held that moves it */
     int factored;              /* L holds M on moves, for this proj_apply */
     double vMv0;               /* v^T M v at the start of a velocity projection: the
                                 * scale of its rounding (0 outside one) */
     double *f, *B;             /* [nc], [nc*n] */
     double *pos, *vel, *zero;  /* [nc], [nc], [n] */
     double *scale;             /* [nc] the magnitude of each g_k's terms (c_scale) */
+    /* with speeds of their own, g's gradient dg/dq [nc*nq] from
+     * c_levels_jacobian (NULL without it), for g's terms dg/dq_i q_i as B
+     * gives them where the speeds are the rates; and its other outputs */
+    double *dgdq, *lj;
     double *Y, *S, *mu;        /* [nc*n] rows M^-1 G_r^T, [nc*nc], [nc] */
     LaLu *lu[2];               /* G M^-1 G^T at each level */
     char *names[2];            /* constraint names of each level, for messages */
@@ -79,14 +100,22 @@ proj_alloc(const eomc_model *m)
     Proj *j = calloc(1, sizeof *j);
     if (!j)
         return NULL;
-    size_t n = (size_t)m->nq, nc = (size_t)m->nc;
+    size_t n = (size_t)eomc_nv(m), nq = (size_t)m->nq, nc = (size_t)m->nc;
     j->m = m;
-    j->n = m->nq, j->nc = m->nc;
+    j->n = (int)n, j->nq = m->nq, j->nc = m->nc;
+    j->hv = calloc(2 * n, 1), j->w = zeros(n), j->dq = zeros(nq);
     j->pos_rows = calloc(nc, sizeof(int)), j->vel_rows = calloc(nc, sizeof(int));
     j->fix_rows[0] = calloc(nc, sizeof(int)), j->fix_rows[1] = calloc(nc, sizeof(int));
     j->L = zeros(n * n), j->h = zeros(n), j->f = zeros(nc);
     j->M = zeros(n * n), j->col = zeros(n), j->moves = calloc(n ? n : 1, sizeof *j->moves);
     j->B = zeros(nc * n), j->pos = zeros(nc), j->vel = zeros(nc), j->scale = zeros(nc);
+    /* dg/dq, then c_levels_jacobian's other outputs: dveldq, dveldv, dposdu,
+     * dveldu, dposdt, dveldt */
+    size_t nu = (size_t)m->nu, lj = nc * nq + nc * n + 2 * nc * nu + 2 * nc;
+    int gradient = m->nv > 0 && m->c_levels_jacobian;
+    if (gradient)
+        j->dgdq = zeros(nc * nq + lj);
+    j->lj = j->dgdq ? j->dgdq + nc * nq : NULL;
     j->zero = zeros(n), j->Y = zeros(nc * n), j->S = zeros(nc * nc);
     j->mu = zeros(nc), j->rel = zeros(n), j->perm = calloc(n ? n : 1, sizeof *j->perm);
     j->F = zeros(n * n), j->Frel = zeros(n), j->Fperm = calloc(n ? n : 1, sizeof *j->Fperm);
@@ -100,7 +129,8 @@ proj_alloc(const eomc_model *m)
     if (!j->pos_rows || !j->vel_rows || !j->fix_rows[0] || !j->fix_rows[1] || !j->L ||
         !j->h || !j->f || !j->B || !j->pos || !j->vel || !j->zero || !j->Y || !j->S ||
         !j->mu || !j->rel || !j->perm || !j->F || !j->Frel || !j->Fperm || !j->M ||
-        !j->col || !j->moves || proj_set_dropped(j, NULL) != 0) {
+        !j->col || !j->moves || !j->hv || !j->w || !j->dq || (gradient && !j->dgdq) ||
+        proj_set_dropped(j, NULL) != 0) {
         proj_free(j);
         return NULL;
     }
@@ -115,7 +145,7 @@ proj_free(Proj *j)
     void *arrays[] = {j->pos_rows, j->vel_rows, j->fix_rows[0], j->fix_rows[1], j->L, j->h, j->f, j->B, j->pos,
                       j->vel, j->scale, j->zero, j->Y, j->S, j->mu, j->rel, j->perm, j->F, j->Frel,
                       j->Fperm, j->M, j->col,
-                      j->moves, j->names[0], j->names[1]};
+                      j->moves, j->names[0], j->names[1], j->hv, j->w, j->dq, j->dgdq};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
     la_lu_free(j->lu[0]);
@@ -223,10 +253,18 @@ static void
 levels(Proj *j, double t, const double *q, const double *v, const double *p,
        const double *u)
 {
-    j->m->c_levels(t, q, v, p, u, j->pos, j->vel);
-    j->m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
-    if (j->m->c_scale)
-        j->m->c_scale(t, q, p, u, j->scale);
+    const eomc_model *m = j->m;
+    m->c_levels(t, q, v, p, u, j->pos, j->vel);
+    m->constraint(t, q, v, j->zero, p, u, j->f, j->B);
+    if (m->c_scale)
+        m->c_scale(t, q, p, u, j->scale);
+    if (j->dgdq) { /* dposdq, dveldq, dveldv, dposdu, dveldu, dposdt, dveldt */
+        size_t nc = (size_t)j->nc, nq = (size_t)j->nq, nu = (size_t)m->nu;
+        double *d = j->lj;
+        m->c_levels_jacobian(t, q, v, p, u, j->dgdq, d, d + nc * nq, d + nc * (nq + j->n),
+                             d + nc * (nq + j->n + nu), d + nc * (nq + j->n + 2 * nu),
+                             d + nc * (nq + j->n + 2 * nu + 1));
+    }
 }
 
 /* The largest relative residual of a level's rows (fix: the kept ones
@@ -239,13 +277,19 @@ level_residual(Proj *j, const double *q, const double *v, int level, int fix, in
     int nr = fix ? j->nfix[level] : level ? j->nvel : j->npos;
     const int *rows = fix ? j->fix_rows[level] : level ? j->vel_rows : j->pos_rows;
     const double *x = level ? v : q, *r = level ? j->vel : j->pos;
+    /* with speeds of their own, B's rows are not dg/dq: g's terms are
+     * dg/dq_i q_i from c_levels_jacobian's gradient, else c_scale's alone */
+    int own = !level && j->m->nv > 0;
     /* a projection that takes every velocity to 0 (a wheel held still
      * stops the bicycle) ends in rounding of the velocities it started
      * from, not of the zeros it reached */
     double big = 0, vMv = level ? fmax(la_quadratic(j->M, v, j->n), j->vMv0) : 0;
     for (int k = 0; k < nr; k++) {
-        const double *Bk = j->B + rows[k] * j->n;
-        double e = relative_residual(Bk, x, j->n, r[rows[k]],
+        const double *Bk = j->B + rows[k] * j->n, *Gk = Bk;
+        int len = !own ? j->n : j->dgdq ? j->nq : 0;
+        if (own && j->dgdq)
+            Gk = j->dgdq + rows[k] * j->nq;
+        double e = relative_residual(Gk, x, len, r[rows[k]],
                                      level ? velocity_bound(j, Bk, vMv) : j->scale[rows[k]]);
         if (each)
             each[rows[k]] = e;
@@ -352,7 +396,21 @@ correct(Proj *j, double t, double *q, double *v, const double *p, const double *
         double d = 0;
         for (int k = 0; k < nr; k++)
             d += j->Y[k * n + i] * j->mu[k];
-        x[i] -= d;
+        j->w[i] = d;
+    }
+    if (level == 0 && j->m->nv > 0) { /* dq = W(q) d, e back to length 1 */
+        const eomc_model *m = j->m;
+        state_qdot(m, q, j->w, j->dq);
+        for (int i = 0; i < j->nq; i++)
+            q[i] -= j->dq[i];
+        for (int g = 0; g < m->nquat; g++) { /* those it moved: a held one stays */
+            const int *e = m->quat + 4 * g;
+            if (j->dq[e[0]] != 0 || j->dq[e[1]] != 0 || j->dq[e[2]] != 0 || j->dq[e[3]] != 0)
+                state_normalize_quat(m, q, g);
+        }
+    } else {
+        for (int i = 0; i < n; i++)
+            x[i] -= j->w[i];
     }
     return 0;
 }
@@ -413,6 +471,57 @@ proj_apply(Proj *j, double t, double *q, double *v, const double *p, const doubl
     return proj_apply_held(j, t, q, v, p, u, NULL, level);
 }
 
+/* What hold [nq + n] keeps, as the speeds that stay, into j->hv [2n]
+ * (j->hold: it, or NULL when nothing is held): at velocity level the
+ * speeds held; at position level those that move only held coordinates
+ * (a column of W(q): qdot of a unit speed), a unit quaternion's four
+ * moving together (renormalized), PROJ_HOLD where a held coordinate
+ * would move with a speed that is not held (j->held_q, j->held_v). */
+static int
+hold_speeds(Proj *j, const double *q, const unsigned char *hold)
+{
+    const eomc_model *m = j->m;
+    int n = j->n, nq = j->nq;
+    j->hold = hold ? j->hv : NULL;
+    if (!hold)
+        return PROJ_OK;
+    memcpy(j->hv + n, hold + nq, (size_t)n);
+    if (m->nv == 0) {
+        memcpy(j->hv, hold, (size_t)n);
+        return PROJ_OK;
+    }
+    for (int k = 0; k < n; k++) {
+        memset(j->w, 0, (size_t)n * sizeof *j->w);
+        j->w[k] = 1;
+        state_qdot(m, q, j->w, j->dq);
+        for (int g = 0; g < m->nquat; g++) { /* the whole quaternion moves */
+            const int *e = m->quat + 4 * g;
+            if (j->dq[e[0]] != 0 || j->dq[e[1]] != 0 || j->dq[e[2]] != 0 || j->dq[e[3]] != 0)
+                for (int i = 0; i < 4; i++)
+                    j->dq[e[i]] = 1;
+        }
+        int keeps = 1, moves_held = -1;
+        for (int i = 0; i < nq; i++)
+            if (j->dq[i] != 0 && !hold[i])
+                keeps = 0;
+            else if (j->dq[i] != 0 && moves_held < 0)
+                moves_held = i;
+        j->hv[k] = (unsigned char)keeps;
+        if (!keeps && moves_held >= 0) {
+            j->held_q = moves_held, j->held_v = k;
+            return PROJ_HOLD;
+        }
+    }
+    return PROJ_OK;
+}
+
+void
+proj_hold_conflict(const Proj *j, int *coord, int *speed)
+{
+    *coord = j->held_q;
+    *speed = j->held_v;
+}
+
 int
 proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const double *u,
                 const unsigned char *hold, int *level)
@@ -420,10 +529,12 @@ proj_apply_held(Proj *j, double t, double *q, double *v, const double *p, const 
     *level = 0;
     if (j->nvel == 0)
         return PROJ_OK;
+    int rc = hold_speeds(j, q, hold);
+    if (rc != PROJ_OK)
+        return rc;
     j->m->mass_bias(t, q, v, p, u, j->M, j->h);
-    j->hold = hold;
     j->factored = 0, j->full = -1;
-    int rc = project_level(j, t, q, v, p, u, 0);
+    rc = project_level(j, t, q, v, p, u, 0);
     if (rc == PROJ_OK)
         rc = project_level(j, t, q, v, p, u, *level = 1);
     j->hold = NULL;

@@ -1,7 +1,8 @@
 /*
  * project: move a state back onto its holonomic and velocity-level
- * constraints, as a pure function of (t, q, q', p, u) that returns a
- * status; sim.c says what it means.  The mathematics is in project.c.
+ * constraints, as a pure function of (t, q, v, p, u) that returns a
+ * status; sim.c says what it means.  The mathematics is in project.c;
+ * n below is the number of speeds, nv (eomc.h).
  */
 #ifndef EOMC_PROJECT_H
 #define EOMC_PROJECT_H
@@ -15,6 +16,8 @@ enum {
     PROJ_NOT_PD,    /* the mass matrix is not positive definite */
     PROJ_SINGULAR,  /* G M^-1 G^T is singular at the level */
     PROJ_NO_CONVERGENCE,
+    PROJ_HOLD,      /* a held coordinate moves with a speed not held
+                     * (proj_hold_conflict) */
 };
 /* Gauss-Newton corrections per level, at most. */
 enum { PROJ_MAX = 20 };
@@ -52,11 +55,14 @@ double proj_inconsistencies(Proj *j, double t, const double *q, const double *v,
  * On failure *level is 0 (positions) or 1 (velocities). */
 int proj_apply(Proj *j, double t, double *q, double *v, const double *p,
                const double *u, int *level);
-/* The same keeping the coordinates and velocities hold [2n] marks (q_i at
- * i, q'_i at n + i) as they are: the others move, by the smallest change
- * in the mass matrix's metric restricted to them. */
+/* The same keeping the coordinates and speeds hold [nq + nv] marks (q_i
+ * at i, speed k at nq + k) as they are: the others move, by the smallest
+ * change in the mass matrix's metric restricted to them (project.c). */
 int proj_apply_held(Proj *j, double t, double *q, double *v, const double *p,
                     const double *u, const unsigned char *hold, int *level);
+/* After PROJ_HOLD: the held coordinate and the speed not held that moves
+ * it. */
+void proj_hold_conflict(const Proj *j, int *coord, int *speed);
 /* The constraints a level's projection uses (0: holonomic, 1: velocity),
  * for messages. */
 const char *proj_names(const Proj *j, int level);

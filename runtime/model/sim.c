@@ -19,6 +19,7 @@
 #include "linalg.h"
 #include "base/numfmt.h"
 #include "project.h"
+#include "state.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -33,19 +34,24 @@ enum { PIVOT_EVERY = 4 };
 
 struct eomc_sim {
     const eomc_model *m;
-    int n, nu;
+    int n, nv, nu;           /* coordinates nq, speeds (eomc_nv), inputs */
     double *p;               /* [np + nd] parameter values, then derive's */
     double *u, *dudt;        /* [nu] inputs at the last time asked */
     double *u_const;         /* [nu] held values, where u_held */
     unsigned char *u_held;   /* [nu] */
-    double *M, *h, *a, *Mrel;             /* [n*n], [n], [n], [n] pivots / M_kk */
-    size_t *Mperm;           /* [n] M's pivot order (la_ldlt_factor) */
-    double *arow;            /* [n] the accelerations of a row (eomc_sim_outputs) */
-    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians */
-    double *col;             /* [n] one right-hand side of M y = b */
+    /* below, n is nq and the speeds' arrays have nv entries */
+    double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
+    size_t *Mperm;           /* [nv] M's pivot order (la_ldlt_factor) */
+    double *arow;            /* [max(nq, nv)] the accelerations of a row
+                              * (eomc_sim_outputs), an event's q */
+    double *dEdq, *dEdv, *dEdu, *dEdt;    /* residual Jacobians [nv*nq], [nv*nv], ... */
+    double *dqdq, *dqdv;     /* [nq*nq], [nq*nv] qdot_jacobian's (nv > 0) */
+    double *wtw, *wrel, *wzero;           /* [nv*nv], [nv], [nv]: sim_speeds_of's */
+    size_t *wperm;                        /* [nv] */
+    double *col;             /* [max(nq, nv)] one right-hand side of M y = b */
     double *fk;              /* [nc] f (scratch) */
     LaLu *mlu;               /* M, balanced, for its condition (sim_condition) */
-    double *cy, *cd;         /* [n + nc] its near-null direction, [n] the balance */
+    double *cy, *cd;         /* [nv + nc] its near-null direction, [nv] the balance */
     char *cwhat;             /* sim_condition_what's text */
     double pivot;            /* the smallest balanced pivot since sim_take_pivot */
     unsigned solves;         /* generated solves so far (PIVOT_EVERY) */
@@ -59,7 +65,7 @@ struct eomc_sim {
      * (choose_rows), again after the parameters change */
     Depend *dep;
     int chosen;
-    double *Bc, *ce;         /* [nc*n] B there, [nc] the rows' residuals (the watch) */
+    double *Bc, *ce;         /* [nc*nv] B there, [nc] the rows' residuals (the watch) */
     int *cl, *crow;          /* [nc] their levels, a list of rows */
 };
 
@@ -80,53 +86,64 @@ sim_derive(eomc_sim *s)
 eomc_sim *
 eomc_sim_alloc(const eomc_model *m)
 {
-    /* speeds that are no coordinate's rates (nv > 0): not run here yet */
-    if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1 || m->nv)
+    if (!m || m->abi != EOMC_ABI_VERSION || m->nq < 1 || m->nv < 0 ||
+        (m->nv > 0 && (!m->qdot || !m->v_names)) || (m->nquat > 0 && !m->quat))
         return NULL;
     eomc_sim *s = calloc(1, sizeof *s);
     if (!s)
         return NULL;
-    size_t n = (size_t)m->nq, nu = (size_t)m->nu, np = (size_t)m->np;
+    size_t n = (size_t)m->nq, nv = (size_t)eomc_nv(m), nu = (size_t)m->nu;
+    size_t np = (size_t)m->np, most = n > nv ? n : nv;
     s->m = m;
     s->n = m->nq;
+    s->nv = (int)nv;
     s->nu = m->nu;
     s->p = sim_zeros(np + (size_t)m->nd); /* the parameters, then derive's values */
     s->u = sim_zeros(nu);
     s->dudt = sim_zeros(nu);
     s->u_const = sim_zeros(nu);
     s->u_held = calloc(nu ? nu : 1, 1);
-    s->M = sim_zeros(n * n);
-    s->h = sim_zeros(n);
-    s->a = sim_zeros(n);
-    s->arow = sim_zeros(n);
-    s->Mrel = sim_zeros(n);
-    s->Mperm = calloc(n, sizeof *s->Mperm);
-    s->dEdq = sim_zeros(n * n);
-    s->dEdv = sim_zeros(n * n);
-    s->dEdu = sim_zeros(n * nu);
-    s->dEdt = sim_zeros(n);
-    s->col = sim_zeros(n);
+    s->M = sim_zeros(nv * nv);
+    s->h = sim_zeros(nv);
+    s->a = sim_zeros(nv);
+    s->arow = sim_zeros(most);
+    s->Mrel = sim_zeros(nv);
+    s->Mperm = calloc(nv, sizeof *s->Mperm);
+    s->dEdq = sim_zeros(nv * n);
+    s->dEdv = sim_zeros(nv * nv);
+    s->dEdu = sim_zeros(nv * nu);
+    s->dEdt = sim_zeros(nv);
+    s->dqdq = sim_zeros(m->nv > 0 ? n * n : 0);
+    s->dqdv = sim_zeros(m->nv > 0 ? n * nv : 0);
+    s->wtw = sim_zeros(m->nv > 0 ? nv * nv : 0);
+    s->wrel = sim_zeros(nv);
+    s->wzero = sim_zeros(nv);
+    s->wperm = calloc(nv, sizeof *s->wperm);
+    s->col = sim_zeros(most);
     s->fk = sim_zeros((size_t)m->nc);
-    s->mlu = la_lu_alloc(m->nq);
-    s->cy = sim_zeros(n + (size_t)m->nc);
-    s->cd = sim_zeros(n);
-    /* Room for the cause and every coordinate and velocity by name. */
+    s->mlu = la_lu_alloc((int)nv);
+    s->cy = sim_zeros(nv + (size_t)m->nc);
+    s->cd = sim_zeros(nv);
+    /* Room for the cause and every coordinate and speed by name. */
     s->errlen = 1024;
-    for (int i = 0; i < m->nq; i++)
-        s->errlen += 2 * (strlen(m->q_names[i]) + 32);
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < eomc_nx(m); i++)
+        s->errlen += strlen(state_name(m, i, name, sizeof name)) + 32;
     for (int k = 0; k < m->nc; k++)
-        s->errlen += strlen(m->c_names[k]) + strlen(m->q_names[m->c_dependent[k]]) + 8;
+        s->errlen += strlen(m->c_names[k]) +
+                     strlen(kkt_dependent_name(m, k, name, sizeof name)) + 8;
     s->err = calloc(s->errlen, 1);
     s->cwhat = calloc(s->errlen, 1);
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     s->dep = m->nc > 0 ? depend_alloc(m) : NULL;
-    s->Bc = sim_zeros((size_t)m->nc * n);
+    s->Bc = sim_zeros((size_t)m->nc * nv);
     s->ce = sim_zeros((size_t)m->nc);
     s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
     s->crow = calloc((size_t)m->nc + 1, sizeof *s->crow);
     if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
+        !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
         !s->Bc || !s->ce || !s->cl || !s->crow ||
         (m->nc > 0 && (!s->kkt || !s->proj || !s->dep))) {
@@ -146,7 +163,8 @@ eomc_sim_free(eomc_sim *s)
         return;
     void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
-                      s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow};
+                      s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow,
+                      s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
@@ -209,12 +227,14 @@ sim_no_jacobian(eomc_sim *s, const char *what)
                            "rebuild with `eomc build %s --jacobian auto`", what, s->m->name, s->m->spec);
 }
 
-/* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." */
+/* "t = T: CAUSE; state: q1 = .., q2 = .., q1' = .., q2' = .." (the speeds
+ * by their names) */
 int
 sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                   const char *fmt, ...)
 {
     size_t len = 0, cap = s->errlen;
+    char name[STATE_NAME_MAX];
     len += (size_t)snprintf(s->err, cap, "t = %.17g: ", t);
     va_list ap;
     va_start(ap, fmt);
@@ -222,13 +242,64 @@ sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
         len += (size_t)vsnprintf(s->err + len, cap - len, fmt, ap);
     va_end(ap);
     if (q && v)
-        for (int k = 0; k < 2 * s->n && len < cap; k++) {
-            int i = k % s->n;
-            len += (size_t)snprintf(s->err + len, cap - len, "%s%s%s = %.17g",
-                                    k ? ", " : "; state: ", s->m->q_names[i],
-                                    k < s->n ? "" : "'", k < s->n ? q[i] : v[i]);
-        }
+        for (int k = 0; k < s->n + s->nv && len < cap; k++)
+            len += (size_t)snprintf(s->err + len, cap - len, "%s%s = %.17g",
+                                    k ? ", " : "; state: ",
+                                    state_name(s->m, k, name, sizeof name),
+                                    k < s->n ? q[k] : v[k - s->n]);
     return EOMC_ENUMERIC;
+}
+
+void
+sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd)
+{
+    state_qdot(s->m, q, v, qd);
+}
+
+int
+sim_speeds_of(eomc_sim *s, const double *q, const double *qd, double *v)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nv = s->nv;
+    if (m->nv == 0 || !m->qdot_jacobian)
+        return -1;
+    m->qdot_jacobian(q, s->wzero, s->dqdq, s->dqdv); /* W = dq'/dv, whatever v */
+    const double *W = s->dqdv;
+    for (int a = 0; a < nv; a++) {
+        double b = 0;
+        for (int i = 0; i < n; i++)
+            b += W[i * nv + a] * qd[i];
+        v[a] = b;
+        for (int c = 0; c <= a; c++) {
+            double w = 0;
+            for (int i = 0; i < n; i++)
+                w += W[i * nv + a] * W[i * nv + c];
+            s->wtw[a * nv + c] = s->wtw[c * nv + a] = w;
+        }
+    }
+    if (la_ldlt_factor(s->wtw, nv, s->wrel, s->wperm) != 0)
+        return -1;
+    la_ldlt_solve(s->wtw, nv, s->wperm, v);
+    return 0;
+}
+
+int
+sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nv = s->nv;
+    if (m->nv == 0 || !m->qdot_jacobian)
+        return -1;
+    m->qdot_jacobian(x, x + n, s->dqdq, s->dqdv);
+    for (int i = 0; i < n; i++) {
+        double d = 0;
+        for (int j = 0; j < n; j++)
+            d += s->dqdq[i * n + j] * f[j];
+        for (int k = 0; k < nv; k++)
+            d += s->dqdv[i * nv + k] * f[n + k];
+        qdd[i] = d;
+    }
+    return 0;
 }
 
 /* The solves and projections told which rows depend_dropped leaves out. */
@@ -390,6 +461,11 @@ finite_sum(const double *x, int n)
 static int
 pivot_error(eomc_sim *s, double t, const double *q, const double *v, int k)
 {
+    char name[STATE_NAME_MAX];
+    if (s->m->nv > 0)
+        return sim_numeric_error(s, t, q, v, "mass matrix is singular or not positive "
+                                 "definite (pivot %d, speed %s)", k,
+                                 state_speed(s->m, k - 1, name, sizeof name));
     return sim_numeric_error(s, t, q, v,
                              "mass matrix is singular or not positive definite "
                              "(pivot %d, coordinate %s)", k, s->m->q_names[k - 1]);
@@ -420,13 +496,14 @@ kkt_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
     const char *names = kkt_names(s->kkt);
     const eomc_model *m = s->m;
     double fraction;
+    char dep[STATE_NAME_MAX];
     int c = kkt_vanished(s->kkt, &fraction);
     if (c >= 0 && rc != KKT_DEPENDENT)
         return sim_numeric_error(s, t, q, v, "the constraint %s (%s) degenerates here: "
                                  "its df/dq'' has fallen to %.2g of its largest size in the "
                                  "run (two of its roots in q'' merge, or it no longer "
                                  "constrains the motion)", m->c_names[c],
-                                 m->q_names[m->c_dependent[c]], fraction);
+                                 kkt_dependent_name(m, c, dep, sizeof dep), fraction);
     if (rc == KKT_SINGULAR || rc == KKT_DEPENDENT) {
         const unsigned char *drop = depend_dropped(s->dep);
         int nr = 0, dims;
@@ -465,14 +542,13 @@ static int
 choose_rows(eomc_sim *s, double t, const double *q, const double *v)
 {
     const eomc_model *m = s->m;
-    int n = s->n;
-    if (!sim_all_finite(q, n) || !sim_all_finite(v, n))
+    if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->nv))
         return EOMC_OK; /* the solve says so; chosen at the next state */
     s->chosen = 1;
     if (!m->c_affine)
         return EOMC_OK;
     sim_inputs_at(s, t);
-    memset(s->col, 0, (size_t)n * sizeof *s->col);
+    memset(s->col, 0, (size_t)s->nv * sizeof *s->col);
     m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
     if (depend_choose(s->dep, s->Bc, s->M) == DEPEND_DROPPED && m->eliminate) {
@@ -545,13 +621,13 @@ sim_dropped_watch(eomc_sim *s, double t, const double *q, const double *v)
 static double
 state_sum(const eomc_sim *s, double t, const double *q, const double *v)
 {
-    return t + finite_sum(q, s->n) + finite_sum(v, s->n) + finite_sum(s->u, s->nu);
+    return t + finite_sum(q, s->n) + finite_sum(v, s->nv) + finite_sum(s->u, s->nu);
 }
 
 static int
 inputs_finite(const eomc_sim *s, double t, const double *q, const double *v)
 {
-    return isfinite(t) && sim_all_finite(q, s->n) && sim_all_finite(v, s->n) &&
+    return isfinite(t) && sim_all_finite(q, s->n) && sim_all_finite(v, s->nv) &&
            sim_all_finite(s->u, s->nu);
 }
 
@@ -564,10 +640,11 @@ state_error(eomc_sim *s, double t, const double *q, const double *v)
 static int
 accel_error(eomc_sim *s, double t, const double *q, const double *v, const double *a)
 {
-    for (int i = 0; i < s->n; i++)
+    char name[STATE_NAME_MAX];
+    for (int i = 0; i < s->nv; i++)
         if (!isfinite(a[i]))
-            return sim_numeric_error(s, t, q, v, "acceleration %s'' is not finite",
-                                     s->m->q_names[i]);
+            return sim_numeric_error(s, t, q, v, "acceleration %s is not finite",
+                                     state_rate(s->m, i, name, sizeof name));
     return EOMC_OK; /* the sum overflowed, no entry did */
 }
 
@@ -579,7 +656,7 @@ accel_error(eomc_sim *s, double t, const double *q, const double *v, const doubl
 static int
 accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
 {
-    int n = s->n;
+    int n = s->nv;
     double in = state_sum(s, t, q, v);
     /* the pivot, for the condition watch, at every PIVOT_EVERY-th solve:
      * finding it costs a tenth of a small model's right-hand side */
@@ -608,7 +685,7 @@ int
 eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *a)
 {
     const eomc_model *m = s->m;
-    int n = s->n, k;
+    int n = s->nv, k;
     sim_inputs_at(s, t);
     if (!s->kkt && m->accel)
         return accel_own(s, t, q, v, a);
@@ -701,7 +778,7 @@ project_singular(eomc_sim *s, double t, const double *q, const double *v, int le
     int nr, dims;
     const int *rows = proj_rows(s->proj, level, &nr);
     sim_inputs_at(s, t);
-    memset(s->col, 0, (size_t)s->n * sizeof *s->col);
+    memset(s->col, 0, (size_t)s->nv * sizeof *s->col);
     s->m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
     const char *dep = dependent_rows(s, t, q, v, s->Bc, rows, nr, &dims);
     if (*dep)
@@ -723,20 +800,30 @@ eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigne
 {
     if (!s->proj)
         return EOMC_OK;
-    if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->n))
+    if (!sim_all_finite(q, s->n) || !sim_all_finite(v, s->nv))
         return sim_numeric_error(s, t, q, v, "the state is not finite");
     int level, rc = sim_choose_rows(s, t, q, v);
     if (rc != EOMC_OK)
         return rc;
     sim_inputs_at(s, t);
     rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
-    const char *what = level ? "velocities" : "positions";
+    const char *what = level ? state_speed_word(s->m, 1) : "positions";
     int held = 0;
-    for (int i = 0; hold && i < s->n; i++)
+    for (int i = 0; hold && i < (level ? s->nv : s->n); i++)
         held |= hold[level * s->n + i];
+    char qn[STATE_NAME_MAX], vn[STATE_NAME_MAX];
+    int hq, hv;
     switch (rc) {
     case PROJ_OK:
         return EOMC_OK;
+    case PROJ_HOLD:
+        proj_hold_conflict(s->proj, &hq, &hv);
+        return sim_usage_error(s, "cannot keep %s as it is while the speed %s, not held, "
+                               "moves it (with the other coordinates that speed moves): "
+                               "hold every coordinate a speed moves, a unit quaternion's "
+                               "four together, or none of them",
+                               state_name(s->m, hq, qn, sizeof qn),
+                               state_speed(s->m, hv, vn, sizeof vn));
     case PROJ_NOT_PD:
         return sim_numeric_error(s, t, q, v, "cannot project onto the constraints: "
                                  "the mass matrix is not positive definite%s",
@@ -846,7 +933,7 @@ double
 sim_condition(eomc_sim *s, double t, const double *q, const double *v)
 {
     const eomc_model *m = s->m;
-    int n = s->n;
+    int n = s->nv;
     if (s->kkt)
         return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK ? kkt_condition(s->kkt) : NAN;
     sim_inputs_at(s, t);
@@ -860,12 +947,15 @@ sim_condition(eomc_sim *s, double t, const double *q, const double *v)
 }
 
 /* "the mass matrix (coordinates th1, th2)", "the constrained system
- * (coordinates x1; constraints rod1, rod2)": each part only if any. */
+ * (coordinates x1; constraints rod1, rod2)": each part only if any (the
+ * speeds by their names, "(speeds root_wx, ...", where they are not the
+ * rates). */
 const char *
 sim_condition_what(eomc_sim *s)
 {
     const eomc_model *m = s->m;
-    int n = s->n;
+    int n = s->nv;
+    char name[STATE_NAME_MAX];
     if (s->kkt)
         kkt_near_null(s->kkt, s->cy);
     else
@@ -873,10 +963,12 @@ sim_condition_what(eomc_sim *s)
     size_t len = s->errlen, at = (size_t)snprintf(s->cwhat, len, "%s",
                                                  s->kkt ? "the constrained system" :
                                                           "the mass matrix");
-    const char *open = " (coordinates ";
+    const char *open = m->nv > 0 ? " (speeds " : " (coordinates ";
     for (int i = 0; i < n && at < len; i++)
         if (fabs(s->cy[i]) >= INVOLVED)
-            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", open, m->q_names[i]),
+            at += (size_t)snprintf(s->cwhat + at, len - at, "%s%s", open,
+                                   m->nv > 0 ? state_speed(m, i, name, sizeof name)
+                                             : m->q_names[i]),
                 open = ", ";
     const char *part = open[0] == ',' ? "; constraints " : " (constraints ";
     for (int c = 0; s->kkt && !m->eliminate && c < m->nc && at < len; c++)
@@ -911,12 +1003,12 @@ sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B)
 {
     const eomc_model *m = s->m;
     int n = s->n;
-    if (!sim_all_finite(x, 2 * n))
+    if (!sim_all_finite(x, n + s->nv))
         return -1;
     if (!m->c_affine && eomc_sim_accel(s, t, x, x + n, s->a) != EOMC_OK)
         return -1;
     if (m->c_affine)
-        memset(s->a, 0, (size_t)n * sizeof *s->a);
+        memset(s->a, 0, (size_t)s->nv * sizeof *s->a);
     sim_inputs_at(s, t);
     m->constraint(t, x, x + n, s->a, s->p, s->u, s->fk, B);
     return 0;
@@ -961,8 +1053,8 @@ eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1)
     int n = s->n;
     /* the values it sets are computed from the state before: a copy */
     memcpy(s->arow, x, (size_t)n * sizeof *x);
-    memcpy(s->col, x + n, (size_t)n * sizeof *x);
-    memmove(x1, x, 2 * (size_t)n * sizeof *x);
+    memcpy(s->col, x + n, (size_t)s->nv * sizeof *x);
+    memmove(x1, x, (size_t)(n + s->nv) * sizeof *x);
     if (m->ev_action[k] != EOMC_EVENT_SET || !m->event_set)
         return;
     sim_inputs_at(s, t);
@@ -980,18 +1072,44 @@ eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, doub
     return EOMC_OK;
 }
 
-/* dq''/dx = -M^-1 [dE/dq, dE/dv] and dq''/dt = -M^-1 (dE/dt + dE/du u'),
- * each column solved with the factored M. */
+/* The rows of q' in dx'/dx [N x N] and dx'/dt: [0, I] when the speeds
+ * are the rates, else [dq'/dq, dq'/dv] of the kinematic equation (q' has
+ * no t of its own). */
+static int
+rates_jacobian(eomc_sim *s, const double *x, double *dfdx, double *dfdt)
+{
+    const eomc_model *m = s->m;
+    int n = s->n, nv = s->nv, N = n + nv;
+    if (m->nv > 0 && !m->qdot_jacobian)
+        return sim_usage_error(s, "the Jacobian of %s's equations needs that of its "
+                               "kinematic equation q' = W(q) v (qdot_jacobian), which it "
+                               "was built without", m->name);
+    if (m->nv > 0 && dfdx)
+        m->qdot_jacobian(x, x + n, s->dqdq, s->dqdv);
+    for (int i = 0; dfdx && i < n; i++)
+        for (int j = 0; j < N; j++)
+            dfdx[i * N + j] = m->nv == 0 ? j == n + i
+                              : j < n    ? s->dqdq[i * n + j]
+                                         : s->dqdv[i * nv + j - n];
+    for (int i = 0; dfdt && i < n; i++)
+        dfdt[i] = 0;
+    return EOMC_OK;
+}
+
+/* dv'/dx = -M^-1 [dE/dq, dE/dv] and dv'/dt = -M^-1 (dE/dt + dE/du u'),
+ * each column solved with the factored M; the rows of q' above them. */
 int
 eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
 {
     const eomc_model *m = s->m;
-    int n = s->n, nu = s->nu, N = 2 * n;
+    int n = s->n, nv = s->nv, nu = s->nu, N = n + nv;
     const double *q = x, *v = x + n;
     if (!m->jacobian)
         return sim_no_jacobian(s, "eomc_sim_jacobian");
     int rc = eomc_sim_accel(s, t, q, v, s->a);
     if (rc)
+        return rc;
+    if ((rc = rates_jacobian(s, x, dfdx, dfdt)) != EOMC_OK)
         return rc;
     if (s->kkt) {
         rc = kkt_jacobian(s->kkt, t, x, s->p, s->u, s->dudt, s->a, dfdx, dfdt);
@@ -999,32 +1117,26 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
     }
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-    int k = la_ldlt_factor(s->M, n, s->Mrel, s->Mperm);
+    int k = la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
     if (k)
         return pivot_error(s, t, q, v, k);
-    if (dfdx) {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < N; j++)
-                dfdx[i * N + j] = j == n + i;
+    if (dfdx)
         for (int j = 0; j < N; j++) {
-            const double *D = j < n ? s->dEdq : s->dEdv;
-            for (int i = 0; i < n; i++)
-                s->col[i] = D[i * n + j % n];
-            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
-            for (int i = 0; i < n; i++)
+            for (int i = 0; i < nv; i++)
+                s->col[i] = j < n ? s->dEdq[i * n + j] : s->dEdv[i * nv + j - n];
+            la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
+            for (int i = 0; i < nv; i++)
                 dfdx[(n + i) * N + j] = s->col[i];
         }
-    }
     if (dfdt) {
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < nv; i++) {
             double b = s->dEdt[i];
             for (int k2 = 0; k2 < nu; k2++)
                 b += s->dEdu[i * nu + k2] * s->dudt[k2];
             s->col[i] = b;
-            dfdt[i] = 0;
         }
-        la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
-        memcpy(dfdt + n, s->col, (size_t)n * sizeof *dfdt);
+        la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
+        memcpy(dfdt + n, s->col, (size_t)nv * sizeof *dfdt);
     }
     return EOMC_OK;
 }
@@ -1032,14 +1144,14 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
 int
 sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
 {
-    int n = s->n, nu = s->nu, N = 2 * n;
+    int n = s->n, nv = s->nv, nu = s->nu, N = n + nv;
     if (nu == 0)
         return 0;
-    if (!s->kkt) { /* dq''/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
+    if (!s->kkt) { /* dv'/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
         for (int k = 0; k < nu; k++) {
-            for (int i = 0; i < n; i++)
+            for (int i = 0; i < nv; i++)
                 s->col[i] = s->dEdu[i * nu + k];
-            la_ldlt_solve_neg(s->M, n, s->Mperm, s->col);
+            la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
             for (int i = 0; i < N; i++)
                 B[i * nu + k] = i < n ? 0 : s->col[i - n];
         }

@@ -19,9 +19,21 @@ double *sim_zeros(size_t n);
 int sim_all_finite(const double *x, int n);
 /* Seconds of the process's CPU time (cpu), or of a monotonic wall clock. */
 double sim_seconds(int cpu);
-/* "t = T: CAUSE; state: q1 = .., q1' = .."; returns EOMC_ENUMERIC. */
+/* "t = T: CAUSE; state: q1 = .., q1' = .." (each speed by its name);
+ * returns EOMC_ENUMERIC. */
 int sim_numeric_error(eomc_sim *s, double t, const double *q, const double *v,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+/* q' = W(q) v into qd [nq] (v itself when the speeds are the rates). */
+void sim_qdot(const eomc_sim *s, const double *q, const double *v, double *qd);
+/* q'' = dq'/dq q' + dq'/dv v' into qdd [nq] at x [nx] with x' = f [nx]
+ * (qdot_jacobian); 0, or -1 when the model has no qdot_jacobian.  For a
+ * model whose speeds are not the rates (dense output). */
+int sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd);
+/* The speeds v [nv] whose q' = W(q) v is nearest qd [nq] (least squares:
+ * W^T W v = W^T qd, W from qdot_jacobian); 0, or -1 without
+ * qdot_jacobian or where W^T W is not positive definite.  For a model
+ * whose speeds are not the rates (dense output). */
+int sim_speeds_of(eomc_sim *s, const double *q, const double *qd, double *v);
 /* The message of a usage error; returns EOMC_EUSAGE. */
 int sim_usage_error(eomc_sim *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
@@ -36,7 +48,7 @@ const double *sim_inputs_at(eomc_sim *s, double t);
 const double *sim_p(const eomc_sim *s);
 /* EOMC_STABILIZE_... as eomc_sim_stabilize set it. */
 int sim_stabilize_method(const eomc_sim *s);
-/* B = dx'/du [2nq x nu] at (t, x), row-major, right after
+/* B = dx'/du [nx x nu] at (t, x), row-major, right after
  * eomc_sim_jacobian at the same (t, x) (M as it factored it); 0, or -1
  * when the constrained solve fails. */
 int sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B);
@@ -54,7 +66,7 @@ int sim_vanished(const eomc_sim *s, double *fraction);
 void sim_baumgarte(const eomc_sim *s, int c, double *wv, double *wp);
 /* Whether the model has a holonomic or first-order constraint. */
 int sim_has_levels(const eomc_sim *s);
-/* The rows of B = df/dq'' at (t, x) into B [nc*n]; -1 when x is not
+/* The rows of B = df/dq'' at (t, x) into B [nc*nv]; -1 when x is not
  * finite or the accelerations (needed when f is not affine) fail. */
 int sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B);
 /* The constraint rows the solves use (model/depend.c): chosen where the

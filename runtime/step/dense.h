@@ -20,18 +20,30 @@
 
 typedef struct Dense Dense;
 
-/* For states of n coordinates (x of 2n); NULL when memory runs out. */
-Dense *dense_alloc(int n);
+/* For states of n coordinates and their rates (x of 2n, nv = 0), or of n
+ * coordinates and nv speeds that are not their rates (x of n + nv: each
+ * entry is then interpolated from its value and rate alone, dense.c);
+ * NULL when memory runs out. */
+Dense *dense_alloc(int n, int nv);
 void dense_free(Dense *d);
+/* With speeds of their own: how to turn the coordinates' rates qd [n] at
+ * q into speeds v [nv] (least squares, v = W(q)^+ qd; 0, or nonzero where
+ * it cannot), for a speed interpolated as the derivative of the
+ * coordinates' polynomials where that is estimated better (dense.c). */
+void dense_set_speeds(Dense *d, int (*to_speeds)(void *ctx, const double *q,
+                                                  const double *qd, double *v), void *ctx);
 /* Forget every node (a new run). */
 void dense_clear(Dense *d);
-/* A node at t, after the last one: x [2n] and x' [2n]. */
-void dense_push(Dense *d, double t, const double *x, const double *dxdt);
+/* A node at t, after the last one: x [N] and x' [N] (N = 2n, or n + nv);
+ * with speeds of their own, qdd [n] the coordinates' second derivatives
+ * there, or NULL when they cannot be had (then the coordinates too are
+ * interpolated from their values and rates alone). */
+void dense_push(Dense *d, double t, const double *x, const double *dxdt, const double *qdd);
 /* Whether the value at t is settled: t lies between stored nodes and the
  * nodes that decide it are all there (or `final`: no more will come). */
 int dense_ready(const Dense *d, double t, int final);
-/* The state at t (dense_ready), into x [2n]; exactly a node's state at
- * its own time.  err [2n]: an estimate of its error, entry by entry (the
+/* The state at t (dense_ready), into x [N]; exactly a node's state at
+ * its own time.  err [N]: an estimate of its error, entry by entry (the
  * difference from the interpolant of one node less, which is one order
  * less accurate; infinite with a single node). */
 void dense_eval(Dense *d, double t, int final, double *x, double *err);

@@ -19,6 +19,8 @@
  *    state and starts the integration again from there (check_events);
  *  - the watch over the adaptive steps (stepwatch.h): they stop when
  *    they collapse or grind;
+ *  - after every accepted step, each unit quaternion renormalized
+ *    (keep_unit), its drift measured;
  *  - Taylor's method (taylor.h) in place of GSL's stepper: a step is the
  *    series through its start, to the length the series allows, and its
  *    polynomial is the step's dense output, for the events and the rows.
@@ -33,6 +35,7 @@
  */
 #include "evolve.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 #include "stepevents.h"
 #include "stepwatch.h"
 #include "dense.h"
@@ -69,7 +72,9 @@ typedef struct Run {
     const eomc_model *m;          /* s's */
     const eomc_run_opts *o;
     eomc_stats *st;
-    int n, N;                     /* coordinates, state size 2n */
+    int n, nv, N;                 /* coordinates, speeds, state size n + nv */
+    int multistep;                /* the stepper continues from its own history
+                                   * (msadams, msbdf), not from the state */
     gsl_odeiv2_system sys;
     gsl_odeiv2_driver *d;         /* step, control; d->e is not used */
     gsl_odeiv2_step *step;        /* the stepper: d->s, or fixed.c's */
@@ -123,7 +128,7 @@ rhs(double t, const double *x, double *dxdt, void *ctx)
         r->o->on_progress(r->o->progress_ctx, t);
     if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
         return GSL_EBADFUNC;
-    memcpy(dxdt, x + n, (size_t)n * sizeof *dxdt);
+    sim_qdot(r->s, x, x + n, dxdt);
     return GSL_SUCCESS;
 }
 
@@ -229,7 +234,7 @@ enum { BISECTIONS = 60 };
 static int
 reversed_row(const Run *r)
 {
-    int n = r->n;
+    int n = r->nv;
     const unsigned char *drop = sim_dropped_rows(r->s);
     for (int k = 0; k < r->m->nc; k++)
         if ((!drop || !drop[k]) && la_dot(r->B0 + k * n, r->B1 + k * n, n) <= 0)
@@ -248,7 +253,7 @@ row_norm(const double *B, int k, int n)
 static int
 locate_degeneracy(Run *r, int k, double t0, double t1)
 {
-    int n = r->n, N = r->N;
+    int n = r->nv, N = r->N;
     double *Bk0 = r->B0 + k * n, ends = fmax(row_norm(r->B0, k, n), row_norm(r->B1, k, n));
     double lo = 0, hi = t1 - t0, small = INFINITY;
     for (int it = 0; it < BISECTIONS; it++) {
@@ -275,7 +280,7 @@ locate_degeneracy(Run *r, int k, double t0, double t1)
             GSL_SUCCESS)
         r->reached = t0 + lo;
     gsl_odeiv2_step_reset(r->step);
-    sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + n, "the constraint %s degenerates: "
+    sim_numeric_error(r->s, t0 + lo, r->xt, r->xt + r->n, "the constraint %s degenerates: "
                       "its row of B = df/dq'' vanishes here (it reverses direction), so "
                       "the accelerations are no longer determined", r->m->c_names[k]);
     /* the step through it is not taken: the run ends at its start, the last
@@ -373,6 +378,46 @@ watch_invariant(Run *r)
     st->monitor_seconds += sim_seconds(0) - c0;
 }
 
+/* A step's change of |e| is judged against what its error estimate allows
+ * plus this many units of the rounding of |e| itself (a step at a tight
+ * tolerance has an estimate below |e|'s rounding). */
+#define QUAT_ROUNDING 8.0
+
+/* After an accepted step to r->t: each unit quaternion back to length 1,
+ * its drift ||e| - 1| before that measured (eomc_stats: quat_drift, and
+ * quat_ratio against the step's own error estimate, r->yerr, for the
+ * one-step methods, whose step started from |e| = 1), and x' at the end
+ * evaluated again when that moved the state (so that the next step and
+ * the dense output start from the state kept).  GSL_SUCCESS or the
+ * right-hand side's failure. */
+static int
+keep_unit(Run *r)
+{
+    const eomc_model *m = r->m;
+    eomc_stats *st = r->st;
+    if (m->nquat == 0)
+        return GSL_SUCCESS;
+    for (int j = 0; j < m->nquat && !r->multistep && r->o->h_fixed <= 0; j++) {
+        const int *e = m->quat + 4 * j;
+        double moved = fabs(state_quat_norm(m, r->x, j) - state_quat_norm(m, r->y0, j));
+        double est = 0;
+        for (int i = 0; i < 4; i++)
+            est += r->yerr[e[i]] * r->yerr[e[i]];
+        est = sqrt(est) + QUAT_ROUNDING * DBL_EPSILON;
+        st->quat_ratio = fmax(st->quat_ratio, moved / est);
+    }
+    memcpy(r->xt, r->x, (size_t)r->N * sizeof *r->x);
+    int which;
+    double drift = state_normalize(m, r->x, &which);
+    if (drift > st->quat_drift) {
+        st->quat_drift = drift, st->quat_t = r->t;
+        st->quat_name = m->q_names[m->quat[4 * which]];
+    }
+    if (!memcmp(r->xt, r->x, (size_t)r->n * sizeof *r->x))
+        return GSL_SUCCESS;
+    return rhs(r->t, r->x, r->f1, r);
+}
+
 /* After each accepted step from t0: watch the conditioning; for a
  * constrained model, check that no constraint degenerated, measure the
  * drift, and project when asked.  A projected state is not the one the
@@ -385,6 +430,9 @@ after_step(Run *r, double t0)
     eomc_sim *s = r->s;
     int n = r->n;
     double *x = r->x, t = r->t;
+    int rc = keep_unit(r);
+    if (rc != GSL_SUCCESS)
+        return rc;
     watch_condition(r);
     if (r->m->nc == 0) {
         watch_invariant(r);
@@ -417,7 +465,7 @@ after_step(Run *r, double t0)
             res = sim_level_residual(s, t, x, x + n);
             if (sim_constraint_rows(s, t, x, r->B1) != 0)
                 return GSL_EBADFUNC;
-            int rc = rhs(t, x, r->f1, r);
+            rc = rhs(t, x, r->f1, r);
             if (rc != GSL_SUCCESS)
                 return rc;
             c0 = sim_seconds(0);
@@ -821,7 +869,7 @@ steppers_alloc(Run *r, const Method *m)
 static int
 run_alloc(Run *r, const Method *m)
 {
-    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->n;
+    size_t N = (size_t)r->N, nB = (size_t)r->m->nc * (size_t)r->nv;
     r->sys = (gsl_odeiv2_system){rhs, jac, N, r};
     double **arrays[] = {&r->f0, &r->f1, &r->y0, &r->yerr, &r->xt, &r->xerr, &r->B0,
                          &r->B1, &r->fr, &r->fs, &r->fs2};
@@ -852,17 +900,19 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
     if (rc)
         return rc;
     const eomc_model *m = eomc_sim_model(s);
-    int n = m->nq;
-    if (!sim_all_finite(x, 2 * n) || !sim_all_finite(eomc_sim_params(s), m->np))
+    int n = m->nq, nv = eomc_nv(m);
+    if (!sim_all_finite(x, n + nv) || !sim_all_finite(eomc_sim_params(s), m->np))
         return sim_numeric_error(s, o->t0, x, x + n,
                                  "the initial state or a parameter is not finite");
-    *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .N = 2 * n, .t = o->t0, .x = x,
-               .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
-               .cond_pivot = INFINITY};
+    const Method *method = method_find(o->method);
+    *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .nv = nv, .N = n + nv, .t = o->t0,
+               .x = x, .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
+               .cond_pivot = INFINITY,
+               .multistep = !method->fixed && *method->adaptive != NULL};
     st->stop_event = -1;
     st->reset_event = -1;
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
-    return run_alloc(r, method_find(o->method));
+    return run_alloc(r, method);
 }
 
 /* The start of a run: the equations at t0 first (a model that cannot be
@@ -904,7 +954,7 @@ struct eomc_evolve {
     Run r;
     eomc_run_opts o;     /* eomc_evolve_alloc's copy: r.o */
     eomc_stats st;       /* r.st */
-    double *x;           /* [2nq] the state: r.x (NULL: the driver's) */
+    double *x;           /* [nx] the state: r.x (NULL: the driver's) */
     int over;            /* t_end reached, a stop event, or a failure */
 };
 
@@ -997,7 +1047,7 @@ evolve_error(eomc_evolve *e, int status)
 eomc_evolve *
 eomc_evolve_alloc(eomc_sim *s, const eomc_run_opts *o, const double *x0)
 {
-    size_t N = 2 * (size_t)eomc_sim_model(s)->nq;
+    size_t N = (size_t)eomc_nx(eomc_sim_model(s));
     eomc_evolve *e = calloc(1, sizeof *e);
     double *x = sim_zeros(N);
     if (!e || !x) {
@@ -1062,7 +1112,7 @@ eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
     *d = (eomc_step){.nx = r->N, .t0 = tk.t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
                      .x1 = r->x, .f1 = r->f0, .event = tk.ev != EVOLVE_NONE ? tk.fired : -1,
                      .last = tk.ev == EVOLVE_STOP || !(r->t < e->o.t_end),
-                     .series = tk.series};
+                     .series = tk.series, .model = r->m};
     e->over = d->last;
     return EOMC_OK;
 }
@@ -1075,4 +1125,6 @@ eomc_step_eval(const eomc_step *d, double t, double *x)
         return;
     }
     dense_cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);
+    if (d->model)
+        state_normalize(d->model, x, NULL);
 }

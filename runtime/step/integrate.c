@@ -11,10 +11,13 @@
  *  - a `set` event's reset starts the interpolant afresh, and a `stop`
  *    event ends the rows with one at the event itself;
  *  - Taylor's method's rows are its steps' own polynomials (taylor.h),
- *    no interpolant and no side step.
+ *    no interpolant and no side step;
+ *  - a row's unit quaternions are renormalized, as the steps' ends are
+ *    (the exact motion has |e| = 1; the interpolant is off it by its error).
  */
 #include "evolve.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 #include "dense.h"
 #include "taylor.h"
 
@@ -35,10 +38,11 @@ typedef struct Driver {
     eomc_sim *s;
     const eomc_run_opts *o;
     eomc_stats *st;
-    int n, N;                     /* coordinates, state size 2n */
+    int n, N;                     /* coordinates, state size nq + nv */
     double *x;                    /* the current state (the caller's array) */
     Dense *dense;
     double *xrow, *erow;          /* an interpolated row, its error estimate */
+    double *qdd;                  /* [nq] a node's q'' (speeds of their own), or NULL */
     long k, nrows;                /* the next row, and how many there are */
     eomc_row_fn row;
     void *ctx;
@@ -116,8 +120,10 @@ emit_rows(Driver *r, int final)
             if (rc != GSL_SUCCESS)
                 return rc;
         }
-        /* projected steps, projected rows: the interpolant is only as close
-         * to the constraints as it is to the motion */
+        /* renormalized steps, renormalized rows; projected steps, projected
+         * rows: the interpolant is only as close to the unit quaternions and
+         * the constraints as it is to the motion */
+        state_normalize(eomc_sim_model(r->s), r->xrow, NULL);
         if (sim_stabilize_method(r->s) == EOMC_STABILIZE_PROJECT &&
             eomc_sim_project(r->s, t, r->xrow, r->xrow + r->n) != EOMC_OK)
             return GSL_EBADFUNC;
@@ -166,6 +172,22 @@ finish_at_event(Driver *r, const EvolveStep *tk)
 
 /* ---- the loop ---- */
 
+/* Speeds from the coordinates' rates, for the interpolant (dense.h). */
+static int
+to_speeds(void *ctx, const double *q, const double *qd, double *v)
+{
+    return sim_speeds_of(ctx, q, qd, v);
+}
+
+/* A node of the interpolant at (t, x) with x' = f: with speeds of their
+ * own, the coordinates' q'' too, where the model can give it. */
+static void
+push_node(Driver *r, double t, const double *x, const double *f)
+{
+    int have = r->qdd && sim_qddot(r->s, x, f, r->qdd) == 0;
+    dense_push(r->dense, t, x, f, have ? r->qdd : NULL);
+}
+
 /* Integrate to t_end by evolve_step, passing rows as they are settled:
  * the step ends are the interpolant's nodes (dense.h). */
 static int
@@ -186,11 +208,11 @@ march(Driver *r)
         if (tk.restarted) /* the nodes before the reset are another motion's */
             dense_clear(r->dense);
         if (tk.restarted && tk.taken)
-            dense_push(r->dense, tk.t0, tk.x0, tk.f0);
+            push_node(r, tk.t0, tk.x0, tk.f0);
         if (tk.taken)
-            dense_push(r->dense, tk.t1, tk.x1, tk.f1);
+            push_node(r, tk.t1, tk.x1, tk.f1);
         else if (!isnan(tk.reached) && !tk.restarted)
-            dense_push(r->dense, tk.reached, tk.xr, tk.fr);
+            push_node(r, tk.reached, tk.xr, tk.fr);
         if (rc != GSL_SUCCESS)
             return rc;
         if (tk.ev == EVOLVE_STOP)
@@ -209,6 +231,7 @@ driver_free(Driver *r)
     dense_free(r->dense);
     free(r->xrow);
     free(r->erow);
+    free(r->qdd);
 }
 
 /* The first row: the initial state, as it is, after the equations at t0
@@ -232,19 +255,28 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     eomc_stats local;
     if (!st)
         st = &local;
-    int n = eomc_sim_model(s)->nq;
-    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = 2 * n, .x = x, .row = row,
+    const eomc_model *m = eomc_sim_model(s);
+    int n = m->nq;
+    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = eomc_nx(m), .x = x, .row = row,
                 .ctx = ctx};
+    /* a unit quaternion starts at length 1: the motion keeps |e|, and the
+     * steps renormalize it (a start off 1 is the caller's to warn about:
+     * eomc_main does) */
+    if (sim_all_finite(x, r.N))
+        state_normalize(m, x, NULL);
     /* the constraint rows this run's solves use, chosen where it starts */
     int rc = sim_start_rows(s, o->t0, x, x + n);
     if (rc == EOMC_OK)
         rc = evolve_open(&r.e, s, o, x, st);
     if (rc == EOMC_OK) {
         r.nrows = eomc_run_rows(o);
-        r.dense = dense_alloc(n);
+        r.dense = dense_alloc(n, m->nv > 0 ? m->nv : 0);
         r.xrow = sim_zeros((size_t)r.N);
         r.erow = sim_zeros((size_t)r.N);
-        if (!r.dense || !r.xrow || !r.erow)
+        r.qdd = m->nv > 0 && m->qdot_jacobian ? sim_zeros((size_t)n) : NULL;
+        if (r.dense && r.qdd)
+            dense_set_speeds(r.dense, to_speeds, s);
+        if (!r.dense || !r.xrow || !r.erow || (m->nv > 0 && m->qdot_jacobian && !r.qdd))
             rc = sim_usage_error(s, "out of memory setting up %s", o->method);
     }
     if (rc != EOMC_OK) {
@@ -254,7 +286,7 @@ eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn r
     double c0 = sim_seconds(1);
     rc = driver_start(&r);
     if (rc == EOMC_OK && r.nrows > 1) {
-        dense_push(r.dense, o->t0, x, evolve_rate(r.e));
+        push_node(&r, o->t0, x, evolve_rate(r.e));
         evolve_begin(r.e);
         int status = march(&r);
         /* the rows up to the last step reached stand, also after a failure */

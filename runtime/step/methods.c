@@ -84,6 +84,10 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
         return EOMC_EUSAGE;
     if (m->jacobian && !eomc_sim_model(s)->jacobian)
         return sim_no_jacobian(s, o->method);
+    if (m->jacobian && eomc_sim_model(s)->nv > 0 && !eomc_sim_model(s)->qdot_jacobian)
+        return sim_usage_error(s, "%s needs the Jacobian of %s's kinematic equation q' = "
+                               "W(q) v (qdot_jacobian), which it was built without",
+                               o->method, eomc_sim_model(s)->name);
     if (!isfinite(o->t0) || !isfinite(o->t_end) || o->t_end < o->t0)
         return sim_usage_error(s, "the end time %g is before the start time %g", o->t_end,
                                o->t0);

@@ -17,6 +17,7 @@
  */
 #include "stepevents.h"
 #include "model/simimpl.h"
+#include "model/state.h"
 #include "events.h"
 #include "dense.h"
 
@@ -44,7 +45,7 @@ struct StepEvents {
     const eomc_run_opts *o;
     eomc_stats *st;
     StepevMotion mo;
-    int n, N;                     /* coordinates, state size 2n */
+    int n, N;                     /* coordinates, state size nq + nv */
     int ne;                       /* events */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -78,7 +79,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
         return NULL;
     const eomc_model *m = eomc_sim_model(s);
     *v = (StepEvents){.s = s, .m = m, .o = o, .st = st, .mo = motion, .n = m->nq,
-                      .N = 2 * m->nq, .ne = m->nevent, .last_set = -INFINITY};
+                      .N = eomc_nx(m), .ne = m->nevent, .last_set = -INFINITY};
     double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce, &v->te2, &v->gd0,
                          &v->gd1, &v->xs, &v->fs, &v->gs};
     size_t ne = (size_t)v->ne, nc = (size_t)m->nc, N = (size_t)v->N;
@@ -327,6 +328,8 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             memcpy(v->xe, x1, (size_t)v->N * sizeof *v->xe);
         else if (v->mo.side(v->mo.ctx, t0, sp->x0, sp->f0, t, v->xe) != GSL_SUCCESS)
             return GSL_EBADFUNC;
+        else /* a state of the motion, as a row is: its unit quaternions renormalized */
+            state_normalize(m, v->xe, NULL);
         int rc = v->o->on_event ? v->o->on_event(v->o->event_ctx, k, t, v->xe) : EOMC_OK;
         if (rc != EOMC_OK) {
             *hit = (StepevHit){.k = -1, .status = rc, .t = t, .x = v->xe};
@@ -392,6 +395,8 @@ stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
     int dir = m->ev_direction[k];
     double arrived = dir ? g_rate(v, k, t, x, f) : 0;
     eomc_sim_event_set(s, k, t, x, x);
+    /* a unit quaternion set is one, whatever rounding the values carry */
+    state_normalize(m, x, NULL);
     if (!sim_all_finite(x, v->N)) {
         sim_numeric_error(s, t, x, x + v->n, "event %s set a value that is not finite",
                           m->ev_names[k]);

@@ -49,7 +49,7 @@ typedef struct StepevHit {
     int status;          /* on_event's nonzero status, which stops the run at
                           * (t, x) instead; else EOMC_OK */
     double t;
-    const double *x;     /* [2nq] the state there: this layer's, valid until
+    const double *x;     /* [nx] the state there: this layer's, valid until
                           * its next call */
 } StepevHit;
 
@@ -74,8 +74,8 @@ void stepev_start(StepEvents *v, double t, const double *x);
  * after it in the same step never happened.  GSL_SUCCESS or a failure
  * status. */
 int stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit);
-/* Event k's reset at t, of x [2nq] in place, after the rows up to it were
- * written; f [2nq] is x' there before it and becomes x' after.  The event
+/* Event k's reset at t, of x [nx] in place, after the rows up to it were
+ * written; f [nx] is x' there before it and becomes x' after.  The event
  * is held until its g leaves zero, unless the reset passes through it.
  * GSL_SUCCESS or a failure status. */
 int stepev_reset(StepEvents *v, int k, double t, double *x, double *f);

@@ -46,6 +46,7 @@
  * time rescales h with them (with atol 0, or atol rescaled too).
  */
 #include "taylor.h"
+#include "model/state.h"
 #include "model/simimpl.h"
 #include "model/linalg.h"
 #include "polyroots.h"
@@ -103,6 +104,13 @@ taylor_check(eomc_sim *s, const eomc_run_opts *o)
     if (!m->taylor)
         return sim_usage_error(s, "--method taylor: %s has no Taylor series: %s", m->name,
                                m->taylor_why ? m->taylor_why : "it was generated without them");
+    /* the series carry q' as the speeds: a model whose speeds are not the
+     * rates (a unit quaternion's angular velocity) has none, whatever it says */
+    if (m->nv > 0)
+        return sim_usage_error(s, "--method taylor: %s's speeds are not its coordinates' "
+                               "rates (%s is a speed of its own), which Taylor's method "
+                               "does not take; choose another method", m->name,
+                               state_own_speed(m));
     for (int k = 0; k < m->nu; k++) {
         double v;
         if (!eomc_sim_input_held(s, k, &v))

@@ -283,3 +283,55 @@ def test_taylor_from_python_is_the_cli_to_the_bit(pendulum):
     assert all(same_bits(r[c], rows[:, j]) for j, c in enumerate(columns))
     # its order from the tolerance (docs/accuracy.md), and rows off its polynomials
     assert r.stats["order_mean"] == 18 and r.stats["side_steps"] == 0
+
+
+# ---- speeds that are not the coordinates' rates (a free body) ----
+
+# tests/runtime/freebody.c as a model's library (tests/runtime/meson.build):
+# q = (root_x, root_y, root_z, root_e0 .. root_e3), v = (root_x', root_y',
+# root_z', root_wx, root_wy, root_wz), p = (m, I1, I2, I3, g) = (2, 1, 2, 3, 9.81)
+FREEBODY = os.environ.get("EOMC_TEST_FREEBODY")
+needs_freebody = pytest.mark.skipif(not FREEBODY, reason="EOMC_TEST_FREEBODY not set "
+                                    "(meson test sets it)")
+
+
+@needs_freebody
+def test_a_free_body_has_speeds_of_its_own():
+    m = eomc.load(FREEBODY)
+    assert m.coordinates == ["root_x", "root_y", "root_z", "root_e0", "root_e1", "root_e2",
+                             "root_e3"]
+    assert m.speeds == ["root_x'", "root_y'", "root_z'", "root_wx", "root_wy", "root_wz"]
+    assert "and 6 speeds" in repr(m)
+    q, v = m.initial()
+    assert q.shape == (7,) and v.shape == (6,)
+    # v' by Euler's equations and gravity, computed here
+    In, g = np.array([1.0, 2.0, 3.0]), 9.81
+    w = np.array([0.5, -1.0, 2.0])
+    want = np.array([0, 0, -g, -(In[2] - In[1]) * w[1] * w[2] / In[0],
+                     -(In[0] - In[2]) * w[0] * w[2] / In[1],
+                     -(In[1] - In[0]) * w[0] * w[1] / In[2]])
+    a = m.accel(q, np.concatenate([v[:3], w]))
+    assert a.shape == (6,) and np.max(np.abs(a - want)) <= 4 * np.finfo(float).eps * g
+    with pytest.raises(eomc.UsageError, match="root_wx"):
+        m.accel(q, np.zeros(7))  # v has the speeds' 6 entries, not the coordinates' 7
+
+
+@needs_freebody
+def test_a_free_body_runs_by_its_speeds_names():
+    m = eomc.load(FREEBODY)
+    m.set(I2=1.0)  # symmetric about its axis: wz constant
+    r = m.run(init={"root_wx": 1.5, "root_y'": -0.5}, t_end=1.0, dt=0.1)
+    assert r.columns[:14] == ["t"] + m.coordinates + m.speeds
+    assert r["root_wx"][0] == 1.5 and r["root_y'"][0] == -0.5
+    t = r["t"]
+    # the centre's parabola, from the first row
+    x0 = {c: r[c][0] for c in r.columns}
+    z = x0["root_z"] + x0["root_z'"] * t - 9.81 * t * t / 2
+    assert np.max(np.abs(r["root_z"] - z)) < 1e-9
+    assert np.max(np.abs(r["root_y"] - (x0["root_y"] - 0.5 * t))) < 1e-9
+    assert np.max(np.abs(r["root_wz"] - x0["root_wz"])) < 1e-9
+    # every row's quaternion of length 1, to rounding
+    e = np.array([r["root_e%d" % k] for k in range(4)])
+    assert np.max(np.abs(np.sqrt((e * e).sum(axis=0)) - 1)) <= 8 * np.finfo(float).eps
+    with pytest.raises(eomc.UsageError, match="not its coordinates' rates"):
+        m.linearize()

@@ -1,6 +1,7 @@
 /*
  * model_main.c: a standalone simulator of one hand-written model, as
- * `eomc build` makes one; SIM_MODEL names the model (see meson.build).
+ * `eomc build` makes one; SIM_MODEL names the model and SIM_EXT, when
+ * given, its extended-precision twin (see meson.build).
  */
 #include "eomc.h"
 #include "models.h"
@@ -8,5 +9,9 @@
 int
 main(int argc, char **argv)
 {
+#ifdef SIM_EXT
+    return eomc_main(argc, argv, &SIM_MODEL, &SIM_EXT);
+#else
     return eomc_main(argc, argv, &SIM_MODEL, NULL);
+#endif
 }

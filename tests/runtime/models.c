@@ -100,8 +100,11 @@ osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
     eomc_tay_scale(T + 3 * S, T + 2 * S, T + 0 * S, k);
 }
 
+/* The last members: the speeds are the coordinates' rates (nv = 0). */
+#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL
+
 #define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \
-    NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL
+    NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL, NO_SPEEDS
 
 /* No parameter is fixed (p_fixed). */
 static const unsigned char no_fixed[8];
@@ -112,9 +115,9 @@ static const unsigned char no_fixed[8];
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
 /* Nothing to draw (--animate): the members after c_nz; and no Taylor
- * series (the last members). */
+ * series (the last members but the speeds). */
 #define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
-    "a hand-written test model"
+    "a hand-written test model", NO_SPEEDS
 #define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NULL, 0.0, NULL, \
     __VA_ARGS__
 #define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)
@@ -653,3 +656,88 @@ const eomc_model nonpd_gsl_model = {
     NO_CHECKS,
     NO_OUTPUTS,
 };
+
+/* ---- free bodies' starts and closed forms (freebody.c has the models) ---- */
+
+void
+freebody_start(double *q, double *v)
+{
+    static const double e[4] = {0.9, 0.1, -0.3, 0.2};
+    double len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]);
+    q[0] = 0.1, q[1] = -0.2, q[2] = 1.0;
+    for (int i = 0; i < 4; i++)
+        q[3 + i] = e[i] / len;
+    v[0] = 0.5, v[1] = -0.3, v[2] = 2.0;
+    v[3] = 0.4, v[4] = -0.7, v[5] = 2.5;
+}
+
+void
+quat_rotation(const double *e, double *R)
+{
+    double a = e[0], b = e[1], c = e[2], d = e[3];
+    R[0] = a * a + b * b - c * c - d * d, R[1] = 2 * (b * c - a * d), R[2] = 2 * (b * d + a * c);
+    R[3] = 2 * (b * c + a * d), R[4] = a * a - b * b + c * c - d * d, R[5] = 2 * (c * d - a * b);
+    R[6] = 2 * (b * d - a * c), R[7] = 2 * (c * d + a * b), R[8] = a * a - b * b - c * c + d * d;
+}
+
+/* r = a (x) b. */
+static void
+quat_mul(const double *a, const double *b, double *r)
+{
+    r[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
+    r[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
+    r[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
+    r[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
+}
+
+/* The quaternion of a turn by angle about the unit axis u. */
+static void
+quat_turn(const double *u, double angle, double *r)
+{
+    double s = sin(angle / 2);
+    r[0] = cos(angle / 2), r[1] = s * u[0], r[2] = s * u[1], r[3] = s * u[2];
+}
+
+void
+freebody_exact(const double *p, const double *q0, const double *v0, double t, double *q,
+               double *v)
+{
+    double g = p[4], A = p[1], C = p[3], R0[9], Lb[3], L[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) {
+        q[i] = q0[i] + v0[i] * t;
+        v[i] = v0[i];
+    }
+    q[2] -= g * t * t / 2;
+    v[2] -= g * t;
+    const double *w0 = v0 + 3;
+    Lb[0] = A * w0[0], Lb[1] = A * w0[1], Lb[2] = C * w0[2];
+    quat_rotation(q0 + 3, R0);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            L[i] += R0[3 * i + j] * Lb[j];
+    double len = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
+    double u[3] = {L[0] / len, L[1] / len, L[2] / len}, z[3] = {0, 0, 1};
+    double precess[4], spin[4], tmp[4];
+    quat_turn(u, len / A * t, precess);
+    quat_turn(z, (1 - C / A) * w0[2] * t, spin);
+    quat_mul(precess, q0 + 3, tmp);
+    quat_mul(tmp, spin, q + 3);
+    double W = (C - A) / A * w0[2] * t;
+    v[3] = w0[0] * cos(W) - w0[1] * sin(W);
+    v[4] = w0[0] * sin(W) + w0[1] * cos(W);
+    v[5] = w0[2];
+}
+
+void
+top_start(const double *p, double *q, double *v)
+{
+    double l = p[3], R[9];
+    q[3] = cos(TOP_TILT / 2), q[4] = sin(TOP_TILT / 2), q[5] = q[6] = 0;
+    quat_rotation(q + 3, R);
+    v[3] = 0.3, v[4] = -0.2, v[5] = TOP_SPIN;
+    /* the tip at the origin: x = l R e_z, and at rest there: x' = -R (w x r) */
+    for (int k = 0; k < 3; k++) {
+        q[k] = l * R[3 * k + 2];
+        v[k] = -l * (v[3] * R[3 * k + 1] - v[4] * R[3 * k]);
+    }
+}

@@ -27,6 +27,13 @@ rows_init(Rows *r, int nq)
     *r = (Rows){0, 0, 2 * nq, NULL, NULL, -1, 0};
 }
 
+/* The same for a model's states of nq + nv entries. */
+static inline void
+rows_init_model(Rows *r, const eomc_model *m)
+{
+    *r = (Rows){0, 0, eomc_nx(m), NULL, NULL, -1, 0};
+}
+
 static inline void
 rows_free(Rows *r)
 {
@@ -91,7 +98,7 @@ sim_new(const eomc_model *m)
     return s;
 }
 
-/* The model's initial state as x = (q, q'). */
+/* The model's initial state as x = (q, v). */
 static inline void
 sim_x0(const eomc_sim *s, double *x)
 {

@@ -1,0 +1,54 @@
+/*
+ * state: the layout of a model's first-order state x = (q, v), nq
+ * coordinates and then nv speeds (eomc.h): the names of its components
+ * and of the speeds' rates, a component found by name, the kinematic
+ * equation q' = W(q) v, and the unit quaternions the steps renormalize.
+ * Pure functions of the model (state.c).
+ */
+#ifndef EOMC_STATE_H
+#define EOMC_STATE_H
+
+#include "eomc.h"
+
+#include <stddef.h>
+
+/* The longest name these functions write, with its quotes. */
+enum { STATE_NAME_MAX = 256 };
+
+/* Component k of the state (k < nq + nv): "x", then the speeds "x'" (the
+ * coordinates' rates, model->nv = 0) or model->v_names ("root_wx"). */
+const char *state_name(const eomc_model *m, int k, char *buf, size_t len);
+/* Speed k's own name (k < nv): "x'" or "root_wx" (state_name's nq + k). */
+const char *state_speed(const eomc_model *m, int k, char *buf, size_t len);
+/* The rate of speed k, as --accel names it: "x''" or "root_wx'". */
+const char *state_rate(const eomc_model *m, int k, char *buf, size_t len);
+/* The first speed not named as a coordinate's rate ("root_wx", not
+ * "root_x'"): what a message names to say the speeds are not the rates
+ * (model->nv > 0). */
+const char *state_own_speed(const eomc_model *m);
+/* What a speed is called in messages, "velocity" or "speed", and its
+ * plural. */
+const char *state_speed_word(const eomc_model *m, int plural);
+/* The index in the state of the component named name, or -1; *rate (unless
+ * NULL) 1 when name is a speed's rate instead (state_rate's name: an
+ * acceleration), its index then nq + k. */
+int state_find(const eomc_model *m, const char *name, int *rate);
+
+/* q' = W(q) v into qd [nq]: v itself when the speeds are the rates. */
+void state_qdot(const eomc_model *m, const double *q, const double *v, double *qd);
+
+/* Each unit quaternion of q (model->quat) divided by its length, in
+ * place; returns the largest ||e| - 1| before (0 without quaternions),
+ * and that quaternion's index into *which (-1: none).  One within a few
+ * units of rounding of length 1 is left to the bit (state.c), and one
+ * whose length is 0 or not finite is left as it is (the right-hand side
+ * then says why the state fails). */
+double state_normalize(const eomc_model *m, double *q, int *which);
+/* The same for quaternion j alone: its ||e| - 1| before. */
+double state_normalize_quat(const eomc_model *m, double *q, int j);
+/* The same in extended precision (the reference). */
+eomc_ext state_normalize_ext(const eomc_model *m, eomc_ext *q);
+/* Quaternion j's length in q. */
+double state_quat_norm(const eomc_model *m, const double *q, int j);
+
+#endif

@@ -731,19 +731,13 @@ actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, con
         snprintf(buf, len, "%s*%s%s%s*delta(%s)", num(a, gear), open, force, close, J);
 }
 
-/* MuJoCo's velocity of a ball's (or free joint's) rotation is its
- * angular velocity in the joint's own axes, w = 2 L(e) e' for Euler
- * parameters e, L = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0]
- * (docs/import.md).  Row i of L: which parameter times which rate. */
-static const int L_idx[3][4] = {{1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
-static const int L_sgn[3][4] = {{-1, 1, 1, -1}, {-1, -1, 1, 1}, {-1, 1, -1, 1}};
-
-/* The rate of dof d of joint j (delta: its variation instead), as an
- * expression of the coordinates: q' for a hinge or slide, a free joint's
- * x', y', z', and a component of 2 L(e) e' for a rotation. */
+/* The rate of dof d of joint j (delta: its variation instead): q' for a
+ * hinge or slide, a free joint's x', y', z', and for a rotation its speed
+ * (vn, by dof: MuJoCo's qvel, the angular velocity in the joint's own
+ * axes; delta(w) its virtual rotation). */
 static void
-dof_rate(char *buf, size_t len, const mjModel *m, const char *const *qn, int j, int d,
-         int delta)
+dof_rate(char *buf, size_t len, const mjModel *m, const char *const *qn,
+         const char *const *vn, int j, int d, int delta)
 {
     const char *const *q = qn + m->jnt_qposadr[j];
     int type = m->jnt_type[j];
@@ -751,19 +745,11 @@ dof_rate(char *buf, size_t len, const mjModel *m, const char *const *qn, int j, 
         snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[d]);
         return;
     }
-    if (type == mjJNT_FREE)
-        q += 3, d -= 3;
     if (type != mjJNT_FREE && type != mjJNT_BALL) {
         snprintf(buf, len, delta ? "delta(%s)" : "%s'", q[0]);
         return;
     }
-    size_t k = (size_t)snprintf(buf, len, "(2*(");
-    for (int c = 0; c < 4 && k < len; c++)
-        k += (size_t)snprintf(buf + k, len - k, delta ? "%s%s*delta(%s)" : "%s%s*%s'",
-                              L_sgn[d][c] < 0 ? (c ? " - " : "-") : (c ? " + " : ""),
-                              q[L_idx[d][c]], q[c]);
-    if (k < len)
-        snprintf(buf + k, len - k, "))");
+    snprintf(buf, len, delta ? "delta(%s)" : "%s", vn[m->jnt_dofadr[j] + d]);
 }
 
 static int
@@ -855,7 +841,7 @@ put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *
  * v^2 in T; actuators, each one's force on its joint, its control an
  * input.  What MuJoCo's flags disable is not written. */
 static void
-put_effects(const mjModel *m, const char *const *qn, const char *const *un,
+put_effects(const mjModel *m, const char *const *qn, const char *const *vn, const char *const *un,
             const char *const *tn, const char *const *body, const char *const *principal,
             const char *const *flow, FILE *out)
 {
@@ -873,8 +859,8 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
             double b = m->dof_damping[m->jnt_dofadr[j] + k];
             if (b == 0)
                 continue;
-            dof_rate(r, sizeof r, m, qn, j, k, 0);
-            dof_rate(v, sizeof v, m, qn, j, k, 1);
+            dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
+            dof_rate(v, sizeof v, m, qn, vn, j, k, 1);
             item(out, &any, &first, "damping");
             fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
         }
@@ -918,7 +904,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *un,
             double arm = m->dof_armature[m->jnt_dofadr[j] + k];
             if (arm == 0)
                 continue;
-            dof_rate(r, sizeof r, m, qn, j, k, 0);
+            dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
             item(out, &any, &first, "armature");
             fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
         }
@@ -1317,6 +1303,15 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
             qn[adr + d] = nq == 1 ? coord[j] : named(&N, "coordinate", nm, nm);
         }
     }
+    /* a rotation's speeds, its angular velocity in its own axes (qvel) */
+    const char **vn = xmalloc(((size_t)m->nv + 1) * sizeof *vn);
+    for (int j = 0; j < m->njnt; j++) {
+        int type = m->jnt_type[j], dof = m->jnt_dofadr[j] + (type == mjJNT_FREE ? 3 : 0);
+        for (int r = 0; (type == mjJNT_FREE || type == mjJNT_BALL) && r < 3; r++) {
+            snprintf(nm, sizeof nm, "%s_w%c", coord[j], 'x' + r);
+            vn[dof + r] = named(&N, "speed", nm, nm);
+        }
+    }
     body[0] = "world", axes[0] = "world", origin[0] = "origin";
     for (int b = 1; b < nb; b++) {
         snprintf(fb, sizeof fb, "body%d", b);
@@ -1381,8 +1376,9 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
             fprintf(P, "  %s: {at: [%s, %s, %s]}\n", origin[b], q[0], q[1], q[2]);
             snprintf(nm, sizeof nm, "%s_axes", coord[m->body_jntadr[b]]);
             axes[b] = unique(&N, nm, nm);
-            fprintf(F, "  %s: {rotation: [{quaternion: [%s, %s, %s, %s]}]}\n", axes[b], q[3],
-                    q[4], q[5], q[6]);
+            const char **w = vn + m->jnt_dofadr[m->body_jntadr[b]] + 3;
+            fprintf(F, "  %s: {rotation: [{quaternion: [%s, %s, %s, %s], speeds: [%s, %s, %s]}]}\n",
+                    axes[b], q[3], q[4], q[5], q[6], w[0], w[1], w[2]);
             snprintf(nm, sizeof nm, "%s_com", body[b]);
             com[b] = unique(&N, nm, nm);
             fprintf(P, "  %s: {frame: %s, from: %s, at: ", com[b], axes[b], origin[b]);
@@ -1436,9 +1432,10 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
             snprintf(nm, sizeof nm, "%s_axes", coord[j]);
             const char *t = unique(&N, nm, nm);
             if (m->jnt_type[j] == mjJNT_BALL) { /* turned by its Euler parameters */
-                const char **q = qn + m->jnt_qposadr[j];
-                fprintf(F, "  %s: {parent: %s, rotation: [{quaternion: [%s, %s, %s, %s]}]}\n",
-                        t, cur, q[0], q[1], q[2], q[3]);
+                const char **q = qn + m->jnt_qposadr[j], **w = vn + m->jnt_dofadr[j];
+                fprintf(F, "  %s: {parent: %s, rotation: [{quaternion: [%s, %s, %s, %s], "
+                        "speeds: [%s, %s, %s]}]}\n", t, cur, q[0], q[1], q[2], q[3], w[0], w[1],
+                        w[2]);
             } else {
                 fprintf(F, "  %s: {parent: %s, rotation: [{axis: ", t, cur);
                 put_vec(F, ax);
@@ -1571,7 +1568,7 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     drop_tell(warn, path, "note", "not drawn:", &u.planes, "geom",
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
-    put_effects(m, qn, un, tn, body, principal, flow, out);
+    put_effects(m, qn, vn, un, tn, body, principal, flow, out);
     put_constraints(m, qn, tn, eqn, eqp, axes, out, path, warn);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
@@ -1592,6 +1589,7 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     free(com);
     free(coord);
     free(qn);
+    free(vn);
     free(un);
     free(tn);
     free(eqn);

@@ -5,30 +5,27 @@
  * constraints are off: the smooth dynamics eomc imports.
  *
  *   mj_accel MODEL SEED [COUNT] ->  a line of nq coordinates q, a line of
- *                              nq rates q', a line of nu controls (empty
- *                              without actuators), then q'' one per line;
+ *                              nv speeds v, a line of nu controls (empty
+ *                              without actuators), then v' one per line;
  *                              with COUNT, a block so for each seed SEED ..
  *                              SEED + COUNT - 1 (one process, one load)
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
- *   mj_accel MODEL kinetic ->  for each line "t q_1 .. q_nq q'_1 .. q'_nq" on
- *                              stdin (eomc's rates), "t T": MuJoCo's kinetic
+ *   mj_accel MODEL kinetic ->  for each line "t q_1 .. q_nq v_1 .. v_nv" on
+ *                              stdin (eomc's speeds), "t T": MuJoCo's kinetic
  *                              energy there (mj_energyVel: armature included)
  *
  * Controls are neither clamped to their ranges nor forces to theirs, as
  * the import drops both.  The model's own <option><flag>s stand otherwise
  * (gravity, passive forces, actuation, equality constraints disabled: the
- * import leaves out what they disable).  The state: each hinge and slide coordinate, each
- * qvel entry and each control uniform
- * in [-1.5, 1.5] (splitmix64, seeded); a ball's or free joint's quaternion
- * four such numbers normalized.  eomc's coordinates are MuJoCo's qpos;
- * its rates are qvel, except that a rotation's are its Euler parameters'
- * rates e' where MuJoCo has the angular velocity w in the joint's own
- * axes (a free joint: after its position's rates, in the world):
- *   w = 2 L(e) e',  e' = L(e)^T w / 2,  e'' = (L(e')^T w + L(e)^T w') / 2
- * with L = [-e1 e0 e3 -e2; -e2 -e3 e0 e1; -e3 e2 -e1 e0], for a unit e
- * with e.e' = 0 (docs/import.md).
+ * import leaves out what they disable).  The state: each hinge and slide
+ * coordinate, each qvel entry and each control uniform in [-1.5, 1.5]
+ * (splitmix64, seeded); a ball's or free joint's quaternion four such
+ * numbers normalized.  eomc's coordinates are MuJoCo's qpos and its speeds
+ * MuJoCo's qvel: a rotation's are its angular velocity in the joint's own
+ * axes (a free joint's after its position's rates, in the world), the
+ * import's `speeds:` (docs/import.md).  So v' is qacc.
  *
  * With equality constraints, MuJoCo's own qacc is soft (its solver
  * regularizes them), so this takes MuJoCo's parts of the hard-constrained
@@ -78,26 +75,6 @@ uniform(uint64_t *s)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
     z ^= z >> 31;
     return 3 * ((double)(z >> 11) * 0x1p-53) - 1.5;
-}
-
-/* L(e) (the top) */
-static void
-L_of(const double *e, double L[3][4])
-{
-    const double rows[3][4] = {{-e[1], e[0], e[3], -e[2]},
-                               {-e[2], -e[3], e[0], e[1]},
-                               {-e[3], e[2], -e[1], e[0]}};
-    memcpy(L, rows, sizeof rows);
-}
-
-/* y = L(e)^T w / 2 */
-static void
-half_LT(const double *e, const double *w, double *y)
-{
-    double L[3][4];
-    L_of(e, L);
-    for (int c = 0; c < 4; c++)
-        y[c] = (L[0][c] * w[0] + L[1][c] * w[1] + L[2][c] * w[2]) / 2;
 }
 
 /* The equality rows of the constraint Jacobian and residual at d->qpos
@@ -327,50 +304,27 @@ done:
     return rc;
 }
 
-/* w = 2 L(e) e' (the top) */
-static void
-two_L(const double *e, const double *e1, double *w)
-{
-    double L[3][4];
-    L_of(e, L);
-    for (int r = 0; r < 3; r++)
-        w[r] = 2 * (L[r][0] * e1[0] + L[r][1] * e1[1] + L[r][2] * e1[2] + L[r][3] * e1[3]);
-}
-
 /* The kinetic mode (the top): 0, or 2 on a short line. */
 static int
 kinetic(mjModel *m)
 {
     m->opt.enableflags |= mjENBL_ENERGY; /* else mj_energyVel leaves 0 */
     mjData *d = mj_makeData(m);
-    double t, *v = calloc((size_t)m->nq, sizeof *v);
+    double t;
     int rc = 0;
     while (scanf("%lf", &t) == 1) {
-        for (int i = 0; i < 2 * m->nq; i++)
-            if (scanf("%lf", i < m->nq ? &d->qpos[i] : &v[i - m->nq]) != 1) {
-                fprintf(stderr, "mj_accel: a row has fewer than 2 nq = %d numbers\n",
-                        2 * m->nq);
+        for (int i = 0; i < m->nq + m->nv; i++) /* eomc's speeds are MuJoCo's qvel */
+            if (scanf("%lf", i < m->nq ? &d->qpos[i] : &d->qvel[i - m->nq]) != 1) {
+                fprintf(stderr, "mj_accel: a row has fewer than nq + nv = %d numbers\n",
+                        m->nq + m->nv);
                 rc = 2;
                 goto done;
             }
-        for (int j = 0; j < m->njnt; j++) { /* eomc's rates to MuJoCo's qvel */
-            int type = m->jnt_type[j], q = m->jnt_qposadr[j], dv = m->jnt_dofadr[j];
-            if (type == mjJNT_FREE)
-                for (int k = 0; k < 3; k++)
-                    d->qvel[dv + k] = v[q + k];
-            if (type == mjJNT_FREE)
-                q += 3, dv += 3;
-            if (type == mjJNT_BALL || type == mjJNT_FREE)
-                two_L(d->qpos + q, v + q, d->qvel + dv);
-            else if (type != mjJNT_FREE)
-                d->qvel[dv] = v[q];
-        }
         mj_fwdPosition(m, d);
         mj_energyVel(m, d);
         printf("%.17g %.17g\n", t, d->energy[1]);
     }
 done:
-    free(v);
     mj_deleteData(d);
     return rc;
 }
@@ -406,37 +360,15 @@ one_state(mjModel *m, mjData *d, uint64_t seed)
             return 3;
         }
     }
-    double *v = calloc((size_t)m->nq, sizeof *v), *a = calloc((size_t)m->nq, sizeof *a);
-    for (int j = 0; j < m->njnt; j++) {
-        int type = m->jnt_type[j], q = m->jnt_qposadr[j], dv = m->jnt_dofadr[j];
-        if (type == mjJNT_FREE)
-            for (int k = 0; k < 3; k++)
-                v[q + k] = d->qvel[dv + k], a[q + k] = d->qacc[dv + k];
-        if (type == mjJNT_FREE)
-            q += 3, dv += 3;
-        if (type == mjJNT_BALL || type == mjJNT_FREE) {
-            const double *e = d->qpos + q, *w = d->qvel + dv;
-            double e1[4], t1[4], t2[4];
-            half_LT(e, w, e1);
-            half_LT(e1, w, t1);
-            half_LT(e, d->qacc + dv, t2);
-            for (int c = 0; c < 4; c++)
-                v[q + c] = e1[c], a[q + c] = t1[c] + t2[c];
-        } else if (type != mjJNT_FREE) {
-            v[q] = d->qvel[dv], a[q] = d->qacc[dv];
-        }
-    }
     for (int i = 0; i < m->nq; i++)
         printf("%.17g%c", d->qpos[i], i + 1 < m->nq ? ' ' : '\n');
-    for (int i = 0; i < m->nq; i++)
-        printf("%.17g%c", v[i], i + 1 < m->nq ? ' ' : '\n');
+    for (int i = 0; i < m->nv; i++)
+        printf("%.17g%c", d->qvel[i], i + 1 < m->nv ? ' ' : '\n');
     for (int i = 0; i < m->nu; i++)
         printf("%.17g%s", d->ctrl[i], i + 1 < m->nu ? " " : "");
     printf("\n");
-    for (int i = 0; i < m->nq; i++)
-        printf("%.17g\n", a[i]);
-    free(v);
-    free(a);
+    for (int i = 0; i < m->nv; i++)
+        printf("%.17g\n", d->qacc[i]);
     return 0;
 }
 

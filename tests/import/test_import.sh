@@ -99,28 +99,32 @@ for model in $models; do
   # (mj_accel.c: one process for them all, a block of 3 + nq lines each),
   # and each state as eomc's options, a line each
   "$mj" "$ref" 1 "$states" > "$tmp/mj" || fails=$((fails + 1))
-  nq=$(echo $coords | wc -w)
-  awk -v names="$coords" -v inputs="$inputs" -v nq="$nq" 'BEGIN { n = split(names, c, " ")
-      nu = split(inputs, u, " ") }
-    { r = (NR - 1) % (nq + 3) }
+  # the speeds' names in order, from --accel's lines (x'' a coordinate's
+  # rate's, wx' a rotation's speed's): MuJoCo's qvel
+  speeds=$("$eomc" run "$tmp/$base.yaml" --accel 2> /dev/null |
+    sed -n "s/^\([A-Za-z_0-9]*'*\)' .*/\1/p" | tr '\n' ' ')
+  nq=$(echo $speeds | wc -w) # (the q'' compared: one per speed)
+  awk -v names="$coords" -v speeds="$speeds" -v inputs="$inputs" -v nv="$nq" '
+    BEGIN { n = split(names, c, " "); split(speeds, v, " "); nu = split(inputs, u, " ") }
+    { r = (NR - 1) % (nv + 3) }
     r == 0 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
-    r == 1 { for (i = 1; i <= n; i++) printf " --init %s'"'"'=%s", c[i], $i }
+    r == 1 { for (i = 1; i <= nv; i++) printf " --init %s=%s", v[i], $i }
     r == 2 { for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i; printf "\n" }' \
     "$tmp/mj" > "$tmp/args"
   [ "$(wc -l < "$tmp/args")" -eq "$states" ] || fails=$((fails + 1))
   : > "$tmp/eomc" && : > "$tmp/ext"
   while IFS= read -r args; do
     k=$((k + 1))
-    # (the q'' lines only: a quaternion's unit constraint adds its multiplier's)
+    # (the q'' and w' lines only, not a multiplier's)
     # shellcheck disable=SC2086 # $args is a list of options
     "$eomc" run "$tmp/$base.yaml" --accel $args < /dev/null > "$tmp/one" 2>> "$tmp/err" ||
       fails=$((fails + 1))
-    sed -n "/'' /s/^/$k /p" "$tmp/one" >> "$tmp/eomc"
+    sed -n "/^[A-Za-z_0-9]*' /s/^/$k /p; /'' /s/^/$k /p" "$tmp/one" >> "$tmp/eomc"
     if [ -n "$ext" ]; then # and the extended-precision solve of the same state
       # shellcheck disable=SC2086
       "$eomc" run "$tmp/$base.yaml" --accel-extended $args < /dev/null > "$tmp/one" \
         2>> "$tmp/err" || fails=$((fails + 1))
-      sed -n "/'' /s/^/$k /p" "$tmp/one" >> "$tmp/ext"
+      sed -n "/^[A-Za-z_0-9]*' /s/^/$k /p; /'' /s/^/$k /p" "$tmp/one" >> "$tmp/ext"
     fi
   done < "$tmp/args"
   # per state, the largest difference over the reference's largest |q''|
@@ -162,15 +166,19 @@ if [ "$part" = 22_humanoids ]; then
   model=$samples/humanoid/22_humanoids.xml
   "$mj" "$model" 1 > "$tmp/mj"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/22_humanoids_xml.yaml" | tr -d ',')
-  args=$(awk -v names="$coords" 'BEGIN { n = split(names, c, " ") }
+  speeds=$("$eomc" run "$tmp/22_humanoids_xml.yaml" --accel 2> /dev/null |
+    sed -n "s/^\([A-Za-z_0-9]*'*\)' .*/\1/p" | tr '\n' ' ')
+  nq=$(echo $coords | wc -w) nv=$(echo $speeds | wc -w)
+  args=$(awk -v names="$coords" -v speeds="$speeds" -v one=$((nv / 22)) '
+      BEGIN { n = split(names, c, " "); split(speeds, v, " ") }
       NR == 1 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
-      NR == 2 { for (i = 1; i <= 28; i++) printf " --init %s'"'"'=%s", c[i], $i }' "$tmp/mj")
+      NR == 2 { for (i = 1; i <= one; i++) printf " --init %s=%s", v[i], $i }' "$tmp/mj")
   # shellcheck disable=SC2086 # $args is a list of options
   "$eomc" run "$tmp/22_humanoids_xml.yaml" $args --t-end 0.01 -o "$tmp/h22.csv" 2> "$tmp/err"
   st=$?
   row=$(awk -F, 'NR == 2 { for (i = 1; i <= NF; i++) printf "%s ", $i }' "$tmp/h22.csv")
   mine=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "T") k = i } NR == 2 { print $k }' "$tmp/h22.csv")
-  theirs=$(echo "$row" | cut -d' ' -f1-1233 | "$mj" "$model" kinetic | cut -d' ' -f2)
+  theirs=$(echo "$row" | cut -d' ' -f1-$((1 + nq + nv)) | "$mj" "$model" kinetic | cut -d' ' -f2)
   d=$(awk -v a="$mine" -v b="$theirs" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b <= 0) print "nan"; else printf "%.3g\n", d / b }')
   [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d != "nan" && d <= 1e-12) }'
   ok $? "22_humanoids: one moving, 21 at rest: T = $mine, MuJoCo's $theirs (relative $d <= 1e-12)"
@@ -253,7 +261,8 @@ ok $? "fourbar.xml by Taylor's method to t = 2: rk8pd's state to $d, the error a
 "$eomc" run "$src/specs/floating_base.xml" --set u_left_hip=0.5 --set u_right_knee=-0.8 \
   --rtol 1e-12 --atol 1e-12 -o "$tmp/fb.csv" 2> "$tmp/err"
 st=$?
-nq=$(head -1 "$tmp/fb.csv" | tr ',' '\n' | grep -c "'" )
+# (the coordinates: the columns before the first speed, a free joint's x')
+nq=$(head -1 "$tmp/fb.csv" | tr ',' '\n' | awk "/'/ { print NR - 2; exit }")
 cut -d, -f1-$((nq + 1)) "$tmp/fb.csv" | tail -n +2 | tr ',' ' ' | "$mj" "$src/specs/floating_base.xml" com \
   > "$tmp/com"
 com=$(awk 'NR == 1 { x0 = $2; y0 = $3; z0 = $4 }

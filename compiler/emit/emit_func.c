@@ -507,10 +507,13 @@ print_shifts(Printer *pr, const LowFunc *lf, int *du_any)
     *du_any = 0;
     for (int c = 0; c < lf->ncopy; c++)
         *du_any |= lf->du[c] != 0;
-    for (int u = 0; u <= *du_any; u++) {
-        const int *d = u ? lf->du : lf->dq;
+    static const char *const what[] = {"dq", "du", "dv"};
+    for (int u = 0; u < 3; u++) {
+        const int *d = u == 0 ? lf->dq : u == 1 ? lf->du : lf->dv;
+        if ((u == 1 && !*du_any) || !d)
+            continue;
         fprintf(pr->f, "static const int %s_%s_%s[%d] = {", pr->md->name, lf->sig->name,
-                u ? "du" : "dq", lf->ncopy);
+                what[u], lf->ncopy);
         for (int c = 0; c < lf->ncopy; c++)
             fprintf(pr->f, "%s%d", c ? ", " : "", d[c]);
         fputs("};\n", pr->f);
@@ -527,11 +530,13 @@ print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
     size_t k = 0;
     for (int i = 0; i < fn->args.n && k < sizeof call; i++) {
         const char *arg = fn->args.name[i], *sep = i ? ", " : "";
+        /* with speeds (dv), all but q and the seed dq shift as the speeds do */
+        int by_q = !lf->dv || !strcmp(arg, "q") || !strcmp(arg, "dq");
         if (!strcmp(arg, "t") || !strcmp(arg, "p") || (!strcmp(arg, "u") && !du_any))
             k += (size_t)snprintf(call + k, sizeof call - k, "%s%s", sep, arg);
         else
             k += (size_t)snprintf(call + k, sizeof call - k, "%s%s + %s_%s_%s[c]", sep, arg, nm,
-                                  name, strcmp(arg, "u") ? "dq" : "du");
+                                  name, !strcmp(arg, "u") ? "du" : by_q ? "dq" : "dv");
     }
     if (!lf->zero_skip) {
         emit_line(pr, "    for (int c = 0; c < %d; c++) /* copies of one subtree (repeat.c) */",
@@ -548,7 +553,7 @@ print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
         snprintf(from, sizeof from, " + %d", lf->span0);
     emit_line(pr, "    for (int c = 0; c < %d; c++) { /* copies of one subtree (repeat.c) */",
             lf->ncopy);
-    emit_line(pr, "        const int d = %s_%s_dq[c];", nm, name);
+    emit_line(pr, "        const int d = %s_%s_%s[c];", nm, name, lf->dv ? "dv" : "dq");
     emit_line(pr, "        int loaded = 0;");
     for (int i = 0; i < a->nin; i++)
         if (!strcmp(a->name[i], "dq") || !strcmp(a->name[i], "dv") || !strcmp(a->name[i], "da"))

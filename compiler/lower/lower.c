@@ -862,8 +862,14 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         lower_draw(&lw);
     lower_derive(&lw);
     /* after derive, which has seen every copy's parameter values */
-    for (int k = 0; s->nspeed == 0 && k < lw.L->nfunc; k++) /* its shifts are q's and v's */
-        repeat_split(lw.L->func[k], n, s->nu, REPEAT_MIN_SAVED, A, P);
+    for (int k = 0; k < lw.L->nfunc; k++) {
+        LowFunc *fk = lw.L->func[k];
+        if (!s->nspeed)
+            repeat_split(fk, n, s->nu, REPEAT_MIN_SAVED, A, P);
+        else if (fk != lw.L->qdot && fk != lw.L->qdot_jacobian) /* (by coordinate: cheap) */
+            repeat_split_speeds(fk, s->nq, s->nv, lw.L->model.vslot, lw.L->model.vcoord, s->nu,
+                                REPEAT_MIN_SAVED, A, P);
+    }
     lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
     return lw.L;
 }

@@ -350,6 +350,8 @@ eval_copies(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *ou
 {
     LowArgs a;
     lower_args(f->sig, &a);
+    if (f->dv) /* env's rates are by leaf, the copies' by slot: no one shift (tests only) */
+        diag_unreachable();
     for (int c = 0; c < f->ncopy; c++) {
         int d = f->dq[c];
         ExprEnv ec = *env;

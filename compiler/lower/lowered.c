@@ -42,9 +42,10 @@ lower_size(const LowFunc *f, int arg)
         if (f->out[k].arg == arg && f->out[k].index + 1 > size)
             size = f->out[k].index + 1;
     int copied = f->copy ? lower_size(f->copy, arg) : 0;
+    const int *d = f->dv ? f->dv : f->dq; /* the outputs' shifts */
     for (int c = 0; copied && c < f->ncopy; c++)
-        if (copied + f->dq[c] > size)
-            size = copied + f->dq[c];
+        if (copied + d[c] > size)
+            size = copied + d[c];
     return size;
 }
 

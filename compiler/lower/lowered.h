@@ -61,6 +61,7 @@ typedef struct LowFunc {
     struct LowFunc *copy;
     int ncopy;
     int *dq, *du;
+    int *dv; /* with speeds: the shift of v, a, dv, da and the outputs (else NULL: dq) */
     /* the first copy's coordinates: span0 .. span0+span-1 (every copy
      * output's slot is one of them, shifted); zero_skip: its outputs
      * vanish with its seeds (a unit load's: no load, no motion), so a copy

@@ -28,5 +28,11 @@ enum { REPEAT_MIN_SAVED = 20000 };
  * (REPEAT_MIN_SAVED; tests ask 0); f unchanged otherwise.  1 if it
  * split. */
 int repeat_split(LowFunc *f, int n, int nu, long min_saved, Arena *A, ExprPool *P);
+/* The same for a model whose speeds are not its coordinates' rates (nq
+ * coordinates, nv velocity slots, lowered.h's vslot and vcoord): a copy's
+ * coordinates shift by LowFunc.dq, its speeds and its outputs (indexed by
+ * slot) by LowFunc.dv. */
+int repeat_split_speeds(LowFunc *f, int nq, int nv, const int *vslot, const int *vcoord, int nu,
+                        long min_saved, Arena *A, ExprPool *P);
 
 #endif

@@ -157,30 +157,6 @@ wait_cc(pid_t pid, const char *cc)
     return 0;
 }
 
-/* For a large model's two units, where $CC takes it (gcc does, clang
- * does not): one region of register allocation beats its regions on
- * long straight-line functions, in time to compile and in speed. */
-static const char *const fast_flags[] = {"-fira-region=one"};
-enum { NFAST = sizeof fast_flags / sizeof fast_flags[0] };
-
-/* Whether the compiler argv[0..ncc) accepts fast_flags: it compiles an
- * empty unit with them, silently. */
-static int
-cc_takes_fast_flags(char **argv, int ncc)
-{
-    char *probe[32];
-    int n = 0;
-    for (int k = 0; k < ncc; k++)
-        probe[n++] = argv[k];
-    for (int k = 0; k < NFAST; k++)
-        probe[n++] = (char *)fast_flags[k];
-    const char *tail[] = {"-x", "c", "-c", "/dev/null", "-o", "/dev/null"};
-    for (size_t k = 0; k < sizeof tail / sizeof tail[0]; k++)
-        probe[n++] = (char *)tail[k];
-    probe[n] = NULL;
-    return exit_status(start_cc(probe, NULL, 1)) == 0;
-}
-
 int
 build_is_special(const char *path)
 {
@@ -568,7 +544,6 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
                                 mpi ? "-DEOMC_MPI" : NULL};
     const char *unit_flag[NUNIT] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL,
                                     NULL};
-    int fast = units == 2 && cc_takes_fast_flags(argv, ncc);
     /* Each unit compiles in the directory of the C, named relative to it,
      * so that the command line of the same C is the same from one build
      * to the next, wherever its directory: a compiler cache (CC="ccache
@@ -598,8 +573,6 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
                 unit_argv[u][n++] = (char *)main_flags[k];
         if (unit_flag[u])
             unit_argv[u][n++] = (char *)unit_flag[u];
-        for (int k = 0; fast && u != MAIN && k < NFAST; k++)
-            unit_argv[u][n++] = (char *)fast_flags[k];
         unit_argv[u][n++] = "-c";
         unit_argv[u][n++] = (char *)(dir ? src[u] + strlen(dir) : src[u]);
         unit_argv[u][n++] = "-o";

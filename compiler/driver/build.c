@@ -13,6 +13,7 @@
 #include "base/arena.h"
 #include "config.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -156,33 +157,6 @@ wait_cc(pid_t pid, const char *cc)
     return 0;
 }
 
-/* For a large model's two units, where $CC takes them (gcc does, clang
- * does not): gcc's dead-store eliminations find nothing to remove in code
- * that assigns each value once, and one region of register allocation
- * beats its regions on long straight-line functions.  Without them
- * gen_tree 30's units compile in a fifth less time (1.75-2.44 against
- * 1.23-1.53 s, side by side) and run as fast (5 262 against 5 221 ns). */
-static const char *const fast_flags[] = {"-fno-tree-dse", "-fno-dse", "-fira-region=one"};
-enum { NFAST = sizeof fast_flags / sizeof fast_flags[0] };
-
-/* Whether the compiler argv[0..ncc) accepts fast_flags: it compiles an
- * empty unit with them, silently. */
-static int
-cc_takes_fast_flags(char **argv, int ncc)
-{
-    char *probe[32];
-    int n = 0;
-    for (int k = 0; k < ncc; k++)
-        probe[n++] = argv[k];
-    for (int k = 0; k < NFAST; k++)
-        probe[n++] = (char *)fast_flags[k];
-    const char *tail[] = {"-x", "c", "-c", "/dev/null", "-o", "/dev/null"};
-    for (size_t k = 0; k < sizeof tail / sizeof tail[0]; k++)
-        probe[n++] = (char *)tail[k];
-    probe[n] = NULL;
-    return exit_status(start_cc(probe, NULL, 1)) == 0;
-}
-
 int
 build_is_special(const char *path)
 {
@@ -202,6 +176,18 @@ sibling(const char *path, const char *name)
     return out;
 }
 
+/* Write text to path; 0, or -1 after printing why. */
+static int
+write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (!f || fputs(text, f) < 0 || fclose(f) != 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
 /* The reference solution's functions are the same file compiled again
  * in extended precision: a second translation unit that includes it with
  * EOMC_EXTENDED defined.  Returns its path, or NULL after printing why. */
@@ -210,136 +196,44 @@ write_extended_unit(const char *c_file)
 {
     char *ext = sibling(c_file, "model_ext.c");
     const char *base = strrchr(c_file, '/');
-    FILE *f = fopen(ext, "w");
-    if (!f || fprintf(f, "#define EOMC_EXTENDED 1\n#include \"%s\"\n",
-                      base ? base + 1 : c_file) < 0 || fclose(f) != 0) {
-        fprintf(stderr, "eomc: cannot write %s: %s\n", ext, strerror(errno));
+    char text[PATH_MAX + 64];
+    snprintf(text, sizeof text, "#define EOMC_EXTENDED 1\n#include \"%s\"\n",
+             base ? base + 1 : c_file);
+    if (write_text(ext, text) != 0) {
         free(ext);
         return NULL;
     }
     return ext;
 }
 
-int
-build_executable(const char *c_file, const char *exe, int mpi, int units, int twin,
-                 int shared)
+/* The simulator's main, or the library's entry points (eomc_main.h), in a
+ * unit of their own: the model's units are then the same for a simulator,
+ * a library and an MPI sweep, and are compiled once for all of them (the
+ * object cache).  Returns its path, or NULL after printing why. */
+static char *
+write_main_unit(const char *c_file, const char *model)
 {
-    const char *inc, *lib, *cc = getenv(mpi ? "EOMC_MPICC" : "CC");
-    if (!cc || !*cc)
-        cc = mpi ? "mpicc" : "cc";
-    runtime_paths(&inc, &lib);
-    if (access(lib, R_OK) != 0) {
-        fprintf(stderr, "eomc: runtime library not found at %s "
-                        "(set EOMC_RUNTIME_LIB)\n", lib);
-        return -1;
+    char *path = sibling(c_file, "main.c");
+    size_t len = 6 * strlen(model) + 512;
+    char *text = xmalloc(len);
+    snprintf(text, len,
+             "/* eomc build: the main of %s's simulator (eomc_main.h) */\n"
+             "#include \"eomc_main.h\"\n"
+             "extern const eomc_model %s_model;\n"
+             "#if defined(__GNUC__) /* NULL where the twin is not linked */\n"
+             "extern const eomc_model_ext %s_model_ext __attribute__((weak));\n"
+             "#else\n"
+             "extern const eomc_model_ext %s_model_ext;\n"
+             "#endif\n"
+             "EOMC_DEFINE_MAIN(%s_model, %s_model_ext)\n",
+             model, model, model, model, model, model);
+    int rc = write_text(path, text);
+    free(text);
+    if (rc != 0) {
+        free(path);
+        return NULL;
     }
-    char *ext = twin ? write_extended_unit(c_file) : NULL;
-    if (twin && !ext)
-        return -1;
-    size_t len = strlen(exe) + 16;
-    char *tmp = xmalloc(len);
-    int special = build_is_special(exe);
-    snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
-    char *obj[3] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
-                    sibling(c_file, "model_ext.o")};
-    char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS, incabs[PATH_MAX];
-    /* absolute: the units compile in the C file's directory */
-    snprintf(incflag, sizeof incflag, "-I%s", realpath(inc, incabs) ? incabs : inc);
-    snprintf(ccbuf, sizeof ccbuf, "%s", cc);
-    char *argv[64];
-    int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
-    /* The units compile at once (each is most of the time of a large
-     * model's build), then link: a large model's two halves
-     * (-DEOMC_UNIT=1, 2: emit.h), and the extended-precision twin.  -O1:
-     * straight-line generated code runs as fast as at -O2 (measured, gcc
-     * 12: chain5 109 against 115 ns, gen_tree 10 1 660 against 1 739,
-     * bicycle_tree 790 against 802, gen_tree 30 5 225 against 5 484),
-     * which finds nothing more to do in it, and compiles in two thirds of
-     * the time (gen_tree 30: 3.1 against 4.7 s).  Without -ffast-math the
-     * arithmetic is the same to the bit. */
-    const char *flags[] = {"-std=c11", "-O1", shared ? "-DEOMC_SHARED" : "-DEOMC_MAIN",
-                           "-pthread", incflag, shared ? "-fPIC" : mpi ? "-DEOMC_MPI" : NULL};
-    const char *unit_flag[3] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL};
-    int fast = units == 2 && cc_takes_fast_flags(argv, ncc);
-    /* Each unit compiles in the directory of the C, named relative to it,
-     * so that the command line of the same C is the same from one build
-     * to the next, wherever its directory: a compiler cache (CC="ccache
-     * cc") then finds it (ccache hashes the file names it is given).  The
-     * objects are siblings of the C, and the link names them in full. */
-    const char *slash = strrchr(c_file, '/');
-    char *dir = NULL;
-    if (slash) {
-        dir = xmalloc((size_t)(slash - c_file) + 2);
-        memcpy(dir, c_file, (size_t)(slash - c_file) + 1);
-        dir[slash - c_file + 1] = '\0';
-    }
-    const char *src[3] = {c_file, c_file, ext};
-    int use[3] = {1, units == 2, twin};
-    char *unit_argv[3][32];
-    pid_t pid[3];
-    for (int u = 0; u < 3; u++) {
-        if (!use[u])
-            continue;
-        int n = 0;
-        for (int k = 0; k < ncc; k++)
-            unit_argv[u][n++] = argv[k];
-        for (size_t k = 0; k < sizeof flags / sizeof flags[0] && flags[k]; k++)
-            unit_argv[u][n++] = (char *)flags[k];
-        if (unit_flag[u])
-            unit_argv[u][n++] = (char *)unit_flag[u];
-        for (int k = 0; fast && k < NFAST; k++)
-            unit_argv[u][n++] = (char *)fast_flags[k];
-        unit_argv[u][n++] = "-c";
-        unit_argv[u][n++] = (char *)(dir ? src[u] + strlen(dir) : src[u]);
-        unit_argv[u][n++] = "-o";
-        unit_argv[u][n++] = dir ? obj[u] + strlen(dir) : obj[u];
-        unit_argv[u][n] = NULL;
-        pid[u] = start_cc(unit_argv[u], dir, 0);
-    }
-    int rc = 0;
-    for (int u = 0; u < 3; u++) /* each waited for */
-        if (use[u] && wait_cc(pid[u], cc) != 0)
-            rc = -1;
-    if (rc == 0) {
-        int n = ncc;
-        for (int u = 0; u < 3; u++)
-            if (use[u])
-                argv[n++] = obj[u];
-        /* A library holds the whole runtime, not just what the model
-         * calls: its caller (Python) reaches the API by name.  libeomcrt.a
-         * is built position-independent (meson's b_staticpic). */
-        const char *link[] = {"-o", tmp};
-        const char *lib_link[] = {"-shared", "-Wl,--whole-archive", lib,
-                                  "-Wl,--no-whole-archive", "-o", tmp};
-        const char *const *lk = shared ? lib_link : link;
-        size_t nlk = shared ? sizeof lib_link / sizeof *lib_link : sizeof link / sizeof *link;
-        if (!shared)
-            argv[n++] = (char *)lib;
-        for (size_t k = 0; k < nlk; k++)
-            argv[n++] = (char *)lk[k];
-        n += split_flags(libs, argv + n, 40);
-        argv[n++] = "-lm";
-        argv[n++] = "-pthread"; /* sweeps run on threads */
-        argv[n] = NULL;
-        rc = wait_cc(start_cc(argv, NULL, 0), cc);
-    }
-    if (rc == 0 && !special && rename(tmp, exe) != 0) {
-        fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
-        rc = -1;
-    }
-    if (rc != 0 && !special)
-        unlink(tmp);
-    if (ext)
-        unlink(ext);
-    for (int u = 0; u < 3; u++) {
-        if (use[u])
-            unlink(obj[u]);
-        free(obj[u]);
-    }
-    free(ext);
-    free(tmp);
-    free(dir);
-    return rc;
+    return path;
 }
 
 /* A 64-bit hash of bytes, fed in pieces, eight bytes at a time (a cache
@@ -391,6 +285,30 @@ hash_file(uint64_t h, const char *path)
     return bad ? hash_string(h, "(unreadable)") : h;
 }
 
+/* The headers of the runtime's include directory, every one, in name
+ * order: whatever the generated code or the main includes. */
+static uint64_t
+hash_headers(uint64_t h, const char *inc)
+{
+    struct dirent **names;
+    int n = scandir(inc, &names, NULL, alphasort);
+    if (n < 0)
+        return hash_string(h, "(no headers)");
+    for (int k = 0; k < n; k++) {
+        const char *name = names[k]->d_name;
+        size_t len = strlen(name);
+        if (len > 2 && !strcmp(name + len - 2, ".h")) {
+            char path[PATH_MAX * 2 + 64];
+            snprintf(path, sizeof path, "%s/%s", inc, name);
+            h = hash_string(h, name);
+            h = hash_file(h, path);
+        }
+        free(names[k]);
+    }
+    free(names);
+    return h;
+}
+
 /* What a built simulator depends on besides its spec and options: eomc's
  * version and its own bytes (its generator), the C compiler named by $CC,
  * and the runtime it links: the library's bytes and the headers the
@@ -411,15 +329,58 @@ toolchain_hash(void)
     h = hash_string(h, cc ? cc : "cc");
     h = hash_file(h, "/proc/self/exe");
     h = hash_file(h, lib);
-    static const char *const headers[] = {"eomc.h", "eomc_model.h", "eomc_main.h", "eomc_mpi.h",
-                                          "eomc_tree.h", "eomc_taylor.h"};
-    for (size_t k = 0; k < sizeof headers / sizeof headers[0]; k++) {
-        char path[PATH_MAX * 2 + 64];
-        snprintf(path, sizeof path, "%s/%s", inc, headers[k]);
-        h = hash_file(h, path);
-    }
+    h = hash_headers(h, inc);
     done = 1;
     return h;
+}
+
+/* The programs a compiler command names (each word that is a file on
+ * $PATH: "ccache cc" names two), by resolved path, size and modification
+ * time, as ccache checks its compilers: a compiler upgraded or replaced
+ * never serves an object it did not compile.  (Not by content: gcc's
+ * programs are tens of megabytes, and its cc1 is not on $PATH.) */
+static uint64_t
+hash_compiler(uint64_t h, char **argv, int ncc)
+{
+    const char *path = getenv("PATH");
+    for (int k = 0; k < ncc; k++) {
+        const char *w = argv[k];
+        if (w[0] == '-')
+            continue;
+        char file[PATH_MAX], real[PATH_MAX];
+        struct stat st;
+        int found = 0;
+        if (strchr(w, '/')) {
+            found = stat(w, &st) == 0 && snprintf(file, sizeof file, "%s", w) > 0;
+        } else {
+            for (const char *p = path ? path : "/usr/bin:/bin"; !found && *p;) {
+                size_t len = strcspn(p, ":");
+                snprintf(file, sizeof file, "%.*s/%s", (int)len, len ? p : ".", w);
+                found = stat(file, &st) == 0 && S_ISREG(st.st_mode);
+                p += len + (p[len] == ':');
+            }
+        }
+        h = hash_string(h, found && realpath(file, real) ? real : w);
+        if (found) {
+            long long id[2] = {(long long)st.st_size, (long long)st.st_mtime};
+            h = hash_bytes(h, id, sizeof id);
+        }
+    }
+    return h;
+}
+
+/* The directory of eomc's cache, by the variables it is named by. */
+static void
+cache_root(char *dir, size_t len)
+{
+    const char *root = getenv("EOMC_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME");
+    const char *home = getenv("HOME");
+    if (root && *root)
+        snprintf(dir, len, "%s", root);
+    else if (xdg && *xdg)
+        snprintf(dir, len, "%s/eomc", xdg);
+    else
+        snprintf(dir, len, "%s/.cache/eomc", home && *home ? home : "/tmp");
 }
 
 static int
@@ -439,18 +400,247 @@ make_dirs(char *path)
     return 0;
 }
 
+/* The object cache: each translation unit's object under a key of 128
+ * bits (two lanes of hash_bytes, from two seeds) of everything that makes
+ * it: toolchain_hash, the compiler (hash_compiler), the command line but
+ * the output's name, and the bytes of the files compiled.  A simulator, a
+ * library and the twin of one model's C share its objects; any change of
+ * the C, the flags, the compiler, eomc or the runtime is another key, so
+ * an object is never used for what it was not compiled from.  Objects are
+ * written under a temporary name and renamed: two builds at once each
+ * write a whole one. */
+typedef struct UnitKey {
+    char **argv;       /* the compile command, NULL-terminated */
+    int ncc;           /* words of it that are the compiler */
+    const char *out;   /* its output's name, left out of the key */
+    const char *files[2]; /* the files it reads, NULL after the last */
+} UnitKey;
+
+static uint64_t
+unit_hash(uint64_t seed, const UnitKey *u)
+{
+    uint64_t h = hash_bytes(seed, &(uint64_t){toolchain_hash()}, sizeof(uint64_t));
+    h = hash_compiler(h, u->argv, u->ncc);
+    for (int k = 0; u->argv[k]; k++)
+        if (u->argv[k] != u->out)
+            h = hash_string(h, u->argv[k]);
+    for (int k = 0; k < 2 && u->files[k]; k++)
+        h = hash_file(h, u->files[k]);
+    return h;
+}
+
+/* The cached object's path for u (a malloc'd name in the object cache,
+ * created if need be), or NULL where there is no cache to write to. */
+static char *
+cached_object(const UnitKey *u)
+{
+    char dir[PATH_MAX];
+    cache_root(dir, sizeof dir - 16);
+    strcat(dir, "/objects");
+    if (make_dirs(dir) != 0 || access(dir, W_OK) != 0)
+        return NULL;
+    uint64_t a = unit_hash(0xcbf29ce484222325u, u), b = unit_hash(0x9e3779b97f4a7c15u, u);
+    size_t len = strlen(dir) + 40;
+    char *path = xmalloc(len);
+    snprintf(path, len, "%s/%016llx%016llx.o", dir, (unsigned long long)a,
+             (unsigned long long)b);
+    return path;
+}
+
+/* Copy from to to (a new file); 0, or -1. */
+static int
+copy_file(const char *from, const char *to)
+{
+    FILE *in = fopen(from, "rb"), *out = in ? fopen(to, "wb") : NULL;
+    static char buf[1 << 16];
+    size_t n;
+    int bad = !in || !out;
+    while (!bad && (n = fread(buf, 1, sizeof buf, in)) > 0)
+        bad = fwrite(buf, 1, n, out) != n;
+    bad |= in && ferror(in);
+    if (in)
+        fclose(in);
+    if (out && fclose(out) != 0)
+        bad = 1;
+    return bad ? -1 : 0;
+}
+
+/* Keep the object just compiled at obj as cached: moved there whole (a
+ * rename, or a copy and a rename across file systems).  0, or -1 (then
+ * the build links obj itself). */
+static int
+keep_object(const char *obj, const char *cached)
+{
+    if (rename(obj, cached) == 0)
+        return 0;
+    size_t len = strlen(cached) + 32;
+    char *tmp = xmalloc(len);
+    snprintf(tmp, len, "%s.tmp%ld", cached, (long)getpid());
+    int rc = copy_file(obj, tmp) == 0 && rename(tmp, cached) == 0 ? 0 : -1;
+    if (rc != 0)
+        unlink(tmp);
+    free(tmp);
+    return rc;
+}
+
+/* The optimization of a model's units.  Straight-line generated code
+ * runs as fast at -O1 as at -O2 (measured, gcc 12: chain5 109 against
+ * 115 ns, gen_tree 10 1 660 against 1 739, gen_tree 30 5 225 against
+ * 5 484), which finds nothing more to do in it, and compiles in two
+ * thirds of the time.  A large model's (two units) at -Og, which is -O1
+ * without the passes that find little in straight-line code (dead
+ * stores, SRA, points-to, if-conversion) and compiles in a fifth less
+ * time, as fast to run (docs/benchmarks.md, "Build time").  A small
+ * model's stays at -O1: its functions are called once and inlined there,
+ * which -Og does not do (chain5 110 against 146 ns).  Without
+ * -ffast-math the arithmetic is the same to the bit either way. */
+static const char *
+opt_flag(int units)
+{
+    return units == 2 ? "-Og" : "-O1";
+}
+
+int
+build_executable(const char *c_file, const char *model, const char *exe, int mpi, int units,
+                 int twin, int shared)
+{
+    const char *inc, *lib, *cc = getenv(mpi ? "EOMC_MPICC" : "CC");
+    if (!cc || !*cc)
+        cc = mpi ? "mpicc" : "cc";
+    runtime_paths(&inc, &lib);
+    if (access(lib, R_OK) != 0) {
+        fprintf(stderr, "eomc: runtime library not found at %s "
+                        "(set EOMC_RUNTIME_LIB)\n", lib);
+        return -1;
+    }
+    enum { FIRST, SECOND, TWIN, MAIN, NUNIT };
+    char *ext = twin ? write_extended_unit(c_file) : NULL;
+    char *main_c = ext || !twin ? write_main_unit(c_file, model) : NULL;
+    if (!main_c) {
+        if (ext)
+            unlink(ext);
+        free(ext);
+        return -1;
+    }
+    size_t len = strlen(exe) + 16;
+    char *tmp = xmalloc(len);
+    int special = build_is_special(exe);
+    snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
+    char *obj[NUNIT] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
+                        sibling(c_file, "model_ext.o"), sibling(c_file, "main.o")};
+    char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS, incabs[PATH_MAX];
+    /* absolute: the units compile in the C file's directory */
+    snprintf(incflag, sizeof incflag, "-I%s", realpath(inc, incabs) ? incabs : inc);
+    snprintf(ccbuf, sizeof ccbuf, "%s", cc);
+    char *argv[64];
+    int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
+    /* The units compile at once (each is most of the time of a large
+     * model's build), then link: the model (a large one's two halves,
+     * -DEOMC_UNIT=1, 2: emit.h), its extended-precision twin, and the
+     * main.  Position-independent, each of them: a simulator and a
+     * library (--shared) link the same objects. */
+    const char *flags[] = {"-std=c11", opt_flag(units), "-fPIC", "-pthread", incflag};
+    const char *main_flags[] = {shared ? "-DEOMC_SHARED" : "-DEOMC_MAIN",
+                                mpi ? "-DEOMC_MPI" : NULL};
+    const char *unit_flag[NUNIT] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL,
+                                    NULL};
+    /* Each unit compiles in the directory of the C, named relative to it,
+     * so that the command line of the same C is the same from one build
+     * to the next, wherever its directory: a compiler cache (CC="ccache
+     * cc") then finds it (ccache hashes the file names it is given).  The
+     * objects are siblings of the C, and the link names them in full. */
+    const char *slash = strrchr(c_file, '/');
+    char *dir = NULL;
+    if (slash) {
+        dir = xmalloc((size_t)(slash - c_file) + 2);
+        memcpy(dir, c_file, (size_t)(slash - c_file) + 1);
+        dir[slash - c_file + 1] = '\0';
+    }
+    const char *src[NUNIT] = {c_file, c_file, ext, main_c};
+    int use[NUNIT] = {1, units == 2, twin, 1};
+    char *unit_argv[NUNIT][32], *cached[NUNIT] = {NULL};
+    pid_t pid[NUNIT];
+    for (int u = 0; u < NUNIT; u++) {
+        if (!use[u])
+            continue;
+        int n = 0;
+        for (int k = 0; k < ncc; k++)
+            unit_argv[u][n++] = argv[k];
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+            unit_argv[u][n++] = (char *)flags[k];
+        for (size_t k = 0; u == MAIN && k < sizeof main_flags / sizeof *main_flags; k++)
+            if (main_flags[k])
+                unit_argv[u][n++] = (char *)main_flags[k];
+        if (unit_flag[u])
+            unit_argv[u][n++] = (char *)unit_flag[u];
+        unit_argv[u][n++] = "-c";
+        unit_argv[u][n++] = (char *)(dir ? src[u] + strlen(dir) : src[u]);
+        unit_argv[u][n++] = "-o";
+        unit_argv[u][n++] = dir ? obj[u] + strlen(dir) : obj[u];
+        unit_argv[u][n] = NULL;
+        UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], {src[u], u == TWIN ? c_file : NULL}};
+        cached[u] = cached_object(&key);
+        pid[u] = cached[u] && access(cached[u], R_OK) == 0 ? 0 : start_cc(unit_argv[u], dir, 0);
+    }
+    int rc = 0;
+    for (int u = 0; u < NUNIT; u++) { /* each waited for */
+        if (!use[u] || pid[u] == 0)
+            continue;
+        if (wait_cc(pid[u], cc) != 0)
+            rc = -1;
+        else if (cached[u] && keep_object(obj[u], cached[u]) != 0)
+            free(cached[u]), cached[u] = NULL; /* no cache: the object where it is */
+    }
+    if (rc == 0) {
+        int n = ncc;
+        for (int u = 0; u < NUNIT; u++)
+            if (use[u])
+                argv[n++] = cached[u] ? cached[u] : obj[u];
+        /* A library holds the whole runtime, not just what the model
+         * calls: its caller (Python) reaches the API by name.  libeomcrt.a
+         * is built position-independent (meson's b_staticpic). */
+        const char *link[] = {"-o", tmp};
+        const char *lib_link[] = {"-shared", "-Wl,--whole-archive", lib,
+                                  "-Wl,--no-whole-archive", "-o", tmp};
+        const char *const *lk = shared ? lib_link : link;
+        size_t nlk = shared ? sizeof lib_link / sizeof *lib_link : sizeof link / sizeof *link;
+        if (!shared)
+            argv[n++] = (char *)lib;
+        for (size_t k = 0; k < nlk; k++)
+            argv[n++] = (char *)lk[k];
+        n += split_flags(libs, argv + n, 40);
+        argv[n++] = "-lm";
+        argv[n++] = "-pthread"; /* sweeps run on threads */
+        argv[n] = NULL;
+        rc = wait_cc(start_cc(argv, NULL, 0), cc);
+    }
+    if (rc == 0 && !special && rename(tmp, exe) != 0) {
+        fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));
+        rc = -1;
+    }
+    if (rc != 0 && !special)
+        unlink(tmp);
+    if (ext)
+        unlink(ext);
+    unlink(main_c);
+    for (int u = 0; u < NUNIT; u++) {
+        if (use[u])
+            unlink(obj[u]);
+        free(obj[u]);
+        free(cached[u]);
+    }
+    free(ext);
+    free(main_c);
+    free(tmp);
+    free(dir);
+    return rc;
+}
+
 char *
 build_cache_path(const char *name, const char *key, size_t len)
 {
-    const char *root = getenv("EOMC_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME");
-    const char *home = getenv("HOME");
     char dir[PATH_MAX];
-    if (root && *root)
-        snprintf(dir, sizeof dir, "%s", root);
-    else if (xdg && *xdg)
-        snprintf(dir, sizeof dir, "%s/eomc", xdg);
-    else
-        snprintf(dir, sizeof dir, "%s/.cache/eomc", home && *home ? home : "/tmp");
+    cache_root(dir, sizeof dir - 20);
     /* The key: spec and options (the caller's text), and what else the
      * simulator is made of (toolchain_hash). */
     uint64_t h = hash_bytes(toolchain_hash(), &len, sizeof len);

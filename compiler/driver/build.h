@@ -1,6 +1,6 @@
 /*
  * build: turn generated C into a simulator executable with $CC, and keep
- * built simulators in a cache keyed by content for `eomc run`.
+ * built simulators and the objects they link in a cache keyed by content.
  */
 #ifndef EOMC_BUILD_H
 #define EOMC_BUILD_H
@@ -12,19 +12,23 @@
  * temporary file over it would replace the device itself. */
 int build_is_special(const char *path);
 
-/* Compile c_file with the runtime into exe (written to a temporary name
- * and renamed when complete): as two translation units if units is 2
- * (-DEOMC_UNIT=1 and 2, emit.h), and, if twin, a second time with
- * EOMC_EXTENDED for the reference solution (through a file model_ext.c
- * written next to it).  The compilations run at once, their objects go
- * next to c_file, and everything but exe is removed.  mpi: with
- * $EOMC_MPICC (default mpicc) and -DEOMC_MPI, so that its main shares a
- * sweep among the ranks of an MPI job (runtime/include/eomc_mpi.h).  shared: a
- * shared library instead (-DEOMC_SHARED: no main, the model under fixed
- * names, eomc_main.h) holding the whole runtime, for the Python package.
- * Returns 0, or -1 after printing why. */
-int build_executable(const char *c_file, const char *exe, int mpi, int units, int twin,
-                     int shared);
+/* Compile c_file, the C of the model named model, with the runtime into
+ * exe (written to a temporary name and renamed when complete): as two
+ * translation units if units is 2 (-DEOMC_UNIT=1 and 2, emit.h), and, if
+ * twin, a second time with EOMC_EXTENDED for the reference solution
+ * (through a file model_ext.c written next to it); the main in a unit of
+ * its own (main.c, next to it).  The compilations run at once, each unit
+ * position-independent, and each object is kept in the object cache under
+ * its content (docs/internals.md): a unit compiled before, for a
+ * simulator or a library, is not compiled again.  Everything but exe and
+ * the cache is removed.  mpi: with $EOMC_MPICC (default mpicc) and
+ * -DEOMC_MPI, so that its main shares a sweep among the ranks of an MPI
+ * job (runtime/include/eomc_mpi.h).  shared: a shared library instead
+ * (-DEOMC_SHARED: no main, the model under fixed names, eomc_main.h)
+ * holding the whole runtime, for the Python package.  Returns 0, or -1
+ * after printing why. */
+int build_executable(const char *c_file, const char *model, const char *exe, int mpi,
+                     int units, int twin, int shared);
 
 /* Where `eomc run` keeps the simulator for this key; the directory is
  * created.  Returns a malloc'd path, or NULL after printing why. */

@@ -137,9 +137,11 @@ refuse_taylor(const Options *o, const Spec *s, const char *why)
 
 /* Load, derive and emit to `out` (NULL: nothing, --explain only).
  * Returns 0, or an exit status. */
-/* *units (unless NULL): the translation units of the C written (emit.h). */
+/* *units (unless NULL): the translation units of the C written (emit.h);
+ * *model (unless model is NULL): the model's name in it (its NAME_model),
+ * malloc'd. */
 static int
-compile(const Options *o, FILE *out, int *units)
+compile(const Options *o, FILE *out, int *units, char **model)
 {
     Arena *A = arena_new();
     ExprPool *P = expr_pool_new();
@@ -232,6 +234,10 @@ compile(const Options *o, FILE *out, int *units)
                     int nu = emit_model(out, L, P, &info, st);
                     if (units)
                         *units = nu;
+                    if (model) {
+                        *model = xmalloc(strlen(L->model.name) + 1);
+                        strcpy(*model, L->model.name);
+                    }
                     if (o->stats)
                         print_stats(st);
                 }
@@ -249,7 +255,7 @@ compile(const Options *o, FILE *out, int *units)
 /* Write to path.tmpPID, then rename: never a half-written file (but a
  * device such as /dev/null is written in place). */
 static int
-compile_to_file(const Options *o, const char *path, int *units)
+compile_to_file(const Options *o, const char *path, int *units, char **model)
 {
     size_t len = strlen(path) + 32;
     char *tmp = xmalloc(len);
@@ -261,7 +267,7 @@ compile_to_file(const Options *o, const char *path, int *units)
         free(tmp);
         return EXIT_USAGE;
     }
-    int rc = compile(o, f, units);
+    int rc = compile(o, f, units, model);
     if (fclose(f) != 0 && rc == 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", path, strerror(errno));
         rc = EXIT_USAGE;
@@ -307,12 +313,14 @@ build(const Options *o, const char *exe)
     char cfile[sizeof dir + 16];
     snprintf(cfile, sizeof cfile, "%s/model.c", dir);
     int units = 1;
-    int rc = compile_to_file(o, cfile, &units);
+    char *model = NULL;
+    int rc = compile_to_file(o, cfile, &units, &model);
     /* The extended-precision twin doubles the compiler's work: a model
      * of two units (a large one) gets it only when asked for. */
     int twin = units == 1 || o->extended || o->needs_twin;
-    if (rc == 0 && build_executable(cfile, exe, o->mpi, units, twin, o->shared) != 0)
+    if (rc == 0 && build_executable(cfile, model, exe, o->mpi, units, twin, o->shared) != 0)
         rc = 1;
+    free(model);
     unlink(cfile);
     rmdir(dir);
     return rc;
@@ -519,8 +527,8 @@ eomc_main(int argc, char **argv)
     if ((rc = import_spec(&o)) != 0)
         return rc;
     if (!strcmp(o.cmd, "compile"))
-        rc = o.out ? compile_to_file(&o, o.out, NULL)
-                   : compile(&o, o.explain ? NULL : stdout, NULL);
+        rc = o.out ? compile_to_file(&o, o.out, NULL, NULL)
+                   : compile(&o, o.explain ? NULL : stdout, NULL, NULL);
     else if (!strcmp(o.cmd, "build")) {
         char stem[200], def[256];
         spec_stem(o.spec, stem, sizeof stem);

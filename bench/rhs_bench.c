@@ -49,7 +49,7 @@ rhs_calls(Work *w, long calls)
     for (long k = 0; k < calls; k++) {
         w->q[0] = 0.3 + 1e-9 * (double)k; /* defeat hoisting */
         eomc_sim_accel(w->sim, 0.0, w->q, w->v, w->a);
-        w->sum += w->a[w->m->nq - 1];
+        w->sum += w->a[eomc_nv(w->m) - 1];
     }
 }
 
@@ -88,7 +88,7 @@ qdd_error(const eomc_model *m, eomc_sim *sim, const double *q, const double *v)
     double err = NAN;
     if (eomc_sim_accel(sim, 0.0, q, v, a) == EOMC_OK && x->accel(0, qe, ve, p, u, ae, NULL) == 0) {
         eomc_ext dmax = 0, amax = 0;
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < eomc_nv(m); i++) { /* a: one per speed */
             eomc_ext d = fabsl((eomc_ext)a[i] - ae[i]), s = fabsl(ae[i]);
             dmax = d > dmax ? d : dmax;
             amax = s > amax ? s : amax;

@@ -64,7 +64,7 @@ small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
 robots) r=$src/tests/import/models/robots # written for the robots benchmark too
         models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml $r/fourbar.xml
-                $r/freebody.xml" ;;
+                $r/freebody.xml $r/biped_loops.xml" ;;
 humanoid | 22_humanoids) models=$samples/humanoid/$part.xml ;;
 humanoid100) models=$samples/humanoid100/$part.xml ;;
 *) echo "test_import.sh: no part '$part'" >&2; exit 2 ;;

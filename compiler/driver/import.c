@@ -841,7 +841,8 @@ put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *
  * v^2 in T; actuators, each one's force on its joint, its control an
  * input.  What MuJoCo's flags disable is not written. */
 static void
-put_effects(const mjModel *m, const char *const *qn, const char *const *vn, const char *const *un,
+put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
+            const char *const *un,
             const char *const *tn, const char *const *body, const char *const *principal,
             const char *const *flow, FILE *out)
 {

@@ -131,8 +131,8 @@ verify(const LowFunc *f, const int *gk, int b, int g, const Group *G, int n, con
 }
 
 /* Does every output of c vanish where its seeds (coordinates q0 ..
- * q0+nq-1; with speeds, the slots from v0) are all 0, as expressions (a unit load's recursion: no load,
- * no motion)?  Then a copy whose seeds are zero may store zeros instead
+ * q0+nq-1; with speeds, the slots from v0) are all 0, as expressions (a
+ * unit load's recursion: no load, no motion)?  Then a copy whose seeds are zero may store zeros instead
  * of running (repeat.h). */
 static int
 vanishes(const LowFunc *c, int q0, int nq, int v0, Arena *A, ExprPool *P)

@@ -543,7 +543,8 @@ joint_local(const Spec *s, Arena *A, ExprPool *P, const Tree *t, const ExprId *q
                                        slot_name(s, i));
             }
         for (int i = 0; !why && m_speeds(s) && i < s->nq; i++)
-            if (s->vslot[i] < 0 && (size_t)expr_var(P, i, 0) < npool && mark[expr_var(P, i, 0)])
+            if (s->vslot[i] < 0 && (size_t)expr_var(P, i, 0) < npool &&
+                mark[expr_var(P, i, 0)])
                 why = arena_printf(A, "a kinetic-energy term depends on '%s', an Euler "
                                    "parameter turned by speeds", s->coord[i].name);
     }

@@ -26,13 +26,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "csv_table.h"
 #include "rtest.h"
 
 static const char *osc_sim, *driven_sim, *nonpd_sim[2], *leaky_sim;
 static char dir[] = "/tmp/eomc-rt-cli-XXXXXX";
 static char out_path[64], err_path[64], csv_path[64];
 static char *out, *err; /* the last run's stdout and stderr */
-
 
 /* Run `EXE ARGS` (ARGS as the shell reads them); its exit status, with
  * stdout and stderr in out and err. */
@@ -61,54 +61,6 @@ one_line(char *s)
         if (*c == '\n' || *c == '\r')
             *c = ' ';
     return s;
-}
-
-/* The value on the line "NAME VALUE" of --accel's output, or NAN. */
-static double
-accel_value(const char *text, const char *name)
-{
-    size_t len = strlen(name);
-    for (const char *p = text; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL)
-        if (strncmp(p, name, len) == 0 && p[len] == ' ')
-            return strtod(p + len + 1, NULL);
-    return NAN;
-}
-
-/* A CSV: its header line and rows of numbers (ok = 0 if any field is not
- * a number or a row has another width). */
-typedef struct Table {
-    char header[256];
-    int ncol, nrow, ok;
-    double *v; /* v[row * ncol + col] */
-} Table;
-
-static Table
-parse_csv(const char *text)
-{
-    Table t = {{0}, 1, 0, 1, NULL};
-    size_t len = strcspn(text, "\n");
-    snprintf(t.header, sizeof t.header, "%.*s", (int)len, text);
-    for (const char *c = t.header; *c; c++)
-        t.ncol += *c == ',';
-    const char *p = text + len;
-    size_t cap = 0;
-    while (*p == '\n' && p[1]) {
-        p++;
-        if ((size_t)t.nrow == cap) {
-            cap = cap ? 2 * cap : 256;
-            if (!(t.v = realloc(t.v, cap * (size_t)t.ncol * sizeof *t.v)))
-                exit(1);
-        }
-        for (int j = 0; j < t.ncol; j++) {
-            char *end;
-            t.v[(size_t)t.nrow * (size_t)t.ncol + (size_t)j] = strtod(p, &end);
-            t.ok &= end != p && (*end == (j + 1 < t.ncol ? ',' : '\n') || *end == '\0');
-            p = *end == ',' ? end + 1 : end;
-        }
-        p += strcspn(p, "\n");
-        t.nrow++;
-    }
-    return t;
 }
 
 static double

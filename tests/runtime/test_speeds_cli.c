@@ -29,6 +29,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "csv_table.h"
 #include "rtest.h"
 
 enum { NQ = 7, NV = 6, NX = NQ + NV };
@@ -64,54 +65,6 @@ one_line(const char *s)
     for (char *c = b; *c; c++)
         *c = *c == '\n' || *c == '\r' ? ' ' : *c;
     return b;
-}
-
-/* The value after "NAME " at a line's start in text, or NAN. */
-static double
-value_of(const char *text, const char *name)
-{
-    size_t len = strlen(name);
-    for (const char *p = text; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL)
-        if (strncmp(p, name, len) == 0 && p[len] == ' ')
-            return strtod(p + len + 1, NULL);
-    return NAN;
-}
-
-/* A CSV's rows of numbers under its header (ok = 0 when a cell is not a
- * number or a row has another width). */
-typedef struct Table {
-    char header[1024];
-    int ncol, nrow, ok;
-    double *v; /* v[row * ncol + col] */
-} Table;
-
-static Table
-parse_csv(const char *text)
-{
-    Table t = {{0}, 1, 0, 1, NULL};
-    size_t len = strcspn(text, "\n");
-    snprintf(t.header, sizeof t.header, "%.*s", (int)len, text);
-    for (const char *c = t.header; *c; c++)
-        t.ncol += *c == ',';
-    const char *p = text + len;
-    size_t cap = 0;
-    while (*p == '\n' && p[1]) {
-        p++;
-        if ((size_t)t.nrow == cap) {
-            cap = cap ? 2 * cap : 256;
-            if (!(t.v = realloc(t.v, cap * (size_t)t.ncol * sizeof *t.v)))
-                exit(1);
-        }
-        for (int j = 0; j < t.ncol; j++) {
-            char *end;
-            t.v[(size_t)t.nrow * (size_t)t.ncol + (size_t)j] = strtod(p, &end);
-            t.ok &= end != p && (*end == (j + 1 < t.ncol ? ',' : '\n') || *end == '\0');
-            p = *end == ',' ? end + 1 : end;
-        }
-        p += strcspn(p, "\n");
-        t.nrow++;
-    }
-    return t;
 }
 
 static const double *
@@ -203,9 +156,9 @@ accel(void)
     double want[3] = {-(In[2] - In[1]) * w[1] * w[2] / In[0],
                       -(In[0] - In[2]) * w[0] * w[2] / In[1],
                       -(In[1] - In[0]) * w[0] * w[1] / In[2]};
-    CHECK(st == 0 && value_of(out, "root_x''") == 0 && value_of(out, "root_z''") == -FREEBODY_G &&
-              value_of(out, "root_wx'") == want[0] && value_of(out, "root_wy'") == want[1] &&
-              value_of(out, "root_wz'") == want[2] && isnan(value_of(out, "root_wz''")),
+    CHECK(st == 0 && accel_value(out, "root_x''") == 0 && accel_value(out, "root_z''") == -FREEBODY_G &&
+              accel_value(out, "root_wx'") == want[0] && accel_value(out, "root_wy'") == want[1] &&
+              accel_value(out, "root_wz'") == want[2] && isnan(accel_value(out, "root_wz''")),
           "--accel: root_z'' = -g and root_wx', root_wy', root_wz' Euler's (%s)", one_line(out));
 }
 
@@ -218,12 +171,12 @@ error_against_closed_form(void)
     int st = run(freebody_sim, args);
     char *csv = slurp(csv_path);
     Table t = parse_csv(csv);
-    double said = value_of(err, "error_max"), ref = value_of(err, "reference_error");
+    double said = accel_value(err, "error_max"), ref = accel_value(err, "reference_error");
     double truth = exact_error(&t, symmetric);
     CHECK(st == 0 && t.nrow == 41 && said > 0 && ref < 1e-13 && fabs(said - truth) <= ref,
           "--error: the error it reports (%.6g) is the closed form's (%.6g) to the "
           "reference's own estimate (%.2g)", said, truth, ref);
-    double drift = value_of(err, "quat_drift"), ratio = value_of(err, "quat_ratio");
+    double drift = accel_value(err, "quat_drift"), ratio = accel_value(err, "quat_ratio");
     CHECK(drift > 0 && drift < 1e-6 && ratio >= 0 && ratio < 1,
           "--stats: quat_drift %.2g (the quaternion's length before renormalizing), "
           "quat_ratio %.2g (against the steps' error estimates)", drift, ratio);
@@ -245,7 +198,7 @@ fixed_step_drift(void)
 {
     int st = run(freebody_sim, "--fixed-step 0.4 --method rk4 --t-end 3 --init root_wz=6 "
                                "--error --stats -o /dev/null");
-    double drift = value_of(err, "quat_drift"), e = value_of(err, "error_max");
+    double drift = accel_value(err, "quat_drift"), e = accel_value(err, "error_max");
     CHECK(st == 0 && drift > 1e-2 && e > 0.1 &&
               strstr(err, "warning: fixed steps of 0.375: the unit quaternion (root_e0, "
                           "root_e1, root_e2, root_e3) moved off length 1"),
@@ -253,7 +206,7 @@ fixed_step_drift(void)
           e);
     st = run(freebody_sim, "--fixed-step 0.01 --method rk4 --t-end 3 --init root_wz=6 "
                            "--error --stats -o /dev/null");
-    e = value_of(err, "error_max");
+    e = accel_value(err, "error_max");
     CHECK(st == 0 && !strstr(err, "warning") && e < 1e-5,
           "... in steps of 0.01: no warning (the rows off by %.2g)", e);
 }

@@ -66,6 +66,18 @@ load(const char *text)
     return md;
 }
 
+/* text with its first `from` replaced by `to` (a CHECK fails where there
+ * is none). */
+static char *
+variant(const char *text, const char *from, const char *to)
+{
+    const char *at = strstr(text, from);
+    CHECK(at != NULL, "variant '%s' found", from);
+    if (!at)
+        return arena_strdup(A, text);
+    return arena_printf(A, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+}
+
 /* L(e) [3 x 4]: w = 2 L(e) e' in the turned axes. */
 static void
 Lmat(const double *e, double L[12])
@@ -196,20 +208,14 @@ main(void)
     Eom *ga = eom_derive(s, sp.m, form_find("gibbs-appell"), A, sp.P, sp.D, &why);
     CHECK(ab && ab->acc && ne && ga, "articulated-body, newton-euler and gibbs-appell apply");
 
-    /* the same model in the Euler parameters' rates */
-    const char *at = strstr(speeds_spec, ", speeds: [wx, wy, wz]");
-    char *plain = arena_printf(A, "%.*s%s", (int)(at - speeds_spec), speeds_spec,
-                               at + strlen(", speeds: [wx, wy, wz]"));
-    char *init = strstr(plain, ", wx: 0.5");
-    memmove(init, init + strlen(", wx: 0.5"), strlen(init + strlen(", wx: 0.5")) + 1);
-    /* the work by the Euler parameters' variations: w = 2 L e', the
-     * virtual rotation 2 L delta(e) */
-    const char *spin = "-0.3*wx*delta(wx) + 0.2*delta(wz)";
-    char *sp_at = strstr(plain, spin);
-    plain = arena_printf(A, "%.*s%s%s", (int)(sp_at - plain), plain,
-                         "-0.3*(2*(-e1*e0' + e0*e1' + e3*e2' - e2*e3'))*(2*(-e1*delta(e0) + "
-                         "e0*delta(e1) + e3*delta(e2) - e2*delta(e3))) + 0.2*2*(-e3*delta(e0) + "
-                         "e2*delta(e1) - e1*delta(e2) + e0*delta(e3))", sp_at + strlen(spin));
+    /* the same model in the Euler parameters' rates, its work by their
+     * variations: w = 2 L e', the virtual rotation 2 L delta(e) */
+    char *plain = variant(speeds_spec, ", speeds: [wx, wy, wz]", "");
+    plain = variant(plain, ", wx: 0.5", "");
+    plain = variant(plain, "-0.3*wx*delta(wx) + 0.2*delta(wz)",
+                    "-0.3*(2*(-e1*e0' + e0*e1' + e3*e2' - e2*e3'))*(2*(-e1*delta(e0) + "
+                    "e0*delta(e1) + e3*delta(e2) - e2*delta(e3))) + 0.2*2*(-e3*delta(e0) + "
+                    "e2*delta(e1) - e1*delta(e2) + e0*delta(e3))");
     Model qm = load(plain);
     Eom *ab0 = qm.m ? eom_derive(qm.s, qm.m, form_find("articulated-body"), A, qm.P, qm.D, &why)
                     : NULL;

@@ -55,15 +55,33 @@ typedef struct Model {
     Mech *m;
 } Model;
 
+/* every model loaded, freed by done() */
+static Model loaded[4];
+static int nloaded;
+
 static Model
 load(const char *text)
 {
     Model md = {expr_pool_new(), NULL, NULL, NULL};
     md.D = diff_new(md.P);
+    if (nloaded < 4)
+        loaded[nloaded++] = md;
     md.s = spec_load_buffer("free_arm.yaml", text, strlen(text), NULL, A, md.P);
     if (md.s)
         md.m = mech_build(md.s, A, md.P, md.D);
     return md;
+}
+
+/* The plan and the exit status, everything freed. */
+static int
+done(void)
+{
+    for (int i = 0; i < nloaded; i++) {
+        diff_free(loaded[i].D);
+        expr_pool_free(loaded[i].P);
+    }
+    arena_free(A);
+    return check_done();
 }
 
 /* text with its first `from` replaced by `to` (a CHECK fails where there
@@ -195,7 +213,7 @@ main(void)
     Model sp = load(speeds_spec);
     CHECK(sp.s && sp.m, "the free body with speeds loads");
     if (!sp.s || !sp.m)
-        return check_done();
+        return done();
     const Spec *s = sp.s;
     CHECK(s->nq == 8 && s->nv == 7 && s->nspeed == 3 && s->nconstraint == 0,
           "8 coordinates, 7 speeds (x' y' z' wx wy wz h'), no unit constraint");
@@ -221,7 +239,7 @@ main(void)
                     : NULL;
     CHECK(ab0 && ab0->acc && qm.s->nv == 8, "the same model without speeds loads and solves");
     if (!ab || !ab->acc || !ne || !ga || !ab0 || !ab0->acc)
-        return check_done();
+        return done();
 
     double p[1] = {9.81};
     double worst_rate = 0, worst_a = 0, worst_T = 0, worst_ne = 0, worst_ga = 0;
@@ -348,5 +366,5 @@ main(void)
           worst_ne);
     CHECK(worst_ga < 1e-12, "the Gibbs-Appell residual in speeds vanishes there (worst %.2g)",
           worst_ga);
-    return check_done();
+    return done();
 }

@@ -325,6 +325,20 @@ kin_quat_rates(ExprPool *P, const ExprId e[4], const ExprId w[3], ExprId ed[4])
 }
 
 void
+kin_quat_omega(ExprPool *P, const ExprId e[4], const ExprId ed[4], ExprId w[3])
+{
+    ExprId two = expr_const(P, 2);
+    for (int r = 0; r < 3; r++) {
+        ExprId x = EXPR_ZERO;
+        for (int c = 0; c < 4; c++) {
+            ExprId t = expr_mul(P, e[Lrow[r][c][1]], ed[c]);
+            x = Lrow[r][c][0] > 0 ? expr_add(P, x, t) : expr_sub(P, x, t);
+        }
+        w[r] = expr_mul(P, two, x);
+    }
+}
+
+void
 kin_turn_quaternion_speeds(Kin *K, int f, const ExprId e[4], const ExprId w[3])
 {
     ExprPool *P = K->P;

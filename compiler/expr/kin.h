@@ -56,6 +56,9 @@ void kin_turn_quaternion_speeds(Kin *K, int f, const ExprId e[4], const ExprId w
 /* ed = 1/2 e (x) (0, w) = 1/2 L^T w: the rates of the Euler parameters e
  * turning at w in the turned axes; L e' = w/2 and e.e' = 0 for any e. */
 void kin_quat_rates(ExprPool *P, const ExprId e[4], const ExprId w[3], ExprId ed[4]);
+/* w = 2 L(e) e': the angular velocity, in the turned axes, of Euler
+ * parameters e turning at rates ed (exact where |e| = 1). */
+void kin_quat_omega(ExprPool *P, const ExprId e[4], const ExprId ed[4], ExprId w[3]);
 /* The rotation matrix of the Euler parameters e (scalar first), row-major:
  * (e0^2 - |v|^2) I + 2 v v^T + 2 e0 [v x], v = (e1, e2, e3).  A frame's
  * turn (kin_turn_quaternion) and a body's own quaternion share it. */

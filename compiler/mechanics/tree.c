@@ -506,12 +506,6 @@ slot_name(const Spec *s, int j)
     return c < s->nq ? s->coord[c].name : s->speed[c - s->nq].name;
 }
 
-static int
-m_speeds(const Spec *s)
-{
-    return s->nspeed > 0;
-}
-
 /* Each kinetic-energy term no mass carries must move with one joint's
  * rates alone, so that its inertia lies in that joint's own block of M
  * (a rotor's 1/2 a q'^2): the recursions add it there.  NULL, or why
@@ -542,7 +536,7 @@ joint_local(const Spec *s, Arena *A, ExprPool *P, const Tree *t, const ExprId *q
                                        "and '%s', two joints", slot_name(s, first),
                                        slot_name(s, i));
             }
-        for (int i = 0; !why && m_speeds(s) && i < s->nq; i++)
+        for (int i = 0; !why && s->nspeed && i < s->nq; i++)
             if (s->vslot[i] < 0 && (size_t)expr_var(P, i, 0) < npool &&
                 mark[expr_var(P, i, 0)])
                 why = arena_printf(A, "a kinetic-energy term depends on '%s', an Euler "

@@ -117,20 +117,7 @@ quaternion_omega(Loader *L, yaml_node_t *k, yaml_node_t *v, yaml_node_t *sp, Spe
         spec_quaternion_speeds(L, sp, b->quat, &b->quat_speed, b->omega);
         return;
     }
-    static const int Lrow[3][4][2] = { /* (sign, index of e) per column */
-        {{-1, 1}, {1, 0}, {1, 3}, {-1, 2}},
-        {{-1, 2}, {-1, 3}, {1, 0}, {1, 1}},
-        {{-1, 3}, {1, 2}, {-1, 1}, {1, 0}},
-    };
-    ExprId two = expr_const(P, 2);
-    for (int r = 0; r < 3; r++) {
-        ExprId w = EXPR_ZERO;
-        for (int c = 0; c < 4; c++) {
-            ExprId t = expr_mul(P, e[Lrow[r][c][1]], d[c]);
-            w = Lrow[r][c][0] > 0 ? expr_add(P, w, t) : expr_sub(P, w, t);
-        }
-        b->omega[r] = expr_mul(P, two, w);
-    }
+    kin_quat_omega(P, e, d, b->omega);
 }
 
 /* omega for intrinsic rotations R = R_a1(th1) R_a2(th2) ... about the

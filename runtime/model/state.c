@@ -33,24 +33,28 @@ state_name(const eomc_model *m, int k, char *buf, size_t len)
     return buf;
 }
 
+/* Speed k's name with `primes` more primes: v_names[k], or the
+ * coordinate's with one prime more where the speeds are the rates. */
+static const char *
+speed_primed(const eomc_model *m, int k, const char *primes, char *buf, size_t len)
+{
+    if (m->nv > 0)
+        snprintf(buf, len, "%s%s", m->v_names[k], primes);
+    else
+        snprintf(buf, len, "%s'%s", m->q_names[k], primes);
+    return buf;
+}
+
 const char *
 state_speed(const eomc_model *m, int k, char *buf, size_t len)
 {
-    if (m->nv > 0)
-        snprintf(buf, len, "%s", m->v_names[k]);
-    else
-        snprintf(buf, len, "%s'", m->q_names[k]);
-    return buf;
+    return speed_primed(m, k, "", buf, len);
 }
 
 const char *
 state_rate(const eomc_model *m, int k, char *buf, size_t len)
 {
-    if (m->nv > 0)
-        snprintf(buf, len, "%s'", m->v_names[k]);
-    else
-        snprintf(buf, len, "%s''", m->q_names[k]);
-    return buf;
+    return speed_primed(m, k, "'", buf, len);
 }
 
 const char *

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 267 operations per right-hand side
- * (nielsen 267, tzenoff 267, gibbs-appell 267).
+ * The form is the cheapest that applies: 51 operations per right-hand side
+ * (nielsen 51, tzenoff 51, gibbs-appell 51).
  * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -17,6 +17,9 @@
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   cone         first-order, determines z
  *   all affine in q''
+ * The multipliers by unit loads: q'' without the constraints by the unrolled
+ * LDL^T of M, then M^-1 B^T one row of B at a time by its factors (minv), and
+ * the nc x nc system B M^-1 B^T (kkt.c)..
  *
  * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
  * needs are compiled in extended precision instead (appell_model_ext).
@@ -64,15 +67,19 @@ appell_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w0 = p_m * p_g;
     const eomc_real w1 = p_a * p_a;
     const eomc_real w2 = 0.5 * p_m;
+    const eomc_real w3 = 1.0 / p_m;
     pd[0] = w0;
-    const eomc_real w3 = -w0;
+    const eomc_real w4 = -w0;
     pd[2] = w1;
     pd[3] = w2;
-    const eomc_real w4 = 2.0 * w1;
-    const eomc_real w5 = (-2.0) * w1;
-    pd[1] = w3;
-    pd[4] = w4;
-    pd[5] = w5;
+    const eomc_real w5 = 2.0 * w1;
+    const eomc_real w6 = (-2.0) * w1;
+    pd[1] = w4;
+    pd[4] = w5;
+    pd[5] = w6;
+    pd[6] = w3;
+    const eomc_real w7 = w0 * w3;
+    pd[7] = w7;
 }
 
 #ifndef EOMC_EXTENDED
@@ -359,6 +366,66 @@ appell_c_levels_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dveldv[2] = w2;
 }
 
+/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
+static void
+appell_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real pd7 = p[11];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    piv[0] = p_m;
+    piv[1] = p_m;
+    piv[2] = p_m;
+    mkk[0] = p_m;
+    mkk[1] = p_m;
+    mkk[2] = p_m;
+    a[0] = 0.0;
+    a[1] = 0.0;
+    a[2] = pd7;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+static int
+appell_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real piv[3], mkk[3];
+    appell_accel_solve(t, q, v, p, u, a, piv, mkk);
+    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* y = M^-1 da by the form's recursion at rest, with no force but the load
+ * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of
+ * B at a time. */
+static void
+appell_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_x = da[0];
+    const eomc_real da_y = da[1];
+    const eomc_real da_z = da[2];
+    const eomc_real pd6 = p[10];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    const eomc_real w0 = pd6 * da_x;
+    const eomc_real w1 = pd6 * da_y;
+    const eomc_real w2 = pd6 * da_z;
+    y[0] = w0;
+    y[1] = w1;
+    y[2] = w2;
+}
+
 /* The values that must be positive (or not negative): check_what. */
 static void
 appell_check_values(const eomc_real *p, eomc_real *chk)
@@ -472,7 +539,7 @@ const eomc_model appell_model = {
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 6, .derive = appell_derive,
+    .nd = 8, .derive = appell_derive,
     .t_end = 2.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = appell_initial, .inputs = appell_inputs, .mass_bias = appell_mass_bias,
     .energy = appell_energy,
@@ -490,7 +557,7 @@ const eomc_model appell_model = {
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
     .mass_parent = NULL, /* M factored densely (or not at all: accel) */
-    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .free_accel = appell_accel, .minv = appell_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */

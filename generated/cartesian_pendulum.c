@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 136 operations per right-hand side
- * (nielsen 136, tzenoff 136, gibbs-appell 136).
+ * The form is the cheapest that applies: 36 operations per right-hand side
+ * (nielsen 36, tzenoff 36, gibbs-appell 36).
  * options: --jacobian auto --taylor
  * scene:   swing
  * effects: gravity
@@ -17,6 +17,9 @@
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   rod          holonomic, determines y
  *   all affine in q''
+ * The multipliers by unit loads: q'' without the constraints by the unrolled
+ * LDL^T of M, then M^-1 B^T one row of B at a time by its factors (minv), and
+ * the nc x nc system B M^-1 B^T (kkt.c)..
  *
  * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
  * needs are compiled in extended precision instead (cartesian_pendulum_model_ext).
@@ -64,12 +67,17 @@ cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w0 = p_l * p_l;
     const eomc_real w1 = 0.5 * p_m;
     const eomc_real w2 = p_m * p_g;
-    const eomc_real w3 = fabs(p_l);
+    const eomc_real w3 = 1.0 / p_m;
+    const eomc_real w4 = fabs(p_l);
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
-    const eomc_real w4 = w3 * w3;
-    pd[3] = w4;
+    pd[3] = w3;
+    const eomc_real w5 = w2 * w3;
+    const eomc_real w6 = -w5;
+    pd[4] = w6;
+    const eomc_real w7 = w4 * w4;
+    pd[5] = w7;
 }
 
 #ifndef EOMC_EXTENDED
@@ -247,7 +255,7 @@ cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
 {
     const eomc_real q_x = q[0];
     const eomc_real q_y = q[1];
-    const eomc_real pd3 = p[7];
+    const eomc_real pd5 = p[9];
     (void)u;
     (void)t;
     const eomc_real w0 = fabs(q_x);
@@ -255,7 +263,7 @@ cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real w2 = w0 * w0;
     const eomc_real w3 = w1 * w1;
     const eomc_real w4 = w2 + w3;
-    const eomc_real w5 = pd3 + w4;
+    const eomc_real w5 = pd5 + w4;
     mag[0] = w5;
 }
 
@@ -331,6 +339,60 @@ cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldv[1] = w2;
     dposdt[0] = 0.0;
     dveldt[0] = 0.0;
+}
+
+/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
+static void
+cartesian_pendulum_accel_solve(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *piv, eomc_real *mkk)
+{
+    const eomc_real p_m = p[0];
+    const eomc_real pd4 = p[8];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    piv[0] = p_m;
+    piv[1] = p_m;
+    mkk[0] = p_m;
+    mkk[1] = p_m;
+    a[0] = 0.0;
+    a[1] = pd4;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+static int
+cartesian_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real piv[2], mkk[2];
+    cartesian_pendulum_accel_solve(t, q, v, p, u, a, piv, mkk);
+    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* y = M^-1 da by the form's recursion at rest, with no force but the load
+ * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of
+ * B at a time. */
+static void
+cartesian_pendulum_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_x = da[0];
+    const eomc_real da_y = da[1];
+    const eomc_real pd3 = p[7];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    const eomc_real w0 = pd3 * da_x;
+    const eomc_real w1 = pd3 * da_y;
+    y[0] = w0;
+    y[1] = w1;
 }
 
 /* The values that must be positive (or not negative): check_what. */
@@ -442,7 +504,7 @@ const eomc_model cartesian_pendulum_model = {
     .nq = 2, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "swing", .p_fixed = p_fixed,
-    .nd = 4, .derive = cartesian_pendulum_derive,
+    .nd = 6, .derive = cartesian_pendulum_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = cartesian_pendulum_initial, .inputs = cartesian_pendulum_inputs, .mass_bias = cartesian_pendulum_mass_bias,
     .energy = cartesian_pendulum_energy,
@@ -460,7 +522,7 @@ const eomc_model cartesian_pendulum_model = {
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
     .mass_parent = NULL, /* M factored densely (or not at all: accel) */
-    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .free_accel = cartesian_pendulum_accel, .minv = cartesian_pendulum_minv, /* the multipliers by unit loads */
     .c_scale = cartesian_pendulum_c_scale,
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
- * The form is the cheapest that applies: 327 operations per right-hand side
- * (lagrange 368, nielsen 381, tzenoff 407).
+ * The form is the cheapest that applies: 119 operations per right-hand side
+ * (lagrange 160, nielsen 171, tzenoff 197).
  * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -17,6 +17,9 @@
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   speed        first-order, determines phi
  *   all affine in q''
+ * The multipliers by unit loads: q'' without the constraints by the unrolled
+ * LDL^T of M, then M^-1 B^T one row of B at a time by its factors (minv), and
+ * the nc x nc system B M^-1 B^T (kkt.c)..
  *
  * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
  * needs are compiled in extended precision instead (central_constant_speed_model_ext).
@@ -64,11 +67,13 @@ central_constant_speed_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w0 = p_m * p_k;
     const eomc_real w1 = p_v0 * p_v0;
     const eomc_real w2 = 0.5 * p_m;
-    const eomc_real w3 = 2.0 * p_m;
+    const eomc_real w3 = 1.0 / p_m;
+    const eomc_real w4 = 2.0 * p_m;
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
     pd[3] = w3;
+    pd[4] = w4;
 }
 
 #ifndef EOMC_EXTENDED
@@ -268,7 +273,7 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real a_phi = a[2];
     const eomc_real p_m = p[0];
     const eomc_real pd0 = p[4];
-    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
     (void)u;
     (void)t;
     (void)dEdu;
@@ -331,7 +336,7 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real w48 = w14 * v_r;
     const eomc_real w49 = w15 * v_r;
     const eomc_real w50 = w14 * a_r;
-    const eomc_real w51 = pd3 * w20;
+    const eomc_real w51 = pd4 * w20;
     const eomc_real w52 = w25 * w1;
     const eomc_real w53 = w15 * w0;
     const eomc_real w54 = w25 * w21;
@@ -341,14 +346,14 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real w58 = w11 + w31;
     const eomc_real w59 = w32 + w12;
     const eomc_real w60 = w13 - w33;
-    const eomc_real w61 = pd3 * w32;
+    const eomc_real w61 = pd4 * w32;
     const eomc_real w62 = w16 - w35;
     const eomc_real w63 = w18 + w36;
     const eomc_real w64 = w38 * v_phi;
     const eomc_real w65 = w39 * a_phi;
     const eomc_real w66 = w39 * v_phi;
     const eomc_real w67 = w38 * a_phi;
-    const eomc_real w68 = pd3 * w35;
+    const eomc_real w68 = pd4 * w35;
     const eomc_real w69 = w42 * v_phi;
     const eomc_real w70 = w45 * a_phi;
     const eomc_real w71 = w46 * w8;
@@ -387,8 +392,8 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real w103 = w1 * w63;
     const eomc_real w104 = w70 + w71;
     const eomc_real w105 = w72 - w73;
-    const eomc_real w106 = pd3 * w75;
-    const eomc_real w107 = pd3 * w76;
+    const eomc_real w106 = pd4 * w75;
+    const eomc_real w107 = pd4 * w76;
     const eomc_real w108 = w60 * w78;
     const eomc_real w109 = w60 * w45;
     const eomc_real w110 = w60 * w46;
@@ -398,12 +403,12 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real w114 = w80 * v_phi;
     const eomc_real w115 = w83 * v_theta;
     const eomc_real w116 = w84 * v_theta;
-    const eomc_real w117 = pd3 * w85;
+    const eomc_real w117 = pd4 * w85;
     const eomc_real w118 = w60 * w64;
     const eomc_real w119 = w38 * w60;
     const eomc_real w120 = w39 * w60;
     const eomc_real w121 = w60 * w66;
-    const eomc_real w122 = pd3 * w69;
+    const eomc_real w122 = pd4 * w69;
     const eomc_real w123 = w55 - w86;
     const eomc_real w124 = p_m * w88;
     const eomc_real w125 = w89 + w34;
@@ -423,12 +428,12 @@ central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real w139 = w15 * w105;
     const eomc_real w140 = v_phi * w110;
     const eomc_real w141 = w112 + w113;
-    const eomc_real w142 = pd3 * w115;
-    const eomc_real w143 = pd3 * w116;
+    const eomc_real w142 = pd4 * w115;
+    const eomc_real w143 = pd4 * w116;
     const eomc_real w144 = v_phi * w119;
     const eomc_real w145 = v_phi * w120;
     dEdv[6] = w122;
-    const eomc_real w146 = pd3 * w114;
+    const eomc_real w146 = pd4 * w114;
     const eomc_real w147 = w3 * w120;
     const eomc_real w148 = w2 * w119;
     const eomc_real w149 = w9 / q_r;
@@ -858,6 +863,169 @@ central_constant_speed_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldv[2] = w19;
 }
 
+/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
+ * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
+ * minv_shared reads of the solve. */
+static void
+central_constant_speed_accel_solve(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *piv, eomc_real *mkk, eomc_real *shared)
+{
+    const eomc_real q_r = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_r = v[0];
+    const eomc_real v_phi = v[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real p_m = p[0];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd3 = p[7];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    piv[0] = p_m;
+    const eomc_real w4 = q_r * q_r;
+    const eomc_real w5 = w1 * w1;
+    mkk[0] = p_m;
+    const eomc_real w6 = pd0 / q_r;
+    const eomc_real w7 = w1 * v_r;
+    const eomc_real w8 = q_r * w0;
+    const eomc_real w9 = q_r * w1;
+    const eomc_real w10 = w3 * v_phi;
+    const eomc_real w11 = w0 * v_r;
+    const eomc_real w12 = w2 * v_phi;
+    const eomc_real w13 = p_m * w4;
+    const eomc_real w14 = w4 * w5;
+    const eomc_real w15 = w7 * v_theta;
+    const eomc_real w16 = w8 * v_theta;
+    const eomc_real w17 = w9 * w2;
+    const eomc_real w18 = w11 * v_theta;
+    const eomc_real w19 = w9 * v_theta;
+    const eomc_real w20 = w9 * w3;
+    piv[1] = w13;
+    const eomc_real w21 = p_m * w14;
+    mkk[1] = w13;
+    const eomc_real w22 = w7 - w16;
+    const eomc_real w23 = w17 * v_phi;
+    const eomc_real w24 = w11 + w19;
+    const eomc_real w25 = w20 * v_phi;
+    const eomc_real w26 = 1.0 / w13;
+    piv[2] = w21;
+    mkk[2] = w21;
+    const eomc_real w27 = v_theta * w22;
+    const eomc_real w28 = w3 * w22;
+    const eomc_real w29 = w22 * w10;
+    const eomc_real w30 = v_theta * w24;
+    const eomc_real w31 = w2 * w22;
+    const eomc_real w32 = w22 * w12;
+    const eomc_real w33 = 1.0 / w21;
+    const eomc_real w34 = w15 + w27;
+    const eomc_real w35 = w28 - w23;
+    const eomc_real w36 = w18 + w30;
+    const eomc_real w37 = w31 + w25;
+    const eomc_real w38 = w6 / q_r;
+    const eomc_real w39 = w0 * w34;
+    const eomc_real w40 = v_phi * w35;
+    const eomc_real w41 = w2 * w36;
+    const eomc_real w42 = v_phi * w37;
+    const eomc_real w43 = w3 * w36;
+    const eomc_real w44 = w9 * w34;
+    const eomc_real w45 = w29 - w41;
+    const eomc_real w46 = w32 + w43;
+    shared[1] = w26;
+    const eomc_real w47 = w40 + w45;
+    const eomc_real w48 = w42 + w46;
+    shared[0] = w33;
+    const eomc_real w49 = w2 * w47;
+    const eomc_real w50 = w3 * w48;
+    const eomc_real w51 = w20 * w47;
+    const eomc_real w52 = w17 * w48;
+    const eomc_real w53 = w49 - w50;
+    const eomc_real w54 = w51 + w52;
+    const eomc_real w55 = w1 * w53;
+    const eomc_real w56 = w8 * w53;
+    const eomc_real w57 = w54 * w33;
+    const eomc_real w58 = w39 + w55;
+    const eomc_real w59 = w44 - w56;
+    const eomc_real w60 = p_m * w57;
+    const eomc_real w61 = p_m * w58;
+    const eomc_real w62 = w26 * w59;
+    const eomc_real w63 = -w60;
+    const eomc_real w64 = w38 + w61;
+    const eomc_real w65 = p_m * w62;
+    a[2] = w63;
+    const eomc_real w66 = pd3 * w64;
+    const eomc_real w67 = -w65;
+    const eomc_real w68 = -w66;
+    a[0] = w68;
+    a[1] = w67;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+static int
+central_constant_speed_accel_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot, eomc_real *shared)
+{
+    eomc_real piv[3], mkk[3];
+    central_constant_speed_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
+    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* The same, what minv_shared reads dropped. */
+static int
+central_constant_speed_accel(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot)
+{
+    eomc_real shared[2];
+    return central_constant_speed_accel_shared(t, q, v, p, u, a, pivot, shared);
+}
+
+/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
+ * but the load da, or the LDL^T factors), given shared[] from
+ * accel_solve at the same (t, q, p): one unit load's passes alone. */
+static void
+central_constant_speed_minv_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    const eomc_real *shared, const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_r = da[0];
+    const eomc_real da_theta = da[1];
+    const eomc_real da_phi = da[2];
+    const eomc_real pd3 = p[7];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    (void)shared;
+    const eomc_real w0 = pd3 * da_r;
+    const eomc_real w1 = shared[1] * da_theta;
+    const eomc_real w2 = shared[0] * da_phi;
+    y[0] = w0;
+    y[1] = w1;
+    y[2] = w2;
+}
+
+/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+static void
+central_constant_speed_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    eomc_real a[3], shared[2];
+    central_constant_speed_accel_shared(t, q, v, p, u, a, NULL, shared);
+    central_constant_speed_minv_shared(t, q, v, p, u, shared, da, y);
+}
+
 /* The values that must be positive (or not negative): check_what. */
 static void
 central_constant_speed_check_values(const eomc_real *p, eomc_real *chk)
@@ -1029,7 +1197,7 @@ const eomc_model central_constant_speed_model = {
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 4, .derive = central_constant_speed_derive,
+    .nd = 5, .derive = central_constant_speed_derive,
     .t_end = 5.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = central_constant_speed_initial, .inputs = central_constant_speed_inputs, .mass_bias = central_constant_speed_mass_bias,
     .energy = central_constant_speed_energy,
@@ -1047,7 +1215,7 @@ const eomc_model central_constant_speed_model = {
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
     .mass_parent = NULL, /* M factored densely (or not at all: accel) */
-    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .free_accel = central_constant_speed_accel, .minv = central_constant_speed_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
@@ -1061,6 +1229,7 @@ const eomc_model central_constant_speed_model = {
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
     .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = central_constant_speed_taylor, .taylor_why = NULL, /* Taylor's method */
+    .nshared = 2, .free_accel_shared = central_constant_speed_accel_shared, .minv_shared = central_constant_speed_minv_shared,
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    lagrange, E = d/dt(dT/dq') - dT/dq + dV/dq - Q
- * The form is the cheapest that applies: 281 operations per right-hand side
- * (nielsen 302, tzenoff 284, gibbs-appell 281).
+ * The form is the cheapest that applies: 110 operations per right-hand side
+ * (nielsen 138, tzenoff 113, gibbs-appell 110).
  * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -17,6 +17,9 @@
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   blade        first-order, determines y
  *   all affine in q''
+ * The multipliers by unit loads: q'' without the constraints by the unrolled
+ * LDL^T of M, then M^-1 B^T one row of B at a time by its factors (minv), and
+ * the nc x nc system B M^-1 B^T (kkt.c)..
  *
  * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
  * needs are compiled in extended precision instead (chaplygin_sleigh_model_ext).
@@ -76,11 +79,24 @@ chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
     pd[2] = w2;
     const eomc_real w4 = p_b * w2;
     const eomc_real w5 = p_m * w3;
-    const eomc_real w6 = 2.0 * w2;
+    const eomc_real w6 = w2 * w2;
+    const eomc_real w7 = 2.0 * w2;
     pd[3] = w4;
-    const eomc_real w7 = p_J + w5;
-    pd[4] = w7;
-    pd[5] = w6;
+    const eomc_real w8 = p_J + w5;
+    pd[4] = w8;
+    pd[11] = w7;
+    const eomc_real w9 = 1.0 / w8;
+    pd[5] = w9;
+    const eomc_real w10 = w2 * w9;
+    const eomc_real w11 = w9 * w6;
+    pd[6] = w10;
+    pd[7] = w11;
+    const eomc_real w12 = w2 * w10;
+    pd[8] = w12;
+    const eomc_real w13 = w12 * w12;
+    const eomc_real w14 = w2 * w12;
+    pd[9] = w13;
+    pd[10] = w14;
 }
 
 #ifndef EOMC_EXTENDED
@@ -210,7 +226,7 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_b = p[2];
     const eomc_real pd2 = p[7];
     const eomc_real pd3 = p[8];
-    const eomc_real pd5 = p[10];
+    const eomc_real pd11 = p[16];
     (void)u;
     (void)t;
     (void)dEdu;
@@ -240,9 +256,9 @@ chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w7 = w0 * a_theta;
     const eomc_real w8 = w0 * v_theta;
     const eomc_real w9 = w3 - w4;
-    const eomc_real w10 = pd5 * w5;
+    const eomc_real w10 = pd11 * w5;
     const eomc_real w11 = w6 + w7;
-    const eomc_real w12 = pd5 * w8;
+    const eomc_real w12 = pd11 * w8;
     const eomc_real w13 = p_b * w5;
     const eomc_real w14 = pd3 * w6;
     const eomc_real w15 = pd3 * w7;
@@ -455,6 +471,152 @@ chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldq[2] = w6;
 }
 
+/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
+ * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
+ * minv_shared reads of the solve. */
+static void
+chaplygin_sleigh_accel_solve(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *piv, eomc_real *mkk, eomc_real *shared)
+{
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real p_m = p[0];
+    const eomc_real pd2 = p[7];
+    const eomc_real pd4 = p[9];
+    const eomc_real pd6 = p[11];
+    const eomc_real pd7 = p[12];
+    const eomc_real pd8 = p[13];
+    const eomc_real pd9 = p[14];
+    const eomc_real pd10 = p[15];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = cos(q_theta);
+    piv[2] = pd4;
+    mkk[0] = p_m;
+    mkk[1] = p_m;
+    mkk[2] = pd4;
+    const eomc_real w2 = v_theta * v_theta;
+    const eomc_real w3 = w0 * w0;
+    const eomc_real w4 = w1 * w1;
+    const eomc_real w5 = w1 * w0;
+    const eomc_real w6 = w1 * w2;
+    const eomc_real w7 = w0 * w2;
+    shared[0] = w1;
+    shared[1] = w0;
+    const eomc_real w8 = pd7 * w3;
+    const eomc_real w9 = pd7 * w4;
+    const eomc_real w10 = w5 * w5;
+    const eomc_real w11 = pd2 * w6;
+    const eomc_real w12 = p_m - w8;
+    const eomc_real w13 = p_m - w9;
+    const eomc_real w14 = 1.0 / w13;
+    piv[1] = w13;
+    const eomc_real w15 = w14 * w10;
+    const eomc_real w16 = w5 * w14;
+    const eomc_real w17 = w7 * w14;
+    shared[2] = w14;
+    const eomc_real w18 = pd9 * w15;
+    const eomc_real w19 = w7 * w16;
+    const eomc_real w20 = pd2 * w17;
+    shared[3] = w16;
+    const eomc_real w21 = w12 - w18;
+    const eomc_real w22 = pd10 * w19;
+    piv[0] = w21;
+    const eomc_real w23 = 1.0 / w21;
+    const eomc_real w24 = w11 - w22;
+    const eomc_real w25 = w23 * w24;
+    a[0] = w25;
+    shared[4] = w23;
+    const eomc_real w26 = w16 * w25;
+    const eomc_real w27 = w0 * w25;
+    const eomc_real w28 = pd8 * w26;
+    const eomc_real w29 = w20 - w28;
+    a[1] = w29;
+    const eomc_real w30 = w1 * w29;
+    const eomc_real w31 = w27 - w30;
+    const eomc_real w32 = pd6 * w31;
+    a[2] = w32;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+static int
+chaplygin_sleigh_accel_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot, eomc_real *shared)
+{
+    eomc_real piv[3], mkk[3];
+    chaplygin_sleigh_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
+    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* The same, what minv_shared reads dropped. */
+static int
+chaplygin_sleigh_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real shared[5];
+    return chaplygin_sleigh_accel_shared(t, q, v, p, u, a, pivot, shared);
+}
+
+/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
+ * but the load da, or the LDL^T factors), given shared[] from
+ * accel_solve at the same (t, q, p): one unit load's passes alone. */
+static void
+chaplygin_sleigh_minv_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    const eomc_real *shared, const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_x = da[0];
+    const eomc_real da_y = da[1];
+    const eomc_real da_theta = da[2];
+    const eomc_real pd5 = p[10];
+    const eomc_real pd6 = p[11];
+    const eomc_real pd8 = p[13];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    (void)shared;
+    const eomc_real w0 = shared[1] * da_theta;
+    const eomc_real w1 = shared[0] * da_theta;
+    const eomc_real w2 = pd5 * da_theta;
+    const eomc_real w3 = pd6 * w0;
+    const eomc_real w4 = pd6 * w1;
+    const eomc_real w5 = da_x + w3;
+    const eomc_real w6 = da_y - w4;
+    const eomc_real w7 = shared[3] * w6;
+    const eomc_real w8 = shared[2] * w6;
+    const eomc_real w9 = pd8 * w7;
+    const eomc_real w10 = w5 - w9;
+    const eomc_real w11 = shared[4] * w10;
+    y[0] = w11;
+    const eomc_real w12 = shared[3] * w11;
+    const eomc_real w13 = shared[1] * w11;
+    const eomc_real w14 = pd8 * w12;
+    const eomc_real w15 = pd6 * w13;
+    const eomc_real w16 = w8 - w14;
+    const eomc_real w17 = w15 + w2;
+    y[1] = w16;
+    const eomc_real w18 = shared[0] * w16;
+    const eomc_real w19 = pd6 * w18;
+    const eomc_real w20 = w17 - w19;
+    y[2] = w20;
+}
+
+/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+static void
+chaplygin_sleigh_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    eomc_real a[3], shared[5];
+    chaplygin_sleigh_accel_shared(t, q, v, p, u, a, NULL, shared);
+    chaplygin_sleigh_minv_shared(t, q, v, p, u, shared, da, y);
+}
+
 /* The values that must be positive (or not negative): check_what. */
 static void
 chaplygin_sleigh_check_values(const eomc_real *p, eomc_real *chk)
@@ -638,7 +800,7 @@ const eomc_model chaplygin_sleigh_model = {
     .nq = 3, .np = 5, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 6, .derive = chaplygin_sleigh_derive,
+    .nd = 12, .derive = chaplygin_sleigh_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = chaplygin_sleigh_initial, .inputs = chaplygin_sleigh_inputs, .mass_bias = chaplygin_sleigh_mass_bias,
     .energy = chaplygin_sleigh_energy,
@@ -656,7 +818,7 @@ const eomc_model chaplygin_sleigh_model = {
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
     .mass_parent = NULL, /* M factored densely (or not at all: accel) */
-    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .free_accel = chaplygin_sleigh_accel, .minv = chaplygin_sleigh_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
@@ -671,6 +833,7 @@ const eomc_model chaplygin_sleigh_model = {
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
     .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = chaplygin_sleigh_taylor, .taylor_why = NULL, /* Taylor's method */
+    .nshared = 5, .free_accel_shared = chaplygin_sleigh_accel_shared, .minv_shared = chaplygin_sleigh_minv_shared,
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -3,8 +3,8 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    gibbs-appell, E = dS/dq'' + dV/dq - Q
- * The form is the cheapest that applies: 336 operations per right-hand side
- * (lagrange 370, nielsen 381, tzenoff 411).
+ * The form is the cheapest that applies: 160 operations per right-hand side
+ * (lagrange 191, nielsen 204, tzenoff 234).
  * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -17,6 +17,9 @@
  * constraints, by multipliers (E + B^T lambda = 0, f = 0):
  *   precession   second-order, determines theta
  *   all affine in q''
+ * The multipliers by unit loads: q'' without the constraints by the unrolled
+ * LDL^T of M, then M^-1 B^T one row of B at a time by its factors (minv), and
+ * the nc x nc system B M^-1 B^T (kkt.c)..
  *
  * Compiled with -DEOMC_EXTENDED, the functions that the reference solution
  * needs are compiled in extended precision instead (precession_model_ext).
@@ -66,14 +69,23 @@ precession_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w1 = p_A - p_C;
     const eomc_real w2 = p_B - p_A;
     const eomc_real w3 = p_A - p_B;
-    const eomc_real w4 = 3.0 * p_lam;
-    const eomc_real w5 = 1.5 * p_lam;
+    const eomc_real w4 = 1.0 / p_C;
+    const eomc_real w5 = p_C * p_C;
+    const eomc_real w6 = 3.0 * p_lam;
+    const eomc_real w7 = 1.5 * p_lam;
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
     pd[3] = w3;
+    const eomc_real w8 = w3 * w3;
     pd[4] = w4;
-    pd[5] = w5;
+    pd[7] = w8;
+    pd[8] = w6;
+    pd[9] = w7;
+    const eomc_real w9 = p_C * w4;
+    const eomc_real w10 = w4 * w5;
+    pd[5] = w9;
+    pd[6] = w10;
 }
 
 #ifndef EOMC_EXTENDED
@@ -665,8 +677,8 @@ precession_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_phi = v[2];
     const eomc_real a_psi = a[0];
     const eomc_real a_theta = a[1];
-    const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
+    const eomc_real pd8 = p[12];
+    const eomc_real pd9 = p[13];
     (void)u;
     (void)t;
     (void)dfdu;
@@ -828,9 +840,9 @@ precession_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w116 = w72 * w83;
     const eomc_real w117 = w83 * w75;
     const eomc_real w118 = w83 * w88;
-    const eomc_real w119 = pd4 * w116;
-    const eomc_real w120 = pd4 * w117;
-    const eomc_real w121 = pd5 * w118;
+    const eomc_real w119 = pd8 * w116;
+    const eomc_real w120 = pd8 * w117;
+    const eomc_real w121 = pd9 * w118;
     const eomc_real w122 = w113 - w119;
     const eomc_real w123 = w114 - w120;
     const eomc_real w124 = w115 - w121;
@@ -865,6 +877,213 @@ precession_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldv[2] = 0.0;
     dposdt[0] = 0.0;
     dveldt[0] = 0.0;
+}
+
+/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
+ * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
+ * minv_shared reads of the solve. */
+static void
+precession_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk, eomc_real *shared)
+{
+    const eomc_real v_psi = v[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real v_phi = v[2];
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd1 = p[5];
+    const eomc_real pd2 = p[6];
+    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
+    const eomc_real pd6 = p[10];
+    const eomc_real pd7 = p[11];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w1 * w1;
+    const eomc_real w5 = w3 * w3;
+    const eomc_real w6 = w2 * w2;
+    const eomc_real w7 = w0 * w2;
+    piv[2] = p_C;
+    mkk[2] = p_C;
+    const eomc_real w8 = v_psi * w0;
+    const eomc_real w9 = v_theta * w3;
+    const eomc_real w10 = w2 * v_theta;
+    const eomc_real w11 = v_psi * w1;
+    const eomc_real w12 = v_psi * w2;
+    const eomc_real w13 = v_psi * v_theta;
+    shared[0] = w1;
+    const eomc_real w14 = p_C * w4;
+    const eomc_real w15 = w0 * w5;
+    const eomc_real w16 = w0 * w6;
+    const eomc_real w17 = pd6 * w4;
+    const eomc_real w18 = p_A * w5;
+    const eomc_real w19 = p_B * w6;
+    const eomc_real w20 = w7 * w3;
+    const eomc_real w21 = w8 * w2;
+    const eomc_real w22 = w8 * w3;
+    const eomc_real w23 = w8 * v_theta;
+    const eomc_real w24 = w11 + v_phi;
+    const eomc_real w25 = w12 * v_theta;
+    const eomc_real w26 = w10 * v_phi;
+    const eomc_real w27 = w13 * w3;
+    const eomc_real w28 = w9 * v_phi;
+    const eomc_real w29 = p_B * w15;
+    const eomc_real w30 = p_A * w16;
+    const eomc_real w31 = w18 + w19;
+    const eomc_real w32 = w20 * w20;
+    const eomc_real w33 = w21 + w9;
+    const eomc_real w34 = w22 - w10;
+    const eomc_real w35 = p_C * w23;
+    const eomc_real w36 = w22 * v_phi;
+    const eomc_real w37 = w25 * w1;
+    const eomc_real w38 = w27 * w1;
+    const eomc_real w39 = w21 * v_phi;
+    const eomc_real w40 = w29 + w30;
+    const eomc_real w41 = 1.0 / w31;
+    piv[1] = w31;
+    mkk[1] = w31;
+    const eomc_real w42 = w33 * w34;
+    const eomc_real w43 = w34 * w24;
+    const eomc_real w44 = w36 + w37;
+    const eomc_real w45 = w33 * w24;
+    const eomc_real w46 = w38 - w39;
+    const eomc_real w47 = w0 * w40;
+    const eomc_real w48 = pd2 * w42;
+    const eomc_real w49 = pd0 * w43;
+    const eomc_real w50 = w44 - w26;
+    const eomc_real w51 = pd1 * w45;
+    const eomc_real w52 = w46 - w28;
+    const eomc_real w53 = w14 + w47;
+    const eomc_real w54 = w48 - w35;
+    const eomc_real w55 = p_A * w50;
+    const eomc_real w56 = p_B * w52;
+    const eomc_real w57 = w35 - w48;
+    const eomc_real w58 = w53 - w17;
+    mkk[0] = w53;
+    const eomc_real w59 = w1 * w54;
+    const eomc_real w60 = w49 + w55;
+    const eomc_real w61 = w51 + w56;
+    const eomc_real w62 = w1 * w57;
+    const eomc_real w63 = pd4 * w57;
+    const eomc_real w64 = w2 * w60;
+    const eomc_real w65 = w3 * w61;
+    const eomc_real w66 = pd5 * w62;
+    const eomc_real w67 = w2 * w61;
+    const eomc_real w68 = w3 * w60;
+    const eomc_real w69 = w41 * w32;
+    const eomc_real w70 = w20 * w41;
+    shared[1] = w41;
+    const eomc_real w71 = w64 + w65;
+    const eomc_real w72 = w67 - w68;
+    const eomc_real w73 = pd7 * w69;
+    shared[2] = w70;
+    const eomc_real w74 = w0 * w71;
+    const eomc_real w75 = w70 * w72;
+    const eomc_real w76 = w41 * w72;
+    const eomc_real w77 = w58 - w73;
+    const eomc_real w78 = w59 + w74;
+    const eomc_real w79 = pd3 * w75;
+    piv[0] = w77;
+    const eomc_real w80 = 1.0 / w77;
+    const eomc_real w81 = w66 + w79;
+    const eomc_real w82 = w78 + w81;
+    const eomc_real w83 = w80 * w82;
+    shared[3] = w80;
+    const eomc_real w84 = -w83;
+    const eomc_real w85 = w70 * w83;
+    const eomc_real w86 = w1 * w83;
+    a[0] = w84;
+    const eomc_real w87 = pd3 * w85;
+    const eomc_real w88 = pd5 * w86;
+    const eomc_real w89 = w87 + w76;
+    const eomc_real w90 = w88 + w63;
+    a[1] = w89;
+    a[2] = w90;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+static int
+precession_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
+    eomc_real *shared)
+{
+    eomc_real piv[3], mkk[3];
+    precession_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
+    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* The same, what minv_shared reads dropped. */
+static int
+precession_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real shared[4];
+    return precession_accel_shared(t, q, v, p, u, a, pivot, shared);
+}
+
+/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
+ * but the load da, or the LDL^T factors), given shared[] from
+ * accel_solve at the same (t, q, p): one unit load's passes alone. */
+static void
+precession_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
+    const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_psi = da[0];
+    const eomc_real da_theta = da[1];
+    const eomc_real da_phi = da[2];
+    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    (void)shared;
+    const eomc_real w0 = shared[0] * da_phi;
+    const eomc_real w1 = shared[2] * da_theta;
+    const eomc_real w2 = shared[1] * da_theta;
+    const eomc_real w3 = pd4 * da_phi;
+    const eomc_real w4 = pd5 * w0;
+    const eomc_real w5 = pd3 * w1;
+    const eomc_real w6 = da_psi - w4;
+    const eomc_real w7 = w6 - w5;
+    const eomc_real w8 = shared[3] * w7;
+    y[0] = w8;
+    const eomc_real w9 = shared[2] * w8;
+    const eomc_real w10 = shared[0] * w8;
+    const eomc_real w11 = pd3 * w9;
+    const eomc_real w12 = pd5 * w10;
+    const eomc_real w13 = w2 - w11;
+    const eomc_real w14 = w3 - w12;
+    y[1] = w13;
+    y[2] = w14;
+}
+
+/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+static void
+precession_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    eomc_real a[3], shared[4];
+    precession_accel_shared(t, q, v, p, u, a, NULL, shared);
+    precession_minv_shared(t, q, v, p, u, shared, da, y);
 }
 
 /* The values that must be positive (or not negative): check_what. */
@@ -1134,7 +1353,7 @@ const eomc_model precession_model = {
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 6, .derive = precession_derive,
+    .nd = 10, .derive = precession_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = precession_initial, .inputs = precession_inputs, .mass_bias = precession_mass_bias,
     .energy = precession_energy,
@@ -1152,7 +1371,7 @@ const eomc_model precession_model = {
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
     .mass_parent = NULL, /* M factored densely (or not at all: accel) */
-    .free_accel = NULL, .minv = NULL, /* no unit-load passes */
+    .free_accel = precession_accel, .minv = precession_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
@@ -1166,6 +1385,7 @@ const eomc_model precession_model = {
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
     .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = precession_taylor, .taylor_why = NULL, /* Taylor's method */
+    .nshared = 4, .free_accel_shared = precession_accel_shared, .minv_shared = precession_minv_shared,
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

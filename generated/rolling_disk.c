@@ -3,9 +3,9 @@
  * Do not edit; regenerate with `eomc compile`.
  *
  * form:    articulated-body, E = q'' by Featherstone's articulated-body recursion; E as newton-euler
- * The form is the cheapest that applies: 564 operations per right-hand side
- * (lagrange 1269, nielsen 1293, tzenoff 1332, gibbs-appell 1182, newton-euler
- * 1166).
+ * The form is the cheapest that applies: 462 operations per right-hand side
+ * (lagrange 568, nielsen 591, tzenoff 630, gibbs-appell 480, newton-euler
+ * 468).
  * options: --jacobian auto --taylor
  * scene:   (the spec's `scene:`)
  * effects: (none)
@@ -1047,13 +1047,13 @@ rolling_disk_c_levels_jacobian(eomc_real t, const eomc_real *q,
     dveldq[7] = w7;
 }
 
-/* a = -M^-1 h by the form's recursion, M never formed; its pivots
- * piv[k] = d_k (those of LDL^T eliminating the leaves first), and
- * mkk[k] = M_kk. */
+/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
+ * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
+ * minv_shared reads of the solve. */
 static void
 rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
-    eomc_real *mkk)
+    eomc_real *mkk, eomc_real *shared)
 {
     const eomc_real q_psi = q[2];
     const eomc_real v_psi = v[2];
@@ -1106,276 +1106,265 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w12 = w1 * v_x;
     const eomc_real w13 = w0 * v_y;
     const eomc_real w14 = pd2 * w3;
-    const eomc_real w15 = pd5 * w4;
-    const eomc_real w16 = pd0 * w5;
-    const eomc_real w17 = p_m * w4;
-    const eomc_real w18 = pd16 * w5;
-    const eomc_real w19 = pd11 * w4;
-    const eomc_real w20 = pd12 * w5;
-    const eomc_real w21 = w6 - w7;
-    const eomc_real w22 = w10 + v_phi;
-    const eomc_real w23 = w8 * v_theta;
-    const eomc_real w24 = pd0 * w11;
-    const eomc_real w25 = w10 * v_theta;
-    const eomc_real w26 = p_R * w10;
-    const eomc_real w27 = w12 + w13;
-    const eomc_real w28 = w8 * v_phi;
-    const eomc_real w29 = w15 + w16;
-    const eomc_real w30 = w17 + w18;
-    const eomc_real w31 = w19 + w20;
-    const eomc_real w32 = w3 * w21;
-    const eomc_real w33 = w2 * w21;
-    const eomc_real w34 = pd4 * w23;
-    const eomc_real w35 = v_psi * w21;
-    const eomc_real w36 = pd5 * w23;
-    const eomc_real w37 = v_theta * w22;
-    const eomc_real w38 = pd0 * w25;
-    const eomc_real w39 = w26 - w27;
-    const eomc_real w40 = w27 - w26;
-    const eomc_real w41 = w8 * w22;
-    const eomc_real w42 = v_psi * w27;
-    const eomc_real w43 = 1.0 / w29;
-    const eomc_real w44 = w0 * w30;
-    const eomc_real w45 = w1 * w30;
-    piv[2] = w29;
-    mkk[2] = w31;
-    const eomc_real w46 = v_phi * w32;
-    const eomc_real w47 = w9 - w33;
-    const eomc_real w48 = w22 * w32;
-    const eomc_real w49 = pd3 * w37;
-    const eomc_real w50 = v_phi * w39;
-    const eomc_real w51 = w22 * w40;
-    const eomc_real w52 = v_theta * w33;
-    const eomc_real w53 = v_theta * w32;
-    const eomc_real w54 = w8 * w40;
-    const eomc_real w55 = w41 + w28;
-    const eomc_real w56 = w42 * w30;
-    const eomc_real w57 = w0 * w44;
-    const eomc_real w58 = w0 * w45;
-    const eomc_real w59 = w1 * w45;
-    const eomc_real w60 = w8 * w47;
-    const eomc_real w61 = w49 - w24;
-    const eomc_real w62 = v_theta * w47;
-    const eomc_real w63 = w53 - w54;
-    const eomc_real w64 = pd16 * w53;
-    const eomc_real w65 = pd0 * w55;
-    const eomc_real w66 = w60 - w48;
-    const eomc_real w67 = w61 + w38;
-    const eomc_real w68 = w51 - w62;
-    const eomc_real w69 = p_m * w63;
-    const eomc_real w70 = pd4 * w63;
-    const eomc_real w71 = w46 + w66;
-    const eomc_real w72 = w2 * w67;
-    const eomc_real w73 = w50 + w68;
-    const eomc_real w74 = w69 - w64;
-    const eomc_real w75 = w65 + w70;
-    const eomc_real w76 = p_m * w71;
-    const eomc_real w77 = pd4 * w71;
-    const eomc_real w78 = w73 - w52;
-    const eomc_real w79 = w14 + w75;
-    const eomc_real w80 = w3 * w43;
-    const eomc_real w81 = w76 + w34;
-    const eomc_real w82 = w77 + w36;
-    const eomc_real w83 = w3 * w78;
-    const eomc_real w84 = pd15 * w79;
+    shared[0] = w1;
+    shared[1] = w0;
+    shared[2] = w3;
+    shared[3] = w2;
+    const eomc_real w15 = w0 * w2;
+    const eomc_real w16 = w1 * w2;
+    const eomc_real w17 = pd5 * w4;
+    const eomc_real w18 = pd0 * w5;
+    const eomc_real w19 = p_m * w4;
+    const eomc_real w20 = pd16 * w5;
+    const eomc_real w21 = pd11 * w4;
+    const eomc_real w22 = pd12 * w5;
+    const eomc_real w23 = w6 - w7;
+    const eomc_real w24 = w10 + v_phi;
+    const eomc_real w25 = w8 * v_theta;
+    const eomc_real w26 = pd0 * w11;
+    const eomc_real w27 = w10 * v_theta;
+    const eomc_real w28 = p_R * w10;
+    const eomc_real w29 = w12 + w13;
+    const eomc_real w30 = w8 * v_phi;
+    shared[4] = w15;
+    shared[5] = w16;
+    const eomc_real w31 = w17 + w18;
+    const eomc_real w32 = w19 + w20;
+    const eomc_real w33 = w21 + w22;
+    const eomc_real w34 = w3 * w23;
+    const eomc_real w35 = w2 * w23;
+    const eomc_real w36 = pd4 * w25;
+    const eomc_real w37 = v_psi * w23;
+    const eomc_real w38 = pd5 * w25;
+    const eomc_real w39 = v_theta * w24;
+    const eomc_real w40 = pd0 * w27;
+    const eomc_real w41 = w28 - w29;
+    const eomc_real w42 = w29 - w28;
+    const eomc_real w43 = w8 * w24;
+    const eomc_real w44 = v_psi * w29;
+    const eomc_real w45 = 1.0 / w31;
+    const eomc_real w46 = w0 * w32;
+    const eomc_real w47 = w1 * w32;
+    piv[2] = w31;
+    mkk[2] = w33;
+    const eomc_real w48 = v_phi * w34;
+    const eomc_real w49 = w9 - w35;
+    const eomc_real w50 = w24 * w34;
+    const eomc_real w51 = pd3 * w39;
+    const eomc_real w52 = v_phi * w41;
+    const eomc_real w53 = w24 * w42;
+    const eomc_real w54 = v_theta * w35;
+    const eomc_real w55 = v_theta * w34;
+    const eomc_real w56 = w8 * w42;
+    const eomc_real w57 = w43 + w30;
+    const eomc_real w58 = w44 * w32;
+    const eomc_real w59 = w0 * w46;
+    const eomc_real w60 = w0 * w47;
+    const eomc_real w61 = w1 * w47;
+    const eomc_real w62 = w8 * w49;
+    const eomc_real w63 = w51 - w26;
+    const eomc_real w64 = v_theta * w49;
+    const eomc_real w65 = w55 - w56;
+    const eomc_real w66 = pd16 * w55;
+    const eomc_real w67 = pd0 * w57;
+    const eomc_real w68 = w62 - w50;
+    const eomc_real w69 = w63 + w40;
+    const eomc_real w70 = w53 - w64;
+    const eomc_real w71 = p_m * w65;
+    const eomc_real w72 = pd4 * w65;
+    const eomc_real w73 = w48 + w68;
+    const eomc_real w74 = w2 * w69;
+    const eomc_real w75 = w52 + w70;
+    const eomc_real w76 = w71 - w66;
+    const eomc_real w77 = w67 + w72;
+    const eomc_real w78 = p_m * w73;
+    const eomc_real w79 = pd4 * w73;
+    const eomc_real w80 = w75 - w54;
+    const eomc_real w81 = w14 + w77;
+    const eomc_real w82 = w3 * w45;
+    shared[6] = w45;
+    const eomc_real w83 = w78 + w36;
+    const eomc_real w84 = w79 + w38;
     const eomc_real w85 = w3 * w80;
-    const eomc_real w86 = w3 * w82;
-    const eomc_real w87 = p_m * w83;
-    const eomc_real w88 = w74 - w84;
-    const eomc_real w89 = pd10 * w85;
-    const eomc_real w90 = w86 - w72;
-    const eomc_real w91 = w2 * w88;
-    const eomc_real w92 = p_m - w89;
-    const eomc_real w93 = w90 * w80;
-    const eomc_real w94 = w87 - w91;
-    const eomc_real w95 = w1 * w92;
-    const eomc_real w96 = w0 * w92;
-    const eomc_real w97 = w35 * w92;
-    const eomc_real w98 = pd4 * w93;
-    const eomc_real w99 = w94 - w56;
-    const eomc_real w100 = w1 * w95;
-    const eomc_real w101 = w1 * w96;
-    const eomc_real w102 = w0 * w96;
-    const eomc_real w103 = w81 + w97;
-    const eomc_real w104 = w1 * w99;
-    const eomc_real w105 = w0 * w99;
-    const eomc_real w106 = w100 + w57;
-    const eomc_real w107 = w101 - w58;
+    const eomc_real w86 = pd15 * w81;
+    const eomc_real w87 = w3 * w82;
+    shared[7] = w82;
+    const eomc_real w88 = w3 * w84;
+    const eomc_real w89 = p_m * w85;
+    const eomc_real w90 = w76 - w86;
+    const eomc_real w91 = pd10 * w87;
+    const eomc_real w92 = w88 - w74;
+    const eomc_real w93 = w2 * w90;
+    const eomc_real w94 = p_m - w91;
+    const eomc_real w95 = w92 * w82;
+    const eomc_real w96 = w89 - w93;
+    const eomc_real w97 = w1 * w94;
+    const eomc_real w98 = w0 * w94;
+    const eomc_real w99 = w37 * w94;
+    const eomc_real w100 = pd4 * w95;
+    const eomc_real w101 = w96 - w58;
+    const eomc_real w102 = w1 * w97;
+    const eomc_real w103 = w1 * w98;
+    const eomc_real w104 = w0 * w98;
+    const eomc_real w105 = w83 + w99;
+    const eomc_real w106 = w1 * w101;
+    const eomc_real w107 = w0 * w101;
     const eomc_real w108 = w102 + w59;
-    const eomc_real w109 = w103 - w98;
-    const eomc_real w110 = 1.0 / w108;
-    piv[1] = w108;
-    const eomc_real w111 = w0 * w109;
-    const eomc_real w112 = w1 * w109;
-    const eomc_real w113 = w111 + w104;
-    const eomc_real w114 = w112 - w105;
-    const eomc_real w115 = w107 * w110;
-    const eomc_real w116 = w107 * w115;
-    const eomc_real w117 = w113 * w115;
-    const eomc_real w118 = w106 - w116;
-    const eomc_real w119 = w117 - w114;
-    piv[0] = w118;
-    const eomc_real w120 = 1.0 / w118;
-    const eomc_real w121 = w120 * w119;
-    a[0] = w121;
-    const eomc_real w122 = w107 * w121;
-    const eomc_real w123 = w1 * w121;
-    const eomc_real w124 = w0 * w121;
-    const eomc_real w125 = w113 + w122;
-    const eomc_real w126 = w110 * w125;
-    const eomc_real w127 = -w126;
-    const eomc_real w128 = w0 * w126;
-    const eomc_real w129 = w1 * w126;
-    a[1] = w127;
-    const eomc_real w130 = w123 - w128;
-    const eomc_real w131 = w124 + w129;
-    const eomc_real w132 = w35 + w130;
-    const eomc_real w133 = w42 + w131;
-    const eomc_real w134 = w3 * w132;
-    const eomc_real w135 = w2 * w133;
-    const eomc_real w136 = pd4 * w134;
-    const eomc_real w137 = w135 - w53;
-    const eomc_real w138 = w90 + w136;
-    const eomc_real w139 = pd4 * w137;
-    const eomc_real w140 = w43 * w138;
-    const eomc_real w141 = w79 + w139;
-    a[2] = w140;
-    const eomc_real w142 = pd14 * w141;
-    const eomc_real w143 = w3 * w140;
-    const eomc_real w144 = -w142;
-    const eomc_real w145 = w143 - w23;
-    a[3] = w144;
-    const eomc_real w146 = pd9 * w145;
-    const eomc_real w147 = -w146;
-    a[4] = w147;
+    const eomc_real w109 = w103 - w60;
+    const eomc_real w110 = w104 + w61;
+    const eomc_real w111 = w105 - w100;
+    const eomc_real w112 = 1.0 / w110;
+    piv[1] = w110;
+    const eomc_real w113 = w0 * w111;
+    const eomc_real w114 = w1 * w111;
+    shared[8] = w109;
+    const eomc_real w115 = w113 + w106;
+    const eomc_real w116 = w114 - w107;
+    const eomc_real w117 = w109 * w112;
+    shared[9] = w112;
+    const eomc_real w118 = w109 * w117;
+    const eomc_real w119 = w115 * w117;
+    shared[10] = w117;
+    const eomc_real w120 = w108 - w118;
+    const eomc_real w121 = w119 - w116;
+    piv[0] = w120;
+    const eomc_real w122 = 1.0 / w120;
+    const eomc_real w123 = w122 * w121;
+    a[0] = w123;
+    shared[11] = w122;
+    const eomc_real w124 = w109 * w123;
+    const eomc_real w125 = w1 * w123;
+    const eomc_real w126 = w0 * w123;
+    const eomc_real w127 = w115 + w124;
+    const eomc_real w128 = w112 * w127;
+    const eomc_real w129 = -w128;
+    const eomc_real w130 = w0 * w128;
+    const eomc_real w131 = w1 * w128;
+    a[1] = w129;
+    const eomc_real w132 = w125 - w130;
+    const eomc_real w133 = w126 + w131;
+    const eomc_real w134 = w37 + w132;
+    const eomc_real w135 = w44 + w133;
+    const eomc_real w136 = w3 * w134;
+    const eomc_real w137 = w2 * w135;
+    const eomc_real w138 = pd4 * w136;
+    const eomc_real w139 = w137 - w55;
+    const eomc_real w140 = w92 + w138;
+    const eomc_real w141 = pd4 * w139;
+    const eomc_real w142 = w45 * w140;
+    const eomc_real w143 = w81 + w141;
+    a[2] = w142;
+    const eomc_real w144 = pd14 * w143;
+    const eomc_real w145 = w3 * w142;
+    const eomc_real w146 = -w144;
+    const eomc_real w147 = w145 - w25;
+    a[3] = w146;
+    const eomc_real w148 = pd9 * w147;
+    const eomc_real w149 = -w148;
+    a[4] = w149;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
 static int
-rolling_disk_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+rolling_disk_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
+    eomc_real *shared)
 {
     eomc_real piv[5], mkk[5];
-    rolling_disk_accel_solve(t, q, v, p, u, a, piv, mkk);
+    rolling_disk_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
     return eomc_pivots(5, piv, mkk, pivot); /* eomc_model.h */
 }
 
-/* y = M^-1 da by the form's recursion at rest, with no force but the load
- * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of
- * B at a time. */
-static void
-rolling_disk_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+/* The same, what minv_shared reads dropped. */
+static int
+rolling_disk_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
-    const eomc_real q_psi = q[2];
-    const eomc_real q_theta = q[3];
-    const eomc_real p_m = p[0];
+    eomc_real shared[12];
+    return rolling_disk_accel_shared(t, q, v, p, u, a, pivot, shared);
+}
+
+/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
+ * but the load da, or the LDL^T factors), given shared[] from
+ * accel_solve at the same (t, q, p): one unit load's passes alone. */
+static void
+rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
+    const eomc_real *da, eomc_real *y)
+{
     const eomc_real da_x = da[0];
     const eomc_real da_y = da[1];
     const eomc_real da_psi = da[2];
     const eomc_real da_theta = da[3];
     const eomc_real da_phi = da[4];
-    const eomc_real pd0 = p[4];
     const eomc_real pd1 = p[5];
     const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
     const eomc_real pd8 = p[12];
     const eomc_real pd9 = p[13];
-    const eomc_real pd10 = p[14];
     const eomc_real pd14 = p[18];
     const eomc_real pd15 = p[19];
-    const eomc_real pd16 = p[20];
+    (void)q;
     (void)v;
     (void)u;
     (void)t;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_psi;
-    ang[1] = q_theta;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = w3 * w3;
-    const eomc_real w5 = w2 * w2;
-    const eomc_real w6 = w0 * w2;
-    const eomc_real w7 = w3 * da_phi;
-    const eomc_real w8 = w1 * w2;
-    const eomc_real w9 = pd5 * w4;
-    const eomc_real w10 = pd0 * w5;
-    const eomc_real w11 = p_m * w4;
-    const eomc_real w12 = pd16 * w5;
-    const eomc_real w13 = w6 * da_theta;
-    const eomc_real w14 = pd9 * w7;
-    const eomc_real w15 = w8 * da_theta;
-    const eomc_real w16 = w9 + w10;
-    const eomc_real w17 = w11 + w12;
-    const eomc_real w18 = pd15 * w13;
-    const eomc_real w19 = da_psi - w14;
-    const eomc_real w20 = pd15 * w15;
-    const eomc_real w21 = 1.0 / w16;
-    const eomc_real w22 = w0 * w17;
-    const eomc_real w23 = w1 * w17;
-    const eomc_real w24 = w0 * w22;
-    const eomc_real w25 = w0 * w23;
-    const eomc_real w26 = w1 * w23;
-    const eomc_real w27 = w3 * w21;
-    const eomc_real w28 = w3 * w27;
-    const eomc_real w29 = w27 * w19;
-    const eomc_real w30 = pd10 * w28;
-    const eomc_real w31 = w1 * w29;
-    const eomc_real w32 = w0 * w29;
-    const eomc_real w33 = p_m - w30;
-    const eomc_real w34 = pd4 * w31;
-    const eomc_real w35 = pd4 * w32;
-    const eomc_real w36 = w1 * w33;
-    const eomc_real w37 = w0 * w33;
-    const eomc_real w38 = w18 - w34;
-    const eomc_real w39 = w35 + w20;
-    const eomc_real w40 = w1 * w36;
-    const eomc_real w41 = w1 * w37;
-    const eomc_real w42 = w0 * w37;
-    const eomc_real w43 = da_y + w39;
-    const eomc_real w44 = w40 + w24;
-    const eomc_real w45 = w41 - w25;
-    const eomc_real w46 = w42 + w26;
-    const eomc_real w47 = 1.0 / w46;
-    const eomc_real w48 = w45 * w47;
-    const eomc_real w49 = w45 * w48;
-    const eomc_real w50 = w48 * w43;
-    const eomc_real w51 = w44 - w49;
-    const eomc_real w52 = w38 + w50;
-    const eomc_real w53 = 1.0 / w51;
-    const eomc_real w54 = da_x - w52;
-    const eomc_real w55 = w53 * w54;
-    y[0] = w55;
-    const eomc_real w56 = w45 * w55;
-    const eomc_real w57 = w1 * w55;
-    const eomc_real w58 = w0 * w55;
-    const eomc_real w59 = w43 - w56;
-    const eomc_real w60 = w47 * w59;
-    y[1] = w60;
-    const eomc_real w61 = w0 * w60;
-    const eomc_real w62 = w1 * w60;
-    const eomc_real w63 = w57 + w61;
-    const eomc_real w64 = w62 - w58;
-    const eomc_real w65 = w3 * w63;
-    const eomc_real w66 = w2 * w64;
-    const eomc_real w67 = pd4 * w65;
-    const eomc_real w68 = pd4 * w66;
-    const eomc_real w69 = w19 + w67;
-    const eomc_real w70 = da_theta + w68;
-    const eomc_real w71 = w21 * w69;
-    const eomc_real w72 = pd14 * w70;
-    y[2] = w71;
-    y[3] = w72;
-    const eomc_real w73 = w3 * w71;
-    const eomc_real w74 = pd1 * w73;
-    const eomc_real w75 = da_phi - w74;
-    const eomc_real w76 = pd8 * w75;
-    y[4] = w76;
+    (void)shared;
+    const eomc_real w0 = shared[4] * da_theta;
+    const eomc_real w1 = shared[2] * da_phi;
+    const eomc_real w2 = shared[5] * da_theta;
+    const eomc_real w3 = pd15 * w0;
+    const eomc_real w4 = pd9 * w1;
+    const eomc_real w5 = pd15 * w2;
+    const eomc_real w6 = da_psi - w4;
+    const eomc_real w7 = w6 * shared[7];
+    const eomc_real w8 = shared[0] * w7;
+    const eomc_real w9 = shared[1] * w7;
+    const eomc_real w10 = pd4 * w8;
+    const eomc_real w11 = pd4 * w9;
+    const eomc_real w12 = w3 - w10;
+    const eomc_real w13 = w11 + w5;
+    const eomc_real w14 = da_y + w13;
+    const eomc_real w15 = shared[10] * w14;
+    const eomc_real w16 = w12 + w15;
+    const eomc_real w17 = da_x - w16;
+    const eomc_real w18 = shared[11] * w17;
+    y[0] = w18;
+    const eomc_real w19 = shared[8] * w18;
+    const eomc_real w20 = shared[0] * w18;
+    const eomc_real w21 = shared[1] * w18;
+    const eomc_real w22 = w14 - w19;
+    const eomc_real w23 = shared[9] * w22;
+    y[1] = w23;
+    const eomc_real w24 = shared[1] * w23;
+    const eomc_real w25 = shared[0] * w23;
+    const eomc_real w26 = w20 + w24;
+    const eomc_real w27 = w25 - w21;
+    const eomc_real w28 = shared[2] * w26;
+    const eomc_real w29 = shared[3] * w27;
+    const eomc_real w30 = pd4 * w28;
+    const eomc_real w31 = pd4 * w29;
+    const eomc_real w32 = w6 + w30;
+    const eomc_real w33 = da_theta + w31;
+    const eomc_real w34 = shared[6] * w32;
+    const eomc_real w35 = pd14 * w33;
+    y[2] = w34;
+    y[3] = w35;
+    const eomc_real w36 = shared[2] * w34;
+    const eomc_real w37 = pd1 * w36;
+    const eomc_real w38 = da_phi - w37;
+    const eomc_real w39 = pd8 * w38;
+    y[4] = w39;
+}
+
+/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+static void
+rolling_disk_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    eomc_real a[5], shared[12];
+    rolling_disk_accel_shared(t, q, v, p, u, a, NULL, shared);
+    rolling_disk_minv_shared(t, q, v, p, u, shared, da, y);
 }
 
 /* The values that must be positive (or not negative): check_what. */
@@ -1556,6 +1545,7 @@ const eomc_model rolling_disk_model = {
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
     .taylor_nslot = 0, .taylor = NULL, .taylor_why = "its form computes the mass matrix by columns (mass_times), not as the expressions of its entries",
+    .nshared = 12, .free_accel_shared = rolling_disk_accel_shared, .minv_shared = rolling_disk_minv_shared,
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -129,10 +129,14 @@ print_banner(Printer *pr, const EmitInfo *info)
                     md->constraint[k].order_name,
                     md->coord[md->vcoord[md->constraint[k].dependent]]);
         emit_line(pr, " *   %s in q''", md->affine ? "all affine" : "not all affine (Newton)");
-        if (pr->L->loads)
+        if (pr->L->loads && (pr->L->mass_times || pr->L->tables))
             print_wrapped(pr, "The multipliers by unit loads: q'' without the constraints, "
                           "then M^-1 B^T one row of B at a time by the same recursion (minv), "
                           "and the nc x nc system B M^-1 B^T; M is never formed (kkt.c).");
+        else if (pr->L->loads)
+            print_wrapped(pr, "The multipliers by unit loads: q'' without the constraints by "
+                          "the unrolled LDL^T of M, then M^-1 B^T one row of B at a time by "
+                          "its factors (minv), and the nc x nc system B M^-1 B^T (kkt.c).");
     }
     emit_line(pr, " *");
     emit_line(pr, " * Compiled with -DEOMC_EXTENDED, the functions that the reference solution");
@@ -304,12 +308,47 @@ print_accel(Printer *pr, const Lowered *L)
     emit_line(pr, " * singular or not positive definite).  *pivot (unless NULL): the");
     emit_line(pr, " * smallest d_k / M_kk, compared without dividing in the loop. */");
     char fname[128];
+    if (L->loads_shared) {
+        snprintf(fname, sizeof fname, "%s_accel_shared", nm);
+        emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+                   "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot, "
+                   "eomc_real *shared");
+        emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
+        emit_line(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk, shared);", nm);
+        print_pivot_check(pr, n);
+        emit_line(pr, "/* The same, what minv_shared reads dropped. */");
+        snprintf(fname, sizeof fname, "%s_accel", nm);
+        emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+                   "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+        emit_line(pr, "    eomc_real shared[%d];", L->loads_shared);
+        emit_line(pr, "    return %s_accel_shared(t, q, v, p, u, a, pivot, shared);", nm);
+        emit_line(pr, "}\n");
+        return;
+    }
     snprintf(fname, sizeof fname, "%s_accel", nm);
     emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
     emit_line(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
     print_pivot_check(pr, n);
+}
+
+/* eomc_model's minv where minv_shared reads the recursion's values: the
+ * recursion first (a unit load alone costs a right-hand side; kkt.c
+ * calls accel_shared once and minv_shared per row instead). */
+static void
+print_minv_alone(Printer *pr, const Lowered *L)
+{
+    const char *nm = pr->md->name;
+    char fname[128];
+    emit_line(pr, "/* y = M^-1 da: the recursion's shared values, then minv_shared. */");
+    snprintf(fname, sizeof fname, "%s_minv", nm);
+    emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+               "const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y");
+    emit_line(pr, "    eomc_real a[%d], shared[%d];", L->nv, L->loads_shared ? L->loads_shared : 1);
+    emit_line(pr, "    %s_accel_shared(t, q, v, p, u, a, NULL, shared);", nm);
+    emit_line(pr, "    %s_minv_shared(t, q, v, p, u, shared, da, y);", nm);
+    emit_line(pr, "}\n");
 }
 
 /* The tables' turns, then accel and mass_bias as loops over them
@@ -629,6 +668,9 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     if (md->nspeed)
         emit_line(pr, "    .nv = %d, .v_names = v_names, .qdot = %s_qdot, .qdot_jacobian = "
                   "%s_qdot_jacobian,\n    .nquat = %d, .quat = quat,", md->nv, nm, nm, md->nquat);
+    if (L->loads_shared)
+        emit_line(pr, "    .nshared = %d, .free_accel_shared = %s_accel_shared, .minv_shared = "
+                  "%s_minv_shared,", L->loads_shared, nm, nm);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -908,6 +950,8 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
         }
         else if (lf == L->accel_solve)
             print_accel(&pr, L);
+        else if (lf == L->minv && L->loads_shared)
+            print_minv_alone(&pr, L);
         else if (lf == L->check_values)
             print_checks(&pr, L);
         if (lf == L->last_set)

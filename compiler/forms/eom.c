@@ -98,13 +98,14 @@ minus_sum(ExprPool *P, ExprId x, ExprId *t, int k)
  * of the factored matrix are coordinate ord[j] = n-1-j: the last
  * coordinates of a chain or tree have the simplest entries (for a chain
  * M_nn is a constant), so the first pivots are ready early. */
+static void ldl_solve(const Eom *e, Arena *A, ExprPool *P, const ExprId *b, int neg, ExprId *x);
+
 static void
 derive_solve(Eom *e, Arena *A, ExprPool *P)
 {
     int n = e->n;
     ExprId *L = arena_new_array(A, ExprId, n * n), *E = arena_new_array(A, ExprId, n * n);
-    ExprId *inv = arena_new_array(A, ExprId, n), *y = arena_new_array(A, ExprId, n);
-    ExprId *t = arena_new_array(A, ExprId, n), *x = arena_new_array(A, ExprId, n);
+    ExprId *inv = arena_new_array(A, ExprId, n), *t = arena_new_array(A, ExprId, n);
     int *ord = arena_new_array(A, int, n);
     for (int j = 0; j < n; j++)
         ord[j] = n - 1 - j;
@@ -131,16 +132,31 @@ derive_solve(Eom *e, Arena *A, ExprPool *P)
         }
     }
 #undef MO
-    for (int i = 0; i < n; i++) { /* L y = -h */
+    e->ldl_L = L, e->ldl_inv = inv, e->ldl_ord = ord;
+    ldl_solve(e, A, P, e->h, 1, e->acc);
+}
+
+/* x = M^-1 b (neg: -b) by derive_solve's factors: L y = b, then L^T x =
+ * D^-1 y, in the factorization's order; b and x by coordinate. */
+static void
+ldl_solve(const Eom *e, Arena *A, ExprPool *P, const ExprId *b, int neg, ExprId *x)
+{
+    int n = e->n;
+    const ExprId *L = e->ldl_L, *inv = e->ldl_inv;
+    const int *ord = e->ldl_ord;
+    ExprId *y = arena_new_array(A, ExprId, n), *z = arena_new_array(A, ExprId, n);
+    ExprId *t = arena_new_array(A, ExprId, n);
+    for (int i = 0; i < n; i++) {
         for (int k = 0; k < i; k++)
             t[k] = expr_mul(P, L[i * n + k], y[k]);
-        y[i] = minus_sum(P, expr_neg(P, e->h[ord[i]]), t, i);
+        ExprId bi = b[ord[i]];
+        y[i] = minus_sum(P, neg ? expr_neg(P, bi) : bi, t, i);
     }
-    for (int i = n - 1; i >= 0; i--) { /* L^T a = D^-1 y */
+    for (int i = n - 1; i >= 0; i--) {
         for (int k = i + 1; k < n; k++)
-            t[k - i - 1] = expr_mul(P, L[k * n + i], x[k]);
-        x[i] = minus_sum(P, expr_mul(P, y[i], inv[i]), t, n - 1 - i);
-        e->acc[ord[i]] = x[i];
+            t[k - i - 1] = expr_mul(P, L[k * n + i], z[k]);
+        z[i] = minus_sum(P, expr_mul(P, y[i], inv[i]), t, n - 1 - i);
+        x[ord[i]] = z[i];
     }
 }
 
@@ -222,7 +238,9 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
         return NULL;
     int n = m->n;
     Eom *e = arena_alloc(A, sizeof *e);
-    *e = (Eom){.n = n, .nq = m->nq, .nu = s->nu, .form = f, .E = E};
+    *e = (Eom){.n = n, .nq = m->nq, .nu = s->nu, .form = f, .E = E, .ldl_loads = 1};
+    for (int k = 0; k < s->nfquat; k++) /* (lower.c's held_rows: the recursion's alone) */
+        e->ldl_loads &= s->fquat[k].speed >= 0;
     if (!f->solve) /* else only on demand (eom_mass): a recursion never needs it */
         eom_mass(e, m, A, P, D);
     /* h = E at q'' = 0: substitution rebuilds only what depends on q'' */
@@ -392,10 +410,36 @@ ops(ExprPool *P, int n, const ExprId *roots)
     return c.adds + c.muls + c.divs + c.calls;
 }
 
+/* The operations below roots that depend on the seeds: what a load's
+ * pass computes when the rest is shared. */
+static long
+seeded_ops(ExprPool *P, int n, const ExprId *roots)
+{
+    size_t size = expr_pool_size(P), k = 0;
+    unsigned char *mark = xmalloc(size);
+    ExprId *nodes = xmalloc(size * sizeof *nodes);
+    memset(mark, 0, size);
+    expr_mark(P, n, roots, mark);
+    for (size_t id = 0; id < size; id++)
+        if (mark[id] && expr_op_arity[expr_node(P, (ExprId)id)->op] &&
+            (expr_deps(P, (ExprId)id) & DEP_S))
+            nodes[k++] = (ExprId)id;
+    ExprCount c = expr_count_list(P, k, nodes);
+    free(nodes);
+    free(mark);
+    return c.adds + c.muls + c.divs + c.calls;
+}
+
+int
+eom_loads(const Eom *e)
+{
+    return e->acc && (e->form->solve || (e->ldl_L && e->ldl_loads));
+}
+
 ExprId *
 eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
 {
-    if (e->minv || !e->form->solve)
+    if (e->minv || !eom_loads(e))
         return e->minv;
     int n = e->n;
     ExprId *load = arena_new_array(A, ExprId, n), *piv = arena_new_array(A, ExprId, n);
@@ -403,7 +447,10 @@ eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
     e->minv = arena_new_array(A, ExprId, n);
     for (int j = 0; j < n; j++)
         load[j] = expr_seed(P, j, 2);
-    e->form->solve(m, A, P, D, load, e->minv, piv, mkk);
+    if (e->form->solve)
+        e->form->solve(m, A, P, D, load, e->minv, piv, mkk);
+    else
+        ldl_solve(e, A, P, load, 0, e->minv);
     return e->minv;
 }
 
@@ -413,14 +460,18 @@ eom_cost(Eom *e, const Mech *m, int nc, int loads, Arena *A, ExprPool *P, Diff *
     int n = e->n;
     ExprId *roots = xmalloc((size_t)(n * n + 3 * n + 1) * sizeof *roots);
     long cost;
-    if (e->acc && (!nc || (loads && e->form->solve))) {
+    if (e->acc && (!nc || (loads && eom_loads(e)))) {
         for (int i = 0; i < n; i++)
             roots[i] = e->acc[i], roots[n + i] = e->piv[i], roots[2 * n + i] = e->mkk[i];
         cost = ops(P, 3 * n, roots);
-        if (nc) { /* one pass of minv per row, B M^-1 B^T, its LU, q'' = a - Y lambda */
+        if (nc) {
+            /* the solve and what minv reads of it (computed once, lower.c's
+             * lower_loads_shared), then per row the load's own operations,
+             * B M^-1 B^T, its LU, q'' = a - Y lambda */
             ExprId *y = eom_minv(e, m, A, P, D);
-            cost += nc * ops(P, n, y) +
-                    EOM_DENSE_WEIGHT * ((long)nc * nc * n + (long)nc * nc * nc / 3 + 2L * nc * n);
+            memcpy(roots + 3 * n, y, (size_t)n * sizeof *y);
+            cost = ops(P, 4 * n, roots) + (nc - 1) * seeded_ops(P, n, y) +
+                   EOM_DENSE_WEIGHT * ((long)nc * nc * n + (long)nc * nc * nc / 3 + 2L * nc * n);
         }
     } else {
         int k = 0;

@@ -43,6 +43,14 @@ typedef struct Eom {
      * constrained tree's M^-1 B^T, a row of B at a time); NULL until
      * eom_minv. */
     ExprId *minv;
+    /* derive_solve's factors, in its order ldl_ord [n]: L [n*n] (unit
+     * lower triangle) and the pivots' reciprocals ldl_inv [n]; NULL where
+     * acc is the form's own solve or there is none.  ldl_loads: minv may
+     * take them (no unit quaternion without speeds, whose row only the
+     * articulated recursion is known to meet by itself: lower.c). */
+    ExprId *ldl_L, *ldl_inv;
+    int *ldl_ord;
+    int ldl_loads;
 } Eom;
 
 /* Up to this many coordinates the solve is emitted as straight-line code
@@ -91,7 +99,11 @@ Eom *eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
  * The constraints' own functions cost the same whatever the form, so they
  * are left out. */
 long eom_cost(Eom *e, const Mech *m, int nc, int loads, Arena *A, ExprPool *P, Diff *D);
-/* e->minv, derived on first use (NULL where the form has no solve). */
+/* Can a constrained e be solved by unit loads: does it have a solve for
+ * q'' (the form's recursion, or the unrolled LDL^T whose factors minv
+ * reuses)? */
+int eom_loads(const Eom *e);
+/* e->minv, derived on first use (NULL where eom_loads is 0). */
 ExprId *eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* e->M, derived on first use where the form solves for q'' itself (its
  * recursion never forms M; constraints and the cost of a constrained

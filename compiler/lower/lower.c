@@ -90,6 +90,21 @@ static const LowSig s_minv = {
     " * B at a time.",
     "t q v p u da > y",
 };
+/* The same two sharing what they both compute (lower_loads_shared). */
+static const LowSig s_accel_shared = {
+    "accel_solve",
+    "a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots\n"
+    " * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what\n"
+    " * minv_shared reads of the solve.",
+    "t q v p u > a piv mkk shared",
+};
+static const LowSig s_minv_shared = {
+    "minv_shared",
+    "y = M^-1 da by accel_solve's solve (a recursion at rest with no force\n"
+    " * but the load da, or the LDL^T factors), given shared[] from\n"
+    " * accel_solve at the same (t, q, p): one unit load's passes alone.",
+    "t q v p u shared da > y",
+};
 static const LowSig s_constraint = {
     "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
     "t q v a p u > f B",
@@ -242,6 +257,80 @@ lower_inputs(Lowering *lw)
         out(lw, f, 1, i, diff_time(lw->D, s->input[i].expr));
 }
 
+/* The operator nodes without seeds that the seeded nodes below roots
+ * read (and any seed-free root): what a seeded function takes from
+ * shared[] instead of computing it again, numbered by id (deterministic).
+ * Per node id its index there, or -1; *nw their number.  Values of the
+ * parameters alone that derive computed (pd[]) are read from there. */
+static int *
+seed_free_reads(Lowering *lw, int n, const ExprId *roots, int *nw)
+{
+    ExprPool *P = lw->P;
+    const Lowered *L = lw->L;
+    size_t size = expr_pool_size(P);
+    unsigned char *mark = xmalloc(size), *need = xmalloc(size);
+    memset(mark, 0, size);
+    memset(need, 0, size);
+    expr_mark(P, n, roots, mark);
+    for (size_t id = 0; id < size; id++) {
+        const ExprNode *nd = expr_node(P, (ExprId)id);
+        int ar = expr_op_arity[nd->op];
+        if (!mark[id] || ar == 0 || !(nd->deps & DEP_S))
+            continue;
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < ar; j++)
+            if (!(expr_deps(P, ops[j]) & DEP_S) && expr_op_arity[expr_node(P, ops[j])->op])
+                need[ops[j]] = 1;
+    }
+    for (int i = 0; i < n; i++)
+        if (!(expr_deps(P, roots[i]) & DEP_S) && expr_op_arity[expr_node(P, roots[i])->op])
+            need[roots[i]] = 1;
+    int *shared = arena_new_array(lw->A, int, size);
+    *nw = 0;
+    for (size_t id = 0; id < size; id++) {
+        int derived = L->derived && id < L->derived_ids && L->derived[id] >= 0;
+        shared[id] = need[id] && !derived ? (*nw)++ : -1;
+    }
+    free(need);
+    free(mark);
+    return shared;
+}
+
+/* A constrained tree's unit loads, the recursion computed once: what a
+ * unit load's pass reads that does not depend on the load (the
+ * articulated inertias' U_i and D_i, the joints' axes: every one a value
+ * of q and p alone) is free_accel's too, or computed beside it, so
+ * accel_solve stores those values into shared[] and minv reads them from
+ * there: each row of B then costs its load's own operations, not a
+ * recursion (kkt.c).  shared[] is not optional: guarded stores cut the
+ * straight-line code into blocks the C compiler schedules apart (measured:
+ * the arm's solve 30 % slower).  Not where repeat split either function
+ * into copies (a function with shared[] is not shifted, repeat.c): a
+ * copy's loop already skips the trees a load leaves at rest. */
+static void
+lower_loads_shared(Lowering *lw)
+{
+    Lowered *L = lw->L;
+    LowFunc *acc = L->accel_solve, *mv = L->minv;
+    if (!L->loads || !acc || !mv || acc->copy || mv->copy)
+        return;
+    ExprId *roots = xmalloc((size_t)(mv->nout ? mv->nout : 1) * sizeof *roots);
+    for (int i = 0; i < mv->nout; i++)
+        roots[i] = mv->out[i].e;
+    int nw = 0;
+    int *shared = seed_free_reads(lw, mv->nout, roots, &nw);
+    free(roots);
+    if (nw == 0) /* minv reads nothing of the solve (a constant M) */
+        return;
+    acc->sig = &s_accel_shared;
+    for (size_t id = 0; id < expr_pool_size(lw->P); id++)
+        if (shared[id] >= 0)
+            out(lw, acc, 3, shared[id], (ExprId)id);
+    mv->sig = &s_minv_shared;
+    mv->shared = shared;
+    L->loads_shared = nw;
+}
+
 /* The seeded jacobian: the seeded expressions e->jvp_q, e->jvp_v are
  * linear in the seeds; what they need that does not depend on the seeds
  * (sines, products, ...) is the same for every column, so jacobian_shared
@@ -258,28 +347,10 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
         roots[i] = e->jvp_q[i];
         roots[n + i] = e->jvp_v[i];
     }
-    /* shared[] holds the seed-free operator nodes that seeded nodes read (and
-     * any seed-free root), numbered by id: deterministic. */
-    unsigned char *mark = xmalloc(size), *need = xmalloc(size);
-    memset(mark, 0, size);
-    memset(need, 0, size);
-    expr_mark(P, 2 * n, roots, mark);
-    for (size_t id = 0; id < size; id++) {
-        const ExprNode *nd = expr_node(P, (ExprId)id);
-        int ar = expr_op_arity[nd->op];
-        if (!mark[id] || ar == 0 || !(nd->deps & DEP_S))
-            continue;
-        ExprId ops[2] = {nd->a, nd->b};
-        for (int j = 0; j < ar; j++)
-            if (!(expr_deps(P, ops[j]) & DEP_S) && expr_op_arity[expr_node(P, ops[j])->op])
-                need[ops[j]] = 1;
-    }
-    for (int i = 0; i < 2 * n; i++)
-        if (!(expr_deps(P, roots[i]) & DEP_S) && expr_op_arity[expr_node(P, roots[i])->op])
-            need[roots[i]] = 1;
-    int *shared = arena_new_array(lw->A, int, size);
+    int *shared = seed_free_reads(lw, 2 * n, roots, &nw);
+    unsigned char *need = xmalloc(size);
     for (size_t id = 0; id < size; id++)
-        shared[id] = need[id] ? nw++ : -1;
+        need[id] = shared[id] >= 0;
 
     LowFunc *f = func(lw, &s_jac_shared, "jacobian", 1);
     lw->L->jac_shared = f; /* before its outputs: fillable() */
@@ -301,7 +372,6 @@ lower_seeded_jacobian(Lowering *lw, const Eom *e)
         out(lw, f, 0, i * n, e->jvp_v[i]);
     lw->L->jac_dv = f;
     free(need);
-    free(mark);
     free(roots);
 }
 
@@ -763,7 +833,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     lower_inputs(&lw);
 
     /* a constrained tree: the multipliers by unit loads (kkt.c) */
-    int loads = constraints_by_loads(c, eliminate) && e->acc && e->form->solve;
+    int loads = constraints_by_loads(c, eliminate) && eom_loads(e);
     const FormTables *tb = tables_for(m, e, c, loads, code, A, P, D, &lw.L->tables_why);
     lw.L->loads = loads;
     lw.L->held = loads ? held_rows(s, m, c, A, P) : NULL;
@@ -870,6 +940,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
             repeat_split_speeds(fk, s->nq, s->nv, lw.L->model.vslot, lw.L->model.vcoord, s->nu,
                                 REPEAT_MIN_SAVED, A, P);
     }
+    lower_loads_shared(&lw);
     lw.L->taylor = lower_taylor(lw.L, taylor, P, A); /* from the lists as they are printed */
     return lw.L;
 }

@@ -255,6 +255,11 @@ typedef struct Lowered {
      * over them (minv NULL).  loads 0 and minv NULL otherwise. */
     LowFunc *minv;
     int loads;
+    /* With loads and no tables, where neither function was split into
+     * copies: accel stores into shared[] the loads_shared values minv
+     * reads instead of computing the recursion again (0: minv computes
+     * all, lower_loads_shared). */
+    int loads_shared;
     /* [nc] with loads: 1 where the recursion's q'' meets the constraint
      * by itself, its multiplier 0 (a frame's unit quaternion, when no
      * potential, force or kinetic term of the spec's own acts on its

@@ -219,8 +219,8 @@ done:
     return rc;
 }
 
-int
-eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
+static int
+linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
     const eomc_model *m = eomc_sim_model(s);
     if (m->nv > 0)
@@ -429,8 +429,8 @@ accel_ratio(int n, const double *acc, const double *reach, int *worst)
     return big;
 }
 
-double
-eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int *worst)
+static double
+accel_residual(eomc_sim *s, double t, const double *x, double *acc, int *worst)
 {
     const eomc_model *m = eomc_sim_model(s);
     int n = m->nq, N = 2 * n, nl = eomc_sim_linear_size(s);
@@ -603,8 +603,8 @@ runaway_error(eomc_sim *s, double t, double *x, const double *z0, const double *
                              num_shortest(a, z0[far]), num_shortest(b, x[qc[far]]));
 }
 
-int
-eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
+static int
+equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
     const eomc_model *m = eomc_sim_model(s);
     if (m->nv > 0)
@@ -829,5 +829,39 @@ done:
     gsl_vector_free(work);
     gsl_vector_free(F);
     gsl_vector_free(dz);
+    return rc;
+}
+
+/* ---- the analyses, on the dense solve ----
+ * Each differentiates q'' and reads exact zeros in it (a cyclic
+ * coordinate's row, a steady motion's q''), so each runs on the dense
+ * KKT solve, whose zeros are the equations' own: unit loads give the same
+ * q''(x) to the rounding of its terms, which is all a zero there would
+ * read as (a_f - Y lambda: 1.7e-15 where the bicycle's x'' is 0). */
+
+int
+eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
+{
+    sim_set_dense(s, 1);
+    int rc = linearize(s, t, x, A, B);
+    sim_set_dense(s, 0);
+    return rc;
+}
+
+double
+eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int *worst)
+{
+    sim_set_dense(s, 1);
+    double r = accel_residual(s, t, x, acc, worst);
+    sim_set_dense(s, 0);
+    return r;
+}
+
+int
+eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
+{
+    sim_set_dense(s, 1);
+    int rc = equilibrium(s, t, x, iterations);
+    sim_set_dense(s, 0);
     return rc;
 }

@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 22
+#define EOMC_ABI_VERSION 23
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -358,6 +358,21 @@ typedef struct eomc_model {
     void (*qdot_jacobian)(const double *q, const double *v, double *dqdq, double *dqdv);
     int nquat;
     const int *quat;
+
+    /* ---- unit loads, the recursion shared ----
+     * With free_accel and minv, where the generator could keep them
+     * (else nshared 0 and both NULL): free_accel_shared is free_accel
+     * that also stores into shared [nshared] what a unit load's pass
+     * reads of the recursion (the articulated inertias' U_i and D_i,
+     * values of (t, q, p) alone), and minv_shared is minv reading them
+     * from there, given shared from free_accel_shared at the same (t, q,
+     * p): a row of B then costs one inward and one outward pass of its
+     * load, not a whole recursion. */
+    int nshared;
+    int (*free_accel_shared)(double t, const double *q, const double *v, const double *p,
+                             const double *u, double *a, double *pivot, double *shared);
+    void (*minv_shared)(double t, const double *q, const double *v, const double *p,
+                        const double *u, const double *shared, const double *x, double *y);
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */

@@ -29,7 +29,9 @@
  * A constrained tree has a cheaper way (eomc_model's free_accel and
  * minv; with multipliers, every f affine in q''): unit loads.  With a_f =
  * -M^-1 h its accelerations without the constraints and Y = M^-1 B^T,
- * one recursion per row of B, q'' = a_f - Y lambda, and f(q'') = 0 is
+ * one recursion per row of B (or, where the model keeps the recursion's
+ * values between the two, free_accel_shared, one load's inward and
+ * outward pass), q'' = a_f - Y lambda, and f(q'') = 0 is
  *     (B M^-1 B^T) lambda = f(a_f),
  * an nc x nc system, symmetric positive definite when M is and B has full
  * rank (GSL's pivoted Cholesky).  M is never formed: O(n nc) work where
@@ -93,6 +95,7 @@ struct Kkt {
      * [nc*nc], its relative pivots and permutation [nc] */
     double *Y, *S, *Srel;
     double *Ylam;               /* [nc] the multipliers of the rows solved, in their order */
+    double *shared;             /* [m->nshared] the recursion's values the load passes read */
     int *act;                   /* [nc] those rows: the constraints not held (c_held) */
     size_t *Sperm;
     /* B's nonzero columns, row by row (from c_nz; NULL: every column):
@@ -105,6 +108,7 @@ struct Kkt {
     int *blk, *ord, *bstart;
     double *Sb, *Sr;
     int by_loads;               /* the last kkt_accel solved so: M not formed */
+    int dense;                  /* kkt_set_dense: never by loads */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
     double t_last, *q_last, *v_last, *u_last; /* its state [nq], [n], [nu], to form M
                                                * on demand */
@@ -152,10 +156,11 @@ kkt_alloc(const eomc_model *m)
     k->luN = la_lu_alloc((int)N), k->lun = la_lu_alloc((int)n), k->luc = la_lu_alloc((int)nc);
     k->Y = zeros(nc * n), k->S = zeros(nc * nc), k->Srel = zeros(nc);
     k->Ylam = zeros(nc), k->act = calloc(nc ? (size_t)nc : 1, sizeof *k->act);
+    k->shared = zeros((size_t)m->nshared);
     k->Sperm = calloc(nc ? nc : 1, sizeof *k->Sperm);
     k->q_last = zeros(nq), k->v_last = zeros(n), k->u_last = zeros(nu);
     ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
-    ok &= k->Ylam && k->act;
+    ok &= k->Ylam && k->act && k->shared;
     k->blk = calloc(nc + 1, sizeof *k->blk), k->ord = calloc(nc + 1, sizeof *k->ord);
     k->bstart = calloc(nc + 2, sizeof *k->bstart);
     k->Sb = zeros(nc * nc), k->Sr = zeros(nc);
@@ -209,7 +214,7 @@ kkt_free(Kkt *k)
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
         k->dposdt, k->dveldt, k->dep, k->indep, k->names, k->Y, k->S, k->Srel, k->Sperm,
         k->Ylam, k->act, k->nzrow, k->nzcol, k->blk, k->ord, k->bstart, k->Sb, k->Sr,
-        k->q_last, k->v_last, k->u_last,
+        k->q_last, k->v_last, k->u_last, k->shared,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
@@ -230,6 +235,12 @@ static int
 dropped(const Kkt *k, int c)
 {
     return k->drop && k->drop[c];
+}
+
+void
+kkt_set_dense(Kkt *k, int dense)
+{
+    k->dense = dense;
 }
 
 void
@@ -612,7 +623,11 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     const eomc_model *m = k->m;
     int n = k->n, nc = k->nc, na = 0;
     double pivot = 1;
-    if (m->free_accel(t, q, v, p, u, a, &pivot) != 0)
+    /* the recursion once, its values kept for the load passes, where the
+     * model can (eomc_model.h's free_accel_shared) */
+    int shared = m->free_accel_shared && m->minv_shared;
+    if ((shared ? m->free_accel_shared(t, q, v, p, u, a, &pivot, k->shared)
+                : m->free_accel(t, q, v, p, u, a, &pivot)) != 0)
         return -1;
     eval_constraint(k, t, q, v, a, p, u); /* f(a_f) and B */
     /* the rows the recursion does not hold by itself (c_held): a ball's
@@ -625,7 +640,10 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
         else
             k->lam[c] = 0;
     for (int r = 0; r < na; r++)
-        m->minv(t, q, v, p, u, k->B + k->act[r] * n, k->Y + r * n);
+        if (shared)
+            m->minv_shared(t, q, v, p, u, k->shared, k->B + k->act[r] * n, k->Y + r * n);
+        else
+            m->minv(t, q, v, p, u, k->B + k->act[r] * n, k->Y + r * n);
     for (int r = 0; r < na; r++)
         for (int d = 0; d <= r; d++)
             k->S[r * na + d] = k->S[d * na + r] = row_dot(k, k->act[r], k->Y + d * n);
@@ -698,7 +716,7 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     const eomc_model *m = k->m;
     int n = k->n, nc = k->nc, rc;
     baumgarte_offset(k, t, q, v, p, u);
-    k->by_loads = m->minv && m->c_affine && !m->eliminate &&
+    k->by_loads = !k->dense && m->minv && m->c_affine && !m->eliminate &&
                   solve_loads(k, t, q, v, p, u, a) == 0;
     if (!k->by_loads && (rc = solve_dense(k, t, q, v, p, u, a)) != KKT_OK)
         return rc;

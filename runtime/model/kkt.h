@@ -35,6 +35,12 @@ void kkt_set_dropped(Kkt *k, const unsigned char *drop);
 /* The rows B = df/dq'' [nc*n] of the last solve (its last iterate). */
 const double *kkt_rows(const Kkt *k);
 
+/* dense 1: every solve by the KKT system (or elimination), M formed, even
+ * where unit loads apply; 0 (the default): by unit loads where they do.
+ * The same q''(x) to rounding, but a coordinate whose q'' is 0 reads 0
+ * from the dense solve and the rounding of a_f - Y lambda from the loads
+ * (sim.c's sim_set_dense, for the analyses). */
+void kkt_set_dense(Kkt *k, int dense);
 /* Baumgarte's weights: a holonomic constraint's f gets wv_hol g' + wp_hol g
  * and a first-order one's gets wv_first phi.  All zero: off. */
 void kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first);

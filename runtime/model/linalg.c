@@ -284,6 +284,14 @@ la_rank_rows(LaRank *w, const double *B, int n, const int *rows, int nr, const d
 int
 la_ldlt_factor(double *M, int n, double *rel, size_t *perm)
 {
+    if (n == 1) { /* the same test, without GSL's setup: a unit-load system of one
+                   * row (one equality) costs more in it than in the recursion */
+        perm[0] = 0;
+        if (!(M[0] > EOMC_PIVOT_TOL * M[0]))
+            return 1;
+        rel[0] = 1;
+        return 0;
+    }
     for (int i = 0; i < n; i++)
         rel[i] = M[i * n + i];
     gsl_matrix_view Mv = gsl_matrix_view_array(M, (size_t)n, (size_t)n);
@@ -337,6 +345,10 @@ la_ltdl_solve_neg(const double *LDL, int n, const int *parent, double *b)
 void
 la_ldlt_solve(double *LDL, int n, size_t *perm, double *b)
 {
+    if (n == 1) { /* la_ldlt_factor's one pivot */
+        b[0] /= LDL[0];
+        return;
+    }
     gsl_matrix_view L = gsl_matrix_view_array(LDL, (size_t)n, (size_t)n);
     gsl_permutation p = {(size_t)n, perm};
     gsl_vector_view x = gsl_vector_view_array(b, (size_t)n);

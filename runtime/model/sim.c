@@ -715,6 +715,13 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     return isfinite(finite_sum(a, n)) ? EOMC_OK : accel_error(s, t, q, v, a);
 }
 
+void
+sim_set_dense(eomc_sim *s, int dense)
+{
+    if (s->kkt)
+        kkt_set_dense(s->kkt, dense);
+}
+
 const double *
 eomc_sim_multipliers(const eomc_sim *s)
 {

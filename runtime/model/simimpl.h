@@ -34,6 +34,10 @@ int sim_qddot(eomc_sim *s, const double *x, const double *f, double *qdd);
  * qdot_jacobian or where W^T W is not positive definite.  For a model
  * whose speeds are not the rates (dense output). */
 int sim_speeds_of(eomc_sim *s, const double *q, const double *qd, double *v);
+/* dense 1: every constrained solve forms M and solves the KKT system (or
+ * eliminates), unit loads or not (kkt_set_dense); 0: the cheapest again.
+ * For the analyses, which read exact zeros in q'' (linearize.c). */
+void sim_set_dense(eomc_sim *s, int dense);
 /* The message of a usage error; returns EOMC_EUSAGE. */
 int sim_usage_error(eomc_sim *s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

@@ -3,12 +3,16 @@
 # q'' solved by the articulated-body recursion without the constraints,
 # then M^-1 B^T one row at a time (minv) and the nc x nc system B M^-1 B^T
 # (runtime/model/kkt.c), M never formed.  Each check sets it against Lagrange's
-# form, whose M is differentiated from the energies and whose KKT system
-# is solved densely: an independent derivation and solve.
+# form eliminating the dependent coordinates (--eliminate), whose M is
+# differentiated from the energies and whose system is solved densely: an
+# independent derivation and solve (Lagrange's form with multipliers is
+# solved by unit loads too, through its unrolled LDL^T).
 #  - --accel (q'' and the multipliers) of the rolling disk, the bicycle of
 #    specs/ and the Whipple bicycle, straight-line and as loops over the
 #    tables: equal to 1e-12 of the largest entry;
-#  - the banner says so, and the simulator has minv;
+#  - the banner says so, and the simulator has minv; Lagrange's form with
+#    multipliers says it solves by the loads through its LDL^T, and with
+#    --eliminate has no unit loads;
 #  - a run of the bicycle to t = 1 (rk8pd at 1e-12) ends where Lagrange's
 #    does (1e-9), and one with msbdf (its Jacobian forms M on demand) too;
 #  - units: the rolling disk with the mass unit 1e-6 kg and the length
@@ -45,11 +49,11 @@ for spec in "$disk" "$bike" "$whip"; do
   for code in straight tables; do
     # shellcheck disable=SC2086 # $in is a list of options
     "$eomc" run "$spec" --form articulated-body --code $code $in --accel > "$tmp/ab.acc" 2> /dev/null &&
-      "$eomc" run "$spec" --form lagrange $in --accel > "$tmp/lag.acc" 2> /dev/null
+      "$eomc" run "$spec" --form lagrange --eliminate $in --accel > "$tmp/lag.acc" 2> /dev/null
     st=$?
     d=$(accel_diff "$tmp/lag.acc" "$tmp/ab.acc" 1)
     [ $st -eq 0 ] && grep -q '^lambda' "$tmp/ab.acc" && below "$d" 1e-12
-    ok $? "$name ($code): q'' and the multipliers by unit loads = lagrange's dense KKT solve to $d"
+    ok $? "$name ($code): q'' and the multipliers by unit loads = lagrange's dense elimination to $d"
   done
 done
 
@@ -57,13 +61,16 @@ done
   grep -q '^ \* The multipliers by unit loads' "$tmp/bike.c" &&
   grep -q '\.free_accel = bicycle_tree_accel, \.minv = bicycle_tree_minv, /\* the multipliers by unit loads \*/' "$tmp/bike.c" &&
   "$eomc" compile "$bike" --form lagrange -o "$tmp/lag.c" &&
-  grep -q '\.free_accel = NULL, \.minv = NULL, /\* no unit-load passes \*/' "$tmp/lag.c"
-ok $? "the banner says the multipliers are by unit loads, and the model has free_accel and minv (lagrange's has neither)"
+  grep -q '^ \* The multipliers by unit loads: q.. without the constraints by the unrolled$' "$tmp/lag.c" &&
+  grep -q '\.nshared = [0-9]*, \.free_accel_shared = bicycle_tree_accel_shared, \.minv_shared = bicycle_tree_minv_shared,' "$tmp/lag.c" &&
+  "$eomc" compile "$bike" --form lagrange --eliminate -o "$tmp/elim.c" &&
+  grep -q '\.free_accel = NULL, \.minv = NULL, /\* no unit-load passes \*/' "$tmp/elim.c"
+ok $? "the banner says the multipliers are by unit loads, and the model has free_accel and minv (lagrange's through its LDL^T factors, shared with minv; eliminating, neither)"
 
 for method in rk8pd msbdf; do
   "$eomc" run "$bike" --form articulated-body --t-end 1 --method $method --rtol 1e-12 \
     --atol 1e-12 -o "$tmp/ab.csv" 2> /dev/null &&
-    "$eomc" run "$bike" --form lagrange --t-end 1 --method $method --rtol 1e-12 --atol 1e-12 \
+    "$eomc" run "$bike" --form lagrange --eliminate --t-end 1 --method $method --rtol 1e-12 --atol 1e-12 \
       -o "$tmp/lag.csv" 2> /dev/null
   st=$?
   tail -1 "$tmp/ab.csv" > "$tmp/ab.last"

@@ -15,6 +15,7 @@
 #include "lower/lower.h"
 #include "lower/lower_schedule.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static Arena *A;
@@ -250,12 +251,51 @@ test_sizes(const Lowered *L)
     CHECK(lower_size(cj, 4) == NC * N * N && lower_size(cj, 7) == NC * N * NU,
           "sizes from the list: dB/dq has %d entries, dB/du %d", lower_size(cj, 4),
           lower_size(cj, 7));
-    CHECK(lower_find(L, "accel_solve") == NULL && lower_find(L, "invariant") == NULL,
-          "a constrained model with inputs lowers no accel_solve and no invariant");
+    CHECK(lower_find(L, "invariant") == NULL, "a model with inputs lowers no invariant");
     LowArgs a;
     lower_args(lower_find(L, "inputs")->sig, &a);
     CHECK(a.n == 4 && a.nin == 2 && !strcmp(a.name[3], "dudt") && a.optional[3] &&
           !a.optional[2], "signature \"t p > u dudt?\": 2 inputs, dudt optional");
+}
+
+/* Unit loads through the unrolled LDL^T (Lagrange's form has no solve of
+ * its own): accel_solve is q'' without the constraint, M a_f + h = 0, and
+ * minv_shared's y solves M y = x for a load x, each against M and h from
+ * mass_bias; minv reads from shared[] what accel_solve stores there. */
+static void
+test_loads(const Lowered *L)
+{
+    const LowFunc *acc = lower_find(L, "accel_solve"), *mv = lower_find(L, "minv_shared");
+    CHECK(L->loads && acc && mv && mv->shared && L->loads_shared > 0,
+          "a constrained model's accel_solve and minv_shared, %d values shared", L->loads_shared);
+    if (!acc || !mv)
+        return;
+    State x = random_state();
+    ExprEnv env = env_of(&x);
+    double M[N * N], h[N], a[N], piv[N], mkk[N], y[N], load[N];
+    double *shared = calloc((size_t)L->loads_shared, sizeof *shared);
+    lower_eval(P, lower_find(L, "mass_bias"), &env, (double *const[]){M, h});
+    lower_eval(P, acc, &env, (double *const[]){a, piv, mkk, shared});
+    for (int i = 0; i < N; i++)
+        load[i] = check_rand(-1, 1);
+    env.seed[2] = load;
+    lower_eval(P, mv, &env, (double *const[]){y});
+    double worst = 0, stored = 0;
+    for (int i = 0; i < N; i++) {
+        double ra = h[i], ry = -load[i], sa = fabs(h[i]), sy = fabs(load[i]);
+        for (int j = 0; j < N; j++) {
+            ra += M[i * N + j] * a[j], sa += fabs(M[i * N + j] * a[j]);
+            ry += M[i * N + j] * y[j], sy += fabs(M[i * N + j] * y[j]);
+        }
+        worst = fmax(worst, fmax(fabs(ra) / sa, fabs(ry) / sy));
+    }
+    /* each shared value is the node minv reads there */
+    for (size_t id = 0; id < expr_pool_size(P); id++)
+        if (mv->shared[id] >= 0)
+            stored = fmax(stored, fabs(shared[mv->shared[id]] - expr_eval(P, (ExprId)id, &env)));
+    CHECK(worst < 1e-14 && stored == 0, "M a_f + h = 0 and M y = x by the LDL^T factors (worst "
+          "%.2g of the terms); shared[] holds what minv reads", worst);
+    free(shared);
 }
 
 int
@@ -275,6 +315,7 @@ main(void)
         for (int r = 0; r < 3; r++)
             test_constraint(L);
         test_sizes(L);
+        test_loads(L);
     }
     diff_free(D);
     expr_pool_free(P);

@@ -63,7 +63,8 @@ small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs
          $src/tests/import/models/fourbar.xml $src/tests/import/models/gripper.xml
          $src/specs/arm.urdf $src/specs/floating_base.xml $tmp/chain5.xml" ;;
 robots) r=$src/tests/import/models/robots # written for the robots benchmark too
-        models="$r/arm_gripper.xml $r/quadruped.xml $r/humanoid_free.xml $r/fourbar.xml
+        models="$r/arm_gripper.xml $r/arm_gripper_unconstrained.xml $r/quadruped.xml
+                $r/humanoid_free.xml $r/fourbar.xml
                 $r/freebody.xml $r/biped_loops.xml" ;;
 humanoid | 22_humanoids) models=$samples/humanoid/$part.xml ;;
 humanoid100) models=$samples/humanoid100/$part.xml ;;

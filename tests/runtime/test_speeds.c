@@ -652,6 +652,53 @@ rest_and_equilibrium(void)
     eomc_sim_free(s);
 }
 
+/* The top held at its tip (three holonomic constraints: the centre's
+ * coordinates and speeds dependent), started tilted 2.8 rad from upright
+ * at rest: the equilibrium search turns its quaternion until it hangs
+ * (its axis R(e) z down, |e| = 1), and there the reduced linearization
+ * (the rotations and angular velocities, 6) has the pendulum's +-i
+ * sqrt(m g l / (A + m l^2)) about both horizontal axes and 0 for the
+ * spin. */
+static void
+top_hanging(const eomc_model *m)
+{
+    enum { NL = 6 };
+    eomc_sim *s = sim_new(m);
+    double x[NX] = {0}, A[NL * NL], re[NL], im[NL], R[9];
+    x[3] = cos(1.4), x[4] = sin(1.4);
+    quat_rotation(x + 3, R);
+    for (int i = 0; i < 3; i++) /* the centre, l along the axis from the tip */
+        x[i] = R[3 * i + 2] * TOP_L;
+    int its, rc = eomc_sim_equilibrium(s, 0, x, &its);
+    quat_rotation(x + 3, R);
+    double down = fabs(R[8] + 1) + fabs(R[2]) + fabs(R[5]);
+    double unit = fabs(sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5] + x[6] * x[6]) - 1);
+    int lrc = rc == EOMC_OK ? eomc_sim_linearize(s, 0, x, A, NULL) : rc;
+    int erc = lrc == EOMC_OK ? eomc_sim_eigenvalues(s, A, NL, re, im) : lrc;
+    double w = sqrt(TOP_M * TOP_G * TOP_L / (TOP_A + TOP_M * TOP_L * TOP_L)), far = 0;
+    int zeros = 0, names = 1;
+    for (int k = 0; k < NL; k++) {
+        zeros += hypot(re[k], im[k]) <= 1e-12 * w;
+        int c, o;
+        eomc_sim_linear_state(s, k, &c, &o);
+        names &= k < 3 ? o == 2 && c == 3 + k : o == 1 && c == k;
+    }
+    for (int sgn = -1; sgn <= 1; sgn += 2) { /* each of +-iw twice */
+        int count = 0;
+        for (int k = 0; k < NL; k++)
+            if (hypot(re[k], im[k] - sgn * w) <= 1e-12 * w)
+                count++;
+        far = fmax(far, count == 2 ? fmax(nearest_eig(re, im, NL, 0, sgn * w), 0) : HUGE_VAL);
+    }
+    CHECK(rc == EOMC_OK && down <= 8 * DBL_EPSILON && unit <= UNIT_ROUNDING * DBL_EPSILON &&
+              erc == EOMC_OK && eomc_sim_linear_size(s) == NL && names && far <= 1e-12 * w &&
+              zeros == 2,
+          "%s: the equilibrium from a tilt of 2.8 hangs (its axis down to %.2g, |e| = 1 to "
+          "%.2g, %d steps); linearized in (root_rx.., root_wx..): +-%.6gi twice to %.2g, "
+          "%d zeros", m->name, down, unit, its, w, far, zeros);
+    eomc_sim_free(s);
+}
+
 /* Taylor's method refuses the speeds by name. */
 static void
 refusals(void)
@@ -698,5 +745,7 @@ main(void)
     for (int a = 0; a < 3; a++)
         spin_linearized(a, 0.7);
     rest_and_equilibrium();
+    top_hanging(&top_model);
+    top_hanging(&top_loads_model);
     return check_done();
 }

@@ -344,7 +344,7 @@ def test_a_free_body_linearizes_in_its_tangent_space():
     w = 0.7
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # a steady motion: nothing to say
-        lin = m.linearize(init={"root_wx": w})
+        lin = m.linearize(init={"root_wx": w, "root_wy": 0.0, "root_wz": 0.0})
     assert lin.states == (["root_x", "root_y", "root_z", "root_rx", "root_ry", "root_rz"]
                           + m.speeds)
     rot = lin.A[3:6, 3:6]

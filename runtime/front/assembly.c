@@ -182,11 +182,18 @@ assembly_suggest(Options *c, eomc_sim *sim, const double *x)
         if (i >= 0 && !rate)
             hold[0][i] = 1;
     }
+    int *slot = malloc((size_t)eomc_nv(m) * sizeof *slot);
+    int tangent = slot && state_tangent(m, slot) == 0;
     for (int k = 0; hold[1] && k < nl; k++) {
         int coord, order;
         eomc_sim_linear_state(sim, k, &coord, &order);
-        hold[1][coord + order * n] = 1;
+        if (order == 0 || order == 1) /* a coordinate, a speed */
+            hold[1][coord + order * n] = 1;
+        else if (order == 2 && tangent) /* a rotation: its quaternion's four */
+            for (int r = 0; r < 4; r++)
+                hold[1][m->quat[4 * STATE_ROT_QUAT(slot[coord]) + r]] = 1;
     }
+    free(slot);
     for (int j = 0; j < 2 && hold[0] && hold[1]; j++) {
         if ((j == 0 && c->ninit == 0) || (j == 1 && !memcmp(hold[0], hold[1], (size_t)nx)))
             continue;

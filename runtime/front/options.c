@@ -538,21 +538,6 @@ check_event_options(const Options *c, const eomc_model *m)
 
 /* --animate: one run, of a model with something to draw, and three.js
  * there to draw it with; all known before the run starts. */
-/* A model whose speeds are not its coordinates' rates has no
- * linearization (eomc.h, linearize.c): refused before anything runs. */
-static int
-check_speeds(const Options *c, const eomc_model *m)
-{
-    if (m->nv == 0 || !(c->linearize || c->equilibrium))
-        return EOMC_OK;
-    return opt_usage(c, "--%s: %s's speeds are not its coordinates' rates (%s, ...: a free "
-                     "or ball joint's angular velocity, whose coordinates are a unit "
-                     "quaternion), and the runtime linearizes only where the state is a "
-                     "vector space, not in each quaternion's tangent space",
-                     c->linearize ? "linearize" : "equilibrium", m->name,
-                     state_own_speed(m));
-}
-
 static int
 check_animate(const Options *c, const eomc_model *m)
 {
@@ -622,8 +607,6 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
     int rc = check_combination(c);
     if (rc == EOMC_OK)
         rc = check_event_options(c, m);
-    if (rc == EOMC_OK)
-        rc = check_speeds(c, m);
     return rc == EOMC_OK ? check_animate(c, m) : rc;
 }
 

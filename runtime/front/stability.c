@@ -5,20 +5,27 @@
 #include "assembly.h"
 #include "base/io.h"
 #include "base/numfmt.h"
+#include "model/state.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The name of component k of the linearization's state: "theta", "theta'". */
+/* The name of component k of the linearization's state: a coordinate
+ * "theta", a speed "theta'" or "root_wx", a rotation "root_rx". */
 static void
-state_name(eomc_sim *sim, int k, char *buf, size_t len)
+lin_name(eomc_sim *sim, int k, char *buf, size_t len)
 {
     const eomc_model *m = eomc_sim_model(sim);
     int coord, order;
     eomc_sim_linear_state(sim, k, &coord, &order);
-    snprintf(buf, len, "%s%s", m->q_names[coord], order ? "'" : "");
+    if (order == 0)
+        snprintf(buf, len, "%s", m->q_names[coord]);
+    else if (order == 1)
+        state_speed(m, coord, buf, len);
+    else
+        state_rotation_name(m, coord, buf, len);
 }
 
 /* A labelled matrix [rows x cols] for people. */
@@ -30,7 +37,7 @@ print_matrix(eomc_sim *sim, const char *title, const double *X, int rows, int co
     char name[160];
     int w = 12;
     for (int k = 0; k < rows; k++) {
-        state_name(sim, k, name, sizeof name);
+        lin_name(sim, k, name, sizeof name);
         w = (int)strlen(name) + 2 > w ? (int)strlen(name) + 2 : w;
     }
     for (int k = 0; k < m->nu && inputs; k++)
@@ -40,12 +47,12 @@ print_matrix(eomc_sim *sim, const char *title, const double *X, int rows, int co
         if (inputs)
             snprintf(name, sizeof name, "%s", m->u_names[c]);
         else
-            state_name(sim, c, name, sizeof name);
+            lin_name(sim, c, name, sizeof name);
         fprintf(io_out(), "%*s", w, name);
     }
     fprintf(io_out(), "\n");
     for (int r = 0; r < rows; r++) {
-        state_name(sim, r, name, sizeof name);
+        lin_name(sim, r, name, sizeof name);
         fprintf(io_out(), "%*s", w, name);
         for (int c = 0; c < cols; c++)
             fprintf(io_out(),
@@ -150,14 +157,14 @@ write_linear_csv(Options *c, eomc_sim *sim, const double *A, const double *B, in
     char row[160], col[160], num[NUM_MAX];
     fprintf(f, "matrix,row,column,value\n");
     for (int r = 0; r < nl; r++) {
-        state_name(sim, r, row, sizeof row);
+        lin_name(sim, r, row, sizeof row);
         for (int k = 0; k < nl; k++) {
-            state_name(sim, k, col, sizeof col);
+            lin_name(sim, k, col, sizeof col);
             fprintf(f, "A,%s,%s,%s\n", row, col, num_shortest(num, A[r * nl + k]));
         }
     }
     for (int r = 0; r < nl; r++) {
-        state_name(sim, r, row, sizeof row);
+        lin_name(sim, r, row, sizeof row);
         for (int k = 0; k < m->nu; k++)
             fprintf(f, "B,%s,%s,%s\n", row, m->u_names[k], num_shortest(num, B[r * m->nu + k]));
     }
@@ -217,18 +224,31 @@ static void
 rest_note(Options *c, eomc_sim *sim, double t, const double *x)
 {
     const eomc_model *m = eomc_sim_model(sim);
-    double *acc = calloc((size_t)m->nq, sizeof *acc);
+    double *acc = calloc((size_t)eomc_nv(m), sizeof *acc);
     int worst;
     double r = acc ? eomc_sim_accel_residual(sim, t, x, acc, &worst) : NAN;
-    char num[NUM_MAX];
+    char num[NUM_MAX], name[STATE_NAME_MAX];
     if (r > EOMC_ACCEL_ZERO)
-        fprintf(io_err(), "%s: warning: t = %g: q'' is not 0 here (%s'' = %s): the state is "
+        fprintf(io_err(), "%s: warning: t = %g: q'' is not 0 here (%s = %s): the state is "
                 "no equilibrium and no steady motion, so A and B describe the motion through "
                 "it only near it and for a short time (z' = z0' + A (z - z0) + B (u - u0), "
                 "z0' not 0), and A's eigenvalues say how nearby motions part from it at "
-                "first, not whether anything is stable\n", c->prog, t, m->q_names[worst],
+                "first, not whether anything is stable\n", c->prog, t,
+                state_rate(m, worst, name, sizeof name),
                 num_shortest(num, acc[worst]));
     free(acc);
+}
+
+/* The first speed that turns a unit quaternion (model->nquat > 0). */
+static int
+first_rotation(const eomc_model *m)
+{
+    int *slot = malloc((size_t)m->nv * sizeof *slot), k = 0;
+    if (slot && state_tangent(m, slot) == 0)
+        while (k < m->nv - 1 && slot[k] >= 0)
+            k++;
+    free(slot);
+    return k;
 }
 
 /* --linearize and --equilibrium. */
@@ -259,15 +279,20 @@ stab_print(Options *c, eomc_sim *sim, double *x)
     if (rc == EOMC_OK && !c->equilibrium)
         rest_note(c, sim, t, x);
     if (rc == EOMC_OK) {
+        char name[STATE_NAME_MAX];
         fprintf(io_out(), "%s: linearized at t = %g,", c->prog, t);
-        for (int i = 0; i < 2 * n; i++)
-            fprintf(io_out(),
-                    "%s %s%s = %.6g", i ? "," : "", m->q_names[i % n], i < n ? "" : "'", x[i]);
+        for (int i = 0; i < eomc_nx(m); i++)
+            fprintf(io_out(), "%s %s = %.6g", i ? "," : "", state_name(m, i, name, sizeof name),
+                    x[i]);
         fprintf(io_out(), "\n");
+        if (m->nquat > 0)
+            fprintf(io_out(), "in the tangent space: each unit quaternion's small rotation "
+                    "in its body's axes (%s, ...) in place of its four parameters\n",
+                    state_rotation_name(m, first_rotation(m), name, sizeof name));
         if (m->nc > 0)
             fprintf(io_out(),
                     "in the independent coordinates of the elimination (%d of %d)\n", nl,
-                    2 * n);
+                    2 * eomc_nv(m));
         print_matrix(sim, "A = dz'/dz:", A, nl, nl, 0);
         if (nu)
             print_matrix(sim, "B = dz'/du:", B, nl, nu, 1);

@@ -203,18 +203,24 @@ int eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx,
                       double *dfdt);
 
 /* ---- linearization and equilibria (linearize.c) ----
- * A model whose speeds are not its coordinates' rates (model->nv > 0: a
- * free or ball joint's unit quaternion) has none here: each function
- * below refuses it with EOMC_EUSAGE, its message naming the speeds.  (Its
- * state space is not a vector space: a linearization would be taken in
- * each quaternion's tangent space, which this runtime does not do.) */
+ * The state z is the tangent space's: one position component per speed
+ * and the speeds (2 nq where the speeds are the rates).  A model whose
+ * speeds are not its coordinates' rates (model->nv > 0) has, for each
+ * unit quaternion e, the three components of the small rotation dtheta
+ * in its body's axes, e = e0 (x) (1, dtheta/2), in place of its four
+ * parameters; dtheta is measured from the motion through the state
+ * (dtheta' = dw - w0 x dtheta), docs/cli.md. */
 
-/* The size nl of the linearization's state: 2 nq, or for a constrained
- * model the independent coordinates and velocities of the elimination (a
- * holonomic constraint removes its dependent coordinate and velocity, a
- * first-order one its dependent velocity). */
+/* The size nl of the linearization's state: 2 nv (2 nq where the speeds
+ * are the rates), or for a constrained model the independent components
+ * of the elimination (a holonomic constraint removes its dependent
+ * position and speed, a first-order one its dependent speed). */
 int eomc_sim_linear_size(const eomc_sim *s);
-/* Its k-th component: the coordinate's index and order (0: q, 1: q'). */
+/* Its k-th component: order 0, coordinate coord; 1, speed coord (the
+ * coordinate's rate where the speeds are the rates); 2, the small
+ * rotation about the axis of angular velocity speed coord (a unit
+ * quaternion's).  coord = order = -1 where the kinematic equation is of
+ * no form the runtime knows (then eomc_sim_linearize refuses). */
 void eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order);
 /* A = dz'/dz [nl x nl] and B = dz'/du [nl x nu] at (t, x) (x [nx], on
  * the constraints), exact from the generated Jacobians, row-major.
@@ -235,14 +241,16 @@ int eomc_sim_eigenvalues(eomc_sim *s, const double *A, int nl, double *re, doubl
  * it runs away (its full steps not shrinking, each farther from the
  * start); EOMC_EUSAGE when the equilibria are not isolated points
  * (nonholonomic models).  The coordinates are left as found, not wrapped
- * (nothing says which are angles). */
+ * (nothing says which are angles); a unit quaternion is stepped by
+ * rotations and left of length 1. */
 int eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations);
 /* How far q'' at (t, x) (on the constraints) is from 0, whatever the
  * units: the largest |q''_i| relative to sum_k |dq''_i/dz_k| |z_k| (z the
  * linearization's state), what q''_i would change by if every z_k moved
- * by its own size.  0 where q'' is 0, at most EOMC_ACCEL_ZERO where it is
- * 0 to the rounding of z (an equilibrium, or a steady motion); q'' [nq]
- * into acc, that coordinate into *worst.  NAN when q'' or its Jacobian
+ * by its own size (a rotation's is 1).  0 where q'' is 0, at most
+ * EOMC_ACCEL_ZERO where it is 0 to the rounding of z (an equilibrium, or a
+ * steady motion); the speeds' rates v' [nv] into acc, that speed into
+ * *worst.  NAN when q'' or its Jacobian
  * fails (the message says why). */
 double eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc,
                                int *worst);

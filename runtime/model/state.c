@@ -14,6 +14,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -155,4 +156,76 @@ state_normalize_ext(const eomc_model *m, eomc_ext *q)
             q[e[i]] /= len;
     }
     return worst;
+}
+
+/* Where coordinate i is one of a unit quaternion's: that quaternion's
+ * index, its parameter's place (0 for e0 ...) into *r; else -1. */
+static int
+quat_of(const eomc_model *m, int i, int *r)
+{
+    for (int j = 0; j < m->nquat; j++)
+        for (int c = 0; c < 4; c++)
+            if (m->quat[4 * j + c] == i) {
+                *r = c;
+                return j;
+            }
+    return -1;
+}
+
+/* Speed k's column of W: q' of the speed alone, at the unit quaternions
+ * 1 and the other coordinates 0.  There e' = 1/2 (0, w), so the speed
+ * that turns about axis a moves e_{a+1} alone, by 1/2 (exactly, in
+ * binary), and a coordinate's rate moves that coordinate alone, by 1. */
+int
+state_tangent(const eomc_model *m, int *slot)
+{
+    int nq = m->nq, nv = m->nv, rc = 0;
+    if (nv == 0) {
+        for (int k = 0; k < nq; k++)
+            slot[k] = k;
+        return 0;
+    }
+    double *q = calloc((size_t)(2 * nq + nv), sizeof *q);
+    unsigned char *taken = calloc((size_t)nq * 3 + 1, 1);
+    if (!q || !taken) {
+        free(q);
+        free(taken);
+        return -1;
+    }
+    double *qd = q + nq, *v = qd + nq;
+    for (int j = 0; j < m->nquat; j++)
+        q[m->quat[4 * j]] = 1;
+    for (int k = 0; k < nv && rc == 0; k++) {
+        v[k] = 1;
+        m->qdot(q, v, qd);
+        v[k] = 0;
+        int moved = -1, count = 0;
+        for (int i = 0; i < nq; i++)
+            if (qd[i] != 0)
+                moved = i, count++;
+        int r, j = moved >= 0 ? quat_of(m, moved, &r) : -1;
+        if (count != 1)
+            rc = -1;
+        else if (j < 0 && qd[moved] == 1 && !taken[3 * moved])
+            slot[k] = moved, taken[3 * moved] = 1;
+        else if (j >= 0 && r > 0 && qd[moved] == 0.5 && !taken[3 * m->quat[4 * j] + r - 1])
+            slot[k] = STATE_ROTATION(j, r - 1), taken[3 * m->quat[4 * j] + r - 1] = 1;
+        else
+            rc = -1;
+    }
+    free(q);
+    free(taken);
+    return rc;
+}
+
+const char *
+state_rotation_name(const eomc_model *m, int k, char *buf, size_t len)
+{
+    const char *w = m->v_names[k];
+    size_t n = strlen(w);
+    if (n >= 2 && w[n - 2] == 'w' && strchr("xyz", w[n - 1]) && w[n - 1])
+        snprintf(buf, len, "%.*sr%c", (int)(n - 2), w, w[n - 1]);
+    else
+        snprintf(buf, len, "rot_%s", w);
+    return buf;
 }

@@ -51,4 +51,19 @@ eomc_ext state_normalize_ext(const eomc_model *m, eomc_ext *q);
 /* Quaternion j's length in q. */
 double state_quat_norm(const eomc_model *m, const double *q, int j);
 
+/* The tangent space's components, one per speed: slot[k] (k < nv) is the
+ * coordinate whose rate speed k is, or STATE_ROTATION(j, a) (< 0) when
+ * speed k is component a (0 x, 1 y, 2 z) of unit quaternion j's angular
+ * velocity in its body's axes.  Read off the kinematic equation (state.c);
+ * 0, or -1 when it is not of that form (a speed that is neither, or a
+ * coordinate or an axis given by two speeds).  nv = 0: slot[k] = k. */
+int state_tangent(const eomc_model *m, int *slot);
+#define STATE_ROTATION(j, a) (-1 - 3 * (j) - (a))
+#define STATE_ROT_QUAT(slot) ((-1 - (slot)) / 3)
+#define STATE_ROT_AXIS(slot) ((-1 - (slot)) % 3)
+/* The name of the small rotation about the axis of angular velocity
+ * speed k: its speed's name with the w of its axis a (..."wx") an r
+ * ("root_rx"), or "rot_" before it when it does not end so. */
+const char *state_rotation_name(const eomc_model *m, int k, char *buf, size_t len);
+
 #endif

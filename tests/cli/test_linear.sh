@@ -265,4 +265,46 @@ ok $? "a sweep's linearization off the constraints: empty cells, the warning nam
     grep -q "does not take --equilibrium" "$tmp/err2"
 ok $? "a sweep of --linearize with --csv, or of --equilibrium: usage errors (exit $st, $st2)"
 
+# A body hanging from a ball joint (tests/cli/ball_pendulum.yaml: a unit
+# quaternion with speeds), linearized in the tangent space: its small
+# rotations rx, ry, rz in its own axes and its angular velocity.  At rest
+# hanging, the physical pendulum's +-i sqrt(m g l / (I + m l^2)) about
+# both horizontal axes and 0 for the spin; the same body on three hinges
+# (hinge_pendulum.yaml, no quaternion) the same eigenvalues.
+ball="$src/tests/cli/ball_pendulum.yaml" hinge="$src/tests/cli/hinge_pendulum.yaml"
+"$eomc" run "$ball" --linearize --csv "$tmp/ball.csv" > "$tmp/ball.out" 2> "$tmp/ball.err"; st=$?
+"$eomc" run "$hinge" --linearize --csv "$tmp/hinge.csv" > /dev/null 2>&1; sth=$?
+w=$(awk 'BEGIN { printf "%.17g", sqrt(1.5 * 9.81 * 0.8 / (0.02 + 1.5 * 0.64)) }')
+eigs() { sed -n 's/^eig,[0-9]*,\(re\|im\),//p' "$1" | paste -d, - -; }
+[ $st -eq 0 ] && [ $sth -eq 0 ] && [ ! -s "$tmp/ball.err" ] &&
+    grep -qx 'A,rx,wx,1' "$tmp/ball.csv" && grep -qx 'A,wz,rz,0' "$tmp/ball.csv" &&
+    [ "$(grep -c '^A,' "$tmp/ball.csv")" -eq 36 ] &&
+    eigs "$tmp/ball.csv" | awk -F, -v w="$w" '{ d1 = $2 - w; d2 = $2 + w; d1 = d1 < 0 ? -d1 : d1
+        d2 = d2 < 0 ? -d2 : d2; if ($1 != 0) bad = 1
+        if (d1 <= 1e-14 * w) p++; else if (d2 <= 1e-14 * w) m++; else if ($2 == 0) z++ }
+        END { exit bad || p != 2 || m != 2 || z != 2 }' &&
+    eigs "$tmp/hinge.csv" > "$tmp/hinge.eig" && eigs "$tmp/ball.csv" > "$tmp/ball.eig" &&
+    awk -F, 'NR == FNR { r[FNR] = $1; i[FNR] = $2; next } { d = $2 - i[FNR]; d = d < 0 ? -d : d
+        if ($1 != r[FNR] || d > 1e-14 * 4) bad = 1 } END { exit bad || FNR != 6 }' \
+      "$tmp/hinge.eig" "$tmp/ball.eig"
+ok $? "a ball joint's pendulum in its tangent space (rx, ry, rz, wx, wy, wz): +-i $w twice and 0 twice, as on three hinges"
+# --equilibrium from a tilted start (its quaternion divided by its
+# length, with a warning): Newton's steps turn e until the body hangs,
+# e1 = e2 = 0 (its axis down) and |e| = 1 as printed; the turn about the
+# vertical is free and stays as it was
+"$eomc" run "$ball" --equilibrium --init e0=0.9 --init e1=0.3 --init e2=0.2 --init e3=0.1 \
+    > "$tmp/beq.out" 2> "$tmp/beq.err"; st=$?
+val() { sed -n "s/^  $1 = //p" "$tmp/beq.out"; }
+[ $st -eq 0 ] && grep -q 'warning: the unit quaternion' "$tmp/beq.err" &&
+    awk -v a="$(val e0)" -v b="$(val e1)" -v c="$(val e2)" -v d="$(val e3)" 'BEGIN {
+        n = sqrt(a * a + b * b + c * c + d * d) - 1; n = n < 0 ? -n : n
+        b = b < 0 ? -b : b; c = c < 0 ? -c : c
+        exit !(n <= 4.5e-16 && b <= 1e-15 && c <= 1e-15 && d > 0.05) }' &&
+    grep -q '^stable to first order only' "$tmp/beq.out"
+ok $? "--equilibrium of the ball pendulum tilted: hanging, e = ($(val e0), $(val e1), $(val e2), $(val e3))"
+# a free body has none: its accelerations do not depend on where it is
+"$eomc" run "$src/tests/cli/free_body.yaml" --equilibrium > /dev/null 2> "$tmp/feq.err"; st=$?
+[ $st -eq 3 ] && grep -q 'no equilibrium' "$tmp/feq.err"
+ok $? "--equilibrium of a free body: exit 3 ($(cut -c1-90 "$tmp/feq.err"))"
+
 tap_end

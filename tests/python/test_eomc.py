@@ -333,5 +333,24 @@ def test_a_free_body_runs_by_its_speeds_names():
     # every row's quaternion of length 1, to rounding
     e = np.array([r["root_e%d" % k] for k in range(4)])
     assert np.max(np.abs(np.sqrt((e * e).sum(axis=0)) - 1)) <= 8 * np.finfo(float).eps
-    with pytest.raises(eomc.UsageError, match="not its coordinates' rates"):
-        m.linearize()
+
+
+def test_a_free_body_linearizes_in_its_tangent_space():
+    # spinning at w about its minor axis (I1 < I2 < I3), without gravity (a
+    # steady motion): the rotation's error dtheta' = dw - w0 x dtheta gives
+    # +-i w, Euler's equations +-i w sqrt((I2 - I1)(I3 - I1) / (I2 I3))
+    m = eomc.load(FREEBODY)
+    m.set(g=0.0)
+    w = 0.7
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a steady motion: nothing to say
+        lin = m.linearize(init={"root_wx": w, "root_wy": 0.0, "root_wz": 0.0})
+    assert lin.states == (["root_x", "root_y", "root_z", "root_rx", "root_ry", "root_rz"]
+                          + m.speeds)
+    rot = lin.A[3:6, 3:6]
+    np.testing.assert_array_equal(rot, [[0, 0, 0], [0, 0, w], [0, -w, 0]])
+    np.testing.assert_array_equal(lin.A[3:6, 9:12], np.eye(3))
+    lam = w * math.sqrt((2.0 - 1.0) * (3.0 - 1.0) / (2.0 * 3.0))
+    want = sorted([w, -w, lam, -lam])
+    got = sorted(z.imag for z in lin.eigenvalues if abs(z) > 1e-12)
+    np.testing.assert_allclose(got, want, rtol=1e-13)

@@ -563,22 +563,153 @@ steps(void)
     eomc_sim_free(s);
 }
 
-/* Linearization and Taylor's method refuse the speeds by name. */
+/* The eigenvalue of (re, im) [n] nearest (wr, wi): its distance. */
+static double
+nearest_eig(const double *re, const double *im, int n, double wr, double wi)
+{
+    double best = HUGE_VAL;
+    for (int k = 0; k < n; k++)
+        best = fmin(best, hypot(re[k] - wr, im[k] - wi));
+    return best;
+}
+
+/* The torque-free body spinning at w about principal axis a, linearized
+ * in the tangent space, against the closed form: the rotation's error
+ * dtheta' = dw - w0 x dtheta (eigenvalues 0, +-i w), Euler's equations
+ * about the spin (0 and lambda^2 = w^2 (Ia - Ib)(Ic - Ia) / (Ib Ic), b
+ * and c the other axes: a pair on the imaginary axis about the major and
+ * the minor axis, a real pair about the middle one), the centre's
+ * translation (0).  Gravity moves only the centre: it is on. */
+static void
+spin_linearized(int a, double w)
+{
+    enum { NL = 12 };
+    const eomc_model *m = &freebody_model;
+    eomc_sim *s = sim_new(m);
+    double x[NX], A[NL * NL], re[NL], im[NL], p[5];
+    params(s, p);
+    const double *In = p + 1;
+    /* a turned start (e not 1: the frame P, Q at a general e), moving */
+    double e[4] = {0.8, 0.2, -0.4, 0.4};
+    memset(x, 0, sizeof x);
+    x[0] = 0.3, x[1] = -1, x[2] = 2;
+    memcpy(x + 3, e, sizeof e);
+    x[NQ] = 0.5, x[NQ + 1] = -0.2, x[NQ + 2] = 1;
+    x[NQ + 3 + a] = w;
+    int rc = eomc_sim_linearize(s, 0, x, A, NULL), nl = eomc_sim_linear_size(s);
+    int erc = rc == EOMC_OK ? eomc_sim_eigenvalues(s, A, NL, re, im) : rc;
+    int b = (a + 1) % 3, c = (a + 2) % 3;
+    double lam2 = w * w * (In[a] - In[b]) * (In[c] - In[a]) / (In[b] * In[c]);
+    double lam = sqrt(fabs(lam2)), lr = lam2 > 0 ? lam : 0, li = lam2 > 0 ? 0 : lam;
+    double far = fmax(fmax(nearest_eig(re, im, NL, 0, w), nearest_eig(re, im, NL, 0, -w)),
+                      fmax(nearest_eig(re, im, NL, lr, li), nearest_eig(re, im, NL, -lr, -li)));
+    int zeros = 0;
+    for (int k = 0; k < NL; k++)
+        zeros += hypot(re[k], im[k]) <= 1e-12 * w;
+    /* the rotation's rows: -[w0 x] and the identity, exactly */
+    double rot = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double wx = (j == (i + 1) % 3 ? 1 : j == (i + 2) % 3 ? -1 : 0) *
+                        (i == a || j == a ? 0 : x[NQ + 3 + 3 - i - j]);
+            rot = fmax(rot, fabs(A[(3 + i) * NL + 3 + j] - wx));
+            rot = fmax(rot, fabs(A[(3 + i) * NL + 9 + j] - (i == j)));
+        }
+    int coord, order;
+    eomc_sim_linear_state(s, 3 + a, &coord, &order);
+    CHECK(rc == EOMC_OK && erc == EOMC_OK && nl == NL && order == 2 && coord == 3 + a &&
+              far <= 1e-12 * w && zeros == NL - 4 && rot <= 1e-15 * w,
+          "linearized spinning about axis %d (w = %g): z = (root_x.., root_r%c.., v) of 12, "
+          "eigenvalues +-%gi and %s%g (lambda^2 = %.6g) to %.2g, %d zeros, dtheta' = dw - "
+          "w0 x dtheta to %.2g", a + 1, w, "xyz"[a], w, lam2 > 0 ? "+-" : "+-i", lam, lam2,
+          far, zeros, rot);
+    eomc_sim_free(s);
+}
+
+/* The test for rest and the equilibrium search in the tangent space: a
+ * body spinning about a principal axis without gravity is a steady
+ * motion (v' = 0 exactly), with gravity it falls; and nothing holds a
+ * free body, so it has no equilibrium: refused, saying so. */
+static void
+rest_and_equilibrium(void)
+{
+    eomc_sim *s = sim_new(&freebody_model);
+    double x[NX], acc[NV];
+    int worst, its;
+    memset(x, 0, sizeof x);
+    x[3] = 0.8, x[4] = 0.2, x[5] = -0.4, x[6] = 0.4, x[NQ + 5] = 2;
+    double falling = eomc_sim_accel_residual(s, 0, x, acc, &worst);
+    int fell = worst;
+    eomc_sim_set(s, "g", 0);
+    double steady = eomc_sim_accel_residual(s, 0, x, acc, &worst);
+    CHECK(steady == 0 && falling > EOMC_ACCEL_ZERO && fell == 2,
+          "eomc_sim_accel_residual: spinning about axis 3 without gravity %g (a steady "
+          "motion), with gravity %g (v'[%d], root_z'')", steady, falling, fell);
+    eomc_sim_set(s, "g", FREEBODY_G);
+    int rc = eomc_sim_equilibrium(s, 0, x, &its);
+    CHECK(rc == EOMC_ENUMERIC && strstr(eomc_sim_error(s), "no equilibrium"),
+          "a free body under gravity has no equilibrium: %s", eomc_sim_error(s));
+    eomc_sim_free(s);
+}
+
+/* The top held at its tip (three holonomic constraints: the centre's
+ * coordinates and speeds dependent), started tilted 2.8 rad from upright
+ * at rest: the equilibrium search turns its quaternion until it hangs
+ * (its axis R(e) z down, |e| = 1), and there the reduced linearization
+ * (the rotations and angular velocities, 6) has the pendulum's +-i
+ * sqrt(m g l / (A + m l^2)) about both horizontal axes and 0 for the
+ * spin. */
+static void
+top_hanging(const eomc_model *m)
+{
+    enum { NL = 6 };
+    eomc_sim *s = sim_new(m);
+    double x[NX] = {0}, A[NL * NL], re[NL], im[NL], R[9];
+    x[3] = cos(1.4), x[4] = sin(1.4);
+    quat_rotation(x + 3, R);
+    for (int i = 0; i < 3; i++) /* the centre, l along the axis from the tip */
+        x[i] = R[3 * i + 2] * TOP_L;
+    int its, rc = eomc_sim_equilibrium(s, 0, x, &its);
+    quat_rotation(x + 3, R);
+    double down = fabs(R[8] + 1) + fabs(R[2]) + fabs(R[5]);
+    double unit = fabs(sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5] + x[6] * x[6]) - 1);
+    int lrc = rc == EOMC_OK ? eomc_sim_linearize(s, 0, x, A, NULL) : rc;
+    int erc = lrc == EOMC_OK ? eomc_sim_eigenvalues(s, A, NL, re, im) : lrc;
+    double w = sqrt(TOP_M * TOP_G * TOP_L / (TOP_A + TOP_M * TOP_L * TOP_L)), far = 0;
+    int zeros = 0, names = 1;
+    for (int k = 0; k < NL; k++) {
+        zeros += hypot(re[k], im[k]) <= 1e-12 * w;
+        int c, o;
+        eomc_sim_linear_state(s, k, &c, &o);
+        names &= k < 3 ? o == 2 && c == 3 + k : o == 1 && c == k;
+    }
+    for (int sgn = -1; sgn <= 1; sgn += 2) { /* each of +-iw twice */
+        int count = 0;
+        for (int k = 0; k < NL; k++)
+            if (hypot(re[k], im[k] - sgn * w) <= 1e-12 * w)
+                count++;
+        far = fmax(far, count == 2 ? fmax(nearest_eig(re, im, NL, 0, sgn * w), 0) : HUGE_VAL);
+    }
+    CHECK(rc == EOMC_OK && down <= 8 * DBL_EPSILON && unit <= UNIT_ROUNDING * DBL_EPSILON &&
+              erc == EOMC_OK && eomc_sim_linear_size(s) == NL && names && far <= 1e-12 * w &&
+              zeros == 2,
+          "%s: the equilibrium from a tilt of 2.8 hangs (its axis down to %.2g, |e| = 1 to "
+          "%.2g, %d steps); linearized in (root_rx.., root_wx..): +-%.6gi twice to %.2g, "
+          "%d zeros", m->name, down, unit, its, w, far, zeros);
+    eomc_sim_free(s);
+}
+
+/* Taylor's method refuses the speeds by name. */
 static void
 refusals(void)
 {
-    eomc_sim *s = sim_new(&freebody_model);
-    double x[NX], A[NX * NX];
-    sim_x0(s, x);
-    int rc = eomc_sim_linearize(s, 0, x, A, NULL);
-    CHECK(rc == EOMC_EUSAGE && strstr(eomc_sim_error(s), "root_wx") &&
-              strstr(eomc_sim_error(s), "quaternion"),
-          "eomc_sim_linearize refuses: %s", eomc_sim_error(s));
-    eomc_sim_free(s);
+    eomc_sim *s;
+    double x[NX];
     /* a model that has series (a compiler's mistake): refused all the same */
     s = sim_new(&freebody_series_model);
+    sim_x0(s, x);
     eomc_run_opts o = opts_for(&freebody_series_model, 1.0, 0.1, "taylor", 1e-10, 1e-10);
-    rc = eomc_sim_integrate(s, &o, x, NULL, NULL, NULL);
+    int rc = eomc_sim_integrate(s, &o, x, NULL, NULL, NULL);
     CHECK(rc == EOMC_EUSAGE && strstr(eomc_sim_error(s), "not its coordinates' rates") &&
               strstr(eomc_sim_error(s), "root_wx"),
           "--method taylor refuses a model with speeds, series or not: %s", eomc_sim_error(s));
@@ -611,5 +742,10 @@ main(void)
     no_scale();
     reference();
     refusals();
+    for (int a = 0; a < 3; a++)
+        spin_linearized(a, 0.7);
+    rest_and_equilibrium();
+    top_hanging(&top_model);
+    top_hanging(&top_loads_model);
     return check_done();
 }

@@ -15,7 +15,8 @@
  *    form's true error of the rows, to the reference's own estimate;
  *  - --stats and --summary say how far the quaternion drifted; fixed steps
  *    that move its length by more than 1e-2 in a step are warned about;
- *  - --linearize, --equilibrium and --method taylor: exit 2 naming why;
+ *  - --method taylor: exit 2 naming why; --linearize by the rotations'
+ *    names (root_rx); --equilibrium of a free body: exit 3, none;
  *  - the top: --assemble puts a start off its constraints onto them; --hold
  *    of a quaternion's coordinate alone is refused (exit 2).
  *
@@ -214,13 +215,16 @@ fixed_step_drift(void)
 static void
 refusals(void)
 {
-    const char *opts[] = {"--linearize", "--equilibrium", "--method taylor"};
-    const char *why[] = {"not its coordinates' rates", "not its coordinates' rates",
-                         "not its coordinates' rates"};
-    for (int k = 0; k < 3; k++) {
-        int st = run(freebody_sim, opts[k]);
-        CHECK(st == 2 && strstr(err, why[k]) && !*out, "%s: exit 2 (%s)", opts[k], one_line(err));
-    }
+    int st = run(freebody_sim, "--method taylor");
+    CHECK(st == 2 && strstr(err, "not its coordinates' rates") && !*out,
+          "--method taylor: exit 2 (%s)", one_line(err));
+    /* the linearization in the tangent space: the rotations by name */
+    st = run(freebody_sim, "--linearize --set g=0 --init root_wx=0 --init root_wy=0 --init root_wz=0.5");
+    CHECK(st == 0 && strstr(out, "root_rx") && strstr(out, "root_wz") && !*err,
+          "--linearize: exit 0, A by the rotations' names (root_rx ...) and the speeds'");
+    st = run(freebody_sim, "--equilibrium");
+    CHECK(st == 3 && strstr(err, "no equilibrium") && !*out,
+          "--equilibrium of a free body: exit 3 (%s)", one_line(err));
 }
 
 static void

@@ -15,7 +15,8 @@
  *    form's true error of the rows, to the reference's own estimate;
  *  - --stats and --summary say how far the quaternion drifted; fixed steps
  *    that move its length by more than 1e-2 in a step are warned about;
- *  - --linearize, --equilibrium and --method taylor: exit 2 naming why;
+ *  - --linearize, --equilibrium and --method taylor (the hand-written
+ *    model has no series): exit 2 naming why;
  *  - the top: --assemble puts a start off its constraints onto them; --hold
  *    of a quaternion's coordinate alone is refused (exit 2).
  *
@@ -216,7 +217,7 @@ refusals(void)
 {
     const char *opts[] = {"--linearize", "--equilibrium", "--method taylor"};
     const char *why[] = {"not its coordinates' rates", "not its coordinates' rates",
-                         "not its coordinates' rates"};
+                         "has no Taylor series: a hand-written model without series"};
     for (int k = 0; k < 3; k++) {
         int st = run(freebody_sim, opts[k]);
         CHECK(st == 2 && strstr(err, why[k]) && !*out, "%s: exit 2 (%s)", opts[k], one_line(err));

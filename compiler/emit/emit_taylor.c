@@ -180,8 +180,11 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     }
     print_ints(pr, "taylor_q", ty->q_slot, nq);
     print_ints(pr, "taylor_v", ty->v_slot, nv);
-    if (ty->qd_slot)
+    if (ty->qd_slot) { /* eomc_model's alone: the twin's reference reads the doubles' */
+        emit_line(pr, "#ifndef EOMC_EXTENDED");
         print_ints(pr, "taylor_qd", ty->qd_slot, nq);
+        emit_line(pr, "#endif");
+    }
     print_ints(pr, "taylor_M", ty->M_slot, nv * nv);
     print_ints(pr, "taylor_h", ty->h_slot, nv);
     if (ty->nevent)

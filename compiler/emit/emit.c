@@ -671,6 +671,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     if (L->loads_shared)
         emit_line(pr, "    .nshared = %d, .free_accel_shared = %s_accel_shared, .minv_shared = "
                   "%s_minv_shared,", L->loads_shared, nm, nm);
+    if (!L->taylor->why && L->taylor->qd_slot)
+        emit_line(pr, "    .taylor_qd = taylor_qd, /* Taylor's series of q' = W(q) v */");
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");

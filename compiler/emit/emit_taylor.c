@@ -121,7 +121,7 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     if (ty->why)
         return;
     const LowModel *md = pr->md;
-    int n = md->nq;
+    int nq = md->nq, nv = md->nv; /* nv = nq without speeds of their own */
     emit_line(pr, "/* Taylor's method (eomc_taylor.h): coefficient k of the series about t0");
     if (ty->nc) {
         emit_line(pr, " * of every value mass_bias, events, constraint (at q'' = 0) and");
@@ -131,8 +131,13 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
         emit_line(pr, " * of every value mass_bias and events compute, slot s's at T[s (K + 1)");
         emit_line(pr, " * ...], from their orders 0 .. k-1 and the caller's coefficient k of q");
     }
-    emit_line(pr, " * and q' (taylor_q, taylor_v): %d slots, %d calls. */", ty->nslot,
-              ty->nstep);
+    if (ty->qd_slot)
+        emit_line(pr, " * and of the speeds v (taylor_q, taylor_v), with the kinematic equation's");
+    if (ty->qd_slot)
+        emit_line(pr, " * q' = W(q) v (taylor_qd): %d slots, %d calls. */", ty->nslot, ty->nstep);
+    else
+        emit_line(pr, " * and q' (taylor_q, taylor_v): %d slots, %d calls. */", ty->nslot,
+                  ty->nstep);
     /* cut as emit_func.c cuts a long function (LOWER_PART_SIZE): each
      * part a C function of its own, taylor calling them in turn */
     int nparts = (ty->nstep + LOWER_PART_SIZE - 1) / LOWER_PART_SIZE;
@@ -165,12 +170,23 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
             emit_line(pr, "    %s_taylor_%d(k, K, t0, p, u, T);", md->name, part + 1);
         emit_line(pr, "}\n");
     }
-    emit_line(pr, "/* The slots of q and q' the caller writes, and those of M (row-major),");
-    emit_line(pr, " * h and the event functions g (-1: none, or zero at every order). */");
-    print_ints(pr, "taylor_q", ty->q_slot, n);
-    print_ints(pr, "taylor_v", ty->v_slot, n);
-    print_ints(pr, "taylor_M", ty->M_slot, n * n);
-    print_ints(pr, "taylor_h", ty->h_slot, n);
+    if (ty->qd_slot) {
+        emit_line(pr, "/* The slots of q and v the caller writes, those of q' = W(q) v, and");
+        emit_line(pr, " * those of M (row-major, in the speeds), h and the event functions g");
+        emit_line(pr, " * (-1: none, or zero at every order). */");
+    } else {
+        emit_line(pr, "/* The slots of q and q' the caller writes, and those of M (row-major),");
+        emit_line(pr, " * h and the event functions g (-1: none, or zero at every order). */");
+    }
+    print_ints(pr, "taylor_q", ty->q_slot, nq);
+    print_ints(pr, "taylor_v", ty->v_slot, nv);
+    if (ty->qd_slot) { /* eomc_model's alone: the twin's reference reads the doubles' */
+        emit_line(pr, "#ifndef EOMC_EXTENDED");
+        print_ints(pr, "taylor_qd", ty->qd_slot, nq);
+        emit_line(pr, "#endif");
+    }
+    print_ints(pr, "taylor_M", ty->M_slot, nv * nv);
+    print_ints(pr, "taylor_h", ty->h_slot, nv);
     if (ty->nevent)
         print_ints(pr, "taylor_g", ty->g_slot, ty->nevent);
     if (ty->nc) {
@@ -178,12 +194,12 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
             emit_line(pr, "/* The constraints: the slots of q'' the caller writes, B = df/dq''");
             emit_line(pr, " * (row-major), f at that q'', and their own levels (c_levels' pos");
             emit_line(pr, " * and vel). */");
-            print_ints(pr, "taylor_a", ty->a_slot, n);
+            print_ints(pr, "taylor_a", ty->a_slot, nv);
         } else {
             emit_line(pr, "/* The constraints' f = B q'' + b: B = df/dq'' (row-major) and b, f at");
             emit_line(pr, " * q'' = 0, and their own levels (c_levels' pos and vel). */");
         }
-        print_ints(pr, "taylor_B", ty->B_slot, ty->nc * n);
+        print_ints(pr, "taylor_B", ty->B_slot, ty->nc * nv);
         print_ints(pr, "taylor_f", ty->f_slot, ty->nc);
         print_ints(pr, "taylor_pos", ty->pos_slot, ty->nc);
         print_ints(pr, "taylor_vel", ty->vel_slot, ty->nc);

@@ -30,6 +30,13 @@
  * order by order.  When every constraint is affine in q'' (f = B q'' +
  * b), f's DAG is read with the accelerations 0, which gives b; when one
  * is not, the accelerations are slots the caller writes, as q and q'.
+ *
+ * With speeds of their own (a quaternion's angular velocity, spec.h) the
+ * leaves the caller writes are q and the speeds v, M and h are in the
+ * speeds, and the program also has the series of the kinematic equation
+ * q' = W(q) v (qdot's outputs, a quaternion's bilinear products of e and
+ * w), from which the runtime sums q: its coefficient k needs q's and v's
+ * up to k, which the caller has written by then.
  */
 #include "lower_taylor.h"
 
@@ -49,6 +56,7 @@ typedef struct Build {
     size_t nderived;    /* derived's length */
     int np;
     int accel;          /* how q'' reads (only constraint's f reads it) */
+    const int *vslot;   /* per leaf coordinate its velocity slot (lowered.h) */
     int *slot;          /* per node id, -1: none */
     unsigned char *konst; /* per node id: constant in t */
     int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
@@ -247,6 +255,10 @@ build_node(Build *b, ExprId id)
         call(b, "time", 1, c, -1, -1, -1)->src = LOW_TAY_SRC_T;
         break;
     case EXPR_VAR:
+        if (nd->b > 0 && b->vslot[nd->a] < 0) { /* (the spec writes e' in the speeds) */
+            b->why = "its expressions read the rate of an Euler parameter that has speeds";
+            return;
+        }
         if (nd->b > 1 && b->accel == ACCEL_ZERO) {
             c = constant(b, LOW_TAY_SRC_CONST, 0, 0);
             b->konst[id] = 1;
@@ -358,8 +370,6 @@ build_node(Build *b, ExprId id)
 static const char *
 refused(const Lowered *L, const LowFunc *mb, const LowFunc *cf)
 {
-    if (L->model.nspeed)
-        return "a quaternion has speeds (its angular velocity), which the series do not take yet";
     if (L->model.constrained && !cf)
         return "its constraints have no expressions (eomc_model's constraint)";
     if (L->code == LOWER_CODE_TABLES)
@@ -391,10 +401,14 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
                   "taylor, for eomc run --method taylor, and with eomc build --taylor)";
         return ty;
     }
-    int n = L->n, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
+    /* nq coordinates, nv speeds (nv = nq without speeds of their own):
+     * M, h, a and B's columns are the speeds' */
+    int nq = L->n, nv = L->nv, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
+    const int *vslot = L->model.vslot;
     size_t size = expr_pool_size(P);
     Build b = {.P = P, .derived = mb->derived, .nderived = L->derived_ids, .np = L->model.np,
-               .accel = !cf ? ACCEL_NONE : L->model.affine ? ACCEL_ZERO : ACCEL_SLOT};
+               .accel = !cf ? ACCEL_NONE : L->model.affine ? ACCEL_ZERO : ACCEL_SLOT,
+               .vslot = vslot};
     b.slot = xmalloc(size * sizeof *b.slot);
     b.konst = xmalloc(size);
     b.pair = xmalloc(4 * size * sizeof *b.pair);
@@ -404,7 +418,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
 
     /* the nodes the outputs need, down to the leaves and derived values
      * (an output that is 0 needs none: its slot is -1) */
-    const LowFunc *roots[] = {mb, L->events, cf, lv};
+    const LowFunc *roots[] = {mb, L->events, cf, lv, L->qdot};
     int nroot = 0;
     for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++)
         nroot += roots[r] ? roots[r]->nout : 0;
@@ -445,23 +459,40 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         ty->step = arena_new_array(A, LowTayStep, b.nstep + 1);
         if (b.nstep)
             memcpy(ty->step, b.step, (size_t)b.nstep * sizeof *b.step);
-        ty->q_slot = arena_new_array(A, int, n + 1);
-        ty->v_slot = arena_new_array(A, int, n + 1);
-        ty->M_slot = arena_new_array(A, int, n * n + 1);
-        ty->h_slot = arena_new_array(A, int, n + 1);
+        ty->q_slot = arena_new_array(A, int, nq + 1);
+        ty->v_slot = arena_new_array(A, int, nv + 1);
+        ty->M_slot = arena_new_array(A, int, nv * nv + 1);
+        ty->h_slot = arena_new_array(A, int, nv + 1);
         ty->g_slot = arena_new_array(A, int, ne + 1);
         ty->nevent = ne;
-        ty->a_slot = arena_new_array(A, int, n + 1);
-        for (int i = 0; i < n; i++)
-            ty->q_slot[i] = ty->v_slot[i] = ty->h_slot[i] = ty->a_slot[i] = -1;
-        for (int i = 0; i < n * n; i++)
+        ty->a_slot = arena_new_array(A, int, nv + 1);
+        for (int i = 0; i < nq; i++)
+            ty->q_slot[i] = -1;
+        for (int j = 0; j < nv; j++)
+            ty->v_slot[j] = ty->h_slot[j] = ty->a_slot[j] = -1;
+        for (int i = 0; i < nv * nv; i++)
             ty->M_slot[i] = -1;
+        /* a leaf is coordinate nd->a's (a speed's: nq + k); its rates are
+         * velocity slot vslot[nd->a]'s */
         for (size_t id = 0; id < size; id++) {
             const ExprNode *nd = expr_node(P, (ExprId)id);
-            if (mark[id] && nd->op == EXPR_VAR && nd->b < 2)
-                (nd->b ? ty->v_slot : ty->q_slot)[nd->a] = b.slot[id];
-            else if (mark[id] && nd->op == EXPR_VAR && b.accel == ACCEL_SLOT)
-                ty->a_slot[nd->a] = b.slot[id];
+            if (!mark[id] || nd->op != EXPR_VAR)
+                continue;
+            if (nd->b == 0)
+                ty->q_slot[nd->a] = b.slot[id];
+            else if (nd->b == 1)
+                ty->v_slot[vslot[nd->a]] = b.slot[id];
+            else if (b.accel == ACCEL_SLOT)
+                ty->a_slot[vslot[nd->a]] = b.slot[id];
+        }
+        if (L->qdot) { /* q' = W(q) v: a rate that is a speed is its leaf's slot */
+            ty->qd_slot = arena_new_array(A, int, nq + 1);
+            for (int i = 0; i < nq; i++)
+                ty->qd_slot[i] = -1;
+            for (int k = 0; k < L->qdot->nout; k++) {
+                const LowSlot *o = &L->qdot->out[k];
+                ty->qd_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+            }
         }
         for (int k = 0; k < mb->nout; k++) {
             const LowSlot *o = &mb->out[k];
@@ -479,11 +510,11 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         }
         ty->nc = nc;
         ty->nonlinear = b.accel == ACCEL_SLOT;
-        ty->B_slot = arena_new_array(A, int, nc * n + 1);
+        ty->B_slot = arena_new_array(A, int, nc * nv + 1);
         ty->f_slot = arena_new_array(A, int, nc + 1);
         ty->pos_slot = arena_new_array(A, int, nc + 1);
         ty->vel_slot = arena_new_array(A, int, nc + 1);
-        for (int i = 0; i < nc * n; i++)
+        for (int i = 0; i < nc * nv; i++)
             ty->B_slot[i] = -1;
         for (int c = 0; c < nc; c++)
             ty->f_slot[c] = ty->pos_slot[c] = ty->vel_slot[c] = -1;

@@ -195,24 +195,30 @@ typedef struct LowTayStep {
 
 /* The program of the model's taylor member (eomc_model.h): nstep calls
  * over nslot series, in an order where every operand is computed before
- * it is read; the caller writes the slots of q and q' (q_slot, v_slot,
- * -1: nothing reads it).  M_slot[i nq + j], h_slot[i], g_slot[e]: the
- * results (-1: zero at every order); with constraints also B_slot[c nq +
- * i] (B = df/dq''), f_slot[c], pos_slot[c] and vel_slot[c] (c_levels'):
- * f at q'' = 0 when every constraint is affine in q'', else (nonlinear)
- * at the q'' the caller writes into a_slot[i].  why: NULL, or why there
- * is no program (one sentence), and then nothing else is set. */
+ * it is read; the caller writes the slots of q and of the speeds v
+ * (q_slot [nq], v_slot [nv], -1: nothing reads it; nv = nq without
+ * speeds, v = q').  M_slot[i nv + j], h_slot[i], g_slot[e]: the results
+ * (-1: zero at every order); with constraints also B_slot[c nv + i] (B =
+ * df/dv'), f_slot[c], pos_slot[c] and vel_slot[c] (c_levels'): f at v' =
+ * 0 when every constraint is affine in v', else (nonlinear) at the v'
+ * the caller writes into a_slot[i].  With speeds of their own, qd_slot[i]
+ * is the series of q_i' = W(q) v's row i (qdot's), from which the runtime
+ * sums q: a rate that is a speed is that speed's own slot, v_slot's;
+ * NULL without.  why: NULL, or why there is no program (one sentence),
+ * and then nothing else is set. */
 typedef struct LowTaylor {
     const char *why;
     int nslot, nstep;
     LowTayStep *step;
-    int *q_slot, *v_slot; /* [nq] */
-    int *M_slot;          /* [nq nq] */
-    int *h_slot;          /* [nq] */
+    int *q_slot;          /* [nq] */
+    int *v_slot;          /* [nv] */
+    int *qd_slot;         /* [nq] with speeds, else NULL */
+    int *M_slot;          /* [nv nv] */
+    int *h_slot;          /* [nv] */
     int *g_slot;          /* [nevent] */
     int nevent, nc, nonlinear;
-    int *a_slot;          /* [nq] */
-    int *B_slot;          /* [nc nq] */
+    int *a_slot;          /* [nv] */
+    int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;
 

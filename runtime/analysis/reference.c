@@ -500,10 +500,11 @@ solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, lon
 {
     int N = r->N;
     long nrows = eomc_run_rows(o), k = 1;
+    memcpy(rows, x0, (size_t)N * sizeof *rows);
+    state_normalize(r->m, rows, NULL); /* the start of eomc_sim_integrate's run */
     for (int i = 0; i < N; i++) {
-        r->X[i] = x0[i];
+        r->X[i] = rows[i];
         r->mag[i] = fabsl(r->X[i]);
-        rows[i] = x0[i];
     }
     scales(r);
     r->steps = r->evals = r->side_evals = 0;
@@ -523,12 +524,16 @@ solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, lon
         }
         eomc_ext step = h >= left ? left : 2 * h > left ? left / 2 : h;
         eomc_ext t1 = step == left ? t_end : t + step;
+        /* the unit quaternions back to length 1, in every row and at the
+         * step's end, as the doubles' steps do */
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
             reftaylor_eval(r->rt, eomc_run_row_time(o, k) - t, r->Y2);
+            state_normalize_ext(r->m, r->Y2);
             for (int i = 0; i < N; i++)
                 rows[(size_t)k * N + i] = (double)r->Y2[i];
         }
         reftaylor_eval(r->rt, step, r->X);
+        state_normalize_ext(r->m, r->X);
         t = t1;
         r->steps++;
         for (int i = 0; i < N; i++)
@@ -688,10 +693,11 @@ taylor_fits(eomc_sim *s, const eomc_model_ext *ext)
     if (!ext->taylor)
         return sim_usage_error(s, "--reference-method taylor: %s has no Taylor series: %s",
                                m->name, m->taylor_why ? m->taylor_why : "its twin has none");
-    if (m->nv > 0)
+    if (m->nv > 0 && !m->taylor_qd)
         return sim_usage_error(s, "--reference-method taylor: %s's speeds are not its "
-                               "coordinates' rates, which Taylor's method does not take; "
-                               "extrapolation does", m->name);
+                               "coordinates' rates, and its series lack the kinematic "
+                               "equation q' = W(q) v (taylor_qd); extrapolation does not "
+                               "need it", m->name);
     if (ext->taylor_a)
         return sim_usage_error(s, "--reference-method taylor: a constraint of %s is "
                                "nonlinear in q'', which the reference by Taylor's method "
@@ -740,7 +746,7 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
     ref->x = calloc(size, sizeof *ref->x);
     int alloc = ref_alloc(&r, s, ext);
     if (alloc == 0 && how == EOMC_REFERENCE_TAYLOR &&
-        !(r.rt = reftaylor_alloc(ext, r.n, r.nc, sim_dropped_rows(s))))
+        !(r.rt = reftaylor_alloc(ext, m->taylor_qd, r.n, r.nv, r.nc, sim_dropped_rows(s))))
         alloc = -1;
     if (alloc != 0 || !prev || !ref->t || !ref->x) {
         ref_free(&r);

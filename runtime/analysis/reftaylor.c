@@ -15,7 +15,9 @@
  * step rho e^-2 exp(-0.7/(p - 1)), rho from the last two coefficients of
  * each component against its size over the step, at least its least
  * scale (sc).  No stabilization: the reference follows the constraints'
- * own motion.
+ * own motion.  With speeds of their own (nv > 0) as taylor.c: M, h, a
+ * and B in the speeds, and q's coefficients from the series of q' = W(q)
+ * v (the model's taylor_qd, the twin's slots being the same).
  */
 #include "reftaylor.h"
 #include "step/taylor.h"
@@ -27,10 +29,11 @@
 
 struct RefTaylor {
     const eomc_model_ext *x;
-    int n, N, nc, nk, p;
+    const int *qd;     /* [nq] the slots of q' = W(q) v, or NULL (q' = v) */
+    int n, nv, N, nc, nk, p; /* nq, nv (nq without speeds), nq + nv, nc, nv + nc */
     eomc_ext *T;       /* [nslot (TAYLOR_MAX_ORDER + 1)] the twin's series, stride p + 1 */
     eomc_ext *X;       /* [(p + 1) N] the state's, X[j N + i] */
-    eomc_ext *A, *L;   /* [n (p + 1)], [nc (p + 1)]: the accelerations', the multipliers' */
+    eomc_ext *A, *L;   /* [nv (p + 1)], [nc (p + 1)]: the accelerations', the multipliers' */
     eomc_ext *K, *r;   /* [nk nk] M_0 or the KKT matrix, factored; [nk] a right-hand side */
     eomc_ext *eq, *dK; /* [2 nk] its equilibration, [nk] its KKT scaling */
     int *perm;         /* [nk] */
@@ -45,16 +48,18 @@ zeros(size_t n)
 }
 
 RefTaylor *
-reftaylor_alloc(const eomc_model_ext *x, int n, int nc, const unsigned char *drop)
+reftaylor_alloc(const eomc_model_ext *x, const int *qd, int n, int nv, int nc,
+                const unsigned char *drop)
 {
     RefTaylor *rt = calloc(1, sizeof *rt);
     if (!rt)
         return NULL;
-    size_t K1 = TAYLOR_MAX_ORDER + 1, nk = (size_t)(n + nc), N = 2 * (size_t)n;
-    *rt = (RefTaylor){.x = x, .n = n, .N = 2 * n, .nc = nc, .nk = n + nc, .drop = drop};
+    size_t K1 = TAYLOR_MAX_ORDER + 1, nk = (size_t)(nv + nc), N = (size_t)(n + nv);
+    *rt = (RefTaylor){.x = x, .qd = qd, .n = n, .nv = nv, .N = n + nv, .nc = nc,
+                      .nk = nv + nc, .drop = drop};
     rt->T = zeros((size_t)x->taylor_nslot * K1);
     rt->X = zeros(K1 * N);
-    rt->A = zeros(K1 * (size_t)n);
+    rt->A = zeros(K1 * (size_t)nv);
     rt->L = zeros(K1 * (size_t)nc);
     rt->K = zeros(nk * nk);
     rt->r = zeros(nk);
@@ -113,7 +118,7 @@ static int
 order(RefTaylor *rt, int k)
 {
     const eomc_model_ext *x = rt->x;
-    int n = rt->n, nc = rt->nc, nk = rt->nk, p1 = rt->p + 1;
+    int n = rt->nv, nc = rt->nc, nk = rt->nk, p1 = rt->p + 1;
     if (k == 0) {
         memset(rt->K, 0, (size_t)nk * (size_t)nk * sizeof *rt->K);
         for (int i = 0; i < n; i++)
@@ -179,29 +184,30 @@ reftaylor_series(RefTaylor *rt, eomc_ext t0, const eomc_ext *x, const eomc_ext *
                  eomc_ext *h)
 {
     const eomc_model_ext *tw = rt->x;
-    int n = rt->n, N = rt->N;
+    int n = rt->n, nv = rt->nv, N = rt->N;
     rt->p = taylor_order_for((double)rtol);
     int P = rt->p, p1 = P + 1;
     memcpy(rt->X, x, (size_t)N * sizeof *x);
     for (int k = 0; k < P; k++) {
         const eomc_ext *cur = rt->X + (size_t)k * N;
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < n; i++)
             if (tw->taylor_q[i] >= 0)
                 rt->T[(size_t)tw->taylor_q[i] * p1 + k] = cur[i];
-            if (tw->taylor_v[i] >= 0)
-                rt->T[(size_t)tw->taylor_v[i] * p1 + k] = cur[n + i];
-        }
+        for (int j = 0; j < nv; j++)
+            if (tw->taylor_v[j] >= 0)
+                rt->T[(size_t)tw->taylor_v[j] * p1 + k] = cur[n + j];
         tw->taylor(k, P, t0, p, u, rt->T);
         if (order(rt, k) != 0)
             return -1;
         eomc_ext *next = rt->X + (size_t)(k + 1) * N;
-        for (int i = 0; i < n; i++) {
-            rt->A[(size_t)i * p1 + k] = -rt->r[i];
-            next[i] = cur[n + i] / (k + 1);
-            next[n + i] = -rt->r[i] / (k + 1);
+        for (int j = 0; j < nv; j++) {
+            rt->A[(size_t)j * p1 + k] = -rt->r[j];
+            next[n + j] = -rt->r[j] / (k + 1);
         }
+        for (int i = 0; i < n; i++) /* q' = v, or W(q) v's series */
+            next[i] = (rt->qd ? coef(rt, rt->qd[i], k) : cur[n + i]) / (k + 1);
         for (int c = 0; c < rt->nc; c++)
-            rt->L[(size_t)c * p1 + k] = -rt->r[n + c];
+            rt->L[(size_t)c * p1 + k] = -rt->r[nv + c];
         for (int i = 0; i < N; i++)
             if (!isfinite(next[i]))
                 return -1;

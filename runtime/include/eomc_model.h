@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 23
+#define EOMC_ABI_VERSION 24
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -316,9 +316,11 @@ typedef struct eomc_model {
      * t0 at T[s (K + 1) + j], j = 0 .. K.  taylor(k, K, t0, p, u, T)
      * brings every slot to order k from their orders 0 .. k-1 and what the
      * caller wrote first: coefficient k of q_i at slot taylor_q[i] and of
-     * q_i' at slot taylor_v[i] (-1: no value reads it).  Then coefficient
-     * k of M_ij is at slot taylor_M[i nq + j], of h_i at taylor_h[i] and
-     * of event function g_e at taylor_g[e] (-1: zero at every order).  p
+     * q_i' at slot taylor_v[i] (-1: no value reads it; with speeds of
+     * their own, of speed v_j at taylor_v[j], and taylor_qd at the end
+     * of this struct).  Then coefficient k of M_ij is at slot
+     * taylor_M[i nq + j], of h_i at taylor_h[i] and of event function
+     * g_e at taylor_g[e] (-1: zero at every order).  p
      * is as mass_bias's (with the derived values); u the inputs, held
      * constant (Taylor's method refuses signals).  With constraints
      * also coefficient k of B_ci at taylor_B[c nq + i], of f_c at
@@ -373,6 +375,16 @@ typedef struct eomc_model {
                              const double *u, double *a, double *pivot, double *shared);
     void (*minv_shared)(double t, const double *q, const double *v, const double *p,
                         const double *u, const double *shared, const double *x, double *y);
+
+    /* ---- Taylor's series with speeds ----
+     * With speeds of their own (nv > 0) and taylor: coefficient k of q_i'
+     * = W(q) v's row i (qdot's) at slot taylor_qd[i] (-1: zero at every
+     * order), which the program computes from the coefficients 0 .. k of
+     * q and v the caller writes (taylor_q [nq], taylor_v [nv]); a rate
+     * that is a speed is that speed's slot.  taylor_M, taylor_h,
+     * taylor_a and taylor_B are then in the speeds (nv x nv, nv, nv,
+     * nc x nv).  NULL when nv = 0 (q' = v) or taylor is NULL. */
+    const int *taylor_qd;
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */

@@ -1122,6 +1122,8 @@ eomc_step_eval(const eomc_step *d, double t, double *x)
 {
     if (d->series && t != d->t1) { /* at t1 x1, projected or reset, as the rows take it */
         taylor_eval(d->series, t - d->t0, x);
+        if (d->model)
+            state_normalize(d->model, x, NULL);
         return;
     }
     dense_cubic(d->t0, d->t1, d->x0, d->f0, d->x1, d->f1, d->nx, t, x);

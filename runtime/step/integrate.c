@@ -144,10 +144,13 @@ series_rows(Driver *r, const EvolveStep *tk)
         double t = eomc_run_row_time(r->o, r->k);
         if (t > tk->t1)
             return GSL_SUCCESS;
-        if (t == tk->t1)
+        if (t == tk->t1) {
             memcpy(r->xrow, tk->x1, (size_t)r->N * sizeof *r->xrow);
-        else
+        } else { /* a row of the motion: its unit quaternions renormalized, as
+                  * the steps' ends are */
             taylor_eval(tk->series, t - tk->t0, r->xrow);
+            state_normalize(eomc_sim_model(r->s), r->xrow, NULL);
+        }
         int rc = r->row ? r->row(r->ctx, t, r->xrow) : EOMC_OK;
         if (rc != EOMC_OK)
             return evolve_stop(r->e, rc, t, r->xrow);

@@ -11,6 +11,15 @@
  * inverted symbolically; then q_{k+1} = q'_k / (k + 1) and
  * q'_{k+1} = a_k / (k + 1), which the next call reads.
  *
+ * With speeds of their own (a unit quaternion's angular velocity: the
+ * state is (q [nq], v [nv]), q' = W(q) v) the same holds in the speeds:
+ * M is nv x nv, a = v', and the program also carries the series of q' =
+ * W(q) v (taylor_qd), whose coefficient k follows from q's and v's up to
+ * k; so q_{k+1} = (q')_k / (k + 1) and v_{k+1} = a_k / (k + 1).  The series
+ * keeps |e| as the motion does, to its truncation; the step's end is
+ * renormalized as every method's is (evolve.c's keep_unit), and the
+ * compensated sum starts again on the components that moved.
+ *
  * With constraints f = B(t, q, q') q'' + b(t, q, q') = 0 (each affine in
  * q'', with Baumgarte's terms w_v vel + w_p pos added to b when asked)
  * the same holds for the KKT system: (a_k, lambda_k) solve
@@ -58,18 +67,19 @@
 struct Taylor {
     eomc_sim *s;
     const eomc_model *m;
-    int n, N, p;        /* coordinates, state size, the order */
+    int n, nv, N, p;    /* coordinates, speeds (n without speeds of their own),
+                         * state size n + nv, the order */
     double rtol, atol;
     double *T;          /* [nslot (p + 1)] the model's series, slot s's from
                          * T[s (p + 1)]: the order's stride, not the largest
                          * order's, so that a chain's 200 series of order 16
                          * (27 KB) stay in the first-level cache */
     double *X;          /* [(p + 1) N] the state's: X[j N + i], x_i's coefficient j */
-    double *A;          /* [n (p + 1)] the accelerations', A[i (p + 1) + k] */
-    double *M0;         /* [n n] M_0, factored */
-    double *rel;        /* [n] the factorization's relative pivots */
-    size_t *perm;       /* [n] its permutation */
-    double *b;          /* [n] a right-hand side */
+    double *A;          /* [nv (p + 1)] the accelerations', A[i (p + 1) + k] */
+    double *M0;         /* [nv nv] M_0, factored */
+    double *rel;        /* [nv] the factorization's relative pivots */
+    size_t *perm;       /* [nv] its permutation */
+    double *b;          /* [nv] a right-hand side */
     double *S;          /* [N] the components' scales (step_size) */
     double *d;          /* [N] a step's change (value) */
     double *comp;       /* [N] the rounding the state's additions lost so far */
@@ -79,8 +89,8 @@ struct Taylor {
     double t0;          /* the last series' start */
     /* with constraints (nc > 0; else NULL) */
     int nc;
-    double *K, *dK, *r; /* [(n + nc)^2] the KKT matrix at the start, its scaling,
-                         * [n + nc] a right-hand side */
+    double *K, *dK, *r; /* [(nv + nc)^2] the KKT matrix at the start, its scaling,
+                         * [nv + nc] a right-hand side */
     LaLu *lu;           /* its factorization */
     double *L;          /* [nc (p + 1)] the multipliers', L[c (p + 1) + k] */
     double *wv, *wp;    /* [nc] Baumgarte's weights (sim_baumgarte) */
@@ -104,13 +114,14 @@ taylor_check(eomc_sim *s, const eomc_run_opts *o)
     if (!m->taylor)
         return sim_usage_error(s, "--method taylor: %s has no Taylor series: %s", m->name,
                                m->taylor_why ? m->taylor_why : "it was generated without them");
-    /* the series carry q' as the speeds: a model whose speeds are not the
-     * rates (a unit quaternion's angular velocity) has none, whatever it says */
-    if (m->nv > 0)
+    /* speeds of their own (a unit quaternion's angular velocity): q's
+     * series comes from q' = W(q) v's, which the model must carry */
+    if (m->nv > 0 && !m->taylor_qd)
         return sim_usage_error(s, "--method taylor: %s's speeds are not its coordinates' "
-                               "rates (%s is a speed of its own), which Taylor's method "
-                               "does not take; choose another method", m->name,
-                               state_own_speed(m));
+                               "rates (%s is a speed of its own), and its series lack the "
+                               "kinematic equation q' = W(q) v (taylor_qd) that Taylor's "
+                               "method sums q from; generate it again, or choose another "
+                               "method", m->name, state_own_speed(m));
     for (int k = 0; k < m->nu; k++) {
         double v;
         if (!eomc_sim_input_held(s, k, &v))
@@ -135,27 +146,27 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     Taylor *tp = calloc(1, sizeof *tp);
     if (!tp)
         return NULL;
-    int n = m->nq, K = TAYLOR_MAX_ORDER;
-    *tp = (Taylor){.s = s, .m = m, .n = n, .N = 2 * n, .rtol = o->rtol, .atol = o->atol,
-                   .p = taylor_order_for(o->rtol)};
+    int n = m->nq, nv = eomc_nv(m), K = TAYLOR_MAX_ORDER;
+    *tp = (Taylor){.s = s, .m = m, .n = n, .nv = nv, .N = n + nv, .rtol = o->rtol,
+                   .atol = o->atol, .p = taylor_order_for(o->rtol)};
     tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
     tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
-    tp->A = sim_zeros((size_t)(K + 1) * (size_t)n);
-    tp->M0 = sim_zeros((size_t)n * (size_t)n);
-    tp->rel = sim_zeros((size_t)n);
-    tp->b = sim_zeros((size_t)n);
+    tp->A = sim_zeros((size_t)(K + 1) * (size_t)nv);
+    tp->M0 = sim_zeros((size_t)nv * (size_t)nv);
+    tp->rel = sim_zeros((size_t)nv);
+    tp->b = sim_zeros((size_t)nv);
     tp->S = sim_zeros((size_t)tp->N);
     tp->d = sim_zeros((size_t)tp->N);
     tp->comp = sim_zeros((size_t)tp->N);
     tp->comp0 = sim_zeros((size_t)tp->N);
     tp->xlast = sim_zeros((size_t)tp->N);
-    tp->perm = calloc((size_t)n + 1, sizeof *tp->perm);
+    tp->perm = calloc((size_t)nv + 1, sizeof *tp->perm);
     if (!tp->T || !tp->X || !tp->A || !tp->M0 || !tp->rel || !tp->b || !tp->perm || !tp->S ||
         !tp->d || !tp->comp || !tp->comp0 || !tp->xlast) {
         taylor_free(tp);
         return NULL;
     }
-    int nc = tp->nc = m->nc, nk = n + nc;
+    int nc = tp->nc = m->nc, nk = nv + nc;
     if (nc == 0)
         return tp;
     tp->K = sim_zeros((size_t)nk * (size_t)nk);
@@ -171,14 +182,15 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     }
     for (int c = 0; c < nc; c++)
         sim_baumgarte(s, c, &tp->wv[c], &tp->wp[c]);
-    if (m->taylor_a) { /* dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt */
-        size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
-        tp->J = sim_zeros(2 * cn + nc * nu + nc + 3 * cn * n + cn * nu + cn);
+    if (m->taylor_a) { /* dfdq, dfdv, dfdu, dfdt, dBdq, dBdv, dBda, dBdu, dBdt:
+                        * by q nq columns, by v and a nv (eomc_model.h) */
+        size_t cq = (size_t)nc * (size_t)n, cv = (size_t)nc * (size_t)nv, nu = (size_t)m->nu;
+        tp->J = sim_zeros(cq + cv + nc * nu + nc + cv * n + 2 * cv * nv + cv * nu + cv);
         if (!tp->J) {
             taylor_free(tp);
             return NULL;
         }
-        tp->dBda = tp->J + 2 * cn + nc * nu + nc + 2 * cn * n;
+        tp->dBda = tp->J + cq + cv + nc * nu + nc + cv * n + cv * nv;
     }
     return tp;
 }
@@ -224,12 +236,12 @@ put_state(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
     const double *xk = tp->X + (size_t)k * (size_t)tp->N;
-    for (int i = 0; i < tp->n; i++) {
+    for (int i = 0; i < tp->n; i++)
         if (m->taylor_q[i] >= 0)
             tp->T[(size_t)m->taylor_q[i] * (tp->p + 1) + (size_t)k] = xk[i];
-        if (m->taylor_v[i] >= 0)
-            tp->T[(size_t)m->taylor_v[i] * (tp->p + 1) + (size_t)k] = xk[tp->n + i];
-    }
+    for (int j = 0; j < tp->nv; j++)
+        if (m->taylor_v[j] >= 0)
+            tp->T[(size_t)m->taylor_v[j] * (tp->p + 1) + (size_t)k] = xk[tp->n + j];
 }
 
 /* Coefficient k of q'' (ak; NULL: 0) into the series the constraints
@@ -237,7 +249,7 @@ put_state(Taylor *tp, int k)
 static void
 put_accel(Taylor *tp, int k, const double *ak)
 {
-    for (int i = 0; i < tp->n; i++)
+    for (int i = 0; i < tp->nv; i++)
         if (tp->m->taylor_a[i] >= 0)
             tp->T[(size_t)tp->m->taylor_a[i] * (tp->p + 1) + (size_t)k] = ak ? ak[i] : 0;
 }
@@ -249,18 +261,17 @@ static int
 newton_start(Taylor *tp, double t0, const double *x)
 {
     const eomc_model *m = tp->m;
-    int n = tp->n, nc = tp->nc;
+    int n = tp->n, nv = tp->nv, nc = tp->nc;
     if (eomc_sim_accel(tp->s, t0, x, x + n, tp->b) != EOMC_OK)
         return -1;
     const double *lam = eomc_sim_multipliers(tp->s);
     for (int c = 0; c < nc; c++)
         tp->L[(size_t)c * (tp->p + 1)] = lam[c];
-    size_t cn = (size_t)nc * (size_t)n, nu = (size_t)m->nu;
-    double *J = tp->J;
-    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0), J, J + cn,
-                  J + 2 * cn, J + 2 * cn + nc * nu, J + 2 * cn + nc * nu + nc,
-                  J + 2 * cn + nc * nu + nc + cn * n, tp->dBda, tp->dBda + cn * n,
-                  tp->dBda + cn * n + cn * nu);
+    size_t cq = (size_t)nc * (size_t)n, cv = (size_t)nc * (size_t)nv, nu = (size_t)m->nu;
+    double *J = tp->J, *dBdq = J + cq + cv + nc * nu + nc;
+    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0), J, J + cq,
+                  J + cq + cv, J + cq + cv + nc * nu, dBdq, dBdq + cv * n, tp->dBda,
+                  tp->dBda + cv * nv, tp->dBda + cv * nv + cv * nu);
     return 0;
 }
 
@@ -356,7 +367,7 @@ conv(const Taylor *tp, int slot, const double *b, int k, double sum)
 static double
 mass_terms(const Taylor *tp, int i, int k)
 {
-    int n = tp->n;
+    int n = tp->nv;
     double sum = 0;
     for (int l = 0; l < n; l++)
         sum = conv(tp, tp->m->taylor_M[i * n + l], tp->A + (size_t)l * (tp->p + 1), k, sum);
@@ -370,7 +381,7 @@ static int
 mass_order(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
-    int n = tp->n;
+    int n = tp->nv;
     if (k == 0) {
         for (int i = 0; i < n * n; i++)
             tp->M0[i] = coef(tp, m->taylor_M[i], 0);
@@ -391,7 +402,7 @@ static int
 kkt_order(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
-    int n = tp->n, nc = tp->nc, nk = n + nc, p = tp->p;
+    int n = tp->nv, nc = tp->nc, nk = n + nc, p = tp->p;
     /* a row left out of the solves: its row and column 0, a 1 between,
      * 0 on the right, its multiplier 0 at every order (kkt.c) */
     const unsigned char *drop = sim_dropped_rows(tp->s);
@@ -444,12 +455,16 @@ int
 taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 {
     const eomc_model *m = tp->m;
-    int n = tp->n, N = tp->N, p = tp->p;
+    int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p;
     const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0);
     /* a start the last advance did not leave (an event's reset, a side
-     * step's own start) owes nothing */
-    if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0)
-        memset(tp->comp, 0, (size_t)N * sizeof *tp->comp);
+     * step's own start) owes nothing; where the unit quaternions were
+     * renormalized since, they owe nothing, and the rest what they did */
+    if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0) {
+        for (int i = 0; i < N; i++)
+            if (m->nquat == 0 || x[i] != tp->xlast[i])
+                tp->comp[i] = 0;
+    }
     memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
     memcpy(tp->X, x, (size_t)N * sizeof *x);
     tp->t0 = t0;
@@ -474,11 +489,12 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         }
         double *next = tp->X + (size_t)(k + 1) * (size_t)N;
         const double *cur = tp->X + (size_t)k * (size_t)N;
-        for (int i = 0; i < n; i++) {
-            tp->A[(size_t)i * (p + 1) + (size_t)k] = tp->b[i];
-            next[i] = cur[n + i] / (k + 1);
-            next[n + i] = tp->b[i] / (k + 1);
+        for (int j = 0; j < nv; j++) {
+            tp->A[(size_t)j * (p + 1) + (size_t)k] = tp->b[j];
+            next[n + j] = tp->b[j] / (k + 1);
         }
+        for (int i = 0; i < n; i++) /* q' = v, or W(q) v's series */
+            next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
         if (!sim_all_finite(next, N))
             return -1;
     }

@@ -269,15 +269,16 @@ fb_accel(double t, const double *q, const double *v, const double *p, const doub
     .invariant_name = "E", .invariant_note = "E = T + V is conserved", .nv = 6,        \
     .v_names = fb_v, .qdot = fb_qdot, .qdot_jacobian = fb_qdot_jacobian, .nquat = 1,     \
     .quat = fb_quat
-#define NO_SERIES "its speeds are not its coordinates' rates"
+#define NO_SERIES "a hand-written model without series"
 
 const eomc_model freebody_model = {FREEBODY_COMMON, .name = "freebody",
                                    .taylor_why = NO_SERIES};
 const eomc_model freebody_accel_model = {FREEBODY_COMMON, .name = "freebody_accel",
                                          .accel = fb_accel, .taylor_why = NO_SERIES};
 
-/* Series that must never run: Taylor's method takes no speeds of their
- * own, whatever a model says (the runtime refuses before). */
+/* Series that must never run: a model with speeds of their own and series,
+ * but without the series of q' = W(q) v (taylor_qd) that Taylor's method
+ * sums q from (the runtime refuses before). */
 static void
 fb_no_series(int k, int K, double t0, const double *p, const double *u, double *T)
 {

@@ -610,8 +610,11 @@ spin_linearized(int a, double w)
     double rot = 0;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
-            double wx = (j == (i + 1) % 3 ? 1 : j == (i + 2) % 3 ? -1 : 0) *
-                        (i == a || j == a ? 0 : x[NQ + 3 + 3 - i - j]);
+            /* -[w0 x]'s entry: w0 along a, so 0 in a's row and column
+             * (and on the diagonal, where there is no third axis) */
+            double wx = i == j || i == a || j == a
+                            ? 0
+                            : (j == (i + 1) % 3 ? 1 : -1) * x[NQ + 3 + 3 - i - j];
             rot = fmax(rot, fabs(A[(3 + i) * NL + 3 + j] - wx));
             rot = fmax(rot, fabs(A[(3 + i) * NL + 9 + j] - (i == j)));
         }

@@ -110,11 +110,18 @@ struct Kkt {
     int by_loads;               /* the last kkt_accel solved so: M not formed */
     int dense;                  /* kkt_set_dense: never by loads */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
+    unsigned solves;            /* solves by unit loads so far (KKT_PIVOT_EVERY) */
     double t_last, *q_last, *v_last, *u_last; /* its state [nq], [n], [nu], to form M
                                                * on demand */
     const double *p_last;
     const unsigned char *drop;  /* [nc] rows left out of the solves, or NULL */
 };
+
+/* M's smallest pivot, for the condition watch, at every KKT_PIVOT_EVERY-th
+ * solve by unit loads (a power of 2), as sim.c's for an unconstrained
+ * model: finding it is a tenth of the loads' own work on a small arm, and
+ * the test of M's pivots runs at every solve all the same. */
+enum { KKT_PIVOT_EVERY = 4 };
 
 /* A zeroed array of n doubles (at least one), or NULL. */
 static double *
@@ -626,8 +633,9 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     /* the recursion once, its values kept for the load passes, where the
      * model can (eomc_model.h's free_accel_shared) */
     int shared = m->free_accel_shared && m->minv_shared;
-    if ((shared ? m->free_accel_shared(t, q, v, p, u, a, &pivot, k->shared)
-                : m->free_accel(t, q, v, p, u, a, &pivot)) != 0)
+    double *want = (++k->solves & (KKT_PIVOT_EVERY - 1)) == 0 ? &pivot : NULL;
+    if ((shared ? m->free_accel_shared(t, q, v, p, u, a, want, k->shared)
+                : m->free_accel(t, q, v, p, u, a, want)) != 0)
         return -1;
     eval_constraint(k, t, q, v, a, p, u); /* f(a_f) and B */
     /* the rows the recursion does not hold by itself (c_held): a ball's

@@ -1076,7 +1076,7 @@ precession_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     y[2] = w14;
 }
 
-/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+/* y = M^-1 da: the solve's shared values, then minv_shared. */
 static void
 precession_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)

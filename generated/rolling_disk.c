@@ -1357,7 +1357,7 @@ rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     y[4] = w39;
 }
 
-/* y = M^-1 da: the recursion's shared values, then minv_shared. */
+/* y = M^-1 da: the solve's shared values, then minv_shared. */
 static void
 rolling_disk_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)

@@ -110,6 +110,16 @@ spec_stem(const char *path, char *out, size_t len)
         *dot = '\0';
 }
 
+/* Whether the run, its reference or the scene's simulator takes Taylor's
+ * method (not --taylor or --shared, which write series the form may have). */
+static int
+taylor_run(const Options *o, const Spec *s)
+{
+    const char *method = o->run_method ? o->run_method : s->scene.method;
+    return (o->run_integrates && !strcmp(method, "taylor")) || o->taylor_reference ||
+           (!strcmp(o->cmd, "build") && !strcmp(s->scene.method, "taylor"));
+}
+
 /* Whether `eomc run` would be refused for want of Taylor series, which the
  * model's lowering says it has not (why): its simulator refuses to take a
  * step of Taylor's method, or to compute a reference by it, without them.
@@ -177,8 +187,8 @@ compile(const Options *o, FILE *out, int *units, char **model)
         }
         if (!e)
             e = o->form ? eom_derive(s, m, form, A, P, D, &why)
-                        : eom_derive_cheapest(s, m, c ? c->nc : 0, loads, A, P, D, picked,
-                                              sizeof picked);
+                        : eom_derive_cheapest(s, m, c ? c->nc : 0, loads, taylor_run(o, s),
+                                              A, P, D, picked, sizeof picked);
         if (e)
             form = e->form;
         else if (!o->form)

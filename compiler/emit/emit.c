@@ -333,19 +333,19 @@ print_accel(Printer *pr, const Lowered *L)
     print_pivot_check(pr, n);
 }
 
-/* eomc_model's minv where minv_shared reads the recursion's values: the
- * recursion first (a unit load alone costs a right-hand side; kkt.c
- * calls accel_shared once and minv_shared per row instead). */
+/* eomc_model's minv where minv_shared reads the solve's values: the solve
+ * first (a unit load alone costs a right-hand side; kkt.c calls
+ * accel_shared once and minv_shared per row instead). */
 static void
 print_minv_alone(Printer *pr, const Lowered *L)
 {
     const char *nm = pr->md->name;
     char fname[128];
-    emit_line(pr, "/* y = M^-1 da: the recursion's shared values, then minv_shared. */");
+    emit_line(pr, "/* y = M^-1 da: the solve's shared values, then minv_shared. */");
     snprintf(fname, sizeof fname, "%s_minv", nm);
     emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y");
-    emit_line(pr, "    eomc_real a[%d], shared[%d];", L->nv, L->loads_shared ? L->loads_shared : 1);
+    emit_line(pr, "    eomc_real a[%d], shared[%d];", L->nv, L->loads_shared);
     emit_line(pr, "    %s_accel_shared(t, q, v, p, u, a, NULL, shared);", nm);
     emit_line(pr, "    %s_minv_shared(t, q, v, p, u, shared, da, y);", nm);
     emit_line(pr, "}\n");

@@ -313,8 +313,8 @@ eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D)
  * h 17 299 operations, its whole articulated-body solve 13 633), and the
  * runtime would factor their M besides.  Writes the reason to why. */
 Eom *
-eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A, ExprPool *P,
-                Diff *D, char *why, size_t len)
+eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, int series, Arena *A,
+                    ExprPool *P, Diff *D, char *why, size_t len)
 {
     enum { NFORMS_MAX = 16 };
     Eom *e[NFORMS_MAX];
@@ -368,9 +368,15 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A, E
         cost[nf] = eom_cost(e[nf], m, nc, loads, A, P, D);
         nf++;
     }
-    for (int k = 0; k < nf; k++)
-        if (best < 0 || cost[k] < cost[best])
-            best = k;
+    /* a form with a recursion of its own computes M by columns: it has no
+     * series, so where Taylor's are asked another is taken if one applies */
+    int skip = 0;
+    for (int pass = series ? 0 : 1; pass < 2 && best < 0; pass++)
+        for (int k = 0; k < nf; k++)
+            if ((pass || !e[k]->form->solve) && (best < 0 || cost[k] < cost[best]))
+                best = k;
+    for (int k = 0; series && k < nf; k++)
+        skip |= e[k]->form->solve && cost[k] < cost[best];
     if (best < 0)
         return NULL;
     size_t at = (size_t)snprintf(why, len, "the cheapest that applies: %ld operation%s per "
@@ -385,7 +391,10 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A, E
         at += (size_t)snprintf(why + at, len - at, "%s%s more than %ld, its dense "
                                "factorization alone", nf > 1 ? ", " : " (", priced, dense);
     if ((nf > 1 || priced) && at < len)
-        snprintf(why + at, len - at, ")");
+        at += (size_t)snprintf(why + at, len - at, ")");
+    if (skip && at < len)
+        snprintf(why + at, len - at, "; Taylor's series asked for, which a form that computes M "
+                 "by columns of its recursion does not have");
     return e[best];
 }
 

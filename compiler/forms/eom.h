@@ -111,9 +111,11 @@ ExprId *eom_minv(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 ExprId *eom_mass(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 /* The default form's E, M, h and solve: the cheapest of those that apply
  * (eom.c says how they are weighed), or NULL if none does; the reason, with
- * what the others cost, in why[len]. */
-Eom *eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, Arena *A,
-                         ExprPool *P, Diff *D, char *why, size_t len);
+ * what the others cost, in why[len].  series: Taylor's series are asked
+ * for (a run by Taylor's method), so the cheapest form that can have them
+ * (one that writes M's entries) where one applies. */
+Eom *eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, int series,
+                         Arena *A, ExprPool *P, Diff *D, char *why, size_t len);
 /* dEdq, dEdv, dEdu, dEdt, jvp_q and jvp_v of e (again: nothing). */
 void eom_derive_jacobian(Eom *e, const Mech *m, Arena *A, ExprPool *P, Diff *D);
 

@@ -218,11 +218,24 @@ st=$?
 [ $st = 2 ] && grep -q "reference-method taylor: a constraint of cubic is nonlinear in q''" \
     "$tmp/r.err" && [ ! -s "$tmp/r.csv" ]
 ok $? "a reference by Taylor's method of a constraint nonlinear in q'': exit 2, naming why"
-"$eomc" run "$src/specs/rolling_disk.yaml" --method taylor -o "$tmp/r.csv" 2> "$tmp/r.err"
+"$eomc" run "$src/specs/rolling_disk.yaml" --form articulated-body --method taylor -o "$tmp/r.csv" \
+    2> "$tmp/r.err"
 st=$?
 [ $st = 2 ] && grep -q "has no Taylor series: its form computes the mass matrix by columns" \
     "$tmp/r.err" && [ ! -s "$tmp/r.csv" ]
 ok $? "a form without the expressions of M: exit 2, naming why ($(head -1 "$tmp/r.err"))"
+# without --form a run by Taylor's method takes the cheapest form with series:
+# the disk's rows are rk8pd's (in the cheapest form of all) to 1e-10
+"$eomc" run "$src/specs/rolling_disk.yaml" --method taylor --t-end 1 --dt 0.5 --rtol 1e-13 \
+    --atol 1e-13 -o "$tmp/dt.csv" 2> "$tmp/dt.err" &&
+  "$eomc" run "$src/specs/rolling_disk.yaml" --method rk8pd --t-end 1 --dt 0.5 --rtol 1e-13 \
+    --atol 1e-13 -o "$tmp/d8.csv" 2> /dev/null
+st=$?
+d=$(paste -d, "$tmp/dt.csv" "$tmp/d8.csv" | awk -F, 'NR > 1 { h = NF / 2
+    for (i = 2; i <= h; i++) { x = $i - $(i + h); x = x < 0 ? -x : x; if (x > m) m = x } }
+    END { print (NR > 1 ? m + 0 : "none") }')
+[ $st = 0 ] && [ ! -s "$tmp/dt.err" ] && awk -v d="$d" 'BEGIN { exit !(d == d + 0 && d < 1e-10) }'
+ok $? "--method taylor without --form: a form with series taken, the disk's rows rk8pd's to $d"
 # ... refused before anything is built: no C compiler run (a CC that
 # records its calls; a cache of its own, where no build of it can be),
 # the simulator's message; as is a reference by Taylor's method that the
@@ -232,7 +245,8 @@ chmod +x "$tmp/cc"
 : > "$tmp/cc.calls"
 for how in "--method taylor" "--method=rk4 --method taylor" "--error --reference-method taylor"; do
   # shellcheck disable=SC2086 # $how is a list of options
-  CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" $how \
+  CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" \
+    --form articulated-body $how \
     -o "$tmp/r.csv" 2> "$tmp/r.err"
   st=$?
   opt=$(echo "$how" | sed 's/.* \(--[a-z-]*method taylor\)$/\1/')
@@ -241,14 +255,14 @@ for how in "--method taylor" "--method=rk4 --method taylor" "--error --reference
     grep -q "^(see eomc run .*rolling_disk.yaml --help)$" "$tmp/r.err"
   ok $? "$how, a model without series: refused before it is built, no cc run ($(wc -l < "$tmp/cc.calls") calls; $(head -1 "$tmp/r.err"))"
 done
-CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" --method taylor \
-  --accel > "$tmp/r.out" 2> "$tmp/r.err"
+CC="$tmp/cc" EOMC_CACHE_DIR="$tmp/cache_cc" "$eomc" run "$src/specs/rolling_disk.yaml" \
+  --form articulated-body --method taylor --accel > "$tmp/r.out" 2> "$tmp/r.err"
 [ $? = 0 ] && [ -s "$tmp/cc.calls" ] && grep -q "^theta'' " "$tmp/r.out"
 ok $? "--method taylor --accel, the same model: built and run (it takes no step)"
 # eomc build of a scene whose method is taylor, on a model without series:
 # built (its simulator runs with another --method), with a warning naming why
 sed 's/method: rk8pd/method: taylor/' "$src/specs/rolling_disk.yaml" > "$tmp/disk_taylor.yaml"
-"$eomc" build "$tmp/disk_taylor.yaml" -o "$tmp/disk_taylor" 2> "$tmp/b.err"
+"$eomc" build "$tmp/disk_taylor.yaml" --form articulated-body -o "$tmp/disk_taylor" 2> "$tmp/b.err"
 st=$?
 [ $st = 0 ] && grep -q "warning: the scene's method is taylor, but rolling_disk has no Taylor series (its form computes the mass matrix by columns" "$tmp/b.err" &&
   "$tmp/disk_taylor" --method rk8pd --t-end 0.1 > /dev/null

@@ -35,7 +35,7 @@ lowered(Spec *s)
     Constraints *c = constraints_build(s, m, A, P, D);
     Invariant *inv = invariant_derive(s, m, c, A, P, D);
     char why[600];
-    Eom *e = eom_derive_cheapest(s, m, c ? c->nc : 0, constraints_by_loads(c, 0), A, P, D, why,
+    Eom *e = eom_derive_cheapest(s, m, c ? c->nc : 0, constraints_by_loads(c, 0), 0, A, P, D, why,
                                  sizeof why);
     if (!e)
         return NULL;

@@ -369,14 +369,18 @@ eom_derive_cheapest(const Spec *s, const Mech *m, int nc, int loads, int series,
         nf++;
     }
     /* a form with a recursion of its own computes M by columns: it has no
-     * series, so where Taylor's are asked another is taken if one applies */
-    int skip = 0;
-    for (int pass = series ? 0 : 1; pass < 2 && best < 0; pass++)
-        for (int k = 0; k < nf; k++)
-            if ((pass || !e[k]->form->solve) && (best < 0 || cost[k] < cost[best]))
-                best = k;
-    for (int k = 0; series && k < nf; k++)
-        skip |= e[k]->form->solve && cost[k] < cost[best];
+     * series, so where Taylor's are asked the cheapest with them is taken,
+     * if one applies */
+    int with = -1;
+    for (int k = 0; k < nf; k++) {
+        if (best < 0 || cost[k] < cost[best])
+            best = k;
+        if (!e[k]->form->solve && (with < 0 || cost[k] < cost[with]))
+            with = k;
+    }
+    int skip = series && with >= 0 && with != best;
+    if (skip)
+        best = with;
     if (best < 0)
         return NULL;
     size_t at = (size_t)snprintf(why, len, "the cheapest that applies: %ld operation%s per "

@@ -23,7 +23,8 @@
  *
  * with tau = Q - dV/dq the generalized forces every form shares (gravity
  * among them, so the world does not accelerate).  Cost and code grow
- * linearly with the number of turns.
+ * linearly with the number of turns.  A free joint (three slides and a
+ * ball) is one joint of six degrees of freedom (Free, below).
  *
  * D_i is the pivot that eliminating the turns below i leaves for i: the
  * LDL^T factorization of M that eliminates leaves first.  So piv = D and
@@ -224,6 +225,112 @@ jt_solve(ExprPool *P, const Jt *j, const ExprId *b, ExprId *x)
     }
 }
 
+/* X = L diag(d) L^T for a symmetric 6 x 6 X (L unit lower, at [6 i + j]),
+ * eliminating rows 0, 1, ... in turn; LD[i j] = L[i j] d[j] saves a
+ * product per term. */
+static void
+si_ldl(ExprPool *P, const Si *X, ExprId *L, ExprId *d, ExprId *dinv)
+{
+    ExprId LD[36];
+    for (int j = 0; j < 6; j++) {
+        ExprId x = X->e[7 * j];
+        for (int k = 0; k < j; k++)
+            x = expr_sub(P, x, expr_mul(P, LD[6 * j + k], L[6 * j + k]));
+        d[j] = x;
+        dinv[j] = expr_div(P, EXPR_ONE, x);
+        for (int i = j + 1; i < 6; i++) {
+            ExprId y = X->e[6 * i + j];
+            for (int k = 0; k < j; k++)
+                y = expr_sub(P, y, expr_mul(P, LD[6 * i + k], L[6 * j + k]));
+            LD[6 * i + j] = y;
+            L[6 * i + j] = expr_mul(P, y, dinv[j]);
+        }
+    }
+}
+
+/* x = X^-1 b by si_ldl's factors */
+static void
+si_ldl_solve(ExprPool *P, const ExprId *L, const ExprId *dinv, const Sv *b, Sv *x)
+{
+    ExprId y[6];
+    for (int i = 0; i < 6; i++) {
+        y[i] = sv_get(b, i);
+        for (int k = 0; k < i; k++)
+            y[i] = expr_sub(P, y[i], expr_mul(P, L[6 * i + k], y[k]));
+    }
+    for (int i = 5; i >= 0; i--) {
+        y[i] = expr_mul(P, y[i], dinv[i]);
+        for (int k = i + 1; k < 6; k++)
+            y[i] = expr_sub(P, y[i], expr_mul(P, L[6 * k + i], y[k]));
+        *sv_at(x, i) = y[i];
+    }
+}
+
+/* A free joint (spatial.h's SvFree) in the recursion, one joint of six
+ * degrees of freedom as the articulated-body libraries run a floating
+ * base.  Its axes in the ball's coordinates, S = [[0, 1], [Q^T G, 0]], are
+ * invertible, so D q'' = u - U^T a' (D = S^T IA S, u = tau - S^T pA,
+ * U = IA S) is
+ *     IA a = S^-T tau - pA,   q'' = S^-1 (a - a'),
+ * a the body's acceleration: one 6 x 6 solve of the articulated inertia
+ * in place of three slides' and a ball's eliminations, and of the
+ * transforms of IA through the massless bodies between them.  Its pivots
+ * are IA's, balanced by IA's own diagonal (mkk): how nearly singular D is
+ * shows in IA as well, S being invertible.  Not with a rotor's inertia on
+ * these coordinates, which IA misses. */
+typedef struct Free {
+    const SvFree *j;
+    ExprId L[36], dinv[6]; /* IA = L diag(d) L^T */
+} Free;
+
+
+/* A free joint's q'' (its ball turn k) from a' (the parent's acceleration
+ * carried down, with c): IA a = S^-T tau - pA, q'' = S^-1 (a - a'), with
+ * S^-T tau = (tau_w, Q^T G^-T tau_v) and S^-1 r = (r_w, G^-1 Q r_v);
+ * *out = a. */
+static void
+free_accel(ExprPool *P, const Tree *t, int k, const Free *f, const ExprId *tau, const Sv *pA,
+           const Sv *ap, ExprId *acc, Sv *out)
+{
+    const TreeTurn *tk = &t->turn[k];
+    const ExprId *Q = tk->Q, *Gi = f->j->Gi;
+    int cv[3];
+    for (int i = 0; i < 3; i++)
+        cv[i] = t->turn[f->j->slide[i]].qc[0];
+    ExprId y[3];
+    Sv b, a;
+    for (int i = 0; i < 3; i++) {
+        y[i] = EXPR_ZERO;
+        for (int j = 0; j < 3; j++)
+            y[i] = expr_add(P, y[i], expr_mul(P, Gi[3 * j + i], tau[cv[j]]));
+    }
+    for (int i = 0; i < 3; i++) {
+        ExprId x = EXPR_ZERO;
+        for (int j = 0; j < 3; j++)
+            x = expr_add(P, x, expr_mul(P, Q[3 * j + i], y[j]));
+        b.w[i] = expr_sub(P, tau[tk->qc[i]], pA->w[i]);
+        b.v[i] = expr_sub(P, x, pA->v[i]);
+    }
+    si_ldl_solve(P, f->L, f->dinv, &b, &a);
+    ExprId r[3], z[3];
+    for (int i = 0; i < 3; i++) {
+        acc[tk->qc[i]] = expr_sub(P, a.w[i], ap->w[i]);
+        r[i] = expr_sub(P, a.v[i], ap->v[i]);
+    }
+    for (int i = 0; i < 3; i++) {
+        z[i] = EXPR_ZERO;
+        for (int j = 0; j < 3; j++)
+            z[i] = expr_add(P, z[i], expr_mul(P, Q[3 * i + j], r[j]));
+    }
+    for (int i = 0; i < 3; i++) {
+        ExprId x = EXPR_ZERO;
+        for (int j = 0; j < 3; j++)
+            x = expr_add(P, x, expr_mul(P, Gi[3 * i + j], z[j]));
+        acc[cv[i]] = x;
+    }
+    *out = a;
+}
+
 static void
 articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, ExprId *acc,
             ExprId *piv, ExprId *mkk)
@@ -260,6 +367,19 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
             applied[i] = expr_sub(P, applied[i], hq[i]);
         tau = applied;
     }
+    /* free joints: fr[k] for the ball, its slides skipped */
+    SvFree **fj = sv_free_joints(m, A, P, D, Eq);
+    Free **fr = arena_new_array(A, Free *, nt + 1);
+    int *skip = arena_new_array(A, int, nt + 1);
+    for (int k = 0; k < nt; k++)
+        skip[k] = 0, fr[k] = NULL;
+    for (int k = 0; k < nt; k++)
+        if (fj[k]) {
+            fr[k] = arena_alloc(A, sizeof *fr[k]);
+            fr[k]->j = fj[k];
+            for (int i = 0; i < 3; i++)
+                skip[fj[k]->slide[i]] = 1;
+        }
     for (int k = 0; k < nt; k++) {
         const TreeTurn *tk = &t->turn[k];
         Jt *jk = &J[k];
@@ -297,6 +417,18 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
         const TreeTurn *tk = &t->turn[k];
         Jt *jk = &J[k];
         int nd = jk->nd, p = tk->up;
+        if (skip[k])
+            continue;
+        if (fr[k]) {
+            Free *f = fr[k];
+            ExprId d[6];
+            si_ldl(P, &IA[k], f->L, d, f->dinv);
+            for (int i = 0; i < 6; i++) {
+                int c = i < 3 ? tk->qc[i] : t->turn[f->j->slide[i - 3]].qc[0];
+                piv[c] = d[i], mkk[c] = IA[k].e[7 * i];
+            }
+            continue;
+        }
         /* M_ii = S^T Ic S, Ic the composite inertia of all the joint moves */
         for (int d = 0; d < nd; d++) {
             Sv IcS;
@@ -377,6 +509,14 @@ articulated(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *load, E
         Sv a;
         sv_motion_down(P, tk, tk->up >= 0 ? &Acc[tk->up] : &a0, &a);
         sv_add(P, &a, &C[k]);
+        if (skip[k]) { /* a free joint's slide: its q'' comes with the ball's */
+            Acc[k] = a;
+            continue;
+        }
+        if (fr[k]) {
+            free_accel(P, t, k, fr[k], tau, &pA[k], &a, acc, &Acc[k]);
+            continue;
+        }
         ExprId b[4], qdd[4];
         for (int d = 0; d < jk->nd; d++)
             b[d] = expr_sub(P, jk->u[d], sv_dot(P, &a, &jk->U[d]));

@@ -223,3 +223,97 @@ sv_rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y)
     Y->m = expr_add(P, Y->m, X->m);
 }
 
+static int
+massless(const TreeTurn *t)
+{
+    int zero = t->m == EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        zero &= t->h[i] == EXPR_ZERO;
+    for (int i = 0; i < 9; i++)
+        zero &= t->I[i] == EXPR_ZERO;
+    return zero;
+}
+
+/* Whether turn k is the ball of a free joint, and then its slides, G and
+ * G^-1. */
+static int
+free_joint(const Mech *m, ExprPool *P, Diff *D, const ExprId *Eq, const int *nchild, int k,
+           SvFree *f)
+{
+    const Tree *t = m->tree;
+    const TreeTurn *tk = &t->turn[k];
+    if (tk->slide || tk->ndof != 3)
+        return 0;
+    for (int d = 0; d < 3; d++)
+        for (int i = 0; i < 3; i++)
+            if (tk->Sw[d][i] != (i == d ? EXPR_ONE : EXPR_ZERO))
+                return 0;
+    int s = tk->up;
+    for (int i = 2; i >= 0; i--) {
+        if (s < 0 || !t->turn[s].slide || !massless(&t->turn[s]) || nchild[s] != 1)
+            return 0;
+        f->slide[i] = s;
+        s = t->turn[s].up;
+    }
+    if (s != -1)
+        return 0;
+    int c[6] = {tk->qc[0], tk->qc[1], tk->qc[2]};
+    for (int i = 0; i < 3; i++)
+        c[3 + i] = t->turn[f->slide[i]].qc[0];
+    for (int i = 0; Eq && i < 6; i++)
+        for (int j = 0; j < 6; j++)
+            if (diff_partial(D, Eq[c[i]], m->q[2][c[j]]) != EXPR_ZERO)
+                return 0;
+    /* G's columns: each slide's direction carried into the last's axes */
+    ExprId *G = f->G;
+    for (int i = 0; i < 3; i++) {
+        Sv x, y;
+        sv_zero(&x);
+        for (int r = 0; r < 3; r++)
+            x.v[r] = t->turn[f->slide[i]].al[r];
+        for (int j = i + 1; j < 3; j++) {
+            sv_motion_down(P, &t->turn[f->slide[j]], &x, &y);
+            x = y;
+        }
+        for (int r = 0; r < 3; r++)
+            G[3 * r + i] = x.v[r];
+    }
+    ExprId adj[9];
+    for (int r = 0; r < 3; r++)
+        for (int c2 = 0; c2 < 3; c2++) {
+            int r1 = (c2 + 1) % 3, r2 = (c2 + 2) % 3, c1 = (r + 1) % 3, c3 = (r + 2) % 3;
+            ExprId x = expr_mul(P, G[3 * r1 + c1], G[3 * r2 + c3]);
+            adj[3 * r + c2] = expr_sub(P, x, expr_mul(P, G[3 * r1 + c3], G[3 * r2 + c1]));
+        }
+    ExprId det = EXPR_ZERO;
+    for (int i = 0; i < 3; i++)
+        det = expr_add(P, det, expr_mul(P, G[i], adj[3 * i]));
+    double dv;
+    if (!expr_is_const(P, det, &dv) || dv == 0)
+        return 0;
+    for (int i = 0; i < 9; i++)
+        f->Gi[i] = expr_mul(P, adj[i], expr_const(P, 1 / dv));
+    return 1;
+}
+
+SvFree **
+sv_free_joints(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *Eq)
+{
+    const Tree *t = m->tree;
+    int nt = t->nturns;
+    SvFree **fj = arena_new_array(A, SvFree *, nt + 1);
+    int *nchild = arena_new_array(A, int, nt + 1);
+    for (int k = 0; k < nt; k++)
+        nchild[k] = 0, fj[k] = NULL;
+    for (int k = 0; k < nt; k++)
+        if (t->turn[k].up >= 0)
+            nchild[t->turn[k].up]++;
+    for (int k = 0; k < nt; k++) {
+        SvFree f;
+        if (free_joint(m, P, D, Eq, nchild, k, &f)) {
+            fj[k] = arena_alloc(A, sizeof f);
+            *fj[k] = f;
+        }
+    }
+    return fj;
+}

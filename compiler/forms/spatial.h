@@ -61,6 +61,20 @@ ExprId *sv_joint_terms(const Mech *m, Arena *A, ExprPool *P, Diff *D);
  * out of the gradient), or zero. */
 ExprId *sv_applied(const Mech *m, Arena *A, ExprPool *P, Diff *D, Sv *a0);
 
+/* A free joint: a ball with speeds (its axes its own unit axes) on three
+ * slides in a row from the world, massless and carrying nothing but the
+ * next (how a floating base comes out of tree.h), the slides' directions
+ * constants.  In the ball's axes the slides move along the columns of
+ * Q^T G (G their directions in the last slide's axes, Q the ball's turn).
+ * The recursions take it as one joint of six degrees of freedom. */
+typedef struct SvFree {
+    int slide[3];     /* the slides' turns, the world's first */
+    ExprId G[9], Gi[9]; /* G and G^-1, constants */
+} SvFree;
+/* [nturns]: at a free joint's ball, the joint, else NULL.  With Eq
+ * (sv_joint_terms), not where a rotor's inertia couples its coordinates. */
+SvFree **sv_free_joints(const Mech *m, Arena *A, ExprPool *P, Diff *D, const ExprId *Eq);
+
 /* The recursive Newton-Euler residual and the composite-rigid-body mass
  * matrix of m->tree (forms/newton_euler.c), which the articulated-body
  * form shares. */

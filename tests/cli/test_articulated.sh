@@ -23,7 +23,16 @@
 #  - sliding joints (tests/sim/specs/slide_tree.yaml: a cart on a rail, a
 #    pole turning on it, a slider along the pole, an arm): --accel of the
 #    articulated-body and newton-euler forms, and the articulated-body
-#    tables (--code tables), equal Lagrange's to 1e-12.
+#    tables (--code tables), equal Lagrange's to 1e-12;
+#  - a free joint is one joint of six degrees of freedom in the recursion
+#    (spatial.h's SvFree): tests/cli/free_tilted.yaml, a floating base
+#    whose position is written along slanted directions in a tilted frame
+#    (G^-1 not the identity) with an arm on a hinge and a spring, at a
+#    state with every rate set: --accel equals the Gibbs-Appell form's in
+#    extended precision (--accel-extended; Lagrange's form takes no
+#    speeds) to 1e-13 of the largest |q''|; with a rotor's inertia on one
+#    of its coordinates, which keeps it three slides and a ball, it equals
+#    the Newton-Euler form's (M factored; Gibbs-Appell takes no rotors).
 # usage: test_articulated.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -118,4 +127,16 @@ st=$?
 d=$(accel_diff "$tmp/sl.lag" "$tmp/sl.tab" 4)
 [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-12) }'
 ok $? "sliding joints in the tables: --accel = lagrange's, to $d"
+
+ft="$src/tests/cli/free_tilted.yaml"
+sed 's/^effects:$/effects:\n  rotor: {kinetic: "0.02\/2*y'"'"'^2"}/' "$ft" > "$tmp/ft_rotor.yaml"
+for f in "$ft:gibbs-appell --accel-extended" "$tmp/ft_rotor.yaml:newton-euler --accel"; do
+  # shellcheck disable=SC2086 # the form and its option
+  "$eomc" run "${f%%:*}" --form articulated-body --accel > "$tmp/ft.ab" 2> /dev/null &&
+    "$eomc" run "${f%%:*}" --form ${f#*:} > "$tmp/ft.ref" 2> /dev/null
+  st=$?
+  d=$(accel_diff "$tmp/ft.ref" "$tmp/ft.ab" 7)
+  [ $st -eq 0 ] && awk -v d="$d" 'BEGIN { exit !(d < 1e-13) }'
+  ok $? "a free joint ($(basename "${f%%:*}")): articulated-body = ${f#*:}, to $d"
+done
 tap_end

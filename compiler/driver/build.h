@@ -25,10 +25,11 @@ int build_is_special(const char *path);
  * -DEOMC_MPI, so that its main shares a sweep among the ranks of an MPI
  * job (runtime/include/eomc_mpi.h).  shared: a shared library instead
  * (-DEOMC_SHARED: no main, the model under fixed names, eomc_main.h)
- * holding the whole runtime, for the Python package.  Returns 0, or -1
+ * holding the whole runtime, for the Python package.  native: the units
+ * for this CPU's instruction set (build_native_flags).  Returns 0, or -1
  * after printing why. */
 int build_executable(const char *c_file, const char *model, const char *exe, int mpi,
-                     int units, int twin, int shared);
+                     int units, int twin, int shared, int native);
 
 /* Where `eomc run` keeps the simulator for this key; the directory is
  * created.  Returns a malloc'd path, or NULL after printing why. */

@@ -15,10 +15,11 @@
 void
 cmdline_usage(FILE *f)
 {
-    fprintf(f,
+    fputs(
         "usage: eomc compile SPEC [-o FILE.c] [--scene NAME] [--fix NAME=VALUE] [--form NAME]\n"
         "                    [--effects LIST] [--stats] [--explain]\n"
-        "       eomc build SPEC [-o EXE] [--mpi | --shared] [--extended] [--cache] [the same]\n"
+        "       eomc build SPEC [-o EXE] [--mpi | --shared] [--extended] [--portable] [--cache]\n"
+        "                  [the same]\n"
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc import MODEL.xml [-o SPEC.yaml] [--strict] [--floating]\n"
@@ -35,6 +36,10 @@ cmdline_usage(FILE *f)
         "  --shared         (build) a shared library of the model and the runtime\n"
         "                   (default -o libSPEC.so), which the Python package loads;\n"
         "                   with the Jacobian (--jacobian auto) unless told none\n"
+        "  --portable       (build, run) compile the model for any CPU of this kind, not\n"
+        "                   for this one's instruction set (-march=native, the default\n"
+        "                   on x86-64 and arm64, which leaves every result the same to\n"
+        "                   the bit: -ffp-contract=off); --mpi implies it\n"
         "  --cache          (build) into eomc's cache, as run does (nothing is built\n"
         "                   when an identical build is there); prints its path\n"
         "  --taylor         the series of Taylor's method (--method taylor), also when\n"
@@ -46,7 +51,10 @@ cmdline_usage(FILE *f)
         "                   --accel-extended).  Done\n"
         "                   anyway for a model whose C is one translation unit; a\n"
         "                   large one (two units) gets it only so, or when eomc\n"
-        "                   run/accuracy is asked for a reference\n"
+        "                   run/accuracy is asked for a reference\n",
+        f);
+    /* two strings: one would pass the 4095 characters C99 promises */
+    fprintf(f,
         "  --form NAME      equation form: %s;\n"
         "                   default: the cheapest that applies (fewest operations\n"
         "                   per right-hand side; --explain says which and why)\n"
@@ -134,6 +142,8 @@ static const OptionSpec options[] = {
      "a build kept in eomc's cache", NULL, 0},
     {"--extended", CMD_BUILD | CMD_RUN | CMD_ACCURACY, OPT_FLAG, offsetof(Options, extended),
      "the extended-precision functions", NULL, 0},
+    {"--portable", CMD_BUILD | CMD_RUN | CMD_ACCURACY, OPT_FLAG, offsetof(Options, portable),
+     "code for any CPU of this kind", NULL, 0},
     {"--eliminate", CMD_DERIVE, OPT_FLAG, offsetof(Options, eliminate), NULL, NULL, 1},
     {"--floating", CMD_DERIVE, OPT_FLAG, offsetof(Options, floating), NULL, NULL, 0},
 };

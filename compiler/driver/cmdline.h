@@ -29,6 +29,7 @@ typedef struct Options {
     int run_integrates, taylor_reference;
     int cache;          /* --cache: built into eomc's cache (as run's), its path printed */
     int extended;       /* --extended: the extended-precision twin, whatever the size */
+    int portable;       /* --portable: the model's code for any CPU of its kind, not this one */
     int needs_jacobian; /* what the simulator is asked to do needs it */
     int needs_twin;     /* ... or the twin: a reference solution it must compute */
     int nsim; /* `run`: options passed on to the simulator */

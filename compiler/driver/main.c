@@ -328,7 +328,8 @@ build(const Options *o, const char *exe)
     /* The extended-precision twin doubles the compiler's work: a model
      * of two units (a large one) gets it only when asked for. */
     int twin = units == 1 || o->extended || o->needs_twin;
-    if (rc == 0 && build_executable(cfile, model, exe, o->mpi, units, twin, o->shared) != 0)
+    if (rc == 0 && build_executable(cfile, model, exe, o->mpi, units, twin, o->shared,
+                                      !o->portable && !o->mpi) != 0)
         rc = 1;
     free(model);
     unlink(cfile);
@@ -377,12 +378,13 @@ cached_build(const Options *o, const char *name, int *rc)
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
                             "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
-                            "--extended %d --taylor %d --scene %s --fix %s%s", form,
+                            "--extended %d --taylor %d --scene %s --fix %s%s%s", form,
                             o->effects ? o->effects : "(scene)",
                             o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
                             o->extended || o->needs_twin, o->needs_taylor,
                             o->scene ? o->scene : "(first)",
-                            o->fix ? o->fix : "(none)", o->shared ? " --shared" : "");
+                            o->fix ? o->fix : "(none)", o->shared ? " --shared" : "",
+                            o->portable ? " --portable" : "");
     char *path = build_cache_path(name, text, len);
     free(text);
     if (!path) {

@@ -19,7 +19,12 @@
 #  - each unit compiles in the directory of its C, by names relative to it,
 #    so that two builds of one model in two temporary directories give $CC
 #    the same command line (recorded by a wrapper), and ccache, where it is
-#    installed, serves the second from its cache.
+#    installed, serves the second from its cache;
+#  - the units compile for this CPU (-march=native -ffp-contract=off, on
+#    x86-64 and arm64), or for any of its kind with --portable and with
+#    --mpi (recorded by the wrapper); both builds of gen_tree 10 give the
+#    same q'' and the same run to t = 1, to the bit: no contraction into
+#    fused multiply-adds, which would round otherwise.
 # usage: test_build.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -111,5 +116,28 @@ else
   n=$((n + 1))
   echo "ok $n # SKIP ccache not installed"
 fi
+
+# for this CPU or any: the flags, and the same numbers to the bit
+case $(uname -m) in x86_64 | aarch64) native=1 ;; *) native=0 ;; esac
+rm -f "$tmp/cc.log"
+EOMC_CACHE_DIR="$tmp/cache-n" CC="sh $tmp/rec.sh" "$eomc" build "$tmp/tree10.yaml" -o "$tmp/nat" &&
+  mv "$tmp/cc.log" "$tmp/nat.log" &&
+  EOMC_CACHE_DIR="$tmp/cache-n" CC="sh $tmp/rec.sh" "$eomc" build "$tmp/tree10.yaml" --portable \
+    -o "$tmp/port" && mv "$tmp/cc.log" "$tmp/port.log"
+st=$?
+EOMC_CACHE_DIR="$tmp/cache-n" EOMC_MPICC="sh $tmp/rec.sh" "$eomc" build "$tmp/tree10.yaml" --mpi \
+  -o "$tmp/mpi" > /dev/null 2>&1 # (it needs mpi.h: only its commands count)
+nn=$(grep -c ' -march=native -ffp-contract=off ' "$tmp/nat.log")
+np=$(cat "$tmp/port.log" "$tmp/cc.log" | grep -c -- '-march=native\|-ffp-contract')
+[ $st -eq 0 ] && [ "$np" -eq 0 ] && [ "$(grep -c ' -c ' "$tmp/cc.log")" -ge 1 ] &&
+  { [ "$native" -eq 0 ] || [ "$nn" -eq "$(wc -l < "$tmp/nat.log")" ]; }
+ok $? "for this CPU: -march=native -ffp-contract=off on each unit ($nn); --portable and --mpi without"
+# shellcheck disable=SC2086 # $init is a list of options
+"$tmp/nat" $init --accel > "$tmp/nat.acc" && "$tmp/port" $init --accel > "$tmp/port.acc" &&
+  "$tmp/nat" $init --t-end 1 -o "$tmp/nat.csv" && "$tmp/port" $init --t-end 1 -o "$tmp/port.csv"
+st=$?
+[ $st -eq 0 ] && cmp -s "$tmp/nat.acc" "$tmp/port.acc" && cmp -s "$tmp/nat.csv" "$tmp/port.csv" &&
+  [ "$(wc -l < "$tmp/nat.csv")" -gt 10 ]
+ok $? "for this CPU and for any: the same q'' and the same run to t = 1, to the bit"
 
 tap_end

@@ -37,8 +37,11 @@
  * rank (GSL's pivoted Cholesky).  M is never formed: O(n nc) work where
  * the KKT system costs (n + nc)^3.  Where a pivot of M or of that system
  * fails, the same state is solved again the dense way, whose messages
- * name the cause; the condition estimate, the near-null direction and the
- * Jacobian, which need M, form it on demand (mass_bias).
+ * name the cause; the condition estimate (with its near-null direction)
+ * and the Jacobian, which need M, form it on demand (mass_bias) at the
+ * state their caller gives, the solve's: the solve keeps no copy of it.
+ * One row, the common case of one equality on an arm, is one division,
+ * without the blocks and the factorization of several.
  *
  * Rows dependent on the others (kkt_set_dropped: the simulator finds
  * them at the start) are left out of every solve as though the model did

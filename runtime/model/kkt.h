@@ -89,8 +89,8 @@ int kkt_vanished(const Kkt *k, double *fraction);
  * matrix, or the elimination matrix, as scaled and equilibrated: free of
  * units), estimated from its factorization (la_lu_condition).  (t, q, v,
  * p, u) is that solve's state: after unit loads, which neither form M
- * nor keep the state (a copy would cost a tenth of their bookkeeping), M
- * is formed there and the KKT system factored. */
+ * nor keep a copy of the state, M is formed there and the KKT system
+ * factored. */
 double kkt_condition(Kkt *k, double t, const double *q, const double *v, const double *p,
                      const double *u);
 /* Its near-null direction (la_lu_near_null) into y [n + nc], after

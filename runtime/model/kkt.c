@@ -370,8 +370,9 @@ baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const dou
     }
 }
 
-/* f (with Baumgarte's terms) and B at (t, q, v, a) into k. */
-static void
+/* f (with Baumgarte's terms) and B at (t, q, v, a) into k (inline, as
+ * row_dot: both are on the unit loads' path of every right-hand side). */
+static inline void
 eval_constraint(Kkt *k, double t, const double *q, const double *v, const double *a,
                 const double *p, const double *u)
 {
@@ -542,7 +543,7 @@ eliminated_multipliers(Kkt *k, double t, const double *q, const double *v,
 
 /* B_c . y over B's nonzero columns (the same sum as la_dot: the rest are
  * exact zeros). */
-static double
+static inline double
 row_dot(const Kkt *k, int c, const double *y)
 {
     const double *b = k->B + (size_t)c * k->n;
@@ -623,6 +624,32 @@ solve_blocks(Kkt *k, int na)
     return 0;
 }
 
+/* solve_loads' one row, k->act[0] (an arm's one equality), after the
+ * free solve: S is a number, so no blocks to find and no calls to factor
+ * it; the same operations as for several rows, so the same bits.  pivot:
+ * M's, or 1. */
+static int
+solve_row(Kkt *k, double t, const double *q, const double *v, const double *p,
+          const double *u, double *a, double pivot)
+{
+    const eomc_model *m = k->m;
+    int n = k->n, c = k->act[0];
+    const double *b = k->B + (size_t)c * n;
+    double *y = k->Y;
+    if (k->shared_loads)
+        m->minv_shared(t, q, v, p, u, k->shared, b, y);
+    else
+        m->minv(t, q, v, p, u, b, y);
+    double s = row_dot(k, c, y);
+    if (!(s > EOMC_PIVOT_TOL * s)) /* la_ldlt_factor's test of one pivot */
+        return -1;
+    double lam = k->lam[c] = k->f[c] / s;
+    for (int i = 0; i < n; i++)
+        a[i] -= y[i] * lam;
+    k->pivot_loads = pivot < 1 ? pivot : 1; /* a 1 x 1 S's relative pivot is 1 */
+    return 0;
+}
+
 /* q'' and the multipliers by unit loads (the top of this file); 0, or -1
  * when a pivot of M or of B M^-1 B^T fails (a left as garbage).  M is
  * not formed, nor the state kept: form_mass has it from the caller. */
@@ -650,25 +677,13 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
             k->act[na++] = c;
         else
             k->lam[c] = 0;
+    if (na == 1)
+        return solve_row(k, t, q, v, p, u, a, pivot);
     for (int r = 0; r < na; r++)
         if (shared)
             m->minv_shared(t, q, v, p, u, k->shared, k->B + k->act[r] * n, k->Y + r * n);
         else
             m->minv(t, q, v, p, u, k->B + k->act[r] * n, k->Y + r * n);
-    if (na == 1) { /* one row (an arm's one equality): S is a number, and the
-                    * general case's bookkeeping would cost a third of the
-                    * load pass; the same operations, so the same bits */
-        int c = k->act[0];
-        const double *y = k->Y;
-        double s = row_dot(k, c, y);
-        if (!(s > EOMC_PIVOT_TOL * s)) /* la_ldlt_factor's test of one pivot */
-            return -1;
-        double lam = k->lam[c] = k->f[c] / s;
-        for (int i = 0; i < n; i++)
-            a[i] -= y[i] * lam;
-        k->pivot_loads = pivot < 1 ? pivot : 1; /* a 1 x 1 S's relative pivot is 1 */
-        return 0;
-    }
     for (int r = 0; r < na; r++)
         for (int d = 0; d <= r; d++)
             k->S[r * na + d] = k->S[d * na + r] = row_dot(k, k->act[r], k->Y + d * n);

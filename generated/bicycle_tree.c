@@ -52,6 +52,9 @@ static const char *const c_names[2] = {"roll_x", "roll_y"};
 static const int c_order[2] = {1, 1};
 static const int c_dependent[2] = {4, 1};
 
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[4] = {0, 4, 9, 12};
+
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[4] = {
     {"rear", EOMC_DRAW_BODY, 3, 0},
@@ -9758,7 +9761,7 @@ const eomc_model bicycle_tree_model = {
     .free_accel = bicycle_tree_accel, .minv = bicycle_tree_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
-    .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .c_nnz = 4, .c_nz = c_nz,
     .ndraw = 4, .draw_items = draw_items, .draw = bicycle_tree_draw,
     .draw_mass = bicycle_tree_draw_mass,
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */

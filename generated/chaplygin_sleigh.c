@@ -49,6 +49,9 @@ static const char *const c_names[1] = {"blade"};
 static const int c_order[1] = {1};
 static const int c_dependent[1] = {1};
 
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[2] = {0, 1};
+
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[2] = {
     {"sleigh", EOMC_DRAW_BODY, 2, 0},
@@ -821,7 +824,7 @@ const eomc_model chaplygin_sleigh_model = {
     .free_accel = chaplygin_sleigh_accel, .minv = chaplygin_sleigh_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
-    .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .c_nnz = 2, .c_nz = c_nz,
     .ndraw = 2, .draw_items = draw_items, .draw = chaplygin_sleigh_draw,
     .draw_mass = chaplygin_sleigh_draw_mass,
     .nshape = 2, .shapes = shapes,

@@ -49,6 +49,9 @@ static const char *const c_names[1] = {"precession"};
 static const int c_order[1] = {2};
 static const int c_dependent[1] = {1};
 
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[2] = {0, 1};
+
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
     {"body", EOMC_DRAW_BODY, 3, 0},
@@ -1374,7 +1377,7 @@ const eomc_model precession_model = {
     .free_accel = precession_accel, .minv = precession_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
-    .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .c_nnz = 2, .c_nz = c_nz,
     .ndraw = 1, .draw_items = draw_items, .draw = precession_draw,
     .draw_mass = precession_draw_mass,
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */

@@ -50,6 +50,9 @@ static const char *const c_names[2] = {"roll_x", "roll_y"};
 static const int c_order[2] = {1, 1};
 static const int c_dependent[2] = {4, 1};
 
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[4] = {0, 4, 6, 9};
+
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
     {"disk", EOMC_DRAW_BODY, 3, 0},
@@ -1538,7 +1541,7 @@ const eomc_model rolling_disk_model = {
     .free_accel = rolling_disk_accel, .minv = rolling_disk_minv, /* the multipliers by unit loads */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */
-    .c_nnz = 0, .c_nz = NULL, /* B dense */
+    .c_nnz = 4, .c_nz = c_nz,
     .ndraw = 1, .draw_items = draw_items, .draw = rolling_disk_draw,
     .draw_mass = rolling_disk_draw_mass,
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */

@@ -24,6 +24,32 @@ enum { SPLIT_MIN_PARTS = 3 };
 
 /* ---- the model file ---- */
 
+/* The entries of B = df/da (indices into [nc*nv]) that can be nonzero,
+ * into nz in the order of the constraint's outputs (NULL: counted only),
+ * and their count. */
+static int
+b_nonzeros(const LowFunc *cf, int *nz)
+{
+    int nnz = 0;
+    for (int i = 0; i < cf->nout; i++)
+        if (cf->out[i].arg == 1 && cf->out[i].e != EXPR_ZERO) {
+            if (nz)
+                nz[nnz] = cf->out[i].index;
+            nnz++;
+        }
+    return nnz;
+}
+
+/* Whether the model gets c_nz: B has an entry 0 at every state, whether
+ * a loop or lines of C set its zeros (then the runtime's sums over B's
+ * rows and its watch of their sizes skip them: on an arm's one equality
+ * coupling two fingers, 2 of 8 entries). */
+static int
+b_sparse(const LowModel *md, const LowFunc *cf)
+{
+    return cf && (cf->fill[1] || b_nonzeros(cf, NULL) < md->nc * md->nv);
+}
+
 static void
 print_names(Printer *pr, const char *array, int n, const char *(*name)(const LowModel *, int))
 {
@@ -626,11 +652,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     else
         emit_line(pr, "    .c_held = NULL, /* every constraint's row in the unit loads */");
     const LowFunc *cf = con ? lower_find(L, "constraint") : NULL;
-    if (cf && cf->fill[1]) {
-        int nnz = 0;
-        for (int i = 0; i < cf->nout; i++)
-            nnz += cf->out[i].arg == 1;
-        emit_line(pr, "    .c_nnz = %d, .c_nz = c_nz,", nnz);
+    if (b_sparse(md, cf)) {
+        emit_line(pr, "    .c_nnz = %d, .c_nz = c_nz,", b_nonzeros(cf, NULL));
     } else {
         emit_line(pr, "    .c_nnz = 0, .c_nz = NULL, /* B dense */");
     }
@@ -727,11 +750,8 @@ print_constraint_tables(Printer *pr)
         fprintf(pr->f, "%s%d", k ? ", " : "", md->constraint[k].dependent);
     emit_line(pr, "};\n");
     const LowFunc *cf = lower_find(pr->L, "constraint");
-    if (cf && cf->fill[1]) { /* B's zeros are a loop: its other entries */
-        int nnz = 0, *nz = xmalloc(((size_t)cf->nout + 1) * sizeof *nz);
-        for (int i = 0; i < cf->nout; i++)
-            if (cf->out[i].arg == 1)
-                nz[nnz++] = cf->out[i].index;
+    if (b_sparse(md, cf)) { /* B's entries that are not 0 everywhere */
+        int *nz = xmalloc(((size_t)cf->nout + 1) * sizeof *nz), nnz = b_nonzeros(cf, nz);
         qsort(nz, (size_t)nnz, sizeof *nz, int_cmp);
         emit_line(pr, "/* The entries of B that can be nonzero (the rest are 0 at every state). */");
         fprintf(pr->f, "static const int c_nz[%d] = {", nnz ? nnz : 1);

@@ -268,9 +268,10 @@ typedef struct eomc_model {
     const unsigned char *c_held;
     /* The entries of B = df/da (indices into [nc*nq], ascending) that
      * constraint can make nonzero, c_nnz of them; the rest are 0 at every
-     * state, and constraint does not store them: its caller's B must hold
-     * 0 there (allocated zeroed, written only by constraint).  c_nz NULL:
-     * constraint stores every entry. */
+     * state, and constraint need not store them (where they are many it
+     * does not): its caller's B must hold 0 there (allocated zeroed,
+     * written only by constraint).  c_nz NULL: every entry may be nonzero,
+     * and constraint stores every one. */
     int c_nnz;
     const int *c_nz;
 

@@ -37,8 +37,11 @@
  * rank (GSL's pivoted Cholesky).  M is never formed: O(n nc) work where
  * the KKT system costs (n + nc)^3.  Where a pivot of M or of that system
  * fails, the same state is solved again the dense way, whose messages
- * name the cause; the condition estimate, the near-null direction and the
- * Jacobian, which need M, form it on demand (mass_bias).
+ * name the cause; the condition estimate (with its near-null direction)
+ * and the Jacobian, which need M, form it on demand (mass_bias) at the
+ * state their caller gives, the solve's: the solve keeps no copy of it.
+ * One row, the common case of one equality on an arm, is one division,
+ * without the blocks and the factorization of several.
  *
  * Rows dependent on the others (kkt_set_dropped: the simulator finds
  * them at the start) are left out of every solve as though the model did
@@ -72,6 +75,7 @@ struct Kkt {
     double *M, *h;              /* [n*n], [n] */
     double *dEdq, *dEdv, *dEdu, *dEdt;  /* the residual's partials */
     double wv_hol, wp_hol, wv_first;    /* Baumgarte's weights, 0 when off */
+    int baumgarte;              /* any of them not 0 (off, k->off stays 0) */
     double *K, *r, *dK;         /* [N*N], [N], [N] K's scaling (la_kkt_scaling) */
     double *A, *ra;             /* elimination: [n*n], [n] */
     double *f, *B, *lam;        /* [nc], [nc*n], [nc] */
@@ -107,13 +111,14 @@ struct Kkt {
      * block's matrix, Sr [nc] its right-hand side */
     int *blk, *ord, *bstart;
     double *Sb, *Sr;
-    int by_loads;               /* the last kkt_accel solved so: M not formed */
+    int loads;                  /* the model can solve by unit loads (minv, every f
+                                 * affine in q'', multipliers) */
+    int shared_loads;           /* ... keeping the recursion's values (minv_shared) */
+    int by_loads;               /* the last kkt_accel solved so: M not formed (its
+                                 * state is the caller's, who forms M there: form_mass) */
     int dense;                  /* kkt_set_dense: never by loads */
     double pivot_loads;         /* its smallest relative pivot, of M or S */
     unsigned solves;            /* solves by unit loads so far (KKT_PIVOT_EVERY) */
-    double t_last, *q_last, *v_last, *u_last; /* its state [nq], [n], [nu], to form M
-                                               * on demand */
-    const double *p_last;
     const unsigned char *drop;  /* [nc] rows left out of the solves, or NULL */
 };
 
@@ -139,6 +144,8 @@ kkt_alloc(const eomc_model *m)
     size_t n = (size_t)eomc_nv(m), nq = (size_t)m->nq, nc = (size_t)m->nc;
     size_t nu = (size_t)m->nu, N = n + nc;
     k->m = m;
+    k->loads = m->minv && m->c_affine && !m->eliminate;
+    k->shared_loads = k->loads && m->free_accel_shared && m->minv_shared;
     k->n = (int)n, k->nq = m->nq, k->nc = m->nc, k->N = (int)N, k->np = (int)n - m->nc;
     k->nu = m->nu;
     double **arrays[] = {
@@ -165,8 +172,7 @@ kkt_alloc(const eomc_model *m)
     k->Ylam = zeros(nc), k->act = calloc(nc ? (size_t)nc : 1, sizeof *k->act);
     k->shared = zeros((size_t)m->nshared);
     k->Sperm = calloc(nc ? nc : 1, sizeof *k->Sperm);
-    k->q_last = zeros(nq), k->v_last = zeros(n), k->u_last = zeros(nu);
-    ok &= k->Y && k->S && k->Srel && k->Sperm && k->q_last && k->v_last && k->u_last;
+    ok &= k->Y && k->S && k->Srel && k->Sperm;
     ok &= k->Ylam && k->act && k->shared;
     k->blk = calloc(nc + 1, sizeof *k->blk), k->ord = calloc(nc + 1, sizeof *k->ord);
     k->bstart = calloc(nc + 2, sizeof *k->bstart);
@@ -221,7 +227,7 @@ kkt_free(Kkt *k)
         k->bmax, k->pos, k->vel, k->dposdq, k->dveldq, k->dveldv, k->dposdu, k->dveldu,
         k->dposdt, k->dveldt, k->dep, k->indep, k->names, k->Y, k->S, k->Srel, k->Sperm,
         k->Ylam, k->act, k->nzrow, k->nzcol, k->blk, k->ord, k->bstart, k->Sb, k->Sr,
-        k->q_last, k->v_last, k->u_last, k->shared,
+        k->shared,
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         free(arrays[i]);
@@ -256,6 +262,9 @@ kkt_set_baumgarte(Kkt *k, double wv_hol, double wp_hol, double wv_first)
     k->wv_hol = wv_hol;
     k->wp_hol = wp_hol;
     k->wv_first = wv_first;
+    k->baumgarte = wv_hol != 0 || wp_hol != 0 || wv_first != 0;
+    if (!k->baumgarte) /* f is the constraints' own: no offset */
+        memset(k->off, 0, (size_t)k->nc * sizeof *k->off);
 }
 
 const double *
@@ -323,19 +332,12 @@ kkt_baumgarte_weights(const Kkt *k, int c, double *wv, double *wp)
     *wp = order == 0 ? k->wp_hol : 0;
 }
 
-static int
-baumgarte_on(const Kkt *k)
-{
-    return k->wv_hol != 0 || k->wp_hol != 0 || k->wv_first != 0;
-}
-
-/* k->off at (t, q, v): Baumgarte's terms, or zeros. */
+/* k->off at (t, q, v): Baumgarte's terms (off, it stays 0). */
 static void
 baumgarte_offset(Kkt *k, double t, const double *q, const double *v, const double *p,
                  const double *u)
 {
-    memset(k->off, 0, (size_t)k->nc * sizeof *k->off);
-    if (!baumgarte_on(k))
+    if (!k->baumgarte)
         return;
     k->m->c_levels(t, q, v, p, u, k->pos, k->vel);
     for (int c = 0; c < k->nc; c++) {
@@ -351,7 +353,7 @@ baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const dou
                    const double *u)
 {
     int n = k->n, nq = k->nq, nu = k->nu;
-    if (!baumgarte_on(k))
+    if (!k->baumgarte)
         return;
     k->m->c_levels_jacobian(t, q, v, p, u, k->dposdq, k->dveldq, k->dveldv, k->dposdu,
                             k->dveldu, k->dposdt, k->dveldt);
@@ -368,13 +370,14 @@ baumgarte_jacobian(Kkt *k, double t, const double *q, const double *v, const dou
     }
 }
 
-/* f (with Baumgarte's terms) and B at (t, q, v, a) into k. */
-static void
+/* f (with Baumgarte's terms) and B at (t, q, v, a) into k (inline, as
+ * row_dot: both are on the unit loads' path of every right-hand side). */
+static inline void
 eval_constraint(Kkt *k, double t, const double *q, const double *v, const double *a,
                 const double *p, const double *u)
 {
     k->m->constraint(t, q, v, a, p, u, k->f, k->B);
-    for (int c = 0; c < k->nc; c++)
+    for (int c = 0; k->baumgarte && c < k->nc; c++)
         k->f[c] += k->off[c];
 }
 
@@ -540,7 +543,7 @@ eliminated_multipliers(Kkt *k, double t, const double *q, const double *v,
 
 /* B_c . y over B's nonzero columns (the same sum as la_dot: the rest are
  * exact zeros). */
-static double
+static inline double
 row_dot(const Kkt *k, int c, const double *y)
 {
     const double *b = k->B + (size_t)c * k->n;
@@ -621,8 +624,35 @@ solve_blocks(Kkt *k, int na)
     return 0;
 }
 
+/* solve_loads' one row, k->act[0] (an arm's one equality), after the
+ * free solve: S is a number, so no blocks to find and no calls to factor
+ * it; the same operations as for several rows, so the same bits.  pivot:
+ * M's, or 1. */
+static int
+solve_row(Kkt *k, double t, const double *q, const double *v, const double *p,
+          const double *u, double *a, double pivot)
+{
+    const eomc_model *m = k->m;
+    int n = k->n, c = k->act[0];
+    const double *b = k->B + (size_t)c * n;
+    double *y = k->Y;
+    if (k->shared_loads)
+        m->minv_shared(t, q, v, p, u, k->shared, b, y);
+    else
+        m->minv(t, q, v, p, u, b, y);
+    double s = row_dot(k, c, y);
+    if (!(s > EOMC_PIVOT_TOL * s)) /* la_ldlt_factor's test of one pivot */
+        return -1;
+    double lam = k->lam[c] = k->f[c] / s;
+    for (int i = 0; i < n; i++)
+        a[i] -= y[i] * lam;
+    k->pivot_loads = pivot < 1 ? pivot : 1; /* a 1 x 1 S's relative pivot is 1 */
+    return 0;
+}
+
 /* q'' and the multipliers by unit loads (the top of this file); 0, or -1
- * when a pivot of M or of B M^-1 B^T fails (a left as garbage). */
+ * when a pivot of M or of B M^-1 B^T fails (a left as garbage).  M is
+ * not formed, nor the state kept: form_mass has it from the caller. */
 static int
 solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
             const double *u, double *a)
@@ -632,7 +662,7 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     double pivot = 1;
     /* the recursion once, its values kept for the load passes, where the
      * model can (eomc_model.h's free_accel_shared) */
-    int shared = m->free_accel_shared && m->minv_shared;
+    int shared = k->shared_loads;
     double *want = (++k->solves & (KKT_PIVOT_EVERY - 1)) == 0 ? &pivot : NULL;
     if ((shared ? m->free_accel_shared(t, q, v, p, u, a, want, k->shared)
                 : m->free_accel(t, q, v, p, u, a, want)) != 0)
@@ -641,12 +671,14 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
     /* the rows the recursion does not hold by itself (c_held): a ball's
      * unit constraint is met by a_f, its multiplier 0; not with
      * Baumgarte's terms, which ask more of the row than its own level */
-    int baumgarte = baumgarte_on(k);
+    int baumgarte = k->baumgarte;
     for (int c = 0; c < nc; c++)
         if ((!m->c_held || !m->c_held[c] || baumgarte) && !dropped(k, c))
             k->act[na++] = c;
         else
             k->lam[c] = 0;
+    if (na == 1)
+        return solve_row(k, t, q, v, p, u, a, pivot);
     for (int r = 0; r < na; r++)
         if (shared)
             m->minv_shared(t, q, v, p, u, k->shared, k->B + k->act[r] * n, k->Y + r * n);
@@ -667,23 +699,20 @@ solve_loads(Kkt *k, double t, const double *q, const double *v, const double *p,
             a[i] -= k->Y[r * n + i] * k->Ylam[r];
     }
     k->pivot_loads = pivot;
-    k->t_last = t, k->p_last = p;
-    memcpy(k->q_last, q, (size_t)k->nq * sizeof *q);
-    memcpy(k->v_last, v, (size_t)n * sizeof *v);
-    if (k->nu)
-        memcpy(k->u_last, u, (size_t)k->nu * sizeof *u);
     return 0;
 }
 
 /* After a solve by unit loads, which did not form it: M (and h) at its
- * state, and 1; else 0 (the last dense solve's are current). */
+ * state (t, q, v, p, u), the caller's, and 1; else 0 (the last dense
+ * solve's are current). */
 static int
-form_mass(Kkt *k)
+form_mass(Kkt *k, double t, const double *q, const double *v, const double *p,
+          const double *u)
 {
     if (!k->by_loads)
         return 0;
     k->by_loads = 0;
-    k->m->mass_bias(k->t_last, k->q_last, k->v_last, k->p_last, k->u_last, k->M, k->h);
+    k->m->mass_bias(t, q, v, p, u, k->M, k->h);
     return 1;
 }
 
@@ -724,22 +753,27 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     const eomc_model *m = k->m;
     int n = k->n, nc = k->nc, rc;
     baumgarte_offset(k, t, q, v, p, u);
-    k->by_loads = !k->dense && m->minv && m->c_affine && !m->eliminate &&
-                  solve_loads(k, t, q, v, p, u, a) == 0;
+    k->by_loads = k->loads && !k->dense && solve_loads(k, t, q, v, p, u, a) == 0;
     if (!k->by_loads && (rc = solve_dense(k, t, q, v, p, u, a)) != KKT_OK)
         return rc;
-    memcpy(k->prev_a, a, (size_t)n * sizeof *a);
-    memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
-    k->have_prev = 1;
+    if (!m->c_affine) { /* Newton's next start (an affine system starts from 0) */
+        memcpy(k->prev_a, a, (size_t)n * sizeof *a);
+        memcpy(k->prev_lam, k->lam, (size_t)nc * sizeof *k->lam);
+        k->have_prev = 1;
+    }
     /* (the entries that can be nonzero: a dense pass over nc n would cost
      * more than the recursion on a model of many free bodies) */
-    int nnz = m->c_nz ? m->c_nnz : nc * n;
-    for (int j = 0; j < nnz; j++) {
-        int i = m->c_nz ? m->c_nz[j] : j;
-        double b = fabs(k->B[i]);
-        if (b > k->bmax[i])
-            k->bmax[i] = b;
-    }
+    if (m->c_nz)
+        for (int j = 0; j < m->c_nnz; j++) {
+            int i = m->c_nz[j];
+            double b = fabs(k->B[i]);
+            k->bmax[i] = b > k->bmax[i] ? b : k->bmax[i];
+        }
+    else
+        for (int i = 0; i < nc * n; i++) {
+            double b = fabs(k->B[i]);
+            k->bmax[i] = b > k->bmax[i] ? b : k->bmax[i];
+        }
     return KKT_OK;
 }
 
@@ -750,29 +784,23 @@ solved_lu(const Kkt *k)
     return k->m->eliminate ? k->lun : k->luN;
 }
 
-/* The factorization that gave q'', made now after unit loads (its
- * failure leaves it failed: la_lu_condition is then NAN). */
-static LaLu *
-dense_lu(Kkt *k)
+double
+kkt_condition(Kkt *k, double t, const double *q, const double *v, const double *p,
+              const double *u)
 {
-    if (form_mass(k)) {
+    if (form_mass(k, t, q, v, p, u)) {
         build_kkt(k, 0);
         factor_kkt(k);
     }
-    return solved_lu(k);
-}
-
-double
-kkt_condition(Kkt *k)
-{
-    return la_lu_condition(dense_lu(k));
+    return la_lu_condition(solved_lu(k));
 }
 
 void
 kkt_near_null(Kkt *k, double *y)
 {
     memset(y, 0, (size_t)k->N * sizeof *y);
-    la_lu_near_null(dense_lu(k), y);
+    if (!k->by_loads) /* else no factorization is this solve's: y stays 0 */
+        la_lu_near_null(solved_lu(k), y);
 }
 
 double
@@ -853,7 +881,7 @@ kkt_jacobian(Kkt *k, double t, const double *x, const double *p, const double *u
     const eomc_model *m = k->m;
     int n = k->n, nq = k->nq, W = nq + n;
     const double *q = x, *v = x + nq;
-    form_mass(k); /* after unit loads; K is built and factored below */
+    form_mass(k, t, q, v, p, u); /* after unit loads; K is built and factored below */
     m->jacobian(t, q, v, a, p, u, k->dEdq, k->dEdv, k->dEdu, k->dEdt);
     m->c_jacobian(t, q, v, a, p, u, k->dfdq, k->dfdv, k->dfdu, k->dfdt, k->dBdq, k->dBdv,
                   k->dBda, k->dBdu, k->dBdt);

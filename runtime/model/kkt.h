@@ -87,10 +87,16 @@ int kkt_vanished(const Kkt *k, double *fraction);
 
 /* The condition number of the system the last kkt_accel solved (the KKT
  * matrix, or the elimination matrix, as scaled and equilibrated: free of
- * units), estimated from its factorization (la_lu_condition). */
-double kkt_condition(Kkt *k);
-/* Its near-null direction (la_lu_near_null) into y [n + nc]: over q''
- * and, with multipliers, lambda (zeros for elimination). */
+ * units), estimated from its factorization (la_lu_condition).  (t, q, v,
+ * p, u) is that solve's state: after unit loads, which neither form M
+ * nor keep a copy of the state, M is formed there and the KKT system
+ * factored. */
+double kkt_condition(Kkt *k, double t, const double *q, const double *v, const double *p,
+                     const double *u);
+/* Its near-null direction (la_lu_near_null) into y [n + nc], after
+ * kkt_condition with no solve between: over q'' and, with multipliers,
+ * lambda (zeros for elimination, and everywhere after a solve by unit
+ * loads that kkt_condition has not factored). */
 void kkt_near_null(Kkt *k, double *y);
 /* The smallest pivot of that factorization (la_lu_pivot): free, and
  * about the inverse of a lower bound on the condition. */

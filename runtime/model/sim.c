@@ -942,7 +942,9 @@ sim_condition(eomc_sim *s, double t, const double *q, const double *v)
     const eomc_model *m = s->m;
     int n = s->nv;
     if (s->kkt)
-        return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK ? kkt_condition(s->kkt) : NAN;
+        return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK
+                   ? kkt_condition(s->kkt, t, q, v, s->p, s->u)
+                   : NAN;
     sim_inputs_at(s, t);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
     for (int i = 0; i < n; i++) {

@@ -10,6 +10,14 @@
 #  - --accel (q'' and the multipliers) of the rolling disk, the bicycle of
 #    specs/ and the Whipple bicycle, straight-line and as loops over the
 #    tables: equal to 1e-12 of the largest entry;
+#  - one row (kkt.c's 1 x 1 system, a division without the blocks of
+#    several): --accel of the Chaplygin sleigh, the precessing top, the
+#    Cartesian pendulum and the constant-speed particle (one constraint
+#    each, their default forms by unit loads), equal to Lagrange's
+#    elimination to 1e-12 of the largest entry;
+#  - B's entries that can be nonzero listed (the model's c_nz) wherever B
+#    has a zero, the rolling disk's 4 of 10: those its constraint function
+#    stores other than 0.0;
 #  - the banner says so, and the simulator has minv; Lagrange's form with
 #    multipliers says it solves by the loads through its LDL^T, and with
 #    --eliminate has no unit loads;
@@ -56,6 +64,29 @@ for spec in "$disk" "$bike" "$whip"; do
     ok $? "$name ($code): q'' and the multipliers by unit loads = lagrange's dense elimination to $d"
   done
 done
+
+one="chaplygin_sleigh precession cartesian_pendulum central_constant_speed"
+for name in $one; do
+  spec="$src/specs/$name.yaml" in=$(init "$src/specs/$name.yaml")
+  # shellcheck disable=SC2086 # $in is a list of options
+  "$eomc" compile "$spec" -o "$tmp/one.c" 2> /dev/null && grep -q '\.nc = 1,' "$tmp/one.c" &&
+    grep -q '_minv, /\* the multipliers by unit loads \*/' "$tmp/one.c" &&
+    "$eomc" run "$spec" $in --accel > "$tmp/one.acc" 2> /dev/null &&
+    "$eomc" run "$spec" --form lagrange --eliminate $in --accel > "$tmp/lag.acc" 2> /dev/null
+  st=$?
+  d=$(accel_diff "$tmp/lag.acc" "$tmp/one.acc" 3)
+  [ $st -eq 0 ] && grep -q '^lambda' "$tmp/one.acc" && below "$d" 1e-12
+  ok $? "$name (one row by unit loads): q'' and the multiplier = lagrange's dense elimination to $d"
+done
+
+"$eomc" compile "$disk" -o "$tmp/disk.c" 2> /dev/null
+nz=$(sed -n 's/^static const int c_nz\[4\] = {\(.*\)};$/\1/p' "$tmp/disk.c")
+stored=$(awk '/^rolling_disk_constraint\(/ { on = 1 } on && /^}/ { exit }
+              on && /^    B\[[0-9]+\] = / && $3 != "0.0;" { print substr($1, 3) + 0 }' "$tmp/disk.c" |
+         sort -n | paste -sd, | sed 's/,/, /g')
+[ -n "$nz" ] && [ "$nz" = "$stored" ] &&
+  grep -q '\.c_nnz = 4, \.c_nz = c_nz,' "$tmp/disk.c"
+ok $? "rolling_disk: B's nonzeros listed (c_nz = {$nz}), the entries its constraint stores other than 0.0 ($stored)"
 
 "$eomc" compile "$bike" --form articulated-body -o "$tmp/bike.c" &&
   grep -q '^ \* The multipliers by unit loads' "$tmp/bike.c" &&

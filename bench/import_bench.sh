@@ -19,6 +19,9 @@
 # usage: import_bench.sh EOMC SOURCE_ROOT RUNTIME_INCLUDE RUNTIME_LIB [MJ_BENCH]
 # $BENCH_MODELS: the models to run (default: the three below), each under
 # /usr/share/mujoco/model or a path of its own (the robots benchmark's).
+# $BENCH_BUILD: options for eomc build (--portable: the model's code for
+# any CPU of its kind, as MuJoCo's Debian package is built, not for this
+# one; docs/benchmarks.md gives both).
 # A model eomc cannot build or run gets a row that says so, and the rest
 # still run.
 set -eu
@@ -45,7 +48,9 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
   cache="$dir/cache-$(basename "$rel" .xml)"
   rm -rf "$cache"
   t0=$(now)
-  if ! EOMC_CACHE_DIR="$cache" "$eomc" build "$model" -o "$dir/sim" 2> "$dir/build.err"; then
+  # shellcheck disable=SC2086 # $BENCH_BUILD is a list of options
+  if ! EOMC_CACHE_DIR="$cache" "$eomc" build "$model" ${BENCH_BUILD:-} -o "$dir/sim" \
+      2> "$dir/build.err"; then
     printf '%-28s fails to build: %s\n' "$rel" "$(grep -v 'warning: dropped' "$dir/build.err" | head -1)"
     continue
   fi
@@ -66,7 +71,9 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
     "$lib" $gsl_libs -lm -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc -o "$dir/rhs"
   t2=$(now)
   libs=-
-  EOMC_CACHE_DIR="$cache" "$eomc" build "$model" --shared -o "$dir/lib.so" 2> /dev/null &&
+  # shellcheck disable=SC2086
+  EOMC_CACHE_DIR="$cache" "$eomc" build "$model" ${BENCH_BUILD:-} --shared -o "$dir/lib.so" \
+      2> /dev/null &&
     libs=$(elapsed "$t2" "$(now)")
   ns=$("$dir/rhs" 2> /dev/null | awk '{ print $1 }')
   mjns=- ratio=-

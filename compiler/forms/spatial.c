@@ -223,6 +223,7 @@ sv_rigid_up(ExprPool *P, const TreeTurn *t, const Rigid *X, Rigid *Y)
     Y->m = expr_add(P, Y->m, X->m);
 }
 
+/* Whether t carries no mass of its own (a body between joints of a row). */
 static int
 massless(const TreeTurn *t)
 {
@@ -278,6 +279,8 @@ free_joint(const Mech *m, ExprPool *P, Diff *D, const ExprId *Eq, const int *nch
         for (int r = 0; r < 3; r++)
             G[3 * r + i] = x.v[r];
     }
+    /* G^-1 = adj(G) / det G, the cofactors taken cyclically; G's entries
+     * are numbers, so all of it folds (a free joint's G is 1) */
     ExprId adj[9];
     for (int r = 0; r < 3; r++)
         for (int c2 = 0; c2 < 3; c2++) {

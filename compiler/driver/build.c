@@ -241,6 +241,7 @@ write_main_unit(const char *c_file, const char *model)
  * FNV-1a's multiply on words, with the high bits folded back so that a
  * change anywhere reaches every bit of the next word's product. */
 static const uint64_t hash_prime = 0x100000001b3u;
+static const uint64_t hash_basis = 0xcbf29ce484222325u; /* FNV's offset basis */
 
 static uint64_t
 hash_bytes(uint64_t h, const void *data, size_t n)
@@ -325,7 +326,7 @@ toolchain_hash(void)
         return h;
     const char *cc = getenv("CC"), *inc, *lib;
     runtime_paths(&inc, &lib);
-    h = hash_string(0xcbf29ce484222325u, EOMC_VERSION); /* FNV's offset basis */
+    h = hash_string(hash_basis, EOMC_VERSION);
     h = hash_string(h, cc ? cc : "cc");
     h = hash_file(h, "/proc/self/exe");
     h = hash_file(h, lib);
@@ -423,15 +424,20 @@ typedef struct UnitKey {
 static uint64_t
 cpu_hash(uint64_t h)
 {
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return hash_string(h, "(no /proc/cpuinfo)");
-    char line[8192];
-    while (fgets(line, sizeof line, f) && line[0] != '\n')
-        if (strncmp(line, "cpu MHz", 7) != 0)
-            h = hash_string(h, line);
-    fclose(f);
-    return h;
+    static uint64_t cpu; /* read once per invocation, as toolchain_hash */
+    static int done;
+    if (!done) {
+        FILE *f = fopen("/proc/cpuinfo", "r");
+        char line[8192];
+        cpu = hash_string(hash_basis, f ? "/proc/cpuinfo" : "(no /proc/cpuinfo)");
+        while (f && fgets(line, sizeof line, f) && line[0] != '\n')
+            if (strncmp(line, "cpu MHz", 7) != 0)
+                cpu = hash_string(cpu, line);
+        if (f)
+            fclose(f);
+        done = 1;
+    }
+    return hash_bytes(h, &cpu, sizeof cpu);
 }
 
 static uint64_t
@@ -460,7 +466,7 @@ cached_object(const UnitKey *u)
     strcat(dir, "/objects");
     if (make_dirs(dir) != 0 || access(dir, W_OK) != 0)
         return NULL;
-    uint64_t a = unit_hash(0xcbf29ce484222325u, u), b = unit_hash(0x9e3779b97f4a7c15u, u);
+    uint64_t a = unit_hash(hash_basis, u), b = unit_hash(0x9e3779b97f4a7c15u, u);
     size_t len = strlen(dir) + 40;
     char *path = xmalloc(len);
     snprintf(path, len, "%s/%016llx%016llx.o", dir, (unsigned long long)a,

@@ -207,22 +207,30 @@ typedef struct Jt {
     ExprId u[4], L[16], dinv[4];
 } Jt;
 
+/* x = X^-1 b for X = L diag(d) L^T of nd rows (L unit lower, row i at
+ * L[stride i]; dinv = 1/d): a joint's D, or a free joint's IA */
+static void
+ldl_solve(ExprPool *P, int nd, int stride, const ExprId *L, const ExprId *dinv,
+          const ExprId *b, ExprId *x)
+{
+    ExprId y[6];
+    for (int i = 0; i < nd; i++) {
+        y[i] = b[i];
+        for (int k = 0; k < i; k++)
+            y[i] = expr_sub(P, y[i], expr_mul(P, L[stride * i + k], y[k]));
+    }
+    for (int i = nd - 1; i >= 0; i--) {
+        x[i] = expr_mul(P, y[i], dinv[i]);
+        for (int k = i + 1; k < nd; k++)
+            x[i] = expr_sub(P, x[i], expr_mul(P, L[stride * k + i], x[k]));
+    }
+}
+
 /* x = D^-1 b by the joint's L diag(d) L^T (nd = 1: b / d) */
 static void
 jt_solve(ExprPool *P, const Jt *j, const ExprId *b, ExprId *x)
 {
-    int nd = j->nd;
-    ExprId y[4];
-    for (int i = 0; i < nd; i++) {
-        y[i] = b[i];
-        for (int k = 0; k < i; k++)
-            y[i] = expr_sub(P, y[i], expr_mul(P, j->L[4 * i + k], y[k]));
-    }
-    for (int i = nd - 1; i >= 0; i--) {
-        x[i] = expr_mul(P, y[i], j->dinv[i]);
-        for (int k = i + 1; k < nd; k++)
-            x[i] = expr_sub(P, x[i], expr_mul(P, j->L[4 * k + i], x[k]));
-    }
+    ldl_solve(P, j->nd, 4, j->L, j->dinv, b, x);
 }
 
 /* X = L diag(d) L^T for a symmetric 6 x 6 X (L unit lower, at [6 i + j]),
@@ -252,18 +260,12 @@ si_ldl(ExprPool *P, const Si *X, ExprId *L, ExprId *d, ExprId *dinv)
 static void
 si_ldl_solve(ExprPool *P, const ExprId *L, const ExprId *dinv, const Sv *b, Sv *x)
 {
-    ExprId y[6];
-    for (int i = 0; i < 6; i++) {
-        y[i] = sv_get(b, i);
-        for (int k = 0; k < i; k++)
-            y[i] = expr_sub(P, y[i], expr_mul(P, L[6 * i + k], y[k]));
-    }
-    for (int i = 5; i >= 0; i--) {
-        y[i] = expr_mul(P, y[i], dinv[i]);
-        for (int k = i + 1; k < 6; k++)
-            y[i] = expr_sub(P, y[i], expr_mul(P, L[6 * k + i], y[k]));
-        *sv_at(x, i) = y[i];
-    }
+    ExprId bb[6], xx[6];
+    for (int i = 0; i < 3; i++)
+        bb[i] = b->w[i], bb[3 + i] = b->v[i];
+    ldl_solve(P, 6, 6, L, dinv, bb, xx);
+    for (int i = 0; i < 3; i++)
+        x->w[i] = xx[i], x->v[i] = xx[3 + i];
 }
 
 /* A free joint (spatial.h's SvFree) in the recursion, one joint of six

@@ -746,6 +746,15 @@ solve_dense(Kkt *k, double t, const double *q, const double *v, const double *p,
     return KKT_OK;
 }
 
+/* bmax[i], B's entry i at its largest so far (a loop per case, not a
+ * test per entry: this is every right-hand side's) */
+static inline void
+watch_entry(Kkt *k, int i)
+{
+    double b = fabs(k->B[i]);
+    k->bmax[i] = b > k->bmax[i] ? b : k->bmax[i];
+}
+
 int
 kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
           const double *u, double *a)
@@ -764,16 +773,11 @@ kkt_accel(Kkt *k, double t, const double *q, const double *v, const double *p,
     /* (the entries that can be nonzero: a dense pass over nc n would cost
      * more than the recursion on a model of many free bodies) */
     if (m->c_nz)
-        for (int j = 0; j < m->c_nnz; j++) {
-            int i = m->c_nz[j];
-            double b = fabs(k->B[i]);
-            k->bmax[i] = b > k->bmax[i] ? b : k->bmax[i];
-        }
+        for (int j = 0; j < m->c_nnz; j++)
+            watch_entry(k, m->c_nz[j]);
     else
-        for (int i = 0; i < nc * n; i++) {
-            double b = fabs(k->B[i]);
-            k->bmax[i] = b > k->bmax[i] ? b : k->bmax[i];
-        }
+        for (int i = 0; i < nc * n; i++)
+            watch_entry(k, i);
     return KKT_OK;
 }
 

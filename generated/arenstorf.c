@@ -22,7 +22,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -32,18 +31,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[2] = {"x", "y"};
-static const char *const p_names[1] = {"mu"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[1] = {0.012277471};
-static const unsigned char p_fixed[1] = {0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 arenstorf_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_mu = p[0];
@@ -53,7 +63,7 @@ arenstorf_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 arenstorf_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -66,7 +76,7 @@ arenstorf_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 arenstorf_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
@@ -76,7 +86,7 @@ arenstorf_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 arenstorf_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -130,7 +140,7 @@ arenstorf_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 arenstorf_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -164,6 +174,129 @@ arenstorf_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w18 = w16 - w17;
     TV[1] = w18;
 }
+
+/* The conserved quantity (eomc_model.h: invariant). */
+EOMC_ENTRY void
+arenstorf_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = p_mu + q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = q_x - 1.0;
+    const eomc_real w3 = v_x - q_y;
+    const eomc_real w4 = q_x + v_y;
+    const eomc_real w5 = w0 * w0;
+    const eomc_real w6 = p_mu + w2;
+    const eomc_real w7 = v_x * w3;
+    const eomc_real w8 = v_y * w4;
+    const eomc_real w9 = w3 * w3;
+    const eomc_real w10 = w4 * w4;
+    const eomc_real w11 = w5 + w1;
+    const eomc_real w12 = w6 * w6;
+    const eomc_real w13 = w7 + w8;
+    const eomc_real w14 = w9 + w10;
+    const eomc_real w15 = sqrt(w11);
+    const eomc_real w16 = w1 + w12;
+    const eomc_real w17 = 0.5 * w14;
+    const eomc_real w18 = sqrt(w16);
+    const eomc_real w19 = w13 - w17;
+    const eomc_real w20 = pd0 / w15;
+    const eomc_real w21 = p_mu / w18;
+    const eomc_real w22 = w20 - w21;
+    const eomc_real w23 = w22 + w19;
+    h[0] = w23;
+}
+
+#endif /* EOMC_EXTENDED */
+
+/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
+static void
+arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real p_mu = p[0];
+    const eomc_real pd0 = p[1];
+    (void)u;
+    (void)t;
+    piv[0] = 1.0;
+    piv[1] = 1.0;
+    mkk[0] = 1.0;
+    mkk[1] = 1.0;
+    const eomc_real w0 = q_x + v_y;
+    const eomc_real w1 = q_x - 1.0;
+    const eomc_real w2 = q_y * q_y;
+    const eomc_real w3 = p_mu + q_x;
+    const eomc_real w4 = q_y - v_x;
+    const eomc_real w5 = v_y + w0;
+    const eomc_real w6 = p_mu + w1;
+    const eomc_real w7 = w3 * w3;
+    const eomc_real w8 = v_x - w4;
+    const eomc_real w9 = w6 * w6;
+    const eomc_real w10 = w7 + w2;
+    const eomc_real w11 = w2 + w9;
+    const eomc_real w12 = sqrt(w10);
+    const eomc_real w13 = sqrt(w11);
+    const eomc_real w14 = pd0 / w12;
+    const eomc_real w15 = 0.5 / w12;
+    const eomc_real w16 = p_mu / w13;
+    const eomc_real w17 = 0.5 / w13;
+    const eomc_real w18 = w14 / w12;
+    const eomc_real w19 = w16 / w13;
+    const eomc_real w20 = w18 * w15;
+    const eomc_real w21 = w19 * w17;
+    const eomc_real w22 = w3 * w20;
+    const eomc_real w23 = w6 * w21;
+    const eomc_real w24 = (-2.0) * w22;
+    const eomc_real w25 = w21 - w20;
+    const eomc_real w26 = 2.0 * w23;
+    const eomc_real w27 = q_y * w25;
+    const eomc_real w28 = w26 + w24;
+    const eomc_real w29 = 2.0 * w27;
+    const eomc_real w30 = w5 - w28;
+    const eomc_real w31 = w29 + w8;
+    a[0] = w30;
+    const eomc_real w32 = -w31;
+    a[1] = w32;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+EOMC_ENTRY int
+arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real piv[2], mkk[2];
+    arenstorf_accel_solve(t, q, v, p, u, a, piv, mkk);
+    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
+}
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[2] = {"x", "y"};
+static const char *const p_names[1] = {"mu"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[1] = {0.012277471};
+static const unsigned char p_fixed[1] = {0};
 
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
@@ -281,116 +414,7 @@ arenstorf_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     dEdq[3] = w88;
 }
 
-/* The conserved quantity (eomc_model.h: invariant). */
-static void
-arenstorf_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *h)
-{
-    const eomc_real q_x = q[0];
-    const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real p_mu = p[0];
-    const eomc_real pd0 = p[1];
-    (void)u;
-    (void)t;
-    const eomc_real w0 = p_mu + q_x;
-    const eomc_real w1 = q_y * q_y;
-    const eomc_real w2 = q_x - 1.0;
-    const eomc_real w3 = v_x - q_y;
-    const eomc_real w4 = q_x + v_y;
-    const eomc_real w5 = w0 * w0;
-    const eomc_real w6 = p_mu + w2;
-    const eomc_real w7 = v_x * w3;
-    const eomc_real w8 = v_y * w4;
-    const eomc_real w9 = w3 * w3;
-    const eomc_real w10 = w4 * w4;
-    const eomc_real w11 = w5 + w1;
-    const eomc_real w12 = w6 * w6;
-    const eomc_real w13 = w7 + w8;
-    const eomc_real w14 = w9 + w10;
-    const eomc_real w15 = sqrt(w11);
-    const eomc_real w16 = w1 + w12;
-    const eomc_real w17 = 0.5 * w14;
-    const eomc_real w18 = sqrt(w16);
-    const eomc_real w19 = w13 - w17;
-    const eomc_real w20 = pd0 / w15;
-    const eomc_real w21 = p_mu / w18;
-    const eomc_real w22 = w20 - w21;
-    const eomc_real w23 = w22 + w19;
-    h[0] = w23;
-}
-
 #endif /* EOMC_EXTENDED */
-
-/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
- * M_kk. */
-static void
-arenstorf_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
-    eomc_real *mkk)
-{
-    const eomc_real q_x = q[0];
-    const eomc_real q_y = q[1];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real p_mu = p[0];
-    const eomc_real pd0 = p[1];
-    (void)u;
-    (void)t;
-    piv[0] = 1.0;
-    piv[1] = 1.0;
-    mkk[0] = 1.0;
-    mkk[1] = 1.0;
-    const eomc_real w0 = q_x + v_y;
-    const eomc_real w1 = q_x - 1.0;
-    const eomc_real w2 = q_y * q_y;
-    const eomc_real w3 = p_mu + q_x;
-    const eomc_real w4 = q_y - v_x;
-    const eomc_real w5 = v_y + w0;
-    const eomc_real w6 = p_mu + w1;
-    const eomc_real w7 = w3 * w3;
-    const eomc_real w8 = v_x - w4;
-    const eomc_real w9 = w6 * w6;
-    const eomc_real w10 = w7 + w2;
-    const eomc_real w11 = w2 + w9;
-    const eomc_real w12 = sqrt(w10);
-    const eomc_real w13 = sqrt(w11);
-    const eomc_real w14 = pd0 / w12;
-    const eomc_real w15 = 0.5 / w12;
-    const eomc_real w16 = p_mu / w13;
-    const eomc_real w17 = 0.5 / w13;
-    const eomc_real w18 = w14 / w12;
-    const eomc_real w19 = w16 / w13;
-    const eomc_real w20 = w18 * w15;
-    const eomc_real w21 = w19 * w17;
-    const eomc_real w22 = w3 * w20;
-    const eomc_real w23 = w6 * w21;
-    const eomc_real w24 = (-2.0) * w22;
-    const eomc_real w25 = w21 - w20;
-    const eomc_real w26 = 2.0 * w23;
-    const eomc_real w27 = q_y * w25;
-    const eomc_real w28 = w26 + w24;
-    const eomc_real w29 = 2.0 * w27;
-    const eomc_real w30 = w5 - w28;
-    const eomc_real w31 = w29 + w8;
-    a[0] = w30;
-    const eomc_real w32 = -w31;
-    a[1] = w32;
-}
-
-/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite).  *pivot (unless NULL): the
- * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
-arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
-{
-    eomc_real piv[2], mkk[2];
-    arenstorf_accel_solve(t, q, v, p, u, a, piv, mkk);
-    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
-}
 
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
@@ -449,6 +473,32 @@ static const int taylor_v[2] = {16, 17};
 static const int taylor_M[4] = {0, -1, -1, 0};
 static const int taylor_h[2] = {39, 41};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+arenstorf_derive(const eomc_real *p, eomc_real *pd);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+arenstorf_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+arenstorf_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt);
+EOMC_ENTRY void
+arenstorf_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+arenstorf_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+arenstorf_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+
 #ifndef EOMC_EXTENDED
 const eomc_model arenstorf_model = {
     .abi = EOMC_ABI_VERSION, .name = "arenstorf", .spec = "arenstorf.yaml", .form = "lagrange",
@@ -499,3 +549,4 @@ const eomc_model_ext arenstorf_model_ext = {
     .taylor = arenstorf_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -21,7 +21,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -31,27 +30,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[1] = {"y"};
-static const char *const p_names[4] = {"m", "g", "h", "e"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {0.1, 9.81, 1.0, 0.5};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const ev_names[1] = {"floor"};
-static const int ev_direction[1] = {-1};
-static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 bouncing_ball_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_m = p[0];
@@ -68,7 +69,7 @@ bouncing_ball_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 bouncing_ball_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_h = p[2];
@@ -79,7 +80,7 @@ bouncing_ball_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 bouncing_ball_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -90,7 +91,7 @@ bouncing_ball_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 bouncing_ball_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -106,7 +107,7 @@ bouncing_ball_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 bouncing_ball_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -125,31 +126,13 @@ bouncing_ball_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 bouncing_ball_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
     eomc_real TV[2];
     bouncing_ball_energy(t, q, v, p, u, TV);
     h[0] = TV[0] + TV[1];
-}
-
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-bouncing_ball_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    (void)q;
-    (void)v;
-    (void)a;
-    (void)p;
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    dEdq[0] = 0.0;
-    dEdv[0] = 0.0;
-    dEdt[0] = 0.0;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -176,7 +159,7 @@ bouncing_ball_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 bouncing_ball_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -187,7 +170,7 @@ bouncing_ball_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* The scene's events: g[k], whose zero crossings they are. */
-static void
+EOMC_ENTRY void
 bouncing_ball_events(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *g)
 {
@@ -217,7 +200,7 @@ bouncing_ball_set_floor(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The reset of event k (a `set` event): q1 and v1 hold q and v, and get
  * the values the event sets. */
-static void
+EOMC_ENTRY void
 bouncing_ball_event_set(int k, double t, const double *q, const double *v,
     const double *p, const double *u, double *q1, double *v1)
 {
@@ -236,16 +219,10 @@ bouncing_ball_check_values(const eomc_real *p, eomc_real *chk)
     chk[0] = p_m;
 }
 
-static const char *const check_what[1] = {
-    "particle 'ball': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
 static const unsigned char check_strict[1] = {0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 bouncing_ball_check(const double *p)
 {
     eomc_real chk[1];
@@ -255,7 +232,7 @@ bouncing_ball_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -275,6 +252,53 @@ bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[9] = 0.0;
     X[10] = 0.0;
     X[11] = 1.0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[1] = {"y"};
+static const char *const p_names[4] = {"m", "g", "h", "e"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {0.1, 9.81, 1.0, 0.5};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+static const char *const ev_names[1] = {"floor"};
+static const int ev_direction[1] = {-1};
+static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'ball': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+bouncing_ball_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    dEdq[0] = 0.0;
+    dEdv[0] = 0.0;
+    dEdt[0] = 0.0;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -302,7 +326,45 @@ static const int taylor_M[1] = {0};
 static const int taylor_h[1] = {2};
 static const int taylor_g[1] = {1};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+bouncing_ball_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+bouncing_ball_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+bouncing_ball_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+bouncing_ball_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+bouncing_ball_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+bouncing_ball_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+bouncing_ball_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+bouncing_ball_events(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *g);
+EOMC_ENTRY void
+bouncing_ball_event_set(int k, double t, const double *q, const double *v,
+    const double *p, const double *u, double *q1, double *v1);
+EOMC_ENTRY int
+bouncing_ball_check(const double *p);
+EOMC_ENTRY void
+bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model bouncing_ball_model = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -358,3 +420,4 @@ const eomc_model_ext bouncing_ball_model_ext = {
     .taylor = bouncing_ball_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

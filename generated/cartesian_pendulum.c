@@ -28,7 +28,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -38,27 +37,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[2] = {"x", "y"};
-static const char *const p_names[4] = {"m", "l", "g", "theta0"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {1.0, 1.0, 9.81, 1.0};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const c_names[1] = {"rod"};
-static const int c_order[1] = {0};
-static const int c_dependent[1] = {1};
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_m = p[0];
@@ -82,7 +83,7 @@ cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_l = p[1];
@@ -101,7 +102,7 @@ cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -112,7 +113,7 @@ cartesian_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M,
     eomc_real *h)
@@ -133,7 +134,7 @@ cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -155,7 +156,7 @@ cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
@@ -164,35 +165,10 @@ cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
     h[0] = TV[0] + TV[1];
 }
 
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-cartesian_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    (void)q;
-    (void)v;
-    (void)a;
-    (void)p;
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    dEdq[0] = 0.0;
-    dEdq[1] = 0.0;
-    dEdv[0] = 0.0;
-    dEdv[1] = 0.0;
-    dEdt[0] = 0.0;
-    dEdq[2] = 0.0;
-    dEdq[3] = 0.0;
-    dEdv[2] = 0.0;
-    dEdv[3] = 0.0;
-    dEdt[1] = 0.0;
-}
-
 #endif /* EOMC_EXTENDED */
 
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *a, const eomc_real *p,
     const eomc_real *u, eomc_real *f, eomc_real *B)
@@ -223,7 +199,7 @@ cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
 
 #ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
@@ -249,7 +225,7 @@ cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* The magnitude of each holonomic constraint's terms (sums of absolute
  * values): what its residual is measured against when the projection
  * decides it holds, where q = 0 leaves B q no size. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *mag)
 {
@@ -268,7 +244,7 @@ cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *a, const eomc_real *p,
     const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu,
@@ -312,7 +288,7 @@ cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
@@ -366,7 +342,7 @@ cartesian_pendulum_accel_solve(eomc_real t, const eomc_real *q,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 cartesian_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -378,7 +354,7 @@ cartesian_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* y = M^-1 da by the form's recursion at rest, with no force but the load
  * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of
  * B at a time. */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
 {
@@ -403,16 +379,10 @@ cartesian_pendulum_check_values(const eomc_real *p, eomc_real *chk)
     chk[0] = p_m;
 }
 
-static const char *const check_what[1] = {
-    "particle 'bob': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
 static const unsigned char check_strict[1] = {0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 cartesian_pendulum_check(const double *p)
 {
     eomc_real chk[1];
@@ -422,7 +392,7 @@ cartesian_pendulum_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -443,6 +413,60 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[9] = 0.0;
     X[10] = 0.0;
     X[11] = 1.0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[2] = {"x", "y"};
+static const char *const p_names[4] = {"m", "l", "g", "theta0"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {1.0, 1.0, 9.81, 1.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+static const char *const c_names[1] = {"rod"};
+static const int c_order[1] = {0};
+static const int c_dependent[1] = {1};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'bob': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+cartesian_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    dEdq[0] = 0.0;
+    dEdq[1] = 0.0;
+    dEdv[0] = 0.0;
+    dEdv[1] = 0.0;
+    dEdt[0] = 0.0;
+    dEdq[2] = 0.0;
+    dEdq[3] = 0.0;
+    dEdv[2] = 0.0;
+    dEdv[3] = 0.0;
+    dEdt[1] = 0.0;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -497,7 +521,64 @@ static const int taylor_f[1] = {27};
 static const int taylor_pos[1] = {8};
 static const int taylor_vel[1] = {21};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+cartesian_pendulum_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+cartesian_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+cartesian_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+cartesian_pendulum_mass_bias(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M,
+    eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+cartesian_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+cartesian_pendulum_invariant(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+cartesian_pendulum_constraint(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *f, eomc_real *B);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+cartesian_pendulum_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel);
+EOMC_ENTRY void
+cartesian_pendulum_c_scale(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *mag);
+EOMC_ENTRY void
+cartesian_pendulum_c_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu,
+    eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda,
+    eomc_real *dBdu, eomc_real *dBdt);
+EOMC_ENTRY void
+cartesian_pendulum_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt);
+EOMC_ENTRY int
+cartesian_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+EOMC_ENTRY void
+cartesian_pendulum_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY int
+cartesian_pendulum_check(const double *p);
+EOMC_ENTRY void
+cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -559,3 +640,4 @@ const eomc_model_ext cartesian_pendulum_model_ext = {
     .taylor = cartesian_pendulum_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -28,7 +28,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -38,27 +37,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[3] = {"r", "theta", "phi"};
-static const char *const p_names[4] = {"m", "k", "v0", "r0"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {1.0, 1.0, 1.2, 1.0};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const c_names[1] = {"speed"};
-static const int c_order[1] = {1};
-static const int c_dependent[1] = {2};
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"p", EOMC_DRAW_PARTICLE, 3, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 central_constant_speed_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_m = p[0];
@@ -68,17 +69,15 @@ central_constant_speed_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w1 = p_v0 * p_v0;
     const eomc_real w2 = 0.5 * p_m;
     const eomc_real w3 = 1.0 / p_m;
-    const eomc_real w4 = 2.0 * p_m;
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
     pd[3] = w3;
-    pd[4] = w4;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 central_constant_speed_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_v0 = p[2];
@@ -98,7 +97,7 @@ central_constant_speed_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 central_constant_speed_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -109,7 +108,7 @@ central_constant_speed_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 central_constant_speed_mass_bias(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M,
     eomc_real *h)
@@ -205,7 +204,7 @@ central_constant_speed_mass_bias(eomc_real t, const eomc_real *q,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 central_constant_speed_energy(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -255,347 +254,10 @@ central_constant_speed_energy(eomc_real t, const eomc_real *q,
     TV[0] = w27;
 }
 
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
-    const eomc_real *v, const eomc_real *a, const eomc_real *p,
-    const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu,
-    eomc_real *dEdt)
-{
-    const eomc_real q_r = q[0];
-    const eomc_real q_theta = q[1];
-    const eomc_real q_phi = q[2];
-    const eomc_real v_r = v[0];
-    const eomc_real v_phi = v[2];
-    const eomc_real v_theta = v[1];
-    const eomc_real a_r = a[0];
-    const eomc_real a_theta = a[1];
-    const eomc_real a_phi = a[2];
-    const eomc_real p_m = p[0];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd4 = p[8];
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_theta;
-    ang[1] = q_phi;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = w0 * a_theta;
-    const eomc_real w5 = v_theta * v_theta;
-    const eomc_real w6 = w1 * w3;
-    const eomc_real w7 = w1 * w2;
-    const eomc_real w8 = v_phi * v_phi;
-    const eomc_real w9 = pd0 / q_r;
-    const eomc_real w10 = 1.0 / q_r;
-    const eomc_real w11 = w1 * a_theta;
-    const eomc_real w12 = w0 * a_r;
-    const eomc_real w13 = w1 * v_r;
-    const eomc_real w14 = q_r * w0;
-    const eomc_real w15 = q_r * w1;
-    const eomc_real w16 = w1 * a_r;
-    const eomc_real w17 = w3 * v_phi;
-    const eomc_real w18 = w0 * v_r;
-    const eomc_real w19 = w2 * v_phi;
-    dEdv[0] = 0.0;
-    const eomc_real w20 = q_r * v_theta;
-    const eomc_real w21 = w1 * w1;
-    dEdt[0] = 0.0;
-    const eomc_real w22 = q_r * w3;
-    const eomc_real w23 = q_r * w2;
-    const eomc_real w24 = q_r * v_r;
-    const eomc_real w25 = q_r * q_r;
-    dEdt[1] = 0.0;
-    dEdt[2] = 0.0;
-    const eomc_real w26 = w1 * w5;
-    const eomc_real w27 = w6 * a_phi;
-    const eomc_real w28 = w7 * w8;
-    const eomc_real w29 = w7 * a_phi;
-    const eomc_real w30 = w6 * w8;
-    const eomc_real w31 = w0 * w5;
-    const eomc_real w32 = w13 * v_theta;
-    const eomc_real w33 = w14 * v_theta;
-    const eomc_real w34 = w15 * a_theta;
-    const eomc_real w35 = w18 * v_theta;
-    const eomc_real w36 = w15 * v_theta;
-    const eomc_real w37 = w14 * a_theta;
-    const eomc_real w38 = w15 * w2;
-    const eomc_real w39 = w15 * w3;
-    const eomc_real w40 = w6 * v_phi;
-    const eomc_real w41 = w7 * v_phi;
-    const eomc_real w42 = q_r * w21;
-    const eomc_real w43 = w15 * w5;
-    const eomc_real w44 = w14 * w5;
-    const eomc_real w45 = w22 * w0;
-    const eomc_real w46 = w23 * w0;
-    const eomc_real w47 = w15 * a_r;
-    const eomc_real w48 = w14 * v_r;
-    const eomc_real w49 = w15 * v_r;
-    const eomc_real w50 = w14 * a_r;
-    const eomc_real w51 = pd4 * w20;
-    const eomc_real w52 = w25 * w1;
-    const eomc_real w53 = w15 * w0;
-    const eomc_real w54 = w25 * w21;
-    const eomc_real w55 = w4 - w26;
-    const eomc_real w56 = w27 + w28;
-    const eomc_real w57 = w29 - w30;
-    const eomc_real w58 = w11 + w31;
-    const eomc_real w59 = w32 + w12;
-    const eomc_real w60 = w13 - w33;
-    const eomc_real w61 = pd4 * w32;
-    const eomc_real w62 = w16 - w35;
-    const eomc_real w63 = w18 + w36;
-    const eomc_real w64 = w38 * v_phi;
-    const eomc_real w65 = w39 * a_phi;
-    const eomc_real w66 = w39 * v_phi;
-    const eomc_real w67 = w38 * a_phi;
-    const eomc_real w68 = pd4 * w35;
-    const eomc_real w69 = w42 * v_phi;
-    const eomc_real w70 = w45 * a_phi;
-    const eomc_real w71 = w46 * w8;
-    const eomc_real w72 = w45 * w8;
-    const eomc_real w73 = w46 * a_phi;
-    const eomc_real w74 = p_m * w47;
-    const eomc_real w75 = w48 * v_theta;
-    const eomc_real w76 = w49 * v_theta;
-    const eomc_real w77 = p_m * w50;
-    const eomc_real w78 = w45 * v_phi;
-    const eomc_real w79 = w46 * v_phi;
-    dEdv[3] = w51;
-    const eomc_real w80 = w52 * w0;
-    const eomc_real w81 = w39 * w8;
-    const eomc_real w82 = w38 * w8;
-    const eomc_real w83 = w53 * v_phi;
-    const eomc_real w84 = w54 * v_phi;
-    const eomc_real w85 = w49 * v_phi;
-    const eomc_real w86 = w2 * w56;
-    const eomc_real w87 = w3 * w57;
-    const eomc_real w88 = w0 * w58;
-    const eomc_real w89 = v_theta * w60;
-    const eomc_real w90 = q_r * w58;
-    const eomc_real w91 = w60 * w17;
-    const eomc_real w92 = v_theta * w63;
-    const eomc_real w93 = w3 * w60;
-    const eomc_real w94 = w60 * w19;
-    const eomc_real w95 = w2 * w60;
-    const eomc_real w96 = w60 * w40;
-    const eomc_real w97 = w60 * w6;
-    const eomc_real w98 = w15 * w56;
-    const eomc_real w99 = w60 * w7;
-    const eomc_real w100 = w60 * w41;
-    const eomc_real w101 = w15 * w57;
-    const eomc_real w102 = w0 * w60;
-    const eomc_real w103 = w1 * w63;
-    const eomc_real w104 = w70 + w71;
-    const eomc_real w105 = w72 - w73;
-    const eomc_real w106 = pd4 * w75;
-    const eomc_real w107 = pd4 * w76;
-    const eomc_real w108 = w60 * w78;
-    const eomc_real w109 = w60 * w45;
-    const eomc_real w110 = w60 * w46;
-    const eomc_real w111 = w60 * w79;
-    const eomc_real w112 = w15 * w60;
-    const eomc_real w113 = w14 * w63;
-    const eomc_real w114 = w80 * v_phi;
-    const eomc_real w115 = w83 * v_theta;
-    const eomc_real w116 = w84 * v_theta;
-    const eomc_real w117 = pd4 * w85;
-    const eomc_real w118 = w60 * w64;
-    const eomc_real w119 = w38 * w60;
-    const eomc_real w120 = w39 * w60;
-    const eomc_real w121 = w60 * w66;
-    const eomc_real w122 = pd4 * w69;
-    const eomc_real w123 = w55 - w86;
-    const eomc_real w124 = p_m * w88;
-    const eomc_real w125 = w89 + w34;
-    const eomc_real w126 = p_m * w90;
-    const eomc_real w127 = w92 + w37;
-    const eomc_real w128 = w93 - w64;
-    const eomc_real w129 = w95 + w66;
-    const eomc_real w130 = v_phi * w97;
-    const eomc_real w131 = v_phi * w99;
-    const eomc_real w132 = w102 - w103;
-    const eomc_real w133 = w2 * w104;
-    const eomc_real w134 = w3 * w105;
-    const eomc_real w135 = w74 + w106;
-    const eomc_real w136 = w107 - w77;
-    const eomc_real w137 = v_phi * w109;
-    const eomc_real w138 = w15 * w104;
-    const eomc_real w139 = w15 * w105;
-    const eomc_real w140 = v_phi * w110;
-    const eomc_real w141 = w112 + w113;
-    const eomc_real w142 = pd4 * w115;
-    const eomc_real w143 = pd4 * w116;
-    const eomc_real w144 = v_phi * w119;
-    const eomc_real w145 = v_phi * w120;
-    dEdv[6] = w122;
-    const eomc_real w146 = pd4 * w114;
-    const eomc_real w147 = w3 * w120;
-    const eomc_real w148 = w2 * w119;
-    const eomc_real w149 = w9 / q_r;
-    const eomc_real w150 = w123 + w87;
-    const eomc_real w151 = w59 + w125;
-    const eomc_real w152 = w62 - w127;
-    const eomc_real w153 = v_phi * w128;
-    const eomc_real w154 = v_phi * w129;
-    const eomc_real w155 = w132 - w20;
-    const eomc_real w156 = w128 * w7;
-    const eomc_real w157 = w129 * w6;
-    const eomc_real w158 = w24 + w141;
-    const eomc_real w159 = w129 * w45;
-    const eomc_real w160 = w128 * w46;
-    const eomc_real w161 = -w146;
-    const eomc_real w162 = w39 * w128;
-    const eomc_real w163 = w38 * w129;
-    const eomc_real w164 = w1 * w150;
-    const eomc_real w165 = w12 + w151;
-    const eomc_real w166 = w2 * w152;
-    const eomc_real w167 = w153 + w65;
-    const eomc_real w168 = w3 * w152;
-    const eomc_real w169 = w154 + w67;
-    const eomc_real w170 = q_r * w150;
-    const eomc_real w171 = w152 * w7;
-    const eomc_real w172 = w152 * w6;
-    const eomc_real w173 = p_m * w155;
-    const eomc_real w174 = w156 - w157;
-    const eomc_real w175 = w34 + w151;
-    const eomc_real w176 = w152 * w46;
-    const eomc_real w177 = w152 * w45;
-    const eomc_real w178 = p_m * w158;
-    const eomc_real w179 = w159 + w114;
-    const eomc_real w180 = w39 * w152;
-    const eomc_real w181 = w38 * w152;
-    dEdv[7] = w161;
-    const eomc_real w182 = w162 + w163;
-    const eomc_real w183 = p_m * w164;
-    const eomc_real w184 = p_m * w165;
-    const eomc_real w185 = w91 + w166;
-    const eomc_real w186 = w168 - w94;
-    const eomc_real w187 = p_m * w170;
-    dEdv[1] = w173;
-    const eomc_real w188 = w174 - w69;
-    const eomc_real w189 = w175 + w44;
-    dEdv[4] = w178;
-    const eomc_real w190 = w179 - w160;
-    const eomc_real w191 = w180 + w118;
-    const eomc_real w192 = w145 - w181;
-    const eomc_real w193 = w182 + w147;
-    const eomc_real w194 = w184 - w61;
-    const eomc_real w195 = w185 + w167;
-    const eomc_real w196 = w186 - w169;
-    const eomc_real w197 = p_m * w188;
-    const eomc_real w198 = w189 + w133;
-    const eomc_real w199 = p_m * w190;
-    const eomc_real w200 = w191 + w144;
-    const eomc_real w201 = w192 + w121;
-    const eomc_real w202 = w193 + w148;
-    const eomc_real w203 = w149 / q_r;
-    const eomc_real w204 = w10 * w149;
-    const eomc_real w205 = w194 - w126;
-    const eomc_real w206 = w2 * w195;
-    const eomc_real w207 = w3 * w196;
-    const eomc_real w208 = w1 * w195;
-    const eomc_real w209 = w1 * w196;
-    dEdv[2] = w197;
-    const eomc_real w210 = w198 + w134;
-    const eomc_real w211 = w14 * w195;
-    const eomc_real w212 = w14 * w196;
-    dEdv[5] = w199;
-    const eomc_real w213 = w67 - w196;
-    const eomc_real w214 = w65 + w195;
-    const eomc_real w215 = p_m * w202;
-    const eomc_real w216 = w1 * w205;
-    const eomc_real w217 = w206 + w207;
-    const eomc_real w218 = w208 + w171;
-    const eomc_real w219 = w209 + w172;
-    const eomc_real w220 = w1 * w210;
-    const eomc_real w221 = q_r * w210;
-    const eomc_real w222 = w211 + w176;
-    const eomc_real w223 = w212 + w177;
-    const eomc_real w224 = w213 - w81;
-    const eomc_real w225 = w214 + w82;
-    dEdv[8] = w215;
-    const eomc_real w226 = w16 + w217;
-    const eomc_real w227 = w218 - w96;
-    const eomc_real w228 = w219 + w131;
-    const eomc_real w229 = w37 - w217;
-    const eomc_real w230 = p_m * w221;
-    const eomc_real w231 = w108 - w222;
-    const eomc_real w232 = w223 + w140;
-    const eomc_real w233 = w2 * w224;
-    const eomc_real w234 = w3 * w225;
-    const eomc_real w235 = w15 * w224;
-    const eomc_real w236 = w15 * w225;
-    const eomc_real w237 = p_m * w226;
-    const eomc_real w238 = w227 - w130;
-    const eomc_real w239 = w228 + w100;
-    const eomc_real w240 = w229 - w43;
-    const eomc_real w241 = w136 + w230;
-    const eomc_real w242 = w231 + w137;
-    const eomc_real w243 = w232 + w111;
-    const eomc_real w244 = w233 + w234;
-    const eomc_real w245 = w200 + w235;
-    const eomc_real w246 = w201 + w236;
-    const eomc_real w247 = w203 + w204;
-    const eomc_real w248 = w237 + w68;
-    const eomc_real w249 = w238 - w98;
-    const eomc_real w250 = w239 + w101;
-    const eomc_real w251 = w0 * w240;
-    const eomc_real w252 = q_r * w240;
-    const eomc_real w253 = w0 * w241;
-    const eomc_real w254 = w242 + w138;
-    const eomc_real w255 = w139 - w243;
-    const eomc_real w256 = w1 * w244;
-    const eomc_real w257 = q_r * w244;
-    const eomc_real w258 = w3 * w245;
-    const eomc_real w259 = w2 * w246;
-    const eomc_real w260 = w247 + w124;
-    const eomc_real w261 = w248 + w187;
-    const eomc_real w262 = w3 * w249;
-    const eomc_real w263 = w2 * w250;
-    const eomc_real w264 = w251 + w220;
-    const eomc_real w265 = p_m * w252;
-    const eomc_real w266 = w3 * w254;
-    const eomc_real w267 = w2 * w255;
-    const eomc_real w268 = p_m * w256;
-    const eomc_real w269 = p_m * w257;
-    const eomc_real w270 = w258 - w259;
-    const eomc_real w271 = w183 - w260;
-    const eomc_real w272 = w0 * w261;
-    const eomc_real w273 = w262 - w263;
-    const eomc_real w274 = p_m * w264;
-    const eomc_real w275 = w135 + w265;
-    const eomc_real w276 = w266 - w267;
-    const eomc_real w277 = w268 - w142;
-    const eomc_real w278 = w117 + w269;
-    const eomc_real w279 = p_m * w270;
-    dEdq[0] = w271;
-    const eomc_real w280 = w216 - w272;
-    const eomc_real w281 = p_m * w273;
-    dEdq[3] = w274;
-    const eomc_real w282 = w1 * w275;
-    const eomc_real w283 = p_m * w276;
-    dEdq[6] = w277;
-    const eomc_real w284 = w0 * w278;
-    dEdq[1] = w280;
-    dEdq[2] = w281;
-    dEdq[8] = w279;
-    const eomc_real w285 = w282 - w253;
-    dEdq[5] = w283;
-    const eomc_real w286 = w143 + w284;
-    dEdq[4] = w285;
-    const eomc_real w287 = -w286;
-    dEdq[7] = w287;
-}
-
 #endif /* EOMC_EXTENDED */
 
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
-static void
+EOMC_ENTRY void
 central_constant_speed_constraint(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *a, const eomc_real *p,
     const eomc_real *u, eomc_real *f, eomc_real *B)
@@ -652,7 +314,7 @@ central_constant_speed_constraint(eomc_real t, const eomc_real *q,
 
 #ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
-static void
+EOMC_ENTRY void
 central_constant_speed_c_levels(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *pos,
     eomc_real *vel)
@@ -682,7 +344,7 @@ central_constant_speed_c_levels(eomc_real t, const eomc_real *q,
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
-static void
+EOMC_ENTRY void
 central_constant_speed_c_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *a, const eomc_real *p,
     const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu,
@@ -813,7 +475,7 @@ central_constant_speed_c_jacobian(eomc_real t, const eomc_real *q,
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
-static void
+EOMC_ENTRY void
 central_constant_speed_c_levels_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
@@ -971,7 +633,7 @@ central_constant_speed_accel_solve(eomc_real t, const eomc_real *q,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 central_constant_speed_accel_shared(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
     eomc_real *pivot, eomc_real *shared)
@@ -982,7 +644,7 @@ central_constant_speed_accel_shared(eomc_real t, const eomc_real *q,
 }
 
 /* The same, what minv_shared reads dropped. */
-static int
+EOMC_ENTRY int
 central_constant_speed_accel(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
     eomc_real *pivot)
@@ -994,7 +656,7 @@ central_constant_speed_accel(eomc_real t, const eomc_real *q,
 /* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
  * but the load da, or the LDL^T factors), given shared[] from
  * accel_solve at the same (t, q, p): one unit load's passes alone. */
-static void
+EOMC_ENTRY void
 central_constant_speed_minv_shared(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     const eomc_real *shared, const eomc_real *da, eomc_real *y)
@@ -1017,7 +679,7 @@ central_constant_speed_minv_shared(eomc_real t, const eomc_real *q,
 }
 
 /* y = M^-1 da: the solve's shared values, then minv_shared. */
-static void
+EOMC_ENTRY void
 central_constant_speed_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
 {
@@ -1034,16 +696,10 @@ central_constant_speed_check_values(const eomc_real *p, eomc_real *chk)
     chk[0] = p_m;
 }
 
-static const char *const check_what[1] = {
-    "particle 'p': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
 static const unsigned char check_strict[1] = {0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 central_constant_speed_check(const double *p)
 {
     eomc_real chk[1];
@@ -1053,7 +709,7 @@ central_constant_speed_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -1087,6 +743,372 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[0] = w6;
     X[1] = w7;
     X[2] = w5;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[3] = {"r", "theta", "phi"};
+static const char *const p_names[4] = {"m", "k", "v0", "r0"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {1.0, 1.0, 1.2, 1.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+static const char *const c_names[1] = {"speed"};
+static const int c_order[1] = {1};
+static const int c_dependent[1] = {2};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"p", EOMC_DRAW_PARTICLE, 3, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'p': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+central_constant_speed_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu,
+    eomc_real *dEdt)
+{
+    const eomc_real q_r = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_r = v[0];
+    const eomc_real v_phi = v[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real a_r = a[0];
+    const eomc_real a_theta = a[1];
+    const eomc_real a_phi = a[2];
+    const eomc_real p_m = p[0];
+    const eomc_real pd0 = p[4];
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w0 * a_theta;
+    const eomc_real w5 = v_theta * v_theta;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = w1 * w2;
+    const eomc_real w8 = v_phi * v_phi;
+    const eomc_real w9 = pd0 / q_r;
+    const eomc_real w10 = 1.0 / q_r;
+    const eomc_real w11 = w1 * a_theta;
+    const eomc_real w12 = w0 * a_r;
+    const eomc_real w13 = w1 * v_r;
+    const eomc_real w14 = q_r * w0;
+    const eomc_real w15 = q_r * w1;
+    const eomc_real w16 = 2.0 * p_m;
+    const eomc_real w17 = w1 * a_r;
+    const eomc_real w18 = w3 * v_phi;
+    const eomc_real w19 = w0 * v_r;
+    const eomc_real w20 = w2 * v_phi;
+    dEdv[0] = 0.0;
+    const eomc_real w21 = q_r * v_theta;
+    const eomc_real w22 = w1 * w1;
+    dEdt[0] = 0.0;
+    const eomc_real w23 = q_r * w3;
+    const eomc_real w24 = q_r * w2;
+    const eomc_real w25 = q_r * v_r;
+    const eomc_real w26 = q_r * q_r;
+    dEdt[1] = 0.0;
+    dEdt[2] = 0.0;
+    const eomc_real w27 = w1 * w5;
+    const eomc_real w28 = w6 * a_phi;
+    const eomc_real w29 = w7 * w8;
+    const eomc_real w30 = w7 * a_phi;
+    const eomc_real w31 = w6 * w8;
+    const eomc_real w32 = w0 * w5;
+    const eomc_real w33 = w13 * v_theta;
+    const eomc_real w34 = w14 * v_theta;
+    const eomc_real w35 = w15 * a_theta;
+    const eomc_real w36 = w19 * v_theta;
+    const eomc_real w37 = w15 * v_theta;
+    const eomc_real w38 = w14 * a_theta;
+    const eomc_real w39 = w15 * w2;
+    const eomc_real w40 = w15 * w3;
+    const eomc_real w41 = w6 * v_phi;
+    const eomc_real w42 = w7 * v_phi;
+    const eomc_real w43 = q_r * w22;
+    const eomc_real w44 = w15 * w5;
+    const eomc_real w45 = w14 * w5;
+    const eomc_real w46 = w23 * w0;
+    const eomc_real w47 = w24 * w0;
+    const eomc_real w48 = w15 * a_r;
+    const eomc_real w49 = w14 * v_r;
+    const eomc_real w50 = w15 * v_r;
+    const eomc_real w51 = w14 * a_r;
+    const eomc_real w52 = w16 * w21;
+    const eomc_real w53 = w26 * w1;
+    const eomc_real w54 = w15 * w0;
+    const eomc_real w55 = w26 * w22;
+    const eomc_real w56 = w4 - w27;
+    const eomc_real w57 = w28 + w29;
+    const eomc_real w58 = w30 - w31;
+    const eomc_real w59 = w11 + w32;
+    const eomc_real w60 = w33 + w12;
+    const eomc_real w61 = w13 - w34;
+    const eomc_real w62 = w16 * w33;
+    const eomc_real w63 = w17 - w36;
+    const eomc_real w64 = w19 + w37;
+    const eomc_real w65 = w39 * v_phi;
+    const eomc_real w66 = w40 * a_phi;
+    const eomc_real w67 = w40 * v_phi;
+    const eomc_real w68 = w39 * a_phi;
+    const eomc_real w69 = w16 * w36;
+    const eomc_real w70 = w43 * v_phi;
+    const eomc_real w71 = w46 * a_phi;
+    const eomc_real w72 = w47 * w8;
+    const eomc_real w73 = w46 * w8;
+    const eomc_real w74 = w47 * a_phi;
+    const eomc_real w75 = p_m * w48;
+    const eomc_real w76 = w49 * v_theta;
+    const eomc_real w77 = w50 * v_theta;
+    const eomc_real w78 = p_m * w51;
+    const eomc_real w79 = w46 * v_phi;
+    const eomc_real w80 = w47 * v_phi;
+    dEdv[3] = w52;
+    const eomc_real w81 = w53 * w0;
+    const eomc_real w82 = w40 * w8;
+    const eomc_real w83 = w39 * w8;
+    const eomc_real w84 = w54 * v_phi;
+    const eomc_real w85 = w55 * v_phi;
+    const eomc_real w86 = w50 * v_phi;
+    const eomc_real w87 = w2 * w57;
+    const eomc_real w88 = w3 * w58;
+    const eomc_real w89 = w0 * w59;
+    const eomc_real w90 = v_theta * w61;
+    const eomc_real w91 = q_r * w59;
+    const eomc_real w92 = w61 * w18;
+    const eomc_real w93 = v_theta * w64;
+    const eomc_real w94 = w3 * w61;
+    const eomc_real w95 = w61 * w20;
+    const eomc_real w96 = w2 * w61;
+    const eomc_real w97 = w61 * w41;
+    const eomc_real w98 = w61 * w6;
+    const eomc_real w99 = w15 * w57;
+    const eomc_real w100 = w61 * w7;
+    const eomc_real w101 = w61 * w42;
+    const eomc_real w102 = w15 * w58;
+    const eomc_real w103 = w0 * w61;
+    const eomc_real w104 = w1 * w64;
+    const eomc_real w105 = w71 + w72;
+    const eomc_real w106 = w73 - w74;
+    const eomc_real w107 = w16 * w76;
+    const eomc_real w108 = w16 * w77;
+    const eomc_real w109 = w61 * w79;
+    const eomc_real w110 = w61 * w46;
+    const eomc_real w111 = w61 * w47;
+    const eomc_real w112 = w61 * w80;
+    const eomc_real w113 = w15 * w61;
+    const eomc_real w114 = w14 * w64;
+    const eomc_real w115 = w81 * v_phi;
+    const eomc_real w116 = w84 * v_theta;
+    const eomc_real w117 = w85 * v_theta;
+    const eomc_real w118 = w16 * w86;
+    const eomc_real w119 = w61 * w65;
+    const eomc_real w120 = w39 * w61;
+    const eomc_real w121 = w40 * w61;
+    const eomc_real w122 = w61 * w67;
+    const eomc_real w123 = w16 * w70;
+    const eomc_real w124 = w56 - w87;
+    const eomc_real w125 = p_m * w89;
+    const eomc_real w126 = w90 + w35;
+    const eomc_real w127 = p_m * w91;
+    const eomc_real w128 = w93 + w38;
+    const eomc_real w129 = w94 - w65;
+    const eomc_real w130 = w96 + w67;
+    const eomc_real w131 = v_phi * w98;
+    const eomc_real w132 = v_phi * w100;
+    const eomc_real w133 = w103 - w104;
+    const eomc_real w134 = w2 * w105;
+    const eomc_real w135 = w3 * w106;
+    const eomc_real w136 = w75 + w107;
+    const eomc_real w137 = w108 - w78;
+    const eomc_real w138 = v_phi * w110;
+    const eomc_real w139 = w15 * w105;
+    const eomc_real w140 = w15 * w106;
+    const eomc_real w141 = v_phi * w111;
+    const eomc_real w142 = w113 + w114;
+    const eomc_real w143 = w16 * w116;
+    const eomc_real w144 = w16 * w117;
+    const eomc_real w145 = v_phi * w120;
+    const eomc_real w146 = v_phi * w121;
+    dEdv[6] = w123;
+    const eomc_real w147 = w16 * w115;
+    const eomc_real w148 = w3 * w121;
+    const eomc_real w149 = w2 * w120;
+    const eomc_real w150 = w9 / q_r;
+    const eomc_real w151 = w124 + w88;
+    const eomc_real w152 = w60 + w126;
+    const eomc_real w153 = w63 - w128;
+    const eomc_real w154 = v_phi * w129;
+    const eomc_real w155 = v_phi * w130;
+    const eomc_real w156 = w133 - w21;
+    const eomc_real w157 = w129 * w7;
+    const eomc_real w158 = w130 * w6;
+    const eomc_real w159 = w25 + w142;
+    const eomc_real w160 = w130 * w46;
+    const eomc_real w161 = w129 * w47;
+    const eomc_real w162 = -w147;
+    const eomc_real w163 = w40 * w129;
+    const eomc_real w164 = w39 * w130;
+    const eomc_real w165 = w1 * w151;
+    const eomc_real w166 = w12 + w152;
+    const eomc_real w167 = w2 * w153;
+    const eomc_real w168 = w154 + w66;
+    const eomc_real w169 = w3 * w153;
+    const eomc_real w170 = w155 + w68;
+    const eomc_real w171 = q_r * w151;
+    const eomc_real w172 = w153 * w7;
+    const eomc_real w173 = w153 * w6;
+    const eomc_real w174 = p_m * w156;
+    const eomc_real w175 = w157 - w158;
+    const eomc_real w176 = w35 + w152;
+    const eomc_real w177 = w153 * w47;
+    const eomc_real w178 = w153 * w46;
+    const eomc_real w179 = p_m * w159;
+    const eomc_real w180 = w115 + w160;
+    const eomc_real w181 = w40 * w153;
+    const eomc_real w182 = w39 * w153;
+    dEdv[7] = w162;
+    const eomc_real w183 = w163 + w164;
+    const eomc_real w184 = p_m * w165;
+    const eomc_real w185 = p_m * w166;
+    const eomc_real w186 = w92 + w167;
+    const eomc_real w187 = w169 - w95;
+    const eomc_real w188 = p_m * w171;
+    dEdv[1] = w174;
+    const eomc_real w189 = w175 - w70;
+    const eomc_real w190 = w176 + w45;
+    dEdv[4] = w179;
+    const eomc_real w191 = w180 - w161;
+    const eomc_real w192 = w181 + w119;
+    const eomc_real w193 = w146 - w182;
+    const eomc_real w194 = w183 + w148;
+    const eomc_real w195 = w185 - w62;
+    const eomc_real w196 = w186 + w168;
+    const eomc_real w197 = w187 - w170;
+    const eomc_real w198 = p_m * w189;
+    const eomc_real w199 = w190 + w134;
+    const eomc_real w200 = p_m * w191;
+    const eomc_real w201 = w192 + w145;
+    const eomc_real w202 = w193 + w122;
+    const eomc_real w203 = w194 + w149;
+    const eomc_real w204 = w150 / q_r;
+    const eomc_real w205 = w10 * w150;
+    const eomc_real w206 = w195 - w127;
+    const eomc_real w207 = w2 * w196;
+    const eomc_real w208 = w3 * w197;
+    const eomc_real w209 = w1 * w196;
+    const eomc_real w210 = w1 * w197;
+    dEdv[2] = w198;
+    const eomc_real w211 = w199 + w135;
+    const eomc_real w212 = w14 * w196;
+    const eomc_real w213 = w14 * w197;
+    dEdv[5] = w200;
+    const eomc_real w214 = w68 - w197;
+    const eomc_real w215 = w66 + w196;
+    const eomc_real w216 = p_m * w203;
+    const eomc_real w217 = w1 * w206;
+    const eomc_real w218 = w207 + w208;
+    const eomc_real w219 = w209 + w172;
+    const eomc_real w220 = w210 + w173;
+    const eomc_real w221 = w1 * w211;
+    const eomc_real w222 = q_r * w211;
+    const eomc_real w223 = w212 + w177;
+    const eomc_real w224 = w213 + w178;
+    const eomc_real w225 = w214 - w82;
+    const eomc_real w226 = w215 + w83;
+    dEdv[8] = w216;
+    const eomc_real w227 = w17 + w218;
+    const eomc_real w228 = w219 - w97;
+    const eomc_real w229 = w220 + w132;
+    const eomc_real w230 = w38 - w218;
+    const eomc_real w231 = p_m * w222;
+    const eomc_real w232 = w109 - w223;
+    const eomc_real w233 = w224 + w141;
+    const eomc_real w234 = w2 * w225;
+    const eomc_real w235 = w3 * w226;
+    const eomc_real w236 = w15 * w225;
+    const eomc_real w237 = w15 * w226;
+    const eomc_real w238 = p_m * w227;
+    const eomc_real w239 = w228 - w131;
+    const eomc_real w240 = w229 + w101;
+    const eomc_real w241 = w230 - w44;
+    const eomc_real w242 = w137 + w231;
+    const eomc_real w243 = w232 + w138;
+    const eomc_real w244 = w233 + w112;
+    const eomc_real w245 = w234 + w235;
+    const eomc_real w246 = w201 + w236;
+    const eomc_real w247 = w202 + w237;
+    const eomc_real w248 = w204 + w205;
+    const eomc_real w249 = w238 + w69;
+    const eomc_real w250 = w239 - w99;
+    const eomc_real w251 = w240 + w102;
+    const eomc_real w252 = w0 * w241;
+    const eomc_real w253 = q_r * w241;
+    const eomc_real w254 = w0 * w242;
+    const eomc_real w255 = w243 + w139;
+    const eomc_real w256 = w140 - w244;
+    const eomc_real w257 = w1 * w245;
+    const eomc_real w258 = q_r * w245;
+    const eomc_real w259 = w3 * w246;
+    const eomc_real w260 = w2 * w247;
+    const eomc_real w261 = w248 + w125;
+    const eomc_real w262 = w249 + w188;
+    const eomc_real w263 = w3 * w250;
+    const eomc_real w264 = w2 * w251;
+    const eomc_real w265 = w252 + w221;
+    const eomc_real w266 = p_m * w253;
+    const eomc_real w267 = w3 * w255;
+    const eomc_real w268 = w2 * w256;
+    const eomc_real w269 = p_m * w257;
+    const eomc_real w270 = p_m * w258;
+    const eomc_real w271 = w259 - w260;
+    const eomc_real w272 = w184 - w261;
+    const eomc_real w273 = w0 * w262;
+    const eomc_real w274 = w263 - w264;
+    const eomc_real w275 = p_m * w265;
+    const eomc_real w276 = w136 + w266;
+    const eomc_real w277 = w267 - w268;
+    const eomc_real w278 = w269 - w143;
+    const eomc_real w279 = w118 + w270;
+    const eomc_real w280 = p_m * w271;
+    dEdq[0] = w272;
+    const eomc_real w281 = w217 - w273;
+    const eomc_real w282 = p_m * w274;
+    dEdq[3] = w275;
+    const eomc_real w283 = w1 * w276;
+    const eomc_real w284 = p_m * w277;
+    dEdq[6] = w278;
+    const eomc_real w285 = w0 * w279;
+    dEdq[1] = w281;
+    dEdq[2] = w282;
+    dEdq[8] = w280;
+    const eomc_real w286 = w283 - w254;
+    dEdq[5] = w284;
+    const eomc_real w287 = w144 + w285;
+    dEdq[4] = w286;
+    const eomc_real w288 = -w287;
+    dEdq[7] = w288;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -1190,14 +1212,75 @@ static const int taylor_f[1] = {79};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {29};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+central_constant_speed_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+central_constant_speed_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+central_constant_speed_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+central_constant_speed_mass_bias(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *M,
+    eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+central_constant_speed_energy(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *TV);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+central_constant_speed_constraint(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *f, eomc_real *B);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+central_constant_speed_c_levels(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *pos,
+    eomc_real *vel);
+EOMC_ENTRY void
+central_constant_speed_c_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *dfdq, eomc_real *dfdv, eomc_real *dfdu,
+    eomc_real *dfdt, eomc_real *dBdq, eomc_real *dBdv, eomc_real *dBda,
+    eomc_real *dBdu, eomc_real *dBdt);
+EOMC_ENTRY void
+central_constant_speed_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt);
+EOMC_ENTRY int
+central_constant_speed_accel_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot, eomc_real *shared);
+EOMC_ENTRY int
+central_constant_speed_accel(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot);
+EOMC_ENTRY void
+central_constant_speed_minv_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    const eomc_real *shared, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY void
+central_constant_speed_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY int
+central_constant_speed_check(const double *p);
+EOMC_ENTRY void
+central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model central_constant_speed_model = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
     .nq = 3, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 5, .derive = central_constant_speed_derive,
+    .nd = 4, .derive = central_constant_speed_derive,
     .t_end = 5.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = central_constant_speed_initial, .inputs = central_constant_speed_inputs, .mass_bias = central_constant_speed_mass_bias,
     .energy = central_constant_speed_energy,
@@ -1253,3 +1336,4 @@ const eomc_model_ext central_constant_speed_model_ext = {
     .taylor = central_constant_speed_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

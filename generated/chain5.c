@@ -21,7 +21,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -31,27 +30,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[5] = {"q1", "q2", "q3", "q4", "q5"};
-static const char *const p_names[3] = {"m", "l", "g"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[3] = {1.0, 1.0, 9.81};
-static const unsigned char p_fixed[3] = {0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[5] = {
-    {"p1", EOMC_DRAW_PARTICLE, 2, 0},
-    {"p2", EOMC_DRAW_PARTICLE, 2, 0},
-    {"p3", EOMC_DRAW_PARTICLE, 2, 0},
-    {"p4", EOMC_DRAW_PARTICLE, 2, 0},
-    {"p5", EOMC_DRAW_PARTICLE, 2, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 chain5_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_l = p[1];
@@ -64,39 +65,29 @@ chain5_derive(const eomc_real *p, eomc_real *pd)
     pd[0] = w2;
     const eomc_real w4 = 0.5 * w2;
     pd[2] = w3;
-    const eomc_real w5 = 2.0 * w3;
-    const eomc_real w6 = (-2.0) * w3;
-    const eomc_real w7 = (-3.0) * w3;
-    const eomc_real w8 = (-4.0) * w3;
-    const eomc_real w9 = (-5.0) * w3;
-    const eomc_real w10 = 1.0 / w2;
-    const eomc_real w11 = w2 * w2;
-    const eomc_real w12 = 2.0 * w2;
-    const eomc_real w13 = 5.0 * w3;
-    const eomc_real w14 = 4.0 * w3;
-    const eomc_real w15 = 3.0 * w3;
+    const eomc_real w5 = (-2.0) * w3;
+    const eomc_real w6 = (-3.0) * w3;
+    const eomc_real w7 = (-4.0) * w3;
+    const eomc_real w8 = (-5.0) * w3;
+    const eomc_real w9 = 1.0 / w2;
+    const eomc_real w10 = w2 * w2;
     pd[1] = w4;
     pd[3] = w5;
     pd[4] = w6;
     pd[5] = w7;
     pd[6] = w8;
     pd[7] = w9;
-    pd[8] = w10;
-    pd[12] = w12;
-    pd[13] = w13;
-    pd[14] = w14;
-    pd[15] = w15;
-    const eomc_real w16 = w2 * w10;
-    const eomc_real w17 = w10 * w11;
-    pd[9] = w16;
-    pd[10] = w17;
-    const eomc_real w18 = w2 * w16;
-    pd[11] = w18;
+    const eomc_real w11 = w2 * w9;
+    const eomc_real w12 = w9 * w10;
+    pd[8] = w11;
+    pd[9] = w12;
+    const eomc_real w13 = w2 * w11;
+    pd[10] = w13;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 chain5_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -115,7 +106,7 @@ chain5_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 chain5_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
@@ -125,7 +116,7 @@ chain5_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 chain5_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -141,10 +132,10 @@ chain5_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_q5 = v[4];
     const eomc_real pd0 = p[3];
     const eomc_real pd2 = p[5];
+    const eomc_real pd3 = p[6];
     const eomc_real pd4 = p[7];
     const eomc_real pd5 = p[8];
     const eomc_real pd6 = p[9];
-    const eomc_real pd7 = p[10];
     (void)u;
     (void)t;
     const eomc_real w0 = q_q1 + q_q2;
@@ -178,10 +169,10 @@ chain5_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w21 = w10 + w12;
     M[24] = pd0;
     const eomc_real w22 = pd2 * w12;
-    const eomc_real w23 = pd4 * w10;
-    const eomc_real w24 = pd5 * w8;
-    const eomc_real w25 = pd6 * w6;
-    const eomc_real w26 = pd7 * w4;
+    const eomc_real w23 = pd3 * w10;
+    const eomc_real w24 = pd4 * w8;
+    const eomc_real w25 = pd5 * w6;
+    const eomc_real w26 = pd6 * w4;
     const eomc_real w27 = v_q1 * v_q1;
     const eomc_real w28 = v_q1 + v_q2;
     const eomc_real w29 = w14 + w8;
@@ -385,7 +376,7 @@ chain5_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 chain5_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -480,805 +471,13 @@ chain5_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 chain5_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
     eomc_real TV[2];
     chain5_energy(t, q, v, p, u, TV);
     h[0] = TV[0] + TV[1];
-}
-
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    const eomc_real q_q1 = q[0];
-    const eomc_real q_q2 = q[1];
-    const eomc_real q_q3 = q[2];
-    const eomc_real q_q4 = q[3];
-    const eomc_real q_q5 = q[4];
-    const eomc_real v_q1 = v[0];
-    const eomc_real v_q2 = v[1];
-    const eomc_real v_q3 = v[2];
-    const eomc_real v_q4 = v[3];
-    const eomc_real v_q5 = v[4];
-    const eomc_real a_q1 = a[0];
-    const eomc_real a_q2 = a[1];
-    const eomc_real a_q3 = a[2];
-    const eomc_real a_q4 = a[3];
-    const eomc_real a_q5 = a[4];
-    const eomc_real pd0 = p[3];
-    const eomc_real pd2 = p[5];
-    const eomc_real pd3 = p[6];
-    const eomc_real pd12 = p[15];
-    const eomc_real pd13 = p[16];
-    const eomc_real pd14 = p[17];
-    const eomc_real pd15 = p[18];
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    const eomc_real w0 = q_q1 + q_q2;
-    const eomc_real w1 = w0 + q_q3;
-    const eomc_real w2 = w1 + q_q4;
-    const eomc_real w3 = w2 + q_q5;
-    eomc_real ang[5], ang_sin[5], ang_cos[5]; /* 5 angles at once */
-    ang[0] = q_q1;
-    ang[1] = w0;
-    ang[2] = w1;
-    ang[3] = w2;
-    ang[4] = w3;
-    eomc_sincos(5, ang, ang_sin, ang_cos);
-    const eomc_real w4 = ang_sin[0];
-    const eomc_real w5 = ang_cos[0];
-    const eomc_real w6 = ang_sin[1];
-    const eomc_real w7 = ang_cos[1];
-    const eomc_real w8 = ang_sin[2];
-    const eomc_real w9 = ang_cos[2];
-    const eomc_real w10 = ang_sin[3];
-    const eomc_real w11 = ang_cos[3];
-    const eomc_real w12 = ang_sin[4];
-    const eomc_real w13 = ang_cos[4];
-    const eomc_real w14 = v_q1 * v_q1;
-    const eomc_real w15 = w4 * a_q1;
-    const eomc_real w16 = v_q1 + v_q2;
-    const eomc_real w17 = a_q1 + a_q2;
-    const eomc_real w18 = w4 + w6;
-    const eomc_real w19 = w5 + w7;
-    const eomc_real w20 = w5 * a_q1;
-    dEdt[0] = 0.0;
-    const eomc_real w21 = w6 + w8;
-    const eomc_real w22 = w7 + w9;
-    dEdt[1] = 0.0;
-    const eomc_real w23 = w8 + w10;
-    const eomc_real w24 = w9 + w11;
-    dEdt[2] = 0.0;
-    const eomc_real w25 = w10 + w12;
-    const eomc_real w26 = w11 + w13;
-    dEdt[3] = 0.0;
-    const eomc_real w27 = w13 * a_q1;
-    const eomc_real w28 = w12 * a_q1;
-    const eomc_real w29 = w5 * w12;
-    const eomc_real w30 = w4 * w13;
-    dEdv[24] = 0.0;
-    dEdt[4] = 0.0;
-    const eomc_real w31 = w5 * w14;
-    const eomc_real w32 = w7 * w16;
-    const eomc_real w33 = w6 * w17;
-    const eomc_real w34 = v_q3 + w16;
-    const eomc_real w35 = a_q3 + w17;
-    const eomc_real w36 = w18 + w8;
-    const eomc_real w37 = w19 + w9;
-    const eomc_real w38 = w4 * w14;
-    const eomc_real w39 = w7 * w17;
-    const eomc_real w40 = w6 * w16;
-    const eomc_real w41 = w10 + w21;
-    const eomc_real w42 = w11 + w22;
-    const eomc_real w43 = w12 + w23;
-    const eomc_real w44 = w13 + w24;
-    const eomc_real w45 = w11 + w26;
-    const eomc_real w46 = w10 + w25;
-    const eomc_real w47 = w13 * w17;
-    const eomc_real w48 = w12 * w16;
-    const eomc_real w49 = w12 * w17;
-    const eomc_real w50 = w13 * w16;
-    const eomc_real w51 = w12 * w14;
-    const eomc_real w52 = w13 * w14;
-    const eomc_real w53 = w29 - w30;
-    const eomc_real w54 = w31 + w15;
-    const eomc_real w55 = w16 * w32;
-    const eomc_real w56 = w9 * w34;
-    const eomc_real w57 = w8 * w35;
-    const eomc_real w58 = v_q4 + w34;
-    const eomc_real w59 = a_q4 + w35;
-    const eomc_real w60 = w36 + w10;
-    const eomc_real w61 = w37 + w11;
-    const eomc_real w62 = w20 - w38;
-    const eomc_real w63 = w16 * w40;
-    const eomc_real w64 = w9 * w35;
-    const eomc_real w65 = w8 * w34;
-    const eomc_real w66 = w12 + w41;
-    const eomc_real w67 = w13 + w42;
-    const eomc_real w68 = w24 + w44;
-    const eomc_real w69 = w23 + w43;
-    const eomc_real w70 = w35 * w45;
-    const eomc_real w71 = w34 * w46;
-    const eomc_real w72 = w35 * w46;
-    const eomc_real w73 = w34 * w45;
-    const eomc_real w74 = w17 * w45;
-    const eomc_real w75 = w16 * w46;
-    const eomc_real w76 = w17 * w46;
-    const eomc_real w77 = w16 * w45;
-    const eomc_real w78 = w14 * w46;
-    const eomc_real w79 = a_q1 * w45;
-    const eomc_real w80 = a_q1 * w46;
-    const eomc_real w81 = w14 * w45;
-    const eomc_real w82 = w32 * w46;
-    const eomc_real w83 = w40 * w45;
-    const eomc_real w84 = w5 * w46;
-    const eomc_real w85 = w4 * w45;
-    const eomc_real w86 = w13 * w35;
-    const eomc_real w87 = w12 * w34;
-    const eomc_real w88 = w12 * w35;
-    const eomc_real w89 = w13 * w34;
-    const eomc_real w90 = w16 * w48;
-    const eomc_real w91 = w16 * w50;
-    const eomc_real w92 = w51 + w27;
-    const eomc_real w93 = w28 - w52;
-    const eomc_real w94 = w12 * w32;
-    const eomc_real w95 = w13 * w40;
-    const eomc_real w96 = w6 * w50;
-    const eomc_real w97 = w7 * w48;
-    const eomc_real w98 = v_q1 * w53;
-    const eomc_real w99 = w55 + w33;
-    const eomc_real w100 = w34 * w56;
-    const eomc_real w101 = w11 * w58;
-    const eomc_real w102 = w10 * w59;
-    const eomc_real w103 = v_q5 + w58;
-    const eomc_real w104 = a_q5 + w59;
-    const eomc_real w105 = w60 + w12;
-    const eomc_real w106 = w61 + w13;
-    const eomc_real w107 = w39 - w63;
-    const eomc_real w108 = w34 * w65;
-    const eomc_real w109 = w11 * w59;
-    const eomc_real w110 = w10 * w58;
-    const eomc_real w111 = w42 + w67;
-    const eomc_real w112 = w41 + w66;
-    const eomc_real w113 = w59 * w68;
-    const eomc_real w114 = w58 * w69;
-    const eomc_real w115 = w59 * w69;
-    const eomc_real w116 = w58 * w68;
-    const eomc_real w117 = w9 + w68;
-    const eomc_real w118 = w8 + w69;
-    const eomc_real w119 = w59 * w45;
-    const eomc_real w120 = w58 * w46;
-    const eomc_real w121 = w59 * w46;
-    const eomc_real w122 = w58 * w45;
-    const eomc_real w123 = w34 * w71;
-    const eomc_real w124 = w34 * w73;
-    const eomc_real w125 = w16 * w75;
-    const eomc_real w126 = w16 * w77;
-    const eomc_real w127 = w78 + w79;
-    const eomc_real w128 = w80 - w81;
-    const eomc_real w129 = w56 * w46;
-    const eomc_real w130 = w65 * w45;
-    const eomc_real w131 = w8 * w73;
-    const eomc_real w132 = w9 * w71;
-    const eomc_real w133 = w6 * w77;
-    const eomc_real w134 = w7 * w75;
-    const eomc_real w135 = w84 - w85;
-    const eomc_real w136 = w13 * w59;
-    const eomc_real w137 = w12 * w58;
-    const eomc_real w138 = w12 * w59;
-    const eomc_real w139 = w13 * w58;
-    const eomc_real w140 = w34 * w87;
-    const eomc_real w141 = w34 * w89;
-    const eomc_real w142 = w47 + w90;
-    const eomc_real w143 = w49 - w91;
-    const eomc_real w144 = w4 * w92;
-    const eomc_real w145 = w5 * w93;
-    const eomc_real w146 = w12 * w56;
-    const eomc_real w147 = w13 * w65;
-    const eomc_real w148 = w8 * w89;
-    const eomc_real w149 = w9 * w87;
-    const eomc_real w150 = pd12 * w98;
-    const eomc_real w151 = w54 + w99;
-    const eomc_real w152 = w100 + w57;
-    const eomc_real w153 = w58 * w101;
-    const eomc_real w154 = w13 * w103;
-    const eomc_real w155 = w12 * w104;
-    const eomc_real w156 = w105 * w104;
-    const eomc_real w157 = w106 * w103;
-    const eomc_real w158 = w62 + w107;
-    const eomc_real w159 = w64 - w108;
-    const eomc_real w160 = w58 * w110;
-    const eomc_real w161 = w13 * w104;
-    const eomc_real w162 = w12 * w103;
-    const eomc_real w163 = w106 * w104;
-    const eomc_real w164 = w105 * w103;
-    const eomc_real w165 = w61 + w106;
-    const eomc_real w166 = w60 + w105;
-    const eomc_real w167 = w104 * w66;
-    const eomc_real w168 = w103 * w67;
-    const eomc_real w169 = w104 * w67;
-    const eomc_real w170 = w103 * w66;
-    const eomc_real w171 = w59 * w111;
-    const eomc_real w172 = w58 * w112;
-    const eomc_real w173 = w59 * w112;
-    const eomc_real w174 = w58 * w111;
-    const eomc_real w175 = w22 + w111;
-    const eomc_real w176 = w21 + w112;
-    const eomc_real w177 = w101 * w112;
-    const eomc_real w178 = w110 * w111;
-    const eomc_real w179 = w104 * w43;
-    const eomc_real w180 = w103 * w44;
-    const eomc_real w181 = w104 * w44;
-    const eomc_real w182 = w103 * w43;
-    const eomc_real w183 = w58 * w114;
-    const eomc_real w184 = pd0 * w115;
-    const eomc_real w185 = w58 * w116;
-    const eomc_real w186 = w35 * w117;
-    const eomc_real w187 = w34 * w118;
-    const eomc_real w188 = w35 * w118;
-    const eomc_real w189 = w34 * w117;
-    const eomc_real w190 = w17 * w117;
-    const eomc_real w191 = w16 * w118;
-    const eomc_real w192 = w17 * w118;
-    const eomc_real w193 = w16 * w117;
-    const eomc_real w194 = w14 * w118;
-    const eomc_real w195 = a_q1 * w117;
-    const eomc_real w196 = a_q1 * w118;
-    const eomc_real w197 = w14 * w117;
-    const eomc_real w198 = w101 * w69;
-    const eomc_real w199 = w110 * w68;
-    const eomc_real w200 = w10 * w116;
-    const eomc_real w201 = w11 * w114;
-    const eomc_real w202 = w56 * w118;
-    const eomc_real w203 = w65 * w117;
-    const eomc_real w204 = w32 * w118;
-    const eomc_real w205 = w40 * w117;
-    const eomc_real w206 = w5 * w118;
-    const eomc_real w207 = w4 * w117;
-    const eomc_real w208 = w104 * w25;
-    const eomc_real w209 = w103 * w26;
-    const eomc_real w210 = w104 * w26;
-    const eomc_real w211 = w103 * w25;
-    const eomc_real w212 = w58 * w120;
-    const eomc_real w213 = pd0 * w121;
-    const eomc_real w214 = w58 * w122;
-    const eomc_real w215 = w70 + w123;
-    const eomc_real w216 = w72 - w124;
-    const eomc_real w217 = w74 + w125;
-    const eomc_real w218 = w76 - w126;
-    const eomc_real w219 = w4 * w127;
-    const eomc_real w220 = w5 * w128;
-    const eomc_real w221 = w101 * w46;
-    const eomc_real w222 = w110 * w45;
-    const eomc_real w223 = w10 * w122;
-    const eomc_real w224 = w11 * w120;
-    const eomc_real w225 = v_q1 * w135;
-    const eomc_real w226 = w58 * w137;
-    const eomc_real w227 = w58 * w139;
-    const eomc_real w228 = w86 + w140;
-    const eomc_real w229 = w88 - w141;
-    const eomc_real w230 = w6 * w142;
-    const eomc_real w231 = w7 * w143;
-    const eomc_real w232 = pd0 * w144;
-    const eomc_real w233 = pd0 * w145;
-    const eomc_real w234 = w12 * w101;
-    const eomc_real w235 = w13 * w110;
-    const eomc_real w236 = w10 * w139;
-    const eomc_real w237 = w11 * w137;
-    const eomc_real w238 = w151 + w152;
-    const eomc_real w239 = w153 + w102;
-    const eomc_real w240 = w103 * w154;
-    const eomc_real w241 = pd0 * w156;
-    const eomc_real w242 = w103 * w157;
-    const eomc_real w243 = w158 + w159;
-    const eomc_real w244 = w109 - w160;
-    const eomc_real w245 = w103 * w162;
-    const eomc_real w246 = w103 * w164;
-    const eomc_real w247 = w59 * w165;
-    const eomc_real w248 = w58 * w166;
-    const eomc_real w249 = w59 * w166;
-    const eomc_real w250 = w58 * w165;
-    const eomc_real w251 = w37 + w165;
-    const eomc_real w252 = w36 + w166;
-    const eomc_real w253 = w105 * w154;
-    const eomc_real w254 = w106 * w162;
-    const eomc_real w255 = w12 * w157;
-    const eomc_real w256 = w13 * w164;
-    const eomc_real w257 = w101 * w166;
-    const eomc_real w258 = w110 * w165;
-    const eomc_real w259 = pd0 * w167;
-    const eomc_real w260 = w103 * w168;
-    const eomc_real w261 = w103 * w170;
-    const eomc_real w262 = w58 * w172;
-    const eomc_real w263 = pd0 * w173;
-    const eomc_real w264 = w58 * w174;
-    const eomc_real w265 = w35 * w175;
-    const eomc_real w266 = w34 * w176;
-    const eomc_real w267 = w35 * w176;
-    const eomc_real w268 = w34 * w175;
-    const eomc_real w269 = w7 + w175;
-    const eomc_real w270 = w6 + w176;
-    const eomc_real w271 = w154 * w66;
-    const eomc_real w272 = w162 * w67;
-    const eomc_real w273 = w12 * w168;
-    const eomc_real w274 = w13 * w170;
-    const eomc_real w275 = w10 * w174;
-    const eomc_real w276 = w11 * w172;
-    const eomc_real w277 = w56 * w176;
-    const eomc_real w278 = w65 * w175;
-    const eomc_real w279 = pd0 * w179;
-    const eomc_real w280 = w103 * w180;
-    const eomc_real w281 = w103 * w182;
-    const eomc_real w282 = pd0 * w185;
-    const eomc_real w283 = w34 * w187;
-    const eomc_real w284 = pd0 * w188;
-    const eomc_real w285 = w34 * w189;
-    const eomc_real w286 = w16 * w191;
-    const eomc_real w287 = w16 * w193;
-    const eomc_real w288 = w194 + w195;
-    const eomc_real w289 = w196 - w197;
-    const eomc_real w290 = w154 * w43;
-    const eomc_real w291 = w162 * w44;
-    const eomc_real w292 = w12 * w180;
-    const eomc_real w293 = w13 * w182;
-    const eomc_real w294 = w8 * w189;
-    const eomc_real w295 = w9 * w187;
-    const eomc_real w296 = w6 * w193;
-    const eomc_real w297 = w7 * w191;
-    const eomc_real w298 = w206 - w207;
-    const eomc_real w299 = pd0 * w208;
-    const eomc_real w300 = w103 * w209;
-    const eomc_real w301 = w103 * w211;
-    const eomc_real w302 = pd0 * w214;
-    const eomc_real w303 = w8 * w215;
-    const eomc_real w304 = w9 * w216;
-    const eomc_real w305 = w6 * w217;
-    const eomc_real w306 = w7 * w218;
-    const eomc_real w307 = pd0 * w219;
-    const eomc_real w308 = pd0 * w220;
-    const eomc_real w309 = w154 * w25;
-    const eomc_real w310 = w162 * w26;
-    const eomc_real w311 = w12 * w209;
-    const eomc_real w312 = w13 * w211;
-    const eomc_real w313 = pd12 * w225;
-    const eomc_real w314 = pd0 * w155;
-    const eomc_real w315 = w136 + w226;
-    const eomc_real w316 = w138 - w227;
-    const eomc_real w317 = w8 * w228;
-    const eomc_real w318 = w9 * w229;
-    const eomc_real w319 = pd0 * w230;
-    const eomc_real w320 = pd0 * w231;
-    const eomc_real w321 = w234 - w235;
-    const eomc_real w322 = w238 + w239;
-    const eomc_real w323 = w240 + w155;
-    const eomc_real w324 = pd0 * w242;
-    const eomc_real w325 = w243 + w244;
-    const eomc_real w326 = w161 - w245;
-    const eomc_real w327 = w58 * w248;
-    const eomc_real w328 = pd0 * w249;
-    const eomc_real w329 = w58 * w250;
-    const eomc_real w330 = w35 * w251;
-    const eomc_real w331 = w34 * w252;
-    const eomc_real w332 = w35 * w252;
-    const eomc_real w333 = w34 * w251;
-    const eomc_real w334 = w19 + w251;
-    const eomc_real w335 = w18 + w252;
-    const eomc_real w336 = w253 - w254;
-    const eomc_real w337 = w10 * w250;
-    const eomc_real w338 = w11 * w248;
-    const eomc_real w339 = w56 * w252;
-    const eomc_real w340 = w65 * w251;
-    const eomc_real w341 = pd0 * w260;
-    const eomc_real w342 = pd0 * w264;
-    const eomc_real w343 = w34 * w266;
-    const eomc_real w344 = pd0 * w267;
-    const eomc_real w345 = w34 * w268;
-    const eomc_real w346 = w17 * w269;
-    const eomc_real w347 = w16 * w270;
-    const eomc_real w348 = w17 * w270;
-    const eomc_real w349 = w16 * w269;
-    const eomc_real w350 = w14 * w270;
-    const eomc_real w351 = a_q1 * w269;
-    const eomc_real w352 = a_q1 * w270;
-    const eomc_real w353 = w14 * w269;
-    const eomc_real w354 = w271 - w272;
-    const eomc_real w355 = w8 * w268;
-    const eomc_real w356 = w9 * w266;
-    const eomc_real w357 = w32 * w270;
-    const eomc_real w358 = w40 * w269;
-    const eomc_real w359 = w5 * w270;
-    const eomc_real w360 = w4 * w269;
-    const eomc_real w361 = pd0 * w280;
-    const eomc_real w362 = pd0 * w285;
-    const eomc_real w363 = w190 + w286;
-    const eomc_real w364 = w192 - w287;
-    const eomc_real w365 = w4 * w288;
-    const eomc_real w366 = w5 * w289;
-    const eomc_real w367 = w290 - w291;
-    const eomc_real w368 = v_q1 * w298;
-    const eomc_real w369 = pd0 * w300;
-    const eomc_real w370 = pd0 * w303;
-    const eomc_real w371 = pd0 * w304;
-    const eomc_real w372 = pd0 * w305;
-    const eomc_real w373 = pd0 * w306;
-    const eomc_real w374 = w309 - w310;
-    const eomc_real w375 = pd0 * w240;
-    const eomc_real w376 = w10 * w315;
-    const eomc_real w377 = w11 * w316;
-    const eomc_real w378 = pd0 * w317;
-    const eomc_real w379 = pd0 * w318;
-    const eomc_real w380 = w321 - w236;
-    const eomc_real w381 = w322 + w323;
-    const eomc_real w382 = w325 + w326;
-    const eomc_real w383 = pd0 * w329;
-    const eomc_real w384 = w34 * w331;
-    const eomc_real w385 = pd0 * w332;
-    const eomc_real w386 = w34 * w333;
-    const eomc_real w387 = w17 * w334;
-    const eomc_real w388 = w16 * w335;
-    const eomc_real w389 = w17 * w335;
-    const eomc_real w390 = w16 * w334;
-    const eomc_real w391 = w4 + w335;
-    const eomc_real w392 = w5 + w334;
-    const eomc_real w393 = w336 - w255;
-    const eomc_real w394 = w8 * w333;
-    const eomc_real w395 = w9 * w331;
-    const eomc_real w396 = w32 * w335;
-    const eomc_real w397 = w40 * w334;
-    const eomc_real w398 = pd0 * w345;
-    const eomc_real w399 = w16 * w347;
-    const eomc_real w400 = pd0 * w348;
-    const eomc_real w401 = w16 * w349;
-    const eomc_real w402 = w350 + w351;
-    const eomc_real w403 = w352 - w353;
-    const eomc_real w404 = w354 - w273;
-    const eomc_real w405 = w6 * w349;
-    const eomc_real w406 = w7 * w347;
-    const eomc_real w407 = w359 - w360;
-    const eomc_real w408 = w6 * w363;
-    const eomc_real w409 = w7 * w364;
-    const eomc_real w410 = pd0 * w365;
-    const eomc_real w411 = pd0 * w366;
-    const eomc_real w412 = w367 - w292;
-    const eomc_real w413 = pd12 * w368;
-    const eomc_real w414 = w374 - w311;
-    const eomc_real w415 = pd0 * w376;
-    const eomc_real w416 = pd0 * w377;
-    const eomc_real w417 = w380 + w237;
-    const eomc_real w418 = pd0 * w381;
-    const eomc_real w419 = w382 + w163;
-    const eomc_real w420 = w325 + w382;
-    const eomc_real w421 = w322 + w381;
-    const eomc_real w422 = pd0 * w386;
-    const eomc_real w423 = w16 * w388;
-    const eomc_real w424 = pd0 * w389;
-    const eomc_real w425 = w16 * w390;
-    const eomc_real w426 = w14 * w391;
-    const eomc_real w427 = a_q1 * w392;
-    const eomc_real w428 = a_q1 * w391;
-    const eomc_real w429 = w14 * w392;
-    const eomc_real w430 = w393 + w256;
-    const eomc_real w431 = w6 * w390;
-    const eomc_real w432 = w7 * w388;
-    const eomc_real w433 = w5 * w391;
-    const eomc_real w434 = w4 * w392;
-    const eomc_real w435 = w382 + w169;
-    const eomc_real w436 = pd0 * w401;
-    const eomc_real w437 = w4 * w402;
-    const eomc_real w438 = w5 * w403;
-    const eomc_real w439 = w404 + w274;
-    const eomc_real w440 = v_q1 * w407;
-    const eomc_real w441 = w382 + w181;
-    const eomc_real w442 = pd0 * w408;
-    const eomc_real w443 = pd0 * w409;
-    const eomc_real w444 = w412 + w293;
-    const eomc_real w445 = w382 + w210;
-    const eomc_real w446 = w414 + w312;
-    const eomc_real w447 = w161 + w382;
-    const eomc_real w448 = w417 + w146;
-    const eomc_real w449 = pd0 * w417;
-    const eomc_real w450 = pd2 + w418;
-    const eomc_real w451 = w419 + w246;
-    const eomc_real w452 = w420 + w247;
-    const eomc_real w453 = pd0 * w421;
-    const eomc_real w454 = w243 + w420;
-    const eomc_real w455 = w238 + w421;
-    const eomc_real w456 = pd0 * w425;
-    const eomc_real w457 = pd0 * w428;
-    const eomc_real w458 = pd0 * w429;
-    const eomc_real w459 = w430 + w257;
-    const eomc_real w460 = w433 - w434;
-    const eomc_real w461 = pd0 * w430;
-    const eomc_real w462 = w435 + w261;
-    const eomc_real w463 = w420 + w171;
-    const eomc_real w464 = pd0 * w437;
-    const eomc_real w465 = pd0 * w438;
-    const eomc_real w466 = w439 + w177;
-    const eomc_real w467 = pd12 * w440;
-    const eomc_real w468 = pd0 * w439;
-    const eomc_real w469 = w441 + w281;
-    const eomc_real w470 = w420 + w113;
-    const eomc_real w471 = w444 + w198;
-    const eomc_real w472 = pd0 * w444;
-    const eomc_real w473 = w445 + w301;
-    const eomc_real w474 = w420 + w119;
-    const eomc_real w475 = w446 + w221;
-    const eomc_real w476 = pd0 * w446;
-    const eomc_real w477 = w245 + w447;
-    const eomc_real w478 = w448 - w147;
-    dEdv[23] = w449;
-    const eomc_real w479 = w450 + w241;
-    const eomc_real w480 = w12 * w451;
-    const eomc_real w481 = w452 + w327;
-    const eomc_real w482 = pd3 + w453;
-    const eomc_real w483 = w454 + w330;
-    const eomc_real w484 = pd0 * w455;
-    const eomc_real w485 = w158 + w454;
-    const eomc_real w486 = w151 + w455;
-    const eomc_real w487 = w459 - w258;
-    const eomc_real w488 = v_q1 * w460;
-    dEdv[4] = w461;
-    const eomc_real w489 = w450 + w259;
-    const eomc_real w490 = w12 * w462;
-    const eomc_real w491 = w463 + w262;
-    const eomc_real w492 = w454 + w265;
-    const eomc_real w493 = w466 - w178;
-    dEdv[9] = w468;
-    const eomc_real w494 = w450 + w279;
-    const eomc_real w495 = w12 * w469;
-    const eomc_real w496 = w470 + w183;
-    const eomc_real w497 = w454 + w186;
-    const eomc_real w498 = w471 - w199;
-    dEdv[14] = w472;
-    const eomc_real w499 = w450 + w299;
-    const eomc_real w500 = w12 * w473;
-    const eomc_real w501 = w474 + w212;
-    const eomc_real w502 = w475 - w222;
-    dEdv[19] = w476;
-    const eomc_real w503 = w450 + w314;
-    const eomc_real w504 = w12 * w477;
-    const eomc_real w505 = w478 - w148;
-    const eomc_real w506 = w479 - w324;
-    const eomc_real w507 = pd0 * w480;
-    const eomc_real w508 = w10 * w481;
-    const eomc_real w509 = w482 + w328;
-    const eomc_real w510 = w483 + w384;
-    const eomc_real w511 = pd15 + w484;
-    const eomc_real w512 = w485 + w387;
-    const eomc_real w513 = pd0 * w486;
-    const eomc_real w514 = w62 + w485;
-    const eomc_real w515 = w54 + w486;
-    const eomc_real w516 = w487 - w337;
-    const eomc_real w517 = pd12 * w488;
-    const eomc_real w518 = w489 - w341;
-    const eomc_real w519 = pd0 * w490;
-    const eomc_real w520 = w10 * w491;
-    const eomc_real w521 = w482 + w263;
-    const eomc_real w522 = w492 + w343;
-    const eomc_real w523 = w485 + w346;
-    const eomc_real w524 = w493 - w275;
-    const eomc_real w525 = w494 - w361;
-    const eomc_real w526 = pd0 * w495;
-    const eomc_real w527 = w10 * w496;
-    const eomc_real w528 = w482 + w184;
-    const eomc_real w529 = w497 + w283;
-    const eomc_real w530 = w498 - w200;
-    const eomc_real w531 = w499 - w369;
-    const eomc_real w532 = pd0 * w500;
-    const eomc_real w533 = w10 * w501;
-    const eomc_real w534 = w482 + w213;
-    const eomc_real w535 = w502 - w223;
-    const eomc_real w536 = w503 - w375;
-    const eomc_real w537 = pd0 * w504;
-    const eomc_real w538 = w505 + w149;
-    const eomc_real w539 = w13 * w506;
-    const eomc_real w540 = pd0 * w508;
-    const eomc_real w541 = w509 - w383;
-    const eomc_real w542 = w8 * w510;
-    const eomc_real w543 = w511 + w385;
-    const eomc_real w544 = w512 + w423;
-    const eomc_real w545 = pd14 + w513;
-    const eomc_real w546 = w514 + w426;
-    const eomc_real w547 = pd0 * w515;
-    const eomc_real w548 = w516 + w338;
-    const eomc_real w549 = w13 * w518;
-    const eomc_real w550 = pd0 * w520;
-    const eomc_real w551 = w521 - w342;
-    const eomc_real w552 = w8 * w522;
-    const eomc_real w553 = w511 + w344;
-    const eomc_real w554 = w523 + w399;
-    const eomc_real w555 = w524 + w276;
-    const eomc_real w556 = w13 * w525;
-    const eomc_real w557 = pd0 * w527;
-    const eomc_real w558 = w528 - w282;
-    const eomc_real w559 = w8 * w529;
-    const eomc_real w560 = w511 + w284;
-    const eomc_real w561 = w530 + w201;
-    const eomc_real w562 = w13 * w531;
-    const eomc_real w563 = pd0 * w533;
-    const eomc_real w564 = w534 - w302;
-    const eomc_real w565 = w535 + w224;
-    const eomc_real w566 = w13 * w536;
-    const eomc_real w567 = w538 + w94;
-    const eomc_real w568 = pd0 * w538;
-    const eomc_real w569 = w539 - w507;
-    const eomc_real w570 = w11 * w541;
-    const eomc_real w571 = pd0 * w542;
-    const eomc_real w572 = w543 - w422;
-    const eomc_real w573 = w6 * w544;
-    const eomc_real w574 = w545 + w424;
-    const eomc_real w575 = w546 + w427;
-    const eomc_real w576 = pd13 + w547;
-    const eomc_real w577 = w548 + w339;
-    const eomc_real w578 = pd0 * w548;
-    const eomc_real w579 = w549 - w519;
-    const eomc_real w580 = w11 * w551;
-    const eomc_real w581 = pd0 * w552;
-    const eomc_real w582 = w553 - w398;
-    const eomc_real w583 = w6 * w554;
-    const eomc_real w584 = w545 + w400;
-    const eomc_real w585 = w555 + w277;
-    const eomc_real w586 = pd0 * w555;
-    const eomc_real w587 = w556 - w526;
-    const eomc_real w588 = w11 * w558;
-    const eomc_real w589 = pd0 * w559;
-    const eomc_real w590 = w560 - w362;
-    const eomc_real w591 = w561 + w202;
-    const eomc_real w592 = pd0 * w561;
-    const eomc_real w593 = w562 - w532;
-    const eomc_real w594 = w11 * w564;
-    const eomc_real w595 = w565 + w129;
-    const eomc_real w596 = pd0 * w565;
-    const eomc_real w597 = w566 - w537;
-    const eomc_real w598 = w567 - w95;
-    dEdv[22] = w568;
-    const eomc_real w599 = w569 - w540;
-    const eomc_real w600 = w9 * w572;
-    const eomc_real w601 = pd0 * w573;
-    const eomc_real w602 = w574 - w456;
-    const eomc_real w603 = w4 * w575;
-    const eomc_real w604 = w576 + w457;
-    dEdq[4] = w569;
-    const eomc_real w605 = w577 - w340;
-    dEdv[3] = w578;
-    const eomc_real w606 = w579 - w550;
-    const eomc_real w607 = w9 * w582;
-    const eomc_real w608 = pd0 * w583;
-    const eomc_real w609 = w584 - w436;
-    dEdq[9] = w579;
-    const eomc_real w610 = w585 - w278;
-    dEdv[8] = w586;
-    const eomc_real w611 = w587 - w557;
-    const eomc_real w612 = w9 * w590;
-    dEdq[14] = w587;
-    const eomc_real w613 = w591 - w203;
-    dEdv[13] = w592;
-    const eomc_real w614 = w593 - w563;
-    dEdq[19] = w593;
-    const eomc_real w615 = w595 - w130;
-    dEdv[18] = w596;
-    const eomc_real w616 = w597 - w415;
-    dEdq[24] = w597;
-    const eomc_real w617 = w598 - w96;
-    const eomc_real w618 = w599 + w570;
-    const eomc_real w619 = w7 * w602;
-    const eomc_real w620 = pd0 * w603;
-    const eomc_real w621 = w604 - w458;
-    const eomc_real w622 = w605 - w394;
-    const eomc_real w623 = w606 + w580;
-    const eomc_real w624 = w7 * w609;
-    const eomc_real w625 = w610 - w355;
-    const eomc_real w626 = w611 + w588;
-    const eomc_real w627 = w613 - w294;
-    const eomc_real w628 = w614 + w594;
-    const eomc_real w629 = w615 - w131;
-    const eomc_real w630 = w616 + w416;
-    const eomc_real w631 = w617 + w97;
-    const eomc_real w632 = w618 - w571;
-    const eomc_real w633 = w5 * w621;
-    dEdq[3] = w618;
-    const eomc_real w634 = w622 + w395;
-    const eomc_real w635 = w623 - w581;
-    dEdq[8] = w623;
-    const eomc_real w636 = w625 + w356;
-    const eomc_real w637 = w626 - w589;
-    dEdq[13] = w626;
-    const eomc_real w638 = w627 + w295;
-    const eomc_real w639 = w628 - w370;
-    dEdq[18] = w628;
-    const eomc_real w640 = w629 + w132;
-    const eomc_real w641 = w630 - w378;
-    dEdq[23] = w630;
-    const eomc_real w642 = pd0 * w631;
-    const eomc_real w643 = w632 + w600;
-    const eomc_real w644 = w634 + w396;
-    const eomc_real w645 = pd0 * w634;
-    const eomc_real w646 = w635 + w607;
-    const eomc_real w647 = w636 + w357;
-    const eomc_real w648 = pd0 * w636;
-    const eomc_real w649 = w637 + w612;
-    const eomc_real w650 = w638 + w204;
-    const eomc_real w651 = pd0 * w638;
-    const eomc_real w652 = w639 + w371;
-    const eomc_real w653 = w640 + w82;
-    const eomc_real w654 = pd0 * w640;
-    const eomc_real w655 = w641 + w379;
-    const eomc_real w656 = w642 + w150;
-    dEdv[21] = w642;
-    const eomc_real w657 = w643 - w601;
-    dEdq[2] = w643;
-    const eomc_real w658 = w644 - w397;
-    dEdv[2] = w645;
-    const eomc_real w659 = w646 - w608;
-    dEdq[7] = w646;
-    const eomc_real w660 = w647 - w358;
-    dEdv[7] = w648;
-    const eomc_real w661 = w649 - w442;
-    dEdq[12] = w649;
-    const eomc_real w662 = w650 - w205;
-    dEdv[12] = w651;
-    const eomc_real w663 = w652 - w372;
-    dEdq[17] = w652;
-    const eomc_real w664 = w653 - w83;
-    dEdv[17] = w654;
-    const eomc_real w665 = w655 - w319;
-    dEdq[22] = w655;
-    dEdv[20] = w656;
-    const eomc_real w666 = w657 + w619;
-    const eomc_real w667 = w658 - w431;
-    const eomc_real w668 = w659 + w624;
-    const eomc_real w669 = w660 - w405;
-    const eomc_real w670 = w661 + w443;
-    const eomc_real w671 = w662 - w296;
-    const eomc_real w672 = w663 + w373;
-    const eomc_real w673 = w664 - w133;
-    const eomc_real w674 = w665 + w320;
-    const eomc_real w675 = w666 - w620;
-    dEdq[1] = w666;
-    const eomc_real w676 = w667 + w432;
-    const eomc_real w677 = w668 - w464;
-    dEdq[6] = w668;
-    const eomc_real w678 = w669 + w406;
-    const eomc_real w679 = w670 - w410;
-    dEdq[11] = w670;
-    const eomc_real w680 = w671 + w297;
-    const eomc_real w681 = w672 - w307;
-    dEdq[16] = w672;
-    const eomc_real w682 = w673 + w134;
-    const eomc_real w683 = w674 - w232;
-    dEdq[21] = w674;
-    const eomc_real w684 = w675 + w633;
-    const eomc_real w685 = pd0 * w676;
-    const eomc_real w686 = w677 + w465;
-    const eomc_real w687 = pd0 * w678;
-    const eomc_real w688 = w679 + w411;
-    const eomc_real w689 = pd0 * w680;
-    const eomc_real w690 = w681 + w308;
-    const eomc_real w691 = pd0 * w682;
-    const eomc_real w692 = w683 + w233;
-    dEdq[0] = w684;
-    const eomc_real w693 = w685 + w517;
-    dEdv[1] = w685;
-    dEdq[5] = w686;
-    const eomc_real w694 = w687 + w467;
-    dEdv[6] = w687;
-    dEdq[10] = w688;
-    const eomc_real w695 = w689 + w413;
-    dEdv[11] = w689;
-    dEdq[15] = w690;
-    const eomc_real w696 = w691 + w313;
-    dEdv[0] = w693;
-    dEdv[5] = w694;
-    dEdv[10] = w695;
-    dEdv[15] = w696;
-    dEdv[16] = w691;
-    dEdq[20] = w692;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -1303,6 +502,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_q5 = v[4];
     const eomc_real pd0 = p[3];
     const eomc_real pd2 = p[5];
+    const eomc_real pd3 = p[6];
     const eomc_real pd4 = p[7];
     const eomc_real pd5 = p[8];
     const eomc_real pd6 = p[9];
@@ -1310,7 +510,6 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd8 = p[11];
     const eomc_real pd9 = p[12];
     const eomc_real pd10 = p[13];
-    const eomc_real pd11 = p[14];
     (void)u;
     (void)t;
     const eomc_real w0 = q_q1 + q_q2;
@@ -1347,10 +546,10 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w22 = pd2 * w12;
     const eomc_real w23 = v_q1 + v_q2;
     const eomc_real w24 = v_q1 * v_q1;
-    const eomc_real w25 = pd4 * w10;
-    const eomc_real w26 = pd5 * w8;
-    const eomc_real w27 = pd6 * w6;
-    const eomc_real w28 = pd7 * w4;
+    const eomc_real w25 = pd3 * w10;
+    const eomc_real w26 = pd4 * w8;
+    const eomc_real w27 = pd5 * w6;
+    const eomc_real w28 = pd6 * w4;
     const eomc_real w29 = w14 + w8;
     const eomc_real w30 = w15 + w9;
     const eomc_real w31 = w11 + w16;
@@ -1410,7 +609,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w85 = w45 + w62;
     const eomc_real w86 = w46 + w63;
     const eomc_real w87 = w47 + w64;
-    const eomc_real w88 = pd10 * w65;
+    const eomc_real w88 = pd9 * w65;
     const eomc_real w89 = w66 + w67;
     const eomc_real w90 = w8 * w69;
     const eomc_real w91 = w9 * w70;
@@ -1435,8 +634,8 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w110 = w30 + w86;
     const eomc_real w111 = pd0 * w87;
     const eomc_real w112 = w89 + w68;
-    const eomc_real w113 = pd10 * w92;
-    const eomc_real w114 = pd11 * w93;
+    const eomc_real w113 = pd9 * w92;
+    const eomc_real w114 = pd10 * w93;
     const eomc_real w115 = w94 + w95;
     const eomc_real w116 = w8 * w97;
     const eomc_real w117 = w9 * w98;
@@ -1463,9 +662,9 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w138 = w115 + w96;
     const eomc_real w139 = w6 * w118;
     const eomc_real w140 = w7 * w119;
-    const eomc_real w141 = pd10 * w120;
-    const eomc_real w142 = pd11 * w121;
-    const eomc_real w143 = pd11 * w122;
+    const eomc_real w141 = pd9 * w120;
+    const eomc_real w142 = pd10 * w121;
+    const eomc_real w143 = pd10 * w122;
     const eomc_real w144 = w106 * w94;
     mkk[3] = w111;
     const eomc_real w145 = w123 + w124;
@@ -1475,15 +674,15 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w149 = w7 * w131;
     const eomc_real w150 = w4 + w130;
     const eomc_real w151 = w5 + w131;
-    const eomc_real w152 = pd10 * w132;
+    const eomc_real w152 = pd9 * w132;
     const eomc_real w153 = 1.0 / w133;
-    const eomc_real w154 = pd11 * w134;
+    const eomc_real w154 = pd10 * w134;
     const eomc_real w155 = w135 + w91;
     const eomc_real w156 = w136 - w114;
-    const eomc_real w157 = pd11 * w137;
+    const eomc_real w157 = pd10 * w137;
     const eomc_real w158 = w138 + w116;
     const eomc_real w159 = pd0 * w138;
-    const eomc_real w160 = pd11 * w144;
+    const eomc_real w160 = pd10 * w144;
     piv[3] = w133;
     const eomc_real w161 = w12 * w145;
     const eomc_real w162 = w13 * w146;
@@ -1537,7 +736,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w209 = w4 * w199;
     const eomc_real w210 = w5 * w200;
     const eomc_real w211 = w106 * w195;
-    const eomc_real w212 = pd8 * w195;
+    const eomc_real w212 = pd7 * w195;
     const eomc_real w213 = w153 * w191;
     const eomc_real w214 = w153 * w170;
     const eomc_real w215 = w153 * w179;
@@ -1547,12 +746,12 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w219 = w201 + w166;
     const eomc_real w220 = pd0 * w201;
     mkk[1] = w203;
-    const eomc_real w221 = pd9 * w204;
+    const eomc_real w221 = pd8 * w204;
     const eomc_real w222 = w44 + w205;
-    const eomc_real w223 = pd9 * w206;
+    const eomc_real w223 = pd8 * w206;
     const eomc_real w224 = w207 - w187;
-    const eomc_real w225 = pd9 * w208;
-    const eomc_real w226 = pd9 * w211;
+    const eomc_real w225 = pd8 * w208;
+    const eomc_real w226 = pd8 * w211;
     const eomc_real w227 = w152 + w213;
     const eomc_real w228 = w180 - w214;
     const eomc_real w229 = w156 * w215;
@@ -1627,7 +826,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w293 = w289 + w282;
     const eomc_real w294 = w290 - w267;
     const eomc_real w295 = w249 + w291;
-    const eomc_real w296 = pd9 * w292;
+    const eomc_real w296 = pd8 * w292;
     a[1] = w293;
     const eomc_real w297 = w266 * w293;
     const eomc_real w298 = w217 * w293;
@@ -1635,17 +834,17 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w300 = w94 * w293;
     const eomc_real w301 = w294 - w297;
     const eomc_real w302 = w295 - w298;
-    const eomc_real w303 = pd9 * w300;
+    const eomc_real w303 = pd8 * w300;
     a[2] = w301;
     const eomc_real w304 = w218 * w301;
     const eomc_real w305 = w299 - w303;
     const eomc_real w306 = w66 * w301;
     const eomc_real w307 = w302 - w304;
-    const eomc_real w308 = pd9 * w306;
+    const eomc_real w308 = pd8 * w306;
     a[3] = w307;
     const eomc_real w309 = w305 - w308;
     const eomc_real w310 = w49 * w307;
-    const eomc_real w311 = pd9 * w310;
+    const eomc_real w311 = pd8 * w310;
     const eomc_real w312 = w309 - w311;
     a[4] = w312;
 }
@@ -1653,7 +852,7 @@ chain5_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 chain5_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -1675,24 +874,10 @@ chain5_check_values(const eomc_real *p, eomc_real *chk)
     chk[4] = p_m;
 }
 
-static const char *const check_what[5] = {
-    "particle 'p1': a mass cannot be negative",
-    "particle 'p2': a mass cannot be negative",
-    "particle 'p3': a mass cannot be negative",
-    "particle 'p4': a mass cannot be negative",
-    "particle 'p5': a mass cannot be negative",
-};
-static const char *const check_params[5] = {
-    "m",
-    "m",
-    "m",
-    "m",
-    "m",
-};
 static const unsigned char check_strict[5] = {0, 0, 0, 0, 0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 chain5_check(const double *p)
 {
     eomc_real chk[5];
@@ -1702,7 +887,7 @@ chain5_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -1789,6 +974,835 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 #endif /* EOMC_EXTENDED */
 
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[5] = {"q1", "q2", "q3", "q4", "q5"};
+static const char *const p_names[3] = {"m", "l", "g"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[3] = {1.0, 1.0, 9.81};
+static const unsigned char p_fixed[3] = {0, 0, 0};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[5] = {
+    {"p1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p2", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p3", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p4", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p5", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+static const char *const check_what[5] = {
+    "particle 'p1': a mass cannot be negative",
+    "particle 'p2': a mass cannot be negative",
+    "particle 'p3': a mass cannot be negative",
+    "particle 'p4': a mass cannot be negative",
+    "particle 'p5': a mass cannot be negative",
+};
+static const char *const check_params[5] = {
+    "m",
+    "m",
+    "m",
+    "m",
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+chain5_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    const eomc_real q_q1 = q[0];
+    const eomc_real q_q2 = q[1];
+    const eomc_real q_q3 = q[2];
+    const eomc_real q_q4 = q[3];
+    const eomc_real q_q5 = q[4];
+    const eomc_real v_q1 = v[0];
+    const eomc_real v_q2 = v[1];
+    const eomc_real v_q3 = v[2];
+    const eomc_real v_q4 = v[3];
+    const eomc_real v_q5 = v[4];
+    const eomc_real a_q1 = a[0];
+    const eomc_real a_q2 = a[1];
+    const eomc_real a_q3 = a[2];
+    const eomc_real a_q4 = a[3];
+    const eomc_real a_q5 = a[4];
+    const eomc_real pd0 = p[3];
+    const eomc_real pd2 = p[5];
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    const eomc_real w0 = q_q1 + q_q2;
+    const eomc_real w1 = w0 + q_q3;
+    const eomc_real w2 = w1 + q_q4;
+    const eomc_real w3 = w2 + q_q5;
+    eomc_real ang[5], ang_sin[5], ang_cos[5]; /* 5 angles at once */
+    ang[0] = q_q1;
+    ang[1] = w0;
+    ang[2] = w1;
+    ang[3] = w2;
+    ang[4] = w3;
+    eomc_sincos(5, ang, ang_sin, ang_cos);
+    const eomc_real w4 = ang_sin[0];
+    const eomc_real w5 = ang_cos[0];
+    const eomc_real w6 = ang_sin[1];
+    const eomc_real w7 = ang_cos[1];
+    const eomc_real w8 = ang_sin[2];
+    const eomc_real w9 = ang_cos[2];
+    const eomc_real w10 = ang_sin[3];
+    const eomc_real w11 = ang_cos[3];
+    const eomc_real w12 = ang_sin[4];
+    const eomc_real w13 = ang_cos[4];
+    const eomc_real w14 = v_q1 * v_q1;
+    const eomc_real w15 = w4 * a_q1;
+    const eomc_real w16 = v_q1 + v_q2;
+    const eomc_real w17 = a_q1 + a_q2;
+    const eomc_real w18 = w4 + w6;
+    const eomc_real w19 = w5 + w7;
+    const eomc_real w20 = w5 * a_q1;
+    const eomc_real w21 = 2.0 * pd2;
+    const eomc_real w22 = 3.0 * pd2;
+    const eomc_real w23 = 4.0 * pd2;
+    const eomc_real w24 = 5.0 * pd2;
+    const eomc_real w25 = 2.0 * pd0;
+    dEdt[0] = 0.0;
+    const eomc_real w26 = w6 + w8;
+    const eomc_real w27 = w7 + w9;
+    dEdt[1] = 0.0;
+    const eomc_real w28 = w8 + w10;
+    const eomc_real w29 = w9 + w11;
+    dEdt[2] = 0.0;
+    const eomc_real w30 = w10 + w12;
+    const eomc_real w31 = w11 + w13;
+    dEdt[3] = 0.0;
+    const eomc_real w32 = w13 * a_q1;
+    const eomc_real w33 = w12 * a_q1;
+    const eomc_real w34 = w5 * w12;
+    const eomc_real w35 = w4 * w13;
+    dEdv[24] = 0.0;
+    dEdt[4] = 0.0;
+    const eomc_real w36 = w5 * w14;
+    const eomc_real w37 = w7 * w16;
+    const eomc_real w38 = w6 * w17;
+    const eomc_real w39 = v_q3 + w16;
+    const eomc_real w40 = a_q3 + w17;
+    const eomc_real w41 = w18 + w8;
+    const eomc_real w42 = w19 + w9;
+    const eomc_real w43 = w4 * w14;
+    const eomc_real w44 = w7 * w17;
+    const eomc_real w45 = w6 * w16;
+    const eomc_real w46 = w10 + w26;
+    const eomc_real w47 = w11 + w27;
+    const eomc_real w48 = w12 + w28;
+    const eomc_real w49 = w13 + w29;
+    const eomc_real w50 = w11 + w31;
+    const eomc_real w51 = w10 + w30;
+    const eomc_real w52 = w13 * w17;
+    const eomc_real w53 = w12 * w16;
+    const eomc_real w54 = w12 * w17;
+    const eomc_real w55 = w13 * w16;
+    const eomc_real w56 = w12 * w14;
+    const eomc_real w57 = w13 * w14;
+    const eomc_real w58 = w34 - w35;
+    const eomc_real w59 = w36 + w15;
+    const eomc_real w60 = w16 * w37;
+    const eomc_real w61 = w9 * w39;
+    const eomc_real w62 = w8 * w40;
+    const eomc_real w63 = v_q4 + w39;
+    const eomc_real w64 = a_q4 + w40;
+    const eomc_real w65 = w41 + w10;
+    const eomc_real w66 = w42 + w11;
+    const eomc_real w67 = w20 - w43;
+    const eomc_real w68 = w16 * w45;
+    const eomc_real w69 = w9 * w40;
+    const eomc_real w70 = w8 * w39;
+    const eomc_real w71 = w12 + w46;
+    const eomc_real w72 = w13 + w47;
+    const eomc_real w73 = w29 + w49;
+    const eomc_real w74 = w28 + w48;
+    const eomc_real w75 = w40 * w50;
+    const eomc_real w76 = w39 * w51;
+    const eomc_real w77 = w40 * w51;
+    const eomc_real w78 = w39 * w50;
+    const eomc_real w79 = w17 * w50;
+    const eomc_real w80 = w16 * w51;
+    const eomc_real w81 = w17 * w51;
+    const eomc_real w82 = w16 * w50;
+    const eomc_real w83 = w14 * w51;
+    const eomc_real w84 = a_q1 * w50;
+    const eomc_real w85 = a_q1 * w51;
+    const eomc_real w86 = w14 * w50;
+    const eomc_real w87 = w37 * w51;
+    const eomc_real w88 = w45 * w50;
+    const eomc_real w89 = w5 * w51;
+    const eomc_real w90 = w4 * w50;
+    const eomc_real w91 = w13 * w40;
+    const eomc_real w92 = w12 * w39;
+    const eomc_real w93 = w12 * w40;
+    const eomc_real w94 = w13 * w39;
+    const eomc_real w95 = w16 * w53;
+    const eomc_real w96 = w16 * w55;
+    const eomc_real w97 = w56 + w32;
+    const eomc_real w98 = w33 - w57;
+    const eomc_real w99 = w12 * w37;
+    const eomc_real w100 = w13 * w45;
+    const eomc_real w101 = w6 * w55;
+    const eomc_real w102 = w7 * w53;
+    const eomc_real w103 = v_q1 * w58;
+    const eomc_real w104 = w60 + w38;
+    const eomc_real w105 = w39 * w61;
+    const eomc_real w106 = w11 * w63;
+    const eomc_real w107 = w10 * w64;
+    const eomc_real w108 = v_q5 + w63;
+    const eomc_real w109 = a_q5 + w64;
+    const eomc_real w110 = w65 + w12;
+    const eomc_real w111 = w66 + w13;
+    const eomc_real w112 = w44 - w68;
+    const eomc_real w113 = w39 * w70;
+    const eomc_real w114 = w11 * w64;
+    const eomc_real w115 = w10 * w63;
+    const eomc_real w116 = w47 + w72;
+    const eomc_real w117 = w46 + w71;
+    const eomc_real w118 = w64 * w73;
+    const eomc_real w119 = w63 * w74;
+    const eomc_real w120 = w64 * w74;
+    const eomc_real w121 = w63 * w73;
+    const eomc_real w122 = w9 + w73;
+    const eomc_real w123 = w8 + w74;
+    const eomc_real w124 = w64 * w50;
+    const eomc_real w125 = w63 * w51;
+    const eomc_real w126 = w64 * w51;
+    const eomc_real w127 = w63 * w50;
+    const eomc_real w128 = w39 * w76;
+    const eomc_real w129 = w39 * w78;
+    const eomc_real w130 = w16 * w80;
+    const eomc_real w131 = w16 * w82;
+    const eomc_real w132 = w83 + w84;
+    const eomc_real w133 = w85 - w86;
+    const eomc_real w134 = w61 * w51;
+    const eomc_real w135 = w70 * w50;
+    const eomc_real w136 = w8 * w78;
+    const eomc_real w137 = w9 * w76;
+    const eomc_real w138 = w6 * w82;
+    const eomc_real w139 = w7 * w80;
+    const eomc_real w140 = w89 - w90;
+    const eomc_real w141 = w13 * w64;
+    const eomc_real w142 = w12 * w63;
+    const eomc_real w143 = w12 * w64;
+    const eomc_real w144 = w13 * w63;
+    const eomc_real w145 = w39 * w92;
+    const eomc_real w146 = w39 * w94;
+    const eomc_real w147 = w52 + w95;
+    const eomc_real w148 = w54 - w96;
+    const eomc_real w149 = w4 * w97;
+    const eomc_real w150 = w5 * w98;
+    const eomc_real w151 = w12 * w61;
+    const eomc_real w152 = w13 * w70;
+    const eomc_real w153 = w8 * w94;
+    const eomc_real w154 = w9 * w92;
+    const eomc_real w155 = w25 * w103;
+    const eomc_real w156 = w59 + w104;
+    const eomc_real w157 = w105 + w62;
+    const eomc_real w158 = w63 * w106;
+    const eomc_real w159 = w13 * w108;
+    const eomc_real w160 = w12 * w109;
+    const eomc_real w161 = w110 * w109;
+    const eomc_real w162 = w111 * w108;
+    const eomc_real w163 = w67 + w112;
+    const eomc_real w164 = w69 - w113;
+    const eomc_real w165 = w63 * w115;
+    const eomc_real w166 = w13 * w109;
+    const eomc_real w167 = w12 * w108;
+    const eomc_real w168 = w111 * w109;
+    const eomc_real w169 = w110 * w108;
+    const eomc_real w170 = w66 + w111;
+    const eomc_real w171 = w65 + w110;
+    const eomc_real w172 = w109 * w71;
+    const eomc_real w173 = w108 * w72;
+    const eomc_real w174 = w109 * w72;
+    const eomc_real w175 = w108 * w71;
+    const eomc_real w176 = w64 * w116;
+    const eomc_real w177 = w63 * w117;
+    const eomc_real w178 = w64 * w117;
+    const eomc_real w179 = w63 * w116;
+    const eomc_real w180 = w27 + w116;
+    const eomc_real w181 = w26 + w117;
+    const eomc_real w182 = w106 * w117;
+    const eomc_real w183 = w115 * w116;
+    const eomc_real w184 = w109 * w48;
+    const eomc_real w185 = w108 * w49;
+    const eomc_real w186 = w109 * w49;
+    const eomc_real w187 = w108 * w48;
+    const eomc_real w188 = w63 * w119;
+    const eomc_real w189 = pd0 * w120;
+    const eomc_real w190 = w63 * w121;
+    const eomc_real w191 = w40 * w122;
+    const eomc_real w192 = w39 * w123;
+    const eomc_real w193 = w40 * w123;
+    const eomc_real w194 = w39 * w122;
+    const eomc_real w195 = w17 * w122;
+    const eomc_real w196 = w16 * w123;
+    const eomc_real w197 = w17 * w123;
+    const eomc_real w198 = w16 * w122;
+    const eomc_real w199 = w14 * w123;
+    const eomc_real w200 = a_q1 * w122;
+    const eomc_real w201 = a_q1 * w123;
+    const eomc_real w202 = w14 * w122;
+    const eomc_real w203 = w106 * w74;
+    const eomc_real w204 = w115 * w73;
+    const eomc_real w205 = w10 * w121;
+    const eomc_real w206 = w11 * w119;
+    const eomc_real w207 = w61 * w123;
+    const eomc_real w208 = w70 * w122;
+    const eomc_real w209 = w37 * w123;
+    const eomc_real w210 = w45 * w122;
+    const eomc_real w211 = w5 * w123;
+    const eomc_real w212 = w4 * w122;
+    const eomc_real w213 = w109 * w30;
+    const eomc_real w214 = w108 * w31;
+    const eomc_real w215 = w109 * w31;
+    const eomc_real w216 = w108 * w30;
+    const eomc_real w217 = w63 * w125;
+    const eomc_real w218 = pd0 * w126;
+    const eomc_real w219 = w63 * w127;
+    const eomc_real w220 = w75 + w128;
+    const eomc_real w221 = w77 - w129;
+    const eomc_real w222 = w79 + w130;
+    const eomc_real w223 = w81 - w131;
+    const eomc_real w224 = w4 * w132;
+    const eomc_real w225 = w5 * w133;
+    const eomc_real w226 = w106 * w51;
+    const eomc_real w227 = w115 * w50;
+    const eomc_real w228 = w10 * w127;
+    const eomc_real w229 = w11 * w125;
+    const eomc_real w230 = v_q1 * w140;
+    const eomc_real w231 = w63 * w142;
+    const eomc_real w232 = w63 * w144;
+    const eomc_real w233 = w91 + w145;
+    const eomc_real w234 = w93 - w146;
+    const eomc_real w235 = w6 * w147;
+    const eomc_real w236 = w7 * w148;
+    const eomc_real w237 = pd0 * w149;
+    const eomc_real w238 = pd0 * w150;
+    const eomc_real w239 = w12 * w106;
+    const eomc_real w240 = w13 * w115;
+    const eomc_real w241 = w10 * w144;
+    const eomc_real w242 = w11 * w142;
+    const eomc_real w243 = w156 + w157;
+    const eomc_real w244 = w158 + w107;
+    const eomc_real w245 = w108 * w159;
+    const eomc_real w246 = pd0 * w161;
+    const eomc_real w247 = w108 * w162;
+    const eomc_real w248 = w163 + w164;
+    const eomc_real w249 = w114 - w165;
+    const eomc_real w250 = w108 * w167;
+    const eomc_real w251 = w108 * w169;
+    const eomc_real w252 = w64 * w170;
+    const eomc_real w253 = w63 * w171;
+    const eomc_real w254 = w64 * w171;
+    const eomc_real w255 = w63 * w170;
+    const eomc_real w256 = w42 + w170;
+    const eomc_real w257 = w41 + w171;
+    const eomc_real w258 = w110 * w159;
+    const eomc_real w259 = w111 * w167;
+    const eomc_real w260 = w12 * w162;
+    const eomc_real w261 = w13 * w169;
+    const eomc_real w262 = w106 * w171;
+    const eomc_real w263 = w115 * w170;
+    const eomc_real w264 = pd0 * w172;
+    const eomc_real w265 = w108 * w173;
+    const eomc_real w266 = w108 * w175;
+    const eomc_real w267 = w63 * w177;
+    const eomc_real w268 = pd0 * w178;
+    const eomc_real w269 = w63 * w179;
+    const eomc_real w270 = w40 * w180;
+    const eomc_real w271 = w39 * w181;
+    const eomc_real w272 = w40 * w181;
+    const eomc_real w273 = w39 * w180;
+    const eomc_real w274 = w7 + w180;
+    const eomc_real w275 = w6 + w181;
+    const eomc_real w276 = w159 * w71;
+    const eomc_real w277 = w167 * w72;
+    const eomc_real w278 = w12 * w173;
+    const eomc_real w279 = w13 * w175;
+    const eomc_real w280 = w10 * w179;
+    const eomc_real w281 = w11 * w177;
+    const eomc_real w282 = w61 * w181;
+    const eomc_real w283 = w70 * w180;
+    const eomc_real w284 = pd0 * w184;
+    const eomc_real w285 = w108 * w185;
+    const eomc_real w286 = w108 * w187;
+    const eomc_real w287 = pd0 * w190;
+    const eomc_real w288 = w39 * w192;
+    const eomc_real w289 = pd0 * w193;
+    const eomc_real w290 = w39 * w194;
+    const eomc_real w291 = w16 * w196;
+    const eomc_real w292 = w16 * w198;
+    const eomc_real w293 = w199 + w200;
+    const eomc_real w294 = w201 - w202;
+    const eomc_real w295 = w159 * w48;
+    const eomc_real w296 = w167 * w49;
+    const eomc_real w297 = w12 * w185;
+    const eomc_real w298 = w13 * w187;
+    const eomc_real w299 = w8 * w194;
+    const eomc_real w300 = w9 * w192;
+    const eomc_real w301 = w6 * w198;
+    const eomc_real w302 = w7 * w196;
+    const eomc_real w303 = w211 - w212;
+    const eomc_real w304 = pd0 * w213;
+    const eomc_real w305 = w108 * w214;
+    const eomc_real w306 = w108 * w216;
+    const eomc_real w307 = pd0 * w219;
+    const eomc_real w308 = w8 * w220;
+    const eomc_real w309 = w9 * w221;
+    const eomc_real w310 = w6 * w222;
+    const eomc_real w311 = w7 * w223;
+    const eomc_real w312 = pd0 * w224;
+    const eomc_real w313 = pd0 * w225;
+    const eomc_real w314 = w159 * w30;
+    const eomc_real w315 = w167 * w31;
+    const eomc_real w316 = w12 * w214;
+    const eomc_real w317 = w13 * w216;
+    const eomc_real w318 = w25 * w230;
+    const eomc_real w319 = pd0 * w160;
+    const eomc_real w320 = w141 + w231;
+    const eomc_real w321 = w143 - w232;
+    const eomc_real w322 = w8 * w233;
+    const eomc_real w323 = w9 * w234;
+    const eomc_real w324 = pd0 * w235;
+    const eomc_real w325 = pd0 * w236;
+    const eomc_real w326 = w239 - w240;
+    const eomc_real w327 = w243 + w244;
+    const eomc_real w328 = w245 + w160;
+    const eomc_real w329 = pd0 * w247;
+    const eomc_real w330 = w248 + w249;
+    const eomc_real w331 = w166 - w250;
+    const eomc_real w332 = w63 * w253;
+    const eomc_real w333 = pd0 * w254;
+    const eomc_real w334 = w63 * w255;
+    const eomc_real w335 = w40 * w256;
+    const eomc_real w336 = w39 * w257;
+    const eomc_real w337 = w40 * w257;
+    const eomc_real w338 = w39 * w256;
+    const eomc_real w339 = w19 + w256;
+    const eomc_real w340 = w18 + w257;
+    const eomc_real w341 = w258 - w259;
+    const eomc_real w342 = w10 * w255;
+    const eomc_real w343 = w11 * w253;
+    const eomc_real w344 = w61 * w257;
+    const eomc_real w345 = w70 * w256;
+    const eomc_real w346 = pd0 * w265;
+    const eomc_real w347 = pd0 * w269;
+    const eomc_real w348 = w39 * w271;
+    const eomc_real w349 = pd0 * w272;
+    const eomc_real w350 = w39 * w273;
+    const eomc_real w351 = w17 * w274;
+    const eomc_real w352 = w16 * w275;
+    const eomc_real w353 = w17 * w275;
+    const eomc_real w354 = w16 * w274;
+    const eomc_real w355 = w14 * w275;
+    const eomc_real w356 = a_q1 * w274;
+    const eomc_real w357 = a_q1 * w275;
+    const eomc_real w358 = w14 * w274;
+    const eomc_real w359 = w276 - w277;
+    const eomc_real w360 = w8 * w273;
+    const eomc_real w361 = w9 * w271;
+    const eomc_real w362 = w37 * w275;
+    const eomc_real w363 = w45 * w274;
+    const eomc_real w364 = w5 * w275;
+    const eomc_real w365 = w4 * w274;
+    const eomc_real w366 = pd0 * w285;
+    const eomc_real w367 = pd0 * w290;
+    const eomc_real w368 = w195 + w291;
+    const eomc_real w369 = w197 - w292;
+    const eomc_real w370 = w4 * w293;
+    const eomc_real w371 = w5 * w294;
+    const eomc_real w372 = w295 - w296;
+    const eomc_real w373 = v_q1 * w303;
+    const eomc_real w374 = pd0 * w305;
+    const eomc_real w375 = pd0 * w308;
+    const eomc_real w376 = pd0 * w309;
+    const eomc_real w377 = pd0 * w310;
+    const eomc_real w378 = pd0 * w311;
+    const eomc_real w379 = w314 - w315;
+    const eomc_real w380 = pd0 * w245;
+    const eomc_real w381 = w10 * w320;
+    const eomc_real w382 = w11 * w321;
+    const eomc_real w383 = pd0 * w322;
+    const eomc_real w384 = pd0 * w323;
+    const eomc_real w385 = w326 - w241;
+    const eomc_real w386 = w327 + w328;
+    const eomc_real w387 = w330 + w331;
+    const eomc_real w388 = pd0 * w334;
+    const eomc_real w389 = w39 * w336;
+    const eomc_real w390 = pd0 * w337;
+    const eomc_real w391 = w39 * w338;
+    const eomc_real w392 = w17 * w339;
+    const eomc_real w393 = w16 * w340;
+    const eomc_real w394 = w17 * w340;
+    const eomc_real w395 = w16 * w339;
+    const eomc_real w396 = w4 + w340;
+    const eomc_real w397 = w5 + w339;
+    const eomc_real w398 = w341 - w260;
+    const eomc_real w399 = w8 * w338;
+    const eomc_real w400 = w9 * w336;
+    const eomc_real w401 = w37 * w340;
+    const eomc_real w402 = w45 * w339;
+    const eomc_real w403 = pd0 * w350;
+    const eomc_real w404 = w16 * w352;
+    const eomc_real w405 = pd0 * w353;
+    const eomc_real w406 = w16 * w354;
+    const eomc_real w407 = w355 + w356;
+    const eomc_real w408 = w357 - w358;
+    const eomc_real w409 = w359 - w278;
+    const eomc_real w410 = w6 * w354;
+    const eomc_real w411 = w7 * w352;
+    const eomc_real w412 = w364 - w365;
+    const eomc_real w413 = w6 * w368;
+    const eomc_real w414 = w7 * w369;
+    const eomc_real w415 = pd0 * w370;
+    const eomc_real w416 = pd0 * w371;
+    const eomc_real w417 = w372 - w297;
+    const eomc_real w418 = w25 * w373;
+    const eomc_real w419 = w379 - w316;
+    const eomc_real w420 = pd0 * w381;
+    const eomc_real w421 = pd0 * w382;
+    const eomc_real w422 = w385 + w242;
+    const eomc_real w423 = pd0 * w386;
+    const eomc_real w424 = w387 + w168;
+    const eomc_real w425 = w330 + w387;
+    const eomc_real w426 = w327 + w386;
+    const eomc_real w427 = pd0 * w391;
+    const eomc_real w428 = w16 * w393;
+    const eomc_real w429 = pd0 * w394;
+    const eomc_real w430 = w16 * w395;
+    const eomc_real w431 = w14 * w396;
+    const eomc_real w432 = a_q1 * w397;
+    const eomc_real w433 = a_q1 * w396;
+    const eomc_real w434 = w14 * w397;
+    const eomc_real w435 = w398 + w261;
+    const eomc_real w436 = w6 * w395;
+    const eomc_real w437 = w7 * w393;
+    const eomc_real w438 = w5 * w396;
+    const eomc_real w439 = w4 * w397;
+    const eomc_real w440 = w387 + w174;
+    const eomc_real w441 = pd0 * w406;
+    const eomc_real w442 = w4 * w407;
+    const eomc_real w443 = w5 * w408;
+    const eomc_real w444 = w409 + w279;
+    const eomc_real w445 = v_q1 * w412;
+    const eomc_real w446 = w387 + w186;
+    const eomc_real w447 = pd0 * w413;
+    const eomc_real w448 = pd0 * w414;
+    const eomc_real w449 = w417 + w298;
+    const eomc_real w450 = w387 + w215;
+    const eomc_real w451 = w419 + w317;
+    const eomc_real w452 = w166 + w387;
+    const eomc_real w453 = w422 + w151;
+    const eomc_real w454 = pd0 * w422;
+    const eomc_real w455 = pd2 + w423;
+    const eomc_real w456 = w424 + w251;
+    const eomc_real w457 = w425 + w252;
+    const eomc_real w458 = pd0 * w426;
+    const eomc_real w459 = w248 + w425;
+    const eomc_real w460 = w243 + w426;
+    const eomc_real w461 = pd0 * w430;
+    const eomc_real w462 = pd0 * w433;
+    const eomc_real w463 = pd0 * w434;
+    const eomc_real w464 = w435 + w262;
+    const eomc_real w465 = w438 - w439;
+    const eomc_real w466 = pd0 * w435;
+    const eomc_real w467 = w440 + w266;
+    const eomc_real w468 = w425 + w176;
+    const eomc_real w469 = pd0 * w442;
+    const eomc_real w470 = pd0 * w443;
+    const eomc_real w471 = w444 + w182;
+    const eomc_real w472 = w25 * w445;
+    const eomc_real w473 = pd0 * w444;
+    const eomc_real w474 = w446 + w286;
+    const eomc_real w475 = w425 + w118;
+    const eomc_real w476 = w449 + w203;
+    const eomc_real w477 = pd0 * w449;
+    const eomc_real w478 = w450 + w306;
+    const eomc_real w479 = w425 + w124;
+    const eomc_real w480 = w451 + w226;
+    const eomc_real w481 = pd0 * w451;
+    const eomc_real w482 = w250 + w452;
+    const eomc_real w483 = w453 - w152;
+    dEdv[23] = w454;
+    const eomc_real w484 = w455 + w246;
+    const eomc_real w485 = w12 * w456;
+    const eomc_real w486 = w457 + w332;
+    const eomc_real w487 = w21 + w458;
+    const eomc_real w488 = w459 + w335;
+    const eomc_real w489 = pd0 * w460;
+    const eomc_real w490 = w163 + w459;
+    const eomc_real w491 = w156 + w460;
+    const eomc_real w492 = w464 - w263;
+    const eomc_real w493 = v_q1 * w465;
+    dEdv[4] = w466;
+    const eomc_real w494 = w455 + w264;
+    const eomc_real w495 = w12 * w467;
+    const eomc_real w496 = w468 + w267;
+    const eomc_real w497 = w459 + w270;
+    const eomc_real w498 = w471 - w183;
+    dEdv[9] = w473;
+    const eomc_real w499 = w455 + w284;
+    const eomc_real w500 = w12 * w474;
+    const eomc_real w501 = w475 + w188;
+    const eomc_real w502 = w459 + w191;
+    const eomc_real w503 = w476 - w204;
+    dEdv[14] = w477;
+    const eomc_real w504 = w455 + w304;
+    const eomc_real w505 = w12 * w478;
+    const eomc_real w506 = w479 + w217;
+    const eomc_real w507 = w480 - w227;
+    dEdv[19] = w481;
+    const eomc_real w508 = w455 + w319;
+    const eomc_real w509 = w12 * w482;
+    const eomc_real w510 = w483 - w153;
+    const eomc_real w511 = w484 - w329;
+    const eomc_real w512 = pd0 * w485;
+    const eomc_real w513 = w10 * w486;
+    const eomc_real w514 = w487 + w333;
+    const eomc_real w515 = w488 + w389;
+    const eomc_real w516 = w22 + w489;
+    const eomc_real w517 = w490 + w392;
+    const eomc_real w518 = pd0 * w491;
+    const eomc_real w519 = w67 + w490;
+    const eomc_real w520 = w59 + w491;
+    const eomc_real w521 = w492 - w342;
+    const eomc_real w522 = w25 * w493;
+    const eomc_real w523 = w494 - w346;
+    const eomc_real w524 = pd0 * w495;
+    const eomc_real w525 = w10 * w496;
+    const eomc_real w526 = w487 + w268;
+    const eomc_real w527 = w497 + w348;
+    const eomc_real w528 = w490 + w351;
+    const eomc_real w529 = w498 - w280;
+    const eomc_real w530 = w499 - w366;
+    const eomc_real w531 = pd0 * w500;
+    const eomc_real w532 = w10 * w501;
+    const eomc_real w533 = w487 + w189;
+    const eomc_real w534 = w502 + w288;
+    const eomc_real w535 = w503 - w205;
+    const eomc_real w536 = w504 - w374;
+    const eomc_real w537 = pd0 * w505;
+    const eomc_real w538 = w10 * w506;
+    const eomc_real w539 = w487 + w218;
+    const eomc_real w540 = w507 - w228;
+    const eomc_real w541 = w508 - w380;
+    const eomc_real w542 = pd0 * w509;
+    const eomc_real w543 = w510 + w154;
+    const eomc_real w544 = w13 * w511;
+    const eomc_real w545 = pd0 * w513;
+    const eomc_real w546 = w514 - w388;
+    const eomc_real w547 = w8 * w515;
+    const eomc_real w548 = w516 + w390;
+    const eomc_real w549 = w517 + w428;
+    const eomc_real w550 = w23 + w518;
+    const eomc_real w551 = w519 + w431;
+    const eomc_real w552 = pd0 * w520;
+    const eomc_real w553 = w521 + w343;
+    const eomc_real w554 = w13 * w523;
+    const eomc_real w555 = pd0 * w525;
+    const eomc_real w556 = w526 - w347;
+    const eomc_real w557 = w8 * w527;
+    const eomc_real w558 = w516 + w349;
+    const eomc_real w559 = w528 + w404;
+    const eomc_real w560 = w529 + w281;
+    const eomc_real w561 = w13 * w530;
+    const eomc_real w562 = pd0 * w532;
+    const eomc_real w563 = w533 - w287;
+    const eomc_real w564 = w8 * w534;
+    const eomc_real w565 = w516 + w289;
+    const eomc_real w566 = w535 + w206;
+    const eomc_real w567 = w13 * w536;
+    const eomc_real w568 = pd0 * w538;
+    const eomc_real w569 = w539 - w307;
+    const eomc_real w570 = w540 + w229;
+    const eomc_real w571 = w13 * w541;
+    const eomc_real w572 = w543 + w99;
+    const eomc_real w573 = pd0 * w543;
+    const eomc_real w574 = w544 - w512;
+    const eomc_real w575 = w11 * w546;
+    const eomc_real w576 = pd0 * w547;
+    const eomc_real w577 = w548 - w427;
+    const eomc_real w578 = w6 * w549;
+    const eomc_real w579 = w550 + w429;
+    const eomc_real w580 = w551 + w432;
+    const eomc_real w581 = w24 + w552;
+    const eomc_real w582 = w553 + w344;
+    const eomc_real w583 = pd0 * w553;
+    const eomc_real w584 = w554 - w524;
+    const eomc_real w585 = w11 * w556;
+    const eomc_real w586 = pd0 * w557;
+    const eomc_real w587 = w558 - w403;
+    const eomc_real w588 = w6 * w559;
+    const eomc_real w589 = w550 + w405;
+    const eomc_real w590 = w560 + w282;
+    const eomc_real w591 = pd0 * w560;
+    const eomc_real w592 = w561 - w531;
+    const eomc_real w593 = w11 * w563;
+    const eomc_real w594 = pd0 * w564;
+    const eomc_real w595 = w565 - w367;
+    const eomc_real w596 = w566 + w207;
+    const eomc_real w597 = pd0 * w566;
+    const eomc_real w598 = w567 - w537;
+    const eomc_real w599 = w11 * w569;
+    const eomc_real w600 = w570 + w134;
+    const eomc_real w601 = pd0 * w570;
+    const eomc_real w602 = w571 - w542;
+    const eomc_real w603 = w572 - w100;
+    dEdv[22] = w573;
+    const eomc_real w604 = w574 - w545;
+    const eomc_real w605 = w9 * w577;
+    const eomc_real w606 = pd0 * w578;
+    const eomc_real w607 = w579 - w461;
+    const eomc_real w608 = w4 * w580;
+    const eomc_real w609 = w581 + w462;
+    dEdq[4] = w574;
+    const eomc_real w610 = w582 - w345;
+    dEdv[3] = w583;
+    const eomc_real w611 = w584 - w555;
+    const eomc_real w612 = w9 * w587;
+    const eomc_real w613 = pd0 * w588;
+    const eomc_real w614 = w589 - w441;
+    dEdq[9] = w584;
+    const eomc_real w615 = w590 - w283;
+    dEdv[8] = w591;
+    const eomc_real w616 = w592 - w562;
+    const eomc_real w617 = w9 * w595;
+    dEdq[14] = w592;
+    const eomc_real w618 = w596 - w208;
+    dEdv[13] = w597;
+    const eomc_real w619 = w598 - w568;
+    dEdq[19] = w598;
+    const eomc_real w620 = w600 - w135;
+    dEdv[18] = w601;
+    const eomc_real w621 = w602 - w420;
+    dEdq[24] = w602;
+    const eomc_real w622 = w603 - w101;
+    const eomc_real w623 = w604 + w575;
+    const eomc_real w624 = w7 * w607;
+    const eomc_real w625 = pd0 * w608;
+    const eomc_real w626 = w609 - w463;
+    const eomc_real w627 = w610 - w399;
+    const eomc_real w628 = w611 + w585;
+    const eomc_real w629 = w7 * w614;
+    const eomc_real w630 = w615 - w360;
+    const eomc_real w631 = w616 + w593;
+    const eomc_real w632 = w618 - w299;
+    const eomc_real w633 = w619 + w599;
+    const eomc_real w634 = w620 - w136;
+    const eomc_real w635 = w621 + w421;
+    const eomc_real w636 = w622 + w102;
+    const eomc_real w637 = w623 - w576;
+    const eomc_real w638 = w5 * w626;
+    dEdq[3] = w623;
+    const eomc_real w639 = w627 + w400;
+    const eomc_real w640 = w628 - w586;
+    dEdq[8] = w628;
+    const eomc_real w641 = w630 + w361;
+    const eomc_real w642 = w631 - w594;
+    dEdq[13] = w631;
+    const eomc_real w643 = w632 + w300;
+    const eomc_real w644 = w633 - w375;
+    dEdq[18] = w633;
+    const eomc_real w645 = w634 + w137;
+    const eomc_real w646 = w635 - w383;
+    dEdq[23] = w635;
+    const eomc_real w647 = pd0 * w636;
+    const eomc_real w648 = w637 + w605;
+    const eomc_real w649 = w639 + w401;
+    const eomc_real w650 = pd0 * w639;
+    const eomc_real w651 = w640 + w612;
+    const eomc_real w652 = w641 + w362;
+    const eomc_real w653 = pd0 * w641;
+    const eomc_real w654 = w642 + w617;
+    const eomc_real w655 = w643 + w209;
+    const eomc_real w656 = pd0 * w643;
+    const eomc_real w657 = w644 + w376;
+    const eomc_real w658 = w645 + w87;
+    const eomc_real w659 = pd0 * w645;
+    const eomc_real w660 = w646 + w384;
+    const eomc_real w661 = w647 + w155;
+    dEdv[21] = w647;
+    const eomc_real w662 = w648 - w606;
+    dEdq[2] = w648;
+    const eomc_real w663 = w649 - w402;
+    dEdv[2] = w650;
+    const eomc_real w664 = w651 - w613;
+    dEdq[7] = w651;
+    const eomc_real w665 = w652 - w363;
+    dEdv[7] = w653;
+    const eomc_real w666 = w654 - w447;
+    dEdq[12] = w654;
+    const eomc_real w667 = w655 - w210;
+    dEdv[12] = w656;
+    const eomc_real w668 = w657 - w377;
+    dEdq[17] = w657;
+    const eomc_real w669 = w658 - w88;
+    dEdv[17] = w659;
+    const eomc_real w670 = w660 - w324;
+    dEdq[22] = w660;
+    dEdv[20] = w661;
+    const eomc_real w671 = w662 + w624;
+    const eomc_real w672 = w663 - w436;
+    const eomc_real w673 = w664 + w629;
+    const eomc_real w674 = w665 - w410;
+    const eomc_real w675 = w666 + w448;
+    const eomc_real w676 = w667 - w301;
+    const eomc_real w677 = w668 + w378;
+    const eomc_real w678 = w669 - w138;
+    const eomc_real w679 = w670 + w325;
+    const eomc_real w680 = w671 - w625;
+    dEdq[1] = w671;
+    const eomc_real w681 = w672 + w437;
+    const eomc_real w682 = w673 - w469;
+    dEdq[6] = w673;
+    const eomc_real w683 = w674 + w411;
+    const eomc_real w684 = w675 - w415;
+    dEdq[11] = w675;
+    const eomc_real w685 = w676 + w302;
+    const eomc_real w686 = w677 - w312;
+    dEdq[16] = w677;
+    const eomc_real w687 = w678 + w139;
+    const eomc_real w688 = w679 - w237;
+    dEdq[21] = w679;
+    const eomc_real w689 = w680 + w638;
+    const eomc_real w690 = pd0 * w681;
+    const eomc_real w691 = w682 + w470;
+    const eomc_real w692 = pd0 * w683;
+    const eomc_real w693 = w684 + w416;
+    const eomc_real w694 = pd0 * w685;
+    const eomc_real w695 = w686 + w313;
+    const eomc_real w696 = pd0 * w687;
+    const eomc_real w697 = w688 + w238;
+    dEdq[0] = w689;
+    const eomc_real w698 = w690 + w522;
+    dEdv[1] = w690;
+    dEdq[5] = w691;
+    const eomc_real w699 = w692 + w472;
+    dEdv[6] = w692;
+    dEdq[10] = w693;
+    const eomc_real w700 = w694 + w418;
+    dEdv[11] = w694;
+    dEdq[15] = w695;
+    const eomc_real w701 = w696 + w318;
+    dEdv[0] = w698;
+    dEdv[5] = w699;
+    dEdv[10] = w700;
+    dEdv[15] = w701;
+    dEdv[16] = w696;
+    dEdq[20] = w697;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
@@ -1806,10 +1820,10 @@ chain5_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 33 * S, p[3], k);
     eomc_tay_add(T + 36 * S, T + 27 * S, T + 28 * S, k);
     eomc_tay_const(T + 56 * S, p[5], k);
-    eomc_tay_const(T + 57 * S, p[7], k);
-    eomc_tay_const(T + 59 * S, p[8], k);
-    eomc_tay_const(T + 62 * S, p[9], k);
-    eomc_tay_const(T + 65 * S, p[10], k);
+    eomc_tay_const(T + 57 * S, p[6], k);
+    eomc_tay_const(T + 59 * S, p[7], k);
+    eomc_tay_const(T + 62 * S, p[8], k);
+    eomc_tay_const(T + 65 * S, p[9], k);
     eomc_tay_sincos(T + 5 * S, T + 6 * S, T + 4 * S, k);
     eomc_tay_add(T + 10 * S, T + 4 * S, T + 9 * S, k);
     eomc_tay_add(T + 41 * S, T + 29 * S, T + 36 * S, k);
@@ -1969,14 +1983,45 @@ static const int taylor_M[25] = {196, 91, 120, 142, 157, 91, 119, 121, 143, 158,
     157, 158, 159, 160, 33};
 static const int taylor_h[5] = {210, 211, 212, 187, 189};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+chain5_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+chain5_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+chain5_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt);
+EOMC_ENTRY void
+chain5_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+chain5_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+chain5_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+chain5_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY int
+chain5_check(const double *p);
+EOMC_ENTRY void
+chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
     .nq = 5, .np = 3, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 16, .derive = chain5_derive,
+    .nd = 11, .derive = chain5_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10, .atol = 1e-10, .h_fixed = 0.0,
     .initial = chain5_initial, .inputs = chain5_inputs, .mass_bias = chain5_mass_bias,
     .energy = chain5_energy,
@@ -2024,3 +2069,4 @@ const eomc_model_ext chain5_model_ext = {
     .taylor = chain5_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

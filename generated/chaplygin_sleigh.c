@@ -28,7 +28,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -38,36 +37,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[3] = {"x", "y", "theta"};
-static const char *const p_names[5] = {"m", "J", "b", "v0", "w0"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[5] = {1.0, 0.2, 0.5, 0.3, 2.0};
-static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const c_names[1] = {"blade"};
-static const int c_order[1] = {1};
-static const int c_dependent[1] = {1};
-
-/* The entries of B that can be nonzero (the rest are 0 at every state). */
-static const int c_nz[2] = {0, 1};
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[2] = {
-    {"sleigh", EOMC_DRAW_BODY, 2, 0},
-    {"blade", EOMC_DRAW_POINT, 3, 0},
-};
-static const eomc_shape shapes[2] = {
-    {0, EOMC_SHAPE_BOX, {0.45, 0.15, 0.01}, {-0.2, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}, {0.75, 0.55, 0.3, 1.0}},
-    {0, EOMC_SHAPE_BOX, {0.175, 0.015, 0.015}, {-0.5, 0.0, 0.015}, {1.0, 0.0, 0.0, 0.0}, {0.2, 0.2, 0.25, 1.0}},
-};
-static const int view_trace[1] = {1};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_b = p[2];
@@ -80,31 +72,27 @@ chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd)
     pd[0] = w0;
     pd[1] = w1;
     pd[2] = w2;
-    const eomc_real w4 = p_b * w2;
-    const eomc_real w5 = p_m * w3;
-    const eomc_real w6 = w2 * w2;
-    const eomc_real w7 = 2.0 * w2;
-    pd[3] = w4;
-    const eomc_real w8 = p_J + w5;
-    pd[4] = w8;
-    pd[11] = w7;
-    const eomc_real w9 = 1.0 / w8;
-    pd[5] = w9;
-    const eomc_real w10 = w2 * w9;
-    const eomc_real w11 = w9 * w6;
-    pd[6] = w10;
-    pd[7] = w11;
+    const eomc_real w4 = p_m * w3;
+    const eomc_real w5 = w2 * w2;
+    const eomc_real w6 = p_J + w4;
+    pd[3] = w6;
+    const eomc_real w7 = 1.0 / w6;
+    pd[4] = w7;
+    const eomc_real w8 = w2 * w7;
+    const eomc_real w9 = w7 * w5;
+    pd[5] = w8;
+    pd[6] = w9;
+    const eomc_real w10 = w2 * w8;
+    pd[7] = w10;
+    const eomc_real w11 = w10 * w10;
     const eomc_real w12 = w2 * w10;
-    pd[8] = w12;
-    const eomc_real w13 = w12 * w12;
-    const eomc_real w14 = w2 * w12;
-    pd[9] = w13;
-    pd[10] = w14;
+    pd[8] = w11;
+    pd[9] = w12;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_v0 = p[3];
@@ -120,7 +108,7 @@ chaplygin_sleigh_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -131,7 +119,7 @@ chaplygin_sleigh_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -139,7 +127,7 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real v_theta = v[2];
     const eomc_real p_m = p[0];
     const eomc_real pd2 = p[7];
-    const eomc_real pd4 = p[9];
+    const eomc_real pd3 = p[8];
     (void)u;
     (void)t;
     M[0] = p_m;
@@ -147,7 +135,7 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     M[4] = p_m;
     const eomc_real w0 = sin(q_theta);
     const eomc_real w1 = cos(q_theta);
-    M[8] = pd4;
+    M[8] = pd3;
     const eomc_real w2 = v_theta * v_theta;
     h[2] = 0.0;
     M[1] = 0.0;
@@ -170,7 +158,7 @@ chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -204,7 +192,7 @@ chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
@@ -213,101 +201,10 @@ chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     h[0] = TV[0] + TV[1];
 }
 
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real q_theta = q[2];
-    const eomc_real v_theta = v[2];
-    const eomc_real a_x = a[0];
-    const eomc_real a_y = a[1];
-    const eomc_real a_theta = a[2];
-    const eomc_real p_b = p[2];
-    const eomc_real pd2 = p[7];
-    const eomc_real pd3 = p[8];
-    const eomc_real pd11 = p[16];
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    dEdq[0] = 0.0;
-    dEdq[1] = 0.0;
-    const eomc_real w0 = sin(q_theta);
-    const eomc_real w1 = v_theta * v_theta;
-    const eomc_real w2 = cos(q_theta);
-    dEdv[0] = 0.0;
-    dEdv[1] = 0.0;
-    dEdt[0] = 0.0;
-    dEdq[3] = 0.0;
-    dEdq[4] = 0.0;
-    dEdv[3] = 0.0;
-    dEdv[4] = 0.0;
-    dEdt[1] = 0.0;
-    dEdq[6] = 0.0;
-    dEdq[7] = 0.0;
-    dEdv[6] = 0.0;
-    dEdv[7] = 0.0;
-    dEdv[8] = 0.0;
-    dEdt[2] = 0.0;
-    const eomc_real w3 = w0 * w1;
-    const eomc_real w4 = w2 * a_theta;
-    const eomc_real w5 = w2 * v_theta;
-    const eomc_real w6 = w2 * w1;
-    const eomc_real w7 = w0 * a_theta;
-    const eomc_real w8 = w0 * v_theta;
-    const eomc_real w9 = w3 - w4;
-    const eomc_real w10 = pd11 * w5;
-    const eomc_real w11 = w6 + w7;
-    const eomc_real w12 = pd11 * w8;
-    const eomc_real w13 = p_b * w5;
-    const eomc_real w14 = pd3 * w6;
-    const eomc_real w15 = pd3 * w7;
-    const eomc_real w16 = w4 - w3;
-    const eomc_real w17 = p_b * w8;
-    const eomc_real w18 = pd3 * w4;
-    const eomc_real w19 = pd3 * w3;
-    const eomc_real w20 = pd2 * w9;
-    const eomc_real w21 = -w10;
-    const eomc_real w22 = pd2 * w11;
-    const eomc_real w23 = -w12;
-    const eomc_real w24 = v_y + w13;
-    const eomc_real w25 = p_b * w11;
-    const eomc_real w26 = p_b * w16;
-    const eomc_real w27 = v_x - w17;
-    dEdq[2] = w20;
-    dEdv[2] = w21;
-    const eomc_real w28 = -w22;
-    dEdv[5] = w23;
-    const eomc_real w29 = v_theta * w24;
-    const eomc_real w30 = a_x - w25;
-    const eomc_real w31 = a_y + w26;
-    const eomc_real w32 = v_theta * w27;
-    dEdq[5] = w28;
-    const eomc_real w33 = w29 - w30;
-    const eomc_real w34 = pd2 * w29;
-    const eomc_real w35 = w31 + w32;
-    const eomc_real w36 = pd2 * w32;
-    const eomc_real w37 = pd2 * w33;
-    const eomc_real w38 = pd2 * w35;
-    const eomc_real w39 = w37 - w14;
-    const eomc_real w40 = w38 + w18;
-    const eomc_real w41 = w39 + w15;
-    const eomc_real w42 = w40 + w19;
-    const eomc_real w43 = w41 - w34;
-    const eomc_real w44 = w42 - w36;
-    const eomc_real w45 = w2 * w43;
-    const eomc_real w46 = w0 * w44;
-    const eomc_real w47 = w45 - w46;
-    dEdq[8] = w47;
-}
-
 #endif /* EOMC_EXTENDED */
 
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
     eomc_real *B)
@@ -341,7 +238,7 @@ chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
@@ -361,7 +258,7 @@ chaplygin_sleigh_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
     eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
@@ -440,7 +337,7 @@ chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
@@ -486,20 +383,20 @@ chaplygin_sleigh_accel_solve(eomc_real t, const eomc_real *q,
     const eomc_real v_theta = v[2];
     const eomc_real p_m = p[0];
     const eomc_real pd2 = p[7];
-    const eomc_real pd4 = p[9];
+    const eomc_real pd3 = p[8];
+    const eomc_real pd5 = p[10];
     const eomc_real pd6 = p[11];
     const eomc_real pd7 = p[12];
     const eomc_real pd8 = p[13];
     const eomc_real pd9 = p[14];
-    const eomc_real pd10 = p[15];
     (void)u;
     (void)t;
     const eomc_real w0 = sin(q_theta);
     const eomc_real w1 = cos(q_theta);
-    piv[2] = pd4;
+    piv[2] = pd3;
     mkk[0] = p_m;
     mkk[1] = p_m;
-    mkk[2] = pd4;
+    mkk[2] = pd3;
     const eomc_real w2 = v_theta * v_theta;
     const eomc_real w3 = w0 * w0;
     const eomc_real w4 = w1 * w1;
@@ -508,8 +405,8 @@ chaplygin_sleigh_accel_solve(eomc_real t, const eomc_real *q,
     const eomc_real w7 = w0 * w2;
     shared[0] = w1;
     shared[1] = w0;
-    const eomc_real w8 = pd7 * w3;
-    const eomc_real w9 = pd7 * w4;
+    const eomc_real w8 = pd6 * w3;
+    const eomc_real w9 = pd6 * w4;
     const eomc_real w10 = w5 * w5;
     const eomc_real w11 = pd2 * w6;
     const eomc_real w12 = p_m - w8;
@@ -520,12 +417,12 @@ chaplygin_sleigh_accel_solve(eomc_real t, const eomc_real *q,
     const eomc_real w16 = w5 * w14;
     const eomc_real w17 = w7 * w14;
     shared[2] = w14;
-    const eomc_real w18 = pd9 * w15;
+    const eomc_real w18 = pd8 * w15;
     const eomc_real w19 = w7 * w16;
     const eomc_real w20 = pd2 * w17;
     shared[3] = w16;
     const eomc_real w21 = w12 - w18;
-    const eomc_real w22 = pd10 * w19;
+    const eomc_real w22 = pd9 * w19;
     piv[0] = w21;
     const eomc_real w23 = 1.0 / w21;
     const eomc_real w24 = w11 - w22;
@@ -534,19 +431,19 @@ chaplygin_sleigh_accel_solve(eomc_real t, const eomc_real *q,
     shared[4] = w23;
     const eomc_real w26 = w16 * w25;
     const eomc_real w27 = w0 * w25;
-    const eomc_real w28 = pd8 * w26;
+    const eomc_real w28 = pd7 * w26;
     const eomc_real w29 = w20 - w28;
     a[1] = w29;
     const eomc_real w30 = w1 * w29;
     const eomc_real w31 = w27 - w30;
-    const eomc_real w32 = pd6 * w31;
+    const eomc_real w32 = pd5 * w31;
     a[2] = w32;
 }
 
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 chaplygin_sleigh_accel_shared(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
     eomc_real *pivot, eomc_real *shared)
@@ -557,7 +454,7 @@ chaplygin_sleigh_accel_shared(eomc_real t, const eomc_real *q,
 }
 
 /* The same, what minv_shared reads dropped. */
-static int
+EOMC_ENTRY int
 chaplygin_sleigh_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -568,7 +465,7 @@ chaplygin_sleigh_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
  * but the load da, or the LDL^T factors), given shared[] from
  * accel_solve at the same (t, q, p): one unit load's passes alone. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_minv_shared(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     const eomc_real *shared, const eomc_real *da, eomc_real *y)
@@ -576,9 +473,9 @@ chaplygin_sleigh_minv_shared(eomc_real t, const eomc_real *q,
     const eomc_real da_x = da[0];
     const eomc_real da_y = da[1];
     const eomc_real da_theta = da[2];
+    const eomc_real pd4 = p[9];
     const eomc_real pd5 = p[10];
-    const eomc_real pd6 = p[11];
-    const eomc_real pd8 = p[13];
+    const eomc_real pd7 = p[12];
     (void)q;
     (void)v;
     (void)u;
@@ -586,32 +483,32 @@ chaplygin_sleigh_minv_shared(eomc_real t, const eomc_real *q,
     (void)shared;
     const eomc_real w0 = shared[1] * da_theta;
     const eomc_real w1 = shared[0] * da_theta;
-    const eomc_real w2 = pd5 * da_theta;
-    const eomc_real w3 = pd6 * w0;
-    const eomc_real w4 = pd6 * w1;
+    const eomc_real w2 = pd4 * da_theta;
+    const eomc_real w3 = pd5 * w0;
+    const eomc_real w4 = pd5 * w1;
     const eomc_real w5 = da_x + w3;
     const eomc_real w6 = da_y - w4;
     const eomc_real w7 = shared[3] * w6;
     const eomc_real w8 = shared[2] * w6;
-    const eomc_real w9 = pd8 * w7;
+    const eomc_real w9 = pd7 * w7;
     const eomc_real w10 = w5 - w9;
     const eomc_real w11 = shared[4] * w10;
     y[0] = w11;
     const eomc_real w12 = shared[3] * w11;
     const eomc_real w13 = shared[1] * w11;
-    const eomc_real w14 = pd8 * w12;
-    const eomc_real w15 = pd6 * w13;
+    const eomc_real w14 = pd7 * w12;
+    const eomc_real w15 = pd5 * w13;
     const eomc_real w16 = w8 - w14;
     const eomc_real w17 = w15 + w2;
     y[1] = w16;
     const eomc_real w18 = shared[0] * w16;
-    const eomc_real w19 = pd6 * w18;
+    const eomc_real w19 = pd5 * w18;
     const eomc_real w20 = w17 - w19;
     y[2] = w20;
 }
 
 /* y = M^-1 da: the solve's shared values, then minv_shared. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
 {
@@ -630,18 +527,10 @@ chaplygin_sleigh_check_values(const eomc_real *p, eomc_real *chk)
     chk[1] = p_J;
 }
 
-static const char *const check_what[2] = {
-    "body 'sleigh': a mass cannot be negative",
-    "body 'sleigh': its moment of inertia must be positive",
-};
-static const char *const check_params[2] = {
-    "m",
-    "J",
-};
 static const unsigned char check_strict[2] = {0, 1};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 chaplygin_sleigh_check(const double *p)
 {
     eomc_real chk[2];
@@ -651,7 +540,7 @@ chaplygin_sleigh_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -696,7 +585,7 @@ chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 /* Each body item k's mass, centre and inertia about it in its frame
  * at D[13 k ...], from which a body without shapes is drawn. */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
 {
     const eomc_real p_m = p[0];
@@ -718,7 +607,7 @@ chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D)
 
 /* Each shape k's size and position at S[6 k ...], where some depend on
  * the parameters (the shapes' table has their numbers at the defaults). */
-static void
+EOMC_ENTRY void
 chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S)
 {
     const eomc_real p_b = p[2];
@@ -745,6 +634,137 @@ chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S)
 
 #endif /* EOMC_EXTENDED */
 
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[3] = {"x", "y", "theta"};
+static const char *const p_names[5] = {"m", "J", "b", "v0", "w0"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[5] = {1.0, 0.2, 0.5, 0.3, 2.0};
+static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
+
+static const char *const c_names[1] = {"blade"};
+static const int c_order[1] = {1};
+static const int c_dependent[1] = {1};
+
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[2] = {0, 1};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[2] = {
+    {"sleigh", EOMC_DRAW_BODY, 2, 0},
+    {"blade", EOMC_DRAW_POINT, 3, 0},
+};
+static const eomc_shape shapes[2] = {
+    {0, EOMC_SHAPE_BOX, {0.45, 0.15, 0.01}, {-0.2, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}, {0.75, 0.55, 0.3, 1.0}},
+    {0, EOMC_SHAPE_BOX, {0.175, 0.015, 0.015}, {-0.5, 0.0, 0.015}, {1.0, 0.0, 0.0, 0.0}, {0.2, 0.2, 0.25, 1.0}},
+};
+static const int view_trace[1] = {1};
+
+static const char *const check_what[2] = {
+    "body 'sleigh': a mass cannot be negative",
+    "body 'sleigh': its moment of inertia must be positive",
+};
+static const char *const check_params[2] = {
+    "m",
+    "J",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+chaplygin_sleigh_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real v_theta = v[2];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
+    const eomc_real a_theta = a[2];
+    const eomc_real p_b = p[2];
+    const eomc_real pd2 = p[7];
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    dEdq[0] = 0.0;
+    dEdq[1] = 0.0;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = v_theta * v_theta;
+    const eomc_real w2 = cos(q_theta);
+    dEdv[0] = 0.0;
+    dEdv[1] = 0.0;
+    const eomc_real w3 = 2.0 * pd2;
+    dEdt[0] = 0.0;
+    dEdq[3] = 0.0;
+    dEdq[4] = 0.0;
+    dEdv[3] = 0.0;
+    dEdv[4] = 0.0;
+    dEdt[1] = 0.0;
+    dEdq[6] = 0.0;
+    dEdq[7] = 0.0;
+    const eomc_real w4 = p_b * pd2;
+    dEdv[6] = 0.0;
+    dEdv[7] = 0.0;
+    dEdv[8] = 0.0;
+    dEdt[2] = 0.0;
+    const eomc_real w5 = w0 * w1;
+    const eomc_real w6 = w2 * a_theta;
+    const eomc_real w7 = w2 * v_theta;
+    const eomc_real w8 = w2 * w1;
+    const eomc_real w9 = w0 * a_theta;
+    const eomc_real w10 = w0 * v_theta;
+    const eomc_real w11 = w5 - w6;
+    const eomc_real w12 = w3 * w7;
+    const eomc_real w13 = w8 + w9;
+    const eomc_real w14 = w3 * w10;
+    const eomc_real w15 = p_b * w7;
+    const eomc_real w16 = w4 * w8;
+    const eomc_real w17 = w4 * w9;
+    const eomc_real w18 = w6 - w5;
+    const eomc_real w19 = p_b * w10;
+    const eomc_real w20 = w4 * w6;
+    const eomc_real w21 = w4 * w5;
+    const eomc_real w22 = pd2 * w11;
+    const eomc_real w23 = -w12;
+    const eomc_real w24 = pd2 * w13;
+    const eomc_real w25 = -w14;
+    const eomc_real w26 = v_y + w15;
+    const eomc_real w27 = p_b * w13;
+    const eomc_real w28 = p_b * w18;
+    const eomc_real w29 = v_x - w19;
+    dEdq[2] = w22;
+    dEdv[2] = w23;
+    const eomc_real w30 = -w24;
+    dEdv[5] = w25;
+    const eomc_real w31 = v_theta * w26;
+    const eomc_real w32 = a_x - w27;
+    const eomc_real w33 = a_y + w28;
+    const eomc_real w34 = v_theta * w29;
+    dEdq[5] = w30;
+    const eomc_real w35 = w31 - w32;
+    const eomc_real w36 = pd2 * w31;
+    const eomc_real w37 = w33 + w34;
+    const eomc_real w38 = pd2 * w34;
+    const eomc_real w39 = pd2 * w35;
+    const eomc_real w40 = pd2 * w37;
+    const eomc_real w41 = w39 - w16;
+    const eomc_real w42 = w40 + w20;
+    const eomc_real w43 = w41 + w17;
+    const eomc_real w44 = w42 + w21;
+    const eomc_real w45 = w43 - w36;
+    const eomc_real w46 = w44 - w38;
+    const eomc_real w47 = w2 * w45;
+    const eomc_real w48 = w0 * w46;
+    const eomc_real w49 = w47 - w48;
+    dEdq[8] = w49;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
@@ -763,7 +783,7 @@ chaplygin_sleigh_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 12 * S, 0.0, k);
     eomc_tay_sqr(T + 13 * S, T + 6 * S, k);
     eomc_tay_const(T + 25 * S, p[7], k);
-    eomc_tay_const(T + 29 * S, p[9], k);
+    eomc_tay_const(T + 29 * S, p[8], k);
     eomc_tay_neg(T + 7 * S, T + 4 * S, k);
     eomc_tay_scale(T + 16 * S, T + 12 * S, T + 5 * S, k);
     eomc_tay_scale(T + 20 * S, T + 11 * S, T + 4 * S, k);
@@ -796,14 +816,78 @@ static const int taylor_f[1] = {24};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {10};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+chaplygin_sleigh_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+chaplygin_sleigh_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+chaplygin_sleigh_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+chaplygin_sleigh_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+chaplygin_sleigh_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+chaplygin_sleigh_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+chaplygin_sleigh_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+chaplygin_sleigh_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel);
+EOMC_ENTRY void
+chaplygin_sleigh_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt);
+EOMC_ENTRY void
+chaplygin_sleigh_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt);
+EOMC_ENTRY int
+chaplygin_sleigh_accel_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u, eomc_real *a,
+    eomc_real *pivot, eomc_real *shared);
+EOMC_ENTRY int
+chaplygin_sleigh_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+EOMC_ENTRY void
+chaplygin_sleigh_minv_shared(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    const eomc_real *shared, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY void
+chaplygin_sleigh_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY int
+chaplygin_sleigh_check(const double *p);
+EOMC_ENTRY void
+chaplygin_sleigh_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D);
+EOMC_ENTRY void
+chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S);
+
 const eomc_model chaplygin_sleigh_model = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
     .nq = 3, .np = 5, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 12, .derive = chaplygin_sleigh_derive,
+    .nd = 10, .derive = chaplygin_sleigh_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = chaplygin_sleigh_initial, .inputs = chaplygin_sleigh_inputs, .mass_bias = chaplygin_sleigh_mass_bias,
     .energy = chaplygin_sleigh_energy,
@@ -860,3 +944,4 @@ const eomc_model_ext chaplygin_sleigh_model_ext = {
     .taylor = chaplygin_sleigh_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

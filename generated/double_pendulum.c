@@ -21,7 +21,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -31,27 +30,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[2] = {"th1", "th2"};
-static const char *const p_names[5] = {"m1", "m2", "l1", "l2", "g"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[5] = {1.0, 1.0, 1.0, 1.0, 9.81};
-static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[3] = {
-    {"bob1", EOMC_DRAW_PARTICLE, 2, 0},
-    {"bob2", EOMC_DRAW_PARTICLE, 2, 0},
-    {"origin", EOMC_DRAW_POINT, 3, 0},
-};
-static const int view_links[4] = {2, 0, 0, 1};
-static const int view_trace[1] = {1};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 double_pendulum_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_l1 = p[2];
@@ -73,39 +74,31 @@ double_pendulum_derive(const eomc_real *p, eomc_real *pd)
     pd[5] = w5;
     const eomc_real w8 = p_l2 * w3;
     const eomc_real w9 = p_l1 * w3;
-    const eomc_real w10 = p_l1 * w5;
-    const eomc_real w11 = p_m2 * w0;
-    const eomc_real w12 = p_l1 * w4;
-    const eomc_real w13 = p_l2 * w4;
-    const eomc_real w14 = p_l2 * w5;
-    const eomc_real w15 = 0.5 * w6;
+    const eomc_real w10 = p_m2 * w0;
+    const eomc_real w11 = p_l1 * w4;
+    const eomc_real w12 = p_l2 * w4;
+    const eomc_real w13 = 0.5 * w6;
     pd[2] = w7;
     pd[6] = w8;
-    const eomc_real w16 = w7 + w9;
-    pd[8] = w10;
-    const eomc_real w17 = w6 + w11;
+    const eomc_real w14 = w7 + w9;
+    const eomc_real w15 = w6 + w10;
+    pd[9] = w11;
     pd[10] = w12;
-    pd[11] = w13;
-    const eomc_real w18 = 1.0 / w13;
-    const eomc_real w19 = w12 * w12;
-    const eomc_real w20 = 2.0 * w12;
-    pd[16] = w14;
-    const eomc_real w21 = 2.0 * w14;
-    pd[0] = w15;
-    pd[7] = w16;
-    pd[9] = w17;
+    const eomc_real w16 = 1.0 / w12;
+    const eomc_real w17 = w11 * w11;
+    pd[0] = w13;
+    pd[7] = w14;
+    pd[8] = w15;
+    pd[11] = w16;
+    const eomc_real w18 = w11 * w16;
+    const eomc_real w19 = w16 * w17;
     pd[12] = w18;
-    pd[15] = w20;
-    pd[17] = w21;
-    const eomc_real w22 = w12 * w18;
-    const eomc_real w23 = w18 * w19;
-    pd[13] = w22;
-    pd[14] = w23;
+    pd[13] = w19;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 double_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -118,7 +111,7 @@ double_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 double_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -129,7 +122,7 @@ double_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -143,9 +136,9 @@ double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd5 = p[10];
     const eomc_real pd6 = p[11];
     const eomc_real pd7 = p[12];
+    const eomc_real pd8 = p[13];
     const eomc_real pd9 = p[14];
     const eomc_real pd10 = p[15];
-    const eomc_real pd11 = p[16];
     (void)u;
     (void)t;
     eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
@@ -156,10 +149,10 @@ double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w1 = ang_cos[0];
     const eomc_real w2 = ang_sin[1];
     const eomc_real w3 = ang_cos[1];
-    M[0] = pd9;
+    M[0] = pd8;
     const eomc_real w4 = w0 * w2;
     const eomc_real w5 = w1 * w3;
-    M[3] = pd11;
+    M[3] = pd10;
     const eomc_real w6 = pd7 * w0;
     const eomc_real w7 = v_th1 * v_th1;
     const eomc_real w8 = v_th2 * v_th2;
@@ -169,7 +162,7 @@ double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w12 = w3 * w8;
     const eomc_real w13 = w0 * w7;
     const eomc_real w14 = w2 * w8;
-    const eomc_real w15 = pd10 * w10;
+    const eomc_real w15 = pd9 * w10;
     const eomc_real w16 = p_l1 * w11;
     const eomc_real w17 = p_l2 * w12;
     const eomc_real w18 = p_l1 * w13;
@@ -194,7 +187,7 @@ double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 double_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -248,145 +241,13 @@ double_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
     eomc_real TV[2];
     double_pendulum_energy(t, q, v, p, u, TV);
     h[0] = TV[0] + TV[1];
-}
-
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-double_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    const eomc_real q_th1 = q[0];
-    const eomc_real q_th2 = q[1];
-    const eomc_real v_th1 = v[0];
-    const eomc_real v_th2 = v[1];
-    const eomc_real a_th1 = a[0];
-    const eomc_real a_th2 = a[1];
-    const eomc_real p_l1 = p[2];
-    const eomc_real p_l2 = p[3];
-    const eomc_real pd4 = p[9];
-    const eomc_real pd5 = p[10];
-    const eomc_real pd6 = p[11];
-    const eomc_real pd7 = p[12];
-    const eomc_real pd8 = p[13];
-    const eomc_real pd10 = p[15];
-    const eomc_real pd11 = p[16];
-    const eomc_real pd15 = p[20];
-    const eomc_real pd16 = p[21];
-    const eomc_real pd17 = p[22];
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_th1;
-    ang[1] = q_th2;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = v_th1 * v_th1;
-    const eomc_real w5 = w0 * a_th1;
-    const eomc_real w6 = v_th2 * v_th2;
-    const eomc_real w7 = w2 * a_th2;
-    const eomc_real w8 = w0 * v_th1;
-    const eomc_real w9 = w2 * v_th2;
-    const eomc_real w10 = w1 * a_th1;
-    const eomc_real w11 = w3 * a_th2;
-    const eomc_real w12 = w0 * a_th2;
-    const eomc_real w13 = w1 * a_th2;
-    dEdv[0] = 0.0;
-    const eomc_real w14 = w0 * w3;
-    const eomc_real w15 = w1 * w2;
-    dEdt[0] = 0.0;
-    const eomc_real w16 = w2 * a_th1;
-    const eomc_real w17 = w3 * a_th1;
-    dEdv[3] = 0.0;
-    dEdt[1] = 0.0;
-    const eomc_real w18 = w1 * w4;
-    const eomc_real w19 = w3 * w6;
-    const eomc_real w20 = pd8 * w5;
-    const eomc_real w21 = p_l1 * w8;
-    const eomc_real w22 = p_l2 * w9;
-    const eomc_real w23 = w0 * w4;
-    const eomc_real w24 = w2 * w6;
-    const eomc_real w25 = pd8 * w10;
-    const eomc_real w26 = w1 * w6;
-    const eomc_real w27 = w0 * w6;
-    const eomc_real w28 = w14 - w15;
-    const eomc_real w29 = w3 * w4;
-    const eomc_real w30 = w2 * w4;
-    const eomc_real w31 = pd11 * w7;
-    const eomc_real w32 = pd11 * w11;
-    const eomc_real w33 = w15 - w14;
-    const eomc_real w34 = w18 + w5;
-    const eomc_real w35 = w19 + w7;
-    const eomc_real w36 = pd8 * w18;
-    const eomc_real w37 = w21 + w22;
-    const eomc_real w38 = w10 - w23;
-    const eomc_real w39 = w11 - w24;
-    const eomc_real w40 = pd8 * w23;
-    const eomc_real w41 = w12 - w26;
-    const eomc_real w42 = w27 + w13;
-    const eomc_real w43 = v_th2 * w28;
-    const eomc_real w44 = w16 - w29;
-    const eomc_real w45 = w30 + w17;
-    const eomc_real w46 = pd11 * w19;
-    const eomc_real w47 = pd11 * w24;
-    const eomc_real w48 = v_th1 * w33;
-    const eomc_real w49 = p_l1 * w34;
-    const eomc_real w50 = p_l2 * w35;
-    const eomc_real w51 = v_th1 * w37;
-    const eomc_real w52 = p_l1 * w38;
-    const eomc_real w53 = p_l2 * w39;
-    const eomc_real w54 = w3 * w41;
-    const eomc_real w55 = w2 * w42;
-    const eomc_real w56 = pd17 * w43;
-    const eomc_real w57 = w1 * w44;
-    const eomc_real w58 = w0 * w45;
-    const eomc_real w59 = pd15 * w48;
-    const eomc_real w60 = w49 + w50;
-    const eomc_real w61 = pd5 * w51;
-    const eomc_real w62 = w52 + w53;
-    const eomc_real w63 = w54 - w55;
-    dEdv[1] = w56;
-    const eomc_real w64 = w57 - w58;
-    dEdv[2] = w59;
-    const eomc_real w65 = pd5 * w60;
-    const eomc_real w66 = w62 - w51;
-    const eomc_real w67 = pd16 * w63;
-    const eomc_real w68 = pd10 * w64;
-    const eomc_real w69 = pd4 * w60;
-    const eomc_real w70 = pd4 * w62;
-    const eomc_real w71 = pd7 + w65;
-    const eomc_real w72 = pd5 * w66;
-    dEdq[1] = w67;
-    dEdq[2] = w68;
-    const eomc_real w73 = pd6 + w69;
-    const eomc_real w74 = w70 + w47;
-    const eomc_real w75 = w71 + w20;
-    const eomc_real w76 = w72 + w40;
-    const eomc_real w77 = w73 + w31;
-    const eomc_real w78 = w74 + w32;
-    const eomc_real w79 = w75 - w36;
-    const eomc_real w80 = w76 + w25;
-    const eomc_real w81 = w77 - w46;
-    const eomc_real w82 = w2 * w78;
-    const eomc_real w83 = w1 * w79;
-    const eomc_real w84 = w61 + w80;
-    const eomc_real w85 = w3 * w81;
-    const eomc_real w86 = w0 * w84;
-    const eomc_real w87 = w85 - w82;
-    const eomc_real w88 = w83 - w86;
-    dEdq[0] = w88;
-    dEdq[3] = w87;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -409,11 +270,11 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd5 = p[10];
     const eomc_real pd6 = p[11];
     const eomc_real pd7 = p[12];
-    const eomc_real pd9 = p[14];
+    const eomc_real pd8 = p[13];
+    const eomc_real pd10 = p[15];
     const eomc_real pd11 = p[16];
     const eomc_real pd12 = p[17];
     const eomc_real pd13 = p[18];
-    const eomc_real pd14 = p[19];
     (void)u;
     (void)t;
     eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
@@ -426,9 +287,9 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w3 = ang_cos[1];
     const eomc_real w4 = w0 * w2;
     const eomc_real w5 = w1 * w3;
-    piv[1] = pd11;
-    mkk[0] = pd9;
-    mkk[1] = pd11;
+    piv[1] = pd10;
+    mkk[0] = pd8;
+    mkk[1] = pd10;
     const eomc_real w6 = pd6 * w2;
     const eomc_real w7 = v_th1 * v_th1;
     const eomc_real w8 = v_th2 * v_th2;
@@ -443,10 +304,10 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w17 = p_l2 * w12;
     const eomc_real w18 = p_l1 * w13;
     const eomc_real w19 = p_l2 * w14;
-    const eomc_real w20 = pd14 * w15;
+    const eomc_real w20 = pd13 * w15;
     const eomc_real w21 = w16 + w17;
     const eomc_real w22 = w18 + w19;
-    const eomc_real w23 = pd9 - w20;
+    const eomc_real w23 = pd8 - w20;
     const eomc_real w24 = w2 * w21;
     const eomc_real w25 = w3 * w22;
     const eomc_real w26 = w0 * w21;
@@ -460,13 +321,13 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w33 = w6 + w31;
     const eomc_real w34 = w9 + w32;
     const eomc_real w35 = w10 * w33;
-    const eomc_real w36 = pd12 * w33;
-    const eomc_real w37 = pd13 * w35;
+    const eomc_real w36 = pd11 * w33;
+    const eomc_real w37 = pd12 * w35;
     const eomc_real w38 = w37 - w34;
     const eomc_real w39 = w28 * w38;
     a[0] = w39;
     const eomc_real w40 = w10 * w39;
-    const eomc_real w41 = pd13 * w40;
+    const eomc_real w41 = pd12 * w40;
     const eomc_real w42 = w41 + w36;
     const eomc_real w43 = -w42;
     a[1] = w43;
@@ -475,7 +336,7 @@ double_pendulum_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 double_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -495,18 +356,10 @@ double_pendulum_check_values(const eomc_real *p, eomc_real *chk)
     chk[1] = p_m2;
 }
 
-static const char *const check_what[2] = {
-    "particle 'bob1': a mass cannot be negative",
-    "particle 'bob2': a mass cannot be negative",
-};
-static const char *const check_params[2] = {
-    "m1",
-    "m2",
-};
 static const unsigned char check_strict[2] = {0, 0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 double_pendulum_check(const double *p)
 {
     eomc_real chk[2];
@@ -516,7 +369,7 @@ double_pendulum_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -561,6 +414,169 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 #endif /* EOMC_EXTENDED */
 
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[2] = {"th1", "th2"};
+static const char *const p_names[5] = {"m1", "m2", "l1", "l2", "g"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[5] = {1.0, 1.0, 1.0, 1.0, 9.81};
+static const unsigned char p_fixed[5] = {0, 0, 0, 0, 0};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[3] = {
+    {"bob1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"bob2", EOMC_DRAW_PARTICLE, 2, 0},
+    {"origin", EOMC_DRAW_POINT, 3, 0},
+};
+static const int view_links[4] = {2, 0, 0, 1};
+static const int view_trace[1] = {1};
+
+static const char *const check_what[2] = {
+    "particle 'bob1': a mass cannot be negative",
+    "particle 'bob2': a mass cannot be negative",
+};
+static const char *const check_params[2] = {
+    "m1",
+    "m2",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+double_pendulum_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real v_th1 = v[0];
+    const eomc_real v_th2 = v[1];
+    const eomc_real a_th1 = a[0];
+    const eomc_real a_th2 = a[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real pd4 = p[9];
+    const eomc_real pd5 = p[10];
+    const eomc_real pd6 = p[11];
+    const eomc_real pd7 = p[12];
+    const eomc_real pd9 = p[14];
+    const eomc_real pd10 = p[15];
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th1;
+    ang[1] = q_th2;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = v_th1 * v_th1;
+    const eomc_real w5 = w0 * a_th1;
+    const eomc_real w6 = v_th2 * v_th2;
+    const eomc_real w7 = w2 * a_th2;
+    const eomc_real w8 = p_l1 * pd5;
+    const eomc_real w9 = w0 * v_th1;
+    const eomc_real w10 = w2 * v_th2;
+    const eomc_real w11 = w1 * a_th1;
+    const eomc_real w12 = w3 * a_th2;
+    const eomc_real w13 = p_l2 * pd5;
+    const eomc_real w14 = w0 * a_th2;
+    const eomc_real w15 = w1 * a_th2;
+    dEdv[0] = 0.0;
+    const eomc_real w16 = w0 * w3;
+    const eomc_real w17 = w1 * w2;
+    dEdt[0] = 0.0;
+    const eomc_real w18 = w2 * a_th1;
+    const eomc_real w19 = w3 * a_th1;
+    const eomc_real w20 = 2.0 * pd9;
+    dEdv[3] = 0.0;
+    dEdt[1] = 0.0;
+    const eomc_real w21 = w1 * w4;
+    const eomc_real w22 = w3 * w6;
+    const eomc_real w23 = w8 * w5;
+    const eomc_real w24 = p_l1 * w9;
+    const eomc_real w25 = p_l2 * w10;
+    const eomc_real w26 = w0 * w4;
+    const eomc_real w27 = w2 * w6;
+    const eomc_real w28 = w8 * w11;
+    const eomc_real w29 = w1 * w6;
+    const eomc_real w30 = w0 * w6;
+    const eomc_real w31 = 2.0 * w13;
+    const eomc_real w32 = w16 - w17;
+    const eomc_real w33 = w3 * w4;
+    const eomc_real w34 = w2 * w4;
+    const eomc_real w35 = pd10 * w7;
+    const eomc_real w36 = pd10 * w12;
+    const eomc_real w37 = w17 - w16;
+    const eomc_real w38 = w21 + w5;
+    const eomc_real w39 = w22 + w7;
+    const eomc_real w40 = w8 * w21;
+    const eomc_real w41 = w24 + w25;
+    const eomc_real w42 = w11 - w26;
+    const eomc_real w43 = w12 - w27;
+    const eomc_real w44 = w8 * w26;
+    const eomc_real w45 = w14 - w29;
+    const eomc_real w46 = w30 + w15;
+    const eomc_real w47 = v_th2 * w32;
+    const eomc_real w48 = w18 - w33;
+    const eomc_real w49 = w34 + w19;
+    const eomc_real w50 = pd10 * w22;
+    const eomc_real w51 = pd10 * w27;
+    const eomc_real w52 = v_th1 * w37;
+    const eomc_real w53 = p_l1 * w38;
+    const eomc_real w54 = p_l2 * w39;
+    const eomc_real w55 = v_th1 * w41;
+    const eomc_real w56 = p_l1 * w42;
+    const eomc_real w57 = p_l2 * w43;
+    const eomc_real w58 = w3 * w45;
+    const eomc_real w59 = w2 * w46;
+    const eomc_real w60 = w31 * w47;
+    const eomc_real w61 = w1 * w48;
+    const eomc_real w62 = w0 * w49;
+    const eomc_real w63 = w20 * w52;
+    const eomc_real w64 = w53 + w54;
+    const eomc_real w65 = pd5 * w55;
+    const eomc_real w66 = w56 + w57;
+    const eomc_real w67 = w58 - w59;
+    dEdv[1] = w60;
+    const eomc_real w68 = w61 - w62;
+    dEdv[2] = w63;
+    const eomc_real w69 = pd5 * w64;
+    const eomc_real w70 = w66 - w55;
+    const eomc_real w71 = w13 * w67;
+    const eomc_real w72 = pd9 * w68;
+    const eomc_real w73 = pd4 * w64;
+    const eomc_real w74 = pd4 * w66;
+    const eomc_real w75 = pd7 + w69;
+    const eomc_real w76 = pd5 * w70;
+    dEdq[1] = w71;
+    dEdq[2] = w72;
+    const eomc_real w77 = pd6 + w73;
+    const eomc_real w78 = w74 + w51;
+    const eomc_real w79 = w75 + w23;
+    const eomc_real w80 = w76 + w44;
+    const eomc_real w81 = w77 + w35;
+    const eomc_real w82 = w78 + w36;
+    const eomc_real w83 = w79 - w40;
+    const eomc_real w84 = w80 + w28;
+    const eomc_real w85 = w81 - w50;
+    const eomc_real w86 = w2 * w82;
+    const eomc_real w87 = w1 * w83;
+    const eomc_real w88 = w65 + w84;
+    const eomc_real w89 = w3 * w85;
+    const eomc_real w90 = w0 * w88;
+    const eomc_real w91 = w89 - w86;
+    const eomc_real w92 = w87 - w90;
+    dEdq[0] = w92;
+    dEdq[3] = w91;
+}
+
+#endif /* EOMC_EXTENDED */
+
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
@@ -582,9 +598,9 @@ double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 17 * S, p[10], k);
     eomc_tay_const(T + 18 * S, p[11], k);
     eomc_tay_const(T + 20 * S, p[12], k);
-    eomc_tay_const(T + 22 * S, p[14], k);
-    eomc_tay_const(T + 26 * S, p[15], k);
-    eomc_tay_const(T + 28 * S, p[16], k);
+    eomc_tay_const(T + 22 * S, p[13], k);
+    eomc_tay_const(T + 26 * S, p[14], k);
+    eomc_tay_const(T + 28 * S, p[15], k);
     eomc_tay_scale(T + 19 * S, T + 18 * S, T + 6 * S, k);
     eomc_tay_scale(T + 21 * S, T + 20 * S, T + 2 * S, k);
     eomc_tay_mul4(T + 11 * S, T + 12 * S, T + 14 * S, T + 15 * S, T + 2 * S, T + 10 * S, T + 3 * S, T + 10 * S, T + 6 * S, T + 13 * S, T + 7 * S, T + 13 * S, k);
@@ -613,14 +629,46 @@ static const int taylor_v[2] = {8, 9};
 static const int taylor_M[4] = {22, 27, 27, 28};
 static const int taylor_h[2] = {39, 44};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+double_pendulum_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+double_pendulum_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+double_pendulum_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+double_pendulum_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+double_pendulum_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+double_pendulum_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+double_pendulum_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY int
+double_pendulum_check(const double *p);
+EOMC_ENTRY void
+double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
     .nq = 2, .np = 5, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 18, .derive = double_pendulum_derive,
+    .nd = 14, .derive = double_pendulum_derive,
     .t_end = 10.0, .dt = 0.05, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = double_pendulum_initial, .inputs = double_pendulum_inputs, .mass_bias = double_pendulum_mass_bias,
     .energy = double_pendulum_energy,
@@ -668,3 +716,4 @@ const eomc_model_ext double_pendulum_model_ext = {
     .taylor = double_pendulum_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -20,7 +20,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -30,23 +29,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[1] = {"y"};
-static const char *const p_names[3] = {"m", "g", "f"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[3] = {2.0, 9.81, 5.0};
-static const unsigned char p_fixed[3] = {0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 falling_particle_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_m = p[0];
@@ -66,7 +71,7 @@ falling_particle_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -77,7 +82,7 @@ falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 falling_particle_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -88,7 +93,7 @@ falling_particle_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -104,7 +109,7 @@ falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -119,24 +124,6 @@ falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w2 = pd0 * w0;
     TV[0] = w2;
     TV[1] = w1;
-}
-
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-falling_particle_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    (void)q;
-    (void)v;
-    (void)a;
-    (void)p;
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    dEdq[0] = 0.0;
-    dEdv[0] = 0.0;
-    dEdt[0] = 0.0;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -163,7 +150,7 @@ falling_particle_accel_solve(eomc_real t, const eomc_real *q,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -181,16 +168,10 @@ falling_particle_check_values(const eomc_real *p, eomc_real *chk)
     chk[0] = p_m;
 }
 
-static const char *const check_what[1] = {
-    "particle 'ball': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
 static const unsigned char check_strict[1] = {0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 falling_particle_check(const double *p)
 {
     eomc_real chk[1];
@@ -200,7 +181,7 @@ falling_particle_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -220,6 +201,49 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[9] = 0.0;
     X[10] = 0.0;
     X[11] = 1.0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[1] = {"y"};
+static const char *const p_names[3] = {"m", "g", "f"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[3] = {2.0, 9.81, 5.0};
+static const unsigned char p_fixed[3] = {0, 0, 0};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'ball': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+falling_particle_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    (void)q;
+    (void)v;
+    (void)a;
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    dEdq[0] = 0.0;
+    dEdv[0] = 0.0;
+    dEdt[0] = 0.0;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -246,7 +270,36 @@ static const int taylor_v[1] = {-1};
 static const int taylor_M[1] = {0};
 static const int taylor_h[1] = {1};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+falling_particle_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+falling_particle_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+falling_particle_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+falling_particle_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+falling_particle_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+falling_particle_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY int
+falling_particle_check(const double *p);
+EOMC_ENTRY void
+falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -301,3 +354,4 @@ const eomc_model_ext falling_particle_model_ext = {
     .taylor = falling_particle_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -20,7 +20,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -30,18 +29,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[1] = {"theta_l"};
-static const char *const p_names[6] = {"Jm", "Jl", "r", "M", "l", "g"};
-static const char *const u_names[1] = {"u"};
-static const double p_default[6] = {0.01, 0.5, 10.0, 2.0, 0.3, 9.81};
-static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 gear_link_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_r = p[2];
@@ -54,22 +64,20 @@ gear_link_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w1 = 0.5 * p_Jl;
     const eomc_real w2 = p_M * p_g;
     const eomc_real w3 = p_r * p_Jm;
-    const eomc_real w4 = -p_r;
     pd[0] = w0;
     pd[1] = w1;
-    const eomc_real w5 = w2 * p_l;
-    const eomc_real w6 = p_r * w3;
-    pd[2] = w5;
-    pd[5] = w4;
-    const eomc_real w7 = p_Jl + w6;
-    pd[3] = w7;
-    const eomc_real w8 = 1.0 / w7;
-    pd[4] = w8;
+    const eomc_real w4 = w2 * p_l;
+    const eomc_real w5 = p_r * w3;
+    pd[2] = w4;
+    const eomc_real w6 = p_Jl + w5;
+    pd[3] = w6;
+    const eomc_real w7 = 1.0 / w6;
+    pd[4] = w7;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 gear_link_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -80,7 +88,7 @@ gear_link_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 gear_link_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
@@ -93,7 +101,7 @@ gear_link_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -114,7 +122,7 @@ gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -137,27 +145,6 @@ gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w7 = 1.0 - w2;
     const eomc_real w8 = pd2 * w7;
     TV[1] = w8;
-}
-
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    const eomc_real q_theta_l = q[0];
-    const eomc_real pd2 = p[8];
-    const eomc_real pd5 = p[11];
-    (void)v;
-    (void)a;
-    (void)u;
-    (void)t;
-    const eomc_real w0 = cos(q_theta_l);
-    dEdv[0] = 0.0;
-    dEdu[0] = pd5;
-    dEdt[0] = 0.0;
-    const eomc_real w1 = pd2 * w0;
-    dEdq[0] = w1;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -191,7 +178,7 @@ gear_link_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -199,6 +186,42 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     gear_link_accel_solve(t, q, v, p, u, a, piv, mkk);
     return eomc_pivots(1, piv, mkk, pivot); /* eomc_model.h */
 }
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[1] = {"theta_l"};
+static const char *const p_names[6] = {"Jm", "Jl", "r", "M", "l", "g"};
+static const char *const u_names[1] = {"u"};
+static const double p_default[6] = {0.01, 0.5, 10.0, 2.0, 0.3, 9.81};
+static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
+
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    const eomc_real q_theta_l = q[0];
+    const eomc_real p_r = p[2];
+    const eomc_real pd2 = p[8];
+    (void)v;
+    (void)a;
+    (void)u;
+    (void)t;
+    const eomc_real w0 = cos(q_theta_l);
+    dEdv[0] = 0.0;
+    const eomc_real w1 = -p_r;
+    dEdu[0] = w1;
+    dEdt[0] = 0.0;
+    const eomc_real w2 = pd2 * w0;
+    dEdq[0] = w2;
+}
+
+#endif /* EOMC_EXTENDED */
 
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
@@ -227,6 +250,29 @@ static const int taylor_v[1] = {-1};
 static const int taylor_M[1] = {5};
 static const int taylor_h[1] = {9};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+gear_link_derive(const eomc_real *p, eomc_real *pd);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+gear_link_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+gear_link_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt);
+EOMC_ENTRY void
+gear_link_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+gear_link_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+
 #ifndef EOMC_EXTENDED
 const eomc_model gear_link_model = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .spec = "gear_link.yaml", .form = "lagrange",
@@ -234,7 +280,7 @@ const eomc_model gear_link_model = {
     .nq = 1, .np = 6, .nu = 1,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 6, .derive = gear_link_derive,
+    .nd = 5, .derive = gear_link_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-10, .atol = 1e-10, .h_fixed = 0.0,
     .initial = gear_link_initial, .inputs = gear_link_inputs, .mass_bias = gear_link_mass_bias,
     .energy = gear_link_energy,
@@ -277,3 +323,4 @@ const eomc_model_ext gear_link_model_ext = {
     .taylor = gear_link_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

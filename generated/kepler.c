@@ -21,7 +21,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -31,23 +30,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[2] = {"x", "y"};
-static const char *const p_names[4] = {"mu", "m", "a", "e"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {1.0, 1.0, 1.0, 0.5};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"body", EOMC_DRAW_PARTICLE, 2, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 kepler_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_m = p[1];
@@ -63,7 +68,7 @@ kepler_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 kepler_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_mu = p[0];
@@ -84,7 +89,7 @@ kepler_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 kepler_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 {
     (void)p;
@@ -94,7 +99,7 @@ kepler_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt)
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 kepler_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -127,7 +132,7 @@ kepler_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 kepler_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -155,7 +160,7 @@ kepler_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
@@ -164,6 +169,126 @@ kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     h[0] = TV[0] + TV[1];
 }
 
+#endif /* EOMC_EXTENDED */
+
+/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
+ * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
+ * M_kk. */
+static void
+kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real p_m = p[1];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd2 = p[6];
+    (void)v;
+    (void)u;
+    (void)t;
+    piv[0] = p_m;
+    piv[1] = p_m;
+    mkk[0] = p_m;
+    mkk[1] = p_m;
+    const eomc_real w0 = q_x * q_x;
+    const eomc_real w1 = q_y * q_y;
+    const eomc_real w2 = w0 + w1;
+    const eomc_real w3 = sqrt(w2);
+    const eomc_real w4 = pd0 / w3;
+    const eomc_real w5 = 0.5 / w3;
+    const eomc_real w6 = w4 / w3;
+    const eomc_real w7 = w6 * w5;
+    const eomc_real w8 = q_x * w7;
+    const eomc_real w9 = q_y * w7;
+    const eomc_real w10 = pd2 * w8;
+    const eomc_real w11 = pd2 * w9;
+    a[0] = w10;
+    a[1] = w11;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+EOMC_ENTRY int
+kepler_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real piv[2], mkk[2];
+    kepler_accel_solve(t, q, v, p, u, a, piv, mkk);
+    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
+}
+
+#ifndef EOMC_EXTENDED
+/* The values that must be positive (or not negative): check_what. */
+static void
+kepler_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_m = p[1];
+    chk[0] = p_m;
+}
+
+static const unsigned char check_strict[1] = {0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+EOMC_ENTRY int
+kepler_check(const double *p)
+{
+    eomc_real chk[1];
+    kepler_check_values(p, chk);
+    return eomc_checks(1, chk, check_strict); /* eomc_model.h */
+}
+
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+EOMC_ENTRY void
+kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = q_x;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[2] = {"x", "y"};
+static const char *const p_names[4] = {"mu", "m", "a", "e"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {1.0, 1.0, 1.0, 0.5};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"body", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'body': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -232,107 +357,6 @@ kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #endif /* EOMC_EXTENDED */
 
-/* a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M
- * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =
- * M_kk. */
-static void
-kepler_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
-    eomc_real *mkk)
-{
-    const eomc_real q_x = q[0];
-    const eomc_real q_y = q[1];
-    const eomc_real p_m = p[1];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd2 = p[6];
-    (void)v;
-    (void)u;
-    (void)t;
-    piv[0] = p_m;
-    piv[1] = p_m;
-    mkk[0] = p_m;
-    mkk[1] = p_m;
-    const eomc_real w0 = q_x * q_x;
-    const eomc_real w1 = q_y * q_y;
-    const eomc_real w2 = w0 + w1;
-    const eomc_real w3 = sqrt(w2);
-    const eomc_real w4 = pd0 / w3;
-    const eomc_real w5 = 0.5 / w3;
-    const eomc_real w6 = w4 / w3;
-    const eomc_real w7 = w6 * w5;
-    const eomc_real w8 = q_x * w7;
-    const eomc_real w9 = q_y * w7;
-    const eomc_real w10 = pd2 * w8;
-    const eomc_real w11 = pd2 * w9;
-    a[0] = w10;
-    a[1] = w11;
-}
-
-/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite).  *pivot (unless NULL): the
- * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
-kepler_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
-{
-    eomc_real piv[2], mkk[2];
-    kepler_accel_solve(t, q, v, p, u, a, piv, mkk);
-    return eomc_pivots(2, piv, mkk, pivot); /* eomc_model.h */
-}
-
-#ifndef EOMC_EXTENDED
-/* The values that must be positive (or not negative): check_what. */
-static void
-kepler_check_values(const eomc_real *p, eomc_real *chk)
-{
-    const eomc_real p_m = p[1];
-    chk[0] = p_m;
-}
-
-static const char *const check_what[1] = {
-    "particle 'body': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
-static const unsigned char check_strict[1] = {0};
-
-/* 0, or k + 1 for the first condition k the parameters p break. */
-static int
-kepler_check(const double *p)
-{
-    eomc_real chk[1];
-    kepler_check_values(p, chk);
-    return eomc_checks(1, chk, check_strict); /* eomc_model.h */
-}
-
-/* What a run's page draws: item k's position and rotation (row-major,
- * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
-kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
-    const eomc_real *u, eomc_real *X)
-{
-    const eomc_real q_x = q[0];
-    const eomc_real q_y = q[1];
-    (void)p;
-    (void)u;
-    (void)t;
-    X[0] = q_x;
-    X[1] = q_y;
-    X[2] = 0.0;
-    X[3] = 1.0;
-    X[4] = 0.0;
-    X[5] = 0.0;
-    X[6] = 0.0;
-    X[7] = 1.0;
-    X[8] = 0.0;
-    X[9] = 0.0;
-    X[10] = 0.0;
-    X[11] = 1.0;
-}
-
-#endif /* EOMC_EXTENDED */
-
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
@@ -368,7 +392,38 @@ static const int taylor_v[2] = {-1, -1};
 static const int taylor_M[4] = {1, -1, -1, 1};
 static const int taylor_h[2] = {17, 15};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+kepler_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+kepler_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+kepler_inputs(eomc_real t, const eomc_real *p, eomc_real *u, eomc_real *dudt);
+EOMC_ENTRY void
+kepler_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+kepler_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+kepler_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+kepler_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY int
+kepler_check(const double *p);
+EOMC_ENTRY void
+kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model kepler_model = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .spec = "kepler.yaml", .form = "lagrange",
     .options = "--jacobian auto --taylor",
@@ -423,3 +478,4 @@ const eomc_model_ext kepler_model_ext = {
     .taylor = kepler_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -28,7 +28,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -38,30 +37,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[3] = {"psi", "theta", "phi"};
-static const char *const p_names[4] = {"A", "B", "C", "lam"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {1.0, 1.5, 2.0, 0.5};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const c_names[1] = {"precession"};
-static const int c_order[1] = {2};
-static const int c_dependent[1] = {1};
-
-/* The entries of B that can be nonzero (the rest are 0 at every state). */
-static const int c_nz[2] = {0, 1};
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"body", EOMC_DRAW_BODY, 3, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 precession_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_A = p[0];
@@ -93,7 +91,7 @@ precession_derive(const eomc_real *p, eomc_real *pd)
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 precession_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -108,7 +106,7 @@ precession_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 precession_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -119,7 +117,7 @@ precession_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 precession_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -224,7 +222,7 @@ precession_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 precession_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -268,6 +266,696 @@ precession_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[0] = w21;
 }
 
+#endif /* EOMC_EXTENDED */
+
+/* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
+EOMC_ENTRY void
+precession_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B)
+{
+    const eomc_real v_psi = v[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real v_phi = v[2];
+    const eomc_real a_psi = a[0];
+    const eomc_real a_theta = a[1];
+    const eomc_real p_lam = p[3];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = v_psi * w0;
+    const eomc_real w5 = v_theta * w3;
+    const eomc_real w6 = w0 * a_psi;
+    const eomc_real w7 = v_psi * v_theta;
+    const eomc_real w8 = w2 * a_theta;
+    const eomc_real w9 = w2 * v_theta;
+    const eomc_real w10 = w3 * a_theta;
+    const eomc_real w11 = v_psi * w1;
+    const eomc_real w12 = w0 * w3;
+    const eomc_real w13 = w0 * w2;
+    B[2] = 0.0;
+    const eomc_real w14 = w4 * w2;
+    const eomc_real w15 = w7 * w1;
+    const eomc_real w16 = w5 * v_phi;
+    const eomc_real w17 = w4 * w3;
+    const eomc_real w18 = w9 * v_phi;
+    const eomc_real w19 = w11 + v_phi;
+    const eomc_real w20 = w14 + w5;
+    const eomc_real w21 = w6 + w15;
+    const eomc_real w22 = w14 * v_phi;
+    const eomc_real w23 = w16 + w8;
+    const eomc_real w24 = w17 - w9;
+    const eomc_real w25 = w17 * v_phi;
+    const eomc_real w26 = w10 - w18;
+    const eomc_real w27 = w3 * w21;
+    const eomc_real w28 = w2 * w21;
+    const eomc_real w29 = w20 * w20;
+    const eomc_real w30 = w24 * w24;
+    const eomc_real w31 = w20 * w12;
+    const eomc_real w32 = w24 * w13;
+    const eomc_real w33 = w2 * w20;
+    const eomc_real w34 = w3 * w24;
+    const eomc_real w35 = w27 - w22;
+    const eomc_real w36 = w28 + w25;
+    const eomc_real w37 = w29 + w30;
+    const eomc_real w38 = w31 - w32;
+    const eomc_real w39 = w33 + w34;
+    const eomc_real w40 = w35 - w23;
+    const eomc_real w41 = w36 + w26;
+    const eomc_real w42 = w19 * w37;
+    const eomc_real w43 = pow(w37, 1.5);
+    B[0] = w38;
+    const eomc_real w44 = -w39;
+    const eomc_real w45 = w20 * w40;
+    const eomc_real w46 = w24 * w41;
+    B[1] = w44;
+    const eomc_real w47 = w45 - w46;
+    const eomc_real w48 = w47 + w42;
+    const eomc_real w49 = p_lam * w43;
+    const eomc_real w50 = w48 - w49;
+    f[0] = w50;
+}
+
+#ifndef EOMC_EXTENDED
+/* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
+EOMC_ENTRY void
+precession_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
+{
+    (void)q;
+    (void)v;
+    (void)p;
+    (void)u;
+    (void)t;
+    pos[0] = 0.0;
+    vel[0] = 0.0;
+}
+
+/* Partial derivatives of f and of B = df/dq'' (u held fixed). */
+EOMC_ENTRY void
+precession_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt)
+{
+    const eomc_real v_psi = v[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real v_phi = v[2];
+    const eomc_real a_psi = a[0];
+    const eomc_real a_theta = a[1];
+    const eomc_real pd8 = p[12];
+    const eomc_real pd9 = p[13];
+    (void)u;
+    (void)t;
+    (void)dfdu;
+    (void)dBdu;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    dfdq[0] = 0.0;
+    const eomc_real w4 = w0 * w2;
+    const eomc_real w5 = w0 * a_psi;
+    const eomc_real w6 = v_psi * v_theta;
+    const eomc_real w7 = v_psi * w0;
+    const eomc_real w8 = v_theta * w3;
+    const eomc_real w9 = w2 * a_theta;
+    const eomc_real w10 = w0 * w3;
+    const eomc_real w11 = w3 * a_theta;
+    const eomc_real w12 = w2 * v_theta;
+    const eomc_real w13 = v_psi * w1;
+    const eomc_real w14 = v_psi * w2;
+    const eomc_real w15 = w1 * a_psi;
+    const eomc_real w16 = v_psi * w3;
+    const eomc_real w17 = w3 * v_phi;
+    const eomc_real w18 = w2 * v_phi;
+    dfdv[2] = 0.0;
+    dfdt[0] = 0.0;
+    dBdq[0] = 0.0;
+    dBdv[0] = 0.0;
+    dBda[0] = 0.0;
+    const eomc_real w19 = w3 * w1;
+    const eomc_real w20 = w2 * w1;
+    dBdv[1] = w0;
+    dBda[1] = 0.0;
+    dBdq[2] = 0.0;
+    dBdv[2] = 0.0;
+    dBda[2] = 0.0;
+    dBdt[0] = 0.0;
+    dBdq[3] = 0.0;
+    const eomc_real w21 = -w0;
+    dBda[3] = 0.0;
+    dBdv[4] = 0.0;
+    dBda[4] = 0.0;
+    dBdq[5] = 0.0;
+    dBdv[5] = 0.0;
+    dBda[5] = 0.0;
+    dBdt[1] = 0.0;
+    dBdq[6] = 0.0;
+    dBdv[6] = 0.0;
+    dBda[6] = 0.0;
+    dBdq[7] = 0.0;
+    dBdv[7] = 0.0;
+    dBda[7] = 0.0;
+    dBdq[8] = 0.0;
+    dBdv[8] = 0.0;
+    dBda[8] = 0.0;
+    dBdt[2] = 0.0;
+    const eomc_real w22 = w6 * w1;
+    const eomc_real w23 = w7 * w2;
+    const eomc_real w24 = w8 * v_phi;
+    const eomc_real w25 = w8 * w1;
+    const eomc_real w26 = w4 * v_phi;
+    const eomc_real w27 = w7 * w3;
+    const eomc_real w28 = w12 * v_phi;
+    const eomc_real w29 = w12 * w1;
+    const eomc_real w30 = w10 * v_phi;
+    const eomc_real w31 = w13 + v_phi;
+    const eomc_real w32 = w14 * w1;
+    const eomc_real w33 = w7 * v_theta;
+    const eomc_real w34 = w16 * w1;
+    dBdv[3] = w21;
+    const eomc_real w35 = -w13;
+    const eomc_real w36 = w5 + w22;
+    const eomc_real w37 = w23 * v_phi;
+    const eomc_real w38 = w24 + w9;
+    const eomc_real w39 = w23 + w8;
+    const eomc_real w40 = w25 - w26;
+    const eomc_real w41 = w27 * v_phi;
+    const eomc_real w42 = w11 - w28;
+    const eomc_real w43 = w27 - w12;
+    const eomc_real w44 = w29 + w30;
+    const eomc_real w45 = w15 - w33;
+    const eomc_real w46 = w32 * v_phi;
+    const eomc_real w47 = w34 * v_phi;
+    const eomc_real w48 = w34 - w17;
+    const eomc_real w49 = w32 - w18;
+    const eomc_real w50 = w28 - w11;
+    dBdq[4] = w35;
+    const eomc_real w51 = w3 * w36;
+    const eomc_real w52 = w39 * w40;
+    const eomc_real w53 = w2 * w36;
+    const eomc_real w54 = w43 * w44;
+    const eomc_real w55 = w39 * w39;
+    const eomc_real w56 = w43 * w43;
+    const eomc_real w57 = w39 * w4;
+    const eomc_real w58 = w43 * w10;
+    const eomc_real w59 = w3 * w45;
+    const eomc_real w60 = w2 * w45;
+    const eomc_real w61 = w39 * w32;
+    const eomc_real w62 = w43 * w34;
+    const eomc_real w63 = w39 * w48;
+    const eomc_real w64 = w43 * w49;
+    const eomc_real w65 = w3 * w39;
+    const eomc_real w66 = w2 * w43;
+    const eomc_real w67 = w39 * w19;
+    const eomc_real w68 = w43 * w20;
+    const eomc_real w69 = w51 - w37;
+    const eomc_real w70 = w53 + w41;
+    const eomc_real w71 = w55 + w56;
+    const eomc_real w72 = w57 + w58;
+    const eomc_real w73 = w59 - w46;
+    const eomc_real w74 = w60 + w47;
+    const eomc_real w75 = w61 + w62;
+    const eomc_real w76 = 2.0 * w65;
+    const eomc_real w77 = (-2.0) * w66;
+    const eomc_real w78 = w67 - w68;
+    const eomc_real w79 = w69 - w38;
+    const eomc_real w80 = w70 + w42;
+    const eomc_real w81 = w1 * w71;
+    const eomc_real w82 = w31 * w72;
+    const eomc_real w83 = sqrt(w71);
+    const eomc_real w84 = w39 * w73;
+    const eomc_real w85 = w43 * w74;
+    const eomc_real w86 = w31 * w75;
+    const eomc_real w87 = w7 * w71;
+    const eomc_real w88 = w76 + w77;
+    const eomc_real w89 = w50 - w70;
+    dBdq[1] = w78;
+    const eomc_real w90 = w4 * w79;
+    const eomc_real w91 = w10 * w80;
+    const eomc_real w92 = 2.0 * w82;
+    const eomc_real w93 = w79 * w32;
+    const eomc_real w94 = w80 * w34;
+    const eomc_real w95 = 2.0 * w86;
+    const eomc_real w96 = w3 * w79;
+    const eomc_real w97 = w2 * w80;
+    const eomc_real w98 = w31 * w88;
+    const eomc_real w99 = w39 * w80;
+    const eomc_real w100 = w39 * w89;
+    const eomc_real w101 = w90 + w52;
+    const eomc_real w102 = w91 + w54;
+    const eomc_real w103 = w81 + w92;
+    const eomc_real w104 = w93 + w84;
+    const eomc_real w105 = w94 + w85;
+    const eomc_real w106 = w95 - w87;
+    const eomc_real w107 = w96 + w63;
+    const eomc_real w108 = w97 - w64;
+    const eomc_real w109 = w99 + w100;
+    const eomc_real w110 = w101 - w102;
+    const eomc_real w111 = w104 - w105;
+    const eomc_real w112 = w107 + w108;
+    dfdq[2] = w109;
+    const eomc_real w113 = w110 + w103;
+    const eomc_real w114 = w111 + w106;
+    const eomc_real w115 = w112 + w98;
+    const eomc_real w116 = w72 * w83;
+    const eomc_real w117 = w83 * w75;
+    const eomc_real w118 = w83 * w88;
+    const eomc_real w119 = pd8 * w116;
+    const eomc_real w120 = pd8 * w117;
+    const eomc_real w121 = pd9 * w118;
+    const eomc_real w122 = w113 - w119;
+    const eomc_real w123 = w114 - w120;
+    const eomc_real w124 = w115 - w121;
+    dfdv[0] = w122;
+    dfdq[1] = w123;
+    dfdv[1] = w124;
+}
+
+/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
+ * stabilization adds to df/dx. */
+EOMC_ENTRY void
+precession_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt)
+{
+    (void)q;
+    (void)v;
+    (void)p;
+    (void)u;
+    (void)t;
+    (void)dposdu;
+    (void)dveldu;
+    dposdq[0] = 0.0;
+    dveldq[0] = 0.0;
+    dveldv[0] = 0.0;
+    dposdq[1] = 0.0;
+    dveldq[1] = 0.0;
+    dveldv[1] = 0.0;
+    dposdq[2] = 0.0;
+    dveldq[2] = 0.0;
+    dveldv[2] = 0.0;
+    dposdt[0] = 0.0;
+    dveldt[0] = 0.0;
+}
+
+/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
+ * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
+ * minv_shared reads of the solve. */
+static void
+precession_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
+    eomc_real *mkk, eomc_real *shared)
+{
+    const eomc_real v_psi = v[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real v_theta = v[1];
+    const eomc_real v_phi = v[2];
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd1 = p[5];
+    const eomc_real pd2 = p[6];
+    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
+    const eomc_real pd6 = p[10];
+    const eomc_real pd7 = p[11];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w1 * w1;
+    const eomc_real w5 = w3 * w3;
+    const eomc_real w6 = w2 * w2;
+    const eomc_real w7 = w0 * w2;
+    piv[2] = p_C;
+    mkk[2] = p_C;
+    const eomc_real w8 = v_psi * w0;
+    const eomc_real w9 = v_theta * w3;
+    const eomc_real w10 = w2 * v_theta;
+    const eomc_real w11 = v_psi * w1;
+    const eomc_real w12 = v_psi * w2;
+    const eomc_real w13 = v_psi * v_theta;
+    shared[0] = w1;
+    const eomc_real w14 = p_C * w4;
+    const eomc_real w15 = w0 * w5;
+    const eomc_real w16 = w0 * w6;
+    const eomc_real w17 = pd6 * w4;
+    const eomc_real w18 = p_A * w5;
+    const eomc_real w19 = p_B * w6;
+    const eomc_real w20 = w7 * w3;
+    const eomc_real w21 = w8 * w2;
+    const eomc_real w22 = w8 * w3;
+    const eomc_real w23 = w8 * v_theta;
+    const eomc_real w24 = w11 + v_phi;
+    const eomc_real w25 = w12 * v_theta;
+    const eomc_real w26 = w10 * v_phi;
+    const eomc_real w27 = w13 * w3;
+    const eomc_real w28 = w9 * v_phi;
+    const eomc_real w29 = p_B * w15;
+    const eomc_real w30 = p_A * w16;
+    const eomc_real w31 = w18 + w19;
+    const eomc_real w32 = w20 * w20;
+    const eomc_real w33 = w21 + w9;
+    const eomc_real w34 = w22 - w10;
+    const eomc_real w35 = p_C * w23;
+    const eomc_real w36 = w22 * v_phi;
+    const eomc_real w37 = w25 * w1;
+    const eomc_real w38 = w27 * w1;
+    const eomc_real w39 = w21 * v_phi;
+    const eomc_real w40 = w29 + w30;
+    const eomc_real w41 = 1.0 / w31;
+    piv[1] = w31;
+    mkk[1] = w31;
+    const eomc_real w42 = w33 * w34;
+    const eomc_real w43 = w34 * w24;
+    const eomc_real w44 = w36 + w37;
+    const eomc_real w45 = w33 * w24;
+    const eomc_real w46 = w38 - w39;
+    const eomc_real w47 = w0 * w40;
+    const eomc_real w48 = pd2 * w42;
+    const eomc_real w49 = pd0 * w43;
+    const eomc_real w50 = w44 - w26;
+    const eomc_real w51 = pd1 * w45;
+    const eomc_real w52 = w46 - w28;
+    const eomc_real w53 = w14 + w47;
+    const eomc_real w54 = w48 - w35;
+    const eomc_real w55 = p_A * w50;
+    const eomc_real w56 = p_B * w52;
+    const eomc_real w57 = w35 - w48;
+    const eomc_real w58 = w53 - w17;
+    mkk[0] = w53;
+    const eomc_real w59 = w1 * w54;
+    const eomc_real w60 = w49 + w55;
+    const eomc_real w61 = w51 + w56;
+    const eomc_real w62 = w1 * w57;
+    const eomc_real w63 = pd4 * w57;
+    const eomc_real w64 = w2 * w60;
+    const eomc_real w65 = w3 * w61;
+    const eomc_real w66 = pd5 * w62;
+    const eomc_real w67 = w2 * w61;
+    const eomc_real w68 = w3 * w60;
+    const eomc_real w69 = w41 * w32;
+    const eomc_real w70 = w20 * w41;
+    shared[1] = w41;
+    const eomc_real w71 = w64 + w65;
+    const eomc_real w72 = w67 - w68;
+    const eomc_real w73 = pd7 * w69;
+    shared[2] = w70;
+    const eomc_real w74 = w0 * w71;
+    const eomc_real w75 = w70 * w72;
+    const eomc_real w76 = w41 * w72;
+    const eomc_real w77 = w58 - w73;
+    const eomc_real w78 = w59 + w74;
+    const eomc_real w79 = pd3 * w75;
+    piv[0] = w77;
+    const eomc_real w80 = 1.0 / w77;
+    const eomc_real w81 = w66 + w79;
+    const eomc_real w82 = w78 + w81;
+    const eomc_real w83 = w80 * w82;
+    shared[3] = w80;
+    const eomc_real w84 = -w83;
+    const eomc_real w85 = w70 * w83;
+    const eomc_real w86 = w1 * w83;
+    a[0] = w84;
+    const eomc_real w87 = pd3 * w85;
+    const eomc_real w88 = pd5 * w86;
+    const eomc_real w89 = w87 + w76;
+    const eomc_real w90 = w88 + w63;
+    a[1] = w89;
+    a[2] = w90;
+}
+
+/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
+ * singular or not positive definite).  *pivot (unless NULL): the
+ * smallest d_k / M_kk, compared without dividing in the loop. */
+EOMC_ENTRY int
+precession_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
+    eomc_real *shared)
+{
+    eomc_real piv[3], mkk[3];
+    precession_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
+    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
+}
+
+/* The same, what minv_shared reads dropped. */
+EOMC_ENTRY int
+precession_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
+{
+    eomc_real shared[4];
+    return precession_accel_shared(t, q, v, p, u, a, pivot, shared);
+}
+
+/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
+ * but the load da, or the LDL^T factors), given shared[] from
+ * accel_solve at the same (t, q, p): one unit load's passes alone. */
+EOMC_ENTRY void
+precession_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
+    const eomc_real *da, eomc_real *y)
+{
+    const eomc_real da_psi = da[0];
+    const eomc_real da_theta = da[1];
+    const eomc_real da_phi = da[2];
+    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
+    (void)q;
+    (void)v;
+    (void)u;
+    (void)t;
+    (void)shared;
+    const eomc_real w0 = shared[0] * da_phi;
+    const eomc_real w1 = shared[2] * da_theta;
+    const eomc_real w2 = shared[1] * da_theta;
+    const eomc_real w3 = pd4 * da_phi;
+    const eomc_real w4 = pd5 * w0;
+    const eomc_real w5 = pd3 * w1;
+    const eomc_real w6 = da_psi - w4;
+    const eomc_real w7 = w6 - w5;
+    const eomc_real w8 = shared[3] * w7;
+    y[0] = w8;
+    const eomc_real w9 = shared[2] * w8;
+    const eomc_real w10 = shared[0] * w8;
+    const eomc_real w11 = pd3 * w9;
+    const eomc_real w12 = pd5 * w10;
+    const eomc_real w13 = w2 - w11;
+    const eomc_real w14 = w3 - w12;
+    y[1] = w13;
+    y[2] = w14;
+}
+
+/* y = M^-1 da: the solve's shared values, then minv_shared. */
+EOMC_ENTRY void
+precession_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
+{
+    eomc_real a[3], shared[4];
+    precession_accel_shared(t, q, v, p, u, a, NULL, shared);
+    precession_minv_shared(t, q, v, p, u, shared, da, y);
+}
+
+/* The values that must be positive (or not negative): check_what. */
+static void
+precession_check_values(const eomc_real *p, eomc_real *chk)
+{
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    chk[0] = p_A;
+    const eomc_real w0 = p_A * p_B;
+    const eomc_real w1 = p_B * p_C;
+    const eomc_real w2 = p_A + p_B;
+    chk[1] = w0;
+    const eomc_real w3 = p_A * w1;
+    const eomc_real w4 = p_C + w2;
+    chk[2] = w3;
+    const eomc_real w5 = 0.5 * w4;
+    const eomc_real w6 = w5 - p_A;
+    const eomc_real w7 = w5 - p_B;
+    const eomc_real w8 = w5 - p_C;
+    chk[3] = w6;
+    chk[4] = w7;
+    chk[5] = w8;
+    const eomc_real w9 = w7 * w8;
+    const eomc_real w10 = w6 * w8;
+    const eomc_real w11 = w6 * w7;
+    chk[6] = w9;
+    chk[7] = w10;
+    chk[8] = w11;
+    const eomc_real w12 = w6 * w9;
+    chk[9] = w12;
+}
+
+static const unsigned char check_strict[10] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0};
+
+/* 0, or k + 1 for the first condition k the parameters p break. */
+EOMC_ENTRY int
+precession_check(const double *p)
+{
+    eomc_real chk[10];
+    precession_check_values(p, chk);
+    return eomc_checks(10, chk, check_strict); /* eomc_model.h */
+}
+
+/* What a run's page draws: item k's position and rotation (row-major,
+ * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
+EOMC_ENTRY void
+precession_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_psi = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
+    ang[0] = q_phi;
+    ang[1] = q_psi;
+    ang[2] = q_theta;
+    eomc_sincos(3, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    X[0] = 0.0;
+    X[1] = 0.0;
+    X[2] = 0.0;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = w0 * w5;
+    const eomc_real w8 = w0 * w3;
+    const eomc_real w9 = w1 * w5;
+    const eomc_real w10 = w4 * w2;
+    const eomc_real w11 = w1 * w2;
+    const eomc_real w12 = w0 * w2;
+    const eomc_real w13 = w4 * w3;
+    const eomc_real w14 = w4 * w0;
+    const eomc_real w15 = w4 * w1;
+    X[11] = w5;
+    const eomc_real w16 = w7 * w2;
+    const eomc_real w17 = w9 * w2;
+    X[5] = w10;
+    const eomc_real w18 = w7 * w3;
+    const eomc_real w19 = w9 * w3;
+    const eomc_real w20 = -w13;
+    X[9] = w14;
+    X[10] = w15;
+    const eomc_real w21 = w6 - w16;
+    const eomc_real w22 = w8 + w17;
+    const eomc_real w23 = w11 + w18;
+    const eomc_real w24 = w19 - w12;
+    X[3] = w21;
+    X[8] = w20;
+    const eomc_real w25 = -w22;
+    X[4] = w25;
+    X[6] = w23;
+    X[7] = w24;
+}
+
+/* Each body item k's mass, centre and inertia about it in its frame
+ * at D[13 k ...], from which a body without shapes is drawn. */
+EOMC_ENTRY void
+precession_draw_mass(const eomc_real *p, eomc_real *D)
+{
+    const eomc_real p_A = p[0];
+    const eomc_real p_B = p[1];
+    const eomc_real p_C = p[2];
+    D[0] = 1.0;
+    D[1] = 0.0;
+    D[2] = 0.0;
+    D[3] = 0.0;
+    D[4] = p_A;
+    D[5] = 0.0;
+    D[6] = 0.0;
+    D[7] = 0.0;
+    D[8] = p_B;
+    D[9] = 0.0;
+    D[10] = 0.0;
+    D[11] = 0.0;
+    D[12] = p_C;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[3] = {"psi", "theta", "phi"};
+static const char *const p_names[4] = {"A", "B", "C", "lam"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {1.0, 1.5, 2.0, 0.5};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+static const char *const c_names[1] = {"precession"};
+static const int c_order[1] = {2};
+static const int c_dependent[1] = {1};
+
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[2] = {0, 1};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"body", EOMC_DRAW_BODY, 3, 0},
+};
+
+static const char *const check_what[10] = {
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+};
+static const char *const check_params[10] = {
+    "A",
+    "A, B",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+    "A, B, C",
+};
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 precession_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -574,670 +1262,6 @@ precession_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #endif /* EOMC_EXTENDED */
 
-/* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
-static void
-precession_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
-    eomc_real *B)
-{
-    const eomc_real v_psi = v[0];
-    const eomc_real q_theta = q[1];
-    const eomc_real q_phi = q[2];
-    const eomc_real v_theta = v[1];
-    const eomc_real v_phi = v[2];
-    const eomc_real a_psi = a[0];
-    const eomc_real a_theta = a[1];
-    const eomc_real p_lam = p[3];
-    (void)u;
-    (void)t;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_theta;
-    ang[1] = q_phi;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = v_psi * w0;
-    const eomc_real w5 = v_theta * w3;
-    const eomc_real w6 = w0 * a_psi;
-    const eomc_real w7 = v_psi * v_theta;
-    const eomc_real w8 = w2 * a_theta;
-    const eomc_real w9 = w2 * v_theta;
-    const eomc_real w10 = w3 * a_theta;
-    const eomc_real w11 = v_psi * w1;
-    const eomc_real w12 = w0 * w3;
-    const eomc_real w13 = w0 * w2;
-    B[2] = 0.0;
-    const eomc_real w14 = w4 * w2;
-    const eomc_real w15 = w7 * w1;
-    const eomc_real w16 = w5 * v_phi;
-    const eomc_real w17 = w4 * w3;
-    const eomc_real w18 = w9 * v_phi;
-    const eomc_real w19 = w11 + v_phi;
-    const eomc_real w20 = w14 + w5;
-    const eomc_real w21 = w6 + w15;
-    const eomc_real w22 = w14 * v_phi;
-    const eomc_real w23 = w16 + w8;
-    const eomc_real w24 = w17 - w9;
-    const eomc_real w25 = w17 * v_phi;
-    const eomc_real w26 = w10 - w18;
-    const eomc_real w27 = w3 * w21;
-    const eomc_real w28 = w2 * w21;
-    const eomc_real w29 = w20 * w20;
-    const eomc_real w30 = w24 * w24;
-    const eomc_real w31 = w20 * w12;
-    const eomc_real w32 = w24 * w13;
-    const eomc_real w33 = w2 * w20;
-    const eomc_real w34 = w3 * w24;
-    const eomc_real w35 = w27 - w22;
-    const eomc_real w36 = w28 + w25;
-    const eomc_real w37 = w29 + w30;
-    const eomc_real w38 = w31 - w32;
-    const eomc_real w39 = w33 + w34;
-    const eomc_real w40 = w35 - w23;
-    const eomc_real w41 = w36 + w26;
-    const eomc_real w42 = w19 * w37;
-    const eomc_real w43 = pow(w37, 1.5);
-    B[0] = w38;
-    const eomc_real w44 = -w39;
-    const eomc_real w45 = w20 * w40;
-    const eomc_real w46 = w24 * w41;
-    B[1] = w44;
-    const eomc_real w47 = w45 - w46;
-    const eomc_real w48 = w47 + w42;
-    const eomc_real w49 = p_lam * w43;
-    const eomc_real w50 = w48 - w49;
-    f[0] = w50;
-}
-
-#ifndef EOMC_EXTENDED
-/* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
-static void
-precession_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
-{
-    (void)q;
-    (void)v;
-    (void)p;
-    (void)u;
-    (void)t;
-    pos[0] = 0.0;
-    vel[0] = 0.0;
-}
-
-/* Partial derivatives of f and of B = df/dq'' (u held fixed). */
-static void
-precession_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
-    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
-    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt)
-{
-    const eomc_real v_psi = v[0];
-    const eomc_real q_theta = q[1];
-    const eomc_real q_phi = q[2];
-    const eomc_real v_theta = v[1];
-    const eomc_real v_phi = v[2];
-    const eomc_real a_psi = a[0];
-    const eomc_real a_theta = a[1];
-    const eomc_real pd8 = p[12];
-    const eomc_real pd9 = p[13];
-    (void)u;
-    (void)t;
-    (void)dfdu;
-    (void)dBdu;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_theta;
-    ang[1] = q_phi;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    dfdq[0] = 0.0;
-    const eomc_real w4 = w0 * w2;
-    const eomc_real w5 = w0 * a_psi;
-    const eomc_real w6 = v_psi * v_theta;
-    const eomc_real w7 = v_psi * w0;
-    const eomc_real w8 = v_theta * w3;
-    const eomc_real w9 = w2 * a_theta;
-    const eomc_real w10 = w0 * w3;
-    const eomc_real w11 = w3 * a_theta;
-    const eomc_real w12 = w2 * v_theta;
-    const eomc_real w13 = v_psi * w1;
-    const eomc_real w14 = v_psi * w2;
-    const eomc_real w15 = w1 * a_psi;
-    const eomc_real w16 = v_psi * w3;
-    const eomc_real w17 = w3 * v_phi;
-    const eomc_real w18 = w2 * v_phi;
-    dfdv[2] = 0.0;
-    dfdt[0] = 0.0;
-    dBdq[0] = 0.0;
-    dBdv[0] = 0.0;
-    dBda[0] = 0.0;
-    const eomc_real w19 = w3 * w1;
-    const eomc_real w20 = w2 * w1;
-    dBdv[1] = w0;
-    dBda[1] = 0.0;
-    dBdq[2] = 0.0;
-    dBdv[2] = 0.0;
-    dBda[2] = 0.0;
-    dBdt[0] = 0.0;
-    dBdq[3] = 0.0;
-    const eomc_real w21 = -w0;
-    dBda[3] = 0.0;
-    dBdv[4] = 0.0;
-    dBda[4] = 0.0;
-    dBdq[5] = 0.0;
-    dBdv[5] = 0.0;
-    dBda[5] = 0.0;
-    dBdt[1] = 0.0;
-    dBdq[6] = 0.0;
-    dBdv[6] = 0.0;
-    dBda[6] = 0.0;
-    dBdq[7] = 0.0;
-    dBdv[7] = 0.0;
-    dBda[7] = 0.0;
-    dBdq[8] = 0.0;
-    dBdv[8] = 0.0;
-    dBda[8] = 0.0;
-    dBdt[2] = 0.0;
-    const eomc_real w22 = w6 * w1;
-    const eomc_real w23 = w7 * w2;
-    const eomc_real w24 = w8 * v_phi;
-    const eomc_real w25 = w8 * w1;
-    const eomc_real w26 = w4 * v_phi;
-    const eomc_real w27 = w7 * w3;
-    const eomc_real w28 = w12 * v_phi;
-    const eomc_real w29 = w10 * v_phi;
-    const eomc_real w30 = w12 * w1;
-    const eomc_real w31 = w13 + v_phi;
-    const eomc_real w32 = w14 * w1;
-    const eomc_real w33 = w7 * v_theta;
-    const eomc_real w34 = w16 * w1;
-    dBdv[3] = w21;
-    const eomc_real w35 = -w13;
-    const eomc_real w36 = w5 + w22;
-    const eomc_real w37 = w23 * v_phi;
-    const eomc_real w38 = w24 + w9;
-    const eomc_real w39 = w23 + w8;
-    const eomc_real w40 = w25 - w26;
-    const eomc_real w41 = w27 * v_phi;
-    const eomc_real w42 = w11 - w28;
-    const eomc_real w43 = w27 - w12;
-    const eomc_real w44 = w29 + w30;
-    const eomc_real w45 = w15 - w33;
-    const eomc_real w46 = w32 * v_phi;
-    const eomc_real w47 = w34 * v_phi;
-    const eomc_real w48 = w34 - w17;
-    const eomc_real w49 = w32 - w18;
-    const eomc_real w50 = w28 - w11;
-    dBdq[4] = w35;
-    const eomc_real w51 = w3 * w36;
-    const eomc_real w52 = w39 * w40;
-    const eomc_real w53 = w2 * w36;
-    const eomc_real w54 = w43 * w44;
-    const eomc_real w55 = w39 * w39;
-    const eomc_real w56 = w43 * w43;
-    const eomc_real w57 = w39 * w4;
-    const eomc_real w58 = w43 * w10;
-    const eomc_real w59 = w3 * w45;
-    const eomc_real w60 = w2 * w45;
-    const eomc_real w61 = w39 * w32;
-    const eomc_real w62 = w43 * w34;
-    const eomc_real w63 = w39 * w48;
-    const eomc_real w64 = w43 * w49;
-    const eomc_real w65 = w3 * w39;
-    const eomc_real w66 = w2 * w43;
-    const eomc_real w67 = w39 * w19;
-    const eomc_real w68 = w43 * w20;
-    const eomc_real w69 = w51 - w37;
-    const eomc_real w70 = w53 + w41;
-    const eomc_real w71 = w55 + w56;
-    const eomc_real w72 = w57 + w58;
-    const eomc_real w73 = w59 - w46;
-    const eomc_real w74 = w60 + w47;
-    const eomc_real w75 = w61 + w62;
-    const eomc_real w76 = 2.0 * w65;
-    const eomc_real w77 = (-2.0) * w66;
-    const eomc_real w78 = w67 - w68;
-    const eomc_real w79 = w69 - w38;
-    const eomc_real w80 = w70 + w42;
-    const eomc_real w81 = w1 * w71;
-    const eomc_real w82 = w31 * w72;
-    const eomc_real w83 = sqrt(w71);
-    const eomc_real w84 = w39 * w73;
-    const eomc_real w85 = w43 * w74;
-    const eomc_real w86 = w31 * w75;
-    const eomc_real w87 = w7 * w71;
-    const eomc_real w88 = w76 + w77;
-    const eomc_real w89 = w50 - w70;
-    dBdq[1] = w78;
-    const eomc_real w90 = w4 * w79;
-    const eomc_real w91 = w10 * w80;
-    const eomc_real w92 = 2.0 * w82;
-    const eomc_real w93 = w79 * w32;
-    const eomc_real w94 = w80 * w34;
-    const eomc_real w95 = 2.0 * w86;
-    const eomc_real w96 = w3 * w79;
-    const eomc_real w97 = w2 * w80;
-    const eomc_real w98 = w31 * w88;
-    const eomc_real w99 = w39 * w80;
-    const eomc_real w100 = w39 * w89;
-    const eomc_real w101 = w90 + w52;
-    const eomc_real w102 = w91 + w54;
-    const eomc_real w103 = w81 + w92;
-    const eomc_real w104 = w93 + w84;
-    const eomc_real w105 = w94 + w85;
-    const eomc_real w106 = w95 - w87;
-    const eomc_real w107 = w96 + w63;
-    const eomc_real w108 = w97 - w64;
-    const eomc_real w109 = w99 + w100;
-    const eomc_real w110 = w101 - w102;
-    const eomc_real w111 = w104 - w105;
-    const eomc_real w112 = w107 + w108;
-    dfdq[2] = w109;
-    const eomc_real w113 = w110 + w103;
-    const eomc_real w114 = w111 + w106;
-    const eomc_real w115 = w112 + w98;
-    const eomc_real w116 = w72 * w83;
-    const eomc_real w117 = w83 * w75;
-    const eomc_real w118 = w83 * w88;
-    const eomc_real w119 = pd8 * w116;
-    const eomc_real w120 = pd8 * w117;
-    const eomc_real w121 = pd9 * w118;
-    const eomc_real w122 = w113 - w119;
-    const eomc_real w123 = w114 - w120;
-    const eomc_real w124 = w115 - w121;
-    dfdv[0] = w122;
-    dfdq[1] = w123;
-    dfdv[1] = w124;
-}
-
-/* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
- * stabilization adds to df/dx. */
-static void
-precession_c_levels_jacobian(eomc_real t, const eomc_real *q,
-    const eomc_real *v, const eomc_real *p, const eomc_real *u,
-    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
-    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt)
-{
-    (void)q;
-    (void)v;
-    (void)p;
-    (void)u;
-    (void)t;
-    (void)dposdu;
-    (void)dveldu;
-    dposdq[0] = 0.0;
-    dveldq[0] = 0.0;
-    dveldv[0] = 0.0;
-    dposdq[1] = 0.0;
-    dveldq[1] = 0.0;
-    dveldv[1] = 0.0;
-    dposdq[2] = 0.0;
-    dveldq[2] = 0.0;
-    dveldv[2] = 0.0;
-    dposdt[0] = 0.0;
-    dveldt[0] = 0.0;
-}
-
-/* a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots
- * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what
- * minv_shared reads of the solve. */
-static void
-precession_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *piv,
-    eomc_real *mkk, eomc_real *shared)
-{
-    const eomc_real v_psi = v[0];
-    const eomc_real q_theta = q[1];
-    const eomc_real q_phi = q[2];
-    const eomc_real v_theta = v[1];
-    const eomc_real v_phi = v[2];
-    const eomc_real p_A = p[0];
-    const eomc_real p_B = p[1];
-    const eomc_real p_C = p[2];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd1 = p[5];
-    const eomc_real pd2 = p[6];
-    const eomc_real pd3 = p[7];
-    const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
-    const eomc_real pd6 = p[10];
-    const eomc_real pd7 = p[11];
-    (void)u;
-    (void)t;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_theta;
-    ang[1] = q_phi;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = w1 * w1;
-    const eomc_real w5 = w3 * w3;
-    const eomc_real w6 = w2 * w2;
-    const eomc_real w7 = w0 * w2;
-    piv[2] = p_C;
-    mkk[2] = p_C;
-    const eomc_real w8 = v_psi * w0;
-    const eomc_real w9 = v_theta * w3;
-    const eomc_real w10 = w2 * v_theta;
-    const eomc_real w11 = v_psi * w1;
-    const eomc_real w12 = v_psi * w2;
-    const eomc_real w13 = v_psi * v_theta;
-    shared[0] = w1;
-    const eomc_real w14 = p_C * w4;
-    const eomc_real w15 = w0 * w5;
-    const eomc_real w16 = w0 * w6;
-    const eomc_real w17 = pd6 * w4;
-    const eomc_real w18 = p_A * w5;
-    const eomc_real w19 = p_B * w6;
-    const eomc_real w20 = w7 * w3;
-    const eomc_real w21 = w8 * w2;
-    const eomc_real w22 = w8 * w3;
-    const eomc_real w23 = w8 * v_theta;
-    const eomc_real w24 = w11 + v_phi;
-    const eomc_real w25 = w12 * v_theta;
-    const eomc_real w26 = w10 * v_phi;
-    const eomc_real w27 = w13 * w3;
-    const eomc_real w28 = w9 * v_phi;
-    const eomc_real w29 = p_B * w15;
-    const eomc_real w30 = p_A * w16;
-    const eomc_real w31 = w18 + w19;
-    const eomc_real w32 = w20 * w20;
-    const eomc_real w33 = w21 + w9;
-    const eomc_real w34 = w22 - w10;
-    const eomc_real w35 = p_C * w23;
-    const eomc_real w36 = w22 * v_phi;
-    const eomc_real w37 = w25 * w1;
-    const eomc_real w38 = w27 * w1;
-    const eomc_real w39 = w21 * v_phi;
-    const eomc_real w40 = w29 + w30;
-    const eomc_real w41 = 1.0 / w31;
-    piv[1] = w31;
-    mkk[1] = w31;
-    const eomc_real w42 = w33 * w34;
-    const eomc_real w43 = w34 * w24;
-    const eomc_real w44 = w36 + w37;
-    const eomc_real w45 = w33 * w24;
-    const eomc_real w46 = w38 - w39;
-    const eomc_real w47 = w0 * w40;
-    const eomc_real w48 = pd2 * w42;
-    const eomc_real w49 = pd0 * w43;
-    const eomc_real w50 = w44 - w26;
-    const eomc_real w51 = pd1 * w45;
-    const eomc_real w52 = w46 - w28;
-    const eomc_real w53 = w14 + w47;
-    const eomc_real w54 = w48 - w35;
-    const eomc_real w55 = p_A * w50;
-    const eomc_real w56 = p_B * w52;
-    const eomc_real w57 = w35 - w48;
-    const eomc_real w58 = w53 - w17;
-    mkk[0] = w53;
-    const eomc_real w59 = w1 * w54;
-    const eomc_real w60 = w49 + w55;
-    const eomc_real w61 = w51 + w56;
-    const eomc_real w62 = w1 * w57;
-    const eomc_real w63 = pd4 * w57;
-    const eomc_real w64 = w2 * w60;
-    const eomc_real w65 = w3 * w61;
-    const eomc_real w66 = pd5 * w62;
-    const eomc_real w67 = w2 * w61;
-    const eomc_real w68 = w3 * w60;
-    const eomc_real w69 = w41 * w32;
-    const eomc_real w70 = w20 * w41;
-    shared[1] = w41;
-    const eomc_real w71 = w64 + w65;
-    const eomc_real w72 = w67 - w68;
-    const eomc_real w73 = pd7 * w69;
-    shared[2] = w70;
-    const eomc_real w74 = w0 * w71;
-    const eomc_real w75 = w70 * w72;
-    const eomc_real w76 = w41 * w72;
-    const eomc_real w77 = w58 - w73;
-    const eomc_real w78 = w59 + w74;
-    const eomc_real w79 = pd3 * w75;
-    piv[0] = w77;
-    const eomc_real w80 = 1.0 / w77;
-    const eomc_real w81 = w66 + w79;
-    const eomc_real w82 = w78 + w81;
-    const eomc_real w83 = w80 * w82;
-    shared[3] = w80;
-    const eomc_real w84 = -w83;
-    const eomc_real w85 = w70 * w83;
-    const eomc_real w86 = w1 * w83;
-    a[0] = w84;
-    const eomc_real w87 = pd3 * w85;
-    const eomc_real w88 = pd5 * w86;
-    const eomc_real w89 = w87 + w76;
-    const eomc_real w90 = w88 + w63;
-    a[1] = w89;
-    a[2] = w90;
-}
-
-/* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
- * singular or not positive definite).  *pivot (unless NULL): the
- * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
-precession_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
-    eomc_real *shared)
-{
-    eomc_real piv[3], mkk[3];
-    precession_accel_solve(t, q, v, p, u, a, piv, mkk, shared);
-    return eomc_pivots(3, piv, mkk, pivot); /* eomc_model.h */
-}
-
-/* The same, what minv_shared reads dropped. */
-static int
-precession_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
-{
-    eomc_real shared[4];
-    return precession_accel_shared(t, q, v, p, u, a, pivot, shared);
-}
-
-/* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
- * but the load da, or the LDL^T factors), given shared[] from
- * accel_solve at the same (t, q, p): one unit load's passes alone. */
-static void
-precession_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
-    const eomc_real *da, eomc_real *y)
-{
-    const eomc_real da_psi = da[0];
-    const eomc_real da_theta = da[1];
-    const eomc_real da_phi = da[2];
-    const eomc_real pd3 = p[7];
-    const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
-    (void)q;
-    (void)v;
-    (void)u;
-    (void)t;
-    (void)shared;
-    const eomc_real w0 = shared[0] * da_phi;
-    const eomc_real w1 = shared[2] * da_theta;
-    const eomc_real w2 = shared[1] * da_theta;
-    const eomc_real w3 = pd4 * da_phi;
-    const eomc_real w4 = pd5 * w0;
-    const eomc_real w5 = pd3 * w1;
-    const eomc_real w6 = da_psi - w4;
-    const eomc_real w7 = w6 - w5;
-    const eomc_real w8 = shared[3] * w7;
-    y[0] = w8;
-    const eomc_real w9 = shared[2] * w8;
-    const eomc_real w10 = shared[0] * w8;
-    const eomc_real w11 = pd3 * w9;
-    const eomc_real w12 = pd5 * w10;
-    const eomc_real w13 = w2 - w11;
-    const eomc_real w14 = w3 - w12;
-    y[1] = w13;
-    y[2] = w14;
-}
-
-/* y = M^-1 da: the solve's shared values, then minv_shared. */
-static void
-precession_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
-{
-    eomc_real a[3], shared[4];
-    precession_accel_shared(t, q, v, p, u, a, NULL, shared);
-    precession_minv_shared(t, q, v, p, u, shared, da, y);
-}
-
-/* The values that must be positive (or not negative): check_what. */
-static void
-precession_check_values(const eomc_real *p, eomc_real *chk)
-{
-    const eomc_real p_A = p[0];
-    const eomc_real p_B = p[1];
-    const eomc_real p_C = p[2];
-    chk[0] = p_A;
-    const eomc_real w0 = p_A * p_B;
-    const eomc_real w1 = p_B * p_C;
-    const eomc_real w2 = p_A + p_B;
-    chk[1] = w0;
-    const eomc_real w3 = p_A * w1;
-    const eomc_real w4 = p_C + w2;
-    chk[2] = w3;
-    const eomc_real w5 = 0.5 * w4;
-    const eomc_real w6 = w5 - p_A;
-    const eomc_real w7 = w5 - p_B;
-    const eomc_real w8 = w5 - p_C;
-    chk[3] = w6;
-    chk[4] = w7;
-    chk[5] = w8;
-    const eomc_real w9 = w7 * w8;
-    const eomc_real w10 = w6 * w8;
-    const eomc_real w11 = w6 * w7;
-    chk[6] = w9;
-    chk[7] = w10;
-    chk[8] = w11;
-    const eomc_real w12 = w6 * w9;
-    chk[9] = w12;
-}
-
-static const char *const check_what[10] = {
-    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'body': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'body': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-};
-static const char *const check_params[10] = {
-    "A",
-    "A, B",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-    "A, B, C",
-};
-static const unsigned char check_strict[10] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0};
-
-/* 0, or k + 1 for the first condition k the parameters p break. */
-static int
-precession_check(const double *p)
-{
-    eomc_real chk[10];
-    precession_check_values(p, chk);
-    return eomc_checks(10, chk, check_strict); /* eomc_model.h */
-}
-
-/* What a run's page draws: item k's position and rotation (row-major,
- * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
-precession_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
-    const eomc_real *u, eomc_real *X)
-{
-    const eomc_real q_psi = q[0];
-    const eomc_real q_theta = q[1];
-    const eomc_real q_phi = q[2];
-    (void)p;
-    (void)u;
-    (void)t;
-    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
-    ang[0] = q_phi;
-    ang[1] = q_psi;
-    ang[2] = q_theta;
-    eomc_sincos(3, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = ang_sin[2];
-    const eomc_real w5 = ang_cos[2];
-    X[0] = 0.0;
-    X[1] = 0.0;
-    X[2] = 0.0;
-    const eomc_real w6 = w1 * w3;
-    const eomc_real w7 = w0 * w5;
-    const eomc_real w8 = w0 * w3;
-    const eomc_real w9 = w1 * w5;
-    const eomc_real w10 = w4 * w2;
-    const eomc_real w11 = w1 * w2;
-    const eomc_real w12 = w0 * w2;
-    const eomc_real w13 = w4 * w3;
-    const eomc_real w14 = w4 * w0;
-    const eomc_real w15 = w4 * w1;
-    X[11] = w5;
-    const eomc_real w16 = w7 * w2;
-    const eomc_real w17 = w9 * w2;
-    X[5] = w10;
-    const eomc_real w18 = w7 * w3;
-    const eomc_real w19 = w9 * w3;
-    const eomc_real w20 = -w13;
-    X[9] = w14;
-    X[10] = w15;
-    const eomc_real w21 = w6 - w16;
-    const eomc_real w22 = w8 + w17;
-    const eomc_real w23 = w11 + w18;
-    const eomc_real w24 = w19 - w12;
-    X[3] = w21;
-    X[8] = w20;
-    const eomc_real w25 = -w22;
-    X[4] = w25;
-    X[6] = w23;
-    X[7] = w24;
-}
-
-/* Each body item k's mass, centre and inertia about it in its frame
- * at D[13 k ...], from which a body without shapes is drawn. */
-static void
-precession_draw_mass(const eomc_real *p, eomc_real *D)
-{
-    const eomc_real p_A = p[0];
-    const eomc_real p_B = p[1];
-    const eomc_real p_C = p[2];
-    D[0] = 1.0;
-    D[1] = 0.0;
-    D[2] = 0.0;
-    D[3] = 0.0;
-    D[4] = p_A;
-    D[5] = 0.0;
-    D[6] = 0.0;
-    D[7] = 0.0;
-    D[8] = p_B;
-    D[9] = 0.0;
-    D[10] = 0.0;
-    D[11] = 0.0;
-    D[12] = p_C;
-}
-
-#endif /* EOMC_EXTENDED */
-
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias, events, constraint (at q'' = 0) and
  * c_levels compute, slot s's at T[s (K + 1) ...], from their orders
@@ -1349,7 +1373,66 @@ static const int taylor_f[1] = {55};
 static const int taylor_pos[1] = {-1};
 static const int taylor_vel[1] = {-1};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+precession_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+precession_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+precession_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+precession_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+precession_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+precession_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+precession_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel);
+EOMC_ENTRY void
+precession_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt);
+EOMC_ENTRY void
+precession_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt);
+EOMC_ENTRY int
+precession_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
+    eomc_real *shared);
+EOMC_ENTRY int
+precession_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+EOMC_ENTRY void
+precession_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
+    const eomc_real *da, eomc_real *y);
+EOMC_ENTRY void
+precession_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY int
+precession_check(const double *p);
+EOMC_ENTRY void
+precession_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+precession_draw_mass(const eomc_real *p, eomc_real *D);
+
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
@@ -1412,3 +1495,4 @@ const eomc_model_ext precession_model_ext = {
     .taylor = precession_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

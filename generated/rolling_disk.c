@@ -39,30 +39,29 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[5] = {"x", "y", "psi", "theta", "phi"};
-static const char *const p_names[4] = {"m", "R", "g", "spin"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {1.0, 0.5, 9.81, 6.0};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-static const char *const c_names[2] = {"roll_x", "roll_y"};
-static const int c_order[2] = {1, 1};
-static const int c_dependent[2] = {4, 1};
-
-/* The entries of B that can be nonzero (the rest are 0 at every state). */
-static const int c_nz[4] = {0, 4, 6, 9};
-
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"disk", EOMC_DRAW_BODY, 3, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 rolling_disk_derive(const eomc_real *p, eomc_real *pd)
 {
     const eomc_real p_R = p[1];
@@ -82,39 +81,35 @@ rolling_disk_derive(const eomc_real *p, eomc_real *pd)
     const eomc_real w9 = (-0.25) * w3;
     pd[5] = w5;
     const eomc_real w10 = 1.25 * w3;
-    pd[10] = w6;
+    pd[9] = w6;
     const eomc_real w11 = 1.5 * w3;
-    const eomc_real w12 = (-0.5) * w3;
     pd[0] = w7;
     pd[1] = w8;
     pd[3] = w9;
-    const eomc_real w13 = w8 + w5;
-    pd[7] = w10;
-    const eomc_real w14 = 1.0 / w8;
-    pd[11] = w11;
-    const eomc_real w15 = w7 - w5;
-    const eomc_real w16 = w7 + w5;
-    pd[6] = w13;
-    pd[17] = w12;
-    const eomc_real w17 = w3 + w15;
+    pd[6] = w10;
+    const eomc_real w12 = 1.0 / w8;
+    pd[10] = w11;
+    const eomc_real w13 = w7 - w5;
+    const eomc_real w14 = w7 + w5;
+    const eomc_real w15 = w3 + w13;
+    pd[12] = w14;
+    const eomc_real w16 = 1.0 / w14;
+    pd[7] = w12;
+    pd[11] = w15;
+    const eomc_real w17 = w3 * w12;
+    const eomc_real w18 = 0.5 * w17;
     pd[13] = w16;
-    const eomc_real w18 = 1.0 / w16;
-    pd[8] = w14;
-    pd[12] = w17;
-    const eomc_real w19 = w3 * w14;
-    const eomc_real w20 = 0.5 * w19;
-    pd[14] = w18;
-    const eomc_real w21 = w2 * w18;
-    pd[9] = w20;
+    const eomc_real w19 = w2 * w16;
+    pd[8] = w18;
+    pd[14] = w19;
+    const eomc_real w20 = w2 * w19;
+    const eomc_real w21 = p_m - w20;
     pd[15] = w21;
-    const eomc_real w22 = w2 * w21;
-    const eomc_real w23 = p_m - w22;
-    pd[16] = w23;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 rolling_disk_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     const eomc_real p_R = p[1];
@@ -136,7 +131,7 @@ rolling_disk_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 rolling_disk_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -330,7 +325,7 @@ rolling_disk_mass_times(eomc_real t, const eomc_real *q, const eomc_real *v,
  * Column j of M is the derivative of E along q'' = e_j: exact, in code
  * about the size of E instead of 5 x 5 entries.  Off the hot path: the
  * accelerations come from the recursion, which never forms M. */
-static void
+EOMC_ENTRY void
 rolling_disk_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -365,7 +360,7 @@ rolling_disk_potential(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* Kinetic energy T and potential energy V: T = q'.M q'/2, with M q' by
  * mass_times. */
-static void
+EOMC_ENTRY void
 rolling_disk_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -379,7 +374,7 @@ rolling_disk_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* The conserved quantity (eomc_model.h: invariant).
  * E = T + V, from energy. */
-static void
+EOMC_ENTRY void
 rolling_disk_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
@@ -388,456 +383,10 @@ rolling_disk_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     h[0] = TV[0] + TV[1];
 }
 
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-rolling_disk_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    for (int i = 0; i < 25; i++) /* the nonzeros follow */
-        dEdq[i] = 0.0;
-    const eomc_real q_psi = q[2];
-    const eomc_real v_psi = v[2];
-    const eomc_real q_theta = q[3];
-    const eomc_real v_theta = v[3];
-    const eomc_real v_phi = v[4];
-    const eomc_real v_x = v[0];
-    const eomc_real v_y = v[1];
-    const eomc_real a_x = a[0];
-    const eomc_real a_y = a[1];
-    const eomc_real a_psi = a[2];
-    const eomc_real a_theta = a[3];
-    const eomc_real a_phi = a[4];
-    const eomc_real p_R = p[1];
-    const eomc_real p_m = p[0];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd1 = p[5];
-    const eomc_real pd2 = p[6];
-    const eomc_real pd3 = p[7];
-    const eomc_real pd4 = p[8];
-    const eomc_real pd5 = p[9];
-    const eomc_real pd6 = p[10];
-    const eomc_real pd13 = p[17];
-    const eomc_real pd17 = p[21];
-    (void)u;
-    (void)t;
-    (void)dEdu;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_psi;
-    ang[1] = q_theta;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w0 = ang_sin[0];
-    const eomc_real w1 = ang_cos[0];
-    const eomc_real w2 = ang_sin[1];
-    const eomc_real w3 = ang_cos[1];
-    const eomc_real w4 = w1 * a_y;
-    const eomc_real w5 = w0 * a_x;
-    const eomc_real w6 = w0 * v_psi;
-    const eomc_real w7 = w0 * w3;
-    const eomc_real w8 = w2 * w2;
-    const eomc_real w9 = v_psi * w3;
-    const eomc_real w10 = w1 * v_x;
-    const eomc_real w11 = w0 * v_y;
-    const eomc_real w12 = w1 * v_y;
-    const eomc_real w13 = w0 * v_x;
-    const eomc_real w14 = p_R * v_theta;
-    const eomc_real w15 = p_R * a_theta;
-    const eomc_real w16 = v_psi * w2;
-    const eomc_real w17 = w1 * v_psi;
-    const eomc_real w18 = w1 * v_phi;
-    const eomc_real w19 = w1 * a_x;
-    const eomc_real w20 = w0 * a_y;
-    const eomc_real w21 = w3 * a_psi;
-    const eomc_real w22 = w0 * w2;
-    const eomc_real w23 = w1 * v_theta;
-    const eomc_real w24 = w1 * a_psi;
-    dEdt[0] = 0.0;
-    const eomc_real w25 = w0 * v_phi;
-    const eomc_real w26 = w1 * w3;
-    const eomc_real w27 = w1 * w2;
-    const eomc_real w28 = w0 * v_theta;
-    const eomc_real w29 = w0 * a_psi;
-    dEdt[1] = 0.0;
-    const eomc_real w30 = w3 * v_phi;
-    const eomc_real w31 = w3 * a_y;
-    const eomc_real w32 = w3 * a_x;
-    const eomc_real w33 = w2 * a_psi;
-    const eomc_real w34 = v_theta * v_phi;
-    const eomc_real w35 = w3 * v_theta;
-    const eomc_real w36 = w2 * v_theta;
-    const eomc_real w37 = w2 * v_phi;
-    dEdt[2] = 0.0;
-    const eomc_real w38 = pd0 * v_phi;
-    const eomc_real w39 = v_psi * v_psi;
-    dEdv[15] = 0.0;
-    dEdv[16] = 0.0;
-    dEdv[18] = 0.0;
-    dEdt[3] = 0.0;
-    dEdv[20] = 0.0;
-    dEdv[21] = 0.0;
-    dEdv[24] = 0.0;
-    dEdt[4] = 0.0;
-    const eomc_real w40 = w7 * v_phi;
-    const eomc_real w41 = w6 * w8;
-    const eomc_real w42 = w9 + v_phi;
-    const eomc_real w43 = w4 - w5;
-    const eomc_real w44 = w10 + w11;
-    const eomc_real w45 = w12 - w13;
-    const eomc_real w46 = p_R * w9;
-    const eomc_real w47 = w17 * w8;
-    const eomc_real w48 = w19 + w20;
-    const eomc_real w49 = w16 * v_theta;
-    const eomc_real w50 = w17 * w2;
-    const eomc_real w51 = pd4 * w23;
-    const eomc_real w52 = pd4 * w24;
-    const eomc_real w53 = w7 * v_theta;
-    const eomc_real w54 = w26 * v_phi;
-    const eomc_real w55 = w6 * w2;
-    const eomc_real w56 = pd4 * w28;
-    const eomc_real w57 = pd4 * w29;
-    const eomc_real w58 = w26 * v_theta;
-    const eomc_real w59 = w9 * w8;
-    const eomc_real w60 = w9 * v_theta;
-    const eomc_real w61 = w9 * w2;
-    const eomc_real w62 = pd0 * w33;
-    const eomc_real w63 = pd6 * w35;
-    const eomc_real w64 = pd6 * w21;
-    const eomc_real w65 = pd0 * w36;
-    const eomc_real w66 = pd3 * w36;
-    const eomc_real w67 = pd0 * w37;
-    const eomc_real w68 = pd17 * w36;
-    const eomc_real w69 = w27 * a_x;
-    const eomc_real w70 = w22 * a_y;
-    const eomc_real w71 = w39 * w2;
-    const eomc_real w72 = pd1 * w16;
-    const eomc_real w73 = pd1 * w33;
-    const eomc_real w74 = pd17 * w16;
-    const eomc_real w75 = w7 * w42;
-    const eomc_real w76 = v_psi * w44;
-    const eomc_real w77 = w2 * w45;
-    const eomc_real w78 = w46 - w44;
-    const eomc_real w79 = w44 - w46;
-    const eomc_real w80 = w1 * w42;
-    const eomc_real w81 = v_psi * w45;
-    const eomc_real w82 = w21 - w49;
-    const eomc_real w83 = w3 * w45;
-    const eomc_real w84 = w50 * w45;
-    const eomc_real w85 = w0 * w44;
-    const eomc_real w86 = w1 * w45;
-    const eomc_real w87 = pd4 * w50;
-    const eomc_real w88 = w50 + w53;
-    const eomc_real w89 = w0 * w42;
-    const eomc_real w90 = w26 * w42;
-    const eomc_real w91 = w55 * w45;
-    const eomc_real w92 = w0 * w45;
-    const eomc_real w93 = w1 * w44;
-    const eomc_real w94 = pd4 * w55;
-    const eomc_real w95 = w55 - w58;
-    const eomc_real w96 = w3 * w42;
-    const eomc_real w97 = w33 + w60;
-    const eomc_real w98 = v_theta * w42;
-    const eomc_real w99 = w61 * w45;
-    const eomc_real w100 = w2 * w42;
-    const eomc_real w101 = pd6 * w61;
-    const eomc_real w102 = pd0 * w61;
-    const eomc_real w103 = pd5 * w61;
-    dEdv[14] = w68;
-    const eomc_real w104 = w69 + w70;
-    const eomc_real w105 = pd0 * w42;
-    const eomc_real w106 = pd13 * w71;
-    const eomc_real w107 = w2 * w44;
-    const eomc_real w108 = pd13 * w61;
-    dEdv[19] = w72;
-    const eomc_real w109 = pd17 * w60;
-    dEdv[22] = w68;
-    dEdv[23] = w74;
-    const eomc_real w110 = w41 + w75;
-    const eomc_real w111 = w43 - w76;
-    const eomc_real w112 = v_theta * w77;
-    const eomc_real w113 = v_phi * w78;
-    const eomc_real w114 = w42 * w79;
-    const eomc_real w115 = w14 - w77;
-    const eomc_real w116 = w16 * w79;
-    const eomc_real w117 = w18 - w80;
-    const eomc_real w118 = w48 + w81;
-    const eomc_real w119 = p_R * w82;
-    const eomc_real w120 = v_phi * w83;
-    const eomc_real w121 = w42 * w83;
-    const eomc_real w122 = w22 * w79;
-    const eomc_real w123 = w7 * w79;
-    const eomc_real w124 = w1 * w83;
-    const eomc_real w125 = w85 + w86;
-    const eomc_real w126 = w7 * w77;
-    const eomc_real w127 = pd4 * w88;
-    const eomc_real w128 = w7 * w78;
-    const eomc_real w129 = w25 - w89;
-    const eomc_real w130 = w47 + w90;
-    const eomc_real w131 = w27 * w79;
-    const eomc_real w132 = w26 * w79;
-    const eomc_real w133 = w0 * w83;
-    const eomc_real w134 = w92 - w93;
-    const eomc_real w135 = w26 * w77;
-    const eomc_real w136 = pd4 * w95;
-    const eomc_real w137 = w26 * w78;
-    const eomc_real w138 = w96 - w30;
-    const eomc_real w139 = w97 - w34;
-    const eomc_real w140 = pd3 * w98;
-    const eomc_real w141 = pd4 * w99;
-    const eomc_real w142 = a_phi + w82;
-    const eomc_real w143 = w3 * w83;
-    const eomc_real w144 = pd4 * w83;
-    const eomc_real w145 = pd3 * w100;
-    const eomc_real w146 = pd4 * w104;
-    const eomc_real w147 = pd4 * w79;
-    const eomc_real w148 = pd2 + w106;
-    const eomc_real w149 = pd4 * w107;
-    const eomc_real w150 = w109 - w73;
-    const eomc_real w151 = w40 - w110;
-    const eomc_real w152 = w3 * w111;
-    const eomc_real w153 = v_theta * w115;
-    const eomc_real w154 = w15 - w116;
-    const eomc_real w155 = w2 * w111;
-    const eomc_real w156 = w3 * w117;
-    const eomc_real w157 = w118 - w119;
-    const eomc_real w158 = w16 * w115;
-    const eomc_real w159 = w22 * w111;
-    const eomc_real w160 = w1 * w115;
-    const eomc_real w161 = w45 * w117;
-    const eomc_real w162 = w7 * w111;
-    const eomc_real w163 = w110 - w40;
-    const eomc_real w164 = w123 + w124;
-    const eomc_real w165 = p_m * w125;
-    const eomc_real w166 = w7 * w115;
-    const eomc_real w167 = w123 + w128;
-    const eomc_real w168 = w3 * w129;
-    const eomc_real w169 = w130 - w54;
-    const eomc_real w170 = w27 * w111;
-    const eomc_real w171 = w0 * w115;
-    const eomc_real w172 = w45 * w129;
-    const eomc_real w173 = w26 * w111;
-    const eomc_real w174 = w132 - w133;
-    const eomc_real w175 = w54 - w130;
-    const eomc_real w176 = p_m * w134;
-    const eomc_real w177 = w26 * w115;
-    const eomc_real w178 = w132 + w137;
-    const eomc_real w179 = w3 * w138;
-    const eomc_real w180 = pd0 * w139;
-    const eomc_real w181 = w3 * w115;
-    const eomc_real w182 = pd1 * w142;
-    const eomc_real w183 = w45 * w138;
-    const eomc_real w184 = pd4 * w143;
-    const eomc_real w185 = w145 - w67;
-    dEdq[17] = w146;
-    const eomc_real w186 = w38 - w147;
-    const eomc_real w187 = pd4 * w111;
-    const eomc_real w188 = w2 * w148;
-    const eomc_real w189 = w149 + w108;
-    dEdq[23] = w150;
-    const eomc_real w190 = w6 + w151;
-    const eomc_real w191 = w152 - w112;
-    const eomc_real w192 = w114 - w153;
-    const eomc_real w193 = w154 - w155;
-    const eomc_real w194 = w156 - w47;
-    const eomc_real w195 = w157 + w120;
-    const eomc_real w196 = w158 - w121;
-    const eomc_real w197 = w160 - w122;
-    const eomc_real w198 = pd4 * w163;
-    const eomc_real w199 = p_m * w164;
-    const eomc_real w200 = w166 + w126;
-    const eomc_real w201 = p_m * w167;
-    const eomc_real w202 = w168 - w41;
-    const eomc_real w203 = w169 - w17;
-    const eomc_real w204 = w131 + w171;
-    const eomc_real w205 = p_m * w174;
-    const eomc_real w206 = pd4 * w175;
-    const eomc_real w207 = w177 + w135;
-    const eomc_real w208 = p_m * w178;
-    const eomc_real w209 = w59 + w179;
-    const eomc_real w210 = w180 + w140;
-    const eomc_real w211 = pd4 * w181;
-    const eomc_real w212 = pd4 * w183;
-    const eomc_real w213 = w184 + w66;
-    const eomc_real w214 = w185 - w101;
-    const eomc_real w215 = w186 + w105;
-    const eomc_real w216 = v_y * w190;
-    const eomc_real w217 = w191 + w113;
-    const eomc_real w218 = w2 * w193;
-    const eomc_real w219 = w17 + w194;
-    const eomc_real w220 = w195 + w196;
-    const eomc_real w221 = v_x * w190;
-    const eomc_real w222 = w0 * w193;
-    const eomc_real w223 = p_m * w197;
-    const eomc_real w224 = w198 - w199;
-    const eomc_real w225 = w1 * w190;
-    const eomc_real w226 = w0 * w190;
-    const eomc_real w227 = p_m * w200;
-    const eomc_real w228 = -w201;
-    const eomc_real w229 = w6 + w202;
-    const eomc_real w230 = v_y * w203;
-    const eomc_real w231 = v_x * w203;
-    const eomc_real w232 = w1 * w193;
-    const eomc_real w233 = p_m * w204;
-    const eomc_real w234 = w205 + w206;
-    const eomc_real w235 = w1 * w203;
-    const eomc_real w236 = w0 * w203;
-    const eomc_real w237 = p_m * w207;
-    dEdv[9] = w208;
-    const eomc_real w238 = w209 - w9;
-    const eomc_real w239 = w210 + w141;
-    const eomc_real w240 = w211 + w63;
-    const eomc_real w241 = w65 + w213;
-    const eomc_real w242 = w214 + w102;
-    const eomc_real w243 = v_psi * w215;
-    const eomc_real w244 = w2 * w215;
-    const eomc_real w245 = w217 + w192;
-    const eomc_real w246 = v_x * w219;
-    const eomc_real w247 = v_y * w219;
-    const eomc_real w248 = w222 - w84;
-    const eomc_real w249 = w223 + w51;
-    const eomc_real w250 = v_psi * w224;
-    const eomc_real w251 = w0 * w219;
-    const eomc_real w252 = w1 * w219;
-    const eomc_real w253 = w3 * w224;
-    const eomc_real w254 = w227 + w87;
-    dEdv[4] = w228;
-    const eomc_real w255 = v_x * w229;
-    const eomc_real w256 = v_y * w229;
-    const eomc_real w257 = w232 + w91;
-    const eomc_real w258 = w233 + w56;
-    const eomc_real w259 = v_psi * w234;
-    const eomc_real w260 = w0 * w229;
-    const eomc_real w261 = w1 * w229;
-    const eomc_real w262 = w3 * w234;
-    const eomc_real w263 = w94 - w237;
-    const eomc_real w264 = v_x * w238;
-    const eomc_real w265 = v_y * w238;
-    const eomc_real w266 = w239 + w62;
-    const eomc_real w267 = v_psi * w240;
-    const eomc_real w268 = pd4 * w220;
-    const eomc_real w269 = v_psi * w241;
-    const eomc_real w270 = w0 * w238;
-    const eomc_real w271 = w1 * w238;
-    const eomc_real w272 = w3 * w241;
-    const eomc_real w273 = w2 * w240;
-    const eomc_real w274 = w242 - w103;
-    const eomc_real w275 = w243 - w187;
-    const eomc_real w276 = w189 + w244;
-    const eomc_real w277 = w3 * w245;
-    const eomc_real w278 = w220 + w247;
-    const eomc_real w279 = w248 - w159;
-    const eomc_real w280 = v_psi * w249;
-    const eomc_real w281 = w0 * w245;
-    const eomc_real w282 = w225 - w251;
-    const eomc_real w283 = w252 + w226;
-    const eomc_real w284 = w165 + w253;
-    const eomc_real w285 = w2 * w249;
-    const eomc_real w286 = w254 + w127;
-    const eomc_real w287 = w220 - w255;
-    const eomc_real w288 = w170 - w257;
-    const eomc_real w289 = v_psi * w258;
-    const eomc_real w290 = w1 * w245;
-    const eomc_real w291 = w235 - w260;
-    const eomc_real w292 = w261 + w236;
-    const eomc_real w293 = w176 + w262;
-    const eomc_real w294 = w2 * w258;
-    const eomc_real w295 = w263 + w136;
-    const eomc_real w296 = w264 + w31;
-    const eomc_real w297 = w265 - w32;
-    const eomc_real w298 = w266 - w267;
-    const eomc_real w299 = w182 - w268;
-    const eomc_real w300 = pd4 * w270;
-    const eomc_real w301 = pd4 * w271;
-    const eomc_real w302 = w272 - w144;
-    dEdv[13] = w274;
-    const eomc_real w303 = w3 * w275;
-    dEdv[17] = w276;
-    const eomc_real w304 = w277 - w218;
-    const eomc_real w305 = w278 + w221;
-    const eomc_real w306 = p_m * w279;
-    const eomc_real w307 = w161 - w281;
-    const eomc_real w308 = p_m * w282;
-    const eomc_real w309 = p_m * w283;
-    const eomc_real w310 = w284 + w285;
-    dEdv[3] = w286;
-    const eomc_real w311 = w287 + w230;
-    const eomc_real w312 = p_m * w288;
-    const eomc_real w313 = w290 + w172;
-    const eomc_real w314 = p_m * w291;
-    const eomc_real w315 = p_m * w292;
-    const eomc_real w316 = w293 + w294;
-    dEdv[8] = w295;
-    const eomc_real w317 = w1 * w296;
-    const eomc_real w318 = w0 * w297;
-    const eomc_real w319 = w3 * w298;
-    const eomc_real w320 = w299 + w212;
-    const eomc_real w321 = -w300;
-    dEdv[11] = w301;
-    const eomc_real w322 = w302 - w273;
-    const eomc_real w323 = w303 - w188;
-    const eomc_real w324 = w304 + w246;
-    const eomc_real w325 = w305 - w20;
-    const eomc_real w326 = w306 + w280;
-    const eomc_real w327 = w307 - w162;
-    dEdv[0] = w308;
-    dEdv[1] = w309;
-    dEdv[2] = w310;
-    const eomc_real w328 = w311 - w19;
-    const eomc_real w329 = w304 + w256;
-    const eomc_real w330 = w312 + w289;
-    const eomc_real w331 = w313 + w173;
-    dEdv[5] = w314;
-    dEdv[6] = w315;
-    dEdv[7] = w316;
-    const eomc_real w332 = w317 + w318;
-    const eomc_real w333 = w320 + w64;
-    dEdv[10] = w321;
-    dEdv[12] = w322;
-    dEdq[18] = w323;
-    const eomc_real w334 = w216 - w324;
-    const eomc_real w335 = w19 + w325;
-    const eomc_real w336 = w3 * w326;
-    const eomc_real w337 = p_m * w327;
-    const eomc_real w338 = w20 + w328;
-    const eomc_real w339 = w329 + w231;
-    const eomc_real w340 = w3 * w330;
-    const eomc_real w341 = p_m * w331;
-    const eomc_real w342 = pd4 * w332;
-    const eomc_real w343 = w333 + w269;
-    const eomc_real w344 = w5 + w334;
-    const eomc_real w345 = w0 * w335;
-    const eomc_real w346 = w337 - w52;
-    const eomc_real w347 = w1 * w338;
-    const eomc_real w348 = w4 + w339;
-    const eomc_real w349 = w341 - w57;
-    const eomc_real w350 = -w342;
-    const eomc_real w351 = w2 * w343;
-    const eomc_real w352 = w4 + w344;
-    const eomc_real w353 = w346 + w250;
-    const eomc_real w354 = w5 + w348;
-    const eomc_real w355 = w349 + w259;
-    dEdq[12] = w350;
-    const eomc_real w356 = w319 - w351;
-    const eomc_real w357 = w1 * w352;
-    const eomc_real w358 = w2 * w353;
-    const eomc_real w359 = w0 * w354;
-    const eomc_real w360 = w2 * w355;
-    dEdq[13] = w356;
-    const eomc_real w361 = w357 - w345;
-    const eomc_real w362 = w336 - w358;
-    const eomc_real w363 = w347 - w359;
-    const eomc_real w364 = w340 - w360;
-    const eomc_real w365 = p_m * w361;
-    dEdq[3] = w362;
-    const eomc_real w366 = p_m * w363;
-    dEdq[2] = w365;
-    dEdq[7] = w366;
-    dEdq[8] = w364;
-}
-
 #endif /* EOMC_EXTENDED */
 
 /* Constraints at acceleration level f(t, q, q', q'') and B = df/dq''. */
-static void
+EOMC_ENTRY void
 rolling_disk_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
     eomc_real *B)
@@ -883,7 +432,7 @@ rolling_disk_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Constraints at their own level: pos = g (holonomic), vel = g' or phi. */
-static void
+EOMC_ENTRY void
 rolling_disk_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel)
 {
@@ -909,7 +458,7 @@ rolling_disk_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 /* Partial derivatives of f and of B = df/dq'' (u held fixed). */
-static void
+EOMC_ENTRY void
 rolling_disk_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
     eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
@@ -992,7 +541,7 @@ rolling_disk_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 /* Partial derivatives of pos and vel (u held fixed): what Baumgarte's
  * stabilization adds to df/dx. */
-static void
+EOMC_ENTRY void
 rolling_disk_c_levels_jacobian(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *p, const eomc_real *u,
     eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
@@ -1073,7 +622,8 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd3 = p[7];
     const eomc_real pd4 = p[8];
     const eomc_real pd5 = p[9];
-    const eomc_real pd7 = p[11];
+    const eomc_real pd6 = p[10];
+    const eomc_real pd8 = p[12];
     const eomc_real pd9 = p[13];
     const eomc_real pd10 = p[14];
     const eomc_real pd11 = p[15];
@@ -1081,7 +631,6 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real pd13 = p[17];
     const eomc_real pd14 = p[18];
     const eomc_real pd15 = p[19];
-    const eomc_real pd16 = p[20];
     (void)u;
     (void)t;
     eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
@@ -1094,11 +643,11 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w3 = ang_cos[1];
     const eomc_real w4 = w3 * w3;
     const eomc_real w5 = w2 * w2;
-    piv[3] = pd13;
+    piv[3] = pd12;
     piv[4] = pd1;
     mkk[0] = p_m;
     mkk[1] = p_m;
-    mkk[3] = pd7;
+    mkk[3] = pd6;
     mkk[4] = pd1;
     const eomc_real w6 = w1 * v_y;
     const eomc_real w7 = w0 * v_x;
@@ -1118,9 +667,9 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w17 = pd5 * w4;
     const eomc_real w18 = pd0 * w5;
     const eomc_real w19 = p_m * w4;
-    const eomc_real w20 = pd16 * w5;
-    const eomc_real w21 = pd11 * w4;
-    const eomc_real w22 = pd12 * w5;
+    const eomc_real w20 = pd15 * w5;
+    const eomc_real w21 = pd10 * w4;
+    const eomc_real w22 = pd11 * w5;
     const eomc_real w23 = w6 - w7;
     const eomc_real w24 = w10 + v_phi;
     const eomc_real w25 = w8 * v_theta;
@@ -1168,7 +717,7 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w63 = w51 - w26;
     const eomc_real w64 = v_theta * w49;
     const eomc_real w65 = w55 - w56;
-    const eomc_real w66 = pd16 * w55;
+    const eomc_real w66 = pd15 * w55;
     const eomc_real w67 = pd0 * w57;
     const eomc_real w68 = w62 - w50;
     const eomc_real w69 = w63 + w40;
@@ -1189,13 +738,13 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w83 = w78 + w36;
     const eomc_real w84 = w79 + w38;
     const eomc_real w85 = w3 * w80;
-    const eomc_real w86 = pd15 * w81;
+    const eomc_real w86 = pd14 * w81;
     const eomc_real w87 = w3 * w82;
     shared[7] = w82;
     const eomc_real w88 = w3 * w84;
     const eomc_real w89 = p_m * w85;
     const eomc_real w90 = w76 - w86;
-    const eomc_real w91 = pd10 * w87;
+    const eomc_real w91 = pd9 * w87;
     const eomc_real w92 = w88 - w74;
     const eomc_real w93 = w2 * w90;
     const eomc_real w94 = p_m - w91;
@@ -1257,12 +806,12 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w142 = w45 * w140;
     const eomc_real w143 = w81 + w141;
     a[2] = w142;
-    const eomc_real w144 = pd14 * w143;
+    const eomc_real w144 = pd13 * w143;
     const eomc_real w145 = w3 * w142;
     const eomc_real w146 = -w144;
     const eomc_real w147 = w145 - w25;
     a[3] = w146;
-    const eomc_real w148 = pd9 * w147;
+    const eomc_real w148 = pd8 * w147;
     const eomc_real w149 = -w148;
     a[4] = w149;
 }
@@ -1270,7 +819,7 @@ rolling_disk_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 rolling_disk_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
     eomc_real *shared)
@@ -1281,7 +830,7 @@ rolling_disk_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
 }
 
 /* The same, what minv_shared reads dropped. */
-static int
+EOMC_ENTRY int
 rolling_disk_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -1292,7 +841,7 @@ rolling_disk_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* y = M^-1 da by accel_solve's solve (a recursion at rest with no force
  * but the load da, or the LDL^T factors), given shared[] from
  * accel_solve at the same (t, q, p): one unit load's passes alone. */
-static void
+EOMC_ENTRY void
 rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *shared,
     const eomc_real *da, eomc_real *y)
@@ -1304,10 +853,10 @@ rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real da_phi = da[4];
     const eomc_real pd1 = p[5];
     const eomc_real pd4 = p[8];
+    const eomc_real pd7 = p[11];
     const eomc_real pd8 = p[12];
-    const eomc_real pd9 = p[13];
+    const eomc_real pd13 = p[17];
     const eomc_real pd14 = p[18];
-    const eomc_real pd15 = p[19];
     (void)q;
     (void)v;
     (void)u;
@@ -1316,9 +865,9 @@ rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w0 = shared[4] * da_theta;
     const eomc_real w1 = shared[2] * da_phi;
     const eomc_real w2 = shared[5] * da_theta;
-    const eomc_real w3 = pd15 * w0;
-    const eomc_real w4 = pd9 * w1;
-    const eomc_real w5 = pd15 * w2;
+    const eomc_real w3 = pd14 * w0;
+    const eomc_real w4 = pd8 * w1;
+    const eomc_real w5 = pd14 * w2;
     const eomc_real w6 = da_psi - w4;
     const eomc_real w7 = w6 * shared[7];
     const eomc_real w8 = shared[0] * w7;
@@ -1350,18 +899,18 @@ rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w32 = w6 + w30;
     const eomc_real w33 = da_theta + w31;
     const eomc_real w34 = shared[6] * w32;
-    const eomc_real w35 = pd14 * w33;
+    const eomc_real w35 = pd13 * w33;
     y[2] = w34;
     y[3] = w35;
     const eomc_real w36 = shared[2] * w34;
     const eomc_real w37 = pd1 * w36;
     const eomc_real w38 = da_phi - w37;
-    const eomc_real w39 = pd8 * w38;
+    const eomc_real w39 = pd7 * w38;
     y[4] = w39;
 }
 
 /* y = M^-1 da: the solve's shared values, then minv_shared. */
-static void
+EOMC_ENTRY void
 rolling_disk_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y)
 {
@@ -1392,28 +941,10 @@ rolling_disk_check_values(const eomc_real *p, eomc_real *chk)
     chk[6] = w5;
 }
 
-static const char *const check_what[7] = {
-    "body 'disk': a mass cannot be negative",
-    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
-    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
-};
-static const char *const check_params[7] = {
-    "m",
-    "m, R",
-    "m, R",
-    "m, R",
-    "m, R",
-    "m, R",
-    "m, R",
-};
 static const unsigned char check_strict[7] = {0, 1, 1, 1, 0, 0, 0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 rolling_disk_check(const double *p)
 {
     eomc_real chk[7];
@@ -1423,7 +954,7 @@ rolling_disk_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 rolling_disk_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -1487,7 +1018,7 @@ rolling_disk_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 
 /* Each body item k's mass, centre and inertia about it in its frame
  * at D[13 k ...], from which a body without shapes is drawn. */
-static void
+EOMC_ENTRY void
 rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
 {
     const eomc_real p_R = p[1];
@@ -1513,14 +1044,566 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
 
 #endif /* EOMC_EXTENDED */
 
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
 #ifndef EOMC_EXTENDED
+static const char *const q_names[5] = {"x", "y", "psi", "theta", "phi"};
+static const char *const p_names[4] = {"m", "R", "g", "spin"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {1.0, 0.5, 9.81, 6.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+static const char *const c_names[2] = {"roll_x", "roll_y"};
+static const int c_order[2] = {1, 1};
+static const int c_dependent[2] = {4, 1};
+
+/* The entries of B that can be nonzero (the rest are 0 at every state). */
+static const int c_nz[4] = {0, 4, 6, 9};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"disk", EOMC_DRAW_BODY, 3, 0},
+};
+
+static const char *const check_what[7] = {
+    "body 'disk': a mass cannot be negative",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': its inertia must be positive definite (a principal moment of zero or less leaves a rotation with no inertia)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+    "body 'disk': no distribution of mass has this inertia (its principal moments must satisfy A + B >= C in every order)",
+};
+static const char *const check_params[7] = {
+    "m",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+    "m, R",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+rolling_disk_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    for (int i = 0; i < 25; i++) /* the nonzeros follow */
+        dEdq[i] = 0.0;
+    const eomc_real q_psi = q[2];
+    const eomc_real v_psi = v[2];
+    const eomc_real q_theta = q[3];
+    const eomc_real v_theta = v[3];
+    const eomc_real v_phi = v[4];
+    const eomc_real v_x = v[0];
+    const eomc_real v_y = v[1];
+    const eomc_real a_x = a[0];
+    const eomc_real a_y = a[1];
+    const eomc_real a_psi = a[2];
+    const eomc_real a_theta = a[3];
+    const eomc_real a_phi = a[4];
+    const eomc_real p_R = p[1];
+    const eomc_real p_m = p[0];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd1 = p[5];
+    const eomc_real pd2 = p[6];
+    const eomc_real pd3 = p[7];
+    const eomc_real pd4 = p[8];
+    const eomc_real pd5 = p[9];
+    const eomc_real pd12 = p[16];
+    (void)u;
+    (void)t;
+    (void)dEdu;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_psi;
+    ang[1] = q_theta;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w1 * a_y;
+    const eomc_real w5 = w0 * a_x;
+    const eomc_real w6 = w0 * v_psi;
+    const eomc_real w7 = w0 * w3;
+    const eomc_real w8 = w2 * w2;
+    const eomc_real w9 = v_psi * w3;
+    const eomc_real w10 = w1 * v_x;
+    const eomc_real w11 = w0 * v_y;
+    const eomc_real w12 = w1 * v_y;
+    const eomc_real w13 = w0 * v_x;
+    const eomc_real w14 = p_R * v_theta;
+    const eomc_real w15 = p_R * a_theta;
+    const eomc_real w16 = v_psi * w2;
+    const eomc_real w17 = w1 * v_psi;
+    const eomc_real w18 = w1 * v_phi;
+    const eomc_real w19 = w1 * a_x;
+    const eomc_real w20 = w0 * a_y;
+    const eomc_real w21 = w3 * a_psi;
+    const eomc_real w22 = w0 * w2;
+    const eomc_real w23 = w1 * v_theta;
+    const eomc_real w24 = w1 * a_psi;
+    dEdt[0] = 0.0;
+    const eomc_real w25 = w0 * v_phi;
+    const eomc_real w26 = w1 * w3;
+    const eomc_real w27 = w1 * w2;
+    const eomc_real w28 = w0 * v_theta;
+    const eomc_real w29 = w0 * a_psi;
+    dEdt[1] = 0.0;
+    const eomc_real w30 = w3 * v_phi;
+    const eomc_real w31 = w3 * a_y;
+    const eomc_real w32 = w3 * a_x;
+    const eomc_real w33 = w2 * a_psi;
+    const eomc_real w34 = v_theta * v_phi;
+    const eomc_real w35 = pd1 + pd5;
+    const eomc_real w36 = w3 * v_theta;
+    const eomc_real w37 = w2 * v_theta;
+    const eomc_real w38 = w2 * v_phi;
+    const eomc_real w39 = p_R * p_R;
+    dEdt[2] = 0.0;
+    const eomc_real w40 = pd0 * v_phi;
+    const eomc_real w41 = v_psi * v_psi;
+    dEdv[15] = 0.0;
+    dEdv[16] = 0.0;
+    dEdv[18] = 0.0;
+    dEdt[3] = 0.0;
+    dEdv[20] = 0.0;
+    dEdv[21] = 0.0;
+    dEdv[24] = 0.0;
+    dEdt[4] = 0.0;
+    const eomc_real w42 = w7 * v_phi;
+    const eomc_real w43 = w6 * w8;
+    const eomc_real w44 = w9 + v_phi;
+    const eomc_real w45 = w4 - w5;
+    const eomc_real w46 = w10 + w11;
+    const eomc_real w47 = w12 - w13;
+    const eomc_real w48 = p_R * w9;
+    const eomc_real w49 = w17 * w8;
+    const eomc_real w50 = w19 + w20;
+    const eomc_real w51 = w16 * v_theta;
+    const eomc_real w52 = w17 * w2;
+    const eomc_real w53 = pd4 * w23;
+    const eomc_real w54 = pd4 * w24;
+    const eomc_real w55 = w7 * v_theta;
+    const eomc_real w56 = w26 * v_phi;
+    const eomc_real w57 = w6 * w2;
+    const eomc_real w58 = pd4 * w28;
+    const eomc_real w59 = pd4 * w29;
+    const eomc_real w60 = w26 * v_theta;
+    const eomc_real w61 = w9 * w8;
+    const eomc_real w62 = w9 * v_theta;
+    const eomc_real w63 = w9 * w2;
+    const eomc_real w64 = pd0 * w33;
+    const eomc_real w65 = w35 * w36;
+    const eomc_real w66 = w35 * w21;
+    const eomc_real w67 = pd0 * w37;
+    const eomc_real w68 = pd3 * w37;
+    const eomc_real w69 = pd0 * w38;
+    const eomc_real w70 = p_m * w39;
+    const eomc_real w71 = w27 * a_x;
+    const eomc_real w72 = w22 * a_y;
+    const eomc_real w73 = w41 * w2;
+    const eomc_real w74 = pd1 * w16;
+    const eomc_real w75 = pd1 * w33;
+    const eomc_real w76 = w7 * w44;
+    const eomc_real w77 = v_psi * w46;
+    const eomc_real w78 = w2 * w47;
+    const eomc_real w79 = w48 - w46;
+    const eomc_real w80 = w46 - w48;
+    const eomc_real w81 = w1 * w44;
+    const eomc_real w82 = v_psi * w47;
+    const eomc_real w83 = w21 - w51;
+    const eomc_real w84 = w3 * w47;
+    const eomc_real w85 = w52 * w47;
+    const eomc_real w86 = w0 * w46;
+    const eomc_real w87 = w1 * w47;
+    const eomc_real w88 = pd4 * w52;
+    const eomc_real w89 = w52 + w55;
+    const eomc_real w90 = w0 * w44;
+    const eomc_real w91 = w26 * w44;
+    const eomc_real w92 = w57 * w47;
+    const eomc_real w93 = w0 * w47;
+    const eomc_real w94 = w1 * w46;
+    const eomc_real w95 = pd4 * w57;
+    const eomc_real w96 = w57 - w60;
+    const eomc_real w97 = w3 * w44;
+    const eomc_real w98 = w33 + w62;
+    const eomc_real w99 = v_theta * w44;
+    const eomc_real w100 = w63 * w47;
+    const eomc_real w101 = w2 * w44;
+    const eomc_real w102 = w35 * w63;
+    const eomc_real w103 = pd0 * w63;
+    const eomc_real w104 = pd5 * w63;
+    const eomc_real w105 = (-0.5) * w70;
+    const eomc_real w106 = w71 + w72;
+    const eomc_real w107 = pd0 * w44;
+    const eomc_real w108 = pd12 * w73;
+    const eomc_real w109 = w2 * w46;
+    const eomc_real w110 = pd12 * w63;
+    dEdv[19] = w74;
+    const eomc_real w111 = w43 + w76;
+    const eomc_real w112 = w45 - w77;
+    const eomc_real w113 = v_theta * w78;
+    const eomc_real w114 = v_phi * w79;
+    const eomc_real w115 = w44 * w80;
+    const eomc_real w116 = w14 - w78;
+    const eomc_real w117 = w16 * w80;
+    const eomc_real w118 = w18 - w81;
+    const eomc_real w119 = w50 + w82;
+    const eomc_real w120 = p_R * w83;
+    const eomc_real w121 = v_phi * w84;
+    const eomc_real w122 = w44 * w84;
+    const eomc_real w123 = w22 * w80;
+    const eomc_real w124 = w7 * w80;
+    const eomc_real w125 = w1 * w84;
+    const eomc_real w126 = w86 + w87;
+    const eomc_real w127 = w7 * w78;
+    const eomc_real w128 = pd4 * w89;
+    const eomc_real w129 = w7 * w79;
+    const eomc_real w130 = w25 - w90;
+    const eomc_real w131 = w49 + w91;
+    const eomc_real w132 = w27 * w80;
+    const eomc_real w133 = w26 * w80;
+    const eomc_real w134 = w0 * w84;
+    const eomc_real w135 = w93 - w94;
+    const eomc_real w136 = w26 * w78;
+    const eomc_real w137 = pd4 * w96;
+    const eomc_real w138 = w26 * w79;
+    const eomc_real w139 = w97 - w30;
+    const eomc_real w140 = w98 - w34;
+    const eomc_real w141 = pd3 * w99;
+    const eomc_real w142 = pd4 * w100;
+    const eomc_real w143 = a_phi + w83;
+    const eomc_real w144 = w3 * w84;
+    const eomc_real w145 = pd4 * w84;
+    const eomc_real w146 = pd3 * w101;
+    const eomc_real w147 = w105 * w37;
+    const eomc_real w148 = pd4 * w106;
+    const eomc_real w149 = pd4 * w80;
+    const eomc_real w150 = pd2 + w108;
+    const eomc_real w151 = pd4 * w109;
+    const eomc_real w152 = w105 * w62;
+    const eomc_real w153 = w105 * w16;
+    const eomc_real w154 = w42 - w111;
+    const eomc_real w155 = w3 * w112;
+    const eomc_real w156 = v_theta * w116;
+    const eomc_real w157 = w15 - w117;
+    const eomc_real w158 = w2 * w112;
+    const eomc_real w159 = w3 * w118;
+    const eomc_real w160 = w119 - w120;
+    const eomc_real w161 = w16 * w116;
+    const eomc_real w162 = w22 * w112;
+    const eomc_real w163 = w1 * w116;
+    const eomc_real w164 = w47 * w118;
+    const eomc_real w165 = w7 * w112;
+    const eomc_real w166 = w111 - w42;
+    const eomc_real w167 = w124 + w125;
+    const eomc_real w168 = p_m * w126;
+    const eomc_real w169 = w7 * w116;
+    const eomc_real w170 = w124 + w129;
+    const eomc_real w171 = w3 * w130;
+    const eomc_real w172 = w131 - w56;
+    const eomc_real w173 = w27 * w112;
+    const eomc_real w174 = w0 * w116;
+    const eomc_real w175 = w47 * w130;
+    const eomc_real w176 = w26 * w112;
+    const eomc_real w177 = w133 - w134;
+    const eomc_real w178 = w56 - w131;
+    const eomc_real w179 = p_m * w135;
+    const eomc_real w180 = w26 * w116;
+    const eomc_real w181 = w133 + w138;
+    const eomc_real w182 = w3 * w139;
+    const eomc_real w183 = pd0 * w140;
+    const eomc_real w184 = w3 * w116;
+    const eomc_real w185 = pd1 * w143;
+    const eomc_real w186 = w47 * w139;
+    const eomc_real w187 = pd4 * w144;
+    const eomc_real w188 = w146 - w69;
+    dEdv[14] = w147;
+    dEdq[17] = w148;
+    const eomc_real w189 = w40 - w149;
+    const eomc_real w190 = pd4 * w112;
+    const eomc_real w191 = w2 * w150;
+    const eomc_real w192 = w151 + w110;
+    const eomc_real w193 = w152 - w75;
+    dEdv[22] = w147;
+    dEdv[23] = w153;
+    const eomc_real w194 = w6 + w154;
+    const eomc_real w195 = w155 - w113;
+    const eomc_real w196 = w115 - w156;
+    const eomc_real w197 = w157 - w158;
+    const eomc_real w198 = w159 - w49;
+    const eomc_real w199 = w160 + w121;
+    const eomc_real w200 = w161 - w122;
+    const eomc_real w201 = w163 - w123;
+    const eomc_real w202 = pd4 * w166;
+    const eomc_real w203 = p_m * w167;
+    const eomc_real w204 = w169 + w127;
+    const eomc_real w205 = p_m * w170;
+    const eomc_real w206 = w171 - w43;
+    const eomc_real w207 = w172 - w17;
+    const eomc_real w208 = w132 + w174;
+    const eomc_real w209 = p_m * w177;
+    const eomc_real w210 = pd4 * w178;
+    const eomc_real w211 = w180 + w136;
+    const eomc_real w212 = p_m * w181;
+    const eomc_real w213 = w61 + w182;
+    const eomc_real w214 = w183 + w141;
+    const eomc_real w215 = pd4 * w184;
+    const eomc_real w216 = pd4 * w186;
+    const eomc_real w217 = w187 + w68;
+    const eomc_real w218 = w188 - w102;
+    const eomc_real w219 = w189 + w107;
+    dEdq[23] = w193;
+    const eomc_real w220 = v_y * w194;
+    const eomc_real w221 = w195 + w114;
+    const eomc_real w222 = w2 * w197;
+    const eomc_real w223 = w17 + w198;
+    const eomc_real w224 = w199 + w200;
+    const eomc_real w225 = v_x * w194;
+    const eomc_real w226 = w0 * w197;
+    const eomc_real w227 = p_m * w201;
+    const eomc_real w228 = w202 - w203;
+    const eomc_real w229 = w1 * w194;
+    const eomc_real w230 = w0 * w194;
+    const eomc_real w231 = p_m * w204;
+    const eomc_real w232 = -w205;
+    const eomc_real w233 = w6 + w206;
+    const eomc_real w234 = v_y * w207;
+    const eomc_real w235 = v_x * w207;
+    const eomc_real w236 = w1 * w197;
+    const eomc_real w237 = p_m * w208;
+    const eomc_real w238 = w209 + w210;
+    const eomc_real w239 = w1 * w207;
+    const eomc_real w240 = w0 * w207;
+    const eomc_real w241 = p_m * w211;
+    dEdv[9] = w212;
+    const eomc_real w242 = w213 - w9;
+    const eomc_real w243 = w214 + w142;
+    const eomc_real w244 = w215 + w65;
+    const eomc_real w245 = w67 + w217;
+    const eomc_real w246 = w218 + w103;
+    const eomc_real w247 = v_psi * w219;
+    const eomc_real w248 = w2 * w219;
+    const eomc_real w249 = w221 + w196;
+    const eomc_real w250 = v_x * w223;
+    const eomc_real w251 = v_y * w223;
+    const eomc_real w252 = w226 - w85;
+    const eomc_real w253 = w227 + w53;
+    const eomc_real w254 = v_psi * w228;
+    const eomc_real w255 = w0 * w223;
+    const eomc_real w256 = w1 * w223;
+    const eomc_real w257 = w3 * w228;
+    const eomc_real w258 = w231 + w88;
+    dEdv[4] = w232;
+    const eomc_real w259 = v_x * w233;
+    const eomc_real w260 = v_y * w233;
+    const eomc_real w261 = w236 + w92;
+    const eomc_real w262 = w237 + w58;
+    const eomc_real w263 = v_psi * w238;
+    const eomc_real w264 = w0 * w233;
+    const eomc_real w265 = w1 * w233;
+    const eomc_real w266 = w3 * w238;
+    const eomc_real w267 = w95 - w241;
+    const eomc_real w268 = v_x * w242;
+    const eomc_real w269 = v_y * w242;
+    const eomc_real w270 = w243 + w64;
+    const eomc_real w271 = v_psi * w244;
+    const eomc_real w272 = pd4 * w224;
+    const eomc_real w273 = v_psi * w245;
+    const eomc_real w274 = w0 * w242;
+    const eomc_real w275 = w1 * w242;
+    const eomc_real w276 = w3 * w245;
+    const eomc_real w277 = w2 * w244;
+    const eomc_real w278 = w246 - w104;
+    const eomc_real w279 = w247 - w190;
+    const eomc_real w280 = w192 + w248;
+    const eomc_real w281 = w3 * w249;
+    const eomc_real w282 = w224 + w251;
+    const eomc_real w283 = w252 - w162;
+    const eomc_real w284 = v_psi * w253;
+    const eomc_real w285 = w0 * w249;
+    const eomc_real w286 = w229 - w255;
+    const eomc_real w287 = w256 + w230;
+    const eomc_real w288 = w168 + w257;
+    const eomc_real w289 = w2 * w253;
+    const eomc_real w290 = w258 + w128;
+    const eomc_real w291 = w224 - w259;
+    const eomc_real w292 = w173 - w261;
+    const eomc_real w293 = v_psi * w262;
+    const eomc_real w294 = w1 * w249;
+    const eomc_real w295 = w239 - w264;
+    const eomc_real w296 = w265 + w240;
+    const eomc_real w297 = w179 + w266;
+    const eomc_real w298 = w2 * w262;
+    const eomc_real w299 = w267 + w137;
+    const eomc_real w300 = w268 + w31;
+    const eomc_real w301 = w269 - w32;
+    const eomc_real w302 = w270 - w271;
+    const eomc_real w303 = w185 - w272;
+    const eomc_real w304 = pd4 * w274;
+    const eomc_real w305 = pd4 * w275;
+    const eomc_real w306 = w276 - w145;
+    dEdv[13] = w278;
+    const eomc_real w307 = w3 * w279;
+    dEdv[17] = w280;
+    const eomc_real w308 = w281 - w222;
+    const eomc_real w309 = w282 + w225;
+    const eomc_real w310 = p_m * w283;
+    const eomc_real w311 = w164 - w285;
+    const eomc_real w312 = p_m * w286;
+    const eomc_real w313 = p_m * w287;
+    const eomc_real w314 = w288 + w289;
+    dEdv[3] = w290;
+    const eomc_real w315 = w291 + w234;
+    const eomc_real w316 = p_m * w292;
+    const eomc_real w317 = w294 + w175;
+    const eomc_real w318 = p_m * w295;
+    const eomc_real w319 = p_m * w296;
+    const eomc_real w320 = w297 + w298;
+    dEdv[8] = w299;
+    const eomc_real w321 = w1 * w300;
+    const eomc_real w322 = w0 * w301;
+    const eomc_real w323 = w3 * w302;
+    const eomc_real w324 = w303 + w216;
+    const eomc_real w325 = -w304;
+    dEdv[11] = w305;
+    const eomc_real w326 = w306 - w277;
+    const eomc_real w327 = w307 - w191;
+    const eomc_real w328 = w308 + w250;
+    const eomc_real w329 = w309 - w20;
+    const eomc_real w330 = w310 + w284;
+    const eomc_real w331 = w311 - w165;
+    dEdv[0] = w312;
+    dEdv[1] = w313;
+    dEdv[2] = w314;
+    const eomc_real w332 = w315 - w19;
+    const eomc_real w333 = w308 + w260;
+    const eomc_real w334 = w316 + w293;
+    const eomc_real w335 = w317 + w176;
+    dEdv[5] = w318;
+    dEdv[6] = w319;
+    dEdv[7] = w320;
+    const eomc_real w336 = w321 + w322;
+    const eomc_real w337 = w324 + w66;
+    dEdv[10] = w325;
+    dEdv[12] = w326;
+    dEdq[18] = w327;
+    const eomc_real w338 = w220 - w328;
+    const eomc_real w339 = w19 + w329;
+    const eomc_real w340 = w3 * w330;
+    const eomc_real w341 = p_m * w331;
+    const eomc_real w342 = w20 + w332;
+    const eomc_real w343 = w333 + w235;
+    const eomc_real w344 = w3 * w334;
+    const eomc_real w345 = p_m * w335;
+    const eomc_real w346 = pd4 * w336;
+    const eomc_real w347 = w337 + w273;
+    const eomc_real w348 = w5 + w338;
+    const eomc_real w349 = w0 * w339;
+    const eomc_real w350 = w341 - w54;
+    const eomc_real w351 = w1 * w342;
+    const eomc_real w352 = w4 + w343;
+    const eomc_real w353 = w345 - w59;
+    const eomc_real w354 = -w346;
+    const eomc_real w355 = w2 * w347;
+    const eomc_real w356 = w4 + w348;
+    const eomc_real w357 = w350 + w254;
+    const eomc_real w358 = w5 + w352;
+    const eomc_real w359 = w353 + w263;
+    dEdq[12] = w354;
+    const eomc_real w360 = w323 - w355;
+    const eomc_real w361 = w1 * w356;
+    const eomc_real w362 = w2 * w357;
+    const eomc_real w363 = w0 * w358;
+    const eomc_real w364 = w2 * w359;
+    dEdq[13] = w360;
+    const eomc_real w365 = w361 - w349;
+    const eomc_real w366 = w340 - w362;
+    const eomc_real w367 = w351 - w363;
+    const eomc_real w368 = w344 - w364;
+    const eomc_real w369 = p_m * w365;
+    dEdq[3] = w366;
+    const eomc_real w370 = p_m * w367;
+    dEdq[2] = w369;
+    dEdq[7] = w370;
+    dEdq[8] = w368;
+}
+
+#endif /* EOMC_EXTENDED */
+
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+rolling_disk_derive(const eomc_real *p, eomc_real *pd);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+rolling_disk_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+rolling_disk_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+rolling_disk_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+rolling_disk_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+rolling_disk_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+rolling_disk_constraint(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *f,
+    eomc_real *B);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+rolling_disk_c_levels(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *pos, eomc_real *vel);
+EOMC_ENTRY void
+rolling_disk_c_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dfdq,
+    eomc_real *dfdv, eomc_real *dfdu, eomc_real *dfdt, eomc_real *dBdq,
+    eomc_real *dBdv, eomc_real *dBda, eomc_real *dBdu, eomc_real *dBdt);
+EOMC_ENTRY void
+rolling_disk_c_levels_jacobian(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *p, const eomc_real *u,
+    eomc_real *dposdq, eomc_real *dveldq, eomc_real *dveldv, eomc_real *dposdu,
+    eomc_real *dveldu, eomc_real *dposdt, eomc_real *dveldt);
+EOMC_ENTRY int
+rolling_disk_accel_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot,
+    eomc_real *shared);
+EOMC_ENTRY int
+rolling_disk_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+EOMC_ENTRY void
+rolling_disk_minv_shared(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *shared,
+    const eomc_real *da, eomc_real *y);
+EOMC_ENTRY void
+rolling_disk_minv(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y);
+EOMC_ENTRY int
+rolling_disk_check(const double *p);
+EOMC_ENTRY void
+rolling_disk_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+rolling_disk_draw_mass(const eomc_real *p, eomc_real *D);
+
 const eomc_model rolling_disk_model = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
     .options = "--jacobian auto --taylor",
     .nq = 5, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 18, .derive = rolling_disk_derive,
+    .nd = 16, .derive = rolling_disk_derive,
     .t_end = 10.0, .dt = 0.01, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = rolling_disk_initial, .inputs = rolling_disk_inputs, .mass_bias = rolling_disk_mass_bias,
     .energy = rolling_disk_energy,
@@ -1568,3 +1651,4 @@ const eomc_model_ext rolling_disk_model_ext = {
     .taylor_nslot = 0, .taylor = NULL,
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

@@ -22,7 +22,6 @@
 #include <stddef.h>
 
 #include "eomc_model.h"
-#include "eomc_taylor.h"
 
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
@@ -32,26 +31,31 @@
 #define EOMC_WEAK
 #endif
 
-#ifndef EOMC_EXTENDED
-static const char *const q_names[1] = {"th"};
-static const char *const p_names[4] = {"m", "R", "g", "w"};
-static const char *const u_names[1] = {NULL};
-static const double p_default[4] = {0.1, 0.5, 9.81, 6.0};
-static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+/* eomc build compiles this file as translation units at once: with
+ * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian
+ * and Taylor's series where there are any, the tables and the model's
+ * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of
+ * long functions marked for the second half of units 1 and 3.  A
+ * simulator and a library of the same model then share the objects of
+ * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
+ * of eomc_model that the struct names are EOMC_ENTRY. */
+#if !defined(EOMC_UNIT)
+#define EOMC_ENTRY static
+#define EOMC_PART static EOMC_NOINLINE
+#elif defined(__GNUC__)
+#define EOMC_ENTRY __attribute__((visibility("hidden")))
+#define EOMC_PART __attribute__((visibility("hidden"), noinline))
+#else
+#define EOMC_ENTRY
+#define EOMC_PART
+#endif
 
-/* What a run's page draws (--animate): draw's items, in order. */
-static const eomc_draw_item draw_items[1] = {
-    {"bead", EOMC_DRAW_PARTICLE, 3, 0},
-};
-
-#endif /* EOMC_EXTENDED */
-
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
-static void
+EOMC_ENTRY void
 spinning_hoop_derive(const eomc_real *p, eomc_real *pd)
 {
-    const eomc_real p_w = p[3];
     const eomc_real p_m = p[0];
     const eomc_real p_R = p[1];
     const eomc_real p_g = p[2];
@@ -62,20 +66,14 @@ spinning_hoop_derive(const eomc_real *p, eomc_real *pd)
     pd[0] = w2;
     const eomc_real w4 = 0.5 * w2;
     pd[2] = w3;
-    const eomc_real w5 = p_w * w2;
-    const eomc_real w6 = 1.0 / w2;
-    const eomc_real w7 = 2.0 * w2;
+    const eomc_real w5 = 1.0 / w2;
     pd[1] = w4;
     pd[3] = w5;
-    pd[5] = w7;
-    const eomc_real w8 = p_w * w5;
-    pd[4] = w6;
-    pd[6] = w8;
 }
 
 #ifndef EOMC_EXTENDED
 /* Initial state from the spec's `initial`. */
-static void
+EOMC_ENTRY void
 spinning_hoop_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 {
     (void)p;
@@ -86,7 +84,7 @@ spinning_hoop_initial(const eomc_real *p, eomc_real *q, eomc_real *v)
 #endif /* EOMC_EXTENDED */
 
 /* Input signals u(t) and du/dt. */
-static void
+EOMC_ENTRY void
 spinning_hoop_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
     eomc_real *dudt)
 {
@@ -97,7 +95,7 @@ spinning_hoop_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
 }
 
 /* Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0). */
-static void
+EOMC_ENTRY void
 spinning_hoop_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h)
 {
@@ -154,7 +152,7 @@ spinning_hoop_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
 
 #ifndef EOMC_EXTENDED
 /* Kinetic energy T and potential energy V. */
-static void
+EOMC_ENTRY void
 spinning_hoop_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *TV)
 {
@@ -196,126 +194,8 @@ spinning_hoop_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
     TV[0] = w23;
 }
 
-/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
-static void
-spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
-    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
-    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
-{
-    const eomc_real q_th = q[0];
-    const eomc_real v_th = v[0];
-    const eomc_real a_th = a[0];
-    const eomc_real p_w = p[3];
-    const eomc_real pd0 = p[4];
-    const eomc_real pd2 = p[6];
-    const eomc_real pd3 = p[7];
-    const eomc_real pd5 = p[9];
-    const eomc_real pd6 = p[10];
-    (void)u;
-    (void)dEdu;
-    const eomc_real w0 = p_w * t;
-    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
-    ang[0] = q_th;
-    ang[1] = w0;
-    eomc_sincos(2, ang, ang_sin, ang_cos);
-    const eomc_real w1 = ang_sin[0];
-    const eomc_real w2 = ang_cos[0];
-    const eomc_real w3 = ang_sin[1];
-    const eomc_real w4 = ang_cos[1];
-    const eomc_real w5 = v_th * v_th;
-    const eomc_real w6 = w1 * a_th;
-    const eomc_real w7 = w3 * w2;
-    const eomc_real w8 = w4 * w2;
-    const eomc_real w9 = w1 * w3;
-    const eomc_real w10 = w1 * w4;
-    const eomc_real w11 = w1 * w2;
-    const eomc_real w12 = w2 * w5;
-    const eomc_real w13 = pd0 * w6;
-    const eomc_real w14 = w7 * w5;
-    const eomc_real w15 = pd6 * w7;
-    const eomc_real w16 = w8 * w5;
-    const eomc_real w17 = pd6 * w8;
-    const eomc_real w18 = w1 * w5;
-    const eomc_real w19 = w7 * a_th;
-    const eomc_real w20 = p_w * w8;
-    const eomc_real w21 = w9 * v_th;
-    const eomc_real w22 = w8 * v_th;
-    const eomc_real w23 = p_w * w9;
-    const eomc_real w24 = w7 * v_th;
-    const eomc_real w25 = w8 * a_th;
-    const eomc_real w26 = p_w * w7;
-    const eomc_real w27 = w10 * v_th;
-    const eomc_real w28 = p_w * w10;
-    const eomc_real w29 = w11 * v_th;
-    const eomc_real w30 = w12 + w6;
-    const eomc_real w31 = pd0 * w14;
-    const eomc_real w32 = pd0 * w16;
-    const eomc_real w33 = pd0 * w18;
-    const eomc_real w34 = w20 - w21;
-    const eomc_real w35 = w22 - w23;
-    const eomc_real w36 = pd3 * w22;
-    const eomc_real w37 = pd3 * w24;
-    const eomc_real w38 = w26 + w27;
-    const eomc_real w39 = w24 + w28;
-    const eomc_real w40 = pd0 * w25;
-    const eomc_real w41 = pd5 * w29;
-    const eomc_real w42 = pd0 * w29;
-    const eomc_real w43 = pd0 * w30;
-    const eomc_real w44 = w31 + w15;
-    const eomc_real w45 = w32 + w17;
-    const eomc_real w46 = v_th * w34;
-    const eomc_real w47 = p_w * w35;
-    const eomc_real w48 = v_th * w38;
-    const eomc_real w49 = p_w * w39;
-    const eomc_real w50 = w7 * w34;
-    const eomc_real w51 = w8 * w38;
-    const eomc_real w52 = pd2 + w43;
-    const eomc_real w53 = w3 * w44;
-    const eomc_real w54 = w4 * w45;
-    const eomc_real w55 = w46 + w19;
-    const eomc_real w56 = w25 - w48;
-    const eomc_real w57 = pd0 * w50;
-    const eomc_real w58 = pd0 * w51;
-    const eomc_real w59 = w1 * w44;
-    const eomc_real w60 = w1 * w45;
-    const eomc_real w61 = w52 + w13;
-    const eomc_real w62 = w55 + w47;
-    const eomc_real w63 = w56 - w49;
-    const eomc_real w64 = w41 + w57;
-    const eomc_real w65 = w61 - w53;
-    const eomc_real w66 = w19 + w62;
-    const eomc_real w67 = pd0 * w63;
-    const eomc_real w68 = w64 - w58;
-    const eomc_real w69 = w65 - w54;
-    const eomc_real w70 = pd0 * w66;
-    const eomc_real w71 = w67 + w37;
-    const eomc_real w72 = w68 - w42;
-    const eomc_real w73 = w2 * w69;
-    const eomc_real w74 = w70 - w36;
-    const eomc_real w75 = w71 + w40;
-    dEdv[0] = w72;
-    const eomc_real w76 = w74 - w36;
-    const eomc_real w77 = w37 + w75;
-    const eomc_real w78 = w3 * w76;
-    const eomc_real w79 = w4 * w77;
-    const eomc_real w80 = w2 * w76;
-    const eomc_real w81 = w2 * w77;
-    const eomc_real w82 = w33 + w78;
-    const eomc_real w83 = w80 - w59;
-    const eomc_real w84 = w81 - w60;
-    const eomc_real w85 = w82 + w79;
-    const eomc_real w86 = w4 * w83;
-    const eomc_real w87 = w3 * w84;
-    const eomc_real w88 = w1 * w85;
-    const eomc_real w89 = w86 - w87;
-    const eomc_real w90 = w73 - w88;
-    const eomc_real w91 = p_w * w89;
-    dEdq[0] = w90;
-    dEdt[0] = w91;
-}
-
 /* The conserved quantity (eomc_model.h: invariant). */
-static void
+EOMC_ENTRY void
 spinning_hoop_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *h)
 {
@@ -381,7 +261,7 @@ spinning_hoop_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real p_w = p[3];
     const eomc_real pd0 = p[4];
     const eomc_real pd2 = p[6];
-    const eomc_real pd4 = p[8];
+    const eomc_real pd3 = p[7];
     (void)u;
     const eomc_real w0 = p_w * t;
     eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
@@ -426,7 +306,7 @@ spinning_hoop_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real w34 = w33 - w32;
     const eomc_real w35 = pd0 * w34;
     const eomc_real w36 = w5 + w35;
-    const eomc_real w37 = pd4 * w36;
+    const eomc_real w37 = pd3 * w36;
     const eomc_real w38 = -w37;
     a[0] = w38;
 }
@@ -434,7 +314,7 @@ spinning_hoop_accel_solve(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* q'' = -M^-1 h; 0, or k + 1 if the pivot of coordinate k fails (M
  * singular or not positive definite).  *pivot (unless NULL): the
  * smallest d_k / M_kk, compared without dividing in the loop. */
-static int
+EOMC_ENTRY int
 spinning_hoop_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
     const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot)
 {
@@ -452,16 +332,10 @@ spinning_hoop_check_values(const eomc_real *p, eomc_real *chk)
     chk[0] = p_m;
 }
 
-static const char *const check_what[1] = {
-    "particle 'bead': a mass cannot be negative",
-};
-static const char *const check_params[1] = {
-    "m",
-};
 static const unsigned char check_strict[1] = {0};
 
 /* 0, or k + 1 for the first condition k the parameters p break. */
-static int
+EOMC_ENTRY int
 spinning_hoop_check(const double *p)
 {
     eomc_real chk[1];
@@ -471,7 +345,7 @@ spinning_hoop_check(const double *p)
 
 /* What a run's page draws: item k's position and rotation (row-major,
  * to the world) at X[12 k ...] (eomc_model.h's draw_items). */
-static void
+EOMC_ENTRY void
 spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X)
 {
@@ -506,6 +380,149 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[0] = w8;
     X[1] = w9;
     X[2] = w10;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 1 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+#include "eomc_taylor.h"
+
+#ifndef EOMC_EXTENDED
+static const char *const q_names[1] = {"th"};
+static const char *const p_names[4] = {"m", "R", "g", "w"};
+static const char *const u_names[1] = {NULL};
+static const double p_default[4] = {0.1, 0.5, 9.81, 6.0};
+static const unsigned char p_fixed[4] = {0, 0, 0, 0};
+
+/* What a run's page draws (--animate): draw's items, in order. */
+static const eomc_draw_item draw_items[1] = {
+    {"bead", EOMC_DRAW_PARTICLE, 3, 0},
+};
+
+static const char *const check_what[1] = {
+    "particle 'bead': a mass cannot be negative",
+};
+static const char *const check_params[1] = {
+    "m",
+};
+/* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
+static void
+spinning_hoop_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *a, const eomc_real *p, const eomc_real *u, eomc_real *dEdq,
+    eomc_real *dEdv, eomc_real *dEdu, eomc_real *dEdt)
+{
+    const eomc_real q_th = q[0];
+    const eomc_real v_th = v[0];
+    const eomc_real a_th = a[0];
+    const eomc_real p_w = p[3];
+    const eomc_real pd0 = p[4];
+    const eomc_real pd2 = p[6];
+    (void)u;
+    (void)dEdu;
+    const eomc_real w0 = p_w * t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th;
+    ang[1] = w0;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w1 = ang_sin[0];
+    const eomc_real w2 = ang_cos[0];
+    const eomc_real w3 = ang_sin[1];
+    const eomc_real w4 = ang_cos[1];
+    const eomc_real w5 = v_th * v_th;
+    const eomc_real w6 = w1 * a_th;
+    const eomc_real w7 = w3 * w2;
+    const eomc_real w8 = p_w * pd0;
+    const eomc_real w9 = w4 * w2;
+    const eomc_real w10 = w1 * w3;
+    const eomc_real w11 = w1 * w4;
+    const eomc_real w12 = 2.0 * pd0;
+    const eomc_real w13 = w1 * w2;
+    const eomc_real w14 = w2 * w5;
+    const eomc_real w15 = pd0 * w6;
+    const eomc_real w16 = w7 * w5;
+    const eomc_real w17 = p_w * w8;
+    const eomc_real w18 = w9 * w5;
+    const eomc_real w19 = w1 * w5;
+    const eomc_real w20 = w7 * a_th;
+    const eomc_real w21 = p_w * w9;
+    const eomc_real w22 = w10 * v_th;
+    const eomc_real w23 = w9 * v_th;
+    const eomc_real w24 = p_w * w10;
+    const eomc_real w25 = w7 * v_th;
+    const eomc_real w26 = w9 * a_th;
+    const eomc_real w27 = p_w * w7;
+    const eomc_real w28 = w11 * v_th;
+    const eomc_real w29 = p_w * w11;
+    const eomc_real w30 = w13 * v_th;
+    const eomc_real w31 = w14 + w6;
+    const eomc_real w32 = pd0 * w16;
+    const eomc_real w33 = w17 * w7;
+    const eomc_real w34 = pd0 * w18;
+    const eomc_real w35 = w17 * w9;
+    const eomc_real w36 = pd0 * w19;
+    const eomc_real w37 = w21 - w22;
+    const eomc_real w38 = w23 - w24;
+    const eomc_real w39 = w8 * w23;
+    const eomc_real w40 = w8 * w25;
+    const eomc_real w41 = w27 + w28;
+    const eomc_real w42 = w25 + w29;
+    const eomc_real w43 = pd0 * w26;
+    const eomc_real w44 = w12 * w30;
+    const eomc_real w45 = pd0 * w30;
+    const eomc_real w46 = pd0 * w31;
+    const eomc_real w47 = w32 + w33;
+    const eomc_real w48 = w34 + w35;
+    const eomc_real w49 = v_th * w37;
+    const eomc_real w50 = p_w * w38;
+    const eomc_real w51 = v_th * w41;
+    const eomc_real w52 = p_w * w42;
+    const eomc_real w53 = w7 * w37;
+    const eomc_real w54 = w9 * w41;
+    const eomc_real w55 = pd2 + w46;
+    const eomc_real w56 = w3 * w47;
+    const eomc_real w57 = w4 * w48;
+    const eomc_real w58 = w49 + w20;
+    const eomc_real w59 = w26 - w51;
+    const eomc_real w60 = pd0 * w53;
+    const eomc_real w61 = pd0 * w54;
+    const eomc_real w62 = w1 * w47;
+    const eomc_real w63 = w1 * w48;
+    const eomc_real w64 = w55 + w15;
+    const eomc_real w65 = w58 + w50;
+    const eomc_real w66 = w59 - w52;
+    const eomc_real w67 = w44 + w60;
+    const eomc_real w68 = w64 - w56;
+    const eomc_real w69 = w20 + w65;
+    const eomc_real w70 = pd0 * w66;
+    const eomc_real w71 = w67 - w61;
+    const eomc_real w72 = w68 - w57;
+    const eomc_real w73 = pd0 * w69;
+    const eomc_real w74 = w70 + w40;
+    const eomc_real w75 = w71 - w45;
+    const eomc_real w76 = w2 * w72;
+    const eomc_real w77 = w73 - w39;
+    const eomc_real w78 = w74 + w43;
+    dEdv[0] = w75;
+    const eomc_real w79 = w77 - w39;
+    const eomc_real w80 = w40 + w78;
+    const eomc_real w81 = w3 * w79;
+    const eomc_real w82 = w4 * w80;
+    const eomc_real w83 = w2 * w79;
+    const eomc_real w84 = w2 * w80;
+    const eomc_real w85 = w36 + w81;
+    const eomc_real w86 = w83 - w62;
+    const eomc_real w87 = w84 - w63;
+    const eomc_real w88 = w85 + w82;
+    const eomc_real w89 = w4 * w86;
+    const eomc_real w90 = w3 * w87;
+    const eomc_real w91 = w1 * w88;
+    const eomc_real w92 = w89 - w90;
+    const eomc_real w93 = w76 - w91;
+    const eomc_real w94 = p_w * w92;
+    dEdq[0] = w93;
+    dEdt[0] = w94;
 }
 
 #endif /* EOMC_EXTENDED */
@@ -560,14 +577,46 @@ static const int taylor_v[1] = {10};
 static const int taylor_M[1] = {19};
 static const int taylor_h[1] = {42};
 
+/* The members defined in the first unit. */
+EOMC_ENTRY void
+spinning_hoop_derive(const eomc_real *p, eomc_real *pd);
 #ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+spinning_hoop_initial(const eomc_real *p, eomc_real *q, eomc_real *v);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY void
+spinning_hoop_inputs(eomc_real t, const eomc_real *p, eomc_real *u,
+    eomc_real *dudt);
+EOMC_ENTRY void
+spinning_hoop_mass_bias(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY void
+spinning_hoop_energy(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *TV);
+EOMC_ENTRY void
+spinning_hoop_invariant(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *h);
+#endif /* EOMC_EXTENDED */
+
+EOMC_ENTRY int
+spinning_hoop_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
+    const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot);
+#ifndef EOMC_EXTENDED
+EOMC_ENTRY int
+spinning_hoop_check(const double *p);
+EOMC_ENTRY void
+spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+
 const eomc_model spinning_hoop_model = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
     .options = "--jacobian auto --taylor",
     .nq = 1, .np = 4, .nu = 0,
     .q_names = q_names, .p_names = p_names, .u_names = u_names,
     .p_default = p_default, .scene = "", .p_fixed = p_fixed,
-    .nd = 7, .derive = spinning_hoop_derive,
+    .nd = 4, .derive = spinning_hoop_derive,
     .t_end = 200.0, .dt = 0.1, .method = "rk8pd", .rtol = 1e-12, .atol = 1e-12, .h_fixed = 0.0,
     .initial = spinning_hoop_initial, .inputs = spinning_hoop_inputs, .mass_bias = spinning_hoop_mass_bias,
     .energy = spinning_hoop_energy,
@@ -615,3 +664,4 @@ const eomc_model_ext spinning_hoop_model_ext = {
     .taylor = spinning_hoop_taylor, /* Taylor's method in extended precision */
 };
 #endif /* EOMC_EXTENDED */
+#endif /* EOMC_UNIT 3 */

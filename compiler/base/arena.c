@@ -44,6 +44,17 @@ xrealloc(void *p, size_t n)
     return p;
 }
 
+FILE *
+xmemstream(char **buf, size_t *len)
+{
+    FILE *f = open_memstream(buf, len);
+    if (!f) {
+        fputs("eomc: out of memory\n", stderr);
+        exit(4);
+    }
+    return f;
+}
+
 Arena *
 arena_new(void)
 {

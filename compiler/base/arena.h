@@ -7,6 +7,7 @@
 #define EOMC_ARENA_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 typedef struct Arena Arena;
 
@@ -24,5 +25,7 @@ char *arena_printf(Arena *a, const char *fmt, ...)
 /* Die with a message on allocation failure (shared by every module). */
 void *xmalloc(size_t n);
 void *xrealloc(void *p, size_t n);
+/* open_memstream, dying as they do when it cannot. */
+FILE *xmemstream(char **buf, size_t *len);
 
 #endif

@@ -12,6 +12,7 @@
 #include "build.h"
 #include "base/arena.h"
 #include "config.h"
+#include "emit/emit.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -286,6 +287,65 @@ hash_file(uint64_t h, const char *path)
     return bad ? hash_string(h, "(unreadable)") : h;
 }
 
+/* The text of the C file that makes its unit k (1-3, emit.h): all but
+ * the banner (a comment: it names the options, which need not change the
+ * unit) and the sections of the other units, from their "#if
+ * !defined(EOMC_UNIT) || EOMC_UNIT == j" to their "#endif /\* EOMC_UNIT j
+ * *\/"; k = 0, all but the banner (the twin, compiled as one unit).  A
+ * simulator's C and a library's differ in the banner and unit 3 alone, so
+ * units 1 and 2 hash the same for both. */
+static const char unit_if[] = "#if !defined(EOMC_UNIT) || EOMC_UNIT == ";
+
+static uint64_t
+hash_unit_text(uint64_t h, const char *path, int k)
+{
+    FILE *f = fopen(path, "rb");
+    char *text = NULL;
+    size_t len = 0, cap = 0, n;
+    while (f && !ferror(f)) {
+        if (len + 1 >= cap)
+            text = xrealloc(text, cap = 2 * cap + (1 << 16));
+        if ((n = fread(text + len, 1, cap - len - 1, f)) == 0)
+            break;
+        len += n;
+    }
+    int bad = !f || ferror(f);
+    if (f)
+        fclose(f);
+    if (bad) {
+        free(text);
+        return hash_string(h, "(unreadable)");
+    }
+    text[len] = '\0';
+    const char *p = text, *end = text + len;
+    if (!strncmp(p, "/*", 2) && (p = strstr(p, "*/")) != NULL)
+        p += 2;
+    else
+        p = text;
+    char open[64], close[64];
+    const char *kept = p; /* the text since the last section left out */
+    while (p < end) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        const char *next = nl ? nl + 1 : end;
+        int j = !strncmp(p, unit_if, sizeof unit_if - 1) ? atoi(p + sizeof unit_if - 1) : 0;
+        if (j > 0 && k > 0 && j != k) {
+            snprintf(open, sizeof open, "%s%d\n", unit_if, j);
+            snprintf(close, sizeof close, "\n#endif /* EOMC_UNIT %d */\n", j);
+            const char *stop = !strncmp(p, open, strlen(open)) ? strstr(p, close) : NULL;
+            if (stop) { /* the section left out, with the blank line before it */
+                const char *cut = p > kept && p[-1] == '\n' && (p - 1 == kept || p[-2] == '\n')
+                                      ? p - 1 : p;
+                h = hash_bytes(h, kept, (size_t)(cut - kept));
+                kept = next = stop + strlen(close);
+            }
+        }
+        p = next;
+    }
+    h = hash_bytes(h, kept, (size_t)(end - kept));
+    free(text);
+    return h;
+}
+
 /* The headers of the runtime's include directory, every one, in name
  * order: whatever the generated code or the main includes. */
 static uint64_t
@@ -404,17 +464,21 @@ make_dirs(char *path)
 /* The object cache: each translation unit's object under a key of 128
  * bits (two lanes of hash_bytes, from two seeds) of everything that makes
  * it: toolchain_hash, the compiler (hash_compiler), the command line but
- * the output's name, and the bytes of the files compiled.  A simulator, a
- * library and the twin of one model's C share its objects; any change of
- * the C, the flags, the compiler, eomc or the runtime is another key, so
- * an object is never used for what it was not compiled from.  Objects are
+ * the output's name, and the bytes of the files compiled, of the model's
+ * C the text its unit compiles (hash_unit_text).  A simulator, a library
+ * and an MPI sweep of one model share the objects of its units 1 and 2
+ * (a library's C adds to unit 3 alone); any change of what a unit
+ * compiles, of the flags, the compiler, eomc or the runtime is another
+ * key, so an object is never used for what it was not compiled from.  Objects are
  * written under a temporary name and renamed: two builds at once each
  * write a whole one. */
 typedef struct UnitKey {
     char **argv;       /* the compile command, NULL-terminated */
     int ncc;           /* words of it that are the compiler */
     const char *out;   /* its output's name, left out of the key */
-    const char *files[2]; /* the files it reads, NULL after the last */
+    const char *file;  /* the file it compiles, or NULL: the model's C */
+    const char *model; /* the model's C it reads (the file or what it includes), or NULL */
+    int unit;          /* of which this unit's text (hash_unit_text) */
 } UnitKey;
 
 /* The CPU -march=native compiles for: the first processor's lines of
@@ -451,8 +515,10 @@ unit_hash(uint64_t seed, const UnitKey *u)
     for (int k = 0; u->argv[k]; k++)
         if (strcmp(u->argv[k], "-march=native") == 0)
             h = cpu_hash(h);
-    for (int k = 0; k < 2 && u->files[k]; k++)
-        h = hash_file(h, u->files[k]);
+    if (u->file)
+        h = hash_file(h, u->file);
+    if (u->model)
+        h = hash_unit_text(h, u->model, u->unit);
     return h;
 }
 
@@ -522,9 +588,9 @@ keep_object(const char *obj, const char *cached)
  * which -Og does not do (chain5 110 against 146 ns).  Without
  * -ffast-math the arithmetic is the same to the bit either way. */
 static const char *
-opt_flag(int units)
+opt_flag(int large)
 {
-    return units == 2 ? "-Og" : "-O1";
+    return large ? "-Og" : "-O1";
 }
 
 /* For this CPU: its instruction set (-march=native), where the compilers
@@ -556,7 +622,7 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
                         "(set EOMC_RUNTIME_LIB)\n", lib);
         return -1;
     }
-    enum { FIRST, SECOND, TWIN, MAIN, NUNIT };
+    enum { FIRST, SECOND, THIRD, FOURTH, TWIN, MAIN, NUNIT };
     char *ext = twin ? write_extended_unit(c_file) : NULL;
     char *main_c = ext || !twin ? write_main_unit(c_file, model) : NULL;
     if (!main_c) {
@@ -570,6 +636,7 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
     int special = build_is_special(exe);
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
     char *obj[NUNIT] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
+                        sibling(c_file, "model3.o"), sibling(c_file, "model4.o"),
                         sibling(c_file, "model_ext.o"), sibling(c_file, "main.o")};
     char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS, incabs[PATH_MAX];
     /* absolute: the units compile in the C file's directory */
@@ -578,15 +645,20 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
     char *argv[64];
     int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
     /* The units compile at once (each is most of the time of a large
-     * model's build), then link: the model (a large one's two halves,
-     * -DEOMC_UNIT=1, 2: emit.h), its extended-precision twin, and the
-     * main.  Position-independent, each of them: a simulator and a
-     * library (--shared) link the same objects. */
-    const char *flags[] = {"-std=c11", opt_flag(units), "-fPIC", "-pthread", incflag};
+     * model's build), then link: the model (-DEOMC_UNIT=1, a large one's
+     * second half -DEOMC_UNIT=2, and -DEOMC_UNIT=3: emit.h), its
+     * extended-precision twin (one unit), and the main.
+     * Position-independent, each of them: a simulator and a library
+     * (--shared) link the same objects. */
+    /* the pair (3, 4) optimized as the pair (1, 2) is: as large or not */
+    int large12 = (units & EMIT_UNIT2) != 0, large34 = (units & EMIT_UNIT4) != 0;
+    const char *flags[] = {"-std=c11", "-fPIC", "-pthread", incflag};
+    const char *opt[NUNIT] = {opt_flag(large12), opt_flag(large12), opt_flag(large34),
+                              opt_flag(large34), opt_flag(large12), opt_flag(large12)};
     const char *main_flags[] = {shared ? "-DEOMC_SHARED" : "-DEOMC_MAIN",
                                 mpi ? "-DEOMC_MPI" : NULL};
-    const char *unit_flag[NUNIT] = {units == 2 ? "-DEOMC_UNIT=1" : NULL, "-DEOMC_UNIT=2", NULL,
-                                    NULL};
+    const char *unit_flag[NUNIT] = {"-DEOMC_UNIT=1", "-DEOMC_UNIT=2", "-DEOMC_UNIT=3",
+                                    "-DEOMC_UNIT=4", NULL, NULL};
     /* Each unit compiles in the directory of the C, named relative to it,
      * so that the command line of the same C is the same from one build
      * to the next, wherever its directory: a compiler cache (CC="ccache
@@ -599,8 +671,8 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         memcpy(dir, c_file, (size_t)(slash - c_file) + 1);
         dir[slash - c_file + 1] = '\0';
     }
-    const char *src[NUNIT] = {c_file, c_file, ext, main_c};
-    int use[NUNIT] = {1, units == 2, twin, 1};
+    const char *src[NUNIT] = {c_file, c_file, c_file, c_file, ext, main_c};
+    int use[NUNIT] = {1, large12, 1, large34, twin, 1};
     char *unit_argv[NUNIT][32], *cached[NUNIT] = {NULL};
     pid_t pid[NUNIT];
     for (int u = 0; u < NUNIT; u++) {
@@ -609,7 +681,9 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         int n = 0;
         for (int k = 0; k < ncc; k++)
             unit_argv[u][n++] = argv[k];
-        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+        unit_argv[u][n++] = (char *)flags[0];
+        unit_argv[u][n++] = (char *)opt[u];
+        for (size_t k = 1; k < sizeof flags / sizeof flags[0]; k++)
             unit_argv[u][n++] = (char *)flags[k];
         for (int k = 0; native && k < NNATIVE; k++)
             unit_argv[u][n++] = (char *)native_flags[k];
@@ -623,7 +697,8 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         unit_argv[u][n++] = "-o";
         unit_argv[u][n++] = dir ? obj[u] + strlen(dir) : obj[u];
         unit_argv[u][n] = NULL;
-        UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], {src[u], u == TWIN ? c_file : NULL}};
+        UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], u >= TWIN ? src[u] : NULL,
+                       u == MAIN ? NULL : c_file, u < TWIN ? u + 1 : 0};
         cached[u] = cached_object(&key);
         pid[u] = cached[u] && access(cached[u], R_OK) == 0 ? 0 : start_cc(unit_argv[u], dir, 0);
     }

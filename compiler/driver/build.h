@@ -13,8 +13,9 @@
 int build_is_special(const char *path);
 
 /* Compile c_file, the C of the model named model, with the runtime into
- * exe (written to a temporary name and renamed when complete): as two
- * translation units if units is 2 (-DEOMC_UNIT=1 and 2, emit.h), and, if
+ * exe (written to a temporary name and renamed when complete): as the
+ * translation units it has (units, emit_model's EMIT_UNIT1 | ...: each
+ * -DEOMC_UNIT=k, emit.h), and, if
  * twin, a second time with EOMC_EXTENDED for the reference solution
  * (through a file model_ext.c written next to it); the main in a unit of
  * its own (main.c, next to it).  The compilations run at once, each unit

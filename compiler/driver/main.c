@@ -322,12 +322,12 @@ build(const Options *o, const char *exe)
     }
     char cfile[sizeof dir + 16];
     snprintf(cfile, sizeof cfile, "%s/model.c", dir);
-    int units = 1;
+    int units = EMIT_UNIT1;
     char *model = NULL;
     int rc = compile_to_file(o, cfile, &units, &model);
     /* The extended-precision twin doubles the compiler's work: a model
      * of two units (a large one) gets it only when asked for. */
-    int twin = units == 1 || o->extended || o->needs_twin;
+    int twin = !(units & EMIT_UNIT2) || o->extended || o->needs_twin;
     if (rc == 0 && build_executable(cfile, model, exe, o->mpi, units, twin, o->shared,
                                       !o->portable && !o->mpi) != 0)
         rc = 1;

@@ -175,8 +175,6 @@ print_banner(Printer *pr, const EmitInfo *info)
     emit_line(pr, "#include \"eomc_model.h\"");
     if (pr->L->code == LOWER_CODE_TABLES)
         emit_line(pr, "#include \"eomc_tree.h\"");
-    if (!pr->L->taylor->why)
-        emit_line(pr, "#include \"eomc_taylor.h\"");
     emit_line(pr, "");
     emit_line(pr, "#if defined(__GNUC__)");
     emit_line(pr, "#define EOMC_NOINLINE __attribute__((noinline))");
@@ -238,7 +236,7 @@ print_seeded_driver(Printer *pr, const Lowered *L)
     emit_line(pr, " * %d times that. */", n);
     char fname[128];
     snprintf(fname, sizeof fname, "%s_jacobian", nm);
-    emit_head(pr, "static void", fname, fj.params);
+    emit_entry_head(pr, "void", fname, fj.params);
     emit_line(pr, "    eomc_real shared[%d]; /* values every column needs */", nw ? nw : 1);
     emit_line(pr, "    eomc_real seed[%d];", nq > n ? nq : n);
     emit_line(pr, "    %s_jacobian_shared(t, q, v, a, p, u, shared, dEdu, dEdt);", nm);
@@ -279,7 +277,7 @@ print_mass_columns(Printer *pr, const Lowered *L)
     emit_line(pr, " * accelerations come from the recursion, which never forms M. */");
     char fname[128];
     snprintf(fname, sizeof fname, "%s_mass_bias", nm);
-    emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
     emit_line(pr, "    eomc_real seed[%d], col[%d];", n, n);
     emit_line(pr, "    %s_bias(t, q, v, p, u, h);", nm);
@@ -308,7 +306,7 @@ print_energy_sum(Printer *pr)
     emit_line(pr, " * E = T + V, from energy. */");
     char fname[128];
     snprintf(fname, sizeof fname, "%s_invariant", nm);
-    emit_head(pr, "static void", fname, fi.params);
+    emit_entry_head(pr, "void", fname, fi.params);
     emit_line(pr, "    eomc_real TV[2];");
     emit_line(pr, "    %s_energy(t, q, v, p, u, TV);", nm);
     emit_line(pr, "    h[0] = TV[0] + TV[1];");
@@ -336,7 +334,7 @@ print_accel(Printer *pr, const Lowered *L)
     char fname[128];
     if (L->loads_shared) {
         snprintf(fname, sizeof fname, "%s_accel_shared", nm);
-        emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+        emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                    "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot, "
                    "eomc_real *shared");
         emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
@@ -344,7 +342,7 @@ print_accel(Printer *pr, const Lowered *L)
         print_pivot_check(pr, n);
         emit_line(pr, "/* The same, what minv_shared reads dropped. */");
         snprintf(fname, sizeof fname, "%s_accel", nm);
-        emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+        emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                    "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
         emit_line(pr, "    eomc_real shared[%d];", L->loads_shared);
         emit_line(pr, "    return %s_accel_shared(t, q, v, p, u, a, pivot, shared);", nm);
@@ -352,7 +350,7 @@ print_accel(Printer *pr, const Lowered *L)
         return;
     }
     snprintf(fname, sizeof fname, "%s_accel", nm);
-    emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
     emit_line(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
@@ -369,7 +367,7 @@ print_minv_alone(Printer *pr, const Lowered *L)
     char fname[128];
     emit_line(pr, "/* y = M^-1 da: the solve's shared values, then minv_shared. */");
     snprintf(fname, sizeof fname, "%s_minv", nm);
-    emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y");
     emit_line(pr, "    eomc_real a[%d], shared[%d];", L->nv, L->loads_shared);
     emit_line(pr, "    %s_accel_shared(t, q, v, p, u, a, NULL, shared);", nm);
@@ -420,7 +418,7 @@ print_tree_energy(Printer *pr, const Lowered *L)
     emit_line(pr, "/* Kinetic energy T and potential energy V: T = q'.M q'/2, with M q' by");
     emit_line(pr, " * %s. */", L->tables ? "the recursion over the tables" : "mass_times");
     snprintf(fname, sizeof fname, "%s_energy", nm);
-    emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *TV");
     emit_line(pr, "    eomc_real Mv[%d], T = 0.0;", n);
     emit_line(pr, "    %s_potential(t, q, v, p, u, TV + 1);", nm);
@@ -453,7 +451,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
     emit_line(pr, " * k + 1 if the pivot of coordinate k fails (M singular or not positive");
     emit_line(pr, " * definite).  *pivot (unless NULL): the smallest d_k / M_kk. */");
     snprintf(fname, sizeof fname, "%s_accel", nm);
-    emit_head(pr, "static int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     emit_line(pr, "    eomc_real tau[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n, n, nt);
     emit_line(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
@@ -464,7 +462,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
         emit_line(pr, "/* y = M^-1 da by the articulated-body recursion over the tables at rest,");
         emit_line(pr, " * with no force but the load da: the runtime's unit-load passes. */");
         snprintf(fname, sizeof fname, "%s_minv", nm);
-        emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, "
+        emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, "
                    "const eomc_real *v, const eomc_real *p, const eomc_real *u, "
                    "const eomc_real *da, eomc_real *y");
         emit_line(pr, "    static const eomc_real still[6] = {0, 0, 0, 0, 0, 0};");
@@ -483,7 +481,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
     emit_line(pr, " * M at q' = 0, q'' = e_j with no gravity and no forces (E is linear in");
     emit_line(pr, " * q'').  Off the hot path: the accelerations never form M. */");
     snprintf(fname, sizeof fname, "%s_mass_bias", nm);
-    emit_head(pr, "static void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
+    emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
                "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
     emit_line(pr, "    eomc_real tau[%d], x[%d], zero[%d], col[%d], w[%d * EOMC_TREE_WORK];", n, n,
             n, n, nt);
@@ -777,6 +775,8 @@ print_checks(Printer *pr, const Lowered *L)
     const LowModel *md = pr->md;
     const char *nm = md->name;
     int nk = lower_size(L->check_values, 0);
+    emit_unit3_begin(pr); /* the struct's */
+    emit_fence(pr, 1);
     for (int t = 0; t < 2; t++) {
         emit_line(pr, "static const char *const %s[%d] = {", t ? "check_params" : "check_what",
                 nk);
@@ -787,6 +787,7 @@ print_checks(Printer *pr, const Lowered *L)
         }
         emit_line(pr, "};");
     }
+    emit_unit3_end(pr);
     fprintf(pr->f, "static const unsigned char check_strict[%d] = {", nk);
     for (int i = 0; i < nk; i++)
         fprintf(pr->f, "%s%d", i ? ", " : "", md->check[i].strict);
@@ -794,7 +795,7 @@ print_checks(Printer *pr, const Lowered *L)
     emit_line(pr, "/* 0, or k + 1 for the first condition k the parameters p break. */");
     char fname[128];
     snprintf(fname, sizeof fname, "%s_check", nm);
-    emit_head(pr, "static int", fname, "const double *p");
+    emit_entry_head(pr, "int", fname, "const double *p");
     emit_line(pr, "    eomc_real chk[%d];", nk);
     emit_line(pr, "    %s_check_values(p, chk);", nm);
     emit_line(pr, "    return eomc_checks(%d, chk, check_strict); /* eomc_model.h */", nk);
@@ -820,7 +821,7 @@ print_event_set(Printer *pr, const Lowered *L)
     emit_line(pr, " * the values the event sets. */");
     char fname[128];
     snprintf(fname, sizeof fname, "%s_event_set", nm);
-    emit_head(pr, "static void", fname, "int k, double t, const double *q, const double *v, "
+    emit_entry_head(pr, "void", fname, "int k, double t, const double *q, const double *v, "
                "const double *p, const double *u, double *q1, double *v1");
     emit_line(pr, "    switch (k) {");
     for (int k = 0; k < md->nevent; k++)
@@ -912,46 +913,54 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
     Printer pr = *pr_;
     const LowModel *md = pr.md;
     const Lowered *L = pr.L;
-    FILE *f = pr.f;
     for (int k = 0; k < EMIT_NFUNCS; k++)
         stats[k] = (EmitStats){stat_names[k], {0, 0, 0, 0}};
     if (L->code == LOWER_CODE_TABLES)
         print_tree_turns(&pr, L);
+    /* the tables the model's struct names: unit 3's */
+    emit_unit3_begin(&pr);
+    if (!L->taylor->why)
+        emit_line(&pr, "#include \"eomc_taylor.h\"\n");
     emit_fence(&pr, 1);
     print_tables(&pr);
     if (md->constrained)
         print_constraint_tables(&pr);
     if (md->mass_parent) {
-        fprintf(f, "/* M's structural nonzeros as a tree: each coordinate's parent (-1: a\n"
+        fprintf(pr.f, "/* M's structural nonzeros as a tree: each coordinate's parent (-1: a\n"
                    " * root); M_ij = 0 unless one is above the other. */\n"
                    "static const int mass_parent[%d] = {", md->nv);
         for (int i = 0; i < md->nv; i++)
-            fprintf(f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", md->mass_parent[i]);
+            fprintf(pr.f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", md->mass_parent[i]);
         emit_line(&pr, "};\n");
     }
     if (L->outputs) {
-        fprintf(f, "static const char *const out_names[%d] = {", md->noutput);
+        fprintf(pr.f, "static const char *const out_names[%d] = {", md->noutput);
         for (int k = 0; k < md->noutput; k++)
-            fprintf(f, "%s\"%s\"", k ? ", " : "", md->output[k]);
+            fprintf(pr.f, "%s\"%s\"", k ? ", " : "", md->output[k]);
         emit_line(&pr, "};\n");
     }
     if (L->events) {
         int ne = md->nevent;
-        fprintf(f, "static const char *const ev_names[%d] = {", ne);
+        fprintf(pr.f, "static const char *const ev_names[%d] = {", ne);
         for (int k = 0; k < ne; k++)
-            fprintf(f, "%s\"%s\"", k ? ", " : "", md->event[k].name);
-        fprintf(f, "};\nstatic const int ev_direction[%d] = {", ne);
+            fprintf(pr.f, "%s\"%s\"", k ? ", " : "", md->event[k].name);
+        fprintf(pr.f, "};\nstatic const int ev_direction[%d] = {", ne);
         for (int k = 0; k < ne; k++)
-            fprintf(f, "%s%d", k ? ", " : "", md->event[k].direction);
-        fprintf(f, "};\nstatic const int ev_action[%d] = {", ne);
+            fprintf(pr.f, "%s%d", k ? ", " : "", md->event[k].direction);
+        fprintf(pr.f, "};\nstatic const int ev_action[%d] = {", ne);
         for (int k = 0; k < ne; k++)
-            fprintf(f, "%s%d", k ? ", " : "", md->event[k].action);
+            fprintf(pr.f, "%s%d", k ? ", " : "", md->event[k].action);
         emit_line(&pr, "}; /* EOMC_EVENT_STOP, _RECORD, _SET */\n");
     }
     if (md->ndraw)
         print_draw_tables(&pr);
+    emit_unit3_end(&pr);
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *lf = L->func[k];
+        /* E's Jacobian: what a simulator with an explicit method goes without */
+        int in3 = !strcmp(lf->stat, "jacobian");
+        if (in3)
+            emit_unit3_begin(&pr);
         ExprCount n = emit_function(&pr, lf);
         for (int r = 0; r < EMIT_NFUNCS; r++)
             if (!strcmp(stats[r].function, lf->stat))
@@ -978,28 +987,58 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
             print_checks(&pr, L);
         if (lf == L->last_set)
             print_event_set(&pr, L);
+        if (in3)
+            emit_unit3_end(&pr);
     }
+    emit_unfence_pair(&pr);
+    emit_unit3_begin(&pr);
     emit_fence(&pr, 0); /* the series: the twin's too */
     emit_taylor(&pr, L->taylor);
+    emit_line(&pr, "/* The members defined in the first unit. */");
+    emit_entry_decls(&pr);
+    emit_line(&pr, "");
     emit_fence(&pr, 1);
     print_model_struct(&pr, L, info);
-    if (pr.unit2) {
-        emit_unit2_swap(&pr);
-        emit_fence(&pr, 0);
-        emit_unit2_swap(&pr);
-    }
+    pr.fenced = 0; /* closed by the struct's #else and #endif */
+    emit_unfence_pair(&pr);
+    emit_unit3_end(&pr);
     *pr_ = pr;
 }
 
-/* Read a memory stream's text back (NULL and 0 if it failed). */
-static char *
-closed_text(FILE *f, char **buf, size_t *len)
+/* The body printed aside, each unit's text in its own stream. */
+typedef struct Units {
+    char *text[4];
+    size_t len[4];
+} Units;
+
+/* Print the body into u: units 1 and 3, and the second halves 2 and 4
+ * where split12 and split34 say (a memory stream that cannot be closed
+ * has run out of memory: eomc dies, as xmalloc). */
+static void
+print_units(Printer *pr, Units *u, int split12, int split34, const EmitInfo *info,
+            EmitStats stats[EMIT_NFUNCS])
 {
-    if (fclose(f) != 0) {
-        free(*buf);
-        *buf = NULL, *len = 0;
-    }
-    return *buf;
+    pr->f = xmemstream(&u->text[0], &u->len[0]);
+    pr->unit2 = split12 ? xmemstream(&u->text[1], &u->len[1]) : NULL;
+    pr->nunit2 = pr->fenced = pr->fenced2 = pr->in3 = 0;
+    pr->nodes[0] = pr->nodes[1] = 0;
+    pr->others = (struct PrinterPair){xmemstream(&u->text[2], &u->len[2]),
+                                      split34 ? xmemstream(&u->text[3], &u->len[3]) : NULL,
+                                      0, 0, 0, {0, 0}};
+    print_body(pr, info, stats);
+    FILE *f[4] = {pr->f, pr->unit2, pr->others.f, pr->others.unit2};
+    for (int k = 0; k < 4; k++)
+        if (f[k] && fclose(f[k]) != 0) {
+            fputs("eomc: out of memory\n", stderr);
+            exit(4);
+        }
+}
+
+static void
+free_units(Units *u)
+{
+    for (int k = 0; k < 4; k++)
+        free(u->text[k]), u->text[k] = NULL, u->len[k] = 0;
 }
 
 int
@@ -1008,51 +1047,43 @@ emit_model(FILE *f, const Lowered *L, ExprPool *P, const EmitInfo *info,
 {
     Printer pr = {.f = f, .P = P, .md = &L->model, .L = L};
     print_banner(&pr, info);
-    /* The body is printed aside with the second unit's parts in their own
-     * stream; a model with few parts is printed again as one unit. */
-    char *body = NULL, *second = NULL;
-    size_t blen = 0, slen = 0;
-    pr.f = open_memstream(&body, &blen);
-    pr.unit2 = open_memstream(&second, &slen);
-    if (pr.f && pr.unit2) {
-        print_body(&pr, info, stats);
-        closed_text(pr.f, &body, &blen);
-        closed_text(pr.unit2, &second, &slen);
-        int split = pr.nunit2 >= SPLIT_MIN_PARTS && body && second;
-        if (split) {
-            fputs("/* eomc build compiles this file as two translation units at once: with\n"
-                  " * -DEOMC_UNIT=1 all but the parts marked for the second unit, with\n"
-                  " * -DEOMC_UNIT=2 those alone.  Without EOMC_UNIT it is one unit. */\n"
-                  "#if !defined(EOMC_UNIT)\n"
-                  "#define EOMC_PART static EOMC_NOINLINE\n"
-                  "#elif defined(__GNUC__)\n"
-                  "#define EOMC_PART __attribute__((visibility(\"hidden\"), noinline))\n"
-                  "#else\n"
-                  "#define EOMC_PART\n"
-                  "#endif\n\n"
-                  "#if !defined(EOMC_UNIT) || EOMC_UNIT == 1\n", f);
-            fwrite(body, 1, blen, f);
-            fputs("#endif /* EOMC_UNIT 1 */\n\n"
-                  "#if !defined(EOMC_UNIT) || EOMC_UNIT == 2\n", f);
-            fwrite(second, 1, slen, f);
-            fputs("#endif /* EOMC_UNIT 2 */\n", f);
-        }
-        free(body);
-        free(second);
-        if (split)
-            return 2;
-    } else { /* no memory streams: one unit, printed directly */
-        if (pr.f)
-            fclose(pr.f);
-        if (pr.unit2)
-            fclose(pr.unit2);
-        free(body);
-        free(second);
+    /* The body is printed aside, each unit in its own stream; where a pair
+     * gets few parts for its second half, printed again without it.  The
+     * split of units 1 and 2 depends on their functions alone. */
+    Units u = {{NULL, NULL, NULL, NULL}, {0, 0, 0, 0}};
+    print_units(&pr, &u, 1, 1, info, stats);
+    int split12 = pr.nunit2 >= SPLIT_MIN_PARTS, split34 = pr.others.nunit2 >= SPLIT_MIN_PARTS;
+    if (!split12 || !split34) {
+        free_units(&u);
+        print_units(&pr, &u, split12, split34, info, stats);
     }
-    pr.f = f;
-    pr.unit2 = NULL;
-    pr.nunit2 = pr.fenced = pr.fenced2 = 0;
-    pr.nodes[0] = pr.nodes[1] = 0;
-    print_body(&pr, info, stats);
-    return 1;
+    fputs("/* eomc build compiles this file as translation units at once: with\n"
+          " * -DEOMC_UNIT=1 the model's functions, with -DEOMC_UNIT=3 E's Jacobian\n"
+          " * and Taylor's series where there are any, the tables and the model's\n"
+          " * struct, and with -DEOMC_UNIT=2 and 4, where they are, the parts of\n"
+          " * long functions marked for the second half of units 1 and 3.  A\n"
+          " * simulator and a library of the same model then share the objects of\n"
+          " * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members\n"
+          " * of eomc_model that the struct names are EOMC_ENTRY. */\n"
+          "#if !defined(EOMC_UNIT)\n"
+          "#define EOMC_ENTRY static\n"
+          "#define EOMC_PART static EOMC_NOINLINE\n"
+          "#elif defined(__GNUC__)\n"
+          "#define EOMC_ENTRY __attribute__((visibility(\"hidden\")))\n"
+          "#define EOMC_PART __attribute__((visibility(\"hidden\"), noinline))\n"
+          "#else\n"
+          "#define EOMC_ENTRY\n"
+          "#define EOMC_PART\n"
+          "#endif\n", f);
+    int mask = 0;
+    for (int k = 0; k < 4; k++) {
+        if (!u.text[k])
+            continue;
+        fprintf(f, "\n#if !defined(EOMC_UNIT) || EOMC_UNIT == %d\n", k + 1);
+        fwrite(u.text[k], 1, u.len[k], f);
+        fprintf(f, "#endif /* EOMC_UNIT %d */\n", k + 1);
+        mask |= 1 << k;
+    }
+    free_units(&u);
+    return mask;
 }

@@ -31,9 +31,14 @@ enum { EMIT_NFUNCS = 16 };
  * expressions (in P) and what info says of the run.  The functions are
  * written in eomc_real (eomc_model.h); those the reference solution needs
  * are also compiled with -DEOMC_EXTENDED, the others are fenced off from
- * it.  Returns the number of translation units the file makes: 1, or 2
- * for a large model, whose C compiles as one unit or, with -DEOMC_UNIT=1
- * and -DEOMC_UNIT=2, as two halves linked together. */
+ * it.  The file compiles as one translation unit, or as units
+ * -DEOMC_UNIT=1 to 4 linked together: 1 the model's functions, 3 E's
+ * Jacobian, Taylor's series, the tables and the model's struct, and 2 and
+ * 4, where a large model has them, the second halves of 1 and 3.  Units 1
+ * and 2 are the same C whatever the Jacobian and the series, so that a
+ * simulator and a library share their objects.  Returns the units there
+ * are (EMIT_UNIT1 | ...). */
+enum { EMIT_UNIT1 = 1, EMIT_UNIT2 = 2, EMIT_UNIT3 = 4, EMIT_UNIT4 = 8 };
 int emit_model(FILE *out, const Lowered *L, ExprPool *P, const EmitInfo *info,
                EmitStats stats[EMIT_NFUNCS]);
 

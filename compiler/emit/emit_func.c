@@ -29,22 +29,6 @@
 static const char *const src_name[NSRC] = {"q", "v", "a", "p", "u", "t", "dq", "dv", "da",
                                            "lam"};
 
-/* A part of a function compiled in double only or in both precisions
- * goes to the second unit, fenced so. */
-static void
-unit2_begin(Printer *pr, int double_only)
-{
-    emit_unit2_swap(pr);
-    emit_fence(pr, double_only);
-    pr->nunit2++;
-}
-
-static void
-unit2_end(Printer *pr)
-{
-    emit_unit2_swap(pr);
-}
-
 static int is_leaf(const ExprNode *nd) { return expr_op_arity[nd->op] == 0; }
 
 static int is_ext(const Printer *pr, ExprId e) { return pr->ext && pr->ext[e] >= 0; }
@@ -570,6 +554,16 @@ print_copies(Printer *pr, const LowFunc *lf, const Func *fn, int du_any)
     emit_line(pr, "    }");
 }
 
+/* A function's head: a member of eomc_model's, or a static helper's. */
+static void
+print_head(Printer *pr, const LowFunc *lf, const char *fname, const char *params)
+{
+    if (lf->sig->member)
+        emit_entry_head(pr, "void", fname, params);
+    else
+        emit_head(pr, "static void", fname, params);
+}
+
 ExprCount
 emit_function(Printer *pr, const LowFunc *lf)
 {
@@ -604,7 +598,7 @@ emit_function(Printer *pr, const LowFunc *lf)
     if (S.nparts == 1) {
         pr->nodes[0] += S.n;
         emit_line(pr, "/* %s */", lf->sig->comment);
-        emit_head(pr, "static void", fname, fn->params);
+        print_head(pr, lf, fname, fn->params);
         print_prologue(pr, lf);
         if (S.copies)
             print_copies(pr, lf, fn, du_any);
@@ -621,16 +615,16 @@ emit_function(Printer *pr, const LowFunc *lf)
             pr->nodes[second] += S.pstart[pr->cur + 1] - S.pstart[pr->cur];
             snprintf(part, sizeof part, "%s_part%d", fname, pr->cur + 1);
             if (second)
-                unit2_begin(pr, lf->double_only);
+                emit_unit2_begin(pr, lf->double_only);
             emit_line(pr, "/* %s: part %d of %d%s */", name, pr->cur + 1, S.nparts,
-                    second ? ", in the second unit" : "");
+                    !second ? "" : pr->in3 ? ", in the fourth unit" : ", in the second unit");
             emit_head(pr, second ? "EOMC_PART void" : "static EOMC_NOINLINE void", part,
                        params);
             print_voids(pr, fn->names);
             print_part(pr, &S, fn);
             emit_line(pr, "}\n");
             if (second)
-                unit2_end(pr);
+                emit_unit2_end(pr);
         }
         for (int p = 0; p < S.nparts; p++) { /* called before they are defined */
             char part[160];
@@ -640,7 +634,7 @@ emit_function(Printer *pr, const LowFunc *lf)
         }
         free(in2);
         emit_line(pr, "/* %s */", lf->sig->comment);
-        emit_head(pr, "static void", fname, fn->params);
+        print_head(pr, lf, fname, fn->params);
         emit_line(pr, "    eomc_real s[%d]; /* values shared between the parts */", S.nslots ? S.nslots : 1);
         print_prologue(pr, lf);
         if (S.copies)

@@ -6,8 +6,10 @@
  * sums the same series (a reference by Taylor's method, reference.c).
  */
 #include "emit_taylor.h"
+#include "base/arena.h"
 #include "lower/lower_schedule.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 /* A slot's series, "T + s * S". */
@@ -83,10 +85,15 @@ print_calls(Printer *pr, const LowTaylor *ty, int first, int end, const char *pr
  * loops multiply the C compiler's time (a chain of 50 links, 12 213
  * calls: 16 s of cc -O1 inlined, 7 s through these, 2 s without Taylor). */
 static void
-print_wrappers(Printer *pr, const LowTaylor *ty)
+print_wrappers(Printer *pr, const LowTaylor *ty, int declare)
 {
-    emit_line(pr, "/* The recurrences the parts below call, each compiled once: inlined at");
-    emit_line(pr, " * every call, their loops would multiply the C compiler's time. */");
+    if (declare)
+        emit_line(pr, "/* The recurrences, in the third unit. */");
+    else {
+        emit_line(pr, "/* The recurrences the parts below call, each compiled once: inlined at");
+        emit_line(pr, " * every call, their loops would multiply the C compiler's time; the");
+        emit_line(pr, " * fourth unit's parts call them too. */");
+    }
     for (int i = 0; i < ty->nstep; i++) {
         const LowTayStep *st = &ty->step[i];
         int seen = 0;
@@ -109,10 +116,16 @@ print_wrappers(Printer *pr, const LowTaylor *ty)
         snprintf(params + pl, sizeof params - pl, "int k");
         char fname[64];
         snprintf(fname, sizeof fname, "tay_%s", st->call);
-        emit_head(pr, "static EOMC_NOINLINE void", fname, params);
+        if (declare) {
+            emit_decl(pr, "EOMC_PART void", fname, params, ";");
+            continue;
+        }
+        emit_head(pr, "EOMC_PART void", fname, params);
         emit_line(pr, "    eomc_tay_%s(%sk);", st->call, args);
         emit_line(pr, "}\n");
     }
+    if (declare)
+        emit_line(pr, "");
 }
 
 void
@@ -147,22 +160,42 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
                          "eomc_real *T";
     char fname[160];
     if (nparts > 1)
-        print_wrappers(pr, ty);
-    for (int part = 0; part < nparts; part++) {
+        print_wrappers(pr, ty, 0);
+    /* the parts balanced between the third unit and the fourth, a call
+     * counted as a temporary of the Jacobian's (each about as much of the
+     * C compiler's time) */
+    char *in4 = xmalloc((size_t)nparts);
+    for (int part = 0, declared = 0; part < nparts; part++) {
         int first = part * LOWER_PART_SIZE, end = first + LOWER_PART_SIZE;
         if (end > ty->nstep)
             end = ty->nstep;
+        int second = in4[part] = nparts > 1 && pr->unit2 && pr->nodes[1] < pr->nodes[0];
+        pr->nodes[second] += end - first;
+        if (second) {
+            emit_unit2_begin(pr, 0);
+            if (!declared++)
+                print_wrappers(pr, ty, 1);
+        }
         if (nparts > 1) {
             snprintf(fname, sizeof fname, "%s_taylor_%d", md->name, part + 1);
-            emit_line(pr, "/* Calls %d .. %d of taylor. */", first, end - 1);
-            emit_head(pr, "static EOMC_NOINLINE void", fname, params);
+            emit_line(pr, "/* Calls %d .. %d of taylor%s. */", first, end - 1,
+                      second ? ", in the fourth unit" : "");
+            emit_head(pr, second ? "EOMC_PART void" : "static EOMC_NOINLINE void", fname, params);
         } else {
             snprintf(fname, sizeof fname, "%s_taylor", md->name);
             emit_head(pr, "static void", fname, params);
         }
         print_calls(pr, ty, first, end, nparts > 1 ? "tay_" : "eomc_tay_");
         emit_line(pr, "}\n");
+        if (second)
+            emit_unit2_end(pr);
     }
+    for (int part = 0; part < nparts; part++) { /* called before they are defined */
+        snprintf(fname, sizeof fname, "%s_taylor_%d", md->name, part + 1);
+        if (in4[part])
+            emit_decl(pr, "EOMC_PART void", fname, params, ";");
+    }
+    free(in4);
     if (nparts > 1) {
         snprintf(fname, sizeof fname, "%s_taylor", md->name);
         emit_head(pr, "static void", fname, params);

@@ -13,82 +13,82 @@
 /* ---- the signatures ---- */
 
 static const LowSig s_initial = {
-    "initial", "Initial state from the spec's `initial`.", "p > q v",
+    "initial", "Initial state from the spec's `initial`.", "p > q v", 1,
 };
 static const LowSig s_qdot = {
-    "qdot", "The coordinates' rates q' = W(q) v: a quaternion's 1/2 e (x) (0, w).", "q v > qd",
+    "qdot", "The coordinates' rates q' = W(q) v: a quaternion's 1/2 e (x) (0, w).", "q v > qd", 1,
 };
 static const LowSig s_qdot_jacobian = {
-    "qdot_jacobian", "dq'/dq [nq*nq] and dq'/dv [nq*nv].", "q v > dqdq dqdv",
+    "qdot_jacobian", "dq'/dq [nq*nq] and dq'/dv [nq*nv].", "q v > dqdq dqdv", 1,
 };
 static const LowSig s_inputs = {
-    "inputs", "Input signals u(t) and du/dt.", "t p > u dudt?",
+    "inputs", "Input signals u(t) and du/dt.", "t p > u dudt?", 1,
 };
 static const LowSig s_mass_bias = {
     "mass_bias", "Mass matrix M = dE/dq'' (row-major, symmetric) and bias h = E(q'' = 0).",
-    "t q v p u > M h",
+    "t q v p u > M h", 1,
 };
 static const LowSig s_bias = {
-    "bias", "The bias h = E(q'' = 0), for mass_bias.", "t q v p u > h",
+    "bias", "The bias h = E(q'' = 0), for mass_bias.", "t q v p u > h", 0,
 };
 static const LowSig s_mass_times = {
     "mass_times",
     "Mx[i] = sum_j M_ij da[j]: the derivative of E along da in q'' (E is\n"
     " * linear in q''), for mass_bias and energy.",
-    "t q v p u da > Mx",
+    "t q v p u da > Mx", 0,
 };
 static const LowSig s_potential = {
-    "potential", "Potential energy V, for energy.", "t q v p u > V",
+    "potential", "Potential energy V, for energy.", "t q v p u > V", 0,
 };
 static const LowSig s_tau = {
     "tau",
     "The generalized forces Q - dV/dq but for uniform gravity, which the tables'\n"
     " * a0 stands for: accel's and mass_bias's loops add the rest.",
-    "t q v p u > tau",
+    "t q v p u > tau", 0,
 };
 static const LowSig s_energy = {
-    "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV",
+    "energy", "Kinetic energy T and potential energy V.", "t q v p u > TV", 1,
 };
 const LowSig lower_jacobian_sig = { /* the seeded one's driver too */
     "jacobian", "Partial derivatives of the residual E(t, q, q', q'') with u held fixed.",
-    "t q v a p u > dEdq dEdv dEdu dEdt",
+    "t q v a p u > dEdq dEdv dEdu dEdt", 1,
 };
 static const LowSig s_jac_shared = {
     "jacobian_shared",
     "The values every column of the Jacobian needs (into shared[]), and dE/du,\n"
     " * dE/dt.",
-    "t q v a p u > shared dEdu dEdt",
+    "t q v a p u > shared dEdu dEdt", 0,
 };
 static const LowSig s_jac_dq = {
     "jacobian_dq",
     "dE[i*nq] = sum_j dE_i/dq_j dq[j], given shared[] from jacobian_shared.",
-    "t q v a p u shared dq > dE",
+    "t q v a p u shared dq > dE", 0,
 };
 static const LowSig s_jac_dv = {
     "jacobian_dv",
     "dE[i*nq] = sum_j dE_i/dq'_j dv[j], given shared[] from jacobian_shared.",
-    "t q v a p u shared dv > dE",
+    "t q v a p u shared dv > dE", 0,
 };
 static const LowSig s_accel_solve = {
     "accel_solve",
     "a = -M^-1 h by an unrolled LDL^T factorization (structural zeros of M\n"
     " * skipped; last coordinate first); its pivots piv[k] = d_k, and mkk[k] =\n"
     " * M_kk.",
-    "t q v p u > a piv mkk",
+    "t q v p u > a piv mkk", 0,
 };
 static const LowSig s_accel_recursive = {
     "accel_solve",
     "a = -M^-1 h by the form's recursion, M never formed; its pivots\n"
     " * piv[k] = d_k (those of LDL^T eliminating the leaves first), and\n"
     " * mkk[k] = M_kk.",
-    "t q v p u > a piv mkk",
+    "t q v p u > a piv mkk", 0,
 };
 static const LowSig s_minv = {
     "minv",
     "y = M^-1 da by the form's recursion at rest, with no force but the load\n"
     " * da (M never formed): the runtime's unit-load passes, M^-1 B^T a row of\n"
     " * B at a time.",
-    "t q v p u da > y",
+    "t q v p u da > y", 1,
 };
 /* The same two sharing what they both compute (lower_loads_shared). */
 static const LowSig s_accel_shared = {
@@ -96,75 +96,75 @@ static const LowSig s_accel_shared = {
     "a = -M^-1 h (the form's recursion, or an unrolled LDL^T), its pivots\n"
     " * piv[k] = d_k, mkk[k] = M_kk, and (unless NULL) into shared[] what\n"
     " * minv_shared reads of the solve.",
-    "t q v p u > a piv mkk shared",
+    "t q v p u > a piv mkk shared", 0,
 };
 static const LowSig s_minv_shared = {
     "minv_shared",
     "y = M^-1 da by accel_solve's solve (a recursion at rest with no force\n"
     " * but the load da, or the LDL^T factors), given shared[] from\n"
     " * accel_solve at the same (t, q, p): one unit load's passes alone.",
-    "t q v p u shared da > y",
+    "t q v p u shared da > y", 1,
 };
 static const LowSig s_constraint = {
     "constraint", "Constraints at acceleration level f(t, q, q', q'') and B = df/dq''.",
-    "t q v a p u > f B",
+    "t q v a p u > f B", 1,
 };
 static const LowSig s_c_levels = {
     "c_levels", "Constraints at their own level: pos = g (holonomic), vel = g' or phi.",
-    "t q v p u > pos vel",
+    "t q v p u > pos vel", 1,
 };
 static const LowSig s_c_scale = {
     "c_scale",
     "The magnitude of each holonomic constraint's terms (sums of absolute\n"
     " * values): what its residual is measured against when the projection\n"
     " * decides it holds, where q = 0 leaves B q no size.",
-    "t q p u > mag",
+    "t q p u > mag", 1,
 };
 static const LowSig s_c_jacobian = {
     "c_jacobian", "Partial derivatives of f and of B = df/dq'' (u held fixed).",
-    "t q v a p u > dfdq dfdv dfdu dfdt dBdq dBdv dBda dBdu dBdt",
+    "t q v a p u > dfdq dfdv dfdu dfdt dBdq dBdv dBda dBdu dBdt", 1,
 };
 static const LowSig s_c_levels_jacobian = {
     "c_levels_jacobian",
     "Partial derivatives of pos and vel (u held fixed): what Baumgarte's\n"
     " * stabilization adds to df/dx.",
-    "t q v p u > dposdq dveldq dveldv dposdu dveldu dposdt dveldt",
+    "t q v p u > dposdq dveldq dveldv dposdu dveldu dposdt dveldt", 1,
 };
 const LowSig lower_invariant_sig = { /* printed by hand when it is T + V */
-    "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h",
+    "invariant", "The conserved quantity (eomc_model.h: invariant).", "t q v p u > h", 1,
 };
 static const LowSig s_derive = {
     "derive",
     "The values of the parameters alone that the other functions read:\n"
     " * computed when the parameters change, not at every step.",
-    "p > pd",
+    "p > pd", 1,
 };
 static const LowSig s_outputs = {
     "outputs", "The scene's outputs, at a state and its accelerations and multipliers.",
-    "t q v a p u lam > out",
+    "t q v a p u lam > out", 1,
 };
 static const LowSig s_events = {
     "events", "The scene's events: g[k], whose zero crossings they are.",
-    "t q v p u > g",
+    "t q v p u > g", 1,
 };
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
     " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
-    "t q p u > X",
+    "t q p u > X", 1,
 };
 static const LowSig s_draw_mass = {
     "draw_mass", "Each body item k's mass, centre and inertia about it in its frame\n"
     " * at D[13 k ...], from which a body without shapes is drawn.",
-    "p > D",
+    "p > D", 1,
 };
 static const LowSig s_draw_shapes = {
     "draw_shapes", "Each shape k's size and position at S[6 k ...], where some depend on\n"
     " * the parameters (the shapes' table has their numbers at the defaults).",
-    "p > S",
+    "p > S", 1,
 };
 static const LowSig s_check_values = {
     "check_values", "The values that must be positive (or not negative): check_what.",
-    "p > chk",
+    "p > chk", 0,
 };
 
 /* ---- building the lists ---- */
@@ -539,14 +539,19 @@ lower_derive(Lowering *lw)
     Lowered *L = lw->L;
     ExprPool *P = lw->P;
     size_t size = expr_pool_size(P);
+    /* E's Jacobian (unit 3, which a simulator may go without) reads what
+     * the others need derived and computes the rest itself: derive, in
+     * unit 1, is then the same function with it or without */
+#define DERIVES(f) ((f)->per_step && strcmp((f)->stat, "jacobian") != 0)
     int nroots = 0;
     for (int k = 0; k < L->nfunc; k++)
-        nroots += L->func[k]->per_step ? L->func[k]->nout : 0;
+        nroots += DERIVES(L->func[k]) ? L->func[k]->nout : 0;
     ExprId *roots = xmalloc(((size_t)nroots + 1) * sizeof *roots);
     nroots = 0;
     for (int k = 0; k < L->nfunc; k++)
-        for (int i = 0; L->func[k]->per_step && i < L->func[k]->nout; i++)
+        for (int i = 0; DERIVES(L->func[k]) && i < L->func[k]->nout; i++)
             roots[nroots++] = L->func[k]->out[i].e;
+#undef DERIVES
     unsigned char *mark = xmalloc(size), *want = xmalloc(size);
     memset(mark, 0, size);
     memset(want, 0, size);
@@ -883,10 +888,6 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         out(&lw, f, 0, 1, m->V);
     }
 
-    if (jacobian != LOWER_JACOBIAN_NONE)
-        eom_derive_jacobian(e, m, A, P, D);
-    lower_jacobian(&lw, e, jacobian);
-
     /* E = T + V is what energy computes: the invariant adds its two
      * results rather than compute them again */
     lw.L->invariant_energy = inv->h != EXPR_NONE && inv->h == expr_add(P, m->T, m->V);
@@ -930,6 +931,11 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->view.nitem)
         lower_draw(&lw);
+    /* E's Jacobian last: the nodes of its derivatives come after every
+     * other function's, whose C is then the same with it or without */
+    if (jacobian != LOWER_JACOBIAN_NONE)
+        eom_derive_jacobian(e, m, A, P, D);
+    lower_jacobian(&lw, e, jacobian);
     lower_derive(&lw);
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++) {

@@ -21,6 +21,7 @@ typedef struct LowSig {
     const char *name;    /* the function's name after the model's: "mass_bias" */
     const char *comment; /* one sentence (" * " continues a line) */
     const char *args;    /* "t q v p u > M h" */
+    int member;          /* 1: a member of eomc_model, which the model's struct names */
 } LowSig;
 
 /* One output: expression e goes to element `index` of output argument

@@ -2,10 +2,11 @@
 # How eomc build compiles a large model (TAP), on a 10-body tree of 3-axis
 # joints (specs/gen_tree.sh 10: 30 coordinates, whose articulated-body
 # solve is cut into parts):
-#  - `eomc compile` writes one file that is one translation unit, or two
-#    with -DEOMC_UNIT=1 and -DEOMC_UNIT=2 (some parts marked for the
-#    second); a small model's file (specs/chain5.yaml) has no such marks;
-#  - the two units compiled apart and linked give the same q'' as the
+#  - `eomc compile` writes one file that is one translation unit, or three
+#    with -DEOMC_UNIT=1, 2 and 3 (some parts marked for the second, the
+#    tables and the model's struct in the third); a small model's file
+#    (specs/chain5.yaml) has units 1 and 3 only;
+#  - the three units compiled apart and linked give the same q'' as the
 #    file compiled whole, to the bit, and both are newton-euler's (its
 #    residual and M, factored: another derivation and another solve) to
 #    1e-11 of the largest |q''| (as in test_articulated.sh: forming M
@@ -40,9 +41,11 @@ sh "$src/specs/gen_tree.sh" 10 > "$tmp/tree10.yaml"
 n2=$(grep -c '^/\* [a-z_]*: part [0-9]* of [0-9]*, in the second unit \*/$' "$tmp/tree10.c")
 grep -q '^#if !defined(EOMC_UNIT) || EOMC_UNIT == 1$' "$tmp/tree10.c" &&
     grep -q '^#if !defined(EOMC_UNIT) || EOMC_UNIT == 2$' "$tmp/tree10.c" && [ "$n2" -ge 3 ]
-ok $? "gen_tree 10: two units, $n2 parts in the second"
-"$eomc" compile "$src/specs/chain5.yaml" -o "$tmp/chain5.c" && ! grep -q 'EOMC_UNIT' "$tmp/chain5.c"
-ok $? "chain5: one unit, no marks"
+ok $? "gen_tree 10: three units, $n2 parts in the second"
+"$eomc" compile "$src/specs/chain5.yaml" -o "$tmp/chain5.c" &&
+  grep -q '^#if !defined(EOMC_UNIT) || EOMC_UNIT == 3$' "$tmp/chain5.c" &&
+  ! grep -q 'EOMC_UNIT == 2' "$tmp/chain5.c" && ! grep -q 'second unit' "$tmp/chain5.c"
+ok $? "chain5: units 1 and 3, no part for a second"
 
 # the units apart, and the file whole (as a user compiles it)
 flags="-std=c11 -O1 -DEOMC_MAIN -pthread -I$inc"
@@ -50,20 +53,21 @@ gsl=$(pkg-config --libs gsl)
 # shellcheck disable=SC2086 # $flags and $gsl are lists of options
 $cc $flags -DEOMC_UNIT=1 -c "$tmp/tree10.c" -o "$tmp/u1.o" &&
     $cc $flags -DEOMC_UNIT=2 -c "$tmp/tree10.c" -o "$tmp/u2.o" &&
-    $cc "$tmp/u1.o" "$tmp/u2.o" "$lib" $gsl -lm -pthread -o "$tmp/two" &&
+    $cc $flags -DEOMC_UNIT=3 -c "$tmp/tree10.c" -o "$tmp/u3.o" &&
+    $cc "$tmp/u1.o" "$tmp/u2.o" "$tmp/u3.o" "$lib" $gsl -lm -pthread -o "$tmp/two" &&
     $cc $flags -c "$tmp/tree10.c" -o "$tmp/one.o" &&
     $cc "$tmp/one.o" "$lib" $gsl -lm -pthread -o "$tmp/one"
-ok $? "the two units compile apart and link; the file compiles whole"
+ok $? "the three units compile apart and link; the file compiles whole"
 init=$(init "$tmp/tree10.yaml")
 # shellcheck disable=SC2086 # $init is a list of options
 "$tmp/two" $init --accel > "$tmp/two.acc" && "$tmp/one" $init --accel > "$tmp/one.acc" &&
     "$eomc" run "$tmp/tree10.yaml" --form newton-euler $init --accel > "$tmp/ne.acc"
 st=$?
 [ $st -eq 0 ] && [ "$(wc -l < "$tmp/two.acc")" -eq 30 ] && cmp -s "$tmp/two.acc" "$tmp/one.acc"
-ok $? "q'' of the two units equals the whole file's, to the bit"
+ok $? "q'' of the three units equals the whole file's, to the bit"
 d=$(accel_diff "$tmp/ne.acc" "$tmp/two.acc" 30)
 within "$d" 0 1e-11
-ok $? "q'' of the two units equals newton-euler's to $d (<= 1e-11)"
+ok $? "q'' of the three units equals newton-euler's to $d (<= 1e-11)"
 
 # the extended-precision twin
 "$eomc" build "$tmp/tree10.yaml" -o "$tmp/plain"
@@ -98,11 +102,11 @@ for k in 1 2; do
   EOMC_CACHE_DIR="$tmp/cache-rec$k" CC="sh $tmp/rec.sh" "$eomc" build "$src/specs/pendulum.yaml" \
     -o "$tmp/rec$k" || echo "build $k failed" >> "$tmp/cc.log"
 done
-# (the twin's unit and the main's too: three compiles a build, at once, in
-# any order)
-[ "$(wc -l < "$tmp/cc.log")" -eq 6 ] && ! grep -q ' /tmp/eomc-' "$tmp/cc.log" &&
-  [ "$(sed -n 1,3p "$tmp/cc.log" | sort)" = "$(sed -n 4,6p "$tmp/cc.log" | sort)" ] &&
-  grep -q '^/tmp/eomc-X .* -c model.c -o model.o$' "$tmp/cc.log"
+# (units 1 and 3, the twin's unit and the main's: four compiles a build, at
+# once, in any order)
+[ "$(wc -l < "$tmp/cc.log")" -eq 8 ] && ! grep -q ' /tmp/eomc-' "$tmp/cc.log" &&
+  [ "$(sed -n 1,4p "$tmp/cc.log" | sort)" = "$(sed -n 5,8p "$tmp/cc.log" | sort)" ] &&
+  grep -q '^/tmp/eomc-X .* -DEOMC_UNIT=1 -c model.c -o model.o$' "$tmp/cc.log"
 ok $? "two builds of one model: the same compile commands, in the C's directory, by relative names"
 if command -v ccache > /dev/null; then
   for k in 1 2; do
@@ -110,8 +114,8 @@ if command -v ccache > /dev/null; then
       "$eomc" build "$src/specs/pendulum.yaml" -o "$tmp/cc$k" || echo failed
   done
   hits=$(CCACHE_DIR="$tmp/ccache" ccache -s | sed -n 's/^ *Hits: *\([0-9]*\) .*/\1/p')
-  [ "$hits" = 3 ] && cmp -s "$tmp/cc1" "$tmp/cc2"
-  ok $? "ccache: the second build's three compiles served from the cache ($hits hits), the same simulator"
+  [ "$hits" = 4 ] && cmp -s "$tmp/cc1" "$tmp/cc2"
+  ok $? "ccache: the second build's four compiles served from the cache ($hits hits), the same simulator"
 else
   n=$((n + 1))
   echo "ok $n # SKIP ccache not installed"

@@ -60,7 +60,7 @@ uniform(uint64_t *s)
  * y_j = (2 + sin q_j) da_j + q_{j+1} da_{j+1} on pairs (j, j+1): linear in
  * the load, so a copy without one stores zeros (zero_skip); and the same
  * plus a constant 1 in every y, which does not vanish with the load. */
-static const LowSig s_load = {"load", "a test's unit load", "t q v p u da > y"};
+static const LowSig s_load = {"load", "a test's unit load", "t q v p u da > y", 0};
 
 static LowFunc
 load_function(int affine)

@@ -580,11 +580,12 @@ keep_object(const char *obj, const char *cached)
  * runs as fast at -O1 as at -O2 (measured, gcc 12: chain5 109 against
  * 115 ns, gen_tree 10 1 660 against 1 739, gen_tree 30 5 225 against
  * 5 484), which finds nothing more to do in it, and compiles in two
- * thirds of the time.  A large model's (two units) at -Og, which is -O1
+ * thirds of the time.  A large pair of units (1 and 2, or 3 and 4: emit.h)
+ * at -Og, which is -O1
  * without the passes that find little in straight-line code (dead
  * stores, SRA, points-to, if-conversion) and compiles in a fifth less
  * time, as fast to run (docs/benchmarks.md, "Build time").  A small
- * model's stays at -O1: its functions are called once and inlined there,
+ * one stays at -O1: its functions are called once and inlined there,
  * which -Og does not do (chain5 110 against 146 ns).  Without
  * -ffast-math the arithmetic is the same to the bit either way. */
 static const char *

@@ -49,8 +49,8 @@ cmdline_usage(FILE *f)
         "                   that the simulator computes its own reference solution\n"
         "                   (--error, --work-precision, --reference-out,\n"
         "                   --accel-extended).  Done\n"
-        "                   anyway for a model whose C is one translation unit; a\n"
-        "                   large one (two units) gets it only so, or when eomc\n"
+        "                   anyway for a model whose functions are one translation\n"
+        "                   unit; a large one (two) gets it only so, or when eomc\n"
         "                   run/accuracy is asked for a reference\n",
         f);
     /* two strings: one would pass the 4095 characters C99 promises */

@@ -326,7 +326,8 @@ build(const Options *o, const char *exe)
     char *model = NULL;
     int rc = compile_to_file(o, cfile, &units, &model);
     /* The extended-precision twin doubles the compiler's work: a model
-     * of two units (a large one) gets it only when asked for. */
+     * whose functions are two units (a large one) gets it only when asked
+     * for. */
     int twin = !(units & EMIT_UNIT2) || o->extended || o->needs_twin;
     if (rc == 0 && build_executable(cfile, model, exe, o->mpi, units, twin, o->shared,
                                       !o->portable && !o->mpi) != 0)

@@ -11,7 +11,11 @@
 #    those methods out and says so;
 #  - `eomc run ... --linearize` builds with it: the seeded Jacobian's A
 #    equals the unrolled one's to rounding (two derivations, two codes),
-#    and its rows of q'' equal central differences of --accel.
+#    and its rows of q'' equal central differences of --accel;
+#  - an imported arm with seven actuators (robots/arm_gripper_unconstrained.xml),
+#    whose seeded dE/du is 56 entries set to 0 by a loop before its
+#    nonzeros: --linearize's B (dq''/du) equals central differences of
+#    --accel over the inputs (--set).
 # usage: test_jacobian.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -88,5 +92,34 @@ got=$(awk -F'[ ,]' -v st=$st 'FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else 
   END { printf "%d entries, max |A| %g, max |A - differences| %.2g", n, s, m
         exit !(st == 0 && n == 288 && !miss && s > 0 && m <= 1e-7 * s) }' "$tmp/fd.txt" "$tmp/c.csv")
 ok $? "--linearize's A against central differences of --accel: $got"
+
+arm="$src/tests/import/models/robots/arm_gripper_unconstrained.xml"
+"$eomc" compile "$arm" --jacobian seeded -o "$tmp/arm.c" 2> /dev/null
+inputs=$(sed -n 's/^static const char \*const u_names\[[0-9]*\] = {\(.*\)};$/\1/p' "$tmp/arm.c" |
+  tr -d '",')
+uset=$(echo $inputs | awk '{ for (k = 1; k <= NF; k++) printf "--set %s=%.17g ", $k, 0.3 * sin(k) }')
+# shellcheck disable=SC2086 # $uset is a list of options
+"$eomc" run "$arm" --jacobian seeded --linearize $uset --csv "$tmp/arm.csv" > /dev/null 2>&1; st=$?
+: > "$tmp/fdu.txt"
+k=0
+for u in $inputs; do
+  k=$((k + 1))
+  for sg in 1 -1; do
+    x=$(awk -v k=$k -v s=$sg 'BEGIN { printf "%.17g", 0.3 * sin(k) + s * 1e-5 }')
+    # shellcheck disable=SC2086
+    "$eomc" run "$arm" --accel $uset --set "$u=$x" 2> /dev/null |
+      awk -v u="$u" -v sg=$sg '{ print sg, u, $1, $2 }' >> "$tmp/fdu.txt"
+  done
+done
+got=$(awk -F'[ ,]' -v st=$st 'FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else dn[$2 "|" $3] = $4; next }
+  FNR > 1 && $1 == "B" && $2 ~ /\047$/ { key = $3 "|" $2 "\047"
+    if (!(key in up) || !(key in dn)) miss++
+    d = (up[key] - dn[key]) / 2e-5 - $4; if (d < 0) d = -d; if (d > m) m = d
+    a = $4 < 0 ? -$4 : $4; if (a > s) s = a; n++ }
+  END { printf "%d entries, max |B| %g, max |B - differences| %.2g", n, s, m
+        exit !(st == 0 && n == 56 && !miss && s > 0 && m <= 1e-7 * s) }' "$tmp/fdu.txt" "$tmp/arm.csv")
+grep -q 'for (int i = 0; i < 56; i++) /\* the nonzeros follow \*/' "$tmp/arm.c" &&
+  grep -A1 'i < 56; i++) /\* the nonzeros follow' "$tmp/arm.c" | grep -q 'dEdu\[i\] = 0.0'
+ok $? "a seeded dE/du filled by a loop: --linearize's B against central differences of --accel over the inputs: $got"
 
 tap_end

@@ -84,13 +84,21 @@ while read -r s v; do
       awk -v s="$s" -v sg=$sg '{ print sg, s, $1, $2 }' >> "$tmp/fd.txt"
   done
 done < "$tmp/base.txt"
-got=$(awk -F'[ ,]' -v st=$st 'FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else dn[$2 "|" $3] = $4; next }
-  FNR > 1 && $1 == "A" && $2 ~ /\047$/ { k = $3 "|" $2 "\047"
-    if (!(k in up) || !(k in dn)) miss++
-    d = (up[k] - dn[k]) / 2e-5 - $4; if (d < 0) d = -d; if (d > m) m = d
-    a = $4 < 0 ? -$4 : $4; if (a > s) s = a; n++ }
-  END { printf "%d entries, max |A| %g, max |A - differences| %.2g", n, s, m
-        exit !(st == 0 && n == 288 && !miss && s > 0 && m <= 1e-7 * s) }' "$tmp/fd.txt" "$tmp/c.csv")
+# against MATRIX N FD CSV ST: the rows of q'' of --linearize's MATRIX (A or
+# B) in CSV against the central differences in FD (lines "SIGN VARIABLE
+# NAME'' VALUE", step 1e-5), N entries, the run's status ST; the figures,
+# and its status 0 when they agree to 1e-7 of the largest entry
+against() {
+  awk -F'[ ,]' -v mat="$1" -v want="$2" -v st="$5" '
+    FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else dn[$2 "|" $3] = $4; next }
+    FNR > 1 && $1 == mat && $2 ~ /\047$/ { k = $3 "|" $2 "\047"
+      if (!(k in up) || !(k in dn)) miss++
+      d = (up[k] - dn[k]) / 2e-5 - $4; if (d < 0) d = -d; if (d > m) m = d
+      a = $4 < 0 ? -$4 : $4; if (a > s) s = a; n++ }
+    END { printf "%d entries, max |%s| %g, max |%s - differences| %.2g", n, mat, s, mat, m
+          exit !(st == 0 && n == want && !miss && s > 0 && m <= 1e-7 * s) }' "$3" "$4"
+}
+got=$(against A 288 "$tmp/fd.txt" "$tmp/c.csv" $st)
 ok $? "--linearize's A against central differences of --accel: $got"
 
 arm="$src/tests/import/models/robots/arm_gripper_unconstrained.xml"
@@ -111,14 +119,8 @@ for u in $inputs; do
       awk -v u="$u" -v sg=$sg '{ print sg, u, $1, $2 }' >> "$tmp/fdu.txt"
   done
 done
-got=$(awk -F'[ ,]' -v st=$st 'FNR == NR { if ($1 == 1) up[$2 "|" $3] = $4; else dn[$2 "|" $3] = $4; next }
-  FNR > 1 && $1 == "B" && $2 ~ /\047$/ { key = $3 "|" $2 "\047"
-    if (!(key in up) || !(key in dn)) miss++
-    d = (up[key] - dn[key]) / 2e-5 - $4; if (d < 0) d = -d; if (d > m) m = d
-    a = $4 < 0 ? -$4 : $4; if (a > s) s = a; n++ }
-  END { printf "%d entries, max |B| %g, max |B - differences| %.2g", n, s, m
-        exit !(st == 0 && n == 56 && !miss && s > 0 && m <= 1e-7 * s) }' "$tmp/fdu.txt" "$tmp/arm.csv")
-grep -q 'for (int i = 0; i < 56; i++) /\* the nonzeros follow \*/' "$tmp/arm.c" &&
+got=$(against B 56 "$tmp/fdu.txt" "$tmp/arm.csv" $st) &&
+  grep -q 'for (int i = 0; i < 56; i++) /\* the nonzeros follow \*/' "$tmp/arm.c" &&
   grep -A1 'i < 56; i++) /\* the nonzeros follow' "$tmp/arm.c" | grep -q 'dEdu\[i\] = 0.0'
 ok $? "a seeded dE/du filled by a loop: --linearize's B against central differences of --accel over the inputs: $got"
 

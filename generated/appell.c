@@ -44,7 +44,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -57,6 +58,23 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define appell_derive appell_derive_ext
+#define appell_initial appell_initial_ext
+#define appell_inputs appell_inputs_ext
+#define appell_mass_bias appell_mass_bias_ext
+#define appell_energy appell_energy_ext
+#define appell_invariant appell_invariant_ext
+#define appell_constraint appell_constraint_ext
+#define appell_c_levels appell_c_levels_ext
+#define appell_c_jacobian appell_c_jacobian_ext
+#define appell_c_levels_jacobian appell_c_levels_jacobian_ext
+#define appell_accel appell_accel_ext
+#define appell_minv appell_minv_ext
+#define appell_check appell_check_ext
+#define appell_draw appell_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -441,6 +459,23 @@ appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define appell_derive appell_derive_ext
+#define appell_initial appell_initial_ext
+#define appell_inputs appell_inputs_ext
+#define appell_mass_bias appell_mass_bias_ext
+#define appell_energy appell_energy_ext
+#define appell_invariant appell_invariant_ext
+#define appell_constraint appell_constraint_ext
+#define appell_c_levels appell_c_levels_ext
+#define appell_c_jacobian appell_c_jacobian_ext
+#define appell_c_levels_jacobian appell_c_levels_jacobian_ext
+#define appell_accel appell_accel_ext
+#define appell_minv appell_minv_ext
+#define appell_check appell_check_ext
+#define appell_draw appell_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

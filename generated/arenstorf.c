@@ -38,7 +38,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -51,6 +52,16 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define arenstorf_derive arenstorf_derive_ext
+#define arenstorf_initial arenstorf_initial_ext
+#define arenstorf_inputs arenstorf_inputs_ext
+#define arenstorf_mass_bias arenstorf_mass_bias_ext
+#define arenstorf_energy arenstorf_energy_ext
+#define arenstorf_invariant arenstorf_invariant_ext
+#define arenstorf_accel arenstorf_accel_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -289,6 +300,16 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define arenstorf_derive arenstorf_derive_ext
+#define arenstorf_initial arenstorf_initial_ext
+#define arenstorf_inputs arenstorf_inputs_ext
+#define arenstorf_mass_bias arenstorf_mass_bias_ext
+#define arenstorf_energy arenstorf_energy_ext
+#define arenstorf_invariant arenstorf_invariant_ext
+#define arenstorf_accel arenstorf_accel_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

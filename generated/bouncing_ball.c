@@ -37,7 +37,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -50,6 +51,20 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define bouncing_ball_derive bouncing_ball_derive_ext
+#define bouncing_ball_initial bouncing_ball_initial_ext
+#define bouncing_ball_inputs bouncing_ball_inputs_ext
+#define bouncing_ball_mass_bias bouncing_ball_mass_bias_ext
+#define bouncing_ball_energy bouncing_ball_energy_ext
+#define bouncing_ball_invariant bouncing_ball_invariant_ext
+#define bouncing_ball_accel bouncing_ball_accel_ext
+#define bouncing_ball_events bouncing_ball_events_ext
+#define bouncing_ball_event_set bouncing_ball_event_set_ext
+#define bouncing_ball_check bouncing_ball_check_ext
+#define bouncing_ball_draw bouncing_ball_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -259,6 +274,20 @@ bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define bouncing_ball_derive bouncing_ball_derive_ext
+#define bouncing_ball_initial bouncing_ball_initial_ext
+#define bouncing_ball_inputs bouncing_ball_inputs_ext
+#define bouncing_ball_mass_bias bouncing_ball_mass_bias_ext
+#define bouncing_ball_energy bouncing_ball_energy_ext
+#define bouncing_ball_invariant bouncing_ball_invariant_ext
+#define bouncing_ball_accel bouncing_ball_accel_ext
+#define bouncing_ball_events bouncing_ball_events_ext
+#define bouncing_ball_event_set bouncing_ball_event_set_ext
+#define bouncing_ball_check bouncing_ball_check_ext
+#define bouncing_ball_draw bouncing_ball_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -44,7 +44,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -57,6 +58,24 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define cartesian_pendulum_derive cartesian_pendulum_derive_ext
+#define cartesian_pendulum_initial cartesian_pendulum_initial_ext
+#define cartesian_pendulum_inputs cartesian_pendulum_inputs_ext
+#define cartesian_pendulum_mass_bias cartesian_pendulum_mass_bias_ext
+#define cartesian_pendulum_energy cartesian_pendulum_energy_ext
+#define cartesian_pendulum_invariant cartesian_pendulum_invariant_ext
+#define cartesian_pendulum_constraint cartesian_pendulum_constraint_ext
+#define cartesian_pendulum_c_levels cartesian_pendulum_c_levels_ext
+#define cartesian_pendulum_c_scale cartesian_pendulum_c_scale_ext
+#define cartesian_pendulum_c_jacobian cartesian_pendulum_c_jacobian_ext
+#define cartesian_pendulum_c_levels_jacobian cartesian_pendulum_c_levels_jacobian_ext
+#define cartesian_pendulum_accel cartesian_pendulum_accel_ext
+#define cartesian_pendulum_minv cartesian_pendulum_minv_ext
+#define cartesian_pendulum_check cartesian_pendulum_check_ext
+#define cartesian_pendulum_draw cartesian_pendulum_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -420,6 +439,24 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define cartesian_pendulum_derive cartesian_pendulum_derive_ext
+#define cartesian_pendulum_initial cartesian_pendulum_initial_ext
+#define cartesian_pendulum_inputs cartesian_pendulum_inputs_ext
+#define cartesian_pendulum_mass_bias cartesian_pendulum_mass_bias_ext
+#define cartesian_pendulum_energy cartesian_pendulum_energy_ext
+#define cartesian_pendulum_invariant cartesian_pendulum_invariant_ext
+#define cartesian_pendulum_constraint cartesian_pendulum_constraint_ext
+#define cartesian_pendulum_c_levels cartesian_pendulum_c_levels_ext
+#define cartesian_pendulum_c_scale cartesian_pendulum_c_scale_ext
+#define cartesian_pendulum_c_jacobian cartesian_pendulum_c_jacobian_ext
+#define cartesian_pendulum_c_levels_jacobian cartesian_pendulum_c_levels_jacobian_ext
+#define cartesian_pendulum_accel cartesian_pendulum_accel_ext
+#define cartesian_pendulum_minv cartesian_pendulum_minv_ext
+#define cartesian_pendulum_check cartesian_pendulum_check_ext
+#define cartesian_pendulum_draw cartesian_pendulum_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

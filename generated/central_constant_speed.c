@@ -44,7 +44,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -57,6 +58,24 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define central_constant_speed_derive central_constant_speed_derive_ext
+#define central_constant_speed_initial central_constant_speed_initial_ext
+#define central_constant_speed_inputs central_constant_speed_inputs_ext
+#define central_constant_speed_mass_bias central_constant_speed_mass_bias_ext
+#define central_constant_speed_energy central_constant_speed_energy_ext
+#define central_constant_speed_constraint central_constant_speed_constraint_ext
+#define central_constant_speed_c_levels central_constant_speed_c_levels_ext
+#define central_constant_speed_c_jacobian central_constant_speed_c_jacobian_ext
+#define central_constant_speed_c_levels_jacobian central_constant_speed_c_levels_jacobian_ext
+#define central_constant_speed_accel_shared central_constant_speed_accel_shared_ext
+#define central_constant_speed_accel central_constant_speed_accel_ext
+#define central_constant_speed_minv_shared central_constant_speed_minv_shared_ext
+#define central_constant_speed_minv central_constant_speed_minv_ext
+#define central_constant_speed_check central_constant_speed_check_ext
+#define central_constant_speed_draw central_constant_speed_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -750,6 +769,24 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define central_constant_speed_derive central_constant_speed_derive_ext
+#define central_constant_speed_initial central_constant_speed_initial_ext
+#define central_constant_speed_inputs central_constant_speed_inputs_ext
+#define central_constant_speed_mass_bias central_constant_speed_mass_bias_ext
+#define central_constant_speed_energy central_constant_speed_energy_ext
+#define central_constant_speed_constraint central_constant_speed_constraint_ext
+#define central_constant_speed_c_levels central_constant_speed_c_levels_ext
+#define central_constant_speed_c_jacobian central_constant_speed_c_jacobian_ext
+#define central_constant_speed_c_levels_jacobian central_constant_speed_c_levels_jacobian_ext
+#define central_constant_speed_accel_shared central_constant_speed_accel_shared_ext
+#define central_constant_speed_accel central_constant_speed_accel_ext
+#define central_constant_speed_minv_shared central_constant_speed_minv_shared_ext
+#define central_constant_speed_minv central_constant_speed_minv_ext
+#define central_constant_speed_check central_constant_speed_check_ext
+#define central_constant_speed_draw central_constant_speed_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

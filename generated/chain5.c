@@ -37,7 +37,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -50,6 +51,18 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define chain5_derive chain5_derive_ext
+#define chain5_initial chain5_initial_ext
+#define chain5_inputs chain5_inputs_ext
+#define chain5_mass_bias chain5_mass_bias_ext
+#define chain5_energy chain5_energy_ext
+#define chain5_invariant chain5_invariant_ext
+#define chain5_accel chain5_accel_ext
+#define chain5_check chain5_check_ext
+#define chain5_draw chain5_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -977,6 +990,18 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define chain5_derive chain5_derive_ext
+#define chain5_initial chain5_initial_ext
+#define chain5_inputs chain5_inputs_ext
+#define chain5_mass_bias chain5_mass_bias_ext
+#define chain5_energy chain5_energy_ext
+#define chain5_invariant chain5_invariant_ext
+#define chain5_accel chain5_accel_ext
+#define chain5_check chain5_check_ext
+#define chain5_draw chain5_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -36,7 +36,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -49,6 +50,17 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define falling_particle_derive falling_particle_derive_ext
+#define falling_particle_initial falling_particle_initial_ext
+#define falling_particle_inputs falling_particle_inputs_ext
+#define falling_particle_mass_bias falling_particle_mass_bias_ext
+#define falling_particle_energy falling_particle_energy_ext
+#define falling_particle_accel falling_particle_accel_ext
+#define falling_particle_check falling_particle_check_ext
+#define falling_particle_draw falling_particle_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -208,6 +220,17 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define falling_particle_derive falling_particle_derive_ext
+#define falling_particle_initial falling_particle_initial_ext
+#define falling_particle_inputs falling_particle_inputs_ext
+#define falling_particle_mass_bias falling_particle_mass_bias_ext
+#define falling_particle_energy falling_particle_energy_ext
+#define falling_particle_accel falling_particle_accel_ext
+#define falling_particle_check falling_particle_check_ext
+#define falling_particle_draw falling_particle_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -36,7 +36,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -49,6 +50,15 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define gear_link_derive gear_link_derive_ext
+#define gear_link_initial gear_link_initial_ext
+#define gear_link_inputs gear_link_inputs_ext
+#define gear_link_mass_bias gear_link_mass_bias_ext
+#define gear_link_energy gear_link_energy_ext
+#define gear_link_accel gear_link_accel_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -190,6 +200,15 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define gear_link_derive gear_link_derive_ext
+#define gear_link_initial gear_link_initial_ext
+#define gear_link_inputs gear_link_inputs_ext
+#define gear_link_mass_bias gear_link_mass_bias_ext
+#define gear_link_energy gear_link_energy_ext
+#define gear_link_accel gear_link_accel_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -37,7 +37,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -50,6 +51,18 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define pendulum_derive pendulum_derive_ext
+#define pendulum_initial pendulum_initial_ext
+#define pendulum_inputs pendulum_inputs_ext
+#define pendulum_mass_bias pendulum_mass_bias_ext
+#define pendulum_energy pendulum_energy_ext
+#define pendulum_invariant pendulum_invariant_ext
+#define pendulum_accel pendulum_accel_ext
+#define pendulum_check pendulum_check_ext
+#define pendulum_draw pendulum_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -232,6 +245,18 @@ pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define pendulum_derive pendulum_derive_ext
+#define pendulum_initial pendulum_initial_ext
+#define pendulum_inputs pendulum_inputs_ext
+#define pendulum_mass_bias pendulum_mass_bias_ext
+#define pendulum_energy pendulum_energy_ext
+#define pendulum_invariant pendulum_invariant_ext
+#define pendulum_accel pendulum_accel_ext
+#define pendulum_check pendulum_check_ext
+#define pendulum_draw pendulum_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -44,7 +44,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -57,6 +58,25 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define precession_derive precession_derive_ext
+#define precession_initial precession_initial_ext
+#define precession_inputs precession_inputs_ext
+#define precession_mass_bias precession_mass_bias_ext
+#define precession_energy precession_energy_ext
+#define precession_constraint precession_constraint_ext
+#define precession_c_levels precession_c_levels_ext
+#define precession_c_jacobian precession_c_jacobian_ext
+#define precession_c_levels_jacobian precession_c_levels_jacobian_ext
+#define precession_accel_shared precession_accel_shared_ext
+#define precession_accel precession_accel_ext
+#define precession_minv_shared precession_minv_shared_ext
+#define precession_minv precession_minv_ext
+#define precession_check precession_check_ext
+#define precession_draw precession_draw_ext
+#define precession_draw_mass precession_draw_mass_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -911,6 +931,25 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define precession_derive precession_derive_ext
+#define precession_initial precession_initial_ext
+#define precession_inputs precession_inputs_ext
+#define precession_mass_bias precession_mass_bias_ext
+#define precession_energy precession_energy_ext
+#define precession_constraint precession_constraint_ext
+#define precession_c_levels precession_c_levels_ext
+#define precession_c_jacobian precession_c_jacobian_ext
+#define precession_c_levels_jacobian precession_c_levels_jacobian_ext
+#define precession_accel_shared precession_accel_shared_ext
+#define precession_accel precession_accel_ext
+#define precession_minv_shared precession_minv_shared_ext
+#define precession_minv precession_minv_ext
+#define precession_check precession_check_ext
+#define precession_draw precession_draw_ext
+#define precession_draw_mass precession_draw_mass_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

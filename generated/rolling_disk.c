@@ -46,7 +46,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -59,6 +60,26 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define rolling_disk_derive rolling_disk_derive_ext
+#define rolling_disk_initial rolling_disk_initial_ext
+#define rolling_disk_inputs rolling_disk_inputs_ext
+#define rolling_disk_mass_bias rolling_disk_mass_bias_ext
+#define rolling_disk_energy rolling_disk_energy_ext
+#define rolling_disk_invariant rolling_disk_invariant_ext
+#define rolling_disk_constraint rolling_disk_constraint_ext
+#define rolling_disk_c_levels rolling_disk_c_levels_ext
+#define rolling_disk_c_jacobian rolling_disk_c_jacobian_ext
+#define rolling_disk_c_levels_jacobian rolling_disk_c_levels_jacobian_ext
+#define rolling_disk_accel_shared rolling_disk_accel_shared_ext
+#define rolling_disk_accel rolling_disk_accel_ext
+#define rolling_disk_minv_shared rolling_disk_minv_shared_ext
+#define rolling_disk_minv rolling_disk_minv_ext
+#define rolling_disk_check rolling_disk_check_ext
+#define rolling_disk_draw rolling_disk_draw_ext
+#define rolling_disk_draw_mass rolling_disk_draw_mass_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -1047,6 +1068,26 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define rolling_disk_derive rolling_disk_derive_ext
+#define rolling_disk_initial rolling_disk_initial_ext
+#define rolling_disk_inputs rolling_disk_inputs_ext
+#define rolling_disk_mass_bias rolling_disk_mass_bias_ext
+#define rolling_disk_energy rolling_disk_energy_ext
+#define rolling_disk_invariant rolling_disk_invariant_ext
+#define rolling_disk_constraint rolling_disk_constraint_ext
+#define rolling_disk_c_levels rolling_disk_c_levels_ext
+#define rolling_disk_c_jacobian rolling_disk_c_jacobian_ext
+#define rolling_disk_c_levels_jacobian rolling_disk_c_levels_jacobian_ext
+#define rolling_disk_accel_shared rolling_disk_accel_shared_ext
+#define rolling_disk_accel rolling_disk_accel_ext
+#define rolling_disk_minv_shared rolling_disk_minv_shared_ext
+#define rolling_disk_minv rolling_disk_minv_ext
+#define rolling_disk_check rolling_disk_check_ext
+#define rolling_disk_draw rolling_disk_draw_ext
+#define rolling_disk_draw_mass rolling_disk_draw_mass_ext
+#endif
 #ifndef EOMC_EXTENDED
 static const char *const q_names[5] = {"x", "y", "psi", "theta", "phi"};
 static const char *const p_names[4] = {"m", "R", "g", "spin"};

@@ -38,7 +38,8 @@
  * long functions marked for the second half of units 1 and 3.  A
  * simulator and a library of the same model then share the objects of
  * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members
- * of eomc_model that the struct names are EOMC_ENTRY. */
+ * of eomc_model that the struct names are EOMC_ENTRY.  The twin is
+ * compiled as the same units, with -DEOMC_EXTENDED. */
 #if !defined(EOMC_UNIT)
 #define EOMC_ENTRY static
 #define EOMC_PART static EOMC_NOINLINE
@@ -51,6 +52,18 @@
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define spinning_hoop_derive spinning_hoop_derive_ext
+#define spinning_hoop_initial spinning_hoop_initial_ext
+#define spinning_hoop_inputs spinning_hoop_inputs_ext
+#define spinning_hoop_mass_bias spinning_hoop_mass_bias_ext
+#define spinning_hoop_energy spinning_hoop_energy_ext
+#define spinning_hoop_invariant spinning_hoop_invariant_ext
+#define spinning_hoop_accel spinning_hoop_accel_ext
+#define spinning_hoop_check spinning_hoop_check_ext
+#define spinning_hoop_draw spinning_hoop_draw_ext
+#endif
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -387,6 +400,18 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define spinning_hoop_derive spinning_hoop_derive_ext
+#define spinning_hoop_initial spinning_hoop_initial_ext
+#define spinning_hoop_inputs spinning_hoop_inputs_ext
+#define spinning_hoop_mass_bias spinning_hoop_mass_bias_ext
+#define spinning_hoop_energy spinning_hoop_energy_ext
+#define spinning_hoop_invariant spinning_hoop_invariant_ext
+#define spinning_hoop_accel spinning_hoop_accel_ext
+#define spinning_hoop_check spinning_hoop_check_ext
+#define spinning_hoop_draw spinning_hoop_draw_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -287,13 +287,13 @@ hash_file(uint64_t h, const char *path)
     return bad ? hash_string(h, "(unreadable)") : h;
 }
 
-/* The text of the C file that makes its unit k (1-3, emit.h): all but
+/* The text of the C file that makes its unit k (1-4, emit.h): all but
  * the banner (a comment: it names the options, which need not change the
  * unit) and the sections of the other units, from their "#if
  * !defined(EOMC_UNIT) || EOMC_UNIT == j" to their "#endif /\* EOMC_UNIT j
- * *\/"; k = 0, all but the banner (the twin, compiled as one unit).  A
- * simulator's C and a library's differ in the banner and unit 3 alone, so
- * units 1 and 2 hash the same for both. */
+ * *\/", with the blank line before them.  A simulator's C and a library's
+ * differ in the banner and units 3 and 4 alone, so units 1 and 2 hash the
+ * same for both, in double and in the twin. */
 static const char unit_if[] = "#if !defined(EOMC_UNIT) || EOMC_UNIT == ";
 
 static uint64_t
@@ -328,7 +328,7 @@ hash_unit_text(uint64_t h, const char *path, int k)
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         const char *next = nl ? nl + 1 : end;
         int j = !strncmp(p, unit_if, sizeof unit_if - 1) ? atoi(p + sizeof unit_if - 1) : 0;
-        if (j > 0 && k > 0 && j != k) {
+        if (j > 0 && j != k) {
             snprintf(open, sizeof open, "%s%d\n", unit_if, j);
             snprintf(close, sizeof close, "\n#endif /* EOMC_UNIT %d */\n", j);
             const char *stop = !strncmp(p, open, strlen(open)) ? strstr(p, close) : NULL;
@@ -623,7 +623,8 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
                         "(set EOMC_RUNTIME_LIB)\n", lib);
         return -1;
     }
-    enum { FIRST, SECOND, THIRD, FOURTH, TWIN, MAIN, NUNIT };
+    /* the model's units 1 to 4 (emit.h), the twin's, the main */
+    enum { NMODEL = 4, TWIN = NMODEL, MAIN = 2 * NMODEL, NUNIT };
     char *ext = twin ? write_extended_unit(c_file) : NULL;
     char *main_c = ext || !twin ? write_main_unit(c_file, model) : NULL;
     if (!main_c) {
@@ -638,7 +639,9 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
     snprintf(tmp, len, special ? "%s" : "%s.tmp%ld", exe, (long)getpid());
     char *obj[NUNIT] = {sibling(c_file, "model.o"), sibling(c_file, "model2.o"),
                         sibling(c_file, "model3.o"), sibling(c_file, "model4.o"),
-                        sibling(c_file, "model_ext.o"), sibling(c_file, "main.o")};
+                        sibling(c_file, "model_ext.o"), sibling(c_file, "model_ext2.o"),
+                        sibling(c_file, "model_ext3.o"), sibling(c_file, "model_ext4.o"),
+                        sibling(c_file, "main.o")};
     char incflag[PATH_MAX + 3], ccbuf[256], libs[] = EOMC_GSL_LIBS, incabs[PATH_MAX];
     /* absolute: the units compile in the C file's directory */
     snprintf(incflag, sizeof incflag, "-I%s", realpath(inc, incabs) ? incabs : inc);
@@ -646,20 +649,20 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
     char *argv[64];
     int ncc = split_flags(ccbuf, argv, 8); /* CC may carry flags: "gcc -m64" */
     /* The units compile at once (each is most of the time of a large
-     * model's build), then link: the model (-DEOMC_UNIT=1, a large one's
-     * second half -DEOMC_UNIT=2, and -DEOMC_UNIT=3: emit.h), its
-     * extended-precision twin (one unit), and the main.
-     * Position-independent, each of them: a simulator and a library
-     * (--shared) link the same objects. */
-    /* the pair (3, 4) optimized as the pair (1, 2) is: as large or not */
-    int large12 = (units & EMIT_UNIT2) != 0, large34 = (units & EMIT_UNIT4) != 0;
+     * model's build), then link: the model's (-DEOMC_UNIT=1, a large
+     * one's second half 2, and 3 with its second half 4: emit.h), its
+     * extended-precision twin's, the same units of model_ext.c, and the
+     * main.  Position-independent, each of them: a simulator and a
+     * library (--shared) link the same objects. */
     const char *flags[] = {"-std=c11", "-fPIC", "-pthread", incflag};
-    const char *opt[NUNIT] = {opt_flag(large12), opt_flag(large12), opt_flag(large34),
-                              opt_flag(large34), opt_flag(large12), opt_flag(large12)};
     const char *main_flags[] = {shared ? "-DEOMC_SHARED" : "-DEOMC_MAIN",
                                 mpi ? "-DEOMC_MPI" : NULL};
-    const char *unit_flag[NUNIT] = {"-DEOMC_UNIT=1", "-DEOMC_UNIT=2", "-DEOMC_UNIT=3",
-                                    "-DEOMC_UNIT=4", NULL, NULL};
+    static const char *const unit_flag[NMODEL] = {"-DEOMC_UNIT=1", "-DEOMC_UNIT=2",
+                                                  "-DEOMC_UNIT=3", "-DEOMC_UNIT=4"};
+    static const int unit_bit[NMODEL] = {EMIT_UNIT1, EMIT_UNIT2, EMIT_UNIT3, EMIT_UNIT4};
+    /* the pair (3, 4) optimized as the pair (1, 2) is: as large or not */
+    int large[NMODEL] = {units & EMIT_UNIT2, units & EMIT_UNIT2, units & EMIT_UNIT4,
+                         units & EMIT_UNIT4};
     /* Each unit compiles in the directory of the C, named relative to it,
      * so that the command line of the same C is the same from one build
      * to the next, wherever its directory: a compiler cache (CC="ccache
@@ -672,34 +675,36 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         memcpy(dir, c_file, (size_t)(slash - c_file) + 1);
         dir[slash - c_file + 1] = '\0';
     }
-    const char *src[NUNIT] = {c_file, c_file, c_file, c_file, ext, main_c};
-    int use[NUNIT] = {1, large12, 1, large34, twin, 1};
     char *unit_argv[NUNIT][32], *cached[NUNIT] = {NULL};
     pid_t pid[NUNIT];
+    int use[NUNIT];
     for (int u = 0; u < NUNIT; u++) {
+        int k = u % NMODEL; /* the model's unit: k + 1 */
+        const char *src = u == MAIN ? main_c : u >= TWIN ? ext : c_file;
+        use[u] = u == MAIN || ((u < TWIN || twin) && (units & unit_bit[k]));
         if (!use[u])
             continue;
         int n = 0;
-        for (int k = 0; k < ncc; k++)
-            unit_argv[u][n++] = argv[k];
+        for (int j = 0; j < ncc; j++)
+            unit_argv[u][n++] = argv[j];
         unit_argv[u][n++] = (char *)flags[0];
-        unit_argv[u][n++] = (char *)opt[u];
-        for (size_t k = 1; k < sizeof flags / sizeof flags[0]; k++)
-            unit_argv[u][n++] = (char *)flags[k];
-        for (int k = 0; native && k < NNATIVE; k++)
-            unit_argv[u][n++] = (char *)native_flags[k];
-        for (size_t k = 0; u == MAIN && k < sizeof main_flags / sizeof *main_flags; k++)
-            if (main_flags[k])
-                unit_argv[u][n++] = (char *)main_flags[k];
-        if (unit_flag[u])
-            unit_argv[u][n++] = (char *)unit_flag[u];
+        unit_argv[u][n++] = (char *)opt_flag(u != MAIN && large[k]);
+        for (size_t j = 1; j < sizeof flags / sizeof flags[0]; j++)
+            unit_argv[u][n++] = (char *)flags[j];
+        for (int j = 0; native && j < NNATIVE; j++)
+            unit_argv[u][n++] = (char *)native_flags[j];
+        for (size_t j = 0; u == MAIN && j < sizeof main_flags / sizeof *main_flags; j++)
+            if (main_flags[j])
+                unit_argv[u][n++] = (char *)main_flags[j];
+        if (u != MAIN)
+            unit_argv[u][n++] = (char *)unit_flag[k];
         unit_argv[u][n++] = "-c";
-        unit_argv[u][n++] = (char *)(dir ? src[u] + strlen(dir) : src[u]);
+        unit_argv[u][n++] = (char *)(dir ? src + strlen(dir) : src);
         unit_argv[u][n++] = "-o";
         unit_argv[u][n++] = dir ? obj[u] + strlen(dir) : obj[u];
         unit_argv[u][n] = NULL;
-        UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], u >= TWIN ? src[u] : NULL,
-                       u == MAIN ? NULL : c_file, u < TWIN ? u + 1 : 0};
+        UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], u >= TWIN ? src : NULL,
+                       u == MAIN ? NULL : c_file, k + 1};
         cached[u] = cached_object(&key);
         pid[u] = cached[u] && access(cached[u], R_OK) == 0 ? 0 : start_cc(unit_argv[u], dir, 0);
     }

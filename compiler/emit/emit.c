@@ -1034,6 +1034,48 @@ print_units(Printer *pr, Units *u, int split12, int split34, const EmitInfo *inf
         }
 }
 
+/* The twin's names for unit text's functions of hidden linkage: compiled
+ * with -DEOMC_EXTENDED and -DEOMC_UNIT, the twin's units are linked
+ * beside the model's, so each name a unit defines or declares EOMC_PART
+ * or EOMC_ENTRY (a line "EOMC_... TYPE", then "NAME(") is NAME_ext there.
+ * A unit's own text lists them: units 1 and 2 stay the same C whatever
+ * units 3 and 4 hold. */
+static void
+print_twin_names(FILE *f, const char *text, size_t len)
+{
+    const char *p = text, *end = text + len;
+    char **name = NULL;
+    int n = 0;
+    while (p < end) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        if (!nl)
+            break;
+        if (!strncmp(p, "EOMC_PART ", 10) || !strncmp(p, "EOMC_ENTRY ", 11)) {
+            size_t k = strcspn(nl + 1, "(\n");
+            int seen = 0;
+            for (int i = 0; i < n && !seen; i++)
+                seen = strlen(name[i]) == k && !strncmp(name[i], nl + 1, k);
+            if (!seen) {
+                name = xrealloc(name, (size_t)(n + 1) * sizeof *name);
+                name[n] = xmalloc(k + 1);
+                memcpy(name[n], nl + 1, k);
+                name[n++][k] = '\0';
+            }
+        }
+        p = nl + 1;
+    }
+    if (n)
+        fputs("/* The twin's names, linked beside the model's. */\n"
+              "#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)\n", f);
+    for (int i = 0; i < n; i++) {
+        fprintf(f, "#define %s %s_ext\n", name[i], name[i]);
+        free(name[i]);
+    }
+    if (n)
+        fputs("#endif\n", f);
+    free(name);
+}
+
 static void
 free_units(Units *u)
 {
@@ -1064,7 +1106,8 @@ emit_model(FILE *f, const Lowered *L, ExprPool *P, const EmitInfo *info,
           " * long functions marked for the second half of units 1 and 3.  A\n"
           " * simulator and a library of the same model then share the objects of\n"
           " * units 1 and 2.  Without EOMC_UNIT the file is one unit.  The members\n"
-          " * of eomc_model that the struct names are EOMC_ENTRY. */\n"
+          " * of eomc_model that the struct names are EOMC_ENTRY.  The twin is\n"
+          " * compiled as the same units, with -DEOMC_EXTENDED. */\n"
           "#if !defined(EOMC_UNIT)\n"
           "#define EOMC_ENTRY static\n"
           "#define EOMC_PART static EOMC_NOINLINE\n"
@@ -1080,6 +1123,7 @@ emit_model(FILE *f, const Lowered *L, ExprPool *P, const EmitInfo *info,
         if (!u.text[k])
             continue;
         fprintf(f, "\n#if !defined(EOMC_UNIT) || EOMC_UNIT == %d\n", k + 1);
+        print_twin_names(f, u.text[k], u.len[k]);
         fwrite(u.text[k], 1, u.len[k], f);
         fprintf(f, "#endif /* EOMC_UNIT %d */\n", k + 1);
         mask |= 1 << k;

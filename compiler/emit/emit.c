@@ -278,7 +278,7 @@ print_mass_columns(Printer *pr, const Lowered *L)
     char fname[128];
     snprintf(fname, sizeof fname, "%s_mass_bias", nm);
     emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
+                    "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
     emit_line(pr, "    eomc_real seed[%d], col[%d];", n, n);
     emit_line(pr, "    %s_bias(t, q, v, p, u, h);", nm);
     emit_line(pr, "    for (int j = 0; j < %d; j++)", n);
@@ -335,15 +335,15 @@ print_accel(Printer *pr, const Lowered *L)
     if (L->loads_shared) {
         snprintf(fname, sizeof fname, "%s_accel_shared", nm);
         emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-                   "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot, "
-                   "eomc_real *shared");
+                        "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot, "
+                        "eomc_real *shared");
         emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
         emit_line(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk, shared);", nm);
         print_pivot_check(pr, n);
         emit_line(pr, "/* The same, what minv_shared reads dropped. */");
         snprintf(fname, sizeof fname, "%s_accel", nm);
         emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-                   "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+                        "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
         emit_line(pr, "    eomc_real shared[%d];", L->loads_shared);
         emit_line(pr, "    return %s_accel_shared(t, q, v, p, u, a, pivot, shared);", nm);
         emit_line(pr, "}\n");
@@ -351,7 +351,7 @@ print_accel(Printer *pr, const Lowered *L)
     }
     snprintf(fname, sizeof fname, "%s_accel", nm);
     emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+                    "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     emit_line(pr, "    eomc_real piv[%d], mkk[%d];", n, n);
     emit_line(pr, "    %s_accel_solve(t, q, v, p, u, a, piv, mkk);", nm);
     print_pivot_check(pr, n);
@@ -368,7 +368,7 @@ print_minv_alone(Printer *pr, const Lowered *L)
     emit_line(pr, "/* y = M^-1 da: the solve's shared values, then minv_shared. */");
     snprintf(fname, sizeof fname, "%s_minv", nm);
     emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y");
+                    "const eomc_real *p, const eomc_real *u, const eomc_real *da, eomc_real *y");
     emit_line(pr, "    eomc_real a[%d], shared[%d];", L->nv, L->loads_shared);
     emit_line(pr, "    %s_accel_shared(t, q, v, p, u, a, NULL, shared);", nm);
     emit_line(pr, "    %s_minv_shared(t, q, v, p, u, shared, da, y);", nm);
@@ -419,7 +419,7 @@ print_tree_energy(Printer *pr, const Lowered *L)
     emit_line(pr, " * %s. */", L->tables ? "the recursion over the tables" : "mass_times");
     snprintf(fname, sizeof fname, "%s_energy", nm);
     emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *TV");
+                    "const eomc_real *p, const eomc_real *u, eomc_real *TV");
     emit_line(pr, "    eomc_real Mv[%d], T = 0.0;", n);
     emit_line(pr, "    %s_potential(t, q, v, p, u, TV + 1);", nm);
     if (L->tables) {
@@ -452,7 +452,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
     emit_line(pr, " * definite).  *pivot (unless NULL): the smallest d_k / M_kk. */");
     snprintf(fname, sizeof fname, "%s_accel", nm);
     emit_entry_head(pr, "int", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
+                    "const eomc_real *p, const eomc_real *u, eomc_real *a, eomc_real *pivot");
     emit_line(pr, "    eomc_real tau[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n, n, nt);
     emit_line(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
     emit_line(pr, "    eomc_tree_aba(%s_turns, %d, %s, NULL, q, v, tau, w, a, piv, mkk);", nm, nt,
@@ -463,8 +463,8 @@ print_tree_functions(Printer *pr, const Lowered *L)
         emit_line(pr, " * with no force but the load da: the runtime's unit-load passes. */");
         snprintf(fname, sizeof fname, "%s_minv", nm);
         emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, "
-                   "const eomc_real *v, const eomc_real *p, const eomc_real *u, "
-                   "const eomc_real *da, eomc_real *y");
+                        "const eomc_real *v, const eomc_real *p, const eomc_real *u, "
+                        "const eomc_real *da, eomc_real *y");
         emit_line(pr, "    static const eomc_real still[6] = {0, 0, 0, 0, 0, 0};");
         emit_line(pr, "    eomc_real zero[%d], piv[%d], mkk[%d], w[%d * EOMC_TREE_WORK];", n, n,
                 n, nt);
@@ -482,7 +482,7 @@ print_tree_functions(Printer *pr, const Lowered *L)
     emit_line(pr, " * q'').  Off the hot path: the accelerations never form M. */");
     snprintf(fname, sizeof fname, "%s_mass_bias", nm);
     emit_entry_head(pr, "void", fname, "eomc_real t, const eomc_real *q, const eomc_real *v, "
-               "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
+                    "const eomc_real *p, const eomc_real *u, eomc_real *M, eomc_real *h");
     emit_line(pr, "    eomc_real tau[%d], x[%d], zero[%d], col[%d], w[%d * EOMC_TREE_WORK];", n, n,
             n, n, nt);
     emit_line(pr, "    %s_tau(t, q, v, p, u, tau);", nm);
@@ -822,7 +822,7 @@ print_event_set(Printer *pr, const Lowered *L)
     char fname[128];
     snprintf(fname, sizeof fname, "%s_event_set", nm);
     emit_entry_head(pr, "void", fname, "int k, double t, const double *q, const double *v, "
-               "const double *p, const double *u, double *q1, double *v1");
+                    "const double *p, const double *u, double *q1, double *v1");
     emit_line(pr, "    switch (k) {");
     for (int k = 0; k < md->nevent; k++)
         if (L->event_set[k])

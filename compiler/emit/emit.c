@@ -694,6 +694,9 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                   "%s_minv_shared,", L->loads_shared, nm, nm);
     if (!L->taylor->why && L->taylor->qd_slot)
         emit_line(pr, "    .taylor_qd = taylor_qd, /* Taylor's series of q' = W(q) v */");
+    if (L->switches)
+        emit_line(pr, "    .nmode = %d, .switches = %s_switches, /* modes at u[%d + k] */",
+                  md->nmode, nm, md->nu);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -719,6 +722,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     if (md->nspeed)
         emit_line(pr, "    .qdot = %s_qdot,", nm);
     print_taylor_members(pr, L->taylor, nm, 1);
+    if (L->switches)
+        emit_line(pr, "    .switches = %s_switches,", nm);
     emit_line(pr, "};");
     emit_line(pr, "#endif /* EOMC_EXTENDED */");
 }

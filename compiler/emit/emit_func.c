@@ -131,6 +131,10 @@ print_node(Printer *pr, ExprId id)
         y = operand(pr, nd->b, bb, sizeof bb);
     const char *sp = expr_op_spelling[nd->op];
     switch (expr_op_kind[nd->op]) {
+    case OPK_SELECT: /* mode k, after the nu inputs (eomc_model.h) */
+        snprintf(rhs, sizeof rhs, "(u[%d] != 0.0 ? %s : %s)", pr->md->nu + (int)nd->value, x,
+                 y);
+        break;
     case OPK_INFIX:
         snprintf(rhs, sizeof rhs, "%s %s %s", x, sp, y);
         break;
@@ -305,6 +309,8 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
         const ExprNode *nd = expr_node(pr->P, S->node[k]);
         int ar = expr_op_arity[nd->op];
+        if (nd->op == EXPR_SELECT) /* its mode is read from u (print_node) */
+            pr->used |= 1u << SRC_U;
         if (ar >= 1)
             mark_leaf(pr, nd->a, &ls);
         if (ar >= 2)

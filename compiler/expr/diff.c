@@ -170,6 +170,9 @@ diff_local(ExprPool *P, ExprId f, int k)
         return expr_unary(P, EXPR_SIGN, x);
     case EXPR_SIGN: /* piecewise constant */
         return EXPR_ZERO;
+    case EXPR_SELECT: /* the branch's own derivative in its mode (chain, below) */
+        return k == 0 ? expr_select(P, (int)nd.value, EXPR_ONE, EXPR_ZERO)
+                      : expr_select(P, (int)nd.value, EXPR_ZERO, EXPR_ONE);
     }
     return EXPR_ZERO; /* leaves have no operands */
 }
@@ -178,6 +181,11 @@ diff_local(ExprPool *P, ExprId f, int k)
 static ExprId
 chain(ExprPool *P, ExprId f, const ExprId *dargs, int nargs)
 {
+    const ExprNode *nd = expr_node(P, f);
+    if (nd->op == EXPR_SELECT) /* d SELECT(k, a, b) = SELECT(k, da, db), not a sum of products */
+        return dargs[0] == EXPR_NONE || dargs[1] == EXPR_NONE
+                   ? EXPR_NONE
+                   : expr_select(P, (int)nd->value, dargs[0], dargs[1]);
     ExprId sum = EXPR_ZERO;
     for (int k = 0; k < nargs; k++) {
         if (dargs[k] == EXPR_NONE)

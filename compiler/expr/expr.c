@@ -28,6 +28,8 @@ struct ExprPool {
     size_t tcap;
     ExprId *rate;    /* per coordinate: its rate where it is not a speed (expr_set_rate) */
     int nrate;
+    ExprId *sw;      /* per switch: its function s_k (expr_max) */
+    int nsw, capsw;
 };
 
 const char *const expr_op_spelling[EXPR_NOPS] = {
@@ -174,6 +176,7 @@ expr_pool_free(ExprPool *P)
     free(P->trig);
     free(P->table);
     free(P->rate);
+    free(P->sw);
     free(P);
 }
 
@@ -195,6 +198,12 @@ expr_clear_rates(ExprPool *P)
 {
     for (int i = 0; i < P->nrate; i++)
         P->rate[i] = EXPR_NONE;
+}
+
+void
+expr_clear_switches(ExprPool *P)
+{
+    P->nsw = 0;
 }
 
 ExprId
@@ -1045,6 +1054,73 @@ expr_binary(ExprPool *P, int op, ExprId a, ExprId b)
     return EXPR_NONE;
 }
 
+/* ---- switched expressions ---- */
+
+ExprId
+expr_select(ExprPool *P, int mode, ExprId a, ExprId b)
+{
+    if (a == b)
+        return a;
+    /* within mode k, a SELECT on k below is already decided */
+    if (op_of(P, a) == EXPR_SELECT && expr_select_mode(P, a) == mode)
+        a = P->node[a].a;
+    if (op_of(P, b) == EXPR_SELECT && expr_select_mode(P, b) == mode)
+        b = P->node[b].b;
+    if (a == b)
+        return a;
+    ExprNode nd = {.op = EXPR_SELECT, .a = a, .b = b, .value = mode};
+    nd.deps = P->node[a].deps | P->node[b].deps | DEP_U | DEP_M;
+    nd.height = 1 + (P->node[a].height > P->node[b].height ? P->node[a].height
+                                                            : P->node[b].height);
+    nd.coeff = 0; /* a mode is not a parameter: never folded into derived ones */
+    return intern(P, nd);
+}
+
+int expr_nswitch(const ExprPool *P) { return P->nsw; }
+ExprId expr_switch(const ExprPool *P, int k) { return P->sw[k]; }
+int expr_select_mode(const ExprPool *P, ExprId e) { return (int)P->node[e].value; }
+
+/* SELECT(k, a, b) on s's switch k (s met before: the same k), or the
+ * branch s's constant sign chooses now. */
+static ExprId
+switched(ExprPool *P, ExprId s, ExprId a, ExprId b)
+{
+    double v;
+    if (expr_is_const(P, s, &v))
+        return v > 0 ? a : b;
+    int k = 0;
+    while (k < P->nsw && P->sw[k] != s)
+        k++;
+    if (k == P->nsw) {
+        if (P->nsw == P->capsw) {
+            P->capsw = P->capsw ? 2 * P->capsw : 8;
+            P->sw = xrealloc(P->sw, (size_t)P->capsw * sizeof *P->sw);
+        }
+        P->sw[P->nsw++] = s;
+    }
+    return expr_select(P, k, a, b);
+}
+
+ExprId
+expr_max(ExprPool *P, ExprId a, ExprId b)
+{
+    return a == b ? a : switched(P, expr_sub(P, a, b), a, b);
+}
+
+ExprId
+expr_min(ExprPool *P, ExprId a, ExprId b)
+{
+    return a == b ? a : switched(P, expr_sub(P, a, b), b, a);
+}
+
+ExprId
+expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi)
+{
+    ExprId s_hi = expr_sub(P, x, hi); /* built first: ids do not depend on C's order */
+    ExprId below = switched(P, expr_sub(P, x, lo), x, lo);
+    return switched(P, s_hi, hi, below);
+}
+
 /* ---- traversals ---- */
 
 void
@@ -1076,6 +1152,9 @@ expr_magnitude_many(ExprPool *P, int nroots, const ExprId *roots, ExprId *out)
             break;
         case EXPR_NEG:
             m = mag[nd.a];
+            break;
+        case EXPR_SELECT: /* the branch's */
+            m = expr_select(P, (int)nd.value, mag[nd.a], mag[nd.b]);
             break;
         case EXPR_POWI: /* a reciprocal's size is that of 1/|a| */
             m = (int32_t)nd.b > 0 ? expr_powi(P, mag[nd.a], (int)(int32_t)nd.b)
@@ -1201,6 +1280,10 @@ apply(const ExprNode *nd, double x, double y, const ExprEnv *env)
     case EXPR_POWI: return powi(x, (int32_t)nd->b);
     case EXPR_POW: return pow(x, y);
     case EXPR_ATAN2: return atan2(x, y);
+    case EXPR_SELECT:
+        if (!env->mode)
+            return NAN;
+        return env->mode[(int)nd->value] != 0.0 ? x : y;
     }
     return apply1(nd->op, x);
 }
@@ -1305,6 +1388,10 @@ bound_node(const ExprNode *nd, const Bounded *v, const ExprEnv *env)
     case EXPR_NEG:
         x.v = -x.v;
         return x;
+    case EXPR_SELECT: /* the branch the mode takes, with its error */
+        if (!env->mode)
+            return (Bounded){NAN, INFINITY, NAN};
+        return env->mode[(int)nd->value] != 0.0 ? x : y;
     case EXPR_POWI: {
         int n = (int32_t)nd->b;
         r.v = powl(x.v, n);
@@ -1395,6 +1482,18 @@ rebuild(ExprPool *P, const ExprNode *nd, ExprId a, ExprId b)
     return expr_binary(P, nd->op, a, b);
 }
 
+/* A SELECT over substituted operands: its switch function substituted
+ * too, so that the mode still says which side of the kink the branches
+ * are on (the same switch where s_k does not change). */
+static ExprId
+rebuild_select(ExprPool *P, const ExprNode *nd, ExprId a, ExprId b, int n, const ExprId *from,
+               const ExprId *to)
+{
+    int k = (int)nd->value;
+    ExprId s = expr_subst(P, P->sw[k], n, from, to);
+    return s == P->sw[k] ? expr_select(P, k, a, b) : switched(P, s, a, b);
+}
+
 ExprId
 expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from, const ExprId *to)
 {
@@ -1414,7 +1513,8 @@ expr_subst(ExprPool *P, ExprId e, int n, const ExprId *from, const ExprId *to)
             continue;
         ExprId a = map[nd.a], b = ar == 2 ? map[nd.b] : nd.b;
         if (a != nd.a || (ar == 2 && b != nd.b))
-            map[i] = rebuild(P, &nd, a, b);
+            map[i] = nd.op == EXPR_SELECT ? rebuild_select(P, &nd, a, b, n, from, to)
+                                          : rebuild(P, &nd, a, b);
     }
     ExprId r = map[e];
     free(map);
@@ -1441,7 +1541,8 @@ expr_subst_many(ExprPool *P, int nroots, const ExprId *roots, int n, const ExprI
             continue;
         ExprId a = map[nd.a], b = ar == 2 ? map[nd.b] : nd.b;
         if (a != nd.a || (ar == 2 && b != nd.b))
-            map[i] = rebuild(P, &nd, a, b);
+            map[i] = nd.op == EXPR_SELECT ? rebuild_select(P, &nd, a, b, n, from, to)
+                                          : rebuild(P, &nd, a, b);
     }
     for (int i = 0; i < nroots; i++)
         out[i] = map[roots[i]];

@@ -40,7 +40,7 @@ enum {
 enum { EXPR_ZERO = 0, EXPR_ONE = 1 }; /* made by expr_pool_new */
 enum { EXPR_MAX_ORDER = 3 };     /* highest derivative a VAR may carry */
 
-enum { OPK_LEAF, OPK_INFIX, OPK_PREFIX, OPK_CALL };
+enum { OPK_LEAF, OPK_INFIX, OPK_PREFIX, OPK_CALL, OPK_SELECT };
 
 /* What a node depends on (derived from its operands when it is built):
  * one bit per kind of leaf, and per derivative order of the coordinates. */
@@ -51,6 +51,8 @@ enum {
     DEP_U = 1 << 6,      /* inputs */
     DEP_S = 1 << 7,      /* seeds of a directional derivative */
     DEP_L = 1 << 8,      /* multipliers of the constraints */
+    DEP_M = 1 << 9,      /* a switched expression (SELECT): it reads a mode,
+                            an input slot, so DEP_U comes with it */
 };
 #define DEP_ORDER(k) (DEP_Q << (k))
 #define DEP_ANY_Q (DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_ORDER(3))
@@ -61,7 +63,7 @@ typedef struct ExprNode {
     uint16_t deps; /* DEP_ bits of the leaves below (derived) */
     uint32_t a, b; /* operands, or leaf data: see ops.def */
     uint32_t height; /* 0 for a leaf, else 1 + the operands' highest (derived) */
-    double value;  /* EXPR_CONST only */
+    double value;  /* EXPR_CONST: the number; EXPR_SELECT: the mode index */
 } ExprNode;
 
 typedef struct ExprPool ExprPool;
@@ -101,6 +103,9 @@ ExprId expr_rate(const ExprPool *P, int coord);
 /* Every coordinate's rate its own leaf again (a pool that serves one spec
  * at a time: spec_load starts so). */
 void expr_clear_rates(ExprPool *P);
+/* No switches (a pool that serves one spec at a time: an earlier spec's
+ * kinks are not this one's; its nodes keep their modes and are not used). */
+void expr_clear_switches(ExprPool *P);
 
 /* Simplifying constructors. */
 ExprId expr_add(ExprPool *P, ExprId a, ExprId b);
@@ -113,6 +118,30 @@ ExprId expr_pow(ExprPool *P, ExprId a, ExprId b);
 /* Any unary (SIN..SIGN, NEG) or binary (ADD..DIV, POW, ATAN2) operator. */
 ExprId expr_unary(ExprPool *P, int op, ExprId a);
 ExprId expr_binary(ExprPool *P, int op, ExprId a, ExprId b);
+
+/* Switched expressions.  max, min and clamp are not smooth: each kink
+ * is a *switch* k, a smooth switch function s_k of the pool's, and a
+ * mode that says on which side of s_k = 0 the run is (1 where s_k > 0,
+ * 0 where s_k < 0).  Within a mode the expression is one smooth branch,
+ * SELECT(k, a, b) = mode k ? a : b, so derivatives are exact there
+ * (d SELECT(k, a, b) = SELECT(k, da, db)); the runtime ends a step at
+ * each s_k = 0 and flips the mode.  A switch function met again (same
+ * node) is the same switch: max(a, b) and min(a, b) share one.  Where s
+ * is a constant the branch is chosen now and no switch is made.
+ *   max(a, b)         = SELECT(k, a, b),  s_k = a - b
+ *   min(a, b)         = SELECT(k, b, a),  s_k = a - b
+ *   clamp(x, lo, hi)  = SELECT(k, hi, SELECT(j, x, lo)),
+ *                       s_k = x - hi, s_j = x - lo
+ * (clamp is hi where x > hi, else max(x, lo): lo <= hi is the caller's.) */
+ExprId expr_select(ExprPool *P, int mode, ExprId a, ExprId b);
+ExprId expr_max(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_min(ExprPool *P, ExprId a, ExprId b);
+ExprId expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi);
+/* The pool's switches, in the order they were made: mode k's s_k. */
+int expr_nswitch(const ExprPool *P);
+ExprId expr_switch(const ExprPool *P, int k);
+/* The mode a SELECT node reads. */
+int expr_select_mode(const ExprPool *P, ExprId e);
 
 /* Queries. */
 int expr_is_const(const ExprPool *P, ExprId e, double *value);
@@ -142,6 +171,8 @@ typedef struct ExprEnv {
     const double *u;
     const double *seed[3]; /* seeds dq, dq', dq'' of EXPR_SEED; NULL reads as 0 */
     const double *lam;     /* multipliers of EXPR_MULT; NULL reads as 0 */
+    const double *mode;    /* mode k's value (0 or 1) of EXPR_SELECT; NULL reads
+                              as NaN: no branch is a guess */
 } ExprEnv;
 double expr_eval(ExprPool *P, ExprId e, const ExprEnv *env);
 void expr_eval_many(ExprPool *P, int n, const ExprId *roots,

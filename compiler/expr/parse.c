@@ -189,11 +189,13 @@ accept(Parser *ps, TokKind k)
 
 typedef struct Builtin {
     const char *name;
-    int op;    /* EXPR_ op, or BUILTIN_DOT, BUILTIN_DELTA */
+    int op;    /* EXPR_ op, or a BUILTIN_ */
     int arity;
 } Builtin;
 
-enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2 };
+enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2, BUILTIN_MAX = -3, BUILTIN_MIN = -4,
+       BUILTIN_CLAMP = -5 };
+enum { MAX_ARGS = 3 }; /* clamp's */
 
 /* The functions of frames, points and vectors: not reserved names (a
  * parameter may be called omega), functions only when called.  Their
@@ -228,6 +230,7 @@ static const Builtin builtins[] = {
     {"tanh", EXPR_TANH, 1}, {"exp", EXPR_EXP, 1},     {"log", EXPR_LOG, 1},
     {"sqrt", EXPR_SQRT, 1}, {"abs", EXPR_ABS, 1},     {"pow", EXPR_POW, 2},
     {"dot", BUILTIN_DOT, 1}, {"delta", BUILTIN_DELTA, 1},
+    {"max", BUILTIN_MAX, 2}, {"min", BUILTIN_MIN, 2}, {"clamp", BUILTIN_CLAMP, 3},
 };
 enum { NBUILTINS = sizeof builtins / sizeof builtins[0] };
 
@@ -298,6 +301,10 @@ check_deps(Parser *ps, ExprId e, const char *name, size_t off)
     if (!bad)
         return;
     ExprId leaf = expr_find_leaf(sc->P, e, bad);
+    if (leaf == EXPR_NONE) /* only a SELECT's mode has no leaf */
+        diag_error(at(ps, off), "%s cannot depend on a switched expression (max, min, "
+                   "clamp)%s%s%s", sc->what, name ? " (through '" : "", name ? name : "",
+                   name ? "')" : "");
     char what[200];
     describe_leaf(sc, leaf, what, sizeof what);
     if (name && expr_op_arity[expr_node(sc->P, e)->op] != 0)
@@ -673,6 +680,29 @@ vec_call(Parser *ps, const VecBuiltin *b, size_t name_off)
     return r;
 }
 
+/* max, min or clamp: a switched expression (expr.h), only where the
+ * scope lets a mode be read. */
+static ExprId
+switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *args,
+              const size_t *offs, const char *where)
+{
+    ParseScope *sc = ps->sc;
+    if ((sc->allow & (DEP_M | DEP_U)) != (DEP_M | DEP_U))
+        diag_error(at(ps, name_off), "%s cannot use %s(): its kink is a switch the run "
+                   "locates, and only forces, potentials and virtual work have switches",
+                   sc->what, name);
+    ExprId e[MAX_ARGS];
+    for (int i = 0; i < (op == BUILTIN_CLAMP ? 3 : 2); i++)
+        e[i] = need_scalar(ps, args[i], offs[i], where);
+    if (op == BUILTIN_CLAMP) {
+        double lo, hi;
+        if (expr_is_const(sc->P, e[1], &lo) && expr_is_const(sc->P, e[2], &hi) && lo > hi)
+            diag_error(at(ps, offs[1]), "clamp(x, lo, hi) needs lo <= hi, not %g > %g", lo, hi);
+        return expr_clamp(sc->P, e[0], e[1], e[2]);
+    }
+    return op == BUILTIN_MAX ? expr_max(sc->P, e[0], e[1]) : expr_min(sc->P, e[0], e[1]);
+}
+
 /* NAME "(" expr ("," expr)* ")" with the name already read. */
 static Val
 call(Parser *ps, const char *name, size_t name_off)
@@ -689,8 +719,8 @@ call(Parser *ps, const char *name, size_t name_off)
     size_t open = ps->tok.off;
     next(ps); /* ( */
     enter(ps, open);
-    Val args[2];
-    size_t offs[2] = {0, 0};
+    Val args[MAX_ARGS];
+    size_t offs[MAX_ARGS] = {0, 0, 0};
     int n = 0;
     if (ps->tok.kind != T_RPAREN) {
         do {
@@ -723,6 +753,8 @@ call(Parser *ps, const char *name, size_t name_off)
     char where[MAX_NAME + 8];
     snprintf(where, sizeof where, "%s()", name);
     ExprId x = need_scalar(ps, args[0], offs[0], where);
+    if (b->op <= BUILTIN_MAX)
+        return scalar_val(switched_call(ps, b->op, name, name_off, args, offs, where));
     if (b->arity == 1)
         return scalar_val(finite(ps, expr_unary(P, b->op, x), name, x, EXPR_NONE, name_off));
     ExprId y = need_scalar(ps, args[1], offs[1], where);

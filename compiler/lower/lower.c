@@ -147,6 +147,11 @@ static const LowSig s_events = {
     "events", "The scene's events: g[k], whose zero crossings they are.",
     "t q v p u > g", 1,
 };
+static const LowSig s_switches = {
+    "switches", "The switch functions of max, min and clamp: mode k is 1 where s[k] > 0,\n"
+    " * 0 where s[k] < 0, and the runtime flips it where s[k] crosses 0.",
+    "t q v p u > s", 1,
+};
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
     " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
@@ -925,6 +930,13 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->scene.nevent)
         lower_events(&lw);
+    lw.L->model.nmode = expr_nswitch(P);
+    if (expr_nswitch(P)) { /* in the twin too: the reference will locate them */
+        f = func(&lw, &s_switches, "events", 0);
+        for (int k = 0; k < expr_nswitch(P); k++)
+            out(&lw, f, 0, k, expr_switch(P, k));
+        lw.L->switches = f;
+    }
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
         lw.L->check_values = f; /* before its outputs: fillable() */

@@ -359,6 +359,10 @@ build_node(Build *b, ExprId id)
         call(b, name[nd->op - EXPR_EXP], 2, c, A, -1, -1);
         break;
     }
+    case EXPR_SELECT: /* the branch's series, the mode held: not built yet */
+        b->why = "its mass matrix or bias has switched expressions (max, min, clamp), whose "
+                 "series are not built yet";
+        return;
     default:
         b->why = "its mass matrix or bias has an operation without a Taylor recurrence";
         return;

@@ -147,6 +147,7 @@ typedef struct LowModel {
     double t_end, dt, rtol, atol, h_fixed;
     const char *method;
     int noutput, nevent, ncheck;
+    int nmode;           /* switches of max, min, clamp: mode k at u[nu + k] */
     const char **output; /* [noutput] names */
     LowEvent *event;     /* [nevent] */
     int assemble;
@@ -240,6 +241,7 @@ typedef struct Lowered {
     LowFunc *derive;
     LowFunc *outputs;     /* the scene's outputs, or NULL */
     LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
+    LowFunc *switches;    /* the switch functions s [nmode] (expr.h), or NULL */
     LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
     LowFunc *draw_shapes;      /* the shapes' sizes and positions of parameters, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */

@@ -183,7 +183,8 @@ split(LowFunc *f, int n, int nu, const Slots *sp, long min_saved, Arena *A, Expr
             continue;
         const ExprNode *nd = expr_node(P, (ExprId)i);
         int ar = expr_op_arity[nd->op];
-        if (nd->op == EXPR_MULT)
+        /* a mode is read at u[nu + k], which no copy's shift of u renames */
+        if (nd->op == EXPR_MULT || nd->op == EXPR_SELECT)
             goto done;
         if (nd->op == EXPR_VAR || nd->op == EXPR_SEED || nd->op == EXPR_INPUT) {
             if (nd->op == EXPR_INPUT)

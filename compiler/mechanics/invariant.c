@@ -54,6 +54,9 @@ degree(ExprPool *P, ExprId e, double *deg, unsigned char *known)
         d = b != 0 ? NAN : a == 0 ? 0 : expr_is_const(P, nd->b, &c) ? a * c : NAN;
         break;
     }
+    case EXPR_SELECT: /* either branch: both must scale alike */
+        d = a == b ? a : NAN;
+        break;
     case EXPR_ATAN2: /* atan2(s^k y, s^k x) = atan2(y, x) */
         d = a == b ? 0 : NAN;
         break;

@@ -151,6 +151,7 @@ spec_load_buffer(const char *path, const char *text, size_t len, const SpecOptio
     L->P = P;
     L->sc = spec_scope(P);
     expr_clear_rates(P); /* an earlier spec's speeds are not this one's */
+    expr_clear_switches(P); /* nor its kinks */
     L->s = arena_alloc(A, sizeof *L->s);
     L->s->path = L->path;
     L->s->scene = spec_scene_defaults;

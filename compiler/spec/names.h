@@ -50,14 +50,16 @@ enum {
     ALLOW_SIGNAL = DEP_T | DEP_P,
     ALLOW_POSITION = DEP_T | DEP_ORDER(0) | DEP_P,
     ALLOW_KINETIC = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
-    ALLOW_POTENTIAL = DEP_T | DEP_ORDER(0) | DEP_P | DEP_U,
-    ALLOW_FORCE = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P | DEP_U,
+    /* switched expressions (max, min, clamp: DEP_M) in forces and
+     * potentials only, whose functions all read the modes with u */
+    ALLOW_POTENTIAL = DEP_T | DEP_ORDER(0) | DEP_P | DEP_U | DEP_M,
+    ALLOW_FORCE = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P | DEP_U | DEP_M,
     ALLOW_WORK = ALLOW_FORCE | DEP_S, /* forces times variations delta(e) */
     ALLOW_FIELD = DEP_T | DEP_P | DEP_U,
     ALLOW_CONSTRAINT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_ORDER(2) | DEP_P | DEP_U,
     ALLOW_OUTPUT = ALLOW_CONSTRAINT | DEP_L,
     ALLOW_EVENT = DEP_T | DEP_ORDER(0) | DEP_ORDER(1) | DEP_P,
-    ALLOW_ALL = 0xff,
+    ALLOW_ALL = 0xff | DEP_M, /* a define: checked where it is used */
 };
 
 /* The parser's scope over L's names (L->sc; its Diff is the caller's to free). */

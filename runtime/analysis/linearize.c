@@ -1139,9 +1139,23 @@ done:
  * q''(x) to the rounding of its terms, which is all a zero there would
  * read as (a_f - Y lambda: 1.7e-15 where the bicycle's x'' is 0). */
 
+/* A model with switched expressions: its modes are a run's (eomc_model.h),
+ * not yet chosen at a state given alone. */
+static int
+refuse_modes(eomc_sim *s, const char *what)
+{
+    const eomc_model *m = eomc_sim_model(s);
+    return m->nmode > 0 ? sim_usage_error(s, "%s: %s has switched expressions (max, min, "
+                                          "clamp), whose modes are set only by a run yet",
+                                          what, m->name)
+                        : EOMC_OK;
+}
+
 int
 eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
+    if (refuse_modes(s, "linearize") != EOMC_OK)
+        return EOMC_EUSAGE;
     sim_set_dense(s, 1);
     int rc = linearize(s, t, x, A, B);
     sim_set_dense(s, 0);
@@ -1160,6 +1174,8 @@ eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int
 int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
+    if (refuse_modes(s, "equilibrium") != EOMC_OK)
+        return EOMC_EUSAGE;
     sim_set_dense(s, 1);
     int rc = equilibrium(s, t, x, iterations);
     sim_set_dense(s, 0);

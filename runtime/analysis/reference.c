@@ -675,6 +675,11 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
         return sim_usage_error(s, "no extended-precision functions of %s to compute %s "
                                "with (the model's C compiled again with -DEOMC_EXTENDED, "
                                "as eomc build does)", m->name, what);
+    if (m->nmode > 0) /* (its u would need room for the modes, and the steps to end at
+                       * each switch) */
+        return sim_usage_error(s, "%s: %s has switched expressions (max, min, clamp), whose "
+                               "switches the reference solution does not locate yet", what,
+                               m->name);
     if (m->nc && !m->c_affine && !ext->c_jacobian)
         return sim_usage_error(s, "the extended-precision functions of %s lack "
                                "c_jacobian", m->name);

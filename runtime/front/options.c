@@ -523,11 +523,19 @@ check_event_options(const Options *c, const eomc_model *m)
                       : c->reference    ? "--reference"
                       : c->error        ? "--error"
                       : c->reference_out ? "--reference-out" : NULL;
+    if (m->nmode > 0 && opt)
+        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp), whose "
+                         "switches the reference solution does not locate yet", opt, m->name);
+    const char *fixed = c->accel ? "--accel" : c->linearize ? "--linearize"
+                        : c->equilibrium ? "--equilibrium" : NULL;
+    if (m->nmode > 0 && fixed)
+        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp), whose modes "
+                         "are set only by a run yet", fixed, m->name);
     if (moving && opt)
         return opt_usage(c, "%s: scene %s has events that stop or reset the motion, which the "
                      "reference solution does not follow (measure the errors on a scene "
                      "without them)", opt, *m->scene ? m->scene : "(the spec's)");
-    if (c->events && m->nevent == 0)
+    if (c->events && m->nevent == 0 && m->nmode == 0)
         return opt_usage(c, "--events: scene %s has no events", *m->scene ? m->scene
                                                                      : "(the spec's)");
     if (c->events && (c->work_precision || c->accel))

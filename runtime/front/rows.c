@@ -26,12 +26,15 @@ rows_event(void *ctx, int k, double t, const double *x)
 {
     Rows *w = ctx;
     const eomc_model *m = eomc_sim_model(w->sim);
-    if (m->ev_action[k] == EOMC_EVENT_SET)
+    if (k < m->nevent && m->ev_action[k] == EOMC_EVENT_SET)
         w->rebase = 1, w->t_reset = t;
     if (!w->events)
         return EOMC_OK;
     num_put(w->events, t);
-    fprintf(w->events, ",%s", m->ev_names[k]);
+    if (k < m->nevent)
+        fprintf(w->events, ",%s", m->ev_names[k]);
+    else /* a switch of max, min or clamp (eomc.h's on_event) */
+        fprintf(w->events, ",switch %d", k - m->nevent);
     for (int i = 0; i < eomc_nx(m); i++) {
         fputc(',', w->events);
         num_put(w->events, x[i]);

@@ -309,7 +309,8 @@ typedef struct eomc_run_opts {
     void *progress_ctx;
     /* The scene's events (model->nevent > 0): called as each fires, with
      * its index k, its time and the state x [nx] there, before its action
-     * (NULL: not told).  A nonzero return stops the integration with that
+     * (NULL: not told).  k = nevent + j: switch j of the model's max, min
+     * or clamp (eomc_model.h), flipping its mode there.  A nonzero return stops the integration with that
      * status. */
     int (*on_event)(void *ctx, int k, double t, const double *x);
     void *event_ctx;

@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 24
+#define EOMC_ABI_VERSION 25
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -386,6 +386,20 @@ typedef struct eomc_model {
      * taylor_a and taylor_B are then in the speeds (nv x nv, nv, nv,
      * nc x nv).  NULL when nv = 0 (q' = v) or taylor is NULL. */
     const int *taylor_qd;
+
+    /* ---- switched expressions ----
+     * nmode kinks of the spec's max, min and clamp.  Mode k is the value
+     * u[nu + k] every function that takes u reads (u has nu + nmode
+     * values; the inputs function writes the first nu): 1.0 where the
+     * switch function s[k] > 0, 0.0 where s[k] < 0; switches(t, q, v, p,
+     * u, s) gives s [nmode].  Within a mode every function is smooth;
+     * the runtime ends a step where an s[k] crosses 0 and flips mode k
+     * there (the state goes on unchanged).  The modes are not inputs: no
+     * name, no derivative, not set by a caller.  nmode = 0: none,
+     * switches NULL. */
+    int nmode;
+    void (*switches)(double t, const double *q, const double *v, const double *p,
+                     const double *u, double *s);
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */
@@ -457,6 +471,8 @@ typedef struct eomc_model_ext {
     const int *taylor_a, *taylor_B, *taylor_f, *taylor_pos, *taylor_vel;
     void (*taylor)(int k, int K, eomc_ext t0, const eomc_ext *p, const eomc_ext *u,
                    eomc_ext *T);
+    void (*switches)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
+                     const eomc_ext *u, eomc_ext *s); /* as in eomc_model */
 } eomc_model_ext;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

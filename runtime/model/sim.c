@@ -36,8 +36,10 @@ struct eomc_sim {
     const eomc_model *m;
     int n, nv, nu;           /* coordinates nq, speeds (eomc_nv), inputs */
     double *p;               /* [np + nd] parameter values, then derive's */
-    double *u, *dudt;        /* [nu] inputs at the last time asked */
+    double *u, *dudt;        /* [nu] inputs at the last time asked (u: then the
+                                [nmode] modes, eomc_model.h) */
     double *u_const;         /* [nu] held values, where u_held */
+    double *sw;              /* [nmode] the switch functions (sim_set_modes) */
     unsigned char *u_held;   /* [nu] */
     /* below, n is nq and the speeds' arrays have nv entries */
     double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
@@ -99,7 +101,8 @@ eomc_sim_alloc(const eomc_model *m)
     s->nv = (int)nv;
     s->nu = m->nu;
     s->p = sim_zeros(np + (size_t)m->nd); /* the parameters, then derive's values */
-    s->u = sim_zeros(nu);
+    s->u = sim_zeros(nu + (size_t)m->nmode); /* the modes after the inputs */
+    s->sw = sim_zeros((size_t)m->nmode);
     s->dudt = sim_zeros(nu);
     s->u_const = sim_zeros(nu);
     s->u_held = calloc(nu ? nu : 1, 1);
@@ -141,7 +144,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->ce = sim_zeros((size_t)m->nc);
     s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
     s->crow = calloc((size_t)m->nc + 1, sizeof *s->crow);
-    if (!s->p || !s->u || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
+    if (!s->p || !s->u || !s->sw || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
@@ -161,7 +164,7 @@ eomc_sim_free(eomc_sim *s)
 {
     if (!s)
         return;
-    void *arrays[] = {s->p, s->u, s->dudt, s->u_const, s->u_held, s->M, s->h,
+    void *arrays[] = {s->p, s->u, s->sw, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow,
                       s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm};
@@ -1046,6 +1049,43 @@ eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double
     sim_inputs_at(s, t);
     m->outputs(t, q, v, s->arow, s->p, s->u, eomc_sim_multipliers(s), out);
     return EOMC_OK;
+}
+
+void
+sim_switches(eomc_sim *s, double t, const double *q, const double *v, double *sw)
+{
+    sim_inputs_at(s, t);
+    s->m->switches(t, q, v, s->p, s->u, sw);
+}
+
+void
+sim_set_mode(eomc_sim *s, int k, int on)
+{
+    s->u[s->nu + k] = on ? 1.0 : 0.0;
+}
+
+int
+sim_mode(const eomc_sim *s, int k)
+{
+    return s->u[s->nu + k] != 0.0;
+}
+
+void
+sim_set_modes(eomc_sim *s, double t, const double *q, const double *v)
+{
+    /* a switch function may read other modes (max of a max): each pass
+     * settles at least the modes the ones before decided */
+    for (int pass = 0; pass <= s->m->nmode; pass++) {
+        int changed = 0;
+        sim_switches(s, t, q, v, s->sw);
+        for (int k = 0; k < s->m->nmode; k++) {
+            int on = s->sw[k] > 0;
+            changed |= on != sim_mode(s, k);
+            sim_set_mode(s, k, on);
+        }
+        if (!changed)
+            return;
+    }
 }
 
 void

@@ -47,6 +47,16 @@ int sim_no_jacobian(eomc_sim *s, const char *what);
 /* The inputs u at t [nu] (held ones constant), valid until the next
  * call that evaluates the model. */
 const double *sim_inputs_at(eomc_sim *s, double t);
+/* The switch functions s [nmode] at (t, q, v) in the modes as they are
+ * (eomc_model.h's switches). */
+void sim_switches(eomc_sim *s, double t, const double *q, const double *v, double *sw);
+/* Mode k: 1 (its switch function > 0) or 0; set to on. */
+int sim_mode(const eomc_sim *s, int k);
+void sim_set_mode(eomc_sim *s, int k, int on);
+/* Every mode from the sign of its switch function at (t, q, v): 1 where
+ * it is > 0, else 0 (exactly 0: 0 here; a run's start then looks at the
+ * side the motion leaves to, evolve.c's start_modes). */
+void sim_set_modes(eomc_sim *s, double t, const double *q, const double *v);
 /* The parameter array the generated functions take: eomc_sim_params'
  * [np] values, then the [nd] the model derives from them. */
 const double *sim_p(const eomc_sim *s);

@@ -568,7 +568,7 @@ check_events(Run *r, double t0, int *what, int *fired)
     if (r->m->nc > 0 && sim_constraint_rows(r->s, hit.t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
     *fired = hit.k;
-    *what = r->m->ev_action[hit.k] == EOMC_EVENT_STOP ? EVOLVE_STOP : EVOLVE_SET;
+    *what = stepev_action(r->ev, hit.k) == EOMC_EVENT_STOP ? EVOLVE_STOP : EVOLVE_SET;
     return GSL_SUCCESS;
 }
 
@@ -877,7 +877,7 @@ run_alloc(Run *r, const Method *m)
     int ok = steppers_alloc(r, m) && (r->watch = stepwatch_alloc(r->o->t0)) != NULL;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
-    if (r->m->nevent > 0) {
+    if (r->m->nevent > 0 || r->m->nmode > 0) {
         StepevMotion motion = {.rate = rhs, .side = side_motion, .ctx = r,
                                .steps_split_pairs = r->taylor != NULL};
         ok &= (r->ev = stepev_alloc(r->s, r->o, r->st, motion)) != NULL;
@@ -915,6 +915,62 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
     return run_alloc(r, method);
 }
 
+/* A switch function exactly 0 at the start says nothing of the mode: the
+ * side the motion leaves to does, the sign of s's rate along it, by a
+ * central difference over START_PROBE_REL of the time span along x' (in
+ * the mode so far; the sign is all that is used).  Where the other mode
+ * sends s back, neither side is left to (a motion sliding along the
+ * kink, which no mode follows): the run stops there, naming the switch. */
+#define START_PROBE_REL 1e-7
+
+/* Switch k's rate along the motion at the start, in the modes as they
+ * are, into *rate (sw: scratch [2 nmode]). */
+static int
+start_rate(Run *r, int k, double *sw, double *rate)
+{
+    int n = r->n, N = r->N, nm = r->m->nmode;
+    double d = START_PROBE_REL * (r->o->t_end - r->o->t0);
+    int rc = rhs(r->t, r->x, r->fr, r);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    for (int i = 0; i < N; i++) {
+        r->fs[i] = r->x[i] - d * r->fr[i];
+        r->fs2[i] = r->x[i] + d * r->fr[i];
+    }
+    sim_switches(r->s, r->t - d, r->fs, r->fs + n, sw);
+    sim_switches(r->s, r->t + d, r->fs2, r->fs2 + n, sw + nm);
+    *rate = sw[nm + k] - sw[k];
+    return GSL_SUCCESS;
+}
+
+static int
+start_modes(Run *r)
+{
+    eomc_sim *s = r->s;
+    int n = r->n, nm = r->m->nmode, rc = GSL_SUCCESS;
+    sim_set_modes(s, r->t, r->x, r->x + n);
+    double *at = sim_zeros(3 * (size_t)nm), *sw = at + nm;
+    if (!at)
+        return GSL_ENOMEM;
+    sim_switches(s, r->t, r->x, r->x + n, at);
+    for (int k = 0; k < nm && rc == GSL_SUCCESS; k++) {
+        double r0, r1;
+        if (at[k] != 0 || (rc = start_rate(r, k, sw, &r0)) != GSL_SUCCESS)
+            continue;
+        if (r0 == 0 || (r0 > 0) == sim_mode(s, k)) /* (a tangency keeps mode 0) */
+            continue;
+        sim_set_mode(s, k, r0 > 0);
+        if ((rc = start_rate(r, k, sw, &r1)) == GSL_SUCCESS && r1 != 0 && (r1 > 0) != (r0 > 0)) {
+            sim_numeric_error(s, r->t, r->x, r->x + n, "switch %d starts on its kink (its "
+                              "function is 0) and neither mode leaves it: the motion would "
+                              "slide along it, which no mode follows", k);
+            rc = GSL_EBADFUNC;
+        }
+    }
+    free(at);
+    return rc;
+}
+
 /* The start of a run: the equations at t0 first (a model that cannot be
  * solved there, a singular M, a NaN of a parameter's value, writes no
  * row). */
@@ -924,6 +980,11 @@ run_start(Run *r, int derivative)
     eomc_sim *s = r->s;
     double *x = r->x;
     int n = r->n;
+    if (r->m->nmode > 0) { /* each from its switch function's sign at the start */
+        int rc = start_modes(r);
+        if (rc != GSL_SUCCESS)
+            return step_error(r, rc);
+    }
     if (sim_has_levels(s))
         r->st->max_residual = r->st->max_drift = sim_level_residual(s, r->t, x, x + n);
     int status = derivative ? rhs(r->t, x, r->f0, r) : GSL_SUCCESS;

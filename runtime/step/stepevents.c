@@ -14,6 +14,11 @@
  * knows no model): it knows the model's events, and the step only by the
  * ends it is handed, so that the stepper, the step's state and the watch
  * over the steps stay evolve.c's alone.
+ *
+ * The model's switches (eomc_model.h: the kinks of max, min, clamp) are
+ * events here too, after the scene's: index nevent + j is switch j,
+ * crossing either way, located as any event is, and its action flips
+ * mode j where it crossed, the state going on unchanged.
  */
 #include "stepevents.h"
 #include "model/simimpl.h"
@@ -39,6 +44,9 @@
  * is held at g = 0 until it leaves (stepev_check). */
 #define PASS_REL 1e-6
 
+/* "switch j", the name of index nevent + j (room for any int) */
+enum { SWITCH_NAME = 24 };
+
 struct StepEvents {
     eomc_sim *s;
     const eomc_model *m;          /* s's */
@@ -46,7 +54,11 @@ struct StepEvents {
     eomc_stats *st;
     StepevMotion mo;
     int n, N;                     /* coordinates, state size nq + nv */
-    int ne;                       /* events */
+    int ne;                       /* events: the scene's, then the switches */
+    int nev;                      /* the scene's (m->nevent) */
+    char (*swname)[SWITCH_NAME];  /* [ne - nev] the switches' names */
+    double *tsw;                  /* [ne - nev] each switch's last flip */
+    int switch_to;                /* the mode a located switch flips to */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
     double *te2;                  /* [ne] a second crossing in the step (a pair,
@@ -79,7 +91,8 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
         return NULL;
     const eomc_model *m = eomc_sim_model(s);
     *v = (StepEvents){.s = s, .m = m, .o = o, .st = st, .mo = motion, .n = m->nq,
-                      .N = eomc_nx(m), .ne = m->nevent, .last_set = -INFINITY};
+                      .N = eomc_nx(m), .ne = m->nevent + m->nmode, .nev = m->nevent,
+                      .last_set = -INFINITY};
     double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce, &v->te2, &v->gd0,
                          &v->gd1, &v->xs, &v->fs, &v->gs};
     size_t ne = (size_t)v->ne, nc = (size_t)m->nc, N = (size_t)v->N;
@@ -88,6 +101,12 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     ok &= (v->held = calloc(ne + 1, 1)) != NULL;
+    ok &= (v->swname = calloc((size_t)m->nmode + 1, sizeof *v->swname)) != NULL;
+    ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
+    for (int j = 0; ok && j < m->nmode; j++) {
+        snprintf(v->swname[j], SWITCH_NAME, "switch %d", j);
+        v->tsw[j] = -INFINITY;
+    }
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
     if (!ok) {
         stepev_free(v);
@@ -106,14 +125,44 @@ stepev_free(StepEvents *v)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(v->held);
+    free(v->swname);
+    free(v->tsw);
     free(v->cl);
     free(v);
+}
+
+/* g of the scene's events, then the switch functions, at (t, q, qv). */
+static void
+g_all(StepEvents *v, double t, const double *q, const double *qv, double *g)
+{
+    if (v->nev)
+        eomc_sim_events(v->s, t, q, qv, g);
+    if (v->ne > v->nev)
+        sim_switches(v->s, t, q, qv, g + v->nev);
+}
+
+static int
+dir_of(const StepEvents *v, int k)
+{
+    return k < v->nev ? v->m->ev_direction[k] : 0; /* a switch: either way */
+}
+
+static const char *
+name_of(const StepEvents *v, int k)
+{
+    return k < v->nev ? v->m->ev_names[k] : v->swname[k - v->nev];
+}
+
+int
+stepev_action(const StepEvents *v, int k)
+{
+    return k < v->nev ? v->m->ev_action[k] : STEPEV_SWITCH;
 }
 
 void
 stepev_start(StepEvents *v, double t, const double *x)
 {
-    eomc_sim_events(v->s, t, x, x + v->n, v->g0);
+    g_all(v, t, x, x + v->n, v->g0);
     v->have_gd0 = 0;
 }
 
@@ -131,7 +180,7 @@ g_interpolant(void *ctx, double t)
     StepEvents *v = ctx;
     const StepevSpan *sp = &v->sp;
     dense_cubic(sp->t0, sp->t1, sp->x0, sp->f0, sp->x1, sp->f1, v->N, t, v->xe);
-    eomc_sim_events(v->s, t, v->xe, v->xe + v->n, v->ge);
+    g_all(v, t, v->xe, v->xe + v->n, v->ge);
     return v->ge[v->ev_k];
 }
 
@@ -144,7 +193,7 @@ g_solution(void *ctx, double t)
     v->st->event_evals++;
     if (v->mo.side(v->mo.ctx, v->sp.t0, v->sp.x0, v->sp.f0, t, v->xe) != GSL_SUCCESS)
         return NAN;
-    eomc_sim_events(v->s, t, v->xe, v->xe + v->n, v->ge);
+    g_all(v, t, v->xe, v->xe + v->n, v->ge);
     return v->ge[v->ev_k];
 }
 
@@ -165,7 +214,7 @@ g_rates(StepEvents *v, double t, const double *x, const double *f, double *out)
         double s = side ? d : -d;
         for (int i = 0; i < v->N; i++)
             v->xe[i] = x[i] + s * f[i];
-        eomc_sim_events(v->s, t + s, v->xe, v->xe + v->n, side ? v->ge : out);
+        g_all(v, t + s, v->xe, v->xe + v->n, side ? v->ge : out);
     }
     for (int k = 0; k < v->ne; k++)
         out[k] = (v->ge[k] - out[k]) / (2 * d);
@@ -192,7 +241,7 @@ g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
         rc = v->mo.rate(t, v->xs, v->fs, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;
-    eomc_sim_events(v->s, t, v->xs, v->xs + v->n, v->gs);
+    g_all(v, t, v->xs, v->xs + v->n, v->gs);
     *g = v->gs[k];
     g_rates(v, t, v->xs, v->fs, v->gs);
     *gd = v->gs[k];
@@ -246,7 +295,7 @@ pair(StepEvents *v, int k, int *any)
     }
     if (isnan(tc)) /* it turned short of 0 */
         return GSL_SUCCESS;
-    int dir = v->m->ev_direction[k], evals, there = ev_crossed(dir, g0, gc);
+    int dir = dir_of(v, k), evals, there = ev_crossed(dir, g0, gc);
     int back = ev_crossed(dir, gc, g1);
     double first = there ? ev_root(g_solution, v, t0, g0, tc, gc, NAN, &evals) : NAN;
     double second = back ? ev_root(g_solution, v, tc, gc, t1, g1, NAN, &evals) : NAN;
@@ -268,20 +317,20 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
     int any = 0;
     *hit = (StepevHit){.k = -1, .status = EOMC_OK, .t = NAN};
     v->sp = *sp;
-    eomc_sim_events(s, t1, x1, x1 + v->n, v->g1);
+    g_all(v, t1, x1, x1 + v->n, v->g1);
     int rates = 0; /* gd0, gd1 at this step's ends */
     for (int k = 0; k < v->ne; k++) {
         v->te[k] = v->te2[k] = NAN;
         /* an event reset at g = 0 must leave it away from where it fires
          * (up for a downward event): back there already, the motion
          * returned within one step, faster than the steps can follow */
-        int dir = m->ev_direction[k];
+        int dir = dir_of(v, k);
         if (v->held[k] && dir != 0 && (v->g1[k] == 0 || (v->g1[k] < 0) == (dir < 0))) {
             v->ev_k = k;
             return STEPEV_RETURNED;
         }
         v->held[k] = 0;
-        if (!ev_crossed(m->ev_direction[k], v->g0[k], v->g1[k])) {
+        if (!ev_crossed(dir_of(v, k), v->g0[k], v->g1[k])) {
             if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
                 continue;
             if (!rates++) {
@@ -293,7 +342,7 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             if (pair(v, k, &any) != GSL_SUCCESS) { /* (a side step's failure) */
                 sim_numeric_error(s, t1, x1, x1 + v->n, "event %s may have crossed twice "
                                   "in the step from t = %.17g, but the state inside it "
-                                  "could not be computed", m->ev_names[k], t0);
+                                  "could not be computed", name_of(v, k), t0);
                 return GSL_EBADFUNC;
             }
             continue;
@@ -305,7 +354,7 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
         if (isnan(v->te[k])) {
             sim_numeric_error(s, t1, x1, x1 + v->n, "event %s fired in the step from t = "
                               "%.17g, but the state at its trial times could not be "
-                              "computed", m->ev_names[k], t0);
+                              "computed", name_of(v, k), t0);
             return GSL_EBADFUNC;
         }
         any = 1;
@@ -335,10 +384,12 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             *hit = (StepevHit){.k = -1, .status = rc, .t = t, .x = v->xe};
             return GSL_SUCCESS;
         }
-        if (m->ev_action[k] == EOMC_EVENT_RECORD) {
+        if (stepev_action(v, k) == EOMC_EVENT_RECORD) {
             v->te[k] = v->te2[k], v->te2[k] = NAN; /* the pair's second, if any */
             continue;
         }
+        /* the side the switch function went to by the step's end */
+        v->switch_to = k >= v->nev && v->g1[k] > 0;
         *hit = (StepevHit){.k = k, .status = EOMC_OK, .t = t, .x = v->xe};
         return GSL_SUCCESS;
     }
@@ -379,6 +430,32 @@ note_reset_off(StepEvents *v, int k, double t)
     }
 }
 
+/* Switch k's flip at t: its mode to where its function went, x as it
+ * is, f [nx] its rate in the new mode.  Flips of one switch within
+ * ACCUMULATE_REL of the span chatter (Zeno), as resets do. */
+static int
+flip(StepEvents *v, int k, double t, const double *x, double *f)
+{
+    int j = k - v->nev;
+    if (t - v->tsw[j] < ACCUMULATE_REL * (v->o->t_end - v->o->t0)) {
+        v->last_set = v->tsw[j];
+        return STEPEV_ACCUMULATE;
+    }
+    v->tsw[j] = t;
+    v->gap = t - v->last_set;
+    v->last_set = t;
+    v->nsets++;
+    sim_set_mode(v->s, j, v->switch_to);
+    int rc = v->mo.rate(t, x, f, v->mo.ctx);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    g_all(v, t, x, x + v->n, v->g0);
+    v->g0[k] = 0; /* on the kink: it fires again only once it has left it */
+    v->held[k] = 0;
+    v->left_rate = 0;
+    return GSL_SUCCESS;
+}
+
 int
 stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
 {
@@ -387,19 +464,21 @@ stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
     double span = v->o->t_end - v->o->t0;
     v->ev_k = k;
     v->have_gd0 = 0; /* the state the next step starts from is the reset's */
+    if (k >= v->nev)
+        return flip(v, k, t, x, f);
     if (v->nsets > 0 && t - v->last_set < ACCUMULATE_REL * span)
         return STEPEV_ACCUMULATE;
     v->gap = t - v->last_set;
     v->last_set = t;
     v->nsets++;
-    int dir = m->ev_direction[k];
+    int dir = dir_of(v, k);
     double arrived = dir ? g_rate(v, k, t, x, f) : 0;
     eomc_sim_event_set(s, k, t, x, x);
     /* a unit quaternion set is one, whatever rounding the values carry */
     state_normalize(m, x, NULL);
     if (!sim_all_finite(x, v->N)) {
         sim_numeric_error(s, t, x, x + v->n, "event %s set a value that is not finite",
-                          m->ev_names[k]);
+                          name_of(v, k));
         return GSL_EBADFUNC;
     }
     if (v->st->reset_event < 0 && m->nc > 0 &&
@@ -408,7 +487,7 @@ stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
     int rc = v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;
-    eomc_sim_events(s, t, x, x + v->n, v->g0);
+    g_all(v, t, x, x + v->n, v->g0);
     v->g0[k] = 0;
     double left = dir && dir * arrived > 0 ? g_rate(v, k, t, x, f) / arrived : 0;
     v->held[k] = !(left > PASS_REL);
@@ -420,7 +499,7 @@ int
 stepev_error(const StepEvents *v, int status, double t, const double *x)
 {
     eomc_sim *s = v->s;
-    const char *name = v->m->ev_names[v->ev_k];
+    const char *name = name_of(v, v->ev_k);
     if (status == STEPEV_ACCUMULATE)
         return sim_numeric_error(s, t, x, x + v->n, "the events accumulate: %s fired %ld "
                                  "times, the last two %.3g apart, below %g of the time "

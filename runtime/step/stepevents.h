@@ -21,6 +21,11 @@
  * says what they mean. */
 enum { STEPEV_ACCUMULATE = -1003, STEPEV_RETURNED = -1005 };
 
+/* The action of index k (stepev_action): the scene's EOMC_EVENT_... for
+ * k < nevent, else a switch of the model's (nevent + j: switch j), which
+ * ends the step as a `set` does and flips mode j (stepev_reset). */
+enum { STEPEV_SWITCH = 100 };
+
 /* The motion, from the step layer. */
 typedef struct StepevMotion {
     /* x' at (t, x) into f (gsl_odeiv2_system's function): GSL_SUCCESS or
@@ -54,6 +59,8 @@ typedef struct StepevHit {
 } StepevHit;
 
 typedef struct StepEvents StepEvents;
+
+int stepev_action(const StepEvents *v, int k);
 
 /* The events of s's model for a run of o, counted in st (o and st are
  * kept); NULL when memory runs out. */

@@ -100,9 +100,9 @@ osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
     eomc_tay_scale(T + 3 * S, T + 2 * S, T + 0 * S, k);
 }
 
-/* No speeds (v = q'), no recursion shared by unit loads, and no series of
- * q' = W(q) v (the last members). */
-#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL
+/* No speeds (v = q'), no recursion shared by unit loads, no series of
+ * q' = W(q) v, and no switches (the last members). */
+#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL, 0, NULL
 
 #define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \
     NULL, NULL, NULL, NULL, NULL, osc_taylor, NULL, NO_SPEEDS

@@ -46,7 +46,7 @@ lowered(Spec *s)
 static void
 draw(const Lowered *L, const double *q, const double *p, double *X)
 {
-    ExprEnv env = {0.25, {q, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL};
+    ExprEnv env = {0.25, {q, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL, NULL};
     lower_eval(P, L->draw, &env, (double *const[]){X});
 }
 
@@ -164,7 +164,7 @@ rolling_disk(const char *path)
               max_diff(X + 3, R, 9), orthonormal_error(X + 3));
     }
     double Dm[EOMC_DRAW_MASS];
-    ExprEnv env = {0, {NULL, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL};
+    ExprEnv env = {0, {NULL, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL, NULL};
     lower_eval(P, L->draw_mass, &env, (double *const[]){Dm});
     double m = p[0], r2 = p[1] * p[1];
     double want[13] = {m, 0, 0, 0, m * r2 / 4, 0, 0, 0, m * r2 / 4, 0, 0, 0, m * r2 / 2};
@@ -279,7 +279,7 @@ turned_bodies(void)
               "bead, origin, tip (L fixed at 0.7), frame f (at the origin, Rz(psi))");
     }
     double Dm[2 * EOMC_DRAW_MASS];
-    ExprEnv env = {0, {NULL, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL};
+    ExprEnv env = {0, {NULL, NULL, NULL, NULL}, p, NULL, {NULL, NULL}, NULL, NULL};
     lower_eval(P, L->draw_mass, &env, (double *const[]){Dm});
     double want[26] = {2, 0, 0, 0, 0.3, 0, 0, 0, 0.3, 0, 0, 0, 0.2,
                        2, 0, 0, 0, 0.1, 0.01, 0, 0.01, 0.1, 0, 0, 0, 0.1};

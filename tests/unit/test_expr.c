@@ -7,6 +7,7 @@
 #include "expr/diff.h"
 #include "expr/expr.h"
 
+#include <math.h>
 #include <string.h>
 
 static ExprPool *P;
@@ -456,6 +457,71 @@ test_parameter_folding(void)
           expr_node(P, nd->a)->value == 6.0, "the number stays in front: 6*(m*l)");
 }
 
+/* max, min and clamp: one switch per kink, shared where the switch
+ * function is; each mode's branch exact, its derivatives the branch's
+ * (against central differences away from the kink), and no value
+ * without a mode. */
+static void
+test_switched(void)
+{
+    ExprPool *Q = expr_pool_new();
+    Diff *E = diff_new(Q);
+    ExprId x = expr_var(Q, 0, 0), y = expr_var(Q, 1, 0), v = expr_var(Q, 0, 1);
+    ExprId sx = expr_unary(Q, EXPR_SIN, x), y2 = expr_powi(Q, y, 2);
+    ExprId mx = expr_max(Q, sx, y2), mn = expr_min(Q, sx, y2);
+    CHECK(expr_nswitch(Q) == 1 && expr_switch(Q, 0) == expr_sub(Q, sx, y2),
+          "max(a, b) and min(a, b) share one switch, s = a - b");
+    CHECK(expr_max(Q, sx, y2) == mx, "max(a, b) built again is the same node");
+    CHECK(expr_max(Q, sx, sx) == sx, "max(a, a) = a, no switch");
+    double c;
+    CHECK(expr_is_const(Q, expr_max(Q, expr_const(Q, 2), expr_const(Q, 3)), &c) && c == 3 &&
+          expr_nswitch(Q) == 1, "max of constants is folded, no switch");
+    CHECK(!(expr_deps(Q, mx) & DEP_P) && (expr_deps(Q, mx) & DEP_M) && !expr_is_coeff(Q, mx),
+          "a switched expression reads a mode (DEP_M), is never a coefficient");
+    ExprId cl = expr_clamp(Q, x, expr_const(Q, -1), expr_const(Q, 2));
+    CHECK(expr_nswitch(Q) == 3, "clamp makes two switches (got %d)", expr_nswitch(Q));
+    double q0[2] = {0.3, 0.7}, q1[2] = {0.5, 0}, z[2] = {0, 0};
+    ExprEnv env = {.q = {q0, q1, z, z}};
+    CHECK(isnan(expr_eval(Q, mx, &env)), "no mode: NaN, not a guessed branch");
+    /* the modes each side takes, from its switch functions' signs */
+    int ok = 1;
+    for (int trial = 0; trial < 40; trial++) {
+        q0[0] = check_rand(-3, 3);
+        q0[1] = check_rand(-1.5, 1.5);
+        double mode[3];
+        for (int k = 0; k < 3; k++)
+            mode[k] = expr_eval(Q, expr_switch(Q, k), &env) > 0;
+        env.mode = mode;
+        double a = sin(q0[0]), b = q0[1] * q0[1];
+        ok &= expr_eval(Q, mx, &env) == fmax(a, b) && expr_eval(Q, mn, &env) == fmin(a, b);
+        ok &= expr_eval(Q, cl, &env) == fmin(fmax(q0[0], -1), 2);
+        /* d max / dq0 and the time derivative: the branch's */
+        ok &= expr_eval(Q, diff_partial(E, mx, x), &env) == (a > b ? cos(q0[0]) : 0.0);
+        ok &= check_close(expr_eval(Q, diff_time(E, cl), &env),
+                          q0[0] > -1 && q0[0] < 2 ? q1[0] : 0.0, 1e-15);
+        ExprId g[2];
+        diff_gradient(E, mn, 2, (ExprId[]){x, y}, g);
+        ok &= expr_eval(Q, g[1], &env) == (a > b ? 2 * q0[1] : 0.0);
+        ExprId mag;
+        expr_magnitude_many(Q, 1, &mx, &mag);
+        ok &= expr_eval(Q, mag, &env) == fabs(fmax(a, b));
+        env.mode = NULL;
+    }
+    CHECK(ok, "each mode: max, min, clamp, their partials, time derivatives and magnitudes "
+              "are the branch's");
+    ExprId d = diff_partial(E, mx, x);
+    CHECK(expr_node(Q, d)->op == EXPR_SELECT && expr_select_mode(Q, d) == 0,
+          "d max(a, b) = SELECT(k, da, db)");
+    ExprId sub = expr_subst(Q, mx, 1, &y, &v), w = expr_var(Q, 1, 1);
+    CHECK(expr_node(Q, sub)->op == EXPR_SELECT && expr_select_mode(Q, sub) == 3 &&
+          expr_switch(Q, 3) == expr_sub(Q, sx, expr_powi(Q, v, 2)),
+          "a substitution in a SELECT's branches is one in its switch function too: "
+          "max(sin x, v^2) is on its own switch");
+    CHECK(expr_subst(Q, mx, 1, &w, &v) == mx, "a substitution that misses it keeps it");
+    diff_free(E);
+    expr_pool_free(Q);
+}
+
 int
 main(void)
 {
@@ -474,6 +540,7 @@ main(void)
     test_like_terms();
     test_parameter_folding();
     test_offsets_cancel();
+    test_switched();
     diff_free(D);
     expr_pool_free(P);
     return check_done();

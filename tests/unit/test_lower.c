@@ -63,7 +63,7 @@ typedef struct State {
 static ExprEnv
 env_of(const State *x)
 {
-    ExprEnv env = {x->t, {x->q, x->v, x->a, NULL}, pdef, x->u, {NULL, NULL}, NULL};
+    ExprEnv env = {x->t, {x->q, x->v, x->a, NULL}, pdef, x->u, {NULL, NULL}, NULL, NULL};
     return env;
 }
 
@@ -195,7 +195,7 @@ test_inputs(const Lowered *L)
     double t = 0.37, h = 1e-6, u[3], dudt[1];
     const LowFunc *f = lower_find(L, "inputs");
     for (int k = 0; k < 3; k++) {
-        ExprEnv env = {t + (k - 1) * h, {NULL}, pdef, NULL, {NULL, NULL}, NULL};
+        ExprEnv env = {t + (k - 1) * h, {NULL}, pdef, NULL, {NULL, NULL}, NULL, NULL};
         lower_eval(P, f, &env, (double *const[]){u + k, k == 1 ? dudt : NULL});
     }
     CHECK_NEAR(dudt[0], (u[2] - u[0]) / (2 * h), FD_TOL, "inputs: du/dt = d/dt A sin(w t)");

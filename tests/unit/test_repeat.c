@@ -90,7 +90,7 @@ test_zero_skip(void)
           "a load's function: three copies, zero_skip (y vanishes with da)");
     double q[6] = {0.3, -1.1, 2.0, 0.7, -0.4, 1.9}, da[6] = {0, 0, 1.5, -0.5, 0, 0};
     double want[6], got[6];
-    ExprEnv env = {0, {q, NULL, NULL, NULL}, NULL, NULL, {NULL, NULL, da}, NULL};
+    ExprEnv env = {0, {q, NULL, NULL, NULL}, NULL, NULL, {NULL, NULL, da}, NULL, NULL};
     lower_eval(P, &f, &env, (double *const[]){want});
     memset(got, 0xff, sizeof got);
     lower_eval(P, &g, &env, (double *const[]){got});
@@ -151,7 +151,7 @@ main(void)
             q[i] = 3 * uniform(&seed), v[i] = 2 * uniform(&seed);
         for (int i = 0; i < NU; i++)
             u[i] = uniform(&seed);
-        ExprEnv env = {0.3 * r, {q, v, NULL, NULL}, pdef, u, {NULL, NULL, NULL}, NULL};
+        ExprEnv env = {0.3 * r, {q, v, NULL, NULL}, pdef, u, {NULL, NULL, NULL}, NULL, NULL};
         lower_eval(P, f, &env, (double *const[]){want[0], want[1], want[2]});
         memset(got, 0xff, sizeof got);
         lower_eval(P, &g, &env, (double *const[]){got[0], got[1], got[2]});

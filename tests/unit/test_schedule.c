@@ -97,7 +97,7 @@ same_bits(const Lowered *L, const LowFunc *f)
         p[k] = md->param[k].value;
     fill_values(u, nu, 0.45);
     fill_values(lam, nc, -0.25);
-    ExprEnv env = {0.8, {q[0], q[1], q[2], q[3]}, p, u, {seed[0], seed[1], seed[2]}, lam};
+    ExprEnv env = {0.8, {q[0], q[1], q[2], q[3]}, p, u, {seed[0], seed[1], seed[2]}, lam, NULL};
     LowArgs a;
     lower_args(f->sig, &a);
     double *out[LOW_MAX_ARGS];

@@ -1,0 +1,72 @@
+#!/bin/sh
+# Switched expressions (max, min, clamp) against closed forms (TAP), on
+# tests/cli/spring_floor.yaml: a mass at speed v0 meets a floor whose
+# force is max(0, -k y - c y'), w = sqrt(k/m), zeta = c / (2 m w),
+# w_d = w sqrt(1 - zeta^2):
+#  - undamped (c = 0), coming from y0 = 0.1: the kinks at y = 0 are
+#    located at t = y0/v0 and y0/v0 + pi/w (the contact lasts half a
+#    period), and the mass leaves at exactly v0;
+#  - damped (zeta = 0.1), from y = 0: the force is the linear
+#    spring-damper's, y = -(v0/w_d) e^(-zeta w t) sin(w_d t), until it
+#    would pull, k y + c y' = 0, at w_d t1 = pi - atan2(2 zeta
+#    sqrt(1 - zeta^2), 1 - 2 zeta^2); the mass then coasts at y'(t1);
+#  - starting on a kink (tests/cli/switch_start.yaml: y = 0 where
+#    min(y, 2 y) switches), the mode is the side the motion leaves to:
+#    y'' = -(k - 2) y / m, so -k y reaches c at
+#    t = asin(c w / (k v0)) / w, w = sqrt((k - 2)/m) (with min's other
+#    branch, y, it would be sqrt(k - 1): 6e-7 later);
+#  - the modes are no inputs: not in the CSV, not settable; what cannot
+#    follow a switch yet (Taylor's series, the reference) says so.
+# usage: test_switch.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+spec="$src/tests/cli/spring_floor.yaml"
+
+"$eomc" run "$spec" --set c=0 --set y0=0.1 --events "$tmp/ev0.csv" > "$tmp/rows0.csv"; st=$?
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev0.csv")" -eq 3 ] &&
+  within "$(sed -n 2p "$tmp/ev0.csv" | cut -d, -f1)" 0.1 1e-13 &&
+  within "$(sed -n 3p "$tmp/ev0.csv" | cut -d, -f1)" 0.41415926535897932 1e-13
+ok $? "undamped: the two kinks located, at y0/v0 = 0.1 and 0.1 + pi/w ($(tail -1 "$tmp/ev0.csv" | cut -d, -f1))"
+sed -n 2,3p "$tmp/ev0.csv" | cut -d, -f2 | grep -qx "switch 0"
+ok $? "--events names them: switch 0"
+within "$(tail -1 "$tmp/rows0.csv" | cut -d, -f3)" 1 1e-12
+ok $? "undamped: it leaves at v0 ($(tail -1 "$tmp/rows0.csv" | cut -d, -f3))"
+
+"$eomc" run "$spec" --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
+want=$(awk 'BEGIN { m = 1; k = 100; c = 2; v0 = 1; w = sqrt(k / m); z = c / (2 * m * w)
+    wd = w * sqrt(1 - z * z); a = z * w; s = sqrt(1 - z * z)
+    t1 = (3.14159265358979323846 - atan2(2 * z * s, 1 - 2 * z * z)) / wd
+    e = exp(-a * t1); v1 = -(v0 / wd) * e * (-a * sin(wd * t1) + wd * cos(wd * t1))
+    y1 = -(v0 / wd) * e * sin(wd * t1)
+    printf "%.17g %.17g %.17g", t1, v1, y1 + v1 * (1 - t1) }')
+t1=${want%% *} rest=${want#* } v1=${want#* }; v1=${v1%% *}; y_end=${rest#* }
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev.csv")" -eq 2 ] &&
+  within "$(sed -n 2p "$tmp/ev.csv" | cut -d, -f1)" "$t1" 1e-12
+ok $? "damped: the push ends at t1 = $t1 ($(sed -n 2p "$tmp/ev.csv" | cut -d, -f1))"
+last=$(tail -1 "$tmp/rows.csv")
+within "$(echo "$last" | cut -d, -f3)" "$v1" 1e-11 && within "$(echo "$last" | cut -d, -f2)" "$y_end" 1e-11
+ok $? "damped: it leaves at y'(t1) = $v1 and coasts to y(1) = $y_end ($(echo "$last" | cut -d, -f2,3))"
+
+"$eomc" run "$src/tests/cli/switch_start.yaml" --events "$tmp/ev2.csv" > /dev/null; st=$?
+want=$(awk 'BEGIN { w = sqrt(98); printf "%.17g", atan2(2 * w / 100, sqrt(1 - (2 * w / 100)^2)) / w }')
+got=$(sed -n 2p "$tmp/ev2.csv" | cut -d, -f1)
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev2.csv")" -eq 2 ] && within "$got" "$want" 1e-12
+ok $? "a start on a kink takes the side the motion leaves to: the clamp saturates at $want ($got)"
+
+head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
+ok $? "the modes are not columns of the CSV"
+"$eomc" run "$spec" --set "switch 0=1" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "'switch 0' is not a parameter or input" "$tmp/err"
+ok $? "the modes are not inputs: --set refuses them"
+"$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp)" "$tmp/err"
+ok $? "--method taylor is refused, naming the switched expressions"
+for opt in --error --linearize --accel; do
+  "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?
+  [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "^spring_floor: $opt: .*switched expressions" "$tmp/err"
+  ok $? "$opt is refused, naming the switched expressions"
+done
+tap_end

@@ -131,10 +131,13 @@ print_node(Printer *pr, ExprId id)
         y = operand(pr, nd->b, bb, sizeof bb);
     const char *sp = expr_op_spelling[nd->op];
     switch (expr_op_kind[nd->op]) {
-    case OPK_SELECT: /* mode k, after the nu inputs (eomc_model.h) */
-        snprintf(rhs, sizeof rhs, "(u[%d] != 0.0 ? %s : %s)", pr->md->nu + (int)nd->value, x,
-                 y);
+    case OPK_SELECT: { /* mode k, after the nu inputs (eomc_model.h) */
+        int slot = pr->md->mode_slot[expr_select_mode(pr->P, id)];
+        if (slot < 0) /* (lower_switches marked every SELECT of every function) */
+            diag_unreachable();
+        snprintf(rhs, sizeof rhs, "(u[%d] != 0.0 ? %s : %s)", pr->md->nu + slot, x, y);
         break;
+    }
     case OPK_INFIX:
         snprintf(rhs, sizeof rhs, "%s %s %s", x, sp, y);
         break;

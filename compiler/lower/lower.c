@@ -636,6 +636,55 @@ lower_events(Lowering *lw)
     }
 }
 
+/* The switches the model's functions read, numbered in the pool's order
+ * (mode_slot): a kink of an effect that is off, or one a substitution
+ * replaced, is none of the model's.  A switch function may read other
+ * modes (max of a max): theirs are the model's too.  Then the function
+ * switches, s [nmode], in the twin too (the reference will locate them). */
+static void
+lower_switches(Lowering *lw)
+{
+    ExprPool *P = lw->P;
+    Lowered *L = lw->L;
+    int ns = expr_nswitch(P), nroots = 0, *slot = arena_new_array(lw->A, int, ns + 1);
+    for (int k = 0; k < L->nfunc; k++)
+        nroots += L->func[k]->nout;
+    ExprId *roots = xmalloc(((size_t)nroots + (size_t)ns + 1) * sizeof *roots);
+    nroots = 0;
+    for (int k = 0; k < L->nfunc; k++)
+        for (int i = 0; i < L->func[k]->nout; i++)
+            roots[nroots++] = L->func[k]->out[i].e;
+    size_t size = expr_pool_size(P);
+    unsigned char *mark = xmalloc(size), *used = xmalloc((size_t)ns + 1);
+    memset(used, 0, (size_t)ns + 1);
+    for (int grew = 1; grew;) {
+        memset(mark, 0, size);
+        expr_mark(P, nroots, roots, mark);
+        grew = 0;
+        for (size_t id = 0; id < size; id++)
+            if (mark[id] && expr_node(P, (ExprId)id)->op == EXPR_SELECT) {
+                int k = expr_select_mode(P, (ExprId)id);
+                if (!used[k]) /* its switch function's modes next */
+                    used[k] = 1, roots[nroots++] = expr_switch(P, k), grew = 1;
+            }
+    }
+    int nmode = 0;
+    for (int k = 0; k < ns; k++)
+        slot[k] = used[k] ? nmode++ : -1;
+    L->model.nmode = nmode;
+    L->model.mode_slot = slot;
+    if (nmode) {
+        LowFunc *f = func(lw, &s_switches, "events", 0);
+        for (int k = 0; k < ns; k++)
+            if (used[k])
+                out(lw, f, 0, slot[k], expr_switch(P, k));
+        L->switches = f;
+    }
+    free(mark);
+    free(used);
+    free(roots);
+}
+
 /* Whether the model's accel and mass_bias are loops over its tables; *why
  * when they are asked for and cannot be. */
 static const FormTables *
@@ -930,13 +979,6 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->scene.nevent)
         lower_events(&lw);
-    lw.L->model.nmode = expr_nswitch(P);
-    if (expr_nswitch(P)) { /* in the twin too: the reference will locate them */
-        f = func(&lw, &s_switches, "events", 0);
-        for (int k = 0; k < expr_nswitch(P); k++)
-            out(&lw, f, 0, k, expr_switch(P, k));
-        lw.L->switches = f;
-    }
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
         lw.L->check_values = f; /* before its outputs: fillable() */
@@ -951,6 +993,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
         eom_derive_jacobian(e, m, A, P, D);
     lower_jacobian(&lw, e, jacobian);
     lower_derive(&lw);
+    lower_switches(&lw);
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++) {
         LowFunc *fk = lw.L->func[k];

@@ -147,7 +147,9 @@ typedef struct LowModel {
     double t_end, dt, rtol, atol, h_fixed;
     const char *method;
     int noutput, nevent, ncheck;
-    int nmode;           /* switches of max, min, clamp: mode k at u[nu + k] */
+    int nmode;           /* switches of max, min, clamp the functions read */
+    int *mode_slot;      /* per switch of the pool: its mode's index, at
+                          * u[nu + mode_slot[k]], or -1: not the model's */
     const char **output; /* [noutput] names */
     LowEvent *event;     /* [nevent] */
     int assemble;

@@ -526,8 +526,7 @@ check_event_options(const Options *c, const eomc_model *m)
     if (m->nmode > 0 && opt)
         return opt_usage(c, "%s: %s has switched expressions (max, min, clamp), whose "
                          "switches the reference solution does not locate yet", opt, m->name);
-    const char *fixed = c->accel ? "--accel" : c->linearize ? "--linearize"
-                        : c->equilibrium ? "--equilibrium" : NULL;
+    const char *fixed = c->linearize ? "--linearize" : c->equilibrium ? "--equilibrium" : NULL;
     if (m->nmode > 0 && fixed)
         return opt_usage(c, "%s: %s has switched expressions (max, min, clamp), whose modes "
                          "are set only by a run yet", fixed, m->name);

@@ -40,6 +40,8 @@ struct eomc_sim {
                                 [nmode] modes, eomc_model.h) */
     double *u_const;         /* [nu] held values, where u_held */
     double *sw;              /* [nmode] the switch functions (sim_set_modes) */
+    int modes_run;           /* a run sets the modes (sim_modes_run); else each
+                                evaluation at a state takes its own (at_state) */
     unsigned char *u_held;   /* [nu] */
     /* below, n is nq and the speeds' arrays have nv entries */
     double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
@@ -684,11 +686,28 @@ accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
     return EOMC_OK;
 }
 
+/* Outside a run, the modes of the state itself, from the signs of its
+ * switch functions: a value (q'', T and V, an output) is the same in
+ * either mode on a kink, where the two branches meet. */
+static void
+at_state(eomc_sim *s, double t, const double *q, const double *v)
+{
+    if (s->m->nmode > 0 && !s->modes_run)
+        sim_set_modes(s, t, q, v);
+}
+
+void
+sim_modes_run(eomc_sim *s, int on)
+{
+    s->modes_run = on;
+}
+
 int
 eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *a)
 {
     const eomc_model *m = s->m;
     int n = s->nv, k;
+    at_state(s, t, q, v);
     sim_inputs_at(s, t);
     if (!s->kkt && m->accel)
         return accel_own(s, t, q, v, a);
@@ -1031,6 +1050,7 @@ eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double 
                 double *V)
 {
     double TV[2];
+    at_state(s, t, q, v);
     sim_inputs_at(s, t);
     s->m->energy(t, q, v, s->p, s->u, TV);
     *T = TV[0];
@@ -1116,6 +1136,7 @@ eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, doub
     if (!s->m->invariant)
         return sim_usage_error(s, "%s conserves no quantity that eomc knows of: %s",
                                s->m->name, s->m->invariant_note);
+    at_state(s, t, q, v);
     sim_inputs_at(s, t);
     s->m->invariant(t, q, v, s->p, s->u, h);
     return EOMC_OK;

@@ -57,6 +57,10 @@ void sim_set_mode(eomc_sim *s, int k, int on);
  * it is > 0, else 0 (exactly 0: 0 here; a run's start then looks at the
  * side the motion leaves to, evolve.c's start_modes). */
 void sim_set_modes(eomc_sim *s, double t, const double *q, const double *v);
+/* on = 1: a run keeps the modes (set at its start, flipped at its
+ * switches) until on = 0; otherwise eomc_sim_accel, _energy, _outputs and
+ * _invariant take the modes of the state they are given. */
+void sim_modes_run(eomc_sim *s, int on);
 /* The parameter array the generated functions take: eomc_sim_params'
  * [np] values, then the [nd] the model derives from them. */
 const double *sim_p(const eomc_sim *s);

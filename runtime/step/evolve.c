@@ -823,6 +823,8 @@ run_free(Run *r)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     stepev_free(r->ev);
+    if (r->s) /* the modes of a state given alone again */
+        sim_modes_run(r->s, 0);
     stepwatch_free(r->watch);
     taylor_free(r->taylor);
     taylor_free(r->taylor_side);
@@ -981,6 +983,7 @@ run_start(Run *r, int derivative)
     double *x = r->x;
     int n = r->n;
     if (r->m->nmode > 0) { /* each from its switch function's sign at the start */
+        sim_modes_run(s, 1);
         int rc = start_modes(r);
         if (rc != GSL_SUCCESS)
             return step_error(r, rc);

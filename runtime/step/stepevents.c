@@ -446,6 +446,29 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     v->last_set = t;
     v->nsets++;
     sim_set_mode(v->s, j, v->switch_to);
+    /* Switches that crossed at this very instant (two kinks at once: a
+     * clamp with lo = hi, two contacts touching together) are past 0 here
+     * already, to rounding, and would never be seen crossing: each flips
+     * now too, told as the first was (a nonzero return of on_event cannot
+     * undo what that one started).  A flip may move another's function
+     * (a max of a max): again until none disagrees. */
+    for (int pass = 0; pass < v->ne - v->nev; pass++) {
+        int changed = 0;
+        g_all(v, t, x, x + v->n, v->g0);
+        for (int i = v->nev; i < v->ne; i++) {
+            int on = v->g0[i] > 0;
+            if (i == k || v->g0[i] == 0 || on == sim_mode(v->s, i - v->nev))
+                continue;
+            sim_set_mode(v->s, i - v->nev, on);
+            v->tsw[i - v->nev] = t;
+            v->st->events++;
+            if (v->o->on_event)
+                (void)v->o->on_event(v->o->event_ctx, i, t, x);
+            changed = 1;
+        }
+        if (!changed)
+            break;
+    }
     int rc = v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;

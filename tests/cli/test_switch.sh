@@ -15,8 +15,13 @@
 #    y'' = -(k - 2) y / m, so -k y reaches c at
 #    t = asin(c w / (k v0)) / w, w = sqrt((k - 2)/m) (with min's other
 #    branch, y, it would be sqrt(k - 1): 6e-7 later);
+#  - two kinks at the same instant (--effects pair: max(0, -k y) +
+#    max(0, -2 k y)) both flip there: the contact lasts pi/sqrt(3k/m)
+#    and the mass leaves at v0;
+#  - an effect that is off (spring_floor.yaml's edge) brings no switch;
 #  - the modes are no inputs: not in the CSV, not settable; what cannot
-#    follow a switch yet (Taylor's series, the reference) says so.
+#    follow a switch yet (Taylor's series, the reference, a linearization)
+#    says so; --accel at a state takes that state's modes.
 # usage: test_switch.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -34,6 +39,16 @@ sed -n 2,3p "$tmp/ev0.csv" | cut -d, -f2 | grep -qx "switch 0"
 ok $? "--events names them: switch 0"
 within "$(tail -1 "$tmp/rows0.csv" | cut -d, -f3)" 1 1e-12
 ok $? "undamped: it leaves at v0 ($(tail -1 "$tmp/rows0.csv" | cut -d, -f3))"
+
+"$eomc" run "$spec" --effects pair --set y0=0.1 --events "$tmp/evp.csv" > "$tmp/rowsp.csv"; st=$?
+want=$(awk 'BEGIN { printf "%.17g", 0.1 + 3.14159265358979323846 / sqrt(300) }')
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/evp.csv")" -eq 5 ] &&
+  [ "$(cut -d, -f2 "$tmp/evp.csv" | sort | uniq -c | awk '{ print $1 }' | tr '\n' ' ')" = "1 2 2 " ] &&
+  within "$(sed -n 2p "$tmp/evp.csv" | cut -d, -f1)" 0.1 1e-13 &&
+  within "$(sed -n 3p "$tmp/evp.csv" | cut -d, -f1)" 0.1 1e-13 &&
+  within "$(sed -n 4p "$tmp/evp.csv" | cut -d, -f1)" "$want" 1e-13 &&
+  within "$(tail -1 "$tmp/rowsp.csv" | cut -d, -f3)" 1 1e-12
+ok $? "two kinks at once both flip: contact to $want, leaving at v0 ($(tail -1 "$tmp/rowsp.csv" | cut -d, -f3))"
 
 "$eomc" run "$spec" --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
 want=$(awk 'BEGIN { m = 1; k = 100; c = 2; v0 = 1; w = sqrt(k / m); z = c / (2 * m * w)
@@ -64,9 +79,16 @@ ok $? "the modes are not inputs: --set refuses them"
 "$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp)" "$tmp/err"
 ok $? "--method taylor is refused, naming the switched expressions"
-for opt in --error --linearize --accel; do
+for opt in --error --linearize; do
   "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?
   [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "^spring_floor: $opt: .*switched expressions" "$tmp/err"
   ok $? "$opt is refused, naming the switched expressions"
 done
+# outside a run, each mode is its state's: y = -0.01 at rest, the floor
+# pushes k 0.01 = 1; y = 0.01, nothing
+"$eomc" run "$spec" --accel --init y=-0.01 --init "y'=0" > "$tmp/a1" 2>&1 &&
+  "$eomc" run "$spec" --accel --init y=0.01 --init "y'=0" > "$tmp/a2" 2>&1 &&
+  within "$(awk '$1 == "y'"''"'" { print $2 }' "$tmp/a1")" 1 1e-15 &&
+  within "$(awk '$1 == "y'"''"'" { print $2 }' "$tmp/a2")" 0 0
+ok $? "--accel takes the modes of its state: y'' = $(cat "$tmp/a1" | tr '\n' ' ')and $(cat "$tmp/a2" | tr '\n' ' ')"
 tap_end

@@ -56,8 +56,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define appell_derive appell_derive_ext
@@ -75,6 +73,8 @@
 #define appell_check appell_check_ext
 #define appell_draw appell_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -459,23 +459,6 @@ appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define appell_derive appell_derive_ext
-#define appell_initial appell_initial_ext
-#define appell_inputs appell_inputs_ext
-#define appell_mass_bias appell_mass_bias_ext
-#define appell_energy appell_energy_ext
-#define appell_invariant appell_invariant_ext
-#define appell_constraint appell_constraint_ext
-#define appell_c_levels appell_c_levels_ext
-#define appell_c_jacobian appell_c_jacobian_ext
-#define appell_c_levels_jacobian appell_c_levels_jacobian_ext
-#define appell_accel appell_accel_ext
-#define appell_minv appell_minv_ext
-#define appell_check appell_check_ext
-#define appell_draw appell_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

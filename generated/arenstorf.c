@@ -50,8 +50,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define arenstorf_derive arenstorf_derive_ext
@@ -62,6 +60,8 @@
 #define arenstorf_invariant arenstorf_invariant_ext
 #define arenstorf_accel arenstorf_accel_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -300,16 +300,6 @@ arenstorf_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define arenstorf_derive arenstorf_derive_ext
-#define arenstorf_initial arenstorf_initial_ext
-#define arenstorf_inputs arenstorf_inputs_ext
-#define arenstorf_mass_bias arenstorf_mass_bias_ext
-#define arenstorf_energy arenstorf_energy_ext
-#define arenstorf_invariant arenstorf_invariant_ext
-#define arenstorf_accel arenstorf_accel_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

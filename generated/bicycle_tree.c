@@ -58,8 +58,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define bicycle_tree_derive bicycle_tree_derive_ext
@@ -80,6 +78,8 @@
 #define bicycle_tree_draw bicycle_tree_draw_ext
 #define bicycle_tree_draw_mass bicycle_tree_draw_mass_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -3819,26 +3819,6 @@ bicycle_tree_draw_mass(const eomc_real *p, eomc_real *D)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define bicycle_tree_derive bicycle_tree_derive_ext
-#define bicycle_tree_initial bicycle_tree_initial_ext
-#define bicycle_tree_inputs bicycle_tree_inputs_ext
-#define bicycle_tree_mass_bias bicycle_tree_mass_bias_ext
-#define bicycle_tree_energy bicycle_tree_energy_ext
-#define bicycle_tree_invariant bicycle_tree_invariant_ext
-#define bicycle_tree_constraint bicycle_tree_constraint_ext
-#define bicycle_tree_c_levels bicycle_tree_c_levels_ext
-#define bicycle_tree_c_jacobian bicycle_tree_c_jacobian_ext
-#define bicycle_tree_c_levels_jacobian bicycle_tree_c_levels_jacobian_ext
-#define bicycle_tree_accel_shared bicycle_tree_accel_shared_ext
-#define bicycle_tree_accel bicycle_tree_accel_ext
-#define bicycle_tree_minv_shared bicycle_tree_minv_shared_ext
-#define bicycle_tree_minv bicycle_tree_minv_ext
-#define bicycle_tree_check bicycle_tree_check_ext
-#define bicycle_tree_draw bicycle_tree_draw_ext
-#define bicycle_tree_draw_mass bicycle_tree_draw_mass_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define bouncing_ball_derive bouncing_ball_derive_ext
@@ -65,6 +63,8 @@
 #define bouncing_ball_check bouncing_ball_check_ext
 #define bouncing_ball_draw bouncing_ball_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -274,20 +274,6 @@ bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define bouncing_ball_derive bouncing_ball_derive_ext
-#define bouncing_ball_initial bouncing_ball_initial_ext
-#define bouncing_ball_inputs bouncing_ball_inputs_ext
-#define bouncing_ball_mass_bias bouncing_ball_mass_bias_ext
-#define bouncing_ball_energy bouncing_ball_energy_ext
-#define bouncing_ball_invariant bouncing_ball_invariant_ext
-#define bouncing_ball_accel bouncing_ball_accel_ext
-#define bouncing_ball_events bouncing_ball_events_ext
-#define bouncing_ball_event_set bouncing_ball_event_set_ext
-#define bouncing_ball_check bouncing_ball_check_ext
-#define bouncing_ball_draw bouncing_ball_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

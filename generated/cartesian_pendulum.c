@@ -56,8 +56,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define cartesian_pendulum_derive cartesian_pendulum_derive_ext
@@ -76,6 +74,8 @@
 #define cartesian_pendulum_check cartesian_pendulum_check_ext
 #define cartesian_pendulum_draw cartesian_pendulum_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -439,24 +439,6 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define cartesian_pendulum_derive cartesian_pendulum_derive_ext
-#define cartesian_pendulum_initial cartesian_pendulum_initial_ext
-#define cartesian_pendulum_inputs cartesian_pendulum_inputs_ext
-#define cartesian_pendulum_mass_bias cartesian_pendulum_mass_bias_ext
-#define cartesian_pendulum_energy cartesian_pendulum_energy_ext
-#define cartesian_pendulum_invariant cartesian_pendulum_invariant_ext
-#define cartesian_pendulum_constraint cartesian_pendulum_constraint_ext
-#define cartesian_pendulum_c_levels cartesian_pendulum_c_levels_ext
-#define cartesian_pendulum_c_scale cartesian_pendulum_c_scale_ext
-#define cartesian_pendulum_c_jacobian cartesian_pendulum_c_jacobian_ext
-#define cartesian_pendulum_c_levels_jacobian cartesian_pendulum_c_levels_jacobian_ext
-#define cartesian_pendulum_accel cartesian_pendulum_accel_ext
-#define cartesian_pendulum_minv cartesian_pendulum_minv_ext
-#define cartesian_pendulum_check cartesian_pendulum_check_ext
-#define cartesian_pendulum_draw cartesian_pendulum_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -56,8 +56,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define central_constant_speed_derive central_constant_speed_derive_ext
@@ -76,6 +74,8 @@
 #define central_constant_speed_check central_constant_speed_check_ext
 #define central_constant_speed_draw central_constant_speed_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -769,24 +769,6 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define central_constant_speed_derive central_constant_speed_derive_ext
-#define central_constant_speed_initial central_constant_speed_initial_ext
-#define central_constant_speed_inputs central_constant_speed_inputs_ext
-#define central_constant_speed_mass_bias central_constant_speed_mass_bias_ext
-#define central_constant_speed_energy central_constant_speed_energy_ext
-#define central_constant_speed_constraint central_constant_speed_constraint_ext
-#define central_constant_speed_c_levels central_constant_speed_c_levels_ext
-#define central_constant_speed_c_jacobian central_constant_speed_c_jacobian_ext
-#define central_constant_speed_c_levels_jacobian central_constant_speed_c_levels_jacobian_ext
-#define central_constant_speed_accel_shared central_constant_speed_accel_shared_ext
-#define central_constant_speed_accel central_constant_speed_accel_ext
-#define central_constant_speed_minv_shared central_constant_speed_minv_shared_ext
-#define central_constant_speed_minv central_constant_speed_minv_ext
-#define central_constant_speed_check central_constant_speed_check_ext
-#define central_constant_speed_draw central_constant_speed_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define chain5_derive chain5_derive_ext
@@ -63,6 +61,8 @@
 #define chain5_check chain5_check_ext
 #define chain5_draw chain5_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -990,18 +990,6 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define chain5_derive chain5_derive_ext
-#define chain5_initial chain5_initial_ext
-#define chain5_inputs chain5_inputs_ext
-#define chain5_mass_bias chain5_mass_bias_ext
-#define chain5_energy chain5_energy_ext
-#define chain5_invariant chain5_invariant_ext
-#define chain5_accel chain5_accel_ext
-#define chain5_check chain5_check_ext
-#define chain5_draw chain5_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -56,8 +56,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define chaplygin_sleigh_derive chaplygin_sleigh_derive_ext
@@ -79,6 +77,8 @@
 #define chaplygin_sleigh_draw_mass chaplygin_sleigh_draw_mass_ext
 #define chaplygin_sleigh_draw_shapes chaplygin_sleigh_draw_shapes_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -659,27 +659,6 @@ chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define chaplygin_sleigh_derive chaplygin_sleigh_derive_ext
-#define chaplygin_sleigh_initial chaplygin_sleigh_initial_ext
-#define chaplygin_sleigh_inputs chaplygin_sleigh_inputs_ext
-#define chaplygin_sleigh_mass_bias chaplygin_sleigh_mass_bias_ext
-#define chaplygin_sleigh_energy chaplygin_sleigh_energy_ext
-#define chaplygin_sleigh_invariant chaplygin_sleigh_invariant_ext
-#define chaplygin_sleigh_constraint chaplygin_sleigh_constraint_ext
-#define chaplygin_sleigh_c_levels chaplygin_sleigh_c_levels_ext
-#define chaplygin_sleigh_c_jacobian chaplygin_sleigh_c_jacobian_ext
-#define chaplygin_sleigh_c_levels_jacobian chaplygin_sleigh_c_levels_jacobian_ext
-#define chaplygin_sleigh_accel_shared chaplygin_sleigh_accel_shared_ext
-#define chaplygin_sleigh_accel chaplygin_sleigh_accel_ext
-#define chaplygin_sleigh_minv_shared chaplygin_sleigh_minv_shared_ext
-#define chaplygin_sleigh_minv chaplygin_sleigh_minv_ext
-#define chaplygin_sleigh_check chaplygin_sleigh_check_ext
-#define chaplygin_sleigh_draw chaplygin_sleigh_draw_ext
-#define chaplygin_sleigh_draw_mass chaplygin_sleigh_draw_mass_ext
-#define chaplygin_sleigh_draw_shapes chaplygin_sleigh_draw_shapes_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

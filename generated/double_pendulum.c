@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define double_pendulum_derive double_pendulum_derive_ext
@@ -63,6 +61,8 @@
 #define double_pendulum_check double_pendulum_check_ext
 #define double_pendulum_draw double_pendulum_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -430,18 +430,6 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define double_pendulum_derive double_pendulum_derive_ext
-#define double_pendulum_initial double_pendulum_initial_ext
-#define double_pendulum_inputs double_pendulum_inputs_ext
-#define double_pendulum_mass_bias double_pendulum_mass_bias_ext
-#define double_pendulum_energy double_pendulum_energy_ext
-#define double_pendulum_invariant double_pendulum_invariant_ext
-#define double_pendulum_accel double_pendulum_accel_ext
-#define double_pendulum_check double_pendulum_check_ext
-#define double_pendulum_draw double_pendulum_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

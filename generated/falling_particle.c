@@ -48,8 +48,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define falling_particle_derive falling_particle_derive_ext
@@ -61,6 +59,8 @@
 #define falling_particle_check falling_particle_check_ext
 #define falling_particle_draw falling_particle_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -220,17 +220,6 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define falling_particle_derive falling_particle_derive_ext
-#define falling_particle_initial falling_particle_initial_ext
-#define falling_particle_inputs falling_particle_inputs_ext
-#define falling_particle_mass_bias falling_particle_mass_bias_ext
-#define falling_particle_energy falling_particle_energy_ext
-#define falling_particle_accel falling_particle_accel_ext
-#define falling_particle_check falling_particle_check_ext
-#define falling_particle_draw falling_particle_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -48,8 +48,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define gear_link_derive gear_link_derive_ext
@@ -59,6 +57,8 @@
 #define gear_link_energy gear_link_energy_ext
 #define gear_link_accel gear_link_accel_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -200,15 +200,6 @@ gear_link_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define gear_link_derive gear_link_derive_ext
-#define gear_link_initial gear_link_initial_ext
-#define gear_link_inputs gear_link_inputs_ext
-#define gear_link_mass_bias gear_link_mass_bias_ext
-#define gear_link_energy gear_link_energy_ext
-#define gear_link_accel gear_link_accel_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

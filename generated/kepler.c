@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define kepler_derive kepler_derive_ext
@@ -63,6 +61,8 @@
 #define kepler_check kepler_check_ext
 #define kepler_draw kepler_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -282,18 +282,6 @@ kepler_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define kepler_derive kepler_derive_ext
-#define kepler_initial kepler_initial_ext
-#define kepler_inputs kepler_inputs_ext
-#define kepler_mass_bias kepler_mass_bias_ext
-#define kepler_energy kepler_energy_ext
-#define kepler_invariant kepler_invariant_ext
-#define kepler_accel kepler_accel_ext
-#define kepler_check kepler_check_ext
-#define kepler_draw kepler_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define pendulum_derive pendulum_derive_ext
@@ -63,6 +61,8 @@
 #define pendulum_check pendulum_check_ext
 #define pendulum_draw pendulum_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -245,18 +245,6 @@ pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define pendulum_derive pendulum_derive_ext
-#define pendulum_initial pendulum_initial_ext
-#define pendulum_inputs pendulum_inputs_ext
-#define pendulum_mass_bias pendulum_mass_bias_ext
-#define pendulum_energy pendulum_energy_ext
-#define pendulum_invariant pendulum_invariant_ext
-#define pendulum_accel pendulum_accel_ext
-#define pendulum_check pendulum_check_ext
-#define pendulum_draw pendulum_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -56,8 +56,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define precession_derive precession_derive_ext
@@ -77,6 +75,8 @@
 #define precession_draw precession_draw_ext
 #define precession_draw_mass precession_draw_mass_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -931,25 +931,6 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define precession_derive precession_derive_ext
-#define precession_initial precession_initial_ext
-#define precession_inputs precession_inputs_ext
-#define precession_mass_bias precession_mass_bias_ext
-#define precession_energy precession_energy_ext
-#define precession_constraint precession_constraint_ext
-#define precession_c_levels precession_c_levels_ext
-#define precession_c_jacobian precession_c_jacobian_ext
-#define precession_c_levels_jacobian precession_c_levels_jacobian_ext
-#define precession_accel_shared precession_accel_shared_ext
-#define precession_accel precession_accel_ext
-#define precession_minv_shared precession_minv_shared_ext
-#define precession_minv precession_minv_ext
-#define precession_check precession_check_ext
-#define precession_draw precession_draw_ext
-#define precession_draw_mass precession_draw_mass_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -58,8 +58,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define rolling_disk_derive rolling_disk_derive_ext
@@ -80,6 +78,8 @@
 #define rolling_disk_draw rolling_disk_draw_ext
 #define rolling_disk_draw_mass rolling_disk_draw_mass_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -1068,26 +1068,6 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define rolling_disk_derive rolling_disk_derive_ext
-#define rolling_disk_initial rolling_disk_initial_ext
-#define rolling_disk_inputs rolling_disk_inputs_ext
-#define rolling_disk_mass_bias rolling_disk_mass_bias_ext
-#define rolling_disk_energy rolling_disk_energy_ext
-#define rolling_disk_invariant rolling_disk_invariant_ext
-#define rolling_disk_constraint rolling_disk_constraint_ext
-#define rolling_disk_c_levels rolling_disk_c_levels_ext
-#define rolling_disk_c_jacobian rolling_disk_c_jacobian_ext
-#define rolling_disk_c_levels_jacobian rolling_disk_c_levels_jacobian_ext
-#define rolling_disk_accel_shared rolling_disk_accel_shared_ext
-#define rolling_disk_accel rolling_disk_accel_ext
-#define rolling_disk_minv_shared rolling_disk_minv_shared_ext
-#define rolling_disk_minv rolling_disk_minv_ext
-#define rolling_disk_check rolling_disk_check_ext
-#define rolling_disk_draw rolling_disk_draw_ext
-#define rolling_disk_draw_mass rolling_disk_draw_mass_ext
-#endif
 #ifndef EOMC_EXTENDED
 static const char *const q_names[5] = {"x", "y", "psi", "theta", "phi"};
 static const char *const p_names[4] = {"m", "R", "g", "spin"};

@@ -50,8 +50,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define spinning_hoop_derive spinning_hoop_derive_ext
@@ -64,6 +62,8 @@
 #define spinning_hoop_check spinning_hoop_check_ext
 #define spinning_hoop_draw spinning_hoop_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -400,18 +400,6 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define spinning_hoop_derive spinning_hoop_derive_ext
-#define spinning_hoop_initial spinning_hoop_initial_ext
-#define spinning_hoop_inputs spinning_hoop_inputs_ext
-#define spinning_hoop_mass_bias spinning_hoop_mass_bias_ext
-#define spinning_hoop_energy spinning_hoop_energy_ext
-#define spinning_hoop_invariant spinning_hoop_invariant_ext
-#define spinning_hoop_accel spinning_hoop_accel_ext
-#define spinning_hoop_check spinning_hoop_check_ext
-#define spinning_hoop_draw spinning_hoop_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -49,8 +49,6 @@
 #define EOMC_ENTRY
 #define EOMC_PART
 #endif
-
-#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define swing_derive swing_derive_ext
@@ -63,6 +61,8 @@
 #define swing_check swing_check_ext
 #define swing_draw swing_draw_ext
 #endif
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 1
 /* The values of the parameters alone that the other functions read:
  * computed when the parameters change, not at every step. */
 EOMC_ENTRY void
@@ -245,18 +245,6 @@ swing_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
-/* The twin's names, linked beside the model's. */
-#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
-#define swing_derive swing_derive_ext
-#define swing_initial swing_initial_ext
-#define swing_inputs swing_inputs_ext
-#define swing_mass_bias swing_mass_bias_ext
-#define swing_energy swing_energy_ext
-#define swing_invariant swing_invariant_ext
-#define swing_accel swing_accel_ext
-#define swing_check swing_check_ext
-#define swing_draw swing_draw_ext
-#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED

@@ -1039,14 +1039,15 @@ print_units(Printer *pr, Units *u, int split12, int split34, const EmitInfo *inf
         }
 }
 
-/* The twin's names for unit text's functions of hidden linkage: compiled
- * with -DEOMC_EXTENDED and -DEOMC_UNIT, the twin's units are linked
- * beside the model's, so each name a unit defines or declares EOMC_PART
- * or EOMC_ENTRY (a line "EOMC_... TYPE", then "NAME(") is NAME_ext there.
- * A unit's own text lists them: units 1 and 2 stay the same C whatever
- * units 3 and 4 hold. */
+/* The twin's names for the functions of hidden linkage that text
+ * defines or declares with kind ("EOMC_PART " or "EOMC_ENTRY ": a line
+ * "KIND TYPE", then "NAME("): compiled with -DEOMC_EXTENDED and
+ * -DEOMC_UNIT, the twin's units are linked beside the model's, so each is
+ * NAME_ext there.  The members (EOMC_ENTRY, all defined in unit 1 and the
+ * same whatever units 3 and 4 hold) are listed once, before the units;
+ * each unit lists its own parts, so that units 1 and 2 stay the same C. */
 static void
-print_twin_names(FILE *f, const char *text, size_t len)
+print_twin_names(FILE *f, const char *text, size_t len, const char *kind)
 {
     const char *p = text, *end = text + len;
     char **name = NULL;
@@ -1055,7 +1056,7 @@ print_twin_names(FILE *f, const char *text, size_t len)
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         if (!nl)
             break;
-        if (!strncmp(p, "EOMC_PART ", 10) || !strncmp(p, "EOMC_ENTRY ", 11)) {
+        if (!strncmp(p, kind, strlen(kind))) {
             size_t k = strcspn(nl + 1, "(\n");
             int seen = 0;
             for (int i = 0; i < n && !seen; i++)
@@ -1123,12 +1124,13 @@ emit_model(FILE *f, const Lowered *L, ExprPool *P, const EmitInfo *info,
           "#define EOMC_ENTRY\n"
           "#define EOMC_PART\n"
           "#endif\n", f);
+    print_twin_names(f, u.text[0], u.len[0], "EOMC_ENTRY ");
     int mask = 0;
     for (int k = 0; k < 4; k++) {
         if (!u.text[k])
             continue;
         fprintf(f, "\n#if !defined(EOMC_UNIT) || EOMC_UNIT == %d\n", k + 1);
-        print_twin_names(f, u.text[k], u.len[k]);
+        print_twin_names(f, u.text[k], u.len[k], "EOMC_PART ");
         fwrite(u.text[k], 1, u.len[k], f);
         fprintf(f, "#endif /* EOMC_UNIT %d */\n", k + 1);
         mask |= 1 << k;

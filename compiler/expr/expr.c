@@ -1082,8 +1082,8 @@ int expr_select_mode(const ExprPool *P, ExprId e) { return (int)P->node[e].value
 
 /* SELECT(k, a, b) on s's switch k (s met before: the same k), or the
  * branch s's constant sign chooses now. */
-static ExprId
-switched(ExprPool *P, ExprId s, ExprId a, ExprId b)
+ExprId
+expr_where(ExprPool *P, ExprId s, ExprId a, ExprId b)
 {
     double v;
     if (expr_is_const(P, s, &v))
@@ -1104,21 +1104,21 @@ switched(ExprPool *P, ExprId s, ExprId a, ExprId b)
 ExprId
 expr_max(ExprPool *P, ExprId a, ExprId b)
 {
-    return a == b ? a : switched(P, expr_sub(P, a, b), a, b);
+    return a == b ? a : expr_where(P, expr_sub(P, a, b), a, b);
 }
 
 ExprId
 expr_min(ExprPool *P, ExprId a, ExprId b)
 {
-    return a == b ? a : switched(P, expr_sub(P, a, b), b, a);
+    return a == b ? a : expr_where(P, expr_sub(P, a, b), b, a);
 }
 
 ExprId
 expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi)
 {
     ExprId s_hi = expr_sub(P, x, hi); /* built first: ids do not depend on C's order */
-    ExprId below = switched(P, expr_sub(P, x, lo), x, lo);
-    return switched(P, s_hi, hi, below);
+    ExprId below = expr_where(P, expr_sub(P, x, lo), x, lo);
+    return expr_where(P, s_hi, hi, below);
 }
 
 /* ---- traversals ---- */
@@ -1491,7 +1491,7 @@ rebuild_select(ExprPool *P, const ExprNode *nd, ExprId a, ExprId b, int n, const
 {
     int k = (int)nd->value;
     ExprId s = expr_subst(P, P->sw[k], n, from, to);
-    return s == P->sw[k] ? expr_select(P, k, a, b) : switched(P, s, a, b);
+    return s == P->sw[k] ? expr_select(P, k, a, b) : expr_where(P, s, a, b);
 }
 
 ExprId

@@ -132,8 +132,11 @@ ExprId expr_binary(ExprPool *P, int op, ExprId a, ExprId b);
  *   min(a, b)         = SELECT(k, b, a),  s_k = a - b
  *   clamp(x, lo, hi)  = SELECT(k, hi, SELECT(j, x, lo)),
  *                       s_k = x - hi, s_j = x - lo
+ *   step(x)           = SELECT(k, 1, 0),  s_k = x
+ *   where(s, a, b)    = SELECT(k, a, b),  s_k = s  (a where s > 0, else b)
  * (clamp is hi where x > hi, else max(x, lo): lo <= hi is the caller's.) */
 ExprId expr_select(ExprPool *P, int mode, ExprId a, ExprId b);
+ExprId expr_where(ExprPool *P, ExprId s, ExprId a, ExprId b);
 ExprId expr_max(ExprPool *P, ExprId a, ExprId b);
 ExprId expr_min(ExprPool *P, ExprId a, ExprId b);
 ExprId expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi);

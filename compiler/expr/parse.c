@@ -194,7 +194,7 @@ typedef struct Builtin {
 } Builtin;
 
 enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2, BUILTIN_MAX = -3, BUILTIN_MIN = -4,
-       BUILTIN_CLAMP = -5 };
+       BUILTIN_CLAMP = -5, BUILTIN_STEP = -6 };
 enum { MAX_ARGS = 3 }; /* clamp's */
 
 /* The functions of frames, points and vectors: not reserved names (a
@@ -231,6 +231,7 @@ static const Builtin builtins[] = {
     {"sqrt", EXPR_SQRT, 1}, {"abs", EXPR_ABS, 1},     {"pow", EXPR_POW, 2},
     {"dot", BUILTIN_DOT, 1}, {"delta", BUILTIN_DELTA, 1},
     {"max", BUILTIN_MAX, 2}, {"min", BUILTIN_MIN, 2}, {"clamp", BUILTIN_CLAMP, 3},
+    {"step", BUILTIN_STEP, 1},
 };
 enum { NBUILTINS = sizeof builtins / sizeof builtins[0] };
 
@@ -303,7 +304,7 @@ check_deps(Parser *ps, ExprId e, const char *name, size_t off)
     ExprId leaf = expr_find_leaf(sc->P, e, bad);
     if (leaf == EXPR_NONE) /* only a SELECT's mode has no leaf */
         diag_error(at(ps, off), "%s cannot depend on a switched expression (max, min, "
-                   "clamp)%s%s%s", sc->what, name ? " (through '" : "", name ? name : "",
+                   "clamp, step)%s%s%s", sc->what, name ? " (through '" : "", name ? name : "",
                    name ? "')" : "");
     char what[200];
     describe_leaf(sc, leaf, what, sizeof what);
@@ -680,7 +681,7 @@ vec_call(Parser *ps, const VecBuiltin *b, size_t name_off)
     return r;
 }
 
-/* max, min or clamp: a switched expression (expr.h), only where the
+/* max, min, clamp or step: a switched expression (expr.h), only where the
  * scope lets a mode be read. */
 static ExprId
 switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *args,
@@ -692,8 +693,11 @@ switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *
                    "locates, and only forces, potentials and virtual work have switches",
                    sc->what, name);
     ExprId e[MAX_ARGS];
-    for (int i = 0; i < (op == BUILTIN_CLAMP ? 3 : 2); i++)
+    int n = op == BUILTIN_CLAMP ? 3 : op == BUILTIN_STEP ? 1 : 2;
+    for (int i = 0; i < n; i++)
         e[i] = need_scalar(ps, args[i], offs[i], where);
+    if (op == BUILTIN_STEP)
+        return expr_where(sc->P, e[0], expr_const(sc->P, 1), expr_const(sc->P, 0));
     if (op == BUILTIN_CLAMP) {
         double lo, hi;
         if (expr_is_const(sc->P, e[1], &lo) && expr_is_const(sc->P, e[2], &hi) && lo > hi)

@@ -360,7 +360,7 @@ build_node(Build *b, ExprId id)
         break;
     }
     case EXPR_SELECT: /* the branch's series, the mode held: not built yet */
-        b->why = "its mass matrix or bias has switched expressions (max, min, clamp), whose "
+        b->why = "its mass matrix or bias has switched expressions (max, min, clamp, step), whose "
                  "series are not built yet";
         return;
     default:

@@ -1146,7 +1146,7 @@ refuse_modes(eomc_sim *s, const char *what)
 {
     const eomc_model *m = eomc_sim_model(s);
     return m->nmode > 0 ? sim_usage_error(s, "%s: %s has switched expressions (max, min, "
-                                          "clamp), whose modes are set only by a run yet",
+                                          "clamp, step), whose modes are set only by a run yet",
                                           what, m->name)
                         : EOMC_OK;
 }

@@ -677,7 +677,7 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
                                "as eomc build does)", m->name, what);
     if (m->nmode > 0) /* (its u would need room for the modes, and the steps to end at
                        * each switch) */
-        return sim_usage_error(s, "%s: %s has switched expressions (max, min, clamp), whose "
+        return sim_usage_error(s, "%s: %s has switched expressions (max, min, clamp, step), whose "
                                "switches the reference solution does not locate yet", what,
                                m->name);
     if (m->nc && !m->c_affine && !ext->c_jacobian)

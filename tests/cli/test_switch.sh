@@ -1,5 +1,5 @@
 #!/bin/sh
-# Switched expressions (max, min, clamp) against closed forms (TAP), on
+# Switched expressions (max, min, clamp, step) against closed forms (TAP), on
 # tests/cli/spring_floor.yaml: a mass at speed v0 meets a floor whose
 # force is max(0, -k y - c y'), w = sqrt(k/m), zeta = c / (2 m w),
 # w_d = w sqrt(1 - zeta^2):
@@ -18,6 +18,8 @@
 #  - two kinks at the same instant (--effects pair: max(0, -k y) +
 #    max(0, -2 k y)) both flip there: the contact lasts pi/sqrt(3k/m)
 #    and the mass leaves at v0;
+#  - step(0.3 - t) pushes with a unit force until t = 0.3: from rest,
+#    y(1) = 0.3^2/2 + 0.3 (1 - 0.3) = 0.255, y'(1) = 0.3;
 #  - an effect that is off (spring_floor.yaml's edge) brings no switch;
 #  - the modes are no inputs: not in the CSV, not settable; what cannot
 #    follow a switch yet (Taylor's series, the reference, a linearization)
@@ -71,13 +73,20 @@ got=$(sed -n 2p "$tmp/ev2.csv" | cut -d, -f1)
 [ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev2.csv")" -eq 2 ] && within "$got" "$want" 1e-12
 ok $? "a start on a kink takes the side the motion leaves to: the clamp saturates at $want ($got)"
 
+"$eomc" run "$spec" --effects pulse --set v0=0 --events "$tmp/evs.csv" > "$tmp/rowss.csv"; st=$?
+last=$(tail -1 "$tmp/rowss.csv")
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/evs.csv")" -eq 2 ] &&
+  within "$(sed -n 2p "$tmp/evs.csv" | cut -d, -f1)" 0.3 1e-14 &&
+  within "$(echo "$last" | cut -d, -f2)" 0.255 1e-13 && within "$(echo "$last" | cut -d, -f3)" 0.3 1e-13
+ok $? "step(0.3 - t): the push ends at 0.3, y(1) = 0.255, y'(1) = 0.3 ($(echo "$last" | cut -d, -f2,3))"
+
 head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
 ok $? "the modes are not columns of the CSV"
 "$eomc" run "$spec" --set "switch 0=1" > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && grep -q "'switch 0' is not a parameter or input" "$tmp/err"
 ok $? "the modes are not inputs: --set refuses them"
 "$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp)" "$tmp/err"
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp, step)" "$tmp/err"
 ok $? "--method taylor is refused, naming the switched expressions"
 for opt in --error --linearize; do
   "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?

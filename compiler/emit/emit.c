@@ -695,8 +695,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     if (!L->taylor->why && L->taylor->qd_slot)
         emit_line(pr, "    .taylor_qd = taylor_qd, /* Taylor's series of q' = W(q) v */");
     if (L->switches)
-        emit_line(pr, "    .nmode = %d, .switches = %s_switches, /* modes at u[%d + k] */",
-                  md->nmode, nm, md->nu);
+        emit_line(pr, "    .nmode = %d, .sw_names = sw_names, .switches = %s_switches,\n"
+                  "    /* modes at u[%d + k] */", md->nmode, nm, md->nu);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -956,6 +956,12 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
         for (int k = 0; k < ne; k++)
             fprintf(pr.f, "%s%d", k ? ", " : "", md->event[k].action);
         emit_line(&pr, "}; /* EOMC_EVENT_STOP, _RECORD, _SET */\n");
+    }
+    if (L->switches) {
+        fprintf(pr.f, "static const char *const sw_names[%d] = {", md->nmode);
+        for (int k = 0; k < md->nmode; k++)
+            fprintf(pr.f, "%s\"%s\"", k ? ", " : "", md->mode_name[k]);
+        emit_line(&pr, "};\n");
     }
     if (md->ndraw)
         print_draw_tables(&pr);

@@ -29,6 +29,7 @@ struct ExprPool {
     ExprId *rate;    /* per coordinate: its rate where it is not a speed (expr_set_rate) */
     int nrate;
     ExprId *sw;      /* per switch: its function s_k (expr_max) */
+    char **swname;   /* per switch: its name (expr_name_switch), or NULL */
     int nsw, capsw;
 };
 
@@ -176,7 +177,9 @@ expr_pool_free(ExprPool *P)
     free(P->trig);
     free(P->table);
     free(P->rate);
+    expr_clear_switches(P);
     free(P->sw);
+    free(P->swname);
     free(P);
 }
 
@@ -203,6 +206,8 @@ expr_clear_rates(ExprPool *P)
 void
 expr_clear_switches(ExprPool *P)
 {
+    for (int k = 0; k < P->nsw; k++)
+        free(P->swname[k]);
     P->nsw = 0;
 }
 
@@ -1079,6 +1084,28 @@ expr_select(ExprPool *P, int mode, ExprId a, ExprId b)
 int expr_nswitch(const ExprPool *P) { return P->nsw; }
 ExprId expr_switch(const ExprPool *P, int k) { return P->sw[k]; }
 int expr_select_mode(const ExprPool *P, ExprId e) { return (int)P->node[e].value; }
+const char *expr_switch_name(const ExprPool *P, int k) { return P->swname[k]; }
+
+/* The first name a switch is given is its own; another of the pool's
+ * gets a suffix .2, .3, ... */
+void
+expr_name_switch(ExprPool *P, int k, const char *name)
+{
+    if (P->swname[k])
+        return;
+    size_t len = strlen(name) + 16; /* room for the suffix */
+    char *s = xmalloc(len);
+    snprintf(s, len, "%s", name);
+    for (int n = 2;; n++) {
+        int taken = 0;
+        for (int j = 0; j < P->nsw && !taken; j++)
+            taken = P->swname[j] && !strcmp(P->swname[j], s);
+        if (!taken)
+            break;
+        snprintf(s, len, "%s.%d", name, n);
+    }
+    P->swname[k] = s;
+}
 
 /* SELECT(k, a, b) on s's switch k (s met before: the same k), or the
  * branch s's constant sign chooses now. */
@@ -1095,7 +1122,9 @@ expr_where(ExprPool *P, ExprId s, ExprId a, ExprId b)
         if (P->nsw == P->capsw) {
             P->capsw = P->capsw ? 2 * P->capsw : 8;
             P->sw = xrealloc(P->sw, (size_t)P->capsw * sizeof *P->sw);
+            P->swname = xrealloc(P->swname, (size_t)P->capsw * sizeof *P->swname);
         }
+        P->swname[P->nsw] = NULL;
         P->sw[P->nsw++] = s;
     }
     return expr_select(P, k, a, b);

@@ -143,6 +143,11 @@ ExprId expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi);
 /* The pool's switches, in the order they were made: mode k's s_k. */
 int expr_nswitch(const ExprPool *P);
 ExprId expr_switch(const ExprPool *P, int k);
+/* A switch's name, for a run's messages and --events (NULL: none
+ * given).  Naming a named switch again keeps the first; a name another
+ * switch has gets a suffix .2, .3, ... */
+void expr_name_switch(ExprPool *P, int k, const char *name);
+const char *expr_switch_name(const ExprPool *P, int k);
 /* The mode a SELECT node reads. */
 int expr_select_mode(const ExprPool *P, ExprId e);
 

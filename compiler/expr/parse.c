@@ -692,19 +692,30 @@ switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *
         diag_error(at(ps, name_off), "%s cannot use %s(): its kink is a switch the run "
                    "locates, and only forces, potentials and virtual work have switches",
                    sc->what, name);
-    ExprId e[MAX_ARGS];
-    int n = op == BUILTIN_CLAMP ? 3 : op == BUILTIN_STEP ? 1 : 2;
+    ExprId e[MAX_ARGS], r;
+    int n = op == BUILTIN_CLAMP ? 3 : op == BUILTIN_STEP ? 1 : 2, n0 = expr_nswitch(sc->P);
     for (int i = 0; i < n; i++)
         e[i] = need_scalar(ps, args[i], offs[i], where);
-    if (op == BUILTIN_STEP)
-        return expr_where(sc->P, e[0], expr_const(sc->P, 1), expr_const(sc->P, 0));
     if (op == BUILTIN_CLAMP) {
         double lo, hi;
         if (expr_is_const(sc->P, e[1], &lo) && expr_is_const(sc->P, e[2], &hi) && lo > hi)
             diag_error(at(ps, offs[1]), "clamp(x, lo, hi) needs lo <= hi, not %g > %g", lo, hi);
-        return expr_clamp(sc->P, e[0], e[1], e[2]);
+        r = expr_clamp(sc->P, e[0], e[1], e[2]);
+    } else if (op == BUILTIN_STEP) {
+        ExprId one = expr_const(sc->P, 1), zero = expr_const(sc->P, 0);
+        r = expr_where(sc->P, e[0], one, zero);
     }
-    return op == BUILTIN_MAX ? expr_max(sc->P, e[0], e[1]) : expr_min(sc->P, e[0], e[1]);
+    else
+        r = op == BUILTIN_MAX ? expr_max(sc->P, e[0], e[1]) : expr_min(sc->P, e[0], e[1]);
+    /* the new switches' names: owner.max, owner.clamp.lo and .hi */
+    ExprId s_lo = op == BUILTIN_CLAMP ? expr_sub(sc->P, e[0], e[1]) : EXPR_NONE;
+    for (int k = n0; k < expr_nswitch(sc->P); k++) {
+        char nm[2 * MAX_NAME + 16];
+        snprintf(nm, sizeof nm, "%s%s%s%s", sc->owner ? sc->owner : "", sc->owner ? "." : "",
+                 name, op != BUILTIN_CLAMP ? "" : expr_switch(sc->P, k) == s_lo ? ".lo" : ".hi");
+        expr_name_switch(sc->P, k, nm);
+    }
+    return r;
 }
 
 /* NAME "(" expr ("," expr)* ")" with the name already read. */

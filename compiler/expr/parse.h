@@ -70,6 +70,9 @@ struct ParseScope {
     int (*frame)(ParseScope *sc, const char *name, SrcLoc at);
     int (*point)(ParseScope *sc, const char *name, SrcLoc at);
     Kin *K;
+    /* What names the switches made here (an effect, a define): a switch
+     * of max in effect floor is floor.max.  NULL: the function alone. */
+    const char *owner;
 };
 
 /* Parse src in scope sc: a scalar (a vector is an error), a vector (a

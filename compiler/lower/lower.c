@@ -673,6 +673,13 @@ lower_switches(Lowering *lw)
         slot[k] = used[k] ? nmode++ : -1;
     L->model.nmode = nmode;
     L->model.mode_slot = slot;
+    L->model.mode_name = arena_new_array(lw->A, const char *, nmode + 1);
+    for (int k = 0; k < ns; k++)
+        if (used[k]) { /* a switch built outside the parser has no name of its own */
+            const char *nm = expr_switch_name(P, k);
+            L->model.mode_name[slot[k]] = nm ? arena_strdup(lw->A, nm)
+                                             : arena_printf(lw->A, "switch %d", slot[k]);
+        }
     if (nmode) {
         LowFunc *f = func(lw, &s_switches, "events", 0);
         for (int k = 0; k < ns; k++)

@@ -150,6 +150,7 @@ typedef struct LowModel {
     int nmode;           /* switches of max, min, clamp the functions read */
     int *mode_slot;      /* per switch of the pool: its mode's index, at
                           * u[nu + mode_slot[k]], or -1: not the model's */
+    const char **mode_name; /* [nmode]: each switch's name (expr_name_switch) */
     const char **output; /* [noutput] names */
     LowEvent *event;     /* [nevent] */
     int assemble;

@@ -175,6 +175,7 @@ load_effect(Loader *L, yaml_node_t *map, int i)
         if (e->nforce == 0)
             diag_error(spec_loc(L, v), "effect '%s' is empty", e->name);
         e->force = arena_new_array(L->A, SpecForce, e->nforce);
+        L->sc.owner = e->name; /* its switches' names */
         for (int j = 0; j < e->nforce; j++)
             load_force(L, list ? spec_node(L, ITEMS(v)[j]) : v, &e->force[j]);
     }
@@ -189,6 +190,7 @@ spec_load_effects(Loader *L, yaml_node_t *map)
     for (int i = 0; i < s->neffect; i++)
         if (!spec_checked(L, load_effect, map, i) && !s->effect[i].name)
             s->effect[i].name = "";
+    L->sc.owner = NULL;
 }
 
 int

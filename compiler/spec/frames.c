@@ -457,7 +457,10 @@ resolve_define_at(Loader *L, yaml_node_t *map, int i)
     spec_scalar_src(L, &sc, d->node, "a define");
     L->sc.allow = ALLOW_ALL;
     L->sc.what = arena_strdup(L->A, what);
+    const char *owner = L->sc.owner; /* the define names its switches */
+    L->sc.owner = d->name;
     d->value = parse_value(&L->sc, &sc.src);
+    L->sc.owner = owner;
 }
 
 /* A define with an error is marked, and so are the defines and the

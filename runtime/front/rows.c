@@ -33,8 +33,8 @@ rows_event(void *ctx, int k, double t, const double *x)
     num_put(w->events, t);
     if (k < m->nevent)
         fprintf(w->events, ",%s", m->ev_names[k]);
-    else /* a switch of max, min or clamp (eomc.h's on_event) */
-        fprintf(w->events, ",switch %d", k - m->nevent);
+    else /* a switch of max, min, clamp or step (eomc.h's on_event) */
+        fprintf(w->events, ",%s", m->sw_names[k - m->nevent]);
     for (int i = 0; i < eomc_nx(m); i++) {
         fputc(',', w->events);
         num_put(w->events, x[i]);

@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 25
+#define EOMC_ABI_VERSION 26
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -396,8 +396,11 @@ typedef struct eomc_model {
      * the runtime ends a step where an s[k] crosses 0 and flips mode k
      * there (the state goes on unchanged).  The modes are not inputs: no
      * name, no derivative, not set by a caller.  nmode = 0: none,
-     * switches NULL. */
+     * switches NULL.  sw_names [nmode]: each switch's name, from the
+     * spec (floor.max: effect floor's max; clamp's two are NAME.clamp.lo
+     * and .hi). */
     int nmode;
+    const char *const *sw_names;
     void (*switches)(double t, const double *q, const double *v, const double *p,
                      const double *u, double *s);
 } eomc_model;

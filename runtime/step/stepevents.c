@@ -45,7 +45,6 @@
 #define PASS_REL 1e-6
 
 /* "switch j", the name of index nevent + j (room for any int) */
-enum { SWITCH_NAME = 24 };
 
 struct StepEvents {
     eomc_sim *s;
@@ -56,7 +55,6 @@ struct StepEvents {
     int n, N;                     /* coordinates, state size nq + nv */
     int ne;                       /* events: the scene's, then the switches */
     int nev;                      /* the scene's (m->nevent) */
-    char (*swname)[SWITCH_NAME];  /* [ne - nev] the switches' names */
     double *tsw;                  /* [ne - nev] each switch's last flip */
     int switch_to;                /* the mode a located switch flips to */
     double *g0, *g1;              /* [ne] g at the step's start and end */
@@ -101,12 +99,9 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     ok &= (v->held = calloc(ne + 1, 1)) != NULL;
-    ok &= (v->swname = calloc((size_t)m->nmode + 1, sizeof *v->swname)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
-    for (int j = 0; ok && j < m->nmode; j++) {
-        snprintf(v->swname[j], SWITCH_NAME, "switch %d", j);
+    for (int j = 0; ok && j < m->nmode; j++)
         v->tsw[j] = -INFINITY;
-    }
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
     if (!ok) {
         stepev_free(v);
@@ -125,7 +120,6 @@ stepev_free(StepEvents *v)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(v->held);
-    free(v->swname);
     free(v->tsw);
     free(v->cl);
     free(v);
@@ -150,7 +144,7 @@ dir_of(const StepEvents *v, int k)
 static const char *
 name_of(const StepEvents *v, int k)
 {
-    return k < v->nev ? v->m->ev_names[k] : v->swname[k - v->nev];
+    return k < v->nev ? v->m->ev_names[k] : v->m->sw_names[k - v->nev];
 }
 
 int

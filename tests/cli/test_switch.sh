@@ -37,20 +37,20 @@ spec="$src/tests/cli/spring_floor.yaml"
   within "$(sed -n 2p "$tmp/ev0.csv" | cut -d, -f1)" 0.1 1e-13 &&
   within "$(sed -n 3p "$tmp/ev0.csv" | cut -d, -f1)" 0.41415926535897932 1e-13
 ok $? "undamped: the two kinks located, at y0/v0 = 0.1 and 0.1 + pi/w ($(tail -1 "$tmp/ev0.csv" | cut -d, -f1))"
-sed -n 2,3p "$tmp/ev0.csv" | cut -d, -f2 | grep -qx "switch 0"
-ok $? "--events names them: switch 0"
+[ "$(sed -n 2,3p "$tmp/ev0.csv" | cut -d, -f2 | sort -u)" = floor.max ]
+ok $? "--events names them by their effect and function: floor.max"
 within "$(tail -1 "$tmp/rows0.csv" | cut -d, -f3)" 1 1e-12
 ok $? "undamped: it leaves at v0 ($(tail -1 "$tmp/rows0.csv" | cut -d, -f3))"
 
 "$eomc" run "$spec" --effects pair --set y0=0.1 --events "$tmp/evp.csv" > "$tmp/rowsp.csv"; st=$?
 want=$(awk 'BEGIN { printf "%.17g", 0.1 + 3.14159265358979323846 / sqrt(300) }')
 [ $st -eq 0 ] && [ "$(wc -l < "$tmp/evp.csv")" -eq 5 ] &&
-  [ "$(cut -d, -f2 "$tmp/evp.csv" | sort | uniq -c | awk '{ print $1 }' | tr '\n' ' ')" = "1 2 2 " ] &&
+  [ "$(cut -d, -f2 "$tmp/evp.csv" | sort | uniq -c | awk '{ print $1 $2 }' | tr '\n' ' ')" = "1event 2pair.max 2pair.max.2 " ] &&
   within "$(sed -n 2p "$tmp/evp.csv" | cut -d, -f1)" 0.1 1e-13 &&
   within "$(sed -n 3p "$tmp/evp.csv" | cut -d, -f1)" 0.1 1e-13 &&
   within "$(sed -n 4p "$tmp/evp.csv" | cut -d, -f1)" "$want" 1e-13 &&
   within "$(tail -1 "$tmp/rowsp.csv" | cut -d, -f3)" 1 1e-12
-ok $? "two kinks at once both flip: contact to $want, leaving at v0 ($(tail -1 "$tmp/rowsp.csv" | cut -d, -f3))"
+ok $? "two kinks at once (pair.max and pair.max.2) both flip: contact to $want, leaving at v0 ($(tail -1 "$tmp/rowsp.csv" | cut -d, -f3))"
 
 "$eomc" run "$spec" --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
 want=$(awk 'BEGIN { m = 1; k = 100; c = 2; v0 = 1; w = sqrt(k / m); z = c / (2 * m * w)
@@ -70,8 +70,9 @@ ok $? "damped: it leaves at y'(t1) = $v1 and coasts to y(1) = $y_end ($(echo "$l
 "$eomc" run "$src/tests/cli/switch_start.yaml" --events "$tmp/ev2.csv" > /dev/null; st=$?
 want=$(awk 'BEGIN { w = sqrt(98); printf "%.17g", atan2(2 * w / 100, sqrt(1 - (2 * w / 100)^2)) / w }')
 got=$(sed -n 2p "$tmp/ev2.csv" | cut -d, -f1)
-[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev2.csv")" -eq 2 ] && within "$got" "$want" 1e-12
-ok $? "a start on a kink takes the side the motion leaves to: the clamp saturates at $want ($got)"
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev2.csv")" -eq 2 ] && within "$got" "$want" 1e-12 &&
+  [ "$(sed -n 2p "$tmp/ev2.csv" | cut -d, -f2)" = edge.clamp.hi ]
+ok $? "a start on a kink takes the side the motion leaves to: the clamp saturates (edge.clamp.hi) at $want ($got)"
 
 "$eomc" run "$spec" --effects pulse --set v0=0 --events "$tmp/evs.csv" > "$tmp/rowss.csv"; st=$?
 last=$(tail -1 "$tmp/rowss.csv")
@@ -82,8 +83,8 @@ ok $? "step(0.3 - t): the push ends at 0.3, y(1) = 0.255, y'(1) = 0.3 ($(echo "$
 
 head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
 ok $? "the modes are not columns of the CSV"
-"$eomc" run "$spec" --set "switch 0=1" > /dev/null 2> "$tmp/err"; st=$?
-[ $st -eq 2 ] && grep -q "'switch 0' is not a parameter or input" "$tmp/err"
+"$eomc" run "$spec" --set "floor.max=1" > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "'floor.max' is not a parameter or input" "$tmp/err"
 ok $? "the modes are not inputs: --set refuses them"
 "$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp, step)" "$tmp/err"

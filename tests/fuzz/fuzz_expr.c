@@ -154,7 +154,7 @@ parse_one(void *ctx)
     ExprId at[3] = {expr_param(P, 0), expr_var(P, 0, 0), EXPR_ONE};
     kin_set_origin(K, f, kin_point(K, KIN_ORIGIN, f, at));
     ParseScope sc = {P, D, lookup, NULL, leaf_name, DEP_T | DEP_ANY_Q | DEP_P | DEP_U | DEP_S,
-                     "an expression", 2, frame, point, K};
+                     "an expression", 2, frame, point, K, NULL};
     ParseSrc src = {(const char *)in->data, in->size, where, NULL};
     jmp_buf jb;
     jmp_buf *old = diag_set_jump(&jb);

@@ -294,7 +294,7 @@ test_material_velocity(Arena *A)
     point_q = kin_point(K, KIN_ORIGIN, KIN_WORLD, rp);
     kin_set_origin(K, frame_b, point_o);
     ParseScope sc = {P, D, no_names, NULL, no_leaf, 0xff, "a velocity", NQ, frame_arg,
-                     point_arg, K};
+                     point_arg, K, NULL};
     ParseSrc sp = {"vel(P, B)", 9, where, NULL}, sq = {"vel(Q, B)", 9, where, NULL};
     ExprId vp[3], vq[3], kv[3];
     parse_vector(&sc, &sp, vp);

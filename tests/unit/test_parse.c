@@ -55,7 +55,7 @@ where(const ParseSrc *src, size_t off)
 }
 
 static ParseScope scope = {NULL, NULL, lookup, NULL, leaf_name, 0xff, "an expression", 2,
-                          NULL, NULL, NULL};
+                          NULL, NULL, NULL, NULL};
 
 static ExprId
 parse(const char *text)

@@ -401,5 +401,5 @@ ParseScope
 spec_scope(ExprPool *P)
 {
     return (ParseScope){P, diff_new(P), lookup, multiplier, leaf_name, 0, "", 0,
-                        frame_arg, point_arg, NULL};
+                        frame_arg, point_arg, NULL, NULL};
 }

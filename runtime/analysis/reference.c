@@ -698,6 +698,11 @@ taylor_fits(eomc_sim *s, const eomc_model_ext *ext)
     if (!ext->taylor)
         return sim_usage_error(s, "--reference-method taylor: %s has no Taylor series: %s",
                                m->name, m->taylor_why ? m->taylor_why : "its twin has none");
+    if (m->nmode > 0)
+        return sim_usage_error(s, "--reference-method taylor: %s has switched expressions "
+                               "(max, min, clamp, step, abs), whose switches the reference "
+                               "by Taylor's method does not locate; extrapolation does",
+                               m->name);
     if (m->nv > 0 && !m->taylor_qd)
         return sim_usage_error(s, "--reference-method taylor: %s's speeds are not its "
                                "coordinates' rates, and its series lack the kinematic "

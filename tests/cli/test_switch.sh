@@ -86,9 +86,15 @@ ok $? "the modes are not columns of the CSV"
 "$eomc" run "$spec" --set "floor.max=1" > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && grep -q "'floor.max' is not a parameter or input" "$tmp/err"
 ok $? "the modes are not inputs: --set refuses them"
-"$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
-[ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp, step)" "$tmp/err"
-ok $? "--method taylor is refused, naming the switched expressions"
+# Taylor's method: each mode's branch's series, the steps cut before a
+# switch function's second root: the undamped case's closed form
+"$eomc" run "$spec" --method taylor --set c=0 --set y0=0.1 --events "$tmp/evt.csv" > "$tmp/rowst.csv"; st=$?
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/evt.csv")" -eq 3 ] &&
+  within "$(sed -n 2p "$tmp/evt.csv" | cut -d, -f1)" 0.1 1e-13 &&
+  within "$(sed -n 3p "$tmp/evt.csv" | cut -d, -f1)" 0.41415926535897932 1e-13 &&
+  within "$(tail -1 "$tmp/rowst.csv" | cut -d, -f3)" 1 1e-12 &&
+  within "$(tail -1 "$tmp/rowst.csv" | cut -d, -f2)" 0.58584073464102068 1e-12
+ok $? "--method taylor: kinks at 0.1 and 0.1 + pi/w, leaving at v0 to y(1) = 1 - (0.1 + pi/w) ($(tail -1 "$tmp/rowst.csv" | cut -d, -f2,3))"
 for opt in --error --linearize; do
   "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?
   [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "^spring_floor: $opt: .*switched expressions" "$tmp/err"

@@ -104,7 +104,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     ok &= (v->swname = calloc((size_t)m->nmode + 1, sizeof *v->swname)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
     for (int j = 0; ok && j < m->nmode; j++) {
-        snprintf(v->swname[j], SWITCH_NAME, "switch %d", j);
+        state_switch_name(m, j, v->swname[j], SWITCH_NAME);
         v->tsw[j] = -INFINITY;
     }
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;

@@ -307,8 +307,8 @@ pair(RefSwitches *w, int k, eomc_ext t0, eomc_ext t1)
     for (int it = 0; it < PAIR_ITERS && hi - lo > w->settled; it++) {
         /* the tangents at the ends meet at u = floor: u lies above both */
         if (dl < 0 && dh > 0) {
-            eomc_ext tm = (uh - ul - dh * hi + dl * lo) / (dl - dh);
-            if (ul + dl * (tm - lo) > 0)
+            eomc_ext meet = (uh - ul - dh * hi + dl * lo) / (dl - dh);
+            if (ul + dl * (meet - lo) > 0)
                 return 0;
         }
         eomc_ext tm = it == 0 ? t0 + tau * h : 0.5L * (lo + hi), g;

@@ -30,7 +30,9 @@
 #    accuracy; a run whose switches part from the reference's (a grazing
 #    touch at a loose tolerance, tests/cli/switch_graze.yaml) is warned of,
 #    with where: the touch at acos(-(a - d)/a) that the swing, a cos t,
-#    makes (d = 1e-6) or does not (d = -1e-6).
+#    makes (d = 1e-6) or does not (d = -1e-6); where the motion would
+#    slide along a kink (tests/cli/switch_stick.yaml) the reference stops,
+#    exit 3, naming the switch.
 # usage: test_switch.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -199,6 +201,14 @@ ok $? "a touch 1e-12 deep inside one step of the reference is found, one 1e-12 s
 [ $st -eq 0 ] && grep -q "note: the reference read from .* has rows, not the flips" "$tmp/err" &&
   ! grep -q "warning" "$tmp/err"
 ok $? "--reference FILE: the flips are not compared, and it says so"
+# a mass that would stick (tests/cli/switch_stick.yaml): the reference
+# flips switch 0 again at once where it stops, t = pi, y = -0.5, and stops
+# there, exit 3, nothing written
+"$eomc" run "$src/tests/cli/switch_stick.yaml" --error > "$tmp/out" 2> "$tmp/err"; st=$?
+got=$(sed -n 's/^switch_stick: error: t = \([0-9.e+-]*\): the reference solution .* cannot follow switch 0: it flips again within .*chatters.*; state: y = \([0-9.e+-]*\),.*/\1 \2/p' "$tmp/err")
+[ $st -eq 3 ] && [ ! -s "$tmp/out" ] && within "${got% *}" 3.14159265358979 1e-12 &&
+  within "${got#* }" -0.5 1e-12
+ok $? "a mass that would stick: the reference stops where the switch chatters, t and y = $got (pi, -0.5)"
 # the reference by Taylor's method cannot follow a switch: refused, nothing written
 rm -f "$tmp/tref.csv"
 "$eomc" run "$spec" --reference-out "$tmp/tref.csv" --reference-method taylor > "$tmp/out" \

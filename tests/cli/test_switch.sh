@@ -181,6 +181,11 @@ got=$(sed -n "s/.*switched differently at t = \([0-9.e+-]*\): the reference flip
   grep -q "^reference_switches 2$" "$tmp/err" && grep -q "^switches 0$" "$tmp/err" &&
   grep -q "; before t = 3.14018, where the switches part, at most " "$tmp/err"
 ok $? "a touch the run misses: warned of at t = $got (closed form $want), the error before it said"
+# the report marks such a run (rk2 at 1e-4 misses it too), and says so on stderr
+"$eomc" accuracy "$graze" --methods rk2 --tolerances 1e-4 > "$tmp/out" 2> "$tmp/err"; st=$?
+got=$(sed -n "s/^ *! its switches part from the reference's at t = \([0-9.]*\) (the reference flipped 'switch 0' at [0-9.]*, the run nothing).*/\1/p" "$tmp/out")
+[ $st -eq 0 ] && within "$got" "$want" 1e-5 && grep -q "warning: 1 run switched differently" "$tmp/err"
+ok $? "eomc accuracy marks the run that misses the touch: ! at t = $got"
 # |d| short of it: no touch, which rkf45 at 1e-6 (its swing long) makes
 "$eomc" run "$graze" --set d=-1e-6 --method rkf45 --rtol 1e-6 --atol 1e-6 --error --stats \
   > "$tmp/g.csv" 2> "$tmp/err"; st=$?

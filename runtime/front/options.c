@@ -523,9 +523,6 @@ check_event_options(const Options *c, const eomc_model *m)
                       : c->reference    ? "--reference"
                       : c->error        ? "--error"
                       : c->reference_out ? "--reference-out" : NULL;
-    if (m->nmode > 0 && opt)
-        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose "
-                         "switches the reference solution does not locate yet", opt, m->name);
     const char *fixed = c->linearize ? "--linearize" : c->equilibrium ? "--equilibrium" : NULL;
     if (m->nmode > 0 && fixed)
         return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose modes "

@@ -20,6 +20,9 @@
 #    and the mass leaves at v0;
 #  - step(0.3 - t) pushes with a unit force until t = 0.3: from rest,
 #    y(1) = 0.3^2/2 + 0.3 (1 - 0.3) = 0.255, y'(1) = 0.3;
+#  - the potential abs(y) (a unit pull toward 0), from rest at y = 0.5:
+#    y = 0.5 - t^2/2 reaches 0 at t = 1 at speed -1, and y(2) = -0.5 at
+#    rest (abs's kink located: a step across it would miss the reversal);
 #  - an effect that is off (spring_floor.yaml's edge) brings no switch;
 #  - the modes are no inputs: not in the CSV, not settable; what cannot
 #    follow a switch yet (Taylor's series, a linearization) says so;
@@ -89,6 +92,14 @@ last=$(tail -1 "$tmp/rowss.csv")
   within "$(sed -n 2p "$tmp/evs.csv" | cut -d, -f1)" 0.3 1e-14 &&
   within "$(echo "$last" | cut -d, -f2)" 0.255 1e-13 && within "$(echo "$last" | cut -d, -f3)" 0.3 1e-13
 ok $? "step(0.3 - t): the push ends at 0.3, y(1) = 0.255, y'(1) = 0.3 ($(echo "$last" | cut -d, -f2,3))"
+
+"$eomc" run "$spec" --effects vee --set v0=0 --set y0=0.5 --t-end 2 --events "$tmp/eva.csv" > "$tmp/rowsa.csv"; st=$?
+last=$(tail -1 "$tmp/rowsa.csv")
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/eva.csv")" -eq 2 ] &&
+  [ "$(sed -n 2p "$tmp/eva.csv" | cut -d, -f2)" = vee.abs ] &&
+  within "$(sed -n 2p "$tmp/eva.csv" | cut -d, -f1)" 1 1e-14 &&
+  within "$(echo "$last" | cut -d, -f2)" -0.5 1e-13 && within "$(echo "$last" | cut -d, -f3)" 0 1e-13
+ok $? "abs(y): its kink vee.abs located at t = 1, y(2) = -0.5 at rest ($(echo "$last" | cut -d, -f2,3))"
 
 head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
 ok $? "the modes are not columns of the CSV"

@@ -303,6 +303,50 @@ pair(StepEvents *v, int k, int *any)
     return GSL_SUCCESS;
 }
 
+/* Switch k flipped at the step's start (its g0 is 0) and its function
+ * ends the step on the side of the mode it left: it went into its new
+ * mode's side and came back across, or never went.  The crossing back is
+ * located after a point found on the new side, by halving toward the
+ * start; found no later than 2^-EXTREMUM_ITERS of the step, the motion
+ * leaves the new mode as soon as it enters it: it would slide along the
+ * kink, which no mode follows (STEPEV_RETURNED).  GSL_SUCCESS, or a
+ * failure status. */
+static int
+back_across(StepEvents *v, int k, int *any)
+{
+    const StepevSpan *sp = &v->sp;
+    double side = sim_mode(v->s, k - v->nev) ? 1 : -1, g1 = v->g1[k];
+    if (!(side * g1 < 0))
+        return GSL_SUCCESS; /* on its new side, or still on the kink */
+    double lo = sp->t0, hi = sp->t1, tm = NAN, gm = NAN;
+    v->ev_k = k;
+    for (int it = 0; it < EXTREMUM_ITERS; it++) {
+        double t = 0.5 * (lo + hi), g = g_solution(v, t);
+        if (isnan(g))
+            break;
+        if (side * g > 0) {
+            tm = t, gm = g;
+            break;
+        }
+        hi = t; /* already back: the excursion, if any, is earlier */
+    }
+    int evals;
+    if (isnan(tm) && isnan(gm)) {
+        v->left_rate = 0;
+        return STEPEV_RETURNED;
+    }
+    if (!isnan(tm))
+        v->te[k] = ev_root(g_solution, v, tm, gm, sp->t1, g1, NAN, &evals);
+    if (isnan(v->te[k])) {
+        sim_numeric_error(v->s, sp->t1, sp->x1, sp->x1 + v->n, "switch %s crossed back in "
+                          "the step from t = %.17g, but the state inside it could not be "
+                          "computed", name_of(v, k), sp->t0);
+        return GSL_EBADFUNC;
+    }
+    *any = 1;
+    return GSL_SUCCESS;
+}
+
 int
 stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
 {
@@ -326,6 +370,12 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             return STEPEV_RETURNED;
         }
         v->held[k] = 0;
+        if (k >= v->nev && v->g0[k] == 0) { /* a switch this step starts on */
+            int rc = back_across(v, k, &any);
+            if (rc != GSL_SUCCESS)
+                return rc;
+            continue;
+        }
         if (!ev_crossed(dir_of(v, k), v->g0[k], v->g1[k])) {
             if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
                 continue;
@@ -384,8 +434,9 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             v->te[k] = v->te2[k], v->te2[k] = NAN; /* the pair's second, if any */
             continue;
         }
-        /* the side the switch function went to by the step's end */
-        v->switch_to = k >= v->nev && v->g1[k] > 0;
+        /* a flip goes to the other mode: the side the switch function went
+         * to here (by the step's end it may be back, a pair's first) */
+        v->switch_to = k >= v->nev && !sim_mode(s, k - v->nev);
         *hit = (StepevHit){.k = k, .status = EOMC_OK, .t = t, .x = v->xe};
         return GSL_SUCCESS;
     }
@@ -525,6 +576,13 @@ stepev_error(const StepEvents *v, int status, double t, const double *x)
                                  "span: the motion comes to rest against it in ever "
                                  "shorter intervals (Zeno), which no step can follow",
                                  name, v->nsets + 1, t - v->last_set, ACCUMULATE_REL);
+    if (v->ev_k >= v->nev)
+        return sim_numeric_error(s, t, x, x + v->n, "switch %s flipped at t = %.17g and its "
+                                 "function is back across its kink at the end of the next "
+                                 "step, within %g of it: the motion leaves the new mode as "
+                                 "soon as it enters it, as if it slid along the kink, which "
+                                 "no mode follows", name, v->last_set,
+                                 t - v->last_set);
     if (v->left_rate > 0) /* moving on, too slowly to pass: not a return */
         return sim_numeric_error(s, t, x, x + v->n, "event %s holds still at the end of "
                                  "the first step after its reset at t = %.17g: the reset "

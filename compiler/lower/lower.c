@@ -850,15 +850,18 @@ lower_draw(Lowering *lw)
     if (ns) {
         f = func(lw, &s_draw_shapes, "draw", 1);
         f->per_step = 0;
-        for (int k = 0; k < s->nshape; k++) {
+        for (int k = 0, d = 0; k < s->nshape; k++) {
             const SpecShape *sh = &s->shape[k];
+            if (sh->type == SPEC_SHAPE_PLANE) /* not drawn (lower_describe) */
+                continue;
             for (int j = 0; j < 3; j++) {
                 ExprId e = sh->esize[j], x = sh->epos[j];
-                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + j,
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * d + j,
                     e != EXPR_NONE ? e : expr_const(P, sh->size[j]));
-                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + 3 + j,
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * d + 3 + j,
                     x != EXPR_NONE ? x : expr_const(P, sh->pos[j]));
             }
+            d++;
         }
         lw->L->draw_shapes = f;
     }

@@ -148,9 +148,10 @@ static const LowSig s_events = {
     "t q v p u > g", 1,
 };
 static const LowSig s_switches = {
-    "switches", "The switch functions of max, min and clamp: mode k is 1 where s[k] > 0,\n"
-    " * 0 where s[k] < 0, and the runtime flips it where s[k] crosses 0.",
-    "t q v p u > s", 1,
+    "switches", "The switch functions of max, min and clamp: mode k is 1 where sw[k] > 0,\n"
+    " * 0 where sw[k] < 0, and the runtime flips it where sw[k] crosses 0.",
+    /* (not s: a function split into parts shares its values in s[]) */
+    "t q v p u > sw", 1,
 };
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"

@@ -151,7 +151,8 @@ contact(Ctx *x, const char *suffix, ExprId d, const ExprId n[3], int ba, const E
     char name[64];
     snprintf(name, sizeof name, "%s%spush", suffix, *suffix ? "." : "");
     ExprId rate = diff_time(x->D, d);
-    ExprId law = expr_add(P, expr_mul(P, x->k, d), expr_mul(P, x->c, rate));
+    ExprId spring = expr_mul(P, x->k, d), damper = expr_mul(P, x->c, rate);
+    ExprId law = expr_add(P, spring, damper);
     ExprId push = named_where(x, law, law, EXPR_ZERO, name); /* max(0, k d + c d') */
     snprintf(name, sizeof name, "%s%stouch", suffix, *suffix ? "." : "");
     ExprId N = named_where(x, d, push, EXPR_ZERO, name);
@@ -272,7 +273,8 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
     for (int i = 0; i < 3; i++)
         rel[i] = expr_sub(P, sp->o[i], ca->o[i]);
     ExprId h = ca->size[1];
-    ExprId t = named_clamp(x, kin_dot(P, u, rel), expr_neg(P, h), h, flip ? "a" : "b");
+    ExprId along_axis = kin_dot(P, u, rel), nh = expr_neg(P, h);
+    ExprId t = named_clamp(x, along_axis, nh, h, flip ? "a" : "b");
     along(P, ca->o, t, u, q);
     if (flip)
         spheres(x, "", q, ca->size[0], ca->body, sp->o, sp->size[0], sp->body);
@@ -304,9 +306,11 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
     ExprId den = expr_sub(P, EXPR_ONE, expr_mul(P, bb, bb));
     ExprId num = expr_sub(P, expr_mul(P, bb, f), c);
     ExprId hden = expr_mul(P, ha, den);
-    ExprId inner = named_where(x, expr_add(P, num, hden), expr_div(P, num, den), nha, "a.lo");
+    ExprId above_lo = expr_add(P, num, hden), lines = expr_div(P, num, den);
+    ExprId inner = named_where(x, above_lo, lines, nha, "a.lo");
     ExprId s0 = named_where(x, expr_sub(P, num, hden), ha, inner, "a.hi");
-    ExprId t = named_clamp(x, expr_add(P, expr_mul(P, bb, s0), f), expr_neg(P, hb), hb, "b");
+    ExprId tu = expr_add(P, expr_mul(P, bb, s0), f), nhb = expr_neg(P, hb);
+    ExprId t = named_clamp(x, tu, nhb, hb, "b");
     ExprId s = named_clamp(x, expr_sub(P, expr_mul(P, bb, t), c), nha, ha, "a2");
     along(P, a->o, s, ua, pa);
     along(P, b->o, t, ub, pb);
@@ -369,9 +373,7 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
             tb[0] = x.tau[b][2];
         else
             for (int k = 0; k < 3; k++) /* R^T tau */
-                tb[k] = expr_add(P, expr_add(P, expr_mul(P, R[k], x.tau[b][0]),
-                                             expr_mul(P, R[3 + k], x.tau[b][1])),
-                                 expr_mul(P, R[6 + k], x.tau[b][2]));
+                tb[k] = kin_dot(P, (ExprId[3]){R[k], R[3 + k], R[6 + k]}, x.tau[b]);
         for (int j = 0; j < out->n; j++) {
             ExprId w = EXPR_ZERO;
             for (int k = 0; k < nw; k++)

@@ -88,6 +88,25 @@ owner(Loader *L, int k)
     return b < L->s->nbody ? arena_printf(L->A, "body '%s'", L->s->body[b].name) : "the ground";
 }
 
+/* Shape k's name (its own, or its body's) names it alone: its pairs and
+ * switches are named by it. */
+static void
+unique_name(Loader *L, int k)
+{
+    const Spec *s = L->s;
+    const SpecShape *sh = &s->shape[k];
+    for (int j = 0; j < s->nshape; j++)
+        if (j != k && s->shape[j].name && !strcmp(s->shape[j].name, sh->name))
+            diag_error(sh->loc, "shape '%s' touches others in effect '%s', and shape '%s' at "
+                       "line %d has its name: give each a `name:` of its own", sh->name,
+                       L->sc.owner, sh->name, s->shape[j].loc.line);
+    for (int b = 0; b < s->nbody; b++)
+        if (b != sh->body && !strcmp(s->body[b].name, sh->name))
+            diag_error(sh->loc, "shape '%s' touches others in effect '%s', and body '%s' has "
+                       "its name: give it a `name:` of its own", sh->name, L->sc.owner,
+                       sh->name);
+}
+
 /* Pair (a, b) found at node n (NULL: by the filters): one eomc has a
  * gap for, of shapes that can move, placed; appended to f. */
 static void
@@ -216,6 +235,9 @@ spec_load_contact(Loader *L, yaml_node_t *map, SpecForce *f)
             diag_error(spec_loc(L, c), "`contact:` lists no pair");
     }
     unsigned char *done = arena_new_array(L->A, unsigned char, ns + 1);
-    for (int j = 0; j < 2 * f->npair; j++)
+    for (int j = 0; j < 2 * f->npair; j++) {
+        if (!done[f->pair[j]])
+            unique_name(L, f->pair[j]);
         require_sizes(L, f->pair[j], done);
+    }
 }

@@ -175,21 +175,22 @@ spec_load_shapes(Loader *L, yaml_node_t *seq, int body)
     default_names(L, first, L->s->body[body].name);
 }
 
-/* Every shape's name is its own: a contact's pairs and its switches are
- * named by them.  A shape named as another body is would make a pair's
- * name mean two things. */
+/* A name a shape is given is its own: a contact's pairs and its switches
+ * are named by it, and a shape named as another body is would make a
+ * pair's name mean two things.  (The names it takes from its body are
+ * checked where a contact uses them: spec/contacts.c.) */
 static void
 check_shape_names(Loader *L)
 {
     const Spec *s = L->s;
     for (int k = 0; k < s->nshape; k++) {
         const SpecShape *sh = &s->shape[k];
-        if (!sh->name) /* (its body had an error) */
+        if (!sh->name || !spec_lookup(L, L->shape_node[k], "name"))
             continue;
-        for (int j = 0; j < k; j++)
-            if (s->shape[j].name && !strcmp(s->shape[j].name, sh->name))
+        for (int j = 0; j < s->nshape; j++)
+            if (j != k && s->shape[j].name && !strcmp(s->shape[j].name, sh->name))
                 diag_error(sh->loc, "two shapes are named '%s' (the other at line %d): give "
-                           "one a `name:` of its own", sh->name, s->shape[j].loc.line);
+                           "each a `name:` of its own", sh->name, s->shape[j].loc.line);
         for (int b = 0; b < s->nbody; b++)
             if (b != sh->body && !strcmp(s->body[b].name, sh->name))
                 diag_error(sh->loc, "shape '%s' is named as body '%s' is: give it a `name:` "

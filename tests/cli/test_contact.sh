@@ -67,7 +67,7 @@ ton = (-a1 + math.sqrt(a1 * a1 - 4 * a2 * a0)) / (2 * a2)
 print("%.17g %.17g %.17g %.17g %.17g" % (ton, t0, t0 + t1, t0 + t1 + s, r - d1 + d1d * d1d / (2 * g)))
 EOF
 )
-set -- $want
+set -- $want - - - - -
 ton=$1 t0=$2 tpush=$3 ttouch=$4 apex=$5
 errs=""
 for tol in 1e-6 1e-9 1e-12; do
@@ -81,7 +81,7 @@ for tol in 1e-6 1e-9 1e-12; do
       NR == 5 { e[4] = a($1 - tt) } NR == 6 { e[5] = a($3 - apex) }
       END { printf "%.2g,%.2g,%.2g,%.2g,%.2g", e[1], e[2], e[3], e[4], e[5] }' "$tmp/ev$tol.csv")"
 done
-set -- $errs
+set -- $errs - - -
 # each error at 1e-12 within 1e-13 s (1e-12 m for the apex), and none
 # larger than at the looser tolerance
 echo "$1 $2 $3" | awk '{ n1 = split($1, a, ","); split($2, b, ","); split($3, c, ",")
@@ -112,7 +112,7 @@ for sx in (-1, 1):
             if d > 0:
                 n += 1; F += k * d; Mx += arm[1] * k * d; My -= arm[0] * k * d
 print("%d %.3g %.3g" % (n, abs(F / (m * g) - 1), max(abs(Mx), abs(My)) / (m * g * a)))')
-set -- $res
+set -- $res - - -
 [ $st -eq 0 ] && [ ! -s "$tmp/box.err" ] && [ "$1" = 4 ] && awk -v f=$2 -v mo=$3 'BEGIN { exit !(f <= 1e-9 && mo <= 1e-9) }'
 ok $? "box at rest on $1 corners: sum k d_i = m g to $2, their moment about the centre $3 of m g a"
 
@@ -123,7 +123,7 @@ want=$(awk 'BEGIN { m1 = 1; m2 = 3; k = 1e4; c = 20; v = 2; mu = m1 * m2 / (m1 +
     t1 = (3.14159265358979323846 - atan2(2 * z * s, 1 - 2 * z * z)) / wd
     e = exp(-z * w * t1) * (-z * w * sin(wd * t1) / wd + cos(wd * t1)); e = -e
     printf "%.17g %.17g %.17g", e, (m1 * v - m2 * e * v) / (m1 + m2), m1 * (1 + e) * v / (m1 + m2) }')
-set -- $want
+set -- $want - - -
 last=$(tail -1 "$tmp/sph.csv")
 v1=$(echo "$last" | cut -d, -f4) v2=$(echo "$last" | cut -d, -f5)
 p=$(awk -v a=$v1 -v b=$v2 'BEGIN { printf "%.17g", a + 3 * b }')

@@ -118,9 +118,8 @@ place(const Spec *s, int k, ExprPool *P, Placed *out)
 
 /* Column j of A: a shape's j-th axis in the world's components. */
 static void
-axis(ExprPool *P, const ExprId *A, int j, ExprId out[3])
+axis(const ExprId *A, int j, ExprId out[3])
 {
-    (void)P;
     for (int i = 0; i < 3; i++)
         out[i] = A[3 * i + j];
 }
@@ -181,7 +180,7 @@ plane_point(Ctx *x, const char *suffix, const Placed *pl, const ExprId o[3], Exp
 {
     ExprPool *P = x->P;
     ExprId n[3], rel[3], p[3];
-    axis(P, pl->A, 2, n);
+    axis(pl->A, 2, n);
     for (int i = 0; i < 3; i++)
         rel[i] = expr_sub(P, o[i], pl->o[i]);
     ExprId d = expr_sub(P, r, kin_dot(P, n, rel));
@@ -241,10 +240,10 @@ with_plane(Ctx *x, const Placed *pl, const Placed *o)
         /* the point farthest along -n: o - A S^2 m / |S m|, m = A^T n
          * the normal in its axes, S its semi-axes; d = |S m| - n.(o - p0) */
         ExprId n[3], m[3], w = zero, local[3], p[3], rel[3];
-        axis(P, pl->A, 2, n);
+        axis(pl->A, 2, n);
         for (int j = 0; j < 3; j++) {
             ExprId col[3];
-            axis(P, o->A, j, col);
+            axis(o->A, j, col);
             m[j] = kin_dot(P, col, n);
             w = expr_add(P, w, expr_powi(P, expr_mul(P, o->size[j], m[j]), 2));
         }
@@ -269,7 +268,7 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
 {
     ExprPool *P = x->P;
     ExprId u[3], rel[3], q[3];
-    axis(P, ca->A, 2, u);
+    axis(ca->A, 2, u);
     for (int i = 0; i < 3; i++)
         rel[i] = expr_sub(P, sp->o[i], ca->o[i]);
     ExprId h = ca->size[1];
@@ -297,8 +296,8 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
 {
     ExprPool *P = x->P;
     ExprId ua[3], ub[3], r[3], pa[3], pb[3];
-    axis(P, a->A, 2, ua);
-    axis(P, b->A, 2, ub);
+    axis(a->A, 2, ua);
+    axis(b->A, 2, ub);
     for (int i = 0; i < 3; i++)
         r[i] = expr_sub(P, a->o[i], b->o[i]);
     ExprId ha = a->size[1], hb = b->size[1], nha = expr_neg(P, ha);

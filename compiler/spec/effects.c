@@ -4,6 +4,7 @@
  */
 #include "effects.h"
 
+#include "contacts.h"
 #include "names.h"
 
 #include <stdio.h>
@@ -115,12 +116,27 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "on", NULL};
+                                       "kinetic", "on", "contact", "stiffness", "damping",
+                                       "friction", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
     int kinds = 0;
     yaml_node_t *v, *on = spec_lookup(L, map, "on");
+    if (spec_lookup(L, map, "contact") && NPAIRS(map) > 1 + !!spec_lookup(L, map, "stiffness") +
+                                           !!spec_lookup(L, map, "damping") +
+                                           !!spec_lookup(L, map, "friction") + !!on)
+        diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
+                   "force, torque, work, kinetic, contact (write a list for several)");
+    if (spec_lookup(L, map, "contact")) {
+        spec_load_contact(L, map, f);
+        return;
+    }
+    static const char *const law[] = {"stiffness", "damping", "friction"};
+    for (int k = 0; k < 3; k++)
+        if (spec_lookup(L, map, law[k]))
+            diag_error(spec_key_loc(L, map, law[k]), "`%s` belongs to a contact "
+                       "({contact: all, stiffness: k, damping: c})", law[k]);
     if ((v = spec_lookup(L, map, "gravity"))) {
         f->kind = FORCE_GRAVITY, kinds++;
         f->dim = spec_vector(L, v, ALLOW_FIELD, "a gravity field", f->vec);
@@ -155,7 +171,7 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
                    "potential, force, torque, work, kinetic (write a list for several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic");
+                   "kinetic, contact");
 }
 
 static void

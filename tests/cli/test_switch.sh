@@ -100,6 +100,18 @@ last=$(tail -1 "$tmp/rowsa.csv")
   within "$(sed -n 2p "$tmp/eva.csv" | cut -d, -f1)" 1 1e-14 &&
   within "$(echo "$last" | cut -d, -f2)" -0.5 1e-13 && within "$(echo "$last" | cut -d, -f3)" 0 1e-13
 ok $? "abs(y): its kink vee.abs located at t = 1, y(2) = -0.5 at rest ($(echo "$last" | cut -d, -f2,3))"
+# a switch function too large for one C function (over 1500 nodes: the
+# switches function split into parts, which share their values in an
+# array of their own): the floor's force plus 800 terms of 1e-300
+# sin(y + i), nothing at double precision, so the undamped closed form
+terms=$(awk 'BEGIN { for (i = 1; i <= 800; i++) printf " + 1e-300*sin(y + %d)", i }')
+sed -e "s|floor: {force: \[0, \"max(0, -k\*y - c\*y')\"\], on: mass}|floor: {force: [0, \"max(0, -k*y - c*y'$terms)\"], on: mass}|" \
+  "$spec" > "$tmp/big_switch.yaml"
+"$eomc" run "$tmp/big_switch.yaml" --set c=0 --set y0=0.1 --events "$tmp/evb.csv" > "$tmp/rowsb.csv" 2> "$tmp/errb"; st=$?
+[ $st -eq 0 ] && grep -q "sin(y + 800)" "$tmp/big_switch.yaml" &&
+  within "$(sed -n 3p "$tmp/evb.csv" | cut -d, -f1)" 0.41415926535897932 1e-13 &&
+  within "$(tail -1 "$tmp/rowsb.csv" | cut -d, -f3)" 1 1e-12
+ok $? "a switch function of 800 terms more, split into parts: the contact still ends at 0.1 + pi/w, leaving at v0 ($(head -1 "$tmp/errb"))"
 
 head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
 ok $? "the modes are not columns of the CSV"

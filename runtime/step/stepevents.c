@@ -276,7 +276,16 @@ pair(StepEvents *v, int k, int *any)
     } else if (qa == 0 && qb != 0 && -d0 / qb > 0 && -d0 / qb < 1) {
         tau = -d0 / qb;
     }
-    double lo = t0, hi = t1, tc = NAN, gc = NAN;
+    /* Where the cubic's turn stays farther from 0 than g's rates move it
+     * over the whole step, the solution does not reach 0 either: the cubic
+     * matches g and its rate at both ends, and differs from it by far less
+     * than that.  (At rest on a contact the rates are rounding, and each
+     * switch would cost a dozen side steps per step.) */
+    double gc = g0 + tau * (d0 + tau * (c2 + tau * c3));
+    if (side * gc > fabs(d0) + fabs(d1))
+        return GSL_SUCCESS;
+    double lo = t0, hi = t1, tc = NAN;
+    gc = NAN;
     for (int it = 0; it < EXTREMUM_ITERS && isnan(tc); it++) {
         double tm = it == 0 ? t0 + tau * h : 0.5 * (lo + hi), gm, dm;
         int rc = g_and_rate(v, k, tm, &gm, &dm);

@@ -115,6 +115,14 @@ print("%d %.3g %.3g" % (n, abs(F / (m * g) - 1), max(abs(Mx), abs(My)) / (m * g 
 set -- $res - - -
 [ $st -eq 0 ] && [ ! -s "$tmp/box.err" ] && [ "$1" = 4 ] && awk -v f=$2 -v mo=$3 'BEGIN { exit !(f <= 1e-9 && mo <= 1e-9) }'
 ok $? "box at rest on $1 corners: sum k d_i = m g to $2, their moment about the centre $3 of m g a"
+# at rest the switch functions' rates are rounding, which must not send
+# each of the 16 switches on a dozen side steps per step in search of two
+# crossings (436 046 right-hand sides for 479 steps before the search
+# looked at how far from 0 the cubic through g and its rates turns)
+"$eomc" run "$cli/contact_box.yaml" --stats > /dev/null 2> "$tmp/boxs.err"
+steps=$(sed -n 's/^steps //p' "$tmp/boxs.err") evals=$(sed -n 's/^rhs_evals //p' "$tmp/boxs.err")
+[ -n "$steps" ] && [ "$evals" -le $((40 * steps)) ]
+ok $? "box at rest: $evals right-hand sides for $steps steps (at most 40 a step)"
 
 # ---- two balls head-on
 "$eomc" run "$cli/contact_spheres.yaml" > "$tmp/sph.csv"; st=$?

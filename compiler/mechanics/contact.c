@@ -286,11 +286,14 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
  * c = ua.r, f = ub.r: the lines' nearest s0 = (b f - c)/(1 - b^2),
  * clamped; t = clamp(b s0 + f), the nearest to it on b's axis; then
  * s = clamp(b t - c), the nearest to that on a's (Ericson, Real-Time
- * Collision Detection, 5.1.9; s = s0 where t was not clamped).  s0's
- * clamp is written with switch functions x - ha (1 - b^2) and
- * x + ha (1 - b^2), x = b f - c, which need no division: parallel axes
- * (1 - b^2 = 0, x = 0) sit on both kinks, the mode -ha, and any s0 serves
- * them. */
+ * Collision Detection, 5.1.9; s = s0 where t was not clamped).
+ * Axes within PARALLEL_DEN of parallel (1 - b^2 below it: 1e-6 rad) divide
+ * by PARALLEL_DEN instead, so s0 is near 0 where b f - c is rounding: any
+ * s0 serves parallel axes, whose nearest points the two projections then
+ * find.  (Dividing by 1 - b^2 itself would make s0 rounding over
+ * rounding, and switch functions that vanish with it would flip on
+ * rounding alone, as the two shins of a humanoid standing straight do.) */
+#define PARALLEL_DEN 1e-12
 static void
 capsules(Ctx *x, const Placed *a, const Placed *b)
 {
@@ -303,11 +306,9 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
     ExprId ha = a->size[1], hb = b->size[1], nha = expr_neg(P, ha);
     ExprId bb = kin_dot(P, ua, ub), c = kin_dot(P, ua, r), f = kin_dot(P, ub, r);
     ExprId den = expr_sub(P, EXPR_ONE, expr_mul(P, bb, bb));
-    ExprId num = expr_sub(P, expr_mul(P, bb, f), c);
-    ExprId hden = expr_mul(P, ha, den);
-    ExprId above_lo = expr_add(P, num, hden), lines = expr_div(P, num, den);
-    ExprId inner = named_where(x, above_lo, lines, nha, "a.lo");
-    ExprId s0 = named_where(x, expr_sub(P, num, hden), ha, inner, "a.hi");
+    ExprId num = expr_sub(P, expr_mul(P, bb, f), c), eps = expr_const(P, PARALLEL_DEN);
+    ExprId safe = named_where(x, expr_sub(P, den, eps), den, eps, "parallel");
+    ExprId s0 = named_clamp(x, expr_div(P, num, safe), nha, ha, "a");
     ExprId tu = expr_add(P, expr_mul(P, bb, s0), f), nhb = expr_neg(P, hb);
     ExprId t = named_clamp(x, tu, nhb, hb, "b");
     ExprId s = named_clamp(x, expr_sub(P, expr_mul(P, bb, t), c), nha, ha, "a2");

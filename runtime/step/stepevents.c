@@ -585,13 +585,19 @@ stepev_error(const StepEvents *v, int status, double t, const double *x)
                                  "span: the motion comes to rest against it in ever "
                                  "shorter intervals (Zeno), which no step can follow",
                                  name, v->nsets + 1, t - v->last_set, ACCUMULATE_REL);
+    double flipped = v->ev_k >= v->nev ? v->tsw[v->ev_k - v->nev] : 0;
+    if (v->ev_k >= v->nev && flipped == -INFINITY) /* on its kink since the start */
+        return sim_numeric_error(s, t, x, x + v->n, "switch %s starts on its kink, and its "
+                                 "function is across it at the end of the first step, with "
+                                 "no point of the step on the side its mode was given: the "
+                                 "motion slides along the kink (or its function is 0 to "
+                                 "rounding there), which no mode follows", name);
     if (v->ev_k >= v->nev)
         return sim_numeric_error(s, t, x, x + v->n, "switch %s flipped at t = %.17g and its "
                                  "function is back across its kink at the end of the next "
                                  "step, within %g of it: the motion leaves the new mode as "
                                  "soon as it enters it, as if it slid along the kink, which "
-                                 "no mode follows", name, v->last_set,
-                                 t - v->last_set);
+                                 "no mode follows", name, flipped, t - flipped);
     if (v->left_rate > 0) /* moving on, too slowly to pass: not a return */
         return sim_numeric_error(s, t, x, x + v->n, "event %s holds still at the end of "
                                  "the first step after its reset at t = %.17g: the reset "

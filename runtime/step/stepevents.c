@@ -27,6 +27,7 @@
 #include "dense.h"
 
 #include <gsl/gsl_errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -248,6 +249,11 @@ g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
  * bracket to 2^-EXTREMUM_ITERS of the step, where g differs from its
  * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
 enum { EXTREMUM_ITERS = 12 };
+
+/* Roots of two switch functions closer than this many ulps of the time
+ * are one instant: ev_root brackets each to 4, so two located apart
+ * differ by up to 8 for rounding alone. */
+#define SIMULTANEOUS_ULPS 16
 
 /* Event k, of one sign at both ends of the step, crossing twice inside
  * it: g heads for 0 at the step's start and away from it at its end
@@ -502,18 +508,25 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     v->last_set = t;
     v->nsets++;
     sim_set_mode(v->s, j, v->switch_to);
-    /* Switches that crossed at this very instant (two kinks at once: a
+    /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
-     * already, to rounding, and would never be seen crossing: each flips
-     * now too, told as the first was (a nonzero return of on_event cannot
-     * undo what that one started).  A flip may move another's function
-     * (a max of a max): again until none disagrees. */
+     * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
+     * move (their roots, located apart, differ by rounding: the steps
+     * between them would be too short to take): each flips now too, told
+     * as the first was (a nonzero return of on_event cannot undo what
+     * that one started).  A flip may move another's function (a max of a
+     * max): again until none disagrees. */
+    double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
+    g_rates(v, t, x, f, v->gd1); /* (f: the rate before the flip) */
     for (int pass = 0; pass < v->ne - v->nev; pass++) {
         int changed = 0;
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne; i++) {
-            int on = v->g0[i] > 0;
-            if (i == k || v->g0[i] == 0 || on == sim_mode(v->s, i - v->nev))
+            int on = v->g0[i] > 0, mode = sim_mode(v->s, i - v->nev);
+            if (on == mode && v->g0[i] != 0 && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
+                -v->g0[i] / v->gd1[i] <= soon)
+                on = !on; /* about to cross */
+            if (i == k || v->g0[i] == 0 || on == mode)
                 continue;
             sim_set_mode(v->s, i - v->nev, on);
             v->tsw[i - v->nev] = t;
@@ -529,7 +542,9 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     if (rc != GSL_SUCCESS)
         return rc;
     g_all(v, t, x, x + v->n, v->g0);
-    v->g0[k] = 0; /* on the kink: it fires again only once it has left it */
+    for (int i = v->nev; i < v->ne; i++) /* on their kinks: each fires again only */
+        if (v->tsw[i - v->nev] == t)      /* once it has left it */
+            v->g0[i] = 0;
     v->held[k] = 0;
     v->left_rate = 0;
     return GSL_SUCCESS;

@@ -526,8 +526,8 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
             if (on == mode && v->g0[i] != 0 && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
                 -v->g0[i] / v->gd1[i] <= soon)
                 on = !on; /* about to cross */
-            if (i == k || v->g0[i] == 0 || on == mode)
-                continue;
+            if (v->tsw[i - v->nev] == t || v->g0[i] == 0 || on == mode)
+                continue; /* (flipped at t already: k and those before) */
             sim_set_mode(v->s, i - v->nev, on);
             v->tsw[i - v->nev] = t;
             v->st->events++;

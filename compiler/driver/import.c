@@ -25,6 +25,7 @@
  * tree above, and it is the one file that knows MuJoCo's structures.
  */
 #include "import.h"
+#include "import_contact.h"
 #include "import_urdf.h"
 
 #include "runtime/base/numfmt.h"
@@ -439,7 +440,6 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     char b[32];
     int limits = !disabled(m, mjDSBL_LIMIT | mjDSBL_CONSTRAINT);
     int friction = !disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT);
-    int contacts = !disabled(m, mjDSBL_CONTACT | mjDSBL_CONSTRAINT);
     for (int j = 0; j < m->njnt; j++) {
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
         if (m->jnt_limited[j] && limits)
@@ -483,16 +483,6 @@ dropped(const mjModel *m, const char *path, FILE *warn)
                   "an input is applied as given, not clamped");
     n += drop_say(warn, path, &force, "the force range of", "actuator",
                   "an actuator's force is not clamped");
-    Drop geoms = {0}, pairs = {0};
-    for (int g = 0; g < m->ngeom && contacts; g++)
-        if (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)
-            drop_add(&geoms, label(m, mjOBJ_GEOM, g, b, sizeof b));
-    for (int p = 0; p < m->npair && contacts; p++) /* <contact><pair>: whatever contype says */
-        drop_add(&pairs, label(m, mjOBJ_PAIR, p, b, sizeof b));
-    n += drop_say(warn, path, &geoms, "the contacts of", "geom",
-                  "eomc simulates smooth dynamics: bodies pass through one another");
-    n += drop_say(warn, path, &pairs, "", "contact pair",
-                  "eomc simulates smooth dynamics: its geoms pass through one another");
     Drop fluid = {0};
     for (int bb = 1; bb < m->nbody; bb++)
         if (fluid_model(m, bb) == FLUID_ELLIPSOID)
@@ -503,11 +493,71 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     return n;
 }
 
+static int drawn(const mjModel *m, int g, int urdf_visuals);
+
+/* Which geoms the spec has a shape for (put_shapes, put_ground), a
+ * contact's plane of the world included: [ngeom], to free. */
+static unsigned char *
+shapes_written(const mjModel *m, int urdf_visuals)
+{
+    unsigned char *w = xmalloc((size_t)m->ngeom + 1);
+    for (int g = 0; g < m->ngeom; g++) {
+        int b = m->geom_bodyid[g], t = m->geom_type[g];
+        int ground = m->body_weldid[b] == 0 && (b == 0 || m->body_mass[b] == 0);
+        w[g] = t != mjGEOM_HFIELD && drawn(m, g, urdf_visuals) &&
+               (ground || (t != mjGEOM_PLANE && b != 0 && m->body_mass[b] != 0));
+    }
+    return w;
+}
+
+/* The contact pairs eomc's contact cannot take, one warning for each
+ * reason; and what it takes otherwise (margins as 0, no friction): the
+ * number of kinds. */
+static int
+contact_drops(const mjModel *m, const ImportContacts *ic, const char *path, FILE *warn)
+{
+    int n = 0;
+    char b1[32], b2[32], nm[80];
+    for (int i = 0; i < ic->nskip; i++) {
+        int first = 1;
+        for (int j = 0; j < i && first; j++)
+            first = strcmp(ic->skip[j].why, ic->skip[i].why) != 0;
+        if (!first)
+            continue;
+        Drop d = {0};
+        for (int j = i; j < ic->nskip; j++)
+            if (!strcmp(ic->skip[j].why, ic->skip[i].why)) {
+                snprintf(nm, sizeof nm, "%s-%s", label(m, mjOBJ_GEOM, ic->skip[j].g1, b1,
+                                                       sizeof b1),
+                         label(m, mjOBJ_GEOM, ic->skip[j].g2, b2, sizeof b2));
+                drop_add(&d, nm);
+            }
+        char why[200];
+        snprintf(why, sizeof why, "eomc's contact has no gap for %s", ic->skip[i].why);
+        n += drop_say(warn, path, &d, "the contacts of", "geom pair", why);
+    }
+    Drop fr = {0}, mg = {0};
+    for (int i = 0; i < ic->npair; i++) {
+        snprintf(nm, sizeof nm, "%s-%s", label(m, mjOBJ_GEOM, ic->pair[i].g1, b1, sizeof b1),
+                 label(m, mjOBJ_GEOM, ic->pair[i].g2, b2, sizeof b2));
+        if (ic->pair[i].friction)
+            drop_add(&fr, nm);
+        if (ic->pair[i].margin)
+            drop_add(&mg, nm);
+    }
+    n += drop_say(warn, path, &fr, "the friction of", "contact pair",
+                  "eomc's contact pushes along the normal only: friction is not there yet");
+    n += drop_say(warn, path, &mg, "the margin or gap of", "contact pair",
+                  "eomc's contact begins where the shapes touch");
+    return n;
+}
+
 /* Geoms the page cannot draw as they are, for a warning each kind: meshes
  * (drawn as the box that bounds them), planes and height fields (not
  * drawn). */
 typedef struct Unshaped {
     Drop meshes, planes;
+    int plane_floor; /* a contact's plane faces up: the page's floor, so no view: floor: */
     int floors;   /* planes of the world across z: the page's grid stands for them */
     double floor; /* the first one's height */
 } Unshaped;
@@ -542,8 +592,8 @@ drawn(const mjModel *m, int g, int urdf_visuals)
  * its principal axes, which geom_pos and geom_quat place).  Colours are
  * rounded to 3 decimals (MuJoCo keeps floats). */
 static int
-put_shape(const mjModel *m, int g, const double *pos, const double *quat, const char *sep,
-          FILE *out, Unshaped *u)
+put_shape(const mjModel *m, int g, const double *pos, const double *quat, const char *name,
+          const char *sep, FILE *out, Unshaped *u)
 {
     static const char *const types[mjNGEOMTYPES] = {
         [mjGEOM_SPHERE] = "sphere", [mjGEOM_CAPSULE] = "capsule",
@@ -564,9 +614,26 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
      * unturned, or turned about z) is the page's floor: its grid is drawn
      * at its height (view: floor:) */
     const double *gq = quat;
+    int up = gq[1] * gq[3] + gq[0] * gq[2] == 0 && gq[2] * gq[3] - gq[0] * gq[1] == 0;
+    if (t == mjGEOM_PLANE && name) { /* a contact's: the half-space below it */
+        fprintf(out, "%s{type: plane, name: %s", sep, name);
+        if (!is_zero3(pos)) {
+            fputs(", pos: ", out);
+            put_vec(out, pos);
+        }
+        if (quat[1] != 0 || quat[2] != 0 || quat[3] != 0) {
+            fputs(", quat: [", out);
+            for (int k = 0; k < 4; k++)
+                fprintf(out, "%s%s", k ? ", " : "", num(a, quat[k]));
+            fputs("]", out);
+        }
+        fputs("}", out);
+        u->plane_floor |= up && quat[0] * quat[0] + quat[3] * quat[3] >
+                                      quat[1] * quat[1] + quat[2] * quat[2];
+        return 0;
+    }
     if (!ok) {
-        if (t == mjGEOM_PLANE && m->geom_bodyid[g] == 0 &&
-            gq[1] * gq[3] + gq[0] * gq[2] == 0 && gq[2] * gq[3] - gq[0] * gq[1] == 0) {
+        if (t == mjGEOM_PLANE && m->geom_bodyid[g] == 0 && up) {
             if (!u->floors++)
                 u->floor = pos[2];
             if (pos[2] == u->floor)
@@ -584,7 +651,13 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
                  mesh && *mesh ? mesh : "unnamed");
         drop_add(&u->meshes, nm);
     }
-    fprintf(out, "%s{type: %s, size: [", sep, types[t]);
+    fprintf(out, "%s{type: %s", sep, types[t]);
+    if (name)
+        fprintf(out, ", name: %s", name);
+    int ct = m->geom_contype[g], ca = m->geom_conaffinity[g];
+    if (ct != 1 || ca != 1) /* MuJoCo's filters, for a spec's own `contact: all` */
+        fprintf(out, ", contype: %d, conaffinity: %d", ct, ca);
+    fputs(", size: [", out);
     for (int k = 0; k < nsize[t]; k++)
         fprintf(out, "%s%s", k ? ", " : "", num(a, size[k]));
     fputs("]", out);
@@ -610,7 +683,8 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
 /* Body b's geoms as its `shapes:` (spec.md), in the frame its pose is
  * drawn in: its axes at its centre of mass, so at geom_pos - body_ipos. */
 static void
-put_shapes(const mjModel *m, int b, int urdf_visuals, FILE *out, Unshaped *u)
+put_shapes(const mjModel *m, int b, int urdf_visuals, const char *const *gname, FILE *out,
+           Unshaped *u)
 {
     int n = 0;
     for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; g++) {
@@ -619,7 +693,8 @@ put_shapes(const mjModel *m, int b, int urdf_visuals, FILE *out, Unshaped *u)
         double pos[3];
         for (int k = 0; k < 3; k++)
             pos[k] = m->geom_pos[3 * g + k] - m->body_ipos[3 * b + k];
-        if (put_shape(m, g, pos, m->geom_quat + 4 * g, n ? ", " : ", shapes: [", out, u) == 0)
+        if (put_shape(m, g, pos, m->geom_quat + 4 * g, gname[g], n ? ", " : ", shapes: [", out,
+                      u) == 0)
             n++;
     }
     if (n)
@@ -631,7 +706,7 @@ put_shapes(const mjModel *m, int b, int urdf_visuals, FILE *out, Unshaped *u)
  * root link, which MuJoCo fuses into it) and those of bodies welded to
  * it without mass (placed by MuJoCo's kinematics at qpos0). */
 static void
-put_ground(const mjModel *m, int urdf_visuals, FILE *out, Unshaped *u)
+put_ground(const mjModel *m, int urdf_visuals, const char *const *gname, FILE *out, Unshaped *u)
 {
     mjData *d = NULL;
     int n = 0;
@@ -652,7 +727,7 @@ put_ground(const mjModel *m, int urdf_visuals, FILE *out, Unshaped *u)
             memcpy(pos, d->geom_xpos + 3 * g, sizeof pos);
             mju_mat2Quat(quat, d->geom_xmat + 9 * g);
         }
-        if (put_shape(m, g, pos, quat, n ? "\n  - " : "ground:\n  - ", out, u) == 0)
+        if (put_shape(m, g, pos, quat, gname[g], n ? "\n  - " : "ground:\n  - ", out, u) == 0)
             n++;
     }
     if (n)
@@ -844,7 +919,7 @@ static void
 put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             const char *const *un,
             const char *const *tn, const char *const *body, const char *const *principal,
-            const char *const *flow, FILE *out)
+            const char *const *flow, const ImportContacts *ic, const char *const *gname, FILE *out)
 {
     char a[NUM_MAX], d[400], r[400], v[400], hs[900];
     int any = 0;
@@ -922,6 +997,15 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     }
     if (!first)
         fputs("]\n", out);
+    /* each pair its own law: its effective mass differs (import_contact.c) */
+    for (int i = 0; i < ic->npair; i++) {
+        const ImportPair *p = &ic->pair[i];
+        if (i == 0)
+            fprintf(out, "%s  contacts:\n", any ? "" : "effects:\n");
+        fprintf(out, "    - {contact: [[%s, %s]], stiffness: %s, ", gname[p->g1], gname[p->g2],
+                num(a, p->k));
+        fprintf(out, "damping: %s}\n", num(a, p->c));
+    }
 }
 
 /* Scalar e's displacement from its value at qpos0, for an equality
@@ -1269,10 +1353,16 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
         return -1;
     }
     int drops = dropped(m, path, warn);
+    unsigned char *written = shapes_written(m, urdf_visuals);
+    ImportContacts ic;
+    import_contacts(m, written, &ic);
+    free(written);
+    drops += contact_drops(m, &ic, path, warn);
     drops += drop_say(warn, path, &mimic, "the <mimic> of", "joint",
                       "MuJoCo's URDF reader ignores it: the joint moves on its own");
     if (drops && strict) {
         snprintf(err, len, "--strict: the elements named above would be dropped");
+        import_contacts_free(&ic);
         mj_deleteModel(m);
         return -1;
     }
@@ -1317,6 +1407,17 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     for (int b = 1; b < nb; b++) {
         snprintf(fb, sizeof fb, "body%d", b);
         body[b] = named(&NB, "body", m->names + m->name_bodyadr[b], fb);
+    }
+    /* the geoms of contact pairs are named shapes, apart from the bodies */
+    const char **gname = xmalloc(((size_t)m->ngeom + 1) * sizeof *gname);
+    for (int g = 0; g < m->ngeom; g++)
+        gname[g] = NULL;
+    for (int i = 0; i < 2 * ic.npair; i++) {
+        int g = i % 2 ? ic.pair[i / 2].g2 : ic.pair[i / 2].g1;
+        if (gname[g])
+            continue;
+        snprintf(fb, sizeof fb, "%s_geom%d", body[m->geom_bodyid[g]], g);
+        gname[g] = unique(&NB, m->names + m->name_geomadr[g], fb);
     }
     size_t k;
     char *model = ident(*m->names ? m->names : "imported", &k); /* the model's name first */
@@ -1560,16 +1661,16 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
             put_vec(out, I + 3 * r);
         }
         fputs("]", out);
-        put_shapes(m, b, urdf_visuals, out, &u);
+        put_shapes(m, b, urdf_visuals, gname, out, &u);
         fputs("}\n", out);
     }
-    put_ground(m, urdf_visuals, out, &u);
+    put_ground(m, urdf_visuals, gname, out, &u);
     drop_tell(warn, path, "warning", "drawn as boxes:", &u.meshes, "mesh geom",
               "--animate draws no meshes: each is drawn as the box that bounds it");
     drop_tell(warn, path, "note", "not drawn:", &u.planes, "geom",
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
-    put_effects(m, qn, vn, un, tn, body, principal, flow, out);
+    put_effects(m, qn, vn, un, tn, body, principal, flow, &ic, gname, out);
     put_constraints(m, qn, tn, eqn, eqp, axes, out, path, warn);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
@@ -1581,9 +1682,11 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     for (int e = 0; e < m->neq; e++)
         eq |= eq_on(m, e);
     fprintf(out, "scene: {t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
-    if (u.floors && u.floor != 0) /* the page's grid is at z = 0 unless told */
+    if (u.floors && u.floor != 0 && !u.plane_floor) /* the grid is at z = 0 unless told */
         fprintf(out, ", view: {floor: %s}", num(a, u.floor));
     fputs("}\n", out);
+    free(gname);
+    import_contacts_free(&ic);
     free(body);
     free(axes);
     free(origin);

@@ -82,6 +82,9 @@ for model in $models; do
   "$eomc" import "$model" $opts -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports${opts:+ $opts} ($(head -c 200 "$tmp/err"))"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/$base.yaml" | tr -d ',')
+  # mj_accel.c turns MuJoCo's contacts off: eomc's effect contacts too
+  effs=$(sed -n '/^effects:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml" |
+    grep -vx contacts | paste -sd, -)
   inputs=$(sed -n '/^inputs:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml")
   worst=0 fails=0 own=0 mjx=0 ext=1
   k=0 states=$STATES
@@ -119,12 +122,14 @@ for model in $models; do
     k=$((k + 1))
     # (the q'' and w' lines only, not a multiplier's)
     # shellcheck disable=SC2086 # $args is a list of options
-    "$eomc" run "$tmp/$base.yaml" --accel $args < /dev/null > "$tmp/one" 2>> "$tmp/err" ||
+    "$eomc" run "$tmp/$base.yaml" --effects "$effs" --accel $args < /dev/null > "$tmp/one" \
+      2>> "$tmp/err" ||
       fails=$((fails + 1))
     sed -n "/^[A-Za-z_0-9]*' /s/^/$k /p; /'' /s/^/$k /p" "$tmp/one" >> "$tmp/eomc"
     if [ -n "$ext" ]; then # and the extended-precision solve of the same state
       # shellcheck disable=SC2086
-      "$eomc" run "$tmp/$base.yaml" --accel-extended $args < /dev/null > "$tmp/one" \
+      "$eomc" run "$tmp/$base.yaml" --effects "$effs" --accel-extended $args < /dev/null \
+        > "$tmp/one" \
         2>> "$tmp/err" || fails=$((fails + 1))
       sed -n "/^[A-Za-z_0-9]*' /s/^/$k /p; /'' /s/^/$k /p" "$tmp/one" >> "$tmp/ext"
     fi

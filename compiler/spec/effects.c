@@ -4,6 +4,7 @@
  */
 #include "effects.h"
 
+#include "friction.h"
 #include "names.h"
 
 #include <stdio.h>
@@ -115,7 +116,7 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "on", NULL};
+                                       "kinetic", "friction", "on", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
@@ -145,17 +146,23 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
     if ((v = spec_lookup(L, map, "kinetic")))
         f->kind = FORCE_KINETIC, kinds++,
         f->expr = spec_expr(L, v, ALLOW_KINETIC, "a kinetic-energy term");
-    if ((v = spec_lookup(L, map, "force")))
+    yaml_node_t *fr = spec_lookup(L, map, "friction"); /* its `force:` is a bound */
+    if (fr)
+        kinds++;
+    if ((v = spec_lookup(L, map, "force")) && !fr)
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = spec_lookup(L, map, "torque")))
         f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
-    if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
+    if (on && kinds == 1 && (fr || (f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)))
         diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work, kinetic (write a list for several)"
+                   "potential, force, torque, work, kinetic, friction (write a list for "
+                   "several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic");
+                   "kinetic, friction");
+    if (fr)
+        spec_load_friction(L, map, fr, L->sc.owner, f);
 }
 
 static void

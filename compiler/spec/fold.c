@@ -61,6 +61,7 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
             for (int k = 0; k < 3; k++)
                 VISIT(fo->vec[k]);
             VISIT(fo->expr);
+            VISIT(fo->bound);
         }
     for (int i = 0; i < s->nkinetic; i++)
         VISIT(s->kinetic[i].expr);

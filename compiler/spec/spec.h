@@ -171,6 +171,11 @@ typedef struct SpecForce {
     int dim;      /* FORCE_GRAVITY, FORCE_VECTOR: 2 or 3 */
     ExprId vec[3];
     ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK, FORCE_KINETIC */
+    /* A dry-friction item (`friction: q`, spec/friction.c) is FORCE_WORK
+     * with friction = 1: on coordinate coord, at most the force bound,
+     * slip and stick its switches (the pool's); friction = 0 otherwise. */
+    int friction, coord, slip, stick;
+    ExprId bound;
 } SpecForce;
 
 typedef struct SpecEffect {

@@ -55,7 +55,8 @@ spec_load_friction(Loader *L, yaml_node_t *map, yaml_node_t *v, const char *owne
                      name);
     char nm[300];
     int first = expr_nswitch(P);
-    ExprId slip = expr_where(P, expr_var(P, q, 1), expr_neg(P, F), F);
+    ExprId rate = expr_var(P, q, 1), against = expr_neg(P, F); /* (ids in this order) */
+    ExprId slip = expr_where(P, rate, against, F);
     if (expr_nswitch(P) > first) { /* (a switch of q' met before keeps its name) */
         snprintf(nm, sizeof nm, "%s.%s.slip", owner, name);
         expr_name_switch(P, first, nm);
@@ -71,7 +72,7 @@ spec_load_friction(Loader *L, yaml_node_t *map, yaml_node_t *v, const char *owne
     f->bound = F;
     f->slip = -1;
     for (int k = 0; k < expr_nswitch(P); k++)
-        if (expr_switch(P, k) == expr_var(P, q, 1))
+        if (expr_switch(P, k) == rate)
             f->slip = k;
     f->stick = stick;
 }

@@ -19,6 +19,9 @@
 #  - --error on the block and on the oscillator says the error the closed
 #    form says (at loose tolerances, where it is large), and so does the
 #    reference's own record of the flips (no warning of a parting);
+#  - a double pendulum with friction on both joints comes to rest where
+#    the torques that hold it are within both bounds, the reference's
+#    flips the run's;
 #  - Taylor's method and a model with constraints are refused by name; a
 #    bound below 0 (a force that depends on the state) stops the run.
 # usage: test_friction.sh EOMC SOURCE_ROOT BUILD_ROOT
@@ -119,6 +122,21 @@ for case in block oscillator; do
              t9 / s9 < 1.1 && t9 < t6 / 100 && s9 < s6 / 100; exit !ok }'
   ok $? "$case: --error says $said6 and $said9 at rtol 1e-6 and 1e-9; the closed form, $true6 and $true9"
 done
+
+# two items coupled: a double pendulum with friction on both joints
+# (torques of at most 2 and 1.5) comes to rest held by both, where the
+# torques that hold it against gravity, (m1 + m2) g l1 sin th1 and
+# m2 g l2 sin th2 (m = l = 1), are within the bounds; the reference
+# flips the same switches at the same times (no warning)
+sed -e 's/  gravity: {gravity: \[0, -g\]}/  gravity: {gravity: [0, -g]}\n  joints: [{friction: th1, force: 2}, {friction: th2, force: 1.5}]/' \
+  -e 's/t_end: 10/t_end: 20/' "$src/specs/double_pendulum.yaml" > "$tmp/dpf.yaml"
+"$eomc" run "$tmp/dpf.yaml" --error --stats > "$tmp/rows.csv" 2> "$tmp/err"; st=$?
+end=$(tail -1 "$tmp/rows.csv" | cut -d, -f2-5)
+[ $st -eq 0 ] && ! grep -q warning "$tmp/err" && grep -q "^reference_switches 22$" "$tmp/err" &&
+  grep -q "^switches 22$" "$tmp/err" &&
+  echo "$end" | awk -F, '{ t1 = 2 * 9.81 * sin($1); t2 = 9.81 * sin($2); if (t1 < 0) t1 = -t1
+      if (t2 < 0) t2 = -t2; exit !($3 == 0 && $4 == 0 && t1 <= 2 && t2 <= 1.5 && $1 != 0) }'
+ok $? "a double pendulum with friction on both joints comes to rest held by both (th1, th2 = $(echo "$end" | cut -d, -f1,2)); 22 flips, the reference's the same"
 
 # refused by name, or stopped
 "$eomc" run "$slope" --method taylor > /dev/null 2> "$tmp/err"; st=$?

@@ -281,6 +281,24 @@ eq_on(const mjModel *m, int e)
     return m->eq_active[e] && !disabled(m, mjDSBL_EQUALITY | mjDSBL_CONSTRAINT);
 }
 
+/* Whether dof d of joint j has a friction loss that becomes dry friction
+ * on its coordinate (effect friction_loss): one MuJoCo computes (not
+ * disabled), on a coordinate of its own (a hinge's, a slide's, a free
+ * joint's position; a ball's turn has none), in a model without
+ * equality constraints (the stuck solve does not take them yet). */
+static int
+friction_kept(const mjModel *m, int j, int d)
+{
+    if (m->dof_frictionloss[m->jnt_dofadr[j] + d] == 0 ||
+        disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT))
+        return 0;
+    for (int e = 0; e < m->neq; e++)
+        if (eq_on(m, e))
+            return 0;
+    int type = m->jnt_type[j];
+    return type == mjJNT_HINGE || type == mjJNT_SLIDE || (type == mjJNT_FREE && d < 3);
+}
+
 enum { FLUID_NONE, FLUID_BOX, FLUID_ELLIPSOID };
 
 /* MuJoCo's fluid forces (opt.density, opt.viscosity, mj_passive) on body b:
@@ -435,7 +453,7 @@ drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const ch
 static int
 dropped(const mjModel *m, const char *path, FILE *warn)
 {
-    Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0};
+    Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0}, turn = {0};
     char b[32];
     int limits = !disabled(m, mjDSBL_LIMIT | mjDSBL_CONSTRAINT);
     int friction = !disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT);
@@ -444,11 +462,14 @@ dropped(const mjModel *m, const char *path, FILE *warn)
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
         if (m->jnt_limited[j] && limits)
             drop_add(&lim, nm);
-        int any = 0;
-        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++)
+        int any = 0, kept = 0;
+        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++) {
             any |= m->dof_frictionloss[k] != 0;
-        if (any && friction)
-            drop_add(&fric, nm);
+            kept |= friction_kept(m, j, k - m->jnt_dofadr[j]);
+        }
+        if (any && friction && !kept)
+            drop_add(m->jnt_type[j] == mjJNT_BALL || m->jnt_type[j] == mjJNT_FREE ? &turn
+                                                                                : &fric, nm);
     }
     Drop tlim = {0}, tfric = {0}, spatial = {0};
     for (int t = 0; t < m->ntendon; t++) {
@@ -473,9 +494,11 @@ dropped(const mjModel *m, const char *path, FILE *warn)
     n += drop_say(warn, path, &tlim, "the limits of", "tendon",
                   "eomc simulates smooth dynamics: tendons stretch past their limits");
     n += drop_say(warn, path, &fric, "the friction loss of", "joint",
-                  "dry friction is not smooth dynamics");
+                  "eomc's dry friction does not take equality constraints yet");
+    n += drop_say(warn, path, &turn, "the friction loss of the turn of", "joint",
+                  "eomc's dry friction acts on a coordinate, and a ball's turn has none");
     n += drop_say(warn, path, &tfric, "the friction loss of", "tendon",
-                  "dry friction is not smooth dynamics");
+                  "eomc's dry friction acts on a coordinate, not along a tendon");
     n += drop_say(warn, path, &spatial, "", "spatial tendon",
                   "nothing acts along it: no stiffness, damping, actuator or equality "
                   "constraint uses it");
@@ -838,8 +861,10 @@ put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *
  * MuJoCo's qvel has it); stiffness, the potential k/2 (q - springref)^2
  * (MuJoCo's passive spring force -k (q - qpos_spring)); fluid, MuJoCo's
  * forces of the medium; armature, a rotor's inertia on each dof, 1/2 a
- * v^2 in T; actuators, each one's force on its joint, its control an
- * input.  What MuJoCo's flags disable is not written. */
+ * v^2 in T; friction_loss, dry friction of at most frictionloss on each
+ * coordinate that has it (friction_kept); actuators, each one's force on
+ * its joint, its control an input.  What MuJoCo's flags disable is not
+ * written. */
 static void
 put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             const char *const *un,
@@ -908,6 +933,17 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
             item(out, &any, &first, "armature");
             fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
+        }
+    if (!first)
+        fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++) /* dry friction, MuJoCo's frictionloss as its force */
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            if (!friction_kept(m, j, k))
+                continue;
+            item(out, &any, &first, "friction_loss");
+            fprintf(out, "{friction: %s, force: %s}", qn[m->jnt_qposadr[j] + k],
+                    num(a, m->dof_frictionloss[m->jnt_dofadr[j] + k]));
         }
     if (!first)
         fputs("]\n", out);

@@ -5,6 +5,7 @@
 #include "effects.h"
 
 #include "contacts.h"
+#include "friction.h"
 #include "names.h"
 
 #include <stdio.h>
@@ -116,8 +117,8 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "on", "contact", "stiffness", "damping",
-                                       "friction", NULL};
+                                       "kinetic", "friction", "on", "contact", "stiffness",
+                                       "damping", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
@@ -127,13 +128,14 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
                                            !!spec_lookup(L, map, "damping") +
                                            !!spec_lookup(L, map, "friction") + !!on)
         diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
-                   "force, torque, work, kinetic, contact (write a list for several)");
+                   "force, torque, work, kinetic, contact, friction (write a list for "
+                   "several)");
     if (spec_lookup(L, map, "contact")) {
         spec_load_contact(L, map, f);
         return;
     }
-    static const char *const law[] = {"stiffness", "damping", "friction"};
-    for (int k = 0; k < 3; k++)
+    static const char *const law[] = {"stiffness", "damping"}; /* (friction: dry friction) */
+    for (int k = 0; k < 2; k++)
         if (spec_lookup(L, map, law[k]))
             diag_error(spec_key_loc(L, map, law[k]), "`%s` belongs to a contact "
                        "({contact: all, stiffness: k, damping: c})", law[k]);
@@ -161,17 +163,23 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
     if ((v = spec_lookup(L, map, "kinetic")))
         f->kind = FORCE_KINETIC, kinds++,
         f->expr = spec_expr(L, v, ALLOW_KINETIC, "a kinetic-energy term");
-    if ((v = spec_lookup(L, map, "force")))
+    yaml_node_t *fr = spec_lookup(L, map, "friction"); /* its `force:` is a bound */
+    if (fr)
+        kinds++;
+    if ((v = spec_lookup(L, map, "force")) && !fr)
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = spec_lookup(L, map, "torque")))
         f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
-    if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
+    if (on && kinds == 1 && (fr || (f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)))
         diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work, kinetic (write a list for several)"
+                   "potential, force, torque, work, kinetic, contact, friction (write a list "
+                   "for several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic, contact");
+                   "kinetic, contact, friction");
+    if (fr)
+        spec_load_friction(L, map, fr, L->sc.owner, f);
 }
 
 static void

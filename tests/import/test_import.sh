@@ -351,7 +351,8 @@ XML
 st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "actuator slow: its activation dynamics (dyntype) is not imported" "$tmp/err"
 ok $? "an actuator with activation dynamics: refused by name, exit 2 ($(cat "$tmp/err"))"
-# what is dropped is named (limits, friction loss, contacts), and --strict refuses it
+# what is dropped is named (limits, a tendon's friction loss, contacts), and
+# --strict refuses it; a joint's friction loss is kept, as dry friction
 cat > "$tmp/dropped.xml" <<'XML'
 <mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0" limited="true" range="-1 1" frictionloss="0.2"/>
 <geom size="0.1"/><body pos="0 0 -0.3"><joint name="k" axis="1 0 0" limited="true" range="-1 1"/><geom size="0.1"/>
@@ -363,18 +364,57 @@ XML
 st=$?
 [ $st -eq 0 ] && [ -s "$tmp/out" ] &&
   grep -q "warning: dropped: the limits of 3 joints: j, k, #2 (eomc simulates smooth dynamics" "$tmp/err" &&
-  grep -q "warning: dropped: the friction loss of joint j (dry friction" "$tmp/err" &&
+  ! grep -q "friction loss of joint" "$tmp/err" &&
+  grep -q "^  friction_loss: \[{friction: j, force: 0.2}\]$" "$tmp/out" &&
   grep -q "warning: dropped: the control range of actuator #0 (an input is applied as given" "$tmp/err" &&
   grep -q "warning: dropped: the force range of actuator m2 (an actuator's force is not clamped)" "$tmp/err" &&
   grep -q "warning: dropped: the contacts of 3 geoms: #0, #1, #2 (eomc simulates smooth dynamics: bodies pass" "$tmp/err" &&
   grep -q "warning: dropped: the limits of tendon tf (eomc simulates smooth dynamics: tendons stretch" "$tmp/err" &&
-  grep -q "warning: dropped: the friction loss of tendon tf (dry friction" "$tmp/err" &&
-  [ $(wc -l < "$tmp/err") -eq 7 ]
-ok $? "limits, friction loss (of joints and tendons), control and force ranges, contacts: one warning each, naming what is dropped, exit 0"
+  grep -q "warning: dropped: the friction loss of tendon tf (eomc's dry friction acts on a coordinate" "$tmp/err" &&
+  [ $(wc -l < "$tmp/err") -eq 6 ]
+ok $? "limits, a tendon's friction loss, control and force ranges, contacts: one warning each, naming what is dropped, exit 0; a joint's friction loss kept as effect friction_loss"
 "$eomc" import "$tmp/dropped.xml" --strict -o "$tmp/strict.yaml" > "$tmp/out" 2> "$tmp/err"
 st=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/strict.yaml" ] && grep -q "error: --strict" "$tmp/err"
 ok $? "--strict: the same model refused, exit 2, no file written"
+# a hinge's friction loss is dry friction of at most frictionloss on its
+# coordinate: an arm of mass m whose centre is l from a horizontal hinge
+# feels gravity's torque m g l cos(swing), and started at rest it stays
+# put where that is within the loss, swing >= acos(F / (m g l)) = th; a
+# little below th it moves, and so it does a little above th without the
+# effect (its scene can turn it off)
+cat > "$tmp/fricloss.xml" <<'XML'
+<mujoco><worldbody><body name="arm" pos="0 0 1"><joint name="swing" axis="0 1 0" frictionloss="0.5"/>
+<geom type="sphere" pos="0.2 0 0" size="0.02" mass="0.3"/></body></worldbody></mujoco>
+XML
+"$eomc" import "$tmp/fricloss.xml" -o "$tmp/fricloss.yaml" 2> /dev/null
+th=$(awk 'BEGIN { printf "%.17g", atan2(sqrt(0.5886^2 - 0.25), 0.5) }')
+fric_run() { # START [ARGS]: swing and swing' at t = 1 from rest at START
+  sed "s/^scene:/initial: {swing: $1}\nscene:/" "$tmp/fricloss.yaml" > "$tmp/fricloss_at.yaml"
+  shift
+  "$eomc" run "$tmp/fricloss_at.yaml" "$@" | tail -1 | cut -d, -f2,3
+}
+above=$(awk -v t="$th" 'BEGIN { printf "%.17g", t + 0.01 }')
+below=$(awk -v t="$th" 'BEGIN { printf "%.17g", t - 0.01 }')
+[ "$(grep -c 'friction_loss: \[{friction: swing, force: 0.5}\]' "$tmp/fricloss.yaml")" -eq 1 ] &&
+  fric_run "$above" | awk -F, -v a="$above" '{ exit !($1 == a && $2 == 0) }' &&
+  fric_run "$below" | awk -F, -v a="$below" '{ exit !($1 > a + 0.01) }' &&
+  fric_run "$above" --effects gravity | awk -F, -v a="$above" '{ exit !($1 > a + 0.01) }'
+ok $? "a hinge's friction loss (effect friction_loss): at rest it stays put where gravity's torque is below the loss, past acos(F/(m g l)) = $th, and moves 0.01 short of it, or without the effect"
+# where it cannot be kept, it is dropped by name: a ball's turn has no
+# coordinate, and the stuck solve does not take equality constraints
+cat > "$tmp/fricball.xml" <<'XML'
+<mujoco><worldbody><body name="b"><joint name="ball" type="ball" frictionloss="0.1"/><geom size="0.1"/>
+<body pos="0 0 -0.3"><joint name="h" axis="0 1 0" frictionloss="0.1"/><geom size="0.1"/></body></body>
+<body name="c" pos="1 0 0"><joint name="h2" axis="0 1 0"/><geom size="0.1"/></body></worldbody>
+<equality><joint joint1="h" joint2="h2"/></equality></mujoco>
+XML
+"$eomc" import "$tmp/fricball.xml" > "$tmp/out" 2> "$tmp/err"
+st=$?
+[ $st -eq 0 ] && ! grep -q friction_loss "$tmp/out" &&
+  grep -q "warning: dropped: the friction loss of the turn of joint ball (eomc's dry friction acts on a coordinate" "$tmp/err" &&
+  grep -q "warning: dropped: the friction loss of joint h (eomc's dry friction does not take equality constraints yet)" "$tmp/err"
+ok $? "a ball's friction loss, and one in a model with equality constraints: dropped by name ($(grep friction "$tmp/err" | tr '\n' ' '))"
 # MuJoCo's flags that turn off what eomc drops (limits, friction loss,
 # contacts, the clamping of controls; constraint: all but the clamping):
 # nothing is dropped there, as MuJoCo computes none of it either

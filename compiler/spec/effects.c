@@ -5,6 +5,7 @@
 #include "effects.h"
 
 #include "names.h"
+#include "stops.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -115,7 +116,8 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "on", NULL};
+                                       "kinetic", "limit", "on", "range", "stiffness",
+                                       "damping", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
@@ -149,13 +151,23 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = spec_lookup(L, map, "torque")))
         f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
+    yaml_node_t *lim = spec_lookup(L, map, "limit");
+    if (lim)
+        kinds++;
     if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
         diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work, kinetic (write a list for several)"
+                   "potential, force, torque, work, kinetic, limit (write a list for several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic");
+                   "kinetic, limit");
+    static const char *const of_limit[] = {"range", "stiffness", "damping"};
+    for (int i = 0; i < 3 && !lim; i++)
+        if ((v = spec_lookup(L, map, of_limit[i])))
+            diag_error(spec_loc(L, v), "`%s` belongs to a limit (`limit: COORDINATE`)",
+                       of_limit[i]);
+    if (lim)
+        spec_load_stop(L, map, lim, L->sc.owner, f);
 }
 
 static void

@@ -526,10 +526,6 @@ check_event_options(const Options *c, const eomc_model *m)
     if (m->nmode > 0 && opt)
         return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose "
                          "switches the reference solution does not locate yet", opt, m->name);
-    const char *fixed = c->linearize ? "--linearize" : c->equilibrium ? "--equilibrium" : NULL;
-    if (m->nmode > 0 && fixed)
-        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose modes "
-                         "are set only by a run yet", fixed, m->name);
     if (moving && opt)
         return opt_usage(c, "%s: scene %s has events that stop or reset the motion, which the "
                      "reference solution does not follow (measure the errors on a scene "

@@ -22,7 +22,7 @@
 #    y(1) = 0.3^2/2 + 0.3 (1 - 0.3) = 0.255, y'(1) = 0.3;
 #  - an effect that is off (spring_floor.yaml's edge) brings no switch;
 #  - the modes are no inputs: not in the CSV, not settable; what cannot
-#    follow a switch yet (Taylor's series, the reference, a linearization)
+#    follow a switch yet (Taylor's series, the reference)
 #    says so; --accel at a state takes that state's modes.
 # usage: test_switch.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
@@ -89,7 +89,7 @@ ok $? "the modes are not inputs: --set refuses them"
 "$eomc" run "$spec" --method taylor > "$tmp/out" 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "switched expressions (max, min, clamp, step)" "$tmp/err"
 ok $? "--method taylor is refused, naming the switched expressions"
-for opt in --error --linearize; do
+for opt in --error; do
   "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?
   [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "^spring_floor: $opt: .*switched expressions" "$tmp/err"
   ok $? "$opt is refused, naming the switched expressions"

@@ -537,7 +537,7 @@ print_taylor_members(Printer *pr, const LowTaylor *ty, const char *nm, int ext)
     emit_line(pr, "    .taylor_nslot = %d, .taylor_q = taylor_q, .taylor_v = taylor_v,",
               ty->nslot);
     emit_line(pr, "    .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = %s,",
-              ty->nevent ? "taylor_g" : "NULL");
+              ty->nevent + ty->nmode ? "taylor_g" : "NULL");
     if (ty->nc) {
         emit_line(pr, "    .taylor_a = %s, .taylor_B = taylor_B, .taylor_f = taylor_f,",
                   ty->nonlinear ? "taylor_a" : "NULL");

@@ -220,8 +220,8 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     }
     print_ints(pr, "taylor_M", ty->M_slot, nv * nv);
     print_ints(pr, "taylor_h", ty->h_slot, nv);
-    if (ty->nevent)
-        print_ints(pr, "taylor_g", ty->g_slot, ty->nevent);
+    if (ty->nevent + ty->nmode)
+        print_ints(pr, "taylor_g", ty->g_slot, ty->nevent + ty->nmode);
     if (ty->nc) {
         if (ty->nonlinear) {
             emit_line(pr, "/* The constraints: the slots of q'' the caller writes, B = df/dq''");

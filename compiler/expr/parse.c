@@ -194,7 +194,7 @@ typedef struct Builtin {
 } Builtin;
 
 enum { BUILTIN_DOT = -1, BUILTIN_DELTA = -2, BUILTIN_MAX = -3, BUILTIN_MIN = -4,
-       BUILTIN_CLAMP = -5, BUILTIN_STEP = -6 };
+       BUILTIN_CLAMP = -5, BUILTIN_STEP = -6, BUILTIN_ABS = -7 /* abs where modes are read */ };
 enum { MAX_ARGS = 3 }; /* clamp's */
 
 /* The functions of frames, points and vectors: not reserved names (a
@@ -304,7 +304,7 @@ check_deps(Parser *ps, ExprId e, const char *name, size_t off)
     ExprId leaf = expr_find_leaf(sc->P, e, bad);
     if (leaf == EXPR_NONE) /* only a SELECT's mode has no leaf */
         diag_error(at(ps, off), "%s cannot depend on a switched expression (max, min, "
-                   "clamp, step)%s%s%s", sc->what, name ? " (through '" : "", name ? name : "",
+                   "clamp, step, abs)%s%s%s", sc->what, name ? " (through '" : "", name ? name : "",
                    name ? "')" : "");
     char what[200];
     describe_leaf(sc, leaf, what, sizeof what);
@@ -693,7 +693,8 @@ switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *
                    "locates, and only forces, potentials and virtual work have switches",
                    sc->what, name);
     ExprId e[MAX_ARGS], r;
-    int n = op == BUILTIN_CLAMP ? 3 : op == BUILTIN_STEP ? 1 : 2, n0 = expr_nswitch(sc->P);
+    int n = op == BUILTIN_CLAMP ? 3 : op == BUILTIN_STEP || op == BUILTIN_ABS ? 1 : 2;
+    int n0 = expr_nswitch(sc->P);
     for (int i = 0; i < n; i++)
         e[i] = need_scalar(ps, args[i], offs[i], where);
     if (op == BUILTIN_CLAMP) {
@@ -701,6 +702,9 @@ switched_call(Parser *ps, int op, const char *name, size_t name_off, const Val *
         if (expr_is_const(sc->P, e[1], &lo) && expr_is_const(sc->P, e[2], &hi) && lo > hi)
             diag_error(at(ps, offs[1]), "clamp(x, lo, hi) needs lo <= hi, not %g > %g", lo, hi);
         r = expr_clamp(sc->P, e[0], e[1], e[2]);
+    } else if (op == BUILTIN_ABS) {
+        ExprId neg = expr_neg(sc->P, e[0]);
+        r = expr_where(sc->P, e[0], e[0], neg);
     } else if (op == BUILTIN_STEP) {
         ExprId one = expr_const(sc->P, 1), zero = expr_const(sc->P, 0);
         r = expr_where(sc->P, e[0], one, zero);
@@ -770,6 +774,11 @@ call(Parser *ps, const char *name, size_t name_off)
     ExprId x = need_scalar(ps, args[0], offs[0], where);
     if (b->op <= BUILTIN_MAX)
         return scalar_val(switched_call(ps, b->op, name, name_off, args, offs, where));
+    /* where a mode can be read (a force, a potential, a define), abs's kink
+     * is a switch the run locates; elsewhere (a position, a mass, an event)
+     * it is differentiated as |x|' = sign(x) */
+    if (b->op == EXPR_ABS && (ps->sc->allow & (DEP_M | DEP_U)) == (DEP_M | DEP_U))
+        return scalar_val(switched_call(ps, BUILTIN_ABS, name, name_off, args, offs, where));
     if (b->arity == 1)
         return scalar_val(finite(ps, expr_unary(P, b->op, x), name, x, EXPR_NONE, name_off));
     ExprId y = need_scalar(ps, args[1], offs[1], where);

@@ -57,6 +57,8 @@ typedef struct Build {
     int np;
     int accel;          /* how q'' reads (only constraint's f reads it) */
     const int *vslot;   /* per leaf coordinate its velocity slot (lowered.h) */
+    int nu;             /* inputs: mode k is u[nu + mode_slot[k]] */
+    const int *mode_slot;
     int *slot;          /* per node id, -1: none */
     unsigned char *konst; /* per node id: constant in t */
     int *pair;          /* per operand id: sin, cos, sinh, cosh slots (-1) */
@@ -359,10 +361,12 @@ build_node(Build *b, ExprId id)
         call(b, name[nd->op - EXPR_EXP], 2, c, A, -1, -1);
         break;
     }
-    case EXPR_SELECT: /* the branch's series, the mode held: not built yet */
-        b->why = "its mass matrix or bias has switched expressions (max, min, clamp, step), whose "
-                 "series are not built yet";
-        return;
+    case EXPR_SELECT: { /* the branch its mode chooses: held over a step */
+        c = new_slot(b);
+        LowTayStep *st = call(b, "select", 3, c, A, B, -1);
+        st->src = LOW_TAY_SRC_U, st->index = b->nu + b->mode_slot[expr_select_mode(b->P, id)];
+        break;
+    }
     default:
         b->why = "its mass matrix or bias has an operation without a Taylor recurrence";
         return;
@@ -408,11 +412,12 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
     /* nq coordinates, nv speeds (nv = nq without speeds of their own):
      * M, h, a and B's columns are the speeds' */
     int nq = L->n, nv = L->nv, ne = L->events ? L->model.nevent : 0, nc = cf ? L->model.nc : 0;
+    int nm = L->switches ? L->model.nmode : 0;
     const int *vslot = L->model.vslot;
     size_t size = expr_pool_size(P);
     Build b = {.P = P, .derived = mb->derived, .nderived = L->derived_ids, .np = L->model.np,
                .accel = !cf ? ACCEL_NONE : L->model.affine ? ACCEL_ZERO : ACCEL_SLOT,
-               .vslot = vslot};
+               .vslot = vslot, .nu = L->model.nu, .mode_slot = L->model.mode_slot};
     b.slot = xmalloc(size * sizeof *b.slot);
     b.konst = xmalloc(size);
     b.pair = xmalloc(4 * size * sizeof *b.pair);
@@ -422,7 +427,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
 
     /* the nodes the outputs need, down to the leaves and derived values
      * (an output that is 0 needs none: its slot is -1) */
-    const LowFunc *roots[] = {mb, L->events, cf, lv, L->qdot};
+    const LowFunc *roots[] = {mb, L->events, L->switches, cf, lv, L->qdot};
     int nroot = 0;
     for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++)
         nroot += roots[r] ? roots[r]->nout : 0;
@@ -467,8 +472,9 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         ty->v_slot = arena_new_array(A, int, nv + 1);
         ty->M_slot = arena_new_array(A, int, nv * nv + 1);
         ty->h_slot = arena_new_array(A, int, nv + 1);
-        ty->g_slot = arena_new_array(A, int, ne + 1);
+        ty->g_slot = arena_new_array(A, int, ne + nm + 1);
         ty->nevent = ne;
+        ty->nmode = nm;
         ty->a_slot = arena_new_array(A, int, nv + 1);
         for (int i = 0; i < nq; i++)
             ty->q_slot[i] = -1;
@@ -506,11 +512,15 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             else
                 ty->h_slot[o->index] = s;
         }
-        for (int e = 0; e < ne; e++)
+        for (int e = 0; e < ne + nm; e++)
             ty->g_slot[e] = -1;
         for (int k = 0; L->events && k < L->events->nout; k++) {
             const LowSlot *o = &L->events->out[k];
             ty->g_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
+        }
+        for (int k = 0; L->switches && k < L->switches->nout; k++) {
+            const LowSlot *o = &L->switches->out[k];
+            ty->g_slot[ne + o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
         }
         ty->nc = nc;
         ty->nonlinear = b.accel == ACCEL_SLOT;

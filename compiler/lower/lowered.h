@@ -220,8 +220,8 @@ typedef struct LowTaylor {
     int *qd_slot;         /* [nq] with speeds, else NULL */
     int *M_slot;          /* [nv nv] */
     int *h_slot;          /* [nv] */
-    int *g_slot;          /* [nevent] */
-    int nevent, nc, nonlinear;
+    int *g_slot;          /* [nevent + nmode]: the events', the switches' */
+    int nevent, nmode, nc, nonlinear;
     int *a_slot;          /* [nv] */
     int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */

@@ -60,12 +60,21 @@
  * A model whose speeds are not its coordinates' rates has its q' from the
  * twin's qdot, and its unit quaternions renormalized after every step and
  * in every row, in eomc_ext, as the double runs renormalize theirs.
+ *
+ * Switches (max, min, clamp, step: eomc_model.h's modes).  The modes
+ * start as a run's do and are held through each step, in u[nu + k],
+ * which the twin's functions read (the inputs fill only u[0 .. nu)); a
+ * step whose end finds a switch function past 0 ends where it crossed,
+ * located on side steps, and the switch flips there (refswitch.c).  The
+ * flips of the solution kept are the reference's record, which a run's
+ * are compared with (compare.h).
  */
 #include "model/simimpl.h"
 #include "model/state.h"
 #include "extrap.h"
 #include "model/linalg.h"
 #include "reftaylor.h"
+#include "refswitch.h"
 
 #include <float.h>
 #include <math.h>
@@ -120,6 +129,7 @@ typedef struct Ref {
     eomc_ext *eq, *dK;            /* [2(nv+nc)] the LU's equilibration, [nv+nc] */
     int have_prev;                /* a and lam hold the last solution */
     eomc_ext *X, *F, *Xn;         /* [N] the state, x' there, the next state */
+    eomc_ext *Fn, *Xh;            /* [N] x' at the next state, the state at a switch */
     eomc_ext *Y, *G, *Y2;         /* [N] side steps' state, x', result */
     eomc_ext *D;                  /* [N] a step's error estimate */
     eomc_ext *mag, *sc;           /* [N] the largest |X_i| so far, the scales */
@@ -142,6 +152,8 @@ typedef struct Ref {
     double fail_t, *fail_x;       /* where a right-hand side failed [N], then
                                    * room for the doubles' q'' there [nv] */
     RefTaylor *rt;                /* Taylor's method makes the solutions, or NULL */
+    RefSwitches *sw;              /* the switches (modes at u[nu + k]), or NULL */
+    int bad_switch;               /* the one a solution could not follow */
 } Ref;
 
 /* The model's inputs at t into r->u, held ones as the doubles hold them. */
@@ -410,13 +422,25 @@ held_by_stability(Ref *r, eomc_ext t0, eomc_ext t, eomc_ext H, long e0, eomc_ext
     return 1;
 }
 
+/* status, the solution having stopped at (t, x) */
+static int
+fail_at(Ref *r, eomc_ext t, const eomc_ext *x, int status)
+{
+    r->fail_t = (double)t;
+    for (int i = 0; i < r->N; i++)
+        r->fail_x[i] = (double)x[i];
+    return status;
+}
+
 /* One solution at tolerance r->tol: the rows [nrows * N] (doubles).
  * The steps go as the tolerance allows, not to the output times, so that
  * rounding accumulates over as few of them as it can; an output time
  * inside a step gets a side step from the step's start (with the
  * linearly implicit method, from its Jacobian there too).  0, -1 when the
  * model fails or the steps become too small, -2 over the step budget, -3
- * when GBS finds the problem stiff (r->detect), -4 over r->eval_budget. */
+ * when GBS finds the problem stiff (r->detect), -4 over r->eval_budget,
+ * -5 when switch r->bad_switch chatters, -6 when it starts on its kink
+ * and neither mode leaves it. */
 static int
 solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budget)
 {
@@ -434,6 +458,9 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
     r->held = 0;
     r->steps = r->evals = r->side_evals = 0;
     eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t, H = span / 100;
+    int st = r->sw ? refsw_start(r->sw, r->X, &r->bad_switch) : 0;
+    if (st != 0)
+        return fail_at(r, t, r->X, st == -2 ? -6 : -1);
     if (nrows > 1 && rhs(r, t, r->X, r->F) != 0)
         return -1;
     while (t < t_end) {
@@ -464,6 +491,17 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         eomc_ext t1 = step == left ? t_end : t + step, t0 = t;
         /* the unit quaternions back to length 1, as the doubles' steps do */
         state_normalize_ext(r->m, r->Xn);
+        /* a switch crossed in the step: it ends there (rows before it
+         * from side steps, as any) */
+        int hit = 0;
+        if (r->sw && (rhs(r, t1, r->Xn, r->Fn) != 0 ||
+                      (hit = refsw_check(r->sw, t, r->X, r->F, t1, r->Xn, r->Fn, &t1,
+                                         r->Xh)) < 0))
+            return -1;
+        if (hit) {
+            memcpy(r->Xn, r->Xh, (size_t)N * sizeof *r->Xn);
+            state_normalize_ext(r->m, r->Xn);
+        }
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
             eomc_ext tk = eomc_run_row_time(o, k), *x = r->Xn;
             long before = r->evals;
@@ -480,9 +518,14 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         for (int i = 0; i < N; i++)
             r->mag[i] = fmaxl(r->mag[i], fabsl(r->X[i]));
         scales(r);
-        if (rhs(r, t, r->X, r->F) != 0)
+        if (hit && (st = refsw_flip(r->sw, t, r->X, r->sc, &r->bad_switch)) != 0)
+            return fail_at(r, t, r->X, st == -2 ? -5 : -1);
+        if (r->sw && !hit) /* the end's, in the same modes */
+            memcpy(r->F, r->Fn, (size_t)N * sizeof *r->F);
+        else if (rhs(r, t, r->X, r->F) != 0)
             return -1;
-        if (r->detect && !implicit && held_by_stability(r, t0, t, step, e0, t_end))
+        eomc_ext taken = hit ? t - t0 : step; /* (a step ended at a switch is shorter) */
+        if (r->detect && !implicit && held_by_stability(r, t0, t, taken, e0, t_end))
             return -3;
         e0 = stepping(r);
         need_jacobian = implicit;
@@ -548,13 +591,15 @@ ref_free(Ref *r)
 {
     eomc_ext *arrays[] = {r->p, r->u, r->dudt, r->M,      r->h, r->K, r->r,  r->f,
                           r->B, r->a, r->lam,  r->cj[0], r->X, r->F, r->Xn, r->Y,
-                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK, r->D};
+                          r->G, r->Y2, r->mag, r->sc,    r->eq, r->dK, r->D, r->Fn,
+                          r->Xh};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(r->perm);
     free(r->fail_x);
     extrap_free(r->ex);
     reftaylor_free(r->rt);
+    refsw_free(r->sw);
 }
 
 static eomc_ext *
@@ -563,8 +608,32 @@ ext_zeros(size_t n)
     return calloc(n ? n : 1, sizeof(eomc_ext));
 }
 
+/* The motion as refswitch.c sees it: a side step, x', the switch
+ * functions in the modes held. */
 static int
-ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
+sw_state(void *ctx, eomc_ext t0, eomc_ext t, eomc_ext *x)
+{
+    return side_step(ctx, t0, t, x);
+}
+
+static int
+sw_rate(void *ctx, eomc_ext t, const eomc_ext *x, eomc_ext *f)
+{
+    return rhs(ctx, t, x, f);
+}
+
+static void
+sw_functions(void *ctx, eomc_ext t, const eomc_ext *x, eomc_ext *s)
+{
+    Ref *r = ctx;
+    inputs_at(r, t);
+    r->x->switches(t, x, x + r->n, r->p, r->u, s);
+}
+
+/* For s's model with twin x, runs over o's span (NULL: none, a state
+ * alone); 0, or -1 when memory runs out. */
+static int
+ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
 {
     const eomc_model *m = eomc_sim_model(s);
     size_t nq = (size_t)m->nq, n = (size_t)eomc_nv(m), nc = (size_t)m->nc;
@@ -581,17 +650,24 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x)
     eomc_ext **arrays[] = {&r->p, &r->u, &r->dudt, &r->M,      &r->h, &r->K, &r->r,
                            &r->f, &r->B, &r->a,    &r->lam,    &r->cj[0], &r->X, &r->F,
                            &r->Xn, &r->Y, &r->G,   &r->Y2,     &r->mag, &r->sc, &r->eq,
-                           &r->dK, &r->D};
-    size_t sizes[] = {(size_t)(m->np + m->nd), nu, nu, n * n, n, W * W, W,
+                           &r->dK, &r->D, &r->Fn, &r->Xh};
+    /* u: the inputs, then the modes (eomc_model.h) */
+    size_t sizes[] = {(size_t)(m->np + m->nd), nu + (size_t)m->nmode, nu, n * n, n, W * W, W,
                       nc, nc * n, n, nc, ncj, N, N,
                       N, N, N, N, N, N, 2 * W,
-                      W, N};
+                      W, N, N, N};
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
     ok &= (r->fail_x = calloc(N + n, sizeof *r->fail_x)) != NULL;
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
+    if (ok && m->nmode > 0) {
+        RefSwMotion mo = {.ctx = r, .state = sw_state, .rate = sw_rate,
+                          .functions = sw_functions};
+        ok &= (r->sw = refsw_alloc(m->nmode, r->N, r->u + nu, mo, o ? o->t0 : 0,
+                                   o ? o->t_end : 0)) != NULL;
+    }
     if (!ok)
         return -1;
     for (int k = 1; k < 9; k++)
@@ -612,13 +688,27 @@ method_name(const Ref *r)
 }
 
 /* Why a solution stopped (solve's -1: the model failed at r->fail_x, or
- * the steps became too small; -2: too many steps): the doubles' own
- * message where their solve fails at that state too. */
+ * the steps became too small; -2: too many steps; -5, -6: a switch it
+ * cannot follow, as a run cannot): the doubles' own message where their
+ * solve fails at that state too. */
 static int
 failure(Ref *r, int st)
 {
     eomc_sim *s = r->s;
     const double *x = r->fail_x;
+    char name[STATE_NAME_MAX];
+    if (st == -5 || st == -6)
+        state_switch_name(r->m, r->bad_switch, name, sizeof name);
+    if (st == -5)
+        return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
+                                 "cannot follow %s: it flips again within %g of the time "
+                                 "span (it chatters: the motion slides along its kink, "
+                                 "which no mode follows)", method_name(r), name,
+                                 REFSW_CHATTER);
+    if (st == -6)
+        return sim_numeric_error(s, r->fail_t, x, x + r->n, "%s starts on its kink (its "
+                                 "function is 0) and neither mode leaves it: the motion "
+                                 "would slide along it, which no mode follows", name);
     if (st == -2)
         return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
                                  "took more than %d steps at tolerance %.0e",
@@ -665,6 +755,31 @@ max_diff(const double *a, const double *b, size_t n)
     return d;
 }
 
+/* The flips of the solution just made, its record, into ref; 0, or -1
+ * when memory runs out. */
+static int
+keep_switches(eomc_reference *ref, const Ref *r)
+{
+    if (!r->sw)
+        return 0;
+    long n = refsw_count(r->sw);
+    size_t N = (size_t)r->N, k = (size_t)(n > 0 ? n : 1);
+    free(ref->sw_t);
+    free(ref->sw_k);
+    free(ref->sw_sens);
+    ref->nswitch = 0;
+    ref->sw_t = malloc(k * sizeof *ref->sw_t);
+    ref->sw_k = malloc(k * sizeof *ref->sw_k);
+    ref->sw_sens = malloc(k * N * sizeof *ref->sw_sens);
+    if (!ref->sw_t || !ref->sw_k || !ref->sw_sens)
+        return -1;
+    ref->nswitch = n;
+    memcpy(ref->sw_t, refsw_times(r->sw), (size_t)n * sizeof *ref->sw_t);
+    memcpy(ref->sw_k, refsw_which(r->sw), (size_t)n * sizeof *ref->sw_k);
+    memcpy(ref->sw_sens, refsw_sens(r->sw), (size_t)n * N * sizeof *ref->sw_sens);
+    return 0;
+}
+
 /* EOMC_OK when ext is this model's twin with what a solve needs, else
  * the usage error saying so (what: what it would compute). */
 static int
@@ -675,11 +790,9 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
         return sim_usage_error(s, "no extended-precision functions of %s to compute %s "
                                "with (the model's C compiled again with -DEOMC_EXTENDED, "
                                "as eomc build does)", m->name, what);
-    if (m->nmode > 0) /* (its u would need room for the modes, and the steps to end at
-                       * each switch) */
-        return sim_usage_error(s, "%s: %s has switched expressions (max, min, clamp, step), whose "
-                               "switches the reference solution does not locate yet", what,
-                               m->name);
+    if (m->nmode > 0 && !ext->switches)
+        return sim_usage_error(s, "the extended-precision functions of %s lack switches, "
+                               "its switch functions", m->name);
     if (m->nc && !m->c_affine && !ext->c_jacobian)
         return sim_usage_error(s, "the extended-precision functions of %s lack "
                                "c_jacobian", m->name);
@@ -698,6 +811,11 @@ taylor_fits(eomc_sim *s, const eomc_model_ext *ext)
     if (!ext->taylor)
         return sim_usage_error(s, "--reference-method taylor: %s has no Taylor series: %s",
                                m->name, m->taylor_why ? m->taylor_why : "its twin has none");
+    if (m->nmode > 0)
+        return sim_usage_error(s, "--reference-method taylor: %s has switched expressions "
+                               "(max, min, clamp, step, abs), whose switches the reference "
+                               "by Taylor's method does not locate; extrapolation does",
+                               m->name);
     if (m->nv > 0 && !m->taylor_qd)
         return sim_usage_error(s, "--reference-method taylor: %s's speeds are not its "
                                "coordinates' rates, and its series lack the kinematic "
@@ -749,7 +867,7 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
     double *prev = calloc(size, sizeof *prev);
     ref->t = calloc((size_t)nrows, sizeof *ref->t);
     ref->x = calloc(size, sizeof *ref->x);
-    int alloc = ref_alloc(&r, s, ext);
+    int alloc = ref_alloc(&r, s, ext, o);
     if (alloc == 0 && how == EOMC_REFERENCE_TAYLOR &&
         !(r.rt = reftaylor_alloc(ext, m->taylor_qd, r.n, r.nv, r.nc, sim_dropped_rows(s))))
         alloc = -1;
@@ -792,6 +910,10 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
         }
         if (st != 0)
             break; /* rounding (or the model) allows no finer one: keep the last */
+        if (keep_switches(ref, &r) != 0) {
+            rc = sim_usage_error(s, "out of memory for the reference's switches");
+            break;
+        }
         budget = STEP_GROWTH * r.steps;
         ref->refinements = k + 1;
         ref->tolerance = r.tol;
@@ -843,12 +965,14 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
     if (fits != EOMC_OK)
         return fits;
     Ref r;
-    if (ref_alloc(&r, s, ext) != 0) {
+    if (ref_alloc(&r, s, ext, NULL) != 0) {
         ref_free(&r);
         return sim_usage_error(s, "out of memory for the extended-precision q''");
     }
     for (int i = 0; i < r.N; i++)
         r.X[i] = x[i];
+    if (r.sw) /* the modes of the state itself, as eomc_sim_accel takes them */
+        refsw_signs(r.sw, t, r.X);
     int rc = rhs(&r, t, r.X, r.F);
     for (int i = 0; rc == 0 && i < r.nv; i++)
         a[i] = (double)r.F[r.n + i];
@@ -868,6 +992,10 @@ eomc_reference_free(eomc_reference *ref)
 {
     free(ref->t);
     free(ref->x);
-    ref->t = ref->x = NULL;
-    ref->nrows = 0;
+    free(ref->sw_t);
+    free(ref->sw_k);
+    free(ref->sw_sens);
+    ref->t = ref->x = ref->sw_t = ref->sw_sens = NULL;
+    ref->sw_k = NULL;
+    ref->nrows = ref->nswitch = 0;
 }

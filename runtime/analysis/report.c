@@ -52,6 +52,8 @@ typedef struct Entry {
     double *comp_end, *comp_max; /* [nx] each component's (compare.h) */
     double digits;        /* the fewest digits of a component */
     int worst;            /* that component */
+    int parted;           /* its switches part from the reference's, at part */
+    ComparePart part;
 } Entry;
 
 /* What a row callback measures against the reference. */
@@ -84,6 +86,18 @@ probe_row(void *ctx, double t, const double *x)
         for (int c = 0; c < m->nc; c++)
             p->res_max = fmax(p->res_max, fabs(p->res[c]));
     p->k++;
+    return EOMC_OK;
+}
+
+/* A run's flips, for the reference's to be compared with (on_event). */
+static int
+probe_event(void *ctx, int k, double t, const double *x)
+{
+    Probe *p = ctx;
+    int nevent = eomc_sim_model(p->s)->nevent;
+    (void)x;
+    if (k >= nevent && compare_flip(p->cmp, k - nevent, t) != 0)
+        return sim_usage_error(p->s, "out of memory for the run's switches");
     return EOMC_OK;
 }
 
@@ -150,7 +164,12 @@ measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
     Probe p = {.s = r->sim, .cmp = cmp, .invariant = m->invariant != NULL, .res = res};
     compare_reset(cmp);
     memcpy(x, r->x0, (size_t)eomc_nx(m) * sizeof *x);
+    if (m->nmode > 0) {
+        o.on_event = probe_event;
+        o.event_ctx = &p;
+    }
     int rc = eomc_sim_integrate(r->sim, &o, x, probe_row, &p, &e->st);
+    o.on_event = NULL; /* (the timed runs below) */
     e->cpu = e->st.cpu_seconds;
     if (rc == EOMC_EUSAGE) { /* a setting this model cannot take (msbdf with projection) */
         e->status = RUN_SKIPPED;
@@ -171,6 +190,9 @@ measure(const Report *r, Entry *e, double *x, double *res, Compare *cmp)
     memcpy(e->comp_end, cmp->end, (size_t)eomc_nx(m) * sizeof *cmp->end);
     memcpy(e->comp_max, cmp->max, (size_t)eomc_nx(m) * sizeof *cmp->max);
     e->worst = compare_worst(cmp, &e->digits);
+    double tol = e->h > 0 ? 0 : e->tol; /* fixed steps: the rows' errors alone */
+    e->parted = compare_switches(cmp, tol, tol, o.t0, o.t_end);
+    e->part = cmp->part;
     e->drift = p.drift;
     e->residual = fmax(p.res_max, e->st.max_residual);
     e->cpu = time_entry(r, &o, e->st.cpu_seconds, x);
@@ -304,6 +326,20 @@ print_entry(const Report *r, const Entry *e)
     if (e->st.order_sum > 0)
         fprintf(io_out(), " %10.3g", (double)e->st.order_sum / (double)e->st.steps);
     fprintf(io_out(), "\n");
+    if (e->parted) { /* its errors after that are not its own alone (compare.h) */
+        const ComparePart *p = &e->part;
+        char a[STATE_NAME_MAX + 40] = "nothing", b[STATE_NAME_MAX + 40] = "nothing";
+        char name[STATE_NAME_MAX];
+        if (p->ref_k >= 0)
+            snprintf(a, sizeof a, "'%s' at %.6g",
+                     state_switch_name(m, p->ref_k, name, sizeof name), p->t_ref);
+        if (p->run_k >= 0)
+            snprintf(b, sizeof b, "'%s' at %.6g",
+                     state_switch_name(m, p->run_k, name, sizeof name), p->t_run);
+        fprintf(io_out(), "  %-11s ! its switches part from the reference's at t = %.6g (the "
+                "reference flipped %s, the run %s); before it the error was at most %.2e\n",
+                "", p->t, a, b, p->err_before);
+    }
 }
 
 static void
@@ -682,6 +718,14 @@ report_run(const Report *r)
     }
     print_front(r, e, n);
     fflush(io_out());
+    int parted = 0;
+    for (int k = 0; k < n; k++)
+        parted += e[k].status == RUN_OK && e[k].parted;
+    if (parted)
+        fprintf(io_err(), "%s: warning: %d run%s switched differently from the reference "
+                "(marked ! in the table): %s errors after that compare two branches of the "
+                "motion, not the run's error alone\n", r->prog, parted, parted == 1 ? "" : "s",
+                parted == 1 ? "its" : "their");
     int rc = EOMC_OK;
     if (r->csv && write_csv(r, e, n) != EOMC_OK)
         rc = EOMC_EUSAGE;

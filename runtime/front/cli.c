@@ -224,6 +224,9 @@ after_run(Options *c, Rows *w, const eomc_stats *st, const eomc_reference *ref,
         fprintf(io_err(), "%s: error: %s\n", c->prog, eomc_sim_error(w->sim));
     if (rc == EOMC_ENUMERIC)
         summary_kept(c, w);
+    if (w->ref && !rc) /* the run's flips against the reference's (fixed steps: no tolerance) */
+        compare_switches(&w->cmp, c->run.h_fixed > 0 ? 0 : c->run.rtol,
+                         c->run.h_fixed > 0 ? 0 : c->run.atol, c->run.t0, c->run.t_end);
     summary_warnings(c, m, st, w);
     if (c->stats)
         summary_stats(w, st, c->stabilize);

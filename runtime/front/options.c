@@ -523,9 +523,6 @@ check_event_options(const Options *c, const eomc_model *m)
                       : c->reference    ? "--reference"
                       : c->error        ? "--error"
                       : c->reference_out ? "--reference-out" : NULL;
-    if (m->nmode > 0 && opt)
-        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose "
-                         "switches the reference solution does not locate yet", opt, m->name);
     if (moving && opt)
         return opt_usage(c, "%s: scene %s has events that stop or reset the motion, which the "
                      "reference solution does not follow (measure the errors on a scene "

@@ -26,15 +26,19 @@ rows_event(void *ctx, int k, double t, const double *x)
 {
     Rows *w = ctx;
     const eomc_model *m = eomc_sim_model(w->sim);
+    char name[STATE_NAME_MAX];
     if (k < m->nevent && m->ev_action[k] == EOMC_EVENT_SET)
         w->rebase = 1, w->t_reset = t;
+    /* the run's flips, for the reference's to be compared with */
+    if (w->ref && k >= m->nevent && compare_flip(&w->cmp, k - m->nevent, t) != 0)
+        return sim_usage_error(w->sim, "out of memory for the run's switches");
     if (!w->events)
         return EOMC_OK;
     num_put(w->events, t);
     if (k < m->nevent)
         fprintf(w->events, ",%s", m->ev_names[k]);
     else /* a switch of max, min, clamp or step (eomc.h's on_event) */
-        fprintf(w->events, ",%s", m->sw_names[k - m->nevent]);
+        fprintf(w->events, ",%s", state_switch_name(m, k - m->nevent, name, sizeof name));
     for (int i = 0; i < eomc_nx(m); i++) {
         fputc(',', w->events);
         num_put(w->events, x[i]);
@@ -269,6 +273,7 @@ eomc_reference_read(eomc_sim *s, const char *path, const eomc_run_opts *o,
     const eomc_model *m = eomc_sim_model(s);
     int N = eomc_nx(m);
     memset(ref, 0, sizeof *ref);
+    ref->nswitch = m->nmode > 0 ? -1 : 0; /* a file has rows, not the flips between them */
     FILE *f = fopen(path, "r");
     if (!f)
         return sim_usage_error(s, "--reference: cannot read %s: %s", path, strerror(errno));

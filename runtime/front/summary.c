@@ -106,6 +106,13 @@ summary_stats(const Rows *w, const eomc_stats *st, int stabilize)
         if (w->ref->refinements > 0) /* computed, not read */
             fprintf(io_err(), "reference_steps %ld\nreference_rhs_evals %ld\n",
                     w->ref->steps, w->ref->rhs_evals);
+        if (w->ref->nswitch >= 0 && m->nmode > 0)
+            fprintf(io_err(), "reference_switches %ld\nswitches %ld\n", w->ref->nswitch,
+                    w->cmp.nflip);
+        if (w->cmp.parted) {
+            put_stat("t_switches_part", w->cmp.part.t);
+            put_stat("error_max_before_part", w->cmp.part.err_before);
+        }
     }
     if (m->nevent > 0)
         fprintf(io_err(), "events %ld\nevent_evals %ld\n", st->events, st->event_evals);
@@ -219,6 +226,10 @@ summary_text(const Options *c, const eomc_model *m, const Rows *w, const eomc_st
             "most %.3g over the rows and %.3g at t = %g.", w->ref->method,
             w->ref->stiff ? ", as the problem is stiff" : "", w->ref->error, w->err_max,
             w->err_end, c->run.t_end);
+    if (w->ref && w->cmp.parted)
+        ADD(" The run's switches part from the reference's at t = %.6g; before it the "
+            "error was at most %.3g, and after it the rows compare two branches of the "
+            "motion.", w->cmp.part.t, w->cmp.part.err_before);
 #undef ADD
     text[0] = (char)(text[0]); /* the model's name starts the paragraph as it is */
     wrap(io_err(), text);
@@ -352,6 +363,40 @@ summary_kept(const Options *c, const Rows *w)
                 c->prog, w->rows, num_shortest(num, w->t_last));
 }
 
+/* The run's switches parting from the reference's (compare.h): its
+ * errors after that compare two branches of the motion, which the reader
+ * of the error must know. */
+static void
+warn_switches(const Options *c, const eomc_model *m, const Rows *w)
+{
+    if (w->ref && w->ref->nswitch < 0 && m->nmode > 0)
+        fprintf(io_err(), "%s: note: the reference read from %s has rows, not the flips of "
+                "the switches between them: the run's flips are not compared with any\n",
+                c->prog, c->reference);
+    if (!w->ref || !w->cmp.parted)
+        return;
+    const ComparePart *p = &w->cmp.part;
+    char a[STATE_NAME_MAX], b[STATE_NAME_MAX];
+    const char *after = "the errors after t are not the run's error: they compare two "
+                        "branches of the motion";
+    if (p->ref_k >= 0 && p->ref_k == p->run_k)
+        fprintf(io_err(), "%s: warning: the reference and the run flipped '%s' at different "
+                "times, t = %.17g and %.17g, further apart than the run's error there "
+                "explains (%.2g) (%s)\n", c->prog, state_switch_name(m, p->ref_k, a, sizeof a),
+                p->t_ref, p->t_run, p->allowed, after);
+    else if (p->ref_k >= 0 && p->run_k >= 0)
+        fprintf(io_err(), "%s: warning: the reference and the run switched differently at "
+                "t = %.17g: the reference flipped '%s', the run '%s' (%s)\n", c->prog, p->t,
+                state_switch_name(m, p->ref_k, a, sizeof a),
+                state_switch_name(m, p->run_k, b, sizeof b), after);
+    else
+        fprintf(io_err(), "%s: warning: the reference and the run switched differently at "
+                "t = %.17g: the %s flipped '%s', the %s did not (%s)\n", c->prog, p->t,
+                p->ref_k >= 0 ? "reference" : "run",
+                state_switch_name(m, p->ref_k >= 0 ? p->ref_k : p->run_k, a, sizeof a),
+                p->ref_k >= 0 ? "run" : "reference", after);
+}
+
 void
 summary_warnings(const Options *c, const eomc_model *m, const eomc_stats *st, const Rows *w)
 {
@@ -359,6 +404,7 @@ summary_warnings(const Options *c, const eomc_model *m, const eomc_stats *st, co
     warn_drift(c, m, st, w);
     warn_quaternion(c, m, st);
     warn_reset(c, m, st);
+    warn_switches(c, m, w);
 }
 
 void
@@ -378,9 +424,13 @@ summary_error(const Options *c, const eomc_model *m, const Rows *w, const eomc_r
     if (digits < INFINITY) /* each component against its own size (compare.h) */
         snprintf(worst, sizeof worst, "; %s keeps the fewest digits, %.1f",
                  state_name(m, i, name, sizeof name), digits);
+    char part[160] = "";
+    if (w->cmp.parted) /* what the run's error is, where it is still the run's */
+        snprintf(part, sizeof part, "; before t = %.6g, where the switches part, at most %.3g",
+                 w->cmp.part.t, w->cmp.part.err_before);
     fprintf(io_err(), "%s: error against the reference solution: at most %.3g over "
-            "the %ld row%s, %.3g at t = %g (%s)%s\n", c->prog, w->err_max, w->rows,
-            num_plural(w->rows), w->err_end, c->run.t_end, good, worst);
+            "the %ld row%s, %.3g at t = %g (%s)%s%s\n", c->prog, w->err_max, w->rows,
+            num_plural(w->rows), w->err_end, c->run.t_end, good, worst, part);
 }
 
 void

@@ -551,6 +551,14 @@ typedef struct eomc_reference {
     int stiff;            /* the linearly implicit method made it, the problem being
                            * stiff (source says why) */
     char source[768];     /* how it was made (and why that method), or the file */
+    long nswitch;         /* the flips of the model's switches along it (max, min,
+                           * clamp, step: eomc_model.h's modes), or -1 when not
+                           * known (read from a file) */
+    double *sw_t;         /* [nswitch] their times, in order */
+    int *sw_k;            /* [nswitch] which switch flipped */
+    double *sw_sens;      /* [nswitch * nx] how far each flip's time moves per unit
+                           * error of each component, |ds/dx_i| / |ds/dt| (s the
+                           * switch function; INFINITY where s is tangent) */
 } eomc_reference;
 
 /* Compute the reference for o's output times from x0 [nx].  Returns

@@ -320,10 +320,12 @@ typedef struct eomc_model {
      * q_i' at slot taylor_v[i] (-1: no value reads it; with speeds of
      * their own, of speed v_j at taylor_v[j], and taylor_qd at the end
      * of this struct).  Then coefficient k of M_ij is at slot
-     * taylor_M[i nq + j], of h_i at taylor_h[i] and of event function
-     * g_e at taylor_g[e] (-1: zero at every order).  p
-     * is as mass_bias's (with the derived values); u the inputs, held
-     * constant (Taylor's method refuses signals).  With constraints
+     * taylor_M[i nq + j], of h_i at taylor_h[i], of event function
+     * g_e at taylor_g[e] and of switch function s_j at taylor_g[nevent +
+     * j] (-1: zero at every order).  p is as mass_bias's (with the derived
+     * values); u the inputs, held constant (Taylor's method refuses
+     * signals), and the modes after them: a switched value's series is its
+     * mode's branch's.  With constraints
      * also coefficient k of B_ci at taylor_B[c nq + i], of f_c at
      * taylor_f[c], and of c_levels' pos_c and vel_c at taylor_pos[c] and
      * taylor_vel[c] (NULL when nc = 0).  When every constraint is affine

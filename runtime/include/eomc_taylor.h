@@ -64,6 +64,14 @@ eomc_tay_sub(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
     c[k] = a[k] - b[k];
 }
 
+/* A switched value: the series of the branch its mode v (0 or 1, held
+ * over the step, which ends where the mode would flip) chooses. */
+static inline void
+eomc_tay_select(eomc_real *c, const eomc_real *a, const eomc_real *b, eomc_real v, int k)
+{
+    c[k] = v != 0 ? a[k] : b[k];
+}
+
 static inline void
 eomc_tay_neg(eomc_real *c, const eomc_real *a, int k)
 {

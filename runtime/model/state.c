@@ -34,6 +34,16 @@ state_name(const eomc_model *m, int k, char *buf, size_t len)
     return buf;
 }
 
+const char *
+state_switch_name(const eomc_model *m, int k, char *buf, size_t len)
+{
+    if (m->sw_names && m->sw_names[k])
+        snprintf(buf, len, "%s", m->sw_names[k]);
+    else /* (a model written by hand may name none) */
+        snprintf(buf, len, "switch %d", k);
+    return buf;
+}
+
 /* Speed k's name with `primes` more primes: v_names[k], or the
  * coordinate's with one prime more where the speeds are the rates. */
 static const char *

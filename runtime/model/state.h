@@ -18,6 +18,9 @@ enum { STATE_NAME_MAX = 256 };
 /* Component k of the state (k < nq + nv): "x", then the speeds "x'" (the
  * coordinates' rates, model->nv = 0) or model->v_names ("root_wx"). */
 const char *state_name(const eomc_model *m, int k, char *buf, size_t len);
+/* Switch k's name (k < nmode, eomc_model.h's sw_names: floor.max), as
+ * --events and the messages name it; "switch K" where the model has none. */
+const char *state_switch_name(const eomc_model *m, int k, char *buf, size_t len);
 /* Speed k's own name (k < nv): "x'" or "root_wx" (state_name's nq + k). */
 const char *state_speed(const eomc_model *m, int k, char *buf, size_t len);
 /* The rate of speed k, as --accel names it: "x''" or "root_wx'". */

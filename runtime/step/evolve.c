@@ -963,9 +963,11 @@ start_modes(Run *r)
             continue;
         sim_set_mode(s, k, r0 > 0);
         if ((rc = start_rate(r, k, sw, &r1)) == GSL_SUCCESS && r1 != 0 && (r1 > 0) != (r0 > 0)) {
-            sim_numeric_error(s, r->t, r->x, r->x + n, "switch %s starts on its kink (its "
+            char name[STATE_NAME_MAX];
+            sim_numeric_error(s, r->t, r->x, r->x + n, "%s starts on its kink (its "
                               "function is 0) and neither mode leaves it: the motion would "
-                              "slide along it, which no mode follows", r->m->sw_names[k]);
+                              "slide along it, which no mode follows",
+                              state_switch_name(r->m, k, name, sizeof name));
             rc = GSL_EBADFUNC;
         }
     }

@@ -144,7 +144,9 @@ dir_of(const StepEvents *v, int k)
 static const char *
 name_of(const StepEvents *v, int k)
 {
-    return k < v->nev ? v->m->ev_names[k] : v->m->sw_names[k - v->nev];
+    if (k < v->nev)
+        return v->m->ev_names[k];
+    return v->m->sw_names ? v->m->sw_names[k - v->nev] : "a switch"; /* (a model by hand) */
 }
 
 int

@@ -550,7 +550,7 @@ taylor_event_cut(const Taylor *tp, double h)
 {
     const eomc_model *m = tp->m;
     double c[TAYLOR_MAX_ORDER + 1], hcut = h;
-    for (int e = 0; e < m->nevent && m->taylor_g; e++) {
+    for (int e = 0; e < m->nevent + m->nmode && m->taylor_g; e++) {
         if (m->taylor_g[e] < 0)
             continue;
         /* g's series has the orders the program reached, 0 .. p - 1 */

@@ -12,13 +12,15 @@
  * body_iquat turns to, is printed as the full tensor in the body's axes.
  *
  * Effects: gravity, damping, stiffness, fluid (MuJoCo's inertia-box
- * model of the medium), armature (kinetic terms of one joint's rates) and
- * actuators (virtual work of an input each); connect and joint equalities
- * are exact holonomic constraints.  What the model's <flag>s disable is
- * left out, as mj_forward leaves it out, with a note.  What the importer
- * cannot write is refused by name; what eomc does not simulate (limits,
- * friction loss, control and force ranges, contacts) is dropped, one
- * warning per kind (--strict: an error).
+ * model of the medium), armature (kinetic terms of one joint's rates),
+ * limits (a hinge's or slide's, as compliant stops) and actuators (virtual
+ * work of an input each, clamped to their ranges as MuJoCo clamps them;
+ * actuators_unclamped beside); connect and joint equalities are exact
+ * holonomic constraints.  What the model's <flag>s disable is left out,
+ * as mj_forward leaves it out, with a note.  What the importer cannot
+ * write is refused by name; what eomc does not simulate (a ball's and a
+ * tendon's limits, friction loss, contacts) is dropped, one warning per
+ * kind (--strict: an error).
  *
  * One file past ~800 lines: every element of mjModel it prints shares the
  * naming (identifiers, collisions, renames) and the placement in the

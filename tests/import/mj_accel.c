@@ -10,7 +10,9 @@
  *                              nv speeds v, a line of nu controls (empty
  *                              without actuators), then v' one per line;
  *                              with COUNT, a block so for each seed SEED ..
- *                              SEED + COUNT - 1 (one process, one load)
+ *                              SEED + COUNT - 1 (one process, one load);
+ *                              with actuators, on stderr at the end: "a
+ *                              control or force clamped at K of N states"
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
@@ -358,6 +360,32 @@ inside(const mjModel *m, const mjData *d, int flags)
     return 1;
 }
 
+/* Does MuJoCo clamp an actuator's control or force at state d (after
+ * mj_forward; flags: the model's own)?  Its force unclamped is gain*u +
+ * bias of the control clamped, for the fixed or affine gains and biases
+ * that eomc imports. */
+static int
+clamping(const mjModel *m, const mjData *d, int flags)
+{
+    for (int i = 0; i < m->nu; i++) {
+        const double *g = m->actuator_gainprm + mjNGAIN * i, *b = m->actuator_biasprm + mjNBIAS * i;
+        const double *cr = m->actuator_ctrlrange + 2 * i, *fr = m->actuator_forcerange + 2 * i;
+        double u = d->ctrl[i], L = d->actuator_length[i], V = d->actuator_velocity[i];
+        if (m->actuator_ctrllimited[i] && !(flags & mjDSBL_CLAMPCTRL)) {
+            if (u < cr[0] || u > cr[1])
+                return 1;
+        }
+        double gain = g[0] + (m->actuator_gaintype[i] == mjGAIN_AFFINE ? g[1] * L + g[2] * V : 0);
+        double f = gain * u + (m->actuator_biastype[i] == mjBIAS_AFFINE ? b[0] + b[1] * L + b[2] * V : 0);
+        if (m->actuator_forcelimited[i] && (f < fr[0] || f > fr[1]))
+            return 1;
+    }
+    return 0;
+}
+
+/* The states where MuJoCo clamps a control or a force (said at the end). */
+static long clamped_states;
+
 /* The state of one seed and MuJoCo's q'' there, printed; 3 if no state
  * drawn meets the constraints inside the limits.  flags: the model's own
  * disableflags. */
@@ -393,6 +421,7 @@ one_state(mjModel *m, mjData *d, uint64_t seed, int flags)
             return 3;
         }
     }
+    clamped_states += clamping(m, d, flags);
     for (int i = 0; i < m->nq; i++)
         printf("%.17g%c", d->qpos[i], i + 1 < m->nq ? ' ' : '\n');
     for (int i = 0; i < m->nv; i++)
@@ -431,6 +460,9 @@ main(int argc, char **argv)
     int rc = 0;
     for (long k = 0; k < count && rc == 0; k++)
         rc = one_state(m, d, seed + (uint64_t)k, flags);
+    if (rc == 0 && m->nu)
+        fprintf(stderr, "mj_accel: a control or force clamped at %ld of %ld states\n",
+                clamped_states, count);
     mj_deleteData(d);
     mj_deleteModel(m);
     return rc;

@@ -45,7 +45,8 @@ stop_force(Loader *L, ExprId d, ExprId rate, ExprId k, ExprId c, const char *nam
 {
     ExprPool *P = L->P;
     int first = expr_nswitch(P);
-    ExprId push = expr_add(P, expr_mul(P, k, d), expr_mul(P, c, rate));
+    ExprId spring = expr_mul(P, k, d); /* built first: ids do not depend on C's order */
+    ExprId push = expr_add(P, spring, expr_mul(P, c, rate));
     /* without damping k d > 0 wherever d > 0: no second switch (its
      * function k d would flip with d's, at the same instant) */
     ExprId f = c == EXPR_ZERO ? push : expr_max(P, push, EXPR_ZERO);
@@ -100,7 +101,8 @@ spec_load_stop(Loader *L, yaml_node_t *map, yaml_node_t *v, const char *owner, S
     char nm[300];
     if (lo != EXPR_NONE) {
         snprintf(nm, sizeof nm, "%s.%s.lo", owner, name);
-        Q = stop_force(L, expr_sub(P, lo, x), expr_neg(P, rate), k, c, nm);
+        ExprId d = expr_sub(P, lo, x);
+        Q = stop_force(L, d, expr_neg(P, rate), k, c, nm);
     }
     if (hi != EXPR_NONE) {
         snprintf(nm, sizeof nm, "%s.%s.hi", owner, name);

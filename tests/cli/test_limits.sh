@@ -20,7 +20,8 @@
 #    of --accel; on a kink, the warning naming its switches;
 #  - --equilibrium against a stop: k (lo - theta) = m g l sin(theta),
 #    solved here by bisection; with lo = 0 the equilibrium is the stop's
-#    edge, a kink, and says so.
+#    edge, a kink, and says so;
+#  - a negative stiffness or a reversed range by --set: refused.
 # usage: test_limits.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -117,4 +118,12 @@ for start in 0.5 -0.3; do
   [ $st -eq 0 ] && within "$got" 0 1e-15 && grep -q "warning: t = 0: the state is on the kinks of stops.theta.lo.push and stops.theta.lo" "$tmp/err"
   ok $? "--equilibrium on the stop's edge (lo = 0) from $start: theta = $got, and the kink said"
 done
+# a stop's constants of parameters, checked again for the values --set gives
+"$eomc" run "$spec" --set k=-1 > "$tmp/out" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && [ ! -s "$tmp/out" ] &&
+  grep -q "limit on 'theta': its stiffness cannot be negative (k = -1)" "$tmp/err"
+ok $? "--set k=-1: refused, exit 2 ($(head -1 "$tmp/err"))"
+"$eomc" run "$spec" --set lo=1 > "$tmp/out" 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "limit on 'theta': its range is reversed" "$tmp/err"
+ok $? "--set lo=1 above hi: refused, exit 2"
 tap_end

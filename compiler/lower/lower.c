@@ -148,9 +148,10 @@ static const LowSig s_events = {
     "t q v p u > g", 1,
 };
 static const LowSig s_switches = {
-    "switches", "The switch functions of max, min and clamp: mode k is 1 where s[k] > 0,\n"
-    " * 0 where s[k] < 0, and the runtime flips it where s[k] crosses 0.",
-    "t q v p u > s", 1,
+    "switches", "The switch functions of max, min and clamp: mode k is 1 where sw[k] > 0,\n"
+    " * 0 where sw[k] < 0, and the runtime flips it where sw[k] crosses 0.",
+    /* (not s: a function split into parts shares its values in s[]) */
+    "t q v p u > sw", 1,
 };
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
@@ -850,15 +851,18 @@ lower_draw(Lowering *lw)
     if (ns) {
         f = func(lw, &s_draw_shapes, "draw", 1);
         f->per_step = 0;
-        for (int k = 0; k < s->nshape; k++) {
+        for (int k = 0, d = 0; k < s->nshape; k++) {
             const SpecShape *sh = &s->shape[k];
+            if (sh->type == SPEC_SHAPE_PLANE) /* not drawn (lower_describe) */
+                continue;
             for (int j = 0; j < 3; j++) {
                 ExprId e = sh->esize[j], x = sh->epos[j];
-                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + j,
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * d + j,
                     e != EXPR_NONE ? e : expr_const(P, sh->size[j]));
-                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * k + 3 + j,
+                out(lw, f, 0, EOMC_SHAPE_NUMS_SIZE * d + 3 + j,
                     x != EXPR_NONE ? x : expr_const(P, sh->pos[j]));
             }
+            d++;
         }
         lw->L->draw_shapes = f;
     }

@@ -113,10 +113,11 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
                                          v->item[k].kind == SPEC_DRAW_GROUND ? SPEC_DRAW_BODY
                                                                              : v->item[k].kind,
                                          v->item[k].dim, v->item[k].unturned};
-    md->nshape = v->nitem ? s->nshape : 0;
     md->shape = arena_new_array(A, LowShape, s->nshape + 1);
-    if (s->nshape)
-        memcpy(md->shape, s->shape, (size_t)s->nshape * sizeof *md->shape);
+    md->nshape = 0;
+    for (int k = 0; v->nitem && k < s->nshape; k++) /* a plane is the page's floor, no shape */
+        if (s->shape[k].type != SPEC_SHAPE_PLANE)
+            md->shape[md->nshape++] = s->shape[k];
     md->nlink = v->nlink, md->ntrace = v->ntrace, md->view_frames = v->frames;
     md->view_link = arena_new_array(A, int, 2 * v->nlink + 1);
     if (v->nlink)

@@ -5,6 +5,8 @@
  */
 #include "mech.h"
 
+#include "contact.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -166,6 +168,9 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D, Ex
             add_torque(&s->body[f->body], f, m, P, D);
             break;
         case FORCE_KINETIC: /* in T (mech_build) */
+            break;
+        case FORCE_CONTACT:
+            contact_add(s, e, f, P, D, &(ContactQ){m->nq, m->n, m->q[0], m->q[1], Qq, m->Q});
             break;
         case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec/effects.c checked) */
             for (int i = 0; i < m->nq; i++)

@@ -4,6 +4,7 @@
  */
 #include "effects.h"
 
+#include "contacts.h"
 #include "names.h"
 #include "stops.h"
 
@@ -116,13 +117,40 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "limit", "on", "range", "stiffness",
-                                       "damping", NULL};
+                                       "kinetic", "on", "contact", "limit", "stiffness",
+                                       "damping", "friction", "range", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
     int kinds = 0;
-    yaml_node_t *v, *on = spec_lookup(L, map, "on");
+    yaml_node_t *v, *on = spec_lookup(L, map, "on"), *lim = spec_lookup(L, map, "limit");
+    /* a contact and a limit have keys of their own: the law's */
+    int law = !!spec_lookup(L, map, "stiffness") + !!spec_lookup(L, map, "damping");
+    if (spec_lookup(L, map, "contact") && NPAIRS(map) > 1 + law +
+                                           !!spec_lookup(L, map, "friction") + !!on)
+        diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
+                   "force, torque, work, kinetic, contact, limit (write a list for several)");
+    if (spec_lookup(L, map, "contact")) {
+        spec_load_contact(L, map, f);
+        return;
+    }
+    if (lim && on)
+        diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
+    if (lim && NPAIRS(map) > 1 + law + !!spec_lookup(L, map, "range"))
+        diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
+                   "force, torque, work, kinetic, contact, limit (write a list for several)");
+    if (lim) {
+        spec_load_stop(L, map, lim, L->sc.owner, f);
+        return;
+    }
+    static const char *const keys_of[] = {"stiffness", "damping", "friction", "range"};
+    for (int k = 0; k < 4; k++)
+        if (spec_lookup(L, map, keys_of[k]))
+            diag_error(spec_key_loc(L, map, keys_of[k]), "`%s` belongs to %s", keys_of[k],
+                       k < 2 ? "a contact or a limit ({contact: all, stiffness: k, damping: c}, "
+                               "{limit: q, range: [lo, hi], stiffness: k, damping: c})"
+                       : k == 2 ? "a contact ({contact: all, stiffness: k, damping: c})"
+                                : "a limit ({limit: q, range: [lo, hi], stiffness: k})");
     if ((v = spec_lookup(L, map, "gravity"))) {
         f->kind = FORCE_GRAVITY, kinds++;
         f->dim = spec_vector(L, v, ALLOW_FIELD, "a gravity field", f->vec);
@@ -151,23 +179,14 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = spec_lookup(L, map, "torque")))
         f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
-    yaml_node_t *lim = spec_lookup(L, map, "limit");
-    if (lim)
-        kinds++;
     if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
         diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work, kinetic, limit (write a list for several)"
+                   "potential, force, torque, work, kinetic, contact, limit (write a list for "
+                   "several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic, limit");
-    static const char *const of_limit[] = {"range", "stiffness", "damping"};
-    for (int i = 0; i < 3 && !lim; i++)
-        if ((v = spec_lookup(L, map, of_limit[i])))
-            diag_error(spec_loc(L, v), "`%s` belongs to a limit (`limit: COORDINATE`)",
-                       of_limit[i]);
-    if (lim)
-        spec_load_stop(L, map, lim, L->sc.owner, f);
+                   "kinetic, contact, limit");
 }
 
 static void

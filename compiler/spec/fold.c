@@ -61,6 +61,10 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
             for (int k = 0; k < 3; k++)
                 VISIT(fo->vec[k]);
             VISIT(fo->expr);
+            if (fo->kind == FORCE_CONTACT) {
+                VISIT(fo->stiffness);
+                VISIT(fo->damping);
+            }
         }
     for (int i = 0; i < s->nkinetic; i++)
         VISIT(s->kinetic[i].expr);

@@ -56,6 +56,9 @@ typedef struct Loader {
     const char **quat_of;   /* per coordinate: whose Euler parameter it is, or NULL */
     int capfquat;           /* room in Spec.fquat */
     int shape_body;         /* the draw item whose shapes are being read */
+    yaml_node_t **shape_node; /* per shape (Spec.shape): its map */
+    int bad_shapes;         /* a shape had an error (it is not in Spec.shape) */
+    int floor_plane;        /* the ground's plane that is the page's floor, or -1 */
 } Loader;
 
 #endif

@@ -111,9 +111,12 @@ typedef struct SpecBody {
 } SpecBody;
 
 /* A shape a body is drawn as (`shapes:`), in its frame, or the ground
- * (`ground:`), in the world's: numbers only. */
+ * (`ground:`), in the world's: numbers only.  A contact effect makes
+ * shapes collide (SpecForce.pair).  A plane (the ground's only) is a
+ * half-space, not drawn: its pos a point of its surface, its quat's +z
+ * the outward normal. */
 enum { SPEC_SHAPE_BOX, SPEC_SHAPE_SPHERE, SPEC_SHAPE_CAPSULE, SPEC_SHAPE_CYLINDER,
-       SPEC_SHAPE_ELLIPSOID };
+       SPEC_SHAPE_ELLIPSOID, SPEC_SHAPE_PLANE };
 typedef struct SpecShape {
     int body, type;  /* the draw item's index (a body's is its Spec.body index: the
                       * bodies come first); SPEC_SHAPE_* (eomc_model.h's order) */
@@ -123,6 +126,13 @@ typedef struct SpecShape {
     /* a size or position of parameters (its number: at their defaults),
      * else EXPR_NONE */
     ExprId esize[3], epos[3];
+    /* `name:`, else its body's name (BODY.k, k from 1, where the body has
+     * several; the ground's: ground, ground.k) */
+    const char *name;
+    /* which shapes a contact's `all` pairs it with (MuJoCo's bit masks):
+     * two collide iff (a.contype & b.conaffinity) || (b.contype & a.conaffinity) */
+    unsigned contype, conaffinity;
+    SrcLoc loc;
 } SpecShape;
 
 /* What a run's page draws: every body, every particle, the ground (where
@@ -161,6 +171,8 @@ typedef enum SpecForceKind {
     FORCE_WORK,      /* expr W = sum_i Q_i delta(q_i) (seeds): Q_i += dW/d delta(q_i) */
     FORCE_KINETIC,   /* expr: added to T while the effect is on (a rotor's
                       * inertia, MuJoCo's armature) */
+    FORCE_CONTACT,   /* pair: shapes that push each other apart where they
+                      * overlap, N = max(0, k d + c d') (mechanics/contact.c) */
 } SpecForceKind;
 
 typedef struct SpecForce {
@@ -171,6 +183,12 @@ typedef struct SpecForce {
     int dim;      /* FORCE_GRAVITY, FORCE_VECTOR: 2 or 3 */
     ExprId vec[3];
     ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK, FORCE_KINETIC */
+    /* FORCE_CONTACT: npair pairs of Spec.shape indices, pair[2 j] and
+     * pair[2 j + 1] as written (each of two types eomc has a gap for),
+     * and the normal force's stiffness k and damping c (of p, >= 0) */
+    int npair;
+    int *pair;
+    ExprId stiffness, damping;
 } SpecForce;
 
 typedef struct SpecEffect {

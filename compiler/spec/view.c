@@ -10,10 +10,15 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const shape_types[] = {"box", "sphere", "capsule", "cylinder", "ellipsoid"};
-static const int shape_sizes[] = {3, 1, 2, 2, 3};
+static const char *const shape_types[] = {"box", "sphere", "capsule", "cylinder", "ellipsoid",
+                                          "plane"};
+enum { NSHAPE_TYPES = 6 };
+static const int shape_sizes[] = {3, 1, 2, 2, 3, 0};
 static const char *const shape_size_what[] = {
-    "half-sizes", "radius", "radius and half-length", "radius and half-length", "semi-axes"};
+    "half-sizes", "radius", "radius and half-length", "radius and half-length", "semi-axes",
+    "none"};
+/* MuJoCo's contype and conaffinity are C ints */
+#define MAX_FILTER 2147483647.0
 
 /* A shape's size or position at n: a number, or an expression of the
  * parameters (*e; else EXPR_NONE), its number then their defaults'. */
@@ -42,27 +47,59 @@ numbers(Loader *L, yaml_node_t *v, int n, const char *what, double *out)
         out[k] = spec_number(L, spec_node(L, ITEMS(v)[k]), what);
 }
 
+/* A collision filter's bit mask at n: an integer from 0 to MAX_FILTER. */
+static unsigned
+filter(Loader *L, yaml_node_t *n, const char *what)
+{
+    double v = spec_number(L, n, what);
+    if (!(v >= 0 && v <= MAX_FILTER && v == floor(v)))
+        diag_error(spec_loc(L, n), "%s is a bit mask, an integer from 0 to %.0f, not %g", what,
+                   MAX_FILTER, v);
+    return (unsigned)v;
+}
+
 static void
 load_shape(Loader *L, yaml_node_t *seq, int i)
 {
-    static const char *const keys[] = {"type", "size", "pos", "quat", "rgba", NULL};
+    static const char *const keys[] = {"type", "size", "pos", "quat", "rgba", "name",
+                                       "contype", "conaffinity", NULL};
     Spec *s = L->s;
     yaml_node_t *m = spec_map(L, spec_node(L, ITEMS(seq)[i]), "a shape");
     spec_check_keys(L, m, keys, "a shape");
     yaml_node_t *ty = spec_lookup(L, m, "type"), *sz = spec_lookup(L, m, "size");
     if (!ty)
-        diag_error(spec_loc(L, m), "a shape has no type (box, sphere, capsule, cylinder or "
-                   "ellipsoid)");
+        diag_error(spec_loc(L, m), "a shape has no type (box, sphere, capsule, cylinder, "
+                   "ellipsoid or plane)");
     SpecShape sh = {.body = L->shape_body, .quat = {1, 0, 0, 0}, .rgba = {0.5, 0.6, 0.8, 1},
                     .esize = {EXPR_NONE, EXPR_NONE, EXPR_NONE},
-                    .epos = {EXPR_NONE, EXPR_NONE, EXPR_NONE}};
-    sh.type = spec_find_in(L, ty, "shape type", "shape types", 1, (const char **)shape_types, 5);
-    if (!sz)
+                    .epos = {EXPR_NONE, EXPR_NONE, EXPR_NONE}, .contype = 1,
+                    .conaffinity = 1, .loc = spec_loc(L, m)};
+    sh.type = spec_find_in(L, ty, "shape type", "shape types", 1, (const char **)shape_types,
+                           NSHAPE_TYPES);
+    yaml_node_t *v;
+    if ((v = spec_lookup(L, m, "name"))) {
+        sh.name = arena_strdup(L->A, spec_scalar(L, v, "a shape's name"));
+        if (!spec_is_identifier(sh.name))
+            diag_error(spec_loc(L, v), "'%s' is not a valid shape name (letters, digits, _)",
+                       sh.name);
+    }
+    if ((v = spec_lookup(L, m, "contype")))
+        sh.contype = filter(L, v, "a shape's contype");
+    if ((v = spec_lookup(L, m, "conaffinity")))
+        sh.conaffinity = filter(L, v, "a shape's conaffinity");
+    if (sh.type == SPEC_SHAPE_PLANE && L->shape_body < s->nbody)
+        diag_error(spec_loc(L, ty), "a plane is a half-space fixed to the world: it belongs in "
+                   "`ground:`, not in a body's shapes");
+    if (sh.type == SPEC_SHAPE_PLANE && sz)
+        diag_error(spec_loc(L, sz), "a plane has no size: it is the half-space below its pos, "
+                   "across its quat's z axis, without end");
+    if (!sz && sh.type != SPEC_SHAPE_PLANE)
         diag_error(spec_loc(L, m), "a %s has no size (its %s)", shape_types[sh.type],
                    shape_size_what[sh.type]);
-    spec_expect(L, sz, YAML_SEQUENCE_NODE, "a shape's size");
+    if (sz)
+        spec_expect(L, sz, YAML_SEQUENCE_NODE, "a shape's size");
     int ns = shape_sizes[sh.type];
-    if (NITEMS(sz) != ns)
+    if (sz && NITEMS(sz) != ns)
         diag_error(spec_loc(L, sz), "a %s's size is %d number%s (its %s), not %d",
                    shape_types[sh.type], ns, ns == 1 ? "" : "s", shape_size_what[sh.type],
                    NITEMS(sz));
@@ -73,14 +110,17 @@ load_shape(Loader *L, yaml_node_t *seq, int i)
             diag_error(spec_loc(L, e), "a shape's size must be positive, not %g%s", sh.size[k],
                        sh.esize[k] != EXPR_NONE ? " (with the parameters' defaults)" : "");
     }
-    yaml_node_t *v;
     if ((v = spec_lookup(L, m, "pos"))) {
         spec_expect(L, v, YAML_SEQUENCE_NODE, "a shape's pos");
         if (NITEMS(v) != 3)
             diag_error(spec_loc(L, v), "a shape's pos has 3 numbers, not %d", NITEMS(v));
-        for (int k = 0; k < 3; k++)
-            sh.pos[k] = shape_number(L, spec_node(L, ITEMS(v)[k]), "a shape's pos",
-                                     &sh.epos[k]);
+        for (int k = 0; k < 3; k++) {
+            yaml_node_t *e = spec_node(L, ITEMS(v)[k]);
+            sh.pos[k] = shape_number(L, e, "a shape's pos", &sh.epos[k]);
+            if (sh.type == SPEC_SHAPE_PLANE && sh.epos[k] != EXPR_NONE)
+                diag_error(spec_loc(L, e), "a plane's pos is numbers: the page draws the floor "
+                           "where it is");
+        }
     }
     if ((v = spec_lookup(L, m, "quat"))) {
         numbers(L, v, 4, "a shape's quat", sh.quat);
@@ -103,15 +143,77 @@ load_shape(Loader *L, yaml_node_t *seq, int i)
         memcpy(bigger, s->shape, (size_t)s->nshape * sizeof *bigger);
     bigger[s->nshape++] = sh;
     s->shape = bigger;
+    yaml_node_t **nodes = arena_new_array(L->A, yaml_node_t *, s->nshape);
+    if (s->nshape > 1)
+        memcpy(nodes, L->shape_node, (size_t)(s->nshape - 1) * sizeof *nodes);
+    nodes[s->nshape - 1] = m;
+    L->shape_node = nodes;
+}
+
+/* The shapes from `first` on that have no `name:` are their owner's:
+ * `owner`, or owner.k (k from 1) where it has several. */
+static void
+default_names(Loader *L, int first, const char *owner)
+{
+    Spec *s = L->s;
+    for (int k = first; k < s->nshape; k++)
+        if (!s->shape[k].name)
+            s->shape[k].name = s->nshape - first == 1
+                                   ? owner
+                                   : arena_printf(L->A, "%s.%d", owner, k - first + 1);
 }
 
 void
 spec_load_shapes(Loader *L, yaml_node_t *seq, int body)
 {
     spec_expect(L, seq, YAML_SEQUENCE_NODE, "a body's shapes (a list)");
+    int first = L->s->nshape;
     for (int i = 0; i < NITEMS(seq); i++) {
         L->shape_body = body;
-        spec_checked(L, load_shape, seq, i);
+        L->bad_shapes |= !spec_checked(L, load_shape, seq, i);
+    }
+    default_names(L, first, L->s->body[body].name);
+}
+
+/* A name a shape is given is its own: a contact's pairs and its switches
+ * are named by it, and a shape named as another body is would make a
+ * pair's name mean two things.  (The names it takes from its body are
+ * checked where a contact uses them: spec/contacts.c.) */
+static void
+check_shape_names(Loader *L)
+{
+    const Spec *s = L->s;
+    for (int k = 0; k < s->nshape; k++) {
+        const SpecShape *sh = &s->shape[k];
+        if (!sh->name || !spec_lookup(L, L->shape_node[k], "name"))
+            continue;
+        for (int j = 0; j < s->nshape; j++)
+            if (j != k && s->shape[j].name && !strcmp(s->shape[j].name, sh->name))
+                diag_error(sh->loc, "two shapes are named '%s' (the other at line %d): give "
+                           "each a `name:` of its own", sh->name, s->shape[j].loc.line);
+        for (int b = 0; b < s->nbody; b++)
+            if (b != sh->body && !strcmp(s->body[b].name, sh->name))
+                diag_error(sh->loc, "shape '%s' is named as body '%s' is: give it a `name:` "
+                           "of its own", sh->name, s->body[b].name);
+    }
+}
+
+/* The page's floor where the ground has a plane facing up (+z): its
+ * height, the first such plane's. */
+static void
+plane_floor(Loader *L, int first)
+{
+    Spec *s = L->s;
+    for (int k = first; k < s->nshape; k++) {
+        const SpecShape *sh = &s->shape[k];
+        const double *e = sh->quat; /* the normal, e's z axis: exactly up only if e turns about z */
+        double nx = 2 * (e[1] * e[3] + e[0] * e[2]), ny = 2 * (e[2] * e[3] - e[0] * e[1]);
+        double nz = 1 - 2 * (e[1] * e[1] + e[2] * e[2]);
+        if (sh->type == SPEC_SHAPE_PLANE && nx == 0 && ny == 0 && nz > 0) {
+            s->view.floor = sh->pos[2];
+            L->floor_plane = k;
+            return;
+        }
     }
 }
 
@@ -123,6 +225,7 @@ spec_draw_items(Loader *L, yaml_node_t *ground)
     v->nitem = s->nbody + s->npart;
     v->item = arena_new_array(L->A, SpecDrawItem, v->nitem + 2);
     v->follow = -1;
+    L->floor_plane = -1;
     int planar = v->nitem > 0;
     for (int i = 0; i < s->nbody; i++) {
         const SpecBody *b = &s->body[i];
@@ -142,15 +245,21 @@ spec_draw_items(Loader *L, yaml_node_t *ground)
         /* an item of its own, drawn as a body that never moves: at the
          * world's origin, in its axes (in the plane where all is planar) */
         spec_expect(L, ground, YAML_SEQUENCE_NODE, "`ground:` (a list of shapes)");
-        int k = v->nitem, before = s->nshape;
+        int k = v->nitem, before = s->nshape, drawn = 0;
         for (int i = 0; i < NITEMS(ground); i++) {
             L->shape_body = k;
-            spec_checked(L, load_shape, ground, i);
+            L->bad_shapes |= !spec_checked(L, load_shape, ground, i);
         }
-        if (s->nshape > before)
+        for (int j = before; j < s->nshape; j++) /* (a plane is not drawn: it is the floor) */
+            drawn += s->shape[j].type != SPEC_SHAPE_PLANE;
+        if (drawn)
             v->item[v->nitem++] = (SpecDrawItem){"ground", SPEC_DRAW_GROUND, 0, planar ? 2 : 3,
                                                  0};
+        default_names(L, before, "ground");
+        if (!planar)
+            plane_floor(L, before);
     }
+    check_shape_names(L);
 }
 
 /* The item that name n stands for in v, added if it is a point or a frame
@@ -297,7 +406,12 @@ load_view(Loader *L, yaml_node_t *m, SpecView *v)
         if (is_planar(v))
             diag_error(spec_key_loc(L, m, "floor"), "`floor:` is for a 3-D page: a planar "
                        "page's grid is the plane of the motion, z = 0");
-        v->floor = spec_number(L, n, "the floor's height");
+        double h = spec_number(L, n, "the floor's height");
+        if (L->floor_plane >= 0 && h != v->floor) /* a floor drawn off the one things rest on */
+            diag_error(spec_loc(L, n), "the floor is the ground's plane '%s', at z = %g: a "
+                       "floor at %g would not be where things rest (leave `floor:` out)",
+                       L->s->shape[L->floor_plane].name, v->floor, h);
+        v->floor = h;
     }
 }
 

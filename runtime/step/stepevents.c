@@ -27,6 +27,7 @@
 #include "dense.h"
 
 #include <gsl/gsl_errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -249,6 +250,11 @@ g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
  * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
 enum { EXTREMUM_ITERS = 12 };
 
+/* Roots of two switch functions closer than this many ulps of the time
+ * are one instant: ev_root brackets each to 4, so two located apart
+ * differ by up to 8 for rounding alone. */
+#define SIMULTANEOUS_ULPS 16
+
 /* Event k, of one sign at both ends of the step, crossing twice inside
  * it: g heads for 0 at the step's start and away from it at its end
  * (gd0, gd1), so it turns in between.  The turning point is found on the
@@ -276,7 +282,16 @@ pair(StepEvents *v, int k, int *any)
     } else if (qa == 0 && qb != 0 && -d0 / qb > 0 && -d0 / qb < 1) {
         tau = -d0 / qb;
     }
-    double lo = t0, hi = t1, tc = NAN, gc = NAN;
+    /* Where the cubic's turn stays farther from 0 than g's rates move it
+     * over the whole step, the solution does not reach 0 either: the cubic
+     * matches g and its rate at both ends, and differs from it by far less
+     * than that.  (At rest on a contact the rates are rounding, and each
+     * switch would cost a dozen side steps per step.) */
+    double gc = g0 + tau * (d0 + tau * (c2 + tau * c3));
+    if (side * gc > fabs(d0) + fabs(d1))
+        return GSL_SUCCESS;
+    double lo = t0, hi = t1, tc = NAN;
+    gc = NAN;
     for (int it = 0; it < EXTREMUM_ITERS && isnan(tc); it++) {
         double tm = it == 0 ? t0 + tau * h : 0.5 * (lo + hi), gm, dm;
         int rc = g_and_rate(v, k, tm, &gm, &dm);
@@ -303,6 +318,50 @@ pair(StepEvents *v, int k, int *any)
     return GSL_SUCCESS;
 }
 
+/* Switch k flipped at the step's start (its g0 is 0) and its function
+ * ends the step on the side of the mode it left: it went into its new
+ * mode's side and came back across, or never went.  The crossing back is
+ * located after a point found on the new side, by halving toward the
+ * start; found no later than 2^-EXTREMUM_ITERS of the step, the motion
+ * leaves the new mode as soon as it enters it: it would slide along the
+ * kink, which no mode follows (STEPEV_RETURNED).  GSL_SUCCESS, or a
+ * failure status. */
+static int
+back_across(StepEvents *v, int k, int *any)
+{
+    const StepevSpan *sp = &v->sp;
+    double side = sim_mode(v->s, k - v->nev) ? 1 : -1, g1 = v->g1[k];
+    if (!(side * g1 < 0))
+        return GSL_SUCCESS; /* on its new side, or still on the kink */
+    double lo = sp->t0, hi = sp->t1, tm = NAN, gm = NAN;
+    v->ev_k = k;
+    for (int it = 0; it < EXTREMUM_ITERS; it++) {
+        double t = 0.5 * (lo + hi), g = g_solution(v, t);
+        if (isnan(g))
+            break;
+        if (side * g > 0) {
+            tm = t, gm = g;
+            break;
+        }
+        hi = t; /* already back: the excursion, if any, is earlier */
+    }
+    int evals;
+    if (isnan(tm) && isnan(gm)) {
+        v->left_rate = 0;
+        return STEPEV_RETURNED;
+    }
+    if (!isnan(tm))
+        v->te[k] = ev_root(g_solution, v, tm, gm, sp->t1, g1, NAN, &evals);
+    if (isnan(v->te[k])) {
+        sim_numeric_error(v->s, sp->t1, sp->x1, sp->x1 + v->n, "switch %s crossed back in "
+                          "the step from t = %.17g, but the state inside it could not be "
+                          "computed", name_of(v, k), sp->t0);
+        return GSL_EBADFUNC;
+    }
+    *any = 1;
+    return GSL_SUCCESS;
+}
+
 int
 stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
 {
@@ -326,6 +385,12 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             return STEPEV_RETURNED;
         }
         v->held[k] = 0;
+        if (k >= v->nev && v->g0[k] == 0) { /* a switch this step starts on */
+            int rc = back_across(v, k, &any);
+            if (rc != GSL_SUCCESS)
+                return rc;
+            continue;
+        }
         if (!ev_crossed(dir_of(v, k), v->g0[k], v->g1[k])) {
             if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
                 continue;
@@ -384,8 +449,9 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
             v->te[k] = v->te2[k], v->te2[k] = NAN; /* the pair's second, if any */
             continue;
         }
-        /* the side the switch function went to by the step's end */
-        v->switch_to = k >= v->nev && v->g1[k] > 0;
+        /* a flip goes to the other mode: the side the switch function went
+         * to here (by the step's end it may be back, a pair's first) */
+        v->switch_to = k >= v->nev && !sim_mode(s, k - v->nev);
         *hit = (StepevHit){.k = k, .status = EOMC_OK, .t = t, .x = v->xe};
         return GSL_SUCCESS;
     }
@@ -442,19 +508,26 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     v->last_set = t;
     v->nsets++;
     sim_set_mode(v->s, j, v->switch_to);
-    /* Switches that crossed at this very instant (two kinks at once: a
+    /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
-     * already, to rounding, and would never be seen crossing: each flips
-     * now too, told as the first was (a nonzero return of on_event cannot
-     * undo what that one started).  A flip may move another's function
-     * (a max of a max): again until none disagrees. */
+     * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
+     * move (their roots, located apart, differ by rounding: the steps
+     * between them would be too short to take): each flips now too, told
+     * as the first was (a nonzero return of on_event cannot undo what
+     * that one started).  A flip may move another's function (a max of a
+     * max): again until none disagrees. */
+    double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
+    g_rates(v, t, x, f, v->gd1); /* (f: the rate before the flip) */
     for (int pass = 0; pass < v->ne - v->nev; pass++) {
         int changed = 0;
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne; i++) {
-            int on = v->g0[i] > 0;
-            if (i == k || v->g0[i] == 0 || on == sim_mode(v->s, i - v->nev))
-                continue;
+            int on = v->g0[i] > 0, mode = sim_mode(v->s, i - v->nev);
+            if (on == mode && v->g0[i] != 0 && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
+                -v->g0[i] / v->gd1[i] <= soon)
+                on = !on; /* about to cross */
+            if (v->tsw[i - v->nev] == t || v->g0[i] == 0 || on == mode)
+                continue; /* (flipped at t already: k and those before) */
             sim_set_mode(v->s, i - v->nev, on);
             v->tsw[i - v->nev] = t;
             v->st->events++;
@@ -469,7 +542,9 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     if (rc != GSL_SUCCESS)
         return rc;
     g_all(v, t, x, x + v->n, v->g0);
-    v->g0[k] = 0; /* on the kink: it fires again only once it has left it */
+    for (int i = v->nev; i < v->ne; i++) /* on their kinks: each fires again only */
+        if (v->tsw[i - v->nev] == t)      /* once it has left it */
+            v->g0[i] = 0;
     v->held[k] = 0;
     v->left_rate = 0;
     return GSL_SUCCESS;
@@ -525,6 +600,19 @@ stepev_error(const StepEvents *v, int status, double t, const double *x)
                                  "span: the motion comes to rest against it in ever "
                                  "shorter intervals (Zeno), which no step can follow",
                                  name, v->nsets + 1, t - v->last_set, ACCUMULATE_REL);
+    double flipped = v->ev_k >= v->nev ? v->tsw[v->ev_k - v->nev] : 0;
+    if (v->ev_k >= v->nev && flipped == -INFINITY) /* on its kink since the start */
+        return sim_numeric_error(s, t, x, x + v->n, "switch %s starts on its kink, and its "
+                                 "function is across it at the end of the first step, with "
+                                 "no point of the step on the side its mode was given: the "
+                                 "motion slides along the kink (or its function is 0 to "
+                                 "rounding there), which no mode follows", name);
+    if (v->ev_k >= v->nev)
+        return sim_numeric_error(s, t, x, x + v->n, "switch %s flipped at t = %.17g and its "
+                                 "function is back across its kink at the end of the next "
+                                 "step, within %g of it: the motion leaves the new mode as "
+                                 "soon as it enters it, as if it slid along the kink, which "
+                                 "no mode follows", name, flipped, t - flipped);
     if (v->left_rate > 0) /* moving on, too slowly to pass: not a return */
         return sim_numeric_error(s, t, x, x + v->n, "event %s holds still at the end of "
                                  "the first step after its reset at t = %.17g: the reset "

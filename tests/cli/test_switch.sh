@@ -100,6 +100,18 @@ last=$(tail -1 "$tmp/rowsa.csv")
   within "$(sed -n 2p "$tmp/eva.csv" | cut -d, -f1)" 1 1e-14 &&
   within "$(echo "$last" | cut -d, -f2)" -0.5 1e-13 && within "$(echo "$last" | cut -d, -f3)" 0 1e-13
 ok $? "abs(y): its kink vee.abs located at t = 1, y(2) = -0.5 at rest ($(echo "$last" | cut -d, -f2,3))"
+# a switch function too large for one C function (over 1500 nodes: the
+# switches function split into parts, which share their values in an
+# array of their own): the floor's force plus 800 terms of 1e-300
+# sin(y + i), nothing at double precision, so the undamped closed form
+terms=$(awk 'BEGIN { for (i = 1; i <= 800; i++) printf " + 1e-300*sin(y + %d)", i }')
+sed -e "s|floor: {force: \[0, \"max(0, -k\*y - c\*y')\"\], on: mass}|floor: {force: [0, \"max(0, -k*y - c*y'$terms)\"], on: mass}|" \
+  "$spec" > "$tmp/big_switch.yaml"
+"$eomc" run "$tmp/big_switch.yaml" --set c=0 --set y0=0.1 --events "$tmp/evb.csv" > "$tmp/rowsb.csv" 2> "$tmp/errb"; st=$?
+[ $st -eq 0 ] && grep -q "sin(y + 800)" "$tmp/big_switch.yaml" &&
+  within "$(sed -n 3p "$tmp/evb.csv" | cut -d, -f1)" 0.41415926535897932 1e-13 &&
+  within "$(tail -1 "$tmp/rowsb.csv" | cut -d, -f3)" 1 1e-12
+ok $? "a switch function of 800 terms more, split into parts: the contact still ends at 0.1 + pi/w, leaving at v0 ($(head -1 "$tmp/errb"))"
 
 head -1 "$tmp/rows.csv" | grep -qx "t,y,y',T,V,E"
 ok $? "the modes are not columns of the CSV"
@@ -219,6 +231,32 @@ ok $? "a touch 1e-12 deep inside one step of the reference is found, one 1e-12 s
 [ $st -eq 0 ] && grep -q "note: the reference read from .* has rows, not the flips" "$tmp/err" &&
   ! grep -q "warning" "$tmp/err"
 ok $? "--reference FILE: the flips are not compared, and it says so"
+# the run itself through a grazing touch, d = 1e-6 deep: it enters at
+# acos(-(a - d)/a) and the stop, a linear spring there, turns it back: it
+# leaves at t_in + (2 pi + 2 atan2(B, A))/w, w = sqrt(k + ks), A = y0 - ye,
+# B = y0'/w (ye = -ks (a - d)/(k + ks), the contact's centre); the free
+# motion would leave 1.9e-5 later.  The step that holds both crossings
+# flips at the first, and the next one, starting on the kink, locates the
+# crossing back (the time's sensitivity to the state is 707 there: 5e-9
+# is 7e-12 of the state, rtol 1e-12 over the run's steps)
+want=$(awk 'BEGIN { k = 1; ks = 1e4; a = 1; d = 1e-6; pi = 3.14159265358979323846
+    y0 = -(a - d); ti = atan2(sqrt(a * a - y0 * y0), y0); v0 = -sqrt(k * (a * a - y0 * y0))
+    w = sqrt(k + ks); ye = -ks * (a - d) / (k + ks)
+    printf "%.17g", ti + (2 * pi + 2 * atan2(v0 / w, y0 - ye)) / w }')
+fine=0
+for m in rk8pd rkf45 rk4 msadams; do
+  "$eomc" run "$graze" --method $m --rtol 1e-12 --atol 1e-14 --events "$tmp/egr.csv" > /dev/null &&
+    [ "$(wc -l < "$tmp/egr.csv")" -eq 3 ] &&
+    within "$(sed -n 3p "$tmp/egr.csv" | cut -d, -f1)" "$want" 5e-9 && fine=$((fine + 1))
+done
+[ $fine -eq 4 ]
+ok $? "a grazing touch: rk8pd, rkf45, rk4, msadams leave the stop at $want, the closed form, to 5e-9 (free motion: 1.9e-5 later)"
+# the run of a mass that would stick: it stops at once where the friction
+# flips and flips back, t = pi, y = -0.5, exit 3, the rows kept
+"$eomc" run "$src/tests/cli/switch_stick.yaml" > "$tmp/out" 2> "$tmp/err"; st=$?
+got=$(sed -n 's/^switch_stick: error: t = \([0-9.e+-]*\): switch friction.step flipped at t = [0-9.e+-]* and its function is back across its kink.*; state: y = \([0-9.e+-]*\),.*/\1 \2/p' "$tmp/err")
+[ $st -eq 3 ] && [ -s "$tmp/out" ] && within "${got% *}" 3.14159265358979 1e-4 && within "${got#* }" -0.5 1e-8
+ok $? "a run that would slide along friction.step's kink stops there: t, y = $got (pi, -0.5), exit 3"
 # a mass that would stick (tests/cli/switch_stick.yaml): the reference
 # flips friction.step again at once where it stops, t = pi, y = -0.5, and stops
 # there, exit 3, nothing written

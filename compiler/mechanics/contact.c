@@ -1,0 +1,386 @@
+/*
+ * contact: a contact effect's normal forces (contact.h).
+ *
+ * A pair of shapes gives one contact or several (a capsule's two end
+ * spheres on a plane, a box's eight corners), each
+ *   d    its gap: the depth of the overlap, > 0 where they overlap,
+ *   n    the unit normal, along which the force pushes the second shape
+ *        (and the first the other way),
+ *   pa, pb the material points of each shape that touch.
+ * The force's size is N = where(d, max(0, k d + c d'), 0): a linear
+ * spring and damper on the penetration that never pulls, 0 apart.  d' is
+ * d's time derivative, which for these smooth convex shapes is the
+ * normal relative speed of pa and pb (the nearest points' own motion
+ * along the surfaces is across n).  It acts on each body as a force at
+ * its centre and the torque (p - centre) x F, which is what a force at
+ * the material point p does.  The nearest points of a capsule's axis are
+ * clamped parameters, switches of their own.
+ */
+#include "contact.h"
+
+#include "expr/kin.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct Ctx {
+    const Spec *s;
+    ExprPool *P;
+    Diff *D;
+    const char *prefix; /* EFFECT.A.B: its switches' names */
+    ExprId k, c;
+    ExprId (*F)[3], (*tau)[3]; /* per body: force, and torque about its centre (world axes) */
+} Ctx;
+
+/* A shape where it is: its centre o, its axes A (row-major, world from
+ * shape), its sizes, and its body (>= nbody: the ground). */
+typedef struct Placed {
+    int body, type;
+    ExprId o[3], A[9], size[3];
+} Placed;
+
+/* A where(s, a, b) whose new switch is named prefix.suffix. */
+static ExprId
+named_where(Ctx *x, ExprId s, ExprId a, ExprId b, const char *suffix)
+{
+    int before = expr_nswitch(x->P);
+    ExprId e = expr_where(x->P, s, a, b);
+    char name[512];
+    snprintf(name, sizeof name, "%s.%s", x->prefix, suffix);
+    for (int k = before; k < expr_nswitch(x->P); k++)
+        expr_name_switch(x->P, k, name);
+    return e;
+}
+
+/* clamp(v, lo, hi) as expr_clamp builds it (hi where v > hi, else
+ * max(v, lo)), its switches named prefix.which.lo and .hi. */
+static ExprId
+named_clamp(Ctx *x, ExprId v, ExprId lo, ExprId hi, const char *which)
+{
+    char lo_name[64], hi_name[64];
+    snprintf(lo_name, sizeof lo_name, "%s.lo", which);
+    snprintf(hi_name, sizeof hi_name, "%s.hi", which);
+    ExprId low = named_where(x, expr_sub(x->P, v, lo), v, lo, lo_name);
+    return named_where(x, expr_sub(x->P, v, hi), hi, low, hi_name);
+}
+
+/* Body b's centre and rotation (world from body), as the page draws it
+ * (lower_draw): the frame that places it, its rotation, its planar angle;
+ * unturned where it does not turn (spec/contacts.c refuses a body turned
+ * by omega alone).  The ground: the world's origin and axes. */
+static void
+body_pose(const Spec *s, int b, ExprPool *P, ExprId c[3], ExprId R[9])
+{
+    for (int j = 0; j < 9; j++)
+        R[j] = j % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+    c[0] = c[1] = c[2] = EXPR_ZERO;
+    if (b >= s->nbody)
+        return;
+    const SpecBody *bd = &s->body[b];
+    for (int j = 0; j < bd->dim; j++)
+        c[j] = bd->center[j];
+    if (bd->frame >= 0) {
+        kin_rotation(s->kin, bd->frame, R);
+    } else if (bd->has_rot) {
+        memcpy(R, bd->rot, sizeof bd->rot);
+    } else if (bd->dim == 2 && bd->angle != EXPR_NONE) {
+        ExprId co = expr_unary(P, EXPR_COS, bd->angle), si = expr_unary(P, EXPR_SIN, bd->angle);
+        R[0] = co, R[1] = expr_neg(P, si), R[3] = si, R[4] = co;
+    }
+}
+
+static void
+place(const Spec *s, int k, ExprPool *P, Placed *out)
+{
+    const SpecShape *sh = &s->shape[k];
+    ExprId c[3], R[9], pos[3], Q[9];
+    out->body = sh->body >= s->nbody ? s->nbody : sh->body;
+    out->type = sh->type;
+    body_pose(s, out->body, P, c, R);
+    const double *e = sh->quat; /* its own turn, in the body's axes */
+    double q[9] = {
+        1 - 2 * (e[2] * e[2] + e[3] * e[3]), 2 * (e[1] * e[2] - e[0] * e[3]),
+        2 * (e[1] * e[3] + e[0] * e[2]),     2 * (e[1] * e[2] + e[0] * e[3]),
+        1 - 2 * (e[1] * e[1] + e[3] * e[3]), 2 * (e[2] * e[3] - e[0] * e[1]),
+        2 * (e[1] * e[3] - e[0] * e[2]),     2 * (e[2] * e[3] + e[0] * e[1]),
+        1 - 2 * (e[1] * e[1] + e[2] * e[2])};
+    for (int j = 0; j < 9; j++)
+        Q[j] = expr_const(P, q[j]);
+    kin_mat3_mul(P, R, Q, out->A);
+    for (int j = 0; j < 3; j++) {
+        pos[j] = sh->epos[j] != EXPR_NONE ? sh->epos[j] : expr_const(P, sh->pos[j]);
+        out->size[j] = sh->esize[j] != EXPR_NONE ? sh->esize[j] : expr_const(P, sh->size[j]);
+    }
+    for (int i = 0; i < 3; i++)
+        out->o[i] = expr_add(P, c[i], kin_dot(P, &R[3 * i], (ExprId[3]){pos[0], pos[1], pos[2]}));
+}
+
+/* Column j of A: a shape's j-th axis in the world's components. */
+static void
+axis(const ExprId *A, int j, ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = A[3 * i + j];
+}
+
+/* o + A v */
+static void
+at(ExprPool *P, const Placed *sh, const ExprId v[3], ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = expr_add(P, sh->o[i], kin_dot(P, &sh->A[3 * i], v));
+}
+
+/* a + t b */
+static void
+along(ExprPool *P, const ExprId a[3], ExprId t, const ExprId b[3], ExprId out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = expr_add(P, a[i], expr_mul(P, t, b[i]));
+}
+
+/* One contact: its gap d, normal n, material points pa (of shape a, on
+ * body ba) and pb.  The force N n on b at pb, -N n on a at pa. */
+static void
+contact(Ctx *x, const char *suffix, ExprId d, const ExprId n[3], int ba, const ExprId pa[3],
+        int bb, const ExprId pb[3])
+{
+    ExprPool *P = x->P;
+    char name[64];
+    snprintf(name, sizeof name, "%s%spush", suffix, *suffix ? "." : "");
+    ExprId rate = diff_time(x->D, d);
+    ExprId spring = expr_mul(P, x->k, d), damper = expr_mul(P, x->c, rate);
+    ExprId law = expr_add(P, spring, damper);
+    ExprId push = named_where(x, law, law, EXPR_ZERO, name); /* max(0, k d + c d') */
+    snprintf(name, sizeof name, "%s%stouch", suffix, *suffix ? "." : "");
+    ExprId N = named_where(x, d, push, EXPR_ZERO, name);
+    for (int e = 0; e < 2; e++) {
+        int b = e ? bb : ba;
+        if (b >= x->s->nbody) /* the ground takes it */
+            continue;
+        const ExprId *p = e ? pb : pa;
+        ExprId F[3], arm[3], t[3], c[3], R[9];
+        body_pose(x->s, b, P, c, R);
+        for (int i = 0; i < 3; i++) {
+            F[i] = expr_mul(P, N, e ? n[i] : expr_neg(P, n[i]));
+            arm[i] = expr_sub(P, p[i], c[i]);
+            x->F[b][i] = expr_add(P, x->F[b][i], F[i]);
+        }
+        kin_cross(P, arm, F, t);
+        for (int i = 0; i < 3; i++)
+            x->tau[b][i] = expr_add(P, x->tau[b][i], t[i]);
+    }
+}
+
+/* A sphere (centre o, radius r, on body bs) on a plane (pl): d = r - n.(o - p0). */
+static void
+plane_point(Ctx *x, const char *suffix, const Placed *pl, const ExprId o[3], ExprId r,
+            int bs)
+{
+    ExprPool *P = x->P;
+    ExprId n[3], rel[3], p[3];
+    axis(pl->A, 2, n);
+    for (int i = 0; i < 3; i++)
+        rel[i] = expr_sub(P, o[i], pl->o[i]);
+    ExprId d = expr_sub(P, r, kin_dot(P, n, rel));
+    for (int i = 0; i < 3; i++)
+        p[i] = expr_sub(P, o[i], expr_mul(P, r, n[i]));
+    contact(x, suffix, d, n, pl->body, p, bs, p);
+}
+
+/* Two spheres (oa, ra) and (ob, rb): d = ra + rb - |ob - oa|. */
+static void
+spheres(Ctx *x, const char *suffix, const ExprId oa[3], ExprId ra, int ba, const ExprId ob[3],
+        ExprId rb, int bb)
+{
+    ExprPool *P = x->P;
+    ExprId delta[3], n[3], pa[3], pb[3];
+    for (int i = 0; i < 3; i++)
+        delta[i] = expr_sub(P, ob[i], oa[i]);
+    ExprId len = expr_unary(P, EXPR_SQRT, kin_dot(P, delta, delta));
+    for (int i = 0; i < 3; i++)
+        n[i] = expr_div(P, delta[i], len);
+    ExprId d = expr_sub(P, expr_add(P, ra, rb), len);
+    along(P, oa, ra, n, pa);
+    along(P, ob, expr_neg(P, rb), n, pb);
+    contact(x, suffix, d, n, ba, pa, bb, pb);
+}
+
+/* The plane's contacts with a sphere, a capsule's end spheres, a box's
+ * corners, an ellipsoid's lowest point. */
+static void
+with_plane(Ctx *x, const Placed *pl, const Placed *o)
+{
+    ExprPool *P = x->P;
+    ExprId zero = EXPR_ZERO;
+    switch (o->type) {
+    case SPEC_SHAPE_SPHERE:
+        plane_point(x, "", pl, o->o, o->size[0], o->body);
+        break;
+    case SPEC_SHAPE_CAPSULE:
+        for (int e = 0; e < 2; e++) { /* end1 at -h along its z, end2 at +h */
+            ExprId h = e ? o->size[1] : expr_neg(P, o->size[1]), end[3];
+            at(P, o, (ExprId[3]){zero, zero, h}, end);
+            plane_point(x, e ? "end2" : "end1", pl, end, o->size[0], o->body);
+        }
+        break;
+    case SPEC_SHAPE_BOX:
+        for (int v = 0; v < 8; v++) { /* v1 = (-, -, -); x changes first, then y, z */
+            ExprId local[3], corner[3];
+            char name[8];
+            for (int j = 0; j < 3; j++)
+                local[j] = v >> j & 1 ? o->size[j] : expr_neg(P, o->size[j]);
+            at(P, o, local, corner);
+            snprintf(name, sizeof name, "v%d", v + 1);
+            plane_point(x, name, pl, corner, zero, o->body);
+        }
+        break;
+    case SPEC_SHAPE_ELLIPSOID: {
+        /* the point farthest along -n: o - A S^2 m / |S m|, m = A^T n
+         * the normal in its axes, S its semi-axes; d = |S m| - n.(o - p0) */
+        ExprId n[3], m[3], w = zero, local[3], p[3], rel[3];
+        axis(pl->A, 2, n);
+        for (int j = 0; j < 3; j++) {
+            ExprId col[3];
+            axis(o->A, j, col);
+            m[j] = kin_dot(P, col, n);
+            w = expr_add(P, w, expr_powi(P, expr_mul(P, o->size[j], m[j]), 2));
+        }
+        w = expr_unary(P, EXPR_SQRT, w);
+        for (int j = 0; j < 3; j++)
+            local[j] = expr_neg(P, expr_div(P, expr_mul(P, expr_powi(P, o->size[j], 2), m[j]), w));
+        at(P, o, local, p);
+        for (int i = 0; i < 3; i++)
+            rel[i] = expr_sub(P, o->o[i], pl->o[i]);
+        ExprId d = expr_sub(P, w, kin_dot(P, n, rel));
+        contact(x, "", d, n, pl->body, p, o->body, p);
+        break;
+    }
+    }
+}
+
+/* A sphere (a) and a capsule (b), or the other way round (flip): the
+ * point of the capsule's axis nearest the sphere's centre, t clamped to
+ * its half-length, and the two spheres there. */
+static void
+sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
+{
+    ExprPool *P = x->P;
+    ExprId u[3], rel[3], q[3];
+    axis(ca->A, 2, u);
+    for (int i = 0; i < 3; i++)
+        rel[i] = expr_sub(P, sp->o[i], ca->o[i]);
+    ExprId h = ca->size[1];
+    ExprId along_axis = kin_dot(P, u, rel), nh = expr_neg(P, h);
+    ExprId t = named_clamp(x, along_axis, nh, h, flip ? "a" : "b");
+    along(P, ca->o, t, u, q);
+    if (flip)
+        spheres(x, "", q, ca->size[0], ca->body, sp->o, sp->size[0], sp->body);
+    else
+        spheres(x, "", sp->o, sp->size[0], sp->body, q, ca->size[0], ca->body);
+}
+
+/* Two capsules: the nearest points of their axes, centres oa + s ua and
+ * ob + t ub (|s| <= ha, |t| <= hb).  With r = oa - ob, b = ua.ub,
+ * c = ua.r, f = ub.r: the lines' nearest s0 = (b f - c)/(1 - b^2),
+ * clamped; t = clamp(b s0 + f), the nearest to it on b's axis; then
+ * s = clamp(b t - c), the nearest to that on a's (Ericson, Real-Time
+ * Collision Detection, 5.1.9; s = s0 where t was not clamped).
+ * Axes within PARALLEL_DEN of parallel (1 - b^2 below it: 1e-6 rad) divide
+ * by PARALLEL_DEN instead, so s0 is near 0 where b f - c is rounding: any
+ * s0 serves parallel axes, whose nearest points the two projections then
+ * find.  (Dividing by 1 - b^2 itself would make s0 rounding over
+ * rounding, and switch functions that vanish with it would flip on
+ * rounding alone, as the two shins of a humanoid standing straight do.) */
+#define PARALLEL_DEN 1e-12
+static void
+capsules(Ctx *x, const Placed *a, const Placed *b)
+{
+    ExprPool *P = x->P;
+    ExprId ua[3], ub[3], r[3], pa[3], pb[3];
+    axis(a->A, 2, ua);
+    axis(b->A, 2, ub);
+    for (int i = 0; i < 3; i++)
+        r[i] = expr_sub(P, a->o[i], b->o[i]);
+    ExprId ha = a->size[1], hb = b->size[1], nha = expr_neg(P, ha);
+    ExprId bb = kin_dot(P, ua, ub), c = kin_dot(P, ua, r), f = kin_dot(P, ub, r);
+    ExprId den = expr_sub(P, EXPR_ONE, expr_mul(P, bb, bb));
+    ExprId num = expr_sub(P, expr_mul(P, bb, f), c), eps = expr_const(P, PARALLEL_DEN);
+    ExprId safe = named_where(x, expr_sub(P, den, eps), den, eps, "parallel");
+    ExprId s0 = named_clamp(x, expr_div(P, num, safe), nha, ha, "a");
+    ExprId tu = expr_add(P, expr_mul(P, bb, s0), f), nhb = expr_neg(P, hb);
+    ExprId t = named_clamp(x, tu, nhb, hb, "b");
+    ExprId s = named_clamp(x, expr_sub(P, expr_mul(P, bb, t), c), nha, ha, "a2");
+    along(P, a->o, s, ua, pa);
+    along(P, b->o, t, ub, pb);
+    spheres(x, "", pa, a->size[0], a->body, pb, b->size[0], b->body);
+}
+
+void
+contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P, Diff *D,
+            const ContactQ *out)
+{
+    int nb = s->nbody;
+    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL};
+    x.F = xmalloc(((size_t)nb + 1) * sizeof *x.F);
+    x.tau = xmalloc(((size_t)nb + 1) * sizeof *x.tau);
+    for (int b = 0; b <= nb; b++)
+        for (int i = 0; i < 3; i++)
+            x.F[b][i] = x.tau[b][i] = EXPR_ZERO;
+    for (int j = 0; j < f->npair; j++) {
+        int ka = f->pair[2 * j], kb = f->pair[2 * j + 1];
+        size_t len = strlen(e->name) + strlen(s->shape[ka].name) + strlen(s->shape[kb].name) + 3;
+        char *prefix = xmalloc(len);
+        snprintf(prefix, len, "%s.%s.%s", e->name, s->shape[ka].name, s->shape[kb].name);
+        x.prefix = prefix;
+        Placed a, b;
+        place(s, ka, P, &a);
+        place(s, kb, P, &b);
+        if (a.type == SPEC_SHAPE_PLANE)
+            with_plane(&x, &a, &b);
+        else if (b.type == SPEC_SHAPE_PLANE)
+            with_plane(&x, &b, &a);
+        else if (a.type == SPEC_SHAPE_SPHERE && b.type == SPEC_SHAPE_SPHERE)
+            spheres(&x, "", a.o, a.size[0], a.body, b.o, b.size[0], b.body);
+        else if (a.type == SPEC_SHAPE_SPHERE)
+            sphere_capsule(&x, &a, &b, 0);
+        else if (b.type == SPEC_SHAPE_SPHERE)
+            sphere_capsule(&x, &b, &a, 1);
+        else
+            capsules(&x, &a, &b);
+        free(prefix);
+    }
+    /* each body's total: F . dc/dq_i, and (R^T tau) . dw/dv_j in its axes */
+    for (int b = 0; b < nb; b++) {
+        const SpecBody *bd = &s->body[b];
+        int any = 0;
+        for (int i = 0; i < 3; i++)
+            any |= x.F[b][i] != EXPR_ZERO || x.tau[b][i] != EXPR_ZERO;
+        if (!any)
+            continue;
+        for (int i = 0; i < out->nq; i++) {
+            ExprId w = EXPR_ZERO;
+            for (int k = 0; k < bd->dim; k++)
+                w = expr_add(P, w, expr_mul(P, x.F[b][k],
+                                            diff_partial(D, bd->center[k], out->q[i])));
+            out->Qq[i] = expr_add(P, out->Qq[i], w);
+        }
+        ExprId c[3], R[9], tb[3];
+        body_pose(s, b, P, c, R);
+        int nw = bd->dim == 2 ? 1 : 3;
+        if (nw == 1) /* about z, the plane's normal */
+            tb[0] = x.tau[b][2];
+        else
+            for (int k = 0; k < 3; k++) /* R^T tau */
+                tb[k] = kin_dot(P, (ExprId[3]){R[k], R[3 + k], R[6 + k]}, x.tau[b]);
+        for (int j = 0; j < out->n; j++) {
+            ExprId w = EXPR_ZERO;
+            for (int k = 0; k < nw; k++)
+                w = expr_add(P, w, expr_mul(P, tb[k], diff_partial(D, bd->omega[k], out->v[j])));
+            out->Q[j] = expr_add(P, out->Q[j], w);
+        }
+    }
+    free(x.F);
+    free(x.tau);
+}

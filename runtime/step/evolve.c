@@ -766,7 +766,11 @@ take_step(Run *r, EvolveStep *tk)
          * the interval since the event before, so that the steps grow
          * again from the event and see g leave zero before they could
          * cross it a second time (the top of a bounce) */
-        r->h = fmin(H0_REL * span, RESTART_REL * stepev_gap(r->ev));
+        r->h = H0_REL * span;
+        if (k < r->m->nevent) /* a switch leaves the state as it was: no bounce to resolve,
+                               * and two switches close together (contacts touching one
+                               * after another) must not shrink the step below hmin */
+            r->h = fmin(r->h, RESTART_REL * stepev_gap(r->ev));
         if (!(r->t < o->t_end))
             return GSL_SUCCESS;
     }

@@ -523,10 +523,12 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne; i++) {
             int on = v->g0[i] > 0, mode = sim_mode(v->s, i - v->nev);
-            if (on == mode && v->g0[i] != 0 && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
-                -v->g0[i] / v->gd1[i] <= soon)
+            if (v->g0[i] == 0) /* on its kink now (a mirror image's of k): where it goes */
+                on = v->gd1[i] > 0 ? 1 : v->gd1[i] < 0 ? 0 : mode;
+            else if (on == mode && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
+                     -v->g0[i] / v->gd1[i] <= soon)
                 on = !on; /* about to cross */
-            if (v->tsw[i - v->nev] == t || v->g0[i] == 0 || on == mode)
+            if (v->tsw[i - v->nev] == t || on == mode)
                 continue; /* (flipped at t already: k and those before) */
             sim_set_mode(v->s, i - v->nev, on);
             v->tsw[i - v->nev] = t;

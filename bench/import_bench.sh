@@ -47,9 +47,12 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
   fi
   cache="$dir/cache-$(basename "$rel" .xml)"
   rm -rf "$cache"
+  # MuJoCo is timed with contacts off (mj_bench.c): eomc's effect contacts off too
+  effs=$("$eomc" import "$model" 2> /dev/null |
+    sed -n '/^effects:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' | grep -vx contacts | paste -sd, -)
   t0=$(now)
   # shellcheck disable=SC2086 # $BENCH_BUILD is a list of options
-  if ! EOMC_CACHE_DIR="$cache" "$eomc" build "$model" ${BENCH_BUILD:-} -o "$dir/sim" \
+  if ! EOMC_CACHE_DIR="$cache" "$eomc" build "$model" --effects "$effs" ${BENCH_BUILD:-} -o "$dir/sim" \
       2> "$dir/build.err"; then
     printf '%-28s fails to build: %s\n' "$rel" "$(grep -v 'warning: dropped' "$dir/build.err" | head -1)"
     continue
@@ -60,7 +63,7 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
   for o in "$cache"/objects/*.o; do
     nm --defined-only "$o" | grep -q ' T main$' || objs="$objs $o"
   done
-  "$eomc" compile "$model" -o "$dir/m.c" 2> /dev/null
+  "$eomc" compile "$model" --effects "$effs" -o "$dir/m.c" 2> /dev/null
   name=$(sed -n 's/^const eomc_model \([A-Za-z0-9_]*\)_model = {$/\1/p' "$dir/m.c")
   form=$(sed -n 's/^ \* form: *\([a-z-]*\).*/\1/p' "$dir/m.c" | head -1)
   code=straight
@@ -72,7 +75,7 @@ for rel in ${BENCH_MODELS:-humanoid/humanoid.xml humanoid/22_humanoids.xml \
   t2=$(now)
   libs=-
   # shellcheck disable=SC2086
-  EOMC_CACHE_DIR="$cache" "$eomc" build "$model" ${BENCH_BUILD:-} --shared -o "$dir/lib.so" \
+  EOMC_CACHE_DIR="$cache" "$eomc" build "$model" --effects "$effs" ${BENCH_BUILD:-} --shared -o "$dir/lib.so" \
       2> /dev/null &&
     libs=$(elapsed "$t2" "$(now)")
   ns=$("$dir/rhs" 2> /dev/null | awk '{ print $1 }')

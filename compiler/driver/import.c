@@ -12,13 +12,15 @@
  * body_iquat turns to, is printed as the full tensor in the body's axes.
  *
  * Effects: gravity, damping, stiffness, fluid (MuJoCo's inertia-box
- * model of the medium), armature (kinetic terms of one joint's rates) and
- * actuators (virtual work of an input each); connect and joint equalities
- * are exact holonomic constraints.  What the model's <flag>s disable is
- * left out, as mj_forward leaves it out, with a note.  What the importer
- * cannot write is refused by name; what eomc does not simulate (limits,
- * friction loss, control and force ranges, contacts) is dropped, one
- * warning per kind (--strict: an error).
+ * model of the medium), armature (kinetic terms of one joint's rates),
+ * limits (a hinge's or slide's, as compliant stops) and actuators (virtual
+ * work of an input each, clamped to their ranges as MuJoCo clamps them;
+ * actuators_unclamped beside); connect and joint equalities are exact
+ * holonomic constraints.  What the model's <flag>s disable is left out,
+ * as mj_forward leaves it out, with a note.  What the importer cannot
+ * write is refused by name; what eomc does not simulate (a ball's and a
+ * tendon's limits, friction loss, contacts) is dropped, one warning per
+ * kind (--strict: an error).
  *
  * One file past ~800 lines: every element of mjModel it prints shares the
  * naming (identifiers, collisions, renames) and the placement in the
@@ -274,12 +276,77 @@ actuators(const mjModel *m)
     return disabled(m, mjDSBL_ACTUATION) ? 0 : m->nu;
 }
 
+/* Joint j's limit, where MuJoCo computes it (flags limit and constraint),
+ * as a stop: a hinge's or a slide's (a ball's, on its angle of rotation,
+ * is dropped). */
+static int
+stop_of(const mjModel *m, int j)
+{
+    return m->jnt_limited[j] && !disabled(m, mjDSBL_LIMIT | mjDSBL_CONSTRAINT) &&
+           scalar_joint(m, j);
+}
+
+/* Is actuator i's control clamped to its ctrlrange (flag clampctrl)? */
+static int
+ctrl_clamped(const mjModel *m, int i)
+{
+    return m->actuator_ctrllimited[i] && !disabled(m, mjDSBL_CLAMPCTRL);
+}
+
+/* MuJoCo's soft limit of joint j as a stop's stiffness k and damping c
+ * (docs/import.md, "Joint limits and actuator ranges").  In constraint
+ * space MuJoCo's limit obeys a + d (b v + k_r r) = (1 - d) a0 (a0 the
+ * acceleration without it, d the impedance of solimp); its part free of
+ * a0 is the force m_eff d (-b v - k_r r) on the joint, m_eff = 1/(M^-1)_jj
+ * at qpos0 (MuJoCo's dof_invweight0 is that diagonal).  solref (timeconst,
+ * dampratio) gives b = 2/(dmax timeconst), k_r = d/(dmax timeconst
+ * dampratio)^2, and (-stiffness, -damping) b = damping/dmax, k_r =
+ * stiffness d/dmax^2; with d at its dmax, d cancels:
+ *   k = m_eff/(timeconst dampratio)^2, c = 2 m_eff/timeconst, or
+ *   k = m_eff stiffness,               c = m_eff damping.
+ * timeconst is at least twice the time step, as MuJoCo makes it (flag
+ * refsafe). */
+static void
+stop_constants(const mjModel *m, int j, double *k, double *c)
+{
+    const double *ref = m->jnt_solref + mjNREF * j;
+    double meff = 1 / m->dof_invweight0[m->jnt_dofadr[j]];
+    if (ref[0] > 0) {
+        double tc = ref[0], dr = ref[1];
+        if (!disabled(m, mjDSBL_REFSAFE))
+            tc = fmax(tc, 2 * m->opt.timestep);
+        *k = meff / fmax(mjMINVAL, tc * tc * dr * dr); /* (MuJoCo's guard too) */
+        *c = 2 * meff / tc;
+    } else {
+        *k = -ref[0] * meff;
+        *c = -ref[1] * meff;
+    }
+}
+
 /* Does equality constraint e hold: active, and not disabled (the flag
  * equality, or constraint, which disables every constraint)? */
 static int
 eq_on(const mjModel *m, int e)
 {
     return m->eq_active[e] && !disabled(m, mjDSBL_EQUALITY | mjDSBL_CONSTRAINT);
+}
+
+/* Whether dof d of joint j has a friction loss that becomes dry friction
+ * on its coordinate (effect friction_loss): one MuJoCo computes (not
+ * disabled), on a coordinate of its own (a hinge's, a slide's, a free
+ * joint's position; a ball's turn has none), in a model without
+ * equality constraints (the stuck solve does not take them yet). */
+static int
+friction_kept(const mjModel *m, int j, int d)
+{
+    if (m->dof_frictionloss[m->jnt_dofadr[j] + d] == 0 ||
+        disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT))
+        return 0;
+    for (int e = 0; e < m->neq; e++)
+        if (eq_on(m, e))
+            return 0;
+    int type = m->jnt_type[j];
+    return type == mjJNT_HINGE || type == mjJNT_SLIDE || (type == mjJNT_FREE && d < 3);
 }
 
 enum { FLUID_NONE, FLUID_BOX, FLUID_ELLIPSOID };
@@ -436,19 +503,22 @@ drop_say(FILE *warn, const char *path, const Drop *d, const char *what, const ch
 static int
 dropped(const mjModel *m, const char *path, FILE *warn)
 {
-    Drop lim = {0}, fric = {0}, ctrl = {0}, force = {0};
+    Drop lim = {0}, fric = {0}, turn = {0};
     char b[32];
     int limits = !disabled(m, mjDSBL_LIMIT | mjDSBL_CONSTRAINT);
     int friction = !disabled(m, mjDSBL_FRICTIONLOSS | mjDSBL_CONSTRAINT);
     for (int j = 0; j < m->njnt; j++) {
         const char *nm = label(m, mjOBJ_JOINT, j, b, sizeof b);
-        if (m->jnt_limited[j] && limits)
+        if (m->jnt_limited[j] && limits && !stop_of(m, j))
             drop_add(&lim, nm);
-        int any = 0;
-        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++)
+        int any = 0, kept = 0;
+        for (int k = m->jnt_dofadr[j]; k < m->nv && m->dof_jntid[k] == j; k++) {
             any |= m->dof_frictionloss[k] != 0;
-        if (any && friction)
-            drop_add(&fric, nm);
+            kept |= friction_kept(m, j, k - m->jnt_dofadr[j]);
+        }
+        if (any && friction && !kept)
+            drop_add(m->jnt_type[j] == mjJNT_BALL || m->jnt_type[j] == mjJNT_FREE ? &turn
+                                                                                : &fric, nm);
     }
     Drop tlim = {0}, tfric = {0}, spatial = {0};
     for (int t = 0; t < m->ntendon; t++) {
@@ -460,29 +530,21 @@ dropped(const mjModel *m, const char *path, FILE *warn)
         if (!fixed_tendon(m, t))
             drop_add(&spatial, nm);
     }
-    for (int i = 0; i < actuators(m); i++) {
-        const char *nm = label(m, mjOBJ_ACTUATOR, i, b, sizeof b);
-        if (m->actuator_ctrllimited[i] && !disabled(m, mjDSBL_CLAMPCTRL))
-            drop_add(&ctrl, nm);
-        if (m->actuator_forcelimited[i])
-            drop_add(&force, nm);
-    }
     int n = 0;
-    n += drop_say(warn, path, &lim, "the limits of", "joint",
-                  "eomc simulates smooth dynamics: joints move past their limits");
+    n += drop_say(warn, path, &lim, "the limits of", "ball joint",
+                  "MuJoCo's limit on a ball joint's angle of rotation is not imported: the "
+                  "joint turns past it");
     n += drop_say(warn, path, &tlim, "the limits of", "tendon",
-                  "eomc simulates smooth dynamics: tendons stretch past their limits");
+                  "tendon limits are not imported: tendons stretch past them");
     n += drop_say(warn, path, &fric, "the friction loss of", "joint",
-                  "dry friction is not smooth dynamics");
+                  "eomc's dry friction does not take equality constraints yet");
+    n += drop_say(warn, path, &turn, "the friction loss of the turn of", "joint",
+                  "eomc's dry friction acts on a coordinate, and a ball's turn has none");
     n += drop_say(warn, path, &tfric, "the friction loss of", "tendon",
-                  "dry friction is not smooth dynamics");
+                  "eomc's dry friction acts on a coordinate, not along a tendon");
     n += drop_say(warn, path, &spatial, "", "spatial tendon",
                   "nothing acts along it: no stiffness, damping, actuator or equality "
                   "constraint uses it");
-    n += drop_say(warn, path, &ctrl, "the control range of", "actuator",
-                  "an input is applied as given, not clamped");
-    n += drop_say(warn, path, &force, "the force range of", "actuator",
-                  "an actuator's force is not clamped");
     Drop fluid = {0};
     for (int bb = 1; bb < m->nbody; bb++)
         if (fluid_model(m, bb) == FLUID_ELLIPSOID)
@@ -770,16 +832,15 @@ is_sum(const char *e)
     return strstr(e, " + ") || strstr(e, " - ");
 }
 
-/* Actuator i's generalized force as virtual work on its joint J, for
- * MuJoCo's force gain * u + bias of the actuator's length L = gear*J and
- * velocity V = gear*J' (fixed or affine gain, none or affine bias):
- * gear*(gain*u + bias)*delta(J). */
+/* Actuator i's force, MuJoCo's gain * u + bias, for a fixed or affine
+ * gain and none or an affine bias of the actuator's length L = gear*J and
+ * velocity V = gear*J' (J its joint or tendon), into force. */
 static void
-actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, const char *u)
+actuator_force(char *force, size_t len, const mjModel *m, int i, const char *J, const char *u)
 {
     const double *g = m->actuator_gainprm + mjNGAIN * i, *b = m->actuator_biasprm + mjNBIAS * i;
     double gear = m->actuator_gear[6 * i];
-    char L[300], V[302], gain[700] = "", force[1500] = "", a[NUM_MAX];
+    char L[300], V[302], gain[700] = "", a[NUM_MAX];
     snprintf(L, sizeof L, "%s%s%s", gear == 1 ? "" : num(a, gear), gear == 1 ? "" : "*", J);
     snprintf(V, sizeof V, "%s'", L);
     term(gain, sizeof gain, g[0], NULL);
@@ -787,18 +848,28 @@ actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, con
         term(gain, sizeof gain, g[1], L);
         term(gain, sizeof gain, g[2], V);
     }
+    force[0] = '\0';
     if (*gain && strcmp(gain, "1")) { /* gain*u, in parentheses where a sum */
-        snprintf(force, sizeof force, is_sum(gain) ? "(%s)*%s" : "%s*%s", gain, u);
+        snprintf(force, len, is_sum(gain) ? "(%s)*%s" : "%s*%s", gain, u);
     } else if (*gain) {
-        snprintf(force, sizeof force, "%s", u);
+        snprintf(force, len, "%s", u);
     }
     if (m->actuator_biastype[i] == mjBIAS_AFFINE) {
-        term(force, sizeof force, b[0], NULL);
-        term(force, sizeof force, b[1], L);
-        term(force, sizeof force, b[2], V);
+        term(force, len, b[0], NULL);
+        term(force, len, b[1], L);
+        term(force, len, b[2], V);
     }
     if (!*force)
-        snprintf(force, sizeof force, "0");
+        snprintf(force, len, "0");
+}
+
+/* Actuator i's force (actuator_force's, or a define of it) as virtual
+ * work on its joint or tendon J: gear*force*delta(J). */
+static void
+actuator_work(char *buf, size_t len, const mjModel *m, int i, const char *J, const char *force)
+{
+    double gear = m->actuator_gear[6 * i];
+    char a[NUM_MAX];
     const char *open = is_sum(force) ? "(" : "", *close = *open ? ")" : "";
     if (gear == 1)
         snprintf(buf, len, "%s%s%s*delta(%s)", open, force, close, J);
@@ -849,17 +920,28 @@ half_square(char *buf, size_t len, double k, const char *d)
     return buf;
 }
 
+/* The effects written: whether any, and their names ("gravity, damping"),
+ * for a scene that lists those it turns on. */
+typedef struct Effects {
+    int any;
+    char on[300];
+    int unclamped; /* actuators_unclamped written: not in `on`, off in the scene */
+} Effects;
+
 /* Opens effect `name`'s list with its first item, or separates the next. */
 static void
-item(FILE *out, int *any, int *first, const char *name)
+item(FILE *out, Effects *E, int *first, const char *name)
 {
-    if (!*any)
+    if (!E->any)
         fputs("effects:\n", out);
-    if (*first)
+    if (*first) {
         fprintf(out, "  %s: [", name);
-    else
+        size_t k = strlen(E->on);
+        snprintf(E->on + k, sizeof E->on - k, "%s%s", k ? ", " : "", name);
+    } else {
         fputs(", ", out);
-    *any = 1, *first = 0;
+    }
+    E->any = 1, *first = 0;
 }
 
 static double
@@ -913,21 +995,28 @@ put_fluid(const mjModel *m, int b, const char *body, const char *P, const char *
  * MuJoCo's qvel has it); stiffness, the potential k/2 (q - springref)^2
  * (MuJoCo's passive spring force -k (q - qpos_spring)); fluid, MuJoCo's
  * forces of the medium; armature, a rotor's inertia on each dof, 1/2 a
- * v^2 in T; actuators, each one's force on its joint, its control an
- * input.  What MuJoCo's flags disable is not written. */
+ * v^2 in T; friction_loss, dry friction of at most frictionloss on each
+ * coordinate that has it (friction_kept); limits, a stop at each end of a
+ * limited hinge's or slide's range (stop_constants); actuators, each
+ * one's force on its joint, its control an input, clamped to its ranges
+ * as MuJoCo clamps them (ua: the control, clamped where it is; fa: the
+ * clamped force's define, or NULL), and where any is clamped,
+ * actuators_unclamped, the same unclamped.  What MuJoCo's flags disable
+ * is not written.  Into E, what was. */
 static void
 put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
-            const char *const *un,
+            const char *const *un, const char *const *ua, const char *const *fa,
             const char *const *tn, const char *const *body, const char *const *principal,
-            const char *const *flow, const ImportContacts *ic, const char *const *gname, FILE *out)
+            const char *const *flow, const ImportContacts *ic, const char *const *gname,
+            FILE *out, Effects *E)
 {
     char a[NUM_MAX], d[400], r[400], v[400], hs[900];
-    int any = 0;
     if (gravity_on(m)) {
         fputs("effects:\n  gravity: {gravity: ", out);
         put_vec(out, m->opt.gravity);
         fputs("}\n", out);
-        any = 1;
+        E->any = 1;
+        snprintf(E->on, sizeof E->on, "gravity");
     }
     int first = 1, passive = passive_on(m);
     for (int j = 0; j < m->njnt && passive; j++)
@@ -937,12 +1026,12 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
                 continue;
             dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
             dof_rate(v, sizeof v, m, qn, vn, j, k, 1);
-            item(out, &any, &first, "damping");
+            item(out, E, &first, "damping");
             fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
         }
     for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's: -b L' along L */
         if (m->tendon_damping[t] != 0) {
-            item(out, &any, &first, "damping");
+            item(out, E, &first, "damping");
             fprintf(out, "{work: \"%s*%s'*delta(%s)\"}", num(a, -m->tendon_damping[t]), tn[t],
                     tn[t]);
         }
@@ -955,13 +1044,13 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             continue;
         const char *q = qn[m->jnt_qposadr[j]];
         displacement(d, sizeof d, q, m->qpos_spring[m->jnt_qposadr[j]]);
-        item(out, &any, &first, "stiffness");
+        item(out, E, &first, "stiffness");
         fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, k, d));
     }
     for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's, about lengthspring */
         if (m->tendon_stiffness[t] != 0) {
             displacement(d, sizeof d, tn[t], m->tendon_lengthspring[t]);
-            item(out, &any, &first, "stiffness");
+            item(out, E, &first, "stiffness");
             fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, m->tendon_stiffness[t], d));
         }
     if (!first)
@@ -969,7 +1058,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     first = 1;
     for (int b = 1; b < m->nbody; b++)
         if (fluid_model(m, b) == FLUID_BOX) {
-            item(out, &any, &first, "fluid");
+            item(out, E, &first, "fluid");
             put_fluid(m, b, body[b], principal[b], flow + 6 * b, out);
         }
     if (!first)
@@ -981,27 +1070,70 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             if (arm == 0)
                 continue;
             dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
-            item(out, &any, &first, "armature");
+            item(out, E, &first, "armature");
             fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
         }
     if (!first)
         fputs("]\n", out);
     first = 1;
-    for (int i = 0; i < actuators(m); i++) {
-        char w[2000];
-        int id = m->actuator_trnid[2 * i];
-        actuator_work(w, sizeof w, m, i, m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
-                      : qn[m->jnt_qposadr[id]], un[i]);
-        item(out, &any, &first, "actuators");
-        fprintf(out, "{work: \"%s\"}", w);
-    }
+    for (int j = 0; j < m->njnt; j++) /* dry friction, MuJoCo's frictionloss as its force */
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            if (!friction_kept(m, j, k))
+                continue;
+            item(out, E, &first, "friction_loss");
+            fprintf(out, "{friction: %s, force: %s}", qn[m->jnt_qposadr[j] + k],
+                    num(a, m->dof_frictionloss[m->jnt_dofadr[j] + k]));
+        }
     if (!first)
         fputs("]\n", out);
+    first = 1;
+    for (int j = 0; j < m->njnt; j++)
+        if (stop_of(m, j)) {
+            double k, c, lo = m->jnt_range[2 * j] + m->jnt_margin[j];
+            double hi = m->jnt_range[2 * j + 1] - m->jnt_margin[j];
+            char b1[NUM_MAX], b2[NUM_MAX], b3[NUM_MAX];
+            stop_constants(m, j, &k, &c);
+            item(out, E, &first, "limits");
+            fprintf(out, "{limit: %s, range: [%s, %s], stiffness: %s, damping: %s}",
+                    qn[m->jnt_qposadr[j]], num(a, lo), num(b1, hi), num(b2, k), num(b3, c));
+        }
+    if (!first)
+        fputs("]\n", out);
+    int clamped = 0;
+    size_t on = 0;
+    for (int pass = 0; pass < 2; pass++) { /* clamped, then without the clamps */
+        first = 1;
+        on = strlen(E->on);
+        for (int i = 0; i < actuators(m); i++) {
+            char w[2000], f[1500];
+            int id = m->actuator_trnid[2 * i];
+            const char *J = m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
+                            : qn[m->jnt_qposadr[id]];
+            clamped |= fa[i] || ua[i] != un[i];
+            if (pass == 0 && fa[i])
+                snprintf(f, sizeof f, "%s", fa[i]);
+            else
+                actuator_force(f, sizeof f, m, i, J, pass ? un[i] : ua[i]);
+            actuator_work(w, sizeof w, m, i, J, f);
+            item(out, E, &first, pass ? "actuators_unclamped" : "actuators");
+            fprintf(out, "{work: \"%s\"}", w);
+        }
+        if (!first)
+            fputs("]\n", out);
+        if (!clamped)
+            break;
+    }
+    if (clamped) /* the scene leaves the unclamped ones out */
+        E->on[on] = '\0', E->unclamped = 1;
     /* each pair its own law: its effective mass differs (import_contact.c) */
     for (int i = 0; i < ic->npair; i++) {
         const ImportPair *p = &ic->pair[i];
-        if (i == 0)
-            fprintf(out, "%s  contacts:\n", any ? "" : "effects:\n");
+        if (i == 0) {
+            fprintf(out, "%s  contacts:\n", E->any ? "" : "effects:\n");
+            size_t k = strlen(E->on);
+            snprintf(E->on + k, sizeof E->on - k, "%scontacts", k ? ", " : "");
+            E->any = 1;
+        }
         fprintf(out, "    - {contact: [[%s, %s]], stiffness: %s, ", gname[p->g1], gname[p->g2],
                 num(a, p->k));
         fprintf(out, "damping: %s}\n", num(a, p->c));
@@ -1460,6 +1592,32 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
         un[i] = named(&N, "input", nm, nm);
         fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
     }
+    /* a clamped actuator's control and force, each a define, so that
+     * their switches are named after it: ctrl_NAME.clamp.lo, and
+     * force_NAME.clamp.hi for the force range MuJoCo clamps gain*u + bias
+     * to (before the gear) */
+    const char **ua = xmalloc(((size_t)m->nu + 1) * sizeof *ua);
+    const char **fa = xmalloc(((size_t)m->nu + 1) * sizeof *fa);
+    for (int i = 0; i < actuators(m); i++) {
+        const char *base = un[i] + 2; /* u_NAME */
+        int id = m->actuator_trnid[2 * i];
+        char lo[NUM_MAX], hi[NUM_MAX], f[1500];
+        ua[i] = un[i], fa[i] = NULL;
+        if (ctrl_clamped(m, i)) {
+            snprintf(nm, sizeof nm, "ctrl_%s", base);
+            ua[i] = unique(&N, nm, nm);
+            fprintf(D, "  %s: \"clamp(%s, %s, %s)\"\n", ua[i], un[i],
+                    num(lo, m->actuator_ctrlrange[2 * i]), num(hi, m->actuator_ctrlrange[2 * i + 1]));
+        }
+        if (m->actuator_forcelimited[i]) {
+            actuator_force(f, sizeof f, m, i, m->actuator_trntype[i] == mjTRN_TENDON ? tn[id]
+                           : qn[m->jnt_qposadr[id]], ua[i]);
+            snprintf(nm, sizeof nm, "force_%s", base);
+            fa[i] = unique(&N, nm, nm);
+            fprintf(D, "  %s: \"clamp(%s, %s, %s)\"\n", fa[i], f,
+                    num(lo, m->actuator_forcerange[2 * i]), num(hi, m->actuator_forcerange[2 * i + 1]));
+        }
+    }
 
     /* frames and points, body by body (parents come first in MuJoCo's order) */
     char *fr = NULL, *pt = NULL;
@@ -1670,7 +1828,8 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     drop_tell(warn, path, "note", "not drawn:", &u.planes, "geom",
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
-    put_effects(m, qn, vn, un, tn, body, principal, flow, &ic, gname, out);
+    Effects E = {0};
+    put_effects(m, qn, vn, un, ua, fa, tn, body, principal, flow, &ic, gname, out, &E);
     put_constraints(m, qn, tn, eqn, eqp, axes, out, path, warn);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
@@ -1681,7 +1840,10 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     int eq = 0;
     for (int e = 0; e < m->neq; e++)
         eq |= eq_on(m, e);
-    fprintf(out, "scene: {t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
+    fputs("scene: {", out);
+    if (E.unclamped) /* every effect but the actuators without their ranges */
+        fprintf(out, "effects: [%s], ", E.on);
+    fprintf(out, "t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
     if (u.floors && u.floor != 0 && !u.plane_floor) /* the grid is at z = 0 unless told */
         fprintf(out, ", view: {floor: %s}", num(a, u.floor));
     fputs("}\n", out);
@@ -1695,6 +1857,8 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     free(qn);
     free(vn);
     free(un);
+    free(ua);
+    free(fa);
     free(tn);
     free(eqn);
     free(eqp);

@@ -697,6 +697,10 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     if (L->switches)
         emit_line(pr, "    .nmode = %d, .sw_names = sw_names, .switches = %s_switches,\n"
                   "    /* modes at u[%d + k] */", md->nmode, nm, md->nu);
+    if (L->fric_bound)
+        emit_line(pr, "    .nfric = %d, .fric_names = fric_names, .fric_speed = fric_speed,\n"
+                  "    .fric_slip = fric_slip, .fric_stick = fric_stick, .fric_bound = "
+                  "%s_fric_bound,", md->nfric, nm);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -724,6 +728,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     print_taylor_members(pr, L->taylor, nm, 1);
     if (L->switches)
         emit_line(pr, "    .switches = %s_switches,", nm);
+    if (L->fric_bound)
+        emit_line(pr, "    .fric_bound = %s_fric_bound,", nm);
     emit_line(pr, "};");
     emit_line(pr, "#endif /* EOMC_EXTENDED */");
 }
@@ -733,6 +739,27 @@ int_cmp(const void *a, const void *b)
 {
     int x = *(const int *)a, y = *(const int *)b;
     return (x > y) - (x < y);
+}
+
+/* The dry-friction items: names, speeds, the modes of their switches. */
+static void
+print_friction_tables(Printer *pr)
+{
+    const LowModel *md = pr->md;
+    int n = md->nfric;
+    fprintf(pr->f, "static const char *const fric_names[%d] = {", n);
+    for (int k = 0; k < n; k++)
+        fprintf(pr->f, "%s\"%s\"", k ? ", " : "", md->fric[k].name);
+    const char *what[3] = {"fric_speed", "fric_slip", "fric_stick"};
+    for (int a = 0; a < 3; a++) {
+        fprintf(pr->f, "};\nstatic const int %s[%d] = {", what[a], n);
+        for (int k = 0; k < n; k++) {
+            const LowFric *fr = &md->fric[k];
+            fprintf(pr->f, "%s%d", k ? ", " : "", a == 0 ? fr->speed : a == 1 ? fr->slip
+                                                                              : fr->stick);
+        }
+    }
+    emit_line(pr, "};\n");
 }
 
 /* Names, orders and dependent coordinates of the constraints. */
@@ -963,6 +990,8 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
             fprintf(pr.f, "%s\"%s\"", k ? ", " : "", md->mode_name[k]);
         emit_line(&pr, "};\n");
     }
+    if (L->fric_bound)
+        print_friction_tables(&pr);
     if (md->ndraw)
         print_draw_tables(&pr);
     emit_unit3_end(&pr);

@@ -1107,6 +1107,19 @@ expr_name_switch(ExprPool *P, int k, const char *name)
     P->swname[k] = s;
 }
 
+/* A new switch, k = nsw, whose function is s. */
+static void
+add_switch(ExprPool *P, ExprId s)
+{
+    if (P->nsw == P->capsw) {
+        P->capsw = P->capsw ? 2 * P->capsw : 8;
+        P->sw = xrealloc(P->sw, (size_t)P->capsw * sizeof *P->sw);
+        P->swname = xrealloc(P->swname, (size_t)P->capsw * sizeof *P->swname);
+    }
+    P->swname[P->nsw] = NULL;
+    P->sw[P->nsw++] = s;
+}
+
 /* SELECT(k, a, b) on s's switch k (s met before: the same k), or the
  * branch s's constant sign chooses now. */
 ExprId
@@ -1118,16 +1131,16 @@ expr_where(ExprPool *P, ExprId s, ExprId a, ExprId b)
     int k = 0;
     while (k < P->nsw && P->sw[k] != s)
         k++;
-    if (k == P->nsw) {
-        if (P->nsw == P->capsw) {
-            P->capsw = P->capsw ? 2 * P->capsw : 8;
-            P->sw = xrealloc(P->sw, (size_t)P->capsw * sizeof *P->sw);
-            P->swname = xrealloc(P->swname, (size_t)P->capsw * sizeof *P->swname);
-        }
-        P->swname[P->nsw] = NULL;
-        P->sw[P->nsw++] = s;
-    }
+    if (k == P->nsw)
+        add_switch(P, s);
     return expr_select(P, k, a, b);
+}
+
+int
+expr_switch_held(ExprPool *P)
+{
+    add_switch(P, expr_const(P, -1));
+    return P->nsw - 1;
 }
 
 ExprId

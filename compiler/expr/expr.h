@@ -140,6 +140,11 @@ ExprId expr_where(ExprPool *P, ExprId s, ExprId a, ExprId b);
 ExprId expr_max(ExprPool *P, ExprId a, ExprId b);
 ExprId expr_min(ExprPool *P, ExprId a, ExprId b);
 ExprId expr_clamp(ExprPool *P, ExprId x, ExprId lo, ExprId hi);
+/* A switch that no function of the model drives: its mode is set by the
+ * runtime alone (dry friction's stick, runtime/model/friction.c), and its
+ * s_k is the constant -1, which the runtime replaces.  Always a new one;
+ * its k.  SELECT it with expr_select. */
+int expr_switch_held(ExprPool *P);
 /* The pool's switches, in the order they were made: mode k's s_k. */
 int expr_nswitch(const ExprPool *P);
 ExprId expr_switch(const ExprPool *P, int k);

@@ -153,6 +153,10 @@ static const LowSig s_switches = {
     /* (not s: a function split into parts shares its values in s[]) */
     "t q v p u > sw", 1,
 };
+static const LowSig s_fric_bound = {
+    "fric_bound", "The largest force of each dry-friction item (fric_names).",
+    "t q v p u > F", 1,
+};
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
     " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
@@ -693,6 +697,47 @@ lower_switches(Lowering *lw)
     free(roots);
 }
 
+/* The dry-friction items of the effects that are on (an item whose force
+ * folded to 0 exerts none, and is left out), and fric_bound; their modes
+ * are the pool's switches until lower_switches numbers them
+ * (friction_modes). */
+static void
+lower_friction(Lowering *lw)
+{
+    const Spec *s = lw->s;
+    LowModel *md = &lw->L->model;
+    int n = 0;
+    for (int e = 0; e < s->neffect; e++)
+        for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++)
+            n += s->effect[e].force[j].friction && s->effect[e].force[j].expr != EXPR_ZERO;
+    if (!n)
+        return;
+    md->fric = arena_new_array(lw->A, LowFric, n);
+    LowFunc *f = func(lw, &s_fric_bound, "events", 0);
+    for (int e = 0; e < s->neffect; e++)
+        for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++) {
+            const SpecForce *fo = &s->effect[e].force[j];
+            if (!fo->friction || fo->expr == EXPR_ZERO)
+                continue;
+            md->fric[md->nfric] = (LowFric){
+                .name = arena_printf(lw->A, "%s.%s", s->effect[e].name, s->coord[fo->coord].name),
+                .speed = s->vslot[fo->coord], .slip = fo->slip, .stick = fo->stick};
+            out(lw, f, 0, md->nfric++, fo->bound);
+        }
+    lw->L->fric_bound = f;
+}
+
+/* The friction items' switches numbered as the model's modes. */
+static void
+friction_modes(Lowering *lw)
+{
+    LowModel *md = &lw->L->model;
+    for (int k = 0; k < md->nfric; k++) {
+        md->fric[k].slip = md->mode_slot[md->fric[k].slip];
+        md->fric[k].stick = md->mode_slot[md->fric[k].stick];
+    }
+}
+
 /* Whether the model's accel and mass_bias are loops over its tables; *why
  * when they are asked for and cannot be. */
 static const FormTables *
@@ -990,6 +1035,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->scene.nevent)
         lower_events(&lw);
+    lower_friction(&lw);
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
         lw.L->check_values = f; /* before its outputs: fillable() */
@@ -1005,6 +1051,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     lower_jacobian(&lw, e, jacobian);
     lower_derive(&lw);
     lower_switches(&lw);
+    friction_modes(&lw);
     /* after derive, which has seen every copy's parameter values */
     for (int k = 0; k < lw.L->nfunc; k++) {
         LowFunc *fk = lw.L->func[k];

@@ -115,6 +115,14 @@ typedef struct LowDrawItem {
 } LowDrawItem;
 typedef SpecShape LowShape; /* .body is its item: the bodies come first */
 
+/* A dry-friction item (eomc_model.h's fric_ members): its name
+ * EFFECT.q, the velocity slot of q, the modes of its slip and stick
+ * switches. */
+typedef struct LowFric {
+    const char *name;
+    int speed, slip, stick;
+} LowFric;
+
 typedef struct LowCheck {
     const char *what;   /* "particle 'bob': its mass must not be negative" */
     const char *params; /* the parameters it depends on: "m" */
@@ -172,6 +180,8 @@ typedef struct LowModel {
     double camera[9];
     int view_follow;    /* the item the camera follows, or -1 */
     double view_floor; /* the floor's height: where the page's grid lies */
+    int nfric;          /* dry-friction items of the effects that are on */
+    LowFric *fric;      /* [nfric] */
 } LowModel;
 
 /* ---- Taylor's method: the series program (lower_taylor.c) ---- */
@@ -245,6 +255,7 @@ typedef struct Lowered {
     LowFunc *outputs;     /* the scene's outputs, or NULL */
     LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
     LowFunc *switches;    /* the switch functions s [nmode] (expr.h), or NULL */
+    LowFunc *fric_bound;  /* the friction items' force bounds F [nfric], or NULL */
     LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
     LowFunc *draw_shapes;      /* the shapes' sizes and positions of parameters, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */

@@ -5,7 +5,9 @@
 #include "effects.h"
 
 #include "contacts.h"
+#include "friction.h"
 #include "names.h"
+#include "stops.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -116,27 +118,42 @@ static void
 load_force(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     static const char *const keys[] = {"gravity", "potential", "force", "torque", "work",
-                                       "kinetic", "on", "contact", "stiffness", "damping",
-                                       "friction", NULL};
+                                       "kinetic", "friction", "on", "contact", "limit",
+                                       "stiffness", "damping", "range", NULL};
     spec_map(L, map, "a force");
     spec_check_keys(L, map, keys, "an effect");
     f->loc = spec_loc(L, map);
     int kinds = 0;
-    yaml_node_t *v, *on = spec_lookup(L, map, "on");
-    if (spec_lookup(L, map, "contact") && NPAIRS(map) > 1 + !!spec_lookup(L, map, "stiffness") +
-                                           !!spec_lookup(L, map, "damping") +
+    yaml_node_t *v, *on = spec_lookup(L, map, "on"), *lim = spec_lookup(L, map, "limit");
+    /* a contact and a limit have keys of their own: the law's */
+    int law = !!spec_lookup(L, map, "stiffness") + !!spec_lookup(L, map, "damping");
+    if (spec_lookup(L, map, "contact") && NPAIRS(map) > 1 + law +
                                            !!spec_lookup(L, map, "friction") + !!on)
         diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
-                   "force, torque, work, kinetic, contact (write a list for several)");
+                   "force, torque, work, kinetic, contact, limit, friction (write a list for "
+                   "several)");
     if (spec_lookup(L, map, "contact")) {
         spec_load_contact(L, map, f);
         return;
     }
-    static const char *const law[] = {"stiffness", "damping", "friction"};
+    if (lim && on)
+        diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
+    if (lim && NPAIRS(map) > 1 + law + !!spec_lookup(L, map, "range"))
+        diag_error(spec_loc(L, map), "an effect item has exactly one of gravity, potential, "
+                   "force, torque, work, kinetic, contact, limit, friction (write a list for "
+                   "several)");
+    if (lim) {
+        spec_load_stop(L, map, lim, L->sc.owner, f);
+        return;
+    }
+    /* (friction is an item of its own: dry friction) */
+    static const char *const keys_of[] = {"stiffness", "damping", "range"};
     for (int k = 0; k < 3; k++)
-        if (spec_lookup(L, map, law[k]))
-            diag_error(spec_key_loc(L, map, law[k]), "`%s` belongs to a contact "
-                       "({contact: all, stiffness: k, damping: c})", law[k]);
+        if (spec_lookup(L, map, keys_of[k]))
+            diag_error(spec_key_loc(L, map, keys_of[k]), "`%s` belongs to %s", keys_of[k],
+                       k < 2 ? "a contact or a limit ({contact: all, stiffness: k, damping: c}, "
+                               "{limit: q, range: [lo, hi], stiffness: k, damping: c})"
+                             : "a limit ({limit: q, range: [lo, hi], stiffness: k})");
     if ((v = spec_lookup(L, map, "gravity"))) {
         f->kind = FORCE_GRAVITY, kinds++;
         f->dim = spec_vector(L, v, ALLOW_FIELD, "a gravity field", f->vec);
@@ -161,17 +178,23 @@ load_force(Loader *L, yaml_node_t *map, SpecForce *f)
     if ((v = spec_lookup(L, map, "kinetic")))
         f->kind = FORCE_KINETIC, kinds++,
         f->expr = spec_expr(L, v, ALLOW_KINETIC, "a kinetic-energy term");
-    if ((v = spec_lookup(L, map, "force")))
+    yaml_node_t *fr = spec_lookup(L, map, "friction"); /* its `force:` is a bound */
+    if (fr)
+        kinds++;
+    if ((v = spec_lookup(L, map, "force")) && !fr)
         f->kind = FORCE_VECTOR, kinds++, load_applied(L, map, v, on, f, 0);
     if ((v = spec_lookup(L, map, "torque")))
         f->kind = FORCE_TORQUE, kinds++, load_applied(L, map, v, on, f, 1);
-    if (on && kinds == 1 && f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)
+    if (on && kinds == 1 && (fr || (f->kind != FORCE_VECTOR && f->kind != FORCE_TORQUE)))
         diag_error(spec_loc(L, on), "`on` belongs to a force or a torque");
     if (kinds != 1)
         diag_error(spec_loc(L, map), kinds ? "an effect item has exactly one of gravity, "
-                   "potential, force, torque, work, kinetic (write a list for several)"
+                   "potential, force, torque, work, kinetic, contact, limit, friction (write a "
+                   "list for several)"
                    : "an effect item needs one of gravity, potential, force, torque, work, "
-                   "kinetic, contact");
+                   "kinetic, contact, limit, friction");
+    if (fr)
+        spec_load_friction(L, map, fr, L->sc.owner, f);
 }
 
 static void

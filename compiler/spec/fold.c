@@ -65,6 +65,7 @@ spec_foreach_expr(Spec *s, SpecExprFn *f, void *ctx)
                 VISIT(fo->stiffness);
                 VISIT(fo->damping);
             }
+            VISIT(fo->bound);
         }
     for (int i = 0; i < s->nkinetic; i++)
         VISIT(s->kinetic[i].expr);

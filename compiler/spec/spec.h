@@ -189,6 +189,11 @@ typedef struct SpecForce {
     int npair;
     int *pair;
     ExprId stiffness, damping;
+    /* A dry-friction item (`friction: q`, spec/friction.c) is FORCE_WORK
+     * with friction = 1: on coordinate coord, at most the force bound,
+     * slip and stick its switches (the pool's); friction = 0 otherwise. */
+    int friction, coord, slip, stick;
+    ExprId bound;
 } SpecForce;
 
 typedef struct SpecEffect {

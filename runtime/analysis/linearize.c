@@ -1139,23 +1139,59 @@ done:
  * q''(x) to the rounding of its terms, which is all a zero there would
  * read as (a_f - Y lambda: 1.7e-15 where the bicycle's x'' is 0). */
 
-/* A model with switched expressions: its modes are a run's (eomc_model.h),
- * not yet chosen at a state given alone. */
-static int
-refuse_modes(eomc_sim *s, const char *what)
+/* A switch function counts as 0 within KINK_ULPS units of rounding of
+ * its scale, sum_j |ds/dx_j| size_j (and t's term), size_j the larger of
+ * |x_j| and what the caller says x_j is known to: what the rounding of the
+ * state's values would change it by.  A state given to the last digit, or
+ * one a run stopped at, is within a few units of the kink it is on; an
+ * equilibrium, within EQ_SETTLED of its start's scale; the rest is room
+ * for the rounding of s itself. */
+#define KINK_ULPS 64
+static const double KINK_STEP = 0x1p-20;
+
+int
+eomc_sim_kinks(eomc_sim *s, double t, const double *x, const double *size, unsigned char *on)
 {
     const eomc_model *m = eomc_sim_model(s);
-    return m->nmode > 0 ? sim_usage_error(s, "%s: %s has switched expressions (max, min, "
-                                          "clamp, step), whose modes are set only by a run yet",
-                                          what, m->name)
-                        : EOMC_OK;
+    int nm = m->nmode, N = eomc_nx(m), n = m->nq, found = 0;
+    if (nm == 0)
+        return 0;
+    double *s0 = calloc((size_t)nm, sizeof *s0), *s1 = calloc((size_t)nm, sizeof *s1);
+    double *scale = calloc((size_t)nm, sizeof *scale), *y = malloc((size_t)N * sizeof *y);
+    if (s0 && s1 && scale && y) {
+        memcpy(y, x, (size_t)N * sizeof *y);
+        sim_set_modes(s, t, x, x + n); /* the state's own, as its q'' takes them */
+        sim_switches(s, t, y, y + n, s0);
+        for (int j = 0; j <= N; j++) { /* each component, then t */
+            double *at = j < N ? &y[j] : &t, keep = *at;
+            double h = fmax(fabs(keep), j < N && size ? fabs(size[j]) : 0) * KINK_STEP;
+            if (h == 0)
+                continue; /* no rounding there */
+            *at = keep + h;
+            sim_switches(s, t, y, y + n, s1);
+            *at = keep;
+            for (int k = 0; k < nm; k++)
+                scale[k] += fabs(s1[k] - s0[k]) / KINK_STEP;
+        }
+        for (int k = 0; k < nm; k++) {
+            int kink = fabs(s0[k]) <= KINK_ULPS * DBL_EPSILON * scale[k];
+            found += kink;
+            if (on)
+                on[k] = (unsigned char)kink;
+        }
+    } else {
+        found = -1;
+    }
+    free(s0);
+    free(s1);
+    free(scale);
+    free(y);
+    return found;
 }
 
 int
 eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B)
 {
-    if (refuse_modes(s, "linearize") != EOMC_OK)
-        return EOMC_EUSAGE;
     sim_set_dense(s, 1);
     int rc = linearize(s, t, x, A, B);
     sim_set_dense(s, 0);
@@ -1174,8 +1210,6 @@ eomc_sim_accel_residual(eomc_sim *s, double t, const double *x, double *acc, int
 int
 eomc_sim_equilibrium(eomc_sim *s, double t, double *x, int *iterations)
 {
-    if (refuse_modes(s, "equilibrium") != EOMC_OK)
-        return EOMC_EUSAGE;
     sim_set_dense(s, 1);
     int rc = equilibrium(s, t, x, iterations);
     sim_set_dense(s, 0);

@@ -75,6 +75,7 @@
 #include "model/linalg.h"
 #include "reftaylor.h"
 #include "refswitch.h"
+#include "reffric.h"
 
 #include <float.h>
 #include <math.h>
@@ -153,6 +154,7 @@ typedef struct Ref {
                                    * room for the doubles' q'' there [nv] */
     RefTaylor *rt;                /* Taylor's method makes the solutions, or NULL */
     RefSwitches *sw;              /* the switches (modes at u[nu + k]), or NULL */
+    RefFric *fr;                  /* dry friction's stuck speeds, or NULL */
     int bad_switch;               /* the one a solution could not follow */
 } Ref;
 
@@ -170,11 +172,16 @@ inputs_at(Ref *r, eomc_ext t)
     }
 }
 
-/* q'' = -M^-1 h for an unconstrained model; 0 or -1. */
+/* q'' = -M^-1 h for an unconstrained model, the speeds dry friction
+ * holds held (reffric.h, the bounds checked either way); 0 or -1. */
 static int
 accel_free(Ref *r, eomc_ext t, const eomc_ext *q, const eomc_ext *v, eomc_ext *a)
 {
     int n = r->nv;
+    if (r->fr && reffric_any(r->fr, r->u))
+        return reffric_solve(r->fr, t, q, v, r->p, r->u, a) == STICK_OK ? 0 : -1;
+    if (r->fr && reffric_bounds(r->fr, t, q, v, r->p, r->u) != STICK_OK)
+        return -1;
     if (r->x->accel)
         return r->x->accel(t, q, v, r->p, r->u, a, NULL) == 0 ? 0 : -1;
     r->x->mass_bias(t, q, v, r->p, r->u, r->M, a);
@@ -595,6 +602,7 @@ ref_free(Ref *r)
                           r->Xh};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
+    reffric_free(r->fr);
     free(r->perm);
     free(r->fail_x);
     extrap_free(r->ex);
@@ -628,6 +636,32 @@ sw_functions(void *ctx, eomc_ext t, const eomc_ext *x, eomc_ext *s)
     Ref *r = ctx;
     inputs_at(r, t);
     r->x->switches(t, x, x + r->n, r->p, r->u, s);
+    if (r->fr) /* the stick switches' (NAN where the holding forces fail) */
+        (void)reffric_functions(r->fr, t, x, x + r->n, r->p, r->u, s);
+}
+
+static int
+sw_held(void *ctx, int k)
+{
+    Ref *r = ctx;
+    return reffric_item_stick(r->fr, k) >= 0;
+}
+
+static int
+sw_settle(void *ctx, eomc_ext t, const eomc_ext *x)
+{
+    Ref *r = ctx;
+    inputs_at(r, t);
+    return reffric_settle(r->fr, t, x, x + r->n, r->p, r->u) == STICK_OK ? 0 : -1;
+}
+
+static int
+sw_flip(void *ctx, int k, int on, eomc_ext t, eomc_ext *x, int *stuck)
+{
+    Ref *r = ctx;
+    inputs_at(r, t);
+    return reffric_flip(r->fr, k, on, t, x, x + r->n, r->p, r->u, stuck) == STICK_OK ? 0
+                                                                                   : -1;
 }
 
 /* For s's model with twin x, runs over o's span (NULL: none, a state
@@ -662,9 +696,13 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
     ok &= (r->fail_x = calloc(N + n, sizeof *r->fail_x)) != NULL;
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
+    if (ok && m->nfric > 0)
+        ok &= (r->fr = reffric_alloc(m, x)) != NULL;
     if (ok && m->nmode > 0) {
         RefSwMotion mo = {.ctx = r, .state = sw_state, .rate = sw_rate,
                           .functions = sw_functions};
+        if (r->fr)
+            mo.held = sw_held, mo.settle = sw_settle, mo.flip = sw_flip;
         ok &= (r->sw = refsw_alloc(m->nmode, r->N, r->u + nu, mo, o ? o->t0 : 0,
                                    o ? o->t_end : 0)) != NULL;
     }
@@ -793,6 +831,9 @@ twin_fits(eomc_sim *s, const eomc_model_ext *ext, const char *what)
     if (m->nmode > 0 && !ext->switches)
         return sim_usage_error(s, "the extended-precision functions of %s lack switches, "
                                "its switch functions", m->name);
+    if (m->nfric > 0 && !ext->fric_bound)
+        return sim_usage_error(s, "the extended-precision functions of %s lack fric_bound, "
+                               "its dry friction's forces", m->name);
     if (m->nc && !m->c_affine && !ext->c_jacobian)
         return sim_usage_error(s, "the extended-precision functions of %s lack "
                                "c_jacobian", m->name);
@@ -971,9 +1012,10 @@ eomc_reference_accel(eomc_sim *s, const eomc_model_ext *ext, double t, const dou
     }
     for (int i = 0; i < r.N; i++)
         r.X[i] = x[i];
-    if (r.sw) /* the modes of the state itself, as eomc_sim_accel takes them */
-        refsw_signs(r.sw, t, r.X);
-    int rc = rhs(&r, t, r.X, r.F);
+    /* the modes of the state itself, as eomc_sim_accel takes them */
+    int rc = r.sw ? refsw_signs(r.sw, t, r.X) : 0;
+    if (rc == 0)
+        rc = rhs(&r, t, r.X, r.F);
     for (int i = 0; rc == 0 && i < r.nv; i++)
         a[i] = (double)r.F[r.n + i];
     for (int k = 0; rc == 0 && lam && k < r.nc; k++)

@@ -160,7 +160,14 @@ rates(RefSwitches *w, eomc_ext t, const eomc_ext *x, const eomc_ext *f, eomc_ext
         out[k] = (w->sb[k] - w->sa[k]) / (2 * d);
 }
 
-void
+/* Whether mode k is dry friction's stick switch (RefSwMotion.held). */
+static int
+held(const RefSwitches *w, int k)
+{
+    return w->mo.held && w->mo.held(w->mo.ctx, k);
+}
+
+int
 refsw_signs(RefSwitches *w, eomc_ext t, const eomc_ext *x)
 {
     /* a switch function may read other modes (a max of a max): each pass
@@ -170,12 +177,15 @@ refsw_signs(RefSwitches *w, eomc_ext t, const eomc_ext *x)
         w->mo.functions(w->mo.ctx, t, x, w->s0);
         for (int k = 0; k < w->nm; k++) {
             eomc_ext on = w->s0[k] > 0;
+            if (held(w, k))
+                continue;
             changed |= on != w->mode[k];
             w->mode[k] = on;
         }
         if (!changed)
-            return;
+            break;
     }
+    return w->mo.settle ? w->mo.settle(w->mo.ctx, t, x) : 0;
 }
 
 /* Switch k's rate at the start along the motion in the modes as they
@@ -196,11 +206,12 @@ refsw_start(RefSwitches *w, const eomc_ext *x0, int *bad)
     w->n = 0;
     for (int k = 0; k < w->nm; k++)
         w->last[k] = -INFINITY, w->hit[k] = NAN;
-    refsw_signs(w, w->t0, x0);
+    if (refsw_signs(w, w->t0, x0) != 0)
+        return -1;
     w->mo.functions(w->mo.ctx, w->t0, x0, w->s1);
     for (int k = 0; k < w->nm; k++) {
         eomc_ext r0, r1;
-        if (w->s1[k] != 0)
+        if (w->s1[k] != 0 || held(w, k))
             continue;
         if (start_rate(w, x0, k, &r0) != 0)
             return -1;
@@ -398,6 +409,16 @@ record(RefSwitches *w, eomc_ext t, int k, const double *sens)
     return 0;
 }
 
+/* The record's last entry of switch k (one there is). */
+static long
+refsw_last_of(const RefSwitches *w, int k)
+{
+    long i = w->n - 1;
+    while (i > 0 && w->rk[i] != k)
+        i--;
+    return i;
+}
+
 /* How far switch k's crossing at (t, x) moves per unit error of each
  * component, |ds/dx_i| / |ds/dt| into sens [N], by central differences
  * (x_i's over PROBE_REL of its scale sc_i, t's along the motion over
@@ -423,9 +444,10 @@ sensitivity(RefSwitches *w, int k, eomc_ext t, const eomc_ext *x, const eomc_ext
 }
 
 int
-refsw_flip(RefSwitches *w, eomc_ext t, const eomc_ext *x, const eomc_ext *sc, int *bad)
+refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad)
 {
-    double *sens = malloc((size_t)(w->N > 0 ? w->N : 1) * sizeof *sens);
+    size_t N = (size_t)(w->N > 0 ? w->N : 1);
+    double *sens = malloc(2 * N * sizeof *sens), *slip = sens + N;
     int rc = sens ? 0 : -1;
     /* the located ones first, each with its arrival's rate (the modes it
      * came in), then, until none is left, those past 0 there: kinks at
@@ -459,7 +481,18 @@ refsw_flip(RefSwitches *w, eomc_ext t, const eomc_ext *x, const eomc_ext *sc, in
                 continue;
             w->last[k] = t;
             /* to the side s went; exactly on it (located at s = 0), over */
-            w->mode[k] = w->s1[k] != 0 ? w->s1[k] > 0 : w->mode[k] == 0;
+            int on = w->s1[k] != 0 ? w->s1[k] > 0 : w->mode[k] == 0, stuck = -1;
+            if (!w->mo.flip)
+                w->mode[k] = on;
+            else if (w->mo.flip(w->mo.ctx, k, on, t, x, &stuck) != 0)
+                rc = -1;
+            if (stuck >= 0) { /* its slip's flip is its stick's too */
+                memcpy(slip, w->rsens + (size_t)refsw_last_of(w, k) * (size_t)w->N,
+                       (size_t)w->N * sizeof *slip);
+                w->last[stuck] = t;
+                if (record(w, t, stuck, slip) != 0)
+                    rc = -1;
+            }
         }
         if (!flips)
             break;

@@ -21,6 +21,15 @@ typedef struct RefSwMotion {
     int (*rate)(void *ctx, eomc_ext t, const eomc_ext *x, eomc_ext *f);
     /* the switch functions s [nmode] at (t, x) in the modes as they are */
     void (*functions)(void *ctx, eomc_ext t, const eomc_ext *x, eomc_ext *s);
+    /* Dry friction (NULL members: none).  held: whether mode k is a stick
+     * switch, which no sign sets; settle: the items' modes at a state
+     * (t, x) alone, after the signs (0, or -1 where none follow the
+     * motion); flip: mode k's flip to on at (t, x) in a solution, x's
+     * speed set to 0 where an item sticks and *stuck its stick switch
+     * (else -1); 0 or -1. */
+    int (*held)(void *ctx, int k);
+    int (*settle)(void *ctx, eomc_ext t, const eomc_ext *x);
+    int (*flip)(void *ctx, int k, int on, eomc_ext t, eomc_ext *x, int *stuck);
 } RefSwMotion;
 
 typedef struct RefSwitches RefSwitches;
@@ -32,8 +41,10 @@ RefSwitches *refsw_alloc(int nmode, int N, eomc_ext *mode, RefSwMotion mo, eomc_
 void refsw_free(RefSwitches *w);
 
 /* The modes of the state (t, x) alone, from the signs of its switch
- * functions (0: mode 0), as the doubles take them outside a run. */
-void refsw_signs(RefSwitches *w, eomc_ext t, const eomc_ext *x);
+ * functions (0: mode 0), as the doubles take them outside a run; dry
+ * friction's by motion.settle.  0, or -1 where friction's cannot be
+ * decided. */
+int refsw_signs(RefSwitches *w, eomc_ext t, const eomc_ext *x);
 
 /* The modes at the start (t0, x0), as a run sets them: the sign of each
  * s, where it is 0 the side the motion leaves to; the record emptied.
@@ -53,12 +64,13 @@ int refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext 
 /* The flips at t_hit, the state x there (refsw_check's): every switch
  * located there, and every other whose s is past 0 there (kinks at one
  * instant), each recorded with the sensitivity of its time to the state
- * (sc [N] the components' scales for the differences).  0; -1 when the
- * motion cannot be computed; -2 when a switch flips again within
+ * (sc [N] the components' scales for the differences); an item of dry
+ * friction that sticks there (motion.flip) has its speed in x set to 0
+ * and its stick switch recorded with its slip's sensitivities.  0; -1
+ * when the motion cannot be computed; -2 when a switch flips again within
  * REFSW_CHATTER of the span of its last flip (it chatters: the run stops
  * there too), switch *bad. */
-int refsw_flip(RefSwitches *w, eomc_ext t_hit, const eomc_ext *x, const eomc_ext *sc,
-               int *bad);
+int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, int *bad);
 
 /* A run's flips closer than this share of the time span chatter
  * (stepevents.c's ACCUMULATE_REL). */

@@ -523,10 +523,6 @@ check_event_options(const Options *c, const eomc_model *m)
                       : c->reference    ? "--reference"
                       : c->error        ? "--error"
                       : c->reference_out ? "--reference-out" : NULL;
-    const char *fixed = c->linearize ? "--linearize" : c->equilibrium ? "--equilibrium" : NULL;
-    if (m->nmode > 0 && fixed)
-        return opt_usage(c, "%s: %s has switched expressions (max, min, clamp, step), whose modes "
-                         "are set only by a run yet", fixed, m->name);
     if (moving && opt)
         return opt_usage(c, "%s: scene %s has events that stop or reset the motion, which the "
                      "reference solution does not follow (measure the errors on a scene "

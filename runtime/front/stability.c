@@ -239,6 +239,33 @@ rest_note(Options *c, eomc_sim *sim, double t, const double *x)
     free(acc);
 }
 
+/* --linearize or --equilibrium at a state on a kink of a switched
+ * expression: A and B there are one side's (the modes of the state: a
+ * switch function at 0 takes the side where it is negative), and the
+ * other side's differ.  Said, not refused: a state on a stop's edge is a
+ * fair question, and the answer for one side is exact.  An equilibrium is
+ * known to the scale of its start (start [nx], else NULL). */
+static void
+kink_note(Options *c, eomc_sim *sim, double t, const double *x, const double *start)
+{
+    const eomc_model *m = eomc_sim_model(sim);
+    unsigned char *on = calloc((size_t)m->nmode + 1, 1);
+    int n = on ? eomc_sim_kinks(sim, t, x, start, on) : 0;
+    if (n > 0) {
+        fprintf(io_err(), "%s: warning: t = %g: the state is on the kink%s of", c->prog, t,
+                n == 1 ? "" : "s");
+        for (int k = 0, said = 0; k < m->nmode; k++)
+            if (on[k])
+                fprintf(io_err(), "%s %s", !said++ ? "" : said == n ? " and" : ",",
+                        m->sw_names[k]);
+        fprintf(io_err(), " (%s 0 to rounding here): A and B are those of the side where "
+                "%s negative, and the other side's differ, so they describe the motion only "
+                "while it stays on that side\n", n == 1 ? "its switch function is"
+                : "their switch functions are", n == 1 ? "it is" : "each is");
+    }
+    free(on);
+}
+
 /* The first speed that turns a unit quaternion (model->nquat > 0). */
 static int
 first_rotation(const eomc_model *m)
@@ -261,8 +288,11 @@ stab_print(Options *c, eomc_sim *sim, double *x)
     double *A = calloc((size_t)nl * (size_t)nl, sizeof *A);
     double *B = calloc((size_t)nl * (size_t)(nu ? nu : 1), sizeof *B);
     double *eig = calloc(2 * (size_t)nl + 1, sizeof *eig);
-    if (!A || !B || !eig)
+    double *start = malloc((size_t)eomc_nx(m) * sizeof *start);
+    if (!A || !B || !eig || !start)
         rc = EOMC_EUSAGE;
+    else
+        memcpy(start, x, (size_t)eomc_nx(m) * sizeof *start);
     if (rc == EOMC_OK && c->equilibrium) {
         rc = eomc_sim_equilibrium(sim, t, x, &its);
         char num[NUM_MAX];
@@ -278,6 +308,8 @@ stab_print(Options *c, eomc_sim *sim, double *x)
         rc = eomc_sim_linearize(sim, t, x, A, B);
     if (rc == EOMC_OK && !c->equilibrium)
         rest_note(c, sim, t, x);
+    if (rc == EOMC_OK)
+        kink_note(c, sim, t, x, c->equilibrium ? start : NULL);
     if (rc == EOMC_OK) {
         char name[STATE_NAME_MAX];
         fprintf(io_out(), "%s: linearized at t = %g,", c->prog, t);
@@ -311,6 +343,7 @@ stab_print(Options *c, eomc_sim *sim, double *x)
     free(A);
     free(B);
     free(eig);
+    free(start);
     return rc;
 }
 

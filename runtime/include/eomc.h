@@ -228,6 +228,18 @@ void eomc_sim_linear_state(const eomc_sim *s, int k, int *coord, int *order);
  * (eomc_sim_inconsistency above EOMC_INCONSISTENT): the message names
  * every one it violates, worst first. */
 int eomc_sim_linearize(eomc_sim *s, double t, const double *x, double *A, double *B);
+/* A model with switched expressions (model->nmode > 0) is linearized in
+ * the modes of the state itself (each from the sign of its switch
+ * function there), as eomc_sim_accel takes them; an equilibrium's Newton
+ * steps take each iterate's.  On a kink the two sides' A and B differ:
+ * eomc_sim_kinks counts the switches whose function is 0 at (t, x) to the
+ * rounding of its scale (what the rounding of t and x's values would
+ * change it by; size [nx], or NULL, the magnitude each x_j is known to
+ * where larger than |x_j|: an equilibrium's start, to whose scale Newton's
+ * steps settle), marking each in on [nmode] (may be NULL; their names are
+ * model->sw_names); -1 out of memory. */
+int eomc_sim_kinks(eomc_sim *s, double t, const double *x, const double *size,
+                   unsigned char *on);
 /* The eigenvalues of A [nl x nl] (re + i im, unordered).  Those that rows
  * or columns of zeros isolate (a cyclic coordinate's) are exact, taken
  * out before the QR iteration. */

@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 26
+#define EOMC_ABI_VERSION 27
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -405,6 +405,24 @@ typedef struct eomc_model {
     const char *const *sw_names;
     void (*switches)(double t, const double *q, const double *v, const double *p,
                      const double *u, double *s);
+
+    /* ---- dry friction ----
+     * nfric items (the spec's `friction:`), named fric_names (EFFECT.q),
+     * each on the coordinate whose speed is fric_speed[j], exerting at most
+     * F_j, fric_bound(t, q, v, p, u, F) [nfric].  Slipping, its force is
+     * F_j against the slip: mode fric_slip[j] is its slip's sign, a switch
+     * whose function is that speed.  Mode fric_stick[j] = 1 says it is
+     * stuck: the speed is 0 and stays 0, and its force is whatever holds
+     * it (the model's functions then put none).  No function of the model
+     * drives the stick switch (switches gives -1 for it): the runtime
+     * solves for the holding force phi_j and gives F_j - |phi_j| while it
+     * is stuck (runtime/model/friction.c).  nfric = 0: none, the rest
+     * NULL. */
+    int nfric;
+    const char *const *fric_names;
+    const int *fric_speed, *fric_slip, *fric_stick;
+    void (*fric_bound)(double t, const double *q, const double *v, const double *p,
+                       const double *u, double *F);
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */
@@ -478,6 +496,8 @@ typedef struct eomc_model_ext {
                    eomc_ext *T);
     void (*switches)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
                      const eomc_ext *u, eomc_ext *s); /* as in eomc_model */
+    void (*fric_bound)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
+                       const eomc_ext *u, eomc_ext *F); /* as in eomc_model */
 } eomc_model_ext;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

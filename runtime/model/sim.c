@@ -15,6 +15,7 @@
  */
 #include "simimpl.h"
 #include "depend.h"
+#include "friction.h"
 #include "kkt.h"
 #include "linalg.h"
 #include "base/numfmt.h"
@@ -62,6 +63,7 @@ struct eomc_sim {
     size_t errlen;
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: the solve and multipliers */
+    Fric *fric;              /* dry friction: its stuck speeds (friction.h), or NULL */
     Proj *proj;              /* constrained models: projection */
     int stabilize;           /* EOMC_STABILIZE_... */
     double alpha, beta;      /* Baumgarte's rates */
@@ -142,6 +144,7 @@ eomc_sim_alloc(const eomc_model *m)
     s->kkt = m->nc > 0 ? kkt_alloc(m) : NULL;
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     s->dep = m->nc > 0 ? depend_alloc(m) : NULL;
+    s->fric = m->nfric > 0 ? fric_alloc(m, m) : NULL;
     s->Bc = sim_zeros((size_t)m->nc * nv);
     s->ce = sim_zeros((size_t)m->nc);
     s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
@@ -151,7 +154,7 @@ eomc_sim_alloc(const eomc_model *m)
         !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
         !s->Bc || !s->ce || !s->cl || !s->crow ||
-        (m->nc > 0 && (!s->kkt || !s->proj || !s->dep))) {
+        (m->nc > 0 && (!s->kkt || !s->proj || !s->dep)) || (m->nfric > 0 && !s->fric)) {
         eomc_sim_free(s);
         return NULL;
     }
@@ -173,6 +176,7 @@ eomc_sim_free(eomc_sim *s)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
+    fric_free(s->fric);
     proj_free(s->proj);
     depend_free(s->dep);
     la_lu_free(s->mlu);
@@ -688,12 +692,62 @@ accel_own(eomc_sim *s, double t, const double *q, const double *v, double *a)
 
 /* Outside a run, the modes of the state itself, from the signs of its
  * switch functions: a value (q'', T and V, an output) is the same in
- * either mode on a kink, where the two branches meet. */
-static void
+ * either mode on a kink, where the two branches meet.  EOMC_OK, or where
+ * dry friction's modes cannot be decided (sim_set_modes) the error. */
+static int
 at_state(eomc_sim *s, double t, const double *q, const double *v)
 {
     if (s->m->nmode > 0 && !s->modes_run)
-        sim_set_modes(s, t, q, v);
+        return sim_set_modes(s, t, q, v);
+    return EOMC_OK;
+}
+
+/* The message of a friction.h status at (t, q, v). */
+static int
+fric_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
+{
+    const eomc_model *m = s->m;
+    char name[STATE_NAME_MAX];
+    int j = fric_bad(s->fric);
+    switch (rc) {
+    case STICK_PIVOT:
+        return sim_numeric_error(s, t, q, v, "the mass matrix of the speeds that dry friction "
+                                 "does not hold is singular or not positive definite "
+                                 "(speed %s)", state_speed(m, j, name, sizeof name));
+    case STICK_NEGATIVE:
+        return sim_numeric_error(s, t, q, v, "dry friction %s: its force is %.17g, below 0 "
+                                 "(the largest force it can exert cannot be negative)",
+                                 m->fric_names[j], fric_bound_of(s->fric, j));
+    default:
+        return sim_numeric_error(s, t, q, v, "dry friction %s at rest: held, it needs a force "
+                                 "beyond its bound, yet let go it would accelerate against "
+                                 "its slip; no choice of the items' modes follows the motion "
+                                 "here", m->fric_names[j]);
+    }
+}
+
+/* Dry friction's q'': with an item stuck, its speed held at 0
+ * (friction.h); -1 where none is (the model's own solve then), the
+ * bounds checked either way. */
+static int
+accel_friction(eomc_sim *s, double t, const double *q, const double *v, double *a)
+{
+    int rc;
+    if (!fric_any(s->fric, s->u)) {
+        rc = fric_bounds(s->fric, t, q, v, s->p, s->u);
+        return rc == STICK_OK ? -1 : fric_error(s, t, q, v, rc);
+    }
+    if (s->kkt)
+        return sim_usage_error(s, "dry friction holds a coordinate of %s, which has "
+                               "constraints: the stuck solve does not take them yet",
+                               s->m->name);
+    if (!isfinite(state_sum(s, t, q, v)) && !inputs_finite(s, t, q, v))
+        return state_error(s, t, q, v);
+    if ((rc = fric_solve(s->fric, t, q, v, s->p, s->u, a)) != STICK_OK)
+        return fric_error(s, t, q, v, rc);
+    if (fric_pivot(s->fric) < s->pivot)
+        s->pivot = fric_pivot(s->fric);
+    return isfinite(finite_sum(a, s->nv)) ? EOMC_OK : accel_error(s, t, q, v, a);
 }
 
 void
@@ -707,8 +761,11 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
 {
     const eomc_model *m = s->m;
     int n = s->nv, k;
-    at_state(s, t, q, v);
+    if ((k = at_state(s, t, q, v)) != EOMC_OK)
+        return k;
     sim_inputs_at(s, t);
+    if (s->fric && (k = accel_friction(s, t, q, v, a)) >= 0)
+        return k;
     if (!s->kkt && m->accel)
         return accel_own(s, t, q, v, a);
     if (!isfinite(state_sum(s, t, q, v)) && !inputs_finite(s, t, q, v))
@@ -1050,7 +1107,7 @@ eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double 
                 double *V)
 {
     double TV[2];
-    at_state(s, t, q, v);
+    (void)at_state(s, t, q, v); /* (friction's modes put nothing in T or V) */
     sim_inputs_at(s, t);
     s->m->energy(t, q, v, s->p, s->u, TV);
     *T = TV[0];
@@ -1076,6 +1133,30 @@ sim_switches(eomc_sim *s, double t, const double *q, const double *v, double *sw
 {
     sim_inputs_at(s, t);
     s->m->switches(t, q, v, s->p, s->u, sw);
+    /* the stick switches' functions, from the holding forces (NAN where
+     * they cannot be solved: the run's right-hand side says why) */
+    if (s->fric)
+        (void)fric_functions(s->fric, t, q, v, s->p, s->u, sw);
+}
+
+int
+sim_mode_held(const eomc_sim *s, int k)
+{
+    return s->fric && fric_item_stick(s->fric, k) >= 0;
+}
+
+int
+sim_flip(eomc_sim *s, int k, int on, double t, double *x, int *stuck)
+{
+    *stuck = -1;
+    if (!s->fric) {
+        sim_set_mode(s, k, on);
+        return EOMC_OK;
+    }
+    double *q = x, *v = x + s->n;
+    sim_inputs_at(s, t);
+    int rc = fric_flip(s->fric, k, on, t, q, v, s->p, s->u, stuck);
+    return rc == STICK_OK ? EOMC_OK : fric_error(s, t, q, v, rc);
 }
 
 void
@@ -1090,22 +1171,31 @@ sim_mode(const eomc_sim *s, int k)
     return s->u[s->nu + k] != 0.0;
 }
 
-void
+int
 sim_set_modes(eomc_sim *s, double t, const double *q, const double *v)
 {
     /* a switch function may read other modes (max of a max): each pass
-     * settles at least the modes the ones before decided */
+     * settles at least the modes the ones before decided; dry friction's
+     * stick switches are friction's to set, after */
     for (int pass = 0; pass <= s->m->nmode; pass++) {
         int changed = 0;
-        sim_switches(s, t, q, v, s->sw);
+        sim_inputs_at(s, t);
+        s->m->switches(t, q, v, s->p, s->u, s->sw);
         for (int k = 0; k < s->m->nmode; k++) {
             int on = s->sw[k] > 0;
+            if (sim_mode_held(s, k))
+                continue;
             changed |= on != sim_mode(s, k);
             sim_set_mode(s, k, on);
         }
         if (!changed)
-            return;
+            break;
     }
+    if (!s->fric)
+        return EOMC_OK;
+    sim_inputs_at(s, t);
+    int rc = fric_settle(s->fric, t, q, v, s->p, s->u);
+    return rc == STICK_OK ? EOMC_OK : fric_error(s, t, q, v, rc);
 }
 
 void
@@ -1136,7 +1226,7 @@ eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, doub
     if (!s->m->invariant)
         return sim_usage_error(s, "%s conserves no quantity that eomc knows of: %s",
                                s->m->name, s->m->invariant_note);
-    at_state(s, t, q, v);
+    (void)at_state(s, t, q, v); /* (none conserved with friction on) */
     sim_inputs_at(s, t);
     s->m->invariant(t, q, v, s->p, s->u, h);
     return EOMC_OK;
@@ -1166,8 +1256,30 @@ rates_jacobian(eomc_sim *s, const double *x, double *dfdx, double *dfdt)
     return EOMC_OK;
 }
 
+/* Whether dry friction holds a speed in the modes as they are: then the
+ * Jacobian's solves are friction's (the stuck speeds' rows 0). */
+static int
+stuck(const eomc_sim *s)
+{
+    return s->fric && fric_any(s->fric, s->u);
+}
+
+/* b = -M^-1 b with M as eomc_sim_jacobian factored it (or friction.h's
+ * block, some speed held). */
+static void
+jacobian_solve_neg(eomc_sim *s, double *b)
+{
+    if (stuck(s))
+        fric_solve_neg(s->fric, b);
+    else
+        la_ldlt_solve_neg(s->M, s->nv, s->Mperm, b);
+}
+
 /* dv'/dx = -M^-1 [dE/dq, dE/dv] and dv'/dt = -M^-1 (dE/dt + dE/du u'),
- * each column solved with the factored M; the rows of q' above them. */
+ * each column solved with the factored M; the rows of q' above them.
+ * With a speed held by dry friction, its rows are 0 and the rest solve
+ * with the block of the free speeds (the stuck speeds' accelerations are
+ * 0 whatever the state). */
 int
 eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *dfdt)
 {
@@ -1186,15 +1298,17 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
         return rc == KKT_OK ? EOMC_OK : kkt_error(s, t, q, v, rc);
     }
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
-    m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-    int k = la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
-    if (k)
-        return pivot_error(s, t, q, v, k);
+    if (!stuck(s)) { /* (else eomc_sim_accel factored the free speeds' block) */
+        m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+        int k = la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
+        if (k)
+            return pivot_error(s, t, q, v, k);
+    }
     if (dfdx)
         for (int j = 0; j < N; j++) {
             for (int i = 0; i < nv; i++)
                 s->col[i] = j < n ? s->dEdq[i * n + j] : s->dEdv[i * nv + j - n];
-            la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
+            jacobian_solve_neg(s, s->col);
             for (int i = 0; i < nv; i++)
                 dfdx[(n + i) * N + j] = s->col[i];
         }
@@ -1205,7 +1319,7 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
                 b += s->dEdu[i * nu + k2] * s->dudt[k2];
             s->col[i] = b;
         }
-        la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
+        jacobian_solve_neg(s, s->col);
         memcpy(dfdt + n, s->col, (size_t)nv * sizeof *dfdt);
     }
     return EOMC_OK;
@@ -1221,7 +1335,7 @@ sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
         for (int k = 0; k < nu; k++) {
             for (int i = 0; i < nv; i++)
                 s->col[i] = s->dEdu[i * nu + k];
-            la_ldlt_solve_neg(s->M, nv, s->Mperm, s->col);
+            jacobian_solve_neg(s, s->col);
             for (int i = 0; i < N; i++)
                 B[i * nu + k] = i < n ? 0 : s->col[i - n];
         }

@@ -55,8 +55,18 @@ int sim_mode(const eomc_sim *s, int k);
 void sim_set_mode(eomc_sim *s, int k, int on);
 /* Every mode from the sign of its switch function at (t, q, v): 1 where
  * it is > 0, else 0 (exactly 0: 0 here; a run's start then looks at the
- * side the motion leaves to, evolve.c's start_modes). */
-void sim_set_modes(eomc_sim *s, double t, const double *q, const double *v);
+ * side the motion leaves to, evolve.c's start_modes).  Dry friction's
+ * items at rest are stuck where they can be (friction.h's settle).
+ * EOMC_OK, or the error where friction's modes cannot be decided. */
+int sim_set_modes(eomc_sim *s, double t, const double *q, const double *v);
+/* Whether mode k is dry friction's stick switch, which no switch
+ * function of the model drives (sim_switches gives F - |phi| for it). */
+int sim_mode_held(const eomc_sim *s, int k);
+/* Mode k's flip to on at (t, x) in a run, its switch located there: set,
+ * or dry friction's (friction.h's flip: an item whose speed crosses 0
+ * sticks where it can, its speed in x set to 0 and *stuck its stick
+ * switch's mode, else -1).  EOMC_OK or the error. */
+int sim_flip(eomc_sim *s, int k, int on, double t, double *x, int *stuck);
 /* on = 1: a run keeps the modes (set at its start, flipped at its
  * switches) until on = 0; otherwise eomc_sim_accel, _energy, _outputs and
  * _invariant take the modes of the state they are given. */

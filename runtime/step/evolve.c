@@ -954,14 +954,16 @@ start_modes(Run *r)
 {
     eomc_sim *s = r->s;
     int n = r->n, nm = r->m->nmode, rc = GSL_SUCCESS;
-    sim_set_modes(s, r->t, r->x, r->x + n);
+    if (sim_set_modes(s, r->t, r->x, r->x + n) != EOMC_OK)
+        return GSL_EBADFUNC;
     double *at = sim_zeros(3 * (size_t)nm), *sw = at + nm;
     if (!at)
         return GSL_ENOMEM;
     sim_switches(s, r->t, r->x, r->x + n, at);
     for (int k = 0; k < nm && rc == GSL_SUCCESS; k++) {
         double r0, r1;
-        if (at[k] != 0 || (rc = start_rate(r, k, sw, &r0)) != GSL_SUCCESS)
+        /* (dry friction's stick switches are friction's: sim_set_modes) */
+        if (at[k] != 0 || sim_mode_held(s, k) || (rc = start_rate(r, k, sw, &r0)) != GSL_SUCCESS)
             continue;
         if (r0 == 0 || (r0 > 0) == sim_mode(s, k)) /* (a tangency keeps mode 0) */
             continue;

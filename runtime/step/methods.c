@@ -116,6 +116,17 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
     if (o->max_steps < 0)
         return sim_usage_error(s, "the step limit must be positive, not %ld",
                                o->max_steps);
+    const eomc_model *md = eomc_sim_model(s);
+    if (md->nfric > 0 && md->nc > 0)
+        return sim_usage_error(s, "%s has dry friction (%s) and constraints: the solve that "
+                               "holds a stuck coordinate does not take constraints yet (turn "
+                               "the friction's effect off with --effects)", md->name,
+                               md->fric_names[0]);
+    if (md->nfric > 0 && !*m->adaptive)
+        return sim_usage_error(s, "taylor: %s has dry friction (%s), whose stuck "
+                               "coordinates' accelerations are a solve Taylor's series do "
+                               "not expand: use another method", md->name,
+                               md->fric_names[0]);
     if (!*m->adaptive)
         return taylor_check(s, o);
     return EOMC_OK;

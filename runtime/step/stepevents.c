@@ -492,11 +492,25 @@ note_reset_off(StepEvents *v, int k, double t)
     }
 }
 
+/* Dry friction stuck an item where its speed's switch flipped: its
+ * stick switch j flipped too, told as the first was. */
+static void
+also_stuck(StepEvents *v, int j, double t, const double *x)
+{
+    if (j < 0)
+        return;
+    v->tsw[j] = t;
+    v->st->events++;
+    if (v->o->on_event)
+        (void)v->o->on_event(v->o->event_ctx, v->nev + j, t, x);
+}
+
 /* Switch k's flip at t: its mode to where its function went, x as it
- * is, f [nx] its rate in the new mode.  Flips of one switch within
+ * is (but for a speed dry friction sticks, exactly 0 then: sim_flip),
+ * f [nx] its rate in the new mode.  Flips of one switch within
  * ACCUMULATE_REL of the span chatter (Zeno), as resets do. */
 static int
-flip(StepEvents *v, int k, double t, const double *x, double *f)
+flip(StepEvents *v, int k, double t, double *x, double *f)
 {
     int j = k - v->nev;
     if (t - v->tsw[j] < ACCUMULATE_REL * (v->o->t_end - v->o->t0)) {
@@ -507,7 +521,10 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
     v->gap = t - v->last_set;
     v->last_set = t;
     v->nsets++;
-    sim_set_mode(v->s, j, v->switch_to);
+    int stuck, rc = sim_flip(v->s, j, v->switch_to, t, x, &stuck);
+    if (rc != EOMC_OK)
+        return GSL_EBADFUNC;
+    also_stuck(v, stuck, t, x);
     /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
      * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
@@ -530,17 +547,19 @@ flip(StepEvents *v, int k, double t, const double *x, double *f)
                 on = !on; /* about to cross */
             if (v->tsw[i - v->nev] == t || on == mode)
                 continue; /* (flipped at t already: k and those before) */
-            sim_set_mode(v->s, i - v->nev, on);
+            if (sim_flip(v->s, i - v->nev, on, t, x, &stuck) != EOMC_OK)
+                return GSL_EBADFUNC;
             v->tsw[i - v->nev] = t;
             v->st->events++;
             if (v->o->on_event)
                 (void)v->o->on_event(v->o->event_ctx, i, t, x);
+            also_stuck(v, stuck, t, x);
             changed = 1;
         }
         if (!changed)
             break;
     }
-    int rc = v->mo.rate(t, x, f, v->mo.ctx);
+    rc = v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;
     g_all(v, t, x, x + v->n, v->g0);

@@ -24,9 +24,9 @@
 #    y = 0.5 - t^2/2 reaches 0 at t = 1 at speed -1, and y(2) = -0.5 at
 #    rest (abs's kink located: a step across it would miss the reversal);
 #  - an effect that is off (spring_floor.yaml's edge) brings no switch;
-#  - the modes are no inputs: not in the CSV, not settable; what cannot
-#    follow a switch yet (Taylor's series, a linearization) says so;
-#    --accel at a state takes that state's modes;
+#  - the modes are no inputs: not in the CSV, not settable;
+#    --accel at a state takes that state's modes (and --linearize:
+#    tests/cli/test_limits.sh);
 #  - the reference solution follows the switches: its rows are the closed
 #    forms' to the rounding of doubles, --error reports the run's true
 #    error (its row at t = 1 against the closed form) and so does eomc
@@ -127,11 +127,6 @@ ok $? "the modes are not inputs: --set refuses them"
   within "$(tail -1 "$tmp/rowst.csv" | cut -d, -f3)" 1 1e-12 &&
   within "$(tail -1 "$tmp/rowst.csv" | cut -d, -f2)" 0.58584073464102068 1e-12
 ok $? "--method taylor: kinks at 0.1 and 0.1 + pi/w, leaving at v0 to y(1) = 1 - (0.1 + pi/w) ($(tail -1 "$tmp/rowst.csv" | cut -d, -f2,3))"
-for opt in --linearize; do
-  "$eomc" run "$spec" $opt > "$tmp/out" 2> "$tmp/err"; st=$?
-  [ $st -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "^spring_floor: $opt: .*switched expressions" "$tmp/err"
-  ok $? "$opt is refused, naming the switched expressions"
-done
 # outside a run, each mode is its state's: y = -0.01 at rest, the floor
 # pushes k 0.01 = 1; y = 0.01, nothing
 "$eomc" run "$spec" --accel --init y=-0.01 --init "y'=0" > "$tmp/a1" 2>&1 &&

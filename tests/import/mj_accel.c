@@ -1,14 +1,18 @@
 /*
  * MuJoCo's q'' of a model at a random state, in the coordinates of eomc's
  * import: the peer eomc's imported models are checked against
- * (test_import.sh).  Contact, joint limits, friction loss and equality
- * constraints are off: the smooth dynamics eomc imports.
+ * (test_import.sh).  Contact, joint limits and friction loss are off.
+ * MuJoCo's limits are soft constraints that eomc imports as compliant
+ * stops of another law (docs/import.md), so each limited hinge and slide
+ * is drawn inside its range (less its margin), where neither acts.
  *
  *   mj_accel MODEL SEED [COUNT] ->  a line of nq coordinates q, a line of
  *                              nv speeds v, a line of nu controls (empty
  *                              without actuators), then v' one per line;
  *                              with COUNT, a block so for each seed SEED ..
- *                              SEED + COUNT - 1 (one process, one load)
+ *                              SEED + COUNT - 1 (one process, one load);
+ *                              with actuators, on stderr at the end: "a
+ *                              control or force clamped at K of N states"
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
@@ -16,13 +20,14 @@
  *                              stdin (eomc's speeds), "t T": MuJoCo's kinetic
  *                              energy there (mj_energyVel: armature included)
  *
- * Controls are neither clamped to their ranges nor forces to theirs, as
- * the import drops both.  The model's own <option><flag>s stand otherwise
- * (gravity, passive forces, actuation, equality constraints disabled: the
- * import leaves out what they disable).  The state: each hinge and slide
- * coordinate, each qvel entry and each control uniform in [-1.5, 1.5]
- * (splitmix64, seeded); a ball's or free joint's quaternion four such
- * numbers normalized.  eomc's coordinates are MuJoCo's qpos and its speeds
+ * Controls are clamped to their ranges and forces to theirs as the model
+ * says, as the import writes them.  The model's own <option><flag>s stand
+ * otherwise (gravity, passive forces, actuation, equality constraints,
+ * the clamping of controls disabled: the import leaves out what they
+ * disable).  The state: each hinge and slide coordinate, each qvel entry
+ * and each control uniform in [-1.5, 1.5] (splitmix64, seeded), a limited
+ * joint's coordinate mapped onto its range; a ball's or free joint's
+ * quaternion four such numbers normalized.  eomc's coordinates are MuJoCo's qpos and its speeds
  * MuJoCo's qvel: a rotation's are its angular velocity in the joint's own
  * axes (a free joint's after its position's rates, in the world), the
  * import's `speeds:` (docs/import.md).  So v' is qacc.
@@ -329,10 +334,63 @@ done:
     return rc;
 }
 
-/* The state of one seed and MuJoCo's q'' there, printed; 3 if no state
- * drawn meets the constraints. */
+/* Is joint j's limit one the import keeps (a hinge's or a slide's, where
+ * the model's own flags compute limits)?  Its range, less the margin,
+ * into lo and hi. */
 static int
-one_state(mjModel *m, mjData *d, uint64_t seed)
+limited(const mjModel *m, int j, int flags, double *lo, double *hi)
+{
+    *lo = m->jnt_range[2 * j] + m->jnt_margin[j];
+    *hi = m->jnt_range[2 * j + 1] - m->jnt_margin[j];
+    return m->jnt_limited[j] && !(flags & (mjDSBL_LIMIT | mjDSBL_CONSTRAINT)) &&
+           (m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE);
+}
+
+/* Is every limited joint of the state inside its range (flags: the
+ * model's own)? */
+static int
+inside(const mjModel *m, const mjData *d, int flags)
+{
+    double lo, hi;
+    for (int j = 0; j < m->njnt; j++) {
+        double q = d->qpos[m->jnt_qposadr[j]];
+        if (limited(m, j, flags, &lo, &hi) && !(q > lo && q < hi))
+            return 0;
+    }
+    return 1;
+}
+
+/* Does MuJoCo clamp an actuator's control or force at state d (after
+ * mj_forward; flags: the model's own)?  Its force unclamped is gain*u +
+ * bias of the control clamped, for the fixed or affine gains and biases
+ * that eomc imports. */
+static int
+clamping(const mjModel *m, const mjData *d, int flags)
+{
+    for (int i = 0; i < m->nu; i++) {
+        const double *g = m->actuator_gainprm + mjNGAIN * i, *b = m->actuator_biasprm + mjNBIAS * i;
+        const double *cr = m->actuator_ctrlrange + 2 * i, *fr = m->actuator_forcerange + 2 * i;
+        double u = d->ctrl[i], L = d->actuator_length[i], V = d->actuator_velocity[i];
+        if (m->actuator_ctrllimited[i] && !(flags & mjDSBL_CLAMPCTRL)) {
+            if (u < cr[0] || u > cr[1])
+                return 1;
+        }
+        double gain = g[0] + (m->actuator_gaintype[i] == mjGAIN_AFFINE ? g[1] * L + g[2] * V : 0);
+        double f = gain * u + (m->actuator_biastype[i] == mjBIAS_AFFINE ? b[0] + b[1] * L + b[2] * V : 0);
+        if (m->actuator_forcelimited[i] && (f < fr[0] || f > fr[1]))
+            return 1;
+    }
+    return 0;
+}
+
+/* The states where MuJoCo clamps a control or a force (said at the end). */
+static long clamped_states;
+
+/* The state of one seed and MuJoCo's q'' there, printed; 3 if no state
+ * drawn meets the constraints inside the limits.  flags: the model's own
+ * disableflags. */
+static int
+one_state(mjModel *m, mjData *d, uint64_t seed, int flags)
 {
     mj_resetData(m, d); /* as a new one: nothing warm-started from the last */
     /* the model's own <flag>s may disable them (docs/import.md) */
@@ -346,20 +404,24 @@ one_state(mjModel *m, mjData *d, uint64_t seed)
             d->qvel[i] = uniform(&seed);
         for (int i = 0; i < m->nu; i++)
             d->ctrl[i] = uniform(&seed);
-        for (int j = 0; j < m->njnt; j++) { /* unit quaternions */
+        for (int j = 0; j < m->njnt; j++) { /* unit quaternions; limits' ranges */
             int type = m->jnt_type[j];
+            double lo, hi, *q = d->qpos + m->jnt_qposadr[j];
             if (type == mjJNT_BALL || type == mjJNT_FREE)
-                mju_normalize4(d->qpos + m->jnt_qposadr[j] + (type == mjJNT_FREE ? 3 : 0));
+                mju_normalize4(q + (type == mjJNT_FREE ? 3 : 0));
+            if (limited(m, j, flags, &lo, &hi))
+                *q = lo + (*q + 1.5) / 3 * (hi - lo);
         }
         mj_forward(m, d);
-        if (!equalities || constrained(m, d) == 0)
+        if ((!equalities || constrained(m, d) == 0) && inside(m, d, flags))
             break;
         if (draw == DRAWS_MAX) {
-            fprintf(stderr, "mj_accel: no state of %d drawn converges onto the constraints\n",
-                    DRAWS_MAX);
+            fprintf(stderr, "mj_accel: no state of %d drawn converges onto the constraints "
+                    "inside the limits\n", DRAWS_MAX);
             return 3;
         }
     }
+    clamped_states += clamping(m, d, flags);
     for (int i = 0; i < m->nq; i++)
         printf("%.17g%c", d->qpos[i], i + 1 < m->nq ? ' ' : '\n');
     for (int i = 0; i < m->nv; i++)
@@ -387,18 +449,20 @@ main(int argc, char **argv)
         mj_deleteModel(m);
         return rc;
     }
+    int flags = m->opt.disableflags;
     m->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
-                           mjDSBL_CLAMPCTRL | (m->neq ? 0 : mjDSBL_EQUALITY);
+                           (m->neq ? 0 : mjDSBL_EQUALITY);
     m->opt.jacobian = mjJAC_DENSE;
     gsl_set_error_handler_off(); /* a singular draw is drawn again */
-    for (int i = 0; i < m->nu; i++)
-        m->actuator_forcelimited[i] = 0;
     mjData *d = mj_makeData(m);
     uint64_t seed = strtoull(argv[2], NULL, 10);
     long count = argc == 4 ? strtol(argv[3], NULL, 10) : 1;
     int rc = 0;
     for (long k = 0; k < count && rc == 0; k++)
-        rc = one_state(m, d, seed + (uint64_t)k);
+        rc = one_state(m, d, seed + (uint64_t)k, flags);
+    if (rc == 0 && m->nu)
+        fprintf(stderr, "mj_accel: a control or force clamped at %ld of %ld states\n",
+                clamped_states, count);
     mj_deleteData(d);
     mj_deleteModel(m);
     return rc;

@@ -127,6 +127,21 @@ def test_linearize_away_from_rest_warns(pendulum):
         pendulum.linearize(init={"theta": 0.0})
 
 
+def test_linearize_in_a_stop_and_on_its_edge():
+    # tests/cli/stops.yaml's rotor (I = 1, stops of k = 100, c = 4 at +-0.5):
+    # inside its upper stop A = [[0, 1], [-k, -c]] (q'' is not 0 there, which
+    # is warned of); on the stop's edge, the outer side's A, and an
+    # EomcWarning naming both of the stop's switches
+    m = eomc.load(os.path.join(SOURCE, "tests", "cli", "stops.yaml"))
+    with pytest.warns(eomc.EomcWarning, match="q'' is not 0 here"):
+        lin = m.linearize(init={"theta": 0.6, "theta'": 0.0})
+    np.testing.assert_allclose(lin.A, [[0.0, 1.0], [-100.0, -4.0]], rtol=1e-15)
+    with pytest.warns(eomc.EomcWarning,
+                      match="on the kinks of stops.theta.hi.push and stops.theta.hi"):
+        lin = m.linearize(init={"theta": 0.5, "theta'": 0.0})
+    np.testing.assert_array_equal(lin.A, [[0.0, 1.0], [0.0, 0.0]])
+
+
 def test_equilibrium_that_runs_away_raises():
     # the arm of tests/sim/specs/arm4.yaml from shoulder = 1.5: Newton's
     # method follows q'' out along the slide, where it only falls as 1/extend

@@ -287,12 +287,14 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
  * clamped; t = clamp(b s0 + f), the nearest to it on b's axis; then
  * s = clamp(b t - c), the nearest to that on a's (Ericson, Real-Time
  * Collision Detection, 5.1.9; s = s0 where t was not clamped).
- * Axes within PARALLEL_DEN of parallel (1 - b^2 below it: 1e-6 rad) divide
- * by PARALLEL_DEN instead, so s0 is near 0 where b f - c is rounding: any
- * s0 serves parallel axes, whose nearest points the two projections then
- * find.  (Dividing by 1 - b^2 itself would make s0 rounding over
- * rounding, and switch functions that vanish with it would flip on
- * rounding alone, as the two shins of a humanoid standing straight do.) */
+ * The lines' s0 is taken as x den / (den^2 + PARALLEL_DEN^2), x = b f - c,
+ * den = 1 - b^2: x / den to a relative 1e-12 where the axes are 1e-3 rad
+ * from parallel or more (the gap, stationary in s, to 1e-24), and going to
+ * 0 with x where they are parallel, where any s0 serves and the two
+ * projections then find the nearest points.  (x / den itself is rounding
+ * over rounding there, and a switch on den would flip on rounding alone:
+ * a humanoid's shins standing straight, a four-bar's links passing each
+ * other.) */
 #define PARALLEL_DEN 1e-12
 static void
 capsules(Ctx *x, const Placed *a, const Placed *b)
@@ -306,9 +308,11 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
     ExprId ha = a->size[1], hb = b->size[1], nha = expr_neg(P, ha);
     ExprId bb = kin_dot(P, ua, ub), c = kin_dot(P, ua, r), f = kin_dot(P, ub, r);
     ExprId den = expr_sub(P, EXPR_ONE, expr_mul(P, bb, bb));
-    ExprId num = expr_sub(P, expr_mul(P, bb, f), c), eps = expr_const(P, PARALLEL_DEN);
-    ExprId safe = named_where(x, expr_sub(P, den, eps), den, eps, "parallel");
-    ExprId s0 = named_clamp(x, expr_div(P, num, safe), nha, ha, "a");
+    ExprId num = expr_sub(P, expr_mul(P, bb, f), c);
+    ExprId eps2 = expr_const(P, PARALLEL_DEN * PARALLEL_DEN), den2 = expr_mul(P, den, den);
+    ExprId top = expr_mul(P, num, den), bottom = expr_add(P, den2, eps2);
+    ExprId lines = expr_div(P, top, bottom);
+    ExprId s0 = named_clamp(x, lines, nha, ha, "a");
     ExprId tu = expr_add(P, expr_mul(P, bb, s0), f), nhb = expr_neg(P, hb);
     ExprId t = named_clamp(x, tu, nhb, hb, "b");
     ExprId s = named_clamp(x, expr_sub(P, expr_mul(P, bb, t), c), nha, ha, "a2");

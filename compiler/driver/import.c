@@ -717,7 +717,7 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
     if (name)
         fprintf(out, ", name: %s", name);
     int ct = m->geom_contype[g], ca = m->geom_conaffinity[g];
-    if (ct != 1 || ca != 1) /* MuJoCo's filters, for a spec's own `contact: all` */
+    if (name && (ct != 1 || ca != 1)) /* a pair's: MuJoCo's filters, for a `contact: all` */
         fprintf(out, ", contype: %d, conaffinity: %d", ct, ca);
     fputs(", size: [", out);
     for (int k = 0; k < nsize[t]; k++)

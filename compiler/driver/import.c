@@ -647,6 +647,24 @@ drawn(const mjModel *m, int g, int urdf_visuals)
     return 1;
 }
 
+/* A shape's ", pos: [...]" and ", quat: [...]", each where it is not 0
+ * and unturned. */
+static void
+put_placed(FILE *out, const double *pos, const double *quat)
+{
+    char a[NUM_MAX];
+    if (!is_zero3(pos)) {
+        fputs(", pos: ", out);
+        put_vec(out, pos);
+    }
+    if (quat[1] != 0 || quat[2] != 0 || quat[3] != 0) {
+        fputs(", quat: [", out);
+        for (int k = 0; k < 4; k++)
+            fprintf(out, "%s%s", k ? ", " : "", num(a, quat[k]));
+        fputs("]", out);
+    }
+}
+
 /* Geom g as a shape (spec.md's `shapes:`) at pos, turned by quat, after
  * sep: 0, or -1 where the page cannot draw it (a plane, a height field;
  * told in *u), a mesh drawn as the box that bounds it (MuJoCo's geom_size
@@ -679,16 +697,7 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
     int up = gq[1] * gq[3] + gq[0] * gq[2] == 0 && gq[2] * gq[3] - gq[0] * gq[1] == 0;
     if (t == mjGEOM_PLANE && name) { /* a contact's: the half-space below it */
         fprintf(out, "%s{type: plane, name: %s", sep, name);
-        if (!is_zero3(pos)) {
-            fputs(", pos: ", out);
-            put_vec(out, pos);
-        }
-        if (quat[1] != 0 || quat[2] != 0 || quat[3] != 0) {
-            fputs(", quat: [", out);
-            for (int k = 0; k < 4; k++)
-                fprintf(out, "%s%s", k ? ", " : "", num(a, quat[k]));
-            fputs("]", out);
-        }
+        put_placed(out, pos, quat);
         fputs("}", out);
         u->plane_floor |= up && quat[0] * quat[0] + quat[3] * quat[3] >
                                       quat[1] * quat[1] + quat[2] * quat[2];
@@ -723,16 +732,7 @@ put_shape(const mjModel *m, int g, const double *pos, const double *quat, const 
     for (int k = 0; k < nsize[t]; k++)
         fprintf(out, "%s%s", k ? ", " : "", num(a, size[k]));
     fputs("]", out);
-    if (!is_zero3(pos)) {
-        fputs(", pos: ", out);
-        put_vec(out, pos);
-    }
-    if (quat[1] != 0 || quat[2] != 0 || quat[3] != 0) {
-        fputs(", quat: [", out);
-        for (int k = 0; k < 4; k++)
-            fprintf(out, "%s%s", k ? ", " : "", num(a, quat[k]));
-        fputs("]", out);
-    }
+    put_placed(out, pos, quat);
     fputs(", rgba: [", out);
     for (int k = 0; k < 4; k++) {
         double c = round(1000 * (double)m->geom_rgba[4 * g + k]) / 1000;

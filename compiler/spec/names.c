@@ -372,6 +372,21 @@ spec_load_inputs(Loader *L, yaml_node_t *map)
  * WHAT", and "; did you mean 'y'?" when a name is close, else the list
  * of them (PLURAL) when it is short. */
 int
+spec_scalar_coordinate(Loader *L, yaml_node_t *n, const char *what)
+{
+    Spec *s = L->s;
+    const char **cands = arena_new_array(L->A, const char *, s->nq + 1);
+    for (int i = 0; i < s->nq; i++)
+        cands[i] = s->coord[i].name;
+    int q = spec_find_in(L, n, "coordinate", "coordinates", 1, cands, s->nq);
+    if (L->quat_of && L->quat_of[q])
+        diag_error(spec_loc(L, n), "'%s' is an Euler parameter of %s: %s acts on a "
+                   "coordinate that is an angle or a length", s->coord[q].name,
+                   L->quat_of[q], what);
+    return q;
+}
+
+int
 spec_find_in(Loader *L, yaml_node_t *n, const char *what, const char *plural, int is_not,
         const char **cands, int count)
 {

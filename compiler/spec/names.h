@@ -81,6 +81,9 @@ int spec_frame_or_point(Loader *L, const char *name, NameKind want, SrcLoc at);
  * "unknown WHAT 'x'" (is_not: "'x' is not a WHAT") and what was meant. */
 int spec_find_in(Loader *L, yaml_node_t *n, const char *what, const char *plural, int is_not,
                  const char **cands, int count);
+/* The coordinate node n names, an angle or a length (not an Euler
+ * parameter), for `what` that acts on it ("a limit"); else an error. */
+int spec_scalar_coordinate(Loader *L, yaml_node_t *n, const char *what);
 
 /* An expression at n, which may depend on `allow`; a finite constant; a
  * vector of 2 or 3 expressions (its dimension); a vector in world

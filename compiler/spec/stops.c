@@ -64,14 +64,8 @@ spec_load_stop(Loader *L, yaml_node_t *map, yaml_node_t *v, const char *owner, S
 {
     Spec *s = L->s;
     ExprPool *P = L->P;
-    const char **cands = arena_new_array(L->A, const char *, s->nq + 1);
-    for (int i = 0; i < s->nq; i++)
-        cands[i] = s->coord[i].name;
-    int q = spec_find_in(L, v, "coordinate", "coordinates", 1, cands, s->nq);
+    int q = spec_scalar_coordinate(L, v, "a limit");
     const char *name = s->coord[q].name;
-    if (L->quat_of && L->quat_of[q])
-        diag_error(spec_loc(L, v), "'%s' is an Euler parameter of %s: a limit acts on a "
-                   "coordinate that is an angle or a length", name, L->quat_of[q]);
     yaml_node_t *r = spec_lookup(L, map, "range"), *kn = spec_lookup(L, map, "stiffness");
     yaml_node_t *cn = spec_lookup(L, map, "damping");
     if (!r)

@@ -120,7 +120,11 @@ if [ -e "$humanoid" ]; then
   "$eomc" import "$humanoid" -o "$tmp/humanoid.yaml" 2> /dev/null
   sets=$(sed -n '/^inputs:/,/^[a-z]/s/^  \(u_[a-z_0-9]*\):.*/--set \1=1/p' "$tmp/humanoid.yaml")
   # shellcheck disable=SC2086 # $sets is a list of options
-  "$eomc" run "$tmp/humanoid.yaml" --t-end 0.5 $sets --set u_left_knee=-1 -o "$tmp/h.csv" 2> "$tmp/err"; st=$?
+  # (in the air: its contacts with the floor off, the scene's other effects on)
+  effs=$(sed -n 's/^scene: {effects: \[\([^]]*\)\].*/\1/p' "$tmp/humanoid.yaml" | tr -d ' ' |
+    tr ',' '\n' | grep -vx contacts | paste -sd, -)
+  "$eomc" run "$tmp/humanoid.yaml" --effects "$effs" --t-end 0.5 $sets --set u_left_knee=-1 \
+    -o "$tmp/h.csv" 2> "$tmp/err"; st=$?
   past=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "right_knee") r = i; else if ($i == "left_knee") l = i; next }
     { a = $r - 0.03490658503988659; if (a > mr) mr = a                # right: pushed past 2 degrees
       b = -2.792526803190927 - $l; if (b > ml) ml = b }               # left: past -160 degrees

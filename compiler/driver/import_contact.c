@@ -34,6 +34,7 @@
  */
 #include "import_contact.h"
 
+#ifdef EOMC_HAVE_MUJOCO
 #include "base/arena.h"
 
 #include <math.h>
@@ -238,3 +239,7 @@ import_contacts_free(ImportContacts *ic)
     free(ic->skip);
     *ic = (ImportContacts){0};
 }
+
+#else
+typedef int import_contact_unused; /* a translation unit has a declaration */
+#endif

@@ -7,6 +7,7 @@
 #ifndef EOMC_IMPORT_CONTACT_H
 #define EOMC_IMPORT_CONTACT_H
 
+#ifdef EOMC_HAVE_MUJOCO /* (import.c's MuJoCo part, as it is built with it) */
 #include <mujoco/mujoco.h>
 
 /* A pair eomc takes: geoms g1 and g2 (g1's type first in MuJoCo's order:
@@ -35,4 +36,5 @@ typedef struct ImportContacts {
 void import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *ic);
 void import_contacts_free(ImportContacts *ic);
 
+#endif
 #endif

@@ -41,6 +41,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The pairs a model's code holds at most before those between two free
+ * trees are dropped: each is some hundred nodes of the DAG, and 22
+ * humanoids' 83 000 took the compiler past 17 GB. */
+enum { MAX_PAIRS = 4096 };
+
 /* NULL where eomc's contact takes geom types t1 <= t2 (MuJoCo's order:
  * plane, hfield, sphere, capsule, ellipsoid, cylinder, box, mesh), else why
  * not (docs/spec.md's table). */
@@ -224,6 +229,23 @@ import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *
                             fmax(m->geom_gap[g1], m->geom_gap[g2]);
             consider(m, d, written, g1, g2, solref, condim, margin, J, ic, &cap, &skipcap);
         }
+    /* Pairs between two free trees (22 humanoids: 83 000 of them) are each
+     * code of the model's: past MAX_PAIRS they are dropped, by name, and
+     * the pairs with the world and within a tree kept. */
+    if (ic->npair > MAX_PAIRS) {
+        int kept = 0;
+        for (int i = 0; i < ic->npair; i++) {
+            ImportPair *p = &ic->pair[i];
+            int r1 = m->body_rootid[m->geom_bodyid[p->g1]], r2 = m->body_rootid[m->geom_bodyid[p->g2]];
+            if (r1 != 0 && r2 != 0 && r1 != r2)
+                add_skip(ic, &skipcap, p->g1, p->g2, "two free bodies' trees, beyond the "
+                         "4096 pairs the code of a model holds (eomc chooses its pairs when it "
+                         "compiles; MuJoCo, at each step)");
+            else
+                ic->pair[kept++] = *p;
+        }
+        ic->npair = kept;
+    }
     for (int p = 0; p < m->npair && m->opt.collision != mjCOL_DYNAMIC; p++)
         consider(m, d, written, m->pair_geom1[p], m->pair_geom2[p],
                  m->pair_solref + mjNREF * p, m->pair_dim[p],

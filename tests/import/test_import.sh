@@ -83,6 +83,11 @@ for model in $models; do
   # shellcheck disable=SC2086 # $opts: none, or one option
   "$eomc" import "$model" $opts -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports${opts:+ $opts} ($(head -c 200 "$tmp/err"))"
+  # MuJoCo is run with its contacts off (mj_accel.c): the spec without its
+  # effect contacts (the other tests of contacts: test_import_contact.sh),
+  # which for 22 humanoids is 3 500 pairs the compiler would build
+  sed -i -e '/^  contacts:$/,/^[^ ]/{/^  contacts:$/d;/^    - /d}' \
+    -e 's/^\(scene: {effects: \[.*\), contacts\]/\1]/' "$tmp/$base.yaml"
   coords=$(sed -n 's/^coordinates: \[\(.*\)\]/\1/p' "$tmp/$base.yaml" | tr -d ',')
   # mj_accel.c turns MuJoCo's contacts off: eomc's effect contacts too (the
   # scene's effects where it lists them, else every effect), and friction

@@ -135,13 +135,7 @@ effective_mass(const mjModel *m, mjData *d, int g1, int g2, double *J, double *M
         J[i] -= J2[i];
     mj_solveM(m, d, MJ, J, 3); /* M^-1 J^T, row by row */
     double W[9];
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) {
-            double s = 0;
-            for (int i = 0; i < nv; i++)
-                s += J[r * nv + i] * MJ[c * nv + i];
-            W[3 * r + c] = s;
-        }
+    mju_mulMatMatT(W, J, MJ, 3, nv, 3);
     double a = 0;
     if (m->geom_type[g1] == mjGEOM_PLANE) {
         const double *R = d->geom_xmat + 9 * g1, n[3] = {R[2], R[5], R[8]};

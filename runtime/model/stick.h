@@ -93,24 +93,22 @@ STICK_(any)(const STICK_(Work) *w, const STICK_REAL *u)
     return 0;
 }
 
-/* The item whose stick switch is mode k, or -1. */
-STICK_API int
-STICK_(item_stick)(const STICK_(Work) *w, int k)
+/* The item whose switch of the list modes (fric_stick, fric_slip) is
+ * mode k, or -1. */
+static int
+STICK_(item_of)(const STICK_(Work) *w, const int *modes, int k)
 {
     for (int j = 0; j < w->nf; j++)
-        if (w->m->fric_stick[j] == k)
+        if (modes[j] == k)
             return j;
     return -1;
 }
 
-/* The item whose slip switch is mode k, or -1. */
-static int
-STICK_(item_slip)(const STICK_(Work) *w, int k)
+/* The item whose stick switch is mode k, or -1. */
+STICK_API int
+STICK_(item_stick)(const STICK_(Work) *w, int k)
 {
-    for (int j = 0; j < w->nf; j++)
-        if (w->m->fric_slip[j] == k)
-            return j;
-    return -1;
+    return STICK_(item_of)(w, w->m->fric_stick, k);
 }
 
 /* The bounds F at (t, q, v); STICK_NEGATIVE (bad: the item) where one
@@ -304,7 +302,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
 {
     const eomc_model *m = w->m;
     STICK_REAL *a = w->acc;
-    int j = STICK_(item_slip)(w, k), rc;
+    int j = STICK_(item_of)(w, w->m->fric_slip, k), rc;
     *stuck = -1;
     if (j >= 0 && !STICK_(stuck)(w, u, j)) {
         int s = m->fric_speed[j];

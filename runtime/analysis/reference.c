@@ -812,6 +812,8 @@ keep_switches(eomc_reference *ref, const Ref *r)
     if (!ref->sw_t || !ref->sw_k || !ref->sw_sens)
         return -1;
     ref->nswitch = n;
+    if (n == 0) /* refsw's arrays may be NULL then, which memcpy may not take */
+        return 0;
     memcpy(ref->sw_t, refsw_times(r->sw), (size_t)n * sizeof *ref->sw_t);
     memcpy(ref->sw_k, refsw_which(r->sw), (size_t)n * sizeof *ref->sw_k);
     memcpy(ref->sw_sens, refsw_sens(r->sw), (size_t)n * N * sizeof *ref->sw_sens);

@@ -110,16 +110,19 @@ print_powi(const char *x, int n, char *rhs, size_t len)
     }
 }
 
-/* After node id's statement: its copy for later parts. */
+/* After node id's statement: its copy for later parts (ind: the
+ * statements' indentation). */
 static void
-print_share(Printer *pr, ExprId id)
+print_share(Printer *pr, ExprId id, const char *ind)
 {
     if (pr->slot[id] >= 0)
-        emit_line(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
+        emit_line(pr, "%ss[%d] = w%d;", ind, pr->slot[id], pr->temp[id]);
 }
 
+/* Node id's statement, indented by ind: its temporary declared here, or
+ * (set) assigned, declared before the block it is in. */
 static void
-print_node(Printer *pr, ExprId id)
+print_node(Printer *pr, ExprId id, const char *ind, int set)
 {
     const ExprNode *nd = expr_node(pr->P, id);
     char ba[200], bb[200], rhs[512];
@@ -154,15 +157,21 @@ print_node(Printer *pr, ExprId id)
         else
             snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
     }
-    emit_line(pr, "    const eomc_real w%d = %s;", pr->temp[id], rhs);
-    print_share(pr, id);
+    emit_line(pr, "%s%sw%d = %s;", ind, set ? "" : "const eomc_real ", pr->temp[id], rhs);
+    print_share(pr, id, ind);
 }
 
 /* ---- parts ---- */
 
+/* A lazy block (lower_schedule.h): nodes start .. mid-1 run where switch
+ * `mode` is `branch`, mid .. end-1 where it is not. */
+typedef struct Block {
+    int start, mid, end, mode, branch;
+} Block;
+
 /* The schedule (lower_schedule) as the printer walks it: the nodes
  * numbered in order (their temporaries), each store after so many of
- * them, and the parts it is cut in. */
+ * them, the lazy blocks, and the parts it is cut in. */
 typedef struct Sched {
     const LowSched *low;
     int copies;    /* the copies' loop comes first */
@@ -174,6 +183,10 @@ typedef struct Sched {
     int *pstart;   /* per part: first node; pstart[nparts] = n */
     int *ostart;   /* per part: first store; ostart[nparts] = nout */
     int nparts, nslots;
+    Block *block;
+    int nblock;
+    int *blk;      /* per node: its block, or -1 */
+    unsigned char *outward; /* per node in a block: read outside it (declared before) */
 } Sched;
 
 /* A value crossing into another part gets a slot in s[]. */
@@ -185,6 +198,25 @@ share(Printer *pr, Sched *S, ExprId e, int part)
         pr->slot[e] = S->nslots++;
 }
 
+/* The nodes of a block that a node of its part outside it reads: their
+ * temporaries are declared before the block (a later part reads s[]). */
+static void
+find_outward(Printer *pr, Sched *S)
+{
+    for (int k = 0; k < S->n; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < expr_op_arity[nd->op]; j++) {
+            if (is_input(pr, ops[j]))
+                continue;
+            int o = pr->temp[ops[j]];
+            if (S->blk[o] >= 0 && S->blk[o] != S->blk[k] &&
+                pr->part[ops[j]] == pr->part[S->node[k]])
+                S->outward[o] = 1;
+        }
+    }
+}
+
 /* Number the list's nodes, and cut it in parts of at most
  * LOWER_PART_SIZE nodes. */
 static void
@@ -194,8 +226,12 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
     S->node = xmalloc(((size_t)low->nnode + 1) * sizeof *S->node);
     S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
     S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
-    S->n = S->nparts = S->nslots = S->copies = S->nfill = 0;
-    int nst = 0;
+    S->block = xmalloc(((size_t)low->nnode + 1) * sizeof *S->block);
+    S->blk = xmalloc(((size_t)low->nnode + 1) * sizeof *S->blk);
+    S->outward = xmalloc((size_t)low->nnode + 1);
+    memset(S->outward, 0, (size_t)low->nnode + 1);
+    S->n = S->nparts = S->nslots = S->copies = S->nfill = S->nblock = 0;
+    int nst = 0, in = 0;
     for (int k = 0; k < low->nstep; k++) {
         const LowStep *st = &low->step[k];
         switch (st->kind) {
@@ -207,12 +243,28 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             break;
         case LOW_STEP_NODE:
             pr->temp[st->id] = S->n;
+            S->blk[S->n] = in ? S->nblock : -1;
             S->node[S->n++] = st->id;
             break;
         case LOW_STEP_STORE:
             S->order[nst] = st->i;
             S->after[nst++] = S->n;
             break;
+        case LOW_STEP_IF:
+            S->block[S->nblock] = (Block){S->n, -1, -1, st->i, st->branch};
+            in = 1;
+            break;
+        case LOW_STEP_ELSE:
+            S->block[S->nblock].mid = S->n;
+            break;
+        case LOW_STEP_END: {
+            Block *b = &S->block[S->nblock++];
+            b->end = S->n;
+            if (b->mid < 0)
+                b->mid = b->end;
+            in = 0;
+            break;
+        }
         }
     }
     if (low->whole) {
@@ -222,6 +274,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         S->pstart[0] = S->ostart[0] = 0;
         S->pstart[1] = S->n;
         S->ostart[1] = nout;
+        find_outward(pr, S);
         return;
     }
     /* Cut after a store once a part has LOWER_PART_SIZE nodes, and inside
@@ -236,6 +289,8 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             int cut = S->pstart[S->nparts] + LOWER_PART_SIZE;
             if (cut > low->angles && cut < low->angles_end) /* not inside the one call */
                 cut = low->angles_end;
+            if (S->blk[cut] >= 0 && S->block[S->blk[cut]].start < cut) /* nor a block */
+                cut = S->block[S->blk[cut]].end;
             S->nparts++;
             S->pstart[S->nparts] = cut;
             S->ostart[S->nparts] = j;
@@ -265,6 +320,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         for (int j = S->ostart[p]; j < S->ostart[p + 1]; j++)
             share(pr, S, out[S->order[j]].e, p);
     }
+    find_outward(pr, S);
 }
 
 /* ---- printing ---- */
@@ -312,7 +368,7 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
         const ExprNode *nd = expr_node(pr->P, S->node[k]);
         int ar = expr_op_arity[nd->op];
-        if (nd->op == EXPR_SELECT) /* its mode is read from u (print_node) */
+        if (nd->op == EXPR_SELECT || S->blk[k] >= 0) /* a mode is read from u */
             pr->used |= 1u << SRC_U;
         if (ar >= 1)
             mark_leaf(pr, nd->a, &ls);
@@ -374,18 +430,60 @@ print_angles(Printer *pr, const Sched *S)
         int a = low->angle_of[k - low->angles];
         emit_line(pr, "    const eomc_real w%d = ang_%s[%d];", pr->temp[id],
                 a % 2 ? "cos" : "sin", a / 2);
-        print_share(pr, id);
+        print_share(pr, id, "    ");
     }
     return low->angles_end;
 }
 
-/* Node k's statement, or the angles' call where they start; the next k. */
+/* A lazy block: the temporaries read after it declared first (set to
+ * 0, never read in the mode that skips them: a defined value all the
+ * same), then `if (mode) { ... } else { ... }`, commented with the
+ * switch's name.  Returns the node after it. */
+static int
+print_block(Printer *pr, const Sched *S, const Block *b)
+{
+    char name[160], decl[WRAP + 40] = "";
+    const char *sw = expr_switch_name(pr->P, b->mode);
+    int slot = pr->md->mode_slot[b->mode];
+    if (sw && !strstr(sw, "*/") && strlen(sw) < sizeof name)
+        snprintf(name, sizeof name, "%s", sw);
+    else
+        snprintf(name, sizeof name, "switch %d", slot);
+    for (int k = b->start; k < b->end; k++) {
+        if (!S->outward[k])
+            continue;
+        char w[40];
+        snprintf(w, sizeof w, "w%d = 0.0", pr->temp[S->node[k]]);
+        if (decl[0] && strlen(decl) + strlen(w) + 2 > WRAP) {
+            emit_line(pr, "%s;", decl);
+            decl[0] = '\0';
+        }
+        size_t len = strlen(decl);
+        snprintf(decl + len, sizeof decl - len, "%s%s", len ? ", " : "    eomc_real ", w);
+    }
+    if (decl[0])
+        emit_line(pr, "%s;", decl);
+    emit_line(pr, "    if (u[%d] %s 0.0) { /* %s %s */", pr->md->nu + slot,
+              b->branch ? "!=" : "==", name, b->branch ? "on" : "off");
+    for (int k = b->start; k < b->end; k++) {
+        if (k == b->mid)
+            emit_line(pr, "    } else { /* %s %s */", name, b->branch ? "off" : "on");
+        print_node(pr, S->node[k], "        ", S->outward[k]);
+    }
+    emit_line(pr, "    }");
+    return b->end;
+}
+
+/* Node k's statement, the angles' call where they start, or the lazy
+ * block that starts at k; the next k. */
 static int
 print_step(Printer *pr, const Sched *S, int k)
 {
     if (k == S->low->angles && S->low->angles < S->low->angles_end)
         return print_angles(pr, S);
-    print_node(pr, S->node[k]);
+    if (S->blk[k] >= 0)
+        return print_block(pr, S, &S->block[S->blk[k]]);
+    print_node(pr, S->node[k], "    ", 0);
     return k + 1;
 }
 
@@ -596,7 +694,7 @@ emit_function(Printer *pr, const LowFunc *lf)
     pr->slot = xmalloc(size * sizeof *pr->slot);
     for (size_t i = 0; i < size; i++)
         pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
-    LowSched *low = lower_schedule(pr->P, lf);
+    LowSched *low = lower_schedule(pr->P, lf, !pr->L->eager_branches);
     Sched S;
     schedule(pr, &S, low, nout, out);
     const char *nm = pr->md->name;
@@ -668,6 +766,9 @@ emit_function(Printer *pr, const LowFunc *lf)
     free(S.order);
     free(S.pstart);
     free(S.ostart);
+    free(S.block);
+    free(S.blk);
+    free(S.outward);
     free(pr->temp);
     free(pr->part);
     free(pr->slot);

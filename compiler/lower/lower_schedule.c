@@ -8,10 +8,14 @@
  * first (schedule_angles); then, in a function printed whole, the nodes
  * are reordered by when they could start on a core that runs them out of
  * order (order_by_start).  Each output is stored as soon as its value
- * exists.  All cleverness is in the DAG; this is a plain loop.
+ * exists.  Last, the nodes only one branch of a switch needs are moved
+ * into blocks that run in that mode alone (guards, flush): a contact's
+ * whole share of the forces is computed only while its shapes are near.
+ * All cleverness is in the DAG; this is a plain loop.
  */
 #include "lower_schedule.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -281,11 +285,130 @@ order_by_start(Build *b)
 static void
 add_step(LowSched *S, int kind, ExprId id, int i)
 {
-    S->step[S->nstep++] = (LowStep){kind, id, i};
+    S->step[S->nstep++] = (LowStep){kind, id, i, 0};
+}
+
+/* ---- lazy branches ---- */
+
+/* A node's guard: G_TOP, computed in every mode, or 2 k + branch: each
+ * of its uses lies under that branch of switch k's SELECTs. */
+enum { G_UNSET = -2, G_TOP = -1 };
+
+/* Each scheduled node's guard, from its uses: the outputs' and the
+ * angles' (computed at once, first) are G_TOP; the operand in branch a
+ * (b) of a SELECT on k that is G_TOP is 2 k + 1 (2 k); any other
+ * operand takes its user's guard; uses under different guards make it
+ * G_TOP.  In reverse order, every use of a node is seen before it.
+ * lazy 0: all G_TOP. */
+static int *
+guards(const Build *b, int lazy)
+{
+    ExprPool *P = b->P;
+    int *g = xmalloc(expr_pool_size(P) * sizeof *g);
+    for (int k = 0; k < b->n; k++)
+        g[b->node[k]] = lazy ? G_UNSET : G_TOP;
+    for (int i = 0; i < b->f->nout; i++)
+        if (!is_input(b, b->f->out[i].e))
+            g[b->f->out[i].e] = G_TOP;
+    for (int k = b->n - 1; k >= 0; k--) {
+        ExprId e = b->node[k];
+        const ExprNode *nd = expr_node(P, e);
+        if (k < b->S->angles_end || g[e] == G_UNSET)
+            g[e] = G_TOP;
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < expr_op_arity[nd->op]; j++) {
+            ExprId o = ops[j];
+            if (is_input(b, o))
+                continue;
+            int use = g[e];
+            if (nd->op == EXPR_SELECT && use == G_TOP)
+                use = 2 * expr_select_mode(P, e) + (j == 0);
+            g[o] = g[o] == G_UNSET || g[o] == use ? use : G_TOP;
+        }
+    }
+    return g;
+}
+
+/* The steps being listed: the guarded nodes deferred, per switch, in
+ * schedule order. */
+typedef struct Lazy {
+    const Build *b;
+    const int *g;
+    unsigned char *done; /* per node id: listed */
+    struct Pending {
+        ExprId *id;
+        int n, cap;
+    } *pend; /* per switch */
+} Lazy;
+
+static int
+ready(const Lazy *z, ExprId e)
+{
+    const ExprNode *nd = expr_node(z->b->P, e);
+    ExprId ops[2] = {nd->a, nd->b};
+    for (int j = 0; j < expr_op_arity[nd->op]; j++)
+        if (!z->done[ops[j]] && !is_input(z->b, ops[j]))
+            return 0;
+    return 1;
+}
+
+/* Switch k's deferred nodes that can run now, as one block: those of
+ * its on branch, then (ELSE) its off branch's.  A node whose operands
+ * are not all computed yet waits for a later SELECT on k (the one that
+ * needs it comes after them). */
+static void
+flush(Lazy *z, int k)
+{
+    LowSched *S = z->b->S;
+    struct Pending *p = &z->pend[k];
+    int opened = 0;
+    for (int br = 1; br >= 0; br--) {
+        int first = 1;
+        for (int j = 0; j < p->n; j++) {
+            ExprId e = p->id[j];
+            if (e == EXPR_NONE || (z->g[e] & 1) != br || !ready(z, e))
+                continue;
+            if (first && !opened)
+                S->step[S->nstep++] = (LowStep){LOW_STEP_IF, EXPR_NONE, k, br};
+            else if (first)
+                add_step(S, LOW_STEP_ELSE, EXPR_NONE, k);
+            first = 0, opened = 1;
+            add_step(S, LOW_STEP_NODE, e, 0);
+            z->done[e] = 1;
+            p->id[j] = EXPR_NONE;
+        }
+    }
+    if (opened)
+        add_step(S, LOW_STEP_END, EXPR_NONE, k);
+    int n = 0;
+    for (int j = 0; j < p->n; j++)
+        if (p->id[j] != EXPR_NONE)
+            p->id[n++] = p->id[j];
+    p->n = n;
+}
+
+/* Node e in schedule order: deferred if guarded, else listed, after the
+ * block of what it takes if it is a SELECT. */
+static void
+lazy_node(Lazy *z, ExprId e)
+{
+    int g = z->g[e];
+    if (g >= 0) {
+        struct Pending *p = &z->pend[g / 2];
+        if (p->n == p->cap)
+            p->id = xrealloc(p->id, (size_t)(p->cap = p->cap ? 2 * p->cap : 16) * sizeof *p->id);
+        p->id[p->n++] = e;
+        return;
+    }
+    const ExprNode *nd = expr_node(z->b->P, e);
+    if (nd->op == EXPR_SELECT && z->pend[expr_select_mode(z->b->P, e)].n)
+        flush(z, expr_select_mode(z->b->P, e));
+    add_step(z->b->S, LOW_STEP_NODE, e, 0);
+    z->done[e] = 1;
 }
 
 LowSched *
-lower_schedule(ExprPool *P, const LowFunc *f)
+lower_schedule(ExprPool *P, const LowFunc *f, int lazy)
 {
     size_t size = expr_pool_size(P);
     int nout = f->nout;
@@ -305,8 +428,8 @@ lower_schedule(ExprPool *P, const LowFunc *f)
         order_by_start(&b);
     S->nnode = b.n;
     /* the copies' loop, the fills, then the nodes with each store after
-     * the nodes listed before it */
-    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + (size_t)b.n + (size_t)nout) *
+     * the nodes listed before it (and up to 3 block steps per node) */
+    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + 4 * (size_t)b.n + (size_t)nout) *
                       sizeof *S->step);
     if (f->copy)
         add_step(S, LOW_STEP_COPIES, EXPR_NONE, 0);
@@ -315,15 +438,27 @@ lower_schedule(ExprPool *P, const LowFunc *f)
     for (int k = 0; k < a.n - a.nin; k++)
         if (f->fill[k])
             add_step(S, LOW_STEP_FILL, EXPR_NONE, k);
+    int nsw = expr_nswitch(P);
+    Lazy z = {&b, guards(&b, lazy), xmalloc(size), xmalloc(((size_t)nsw + 1) * sizeof *z.pend)};
+    memset(z.done, 0, size);
+    memset(z.pend, 0, ((size_t)nsw + 1) * sizeof *z.pend);
     int k = 0;
     for (int j = 0; j < nout; j++) {
         int i = b.order ? b.order[j] : j;
         for (; k < b.after[i]; k++)
-            add_step(S, LOW_STEP_NODE, b.node[k], 0);
+            lazy_node(&z, b.node[k]);
         add_step(S, LOW_STEP_STORE, EXPR_NONE, i);
     }
     for (; k < b.n; k++)
-        add_step(S, LOW_STEP_NODE, b.node[k], 0);
+        lazy_node(&z, b.node[k]);
+    for (int j = 0; j < nsw; j++) {
+        if (z.pend[j].n) /* a guarded node no SELECT took (guards: none) */
+            diag_unreachable();
+        free(z.pend[j].id);
+    }
+    free(z.pend);
+    free(z.done);
+    free((int *)z.g);
     free(b.node);
     free(b.place);
     free(b.after);
@@ -423,12 +558,27 @@ eval_inputs(ExprPool *P, const LowFunc *f, const LowSched *S, const ExprEnv *env
 void
 lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
 {
-    LowSched *S = lower_schedule(P, f);
-    double *v = xmalloc(expr_pool_size(P) * sizeof *v); /* by node id */
+    LowSched *S = lower_schedule(P, f, 1);
+    size_t size = expr_pool_size(P);
+    double *v = xmalloc(size * sizeof *v); /* by node id; a block not run leaves NaN */
+    for (size_t i = 0; i < size; i++)
+        v[i] = NAN;
     eval_inputs(P, f, S, env, v);
+    int skip = 0; /* inside a block's branch that the mode does not take */
     for (int k = 0; k < S->nstep; k++) {
         const LowStep *st = &S->step[k];
+        if (skip && st->kind == LOW_STEP_NODE)
+            continue;
         switch (st->kind) {
+        case LOW_STEP_IF: /* no modes (NULL): no branch, as SELECT's NaN */
+            skip = !env->mode || (env->mode[st->i] != 0.0) != st->branch;
+            break;
+        case LOW_STEP_ELSE:
+            skip = !env->mode || !skip;
+            break;
+        case LOW_STEP_END:
+            skip = 0;
+            break;
         case LOW_STEP_COPIES:
             eval_copies(P, f, env, outs);
             break;

@@ -6,11 +6,17 @@
  *   the nodes it reads, each output stored after its value;
  *   lower_eval, which runs that list node by node (the list the C is
  *   printed from), stores in every slot the very bits expr_eval gives on
- *   the DAG: the same arithmetic, whatever the order.
+ *   the DAG: the same arithmetic, whatever the order; with switches, in
+ *   each of four patterns of the modes (all off, all on, alternating);
+ *   a value computed in a lazy block (a node only one branch of a
+ *   switch's SELECTs needs) is read only in that branch: by a node of a
+ *   block of the same mode and branch, or as that branch of a SELECT on
+ *   that switch.
  * The models: a pendulum, the 5-link chain (sines and cosines computed
  * together), the Cartesian pendulum (a constraint, multipliers), the
  * rolling disk (nonholonomic), the Whipple bicycle (functions past
- * LOWER_PART_SIZE nodes, listed depth-first); each with the unrolled and
+ * LOWER_PART_SIZE nodes, listed depth-first), contact scenes (the
+ * switches of contact and of step and max); each with the unrolled and
  * the seeded Jacobian (shared[] values).
  */
 #include "check.h"
@@ -44,31 +50,54 @@ lowered(const char *path, int jacobian)
                        P, D);
 }
 
-/* Each node once, after the nodes it reads; each store after its value. */
+static int nblocks; /* lazy blocks in the schedules */
+
+/* Each node once, after the nodes it reads; each store after its value;
+ * a value of a lazy block read only where its mode and branch hold. */
 static int
 topological(const LowFunc *f, const LowSched *S)
 {
     size_t size = expr_pool_size(P);
     unsigned char *done = calloc(size, 1);
-    int ok = 1, nnode = 0;
+    int *where = malloc(size * sizeof *where); /* 2 mode + branch of its block, or -1 */
+    int ok = 1, nnode = 0, in = -1;
     for (int k = 0; k < S->nstep && ok; k++) {
         const LowStep *st = &S->step[k];
-        if (st->kind == LOW_STEP_NODE) {
+        if (st->kind == LOW_STEP_IF) {
+            ok = in < 0;
+            in = 2 * st->i + st->branch;
+            nblocks++;
+        } else if (st->kind == LOW_STEP_ELSE) {
+            ok = in >= 0;
+            in ^= 1;
+        } else if (st->kind == LOW_STEP_END) {
+            ok = in >= 0;
+            in = -1;
+        } else if (st->kind == LOW_STEP_NODE) {
             const ExprNode *nd = expr_node(P, st->id);
             int ar = expr_op_arity[nd->op];
             ExprId ops[2] = {nd->a, nd->b};
             ok = lower_computed(P, f, st->id) && !done[st->id];
-            for (int j = 0; j < ar && ok; j++)
+            for (int j = 0; j < ar && ok; j++) {
                 ok = done[ops[j]] || !lower_computed(P, f, ops[j]);
+                if (!ok || !lower_computed(P, f, ops[j]) || where[ops[j]] < 0)
+                    continue;
+                int taken = nd->op == EXPR_SELECT && in < 0 &&
+                            where[ops[j]] == 2 * expr_select_mode(P, st->id) + (j == 0);
+                ok = taken || where[ops[j]] == in;
+            }
             done[st->id] = 1;
+            where[st->id] = in;
             nnode++;
         } else if (st->kind == LOW_STEP_STORE) {
             ExprId e = f->out[st->i].e;
-            ok = done[e] || !lower_computed(P, f, e);
+            ok = in < 0 && (done[e] || !lower_computed(P, f, e));
+            ok = ok && (!lower_computed(P, f, e) || where[e] < 0);
         }
     }
+    free(where);
     free(done);
-    return ok && nnode == S->nnode;
+    return ok && in < 0 && nnode == S->nnode;
 }
 
 /* Distinct values, none of them special: a state no derivation is
@@ -81,9 +110,10 @@ fill_values(double *x, int n, double base)
 }
 
 /* lower_eval's slots against expr_eval's, bit for bit: f's own outputs,
- * and its first copy's (unshifted) if it has copies. */
+ * and its first copy's (unshifted) if it has copies; mode: the switches'
+ * modes (NULL: none). */
 static int
-same_bits(const Lowered *L, const LowFunc *f)
+same_bits(const Lowered *L, const LowFunc *f, const double *mode)
 {
     const LowModel *md = &L->model;
     int n = md->nq + 1, nu = md->nu + 1, nc = md->nc + 1;
@@ -97,7 +127,7 @@ same_bits(const Lowered *L, const LowFunc *f)
         p[k] = md->param[k].value;
     fill_values(u, nu, 0.45);
     fill_values(lam, nc, -0.25);
-    ExprEnv env = {0.8, {q[0], q[1], q[2], q[3]}, p, u, {seed[0], seed[1], seed[2]}, lam, NULL};
+    ExprEnv env = {0.8, {q[0], q[1], q[2], q[3]}, p, u, {seed[0], seed[1], seed[2]}, lam, mode};
     LowArgs a;
     lower_args(f->sig, &a);
     double *out[LOW_MAX_ARGS];
@@ -141,13 +171,22 @@ test_model(const char *path, int jacobian, const char *how)
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *f = L->func[k];
         for (const LowFunc *g = f; g; g = g->copy) {
-            LowSched *S = lower_schedule(P, g);
+            LowSched *S = lower_schedule(P, g, 1);
             ntopo += topological(g, S);
             ncut += !S->whole;
             nsched++;
             lower_sched_free(S);
         }
-        nsame += same_bits(L, f);
+        /* the modes: none, or each switch off, on, then alternating */
+        int nsw = expr_nswitch(P), same = 1;
+        double *mode = malloc(((size_t)nsw + 1) * sizeof *mode);
+        for (int pat = 0; pat < (nsw ? 4 : 1); pat++) {
+            for (int j = 0; j < nsw; j++)
+                mode[j] = pat == 1 ? 1 : pat == 2 ? j % 2 : pat == 3 ? (j + 1) % 2 : 0;
+            same &= same_bits(L, f, nsw ? mode : NULL);
+        }
+        free(mode);
+        nsame += same;
         nfunc++;
     }
     CHECK(ntopo == nsched, "%s (%s): every schedule in topological order", path, how);
@@ -166,6 +205,7 @@ main(int argc, char **argv)
         test_model(argv[i], LOWER_JACOBIAN_SEEDED, "seeded");
     }
     CHECK(ncut > 0, "%d schedules of functions past LOWER_PART_SIZE nodes (depth-first)", ncut);
+    CHECK(nblocks > 0, "%d lazy blocks in the schedules", nblocks);
     diff_free(D);
     expr_pool_free(P);
     arena_free(A);

@@ -163,10 +163,11 @@ print_node(Printer *pr, ExprId id, const char *ind, int set)
 
 /* ---- parts ---- */
 
-/* A lazy block (lower_schedule.h): nodes start .. mid-1 run where switch
- * `mode` is `branch`, mid .. end-1 where it is not. */
+/* A lazy block (lower_schedule.h): nodes start .. mid-1 run where any
+ * of its tests holds, switch k in mode b (2 k + b, at Sched.cond[cond
+ * ...]), mid .. end-1 (a test alone) where it fails. */
 typedef struct Block {
-    int start, mid, end, mode, branch;
+    int start, mid, end, cond, ncond;
 } Block;
 
 /* The schedule (lower_schedule) as the printer walks it: the nodes
@@ -185,6 +186,7 @@ typedef struct Sched {
     int nparts, nslots;
     Block *block;
     int nblock;
+    int *cond; /* the blocks' tests */
     int *blk;      /* per node: its block, or -1 */
     unsigned char *outward; /* per node in a block: read outside it (declared before) */
 } Sched;
@@ -227,11 +229,12 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
     S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
     S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
     S->block = xmalloc(((size_t)low->nnode + 1) * sizeof *S->block);
+    S->cond = xmalloc(((size_t)low->nstep + 1) * sizeof *S->cond);
     S->blk = xmalloc(((size_t)low->nnode + 1) * sizeof *S->blk);
     S->outward = xmalloc((size_t)low->nnode + 1);
     memset(S->outward, 0, (size_t)low->nnode + 1);
     S->n = S->nparts = S->nslots = S->copies = S->nfill = S->nblock = 0;
-    int nst = 0, in = 0;
+    int nst = 0, in = 0, ncond = 0;
     for (int k = 0; k < low->nstep; k++) {
         const LowStep *st = &low->step[k];
         switch (st->kind) {
@@ -251,8 +254,14 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             S->after[nst++] = S->n;
             break;
         case LOW_STEP_IF:
-            S->block[S->nblock] = (Block){S->n, -1, -1, st->i, st->branch};
+            S->block[S->nblock] = (Block){S->n, -1, -1, ncond, 0};
             in = 1;
+            S->cond[ncond++] = 2 * st->i + st->branch;
+            S->block[S->nblock].ncond++;
+            break;
+        case LOW_STEP_OR:
+            S->cond[ncond++] = 2 * st->i + st->branch;
+            S->block[S->nblock].ncond++;
             break;
         case LOW_STEP_ELSE:
             S->block[S->nblock].mid = S->n;
@@ -435,20 +444,30 @@ print_angles(Printer *pr, const Sched *S)
     return low->angles_end;
 }
 
+/* Switch k's name for a comment ("switch N" where it has none, or one a
+ * comment cannot hold). */
+static void
+switch_name(Printer *pr, int k, char *buf, size_t len)
+{
+    const char *sw = expr_switch_name(pr->P, k);
+    if (sw && !strstr(sw, "*/") && strlen(sw) < len)
+        snprintf(buf, len, "%s", sw);
+    else
+        snprintf(buf, len, "switch %d", pr->md->mode_slot[k]);
+}
+
+/* The names of a block's switches, for its comment: the first few, and
+ * how many more (a body's pose under each of its pairs' switches). */
+enum { NAMES_SHOWN = 2 };
+
 /* A lazy block: the temporaries read after it declared first (set to
- * 0, never read in the mode that skips them: a defined value all the
- * same), then `if (mode) { ... } else { ... }`, commented with the
- * switch's name.  Returns the node after it. */
+ * 0, never read in a mode that skips them: a defined value all the
+ * same), then `if (tests) { ... } else { ... }`, commented with the
+ * switches' names.  Returns the node after it. */
 static int
 print_block(Printer *pr, const Sched *S, const Block *b)
 {
-    char name[160], decl[WRAP + 40] = "";
-    const char *sw = expr_switch_name(pr->P, b->mode);
-    int slot = pr->md->mode_slot[b->mode];
-    if (sw && !strstr(sw, "*/") && strlen(sw) < sizeof name)
-        snprintf(name, sizeof name, "%s", sw);
-    else
-        snprintf(name, sizeof name, "switch %d", slot);
+    char decl[WRAP + 40] = "", line[WRAP + 60], name[160];
     for (int k = b->start; k < b->end; k++) {
         if (!S->outward[k])
             continue;
@@ -463,11 +482,39 @@ print_block(Printer *pr, const Sched *S, const Block *b)
     }
     if (decl[0])
         emit_line(pr, "%s;", decl);
-    emit_line(pr, "    if (u[%d] %s 0.0) { /* %s %s */", pr->md->nu + slot,
-              b->branch ? "!=" : "==", name, b->branch ? "on" : "off");
+    /* the comment: which mode of which switches */
+    char comment[2 * sizeof name + 80] = "";
+    for (int c = 0; c < b->ncond && c < NAMES_SHOWN; c++) {
+        int t = S->cond[b->cond + c];
+        switch_name(pr, t / 2, name, sizeof name);
+        size_t len = strlen(comment);
+        snprintf(comment + len, sizeof comment - len, "%s%s %s", c ? ", " : "", name,
+                 t % 2 ? "on" : "off");
+    }
+    if (b->ncond > NAMES_SHOWN) {
+        size_t len = strlen(comment);
+        snprintf(comment + len, sizeof comment - len, " or %d more", b->ncond - NAMES_SHOWN);
+    }
+    emit_line(pr, "    /* where %s%s */", b->ncond > 1 ? "any of " : "", comment);
+    /* the tests, wrapped */
+    snprintf(line, sizeof line, "    if (");
+    for (int c = 0; c < b->ncond; c++) {
+        int t = S->cond[b->cond + c];
+        char test[64];
+        snprintf(test, sizeof test, "u[%d] %s 0.0%s", pr->md->nu + pr->md->mode_slot[t / 2],
+                 t % 2 ? "!=" : "==", c + 1 < b->ncond ? " ||" : ") {");
+        if (c && strlen(line) + strlen(test) + 1 > WRAP) {
+            emit_line(pr, "%s", line);
+            snprintf(line, sizeof line, "        ");
+        } else if (c) {
+            strcat(line, " ");
+        }
+        strcat(line, test);
+    }
+    emit_line(pr, "%s", line);
     for (int k = b->start; k < b->end; k++) {
         if (k == b->mid)
-            emit_line(pr, "    } else { /* %s %s */", name, b->branch ? "off" : "on");
+            emit_line(pr, "    } else {");
         print_node(pr, S->node[k], "        ", S->outward[k]);
     }
     emit_line(pr, "    }");
@@ -767,6 +814,7 @@ emit_function(Printer *pr, const LowFunc *lf)
     free(S.pstart);
     free(S.ostart);
     free(S.block);
+    free(S.cond);
     free(S.blk);
     free(S.outward);
     free(pr->temp);

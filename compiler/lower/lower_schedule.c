@@ -290,55 +290,100 @@ add_step(LowSched *S, int kind, ExprId id, int i)
 
 /* ---- lazy branches ---- */
 
-/* A node's guard: G_TOP, computed in every mode, or 2 k + branch: each
- * of its uses lies under that branch of switch k's SELECTs. */
-enum { G_UNSET = -2, G_TOP = -1 };
+/* A node's guard is the set of (switch, branch) under whose SELECTs its
+ * uses lie, each written 2 k + branch, sorted: it is computed in a block
+ * that runs where any of them holds.  A node read under more than this
+ * many is computed in every mode: the block's test reads each mode, and a
+ * value that so many switches need (a body's pose, in each of its
+ * contact pairs) is needed most of the time anyway. */
+enum { GUARD_MAX = 16 };
+enum { G_UNSET = 0, G_TOP = -1 }; /* a guard's size, besides 1 .. GUARD_MAX */
 
-/* Each scheduled node's guard, from its uses: the outputs' and the
- * angles' (computed at once, first) are G_TOP; the operand in branch a
- * (b) of a SELECT on k that is G_TOP is 2 k + 1 (2 k); any other
- * operand takes its user's guard; uses under different guards make it
- * G_TOP.  In reverse order, every use of a node is seen before it.
- * lazy 0: all G_TOP. */
-static int *
+typedef struct Guard {
+    int n; /* G_UNSET, G_TOP or the size */
+    int k[GUARD_MAX];
+} Guard;
+
+/* g joined with the uses h: their union, G_TOP past GUARD_MAX. */
+static void
+guard_join(Guard *g, const Guard *h)
+{
+    if (g->n == G_TOP || h->n == G_TOP) {
+        g->n = G_TOP;
+        return;
+    }
+    int u[2 * GUARD_MAX], n = 0, i = 0, j = 0;
+    while (i < g->n || j < h->n) {
+        if (j >= h->n || (i < g->n && g->k[i] < h->k[j]))
+            u[n++] = g->k[i++];
+        else if (i >= g->n || h->k[j] < g->k[i])
+            u[n++] = h->k[j++];
+        else /* in both */
+            u[n++] = g->k[i++], j++;
+    }
+    if (n > GUARD_MAX) {
+        g->n = G_TOP;
+        return;
+    }
+    memcpy(g->k, u, (size_t)n * sizeof *u);
+    g->n = n;
+}
+
+static int
+guard_same(const Guard *g, const Guard *h)
+{
+    return g->n == h->n && (g->n <= 0 || !memcmp(g->k, h->k, (size_t)g->n * sizeof *g->k));
+}
+
+/* Each scheduled node's guard (by its place), from its uses: the
+ * outputs' and the angles' (computed at once, first) are G_TOP; the
+ * operand in branch a (b) of a SELECT on k that is G_TOP is read under
+ * {2 k + 1} ({2 k}); any other operand under its user's guard (a
+ * SELECT under a guard is its guard's: blocks do not nest).  In reverse
+ * order every use of a node is seen before it.  lazy 0: all G_TOP. */
+static Guard *
 guards(const Build *b, int lazy)
 {
     ExprPool *P = b->P;
-    int *g = xmalloc(expr_pool_size(P) * sizeof *g);
+    Guard *g = xmalloc(((size_t)b->n + 1) * sizeof *g);
     for (int k = 0; k < b->n; k++)
-        g[b->node[k]] = lazy ? G_UNSET : G_TOP;
+        g[k].n = lazy ? G_UNSET : G_TOP;
     for (int i = 0; i < b->f->nout; i++)
         if (!is_input(b, b->f->out[i].e))
-            g[b->f->out[i].e] = G_TOP;
+            g[b->place[b->f->out[i].e]].n = G_TOP;
     for (int k = b->n - 1; k >= 0; k--) {
         ExprId e = b->node[k];
         const ExprNode *nd = expr_node(P, e);
-        if (k < b->S->angles_end || g[e] == G_UNSET)
-            g[e] = G_TOP;
+        if (k < b->S->angles_end || g[k].n == G_UNSET)
+            g[k].n = G_TOP;
         ExprId ops[2] = {nd->a, nd->b};
         for (int j = 0; j < expr_op_arity[nd->op]; j++) {
-            ExprId o = ops[j];
-            if (is_input(b, o))
+            if (is_input(b, ops[j]))
                 continue;
-            int use = g[e];
-            if (nd->op == EXPR_SELECT && use == G_TOP)
-                use = 2 * expr_select_mode(P, e) + (j == 0);
-            g[o] = g[o] == G_UNSET || g[o] == use ? use : G_TOP;
+            Guard use = g[k], *o = &g[b->place[ops[j]]];
+            if (nd->op == EXPR_SELECT && use.n == G_TOP)
+                use = (Guard){1, {2 * expr_select_mode(P, e) + (j == 0)}};
+            if (o->n == G_UNSET)
+                *o = use;
+            else
+                guard_join(o, &use);
         }
     }
     return g;
 }
 
-/* The steps being listed: the guarded nodes deferred, per switch, in
- * schedule order. */
+/* The steps being listed: the guarded nodes deferred, listed per
+ * switch in their guard, in schedule order. */
 typedef struct Lazy {
     const Build *b;
-    const int *g;
-    unsigned char *done; /* per node id: listed */
+    const Guard *g;            /* by place */
+    unsigned char *done;       /* per node id: listed */
     struct Pending {
-        ExprId *id;
+        int *at; /* places */
         int n, cap;
     } *pend; /* per switch */
+    int *taken, *at2;          /* scratch: the places a flush lists, by group */
+    int *grp, *cnt;            /* scratch: a flush's groups, their sizes */
 } Lazy;
 
 static int
@@ -352,52 +397,108 @@ ready(const Lazy *z, ExprId e)
     return 1;
 }
 
-/* Switch k's deferred nodes that can run now, as one block: those of
- * its on branch, then (ELSE) its off branch's.  A node whose operands
- * are not all computed yet waits for a later SELECT on k (the one that
- * needs it comes after them). */
+static void
+add_block(Lazy *z, const Guard *g, const int *at, int n, int k_else, const int *at2, int n2)
+{
+    LowSched *S = z->b->S;
+    for (int c = 0; c < g->n; c++)
+        S->step[S->nstep++] = (LowStep){c ? LOW_STEP_OR : LOW_STEP_IF, EXPR_NONE, g->k[c] / 2,
+                                        g->k[c] % 2};
+    for (int j = 0; j < n; j++)
+        add_step(S, LOW_STEP_NODE, z->b->node[at[j]], 0);
+    if (n2) {
+        add_step(S, LOW_STEP_ELSE, EXPR_NONE, k_else);
+        for (int j = 0; j < n2; j++)
+            add_step(S, LOW_STEP_NODE, z->b->node[at2[j]], 0);
+    }
+    add_step(S, LOW_STEP_END, EXPR_NONE, g->k[0] / 2);
+}
+
+/* The deferred nodes whose guard holds switch k and that can run now,
+ * as blocks, one per guard: a node whose operands are not all computed
+ * yet waits for a later SELECT (the one that needs it comes after
+ * them).  The blocks of {k on} and {k off} are one, its two branches. */
 static void
 flush(Lazy *z, int k)
 {
-    LowSched *S = z->b->S;
+    const Build *b = z->b;
     struct Pending *p = &z->pend[k];
-    int opened = 0;
-    for (int br = 1; br >= 0; br--) {
-        int first = 1;
-        for (int j = 0; j < p->n; j++) {
-            ExprId e = p->id[j];
-            if (e == EXPR_NONE || (z->g[e] & 1) != br || !ready(z, e))
-                continue;
-            if (first && !opened)
-                S->step[S->nstep++] = (LowStep){LOW_STEP_IF, EXPR_NONE, k, br};
-            else if (first)
-                add_step(S, LOW_STEP_ELSE, EXPR_NONE, k);
-            first = 0, opened = 1;
-            add_step(S, LOW_STEP_NODE, e, 0);
+    int n = 0, kept = 0;
+    for (int j = 0; j < p->n; j++) {
+        int at = p->at[j];
+        ExprId e = b->node[at];
+        if (z->done[e])
+            continue; /* listed through another switch of its guard */
+        if (ready(z, e)) {
+            z->taken[n++] = at;
             z->done[e] = 1;
-            p->id[j] = EXPR_NONE;
+        } else {
+            p->at[kept++] = at;
         }
     }
-    if (opened)
-        add_step(S, LOW_STEP_END, EXPR_NONE, k);
-    int n = 0;
-    for (int j = 0; j < p->n; j++)
-        if (p->id[j] != EXPR_NONE)
-            p->id[n++] = p->id[j];
-    p->n = n;
+    p->n = kept;
+    if (!n)
+        return;
+    /* one block per guard, the guards' nodes in schedule order; wider
+     * guards first: a node reads only nodes whose guards hold its own
+     * (a guard is the union of its uses'), so never a narrower one's,
+     * and two guards of one width do not read each other */
+    int *grp = z->grp, ngrp = 0, *cnt = z->cnt, *at = z->at2;
+    for (int i = 0; i < n; i++) {
+        int c = 0;
+        while (c < ngrp && !guard_same(&z->g[grp[c]], &z->g[z->taken[i]]))
+            c++;
+        if (c == ngrp)
+            grp[ngrp] = z->taken[i], cnt[ngrp++] = 0;
+        cnt[c]++;
+    }
+    for (int i = 1; i < ngrp; i++) /* by width, then first place: stable, few */
+        for (int j = i; j > 0 && z->g[grp[j - 1]].n < z->g[grp[j]].n; j--) {
+            int t = grp[j], c = cnt[j];
+            grp[j] = grp[j - 1], cnt[j] = cnt[j - 1];
+            grp[j - 1] = t, cnt[j - 1] = c;
+        }
+    Guard on = {1, {2 * k + 1}}, off = {1, {2 * k}};
+    int c_on = -1, c_off = -1;
+    for (int c = 0; c < ngrp; c++) {
+        c_on = guard_same(&z->g[grp[c]], &on) ? c : c_on;
+        c_off = guard_same(&z->g[grp[c]], &off) ? c : c_off;
+    }
+    for (int c = 0, from = 0; c < ngrp; c++) { /* each group's places, in order */
+        int m = 0;
+        for (int i = 0; i < n; i++)
+            if (guard_same(&z->g[z->taken[i]], &z->g[grp[c]]))
+                at[from + m++] = z->taken[i];
+        grp[c] = from; /* now: where its places start in at */
+        from += m;
+    }
+    for (int c = 0; c < ngrp; c++) {
+        const Guard *g = &z->g[at[grp[c]]];
+        if (c == c_off && c_on >= 0)
+            continue; /* the on block's else */
+        if (c == c_on && c_off >= 0)
+            add_block(z, g, at + grp[c], cnt[c], k, at + grp[c_off], cnt[c_off]);
+        else
+            add_block(z, g, at + grp[c], cnt[c], k, NULL, 0);
+    }
 }
 
-/* Node e in schedule order: deferred if guarded, else listed, after the
- * block of what it takes if it is a SELECT. */
+/* Node e in schedule order: deferred if guarded (listed with each
+ * switch of its guard), else listed, after the blocks of what it takes
+ * if it is a SELECT. */
 static void
-lazy_node(Lazy *z, ExprId e)
+lazy_node(Lazy *z, int at)
 {
-    int g = z->g[e];
-    if (g >= 0) {
-        struct Pending *p = &z->pend[g / 2];
-        if (p->n == p->cap)
-            p->id = xrealloc(p->id, (size_t)(p->cap = p->cap ? 2 * p->cap : 16) * sizeof *p->id);
-        p->id[p->n++] = e;
+    ExprId e = z->b->node[at];
+    const Guard *g = &z->g[at];
+    if (g->n > 0) {
+        for (int c = 0; c < g->n; c++) {
+            struct Pending *p = &z->pend[g->k[c] / 2];
+            if (p->n == p->cap)
+                p->at = xrealloc(p->at, (size_t)(p->cap = p->cap ? 2 * p->cap : 16) *
+                                            sizeof *p->at);
+            p->at[p->n++] = at;
+        }
         return;
     }
     const ExprNode *nd = expr_node(z->b->P, e);
@@ -428,8 +529,9 @@ lower_schedule(ExprPool *P, const LowFunc *f, int lazy)
         order_by_start(&b);
     S->nnode = b.n;
     /* the copies' loop, the fills, then the nodes with each store after
-     * the nodes listed before it (and up to 3 block steps per node) */
-    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + 4 * (size_t)b.n + (size_t)nout) *
+     * the nodes listed before it (and at most a block's tests, ELSE and END
+     * per node) */
+    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + (GUARD_MAX + 3) * (size_t)b.n + (size_t)nout) *
                       sizeof *S->step);
     if (f->copy)
         add_step(S, LOW_STEP_COPIES, EXPR_NONE, 0);
@@ -439,26 +541,34 @@ lower_schedule(ExprPool *P, const LowFunc *f, int lazy)
         if (f->fill[k])
             add_step(S, LOW_STEP_FILL, EXPR_NONE, k);
     int nsw = expr_nswitch(P);
-    Lazy z = {&b, guards(&b, lazy), xmalloc(size), xmalloc(((size_t)nsw + 1) * sizeof *z.pend)};
+    Lazy z = {&b, guards(&b, lazy), xmalloc(size), xmalloc(((size_t)nsw + 1) * sizeof *z.pend),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.taken),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.at2), xmalloc(((size_t)b.n + 1) * sizeof *z.grp),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.cnt)};
     memset(z.done, 0, size);
     memset(z.pend, 0, ((size_t)nsw + 1) * sizeof *z.pend);
     int k = 0;
     for (int j = 0; j < nout; j++) {
         int i = b.order ? b.order[j] : j;
         for (; k < b.after[i]; k++)
-            lazy_node(&z, b.node[k]);
+            lazy_node(&z, k);
         add_step(S, LOW_STEP_STORE, EXPR_NONE, i);
     }
     for (; k < b.n; k++)
-        lazy_node(&z, b.node[k]);
+        lazy_node(&z, k);
     for (int j = 0; j < nsw; j++) {
-        if (z.pend[j].n) /* a guarded node no SELECT took (guards: none) */
-            diag_unreachable();
-        free(z.pend[j].id);
+        for (int i = 0; i < z.pend[j].n; i++)
+            if (!z.done[b.node[z.pend[j].at[i]]]) /* deferred, and no SELECT took it */
+                diag_unreachable();
+        free(z.pend[j].at);
     }
     free(z.pend);
     free(z.done);
-    free((int *)z.g);
+    free(z.taken);
+    free(z.at2);
+    free(z.grp);
+    free(z.cnt);
+    free((Guard *)z.g);
     free(b.node);
     free(b.place);
     free(b.after);
@@ -572,6 +682,9 @@ lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *out
         switch (st->kind) {
         case LOW_STEP_IF: /* no modes (NULL): no branch, as SELECT's NaN */
             skip = !env->mode || (env->mode[st->i] != 0.0) != st->branch;
+            break;
+        case LOW_STEP_OR: /* a block runs where any of its tests holds */
+            skip = skip && (!env->mode || (env->mode[st->i] != 0.0) != st->branch);
             break;
         case LOW_STEP_ELSE:
             skip = !env->mode || !skip;

@@ -31,11 +31,13 @@ enum {
                       * (printed as a comment where f->zeroed says so) */
     LOW_STEP_NODE,   /* compute operator node id from its operands */
     LOW_STEP_STORE,  /* store out[i] (once its value is computed) */
-    /* A lazy block: the NODE steps up to its END run only in one mode of
-     * switch i (the pool's), those before an ELSE where its mode is
-     * `branch`, those after it in the other.  Blocks hold nodes only and
-     * do not nest. */
+    /* A lazy block: IF, then ORs, each a test that switch i (the
+     * pool's) is in mode `branch`; the NODE steps up to its END (or ELSE)
+     * run where any test holds.  A block of one test may have an ELSE:
+     * the NODE steps after it run where the test fails.  Blocks hold
+     * nodes only and do not nest. */
     LOW_STEP_IF,
+    LOW_STEP_OR,
     LOW_STEP_ELSE,
     LOW_STEP_END,
 };
@@ -56,9 +58,11 @@ typedef struct LowStep {
  * one branch of a switched expression SELECT(k, a, b) is computed in a
  * block that runs only in that mode of switch k, just before the first
  * SELECT on k that takes it (a SELECT under another one's branch counts
- * as the outer one's: blocks do not nest).  The values are the same
- * operations either way; a mode's branch that is not taken costs
- * nothing. */
+ * as the outer one's: blocks do not nest).  A node under branches of a
+ * few switches (a body's pose, which each of its contact pairs reads
+ * under its own switch) runs where any of them holds.  The values are
+ * the same operations either way; a mode's branch that is not taken
+ * costs nothing. */
 typedef struct LowSched {
     int nstep;
     LowStep *step;

@@ -165,9 +165,11 @@ print_node(Printer *pr, ExprId id, const char *ind, int set)
 
 /* A lazy block (lower_schedule.h): nodes start .. mid-1 run where any
  * of its tests holds, switch k in mode b (2 k + b, at Sched.cond[cond
- * ...]), mid .. end-1 (a test alone) where it fails. */
+ * ...]), mid .. end-1 (a test alone) where it fails; end .. tail-1 are
+ * SELECTs on its switch that follow it (a test alone), printed as an
+ * assignment in each branch. */
 typedef struct Block {
-    int start, mid, end, cond, ncond;
+    int start, mid, end, tail, cond, ncond;
 } Block;
 
 /* The schedule (lower_schedule) as the printer walks it: the nodes
@@ -234,7 +236,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
     S->outward = xmalloc((size_t)low->nnode + 1);
     memset(S->outward, 0, (size_t)low->nnode + 1);
     S->n = S->nparts = S->nslots = S->copies = S->nfill = S->nblock = 0;
-    int nst = 0, in = 0, ncond = 0;
+    int nst = 0, in = 0, ncond = 0, after = -1; /* after: the block just closed */
     for (int k = 0; k < low->nstep; k++) {
         const LowStep *st = &low->step[k];
         switch (st->kind) {
@@ -244,17 +246,27 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         case LOW_STEP_FILL:
             S->fill[S->nfill++] = st->i;
             break;
-        case LOW_STEP_NODE:
+        case LOW_STEP_NODE: {
+            const ExprNode *nd = expr_node(pr->P, st->id);
+            Block *b = after >= 0 ? &S->block[after] : NULL;
+            if (b && b->tail == S->n && b->ncond == 1 && nd->op == EXPR_SELECT &&
+                expr_select_mode(pr->P, st->id) == S->cond[b->cond] / 2)
+                b->tail++; /* a SELECT on its switch right after it */
+            else
+                after = -1;
             pr->temp[st->id] = S->n;
-            S->blk[S->n] = in ? S->nblock : -1;
+            S->blk[S->n] = in ? S->nblock : after;
             S->node[S->n++] = st->id;
             break;
+        }
         case LOW_STEP_STORE:
             S->order[nst] = st->i;
             S->after[nst++] = S->n;
+            after = -1;
             break;
         case LOW_STEP_IF:
-            S->block[S->nblock] = (Block){S->n, -1, -1, ncond, 0};
+            after = -1;
+            S->block[S->nblock] = (Block){S->n, -1, -1, -1, ncond, 0};
             in = 1;
             S->cond[ncond++] = 2 * st->i + st->branch;
             S->block[S->nblock].ncond++;
@@ -267,10 +279,11 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             S->block[S->nblock].mid = S->n;
             break;
         case LOW_STEP_END: {
-            Block *b = &S->block[S->nblock++];
-            b->end = S->n;
+            Block *b = &S->block[S->nblock];
+            b->end = b->tail = S->n;
             if (b->mid < 0)
                 b->mid = b->end;
+            after = S->nblock++;
             in = 0;
             break;
         }
@@ -299,7 +312,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             if (cut > low->angles && cut < low->angles_end) /* not inside the one call */
                 cut = low->angles_end;
             if (S->blk[cut] >= 0 && S->block[S->blk[cut]].start < cut) /* nor a block */
-                cut = S->block[S->blk[cut]].end;
+                cut = S->block[S->blk[cut]].tail;
             S->nparts++;
             S->pstart[S->nparts] = cut;
             S->ostart[S->nparts] = j;
@@ -460,6 +473,20 @@ switch_name(Printer *pr, int k, char *buf, size_t len)
  * how many more (a body's pose under each of its pairs' switches). */
 enum { NAMES_SHOWN = 2 };
 
+/* The SELECTs that follow a block on its switch, as assignments of
+ * the operand a mode takes (on: its branch a). */
+static void
+print_tail(Printer *pr, const Sched *S, const Block *b, int on)
+{
+    for (int k = b->end; k < b->tail; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        char buf[200];
+        emit_line(pr, "        w%d = %s;", pr->temp[S->node[k]],
+                  operand(pr, on ? nd->a : nd->b, buf, sizeof buf));
+        print_share(pr, S->node[k], "        ");
+    }
+}
+
 /* A lazy block: the temporaries read after it declared first (set to
  * 0, never read in a mode that skips them: a defined value all the
  * same), then `if (tests) { ... } else { ... }`, commented with the
@@ -468,8 +495,8 @@ static int
 print_block(Printer *pr, const Sched *S, const Block *b)
 {
     char decl[WRAP + 40] = "", line[WRAP + 60], name[160];
-    for (int k = b->start; k < b->end; k++) {
-        if (!S->outward[k])
+    for (int k = b->start; k < b->tail; k++) {
+        if (!S->outward[k] && k < b->end) /* (the SELECTs after it: set in its branches) */
             continue;
         char w[40];
         snprintf(w, sizeof w, "w%d = 0.0", pr->temp[S->node[k]]);
@@ -512,13 +539,17 @@ print_block(Printer *pr, const Sched *S, const Block *b)
         strcat(line, test);
     }
     emit_line(pr, "%s", line);
-    for (int k = b->start; k < b->end; k++) {
-        if (k == b->mid)
-            emit_line(pr, "    } else {");
+    for (int k = b->start; k < b->mid; k++)
         print_node(pr, S->node[k], "        ", S->outward[k]);
+    print_tail(pr, S, b, b->ncond == 1 && S->cond[b->cond] % 2);
+    if (b->mid < b->end || b->tail > b->end) {
+        emit_line(pr, "    } else {");
+        for (int k = b->mid; k < b->end; k++)
+            print_node(pr, S->node[k], "        ", S->outward[k]);
+        print_tail(pr, S, b, !(S->cond[b->cond] % 2));
     }
     emit_line(pr, "    }");
-    return b->end;
+    return b->tail;
 }
 
 /* Node k's statement, the angles' call where they start, or the lazy

@@ -282,10 +282,19 @@ order_by_start(Build *b)
     free(done);
 }
 
+/* (a block's tests are a few steps or many: the list grows) */
+static void
+add_test(LowSched *S, int kind, ExprId id, int i, int branch)
+{
+    if (S->nstep == S->cap)
+        S->step = xrealloc(S->step, (size_t)(S->cap = 2 * S->cap + 64) * sizeof *S->step);
+    S->step[S->nstep++] = (LowStep){kind, id, i, branch};
+}
+
 static void
 add_step(LowSched *S, int kind, ExprId id, int i)
 {
-    S->step[S->nstep++] = (LowStep){kind, id, i, 0};
+    add_test(S, kind, id, i, 0);
 }
 
 /* ---- lazy branches ---- */
@@ -436,8 +445,7 @@ add_block(Lazy *z, Guard g, const int *at, int n, int k_else, const int *at2, in
     LowSched *S = z->b->S;
     const int *t = z->G.k + g.off;
     for (int c = 0; c < g.n; c++)
-        S->step[S->nstep++] = (LowStep){c ? LOW_STEP_OR : LOW_STEP_IF, EXPR_NONE, t[c] / 2,
-                                        t[c] % 2};
+        add_test(S, c ? LOW_STEP_OR : LOW_STEP_IF, EXPR_NONE, t[c] / 2, t[c] % 2);
     for (int j = 0; j < n; j++)
         add_step(S, LOW_STEP_NODE, z->b->node[at[j]], 0);
     if (n2) {
@@ -631,10 +639,9 @@ lower_schedule(ExprPool *P, const LowFunc *f, int lazy)
         order_by_start(&b);
     S->nnode = b.n;
     /* the copies' loop, the fills, then the nodes with each store after
-     * the nodes listed before it (and at most a block's tests, ELSE and END
-     * per node) */
-    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + (GUARD_MAX + 3) * (size_t)b.n + (size_t)nout) *
-                      sizeof *S->step);
+     * the nodes listed before it, and the blocks' steps */
+    S->cap = LOW_MAX_ARGS + 1 + b.n + nout;
+    S->step = xmalloc((size_t)S->cap * sizeof *S->step);
     if (f->copy)
         add_step(S, LOW_STEP_COPIES, EXPR_NONE, 0);
     LowArgs a;

@@ -64,7 +64,7 @@ typedef struct LowStep {
  * the same operations either way; a mode's branch that is not taken
  * costs nothing. */
 typedef struct LowSched {
-    int nstep;
+    int nstep, cap;
     LowStep *step;
     int nnode; /* LOW_STEP_NODE steps */
     /* The nodes numbered angles .. angles_end-1, counted among the

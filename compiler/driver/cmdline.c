@@ -79,6 +79,10 @@ cmdline_usage(FILE *f)
         "                   loops over the model's tables (fast to compile).\n"
         "                   auto: tables past %d operations of straight-line solve,\n"
         "                   bias and energies\n"
+        "  --branches HOW   lazy (default) or eager: whether what only one branch\n"
+        "                   of a switched expression needs (a contact's force\n"
+        "                   while its shapes are apart) is computed only in that\n"
+        "                   mode, or always (branch-free code; the same values)\n"
         "Simulator options (eomc run, and built executables): see `EXE --help`.\n"
         "eomc accuracy runs the simulator's --work-precision report: every method\n"
         "over tolerances and fixed steps, CPU time against the error measured on a\n"
@@ -121,6 +125,7 @@ typedef struct OptionSpec {
 /* --jacobian's and --code's values, in lower.h's order of their modes */
 static const char *const jacobian_modes[] = {"auto", "unrolled", "seeded", "none", NULL};
 static const char *const code_modes[] = {"auto", "straight", "tables", NULL};
+static const char *const branch_modes[] = {"lazy", "eager", NULL};
 
 static const OptionSpec options[] = {
     {"-o", CMD_COMPILE | CMD_BUILD, OPT_VALUE, offsetof(Options, out), NULL, NULL, 0},
@@ -129,6 +134,7 @@ static const OptionSpec options[] = {
     {"--jacobian", CMD_DERIVE, OPT_VALUE, offsetof(Options, jacobian), NULL, jacobian_modes, 0},
     {"--scene", CMD_DERIVE, OPT_VALUE, offsetof(Options, scene), NULL, NULL, 0},
     {"--code", CMD_DERIVE, OPT_VALUE, offsetof(Options, code), NULL, code_modes, 0},
+    {"--branches", CMD_DERIVE, OPT_VALUE, offsetof(Options, branches), NULL, branch_modes, 0},
     {"--fix", CMD_DERIVE, OPT_LIST, offsetof(Options, fix), NULL, NULL, 0},
     {"--stats", CMD_COMPILE, OPT_FLAG, offsetof(Options, stats),
      "the operation counts of the generated functions", NULL, 0},
@@ -389,6 +395,8 @@ cmdline_parse(int argc, char **argv, Options *o)
                     o->jacobian);
     if (o->code && mode_index(code_modes, o->code) < 0)
         cmdline_usage_error("--code must be auto, straight or tables, not '%s'", o->code);
+    if (o->branches && mode_index(branch_modes, o->branches) < 0)
+        cmdline_usage_error("--branches must be lazy or eager, not '%s'", o->branches);
     /* a library serves every task (linearization, implicit methods):
      * it has the Jacobian unless --jacobian none says not */
     o->needs_jacobian = !strcmp(o->cmd, "accuracy") || sim_needs_jacobian(o) || o->shared;

@@ -13,7 +13,7 @@
 enum { EXIT_USAGE = 2 };
 
 typedef struct Options {
-    const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code;
+    const char *cmd, *spec, *out, *form, *effects, *jacobian, *scene, *code, *branches;
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
     int floating;       /* --floating: a URDF given as SPEC with its root link free */

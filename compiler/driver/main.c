@@ -217,6 +217,10 @@ compile(const Options *o, FILE *out, int *units, char **model)
                 snprintf(opts + len, sizeof opts - len, "%s--code %s", len ? " " : "", o->code);
                 code = cmdline_code_mode(o->code);
             }
+            if (o->branches && !strcmp(o->branches, "eager")) {
+                size_t len = strlen(opts);
+                snprintf(opts + len, sizeof opts - len, "%s--branches eager", len ? " " : "");
+            }
             if (o->eliminate) {
                 size_t len = strlen(opts);
                 snprintf(opts + len, sizeof opts - len, "%s--eliminate", len ? " " : "");
@@ -232,6 +236,8 @@ compile(const Options *o, FILE *out, int *units, char **model)
             int taylor = o->needs_taylor || !strcmp(s->scene.method, "taylor");
             Lowered *L = out ? lower_model(s, m, e, c, info.eliminate, inv, jac, code, taylor, A,
                                            P, D) : NULL;
+            if (L)
+                L->eager_branches = o->branches && !strcmp(o->branches, "eager");
             if (L && refuse_taylor(o, s, L->taylor->why)) {
                 rc = EXIT_USAGE;
             } else {
@@ -373,16 +379,17 @@ cached_build(const Options *o, const char *name, int *rc)
     const char *jac = o->jacobian ? o->jacobian : "auto";
     const char *form = o->form ? o->form : "(default)";
     const char *code = o->code ? o->code : "auto";
+    const char *branches = o->branches ? o->branches : "lazy";
     size_t extra = strlen(form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
-                   strlen(code) +
+                   strlen(code) + strlen(branches) +
                    (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 140;
     text = xrealloc(text, len + extra);
     len += (size_t)snprintf(text + len, extra,
                             "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
-                            "--extended %d --taylor %d --scene %s --fix %s%s%s", form,
+                            "--branches %s --extended %d --taylor %d --scene %s --fix %s%s%s", form,
                             o->effects ? o->effects : "(scene)",
                             o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
-                            o->extended || o->needs_twin, o->needs_taylor,
+                            branches, o->extended || o->needs_twin, o->needs_taylor,
                             o->scene ? o->scene : "(first)",
                             o->fix ? o->fix : "(none)", o->shared ? " --shared" : "",
                             o->portable ? " --portable" : "");

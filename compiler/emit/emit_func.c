@@ -110,16 +110,19 @@ print_powi(const char *x, int n, char *rhs, size_t len)
     }
 }
 
-/* After node id's statement: its copy for later parts. */
+/* After node id's statement: its copy for later parts (ind: the
+ * statements' indentation). */
 static void
-print_share(Printer *pr, ExprId id)
+print_share(Printer *pr, ExprId id, const char *ind)
 {
     if (pr->slot[id] >= 0)
-        emit_line(pr, "    s[%d] = w%d;", pr->slot[id], pr->temp[id]);
+        emit_line(pr, "%ss[%d] = w%d;", ind, pr->slot[id], pr->temp[id]);
 }
 
+/* Node id's statement, indented by ind: its temporary declared here, or
+ * (set) assigned, declared before the block it is in. */
 static void
-print_node(Printer *pr, ExprId id)
+print_node(Printer *pr, ExprId id, const char *ind, int set)
 {
     const ExprNode *nd = expr_node(pr->P, id);
     char ba[200], bb[200], rhs[512];
@@ -154,15 +157,24 @@ print_node(Printer *pr, ExprId id)
         else
             snprintf(rhs, sizeof rhs, "%s(%s)", sp, x);
     }
-    emit_line(pr, "    const eomc_real w%d = %s;", pr->temp[id], rhs);
-    print_share(pr, id);
+    emit_line(pr, "%s%sw%d = %s;", ind, set ? "" : "const eomc_real ", pr->temp[id], rhs);
+    print_share(pr, id, ind);
 }
 
 /* ---- parts ---- */
 
+/* A lazy block (lower_schedule.h): nodes start .. mid-1 run where any
+ * of its tests holds, switch k in mode b (2 k + b, at Sched.cond[cond
+ * ...]), mid .. end-1 (a test alone) where it fails; end .. tail-1 are
+ * SELECTs on its switch that follow it (a test alone), printed as an
+ * assignment in each branch. */
+typedef struct Block {
+    int start, mid, end, tail, cond, ncond;
+} Block;
+
 /* The schedule (lower_schedule) as the printer walks it: the nodes
  * numbered in order (their temporaries), each store after so many of
- * them, and the parts it is cut in. */
+ * them, the lazy blocks, and the parts it is cut in. */
 typedef struct Sched {
     const LowSched *low;
     int copies;    /* the copies' loop comes first */
@@ -174,6 +186,11 @@ typedef struct Sched {
     int *pstart;   /* per part: first node; pstart[nparts] = n */
     int *ostart;   /* per part: first store; ostart[nparts] = nout */
     int nparts, nslots;
+    Block *block;
+    int nblock;
+    int *cond; /* the blocks' tests */
+    int *blk;      /* per node: its block, or -1 */
+    unsigned char *outward; /* per node in a block: read outside it (declared before) */
 } Sched;
 
 /* A value crossing into another part gets a slot in s[]. */
@@ -185,6 +202,25 @@ share(Printer *pr, Sched *S, ExprId e, int part)
         pr->slot[e] = S->nslots++;
 }
 
+/* The nodes of a block that a node of its part outside it reads: their
+ * temporaries are declared before the block (a later part reads s[]). */
+static void
+find_outward(Printer *pr, Sched *S)
+{
+    for (int k = 0; k < S->n; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < expr_op_arity[nd->op]; j++) {
+            if (is_input(pr, ops[j]))
+                continue;
+            int o = pr->temp[ops[j]];
+            if (S->blk[o] >= 0 && S->blk[o] != S->blk[k] &&
+                pr->part[ops[j]] == pr->part[S->node[k]])
+                S->outward[o] = 1;
+        }
+    }
+}
+
 /* Number the list's nodes, and cut it in parts of at most
  * LOWER_PART_SIZE nodes. */
 static void
@@ -194,8 +230,13 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
     S->node = xmalloc(((size_t)low->nnode + 1) * sizeof *S->node);
     S->order = xmalloc(((size_t)nout + 1) * sizeof *S->order);
     S->after = xmalloc(((size_t)nout + 1) * sizeof *S->after);
-    S->n = S->nparts = S->nslots = S->copies = S->nfill = 0;
-    int nst = 0;
+    S->block = xmalloc(((size_t)low->nnode + 1) * sizeof *S->block);
+    S->cond = xmalloc(((size_t)low->nstep + 1) * sizeof *S->cond);
+    S->blk = xmalloc(((size_t)low->nnode + 1) * sizeof *S->blk);
+    S->outward = xmalloc((size_t)low->nnode + 1);
+    memset(S->outward, 0, (size_t)low->nnode + 1);
+    S->n = S->nparts = S->nslots = S->copies = S->nfill = S->nblock = 0;
+    int nst = 0, in = 0, ncond = 0, after = -1; /* after: the block just closed */
     for (int k = 0; k < low->nstep; k++) {
         const LowStep *st = &low->step[k];
         switch (st->kind) {
@@ -205,14 +246,47 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         case LOW_STEP_FILL:
             S->fill[S->nfill++] = st->i;
             break;
-        case LOW_STEP_NODE:
+        case LOW_STEP_NODE: {
+            const ExprNode *nd = expr_node(pr->P, st->id);
+            Block *b = after >= 0 ? &S->block[after] : NULL;
+            if (b && b->tail == S->n && b->ncond == 1 && nd->op == EXPR_SELECT &&
+                expr_select_mode(pr->P, st->id) == S->cond[b->cond] / 2)
+                b->tail++; /* a SELECT on its switch right after it */
+            else
+                after = -1;
             pr->temp[st->id] = S->n;
+            S->blk[S->n] = in ? S->nblock : after;
             S->node[S->n++] = st->id;
             break;
+        }
         case LOW_STEP_STORE:
             S->order[nst] = st->i;
             S->after[nst++] = S->n;
+            after = -1;
             break;
+        case LOW_STEP_IF:
+            after = -1;
+            S->block[S->nblock] = (Block){S->n, -1, -1, -1, ncond, 0};
+            in = 1;
+            S->cond[ncond++] = 2 * st->i + st->branch;
+            S->block[S->nblock].ncond++;
+            break;
+        case LOW_STEP_OR:
+            S->cond[ncond++] = 2 * st->i + st->branch;
+            S->block[S->nblock].ncond++;
+            break;
+        case LOW_STEP_ELSE:
+            S->block[S->nblock].mid = S->n;
+            break;
+        case LOW_STEP_END: {
+            Block *b = &S->block[S->nblock];
+            b->end = b->tail = S->n;
+            if (b->mid < 0)
+                b->mid = b->end;
+            after = S->nblock++;
+            in = 0;
+            break;
+        }
         }
     }
     if (low->whole) {
@@ -222,6 +296,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         S->pstart[0] = S->ostart[0] = 0;
         S->pstart[1] = S->n;
         S->ostart[1] = nout;
+        find_outward(pr, S);
         return;
     }
     /* Cut after a store once a part has LOWER_PART_SIZE nodes, and inside
@@ -236,6 +311,8 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
             int cut = S->pstart[S->nparts] + LOWER_PART_SIZE;
             if (cut > low->angles && cut < low->angles_end) /* not inside the one call */
                 cut = low->angles_end;
+            if (S->blk[cut] >= 0 && S->block[S->blk[cut]].start < cut) /* nor a block */
+                cut = S->block[S->blk[cut]].tail;
             S->nparts++;
             S->pstart[S->nparts] = cut;
             S->ostart[S->nparts] = j;
@@ -265,6 +342,7 @@ schedule(Printer *pr, Sched *S, const LowSched *low, int nout, const LowSlot *ou
         for (int j = S->ostart[p]; j < S->ostart[p + 1]; j++)
             share(pr, S, out[S->order[j]].e, p);
     }
+    find_outward(pr, S);
 }
 
 /* ---- printing ---- */
@@ -312,7 +390,7 @@ print_leaves(Printer *pr, const Sched *S, int nout, const LowSlot *out)
     for (int k = S->pstart[pr->cur]; k < S->pstart[pr->cur + 1]; k++) {
         const ExprNode *nd = expr_node(pr->P, S->node[k]);
         int ar = expr_op_arity[nd->op];
-        if (nd->op == EXPR_SELECT) /* its mode is read from u (print_node) */
+        if (nd->op == EXPR_SELECT || S->blk[k] >= 0) /* a mode is read from u */
             pr->used |= 1u << SRC_U;
         if (ar >= 1)
             mark_leaf(pr, nd->a, &ls);
@@ -374,18 +452,116 @@ print_angles(Printer *pr, const Sched *S)
         int a = low->angle_of[k - low->angles];
         emit_line(pr, "    const eomc_real w%d = ang_%s[%d];", pr->temp[id],
                 a % 2 ? "cos" : "sin", a / 2);
-        print_share(pr, id);
+        print_share(pr, id, "    ");
     }
     return low->angles_end;
 }
 
-/* Node k's statement, or the angles' call where they start; the next k. */
+/* Switch k's name for a comment ("switch N" where it has none, or one a
+ * comment cannot hold). */
+static void
+switch_name(Printer *pr, int k, char *buf, size_t len)
+{
+    const char *sw = expr_switch_name(pr->P, k);
+    if (sw && !strstr(sw, "*/") && strlen(sw) < len)
+        snprintf(buf, len, "%s", sw);
+    else
+        snprintf(buf, len, "switch %d", pr->md->mode_slot[k]);
+}
+
+/* The names of a block's switches, for its comment: the first few, and
+ * how many more (a body's pose under each of its pairs' switches). */
+enum { NAMES_SHOWN = 2 };
+
+/* The SELECTs that follow a block on its switch, as assignments of
+ * the operand a mode takes (on: its branch a). */
+static void
+print_tail(Printer *pr, const Sched *S, const Block *b, int on)
+{
+    for (int k = b->end; k < b->tail; k++) {
+        const ExprNode *nd = expr_node(pr->P, S->node[k]);
+        char buf[200];
+        emit_line(pr, "        w%d = %s;", pr->temp[S->node[k]],
+                  operand(pr, on ? nd->a : nd->b, buf, sizeof buf));
+        print_share(pr, S->node[k], "        ");
+    }
+}
+
+/* A lazy block: the temporaries read after it declared first (set to
+ * 0, never read in a mode that skips them: a defined value all the
+ * same), then `if (tests) { ... } else { ... }`, commented with the
+ * switches' names.  Returns the node after it. */
+static int
+print_block(Printer *pr, const Sched *S, const Block *b)
+{
+    char decl[WRAP + 40] = "", line[WRAP + 60], name[160];
+    for (int k = b->start; k < b->tail; k++) {
+        if (!S->outward[k] && k < b->end) /* (the SELECTs after it: set in its branches) */
+            continue;
+        char w[40];
+        snprintf(w, sizeof w, "w%d = 0.0", pr->temp[S->node[k]]);
+        if (decl[0] && strlen(decl) + strlen(w) + 2 > WRAP) {
+            emit_line(pr, "%s;", decl);
+            decl[0] = '\0';
+        }
+        size_t len = strlen(decl);
+        snprintf(decl + len, sizeof decl - len, "%s%s", len ? ", " : "    eomc_real ", w);
+    }
+    if (decl[0])
+        emit_line(pr, "%s;", decl);
+    /* the comment: which mode of which switches */
+    char comment[2 * sizeof name + 80] = "";
+    for (int c = 0; c < b->ncond && c < NAMES_SHOWN; c++) {
+        int t = S->cond[b->cond + c];
+        switch_name(pr, t / 2, name, sizeof name);
+        size_t len = strlen(comment);
+        snprintf(comment + len, sizeof comment - len, "%s%s %s", c ? ", " : "", name,
+                 t % 2 ? "on" : "off");
+    }
+    if (b->ncond > NAMES_SHOWN) {
+        size_t len = strlen(comment);
+        snprintf(comment + len, sizeof comment - len, " or %d more", b->ncond - NAMES_SHOWN);
+    }
+    emit_line(pr, "    /* where %s%s */", b->ncond > 1 ? "any of " : "", comment);
+    /* the tests, wrapped */
+    snprintf(line, sizeof line, "    if (");
+    for (int c = 0; c < b->ncond; c++) {
+        int t = S->cond[b->cond + c];
+        char test[64];
+        snprintf(test, sizeof test, "u[%d] %s 0.0%s", pr->md->nu + pr->md->mode_slot[t / 2],
+                 t % 2 ? "!=" : "==", c + 1 < b->ncond ? " ||" : ") {");
+        if (c && strlen(line) + strlen(test) + 1 > WRAP) {
+            emit_line(pr, "%s", line);
+            snprintf(line, sizeof line, "        ");
+        } else if (c) {
+            strcat(line, " ");
+        }
+        strcat(line, test);
+    }
+    emit_line(pr, "%s", line);
+    for (int k = b->start; k < b->mid; k++)
+        print_node(pr, S->node[k], "        ", S->outward[k]);
+    print_tail(pr, S, b, b->ncond == 1 && S->cond[b->cond] % 2);
+    if (b->mid < b->end || b->tail > b->end) {
+        emit_line(pr, "    } else {");
+        for (int k = b->mid; k < b->end; k++)
+            print_node(pr, S->node[k], "        ", S->outward[k]);
+        print_tail(pr, S, b, !(S->cond[b->cond] % 2));
+    }
+    emit_line(pr, "    }");
+    return b->tail;
+}
+
+/* Node k's statement, the angles' call where they start, or the lazy
+ * block that starts at k; the next k. */
 static int
 print_step(Printer *pr, const Sched *S, int k)
 {
     if (k == S->low->angles && S->low->angles < S->low->angles_end)
         return print_angles(pr, S);
-    print_node(pr, S->node[k]);
+    if (S->blk[k] >= 0)
+        return print_block(pr, S, &S->block[S->blk[k]]);
+    print_node(pr, S->node[k], "    ", 0);
     return k + 1;
 }
 
@@ -596,7 +772,7 @@ emit_function(Printer *pr, const LowFunc *lf)
     pr->slot = xmalloc(size * sizeof *pr->slot);
     for (size_t i = 0; i < size; i++)
         pr->temp[i] = pr->slot[i] = -1, pr->part[i] = 0;
-    LowSched *low = lower_schedule(pr->P, lf);
+    LowSched *low = lower_schedule(pr->P, lf, !pr->L->eager_branches);
     Sched S;
     schedule(pr, &S, low, nout, out);
     const char *nm = pr->md->name;
@@ -668,6 +844,10 @@ emit_function(Printer *pr, const LowFunc *lf)
     free(S.order);
     free(S.pstart);
     free(S.ostart);
+    free(S.block);
+    free(S.cond);
+    free(S.blk);
+    free(S.outward);
     free(pr->temp);
     free(pr->part);
     free(pr->slot);

@@ -289,10 +289,26 @@ diff_gradient(Diff *D, ExprId f, int n, const ExprId *leaves, ExprId *out)
     for (size_t i = 0; i < size; i++)
         adj[i] = EXPR_ZERO;
     adj[f] = EXPR_ONE;
+    for (int i = 0; i < n; i++)
+        out[i] = EXPR_ZERO;
     for (ExprId id = f + 1; id-- > 0;) {
         if (!mark[id] || adj[id] == EXPR_ZERO)
             continue;
         const ExprNode nd = *expr_node(P, id);
+        if (nd.op == EXPR_SELECT) {
+            /* adj SELECT(k, da, db): each branch's partials (forward,
+             * memoized) in its own mode, not adj SELECT(k, 1, 0) carried
+             * into the branch, a product outside it that every mode
+             * would compute (lower_schedule.h: lazy branches) */
+            for (int i = 0; i < n; i++) {
+                ExprId da = diff_partial(D, nd.a, leaves[i]), db = diff_partial(D, nd.b, leaves[i]);
+                if (da == EXPR_ZERO && db == EXPR_ZERO)
+                    continue;
+                ExprId on = expr_mul(P, adj[id], da), off = expr_mul(P, adj[id], db);
+                out[i] = expr_add(P, out[i], expr_select(P, (int)nd.value, on, off));
+            }
+            continue;
+        }
         int na = nargs_of(&nd);
         for (int k = 0; k < na; k++) {
             ExprId arg = k == 0 ? nd.a : nd.b;
@@ -301,7 +317,8 @@ diff_gradient(Diff *D, ExprId f, int n, const ExprId *leaves, ExprId *out)
         }
     }
     for (int i = 0; i < n; i++)
-        out[i] = leaves[i] <= f ? adj[leaves[i]] : EXPR_ZERO;
+        if (leaves[i] <= f)
+            out[i] = expr_add(P, adj[leaves[i]], out[i]);
     free(adj);
     free(mark);
 }

@@ -8,10 +8,14 @@
  * first (schedule_angles); then, in a function printed whole, the nodes
  * are reordered by when they could start on a core that runs them out of
  * order (order_by_start).  Each output is stored as soon as its value
- * exists.  All cleverness is in the DAG; this is a plain loop.
+ * exists.  Last, the nodes only one branch of a switch needs are moved
+ * into blocks that run in that mode alone (guards, flush): a contact's
+ * whole share of the forces is computed only while its shapes are near.
+ * All cleverness is in the DAG; this is a plain loop.
  */
 #include "lower_schedule.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -278,14 +282,344 @@ order_by_start(Build *b)
     free(done);
 }
 
+/* (a block's tests are a few steps or many: the list grows) */
+static void
+add_test(LowSched *S, int kind, ExprId id, int i, int branch)
+{
+    if (S->nstep == S->cap)
+        S->step = xrealloc(S->step, (size_t)(S->cap = 2 * S->cap + 64) * sizeof *S->step);
+    S->step[S->nstep++] = (LowStep){kind, id, i, branch};
+}
+
 static void
 add_step(LowSched *S, int kind, ExprId id, int i)
 {
-    S->step[S->nstep++] = (LowStep){kind, id, i};
+    add_test(S, kind, id, i, 0);
+}
+
+/* ---- lazy branches ---- */
+
+/* A node's guard is the set of (switch, branch) under whose SELECTs its
+ * uses lie, each written 2 k + branch, sorted: it is computed in a block
+ * that runs where any of them holds.  A node read under more than this
+ * many is computed in every mode: the block's test reads each mode, and a
+ * value that so many switches need (a body's pose, in most of a robot's
+ * contact pairs) is needed most of the time anyway.  (Measured on MuJoCo's
+ * humanoid, 150 pairs, all apart: 16 run 9 % more instructions than 64.) */
+enum { GUARD_MAX = 64 };
+enum { G_UNSET = 0, G_TOP = -1 }; /* a guard's size, besides 1 .. GUARD_MAX */
+
+/* A guard: its size and where its switches start in the guards' one
+ * array (Guards.k): a node takes its user's guard as it is, and only a
+ * union makes a new one. */
+typedef struct Guard {
+    int n; /* G_UNSET, G_TOP or the size */
+    int off;
+} Guard;
+
+typedef struct Guards {
+    Guard *g; /* by place */
+    int *k;
+    size_t len, cap;
+} Guards;
+
+static Guard
+guard_new(Guards *G, const int *k, int n)
+{
+    if (G->len + (size_t)n > G->cap) {
+        G->cap = 2 * (G->len + (size_t)n) + 64;
+        G->k = xrealloc(G->k, G->cap * sizeof *G->k);
+    }
+    memcpy(G->k + G->len, k, (size_t)n * sizeof *k);
+    Guard g = {n, (int)G->len};
+    G->len += (size_t)n;
+    return g;
+}
+
+/* The union of guards a and b; G_TOP past GUARD_MAX, or where it holds
+ * both modes of one switch (it always holds). */
+static Guard
+guard_join(Guards *G, Guard a, Guard b)
+{
+    if (a.n == G_TOP || b.n == G_TOP)
+        return (Guard){G_TOP, 0};
+    int u[2 * GUARD_MAX], n = 0, i = 0, j = 0;
+    const int *x = G->k + a.off, *y = G->k + b.off;
+    while (i < a.n || j < b.n) {
+        if (j >= b.n || (i < a.n && x[i] < y[j]))
+            u[n++] = x[i++];
+        else if (i >= a.n || y[j] < x[i])
+            u[n++] = y[j++];
+        else /* in both */
+            u[n++] = x[i++], j++;
+    }
+    if (n > GUARD_MAX)
+        return (Guard){G_TOP, 0};
+    for (int i = 1; i < n; i++)
+        if (u[i] == (u[i - 1] | 1) && u[i - 1] % 2 == 0) /* both modes of one switch */
+            return (Guard){G_TOP, 0};
+    if (n == a.n)
+        return a;
+    if (n == b.n)
+        return b;
+    return guard_new(G, u, n);
+}
+
+static int
+guard_same(const Guards *G, Guard a, Guard b)
+{
+    return a.n == b.n &&
+           (a.n <= 0 || a.off == b.off ||
+            !memcmp(G->k + a.off, G->k + b.off, (size_t)a.n * sizeof *G->k));
+}
+
+/* Each scheduled node's guard (by its place), from its uses: the
+ * outputs' and the angles' (computed at once, first) are G_TOP; the
+ * operand in branch a (b) of a SELECT on k that is G_TOP is read under
+ * {2 k + 1} ({2 k}); any other operand under its user's guard (a
+ * SELECT under a guard is its guard's: blocks do not nest).  In reverse
+ * order every use of a node is seen before it.  lazy 0: all G_TOP. */
+static void
+guards(const Build *b, int lazy, Guards *G)
+{
+    ExprPool *P = b->P;
+    Guard *g = G->g = xmalloc(((size_t)b->n + 1) * sizeof *g);
+    G->k = NULL, G->len = G->cap = 0;
+    for (int k = 0; k < b->n; k++)
+        g[k].n = lazy ? G_UNSET : G_TOP;
+    for (int i = 0; i < b->f->nout; i++)
+        if (!is_input(b, b->f->out[i].e))
+            g[b->place[b->f->out[i].e]].n = G_TOP;
+    for (int k = b->n - 1; k >= 0; k--) {
+        ExprId e = b->node[k];
+        const ExprNode *nd = expr_node(P, e);
+        if (k < b->S->angles_end || g[k].n == G_UNSET)
+            g[k].n = G_TOP;
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int j = 0; j < expr_op_arity[nd->op]; j++) {
+            if (is_input(b, ops[j]))
+                continue;
+            Guard use = g[k], *o = &g[b->place[ops[j]]];
+            if (nd->op == EXPR_SELECT && use.n == G_TOP) {
+                int t = 2 * expr_select_mode(P, e) + (j == 0);
+                use = guard_new(G, &t, 1);
+            }
+            *o = o->n == G_UNSET ? use : guard_join(G, *o, use);
+        }
+    }
+}
+
+/* The steps being listed: the guarded nodes, listed per switch in
+ * their guard in schedule order, each listed by the first SELECT on
+ * one of them that comes once its operands are computed. */
+typedef struct Lazy {
+    const Build *b;
+    Guards G;
+    const Guard *g;            /* G.g: by place */
+    unsigned char *done;       /* per node id: listed */
+    struct Pending {
+        int *at; /* places */
+        int n, cap;
+    } *pend; /* per switch */
+    int *taken, *at2;          /* scratch: the places a flush lists, by group */
+    int *grp, *cnt;            /* scratch: a flush's groups, their sizes */
+    struct Pending *sel;       /* per switch: the places of its G_TOP SELECTs */
+    int *stamp, flushes;       /* by place: the flush that could not pull it */
+    ExprId *stack;             /* scratch: pull's */
+} Lazy;
+
+static int
+ready(const Lazy *z, ExprId e)
+{
+    const ExprNode *nd = expr_node(z->b->P, e);
+    ExprId ops[2] = {nd->a, nd->b};
+    for (int j = 0; j < expr_op_arity[nd->op]; j++)
+        if (!z->done[ops[j]] && !is_input(z->b, ops[j]))
+            return 0;
+    return 1;
+}
+
+static void
+add_block(Lazy *z, Guard g, const int *at, int n, int k_else, const int *at2, int n2)
+{
+    LowSched *S = z->b->S;
+    const int *t = z->G.k + g.off;
+    for (int c = 0; c < g.n; c++)
+        add_test(S, c ? LOW_STEP_OR : LOW_STEP_IF, EXPR_NONE, t[c] / 2, t[c] % 2);
+    for (int j = 0; j < n; j++)
+        add_step(S, LOW_STEP_NODE, z->b->node[at[j]], 0);
+    if (n2) {
+        add_step(S, LOW_STEP_ELSE, EXPR_NONE, k_else);
+        for (int j = 0; j < n2; j++)
+            add_step(S, LOW_STEP_NODE, z->b->node[at2[j]], 0);
+    }
+    add_step(S, LOW_STEP_END, EXPR_NONE, t[0] / 2);
+}
+
+/* G_TOP node e listed now, with the G_TOP operands it needs first:
+ * what a block reads that the schedule would reach only later (a body's
+ * Jacobian on a coordinate whose turn comes after).  Not a SELECT, nor
+ * anything that reads one: a SELECT lists its own blocks first.  1 if
+ * e is listed (or needs no listing). */
+static int
+pull(Lazy *z, ExprId root)
+{
+    const Build *b = z->b;
+    size_t sp = 0;
+    z->stack[sp++] = root;
+    while (sp) {
+        ExprId e = z->stack[sp - 1];
+        if (z->done[e] || is_input(b, e)) {
+            sp--;
+            continue;
+        }
+        const ExprNode *nd = expr_node(b->P, e);
+        if (z->stamp[b->place[e]] == z->flushes || z->g[b->place[e]].n != G_TOP ||
+            nd->op == EXPR_SELECT) {
+            for (size_t i = 0; i < sp; i++) /* it, and what waits on it, cannot come now */
+                z->stamp[b->place[z->stack[i]]] = z->flushes;
+            return 0;
+        }
+        ExprId ops[2] = {nd->a, nd->b};
+        int pushed = 0;
+        for (int j = expr_op_arity[nd->op] - 1; j >= 0; j--)
+            if (!z->done[ops[j]] && !is_input(b, ops[j]))
+                z->stack[sp++] = ops[j], pushed = 1;
+        if (pushed)
+            continue;
+        sp--;
+        add_step(b->S, LOW_STEP_NODE, e, 0);
+        z->done[e] = 1;
+    }
+    return 1;
+}
+
+/* The guarded nodes whose guard holds switch k and that can run now,
+ * as blocks, one per guard: all of them, not only those the schedule
+ * has reached (a pair's share on each coordinate, in one block); a node
+ * whose operands are not all computed yet waits for a later SELECT (the
+ * one that needs it comes after them).  The blocks of {k on} and {k
+ * off} are one, its two branches. */
+static void
+flush(Lazy *z, int k)
+{
+    const Build *b = z->b;
+    struct Pending *p = &z->pend[k];
+    int n = 0, kept = 0;
+    z->flushes++;
+    for (int j = 0; j < p->n; j++) { /* the G_TOP values they read, first */
+        const ExprNode *nd = expr_node(b->P, b->node[p->at[j]]);
+        ExprId ops[2] = {nd->a, nd->b};
+        for (int i = 0; !z->done[b->node[p->at[j]]] && i < expr_op_arity[nd->op]; i++)
+            if (is_input(b, ops[i]) || z->g[b->place[ops[i]]].n == G_TOP)
+                (void)pull(z, ops[i]);
+    }
+    for (int j = 0; j < p->n; j++) {
+        int at = p->at[j];
+        ExprId e = b->node[at];
+        if (z->done[e])
+            continue; /* listed through another switch of its guard */
+        if (ready(z, e)) {
+            z->taken[n++] = at;
+            z->done[e] = 1;
+        } else {
+            p->at[kept++] = at;
+        }
+    }
+    p->n = kept;
+    if (!n)
+        return;
+    /* one block per guard, the guards' nodes in schedule order; wider
+     * guards first: a node reads only nodes whose guards hold its own
+     * (a guard is the union of its uses'), so never a narrower one's,
+     * and two guards of one width do not read each other */
+    int *grp = z->grp, ngrp = 0, *cnt = z->cnt, *at = z->at2;
+    for (int i = 0; i < n; i++) {
+        int c = 0;
+        while (c < ngrp && !guard_same(&z->G, z->g[grp[c]], z->g[z->taken[i]]))
+            c++;
+        if (c == ngrp)
+            grp[ngrp] = z->taken[i], cnt[ngrp++] = 0;
+        cnt[c]++;
+    }
+    for (int i = 1; i < ngrp; i++) /* by width, then first place: stable, few */
+        for (int j = i; j > 0 && z->g[grp[j - 1]].n < z->g[grp[j]].n; j--) {
+            int t = grp[j], c = cnt[j];
+            grp[j] = grp[j - 1], cnt[j] = cnt[j - 1];
+            grp[j - 1] = t, cnt[j - 1] = c;
+        }
+    int c_on = -1, c_off = -1;
+    for (int c = 0; c < ngrp; c++) {
+        Guard g = z->g[grp[c]];
+        if (g.n == 1 && z->G.k[g.off] == 2 * k + 1)
+            c_on = c;
+        if (g.n == 1 && z->G.k[g.off] == 2 * k)
+            c_off = c;
+    }
+    for (int c = 0, from = 0; c < ngrp; c++) { /* each group's places, in order */
+        int m = 0;
+        for (int i = 0; i < n; i++)
+            if (guard_same(&z->G, z->g[z->taken[i]], z->g[grp[c]]))
+                at[from + m++] = z->taken[i];
+        grp[c] = from; /* now: where its places start in at */
+        from += m;
+    }
+    for (int c = 0; c < ngrp; c++) {
+        Guard g = z->g[at[grp[c]]];
+        if (c == c_off && c_on >= 0)
+            continue; /* the on block's else */
+        if (c == c_on && c_off >= 0)
+            add_block(z, g, at + grp[c], cnt[c], k, at + grp[c_off], cnt[c_off]);
+        else
+            add_block(z, g, at + grp[c], cnt[c], k, NULL, 0);
+    }
+}
+
+static void
+pend_add(struct Pending *p, int at)
+{
+    if (p->n == p->cap)
+        p->at = xrealloc(p->at, (size_t)(p->cap = p->cap ? 2 * p->cap : 16) * sizeof *p->at);
+    p->at[p->n++] = at;
+}
+
+/* Node e in schedule order: left to a block if guarded, else listed,
+ * after the blocks of what it takes if it is a SELECT; and after a
+ * block, the SELECTs on its switch that can run now, the emitter's
+ * assignments in its two branches (a pair's share on each coordinate:
+ * apart, only the test of its mode). */
+static void
+lazy_node(Lazy *z, int at)
+{
+    ExprId e = z->b->node[at];
+    if (z->done[e] || z->g[at].n > 0) /* listed already, or by a SELECT */
+        return;
+    const ExprNode *nd = expr_node(z->b->P, e);
+    int k = nd->op == EXPR_SELECT ? expr_select_mode(z->b->P, e) : -1, before = z->b->S->nstep;
+    if (k >= 0 && z->pend[k].n)
+        flush(z, k);
+    add_step(z->b->S, LOW_STEP_NODE, e, 0);
+    z->done[e] = 1;
+    if (k < 0 || z->b->S->nstep == before + 1)
+        return;
+    struct Pending *p = &z->sel[k];
+    int kept = 0;
+    for (int j = 0; j < p->n; j++) {
+        ExprId s = z->b->node[p->at[j]];
+        if (z->done[s])
+            continue;
+        if (ready(z, s)) {
+            add_step(z->b->S, LOW_STEP_NODE, s, 0);
+            z->done[s] = 1;
+        } else {
+            p->at[kept++] = p->at[j];
+        }
+    }
+    p->n = kept;
 }
 
 LowSched *
-lower_schedule(ExprPool *P, const LowFunc *f)
+lower_schedule(ExprPool *P, const LowFunc *f, int lazy)
 {
     size_t size = expr_pool_size(P);
     int nout = f->nout;
@@ -305,9 +639,9 @@ lower_schedule(ExprPool *P, const LowFunc *f)
         order_by_start(&b);
     S->nnode = b.n;
     /* the copies' loop, the fills, then the nodes with each store after
-     * the nodes listed before it */
-    S->step = xmalloc(((size_t)LOW_MAX_ARGS + 1 + (size_t)b.n + (size_t)nout) *
-                      sizeof *S->step);
+     * the nodes listed before it, and the blocks' steps */
+    S->cap = LOW_MAX_ARGS + 1 + b.n + nout;
+    S->step = xmalloc((size_t)S->cap * sizeof *S->step);
     if (f->copy)
         add_step(S, LOW_STEP_COPIES, EXPR_NONE, 0);
     LowArgs a;
@@ -315,15 +649,54 @@ lower_schedule(ExprPool *P, const LowFunc *f)
     for (int k = 0; k < a.n - a.nin; k++)
         if (f->fill[k])
             add_step(S, LOW_STEP_FILL, EXPR_NONE, k);
+    int nsw = expr_nswitch(P);
+    Lazy z = {&b, {0}, NULL, xmalloc(size), xmalloc(((size_t)nsw + 1) * sizeof *z.pend),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.taken),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.at2), xmalloc(((size_t)b.n + 1) * sizeof *z.grp),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.cnt),
+              xmalloc(((size_t)nsw + 1) * sizeof *z.sel),
+              xmalloc(((size_t)b.n + 1) * sizeof *z.stamp), 0,
+              xmalloc((2 * (size_t)b.n + 1) * sizeof *z.stack)};
+    guards(&b, lazy, &z.G);
+    z.g = z.G.g;
+    for (int i = 0; i < b.n; i++)
+        z.stamp[i] = -1;
+    memset(z.done, 0, size);
+    memset(z.pend, 0, ((size_t)nsw + 1) * sizeof *z.pend);
+    memset(z.sel, 0, ((size_t)nsw + 1) * sizeof *z.sel);
+    for (int j = 0; j < b.n; j++) {
+        for (int c = 0; c < z.g[j].n; c++)
+            pend_add(&z.pend[z.G.k[z.g[j].off + c] / 2], j);
+        if (z.g[j].n == G_TOP && expr_node(P, b.node[j])->op == EXPR_SELECT)
+            pend_add(&z.sel[expr_select_mode(P, b.node[j])], j);
+    }
     int k = 0;
     for (int j = 0; j < nout; j++) {
         int i = b.order ? b.order[j] : j;
         for (; k < b.after[i]; k++)
-            add_step(S, LOW_STEP_NODE, b.node[k], 0);
+            lazy_node(&z, k);
         add_step(S, LOW_STEP_STORE, EXPR_NONE, i);
     }
     for (; k < b.n; k++)
-        add_step(S, LOW_STEP_NODE, b.node[k], 0);
+        lazy_node(&z, k);
+    for (int j = 0; j < nsw; j++) {
+        for (int i = 0; i < z.pend[j].n; i++)
+            if (!z.done[b.node[z.pend[j].at[i]]]) /* deferred, and no SELECT took it */
+                diag_unreachable();
+        free(z.pend[j].at);
+        free(z.sel[j].at);
+    }
+    free(z.pend);
+    free(z.sel);
+    free(z.stamp);
+    free(z.stack);
+    free(z.done);
+    free(z.taken);
+    free(z.at2);
+    free(z.grp);
+    free(z.cnt);
+    free(z.G.g);
+    free(z.G.k);
     free(b.node);
     free(b.place);
     free(b.after);
@@ -423,12 +796,30 @@ eval_inputs(ExprPool *P, const LowFunc *f, const LowSched *S, const ExprEnv *env
 void
 lower_eval(ExprPool *P, const LowFunc *f, const ExprEnv *env, double *const *outs)
 {
-    LowSched *S = lower_schedule(P, f);
-    double *v = xmalloc(expr_pool_size(P) * sizeof *v); /* by node id */
+    LowSched *S = lower_schedule(P, f, 1);
+    size_t size = expr_pool_size(P);
+    double *v = xmalloc(size * sizeof *v); /* by node id; a block not run leaves NaN */
+    for (size_t i = 0; i < size; i++)
+        v[i] = NAN;
     eval_inputs(P, f, S, env, v);
+    int skip = 0; /* inside a block's branch that the mode does not take */
     for (int k = 0; k < S->nstep; k++) {
         const LowStep *st = &S->step[k];
+        if (skip && st->kind == LOW_STEP_NODE)
+            continue;
         switch (st->kind) {
+        case LOW_STEP_IF: /* no modes (NULL): no branch, as SELECT's NaN */
+            skip = !env->mode || (env->mode[st->i] != 0.0) != st->branch;
+            break;
+        case LOW_STEP_OR: /* a block runs where any of its tests holds */
+            skip = skip && (!env->mode || (env->mode[st->i] != 0.0) != st->branch);
+            break;
+        case LOW_STEP_ELSE:
+            skip = !env->mode || !skip;
+            break;
+        case LOW_STEP_END:
+            skip = 0;
+            break;
         case LOW_STEP_COPIES:
             eval_copies(P, f, env, outs);
             break;

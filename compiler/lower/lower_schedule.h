@@ -31,20 +31,40 @@ enum {
                       * (printed as a comment where f->zeroed says so) */
     LOW_STEP_NODE,   /* compute operator node id from its operands */
     LOW_STEP_STORE,  /* store out[i] (once its value is computed) */
+    /* A lazy block: IF, then ORs, each a test that switch i (the
+     * pool's) is in mode `branch`; the NODE steps up to its END (or ELSE)
+     * run where any test holds.  A block of one test may have an ELSE:
+     * the NODE steps after it run where the test fails.  Blocks hold
+     * nodes only and do not nest. */
+    LOW_STEP_IF,
+    LOW_STEP_OR,
+    LOW_STEP_ELSE,
+    LOW_STEP_END,
 };
 
 typedef struct LowStep {
     int kind; /* LOW_STEP_* */
     ExprId id;
     int i;
+    int branch; /* LOW_STEP_IF: 1, mode i on, or 0, off */
 } LowStep;
 
 /* The one order in which a function's values are computed: the emitter
  * prints it (naming a temporary per node, cutting it into parts) and
  * lower_eval evaluates it.  Operands that f does not compute
- * (lower_computed) are leaves, shared[] or pd[] values, read where used. */
+ * (lower_computed) are leaves, shared[] or pd[] values, read where used.
+ *
+ * Lazy branches: a node whose every use, through any path, lies under
+ * one branch of a switched expression SELECT(k, a, b) is computed in a
+ * block that runs only in that mode of switch k, just before the first
+ * SELECT on k that takes it (a SELECT under another one's branch counts
+ * as the outer one's: blocks do not nest).  A node under branches of a
+ * few switches (a body's pose, which each of its contact pairs reads
+ * under its own switch) runs where any of them holds.  The values are
+ * the same operations either way; a mode's branch that is not taken
+ * costs nothing. */
 typedef struct LowSched {
-    int nstep;
+    int nstep, cap;
     LowStep *step;
     int nnode; /* LOW_STEP_NODE steps */
     /* The nodes numbered angles .. angles_end-1, counted among the
@@ -58,12 +78,13 @@ typedef struct LowSched {
     int whole; /* fewer than LOWER_PART_SIZE nodes: in start order */
 } LowSched;
 
-/* f's schedule (lower_sched_free frees it). */
-LowSched *lower_schedule(ExprPool *P, const LowFunc *f);
+/* f's schedule (lower_sched_free frees it); lazy 0: no lazy blocks,
+ * every branch computed (eomc's --branches eager). */
+LowSched *lower_schedule(ExprPool *P, const LowFunc *f, int lazy);
 void lower_sched_free(LowSched *S);
 
 /* Evaluate f at env by running its schedule (lower_schedule: the list
- * its C is printed from), each node from its operands' values by
+ * its C is printed from, lazy), each node from its operands' values by
  * expr_eval_node, copies and fills included: out[k] is output argument
  * k's array (NULL: skipped).  Tests use it to check a derivation without
  * compiling C. */

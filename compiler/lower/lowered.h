@@ -266,6 +266,9 @@ typedef struct Lowered {
     /* code = LOWER_CODE_TABLES: tau, then accel and mass_bias by hand over
      * the tables, whose numbers are pd[tree_base ...] */
     int code;
+    /* every branch of every switched expression computed, none in lazy
+     * blocks (lower_schedule.h; --branches eager): set by the caller */
+    int eager_branches;
     const FormTables *tables;
     const char *tables_why; /* --code tables asked, and why they could not be */
     LowFunc *tau, *potential;

@@ -15,6 +15,16 @@
  * its centre and the torque (p - centre) x F, which is what a force at
  * the material point p does.  The nearest points of a capsule's axis are
  * clamped parameters, switches of their own.
+ *
+ * Each pair's whole share of the generalized forces (its gaps, forces
+ * and their projection on the coordinates) is a switched expression of
+ * one more switch, EFFECT.A.B.near: where(s, share, 0), s > 0 where the
+ * shapes' bounding spheres, grown by a margin, overlap (near_bound).  The
+ * emitter computes a branch only in its mode (lower_schedule.h), so a
+ * pair that is far apart costs a right-hand side nothing.  It is exact,
+ * not an approximation: a gap is at most its bounding spheres' overlap,
+ * so while far (s < 0) every gap is below -margin, and the near switch
+ * flips before any touch switch can.
  */
 #include "contact.h"
 
@@ -30,8 +40,16 @@ typedef struct Ctx {
     Diff *D;
     const char *prefix; /* EFFECT.A.B: its switches' names */
     ExprId k, c;
-    ExprId (*F)[3], (*tau)[3]; /* per body: force, and torque about its centre (world axes) */
+    ExprId (*F)[3], (*tau)[3]; /* per body: the pair's force, and torque about its centre
+                                * (world axes) */
 } Ctx;
+
+/* The margin by which the near switch's bounding spheres are grown, a
+ * share of their radii (a plane's partner's alone): any margin > 0 keeps
+ * the near switch ahead of the touch switches (their kinks apart, each
+ * located on its own); a larger one computes the pair longer before a
+ * touch, a smaller one brings the two switches' times closer. */
+#define NEAR_MARGIN_REL 0.125
 
 /* A shape where it is: its centre o, its axes A (row-major, world from
  * shape), its sizes, and its body (>= nbody: the ground). */
@@ -321,6 +339,83 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
     spheres(x, "", pa, a->size[0], a->body, pb, b->size[0], b->body);
 }
 
+/* The radius of a sphere about a shape's centre that holds it (a box's
+ * corners, an ellipsoid within the sphere of its semi-axes' norm). */
+static ExprId
+bounding_radius(ExprPool *P, const Placed *sh)
+{
+    switch (sh->type) {
+    case SPEC_SHAPE_SPHERE:
+        return sh->size[0];
+    case SPEC_SHAPE_CAPSULE:
+        return expr_add(P, sh->size[0], sh->size[1]);
+    default: { /* box, ellipsoid */
+        ExprId w = EXPR_ZERO;
+        for (int j = 0; j < 3; j++)
+            w = expr_add(P, w, expr_powi(P, sh->size[j], 2));
+        return expr_unary(P, EXPR_SQRT, w);
+    }
+    }
+}
+
+/* The near switch's function: > 0 where the pair's bounding spheres,
+ * grown by the margin, overlap.  A plane and a shape: R + margin -
+ * n.(o - p0), the grown sphere's depth below the plane; two shapes:
+ * (Ra + Rb + margin)^2 - |oa - ob|^2, its sign that of the distance's
+ * without a square root.  Every gap of the pair is at most the
+ * spheres' overlap, so it is below -margin wherever this is below 0. */
+static ExprId
+near_bound(ExprPool *P, const Placed *a, const Placed *b)
+{
+    if (b->type == SPEC_SHAPE_PLANE) {
+        const Placed *t = a;
+        a = b, b = t;
+    }
+    ExprId rb = bounding_radius(P, b), rel[3];
+    for (int i = 0; i < 3; i++)
+        rel[i] = expr_sub(P, b->o[i], a->o[i]);
+    if (a->type == SPEC_SHAPE_PLANE) {
+        ExprId n[3];
+        axis(a->A, 2, n);
+        ExprId grown = expr_mul(P, expr_const(P, 1 + NEAR_MARGIN_REL), rb);
+        return expr_sub(P, grown, kin_dot(P, n, rel));
+    }
+    ExprId sum = expr_add(P, bounding_radius(P, a), rb);
+    ExprId grown = expr_mul(P, expr_const(P, 1 + NEAR_MARGIN_REL), sum);
+    ExprId sq = expr_powi(P, grown, 2);
+    return expr_sub(P, sq, kin_dot(P, rel, rel));
+}
+
+/* Body b's force and torque (x->F[b], x->tau[b]) on the coordinates,
+ * added to Qq and Q: F . dc/dq_i, and (R^T tau) . dw/dv_j in its axes. */
+static void
+project(Ctx *x, int b, const ContactQ *out, ExprId *Qq, ExprId *Q)
+{
+    ExprPool *P = x->P;
+    const SpecBody *bd = &x->s->body[b];
+    for (int i = 0; i < out->nq; i++) {
+        ExprId w = EXPR_ZERO;
+        for (int k = 0; k < bd->dim; k++)
+            w = expr_add(P, w, expr_mul(P, x->F[b][k],
+                                        diff_partial(x->D, bd->center[k], out->q[i])));
+        Qq[i] = expr_add(P, Qq[i], w);
+    }
+    ExprId c[3], R[9], tb[3];
+    body_pose(x->s, b, P, c, R);
+    int nw = bd->dim == 2 ? 1 : 3;
+    if (nw == 1) /* about z, the plane's normal */
+        tb[0] = x->tau[b][2];
+    else
+        for (int k = 0; k < 3; k++) /* R^T tau */
+            tb[k] = kin_dot(P, (ExprId[3]){R[k], R[3 + k], R[6 + k]}, x->tau[b]);
+    for (int j = 0; j < out->n; j++) {
+        ExprId w = EXPR_ZERO;
+        for (int k = 0; k < nw; k++)
+            w = expr_add(P, w, expr_mul(P, tb[k], diff_partial(x->D, bd->omega[k], out->v[j])));
+        Q[j] = expr_add(P, Q[j], w);
+    }
+}
+
 void
 contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P, Diff *D,
             const ContactQ *out)
@@ -329,9 +424,8 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
     Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL};
     x.F = xmalloc(((size_t)nb + 1) * sizeof *x.F);
     x.tau = xmalloc(((size_t)nb + 1) * sizeof *x.tau);
-    for (int b = 0; b <= nb; b++)
-        for (int i = 0; i < 3; i++)
-            x.F[b][i] = x.tau[b][i] = EXPR_ZERO;
+    ExprId *Qq = xmalloc(((size_t)out->nq + 1) * sizeof *Qq);
+    ExprId *Q = xmalloc(((size_t)out->n + 1) * sizeof *Q);
     for (int j = 0; j < f->npair; j++) {
         int ka = f->pair[2 * j], kb = f->pair[2 * j + 1];
         size_t len = strlen(e->name) + strlen(s->shape[ka].name) + strlen(s->shape[kb].name) + 3;
@@ -341,6 +435,11 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
         Placed a, b;
         place(s, ka, P, &a);
         place(s, kb, P, &b);
+        /* the near switch first: the pair's own come after it */
+        ExprId near = near_bound(P, &a, &b);
+        (void)named_where(&x, near, EXPR_ONE, EXPR_ZERO, "near");
+        for (int i = 0; i < 3; i++)
+            x.F[a.body][i] = x.tau[a.body][i] = x.F[b.body][i] = x.tau[b.body][i] = EXPR_ZERO;
         if (a.type == SPEC_SHAPE_PLANE)
             with_plane(&x, &a, &b);
         else if (b.type == SPEC_SHAPE_PLANE)
@@ -353,38 +452,24 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
             sphere_capsule(&x, &b, &a, 1);
         else
             capsules(&x, &a, &b);
+        /* the pair's share, on the coordinates, while near */
+        for (int i = 0; i < out->nq; i++)
+            Qq[i] = EXPR_ZERO;
+        for (int i = 0; i < out->n; i++)
+            Q[i] = EXPR_ZERO;
+        for (int e2 = 0; e2 < 2; e2++) {
+            int body = e2 ? b.body : a.body;
+            if (body < nb) /* (the ground takes its own) */
+                project(&x, body, out, Qq, Q);
+        }
+        for (int i = 0; i < out->nq; i++)
+            out->Qq[i] = expr_add(P, out->Qq[i], named_where(&x, near, Qq[i], EXPR_ZERO, "near"));
+        for (int i = 0; i < out->n; i++)
+            out->Q[i] = expr_add(P, out->Q[i], named_where(&x, near, Q[i], EXPR_ZERO, "near"));
         free(prefix);
     }
-    /* each body's total: F . dc/dq_i, and (R^T tau) . dw/dv_j in its axes */
-    for (int b = 0; b < nb; b++) {
-        const SpecBody *bd = &s->body[b];
-        int any = 0;
-        for (int i = 0; i < 3; i++)
-            any |= x.F[b][i] != EXPR_ZERO || x.tau[b][i] != EXPR_ZERO;
-        if (!any)
-            continue;
-        for (int i = 0; i < out->nq; i++) {
-            ExprId w = EXPR_ZERO;
-            for (int k = 0; k < bd->dim; k++)
-                w = expr_add(P, w, expr_mul(P, x.F[b][k],
-                                            diff_partial(D, bd->center[k], out->q[i])));
-            out->Qq[i] = expr_add(P, out->Qq[i], w);
-        }
-        ExprId c[3], R[9], tb[3];
-        body_pose(s, b, P, c, R);
-        int nw = bd->dim == 2 ? 1 : 3;
-        if (nw == 1) /* about z, the plane's normal */
-            tb[0] = x.tau[b][2];
-        else
-            for (int k = 0; k < 3; k++) /* R^T tau */
-                tb[k] = kin_dot(P, (ExprId[3]){R[k], R[3 + k], R[6 + k]}, x.tau[b]);
-        for (int j = 0; j < out->n; j++) {
-            ExprId w = EXPR_ZERO;
-            for (int k = 0; k < nw; k++)
-                w = expr_add(P, w, expr_mul(P, tb[k], diff_partial(D, bd->omega[k], out->v[j])));
-            out->Q[j] = expr_add(P, out->Q[j], w);
-        }
-    }
+    free(Qq);
+    free(Q);
     free(x.F);
     free(x.tau);
 }

@@ -9,8 +9,9 @@
 #    ends where k d + c d' = 0 (found by bisection), the touch where d
 #    returns to 0 in free flight, and the apex is the ballistic one.  The
 #    push's switch turns on before touchdown, where k d + c d' = 0 in the
-#    fall (a quadratic).  Each error falls as rtol tightens (1e-6, 1e-9,
-#    1e-12).
+#    fall (a quadratic), and the near switch before it, where the ball's
+#    sphere grown by its margin (r/8) meets the floor.  Each error falls
+#    as rtol tightens (1e-6, 1e-9, 1e-12).
 #  - tests/cli/contact_box.yaml: a box, its centre of mass off-centre,
 #    settles on its four lower corners; at rest their forces k d_i, the
 #    d_i from the state's position and quaternion, sum to m g (1e-9) and
@@ -30,6 +31,13 @@
 #    end spheres and an ellipsoid's lowest point on a tilted plane, a
 #    planar bar on a line: q'' from the forces at the touching points and
 #    their torques (the ellipsoid's point by a search over its surface).
+#  - thrown fast (20 m/s) at the floor and at the other ball, where a
+#    step may jump from far to deep in one go: the near switch flips
+#    first and each touch is where the closed forms put it (the same
+#    damped oscillator from the impact speed; for the balls, no gravity).
+#  - the lazy code (--branches lazy, the default) and the code that
+#    computes every branch (--branches eager) give the very same rows and
+#    events on every scene here: the same operations, in their modes.
 #  - the scene turns a contact off; a size of parameters --set below 0
 #    is refused; the page's floor is the ground's plane.
 # usage: test_contact.sh EOMC SOURCE_ROOT BUILD_ROOT
@@ -64,22 +72,24 @@ d1, d1d = x(t1) - A, xd(t1)
 s = (-d1d - math.sqrt(d1d * d1d - 2 * g * d1)) / g # d = 0 again, in free flight
 a2, a1, a0 = k * g / 2, c * g, k * (r - h0) # k d + c d' = 0 in the fall
 ton = (-a1 + math.sqrt(a1 * a1 - 4 * a2 * a0)) / (2 * a2)
-print("%.17g %.17g %.17g %.17g %.17g" % (ton, t0, t0 + t1, t0 + t1 + s, r - d1 + d1d * d1d / (2 * g)))
+tnear = math.sqrt(2 * (h0 - 1.125 * r) / g)
+print("%.17g %.17g %.17g %.17g %.17g %.17g" % (ton, t0, t0 + t1, t0 + t1 + s, r - d1 + d1d * d1d / (2 * g), tnear))
 EOF
 )
-set -- $want - - - - -
-ton=$1 t0=$2 tpush=$3 ttouch=$4 apex=$5
+set -- $want - - - - - -
+ton=$1 t0=$2 tpush=$3 ttouch=$4 apex=$5 tnear=$6
 errs=""
 for tol in 1e-6 1e-9 1e-12; do
   "$eomc" run "$cli/contact_drop.yaml" --rtol $tol --atol $tol --events "$tmp/ev$tol.csv" > /dev/null
   st=$?
-  [ $st -eq 0 ] && [ "$(cut -d, -f2 "$tmp/ev$tol.csv" | tr '\n' ' ')" = "event ground_contact.ball.floor.push ground_contact.ball.floor.touch ground_contact.ball.floor.push ground_contact.ball.floor.touch apex " ]
-  ok $? "rtol $tol: the switches ground_contact.ball.floor.push and .touch flip twice each, then the apex"
-  errs="$errs $(awk -F, -v ton=$ton -v t0=$t0 -v tp=$tpush -v tt=$ttouch -v apex=$apex '
+  [ $st -eq 0 ] && [ "$(cut -d, -f2 "$tmp/ev$tol.csv" | tr '\n' ' ')" = "event ground_contact.ball.floor.near ground_contact.ball.floor.push ground_contact.ball.floor.touch ground_contact.ball.floor.push ground_contact.ball.floor.touch ground_contact.ball.floor.near apex " ]
+  ok $? "rtol $tol: the switches ground_contact.ball.floor.push and .touch flip twice each, between the near switch's flips, then the apex"
+  errs="$errs $(awk -F, -v ton=$ton -v t0=$t0 -v tp=$tpush -v tt=$ttouch -v apex=$apex -v tn=$tnear '
       function a(x) { return x < 0 ? -x : x }
-      NR == 2 { e[1] = a($1 - ton) } NR == 3 { e[2] = a($1 - t0) } NR == 4 { e[3] = a($1 - tp) }
-      NR == 5 { e[4] = a($1 - tt) } NR == 6 { e[5] = a($3 - apex) }
-      END { printf "%.2g,%.2g,%.2g,%.2g,%.2g", e[1], e[2], e[3], e[4], e[5] }' "$tmp/ev$tol.csv")"
+      NR == 2 { e[6] = a($1 - tn) }
+      NR == 3 { e[1] = a($1 - ton) } NR == 4 { e[2] = a($1 - t0) } NR == 5 { e[3] = a($1 - tp) }
+      NR == 6 { e[4] = a($1 - tt) } NR == 8 { e[5] = a($3 - apex) }
+      END { printf "%.2g,%.2g,%.2g,%.2g,%.2g,%.2g", e[1], e[2], e[3], e[4], e[5], e[6] }' "$tmp/ev$tol.csv")"
 done
 set -- $errs - - -
 # each error at 1e-12 within 1e-13 s (1e-12 m for the apex), and none
@@ -87,8 +97,8 @@ set -- $errs - - -
 echo "$1 $2 $3" | awk '{ n1 = split($1, a, ","); split($2, b, ","); split($3, c, ",")
     for (i = 1; i <= n1; i++) if (c[i] > b[i] * 1.01 + 1e-15 || b[i] > a[i] * 1.01 + 1e-15) exit 1
     for (i = 1; i <= 4; i++) if (c[i] > 1e-13) exit 1
-    exit !(c[5] <= 1e-12 && a[3] > 10 * c[3] && a[5] > 10 * c[5]) }'
-ok $? "drop: push on $ton, touchdown $t0, push off $tpush (the contact's end), lift-off $ttouch, apex $apex; errors at rtol 1e-6 / 1e-9 / 1e-12: $1 / $2 / $3"
+    exit !(c[5] <= 1e-12 && c[6] <= 1e-13 && a[3] > 10 * c[3] && a[5] > 10 * c[5]) }'
+ok $? "drop: near $tnear, push on $ton, touchdown $t0, push off $tpush (the contact's end), lift-off $ttouch, apex $apex; errors at rtol 1e-6 / 1e-9 / 1e-12: $1 / $2 / $3"
 
 # ---- the box at rest: the corners' forces from the state
 "$eomc" run "$cli/contact_box.yaml" > "$tmp/box.csv" 2> "$tmp/box.err"; st=$?
@@ -137,6 +147,73 @@ v1=$(echo "$last" | cut -d, -f4) v2=$(echo "$last" | cut -d, -f5)
 p=$(awk -v a=$v1 -v b=$v2 'BEGIN { printf "%.17g", a + 3 * b }')
 [ $st -eq 0 ] && within "$p" 2 1e-13 && within "$v1" "$2" 1e-11 && within "$v2" "$3" 1e-11
 ok $? "spheres: momentum kept ($p for 2), restitution e = $1: speeds after $v1, $v2 (closed form $2, $3)"
+
+# ---- thrown fast: a step may jump from far to deep, the near switch
+# flips first and the touch is where the closed forms put it
+want=$(python3 - <<'EOF'
+import math
+m, r, g, k, c, h0, V = 1.0, 0.1, 9.81, 1.0e4, 10.0, 0.5, 20.0
+t0 = (-V + math.sqrt(V * V + 2 * g * (h0 - r))) / g; v0 = V + g * t0
+w = math.sqrt(k / m); z = c / (2 * m * w); wd = w * math.sqrt(1 - z * z)
+A = -m * g / k; B = (v0 + z * w * A) / wd
+def x(t): return math.exp(-z * w * t) * (A * math.cos(wd * t) + B * math.sin(wd * t))
+def xd(t):
+    return math.exp(-z * w * t) * ((-z * w * A + wd * B) * math.cos(wd * t)
+                                   - (z * w * B + wd * A) * math.sin(wd * t))
+def push(t): return k * (x(t) - A) + c * xd(t)
+lo, step = 0.0, 1e-5
+while push(lo + step) > 0: lo += step
+hi = lo + step
+for _ in range(200):
+    mid = 0.5 * (lo + hi)
+    if push(mid) > 0: lo = mid
+    else: hi = mid
+t1 = 0.5 * (lo + hi)
+d1, d1d = x(t1) - A, xd(t1)
+s = (-d1d - math.sqrt(d1d * d1d - 2 * g * d1)) / g
+a2, a1, a0 = k * g / 2, k * V + c * g, k * (r - h0) + c * V # k d + c d' = 0 in the fall
+ton = (-a1 + math.sqrt(a1 * a1 - 4 * a2 * a0)) / (2 * a2)
+tnear = (-V + math.sqrt(V * V + 2 * g * (h0 - 1.125 * r))) / g
+print("%.17g %.17g %.17g %.17g %.17g" % (ton, tnear, t0, t0 + t1, t0 + t1 + s))
+EOF
+)
+"$eomc" run "$cli/contact_drop.yaml" --init "z'=-20" --rtol 1e-12 --atol 1e-12 \
+  --events "$tmp/fast.csv" > /dev/null; st=$?
+err=$(echo "$want" | awk -F, 'NR == FNR { split($0, w, " "); next }
+    FNR > 1 && FNR <= 6 { e = $1 - w[FNR - 1]; if (e < 0) e = -e; if (e > m) m = e }
+    END { printf "%.2g", m }' - "$tmp/fast.csv")
+# (the push's switch, at k d + c d' = 0, turns on before the near one:
+# at this speed c d'/k is past the margin)
+[ $st -eq 0 ] && [ "$(cut -d, -f2 "$tmp/fast.csv" | tr '\n' ' ')" = "event ground_contact.ball.floor.push ground_contact.ball.floor.near ground_contact.ball.floor.touch ground_contact.ball.floor.push ground_contact.ball.floor.touch ground_contact.ball.floor.near " ] &&
+  awk -v e=$err 'BEGIN { exit !(e <= 1e-13) }'
+ok $? "the ball thrown at the floor at 20 m/s: push on, near, touchdown, push off, lift-off at the closed forms' times (largest error $err s; $want)"
+want=$(awk 'BEGIN { m1 = 1; m2 = 3; k = 1e4; c = 20; v = 20; mu = m1 * m2 / (m1 + m2)
+    w = sqrt(k / mu); z = c / (2 * mu * w); wd = w * sqrt(1 - z * z); s = sqrt(1 - z * z)
+    t1 = (3.14159265358979323846 - atan2(2 * z * s, 1 - 2 * z * z)) / wd
+    d1 = v / wd * exp(-z * w * t1) * sin(wd * t1)
+    d1d = v * exp(-z * w * t1) * (cos(wd * t1) - z / s * sin(wd * t1))
+    t0 = 0.2 / v; tnear = (0.2 - 0.125 * 0.3) / v; ton = (0.2 - c * v / k) / v
+    printf "%.17g %.17g %.17g %.17g %.17g", ton, tnear, t0, t0 + t1, t0 + t1 - d1 / d1d }')
+"$eomc" run "$cli/contact_spheres.yaml" --set v=20 --events "$tmp/sfast.csv" > /dev/null; st=$?
+err=$(echo "$want" | awk -F, 'NR == FNR { split($0, w, " "); next }
+    FNR > 1 && FNR <= 6 { e = $1 - w[FNR - 1]; if (e < 0) e = -e; if (e > m) m = e }
+    END { printf "%.2g", m }' - "$tmp/sfast.csv")
+[ $st -eq 0 ] && [ "$(cut -d, -f2 "$tmp/sfast.csv" | tr '\n' ' ')" = "event bump.one.two.push bump.one.two.near bump.one.two.touch bump.one.two.push bump.one.two.touch bump.one.two.near " ] &&
+  awk -v e=$err 'BEGIN { exit !(e <= 1e-13) }'
+ok $? "the balls at 20 m/s: push on, near, touch, push off, touch off at the closed forms' times (largest error $err s; $want)"
+
+# ---- lazy and eager code: the very same rows and events
+same=0 scenes=0
+for spec in contact_drop contact_box contact_spheres contact_capsules contact_planar contact_probe; do
+  for b in lazy eager; do
+    "$eomc" run "$cli/$spec.yaml" --branches $b --events "$tmp/$b.ev" > "$tmp/$b.rows" 2> /dev/null
+  done
+  scenes=$((scenes + 1))
+  [ -s "$tmp/lazy.rows" ] && cmp -s "$tmp/lazy.rows" "$tmp/eager.rows" &&
+    cmp -s "$tmp/lazy.ev" "$tmp/eager.ev" && same=$((same + 1))
+done
+[ $same -eq $scenes ]
+ok $? "--branches lazy and eager: the same rows and events, bit for bit, on $same of $scenes scenes"
 
 # ---- capsules
 "$eomc" run "$cli/contact_capsules.yaml" > "$tmp/cap.csv"; st=$?

@@ -1844,8 +1844,21 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     if (E.unclamped) /* every effect but the actuators without their ranges */
         fprintf(out, "effects: [%s], ", E.on);
     fprintf(out, "t_end: 1, dt: 0.01%s", eq ? ", assemble: true" : "");
-    if (u.floors && u.floor != 0 && !u.plane_floor) /* the grid is at z = 0 unless told */
-        fprintf(out, ", view: {floor: %s}", num(a, u.floor));
+    /* a robot on one free joint walks off the page: the camera follows
+     * its base from the start (the page's menu can let it go) */
+    int nfree = 0, base = -1;
+    for (int j = 0; j < m->njnt; j++)
+        if (m->jnt_type[j] == mjJNT_FREE)
+            nfree++, base = m->jnt_bodyid[j];
+    int floor_put = u.floors && u.floor != 0 && !u.plane_floor; /* the grid is at z = 0 unless told */
+    if (floor_put || nfree == 1) {
+        fputs(", view: {", out);
+        if (floor_put)
+            fprintf(out, "floor: %s%s", num(a, u.floor), nfree == 1 ? ", " : "");
+        if (nfree == 1)
+            fprintf(out, "follow: %s", body[base]);
+        fputs("}", out);
+    }
     fputs("}\n", out);
     free(gname);
     import_contacts_free(&ic);

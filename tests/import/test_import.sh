@@ -651,6 +651,19 @@ bounds=$(echo "$box" | awk -F', ' '{
   grep -q '^    .nshape = 5, .shapes = shapes,$' "$tmp/shapes.c"
 ok $? "geoms: shapes at geom_pos - body_ipos, the mesh as a box bounding it ($bounds), the world's and a welded body's as the ground, the floor plane as view: floor, the wall noted; in the C ($(cat "$tmp/err"))"
 
+# a robot on one free joint: its page's camera follows the base from
+# the start (view: follow:), the item the page names so; two free bodies
+# (contacts.xml): none is chosen for the user
+check="python3 $src/tests/cli/page_check.py"
+"$eomc" import "$src/specs/floating_base.xml" -o "$tmp/fbv.yaml" 2> /dev/null &&
+  "$eomc" run "$tmp/fbv.yaml" --t-end 0.05 -o /dev/null --animate "$tmp/fbv.html" 2> /dev/null
+st=$?
+i=$($check json "$tmp/fbv.html" follow 2> /dev/null)
+[ $st -eq 0 ] && grep -q '^scene: {.*view: {follow: base}}$' "$tmp/fbv.yaml" &&
+  [ "$($check json "$tmp/fbv.html" "items.$i.name" 2> /dev/null)" = '"base"' ] &&
+  "$eomc" import "$src/tests/import/models/contacts.xml" 2> /dev/null | grep '^scene: ' | grep -vq follow
+ok $? "a floating base's page follows it (item $i, base); with four free bodies (contacts.xml), none"
+
 # a URDF's visuals drawn (MuJoCo discards them unless told): the fixed
 # root link's as the ground, at its <origin>; a link's box at half its
 # URDF size; on a link with both, the visual, not the collision box; the

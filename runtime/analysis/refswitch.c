@@ -355,6 +355,10 @@ refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext *f0,
     eomc_ext first = INFINITY;
     for (int k = 0; k < w->nm; k++) {
         w->hit[k] = NAN;
+        /* flipped here as one of several crossings within a settled
+         * bracket, it may start a rounding short of 0: it is at 0 */
+        if (w->last[k] == t0 && past(w, k, w->s0[k]))
+            w->s0[k] = 0;
         if (past(w, k, w->s0[k])) { /* (cannot be: every mode agrees where a step starts) */
             w->hit[k] = t0;
         } else if (past(w, k, w->s1[k])) {
@@ -448,7 +452,8 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
 {
     size_t N = (size_t)(w->N > 0 ? w->N : 1);
     double *sens = malloc(2 * N * sizeof *sens), *slip = sens + N;
-    int rc = sens ? 0 : -1;
+    unsigned char *done = calloc((size_t)w->nm + 1, 1); /* flipped at this t */
+    int rc = sens && done ? 0 : -1;
     /* the located ones first, each with its arrival's rate (the modes it
      * came in), then, until none is left, those past 0 there: kinks at
      * this instant, and functions a flip moved (a max of a max) */
@@ -461,8 +466,8 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         int flips = 0;
         eomc_ext *flip = w->r1; /* (free once the step is checked) */
         for (int k = 0; k < w->nm; k++)
-            flip[k] = (pass == 0 && !isnan(w->hit[k]) && w->hit[k] - t <= w->settled) ||
-                       past(w, k, w->s1[k]);
+            flip[k] = !done[k] && ((pass == 0 && !isnan(w->hit[k]) &&
+                                    w->hit[k] - t <= w->settled) || past(w, k, w->s1[k]));
         for (int k = 0; rc == 0 && k < w->nm; k++) {
             if (flip[k] == 0)
                 continue;
@@ -480,8 +485,11 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             if (flip[k] == 0)
                 continue;
             w->last[k] = t;
-            /* to the side s went; exactly on it (located at s = 0), over */
-            int on = w->s1[k] != 0 ? w->s1[k] > 0 : w->mode[k] == 0, stuck = -1;
+            /* over: a located crossing may sit a rounding short of 0 (s1
+             * still on its mode's side, which must not read as a flip
+             * back at the next pass: done) and one past 0 is over */
+            int on = w->mode[k] == 0, stuck = -1;
+            done[k] = 1;
             if (!w->mo.flip)
                 w->mode[k] = on;
             else if (w->mo.flip(w->mo.ctx, k, on, t, x, &stuck) != 0)
@@ -500,5 +508,6 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
     for (int k = 0; k < w->nm; k++)
         w->hit[k] = NAN;
     free(sens);
+    free(done);
     return rc;
 }

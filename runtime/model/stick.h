@@ -599,6 +599,13 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
             STICK_(set)(w, u, m->fric_stick[j], 0);
         if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
             return rc;
+        /* a row's slip from its speed's sign (a function that kept the
+         * side of a stuck item's may have kept a side from before) */
+        for (int j = 0; j < w->nf; j++) {
+            STICK_REAL e = STICK_(speed)(w, j, v, NULL);
+            if (STICK_(is_row)(w, j) && e != 0)
+                STICK_(set)(w, u, m->fric_slip[j], e > 0);
+        }
     }
     for (int j = 0; j < w->nf; j++)
         STICK_(set)(w, u, m->fric_stick[j],

@@ -810,6 +810,18 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
     }
     STICK_(set)(w, u, k, on);
+    if (j >= 0 || !w->nrowitem || !STICK_(any)(w, u))
+        return STICK_OK;
+    /* a contact's push ended (or its near or touch switch flipped): a
+     * stuck point whose bound is now 0 holds nothing, and lets go, to
+     * slip by its speed's sign when it touches again */
+    if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+        return rc;
+    for (int i = 0; i < w->nf; i++)
+        if (STICK_(is_row)(w, i) && STICK_(stuck)(w, u, i) && !(w->F[i] > 0)) {
+            STICK_(set)(w, u, m->fric_stick[i], 0);
+            STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
+        }
     return STICK_OK;
 }
 

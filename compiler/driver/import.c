@@ -608,7 +608,8 @@ contact_drops(const mjModel *m, const ImportContacts *ic, const char *path, FILE
             drop_add(&mg, nm);
     }
     n += drop_say(warn, path, &fr, "the friction of", "contact pair",
-                  "eomc's contact pushes along the normal only: friction is not there yet");
+                  "eomc import does not write a contact's friction yet; a spec's contact "
+                  "with a plane takes `friction: mu`");
     n += drop_say(warn, path, &mg, "the margin or gap of", "contact pair",
                   "eomc's contact begins where the shapes touch");
     return n;

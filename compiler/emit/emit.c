@@ -701,6 +701,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .nfric = %d, .fric_names = fric_names, .fric_speed = fric_speed,\n"
                   "    .fric_slip = fric_slip, .fric_stick = fric_stick, .fric_bound = "
                   "%s_fric_bound,", md->nfric, nm);
+    if (L->fric_rows)
+        emit_line(pr, "    .fric_rows = %s_fric_rows,", nm);
     emit_line(pr, "};\n");
     emit_line(pr, "#if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main");
     emit_line(pr, "   (with -DEOMC_MPI, MPI's); or a library for Python (eomc build --shared) */");
@@ -730,6 +732,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .switches = %s_switches,", nm);
     if (L->fric_bound)
         emit_line(pr, "    .fric_bound = %s_fric_bound,", nm);
+    if (L->fric_rows)
+        emit_line(pr, "    .fric_rows = %s_fric_rows,", nm);
     emit_line(pr, "};");
     emit_line(pr, "#endif /* EOMC_EXTENDED */");
 }

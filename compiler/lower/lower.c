@@ -157,6 +157,11 @@ static const LowSig s_fric_bound = {
     "fric_bound", "The largest force of each dry-friction item (fric_names).",
     "t q v p u > F", 1,
 };
+static const LowSig s_fric_rows = {
+    "fric_rows", "Each dry-friction item's row J[nv j + i] = d(its speed)/dv_i and bias\n"
+    " * b[j] = J' v: its speed's rate is J v' + b (a coordinate's: a unit row, 0).",
+    "t q v p u > J b", 1,
+};
 static const LowSig s_draw = {
     "draw", "What a run's page draws: item k's position and rotation (row-major,\n"
     " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
@@ -698,21 +703,26 @@ lower_switches(Lowering *lw)
 }
 
 /* The dry-friction items of the effects that are on (an item whose force
- * folded to 0 exerts none, and is left out), and fric_bound; their modes
+ * folded to 0 exerts none, and is left out): the coordinates' items
+ * (spec/friction.c), then the contacts' (mechanics/contact.c), and
+ * fric_bound; where a contact has friction, fric_rows too.  Their modes
  * are the pool's switches until lower_switches numbers them
  * (friction_modes). */
 static void
-lower_friction(Lowering *lw)
+lower_friction(Lowering *lw, const Mech *m)
 {
     const Spec *s = lw->s;
     LowModel *md = &lw->L->model;
-    int n = 0;
+    ExprPool *P = lw->P;
+    int n = 0, rows = 0;
     for (int e = 0; e < s->neffect; e++)
         for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++)
             n += s->effect[e].force[j].friction && s->effect[e].force[j].expr != EXPR_ZERO;
-    if (!n)
+    for (int j = 0; j < m->fric.n; j++)
+        rows += m->fric.item[j].bound != EXPR_ZERO;
+    if (!n && !rows)
         return;
-    md->fric = arena_new_array(lw->A, LowFric, n);
+    md->fric = arena_new_array(lw->A, LowFric, n + rows);
     LowFunc *f = func(lw, &s_fric_bound, "events", 0);
     for (int e = 0; e < s->neffect; e++)
         for (int j = 0; s->effect[e].enabled && j < s->effect[e].nforce; j++) {
@@ -724,7 +734,36 @@ lower_friction(Lowering *lw)
                 .speed = s->vslot[fo->coord], .slip = fo->slip, .stick = fo->stick};
             out(lw, f, 0, md->nfric++, fo->bound);
         }
+    for (int j = 0; j < m->fric.n; j++) {
+        const ContactFric *cf = &m->fric.item[j];
+        if (cf->bound == EXPR_ZERO)
+            continue;
+        md->fric[md->nfric] = (LowFric){.name = cf->name, .speed = -1, .slip = cf->slip,
+                                        .stick = cf->stick, .row = cf->speed};
+        out(lw, f, 0, md->nfric++, cf->bound);
+    }
     lw->L->fric_bound = f;
+    if (!rows)
+        return;
+    /* the rows: J = ds/dv, and b = J' v = ds/dt with v' = 0, the rates of q
+     * (and t) through s's partials */
+    int nv = s->nv;
+    LowFunc *r = func(lw, &s_fric_rows, "events", 0);
+    for (int j = 0; j < md->nfric; j++) {
+        const LowFric *fr = &md->fric[j];
+        ExprId b = EXPR_ZERO;
+        for (int i = 0; i < nv; i++)
+            out(lw, r, 0, j * nv + i, fr->speed >= 0 ? (i == fr->speed ? EXPR_ONE : EXPR_ZERO)
+                                                     : diff_partial(lw->D, fr->row, m->q[1][i]));
+        if (fr->speed < 0) {
+            for (int k = 0; k < s->nq; k++)
+                b = expr_add(P, b, expr_mul(P, diff_partial(lw->D, fr->row, m->q[0][k]),
+                                            m->rate[k]));
+            b = expr_add(P, b, diff_partial(lw->D, fr->row, expr_time(P)));
+        }
+        out(lw, r, 1, j, b);
+    }
+    lw->L->fric_rows = r;
 }
 
 /* The friction items' switches numbered as the model's modes. */
@@ -1035,7 +1074,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->scene.nevent)
         lower_events(&lw);
-    lower_friction(&lw);
+    lower_friction(&lw, m);
     if (s->ncheck) {
         f = func(&lw, &s_check_values, "check", 1);
         lw.L->check_values = f; /* before its outputs: fillable() */

@@ -117,10 +117,12 @@ typedef SpecShape LowShape; /* .body is its item: the bodies come first */
 
 /* A dry-friction item (eomc_model.h's fric_ members): its name
  * EFFECT.q, the velocity slot of q, the modes of its slip and stick
- * switches. */
+ * switches; a contact's (speed -1), its speed along a plane's axis, row
+ * (fric_rows: its derivatives). */
 typedef struct LowFric {
     const char *name;
     int speed, slip, stick;
+    ExprId row;
 } LowFric;
 
 typedef struct LowCheck {
@@ -256,6 +258,7 @@ typedef struct Lowered {
     LowFunc *events;      /* the scene's event functions g [nevent], or NULL */
     LowFunc *switches;    /* the switch functions s [nmode] (expr.h), or NULL */
     LowFunc *fric_bound;  /* the friction items' force bounds F [nfric], or NULL */
+    LowFunc *fric_rows;   /* their rows and biases, where a contact has friction, or NULL */
     LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
     LowFunc *draw_shapes;      /* the shapes' sizes and positions of parameters, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */

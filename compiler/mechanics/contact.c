@@ -42,6 +42,10 @@ typedef struct Ctx {
     ExprId k, c;
     ExprId (*F)[3], (*tau)[3]; /* per body: the pair's force, and torque about its centre
                                 * (world axes) */
+    ExprId mu;                 /* the friction coefficient (EXPR_ZERO: none) */
+    const ExprId *tangent[2];  /* the plane's x and y axes while its contacts are made;
+                                * NULL otherwise (no friction) */
+    const ContactQ *out;
 } Ctx;
 
 /* The margin by which the near switch's bounding spheres are grown, a
@@ -158,6 +162,107 @@ along(ExprPool *P, const ExprId a[3], ExprId t, const ExprId b[3], ExprId out[3]
         out[i] = expr_add(P, a[i], expr_mul(P, t, b[i]));
 }
 
+/* The force f dir on body bb at pb, -f dir on ba at pa (the ground takes
+ * its own), into the pair's forces and torques. */
+static void
+apply(Ctx *x, ExprId f, const ExprId dir[3], int ba, const ExprId pa[3], int bb,
+      const ExprId pb[3])
+{
+    ExprPool *P = x->P;
+    for (int e = 0; e < 2; e++) {
+        int b = e ? bb : ba;
+        if (b >= x->s->nbody) /* the ground takes it */
+            continue;
+        const ExprId *p = e ? pb : pa;
+        ExprId F[3], arm[3], t[3], c[3], R[9];
+        body_pose(x->s, b, P, c, R);
+        for (int i = 0; i < 3; i++) {
+            F[i] = expr_mul(P, f, e ? dir[i] : expr_neg(P, dir[i]));
+            arm[i] = expr_sub(P, p[i], c[i]);
+            x->F[b][i] = expr_add(P, x->F[b][i], F[i]);
+        }
+        kin_cross(P, arm, F, t);
+        for (int i = 0; i < 3; i++)
+            x->tau[b][i] = expr_add(P, x->tau[b][i], t[i]);
+    }
+}
+
+/* The velocity of body b's material point at p (world axes): its
+ * centre's, and w x (p - centre); the ground's 0. */
+static void
+material_velocity(Ctx *x, int b, const ExprId p[3], ExprId out[3])
+{
+    ExprPool *P = x->P;
+    out[0] = out[1] = out[2] = EXPR_ZERO;
+    if (b >= x->s->nbody)
+        return;
+    const SpecBody *bd = &x->s->body[b];
+    ExprId c[3], R[9], w[3], arm[3], turn[3];
+    body_pose(x->s, b, P, c, R);
+    for (int i = 0; i < bd->dim; i++)
+        out[i] = bd->has_center_vel ? bd->center_vel[i] : diff_time(x->D, bd->center[i]);
+    if (bd->dim == 2) { /* turning about z */
+        w[0] = w[1] = EXPR_ZERO;
+        w[2] = bd->omega[0];
+    } else { /* R omega: omega is in the body's axes */
+        for (int i = 0; i < 3; i++)
+            w[i] = kin_dot(P, &R[3 * i], bd->omega);
+    }
+    for (int i = 0; i < 3; i++)
+        arm[i] = expr_sub(P, p[i], c[i]);
+    kin_cross(P, w, arm, turn);
+    for (int i = 0; i < 3; i++)
+        out[i] = expr_add(P, out[i], turn[i]);
+}
+
+/* The friction item of a contact with a plane along its axis t (named
+ * by axis): the slip speed s = t . rel (rel the velocity of b's touching
+ * point less a's), at most mu N against it while it slips (a switch on
+ * s, SUFFIX.AXIS.slip), whatever holds it while stuck (a held switch,
+ * .stick: the runtime's), acting along t at the touching points.  An
+ * axis along which the model's motion cannot move the points (s of no
+ * velocity slot) has none. */
+static void
+friction(Ctx *x, const char *suffix, ExprId N, const ExprId t[3], const char *axis,
+         const ExprId rel[3], int ba, const ExprId pa[3], int bb, const ExprId pb[3])
+{
+    ExprPool *P = x->P;
+    const ContactQ *out = x->out;
+    ExprId speed = kin_dot(P, t, rel);
+    int moves = 0;
+    for (int j = 0; j < out->n && !moves; j++)
+        moves = diff_partial(x->D, speed, out->v[j]) != EXPR_ZERO;
+    if (!moves)
+        return;
+    char name[600];
+    snprintf(name, sizeof name, "%s%s%s.%s", x->prefix, *suffix ? "." : "", suffix, axis);
+    ExprId F = expr_mul(P, x->mu, N);
+    int first = expr_nswitch(P);
+    ExprId slip = expr_where(P, speed, expr_neg(P, F), F);
+    char sw[640];
+    if (expr_nswitch(P) > first) { /* (a speed met before keeps its switch and name) */
+        snprintf(sw, sizeof sw, "%s.slip", name);
+        expr_name_switch(P, first, sw);
+    }
+    int stick = expr_switch_held(P);
+    snprintf(sw, sizeof sw, "%s.stick", name);
+    expr_name_switch(P, stick, sw);
+    apply(x, expr_select(P, stick, EXPR_ZERO, slip), t, ba, pa, bb, pb);
+    int k = -1;
+    for (int j = 0; j < expr_nswitch(P) && k < 0; j++)
+        if (expr_switch(P, j) == speed)
+            k = j;
+    ContactFrics *fr = out->fric;
+    if (fr->n == fr->cap) {
+        fr->cap = fr->cap ? 2 * fr->cap : 16;
+        ContactFric *bigger = arena_new_array(out->A, ContactFric, fr->cap);
+        for (int j = 0; j < fr->n; j++)
+            bigger[j] = fr->item[j];
+        fr->item = bigger;
+    }
+    fr->item[fr->n++] = (ContactFric){arena_strdup(out->A, name), k, stick, F, speed};
+}
+
 /* One contact: its gap d, normal n, material points pa (of shape a, on
  * body ba) and pb.  The force N n on b at pb, -N n on a at pa. */
 static void
@@ -173,22 +278,16 @@ contact(Ctx *x, const char *suffix, ExprId d, const ExprId n[3], int ba, const E
     ExprId push = named_where(x, law, law, EXPR_ZERO, name); /* max(0, k d + c d') */
     snprintf(name, sizeof name, "%s%stouch", suffix, *suffix ? "." : "");
     ExprId N = named_where(x, d, push, EXPR_ZERO, name);
-    for (int e = 0; e < 2; e++) {
-        int b = e ? bb : ba;
-        if (b >= x->s->nbody) /* the ground takes it */
-            continue;
-        const ExprId *p = e ? pb : pa;
-        ExprId F[3], arm[3], t[3], c[3], R[9];
-        body_pose(x->s, b, P, c, R);
-        for (int i = 0; i < 3; i++) {
-            F[i] = expr_mul(P, N, e ? n[i] : expr_neg(P, n[i]));
-            arm[i] = expr_sub(P, p[i], c[i]);
-            x->F[b][i] = expr_add(P, x->F[b][i], F[i]);
-        }
-        kin_cross(P, arm, F, t);
-        for (int i = 0; i < 3; i++)
-            x->tau[b][i] = expr_add(P, x->tau[b][i], t[i]);
-    }
+    apply(x, N, n, ba, pa, bb, pb);
+    if (x->mu == EXPR_ZERO || !x->tangent[0])
+        return;
+    ExprId va[3], vb[3], rel[3];
+    material_velocity(x, ba, pa, va);
+    material_velocity(x, bb, pb, vb);
+    for (int i = 0; i < 3; i++)
+        rel[i] = expr_sub(P, vb[i], va[i]);
+    for (int a = 0; a < 2; a++)
+        friction(x, suffix, N, x->tangent[a], a ? "y" : "x", rel, ba, pa, bb, pb);
 }
 
 /* A sphere (centre o, radius r, on body bs) on a plane (pl): d = r - n.(o - p0). */
@@ -231,7 +330,10 @@ static void
 with_plane(Ctx *x, const Placed *pl, const Placed *o)
 {
     ExprPool *P = x->P;
-    ExprId zero = EXPR_ZERO;
+    ExprId zero = EXPR_ZERO, tx[3], ty[3];
+    axis(pl->A, 0, tx);
+    axis(pl->A, 1, ty);
+    x->tangent[0] = tx, x->tangent[1] = ty;
     switch (o->type) {
     case SPEC_SHAPE_SPHERE:
         plane_point(x, "", pl, o->o, o->size[0], o->body);
@@ -276,6 +378,7 @@ with_plane(Ctx *x, const Placed *pl, const Placed *o)
         break;
     }
     }
+    x->tangent[0] = x->tangent[1] = NULL;
 }
 
 /* A sphere (a) and a capsule (b), or the other way round (flip): the
@@ -421,7 +524,7 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
             const ContactQ *out)
 {
     int nb = s->nbody;
-    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL};
+    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL, f->mu, {NULL, NULL}, out};
     x.F = xmalloc(((size_t)nb + 1) * sizeof *x.F);
     x.tau = xmalloc(((size_t)nb + 1) * sizeof *x.tau);
     ExprId *Qq = xmalloc(((size_t)out->nq + 1) * sizeof *Qq);

@@ -140,7 +140,8 @@ gravity_potential(const Spec *s, const SpecForce *f, ExprPool *P)
 }
 
 static void
-add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D, ExprId *Qq)
+add_effect(const Spec *s, const SpecEffect *e, Mech *m, Arena *A, ExprPool *P, Diff *D,
+           ExprId *Qq)
 {
     for (int j = 0; j < e->nforce; j++) {
         const SpecForce *f = &e->force[j];
@@ -170,7 +171,8 @@ add_effect(const Spec *s, const SpecEffect *e, Mech *m, ExprPool *P, Diff *D, Ex
         case FORCE_KINETIC: /* in T (mech_build) */
             break;
         case FORCE_CONTACT:
-            contact_add(s, e, f, P, D, &(ContactQ){m->nq, m->n, m->q[0], m->q[1], Qq, m->Q});
+            contact_add(s, e, f, P, D,
+                        &(ContactQ){m->nq, m->n, m->q[0], m->q[1], Qq, m->Q, A, &m->fric});
             break;
         case FORCE_WORK: /* W = sum_i Q_i delta(q_i), linear (spec/effects.c checked) */
             for (int i = 0; i < m->nq; i++)
@@ -312,7 +314,7 @@ mech_build(const Spec *s, Arena *A, ExprPool *P, Diff *D)
     }
     for (int e = 0; e < s->neffect; e++)
         if (s->effect[e].enabled)
-            add_effect(s, &s->effect[e], m, P, D, Qq);
+            add_effect(s, &s->effect[e], m, A, P, D, Qq);
     for (int i = 0; m->speeds && i < s->nq; i++)
         for (int j = 0; Qq[i] != EXPR_ZERO && j < s->nv; j++)
             m->Q[j] = expr_add(P, m->Q[j], expr_mul(P, Qq[i], diff_partial(D, m->rate[i],

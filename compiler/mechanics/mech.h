@@ -7,6 +7,7 @@
 #ifndef EOMC_MECH_H
 #define EOMC_MECH_H
 
+#include "contact.h"
 #include "expr/diff.h"
 #include "spec/spec.h"
 #include "tree.h"
@@ -37,6 +38,7 @@ typedef struct Mech {
      * EXPR_NONE where there is no such split (V_rest = V). */
     ExprId gravity[3], V_rest;
     ExprId *q[EXPR_MAX_ORDER + 1]; /* q[k][i]: the leaf for q_i^(k) (above) */
+    ContactFrics fric; /* the friction items of the contacts that are on */
     Tree *tree;    /* the masses as a tree of turning joints (tree.h), or */
     const char *tree_why; /* NULL and why not */
 } Mech;

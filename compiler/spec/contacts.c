@@ -107,10 +107,11 @@ unique_name(Loader *L, int k)
                        sh->name);
 }
 
-/* Pair (a, b) found at node n (NULL: by the filters): one eomc has a
- * gap for, of shapes that can move, placed; appended to f. */
+/* Pair (a, b) found at node n (NULL: by the filters) of the item map:
+ * one eomc has a gap for, of shapes that can move, placed, with a plane
+ * if the item has friction; appended to f. */
 static void
-add_pair(Loader *L, SpecForce *f, int a, int b, yaml_node_t *n)
+add_pair(Loader *L, SpecForce *f, int a, int b, yaml_node_t *n, yaml_node_t *map)
 {
     const Spec *s = L->s;
     const SpecShape *sa = &s->shape[a], *sb = &s->shape[b];
@@ -141,6 +142,12 @@ add_pair(Loader *L, SpecForce *f, int a, int b, yaml_node_t *n)
                        "body by a `frame:`, or turn it by a `rotation:`)", s->shape[k].name,
                        s->body[body].name);
     }
+    if (f->mu != EXPR_ZERO && sa->type != SPEC_SHAPE_PLANE && sb->type != SPEC_SHAPE_PLANE)
+        diag_error(n ? spec_loc(L, n) : spec_key_loc(L, map, "friction"),
+                   "effect '%s' has friction, and its pair '%s', '%s' has no plane: eomc's "
+                   "contact friction acts between a plane and a shape (list the pairs with a "
+                   "plane in an item with `friction:`, the others in one without)",
+                   effect, sa->name, sb->name);
     for (int j = 0; j < f->npair; j++)
         if ((f->pair[2 * j] == a && f->pair[2 * j + 1] == b) ||
             (f->pair[2 * j] == b && f->pair[2 * j + 1] == a))
@@ -182,9 +189,6 @@ spec_load_contact(Loader *L, yaml_node_t *map, SpecForce *f)
 {
     const Spec *s = L->s;
     yaml_node_t *c = spec_lookup(L, map, "contact"), *v;
-    if ((v = spec_lookup(L, map, "friction")))
-        diag_error(spec_key_loc(L, map, "friction"), "a contact's friction is not there yet: "
-                   "its force is the normal one alone (leave `friction:` out)");
     if ((v = spec_lookup(L, map, "on")))
         diag_error(spec_key_loc(L, map, "on"), "a contact acts on the shapes of its pairs: "
                    "`on` belongs to a force or a torque");
@@ -196,6 +200,7 @@ spec_load_contact(Loader *L, yaml_node_t *map, SpecForce *f)
     f->kind = FORCE_CONTACT;
     f->stiffness = coefficient(L, spec_lookup(L, map, "stiffness"), "a contact's stiffness");
     f->damping = coefficient(L, spec_lookup(L, map, "damping"), "a contact's damping");
+    f->mu = coefficient(L, spec_lookup(L, map, "friction"), "a contact's friction coefficient");
     int ns = s->nshape;
     if (c->type == YAML_SCALAR_NODE) {
         const char *w = spec_scalar(L, c, "`contact:` (all, or a list of pairs [A, B])");
@@ -209,7 +214,7 @@ spec_load_contact(Loader *L, yaml_node_t *map, SpecForce *f)
                 if (sa->body == sb->body || (sa->body >= s->nbody && sb->body >= s->nbody))
                     continue;
                 if ((sa->contype & sb->conaffinity) || (sb->contype & sa->conaffinity))
-                    add_pair(L, f, a, b, NULL);
+                    add_pair(L, f, a, b, NULL, map);
             }
         if (!f->npair)
             diag_error(spec_loc(L, c), "`contact: all` finds no pair of shapes that can touch: "
@@ -229,7 +234,7 @@ spec_load_contact(Loader *L, yaml_node_t *map, SpecForce *f)
             int ny = shapes_named(L, spec_node(L, ITEMS(p)[1]), y);
             for (int a = 0; a < nx; a++)
                 for (int b = 0; b < ny; b++)
-                    add_pair(L, f, x[a], y[b], p);
+                    add_pair(L, f, x[a], y[b], p, map);
         }
         if (!f->npair)
             diag_error(spec_loc(L, c), "`contact:` lists no pair");

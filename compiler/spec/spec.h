@@ -185,10 +185,11 @@ typedef struct SpecForce {
     ExprId expr;  /* FORCE_POTENTIAL, FORCE_WORK, FORCE_KINETIC */
     /* FORCE_CONTACT: npair pairs of Spec.shape indices, pair[2 j] and
      * pair[2 j + 1] as written (each of two types eomc has a gap for),
-     * and the normal force's stiffness k and damping c (of p, >= 0) */
+     * and the normal force's stiffness k and damping c (of p, >= 0);
+     * mu, the friction coefficient of pairs with a plane (EXPR_ZERO: none) */
     int npair;
     int *pair;
-    ExprId stiffness, damping;
+    ExprId stiffness, damping, mu;
     /* A dry-friction item (`friction: q`, spec/friction.c) is FORCE_WORK
      * with friction = 1: on coordinate coord, at most the force bound,
      * slip and stick its switches (the pool's); friction = 0 otherwise. */

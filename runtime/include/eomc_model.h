@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 27
+#define EOMC_ABI_VERSION 28
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -417,12 +417,18 @@ typedef struct eomc_model {
      * drives the stick switch (switches gives -1 for it): the runtime
      * solves for the holding force phi_j and gives F_j - |phi_j| while it
      * is stuck (runtime/model/friction.c).  nfric = 0: none, the rest
-     * NULL. */
+     * NULL.  An item of a contact with a plane (`contact:` with
+     * `friction:`) acts along a row of the speeds instead: fric_speed[j]
+     * is -1, and fric_rows gives its row J[nv j + i] (its speed is J v)
+     * and bias b[j] (that speed's rate is J v' + b); NULL where every
+     * item is a coordinate's (whose rows it gives as unit rows). */
     int nfric;
     const char *const *fric_names;
     const int *fric_speed, *fric_slip, *fric_stick;
     void (*fric_bound)(double t, const double *q, const double *v, const double *p,
                        const double *u, double *F);
+    void (*fric_rows)(double t, const double *q, const double *v, const double *p,
+                      const double *u, double *J, double *b);
 } eomc_model;
 
 /* A pose: position [3], rotation matrix [9] (row-major, to the world). */
@@ -498,6 +504,8 @@ typedef struct eomc_model_ext {
                      const eomc_ext *u, eomc_ext *s); /* as in eomc_model */
     void (*fric_bound)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
                        const eomc_ext *u, eomc_ext *F); /* as in eomc_model */
+    void (*fric_rows)(eomc_ext t, const eomc_ext *q, const eomc_ext *v, const eomc_ext *p,
+                      const eomc_ext *u, eomc_ext *J, eomc_ext *b); /* as in eomc_model */
 } eomc_model_ext;
 
 /* The relative pivot threshold of both solves (generated and runtime). */

@@ -3,7 +3,10 @@
  */
 #include "friction.h"
 
+#include <float.h>
+
 #define STICK_REAL double
+#define STICK_EPS DBL_EPSILON
 #define STICK_MODEL eomc_model
 #define STICK_(name) fric_##name
 #define STICK_API

@@ -12,7 +12,7 @@
 
 /* stick.h's statuses: what a solve or a choice of modes came to */
 #define STICK_STATUS_DEFINED
-enum { STICK_OK, STICK_PIVOT, STICK_NEGATIVE, STICK_START };
+enum { STICK_OK, STICK_PIVOT, STICK_NEGATIVE, STICK_START, STICK_SPANNED };
 
 typedef struct fric_Work Fric;
 

@@ -718,6 +718,12 @@ fric_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
         return sim_numeric_error(s, t, q, v, "dry friction %s: its force is %.17g, below 0 "
                                  "(the largest force it can exert cannot be negative)",
                                  m->fric_names[j], fric_bound_of(s->fric, j));
+    case STICK_SPANNED:
+        return sim_numeric_error(s, t, q, v, "dry friction %s lets go, yet the items still "
+                                 "stuck hold its point along its axis too (their rows span "
+                                 "its row): it cannot move, and holding it needs a force "
+                                 "beyond its bound; no choice of the items' modes follows "
+                                 "the motion here", m->fric_names[j]);
     default:
         return sim_numeric_error(s, t, q, v, "dry friction %s at rest: held, it needs a force "
                                  "beyond its bound, yet let go it would accelerate against "

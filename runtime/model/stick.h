@@ -4,10 +4,11 @@
  * (friction.c) and eomc_ext in the reference solution (reffric.c), so
  * that both decide alike where a coordinate sticks and where it slips.
  *
- * The includer defines STICK_REAL (the number type), STICK_MODEL (whose
- * mass_bias and fric_bound take it: eomc_model or eomc_model_ext),
- * STICK_(name) (the names' prefix) and STICK_API (the functions'
- * linkage), then includes this file.  Modes are the model's, u[nu + k].
+ * The includer defines STICK_REAL (the number type), STICK_EPS (its
+ * rounding unit), STICK_MODEL (whose mass_bias, fric_bound and fric_rows
+ * take it: eomc_model or eomc_model_ext), STICK_(name) (the names'
+ * prefix) and STICK_API (the functions' linkage), then includes this
+ * file.  Modes are the model's, u[nu + k].
  *
  * While items are stuck, their speeds' accelerations are 0 and the others
  * come from the rows of the free speeds F: M_FF a_F = -h_F (M_FF is M's
@@ -17,12 +18,25 @@
  * no friction of its own: a stuck item puts none).  It holds while
  * |phi_s| <= F_s: the stick switch's function is F_s - |phi_s|.  Let go,
  * it slips the way the rest drives it, -phi_s, against a friction of F_s.
+ *
+ * An item of a contact (fric_speed -1) acts along a row J_j of the
+ * speeds (its speed J_j v, whose rate is J_j a + b_j: fric_rows).  While
+ * the stuck rows R hold, M_FF a_F + h_F = J_RF^T phi_R and J_RF a_F +
+ * b_R = 0.  Rows may be redundant (a box's four corners on a floor: eight
+ * rows of rank 3): the accelerations are unique but phi is not, and it
+ * is the one that minimizes sum (phi_j / F_j)^2, the holding shared in
+ * proportion to the bounds, so that a group that cannot hold lets go all
+ * at once.  With phi = W psi (W = diag F), that is the least-norm psi of
+ * G psi = c, G = W J M_FF^-1 J^T W (symmetric, semidefinite), solved by
+ * G's eigenvectors, the rank decided relative to its largest eigenvalue
+ * (STICK_RANK_ULPS).  An item whose bound is 0 (its point not touching)
+ * has a zero column there: it holds nothing, and it does not stick.
  */
 #include <math.h>
 #include <stdlib.h>
 
 #ifndef STICK_STATUS_DEFINED /* (friction.h declares them for its callers) */
-enum { STICK_OK, STICK_PIVOT, STICK_NEGATIVE, STICK_START };
+enum { STICK_OK, STICK_PIVOT, STICK_NEGATIVE, STICK_START, STICK_SPANNED };
 #endif
 
 typedef struct STICK_(Work) {
@@ -38,9 +52,38 @@ typedef struct STICK_(Work) {
     unsigned char *held;      /* [nv] the stuck speeds */
     int bad;                  /* STICK_PIVOT's speed, _NEGATIVE's and _START's item */
     STICK_REAL pivot;         /* the last factorization's least pivot / M_kk */
+    /* the contacts' rows (nrowitem > 0: fric_rows) */
+    int nrowitem;             /* items with a row of their own */
+    STICK_REAL *J, *b;        /* [nf nv], [nf]: rows and biases at the last build */
+    int *R, nR;               /* [nf] the stuck rows of the last build */
+    STICK_REAL *X;            /* [nf nv] column r: M_FF^-1 J_r^T F_r (held speeds 0) */
+    STICK_REAL *G, *V, *lam;  /* [nf nf] G, its eigenvectors (columns), [nf] values */
+    int rank;                 /* G's */
+    STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
 } STICK_(Work);
 
+/* An eigenvalue of G counts where it is above STICK_RANK_ULPS rounding
+ * units of the largest (times G's order): rows that are combinations of
+ * others give eigenvalues of G's rounding, which is that size. */
+#define STICK_RANK_ULPS 1024
+/* A stuck item's holding force is at its bound where it is within
+ * STICK_BOUND_ULPS rounding units (times the items' count) of it: the
+ * least-norm solve's rounding. */
+#define STICK_BOUND_ULPS 1024
+
 #define STICK_ABS(r) ((r) < 0 ? -(r) : (r))
+
+STICK_API void
+STICK_(free)(STICK_(Work) *w)
+{
+    if (!w)
+        return;
+    free(w->M), free(w->L), free(w->h), free(w->acc), free(w->F), free(w->phi);
+    free(w->free_of), free(w->held);
+    free(w->J), free(w->b), free(w->R), free(w->X), free(w->G), free(w->V), free(w->lam);
+    free(w->c), free(w->psi), free(w->vec);
+    free(w);
+}
 
 STICK_API STICK_(Work) *
 STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
@@ -59,24 +102,28 @@ STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
     w->phi = calloc((size_t)nf + 1, sizeof *w->phi);
     w->free_of = calloc(n + 1, sizeof *w->free_of);
     w->held = calloc(n + 1, 1);
-    if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held) {
-        free(w->M), free(w->L), free(w->h), free(w->acc), free(w->F), free(w->phi);
-        free(w->free_of), free(w->held);
-        free(w);
+    for (int j = 0; j < nf; j++)
+        w->nrowitem += m->fric_speed[j] < 0;
+    size_t f = (size_t)(w->nrowitem ? nf : 0);
+    w->J = calloc(f * n + 1, sizeof *w->J);
+    w->b = calloc(f + 1, sizeof *w->b);
+    w->R = calloc(f + 1, sizeof *w->R);
+    w->X = calloc(f * n + 1, sizeof *w->X);
+    w->G = calloc(f * f + 1, sizeof *w->G);
+    w->V = calloc(f * f + 1, sizeof *w->V);
+    w->lam = calloc(f + 1, sizeof *w->lam);
+    w->c = calloc(f + 1, sizeof *w->c);
+    w->psi = calloc(f + 1, sizeof *w->psi);
+    w->vec = calloc(n + 1, sizeof *w->vec);
+    if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held ||
+        !w->J || !w->b || !w->R || !w->X || !w->G || !w->V || !w->lam || !w->c || !w->psi ||
+        !w->vec || (w->nrowitem && !x->fric_rows)) {
+        STICK_(free)(w);
         return NULL;
     }
     return w;
 }
 
-STICK_API void
-STICK_(free)(STICK_(Work) *w)
-{
-    if (!w)
-        return;
-    free(w->M), free(w->L), free(w->h), free(w->acc), free(w->F), free(w->phi);
-    free(w->free_of), free(w->held);
-    free(w);
-}
 
 static int
 STICK_(stuck)(const STICK_(Work) *w, const STICK_REAL *u, int j)
@@ -157,10 +204,10 @@ STICK_(factor)(STICK_(Work) *w)
     return 0;
 }
 
-/* b = -M^-1 b with the stuck speeds held: b_F = -M_FF^-1 b_F, b_S = 0,
- * M_FF as the last solve factored it. */
-STICK_API void
-STICK_(solve_neg)(const STICK_(Work) *w, STICK_REAL *b)
+/* b = -M^-1 b with the stuck coordinates' speeds held: b_F = -M_FF^-1
+ * b_F, b_S = 0, M_FF as the last build factored it (no rows). */
+static void
+STICK_(block_neg)(const STICK_(Work) *w, STICK_REAL *b)
 {
     int n = w->nfree;
     const STICK_REAL *L = w->L;
@@ -180,13 +227,143 @@ STICK_(solve_neg)(const STICK_(Work) *w, STICK_REAL *b)
         b[i] = k >= 0 && w->free_of[k] == i ? -b[k--] : 0;
 }
 
-/* q'' at (t, q, v) in the modes u, the stuck items' speeds held at 0
- * (none stuck: M a = -h): a [nv], and each stuck item's holding force
- * and every bound (w->phi, w->F).  STICK_OK, STICK_PIVOT (bad: the speed
- * whose pivot failed) or STICK_NEGATIVE. */
-STICK_API int
-STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
-              const STICK_REAL *p, const STICK_REAL *u, STICK_REAL *a)
+static int
+STICK_(is_row)(const STICK_(Work) *w, int j)
+{
+    return w->m->fric_speed[j] < 0;
+}
+
+/* G's eigenvalues lam and eigenvectors (V's columns) by cyclic Jacobi
+ * rotations (G, n x n symmetric, is destroyed), then its rank. */
+static void
+STICK_(eigen)(STICK_(Work) *w, int n)
+{
+    STICK_REAL *A = w->G, *V = w->V;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            V[i * n + j] = i == j;
+    STICK_REAL all = 0;
+    for (int i = 0; i < n * n; i++)
+        all += A[i] * A[i];
+    /* a sweep at least halves the off-diagonal part's digits: 64 are plenty */
+    for (int sweep = 0; sweep < 64; sweep++) {
+        STICK_REAL off = 0;
+        for (int i = 0; i < n; i++)
+            for (int j = i + 1; j < n; j++)
+                off += 2 * A[i * n + j] * A[i * n + j];
+        if (!(off > STICK_EPS * STICK_EPS * all))
+            break;
+        for (int p = 0; p < n; p++)
+            for (int q = p + 1; q < n; q++) {
+                STICK_REAL apq = A[p * n + q];
+                if (apq == 0)
+                    continue;
+                STICK_REAL theta = (A[q * n + q] - A[p * n + p]) / (2 * apq), t;
+                if (STICK_ABS(theta) > 1 / STICK_EPS) /* t = 1/(2 theta) to rounding */
+                    t = 1 / (2 * theta);
+                else
+                    t = (theta >= 0 ? 1 : -1) /
+                        (STICK_ABS(theta) + (STICK_REAL)sqrtl((long double)(theta * theta + 1)));
+                STICK_REAL co = (STICK_REAL)(1 / sqrtl((long double)(t * t + 1))), si = t * co;
+                for (int k = 0; k < n; k++) { /* A = A Rot */
+                    STICK_REAL akp = A[k * n + p], akq = A[k * n + q];
+                    A[k * n + p] = co * akp - si * akq;
+                    A[k * n + q] = si * akp + co * akq;
+                }
+                for (int k = 0; k < n; k++) { /* A = Rot^T A */
+                    STICK_REAL apk = A[p * n + k], aqk = A[q * n + k];
+                    A[p * n + k] = co * apk - si * aqk;
+                    A[q * n + k] = si * apk + co * aqk;
+                }
+                for (int k = 0; k < n; k++) {
+                    STICK_REAL vkp = V[k * n + p], vkq = V[k * n + q];
+                    V[k * n + p] = co * vkp - si * vkq;
+                    V[k * n + q] = si * vkp + co * vkq;
+                }
+            }
+    }
+    STICK_REAL top = 0;
+    for (int i = 0; i < n; i++)
+        if ((w->lam[i] = A[i * n + i]) > top)
+            top = w->lam[i];
+    w->rank = 0;
+    for (int i = 0; i < n; i++)
+        w->rank += w->lam[i] > STICK_RANK_ULPS * n * STICK_EPS * top;
+}
+
+/* psi = G^+ c: along the eigenvectors that count, 0 along the others
+ * (the least-norm solution). */
+static void
+STICK_(pseudo)(const STICK_(Work) *w, const STICK_REAL *c, STICK_REAL *psi)
+{
+    int n = w->nR;
+    STICK_REAL top = 0;
+    for (int i = 0; i < n; i++)
+        if (w->lam[i] > top)
+            top = w->lam[i];
+    for (int r = 0; r < n; r++)
+        psi[r] = 0;
+    for (int i = 0; i < n; i++) {
+        if (!(w->lam[i] > STICK_RANK_ULPS * n * STICK_EPS * top))
+            continue;
+        STICK_REAL y = 0;
+        for (int r = 0; r < n; r++)
+            y += w->V[r * n + i] * c[r];
+        y /= w->lam[i];
+        for (int r = 0; r < n; r++)
+            psi[r] += w->V[r * n + i] * y;
+    }
+}
+
+/* y += sum_r X_r psi_r over the stuck rows. */
+static void
+STICK_(add_rows)(const STICK_(Work) *w, const STICK_REAL *psi, STICK_REAL *y)
+{
+    for (int r = 0; r < w->nR; r++)
+        for (int i = 0; i < w->nv; i++)
+            y[i] += w->X[r * w->nv + i] * psi[r];
+}
+
+/* c_r = -F_r (J_r y + b_r), b counted where with_b. */
+static void
+STICK_(residual)(const STICK_(Work) *w, const STICK_REAL *y, int with_b, STICK_REAL *c)
+{
+    int nv = w->nv;
+    for (int r = 0; r < w->nR; r++) {
+        int j = w->R[r];
+        STICK_REAL e = with_b ? w->b[j] : 0;
+        for (int i = 0; i < nv; i++)
+            e += w->J[j * nv + i] * y[i];
+        c[r] = -w->F[j] * e;
+    }
+}
+
+/* b = -M^-1 b with the stuck speeds held and the stuck rows' forces
+ * keeping J_R M^-1 b's part at 0, as the last build set them up (the
+ * Jacobian's solves). */
+STICK_API void
+STICK_(solve_neg)(const STICK_(Work) *w, STICK_REAL *b)
+{
+    STICK_(block_neg)(w, b);
+    if (!w->nR)
+        return;
+    STICK_REAL *c = w->c, *psi = w->psi;
+    for (int i = 0; i < w->nv; i++) /* M^-1 b */
+        b[i] = -b[i];
+    STICK_(residual)(w, b, 0, c);
+    STICK_(pseudo)(w, c, psi);
+    STICK_(add_rows)(w, psi, b);
+    for (int i = 0; i < w->nv; i++)
+        b[i] = -b[i];
+}
+
+/* Everything a solve at (t, q, v) in the modes u needs but h: the
+ * bounds, M and h, the held speeds, M_FF factored, and the stuck rows'
+ * X and G with G's eigenvectors.  STICK_OK, STICK_PIVOT or
+ * STICK_NEGATIVE. */
+static int
+STICK_(build)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+              const STICK_REAL *p, const STICK_REAL *u)
 {
     const eomc_model *m = w->m;
     int nv = w->nv;
@@ -196,8 +373,14 @@ STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
     w->x->mass_bias(t, q, v, p, u, w->M, w->h);
     for (int i = 0; i < nv; i++)
         w->held[i] = 0;
+    w->nR = 0;
     for (int j = 0; j < w->nf; j++)
-        w->held[m->fric_speed[j]] |= STICK_(stuck)(w, u, j);
+        if (!STICK_(stuck)(w, u, j))
+            continue;
+        else if (STICK_(is_row)(w, j))
+            w->R[w->nR++] = j;
+        else
+            w->held[m->fric_speed[j]] = 1;
     w->nfree = 0;
     for (int i = 0; i < nv; i++)
         if (!w->held[i])
@@ -207,17 +390,85 @@ STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
         w->bad = w->free_of[k - 1];
         return STICK_PIVOT;
     }
+    if (w->nrowitem)
+        w->x->fric_rows(t, q, v, p, u, w->J, w->b);
+    int n = w->nR;
+    for (int r = 0; r < n; r++) { /* X_r = M_FF^-1 J_r^T F_r, the held speeds' 0 */
+        int j = w->R[r];
+        STICK_REAL *x = &w->X[r * nv];
+        for (int i = 0; i < nv; i++)
+            x[i] = w->held[i] ? 0 : w->J[j * nv + i];
+        STICK_(block_neg)(w, x);
+        for (int i = 0; i < nv; i++)
+            x[i] *= -w->F[j];
+    }
+    for (int r = 0; r < n; r++)
+        for (int s = 0; s <= r; s++) {
+            STICK_REAL g = 0;
+            for (int i = 0; i < nv; i++)
+                g += w->J[w->R[r] * nv + i] * w->X[s * nv + i];
+            w->G[r * n + s] = w->G[s * n + r] = w->F[w->R[r]] * g;
+        }
+    if (n)
+        STICK_(eigen)(w, n);
+    return STICK_OK;
+}
+
+/* q'' from the last build at its state: M_FF a_F = -h_F, plus the stuck
+ * rows' forces; the holding forces phi. */
+static void
+STICK_(accel)(STICK_(Work) *w, STICK_REAL *a)
+{
+    const eomc_model *m = w->m;
+    int nv = w->nv;
     for (int i = 0; i < nv; i++)
         a[i] = w->h[i];
-    STICK_(solve_neg)(w, a);
+    STICK_(block_neg)(w, a);
+    for (int j = 0; j < w->nf; j++)
+        w->phi[j] = 0;
+    if (w->nR) {
+        STICK_(residual)(w, a, 1, w->c);
+        STICK_(pseudo)(w, w->c, w->psi);
+        STICK_(add_rows)(w, w->psi, a);
+        for (int r = 0; r < w->nR; r++)
+            w->phi[w->R[r]] = w->F[w->R[r]] * w->psi[r];
+    }
     for (int j = 0; j < w->nf; j++) {
+        if (STICK_(is_row)(w, j) || !w->held[m->fric_speed[j]])
+            continue;
         int s = m->fric_speed[j];
         STICK_REAL r = w->h[s];
-        for (int i = 0; STICK_(stuck)(w, u, j) && i < nv; i++)
+        for (int i = 0; i < nv; i++)
             r += w->M[s * nv + i] * a[i];
-        w->phi[j] = STICK_(stuck)(w, u, j) ? r : 0;
+        for (int k = 0; k < w->nR; k++) /* (what the rows hold is theirs) */
+            r -= w->J[w->R[k] * nv + s] * w->phi[w->R[k]];
+        w->phi[j] = r;
     }
+}
+
+/* q'' at (t, q, v) in the modes u, the stuck items' speeds held at 0
+ * (none stuck: M a = -h): a [nv], and each stuck item's holding force
+ * and every bound (w->phi, w->F).  STICK_OK, STICK_PIVOT (bad: the speed
+ * whose pivot failed) or STICK_NEGATIVE. */
+STICK_API int
+STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+              const STICK_REAL *p, const STICK_REAL *u, STICK_REAL *a)
+{
+    int rc = STICK_(build)(w, t, q, v, p, u);
+    if (rc != STICK_OK)
+        return rc;
+    STICK_(accel)(w, a);
     return STICK_OK;
+}
+
+/* The slip switch of a stuck row item keeps its side: its speed is 0 to
+ * rounding there, whose sign says nothing (a coordinate's is exactly 0). */
+static void
+STICK_(keep_slip)(const STICK_(Work) *w, const STICK_REAL *u, STICK_REAL *sw)
+{
+    for (int j = 0; j < w->nf; j++)
+        if (STICK_(is_row)(w, j) && STICK_(stuck)(w, u, j))
+            sw[w->m->fric_slip[j]] = u[w->nu + w->m->fric_slip[j]] != 0 ? 1 : -1;
 }
 
 /* The stick switches' functions at (t, q, v) in the modes u into sw
@@ -237,6 +488,7 @@ STICK_(functions)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STIC
     for (int j = 0; j < w->nf; j++)
         sw[w->m->fric_stick[j]] = STICK_(stuck)(w, u, j)
                                       ? w->F[j] - STICK_ABS(w->phi[j]) : -1;
+    STICK_(keep_slip)(w, u, sw);
     return STICK_OK;
 }
 
@@ -246,23 +498,30 @@ STICK_(set)(const STICK_(Work) *w, STICK_REAL *u, int mode, int on)
     u[w->nu + mode] = on ? 1 : 0;
 }
 
-/* The modes at a state (t, q, v) alone, a run's start or a value outside
- * a run: an item slipping has its mode from its speed's sign, already in
- * u; one at rest (its speed exactly 0) is stuck if it can be.  All at
- * rest are held first; while one would need more than its bound, the
- * one needing most (for its bound) is let go, slipping the way the rest
- * drives it.  Then each let go must accelerate the way it slips, else no
- * choice of modes follows the motion (STICK_START, bad: the item). */
-STICK_API int
-STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
-               const STICK_REAL *p, STICK_REAL *u)
+/* Item j's speed J_j v, and its rate J_j a + b_j (a row's), at the last
+ * build. */
+static STICK_REAL
+STICK_(speed)(const STICK_(Work) *w, int j, const STICK_REAL *v, const STICK_REAL *a)
+{
+    if (!STICK_(is_row)(w, j))
+        return a ? a[w->m->fric_speed[j]] : v[w->m->fric_speed[j]];
+    STICK_REAL e = a ? w->b[j] : 0;
+    for (int i = 0; i < w->nv; i++)
+        e += w->J[j * w->nv + i] * (a ? a[i] : v[i]);
+    return e;
+}
+
+/* Lets go of the stuck items, the one needing most for its bound first,
+ * while one needs more than its bound, each slipping the way the rest
+ * drives it; the solve at (t, q, v) of the modes left in w->acc.  Let
+ * go, a row item gets gone[j] = 1. */
+static int
+STICK_(let_go)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+               const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
 {
     const eomc_model *m = w->m;
-    STICK_REAL *a = w->acc;
-    for (int j = 0; j < w->nf; j++)
-        STICK_(set)(w, u, m->fric_stick[j], v[m->fric_speed[j]] == 0);
     for (int pass = 0; pass <= w->nf; pass++) {
-        int rc = STICK_(solve)(w, t, q, v, p, u, a), worst = -1;
+        int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), worst = -1;
         if (rc != STICK_OK)
             return rc;
         for (int j = 0; j < w->nf; j++) {
@@ -273,16 +532,93 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
                 worst = j;
         }
         if (worst < 0)
-            break;
+            return STICK_OK;
         STICK_(set)(w, u, m->fric_slip[worst], w->phi[worst] < 0);
         STICK_(set)(w, u, m->fric_stick[worst], 0);
+        if (gone)
+            gone[worst] = 1;
     }
+    return STICK_OK;
+}
+
+/* Whether row item j, not stuck, can move with the stuck rows held: its
+ * row adds to their rank (0: their rows span it, its speed is held at 0
+ * whatever its mode).  Builds at (t, q, v) with j stuck, then as u is. */
+static int
+STICK_(free_row)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
+                 const STICK_REAL *v, const STICK_REAL *p, STICK_REAL *u, int *rc)
+{
+    const eomc_model *m = w->m;
+    STICK_REAL F = 1;
+    if ((*rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+        return 0;
+    int before = w->nR ? w->rank : 0;
+    STICK_(set)(w, u, m->fric_stick[j], 1);
+    *rc = STICK_(build)(w, t, q, v, p, u);
+    STICK_(set)(w, u, m->fric_stick[j], 0);
+    for (int r = 0; r < w->nR; r++)
+        if (w->R[r] == j)
+            F = w->F[j];
+    return *rc == STICK_OK && (w->rank > before || !(F > 0));
+}
+
+/* v made consistent with the stuck rows, the least change in the kinetic
+ * metric that stops them: v += M_FF^-1 J_R^T F psi with J_R v = 0 (a
+ * coordinate's speed is set to 0 by its own flip). */
+static int
+STICK_(project)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, STICK_REAL *v,
+                const STICK_REAL *p, const STICK_REAL *u)
+{
+    int rc = STICK_(build)(w, t, q, v, p, u);
+    if (rc != STICK_OK || !w->nR)
+        return rc;
+    STICK_(residual)(w, v, 0, w->c);
+    STICK_(pseudo)(w, w->c, w->psi);
+    STICK_(add_rows)(w, w->psi, v);
+    return STICK_OK;
+}
+
+/* The modes at a state (t, q, v) alone, a run's start or a value outside
+ * a run: an item slipping has its mode from its speed's sign, already in
+ * u; one at rest (its speed exactly 0; a row item's with a bound above
+ * 0) is stuck if it can be.  All at rest are held first; while one would
+ * need more than its bound, the one needing most (for its bound) is let
+ * go, slipping the way the rest drives it.  Then each let go must
+ * accelerate the way it slips, else no choice of modes follows the
+ * motion (STICK_START, bad: the item; a row item whose bound is 0 exerts
+ * nothing either way). */
+STICK_API int
+STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+               const STICK_REAL *p, STICK_REAL *u)
+{
+    const eomc_model *m = w->m;
+    STICK_REAL *a = w->acc;
+    int rc;
+    if (w->nrowitem) { /* the rows' speeds and bounds at the state */
+        for (int j = 0; j < w->nf; j++)
+            STICK_(set)(w, u, m->fric_stick[j], 0);
+        if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+            return rc;
+        /* a row's slip from its speed's sign (a function that kept the
+         * side of a stuck item's may have kept a side from before) */
+        for (int j = 0; j < w->nf; j++) {
+            STICK_REAL e = STICK_(speed)(w, j, v, NULL);
+            if (STICK_(is_row)(w, j) && e != 0)
+                STICK_(set)(w, u, m->fric_slip[j], e > 0);
+        }
+    }
+    for (int j = 0; j < w->nf; j++)
+        STICK_(set)(w, u, m->fric_stick[j],
+                    STICK_(speed)(w, j, v, NULL) == 0 && (!STICK_(is_row)(w, j) || w->F[j] > 0));
+    if ((rc = STICK_(let_go)(w, t, q, v, p, u, NULL)) != STICK_OK)
+        return rc;
     for (int j = 0; j < w->nf; j++) {
-        int s = m->fric_speed[j];
-        if (v[s] != 0 || STICK_(stuck)(w, u, j))
+        if (STICK_(stuck)(w, u, j) || STICK_(speed)(w, j, v, NULL) != 0 ||
+            (STICK_(is_row)(w, j) && !(w->F[j] > 0)))
             continue;
         int up = u[w->nu + m->fric_slip[j]] != 0;
-        if (up ? !(a[s] > 0) : !(a[s] < 0)) {
+        STICK_REAL rate = STICK_(speed)(w, j, v, a);
+        if (up ? !(rate > 0) : !(rate < 0)) {
             w->bad = j;
             return STICK_START;
         }
@@ -290,12 +626,148 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
     return STICK_OK;
 }
 
+/* A row item's slip switch k crossing at (t, q, v): every item of that
+ * switch sticks where it can, with every other whose row the stuck rows
+ * then span (its speed is 0 with theirs), v made consistent with them;
+ * then the items that cannot hold let go (let_go).  Where none of those
+ * holds, v is as it was and they slip on the way the rest drives them. */
+static int
+STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, STICK_REAL *v,
+                   const STICK_REAL *p, STICK_REAL *u, int *stuck)
+{
+    const eomc_model *m = w->m;
+    int nv = w->nv, rc, any = 0;
+    if ((rc = STICK_(bounds)(w, t, q, v, p, u)) != STICK_OK)
+        return rc;
+    unsigned char *mine = calloc((size_t)w->nf + 1, 1);
+    STICK_REAL *was = malloc(((size_t)nv + 1) * sizeof *was);
+    if (!mine || !was) {
+        free(mine), free(was);
+        w->bad = 0;
+        return STICK_PIVOT;
+    }
+    for (int i = 0; i < nv; i++)
+        was[i] = v[i];
+    for (int j = 0; j < w->nf; j++)
+        if (m->fric_slip[j] == k && !STICK_(stuck)(w, u, j) && w->F[j] > 0) {
+            STICK_(set)(w, u, m->fric_stick[j], 1);
+            mine[j] = 1, any = 1;
+        }
+    for (int j = 0; any && j < w->nf; j++) { /* those the stuck rows span */
+        if (mine[j] || STICK_(stuck)(w, u, j) || !STICK_(is_row)(w, j) || !(w->F[j] > 0))
+            continue;
+        int spans = !STICK_(free_row)(w, j, t, q, v, p, u, &rc);
+        if (rc != STICK_OK)
+            goto out;
+        if (spans) {
+            STICK_(set)(w, u, m->fric_stick[j], 1);
+            mine[j] = 1;
+        }
+    }
+    for (int pass = 0; any && pass <= w->nf; pass++) {
+        for (int i = 0; i < nv; i++)
+            v[i] = was[i];
+        if ((rc = STICK_(project)(w, t, q, v, p, u)) != STICK_OK)
+            goto out;
+        if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+            goto out;
+        int worst = -1;
+        for (int j = 0; j < w->nf; j++) {
+            STICK_REAL need = STICK_ABS(w->phi[j]);
+            if (STICK_(stuck)(w, u, j) && need > w->F[j] &&
+                (worst < 0 || need * w->F[worst] > STICK_ABS(w->phi[worst]) * w->F[j]))
+                worst = j;
+        }
+        if (worst < 0)
+            break;
+        STICK_(set)(w, u, m->fric_slip[worst], w->phi[worst] < 0);
+        STICK_(set)(w, u, m->fric_stick[worst], 0);
+    }
+    any = 0;
+    for (int j = 0; j < w->nf; j++)
+        if (mine[j] && STICK_(stuck)(w, u, j) && !any) {
+            *stuck = m->fric_stick[j];
+            any = 1;
+        }
+    if (!any) /* none held: on as before, the way the rest drives each */
+        for (int i = 0; i < nv; i++)
+            v[i] = was[i];
+    if (!any && !STICK_(any)(w, u)) /* (the modes' own solve: nothing of the rows) */
+        w->nR = 0;
+    rc = STICK_OK;
+out:
+    free(mine), free(was);
+    return rc;
+}
+
+/* Row item j's stick switch letting go at (t, q, v): it slips the way
+ * the rest drives it, and so does every stuck item that then needs more
+ * than its bound (the group that held with it, by the proportional
+ * share: all at once).  Each let go must be free to move: where the rows
+ * still stuck span its row, it cannot, and no choice of modes follows
+ * (STICK_SPANNED, bad: the item). */
+static int
+STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
+                     const STICK_REAL *v, const STICK_REAL *p, STICK_REAL *u)
+{
+    const eomc_model *m = w->m;
+    int rc;
+    if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+        return rc;
+    unsigned char *gone = calloc((size_t)w->nf + 1, 1);
+    if (!gone) {
+        w->bad = j;
+        return STICK_PIVOT;
+    }
+    STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
+    STICK_(set)(w, u, m->fric_stick[j], 0);
+    gone[j] = 1;
+    for (int pass = 0; pass <= w->nf; pass++) {
+        if ((rc = STICK_(let_go)(w, t, q, v, p, u, gone)) != STICK_OK)
+            goto out;
+        int held = -1; /* a let-go item the stuck rows hold still */
+        for (int i = 0; i < w->nf && held < 0; i++)
+            if (gone[i] && STICK_(is_row)(w, i) && STICK_(any)(w, u)) {
+                if (!STICK_(free_row)(w, i, t, q, v, p, u, &rc))
+                    held = i;
+                if (rc != STICK_OK)
+                    goto out;
+            }
+        if (held < 0)
+            break;
+        /* those at their bound to rounding let go with it (a group whose
+         * rows are alike shares alike: its items reach their bounds at
+         * once, and only the first one's crossing is located) */
+        if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+            goto out;
+        int more = 0;
+        for (int i = 0; i < w->nf; i++)
+            if (STICK_(stuck)(w, u, i) && STICK_(is_row)(w, i) && w->F[i] > 0 &&
+                w->F[i] - STICK_ABS(w->phi[i]) <= STICK_BOUND_ULPS * w->nf * STICK_EPS * w->F[i]) {
+                STICK_(set)(w, u, m->fric_slip[i], w->phi[i] < 0);
+                STICK_(set)(w, u, m->fric_stick[i], 0);
+                gone[i] = 1, more = 1;
+            }
+        if (!more) {
+            w->bad = held;
+            rc = STICK_SPANNED;
+            goto out;
+        }
+    }
+    /* (the build of the modes as they are, for the Jacobian) */
+    rc = STICK_(solve)(w, t, q, v, p, u, w->acc);
+out:
+    free(gone);
+    return rc;
+}
+
 /* Mode k's flip to on at (t, q, v) in a run (its switch crossed there):
  * an item's slip switch, its speed crossing 0, sticks where the force
  * that holds it is within its bound (its speed set to exactly 0 in v,
  * *stuck its stick switch's mode), else slips on the way the rest drives
  * it; an item's stick switch letting go slips that way; any other mode
- * is set.  STICK_OK, or a solve's failure. */
+ * is set.  A row item's (stick_rows, unstick_rows) take the items whose
+ * rows the stuck ones span with it.  STICK_OK, or a solve's failure. */
 STICK_API int
 STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
              STICK_REAL *v, const STICK_REAL *p, STICK_REAL *u, int *stuck)
@@ -304,6 +776,15 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
     STICK_REAL *a = w->acc;
     int j = STICK_(item_of)(w, w->m->fric_slip, k), rc;
     *stuck = -1;
+    if (j >= 0 && STICK_(is_row)(w, j)) {
+        int held = 0;
+        for (int i = 0; i < w->nf; i++)
+            held |= m->fric_slip[i] == k && STICK_(stuck)(w, u, i);
+        if (held) /* (its side is kept while stuck: keep_slip) */
+            return STICK_OK;
+        STICK_(set)(w, u, k, on);
+        return STICK_(stick_rows)(w, k, t, q, v, p, u, stuck);
+    }
     if (j >= 0 && !STICK_(stuck)(w, u, j)) {
         int s = m->fric_speed[j];
         STICK_REAL was = v[s];
@@ -321,12 +802,26 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         return STICK_OK;
     }
     j = STICK_(item_stick)(w, k);
+    if (j >= 0 && !on && STICK_(stuck)(w, u, j) && STICK_(is_row)(w, j))
+        return STICK_(unstick_rows)(w, j, t, q, v, p, u);
     if (j >= 0 && !on && STICK_(stuck)(w, u, j)) {
         if ((rc = STICK_(solve)(w, t, q, v, p, u, a)) != STICK_OK)
             return rc;
         STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
     }
     STICK_(set)(w, u, k, on);
+    if (j >= 0 || !w->nrowitem || !STICK_(any)(w, u))
+        return STICK_OK;
+    /* a contact's push ended (or its near or touch switch flipped): a
+     * stuck point whose bound is now 0 holds nothing, and lets go, to
+     * slip by its speed's sign when it touches again */
+    if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+        return rc;
+    for (int i = 0; i < w->nf; i++)
+        if (STICK_(is_row)(w, i) && STICK_(stuck)(w, u, i) && !(w->F[i] > 0)) {
+            STICK_(set)(w, u, m->fric_stick[i], 0);
+            STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
+        }
     return STICK_OK;
 }
 

@@ -1,0 +1,133 @@
+#!/bin/sh
+# Coulomb friction at contacts with a plane (a contact's `friction: mu`)
+# against closed forms (TAP):
+#  - a box slid along the floor at v0 (cfric_box.yaml: a block that
+#    translates, its four lower corners on the floor, each bounded by
+#    mu N_i, their rows alike) decelerates at mu g: it stops at
+#    v0^2 / (2 mu g) at t = v0 / (mu g) and stays: over the next 10 s it
+#    moves by at most 1e-9 of that distance;
+#  - on a 20 degree slope with mu = 0.5 (tan 20 deg = 0.364 < mu) it
+#    stays (within 1e-9 m over 10 s); with mu = 0.2 it slides with
+#    a = g (sin th - mu cos th);
+#  - pulled by pull*t at its centre from rest, it is held until pull*t =
+#    mu N (N the floor's push at that instant, m g to 1e-10): the four
+#    corners let go at once (the holding shared in proportion to the
+#    bounds), and then x = pull (t - t1)^3 / (6 m);
+#  - a ball slid at v0 without spin (cfric_ball.yaml) slides until
+#    rolling begins at t = 2 v0 / (7 mu g) at 5/7 v0, then rolls with
+#    its contact point stuck (x' - r phi' at most 1e-9 v0), its normal
+#    force m g to 1e-8;
+#  - on a 20 degree slope it rolls at a = 5/7 g sin th where
+#    mu >= 2/7 tan th (mu = 0.2), and slides at g (sin th - mu cos th)
+#    where not (mu = 0.05);
+#  - --error on the box says the error the closed form says (within 10%,
+#    at 1e-6 and 1e-9), the reference sticking where the run does;
+#  - Taylor's method is refused by name.
+# usage: test_cfric.sh EOMC SOURCE_ROOT BUILD_ROOT
+set -u
+eomc=$1 src=$2 build=$3
+case $eomc in /*) ;; *) eomc="$build/$eomc" ;; esac
+. "$src/tests/cli/tap.sh"
+export EOMC_CACHE_DIR="$tmp/cache"
+box="$src/tests/cli/cfric_box.yaml"
+ball="$src/tests/cli/cfric_ball.yaml"
+tight="--rtol 1e-12 --atol 1e-12"
+th20=$(awk 'BEGIN { printf "%.17g", 20 * 3.14159265358979323846 / 180 }')
+
+# the box on the floor: the stop, and the 10 s after it
+want=$(awk 'BEGIN { g = 9.81; mu = 0.3; v0 = 3
+    printf "%.17g %.17g", v0 * v0 / (2 * mu * g), v0 / (mu * g) }')
+d=${want% *} ts=${want#* }
+t_end=$(awk -v t="$ts" 'BEGIN { printf "%.17g", t + 10 }')
+fine=0 got=
+for m in rk8pd rkf45; do
+  "$eomc" run "$box" --method $m $tight --t-end "$t_end" --events "$tmp/ev.csv" \
+    > "$tmp/rows.csv" 2> "$tmp/err" || continue
+  stop=$(awk -F, '$2 == "floor.block.floor.v1.x.stick" { print $1 "," $3 }' "$tmp/ev.csv")
+  last=$(tail -1 "$tmp/rows.csv" | cut -d, -f2)
+  within "${stop#*,}" "$d" 1e-11 && within "${stop%,*}" "$ts" 1e-11 &&
+    within "$last" "${stop#*,}" "$(awk -v d="$d" 'BEGIN { print 1e-9 * d }')" &&
+    fine=$((fine + 1)) got="$got $m: $stop, then $last;"
+done
+[ $fine -eq 2 ]
+ok $? "a box slid along the floor stops at v0^2/(2 mu g) = $d at t = v0/(mu g) = $ts, and stays 10 s ($got)"
+
+# the slope: held at mu = 0.5, sliding at mu = 0.2
+"$eomc" run "$box" --set th=$th20 --set mu=0.5 --set v0=0 --t-end 10 $tight \
+  --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev.csv")" -eq 1 ] &&
+  awk -F, 'NR > 1 { if ($2 < 0) $2 = -$2; if ($2 > 1e-9) bad = 1 } END { exit bad || NR < 2 }' \
+    "$tmp/rows.csv"
+ok $? "a box released at rest on a 20 degree slope with mu = 0.5 stays put: x = $(tail -1 "$tmp/rows.csv" | cut -d, -f2) at t = 10"
+want=$(awk 'BEGIN { g = 9.81; th = 20 * 3.14159265358979323846 / 180; a = g * (sin(th) - 0.2 * cos(th))
+    printf "%.17g", -a * 50 }')
+"$eomc" run "$box" --set th=$th20 --set mu=0.2 --set v0=0 --t-end 10 $tight \
+  > "$tmp/rows.csv"; st=$?
+got=$(tail -1 "$tmp/rows.csv" | cut -d, -f2)
+[ $st -eq 0 ] && awk -v g="$got" -v w="$want" 'BEGIN { e = (g - w) / w; if (e < 0) e = -e; exit !(e <= 1e-12) }'
+ok $? "with mu = 0.2 it slides down: x(10) = -a 10^2/2 = $want, a = g (sin th - mu cos th) ($got)"
+
+# the pull: held until pull t = mu N, the four corners letting go at once
+"$eomc" run "$box" --set pull=3 --set v0=0 --t-end 3 $tight --events "$tmp/ev.csv" \
+  > "$tmp/rows.csv"; st=$?
+go=$(awk -F, '$2 ~ /\.x\.stick$/ { print $1 "," $5 "," $8; exit }' "$tmp/ev.csv")
+t1=${go%%,*}
+held=$(awk -F, -v t="$t1" '$1 == t && $2 ~ /\.x\.stick$/' "$tmp/ev.csv" | wc -l)
+want=$(echo "$go" | awk -F, '{ k = 1e5; c = 200; h = 0.05; N = 4 * (k * (h - $2) - c * $3)
+    printf "%.17g %.17g", 0.3 * N / 3, N / (2 * 9.81) - 1 }')
+got=$(tail -1 "$tmp/rows.csv" | cut -d, -f2,5)
+close=$(awk 'BEGIN { ts = 0.3 * 2 * 9.81 / 3; printf "%.17g,%.17g", 3 * (3 - ts)^3 / 12, 3 * (3 - ts)^2 / 4 }')
+[ $st -eq 0 ] && within "$t1" "${want% *}" 1e-14 && within "${want#* }" 0 1e-10 &&
+  awk -v g="$got" -v w="$close" 'BEGIN { split(g, x, ","); split(w, y, ",")
+      for (i = 1; i <= 2; i++) { e = (x[i] - y[i]) / y[i]; if (e < 0) e = -e; if (e > 1e-9) exit 1 } }' &&
+  [ "$(awk -F, '$1 > 0 && $2 ~ /\.x\.stick$/' "$tmp/ev.csv" | awk -F, '{ print $1 }' | sort -u | wc -l)" -eq 1 ]
+ok $? "a box pulled by pull t from rest is held until pull t = mu N, t = $t1 (mu N / pull = ${want% *}, N / m g - 1 = ${want#* }), its corners letting go at once ($held flips at that instant), then x(3), x'(3) = $close ($got)"
+
+# the ball: sliding, then rolling from t = 2 v0 / (7 mu g) at 5/7 v0
+want=$(awk 'BEGIN { printf "%.17g %.17g", 2 * 2 / (7 * 0.2 * 9.81), 5 / 7 * 2 }')
+"$eomc" run "$ball" $tight --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
+roll=$(awk -F, '$2 == "floor.ball.floor.x.stick" { print $1 "," $6 }' "$tmp/ev.csv")
+nmg=$(awk -F, 'NR > 1 { e = $12 / (1.5 * 9.81) - 1; if (e < 0) e = -e; if (e > w) w = e } END { printf "%.2g", w }' "$tmp/rows.csv")
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev.csv")" -eq 3 ] &&
+  within "${roll%,*}" "${want% *}" 1e-12 && within "${roll#*,}" "${want#* }" 1e-12 &&
+  awk -F, -v t="${roll%,*}" 'NR > 1 && $1 > t { s = $11; if (s < 0) s = -s; if (s > 1e-9 * 2) bad = 1 }
+      END { exit bad }' "$tmp/rows.csv" &&
+  awk -v e="$nmg" 'BEGIN { exit !(e <= 1e-8) }'
+ok $? "a ball slid at v0 rolls from t = 2 v0/(7 mu g) = ${want% *} at 5/7 v0 = ${want#* } ($roll), its contact point stuck after (|x' - r phi'| <= 1e-9 v0), its normal force m g to $nmg"
+
+# the ball on a 20 degree slope: rolling at mu = 0.2, sliding at mu = 0.05
+fine=0 got=
+for mu in 0.2 0.05; do
+  want=$(awk -v mu=$mu 'BEGIN { g = 9.81; th = 20 * 3.14159265358979323846 / 180
+      a = mu >= 2 / 7 * sin(th) / cos(th) ? 5 / 7 * g * sin(th) : g * (sin(th) - mu * cos(th))
+      printf "%.17g", a * 2 }')
+  "$eomc" run "$ball" --set th=$th20 --set mu=$mu --set v0=0 --t-end 2 $tight \
+    > "$tmp/rows.csv" || continue
+  x=$(tail -1 "$tmp/rows.csv" | cut -d, -f2)
+  awk -v g="$x" -v w="$want" 'BEGIN { e = (g - w) / w; if (e < 0) e = -e; exit !(e <= 1e-12) }' &&
+    fine=$((fine + 1)) got="$got mu = $mu: x(2) = $x, 2 a = $want;"
+done
+[ $fine -eq 2 ]
+ok $? "a ball on a 20 degree slope rolls at 5/7 g sin th where mu >= 2/7 tan th, slides at g (sin th - mu cos th) where not ($got)"
+
+# --error against the closed form: the box at rest at the end, every
+# entry of its state known (x = d, z at its resting depth, speeds 0)
+fine=0 got=
+for e in 6 9; do
+  "$eomc" run "$box" --method rkf45 --rtol 1e-$e --atol 1e-$e --error --stats \
+    > "$tmp/run.csv" 2> "$tmp/err" || continue
+  true=$(tail -1 "$tmp/run.csv" | awk -F, -v d="$d" '{ zr = 0.05 - 2 * 9.81 / 4e5
+      e[1] = $2 - d; e[2] = $3; e[3] = $4 - zr; e[4] = $5; e[5] = $6; e[6] = $7
+      for (i = 1; i <= 6; i++) { a = e[i] < 0 ? -e[i] : e[i]; if (a > w) w = a }; printf "%.3g", w }')
+  said=$(awk '$1 == "error_end" { printf "%.3g", $2 }' "$tmp/err")
+  ! grep -q warning "$tmp/err" && awk -v t="$true" -v s="$said" 'BEGIN { exit !(s >= 0.9 * t && s <= 1.1 * t) }' &&
+    fine=$((fine + 1)) got="$got 1e-$e: $said against $true;"
+done
+[ $fine -eq 2 ]
+ok $? "--error on the box says the error the closed form says ($got)"
+
+"$eomc" run "$ball" --method taylor > /dev/null 2> "$tmp/err"; st=$?
+[ $st -ne 0 ] && grep -q "dry friction" "$tmp/err"
+ok $? "Taylor's method is refused by name (exit $st: $(head -c 160 "$tmp/err"))"
+
+tap_end

@@ -19,6 +19,14 @@
  *                                   import), and the contacts it finds;
  *                                   frictionless: every geom condim 1
  *
+ *   mj_contact MODEL.xml fall T H DT
+ *                                   the model let go at qpos0 at rest,
+ *                                   stepped by mj_step at step H to T
+ *                                   (all of MuJoCo's effects on, as the
+ *                                   model says): first "cpu SECONDS
+ *                                   STEPS", then at every DT a row "t
+ *                                   qpos qvel"
+ *
  * The timing rule is mj_bench.c's: the best of 9 runs of enough calls
  * for 50 ms.
  */
@@ -38,6 +46,15 @@ now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* CPU seconds, as eomc's cpu_seconds counts them */
+static double
+cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
@@ -112,11 +129,48 @@ calls(const mjModel *m, mjData *d, long n, double z)
     return sum == sum ? t : -t;
 }
 
+/* The fall to T at step H (the state kept at every DT, printed after
+ * the time, which printing would spoil); 0, or 2 where T/H or T/DT is
+ * not a whole number of steps. */
+static int
+fall(const mjModel *m0, mjData *d, double T, double H, double DT)
+{
+    mjModel *m = mj_copyModel(NULL, m0);
+    m->opt.timestep = H;
+    long steps = lround(T / H), every = lround(DT / H), nrow = steps / every + 1;
+    if (steps < 1 || every < 1 || fabs(steps * H - T) > 1e-9 * T || fabs(every * H - DT) > 1e-9 * DT) {
+        fprintf(stderr, "mj_contact: fall: T and DT must be whole numbers of steps H\n");
+        mj_deleteModel(m);
+        return 2;
+    }
+    int w = 1 + m->nq + m->nv;
+    double *rows = malloc((size_t)nrow * (size_t)w * sizeof *rows);
+    mj_resetData(m, d);
+    double t0 = cpu_now();
+    for (long k = 0, r = 0; k <= steps; k++) {
+        if (k % every == 0 && r < nrow) {
+            double *row = rows + r++ * w;
+            row[0] = d->time;
+            mju_copy(row + 1, d->qpos, m->nq);
+            mju_copy(row + 1 + m->nq, d->qvel, m->nv);
+        }
+        if (k < steps)
+            mj_step(m, d);
+    }
+    printf("cpu %.6f %ld\n", cpu_now() - t0, steps);
+    for (long r = 0; r < nrow; r++)
+        for (int i = 0; i < w; i++)
+            printf("%.17g%c", rows[r * w + i], i + 1 < w ? ' ' : '\n');
+    free(rows);
+    mj_deleteModel(m);
+    return 0;
+}
+
 int
 main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: mj_contact MODEL.xml pairs|drop|time DZ [frictionless]\n");
+        fprintf(stderr, "usage: mj_contact MODEL.xml pairs|drop|time DZ [frictionless]|fall T H DT\n");
         return 2;
     }
     char err[1000] = "";
@@ -155,6 +209,8 @@ main(int argc, char **argv)
                 best = t;
         }
         printf("%.1f %d\n", best / (double)n * 1e9, d->ncon);
+    } else if (!strcmp(argv[2], "fall") && argc >= 6) {
+        rc = fall(m, d, atof(argv[3]), atof(argv[4]), atof(argv[5]));
     } else {
         fprintf(stderr, "mj_contact: unknown request '%s'\n", argv[2]);
         rc = 2;

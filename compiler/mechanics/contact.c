@@ -46,6 +46,8 @@ typedef struct Ctx {
     const ExprId *tangent[2];  /* the plane's x and y axes while its contacts are made;
                                 * NULL otherwise (no friction) */
     const ContactQ *out;
+    ExprId near; /* the pair's near switch's function (EXPR_NONE: none yet) */
+    ExprId far;  /* the sign a switch of the pair's own has while far */
 } Ctx;
 
 /* The margin by which the near switch's bounding spheres are grown, a
@@ -62,10 +64,18 @@ typedef struct Placed {
     ExprId o[3], A[9], size[3];
 } Placed;
 
-/* A where(s, a, b) whose new switch is named prefix.suffix. */
+/* A where(s, a, b) whose new switch is named prefix.suffix.  A switch of
+ * the pair's own (not its near switch) is watched only while the pair is
+ * near, its function x->far (a sign: -1 for a touch, which is off
+ * while far, else 1) while far: the pair's share is 0 there
+ * whatever its modes, and a clamp's function on the lines of two
+ * parallel capsules far apart (a humanoid's two feet) swings with
+ * rounding, which would flip it back and forth for nothing. */
 static ExprId
 named_where(Ctx *x, ExprId s, ExprId a, ExprId b, const char *suffix)
 {
+    if (x->near != EXPR_NONE && s != x->near)
+        s = expr_where(x->P, x->near, s, x->far);
     int before = expr_nswitch(x->P);
     ExprId e = expr_where(x->P, s, a, b);
     char name[512];
@@ -270,14 +280,25 @@ contact(Ctx *x, const char *suffix, ExprId d, const ExprId n[3], int ba, const E
         int bb, const ExprId pb[3])
 {
     ExprPool *P = x->P;
-    char name[64];
+    char name[64], touch[64];
+    snprintf(touch, sizeof touch, "%s%stouch", suffix, *suffix ? "." : "");
     snprintf(name, sizeof name, "%s%spush", suffix, *suffix ? "." : "");
     ExprId rate = diff_time(x->D, d);
     ExprId spring = expr_mul(P, x->k, d), damper = expr_mul(P, x->c, rate);
     ExprId law = expr_add(P, spring, damper);
-    ExprId push = named_where(x, law, law, EXPR_ZERO, name); /* max(0, k d + c d') */
-    snprintf(name, sizeof name, "%s%stouch", suffix, *suffix ? "." : "");
-    ExprId N = named_where(x, d, push, EXPR_ZERO, name);
+    /* The push's switch watches k d + c d' only while the shapes touch:
+     * apart, the law acts on nothing, and two shapes near each other
+     * whose d' swings as a third body lands (a humanoid's feet) would
+     * flip it back and forth for nothing, or stop a run as sliding along
+     * a kink.  Apart its function is 1, a sign: the push is on there,
+     * so a touchdown (d = 0, c d' > 0) flips the touch alone. */
+    x->far = expr_neg(P, EXPR_ONE);
+    ExprId watched = named_where(x, d, law, EXPR_ONE, touch);
+    x->far = EXPR_ONE;
+    ExprId push = named_where(x, watched, law, EXPR_ZERO, name); /* max(0, k d + c d') */
+    x->far = expr_neg(P, EXPR_ONE);
+    ExprId N = named_where(x, d, push, EXPR_ZERO, touch);
+    x->far = EXPR_ONE;
     apply(x, N, n, ba, pa, bb, pb);
     if (x->mu == EXPR_ZERO || !x->tangent[0])
         return;
@@ -524,7 +545,7 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
             const ContactQ *out)
 {
     int nb = s->nbody;
-    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL, f->mu, {NULL, NULL}, out};
+    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL, f->mu, {NULL, NULL}, out, EXPR_NONE, EXPR_ONE};
     x.F = xmalloc(((size_t)nb + 1) * sizeof *x.F);
     x.tau = xmalloc(((size_t)nb + 1) * sizeof *x.tau);
     ExprId *Qq = xmalloc(((size_t)out->nq + 1) * sizeof *Qq);
@@ -540,7 +561,9 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
         place(s, kb, P, &b);
         /* the near switch first: the pair's own come after it */
         ExprId near = near_bound(P, &a, &b);
+        x.near = EXPR_NONE;
         (void)named_where(&x, near, EXPR_ONE, EXPR_ZERO, "near");
+        x.near = near;
         for (int i = 0; i < 3; i++)
             x.F[a.body][i] = x.tau[a.body][i] = x.F[b.body][i] = x.tau[b.body][i] = EXPR_ZERO;
         if (a.type == SPEC_SHAPE_PLANE)

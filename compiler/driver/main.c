@@ -380,19 +380,26 @@ cached_build(const Options *o, const char *name, int *rc)
     const char *form = o->form ? o->form : "(default)";
     const char *code = o->code ? o->code : "auto";
     const char *branches = o->branches ? o->branches : "lazy";
-    size_t extra = strlen(form) + (o->effects ? strlen(o->effects) : 0) + strlen(jac) +
-                   strlen(code) + strlen(branches) +
-                   (o->scene ? strlen(o->scene) : 0) + (o->fix ? strlen(o->fix) : 0) + 140;
-    text = xrealloc(text, len + extra);
-    len += (size_t)snprintf(text + len, extra,
-                            "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
-                            "--branches %s --extended %d --taylor %d --scene %s --fix %s%s%s", form,
-                            o->effects ? o->effects : "(scene)",
-                            o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
-                            branches, o->extended || o->needs_twin, o->needs_taylor,
-                            o->scene ? o->scene : "(first)",
-                            o->fix ? o->fix : "(none)", o->shared ? " --shared" : "",
-                            o->portable ? " --portable" : "");
+    /* the options after the text, the buffer grown until they fit (an
+     * estimate of their length went stale as options were added) */
+    size_t extra = 256;
+    for (;;) {
+        text = xrealloc(text, len + extra);
+        int n = snprintf(text + len, extra,
+                         "\n--form %s --effects %s --eliminate %d --jacobian %s%s --code %s "
+                         "--branches %s --extended %d --taylor %d --scene %s --fix %s%s%s", form,
+                         o->effects ? o->effects : "(scene)",
+                         o->eliminate, jac, o->needs_jacobian ? " (needed)" : "", code,
+                         branches, o->extended || o->needs_twin, o->needs_taylor,
+                         o->scene ? o->scene : "(first)",
+                         o->fix ? o->fix : "(none)", o->shared ? " --shared" : "",
+                         o->portable ? " --portable" : "");
+        if (n >= 0 && (size_t)n < extra) {
+            len += (size_t)n;
+            break;
+        }
+        extra = n >= 0 ? (size_t)n + 1 : 2 * extra;
+    }
     char *path = build_cache_path(name, text, len);
     free(text);
     if (!path) {

@@ -452,12 +452,17 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
 {
     size_t N = (size_t)(w->N > 0 ? w->N : 1);
     double *sens = malloc(2 * N * sizeof *sens), *slip = sens + N;
-    unsigned char *done = calloc((size_t)w->nm + 1, 1); /* flipped at this t */
-    int rc = sens && done ? 0 : -1;
+    double *seq = calloc((size_t)w->nm + 1, sizeof *seq); /* the order of each flip at t */
+    double order = 0;
+    int rc = sens && seq ? 0 : -1;
     /* the located ones first, each with its arrival's rate (the modes it
      * came in), then, until none is left, those past 0 there: kinks at
-     * this instant, and functions a flip moved (a max of a max) */
-    for (int pass = 0; rc == 0 && pass <= w->nm; pass++) {
+     * this instant, and functions a flip moved (a max of a max).  Those
+     * as the runs flip them (stepevents.c): without dry friction one a
+     * pass in their order, each function reading only the modes before
+     * it, one flipped at t again where one before it flipped after it;
+     * with it, all that disagree each pass, each once */
+    for (int pass = 0; rc == 0 && pass <= 2 * w->nm; pass++) {
         if (w->mo.rate(w->mo.ctx, t, x, w->fs) != 0) {
             rc = -1;
             break;
@@ -466,12 +471,24 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         int flips = 0;
         eomc_ext *flip = w->r1; /* (free once the step is checked) */
         for (int k = 0; k < w->nm; k++)
-            flip[k] = !done[k] && ((pass == 0 && !isnan(w->hit[k]) &&
-                                    w->hit[k] - t <= w->settled) || past(w, k, w->s1[k]));
+            flip[k] = pass == 0 && !isnan(w->hit[k]) && w->hit[k] - t <= w->settled;
+        double below = 0; /* the latest flip at t of the switches before k */
+        for (int k = 0; pass > 0 && k < w->nm; k++) {
+            int at_t = w->last[k] == t && seq[k] > 0;
+            int again = at_t && (w->mo.held || !(below > seq[k]));
+            if (at_t)
+                below = fmax(below, seq[k]);
+            if (again || !past(w, k, w->s1[k]))
+                continue;
+            flip[k] = 1, flips++;
+            if (!w->mo.held) /* the first alone */
+                break;
+        }
+        flips = 0;
         for (int k = 0; rc == 0 && k < w->nm; k++) {
             if (flip[k] == 0)
                 continue;
-            if (t - w->last[k] < REFSW_CHATTER * w->span) {
+            if (t != w->last[k] && t - w->last[k] < REFSW_CHATTER * w->span) {
                 *bad = k;
                 rc = -2;
                 break;
@@ -487,9 +504,9 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             w->last[k] = t;
             /* over: a located crossing may sit a rounding short of 0 (s1
              * still on its mode's side, which must not read as a flip
-             * back at the next pass: done) and one past 0 is over */
+             * back at the next pass: seq) and one past 0 is over */
             int on = w->mode[k] == 0, stuck = -1;
-            done[k] = 1;
+            seq[k] = ++order;
             if (!w->mo.flip)
                 w->mode[k] = on;
             else if (w->mo.flip(w->mo.ctx, k, on, t, x, &stuck) != 0)
@@ -498,6 +515,7 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
                 memcpy(slip, w->rsens + (size_t)refsw_last_of(w, k) * (size_t)w->N,
                        (size_t)w->N * sizeof *slip);
                 w->last[stuck] = t;
+                seq[stuck] = ++order;
                 if (record(w, t, stuck, slip) != 0)
                     rc = -1;
             }
@@ -508,6 +526,6 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
     for (int k = 0; k < w->nm; k++)
         w->hit[k] = NAN;
     free(sens);
-    free(done);
+    free(seq);
     return rc;
 }

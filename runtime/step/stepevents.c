@@ -57,6 +57,7 @@ struct StepEvents {
     int ne;                       /* events: the scene's, then the switches */
     int nev;                      /* the scene's (m->nevent) */
     double *tsw;                  /* [ne - nev] each switch's last flip */
+    double *seq;                  /* [ne - nev] the order of its flip at that instant */
     int switch_to;                /* the mode a located switch flips to */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -101,6 +102,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     ok &= (v->held = calloc(ne + 1, 1)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
+    ok &= (v->seq = sim_zeros((size_t)m->nmode)) != NULL;
     for (int j = 0; ok && j < m->nmode; j++)
         v->tsw[j] = -INFINITY;
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
@@ -122,6 +124,7 @@ stepev_free(StepEvents *v)
         free(arrays[k]);
     free(v->held);
     free(v->tsw);
+    free(v->seq);
     free(v->cl);
     free(v);
 }
@@ -500,6 +503,7 @@ also_stuck(StepEvents *v, int j, double t, const double *x)
     if (j < 0)
         return;
     v->tsw[j] = t;
+    v->seq[j] = 0;
     v->st->events++;
     if (v->o->on_event)
         (void)v->o->on_event(v->o->event_ctx, v->nev + j, t, x);
@@ -518,6 +522,7 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
         return STEPEV_ACCUMULATE;
     }
     v->tsw[j] = t;
+    v->seq[j] = 1;
     v->gap = t - v->last_set;
     v->last_set = t;
     v->nsets++;
@@ -535,6 +540,48 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
      * max): again until none disagrees. */
     double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
     g_rates(v, t, x, f, v->gd1); /* (f: the rate before the flip) */
+    /* Without dry friction the switches settle in their order, one flip
+     * a pass: a switch's function reads only the modes of those before
+     * it (a capsule's clamp, the one it clamps next), so once the first
+     * that disagrees has flipped, those before it stay settled; one
+     * flipped at t already flips again where one before it flipped after
+     * it (its function is not the one it was flipped by).  Each pass
+     * settles one more switch: at most two passes a switch.  With dry
+     * friction (stick switches reading every mode, a group of stuck
+     * points letting go at once) all that disagree flip each pass, in
+     * their order, each once. */
+    if (v->m->nfric > 0)
+        goto together;
+    double order = 1;
+    for (int pass = 0; pass <= 2 * (v->ne - v->nev); pass++) {
+        int pick = -1;
+        double below = 0; /* the latest flip at t of the switches before i */
+        g_all(v, t, x, x + v->n, v->g0);
+        for (int i = v->nev; i < v->ne && pick < 0; i++) {
+            int j = i - v->nev, on = v->g0[i] > 0, mode = sim_mode(v->s, j);
+            if (v->g0[i] == 0) /* on its kink now (a mirror image's of k): where it goes */
+                on = v->gd1[i] > 0 ? 1 : v->gd1[i] < 0 ? 0 : mode;
+            else if (on == mode && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
+                     -v->g0[i] / v->gd1[i] <= soon)
+                on = !on; /* about to cross */
+            int again = v->tsw[j] == t && !(below > v->seq[j]);
+            if (v->tsw[j] == t)
+                below = fmax(below, v->seq[j]);
+            if (!again && on != mode)
+                pick = i;
+        }
+        if (pick < 0)
+            break;
+        int j = pick - v->nev;
+        if (sim_flip(v->s, j, !sim_mode(v->s, j), t, x, &stuck) != EOMC_OK)
+            return GSL_EBADFUNC;
+        v->tsw[j] = t, v->seq[j] = ++order;
+        v->st->events++;
+        if (v->o->on_event)
+            (void)v->o->on_event(v->o->event_ctx, pick, t, x);
+    }
+    goto settled;
+together:
     for (int pass = 0; pass < v->ne - v->nev; pass++) {
         int changed = 0;
         g_all(v, t, x, x + v->n, v->g0);
@@ -559,6 +606,7 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
         if (!changed)
             break;
     }
+settled:
     rc = v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;

@@ -16,6 +16,10 @@
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
+ *   mj_accel MODEL lowest  ->  "z g": the lowest point of the spheres and
+ *                              capsules of bodies other than the world at
+ *                              qpos0 (a capsule's end sphere), and the
+ *                              gravity's size
  *   mj_accel MODEL kinetic ->  for each line "t q_1 .. q_nq v_1 .. v_nv" on
  *                              stdin (eomc's speeds), "t T": MuJoCo's kinetic
  *                              energy there (mj_energyVel: armature included)
@@ -309,6 +313,30 @@ done:
     return rc;
 }
 
+/* The lowest mode (the top): 0, or 2 where no sphere or capsule moves. */
+static int
+lowest(const mjModel *m)
+{
+    mjData *d = mj_makeData(m);
+    mj_kinematics(m, d);
+    double low = INFINITY;
+    for (int g = 0; g < m->ngeom; g++) {
+        const double *R = d->geom_xmat + 9 * g, *sz = m->geom_size + 3 * g;
+        double z = d->geom_xpos[3 * g + 2];
+        if (m->geom_bodyid[g] == 0)
+            continue;
+        if (m->geom_type[g] == mjGEOM_SPHERE)
+            low = fmin(low, z - sz[0]);
+        else if (m->geom_type[g] == mjGEOM_CAPSULE) /* its axis is the geom's z */
+            low = fmin(low, z - sz[0] - sz[1] * fabs(R[8]));
+    }
+    mj_deleteData(d);
+    if (isinf(low))
+        return 2;
+    printf("%.17g %.17g\n", low, mju_norm3(m->opt.gravity));
+    return 0;
+}
+
 /* The kinetic mode (the top): 0, or 2 on a short line. */
 static int
 kinetic(mjModel *m)
@@ -444,8 +472,8 @@ main(int argc, char **argv)
                 argc == 3 || argc == 4 ? err : "usage: mj_accel MODEL SEED [COUNT]");
         return 2;
     }
-    if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic")) {
-        int rc = argv[2][0] == 'c' ? centre_of_mass(m) : kinetic(m);
+    if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic") || !strcmp(argv[2], "lowest")) {
+        int rc = argv[2][0] == 'c' ? centre_of_mass(m) : argv[2][0] == 'k' ? kinetic(m) : lowest(m);
         mj_deleteModel(m);
         return rc;
     }

@@ -26,7 +26,14 @@
 #    states around a slanted capsule (the nearest points inside the axes
 #    or at an end), q'' = k d n/m + g against the gap from the segments'
 #    nearest points found by cases (the lines' interior solution, each
-#    end against the other segment).
+#    end against the other segment); the lines' nearest point leaving the
+#    rod's axis where the lines' parameter, from the event's state, is h2.
+#  - tests/cli/contact_parallel.yaml: a rod 1e-9 and 1e-12 rad from
+#    parallel to a log it lies on and to a rail it meets side on: q'' from
+#    the gap at its lowest end (that end's distance to the other axis), no
+#    clamp, interior or end switch flipping while the pair is close but the
+#    log's ends' where they are equally far from the rod's; crossed at 90
+#    and 30 degrees, q'' from the lines' distance.
 #  - tests/cli/contact_probe.yaml and contact_planar.yaml: a capsule's
 #    end spheres and an ellipsoid's lowest point on a tilted plane, a
 #    planar bar on a line: q'' from the forces at the touching points and

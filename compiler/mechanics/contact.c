@@ -48,6 +48,7 @@ typedef struct Ctx {
     const ContactQ *out;
     ExprId near; /* the pair's near switch's function (EXPR_NONE: none yet) */
     ExprId far;  /* the sign a switch of the pair's own has while far */
+    ExprId close; /* two capsules' close gate's function (EXPR_NONE: none) */
 } Ctx;
 
 /* The margin by which the near switch's bounding spheres are grown, a
@@ -74,6 +75,8 @@ typedef struct Placed {
 static ExprId
 named_where(Ctx *x, ExprId s, ExprId a, ExprId b, const char *suffix)
 {
+    if (x->close != EXPR_NONE && s != x->close)
+        s = expr_where(x->P, x->close, s, x->far);
     if (x->near != EXPR_NONE && s != x->near)
         s = expr_where(x->P, x->near, s, x->far);
     int before = expr_nswitch(x->P);
@@ -86,15 +89,22 @@ named_where(Ctx *x, ExprId s, ExprId a, ExprId b, const char *suffix)
 }
 
 /* clamp(v, lo, hi) as expr_clamp builds it (hi where v > hi, else
- * max(v, lo)), its switches named prefix.which.lo and .hi. */
+ * max(v, lo)), its switches named prefix.which.lo and .hi; inside: while
+ * far, each switch's sign is that of v inside (.lo on, .hi off), else
+ * both on. */
 static ExprId
-named_clamp(Ctx *x, ExprId v, ExprId lo, ExprId hi, const char *which)
+named_clamp(Ctx *x, ExprId v, ExprId lo, ExprId hi, const char *which, int inside)
 {
     char lo_name[64], hi_name[64];
     snprintf(lo_name, sizeof lo_name, "%s.lo", which);
     snprintf(hi_name, sizeof hi_name, "%s.hi", which);
     ExprId low = named_where(x, expr_sub(x->P, v, lo), v, lo, lo_name);
-    return named_where(x, expr_sub(x->P, v, hi), hi, low, hi_name);
+    ExprId far = x->far;
+    if (inside)
+        x->far = expr_neg(x->P, EXPR_ONE);
+    ExprId e = named_where(x, expr_sub(x->P, v, hi), hi, low, hi_name);
+    x->far = far;
+    return e;
 }
 
 /* Body b's centre and rotation (world from body), as the page draws it
@@ -415,7 +425,7 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
         rel[i] = expr_sub(P, sp->o[i], ca->o[i]);
     ExprId h = ca->size[1];
     ExprId along_axis = kin_dot(P, u, rel), nh = expr_neg(P, h);
-    ExprId t = named_clamp(x, along_axis, nh, h, flip ? "a" : "b");
+    ExprId t = named_clamp(x, along_axis, nh, h, flip ? "a" : "b", 0);
     along(P, ca->o, t, u, q);
     if (flip)
         spheres(x, "", q, ca->size[0], ca->body, sp->o, sp->size[0], sp->body);
@@ -423,44 +433,114 @@ sphere_capsule(Ctx *x, const Placed *sp, const Placed *ca, int flip)
         spheres(x, "", sp->o, sp->size[0], sp->body, q, ca->size[0], ca->body);
 }
 
-/* Two capsules: the nearest points of their axes, centres oa + s ua and
- * ob + t ub (|s| <= ha, |t| <= hb).  With r = oa - ob, b = ua.ub,
- * c = ua.r, f = ub.r: the lines' nearest s0 = (b f - c)/(1 - b^2),
- * clamped; t = clamp(b s0 + f), the nearest to it on b's axis; then
- * s = clamp(b t - c), the nearest to that on a's (Ericson, Real-Time
- * Collision Detection, 5.1.9; s = s0 where t was not clamped).
- * The lines' s0 is taken as x den / (den^2 + PARALLEL_DEN^2), x = b f - c,
- * den = 1 - b^2: x / den to a relative 1e-12 where the axes are 1e-3 rad
- * from parallel or more (the gap, stationary in s, to 1e-24), and going to
- * 0 with x where they are parallel, where any s0 serves and the two
- * projections then find the nearest points.  (x / den itself is rounding
- * over rounding there, and a switch on den would flip on rounding alone:
- * a humanoid's shins standing straight, a four-bar's links passing each
- * other.) */
-#define PARALLEL_DEN 1e-12
+/* Two capsules: the nearest points of their axes, oa + s ua and ob + t ub
+ * (|s| <= ha, |t| <= hb), the one pair of the segments' distance, which
+ * is the least of |oa + s ua - ob - t ub| over that rectangle, a convex
+ * quadratic.  Its least point is the lines' own where that lies inside
+ * both (the interior), and else on the rectangle's edge: an end of one
+ * axis against the other segment, its projection clamped, conditioned
+ * whatever the angle.  So the gap is the interior's where both of the
+ * lines' parameters are inside (switches .a.in, .b.in), and else the
+ * nearest of the four ends' (.a.end1.lo/.hi ... .b.end2.lo/.hi their
+ * clamps, .a.end and .b.end which end of each, .end which axis's).
+ * Where a line's parameter crosses an end the interior and that end's
+ * candidate are the same points, so the gap is continuous.
+ *
+ * Each switch is well conditioned near parallel, where the lines'
+ * parameters s0 = xs/den and t0 = xt/den are rounding over rounding:
+ * with n = ua x ub, den = n.n (1 - (ua.ub)^2 without its cancellation),
+ * xs = n.(ub x r) and xt = n.(ua x r) (r = oa - ob), the lines' s0 is
+ * inside where (ha den)^2 - xs^2 > 0, a product that keeps its sign to
+ * the last bit: near parallel the lines' nearest points are far outside
+ * (|xs| ~ |n| |r| against ha |n|^2) and the switch stays off, where a
+ * clamp of x/den flipped with rounding (a humanoid's two feet).  Two
+ * capsules exactly parallel (n = 0) take the ends, whichever is nearer
+ * (the distance is the same along their overlap). */
+#define TIE_REL 1e-12
 static void
 capsules(Ctx *x, const Placed *a, const Placed *b)
 {
     ExprPool *P = x->P;
-    ExprId ua[3], ub[3], r[3], pa[3], pb[3];
+    ExprId ua[3], ub[3], r[3], n[3], wa[3], wb[3];
     axis(a->A, 2, ua);
     axis(b->A, 2, ub);
     for (int i = 0; i < 3; i++)
         r[i] = expr_sub(P, a->o[i], b->o[i]);
-    ExprId ha = a->size[1], hb = b->size[1], nha = expr_neg(P, ha);
-    ExprId bb = kin_dot(P, ua, ub), c = kin_dot(P, ua, r), f = kin_dot(P, ub, r);
-    ExprId den = expr_sub(P, EXPR_ONE, expr_mul(P, bb, bb));
-    ExprId num = expr_sub(P, expr_mul(P, bb, f), c);
-    ExprId eps2 = expr_const(P, PARALLEL_DEN * PARALLEL_DEN), den2 = expr_mul(P, den, den);
-    ExprId top = expr_mul(P, num, den), bottom = expr_add(P, den2, eps2);
-    ExprId lines = expr_div(P, top, bottom);
-    ExprId s0 = named_clamp(x, lines, nha, ha, "a");
-    ExprId tu = expr_add(P, expr_mul(P, bb, s0), f), nhb = expr_neg(P, hb);
-    ExprId t = named_clamp(x, tu, nhb, hb, "b");
-    ExprId s = named_clamp(x, expr_sub(P, expr_mul(P, bb, t), c), nha, ha, "a2");
-    along(P, a->o, s, ua, pa);
-    along(P, b->o, t, ub, pb);
+    ExprId ha = a->size[1], hb = b->size[1];
+    kin_cross(P, ua, ub, n);
+    kin_cross(P, ub, r, wb);
+    kin_cross(P, ua, r, wa);
+    ExprId den = kin_dot(P, n, n), xs = kin_dot(P, n, wb), xt = kin_dot(P, n, wa);
+    /* the close gate: watch the pair's own switches only where the
+     * segments may be within R = (ra + rb)(1 + margin): a point
+     * oa + s ua is |wb + s n| >= |wb| - ha |n| from b's line, so the
+     * segments are farther than R wherever |wb|^2 >= 2 R^2 + 2 ha^2 den
+     * (>= (R + ha |n|)^2), without a square root at n = 0 */
+    ExprId R = expr_mul(P, expr_const(P, 1 + NEAR_MARGIN_REL), expr_add(P, a->size[0], b->size[0]));
+    ExprId reach = expr_add(P, expr_powi(P, R, 2), expr_mul(P, expr_powi(P, ha, 2), den));
+    ExprId close = expr_sub(P, expr_mul(P, expr_const(P, 2), reach), kin_dot(P, wb, wb));
+    close = expr_where(P, x->near, close, expr_neg(P, EXPR_ONE));
+    ExprId near = x->near;
+    x->near = EXPR_NONE;
+    (void)named_where(x, close, EXPR_ONE, EXPR_ZERO, "close");
+    x->near = near;
+    x->close = close;
+    /* the four ends, each against the other segment: (p on a's axis, q on b's) */
+    ExprId cand[4][2][3], dist2[4];
+    for (int k = 0; k < 4; k++) {
+        const Placed *from = k < 2 ? a : b, *onto = k < 2 ? b : a;
+        ExprId h = k % 2 ? from->size[1] : expr_neg(P, from->size[1]), end[3], rel[3], on[3],
+               u[3];
+        at(P, from, (ExprId[3]){EXPR_ZERO, EXPR_ZERO, h}, end);
+        axis(onto->A, 2, u);
+        for (int i = 0; i < 3; i++)
+            rel[i] = expr_sub(P, end[i], onto->o[i]);
+        char which[16];
+        snprintf(which, sizeof which, "%s.end%d", k < 2 ? "a" : "b", k % 2 + 1);
+        ExprId t = named_clamp(x, kin_dot(P, u, rel), expr_neg(P, onto->size[1]), onto->size[1],
+                               which, 1);
+        along(P, onto->o, t, u, on);
+        ExprId d[3];
+        for (int i = 0; i < 3; i++) {
+            cand[k][0][i] = k < 2 ? end[i] : on[i];
+            cand[k][1][i] = k < 2 ? on[i] : end[i];
+            d[i] = expr_sub(P, cand[k][1][i], cand[k][0][i]);
+        }
+        dist2[k] = kin_dot(P, d, d);
+    }
+    /* the nearest end of each axis, then of the two; a tie (their
+     * distances equal to rounding) goes to the first */
+    ExprId tie = expr_mul(P, expr_const(P, TIE_REL), expr_powi(P, expr_add(P, a->size[0], b->size[0]), 2));
+    ExprId best[2][2][3], bd2[2];
+    for (int e = 0; e < 2; e++) {
+        ExprId s = expr_add(P, expr_sub(P, dist2[2 * e + 1], dist2[2 * e]), tie); /* > 0: end1 */
+        const char *name = e ? "b.end" : "a.end";
+        for (int j = 0; j < 2; j++)
+            for (int i = 0; i < 3; i++)
+                best[e][j][i] =
+                    named_where(x, s, cand[2 * e][j][i], cand[2 * e + 1][j][i], name);
+        bd2[e] = named_where(x, s, dist2[2 * e], dist2[2 * e + 1], name);
+    }
+    ExprId sel = expr_add(P, expr_sub(P, bd2[1], bd2[0]), tie); /* > 0: a's end */
+    ExprId pa[3], pb[3];
+    for (int i = 0; i < 3; i++) {
+        pa[i] = named_where(x, sel, best[0][0][i], best[1][0][i], "end");
+        pb[i] = named_where(x, sel, best[0][1][i], best[1][1][i], "end");
+    }
+    /* the interior, where both lines' parameters are inside */
+    ExprId ina = expr_sub(P, expr_powi(P, expr_mul(P, ha, den), 2), expr_powi(P, xs, 2));
+    ExprId inb = expr_sub(P, expr_powi(P, expr_mul(P, hb, den), 2), expr_powi(P, xt, 2));
+    ExprId s0 = expr_div(P, xs, den), t0 = expr_div(P, xt, den), la[3], lb[3];
+    along(P, a->o, s0, ua, la);
+    along(P, b->o, t0, ub, lb);
+    x->far = expr_neg(P, EXPR_ONE); /* (off while far: off as the pair comes near) */
+    for (int i = 0; i < 3; i++) {
+        pa[i] = named_where(x, ina, named_where(x, inb, la[i], pa[i], "b.in"), pa[i], "a.in");
+        pb[i] = named_where(x, ina, named_where(x, inb, lb[i], pb[i], "b.in"), pb[i], "a.in");
+    }
+    x->far = EXPR_ONE;
     spheres(x, "", pa, a->size[0], a->body, pb, b->size[0], b->body);
+    x->close = EXPR_NONE;
 }
 
 /* The radius of a sphere about a shape's centre that holds it (a box's
@@ -545,7 +625,7 @@ contact_add(const Spec *s, const SpecEffect *e, const SpecForce *f, ExprPool *P,
             const ContactQ *out)
 {
     int nb = s->nbody;
-    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL, f->mu, {NULL, NULL}, out, EXPR_NONE, EXPR_ONE};
+    Ctx x = {s, P, D, NULL, f->stiffness, f->damping, NULL, NULL, f->mu, {NULL, NULL}, out, EXPR_NONE, EXPR_ONE, EXPR_NONE};
     x.F = xmalloc(((size_t)nb + 1) * sizeof *x.F);
     x.tau = xmalloc(((size_t)nb + 1) * sizeof *x.tau);
     ExprId *Qq = xmalloc(((size_t)out->nq + 1) * sizeof *Qq);

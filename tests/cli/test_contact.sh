@@ -26,7 +26,14 @@
 #    states around a slanted capsule (the nearest points inside the axes
 #    or at an end), q'' = k d n/m + g against the gap from the segments'
 #    nearest points found by cases (the lines' interior solution, each
-#    end against the other segment).
+#    end against the other segment); the lines' nearest point leaving the
+#    rod's axis where the lines' parameter, from the event's state, is h2.
+#  - tests/cli/contact_parallel.yaml: a rod 1e-9 and 1e-12 rad from
+#    parallel to a log it lies on and to a rail it meets side on: q'' from
+#    the gap at its lowest end (that end's distance to the other axis), no
+#    clamp, interior or end switch flipping while the pair is close but the
+#    log's ends' where they are equally far from the rod's; crossed at 90
+#    and 30 degrees, q'' from the lines' distance.
 #  - tests/cli/contact_probe.yaml and contact_planar.yaml: a capsule's
 #    end spheres and an ellipsoid's lowest point on a tilted plane, a
 #    planar bar on a line: q'' from the forces at the touching points and
@@ -201,7 +208,7 @@ ok $? "the balls at 20 m/s: near, touch, push off, touch off (the push on again)
 
 # ---- lazy and eager code: the very same rows and events
 same=0 scenes=0
-for spec in contact_drop contact_box contact_spheres contact_capsules contact_planar contact_probe; do
+for spec in contact_drop contact_box contact_spheres contact_capsules contact_parallel contact_planar contact_probe; do
   for b in lazy eager; do
     "$eomc" run "$cli/$spec.yaml" --branches $b --events "$tmp/$b.ev" > "$tmp/$b.rows" 2> /dev/null
   done
@@ -285,9 +292,97 @@ ok $? "capsule-capsule and sphere-capsule around a slanted capsule, 4 states: q'
 # where the nearest point reaches an end
 "$eomc" run "$cli/contact_capsules.yaml" --effects gravity,slant --init x=0.2 --init y=3.25 \
   --init z=0.3 --init "y'=-2" --t-end 0.4 --events "$tmp/slev.csv" > /dev/null; st=$?
-[ $st -eq 0 ] && grep -q ',slant\.rod\.slant\.a\.hi,' "$tmp/slev.csv" &&
-  grep -q ',slant\.rod\.slant\.a2\.hi,' "$tmp/slev.csv"
-ok $? "a rod sliding along the slanted capsule: its nearest point reaches the rod's end, slant.rod.slant.a.hi and .a2.hi"
+# (the lines' nearest point of the rod's axis leaves it, .a.in, where
+# the lines' s0, computed here from the event's state, is at the end)
+s0=$(awk -F, '$2 == "slant.rod.slant.a.in" { print $3, $4, $5; exit }' "$tmp/slev.csv" |
+  python3 -c '
+import math, sys
+exec(open(sys.argv[1]).read().split("k, m, g")[0])
+x, y, z = [float(v) for v in sys.stdin.read().split()]
+o, u = [0.0, 3.0, 0.0], quat_z([0.8, 0.2, 0.3, 0.4])
+r = sub([x, y, z], o); b = u[1]; c = r[1]; f = dot(u, r)
+print("%.17g" % abs((b * f - c) / (1 - b * b)))' "$tmp/seg.py")
+[ $st -eq 0 ] && within "$s0" 0.3 1e-9
+ok $? "a rod sliding along the slanted capsule: the lines' nearest point leaves the rod at its end, slant.rod.slant.a.in where |s0| = h2 = 0.3 ($s0)"
+
+# ---- nearly parallel capsules (tests/cli/contact_parallel.yaml), tilted
+# by 1e-9 and 1e-12 rad: the gap least at an end, conditioned whatever
+# the angle (the lines' nearest points, x/den with den ~ angle^2, are
+# rounding there), and crossing ones, whose gap is the lines' distance
+cat > "$tmp/par.py" <<'EOF'
+import math, re, sys
+def qmul(a, b):
+    w1, x1, y1, z1 = a; w2, x2, y2, z2 = b
+    return (w1*w2 - x1*x2 - y1*y2 - z1*z2, w1*x2 + x1*w2 + y1*z2 - z1*y2,
+            w1*y2 - x1*z2 + y1*w2 + z1*x2, w1*z2 + x1*y2 - y1*x2 + z1*w2)
+def about(axis, a):
+    q = [math.cos(a / 2), 0.0, 0.0, 0.0]; q[axis] = math.sin(a / 2); return q
+def fmt(q): return "[%s]" % ", ".join("%.17g" % v for v in q)
+def sub(a, b): return [a[i] - b[i] for i in range(3)]
+def dot(a, b): return sum(a[i] * b[i] for i in range(3))
+def cross(a, b): return [a[1]*b[2] - a[2]*b[1], a[2]*b[0] - a[0]*b[2], a[0]*b[1] - a[1]*b[0]]
+k, m, g, r1, r2, h2 = 1000.0, 1.0, 9.81, 0.05, 0.04, 0.3
+what, th = sys.argv[1], float(sys.argv[2])
+if what == "spec":   # the spec turned by th: the rod about y, the rail about z
+    lines = open(sys.argv[3]).read().split("\n")
+    for i, l in enumerate(lines):
+        if "# tilt" in l:
+            q = qmul(about(3, th), about(2, math.pi / 2)) if "rail" in lines[i + 1] \
+                else about(2, math.pi / 2 + th)
+            lines[i + 1] = re.sub(r"quat: \[[^]]*\]", "quat: " + fmt(q), lines[i + 1])
+    print("\n".join(lines)); sys.exit()
+x, y, z = [float(v) for v in sys.argv[3:6]]
+end2 = [x + h2 * math.cos(th), y, z - h2 * math.sin(th)]   # the rod's end at +x
+if what in ("stack", "side"):   # that end's distance to the log's or rail's axis
+    o, u = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]) if what == "stack" else \
+           ([0.0, -0.2, 0.0], [math.cos(th), math.sin(th), 0.0])
+    rel = sub(end2, o); foot = dot(rel, u); dv = [rel[i] - foot * u[i] for i in range(3)]
+else:   # crossed: the lines' distance along n = ua x ub
+    a = math.radians(float(what[5:]))
+    n = cross([math.cos(th), 0.0, -math.sin(th)], [math.cos(a), math.sin(a), 0.0])
+    s = dot([x, y, z], n) / dot(n, n); dv = [s * v for v in n]
+L = math.sqrt(dot(dv, dv)); N = k * (r1 + r2 - L)
+G = -g if what != "side" else 0.0
+for name, v in zip(("x", "y", "z"), (N * dv[0] / L / m, N * dv[1] / L / m, N * dv[2] / L / m + G)):
+    print("%s'' %.17g" % (name, v))
+EOF
+par_worst=0 par_flips=
+for tilt in 1e-9 1e-12; do
+  python3 "$tmp/par.py" spec $tilt "$cli/contact_parallel.yaml" > "$tmp/par.yaml"
+  # q'' where the rod lies on the log (its end at +x the nearest), beside
+  # the rail, and across 'cross' and 'cross30', at rest (no damping), against the closed forms
+  for c in "stack gravity,stack 0.05 0.01 0.084" "side side 0.05 -0.118 0" \
+           "cross90 gravity,cross 0.05 0.02 0.084" "cross30 gravity,cross30 0.05 0.02 0.084"; do
+    set -- $c
+    python3 "$tmp/par.py" $1 $tilt $3 $4 $5 > "$tmp/par.want"
+    "$eomc" run "$tmp/par.yaml" --effects $2 --accel --init x=$3 --init y=$4 --init z=$5 --init "x'=0" \
+      > "$tmp/par.got"
+    d=$(accel_diff "$tmp/par.want" "$tmp/par.got" 3)
+    par_worst=$(awk -v a=$par_worst -v b=$d 'BEGIN { print (b == "nan" || b > a) ? b : a }')
+  done
+  # the rod dropped on the log sliding along it at 0.2 m/s, and thrown at
+  # the rail side on: while the pair is close, its touch and push flip and
+  # no clamp, no interior nor end switch, but the log's ends' .b.end
+  # where they are equally far from the rod's ends (e1 = e2, computed here
+  # from the event's state: x = -1.5 z tilt, near 0)
+  "$eomc" run "$tmp/par.yaml" --events "$tmp/par1.ev" > /dev/null; s1=$?
+  "$eomc" run "$tmp/par.yaml" --effects side --init y=-0.05 --init z=0 --init "y'=-0.5" \
+    --events "$tmp/par2.ev" > /dev/null; s2=$?
+  f=$(awk -F, -v th=$tilt 'FNR == 1 { on = 0 }
+      $2 ~ /\.close$/ { on = !on; tc = $1; next }
+      $2 == "stack.pill.log.b.end" { c = 0.3 * cos(th); s = 0.3 * sin(th)
+        e1 = ($3 - c + 0.5)^2 + ($5 + s)^2; e2 = (0.5 - $3 - c)^2 + ($5 - s)^2
+        if ((e1 - e2)^2 <= (1e-12 * e1)^2) { ends++; next } }
+      on && $1 != tc && $2 !~ /\.(touch|push)$/ { n++ }
+      END { print n + 0 (ends == 1 ? "" : " (.b.end " ends + 0 ")") }' "$tmp/par1.ev" "$tmp/par2.ev")
+  [ $s1 -eq 0 ] && [ $s2 -eq 0 ] && grep -q ',side\.pill\.rail\.touch,' "$tmp/par2.ev" ||
+    f="$f (exit $s1 $s2)"
+  par_flips="$par_flips $tilt: $f"
+done
+awk -v d=$par_worst 'BEGIN { exit !(d <= 1e-12) }'
+ok $? "capsules 1e-9 and 1e-12 rad from parallel, resting and side on: q'' from the gap at the rod's end (its distance to the other axis); crossed at 90 and 30 degrees: from the lines' distance (largest relative difference $par_worst)"
+[ "$par_flips" = " 1e-9: 0 1e-12: 0" ]
+ok $? "nearly parallel capsules, the rod sliding on the log and thrown at the rail: no clamp, interior or end switch flips while close, the log's ends' .b.end once, where they are equally far from the rod's ends (flips:$par_flips)"
 
 # ---- a capsule's end spheres and an ellipsoid on a tilted plane, and a
 # planar bar on a line: q'' from the forces at the points that touch and

@@ -476,9 +476,13 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
      * oa + s ua is |wb + s n| >= |wb| - ha |n| from b's line, so the
      * segments are farther than R wherever |wb|^2 >= 2 R^2 + 2 ha^2 den
      * (>= (R + ha |n|)^2), without a square root at n = 0 */
-    ExprId R = expr_mul(P, expr_const(P, 1 + NEAR_MARGIN_REL), expr_add(P, a->size[0], b->size[0]));
-    ExprId reach = expr_add(P, expr_powi(P, R, 2), expr_mul(P, expr_powi(P, ha, 2), den));
-    ExprId close = expr_sub(P, expr_mul(P, expr_const(P, 2), reach), kin_dot(P, wb, wb));
+    ExprId grow = expr_const(P, 1 + NEAR_MARGIN_REL), radii = expr_add(P, a->size[0], b->size[0]);
+    ExprId R = expr_mul(P, grow, radii);
+    ExprId R2 = expr_powi(P, R, 2), ha2 = expr_powi(P, ha, 2);
+    ExprId reach = expr_add(P, R2, expr_mul(P, ha2, den));
+    ExprId two = expr_const(P, 2);
+    ExprId twice = expr_mul(P, two, reach), wb2 = kin_dot(P, wb, wb);
+    ExprId close = expr_sub(P, twice, wb2);
     close = expr_where(P, x->near, close, expr_neg(P, EXPR_ONE));
     ExprId near = x->near;
     x->near = EXPR_NONE;
@@ -497,8 +501,8 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
             rel[i] = expr_sub(P, end[i], onto->o[i]);
         char which[16];
         snprintf(which, sizeof which, "%s.end%d", k < 2 ? "a" : "b", k % 2 + 1);
-        ExprId t = named_clamp(x, kin_dot(P, u, rel), expr_neg(P, onto->size[1]), onto->size[1],
-                               which, 1);
+        ExprId proj = kin_dot(P, u, rel), lo = expr_neg(P, onto->size[1]);
+        ExprId t = named_clamp(x, proj, lo, onto->size[1], which, 1);
         along(P, onto->o, t, u, on);
         ExprId d[3];
         for (int i = 0; i < 3; i++) {
@@ -510,7 +514,8 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
     }
     /* the nearest end of each axis, then of the two; a tie (their
      * distances equal to rounding) goes to the first */
-    ExprId tie = expr_mul(P, expr_const(P, TIE_REL), expr_powi(P, expr_add(P, a->size[0], b->size[0]), 2));
+    ExprId tie_rel = expr_const(P, TIE_REL), radii2 = expr_powi(P, radii, 2);
+    ExprId tie = expr_mul(P, tie_rel, radii2);
     ExprId best[2][2][3], bd2[2];
     for (int e = 0; e < 2; e++) {
         ExprId s = expr_add(P, expr_sub(P, dist2[2 * e + 1], dist2[2 * e]), tie); /* > 0: end1 */
@@ -528,8 +533,10 @@ capsules(Ctx *x, const Placed *a, const Placed *b)
         pb[i] = named_where(x, sel, best[0][1][i], best[1][1][i], "end");
     }
     /* the interior, where both lines' parameters are inside */
-    ExprId ina = expr_sub(P, expr_powi(P, expr_mul(P, ha, den), 2), expr_powi(P, xs, 2));
-    ExprId inb = expr_sub(P, expr_powi(P, expr_mul(P, hb, den), 2), expr_powi(P, xt, 2));
+    ExprId hda = expr_powi(P, expr_mul(P, ha, den), 2), xs2 = expr_powi(P, xs, 2);
+    ExprId ina = expr_sub(P, hda, xs2);
+    ExprId hdb = expr_powi(P, expr_mul(P, hb, den), 2), xt2 = expr_powi(P, xt, 2);
+    ExprId inb = expr_sub(P, hdb, xt2);
     ExprId s0 = expr_div(P, xs, den), t0 = expr_div(P, xt, den), la[3], lb[3];
     along(P, a->o, s0, ua, la);
     along(P, b->o, t0, ub, lb);

@@ -42,6 +42,12 @@
  * settled: no two times in it are worth telling apart (events.c's rule,
  * in long double). */
 #define SETTLED_ULPS 4
+/* A flip this many units of the doubles' rounding of the time scale
+ * after others follows them (their sensitivities are its too): the
+ * window in which the runs flip switches together (stepevents.c's
+ * SIMULTANEOUS_ULPS), which holds a crossing they located a few units
+ * after a flip that caused it. */
+#define FOLLOW_ULPS 16
 /* Secant steps and bisections of one location, at most: bisection alone
  * from a whole step settles in about 2 x 64. */
 enum { ROOT_EVALS = 200, PAIR_ITERS = 200 };
@@ -70,6 +76,8 @@ struct RefSwitches {
     long n, cap;                  /* the record */
     double *rt, *rsens;           /* [cap], [cap N] */
     int *rk;                      /* [cap] */
+    double *then;                 /* [N] the largest sensitivities of the flips at */
+    eomc_ext then_t;              /* then_t, or at most FOLLOW_ULPS before it */
 };
 
 RefSwitches *
@@ -91,6 +99,8 @@ refsw_alloc(int nmode, int N, eomc_ext *mode, RefSwMotion mo, eomc_ext t0, eomc_
     int ok = 1;
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = calloc(sizes[k], sizeof(eomc_ext))) != NULL;
+    ok &= (w->then = calloc(n, sizeof *w->then)) != NULL;
+    w->then_t = -INFINITY;
     if (!ok) {
         refsw_free(w);
         return NULL;
@@ -108,6 +118,7 @@ refsw_free(RefSwitches *w)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(w->rt);
+    free(w->then);
     free(w->rsens);
     free(w->rk);
     free(w);
@@ -413,16 +424,6 @@ record(RefSwitches *w, eomc_ext t, int k, const double *sens)
     return 0;
 }
 
-/* The record's last entry of switch k (one there is). */
-static long
-refsw_last_of(const RefSwitches *w, int k)
-{
-    long i = w->n - 1;
-    while (i > 0 && w->rk[i] != k)
-        i--;
-    return i;
-}
-
 /* How far switch k's crossing at (t, x) moves per unit error of each
  * component, |ds/dx_i| / |ds/dt| into sens [N], by central differences
  * (x_i's over PROBE_REL of its scale sc_i, t's along the motion over
@@ -450,11 +451,27 @@ sensitivity(RefSwitches *w, int k, eomc_ext t, const eomc_ext *x, const eomc_ext
 int
 refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad)
 {
-    size_t N = (size_t)(w->N > 0 ? w->N : 1);
-    double *sens = malloc(2 * N * sizeof *sens), *slip = sens + N;
+    size_t N = (size_t)(w->N > 0 ? w->N : 1), nm = (size_t)(w->nm > 0 ? w->nm : 1);
+    double *sens = malloc((nm + 1) * N * sizeof *sens); /* [nm][N] each flip's, at arrival */
+    double *start = sens + nm * N; /* [N] w->then as this instant began */
     double *seq = calloc((size_t)w->nm + 1, sizeof *seq); /* the order of each flip at t */
+    unsigned char *was = calloc((size_t)w->nm + 1, 1);     /* the modes before a flip */
     double order = 0;
-    int rc = sens && seq ? 0 : -1;
+    int rc = sens && seq && was ? 0 : -1;
+    /* A flip at t, or within FOLLOW_ULPS after others (a touch point's
+     * slip speed, 0 in the air but for rounding, leaves 0 the moment the
+     * floor's friction acts: a crossing located a few units of rounding
+     * after the touch), flips when they do: its time is as uncertain as
+     * theirs.  Those at this instant take the earlier ones'; those a flip
+     * here moved across (a capsule's clamp, a push switched on as its
+     * shapes part), the largest of all before them. */
+    if (!(t - w->then_t <= FOLLOW_ULPS * DBL_EPSILON * fmaxl(fabsl(t), w->span)))
+        for (size_t i = 0; i < N; i++)
+            w->then[i] = 0;
+    w->then_t = t;
+    double *then = w->then;
+    for (size_t i = 0; rc == 0 && i < N; i++)
+        start[i] = then[i];
     /* the located ones first, each with its arrival's rate (the modes it
      * came in), then, until none is left, those past 0 there: kinks at
      * this instant, and functions a flip moved (a max of a max).  Those
@@ -493,30 +510,45 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
                 rc = -2;
                 break;
             }
-            sensitivity(w, k, t, x, sc, sens);
-            if (record(w, t, k, sens) != 0)
-                rc = -1;
-            flips++;
+            double *sk = sens + (size_t)k * N;
+            sensitivity(w, k, t, x, sc, sk);
+            for (size_t i = 0; i < N; i++)
+                sk[i] = fmax(sk[i], pass > 0 ? then[i] : start[i]);
         }
+        double first = order + 1; /* the order of this pass's first flip */
         for (int k = 0; rc == 0 && k < w->nm; k++) {
-            if (flip[k] == 0)
+            /* (one an earlier flip of this pass set, a group's, is set) */
+            if (flip[k] == 0 || seq[k] >= first)
                 continue;
+            const double *sk = sens + (size_t)k * N;
+            if (record(w, t, k, sk) != 0)
+                rc = -1;
+            for (size_t i = 0; i < N; i++)
+                then[i] = fmax(then[i], sk[i]);
+            flips++;
             w->last[k] = t;
             /* over: a located crossing may sit a rounding short of 0 (s1
              * still on its mode's side, which must not read as a flip
              * back at the next pass: seq) and one past 0 is over */
             int on = w->mode[k] == 0, stuck = -1;
             seq[k] = ++order;
+            for (int j = 0; j < w->nm; j++)
+                was[j] = w->mode[j] != 0;
             if (!w->mo.flip)
                 w->mode[k] = on;
             else if (w->mo.flip(w->mo.ctx, k, on, t, x, &stuck) != 0)
                 rc = -1;
-            if (stuck >= 0) { /* its slip's flip is its stick's too */
-                memcpy(slip, w->rsens + (size_t)refsw_last_of(w, k) * (size_t)w->N,
-                       (size_t)w->N * sizeof *slip);
-                w->last[stuck] = t;
-                seq[stuck] = ++order;
-                if (record(w, t, stuck, slip) != 0)
+            /* the modes its flip set too (dry friction: a group stuck or
+             * let go with it, and the slip side of each let go), each
+             * flipped at t; the stick switches among them listed, with its
+             * sensitivities, in the order of the switches, as the runs
+             * list them */
+            for (int j = 0; rc == 0 && j < w->nm; j++) {
+                if (j == k || was[j] == (w->mode[j] != 0))
+                    continue;
+                w->last[j] = t;
+                seq[j] = ++order;
+                if (held(w, j) && record(w, t, j, sk) != 0)
                     rc = -1;
             }
         }
@@ -527,5 +559,6 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         w->hit[k] = NAN;
     free(sens);
     free(seq);
+    free(was);
     return rc;
 }

@@ -158,15 +158,23 @@ STICK_(item_stick)(const STICK_(Work) *w, int k)
     return STICK_(item_of)(w, w->m->fric_stick, k);
 }
 
+static int STICK_(is_row)(const STICK_(Work) *w, int j);
+
 /* The bounds F at (t, q, v); STICK_NEGATIVE (bad: the item) where one
- * is below 0 or not a number. */
+ * is not a number, or a coordinate's is below 0.  A contact's bound,
+ * mu N, is below 0 only where its push's switch has not yet flipped off:
+ * at a trial stage past that switch's crossing (the step is then cut at
+ * the crossing) or at the crossing itself, by the rounding of where it
+ * was located.  There it is the continuation of the mode's function, as
+ * every other term of a step past a crossing is; once the switch flips,
+ * N is 0. */
 STICK_API int
 STICK_(bounds)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
                const STICK_REAL *p, const STICK_REAL *u)
 {
     w->x->fric_bound(t, q, v, p, u, w->F);
     for (int j = 0; j < w->nf; j++)
-        if (!(w->F[j] >= 0)) {
+        if (!(w->F[j] >= 0) && (w->F[j] != w->F[j] || !STICK_(is_row)(w, j))) {
             w->bad = j;
             return STICK_NEGATIVE;
         }

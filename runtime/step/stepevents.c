@@ -58,6 +58,7 @@ struct StepEvents {
     int nev;                      /* the scene's (m->nevent) */
     double *tsw;                  /* [ne - nev] each switch's last flip */
     double *seq;                  /* [ne - nev] the order of its flip at that instant */
+    unsigned char *was;           /* [ne - nev] the modes before a flip (also_set) */
     int switch_to;                /* the mode a located switch flips to */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -103,6 +104,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     ok &= (v->held = calloc(ne + 1, 1)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->seq = sim_zeros((size_t)m->nmode)) != NULL;
+    ok &= (v->was = calloc((size_t)m->nmode + 1, 1)) != NULL;
     for (int j = 0; ok && j < m->nmode; j++)
         v->tsw[j] = -INFINITY;
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
@@ -125,6 +127,7 @@ stepev_free(StepEvents *v)
     free(v->held);
     free(v->tsw);
     free(v->seq);
+    free(v->was);
     free(v->cl);
     free(v);
 }
@@ -252,6 +255,9 @@ g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
  * bracket to 2^-EXTREMUM_ITERS of the step, where g differs from its
  * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
 enum { EXTREMUM_ITERS = 12 };
+/* A switch's departure from its kink is located to this many units of
+ * rounding of t, as ev_root settles its brackets. */
+#define SETTLED_SPAN 4
 
 /* Roots of two switch functions closer than this many ulps of the time
  * are one instant: ev_root brackets each to 4, so two located apart
@@ -365,6 +371,44 @@ back_across(StepEvents *v, int k, int *any)
     return GSL_SUCCESS;
 }
 
+/* Switch k's function is 0 at the step's start by itself, not by a flip
+ * there: it sat on its kink (a touch point's slip speed through a
+ * flight, 0 to the last bit while nothing acts along it).  Ending the
+ * step across, on the side its mode is not, it left the kink in the step:
+ * a crossing, located as the first time it is across, by halving between
+ * the last time found on the kink or its mode's side and the first time
+ * across until the two are a few units of rounding of t apart (a
+ * bracket-settled root, as ev_root's).  GSL_SUCCESS, or GSL_EBADFUNC where
+ * the state inside the step cannot be computed. */
+static int
+leaves_kink(StepEvents *v, int k, int *any)
+{
+    double side = sim_mode(v->s, k - v->nev) ? 1 : -1;
+    if (!(side * v->g1[k] < 0))
+        return GSL_SUCCESS; /* still on it, or off it on its mode's side */
+    double lo = v->sp.t0, hi = v->sp.t1;
+    v->ev_k = k;
+    for (;;) {
+        double t = 0.5 * (lo + hi);
+        if (!(t > lo && t < hi) || hi - lo <= SETTLED_SPAN * DBL_EPSILON * fabs(hi))
+            break;
+        double g = g_solution(v, t);
+        if (isnan(g)) {
+            sim_numeric_error(v->s, v->sp.t1, v->sp.x1, v->sp.x1 + v->n, "switch %s left "
+                              "its kink in the step from t = %.17g, but the state inside "
+                              "it could not be computed", name_of(v, k), v->sp.t0);
+            return GSL_EBADFUNC;
+        }
+        if (side * g < 0)
+            hi = t;
+        else
+            lo = t;
+    }
+    v->te[k] = hi;
+    *any = 1;
+    return GSL_SUCCESS;
+}
+
 int
 stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
 {
@@ -389,7 +433,8 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
         }
         v->held[k] = 0;
         if (k >= v->nev && v->g0[k] == 0) { /* a switch this step starts on */
-            int rc = back_across(v, k, &any);
+            int rc = v->tsw[k - v->nev] == t0 ? back_across(v, k, &any)
+                                              : leaves_kink(v, k, &any);
             if (rc != GSL_SUCCESS)
                 return rc;
             continue;
@@ -495,18 +540,36 @@ note_reset_off(StepEvents *v, int k, double t)
     }
 }
 
-/* Dry friction stuck an item where its speed's switch flipped: its
- * stick switch j flipped too, told as the first was. */
+/* The modes before a flip, for also_set. */
 static void
-also_stuck(StepEvents *v, int j, double t, const double *x)
+modes_before(StepEvents *v)
 {
-    if (j < 0)
-        return;
-    v->tsw[j] = t;
-    v->seq[j] = 0;
-    v->st->events++;
-    if (v->o->on_event)
-        (void)v->o->on_event(v->o->event_ctx, v->nev + j, t, x);
+    for (int j = 0; j < v->m->nmode; j++)
+        v->was[j] = (unsigned char)sim_mode(v->s, j);
+}
+
+/* Switch j's flip at t set others' modes too (dry friction: a group of
+ * points stuck with it, or let go with it, and the slip side each let go
+ * takes, the way the rest drives it): each is a flip at t as well.  Its
+ * function is at its kink there (a speed held at 0, whose sign is
+ * rounding), so it fires again only once it has left it, and a pass at
+ * this instant does not flip it back.  The stick switches among them are
+ * listed after j, in the order of the switches (a let-go's slip side is
+ * its stick switch's flip, not an event of its own). */
+static void
+also_set(StepEvents *v, int j, double t, const double *x)
+{
+    for (int i = 0; i < v->m->nmode; i++) {
+        if (i == j || v->was[i] == sim_mode(v->s, i))
+            continue;
+        v->tsw[i] = t;
+        v->seq[i] = 0;
+        if (!sim_mode_held(v->s, i))
+            continue;
+        v->st->events++;
+        if (v->o->on_event)
+            (void)v->o->on_event(v->o->event_ctx, v->nev + i, t, x);
+    }
 }
 
 /* Switch k's flip at t: its mode to where its function went, x as it
@@ -526,10 +589,11 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     v->gap = t - v->last_set;
     v->last_set = t;
     v->nsets++;
+    modes_before(v);
     int stuck, rc = sim_flip(v->s, j, v->switch_to, t, x, &stuck);
     if (rc != EOMC_OK)
         return GSL_EBADFUNC;
-    also_stuck(v, stuck, t, x);
+    also_set(v, j, t, x);
     /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
      * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
@@ -582,6 +646,11 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     }
     goto settled;
 together:
+    /* Each pass decides every switch from one evaluation of the functions
+     * (ge: the mode each goes to, or -1), then flips them: a flip may set
+     * others' modes (a group of points stuck at once, or let go), whose
+     * functions, evaluated before, no longer say where they go; the next
+     * pass evaluates them again. */
     for (int pass = 0; pass < v->ne - v->nev; pass++) {
         int changed = 0;
         g_all(v, t, x, x + v->n, v->g0);
@@ -592,15 +661,21 @@ together:
             else if (on == mode && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
                      -v->g0[i] / v->gd1[i] <= soon)
                 on = !on; /* about to cross */
-            if (v->tsw[i - v->nev] == t || on == mode)
-                continue; /* (flipped at t already: k and those before) */
+            /* (flipped at t already: k and those before) */
+            v->ge[i] = v->tsw[i - v->nev] == t || on == mode ? -1 : on;
+        }
+        for (int i = v->nev; i < v->ne; i++) {
+            int on = v->ge[i] > 0;
+            if (v->ge[i] < 0 || on == sim_mode(v->s, i - v->nev))
+                continue; /* (or an earlier flip of this pass set it) */
+            modes_before(v);
             if (sim_flip(v->s, i - v->nev, on, t, x, &stuck) != EOMC_OK)
                 return GSL_EBADFUNC;
             v->tsw[i - v->nev] = t;
             v->st->events++;
             if (v->o->on_event)
                 (void)v->o->on_event(v->o->event_ctx, i, t, x);
-            also_stuck(v, stuck, t, x);
+            also_set(v, i - v->nev, t, x);
             changed = 1;
         }
         if (!changed)

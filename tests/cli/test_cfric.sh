@@ -12,7 +12,7 @@
 #  - pulled by pull*t at its centre from rest, it is held until pull*t =
 #    mu N (N the floor's push at that instant, m g to 1e-10): the four
 #    corners let go at once (the holding shared in proportion to the
-#    bounds), and then x = pull (t - t1)^3 / (6 m);
+#    bounds), each listed by --events, and then x = pull (t - t1)^3 / (6 m);
 #  - a ball slid at v0 without spin (cfric_ball.yaml) slides until
 #    rolling begins at t = 2 v0 / (7 mu g) at 5/7 v0, then rolls with
 #    its contact point stuck (x' - r phi' at most 1e-9 v0), its normal
@@ -20,6 +20,13 @@
 #  - on a 20 degree slope it rolls at a = 5/7 g sin th where
 #    mu >= 2/7 tan th (mu = 0.2), and slides at g (sin th - mu cos th)
 #    where not (mu = 0.05);
+#  - the ball dropped while sliding rolls at 5/7 v0 through its bounces
+#    (m r x' + I phi' conserved: the floor's forces act at the touch
+#    point), sticking the moment each later landing touches, the
+#    reference flipping as the run does;
+#  - with its units of mass, length and time rescaled (1e-9 .. 1e12) the
+#    dropped ball flips the same switches at the same times and states,
+#    in its units;
 #  - --error on the box says the error the closed form says (within 10%,
 #    at 1e-6 and 1e-9), the reference sticking where the run does;
 #  - Taylor's method is refused by name.
@@ -80,8 +87,9 @@ close=$(awk 'BEGIN { ts = 0.3 * 2 * 9.81 / 3; printf "%.17g,%.17g", 3 * (3 - ts)
 [ $st -eq 0 ] && within "$t1" "${want% *}" 1e-14 && within "${want#* }" 0 1e-10 &&
   awk -v g="$got" -v w="$close" 'BEGIN { split(g, x, ","); split(w, y, ",")
       for (i = 1; i <= 2; i++) { e = (x[i] - y[i]) / y[i]; if (e < 0) e = -e; if (e > 1e-9) exit 1 } }' &&
-  [ "$(awk -F, '$1 > 0 && $2 ~ /\.x\.stick$/' "$tmp/ev.csv" | awk -F, '{ print $1 }' | sort -u | wc -l)" -eq 1 ]
-ok $? "a box pulled by pull t from rest is held until pull t = mu N, t = $t1 (mu N / pull = ${want% *}, N / m g - 1 = ${want#* }), its corners letting go at once ($held flips at that instant), then x(3), x'(3) = $close ($got)"
+  [ "$(awk -F, '$1 > 0 && $2 ~ /\.x\.stick$/' "$tmp/ev.csv" | awk -F, '{ print $1 }' | sort -u | wc -l)" -eq 1 ] &&
+  [ "$held" -eq 4 ]
+ok $? "a box pulled by pull t from rest is held until pull t = mu N, t = $t1 (mu N / pull = ${want% *}, N / m g - 1 = ${want#* }), its four lower corners letting go at once, each listed ($held flips at that instant), then x(3), x'(3) = $close ($got)"
 
 # the ball: sliding, then rolling from t = 2 v0 / (7 mu g) at 5/7 v0
 want=$(awk 'BEGIN { printf "%.17g %.17g", 2 * 2 / (7 * 0.2 * 9.81), 5 / 7 * 2 }')
@@ -109,6 +117,55 @@ for mu in 0.2 0.05; do
 done
 [ $fine -eq 2 ]
 ok $? "a ball on a 20 degree slope rolls at 5/7 g sin th where mu >= 2/7 tan th, slides at g (sin th - mu cos th) where not ($got)"
+
+# the ball dropped from z = 0.3 while sliding at v0 without spin: the
+# floor's push and friction both act at the touch point, r below the
+# centre (gravity through it), so m r x' + I phi' is conserved through
+# every landing and bounce, and once the point sticks (x' = r phi') the
+# ball rolls at x' = 5/7 v0.  Each later landing's slip speed is 0 in the
+# air but for rounding: the point sticks the moment it touches, and stays
+# stuck; the reference flips as the run does (no warning from --error).
+"$eomc" run "$ball" --init z=0.3 --t-end 2 --dt 0.01 $tight --events "$tmp/ev.csv" \
+  > "$tmp/rows.csv" 2> /dev/null; st=$?
+first=$(awk -F, '$2 == "floor.ball.floor.x.stick" { print $1; exit }' "$tmp/ev.csv")
+lands=$(awk -F, '$2 == "floor.ball.floor.touch"' "$tmp/ev.csv" | wc -l)
+worst=$(awk -F, -v t="$first" 'NR > 1 && $1 > t + 0.01 { s = $11 < 0 ? -$11 : $11; e = $5 - 5 / 7 * 2
+    e = e < 0 ? -e : e; if (s > ws) ws = s; if (e > we) we = e }
+    END { printf "%.2g %.2g", ws / 2, we / 2 }' "$tmp/rows.csv")
+"$eomc" run "$ball" --init z=0.3 --t-end 2 --rtol 1e-10 --atol 1e-10 --error > /dev/null \
+  2> "$tmp/err"; st2=$?
+[ $st -eq 0 ] && [ $st2 -eq 0 ] && [ "$lands" -ge 6 ] && [ -n "$first" ] &&
+  awk -v w="$worst" 'BEGIN { split(w, x, " "); exit !(x[1] <= 1e-9 && x[2] <= 1e-12) }' &&
+  ! grep -q warning "$tmp/err"
+ok $? "a ball dropped while sliding at v0 rolls at 5/7 v0 through its bounces ($lands touches, stuck from t = $first: |x' - r phi'| and |x' - 5/7 v0| at most $worst of v0), the reference flipping as the run does$(grep -m1 warning "$tmp/err")"
+
+# units: the dropped ball with its units of mass, length and time
+# rescaled (m M, r L, g L/T^2, k M/T^2, c M/T, v0 L/T, z L, times T) at
+# rtol 1e-10 and atol 0 (no unit): the same flips in the same order, and
+# their times and states, in the units, the same to 1e-10 of their scale
+# (the steps may differ by rounding, so the rows by what the tolerance
+# allows)
+units() { awk -v M=$1 -v L=$2 -v T=$3 'BEGIN { printf "--set m=%.17g --set r=%.17g --set g=%.17g --set k=%.17g --set c=%.17g --set v0=%.17g --init z=%.17g --t-end %.17g --dt %.17g", 1.5 * M, 0.1 * L, 9.81 * L / (T * T), 1e5 * M / (T * T), 100 * M / T, 2 * L / T, 0.3 * L, T, 0.25 * T }'; }
+fine=0 got=
+for u in "1 1 1" "1e6 1e-3 1e3" "1e-9 1e5 1e-4" "1e12 1e6 1e-6"; do
+  set -- $u
+  "$eomc" run "$ball" $(units $1 $2 $3) --rtol 1e-10 --atol 0 --events "$tmp/ev.csv" \
+    > /dev/null 2>&1 || continue
+  awk -F, -v L=$2 -v T=$3 'NR > 1 { printf "%s %.17g", $2, $1 / T
+      split(L " " L " 1 " L / T " " L / T " " 1 / T, unit, " ")
+      for (i = 3; i <= 8; i++) printf " %.17g", $i / unit[i - 2]; print "" }' "$tmp/ev.csv" \
+    > "$tmp/units_$1.txt"
+  [ "$1" = 1 ] && { fine=$((fine + 1)); continue; }
+  du=$(paste -d' ' "$tmp/units_1.txt" "$tmp/units_$1.txt" | awk '{ if ($1 != $9) bad = 1
+        for (i = 2; i <= 8; i++) { d = $i - $(i + 8); d = d < 0 ? -d : d; s = $i < 0 ? -$i : $i
+          s = s > 1 ? s : 1; if (d / s > m) m = d / s } }
+      END { if (bad || NR == 0) print "differ"; else printf "%.2g", m }')
+  [ "$(wc -l < "$tmp/units_1.txt")" -eq "$(wc -l < "$tmp/units_$1.txt")" ] &&
+    awk -v d="$du" 'BEGIN { exit !(d != "differ" && d <= 1e-10) }' && fine=$((fine + 1))
+  got="$got M, L, T = $1, $2, $3: $du;"
+done
+[ $fine -eq 4 ] && [ "$(wc -l < "$tmp/units_1.txt")" -ge 20 ]
+ok $? "units rescaled: the dropped ball's $(wc -l < "$tmp/units_1.txt") flips the same, at the same times and states in its units ($got)"
 
 # --error against the closed form: the box at rest at the end, every
 # entry of its state known (x = d, z at its resting depth, speeds 0)

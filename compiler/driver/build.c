@@ -9,6 +9,7 @@
  * EOMC_RUNTIME_LIB override both.
  */
 #define _XOPEN_SOURCE 700 /* realpath */
+#define _GNU_SOURCE       /* posix_spawn_file_actions_addchdir_np */
 #include "build.h"
 #include "base/arena.h"
 #include "config.h"
@@ -18,6 +19,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <spawn.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -101,31 +103,46 @@ split_flags(char *flags, char **argv, int max)
     return n;
 }
 
-/* Start argv[0] on argv in directory dir (NULL: this one; quiet: its
- * output to /dev/null, and nothing said if it cannot run); its pid, or -1
- * after printing why. */
+extern char **environ;
+
+/* Start argv[0] (found on $PATH) on argv in directory dir (NULL: this
+ * one); its pid, or -1 after printing why.  posix_spawn, where it can set
+ * the directory: it does not copy eomc's memory as fork does, whose
+ * commit a derivation of several gigabytes can make fail (ENOMEM) while
+ * other programs hold the rest. */
 static pid_t
-start_cc(char **argv, const char *dir, int quiet)
+start_cc(char **argv, const char *dir)
 {
-    pid_t pid = fork();
+    pid_t pid;
+#if EOMC_HAVE_SPAWN_CHDIR
+    posix_spawn_file_actions_t fa;
+    int rc = posix_spawn_file_actions_init(&fa);
+    if (rc == 0 && dir)
+        rc = posix_spawn_file_actions_addchdir_np(&fa, dir);
+    if (rc == 0)
+        rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) {
+        fprintf(stderr, "eomc: cannot run %s%s%s: %s\n", argv[0], dir ? " in " : "",
+                dir ? dir : "", strerror(rc));
+        return -1;
+    }
+#else
+    pid = fork();
     if (pid < 0) {
         fprintf(stderr, "eomc: cannot start %s: %s\n", argv[0], strerror(errno));
         return -1;
     }
     if (pid == 0) {
-        int null = quiet ? open("/dev/null", O_WRONLY) : -1;
-        if (null >= 0)
-            dup2(null, STDOUT_FILENO), dup2(null, STDERR_FILENO);
         if (dir && chdir(dir) != 0) {
-            if (!quiet)
-                fprintf(stderr, "eomc: cannot enter %s: %s\n", dir, strerror(errno));
+            fprintf(stderr, "eomc: cannot enter %s: %s\n", dir, strerror(errno));
             _exit(127);
         }
         execvp(argv[0], argv);
-        if (!quiet)
-            fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
+        fprintf(stderr, "eomc: cannot run %s: %s\n", argv[0], strerror(errno));
         _exit(127);
     }
+#endif
     return pid;
 }
 
@@ -706,7 +723,7 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         UnitKey key = {unit_argv[u], ncc, unit_argv[u][n - 1], u >= TWIN ? src : NULL,
                        u == MAIN ? NULL : c_file, k + 1};
         cached[u] = cached_object(&key);
-        pid[u] = cached[u] && access(cached[u], R_OK) == 0 ? 0 : start_cc(unit_argv[u], dir, 0);
+        pid[u] = cached[u] && access(cached[u], R_OK) == 0 ? 0 : start_cc(unit_argv[u], dir);
     }
     int rc = 0;
     for (int u = 0; u < NUNIT; u++) { /* each waited for */
@@ -738,7 +755,7 @@ build_executable(const char *c_file, const char *model, const char *exe, int mpi
         argv[n++] = "-lm";
         argv[n++] = "-pthread"; /* sweeps run on threads */
         argv[n] = NULL;
-        rc = wait_cc(start_cc(argv, NULL, 0), cc);
+        rc = wait_cc(start_cc(argv, NULL), cc);
     }
     if (rc == 0 && !special && rename(tmp, exe) != 0) {
         fprintf(stderr, "eomc: cannot write %s: %s\n", exe, strerror(errno));

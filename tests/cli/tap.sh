@@ -4,10 +4,20 @@
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 n=0 failed=0
-ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
+# (the text on one line: a message quoting a command's output, an
+# error's caret under its line, would leave lines TAP does not know)
+ok() {
+  n=$((n + 1))
+  set -- "$1" "$(printf '%s' "$2" | tr '\n' ' ')"
+  if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi
+}
 # |got - want| <= tol, and got not empty
 within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
 tap_end() { echo "1..$n"; [ $failed -eq 0 ]; }
+# why ST FILE: for a check's message, what a command that exited ST said
+# on its standard error (FILE) where ST is not 0: so that a failure in CI,
+# whose log keeps the message alone, says its cause
+why() { [ "$1" -eq 0 ] || printf '; exit %s: %s' "$1" "$(tail -2 "$2" 2> /dev/null | tr '\n' ' ' | cut -c1-300)"; }
 # init SPEC: --init for every coordinate and rate of SPEC, each its own
 # value (the state the articulated-body scripts compare forms at)
 init() {

@@ -346,7 +346,7 @@ G = -g if what != "side" else 0.0
 for name, v in zip(("x", "y", "z"), (N * dv[0] / L / m, N * dv[1] / L / m, N * dv[2] / L / m + G)):
     print("%s'' %.17g" % (name, v))
 EOF
-par_worst=0 par_flips=
+par_worst=0 par_flips= par_why=
 for tilt in 1e-9 1e-12; do
   python3 "$tmp/par.py" spec $tilt "$cli/contact_parallel.yaml" > "$tmp/par.yaml"
   # q'' where the rod lies on the log (its end at +x the nearest), beside
@@ -356,7 +356,7 @@ for tilt in 1e-9 1e-12; do
     set -- $c
     python3 "$tmp/par.py" $1 $tilt $3 $4 $5 > "$tmp/par.want"
     "$eomc" run "$tmp/par.yaml" --effects $2 --accel --init x=$3 --init y=$4 --init z=$5 --init "x'=0" \
-      > "$tmp/par.got"
+      > "$tmp/par.got" 2> "$tmp/said" || par_why="$par_why$(why $? "$tmp/said")"
     d=$(accel_diff "$tmp/par.want" "$tmp/par.got" 3)
     par_worst=$(awk -v a=$par_worst -v b=$d 'BEGIN { print (b == "nan" || b > a) ? b : a }')
   done
@@ -380,7 +380,7 @@ for tilt in 1e-9 1e-12; do
   par_flips="$par_flips $tilt: $f"
 done
 awk -v d=$par_worst 'BEGIN { exit !(d <= 1e-12) }'
-ok $? "capsules 1e-9 and 1e-12 rad from parallel, resting and side on: q'' from the gap at the rod's end (its distance to the other axis); crossed at 90 and 30 degrees: from the lines' distance (largest relative difference $par_worst)"
+ok $? "capsules 1e-9 and 1e-12 rad from parallel, resting and side on: q'' from the gap at the rod's end (its distance to the other axis); crossed at 90 and 30 degrees: from the lines' distance (largest relative difference $par_worst)$par_why"
 [ "$par_flips" = " 1e-9: 0 1e-12: 0" ]
 ok $? "nearly parallel capsules, the rod sliding on the log and thrown at the rail: no clamp, interior or end switch flips while close, the log's ends' .b.end once, where they are equally far from the rod's ends (flips:$par_flips)"
 

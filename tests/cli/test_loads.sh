@@ -152,8 +152,8 @@ ball="$src/tests/sim/specs/rolling_ball.yaml" float="$src/tests/sim/specs/floati
 for spec in "$ball" "$float"; do
  for form in articulated-body newton-euler; do
   name=$(basename "$spec" .yaml)
-  "$eomc" run "$spec" --form $form --accel > "$tmp/ab.acc" 2> /dev/null &&
-    "$eomc" run "$spec" --form lagrange --accel > "$tmp/lag.acc" 2> /dev/null
+  "$eomc" run "$spec" --form $form --accel > "$tmp/ab.acc" 2> "$tmp/said" &&
+    "$eomc" run "$spec" --form lagrange --accel > "$tmp/lag.acc" 2> "$tmp/said"
   st=$?
   grep -v '_unit\]' "$tmp/ab.acc" > "$tmp/ab.rest"
   grep -v '_unit\]' "$tmp/lag.acc" > "$tmp/lag.rest"
@@ -161,7 +161,7 @@ for spec in "$ball" "$float"; do
   unit=$(awk 'NR == FNR && /_unit\]/ { u = $2 < 0 ? -$2 : $2 } NR != FNR && /_unit\]/ { l = $2 < 0 ? -$2 : $2 }
               END { if (l > 0) printf "%.3g\n", u / l; else print "nan" }' "$tmp/ab.acc" "$tmp/lag.acc")
   [ $st -eq 0 ] && below "$d" 1e-12 && below "$unit" 1e-12
-  ok $? "$name (a ball joint), $form: q'' and the other multipliers = lagrange's to $d; the unit constraint's $unit of lagrange's"
+  ok $? "$name (a ball joint), $form: q'' and the other multipliers = lagrange's to $d; the unit constraint's $unit of lagrange's$(why $st "$tmp/said")"
  done
 done
 # the unit quaternion's row is held by the recursion itself (c_held), and
@@ -182,8 +182,8 @@ d=$(accel_diff "$tmp/lag.rest" "$tmp/ab.rest" 8)
 [ $st -eq 0 ] && grep -q "c_held\[1\] = {1};" "$tmp/held.c" && grep -q "rotor" "$tmp/rotor.yaml" &&
   grep -q "\.c_held = NULL" "$tmp/rotor.c" && below "$d" 1e-12
 ok $? "floating_arm: its unit row held by the recursion; with a rotor on the ball it is solved, and q'' is lagrange's to $d"
-"$eomc" run "$float" --form articulated-body -o "$tmp/ab.csv" 2> /dev/null &&
-  "$eomc" run "$float" --form lagrange -o "$tmp/lag.csv" 2> /dev/null
+"$eomc" run "$float" --form articulated-body -o "$tmp/ab.csv" 2> "$tmp/said" &&
+  "$eomc" run "$float" --form lagrange -o "$tmp/lag.csv" 2> "$tmp/said"
 st=$?
 # every column but the unit constraint's multiplier
 col=$(head -1 "$tmp/ab.csv" | tr ',' '\n' | grep -n '^lambda\[body_axes_unit\]$' | cut -d: -f1)
@@ -191,7 +191,7 @@ tail -1 "$tmp/ab.csv" | cut -d, -f"$col" --complement > "$tmp/ab.last"
 tail -1 "$tmp/lag.csv" | cut -d, -f"$col" --complement > "$tmp/lag.last"
 d=$(row_diff "$tmp/lag.last" "$tmp/ab.last" 20)
 [ $st -eq 0 ] && [ -n "$col" ] && below "$d" 1e-9
-ok $? "floating_arm to t = 2 by the articulated-body form: lagrange's last row to $d"
+ok $? "floating_arm to t = 2 by the articulated-body form: lagrange's last row to $d$(why $st "$tmp/said")"
 "$eomc" compile "$float" --code tables -o "$tmp/fa.c" 2> "$tmp/fa.err"
 st=$?
 [ $st -eq 0 ] && grep -q 'note: --code tables: not here (the tables have no ball joints' "$tmp/fa.err" &&

@@ -810,7 +810,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
     }
     STICK_(set)(w, u, k, on);
-    if (j >= 0 || !w->nrowitem || !STICK_(any)(w, u))
+    if (j >= 0 || !w->nrowitem)
         return STICK_OK;
     /* a contact's push ended (or its near or touch switch flipped): a
      * stuck point whose bound is now 0 holds nothing, and lets go, to
@@ -822,6 +822,23 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
             STICK_(set)(w, u, m->fric_stick[i], 0);
             STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
         }
+    /* a point that touches with its speed exactly 0 (a ball dropped
+     * straight down) has no sign to slip by: its slip switch is on its
+     * kink, and the side its mode gives would push it off there.  It
+     * sticks where it can, as at a run's start (settle), else slips the
+     * way the rest drives it (stick_rows) */
+    for (int i = 0; i < w->nf; i++) {
+        if (!STICK_(is_row)(w, i) || STICK_(stuck)(w, u, i) || !(w->F[i] > 0) ||
+            STICK_(speed)(w, i, v, NULL) != 0)
+            continue;
+        int held = -1;
+        if ((rc = STICK_(stick_rows)(w, m->fric_slip[i], t, q, v, p, u, &held)) != STICK_OK)
+            return rc;
+        if (*stuck < 0)
+            *stuck = held;
+        if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+            return rc;
+    }
     return STICK_OK;
 }
 

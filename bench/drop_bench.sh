@@ -3,8 +3,9 @@
 # MuJoCo (issue 44's speed check).
 #
 # eomc: the model imported as `eomc run` imports it (contacts, limits,
-# control clamps on; the contacts' friction not imported yet), let go at
-# qpos0 at rest, run to t = 2 at each tolerance with --error against its
+# control clamps on; since the import writes the contacts' friction, the
+# run stops at the landing: docs/benchmarks.md), let go at qpos0 at
+# rest, run to t = 2 at each tolerance with --error against its
 # extended-precision reference: CPU seconds of the run alone
 # (cpu_seconds), steps, flips, error_max (the largest error over
 # coordinates and speeds at the 0.01 s rows), and the cheapest run with

@@ -572,9 +572,19 @@ shapes_written(const mjModel *m, int urdf_visuals)
     return w;
 }
 
+/* Does the spec have equality constraints (those that hold, eq_on)? */
+static int
+constrained(const mjModel *m)
+{
+    for (int e = 0; e < m->neq; e++)
+        if (eq_on(m, e))
+            return 1;
+    return 0;
+}
+
 /* The contact pairs eomc's contact cannot take, one warning for each
- * reason; and what it takes otherwise (margins as 0, no friction): the
- * number of kinds. */
+ * reason; and what it takes otherwise (margins as 0, friction where it
+ * can: docs/import.md "Contacts"): the number of kinds. */
 static int
 contact_drops(const mjModel *m, const ImportContacts *ic, const char *path, FILE *warn)
 {
@@ -598,18 +608,49 @@ contact_drops(const mjModel *m, const ImportContacts *ic, const char *path, FILE
         snprintf(why, sizeof why, "eomc's contact has no gap for %s", ic->skip[i].why);
         n += drop_say(warn, path, &d, "the contacts of", "geom pair", why);
     }
-    Drop fr = {0}, mg = {0};
+    /* friction: not written (no plane; equality constraints), or written
+     * with less than MuJoCo's (spin, rolling, a second sliding
+     * coefficient; an elliptic cone) */
+    Drop noplane = {0}, eq = {0}, spin = {0}, roll = {0}, second = {0}, cone = {0}, mg = {0};
     for (int i = 0; i < ic->npair; i++) {
-        snprintf(nm, sizeof nm, "%s-%s", label(m, mjOBJ_GEOM, ic->pair[i].g1, b1, sizeof b1),
-                 label(m, mjOBJ_GEOM, ic->pair[i].g2, b2, sizeof b2));
-        if (ic->pair[i].friction)
-            drop_add(&fr, nm);
-        if (ic->pair[i].margin)
+        const ImportPair *p = &ic->pair[i];
+        snprintf(nm, sizeof nm, "%s-%s", label(m, mjOBJ_GEOM, p->g1, b1, sizeof b1),
+                 label(m, mjOBJ_GEOM, p->g2, b2, sizeof b2));
+        if (p->condim > 1 && m->geom_type[p->g1] != mjGEOM_PLANE)
+            drop_add(&noplane, nm);
+        else if (p->condim > 1 && !p->friction)
+            drop_add(&eq, nm);
+        if (p->friction && p->condim == 4)
+            drop_add(&spin, nm);
+        if (p->friction && p->condim == 6)
+            drop_add(&roll, nm);
+        if (p->friction && p->condim >= 3 && p->mu2 != p->mu)
+            drop_add(&second, nm);
+        if (p->friction && m->opt.cone == mjCONE_ELLIPTIC)
+            drop_add(&cone, nm);
+        if (p->margin)
             drop_add(&mg, nm);
     }
-    n += drop_say(warn, path, &fr, "the friction of", "contact pair",
-                  "eomc import does not write a contact's friction yet; a spec's contact "
-                  "with a plane takes `friction: mu`");
+    n += drop_say(warn, path, &noplane, "the friction of", "contact pair",
+                  "eomc's contact friction acts where a shape touches a plane: written without "
+                  "friction");
+    n += drop_say(warn, path, &eq, "the friction of", "contact pair",
+                  "the model has equality constraints, with which a run refuses contact "
+                  "friction: written without friction, so that the model runs");
+    n += drop_say(warn, path, &spin, "the torsional friction of", "contact pair",
+                  "condim 4: eomc's contact friction is sliding only, friction[0]; its spin "
+                  "about the normal, friction[1], is free");
+    n += drop_say(warn, path, &roll, "the torsional and rolling friction of", "contact pair",
+                  "condim 6: eomc's contact friction is sliding only, friction[0]; its spin "
+                  "and rolling, friction[1] and friction[2], are free");
+    n += drop_say(warn, path, &second, "the second sliding friction of", "contact pair",
+                  "the <pair>'s friction[1] differs from its friction[0]: eomc's contact "
+                  "friction has one coefficient, friction[0], along both of the plane's axes");
+    n += drop_tell(warn, path, "warning", "changed: the friction cone of", &cone,
+                   "contact pair", "MuJoCo's cone=\"elliptic\" is Coulomb's circle |f| <= mu N; "
+                   "eomc's two items per touch point bound the square |f_x|, |f_y| <= mu N "
+                   "along the plane's axes: the same along an axis, up to sqrt(2) mu N on a "
+                   "diagonal");
     n += drop_say(warn, path, &mg, "the margin or gap of", "contact pair",
                   "eomc's contact begins where the shapes touch");
     return n;
@@ -1137,7 +1178,10 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
         }
         fprintf(out, "    - {contact: [[%s, %s]], stiffness: %s, ", gname[p->g1], gname[p->g2],
                 num(a, p->k));
-        fprintf(out, "damping: %s}\n", num(a, p->c));
+        fprintf(out, "damping: %s", num(a, p->c));
+        if (p->friction)
+            fprintf(out, ", friction: %s", num(a, p->mu));
+        fputs("}\n", out);
     }
 }
 
@@ -1488,13 +1532,13 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     int drops = dropped(m, path, warn);
     unsigned char *written = shapes_written(m, urdf_visuals);
     ImportContacts ic;
-    import_contacts(m, written, &ic);
+    import_contacts(m, written, constrained(m), &ic);
     free(written);
     drops += contact_drops(m, &ic, path, warn);
     drops += drop_say(warn, path, &mimic, "the <mimic> of", "joint",
                       "MuJoCo's URDF reader ignores it: the joint moves on its own");
     if (drops && strict) {
-        snprintf(err, len, "--strict: the elements named above would be dropped");
+        snprintf(err, len, "--strict: the elements named above would be dropped or changed");
         import_contacts_free(&ic);
         mj_deleteModel(m);
         return -1;

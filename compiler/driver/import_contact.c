@@ -31,6 +31,35 @@
  * the load press, so its resting contact sinks 1 - dmax as deep (0.05 by
  * default); d rises from dmin over solimp's width; the effective mass is
  * the one at qpos0.
+ *
+ * Friction.  A MuJoCo contact carries five coefficients: two sliding
+ * (along the contact frame's two tangents), one torsional (spin about
+ * the normal), two rolling; condim says how many of its directions resist
+ * (1: the normal alone, 3: and sliding, 4: and spin, 6: and rolling).
+ * MuJoCo's mj_contactParam (in 2.2, which eomc is built with, part of
+ * mj_collideGeoms) fills them so:
+ *  - a <pair>: its own five, pair_friction, and its own condim;
+ *  - a dynamic pair of unequal geom_priority: the higher one's three
+ *    (slide, spin, roll), and its condim;
+ *  - a dynamic pair of equal priority: each of the three the larger of
+ *    the two geoms', condim the larger;
+ * a dynamic pair's three spread to five as (slide, slide, spin, roll,
+ * roll), so its two sliding directions agree; every coefficient is at
+ * least mjMINMU (1e-5).  (MuJoCo 3's <flag override> puts o_friction in
+ * their place; 2.2 has no o_friction, and override leaves friction be.)
+ * A contact's friction is the one of the pair, so
+ * eomc's `friction: mu` of a pair with a plane is friction[0] (mu here,
+ * friction[1] mu2); where MuJoCo's cone is pyramidal (the default), its
+ * edges n +- mu t1, n +- mu2 t2 bound the tangential force by the diamond
+ * |f1|/mu + |f2|/mu2 <= N, t1 and t2 the contact frame's tangents (for a
+ * sphere or a box on a plane, mju_makeFrame's from the normal: a level
+ * plane's y and x; for a capsule, its axis first), where eomc's two items
+ * per touch point bound the square |f1|, |f2| <= mu N along the plane's x
+ * and y: the same along an axis they share, mu N; on a diagonal the
+ * pyramid holds mu N / sqrt 2, the square sqrt 2 mu N (docs/spec.md
+ * "Friction at a contact").  What eomc does not take (a pair
+ * without a plane, spin and rolling, mu2 != mu, an elliptic cone, a model
+ * with equality constraints) import.c names in warnings.
  */
 #include "import_contact.h"
 
@@ -97,16 +126,17 @@ predefined(const mjModel *m, int g1, int g2)
     return 0;
 }
 
-/* A dynamic pair's solref and condim, mixed as MuJoCo mixes them: the
- * geom of higher priority's, else solref mixed by solmix (standard) or
- * the smaller (direct), condim the larger. */
+/* A dynamic pair's solref, condim and sliding friction, mixed as MuJoCo
+ * mixes them: the geom of higher priority's, else solref mixed by solmix
+ * (standard) or the smaller (direct), condim and friction the larger. */
 static void
-mixed(const mjModel *m, int g1, int g2, double *solref, int *condim)
+mixed(const mjModel *m, int g1, int g2, double *solref, int *condim, double *mu)
 {
     if (m->geom_priority[g1] != m->geom_priority[g2]) {
         int g = m->geom_priority[g1] > m->geom_priority[g2] ? g1 : g2;
         memcpy(solref, m->geom_solref + mjNREF * g, mjNREF * sizeof *solref);
         *condim = m->geom_condim[g];
+        *mu = fmax(mjMINMU, m->geom_friction[3 * g]);
         return;
     }
     double s1 = m->geom_solmix[g1], s2 = m->geom_solmix[g2];
@@ -118,6 +148,7 @@ mixed(const mjModel *m, int g1, int g2, double *solref, int *condim)
                                            : fmin(r1[i], r2[i]);
     *condim = m->geom_condim[g1] > m->geom_condim[g2] ? m->geom_condim[g1]
                                                        : m->geom_condim[g2];
+    *mu = fmax(mjMINMU, fmax(m->geom_friction[3 * g1], m->geom_friction[3 * g2]));
 }
 
 /* The pair's effective mass along its normal at qpos0 (d: mj_forward's
@@ -159,11 +190,12 @@ add_skip(ImportContacts *ic, int *cap, int g1, int g2, const char *why)
 }
 
 /* One pair MuJoCo collides, with its solref (already mixed, or the
- * <pair>'s), condim, margin and gap: taken, or skipped with why. */
+ * <pair>'s), condim, sliding friction mu and mu2, margin and gap: taken,
+ * or skipped with why. */
 static void
-consider(const mjModel *m, mjData *d, const unsigned char *written, int g1, int g2,
-         const double *solref, int condim, double margin, double *J, ImportContacts *ic,
-         int *cap, int *skipcap)
+consider(const mjModel *m, mjData *d, const unsigned char *written, int constrained, int g1,
+         int g2, const double *solref, int condim, double mu, double mu2, double margin,
+         double *J, ImportContacts *ic, int *cap, int *skipcap)
 {
     if (m->geom_type[g1] > m->geom_type[g2]) { /* MuJoCo's order: the plane first */
         int g = g1;
@@ -199,11 +231,14 @@ consider(const mjModel *m, mjData *d, const unsigned char *written, int g1, int 
         *cap = *cap ? 2 * *cap : 16;
         ic->pair = xrealloc(ic->pair, (size_t)*cap * sizeof *ic->pair);
     }
-    ic->pair[ic->npair++] = (ImportPair){g1, g2, k, c, condim > 1, margin != 0};
+    int friction = condim > 1 && t1 == mjGEOM_PLANE && !constrained;
+    ic->pair[ic->npair++] = (ImportPair){g1, g2, k, c, condim, condim > 1 ? mu : 0,
+                                         condim > 1 ? mu2 : 0, friction, margin != 0};
 }
 
 void
-import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *ic)
+import_contacts(const mjModel *m, const unsigned char *written, int constrained,
+                ImportContacts *ic)
 {
     *ic = (ImportContacts){0};
     if (m->opt.disableflags & (mjDSBL_CONTACT | mjDSBL_CONSTRAINT))
@@ -212,16 +247,17 @@ import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *
     mj_forward(m, d); /* at qpos0 */
     double *J = xmalloc((12 * (size_t)m->nv + 1) * sizeof *J); /* J1, J2, jacr, M^-1 J^T */
     int cap = 0, skipcap = 0, condim;
-    double solref[mjNREF];
+    double solref[mjNREF], mu;
     int all = m->opt.collision == mjCOL_ALL;
     for (int g1 = 0; g1 < m->ngeom && m->opt.collision != mjCOL_PAIR; g1++)
         for (int g2 = g1 + 1; g2 < m->ngeom; g2++) {
             if (!kept(m, g1, g2) || (all && predefined(m, g1, g2)))
                 continue;
-            mixed(m, g1, g2, solref, &condim);
+            mixed(m, g1, g2, solref, &condim, &mu);
             double margin = fmax(m->geom_margin[g1], m->geom_margin[g2]) -
                             fmax(m->geom_gap[g1], m->geom_gap[g2]);
-            consider(m, d, written, g1, g2, solref, condim, margin, J, ic, &cap, &skipcap);
+            consider(m, d, written, constrained, g1, g2, solref, condim, mu, mu, margin, J, ic,
+                     &cap, &skipcap);
         }
     /* Pairs between two free trees (22 humanoids: 83 000 of them) are each
      * code of the model's: past MAX_PAIRS they are dropped, by name, and
@@ -241,8 +277,10 @@ import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *
         ic->npair = kept;
     }
     for (int p = 0; p < m->npair && m->opt.collision != mjCOL_DYNAMIC; p++)
-        consider(m, d, written, m->pair_geom1[p], m->pair_geom2[p],
+        consider(m, d, written, constrained, m->pair_geom1[p], m->pair_geom2[p],
                  m->pair_solref + mjNREF * p, m->pair_dim[p],
+                 fmax(mjMINMU, m->pair_friction[5 * p]),
+                 fmax(mjMINMU, m->pair_friction[5 * p + 1]),
                  m->pair_margin[p] - m->pair_gap[p], J, ic, &cap, &skipcap);
     free(J);
     mj_deleteData(d);

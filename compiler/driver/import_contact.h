@@ -11,11 +11,18 @@
 #include <mujoco/mujoco.h>
 
 /* A pair eomc takes: geoms g1 and g2 (g1's type first in MuJoCo's order:
- * a plane before the shape on it), its law's k and c. */
+ * a plane before the shape on it), its law's k and c, and MuJoCo's
+ * friction of it: condim, mu its sliding friction (friction[0] of the
+ * contact's five), mu2 its second sliding direction's (friction[1]: a
+ * <pair>'s own, else mu), as MuJoCo mixes them (import_contact.c). */
 typedef struct ImportPair {
     int g1, g2;
     double k, c;
-    int friction, margin; /* MuJoCo gives it friction (condim > 1), a margin or gap */
+    int condim;
+    double mu, mu2;
+    int friction; /* eomc writes `friction: mu`: condim > 1, g1 a plane, no equality
+                   * constraint (import_contacts' constrained) */
+    int margin;   /* MuJoCo gives it a margin or gap */
 } ImportPair;
 
 /* A pair MuJoCo collides that eomc's contact cannot take, and why. */
@@ -32,8 +39,11 @@ typedef struct ImportContacts {
 } ImportContacts;
 
 /* The contacts of m where contacts are on (its flags), into *ic (zeros
- * where off); written[g]: geom g is a shape of the spec. */
-void import_contacts(const mjModel *m, const unsigned char *written, ImportContacts *ic);
+ * where off); written[g]: geom g is a shape of the spec; constrained: the
+ * spec has equality constraints (a run refuses contact friction with
+ * them, so no pair's friction is written). */
+void import_contacts(const mjModel *m, const unsigned char *written, int constrained,
+                     ImportContacts *ic);
 void import_contacts_free(ImportContacts *ic);
 
 #endif

@@ -60,6 +60,7 @@ typedef struct STICK_(Work) {
     STICK_REAL *G, *V, *lam;  /* [nf nf] G, its eigenvectors (columns), [nf] values */
     int rank;                 /* G's */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
+    unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
 } STICK_(Work);
 
 /* An eigenvalue of G counts where it is above STICK_RANK_ULPS rounding
@@ -81,7 +82,7 @@ STICK_(free)(STICK_(Work) *w)
     free(w->M), free(w->L), free(w->h), free(w->acc), free(w->F), free(w->phi);
     free(w->free_of), free(w->held);
     free(w->J), free(w->b), free(w->R), free(w->X), free(w->G), free(w->V), free(w->lam);
-    free(w->c), free(w->psi), free(w->vec);
+    free(w->c), free(w->psi), free(w->vec), free(w->live);
     free(w);
 }
 
@@ -115,9 +116,10 @@ STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
     w->c = calloc(f + 1, sizeof *w->c);
     w->psi = calloc(f + 1, sizeof *w->psi);
     w->vec = calloc(n + 1, sizeof *w->vec);
+    w->live = calloc((size_t)m->nmode + 1, 1);
     if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held ||
         !w->J || !w->b || !w->R || !w->X || !w->G || !w->V || !w->lam || !w->c || !w->psi ||
-        !w->vec || (w->nrowitem && !x->fric_rows)) {
+        !w->vec || !w->live || (w->nrowitem && !x->fric_rows)) {
         STICK_(free)(w);
         return NULL;
     }
@@ -470,13 +472,26 @@ STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
 }
 
 /* The slip switch of a stuck row item keeps its side: its speed is 0 to
- * rounding there, whose sign says nothing (a coordinate's is exactly 0). */
+ * rounding there, whose sign says nothing (a coordinate's is exactly 0).
+ * So does a row item's whose bound is 0 (w->F: its point apart, or its
+ * pair's push ended), unless an item slipping with a bound shares the
+ * switch (the same speed: a box's upper and lower corners where it does
+ * not turn): it exerts nothing either way, and its speed, 0 to rounding
+ * where the rest holds the point still (a stuck box's upper corners),
+ * would flip it back and forth on the rounding; it takes its speed's
+ * sign when its pair touches (flip). */
 static void
 STICK_(keep_slip)(const STICK_(Work) *w, const STICK_REAL *u, STICK_REAL *sw)
 {
+    const int *slip = w->m->fric_slip;
     for (int j = 0; j < w->nf; j++)
-        if (STICK_(is_row)(w, j) && STICK_(stuck)(w, u, j))
-            sw[w->m->fric_slip[j]] = u[w->nu + w->m->fric_slip[j]] != 0 ? 1 : -1;
+        w->live[slip[j]] = 0;
+    for (int j = 0; j < w->nf; j++)
+        w->live[slip[j]] |= !STICK_(stuck)(w, u, j) && w->F[j] > 0;
+    for (int j = 0; j < w->nf; j++)
+        if (STICK_(is_row)(w, j) &&
+            (STICK_(stuck)(w, u, j) || (!(w->F[j] > 0) && !w->live[slip[j]])))
+            sw[slip[j]] = u[w->nu + slip[j]] != 0 ? 1 : -1;
 }
 
 /* The stick switches' functions at (t, q, v) in the modes u into sw
@@ -487,7 +502,9 @@ STICK_API int
 STICK_(functions)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
                   const STICK_REAL *p, const STICK_REAL *u, STICK_REAL *sw)
 {
-    int rc = STICK_(any)(w, u) ? STICK_(solve)(w, t, q, v, p, u, w->acc) : STICK_OK;
+    int rc = STICK_(any)(w, u)  ? STICK_(solve)(w, t, q, v, p, u, w->acc)
+             : w->nrowitem      ? STICK_(bounds)(w, t, q, v, p, u) /* (keep_slip's) */
+                                : STICK_OK;
     if (rc != STICK_OK) {
         for (int j = 0; j < w->nf; j++)
             sw[w->m->fric_stick[j]] = NAN;
@@ -818,7 +835,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
     }
     STICK_(set)(w, u, k, on);
-    if (j >= 0 || !w->nrowitem || !STICK_(any)(w, u))
+    if (j >= 0 || !w->nrowitem)
         return STICK_OK;
     /* a contact's push ended (or its near or touch switch flipped): a
      * stuck point whose bound is now 0 holds nothing, and lets go, to
@@ -830,6 +847,30 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
             STICK_(set)(w, u, m->fric_stick[i], 0);
             STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
         }
+    /* a point that touches slips by its speed's sign (its slip switch
+     * kept its side while its bound was 0: keep_slip); one that touches
+     * with its speed exactly 0 (a ball dropped straight down) has no sign
+     * to slip by: its slip switch is on its kink, and the side its mode
+     * gives would push it off there.  It sticks where it can, as at a
+     * run's start (settle), else slips the way the rest drives it
+     * (stick_rows) */
+    for (int i = 0; i < w->nf; i++) {
+        STICK_REAL e = STICK_(speed)(w, i, v, NULL);
+        if (STICK_(is_row)(w, i) && !STICK_(stuck)(w, u, i) && w->F[i] > 0 && e != 0)
+            STICK_(set)(w, u, m->fric_slip[i], e > 0);
+    }
+    for (int i = 0; i < w->nf; i++) {
+        if (!STICK_(is_row)(w, i) || STICK_(stuck)(w, u, i) || !(w->F[i] > 0) ||
+            STICK_(speed)(w, i, v, NULL) != 0)
+            continue;
+        int held = -1;
+        if ((rc = STICK_(stick_rows)(w, m->fric_slip[i], t, q, v, p, u, &held)) != STICK_OK)
+            return rc;
+        if (*stuck < 0)
+            *stuck = held;
+        if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
+            return rc;
+    }
     return STICK_OK;
 }
 

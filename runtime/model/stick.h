@@ -848,28 +848,19 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
             STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
         }
     /* a point that touches slips by its speed's sign (its slip switch
-     * kept its side while its bound was 0: keep_slip); one that touches
+     * kept its side while its bound was 0: keep_slip).  One that touches
      * with its speed exactly 0 (a ball dropped straight down) has no sign
-     * to slip by: its slip switch is on its kink, and the side its mode
-     * gives would push it off there.  It sticks where it can, as at a
-     * run's start (settle), else slips the way the rest drives it
-     * (stick_rows) */
+     * to slip by: its slip switch keeps its side, on its kink, and the
+     * friction of that side moves it off 0 the other way at once, where
+     * the run locates the departure as a crossing (stepevents.c's
+     * leaves_kink) and it sticks, as one touching with a speed that is 0
+     * but for rounding does: the same flips whether rounding left its
+     * speed 0 or not (in the run's doubles and the reference's long
+     * doubles alike) */
     for (int i = 0; i < w->nf; i++) {
         STICK_REAL e = STICK_(speed)(w, i, v, NULL);
         if (STICK_(is_row)(w, i) && !STICK_(stuck)(w, u, i) && w->F[i] > 0 && e != 0)
             STICK_(set)(w, u, m->fric_slip[i], e > 0);
-    }
-    for (int i = 0; i < w->nf; i++) {
-        if (!STICK_(is_row)(w, i) || STICK_(stuck)(w, u, i) || !(w->F[i] > 0) ||
-            STICK_(speed)(w, i, v, NULL) != 0)
-            continue;
-        int held = -1;
-        if ((rc = STICK_(stick_rows)(w, m->fric_slip[i], t, q, v, p, u, &held)) != STICK_OK)
-            return rc;
-        if (*stuck < 0)
-            *stuck = held;
-        if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
-            return rc;
     }
     return STICK_OK;
 }

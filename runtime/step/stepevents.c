@@ -550,26 +550,57 @@ modes_before(StepEvents *v)
 
 /* Switch j's flip at t set others' modes too (dry friction: a group of
  * points stuck with it, or let go with it, and the slip side each let go
- * takes, the way the rest drives it): each is a flip at t as well.  Its
- * function is at its kink there (a speed held at 0, whose sign is
- * rounding), so it fires again only once it has left it, and a pass at
- * this instant does not flip it back.  The stick switches among them are
- * listed after j, in the order of the switches (a let-go's slip side is
- * its stick switch's flip, not an event of its own). */
+ * takes, the way the rest drives it, or a point that touches taking its
+ * speed's sign): each is a flip at t as well.  One whose function is not
+ * on its new mode's side is at its kink there (a speed held at 0, whose
+ * sign is rounding): it fires again only once it has left it, and a pass
+ * at this instant does not flip it back; one on its side crosses as any
+ * switch does (a touching point's speed, 0 but for rounding, that the
+ * floor's friction drives across at once: it sticks there).  The stick
+ * switches among them are listed after j, in the order of the switches
+ * (a let-go's slip side is its stick switch's flip, not an event of its
+ * own). */
 static void
 also_set(StepEvents *v, int j, double t, const double *x)
 {
+    int any = 0;
+    for (int i = 0; i < v->m->nmode && !any; i++)
+        any = i != j && v->was[i] != sim_mode(v->s, i);
+    if (!any)
+        return;
+    g_all(v, t, x, x + v->n, v->gs);
     for (int i = 0; i < v->m->nmode; i++) {
-        if (i == j || v->was[i] == sim_mode(v->s, i))
+        int on = sim_mode(v->s, i);
+        if (i == j || v->was[i] == on)
             continue;
-        v->tsw[i] = t;
-        v->seq[i] = 0;
+        double g = v->gs[v->nev + i];
+        if (!(on ? g > 0 : g < 0)) {
+            v->tsw[i] = t;
+            v->seq[i] = 0;
+        }
         if (!sim_mode_held(v->s, i))
             continue;
         v->st->events++;
         if (v->o->on_event)
             (void)v->o->on_event(v->o->event_ctx, v->nev + i, t, x);
     }
+}
+
+/* The side switch i's function (g0, its rate gd1) is on at this instant,
+ * or reaches within soon at the rate it moves: one on its kink goes where
+ * its rate takes it (a mirror image's of the switch that flipped), and
+ * one a rounding short of 0 that crosses within soon (two contacts
+ * touching together, located apart by rounding) is on the side it is
+ * crossing to, whether its mode went there already or not. */
+static int
+side_soon(const StepEvents *v, int i, int mode, double soon)
+{
+    double g = v->g0[i], r = v->gd1[i];
+    if (g == 0)
+        return r > 0 ? 1 : r < 0 ? 0 : mode;
+    if (r != 0 && (r > 0) != (g > 0) && -g / r <= soon)
+        return r > 0; /* about to cross */
+    return g > 0;
 }
 
 /* Switch k's flip at t: its mode to where its function went, x as it
@@ -622,12 +653,7 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
         double below = 0; /* the latest flip at t of the switches before i */
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne && pick < 0; i++) {
-            int j = i - v->nev, on = v->g0[i] > 0, mode = sim_mode(v->s, j);
-            if (v->g0[i] == 0) /* on its kink now (a mirror image's of k): where it goes */
-                on = v->gd1[i] > 0 ? 1 : v->gd1[i] < 0 ? 0 : mode;
-            else if (on == mode && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
-                     -v->g0[i] / v->gd1[i] <= soon)
-                on = !on; /* about to cross */
+            int j = i - v->nev, mode = sim_mode(v->s, j), on = side_soon(v, i, mode, soon);
             int again = v->tsw[j] == t && !(below > v->seq[j]);
             if (v->tsw[j] == t)
                 below = fmax(below, v->seq[j]);
@@ -655,12 +681,7 @@ together:
         int changed = 0;
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne; i++) {
-            int on = v->g0[i] > 0, mode = sim_mode(v->s, i - v->nev);
-            if (v->g0[i] == 0) /* on its kink now (a mirror image's of k): where it goes */
-                on = v->gd1[i] > 0 ? 1 : v->gd1[i] < 0 ? 0 : mode;
-            else if (on == mode && v->gd1[i] != 0 && (v->gd1[i] > 0) != on &&
-                     -v->g0[i] / v->gd1[i] <= soon)
-                on = !on; /* about to cross */
+            int mode = sim_mode(v->s, i - v->nev), on = side_soon(v, i, mode, soon);
             /* (flipped at t already: k and those before) */
             v->ge[i] = v->tsw[i - v->nev] == t || on == mode ? -1 : on;
         }

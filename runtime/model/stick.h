@@ -536,6 +536,28 @@ STICK_(speed)(const STICK_(Work) *w, int j, const STICK_REAL *v, const STICK_REA
     return e;
 }
 
+/* After a solve: the stuck item that needs most beyond its bound (|phi|
+ * / F the largest, compared without dividing by a bound of 0) let go,
+ * slipping the way the rest drives it; the item, or -1 where every stuck
+ * one holds. */
+static int
+STICK_(release_worst)(STICK_(Work) *w, STICK_REAL *u)
+{
+    const eomc_model *m = w->m;
+    int worst = -1;
+    for (int j = 0; j < w->nf; j++) {
+        STICK_REAL need = STICK_ABS(w->phi[j]);
+        if (STICK_(stuck)(w, u, j) && need > w->F[j] &&
+            (worst < 0 || need * w->F[worst] > STICK_ABS(w->phi[worst]) * w->F[j]))
+            worst = j;
+    }
+    if (worst >= 0) {
+        STICK_(set)(w, u, m->fric_slip[worst], w->phi[worst] < 0);
+        STICK_(set)(w, u, m->fric_stick[worst], 0);
+    }
+    return worst;
+}
+
 /* Lets go of the stuck items, the one needing most for its bound first,
  * while one needs more than its bound, each slipping the way the rest
  * drives it; the solve at (t, q, v) of the modes left in w->acc.  Let
@@ -544,22 +566,12 @@ static int
 STICK_(let_go)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
                const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
 {
-    const eomc_model *m = w->m;
     for (int pass = 0; pass <= w->nf; pass++) {
-        int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), worst = -1;
+        int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), worst;
         if (rc != STICK_OK)
             return rc;
-        for (int j = 0; j < w->nf; j++) {
-            STICK_REAL need = STICK_ABS(w->phi[j]);
-            /* need / F the largest, compared without dividing by a bound of 0 */
-            if (STICK_(stuck)(w, u, j) && need > w->F[j] &&
-                (worst < 0 || need * w->F[worst] > STICK_ABS(w->phi[worst]) * w->F[j]))
-                worst = j;
-        }
-        if (worst < 0)
+        if ((worst = STICK_(release_worst)(w, u)) < 0)
             return STICK_OK;
-        STICK_(set)(w, u, m->fric_slip[worst], w->phi[worst] < 0);
-        STICK_(set)(w, u, m->fric_stick[worst], 0);
         if (gone)
             gone[worst] = 1;
     }
@@ -696,17 +708,8 @@ STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, ST
             goto out;
         if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
             goto out;
-        int worst = -1;
-        for (int j = 0; j < w->nf; j++) {
-            STICK_REAL need = STICK_ABS(w->phi[j]);
-            if (STICK_(stuck)(w, u, j) && need > w->F[j] &&
-                (worst < 0 || need * w->F[worst] > STICK_ABS(w->phi[worst]) * w->F[j]))
-                worst = j;
-        }
-        if (worst < 0)
+        if (STICK_(release_worst)(w, u) < 0)
             break;
-        STICK_(set)(w, u, m->fric_slip[worst], w->phi[worst] < 0);
-        STICK_(set)(w, u, m->fric_stick[worst], 0);
     }
     any = 0;
     for (int j = 0; j < w->nf; j++)

@@ -656,11 +656,11 @@ sw_settle(void *ctx, eomc_ext t, const eomc_ext *x)
 }
 
 static int
-sw_flip(void *ctx, int k, int on, eomc_ext t, eomc_ext *x, int *stuck)
+sw_flip(void *ctx, int k, int on, eomc_ext t, eomc_ext *x)
 {
     Ref *r = ctx;
     inputs_at(r, t);
-    return reffric_flip(r->fr, k, on, t, x, x + r->n, r->p, r->u, stuck) == STICK_OK ? 0
+    return reffric_flip(r->fr, k, on, t, x, x + r->n, r->p, r->u) == STICK_OK ? 0
                                                                                    : -1;
 }
 

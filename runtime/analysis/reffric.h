@@ -26,6 +26,6 @@ int reffric_functions(RefFric *w, eomc_ext t, const eomc_ext *q, const eomc_ext 
 int reffric_settle(RefFric *w, eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                    const eomc_ext *p, eomc_ext *u);
 int reffric_flip(RefFric *w, int k, int on, eomc_ext t, const eomc_ext *q, eomc_ext *v,
-                 const eomc_ext *p, eomc_ext *u, int *stuck);
+                 const eomc_ext *p, eomc_ext *u);
 
 #endif

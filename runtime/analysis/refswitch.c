@@ -530,13 +530,13 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             /* over: a located crossing may sit a rounding short of 0 (s1
              * still on its mode's side, which must not read as a flip
              * back at the next pass: seq) and one past 0 is over */
-            int on = w->mode[k] == 0, stuck = -1;
+            int on = w->mode[k] == 0;
             seq[k] = ++order;
             for (int j = 0; j < w->nm; j++)
                 was[j] = w->mode[j] != 0;
             if (!w->mo.flip)
                 w->mode[k] = on;
-            else if (w->mo.flip(w->mo.ctx, k, on, t, x, &stuck) != 0)
+            else if (w->mo.flip(w->mo.ctx, k, on, t, x) != 0)
                 rc = -1;
             /* the modes its flip set too (dry friction: a group stuck or
              * let go with it, and the slip side of each let go), each

@@ -25,11 +25,11 @@ typedef struct RefSwMotion {
      * switch, which no sign sets; settle: the items' modes at a state
      * (t, x) alone, after the signs (0, or -1 where none follow the
      * motion); flip: mode k's flip to on at (t, x) in a solution, x's
-     * speed set to 0 where an item sticks and *stuck its stick switch
-     * (else -1); 0 or -1. */
+     * speed set to 0 where an item sticks (the modes it sets with it are
+     * the caller's to find); 0 or -1. */
     int (*held)(void *ctx, int k);
     int (*settle)(void *ctx, eomc_ext t, const eomc_ext *x);
-    int (*flip)(void *ctx, int k, int on, eomc_ext t, eomc_ext *x, int *stuck);
+    int (*flip)(void *ctx, int k, int on, eomc_ext t, eomc_ext *x);
 } RefSwMotion;
 
 typedef struct RefSwitches RefSwitches;

@@ -43,9 +43,9 @@ int fric_functions(Fric *w, double t, const double *q, const double *v, const do
 int fric_settle(Fric *w, double t, const double *q, const double *v, const double *p,
                 double *u);
 /* Mode k flips to on at (t, q, v) in a run (stick.h's flip): v's stuck
- * speed set to 0 where an item sticks, *stuck its stick mode (else -1). */
+ * speed set to 0 where an item sticks. */
 int fric_flip(Fric *w, int k, int on, double t, const double *q, double *v, const double *p,
-              double *u, int *stuck);
+              double *u);
 /* What the last failure names (a speed, an item), the last solve's
  * bounds, holding forces and least relative pivot. */
 int fric_bad(const Fric *w);

@@ -1152,16 +1152,15 @@ sim_mode_held(const eomc_sim *s, int k)
 }
 
 int
-sim_flip(eomc_sim *s, int k, int on, double t, double *x, int *stuck)
+sim_flip(eomc_sim *s, int k, int on, double t, double *x)
 {
-    *stuck = -1;
     if (!s->fric) {
         sim_set_mode(s, k, on);
         return EOMC_OK;
     }
     double *q = x, *v = x + s->n;
     sim_inputs_at(s, t);
-    int rc = fric_flip(s->fric, k, on, t, q, v, s->p, s->u, stuck);
+    int rc = fric_flip(s->fric, k, on, t, q, v, s->p, s->u);
     return rc == STICK_OK ? EOMC_OK : fric_error(s, t, q, v, rc);
 }
 

@@ -64,9 +64,9 @@ int sim_set_modes(eomc_sim *s, double t, const double *q, const double *v);
 int sim_mode_held(const eomc_sim *s, int k);
 /* Mode k's flip to on at (t, x) in a run, its switch located there: set,
  * or dry friction's (friction.h's flip: an item whose speed crosses 0
- * sticks where it can, its speed in x set to 0 and *stuck its stick
- * switch's mode, else -1).  EOMC_OK or the error. */
-int sim_flip(eomc_sim *s, int k, int on, double t, double *x, int *stuck);
+ * sticks where it can, its speed in x set to 0; the modes it sets with
+ * it, a group's, the caller finds by comparing).  EOMC_OK or the error. */
+int sim_flip(eomc_sim *s, int k, int on, double t, double *x);
 /* on = 1: a run keeps the modes (set at its start, flipped at its
  * switches) until on = 0; otherwise eomc_sim_accel, _energy, _outputs and
  * _invariant take the modes of the state they are given. */

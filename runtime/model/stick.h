@@ -670,7 +670,7 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
  * holds, v is as it was and they slip on the way the rest drives them. */
 static int
 STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, STICK_REAL *v,
-                   const STICK_REAL *p, STICK_REAL *u, int *stuck)
+                   const STICK_REAL *p, STICK_REAL *u)
 {
     const eomc_model *m = w->m;
     int nv = w->nv, rc, any = 0;
@@ -713,10 +713,7 @@ STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, ST
     }
     any = 0;
     for (int j = 0; j < w->nf; j++)
-        if (mine[j] && STICK_(stuck)(w, u, j) && !any) {
-            *stuck = m->fric_stick[j];
-            any = 1;
-        }
+        any |= mine[j] && STICK_(stuck)(w, u, j);
     if (!any) /* none held: on as before, the way the rest drives each */
         for (int i = 0; i < nv; i++)
             v[i] = was[i];
@@ -791,19 +788,18 @@ out:
 
 /* Mode k's flip to on at (t, q, v) in a run (its switch crossed there):
  * an item's slip switch, its speed crossing 0, sticks where the force
- * that holds it is within its bound (its speed set to exactly 0 in v,
- * *stuck its stick switch's mode), else slips on the way the rest drives
+ * that holds it is within its bound (its speed set to exactly 0 in v),
+ * else slips on the way the rest drives
  * it; an item's stick switch letting go slips that way; any other mode
  * is set.  A row item's (stick_rows, unstick_rows) take the items whose
  * rows the stuck ones span with it.  STICK_OK, or a solve's failure. */
 STICK_API int
 STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
-             STICK_REAL *v, const STICK_REAL *p, STICK_REAL *u, int *stuck)
+             STICK_REAL *v, const STICK_REAL *p, STICK_REAL *u)
 {
     const eomc_model *m = w->m;
     STICK_REAL *a = w->acc;
     int j = STICK_(item_of)(w, w->m->fric_slip, k), rc;
-    *stuck = -1;
     if (j >= 0 && STICK_(is_row)(w, j)) {
         int held = 0;
         for (int i = 0; i < w->nf; i++)
@@ -811,7 +807,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         if (held) /* (its side is kept while stuck: keep_slip) */
             return STICK_OK;
         STICK_(set)(w, u, k, on);
-        return STICK_(stick_rows)(w, k, t, q, v, p, u, stuck);
+        return STICK_(stick_rows)(w, k, t, q, v, p, u);
     }
     if (j >= 0 && !STICK_(stuck)(w, u, j)) {
         int s = m->fric_speed[j];
@@ -820,10 +816,8 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         STICK_(set)(w, u, m->fric_stick[j], 1);
         if ((rc = STICK_(solve)(w, t, q, v, p, u, a)) != STICK_OK)
             return rc;
-        if (STICK_ABS(w->phi[j]) <= w->F[j]) {
-            *stuck = m->fric_stick[j];
+        if (STICK_ABS(w->phi[j]) <= w->F[j])
             return STICK_OK;
-        }
         v[s] = was;
         STICK_(set)(w, u, m->fric_stick[j], 0);
         STICK_(set)(w, u, k, w->phi[j] < 0);

@@ -621,7 +621,7 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     v->last_set = t;
     v->nsets++;
     modes_before(v);
-    int stuck, rc = sim_flip(v->s, j, v->switch_to, t, x, &stuck);
+    int rc = sim_flip(v->s, j, v->switch_to, t, x);
     if (rc != EOMC_OK)
         return GSL_EBADFUNC;
     also_set(v, j, t, x);
@@ -663,7 +663,7 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
         if (pick < 0)
             break;
         int j = pick - v->nev;
-        if (sim_flip(v->s, j, !sim_mode(v->s, j), t, x, &stuck) != EOMC_OK)
+        if (sim_flip(v->s, j, !sim_mode(v->s, j), t, x) != EOMC_OK)
             return GSL_EBADFUNC;
         v->tsw[j] = t, v->seq[j] = ++order;
         v->st->events++;
@@ -690,7 +690,7 @@ together:
             if (v->ge[i] < 0 || on == sim_mode(v->s, i - v->nev))
                 continue; /* (or an earlier flip of this pass set it) */
             modes_before(v);
-            if (sim_flip(v->s, i - v->nev, on, t, x, &stuck) != EOMC_OK)
+            if (sim_flip(v->s, i - v->nev, on, t, x) != EOMC_OK)
                 return GSL_EBADFUNC;
             v->tsw[i - v->nev] = t;
             v->st->events++;

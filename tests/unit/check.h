@@ -10,6 +10,18 @@
 #include <stdio.h>
 
 static int check_n, check_failed;
+static char check_text[4096]; /* a message, before it is put on one line */
+
+/* The message on one line: a quoted error's line breaks would leave
+ * lines TAP does not know. */
+static inline void
+check_print(void)
+{
+    for (char *c = check_text; *c; c++)
+        if (*c == '\n')
+            *c = ' ';
+    printf("%s\n", check_text);
+}
 
 #define CHECK(cond, ...)                                                   \
     do {                                                                   \
@@ -18,8 +30,9 @@ static int check_n, check_failed;
         if (!ok_)                                                          \
             check_failed++;                                                \
         printf("%sok %d - ", ok_ ? "" : "not ", check_n);                 \
-        printf(__VA_ARGS__);                                               \
-        printf("\n");                                                      \
+        if (snprintf(check_text, sizeof check_text, __VA_ARGS__) < 0)      \
+            check_text[0] = '\0';                                          \
+        check_print();                                                     \
         if (!ok_)                                                          \
             printf("# failed at %s:%d: %s\n", __FILE__, __LINE__, #cond);  \
     } while (0)

@@ -631,21 +631,25 @@ contact_drops(const mjModel *m, const ImportContacts *ic, const char *path, FILE
         if (p->margin)
             drop_add(&mg, nm);
     }
-    n += drop_say(warn, path, &noplane, "the friction of", "contact pair",
-                  "eomc's contact friction acts where a shape touches a plane: written without "
-                  "friction");
-    n += drop_say(warn, path, &eq, "the friction of", "contact pair",
-                  "the model has equality constraints, with which a run refuses contact "
-                  "friction: written without friction, so that the model runs");
-    n += drop_say(warn, path, &spin, "the torsional friction of", "contact pair",
-                  "condim 4: eomc's contact friction is sliding only, friction[0]; its spin "
-                  "about the normal, friction[1], is free");
-    n += drop_say(warn, path, &roll, "the torsional and rolling friction of", "contact pair",
-                  "condim 6: eomc's contact friction is sliding only, friction[0]; its spin "
-                  "and rolling, friction[1] and friction[2], are free");
-    n += drop_say(warn, path, &second, "the second sliding friction of", "contact pair",
-                  "the <pair>'s friction[1] differs from its friction[0]: eomc's contact "
-                  "friction has one coefficient, friction[0], along both of the plane's axes");
+    static const char *const said[][2] = { /* (the Drops below, in order) */
+        {"the friction of", "eomc's contact friction acts where a shape touches a plane: "
+                            "written without friction"},
+        {"the friction of", "the model has equality constraints, with which a run refuses "
+                            "contact friction: written without friction, so that the model runs"},
+        {"the torsional friction of", "condim 4: eomc's contact friction is sliding only, "
+                                      "friction[0]; its spin about the normal, friction[1], "
+                                      "is free"},
+        {"the torsional and rolling friction of", "condim 6: eomc's contact friction is "
+                                                  "sliding only, friction[0]; its spin and "
+                                                  "rolling, friction[1] and friction[2], are "
+                                                  "free"},
+        {"the second sliding friction of", "the <pair>'s friction[1] differs from its "
+                                           "friction[0]: eomc's contact friction has one "
+                                           "coefficient, friction[0], along both of the "
+                                           "plane's axes"}};
+    Drop *dropped[] = {&noplane, &eq, &spin, &roll, &second};
+    for (size_t i = 0; i < sizeof dropped / sizeof *dropped; i++)
+        n += drop_say(warn, path, dropped[i], said[i][0], "contact pair", said[i][1]);
     n += drop_tell(warn, path, "warning", "changed: the friction cone of", &cone,
                    "contact pair", "MuJoCo's cone=\"elliptic\" is Coulomb's circle |f| <= mu N; "
                    "eomc's two items per touch point bound the square |f_x|, |f_y| <= mu N "

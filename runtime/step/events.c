@@ -18,9 +18,6 @@ ev_crossed(int dir, double g0, double g1)
     return dir == 0 || dir == (g0 < 0 ? 1 : -1);
 }
 
-/* The bracket is settled when it is this many units of rounding of t wide:
- * no time between its ends is worth telling apart any more. */
-#define SETTLED_ULPS 4
 
 double
 ev_root(ev_fn g, void *ctx, double a, double ga, double b, double gb, double guess,
@@ -38,7 +35,7 @@ ev_root(ev_fn g, void *ctx, double a, double ga, double b, double gb, double gue
     int since = 0;
     while (*evals < EV_MAX_EVALS) {
         double lo = fmin(a, b), hi = fmax(a, b);
-        if (hi - lo <= SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi)))
+        if (hi - lo <= EV_SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi)))
             break;
         double t;
         if (*evals == 0 && guess > lo && guess < hi)
@@ -50,7 +47,7 @@ ev_root(ev_fn g, void *ctx, double a, double ga, double b, double gb, double gue
         /* never closer to an end than the bracket is to settling: a point
          * next to the root at one end is followed by one just across it,
          * not by a crawl from the other end (Brent's minimum step) */
-        double step = SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi));
+        double step = EV_SETTLED_ULPS * DBL_EPSILON * fmax(fabs(lo), fabs(hi));
         if (isnan(t))
             t = 0.5 * (lo + hi);
         else if (t - lo < step)

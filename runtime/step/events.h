@@ -18,6 +18,10 @@
  * can fire again. */
 int ev_crossed(int dir, double g0, double g1);
 
+/* A bracket is settled when it is this many units of rounding of t wide:
+ * no time between its ends is worth telling apart any more. */
+#define EV_SETTLED_ULPS 4
+
 /* g(t) of one event; NAN when it cannot be evaluated there. */
 typedef double (*ev_fn)(void *ctx, double t);
 

@@ -255,9 +255,6 @@ g_and_rate(StepEvents *v, int k, double t, double *g, double *gd)
  * bracket to 2^-EXTREMUM_ITERS of the step, where g differs from its
  * extreme value by (2^-12 h)^2 g''/2, 6e-8 of what its rate turns by. */
 enum { EXTREMUM_ITERS = 12 };
-/* A switch's departure from its kink is located to this many units of
- * rounding of t, as ev_root settles its brackets. */
-#define SETTLED_SPAN 4
 
 /* Roots of two switch functions closer than this many ulps of the time
  * are one instant: ev_root brackets each to 4, so two located apart
@@ -390,7 +387,7 @@ leaves_kink(StepEvents *v, int k, int *any)
     v->ev_k = k;
     for (;;) {
         double t = 0.5 * (lo + hi);
-        if (!(t > lo && t < hi) || hi - lo <= SETTLED_SPAN * DBL_EPSILON * fabs(hi))
+        if (!(t > lo && t < hi) || hi - lo <= EV_SETTLED_ULPS * DBL_EPSILON * fabs(hi))
             break;
         double g = g_solution(v, t);
         if (isnan(g)) {

@@ -648,6 +648,16 @@ sw_held(void *ctx, int k)
 }
 
 static int
+sw_friction(void *ctx, int k)
+{
+    const eomc_model *m = ((Ref *)ctx)->m;
+    for (int j = 0; j < m->nfric; j++)
+        if (m->fric_slip[j] == k || m->fric_stick[j] == k)
+            return 1;
+    return 0;
+}
+
+static int
 sw_settle(void *ctx, eomc_ext t, const eomc_ext *x)
 {
     Ref *r = ctx;
@@ -702,7 +712,8 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
         RefSwMotion mo = {.ctx = r, .state = sw_state, .rate = sw_rate,
                           .functions = sw_functions};
         if (r->fr)
-            mo.held = sw_held, mo.settle = sw_settle, mo.flip = sw_flip;
+            mo.held = sw_held, mo.settle = sw_settle, mo.flip = sw_flip,
+            mo.friction = sw_friction;
         ok &= (r->sw = refsw_alloc(m->nmode, r->N, r->u + nu, mo, o ? o->t0 : 0,
                                    o ? o->t_end : 0)) != NULL;
     }

@@ -456,8 +456,9 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
     double *start = sens + nm * N; /* [N] w->then as this instant began */
     double *seq = calloc((size_t)w->nm + 1, sizeof *seq); /* the order of each flip at t */
     unsigned char *was = calloc((size_t)w->nm + 1, 1);     /* the modes before a flip */
+    unsigned char *wait = calloc((size_t)w->nm + 1, 1);    /* located, after the contacts */
     double order = 0;
-    int rc = sens && seq && was ? 0 : -1;
+    int rc = sens && seq && was && wait ? 0 : -1;
     /* A flip at t, or within FOLLOW_ULPS after others (a touch point's
      * slip speed, 0 in the air but for rounding, leaves 0 the moment the
      * floor's friction acts: a crossing located a few units of rounding
@@ -500,6 +501,24 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             flip[k] = 1, flips++;
             if (!w->mo.held) /* the first alone */
                 break;
+        }
+        /* with dry friction, a pass that flips a contact's switch flips
+         * no friction switch, one located here waiting for a later pass:
+         * who sticks is decided with the instant's contacts all made */
+        int contact = 0;
+        for (int k = 0; w->mo.friction && k < w->nm; k++)
+            contact |= flip[k] != 0 && !w->mo.friction(w->mo.ctx, k);
+        for (int k = 0; w->mo.friction && k < w->nm; k++) {
+            if (!w->mo.friction(w->mo.ctx, k))
+                continue;
+            if (contact) { /* (wait: 1 + the mode it goes to) */
+                if (flip[k] != 0 && pass == 0)
+                    wait[k] = (unsigned char)(1 + (w->mode[k] == 0));
+                flip[k] = 0;
+            } else if (wait[k]) { /* (unless a flip since set it) */
+                flip[k] = (w->mode[k] != 0) != (wait[k] == 2);
+                wait[k] = 0;
+            }
         }
         flips = 0;
         for (int k = 0; rc == 0 && k < w->nm; k++) {
@@ -560,5 +579,6 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
     free(sens);
     free(seq);
     free(was);
+    free(wait);
     return rc;
 }

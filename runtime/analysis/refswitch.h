@@ -26,8 +26,10 @@ typedef struct RefSwMotion {
      * (t, x) alone, after the signs (0, or -1 where none follow the
      * motion); flip: mode k's flip to on at (t, x) in a solution, x's
      * speed set to 0 where an item sticks (the modes it sets with it are
-     * the caller's to find); 0 or -1. */
+     * the caller's to find); 0 or -1.  friction: whether mode k is a
+     * slip or stick switch (flipped at an instant after the contacts'). */
     int (*held)(void *ctx, int k);
+    int (*friction)(void *ctx, int k);
     int (*settle)(void *ctx, eomc_ext t, const eomc_ext *x);
     int (*flip)(void *ctx, int k, int on, eomc_ext t, eomc_ext *x);
 } RefSwMotion;

@@ -31,6 +31,12 @@
  * G's eigenvectors, the rank decided relative to its largest eigenvalue
  * (STICK_RANK_ULPS).  An item whose bound is 0 (its point not touching)
  * has a zero column there: it holds nothing, and it does not stick.
+ *
+ * Which rows stick where several are at speed 0 at once (a slip
+ * crossing joins stuck ones, or one lets go and leaves the rest) is
+ * Coulomb's choice, made for all of them together: the box problem
+ * (box), whose answer is the modes' only consistent one.  Coordinates
+ * held still are let go one at a time, the one needing most first.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -71,6 +77,10 @@ typedef struct STICK_(Work) {
  * STICK_BOUND_ULPS rounding units (times the items' count) of it: the
  * least-norm solve's rounding. */
 #define STICK_BOUND_ULPS 1024
+/* The box problem's active set changes at most this many times per row
+ * (each pass fixes a row at a bound or frees one; cycling, possible only
+ * where rows are degenerate, ends there with the psi reached). */
+#define STICK_BOX_PASSES 8
 
 #define STICK_ABS(r) ((r) < 0 ? -(r) : (r))
 
@@ -243,12 +253,12 @@ STICK_(is_row)(const STICK_(Work) *w, int j)
     return w->m->fric_speed[j] < 0;
 }
 
-/* G's eigenvalues lam and eigenvectors (V's columns) by cyclic Jacobi
- * rotations (G, n x n symmetric, is destroyed), then its rank. */
+/* Symmetric A (n x n, destroyed) diagonalized by cyclic Jacobi
+ * rotations: its eigenvalues into lam, its eigenvectors into V's
+ * columns. */
 static void
-STICK_(eigen)(STICK_(Work) *w, int n)
+STICK_(jacobi)(STICK_REAL *A, STICK_REAL *V, STICK_REAL *lam, int n)
 {
-    STICK_REAL *A = w->G, *V = w->V;
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++)
             V[i * n + j] = i == j;
@@ -292,13 +302,31 @@ STICK_(eigen)(STICK_(Work) *w, int n)
                 }
             }
     }
+    for (int i = 0; i < n; i++)
+        lam[i] = A[i * n + i];
+}
+
+/* Whether an eigenvalue counts: above STICK_RANK_ULPS rounding units,
+ * times the order n, of top (the largest). */
+static int
+STICK_(counts)(STICK_REAL lam, STICK_REAL top, int n)
+{
+    return lam > STICK_RANK_ULPS * n * STICK_EPS * top;
+}
+
+/* G's eigenvalues and eigenvectors (G, n x n, is destroyed), then its
+ * rank. */
+static void
+STICK_(eigen)(STICK_(Work) *w, int n)
+{
+    STICK_(jacobi)(w->G, w->V, w->lam, n);
     STICK_REAL top = 0;
     for (int i = 0; i < n; i++)
-        if ((w->lam[i] = A[i * n + i]) > top)
+        if (w->lam[i] > top)
             top = w->lam[i];
     w->rank = 0;
     for (int i = 0; i < n; i++)
-        w->rank += w->lam[i] > STICK_RANK_ULPS * n * STICK_EPS * top;
+        w->rank += STICK_(counts)(w->lam[i], top, n);
 }
 
 /* psi = G^+ c: along the eigenvectors that count, 0 along the others
@@ -314,7 +342,7 @@ STICK_(pseudo)(const STICK_(Work) *w, const STICK_REAL *c, STICK_REAL *psi)
     for (int r = 0; r < n; r++)
         psi[r] = 0;
     for (int i = 0; i < n; i++) {
-        if (!(w->lam[i] > STICK_RANK_ULPS * n * STICK_EPS * top))
+        if (!STICK_(counts)(w->lam[i], top, n))
             continue;
         STICK_REAL y = 0;
         for (int r = 0; r < n; r++)
@@ -367,6 +395,20 @@ STICK_(solve_neg)(const STICK_(Work) *w, STICK_REAL *b)
         b[i] = -b[i];
 }
 
+/* G = W J_R M_FF^-1 J_R^T W [nR nR] from the last build's X. */
+static void
+STICK_(gram)(const STICK_(Work) *w, STICK_REAL *G)
+{
+    int n = w->nR, nv = w->nv;
+    for (int r = 0; r < n; r++)
+        for (int s = 0; s <= r; s++) {
+            STICK_REAL g = 0;
+            for (int i = 0; i < nv; i++)
+                g += w->J[w->R[r] * nv + i] * w->X[s * nv + i];
+            G[r * n + s] = G[s * n + r] = w->F[w->R[r]] * g;
+        }
+}
+
 /* Everything a solve at (t, q, v) in the modes u needs but h: the
  * bounds, M and h, the held speeds, M_FF factored, and the stuck rows'
  * X and G with G's eigenvectors.  STICK_OK, STICK_PIVOT or
@@ -412,13 +454,7 @@ STICK_(build)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
         for (int i = 0; i < nv; i++)
             x[i] *= -w->F[j];
     }
-    for (int r = 0; r < n; r++)
-        for (int s = 0; s <= r; s++) {
-            STICK_REAL g = 0;
-            for (int i = 0; i < nv; i++)
-                g += w->J[w->R[r] * nv + i] * w->X[s * nv + i];
-            w->G[r * n + s] = w->G[s * n + r] = w->F[w->R[r]] * g;
-        }
+    STICK_(gram)(w, w->G);
     if (n)
         STICK_(eigen)(w, n);
     return STICK_OK;
@@ -558,8 +594,162 @@ STICK_(release_worst)(STICK_(Work) *w, STICK_REAL *u)
     return worst;
 }
 
-/* Lets go of the stuck items, the one needing most for its bound first,
- * while one needs more than its bound, each slipping the way the rest
+/* The stuck rows' shares psi (phi = F psi) where holding all of them
+ * asks more than their bounds give: the psi in the box |psi_r| <= 1
+ * minimizing psi^T G psi / 2 - c^T psi (G, c as accel's: G psi - c is
+ * the rows' rates of speed, times F).  Its conditions are Coulomb's at
+ * a speed of 0: a row inside the box has rate 0 (it holds), one at +1
+ * has rate <= 0 (its force pushes up as it slides down), one at -1 rate
+ * >= 0.  G is semidefinite (M is definite), so the problem is convex and
+ * has a solution, with the rates unique, for any rows and bounds: the
+ * choice of who slips is not a guess (as letting go of the one needing
+ * most for its bound is, which can let go of one that the rest then
+ * drive back).  A primal active set (Nocedal and Wright's 16.3) from
+ * psi = 0: on the face where the rows at[r] != 0 sit at their bounds,
+ * the least-norm step to the face's least (G's pseudo-inverse on the
+ * free rows), or down a direction of no curvature to the box's edge,
+ * stopping at the first bound in the way; at the face's least, the row
+ * at a bound with its rate the wrong way leaves it.  g gets the rates;
+ * returns the size of a rate of rounding (g's terms').  Scratch s:
+ * 2 n^2 + 3 n reals, fr: n ints. */
+static STICK_REAL
+STICK_(box)(const STICK_REAL *G, const STICK_REAL *c, int n, STICK_REAL *psi,
+            signed char *at, STICK_REAL *g, STICK_REAL *s, int *fr)
+{
+    STICK_REAL *A = s, *V = A + (size_t)n * n, *lam = V + (size_t)n * n, *d = lam + n,
+               *rhs = d + n;
+    STICK_REAL top = 0, scale = 0;
+    for (int r = 0; r < n; r++) {
+        STICK_REAL row = STICK_ABS(c[r]);
+        for (int k = 0; k < n; k++)
+            row += STICK_ABS(G[r * n + k]);
+        if (row > scale)
+            scale = row;
+        if (G[r * n + r] > top)
+            top = G[r * n + r];
+        psi[r] = 0, at[r] = 0;
+    }
+    /* rates of rounding: their terms' size, as the bounds' test takes */
+    STICK_REAL tol = STICK_BOUND_ULPS * n * STICK_EPS * scale;
+    for (int it = 0; it < STICK_BOX_PASSES * (n + 1); it++) {
+        for (int r = 0; r < n; r++) {
+            g[r] = -c[r];
+            for (int k = 0; k < n; k++)
+                g[r] += G[r * n + k] * psi[k];
+        }
+        int f = 0;
+        for (int r = 0; r < n; r++)
+            if (!at[r])
+                fr[f++] = r;
+        for (int a = 0; a < f; a++) {
+            for (int b = 0; b < f; b++)
+                A[a * f + b] = G[fr[a] * n + fr[b]];
+            rhs[a] = -g[fr[a]];
+        }
+        STICK_(jacobi)(A, V, lam, f);
+        for (int a = 0; a < f; a++)
+            d[a] = 0;
+        for (int k = 0; k < f; k++) { /* the step along the directions that count */
+            if (!STICK_(counts)(lam[k], top, n))
+                continue;
+            STICK_REAL y = 0;
+            for (int a = 0; a < f; a++)
+                y += V[a * f + k] * rhs[a];
+            for (int a = 0; a < f; a++) {
+                d[a] += V[a * f + k] * (y / lam[k]);
+                rhs[a] -= V[a * f + k] * y;
+            }
+        }
+        int flat = 0; /* what is left of -g: along directions of no curvature */
+        for (int a = 0; a < f; a++)
+            flat |= STICK_ABS(rhs[a]) > tol;
+        if (flat)
+            for (int a = 0; a < f; a++)
+                d[a] = rhs[a];
+        STICK_REAL most = 0;
+        for (int a = 0; a < f; a++)
+            if (STICK_ABS(d[a]) > most)
+                most = STICK_ABS(d[a]);
+        if (!flat && most <= STICK_BOUND_ULPS * n * STICK_EPS) {
+            /* the face's least: the row at a bound pulled off it most */
+            int off = -1;
+            STICK_REAL worst = tol;
+            for (int r = 0; r < n; r++)
+                if (at[r] && at[r] * -g[r] < -worst)
+                    worst = at[r] * g[r], off = r;
+            if (off < 0)
+                return tol;
+            at[off] = 0;
+            continue;
+        }
+        STICK_REAL step = 1;
+        int stop = -1;
+        for (int a = 0; a < f; a++) { /* (a flat direction goes on to an edge) */
+            if (d[a] == 0)
+                continue;
+            STICK_REAL edge = d[a] > 0 ? 1 : -1, to = (edge - psi[fr[a]]) / d[a];
+            if ((flat && stop < 0) || to < step)
+                step = to, stop = a;
+        }
+        for (int a = 0; a < f; a++)
+            psi[fr[a]] += step * d[a];
+        if (stop >= 0) {
+            at[fr[stop]] = d[stop] > 0 ? 1 : -1;
+            psi[fr[stop]] = at[fr[stop]];
+        }
+    }
+    for (int r = 0; r < n; r++) { /* (the passes ran out: the rates of where it got) */
+        g[r] = -c[r];
+        for (int k = 0; k < n; k++)
+            g[r] += G[r * n + k] * psi[k];
+    }
+    return tol;
+}
+
+/* The stuck rows of the modes u at (t, q, v) decided together (box):
+ * each at its bound whose rate takes it off 0 lets go, slipping that
+ * way (gone[j] = 1 where gone); the others stay stuck. */
+static int
+STICK_(decide_rows)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+                    const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
+{
+    const eomc_model *m = w->m;
+    int rc = STICK_(build)(w, t, q, v, p, u), n = w->nR;
+    if (rc != STICK_OK || !n)
+        return rc;
+    size_t nn = (size_t)n * n;
+    STICK_REAL *G = malloc((3 * nn + 5 * (size_t)n) * sizeof *G);
+    int *fr = malloc((size_t)n * sizeof *fr);
+    signed char *at = malloc((size_t)n);
+    if (!G || !fr || !at) {
+        free(G), free(fr), free(at);
+        w->bad = w->R[0];
+        return STICK_PIVOT;
+    }
+    STICK_REAL *psi = G + nn, *g = psi + n, *s = g + n;
+    STICK_(gram)(w, G);
+    STICK_REAL *y = w->vec; /* the rates with the rows free: -M_FF^-1 h */
+    for (int i = 0; i < w->nv; i++)
+        y[i] = w->h[i];
+    STICK_(block_neg)(w, y);
+    STICK_(residual)(w, y, 1, w->c);
+    STICK_REAL tol = STICK_(box)(G, w->c, n, psi, at, g, s, fr);
+    for (int r = 0; r < n; r++) {
+        int j = w->R[r];
+        if (!at[r] || !(at[r] * g[r] < -tol))
+            continue;
+        STICK_(set)(w, u, m->fric_slip[j], at[r] < 0); /* (phi = F at: slips against it) */
+        STICK_(set)(w, u, m->fric_stick[j], 0);
+        if (gone)
+            gone[j] = 1;
+    }
+    free(G), free(fr), free(at);
+    return STICK_OK;
+}
+
+/* Lets go of the stuck items that cannot hold: the rows Coulomb's
+ * choice lets go (decide_rows), then, while one needs more than its
+ * bound, the one needing most for it, each slipping the way the rest
  * drives it; the solve at (t, q, v) of the modes left in w->acc.  Let
  * go, a row item gets gone[j] = 1. */
 static int
@@ -567,8 +757,8 @@ STICK_(let_go)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
                const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
 {
     for (int pass = 0; pass <= w->nf; pass++) {
-        int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), worst;
-        if (rc != STICK_OK)
+        int rc = w->nrowitem ? STICK_(decide_rows)(w, t, q, v, p, u, gone) : STICK_OK, worst;
+        if (rc != STICK_OK || (rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
             return rc;
         if ((worst = STICK_(release_worst)(w, u)) < 0)
             return STICK_OK;
@@ -665,9 +855,11 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
 
 /* A row item's slip switch k crossing at (t, q, v): every item of that
  * switch sticks where it can, with every other whose row the stuck rows
- * then span (its speed is 0 with theirs), v made consistent with them;
- * then the items that cannot hold let go (let_go).  Where none of those
- * holds, v is as it was and they slip on the way the rest drives them. */
+ * then span (its speed is 0 with theirs), v made consistent with all of
+ * them (their speeds 0); then the items that cannot hold let go
+ * (let_go), at speed 0 and leaving it the way they slip.  Where none of
+ * this switch's holds, v is as it was and they slip on the way the rest
+ * drives them. */
 static int
 STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, STICK_REAL *v,
                    const STICK_REAL *p, STICK_REAL *u)
@@ -701,16 +893,9 @@ STICK_(stick_rows)(STICK_(Work) *w, int k, STICK_REAL t, const STICK_REAL *q, ST
             mine[j] = 1;
         }
     }
-    for (int pass = 0; any && pass <= w->nf; pass++) {
-        for (int i = 0; i < nv; i++)
-            v[i] = was[i];
-        if ((rc = STICK_(project)(w, t, q, v, p, u)) != STICK_OK)
-            goto out;
-        if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
-            goto out;
-        if (STICK_(release_worst)(w, u) < 0)
-            break;
-    }
+    if (any && ((rc = STICK_(project)(w, t, q, v, p, u)) != STICK_OK ||
+                (rc = STICK_(let_go)(w, t, q, v, p, u, NULL)) != STICK_OK))
+        goto out;
     any = 0;
     for (int j = 0; j < w->nf; j++)
         any |= mine[j] && STICK_(stuck)(w, u, j);

@@ -59,6 +59,7 @@ struct StepEvents {
     double *tsw;                  /* [ne - nev] each switch's last flip */
     double *seq;                  /* [ne - nev] the order of its flip at that instant */
     unsigned char *was;           /* [ne - nev] the modes before a flip (also_set) */
+    unsigned char *fricsw;        /* [ne - nev] 1: dry friction's (a slip or stick switch) */
     int switch_to;                /* the mode a located switch flips to */
     double *g0, *g1;              /* [ne] g at the step's start and end */
     double *ge, *te;              /* [ne] scratch: g, and each event's time */
@@ -105,8 +106,11 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->seq = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->was = calloc((size_t)m->nmode + 1, 1)) != NULL;
+    ok &= (v->fricsw = calloc((size_t)m->nmode + 1, 1)) != NULL;
     for (int j = 0; ok && j < m->nmode; j++)
         v->tsw[j] = -INFINITY;
+    for (int j = 0; ok && j < m->nfric; j++)
+        v->fricsw[m->fric_slip[j]] = v->fricsw[m->fric_stick[j]] = 1;
     ok &= (v->cl = calloc(nc + 1, sizeof *v->cl)) != NULL;
     if (!ok) {
         stepev_free(v);
@@ -128,6 +132,7 @@ stepev_free(StepEvents *v)
     free(v->tsw);
     free(v->seq);
     free(v->was);
+    free(v->fricsw);
     free(v->cl);
     free(v);
 }
@@ -436,6 +441,11 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
                 return rc;
             continue;
         }
+        /* a switch across to its mode's side: its mode went there already,
+         * at a flip that saw it coming a rounding short of 0 (side_soon) */
+        if (k >= v->nev && (sim_mode(s, k - v->nev) ? v->g1[k] > 0 : v->g1[k] < 0) &&
+            ev_crossed(0, v->g0[k], v->g1[k]))
+            continue;
         if (!ev_crossed(dir_of(v, k), v->g0[k], v->g1[k])) {
             if (v->mo.steps_split_pairs || (v->g0[k] > 0) != (v->g1[k] > 0))
                 continue;
@@ -600,6 +610,50 @@ side_soon(const StepEvents *v, int i, int mode, double soon)
     return g > 0;
 }
 
+/* With dry friction, the switches at instant t (on or within soon of
+ * their kinks, side_soon; not flipped at t already), settled in passes:
+ * each pass decides every switch from one evaluation of the functions
+ * (ge: the mode each goes to, or -1), then flips them, since a flip may
+ * set others' modes (a group of points stuck at once, or let go) whose
+ * functions, evaluated before, no longer say where they go.  A pass that
+ * flips a contact's switch (its touch, push or clamp) flips no friction
+ * switch: who sticks and who slips is decided with the contacts of the
+ * instant all made (two feet touching together, located apart by
+ * rounding: the friction of the first is decided under the normal force
+ * of both).  contacts_only: friction's wait. */
+static int
+together(StepEvents *v, double t, double *x, double soon, int contacts_only)
+{
+    for (int pass = 0; pass < v->ne - v->nev; pass++) {
+        int changed = 0, contact = contacts_only;
+        g_all(v, t, x, x + v->n, v->g0);
+        for (int i = v->nev; i < v->ne; i++) {
+            int mode = sim_mode(v->s, i - v->nev), on = side_soon(v, i, mode, soon);
+            /* (flipped at t already: k and those before) */
+            v->ge[i] = v->tsw[i - v->nev] == t || on == mode ? -1 : on;
+            contact |= v->ge[i] >= 0 && !v->fricsw[i - v->nev];
+        }
+        for (int i = v->nev; i < v->ne; i++) {
+            int on = v->ge[i] > 0;
+            if (v->ge[i] < 0 || on == sim_mode(v->s, i - v->nev) ||
+                (contact && v->fricsw[i - v->nev]))
+                continue; /* (or an earlier flip of this pass set it) */
+            modes_before(v);
+            if (sim_flip(v->s, i - v->nev, on, t, x) != EOMC_OK)
+                return GSL_EBADFUNC;
+            v->tsw[i - v->nev] = t;
+            v->st->events++;
+            if (v->o->on_event)
+                (void)v->o->on_event(v->o->event_ctx, i, t, x);
+            also_set(v, i - v->nev, t, x);
+            changed = 1;
+        }
+        if (!changed)
+            break;
+    }
+    return GSL_SUCCESS;
+}
+
 /* Switch k's flip at t: its mode to where its function went, x as it
  * is (but for a speed dry friction sticks, exactly 0 then: sim_flip),
  * f [nx] its rate in the new mode.  Flips of one switch within
@@ -617,6 +671,12 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     v->gap = t - v->last_set;
     v->last_set = t;
     v->nsets++;
+    double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
+    if (v->fricsw[j]) { /* (the contacts of this instant first: together's) */
+        g_rates(v, t, x, f, v->gd1);
+        if (together(v, t, x, soon, 1) != GSL_SUCCESS)
+            return GSL_EBADFUNC;
+    }
     modes_before(v);
     int rc = sim_flip(v->s, j, v->switch_to, t, x);
     if (rc != EOMC_OK)
@@ -630,7 +690,6 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
      * as the first was (a nonzero return of on_event cannot undo what
      * that one started).  A flip may move another's function (a max of a
      * max): again until none disagrees. */
-    double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
     g_rates(v, t, x, f, v->gd1); /* (f: the rate before the flip) */
     /* Without dry friction the switches settle in their order, one flip
      * a pass: a switch's function reads only the modes of those before
@@ -669,36 +728,8 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     }
     goto settled;
 together:
-    /* Each pass decides every switch from one evaluation of the functions
-     * (ge: the mode each goes to, or -1), then flips them: a flip may set
-     * others' modes (a group of points stuck at once, or let go), whose
-     * functions, evaluated before, no longer say where they go; the next
-     * pass evaluates them again. */
-    for (int pass = 0; pass < v->ne - v->nev; pass++) {
-        int changed = 0;
-        g_all(v, t, x, x + v->n, v->g0);
-        for (int i = v->nev; i < v->ne; i++) {
-            int mode = sim_mode(v->s, i - v->nev), on = side_soon(v, i, mode, soon);
-            /* (flipped at t already: k and those before) */
-            v->ge[i] = v->tsw[i - v->nev] == t || on == mode ? -1 : on;
-        }
-        for (int i = v->nev; i < v->ne; i++) {
-            int on = v->ge[i] > 0;
-            if (v->ge[i] < 0 || on == sim_mode(v->s, i - v->nev))
-                continue; /* (or an earlier flip of this pass set it) */
-            modes_before(v);
-            if (sim_flip(v->s, i - v->nev, on, t, x) != EOMC_OK)
-                return GSL_EBADFUNC;
-            v->tsw[i - v->nev] = t;
-            v->st->events++;
-            if (v->o->on_event)
-                (void)v->o->on_event(v->o->event_ctx, i, t, x);
-            also_set(v, i - v->nev, t, x);
-            changed = 1;
-        }
-        if (!changed)
-            break;
-    }
+    if (together(v, t, x, soon, 0) != GSL_SUCCESS)
+        return GSL_EBADFUNC;
 settled:
     rc = v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)

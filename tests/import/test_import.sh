@@ -211,8 +211,8 @@ fi
 # two feet's nearly parallel capsules flip clamps that read each other's
 # modes at one instant (the run stopped there at t = 0.2094, exit 3)
 # Without its contacts' friction: with it, the landing stops at t =
-# 0.2094 (exit 3), its foot ends sticking and letting go at speeds that
-# are 0 but for rounding (docs/import.md, Contacts).
+# 0.20939 (exit 3), a foot's end letting go while the ends still stuck on
+# its foot span its row (docs/import.md, Contacts).
 if [ "$part" = humanoid ]; then
   set -- $("$mj" "$models" lowest)
   want=$(awk -v h="$1" -v g="$2" 'BEGIN { printf "%.17g", sqrt(2 * h / g) }')

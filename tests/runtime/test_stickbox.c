@@ -1,0 +1,164 @@
+/*
+ * runtime/model/stick.h's box problem (box): the shares psi of the stuck
+ * rows that a point's Coulomb friction at speed 0 allows, the psi in
+ * |psi_r| <= 1 minimizing psi^T G psi / 2 - c^T psi, on random problems
+ * of 1 to 8 rows, G = A^T A semidefinite, of full rank and of every
+ * lower rank (rows alike: a foot's points), at scales 1e-9 .. 1e9.  Each
+ * answer is checked by what certifies it, computed here in long double
+ * from G, c and psi alone (the problem is convex: its conditions are
+ * sufficient):
+ *  - psi is in the box;
+ *  - the rates g = G psi - c: 0 where psi is inside (the row holds),
+ *    <= 0 at +1 and >= 0 at -1 (it slides against its friction), to
+ *    1e-10 of the terms' size;
+ *  - box's own g (its returned rates) agree with these;
+ *  - the problem times s (G and c scaled alike, as a change of units
+ *    scales them) gives the same rates, times s, to 1e-12 of the terms'
+ *    size (the rates are unique; psi is not where rows are alike, and
+ *    is only as well determined as G's condition allows where they are
+ *    not).
+ * And two rows alike, asked less than their bounds give, share alike.
+ */
+#include "../unit/check.h"
+#include "model/friction.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define STICK_REAL double
+#define STICK_EPS DBL_EPSILON
+#define STICK_MODEL eomc_model
+#define STICK_(name) tbox_##name
+#define STICK_API static
+#include "model/stick.h"
+#pragma GCC diagnostic pop
+
+enum { MAXN = 8, TRIALS = 4000 };
+
+static double
+uniform(unsigned *seed)
+{
+    *seed = *seed * 1103515245u + 12345u;
+    return ((*seed >> 8) & 0xffffff) / (double)0x1000000 * 2 - 1;
+}
+
+/* The worst breach of the box's conditions, over the terms' size. */
+static double
+breach(const double *G, const double *c, int n, const double *psi)
+{
+    long double scale = 0, worst = 0;
+    for (int r = 0; r < n; r++) {
+        long double row = fabsl((long double)c[r]);
+        for (int k = 0; k < n; k++)
+            row += fabsl((long double)G[r * n + k]);
+        if (row > scale)
+            scale = row;
+    }
+    for (int r = 0; r < n; r++) {
+        if (fabs(psi[r]) > 1)
+            return INFINITY;
+        long double g = -(long double)c[r];
+        for (int k = 0; k < n; k++)
+            g += (long double)G[r * n + k] * psi[k];
+        long double off = psi[r] == 1 ? g : psi[r] == -1 ? -g : fabsl(g);
+        if (off > worst)
+            worst = off;
+    }
+    return scale > 0 ? (double)(worst / scale) : 0;
+}
+
+static double s_[2 * MAXN * MAXN + 3 * MAXN];
+static int fr_[MAXN];
+
+static void
+solve(const double *G, const double *c, int n, double *psi, signed char *at, double *g)
+{
+    tbox_box(G, c, n, psi, at, g, s_, fr_);
+}
+
+int
+main(void)
+{
+    unsigned seed = 20261130u;
+    double G[MAXN * MAXN], Gs[MAXN * MAXN], c[MAXN], cs[MAXN], A[MAXN * MAXN];
+    double psi[MAXN], psis[MAXN], g[MAXN], gs[MAXN];
+    signed char at[MAXN];
+    double worst = 0, rates = 0, units = 0;
+    int bounded = 0, inside = 0, trials = 0;
+    for (int trial = 0; trial < TRIALS; trial++) {
+        int n = 1 + trial % MAXN, rank = 1 + (trial / MAXN) % n;
+        double scale = pow(10, 18 * (uniform(&seed) + 1) / 2 - 9);
+        for (int i = 0; i < rank * n; i++)
+            A[i] = uniform(&seed);
+        for (int r = 0; r < n; r++)
+            for (int k = 0; k < n; k++) {
+                double s = 0;
+                for (int i = 0; i < rank; i++)
+                    s += A[i * n + r] * A[i * n + k];
+                G[r * n + k] = scale * s;
+            }
+        /* c from a psi beyond the box half the time: some rows slip */
+        double reach = trial % 2 ? 3 : 0.8;
+        for (int r = 0; r < n; r++)
+            psis[r] = reach * uniform(&seed);
+        for (int r = 0; r < n; r++) {
+            double s = 0;
+            for (int k = 0; k < n; k++)
+                s += G[r * n + k] * psis[k];
+            c[r] = s;
+        }
+        solve(G, c, n, psi, at, g);
+        double b = breach(G, c, n, psi);
+        if (b > worst)
+            worst = b;
+        for (int r = 0; r < n; r++) {
+            long double gr = -(long double)c[r], size = fabs(c[r]);
+            for (int k = 0; k < n; k++)
+                gr += (long double)G[r * n + k] * psi[k], size += fabs(G[r * n + k]);
+            double off = size > 0 ? (double)(fabsl(gr - g[r]) / size) : 0;
+            if (off > rates)
+                rates = off;
+            bounded += at[r] != 0;
+            inside += at[r] == 0;
+        }
+        double s = pow(10, 12 * uniform(&seed));
+        for (int i = 0; i < n * n; i++)
+            Gs[i] = s * G[i];
+        for (int r = 0; r < n; r++)
+            cs[r] = s * c[r];
+        solve(Gs, cs, n, psis, at, gs);
+        for (int r = 0; r < n; r++) {
+            double size = fabs(c[r]);
+            for (int k = 0; k < n; k++)
+                size += fabs(G[r * n + k]);
+            if (size > 0 && fabs(gs[r] / s - g[r]) / size > units)
+                units = fabs(gs[r] / s - g[r]) / size;
+        }
+        trials++;
+    }
+    CHECK(worst <= 1e-10, "Coulomb's conditions hold at box's psi in %d problems: worst "
+          "breach %.2g of the terms' size (rows at a bound %d, inside %d)", trials, worst,
+          bounded, inside);
+    CHECK(bounded > TRIALS && inside > TRIALS, "both kinds of rows are met: %d at a bound, "
+          "%d inside", bounded, inside);
+    CHECK(rates <= 1e-12, "box's rates are G psi - c: worst %.2g of the terms' size", rates);
+    CHECK(units <= 1e-12, "the problem in other units gives the same rates: worst %.2g of the "
+          "terms' size", units);
+
+    /* two rows alike (a foot's two points along one line), each bound
+     * 1, asked 1.2 together: each holds 0.6 */
+    double G2[4] = {1, 1, 1, 1}, c2[2] = {1.2, 1.2};
+    solve(G2, c2, 2, psi, at, g);
+    CHECK(fabs(psi[0] - 0.6) <= 1e-15 && fabs(psi[1] - 0.6) <= 1e-15 && !at[0] && !at[1],
+          "two rows alike share alike: psi = %.17g, %.17g", psi[0], psi[1]);
+    /* ... asked 3: both slide, at their bounds, the rate 1 each way */
+    c2[0] = c2[1] = 3;
+    solve(G2, c2, 2, psi, at, g);
+    CHECK(psi[0] == 1 && psi[1] == 1 && fabs(g[0] + 1) <= 1e-15 && fabs(g[1] + 1) <= 1e-15,
+          "two rows alike asked beyond their bounds both slide: psi = %g, %g, rates %g, %g",
+          psi[0], psi[1], g[0], g[1]);
+    return check_done();
+}

@@ -43,7 +43,8 @@ compare_free(Compare *c)
     free(c->flip_t);
     free(c->flip_k);
     free(c->flip_eps);
-    c->scale = c->max = c->end = c->row_err = c->flip_t = c->flip_eps = NULL;
+    free(c->flip_x);
+    c->scale = c->max = c->end = c->row_err = c->flip_t = c->flip_eps = c->flip_x = NULL;
     c->flip_k = NULL;
     c->nflip = c->flip_cap = 0;
 }
@@ -85,7 +86,7 @@ compare_row(Compare *c, const double *x)
 }
 
 int
-compare_flip(Compare *c, int k, double t)
+compare_flip(Compare *c, int k, double t, const double *x)
 {
     size_t nx = (size_t)c->nx;
     if (c->nflip == c->flip_cap) {
@@ -99,12 +100,16 @@ compare_flip(Compare *c, int k, double t)
         double *fe = realloc(c->flip_eps, 2 * (size_t)cap * nx * sizeof *fe);
         if (fe)
             c->flip_eps = fe;
-        if (!ft || !fk || !fe)
+        double *fx = realloc(c->flip_x, (size_t)cap * nx * sizeof *fx);
+        if (fx)
+            c->flip_x = fx;
+        if (!ft || !fk || !fe || !fx)
             return -1;
         c->flip_cap = cap;
     }
     c->flip_t[c->nflip] = t;
     c->flip_k[c->nflip] = k;
+    memcpy(c->flip_x + (size_t)c->nflip * nx, x, nx * sizeof *x);
     /* the rows before it are in (a run's rows come after the step they
      * lie in, and a flip ends its step) */
     memcpy(c->flip_eps + 2 * (size_t)c->nflip * nx, c->max, nx * sizeof *c->max);
@@ -118,10 +123,16 @@ allowed(const Compare *c, long i, double rtol, double atol, double floor)
 {
     const double *sens = c->ref->sw_sens + (size_t)i * (size_t)c->nx;
     const double *eps = c->flip_eps + 2 * (size_t)i * (size_t)c->nx;
+    const double *xr = c->ref->sw_x ? c->ref->sw_x + (size_t)i * (size_t)c->nx : NULL;
+    const double *fr = c->ref->sw_f ? c->ref->sw_f + (size_t)i * (size_t)c->nx : NULL;
+    const double *x = c->flip_x + (size_t)i * (size_t)c->nx;
+    double dt = c->flip_t[i] - c->ref->sw_t[i];
     int fixed = rtol == 0 && atol == 0;
     double sum = 0;
     for (int j = 0; j < c->nx; j++) {
         double e = fixed ? eps[c->nx + j] : fmax(eps[j], atol + rtol * c->scale[j]);
+        if (xr && fr) /* the error at the flip, on the branch before it */
+            e = fmax(e, fabs(x[j] - (xr[j] + fr[j] * dt)));
         if (sens[j] > 0 && e > 0)
             sum += sens[j] * e;
     }
@@ -139,6 +150,12 @@ swap_flips(Compare *c, long i, long j)
     double *a = c->flip_eps + 2 * (size_t)i * (size_t)c->nx;
     double *b = c->flip_eps + 2 * (size_t)j * (size_t)c->nx;
     for (int n = 0; n < 2 * c->nx; n++) {
+        double e = a[n];
+        a[n] = b[n], b[n] = e;
+    }
+    a = c->flip_x + (size_t)i * (size_t)c->nx;
+    b = c->flip_x + (size_t)j * (size_t)c->nx;
+    for (int n = 0; n < c->nx; n++) {
         double e = a[n];
         a[n] = b[n], b[n] = e;
     }

@@ -21,7 +21,12 @@
  * the largest over the rows before its flip, and at least what its
  * tolerance asks, atol + rtol scale_i (with fixed steps, which ask for
  * none, the largest over the rows up to the first after it: the rows
- * before a flip early in a run may have no error yet); COMPARE_TIME_SLACK
+ * before a flip early in a run may have no error yet), and at least its
+ * error at the flip itself: the run's state there against the
+ * reference's at its own flip, carried to the run's time along the
+ * reference's rate before the flip (both on the branch before it, so
+ * that the flips' times apart do not count; where the reference knows
+ * its states at flips: not a file's); COMPARE_TIME_SLACK
  * times the sum over the components, and never less than
  * COMPARE_TIME_ULPS units of rounding of the times, is how far apart the
  * two may be.  Where they part, the rows after it compare different
@@ -37,8 +42,8 @@
 #define COMPARE_FLOOR 1e-6
 
 /* The slack on the times a switch's flips may differ by (above): the
- * run's error between rows, and its error's growth between the rows and
- * the flip, are not measured. */
+ * sensitivities are first order, and a file's reference has no states at
+ * its flips, whose run's error is then the rows'. */
 #define COMPARE_TIME_SLACK 10.0
 #define COMPARE_TIME_ULPS 16.0
 
@@ -65,6 +70,7 @@ typedef struct Compare {
     int *flip_k;         /* [flip_cap] which switch */
     double *flip_eps;    /* [flip_cap 2 nx] the errors before it, and up to the
                           * first row at or after it (above) */
+    double *flip_x;      /* [flip_cap nx] the run's state there */
     int parted;          /* compare_switches found them parting, at part */
     ComparePart part;
 } Compare;
@@ -76,9 +82,9 @@ int compare_init(Compare *c, const eomc_reference *ref, int nq);
 void compare_free(Compare *c);
 /* Forget the rows and flips measured: a new run. */
 void compare_reset(Compare *c);
-/* The run's flip of switch k (eomc_model.h's mode k) at t, as it fires;
- * 0, or -1 when memory runs out. */
-int compare_flip(Compare *c, int k, double t);
+/* The run's flip of switch k (eomc_model.h's mode k) at t, as it fires,
+ * the state x [nx] there; 0, or -1 when memory runs out. */
+int compare_flip(Compare *c, int k, double t, const double *x);
 /* After the run (rtol, atol its tolerances, 0 for fixed steps; t0, t_end
  * its span): whether its flips part from the reference's, 1 with
  * c->part, else 0 (also when the reference's are not known). */

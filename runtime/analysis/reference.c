@@ -816,11 +816,15 @@ keep_switches(eomc_reference *ref, const Ref *r)
     free(ref->sw_t);
     free(ref->sw_k);
     free(ref->sw_sens);
+    free(ref->sw_x);
+    free(ref->sw_f);
     ref->nswitch = 0;
     ref->sw_t = malloc(k * sizeof *ref->sw_t);
     ref->sw_k = malloc(k * sizeof *ref->sw_k);
     ref->sw_sens = malloc(k * N * sizeof *ref->sw_sens);
-    if (!ref->sw_t || !ref->sw_k || !ref->sw_sens)
+    ref->sw_x = malloc(k * N * sizeof *ref->sw_x);
+    ref->sw_f = malloc(k * N * sizeof *ref->sw_f);
+    if (!ref->sw_t || !ref->sw_k || !ref->sw_sens || !ref->sw_x || !ref->sw_f)
         return -1;
     ref->nswitch = n;
     if (n == 0) /* refsw's arrays may be NULL then, which memcpy may not take */
@@ -828,6 +832,8 @@ keep_switches(eomc_reference *ref, const Ref *r)
     memcpy(ref->sw_t, refsw_times(r->sw), (size_t)n * sizeof *ref->sw_t);
     memcpy(ref->sw_k, refsw_which(r->sw), (size_t)n * sizeof *ref->sw_k);
     memcpy(ref->sw_sens, refsw_sens(r->sw), (size_t)n * N * sizeof *ref->sw_sens);
+    memcpy(ref->sw_x, refsw_states(r->sw), (size_t)n * N * sizeof *ref->sw_x);
+    memcpy(ref->sw_f, refsw_rates(r->sw), (size_t)n * N * sizeof *ref->sw_f);
     return 0;
 }
 
@@ -1050,7 +1056,9 @@ eomc_reference_free(eomc_reference *ref)
     free(ref->sw_t);
     free(ref->sw_k);
     free(ref->sw_sens);
-    ref->t = ref->x = ref->sw_t = ref->sw_sens = NULL;
+    free(ref->sw_x);
+    free(ref->sw_f);
+    ref->t = ref->x = ref->sw_t = ref->sw_sens = ref->sw_x = ref->sw_f = NULL;
     ref->sw_k = NULL;
     ref->nrows = ref->nswitch = 0;
 }

@@ -75,6 +75,9 @@ struct RefSwitches {
     eomc_ext *xs, *fs, *xp;       /* [N] a state, its rate, a probe */
     long n, cap;                  /* the record */
     double *rt, *rsens;           /* [cap], [cap N] */
+    double *rx, *rf;              /* [cap N]: the state and its rate as the flip's
+                                   * instant arrived */
+    double *xa, *fa;              /* [N] those of the instant in hand */
     int *rk;                      /* [cap] */
     double *then;                 /* [N] the largest sensitivities of the flips at */
     eomc_ext then_t;              /* then_t, or at most FOLLOW_ULPS before it */
@@ -100,6 +103,8 @@ refsw_alloc(int nmode, int N, eomc_ext *mode, RefSwMotion mo, eomc_ext t0, eomc_
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = calloc(sizes[k], sizeof(eomc_ext))) != NULL;
     ok &= (w->then = calloc(n, sizeof *w->then)) != NULL;
+    ok &= (w->xa = calloc(n, sizeof *w->xa)) != NULL;
+    ok &= (w->fa = calloc(n, sizeof *w->fa)) != NULL;
     w->then_t = -INFINITY;
     if (!ok) {
         refsw_free(w);
@@ -118,6 +123,10 @@ refsw_free(RefSwitches *w)
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(w->rt);
+    free(w->rx);
+    free(w->rf);
+    free(w->xa);
+    free(w->fa);
     free(w->then);
     free(w->rsens);
     free(w->rk);
@@ -146,6 +155,18 @@ const double *
 refsw_sens(const RefSwitches *w)
 {
     return w->rsens;
+}
+
+const double *
+refsw_states(const RefSwitches *w)
+{
+    return w->rx;
+}
+
+const double *
+refsw_rates(const RefSwitches *w)
+{
+    return w->rf;
 }
 
 /* s past 0 on the other side of switch k's mode (not at 0). */
@@ -398,7 +419,8 @@ refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext *f0,
     return 1;
 }
 
-/* The record's next entry: switch k at t, sensitivities [N]; 0 or -1. */
+/* The record's next entry: switch k at t, sensitivities [N], the
+ * instant's arrival (xa, fa); 0 or -1. */
 static int
 record(RefSwitches *w, eomc_ext t, int k, const double *sens)
 {
@@ -413,13 +435,22 @@ record(RefSwitches *w, eomc_ext t, int k, const double *sens)
         int *rk = realloc(w->rk, (size_t)cap * sizeof *rk);
         if (rk)
             w->rk = rk;
-        if (!rt || !rs || !rk)
+        double *rx = realloc(w->rx, (size_t)cap * (size_t)w->N * sizeof *rx);
+        if (rx)
+            w->rx = rx;
+        double *rf = realloc(w->rf, (size_t)cap * (size_t)w->N * sizeof *rf);
+        if (rf)
+            w->rf = rf;
+        if (!rt || !rs || !rk || !rx || !rf)
             return -1;
         w->cap = cap;
     }
+    size_t at = (size_t)w->n * (size_t)w->N;
     w->rt[w->n] = (double)t;
     w->rk[w->n] = k;
-    memcpy(w->rsens + (size_t)w->n * (size_t)w->N, sens, (size_t)w->N * sizeof *sens);
+    memcpy(w->rsens + at, sens, (size_t)w->N * sizeof *sens);
+    memcpy(w->rx + at, w->xa, (size_t)w->N * sizeof *w->xa);
+    memcpy(w->rf + at, w->fa, (size_t)w->N * sizeof *w->fa);
     w->n++;
     return 0;
 }
@@ -486,6 +517,8 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             break;
         }
         w->mo.functions(w->mo.ctx, t, x, w->s1);
+        for (int i = 0; pass == 0 && i < w->N; i++) /* (the instant's arrival) */
+            w->xa[i] = (double)x[i], w->fa[i] = (double)w->fs[i];
         int flips = 0;
         eomc_ext *flip = w->r1; /* (free once the step is checked) */
         for (int k = 0; k < w->nm; k++)

@@ -80,10 +80,14 @@ int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, 
 
 /* The record since refsw_start: n flips, each's time, switch and [N]
  * sensitivities |ds/dx_i| / |ds/dt| (how far the crossing moves in time
- * per unit error of component i; INFINITY where s is tangent). */
+ * per unit error of component i; INFINITY where s is tangent), ... */
 long refsw_count(const RefSwitches *w);
 const double *refsw_times(const RefSwitches *w);
 const int *refsw_which(const RefSwitches *w);
 const double *refsw_sens(const RefSwitches *w);
+/* ... and [N] the state as its instant arrived, and its rate there in
+ * the modes before it (the same for flips at one instant). */
+const double *refsw_states(const RefSwitches *w);
+const double *refsw_rates(const RefSwitches *w);
 
 #endif

@@ -95,8 +95,7 @@ probe_event(void *ctx, int k, double t, const double *x)
 {
     Probe *p = ctx;
     int nevent = eomc_sim_model(p->s)->nevent;
-    (void)x;
-    if (k >= nevent && compare_flip(p->cmp, k - nevent, t) != 0)
+    if (k >= nevent && compare_flip(p->cmp, k - nevent, t, x) != 0)
         return sim_usage_error(p->s, "out of memory for the run's switches");
     return EOMC_OK;
 }

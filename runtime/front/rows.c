@@ -30,7 +30,7 @@ rows_event(void *ctx, int k, double t, const double *x)
     if (k < m->nevent && m->ev_action[k] == EOMC_EVENT_SET)
         w->rebase = 1, w->t_reset = t;
     /* the run's flips, for the reference's to be compared with */
-    if (w->ref && k >= m->nevent && compare_flip(&w->cmp, k - m->nevent, t) != 0)
+    if (w->ref && k >= m->nevent && compare_flip(&w->cmp, k - m->nevent, t, x) != 0)
         return sim_usage_error(w->sim, "out of memory for the run's switches");
     if (!w->events)
         return EOMC_OK;

@@ -559,6 +559,9 @@ typedef struct eomc_reference {
     double *sw_sens;      /* [nswitch * nx] how far each flip's time moves per unit
                            * error of each component, |ds/dx_i| / |ds/dt| (s the
                            * switch function; INFINITY where s is tangent) */
+    double *sw_x, *sw_f;  /* [nswitch * nx] the state as each flip's instant
+                           * arrived, and its rate there in the modes before
+                           * (NULL: not known) */
 } eomc_reference;
 
 /* Compute the reference for o's output times from x0 [nx].  Returns

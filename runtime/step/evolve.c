@@ -153,6 +153,36 @@ callback_stop(Run *r, int status, double t, const double *x)
     return EVOLVE_STOPPED;
 }
 
+/* With --atol 0, each component's tolerance is rtol times its own size:
+ * where components are exactly 0 (a block at rest, its sideways
+ * coordinate), any error a step makes in them, rounding's included, is
+ * beyond it.  Names them into buf (the first few); 0 where none is 0. */
+enum { ZEROS_NAMED = 4 };
+static int
+zeros(const Run *r, char *buf, size_t len)
+{
+    int N = eomc_nx(r->m), count = 0;
+    size_t at = (size_t)snprintf(buf, len, "--atol 0 asks each component for rtol of its "
+                                 "own size, and ");
+    for (int i = 0; i < N; i++) {
+        if (r->x[i] != 0)
+            continue;
+        char name[STATE_NAME_MAX];
+        if (count < ZEROS_NAMED && at < len)
+            at += (size_t)snprintf(buf + at, len - at, "%s%s", count ? ", " : "",
+                                   state_name(r->m, i, name, sizeof name));
+        count++;
+    }
+    if (count > ZEROS_NAMED && at < len)
+        at += (size_t)snprintf(buf + at, len - at, " and %d more", count - ZEROS_NAMED);
+    if (at < len)
+        snprintf(buf + at, len - at, " %s 0 there: a step that moves %s at all, by rounding "
+                 "even, cannot meet it (give --atol a value above 0, a size below which "
+                 "an error does not matter)", count == 1 ? "is" : "are",
+                 count == 1 ? "it" : "them");
+    return count > 0;
+}
+
 /* Why the steps may have collapsed at the current state, as far as the
  * runtime can see: an ill-conditioned solve (losing more than half the
  * digits of q''), a vanishing constraint row, or neither. */
@@ -169,6 +199,8 @@ likely_cause(Run *r, char *buf, size_t len)
     else if (!isnan(c) && (k = sim_vanished(s, &fraction)) >= 0)
         snprintf(buf, len, "the constraint %s's row df/dq'' is vanishing there (%.2g of "
                  "its largest)", r->m->c_names[k], fraction);
+    else if (!isnan(c) && r->o->atol == 0 && zeros(r, buf, len))
+        ; /* (a relative tolerance alone, at components that are 0) */
     else if (!isnan(c))
         snprintf(buf, len, "not the solve for q'', which is well-conditioned there "
                  "(condition %.2g): a force or the motion that is singular or not smooth "

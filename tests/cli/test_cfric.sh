@@ -32,6 +32,9 @@
 #  - the box dropped while pulled, rkf45 with --error: the reference's
 #    flips agree with the run's at 1e-5 .. 1e-10 (no warning), the run's
 #    flip times converging to a tight run's;
+#  - eomc accuracy on the box dropped while sliding (it bounces, slides and
+#    stops) reports each run's true error (against a far tighter run of
+#    another method), falling as the tolerance tightens;
 #  - --atol 0 at a state whose components are 0 names them as the cause
 #    of the steps' collapse (and with --atol above 0 the run goes on);
 #  - Taylor's method is refused by name.
@@ -219,6 +222,36 @@ done
 [ $st -eq 0 ] && [ $fine -eq 4 ] &&
   awk -v a="$first" -v b="$last" 'BEGIN { exit !(a > 0 && b <= 1e-4 * a) }'
 ok $? "the box dropped while pulled: rkf45's flips agree with the reference's, no warning, the x.slip flip apart from a tight run's by$got ($(grep -h warning "$tmp"/err5 "$tmp"/err7 "$tmp"/err9 "$tmp"/err10 | head -1 | cut -c1-200))"
+
+# eomc accuracy on the box dropped while sliding (z = 0.1, x' = 3: it lands,
+# bounces on its compliant floor, slides, stops): each run's error_max is
+# its true largest error over the rows, within 10%, the truth taken from
+# a run of another method far tighter (rk8pd at 1e-13), and the errors
+# fall at least 100-fold from 1e-6 to 1e-9, for rkf45 and rk8pd
+"$eomc" accuracy "$box" --methods rkf45,rk8pd --tolerances 1e-6,1e-9 --init z=0.1 \
+  --csv "$tmp/acc.csv" > /dev/null 2> "$tmp/err"; st=$?
+"$eomc" run "$box" --method rk8pd --rtol 1e-13 --atol 1e-13 --init z=0.1 -o "$tmp/truth.csv" \
+  2> /dev/null
+fine=0 got=
+for meth in rkf45 rk8pd; do
+  for e in 6 9; do
+    "$eomc" run "$box" --method $meth --rtol 1e-$e --atol 1e-$e --init z=0.1 \
+      -o "$tmp/r.csv" 2> /dev/null
+    true=$(paste -d, "$tmp/r.csv" "$tmp/truth.csv" | awk -F, 'NR > 1 { n = NF / 2
+        for (i = 2; i <= n; i++) { d = $i - $(i + n); if (d < 0) d = -d; if (d > m) m = d } }
+        END { printf "%.4g", m }')
+    said=$(awk -F, -v m=$meth -v tol=1e-0$e '$1 == m && $2 == tol { printf "%.4g", $10 }' \
+      "$tmp/acc.csv")
+    eval "true_${meth}_$e=$true"
+    awk -v t="$true" -v s="$said" 'BEGIN { exit !(t > 0 && s / t < 1.1 && t / s < 1.1) }' &&
+      fine=$((fine + 1))
+    got="$got $meth 1e-$e: $said (true $true);"
+  done
+done
+[ $st -eq 0 ] && [ $fine -eq 4 ] &&
+  awk -v a="$true_rkf45_6" -v b="$true_rkf45_9" -v c="$true_rk8pd_6" -v d="$true_rk8pd_9" \
+    'BEGIN { exit !(b <= a / 100 && d <= c / 100) }'
+ok $? "eomc accuracy on the box dropped while sliding: error_max as the truth says ($got)$(why $st "$tmp/err")"
 
 # --atol 0 where the box at rest has coordinates and speeds exactly 0: no
 # step can meet rtol times 0, so the steps collapse at t = 0 (exit 3);

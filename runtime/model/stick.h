@@ -23,13 +23,13 @@
  * speeds (its speed J_j v, whose rate is J_j a + b_j: fric_rows).  While
  * the stuck rows R hold, M_FF a_F + h_F = J_RF^T phi_R and J_RF a_F +
  * b_R = 0.  Rows may be redundant (a box's four corners on a floor: eight
- * rows of rank 3): the accelerations are unique but phi is not, and it
- * is the one that minimizes sum (phi_j / F_j)^2, the holding shared in
- * proportion to the bounds, so that a group that cannot hold lets go all
- * at once.  With phi = W psi (W = diag F), that is the least-norm psi of
- * G psi = c, G = W J M_FF^-1 J^T W (symmetric, semidefinite), solved by
- * G's eigenvectors, the rank decided relative to its largest eigenvalue
- * (STICK_RANK_ULPS).  An item whose bound is 0 (its point not touching)
+ * rows of rank 3): the accelerations are unique but phi is not.  With
+ * phi = W psi (W = diag F), the accelerations come from the least-norm
+ * psi of G psi = c, G = W J M_FF^-1 J^T W (symmetric, semidefinite),
+ * solved by G's eigenvectors, the rank decided relative to its largest
+ * eigenvalue (STICK_RANK_ULPS); the stick switches and the flips read the
+ * psi whose largest |psi_j| is least (spread), so that a point reaches
+ * its bound only where the group cannot hold (rows alike: all at once).  An item whose bound is 0 (its point not touching)
  * has a zero column there: it holds nothing, and it does not stick.
  *
  * Which rows stick where several are at speed 0 at once (a slip
@@ -67,6 +67,9 @@ typedef struct STICK_(Work) {
     int rank;                 /* G's */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
     unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
+    STICK_REAL *lp;           /* [nf nf + (2 nf + 1) (4 nf + 3)] spread's null space
+                               * and tableau */
+    int *lpb;                 /* [2 nf] its basis */
 } STICK_(Work);
 
 /* An eigenvalue of G counts where it is above STICK_RANK_ULPS rounding
@@ -92,7 +95,7 @@ STICK_(free)(STICK_(Work) *w)
     free(w->M), free(w->L), free(w->h), free(w->acc), free(w->F), free(w->phi);
     free(w->free_of), free(w->held);
     free(w->J), free(w->b), free(w->R), free(w->X), free(w->G), free(w->V), free(w->lam);
-    free(w->c), free(w->psi), free(w->vec), free(w->live);
+    free(w->c), free(w->psi), free(w->vec), free(w->live), free(w->lp), free(w->lpb);
     free(w);
 }
 
@@ -127,9 +130,11 @@ STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
     w->psi = calloc(f + 1, sizeof *w->psi);
     w->vec = calloc(n + 1, sizeof *w->vec);
     w->live = calloc((size_t)m->nmode + 1, 1);
+    w->lp = calloc((2 * f + 1) * (4 * f + 3) + f * f + 1, sizeof *w->lp);
+    w->lpb = calloc(2 * f + 1, sizeof *w->lpb);
     if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held ||
         !w->J || !w->b || !w->R || !w->X || !w->G || !w->V || !w->lam || !w->c || !w->psi ||
-        !w->vec || !w->live || (w->nrowitem && !x->fric_rows)) {
+        !w->vec || !w->live || !w->lp || !w->lpb || (w->nrowitem && !x->fric_rows)) {
         STICK_(free)(w);
         return NULL;
     }
@@ -460,12 +465,31 @@ STICK_(build)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
     return STICK_OK;
 }
 
+/* The held coordinates' holding forces phi, (M a + h)_s less what the
+ * stuck rows' phi put there, at q'' a of the last build. */
+static void
+STICK_(holding)(STICK_(Work) *w, const STICK_REAL *a)
+{
+    const eomc_model *m = w->m;
+    int nv = w->nv;
+    for (int j = 0; j < w->nf; j++) {
+        if (STICK_(is_row)(w, j) || !w->held[m->fric_speed[j]])
+            continue;
+        int s = m->fric_speed[j];
+        STICK_REAL r = w->h[s];
+        for (int i = 0; i < nv; i++)
+            r += w->M[s * nv + i] * a[i];
+        for (int k = 0; k < w->nR; k++) /* (what the rows hold is theirs) */
+            r -= w->J[w->R[k] * nv + s] * w->phi[w->R[k]];
+        w->phi[j] = r;
+    }
+}
+
 /* q'' from the last build at its state: M_FF a_F = -h_F, plus the stuck
  * rows' forces; the holding forces phi. */
 static void
 STICK_(accel)(STICK_(Work) *w, STICK_REAL *a)
 {
-    const eomc_model *m = w->m;
     int nv = w->nv;
     for (int i = 0; i < nv; i++)
         a[i] = w->h[i];
@@ -479,17 +503,7 @@ STICK_(accel)(STICK_(Work) *w, STICK_REAL *a)
         for (int r = 0; r < w->nR; r++)
             w->phi[w->R[r]] = w->F[w->R[r]] * w->psi[r];
     }
-    for (int j = 0; j < w->nf; j++) {
-        if (STICK_(is_row)(w, j) || !w->held[m->fric_speed[j]])
-            continue;
-        int s = m->fric_speed[j];
-        STICK_REAL r = w->h[s];
-        for (int i = 0; i < nv; i++)
-            r += w->M[s * nv + i] * a[i];
-        for (int k = 0; k < w->nR; k++) /* (what the rows hold is theirs) */
-            r -= w->J[w->R[k] * nv + s] * w->phi[w->R[k]];
-        w->phi[j] = r;
-    }
+    STICK_(holding)(w, a);
 }
 
 /* q'' at (t, q, v) in the modes u, the stuck items' speeds held at 0
@@ -505,6 +519,130 @@ STICK_(solve)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
         return rc;
     STICK_(accel)(w, a);
     return STICK_OK;
+}
+
+/* The least largest share: min over z of max_r |a_r + (N z)_r| (n rows,
+ * N [n d] with orthonormal columns), by the simplex method on a tableau
+ * T [(2 n + 1) (2 d + 2 n + 3)] with Bland's rule (no cycling), from z =
+ * 0 and the largest |a_r| (a vertex of the problem shifted by it: every
+ * slack in the basis).  The shares are of their bounds, numbers near 1,
+ * so the pivots' test is in rounding units.  z out; the least largest. */
+static STICK_REAL
+STICK_(cheb)(const STICK_REAL *a, const STICK_REAL *N, int n, int d, STICK_REAL *z,
+             STICK_REAL *T, int *basis)
+{
+    int rows = 2 * n, cols = 2 * d + 2 + 2 * n, W = cols + 1, tp = 2 * d, tm = 2 * d + 1;
+    STICK_REAL top = 0, tol = STICK_BOUND_ULPS * rows * STICK_EPS;
+    for (int r = 0; r < n; r++)
+        if (STICK_ABS(a[r]) > top)
+            top = STICK_ABS(a[r]);
+    for (int i = 0; i < (rows + 1) * W; i++)
+        T[i] = 0;
+    /* a_r + N_r z <= top + T and -(a_r + N_r z) <= top + T, T = T+ - T- */
+    for (int r = 0; r < n; r++)
+        for (int side = 0; side < 2; side++) {
+            int i = side * n + r;
+            STICK_REAL sg = side ? -1 : 1, *row = T + (size_t)i * W;
+            for (int k = 0; k < d; k++)
+                row[k] = sg * N[r * d + k], row[d + k] = -sg * N[r * d + k];
+            row[tp] = -1, row[tm] = 1, row[tm + 1 + i] = 1;
+            row[cols] = top - sg * a[r];
+            basis[i] = tm + 1 + i;
+        }
+    STICK_REAL *obj = T + (size_t)rows * W; /* min T+ - T- */
+    obj[tp] = 1, obj[tm] = -1;
+    for (int it = 0; it < STICK_BOX_PASSES * (rows + cols); it++) {
+        int in = -1, out = -1;
+        for (int j = 0; j < cols && in < 0; j++)
+            if (obj[j] < -tol)
+                in = j;
+        if (in < 0)
+            break;
+        STICK_REAL best = 0;
+        for (int i = 0; i < rows; i++) {
+            STICK_REAL e = T[(size_t)i * W + in];
+            if (!(e > tol))
+                continue;
+            STICK_REAL ratio = T[(size_t)i * W + cols] / e;
+            if (out < 0 || ratio < best || (ratio == best && basis[i] < basis[out]))
+                best = ratio, out = i;
+        }
+        if (out < 0)
+            break; /* (unbounded: cannot be, the shares bound T from below) */
+        STICK_REAL *pr = T + (size_t)out * W, pv = pr[in];
+        for (int j = 0; j < W; j++)
+            pr[j] /= pv;
+        for (int i = 0; i <= rows; i++) {
+            STICK_REAL *ri = T + (size_t)i * W, f = ri[in];
+            if (i == out || f == 0)
+                continue;
+            for (int j = 0; j < W; j++)
+                ri[j] -= f * pr[j];
+        }
+        basis[out] = in;
+    }
+    STICK_REAL val[2] = {0, 0}; /* T+, T- */
+    for (int k = 0; k < d; k++)
+        z[k] = 0;
+    for (int i = 0; i < rows; i++) {
+        int b = basis[i];
+        STICK_REAL x = T[(size_t)i * W + cols];
+        if (b < d)
+            z[b] += x;
+        else if (b < 2 * d)
+            z[b - d] -= x;
+        else if (b == tp || b == tm)
+            val[b - tp] = x;
+    }
+    return top + val[0] - val[1];
+}
+
+/* Where the stuck rows are redundant (G's rank below their count: a
+ * foot's ends, a leg's points), the holding forces are not unique, and
+ * least-norm shares (accel's) can put one point at its bound while the
+ * others could take more: letting it go is no choice of Coulomb's (its
+ * row is held still by theirs), and holding it a force beyond its
+ * bound.  The shares the stick switches read (and the choices at a flip)
+ * are then the ones whose largest is least: a point reaches its bound
+ * only where no sharing keeps all of them within theirs, the group
+ * cannot hold, and the points that reach it are those that must give
+ * (cheb, in the null space of G, from accel's least-norm psi).  q'' is
+ * the same whatever the shares. */
+static void
+STICK_(spread)(STICK_(Work) *w, const STICK_REAL *a)
+{
+    int n = w->nR, d = n - w->rank;
+    if (n == 0 || d <= 0)
+        return;
+    STICK_REAL top = 0, *N = w->lp, *T = N + (size_t)n * d, *z = w->c;
+    for (int i = 0; i < n; i++)
+        if (w->lam[i] > top)
+            top = w->lam[i];
+    for (int i = 0, k = 0; i < n; i++) {
+        if (STICK_(counts)(w->lam[i], top, n))
+            continue;
+        for (int r = 0; r < n; r++)
+            N[r * d + k] = w->V[r * n + i];
+        k++;
+    }
+    STICK_(cheb)(w->psi, N, n, d, z, T, w->lpb);
+    for (int r = 0; r < n; r++) {
+        for (int k = 0; k < d; k++)
+            w->psi[r] += N[r * d + k] * z[k];
+        w->phi[w->R[r]] = w->F[w->R[r]] * w->psi[r];
+    }
+    STICK_(holding)(w, a);
+}
+
+/* solve, the shares spread (the stick switches' and the flips'). */
+static int
+STICK_(solve_shared)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+                     const STICK_REAL *p, const STICK_REAL *u, STICK_REAL *a)
+{
+    int rc = STICK_(solve)(w, t, q, v, p, u, a);
+    if (rc == STICK_OK)
+        STICK_(spread)(w, a);
+    return rc;
 }
 
 /* The slip switch of a stuck row item keeps its side: its speed is 0 to
@@ -538,7 +676,7 @@ STICK_API int
 STICK_(functions)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
                   const STICK_REAL *p, const STICK_REAL *u, STICK_REAL *sw)
 {
-    int rc = STICK_(any)(w, u)  ? STICK_(solve)(w, t, q, v, p, u, w->acc)
+    int rc = STICK_(any)(w, u)  ? STICK_(solve_shared)(w, t, q, v, p, u, w->acc)
              : w->nrowitem      ? STICK_(bounds)(w, t, q, v, p, u) /* (keep_slip's) */
                                 : STICK_OK;
     if (rc != STICK_OK) {
@@ -758,7 +896,7 @@ STICK_(let_go)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
 {
     for (int pass = 0; pass <= w->nf; pass++) {
         int rc = w->nrowitem ? STICK_(decide_rows)(w, t, q, v, p, u, gone) : STICK_OK, worst;
-        if (rc != STICK_OK || (rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+        if (rc != STICK_OK || (rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc)) != STICK_OK)
             return rc;
         if ((worst = STICK_(release_worst)(w, u)) < 0)
             return STICK_OK;
@@ -922,7 +1060,7 @@ STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
 {
     const eomc_model *m = w->m;
     int rc;
-    if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+    if ((rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc)) != STICK_OK)
         return rc;
     unsigned char *gone = calloc((size_t)w->nf + 1, 1);
     if (!gone) {
@@ -948,7 +1086,7 @@ STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
         /* those at their bound to rounding let go with it (a group whose
          * rows are alike shares alike: its items reach their bounds at
          * once, and only the first one's crossing is located) */
-        if ((rc = STICK_(solve)(w, t, q, v, p, u, w->acc)) != STICK_OK)
+        if ((rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc)) != STICK_OK)
             goto out;
         int more = 0;
         for (int i = 0; i < w->nf; i++)
@@ -965,7 +1103,7 @@ STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
         }
     }
     /* (the build of the modes as they are, for the Jacobian) */
-    rc = STICK_(solve)(w, t, q, v, p, u, w->acc);
+    rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc);
 out:
     free(gone);
     return rc;
@@ -999,7 +1137,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
         STICK_REAL was = v[s];
         v[s] = 0;
         STICK_(set)(w, u, m->fric_stick[j], 1);
-        if ((rc = STICK_(solve)(w, t, q, v, p, u, a)) != STICK_OK)
+        if ((rc = STICK_(solve_shared)(w, t, q, v, p, u, a)) != STICK_OK)
             return rc;
         if (STICK_ABS(w->phi[j]) <= w->F[j])
             return STICK_OK;
@@ -1012,7 +1150,7 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
     if (j >= 0 && !on && STICK_(stuck)(w, u, j) && STICK_(is_row)(w, j))
         return STICK_(unstick_rows)(w, j, t, q, v, p, u);
     if (j >= 0 && !on && STICK_(stuck)(w, u, j)) {
-        if ((rc = STICK_(solve)(w, t, q, v, p, u, a)) != STICK_OK)
+        if ((rc = STICK_(solve_shared)(w, t, q, v, p, u, a)) != STICK_OK)
             return rc;
         STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
     }

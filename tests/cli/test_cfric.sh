@@ -32,6 +32,9 @@
 #  - the box dropped while pulled, rkf45 with --error: the reference's
 #    flips agree with the run's at 1e-5 .. 1e-10 (no warning), the run's
 #    flip times converging to a tight run's;
+#  - a box that can turn, pulled off its centre (its corners' rows of rank
+#    3): held until the largest pull its corners' friction can balance (a
+#    linear program, solved by its vertices), where it breaks away;
 #  - eomc accuracy on the box dropped while sliding (it bounces, slides and
 #    stops) reports each run's true error (against a far tighter run of
 #    another method), falling as the tolerance tightens;
@@ -252,6 +255,70 @@ done
   awk -v a="$true_rkf45_6" -v b="$true_rkf45_9" -v c="$true_rk8pd_6" -v d="$true_rk8pd_9" \
     'BEGIN { exit !(b <= a / 100 && d <= c / 100) }'
 ok $? "eomc accuracy on the box dropped while sliding: error_max as the truth says ($got)$(why $st "$tmp/err")"
+
+# the box that can turn (cfric_yaw.yaml), pulled by pull*t off its centre
+# at (0, y0): its eight items' rows have rank 3, so the holding is not
+# unique. It holds while some sharing keeps every corner's force within
+# its bound, and breaks away where none does: at the largest pull the
+# corners' friction can balance, a linear program solved here by its
+# vertices (awk below), 0.3 * 2 * 9.81 * 0.3 / (y0 + 0.1) for y0 >= 0.2.
+# Least-norm shares (the proportional sharing of rows alike) put one
+# corner at its bound first, at t = 3.27 for y0 = 0.4, where the run
+# stopped (exit 3: the corner let go, held still by the others' rows).
+yaw="$src/tests/cli/cfric_yaw.yaml"
+cat > "$tmp/lp.awk" <<'LP'
+# The largest pull P that the four corners' friction can hold (each force
+# component within [-B, B], B = mu m g / 4), a linear program solved by its
+# vertices: the three equilibrium equations (sum fx = P, sum fy = 0, the
+# moment about the vertical through the centre, sum (x fy - y fx) = y0 P)
+# with six of the eight components at +-B, for the other two and P
+# (Cramer's rule); the largest P whose two free components are in bounds.
+BEGIN {
+  B = mu * m * g / 4
+  cx[1] = a; cy[1] = b; cx[2] = -a; cy[2] = b; cx[3] = -a; cy[3] = -b; cx[4] = a; cy[4] = -b
+  for (i = 1; i <= 4; i++) {          # columns: fx_i, fy_i, then P
+    A[1, i] = 1; A[2, i] = 0; A[3, i] = -cy[i]
+    A[1, 4 + i] = 0; A[2, 4 + i] = 1; A[3, 4 + i] = cx[i]
+  }
+  A[1, 9] = -1; A[2, 9] = 0; A[3, 9] = -y0
+  best = -1
+  for (p = 1; p <= 8; p++) for (q = p + 1; q <= 8; q++) for (s = 0; s < 64; s++) {
+    for (r = 1; r <= 3; r++) rhs[r] = 0
+    k = 0
+    for (i = 1; i <= 8; i++) {
+      if (i == p || i == q) continue
+      sg = int(s / 2 ^ k) % 2 ? -B : B; k++
+      for (r = 1; r <= 3; r++) rhs[r] -= A[r, i] * sg
+    }
+    for (r = 1; r <= 3; r++) { M[r, 1] = A[r, p]; M[r, 2] = A[r, q]; M[r, 3] = A[r, 9] }
+    det = det3(M)
+    if (det * det < 1e-24) continue
+    for (c = 1; c <= 3; c++) {
+      for (r = 1; r <= 3; r++) for (cc = 1; cc <= 3; cc++) N[r, cc] = cc == c ? rhs[r] : M[r, cc]
+      x[c] = det3(N) / det
+    }
+    if (x[1] * x[1] <= B * B * (1 + 1e-12) && x[2] * x[2] <= B * B * (1 + 1e-12) && x[3] > best)
+      best = x[3]
+  }
+  printf "%.17g\n", best
+}
+function det3(T) {
+  return T[1,1] * (T[2,2] * T[3,3] - T[2,3] * T[3,2]) - T[1,2] * (T[2,1] * T[3,3] - T[2,3] * T[3,1]) \
+         + T[1,3] * (T[2,1] * T[3,2] - T[2,2] * T[3,1])
+}
+LP
+fine=0 got=
+for y0 in 0.4 1.0; do
+  want=$(awk -v m=2 -v g=9.81 -v mu=0.3 -v a=0.2 -v b=0.1 -v y0=$y0 -f "$tmp/lp.awk")
+  "$eomc" run "$yaw" --set y0=$y0 --rtol 1e-10 --atol 1e-12 --events "$tmp/yev.csv" \
+    -o /dev/null 2> "$tmp/err"; st=$?
+  first=$(awk -F, 'NR == 2 { print $1; exit }' "$tmp/yev.csv")
+  [ $st -eq 0 ] && awk -v t="$first" -v w="$want" 'BEGIN { d = t - w; if (d < 0) d = -d
+      exit !(t != "" && d <= 1e-9 * w) }' && fine=$((fine + 1))
+  got="$got y0 = $y0: at t = $first, the program's $want (exit $st);"
+done
+[ $fine -eq 2 ]
+ok $? "the box pulled off its centre holds until no sharing of its corners' forces can, then breaks away:$got$(why $st "$tmp/err")"
 
 # --atol 0 where the box at rest has coordinates and speeds exactly 0: no
 # step can meet rtol times 0, so the steps collapse at t = 0 (exit 3);

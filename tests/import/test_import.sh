@@ -212,7 +212,7 @@ fi
 # modes at one instant (the run stopped there at t = 0.2094, exit 3)
 # Without its contacts' friction: with it, the landing stops at t =
 # 0.20939 (exit 3), a foot's end letting go while the ends still stuck on
-# its foot span its row (docs/import.md, Contacts).
+# its foot nearly span its row (docs/import.md, Contacts).
 if [ "$part" = humanoid ]; then
   set -- $("$mj" "$models" lowest)
   want=$(awk -v h="$1" -v g="$2" 'BEGIN { printf "%.17g", sqrt(2 * h / g) }')

@@ -64,6 +64,7 @@ typedef struct STICK_(Work) {
     int *R, nR;               /* [nf] the stuck rows of the last build */
     STICK_REAL *X;            /* [nf nv] column r: M_FF^-1 J_r^T F_r (held speeds 0) */
     STICK_REAL *G, *V, *lam;  /* [nf nf] G, its eigenvectors (columns), [nf] values */
+    STICK_REAL top;           /* G's largest eigenvalue */
     int rank;                 /* G's */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
     unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
@@ -325,13 +326,13 @@ static void
 STICK_(eigen)(STICK_(Work) *w, int n)
 {
     STICK_(jacobi)(w->G, w->V, w->lam, n);
-    STICK_REAL top = 0;
+    w->top = 0;
     for (int i = 0; i < n; i++)
-        if (w->lam[i] > top)
-            top = w->lam[i];
+        if (w->lam[i] > w->top)
+            w->top = w->lam[i];
     w->rank = 0;
     for (int i = 0; i < n; i++)
-        w->rank += STICK_(counts)(w->lam[i], top, n);
+        w->rank += STICK_(counts)(w->lam[i], w->top, n);
 }
 
 /* psi = G^+ c: along the eigenvectors that count, 0 along the others
@@ -340,14 +341,10 @@ static void
 STICK_(pseudo)(const STICK_(Work) *w, const STICK_REAL *c, STICK_REAL *psi)
 {
     int n = w->nR;
-    STICK_REAL top = 0;
-    for (int i = 0; i < n; i++)
-        if (w->lam[i] > top)
-            top = w->lam[i];
     for (int r = 0; r < n; r++)
         psi[r] = 0;
     for (int i = 0; i < n; i++) {
-        if (!STICK_(counts)(w->lam[i], top, n))
+        if (!STICK_(counts)(w->lam[i], w->top, n))
             continue;
         STICK_REAL y = 0;
         for (int r = 0; r < n; r++)
@@ -614,12 +611,9 @@ STICK_(spread)(STICK_(Work) *w, const STICK_REAL *a)
     int n = w->nR, d = n - w->rank;
     if (n == 0 || d <= 0)
         return;
-    STICK_REAL top = 0, *N = w->lp, *T = N + (size_t)n * d, *z = w->c;
-    for (int i = 0; i < n; i++)
-        if (w->lam[i] > top)
-            top = w->lam[i];
+    STICK_REAL *N = w->lp, *T = N + (size_t)n * d, *z = w->c;
     for (int i = 0, k = 0; i < n; i++) {
-        if (STICK_(counts)(w->lam[i], top, n))
+        if (STICK_(counts)(w->lam[i], w->top, n))
             continue;
         for (int r = 0; r < n; r++)
             N[r * d + k] = w->V[r * n + i];

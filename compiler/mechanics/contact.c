@@ -321,7 +321,15 @@ contact(Ctx *x, const char *suffix, ExprId d, const ExprId n[3], int ba, const E
         friction(x, suffix, N, x->tangent[a], a ? "y" : "x", rel, ba, pa, bb, pb);
 }
 
-/* A sphere (centre o, radius r, on body bs) on a plane (pl): d = r - n.(o - p0). */
+/* A sphere (centre o, radius r, on body bs) on a plane (pl): d = r - n.(o - p0).
+ * It touches at the plane's surface, o's projection p = o - h n (h = n.(o
+ * - p0) its height), where a rigid floor holds a body its spring lets
+ * sink: every touch point of one body on one plane is in that plane, so
+ * their friction rows are combinations of three (the body's two speeds
+ * along it and its turn about n) whatever their depths, not rows apart by
+ * a rounding-sized tilt (docs/spec.md, "The touch point is on the
+ * plane").  The normal force along n acts through p and through the
+ * sphere's own lowest point alike. */
 static void
 plane_point(Ctx *x, const char *suffix, const Placed *pl, const ExprId o[3], ExprId r,
             int bs)
@@ -331,9 +339,9 @@ plane_point(Ctx *x, const char *suffix, const Placed *pl, const ExprId o[3], Exp
     axis(pl->A, 2, n);
     for (int i = 0; i < 3; i++)
         rel[i] = expr_sub(P, o[i], pl->o[i]);
-    ExprId d = expr_sub(P, r, kin_dot(P, n, rel));
+    ExprId h = kin_dot(P, n, rel), d = expr_sub(P, r, h);
     for (int i = 0; i < 3; i++)
-        p[i] = expr_sub(P, o[i], expr_mul(P, r, n[i]));
+        p[i] = expr_sub(P, o[i], expr_mul(P, h, n[i]));
     contact(x, suffix, d, n, pl->body, p, bs, p);
 }
 

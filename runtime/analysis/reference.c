@@ -708,6 +708,8 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (ok && m->nfric > 0)
         ok &= (r->fr = reffric_alloc(m, x)) != NULL;
+    if (ok && r->fr && o)
+        reffric_span(r->fr, (eomc_ext)o->t_end - (eomc_ext)o->t0);
     if (ok && m->nmode > 0) {
         RefSwMotion mo = {.ctx = r, .state = sw_state, .rate = sw_rate,
                           .functions = sw_functions};

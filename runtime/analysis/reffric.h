@@ -25,6 +25,7 @@ int reffric_functions(RefFric *w, eomc_ext t, const eomc_ext *q, const eomc_ext 
                       const eomc_ext *p, const eomc_ext *u, eomc_ext *sw);
 int reffric_settle(RefFric *w, eomc_ext t, const eomc_ext *q, const eomc_ext *v,
                    const eomc_ext *p, eomc_ext *u);
+void reffric_span(RefFric *w, eomc_ext span);
 int reffric_flip(RefFric *w, int k, int on, eomc_ext t, const eomc_ext *q, eomc_ext *v,
                  const eomc_ext *p, eomc_ext *u);
 

@@ -510,7 +510,7 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
      * as the runs flip them (stepevents.c): without dry friction one a
      * pass in their order, each function reading only the modes before
      * it, one flipped at t again where one before it flipped after it;
-     * with it, all that disagree each pass, each once */
+     * with it too, but a friction switch once an instant */
     for (int pass = 0; rc == 0 && pass <= 2 * w->nm; pass++) {
         if (w->mo.rate(w->mo.ctx, t, x, w->fs) != 0) {
             rc = -1;
@@ -526,14 +526,14 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         double below = 0; /* the latest flip at t of the switches before k */
         for (int k = 0; pass > 0 && k < w->nm; k++) {
             int at_t = w->last[k] == t && seq[k] > 0;
-            int again = at_t && (w->mo.held || !(below > seq[k]));
+            int again = at_t && ((w->mo.held && w->mo.friction && w->mo.friction(w->mo.ctx, k)) ||
+                                 !(below > seq[k]));
             if (at_t)
                 below = fmax(below, seq[k]);
             if (again || !past(w, k, w->s1[k]))
                 continue;
             flip[k] = 1, flips++;
-            if (!w->mo.held) /* the first alone */
-                break;
+            break; /* the first alone: its flip moves the functions after it */
         }
         /* with dry friction, a pass that flips a contact's switch flips
          * no friction switch, one located here waiting for a later pass:

@@ -46,6 +46,9 @@ int fric_settle(Fric *w, double t, const double *q, const double *v, const doubl
  * speed set to 0 where an item sticks. */
 int fric_flip(Fric *w, int k, int on, double t, const double *q, double *v, const double *p,
               double *u);
+/* The run's span (t_end - t0): how far a choice on its edge looks ahead
+ * (stick.h's unstick_rows). */
+void fric_span(Fric *w, double span);
 /* What the last failure names (a speed, an item), the last solve's
  * bounds, holding forces and least relative pivot. */
 int fric_bad(const Fric *w);

@@ -1165,6 +1165,13 @@ sim_flip(eomc_sim *s, int k, int on, double t, double *x)
 }
 
 void
+sim_span(eomc_sim *s, double span)
+{
+    if (s->fric)
+        fric_span(s->fric, span);
+}
+
+void
 sim_set_mode(eomc_sim *s, int k, int on)
 {
     s->u[s->nu + k] = on ? 1.0 : 0.0;

@@ -67,6 +67,8 @@ int sim_mode_held(const eomc_sim *s, int k);
  * sticks where it can, its speed in x set to 0; the modes it sets with
  * it, a group's, the caller finds by comparing).  EOMC_OK or the error. */
 int sim_flip(eomc_sim *s, int k, int on, double t, double *x);
+/* The run's span, for dry friction's look ahead (friction.h). */
+void sim_span(eomc_sim *s, double span);
 /* on = 1: a run keeps the modes (set at its start, flipped at its
  * switches) until on = 0; otherwise eomc_sim_accel, _energy, _outputs and
  * _invariant take the modes of the state they are given. */

@@ -35,8 +35,11 @@
  * Which rows stick where several are at speed 0 at once (a slip
  * crossing joins stuck ones, or one lets go and leaves the rest) is
  * Coulomb's choice, made for all of them together: the box problem
- * (box), whose answer is the modes' only consistent one.  Coordinates
- * held still are let go one at a time, the one needing most first.
+ * (box), whose answer is the modes' only consistent one.  Where a group
+ * reaches its limit as its load grows, the choice at that instant is on
+ * its edge (every share within its bound, the rates 0) and is made a
+ * little ahead along the motion (ahead).  Coordinates held still are let
+ * go one at a time, the one needing most first.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -71,6 +74,8 @@ typedef struct STICK_(Work) {
     STICK_REAL *lp;           /* [nf nf + (2 nf + 1) (4 nf + 3)] spread's null space
                                * and tableau */
     int *lpb;                 /* [2 nf] its basis */
+    STICK_REAL ahead;         /* unstick_rows' look ahead (a time; 0: none) */
+    STICK_REAL *qa, *va;      /* [nq], [nv] the state there */
 } STICK_(Work);
 
 /* An eigenvalue of G counts where it is above STICK_RANK_ULPS rounding
@@ -85,6 +90,13 @@ typedef struct STICK_(Work) {
  * (each pass fixes a row at a bound or frees one; cycling, possible only
  * where rows are degenerate, ends there with the psi reached). */
 #define STICK_BOX_PASSES 8
+/* unstick_rows looks this share of the run's span ahead where the choice
+ * of who slips sits on its edge: short of other events (a step is seldom
+ * that short), long enough that the rates it brings (that share of the
+ * span over the motion's own time) stand far above the box's rounding
+ * (STICK_BOUND_ULPS rounding units).  The same in the run and the
+ * reference, which decide alike. */
+#define STICK_AHEAD_REL 1e-8
 
 #define STICK_ABS(r) ((r) < 0 ? -(r) : (r))
 
@@ -97,6 +109,7 @@ STICK_(free)(STICK_(Work) *w)
     free(w->free_of), free(w->held);
     free(w->J), free(w->b), free(w->R), free(w->X), free(w->G), free(w->V), free(w->lam);
     free(w->c), free(w->psi), free(w->vec), free(w->live), free(w->lp), free(w->lpb);
+    free(w->qa), free(w->va);
     free(w);
 }
 
@@ -133,15 +146,24 @@ STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
     w->live = calloc((size_t)m->nmode + 1, 1);
     w->lp = calloc((2 * f + 1) * (4 * f + 3) + f * f + 1, sizeof *w->lp);
     w->lpb = calloc(2 * f + 1, sizeof *w->lpb);
+    w->qa = calloc((size_t)m->nq + 1, sizeof *w->qa);
+    w->va = calloc(n + 1, sizeof *w->va);
     if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held ||
         !w->J || !w->b || !w->R || !w->X || !w->G || !w->V || !w->lam || !w->c || !w->psi ||
-        !w->vec || !w->live || !w->lp || !w->lpb || (w->nrowitem && !x->fric_rows)) {
+        !w->vec || !w->live || !w->lp || !w->lpb || !w->qa || !w->va ||
+        (w->nrowitem && !x->fric_rows)) {
         STICK_(free)(w);
         return NULL;
     }
     return w;
 }
 
+/* The run's span (t_end - t0), for unstick_rows' look ahead. */
+STICK_API void
+STICK_(span)(STICK_(Work) *w, STICK_REAL span)
+{
+    w->ahead = STICK_AHEAD_REL * span;
+}
 
 static int
 STICK_(stuck)(const STICK_(Work) *w, const STICK_REAL *u, int j)
@@ -705,7 +727,9 @@ STICK_(speed)(const STICK_(Work) *w, int j, const STICK_REAL *v, const STICK_REA
 }
 
 /* After a solve: the stuck item that needs most beyond its bound (|phi|
- * / F the largest, compared without dividing by a bound of 0) let go,
+ * / F the largest, compared without dividing by a bound of 0; beyond by
+ * more than the solve's rounding, STICK_BOUND_ULPS: one at its bound
+ * holds, as the stick switch's function at 0 says) let go,
  * slipping the way the rest drives it; the item, or -1 where every stuck
  * one holds. */
 static int
@@ -715,7 +739,8 @@ STICK_(release_worst)(STICK_(Work) *w, STICK_REAL *u)
     int worst = -1;
     for (int j = 0; j < w->nf; j++) {
         STICK_REAL need = STICK_ABS(w->phi[j]);
-        if (STICK_(stuck)(w, u, j) && need > w->F[j] &&
+        if (STICK_(stuck)(w, u, j) &&
+            need - w->F[j] > STICK_BOUND_ULPS * w->nf * STICK_EPS * w->F[j] &&
             (worst < 0 || need * w->F[worst] > STICK_ABS(w->phi[worst]) * w->F[j]))
             worst = j;
     }
@@ -1042,10 +1067,37 @@ out:
     return rc;
 }
 
-/* Row item j's stick switch letting go at (t, q, v): it slips the way
- * the rest drives it, and so does every stuck item that then needs more
- * than its bound (the group that held with it, by the proportional
- * share: all at once).  Each let go must be free to move: where the rows
+/* Coulomb's choice (decide_rows) a little ahead (w->ahead) along the
+ * motion of the modes u, where at (t, q, v) it sits on its edge: a group
+ * of stuck rows at its limit, whose shares have reached their bounds with
+ * rates of 0, so that which of them slip is told by where the rates go
+ * next.  The state there, q + dt q', v + dt q'', is the motion's to
+ * first order; the modes the choice sets are u's, at (t, q, v). */
+static int
+STICK_(ahead)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
+              const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
+{
+    if (!(w->ahead > 0))
+        return STICK_OK;
+    int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), nq = w->m->nq;
+    if (rc != STICK_OK)
+        return rc;
+    if (w->x->qdot)
+        w->x->qdot(q, v, w->qa);
+    else
+        for (int i = 0; i < nq; i++)
+            w->qa[i] = v[i];
+    for (int i = 0; i < nq; i++)
+        w->qa[i] = q[i] + w->ahead * w->qa[i];
+    for (int i = 0; i < w->nv; i++)
+        w->va[i] = v[i] + w->ahead * w->acc[i];
+    return STICK_(decide_rows)(w, t + w->ahead, w->qa, w->va, p, u, gone);
+}
+
+/* Row item j's stick switch letting go at (t, q, v): Coulomb's choice
+ * for the stuck rows, j among them, says who slips (j or others: below),
+ * and then so does every stuck item that needs more than its bound (the
+ * group that held with it, by the proportional share: all at once).  Each let go must be free to move: where the rows
  * still stuck span its row, it cannot, and no choice of modes follows
  * (STICK_SPANNED, bad: the item). */
 static int
@@ -1056,14 +1108,44 @@ STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
     int rc;
     if ((rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc)) != STICK_OK)
         return rc;
+    int side = w->phi[j] < 0; /* (the way the rest drives it) */
     unsigned char *gone = calloc((size_t)w->nf + 1, 1);
     if (!gone) {
         w->bad = j;
         return STICK_PIVOT;
     }
-    STICK_(set)(w, u, m->fric_slip[j], w->phi[j] < 0);
-    STICK_(set)(w, u, m->fric_stick[j], 0);
-    gone[j] = 1;
+    /* Coulomb's choice for all the stuck rows, j among them (decide_rows):
+     * where the load came at once (a limit or a contact made at this
+     * instant, its damper's force), it names who slips, j or not.  Where
+     * it lets none go, j's share reached its bound as the load grew (its
+     * crossing located): the choice is on its edge (shares at their
+     * bounds, rates 0), and is made a little ahead (ahead).  Where that
+     * lets none go either, j goes, the way the rest drives it, unless
+     * the rows still stuck span its row (it cannot move: it holds with
+     * them, at its bound to rounding). */
+    if ((rc = STICK_(decide_rows)(w, t, q, v, p, u, gone)) != STICK_OK)
+        goto out;
+    int any = 0;
+    for (int i = 0; i < w->nf; i++)
+        any |= gone[i];
+    if (!any) /* (on its edge: where the rates go next) */
+        if ((rc = STICK_(ahead)(w, t, q, v, p, u, gone)) != STICK_OK)
+            goto out;
+    for (int i = 0; i < w->nf; i++)
+        any |= gone[i];
+    if (!any) { /* none ahead either: j goes, unless the others hold its row */
+        STICK_(set)(w, u, m->fric_stick[j], 0);
+        int spanned = STICK_(any)(w, u) && !STICK_(free_row)(w, j, t, q, v, p, u, &rc);
+        if (rc != STICK_OK)
+            goto out;
+        if (spanned) {
+            STICK_(set)(w, u, m->fric_stick[j], 1);
+            rc = STICK_(solve_shared)(w, t, q, v, p, u, w->acc);
+            goto out;
+        }
+        STICK_(set)(w, u, m->fric_slip[j], side);
+        gone[j] = 1;
+    }
     for (int pass = 0; pass <= w->nf; pass++) {
         if ((rc = STICK_(let_go)(w, t, q, v, p, u, gone)) != STICK_OK)
             goto out;

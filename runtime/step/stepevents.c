@@ -71,6 +71,9 @@ struct StepEvents {
     double *xs, *fs, *gs;         /* [N], [N], [ne]: the solution inside a step,
                                    * its rate, and g or g's rate there (pair) */
     double *xe;                   /* [N] the state at an event's trial time */
+    double *fi;                   /* [N] the rate in a switch's other mode (inert) */
+    double *gi, *gj;              /* [ne], [ne] the functions in both (inert) */
+    unsigned char *lost;          /* [ne] not located in the step at first */
     int ev_k;                     /* the event being located */
     StepevSpan sp;                /* the step it is located in (its arrays
                                    * during stepev_check only) */
@@ -96,13 +99,14 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
                       .N = eomc_nx(m), .ne = m->nevent + m->nmode, .nev = m->nevent,
                       .last_set = -INFINITY};
     double **arrays[] = {&v->g0, &v->g1, &v->ge, &v->te, &v->xe, &v->ce, &v->te2, &v->gd0,
-                         &v->gd1, &v->xs, &v->fs, &v->gs};
+                         &v->gd1, &v->xs, &v->fs, &v->gs, &v->fi, &v->gi, &v->gj};
     size_t ne = (size_t)v->ne, nc = (size_t)m->nc, N = (size_t)v->N;
-    size_t sizes[] = {ne, ne, ne, ne, N, nc, ne, ne, ne, N, N, ne};
+    size_t sizes[] = {ne, ne, ne, ne, N, nc, ne, ne, ne, N, N, ne, N, ne, ne};
     int ok = 1;
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         ok &= (*arrays[k] = sim_zeros(sizes[k])) != NULL;
     ok &= (v->held = calloc(ne + 1, 1)) != NULL;
+    ok &= (v->lost = calloc(ne + 1, 1)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->seq = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->was = calloc((size_t)m->nmode + 1, 1)) != NULL;
@@ -116,6 +120,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
         stepev_free(v);
         return NULL;
     }
+    sim_span(s, o->t_end - o->t0);
     return v;
 }
 
@@ -125,10 +130,11 @@ stepev_free(StepEvents *v)
     if (!v)
         return;
     double *arrays[] = {v->g0, v->g1, v->ge, v->te, v->xe, v->ce, v->te2, v->gd0, v->gd1,
-                        v->xs, v->fs, v->gs};
+                        v->xs, v->fs, v->gs, v->fi, v->gi, v->gj};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     free(v->held);
+    free(v->lost);
     free(v->tsw);
     free(v->seq);
     free(v->was);
@@ -329,14 +335,41 @@ pair(StepEvents *v, int k, int *any)
     return GSL_SUCCESS;
 }
 
+/* Whether switch k's mode changes nothing at (t, x): the rate is the
+ * same, to the bit, in both, and every other function is on the same
+ * side in both (a capsule pair's nearest end while the capsules are
+ * apart: the gap it picks acts on nothing, and is below 0 either way;
+ * not a pair's near switch, which wakes the pair's own).  Its crossings
+ * are then the motion's whichever mode it is in; f [N] the rate in its
+ * mode, overwritten.  -1 where a rate fails. */
+static int
+inert(StepEvents *v, int k, double t, const double *x, double *f)
+{
+    int j = k - v->nev, mode = sim_mode(v->s, j), same = 1;
+    if (v->mo.rate(t, x, f, v->mo.ctx) != GSL_SUCCESS)
+        return -1;
+    g_all(v, t, x, x + v->n, v->gi);
+    sim_set_mode(v->s, j, !mode);
+    int rc = v->mo.rate(t, x, v->fi, v->mo.ctx);
+    g_all(v, t, x, x + v->n, v->gj);
+    sim_set_mode(v->s, j, mode);
+    if (rc != GSL_SUCCESS)
+        return -1;
+    for (int i = 0; i < v->N && same; i++)
+        same = f[i] == v->fi[i];
+    for (int i = 0; i < v->ne && same; i++)
+        same = i == k || (v->gi[i] > 0) == (v->gj[i] > 0);
+    return same;
+}
+
 /* Switch k flipped at the step's start (its g0 is 0) and its function
  * ends the step on the side of the mode it left: it went into its new
  * mode's side and came back across, or never went.  The crossing back is
  * located after a point found on the new side, by halving toward the
  * start; found no later than 2^-EXTREMUM_ITERS of the step, the motion
  * leaves the new mode as soon as it enters it: it would slide along the
- * kink, which no mode follows (STEPEV_RETURNED).  GSL_SUCCESS, or a
- * failure status. */
+ * kink, which no mode follows (STEPEV_RETURNED), unless its mode
+ * changes nothing there (inert).  GSL_SUCCESS, or a failure status. */
 static int
 back_across(StepEvents *v, int k, int *any)
 {
@@ -344,6 +377,16 @@ back_across(StepEvents *v, int k, int *any)
     double side = sim_mode(v->s, k - v->nev) ? 1 : -1, g1 = v->g1[k];
     if (!(side * g1 < 0))
         return GSL_SUCCESS; /* on its new side, or still on the kink */
+    /* one of the geometry whose mode changes nothing (inert) flips back
+     * at the step's end, where the motion is the same either way */
+    int same = v->fricsw[k - v->nev] ? 0 : inert(v, k, sp->t1, sp->x1, v->fs);
+    if (same < 0)
+        return GSL_EBADFUNC;
+    if (same) {
+        v->te[k] = sp->t1;
+        *any = 1;
+        return GSL_SUCCESS;
+    }
     double lo = sp->t0, hi = sp->t1, tm = NAN, gm = NAN;
     v->ev_k = k;
     for (int it = 0; it < EXTREMUM_ITERS; it++) {
@@ -418,7 +461,7 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
     const eomc_model *m = v->m;
     double t0 = sp->t0, t1 = sp->t1;
     const double *x1 = sp->x1;
-    int any = 0;
+    int any = 0, lost = 0;
     *hit = (StepevHit){.k = -1, .status = EOMC_OK, .t = NAN};
     v->sp = *sp;
     g_all(v, t1, x1, x1 + v->n, v->g1);
@@ -467,13 +510,34 @@ stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit)
         v->ev_k = k;
         double guess = ev_root(g_interpolant, v, t0, v->g0[k], t1, v->g1[k], NAN, &evals);
         v->te[k] = ev_root(g_solution, v, t0, v->g0[k], t1, v->g1[k], guess, &evals);
-        if (isnan(v->te[k])) {
+        v->lost[k] = isnan(v->te[k]);
+        lost |= v->lost[k];
+        any |= !v->lost[k];
+    }
+    /* An event whose trial times could not be computed (the side steps
+     * failed their control: a kink inside the step, another event's) is
+     * looked for again short of the first one located, whose kink the
+     * step ends at: crossed by then, it is located there; not crossed,
+     * it is the next step's */
+    double first = NAN;
+    for (int j = 0; lost && j < v->ne; j++)
+        if (!isnan(v->te[j]) && !(first <= v->te[j]))
+            first = v->te[j];
+    for (int k = 0; lost && k < v->ne; k++) {
+        if (!v->lost[k])
+            continue;
+        v->lost[k] = 0;
+        v->ev_k = k;
+        int evals;
+        double g = isnan(first) ? NAN : g_solution(v, first);
+        if (isnan(g) || (ev_crossed(dir_of(v, k), v->g0[k], g) &&
+                         isnan(v->te[k] = ev_root(g_solution, v, t0, v->g0[k], first, g, NAN,
+                                                  &evals)))) {
             sim_numeric_error(s, t1, x1, x1 + v->n, "event %s fired in the step from t = "
                               "%.17g, but the state at its trial times could not be "
                               "computed", name_of(v, k), t0);
             return GSL_EBADFUNC;
         }
-        any = 1;
     }
     memcpy(v->g0, v->g1, (size_t)v->ne * sizeof *v->g0);
     /* the next step starts at this one's end (a reset says otherwise) */
@@ -570,6 +634,18 @@ modes_before(StepEvents *v)
 static void
 also_set(StepEvents *v, int j, double t, const double *x)
 {
+    const eomc_model *m = v->m;
+    /* an item let go (stuck before the flip, not now): its speed is 0
+     * but for rounding, and its rate is the side the let-go gave it (the
+     * one Coulomb's choice names, stick.h), or 0 but for rounding where
+     * the choice was made on its edge; either way its slip switch is on
+     * its kink, on that side, whether the side changed or not, and fires
+     * again only once it has left it (leaves_kink) */
+    for (int k = 0; k < m->nfric; k++)
+        if (v->was[m->fric_stick[k]] && !sim_mode(v->s, m->fric_stick[k])) {
+            v->tsw[m->fric_slip[k]] = t;
+            v->seq[m->fric_slip[k]] = 0;
+        }
     int any = 0;
     for (int i = 0; i < v->m->nmode && !any; i++)
         any = i != j && v->was[i] != sim_mode(v->s, i);
@@ -611,11 +687,16 @@ side_soon(const StepEvents *v, int i, int mode, double soon)
 }
 
 /* With dry friction, the switches at instant t (on or within soon of
- * their kinks, side_soon; not flipped at t already), settled in passes:
- * each pass decides every switch from one evaluation of the functions
- * (ge: the mode each goes to, or -1), then flips them, since a flip may
- * set others' modes (a group of points stuck at once, or let go) whose
- * functions, evaluated before, no longer say where they go.  A pass that
+ * their kinks, side_soon), settled in passes: each pass evaluates the
+ * functions (ge: the mode each goes to, or -1) and flips the first that
+ * disagrees, since a flip moves others' functions: a geometry switch's
+ * those that read its mode (a capsule's clamps, then which end is
+ * nearest), a friction switch's every stick switch (Coulomb's choice,
+ * made for all the stuck points at once, may keep one that the
+ * functions before it said would let go), and may set others' modes (a
+ * group stuck or let go with it).  A geometry switch flipped at t flips
+ * again where one before it flipped after it, as without friction; a
+ * friction switch flips once an instant.  A pass that
  * flips a contact's switch (its touch, push or clamp) flips no friction
  * switch: who sticks and who slips is decided with the contacts of the
  * instant all made (two feet touching together, located apart by
@@ -624,29 +705,42 @@ side_soon(const StepEvents *v, int i, int mode, double soon)
 static int
 together(StepEvents *v, double t, double *x, double soon, int contacts_only)
 {
-    for (int pass = 0; pass < v->ne - v->nev; pass++) {
+    double order = 0; /* the latest flip's at t */
+    for (int j = 0; j < v->ne - v->nev; j++)
+        if (v->tsw[j] == t)
+            order = fmax(order, v->seq[j]);
+    for (int pass = 0; pass < 2 * (v->ne - v->nev); pass++) {
         int changed = 0, contact = contacts_only;
+        double below = 0; /* the latest flip at t of the switches before i */
         g_all(v, t, x, x + v->n, v->g0);
         for (int i = v->nev; i < v->ne; i++) {
-            int mode = sim_mode(v->s, i - v->nev), on = side_soon(v, i, mode, soon);
-            /* (flipped at t already: k and those before) */
-            v->ge[i] = v->tsw[i - v->nev] == t || on == mode ? -1 : on;
-            contact |= v->ge[i] >= 0 && !v->fricsw[i - v->nev];
+            int j = i - v->nev, mode = sim_mode(v->s, j), on = side_soon(v, i, mode, soon);
+            /* flipped at t already: a friction switch stays (each once);
+             * another flips again where one before it flipped after it
+             * (its function reads their modes: a capsule's clamps, then
+             * which end is nearest), as without friction */
+            int again = v->tsw[j] == t && (v->fricsw[j] || !(below > v->seq[j]));
+            if (v->tsw[j] == t)
+                below = fmax(below, v->seq[j]);
+            v->ge[i] = again || on == mode ? -1 : on;
+            contact |= v->ge[i] >= 0 && !v->fricsw[j];
         }
         for (int i = v->nev; i < v->ne; i++) {
             int on = v->ge[i] > 0;
             if (v->ge[i] < 0 || on == sim_mode(v->s, i - v->nev) ||
                 (contact && v->fricsw[i - v->nev]))
-                continue; /* (or an earlier flip of this pass set it) */
+                continue;
             modes_before(v);
             if (sim_flip(v->s, i - v->nev, on, t, x) != EOMC_OK)
                 return GSL_EBADFUNC;
             v->tsw[i - v->nev] = t;
+            v->seq[i - v->nev] = ++order;
             v->st->events++;
             if (v->o->on_event)
                 (void)v->o->on_event(v->o->event_ctx, i, t, x);
             also_set(v, i - v->nev, t, x);
             changed = 1;
+            break; /* (the functions after it may read its mode: again) */
         }
         if (!changed)
             break;
@@ -699,8 +793,8 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
      * it (its function is not the one it was flipped by).  Each pass
      * settles one more switch: at most two passes a switch.  With dry
      * friction (stick switches reading every mode, a group of stuck
-     * points letting go at once) all that disagree flip each pass, in
-     * their order, each once. */
+     * points letting go at once) together settles them, a friction
+     * switch once an instant. */
     if (v->m->nfric > 0)
         goto together;
     double order = 1;

@@ -79,12 +79,12 @@ want_t=$(awk 'BEGIN { printf "%.17g", sqrt(2 * 0.4 / 9.81) }')
 ok $? "a ball dropped: touches at $touch ($want_t), rests at $z (0.1 - 9.81/2500 = 0.096076), stuck where it touched (x, y = $xy); MuJoCo's rests at $theirs"
 
 # A box slid along the floor with friction: a 0.2 x 0.2 x 0.05 brick of
-# 1 kg, its centre of mass in the plane of its lower corners, so that the
-# friction there puts no torque on it: it does not pitch.  (One whose
-# centre is above them pitches as it slides, and where it stops, the
-# stuck rows of its front and back corners, apart by the pitch, would hold
-# it from rocking back with forces beyond their bounds: that run stops
-# there, exit 3, a limit of the stuck solve, not of the import.)  Started at its
+# 1 kg, its centre of mass in the floor's plane as it rests (d above its
+# lower corners), where the friction acts (its touch points are on the
+# floor's surface), so that the friction puts no torque on it: it does
+# not pitch, and stopped, it stays where it stopped (one that pitches
+# rocks back and forth on the floor's springs as it stops, and rolls a
+# little on its stuck points as it does).  Started at its
 # resting depth d = m g / (4 k) = 9.81e-4 (each lower corner's spring, k =
 # 2500 at MuJoCo's default solref, carries m g / 4) and slid at v0 = 3
 # along x.  Its height obeys m z'' = N - m g, so the friction's impulse is
@@ -100,7 +100,7 @@ ok $? "a ball dropped: touches at $touch ($want_t), rests at $z (0.1 - 9.81/2500
 box() { # NAME BRICK_ATTRIBUTES [CONTACT_ELEMENT]
   printf '%s\n' "<mujoco model=\"$1\"><worldbody><geom name=\"floor\" type=\"plane\" size=\"5 5 0.1\" friction=\"0.7\"/>" \
     '<body name="block" pos="0 0 -0.000981"><freejoint name="box"/>' \
-    '<inertial pos="0 0 0" mass="1" diaginertia="0.0035 0.0035 0.0067"/>' \
+    '<inertial pos="0 0 0.000981" mass="1" diaginertia="0.0035 0.0035 0.0067"/>' \
     "<geom name=\"brick\" type=\"box\" pos=\"0 0 0.025\" size=\"0.1 0.1 0.025\" friction=\"0.4\" $2/></body>" \
     "</worldbody>${3:-}</mujoco>" > "$tmp/$1.xml"
 }

@@ -20,6 +20,15 @@
  *                              capsules of bodies other than the world at
  *                              qpos0 (a capsule's end sphere), and the
  *                              gravity's size
+ *   mj_accel MODEL sinks  ->   "M g", the model's mass and gravity's size,
+ *                              then for each line "t q_1 .. q_nq" on stdin
+ *                              "t NAME d" for each point of a sphere, a
+ *                              capsule's end sphere or a box's corner below
+ *                              the plane z = 0 by d > 0 (MuJoCo's kinematics;
+ *                              NAME the geom's, or BODY_geomID as eomc's
+ *                              import names one without)
+ *   mj_accel MODEL rest T ->   MuJoCo's own run of T seconds from qpos0 at its
+ *                              step, contact on: its qpos at the end, a line
  *   mj_accel MODEL kinetic ->  for each line "t q_1 .. q_nq v_1 .. v_nv" on
  *                              stdin (eomc's speeds), "t T": MuJoCo's kinetic
  *                              energy there (mj_energyVel: armature included)
@@ -290,27 +299,35 @@ constrained(const mjModel *m, mjData *d)
     return 0;
 }
 
+/* A row "t q_1 .. q_nq" from stdin into t and d->qpos: 1, 0 at the end,
+ * or -1 on a short row (said on stderr). */
+static int
+read_row(const mjModel *m, mjData *d, double *t)
+{
+    if (scanf("%lf", t) != 1)
+        return 0;
+    for (int i = 0; i < m->nq; i++)
+        if (scanf("%lf", &d->qpos[i]) != 1) {
+            fprintf(stderr, "mj_accel: a row has fewer than nq = %d coordinates\n", m->nq);
+            return -1;
+        }
+    return 1;
+}
+
 /* The com mode (the top): 0, or 2 on a short line. */
 static int
 centre_of_mass(const mjModel *m)
 {
     mjData *d = mj_makeData(m);
     double t;
-    int rc = 0;
-    while (scanf("%lf", &t) == 1) {
-        for (int i = 0; i < m->nq; i++)
-            if (scanf("%lf", &d->qpos[i]) != 1) {
-                fprintf(stderr, "mj_accel: a row has fewer than nq = %d coordinates\n", m->nq);
-                rc = 2;
-                goto done;
-            }
+    int rc;
+    while ((rc = read_row(m, d, &t)) > 0) {
         mj_fwdPosition(m, d);
         printf("%.17g %.17g %.17g %.17g\n", t, d->subtree_com[0], d->subtree_com[1],
                d->subtree_com[2]);
     }
-done:
     mj_deleteData(d);
-    return rc;
+    return rc < 0 ? 2 : 0;
 }
 
 /* The lowest mode (the top): 0, or 2 where no sphere or capsule moves. */
@@ -334,6 +351,60 @@ lowest(const mjModel *m)
     if (isinf(low))
         return 2;
     printf("%.17g %.17g\n", low, mju_norm3(m->opt.gravity));
+    return 0;
+}
+
+/* The sinks mode (the top): 0, or 2 on a short line. */
+static int
+sinks(const mjModel *m)
+{
+    mjData *d = mj_makeData(m);
+    double t;
+    int rc;
+    printf("%.17g %.17g\n", mj_getTotalmass(m), mju_norm3(m->opt.gravity));
+    while ((rc = read_row(m, d, &t)) > 0) {
+        mj_kinematics(m, d);
+        for (int g = 0; g < m->ngeom; g++) {
+            const double *R = d->geom_xmat + 9 * g, *sz = m->geom_size + 3 * g;
+            double z = d->geom_xpos[3 * g + 2], low[8];
+            int n = 0, b = m->geom_bodyid[g];
+            if (b == 0)
+                continue;
+            if (m->geom_type[g] == mjGEOM_SPHERE)
+                low[n++] = z - sz[0];
+            else if (m->geom_type[g] == mjGEOM_CAPSULE) /* its axis is the geom's z */
+                for (int e = -1; e <= 1; e += 2)
+                    low[n++] = z + e * sz[1] * R[8] - sz[0];
+            else if (m->geom_type[g] == mjGEOM_BOX) /* (row 2 of R: world z of its axes) */
+                for (int v = 0; v < 8; v++)
+                    low[n++] = z + (v & 1 ? 1 : -1) * sz[0] * R[6] +
+                               (v & 2 ? 1 : -1) * sz[1] * R[7] + (v & 4 ? 1 : -1) * sz[2] * R[8];
+            const char *name = mj_id2name(m, mjOBJ_GEOM, g);
+            for (int k = 0; k < n; k++) {
+                if (!(low[k] < 0))
+                    continue;
+                if (name)
+                    printf("%.17g %s %.17g\n", t, name, -low[k]);
+                else
+                    printf("%.17g %s_geom%d %.17g\n", t, mj_id2name(m, mjOBJ_BODY, b), g,
+                           -low[k]);
+            }
+        }
+    }
+    mj_deleteData(d);
+    return rc < 0 ? 2 : 0;
+}
+
+/* The rest mode (the top): MuJoCo's run of T seconds; 0. */
+static int
+rest(const mjModel *m, double T)
+{
+    mjData *d = mj_makeData(m);
+    while (d->time < T)
+        mj_step(m, d);
+    for (int i = 0; i < m->nq; i++)
+        printf("%.17g%c", d->qpos[i], i + 1 < m->nq ? ' ' : '\n');
+    mj_deleteData(d);
     return 0;
 }
 
@@ -471,6 +542,11 @@ main(int argc, char **argv)
         fprintf(stderr, "mj_accel: %s\n",
                 argc == 3 || argc == 4 ? err : "usage: mj_accel MODEL SEED [COUNT]");
         return 2;
+    }
+    if (!strcmp(argv[2], "sinks") || (!strcmp(argv[2], "rest") && argc == 4)) {
+        int rc = argv[2][0] == 's' ? sinks(m) : rest(m, strtod(argv[3], NULL));
+        mj_deleteModel(m);
+        return rc;
     }
     if (!strcmp(argv[2], "com") || !strcmp(argv[2], "kinetic") || !strcmp(argv[2], "lowest")) {
         int rc = argv[2][0] == 'c' ? centre_of_mass(m) : argv[2][0] == 'k' ? kinetic(m) : lowest(m);

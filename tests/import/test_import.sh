@@ -210,9 +210,7 @@ fi
 # touches) at once to rounding; then on through the landing, where the
 # two feet's nearly parallel capsules flip clamps that read each other's
 # modes at one instant (the run stopped there at t = 0.2094, exit 3)
-# Without its contacts' friction: with it, the landing stops at t =
-# 0.20939 (exit 3), a foot's end letting go while the ends still stuck on
-# its foot nearly span its row (docs/import.md, Contacts).
+# Without its contacts' friction, then with it.
 if [ "$part" = humanoid ]; then
   set -- $("$mj" "$models" lowest)
   want=$(awk -v h="$1" -v g="$2" 'BEGIN { printf "%.17g", sqrt(2 * h / g) }')
@@ -237,6 +235,61 @@ if [ "$part" = humanoid ]; then
   feet=$(grep -c ',contacts\.left_right_foot\.left_left_foot\.' "$tmp/hev2.csv")
   [ $st -eq 0 ] && [ "$last" = 2 ] && [ -z "$(grep -v 'dropped: the friction' "$tmp/err")" ]
   ok $? "the humanoid dropped, on to t = 2 at rtol 1e-7: exit $st, last row t = $last, the feet's pair flipped $feet switches ($(grep -v 'dropped: the friction' "$tmp/err" | head -c 200))"
+  # with friction (1 on each pair with the floor), on to t = 2 at rtol
+  # 1e-7: it lands on its feet, crouches and falls onto its hands, its
+  # feet's ends sticking and slipping on the way.  The model is its own
+  # mirror image across the x-z plane, and dropped straight it stays so:
+  # root_y and the quaternion's x and z stay 0 to rounding.  (Before the
+  # touch points were put on the floor's surface, a foot's four ends, at
+  # depths apart by a rounding-sized tilt, gave rows independent by that
+  # margin: the run stopped at the landing, t = 0.20939, exit 3.)
+  "$eomc" run "$tmp/humanoid.yaml" --t-end 2 --rtol 1e-7 --atol 1e-7 \
+    --events "$tmp/hev3.csv" -o "$tmp/h3.csv" 2> "$tmp/err"; st=$?
+  last=$(tail -1 "$tmp/h3.csv" | cut -d, -f1)
+  sticks=$(grep -c ',contacts\.floor\..*_foot\..*\.stick,' "$tmp/hev3.csv")
+  mirror=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+      { for (k = 0; k < 3; k++) { a = $(c[k == 0 ? "root_y" : k == 1 ? "root_qx" : "root_qz"])
+          a = a < 0 ? -a : a; if (a > m) m = a } }
+      END { printf "%.2g", m }' "$tmp/h3.csv")
+  [ $st -eq 0 ] && [ "$last" = 2 ] && [ "$sticks" -ge 16 ] &&
+    awk -v m="$mirror" 'BEGIN { exit !(m <= 1e-8) }'
+  ok $? "the humanoid dropped with friction, to t = 2 at rtol 1e-7: exit $st, last row t = $last, its feet's ends stuck or let go $sticks times, its mirror symmetry kept (|root_y|, |qx|, |qz| at most $mirror) ($(head -c 300 "$tmp/err"))"
+fi
+
+# The quadruped dropped on its floor with friction (1 on each pair of a
+# shape with the floor; the pairs between its own shapes have none):
+# it lands, its legs fold, and it comes to rest by t = 10 (its speeds
+# below 1e-9 of the largest it had).  At rest its weight is carried by
+# the floor alone: the springs' k d, each point's depth d below the floor
+# computed by MuJoCo's kinematics at eomc's last pose (mj_accel sinks) and
+# its k read from the import, sum to M g (MuJoCo's mass and gravity) to
+# 1e-9.  MuJoCo's own run from the same start (mj_accel rest) comes to rest
+# elsewhere, its torso's height printed beside eomc's: its contacts are
+# soft constraints with pyramidal cones, on all 67 pairs (eomc takes the
+# friction of the 13 pairs with the floor, and no pair of a cylinder), and
+# the fall that folds the legs is sensitive to all of it.
+if [ "$part" = robots ]; then
+  q=$src/tests/import/models/robots/quadruped.xml
+  "$eomc" import "$q" -o "$tmp/quad.yaml" 2> /dev/null
+  "$eomc" run "$tmp/quad.yaml" --t-end 10 --rtol 1e-9 --atol 1e-9 -o "$tmp/quad.csv" \
+    2> "$tmp/err"; st=$?
+  nq=$(head -1 "$tmp/quad.csv" | awk -F, '{ for (i = 2; i <= NF; i++)
+      if ($i ~ /\x27$/ || $i ~ /_w[xyz]$/) { print i - 2; exit } }')
+  still=$(awk -F, 'NR == 1 { for (i = 2; i <= NF; i++) s[i] = $i ~ /\x27$/ || $i ~ /_w[xyz]$/; next }
+      { m = 0; for (i in s) if (s[i]) { a = $i < 0 ? -$i : $i; if (a > m) m = a }
+        if (m > top) top = m; last = m } END { printf "%.2g", last / top }' "$tmp/quad.csv")
+  tail -1 "$tmp/quad.csv" | tr , ' ' | cut -d' ' -f1-$((nq + 1)) | "$mj" "$q" sinks > "$tmp/sinks"
+  carried=$(awk 'FNR == NR { if ($0 ~ /^    - \{contact: \[\[floor, /) { n = $4; sub(/\]\],$/, "", n)
+                               k[n] = $6 + 0 } next }
+      FNR == 1 { w = $1 * $2; next } { if (!($2 in k)) bad = 1; sum += k[$2] * $3; pts++ }
+      END { if (bad) print "unknown"; else printf "%.2g %d", sum / w - 1, pts }' \
+    "$tmp/quad.yaml" "$tmp/sinks")
+  ours=$(tail -1 "$tmp/quad.csv" | cut -d, -f4)
+  theirs=$("$mj" "$q" rest 10 | cut -d' ' -f3)
+  [ $st -eq 0 ] && [ "$nq" = 19 ] && awk -v s="$still" 'BEGIN { exit !(s <= 1e-9) }' &&
+    awk -v c="$carried" 'BEGIN { split(c, x, " "); e = x[1] < 0 ? -x[1] : x[1]
+      exit !(c != "unknown" && e <= 1e-9 && x[2] >= 3) }'
+  ok $? "the quadruped dropped with friction comes to rest (speeds at t = 10: $still of their largest), its points' springs carrying its weight (sum k d / M g - 1, points: $carried); its torso at $ours, MuJoCo's at $theirs ($(head -c 200 "$tmp/err"))"
 fi
 
 # the rest checks the import's own messages, once

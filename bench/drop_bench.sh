@@ -3,10 +3,9 @@
 # MuJoCo (issue 44's speed check).
 #
 # eomc: the model imported as `eomc import` writes it (contacts, limits,
-# control clamps on), its contacts' friction removed: with it the run
-# stops at the landing (exit 3: docs/benchmarks.md), which the first line
-# of the output says, with the CPU it took; let go at qpos0 at
-# rest, run to t = 2 at each tolerance with --error against its
+# control clamps on): first with its contacts' friction at 1e-7 (its CPU
+# seconds, steps and the ratio to MuJoCo's step, below), then without
+# it; let go at qpos0 at rest, run to t = 2 at each tolerance with --error against its
 # extended-precision reference: CPU seconds of the run alone
 # (cpu_seconds), steps, flips, error_max (the largest error over
 # coordinates and speeds at the 0.01 s rows), and the cheapest run with
@@ -28,8 +27,9 @@ export EOMC_CACHE_DIR="$dir/cache"
 
 "$eomc" import "$model" -o "$dir/model.yaml" 2> /dev/null
 "$eomc" run "$dir/model.yaml" --t-end 2 --rtol 1e-7 --atol 1e-7 --stats -o /dev/null 2> "$dir/err" &&
-  echo "eomc with the contacts' friction, 1e-7: runs to t = 2" ||
-  echo "eomc with the contacts' friction, 1e-7: stops ($(grep -m1 'error:' "$dir/err" | cut -c1-160)...)"
+  fric=$(awk '$1 == "cpu_seconds" { c = $2 } $1 == "steps" { s = $2 } END { print c, s }' "$dir/err") &&
+  echo "eomc with the contacts' friction, 1e-7: runs to t = 2, cpu_s ${fric% *}, steps ${fric#* }" ||
+  { fric=; echo "eomc with the contacts' friction, 1e-7: stops ($(grep -m1 'error:' "$dir/err" | cut -c1-160)...)"; }
 sed 's/, friction: [0-9.e+-]*}$/}/' "$dir/model.yaml" > "$dir/frictionless.yaml"
 model_xml=$model model=$dir/frictionless.yaml
 echo "eomc: $model_xml without its contacts' friction, t = 0 .. 2, --error against its reference"
@@ -55,6 +55,8 @@ err=$(awk 'NR == FNR { if (FNR > 1) for (i = 2; i <= NF; i++) a[FNR, i] = $i; ne
   FNR > 1 { for (i = 2; i <= NF; i++) { d = $i - a[FNR, i]; d = d < 0 ? -d : d; if (d > m) m = d } }
   END { printf "%.3g", m }' "$dir/h" "$dir/h2")
 echo "step 0.005: cpu_s $cpu, its error against its halved step $err"
+[ -z "$fric" ] || echo "eomc with friction at 1e-7: ${fric% *} s of CPU; eomc/MuJoCo" \
+  "$(awk -v a="${fric% *}" -v b="$cpu" 'BEGIN { printf "%.0f", a / b }')"
 if [ -n "$best" ]; then
   set -- $best
   echo "eomc to 1e-6 (tol $1): $2 s of CPU; MuJoCo at its step: $cpu s with an error of $err:" \

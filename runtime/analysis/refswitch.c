@@ -526,7 +526,7 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         double below = 0; /* the latest flip at t of the switches before k */
         for (int k = 0; pass > 0 && k < w->nm; k++) {
             int at_t = w->last[k] == t && seq[k] > 0;
-            int again = at_t && ((w->mo.held && w->mo.friction && w->mo.friction(w->mo.ctx, k)) ||
+            int again = at_t && ((w->mo.friction && w->mo.friction(w->mo.ctx, k)) ||
                                  !(below > seq[k]));
             if (at_t)
                 below = fmax(below, seq[k]);

@@ -1072,16 +1072,15 @@ out:
  * of stuck rows at its limit, whose shares have reached their bounds with
  * rates of 0, so that which of them slip is told by where the rates go
  * next.  The state there, q + dt q', v + dt q'', is the motion's to
- * first order; the modes the choice sets are u's, at (t, q, v). */
+ * first order (q'' the caller's solve at (t, q, v) in u, in w->acc); the
+ * modes the choice sets are u's, at (t, q, v). */
 static int
 STICK_(ahead)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
               const STICK_REAL *p, STICK_REAL *u, unsigned char *gone)
 {
+    int nq = w->m->nq;
     if (!(w->ahead > 0))
         return STICK_OK;
-    int rc = STICK_(solve)(w, t, q, v, p, u, w->acc), nq = w->m->nq;
-    if (rc != STICK_OK)
-        return rc;
     if (w->x->qdot)
         w->x->qdot(q, v, w->qa);
     else
@@ -1128,11 +1127,12 @@ STICK_(unstick_rows)(STICK_(Work) *w, int j, STICK_REAL t, const STICK_REAL *q,
     int any = 0;
     for (int i = 0; i < w->nf; i++)
         any |= gone[i];
-    if (!any) /* (on its edge: where the rates go next) */
+    if (!any) { /* (on its edge: where the rates go next; w->acc is the first solve's) */
         if ((rc = STICK_(ahead)(w, t, q, v, p, u, gone)) != STICK_OK)
             goto out;
-    for (int i = 0; i < w->nf; i++)
-        any |= gone[i];
+        for (int i = 0; i < w->nf; i++)
+            any |= gone[i];
+    }
     if (!any) { /* none ahead either: j goes, unless the others hold its row */
         STICK_(set)(w, u, m->fric_stick[j], 0);
         int spanned = STICK_(any)(w, u) && !STICK_(free_row)(w, j, t, q, v, p, u, &rc);

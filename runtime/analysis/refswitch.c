@@ -72,6 +72,8 @@ struct RefSwitches {
     eomc_ext *r0, *r1, *ra;       /* [nm] rates at the ends, scratch */
     eomc_ext *hit;                /* [nm] each located crossing, or NAN */
     eomc_ext *last;               /* [nm] each switch's last flip */
+    int *quick;                   /* [nm] its flips in a row within REFSW_CHATTER
+                                   * of the one before */
     eomc_ext *xs, *fs, *xp;       /* [N] a state, its rate, a probe */
     long n, cap;                  /* the record */
     double *rt, *rsens;           /* [cap], [cap N] */
@@ -103,6 +105,7 @@ refsw_alloc(int nmode, int N, eomc_ext *mode, RefSwMotion mo, eomc_ext t0, eomc_
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
         ok &= (*arrays[k] = calloc(sizes[k], sizeof(eomc_ext))) != NULL;
     ok &= (w->then = calloc(n, sizeof *w->then)) != NULL;
+    ok &= (w->quick = calloc(m, sizeof *w->quick)) != NULL;
     ok &= (w->xa = calloc(n, sizeof *w->xa)) != NULL;
     ok &= (w->fa = calloc(n, sizeof *w->fa)) != NULL;
     w->then_t = -INFINITY;
@@ -128,6 +131,7 @@ refsw_free(RefSwitches *w)
     free(w->xa);
     free(w->fa);
     free(w->then);
+    free(w->quick);
     free(w->rsens);
     free(w->rk);
     free(w);
@@ -237,7 +241,7 @@ refsw_start(RefSwitches *w, const eomc_ext *x0, int *bad)
 {
     w->n = 0;
     for (int k = 0; k < w->nm; k++)
-        w->last[k] = -INFINITY, w->hit[k] = NAN;
+        w->last[k] = -INFINITY, w->hit[k] = NAN, w->quick[k] = 0;
     if (refsw_signs(w, w->t0, x0) != 0)
         return -1;
     w->mo.functions(w->mo.ctx, w->t0, x0, w->s1);
@@ -557,7 +561,9 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
         for (int k = 0; rc == 0 && k < w->nm; k++) {
             if (flip[k] == 0)
                 continue;
-            if (t != w->last[k] && t - w->last[k] < REFSW_CHATTER * w->span) {
+            if (t != w->last[k])
+                w->quick[k] = t - w->last[k] < REFSW_CHATTER * w->span ? w->quick[k] + 1 : 0;
+            if (w->quick[k] >= REFSW_CHATTER_FLIPS) {
                 *bad = k;
                 rc = -2;
                 break;

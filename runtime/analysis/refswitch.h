@@ -69,14 +69,15 @@ int refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext 
  * (sc [N] the components' scales for the differences); an item of dry
  * friction that sticks there (motion.flip) has its speed in x set to 0
  * and its stick switch recorded with its slip's sensitivities.  0; -1
- * when the motion cannot be computed; -2 when a switch flips again within
- * REFSW_CHATTER of the span of its last flip (it chatters: the run stops
- * there too), switch *bad. */
+ * when the motion cannot be computed; -2 when a switch chatters
+ * (REFSW_CHATTER_FLIPS: the run stops there too), switch *bad. */
 int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, int *bad);
 
-/* A run's flips closer than this share of the time span chatter
- * (stepevents.c's ACCUMULATE_REL). */
+/* A switch chatters when REFSW_CHATTER_FLIPS of its flips in a row each
+ * come within this share of the time span after the one before
+ * (stepevents.c's ACCUMULATE_REL, ACCUMULATE_FLIPS). */
 #define REFSW_CHATTER 1e-9
+#define REFSW_CHATTER_FLIPS 4
 
 /* The record since refsw_start: n flips, each's time, switch and [N]
  * sensitivities |ds/dx_i| / |ds/dt| (how far the crossing moves in time

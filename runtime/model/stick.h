@@ -71,11 +71,12 @@ typedef struct STICK_(Work) {
     int rank;                 /* G's */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
     unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
-    STICK_REAL *lp;           /* [nf nf + (2 nf + 1) (4 nf + 3)] spread's null space
-                               * and tableau */
-    int *lpb;                 /* [2 nf] its basis */
+    STICK_REAL *lp;           /* [nf nf] spread's null space */
+    int *lpb;                 /* [2 nf] lexi's simplex basis */
     STICK_REAL ahead;         /* unstick_rows' look ahead (a time; 0: none) */
     STICK_REAL *qa, *va;      /* [nq], [nv] the state there */
+    STICK_REAL *lx;           /* [STICK_LEXI_SCRATCH(nf)] lexi's scratch */
+    int *lxi;                 /* [nf] lexi's rows left */
 } STICK_(Work);
 
 /* An eigenvalue of G counts where it is above STICK_RANK_ULPS rounding
@@ -98,6 +99,10 @@ typedef struct STICK_(Work) {
  * reference, which decide alike. */
 #define STICK_AHEAD_REL 1e-8
 
+/* lexi's scratch for n rows: cheb's tableau, four n x n, three n */
+#define STICK_LEXI_SCRATCH(n) \
+    ((size_t)(2 * (n) + 1) * (4 * (n) + 3) + 4 * (size_t)(n) * (n) + 3 * (size_t)(n))
+
 #define STICK_ABS(r) ((r) < 0 ? -(r) : (r))
 
 STICK_API void
@@ -110,6 +115,7 @@ STICK_(free)(STICK_(Work) *w)
     free(w->J), free(w->b), free(w->R), free(w->X), free(w->G), free(w->V), free(w->lam);
     free(w->c), free(w->psi), free(w->vec), free(w->live), free(w->lp), free(w->lpb);
     free(w->qa), free(w->va);
+    free(w->lx), free(w->lxi);
     free(w);
 }
 
@@ -144,13 +150,16 @@ STICK_(alloc)(const eomc_model *m, const STICK_MODEL *x)
     w->psi = calloc(f + 1, sizeof *w->psi);
     w->vec = calloc(n + 1, sizeof *w->vec);
     w->live = calloc((size_t)m->nmode + 1, 1);
-    w->lp = calloc((2 * f + 1) * (4 * f + 3) + f * f + 1, sizeof *w->lp);
+    w->lp = calloc(f * f + 1, sizeof *w->lp);
     w->lpb = calloc(2 * f + 1, sizeof *w->lpb);
     w->qa = calloc((size_t)m->nq + 1, sizeof *w->qa);
     w->va = calloc(n + 1, sizeof *w->va);
+    w->lx = calloc(STICK_LEXI_SCRATCH(f) + 1, sizeof *w->lx);
+    w->lxi = calloc(f + 1, sizeof *w->lxi);
     if (!w->M || !w->L || !w->h || !w->acc || !w->F || !w->phi || !w->free_of || !w->held ||
         !w->J || !w->b || !w->R || !w->X || !w->G || !w->V || !w->lam || !w->c || !w->psi ||
-        !w->vec || !w->live || !w->lp || !w->lpb || !w->qa || !w->va ||
+        !w->vec || !w->live || !w->lp || !w->lpb || !w->qa || !w->va || !w->lx ||
+        !w->lxi ||
         (w->nrowitem && !x->fric_rows)) {
         STICK_(free)(w);
         return NULL;
@@ -616,6 +625,84 @@ STICK_(cheb)(const STICK_REAL *a, const STICK_REAL *N, int n, int d, STICK_REAL 
     return top + val[0] - val[1];
 }
 
+/* The shares whose largest is least, then the largest of the rest least,
+ * and so on (the lexicographic least: the nucleolus of game theory, here
+ * of the 2 n shares +-psi_r, linear in z, so it is unique): psi [n] in,
+ * a share of each row (a + N z for some z), out.  N [n d], orthonormal
+ * columns, is destroyed.  The least largest alone leaves the shares below
+ * it free within a set, and which of them a simplex method returns turns
+ * on N's basis, which is G's null space's: its eigenvalues are all 0 to
+ * rounding, so an eigensolver picks its vectors by rounding, and a stick
+ * switch's function read there would jump from one state to the next.
+ * Each pass solves cheb for the rows not yet fixed and fixes those every
+ * least largest has at it (a dual above rounding: the reduced cost of
+ * their slack), then goes on in the directions that leave them be (the
+ * null space of their N rows, which keeps N's columns orthonormal on the
+ * rows left): at most n passes.  Scratch s: STICK_LEXI_SCRATCH(n) reals,
+ * live: n ints, basis: 2 n ints. */
+static void
+STICK_(lexi)(STICK_REAL *psi, STICK_REAL *N, int n, int d, STICK_REAL *s, int *live, int *basis)
+{
+    STICK_REAL *T = s, *NN = T + (size_t)(2 * n + 1) * (4 * n + 3), *M2 = NN + (size_t)n * n,
+               *EV = M2 + (size_t)n * n, *NK = EV + (size_t)n * n, *aa = NK + (size_t)n * n,
+               *ev = aa + n, *z = ev + n;
+    int m = n;
+    for (int r = 0; r < n; r++)
+        live[r] = r;
+    while (m > 0 && d > 0) {
+        for (int i = 0; i < m; i++) {
+            aa[i] = psi[live[i]];
+            for (int k = 0; k < d; k++)
+                NN[i * d + k] = N[live[i] * d + k];
+        }
+        STICK_(cheb)(aa, NN, m, d, z, T, basis);
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < d; k++)
+                psi[live[i]] += NN[i * d + k] * z[k];
+        /* cheb's tableau: row 2 m the reduced costs, constraint i's slack
+         * in column 2 d + 2 + i (rows r, then -r) */
+        int W = 2 * d + 2 * m + 3, fixed = 0, kept = 0;
+        const STICK_REAL *obj = T + (size_t)2 * m * W;
+        STICK_REAL tol = STICK_BOUND_ULPS * 2 * m * STICK_EPS;
+        for (int k = 0; k < d * d; k++)
+            M2[k] = 0;
+        for (int i = 0; i < m; i++) {
+            int r = live[i];
+            if (!(obj[2 * d + 2 + i] > tol || obj[2 * d + 2 + m + i] > tol)) {
+                live[kept++] = r;
+                continue;
+            }
+            fixed++;
+            for (int a = 0; a < d; a++)
+                for (int b = 0; b < d; b++)
+                    M2[a * d + b] += N[r * d + a] * N[r * d + b];
+        }
+        if (!fixed) /* (cannot be: the largest has a dual; rounding) */
+            break;
+        m = kept;
+        STICK_(jacobi)(M2, EV, ev, d);
+        STICK_REAL top = 0;
+        for (int k = 0; k < d; k++)
+            if (ev[k] > top)
+                top = ev[k];
+        int d2 = 0;
+        for (int k = 0; k < d; k++)
+            d2 += !STICK_(counts)(ev[k], top, d);
+        for (int r = 0; r < n; r++)
+            for (int k = 0, c = 0; k < d; k++) {
+                if (STICK_(counts)(ev[k], top, d))
+                    continue;
+                STICK_REAL e = 0;
+                for (int a = 0; a < d; a++)
+                    e += N[r * d + a] * EV[a * d + k];
+                NK[r * d2 + c++] = e;
+            }
+        d = d2;
+        for (int k = 0; k < n * d; k++)
+            N[k] = NK[k];
+    }
+}
+
 /* Where the stuck rows are redundant (G's rank below their count: a
  * foot's ends, a leg's points), the holding forces are not unique, and
  * least-norm shares (accel's) can put one point at its bound while the
@@ -633,7 +720,7 @@ STICK_(spread)(STICK_(Work) *w, const STICK_REAL *a)
     int n = w->nR, d = n - w->rank;
     if (n == 0 || d <= 0)
         return;
-    STICK_REAL *N = w->lp, *T = N + (size_t)n * d, *z = w->c;
+    STICK_REAL *N = w->lp;
     for (int i = 0, k = 0; i < n; i++) {
         if (STICK_(counts)(w->lam[i], w->top, n))
             continue;
@@ -641,12 +728,9 @@ STICK_(spread)(STICK_(Work) *w, const STICK_REAL *a)
             N[r * d + k] = w->V[r * n + i];
         k++;
     }
-    STICK_(cheb)(w->psi, N, n, d, z, T, w->lpb);
-    for (int r = 0; r < n; r++) {
-        for (int k = 0; k < d; k++)
-            w->psi[r] += N[r * d + k] * z[k];
+    STICK_(lexi)(w->psi, N, n, d, w->lx, w->lxi, w->lpb);
+    for (int r = 0; r < n; r++)
         w->phi[w->R[r]] = w->F[w->R[r]] * w->psi[r];
-    }
     STICK_(holding)(w, a);
 }
 
@@ -1250,12 +1334,23 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
      * friction of that side moves it off 0 the other way at once, where
      * the run locates the departure as a crossing (stepevents.c's
      * leaves_kink) and it sticks, as one touching with a speed that is 0
-     * but for rounding does: the same flips whether rounding left its
-     * speed 0 or not (in the run's doubles and the reference's long
-     * doubles alike) */
+     * but for rounding (of its terms, STICK_BOUND_ULPS of them) does: the
+     * same flips whether rounding left its speed 0 or not (in the run's
+     * doubles and the reference's long doubles alike).  Where the
+     * switch's function is across from its kept side by rounding, the
+     * instant's pass flips it there (stepevents.c's together): the speed
+     * crosses 0 at once. */
     for (int i = 0; i < w->nf; i++) {
-        STICK_REAL e = STICK_(speed)(w, i, v, NULL);
-        if (STICK_(is_row)(w, i) && !STICK_(stuck)(w, u, i) && w->F[i] > 0 && e != 0)
+        if (!STICK_(is_row)(w, i) || STICK_(stuck)(w, u, i) || !(w->F[i] > 0))
+            continue;
+        STICK_REAL e = STICK_(speed)(w, i, v, NULL), terms = 0;
+        for (int k = 0; k < w->nv; k++)
+            terms += STICK_ABS(w->J[i * w->nv + k] * v[k]);
+        /* 0 but for rounding (a foot's new point, whose row its stuck
+         * points span: the speed they hold at 0): no sign, as 0 has none
+         * (its sign here and the switch function's, two roundings of one
+         * 0, may differ) */
+        if (STICK_ABS(e) > STICK_BOUND_ULPS * w->nv * STICK_EPS * terms)
             STICK_(set)(w, u, m->fric_slip[i], e > 0);
     }
     return STICK_OK;

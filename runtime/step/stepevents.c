@@ -39,6 +39,12 @@
  * would be below the collapse limit of any run), and the next ones come
  * ever faster. */
 #define ACCUMULATE_REL 1e-9
+/* A switch chatters (Zeno) when ACCUMULATE_FLIPS of its flips in a row
+ * each come within ACCUMULATE_REL of the span after the one before.  One
+ * that close can be two events' doing, located apart by rounding (a
+ * body's mirror images touching at once, each moving the loads a group of
+ * stuck points shares); a chatter goes on without end. */
+#define ACCUMULATE_FLIPS 4
 /* A reset passes through its event when it leaves g moving on the way it
  * crossed at more than PASS_REL of the rate it arrived with (a kick, a
  * switch of mode).  Anything slower, at rest or turned back (an impact),
@@ -57,6 +63,8 @@ struct StepEvents {
     int ne;                       /* events: the scene's, then the switches */
     int nev;                      /* the scene's (m->nevent) */
     double *tsw;                  /* [ne - nev] each switch's last flip */
+    int *quick;                   /* [ne - nev] its flips in a row within
+                                   * ACCUMULATE_REL of the one before */
     double *seq;                  /* [ne - nev] the order of its flip at that instant */
     unsigned char *was;           /* [ne - nev] the modes before a flip (also_set) */
     unsigned char *fricsw;        /* [ne - nev] 1: dry friction's (a slip or stick switch) */
@@ -109,6 +117,7 @@ stepev_alloc(eomc_sim *s, const eomc_run_opts *o, eomc_stats *st, StepevMotion m
     ok &= (v->lost = calloc(ne + 1, 1)) != NULL;
     ok &= (v->tsw = sim_zeros((size_t)m->nmode)) != NULL;
     ok &= (v->seq = sim_zeros((size_t)m->nmode)) != NULL;
+    ok &= (v->quick = calloc((size_t)m->nmode + 1, sizeof *v->quick)) != NULL;
     ok &= (v->was = calloc((size_t)m->nmode + 1, 1)) != NULL;
     ok &= (v->fricsw = calloc((size_t)m->nmode + 1, 1)) != NULL;
     for (int j = 0; ok && j < m->nmode; j++)
@@ -137,6 +146,7 @@ stepev_free(StepEvents *v)
     free(v->lost);
     free(v->tsw);
     free(v->seq);
+    free(v->quick);
     free(v->was);
     free(v->fricsw);
     free(v->cl);
@@ -750,13 +760,15 @@ together(StepEvents *v, double t, double *x, double soon, int contacts_only)
 
 /* Switch k's flip at t: its mode to where its function went, x as it
  * is (but for a speed dry friction sticks, exactly 0 then: sim_flip),
- * f [nx] its rate in the new mode.  Flips of one switch within
- * ACCUMULATE_REL of the span chatter (Zeno), as resets do. */
+ * f [nx] its rate in the new mode.  ACCUMULATE_FLIPS flips of one
+ * switch in a row, each within ACCUMULATE_REL of the span after the one
+ * before, chatter (Zeno), as resets do. */
 static int
 flip(StepEvents *v, int k, double t, double *x, double *f)
 {
     int j = k - v->nev;
-    if (t - v->tsw[j] < ACCUMULATE_REL * (v->o->t_end - v->o->t0)) {
+    v->quick[j] = t - v->tsw[j] < ACCUMULATE_REL * (v->o->t_end - v->o->t0) ? v->quick[j] + 1 : 0;
+    if (v->quick[j] >= ACCUMULATE_FLIPS) {
         v->last_set = v->tsw[j];
         return STEPEV_ACCUMULATE;
     }
@@ -881,6 +893,13 @@ stepev_error(const StepEvents *v, int status, double t, const double *x)
 {
     eomc_sim *s = v->s;
     const char *name = name_of(v, v->ev_k);
+    if (status == STEPEV_ACCUMULATE && v->ev_k >= v->nev)
+        return sim_numeric_error(s, t, x, x + v->n, "switch %s chatters: %d of its flips "
+                                 "in a row each came within %g of the time span after the "
+                                 "one before (the last two %.3g apart): the motion comes "
+                                 "to rest against its kink in ever shorter intervals "
+                                 "(Zeno), which no step can follow", name, ACCUMULATE_FLIPS,
+                                 ACCUMULATE_REL, t - v->last_set);
     if (status == STEPEV_ACCUMULATE)
         return sim_numeric_error(s, t, x, x + v->n, "the events accumulate: %s fired %ld "
                                  "times, the last two %.3g apart, below %g of the time "

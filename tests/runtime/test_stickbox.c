@@ -26,6 +26,15 @@
  * choice of d + 1 rows and signs, s_i (a_i + N_i z) = t solved by GSL's
  * LU, kept where every row is within t.  The value to 1e-12, and cheb's z
  * reaching it.
+ *
+ * Its shares read by the switches (lexi, the lexicographic least: the
+ * largest least, then the next, ...), on such problems, half of them
+ * with rows that no direction moves and one of those the largest (the
+ * least largest then leaves the others free, where the simplex's
+ * answer turns on N's basis): the same shares, to 1e-12, from another
+ * basis of the same directions (N Q, Q a random rotation) and another
+ * start (a + N w); the largest is cheb's least; and no share vector
+ * nearby (psi + N dz, dz random, short and long) is less in that order.
  */
 #include "../unit/check.h"
 #include "model/friction.h"
@@ -34,6 +43,7 @@
 #include <gsl/gsl_linalg.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -178,6 +188,115 @@ least_largest(unsigned *seed, double *value, double *reach)
     }
 }
 
+/* Random orthonormal columns N [n d] by Gram-Schmidt; rows r with
+ * zero[r] set are 0 (no direction moves them). */
+static void
+orthonormal(unsigned *seed, double *N, int n, int d, const int *zero)
+{
+    for (int c = 0; c < d; c++) {
+        for (int r = 0; r < n; r++)
+            N[r * d + c] = zero[r] ? 0 : uniform(seed);
+        for (int p = 0; p < c; p++) {
+            double dot = 0;
+            for (int r = 0; r < n; r++)
+                dot += N[r * d + c] * N[r * d + p];
+            for (int r = 0; r < n; r++)
+                N[r * d + c] -= dot * N[r * d + p];
+        }
+        double len = 0;
+        for (int r = 0; r < n; r++)
+            len += N[r * d + c] * N[r * d + c];
+        for (int r = 0; r < n; r++)
+            N[r * d + c] /= sqrt(len);
+    }
+}
+
+static int
+by_size_down(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? 1 : x > y ? -1 : 0;
+}
+
+/* Where b's |shares| sorted down first differ from a's by more than tol:
+ * -1 where b's is less there (b comes first in the order), 1 where more,
+ * 0 where they do not. */
+static int
+compare_sorted(const double *a, const double *b, int n, double tol)
+{
+    double sa[MAXN], sb[MAXN];
+    for (int r = 0; r < n; r++)
+        sa[r] = fabs(a[r]), sb[r] = fabs(b[r]);
+    qsort(sa, (size_t)n, sizeof *sa, by_size_down);
+    qsort(sb, (size_t)n, sizeof *sb, by_size_down);
+    for (int r = 0; r < n; r++)
+        if (fabs(sa[r] - sb[r]) > tol)
+            return sb[r] < sa[r] ? -1 : 1;
+    return 0;
+}
+
+static double lx_[STICK_LEXI_SCRATCH(MAXN)];
+static int lxi_[MAXN];
+
+/* lexi on random problems: the worst difference of the shares from
+ * another basis and start, of the largest from cheb's value, and the
+ * count of nearby share vectors before them in the order (0) */
+static void
+lexicographic(unsigned *seed, double *basis, double *largest, int *beaten, int *fixed_rows)
+{
+    for (int trial = 0; trial < 600; trial++) {
+        int n = 3 + trial % 5, d = 1 + (trial / 5) % (n - 1 < 3 ? n - 1 : 3), zero[MAXN] = {0};
+        double N[MAXN * MAXN], N2[MAXN * MAXN], Nc[MAXN * MAXN], a[MAXN], a2[MAXN], z[MAXN];
+        double psi[MAXN], psi2[MAXN], Q[MAXN * MAXN], w[MAXN];
+        int fix = trial % 2; /* a row no direction moves, the largest */
+        if (fix)
+            zero[0] = 1, *fixed_rows += 1;
+        orthonormal(seed, N, n, d, zero);
+        for (int r = 0; r < n; r++)
+            a[r] = uniform(seed);
+        if (fix)
+            a[0] = 3;
+        int nz[MAXN] = {0};
+        orthonormal(seed, Q, d, d, nz); /* a rotation of the directions */
+        for (int r = 0; r < n; r++)
+            for (int c = 0; c < d; c++) {
+                N2[r * d + c] = 0;
+                for (int k = 0; k < d; k++)
+                    N2[r * d + c] += N[r * d + k] * Q[k * d + c];
+            }
+        for (int k = 0; k < d; k++)
+            w[k] = 2 * uniform(seed);
+        for (int r = 0; r < n; r++) {
+            a2[r] = a[r];
+            for (int k = 0; k < d; k++)
+                a2[r] += N[r * d + k] * w[k];
+            psi[r] = a[r], psi2[r] = a2[r];
+        }
+        double least = tbox_cheb(a, N, n, d, z, lp_, lpb_);
+        memcpy(Nc, N, sizeof N);
+        tbox_lexi(psi, Nc, n, d, lx_, lxi_, lpb_);
+        memcpy(Nc, N2, sizeof N2);
+        tbox_lexi(psi2, Nc, n, d, lx_, lxi_, lpb_);
+        double top = 0;
+        for (int r = 0; r < n; r++) {
+            *basis = fmax(*basis, fabs(psi[r] - psi2[r]));
+            top = fmax(top, fabs(psi[r]));
+        }
+        *largest = fmax(*largest, fabs(top - least));
+        for (int k = 0; k < 200; k++) { /* nearby vectors: none before psi */
+            double len = k % 2 ? 1e-3 : 0.3, near[MAXN];
+            for (int r = 0; r < n; r++)
+                near[r] = psi[r];
+            for (int c = 0; c < d; c++) {
+                double dz = len * uniform(seed);
+                for (int r = 0; r < n; r++)
+                    near[r] += N[r * d + c] * dz;
+            }
+            *beaten += compare_sorted(psi, near, n, 1e-12) < 0;
+        }
+    }
+}
+
 int
 main(void)
 {
@@ -264,5 +383,13 @@ main(void)
     least_largest(&seed, &value, &reach);
     CHECK(value <= 1e-12 && reach <= 1e-12, "the least largest share is the least over the "
           "problem's vertices (worst %.2g), and cheb's z reaches it (worst %.2g)", value, reach);
+    double basis = 0, largest = 0;
+    int beaten = 0, fixed_rows = 0;
+    lexicographic(&seed, &basis, &largest, &beaten, &fixed_rows);
+    CHECK(basis <= 1e-12 && largest <= 1e-12 && beaten == 0 && fixed_rows == 300,
+          "the lexicographic least shares are the same from another basis and start (worst "
+          "%.2g; %d problems with a largest row no direction moves), their largest is the "
+          "least largest (worst %.2g), and no nearby shares come before them (%d do)", basis,
+          fixed_rows, largest, beaten);
     return check_done();
 }

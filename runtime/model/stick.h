@@ -680,17 +680,18 @@ STICK_(lexi)(STICK_REAL *psi, STICK_REAL *N, int n, int d, STICK_REAL *s, int *l
         if (!fixed) /* (cannot be: the largest has a dual; rounding) */
             break;
         m = kept;
+        /* a direction moves the fixed rows where N_B^T N_B's eigenvalue
+         * along it is above rounding of N's own scale, 1 (its columns are
+         * unit vectors), not of that matrix's largest: a row that no
+         * direction moves but for rounding (N_r of 1e-17) must not take
+         * the directions from the rest */
         STICK_(jacobi)(M2, EV, ev, d);
-        STICK_REAL top = 0;
-        for (int k = 0; k < d; k++)
-            if (ev[k] > top)
-                top = ev[k];
         int d2 = 0;
         for (int k = 0; k < d; k++)
-            d2 += !STICK_(counts)(ev[k], top, d);
+            d2 += !STICK_(counts)(ev[k], 1, d);
         for (int r = 0; r < n; r++)
             for (int k = 0, c = 0; k < d; k++) {
-                if (STICK_(counts)(ev[k], top, d))
+                if (STICK_(counts)(ev[k], 1, d))
                     continue;
                 STICK_REAL e = 0;
                 for (int a = 0; a < d; a++)

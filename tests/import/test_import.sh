@@ -236,33 +236,50 @@ if [ "$part" = humanoid ]; then
   feet=$(grep -c ',contacts\.left_right_foot\.left_left_foot\.' "$tmp/hev2.csv")
   [ $st -eq 0 ] && [ "$last" = 2 ] && [ -z "$(grep -v 'dropped: the friction' "$tmp/err")" ]
   ok $? "the humanoid dropped, on to t = 2 at rtol 1e-7: exit $st, last row t = $last, the feet's pair flipped $feet switches ($(grep -v 'dropped: the friction' "$tmp/err" | head -c 200))"
-  # with friction (1 on each pair with the floor), on to t = 5 at rtol
+  # with friction (1 on each pair with the floor), on to t = 10 at rtol
   # 1e-7: it lands on its feet, crouches, falls onto its hands and its
   # back, and lies still, its feet's ends sticking and slipping on the
   # way.  The model is its own mirror image across the x-z plane, and
   # dropped straight it stays so: root_y and the quaternion's x and z stay
-  # 0 to rounding.  (Before the touch points were put on the floor's
+  # 0 to rounding.  At rest its contacts' springs carry its weight: sum k d
+  # = M g, each depth d from MuJoCo's kinematics at eomc's last pose
+  # (mj_accel sinks; a geom whose name a body has is NAME_2 in the spec), M
+  # and g MuJoCo's.  (Before the touch points were put on the floor's
   # surface, a foot's four ends, at depths apart by a rounding-sized tilt,
   # gave rows independent by that margin: the run stopped at the landing,
   # t = 0.20939, exit 3.  Before the shares the switches read were the
   # lexicographic least, it stopped at t = 1.178, a switch chattering; and
-  # before a switch could flip twice within 1e-9 of the span, at 3.233,
+  # before a switch could flip once within 1e-9 of the span, at 3.233,
   # where the arms' mirror images touch 2.6e-11 apart.)  MuJoCo's own run
   # falls the other way, forward (root_qy near 1): its torso's height at
-  # t = 5 is printed beside eomc's.
-  "$eomc" run "$tmp/humanoid.yaml" --t-end 5 --rtol 1e-7 --atol 1e-7 \
+  # t = 10 is printed beside eomc's.
+  "$eomc" run "$tmp/humanoid.yaml" --t-end 10 --rtol 1e-7 --atol 1e-7 \
     --events "$tmp/hev3.csv" -o "$tmp/h3.csv" 2> "$tmp/err"; st=$?
   last=$(tail -1 "$tmp/h3.csv" | cut -d, -f1)
-  ours=$(tail -1 "$tmp/h3.csv" | cut -d, -f4)
-  theirs=$("$mj" "$mjcf" rest 5 2> /dev/null | cut -d' ' -f3)
   sticks=$(grep -c ',contacts\.floor\..*_foot\..*\.stick,' "$tmp/hev3.csv")
   mirror=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
       { for (k = 0; k < 3; k++) { a = $(c[k == 0 ? "root_y" : k == 1 ? "root_qx" : "root_qz"])
           a = a < 0 ? -a : a; if (a > m) m = a } }
       END { printf "%.2g", m }' "$tmp/h3.csv")
-  [ $st -eq 0 ] && [ "$last" = 5 ] && [ "$sticks" -ge 16 ] &&
-    awk -v m="$mirror" 'BEGIN { exit !(m <= 1e-8) }'
-  ok $? "the humanoid dropped with friction, to t = 5 at rtol 1e-7: exit $st, last row t = $last, its feet's ends stuck or let go $sticks times, its mirror symmetry kept (|root_y|, |qx|, |qz| at most $mirror); its torso at $ours, MuJoCo's at $theirs ($(head -c 300 "$tmp/err"))"
+  nq=$(head -1 "$tmp/h3.csv" | awk -F, '{ for (i = 2; i <= NF; i++)
+      if ($i ~ /\x27$/ || $i ~ /_w[xyz]$/) { print i - 2; exit } }')
+  still=$(awk -F, 'NR == 1 { for (i = 2; i <= NF; i++) s[i] = $i ~ /\x27$/ || $i ~ /_w[xyz]$/; next }
+      { m = 0; for (i in s) if (s[i]) { a = $i < 0 ? -$i : $i; if (a > m) m = a }
+        if (m > top) top = m; last = m } END { printf "%.2g", last / top }' "$tmp/h3.csv")
+  tail -1 "$tmp/h3.csv" | tr , ' ' | cut -d' ' -f1-$((nq + 1)) | "$mj" "$mjcf" sinks > "$tmp/sinks"
+  carried=$(awk 'FNR == NR { if ($0 ~ /^    - \{contact: \[\[floor, /) { n = $4; sub(/\]\],$/, "", n)
+                               k[n] = $6 + 0 } next }
+      FNR == 1 { w = $1 * $2; next } { n = $2 in k ? $2 : $2 "_2"; if (!(n in k)) bad = 1
+                                      sum += k[n] * $3; pts++ }
+      END { if (bad) print "unknown"; else printf "%.2g %d", sum / w - 1, pts }' \
+    "$tmp/humanoid.yaml" "$tmp/sinks")
+  ours=$(tail -1 "$tmp/h3.csv" | cut -d, -f4)
+  theirs=$("$mj" "$mjcf" rest 10 2> /dev/null | cut -d' ' -f3)
+  [ $st -eq 0 ] && [ "$last" = 10 ] && [ "$sticks" -ge 16 ] &&
+    awk -v m="$mirror" -v s="$still" 'BEGIN { exit !(m <= 1e-8 && s <= 1e-9) }' &&
+    awk -v c="$carried" 'BEGIN { split(c, x, " "); e = x[1] < 0 ? -x[1] : x[1]
+      exit !(c != "unknown" && e <= 1e-9 && x[2] >= 3) }'
+  ok $? "the humanoid dropped with friction, to t = 10 at rtol 1e-7: exit $st, last row t = $last, its feet's ends stuck or let go $sticks times, its mirror symmetry kept (|root_y|, |qx|, |qz| at most $mirror); it comes to rest (speeds at t = 10: $still of their largest), its points' springs carrying its weight (sum k d / M g - 1, points: $carried); its torso at $ours, MuJoCo's at $theirs ($(head -c 300 "$tmp/err"))"
 fi
 
 # The quadruped dropped on its floor with friction (1 on each pair of a

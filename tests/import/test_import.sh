@@ -211,6 +211,27 @@ fi
 # two feet's nearly parallel capsules flip clamps that read each other's
 # modes at one instant (the run stopped there at t = 0.2094, exit 3)
 # Without its contacts' friction, then with it.
+# A run's end at rest (CSV, its SPEC, its MJCF): nq, the coordinates'
+# count; still, the speeds at the last row over their largest in the run;
+# carried, "sum k d / (M g) - 1" and the points' count, each point's depth
+# d below the floor by MuJoCo's kinematics at the last pose (mj_accel
+# sinks), its k the spec's for the shape's pair with the floor (a geom
+# whose name a body has is NAME_2 in the spec), M and g MuJoCo's.
+at_rest() {
+  nq=$(head -1 "$1" | awk -F, '{ for (i = 2; i <= NF; i++)
+      if ($i ~ /\x27$/ || $i ~ /_w[xyz]$/) { print i - 2; exit } }')
+  still=$(awk -F, 'NR == 1 { for (i = 2; i <= NF; i++) s[i] = $i ~ /\x27$/ || $i ~ /_w[xyz]$/; next }
+      { m = 0; for (i in s) if (s[i]) { a = $i < 0 ? -$i : $i; if (a > m) m = a }
+        if (m > top) top = m; last = m } END { printf "%.2g", last / top }' "$1")
+  tail -1 "$1" | tr , ' ' | cut -d' ' -f1-$((nq + 1)) | "$mj" "$3" sinks > "$tmp/sinks"
+  carried=$(awk 'FNR == NR { if ($0 ~ /^    - \{contact: \[\[floor, /) { n = $4; sub(/\]\],$/, "", n)
+                               k[n] = $6 + 0 } next }
+      FNR == 1 { w = $1 * $2; next } { n = $2 in k ? $2 : $2 "_2"; if (!(n in k)) bad = 1
+                                      sum += k[n] * $3; pts++ }
+      END { if (bad) print "unknown"; else printf "%.2g %d", sum / w - 1, pts }' \
+    "$2" "$tmp/sinks")
+}
+
 if [ "$part" = humanoid ]; then
   set -- $("$mj" "$models" lowest)
   want=$(awk -v h="$1" -v g="$2" 'BEGIN { printf "%.17g", sqrt(2 * h / g) }')
@@ -261,18 +282,7 @@ if [ "$part" = humanoid ]; then
       { for (k = 0; k < 3; k++) { a = $(c[k == 0 ? "root_y" : k == 1 ? "root_qx" : "root_qz"])
           a = a < 0 ? -a : a; if (a > m) m = a } }
       END { printf "%.2g", m }' "$tmp/h3.csv")
-  nq=$(head -1 "$tmp/h3.csv" | awk -F, '{ for (i = 2; i <= NF; i++)
-      if ($i ~ /\x27$/ || $i ~ /_w[xyz]$/) { print i - 2; exit } }')
-  still=$(awk -F, 'NR == 1 { for (i = 2; i <= NF; i++) s[i] = $i ~ /\x27$/ || $i ~ /_w[xyz]$/; next }
-      { m = 0; for (i in s) if (s[i]) { a = $i < 0 ? -$i : $i; if (a > m) m = a }
-        if (m > top) top = m; last = m } END { printf "%.2g", last / top }' "$tmp/h3.csv")
-  tail -1 "$tmp/h3.csv" | tr , ' ' | cut -d' ' -f1-$((nq + 1)) | "$mj" "$mjcf" sinks > "$tmp/sinks"
-  carried=$(awk 'FNR == NR { if ($0 ~ /^    - \{contact: \[\[floor, /) { n = $4; sub(/\]\],$/, "", n)
-                               k[n] = $6 + 0 } next }
-      FNR == 1 { w = $1 * $2; next } { n = $2 in k ? $2 : $2 "_2"; if (!(n in k)) bad = 1
-                                      sum += k[n] * $3; pts++ }
-      END { if (bad) print "unknown"; else printf "%.2g %d", sum / w - 1, pts }' \
-    "$tmp/humanoid.yaml" "$tmp/sinks")
+  at_rest "$tmp/h3.csv" "$tmp/humanoid.yaml" "$mjcf"
   ours=$(tail -1 "$tmp/h3.csv" | cut -d, -f4)
   theirs=$("$mj" "$mjcf" rest 10 2> /dev/null | cut -d' ' -f3)
   [ $st -eq 0 ] && [ "$last" = 10 ] && [ "$sticks" -ge 16 ] &&
@@ -299,17 +309,7 @@ if [ "$part" = robots ]; then
   "$eomc" import "$q" -o "$tmp/quad.yaml" 2> /dev/null
   "$eomc" run "$tmp/quad.yaml" --t-end 10 --rtol 1e-9 --atol 1e-9 -o "$tmp/quad.csv" \
     2> "$tmp/err"; st=$?
-  nq=$(head -1 "$tmp/quad.csv" | awk -F, '{ for (i = 2; i <= NF; i++)
-      if ($i ~ /\x27$/ || $i ~ /_w[xyz]$/) { print i - 2; exit } }')
-  still=$(awk -F, 'NR == 1 { for (i = 2; i <= NF; i++) s[i] = $i ~ /\x27$/ || $i ~ /_w[xyz]$/; next }
-      { m = 0; for (i in s) if (s[i]) { a = $i < 0 ? -$i : $i; if (a > m) m = a }
-        if (m > top) top = m; last = m } END { printf "%.2g", last / top }' "$tmp/quad.csv")
-  tail -1 "$tmp/quad.csv" | tr , ' ' | cut -d' ' -f1-$((nq + 1)) | "$mj" "$q" sinks > "$tmp/sinks"
-  carried=$(awk 'FNR == NR { if ($0 ~ /^    - \{contact: \[\[floor, /) { n = $4; sub(/\]\],$/, "", n)
-                               k[n] = $6 + 0 } next }
-      FNR == 1 { w = $1 * $2; next } { if (!($2 in k)) bad = 1; sum += k[$2] * $3; pts++ }
-      END { if (bad) print "unknown"; else printf "%.2g %d", sum / w - 1, pts }' \
-    "$tmp/quad.yaml" "$tmp/sinks")
+  at_rest "$tmp/quad.csv" "$tmp/quad.yaml" "$q"
   ours=$(tail -1 "$tmp/quad.csv" | cut -d, -f4)
   theirs=$("$mj" "$q" rest 10 | cut -d' ' -f3)
   [ $st -eq 0 ] && [ "$nq" = 19 ] && awk -v s="$still" 'BEGIN { exit !(s <= 1e-9) }' &&

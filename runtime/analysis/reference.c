@@ -752,10 +752,11 @@ failure(Ref *r, int st)
         state_switch_name(r->m, r->bad_switch, name, sizeof name);
     if (st == -5)
         return sim_numeric_error(s, r->fail_t, x, x + r->n, "the reference solution (%s) "
-                                 "cannot follow %s: it flips again within %g of the time "
-                                 "span (it chatters: the motion slides along its kink, "
-                                 "which no mode follows)", method_name(r), name,
-                                 REFSW_CHATTER);
+                                 "cannot follow %s: it flips %d times in a row, each within "
+                                 "%g of the time span after the one before (it chatters: "
+                                 "the motion slides along its kink, which no mode "
+                                 "follows)", method_name(r), name, STEPEV_CHATTER_FLIPS,
+                                 STEPEV_ACCUMULATE_REL);
     if (st == -6)
         return sim_numeric_error(s, r->fail_t, x, x + r->n, "%s starts on its kink (its "
                                  "function is 0) and neither mode leaves it: the motion "

@@ -10,6 +10,7 @@
 #define EOMC_REFSWITCH_H
 
 #include "eomc_model.h"
+#include "step/stepevents.h" /* (when a switch chatters) */
 
 typedef struct RefSwMotion {
     void *ctx;
@@ -70,14 +71,9 @@ int refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext 
  * friction that sticks there (motion.flip) has its speed in x set to 0
  * and its stick switch recorded with its slip's sensitivities.  0; -1
  * when the motion cannot be computed; -2 when a switch chatters
- * (REFSW_CHATTER_FLIPS: the run stops there too), switch *bad. */
+ * (STEPEV_CHATTER_FLIPS quick flips in a row, as the run stops), switch *bad. */
 int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, int *bad);
 
-/* A switch chatters when REFSW_CHATTER_FLIPS of its flips in a row each
- * come within this share of the time span after the one before
- * (stepevents.c's ACCUMULATE_REL, ACCUMULATE_FLIPS). */
-#define REFSW_CHATTER 1e-9
-#define REFSW_CHATTER_FLIPS 4
 
 /* The record since refsw_start: n flips, each's time, switch and [N]
  * sensitivities |ds/dx_i| / |ds/dt| (how far the crossing moves in time

@@ -89,7 +89,10 @@ typedef struct STICK_(Work) {
 #define STICK_BOUND_ULPS 1024
 /* The box problem's active set changes at most this many times per row
  * (each pass fixes a row at a bound or frees one; cycling, possible only
- * where rows are degenerate, ends there with the psi reached). */
+ * where rows are degenerate, ends there with the psi reached).  cheb's
+ * simplex method (under lexi's passes) pivots at most this many times
+ * per row and column of its tableau, for the same reason: Bland's rule
+ * cannot cycle, but rounding can make it wander where rows are alike. */
 #define STICK_BOX_PASSES 8
 /* unstick_rows looks this share of the run's span ahead where the choice
  * of who slips sits on its edge: short of other events (a step is seldom
@@ -689,8 +692,9 @@ STICK_(lexi)(STICK_REAL *psi, STICK_REAL *N, int n, int d, STICK_REAL *s, int *l
         int d2 = 0;
         for (int k = 0; k < d; k++)
             d2 += !STICK_(counts)(ev[k], 1, d);
-        for (int r = 0; r < n; r++)
-            for (int k = 0, c = 0; k < d; k++) {
+        /* (only the rows left are read from here on) */
+        for (int i = 0; i < m; i++)
+            for (int k = 0, c = 0, r = live[i]; k < d; k++) {
                 if (STICK_(counts)(ev[k], 1, d))
                     continue;
                 STICK_REAL e = 0;
@@ -699,8 +703,9 @@ STICK_(lexi)(STICK_REAL *psi, STICK_REAL *N, int n, int d, STICK_REAL *s, int *l
                 NK[r * d2 + c++] = e;
             }
         d = d2;
-        for (int k = 0; k < n * d; k++)
-            N[k] = NK[k];
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < d; k++)
+                N[live[i] * d + k] = NK[live[i] * d + k];
     }
 }
 
@@ -809,6 +814,25 @@ STICK_(speed)(const STICK_(Work) *w, int j, const STICK_REAL *v, const STICK_REA
     for (int i = 0; i < w->nv; i++)
         e += w->J[j * w->nv + i] * (a ? a[i] : v[i]);
     return e;
+}
+
+/* Item j's speed's sign at the last build: +1, -1, or 0 where it is 0
+ * but for rounding (of its terms |J_ji v_i|, STICK_BOUND_ULPS of them:
+ * a foot's new point, whose row its stuck points span, moves at 0 but
+ * for rounding).  Such a 0 has no sign: its sign here and a switch
+ * function's, two roundings of one 0, may differ, and the run's doubles
+ * and the reference's long doubles would choose apart.  A coordinate's
+ * speed is a component of the state, 0 only where it is set so. */
+static int
+STICK_(sign)(const STICK_(Work) *w, int j, const STICK_REAL *v)
+{
+    STICK_REAL e = STICK_(speed)(w, j, v, NULL), terms = 0;
+    if (STICK_(is_row)(w, j))
+        for (int i = 0; i < w->nv; i++)
+            terms += STICK_ABS(w->J[j * w->nv + i] * v[i]);
+    if (STICK_ABS(e) <= STICK_BOUND_ULPS * w->nv * STICK_EPS * terms)
+        return 0;
+    return e > 0 ? 1 : -1;
 }
 
 /* After a solve: the stuck item that needs most beyond its bound (|phi|
@@ -1049,8 +1073,8 @@ STICK_(project)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, STICK_REAL *
 
 /* The modes at a state (t, q, v) alone, a run's start or a value outside
  * a run: an item slipping has its mode from its speed's sign, already in
- * u; one at rest (its speed exactly 0; a row item's with a bound above
- * 0) is stuck if it can be.  All at rest are held first; while one would
+ * u; one at rest (its speed 0, a row's 0 but for rounding: sign; a row
+ * item's with a bound above 0) is stuck if it can be.  All at rest are held first; while one would
  * need more than its bound, the one needing most (for its bound) is let
  * go, slipping the way the rest drives it.  Then each let go must
  * accelerate the way it slips, else no choice of modes follows the
@@ -1071,18 +1095,18 @@ STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_R
         /* a row's slip from its speed's sign (a function that kept the
          * side of a stuck item's may have kept a side from before) */
         for (int j = 0; j < w->nf; j++) {
-            STICK_REAL e = STICK_(speed)(w, j, v, NULL);
-            if (STICK_(is_row)(w, j) && e != 0)
-                STICK_(set)(w, u, m->fric_slip[j], e > 0);
+            int sign = STICK_(sign)(w, j, v);
+            if (STICK_(is_row)(w, j) && sign)
+                STICK_(set)(w, u, m->fric_slip[j], sign > 0);
         }
     }
     for (int j = 0; j < w->nf; j++)
         STICK_(set)(w, u, m->fric_stick[j],
-                    STICK_(speed)(w, j, v, NULL) == 0 && (!STICK_(is_row)(w, j) || w->F[j] > 0));
+                    !STICK_(sign)(w, j, v) && (!STICK_(is_row)(w, j) || w->F[j] > 0));
     if ((rc = STICK_(let_go)(w, t, q, v, p, u, NULL)) != STICK_OK)
         return rc;
     for (int j = 0; j < w->nf; j++) {
-        if (STICK_(stuck)(w, u, j) || STICK_(speed)(w, j, v, NULL) != 0 ||
+        if (STICK_(stuck)(w, u, j) || STICK_(sign)(w, j, v) ||
             (STICK_(is_row)(w, j) && !(w->F[j] > 0)))
             continue;
         int up = u[w->nu + m->fric_slip[j]] != 0;
@@ -1319,14 +1343,18 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
     if (j >= 0 || !w->nrowitem)
         return STICK_OK;
     /* a contact's push ended (or its near or touch switch flipped): a
-     * stuck point whose bound is now 0 holds nothing, and lets go, to
-     * slip by its speed's sign when it touches again */
+     * stuck point whose bound is now 0 holds nothing, and lets go, its
+     * slip switch on its speed's side (its side kept where that is 0 but
+     * for rounding: it was held at 0); it slips by its speed's sign when
+     * it touches again */
     if ((rc = STICK_(build)(w, t, q, v, p, u)) != STICK_OK)
         return rc;
     for (int i = 0; i < w->nf; i++)
         if (STICK_(is_row)(w, i) && STICK_(stuck)(w, u, i) && !(w->F[i] > 0)) {
+            int sign = STICK_(sign)(w, i, v);
             STICK_(set)(w, u, m->fric_stick[i], 0);
-            STICK_(set)(w, u, m->fric_slip[i], STICK_(speed)(w, i, v, NULL) > 0);
+            if (sign)
+                STICK_(set)(w, u, m->fric_slip[i], sign > 0);
         }
     /* a point that touches slips by its speed's sign (its slip switch
      * kept its side while its bound was 0: keep_slip).  One that touches
@@ -1344,15 +1372,9 @@ STICK_(flip)(STICK_(Work) *w, int k, int on, STICK_REAL t, const STICK_REAL *q,
     for (int i = 0; i < w->nf; i++) {
         if (!STICK_(is_row)(w, i) || STICK_(stuck)(w, u, i) || !(w->F[i] > 0))
             continue;
-        STICK_REAL e = STICK_(speed)(w, i, v, NULL), terms = 0;
-        for (int k = 0; k < w->nv; k++)
-            terms += STICK_ABS(w->J[i * w->nv + k] * v[k]);
-        /* 0 but for rounding (a foot's new point, whose row its stuck
-         * points span: the speed they hold at 0): no sign, as 0 has none
-         * (its sign here and the switch function's, two roundings of one
-         * 0, may differ) */
-        if (STICK_ABS(e) > STICK_BOUND_ULPS * w->nv * STICK_EPS * terms)
-            STICK_(set)(w, u, m->fric_slip[i], e > 0);
+        int sign = STICK_(sign)(w, i, v);
+        if (sign)
+            STICK_(set)(w, u, m->fric_slip[i], sign > 0);
     }
     return STICK_OK;
 }

@@ -33,18 +33,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
- * a `set` event fires within ACCUMULATE_REL of the time span of the one
- * before: their times are no longer resolved (the steps between them
- * would be below the collapse limit of any run), and the next ones come
- * ever faster. */
-#define ACCUMULATE_REL 1e-9
-/* A switch chatters (Zeno) when ACCUMULATE_FLIPS of its flips in a row
- * each come within ACCUMULATE_REL of the span after the one before.  One
- * that close can be two events' doing, located apart by rounding (a
- * body's mirror images touching at once, each moving the loads a group of
- * stuck points shares); a chatter goes on without end. */
-#define ACCUMULATE_FLIPS 4
 /* A reset passes through its event when it leaves g moving on the way it
  * crossed at more than PASS_REL of the rate it arrived with (a kick, a
  * switch of mode).  Anything slower, at rest or turned back (an impact),
@@ -64,7 +52,7 @@ struct StepEvents {
     int nev;                      /* the scene's (m->nevent) */
     double *tsw;                  /* [ne - nev] each switch's last flip */
     int *quick;                   /* [ne - nev] its flips in a row within
-                                   * ACCUMULATE_REL of the one before */
+                                   * STEPEV_ACCUMULATE_REL of the one before */
     double *seq;                  /* [ne - nev] the order of its flip at that instant */
     unsigned char *was;           /* [ne - nev] the modes before a flip (also_set) */
     unsigned char *fricsw;        /* [ne - nev] 1: dry friction's (a slip or stick switch) */
@@ -760,15 +748,15 @@ together(StepEvents *v, double t, double *x, double soon, int contacts_only)
 
 /* Switch k's flip at t: its mode to where its function went, x as it
  * is (but for a speed dry friction sticks, exactly 0 then: sim_flip),
- * f [nx] its rate in the new mode.  ACCUMULATE_FLIPS flips of one
- * switch in a row, each within ACCUMULATE_REL of the span after the one
+ * f [nx] its rate in the new mode.  STEPEV_CHATTER_FLIPS flips of one
+ * switch in a row, each within STEPEV_ACCUMULATE_REL of the span after the one
  * before, chatter (Zeno), as resets do. */
 static int
 flip(StepEvents *v, int k, double t, double *x, double *f)
 {
     int j = k - v->nev;
-    v->quick[j] = t - v->tsw[j] < ACCUMULATE_REL * (v->o->t_end - v->o->t0) ? v->quick[j] + 1 : 0;
-    if (v->quick[j] >= ACCUMULATE_FLIPS) {
+    v->quick[j] = t - v->tsw[j] < STEPEV_ACCUMULATE_REL * (v->o->t_end - v->o->t0) ? v->quick[j] + 1 : 0;
+    if (v->quick[j] >= STEPEV_CHATTER_FLIPS) {
         v->last_set = v->tsw[j];
         return STEPEV_ACCUMULATE;
     }
@@ -859,7 +847,7 @@ stepev_reset(StepEvents *v, int k, double t, double *x, double *f)
     v->have_gd0 = 0; /* the state the next step starts from is the reset's */
     if (k >= v->nev)
         return flip(v, k, t, x, f);
-    if (v->nsets > 0 && t - v->last_set < ACCUMULATE_REL * span)
+    if (v->nsets > 0 && t - v->last_set < STEPEV_ACCUMULATE_REL * span)
         return STEPEV_ACCUMULATE;
     v->gap = t - v->last_set;
     v->last_set = t;
@@ -898,14 +886,14 @@ stepev_error(const StepEvents *v, int status, double t, const double *x)
                                  "in a row each came within %g of the time span after the "
                                  "one before (the last two %.3g apart): the motion comes "
                                  "to rest against its kink in ever shorter intervals "
-                                 "(Zeno), which no step can follow", name, ACCUMULATE_FLIPS,
-                                 ACCUMULATE_REL, t - v->last_set);
+                                 "(Zeno), which no step can follow", name, STEPEV_CHATTER_FLIPS,
+                                 STEPEV_ACCUMULATE_REL, t - v->last_set);
     if (status == STEPEV_ACCUMULATE)
         return sim_numeric_error(s, t, x, x + v->n, "the events accumulate: %s fired %ld "
                                  "times, the last two %.3g apart, below %g of the time "
                                  "span: the motion comes to rest against it in ever "
                                  "shorter intervals (Zeno), which no step can follow",
-                                 name, v->nsets + 1, t - v->last_set, ACCUMULATE_REL);
+                                 name, v->nsets + 1, t - v->last_set, STEPEV_ACCUMULATE_REL);
     double flipped = v->ev_k >= v->nev ? v->tsw[v->ev_k - v->nev] : 0;
     if (v->ev_k >= v->nev && flipped == -INFINITY) /* on its kink since the start */
         return sim_numeric_error(s, t, x, x + v->n, "switch %s starts on its kink, and its "

@@ -21,6 +21,19 @@
  * says what they mean. */
 enum { STEPEV_ACCUMULATE = -1003, STEPEV_RETURNED = -1005 };
 
+/* Events accumulate (a bouncing ball coming to rest, Zeno's paradox) when
+ * a `set` event fires within STEPEV_ACCUMULATE_REL of the time span of
+ * the one before: their times are no longer resolved (the steps between
+ * them would be below the collapse limit of any run), and the next ones
+ * come ever faster.  A switch chatters (Zeno) when STEPEV_CHATTER_FLIPS
+ * of its flips in a row each come within that share of the span after
+ * the one before.  One that close can be two events' doing, located apart
+ * by rounding (a body's mirror images touching at once, each moving the
+ * loads a group of stuck points shares); a chatter goes on without end.
+ * The reference (analysis/refswitch.c) stops where the run does. */
+#define STEPEV_ACCUMULATE_REL 1e-9
+#define STEPEV_CHATTER_FLIPS 4
+
 /* The action of index k (stepev_action): the scene's EOMC_EVENT_... for
  * k < nevent, else a switch of the model's (nevent + j: switch j), which
  * ends the step as a `set` does and flips mode j (stepev_reset). */

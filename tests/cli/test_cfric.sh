@@ -40,7 +40,11 @@
 #    another method), falling as the tolerance tightens;
 #  - --atol 0 at a state whose components are 0 names them as the cause
 #    of the steps' collapse (and with --atol above 0 the run goes on);
-#  - Taylor's method is refused by name.
+#  - Taylor's method is refused by name;
+#  - a box on a tilted floor (tests/cli/cfric_tilt.yaml), bounced along
+#    its normal: the exact motion keeps every corner stuck, and its
+#    corners' speeds along the slope start at 0 but for rounding: the run
+#    starts them stuck, and no switch flips.
 # usage: test_cfric.sh EOMC SOURCE_ROOT BUILD_ROOT
 set -u
 eomc=$1 src=$2 build=$3
@@ -84,6 +88,20 @@ want=$(awk 'BEGIN { g = 9.81; th = 20 * 3.14159265358979323846 / 180; a = g * (s
 got=$(tail -1 "$tmp/rows.csv" | cut -d, -f2)
 [ $st -eq 0 ] && awk -v g="$got" -v w="$want" 'BEGIN { e = (g - w) / w; if (e < 0) e = -e; exit !(e <= 1e-12) }'
 ok $? "with mu = 0.2 it slides down: x(10) = -a 10^2/2 = $want, a = g (sin th - mu cos th) ($got)"
+
+# the tilted floor: speeds along the slope 0 but for rounding at the start
+# are at rest (stick.h's sign), so the corners start stuck, and stay: no
+# flip, and the centre moves along the normal n = (sin th, 0, cos th)
+# alone (its distance along the slope, x cos th - z sin th, as it started).
+# Read a speed of 1e-20's sign instead, the run flipped all eight at
+# t = 1.5e-20.
+"$eomc" run "$src/tests/cli/cfric_tilt.yaml" $tight --events "$tmp/ev.csv" > "$tmp/rows.csv"; st=$?
+along=$(awk -F, -v th="$th20" 'NR == 2 { s0 = $2 * cos(th) - $4 * sin(th) }
+    NR > 1 { e = $2 * cos(th) - $4 * sin(th) - s0; if (e < 0) e = -e; if (e > most) most = e }
+    END { printf "%.3g", most }' "$tmp/rows.csv")
+[ $st -eq 0 ] && [ "$(wc -l < "$tmp/ev.csv")" -eq 1 ] && [ "$(wc -l < "$tmp/rows.csv")" -eq 12 ] &&
+  awk -v e="$along" 'BEGIN { exit !(e <= 1e-15) }'
+ok $? "a box on a slope bounced along its normal starts stuck and stays: no flip ($(($(wc -l < "$tmp/ev.csv") - 1)) events), its centre moved along the slope by $along (h = 0.05)"
 
 # the pull: held until pull t = mu N, the four corners letting go at once
 "$eomc" run "$box" --set pull=3 --set v0=0 --t-end 3 $tight --events "$tmp/ev.csv" \

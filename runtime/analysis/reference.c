@@ -148,6 +148,7 @@ typedef struct Ref {
     int dearer;                   /* stiff, but the linearly implicit method was not
                                    * cheaper than GBS (-1: it failed) */
     double tol;
+    eomc_ext span;                /* the run's, t_end - t0 (0: none) */
     long steps, evals, side_evals; /* evals: all right-hand sides; side_evals:
                                     * the rows' side steps' (stepping) */
     double fail_t, *fail_x;       /* where a right-hand side failed [N], then
@@ -310,8 +311,9 @@ ext_rhs(void *ctx, eomc_ext t, const eomc_ext *X, eomc_ext *F)
 /* The error of a step ending at x with estimate d, in tolerances: each
  * component's |d_i| against tol times its magnitude over the solution so
  * far, the step's end included; a component within FLOOR of its group's
- * (coordinates, velocities; the end included again) against tol FLOOR of
- * the group, or one rounding of the group in eomc_ext where that is more.
+ * (coordinates, velocities; the end included again; or of its rounding
+ * scale, below) against tol FLOOR of it, or one rounding of it in eomc_ext
+ * where that is more.
  *  - The end counts for the group: at a start from rest every velocity
  *    is 0 so far, and a q'' that is 0 in exact arithmetic (of a body
  *    symmetric about a plane, of a finger coupled to another) comes out
@@ -327,7 +329,15 @@ ext_rhs(void *ctx, eomc_ext t, const eomc_ext *X, eomc_ext *F)
  *    The others keep tol alone: long double resolves more than its
  *    rounding of the group in a component of the group's size (the
  *    Arenstorf orbit's reference at 1e-19 is 6.8e-15 from Taylor's; with
- *    every component held to the group's rounding, 4.8e-13). */
+ *    every component held to the group's rounding, 4.8e-13).
+ *  - A group's scale is at least the other group's carried over the
+ *    span: velocities off by LDBL_EPSILON of the coordinates' size over
+ *    the span move them by a rounding of theirs, coordinates off by
+ *    LDBL_EPSILON of the velocities' size times the span are a rounding
+ *    of what they move.  A box at rest on its floor has
+ *    velocities of rounding alone (its depth's, in doubles, an
+ *    oscillation of 1e-19 m/s), which held against their own size held
+ *    the reference's steps at 1e-12 s: --error never ended. */
 static double
 step_error(const Ref *r, const eomc_ext *x, const eomc_ext *d)
 {
@@ -335,10 +345,15 @@ step_error(const Ref *r, const eomc_ext *x, const eomc_ext *d)
     eomc_ext group[2] = {0, 0}, worst = 0;
     for (int i = 0; i < r->N; i++)
         group[i >= n] = fmaxl(group[i >= n], fmaxl(r->mag[i], fabsl(x[i])));
+    eomc_ext round[2] = {group[0], group[1]};
+    if (r->span > 0 && r->nv > 0) {
+        round[0] = fmaxl(round[0], group[1] * r->span);
+        round[1] = fmaxl(round[1], group[0] / r->span);
+    }
     for (int i = 0; i < r->N; i++) {
-        eomc_ext own = fmaxl(r->mag[i], fabsl(x[i])), least = FLOOR * group[i >= n];
+        eomc_ext own = fmaxl(r->mag[i], fabsl(x[i])), least = FLOOR * round[i >= n];
         eomc_ext allowed = own > least ? r->tol * own
-                                       : fmaxl(r->tol * least, LDBL_EPSILON * group[i >= n]);
+                                       : fmaxl(r->tol * least, LDBL_EPSILON * round[i >= n]);
         if (d[i] != 0)
             worst = fmaxl(worst, allowed > 0 ? fabsl(d[i]) / allowed : INFINITY);
     }
@@ -708,8 +723,10 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (ok && m->nfric > 0)
         ok &= (r->fr = reffric_alloc(m, x)) != NULL;
+    if (o)
+        r->span = (eomc_ext)o->t_end - (eomc_ext)o->t0;
     if (ok && r->fr && o)
-        reffric_span(r->fr, (eomc_ext)o->t_end - (eomc_ext)o->t0);
+        reffric_span(r->fr, r->span);
     if (ok && m->nmode > 0) {
         RefSwMotion mo = {.ctx = r, .state = sw_state, .rate = sw_rate,
                           .functions = sw_functions};

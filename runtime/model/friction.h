@@ -55,5 +55,14 @@ int fric_bad(const Fric *w);
 double fric_bound_of(const Fric *w, int j);
 double fric_phi(const Fric *w, int j);
 double fric_pivot(const Fric *w);
+/* The condition of the stuck rows' system at the last solve (G balanced by
+ * its diagonal: the rows' directions alone; its largest eigenvalue over
+ * the least the solve counts), 1 where fewer than two rows count; near
+ * [nf]: each item's part in the least direction, of the largest part (0
+ * where not stuck).  Rows that part by little more than rounding (a box's
+ * two corners on one edge as it starts to turn) give a large one: their
+ * holding forces grow as it does, and they let go where their rank first
+ * counts them apart, a place rounding sets. */
+double fric_condition(Fric *w, double *near);
 
 #endif

@@ -64,6 +64,10 @@ struct eomc_sim {
     char *err;               /* the last error message */
     Kkt *kkt;                /* constrained models: the solve and multipliers */
     Fric *fric;              /* dry friction: its stuck speeds (friction.h), or NULL */
+    double *fnear;           /* [nfric] fric_condition's near-null direction */
+    double flip_cond, flip_t;/* the worst stuck rows' condition at a let-go since
+                              * sim_take_flip_condition, and its time */
+    char *flip_what;         /* what they were */
     Proj *proj;              /* constrained models: projection */
     int stabilize;           /* EOMC_STABILIZE_... */
     double alpha, beta;      /* Baumgarte's rates */
@@ -145,6 +149,11 @@ eomc_sim_alloc(const eomc_model *m)
     s->proj = m->nc > 0 ? proj_alloc(m) : NULL;
     s->dep = m->nc > 0 ? depend_alloc(m) : NULL;
     s->fric = m->nfric > 0 ? fric_alloc(m, m) : NULL;
+    s->fnear = sim_zeros((size_t)m->nfric);
+    size_t flen = 128;
+    for (int j = 0; j < m->nfric; j++)
+        flen += strlen(m->fric_names[j]) + 2;
+    s->flip_what = calloc(flen, 1);
     s->Bc = sim_zeros((size_t)m->nc * nv);
     s->ce = sim_zeros((size_t)m->nc);
     s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
@@ -153,7 +162,7 @@ eomc_sim_alloc(const eomc_model *m)
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
-        !s->Bc || !s->ce || !s->cl || !s->crow ||
+        !s->Bc || !s->ce || !s->cl || !s->crow || !s->fnear || !s->flip_what ||
         (m->nc > 0 && (!s->kkt || !s->proj || !s->dep)) || (m->nfric > 0 && !s->fric)) {
         eomc_sim_free(s);
         return NULL;
@@ -172,7 +181,8 @@ eomc_sim_free(eomc_sim *s)
     void *arrays[] = {s->p, s->u, s->sw, s->dudt, s->u_const, s->u_held, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow,
-                      s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm};
+                      s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm, s->fnear,
+                      s->flip_what};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
     kkt_free(s->kkt);
@@ -702,6 +712,10 @@ at_state(eomc_sim *s, double t, const double *q, const double *v)
     return EOMC_OK;
 }
 
+/* An entry of a near-null direction this large against its largest
+ * takes part in the ill-conditioning. */
+#define INVOLVED 0.25
+
 /* The message of a friction.h status at (t, q, v). */
 static int
 fric_error(eomc_sim *s, double t, const double *q, const double *v, int rc)
@@ -1017,9 +1031,6 @@ sim_off_constraints(eomc_sim *s, double t, const double *q, const double *v,
     return rc;
 }
 
-/* An entry of a near-null direction this large against its largest
- * takes part in the ill-conditioning. */
-#define INVOLVED 0.25
 
 double
 sim_condition(eomc_sim *s, double t, const double *q, const double *v)
@@ -1151,6 +1162,36 @@ sim_mode_held(const eomc_sim *s, int k)
     return s->fric && fric_item_stick(s->fric, k) >= 0;
 }
 
+/* A stuck item lets go at (t, q, v): the stuck rows' condition there, in
+ * the modes before (fric_condition), the worst kept.  The solve the run
+ * made there is the one that decides the let-go. */
+static void
+watch_let_go(eomc_sim *s, double t, const double *q, const double *v)
+{
+    const eomc_model *m = s->m;
+    if (fric_solve(s->fric, t, q, v, s->p, s->u, s->a) != STICK_OK)
+        return; /* (the flip says why) */
+    double c = fric_condition(s->fric, s->fnear);
+    if (!(c > s->flip_cond))
+        return;
+    s->flip_cond = c, s->flip_t = t;
+    int at = sprintf(s->flip_what, "the stuck friction rows");
+    const char *open = " (";
+    for (int j = 0; j < m->nfric; j++)
+        if (s->fnear[j] >= INVOLVED)
+            at += sprintf(s->flip_what + at, "%s%s", open, m->fric_names[j]), open = ", ";
+    sprintf(s->flip_what + at, "%s at a let-go", open[0] == ',' ? ")" : "");
+}
+
+double
+sim_take_flip_condition(eomc_sim *s, double *t, const char **what)
+{
+    double c = s->flip_cond;
+    *t = s->flip_t, *what = s->flip_what;
+    s->flip_cond = 0;
+    return c;
+}
+
 int
 sim_flip(eomc_sim *s, int k, int on, double t, double *x)
 {
@@ -1160,6 +1201,8 @@ sim_flip(eomc_sim *s, int k, int on, double t, double *x)
     }
     double *q = x, *v = x + s->n;
     sim_inputs_at(s, t);
+    if (!on && fric_item_stick(s->fric, k) >= 0)
+        watch_let_go(s, t, q, v);
     int rc = fric_flip(s->fric, k, on, t, q, v, s->p, s->u);
     return rc == STICK_OK ? EOMC_OK : fric_error(s, t, q, v, rc);
 }

@@ -140,5 +140,11 @@ const char *sim_condition_what(eomc_sim *s);
  * as sim_condition balances (1 when none): its inverse is about a lower
  * bound on their condition, had for free from their factorizations. */
 double sim_take_pivot(eomc_sim *s);
+/* The largest condition of the stuck friction rows' system where an item
+ * let go since the last call (friction.h's fric_condition; 0 when none),
+ * its time into t and what into what (valid until the next let-go).  A let
+ * go that rounding placed (rows parting by little more than it) shows
+ * here, after the modes that had it are gone. */
+double sim_take_flip_condition(eomc_sim *s, double *t, const char **what);
 
 #endif

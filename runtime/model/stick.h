@@ -69,6 +69,7 @@ typedef struct STICK_(Work) {
     STICK_REAL *G, *V, *lam;  /* [nf nf] G, its eigenvectors (columns), [nf] values */
     STICK_REAL top;           /* G's largest eigenvalue */
     int rank;                 /* G's */
+    int least;                /* G's least eigenvalue that counts (-1: none) */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
     unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
     STICK_REAL *lp;           /* [nf nf] spread's null space */
@@ -364,13 +365,40 @@ STICK_(eigen)(STICK_(Work) *w, int n)
     for (int i = 0; i < n; i++)
         if (w->lam[i] > w->top)
             w->top = w->lam[i];
-    w->rank = 0;
+    w->rank = 0, w->least = -1;
     for (int i = 0; i < n; i++)
-        w->rank += STICK_(counts)(w->lam[i], w->top, n);
+        if (STICK_(counts)(w->lam[i], w->top, n)) {
+            w->rank++;
+            if (w->least < 0 || w->lam[i] < w->lam[w->least])
+                w->least = i;
+        }
+}
+
+/* How much of the direction of eigenvalue lam the solve takes: none
+ * where it does not count, all of it from twice that threshold, and
+ * between them a smooth step.  Rows that part as the motion goes (a box's
+ * two corners on one edge as it starts to turn: one row at psi = 0) have
+ * an eigenvalue that rises from rounding, and the forces that hold them
+ * rise as its inverse: taken all at once where it first counts, they
+ * jumped there, from a share within the bounds to 1e4 times them, a
+ * crossing that no root finder brackets well (the run stopped, its side
+ * step past the jump failing).  Where they let go is still set by the
+ * threshold, not by the motion (which cannot hold them once they part):
+ * the run warns of it (fric_condition). */
+static STICK_REAL
+STICK_(weight)(STICK_REAL lam, STICK_REAL top, int n)
+{
+    STICK_REAL edge = STICK_RANK_ULPS * n * STICK_EPS * top;
+    if (!(lam > edge))
+        return 0;
+    if (lam >= 2 * edge)
+        return 1;
+    STICK_REAL x = lam / edge - 1;
+    return x * x * (3 - 2 * x);
 }
 
 /* psi = G^+ c: along the eigenvectors that count, 0 along the others
- * (the least-norm solution). */
+ * (the least-norm solution), eased in where they first count (weight). */
 static void
 STICK_(pseudo)(const STICK_(Work) *w, const STICK_REAL *c, STICK_REAL *psi)
 {
@@ -383,7 +411,7 @@ STICK_(pseudo)(const STICK_(Work) *w, const STICK_REAL *c, STICK_REAL *psi)
         STICK_REAL y = 0;
         for (int r = 0; r < n; r++)
             y += w->V[r * n + i] * c[r];
-        y /= w->lam[i];
+        y *= STICK_(weight)(w->lam[i], w->top, n) / w->lam[i];
         for (int r = 0; r < n; r++)
             psi[r] += w->V[r * n + i] * y;
     }
@@ -491,6 +519,7 @@ STICK_(build)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
             x[i] *= -w->F[j];
     }
     STICK_(gram)(w, w->G);
+    w->least = -1;
     if (n)
         STICK_(eigen)(w, n);
     return STICK_OK;

@@ -342,13 +342,33 @@ enum { WATCH_EVERY = 64 };
 #define PIVOT_SLACK 1e3
 #define PIVOT_DROP 0.5
 
+/* A condition cond of the system solved for q'' at t, of what (what()
+ * names it, asked only when needed): the largest kept, and the first time
+ * one passed what the tolerance allows. */
+static void
+note_condition(eomc_stats *st, double cond, double t, const char *what)
+{
+    if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
+        return;
+    st->max_condition = cond, st->t_condition = t;
+    if (isnan(st->ill_t) && cond * DBL_EPSILON > st->cond_tol) {
+        st->ill_t = t;
+        snprintf(st->ill, sizeof st->ill, "%s", what);
+    }
+}
+
 /* After each step: the condition of the system solved for q'', and the
- * first time it passed what the tolerance allows. */
+ * first time it passed what the tolerance allows; and the stuck friction
+ * rows' where an item let go in the step (their modes gone by now). */
 static void
 watch_condition(Run *r)
 {
     eomc_stats *st = r->st;
-    double tol = st->cond_tol;
+    double tol = st->cond_tol, t_flip;
+    const char *flip_what;
+    double flip = sim_take_flip_condition(r->s, &t_flip, &flip_what);
+    if (flip > 0)
+        note_condition(st, flip, t_flip, flip_what);
     double pivot = sim_take_pivot(r->s);
     if (st->steps % WATCH_EVERY != 0 &&
         !(PIVOT_SLACK * DBL_EPSILON > tol * pivot && pivot < PIVOT_DROP * r->cond_pivot))
@@ -358,13 +378,8 @@ watch_condition(Run *r)
     double c0 = sim_seconds(0);
     double cond = sim_condition(r->s, r->t, r->x, r->x + r->n);
     st->monitor_seconds += sim_seconds(0) - c0;
-    if (!(cond > st->max_condition)) /* NAN: the next solve will say why */
-        return;
-    st->max_condition = cond, st->t_condition = r->t;
-    if (isnan(st->ill_t) && cond * DBL_EPSILON > tol) {
-        st->ill_t = r->t;
-        snprintf(st->ill, sizeof st->ill, "%s", sim_condition_what(r->s));
-    }
+    if (cond > st->max_condition)
+        note_condition(st, cond, r->t, sim_condition_what(r->s));
 }
 
 /* The conserved quantity is looked at once INVARIANT_EVERY right-hand

@@ -40,6 +40,11 @@
 #    another method), falling as the tolerance tightens;
 #  - --atol 0 at a state whose components are 0 names them as the cause
 #    of the steps' collapse (and with --atol above 0 the run goes on);
+#  - the box pulled at y0 = 1 turns on two corners whose rows are one at
+#    psi = 0: they let go where rounding parts them, and the run warns,
+#    naming them and their condition (cot^2 of half the rows' angle);
+#  - --error on the turning box at rest ends, and says the error the
+#    closed form says;
 #  - Taylor's method is refused by name;
 #  - a box on a tilted floor (tests/cli/cfric_tilt.yaml), bounced along
 #    its normal: the exact motion keeps every corner stuck, and its
@@ -356,6 +361,43 @@ for y0 in 0.4 1.0; do
 done
 [ $fine -eq 2 ]
 ok $? "the box pulled off its centre holds until no sharing of its corners' forces can, then breaks away:$got$(why $st "$tmp/err")"
+
+# pulled at y0 = 1, the box breaks away turning about its corners on the
+# edge y = -b, v1 and v2, which stay stuck: their rows along x, (1, 0,
+# -(x_i sin psi + y_i cos psi)) over (x, y, psi), are one row at psi = 0
+# and part as the box turns (by 2 a sin psi). Held both, their forces grow
+# as the condition of their system: they let go where its rank first
+# counts them apart, where rounding says, and the run warns of it. The
+# condition it names is cot^2(th/2), th the angle between the two rows in
+# the metric M^-1 (M = diag(m, m, m, I), I = m (a^2 + b^2) / 3) at the
+# psi of that let-go (--events).
+"$eomc" run "$yaw" --set y0=1 --rtol 1e-10 --atol 1e-12 --t-end 2 --events "$tmp/yev.csv" \
+  -o /dev/null 2> "$tmp/err"; st=$?
+psi=$(awk -F, '$2 ~ /^floor\.block\.floor\.v[12]\.x\.stick$/ { print $6; exit }' "$tmp/yev.csv")
+want=$(awk -v p="$psi" 'BEGIN { m = 2; a = 0.2; b = 0.1; I = m * (a * a + b * b) / 3
+    s = sin(p); c = cos(p); b1 = -(a * s - b * c) / sqrt(I); b2 = -(-a * s - b * c) / sqrt(I)
+    d = b1 - b2; if (d < 0) d = -d
+    th = atan2(d / sqrt(m), 1 / m + b1 * b2); printf "%.6g", 1 / (sin(th / 2) / cos(th / 2))^2 }')
+got=$(sed -n 's/.*warning: t = [0-9.]*: the stuck friction rows (floor.block.floor.v1.x, floor.block.floor.v2.x) at a let-go is ill-conditioned (condition \([0-9.e+]*\) at worst.*/\1/p' "$tmp/err")
+[ $st -eq 0 ] && [ -n "$psi" ] && [ -n "$got" ] &&
+  awk -v g="$got" -v w="$want" 'BEGIN { e = g / w - 1; if (e < 0) e = -e; exit !(e <= 0.03) }'
+ok $? "the box pulled at y0 = 1: its corners v1 and v2 let go where rounding parts their rows, and the run warns: condition $got, cot^2(th/2) = $want at psi = $psi$(why $st "$tmp/err")"
+
+# --error on the turning box left at rest (no pull): the exact motion is
+# rest (x, y, psi and every speed 0, z at its resting depth); its
+# velocities are rounding alone (its depth, in doubles, bounces by 1e-19
+# m/s), and the reference once judged them against their own size: its
+# steps fell to 1e-12 s and it never ended. It ends, and says the error
+# the closed form says (1e-14).
+"$eomc" run "$yaw" --set pull=0 --t-end 1 --rtol 1e-9 --atol 1e-12 --error --stats \
+  > "$tmp/run.csv" 2> "$tmp/err"; st=$?
+true=$(tail -1 "$tmp/run.csv" | awk -F, '{ zr = 0.05 - 2 * 9.81 / 4e5
+    e[1] = $2; e[2] = $3; e[3] = $4 - zr; e[4] = $5; e[5] = $6; e[6] = $7; e[7] = $8; e[8] = $9
+    for (i = 1; i <= 8; i++) { a = e[i] < 0 ? -e[i] : e[i]; if (a > w) w = a }; printf "%.3g", w }')
+said=$(awk '$1 == "error_end" { printf "%.3g", $2 }' "$tmp/err")
+[ $st -eq 0 ] && [ -n "$said" ] && ! grep -q warning "$tmp/err" &&
+  awk -v t="$true" -v s="$said" 'BEGIN { exit !(t <= 1e-12 && s >= 0.9 * t && s <= 1.1 * t) }'
+ok $? "--error on the turning box at rest ends and says the error the closed form says: $said against $true$(why $st "$tmp/err")"
 
 # --atol 0 where the box at rest has coordinates and speeds exactly 0: no
 # step can meet rtol times 0, so the steps collapse at t = 0 (exit 3);

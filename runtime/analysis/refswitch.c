@@ -72,8 +72,9 @@ struct RefSwitches {
     eomc_ext *r0, *r1, *ra;       /* [nm] rates at the ends, scratch */
     eomc_ext *hit;                /* [nm] each located crossing, or NAN */
     eomc_ext *last;               /* [nm] each switch's last flip */
-    int *quick;                   /* [nm] its flips in a row within STEPEV_ACCUMULATE_REL
-                                   * of the one before */
+    int *quick;                   /* [nm] its flips in a row, each within
+                                   * STEPEV_ACCUMULATE_REL of the span after the
+                                   * one before */
     eomc_ext *xs, *fs, *xp;       /* [N] a state, its rate, a probe */
     long n, cap;                  /* the record */
     double *rt, *rsens;           /* [cap], [cap N] */
@@ -562,7 +563,8 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
             if (flip[k] == 0)
                 continue;
             if (t != w->last[k])
-                w->quick[k] = t - w->last[k] < STEPEV_ACCUMULATE_REL * w->span ? w->quick[k] + 1 : 0;
+                w->quick[k] =
+                    t - w->last[k] < STEPEV_ACCUMULATE_REL * w->span ? w->quick[k] + 1 : 0;
             if (w->quick[k] >= STEPEV_CHATTER_FLIPS) {
                 *bad = k;
                 rc = -2;

@@ -74,7 +74,6 @@ int refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext 
  * (STEPEV_CHATTER_FLIPS quick flips in a row, as the run stops), switch *bad. */
 int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, int *bad);
 
-
 /* The record since refsw_start: n flips, each's time, switch and [N]
  * sensitivities |ds/dx_i| / |ds/dt| (how far the crossing moves in time
  * per unit error of component i; INFINITY where s is tangent), ... */

@@ -37,7 +37,7 @@ fric_condition(Fric *w, double *near)
             B[r * n + s] *= ev[r] * ev[s];
     fric_jacobi(B, E, ev, n);
     /* the rank-th largest: the least of the directions the solve counts */
-    int top = 0, *order = w->lxi;
+    int *order = w->lxi;
     for (int i = 0; i < n; i++)
         order[i] = i;
     for (int i = 0; i < n; i++)
@@ -46,8 +46,7 @@ fric_condition(Fric *w, double *near)
                 int o = order[i];
                 order[i] = order[k], order[k] = o;
             }
-    top = order[0];
-    int least = order[w->rank - 1];
+    int top = order[0], least = order[w->rank - 1];
     double most = 0;
     for (int r = 0; r < n; r++)
         most = fmax(most, fabs(E[r * n + least]));

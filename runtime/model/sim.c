@@ -1031,7 +1031,6 @@ sim_off_constraints(eomc_sim *s, double t, const double *q, const double *v,
     return rc;
 }
 
-
 double
 sim_condition(eomc_sim *s, double t, const double *q, const double *v)
 {

@@ -69,7 +69,6 @@ typedef struct STICK_(Work) {
     STICK_REAL *G, *V, *lam;  /* [nf nf] G, its eigenvectors (columns), [nf] values */
     STICK_REAL top;           /* G's largest eigenvalue */
     int rank;                 /* G's */
-    int least;                /* G's least eigenvalue that counts (-1: none) */
     STICK_REAL *c, *psi, *vec;/* [nf], [nf], [nv] scratch */
     unsigned char *live;      /* [nmode] keep_slip's: a slip switch an item slips by */
     STICK_REAL *lp;           /* [nf nf] spread's null space */
@@ -365,13 +364,9 @@ STICK_(eigen)(STICK_(Work) *w, int n)
     for (int i = 0; i < n; i++)
         if (w->lam[i] > w->top)
             w->top = w->lam[i];
-    w->rank = 0, w->least = -1;
+    w->rank = 0;
     for (int i = 0; i < n; i++)
-        if (STICK_(counts)(w->lam[i], w->top, n)) {
-            w->rank++;
-            if (w->least < 0 || w->lam[i] < w->lam[w->least])
-                w->least = i;
-        }
+        w->rank += STICK_(counts)(w->lam[i], w->top, n);
 }
 
 /* How much of the direction of eigenvalue lam the solve takes: none
@@ -519,7 +514,6 @@ STICK_(build)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_RE
             x[i] *= -w->F[j];
     }
     STICK_(gram)(w, w->G);
-    w->least = -1;
     if (n)
         STICK_(eigen)(w, n);
     return STICK_OK;

@@ -755,7 +755,8 @@ static int
 flip(StepEvents *v, int k, double t, double *x, double *f)
 {
     int j = k - v->nev;
-    v->quick[j] = t - v->tsw[j] < STEPEV_ACCUMULATE_REL * (v->o->t_end - v->o->t0) ? v->quick[j] + 1 : 0;
+    double span = v->o->t_end - v->o->t0;
+    v->quick[j] = t - v->tsw[j] < STEPEV_ACCUMULATE_REL * span ? v->quick[j] + 1 : 0;
     if (v->quick[j] >= STEPEV_CHATTER_FLIPS) {
         v->last_set = v->tsw[j];
         return STEPEV_ACCUMULATE;

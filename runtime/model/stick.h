@@ -849,10 +849,14 @@ STICK_(speed)(const STICK_(Work) *w, int j, const STICK_REAL *v, const STICK_REA
 static int
 STICK_(sign)(const STICK_(Work) *w, int j, const STICK_REAL *v)
 {
-    STICK_REAL e = STICK_(speed)(w, j, v, NULL), terms = 0;
-    if (STICK_(is_row)(w, j))
-        for (int i = 0; i < w->nv; i++)
+    STICK_REAL e = 0, terms = 0;
+    if (!STICK_(is_row)(w, j))
+        e = v[w->m->fric_speed[j]];
+    else /* (speed's sum, its terms' sizes beside it) */
+        for (int i = 0; i < w->nv; i++) {
+            e += w->J[j * w->nv + i] * v[i];
             terms += STICK_ABS(w->J[j * w->nv + i] * v[i]);
+        }
     if (STICK_ABS(e) <= STICK_BOUND_ULPS * w->nv * STICK_EPS * terms)
         return 0;
     return e > 0 ? 1 : -1;
@@ -1097,12 +1101,12 @@ STICK_(project)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, STICK_REAL *
 /* The modes at a state (t, q, v) alone, a run's start or a value outside
  * a run: an item slipping has its mode from its speed's sign, already in
  * u; one at rest (its speed 0, a row's 0 but for rounding: sign; a row
- * item's with a bound above 0) is stuck if it can be.  All at rest are held first; while one would
- * need more than its bound, the one needing most (for its bound) is let
- * go, slipping the way the rest drives it.  Then each let go must
- * accelerate the way it slips, else no choice of modes follows the
- * motion (STICK_START, bad: the item; a row item whose bound is 0 exerts
- * nothing either way). */
+ * item's with a bound above 0) is stuck if it can be.  All at rest are
+ * held first; while one would need more than its bound, the one needing
+ * most (for its bound) is let go, slipping the way the rest drives it.
+ * Then each let go must accelerate the way it slips, else no choice of
+ * modes follows the motion (STICK_START, bad: the item; a row item whose
+ * bound is 0 exerts nothing either way). */
 STICK_API int
 STICK_(settle)(STICK_(Work) *w, STICK_REAL t, const STICK_REAL *q, const STICK_REAL *v,
                const STICK_REAL *p, STICK_REAL *u)

@@ -342,9 +342,9 @@ enum { WATCH_EVERY = 64 };
 #define PIVOT_SLACK 1e3
 #define PIVOT_DROP 0.5
 
-/* A condition cond of the system solved for q'' at t, of what (what()
- * names it, asked only when needed): the largest kept, and the first time
- * one passed what the tolerance allows. */
+/* A condition cond of the system solved for q'' at t, of what: the
+ * largest kept, and the first time one passed what the tolerance allows
+ * (callers that must work out what test cond first). */
 static void
 note_condition(eomc_stats *st, double cond, double t, const char *what)
 {

@@ -31,11 +31,13 @@ def compiler():
                     "(meson compile -C build eomc eomcrt), or install it")
 
 
-def build(spec, scene=None, form=None, fix=None, extended=False, jacobian=None):
-    """The path of spec's shared library, built unless the cache has it."""
+def build(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
+          imports=()):
+    """The path of spec's shared library, built unless the cache has it;
+    imports: the import's flags, for a model file (``--floating``, ...)."""
     if not os.path.exists(spec):
         raise EomcError("cannot read %s: no such file" % spec)
-    argv = [compiler(), "build", spec, "--shared", "--cache"]
+    argv = [compiler(), "build", spec, "--shared", "--cache"] + list(imports)
     if scene is not None:
         argv += ["--scene", scene]
     if form is not None:

@@ -25,20 +25,30 @@ from ._lib import INCONSISTENT, Library, as_doubles
 __all__ = ["load", "Model", "Run", "Linearization"]
 
 
-def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None):
+def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
+         floating=False, joint_inputs=False, parameters=False):
     """A model from a spec (``.yaml``), an MJCF or URDF model (``.xml``,
     ``.urdf``), or a library ``eomc build --shared`` made (``.so``).
 
     A spec is built as ``eomc build SPEC --shared`` (with ``--scene``,
     ``--form``, ``--fix NAME=VALUE`` from the dict ``fix``, ``--extended``,
     ``--jacobian``), into eomc's cache, the same one ``eomc run`` uses.
+    A model file is imported first, as ``eomc import`` would: ``floating``
+    frees a URDF's root link, ``joint_inputs`` gives an MJCF's joints the
+    inputs ``tau_J`` a URDF's have, ``parameters`` makes its masses,
+    inertias, damping, stiffness and armature parameters.
     A spec eomc cannot read raises :class:`SpecError` with its place."""
+    imports = [flag for flag, on in (("--floating", floating), ("--joint-inputs", joint_inputs),
+                                     ("--parameters", parameters)) if on]
     if spec.endswith(".so"):
-        if scene or form or fix or extended or jacobian:
-            raise UsageError("%s is built already: scene, form, fix, extended and "
-                             "jacobian are a spec's" % spec)
+        if scene or form or fix or extended or jacobian or imports:
+            raise UsageError("%s is built already: scene, form, fix, extended, jacobian "
+                             "and the import's options are a spec's" % spec)
         return Model(spec)
-    return Model(_build.build(spec, scene, form, fix, extended, jacobian))
+    if imports and not spec.endswith((".xml", ".urdf")):
+        raise UsageError("floating, joint_inputs and parameters are for an MJCF or URDF "
+                         "model (.xml, .urdf), and %s is a spec" % spec)
+    return Model(_build.build(spec, scene, form, fix, extended, jacobian, imports))
 
 
 def _number(v):

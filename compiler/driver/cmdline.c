@@ -23,7 +23,7 @@ cmdline_usage(FILE *f)
         "       eomc run SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc accuracy SPEC [the same] [SIMULATOR OPTIONS]\n"
         "       eomc import MODEL.xml [-o SPEC.yaml] [--strict] [--floating]\n"
-        "                                  (MJCF or URDF, read by MuJoCo)\n"
+        "                   [--joint-inputs] [--parameters]  (MJCF or URDF, read by MuJoCo)\n"
         "  (compile, build, run and accuracy also take MODEL.xml or MODEL.urdf as SPEC)\n"
         "       eomc --help | --version\n"
         "\n"
@@ -63,6 +63,10 @@ cmdline_usage(FILE *f)
         "  --floating       (a URDF given as SPEC, and import) give the URDF's root\n"
         "                   link a free joint: MuJoCo welds it to the world\n"
         "  --strict         (import) what eomc drops from the model is an error\n"
+        "  --joint-inputs   (an MJCF given as SPEC, and import) an input tau_J on each\n"
+        "                   joint, as a URDF's joints always have\n"
+        "  --parameters     (a model given as SPEC, and import) masses, inertias,\n"
+        "                   damping, stiffness and armature as named parameters\n"
         "  --stats          print the operation counts of each emitted function\n"
         "  --explain        (compile) say how the model was classified and derived,\n"
         "                   on stdout; the C goes only to -o FILE then\n"
@@ -152,6 +156,8 @@ static const OptionSpec options[] = {
      "code for any CPU of this kind", NULL, 0},
     {"--eliminate", CMD_DERIVE, OPT_FLAG, offsetof(Options, eliminate), NULL, NULL, 1},
     {"--floating", CMD_DERIVE, OPT_FLAG, offsetof(Options, floating), NULL, NULL, 0},
+    {"--joint-inputs", CMD_DERIVE, OPT_FLAG, offsetof(Options, joint_inputs), NULL, NULL, 0},
+    {"--parameters", CMD_DERIVE, OPT_FLAG, offsetof(Options, parameters), NULL, NULL, 0},
 };
 enum { NOPTIONS = sizeof options / sizeof options[0] };
 

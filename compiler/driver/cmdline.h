@@ -17,6 +17,8 @@ typedef struct Options {
     char *fix; /* --fix values, comma-joined: "g=9.81,l=1" */
     int stats, eliminate, explain, mpi;
     int floating;       /* --floating: a URDF given as SPEC with its root link free */
+    int joint_inputs;   /* --joint-inputs: an MJCF given as SPEC, tau_J on its joints */
+    int parameters;     /* --parameters: a model given as SPEC, its values parameters */
     int shared;         /* --shared: a shared library (for Python), not a simulator */
     int taylor;         /* --taylor: the series of Taylor's method, whatever the scene */
     int needs_taylor;   /* ... or what the simulator is asked to do needs them */

@@ -15,12 +15,16 @@
  * model of the medium), armature (kinetic terms of one joint's rates),
  * limits (a hinge's or slide's, as compliant stops) and actuators (virtual
  * work of an input each, clamped to their ranges as MuJoCo clamps them;
- * actuators_unclamped beside); connect and joint equalities are exact
+ * actuators_unclamped beside), joint inputs (tau_J's virtual work on its
+ * joint: a URDF's always, an MJCF's with --joint-inputs); connect and
+ * joint equalities are exact
  * holonomic constraints.  What the model's <flag>s disable is left out,
  * as mj_forward leaves it out, with a note.  What the importer cannot
  * write is refused by name; what eomc does not simulate (a ball's and a
  * tendon's limits, friction loss, contacts) is dropped, one warning per
- * kind (--strict: an error).
+ * kind (--strict: an error).  With --parameters, the masses, inertias,
+ * damping, stiffness and armature are named parameters, their defaults
+ * the model's values.
  *
  * One file past ~800 lines: every element of mjModel it prints shares the
  * naming (identifiers, collisions, renames) and the placement in the
@@ -954,6 +958,119 @@ joint_dofs(const mjModel *m, int j)
     }
 }
 
+/* The model's values --parameters names (NULL: not a parameter, the
+ * number is printed): by body, a mass and 6 inertia entries (xx, yy, zz,
+ * xy, xz, yz); by joint, its damping, stiffness and armature. */
+typedef struct Params {
+    const char **mass, **inertia, **damping, **stiffness, **armature;
+} Params;
+
+/* A value into buf: parameter name's, else the number x. */
+static const char *
+value(char *buf, const char *name, double x)
+{
+    if (name)
+        return name;
+    return num(buf, x);
+}
+
+/* n names, none given yet */
+static const char **
+no_names(size_t n)
+{
+    const char **a = xmalloc((n + 1) * sizeof *a);
+    for (size_t i = 0; i <= n; i++)
+        a[i] = NULL;
+    return a;
+}
+
+static void
+params_free(Params *P)
+{
+    free(P->mass);
+    free(P->inertia);
+    free(P->damping);
+    free(P->stiffness);
+    free(P->armature);
+}
+
+/* Whether joint j's dofs share one value of x (by dof; a ball's and a free
+ * joint's do, from one attribute of the joint): a parameter can stand
+ * for them. */
+static int
+one_value(const mjModel *m, const double *x, int j)
+{
+    for (int k = 1; k < joint_dofs(m, j); k++)
+        if (x[m->jnt_dofadr[j] + k] != x[m->jnt_dofadr[j]])
+            return 0;
+    return 1;
+}
+
+/* --parameters: the names of the values Params holds, printed as the
+ * spec's parameters with the model's values.  Every body with a mass has
+ * its mass and inertia (about its centre, in its axes); every joint but a
+ * free one its damping and armature, a hinge or slide its stiffness,
+ * zeros included, so that a fit can reach them.  A free joint is a
+ * body's freedom, not a joint with a motor or a spring: its values stay
+ * numbers. */
+static void
+put_params(const mjModel *m, Names *N, const char *const *body, const char *const *coord,
+           const double *inertia, Params *P, FILE *out)
+{
+    static const char *const entry[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
+    static const int at[6] = {0, 4, 8, 1, 2, 5}; /* their places in the tensor */
+    char nm[300], a[NUM_MAX];
+    fputs("parameters:\n", out);
+    for (int b = 1; b < m->nbody; b++) {
+        if (m->body_mass[b] == 0)
+            continue;
+        snprintf(nm, sizeof nm, "mass_%s", body[b]);
+        P->mass[b] = named(N, "parameter", nm, nm);
+        fprintf(out, "  %s: %s\n", P->mass[b], num(a, m->body_mass[b]));
+        for (int k = 0; k < 6; k++) {
+            snprintf(nm, sizeof nm, "inertia_%s_%s", body[b], entry[k]);
+            P->inertia[6 * b + k] = named(N, "parameter", nm, nm);
+            fprintf(out, "  %s: %s\n", P->inertia[6 * b + k], num(a, inertia[9 * b + at[k]]));
+        }
+    }
+    for (int j = 0; j < m->njnt; j++) {
+        int type = m->jnt_type[j], d = m->jnt_dofadr[j];
+        if (type == mjJNT_FREE)
+            continue;
+        if (one_value(m, m->dof_damping, j)) {
+            snprintf(nm, sizeof nm, "damping_%s", coord[j]);
+            P->damping[j] = named(N, "parameter", nm, nm);
+            fprintf(out, "  %s: %s\n", P->damping[j], num(a, m->dof_damping[d]));
+        }
+        if (scalar_joint(m, j)) {
+            snprintf(nm, sizeof nm, "stiffness_%s", coord[j]);
+            P->stiffness[j] = named(N, "parameter", nm, nm);
+            fprintf(out, "  %s: %s\n", P->stiffness[j], num(a, m->jnt_stiffness[j]));
+        }
+        if (one_value(m, m->dof_armature, j)) {
+            snprintf(nm, sizeof nm, "armature_%s", coord[j]);
+            P->armature[j] = named(N, "parameter", nm, nm);
+            fprintf(out, "  %s: %s\n", P->armature[j], num(a, m->dof_armature[d]));
+        }
+    }
+}
+
+/* Body b's inertia about its centre in its axes, the full tensor from
+ * MuJoCo's principal moments (body_inertia) in the axes body_iquat turns
+ * to; one triangle, mirrored: symmetric exactly. */
+static void
+body_inertia(const mjModel *m, int b, double *I)
+{
+    double R[9], d[3] = {m->body_inertia[3 * b], m->body_inertia[3 * b + 1],
+                         m->body_inertia[3 * b + 2]};
+    quat_mat(m->body_iquat + 4 * b, R);
+    for (int r = 0; r < 3; r++)
+        for (int c = r; c < 3; c++)
+            I[3 * r + c] = I[3 * c + r] = R[3 * r] * d[0] * R[3 * c] +
+                                          R[3 * r + 1] * d[1] * R[3 * c + 1] +
+                                          R[3 * r + 2] * d[2] * R[3 * c + 2];
+}
+
 /* k/2*d^2 into buf, without a factor 1 */
 static const char *
 half_square(char *buf, size_t len, double k, const char *d)
@@ -963,6 +1080,14 @@ half_square(char *buf, size_t len, double k, const char *d)
         snprintf(buf, len, "%s^2", d);
     else
         snprintf(buf, len, "%s*%s^2", num(a, k / 2), d);
+    return buf;
+}
+
+/* k/2*d^2 for a parameter k */
+static const char *
+half_square_of(char *buf, size_t len, const char *k, const char *d)
+{
+    snprintf(buf, len, "%s/2*%s^2", k, d);
     return buf;
 }
 
@@ -1054,7 +1179,7 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
             const char *const *un, const char *const *ua, const char *const *fa,
             const char *const *tn, const char *const *body, const char *const *principal,
             const char *const *flow, const ImportContacts *ic, const char *const *gname,
-            FILE *out, Effects *E)
+            const Params *P, const char *const *jn, FILE *out, Effects *E)
 {
     char a[NUM_MAX], d[400], r[400], v[400], hs[900];
     if (gravity_on(m)) {
@@ -1068,12 +1193,15 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     for (int j = 0; j < m->njnt && passive; j++)
         for (int k = 0; k < joint_dofs(m, j); k++) {
             double b = m->dof_damping[m->jnt_dofadr[j] + k];
-            if (b == 0)
+            if (b == 0 && !P->damping[j])
                 continue;
             dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
             dof_rate(v, sizeof v, m, qn, vn, j, k, 1);
             item(out, E, &first, "damping");
-            fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
+            if (P->damping[j])
+                fprintf(out, "{work: \"-%s*%s*%s\"}", P->damping[j], r, v);
+            else
+                fprintf(out, "{work: \"%s*%s*%s\"}", num(a, -b), r, v);
         }
     for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's: -b L' along L */
         if (m->tendon_damping[t] != 0) {
@@ -1086,12 +1214,14 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     first = 1;
     for (int j = 0; j < m->njnt && passive; j++) { /* hinges and slides (import refuses the rest) */
         double k = m->jnt_stiffness[j];
-        if (k == 0)
+        if (k == 0 && !P->stiffness[j])
             continue;
         const char *q = qn[m->jnt_qposadr[j]];
         displacement(d, sizeof d, q, m->qpos_spring[m->jnt_qposadr[j]]);
         item(out, E, &first, "stiffness");
-        fprintf(out, "{potential: \"%s\"}", half_square(hs, sizeof hs, k, d));
+        fprintf(out, "{potential: \"%s\"}", P->stiffness[j]
+                ? half_square_of(hs, sizeof hs, P->stiffness[j], d)
+                : half_square(hs, sizeof hs, k, d));
     }
     for (int t = 0; t < m->ntendon && passive; t++) /* a fixed tendon's, about lengthspring */
         if (m->tendon_stiffness[t] != 0) {
@@ -1113,11 +1243,14 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     for (int j = 0; j < m->njnt; j++)
         for (int k = 0; k < joint_dofs(m, j); k++) {
             double arm = m->dof_armature[m->jnt_dofadr[j] + k];
-            if (arm == 0)
+            if (arm == 0 && !P->armature[j])
                 continue;
             dof_rate(r, sizeof r, m, qn, vn, j, k, 0);
             item(out, E, &first, "armature");
-            fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
+            if (P->armature[j])
+                fprintf(out, "{kinetic: \"%s/2*%s^2\"}", P->armature[j], r);
+            else
+                fprintf(out, "{kinetic: \"%s*%s^2\"}", num(a, arm / 2), r);
         }
     if (!first)
         fputs("]\n", out);
@@ -1171,6 +1304,18 @@ put_effects(const mjModel *m, const char *const *qn, const char *const *vn,
     }
     if (clamped) /* the scene leaves the unclamped ones out */
         E->on[on] = '\0', E->unclamped = 1;
+    first = 1; /* a joint input's: tau_J's virtual work on its dof */
+    for (int j = 0; j < m->njnt; j++)
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            const char *u = jn[m->jnt_dofadr[j] + k];
+            if (!u)
+                continue;
+            dof_rate(v, sizeof v, m, qn, vn, j, k, 1);
+            item(out, E, &first, "joint_inputs");
+            fprintf(out, "{work: \"%s*%s\"}", u, v);
+        }
+    if (!first)
+        fputs("]\n", out);
     /* each pair its own law: its effective mass differs (import_contact.c) */
     for (int i = 0; i < ic->npair; i++) {
         const ImportPair *p = &ic->pair[i];
@@ -1475,16 +1620,18 @@ mimic_add(void *drop, const char *joint)
 
 /* The model at path, as load() loads it; with floating, a URDF whose root
  * links have free joints (import_urdf.h).  A URDF's joints with a <mimic>,
- * which MuJoCo's reader ignores, into *mimic.  NULL with the reason in err,
- * *mujoco set where it is MuJoCo's loader message. */
+ * which MuJoCo's reader ignores, into *mimic; *urdf whether it is a URDF.
+ * NULL with the reason in err, *mujoco set where it is MuJoCo's loader
+ * message. */
 static mjModel *
 load_model(const char *path, int floating, FILE *warn, int *urdf_visuals, Drop *mimic,
-           char *err, size_t errlen, int *mujoco)
+           int *urdf, char *err, size_t errlen, int *mujoco)
 {
     size_t len = 0, flen;
     char *text = slurp(path, &len), *edit = NULL;
     *mujoco = 0;
-    if (text && urdf_is(text))
+    *urdf = text && urdf_is(text);
+    if (*urdf)
         urdf_mimics(text, mimic_add, mimic);
     if (floating && text && !urdf_is(text)) {
         snprintf(err, errlen, "--floating frees the root link of a URDF, which MuJoCo welds to "
@@ -1506,14 +1653,14 @@ load_model(const char *path, int floating, FILE *warn, int *urdf_visuals, Drop *
 }
 
 int
-import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+import_model(const char *path, const ImportOptions *opt, FILE *out, FILE *warn, char *err,
              size_t len, ImportWhere *at)
 {
     *at = (ImportWhere){0};
     char load_err[1000] = "";
-    int urdf_visuals = 0, mujoco;
+    int urdf_visuals = 0, mujoco, urdf;
     Drop mimic = {0};
-    mjModel *m = load_model(path, floating, warn, &urdf_visuals, &mimic, load_err,
+    mjModel *m = load_model(path, opt->floating, warn, &urdf_visuals, &mimic, &urdf, load_err,
                             sizeof load_err, &mujoco);
     if (!m && !mujoco) {
         snprintf(err, len, "%s", load_err);
@@ -1541,7 +1688,7 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     drops += contact_drops(m, &ic, path, warn);
     drops += drop_say(warn, path, &mimic, "the <mimic> of", "joint",
                       "MuJoCo's URDF reader ignores it: the joint moves on its own");
-    if (drops && strict) {
+    if (drops && opt->strict) {
         snprintf(err, len, "--strict: the elements named above would be dropped or changed");
         import_contacts_free(&ic);
         mj_deleteModel(m);
@@ -1611,6 +1758,13 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     fprintf(out, "description: \"%s, imported from %s.\"\n", model,
             dot && !strcmp(dot, ".urdf") ? "URDF" : "MJCF");
     free(model);
+    Params prm = {no_names((size_t)nb), no_names(6 * (size_t)nb), no_names((size_t)m->njnt),
+                no_names((size_t)m->njnt), no_names((size_t)m->njnt)};
+    double *inertia = xmalloc(9 * (size_t)nb * sizeof *inertia);
+    for (int b = 1; b < nb; b++)
+        body_inertia(m, b, inertia + 9 * b);
+    if (opt->parameters)
+        put_params(m, &N, body, coord, inertia, &prm, out);
     fputs("coordinates: [", out);
     for (int q = 0; q < m->nq; q++)
         fprintf(out, "%s%s", q ? ", " : "", qn[q]);
@@ -1640,6 +1794,23 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
                  : m->actuator_trntype[i] == mjTRN_TENDON ? tn[id] : coord[id]);
         un[i] = named(&N, "input", nm, nm);
         fprintf(out, "%s  %s: 0\n", i ? "" : "inputs:\n", un[i]);
+    }
+    /* a joint's input tau_J, by dof (a ball's tau_J_x .. _z, about its
+     * axes): a URDF has no actuators, so its joints have them always */
+    const char **jn = no_names((size_t)m->nv);
+    int nin = actuators(m);
+    for (int j = 0; j < m->njnt && (urdf || opt->joint_inputs); j++) {
+        if (m->jnt_type[j] == mjJNT_FREE)
+            continue;
+        for (int k = 0; k < joint_dofs(m, j); k++) {
+            if (scalar_joint(m, j))
+                snprintf(nm, sizeof nm, "tau_%s", coord[j]);
+            else
+                snprintf(nm, sizeof nm, "tau_%s_%c", coord[j], 'x' + k);
+            int d = m->jnt_dofadr[j] + k;
+            jn[d] = named(&N, "input", nm, nm);
+            fprintf(out, "%s  %s: 0\n", nin++ ? "" : "inputs:\n", jn[d]);
+        }
     }
     /* a clamped actuator's control and force, each a define, so that
      * their switches are named after it: ctrl_NAME.clamp.lo, and
@@ -1853,17 +2024,15 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     for (int b = 1; b < nb; b++) {
         if (m->body_mass[b] == 0)
             continue;
-        double R[9], I[9], d[3] = {m->body_inertia[3 * b], m->body_inertia[3 * b + 1],
-                                   m->body_inertia[3 * b + 2]};
-        quat_mat(m->body_iquat + 4 * b, R);
-        for (int r = 0; r < 3; r++) /* one triangle, mirrored: symmetric exactly */
-            for (int c = r; c < 3; c++)
-                I[3 * r + c] = I[3 * c + r] = R[3 * r] * d[0] * R[3 * c] +
-                                              R[3 * r + 1] * d[1] * R[3 * c + 1] +
-                                              R[3 * r + 2] * d[2] * R[3 * c + 2];
+        const double *I = inertia + 9 * b;
         fprintf(out, "  %s: {mass: %s, frame: %s, center: %s, inertia: [", body[b],
-                num(a, m->body_mass[b]), axes[b], com[b]);
-        for (int r = 0; r < 3; r++) {
+                value(a, prm.mass[b], m->body_mass[b]), axes[b], com[b]);
+        if (prm.mass[b]) { /* by name, the entries put_params printed */
+            const char *const *e = prm.inertia + 6 * b;
+            fprintf(out, "[%s, %s, %s], [%s, %s, %s], [%s, %s, %s]", e[0], e[3], e[4], e[3], e[1],
+                    e[5], e[4], e[5], e[2]);
+        }
+        for (int r = 0; r < 3 && !prm.mass[b]; r++) {
             fputs(r ? ", " : "", out);
             put_vec(out, I + 3 * r);
         }
@@ -1878,7 +2047,7 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
               "--animate draws boxes, spheres, capsules, cylinders and ellipsoids, not "
               "planes or height fields");
     Effects E = {0};
-    put_effects(m, qn, vn, un, ua, fa, tn, body, principal, flow, &ic, gname, out, &E);
+    put_effects(m, qn, vn, un, ua, fa, tn, body, principal, flow, &ic, gname, &prm, jn, out, &E);
     put_constraints(m, qn, tn, eqn, eqp, axes, out, path, warn);
     int any = 0;
     for (int q = 0; q < m->nq; q++)
@@ -1926,6 +2095,9 @@ import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, 
     free(eqp);
     free(principal);
     free(flow);
+    free(jn);
+    free(inertia);
+    params_free(&prm);
     names_free(&N);
     names_free(&NB);
     mj_deleteModel(m);
@@ -1941,14 +2113,13 @@ import_available(void)
 }
 
 int
-import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+import_model(const char *path, const ImportOptions *opt, FILE *out, FILE *warn, char *err,
              size_t len, ImportWhere *at)
 {
     (void)path;
-    (void)floating;
+    (void)opt;
     (void)out;
     (void)warn;
-    (void)strict;
     *at = (ImportWhere){0};
     snprintf(err, len, "this eomc was built without MuJoCo, which reads MJCF and URDF: "
              "install libmujoco-dev and build it again");

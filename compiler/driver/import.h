@@ -16,11 +16,19 @@
 /* Whether this eomc was built with MuJoCo (libmujoco-dev). */
 int import_available(void);
 
-/* The spec of the model at path onto out, what it drops named on warn
- * (with strict, an error); with floating, a URDF's root links given free
- * joints.  0, or -1 with the reason in err (MuJoCo's loader message, or
- * what cannot be imported) and where it is in *at. */
-int import_model(const char *path, int floating, FILE *out, FILE *warn, int strict, char *err,
+/* What `eomc import` is asked for besides the model (docs/import.md). */
+typedef struct ImportOptions {
+    int floating;     /* a URDF's root links given free joints */
+    int strict;       /* what would be dropped is an error */
+    int joint_inputs; /* an input tau_J on each joint but a free one (a URDF's always) */
+    int parameters;   /* masses, inertias, damping, stiffness, armature as parameters */
+} ImportOptions;
+
+/* The spec of the model at path onto out, as opt asks, what it drops named
+ * on warn (with opt->strict, an error).  0, or -1 with the reason in err
+ * (MuJoCo's loader message, or what cannot be imported) and where it is
+ * in *at. */
+int import_model(const char *path, const ImportOptions *opt, FILE *out, FILE *warn, char *err,
                  size_t len, ImportWhere *at);
 
 #endif

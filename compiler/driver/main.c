@@ -457,12 +457,12 @@ is_model_file(const char *path)
  * named on stderr; 0, or exit 2 after the error (at its place in the
  * file where that is known). */
 static int
-import_text(const char *path, int floating, int strict, char **text, size_t *len)
+import_text(const char *path, const ImportOptions *opt, char **text, size_t *len)
 {
     char err[1200];
     ImportWhere at;
     FILE *mem = open_memstream(text, len);
-    int rc = import_model(path, floating, mem, stderr, strict, err, sizeof err, &at);
+    int rc = import_model(path, opt, mem, stderr, err, sizeof err, &at);
     fclose(mem);
     if (rc == 0)
         return 0;
@@ -476,30 +476,37 @@ import_text(const char *path, int floating, int strict, char **text, size_t *len
 static int
 import_spec(Options *o)
 {
-    if (!is_model_file(o->spec) && o->floating)
-        cmdline_usage_error("--floating is for a URDF given where the spec goes, and '%s' is "
-                            "a spec", o->spec);
+    const char *flag = o->floating ? "--floating" : o->joint_inputs ? "--joint-inputs"
+                       : o->parameters ? "--parameters" : NULL;
+    if (!is_model_file(o->spec) && flag) /* (the spec is named by the usage line) */
+        cmdline_usage_error("%s is for an MJCF or URDF model given where the spec goes, "
+                            "not for a spec", flag);
     if (!is_model_file(o->spec))
         return 0;
-    int rc = import_text(o->spec, o->floating, 0, &o->imported, &o->imported_len);
+    ImportOptions opt = {.floating = o->floating, .joint_inputs = o->joint_inputs,
+                         .parameters = o->parameters};
+    int rc = import_text(o->spec, &opt, &o->imported, &o->imported_len);
     snprintf(o->imported_name, sizeof o->imported_name, "%s (as imported)", o->spec);
     return rc;
 }
 
-/* `eomc import MODEL [-o SPEC] [--strict] [--floating]`: the spec of an
- * MJCF or URDF model, to SPEC (written whole or not at all: path.tmpPID,
- * renamed) or stdout; --strict makes what it drops an error; --floating
- * gives a URDF's root link a free joint. */
+/* `eomc import MODEL [-o SPEC] [--strict] [--floating] [--joint-inputs]
+ * [--parameters]`: the spec of an MJCF or URDF model, to SPEC (written
+ * whole or not at all: path.tmpPID, renamed) or stdout (ImportOptions). */
 static int
 import_cmd(int argc, char **argv)
 {
     const char *model = NULL, *out = NULL;
-    int strict = 0, floating = 0;
+    ImportOptions opt = {0};
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--strict")) {
-            strict = 1;
+            opt.strict = 1;
         } else if (!strcmp(argv[i], "--floating")) {
-            floating = 1;
+            opt.floating = 1;
+        } else if (!strcmp(argv[i], "--joint-inputs")) {
+            opt.joint_inputs = 1;
+        } else if (!strcmp(argv[i], "--parameters")) {
+            opt.parameters = 1;
         } else if (!strcmp(argv[i], "-o")) {
             if (i + 1 >= argc)
                 cmdline_usage_error("option %s needs a value", "-o");
@@ -520,7 +527,7 @@ import_cmd(int argc, char **argv)
         cmdline_usage_error("%s: no model file given (MJCF or URDF)", "import");
     char *text = NULL;
     size_t len = 0;
-    int rc = import_text(model, floating, strict, &text, &len);
+    int rc = import_text(model, &opt, &text, &len);
     if (rc != 0)
         return rc;
     char tmp[4200] = "";

@@ -12,7 +12,11 @@
  *                              with COUNT, a block so for each seed SEED ..
  *                              SEED + COUNT - 1 (one process, one load);
  *                              with actuators, on stderr at the end: "a
- *                              control or force clamped at K of N states"
+ *                              control or force clamped at K of N states";
+ *                              with MJ_ACCEL_JOINT_INPUTS=1 in the
+ *                              environment, a force drawn on each dof of a
+ *                              joint but a free one (qfrc_applied: eomc's
+ *                              tau_J) and printed after the controls
  *   mj_accel MODEL com    ->   for each line "t q_1 .. q_nq" on stdin (rows of
  *                              an eomc run), "t x y z" of the whole model's
  *                              centre of mass there (MuJoCo's kinematics)
@@ -482,14 +486,21 @@ clamping(const mjModel *m, const mjData *d, int flags)
     return 0;
 }
 
+/* Joint j's dofs (qvel entries). */
+static int
+dofs(const mjModel *m, int j)
+{
+    return m->jnt_type[j] == mjJNT_FREE ? 6 : m->jnt_type[j] == mjJNT_BALL ? 3 : 1;
+}
+
 /* The states where MuJoCo clamps a control or a force (said at the end). */
 static long clamped_states;
 
 /* The state of one seed and MuJoCo's q'' there, printed; 3 if no state
  * drawn meets the constraints inside the limits.  flags: the model's own
- * disableflags. */
+ * disableflags; joint_inputs: forces drawn on the joints' dofs too. */
 static int
-one_state(mjModel *m, mjData *d, uint64_t seed, int flags)
+one_state(mjModel *m, mjData *d, uint64_t seed, int flags, int joint_inputs)
 {
     mj_resetData(m, d); /* as a new one: nothing warm-started from the last */
     /* the model's own <flag>s may disable them (docs/import.md) */
@@ -503,6 +514,9 @@ one_state(mjModel *m, mjData *d, uint64_t seed, int flags)
             d->qvel[i] = uniform(&seed);
         for (int i = 0; i < m->nu; i++)
             d->ctrl[i] = uniform(&seed);
+        for (int j = 0; j < m->njnt && joint_inputs; j++)
+            for (int k = 0; m->jnt_type[j] != mjJNT_FREE && k < dofs(m, j); k++)
+                d->qfrc_applied[m->jnt_dofadr[j] + k] = uniform(&seed);
         for (int j = 0; j < m->njnt; j++) { /* unit quaternions; limits' ranges */
             int type = m->jnt_type[j];
             double lo, hi, *q = d->qpos + m->jnt_qposadr[j];
@@ -525,8 +539,12 @@ one_state(mjModel *m, mjData *d, uint64_t seed, int flags)
         printf("%.17g%c", d->qpos[i], i + 1 < m->nq ? ' ' : '\n');
     for (int i = 0; i < m->nv; i++)
         printf("%.17g%c", d->qvel[i], i + 1 < m->nv ? ' ' : '\n');
-    for (int i = 0; i < m->nu; i++)
-        printf("%.17g%s", d->ctrl[i], i + 1 < m->nu ? " " : "");
+    const char *sep = "";
+    for (int i = 0; i < m->nu; i++, sep = " ")
+        printf("%s%.17g", sep, d->ctrl[i]);
+    for (int j = 0; j < m->njnt && joint_inputs; j++) /* in eomc's order: tau_J by joint */
+        for (int k = 0; m->jnt_type[j] != mjJNT_FREE && k < dofs(m, j); k++, sep = " ")
+            printf("%s%.17g", sep, d->qfrc_applied[m->jnt_dofadr[j] + k]);
     printf("\n");
     for (int i = 0; i < m->nv; i++)
         printf("%.17g\n", d->qacc[i]);
@@ -561,9 +579,10 @@ main(int argc, char **argv)
     mjData *d = mj_makeData(m);
     uint64_t seed = strtoull(argv[2], NULL, 10);
     long count = argc == 4 ? strtol(argv[3], NULL, 10) : 1;
-    int rc = 0;
+    const char *ji = getenv("MJ_ACCEL_JOINT_INPUTS");
+    int rc = 0, joint_inputs = ji && !strcmp(ji, "1");
     for (long k = 0; k < count && rc == 0; k++)
-        rc = one_state(m, d, seed + (uint64_t)k, flags);
+        rc = one_state(m, d, seed + (uint64_t)k, flags, joint_inputs);
     if (rc == 0 && m->nu)
         fprintf(stderr, "mj_accel: a control or force clamped at %ld of %ld states\n",
                 clamped_states, count);

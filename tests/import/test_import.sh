@@ -12,8 +12,11 @@
 # mj_forward's qacc at the same state (mj_accel.c: contact, limits and
 # friction loss off, each limited joint inside its range; the controls and
 # forces clamped as the model says: the servo arm's, a 6-joint arm of
-# position servos, at every state), within 1e-10 of the largest |q''|; and
-# the import's refusals and warnings.
+# position servos, at every state), within 1e-10 of the largest |q''|; a
+# URDF's joint inputs tau_J (and an MJCF's, --joint-inputs) against forces
+# MuJoCo applies on the same dofs (qfrc_applied); --parameters set to other
+# values against the file edited to them; and the import's refusals and
+# warnings.
 #
 # usage: test_import.sh EOMC SOURCE_ROOT BUILD_ROOT MJ_ACCEL [PART]
 # PART: small (the models written for these tests, the chain and the
@@ -52,12 +55,21 @@ flagged closed.xml closed_noconstraint 'constraint="disable"'
 # type floating, written here
 sed 's|</robot>|<link name="world"/><joint name="trunk" type="floating"><parent link="world"/><child link="trunk"/></joint></robot>|' \
   "$models_dir/legged.urdf" > "$tmp/legged_floating.urdf"
+# floating.xml imported with --joint-inputs --parameters, and run with
+# parameters set to other values: MuJoCo's q'' is that of the file edited
+# to those values (the base's mass, and so its inertia, 3 -> 3.5; the
+# ball's damping and armature; a spring on the tip), with forces on the
+# joints' dofs (qfrc_applied) where eomc has tau_J
+cp "$models_dir/floating.xml" "$tmp/floating_inputs.xml"
+sed -e 's/mass="3"/mass="3.5"/' -e 's/damping="0.3" armature="0.02"/damping="0.7" armature="0.05"/' \
+  -e 's|<joint name="tip" axis="0 0 1"/>|<joint name="tip" axis="0 0 1" stiffness="2"/>|' \
+  "$models_dir/floating.xml" > "$tmp/floating_edited.xml"
 # MuJoCo's own humanoid where Debian's libmujoco-samples is installed
 samples=/usr/share/mujoco/model
 case $part in
 small) models="$src/tests/import/models/arm.xml $src/tests/import/models/springs.xml
          $src/tests/import/models/planar_arm.urdf $src/tests/import/models/visual_arm.urdf
-         $src/tests/import/models/floating.xml
+         $src/tests/import/models/floating.xml $tmp/floating_inputs.xml
          $src/tests/import/models/closed.xml $src/tests/import/models/welded.xml
          $src/tests/import/models/fluid.xml $tmp/fluid_unforced.xml $tmp/fluid_unactuated.xml
          $tmp/closed_noequality.xml $tmp/closed_noconstraint.xml
@@ -78,9 +90,14 @@ if [ "$part" != small ] && [ "$part" != robots ] && [ ! -e "$models" ]; then
 fi
 for model in $models; do
   base=$(basename "$model"); base=${base%.*}_${base##*.} # arm.xml and arm.urdf apart
-  opts='' ref=$model
+  opts='' ref=$model sets='' joints=0
+  case $base in
+  *_urdf) joints=1 ;; # a URDF's joints have inputs tau_J (MuJoCo's qfrc_applied)
+  esac
   [ "$base" = legged_urdf ] && opts=--floating ref=$tmp/legged_floating.urdf
-  # shellcheck disable=SC2086 # $opts: none, or one option
+  [ "$base" = floating_inputs_xml ] &&
+    opts="--joint-inputs --parameters" ref=$tmp/floating_edited.xml joints=1
+  # shellcheck disable=SC2086 # $opts: none, or options
   "$eomc" import "$model" $opts -o "$tmp/$base.yaml" 2> "$tmp/err"
   ok $? "$base: imports${opts:+ $opts} ($(head -c 200 "$tmp/err"))"
   # MuJoCo is run with its contacts off (mj_accel.c): the spec without its
@@ -96,6 +113,11 @@ for model in $models; do
   [ -n "$effs" ] || effs=$(sed -n '/^effects:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml")
   effs=$(echo "$effs" | grep -vx 'contacts\|friction_loss' | paste -sd, -)
   inputs=$(sed -n '/^inputs:/,/^[a-z]/s/^  \([A-Za-z_0-9]*\):.*/\1/p' "$tmp/$base.yaml")
+  if [ "$base" = floating_inputs_xml ]; then # the edited file's values
+    sets="--set mass_base=3.5 --set damping_shoulder=0.7 --set armature_shoulder=0.05 --set stiffness_tip=2"
+    sets="$sets $(sed -n 's/^  \(inertia_base_[xyz]*\): \(.*\)/\1 \2/p' "$tmp/$base.yaml" |
+      awk '{ printf " --set %s=%.17g", $1, $2 * 3.5 / 3 }')"
+  fi
   worst=0 fails=0 own=0 mjx=0 ext=1
   k=0 states=$STATES
   # the two large samples (616 and 728 coordinates): 20 states, each run
@@ -113,7 +135,8 @@ for model in $models; do
   # the random states and MuJoCo's q'' there, in eomc's coordinates
   # (mj_accel.c: one process for them all, a block of 3 + nq lines each),
   # and each state as eomc's options, a line each
-  "$mj" "$ref" 1 "$states" > "$tmp/mj" 2> "$tmp/mjerr" || fails=$((fails + 1))
+  MJ_ACCEL_JOINT_INPUTS=$joints "$mj" "$ref" 1 "$states" > "$tmp/mj" 2> "$tmp/mjerr" ||
+    fails=$((fails + 1))
   # where MuJoCo clamps a control or a force (the servo arm: at every state)
   clamps=$(sed -n 's/^mj_accel: a control or force clamped at \([0-9]*\) of.*/\1/p' "$tmp/mjerr")
   [ "$base" = servo_arm_xml ] && [ "${clamps:-0}" -lt $((states / 2)) ] && fails=$((fails + 1))
@@ -122,12 +145,13 @@ for model in $models; do
   speeds=$("$eomc" run "$tmp/$base.yaml" --accel 2> /dev/null |
     sed -n "s/^\([A-Za-z_0-9]*'*\)' .*/\1/p" | tr '\n' ' ')
   nq=$(echo $speeds | wc -w) # (the q'' compared: one per speed)
-  awk -v names="$coords" -v speeds="$speeds" -v inputs="$inputs" -v nv="$nq" '
+  awk -v names="$coords" -v speeds="$speeds" -v inputs="$inputs" -v nv="$nq" -v sets="$sets" '
     BEGIN { n = split(names, c, " "); split(speeds, v, " "); nu = split(inputs, u, " ") }
     { r = (NR - 1) % (nv + 3) }
     r == 0 { for (i = 1; i <= n; i++) printf " --init %s=%s", c[i], $i }
     r == 1 { for (i = 1; i <= nv; i++) printf " --init %s=%s", v[i], $i }
-    r == 2 { for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i; printf "\n" }' \
+    r == 2 { if (NF < nu) printf " --set inputs_and_controls_differ_in_count=1"
+             for (i = 1; i <= nu; i++) printf " --set %s=%s", u[i], $i; printf " %s\n", sets }' \
     "$tmp/mj" > "$tmp/args"
   [ "$(wc -l < "$tmp/args")" -eq "$states" ] || fails=$((fails + 1))
   : > "$tmp/eomc" && : > "$tmp/ext"
@@ -679,7 +703,7 @@ st3=$?
 [ $st -eq 2 ] && [ ! -e "$tmp/f.yaml" ] &&
   grep -q "arm.xml: error: --floating frees the root link of a URDF, which MuJoCo welds to the world; an MJCF says itself how its bodies move: give its root body a <freejoint/>" "$tmp/err" &&
   [ $st2 -eq 2 ] && [ ! -s "$tmp/out" ] && grep -q "world.urdf: error: --floating: the URDF's root link is 'world'" "$tmp/err2" &&
-  [ $st3 -eq 2 ] && grep -q "eomc: --floating is for a URDF given where the spec goes" "$tmp/err3"
+  [ $st3 -eq 2 ] && grep -q "eomc: --floating is for an MJCF or URDF model given where the spec goes" "$tmp/err3"
 ok $? "--floating on an MJCF, on a URDF rooted at the link world, on a spec: refused by name, exit 2 ($(cat "$tmp/err" "$tmp/err2" "$tmp/err3" | tr '\n' ' '))"
 
 # docs/import.md lists what eomc does with every flag, option and model

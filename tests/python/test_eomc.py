@@ -290,6 +290,24 @@ def test_an_urdf_model_is_the_cli_to_the_bit():
     assert r.columns == columns and all(same_bits(r[c], rows[:, j]) for j, c in enumerate(columns))
 
 
+def test_an_urdf_model_has_joint_inputs_and_its_values_as_parameters():
+    # the names and values are the URDF file's own (specs/arm.urdf)
+    import subprocess
+    import eomc._build
+    probe = subprocess.run([eomc._build.compiler(), "import", spec("arm.urdf")],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if probe.returncode != 0:
+        pytest.skip("eomc cannot import URDF here: " + probe.stderr.strip())
+    m = eomc.load(spec("arm.urdf"), parameters=True)
+    assert m.inputs == ["tau_base_yaw", "tau_shoulder", "tau_elbow"]
+    p = m.params
+    assert (p["mass_turret"], p["mass_upper_arm"], p["mass_forearm"]) == (1, 1.5, 0.8)
+    assert (p["damping_base_yaw"], p["damping_shoulder"], p["damping_elbow"]) == (0.02, 0.05, 0.05)
+    assert (p["inertia_upper_arm_yy"], p["armature_elbow"], p["stiffness_elbow"]) == (0.02, 0, 0)
+    with pytest.raises(eomc.UsageError, match="MJCF or URDF"):
+        eomc.load(spec("pendulum.yaml"), parameters=True)
+
+
 def test_taylor_from_python_is_the_cli_to_the_bit(pendulum):
     opts = ("--method", "taylor", "--rtol", "1e-14", "--atol", "1e-14")
     status, columns, rows, _ = cli_csv(spec("pendulum.yaml"), *opts)

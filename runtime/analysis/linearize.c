@@ -353,7 +353,7 @@ constraint_rows(eomc_sim *s, Lin *L, double t, const double *x, double *C)
     double *dposdq = w, *dveldq = w + nn, *dveldv = w + 2 * nn;
     double *dposdu = w + 3 * nn, *dveldu = dposdu + nc * nu, *dposdt = dveldu + nc * nu;
     double *dveldt = dposdt + nc;
-    const double *u = sim_inputs_at(s, t);
+    const double *u = sim_inputs_at(s, t, x, x + n);
     m->c_levels_jacobian(t, x, x + n, sim_p(s), u, dposdq, dveldq, dveldv, dposdu, dveldu,
                          dposdt, dveldt);
     for (int k = 0; k < nc; k++) {
@@ -782,7 +782,7 @@ hold_on_constraints(eomc_sim *s, Lin *L, double t, double *x)
     }
     double prev = HUGE_VAL;
     for (int it = 0; it < EQ_MAX_ITER; it++) {
-        m->c_levels(t, x, x + n, sim_p(s), sim_inputs_at(s, t), pos, vel);
+        m->c_levels(t, x, x + n, sim_p(s), sim_inputs_at(s, t, x, x + n), pos, vel);
         if (constraint_rows(s, L, t, x, C) < 0)
             goto done;
         double worst = 0;
@@ -835,7 +835,7 @@ weights(eomc_sim *s, double t, const double *x, double *M, double *h, double *wt
 {
     const eomc_model *m = eomc_sim_model(s);
     int n = eomc_nv(m);
-    m->mass_bias(t, x, x + m->nq, sim_p(s), sim_inputs_at(s, t), M, h);
+    m->mass_bias(t, x, x + m->nq, sim_p(s), sim_inputs_at(s, t, x, x + m->nq), M, h);
     for (int i = 0; i < n; i++)
         wt[i] = M[i * n + i] > 0 ? sqrt(M[i * n + i]) : 0;
 }

@@ -128,7 +128,7 @@ int
 anim_row(Anim *a, double t, const double *x, const double *out)
 {
     const eomc_model *m = a->m;
-    const double *u = m->nu ? sim_inputs_at(a->sim, t) : NULL;
+    const double *u = m->nu ? sim_inputs_at(a->sim, t, x, x + m->nq) : NULL;
     double *f = a->last;
     m->draw(t, x, sim_p(a->sim), u, a->X);
     int at = 0;

@@ -99,8 +99,35 @@ int eomc_sim_set(eomc_sim *s, const char *name, double value);
 int eomc_sim_check(eomc_sim *s);
 /* Current parameter values [np]. */
 const double *eomc_sim_params(const eomc_sim *s);
-/* Input values at t [nu] (constants or the model's signals). */
+/* Input values at t [nu] (constants or the model's signals; a sampled
+ * controller's held outputs, not a continuous one's, which need a state). */
 void eomc_sim_inputs(eomc_sim *s, double t, double *u);
+
+/* A controller in the loop: fn(ctx, t, q, v, u) writes the inputs it sets
+ * into u [nu], which holds the inputs' own values at t on entry (the
+ * constants set, the model's signals), and returns 0, or a nonzero
+ * status that stops the run with it, as on_event's does (the rows so far
+ * stand).  drives [nu] marks the inputs it sets (NULL: all); an input it
+ * sets to a value that is not finite stops the run (EOMC_ENUMERIC, the
+ * message naming the input and the time).
+ *  - period > 0: a sampled controller, as a digital one: called at
+ *    t0 + k period (k = 0, 1, ..., before t_end) with the state there,
+ *    its outputs held until the next sample (a zero-order hold).  The
+ *    steps end at every sample, as at an event, so the error control,
+ *    the events and the reference solution (which calls fn at the same
+ *    instants, with its own state rounded to doubles) stay exact: fn must
+ *    be a function of (t, q, v) alone, with no memory of its own calls.
+ *  - period = 0: a continuous controller, u(t, q, v), called inside every
+ *    evaluation of the model at a state (each right-hand side); not with
+ *    Taylor's method (it has no series) nor the reference (a continuous
+ *    law is the model's: write it in the spec).
+ * The analyses (eomc_sim_jacobian, linearize, equilibrium) are of the open
+ * loop, the inputs as the controller leaves them.  fn NULL removes it;
+ * EOMC_EUSAGE for a period that is negative or not finite. */
+typedef int (*eomc_controller_fn)(void *ctx, double t, const double *q, const double *v,
+                                  double *u);
+int eomc_sim_set_controller(eomc_sim *s, eomc_controller_fn fn, void *ctx, double period,
+                            const unsigned char *drives);
 
 /* The model's initial state for the current parameters. */
 void eomc_sim_initial(const eomc_sim *s, double *q, double *v);

@@ -44,6 +44,17 @@ struct eomc_sim {
     int modes_run;           /* a run sets the modes (sim_modes_run); else each
                                 evaluation at a state takes its own (at_state) */
     unsigned char *u_held;   /* [nu] */
+    /* the controller in the loop (eomc_sim_set_controller): called every
+     * period at a run's samples (sim_sample), its inputs held between, or
+     * with period 0 at every evaluation at a state (sim_inputs_at) */
+    eomc_controller_fn ctrl;
+    void *ctrl_ctx;
+    double ctrl_period;
+    unsigned char *ctrl_drives; /* [nu] the inputs it sets */
+    double *ctrl_u, *ctrl_tmp;  /* [nu] the sample's outputs, held; a call's */
+    int ctrl_have;           /* a sample was taken: ctrl_u holds its outputs */
+    int ctrl_status;         /* a continuous controller's failure (sticky until
+                              * the next run), or EOMC_OK */
     /* below, n is nq and the speeds' arrays have nv entries */
     double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
     size_t *Mperm;           /* [nv] M's pivot order (la_ldlt_factor) */
@@ -114,6 +125,9 @@ eomc_sim_alloc(const eomc_model *m)
     s->dudt = sim_zeros(nu);
     s->u_const = sim_zeros(nu);
     s->u_held = calloc(nu ? nu : 1, 1);
+    s->ctrl_drives = calloc(nu ? nu : 1, 1);
+    s->ctrl_u = sim_zeros(nu);
+    s->ctrl_tmp = sim_zeros(nu);
     s->M = sim_zeros(nv * nv);
     s->h = sim_zeros(nv);
     s->a = sim_zeros(nv);
@@ -158,7 +172,8 @@ eomc_sim_alloc(const eomc_model *m)
     s->ce = sim_zeros((size_t)m->nc);
     s->cl = calloc((size_t)m->nc + 1, sizeof *s->cl);
     s->crow = calloc((size_t)m->nc + 1, sizeof *s->crow);
-    if (!s->p || !s->u || !s->sw || !s->dudt || !s->u_const || !s->u_held || !s->M || !s->h ||
+    if (!s->p || !s->u || !s->sw || !s->dudt || !s->u_const || !s->u_held || !s->ctrl_drives ||
+        !s->ctrl_u || !s->ctrl_tmp || !s->M || !s->h ||
         !s->a || !s->arow || !s->Mrel || !s->Mperm || !s->dEdq || !s->dEdv || !s->dEdu || !s->dEdt ||
         !s->dqdq || !s->dqdv || !s->wtw || !s->wrel || !s->wzero || !s->wperm ||
         !s->col || !s->fk || !s->err || !s->mlu || !s->cy || !s->cd || !s->cwhat ||
@@ -178,7 +193,8 @@ eomc_sim_free(eomc_sim *s)
 {
     if (!s)
         return;
-    void *arrays[] = {s->p, s->u, s->sw, s->dudt, s->u_const, s->u_held, s->M, s->h,
+    void *arrays[] = {s->p, s->u, s->sw, s->dudt, s->u_const, s->u_held, s->ctrl_drives,
+                      s->ctrl_u, s->ctrl_tmp, s->M, s->h,
                       s->a, s->arow, s->Mrel, s->Mperm, s->dEdq, s->dEdv, s->dEdu, s->dEdt, s->col,
                       s->fk, s->err, s->cy, s->cd, s->cwhat, s->Bc, s->ce, s->cl, s->crow,
                       s->dqdq, s->dqdv, s->wtw, s->wrel, s->wzero, s->wperm, s->fnear,
@@ -381,8 +397,80 @@ eomc_sim_input_held(const eomc_sim *s, int k, double *value)
     return 1;
 }
 
+int
+eomc_sim_set_controller(eomc_sim *s, eomc_controller_fn fn, void *ctx, double period,
+                        const unsigned char *drives)
+{
+    if (!(period >= 0) || !isfinite(period))
+        return sim_usage_error(s, "a controller's period must be positive (sampled) or 0 "
+                               "(continuous), not %g", period);
+    if (fn && s->nu == 0)
+        return sim_usage_error(s, "%s has no inputs for a controller to set", s->m->name);
+    s->ctrl = fn;
+    s->ctrl_ctx = ctx;
+    s->ctrl_period = fn ? period : 0;
+    s->ctrl_have = 0;
+    s->ctrl_status = EOMC_OK;
+    for (int k = 0; k < s->nu; k++)
+        s->ctrl_drives[k] = (unsigned char)(!drives || drives[k]);
+    return EOMC_OK;
+}
+
+double
+sim_control_period(const eomc_sim *s)
+{
+    return s->ctrl ? s->ctrl_period : -1;
+}
+
+/* The controller's outputs at (t, q, v) into s->ctrl_tmp, from the
+ * inputs' own values s->u: EOMC_OK, its nonzero status, or EOMC_ENUMERIC
+ * (the message naming it) where an input it sets is not finite. */
+static int
+control_call(eomc_sim *s, double t, const double *q, const double *v)
+{
+    memcpy(s->ctrl_tmp, s->u, (size_t)s->nu * sizeof *s->u);
+    int rc = s->ctrl(s->ctrl_ctx, t, q, v, s->ctrl_tmp);
+    if (rc != 0) {
+        sim_numeric_error(s, t, q, v, "the controller failed (status %d)", rc);
+        return rc;
+    }
+    for (int k = 0; k < s->nu; k++)
+        if (s->ctrl_drives[k] && !isfinite(s->ctrl_tmp[k]))
+            return sim_numeric_error(s, t, q, v, "the controller set input %s to %g",
+                                     s->m->u_names[k], s->ctrl_tmp[k]);
+    return EOMC_OK;
+}
+
+int
+sim_sample(eomc_sim *s, double t, const double *x)
+{
+    const double *q = x, *v = x + s->n;
+    s->ctrl_status = EOMC_OK;
+    s->ctrl_have = 0;
+    sim_inputs_at(s, t, q, v); /* the inputs' own values, which it may keep */
+    int rc = control_call(s, t, q, v);
+    if (rc != EOMC_OK)
+        return rc;
+    memcpy(s->ctrl_u, s->ctrl_tmp, (size_t)s->nu * sizeof *s->ctrl_u);
+    s->ctrl_have = 1;
+    return EOMC_OK;
+}
+
+int
+sim_control_failed(const eomc_sim *s)
+{
+    return s->ctrl_status;
+}
+
+void
+sim_control_start(eomc_sim *s)
+{
+    s->ctrl_status = EOMC_OK;
+    s->ctrl_have = 0;
+}
+
 const double *
-sim_inputs_at(eomc_sim *s, double t)
+sim_inputs_at(eomc_sim *s, double t, const double *q, const double *v)
 {
     if (s->nu == 0)
         return s->u;
@@ -390,6 +478,25 @@ sim_inputs_at(eomc_sim *s, double t)
     for (int k = 0; k < s->nu; k++)
         if (s->u_held[k]) {
             s->u[k] = s->u_const[k];
+            s->dudt[k] = 0;
+        }
+    if (!s->ctrl)
+        return s->u;
+    const double *c = s->ctrl_u; /* sampled: the last sample's, held */
+    if (s->ctrl_period == 0) {    /* continuous: its call at this state */
+        if (!q)
+            return s->u; /* no state: the inputs' own values (eomc_sim_inputs) */
+        if (s->ctrl_status == EOMC_OK)
+            s->ctrl_status = control_call(s, t, q, v);
+        if (s->ctrl_status != EOMC_OK)
+            return s->u; /* (eomc_sim_accel fails: sim_control_failed) */
+        c = s->ctrl_tmp;
+    } else if (!s->ctrl_have) {
+        return s->u; /* no sample yet: the inputs' own values */
+    }
+    for (int k = 0; k < s->nu; k++)
+        if (s->ctrl_drives[k]) {
+            s->u[k] = c[k];
             s->dudt[k] = 0;
         }
     return s->u;
@@ -430,7 +537,7 @@ sim_vanished(const eomc_sim *s, double *fraction)
 void
 eomc_sim_inputs(eomc_sim *s, double t, double *u)
 {
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, NULL, NULL);
     if (s->nu)
         memcpy(u, s->u, (size_t)s->nu * sizeof *u);
 }
@@ -498,7 +605,7 @@ dependent_rows(eomc_sim *s, double t, const double *q, const double *v, const do
                const int *rows, int nr, int *dims)
 {
     int rank, inv = 0;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     s->m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
     const char *names = depend_involved(s->dep, B, s->M, rows, nr, &rank);
     for (const char *c = names; *names && c; c = strchr(c + 1, ','))
@@ -566,7 +673,7 @@ choose_rows(eomc_sim *s, double t, const double *q, const double *v)
     s->chosen = 1;
     if (!m->c_affine)
         return EOMC_OK;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     memset(s->col, 0, (size_t)s->nv * sizeof *s->col);
     m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
@@ -783,7 +890,9 @@ eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v, double *
     int n = s->nv, k;
     if ((k = at_state(s, t, q, v)) != EOMC_OK)
         return k;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
+    if (s->ctrl_status != EOMC_OK) /* a continuous controller failed: the message is its */
+        return EOMC_ENUMERIC;
     if (s->fric && (k = accel_friction(s, t, q, v, a)) >= 0)
         return k;
     if (!s->kkt && m->accel)
@@ -883,7 +992,7 @@ project_singular(eomc_sim *s, double t, const double *q, const double *v, int le
     const char *what = level ? "velocities" : "positions";
     int nr, dims;
     const int *rows = proj_rows(s->proj, level, &nr);
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     memset(s->col, 0, (size_t)s->nv * sizeof *s->col);
     s->m->constraint(t, q, v, s->col, s->p, s->u, s->fk, s->Bc);
     const char *dep = dependent_rows(s, t, q, v, s->Bc, rows, nr, &dims);
@@ -911,7 +1020,7 @@ eomc_sim_project_held(eomc_sim *s, double t, double *q, double *v, const unsigne
     int level, rc = sim_choose_rows(s, t, q, v);
     if (rc != EOMC_OK)
         return rc;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     rc = proj_apply_held(s->proj, t, q, v, s->p, s->u, hold, &level);
     const char *what = level ? state_speed_word(s->m, 1) : "positions";
     int held = 0;
@@ -954,7 +1063,7 @@ sim_level_residual(eomc_sim *s, double t, const double *q, const double *v)
 {
     if (!sim_has_levels(s))
         return 0;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     return proj_residual(s->proj, t, q, v, s->p, s->u);
 }
 
@@ -965,7 +1074,7 @@ eomc_sim_inconsistency(eomc_sim *s, double t, const double *q, const double *v,
     *worst = -1, *level = 0;
     if (!sim_has_levels(s))
         return 0;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     return proj_inconsistency(s->proj, t, q, v, s->p, s->u, worst, level);
 }
 
@@ -982,7 +1091,7 @@ eomc_sim_inconsistencies(eomc_sim *s, double t, const double *q, const double *v
         }
         return 0;
     }
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     return proj_inconsistencies(s->proj, t, q, v, s->p, s->u, &worst, &lev, e, level);
 }
 
@@ -1040,7 +1149,7 @@ sim_condition(eomc_sim *s, double t, const double *q, const double *v)
         return eomc_sim_accel(s, t, q, v, s->a) == EOMC_OK
                    ? kkt_condition(s->kkt, t, q, v, s->p, s->u)
                    : NAN;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
     for (int i = 0; i < n; i++) {
         double d = s->M[i * n + i];
@@ -1113,7 +1222,7 @@ sim_constraint_rows(eomc_sim *s, double t, const double *x, double *B)
         return -1;
     if (m->c_affine)
         memset(s->a, 0, (size_t)s->nv * sizeof *s->a);
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, x, x + s->n);
     m->constraint(t, x, x + n, s->a, s->p, s->u, s->fk, B);
     return 0;
 }
@@ -1124,7 +1233,7 @@ eomc_sim_energy(eomc_sim *s, double t, const double *q, const double *v, double 
 {
     double TV[2];
     (void)at_state(s, t, q, v); /* (friction's modes put nothing in T or V) */
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     s->m->energy(t, q, v, s->p, s->u, TV);
     *T = TV[0];
     *V = TV[1];
@@ -1139,7 +1248,7 @@ eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double
     /* the accelerations and multipliers of this very state */
     if (eomc_sim_accel(s, t, q, v, s->arow) != EOMC_OK)
         return EOMC_ENUMERIC;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     m->outputs(t, q, v, s->arow, s->p, s->u, eomc_sim_multipliers(s), out);
     return EOMC_OK;
 }
@@ -1147,7 +1256,7 @@ eomc_sim_outputs(eomc_sim *s, double t, const double *q, const double *v, double
 void
 sim_switches(eomc_sim *s, double t, const double *q, const double *v, double *sw)
 {
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     s->m->switches(t, q, v, s->p, s->u, sw);
     /* the stick switches' functions, from the holding forces (NAN where
      * they cannot be solved: the run's right-hand side says why) */
@@ -1199,7 +1308,7 @@ sim_flip(eomc_sim *s, int k, int on, double t, double *x)
         return EOMC_OK;
     }
     double *q = x, *v = x + s->n;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, x, x + s->n);
     if (!on && fric_item_stick(s->fric, k) >= 0)
         watch_let_go(s, t, q, v);
     int rc = fric_flip(s->fric, k, on, t, q, v, s->p, s->u);
@@ -1233,7 +1342,7 @@ sim_set_modes(eomc_sim *s, double t, const double *q, const double *v)
      * stick switches are friction's to set, after */
     for (int pass = 0; pass <= s->m->nmode; pass++) {
         int changed = 0;
-        sim_inputs_at(s, t);
+        sim_inputs_at(s, t, q, v);
         s->m->switches(t, q, v, s->p, s->u, s->sw);
         for (int k = 0; k < s->m->nmode; k++) {
             int on = s->sw[k] > 0;
@@ -1247,7 +1356,7 @@ sim_set_modes(eomc_sim *s, double t, const double *q, const double *v)
     }
     if (!s->fric)
         return EOMC_OK;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     int rc = fric_settle(s->fric, t, q, v, s->p, s->u);
     return rc == STICK_OK ? EOMC_OK : fric_error(s, t, q, v, rc);
 }
@@ -1255,7 +1364,7 @@ sim_set_modes(eomc_sim *s, double t, const double *q, const double *v)
 void
 eomc_sim_events(eomc_sim *s, double t, const double *q, const double *v, double *g)
 {
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     s->m->events(t, q, v, s->p, s->u, g);
 }
 
@@ -1270,7 +1379,7 @@ eomc_sim_event_set(eomc_sim *s, int k, double t, const double *x, double *x1)
     memmove(x1, x, (size_t)(n + s->nv) * sizeof *x);
     if (m->ev_action[k] != EOMC_EVENT_SET || !m->event_set)
         return;
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, x, x + s->n);
     m->event_set(k, t, s->arow, s->col, s->p, s->u, x1, x1 + n);
 }
 
@@ -1281,7 +1390,7 @@ eomc_sim_invariant(eomc_sim *s, double t, const double *q, const double *v, doub
         return sim_usage_error(s, "%s conserves no quantity that eomc knows of: %s",
                                s->m->name, s->m->invariant_note);
     (void)at_state(s, t, q, v); /* (none conserved with friction on) */
-    sim_inputs_at(s, t);
+    sim_inputs_at(s, t, q, v);
     s->m->invariant(t, q, v, s->p, s->u, h);
     return EOMC_OK;
 }

@@ -44,9 +44,25 @@ int sim_usage_error(eomc_sim *s, const char *fmt, ...)
 /* The usage error of `what` (a method, --linearize) on a model built
  * without its Jacobian; returns EOMC_EUSAGE. */
 int sim_no_jacobian(eomc_sim *s, const char *what);
-/* The inputs u at t [nu] (held ones constant), valid until the next
- * call that evaluates the model. */
-const double *sim_inputs_at(eomc_sim *s, double t);
+/* The inputs u at (t, q, v) [nu] (held ones constant, a controller's
+ * its outputs: a sampled one's of its last sample, a continuous one's of
+ * its call here; without a state, q NULL, the inputs' own values), valid
+ * until the next call that evaluates the model. */
+const double *sim_inputs_at(eomc_sim *s, double t, const double *q, const double *v);
+/* The controller's period (eomc_sim_set_controller: 0 continuous), or -1
+ * without one. */
+double sim_control_period(const eomc_sim *s);
+/* A run's start: no sample taken yet, no failure. */
+void sim_control_start(eomc_sim *s);
+/* The sampled controller's call at (t, x) [nx], its outputs held from
+ * here: EOMC_OK, the controller's nonzero status, or EOMC_ENUMERIC where
+ * it set an input to a value that is not finite (the message says which,
+ * and when). */
+int sim_sample(eomc_sim *s, double t, const double *x);
+/* A continuous controller's failure in an evaluation of the model (its
+ * status, the message set; the evaluation failed, and every next one
+ * fails until sim_control_start), or EOMC_OK. */
+int sim_control_failed(const eomc_sim *s);
 /* The switch functions s [nmode] at (t, q, v) in the modes as they are
  * (eomc_model.h's switches). */
 void sim_switches(eomc_sim *s, double t, const double *q, const double *v, double *sw);

@@ -111,6 +111,15 @@ typedef struct Run {
     Taylor *taylor;               /* Taylor's method: the step's series (NULL:
                                    * GSL's stepper) */
     Taylor *taylor_side;          /* ... a side step's, from elsewhere */
+    /* a sampled controller (sim_control_period > 0): its period, the next
+     * sample t_sample = t0 + k_sample period, and whether one is due at
+     * the next step's start (the last step ended there) */
+    double period, t_sample;
+    long k_sample;
+    int sample_due;
+    /* fixed steps: the stretch they divide evenly (t0 .. t_end, or with a
+     * sampled controller the samples' intervals) and its first */
+    double seg0, seg1;
 } Run;
 
 /* The caller is told of the progress every PROGRESS_EVERY right-hand
@@ -127,7 +136,7 @@ rhs(double t, const double *x, double *dxdt, void *ctx)
     if (r->o->on_progress && (r->st->rhs_evals & (PROGRESS_EVERY - 1)) == 0)
         r->o->on_progress(r->o->progress_ctx, t);
     if (eomc_sim_accel(r->s, t, x, x + n, dxdt + n) != EOMC_OK)
-        return GSL_EBADFUNC;
+        return sim_control_failed(r->s) != EOMC_OK ? EVOLVE_CONTROL : GSL_EBADFUNC;
     sim_qdot(r->s, x, x + n, dxdt);
     return GSL_SUCCESS;
 }
@@ -228,6 +237,8 @@ step_error(Run *r, int status)
         return stepev_error(r->ev, status, r->t, r->x);
     case GSL_EBADFUNC:
         return EOMC_ENUMERIC; /* the right-hand side said why */
+    case EVOLVE_CONTROL:
+        return sim_control_failed(s); /* (and said why) */
     case GSL_EMAXITER:
         return sim_numeric_error(s, r->t, r->x, r->x + n, "too many steps (the limit is "
                                  "%ld)", r->o->max_steps);
@@ -649,14 +660,34 @@ budget_left(const Run *r)
     return r->o->max_steps <= 0 || r->st->steps < r->o->max_steps;
 }
 
+/* Where the steps must end next: t_end, or a sampled controller's next
+ * sample before it. */
+static double
+stop_time(const Run *r)
+{
+    return r->period > 0 && r->t_sample < r->o->t_end ? r->t_sample : r->o->t_end;
+}
+
+/* The sample after the one at r->t_sample: t0 + k period (not a sum of
+ * periods, whose rounding would drift); one within SAMPLE_AT_END_REL of
+ * the period of t_end is t_end's, where none is taken (as an output time
+ * that close is t_end: eomc_run_rows). */
+#define SAMPLE_AT_END_REL 1e-9
+static void
+next_sample(Run *r)
+{
+    r->t_sample = r->o->t0 + (double)++r->k_sample * r->period;
+    if (r->t_sample > r->o->t_end - SAMPLE_AT_END_REL * r->period)
+        r->t_sample = INFINITY;
+}
+
 /* One accepted step from r->t of at most *h (adaptive): GSL's evolve,
  * with rejected steps retried from the same start as its steppers
  * expect.  *h becomes the size the control suggests next. */
 static int
 adaptive_step(Run *r, double *h)
 {
-    const eomc_run_opts *o = r->o;
-    double t0 = r->t, h0 = *h, left = o->t_end - t0;
+    double t0 = r->t, h0 = *h, stop = stop_time(r), left = stop - t0;
     size_t bytes = (size_t)r->N * sizeof *r->x;
     memcpy(r->y0, r->x, bytes);
     sim_save_start(r->s);
@@ -669,8 +700,10 @@ adaptive_step(Run *r, double *h)
             h0 = 0.5 * left;
         int rc = gsl_odeiv2_step_apply(r->step, t0, h0, r->x, r->yerr, r->f0, r->f1,
                                        &r->sys);
-        if (rc == GSL_EFAULT)
+        if (rc == GSL_EFAULT || rc == EVOLVE_CONTROL) {
+            memcpy(r->x, r->y0, bytes);
             return rc;
+        }
         double h_old = h0;
         int retry = 0;
         if (rc != GSL_SUCCESS) {
@@ -692,7 +725,7 @@ adaptive_step(Run *r, double *h)
                 return rc == GSL_EBADFUNC ? rc : GSL_ENOPROG;
             continue;
         }
-        r->t = final ? o->t_end : t0 + h_old;
+        r->t = final ? stop : t0 + h_old;
         if (!final) {
             *h = h0;
             stepwatch_accepted(r->watch, h_old);
@@ -711,7 +744,7 @@ adaptive_step(Run *r, double *h)
 static int
 taylor_step(Run *r)
 {
-    double t0 = r->t, left = r->o->t_end - t0, h, hmax = left;
+    double t0 = r->t, stop = stop_time(r), left = stop - t0, h, hmax = left;
     /* after an event's reset, as for the other methods: the first step
      * the restart's (take_step), each next at most RESTART_GROWTH times
      * the one before, so that the steps see g leave zero before they could
@@ -733,7 +766,7 @@ taylor_step(Run *r)
     taylor_advance(r->taylor, h, r->x);
     taylor_error(r->taylor, h, r->yerr);
     r->st->order_sum += taylor_order(r->taylor);
-    r->t = final ? r->o->t_end : t0 + h;
+    r->t = final ? stop : t0 + h;
     int rc = rhs(r->t, r->x, r->f1, r);
     if (rc != GSL_SUCCESS) {
         memcpy(r->x, r->y0, (size_t)r->N * sizeof *r->x);
@@ -768,6 +801,22 @@ fixed_step(Run *r, double t1)
     return GSL_SUCCESS;
 }
 
+/* Fixed steps: the stretch from r->t to the next stop (t_end, or a
+ * sample), divided evenly into steps of at most h_fixed (st->h_used: the
+ * first stretch's, the whole span's without a sampled controller). */
+static void
+fixed_stretch(Run *r)
+{
+    double h = r->o->h_fixed, span;
+    r->seg0 = r->t, r->seg1 = stop_time(r), span = r->seg1 - r->seg0;
+    r->i = 0;
+    r->nfixed = (unsigned long)ceil(span / h * (1 - 1e-12));
+    if (r->nfixed < 1)
+        r->nfixed = 1;
+    if (r->st->h_used == 0)
+        r->st->h_used = span / (double)r->nfixed;
+}
+
 /* The fixed steps of the span (st->h_used), or none (adaptive): before
  * the first step. */
 static void
@@ -777,12 +826,8 @@ steps_begin(Run *r)
     double span = o->t_end - o->t0;
     r->h = H0_REL * span;
     r->pending = -1;
-    if (o->h_fixed > 0) {
-        r->nfixed = (unsigned long)ceil(span / o->h_fixed * (1 - 1e-12));
-        if (r->nfixed < 1)
-            r->nfixed = 1;
-        r->st->h_used = span / (double)r->nfixed;
-    }
+    if (o->h_fixed > 0)
+        fixed_stretch(r);
 }
 
 /* Whether a step is left to take: before t_end, or a reset to apply. */
@@ -790,6 +835,37 @@ static int
 steps_left(const Run *r)
 {
     return r->t < r->o->t_end || r->pending >= 0;
+}
+
+/* The sampled controller's call at r->t, where the last step ended (its
+ * state the next one's start): the inputs it sets held from here, so
+ * the steps start afresh as after a reset (x' at the state again, the
+ * steppers' history dropped, the switches its inputs moved flipped at
+ * this instant: stepev_jump), but for the step size, which the motion
+ * sets, not the sample.  The next fixed stretch starts here.  A
+ * controller's failure stops the run at the sample (evolve_stop). */
+static int
+take_sample(Run *r)
+{
+    int rc = sim_sample(r->s, r->t, r->x);
+    if (rc != EOMC_OK)
+        return callback_stop(r, rc, r->t, r->x);
+    next_sample(r);
+    if (r->ev)
+        rc = stepev_jump(r->ev, r->t, r->x, r->f0);
+    else
+        rc = rhs(r->t, r->x, r->f0, r);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    if (r->step)
+        gsl_odeiv2_step_reset(r->step);
+    if (r->side && r->side != r->step)
+        gsl_odeiv2_step_reset(r->side);
+    if (r->m->nc > 0 && sim_constraint_rows(r->s, r->t, r->x, r->B0) != 0)
+        return GSL_EBADFUNC;
+    if (r->nfixed)
+        fixed_stretch(r);
+    return GSL_SUCCESS;
 }
 
 /* One accepted step, GSL's evolve with the checks of after_step and the
@@ -821,14 +897,20 @@ take_step(Run *r, EvolveStep *tk)
         if (!(r->t < o->t_end))
             return GSL_SUCCESS;
     }
+    if (r->sample_due && (rc = take_sample(r)) != GSL_SUCCESS)
+        return rc;
+    tk->restarted |= r->sample_due;
+    r->sample_due = 0;
     if (!budget_left(r))
         return GSL_EMAXITER;
     double t0 = r->t;
     r->i++;
     if (r->taylor)
         rc = taylor_step(r);
-    else if (r->nfixed)
-        rc = fixed_step(r, r->i == r->nfixed ? o->t_end : o->t0 + (double)r->i * r->st->h_used);
+    else if (r->nfixed) /* (one stretch: i h_used from t0, as without samples) */
+        rc = fixed_step(r, r->i == r->nfixed ? r->seg1
+                                             : r->seg0 + (double)r->i * (r->seg1 - r->seg0) /
+                                                             (double)r->nfixed);
     else
         rc = adaptive_step(r, &r->h);
     if (rc != GSL_SUCCESS)
@@ -841,9 +923,12 @@ take_step(Run *r, EvolveStep *tk)
         return rc;
     double *f = r->f0; /* this step's end is the next one's start */
     r->f0 = r->f1, r->f1 = f;
+    /* a step that ends at a sample (and not at a stop event) leaves it due */
+    r->sample_due = r->period > 0 && r->t == r->t_sample && tk->ev != EVOLVE_STOP;
     *tk = (EvolveStep){.taken = 1, .t0 = t0, .t1 = r->t, .x0 = r->y0, .f0 = r->f1,
                        .x1 = r->x, .f1 = r->f0, .restarted = tk->restarted, .ev = tk->ev,
-                       .fired = tk->fired, .reached = NAN, .series = r->taylor};
+                       .fired = tk->fired, .reached = NAN, .series = r->taylor,
+                       .sampled = r->sample_due};
     if (tk->ev == EVOLVE_STOP) {
         r->st->stop_event = tk->fired;
         return GSL_SUCCESS;
@@ -964,6 +1049,8 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
                .multistep = !method->fixed && *method->adaptive != NULL};
     st->stop_event = -1;
     st->reset_event = -1;
+    sim_control_start(s);
+    r->period = fmax(sim_control_period(s), 0);
     r->hmin = HMIN_REL * fmax(fmax(fabs(o->t0), fabs(o->t_end)), o->t_end - o->t0);
     return run_alloc(r, method);
 }
@@ -1037,6 +1124,13 @@ run_start(Run *r, int derivative)
     eomc_sim *s = r->s;
     double *x = r->x;
     int n = r->n;
+    if (r->period > 0) { /* the first sample, at t0: the inputs from the start */
+        int rc = sim_sample(s, r->t, x);
+        if (rc != EOMC_OK)
+            return rc;
+        r->k_sample = 0;
+        next_sample(r);
+    }
     if (r->m->nmode > 0) { /* each from its switch function's sign at the start */
         sim_modes_run(s, 1);
         int rc = start_modes(r);

@@ -15,6 +15,9 @@
  * stopped the run (evolve_stopped).  Every status from it down to -1099 is the step
  * layer's own; evolve_error says what the others mean. */
 enum { EVOLVE_STOPPED = -1000 };
+/* A continuous controller failed in a right-hand side (sim_control_failed):
+ * no smaller step can help; evolve_error returns its status. */
+enum { EVOLVE_CONTROL = -1006 };
 /* A side step (a state computed by a step of its own) is split in at
  * most this many pieces. */
 enum { EVOLVE_SIDE_PIECES = 64 };
@@ -28,8 +31,11 @@ typedef struct EvolveStep {
     double t0, t1;
     const double *x0, *f0;        /* the state and x' at t0 and t1 */
     const double *x1, *f1;
-    int restarted;                /* a pending reset was applied first: the step
-                                   * started from the state it set */
+    int restarted;                /* a pending reset (or a controller's sample) was
+                                   * applied first: the step started from the state
+                                   * it set (with the inputs it set) */
+    int sampled;                  /* the step ended at a controller's sample: the
+                                   * next starts afresh, with the inputs it sets */
     int ev, fired;                /* EVOLVE_... and the event that ended the step */
     double reached;               /* no step taken, but the motion is known up to
                                    * this time (the failure is past it), or NAN */

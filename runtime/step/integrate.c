@@ -220,8 +220,8 @@ march(Driver *r)
             return rc;
         if (tk.ev == EVOLVE_STOP)
             return finish_at_event(r, &tk);
-        /* before a reset, every row up to the event */
-        if ((rc = emit_rows(r, tk.ev == EVOLVE_SET)) != GSL_SUCCESS)
+        /* before a reset (or a sample's new inputs), every row up to it */
+        if ((rc = emit_rows(r, tk.ev == EVOLVE_SET || tk.sampled)) != GSL_SUCCESS)
             return rc;
     }
     return GSL_SUCCESS;

@@ -127,6 +127,11 @@ eomc_run_check(eomc_sim *s, const eomc_run_opts *o)
                                "coordinates' accelerations are a solve Taylor's series do "
                                "not expand: use another method", md->name,
                                md->fric_names[0]);
+    if (!*m->adaptive && sim_control_period(s) == 0)
+        return sim_usage_error(s, "taylor: a continuous controller has no Taylor series of "
+                               "its inputs: give it a period (a sampled controller, whose "
+                               "inputs are held between its samples), or use another "
+                               "method");
     if (!*m->adaptive)
         return taylor_check(s, o);
     return EOMC_OK;

@@ -751,6 +751,8 @@ together(StepEvents *v, double t, double *x, double soon, int contacts_only)
  * f [nx] its rate in the new mode.  STEPEV_CHATTER_FLIPS flips of one
  * switch in a row, each within STEPEV_ACCUMULATE_REL of the span after the one
  * before, chatter (Zeno), as resets do. */
+static int settle(StepEvents *v, double t, double *x, double *f, double soon, double order);
+
 static int
 flip(StepEvents *v, int k, double t, double *x, double *f)
 {
@@ -777,6 +779,20 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
     if (rc != EOMC_OK)
         return GSL_EBADFUNC;
     also_set(v, j, t, x);
+    if ((rc = settle(v, t, x, f, soon, 1)) != GSL_SUCCESS)
+        return rc;
+    v->held[k] = 0;
+    v->left_rate = 0;
+    return GSL_SUCCESS;
+}
+
+/* After a flip at t (order: its place, 1), or a jump of the inputs
+ * (order 0), with x' in f (the rate before the flip): the other switches
+ * that disagree with their modes flip at t too, then f, g0 afresh. */
+static int
+settle(StepEvents *v, double t, double *x, double *f, double soon, double order)
+{
+    int rc;
     /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
      * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
@@ -798,7 +814,6 @@ flip(StepEvents *v, int k, double t, double *x, double *f)
      * switch once an instant. */
     if (v->m->nfric > 0)
         goto together;
-    double order = 1;
     for (int pass = 0; pass <= 2 * (v->ne - v->nev); pass++) {
         int pick = -1;
         double below = 0; /* the latest flip at t of the switches before i */
@@ -833,9 +848,18 @@ settled:
     for (int i = v->nev; i < v->ne; i++) /* on their kinks: each fires again only */
         if (v->tsw[i - v->nev] == t)      /* once it has left it */
             v->g0[i] = 0;
-    v->held[k] = 0;
-    v->left_rate = 0;
     return GSL_SUCCESS;
+}
+
+int
+stepev_jump(StepEvents *v, double t, double *x, double *f)
+{
+    v->have_gd0 = 0; /* the next step starts from the inputs set here */
+    int rc = v->mo.rate(t, x, f, v->mo.ctx);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    double soon = SIMULTANEOUS_ULPS * DBL_EPSILON * fmax(fabs(t), v->o->t_end - v->o->t0);
+    return settle(v, t, x, f, soon, 0);
 }
 
 int

@@ -99,6 +99,14 @@ int stepev_check(StepEvents *v, const StepevSpan *sp, StepevHit *hit);
  * is held until its g leaves zero, unless the reset passes through it.
  * GSL_SUCCESS or a failure status. */
 int stepev_reset(StepEvents *v, int k, double t, double *x, double *f);
+/* The inputs jumped at t (a sampled controller's sample), x [nx] as it
+ * is: f [nx] gets x' with the new inputs, and the switches whose
+ * functions they moved across their kinks flip at t (told as any flip,
+ * settled as after one); g at the next step's start is taken here.  An
+ * event of the scene whose function reads an input sees the new value
+ * from here on, but is not fired by the jump itself.  GSL_SUCCESS or a
+ * failure status. */
+int stepev_jump(StepEvents *v, double t, double *x, double *f);
 /* The time from the `set` event before the last one to the last. */
 double stepev_gap(const StepEvents *v);
 /* The message of STEPEV_ACCUMULATE or STEPEV_RETURNED, the run having

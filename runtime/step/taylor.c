@@ -269,7 +269,7 @@ newton_start(Taylor *tp, double t0, const double *x)
         tp->L[(size_t)c * (tp->p + 1)] = lam[c];
     size_t cq = (size_t)nc * (size_t)n, cv = (size_t)nc * (size_t)nv, nu = (size_t)m->nu;
     double *J = tp->J, *dBdq = J + cq + cv + nc * nu + nc;
-    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0), J, J + cq,
+    m->c_jacobian(t0, x, x + n, tp->b, sim_p(tp->s), sim_inputs_at(tp->s, t0, x, x + n), J, J + cq,
                   J + cq + cv, J + cq + cv + nc * nu, dBdq, dBdq + cv * n, tp->dBda,
                   tp->dBda + cv * nv, tp->dBda + cv * nv + cv * nu);
     return 0;
@@ -456,7 +456,7 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 {
     const eomc_model *m = tp->m;
     int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p;
-    const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0);
+    const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0, x, x + n);
     /* a start the last advance did not leave (an event's reset, a side
      * step's own start) owes nothing; where the unit quaternions were
      * renormalized since, they owe nothing, and the rest what they did */

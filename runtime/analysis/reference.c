@@ -157,6 +157,16 @@ typedef struct Ref {
     RefSwitches *sw;              /* the switches (modes at u[nu + k]), or NULL */
     RefFric *fr;                  /* dry friction's stuck speeds, or NULL */
     int bad_switch;               /* the one a solution could not follow */
+    /* a sampled controller (eomc_sim_set_controller): its period (0:
+     * none), the inputs it drives, the next sample t0 + k_sample period,
+     * the state rounded to doubles it is called with [N] and its outputs
+     * [nu], held (have_cu) until the next sample; its failure's status */
+    double period;
+    const unsigned char *drives;
+    long k_sample;
+    eomc_ext t_sample;
+    double *cx, *cu;
+    int have_cu, ctrl_status;
 } Ref;
 
 /* The model's inputs at t into r->u, held ones as the doubles hold them. */
@@ -170,7 +180,37 @@ inputs_at(Ref *r, eomc_ext t)
         double held;
         if (eomc_sim_input_held(r->s, k, &held))
             r->u[k] = held;
+        if (r->have_cu && r->drives[k])
+            r->u[k] = r->cu[k];
     }
+}
+
+/* The sample after the one at r->t_sample, at the doubles' instant of it
+ * (none near t_end: evolve.c's next_sample). */
+static void
+next_sample(Ref *r, const eomc_run_opts *o)
+{
+    double t = o->t0 + (double)++r->k_sample * r->period;
+    r->t_sample = t > o->t_end - SIM_SAMPLE_AT_END_REL * r->period ? INFINITY : t;
+}
+
+/* The sampled controller's call at (t, X), X rounded to doubles as the
+ * doubles' run would hand it its state, with the inputs' own values
+ * there: its outputs held from here (inputs_at).  0, or -7 when it
+ * fails (r->ctrl_status, the message set). */
+static int
+sample(Ref *r, eomc_ext t, const eomc_ext *X)
+{
+    r->have_cu = 0;
+    inputs_at(r, t);
+    for (int i = 0; i < r->N; i++)
+        r->cx[i] = (double)X[i];
+    for (int k = 0; k < r->nu; k++)
+        r->cu[k] = (double)r->u[k];
+    if ((r->ctrl_status = sim_control_call(r->s, (double)t, r->cx, r->cu)) != EOMC_OK)
+        return -7;
+    r->have_cu = 1;
+    return 0;
 }
 
 /* q'' = -M^-1 h for an unconstrained model, the speeds dry friction
@@ -454,6 +494,22 @@ fail_at(Ref *r, eomc_ext t, const eomc_ext *x, int status)
     return status;
 }
 
+/* A solution's first sample, at t0 (none without a sampled controller:
+ * no sample is ever due); 0 or -7. */
+static int
+first_sample(Ref *r, const eomc_run_opts *o)
+{
+    r->have_cu = 0;
+    r->k_sample = 0;
+    r->t_sample = INFINITY;
+    if (!(r->period > 0))
+        return 0;
+    if (sample(r, o->t0, r->X) != 0)
+        return -7;
+    next_sample(r, o);
+    return 0;
+}
+
 /* One solution at tolerance r->tol: the rows [nrows * N] (doubles).
  * The steps go as the tolerance allows, not to the output times, so that
  * rounding accumulates over as few of them as it can; an output time
@@ -480,6 +536,8 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
     r->held = 0;
     r->steps = r->evals = r->side_evals = 0;
     eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t, H = span / 100;
+    if (first_sample(r, o) != 0)
+        return fail_at(r, t, r->X, -7);
     int st = r->sw ? refsw_start(r->sw, r->X, &r->bad_switch) : 0;
     if (st != 0)
         return fail_at(r, t, r->X, st == -2 ? -6 : -1);
@@ -493,7 +551,9 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         if (need_jacobian && extrap_jacobian(r->ex, t, r->X, r->F, r->sc) != 0)
             return -1;
         need_jacobian = 0;
-        eomc_ext left = t_end - t, step = H >= left ? left : 2 * H > left ? left / 2 : H;
+        /* (steps end at the controller's samples as at t_end) */
+        eomc_ext stop = fminl(r->t_sample, t_end), left = stop - t;
+        eomc_ext step = H >= left ? left : 2 * H > left ? left / 2 : H;
         double err = INFINITY; /* a stage failed: a smaller step may not */
         if (extrap_step(r->ex, r->method, t, step, r->X, r->F, r->Xn, r->D) == 0)
             err = step_error(r, r->Xn, r->D);
@@ -510,7 +570,7 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             }
             continue;
         }
-        eomc_ext t1 = step == left ? t_end : t + step, t0 = t;
+        eomc_ext t1 = step == left ? stop : t + step, t0 = t;
         /* the unit quaternions back to length 1, as the doubles' steps do */
         state_normalize_ext(r->m, r->Xn);
         /* a switch crossed in the step: it ends there (rows before it
@@ -542,7 +602,13 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
         scales(r);
         if (hit && (st = refsw_flip(r->sw, t, r->X, r->sc, &r->bad_switch)) != 0)
             return fail_at(r, t, r->X, st == -2 ? -5 : -1);
-        if (r->sw && !hit) /* the end's, in the same modes */
+        int sampled = !hit && t == r->t_sample; /* new inputs: x' again, below */
+        if (sampled) {
+            if (sample(r, t, r->X) != 0)
+                return fail_at(r, t, r->X, -7);
+            next_sample(r, o);
+        }
+        if (r->sw && !hit && !sampled) /* the end's, in the same modes */
             memcpy(r->F, r->Fn, (size_t)N * sizeof *r->F);
         else if (rhs(r, t, r->X, r->F) != 0)
             return -1;
@@ -574,11 +640,13 @@ solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, lon
     scales(r);
     r->steps = r->evals = r->side_evals = 0;
     eomc_ext t = o->t0, t_end = o->t_end, span = t_end - t;
+    if (first_sample(r, o) != 0)
+        return fail_at(r, t, r->X, -7);
     while (t < t_end) {
         if (r->steps >= budget)
             return -2;
         inputs_at(r, t);
-        eomc_ext left = t_end - t, h;
+        eomc_ext stop = fminl(r->t_sample, t_end), left = stop - t, h;
         r->evals++;
         if (reftaylor_series(r->rt, t, r->X, r->p, r->u, r->tol, r->sc, left, &h) != 0 ||
             !(h > HMIN_REL * span)) {
@@ -588,7 +656,7 @@ solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, lon
             return -1;
         }
         eomc_ext step = h >= left ? left : 2 * h > left ? left / 2 : h;
-        eomc_ext t1 = step == left ? t_end : t + step;
+        eomc_ext t1 = step == left ? stop : t + step;
         /* the unit quaternions back to length 1, in every row and at the
          * step's end, as the doubles' steps do */
         for (; k < nrows && eomc_run_row_time(o, k) <= t1; k++) {
@@ -601,6 +669,11 @@ solve_taylor(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, lon
         state_normalize_ext(r->m, r->X);
         t = t1;
         r->steps++;
+        if (t == r->t_sample) {
+            if (sample(r, t, r->X) != 0)
+                return fail_at(r, t, r->X, -7);
+            next_sample(r, o);
+        }
         for (int i = 0; i < N; i++)
             r->mag[i] = fmaxl(r->mag[i], fabsl(r->X[i]));
         scales(r);
@@ -620,6 +693,8 @@ ref_free(Ref *r)
     reffric_free(r->fr);
     free(r->perm);
     free(r->fail_x);
+    free(r->cx);
+    free(r->cu);
     extrap_free(r->ex);
     reftaylor_free(r->rt);
     refsw_free(r->sw);
@@ -720,6 +795,10 @@ ref_alloc(Ref *r, eomc_sim *s, const eomc_model_ext *x, const eomc_run_opts *o)
         ok &= (*arrays[k] = ext_zeros(sizes[k])) != NULL;
     ok &= (r->perm = calloc(W, sizeof *r->perm)) != NULL;
     ok &= (r->fail_x = calloc(N + n, sizeof *r->fail_x)) != NULL;
+    ok &= (r->cx = calloc(N, sizeof *r->cx)) != NULL;
+    ok &= (r->cu = calloc(nu + 1, sizeof *r->cu)) != NULL;
+    r->period = fmax(sim_control_period(s), 0);
+    r->drives = sim_control_drives(s);
     ok &= (r->ex = extrap_alloc(r->N, ext_rhs, r)) != NULL;
     if (ok && m->nfric > 0)
         ok &= (r->fr = reffric_alloc(m, x)) != NULL;
@@ -778,6 +857,8 @@ failure(Ref *r, int st)
         return sim_numeric_error(s, r->fail_t, x, x + r->n, "%s starts on its kink (its "
                                  "function is 0) and neither mode leaves it: the motion "
                                  "would slide along it, which no mode follows", name);
+    if (st == -7) /* the controller's, said by sim_control_call */
+        return r->ctrl_status;
     if (st == -2)
         return sim_numeric_error(s, r->fail_t, NULL, NULL, "the reference solution (%s) "
                                  "took more than %d steps at tolerance %.0e",
@@ -929,6 +1010,14 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
     const eomc_model *m = eomc_sim_model(s);
     memset(ref, 0, sizeof *ref);
     int rc = twin_fits(s, ext, "a reference");
+    if (rc == EOMC_OK && sim_control_period(s) == 0)
+        rc = sim_usage_error(s, "a reference of a run under a continuous controller: its law "
+                             "has no extended-precision twin (write it in the spec, or give "
+                             "it a period)");
+    if (rc == EOMC_OK && sim_control_period(s) > 0 && m->nmode > 0)
+        rc = sim_usage_error(s, "a reference of %s under a sampled controller: its switches "
+                             "(max, min, clamp, contacts, friction) and the jumps of the "
+                             "inputs at the samples are not followed together yet", m->name);
     if (rc == EOMC_OK && how == EOMC_REFERENCE_TAYLOR)
         rc = taylor_fits(s, ext);
     if (rc == EOMC_OK && how != EOMC_REFERENCE_EXTRAPOLATION && how != EOMC_REFERENCE_TAYLOR)

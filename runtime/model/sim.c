@@ -441,6 +441,22 @@ control_call(eomc_sim *s, double t, const double *q, const double *v)
     return EOMC_OK;
 }
 
+const unsigned char *
+sim_control_drives(const eomc_sim *s)
+{
+    return s->ctrl_drives;
+}
+
+int
+sim_control_call(eomc_sim *s, double t, const double *x, double *u)
+{
+    memcpy(s->u, u, (size_t)s->nu * sizeof *u); /* (control_call starts from s->u) */
+    int rc = control_call(s, t, x, x + s->n);
+    if (rc == EOMC_OK)
+        memcpy(u, s->ctrl_tmp, (size_t)s->nu * sizeof *u);
+    return rc;
+}
+
 int
 sim_sample(eomc_sim *s, double t, const double *x)
 {

@@ -52,6 +52,17 @@ const double *sim_inputs_at(eomc_sim *s, double t, const double *q, const double
 /* The controller's period (eomc_sim_set_controller: 0 continuous), or -1
  * without one. */
 double sim_control_period(const eomc_sim *s);
+/* A sampled controller's samples are t0 + k period before t_end; one
+ * within this share of the period of t_end is t_end's, where none is taken
+ * (as an output time that close is t_end: eomc_run_rows). */
+#define SIM_SAMPLE_AT_END_REL 1e-9
+/* The inputs the controller sets [nu] (1: set). */
+const unsigned char *sim_control_drives(const eomc_sim *s);
+/* The controller's call at (t, x) [nx], u [nu] the inputs' own values in,
+ * with those it sets out, the simulator's state untouched (the
+ * reference's samples): EOMC_OK, its status, or EOMC_ENUMERIC for a value
+ * that is not finite (the message set either way). */
+int sim_control_call(eomc_sim *s, double t, const double *x, double *u);
 /* A run's start: no sample taken yet, no failure. */
 void sim_control_start(eomc_sim *s);
 /* The sampled controller's call at (t, x) [nx], its outputs held from

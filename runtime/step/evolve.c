@@ -669,15 +669,13 @@ stop_time(const Run *r)
 }
 
 /* The sample after the one at r->t_sample: t0 + k period (not a sum of
- * periods, whose rounding would drift); one within SAMPLE_AT_END_REL of
- * the period of t_end is t_end's, where none is taken (as an output time
- * that close is t_end: eomc_run_rows). */
-#define SAMPLE_AT_END_REL 1e-9
+ * periods, whose rounding would drift), none near t_end
+ * (SIM_SAMPLE_AT_END_REL). */
 static void
 next_sample(Run *r)
 {
     r->t_sample = r->o->t0 + (double)++r->k_sample * r->period;
-    if (r->t_sample > r->o->t_end - SAMPLE_AT_END_REL * r->period)
+    if (r->t_sample > r->o->t_end - SIM_SAMPLE_AT_END_REL * r->period)
         r->t_sample = INFINITY;
 }
 

@@ -35,6 +35,14 @@ extern const eomc_model nonpd_model;
 extern const eomc_model nonpd_gsl_model;
 extern const eomc_model leaky_model;
 extern const eomc_model draw_model;
+/* ctrlosc.c: m x'' + k x = u, u an input held at 0 (the plant of the
+ * controller tests), with its twin ctrlosc_model_ext */
+extern const eomc_model ctrlosc_model;
+extern const eomc_model_ext ctrlosc_model_ext;
+#define CTRLOSC_M 1.5
+#define CTRLOSC_K 6.0
+#define CTRLOSC_X0 0.2
+#define CTRLOSC_V0 (-0.1)
 #define LEAKY_C 1e-3
 
 /* Defaults of osc_model. */

@@ -1,14 +1,18 @@
 /*
- * A controller in the loop (eomc_sim_set_controller) on driven_model,
+ * A controller in the loop (eomc_sim_set_controller) on ctrlosc_model,
  * m x'' + k x = u, against closed forms computed here:
  *  - sampled, u = -KP x - KD v at t = k T, held between (a zero-order
  *    hold): over each period the motion is the oscillator's about u/k, so
  *    every row follows from the sample before it by that closed form,
- *    propagated sample to sample here in long double.  Under rk8pd and
- *    Taylor... adaptive, to 1e-10 of the state's scale; under fixed rk4
- *    steps that divide each period, to its h^4 error; the controller is
- *    called once a sample, at exactly t0 + k T, and every step ends at or
- *    before the next sample (eomc_sim_step);
+ *    propagated sample to sample here in long double.  Under adaptive
+ *    methods to 1e-10 of the state's scale; under fixed rk4 steps that
+ *    divide each period, to its h^4 error; the controller is called once
+ *    a sample, at exactly t0 + k T, and every step ends at or before the
+ *    next sample (eomc_sim_step);
+ *  - the reference solution (eomc_reference_compute) of the sampled loop,
+ *    which calls the controller at the same instants: its rows equal the
+ *    closed form within the error it claims, and a run's error against it
+ *    is the run's true error;
  *  - continuous, u(t, x, v) inside the right-hand side: the damped
  *    oscillator m x'' + KD x' + (k + KP) x = 0, in closed form;
  *  - a controller that fails (a status, at t = 1) or sets a NaN: the run
@@ -64,11 +68,11 @@ held_motion(long double m, long double k, long double u, long double tau, long d
 static void
 sampled_exact(double T, double t, double *x, double *v)
 {
-    long double X = DRIVEN_X0, V = DRIVEN_V0, s = 0;
+    long double X = CTRLOSC_X0, V = CTRLOSC_V0, s = 0;
     for (long k = 0;; k++) {
         long double next = (long double)(k + 1) * (long double)T, u = -KP * X - KD * V;
         int last = next >= (long double)t;
-        held_motion(DRIVEN_M, DRIVEN_K, u, (last ? (long double)t : next) - s, &X, &V);
+        held_motion(CTRLOSC_M, CTRLOSC_K, u, (last ? (long double)t : next) - s, &X, &V);
         if (last)
             break;
         s = next;
@@ -96,16 +100,15 @@ static void
 test_sampled(const char *method, double h_fixed, double tol)
 {
     const double T = 0.1, t_end = 3;
-    eomc_sim *s = sim_new(&driven_model);
-    CHECK(eomc_sim_set(s, "A", 0) == EOMC_OK, "no signal of t of its own");
+    eomc_sim *s = sim_new(&ctrlosc_model);
     Ctrl c = {.fail_at = INFINITY};
     CHECK(eomc_sim_set_controller(s, pd, &c, T, NULL) == EOMC_OK, "a sampled controller");
-    eomc_run_opts o = opts_for(&driven_model, t_end, 0.05, method, 1e-12, 1e-12);
+    eomc_run_opts o = opts_for(&ctrlosc_model, t_end, 0.05, method, 1e-12, 1e-12);
     o.h_fixed = h_fixed;
     double x[2];
     sim_x0(s, x);
     Rows r;
-    rows_init_model(&r, &driven_model);
+    rows_init_model(&r, &ctrlosc_model);
     int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, NULL);
     double err = sampled_error(&r, T);
     CHECK(rc == EOMC_OK && r.n == 61 && err <= tol,
@@ -126,11 +129,10 @@ static void
 test_steps_end_at_samples(void)
 {
     const double T = 0.1;
-    eomc_sim *s = sim_new(&driven_model);
-    eomc_sim_set(s, "A", 0);
+    eomc_sim *s = sim_new(&ctrlosc_model);
     Ctrl c = {.fail_at = INFINITY};
     eomc_sim_set_controller(s, pd, &c, T, NULL);
-    eomc_run_opts o = opts_for(&driven_model, 1, 0.05, "rk8pd", 1e-8, 1e-8);
+    eomc_run_opts o = opts_for(&ctrlosc_model, 1, 0.05, "rk8pd", 1e-8, 1e-8);
     double x[2];
     sim_x0(s, x);
     eomc_evolve *e = eomc_evolve_alloc(s, &o, x);
@@ -158,8 +160,8 @@ test_steps_end_at_samples(void)
 static void
 damped_exact(double m, double c, double k, double t, double *x, double *v)
 {
-    double z = c / (2 * m), wd = sqrt(k / m - z * z), x0 = DRIVEN_X0;
-    double b = (DRIVEN_V0 + z * x0) / wd, e = exp(-z * t);
+    double z = c / (2 * m), wd = sqrt(k / m - z * z), x0 = CTRLOSC_X0;
+    double b = (CTRLOSC_V0 + z * x0) / wd, e = exp(-z * t);
     *x = e * (x0 * cos(wd * t) + b * sin(wd * t));
     *v = -z * *x + e * (-x0 * wd * sin(wd * t) + b * wd * cos(wd * t));
 }
@@ -167,20 +169,19 @@ damped_exact(double m, double c, double k, double t, double *x, double *v)
 static void
 test_continuous(void)
 {
-    eomc_sim *s = sim_new(&driven_model);
-    eomc_sim_set(s, "A", 0);
+    eomc_sim *s = sim_new(&ctrlosc_model);
     Ctrl c = {.fail_at = INFINITY};
     CHECK(eomc_sim_set_controller(s, pd, &c, 0, NULL) == EOMC_OK, "a continuous controller");
-    eomc_run_opts o = opts_for(&driven_model, 3, 0.05, "rk8pd", 1e-12, 1e-12);
+    eomc_run_opts o = opts_for(&ctrlosc_model, 3, 0.05, "rk8pd", 1e-12, 1e-12);
     double x[2];
     sim_x0(s, x);
     Rows r;
-    rows_init_model(&r, &driven_model);
+    rows_init_model(&r, &ctrlosc_model);
     int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, NULL);
     double worst = 0;
     for (int i = 0; i < r.n; i++) {
         double xe, ve;
-        damped_exact(DRIVEN_M, KD, DRIVEN_K + KP, r.t[i], &xe, &ve);
+        damped_exact(CTRLOSC_M, KD, CTRLOSC_K + KP, r.t[i], &xe, &ve);
         worst = fmax(worst, fmax(fabs(rows_x(&r, i)[0] - xe), fabs(rows_x(&r, i)[1] - ve)));
     }
     CHECK(rc == EOMC_OK && r.n == 61 && worst <= 1e-10 && c.calls > 100,
@@ -200,15 +201,14 @@ test_continuous(void)
 static void
 test_failures(double period, int nan)
 {
-    eomc_sim *s = sim_new(&driven_model);
-    eomc_sim_set(s, "A", 0);
+    eomc_sim *s = sim_new(&ctrlosc_model);
     Ctrl c = {.fail_at = 1.0, .nan_at_fail = nan};
     eomc_sim_set_controller(s, pd, &c, period, NULL);
-    eomc_run_opts o = opts_for(&driven_model, 3, 0.05, "rk8pd", 1e-10, 1e-10);
+    eomc_run_opts o = opts_for(&ctrlosc_model, 3, 0.05, "rk8pd", 1e-10, 1e-10);
     double x[2];
     sim_x0(s, x);
     Rows r;
-    rows_init_model(&r, &driven_model);
+    rows_init_model(&r, &ctrlosc_model);
     eomc_stats st;
     int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, &st);
     const char *msg = eomc_sim_error(s);
@@ -227,6 +227,57 @@ test_failures(double period, int nan)
     eomc_sim_free(s);
 }
 
+/* The reference of the sampled loop against the closed form, and a run
+ * at rtol 1e-8 measured against it and against the closed form. */
+static void
+test_reference(void)
+{
+    const double T = 0.1;
+    eomc_sim *s = sim_new(&ctrlosc_model);
+    Ctrl c = {.fail_at = INFINITY};
+    eomc_sim_set_controller(s, pd, &c, T, NULL);
+    eomc_run_opts o = opts_for(&ctrlosc_model, 3, 0.05, "rk8pd", 1e-8, 1e-8);
+    double x[2];
+    sim_x0(s, x);
+    eomc_reference ref;
+    int rc = eomc_reference_compute(s, &ctrlosc_model_ext, &o, x, &ref);
+    double exact = 0, scale = 0;
+    for (long k = 0; rc == EOMC_OK && k < ref.nrows; k++) {
+        double xe, ve;
+        sampled_exact(T, ref.t[k], &xe, &ve);
+        exact = fmax(exact, fmax(fabs(ref.x[2 * k] - xe), fabs(ref.x[2 * k + 1] - ve)));
+        scale = fmax(scale, fmax(fabs(xe), fabs(ve)));
+    }
+    CHECK(rc == EOMC_OK && ref.nrows == 61 && exact <= fmax(ref.error, 4 * DBL_EPSILON * scale) &&
+          ref.error <= 1e-15, "the reference of the sampled loop (%s): off the closed form "
+          "by %.3g, within the %.3g it claims (<= 1e-15)", rc == EOMC_OK ? ref.method : "",
+          exact, ref.error);
+    Rows r;
+    rows_init_model(&r, &ctrlosc_model);
+    sim_x0(s, x);
+    rc = eomc_sim_integrate(s, &o, x, rows_add, &r, NULL);
+    double against_ref = 0, truth = 0;
+    for (int i = 0; rc == EOMC_OK && i < r.n && i < ref.nrows; i++) {
+        double xe, ve;
+        sampled_exact(T, r.t[i], &xe, &ve);
+        const double *y = rows_x(&r, i);
+        truth = fmax(truth, fmax(fabs(y[0] - xe), fabs(y[1] - ve)));
+        against_ref = fmax(against_ref, fmax(fabs(y[0] - ref.x[2 * i]),
+                                             fabs(y[1] - ref.x[2 * i + 1])));
+    }
+    CHECK(rc == EOMC_OK && r.n == 61 && truth > 100 * ref.error &&
+          fabs(against_ref - truth) <= 2 * ref.error + 4 * DBL_EPSILON * scale,
+          "rk8pd at 1e-8 under the sampled controller: its error against the reference, "
+          "%.6g, is its true error %.6g", against_ref, truth);
+    rows_free(&r);
+    eomc_reference_free(&ref);
+    eomc_sim_set_controller(s, pd, &c, 0, NULL);
+    rc = eomc_reference_compute(s, &ctrlosc_model_ext, &o, x, &ref);
+    CHECK(rc == EOMC_EUSAGE && strstr(eomc_sim_error(s), "continuous controller"),
+          "no reference under a continuous controller: %s", eomc_sim_error(s));
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
@@ -237,6 +288,7 @@ main(void)
      * sqrt(k + KP)/m ~ 2.4, h = 0.025: 1.2e-7 over the 3 s */
     test_sampled("rk4", 0.03, 2e-7);
     test_steps_end_at_samples();
+    test_reference();
     test_continuous();
     test_failures(0.1, 0);
     test_failures(0.1, 1);

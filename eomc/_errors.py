@@ -10,7 +10,8 @@ becomes its exception here, carrying eomc's message whole.
 import re
 import warnings
 
-__all__ = ["EomcError", "SpecError", "UsageError", "NumericalFailure", "EomcWarning"]
+__all__ = ["EomcError", "SpecError", "UsageError", "NumericalFailure", "ControllerError",
+           "EomcWarning"]
 
 
 class EomcError(Exception):
@@ -38,6 +39,18 @@ class UsageError(EomcError, ValueError):
 class NumericalFailure(EomcError, ArithmeticError):
     """A run failed (exit status 3): ``t`` is the time eomc names, ``rows``
     the rows computed before it (a :class:`eomc.Run`), as the CSV keeps them."""
+
+    def __init__(self, message, t=None, rows=None):
+        super().__init__(message)
+        self.t, self.rows = t, rows
+
+
+class ControllerError(EomcError):
+    """A controller given to a run failed: it raised (the exception is the
+    ``__cause__``), or returned what is not the inputs (the wrong length,
+    a name that is not an input, a value that is not a finite number).
+    ``t`` is the time it was called at, ``rows`` the rows computed before
+    (a :class:`eomc.Run`), as a numerical failure keeps them."""
 
     def __init__(self, message, t=None, rows=None):
         super().__init__(message)

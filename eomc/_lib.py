@@ -11,7 +11,22 @@ GIL for each foreign call, so runs in threads proceed at once.
 
 import ctypes
 
+import numpy as np
+
 _c_double_p = ctypes.POINTER(ctypes.c_double)
+
+# eomc_controller_fn: (ctx, t, q, v, u) -> status
+CONTROLLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, _c_double_p,
+                              _c_double_p, _c_double_p)
+
+
+class MainExtra(ctypes.Structure):
+    """eomc_main_extra: a controller for the run, its rows in memory."""
+    _fields_ = [("controller", CONTROLLER), ("controller_ctx", ctypes.c_void_p),
+                ("period", ctypes.c_double), ("drives", ctypes.c_void_p),
+                ("rows_in_memory", ctypes.c_int), ("rows", _c_double_p),
+                ("nrows", ctypes.c_long), ("ncols", ctypes.c_int),
+                ("columns", ctypes.c_void_p)]
 
 # EOMC_INCONSISTENT of runtime/include/eomc.h: a state whose constraint is
 # off by more than this share of its terms is said to be off it (the
@@ -52,6 +67,10 @@ class Library:
         self.main_mem = fn("eomc_main_mem", i, i, ctypes.POINTER(cp), vp, vp,
                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t),
                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t))
+        self.main_with = fn("eomc_main_with", i, i, ctypes.POINTER(cp), vp, vp,
+                            ctypes.POINTER(MainExtra),
+                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t),
+                            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t))
         self.free = fn("eomc_free", None, vp)
         # eomc reports GSL's errors as its own statuses; GSL's default
         # handler would abort the interpreter (runtime/include/eomc.h)
@@ -65,15 +84,21 @@ class Library:
         s = self.text(self.model, what.encode())
         return s.decode() if s is not None else None
 
-    def main(self, argv):
+    def main(self, argv, extra=None):
         """The simulator's command line on argv (argv[0] names the model in
-        messages): (exit status, stdout text, stderr text)."""
+        messages): (exit status, stdout text, stderr text).  extra: a
+        MainExtra (a controller, rows in memory), filled in by the call."""
         args = (ctypes.c_char_p * (len(argv) + 1))(*[a.encode() for a in argv], None)
         out, err = ctypes.c_void_p(), ctypes.c_void_p()
         nout, nerr = ctypes.c_size_t(), ctypes.c_size_t()
-        status = self.main_mem(len(argv), args, self.model, self.model_ext,
-                               ctypes.byref(out), ctypes.byref(nout),
-                               ctypes.byref(err), ctypes.byref(nerr))
+        if extra is None:
+            status = self.main_mem(len(argv), args, self.model, self.model_ext,
+                                   ctypes.byref(out), ctypes.byref(nout),
+                                   ctypes.byref(err), ctypes.byref(nerr))
+        else:
+            status = self.main_with(len(argv), args, self.model, self.model_ext,
+                                    ctypes.byref(extra), ctypes.byref(out), ctypes.byref(nout),
+                                    ctypes.byref(err), ctypes.byref(nerr))
         try:
             o = ctypes.string_at(out, nout.value).decode() if out.value else ""
             e = ctypes.string_at(err, nerr.value).decode() if err.value else ""
@@ -81,6 +106,20 @@ class Library:
             self.free(out)
             self.free(err)
         return status, o, e
+
+    def take_rows(self, extra):
+        """The rows a run kept in memory (MainExtra), as (column names, a
+        float64 array rows x columns), the C buffers freed."""
+        names = (ctypes.string_at(extra.columns).decode().split(",")
+                 if extra.columns else [])
+        if extra.rows and extra.nrows > 0:
+            data = np.ctypeslib.as_array(extra.rows, shape=(extra.nrows, extra.ncols)).copy()
+        else:
+            data = np.zeros((0, len(names)))
+        self.free(ctypes.cast(extra.rows, ctypes.c_void_p))
+        self.free(extra.columns)
+        extra.rows, extra.columns = None, None
+        return names, data
 
 
 def as_doubles(a):

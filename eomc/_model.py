@@ -18,9 +18,9 @@ import warnings
 import numpy as np
 
 from . import _build
-from ._errors import (EomcError, EomcWarning, NumericalFailure, UsageError, raise_for,
-                      warn_lines)
-from ._lib import INCONSISTENT, Library, as_doubles
+from ._errors import (ControllerError, EomcError, EomcWarning, NumericalFailure, UsageError,
+                      raise_for, warn_lines)
+from ._lib import CONTROLLER, INCONSISTENT, Library, MainExtra, as_doubles
 
 __all__ = ["load", "Model", "Run", "Linearization"]
 
@@ -170,6 +170,66 @@ class Run:
 
     def __repr__(self):
         return "<eomc.Run: %d rows, columns %s>" % (len(self), ", ".join(self.columns))
+
+
+class _Controller:
+    """A Python controller f(t, q, v) as the runtime's eomc_controller_fn:
+    its answer, a sequence in ``inputs`` order or a dict by name, written
+    into the inputs; what goes wrong is kept (``error``, with the time)
+    and the run told to stop (a nonzero status), to be raised after it."""
+
+    def __init__(self, model, f):
+        self.f = f
+        self.inputs = model.inputs
+        self.index = {name: k for k, name in enumerate(model.inputs)}
+        self.nq, self.nv, self.nu = len(model.coordinates), len(model.speeds), len(model.inputs)
+        self.q, self.v = np.zeros(self.nq), np.zeros(self.nv)
+        self.error, self.t = None, None
+        self.cfn = CONTROLLER(self._call)  # kept alive as long as the run
+
+    def _fail(self, t, why, cause=None):
+        self.t = t
+        self.error = (ControllerError("the controller at t = %r: %s" % (t, why), t), cause)
+        return 1
+
+    def _call(self, ctx, t, q, v, u):
+        nq, nv, nu = self.nq, self.nv, self.nu
+        try:
+            ctypes.memmove(self.q.ctypes.data, q, 8 * nq)
+            ctypes.memmove(self.v.ctypes.data, v, 8 * nv)
+            out = self.f(t, self.q.copy(), self.v.copy())
+            if isinstance(out, dict):
+                for name, value in out.items():
+                    k = self.index.get(name)
+                    if k is None:
+                        return self._fail(t, "%r is not an input of the model (its inputs: %s)"
+                                          % (name, ", ".join(self.inputs)))
+                    x = float(value)
+                    if not math.isfinite(x):
+                        return self._fail(t, "it set %s to %r" % (name, x))
+                    u[k] = x
+                return 0
+            a = np.asarray(out, dtype=np.float64)
+            if a.shape != (nu,):
+                return self._fail(t, "it returned %s values, and the model has %d inputs (%s)"
+                                  % ("%d" % a.size if a.ndim == 1 else "shape %s" % (a.shape,),
+                                     nu, ", ".join(self.inputs)))
+            bad = np.flatnonzero(~np.isfinite(a))
+            if bad.size:
+                return self._fail(t, "it set %s to %r" % (self.inputs[bad[0]], float(a[bad[0]])))
+            a = np.ascontiguousarray(a)
+            ctypes.memmove(u, a.ctypes.data, 8 * nu)
+            return 0
+        except BaseException as e:  # (a KeyboardInterrupt too: raised after the run)
+            return self._fail(t, "it raised %s: %s" % (type(e).__name__, e), e)
+
+    def raise_after(self, rows):
+        """The failure kept, raised with the rows computed before it."""
+        err, cause = self.error
+        if isinstance(cause, KeyboardInterrupt):
+            raise cause
+        err.rows = rows
+        raise err from cause
 
 
 class Linearization:
@@ -372,16 +432,17 @@ class Model:
 
     # ---- the simulator's tasks, by its command line ----
 
-    def _call(self, options, stacklevel=3):
+    def _call(self, options, stacklevel=3, extra=None):
         argv = [self.name]
         for name, v in self._sets.items():
             argv += ["--set", "%s=%r" % (name, v)]
         argv += options
-        status, out, err = self._lib.main(argv)
+        status, out, err = self._lib.main(argv, extra)
         warn_lines(err, stacklevel=stacklevel + 1)
         return status, out, err
 
-    def run(self, t_end=None, dt=None, method=None, rtol=None, init=None, **options):
+    def run(self, t_end=None, dt=None, method=None, rtol=None, init=None, controller=None,
+            period=None, **options):
         """Integrate the scene (its t_end, dt, method and tolerances unless
         given; init: {coordinate or speed: value}, a speed by its name in
         ``speeds``, "x'" or "root_wx") and return the rows as
@@ -391,14 +452,47 @@ class Model:
         (or ``reference``, ``errors``) implies ``stats=True``, so that ``.stats``
         has ``error_end``, ``error_max`` and ``reference_error``.  A run
         that fails raises NumericalFailure, with the rows computed before
-        it."""
+        it.
+
+        controller: f(t, q, v) giving the inputs, a sequence in ``inputs``
+        order or a dict by name (an input a dict leaves out keeps its own
+        value there); with ``period``, sampled at t0 + k period and held
+        between (the steps end at every sample), else continuous, inside
+        every right-hand side.  It must be a function of (t, q, v) alone:
+        ``error=True`` calls it again at the same instants for the
+        reference.  What goes wrong in it raises ControllerError naming the
+        time, the rows before it kept.
+
+        The rows come from the run's memory as numbers, the same doubles
+        ``eomc run`` prints, so equal to its CSV to the bit."""
         kw = dict(t_end=t_end, dt=dt, method=method, rtol=rtol, init=init)
         kw.update(options)
         if kw.get("error") or kw.get("reference") or kw.get("errors"):  # into .stats
             kw["stats"] = True
-        status, out, err = self._call(_options(kw))
-        columns, data = _table(out) if status in (0, 3) else ([], {})
-        r = Run(columns, data, err)
+        if period is not None and controller is None:
+            raise UsageError("run: period is a controller's sampling period, and no "
+                             "controller was given")
+        if controller is not None and not callable(controller):
+            raise UsageError("run: controller must be a function f(t, q, v), not %r"
+                             % (controller,))
+        ctrl = _Controller(self, controller) if controller is not None else None
+        extra = MainExtra(rows_in_memory=1)
+        if ctrl is not None:
+            p = 0.0 if period is None else _set_value("period", period)
+            if p <= 0 and period is not None:
+                raise UsageError("run: period must be positive, not %r (leave it out for a "
+                                 "continuous controller)" % (period,))
+            extra.controller, extra.period = ctrl.cfn, p
+        status, out, err = self._call(_options(kw), extra=extra)
+        names, rows = self._lib.take_rows(extra)
+        if names:
+            columns = names
+            data = {name: np.ascontiguousarray(rows[:, j]) for j, name in enumerate(names)}
+        else:  # a sweep's rows, or no run
+            columns, data = _table(out) if status in (0, 3) else ([], {})
+        r = Run(columns, data, err, out if names else "")
+        if ctrl is not None and ctrl.error is not None:
+            ctrl.raise_after(r)
         raise_for(status, err, r)
         return r
 

@@ -194,7 +194,8 @@ open_files(const Options *c, Rows *w, char *data, int *fd)
     }
     if (w->events)
         rows_events_header(w->events, m);
-    rows_header(w->f, m);
+    if (w->csv)
+        rows_header(w->f, m);
     if (w->tee)
         rows_header(w->tee, m);
     /* whole blocks of rows, one write each: no half row in the file (a
@@ -277,12 +278,32 @@ animate_row(void *ctx, double t, const double *x)
     return rc;
 }
 
+/* The rows kept in memory handed to extra, with the header's names: 0,
+ * or -1 when memory runs out. */
+static int
+rows_to_extra(Rows *w, eomc_main_extra *extra)
+{
+    size_t len = 0;
+    FILE *f = open_memstream(&extra->columns, &len);
+    if (!f)
+        return -1;
+    rows_header(f, eomc_sim_model(w->sim));
+    if (fclose(f) != 0 || !extra->columns)
+        return -1;
+    if (len > 0 && extra->columns[len - 1] == '\n')
+        extra->columns[len - 1] = '\0';
+    extra->rows = w->mem, extra->nrows = w->mem_rows, extra->ncols = w->ncols;
+    w->mem = NULL;
+    return 0;
+}
+
 /* One run written as CSV: the reference when measured against one, the
  * files, the run, what is said of it; one cleanup.  SIGINT and SIGTERM
  * stop the run at a row when catch_signals (eomc_main: the program's
  * signals); a caller that is not a program keeps its own handlers. */
 static int
-simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int catch_signals)
+simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int catch_signals,
+         eomc_main_extra *extra)
 {
     if (eomc_run_check(sim, &c->run) != EOMC_OK) /* before any file is written */
         return opt_usage(c, "%s", eomc_sim_error(sim));
@@ -291,6 +312,8 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int ca
     char data[] = "/tmp/eomc-rows-XXXXXX";
     int fd = -1;
     Rows w = rows_new(NULL, sim);
+    if (extra && extra->rows_in_memory) /* numbers, and CSV only into -o FILE */
+        w.in_memory = 1, w.csv = c->out != NULL;
     Anim *anim = c->animate ? anim_new(sim, c->animate) : NULL;
     int rc = w.res && (anim || !c->animate) ? EOMC_OK : opt_usage(c, "out of memory");
     AnimRows ar = {&w, anim};
@@ -342,6 +365,8 @@ simulate(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x, int ca
         fclose(w.tee);
     if (fd >= 0)
         unlink(data);
+    if (w.in_memory && rows_to_extra(&w, extra) != 0)
+        rc = rc ? rc : opt_usage(c, "out of memory");
     eomc_reference_free(&ref);
     compare_free(&w.cmp);
     rows_free(&w);
@@ -450,7 +475,8 @@ work_precision(Options *c, eomc_sim *sim, const eomc_model_ext *ext, double *x)
  * stop a run (simulate) and whose MPI ranks other than 0 are silenced;
  * not under eomc_main_mem, whose caller keeps its handlers and streams. */
 static int
-cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, int program)
+cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, int program,
+         eomc_main_extra *extra)
 {
     Options c;
     int ok = opt_init(&c, argc, argv, m) == 0;
@@ -470,7 +496,10 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
     } else if ((rc = opt_parse(&c, argc, argv, m)) != EOMC_OK) {
         rc = rc < 0 ? EOMC_OK : rc;
     } else if ((rc = opt_apply_sets(&c, sim)) == EOMC_OK &&
-               (rc = opt_stabilize(&c, sim)) == EOMC_OK) {
+               (rc = opt_stabilize(&c, sim)) == EOMC_OK &&
+               (rc = !extra || !extra->controller ? EOMC_OK
+                     : eomc_sim_set_controller(sim, extra->controller, extra->controller_ctx,
+                                               extra->period, extra->drives)) == EOMC_OK) {
         eomc_sim_initial(sim, x, x + m->nq);
         if ((rc = opt_apply_inits(&c, m, x)) == EOMC_OK &&
             (rc = assembly_unit(&c, m, x, 0)) == EOMC_OK &&
@@ -482,7 +511,7 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
                  : c.accel          ? print_accel(&c, sim, ext, x)
                  : c.linearize || c.equilibrium ? stab_print(&c, sim, x)
                  : c.work_precision ? work_precision(&c, sim, ext, x)
-                                    : simulate(&c, sim, ext, x, program);
+                                    : simulate(&c, sim, ext, x, program, extra);
     }
     eomc_sim_free(sim);
     free(x);
@@ -497,7 +526,7 @@ int
 eomc_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext)
 {
     gsl_error_handler_t *before = gsl_set_error_handler_off();
-    int rc = cli_main(argc, argv, m, ext, 1);
+    int rc = cli_main(argc, argv, m, ext, 1, NULL);
     gsl_set_error_handler(before);
     return rc;
 }
@@ -528,6 +557,16 @@ int
 eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
               char **out, size_t *out_len, char **err, size_t *err_len)
 {
+    return eomc_main_with(argc, argv, m, ext, NULL, out, out_len, err, err_len);
+}
+
+int
+eomc_main_with(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
+               eomc_main_extra *extra, char **out, size_t *out_len, char **err,
+               size_t *err_len)
+{
+    if (extra)
+        extra->rows = NULL, extra->nrows = 0, extra->ncols = 0, extra->columns = NULL;
     size_t nout = 0, nerr = 0;
     *out = *err = NULL;
     FILE *fo = open_memstream(out, &nout), *fe = fo ? open_memstream(err, &nerr) : NULL;
@@ -544,7 +583,7 @@ eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_ext *
     }
     IoSaved saved;
     io_set(fo, fe, &saved);
-    int rc = cli_main(argc, argv, m, ext, 0);
+    int rc = cli_main(argc, argv, m, ext, 0, extra);
     io_restore(&saved);
     int bad = mem_close(fo, out, &nout, out_len);
     bad |= mem_close(fe, err, &nerr, err_len);

@@ -67,7 +67,8 @@ rows_new(FILE *f, eomc_sim *sim)
 {
     const eomc_model *m = eomc_sim_model(sim);
     size_t nres = (size_t)(m->nc + m->nout), n = (size_t)eomc_nv(m), nx = (size_t)eomc_nx(m);
-    Rows w = {.f = f, .sim = sim, .invariant = m->invariant != NULL};
+    Rows w = {.f = f, .sim = sim, .invariant = m->invariant != NULL, .csv = 1,
+              .ncols = rows_columns(m)};
     /* a row's cells: t, q, v, T, V, E, h, lambda, res, outputs */
     size_t cells = 1 + nx + 4 + nres + (size_t)m->nc, row = cells * (NUM_MAX + 1) + 1;
     size_t blk = (ROW_BLOCK + row) / sizeof(double) + 1;
@@ -82,7 +83,9 @@ void
 rows_free(Rows *w)
 {
     free(w->res);
+    free(w->mem);
     w->res = NULL;
+    w->mem = NULL;
 }
 
 /* Whether the model's conserved quantity is not E = T + V, so that it
@@ -118,6 +121,44 @@ rows_header(FILE *f, const eomc_model *m)
     for (int k = 0; k < m->nout; k++)
         fprintf(f, ",%s", m->out_names[k]);
     fprintf(f, "\n");
+}
+
+/* The row's values into w->mem, in the CSV's columns (rows_header),
+ * which grows by doubling: EOMC_OK, or -1 when memory runs out. */
+static int
+keep_row(Rows *w, double t, const double *x, double T, double V, double h, const double *lam,
+         const double *out)
+{
+    const eomc_model *m = eomc_sim_model(w->sim);
+    int nx = eomc_nx(m), nc = m->nc;
+    if (w->mem_rows == w->mem_cap) {
+        long cap = w->mem_cap ? 2 * w->mem_cap : 1024;
+        double *mem = realloc(w->mem, (size_t)cap * (size_t)w->ncols * sizeof *mem);
+        if (!mem)
+            return -1;
+        w->mem = mem, w->mem_cap = cap;
+    }
+    double *row = w->mem + (size_t)w->mem_rows++ * (size_t)w->ncols;
+    int j = 0;
+    row[j++] = t;
+    for (int i = 0; i < nx; i++)
+        row[j++] = x[i];
+    row[j++] = T, row[j++] = V, row[j++] = T + V;
+    if (own_invariant_column(m))
+        row[j++] = h;
+    for (int k = 0; k < nc; k++)
+        row[j++] = lam[k];
+    for (int k = 0; k < nc; k++)
+        row[j++] = w->res[k];
+    for (int k = 0; k < m->nout; k++)
+        row[j++] = out[k];
+    return EOMC_OK;
+}
+
+int
+rows_columns(const eomc_model *m)
+{
+    return 1 + eomc_nx(m) + 3 + own_invariant_column(m) + 2 * m->nc + m->nout;
 }
 
 int
@@ -156,6 +197,14 @@ rows_write(void *ctx, double t, const double *x)
     for (int k = 0; k < m->nout; k++)
         w->out_max[k] = fmax(w->out_max[k], fabs(out[k]));
     const double *lam = eomc_sim_multipliers(w->sim);
+    if (w->in_memory && keep_row(w, t, x, T, V, h, lam, out) != EOMC_OK)
+        return sim_usage_error(w->sim, "out of memory for the rows in memory (%ld kept)",
+                               w->mem_rows);
+    if (!w->csv) {
+        w->rows++;
+        w->t_last = t;
+        return signals_caught() ? SIGNALS_STOPPED : EOMC_OK;
+    }
     /* the row into the block of whole rows (room for one more row is
      * always there: rows_new sized it, and it is flushed past ROW_BLOCK) */
     char num[NUM_MAX];

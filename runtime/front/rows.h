@@ -43,12 +43,20 @@ typedef struct Rows {
     double t_last;       /* the time of the last row written */
     double err_max, err_end;
     Compare cmp;         /* the errors by component, with ref */
+    /* the rows as numbers in memory (eomc_main_extra), CSV text on f only
+     * when f is a file (-o FILE): mem [mem_rows * ncols], grown as they
+     * come (NULL: not kept) */
+    int in_memory, csv, ncols;
+    double *mem;
+    long mem_rows, mem_cap;
 } Rows;
 
 /* A writer of rows to f (NULL: none yet); w.res NULL when out of memory
  * (rows_free is safe either way). */
 Rows rows_new(FILE *f, eomc_sim *sim);
 void rows_free(Rows *w);
+/* The trajectory's columns: t, the state, T, V, E, ... (rows_header's). */
+int rows_columns(const eomc_model *m);
 /* The trajectory's header line onto f. */
 void rows_header(FILE *f, const eomc_model *m);
 /* One row at (t, x) (an eomc_row_fn, ctx a Rows): into the block of whole

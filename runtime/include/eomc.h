@@ -646,6 +646,29 @@ int eomc_main_mem(int argc, char **argv, const eomc_model *m, const eomc_model_e
                   char **out, size_t *out_len, char **err, size_t *err_len);
 void eomc_free(void *p);
 
+/* What eomc_main_with adds to eomc_main_mem: a controller on the run's
+ * simulator (eomc_sim_set_controller's arguments; controller NULL: none),
+ * and the run's rows as numbers instead of CSV text on stdout (-o FILE,
+ * when given, is still written).  With rows_in_memory set, after the call
+ * rows [nrows * ncols] holds every row written (also those before a
+ * failure, as the CSV would have them: the same doubles the CSV prints in
+ * their shortest digits) and columns the CSV's header line, each
+ * malloc'd (eomc_free; NULL when no run wrote rows). */
+typedef struct eomc_main_extra {
+    eomc_controller_fn controller;
+    void *controller_ctx;
+    double period;
+    const unsigned char *drives;
+    int rows_in_memory;
+    double *rows;   /* out */
+    long nrows;     /* out */
+    int ncols;      /* out */
+    char *columns;  /* out */
+} eomc_main_extra;
+int eomc_main_with(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext,
+                   eomc_main_extra *extra, char **out, size_t *out_len, char **err,
+                   size_t *err_len);
+
 #if defined(__GNUC__)
 #pragma GCC visibility pop
 #endif

@@ -1,0 +1,158 @@
+"""A controller in the loop from Python: ``m.run(controller=f, period=T)``.
+
+The plant is the cart-pole (specs/cartpole.yaml).  The checks are against
+values got outside the run: an LQR designed on ``m.linearize()`` (the
+Riccati equation solved here by the Hamiltonian's stable subspace), the
+closed loop's own linear motion (the zero-order hold's exact discrete
+map, and the continuous loop's matrix exponential, both by their series
+here), the reference solution against a run at 1e-14, and each failure
+of a controller.
+"""
+
+import numpy as np
+import pytest
+
+import eomc
+from conftest import same_bits, spec
+
+T = 0.01  # the sampling period: 100 Hz
+
+
+def lqr(A, B, Q, R):
+    """The continuous-time LQR gain K = R^-1 B^T P, P from the stable
+    invariant subspace of the Hamiltonian matrix."""
+    n = A.shape[0]
+    Ri = np.linalg.inv(R)
+    H = np.block([[A, -B @ Ri @ B.T], [-Q, -A.T]])
+    w, V = np.linalg.eig(H)
+    S = V[:, w.real < 0]
+    P = np.real(S[n:] @ np.linalg.inv(S[:n]))
+    return Ri @ B.T @ P
+
+
+def expm(Z):
+    """exp(Z) by scaling, its series and squaring (Z small after scaling)."""
+    s = max(0, int(np.ceil(np.log2(max(np.abs(Z).sum(axis=1).max(), 1e-300)))) + 1)
+    Z = Z / 2 ** s
+    E, term = np.eye(len(Z)), np.eye(len(Z))
+    for k in range(1, 30):
+        term = term @ Z / k
+        E = E + term
+    for _ in range(s):
+        E = E @ E
+    return E
+
+
+def zoh(A, B, h):
+    """The zero-order hold's exact map over h: x+ = Phi x + Gamma u."""
+    n, m = B.shape
+    Z = np.zeros((n + m, n + m))
+    Z[:n, :n], Z[:n, n:] = A * h, B * h
+    E = expm(Z)
+    return E[:n, :n], E[:n, n:]
+
+
+@pytest.fixture(scope="module")
+def plant():
+    m = eomc.load(spec("cartpole.yaml"))
+    lin = m.linearize(init={"theta": 0})
+    assert lin.states == ["x", "theta", "x'", "theta'"] and lin.inputs == ["F"]
+    K = lqr(lin.A, lin.B, np.diag([100.0, 100.0, 1.0, 1.0]), 0.1 * np.eye(1))
+    return m, lin, K
+
+
+def state(r, k):
+    return np.array([r["x"][k], r["theta"][k], r["x'"][k], r["theta'"][k]])
+
+
+def test_a_sampled_lqr_balances_the_pole_as_its_linear_loop_says(plant):
+    m, lin, K = plant
+    calls = []
+
+    def f(t, q, v):
+        calls.append(t)
+        return -K @ np.concatenate([q, v])
+
+    r = m.run(controller=f, period=T, t_end=5, dt=T)
+    # from a 0.3 rad tilt, upright: the pole within 1e-4 of it over the last second
+    late = r["t"] >= 4
+    assert abs(r["theta"][0] - 0.3) == 0 and np.abs(r["theta"][late]).max() < 1e-4
+    # once the tilt is small (t = 2) the motion is the linear sampled loop's:
+    # x_{k+1} = (Phi - Gamma K) x_k, its exact map, to the nonlinear terms' size
+    Phi, Gam = zoh(lin.A, lin.B, T)
+    k2 = int(np.flatnonzero(r["t"] == 2.0)[0])
+    x, worst = state(r, k2), 0.0
+    for k in range(k2 + 1, len(r)):
+        x = (Phi - Gam @ K) @ x
+        worst = max(worst, np.abs(state(r, k) - x).max())
+    scale = np.abs(state(r, k2)).max()
+    assert worst <= 1e-4 * scale, (worst, scale)
+    # once a sample, at t0 + k T exactly (500 before t_end)
+    assert len(calls) == 500 and calls == [k * T for k in range(500)]
+
+
+def test_a_dict_by_name_is_the_sequence(plant):
+    m, _, K = plant
+    seq = m.run(controller=lambda t, q, v: -K @ np.concatenate([q, v]), period=T, t_end=1)
+    named = m.run(controller=lambda t, q, v: {"F": float(-K @ np.concatenate([q, v]))},
+                  period=T, t_end=1)
+    assert seq.columns == named.columns
+    assert all(same_bits(seq[c], named[c]) for c in seq.columns)
+
+
+def test_a_continuous_controller_is_the_closed_loop_ode(plant):
+    m, lin, K = plant
+    # a tilt of 1e-4: the nonlinear terms are 1e-8 of the linear ones
+    r = m.run(controller=lambda t, q, v: -K @ np.concatenate([q, v]), t_end=2, dt=0.1,
+              init={"theta": 1e-4}, rtol=1e-12, atol=1e-14)
+    x0, Acl, worst = state(r, 0), lin.A - lin.B @ K, 0.0
+    for k in range(len(r)):
+        worst = max(worst, np.abs(state(r, k) - expm(Acl * r["t"][k]) @ x0).max())
+    assert worst <= 1e-7 * np.abs(x0).max(), worst
+
+
+def test_error_with_a_sampled_controller_is_the_true_error(plant):
+    m, _, K = plant
+
+    def f(t, q, v):
+        return -K @ np.concatenate([q, v])
+
+    r = m.run(controller=f, period=T, t_end=2, method="rkf45", rtol=1e-6, atol=1e-6, error=True)
+    best = m.run(controller=f, period=T, t_end=2, rtol=1e-14, atol=1e-14)
+    true = max(np.abs(r[c] - best[c]).max() for c in ["x", "theta", "x'", "theta'"])
+    said = r.stats["error_max"]
+    assert true > 1e-10 and abs(said - true) <= 1e-2 * true, (said, true)
+
+
+@pytest.mark.parametrize("bad, why", [
+    (lambda t, q, v: [1.0, 2.0], "returned 2 values, and the model has 1 inputs (F)"),
+    (lambda t, q, v: [float("nan")], "it set F to nan"),
+    (lambda t, q, v: {"G": 1.0}, "'G' is not an input of the model (its inputs: F)"),
+    (lambda t, q, v: 1 / 0, "it raised ZeroDivisionError"),
+])
+def test_a_bad_controller_is_an_exception_naming_the_time(plant, bad, why):
+    m, _, K = plant
+
+    def f(t, q, v):
+        if t >= 0.5:
+            return bad(t, q, v)
+        return -K @ np.concatenate([q, v])
+
+    with pytest.raises(eomc.ControllerError) as e:
+        m.run(controller=f, period=T, t_end=1, dt=T)
+    assert why in str(e.value) and e.value.t == 50 * T
+    assert "the controller at t = %r" % (50 * T) in str(e.value)
+    rows = e.value.rows  # the rows before it, the last at its sample
+    assert len(rows) == 51 and rows["t"][-1] == e.value.t
+    if "raised" in why:
+        assert isinstance(e.value.__cause__, ZeroDivisionError)
+
+
+def test_controller_usage(plant):
+    m = plant[0]
+    with pytest.raises(eomc.UsageError, match="no controller"):
+        m.run(period=0.1)
+    with pytest.raises(eomc.UsageError, match="period must be positive"):
+        m.run(controller=lambda t, q, v: [0.0], period=-1)
+    with pytest.raises(eomc.UsageError, match="function"):
+        m.run(controller=3)

@@ -25,9 +25,9 @@ and each call its own runtime state, so two models work side by side and
 runs in threads do not interfere (ctypes releases the GIL while they run).
 """
 
-from ._errors import (ControllerError, EomcError, EomcWarning, NumericalFailure, SpecError,
-                      UsageError)
+from ._errors import (ControllerError, EomcError, EomcWarning, FileNotFound, NumericalFailure,
+                      SpecError, UsageError)
 from ._model import Linearization, Model, Run, load
 
 __all__ = ["load", "Model", "Run", "Linearization", "EomcError", "SpecError",
-           "UsageError", "NumericalFailure", "ControllerError", "EomcWarning"]
+           "UsageError", "NumericalFailure", "ControllerError", "FileNotFound", "EomcWarning"]

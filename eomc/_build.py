@@ -10,7 +10,7 @@ import os
 import shutil
 import subprocess
 
-from ._errors import EomcError, raise_for, warn_lines
+from ._errors import EomcError, FileNotFound, raise_for, warn_lines
 
 
 def compiler():
@@ -36,7 +36,7 @@ def build(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
     """The path of spec's shared library, built unless the cache has it;
     imports: the import's flags, for a model file (``--floating``, ...)."""
     if not os.path.exists(spec):
-        raise EomcError("cannot read %s: no such file" % spec)
+        raise FileNotFound("cannot read %s: no such file" % spec, spec)
     argv = [compiler(), "build", spec, "--shared", "--cache"] + list(imports)
     if scene is not None:
         argv += ["--scene", scene]

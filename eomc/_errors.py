@@ -7,11 +7,12 @@ and a numerical failure (exit 3, the rows computed so far kept).  Each
 becomes its exception here, carrying eomc's message whole.
 """
 
+import errno
 import re
 import warnings
 
-__all__ = ["EomcError", "SpecError", "UsageError", "NumericalFailure", "ControllerError",
-           "EomcWarning"]
+__all__ = ["EomcError", "SpecError", "FileNotFound", "UsageError", "NumericalFailure",
+           "ControllerError", "EomcWarning"]
 
 
 class EomcError(Exception):
@@ -30,6 +31,19 @@ class SpecError(EomcError, ValueError):
     def __init__(self, message, file=None, line=None, column=None):
         super().__init__(message)
         self.file, self.line, self.column = file, line, column
+
+
+class FileNotFound(EomcError, FileNotFoundError):
+    """A spec or model file that is not there: a FileNotFoundError, with
+    ``filename``."""
+
+    def __init__(self, message, filename=None):
+        super().__init__(message)
+        self.filename = filename
+        self.errno, self.strerror = errno.ENOENT, message
+
+    def __str__(self):  # eomc's message, not OSError's "[Errno 2] ..."
+        return self.message
 
 
 class UsageError(EomcError, ValueError):
@@ -63,6 +77,8 @@ class EomcWarning(UserWarning):
 
 
 _WHERE = re.compile(r"^(.*?):(\d+):(\d+): error: ")
+# a model file's error without a place in it (MuJoCo said none)
+_FILE = re.compile(r"^(.*?\.(?:yaml|yml|xml|urdf|URDF|XML))(?: \(as imported\))?: error: ")
 _TIME = re.compile(r"error: t = ([-+0-9.eEinfa]+):")
 
 
@@ -70,9 +86,30 @@ def spec_error(text):
     """The SpecError of eomc's stderr text if it starts with a located error."""
     first = text.lstrip("\n").split("\n", 1)[0]
     m = _WHERE.match(first)
-    if not m:
-        return None
-    return SpecError(text.strip("\n"), m.group(1), int(m.group(2)), int(m.group(3)))
+    if m:
+        return SpecError(text.strip("\n"), m.group(1), int(m.group(2)), int(m.group(3)))
+    m = _FILE.match(first)
+    if m:
+        return SpecError(text.strip("\n"), m.group(1))
+    return None
+
+
+_OPTION = re.compile(r"'--([a-z][a-z0-9-]*)'")
+_LEADING = re.compile(r"^(\S+: )--([a-z][a-z0-9-]*)(:| )", re.M)
+
+
+def as_keywords(text):
+    """eomc's usage message in the Python call's terms: an option
+    '--t-end' as the keyword 't_end' ("unknown keyword 'tend' (did you mean
+    't_end'?)"), without the line that points to --help."""
+    def kw(m):
+        return "'%s'" % m.group(1).replace("-", "_")
+
+    text = _OPTION.sub(kw, text)
+    text = _LEADING.sub(lambda m: m.group(1) + m.group(2).replace("-", "_") + m.group(3), text)
+    text = text.replace("unknown option ", "unknown keyword ")
+    return "\n".join(line for line in text.split("\n")
+                     if not (line.startswith("(see ") and line.endswith("--help)")))
 
 
 def failure_time(text):

@@ -18,8 +18,8 @@ import warnings
 import numpy as np
 
 from . import _build
-from ._errors import (ControllerError, EomcError, EomcWarning, NumericalFailure, UsageError,
-                      raise_for, warn_lines)
+from ._errors import (ControllerError, EomcError, EomcWarning, FileNotFound,
+                      NumericalFailure, UsageError, as_keywords, raise_for, warn_lines)
 from ._lib import CONTROLLER, INCONSISTENT, Library, MainExtra, as_doubles
 
 __all__ = ["load", "Model", "Run", "Linearization"]
@@ -40,6 +40,8 @@ def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
     A spec eomc cannot read raises :class:`SpecError` with its place."""
     imports = [flag for flag, on in (("--floating", floating), ("--joint-inputs", joint_inputs),
                                      ("--parameters", parameters)) if on]
+    if not os.path.exists(spec):
+        raise FileNotFound("cannot read %s: no such file" % spec, spec)
     if spec.endswith(".so"):
         if scene or form or fix or extended or jacobian or imports:
             raise UsageError("%s is built already: scene, form, fix, extended, jacobian "
@@ -438,6 +440,8 @@ class Model:
             argv += ["--set", "%s=%r" % (name, v)]
         argv += options
         status, out, err = self._lib.main(argv, extra)
+        if status == 2:  # a usage error, in the keywords' terms
+            err = as_keywords(err)
         warn_lines(err, stacklevel=stacklevel + 1)
         return status, out, err
 

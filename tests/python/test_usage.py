@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 import eomc
+import eomc._build
 import eomc._lib
 from conftest import SOURCE, cli_csv, same_bits, spec
 
@@ -145,3 +146,45 @@ def test_import_from_the_folder_above_a_clone(tmp_path):
     module, where = p.stdout.split()
     assert module == "eomc._model"
     assert os.path.realpath(where) == os.path.realpath(os.path.join(SOURCE, "eomc", "__init__.py"))
+
+
+# ---- errors in Python's terms (issue 45) ----
+
+@pytest.mark.parametrize("kw, said", [
+    (dict(tend=3), "unknown keyword 'tend' (did you mean 't_end'?)"),
+    (dict(stabilise="project"), "unknown keyword 'stabilise' (did you mean 'stabilize'?)"),
+    (dict(fixed_step="a"), "fixed_step: 'a' is not a finite number"),
+])
+def test_a_usage_error_names_the_keyword_not_the_flag(kw, said):
+    m = eomc.load(spec("pendulum.yaml"))
+    with pytest.raises(eomc.UsageError) as e:
+        m.run(**kw)
+    assert said in e.value.message and "--" not in e.value.message
+
+
+@pytest.mark.parametrize("name", ["nope.yaml", "nope.xml", "nope.urdf", "nope.so"])
+def test_a_missing_file_is_a_file_not_found_error(tmp_path, name):
+    path = str(tmp_path / name)
+    with pytest.raises(FileNotFoundError) as e:
+        eomc.load(path)
+    assert isinstance(e.value, eomc.EomcError) and e.value.filename == path
+    assert str(e.value) == "cannot read %s: no such file" % path
+
+
+@pytest.mark.parametrize("name, text, line, column", [
+    ("bad.xml", '<mujoco><worldbody><body><geom type="sphere" size="0.1"/>'
+     '<joint type="hinge"/></body></worldbody><bogus/></mujoco>', 1, 98),
+    ("bad.urdf", '<robot name="r"><link name="a"/><joint name="j" type="revolute">'
+     '<parent link="a"/><child link="b"/></joint></robot>', 1, 33),
+])
+def test_a_broken_model_file_is_a_spec_error_at_its_place(tmp_path, name, text, line, column):
+    probe = subprocess.run([eomc._build.compiler(), "import", spec("arm.urdf")],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if probe.returncode != 0:
+        pytest.skip("eomc cannot import MJCF or URDF here: " + probe.stderr.strip())
+    path = tmp_path / name
+    path.write_text(text)
+    with pytest.raises(eomc.SpecError) as e:
+        eomc.load(str(path))
+    assert (e.value.file, e.value.line, e.value.column) == (str(path), line, column)
+    assert "MuJoCo cannot load it" in e.value.message

@@ -27,7 +27,7 @@ runs in threads do not interfere (ctypes releases the GIL while they run).
 
 from ._errors import (ControllerError, EomcError, EomcWarning, FileNotFound, NumericalFailure,
                       SpecError, UsageError)
-from ._model import Linearization, Model, Run, load
+from ._model import Linearization, Model, Run, Sim, load
 
-__all__ = ["load", "Model", "Run", "Linearization", "EomcError", "SpecError",
+__all__ = ["load", "Model", "Run", "Linearization", "Sim", "EomcError", "SpecError",
            "UsageError", "NumericalFailure", "ControllerError", "FileNotFound", "EomcWarning"]

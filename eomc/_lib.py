@@ -20,6 +20,24 @@ CONTROLLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, _c
                               _c_double_p, _c_double_p)
 
 
+class RunOpts(ctypes.Structure):
+    """eomc_run_opts."""
+    _fields_ = [("t0", ctypes.c_double), ("t_end", ctypes.c_double), ("dt", ctypes.c_double),
+                ("method", ctypes.c_char_p), ("rtol", ctypes.c_double),
+                ("atol", ctypes.c_double), ("h_fixed", ctypes.c_double),
+                ("max_steps", ctypes.c_long), ("on_progress", ctypes.c_void_p),
+                ("progress_ctx", ctypes.c_void_p), ("on_event", ctypes.c_void_p),
+                ("event_ctx", ctypes.c_void_p)]
+
+
+class Step(ctypes.Structure):
+    """eomc_step: what one accepted step covered."""
+    _fields_ = [("nx", ctypes.c_int), ("t0", ctypes.c_double), ("t1", ctypes.c_double),
+                ("x0", _c_double_p), ("f0", _c_double_p), ("x1", _c_double_p),
+                ("f1", _c_double_p), ("event", ctypes.c_int), ("last", ctypes.c_int),
+                ("series", ctypes.c_void_p), ("model", ctypes.c_void_p)]
+
+
 class MainExtra(ctypes.Structure):
     """eomc_main_extra: a controller for the run, its rows in memory."""
     _fields_ = [("controller", CONTROLLER), ("controller_ctx", ctypes.c_void_p),
@@ -72,6 +90,13 @@ class Library:
                             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t),
                             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_size_t))
         self.free = fn("eomc_free", None, vp)
+        self.run_defaults = fn("eomc_run_defaults", RunOpts, vp)
+        self.evolve_alloc = fn("eomc_evolve_alloc", vp, vp, ctypes.POINTER(RunOpts), _c_double_p)
+        self.evolve_free = fn("eomc_evolve_free", None, vp)
+        self.sim_step = fn("eomc_sim_step", i, vp, vp, ctypes.POINTER(Step))
+        self.sim_advance = fn("eomc_sim_advance", i, vp, vp, d, ctypes.POINTER(Step))
+        self.evolve_restart = fn("eomc_evolve_restart", i, vp, vp, _c_double_p)
+        self.sim_inputs = fn("eomc_sim_inputs", None, vp, d, _c_double_p)
         # eomc reports GSL's errors as its own statuses; GSL's default
         # handler would abort the interpreter (runtime/include/eomc.h)
         fn("gsl_set_error_handler_off", vp)()

@@ -20,9 +20,9 @@ import numpy as np
 from . import _build
 from ._errors import (ControllerError, EomcError, EomcWarning, FileNotFound,
                       NumericalFailure, UsageError, as_keywords, raise_for, warn_lines)
-from ._lib import CONTROLLER, INCONSISTENT, Library, MainExtra, as_doubles
+from ._lib import CONTROLLER, INCONSISTENT, Library, MainExtra, Step, as_doubles
 
-__all__ = ["load", "Model", "Run", "Linearization"]
+__all__ = ["load", "Model", "Run", "Linearization", "Sim"]
 
 
 def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
@@ -234,6 +234,151 @@ class _Controller:
         raise err from cause
 
 
+class Sim:
+    """A simulator object stepping one motion (``Model.sim``): ``t``, ``q``,
+    ``v`` and ``u`` to read, ``q``, ``v`` and ``u`` to set (between steps:
+    the motion goes on from there, as after a controller's sample), and
+    ``advance(t)`` and ``step()``.  The runtime's eomc_evolve on a
+    simulator of its own, with the model's parameters and held inputs as
+    they were when it was made."""
+
+    def __init__(self, model, init=None, t0=None, t_end=None, method=None, rtol=None,
+                 atol=None, fixed_step=None, max_steps=None):
+        lib = self._lib = model._lib
+        self._model = model
+        self._n, self._nv = len(model.coordinates), len(model.speeds)
+        self._names = model.coordinates + model.speeds
+        self._sim = lib.sim_alloc(lib.model)
+        self._e = None
+        if not self._sim:
+            raise EomcError("%s: out of memory" % model.name)
+        for name, value in model._sets.items():
+            lib.sim_set(self._sim, name.encode(), value)
+        q, v = model.initial()
+        x = np.concatenate([q, v])
+        for name, value in (init or {}).items():
+            if name not in self._names:
+                raise UsageError("sim: init: %r is not a coordinate or a speed (%s)"
+                                 % (name, ", ".join(self._names)))
+            x[self._names.index(name)] = _set_value(name, value)
+        o = self._opts = lib.run_defaults(lib.model)
+        for key, value in (("t0", t0), ("t_end", t_end), ("rtol", rtol), ("atol", atol),
+                           ("h_fixed", fixed_step)):
+            if value is not None:
+                setattr(o, key, _set_value(key, value))
+        if max_steps is not None:
+            o.max_steps = int(max_steps)
+        if method is not None:
+            self._method = method.encode()  # kept: the options point to it
+            o.method = self._method
+        self._x = np.ascontiguousarray(x, dtype=np.float64)
+        self._e = lib.evolve_alloc(self._sim, ctypes.byref(o), as_doubles(self._x))
+        if not self._e:
+            raise UsageError(model._error(self._sim))
+        self._t = o.t0
+        self._step = Step()
+        self._last = not (o.t0 < o.t_end)
+
+    def __del__(self):
+        lib = getattr(self, "_lib", None)
+        if lib is not None and getattr(self, "_e", None):
+            lib.evolve_free(self._e)
+        if lib is not None and getattr(self, "_sim", None):
+            lib.sim_free(self._sim)
+
+    @property
+    def t(self):
+        return self._t
+
+    @property
+    def t_end(self):
+        return self._opts.t_end
+
+    @property
+    def q(self):
+        return self._x[:self._n].copy()
+
+    @q.setter
+    def q(self, q):
+        x = self._x.copy()
+        x[:self._n] = self._vector(q, self._n, "q")
+        self._restart(x)
+
+    @property
+    def v(self):
+        return self._x[self._n:].copy()
+
+    @v.setter
+    def v(self, v):
+        x = self._x.copy()
+        x[self._n:] = self._vector(v, self._nv, "v")
+        self._restart(x)
+
+    @property
+    def u(self):
+        u = np.zeros(len(self._model.inputs))
+        self._lib.sim_inputs(self._sim, self._t, as_doubles(u))
+        return u
+
+    @u.setter
+    def u(self, u):
+        names = self._model.inputs
+        if isinstance(u, dict):
+            items = list(u.items())
+            for name, _ in items:
+                if name not in names:
+                    raise UsageError("sim: u: %r is not an input (%s)"
+                                     % (name, ", ".join(names) or "the model has none"))
+        else:
+            items = list(zip(names, self._vector(u, len(names), "u")))
+        for name, value in items:
+            if self._lib.sim_set(self._sim, name.encode(), _set_value(name, value)) != 0:
+                raise UsageError(self._model._error(self._sim))
+        self._restart(None)
+
+    def _vector(self, a, n, what):
+        a = np.asarray(a, dtype=np.float64)
+        if a.shape != (n,):
+            raise UsageError("sim: %s needs %d entries, not %s" % (what, n, a.shape))
+        if not np.all(np.isfinite(a)):
+            raise UsageError("sim: %s is not finite: %s" % (what, a))
+        return a
+
+    def _restart(self, x):
+        if self._last:
+            raise UsageError("sim: the motion is over, at t = %r" % self._t)
+        if self._lib.evolve_restart(self._sim, self._e,
+                                    None if x is None else as_doubles(x)) != 0:
+            raise UsageError(self._model._error(self._sim))
+        if x is not None:
+            self._x[:] = x
+
+    def _took(self, rc):
+        if rc != 0:
+            self._last = True
+            raise NumericalFailure(self._model._error(self._sim), self._t)
+        d = self._step
+        ctypes.memmove(self._x.ctypes.data, d.x1, 8 * len(self._x))
+        self._t, self._last = d.t1, bool(d.last)
+
+    def step(self):
+        """One accepted step; returns the time reached."""
+        if self._last:
+            raise UsageError("sim: the motion is over, at t = %r" % self._t)
+        self._took(self._lib.sim_step(self._sim, self._e, ctypes.byref(self._step)))
+        return self._t
+
+    def advance(self, t):
+        """Steps until t exactly (at most t_end): the last ends there."""
+        t = _set_value("t", t)
+        if not (self._t < t <= self.t_end):
+            raise UsageError("sim: advance(%r): not after t = %r, or past t_end = %r"
+                             % (t, self._t, self.t_end))
+        while self._t < t:
+            self._took(self._lib.sim_advance(self._sim, self._e, t, ctypes.byref(self._step)))
+        return self._t
+
+
 class Linearization:
     """z' = A z + B u at a state: ``A`` (n x n), ``B`` (n x nu), ``states``
     (z's components: coordinates and ``name'`` velocities, a constrained
@@ -431,6 +576,13 @@ class Model:
         if len(off) == 1:
             return "the state is off the constraint " + said[0]
         return "the state is off %d constraints, worst first: %s" % (len(off), ", ".join(said))
+
+    def sim(self, init=None, t0=None, t_end=None, method=None, rtol=None, atol=None,
+            fixed_step=None, max_steps=None):
+        """A :class:`Sim`: one motion stepped from Python, from the scene's
+        initial state (with init's values), with the scene's method and
+        tolerances unless given; t_end bounds it (the scene's)."""
+        return Sim(self, init, t0, t_end, method, rtol, atol, fixed_step, max_steps)
 
     # ---- the simulator's tasks, by its command line ----
 

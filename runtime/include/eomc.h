@@ -542,6 +542,20 @@ const eomc_stats *eomc_evolve_stats(const eomc_evolve *e);
  * EOMC_EUSAGE once the run is over (d->last was set) or for another
  * simulator's steps.  After a failure the run is over. */
 int eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d);
+/* eomc_sim_step, the step ending at t at the latest: a stop of the
+ * caller's (a sample of its own loop), reached exactly by the last step
+ * before it, as t_end is.  Loop until d->t1 == t.  EOMC_EUSAGE when t is
+ * not after the time reached or is past o's t_end. */
+int eomc_sim_advance(eomc_sim *s, eomc_evolve *e, double t, eomc_step *d);
+/* The caller changed what the steps start from, at the time reached:
+ * the inputs (eomc_sim_set of an input, between steps), or the state, x
+ * [nx] (NULL: as it is), each unit quaternion renormalized.  The next
+ * step starts afresh from there, as after a controller's sample: x'
+ * again, the steppers' history dropped, the switches the jump moved
+ * flipped at that instant; the step size goes on.  A hand-written loop
+ * that sets the inputs at t0 + k T and advances to each next one takes
+ * the steps a sampled controller's run takes. */
+int eomc_evolve_restart(eomc_sim *s, eomc_evolve *e, const double *x);
 /* The step's dense output at t in [d->t0, d->t1] into x [d->nx], each unit
  * quaternion renormalized (model->quat: the cubic is off |e| = 1 by its
  * error inside the step). */

@@ -117,6 +117,11 @@ typedef struct Run {
     double period, t_sample;
     long k_sample;
     int sample_due;
+    /* a caller's own stop (eomc_sim_advance; INFINITY: none), and a jump
+     * of the inputs or the state it made at the time reached, due at the
+     * next step's start (eomc_evolve_restart) */
+    double t_hold;
+    int jump_due;
     /* fixed steps: the stretch they divide evenly (t0 .. t_end, or with a
      * sampled controller the samples' intervals) and its first */
     double seg0, seg1;
@@ -665,7 +670,8 @@ budget_left(const Run *r)
 static double
 stop_time(const Run *r)
 {
-    return r->period > 0 && r->t_sample < r->o->t_end ? r->t_sample : r->o->t_end;
+    double stop = fmin(r->t_hold, r->o->t_end);
+    return r->period > 0 && r->t_sample < stop ? r->t_sample : stop;
 }
 
 /* The sample after the one at r->t_sample: t0 + k period (not a sum of
@@ -835,6 +841,8 @@ steps_left(const Run *r)
     return r->t < r->o->t_end || r->pending >= 0;
 }
 
+static int restart_here(Run *r);
+
 /* The sampled controller's call at r->t, where the last step ended (its
  * state the next one's start): the inputs it sets held from here, so
  * the steps start afresh as after a reset (x' at the state again, the
@@ -849,6 +857,15 @@ take_sample(Run *r)
     if (rc != EOMC_OK)
         return callback_stop(r, rc, r->t, r->x);
     next_sample(r);
+    return restart_here(r);
+}
+
+/* The inputs (a sample's), or the state, jumped at r->t: the steps start
+ * afresh from there (take_sample says how). */
+static int
+restart_here(Run *r)
+{
+    int rc;
     if (r->ev)
         rc = stepev_jump(r->ev, r->t, r->x, r->f0);
     else
@@ -863,6 +880,7 @@ take_sample(Run *r)
         return GSL_EBADFUNC;
     if (r->nfixed)
         fixed_stretch(r);
+    r->have_h0 = 0; /* the conserved quantity, measured afresh from here */
     return GSL_SUCCESS;
 }
 
@@ -897,8 +915,12 @@ take_step(Run *r, EvolveStep *tk)
     }
     if (r->sample_due && (rc = take_sample(r)) != GSL_SUCCESS)
         return rc;
-    tk->restarted |= r->sample_due;
-    r->sample_due = 0;
+    if (r->jump_due && !r->sample_due && (rc = restart_here(r)) != GSL_SUCCESS)
+        return rc;
+    tk->restarted |= r->sample_due | r->jump_due;
+    r->sample_due = r->jump_due = 0;
+    if (r->nfixed && r->seg1 != stop_time(r)) /* a stop of the caller's moved */
+        fixed_stretch(r);
     if (!budget_left(r))
         return GSL_EMAXITER;
     double t0 = r->t;
@@ -1043,6 +1065,7 @@ run_open(Run *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_stats *st)
     const Method *method = method_find(o->method);
     *r = (Run){.s = s, .m = m, .o = o, .st = st, .n = n, .nv = nv, .N = n + nv, .t = o->t0,
                .x = x, .since_reset = RESTART_STEPS, .pending = -1, .reached = NAN,
+               .t_hold = INFINITY,
                .cond_pivot = INFINITY,
                .multistep = !method->fixed && *method->adaptive != NULL};
     st->stop_event = -1;
@@ -1325,6 +1348,36 @@ eomc_sim_step(eomc_sim *s, eomc_evolve *e, eomc_step *d)
                      .last = tk.ev == EVOLVE_STOP || !(r->t < e->o.t_end),
                      .series = tk.series, .model = r->m};
     e->over = d->last;
+    return EOMC_OK;
+}
+
+int
+eomc_sim_advance(eomc_sim *s, eomc_evolve *e, double t, eomc_step *d)
+{
+    Run *r = &e->r;
+    if (s == r->s && !e->over && !(t > r->t && t <= e->o.t_end))
+        return sim_usage_error(s, "eomc_sim_advance: %.17g is not after the time reached, "
+                               "%.17g, and at most the end %.17g", t, r->t, e->o.t_end);
+    r->t_hold = t;
+    int rc = eomc_sim_step(s, e, d);
+    r->t_hold = INFINITY;
+    return rc;
+}
+
+int
+eomc_evolve_restart(eomc_sim *s, eomc_evolve *e, const double *x)
+{
+    Run *r = &e->r;
+    if (s != r->s || e->over)
+        return sim_usage_error(s, "eomc_evolve_restart: %s", e->over ? "the run is over"
+                               : "the steps were set up for another simulator");
+    if (x && !sim_all_finite(x, r->N))
+        return sim_usage_error(s, "eomc_evolve_restart: the state is not finite");
+    if (x) {
+        memcpy(r->x, x, (size_t)r->N * sizeof *x);
+        state_normalize(r->m, r->x, NULL);
+    }
+    r->jump_due = 1;
     return EOMC_OK;
 }
 

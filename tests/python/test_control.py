@@ -156,3 +156,46 @@ def test_controller_usage(plant):
         m.run(controller=lambda t, q, v: [0.0], period=-1)
     with pytest.raises(eomc.UsageError, match="function"):
         m.run(controller=3)
+
+
+def test_the_same_loop_by_hand_is_the_same_rows_to_the_bit(plant):
+    # a sampled controller's run, and the loop written by hand on a Sim:
+    # set u at each sample, advance to the next
+    m, _, K = plant
+
+    def f(t, q, v):
+        return -K @ np.concatenate([q, v])
+
+    r = m.run(controller=f, period=T, t_end=1, dt=T)
+    s = m.sim(t_end=1)
+    states = [np.concatenate([s.q, s.v])]
+    for k in range(100):
+        s.u = f(s.t, s.q, s.v)
+        s.advance((k + 1) * T)  # the controller's sample times, t0 + (k + 1) T, so rounded
+        states.append(np.concatenate([s.q, s.v]))
+    hand = np.array(states)
+    assert len(r) == 101 and s.t == 1
+    for j, c in enumerate(["x", "theta", "x'", "theta'"]):
+        assert same_bits(r[c], hand[:, j]), c
+
+
+def test_a_sim_steps_reads_and_sets(plant):
+    m = plant[0]
+    s = m.sim(init={"theta": 0.1}, t_end=2)
+    assert s.t == 0 and list(s.q) == [0.0, 0.1] and list(s.v) == [0.0, 0.0]
+    assert list(s.u) == [0.0]
+    t1 = s.step()
+    assert 0 < t1 == s.t < 2
+    s.u = {"F": 2.0}
+    assert list(s.u) == [2.0]
+    s.advance(0.5)
+    assert s.t == 0.5
+    s.v = [1.0, 0.0]  # a jump of the state, the motion goes on from it
+    assert list(s.v) == [1.0, 0.0]
+    s.advance(2)
+    with pytest.raises(eomc.UsageError, match="over"):
+        s.step()
+    with pytest.raises(eomc.UsageError, match="not an input"):
+        m.sim().u = {"G": 1}
+    with pytest.raises(eomc.UsageError, match="advance"):
+        m.sim(t_end=1).advance(3)

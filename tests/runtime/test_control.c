@@ -156,6 +156,47 @@ test_steps_end_at_samples(void)
     eomc_sim_free(s);
 }
 
+/* The same loop by hand (eomc_sim_set of the input at each sample,
+ * eomc_evolve_restart, eomc_sim_advance to the next): the sampled
+ * controller's rows at the samples, to the bit. */
+static void
+test_hand_loop(const char *method)
+{
+    const double T = 0.1, t_end = 3;
+    eomc_sim *s = sim_new(&ctrlosc_model);
+    Ctrl c = {.fail_at = INFINITY};
+    eomc_sim_set_controller(s, pd, &c, T, NULL);
+    eomc_run_opts o = opts_for(&ctrlosc_model, t_end, T, method, 1e-9, 1e-9);
+    double x[2], u;
+    sim_x0(s, x);
+    Rows r;
+    rows_init_model(&r, &ctrlosc_model);
+    int rc = eomc_sim_integrate(s, &o, x, rows_add, &r, NULL);
+    eomc_sim *h = sim_new(&ctrlosc_model); /* no controller: the loop is the caller's */
+    sim_x0(h, x);
+    eomc_evolve *e = eomc_evolve_alloc(h, &o, x);
+    int same = rc == EOMC_OK && r.n == 31 && e != NULL, k = 0;
+    eomc_step d = {.x1 = x};
+    while (same && k < 30) {
+        const double *y = k ? d.x1 : x;
+        same = memcmp(y, rows_x(&r, k), sizeof x) == 0;
+        u = -KP * y[0] - KD * y[1];
+        same &= eomc_sim_set(h, "u", u) == EOMC_OK && eomc_evolve_restart(h, e, NULL) == EOMC_OK;
+        double next = o.t0 + (double)++k * T;
+        do
+            same &= eomc_sim_advance(h, e, next, &d) == EOMC_OK;
+        while (same && d.t1 < next);
+    }
+    same &= k == 30 && d.last && memcmp(d.x1, rows_x(&r, 30), sizeof x) == 0;
+    CHECK(same, "%s: a loop by hand (set u, restart, advance to the next sample) takes the "
+          "sampled controller's steps: its states at the %d samples are the run's to the bit",
+          method, k);
+    eomc_evolve_free(e);
+    rows_free(&r);
+    eomc_sim_free(h);
+    eomc_sim_free(s);
+}
+
 /* x of m x'' + c x' + k x = 0 (underdamped) from (x0, v0). */
 static void
 damped_exact(double m, double c, double k, double t, double *x, double *v)
@@ -288,6 +329,8 @@ main(void)
      * sqrt(k + KP)/m ~ 2.4, h = 0.025: 1.2e-7 over the 3 s */
     test_sampled("rk4", 0.03, 2e-7);
     test_steps_end_at_samples();
+    test_hand_loop("rk8pd");
+    test_hand_loop("msadams");
     test_reference();
     test_continuous();
     test_failures(0.1, 0);

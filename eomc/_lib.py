@@ -79,6 +79,12 @@ class Library:
         self.sim_initial = fn("eomc_sim_initial", None, vp, _c_double_p, _c_double_p)
         self.sim_accel = fn("eomc_sim_accel", i, vp, d, _c_double_p, _c_double_p, _c_double_p)
         self.sim_multipliers = fn("eomc_sim_multipliers", _c_double_p, vp)
+        self.reference_accel = fn("eomc_reference_accel", i, vp, vp, d, _c_double_p, _c_double_p,
+                                  _c_double_p)
+        self.sim_mass_bias = fn("eomc_sim_mass_bias", i, vp, d, _c_double_p, _c_double_p,
+                                _c_double_p, _c_double_p)
+        self.sim_accel_derivatives = fn("eomc_sim_accel_derivatives", i, vp, d, _c_double_p,
+                                        _c_double_p, _c_double_p, _c_double_p, _c_double_p)
         self.sim_inconsistencies = fn("eomc_sim_inconsistencies", d, vp, d, _c_double_p,
                                       _c_double_p, _c_double_p, ctypes.POINTER(i))
         self.sim_error = fn("eomc_sim_error", cp, vp)

@@ -511,13 +511,16 @@ class Model:
             self._lib.sim_initial(self._sim, as_doubles(q), as_doubles(v))
         return q, v
 
-    def accel(self, q, v, u=None, t=0.0, multipliers=False):
+    def accel(self, q, v, u=None, t=0.0, multipliers=False, extended=False):
         """The speeds' rates v' at (t, q, v) (q'' where the speeds are the
         coordinates' velocities), with the inputs u held at these values
         (else the model's own); with multipliers=True, (v', lambda) for a
         constrained model.  A singular system raises NumericalFailure; a
         state off the holonomic or velocity constraints (a quaternion whose
-        norm is not 1) gives an EomcWarning, as a run's start does."""
+        norm is not 1) gives an EomcWarning, as a run's start does.
+        extended=True solves in the extended-precision twin (the reference
+        solution's functions, long double on x86-64), rounded to doubles:
+        the library built with it (``extended``)."""
         n, nv = len(self.coordinates), len(self.speeds)
         q = np.ascontiguousarray(q, dtype=np.float64)
         v = np.ascontiguousarray(v, dtype=np.float64)
@@ -527,33 +530,116 @@ class Model:
                                 q.shape, v.shape))
         a = np.zeros(nv)
         with self._lock:
-            sim = self._sim
-            if u is not None:
-                u = np.atleast_1d(np.asarray(u, dtype=np.float64))
-                if u.shape != (len(self.inputs),):
-                    raise UsageError("accel: u needs %d entries (%s)" % (
-                        len(self.inputs), ", ".join(self.inputs) or "the model has no inputs"))
-                if not self._sim_u:
-                    self._sim_u = self._lib.sim_alloc(self._lib.model)
-                    for name, val in self._sets.items():
-                        self._lib.sim_set(self._sim_u, name.encode(), val)
-                sim = self._sim_u
-                for name, val in zip(self.inputs, u):
-                    self._lib.sim_set(sim, name.encode(), float(val))
+            sim = self._sim_with("accel", u)
             off = self._off_constraints(sim, float(t), q, v)
             if off:
                 warnings.warn("%s: warning: accel: %s: q'' there is not that of a motion on "
                               "the constraints (run(init=..., assemble=True) projects a "
                               "state onto them)" % (self.name, off), EomcWarning,
                               stacklevel=2)
-            if self._lib.sim_accel(sim, float(t), as_doubles(q), as_doubles(v),
-                                   as_doubles(a)) != 0:
+            if extended:
+                if not self.extended:
+                    raise UsageError("accel(extended=True): %s was built without its "
+                                     "extended-precision twin (load(..., extended=True))"
+                                     % self.name)
+                x = np.concatenate([q, v])
+                lam_x = np.zeros(max(len(self.constraints), 1))
+                rc = self._lib.reference_accel(sim, self._lib.model_ext, float(t),
+                                               as_doubles(x), as_doubles(a), as_doubles(lam_x))
+            else:
+                rc = self._lib.sim_accel(sim, float(t), as_doubles(q), as_doubles(v),
+                                         as_doubles(a))
+            if rc != 0:
                 raise NumericalFailure(self._error(sim), float(t))
             lam = None
-            if multipliers:
+            if multipliers and extended:
+                lam = lam_x[:len(self.constraints)].copy()
+            elif multipliers:
                 p = self._lib.sim_multipliers(sim)
                 lam = np.array([p[k] for k in range(len(self.constraints))]) if p else np.zeros(0)
         return (a, lam) if multipliers else a
+
+    def _sim_with(self, what, u):
+        """The simulator to evaluate on (the lock held): the model's own, or
+        with u given, another with the inputs held at u."""
+        if u is None:
+            return self._sim
+        u = np.atleast_1d(np.asarray(u, dtype=np.float64))
+        if u.shape != (len(self.inputs),):
+            raise UsageError("%s: u needs %d entries (%s)" % (
+                what, len(self.inputs), ", ".join(self.inputs) or "the model has no inputs"))
+        if not self._sim_u:
+            self._sim_u = self._lib.sim_alloc(self._lib.model)
+            for name, val in self._sets.items():
+                self._lib.sim_set(self._sim_u, name.encode(), val)
+        for name, val in zip(self.inputs, u):
+            self._lib.sim_set(self._sim_u, name.encode(), float(val))
+        return self._sim_u
+
+    def _state(self, what, q, v):
+        n, nv = len(self.coordinates), len(self.speeds)
+        q = np.ascontiguousarray(q, dtype=np.float64)
+        v = np.zeros(nv) if v is None else np.ascontiguousarray(v, dtype=np.float64)
+        if q.shape != (n,) or v.shape != (nv,):
+            raise UsageError("%s: q needs %d entries (%s) and v %d (%s), not %s and %s"
+                             % (what, n, ", ".join(self.coordinates), nv,
+                                ", ".join(self.speeds), q.shape, v.shape))
+        return q, v
+
+    def _mass_bias(self, what, q, v, u, t):
+        q, v = self._state(what, q, v)
+        nv = len(self.speeds)
+        M, h = np.zeros((nv, nv)), np.zeros(nv)
+        with self._lock:
+            sim = self._sim_with(what, u)
+            if self._lib.sim_mass_bias(sim, float(t), as_doubles(q), as_doubles(v),
+                                       as_doubles(M), as_doubles(h)) != 0:
+                raise NumericalFailure(self._error(sim), float(t))
+        return M, h
+
+    def mass(self, q, t=0.0):
+        """The mass matrix M(q), nv x nv (one row per speed): the motion is
+        M v' + bias = 0 (a constrained model's: M v' + bias + B^T lambda = 0)."""
+        return self._mass_bias("mass", q, None, None, t)[0]
+
+    def bias(self, q, v, u=None, t=0.0):
+        """h(q, v) - Q(q, v, u): everything of the motion but M v' (velocity
+        terms, gravity, every force, the inputs'), so that the forward
+        dynamics is M v' + bias = 0; u: the inputs held at these values
+        (else the model's own)."""
+        return self._mass_bias("bias", q, v, u, t)[1]
+
+    def inverse(self, q, v, a, u=None, t=0.0):
+        """The generalized forces tau = M a + bias that, added to the
+        model's, make a the speeds' rates: 0 where a is the forward
+        dynamics' answer (accel).  A constrained model's leaves out the
+        constraints' forces: at its accel it is -B^T lambda, the force the
+        constraints exert (accel(..., multipliers=True))."""
+        M, h = self._mass_bias("inverse", q, v, u, t)
+        a = np.ascontiguousarray(a, dtype=np.float64)
+        if a.shape != (len(self.speeds),):
+            raise UsageError("inverse: a needs %d entries (%s), not %s"
+                             % (len(self.speeds), ", ".join(self.speeds), a.shape))
+        return M @ a + h
+
+    def accel_derivatives(self, q, v, u=None, t=0.0):
+        """The derivatives of accel at any state, exact (the generated
+        Jacobian, through the model's solve): (dv'/dq [nv x nq], dv'/dv
+        [nv x nv], dv'/du [nv x nu]).  For a unit quaternion's four
+        coordinates, the derivative along its sphere (the motion's)."""
+        q, v = self._state("accel_derivatives", q, v)
+        nq, nv, nu = len(self.coordinates), len(self.speeds), len(self.inputs)
+        dq, dv, du = np.zeros((nv, nq)), np.zeros((nv, nv)), np.zeros((nv, max(nu, 1)))
+        with self._lock:
+            sim = self._sim_with("accel_derivatives", u)
+            if self._lib.sim_accel_derivatives(sim, float(t), as_doubles(q), as_doubles(v),
+                                               as_doubles(dq), as_doubles(dv),
+                                               as_doubles(du)) != 0:
+                msg = self._error(sim)
+                if "Jacobian" in msg and "built without" in msg:
+                    raise UsageError(msg)
+                raise NumericalFailure(msg, float(t))
+        return dq, dv, du[:, :nu]
 
     def _off_constraints(self, sim, t, q, v):
         """The constraints (q, v) is off, worst first, as `eomc run` says of

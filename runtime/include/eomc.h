@@ -136,6 +136,19 @@ void eomc_sim_initial(const eomc_sim *s, double *q, double *v);
  * not positive definite, or q'' is not finite. */
 int eomc_sim_accel(eomc_sim *s, double t, const double *q, const double *v,
                    double *a);
+/* The mass matrix M [nv*nv] and the bias h [nv] at (t, q, v): the motion
+ * is M q'' + h = 0 (with constraints, M q'' + h + B^T lambda = 0), h all
+ * but M q'' (velocity terms, gravity and the other forces, the inputs' as
+ * they are at that state).  EOMC_ENUMERIC where they are not finite. */
+int eomc_sim_mass_bias(eomc_sim *s, double t, const double *q, const double *v, double *M,
+                       double *h);
+/* The derivatives of the accelerations at any state (t, q, v), exact
+ * (eomc_sim_jacobian's rows of v', with a constrained model's solve
+ * carried through): dadq [nv*nq] = dv'/dq, dadv [nv*nv] = dv'/dv, dadu
+ * [nv*nu] = dv'/du (each NULL: not wanted), row-major.  The model built
+ * with its Jacobian (else EOMC_EUSAGE, saying how to rebuild it). */
+int eomc_sim_accel_derivatives(eomc_sim *s, double t, const double *q, const double *v,
+                               double *dadq, double *dadv, double *dadu);
 /* Constrained models (model->nc > 0): the multipliers lambda [nc] of the
  * last eomc_sim_accel (constraint forces: the motion is E + B^T lambda =
  * 0), or NULL for a model without constraints. */

@@ -1505,6 +1505,52 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
 }
 
 int
+eomc_sim_mass_bias(eomc_sim *s, double t, const double *q, const double *v, double *M,
+                   double *h)
+{
+    int rc = at_state(s, t, q, v);
+    if (rc != EOMC_OK)
+        return rc;
+    sim_inputs_at(s, t, q, v);
+    if (s->ctrl_status != EOMC_OK)
+        return EOMC_ENUMERIC;
+    s->m->mass_bias(t, q, v, s->p, s->u, M, h);
+    if (!sim_all_finite(M, s->nv * s->nv) || !sim_all_finite(h, s->nv))
+        return sim_numeric_error(s, t, q, v, "the mass matrix or the bias is not finite");
+    return EOMC_OK;
+}
+
+int
+eomc_sim_accel_derivatives(eomc_sim *s, double t, const double *q, const double *v,
+                           double *dadq, double *dadv, double *dadu)
+{
+    int n = s->n, nv = s->nv, nu = s->nu, N = n + nv;
+    double *x = malloc((size_t)N * sizeof *x), *J = malloc((size_t)N * N * sizeof *J);
+    double *B = malloc(((size_t)N * nu + 1) * sizeof *B);
+    int rc = x && J && B ? EOMC_OK : sim_usage_error(s, "out of memory for the derivatives");
+    if (rc == EOMC_OK) {
+        memcpy(x, q, (size_t)n * sizeof *x);
+        memcpy(x + n, v, (size_t)nv * sizeof *x);
+        rc = eomc_sim_jacobian(s, t, x, J, NULL);
+    }
+    if (rc == EOMC_OK && dadu && nu > 0 && sim_input_jacobian(s, t, x, B) != 0)
+        rc = sim_numeric_error(s, t, q, v, "the constrained solve for dq''/du failed");
+    for (int i = 0; rc == EOMC_OK && i < nv; i++) {
+        const double *row = J + (size_t)(n + i) * N;
+        if (dadq)
+            memcpy(dadq + (size_t)i * n, row, (size_t)n * sizeof *row);
+        if (dadv)
+            memcpy(dadv + (size_t)i * nv, row + n, (size_t)nv * sizeof *row);
+        for (int k = 0; dadu && k < nu; k++)
+            dadu[(size_t)i * nu + k] = B[(size_t)(n + i) * nu + k];
+    }
+    free(x);
+    free(J);
+    free(B);
+    return rc;
+}
+
+int
 sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
 {
     int n = s->n, nv = s->nv, nu = s->nu, N = n + nv;

@@ -32,7 +32,7 @@ def compiler():
 
 
 def build(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
-          imports=()):
+          imports=(), effects=None):
     """The path of spec's shared library, built unless the cache has it;
     imports: the import's flags, for a model file (``--floating``, ...)."""
     if not os.path.exists(spec):
@@ -48,6 +48,8 @@ def build(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
         argv.append("--extended")
     if jacobian is not None:
         argv += ["--jacobian", jacobian]
+    if effects is not None:
+        argv += ["--effects", effects if isinstance(effects, str) else ",".join(effects)]
     p = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     raise_for(p.returncode, p.stderr)
     warn_lines(p.stderr, stacklevel=4)

@@ -15,9 +15,10 @@ import numpy as np
 
 _c_double_p = ctypes.POINTER(ctypes.c_double)
 
-# eomc_controller_fn: (ctx, t, q, v, u) -> status
-CONTROLLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, _c_double_p,
-                              _c_double_p, _c_double_p)
+# eomc_controller_fn: (ctx, t, q, v, u) -> status; the arrays as addresses
+# (plain ints: cheaper to take than pointer objects, at every call)
+CONTROLLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_void_p,
+                              ctypes.c_void_p, ctypes.c_void_p)
 
 
 class RunOpts(ctypes.Structure):

@@ -26,13 +26,14 @@ __all__ = ["load", "Model", "Run", "Linearization", "Sim"]
 
 
 def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
-         floating=False, joint_inputs=False, parameters=False):
+         floating=False, joint_inputs=False, parameters=False, effects=None):
     """A model from a spec (``.yaml``), an MJCF or URDF model (``.xml``,
     ``.urdf``), or a library ``eomc build --shared`` made (``.so``).
 
     A spec is built as ``eomc build SPEC --shared`` (with ``--scene``,
     ``--form``, ``--fix NAME=VALUE`` from the dict ``fix``, ``--extended``,
-    ``--jacobian``), into eomc's cache, the same one ``eomc run`` uses.
+    ``--jacobian``, ``--effects`` from a list of effects' names or a
+    comma-joined string), into eomc's cache, the same one ``eomc run`` uses.
     A model file is imported first, as ``eomc import`` would: ``floating``
     frees a URDF's root link, ``joint_inputs`` gives an MJCF's joints the
     inputs ``tau_J`` a URDF's have, ``parameters`` makes its masses,
@@ -43,14 +44,14 @@ def load(spec, scene=None, form=None, fix=None, extended=False, jacobian=None,
     if not os.path.exists(spec):
         raise FileNotFound("cannot read %s: no such file" % spec, spec)
     if spec.endswith(".so"):
-        if scene or form or fix or extended or jacobian or imports:
+        if scene or form or fix or extended or jacobian or imports or effects is not None:
             raise UsageError("%s is built already: scene, form, fix, extended, jacobian "
                              "and the import's options are a spec's" % spec)
         return Model(spec)
     if imports and not spec.endswith((".xml", ".urdf")):
         raise UsageError("floating, joint_inputs and parameters are for an MJCF or URDF "
                          "model (.xml, .urdf), and %s is a spec" % spec)
-    return Model(_build.build(spec, scene, form, fix, extended, jacobian, imports))
+    return Model(_build.build(spec, scene, form, fix, extended, jacobian, imports, effects))
 
 
 def _number(v):
@@ -180,14 +181,28 @@ class _Controller:
     into the inputs; what goes wrong is kept (``error``, with the time)
     and the run told to stop (a nonzero status), to be raised after it."""
 
+    # views of the runtime's arrays by address: a sampled controller's are
+    # the same at every call, a continuous one's a few stages' (bounded)
+    VIEWS_MAX = 64
+
     def __init__(self, model, f):
         self.f = f
         self.inputs = model.inputs
         self.index = {name: k for k, name in enumerate(model.inputs)}
         self.nq, self.nv, self.nu = len(model.coordinates), len(model.speeds), len(model.inputs)
-        self.q, self.v = np.zeros(self.nq), np.zeros(self.nv)
+        self.shape = (self.nu,)
+        self.views = {}
         self.error, self.t = None, None
         self.cfn = CONTROLLER(self._call)  # kept alive as long as the run
+
+    def _view(self, address, n):
+        v = self.views.get((address, n))
+        if v is None:
+            if len(self.views) >= self.VIEWS_MAX:
+                self.views.clear()
+            v = self.views[address, n] = np.ctypeslib.as_array(
+                (ctypes.c_double * max(n, 1)).from_address(address))[:n]
+        return v
 
     def _fail(self, t, why, cause=None):
         self.t = t
@@ -195,32 +210,28 @@ class _Controller:
         return 1
 
     def _call(self, ctx, t, q, v, u):
-        nq, nv, nu = self.nq, self.nv, self.nu
         try:
-            ctypes.memmove(self.q.ctypes.data, q, 8 * nq)
-            ctypes.memmove(self.v.ctypes.data, v, 8 * nv)
-            out = self.f(t, self.q.copy(), self.v.copy())
-            if isinstance(out, dict):
+            out = self.f(t, self._view(q, self.nq).copy(), self._view(v, self.nv).copy())
+            uv = self._view(u, self.nu)
+            if type(out) is dict:
                 for name, value in out.items():
                     k = self.index.get(name)
                     if k is None:
                         return self._fail(t, "%r is not an input of the model (its inputs: %s)"
                                           % (name, ", ".join(self.inputs)))
-                    x = float(value)
-                    if not math.isfinite(x):
-                        return self._fail(t, "it set %s to %r" % (name, x))
-                    u[k] = x
-                return 0
-            a = np.asarray(out, dtype=np.float64)
-            if a.shape != (nu,):
-                return self._fail(t, "it returned %s values, and the model has %d inputs (%s)"
-                                  % ("%d" % a.size if a.ndim == 1 else "shape %s" % (a.shape,),
-                                     nu, ", ".join(self.inputs)))
-            bad = np.flatnonzero(~np.isfinite(a))
-            if bad.size:
-                return self._fail(t, "it set %s to %r" % (self.inputs[bad[0]], float(a[bad[0]])))
-            a = np.ascontiguousarray(a)
-            ctypes.memmove(u, a.ctypes.data, 8 * nu)
+                    uv[k] = float(value)
+            else:
+                a = np.asarray(out, dtype=np.float64)
+                if a.shape != self.shape:
+                    return self._fail(t, "it returned %s values, and the model has %d inputs "
+                                      "(%s)" % ("%d" % a.size if a.ndim == 1
+                                                else "shape %s" % (a.shape,),
+                                                self.nu, ", ".join(self.inputs)))
+                uv[:] = a
+            s = uv.sum()  # (NaN or an infinity among them: not finite)
+            if s - s != 0:
+                k = int(np.flatnonzero(~np.isfinite(uv))[0])
+                return self._fail(t, "it set %s to %r" % (self.inputs[k], float(uv[k])))
             return 0
         except BaseException as e:  # (a KeyboardInterrupt too: raised after the run)
             return self._fail(t, "it raised %s: %s" % (type(e).__name__, e), e)

@@ -793,6 +793,8 @@ static int
 settle(StepEvents *v, double t, double *x, double *f, double soon, double order)
 {
     int rc;
+    long flips = v->st->events; /* a jump that flips none leaves f as it came */
+    int jump = order == 0;
     /* Switches that cross at this very instant (two kinks at once: a
      * clamp with lo = hi, two contacts touching together) are past 0 here
      * already, or reach it within SIMULTANEOUS_ULPS of t at the rate they
@@ -841,7 +843,7 @@ together:
     if (together(v, t, x, soon, 0) != GSL_SUCCESS)
         return GSL_EBADFUNC;
 settled:
-    rc = v->mo.rate(t, x, f, v->mo.ctx);
+    rc = jump && v->st->events == flips ? GSL_SUCCESS : v->mo.rate(t, x, f, v->mo.ctx);
     if (rc != GSL_SUCCESS)
         return rc;
     g_all(v, t, x, x + v->n, v->g0);

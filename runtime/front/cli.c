@@ -506,7 +506,10 @@ cli_main(int argc, char **argv, const eomc_model *m, const eomc_model_ext *ext, 
             (rc = c.assemble ? opt_held_marks(&c, m) : EOMC_OK) == EOMC_OK &&
             (rc = c.assemble && !c.nsweep && !c.sweep_file ? assembly_run(&c, sim, x)
                                                            : EOMC_OK) == EOMC_OK)
-            rc = c.nsweep || c.sweep_file ? sweep(&c, sim)
+            rc = (c.nsweep || c.sweep_file) && extra && extra->controller
+                     ? opt_usage(&c, "a sweep with a controller: its runs are the sweep's own "
+                                 "simulators, which the controller is not set on")
+                 : c.nsweep || c.sweep_file ? sweep(&c, sim)
                  : sweep_rank() != 0 ? EOMC_OK /* one run: rank 0's */
                  : c.accel          ? print_accel(&c, sim, ext, x)
                  : c.linearize || c.equilibrium ? stab_print(&c, sim, x)

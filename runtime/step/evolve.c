@@ -635,6 +635,17 @@ check_events(Run *r, double t0, int *what, int *fired)
     return GSL_SUCCESS;
 }
 
+/* The steppers' history dropped: a multistep method's past, a one-step
+ * method's remembered derivative; the next step starts from the state. */
+static void
+steppers_reset(Run *r)
+{
+    if (r->step)
+        gsl_odeiv2_step_reset(r->step);
+    if (r->side && r->side != r->step)
+        gsl_odeiv2_step_reset(r->side);
+}
+
 /* Event k's reset at r->t (stepev_reset): the integration starts again
  * from the new state, with nothing of the history before (a multistep
  * method's past here; the driver drops its interpolant's nodes).  r->f0
@@ -646,10 +657,7 @@ apply_reset(Run *r, int k)
     int rc = stepev_reset(r->ev, k, r->t, r->x, r->f0); /* f0: the next step's start */
     if (rc != GSL_SUCCESS)
         return rc;
-    if (r->step)
-        gsl_odeiv2_step_reset(r->step);
-    if (r->side && r->side != r->step)
-        gsl_odeiv2_step_reset(r->side);
+    steppers_reset(r);
     r->since_reset = 0;
     if (r->m->nc > 0 && sim_constraint_rows(r->s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
@@ -872,10 +880,7 @@ restart_here(Run *r)
         rc = rhs(r->t, r->x, r->f0, r);
     if (rc != GSL_SUCCESS)
         return rc;
-    if (r->step)
-        gsl_odeiv2_step_reset(r->step);
-    if (r->side && r->side != r->step)
-        gsl_odeiv2_step_reset(r->side);
+    steppers_reset(r);
     if (r->m->nc > 0 && sim_constraint_rows(r->s, r->t, r->x, r->B0) != 0)
         return GSL_EBADFUNC;
     if (r->nfixed)

@@ -156,6 +156,8 @@ def test_controller_usage(plant):
         m.run(controller=lambda t, q, v: [0.0], period=-1)
     with pytest.raises(eomc.UsageError, match="function"):
         m.run(controller=3)
+    with pytest.raises(eomc.UsageError, match="a sweep with a controller"):
+        m.run(controller=lambda t, q, v: [0.0], period=0.1, sweep={"theta": "0.1:0.2:2"})
 
 
 def test_the_same_loop_by_hand_is_the_same_rows_to_the_bit(plant):

@@ -39,8 +39,9 @@ def loaded(name):
 
 def random_state(m, rng):
     """q, v, u uniform in [-1, 1], each unit quaternion (four coordinates
-    named _qw .. _qz) normalized; kepler's and arenstorf's bodies kept off
-    their singularities."""
+    named _qw .. _qz) normalized; kepler's and arenstorf's bodies and the
+    rolling disk's lean kept off their singularities (where the
+    accelerations' derivatives grow past what differences resolve)."""
     q = rng.uniform(-1, 1, len(m.coordinates))
     names = m.coordinates
     for i, c in enumerate(names):
@@ -48,6 +49,9 @@ def random_state(m, rng):
             q[i:i + 4] /= np.linalg.norm(q[i:i + 4])
     if m.name in ("kepler", "arenstorf"):
         q[:2] = 0.5 + 0.5 * np.abs(q[:2])
+    if m.name == "rolling_disk":  # its equations are singular at theta = 0
+        k = m.coordinates.index("theta")
+        q[k] = np.copysign(0.1 + 0.9 * abs(q[k]), q[k])
     return q, rng.uniform(-1, 1, len(m.speeds)), rng.uniform(-1, 1, len(m.inputs))
 
 

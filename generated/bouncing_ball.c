@@ -283,6 +283,10 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[4] = {0.1, 9.81, 1.0, 0.5};
 static const unsigned char p_fixed[4] = {0, 0, 0, 0};
 
+/* M's structural nonzeros as a tree: each coordinate's parent (-1: a
+ * root); M_ij = 0 unless one is above the other. */
+static const int mass_parent[1] = {-1};
+
 static const char *const ev_names[1] = {"floor"};
 static const int ev_direction[1] = {-1};
 static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
@@ -401,7 +405,7 @@ const eomc_model bouncing_ball_model = {
     .nevent = 1, .ev_names = ev_names, .ev_direction = ev_direction,
     .ev_action = ev_action, .events = bouncing_ball_events, .event_set = bouncing_ball_event_set,
     .assemble = 0, /* the scene does not assemble */
-    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .mass_parent = mass_parent, /* M's factorizations by LTDL along this tree */
     .free_accel = NULL, .minv = NULL, /* no unit-load passes */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */

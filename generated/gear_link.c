@@ -209,6 +209,10 @@ static const char *const u_names[1] = {"u"};
 static const double p_default[6] = {0.01, 0.5, 10.0, 2.0, 0.3, 9.81};
 static const unsigned char p_fixed[6] = {0, 0, 0, 0, 0, 0};
 
+/* M's structural nonzeros as a tree: each coordinate's parent (-1: a
+ * root); M_ij = 0 unless one is above the other. */
+static const int mass_parent[1] = {-1};
+
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -303,7 +307,7 @@ const eomc_model gear_link_model = {
     .nout = 0, /* the scene asks for no outputs */
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
-    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .mass_parent = mass_parent, /* M's factorizations by LTDL along this tree */
     .free_accel = NULL, .minv = NULL, /* no unit-load passes */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */

@@ -254,6 +254,10 @@ static const char *const u_names[1] = {NULL};
 static const double p_default[3] = {1.0, 1.0, 9.81};
 static const unsigned char p_fixed[3] = {0, 0, 0};
 
+/* M's structural nonzeros as a tree: each coordinate's parent (-1: a
+ * root); M_ij = 0 unless one is above the other. */
+static const int mass_parent[1] = {-1};
+
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
     {"bob", EOMC_DRAW_PARTICLE, 2, 0},
@@ -363,7 +367,7 @@ const eomc_model pendulum_model = {
     .nout = 0, /* the scene asks for no outputs */
     .nevent = 0, /* the scene asks for no events */
     .assemble = 0, /* the scene does not assemble */
-    .mass_parent = NULL, /* M factored densely (or not at all: accel) */
+    .mass_parent = mass_parent, /* M's factorizations by LTDL along this tree */
     .free_accel = NULL, .minv = NULL, /* no unit-load passes */
     .c_scale = NULL, /* no holonomic constraint to scale */
     .c_held = NULL, /* every constraint's row in the unit loads */

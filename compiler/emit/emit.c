@@ -633,7 +633,7 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     else
         emit_line(pr, "    .assemble = 0, /* the scene does not assemble */");
     if (md->mass_parent)
-        emit_line(pr, "    .mass_parent = mass_parent, /* M factored by LTDL along this tree */");
+        emit_line(pr, "    .mass_parent = mass_parent, /* M's factorizations by LTDL along this tree */");
     else
         emit_line(pr, "    .mass_parent = NULL, /* M factored densely (or not at all: accel) */");
     if (L->loads)

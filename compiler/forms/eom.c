@@ -193,34 +193,38 @@ solve_ops(int n, const unsigned char *on_ij, uint64_t *nz)
     return ops;
 }
 
-/* M's structural nonzeros as a tree: parent[i] = the last j < i with
- * M_ij not structurally 0, when every such j of every row is on the way
- * from i to its root (then LTDL has no fill-in), and when LTDL's work
- * (about half the sum of the squared depths) is at most half a dense
- * factorization's (n^3/6); else NULL. */
+/* M's structural nonzeros as a tree, for LTDL (which eliminates the last
+ * coordinate first): parent[i] = the last j < i with M_ij not
+ * structurally 0 once the elimination's fill-in is counted (eliminating i
+ * couples every pair of the j < i it is coupled to: a free body's
+ * translations, uncoupled among themselves but each coupled to its
+ * rotations, become a chain).  Then every j < i that row i holds is on
+ * the way from i to its root, and LTDL keeps to that pattern.  The tree
+ * when LTDL's work (about half the sum of the squared depths) is at most
+ * half a dense factorization's (n^3/6); else NULL. */
 static int *
 mass_tree(const Eom *e, Arena *A)
 {
     int n = e->n;
     int *parent = arena_new_array(A, int, n), *depth = arena_new_array(A, int, n);
+    unsigned char *on = xmalloc((size_t)n * (size_t)n); /* [i * n + j], j < i */
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < i; j++)
+            on[i * n + j] = e->M[i * n + j] != EXPR_ZERO;
+    for (int i = n - 1; i >= 0; i--) /* the fill of eliminating i */
+        for (int a = 0; a < i; a++)
+            for (int b = 0; on[i * n + a] && b < a; b++)
+                on[a * n + b] |= on[i * n + b];
     long work = 0;
     for (int i = 0; i < n; i++) {
         parent[i] = -1;
         for (int j = i - 1; j >= 0 && parent[i] < 0; j--)
-            if (e->M[i * n + j] != EXPR_ZERO)
+            if (on[i * n + j])
                 parent[i] = j;
         depth[i] = parent[i] < 0 ? 0 : depth[parent[i]] + 1;
         work += (long)depth[i] * depth[i];
-        int on = parent[i]; /* the next ancestor that row i may hold */
-        for (int j = i - 1; j >= 0; j--) {
-            if (j == on) {
-                on = parent[on];
-                continue;
-            }
-            if (e->M[i * n + j] != EXPR_ZERO)
-                return NULL;
-        }
     }
+    free(on);
     return work <= (long)n * n * n / 6 ? parent : NULL;
 }
 
@@ -263,11 +267,14 @@ eom_derive(const Spec *s, const Mech *m, const Form *f, Arena *A,
             on[i] = e->M[i] != EXPR_ZERO;
         if (solve_ops(n, on, nz) <= EOM_SPARSE_SOLVE_MAX)
             derive_solve(e, A, P);
-        else
-            e->mass_parent = mass_tree(e, A);
         free(on);
         free(nz);
     }
+    /* M's tree, where it has one: the runtime's own factorizations of M
+     * (the solve where accel is not generated, and the Jacobian's columns
+     * always) keep its sparsity */
+    if (!f->solve)
+        e->mass_parent = mass_tree(e, A);
     return e;
 }
 

@@ -36,7 +36,8 @@ typedef struct Eom {
      * (forms.h). */
     ExprId *acc, *piv, *mkk;
     /* Where acc is NULL: M's tree of structural nonzeros (eomc_model.h's
-     * mass_parent), or NULL when M is not so sparse. */
+     * mass_parent), or NULL when M is not so sparse (or not derived: a
+     * recursive solve). */
     int *mass_parent;
     /* Where the form solves for q'' itself: minv = M^-1 x for the load x
      * given as the seeds expr_seed(j, 2), by the same recursion (a

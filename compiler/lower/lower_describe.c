@@ -101,9 +101,9 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
     }
     md->invariant = inv->h != EXPR_NONE ? dup(A, inv->name) : NULL;
     md->invariant_note = dup(A, inv->note);
-    if (e->mass_parent && !c) {
-        md->mass_parent = arena_new_array(A, int, s->nq);
-        memcpy(md->mass_parent, e->mass_parent, (size_t)s->nq * sizeof *md->mass_parent);
+    if (e->mass_parent && !c) { /* (one entry per speed: M is nv x nv) */
+        md->mass_parent = arena_new_array(A, int, e->n);
+        memcpy(md->mass_parent, e->mass_parent, (size_t)e->n * sizeof *md->mass_parent);
     }
     const SpecView *v = &s->view;
     md->ndraw = v->nitem;

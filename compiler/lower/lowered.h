@@ -172,7 +172,7 @@ typedef struct LowModel {
     LowConstraint *constraint;
     const char *invariant;      /* its name, NULL if none */
     const char *invariant_note; /* one sentence: what is conserved and why, or why not */
-    int *mass_parent; /* [nq] M's tree for an unconstrained model, else NULL */
+    int *mass_parent; /* [nv] M's tree for an unconstrained model, else NULL */
     /* what a run's page draws: ndraw 0, nothing */
     int ndraw, nshape, nlink, ntrace, view_frames, has_camera;
     LowDrawItem *draw_item; /* [ndraw] */

@@ -5,6 +5,7 @@
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_permute_matrix.h>
 #include <gsl/gsl_permute_vector.h>
 #include <math.h>
 #include <stdlib.h>
@@ -343,6 +344,36 @@ la_ltdl_solve_neg(const double *LDL, int n, const int *parent, double *b)
 }
 
 void
+la_ltdl_solve_cols_neg(const double *LDL, int n, const int *parent, double *X, int k, int ld)
+{
+    for (int i = n - 1; i >= 0; i--) { /* L^T Y = B */
+        const double *xi = X + (size_t)i * ld;
+        for (int j = parent[i]; j >= 0; j = parent[j]) {
+            double l = LDL[i * n + j], *xj = X + (size_t)j * ld;
+            for (int c = 0; c < k; c++)
+                xj[c] -= l * xi[c];
+        }
+    }
+    for (int i = 0; i < n; i++) { /* D */
+        double d = LDL[i * n + i], *xi = X + (size_t)i * ld;
+        for (int c = 0; c < k; c++)
+            xi[c] /= d;
+    }
+    for (int i = 0; i < n; i++) { /* L X = Y */
+        double *xi = X + (size_t)i * ld;
+        for (int j = parent[i]; j >= 0; j = parent[j]) {
+            double l = LDL[i * n + j];
+            const double *xj = X + (size_t)j * ld;
+            for (int c = 0; c < k; c++)
+                xi[c] -= l * xj[c];
+        }
+    }
+    for (int i = 0; i < n; i++) /* the sign, once every row is solved */
+        for (int c = 0; c < k; c++)
+            X[(size_t)i * ld + c] = -X[(size_t)i * ld + c];
+}
+
+void
 la_ldlt_solve(double *LDL, int n, size_t *perm, double *b)
 {
     if (n == 1) { /* la_ldlt_factor's one pivot */
@@ -361,6 +392,35 @@ la_ldlt_solve_neg(double *LDL, int n, size_t *perm, double *b)
     la_ldlt_solve(LDL, n, perm, b);
     for (int i = 0; i < n; i++)
         b[i] = -b[i];
+}
+
+int
+la_ldlt_solve_rows_neg(double *LDL, int n, size_t *perm, double *X, int k)
+{
+    if (k == 0)
+        return 0;
+    size_t *inv = malloc((size_t)n * sizeof *inv);
+    if (!inv)
+        return -1;
+    /* P M P^T = L D L^T, so M^-1 = P^T L^-T D^-1 L^-1 P; a row x^T of X
+     * becomes x^T P^T L^-T D^-1 L^-1 P: the columns permuted by p, two
+     * triangular solves from the right with D between, the columns put
+     * back by p's inverse (as gsl_linalg_pcholesky_svx does a vector) */
+    gsl_permutation p = {(size_t)n, perm}, pi = {(size_t)n, inv};
+    gsl_permutation_inverse(&pi, &p);
+    gsl_matrix_view L = gsl_matrix_view_array(LDL, (size_t)n, (size_t)n);
+    gsl_matrix_view Xv = gsl_matrix_view_array(X, (size_t)k, (size_t)n);
+    gsl_permute_matrix(&p, &Xv.matrix);
+    gsl_blas_dtrsm(CblasRight, CblasLower, CblasTrans, CblasUnit, 1.0, &L.matrix,
+                   &Xv.matrix);
+    for (int r = 0; r < k; r++)
+        for (int i = 0; i < n; i++)
+            X[(size_t)r * n + i] /= -LDL[(size_t)i * n + i];
+    gsl_blas_dtrsm(CblasRight, CblasLower, CblasNoTrans, CblasUnit, 1.0, &L.matrix,
+                   &Xv.matrix);
+    gsl_permute_matrix(&pi, &Xv.matrix);
+    free(inv);
+    return 0;
 }
 
 double

@@ -104,9 +104,20 @@ int la_ldlt_factor(double *M, int n, double *rel, size_t *perm);
 int la_ltdl_factor(double *M, int n, const int *parent, double *rel);
 /* b = -M^-1 b with M factored by la_ltdl_factor. */
 void la_ltdl_solve_neg(const double *LDL, int n, const int *parent, double *b);
+/* The same for the k columns of X [n rows, row i at X + i * ld], each a
+ * right-hand side, all at once: each step of the solve is a row operation
+ * on k contiguous numbers, the same operations as la_ltdl_solve_neg's on
+ * each column. */
+void la_ltdl_solve_cols_neg(const double *LDL, int n, const int *parent, double *X, int k,
+                            int ld);
 /* b = M^-1 b, and b = -M^-1 b, with M factored by la_ldlt_factor. */
 void la_ldlt_solve(double *LDL, int n, size_t *perm, double *b);
 void la_ldlt_solve_neg(double *LDL, int n, size_t *perm, double *b);
+/* X = -X M^-1 for X [k x n] row-major (each row a right-hand side, M
+ * symmetric), with M factored by la_ldlt_factor: the solves of many
+ * right-hand sides at once, by GSL's BLAS-3 triangular solves; 0, or -1
+ * when memory runs out (X as it was). */
+int la_ldlt_solve_rows_neg(double *LDL, int n, size_t *perm, double *X, int k);
 
 /*
  * When a Newton-type iteration (kkt.c's, project.c's) may stop.  Each of

@@ -55,6 +55,9 @@ struct eomc_sim {
     int ctrl_have;           /* a sample was taken: ctrl_u holds its outputs */
     int ctrl_status;         /* a continuous controller's failure (sticky until
                               * the next run), or EOMC_OK */
+    double *jrows;           /* [(nq + nv + nu) * nv] the Jacobian's right-hand sides
+                              * as rows, solved at once (jacobian_rows; NULL until
+                              * the first) */
     /* below, n is nq and the speeds' arrays have nv entries */
     double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
     size_t *Mperm;           /* [nv] M's pivot order (la_ldlt_factor) */
@@ -201,6 +204,7 @@ eomc_sim_free(eomc_sim *s)
                       s->flip_what};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         free(arrays[k]);
+    free(s->jrows);
     kkt_free(s->kkt);
     fric_free(s->fric);
     proj_free(s->proj);
@@ -1450,8 +1454,51 @@ jacobian_solve_neg(eomc_sim *s, double *b)
 {
     if (stuck(s))
         fric_solve_neg(s->fric, b);
+    else if (s->m->mass_parent)
+        la_ltdl_solve_neg(s->M, s->nv, s->m->mass_parent, b);
     else
         la_ldlt_solve_neg(s->M, s->nv, s->Mperm, b);
+}
+
+/* Columns of -M^-1 A, A [nv x k] row-major (k of them, a column of A a
+ * right-hand side) with M as eomc_sim_jacobian factored it, into out[i *
+ * stride + j] (row i, column j): all at once, by a tree's LTDL
+ * (la_ltdl_solve_cols_neg, in place) or the dense factorization
+ * (la_ldlt_solve_rows_neg); one column at a time with friction's block,
+ * or when memory runs out. */
+static void
+jacobian_columns(eomc_sim *s, const double *A, int k, double *out, int stride)
+{
+    int nv = s->nv;
+    size_t room = ((size_t)s->n + (size_t)nv + (size_t)s->nu) * (size_t)nv;
+    if (!stuck(s) && s->m->mass_parent) { /* a tree's: every column at once, in place */
+        for (int i = 0; i < nv; i++)
+            memcpy(out + (size_t)i * stride, A + (size_t)i * k, (size_t)k * sizeof *A);
+        la_ltdl_solve_cols_neg(s->M, nv, s->m->mass_parent, out, k, stride);
+        return;
+    }
+    int whole = !stuck(s);
+    if (!s->jrows && whole)
+        s->jrows = malloc((room ? room : 1) * sizeof *s->jrows);
+    if (whole && s->jrows) {
+        double *Z = s->jrows;
+        for (int j = 0; j < k; j++)
+            for (int i = 0; i < nv; i++)
+                Z[(size_t)j * nv + i] = A[(size_t)i * k + j];
+        if (la_ldlt_solve_rows_neg(s->M, nv, s->Mperm, Z, k) == 0) {
+            for (int j = 0; j < k; j++)
+                for (int i = 0; i < nv; i++)
+                    out[(size_t)i * stride + j] = Z[(size_t)j * nv + i];
+            return;
+        }
+    }
+    for (int j = 0; j < k; j++) {
+        for (int i = 0; i < nv; i++)
+            s->col[i] = A[(size_t)i * k + j];
+        jacobian_solve_neg(s, s->col);
+        for (int i = 0; i < nv; i++)
+            out[(size_t)i * stride + j] = s->col[i];
+    }
 }
 
 /* dv'/dx = -M^-1 [dE/dq, dE/dv] and dv'/dt = -M^-1 (dE/dt + dE/du u'),
@@ -1479,18 +1526,15 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
     m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
     if (!stuck(s)) { /* (else eomc_sim_accel factored the free speeds' block) */
         m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-        int k = la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
+        int k = m->mass_parent ? la_ltdl_factor(s->M, nv, m->mass_parent, s->Mrel)
+                               : la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
         if (k)
             return pivot_error(s, t, q, v, k);
     }
-    if (dfdx)
-        for (int j = 0; j < N; j++) {
-            for (int i = 0; i < nv; i++)
-                s->col[i] = j < n ? s->dEdq[i * n + j] : s->dEdv[i * nv + j - n];
-            jacobian_solve_neg(s, s->col);
-            for (int i = 0; i < nv; i++)
-                dfdx[(n + i) * N + j] = s->col[i];
-        }
+    if (dfdx) {
+        jacobian_columns(s, s->dEdq, n, dfdx + (size_t)n * N, N);
+        jacobian_columns(s, s->dEdv, nv, dfdx + (size_t)n * N + n, N);
+    }
     if (dfdt) {
         for (int i = 0; i < nv; i++) {
             double b = s->dEdt[i];
@@ -1557,13 +1601,8 @@ sim_input_jacobian(eomc_sim *s, double t, const double *x, double *B)
     if (nu == 0)
         return 0;
     if (!s->kkt) { /* dv'/du = -M^-1 dE/du, with M as eomc_sim_jacobian factored it */
-        for (int k = 0; k < nu; k++) {
-            for (int i = 0; i < nv; i++)
-                s->col[i] = s->dEdu[i * nu + k];
-            jacobian_solve_neg(s, s->col);
-            for (int i = 0; i < N; i++)
-                B[i * nu + k] = i < n ? 0 : s->col[i - n];
-        }
+        memset(B, 0, (size_t)n * nu * sizeof *B);
+        jacobian_columns(s, s->dEdu, nu, B + (size_t)n * nu, nu);
         return 0;
     }
     /* the KKT system's time column is linear in the input rates: its

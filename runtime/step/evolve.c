@@ -673,8 +673,8 @@ budget_left(const Run *r)
     return r->o->max_steps <= 0 || r->st->steps < r->o->max_steps;
 }
 
-/* Where the steps must end next: t_end, or a sampled controller's next
- * sample before it. */
+/* Where the steps must end next: t_end, or before it a stop of the
+ * caller's (eomc_sim_advance) or a sampled controller's next sample. */
 static double
 stop_time(const Run *r)
 {

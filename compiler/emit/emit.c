@@ -590,8 +590,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .accel = %s_accel,", nm);
     else
         emit_line(pr, "    .accel = NULL, /* more than %d coordinates, M too dense to unroll: the "
-                "runtime solves with GSL */",
-                EOM_SOLVE_MAX);
+                "runtime solves, %s */", EOM_SOLVE_MAX,
+                md->mass_parent ? "by LTDL along M's tree" : "with GSL");
     if (con)
         emit_line(pr, "    .nc = %d, .c_names = c_names, .c_order = c_order, .c_dependent = "
                 "c_dependent,\n"

@@ -92,7 +92,8 @@ ok $? "a dense M of 30 coordinates: no unrolled solve, the runtime's"
 sh "$src/specs/gen_tree.sh" 20 > "$tmp/tree20.yaml"
 init=$(init "$tmp/tree20.yaml")
 "$eomc" compile "$tmp/tree20.yaml" --form newton-euler -o "$tmp/ne20.c" &&
-  grep -q '^    \.mass_parent = mass_parent, /\* M factored by LTDL' "$tmp/ne20.c"
+  grep -q '^    \.mass_parent = mass_parent, /\* M.s factorizations by LTDL' "$tmp/ne20.c" &&
+  grep -q '^    \.accel = NULL, /\* .*the runtime solves, by LTDL' "$tmp/ne20.c"
 st1=$?
 # shellcheck disable=SC2086
 "$eomc" run "$tmp/tree20.yaml" --form newton-euler $init --accel > "$tmp/ne.acc" &&

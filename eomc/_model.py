@@ -532,13 +532,8 @@ class Model:
         extended=True solves in the extended-precision twin (the reference
         solution's functions, long double on x86-64), rounded to doubles:
         the library built with it (``extended``)."""
-        n, nv = len(self.coordinates), len(self.speeds)
-        q = np.ascontiguousarray(q, dtype=np.float64)
-        v = np.ascontiguousarray(v, dtype=np.float64)
-        if q.shape != (n,) or v.shape != (nv,):
-            raise UsageError("accel: q needs %d entries (%s) and v %d (%s), not %s and %s"
-                             % (n, ", ".join(self.coordinates), nv, ", ".join(self.speeds),
-                                q.shape, v.shape))
+        q, v = self._state("accel", q, v)
+        nv = len(self.speeds)
         a = np.zeros(nv)
         with self._lock:
             sim = self._sim_with("accel", u)

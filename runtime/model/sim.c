@@ -426,22 +426,21 @@ sim_control_period(const eomc_sim *s)
     return s->ctrl ? s->ctrl_period : -1;
 }
 
-/* The controller's outputs at (t, q, v) into s->ctrl_tmp, from the
- * inputs' own values s->u: EOMC_OK, its nonzero status, or EOMC_ENUMERIC
- * (the message naming it) where an input it sets is not finite. */
+/* The controller's outputs at (t, q, v) into u [nu], which holds the
+ * inputs' own values: EOMC_OK, its nonzero status, or EOMC_ENUMERIC (the
+ * message naming it) where an input it sets is not finite. */
 static int
-control_call(eomc_sim *s, double t, const double *q, const double *v)
+control_call(eomc_sim *s, double t, const double *q, const double *v, double *u)
 {
-    memcpy(s->ctrl_tmp, s->u, (size_t)s->nu * sizeof *s->u);
-    int rc = s->ctrl(s->ctrl_ctx, t, q, v, s->ctrl_tmp);
+    int rc = s->ctrl(s->ctrl_ctx, t, q, v, u);
     if (rc != 0) {
         sim_numeric_error(s, t, q, v, "the controller failed (status %d)", rc);
         return rc;
     }
     for (int k = 0; k < s->nu; k++)
-        if (s->ctrl_drives[k] && !isfinite(s->ctrl_tmp[k]))
+        if (s->ctrl_drives[k] && !isfinite(u[k]))
             return sim_numeric_error(s, t, q, v, "the controller set input %s to %g",
-                                     s->m->u_names[k], s->ctrl_tmp[k]);
+                                     s->m->u_names[k], u[k]);
     return EOMC_OK;
 }
 
@@ -454,11 +453,7 @@ sim_control_drives(const eomc_sim *s)
 int
 sim_control_call(eomc_sim *s, double t, const double *x, double *u)
 {
-    memcpy(s->u, u, (size_t)s->nu * sizeof *u); /* (control_call starts from s->u) */
-    int rc = control_call(s, t, x, x + s->n);
-    if (rc == EOMC_OK)
-        memcpy(u, s->ctrl_tmp, (size_t)s->nu * sizeof *u);
-    return rc;
+    return control_call(s, t, x, x + s->n, u);
 }
 
 int
@@ -468,7 +463,8 @@ sim_sample(eomc_sim *s, double t, const double *x)
     s->ctrl_status = EOMC_OK;
     s->ctrl_have = 0;
     sim_inputs_at(s, t, q, v); /* the inputs' own values, which it may keep */
-    int rc = control_call(s, t, q, v);
+    memcpy(s->ctrl_tmp, s->u, (size_t)s->nu * sizeof *s->u);
+    int rc = control_call(s, t, q, v, s->ctrl_tmp);
     if (rc != EOMC_OK)
         return rc;
     memcpy(s->ctrl_u, s->ctrl_tmp, (size_t)s->nu * sizeof *s->ctrl_u);
@@ -507,7 +503,8 @@ sim_inputs_at(eomc_sim *s, double t, const double *q, const double *v)
         if (!q)
             return s->u; /* no state: the inputs' own values (eomc_sim_inputs) */
         if (s->ctrl_status == EOMC_OK)
-            s->ctrl_status = control_call(s, t, q, v);
+            s->ctrl_status = control_call(s, t, q, v, memcpy(s->ctrl_tmp, s->u,
+                                                             (size_t)s->nu * sizeof *s->u));
         if (s->ctrl_status != EOMC_OK)
             return s->u; /* (eomc_sim_accel fails: sim_control_failed) */
         c = s->ctrl_tmp;

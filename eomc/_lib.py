@@ -86,6 +86,11 @@ class Library:
                                 _c_double_p, _c_double_p)
         self.sim_accel_derivatives = fn("eomc_sim_accel_derivatives", i, vp, d, _c_double_p,
                                         _c_double_p, _c_double_p, _c_double_p, _c_double_p)
+        self.model_place = fn("eomc_model_place", i, vp, cp, ctypes.POINTER(i))
+        self.sim_place = fn("eomc_sim_place", i, vp, i, d, _c_double_p, _c_double_p,
+                            _c_double_p)
+        self.sim_place_jacobian = fn("eomc_sim_place_jacobian", i, vp, i, d, _c_double_p,
+                                     _c_double_p, _c_double_p)
         self.sim_inconsistencies = fn("eomc_sim_inconsistencies", d, vp, d, _c_double_p,
                                       _c_double_p, _c_double_p, ctypes.POINTER(i))
         self.sim_error = fn("eomc_sim_error", cp, vp)

@@ -9,6 +9,7 @@ shortest-digits output both round-trip).
 """
 
 import ctypes
+import difflib
 import math
 import os
 import tempfile
@@ -456,6 +457,8 @@ class Model:
         self.constraints = lib.names("c")
         self.outputs = lib.names("out")
         self.events = lib.names("event")
+        # every body and particle, then every frame and point the spec names
+        self.places = lib.names("place")
         self.extended = bool(lib.model_ext)
         self._sim = lib.sim_alloc(lib.model)
         if not self._sim:
@@ -646,6 +649,66 @@ class Model:
                     raise UsageError(msg)
                 raise NumericalFailure(msg, float(t))
         return dq, dv, du[:, :nu]
+
+    def _place(self, what, name, q):
+        """(index, has axes, q as doubles) of the place called name."""
+        axes = ctypes.c_int()
+        k = self._lib.model_place(self._lib.model, str(name).encode(), ctypes.byref(axes))
+        if k < 0:
+            near = difflib.get_close_matches(str(name), self.places, 1)
+            raise UsageError("%s: %s has no place '%s'%s (its places: its bodies, particles, "
+                             "frames and points: %s)" % (
+                                 what, self.name, name,
+                                 " (did you mean '%s'?)" % near[0] if near else "",
+                                 ", ".join(self.places) or "none"))
+        q = np.ascontiguousarray(q, dtype=np.float64)
+        if q.shape != (len(self.coordinates),):
+            raise UsageError("%s: q needs %d entries (%s), not %s" % (
+                what, len(self.coordinates), ", ".join(self.coordinates), q.shape))
+        return k, bool(axes.value), q
+
+    def position(self, name, q, t=0.0):
+        """The world position [3] of a place at (t, q): a body's centre of
+        mass, a particle, a frame's origin or a point (``places``)."""
+        k, _, q = self._place("position", name, q)
+        pos = np.zeros(3)
+        with self._lock:
+            if self._lib.sim_place(self._sim, k, float(t), as_doubles(q), as_doubles(pos),
+                                   None) != 0:
+                raise NumericalFailure(self._error(self._sim), float(t))
+        return pos
+
+    def rotation(self, name, q, t=0.0):
+        """The rotation [3 x 3] of a body's or frame's axes at (t, q): its
+        columns are the axes in world components (R maps the place's
+        components to the world's).  A point or particle has none
+        (UsageError)."""
+        k, axes, q = self._place("rotation", name, q)
+        R = np.zeros((3, 3))
+        with self._lock:
+            rc = self._lib.sim_place(self._sim, k, float(t), as_doubles(q), None, as_doubles(R))
+            if rc != 0:
+                msg = self._error(self._sim)
+                raise (UsageError("rotation: " + msg) if not axes
+                       else NumericalFailure(msg, float(t)))
+        return R
+
+    def jacobian(self, name, q, t=0.0):
+        """The velocity Jacobian of a place at (t, q), exact, in world
+        components: 3 x nv for a point or particle (its velocity is J v),
+        6 x nv for a body or frame, its velocity's rows over its angular
+        velocity's (as Pinocchio's LOCAL_WORLD_ALIGNED).  A body's velocity
+        is its centre of mass's, a frame's its origin's.  What time alone
+        moves (a driven frame) is left out."""
+        k, axes, q = self._place("jacobian", name, q)
+        nv = len(self.speeds)
+        J = np.zeros((6 if axes else 3, nv))
+        with self._lock:
+            if self._lib.sim_place_jacobian(self._sim, k, float(t), as_doubles(q),
+                                            as_doubles(J[:3]),
+                                            as_doubles(J[3:]) if axes else None) != 0:
+                raise NumericalFailure(self._error(self._sim), float(t))
+        return J
 
     def _off_constraints(self, sim, t, q, v):
         """The constraints (q, v) is off, worst first, as `eomc run` says of

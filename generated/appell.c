@@ -72,6 +72,8 @@
 #define appell_minv appell_minv_ext
 #define appell_check appell_check_ext
 #define appell_draw appell_draw_ext
+#define appell_places appell_places_ext
+#define appell_place_velocity appell_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -454,6 +456,54 @@ appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+appell_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real q_z = q[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = q_x;
+    X[1] = q_y;
+    X[2] = q_z;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+appell_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real dv_x = dv[0];
+    const eomc_real dv_y = dv[1];
+    const eomc_real dv_z = dv[2];
+    (void)q;
+    (void)p;
+    (void)u;
+    (void)t;
+    W[0] = dv_x;
+    W[1] = dv_y;
+    W[2] = dv_z;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -474,6 +524,11 @@ static const int c_dependent[1] = {2};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"p", EOMC_DRAW_PARTICLE, 3, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"p", EOMC_DRAW_PARTICLE, 3, 0},
 };
 
@@ -625,6 +680,12 @@ appell_check(const double *p);
 EOMC_ENTRY void
 appell_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+appell_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+appell_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model appell_model = {
     .abi = EOMC_ABI_VERSION, .name = "appell", .spec = "appell.yaml", .form = "lagrange",
@@ -659,6 +720,8 @@ const eomc_model appell_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = appell_places,
+    .place_velocity = appell_place_velocity,
     .taylor_nslot = 29, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

@@ -540,6 +540,7 @@ const eomc_model arenstorf_model = {
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
     .ndraw = 0, /* no particle or body to draw */
+    .nplace = 0, /* no body, particle, frame or point */
     .taylor_nslot = 42, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = arenstorf_taylor, .taylor_why = NULL, /* Taylor's method */

@@ -62,6 +62,8 @@
 #define bouncing_ball_event_set bouncing_ball_event_set_ext
 #define bouncing_ball_check bouncing_ball_check_ext
 #define bouncing_ball_draw bouncing_ball_draw_ext
+#define bouncing_ball_places bouncing_ball_places_ext
+#define bouncing_ball_place_velocity bouncing_ball_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -269,6 +271,50 @@ bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+bouncing_ball_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_y = q[0];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = 0.0;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+bouncing_ball_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real dv_y = dv[0];
+    (void)q;
+    (void)p;
+    (void)u;
+    (void)t;
+    W[0] = 0.0;
+    W[1] = dv_y;
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -293,6 +339,11 @@ static const int ev_action[1] = {2}; /* EOMC_EVENT_STOP, _RECORD, _SET */
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"ball", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
@@ -383,6 +434,12 @@ bouncing_ball_check(const double *p);
 EOMC_ENTRY void
 bouncing_ball_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+bouncing_ball_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+bouncing_ball_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model bouncing_ball_model = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .spec = "bouncing_ball.yaml", .form = "lagrange",
@@ -415,6 +472,8 @@ const eomc_model bouncing_ball_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = bouncing_ball_places,
+    .place_velocity = bouncing_ball_place_velocity,
     .taylor_nslot = 3, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
     .taylor = bouncing_ball_taylor, .taylor_why = NULL, /* Taylor's method */

@@ -73,6 +73,8 @@
 #define cartesian_pendulum_minv cartesian_pendulum_minv_ext
 #define cartesian_pendulum_check cartesian_pendulum_check_ext
 #define cartesian_pendulum_draw cartesian_pendulum_draw_ext
+#define cartesian_pendulum_places cartesian_pendulum_places_ext
+#define cartesian_pendulum_place_velocity cartesian_pendulum_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -434,6 +436,52 @@ cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+cartesian_pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = q_x;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+cartesian_pendulum_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real dv_x = dv[0];
+    const eomc_real dv_y = dv[1];
+    (void)q;
+    (void)p;
+    (void)u;
+    (void)t;
+    W[0] = dv_x;
+    W[1] = dv_y;
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -454,6 +502,11 @@ static const int c_dependent[1] = {1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"bob", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
@@ -597,6 +650,12 @@ cartesian_pendulum_check(const double *p);
 EOMC_ENTRY void
 cartesian_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+cartesian_pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+cartesian_pendulum_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model cartesian_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "cartesian_pendulum", .spec = "cartesian_pendulum.yaml", .form = "lagrange",
@@ -631,6 +690,8 @@ const eomc_model cartesian_pendulum_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = cartesian_pendulum_places,
+    .place_velocity = cartesian_pendulum_place_velocity,
     .taylor_nslot = 28, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

@@ -472,6 +472,7 @@ const eomc_model cartpole_model = {
     .c_held = NULL, /* every constraint's row in the unit loads */
     .c_nnz = 0, .c_nz = NULL, /* B dense */
     .ndraw = 0, /* no particle or body to draw */
+    .nplace = 0, /* no body, particle, frame or point */
     .taylor_nslot = 39, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = cartpole_taylor, .taylor_why = NULL, /* Taylor's method */

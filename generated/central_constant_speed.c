@@ -73,6 +73,8 @@
 #define central_constant_speed_minv central_constant_speed_minv_ext
 #define central_constant_speed_check central_constant_speed_check_ext
 #define central_constant_speed_draw central_constant_speed_draw_ext
+#define central_constant_speed_places central_constant_speed_places_ext
+#define central_constant_speed_place_velocity central_constant_speed_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -764,6 +766,92 @@ central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[2] = w5;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+central_constant_speed_places(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_r = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_theta;
+    ang[1] = q_phi;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = q_r * w1;
+    const eomc_real w5 = q_r * w0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w6 = w4 * w3;
+    const eomc_real w7 = w4 * w2;
+    X[0] = w6;
+    X[1] = w7;
+    X[2] = w5;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+central_constant_speed_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_r = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real dv_r = dv[0];
+    const eomc_real dv_theta = dv[1];
+    const eomc_real dv_phi = dv[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_phi;
+    ang[1] = q_theta;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w3 * dv_r;
+    const eomc_real w5 = q_r * w2;
+    const eomc_real w6 = q_r * w3;
+    const eomc_real w7 = w2 * dv_r;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+    const eomc_real w8 = w5 * dv_theta;
+    const eomc_real w9 = w6 * w0;
+    const eomc_real w10 = w6 * w1;
+    const eomc_real w11 = w6 * dv_theta;
+    const eomc_real w12 = w4 - w8;
+    const eomc_real w13 = w9 * dv_phi;
+    const eomc_real w14 = w10 * dv_phi;
+    const eomc_real w15 = w7 + w11;
+    const eomc_real w16 = w1 * w12;
+    const eomc_real w17 = w0 * w12;
+    W[2] = w15;
+    const eomc_real w18 = w16 - w13;
+    const eomc_real w19 = w17 + w14;
+    W[0] = w18;
+    W[1] = w19;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -784,6 +872,11 @@ static const int c_dependent[1] = {2};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"p", EOMC_DRAW_PARTICLE, 3, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"p", EOMC_DRAW_PARTICLE, 3, 0},
 };
 
@@ -1292,6 +1385,12 @@ central_constant_speed_check(const double *p);
 EOMC_ENTRY void
 central_constant_speed_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+central_constant_speed_places(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+central_constant_speed_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model central_constant_speed_model = {
     .abi = EOMC_ABI_VERSION, .name = "central_constant_speed", .spec = "central_constant_speed.yaml", .form = "gibbs-appell",
@@ -1326,6 +1425,8 @@ const eomc_model central_constant_speed_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = central_constant_speed_places,
+    .place_velocity = central_constant_speed_place_velocity,
     .taylor_nslot = 109, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

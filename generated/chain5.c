@@ -60,6 +60,8 @@
 #define chain5_accel chain5_accel_ext
 #define chain5_check chain5_check_ext
 #define chain5_draw chain5_draw_ext
+#define chain5_places chain5_places_ext
+#define chain5_place_velocity chain5_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -985,6 +987,180 @@ chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[49] = w36;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+chain5_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    for (int i = 0; i < 60; i++) /* the nonzeros follow */
+        X[i] = 0.0;
+    const eomc_real q_q1 = q[0];
+    const eomc_real q_q2 = q[1];
+    const eomc_real q_q3 = q[2];
+    const eomc_real q_q4 = q[3];
+    const eomc_real q_q5 = q[4];
+    const eomc_real p_l = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = q_q1 + q_q2;
+    const eomc_real w1 = w0 + q_q3;
+    const eomc_real w2 = w1 + q_q4;
+    const eomc_real w3 = w2 + q_q5;
+    eomc_real ang[5], ang_sin[5], ang_cos[5]; /* 5 angles at once */
+    ang[0] = q_q1;
+    ang[1] = w0;
+    ang[2] = w1;
+    ang[3] = w2;
+    ang[4] = w3;
+    eomc_sincos(5, ang, ang_sin, ang_cos);
+    const eomc_real w4 = ang_sin[0];
+    const eomc_real w5 = ang_cos[0];
+    const eomc_real w6 = ang_sin[1];
+    const eomc_real w7 = ang_cos[1];
+    const eomc_real w8 = ang_sin[2];
+    const eomc_real w9 = ang_cos[2];
+    const eomc_real w10 = ang_sin[3];
+    const eomc_real w11 = ang_cos[3];
+    const eomc_real w12 = ang_sin[4];
+    const eomc_real w13 = ang_cos[4];
+    const eomc_real w14 = p_l * w4;
+    const eomc_real w15 = p_l * w5;
+    X[3] = 1.0;
+    X[7] = 1.0;
+    X[11] = 1.0;
+    const eomc_real w16 = w4 + w6;
+    const eomc_real w17 = w5 + w7;
+    X[0] = w14;
+    X[15] = 1.0;
+    X[19] = 1.0;
+    X[23] = 1.0;
+    X[27] = 1.0;
+    X[31] = 1.0;
+    X[35] = 1.0;
+    X[39] = 1.0;
+    X[43] = 1.0;
+    X[47] = 1.0;
+    X[51] = 1.0;
+    X[55] = 1.0;
+    X[59] = 1.0;
+    const eomc_real w18 = -w15;
+    const eomc_real w19 = p_l * w16;
+    const eomc_real w20 = p_l * w17;
+    const eomc_real w21 = w16 + w8;
+    const eomc_real w22 = w17 + w9;
+    X[1] = w18;
+    X[12] = w19;
+    const eomc_real w23 = -w20;
+    const eomc_real w24 = p_l * w21;
+    const eomc_real w25 = p_l * w22;
+    const eomc_real w26 = w21 + w10;
+    const eomc_real w27 = w22 + w11;
+    X[13] = w23;
+    X[24] = w24;
+    const eomc_real w28 = -w25;
+    const eomc_real w29 = p_l * w26;
+    const eomc_real w30 = p_l * w27;
+    const eomc_real w31 = w26 + w12;
+    const eomc_real w32 = w27 + w13;
+    X[25] = w28;
+    X[36] = w29;
+    const eomc_real w33 = -w30;
+    const eomc_real w34 = p_l * w31;
+    const eomc_real w35 = p_l * w32;
+    X[37] = w33;
+    X[48] = w34;
+    const eomc_real w36 = -w35;
+    X[49] = w36;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+chain5_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    for (int i = 0; i < 30; i++) /* the nonzeros follow */
+        W[i] = 0.0;
+    const eomc_real q_q1 = q[0];
+    const eomc_real q_q2 = q[1];
+    const eomc_real q_q3 = q[2];
+    const eomc_real q_q4 = q[3];
+    const eomc_real q_q5 = q[4];
+    const eomc_real p_l = p[1];
+    const eomc_real dv_q1 = dv[0];
+    const eomc_real dv_q2 = dv[1];
+    const eomc_real dv_q3 = dv[2];
+    const eomc_real dv_q4 = dv[3];
+    const eomc_real dv_q5 = dv[4];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = q_q1 + q_q2;
+    const eomc_real w1 = w0 + q_q3;
+    const eomc_real w2 = w1 + q_q4;
+    const eomc_real w3 = w2 + q_q5;
+    eomc_real ang[5], ang_sin[5], ang_cos[5]; /* 5 angles at once */
+    ang[0] = q_q1;
+    ang[1] = w0;
+    ang[2] = w1;
+    ang[3] = w2;
+    ang[4] = w3;
+    eomc_sincos(5, ang, ang_sin, ang_cos);
+    const eomc_real w4 = ang_sin[0];
+    const eomc_real w5 = ang_cos[0];
+    const eomc_real w6 = ang_sin[1];
+    const eomc_real w7 = ang_cos[1];
+    const eomc_real w8 = ang_sin[2];
+    const eomc_real w9 = ang_cos[2];
+    const eomc_real w10 = ang_sin[3];
+    const eomc_real w11 = ang_cos[3];
+    const eomc_real w12 = ang_sin[4];
+    const eomc_real w13 = ang_cos[4];
+    const eomc_real w14 = w5 * dv_q1;
+    const eomc_real w15 = w4 * dv_q1;
+    const eomc_real w16 = dv_q1 + dv_q2;
+    const eomc_real w17 = p_l * w14;
+    const eomc_real w18 = p_l * w15;
+    const eomc_real w19 = w7 * w16;
+    const eomc_real w20 = w6 * w16;
+    const eomc_real w21 = dv_q3 + w16;
+    W[0] = w17;
+    W[1] = w18;
+    const eomc_real w22 = w14 + w19;
+    const eomc_real w23 = w15 + w20;
+    const eomc_real w24 = w9 * w21;
+    const eomc_real w25 = w8 * w21;
+    const eomc_real w26 = dv_q4 + w21;
+    const eomc_real w27 = p_l * w22;
+    const eomc_real w28 = p_l * w23;
+    const eomc_real w29 = w22 + w24;
+    const eomc_real w30 = w23 + w25;
+    const eomc_real w31 = w11 * w26;
+    const eomc_real w32 = w10 * w26;
+    const eomc_real w33 = dv_q5 + w26;
+    W[6] = w27;
+    W[7] = w28;
+    const eomc_real w34 = p_l * w29;
+    const eomc_real w35 = p_l * w30;
+    const eomc_real w36 = w29 + w31;
+    const eomc_real w37 = w30 + w32;
+    const eomc_real w38 = w13 * w33;
+    const eomc_real w39 = w12 * w33;
+    W[12] = w34;
+    W[13] = w35;
+    const eomc_real w40 = p_l * w36;
+    const eomc_real w41 = p_l * w37;
+    const eomc_real w42 = w36 + w38;
+    const eomc_real w43 = w37 + w39;
+    W[18] = w40;
+    W[19] = w41;
+    const eomc_real w44 = p_l * w42;
+    const eomc_real w45 = p_l * w43;
+    W[24] = w44;
+    W[25] = w45;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -1001,6 +1177,15 @@ static const unsigned char p_fixed[3] = {0, 0, 0};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[5] = {
+    {"p1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p2", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p3", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p4", EOMC_DRAW_PARTICLE, 2, 0},
+    {"p5", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[5] = {
     {"p1", EOMC_DRAW_PARTICLE, 2, 0},
     {"p2", EOMC_DRAW_PARTICLE, 2, 0},
     {"p3", EOMC_DRAW_PARTICLE, 2, 0},
@@ -2027,6 +2212,12 @@ chain5_check(const double *p);
 EOMC_ENTRY void
 chain5_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+chain5_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+chain5_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model chain5_model = {
     .abi = EOMC_ABI_VERSION, .name = "chain5", .spec = "chain5.yaml", .form = "gibbs-appell",
@@ -2058,6 +2249,8 @@ const eomc_model chain5_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 5, .places = places, .place = chain5_places,
+    .place_velocity = chain5_place_velocity,
     .taylor_nslot = 213, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = chain5_taylor, .taylor_why = NULL, /* Taylor's method */

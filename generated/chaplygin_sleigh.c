@@ -76,6 +76,8 @@
 #define chaplygin_sleigh_draw chaplygin_sleigh_draw_ext
 #define chaplygin_sleigh_draw_mass chaplygin_sleigh_draw_mass_ext
 #define chaplygin_sleigh_draw_shapes chaplygin_sleigh_draw_shapes_ext
+#define chaplygin_sleigh_places chaplygin_sleigh_places_ext
+#define chaplygin_sleigh_place_velocity chaplygin_sleigh_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -654,6 +656,87 @@ chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S)
     S[11] = w6;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+chaplygin_sleigh_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real q_theta = q[2];
+    const eomc_real p_b = p[2];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = sin(q_theta);
+    X[2] = 0.0;
+    X[5] = 0.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    X[12] = q_x;
+    X[13] = q_y;
+    X[14] = 0.0;
+    X[15] = 1.0;
+    X[16] = 0.0;
+    X[17] = 0.0;
+    X[18] = 0.0;
+    X[19] = 1.0;
+    X[20] = 0.0;
+    X[21] = 0.0;
+    X[22] = 0.0;
+    X[23] = 1.0;
+    const eomc_real w2 = p_b * w0;
+    const eomc_real w3 = p_b * w1;
+    X[3] = w0;
+    const eomc_real w4 = -w1;
+    X[6] = w1;
+    X[7] = w0;
+    const eomc_real w5 = q_x + w2;
+    const eomc_real w6 = q_y + w3;
+    X[0] = w5;
+    X[1] = w6;
+    X[4] = w4;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+chaplygin_sleigh_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_theta = q[2];
+    const eomc_real p_b = p[2];
+    const eomc_real dv_x = dv[0];
+    const eomc_real dv_y = dv[1];
+    const eomc_real dv_theta = dv[2];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = cos(q_theta);
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = dv_theta;
+    W[6] = dv_x;
+    W[7] = dv_y;
+    W[8] = 0.0;
+    W[9] = 0.0;
+    W[10] = 0.0;
+    W[11] = 0.0;
+    const eomc_real w2 = w0 * dv_theta;
+    const eomc_real w3 = w1 * dv_theta;
+    const eomc_real w4 = p_b * w2;
+    const eomc_real w5 = p_b * w3;
+    const eomc_real w6 = dv_x - w4;
+    const eomc_real w7 = dv_y + w5;
+    W[0] = w6;
+    W[1] = w7;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -685,6 +768,12 @@ static const eomc_shape shapes[2] = {
     {0, EOMC_SHAPE_BOX, {0.175, 0.015, 0.015}, {-0.5, 0.0, 0.015}, {1.0, 0.0, 0.0, 0.0}, {0.2, 0.2, 0.25, 1.0}},
 };
 static const int view_trace[1] = {1};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[2] = {
+    {"sleigh", EOMC_DRAW_BODY, 2, 0},
+    {"blade", EOMC_DRAW_POINT, 3, 0},
+};
 
 static const char *const check_what[2] = {
     "body 'sleigh': a mass cannot be negative",
@@ -902,6 +991,12 @@ EOMC_ENTRY void
 chaplygin_sleigh_draw_mass(const eomc_real *p, eomc_real *D);
 EOMC_ENTRY void
 chaplygin_sleigh_draw_shapes(const eomc_real *p, eomc_real *S);
+EOMC_ENTRY void
+chaplygin_sleigh_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+chaplygin_sleigh_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model chaplygin_sleigh_model = {
     .abi = EOMC_ABI_VERSION, .name = "chaplygin_sleigh", .spec = "chaplygin_sleigh.yaml", .form = "lagrange",
@@ -937,6 +1032,8 @@ const eomc_model chaplygin_sleigh_model = {
     .nlink = 0, .view_links = NULL, .ntrace = 1, .view_trace = view_trace,
     .view_frames = 0, .view_camera = NULL,
     .draw_shapes = chaplygin_sleigh_draw_shapes,
+    .nplace = 2, .places = places, .place = chaplygin_sleigh_places,
+    .place_velocity = chaplygin_sleigh_place_velocity,
     .taylor_nslot = 34, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

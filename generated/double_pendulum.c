@@ -60,6 +60,8 @@
 #define double_pendulum_accel double_pendulum_accel_ext
 #define double_pendulum_check double_pendulum_check_ext
 #define double_pendulum_draw double_pendulum_draw_ext
+#define double_pendulum_places double_pendulum_places_ext
+#define double_pendulum_place_velocity double_pendulum_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -425,6 +427,107 @@ double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[13] = w11;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+double_pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th1;
+    ang[1] = q_th2;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = p_l1 * w0;
+    const eomc_real w5 = p_l1 * w1;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w6 = p_l2 * w2;
+    const eomc_real w7 = p_l2 * w3;
+    X[0] = w4;
+    X[14] = 0.0;
+    X[15] = 1.0;
+    X[16] = 0.0;
+    X[17] = 0.0;
+    X[18] = 0.0;
+    X[19] = 1.0;
+    X[20] = 0.0;
+    X[21] = 0.0;
+    X[22] = 0.0;
+    X[23] = 1.0;
+    const eomc_real w8 = -w5;
+    const eomc_real w9 = w4 + w6;
+    const eomc_real w10 = w5 + w7;
+    X[1] = w8;
+    X[12] = w9;
+    const eomc_real w11 = -w10;
+    X[13] = w11;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+double_pendulum_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_th1 = q[0];
+    const eomc_real q_th2 = q[1];
+    const eomc_real p_l1 = p[2];
+    const eomc_real p_l2 = p[3];
+    const eomc_real dv_th1 = dv[0];
+    const eomc_real dv_th2 = dv[1];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th1;
+    ang[1] = q_th2;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w1 * dv_th1;
+    const eomc_real w5 = w0 * dv_th1;
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+    const eomc_real w6 = w3 * dv_th2;
+    const eomc_real w7 = w2 * dv_th2;
+    W[8] = 0.0;
+    W[9] = 0.0;
+    W[10] = 0.0;
+    W[11] = 0.0;
+    const eomc_real w8 = p_l1 * w4;
+    const eomc_real w9 = p_l1 * w5;
+    const eomc_real w10 = p_l2 * w6;
+    const eomc_real w11 = p_l2 * w7;
+    W[0] = w8;
+    W[1] = w9;
+    const eomc_real w12 = w8 + w10;
+    const eomc_real w13 = w9 + w11;
+    W[6] = w12;
+    W[7] = w13;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -451,6 +554,12 @@ static const eomc_draw_item draw_items[3] = {
 };
 static const int view_links[4] = {2, 0, 0, 1};
 static const int view_trace[1] = {1};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[2] = {
+    {"bob1", EOMC_DRAW_PARTICLE, 2, 0},
+    {"bob2", EOMC_DRAW_PARTICLE, 2, 0},
+};
 
 static const char *const check_what[2] = {
     "particle 'bob1': a mass cannot be negative",
@@ -678,6 +787,12 @@ double_pendulum_check(const double *p);
 EOMC_ENTRY void
 double_pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+double_pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+double_pendulum_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model double_pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "double_pendulum", .spec = "double_pendulum.yaml", .form = "lagrange",
@@ -709,6 +824,8 @@ const eomc_model double_pendulum_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 2, .view_links = view_links, .ntrace = 1, .view_trace = view_trace,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 2, .places = places, .place = double_pendulum_places,
+    .place_velocity = double_pendulum_place_velocity,
     .taylor_nslot = 45, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = double_pendulum_taylor, .taylor_why = NULL, /* Taylor's method */

@@ -58,6 +58,8 @@
 #define falling_particle_accel falling_particle_accel_ext
 #define falling_particle_check falling_particle_check_ext
 #define falling_particle_draw falling_particle_draw_ext
+#define falling_particle_places falling_particle_places_ext
+#define falling_particle_place_velocity falling_particle_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -215,6 +217,50 @@ falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[11] = 1.0;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+falling_particle_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_y = q[0];
+    (void)p;
+    (void)u;
+    (void)t;
+    X[0] = 0.0;
+    X[1] = q_y;
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+falling_particle_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real dv_y = dv[0];
+    (void)q;
+    (void)p;
+    (void)u;
+    (void)t;
+    W[0] = 0.0;
+    W[1] = dv_y;
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -235,6 +281,11 @@ static const int mass_parent[1] = {-1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"ball", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"ball", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
@@ -315,6 +366,12 @@ falling_particle_check(const double *p);
 EOMC_ENTRY void
 falling_particle_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+falling_particle_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+falling_particle_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model falling_particle_model = {
     .abi = EOMC_ABI_VERSION, .name = "falling_particle", .spec = "falling_particle.yaml", .form = "lagrange",
@@ -346,6 +403,8 @@ const eomc_model falling_particle_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = falling_particle_places,
+    .place_velocity = falling_particle_place_velocity,
     .taylor_nslot = 2, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = falling_particle_taylor, .taylor_why = NULL, /* Taylor's method */

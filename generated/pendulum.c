@@ -60,6 +60,8 @@
 #define pendulum_accel pendulum_accel_ext
 #define pendulum_check pendulum_check_ext
 #define pendulum_draw pendulum_draw_ext
+#define pendulum_places pendulum_places_ext
+#define pendulum_place_velocity pendulum_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -240,6 +242,61 @@ pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[1] = w4;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_theta = q[0];
+    const eomc_real p_l = p[1];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = sin(q_theta);
+    const eomc_real w1 = cos(q_theta);
+    X[2] = 0.0;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w2 = p_l * w0;
+    const eomc_real w3 = p_l * w1;
+    X[0] = w2;
+    const eomc_real w4 = -w3;
+    X[1] = w4;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+pendulum_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_theta = q[0];
+    const eomc_real p_l = p[1];
+    const eomc_real dv_theta = dv[0];
+    (void)u;
+    (void)t;
+    const eomc_real w0 = cos(q_theta);
+    const eomc_real w1 = sin(q_theta);
+    W[2] = 0.0;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+    const eomc_real w2 = w0 * dv_theta;
+    const eomc_real w3 = w1 * dv_theta;
+    const eomc_real w4 = p_l * w2;
+    const eomc_real w5 = p_l * w3;
+    W[0] = w4;
+    W[1] = w5;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -260,6 +317,11 @@ static const int mass_parent[1] = {-1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"bob", EOMC_DRAW_PARTICLE, 2, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"bob", EOMC_DRAW_PARTICLE, 2, 0},
 };
 
@@ -346,6 +408,12 @@ pendulum_check(const double *p);
 EOMC_ENTRY void
 pendulum_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+pendulum_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+pendulum_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model pendulum_model = {
     .abi = EOMC_ABI_VERSION, .name = "pendulum", .spec = "pendulum.yaml", .form = "lagrange",
@@ -377,6 +445,8 @@ const eomc_model pendulum_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = pendulum_places,
+    .place_velocity = pendulum_place_velocity,
     .taylor_nslot = 6, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = pendulum_taylor, .taylor_why = NULL, /* Taylor's method */

@@ -74,6 +74,8 @@
 #define precession_check precession_check_ext
 #define precession_draw precession_draw_ext
 #define precession_draw_mass precession_draw_mass_ext
+#define precession_places precession_places_ext
+#define precession_place_velocity precession_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -926,6 +928,139 @@ precession_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = p_C;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+precession_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_psi = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
+    ang[0] = q_phi;
+    ang[1] = q_psi;
+    ang[2] = q_theta;
+    eomc_sincos(3, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    X[0] = 0.0;
+    X[1] = 0.0;
+    X[2] = 0.0;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = w0 * w5;
+    const eomc_real w8 = w0 * w3;
+    const eomc_real w9 = w1 * w5;
+    const eomc_real w10 = w4 * w2;
+    const eomc_real w11 = w1 * w2;
+    const eomc_real w12 = w0 * w2;
+    const eomc_real w13 = w4 * w3;
+    const eomc_real w14 = w4 * w0;
+    const eomc_real w15 = w4 * w1;
+    X[11] = w5;
+    const eomc_real w16 = w7 * w2;
+    const eomc_real w17 = w9 * w2;
+    X[5] = w10;
+    const eomc_real w18 = w7 * w3;
+    const eomc_real w19 = w9 * w3;
+    const eomc_real w20 = -w13;
+    X[9] = w14;
+    X[10] = w15;
+    const eomc_real w21 = w6 - w16;
+    const eomc_real w22 = w8 + w17;
+    const eomc_real w23 = w11 + w18;
+    const eomc_real w24 = w19 - w12;
+    X[3] = w21;
+    X[8] = w20;
+    const eomc_real w25 = -w22;
+    X[4] = w25;
+    X[6] = w23;
+    X[7] = w24;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+precession_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_psi = q[0];
+    const eomc_real q_theta = q[1];
+    const eomc_real q_phi = q[2];
+    const eomc_real dv_psi = dv[0];
+    const eomc_real dv_theta = dv[1];
+    const eomc_real dv_phi = dv[2];
+    (void)p;
+    (void)u;
+    (void)t;
+    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
+    ang[0] = q_phi;
+    ang[1] = q_psi;
+    ang[2] = q_theta;
+    eomc_sincos(3, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    W[0] = 0.0;
+    W[1] = 0.0;
+    W[2] = 0.0;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = w0 * w5;
+    const eomc_real w8 = w4 * w0;
+    const eomc_real w9 = w1 * dv_theta;
+    const eomc_real w10 = w0 * w3;
+    const eomc_real w11 = w1 * w5;
+    const eomc_real w12 = w4 * w1;
+    const eomc_real w13 = w0 * dv_theta;
+    const eomc_real w14 = w4 * w2;
+    const eomc_real w15 = w5 * dv_psi;
+    const eomc_real w16 = w1 * w2;
+    const eomc_real w17 = w0 * w2;
+    const eomc_real w18 = w4 * w3;
+    const eomc_real w19 = w7 * w2;
+    const eomc_real w20 = w8 * dv_psi;
+    const eomc_real w21 = w11 * w2;
+    const eomc_real w22 = w12 * dv_psi;
+    const eomc_real w23 = dv_phi + w15;
+    const eomc_real w24 = w7 * w3;
+    const eomc_real w25 = w11 * w3;
+    const eomc_real w26 = w6 - w19;
+    const eomc_real w27 = w20 + w9;
+    const eomc_real w28 = w10 + w21;
+    const eomc_real w29 = w22 - w13;
+    const eomc_real w30 = w14 * w23;
+    const eomc_real w31 = w16 + w24;
+    const eomc_real w32 = w25 - w17;
+    const eomc_real w33 = w18 * w23;
+    const eomc_real w34 = w5 * w23;
+    const eomc_real w35 = w26 * w27;
+    const eomc_real w36 = w28 * w29;
+    const eomc_real w37 = w31 * w27;
+    const eomc_real w38 = w32 * w29;
+    const eomc_real w39 = w8 * w27;
+    const eomc_real w40 = w12 * w29;
+    const eomc_real w41 = w35 - w36;
+    const eomc_real w42 = w37 + w38;
+    const eomc_real w43 = w39 + w40;
+    const eomc_real w44 = w41 + w30;
+    const eomc_real w45 = w42 - w33;
+    const eomc_real w46 = w34 + w43;
+    W[3] = w44;
+    W[4] = w45;
+    W[5] = w46;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -949,6 +1084,11 @@ static const int c_nz[2] = {0, 1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"body", EOMC_DRAW_BODY, 3, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"body", EOMC_DRAW_BODY, 3, 0},
 };
 
@@ -1452,6 +1592,12 @@ precession_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
 EOMC_ENTRY void
 precession_draw_mass(const eomc_real *p, eomc_real *D);
+EOMC_ENTRY void
+precession_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+precession_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model precession_model = {
     .abi = EOMC_ABI_VERSION, .name = "precession", .spec = "precession.yaml", .form = "gibbs-appell",
@@ -1486,6 +1632,8 @@ const eomc_model precession_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = precession_places,
+    .place_velocity = precession_place_velocity,
     .taylor_nslot = 115, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,

@@ -77,6 +77,8 @@
 #define rolling_disk_check rolling_disk_check_ext
 #define rolling_disk_draw rolling_disk_draw_ext
 #define rolling_disk_draw_mass rolling_disk_draw_mass_ext
+#define rolling_disk_places rolling_disk_places_ext
+#define rolling_disk_place_velocity rolling_disk_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -1063,6 +1065,196 @@ rolling_disk_draw_mass(const eomc_real *p, eomc_real *D)
     D[12] = w3;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+rolling_disk_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    for (int i = 0; i < 72; i++) /* the nonzeros follow */
+        X[i] = 0.0;
+    const eomc_real q_psi = q[2];
+    const eomc_real q_theta = q[3];
+    const eomc_real q_phi = q[4];
+    const eomc_real q_x = q[0];
+    const eomc_real q_y = q[1];
+    const eomc_real p_R = p[1];
+    (void)u;
+    (void)t;
+    eomc_real ang[3], ang_sin[3], ang_cos[3]; /* 3 angles at once */
+    ang[0] = q_psi;
+    ang[1] = q_theta;
+    ang[2] = q_phi;
+    eomc_sincos(3, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = ang_sin[2];
+    const eomc_real w5 = ang_cos[2];
+    const eomc_real w6 = w0 * w3;
+    const eomc_real w7 = w1 * w3;
+    const eomc_real w8 = p_R * w2;
+    const eomc_real w9 = w1 * w5;
+    const eomc_real w10 = w1 * w4;
+    const eomc_real w11 = w0 * w2;
+    const eomc_real w12 = w0 * w5;
+    const eomc_real w13 = w0 * w4;
+    const eomc_real w14 = w1 * w2;
+    const eomc_real w15 = w2 * w4;
+    const eomc_real w16 = w2 * w5;
+    X[11] = w3;
+    X[15] = w1;
+    X[18] = w0;
+    X[22] = w2;
+    X[23] = w3;
+    X[35] = w3;
+    X[36] = q_x;
+    X[37] = q_y;
+    X[39] = 1.0;
+    X[43] = 1.0;
+    X[47] = 1.0;
+    X[51] = 1.0;
+    X[55] = 1.0;
+    X[59] = 1.0;
+    X[60] = q_x;
+    X[61] = q_y;
+    X[63] = 1.0;
+    X[67] = 1.0;
+    X[71] = 1.0;
+    const eomc_real w17 = p_R * w6;
+    const eomc_real w18 = p_R * w7;
+    X[2] = w8;
+    const eomc_real w19 = w6 * w4;
+    const eomc_real w20 = w6 * w5;
+    X[5] = w11;
+    const eomc_real w21 = w7 * w4;
+    const eomc_real w22 = w7 * w5;
+    const eomc_real w23 = -w14;
+    X[9] = w15;
+    X[10] = w16;
+    const eomc_real w24 = -w6;
+    X[17] = w11;
+    X[19] = w7;
+    X[26] = w8;
+    X[29] = w11;
+    X[33] = w15;
+    X[34] = w16;
+    X[50] = w8;
+    const eomc_real w25 = q_x - w17;
+    const eomc_real w26 = q_y + w18;
+    const eomc_real w27 = w9 - w19;
+    const eomc_real w28 = w10 + w20;
+    const eomc_real w29 = w12 + w21;
+    const eomc_real w30 = w22 - w13;
+    X[0] = w25;
+    X[1] = w26;
+    X[3] = w27;
+    X[8] = w23;
+    X[16] = w24;
+    X[20] = w23;
+    X[32] = w23;
+    const eomc_real w31 = -w28;
+    X[4] = w31;
+    X[6] = w29;
+    X[7] = w30;
+    X[24] = w25;
+    X[25] = w26;
+    X[27] = w27;
+    X[28] = w31;
+    X[30] = w29;
+    X[31] = w30;
+    X[48] = w25;
+    X[49] = w26;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+rolling_disk_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_psi = q[2];
+    const eomc_real q_theta = q[3];
+    const eomc_real p_R = p[1];
+    const eomc_real dv_x = dv[0];
+    const eomc_real dv_y = dv[1];
+    const eomc_real dv_psi = dv[2];
+    const eomc_real dv_theta = dv[3];
+    const eomc_real dv_phi = dv[4];
+    (void)u;
+    (void)t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_psi;
+    ang[1] = q_theta;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w0 = ang_sin[0];
+    const eomc_real w1 = ang_cos[0];
+    const eomc_real w2 = ang_sin[1];
+    const eomc_real w3 = ang_cos[1];
+    const eomc_real w4 = w1 * w3;
+    const eomc_real w5 = w0 * w2;
+    const eomc_real w6 = w0 * w3;
+    const eomc_real w7 = w1 * w2;
+    const eomc_real w8 = w3 * dv_theta;
+    const eomc_real w9 = w1 * dv_theta;
+    const eomc_real w10 = w0 * dv_theta;
+    const eomc_real w11 = w3 * dv_phi;
+    W[6] = 0.0;
+    W[7] = 0.0;
+    W[8] = 0.0;
+    W[11] = dv_psi;
+    W[18] = dv_x;
+    W[19] = dv_y;
+    W[20] = 0.0;
+    W[21] = 0.0;
+    W[22] = 0.0;
+    W[23] = 0.0;
+    W[27] = 0.0;
+    W[28] = 0.0;
+    W[29] = 0.0;
+    W[30] = dv_x;
+    W[31] = dv_y;
+    W[32] = 0.0;
+    W[33] = 0.0;
+    W[34] = 0.0;
+    W[35] = 0.0;
+    const eomc_real w12 = w4 * dv_psi;
+    const eomc_real w13 = w5 * dv_theta;
+    const eomc_real w14 = w6 * dv_psi;
+    const eomc_real w15 = w7 * dv_theta;
+    const eomc_real w16 = p_R * w8;
+    const eomc_real w17 = w5 * dv_phi;
+    const eomc_real w18 = w7 * dv_phi;
+    const eomc_real w19 = dv_psi + w11;
+    W[9] = w9;
+    W[10] = w10;
+    const eomc_real w20 = w12 - w13;
+    const eomc_real w21 = w14 + w15;
+    W[2] = w16;
+    const eomc_real w22 = w9 + w17;
+    const eomc_real w23 = w10 - w18;
+    W[5] = w19;
+    W[14] = w16;
+    W[17] = w19;
+    W[26] = w16;
+    const eomc_real w24 = p_R * w20;
+    const eomc_real w25 = p_R * w21;
+    W[3] = w22;
+    W[4] = w23;
+    W[15] = w22;
+    W[16] = w23;
+    const eomc_real w26 = dv_x - w24;
+    const eomc_real w27 = dv_y - w25;
+    W[0] = w26;
+    W[1] = w27;
+    W[12] = w26;
+    W[13] = w27;
+    W[24] = w26;
+    W[25] = w27;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -1085,6 +1277,16 @@ static const int c_nz[4] = {0, 4, 6, 9};
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
     {"disk", EOMC_DRAW_BODY, 3, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[6] = {
+    {"disk", EOMC_DRAW_BODY, 3, 0},
+    {"lean", EOMC_DRAW_FRAME, 3, 0},
+    {"disk_axes", EOMC_DRAW_FRAME, 3, 0},
+    {"contact", EOMC_DRAW_POINT, 3, 0},
+    {"center", EOMC_DRAW_POINT, 3, 0},
+    {"touching", EOMC_DRAW_POINT, 3, 0},
 };
 
 static const char *const check_what[7] = {
@@ -1617,6 +1819,12 @@ rolling_disk_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
 EOMC_ENTRY void
 rolling_disk_draw_mass(const eomc_real *p, eomc_real *D);
+EOMC_ENTRY void
+rolling_disk_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+rolling_disk_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model rolling_disk_model = {
     .abi = EOMC_ABI_VERSION, .name = "rolling_disk", .spec = "rolling_disk.yaml", .form = "articulated-body",
@@ -1651,6 +1859,8 @@ const eomc_model rolling_disk_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 6, .places = places, .place = rolling_disk_places,
+    .place_velocity = rolling_disk_place_velocity,
     .taylor_nslot = 0, .taylor = NULL, .taylor_why = "its form computes the mass matrix by columns (mass_times), not as the expressions of its entries",
     .nshared = 12, .free_accel_shared = rolling_disk_accel_shared, .minv_shared = rolling_disk_minv_shared,
 };

@@ -61,6 +61,8 @@
 #define spinning_hoop_accel spinning_hoop_accel_ext
 #define spinning_hoop_check spinning_hoop_check_ext
 #define spinning_hoop_draw spinning_hoop_draw_ext
+#define spinning_hoop_places spinning_hoop_places_ext
+#define spinning_hoop_place_velocity spinning_hoop_place_velocity_ext
 #endif
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 1
@@ -395,6 +397,82 @@ spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     X[2] = w10;
 }
 
+/* Each place k's position and rotation (row-major, to the world) at
+ * X[12 k ...] (eomc_model.h's places). */
+EOMC_ENTRY void
+spinning_hoop_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X)
+{
+    const eomc_real q_th = q[0];
+    const eomc_real p_w = p[3];
+    const eomc_real p_R = p[1];
+    (void)u;
+    const eomc_real w0 = p_w * t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th;
+    ang[1] = w0;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w1 = ang_sin[0];
+    const eomc_real w2 = ang_cos[0];
+    const eomc_real w3 = ang_sin[1];
+    const eomc_real w4 = ang_cos[1];
+    const eomc_real w5 = w1 * w4;
+    const eomc_real w6 = w1 * w3;
+    const eomc_real w7 = p_R * w2;
+    X[3] = 1.0;
+    X[4] = 0.0;
+    X[5] = 0.0;
+    X[6] = 0.0;
+    X[7] = 1.0;
+    X[8] = 0.0;
+    X[9] = 0.0;
+    X[10] = 0.0;
+    X[11] = 1.0;
+    const eomc_real w8 = p_R * w5;
+    const eomc_real w9 = p_R * w6;
+    const eomc_real w10 = -w7;
+    X[0] = w8;
+    X[1] = w9;
+    X[2] = w10;
+}
+
+/* Each place k's velocity and angular velocity (world components) along
+ * the speeds dv at W[6 k ...], without what time alone moves: at a unit
+ * dv, a column of its Jacobian. */
+EOMC_ENTRY void
+spinning_hoop_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W)
+{
+    const eomc_real q_th = q[0];
+    const eomc_real p_w = p[3];
+    const eomc_real p_R = p[1];
+    const eomc_real dv_th = dv[0];
+    (void)u;
+    const eomc_real w0 = p_w * t;
+    eomc_real ang[2], ang_sin[2], ang_cos[2]; /* 2 angles at once */
+    ang[0] = q_th;
+    ang[1] = w0;
+    eomc_sincos(2, ang, ang_sin, ang_cos);
+    const eomc_real w1 = ang_sin[0];
+    const eomc_real w2 = ang_cos[0];
+    const eomc_real w3 = ang_sin[1];
+    const eomc_real w4 = ang_cos[1];
+    const eomc_real w5 = w4 * w2;
+    const eomc_real w6 = w3 * w2;
+    const eomc_real w7 = w1 * dv_th;
+    W[3] = 0.0;
+    W[4] = 0.0;
+    W[5] = 0.0;
+    const eomc_real w8 = w5 * dv_th;
+    const eomc_real w9 = w6 * dv_th;
+    const eomc_real w10 = p_R * w7;
+    const eomc_real w11 = p_R * w8;
+    const eomc_real w12 = p_R * w9;
+    W[0] = w11;
+    W[1] = w12;
+    W[2] = w10;
+}
+
 #endif /* EOMC_EXTENDED */
 
 #endif /* EOMC_UNIT 1 */
@@ -415,6 +493,11 @@ static const int mass_parent[1] = {-1};
 
 /* What a run's page draws (--animate): draw's items, in order. */
 static const eomc_draw_item draw_items[1] = {
+    {"bead", EOMC_DRAW_PARTICLE, 3, 0},
+};
+
+/* The places (eomc_sim_place): places' and place_velocity's, in order. */
+static const eomc_draw_item places[1] = {
     {"bead", EOMC_DRAW_PARTICLE, 3, 0},
 };
 
@@ -626,6 +709,12 @@ spinning_hoop_check(const double *p);
 EOMC_ENTRY void
 spinning_hoop_draw(eomc_real t, const eomc_real *q, const eomc_real *p,
     const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+spinning_hoop_places(eomc_real t, const eomc_real *q, const eomc_real *p,
+    const eomc_real *u, eomc_real *X);
+EOMC_ENTRY void
+spinning_hoop_place_velocity(eomc_real t, const eomc_real *q,
+    const eomc_real *p, const eomc_real *u, const eomc_real *dv, eomc_real *W);
 
 const eomc_model spinning_hoop_model = {
     .abi = EOMC_ABI_VERSION, .name = "spinning_hoop", .spec = "spinning_hoop.yaml", .form = "gibbs-appell",
@@ -657,6 +746,8 @@ const eomc_model spinning_hoop_model = {
     .nshape = 0, .shapes = NULL, /* bodies drawn as boxes */
     .nlink = 0, .view_links = NULL, .ntrace = 0, .view_trace = NULL,
     .view_frames = 0, .view_camera = NULL,
+    .nplace = 1, .places = places, .place = spinning_hoop_places,
+    .place_velocity = spinning_hoop_place_velocity,
     .taylor_nslot = 43, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = spinning_hoop_taylor, .taylor_why = NULL, /* Taylor's method */

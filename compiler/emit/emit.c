@@ -685,6 +685,11 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
     } else {
         emit_line(pr, "    .ndraw = 0, /* no particle or body to draw */");
     }
+    if (L->places)
+        emit_line(pr, "    .nplace = %d, .places = places, .place = %s_places,\n"
+                  "    .place_velocity = %s_place_velocity,", md->nplace, nm, nm);
+    else
+        emit_line(pr, "    .nplace = 0, /* no body, particle, frame or point */");
     print_taylor_members(pr, L->taylor, nm, 0);
     if (md->nspeed)
         emit_line(pr, "    .nv = %d, .v_names = v_names, .qdot = %s_qdot, .qdot_jacobian = "
@@ -879,26 +884,34 @@ print_doubles(FILE *f, const double *x, int n)
     }
 }
 
+static const char *const draw_kinds[] = {"EOMC_DRAW_BODY", "EOMC_DRAW_PARTICLE",
+                                         "EOMC_DRAW_POINT", "EOMC_DRAW_FRAME"};
+
+/* A table of items (the draw items, the places), named `name`. */
+static void
+print_items(Printer *pr, const char *name, int n, const LowDrawItem *item)
+{
+    emit_line(pr, "static const eomc_draw_item %s[%d] = {", name, n);
+    for (int k = 0; k < n; k++) {
+        fprintf(pr->f, "    {");
+        print_c_string(pr->f, item[k].name);
+        emit_line(pr, ", %s, %d, %d},", draw_kinds[item[k].kind], item[k].dim,
+                  item[k].unturned);
+    }
+    emit_line(pr, "};");
+}
+
 /* What a run's page draws: the items, the shapes, the view. */
 static void
 print_draw_tables(Printer *pr)
 {
     const LowModel *md = pr->md;
     FILE *f = pr->f;
-    static const char *const kinds[] = {"EOMC_DRAW_BODY", "EOMC_DRAW_PARTICLE",
-                                        "EOMC_DRAW_POINT", "EOMC_DRAW_FRAME"};
     static const char *const types[] = {"EOMC_SHAPE_BOX", "EOMC_SHAPE_SPHERE",
                                         "EOMC_SHAPE_CAPSULE", "EOMC_SHAPE_CYLINDER",
                                         "EOMC_SHAPE_ELLIPSOID"};
     emit_line(pr, "/* What a run's page draws (--animate): draw's items, in order. */");
-    emit_line(pr, "static const eomc_draw_item draw_items[%d] = {", md->ndraw);
-    for (int k = 0; k < md->ndraw; k++) {
-        fprintf(f, "    {");
-        print_c_string(f, md->draw_item[k].name);
-        emit_line(pr, ", %s, %d, %d},", kinds[md->draw_item[k].kind], md->draw_item[k].dim,
-                  md->draw_item[k].unturned);
-    }
-    emit_line(pr, "};");
+    print_items(pr, "draw_items", md->ndraw, md->draw_item);
     if (md->nshape) {
         emit_line(pr, "static const eomc_shape shapes[%d] = {", md->nshape);
         for (int k = 0; k < md->nshape; k++) {
@@ -998,6 +1011,11 @@ print_body(Printer *pr_, const EmitInfo *info, EmitStats stats[EMIT_NFUNCS])
         print_friction_tables(&pr);
     if (md->ndraw)
         print_draw_tables(&pr);
+    if (md->nplace) {
+        emit_line(&pr, "/* The places (eomc_sim_place): places' and place_velocity's, in order. */");
+        print_items(&pr, "places", md->nplace, md->place);
+        emit_line(&pr, "");
+    }
     emit_unit3_end(&pr);
     for (int k = 0; k < L->nfunc; k++) {
         const LowFunc *lf = L->func[k];

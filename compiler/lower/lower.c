@@ -167,6 +167,17 @@ static const LowSig s_draw = {
     " * to the world) at X[12 k ...] (eomc_model.h's draw_items).",
     "t q p u > X", 1,
 };
+static const LowSig s_places = {
+    "places", "Each place k's position and rotation (row-major, to the world) at\n"
+    " * X[12 k ...] (eomc_model.h's places).",
+    "t q p u > X", 1,
+};
+static const LowSig s_place_velocity = {
+    "place_velocity", "Each place k's velocity and angular velocity (world components) along\n"
+    " * the speeds dv at W[6 k ...], without what time alone moves: at a unit\n"
+    " * dv, a column of its Jacobian.",
+    "t q p u dv > W", 1,
+};
 static const LowSig s_draw_mass = {
     "draw_mass", "Each body item k's mass, centre and inertia about it in its frame\n"
     " * at D[13 k ...], from which a body without shapes is drawn.",
@@ -843,58 +854,83 @@ held_rows(const Spec *s, const Mech *m, const Constraints *c, Arena *A, ExprPool
     return any ? held : NULL;
 }
 
-/* The draw items' poses (draw) and the bodies' masses (draw_mass): a body
- * at its centre of mass, turned as the frame that places it, else by its
- * rotation (a sequence, a quaternion, a planar angle about z; a body given
- * by `omega:` alone is not turned); a particle or point at its position, a
- * frame at its origin (the world's if it has none) with its rotation, the
- * ground at the world's origin in its axes; z = 0 in the plane.  Computed from p alone, not per step: the page calls them
- * once per frame.  Fixed parameters are folded into the frames' and points'
- * expressions here (the spec's own are already). */
+/* An item's pose: a body at its centre of mass, turned as the frame that
+ * places it, else by its rotation (a sequence, a quaternion, a planar
+ * angle about z; a body given by `omega:` alone is not turned); a
+ * particle or point at its position, a frame at its origin (the world's
+ * if it has none) with its rotation, the ground at the world's origin in
+ * its axes; z = 0 in the plane. */
+static void
+item_pose(const Lowering *lw, const SpecDrawItem *it, ExprId pos[3], ExprId R[9])
+{
+    const Spec *s = lw->s;
+    ExprPool *P = lw->P;
+    const Kin *K = s->kin;
+    for (int j = 0; j < 9; j++)
+        R[j] = j % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
+    pos[0] = pos[1] = pos[2] = EXPR_ZERO;
+    int frame = -1;
+    if (it->kind == SPEC_DRAW_BODY) {
+        const SpecBody *b = &s->body[it->index];
+        for (int j = 0; j < it->dim; j++)
+            pos[j] = b->center[j];
+        if (b->frame >= 0) {
+            frame = b->frame;
+        } else if (b->has_rot) {
+            for (int j = 0; j < 9; j++)
+                R[j] = b->rot[j];
+        } else if (b->dim == 2 && b->angle != EXPR_NONE) {
+            ExprId c = expr_unary(P, EXPR_COS, b->angle);
+            ExprId sn = expr_unary(P, EXPR_SIN, b->angle);
+            R[0] = c, R[1] = expr_neg(P, sn), R[3] = sn, R[4] = c;
+        }
+    } else if (it->kind == SPEC_DRAW_PARTICLE) {
+        for (int j = 0; j < it->dim; j++)
+            pos[j] = s->part[it->index].pos[j];
+    } else if (it->kind == SPEC_DRAW_POINT) {
+        kin_pos(K, it->index, pos);
+    } else if (it->kind == SPEC_DRAW_GROUND) { /* the world's origin and axes */
+    } else {
+        frame = it->index;
+        int o = kin_origin(K, frame);
+        kin_pos(K, o < 0 ? KIN_ORIGIN : o, pos);
+    }
+    if (frame >= 0)
+        kin_rotation(K, frame, R);
+}
+
+/* The fixed parameters' values folded into n expressions of frames and
+ * points (the spec's own are already). */
+static void
+fold_fixed(const Lowering *lw, int n, ExprId *X)
+{
+    const Spec *s = lw->s;
+    if (!s->nfixed)
+        return;
+    ExprId *from = arena_new_array(lw->A, ExprId, s->nfixed);
+    ExprId *to = arena_new_array(lw->A, ExprId, s->nfixed);
+    int nf = 0;
+    for (int i = 0; i < s->np; i++)
+        if (s->param[i].fixed) {
+            from[nf] = expr_param(lw->P, i);
+            to[nf++] = expr_const(lw->P, s->param[i].value);
+        }
+    expr_subst_many(lw->P, n, X, nf, from, to, X);
+}
+
+/* The draw items' poses (draw, item_pose) and the bodies' masses
+ * (draw_mass).  Computed from p alone, not per step: the page calls them
+ * once per frame. */
 static void
 lower_draw(Lowering *lw)
 {
     const Spec *s = lw->s;
     ExprPool *P = lw->P;
-    const Kin *K = s->kin;
     const SpecView *v = &s->view;
     int ni = v->nitem, nx = EOMC_POSE_SIZE * ni;
     ExprId *X = arena_new_array(lw->A, ExprId, nx + 1);
-    for (int k = 0; k < ni; k++) {
-        const SpecDrawItem *it = &v->item[k];
-        ExprId *pos = X + EOMC_POSE_SIZE * k, *R = pos + 3;
-        for (int j = 0; j < 9; j++)
-            R[j] = j % 4 == 0 ? EXPR_ONE : EXPR_ZERO;
-        pos[0] = pos[1] = pos[2] = EXPR_ZERO;
-        int frame = -1;
-        if (it->kind == SPEC_DRAW_BODY) {
-            const SpecBody *b = &s->body[it->index];
-            for (int j = 0; j < it->dim; j++)
-                pos[j] = b->center[j];
-            if (b->frame >= 0) {
-                frame = b->frame;
-            } else if (b->has_rot) {
-                for (int j = 0; j < 9; j++)
-                    R[j] = b->rot[j];
-            } else if (b->dim == 2 && b->angle != EXPR_NONE) {
-                ExprId c = expr_unary(P, EXPR_COS, b->angle);
-                ExprId sn = expr_unary(P, EXPR_SIN, b->angle);
-                R[0] = c, R[1] = expr_neg(P, sn), R[3] = sn, R[4] = c;
-            }
-        } else if (it->kind == SPEC_DRAW_PARTICLE) {
-            for (int j = 0; j < it->dim; j++)
-                pos[j] = s->part[it->index].pos[j];
-        } else if (it->kind == SPEC_DRAW_POINT) {
-            kin_pos(K, it->index, pos);
-        } else if (it->kind == SPEC_DRAW_GROUND) { /* the world's origin and axes */
-        } else {
-            frame = it->index;
-            int o = kin_origin(K, frame);
-            kin_pos(K, o < 0 ? KIN_ORIGIN : o, pos);
-        }
-        if (frame >= 0)
-            kin_rotation(K, frame, R);
-    }
+    for (int k = 0; k < ni; k++)
+        item_pose(lw, &v->item[k], X + EOMC_POSE_SIZE * k, X + EOMC_POSE_SIZE * k + 3);
     int nd = EOMC_DRAW_MASS_SIZE * s->nbody;
     ExprId *D = arena_new_array(lw->A, ExprId, nd + 1);
     for (int k = 0; k < s->nbody; k++) { /* the bodies are the first items */
@@ -905,17 +941,7 @@ lower_draw(Lowering *lw)
         for (int j = 0; j < 9; j++)
             d[4 + j] = b->dim == 2 ? (j == 8 ? b->inertia[0] : EXPR_ZERO) : b->inertia[j];
     }
-    if (s->nfixed) { /* the frames' and points' expressions */
-        ExprId *from = arena_new_array(lw->A, ExprId, s->nfixed);
-        ExprId *to = arena_new_array(lw->A, ExprId, s->nfixed);
-        int nf = 0;
-        for (int i = 0; i < s->np; i++)
-            if (s->param[i].fixed) {
-                from[nf] = expr_param(P, i);
-                to[nf++] = expr_const(P, s->param[i].value);
-            }
-        expr_subst_many(P, nx, X, nf, from, to, X);
-    }
+    fold_fixed(lw, nx, X);
     LowFunc *f = func(lw, &s_draw, "draw", 1);
     f->per_step = 0;
     for (int i = 0; i < nx; i++)
@@ -950,6 +976,97 @@ lower_draw(Lowering *lw)
         }
         lw->L->draw_shapes = f;
     }
+}
+
+/* A place's angular velocity in world components, of q and the slots
+ * (EXPR_ZERO for a point or particle; w[0] EXPR_NONE where the model does
+ * not give it: a body turned by `omega:` alone, a frame turned by an
+ * input, whose rate has no expression). */
+static void
+place_omega(const Lowering *lw, const SpecDrawItem *it, ExprId w[3])
+{
+    const Spec *s = lw->s;
+    ExprPool *P = lw->P;
+    w[0] = w[1] = w[2] = EXPR_ZERO;
+    int frame = it->kind == SPEC_DRAW_FRAME ? it->index : -1;
+    if (it->kind == SPEC_DRAW_BODY) {
+        const SpecBody *b = &s->body[it->index];
+        if (b->frame >= 0) {
+            frame = b->frame;
+        } else if (b->dim == 2) {
+            w[2] = b->omega[0];
+        } else if (b->has_rot) { /* omega is in the body's axes */
+            for (int i = 0; i < 3; i++) {
+                w[i] = EXPR_ZERO;
+                for (int j = 0; j < 3; j++)
+                    w[i] = expr_add(P, w[i], expr_mul(P, b->rot[3 * i + j], b->omega[j]));
+            }
+        } else {
+            w[0] = EXPR_NONE;
+        }
+    }
+    if (frame >= 0)
+        kin_omega(s->kin, frame, w);
+    for (int i = 0; i < 3; i++)
+        if (w[i] == EXPR_NONE)
+            w[0] = EXPR_NONE;
+}
+
+/* The places' poses (places: item_pose) and their velocities along the
+ * speeds (place_velocity): the position's derivative by the chain rule
+ * through the coordinates' rates, sum_i dr/dq_i (dq_i'/dv . dv), and the
+ * angular velocity's along the slots, sum_j dw/dv_j dv_j.  Both leave out
+ * what time alone moves (a driven frame), so that the values at unit dv
+ * are the columns of the place's velocity Jacobian.  A place whose
+ * angular velocity the model does not give is marked unturned: the
+ * runtime refuses its rotation and angular rows by name. */
+static void
+lower_places(Lowering *lw, const Mech *m, LowDrawItem *low)
+{
+    const Spec *s = lw->s;
+    ExprPool *P = lw->P;
+    int np = s->nplace, nq = s->nq, nv = s->nv;
+    ExprId *X = arena_new_array(lw->A, ExprId, EOMC_POSE_SIZE * np + 1);
+    ExprId *W = arena_new_array(lw->A, ExprId, 6 * np + 1);
+    ExprId *seed = arena_new_array(lw->A, ExprId, nv + 1);
+    ExprId *qdv = arena_new_array(lw->A, ExprId, nq + 1);
+    for (int j = 0; j < nv; j++)
+        seed[j] = expr_seed(P, j, 1);
+    diff_jvp(lw->D, nq, m->rate, nv, m->q[1], seed, qdv);
+    ExprId *lin = arena_new_array(lw->A, ExprId, 3 * np + 1);
+    ExprId *ang = arena_new_array(lw->A, ExprId, 3 * np + 1);
+    for (int k = 0; k < np; k++) {
+        ExprId *pos = X + EOMC_POSE_SIZE * k;
+        item_pose(lw, &s->place[k], pos, pos + 3);
+        for (int i = 0; i < 3; i++)
+            lin[3 * k + i] = pos[i];
+        place_omega(lw, &s->place[k], ang + 3 * k);
+        if (ang[3 * k] == EXPR_NONE) {
+            low[k].unturned = 1;
+            ang[3 * k] = EXPR_ZERO;
+        }
+    }
+    ExprId *dlin = arena_new_array(lw->A, ExprId, 3 * np + 1);
+    ExprId *dang = arena_new_array(lw->A, ExprId, 3 * np + 1);
+    diff_jvp(lw->D, 3 * np, lin, nq, m->q[0], qdv, dlin);
+    diff_jvp(lw->D, 3 * np, ang, nv, m->q[1], seed, dang);
+    for (int k = 0; k < np; k++)
+        for (int i = 0; i < 3; i++) {
+            W[6 * k + i] = dlin[3 * k + i];
+            W[6 * k + 3 + i] = dang[3 * k + i];
+        }
+    fold_fixed(lw, EOMC_POSE_SIZE * np, X);
+    fold_fixed(lw, 6 * np, W);
+    LowFunc *f = func(lw, &s_places, "draw", 1);
+    f->per_step = 0;
+    for (int i = 0; i < EOMC_POSE_SIZE * np; i++)
+        out(lw, f, 0, i, orzero(X[i]));
+    lw->L->places = f;
+    f = func(lw, &s_place_velocity, "draw", 1);
+    f->per_step = 0;
+    for (int i = 0; i < 6 * np; i++)
+        out(lw, f, 0, i, orzero(W[i]));
+    lw->L->place_velocity = f;
 }
 
 Lowered *
@@ -1083,6 +1200,8 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     }
     if (s->view.nitem)
         lower_draw(&lw);
+    if (s->nplace)
+        lower_places(&lw, m, lw.L->model.place);
     /* E's Jacobian last: the nodes of its derivatives come after every
      * other function's, whose C is then the same with it or without */
     if (jacobian != LOWER_JACOBIAN_NONE)

@@ -113,6 +113,11 @@ lower_describe(Lowered *L, const Spec *s, const Eom *e, const Constraints *c,
                                          v->item[k].kind == SPEC_DRAW_GROUND ? SPEC_DRAW_BODY
                                                                              : v->item[k].kind,
                                          v->item[k].dim, v->item[k].unturned};
+    md->nplace = s->nplace;
+    md->place = arena_new_array(A, LowDrawItem, s->nplace + 1);
+    for (int k = 0; k < s->nplace; k++)
+        md->place[k] = (LowDrawItem){dup(A, s->place[k].name), s->place[k].kind,
+                                     s->place[k].dim, s->place[k].unturned};
     md->shape = arena_new_array(A, LowShape, s->nshape + 1);
     md->nshape = 0;
     for (int k = 0; v->nitem && k < s->nshape; k++) /* a plane is the page's floor, no shape */

@@ -182,6 +182,10 @@ typedef struct LowModel {
     double camera[9];
     int view_follow;    /* the item the camera follows, or -1 */
     double view_floor; /* the floor's height: where the page's grid lies */
+    /* the places a caller asks the pose and velocity Jacobian of (Spec.place;
+     * unturned: the model gives no angular velocity) */
+    int nplace;
+    LowDrawItem *place; /* [nplace] */
     int nfric;          /* dry-friction items of the effects that are on */
     LowFric *fric;      /* [nfric] */
 } LowModel;
@@ -261,6 +265,7 @@ typedef struct Lowered {
     LowFunc *fric_rows;   /* their rows and biases, where a contact has friction, or NULL */
     LowFunc *draw, *draw_mass; /* the draw items' poses and the bodies' masses, or NULL */
     LowFunc *draw_shapes;      /* the shapes' sizes and positions of parameters, or NULL */
+    LowFunc *places, *place_velocity; /* the places' poses and velocities, or NULL */
     LowFunc **event_set;  /* [nevent]: the resets of `set` events (else NULL) */
     LowFunc *last_set;    /* the last of them: the dispatcher follows it */
     int *derived;

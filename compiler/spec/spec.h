@@ -324,6 +324,12 @@ typedef struct Spec {
     int nshape;
     SpecShape *shape;    /* the bodies' `shapes:` */
     SpecView view;       /* the compiled scene's `view:` and the draw items */
+    /* The places a caller asks the pose and velocity Jacobian of, by name:
+     * every body (at its centre of mass) and particle, then every frame
+     * and point the spec names, in the order of the spec (not a view's:
+     * the same for every scene). */
+    int nplace;
+    SpecDrawItem *place;
 } Spec;
 
 /* What the command line chooses: a named scene (NULL: the first), and

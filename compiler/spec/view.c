@@ -260,6 +260,14 @@ spec_draw_items(Loader *L, yaml_node_t *ground)
             plane_floor(L, before);
     }
     check_shape_names(L);
+    s->place = arena_new_array(L->A, SpecDrawItem, s->nbody + s->npart + L->ndef + 1);
+    for (int i = 0; i < s->nbody + s->npart; i++)
+        s->place[s->nplace++] = v->item[i];
+    for (int k = 0; k < L->ndef; k++)
+        if (L->def[k].kind != ITEM_DEFINE && !L->def[k].bad)
+            s->place[s->nplace++] = (SpecDrawItem){L->def[k].name, L->def[k].kind == ITEM_FRAME
+                                                   ? SPEC_DRAW_FRAME : SPEC_DRAW_POINT,
+                                                   L->def[k].kin, 3, 0};
 }
 
 /* The item that name n stands for in v, added if it is a point or a frame

@@ -13,7 +13,9 @@
 void spec_load_shapes(Loader *L, yaml_node_t *seq, int body);
 /* The draw items every spec has: its bodies, then its particles (into
  * Spec.view, after both are loaded), then the ground where the spec's
- * `ground:` (a list of shapes, or NULL) draws shapes fixed to the world. */
+ * `ground:` (a list of shapes, or NULL) draws shapes fixed to the world;
+ * and the places (Spec.place): the bodies and particles again, and every
+ * frame and point named. */
 void spec_draw_items(Loader *L, yaml_node_t *ground);
 /* A scene's `view:`: into Spec.view when live (the scene compiled), else
  * only checked. */

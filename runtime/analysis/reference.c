@@ -607,6 +607,10 @@ solve(Ref *r, const eomc_run_opts *o, const double *x0, double *rows, long budge
             if (sample(r, t, r->X) != 0)
                 return fail_at(r, t, r->X, -7);
             next_sample(r, o);
+            /* the switches the new inputs moved past their kinks flip
+             * here, as the runs' do (stepevents.c's stepev_jump) */
+            if (r->sw && (st = refsw_jump(r->sw, t, r->X, r->sc, &r->bad_switch)) != 0)
+                return fail_at(r, t, r->X, st == -2 ? -5 : -1);
         }
         if (r->sw && !hit && !sampled) /* the end's, in the same modes */
             memcpy(r->F, r->Fn, (size_t)N * sizeof *r->F);
@@ -1014,10 +1018,10 @@ eomc_reference_compute_by(eomc_sim *s, const eomc_model_ext *ext, const eomc_run
         rc = sim_usage_error(s, "a reference of a run under a continuous controller: its law "
                              "has no extended-precision twin (write it in the spec, or give "
                              "it a period)");
-    if (rc == EOMC_OK && sim_control_period(s) > 0 && m->nmode > 0)
-        rc = sim_usage_error(s, "a reference of %s under a sampled controller: its switches "
-                             "(max, min, clamp, contacts, friction) and the jumps of the "
-                             "inputs at the samples are not followed together yet", m->name);
+    if (rc == EOMC_OK && sim_control_period(s) > 0 && m->nfric > 0)
+        rc = sim_usage_error(s, "a reference of %s under a sampled controller: its dry "
+                             "friction's stick and slip at the jumps of the inputs are not "
+                             "followed in extended precision yet", m->name);
     if (rc == EOMC_OK && how == EOMC_REFERENCE_TAYLOR)
         rc = taylor_fits(s, ext);
     if (rc == EOMC_OK && how != EOMC_REFERENCE_EXTRAPOLATION && how != EOMC_REFERENCE_TAYLOR)

@@ -484,8 +484,10 @@ sensitivity(RefSwitches *w, int k, eomc_ext t, const eomc_ext *x, const eomc_ext
     }
 }
 
-int
-refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad)
+/* refsw_flip (jump 0) and refsw_jump (1: no switch was located, and the
+ * passes go on past the first, which flips none, to those past 0). */
+static int
+flip_at(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad, int jump)
 {
     size_t N = (size_t)(w->N > 0 ? w->N : 1), nm = (size_t)(w->nm > 0 ? w->nm : 1);
     double *sens = malloc((nm + 1) * N * sizeof *sens); /* [nm][N] each flip's, at arrival */
@@ -612,7 +614,7 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
                     rc = -1;
             }
         }
-        if (!flips)
+        if (!flips && !(jump && pass == 0))
             break;
     }
     for (int k = 0; k < w->nm; k++)
@@ -622,4 +624,16 @@ refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad
     free(was);
     free(wait);
     return rc;
+}
+
+int
+refsw_flip(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad)
+{
+    return flip_at(w, t, x, sc, bad, 0);
+}
+
+int
+refsw_jump(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad)
+{
+    return flip_at(w, t, x, sc, bad, 1);
 }

@@ -73,6 +73,11 @@ int refsw_check(RefSwitches *w, eomc_ext t0, const eomc_ext *x0, const eomc_ext 
  * when the motion cannot be computed; -2 when a switch chatters
  * (STEPEV_CHATTER_FLIPS quick flips in a row, as the run stops), switch *bad. */
 int refsw_flip(RefSwitches *w, eomc_ext t_hit, eomc_ext *x, const eomc_ext *sc, int *bad);
+/* After a jump of the inputs at t (a sampled controller's sample), the
+ * state x there: the switches whose functions the jump moved past 0 flip
+ * at t, recorded as refsw_flip records them, in the order the runs flip
+ * them (stepevents.c's settle).  Its returns. */
+int refsw_jump(RefSwitches *w, eomc_ext t, eomc_ext *x, const eomc_ext *sc, int *bad);
 
 /* The record since refsw_start: n flips, each's time, switch and [N]
  * sensitivities |ds/dx_i| / |ds/dt| (how far the crossing moves in time

@@ -34,6 +34,8 @@ eomc_model_count(const eomc_model *m, const char *kind)
 {
     int n;
     const char *const *names;
+    if (!strcmp(kind, "place")) /* (a table of items, not of names) */
+        return m->nplace;
     return kind_of(m, kind, &n, &names) ? n : -1;
 }
 
@@ -42,6 +44,8 @@ eomc_model_name(const eomc_model *m, const char *kind, int k)
 {
     int n;
     const char *const *names;
+    if (!strcmp(kind, "place"))
+        return k >= 0 && k < m->nplace ? m->places[k].name : NULL;
     return kind_of(m, kind, &n, &names) && k >= 0 && k < n ? names[k] : NULL;
 }
 

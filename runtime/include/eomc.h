@@ -81,7 +81,7 @@ const eomc_model *eomc_sim_model(const eomc_sim *s);
  * (coordinates), "v" (the speeds' names: model->nv of them, none when the
  * speeds are the coordinates' rates, which are named q'), "p"
  * (parameters), "u" (inputs), "c" (constraints), "out" (the scene's
- * outputs) or "event".  The count, or -1 for another kind;
+ * outputs), "event" or "place" (eomc_sim_place's).  The count, or -1 for another kind;
  * the k-th name, or NULL out of range.  eomc_model_text: "name", "spec",
  * "form", "scene", "method" or "invariant" (NULL: none, or another). */
 int eomc_model_count(const eomc_model *m, const char *kind);
@@ -149,6 +149,26 @@ int eomc_sim_mass_bias(eomc_sim *s, double t, const double *q, const double *v, 
  * with its Jacobian (else EOMC_EUSAGE, saying how to rebuild it). */
 int eomc_sim_accel_derivatives(eomc_sim *s, double t, const double *q, const double *v,
                                double *dadq, double *dadv, double *dadu);
+/* Forward kinematics.  A model's places (eomc_model.h's places) are its
+ * bodies (each at its centre of mass, in its axes) and particles, then
+ * every frame and point its spec names (a frame at its origin).
+ * eomc_model_place: the index of the place so named, or -1; and into
+ * *axes (unless NULL) 1 if it has axes (a body or frame whose orientation
+ * the model gives), else 0.
+ * eomc_sim_place: place k's position pos [3] and rotation R [9]
+ * (row-major: its axes' world components are R's columns) at (t, q); each
+ * NULL: not wanted.  eomc_sim_place_jacobian: its velocity Jacobian Jv
+ * [3 nv] and angular velocity Jacobian Jw [3 nv] (row-major, world
+ * components; each NULL: not wanted), so that its velocity is Jv v and
+ * its angular velocity Jw v, leaving out what time alone moves (a driven
+ * frame); exact (the generated velocities at unit speeds), at the cost of
+ * nv evaluations of every place's velocity.  EOMC_EUSAGE for k out of
+ * range, or for R or Jw of a particle or point, or of a body the model
+ * gives no orientation of; EOMC_ENUMERIC where a value is not finite. */
+int eomc_model_place(const eomc_model *m, const char *name, int *axes);
+int eomc_sim_place(eomc_sim *s, int k, double t, const double *q, double *pos, double *R);
+int eomc_sim_place_jacobian(eomc_sim *s, int k, double t, const double *q, double *Jv,
+                            double *Jw);
 /* Constrained models (model->nc > 0): the multipliers lambda [nc] of the
  * last eomc_sim_accel (constraint forces: the motion is E + B^T lambda =
  * 0), or NULL for a model without constraints. */

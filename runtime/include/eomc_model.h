@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 28
+#define EOMC_ABI_VERSION 29
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -310,6 +310,22 @@ typedef struct eomc_model {
     const char *view_follow;
     double view_floor;
     void (*draw_shapes)(const double *p, double *S);
+
+    /* ---- places: forward kinematics for a caller (eomc_sim_place) ----
+     * nplace places (eomc_draw_item): every body (at its centre of mass,
+     * in its axes) and particle, then every frame and point the spec
+     * names.  place(t, q, p, u, X) puts place k's pose at X[EOMC_POSE k
+     * ...] as draw does; place_velocity(t, q, p, u, dv, W) puts at W[6 k
+     * ...] its velocity and then its angular velocity (world components;
+     * 0 for a particle or point), as the speeds dv move it, leaving out
+     * what time alone moves (a driven frame): at a unit dv, a column of
+     * its velocity Jacobian.  unturned: the model gives no orientation or
+     * angular velocity of that place. */
+    int nplace;
+    const struct eomc_draw_item *places;
+    void (*place)(double t, const double *q, const double *p, const double *u, double *X);
+    void (*place_velocity)(double t, const double *q, const double *p, const double *u,
+                           const double *dv, double *W);
 
     /* Taylor's method (--method taylor; runtime/include/eomc_taylor.h has the
      * recurrences).  The series of every value mass_bias computes (and of

@@ -9,11 +9,13 @@ here), the reference solution against a run at 1e-14, and each failure
 of a controller.
 """
 
+import os
+
 import numpy as np
 import pytest
 
 import eomc
-from conftest import same_bits, spec
+from conftest import SOURCE, same_bits, spec
 
 T = 0.01  # the sampling period: 100 Hz
 
@@ -122,6 +124,28 @@ def test_error_with_a_sampled_controller_is_the_true_error(plant):
     true = max(np.abs(r[c] - best[c]).max() for c in ["x", "theta", "x'", "theta'"])
     said = r.stats["error_max"]
     assert true > 1e-10 and abs(said - true) <= 1e-2 * true, (said, true)
+
+
+def test_error_with_switches_under_a_sampled_controller_is_the_true_error():
+    """tests/cli/stops.yaml's rotor between compliant stops at +-0.5, driven
+    by its motor, saturated at +-1, under a sampled PD loop after a target
+    swinging to 0.7: the clamp's switches flip at samples (the command
+    jumps across the saturation), the stops' inside steps (located).  The
+    reference follows both, so the error a run reports is its true error
+    against a run at 1e-14, with the same 17 flips."""
+    m = eomc.load(os.path.join(SOURCE, "tests", "cli", "stops.yaml"), effects="stops,motor")
+
+    def f(t, q, v):
+        return [8 * (0.7 * np.sin(3 * t) - q[0]) - 0.5 * v[0]]
+
+    r = m.run(controller=f, period=0.01, t_end=3, method="rkf45", rtol=1e-6, atol=1e-6,
+              error=True, stats=True)
+    best = m.run(controller=f, period=0.01, t_end=3, rtol=1e-14, atol=1e-14)
+    assert np.abs(best["theta"]).max() > 0.5  # (in the stops' reach)
+    true = max(np.abs(r[c] - best[c]).max() for c in ["theta", "theta'"])
+    said = r.stats["error_max"]
+    assert true > 1e-8 and abs(said - true) <= 1e-3 * true, (said, true)
+    assert r.stats["switches"] == r.stats["reference_switches"] == 17
 
 
 @pytest.mark.parametrize("bad, why", [

@@ -116,12 +116,14 @@ static const unsigned char no_fixed[8];
 #define NO_INVARIANT NULL, NULL, "nothing is conserved: a hand-written test model"
 /* The physical-data members of a model with nothing to check. */
 #define NO_CHECKS 0, NULL, NULL, NULL
-/* Nothing to draw (--animate): the members after c_nz; and no Taylor
- * series (the last members but the speeds). */
+/* Nothing to draw (--animate): the members after c_nz, and no places
+ * (eomc_sim_place); and no Taylor series (the last members but the
+ * speeds). */
 #define NO_TAYLOR 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
     "a hand-written test model", NO_SPEEDS
+#define NO_PLACES 0, NULL, NULL, NULL
 #define NO_DRAW_BUT(...) 0, NULL, NULL, NULL, 0, NULL, 0, 0, 0, NULL, NULL, NULL, NULL, 0.0, NULL, \
-    __VA_ARGS__
+    NO_PLACES, __VA_ARGS__
 #define NO_DRAW NO_DRAW_BUT(NO_TAYLOR)
 /* ... and no outputs nor events (they follow the checks), nor the scene's
  * assembly, nor a sparse mass matrix, nor unit loads, nor drawing (but
@@ -367,7 +369,7 @@ const eomc_model draw_model = {
     0, NULL,    /* B dense */
     3, pd_items, pd_draw, pd_draw_mass, 0, NULL, 1, 1, 0, pd_links, pd_trace, NULL,
     NULL, 0.0, NULL, /* not followed, the ground at 0, no shapes of parameters */
-    NO_TAYLOR,
+    NO_PLACES, NO_TAYLOR,
 };
 
 void

@@ -105,26 +105,29 @@ def issue45(eomc_path, source):
     if not mj or not os.path.exists(hum):
         print("derivatives: skipped (no MJ_BENCH, or no libmujoco-samples)")
         return
-    # what mj_bench's mj_forward computes: contact, limits and friction loss off
-    h = eomc.load(hum, effects=["gravity", "damping", "stiffness", "armature", "actuators"])
-    q, v = h.initial()
-    v = v + 0.2
-
     def per_call(f, n=200):
         f()
         t, _ = best(lambda: [f() for _ in range(n)])
         return t / n
 
-    acc = per_call(lambda: h.accel(q, v))
-    der = per_call(lambda: h.accel_derivatives(q, v))
     fwd = float(subprocess.run([mj, hum], check=True, stdout=subprocess.PIPE,
                                text=True).stdout) * 1e-9
-    cols = 2 * len(h.speeds) + len(h.inputs)
-    print("humanoid (nv %d, nu %d): accel_derivatives %.1f us from Python, accel %.1f us "
-          "(%.1f times); MuJoCo's differences %d mj_forward of %.2f us = %.1f us: %.3f of "
-          "them (target < 0.1)" % (len(h.speeds), len(h.inputs), der * 1e6, acc * 1e6,
-                                   der / acc, cols, fwd * 1e6, cols * fwd * 1e6,
-                                   der / (cols * fwd)))
+    # what mj_bench's mj_forward computes: contact, limits and friction loss off; the
+    # Jacobian as --jacobian auto builds it (seeded, at this size) and unrolled (the
+    # fastest to run, 10 s more of cc)
+    for jac in (None, "unrolled"):
+        h = eomc.load(hum, effects=["gravity", "damping", "stiffness", "armature", "actuators"],
+                      jacobian=jac)
+        q, v = h.initial()
+        v = v + 0.2
+        acc = per_call(lambda: h.accel(q, v))
+        der = per_call(lambda: h.accel_derivatives(q, v))
+        cols = 2 * len(h.speeds) + len(h.inputs)
+        print("humanoid (nv %d, nu %d), jacobian %s: accel_derivatives %.1f us from Python, "
+              "accel %.1f us (%.1f times); MuJoCo's differences %d mj_forward of %.2f us = "
+              "%.1f us: %.3f of them (target < 0.1)"
+              % (len(h.speeds), len(h.inputs), jac or "auto", der * 1e6, acc * 1e6, der / acc,
+                 cols, fwd * 1e6, cols * fwd * 1e6, der / (cols * fwd)))
 
 
 if __name__ == "__main__":

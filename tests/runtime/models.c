@@ -335,6 +335,22 @@ pd_draw(double t, const double *q, const double *p, const double *u, double *X)
     R[0] = c, R[1] = -s, R[3] = s, R[4] = c;
 }
 
+/* Its places are its draw items (the same poses), moving at the speed
+ * dv[0] = theta': the bob at (l cos, l sin) theta', the rod turning about
+ * z, the origin still. */
+static void
+pd_place_velocity(double t, const double *q, const double *p, const double *u, const double *dv,
+                  double *W)
+{
+    (void)t;
+    (void)u;
+    for (int i = 0; i < 18; i++)
+        W[i] = 0;
+    W[6] = p[1] * cos(q[0]) * dv[0];
+    W[7] = p[1] * sin(q[0]) * dv[0];
+    W[12 + 5] = dv[0];
+}
+
 /* the rod's mass, centre (0, -l/2, 0) and inertia about it, in its frame */
 static void
 pd_draw_mass(const double *p, double *D)
@@ -369,7 +385,7 @@ const eomc_model draw_model = {
     0, NULL,    /* B dense */
     3, pd_items, pd_draw, pd_draw_mass, 0, NULL, 1, 1, 0, pd_links, pd_trace, NULL,
     NULL, 0.0, NULL, /* not followed, the ground at 0, no shapes of parameters */
-    NO_PLACES, NO_TAYLOR,
+    3, pd_items, pd_draw, pd_place_velocity, NO_TAYLOR,
 };
 
 void

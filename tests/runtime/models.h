@@ -20,7 +20,8 @@
  *   draw_model       a pendulum with its drawing filled in (--animate): a bob
  *                    (a particle) on a rod (a body drawn as its equivalent
  *                    box, half-sizes 0.04, l/2, 0.02), a link and a trace;
- *                    p = (m, l, g, mr), theta(0) = 1; outputs x_bob, y_bob
+ *                    p = (m, l, g, mr), theta(0) = 1; outputs x_bob, y_bob;
+ *                    its places are its draw items (origin, bob, rod)
  */
 #ifndef EOMC_TEST_MODELS_H
 #define EOMC_TEST_MODELS_H

@@ -375,6 +375,45 @@ no_jacobian(void)
     eomc_sim_free(s);
 }
 
+/* Forward kinematics through the runtime (place.c) on the drawn pendulum's
+ * places: the bob at l (sin th, -cos th), its Jacobian l (cos th, sin th),
+ * the rod turned by th about z; what has no axes refused by name. */
+static void
+places(void)
+{
+    eomc_sim *s = sim_new(&draw_model);
+    CHECK(eomc_sim_set(s, "l", 1.5) == EOMC_OK, "l set");
+    int axes = -1, bob = eomc_model_place(&draw_model, "bob", &axes), rod_axes = -1;
+    int rod = eomc_model_place(&draw_model, "rod", &rod_axes);
+    CHECK(bob == 1 && axes == 0 && rod == 2 && rod_axes == 1 &&
+              eomc_model_place(&draw_model, "nope", NULL) == -1 &&
+              eomc_model_count(&draw_model, "place") == 3 &&
+              !strcmp(eomc_model_name(&draw_model, "place", 2), "rod"),
+          "places by name: the bob (no axes), the rod (axes), none called nope");
+    double th = 0.7, pos[3], R[9], Jv[3], Jw[3];
+    CHECK(eomc_sim_place(s, bob, 0, &th, pos, NULL) == EOMC_OK &&
+              check_close(pos[0], 1.5 * sin(th), 1e-16) &&
+              check_close(pos[1], -1.5 * cos(th), 1e-16) && pos[2] == 0,
+          "the bob's position: l (sin th, -cos th) (got %g, %g, %g)", pos[0], pos[1], pos[2]);
+    CHECK(eomc_sim_place_jacobian(s, bob, 0, &th, Jv, NULL) == EOMC_OK &&
+              check_close(Jv[0], 1.5 * cos(th), 1e-16) &&
+              check_close(Jv[1], 1.5 * sin(th), 1e-16) && Jv[2] == 0,
+          "the bob's Jacobian: l (cos th, sin th) (got %g, %g, %g)", Jv[0], Jv[1], Jv[2]);
+    CHECK(eomc_sim_place(s, bob, 0, &th, NULL, R) == EOMC_EUSAGE &&
+              strstr(eomc_sim_error(s), "'bob' is a particle") &&
+              eomc_sim_place_jacobian(s, bob, 0, &th, Jv, Jw) == EOMC_EUSAGE,
+          "a particle's rotation and angular Jacobian refused (%s)", eomc_sim_error(s));
+    CHECK(eomc_sim_place(s, rod, 0, &th, NULL, R) == EOMC_OK && R[0] == cos(th) &&
+              R[1] == -sin(th) && R[3] == sin(th) &&
+              eomc_sim_place_jacobian(s, rod, 0, &th, NULL, Jw) == EOMC_OK && Jw[0] == 0 &&
+              Jw[1] == 0 && Jw[2] == 1,
+          "the rod turned by th about z, at the rate th'");
+    CHECK(eomc_sim_place(s, 3, 0, &th, pos, NULL) == EOMC_EUSAGE &&
+              strstr(eomc_sim_error(s), "has 3 places"),
+          "a place out of range refused (%s)", eomc_sim_error(s));
+    eomc_sim_free(s);
+}
+
 int
 main(void)
 {
@@ -390,6 +429,7 @@ main(void)
     nonpd_accel(&nonpd_model);
     nonpd_accel(&nonpd_gsl_model);
     no_jacobian();
+    places();
     eomc_sim *s = sim_new(&osc_model);
     double A[4] = {0, 1, -HUGE_VAL, 0}, re[2], im[2];
     CHECK(eomc_sim_eigenvalues(s, A, 2, re, im) != EOMC_OK && eomc_sim_error(s)[0],

@@ -689,7 +689,8 @@ class Model:
             rc = self._lib.sim_place(self._sim, k, float(t), as_doubles(q), None, as_doubles(R))
             if rc != 0:
                 msg = self._error(self._sim)
-                raise (UsageError("rotation: " + msg) if not axes
+                # EOMC_EUSAGE (2): asked of what has no axes or out of range
+                raise (UsageError("rotation: " + msg) if rc == 2
                        else NumericalFailure(msg, float(t)))
         return R
 

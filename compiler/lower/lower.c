@@ -997,7 +997,6 @@ place_omega(const Lowering *lw, const SpecDrawItem *it, ExprId w[3])
             w[2] = b->omega[0];
         } else if (b->has_rot) { /* omega is in the body's axes */
             for (int i = 0; i < 3; i++) {
-                w[i] = EXPR_ZERO;
                 for (int j = 0; j < 3; j++)
                     w[i] = expr_add(P, w[i], expr_mul(P, b->rot[3 * i + j], b->omega[j]));
             }
@@ -1021,8 +1020,9 @@ place_omega(const Lowering *lw, const SpecDrawItem *it, ExprId w[3])
  * angular velocity the model does not give is marked unturned: the
  * runtime refuses its rotation and angular rows by name. */
 static void
-lower_places(Lowering *lw, const Mech *m, LowDrawItem *low)
+lower_places(Lowering *lw, const Mech *m)
 {
+    LowDrawItem *low = lw->L->model.place;
     const Spec *s = lw->s;
     ExprPool *P = lw->P;
     int np = s->nplace, nq = s->nq, nv = s->nv;
@@ -1201,7 +1201,7 @@ lower_model(const Spec *s, const Mech *m, Eom *e, const Constraints *c, int elim
     if (s->view.nitem)
         lower_draw(&lw);
     if (s->nplace)
-        lower_places(&lw, m, lw.L->model.place);
+        lower_places(&lw, m);
     /* E's Jacobian last: the nodes of its derivatives come after every
      * other function's, whose C is then the same with it or without */
     if (jacobian != LOWER_JACOBIAN_NONE)

@@ -211,6 +211,8 @@ compile(const Options *o, FILE *out, int *units, char **model)
                          len ? " " : "", o->jacobian);
                 jac = cmdline_jacobian_mode(o->jacobian);
             }
+            if (jac == LOWER_JACOBIAN_AUTO && o->shared) /* its callers' loops */
+                jac = LOWER_JACOBIAN_AUTO_LIBRARY;
             int code = LOWER_CODE_AUTO;
             if (o->code) {
                 size_t len = strlen(opts);

@@ -418,9 +418,10 @@ lower_jacobian(Lowering *lw, const Eom *e, int how)
     ExprCount jc = expr_count_ops(lw->P, n * (nq + n), jroots);
     free(jroots);
     long jops = jc.adds + jc.muls + jc.divs + jc.calls;
-    int large = jops > LOWER_UNROLLED_JACOBIAN_MAX;
-    if (how == LOWER_JACOBIAN_AUTO)
-        how = large ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
+    long max = how == LOWER_JACOBIAN_AUTO_LIBRARY ? LOWER_UNROLLED_JACOBIAN_LIBRARY_MAX
+                                                  : LOWER_UNROLLED_JACOBIAN_MAX;
+    if (how == LOWER_JACOBIAN_AUTO || how == LOWER_JACOBIAN_AUTO_LIBRARY)
+        how = jops > max ? LOWER_JACOBIAN_SEEDED : LOWER_JACOBIAN_UNROLLED;
     lw->L->jacobian = how;
     if (how == LOWER_JACOBIAN_SEEDED) {
         lower_seeded_jacobian(lw, e);

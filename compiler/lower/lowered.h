@@ -315,18 +315,29 @@ typedef struct Lowered {
  * with a unit seed: exact all the same, slower to run, far less for the C
  * compiler.  NONE: not at all (the member is NULL; the implicit methods
  * and the linearization refuse the model).  AUTO: unrolled up to
- * LOWER_UNROLLED_JACOBIAN_MAX operations, seeded beyond. */
+ * LOWER_UNROLLED_JACOBIAN_MAX operations, seeded beyond; AUTO_LIBRARY,
+ * auto for a library (eomc build --shared), up to
+ * LOWER_UNROLLED_JACOBIAN_LIBRARY_MAX. */
 enum {
     LOWER_JACOBIAN_AUTO,
     LOWER_JACOBIAN_UNROLLED,
     LOWER_JACOBIAN_SEEDED,
     LOWER_JACOBIAN_NONE,
+    LOWER_JACOBIAN_AUTO_LIBRARY,
 };
 /* Measured on the chain benchmark (gcc 12, -O2): cc spends ~0.3 ms per
  * operation, linearly; the seeded Jacobian runs 2-3x slower (N = 20:
  * 4.5 -> 13 us, N = 50: 47 -> 97 us) but is 6x (N = 20) to 16x (N = 50)
  * less code.  Up to here the unrolled one costs < 6 s of cc. */
 enum { LOWER_UNROLLED_JACOBIAN_MAX = EOM_STRAIGHT_LINE_MAX };
+/* A library's Jacobian is its caller's: the Python package's
+ * accel_derivatives and linearize, called in loops, where a simulator's
+ * implicit method calls it once a step or less.  There the faster one is
+ * worth more of cc: MuJoCo's humanoid (58 723 operations unrolled, 12 563
+ * seeded) builds in 6.3 s instead of 4.2 s (two cores, -Og and -O1 units)
+ * and its accel_derivatives takes 48 us instead of 79 (docs/benchmarks.md).
+ * The 50-link chain (90 700) stays seeded. */
+enum { LOWER_UNROLLED_JACOBIAN_LIBRARY_MAX = 65536 };
 
 /* How the articulated-body form's accel and mass_bias are written.
  * STRAIGHT: straight-line code, every constant folded, the fastest to run

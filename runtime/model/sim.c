@@ -56,8 +56,8 @@ struct eomc_sim {
     int ctrl_status;         /* a continuous controller's failure (sticky until
                               * the next run), or EOMC_OK */
     double *jrows;           /* [(nq + nv + nu) * nv] the Jacobian's right-hand sides
-                              * as rows, solved at once (jacobian_rows; NULL until
-                              * the first) */
+                              * as rows, solved at once (jacobian_columns,
+                              * eomc_sim_accel_derivatives; NULL until the first) */
     /* below, n is nq and the speeds' arrays have nv entries */
     double *M, *h, *a, *Mrel;             /* [nv*nv], [nv], [nv], [nv] pivots / M_kk */
     size_t *Mperm;           /* [nv] M's pivot order (la_ldlt_factor) */
@@ -1498,6 +1498,26 @@ jacobian_columns(eomc_sim *s, const double *A, int k, double *out, int stride)
     }
 }
 
+/* E's derivatives at (t, q, v) and s->a (eomc_sim_accel's there) into
+ * s->dEdq, dEdv, dEdu and dEdt, and M factored for their columns (a
+ * model's own solve, the accel member, leaves it unfactored); without
+ * constraints. */
+static int
+residual_jacobian(eomc_sim *s, double t, const double *q, const double *v)
+{
+    const eomc_model *m = s->m;
+    int nv = s->nv;
+    m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
+    if (!stuck(s)) { /* (else eomc_sim_accel factored the free speeds' block) */
+        m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
+        int k = m->mass_parent ? la_ltdl_factor(s->M, nv, m->mass_parent, s->Mrel)
+                               : la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
+        if (k)
+            return pivot_error(s, t, q, v, k);
+    }
+    return EOMC_OK;
+}
+
 /* dv'/dx = -M^-1 [dE/dq, dE/dv] and dv'/dt = -M^-1 (dE/dt + dE/du u'),
  * each column solved with the factored M; the rows of q' above them.
  * With a speed held by dry friction, its rows are 0 and the rest solve
@@ -1520,14 +1540,8 @@ eomc_sim_jacobian(eomc_sim *s, double t, const double *x, double *dfdx, double *
         rc = kkt_jacobian(s->kkt, t, x, s->p, s->u, s->dudt, s->a, dfdx, dfdt);
         return rc == KKT_OK ? EOMC_OK : kkt_error(s, t, q, v, rc);
     }
-    m->jacobian(t, q, v, s->a, s->p, s->u, s->dEdq, s->dEdv, s->dEdu, s->dEdt);
-    if (!stuck(s)) { /* (else eomc_sim_accel factored the free speeds' block) */
-        m->mass_bias(t, q, v, s->p, s->u, s->M, s->h);
-        int k = m->mass_parent ? la_ltdl_factor(s->M, nv, m->mass_parent, s->Mrel)
-                               : la_ldlt_factor(s->M, nv, s->Mrel, s->Mperm);
-        if (k)
-            return pivot_error(s, t, q, v, k);
-    }
+    if ((rc = residual_jacobian(s, t, q, v)) != EOMC_OK)
+        return rc;
     if (dfdx) {
         jacobian_columns(s, s->dEdq, n, dfdx + (size_t)n * N, N);
         jacobian_columns(s, s->dEdv, nv, dfdx + (size_t)n * N + n, N);
@@ -1561,11 +1575,55 @@ eomc_sim_mass_bias(eomc_sim *s, double t, const double *q, const double *v, doub
     return EOMC_OK;
 }
 
+/* Without constraints, M^-1's columns straight into the caller's arrays;
+ * along a tree all of them in one pass of la_ltdl_solve_cols_neg (its
+ * rows [dE/dq | dE/dv | dE/du] side by side in s->jrows, which has room
+ * for them), as eomc_sim_jacobian's own solves give them to the bit.  A
+ * constrained model's through the KKT system's (eomc_sim_jacobian). */
 int
 eomc_sim_accel_derivatives(eomc_sim *s, double t, const double *q, const double *v,
                            double *dadq, double *dadv, double *dadu)
 {
+    const eomc_model *m = s->m;
     int n = s->n, nv = s->nv, nu = s->nu, N = n + nv;
+    if (!m->jacobian)
+        return sim_no_jacobian(s, "eomc_sim_accel_derivatives");
+    if (!s->kkt) {
+        int rc = eomc_sim_accel(s, t, q, v, s->a);
+        if (rc == EOMC_OK)
+            rc = residual_jacobian(s, t, q, v);
+        if (rc != EOMC_OK)
+            return rc;
+        int K = n + nv + nu;
+        if (!s->jrows && !stuck(s) && m->mass_parent)
+            s->jrows = malloc((size_t)K * nv * sizeof *s->jrows);
+        if (s->jrows && !stuck(s) && m->mass_parent && dadq && dadv && (dadu || !nu)) {
+            double *X = s->jrows;
+            for (int i = 0; i < nv; i++) {
+                double *row = X + (size_t)i * K;
+                memcpy(row, s->dEdq + (size_t)i * n, (size_t)n * sizeof *row);
+                memcpy(row + n, s->dEdv + (size_t)i * nv, (size_t)nv * sizeof *row);
+                if (nu)
+                    memcpy(row + N, s->dEdu + (size_t)i * nu, (size_t)nu * sizeof *row);
+            }
+            la_ltdl_solve_cols_neg(s->M, nv, m->mass_parent, X, K, K);
+            for (int i = 0; i < nv; i++) {
+                const double *row = X + (size_t)i * K;
+                memcpy(dadq + (size_t)i * n, row, (size_t)n * sizeof *row);
+                memcpy(dadv + (size_t)i * nv, row + n, (size_t)nv * sizeof *row);
+                if (nu)
+                    memcpy(dadu + (size_t)i * nu, row + N, (size_t)nu * sizeof *row);
+            }
+            return EOMC_OK;
+        }
+        if (dadq)
+            jacobian_columns(s, s->dEdq, n, dadq, n);
+        if (dadv)
+            jacobian_columns(s, s->dEdv, nv, dadv, nv);
+        if (dadu && nu)
+            jacobian_columns(s, s->dEdu, nu, dadu, nu);
+        return EOMC_OK;
+    }
     double *x = malloc((size_t)N * sizeof *x), *J = malloc((size_t)N * N * sizeof *J);
     double *B = malloc(((size_t)N * nu + 1) * sizeof *B);
     int rc = x && J && B ? EOMC_OK : sim_usage_error(s, "out of memory for the derivatives");

@@ -7,8 +7,11 @@ the derivatives of the accelerations, against values got apart from them:
   force, read off each spec's text;
 - accel_derivatives against central differences of the accelerations
   solved in extended precision (accel(extended=True)), by Richardson's
-  extrapolation of two steps (error O(h^4)).
+  extrapolation of two steps (error O(h^4)), MuJoCo's humanoid among the
+  models (its M solved along its tree).
 """
+
+import os
 
 import numpy as np
 import pytest
@@ -31,9 +34,22 @@ def can_import():
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 0
 
 
+# MuJoCo's humanoid (libmujoco-samples): M along a tree (its free base a
+# chain by the fill-in), so accel_derivatives solves every column at once
+# by LTDL (la_ltdl_solve_cols_neg), where the small models solve densely
+HUMANOID = "/usr/share/mujoco/model/humanoid/humanoid.xml"
+
+
 def loaded(name):
     if name.endswith((".xml", ".urdf")) and not can_import():
         pytest.skip("eomc cannot import MJCF or URDF here")
+    if name == "humanoid.xml":
+        if not os.path.exists(HUMANOID):
+            pytest.skip("no %s (libmujoco-samples)" % HUMANOID)
+        # its smooth effects (contact and limits switch), with the twin
+        # the differences need
+        return eomc.load(HUMANOID, effects=["gravity", "damping", "stiffness", "armature",
+                                            "actuators"], extended=True)
     return eomc.load(spec(name), joint_inputs=name.endswith(".xml") or None)
 
 
@@ -128,7 +144,7 @@ def richardson(f, x, D, h):
 
 @pytest.mark.parametrize("name", ["pendulum.yaml", "double_pendulum.yaml", "chain5.yaml",
                                   "cartpole.yaml", "gear_link.yaml", "swing.yaml",
-                                  "arm.urdf", "floating_base.xml",
+                                  "arm.urdf", "floating_base.xml", "humanoid.xml",
                                   # constrained: the KKT solve's derivatives, at states
                                   # on and off the constraints alike
                                   "cartesian_pendulum.yaml", "appell.yaml",

@@ -638,17 +638,22 @@ class Model:
         coordinates, the derivative along its sphere (the motion's)."""
         q, v = self._state("accel_derivatives", q, v)
         nq, nv, nu = len(self.coordinates), len(self.speeds), len(self.inputs)
-        dq, dv, du = np.zeros((nv, nq)), np.zeros((nv, nv)), np.zeros((nv, max(nu, 1)))
+        # one block, its three parts' addresses apart: one as_doubles, not three
+        out = np.empty(nv * (nq + nv + nu))
+        dq, dv = out[:nv * nq].reshape(nv, nq), out[nv * nq:nv * (nq + nv)].reshape(nv, nv)
+        du = out[nv * (nq + nv):].reshape(nv, nu)
+        base, size = as_doubles(out), out.itemsize
         with self._lock:
             sim = self._sim_with("accel_derivatives", u)
             if self._lib.sim_accel_derivatives(sim, float(t), as_doubles(q), as_doubles(v),
-                                               as_doubles(dq), as_doubles(dv),
-                                               as_doubles(du)) != 0:
+                                               base, base + size * nv * nq,
+                                               base + size * nv * (nq + nv) if nu else None
+                                               ) != 0:
                 msg = self._error(sim)
                 if "Jacobian" in msg and "built without" in msg:
                     raise UsageError(msg)
                 raise NumericalFailure(msg, float(t))
-        return dq, dv, du[:, :nu]
+        return dq, dv, du
 
     def _place(self, what, name, q):
         """(index, has axes, q as doubles) of the place called name."""

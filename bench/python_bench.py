@@ -55,6 +55,10 @@ def main(eomc_path, source):
                   "%.2f us a number more" % (len(r), cells, py, cli, (py - cli) / cells * 1e6))
 
 
+# turns of MuJoCo's timing and eomc's in the derivatives' comparison
+ROUNDS = 5
+
+
 def best(f, k=3):
     """The least wall time of k calls of f, and its last result."""
     t, r = float("inf"), None
@@ -110,18 +114,25 @@ def issue45(eomc_path, source):
         t, _ = best(lambda: [f() for _ in range(n)])
         return t / n
 
-    fwd = float(subprocess.run([mj, hum], check=True, stdout=subprocess.PIPE,
-                               text=True).stdout) * 1e-9
+    def mj_forward():
+        return float(subprocess.run([mj, hum], check=True, stdout=subprocess.PIPE,
+                                    text=True).stdout) * 1e-9
+
     # what mj_bench's mj_forward computes: contact, limits and friction loss off; the
     # Jacobian as --jacobian auto builds a library (unrolled, at this size) and seeded
-    # (what auto gives a simulator at this size: less C, slower to run)
+    # (what auto gives a simulator at this size: less C, slower to run).  MuJoCo and
+    # eomc in turns, ROUNDS times, each at its least: a shared machine's slow spells
+    # (seen: twice the time for seconds) then reach both or neither
     for jac in (None, "seeded"):
         h = eomc.load(hum, effects=["gravity", "damping", "stiffness", "armature", "actuators"],
                       jacobian=jac)
         q, v = h.initial()
         v = v + 0.2
-        acc = per_call(lambda: h.accel(q, v))
-        der = per_call(lambda: h.accel_derivatives(q, v))
+        fwd = acc = der = float("inf")
+        for _ in range(ROUNDS):
+            fwd = min(fwd, mj_forward())
+            acc = min(acc, per_call(lambda: h.accel(q, v)))
+            der = min(der, per_call(lambda: h.accel_derivatives(q, v)))
         cols = 2 * len(h.speeds) + len(h.inputs)
         print("humanoid (nv %d, nu %d), jacobian %s: accel_derivatives %.1f us from Python, "
               "accel %.1f us (%.1f times); MuJoCo's differences %d mj_forward of %.2f us = "

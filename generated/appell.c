@@ -727,6 +727,7 @@ const eomc_model appell_model = {
     .taylor_a = NULL, .taylor_B = taylor_B, .taylor_f = taylor_f,
     .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = appell_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -477,6 +477,7 @@ const eomc_model bouncing_ball_model = {
     .taylor_nslot = 3, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
     .taylor = bouncing_ball_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

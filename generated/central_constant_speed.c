@@ -1433,6 +1433,7 @@ const eomc_model central_constant_speed_model = {
     .taylor_pos = taylor_pos, .taylor_vel = taylor_vel,
     .taylor = central_constant_speed_taylor, .taylor_why = NULL, /* Taylor's method */
     .nshared = 2, .free_accel_shared = central_constant_speed_accel_shared, .minv_shared = central_constant_speed_minv_shared,
+    .taylor_mass = EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -751,6 +751,7 @@ const eomc_model spinning_hoop_model = {
     .taylor_nslot = 43, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = spinning_hoop_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
 #if defined(EOMC_MAIN) || defined(EOMC_SHARED) /* a simulator: eomc_main.h's main

@@ -504,13 +504,22 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
                 ty->qd_slot[o->index] = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
             }
         }
+        /* M constant in t (a system of particles, a body's own frame):
+         * its orders past the first are 0, and the runtime skips their
+         * sums; diagonal too, its solve is a division */
+        ty->mass = LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL;
         for (int k = 0; k < mb->nout; k++) {
             const LowSlot *o = &mb->out[k];
             int s = o->e == EXPR_ZERO ? -1 : b.slot[o->e];
-            if (o->arg == 0)
+            if (o->arg == 0) {
                 ty->M_slot[o->index] = s;
-            else
+                if (s >= 0 && !b.konst[o->e])
+                    ty->mass &= ~LOW_TAYLOR_M_CONSTANT;
+                if (s >= 0 && o->index / nv != o->index % nv)
+                    ty->mass &= ~LOW_TAYLOR_M_DIAGONAL;
+            } else {
                 ty->h_slot[o->index] = s;
+            }
         }
         for (int e = 0; e < ne + nm; e++)
             ty->g_slot[e] = -1;

@@ -214,6 +214,10 @@ typedef struct LowTayStep {
     double value;
 } LowTayStep;
 
+/* What is known of M's series: every entry constant in t, every entry off
+ * the diagonal 0 (eomc_model.h's EOMC_TAYLOR_M_*, which the C names). */
+enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
+
 /* The program of the model's taylor member (eomc_model.h): nstep calls
  * over nslot series, in an order where every operand is computed before
  * it is read; the caller writes the slots of q and of the speeds v
@@ -239,6 +243,7 @@ typedef struct LowTaylor {
     int *g_slot;          /* [nevent + nmode]: the events', the switches' */
     int nevent, nmode, nc, nonlinear;
     int *a_slot;          /* [nv] */
+    int mass;             /* LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL */
     int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;

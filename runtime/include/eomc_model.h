@@ -32,7 +32,9 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 29
+#define EOMC_ABI_VERSION 30
+/* eomc_model.taylor_mass's flags */
+enum { EOMC_TAYLOR_M_CONSTANT = 1, EOMC_TAYLOR_M_DIAGONAL = 2 };
 
 /* The reference's number type: x87 extended precision on x86-64 (64-bit
  * significand, unit roundoff 5.4e-20), IEEE quadruple on AArch64. */
@@ -404,6 +406,11 @@ typedef struct eomc_model {
      * taylor_a and taylor_B are then in the speeds (nv x nv, nv, nv,
      * nc x nv).  NULL when nv = 0 (q' = v) or taylor is NULL. */
     const int *taylor_qd;
+    /* What the generator knows of M's series (taylor not NULL): the flags
+     * EOMC_TAYLOR_M_CONSTANT (every entry is constant in t, so its
+     * coefficients past the first are 0) and EOMC_TAYLOR_M_DIAGONAL
+     * (every entry off the diagonal is 0 at every order); 0: neither. */
+    int taylor_mass;
 
     /* ---- switched expressions ----
      * nmode kinks of the spec's max, min and clamp.  Mode k is the value

@@ -7,8 +7,11 @@
  * follows from M q'' = -h order by order:
  *     M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}),
  * so M is factored once per step (at the state itself, as eomc_sim_accel
- * factors it: GSL's pivoted Cholesky with the same pivot test) and never
- * inverted symbolically; then q_{k+1} = q'_k / (k + 1) and
+ * factors it: along its tree by LTDL where the model gives one
+ * (mass_parent), else GSL's pivoted Cholesky, with the same pivot test;
+ * a diagonal M, eomc_model's taylor_mass says, by its own entries) and
+ * never inverted symbolically; a constant M's higher orders are 0 and
+ * their sums are skipped; then q_{k+1} = q'_k / (k + 1) and
  * q'_{k+1} = a_k / (k + 1), which the next call reads.
  *
  * With speeds of their own (a unit quaternion's angular velocity: the
@@ -381,17 +384,33 @@ static int
 mass_order(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
-    int n = tp->nv;
+    int n = tp->nv, diagonal = m->taylor_mass & EOMC_TAYLOR_M_DIAGONAL;
     if (k == 0) {
         for (int i = 0; i < n * n; i++)
             tp->M0[i] = coef(tp, m->taylor_M[i], 0);
-        if (la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0)
+        if (diagonal) { /* la_ldlt_factor's test, whose pivots are M_0's own */
+            for (int i = 0; i < n; i++)
+                if (!(tp->M0[i * n + i] > EOMC_PIVOT_TOL * tp->M0[i * n + i]))
+                    return -1;
+        } else if (m->mass_parent ? la_ltdl_factor(tp->M0, n, m->mass_parent, tp->rel) != 0
+                                  : la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0) {
             return -1;
+        }
     }
-    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b */
+    /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b.  A
+     * constant M's M_j are 0: the sum is +0, what its n^2 series of zeros
+     * would add up to; a diagonal one's solve is a division, as its
+     * factorization's (L = 1, D = M_0) */
+    int constant = m->taylor_mass & EOMC_TAYLOR_M_CONSTANT;
     for (int i = 0; i < n; i++)
-        tp->b[i] = coef(tp, m->taylor_h[i], k) + mass_terms(tp, i, k);
-    la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
+        tp->b[i] = coef(tp, m->taylor_h[i], k) + (constant ? 0.0 : mass_terms(tp, i, k));
+    if (diagonal)
+        for (int i = 0; i < n; i++)
+            tp->b[i] = -(tp->b[i] / tp->M0[i * n + i]);
+    else if (m->mass_parent) /* along M's tree, as eomc_sim_accel solves */
+        la_ltdl_solve_neg(tp->M0, n, m->mass_parent, tp->b);
+    else
+        la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
     return 0;
 }
 

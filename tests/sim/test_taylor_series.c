@@ -12,7 +12,9 @@
  * and of the constraints' own levels are checked the same way against
  * constraint and c_levels: f at q'' = 0 where every constraint is affine
  * in q'', else (cubic.yaml) at a made-up q''(t) written into taylor_a's
- * slots.
+ * slots.  What taylor_mass claims of M, against mass_bias at the same
+ * made-up states: constant in t, the same M at every tau and t0 to the
+ * bit; diagonal, its entries off the diagonal 0.
  */
 #include "../unit/check.h"
 #include "eomc_model.h"
@@ -57,6 +59,13 @@ slot_at(const double *T, int s, double tau)
 /* The largest error of the series of M, h, g and the constraints' B, b,
  * pos and vel at taus, against the model's own functions, relative to
  * their scale. */
+/* Where M breaks what taylor_mass claims: the number of (tau, entry)
+ * pairs, summed over check_model's calls. */
+static int mass_claims_broken;
+/* M at the first state check_model saw, for the constant claim */
+static double M_first[NMAX * NMAX];
+static int have_M_first;
+
 static double
 check_model(const eomc_model *m, double t0, double *worst_scale)
 {
@@ -99,6 +108,16 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
             a[i] = series_at(ac[i], tau); /* 0 unless taylor_a */
         }
         m->mass_bias(t0 + tau, q, v, p, u, M, h);
+        if (!have_M_first) {
+            memcpy(M_first, M, (size_t)n * n * sizeof *M);
+            have_M_first = 1;
+        }
+        for (int i = 0; i < n * n; i++) {
+            if ((m->taylor_mass & EOMC_TAYLOR_M_CONSTANT) && M[i] != M_first[i])
+                mass_claims_broken++;
+            if ((m->taylor_mass & EOMC_TAYLOR_M_DIAGONAL) && i / n != i % n && M[i] != 0)
+                mass_claims_broken++;
+        }
         if (ne)
             m->events(t0 + tau, q, v, p, u, g);
         if (nc) {
@@ -168,12 +187,18 @@ main(void)
         if (!ok)
             continue;
         double worst = 0;
+        mass_claims_broken = have_M_first = 0;
         for (int r = 0; r < 3; r++) { /* three made-up curves, at t0 = 0.3, 1.7, 4.1 */
             double scale, err = check_model(m, 0.3 + 1.4 * r + 0.1 * r * r, &scale);
             if (!(err <= worst))
                 worst = err;
         }
         printf("# %s: largest error %.2e of the values' scale\n", m->name, worst);
+        static const char *const claim[] = {"claimed neither constant nor diagonal",
+                                            "constant", "diagonal", "constant and diagonal"};
+        int said = m->taylor_mass & (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL);
+        CHECK(mass_claims_broken == 0, "%s: M is what taylor_mass claims (%s) at 12 states "
+              "(%d entries not)", m->name, claim[said], mass_claims_broken);
         CHECK(worst <= TOL, "%s: the series of M, h%s sum to mass_bias%s "
               "at |tau| <= 2e-2 (%.2e)", m->name, m->nc ? ", g, B, b, pos and vel" : " and g",
               m->nc ? ", events, constraint and c_levels" : " and events", worst);

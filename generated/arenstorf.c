@@ -434,7 +434,7 @@ arenstorf_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 42 slots, 37 calls. */
+ * and q' (taylor_q, taylor_v): 39 slots, 34 calls. */
 static void
 arenstorf_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -446,47 +446,44 @@ arenstorf_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 2 * S, p[0], k);
     eomc_tay_const(T + 4 * S, 2.0, k);
     eomc_tay_sqr(T + 7 * S, T + 6 * S, k);
-    eomc_tay_const(T + 15 * S, 0.5, k);
-    eomc_tay_add(T + 18 * S, T + 1 * S, T + 17 * S, k);
-    eomc_tay_const(T + 19 * S, p[1], k);
-    eomc_tay_sub(T + 22 * S, T + 6 * S, T + 16 * S, k);
-    eomc_tay_const(T + 29 * S, -2.0, k);
+    eomc_tay_const(T + 13 * S, 0.5, k);
+    eomc_tay_add(T + 16 * S, T + 1 * S, T + 15 * S, k);
+    eomc_tay_const(T + 18 * S, p[1], k);
+    eomc_tay_sub(T + 19 * S, T + 6 * S, T + 14 * S, k);
+    eomc_tay_const(T + 23 * S, -1.5, k);
     eomc_tay_add(T + 3 * S, T + 2 * S, T + 1 * S, k);
-    eomc_tay_sub(T + 10 * S, T + 1 * S, T, k);
-    eomc_tay_add(T + 38 * S, T + 17 * S, T + 18 * S, k);
-    eomc_tay_sub(T + 40 * S, T + 16 * S, T + 22 * S, k);
+    eomc_tay_sub(T + 9 * S, T + 1 * S, T, k);
+    eomc_tay_sub(T + 17 * S, T, T + 2 * S, k);
+    eomc_tay_add(T + 20 * S, T + 15 * S, T + 16 * S, k);
+    eomc_tay_sub(T + 21 * S, T + 14 * S, T + 19 * S, k);
+    eomc_tay_mul2(T + 22 * S, T + 27 * S, T + 13 * S, T + 2 * S, T + 13 * S, T + 18 * S, k);
     eomc_tay_sqr(T + 5 * S, T + 3 * S, k);
-    eomc_tay_add(T + 11 * S, T + 2 * S, T + 10 * S, k);
+    eomc_tay_add(T + 10 * S, T + 2 * S, T + 9 * S, k);
     eomc_tay_add(T + 8 * S, T + 5 * S, T + 7 * S, k);
-    eomc_tay_sqr(T + 12 * S, T + 11 * S, k);
-    eomc_tay_sqrt(T + 9 * S, T + 8 * S, k);
-    eomc_tay_add(T + 13 * S, T + 7 * S, T + 12 * S, k);
-    eomc_tay_sqrt(T + 14 * S, T + 13 * S, k);
-    eomc_tay_div(T + 20 * S, T + 19 * S, T + 9 * S, k);
-    eomc_tay_div(T + 30 * S, T + 15 * S, T + 9 * S, k);
-    eomc_tay_div(T + 21 * S, T + 2 * S, T + 14 * S, k);
-    eomc_tay_div(T + 24 * S, T + 20 * S, T + 9 * S, k);
-    eomc_tay_div(T + 25 * S, T + 15 * S, T + 14 * S, k);
-    eomc_tay_div(T + 23 * S, T + 21 * S, T + 14 * S, k);
-    eomc_tay_mul(T + 31 * S, T + 24 * S, T + 30 * S, k);
-    eomc_tay_mul2(T + 26 * S, T + 35 * S, T + 23 * S, T + 25 * S, T + 3 * S, T + 31 * S, k);
-    eomc_tay_sub(T + 32 * S, T + 26 * S, T + 31 * S, k);
-    eomc_tay_scale(T + 36 * S, T + 29 * S, T + 35 * S, k);
-    eomc_tay_mul(T + 27 * S, T + 11 * S, T + 26 * S, k);
-    eomc_tay_scale(T + 28 * S, T + 4 * S, T + 27 * S, k);
-    eomc_tay_mul(T + 33 * S, T + 6 * S, T + 32 * S, k);
-    eomc_tay_scale(T + 34 * S, T + 4 * S, T + 33 * S, k);
-    eomc_tay_add(T + 37 * S, T + 28 * S, T + 36 * S, k);
-    eomc_tay_sub(T + 39 * S, T + 37 * S, T + 38 * S, k);
-    eomc_tay_add(T + 41 * S, T + 34 * S, T + 40 * S, k);
+    eomc_tay_sqr(T + 11 * S, T + 10 * S, k);
+    eomc_tay_add(T + 12 * S, T + 7 * S, T + 11 * S, k);
+    eomc_tay_powc(T + 28 * S, T + 8 * S, T + 23 * S, k);
+    eomc_tay_powc(T + 24 * S, T + 12 * S, T + 23 * S, k);
+    eomc_tay_scale(T + 34 * S, T + 27 * S, T + 28 * S, k);
+    eomc_tay_mul(T + 29 * S, T + 3 * S, T + 28 * S, k);
+    eomc_tay_scale(T + 30 * S, T + 17 * S, T + 29 * S, k);
+    eomc_tay_scale(T + 33 * S, T + 22 * S, T + 24 * S, k);
+    eomc_tay_mul(T + 25 * S, T + 10 * S, T + 24 * S, k);
+    eomc_tay_scale(T + 26 * S, T + 2 * S, T + 25 * S, k);
+    eomc_tay_sub(T + 35 * S, T + 33 * S, T + 34 * S, k);
+    eomc_tay_add(T + 31 * S, T + 26 * S, T + 30 * S, k);
+    eomc_tay_mul(T + 36 * S, T + 6 * S, T + 35 * S, k);
+    eomc_tay_sub(T + 32 * S, T + 31 * S, T + 20 * S, k);
+    eomc_tay_scale(T + 37 * S, T + 4 * S, T + 36 * S, k);
+    eomc_tay_add(T + 38 * S, T + 21 * S, T + 37 * S, k);
 }
 
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[2] = {1, 6};
-static const int taylor_v[2] = {16, 17};
+static const int taylor_v[2] = {14, 15};
 static const int taylor_M[4] = {0, -1, -1, 0};
-static const int taylor_h[2] = {39, 41};
+static const int taylor_h[2] = {32, 38};
 
 /* The members defined in the first unit. */
 EOMC_ENTRY void
@@ -541,7 +538,7 @@ const eomc_model arenstorf_model = {
     .c_nnz = 0, .c_nz = NULL, /* B dense */
     .ndraw = 0, /* no particle or body to draw */
     .nplace = 0, /* no body, particle, frame or point */
-    .taylor_nslot = 42, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 39, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = arenstorf_taylor, .taylor_why = NULL, /* Taylor's method */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
@@ -561,7 +558,7 @@ const eomc_model_ext arenstorf_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "arenstorf", .derive = arenstorf_derive, .inputs = arenstorf_inputs,
     .mass_bias = arenstorf_mass_bias, .accel = arenstorf_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 42, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 39, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = arenstorf_taylor, /* Taylor's method in extended precision */
 };

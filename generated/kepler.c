@@ -430,7 +430,7 @@ kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 18 slots, 15 calls. */
+ * and q' (taylor_q, taylor_v): 13 slots, 10 calls. */
 static void
 kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -438,29 +438,24 @@ kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const int S = K + 1;
     (void)t0;
     (void)u;
-    eomc_tay_const(T, 0.5, k);
-    eomc_tay_const(T + 1 * S, p[1], k);
-    eomc_tay_const(T + 4 * S, p[4], k);
-    eomc_tay_const(T + 5 * S, 2.0, k);
-    eomc_tay_sqr(T + 6 * S, T + 2 * S, k);
-    eomc_tay_sqr(T + 7 * S, T + 3 * S, k);
-    eomc_tay_add(T + 8 * S, T + 6 * S, T + 7 * S, k);
-    eomc_tay_sqrt(T + 9 * S, T + 8 * S, k);
-    eomc_tay_div(T + 10 * S, T + 4 * S, T + 9 * S, k);
-    eomc_tay_div(T + 12 * S, T, T + 9 * S, k);
-    eomc_tay_div(T + 11 * S, T + 10 * S, T + 9 * S, k);
-    eomc_tay_mul(T + 13 * S, T + 11 * S, T + 12 * S, k);
-    eomc_tay_mul2(T + 14 * S, T + 16 * S, T + 3 * S, T + 13 * S, T + 2 * S, T + 13 * S, k);
-    eomc_tay_scale(T + 15 * S, T + 5 * S, T + 14 * S, k);
-    eomc_tay_scale(T + 17 * S, T + 5 * S, T + 16 * S, k);
+    eomc_tay_const(T, p[1], k);
+    eomc_tay_const(T + 3 * S, p[4], k);
+    eomc_tay_sqr(T + 4 * S, T + 1 * S, k);
+    eomc_tay_sqr(T + 5 * S, T + 2 * S, k);
+    eomc_tay_const(T + 7 * S, -1.5, k);
+    eomc_tay_add(T + 6 * S, T + 4 * S, T + 5 * S, k);
+    eomc_tay_powc(T + 8 * S, T + 6 * S, T + 7 * S, k);
+    eomc_tay_mul2(T + 9 * S, T + 11 * S, T + 1 * S, T + 8 * S, T + 2 * S, T + 8 * S, k);
+    eomc_tay_scale(T + 10 * S, T + 3 * S, T + 9 * S, k);
+    eomc_tay_scale(T + 12 * S, T + 3 * S, T + 11 * S, k);
 }
 
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
-static const int taylor_q[2] = {2, 3};
+static const int taylor_q[2] = {1, 2};
 static const int taylor_v[2] = {-1, -1};
-static const int taylor_M[4] = {1, -1, -1, 1};
-static const int taylor_h[2] = {17, 15};
+static const int taylor_M[4] = {0, -1, -1, 0};
+static const int taylor_h[2] = {10, 12};
 
 /* The members defined in the first unit. */
 EOMC_ENTRY void
@@ -532,7 +527,7 @@ const eomc_model kepler_model = {
     .view_frames = 0, .view_camera = NULL,
     .nplace = 1, .places = places, .place = kepler_places,
     .place_velocity = kepler_place_velocity,
-    .taylor_nslot = 18, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 13, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = kepler_taylor, .taylor_why = NULL, /* Taylor's method */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
@@ -552,7 +547,7 @@ const eomc_model_ext kepler_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .derive = kepler_derive, .inputs = kepler_inputs,
     .mass_bias = kepler_mass_bias, .accel = kepler_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 18, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 13, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = kepler_taylor, /* Taylor's method in extended precision */
 };

@@ -1594,10 +1594,10 @@ eomc_sim_accel_derivatives(eomc_sim *s, double t, const double *q, const double 
             rc = residual_jacobian(s, t, q, v);
         if (rc != EOMC_OK)
             return rc;
-        int K = n + nv + nu;
-        if (!s->jrows && !stuck(s) && m->mass_parent)
+        int K = n + nv + nu, tree = !stuck(s) && m->mass_parent;
+        if (tree && !s->jrows)
             s->jrows = malloc((size_t)K * nv * sizeof *s->jrows);
-        if (s->jrows && !stuck(s) && m->mass_parent && dadq && dadv && (dadu || !nu)) {
+        if (tree && s->jrows && dadq && dadv && (dadu || !nu)) {
             double *X = s->jrows;
             for (int i = 0; i < nv; i++) {
                 double *row = X + (size_t)i * K;

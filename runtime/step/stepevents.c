@@ -270,6 +270,8 @@ enum { EXTREMUM_ITERS = 12 };
  * differ by up to 8 for rounding alone. */
 #define SIMULTANEOUS_ULPS 16
 
+static int inert(StepEvents *v, int k, double t, const double *x, double *f);
+
 /* Event k, of one sign at both ends of the step, crossing twice inside
  * it: g heads for 0 at the step's start and away from it at its end
  * (gd0, gd1), so it turns in between.  The turning point is found on the
@@ -279,8 +281,6 @@ enum { EXTREMUM_ITERS = 12 };
  * the solution, the first into te[k] and a second into te2[k].
  * GSL_SUCCESS, or a failure status where the solution cannot be
  * computed. */
-static int inert(StepEvents *v, int k, double t, const double *x, double *f);
-
 static int
 pair(StepEvents *v, int k, int *any)
 {

@@ -376,7 +376,7 @@ bouncing_ball_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 3 slots, 2 calls. */
+ * and q' (taylor_q, taylor_v): 4 slots, 2 calls. */
 static void
 bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -388,10 +388,27 @@ bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_const(T + 2 * S, p[5], k);
 }
 
+#ifndef EOMC_EXTENDED
+/* The whole series to order K in one call (taylor_run): each order k of
+ * the program above, then q's coefficient k + 1 from its rate's k, and,
+ * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+static void
+bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
+{
+    const int S = K + 1;
+    for (int k = 0; k < K; k++) {
+        bouncing_ball_taylor(k, K, t0, p, u, T);
+        eomc_tay_integ(T + 1 * S, T + 3 * S, k);
+        eomc_tay_accel(T + 3 * S, T + 2 * S, T, k);
+    }
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[1] = {1};
-static const int taylor_v[1] = {-1};
+static const int taylor_v[1] = {3};
 static const int taylor_M[1] = {0};
 static const int taylor_h[1] = {2};
 static const int taylor_g[1] = {1};
@@ -474,9 +491,10 @@ const eomc_model bouncing_ball_model = {
     .view_frames = 0, .view_camera = NULL,
     .nplace = 1, .places = places, .place = bouncing_ball_places,
     .place_velocity = bouncing_ball_place_velocity,
-    .taylor_nslot = 3, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 4, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
     .taylor = bouncing_ball_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_run = bouncing_ball_taylor_run, /* the whole series in one call */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
@@ -494,7 +512,7 @@ const eomc_model_ext bouncing_ball_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "bouncing_ball", .derive = bouncing_ball_derive, .inputs = bouncing_ball_inputs,
     .mass_bias = bouncing_ball_mass_bias, .accel = bouncing_ball_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 3, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 4, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
     .taylor = bouncing_ball_taylor, /* Taylor's method in extended precision */
 };

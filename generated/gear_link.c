@@ -240,7 +240,7 @@ gear_link_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 10 slots, 8 calls. */
+ * and q' (taylor_q, taylor_v): 11 slots, 8 calls. */
 static void
 gear_link_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -257,10 +257,27 @@ gear_link_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_sub(T + 9 * S, T + 8 * S, T + 4 * S, k);
 }
 
+#ifndef EOMC_EXTENDED
+/* The whole series to order K in one call (taylor_run): each order k of
+ * the program above, then q's coefficient k + 1 from its rate's k, and,
+ * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+static void
+gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
+{
+    const int S = K + 1;
+    for (int k = 0; k < K; k++) {
+        gear_link_taylor(k, K, t0, p, u, T);
+        eomc_tay_integ(T + 1 * S, T + 10 * S, k);
+        eomc_tay_accel(T + 10 * S, T + 9 * S, T + 5 * S, k);
+    }
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[1] = {1};
-static const int taylor_v[1] = {-1};
+static const int taylor_v[1] = {10};
 static const int taylor_M[1] = {5};
 static const int taylor_h[1] = {9};
 
@@ -314,9 +331,10 @@ const eomc_model gear_link_model = {
     .c_nnz = 0, .c_nz = NULL, /* B dense */
     .ndraw = 0, /* no particle or body to draw */
     .nplace = 0, /* no body, particle, frame or point */
-    .taylor_nslot = 10, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 11, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = gear_link_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_run = gear_link_taylor_run, /* the whole series in one call */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
@@ -334,7 +352,7 @@ const eomc_model_ext gear_link_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "gear_link", .derive = gear_link_derive, .inputs = gear_link_inputs,
     .mass_bias = gear_link_mass_bias, .accel = gear_link_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 10, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 11, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = gear_link_taylor, /* Taylor's method in extended precision */
 };

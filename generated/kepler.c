@@ -430,7 +430,7 @@ kepler_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 13 slots, 10 calls. */
+ * and q' (taylor_q, taylor_v): 15 slots, 10 calls. */
 static void
 kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
@@ -450,10 +450,29 @@ kepler_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_scale(T + 12 * S, T + 3 * S, T + 11 * S, k);
 }
 
+#ifndef EOMC_EXTENDED
+/* The whole series to order K in one call (taylor_run): each order k of
+ * the program above, then q's coefficient k + 1 from its rate's k, and,
+ * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+static void
+kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T)
+{
+    const int S = K + 1;
+    for (int k = 0; k < K; k++) {
+        kepler_taylor(k, K, t0, p, u, T);
+        eomc_tay_integ(T + 1 * S, T + 13 * S, k);
+        eomc_tay_integ(T + 2 * S, T + 14 * S, k);
+        eomc_tay_accel(T + 13 * S, T + 10 * S, T, k);
+        eomc_tay_accel(T + 14 * S, T + 12 * S, T, k);
+    }
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[2] = {1, 2};
-static const int taylor_v[2] = {-1, -1};
+static const int taylor_v[2] = {13, 14};
 static const int taylor_M[4] = {0, -1, -1, 0};
 static const int taylor_h[2] = {10, 12};
 
@@ -527,9 +546,10 @@ const eomc_model kepler_model = {
     .view_frames = 0, .view_camera = NULL,
     .nplace = 1, .places = places, .place = kepler_places,
     .place_velocity = kepler_place_velocity,
-    .taylor_nslot = 13, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 15, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = kepler_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_run = kepler_taylor_run, /* the whole series in one call */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
@@ -547,7 +567,7 @@ const eomc_model_ext kepler_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "kepler", .derive = kepler_derive, .inputs = kepler_inputs,
     .mass_bias = kepler_mass_bias, .accel = kepler_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 13, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 15, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = kepler_taylor, /* Taylor's method in extended precision */
 };

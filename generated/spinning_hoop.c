@@ -670,6 +670,23 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
     eomc_tay_add(T + 42 * S, T + 32 * S, T + 41 * S, k);
 }
 
+#ifndef EOMC_EXTENDED
+/* The whole series to order K in one call (taylor_run): each order k of
+ * the program above, then q's coefficient k + 1 from its rate's k, and,
+ * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+static void
+spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T)
+{
+    const int S = K + 1;
+    for (int k = 0; k < K; k++) {
+        spinning_hoop_taylor(k, K, t0, p, u, T);
+        eomc_tay_integ(T + 3 * S, T + 10 * S, k);
+        eomc_tay_accel(T + 10 * S, T + 42 * S, T + 19 * S, k);
+    }
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[1] = {3};
@@ -751,6 +768,7 @@ const eomc_model spinning_hoop_model = {
     .taylor_nslot = 43, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = spinning_hoop_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_run = spinning_hoop_taylor_run, /* the whole series in one call */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 

@@ -356,7 +356,7 @@ swing_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
 /* Taylor's method (eomc_taylor.h): coefficient k of the series about t0
  * of every value mass_bias and events compute, slot s's at T[s (K + 1)
  * ...], from their orders 0 .. k-1 and the caller's coefficient k of q
- * and q' (taylor_q, taylor_v): 6 slots, 4 calls. */
+ * and q' (taylor_q, taylor_v): 7 slots, 4 calls. */
 static void
 swing_taylor(int k, int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *T)
@@ -370,10 +370,27 @@ swing_taylor(int k, int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_tay_scale(T + 5 * S, T + 4 * S, T + 1 * S, k);
 }
 
+#ifndef EOMC_EXTENDED
+/* The whole series to order K in one call (taylor_run): each order k of
+ * the program above, then q's coefficient k + 1 from its rate's k, and,
+ * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+static void
+swing_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T)
+{
+    const int S = K + 1;
+    for (int k = 0; k < K; k++) {
+        swing_taylor(k, K, t0, p, u, T);
+        eomc_tay_integ(T, T + 6 * S, k);
+        eomc_tay_accel(T + 6 * S, T + 5 * S, T + 3 * S, k);
+    }
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[1] = {0};
-static const int taylor_v[1] = {-1};
+static const int taylor_v[1] = {6};
 static const int taylor_M[1] = {3};
 static const int taylor_h[1] = {5};
 
@@ -447,9 +464,10 @@ const eomc_model swing_model = {
     .view_frames = 0, .view_camera = NULL,
     .nplace = 1, .places = places, .place = swing_places,
     .place_velocity = swing_place_velocity,
-    .taylor_nslot = 6, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 7, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = swing_taylor, .taylor_why = NULL, /* Taylor's method */
+    .taylor_run = swing_taylor_run, /* the whole series in one call */
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 
@@ -467,7 +485,7 @@ const eomc_model_ext swing_model_ext = {
     .abi = EOMC_ABI_VERSION, .name = "swing", .derive = swing_derive, .inputs = swing_inputs,
     .mass_bias = swing_mass_bias, .accel = swing_accel,
     .constraint = NULL, .c_jacobian = NULL,
-    .taylor_nslot = 6, .taylor_q = taylor_q, .taylor_v = taylor_v,
+    .taylor_nslot = 7, .taylor_q = taylor_q, .taylor_v = taylor_v,
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = NULL,
     .taylor = swing_taylor, /* Taylor's method in extended precision */
 };

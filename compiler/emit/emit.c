@@ -699,6 +699,8 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
                   "%s_minv_shared,", L->loads_shared, nm, nm);
     if (!L->taylor->why && L->taylor->qd_slot)
         emit_line(pr, "    .taylor_qd = taylor_qd, /* Taylor's series of q' = W(q) v */");
+    if (!L->taylor->why && L->taylor->nrun)
+        emit_line(pr, "    .taylor_run = %s_taylor_run, /* the whole series in one call */", nm);
     if (!L->taylor->why && L->taylor->mass)
         emit_line(pr, "    .taylor_mass = %s, /* M's series */",
                   L->taylor->mass == (LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL)

@@ -128,6 +128,38 @@ print_wrappers(Printer *pr, const LowTaylor *ty, int declare)
         emit_line(pr, "");
 }
 
+/* taylor_run (eomc_model.h): each order of the program, then the state's
+ * next coefficients, M being constant and diagonal.  Only the doubles':
+ * the extended twin's reference sums its series by the runtime's loop. */
+static void
+print_run(Printer *pr, const LowTaylor *ty)
+{
+    const char *nm = pr->md->name;
+    emit_line(pr, "#ifndef EOMC_EXTENDED");
+    emit_line(pr, "/* The whole series to order K in one call (taylor_run): each order k of");
+    emit_line(pr, " * the program above, then q's coefficient k + 1 from its rate's k, and,");
+    emit_line(pr, " * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */");
+    char fname[160];
+    snprintf(fname, sizeof fname, "%s_taylor_run", nm);
+    emit_head(pr, "static void", fname,
+              "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T");
+    emit_line(pr, "    const int S = K + 1;");
+    emit_line(pr, "    for (int k = 0; k < K; k++) {");
+    emit_line(pr, "        %s_taylor(k, K, t0, p, u, T);", nm);
+    for (int i = ty->nstep; i < ty->nstep + ty->nrun; i++) {
+        const LowTayStep *st = &ty->step[i];
+        fprintf(pr->f, "        eomc_tay_%s(", st->call);
+        for (int j = 0; j < st->nslot; j++) {
+            print_slot(pr->f, st->slot[j]);
+            fputs(", ", pr->f);
+        }
+        emit_line(pr, "k);");
+    }
+    emit_line(pr, "    }");
+    emit_line(pr, "}");
+    emit_line(pr, "#endif\n");
+}
+
 void
 emit_taylor(Printer *pr, const LowTaylor *ty)
 {
@@ -203,6 +235,8 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
             emit_line(pr, "    %s_taylor_%d(k, K, t0, p, u, T);", md->name, part + 1);
         emit_line(pr, "}\n");
     }
+    if (ty->nrun)
+        print_run(pr, ty);
     if (ty->qd_slot) {
         emit_line(pr, "/* The slots of q and v the caller writes, those of q' = W(q) v, and");
         emit_line(pr, " * those of M (row-major, in the speeds), h and the event functions g");

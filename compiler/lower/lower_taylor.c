@@ -452,6 +452,49 @@ root(const Roots *R, const LowFunc *f, int k)
     return f->out[k].e;
 }
 
+/* taylor_run's tail (eomc_model.h), where the generator can solve M
+ * itself: no constraints, M constant in t and diagonal, each M_jj a
+ * series (a 0 there is a singular M, which the runtime's loop reports).
+ * A q or v that nothing reads gets a slot of its own, since the run
+ * leaves the state's whole series in the slots; then each q_i's next
+ * coefficient from its rate (v, or q' = W(q) v's row) and each v_j's
+ * from -h_j / M_jj. */
+static void
+run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
+{
+    if (ty->nc || ty->mass != (LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL))
+        return;
+    for (int j = 0; j < nv; j++)
+        if (ty->M_slot[j * nv + j] < 0)
+            return;
+    for (int i = 0; i < nq; i++)
+        if (ty->q_slot[i] < 0)
+            ty->q_slot[i] = ty->nslot++;
+    for (int j = 0; j < nv; j++)
+        if (ty->v_slot[j] < 0)
+            ty->v_slot[j] = ty->nslot++;
+    LowTayStep *step = arena_new_array(A, LowTayStep, ty->nstep + nq + nv + 1);
+    if (ty->nstep)
+        memcpy(step, ty->step, (size_t)ty->nstep * sizeof *step);
+    LowTayStep *st = step + ty->nstep;
+    for (int i = 0; i < nq; i++, st++) {
+        /* without speeds of their own q_i's rate is v_i, whose slot the
+         * tail has just given where nothing read it */
+        int rate = ty->qd_slot ? ty->qd_slot[i] : ty->v_slot[i];
+        *st = rate < 0 ? (LowTayStep){.call = "hold", .nslot = 1, .nres = 1,
+                                      .slot = {ty->q_slot[i]}}
+                       : (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
+                                      .slot = {ty->q_slot[i], rate}};
+    }
+    for (int j = 0; j < nv; j++, st++)
+        *st = ty->h_slot[j] < 0
+                  ? (LowTayStep){.call = "hold", .nslot = 1, .nres = 1, .slot = {ty->v_slot[j]}}
+                  : (LowTayStep){.call = "accel", .nslot = 3, .nres = 1,
+                                 .slot = {ty->v_slot[j], ty->h_slot[j], ty->M_slot[j * nv + j]}};
+    ty->step = step;
+    ty->nrun = nq + nv;
+}
+
 LowTaylor *
 lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
 {
@@ -617,6 +660,7 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
             (o->arg == 0 ? ty->pos_slot : ty->vel_slot)[o->index] =
                 e == EXPR_ZERO ? -1 : b.slot[e];
         }
+        run_tail(ty, nq, nv, A);
     }
     for (int r = 0; r < NROOT; r++)
         free(R.e[r]);

@@ -244,6 +244,9 @@ typedef struct LowTaylor {
     int nevent, nmode, nc, nonlinear;
     int *a_slot;          /* [nv] */
     int mass;             /* LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL */
+    int nrun;             /* taylor_run's calls after each order's program,
+                           * step[nstep .. nstep + nrun - 1] (every q and v
+                           * then has a slot); 0: no taylor_run */
     int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;

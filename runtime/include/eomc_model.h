@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 30
+#define EOMC_ABI_VERSION 31
 /* eomc_model.taylor_mass's flags */
 enum { EOMC_TAYLOR_M_CONSTANT = 1, EOMC_TAYLOR_M_DIAGONAL = 2 };
 
@@ -411,6 +411,16 @@ typedef struct eomc_model {
      * coefficients past the first are 0) and EOMC_TAYLOR_M_DIAGONAL
      * (every entry off the diagonal is 0 at every order); 0: neither. */
     int taylor_mass;
+    /* The whole series in one call, where the generator can solve M
+     * itself (no constraints; M constant in t and diagonal, each M_ii a
+     * series): taylor_run(K, t0, p, u, T) brings every slot to order K - 1
+     * and q's and v's to order K (taylor_q, taylor_v: every one a slot),
+     * from the coefficient 0 of q and v the caller wrote.  Each order is
+     * taylor's, then q_i's next coefficient from its rate's (q' = v, or
+     * taylor_qd's) and v_j's as -(h_j / M_jj) / (k + 1): the runtime's own
+     * arithmetic, so the same bits.  M_jj's coefficient 0 is left at its
+     * slot for the caller's test.  NULL: the runtime's loop over taylor. */
+    void (*taylor_run)(int K, double t0, const double *p, const double *u, double *T);
 
     /* ---- switched expressions ----
      * nmode kinks of the spec's max, min and clamp.  Mode k is the value

@@ -52,6 +52,31 @@ eomc_tay_time(eomc_real *c, eomc_real t0, int k)
     c[k] = k == 0 ? t0 : k == 1 ? 1 : 0;
 }
 
+/* The next coefficient of a value whose rate is r (q' = r): q[k + 1] =
+ * r[k] / (k + 1).  The generated taylor_run (eomc_model.h) sums the
+ * coordinates by it, and by the two below the speeds. */
+static inline void
+eomc_tay_integ(eomc_real *q, const eomc_real *r, int k)
+{
+    q[k + 1] = r[k] / (k + 1);
+}
+
+/* The next coefficient of a speed under a constant diagonal mass m and
+ * the force -h: v' = -h / m, so v[k + 1] = -(h[k] / m[0]) / (k + 1), in
+ * the order the runtime's solve rounds (taylor.c). */
+static inline void
+eomc_tay_accel(eomc_real *v, const eomc_real *h, const eomc_real *m, int k)
+{
+    v[k + 1] = -(h[k] / m[0]) / (k + 1);
+}
+
+/* The next coefficient of a value whose rate is 0 at every order. */
+static inline void
+eomc_tay_hold(eomc_real *c, int k)
+{
+    c[k + 1] = 0;
+}
+
 static inline void
 eomc_tay_add(eomc_real *c, const eomc_real *a, const eomc_real *b, int k)
 {

@@ -12,7 +12,10 @@
  * a diagonal M, eomc_model's taylor_mass says, by its own entries) and
  * never inverted symbolically; a constant M's higher orders are 0 and
  * their sums are skipped; then q_{k+1} = q'_k / (k + 1) and
- * q'_{k+1} = a_k / (k + 1), which the next call reads.
+ * q'_{k+1} = a_k / (k + 1), which the next call reads.  Where M is
+ * constant and diagonal and there are no constraints, the generator did
+ * that solve itself, with the same arithmetic: the model's taylor_run
+ * gives the whole series in one call (run_series).
  *
  * With speeds of their own (a unit quaternion's angular velocity: the
  * state is (q [nq], v [nv]), q' = W(q) v) the same holds in the speeds:
@@ -282,38 +285,39 @@ newton_start(Taylor *tp, double t0, const double *x)
  * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j), or, for S
  * NULL, of (|x_im| / |x_ij|)^(1/(j - m)) with x_im the component's first
  * coefficient that is not 0 (its size where it starts from rest or from
- * 0).  INFINITY when no component has a last term. */
+ * 0).  INFINITY when no component has a last term.  The root is monotone,
+ * so each exponent's least ratio is found first and rooted once: two
+ * pow calls where every component starts at its first coefficient, not
+ * two per component. */
 static double
 radius(const Taylor *tp, const double *S)
 {
     int p = tp->p, N = tp->N;
-    double rho = INFINITY;
-    if (S) { /* for each order the least ratio, then its root: one pow each */
-        for (int j = p - 1; j <= p; j++) {
-            double least = INFINITY;
-            for (int i = 0; i < N; i++) {
-                double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
-                if (S[i] > 0 && c > 0)
-                    least = fmin(least, S[i] / c);
+    double least[TAYLOR_MAX_ORDER + 1]; /* by the root's degree, j - m */
+    for (int e = 1; e <= p; e++)
+        least[e] = INFINITY;
+    for (int j = p - 1; j <= p; j++) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        for (int i = 0; i < N; i++) {
+            double a = fabs(c[i]), scale;
+            int m = 0;
+            if (S) {
+                scale = S[i];
+            } else {
+                while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
+                    m++;
+                scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
             }
-            if (least < INFINITY)
-                rho = fmin(rho, pow(least, 1.0 / j));
-        }
-        return rho;
-    }
-    for (int i = 0; i < N; i++) {
-        int m = 0;
-        while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
-            m++;
-        double scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
-        if (!(scale > 0))
-            continue;
-        for (int j = p - 1; j <= p; j++) {
-            double c = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
-            if (c > 0 && j > m)
-                rho = fmin(rho, pow(scale / c, 1.0 / (j - m)));
+            if (scale > 0 && a > 0 && j > m && scale / a < least[j - m])
+                least[j - m] = scale / a;
         }
     }
+    double rho = INFINITY;
+    for (int e = 1; e <= p; e++)
+        if (least[e] < INFINITY) {
+            double r = pow(least[e], 1.0 / e);
+            rho = r < rho ? r : rho;
+        }
     return rho;
 }
 
@@ -323,10 +327,15 @@ static void
 scales(Taylor *tp, double h, double *S)
 {
     int p = tp->p, N = tp->N;
+    double hj[TAYLOR_MAX_ORDER + 1];
+    hj[0] = 1;
+    for (int j = 1; j <= p; j++)
+        hj[j] = hj[j - 1] * h;
     for (int i = 0; i < N; i++) {
-        double big = 0, hj = 1;
-        for (int j = 0; j <= p; j++, hj *= h) {
-            double term = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]) * hj;
+        const double *c = tp->X + i;
+        double big = fabs(c[0]);
+        for (int j = 1; j <= p; j++) {
+            double term = fabs(c[(size_t)j * (size_t)N]) * hj[j];
             big = term > big ? term : big;
         }
         S[i] = big + tp->atol / tp->rtol;
@@ -470,6 +479,35 @@ kkt_order(Taylor *tp, int k)
     return 0;
 }
 
+/* The state's series by the model's taylor_run, M constant and diagonal
+ * (eomc_model.h): its coefficient 0 into the slots, the whole series
+ * there in one call, M_0 tested as mass_order tests it, and the series
+ * into X.  0, or -1 when M_0 is not safely positive or a coefficient is
+ * not finite. */
+static int
+run_series(Taylor *tp, double t0, const double *par, const double *u)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p, S = p + 1;
+    put_state(tp, 0);
+    m->taylor_run(p, t0, par, u, tp->T);
+    for (int j = 0; j < nv; j++) {
+        double d = coef(tp, m->taylor_M[j * nv + j], 0);
+        if (!(d > EOMC_PIVOT_TOL * d))
+            return -1;
+    }
+    /* a coefficient times 0 is 0, or NaN where it is not finite */
+    double nonfinite = 0;
+    for (int i = 0; i < N; i++) {
+        const double *c = tp->T + (size_t)(i < n ? m->taylor_q[i] : m->taylor_v[i - n]) * S;
+        for (int j = 1; j <= p; j++) {
+            tp->X[(size_t)j * N + i] = c[j];
+            nonfinite += c[j] * 0;
+        }
+    }
+    return nonfinite == 0 ? 0 : -1;
+}
+
 int
 taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 {
@@ -489,6 +527,13 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     tp->t0 = t0;
     if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
         return -1; /* the rows its solves use, where they are not chosen yet */
+    if (m->taylor_run) {
+        if (run_series(tp, t0, par, u) != 0)
+            return -1;
+        double hs = step_size(tp);
+        *h = hs < hmax ? hs : hmax;
+        return 0;
+    }
     for (int k = 0; k < p; k++) {
         put_state(tp, k);
         if (tp->dBda && k == 0 && newton_start(tp, t0, x) != 0)
@@ -514,9 +559,11 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         }
         for (int i = 0; i < n; i++) /* q' = v, or W(q) v's series */
             next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
-        if (!sim_all_finite(next, N))
-            return -1;
     }
+    /* once, not at each order: a non-finite coefficient only makes the
+     * orders after it non-finite too */
+    if (!sim_all_finite(tp->X + N, p * N))
+        return -1;
     double hs = step_size(tp);
     *h = hs < hmax ? hs : hmax;
     return 0;

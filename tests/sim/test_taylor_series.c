@@ -19,6 +19,8 @@
 #include "../unit/check.h"
 #include "eomc_model.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -157,6 +159,114 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
     return worst;
 }
 
+/* A state near the model's own initial one (made up: each value moved by
+ * up to 5 %, plus a little where it is 0), p and u as check_model's. */
+static void
+near_start(const eomc_model *m, double t0, double *p, double *u, double *q, double *v)
+{
+    memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
+    if (m->derive)
+        m->derive(p, p + m->np);
+    if (m->nu)
+        m->inputs(t0, p, u, NULL);
+    m->initial(p, q, v);
+    for (int i = 0; i < m->nq; i++) {
+        q[i] = q[i] * (1 + check_rand(-0.05, 0.05)) + check_rand(-0.01, 0.01);
+        v[i] = v[i] * (1 + check_rand(-0.05, 0.05)) + check_rand(-0.01, 0.01);
+    }
+}
+
+/* taylor_run, where the model has one (M constant and diagonal, no
+ * constraints), against two things at a state near its start:
+ *  - the runtime's loop over taylor, with its arithmetic (taylor.c's
+ *    mass_order: a_k = -(h_k / M_jj), then / (k + 1)): the same series to
+ *    the bit, as eomc_model.h says (the rows the same either way);
+ *  - the motion's equations, independently of any recurrence: the
+ *    polynomials it leaves for q and v, at small tau, with their own
+ *    derivatives, satisfy q' = v and M v' + h(t, q, v) = 0 by mass_bias,
+ *    to the truncation of a series of degree K (far below rounding at
+ *    |tau| a twentieth of the series' radius) and rounding.
+ * The largest residual relative to the scale of h, M v' and M q / rho^2
+ * (rho the series' radius, the motion's time); the number
+ * of coefficients that differ from the loop's into *differ. */
+static double
+check_run(const eomc_model *m, double t0, int *differ)
+{
+    int n = m->nq, ne = m->nevent + m->nmode, S = K + 1;
+    double p[PMAX], u[UMAX + 1] = {0}, q0[NMAX], v0[NMAX];
+    near_start(m, t0, p, u, q0, v0);
+    double *T1 = calloc((size_t)m->taylor_nslot * S + 1, sizeof *T1);
+    double *T2 = calloc((size_t)m->taylor_nslot * S + 1, sizeof *T2);
+    for (int i = 0; i < n; i++) {
+        T1[m->taylor_q[i] * S] = T2[m->taylor_q[i] * S] = q0[i];
+        T1[m->taylor_v[i] * S] = T2[m->taylor_v[i] * S] = v0[i];
+    }
+    m->taylor_run(K, t0, p, u, T1);
+    for (int k = 0; k < K; k++) {
+        m->taylor(k, K, t0, p, u, T2);
+        for (int i = 0; i < n; i++) {
+            int h = m->taylor_h[i];
+            T2[m->taylor_q[i] * S + k + 1] = T2[m->taylor_v[i] * S + k] / (k + 1);
+            T2[m->taylor_v[i] * S + k + 1] =
+                -((h < 0 ? 0 : T2[h * S + k]) / T2[m->taylor_M[i * n + i] * S]) / (k + 1);
+        }
+    }
+    *differ = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j <= K; j++)
+            *differ += T1[m->taylor_q[i] * S + j] != T2[m->taylor_q[i] * S + j] ||
+                       T1[m->taylor_v[i] * S + j] != T2[m->taylor_v[i] * S + j];
+    for (int e = 0; e < ne; e++)
+        for (int j = 0; j < K && m->taylor_g[e] >= 0; j++)
+            *differ += T1[m->taylor_g[e] * S + j] != T2[m->taylor_g[e] * S + j];
+    /* the taus a thirtieth of the series' own radius (its least ratio
+     * (|x_1| / |x_K|)^(1/(K - 1)) over q and v): Arenstorf's orbit starts
+     * 0.006 from the Moon, Kepler's half a unit from the Sun */
+    double rho = INFINITY;
+    for (int i = 0; i < 2 * n; i++) {
+        const double *c = T1 + (i < n ? m->taylor_q[i] : m->taylor_v[i - n]) * S;
+        if (c[1] != 0 && c[K] != 0)
+            rho = fmin(rho, pow(fabs(c[1] / c[K]), 1.0 / (K - 1)));
+    }
+    if (!(rho < INFINITY))
+        rho = 1; /* a polynomial motion: any tau */
+    const double taus[] = {rho / 30, -rho / 21, 0};
+    double worst = 0;
+    for (size_t t = 0; t < sizeof taus / sizeof taus[0]; t++) {
+        double tau = taus[t], q[NMAX], v[NMAX], dq[NMAX], dv[NMAX], M[NMAX * NMAX], h[NMAX];
+        for (int i = 0; i < n; i++) {
+            const double *qs = T1 + m->taylor_q[i] * S, *vs = T1 + m->taylor_v[i] * S;
+            q[i] = series_at(qs, tau);
+            v[i] = series_at(vs, tau);
+            dq[i] = dv[i] = 0;
+            for (int j = K; j >= 1; j--) { /* the derivative, by Horner's rule */
+                dq[i] = dq[i] * tau + j * qs[j];
+                dv[i] = dv[i] * tau + j * vs[j];
+            }
+        }
+        m->mass_bias(t0 + tau, q, v, p, u, M, h);
+        double scale = 0, err = 0;
+        for (int i = 0; i < n; i++) {
+            double Mdv = 0;
+            for (int l = 0; l < n; l++)
+                Mdv += M[i * n + l] * dv[l];
+            /* near an equilibrium h is small where its terms are not (the
+             * hoop's gravity against its turn): the scale is also the
+             * motion's own, M times q or v over the series' time rho */
+            scale = fmax(scale, fmax(fabs(Mdv), fabs(h[i])));
+            scale = fmax(scale, fabs(M[i * n + i]) * fmax(fabs(q[i]) / (rho * rho),
+                                                         fabs(v[i]) / rho));
+            err = fmax(err, fabs(Mdv + h[i]));
+            err = fmax(err, fabs(dq[i] - v[i]) * fabs(M[i * n + i]) / rho); /* as a force */
+        }
+        if (!(err / fmax(scale, DBL_MIN) <= worst))
+            worst = err / fmax(scale, DBL_MIN);
+    }
+    free(T1);
+    free(T2);
+    return worst;
+}
+
 int
 main(void)
 {
@@ -203,6 +313,33 @@ main(void)
               "at |tau| <= 2e-2 (%.2e)", m->name, m->nc ? ", g, B, b, pos and vel" : " and g",
               m->nc ? ", events, constraint and c_levels" : " and events", worst);
     }
+    int nrun = 0;
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        const eomc_model *m = models[k];
+        if (!m->taylor_run)
+            continue;
+        nrun++;
+        double worst = 0;
+        int differ = 0;
+        for (int r = 0; r < 3; r++) {
+            int d;
+            double err = check_run(m, 0.2 + 1.3 * r, &d);
+            if (!(err <= worst))
+                worst = err;
+            differ += d;
+        }
+        printf("# %s: taylor_run's motion, largest residual %.2e\n", m->name, worst);
+        CHECK(differ == 0, "%s: taylor_run's series are the runtime loop's to the bit at 3 "
+              "states (%d coefficients not)", m->name, differ);
+        CHECK(worst <= TOL, "%s: taylor_run's q(tau) and v(tau) satisfy q' = v and M v' + h "
+              "= 0 by mass_bias at |tau| <= rho / 21 (%.2e)", m->name, worst);
+    }
+    /* the models whose M is constant and diagonal and that have no
+     * constraints have it; the others do not */
+    CHECK(nrun >= 5 && kepler_model.taylor_run && arenstorf_model.taylor_run &&
+              !chain5_model.taylor_run && !cartesian_pendulum_model.taylor_run,
+          "taylor_run: %d models, kepler's and arenstorf's among them, not chain5's (M(q)) "
+          "or cartesian_pendulum's (a constraint)", nrun);
     CHECK(cubic_model.taylor_a && !chain5_model.taylor_a && !cartesian_pendulum_model.taylor_a,
           "taylor_a: cubic's constraint is nonlinear in q'', the others' are not");
     return check_done();

@@ -391,17 +391,102 @@ bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and,
- * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */
+ * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).
+ * Written out to order 20, each recurrence's sum with its indices fixed
+ * (the same arithmetic in the same order); above that, the loop. */
 static void
 bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T)
 {
     const int S = K + 1;
-    for (int k = 0; k < K; k++) {
-        bouncing_ball_taylor(k, K, t0, p, u, T);
-        eomc_tay_integ(T + 1 * S, T + 3 * S, k);
-        eomc_tay_accel(T + 3 * S, T + 2 * S, T, k);
+    if (K > 20) {
+        for (int k = 0; k < K; k++) {
+            bouncing_ball_taylor(k, K, t0, p, u, T);
+            eomc_tay_integ(T + 1 * S, T + 3 * S, k);
+            eomc_tay_accel(T + 3 * S, T + 2 * S, T, k);
+        }
+        return;
     }
+    eomc_real W[84]; /* slot s's coefficient j at W[s * 21 + j] */
+    static const int state[2] = {1, 3};
+    for (int i = 0; i < 2; i++)
+        W[state[i] * 21] = T[state[i] * S];
+    for (int c = 24; c <= 41; c++) /* 0 at every step */
+        W[c] = 0.0;
+    for (int c = 65; c <= 83; c++) /* 0 at every step */
+        W[c] = 0.0;
+    /* order 0 */
+    W[0] = p[0];
+    W[42] = p[5];
+    W[22] = W[63];
+    W[64] = -W[42] / W[0];
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    W[23] = W[64] / 2.0;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (K == 19)
+        goto out;
+    /* order 19 */
+out:
+    for (int i = 0; i < 2; i++)
+        for (int j = 1; j <= K; j++)
+            T[state[i] * S + j] = W[state[i] * 21 + j];
+    static const int g[1] = {1};
+    for (int i = 0; i < 1; i++)
+        for (int j = 0; j < K; j++)
+            T[g[i] * S + j] = W[g[i] * 21 + j];
+    T[0 * S] = W[0]; /* M's diagonal, entry 0 */
 }
 #endif
 

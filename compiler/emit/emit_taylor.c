@@ -9,6 +9,9 @@
 #include "base/arena.h"
 #include "lower/lower_schedule.h"
 
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,9 +131,220 @@ print_wrappers(Printer *pr, const LowTaylor *ty, int declare)
         emit_line(pr, "");
 }
 
+/* A line's text, wrapped before a term past this column. */
+enum { SERIES_WRAP = 92 };
+
+typedef struct Col {
+    FILE *f;
+    int col;
+} Col;
+
+static void
+put(Col *c, const char *fmt, ...)
+{
+    char buf[160];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    fputs(buf, c->f);
+    c->col += n;
+}
+
+/* A cell as an operand: W[c], or 0 (-1: 0 at every step). */
+static void
+put_cell(Col *c, int cell)
+{
+    if (cell < 0)
+        put(c, "0.0");
+    else
+        put(c, "W[%d]", cell);
+}
+
+/* Term t, after others (its sign as the operator) or first. */
+static void
+put_term(Col *c, const LowSerTerm *t, int first)
+{
+    double mag = fabs(t->coef);
+    if (!first && c->col > SERIES_WRAP) {
+        fputs("\n           ", c->f);
+        c->col = 11;
+    }
+    if (first)
+        put(c, t->coef < 0 ? "-" : "");
+    else
+        put(c, t->coef < 0 ? " - " : " + ");
+    char num[40];
+    emit_const(num, sizeof num, mag);
+    if (t->x < 0) {
+        put(c, "%s", num);
+        return;
+    }
+    if (mag != 1)
+        put(c, "%s * ", num);
+    put_cell(c, t->x);
+    if (t->y >= 0) {
+        put(c, " * ");
+        put_cell(c, t->y);
+    }
+}
+
+static void
+put_value(Col *c, int src, int index, double value)
+{
+    char num[40];
+    switch (src) {
+    case LOW_TAY_SRC_P:
+        put(c, "p[%d]", index);
+        break;
+    case LOW_TAY_SRC_U:
+        put(c, "u[%d]", index);
+        break;
+    case LOW_TAY_SRC_T:
+        put(c, "t0");
+        break;
+    default:
+        emit_const(num, sizeof num, value);
+        put(c, "%s", num);
+        break;
+    }
+}
+
+/* One line of the written-out series (lowered.h's LowSerLine). */
+static void
+print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l)
+{
+    Col c = {pr->f, 0};
+    char num[40];
+    put(&c, "    W[%d] = ", l->dst);
+    switch (l->kind) {
+    case LOW_SER_VALUE:
+        put_value(&c, l->src, l->index, l->value);
+        break;
+    case LOW_SER_CALL:
+        put(&c, "%s(", l->fn);
+        put_cell(&c, l->x);
+        if (!strcmp(l->fn, "pow")) {
+            put(&c, ", ");
+            put_cell(&c, l->y);
+        }
+        put(&c, ")");
+        break;
+    case LOW_SER_SELECT:
+        put_value(&c, l->src, l->index, 0);
+        put(&c, " != 0 ? ");
+        put_cell(&c, l->x);
+        put(&c, " : ");
+        put_cell(&c, l->y);
+        break;
+    default: {
+        /* Products and quotients associate to the left, so a single term
+         * needs no parentheses (x * y / m / 3 is ((x y) / m) / 3); a
+         * negation is exact wherever it stands, so it leads.  A sum is
+         * parenthesized before what multiplies or divides it.  An empty
+         * sum times a number is 0: then the last term alone. */
+        int times = l->times != 1 && l->nterm > 0, nsum = l->nterm + (l->last >= 0);
+        int wrap = l->nterm > 1 && (times || l->over != 0 || l->after != 0 || l->negate);
+        int wrap2 = nsum > 1 && l->last >= 0 && (l->over != 0 || l->after != 0 || l->negate);
+        put(&c, "%s%s%s", l->negate ? (nsum > 1 ? "-(" : "-") : "", wrap2 ? "(" : "",
+            wrap ? "(" : "");
+        for (int t = 0; t < l->nterm; t++)
+            put_term(&c, &se->term[l->first + t], t == 0);
+        put(&c, wrap ? ")" : "");
+        if (times) {
+            emit_const(num, sizeof num, l->times);
+            put(&c, " * %s", num);
+        }
+        if (l->last >= 0)
+            put_term(&c, &se->term[l->last], l->nterm == 0);
+        put(&c, wrap2 ? ")" : "");
+        if (l->over != 0) {
+            emit_const(num, sizeof num, l->over);
+            put(&c, l->over != 1 ? " / (%s * " : " / ", num);
+            put_cell(&c, l->over_cell);
+            put(&c, l->over != 1 ? ")" : "");
+        }
+        if (l->negate && nsum > 1)
+            put(&c, ")");
+        if (l->after != 0 && l->after != 1) { /* (x / 1 is x) */
+            emit_const(num, sizeof num, l->after);
+            put(&c, " / %s", num);
+        }
+    }
+    }
+    fputs(";\n", pr->f);
+}
+
+/* "static const int NAME[n] = {...};" inside a function. */
+static void
+print_slots(Printer *pr, const char *name, const int *slot, int n)
+{
+    fprintf(pr->f, "    static const int %s[%d] = {", name, n);
+    for (int i = 0; i < n; i++)
+        fprintf(pr->f, "%s%d", i == 0 ? "" : i % 16 ? ", " : ",\n        ", slot[i]);
+    emit_line(pr, "};");
+}
+
+/* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
+ * - 1 over the local cells W, then what the caller reads copied into T. */
+static void
+print_series(Printer *pr, const LowTaylor *ty)
+{
+    const LowSeries *se = ty->series;
+    int W1 = LOW_SERIES_ORDERS + 1, ns = ty->nrun, ng = 0;
+    int *state = xmalloc(((size_t)ns + 1) * sizeof *state);
+    int *g = xmalloc(((size_t)ty->nevent + ty->nmode + 1) * sizeof *g);
+    for (int i = 0; i < ns; i++)
+        state[i] = ty->step[ty->nstep + i].slot[0];
+    for (int e = 0; e < ty->nevent + ty->nmode; e++)
+        if (ty->g_slot[e] >= 0)
+            g[ng++] = ty->g_slot[e];
+    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[s * %d + j] */", se->ncell,
+              W1);
+    print_slots(pr, "state", state, ns);
+    emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
+    emit_line(pr, "        W[state[i] * %d] = T[state[i] * S];", W1);
+    for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: by runs */
+        for (j = i + 1; j < se->nzero_out && se->zero_out[j] == se->zero_out[j - 1] + 1;)
+            j++;
+        if (j - i == 1)
+            emit_line(pr, "    W[%d] = 0.0; /* at every step */", se->zero_out[i]);
+        else
+            emit_line(pr, "    for (int c = %d; c <= %d; c++) /* 0 at every step */\n"
+                          "        W[c] = 0.0;", se->zero_out[i], se->zero_out[j - 1]);
+    }
+    for (int k = 0; k < LOW_SERIES_ORDERS; k++) {
+        if (k > 0) {
+            emit_line(pr, "    if (K == %d)", k);
+            emit_line(pr, "        goto out;");
+        }
+        emit_line(pr, "    /* order %d */", k);
+        for (int i = se->start[k]; i < se->start[k + 1]; i++)
+            print_series_line(pr, se, &se->line[i]);
+    }
+    emit_line(pr, "out:");
+    emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
+    emit_line(pr, "        for (int j = 1; j <= K; j++)");
+    emit_line(pr, "            T[state[i] * S + j] = W[state[i] * %d + j];", W1);
+    if (ng) {
+        print_slots(pr, "g", g, ng);
+        emit_line(pr, "    for (int i = 0; i < %d; i++)", ng);
+        emit_line(pr, "        for (int j = 0; j < K; j++)");
+        emit_line(pr, "            T[g[i] * S + j] = W[g[i] * %d + j];", W1);
+    }
+    int nv = pr->md->nv;
+    for (int j = 0; j < nv; j++) {
+        int m = ty->M_slot[j * nv + j];
+        emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m * W1, j);
+    }
+    free(state);
+    free(g);
+}
+
 /* taylor_run (eomc_model.h): each order of the program, then the state's
- * next coefficients, M being constant and diagonal.  Only the doubles':
- * the extended twin's reference sums its series by the runtime's loop. */
+ * next coefficients, M being constant and diagonal; written out where
+ * lower_series could.  Only the doubles': the extended twin's reference
+ * sums its series by the runtime's loop. */
 static void
 print_run(Printer *pr, const LowTaylor *ty)
 {
@@ -138,24 +352,41 @@ print_run(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "#ifndef EOMC_EXTENDED");
     emit_line(pr, "/* The whole series to order K in one call (taylor_run): each order k of");
     emit_line(pr, " * the program above, then q's coefficient k + 1 from its rate's k, and,");
-    emit_line(pr, " * M being constant and diagonal, q'''s from -(h_j / M_jj) / (k + 1). */");
+    emit_line(pr, " * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).");
+    if (ty->series) {
+        emit_line(pr, " * Written out to order %d, each recurrence's sum with its indices fixed",
+                  LOW_SERIES_ORDERS);
+        emit_line(pr, " * (the same arithmetic in the same order); above that, the loop. */");
+    } else {
+        emit_line(pr, " */");
+    }
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
     emit_head(pr, "static void", fname,
               "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T");
     emit_line(pr, "    const int S = K + 1;");
-    emit_line(pr, "    for (int k = 0; k < K; k++) {");
-    emit_line(pr, "        %s_taylor(k, K, t0, p, u, T);", nm);
+    const char *in = "    ";
+    if (ty->series) {
+        emit_line(pr, "    if (K > %d) {", LOW_SERIES_ORDERS);
+        in = "        ";
+    }
+    emit_line(pr, "%sfor (int k = 0; k < K; k++) {", in);
+    emit_line(pr, "%s    %s_taylor(k, K, t0, p, u, T);", in, nm);
     for (int i = ty->nstep; i < ty->nstep + ty->nrun; i++) {
         const LowTayStep *st = &ty->step[i];
-        fprintf(pr->f, "        eomc_tay_%s(", st->call);
+        fprintf(pr->f, "%s    eomc_tay_%s(", in, st->call);
         for (int j = 0; j < st->nslot; j++) {
             print_slot(pr->f, st->slot[j]);
             fputs(", ", pr->f);
         }
         emit_line(pr, "k);");
     }
-    emit_line(pr, "    }");
+    emit_line(pr, "%s}", in);
+    if (ty->series) {
+        emit_line(pr, "        return;");
+        emit_line(pr, "    }");
+        print_series(pr, ty);
+    }
     emit_line(pr, "}");
     emit_line(pr, "#endif\n");
 }

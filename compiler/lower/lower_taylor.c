@@ -39,6 +39,7 @@
  * up to k, which the caller has written by then.
  */
 #include "lower_taylor.h"
+#include "lower_series.h"
 #include "expr/monomial.h"
 
 #include <stdio.h>
@@ -661,6 +662,8 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
                 e == EXPR_ZERO ? -1 : b.slot[e];
         }
         run_tail(ty, nq, nv, A);
+        if (ty->nrun)
+            ty->series = lower_series(ty, A);
     }
     for (int r = 0; r < NROOT; r++)
         free(R.e[r]);

@@ -218,6 +218,58 @@ typedef struct LowTayStep {
  * the diagonal 0 (eomc_model.h's EOMC_TAYLOR_M_*, which the C names). */
 enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
 
+/* taylor_run's program as straight-line code (lower_series.c): each call
+ * of the program at each order k < LOW_SERIES_ORDERS written out over
+ * cells, slot s's coefficient j being cell s (LOW_SERIES_ORDERS + 1) + j.
+ * A line computes, in this order (each part absent where it says so):
+ *     v = term_first + ... (SUM: each term coef * x * y, added left to
+ *         right; coef +-1 a sign, cell y -1 none, x -1 the number coef),
+ *     v = v * times (1: none), v = v + term[last] (-1: none),
+ *     v = v / (over * cell over_cell) (over 0: none),
+ *     v = -v (negate), v = v / after (0: none);
+ * a VALUE is src's (LowTayStep's src, index, value); a CALL is fn(x) or
+ * fn(x, y) of libm; a SELECT is x where the mode (src U, index) is not 0,
+ * else y.  A cell -1 as an operand is 0.  These are the arithmetic of
+ * eomc_taylor.h's recurrences in their order, so the same bits, but that
+ * a term with a factor 0 at every step (a constant's coefficient past
+ * the first, a product of polynomials past its degree) is left out, and
+ * a cell no term reaches is not written: the emitter reads it as 0. */
+enum { LOW_SER_SUM, LOW_SER_VALUE, LOW_SER_CALL, LOW_SER_SELECT };
+typedef struct LowSerTerm {
+    double coef;
+    int x, y;
+} LowSerTerm;
+typedef struct LowSerLine {
+    int dst, kind;
+    int first, nterm; /* SUM: term[first .. first + nterm - 1] */
+    double times;
+    int last;
+    double over;
+    int over_cell, negate;
+    double after;
+    const char *fn; /* CALL: "sqrt" */
+    int x, y;       /* CALL's, SELECT's operands (-1: 0; CALL's y -1: one operand) */
+    int src, index;
+    double value;
+} LowSerLine;
+/* The orders written out: rtol down to 1e-16 asks for at most 20
+ * (taylor.c's order rule); taylor_run loops over the program above. */
+enum { LOW_SERIES_ORDERS = 20 };
+/* The most terms written out: a larger model's series is its program's
+ * loop (docs/internals.md, "Taylor's series written out"). */
+enum { LOW_SERIES_MAX_TERMS = 60000 };
+typedef struct LowSeries {
+    int ncell;
+    LowSerLine *line;
+    int nline;
+    int *start;     /* [LOW_SERIES_ORDERS + 1]: order k's lines from start[k] */
+    LowSerTerm *term;
+    int nterm;
+    int *zero_out;  /* the cells taylor_run copies out that no line writes
+                     * (0 at every step): written 0 (nzero_out) */
+    int nzero_out;
+} LowSeries;
+
 /* The program of the model's taylor member (eomc_model.h): nstep calls
  * over nslot series, in an order where every operand is computed before
  * it is read; the caller writes the slots of q and of the speeds v
@@ -247,6 +299,7 @@ typedef struct LowTaylor {
     int nrun;             /* taylor_run's calls after each order's program,
                            * step[nstep .. nstep + nrun - 1] (every q and v
                            * then has a slot); 0: no taylor_run */
+    LowSeries *series;    /* taylor_run written out, or NULL: its loop */
     int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */
 } LowTaylor;

@@ -97,3 +97,82 @@ for m in rk2 rkf45 rk8pd msadams taylor; do
     awk -v m=$m '/^cpu_seconds / { c = $2 } /^monitor_seconds / { s = $2 }
         END { printf "  %-8s %.3g of %.3g s, %.1f %%\n", m, s, c, 100 * s / c }' "$dir/m.err"
 done
+
+# Issue 46: the Pleiades (t = 0 to 3) and the outer solar system (200 000
+# days), each against its reference at the end computed with mpmath
+# outside eomc (tests/sim/*_reference.csv).  The error of a run is the
+# largest difference at the end relative to the largest entry of the
+# same kind (positions, velocities); each method's CPU is its least over
+# 5 runs, taylor and rk8pd in turns, with two rows (the integration, not
+# the CSV).  At equal error: taylor at a tolerance against rk8pd's
+# cheapest run that is at least as accurate.  Instructions a step by
+# callgrind where valgrind is installed (Kepler too, 100 periods).
+echo "N-body problems against their mpmath references (least CPU of 5 runs, in turns)"
+nbody_error() { # run.csv reference.csv: the error at the end
+    awk -F, 'FNR == 1 && $0 !~ /^#/ && $1 == "t" { next } /^#/ || /^t,/ { next }
+        FILENAME == ARGV[1] { last_run = $0; next } { last_ref = $0 }
+        END { n = split(last_run, a, ","); split(last_ref, b, ","); h = (n - 1) / 2
+              for (i = 2; i <= n; i++) { k = (i - 2 < h) ? 0 : 1; d = a[i] - b[i]
+                  if (d < 0) d = -d; s = b[i] < 0 ? -b[i] : b[i]
+                  if (d > err[k]) err[k] = d; if (s > big[k]) big[k] = s }
+              e = err[0] / big[0]; if (err[1] / big[1] > e) e = err[1] / big[1]; printf "%.3g", e }' \
+        "$1" "$2"
+}
+for spec in pleiades outer_solar_system; do
+    ref="$src/tests/sim/${spec}_reference.csv"
+    t_end=$(awk -F, '!/^#/ && !/^t,/ { t = $1 } END { print t }' "$ref")
+    start=$(date +%s.%N)
+    "$eomc" build "$src/specs/$spec.yaml" -o "$dir/$spec" 2> /dev/null
+    end=$(date +%s.%N)
+    awk -v s="$start" -v e="$end" -v n="$spec" \
+        'BEGIN { printf "  %s: built in %.2f s%s\n", n, e - s, n == "pleiades" ? " (target <= 3 s)" : "" }'
+    : > "$dir/$spec.runs"
+    for tol in 1e-10 1e-12 1e-13 1e-14 1e-15; do
+        for m in taylor rk8pd; do
+            "$dir/$spec" --method $m --rtol $tol --atol $tol --t-end "$t_end" --dt "$t_end" \
+                --stats -o "$dir/n.csv" 2> "$dir/n.err"
+            err=$(nbody_error "$dir/n.csv" "$ref")
+            steps=$(sed -n 's/^steps //p' "$dir/n.err")
+            best=""
+            for r in 1 2 3 4 5; do
+                "$dir/$spec" --method $m --rtol $tol --atol $tol --t-end "$t_end" --dt "$t_end" \
+                    --stats -o /dev/null 2> "$dir/n.err"
+                c=$(sed -n 's/^cpu_seconds //p' "$dir/n.err")
+                best=$(awk -v a="$best" -v b="$c" 'BEGIN { print (a == "" || b < a) ? b : a }')
+            done
+            echo "$m $tol $err $best $steps" >> "$dir/$spec.runs"
+            printf '  %-18s %-6s rtol %-6s error %-9s cpu %.3g ms, %s steps\n' "$spec" $m $tol \
+                "$err" "$(awk -v c="$best" 'BEGIN { print c * 1e3 }')" "$steps"
+        done
+    done
+    for level in 1e-12 1e-15; do
+        [ $spec = outer_solar_system ] && [ $level = 1e-15 ] && continue
+        target=$([ $spec = pleiades ] && echo 0.8 || echo 0.35)
+        awk -v lev=$level -v tgt=$target -v n=$spec '
+            $1 == "taylor" && $2 == lev { te = $3; tc = $4 }
+            $1 == "rk8pd" { e[NR] = $3; c[NR] = $4 }
+            END { for (i in e) if (e[i] <= te && (rc == "" || c[i] < rc)) rc = c[i]
+                  if (rc == "") { printf "  %s, taylor at %s (error %s): no rk8pd run as accurate\n", n, lev, te; exit }
+                  r = tc / rc
+                  printf "  %s, taylor at %s (error %s) against rk8pd at least as accurate: %.3g of its time%s\n",
+                      n, lev, te, r, lev == "1e-12" ? sprintf(" (target <= %s: %s)", tgt, r <= tgt ? "met" : "missed") : "" }' \
+            "$dir/$spec.runs"
+    done
+done
+if command -v valgrind > /dev/null 2>&1; then
+    ipstep() { # what steps: instructions a step, all in (two rows)
+        valgrind --tool=callgrind --callgrind-out-file="$dir/cg.out" "$@" --stats -o /dev/null \
+            2> "$dir/cg.err" > /dev/null
+        awk '/^steps / { s = $2 } /refs:/ { gsub(",", "", $NF); i = $NF } END { printf "%.0f", i / s }' \
+            "$dir/cg.err"
+    }
+    "$eomc" build "$src/specs/kepler.yaml" --taylor -o "$dir/kepler" 2> /dev/null
+    period=6.283185307179586
+    k=$(ipstep "$dir/kepler" --set e=0.6 --method taylor --rtol 1e-15 --atol 1e-15 \
+        --t-end 628.3185307179586 --dt 628.3185307179586)
+    echo "  instructions a step (callgrind, all in): Kepler at 1e-15 (order 19) $k (target <= 4000)"
+    k=$(ipstep "$dir/pleiades" --method taylor --rtol 1e-12 --atol 1e-12 --t-end 3 --dt 3)
+    echo "  instructions a step (callgrind, all in): the Pleiades at 1e-12 (order 15) $k (target <= 50000)"
+else
+    echo "  (no valgrind: instructions a step not counted)"
+fi

@@ -256,8 +256,11 @@ typedef struct LowSerLine {
  * (taylor.c's order rule); taylor_run loops over the program above. */
 enum { LOW_SERIES_ORDERS = 20 };
 /* The most terms written out: a larger model's series is its program's
- * loop (docs/internals.md, "Taylor's series written out"). */
-enum { LOW_SERIES_MAX_TERMS = 60000 };
+ * loop.  gcc -O1's time grows faster than the terms do on this code
+ * (Arenstorf's 2 000 terms: 0.7 s; the Pleiades' 19 000 at 20 orders:
+ * 61 s, 25 s cut one function an order; docs/internals.md, "Taylor's
+ * series written out"). */
+enum { LOW_SERIES_MAX_TERMS = 2500 };
 typedef struct LowSeries {
     int ncell;
     LowSerLine *line;

@@ -496,16 +496,12 @@ run_series(Taylor *tp, double t0, const double *par, const double *u)
         if (!(d > EOMC_PIVOT_TOL * d))
             return -1;
     }
-    /* a coefficient times 0 is 0, or NaN where it is not finite */
-    double nonfinite = 0;
     for (int i = 0; i < N; i++) {
         const double *c = tp->T + (size_t)(i < n ? m->taylor_q[i] : m->taylor_v[i - n]) * S;
-        for (int j = 1; j <= p; j++) {
+        for (int j = 1; j <= p; j++)
             tp->X[(size_t)j * N + i] = c[j];
-            nonfinite += c[j] * 0;
-        }
     }
-    return nonfinite == 0 ? 0 : -1;
+    return sim_all_finite(tp->X + N, p * N) ? 0 : -1;
 }
 
 int

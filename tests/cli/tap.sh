@@ -14,6 +14,8 @@ ok() {
 # |got - want| <= tol, and got not empty
 within() { awk -v g="$1" -v w="$2" -v tol="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= tol) }'; }
 tap_end() { echo "1..$n"; [ $failed -eq 0 ]; }
+# stat_of NAME FILE: the value of --stats' line NAME in FILE
+stat_of() { sed -n "s/^$1 //p" "$2"; }
 # why ST FILE: for a check's message, what a command that exited ST said
 # on its standard error (FILE) where ST is not 0: so that a failure in CI,
 # whose log keeps the message alone, says its cause

@@ -243,7 +243,6 @@ state_diff() {
         d = $i - w; if (d < 0) d = -d; if (d > dm) dm = d } }
     END { printf "%.17g\n", dm }' "$1" "${2:-$1}"
 }
-stat_of() { sed -n "s/^$1 //p" "$2"; }
 "$eomc" import "$src/tests/cli/rest_biped.xml" > /dev/null 2> "$tmp/imp.err"; st=$?
 if [ $st = 0 ] || ! grep -q 'libmujoco-dev' "$tmp/imp.err"; then
   export EOMC_CACHE_DIR="$tmp/cache"

@@ -33,7 +33,6 @@ export EOMC_CACHE_DIR="$tmp/cache"
 state_diff() { paste -d, "$1" "$2" | awk -F, -v last="$3" 'NR == 1 { h = NF / 2; next }
     { n++; for (i = 2; i <= last; i++) { d = $i - $(i + h); d = d < 0 ? -d : d; if (d > m) m = d } }
     END { if (n == 0) print "none"; else printf "%.3g", m }'; }
-stat_of() { sed -n "s/^$1 //p" "$2"; }
 le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "none" && a + 0 <= b + 0) }'; }
 
 # free_top's closed form: with A = B, w's cross component turns about the

@@ -360,9 +360,22 @@ print_run(Printer *pr, const LowTaylor *ty)
     } else {
         emit_line(pr, " */");
     }
+    int unopt = ty->series && ty->series->unoptimized;
+    if (unopt) {
+        emit_line(pr, "/* Its terms are too many for the C compiler's optimizer, whose time grows");
+        emit_line(pr, " * faster than they do; each is one statement on values in memory either");
+        emit_line(pr, " * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */");
+        emit_line(pr, "#if defined(__clang__)");
+        emit_line(pr, "#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))");
+        emit_line(pr, "#elif defined(__GNUC__)");
+        emit_line(pr, "#define EOMC_UNOPTIMIZED __attribute__((optimize(\"O0\"), noinline))");
+        emit_line(pr, "#else");
+        emit_line(pr, "#define EOMC_UNOPTIMIZED");
+        emit_line(pr, "#endif");
+    }
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
-    emit_head(pr, "static void", fname,
+    emit_head(pr, unopt ? "static EOMC_UNOPTIMIZED void" : "static void", fname,
               "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T");
     emit_line(pr, "    const int S = K + 1;");
     const char *in = "    ";

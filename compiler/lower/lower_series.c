@@ -291,7 +291,8 @@ lower_series(const LowTaylor *ty, Arena *A)
     LowSeries *se = NULL;
     if (!o.why && o.nterm <= LOW_SERIES_MAX_TERMS) {
         se = arena_alloc(A, sizeof *se);
-        *se = (LowSeries){.ncell = ncell, .nline = o.nline, .start = start, .nterm = o.nterm};
+        *se = (LowSeries){.ncell = ncell, .nline = o.nline, .start = start, .nterm = o.nterm,
+                          .unoptimized = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
         se->line = arena_new_array(A, LowSerLine, o.nline + 1);
         se->term = arena_new_array(A, LowSerTerm, o.nterm + 1);
         if (o.nline)

@@ -255,12 +255,17 @@ typedef struct LowSerLine {
 /* The orders written out: rtol down to 1e-16 asks for at most 20
  * (taylor.c's order rule); taylor_run loops over the program above. */
 enum { LOW_SERIES_ORDERS = 20 };
+/* Up to this many terms the written-out series is compiled as the rest
+ * of its unit; past it, without the C compiler's optimizer: gcc -O1's
+ * time grows faster than the terms do on this code (Arenstorf's 2 000
+ * terms: 0.7 s; the Pleiades' 25 000: 61 s, 25 s cut one function an
+ * order), where -O0 takes 1.3 s and its code costs 1.3 times -O1's (each
+ * coefficient one statement whose operands come from memory either way;
+ * Kepler's, which -O1 keeps in registers, would cost twice). */
+enum { LOW_SERIES_OPTIMIZED_TERMS = 2500 };
 /* The most terms written out: a larger model's series is its program's
- * loop.  gcc -O1's time grows faster than the terms do on this code
- * (Arenstorf's 2 000 terms: 0.7 s; the Pleiades' 19 000 at 20 orders:
- * 61 s, 25 s cut one function an order; docs/internals.md, "Taylor's
- * series written out"). */
-enum { LOW_SERIES_MAX_TERMS = 2500 };
+ * loop (docs/internals.md, "Taylor's series written out"). */
+enum { LOW_SERIES_MAX_TERMS = 60000 };
 typedef struct LowSeries {
     int ncell;
     LowSerLine *line;
@@ -271,6 +276,7 @@ typedef struct LowSeries {
     int *zero_out;  /* the cells taylor_run copies out that no line writes
                      * (0 at every step): written 0 (nzero_out) */
     int nzero_out;
+    int unoptimized; /* more than LOW_SERIES_OPTIMIZED_TERMS terms */
 } LowSeries;
 
 /* The program of the model's taylor member (eomc_model.h): nstep calls

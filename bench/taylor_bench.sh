@@ -111,7 +111,7 @@ echo "N-body problems against their mpmath references (least CPU of 5 runs, in t
 nbody_error() { # run.csv reference.csv: the error at the end
     awk -F, 'FNR == 1 && $0 !~ /^#/ && $1 == "t" { next } /^#/ || /^t,/ { next }
         FILENAME == ARGV[1] { last_run = $0; next } { last_ref = $0 }
-        END { n = split(last_run, a, ","); split(last_ref, b, ","); h = (n - 1) / 2
+        END { split(last_run, a, ","); n = split(last_ref, b, ","); h = (n - 1) / 2
               for (i = 2; i <= n; i++) { k = (i - 2 < h) ? 0 : 1; d = a[i] - b[i]
                   if (d < 0) d = -d; s = b[i] < 0 ? -b[i] : b[i]
                   if (d > err[k]) err[k] = d; if (s > big[k]) big[k] = s }

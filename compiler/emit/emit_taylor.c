@@ -25,14 +25,27 @@ print_slot(FILE *f, int s)
         fprintf(f, "T + %d * S", s);
 }
 
-/* "static const int NAME[n] = {...};", twenty a line. */
+/* "static const int NAME[n] = {...};" at file scope, twenty a line, or
+ * in a function (in: its indent), sixteen. */
+static void
+print_ints_in(Printer *pr, const char *in, const char *name, const int *x, int n)
+{
+    int per = *in ? 16 : 20;
+    fprintf(pr->f, "%sstatic const int %s[%d] = {", in, name, n);
+    for (int i = 0; i < n; i++) {
+        if (i > 0 && i % per)
+            fputs(", ", pr->f);
+        else if (i > 0)
+            fprintf(pr->f, ",\n%s    ", in);
+        fprintf(pr->f, "%d", x[i]);
+    }
+    emit_line(pr, "};");
+}
+
 static void
 print_ints(Printer *pr, const char *name, const int *x, int n)
 {
-    fprintf(pr->f, "static const int %s[%d] = {", name, n);
-    for (int i = 0; i < n; i++)
-        fprintf(pr->f, "%s%d", i == 0 ? "" : i % 20 ? ", " : ",\n    ", x[i]);
-    emit_line(pr, "};");
+    print_ints_in(pr, "", name, x, n);
 }
 
 /* Calls first .. end-1 of the program, after the locals they need. */
@@ -275,16 +288,6 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l)
     fputs(";\n", pr->f);
 }
 
-/* "static const int NAME[n] = {...};" inside a function. */
-static void
-print_slots(Printer *pr, const char *name, const int *slot, int n)
-{
-    fprintf(pr->f, "    static const int %s[%d] = {", name, n);
-    for (int i = 0; i < n; i++)
-        fprintf(pr->f, "%s%d", i == 0 ? "" : i % 16 ? ", " : ",\n        ", slot[i]);
-    emit_line(pr, "};");
-}
-
 /* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
  * - 1 over the local cells W, then what the caller reads copied into T. */
 static void
@@ -301,7 +304,7 @@ print_series(Printer *pr, const LowTaylor *ty)
             g[ng++] = ty->g_slot[e];
     emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[s * %d + j] */", se->ncell,
               W1);
-    print_slots(pr, "state", state, ns);
+    print_ints_in(pr, "    ", "state", state, ns);
     emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
     emit_line(pr, "        W[state[i] * %d] = T[state[i] * S];", W1);
     for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: by runs */
@@ -327,7 +330,7 @@ print_series(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "        for (int j = 1; j <= K; j++)");
     emit_line(pr, "            T[state[i] * S + j] = W[state[i] * %d + j];", W1);
     if (ng) {
-        print_slots(pr, "g", g, ng);
+        print_ints_in(pr, "    ", "g", g, ng);
         emit_line(pr, "    for (int i = 0; i < %d; i++)", ng);
         emit_line(pr, "        for (int j = 0; j < K; j++)");
         emit_line(pr, "            T[g[i] * S + j] = W[g[i] * %d + j];", W1);

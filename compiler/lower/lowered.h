@@ -233,7 +233,8 @@ enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
  * eomc_taylor.h's recurrences in their order, so the same bits, but that
  * a term with a factor 0 at every step (a constant's coefficient past
  * the first, a product of polynomials past its degree) is left out, and
- * a cell no term reaches is not written: the emitter reads it as 0. */
+ * a cell no term reaches is not written: its readers see -1, and those
+ * of the cells taylor_run copies out are listed in zero_out. */
 enum { LOW_SER_SUM, LOW_SER_VALUE, LOW_SER_CALL, LOW_SER_SELECT };
 typedef struct LowSerTerm {
     double coef;

@@ -35,6 +35,11 @@
 #    pendulum, the Cartesian pendulum, precession's second-order
 #    constraint, the car axis) their rows differ by no more than the sum
 #    of the errors each claims;
+#  - the Pleiades and the outer solar system (specs/), against their
+#    states at the end computed outside eomc with mpmath to 25 digits
+#    (tests/sim/nbody_reference.py, *_reference.csv): the error --error
+#    reports (against eomc's extended-precision reference) is the true
+#    error to within what that reference claims, for taylor and rk8pd;
 #  - refusals, each naming its cause: a model without series (before
 #    its C is compiled: no cc runs), fixed steps, a reference by Taylor's
 #    method of a constraint nonlinear in q''.
@@ -276,5 +281,30 @@ ok $? "--fixed-step with taylor: exit 2"
     2> "$tmp/z.err"
 [ $? = 2 ] && grep -q "rtol must be positive" "$tmp/z.err"
 ok $? "--rtol 0 with taylor: exit 2"
+
+# the N-body problems: --error's error against the mpmath reference's
+nbody_true() { # run.csv reference.csv: the largest |x - x_ref| at the end
+    awk -F, '/^#/ || /^t,/ { next } FILENAME == ARGV[1] { run = $0; next } { ref = $0 }
+        END { split(run, a, ","); n = split(ref, b, ",") # (T, V, E follow in the run)
+              for (i = 2; i <= n; i++) { d = a[i] - b[i]; d = d < 0 ? -d : d; if (d > m) m = d }
+              printf "%.17g", m }' "$1" "$2"
+}
+for spec in pleiades outer_solar_system; do
+    ref="$src/tests/sim/${spec}_reference.csv"
+    t_end=$(awk -F, '!/^#/ && !/^t,/ { t = $1 } END { print t }' "$ref")
+    for run in "taylor 1e-13" "rk8pd 1e-10"; do
+        set -- $run
+        "$eomc" run "$src/specs/$spec.yaml" --method $1 --rtol $2 --atol $2 --t-end "$t_end" \
+            --dt "$t_end" --error --stats -o "$tmp/nb.csv" 2> "$tmp/nb.err"
+        st=$?
+        true_err=$(nbody_true "$tmp/nb.csv" "$ref")
+        emax=$(stat_of error_max "$tmp/nb.err") refe=$(stat_of reference_error "$tmp/nb.err")
+        # the two agree to the reference's claim (the mpmath one's 25
+        # digits are exact here) and the rows' rounding, 2 ulps of 50
+        [ $st = 0 ] && [ -n "$refe" ] && awk -v a="$emax" -v b="$true_err" -v r="$refe" 'BEGIN {
+            d = a - b; d = d < 0 ? -d : d; exit !(a > 0 && b > 0 && d <= r + 2.2e-14) }'
+        ok $? "$spec, $1 at $2 to t = $t_end: --error's error_max $(printf %.6g "$emax"), the mpmath reference's true error $(printf %.6g "$true_err") (eomc's reference within $(printf %.2g "$refe"))"
+    done
+done
 
 tap_end

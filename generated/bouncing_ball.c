@@ -407,23 +407,56 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
         }
         return;
     }
-    eomc_real W[84]; /* slot s's coefficient j at W[s * 21 + j] */
+    eomc_real W[84]; /* slot s's coefficient j at W[j * 4 + s] */
     static const int state[2] = {1, 3};
     for (int i = 0; i < 2; i++)
-        W[state[i] * 21] = T[state[i] * S];
-    for (int c = 24; c <= 41; c++) /* 0 at every step */
-        W[c] = 0.0;
-    for (int c = 65; c <= 83; c++) /* 0 at every step */
-        W[c] = 0.0;
+        W[state[i]] = T[state[i] * S];
+    W[13] = 0.0; /* at every step */
+    W[17] = 0.0; /* at every step */
+    W[21] = 0.0; /* at every step */
+    W[25] = 0.0; /* at every step */
+    W[29] = 0.0; /* at every step */
+    W[33] = 0.0; /* at every step */
+    W[37] = 0.0; /* at every step */
+    W[41] = 0.0; /* at every step */
+    W[45] = 0.0; /* at every step */
+    W[49] = 0.0; /* at every step */
+    W[53] = 0.0; /* at every step */
+    W[57] = 0.0; /* at every step */
+    W[61] = 0.0; /* at every step */
+    W[65] = 0.0; /* at every step */
+    W[69] = 0.0; /* at every step */
+    W[73] = 0.0; /* at every step */
+    W[77] = 0.0; /* at every step */
+    W[81] = 0.0; /* at every step */
+    W[11] = 0.0; /* at every step */
+    W[15] = 0.0; /* at every step */
+    W[19] = 0.0; /* at every step */
+    W[23] = 0.0; /* at every step */
+    W[27] = 0.0; /* at every step */
+    W[31] = 0.0; /* at every step */
+    W[35] = 0.0; /* at every step */
+    W[39] = 0.0; /* at every step */
+    W[43] = 0.0; /* at every step */
+    W[47] = 0.0; /* at every step */
+    W[51] = 0.0; /* at every step */
+    W[55] = 0.0; /* at every step */
+    W[59] = 0.0; /* at every step */
+    W[63] = 0.0; /* at every step */
+    W[67] = 0.0; /* at every step */
+    W[71] = 0.0; /* at every step */
+    W[75] = 0.0; /* at every step */
+    W[79] = 0.0; /* at every step */
+    W[83] = 0.0; /* at every step */
     /* order 0 */
     W[0] = p[0];
-    W[42] = p[5];
-    W[22] = W[63];
-    W[64] = -W[42] / W[0];
+    W[2] = p[5];
+    W[5] = W[3];
+    W[7] = -W[2] / W[0];
     if (K == 1)
         goto out;
     /* order 1 */
-    W[23] = W[64] / 2.0;
+    W[9] = W[7] / 2.0;
     if (K == 2)
         goto out;
     /* order 2 */
@@ -481,11 +514,11 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
 out:
     for (int i = 0; i < 2; i++)
         for (int j = 1; j <= K; j++)
-            T[state[i] * S + j] = W[state[i] * 21 + j];
+            T[state[i] * S + j] = W[j * 4 + state[i]];
     static const int g[1] = {1};
     for (int i = 0; i < 1; i++)
         for (int j = 0; j < K; j++)
-            T[g[i] * S + j] = W[g[i] * 21 + j];
+            T[g[i] * S + j] = W[j * 4 + g[i]];
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
 }
 #endif

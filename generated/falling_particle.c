@@ -349,23 +349,56 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
         }
         return;
     }
-    eomc_real W[84]; /* slot s's coefficient j at W[s * 21 + j] */
+    eomc_real W[84]; /* slot s's coefficient j at W[j * 4 + s] */
     static const int state[2] = {2, 3};
     for (int i = 0; i < 2; i++)
-        W[state[i] * 21] = T[state[i] * S];
-    for (int c = 45; c <= 62; c++) /* 0 at every step */
-        W[c] = 0.0;
-    for (int c = 65; c <= 83; c++) /* 0 at every step */
-        W[c] = 0.0;
+        W[state[i]] = T[state[i] * S];
+    W[14] = 0.0; /* at every step */
+    W[18] = 0.0; /* at every step */
+    W[22] = 0.0; /* at every step */
+    W[26] = 0.0; /* at every step */
+    W[30] = 0.0; /* at every step */
+    W[34] = 0.0; /* at every step */
+    W[38] = 0.0; /* at every step */
+    W[42] = 0.0; /* at every step */
+    W[46] = 0.0; /* at every step */
+    W[50] = 0.0; /* at every step */
+    W[54] = 0.0; /* at every step */
+    W[58] = 0.0; /* at every step */
+    W[62] = 0.0; /* at every step */
+    W[66] = 0.0; /* at every step */
+    W[70] = 0.0; /* at every step */
+    W[74] = 0.0; /* at every step */
+    W[78] = 0.0; /* at every step */
+    W[82] = 0.0; /* at every step */
+    W[11] = 0.0; /* at every step */
+    W[15] = 0.0; /* at every step */
+    W[19] = 0.0; /* at every step */
+    W[23] = 0.0; /* at every step */
+    W[27] = 0.0; /* at every step */
+    W[31] = 0.0; /* at every step */
+    W[35] = 0.0; /* at every step */
+    W[39] = 0.0; /* at every step */
+    W[43] = 0.0; /* at every step */
+    W[47] = 0.0; /* at every step */
+    W[51] = 0.0; /* at every step */
+    W[55] = 0.0; /* at every step */
+    W[59] = 0.0; /* at every step */
+    W[63] = 0.0; /* at every step */
+    W[67] = 0.0; /* at every step */
+    W[71] = 0.0; /* at every step */
+    W[75] = 0.0; /* at every step */
+    W[79] = 0.0; /* at every step */
+    W[83] = 0.0; /* at every step */
     /* order 0 */
     W[0] = p[0];
-    W[21] = p[5];
-    W[43] = W[63];
-    W[64] = -W[21] / W[0];
+    W[1] = p[5];
+    W[6] = W[3];
+    W[7] = -W[1] / W[0];
     if (K == 1)
         goto out;
     /* order 1 */
-    W[44] = W[64] / 2.0;
+    W[10] = W[7] / 2.0;
     if (K == 2)
         goto out;
     /* order 2 */
@@ -423,7 +456,7 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
 out:
     for (int i = 0; i < 2; i++)
         for (int j = 1; j <= K; j++)
-            T[state[i] * S + j] = W[state[i] * 21 + j];
+            T[state[i] * S + j] = W[j * 4 + state[i]];
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
 }
 #endif

@@ -294,7 +294,7 @@ static void
 print_series(Printer *pr, const LowTaylor *ty)
 {
     const LowSeries *se = ty->series;
-    int W1 = LOW_SERIES_ORDERS + 1, ns = ty->nrun, ng = 0;
+    int ns = ty->nrun, ng = 0;
     int *state = xmalloc(((size_t)ns + 1) * sizeof *state);
     int *g = xmalloc(((size_t)ty->nevent + ty->nmode + 1) * sizeof *g);
     for (int i = 0; i < ns; i++)
@@ -302,11 +302,11 @@ print_series(Printer *pr, const LowTaylor *ty)
     for (int e = 0; e < ty->nevent + ty->nmode; e++)
         if (ty->g_slot[e] >= 0)
             g[ng++] = ty->g_slot[e];
-    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[s * %d + j] */", se->ncell,
-              W1);
+    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[j * %d + s] */", se->ncell,
+              ty->nslot);
     print_ints_in(pr, "    ", "state", state, ns);
     emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
-    emit_line(pr, "        W[state[i] * %d] = T[state[i] * S];", W1);
+    emit_line(pr, "        W[state[i]] = T[state[i] * S];");
     for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: by runs */
         for (j = i + 1; j < se->nzero_out && se->zero_out[j] == se->zero_out[j - 1] + 1;)
             j++;
@@ -328,17 +328,17 @@ print_series(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "out:");
     emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
     emit_line(pr, "        for (int j = 1; j <= K; j++)");
-    emit_line(pr, "            T[state[i] * S + j] = W[state[i] * %d + j];", W1);
+    emit_line(pr, "            T[state[i] * S + j] = W[j * %d + state[i]];", ty->nslot);
     if (ng) {
         print_ints_in(pr, "    ", "g", g, ng);
         emit_line(pr, "    for (int i = 0; i < %d; i++)", ng);
         emit_line(pr, "        for (int j = 0; j < K; j++)");
-        emit_line(pr, "            T[g[i] * S + j] = W[g[i] * %d + j];", W1);
+        emit_line(pr, "            T[g[i] * S + j] = W[j * %d + g[i]];", ty->nslot);
     }
     int nv = pr->md->nv;
     for (int j = 0; j < nv; j++) {
         int m = ty->M_slot[j * nv + j];
-        emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m * W1, j);
+        emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m, j);
     }
     free(state);
     free(g);

@@ -7,8 +7,8 @@
  * in a loop whose bounds and indices the C compiler does not know.  Here
  * every call at every order k < LOW_SERIES_ORDERS becomes its sum with
  * the indices fixed: eomc_tay_mul at k = 3 is c3 = a0 b3 + a1 b2 + a2 b1
- * + a3 b0, over cells of a local array (each slot's coefficients at a
- * fixed stride), as heyoka compiles its series.  Kepler's program went
+ * + a3 b0, over cells of a local array (each order's coefficients side by
+ * side), as heyoka compiles its series.  Kepler's program went
  * from 8 800 instructions a step to 3 300 (callgrind, 100 periods at
  * 1e-15, cc -O2), the rows the same to the bit.
  *
@@ -29,7 +29,7 @@
 
 typedef struct Out {
     const LowTaylor *ty;
-    int stride;            /* LOW_SERIES_ORDERS + 1 */
+    int orders, nslot;     /* LOW_SERIES_ORDERS + 1, the program's slots */
     unsigned char *nz;     /* [ncell] written by a line (else 0 at every step) */
     double *literal;       /* [nslot] a constant's value where it is a number, else NAN */
     LowSerLine *line;
@@ -39,13 +39,24 @@ typedef struct Out {
     const char *why;       /* a call without a straight form */
 } Out;
 
+/* Slot s's coefficient j's cell: order by order, each order's slots side
+ * by side (lowered.h), so that a step of a lower order than the most
+ * touches only the first orders' cells (the Pleiades' 405 slots: 52 KB at
+ * order 15, where a slot's 21 cells side by side would spread over 68 KB
+ * and miss the first-level cache). */
+static int
+at(const Out *o, int s, int j)
+{
+    return j * o->nslot + s;
+}
+
 /* Slot s's coefficient j as an operand: its cell, or -1 where it is 0. */
 static int
 cell(const Out *o, int s, int j)
 {
-    if (s < 0 || j < 0 || j >= o->stride)
+    if (s < 0 || j < 0 || j >= o->orders)
         return -1;
-    int c = s * o->stride + j;
+    int c = at(o, s, j);
     return o->nz[c] ? c : -1;
 }
 
@@ -102,7 +113,7 @@ close_sum(Out *o, LowSerLine *l)
 static void
 product(Out *o, int c, int a, int b, int k)
 {
-    LowSerLine *l = new_line(o, c * o->stride + k, LOW_SER_SUM);
+    LowSerLine *l = new_line(o, at(o, c, k), LOW_SER_SUM);
     for (int j = 0; j <= k; j++)
         add_term(o, 1, cell(o, a, j), cell(o, b, k - j), 1);
     close_sum(o, l);
@@ -129,7 +140,7 @@ static void
 expand(Out *o, const LowTayStep *st, int k)
 {
     const int *s = st->slot;
-    int S = o->stride, c = s[0] * S + k;
+    int c = at(o, s[0], k);
     const char *f = st->call;
     LowSerLine *l;
     if (!strcmp(f, "const")) {
@@ -213,13 +224,13 @@ expand(Out *o, const LowTayStep *st, int k)
         if (k == 0) {
             int h = f[3] == 'h';
             call_line(o, c, h ? "sinh" : "sin", cell(o, s[2], 0), -1);
-            call_line(o, s[1] * S, h ? "cosh" : "cos", cell(o, s[2], 0), -1);
+            call_line(o, at(o, s[1], 0), h ? "cosh" : "cos", cell(o, s[2], 0), -1);
             return;
         }
         /* s_k = sum j a_j c_{k-j} / k, c_k = sign sum j a_j s_{k-j} / k,
          * both from orders below k */
         for (int w = 0; w < 2; w++) {
-            l = new_line(o, s[w] * S + k, LOW_SER_SUM);
+            l = new_line(o, at(o, s[w], k), LOW_SER_SUM);
             for (int j = 1; j <= k; j++)
                 add_term(o, j, cell(o, s[2], j), cell(o, s[1 - w], k - j), 1);
             l->negate = w == 1 && !strcmp(f, "sincos");
@@ -236,7 +247,7 @@ expand(Out *o, const LowTayStep *st, int k)
             o->nz[c] = 1;
     } else if (!strcmp(f, "integ") || !strcmp(f, "accel")) {
         /* q_{k+1} = r_k / (k + 1); v_{k+1} = -(h_k / m_0) / (k + 1) */
-        l = new_line(o, c + 1, LOW_SER_SUM);
+        l = new_line(o, at(o, s[0], k + 1), LOW_SER_SUM);
         add_term(o, 1, cell(o, s[1], k), -1, 0);
         if (f[0] == 'a')
             l->over = 1, l->over_cell = cell(o, s[2], 0), l->negate = 1;
@@ -267,7 +278,7 @@ lower_series(const LowTaylor *ty, Arena *A)
     int S = LOW_SERIES_ORDERS + 1, ncell = ty->nslot * S, nall = ty->nstep + ty->nrun;
     /* a real power's exponent must be a number (a parameter's would be a
      * product more per term) */
-    Out o = {.ty = ty, .stride = S};
+    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot};
     o.literal = xmalloc(((size_t)ty->nslot + 1) * sizeof *o.literal);
     literals(&o);
     for (int i = 0; i < ty->nstep && !o.why; i++)
@@ -278,7 +289,7 @@ lower_series(const LowTaylor *ty, Arena *A)
     int nq = 0; /* the state's coefficient 0, which the caller writes */
     for (int i = 0; i < ty->nrun; i++) {
         const LowTayStep *st = &ty->step[ty->nstep + i];
-        o.nz[st->slot[0] * S] = 1;
+        o.nz[at(&o, st->slot[0], 0)] = 1;
         nq++;
     }
     int *start = arena_new_array(A, int, LOW_SERIES_ORDERS + 1);
@@ -306,16 +317,16 @@ lower_series(const LowTaylor *ty, Arena *A)
         for (int i = 0; i < ty->nrun; i++) {
             int s = ty->step[ty->nstep + i].slot[0];
             for (int j = 0; j < S; j++)
-                if (!o.nz[s * S + j]) {
-                    se->zero_out[nout++] = s * S + j;
-                    o.nz[s * S + j] = 1; /* listed once */
+                if (!o.nz[at(&o, s, j)]) {
+                    se->zero_out[nout++] = at(&o, s, j);
+                    o.nz[at(&o, s, j)] = 1; /* listed once */
                 }
         }
         for (int e = 0; e < ty->nevent + ty->nmode; e++)
             for (int j = 0; ty->g_slot[e] >= 0 && j < S - 1; j++)
-                if (!o.nz[ty->g_slot[e] * S + j]) {
-                    se->zero_out[nout++] = ty->g_slot[e] * S + j;
-                    o.nz[ty->g_slot[e] * S + j] = 1;
+                if (!o.nz[at(&o, ty->g_slot[e], j)]) {
+                    se->zero_out[nout++] = at(&o, ty->g_slot[e], j);
+                    o.nz[at(&o, ty->g_slot[e], j)] = 1;
                 }
         se->nzero_out = nout;
     }

@@ -220,7 +220,7 @@ enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
 
 /* taylor_run's program as straight-line code (lower_series.c): each call
  * of the program at each order k < LOW_SERIES_ORDERS written out over
- * cells, slot s's coefficient j being cell s (LOW_SERIES_ORDERS + 1) + j.
+ * cells, slot s's coefficient j being cell j nslot + s (LowTaylor's).
  * A line computes, in this order (each part absent where it says so):
  *     v = term_first + ... (SUM: each term coef * x * y, added left to
  *         right; coef +-1 a sign, cell y -1 none, x -1 the number coef),

@@ -48,11 +48,40 @@ print_ints(Printer *pr, const char *name, const int *x, int n)
     print_ints_in(pr, "", name, x, n);
 }
 
+/* One call, "PREFIXCALL(T + s * S, ..., [value,] k);" after indent in. */
+static void
+print_call(Printer *pr, const char *in, const char *prefix, const LowTayStep *st)
+{
+    FILE *f = pr->f;
+    fprintf(f, "%s%s%s(", in, prefix, st->call);
+    for (int j = 0; j < st->nslot; j++) {
+        if (j)
+            fputs(", ", f);
+        print_slot(f, st->slot[j]);
+    }
+    char num[40];
+    switch (st->src) {
+    case LOW_TAY_SRC_CONST:
+        emit_const(num, sizeof num, st->value);
+        fprintf(f, ", %s", num);
+        break;
+    case LOW_TAY_SRC_P:
+        fprintf(f, ", p[%d]", st->index);
+        break;
+    case LOW_TAY_SRC_U:
+        fprintf(f, ", u[%d]", st->index);
+        break;
+    case LOW_TAY_SRC_T:
+        fputs(", t0", f);
+        break;
+    }
+    emit_line(pr, ", k);");
+}
+
 /* Calls first .. end-1 of the program, after the locals they need. */
 static void
 print_calls(Printer *pr, const LowTaylor *ty, int first, int end, const char *prefix)
 {
-    FILE *f = pr->f;
     int reads_t = 0, reads_p = 0, reads_u = 0;
     for (int i = first; i < end; i++) {
         reads_t |= ty->step[i].src == LOW_TAY_SRC_T;
@@ -68,32 +97,8 @@ print_calls(Printer *pr, const LowTaylor *ty, int first, int end, const char *pr
         emit_line(pr, "    (void)p;");
     if (!reads_u)
         emit_line(pr, "    (void)u;");
-    for (int i = first; i < end; i++) {
-        const LowTayStep *st = &ty->step[i];
-        fprintf(f, "    %s%s(", prefix, st->call);
-        for (int j = 0; j < st->nslot; j++) {
-            if (j)
-                fputs(", ", f);
-            print_slot(f, st->slot[j]);
-        }
-        char num[40];
-        switch (st->src) {
-        case LOW_TAY_SRC_CONST:
-            emit_const(num, sizeof num, st->value);
-            fprintf(f, ", %s", num);
-            break;
-        case LOW_TAY_SRC_P:
-            fprintf(f, ", p[%d]", st->index);
-            break;
-        case LOW_TAY_SRC_U:
-            fprintf(f, ", u[%d]", st->index);
-            break;
-        case LOW_TAY_SRC_T:
-            fputs(", t0", f);
-            break;
-        }
-        emit_line(pr, ", k);");
-    }
+    for (int i = first; i < end; i++)
+        print_call(pr, "    ", prefix, &ty->step[i]);
 }
 
 /* Each recurrence the program calls as a function of its own, for a
@@ -388,15 +393,10 @@ print_run(Printer *pr, const LowTaylor *ty)
     }
     emit_line(pr, "%sfor (int k = 0; k < K; k++) {", in);
     emit_line(pr, "%s    %s_taylor(k, K, t0, p, u, T);", in, nm);
-    for (int i = ty->nstep; i < ty->nstep + ty->nrun; i++) {
-        const LowTayStep *st = &ty->step[i];
-        fprintf(pr->f, "%s    eomc_tay_%s(", in, st->call);
-        for (int j = 0; j < st->nslot; j++) {
-            print_slot(pr->f, st->slot[j]);
-            fputs(", ", pr->f);
-        }
-        emit_line(pr, "k);");
-    }
+    char in2[16];
+    snprintf(in2, sizeof in2, "%s    ", in);
+    for (int i = ty->nstep; i < ty->nstep + ty->nrun; i++)
+        print_call(pr, in2, "eomc_tay_", &ty->step[i]);
     emit_line(pr, "%s}", in);
     if (ty->series) {
         emit_line(pr, "        return;");

@@ -96,12 +96,13 @@ add_number(Out *o, double coef)
     o->term[o->nterm - 1].x = -1;
 }
 
-/* Close a SUM line whose terms were appended since it was opened: it
- * writes its cell, or (no term) is dropped and its cell stays 0. */
+/* Close a SUM line whose terms were appended since it was opened (the
+ * last of them its term[last], where it has one): it writes its cell, or
+ * (no term) is dropped and its cell stays 0. */
 static void
 close_sum(Out *o, LowSerLine *l)
 {
-    l->nterm = o->nterm - l->first;
+    l->nterm = (l->last >= 0 ? l->last : o->nterm) - l->first;
     if (l->nterm == 0 && l->last < 0) {
         o->nline--;
         return;
@@ -177,12 +178,7 @@ expand(Out *o, const LowTayStep *st, int k)
             if (add_term(o, 1, cell(o, s[1], k / 2), cell(o, s[1], k / 2), 1))
                 l->last = at;
         }
-        /* the last term is not among the sum's: counted apart */
-        l->nterm = (l->last >= 0 ? l->last : o->nterm) - l->first;
-        if (l->nterm == 0 && l->last < 0)
-            o->nline--;
-        else
-            o->nz[c] = 1;
+        close_sum(o, l);
     } else if (!strcmp(f, "div") || !strcmp(f, "inv")) {
         /* c_k = (a_k - sum_{j=1..k} b_j c_{k-j}) / b_0; inv's a is 1, 0, ... */
         int inv = f[0] == 'i', b = s[inv ? 1 : 2];

@@ -68,16 +68,24 @@ static int mass_claims_broken;
 static double M_first[NMAX * NMAX];
 static int have_M_first;
 
+/* The parameters with the derived values after them, and the inputs at
+ * t0 (held over the step). */
+static void
+params_inputs(const eomc_model *m, double t0, double *p, double *u)
+{
+    memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
+    if (m->derive)
+        m->derive(p, p + m->np);
+    if (m->nu)
+        m->inputs(t0, p, u, NULL);
+}
+
 static double
 check_model(const eomc_model *m, double t0, double *worst_scale)
 {
     int n = m->nq, ne = m->nevent, nc = m->nc;
     double p[PMAX], u[UMAX + 1] = {0};
-    memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
-    if (m->derive)
-        m->derive(p, p + m->np);
-    if (m->nu)
-        m->inputs(t0, p, u, NULL); /* held over the step */
+    params_inputs(m, t0, p, u);
     /* q_i(tau) and q_i'(tau): cubics of made-up coefficients */
     double qc[NMAX][K + 1], vc[NMAX][K + 1], ac[NMAX][K + 1];
     for (int i = 0; i < n; i++)
@@ -164,11 +172,7 @@ check_model(const eomc_model *m, double t0, double *worst_scale)
 static void
 near_start(const eomc_model *m, double t0, double *p, double *u, double *q, double *v)
 {
-    memcpy(p, m->p_default, (size_t)m->np * sizeof *p);
-    if (m->derive)
-        m->derive(p, p + m->np);
-    if (m->nu)
-        m->inputs(t0, p, u, NULL);
+    params_inputs(m, t0, p, u);
     m->initial(p, q, v);
     for (int i = 0; i < m->nq; i++) {
         q[i] = q[i] * (1 + check_rand(-0.05, 0.05)) + check_rand(-0.01, 0.01);

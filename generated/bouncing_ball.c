@@ -396,67 +396,108 @@ bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * (the same arithmetic in the same order); above that, the loop. */
 static void
 bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *T)
+    const eomc_real *u, eomc_real *T, eomc_real *X)
 {
     const int S = K + 1;
     if (K > 20) {
+        static const int state[2] = {1, 3};
+        for (int i = 0; i < 2; i++)
+            T[state[i] * S] = X[i];
         for (int k = 0; k < K; k++) {
             bouncing_ball_taylor(k, K, t0, p, u, T);
             eomc_tay_integ(T + 1 * S, T + 3 * S, k);
             eomc_tay_accel(T + 3 * S, T + 2 * S, T, k);
         }
+        for (int j = 1; j <= K; j++)
+            for (int i = 0; i < 2; i++)
+                X[j * 2 + i] = T[state[i] * S + j];
         return;
     }
-    eomc_real W[84]; /* slot s's coefficient j at W[j * 4 + s] */
-    static const int state[2] = {1, 3};
-    for (int i = 0; i < 2; i++)
-        W[state[i]] = T[state[i] * S];
-    W[13] = 0.0; /* at every step */
-    W[17] = 0.0; /* at every step */
-    W[21] = 0.0; /* at every step */
-    W[25] = 0.0; /* at every step */
-    W[29] = 0.0; /* at every step */
-    W[33] = 0.0; /* at every step */
-    W[37] = 0.0; /* at every step */
-    W[41] = 0.0; /* at every step */
-    W[45] = 0.0; /* at every step */
-    W[49] = 0.0; /* at every step */
-    W[53] = 0.0; /* at every step */
-    W[57] = 0.0; /* at every step */
-    W[61] = 0.0; /* at every step */
-    W[65] = 0.0; /* at every step */
-    W[69] = 0.0; /* at every step */
-    W[73] = 0.0; /* at every step */
-    W[77] = 0.0; /* at every step */
-    W[81] = 0.0; /* at every step */
-    W[11] = 0.0; /* at every step */
-    W[15] = 0.0; /* at every step */
-    W[19] = 0.0; /* at every step */
-    W[23] = 0.0; /* at every step */
-    W[27] = 0.0; /* at every step */
-    W[31] = 0.0; /* at every step */
-    W[35] = 0.0; /* at every step */
-    W[39] = 0.0; /* at every step */
-    W[43] = 0.0; /* at every step */
-    W[47] = 0.0; /* at every step */
-    W[51] = 0.0; /* at every step */
-    W[55] = 0.0; /* at every step */
-    W[59] = 0.0; /* at every step */
-    W[63] = 0.0; /* at every step */
-    W[67] = 0.0; /* at every step */
-    W[71] = 0.0; /* at every step */
-    W[75] = 0.0; /* at every step */
-    W[79] = 0.0; /* at every step */
-    W[83] = 0.0; /* at every step */
+    eomc_real W[84]; /* slot s's coefficient j at W[j * 4 + s], but the
+                   * state's: X[j * 2 + i], q's then v's */
+    if (K >= 3)
+        X[6] = 0.0; /* at every step */
+    if (K >= 4)
+        X[8] = 0.0; /* at every step */
+    if (K >= 5)
+        X[10] = 0.0; /* at every step */
+    if (K >= 6)
+        X[12] = 0.0; /* at every step */
+    if (K >= 7)
+        X[14] = 0.0; /* at every step */
+    if (K >= 8)
+        X[16] = 0.0; /* at every step */
+    if (K >= 9)
+        X[18] = 0.0; /* at every step */
+    if (K >= 10)
+        X[20] = 0.0; /* at every step */
+    if (K >= 11)
+        X[22] = 0.0; /* at every step */
+    if (K >= 12)
+        X[24] = 0.0; /* at every step */
+    if (K >= 13)
+        X[26] = 0.0; /* at every step */
+    if (K >= 14)
+        X[28] = 0.0; /* at every step */
+    if (K >= 15)
+        X[30] = 0.0; /* at every step */
+    if (K >= 16)
+        X[32] = 0.0; /* at every step */
+    if (K >= 17)
+        X[34] = 0.0; /* at every step */
+    if (K >= 18)
+        X[36] = 0.0; /* at every step */
+    if (K >= 19)
+        X[38] = 0.0; /* at every step */
+    if (K >= 20)
+        X[40] = 0.0; /* at every step */
+    if (K >= 2)
+        X[5] = 0.0; /* at every step */
+    if (K >= 3)
+        X[7] = 0.0; /* at every step */
+    if (K >= 4)
+        X[9] = 0.0; /* at every step */
+    if (K >= 5)
+        X[11] = 0.0; /* at every step */
+    if (K >= 6)
+        X[13] = 0.0; /* at every step */
+    if (K >= 7)
+        X[15] = 0.0; /* at every step */
+    if (K >= 8)
+        X[17] = 0.0; /* at every step */
+    if (K >= 9)
+        X[19] = 0.0; /* at every step */
+    if (K >= 10)
+        X[21] = 0.0; /* at every step */
+    if (K >= 11)
+        X[23] = 0.0; /* at every step */
+    if (K >= 12)
+        X[25] = 0.0; /* at every step */
+    if (K >= 13)
+        X[27] = 0.0; /* at every step */
+    if (K >= 14)
+        X[29] = 0.0; /* at every step */
+    if (K >= 15)
+        X[31] = 0.0; /* at every step */
+    if (K >= 16)
+        X[33] = 0.0; /* at every step */
+    if (K >= 17)
+        X[35] = 0.0; /* at every step */
+    if (K >= 18)
+        X[37] = 0.0; /* at every step */
+    if (K >= 19)
+        X[39] = 0.0; /* at every step */
+    if (K >= 20)
+        X[41] = 0.0; /* at every step */
     /* order 0 */
     W[0] = p[0];
     W[2] = p[5];
-    W[5] = W[3];
-    W[7] = -W[2] / W[0];
+    X[2] = X[1];
+    X[3] = -W[2] / W[0];
     if (K == 1)
         goto out;
     /* order 1 */
-    W[9] = W[7] / 2.0;
+    X[4] = X[3] / 2.0;
     if (K == 2)
         goto out;
     /* order 2 */
@@ -512,13 +553,8 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
         goto out;
     /* order 19 */
 out:
-    for (int i = 0; i < 2; i++)
-        for (int j = 1; j <= K; j++)
-            T[state[i] * S + j] = W[j * 4 + state[i]];
-    static const int g[1] = {1};
-    for (int i = 0; i < 1; i++)
-        for (int j = 0; j < K; j++)
-            T[g[i] * S + j] = W[j * 4 + g[i]];
+    for (int j = 0; j < K; j++) /* event function 0 */
+        T[1 * S + j] = X[j * 2 + 0];
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
 }
 #endif

@@ -152,9 +152,18 @@ print_wrappers(Printer *pr, const LowTaylor *ty, int declare)
 /* A line's text, wrapped before a term past this column. */
 enum { SERIES_WRAP = 92 };
 
+/* Where a cell lives: the state's (q's and v's slots, place[s] >= 0) in
+ * the caller's X, X[j N + place[s]], so that its series is written where
+ * the runtime reads it; every other in the local W. */
+typedef struct Cells {
+    const int *place; /* [nslot] the state's index of a slot, or -1 */
+    int nslot, N;
+} Cells;
+
 typedef struct Col {
     FILE *f;
     int col;
+    const Cells *cells;
 } Col;
 
 static void
@@ -169,12 +178,17 @@ put(Col *c, const char *fmt, ...)
     c->col += n;
 }
 
-/* A cell as an operand: W[c], or 0 (-1: 0 at every step). */
+/* A cell as an operand: W[c] or the state's X[...], or 0 (-1: 0 at
+ * every step). */
 static void
 put_cell(Col *c, int cell)
 {
+    const Cells *m = c->cells;
+    int at = cell < 0 ? -1 : m->place[cell % m->nslot];
     if (cell < 0)
         put(c, "0.0");
+    else if (at >= 0)
+        put(c, "X[%d]", cell / m->nslot * m->N + at);
     else
         put(c, "W[%d]", cell);
 }
@@ -230,11 +244,13 @@ put_value(Col *c, int src, int index, double value)
 
 /* One line of the written-out series (lowered.h's LowSerLine). */
 static void
-print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l)
+print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const Cells *cells)
 {
-    Col c = {pr->f, 0};
+    Col c = {pr->f, 0, cells};
     char num[40];
-    put(&c, "    W[%d] = ", l->dst);
+    put(&c, "    ");
+    put_cell(&c, l->dst);
+    put(&c, " = ");
     switch (l->kind) {
     case LOW_SER_VALUE:
         put_value(&c, l->src, l->index, l->value);
@@ -294,32 +310,35 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l)
 }
 
 /* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
- * - 1 over the local cells W, then what the caller reads copied into T. */
+ * - 1, the state's cells in the caller's X (Cells) and the others in the
+ * local W; then what the caller reads of the others copied into T. */
 static void
 print_series(Printer *pr, const LowTaylor *ty)
 {
     const LowSeries *se = ty->series;
-    int ns = ty->nrun, ng = 0;
-    int *state = xmalloc(((size_t)ns + 1) * sizeof *state);
-    int *g = xmalloc(((size_t)ty->nevent + ty->nmode + 1) * sizeof *g);
+    int ns = ty->nrun, nslot = ty->nslot;
+    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
+    for (int s = 0; s < nslot; s++)
+        place[s] = -1;
     for (int i = 0; i < ns; i++)
-        state[i] = ty->step[ty->nstep + i].slot[0];
-    for (int e = 0; e < ty->nevent + ty->nmode; e++)
-        if (ty->g_slot[e] >= 0)
-            g[ng++] = ty->g_slot[e];
-    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[j * %d + s] */", se->ncell,
-              ty->nslot);
-    print_ints_in(pr, "    ", "state", state, ns);
-    emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
-    emit_line(pr, "        W[state[i]] = T[state[i] * S];");
-    for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: by runs */
-        for (j = i + 1; j < se->nzero_out && se->zero_out[j] == se->zero_out[j - 1] + 1;)
+        place[ty->step[ty->nstep + i].slot[0]] = i;
+    Cells cells = {place, nslot, ns};
+    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[j * %d + s], but the", se->ncell,
+              nslot);
+    emit_line(pr, "                   * state's: X[j * %d + i], q's then v's */", ns);
+    for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: W's by runs */
+        int c = se->zero_out[i], at = place[c % nslot];
+        for (j = i + 1; at < 0 && j < se->nzero_out && se->zero_out[j] == se->zero_out[j - 1] + 1 &&
+                        place[se->zero_out[j] % nslot] < 0;)
             j++;
-        if (j - i == 1)
-            emit_line(pr, "    W[%d] = 0.0; /* at every step */", se->zero_out[i]);
+        if (at >= 0) /* (X has the orders to K) */
+            emit_line(pr, "    if (K >= %d)\n        X[%d] = 0.0; /* at every step */",
+                      c / nslot, c / nslot * ns + at);
+        else if (j - i == 1)
+            emit_line(pr, "    W[%d] = 0.0; /* at every step */", c);
         else
             emit_line(pr, "    for (int c = %d; c <= %d; c++) /* 0 at every step */\n"
-                          "        W[c] = 0.0;", se->zero_out[i], se->zero_out[j - 1]);
+                          "        W[c] = 0.0;", c, se->zero_out[j - 1]);
     }
     for (int k = 0; k < LOW_SERIES_ORDERS; k++) {
         if (k > 0) {
@@ -328,25 +347,30 @@ print_series(Printer *pr, const LowTaylor *ty)
         }
         emit_line(pr, "    /* order %d */", k);
         for (int i = se->start[k]; i < se->start[k + 1]; i++)
-            print_series_line(pr, se, &se->line[i]);
+            print_series_line(pr, se, &se->line[i], &cells);
     }
     emit_line(pr, "out:");
-    emit_line(pr, "    for (int i = 0; i < %d; i++)", ns);
-    emit_line(pr, "        for (int j = 1; j <= K; j++)");
-    emit_line(pr, "            T[state[i] * S + j] = W[j * %d + state[i]];", ty->nslot);
-    if (ng) {
-        print_ints_in(pr, "    ", "g", g, ng);
-        emit_line(pr, "    for (int i = 0; i < %d; i++)", ng);
-        emit_line(pr, "        for (int j = 0; j < K; j++)");
-        emit_line(pr, "            T[g[i] * S + j] = W[j * %d + g[i]];", ty->nslot);
+    for (int e = 0; e < ty->nevent + ty->nmode; e++) {
+        int g = ty->g_slot[e], seen = 0;
+        for (int f = 0; f < e; f++)
+            seen |= ty->g_slot[f] == g;
+        if (g < 0 || seen)
+            continue;
+        emit_line(pr, "    for (int j = 0; j < K; j++) /* event function %d */", e);
+        if (place[g] >= 0)
+            emit_line(pr, "        T[%d * S + j] = X[j * %d + %d];", g, ns, place[g]);
+        else
+            emit_line(pr, "        T[%d * S + j] = W[j * %d + %d];", g, nslot, g);
     }
     int nv = pr->md->nv;
     for (int j = 0; j < nv; j++) {
-        int m = ty->M_slot[j * nv + j];
-        emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m, j);
+        int m = ty->M_slot[j * nv + j], seen = 0;
+        for (int i = 0; i < j; i++) /* equal masses share a slot */
+            seen |= ty->M_slot[i * nv + i] == m;
+        if (!seen)
+            emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m, j);
     }
-    free(state);
-    free(g);
+    free(place);
 }
 
 /* taylor_run (eomc_model.h): each order of the program, then the state's
@@ -384,13 +408,23 @@ print_run(Printer *pr, const LowTaylor *ty)
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
     emit_head(pr, unopt ? "static EOMC_UNOPTIMIZED void" : "static void", fname,
-              "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T");
+              "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T, "
+              "eomc_real *X");
     emit_line(pr, "    const int S = K + 1;");
+    /* the state's slots, q's then v's: X's order (the tail's steps') */
+    int ns = ty->nrun;
+    int *state = xmalloc(((size_t)ns + 1) * sizeof *state);
+    for (int i = 0; i < ns; i++)
+        state[i] = ty->step[ty->nstep + i].slot[0];
     const char *in = "    ";
     if (ty->series) {
         emit_line(pr, "    if (K > %d) {", LOW_SERIES_ORDERS);
         in = "        ";
     }
+    print_ints_in(pr, in, "state", state, ns);
+    free(state);
+    emit_line(pr, "%sfor (int i = 0; i < %d; i++)", in, ns);
+    emit_line(pr, "%s    T[state[i] * S] = X[i];", in);
     emit_line(pr, "%sfor (int k = 0; k < K; k++) {", in);
     emit_line(pr, "%s    %s_taylor(k, K, t0, p, u, T);", in, nm);
     char in2[16];
@@ -398,6 +432,9 @@ print_run(Printer *pr, const LowTaylor *ty)
     for (int i = ty->nstep; i < ty->nstep + ty->nrun; i++)
         print_call(pr, in2, "eomc_tay_", &ty->step[i]);
     emit_line(pr, "%s}", in);
+    emit_line(pr, "%sfor (int j = 1; j <= K; j++)", in);
+    emit_line(pr, "%s    for (int i = 0; i < %d; i++)", in, ns);
+    emit_line(pr, "%s        X[j * %d + i] = T[state[i] * S + j];", in, ns);
     if (ty->series) {
         emit_line(pr, "        return;");
         emit_line(pr, "    }");

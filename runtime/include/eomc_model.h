@@ -413,14 +413,18 @@ typedef struct eomc_model {
     int taylor_mass;
     /* The whole series in one call, where the generator can solve M
      * itself (no constraints; M constant in t and diagonal, each M_ii a
-     * series): taylor_run(K, t0, p, u, T) brings every slot to order K - 1
-     * and q's and v's to order K (taylor_q, taylor_v: every one a slot),
-     * from the coefficient 0 of q and v the caller wrote.  Each order is
-     * taylor's, then q_i's next coefficient from its rate's (q' = v, or
-     * taylor_qd's) and v_j's as -(h_j / M_jj) / (k + 1): the runtime's own
-     * arithmetic, so the same bits.  M_jj's coefficient 0 is left at its
-     * slot for the caller's test.  NULL: the runtime's loop over taylor. */
-    void (*taylor_run)(int K, double t0, const double *p, const double *u, double *T);
+     * series): taylor_run(K, t0, p, u, T, X) gives the state's series to
+     * order K in X [(K + 1) (nq + nv)], X[j (nq + nv) + i] the coefficient
+     * j of component i (q, then v), from the coefficient 0 the caller
+     * wrote there: the layout the runtime reads, so that nothing is
+     * gathered twice.  In T it leaves what the caller reads there: the
+     * event functions' slots (taylor_g) to order K - 1 and M_jj's
+     * coefficient 0, for the caller's test.  Each order is taylor's, then
+     * q_i's next coefficient from its rate's (q' = v, or taylor_qd's) and
+     * v_j's as -(h_j / M_jj) / (k + 1): the runtime's own arithmetic, so
+     * the same bits.  NULL: the runtime's loop over taylor. */
+    void (*taylor_run)(int K, double t0, const double *p, const double *u, double *T,
+                       double *X);
 
     /* ---- switched expressions ----
      * nmode kinks of the spec's max, min and clamp.  Mode k is the value

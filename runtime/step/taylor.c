@@ -15,7 +15,7 @@
  * q'_{k+1} = a_k / (k + 1), which the next call reads.  Where M is
  * constant and diagonal and there are no constraints, the generator did
  * that solve itself, with the same arithmetic: the model's taylor_run
- * gives the whole series in one call (run_series).
+ * gives the whole series in one call, into X (run_series).
  *
  * With speeds of their own (a unit quaternion's angular velocity: the
  * state is (q [nq], v [nv]), q' = W(q) v) the same holds in the speeds:
@@ -76,6 +76,7 @@ struct Taylor {
     int n, nv, N, p;    /* coordinates, speeds (n without speeds of their own),
                          * state size n + nv, the order */
     double rtol, atol;
+    double factor;      /* the step's fraction of the radius, e^-2 exp(-0.7 / (p - 1)) */
     double *T;          /* [nslot (p + 1)] the model's series, slot s's from
                          * T[s (p + 1)]: the order's stride, not the largest
                          * order's, so that a chain's 200 series of order 16
@@ -155,6 +156,7 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
     int n = m->nq, nv = eomc_nv(m), K = TAYLOR_MAX_ORDER;
     *tp = (Taylor){.s = s, .m = m, .n = n, .nv = nv, .N = n + nv, .rtol = o->rtol,
                    .atol = o->atol, .p = taylor_order_for(o->rtol)};
+    tp->factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
     tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
     tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
     tp->A = sim_zeros((size_t)(K + 1) * (size_t)nv);
@@ -282,32 +284,49 @@ newton_start(Taylor *tp, double t0, const double *x)
 }
 
 /* The radius of the state's series by its last two terms: the least over
- * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j), or, for S
- * NULL, of (|x_im| / |x_ij|)^(1/(j - m)) with x_im the component's first
- * coefficient that is not 0 (its size where it starts from rest or from
- * 0).  INFINITY when no component has a last term.  The root is monotone,
- * so each exponent's least ratio is found first and rooted once: two
- * pow calls where every component starts at its first coefficient, not
- * two per component. */
+ * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j).  The root is
+ * monotone, so each order's least ratio is found first and rooted once:
+ * two pow calls a step size, not two per component; and the loops run
+ * over the components of one order, X's own layout, so that they
+ * vectorize.  INFINITY when no component has a last term. */
 static double
 radius(const Taylor *tp, const double *S)
+{
+    int p = tp->p, N = tp->N;
+    double rho = INFINITY;
+    for (int j = p - 1; j <= p; j++) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        double least = INFINITY;
+        for (int i = 0; i < N; i++) {
+            double a = fabs(c[i]), r = S[i] / a;
+            least = S[i] > 0 && a > 0 && r < least ? r : least;
+        }
+        if (least < INFINITY) {
+            double r = pow(least, 1.0 / j);
+            rho = r < rho ? r : rho;
+        }
+    }
+    return rho;
+}
+
+/* The first estimate of the radius, before any scale is known: radius's
+ * rule with each component measured against its first coefficient that
+ * is not 0, x_im (its size where it starts from rest or from 0), and
+ * rooted by j - m. */
+static double
+radius_first(const Taylor *tp)
 {
     int p = tp->p, N = tp->N;
     double least[TAYLOR_MAX_ORDER + 1]; /* by the root's degree, j - m */
     for (int e = 1; e <= p; e++)
         least[e] = INFINITY;
-    for (int j = p - 1; j <= p; j++) {
-        const double *c = tp->X + (size_t)j * (size_t)N;
-        for (int i = 0; i < N; i++) {
-            double a = fabs(c[i]), scale;
-            int m = 0;
-            if (S) {
-                scale = S[i];
-            } else {
-                while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
-                    m++;
-                scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
-            }
+    for (int i = 0; i < N; i++) {
+        int m = 0;
+        while (m < p - 1 && tp->X[(size_t)m * (size_t)N + (size_t)i] == 0)
+            m++;
+        double scale = fabs(tp->X[(size_t)m * (size_t)N + (size_t)i]);
+        for (int j = p - 1; j <= p; j++) {
+            double a = fabs(tp->X[(size_t)j * (size_t)N + (size_t)i]);
             if (scale > 0 && a > 0 && j > m && scale / a < least[j - m])
                 least[j - m] = scale / a;
         }
@@ -322,24 +341,26 @@ radius(const Taylor *tp, const double *S)
 }
 
 /* Component i's size over a step of h: its series' largest term there,
- * plus atol / rtol (GSL's atol + rtol |x_i|, over rtol). */
+ * plus atol / rtol (GSL's atol + rtol |x_i|, over rtol).  Order by order,
+ * as X is laid out, so that the loop over the components vectorizes. */
 static void
 scales(Taylor *tp, double h, double *S)
 {
     int p = tp->p, N = tp->N;
-    double hj[TAYLOR_MAX_ORDER + 1];
-    hj[0] = 1;
-    for (int j = 1; j <= p; j++)
-        hj[j] = hj[j - 1] * h;
-    for (int i = 0; i < N; i++) {
-        const double *c = tp->X + i;
-        double big = fabs(c[0]);
-        for (int j = 1; j <= p; j++) {
-            double term = fabs(c[(size_t)j * (size_t)N]) * hj[j];
-            big = term > big ? term : big;
+    for (int i = 0; i < N; i++)
+        S[i] = fabs(tp->X[i]);
+    double hj = 1;
+    for (int j = 1; j <= p; j++) {
+        const double *c = tp->X + (size_t)j * (size_t)N;
+        hj *= h;
+        for (int i = 0; i < N; i++) {
+            double term = fabs(c[i]) * hj;
+            S[i] = term > S[i] ? term : S[i];
         }
-        S[i] = big + tp->atol / tp->rtol;
     }
+    double floor = tp->atol / tp->rtol;
+    for (int i = 0; i < N; i++)
+        S[i] += floor;
 }
 
 /* The step the series allows (Jorba and Zou, above), with each
@@ -351,11 +372,10 @@ scales(Taylor *tp, double h, double *S)
 static double
 step_size(Taylor *tp)
 {
-    double factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
-    double h = radius(tp, NULL) * factor;
+    double h = radius_first(tp) * tp->factor;
     for (int r = 0; r < TAYLOR_SCALE_ROUNDS && isfinite(h); r++) {
         scales(tp, h, tp->S);
-        h = radius(tp, tp->S) * factor;
+        h = radius(tp, tp->S) * tp->factor;
     }
     return h;
 }
@@ -480,26 +500,19 @@ kkt_order(Taylor *tp, int k)
 }
 
 /* The state's series by the model's taylor_run, M constant and diagonal
- * (eomc_model.h): its coefficient 0 into the slots, the whole series
- * there in one call, M_0 tested as mass_order tests it, and the series
- * into X.  0, or -1 when M_0 is not safely positive or a coefficient is
- * not finite. */
+ * (eomc_model.h): the whole series into X in one call from its
+ * coefficient 0 there, and M_0 tested as mass_order tests it.  0, or -1
+ * when M_0 is not safely positive or a coefficient is not finite. */
 static int
 run_series(Taylor *tp, double t0, const double *par, const double *u)
 {
     const eomc_model *m = tp->m;
-    int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p, S = p + 1;
-    put_state(tp, 0);
-    m->taylor_run(p, t0, par, u, tp->T);
+    int nv = tp->nv, N = tp->N, p = tp->p;
+    m->taylor_run(p, t0, par, u, tp->T, tp->X);
     for (int j = 0; j < nv; j++) {
         double d = coef(tp, m->taylor_M[j * nv + j], 0);
         if (!(d > EOMC_PIVOT_TOL * d))
             return -1;
-    }
-    for (int i = 0; i < N; i++) {
-        const double *c = tp->T + (size_t)(i < n ? m->taylor_q[i] : m->taylor_v[i - n]) * S;
-        for (int j = 1; j <= p; j++)
-            tp->X[(size_t)j * N + i] = c[j];
     }
     return sim_all_finite(tp->X + N, p * N) ? 0 : -1;
 }

@@ -35,6 +35,9 @@ MODELS(DECLARE)
 static const eomc_model *const models[] = {MODELS(ENTRY)};
 
 enum { NMAX = 8, CMAX = 8, PMAX = 256, EMAX = 8, UMAX = 8, K = 12, DEG = 3 };
+/* an order above LOW_SERIES_ORDERS (compiler/lower/lowered.h), where
+ * taylor_run loops over the program rather than running it written out */
+enum { K_LOOP = 24 };
 
 /* The agreement required, relative to the largest |value| of M, h or g
  * (at least 1): a few hundred ulps of sums over the order and of the
@@ -194,20 +197,21 @@ near_start(const eomc_model *m, double t0, double *p, double *u, double *q, doub
  * (rho the series' radius, the motion's time); the number
  * of coefficients that differ from the loop's into *differ. */
 static double
-check_run(const eomc_model *m, double t0, int *differ)
+check_run(const eomc_model *m, double t0, int order, int *differ)
 {
-    int n = m->nq, ne = m->nevent + m->nmode, S = K + 1;
+    int n = m->nq, ne = m->nevent + m->nmode, S = order + 1;
     double p[PMAX], u[UMAX + 1] = {0}, q0[NMAX], v0[NMAX];
     near_start(m, t0, p, u, q0, v0);
     double *T1 = calloc((size_t)m->taylor_nslot * S + 1, sizeof *T1);
     double *T2 = calloc((size_t)m->taylor_nslot * S + 1, sizeof *T2);
+    double *X = calloc((size_t)S * 2 * n + 1, sizeof *X); /* X[j 2n + i] (q, then v) */
     for (int i = 0; i < n; i++) {
-        T1[m->taylor_q[i] * S] = T2[m->taylor_q[i] * S] = q0[i];
-        T1[m->taylor_v[i] * S] = T2[m->taylor_v[i] * S] = v0[i];
+        X[i] = T2[m->taylor_q[i] * S] = q0[i];
+        X[n + i] = T2[m->taylor_v[i] * S] = v0[i];
     }
-    m->taylor_run(K, t0, p, u, T1);
-    for (int k = 0; k < K; k++) {
-        m->taylor(k, K, t0, p, u, T2);
+    m->taylor_run(order, t0, p, u, T1, X);
+    for (int k = 0; k < order; k++) {
+        m->taylor(k, order, t0, p, u, T2);
         for (int i = 0; i < n; i++) {
             int h = m->taylor_h[i];
             T2[m->taylor_q[i] * S + k + 1] = T2[m->taylor_v[i] * S + k] / (k + 1);
@@ -217,20 +221,22 @@ check_run(const eomc_model *m, double t0, int *differ)
     }
     *differ = 0;
     for (int i = 0; i < n; i++)
-        for (int j = 0; j <= K; j++)
-            *differ += T1[m->taylor_q[i] * S + j] != T2[m->taylor_q[i] * S + j] ||
-                       T1[m->taylor_v[i] * S + j] != T2[m->taylor_v[i] * S + j];
+        for (int j = 0; j <= order; j++)
+            *differ += X[j * 2 * n + i] != T2[m->taylor_q[i] * S + j] ||
+                       X[j * 2 * n + n + i] != T2[m->taylor_v[i] * S + j];
+    for (int i = 0; i < n; i++)
+        *differ += T1[m->taylor_M[i * n + i] * S] != T2[m->taylor_M[i * n + i] * S];
     for (int e = 0; e < ne; e++)
-        for (int j = 0; j < K && m->taylor_g[e] >= 0; j++)
+        for (int j = 0; j < order && m->taylor_g[e] >= 0; j++)
             *differ += T1[m->taylor_g[e] * S + j] != T2[m->taylor_g[e] * S + j];
     /* the taus a thirtieth of the series' own radius (its least ratio
-     * (|x_1| / |x_K|)^(1/(K - 1)) over q and v): Arenstorf's orbit starts
+     * (|x_1| / |x_K|)^(1/(order - 1)) over q and v): Arenstorf's orbit starts
      * 0.006 from the Moon, Kepler's half a unit from the Sun */
     double rho = INFINITY;
     for (int i = 0; i < 2 * n; i++) {
-        const double *c = T1 + (i < n ? m->taylor_q[i] : m->taylor_v[i - n]) * S;
-        if (c[1] != 0 && c[K] != 0)
-            rho = fmin(rho, pow(fabs(c[1] / c[K]), 1.0 / (K - 1)));
+        double c1 = X[2 * n + i], cK = X[order * 2 * n + i];
+        if (c1 != 0 && cK != 0)
+            rho = fmin(rho, pow(fabs(c1 / cK), 1.0 / (order - 1)));
     }
     if (!(rho < INFINITY))
         rho = 1; /* a polynomial motion: any tau */
@@ -239,13 +245,15 @@ check_run(const eomc_model *m, double t0, int *differ)
     for (size_t t = 0; t < sizeof taus / sizeof taus[0]; t++) {
         double tau = taus[t], q[NMAX], v[NMAX], dq[NMAX], dv[NMAX], M[NMAX * NMAX], h[NMAX];
         for (int i = 0; i < n; i++) {
-            const double *qs = T1 + m->taylor_q[i] * S, *vs = T1 + m->taylor_v[i] * S;
-            q[i] = series_at(qs, tau);
-            v[i] = series_at(vs, tau);
-            dq[i] = dv[i] = 0;
-            for (int j = K; j >= 1; j--) { /* the derivative, by Horner's rule */
-                dq[i] = dq[i] * tau + j * qs[j];
-                dv[i] = dv[i] * tau + j * vs[j];
+            q[i] = v[i] = dq[i] = dv[i] = 0;
+            for (int j = order; j >= 0; j--) { /* the values and derivatives, by Horner */
+                const double *c = X + j * 2 * n;
+                q[i] = q[i] * tau + c[i];
+                v[i] = v[i] * tau + c[n + i];
+                if (j >= 1) {
+                    dq[i] = dq[i] * tau + j * c[i];
+                    dv[i] = dv[i] * tau + j * c[n + i];
+                }
             }
         }
         m->mass_bias(t0 + tau, q, v, p, u, M, h);
@@ -268,6 +276,7 @@ check_run(const eomc_model *m, double t0, int *differ)
     }
     free(T1);
     free(T2);
+    free(X);
     return worst;
 }
 
@@ -325,16 +334,16 @@ main(void)
         nrun++;
         double worst = 0;
         int differ = 0;
-        for (int r = 0; r < 3; r++) {
+        for (int r = 0; r < 6; r++) { /* at order K written out, at K_LOOP looped */
             int d;
-            double err = check_run(m, 0.2 + 1.3 * r, &d);
+            double err = check_run(m, 0.2 + 1.3 * (r % 3), r < 3 ? K : K_LOOP, &d);
             if (!(err <= worst))
                 worst = err;
             differ += d;
         }
         printf("# %s: taylor_run's motion, largest residual %.2e\n", m->name, worst);
         CHECK(differ == 0, "%s: taylor_run's series are the runtime loop's to the bit at 3 "
-              "states (%d coefficients not)", m->name, differ);
+              "states, to orders %d and %d (%d coefficients not)", m->name, K, K_LOOP, differ);
         CHECK(worst <= TOL, "%s: taylor_run's q(tau) and v(tau) satisfy q' = v and M v' + h "
               "= 0 by mass_bias at |tau| <= rho / 21 (%.2e)", m->name, worst);
     }

@@ -76,6 +76,8 @@ struct Taylor {
     int n, nv, N, p;    /* coordinates, speeds (n without speeds of their own),
                          * state size n + nv, the order */
     double rtol, atol;
+    double hlast;       /* the last series' step (step_size), 0 where the next
+                         * does not continue it */
     double factor;      /* the step's fraction of the radius, e^-2 exp(-0.7 / (p - 1)) */
     double *T;          /* [nslot (p + 1)] the model's series, slot s's from
                          * T[s (p + 1)]: the order's stride, not the largest
@@ -367,17 +369,23 @@ scales(Taylor *tp, double h, double *S)
  * component's scale its size over the step rather than at its start: a
  * component passing through 0 (a pendulum at the bottom) is measured
  * against how far it moves, not against its vanishing value.  The scales
- * and the step depend on each other; from the step their first terms
- * allow, TAYLOR_SCALE_ROUNDS rounds of the two settle it. */
+ * and the step depend on each other.  Where the series continues the last
+ * one's motion (hlast), the scales over the last step's size settle it in
+ * one round: steps change little from one to the next, and the round and
+ * the first terms' radius saved are a third of Kepler's step besides its
+ * series.  At a start, after an event, or after a series that was a
+ * polynomial (hlast infinite), the first terms' radius starts
+ * TAYLOR_SCALE_ROUNDS rounds. */
 static double
 step_size(Taylor *tp)
 {
-    double h = radius_first(tp) * tp->factor;
-    for (int r = 0; r < TAYLOR_SCALE_ROUNDS && isfinite(h); r++) {
+    int warm = tp->hlast > 0 && tp->hlast < INFINITY;
+    double h = warm ? tp->hlast : radius_first(tp) * tp->factor;
+    for (int r = 0; r < (warm ? 1 : TAYLOR_SCALE_ROUNDS) && isfinite(h); r++) {
         scales(tp, h, tp->S);
         h = radius(tp, tp->S) * tp->factor;
     }
-    return h;
+    return tp->hlast = h;
 }
 
 /* sum + sum_{j=1..k} c_j b_{k-j}, c slot's series (none for slot -1), b
@@ -527,6 +535,7 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
      * step's own start) owes nothing; where the unit quaternions were
      * renormalized since, they owe nothing, and the rest what they did */
     if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0) {
+        tp->hlast = 0;
         for (int i = 0; i < N; i++)
             if (m->nquat == 0 || x[i] != tp->xlast[i])
                 tp->comp[i] = 0;

@@ -288,9 +288,9 @@ newton_start(Taylor *tp, double t0, const double *x)
 /* The radius of the state's series by its last two terms: the least over
  * the components i and j = p - 1, p of (S_i / |x_ij|)^(1/j).  The root is
  * monotone, so each order's least ratio is found first and rooted once:
- * two pow calls a step size, not two per component; and the loops run
- * over the components of one order, X's own layout, so that they
- * vectorize.  INFINITY when no component has a last term. */
+ * two pow calls a step size, not two per component; the loops run over
+ * one order's components at a time, X's own layout.  INFINITY when no
+ * component has a last term. */
 static double
 radius(const Taylor *tp, const double *S)
 {
@@ -360,9 +360,9 @@ scales(Taylor *tp, double h, double *S)
             S[i] = term > S[i] ? term : S[i];
         }
     }
-    double floor = tp->atol / tp->rtol;
+    double absolute = tp->atol / tp->rtol;
     for (int i = 0; i < N; i++)
-        S[i] += floor;
+        S[i] += absolute;
 }
 
 /* The step the series allows (Jorba and Zou, above), with each

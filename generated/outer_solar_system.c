@@ -4025,8 +4025,8 @@ outer_solar_system_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
- * the program above, then q's coefficient k + 1 from its rate's k, and,
- * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).
+ * the program above, then q's coefficient k + 1 from its rate's k, and
+ * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Its terms are too many for the C compiler's optimizer, whose time grows
@@ -4039,11 +4039,13 @@ outer_solar_system_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #else
 #define EOMC_UNOPTIMIZED
 #endif
-static EOMC_UNOPTIMIZED void
+static EOMC_UNOPTIMIZED int
 outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *T, eomc_real *X)
+    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
+    void *ctx)
 {
     const int S = K + 1;
+    (void)solve, (void)ctx;
     if (K > 20) {
         static const int state[36] = {0, 4, 9, 1, 5, 10, 14, 17, 21, 25, 28, 32, 36, 39, 43, 47,
             50, 54, 375, 376, 377, 378, 379, 380, 381, 382, 383, 384, 385, 386, 387, 388,
@@ -4092,7 +4094,7 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
         for (int j = 1; j <= K; j++)
             for (int i = 0; i < 36; i++)
                 X[j * 36 + i] = T[state[i] * S + j];
-        return;
+        return 0;
     }
     eomc_real W[8253]; /* slot s's coefficient j at W[j * 393 + s], but the
                    * state's: X[j * 36 + i], q's then v's */
@@ -13653,6 +13655,7 @@ out:
     T[142 * S] = W[142]; /* M's diagonal, entry 9 */
     T[143 * S] = W[143]; /* M's diagonal, entry 12 */
     T[144 * S] = W[144]; /* M's diagonal, entry 15 */
+    return 0;
 }
 #endif
 

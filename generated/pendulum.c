@@ -372,15 +372,16 @@ pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
- * the program above, then q's coefficient k + 1 from its rate's k, and,
- * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).
+ * the program above, then q's coefficient k + 1 from its rate's k, and
+ * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
-static void
+static int
 pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *T, eomc_real *X)
+    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
 {
     const int S = K + 1;
+    (void)solve, (void)ctx;
     if (K > 20) {
         static const int state[2] = {0, 6};
         for (int i = 0; i < 2; i++)
@@ -393,7 +394,7 @@ pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         for (int j = 1; j <= K; j++)
             for (int i = 0; i < 2; i++)
                 X[j * 2 + i] = T[state[i] * S + j];
-        return;
+        return 0;
     }
     eomc_real W[147]; /* slot s's coefficient j at W[j * 7 + s], but the
                    * state's: X[j * 2 + i], q's then v's */
@@ -624,6 +625,7 @@ pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[41] = -W[138] / W[3] / 20.0;
 out:
     T[3 * S] = W[3]; /* M's diagonal, entry 0 */
+    return 0;
 }
 #endif
 

@@ -3482,8 +3482,8 @@ pleiades_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
- * the program above, then q's coefficient k + 1 from its rate's k, and,
- * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).
+ * the program above, then q's coefficient k + 1 from its rate's k, and
+ * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Its terms are too many for the C compiler's optimizer, whose time grows
@@ -3496,11 +3496,12 @@ pleiades_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #else
 #define EOMC_UNOPTIMIZED
 #endif
-static EOMC_UNOPTIMIZED void
+static EOMC_UNOPTIMIZED int
 pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *T, eomc_real *X)
+    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
 {
     const int S = K + 1;
+    (void)solve, (void)ctx;
     if (K > 20) {
         static const int state[28] = {0, 5, 1, 6, 10, 13, 17, 20, 24, 27, 31, 34, 38, 41, 391, 392,
             393, 394, 395, 396, 397, 398, 399, 400, 401, 402, 403, 404};
@@ -3540,7 +3541,7 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         for (int j = 1; j <= K; j++)
             for (int i = 0; i < 28; i++)
                 X[j * 28 + i] = T[state[i] * S + j];
-        return;
+        return 0;
     }
     eomc_real W[8505]; /* slot s's coefficient j at W[j * 405 + s], but the
                    * state's: X[j * 28 + i], q's then v's */
@@ -13223,6 +13224,7 @@ out:
     T[124 * S] = W[124]; /* M's diagonal, entry 8 */
     T[125 * S] = W[125]; /* M's diagonal, entry 10 */
     T[126 * S] = W[126]; /* M's diagonal, entry 12 */
+    return 0;
 }
 #endif
 

@@ -248,6 +248,33 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
 {
     Col c = {pr->f, 0, cells};
     char num[40];
+    if (l->kind == LOW_SER_SOLVE) { /* in place over W's cells from dst */
+        if (l->index > 0) {
+            emit_line(pr, "    if (solve(ctx, %d, NULL, W + %d))\n        return -1;", l->index,
+                      l->dst);
+            return;
+        }
+        put(&c, "    {\n        const eomc_real M0[%d] = {", l->nterm);
+        for (int t = 0; t < l->nterm; t++) {
+            const LowSerTerm *m = &se->term[l->first + t];
+            if (t > 0)
+                put(&c, ",");
+            if (t > 0 && c.col > SERIES_WRAP) {
+                fputs("\n            ", c.f);
+                c.col = 12;
+            } else if (t > 0) {
+                put(&c, " ");
+            }
+            if (m->x < 0)
+                put(&c, "0.0");
+            else
+                put_cell(&c, m->x);
+        }
+        put(&c, "};\n");
+        emit_line(pr, "        if (solve(ctx, 0, M0, W + %d))\n            return -1;\n    }",
+                  l->dst);
+        return;
+    }
     put(&c, "    ");
     put_cell(&c, l->dst);
     put(&c, " = ");
@@ -316,12 +343,12 @@ static void
 print_series(Printer *pr, const LowTaylor *ty)
 {
     const LowSeries *se = ty->series;
-    int ns = ty->nrun, nslot = ty->nslot;
+    int ns = ty->nstate, nslot = ty->nslot;
     int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
     for (int s = 0; s < nslot; s++)
         place[s] = -1;
     for (int i = 0; i < ns; i++)
-        place[ty->step[ty->nstep + i].slot[0]] = i;
+        place[ty->state_slot[i]] = i;
     Cells cells = {place, nslot, ns};
     emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[j * %d + s], but the", se->ncell,
               nslot);
@@ -362,7 +389,7 @@ print_series(Printer *pr, const LowTaylor *ty)
         else
             emit_line(pr, "        T[%d * S + j] = W[j * %d + %d];", g, nslot, g);
     }
-    int nv = pr->md->nv;
+    int nv = ty->acc_slot ? 0 : pr->md->nv; /* (the hook tests M_0 itself) */
     for (int j = 0; j < nv; j++) {
         int m = ty->M_slot[j * nv + j], seen = 0;
         for (int i = 0; i < j; i++) /* equal masses share a slot */
@@ -370,6 +397,7 @@ print_series(Printer *pr, const LowTaylor *ty)
         if (!seen)
             emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m, j);
     }
+    emit_line(pr, "    return 0;");
     free(place);
 }
 
@@ -381,16 +409,24 @@ static void
 print_run(Printer *pr, const LowTaylor *ty)
 {
     const char *nm = pr->md->name;
+    int general = ty->acc_slot != NULL;
     emit_line(pr, "#ifndef EOMC_EXTENDED");
     emit_line(pr, "/* The whole series to order K in one call (taylor_run): each order k of");
-    emit_line(pr, " * the program above, then q's coefficient k + 1 from its rate's k, and,");
-    emit_line(pr, " * M being constant and diagonal, q''s from -(h_j / M_jj) / (k + 1).");
-    if (ty->series) {
-        emit_line(pr, " * Written out to order %d, each recurrence's sum with its indices fixed",
-                  LOW_SERIES_ORDERS);
-        emit_line(pr, " * (the same arithmetic in the same order); above that, the loop. */");
+    emit_line(pr, " * the program above, then q's coefficient k + 1 from its rate's k, and");
+    if (general) {
+        emit_line(pr, " * q''s from a_k = -M_0^-1 (h_k + sum_{i=1..k} M_i a_{k-i}), solved by the");
+        emit_line(pr, " * caller's hook (M_0 factored at k = 0), then / (k + 1).  Written out to");
+        emit_line(pr, " * order %d, each recurrence's sum with its indices fixed (the same", LOW_SERIES_ORDERS);
+        emit_line(pr, " * arithmetic in the same order); above that 1, for the caller's loop. */");
     } else {
-        emit_line(pr, " */");
+        emit_line(pr, " * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).");
+        if (ty->series) {
+            emit_line(pr, " * Written out to order %d, each recurrence's sum with its indices fixed",
+                      LOW_SERIES_ORDERS);
+            emit_line(pr, " * (the same arithmetic in the same order); above that, the loop. */");
+        } else {
+            emit_line(pr, " */");
+        }
     }
     int unopt = ty->series && ty->series->unoptimized;
     if (unopt) {
@@ -407,22 +443,27 @@ print_run(Printer *pr, const LowTaylor *ty)
     }
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
-    emit_head(pr, unopt ? "static EOMC_UNOPTIMIZED void" : "static void", fname,
+    emit_head(pr, unopt ? "static EOMC_UNOPTIMIZED int" : "static int", fname,
               "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T, "
-              "eomc_real *X");
+              "eomc_real *X, eomc_tay_solve solve, void *ctx");
     emit_line(pr, "    const int S = K + 1;");
-    /* the state's slots, q's then v's: X's order (the tail's steps') */
-    int ns = ty->nrun;
-    int *state = xmalloc(((size_t)ns + 1) * sizeof *state);
-    for (int i = 0; i < ns; i++)
-        state[i] = ty->step[ty->nstep + i].slot[0];
+    if (general) {
+        emit_line(pr, "    if (K > %d)", LOW_SERIES_ORDERS);
+        emit_line(pr, "        return 1;");
+        emit_line(pr, "    (void)S, (void)T, (void)t0, (void)p, (void)u;");
+        print_series(pr, ty);
+        emit_line(pr, "}");
+        emit_line(pr, "#endif\n");
+        return;
+    }
+    emit_line(pr, "    (void)solve, (void)ctx;");
+    int ns = ty->nstate; /* the state's slots, q's then v's: X's order */
     const char *in = "    ";
     if (ty->series) {
         emit_line(pr, "    if (K > %d) {", LOW_SERIES_ORDERS);
         in = "        ";
     }
-    print_ints_in(pr, in, "state", state, ns);
-    free(state);
+    print_ints_in(pr, in, "state", ty->state_slot, ns);
     emit_line(pr, "%sfor (int i = 0; i < %d; i++)", in, ns);
     emit_line(pr, "%s    T[state[i] * S] = X[i];", in);
     emit_line(pr, "%sfor (int k = 0; k < K; k++) {", in);
@@ -435,8 +476,8 @@ print_run(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "%sfor (int j = 1; j <= K; j++)", in);
     emit_line(pr, "%s    for (int i = 0; i < %d; i++)", in, ns);
     emit_line(pr, "%s        X[j * %d + i] = T[state[i] * S + j];", in, ns);
+    emit_line(pr, "%sreturn 0;", in);
     if (ty->series) {
-        emit_line(pr, "        return;");
         emit_line(pr, "    }");
         print_series(pr, ty);
     }

@@ -30,6 +30,7 @@
 typedef struct Out {
     const LowTaylor *ty;
     int orders, nslot;     /* LOW_SERIES_ORDERS + 1, the program's slots */
+    int nv;                /* the speeds (with acc_slot: M is nv x nv) */
     unsigned char *nz;     /* [ncell] written by a line (else 0 at every step) */
     double *literal;       /* [nslot] a constant's value where it is a number, else NAN */
     LowSerLine *line;
@@ -249,6 +250,37 @@ expand(Out *o, const LowTayStep *st, int k)
             l->over = 1, l->over_cell = cell(o, s[2], 0), l->negate = 1;
         l->after = k + 1;
         close_sum(o, l);
+    } else if (!strcmp(f, "mrhs")) {
+        /* b_k = h_k + sum_l sum_{i=1..k} M_i a_{k-i}, the runtime loop's
+         * mass_terms from 0 then h_k added (its last term) */
+        const LowTaylor *ty = o->ty;
+        int j = st->index, n = o->nv;
+        l = new_line(o, c, LOW_SER_SUM);
+        for (int m = 0; m < n; m++)
+            for (int i = 1; i <= k; i++)
+                add_term(o, 1, cell(o, ty->M_slot[j * n + m], i), cell(o, ty->acc_slot[m], k - i),
+                         1);
+        int at = o->nterm;
+        if (add_term(o, 1, cell(o, ty->h_slot[j], k), -1, 0))
+            l->last = at;
+        close_sum(o, l);
+    } else if (!strcmp(f, "solve")) {
+        /* a cell no term reached is 0; then a_k = -M_0^-1 b_k in place,
+         * by the caller's hook; at order 0 it factors M_0, whose entries
+         * are the line's terms */
+        const LowTaylor *ty = o->ty;
+        int n = o->nv;
+        for (int m = 0; m < n; m++)
+            if (!o->nz[at(o, ty->acc_slot[m], k)])
+                value_line(o, at(o, ty->acc_slot[m], k), LOW_TAY_SRC_CONST, 0, 0.0);
+        l = new_line(o, c, LOW_SER_SOLVE);
+        l->x = n, l->index = k;
+        for (int e = 0; k == 0 && e < n * n; e++)
+            if (!add_term(o, 1, cell(o, ty->M_slot[e], 0), -1, 0))
+                add_number(o, 0.0);
+        l->nterm = o->nterm - l->first;
+        for (int m = 0; m < n; m++)
+            o->nz[at(o, ty->acc_slot[m], k)] = 1;
     } else if (!strcmp(f, "hold")) {
         /* q_{k+1} = 0: nothing written */
     } else {
@@ -274,7 +306,8 @@ lower_series(const LowTaylor *ty, Arena *A)
     int S = LOW_SERIES_ORDERS + 1, ncell = ty->nslot * S, nall = ty->nstep + ty->nrun;
     /* a real power's exponent must be a number (a parameter's would be a
      * product more per term) */
-    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot};
+    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot,
+             .nv = ty->acc_slot ? ty->nrun - ty->nstate - 1 : 0};
     o.literal = xmalloc(((size_t)ty->nslot + 1) * sizeof *o.literal);
     literals(&o);
     for (int i = 0; i < ty->nstep && !o.why; i++)
@@ -282,12 +315,9 @@ lower_series(const LowTaylor *ty, Arena *A)
             o.why = "powc";
     o.nz = xmalloc((size_t)ncell + 1);
     memset(o.nz, 0, (size_t)ncell + 1);
-    int nq = 0; /* the state's coefficient 0, which the caller writes */
-    for (int i = 0; i < ty->nrun; i++) {
-        const LowTayStep *st = &ty->step[ty->nstep + i];
-        o.nz[at(&o, st->slot[0], 0)] = 1;
-        nq++;
-    }
+    int nq = ty->nstate; /* the state's coefficient 0, which the caller writes */
+    for (int i = 0; i < nq; i++)
+        o.nz[at(&o, ty->state_slot[i], 0)] = 1;
     int *start = arena_new_array(A, int, LOW_SERIES_ORDERS + 1);
     for (int k = 0; k < LOW_SERIES_ORDERS && !o.why && o.nterm <= LOW_SERIES_MAX_TERMS; k++) {
         start[k] = o.nline;
@@ -310,8 +340,8 @@ lower_series(const LowTaylor *ty, Arena *A)
          * events', M's diagonal's first) that stay 0 */
         int nout = 0, cap = 2 * nq * S + (ty->nevent + ty->nmode) * S + 1;
         se->zero_out = arena_new_array(A, int, cap);
-        for (int i = 0; i < ty->nrun; i++) {
-            int s = ty->step[ty->nstep + i].slot[0];
+        for (int i = 0; i < nq; i++) {
+            int s = ty->state_slot[i];
             for (int j = 0; j < S; j++)
                 if (!o.nz[at(&o, s, j)]) {
                     se->zero_out[nout++] = at(&o, s, j);

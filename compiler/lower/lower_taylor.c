@@ -453,19 +453,23 @@ root(const Roots *R, const LowFunc *f, int k)
     return f->out[k].e;
 }
 
-/* taylor_run's tail (eomc_model.h), where the generator can solve M
- * itself: no constraints, M constant in t and diagonal, each M_jj a
- * series (a 0 there is a singular M, which the runtime's loop reports).
- * A q or v that nothing reads gets a slot of its own, since the run
- * leaves the state's whole series in the slots; then each q_i's next
- * coefficient from its rate (v, or q' = W(q) v's row) and each v_j's
- * from -h_j / M_jj. */
+/* taylor_run's tail (eomc_model.h), where there are no constraints.  A q
+ * or v that nothing reads gets a slot of its own, since the run leaves the
+ * state's whole series in X; then each q_i's next coefficient from its
+ * rate (v, or q' = W(q) v's row), and each v_j's:
+ *  - M constant in t and diagonal, each M_jj a series (a 0 there is a
+ *    singular M, which the runtime reports): from -h_j / M_jj;
+ *  - else from a_j's series, a_k = -M_0^-1 b_k with b_k = h_k + sum_{i=1..k}
+ *    M_i a_{k-i} (mrhs, one a row) solved by the caller's hook (solve), in
+ *    place over a's consecutive slots.  Only written out (lower_series):
+ *    above its orders the runtime's loop does the same. */
 static void
 run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
 {
-    if (ty->nc || ty->mass != (LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL))
+    if (ty->nc)
         return;
-    for (int j = 0; j < nv; j++)
+    int diagonal = ty->mass == (LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL);
+    for (int j = 0; j < nv && diagonal; j++)
         if (ty->M_slot[j * nv + j] < 0)
             return;
     for (int i = 0; i < nq; i++)
@@ -474,7 +478,12 @@ run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
     for (int j = 0; j < nv; j++)
         if (ty->v_slot[j] < 0)
             ty->v_slot[j] = ty->nslot++;
-    LowTayStep *step = arena_new_array(A, LowTayStep, ty->nstep + nq + nv + 1);
+    ty->nstate = nq + nv;
+    ty->state_slot = arena_new_array(A, int, nq + nv + 1);
+    memcpy(ty->state_slot, ty->q_slot, (size_t)nq * sizeof *ty->q_slot);
+    memcpy(ty->state_slot + nq, ty->v_slot, (size_t)nv * sizeof *ty->v_slot);
+    int ntail = nq + nv + (diagonal ? 0 : nv + 1);
+    LowTayStep *step = arena_new_array(A, LowTayStep, ty->nstep + ntail + 1);
     if (ty->nstep)
         memcpy(step, ty->step, (size_t)ty->nstep * sizeof *step);
     LowTayStep *st = step + ty->nstep;
@@ -487,13 +496,27 @@ run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
                        : (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
                                       .slot = {ty->q_slot[i], rate}};
     }
-    for (int j = 0; j < nv; j++, st++)
-        *st = ty->h_slot[j] < 0
-                  ? (LowTayStep){.call = "hold", .nslot = 1, .nres = 1, .slot = {ty->v_slot[j]}}
-                  : (LowTayStep){.call = "accel", .nslot = 3, .nres = 1,
-                                 .slot = {ty->v_slot[j], ty->h_slot[j], ty->M_slot[j * nv + j]}};
+    if (!diagonal) {
+        ty->acc_slot = arena_new_array(A, int, nv + 1);
+        for (int j = 0; j < nv; j++)
+            ty->acc_slot[j] = ty->nslot++;
+        for (int j = 0; j < nv; j++, st++)
+            *st = (LowTayStep){.call = "mrhs", .nslot = 1, .nres = 1,
+                               .slot = {ty->acc_slot[j]}, .index = j};
+        *st++ = (LowTayStep){.call = "solve", .nslot = 1, .nres = 1, .slot = {ty->acc_slot[0]}};
+        for (int j = 0; j < nv; j++, st++)
+            *st = (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
+                               .slot = {ty->v_slot[j], ty->acc_slot[j]}};
+    } else {
+        for (int j = 0; j < nv; j++, st++)
+            *st = ty->h_slot[j] < 0 ? (LowTayStep){.call = "hold", .nslot = 1, .nres = 1,
+                                                   .slot = {ty->v_slot[j]}}
+                                    : (LowTayStep){.call = "accel", .nslot = 3, .nres = 1,
+                                                   .slot = {ty->v_slot[j], ty->h_slot[j],
+                                                            ty->M_slot[j * nv + j]}};
+    }
     ty->step = step;
-    ty->nrun = nq + nv;
+    ty->nrun = ntail;
 }
 
 LowTaylor *
@@ -664,6 +687,8 @@ lower_taylor(const Lowered *L, int wanted, ExprPool *P, Arena *A)
         run_tail(ty, nq, nv, A);
         if (ty->nrun)
             ty->series = lower_series(ty, A);
+        if (ty->acc_slot && !ty->series) /* (its tail is only written out) */
+            ty->nrun = 0;
     }
     for (int r = 0; r < NROOT; r++)
         free(R.e[r]);

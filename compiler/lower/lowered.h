@@ -229,13 +229,15 @@ enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
  *     v = -v (negate), v = v / after (0: none);
  * a VALUE is src's (LowTayStep's src, index, value); a CALL is fn(x) or
  * fn(x, y) of libm; a SELECT is x where the mode (src U, index) is not 0,
- * else y.  A cell -1 as an operand is 0.  These are the arithmetic of
+ * else y; a SOLVE is the caller's solve of M_0 a = -b at order index, in
+ * place over the x cells from dst (b's on the way in), and at order 0 its
+ * terms are M_0's x^2 entries, row-major.  A cell -1 as an operand is 0.  These are the arithmetic of
  * eomc_taylor.h's recurrences in their order, so the same bits, but that
  * a term with a factor 0 at every step (a constant's coefficient past
  * the first, a product of polynomials past its degree) is left out, and
  * a cell no term reaches is not written: its readers see -1, and those
  * of the cells taylor_run copies out are listed in zero_out. */
-enum { LOW_SER_SUM, LOW_SER_VALUE, LOW_SER_CALL, LOW_SER_SELECT };
+enum { LOW_SER_SUM, LOW_SER_VALUE, LOW_SER_CALL, LOW_SER_SELECT, LOW_SER_SOLVE };
 typedef struct LowSerTerm {
     double coef;
     int x, y;
@@ -309,6 +311,12 @@ typedef struct LowTaylor {
     int nrun;             /* taylor_run's calls after each order's program,
                            * step[nstep .. nstep + nrun - 1] (every q and v
                            * then has a slot); 0: no taylor_run */
+    int nstate;           /* nq + nv with taylor_run */
+    int *state_slot;      /* [nstate]: the state's slots, q's then v's (the
+                           * caller's X's order) */
+    int *acc_slot;        /* [nv] where taylor_run solves M_0 a_k = -b_k by the
+                           * caller's hook (M not constant and diagonal):
+                           * a's series, consecutive slots; else NULL */
     LowSeries *series;    /* taylor_run written out, or NULL: its loop */
     int *B_slot;          /* [nc nv] */
     int *f_slot, *pos_slot, *vel_slot; /* [nc] */

@@ -68,6 +68,11 @@ __attribute__((visibility("default")))
 void eomc_sincos(int n, const double *x, double *s, double *c);
 #endif
 
+/* taylor_run's solve (below): at k = 0 factor M_0 [nv nv, row-major] and
+ * test it as eomc_sim_accel does; at every k, b [nv] := -M_0^-1 b.  0, or
+ * -1 where M_0 is not safely positive definite. */
+typedef int (*eomc_tay_solve)(void *ctx, int k, const double *M0, double *b);
+
 typedef struct eomc_model {
     int abi;               /* EOMC_ABI_VERSION of the generator */
     const char *name;      /* the spec's name */
@@ -411,20 +416,24 @@ typedef struct eomc_model {
      * coefficients past the first are 0) and EOMC_TAYLOR_M_DIAGONAL
      * (every entry off the diagonal is 0 at every order); 0: neither. */
     int taylor_mass;
-    /* The whole series in one call, where the generator can solve M
-     * itself (no constraints; M constant in t and diagonal, each M_ii a
-     * series): taylor_run(K, t0, p, u, T, X) gives the state's series to
+    /* The whole series in one call, where there are no constraints:
+     * taylor_run(K, t0, p, u, T, X, solve, ctx) gives the state's series to
      * order K in X [(K + 1) (nq + nv)], X[j (nq + nv) + i] the coefficient
      * j of component i (q, then v), from the coefficient 0 the caller
      * wrote there: the layout the runtime reads, so that nothing is
      * gathered twice.  In T it leaves what the caller reads there: the
-     * event functions' slots (taylor_g) to order K - 1 and M_jj's
-     * coefficient 0, for the caller's test.  Each order is taylor's, then
-     * q_i's next coefficient from its rate's (q' = v, or taylor_qd's) and
-     * v_j's as -(h_j / M_jj) / (k + 1): the runtime's own arithmetic, so
-     * the same bits.  NULL: the runtime's loop over taylor. */
-    void (*taylor_run)(int K, double t0, const double *p, const double *u, double *T,
-                       double *X);
+     * event functions' slots (taylor_g) to order K - 1, and where M is
+     * constant and diagonal M_jj's coefficient 0, for the caller's test.
+     * Each order is taylor's, then q_i's next coefficient from its rate's
+     * (q' = v, or taylor_qd's) and v_j's as a_j / (k + 1), with a_k =
+     * -(h_k / M_jj) where M is constant and diagonal, else a_k = -M_0^-1
+     * (h_k + sum_{i=1..k} M_i a_{k-i}) by the caller's solve (below).  The
+     * runtime's own arithmetic in its order, so the same bits.  0; -1
+     * where solve refused; 1 where K is above the orders it writes out (M
+     * not constant and diagonal), for the caller's loop over taylor.
+     * NULL: the runtime's loop over taylor. */
+    int (*taylor_run)(int K, double t0, const double *p, const double *u, double *T,
+                      double *X, eomc_tay_solve solve, void *ctx);
 
     /* ---- switched expressions ----
      * nmode kinks of the spec's max, min and clamp.  Mode k is the value

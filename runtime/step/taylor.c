@@ -12,10 +12,11 @@
  * a diagonal M, eomc_model's taylor_mass says, by its own entries) and
  * never inverted symbolically; a constant M's higher orders are 0 and
  * their sums are skipped; then q_{k+1} = q'_k / (k + 1) and
- * q'_{k+1} = a_k / (k + 1), which the next call reads.  Where M is
- * constant and diagonal and there are no constraints, the generator did
- * that solve itself, with the same arithmetic: the model's taylor_run
- * gives the whole series in one call, into X (run_series).
+ * q'_{k+1} = a_k / (k + 1), which the next call reads.  Without
+ * constraints the model's taylor_run gives the whole series in one call,
+ * into X (run_series), with the same arithmetic: where M is constant and
+ * diagonal the generator did the solve itself, else it calls run_solve
+ * (this file's factorization and solve) at each order.
  *
  * With speeds of their own (a unit quaternion's angular velocity: the
  * state is (q [nq], v [nv]), q' = W(q) v) the same holds in the speeds:
@@ -414,6 +415,41 @@ mass_terms(const Taylor *tp, int i, int k)
     return sum;
 }
 
+/* M_0, from its entries in tp->M0, factored (along its tree by LTDL
+ * where the model gives one, else GSL's pivoted Cholesky; a diagonal one
+ * only tested, its pivots its own entries).  0, or -1 when it is not
+ * safely positive definite. */
+static int
+m0_factor(Taylor *tp)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->nv;
+    if (m->taylor_mass & EOMC_TAYLOR_M_DIAGONAL) { /* la_ldlt_factor's test */
+        for (int i = 0; i < n; i++)
+            if (!(tp->M0[i * n + i] > EOMC_PIVOT_TOL * tp->M0[i * n + i]))
+                return -1;
+        return 0;
+    }
+    return m->mass_parent ? la_ltdl_factor(tp->M0, n, m->mass_parent, tp->rel)
+                          : la_ldlt_factor(tp->M0, n, tp->rel, tp->perm);
+}
+
+/* b := -M_0^-1 b by m0_factor's factorization: a diagonal one's solve a
+ * division, as its factorization's (L = 1, D = M_0). */
+static void
+m0_solve_neg(Taylor *tp, double *b)
+{
+    const eomc_model *m = tp->m;
+    int n = tp->nv;
+    if (m->taylor_mass & EOMC_TAYLOR_M_DIAGONAL)
+        for (int i = 0; i < n; i++)
+            b[i] = -(b[i] / tp->M0[i * n + i]);
+    else if (m->mass_parent) /* along M's tree, as eomc_sim_accel solves */
+        la_ltdl_solve_neg(tp->M0, n, m->mass_parent, b);
+    else
+        la_ldlt_solve_neg(tp->M0, n, tp->perm, b);
+}
+
 /* Coefficient k of the accelerations into tp->b, unconstrained:
  * M_0 a_k = -(h_k + sum_{j=1..k} M_j a_{k-j}), M_0 factored at k = 0.
  * 0, or -1 when M_0 is not safely positive definite. */
@@ -421,33 +457,35 @@ static int
 mass_order(Taylor *tp, int k)
 {
     const eomc_model *m = tp->m;
-    int n = tp->nv, diagonal = m->taylor_mass & EOMC_TAYLOR_M_DIAGONAL;
+    int n = tp->nv;
     if (k == 0) {
         for (int i = 0; i < n * n; i++)
             tp->M0[i] = coef(tp, m->taylor_M[i], 0);
-        if (diagonal) { /* la_ldlt_factor's test, whose pivots are M_0's own */
-            for (int i = 0; i < n; i++)
-                if (!(tp->M0[i * n + i] > EOMC_PIVOT_TOL * tp->M0[i * n + i]))
-                    return -1;
-        } else if (m->mass_parent ? la_ltdl_factor(tp->M0, n, m->mass_parent, tp->rel) != 0
-                                  : la_ldlt_factor(tp->M0, n, tp->rel, tp->perm) != 0) {
+        if (m0_factor(tp) != 0)
             return -1;
-        }
     }
     /* b = h_k + sum_{j=1..k} M_j a_{k-j}, then a_k = -M_0^-1 b.  A
      * constant M's M_j are 0: the sum is +0, what its n^2 series of zeros
-     * would add up to; a diagonal one's solve is a division, as its
-     * factorization's (L = 1, D = M_0) */
+     * would add up to */
     int constant = m->taylor_mass & EOMC_TAYLOR_M_CONSTANT;
     for (int i = 0; i < n; i++)
         tp->b[i] = coef(tp, m->taylor_h[i], k) + (constant ? 0.0 : mass_terms(tp, i, k));
-    if (diagonal)
-        for (int i = 0; i < n; i++)
-            tp->b[i] = -(tp->b[i] / tp->M0[i * n + i]);
-    else if (m->mass_parent) /* along M's tree, as eomc_sim_accel solves */
-        la_ltdl_solve_neg(tp->M0, n, m->mass_parent, tp->b);
-    else
-        la_ldlt_solve_neg(tp->M0, n, tp->perm, tp->b);
+    m0_solve_neg(tp, tp->b);
+    return 0;
+}
+
+/* taylor_run's solve (eomc_model.h's eomc_tay_solve): mass_order's
+ * factorization and solve, on the generated code's M_0 and b. */
+static int
+run_solve(void *ctx, int k, const double *M0, double *b)
+{
+    Taylor *tp = ctx;
+    if (k == 0) {
+        memcpy(tp->M0, M0, (size_t)tp->nv * (size_t)tp->nv * sizeof *M0);
+        if (m0_factor(tp) != 0)
+            return -1;
+    }
+    m0_solve_neg(tp, b);
     return 0;
 }
 
@@ -507,17 +545,21 @@ kkt_order(Taylor *tp, int k)
     return 0;
 }
 
-/* The state's series by the model's taylor_run, M constant and diagonal
- * (eomc_model.h): the whole series into X in one call from its
- * coefficient 0 there, and M_0 tested as mass_order tests it.  0, or -1
- * when M_0 is not safely positive or a coefficient is not finite. */
+/* The state's series by the model's taylor_run (eomc_model.h): the whole
+ * series into X in one call from its coefficient 0 there, a constant and
+ * diagonal M_0 tested as m0_factor tests it (else the solve did).  0; -1
+ * when M_0 is not safely positive or a coefficient is not finite; 1 where
+ * the order is above what it writes out, for the loop. */
 static int
 run_series(Taylor *tp, double t0, const double *par, const double *u)
 {
     const eomc_model *m = tp->m;
     int nv = tp->nv, N = tp->N, p = tp->p;
-    m->taylor_run(p, t0, par, u, tp->T, tp->X);
-    for (int j = 0; j < nv; j++) {
+    int rc = m->taylor_run(p, t0, par, u, tp->T, tp->X, run_solve, tp);
+    if (rc != 0)
+        return rc;
+    int diagonal = m->taylor_mass == (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL);
+    for (int j = 0; j < nv && diagonal; j++) {
         double d = coef(tp, m->taylor_M[j * nv + j], 0);
         if (!(d > EOMC_PIVOT_TOL * d))
             return -1;
@@ -545,9 +587,10 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     tp->t0 = t0;
     if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
         return -1; /* the rows its solves use, where they are not chosen yet */
-    if (m->taylor_run) {
-        if (run_series(tp, t0, par, u) != 0)
-            return -1;
+    int rc = m->taylor_run ? run_series(tp, t0, par, u) : 1;
+    if (rc < 0)
+        return -1;
+    if (rc == 0) {
         double hs = step_size(tp);
         *h = hs < hmax ? hs : hmax;
         return 0;

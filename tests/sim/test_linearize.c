@@ -87,33 +87,8 @@ on_constraints(eomc_sim *s, double t, double *x)
                 J[b * nd + a] = (rp[b] - rm[b]) / (2 * h);
         }
 #undef RESID
-        /* Gaussian elimination with partial pivoting */
-        for (int c = 0; c < nd; c++) {
-            int piv = c;
-            for (int rr = c + 1; rr < nd; rr++)
-                if (fabs(J[rr * nd + c]) > fabs(J[piv * nd + c]))
-                    piv = rr;
-            if (J[piv * nd + c] == 0)
-                return -1;
-            for (int k = 0; k < nd; k++) {
-                double tmp = J[c * nd + k];
-                J[c * nd + k] = J[piv * nd + k], J[piv * nd + k] = tmp;
-            }
-            double tmp = r[c];
-            r[c] = r[piv], r[piv] = tmp;
-            for (int rr = c + 1; rr < nd; rr++) {
-                double f = J[rr * nd + c] / J[c * nd + c];
-                for (int k = c; k < nd; k++)
-                    J[rr * nd + k] -= f * J[c * nd + k];
-                r[rr] -= f * r[c];
-            }
-        }
-        for (int c = nd - 1; c >= 0; c--) {
-            double sum = r[c];
-            for (int k = c + 1; k < nd; k++)
-                sum -= J[c * nd + k] * r[k];
-            r[c] = sum / J[c * nd + c];
-        }
+        if (check_solve(J, r, nd) != 0)
+            return -1;
         for (int a = 0; a < nd; a++) {
             x[dep[a]] -= r[a];
             worst = fmax(worst, fabs(r[a]) / (1 + fabs(x[dep[a]])));

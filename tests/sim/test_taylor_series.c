@@ -184,8 +184,8 @@ near_start(const eomc_model *m, double t0, double *p, double *u, double *q, doub
 }
 
 /* The test's own solve for taylor_run (eomc_model.h's eomc_tay_solve):
- * M_0 kept at k = 0, then b := -M_0^-1 b by Gaussian elimination with
- * partial pivoting, in double, on a copy. */
+ * M_0 kept at k = 0, then b := -M_0^-1 b by check_solve's Gaussian
+ * elimination, on a copy. */
 typedef struct TestSolve {
     int n;
     double M0[NMAX * NMAX];
@@ -201,32 +201,8 @@ test_solve(void *ctx, int k, const double *M0, double *b)
     double A[NMAX * NMAX], x[NMAX];
     memcpy(A, ts->M0, (size_t)n * n * sizeof *A);
     memcpy(x, b, (size_t)n * sizeof *x);
-    for (int c = 0; c < n; c++) {
-        int piv = c;
-        for (int r = c + 1; r < n; r++)
-            if (fabs(A[r * n + c]) > fabs(A[piv * n + c]))
-                piv = r;
-        if (!(fabs(A[piv * n + c]) > 0))
-            return -1;
-        for (int j = 0; j < n; j++) {
-            double t = A[c * n + j];
-            A[c * n + j] = A[piv * n + j], A[piv * n + j] = t;
-        }
-        double t = x[c];
-        x[c] = x[piv], x[piv] = t;
-        for (int r = c + 1; r < n; r++) {
-            double f = A[r * n + c] / A[c * n + c];
-            for (int j = c; j < n; j++)
-                A[r * n + j] -= f * A[c * n + j];
-            x[r] -= f * x[c];
-        }
-    }
-    for (int r = n - 1; r >= 0; r--) {
-        double sum = x[r];
-        for (int j = r + 1; j < n; j++)
-            sum -= A[r * n + j] * x[j];
-        x[r] = sum / A[r * n + r];
-    }
+    if (check_solve(A, x, n) != 0)
+        return -1;
     for (int i = 0; i < n; i++)
         b[i] = -x[i];
     return 0;

@@ -60,6 +60,41 @@ check_done(void)
     return check_failed ? 1 : 0;
 }
 
+/* A x = b for the n x n row-major A, by Gaussian elimination with
+ * partial pivoting: a test's own solve, independent of the runtime's.  A
+ * and b are overwritten, x into b.  0, or -1 where a pivot is 0. */
+static inline int
+check_solve(double *A, double *b, int n)
+{
+    for (int c = 0; c < n; c++) {
+        int piv = c;
+        for (int r = c + 1; r < n; r++)
+            if (fabs(A[r * n + c]) > fabs(A[piv * n + c]))
+                piv = r;
+        if (A[piv * n + c] == 0)
+            return -1;
+        for (int k = 0; k < n; k++) {
+            double t = A[c * n + k];
+            A[c * n + k] = A[piv * n + k], A[piv * n + k] = t;
+        }
+        double t = b[c];
+        b[c] = b[piv], b[piv] = t;
+        for (int r = c + 1; r < n; r++) {
+            double f = A[r * n + c] / A[c * n + c];
+            for (int k = c; k < n; k++)
+                A[r * n + k] -= f * A[c * n + k];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int r = n - 1; r >= 0; r--) {
+        double sum = b[r];
+        for (int k = r + 1; k < n; k++)
+            sum -= A[r * n + k] * b[k];
+        b[r] = sum / A[r * n + r];
+    }
+    return 0;
+}
+
 /* Deterministic pseudo-random numbers in [lo, hi) (xorshift64*). */
 static unsigned long long check_rng_state = 0x9E3779B97F4A7C15ull;
 static inline double

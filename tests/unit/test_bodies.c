@@ -63,30 +63,9 @@ accelerations(const Eom *e, State *s)
         M[i] = eval(e->M[i], s);
     for (int i = 0; i < n; i++)
         h[i] = -eval(e->h[i], s);
-    for (int c = 0; c < n; c++) {
-        int piv = c;
-        for (int r = c + 1; r < n; r++)
-            if (fabs(M[r * n + c]) > fabs(M[piv * n + c]))
-                piv = r;
-        for (int k = 0; k < n; k++) {
-            double t = M[c * n + k];
-            M[c * n + k] = M[piv * n + k], M[piv * n + k] = t;
-        }
-        double t = h[c];
-        h[c] = h[piv], h[piv] = t;
-        for (int r = c + 1; r < n; r++) {
-            double f = M[r * n + c] / M[c * n + c];
-            for (int k = c; k < n; k++)
-                M[r * n + k] -= f * M[c * n + k];
-            h[r] -= f * h[c];
-        }
-    }
-    for (int r = n - 1; r >= 0; r--) {
-        double x = h[r];
-        for (int k = r + 1; k < n; k++)
-            x -= M[r * n + k] * s->a[k];
-        s->a[r] = x / M[r * n + r];
-    }
+    int singular = check_solve(M, h, n) != 0;
+    for (int i = 0; i < n; i++)
+        s->a[i] = singular ? NAN : h[i];
 }
 
 static const char *const top =

@@ -32,7 +32,7 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 31
+#define EOMC_ABI_VERSION 32
 /* eomc_model.taylor_mass's flags */
 enum { EOMC_TAYLOR_M_CONSTANT = 1, EOMC_TAYLOR_M_DIAGONAL = 2 };
 

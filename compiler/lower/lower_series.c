@@ -30,7 +30,6 @@
 typedef struct Out {
     const LowTaylor *ty;
     int orders, nslot;     /* LOW_SERIES_ORDERS + 1, the program's slots */
-    int nv;                /* the speeds (with acc_slot: M is nv x nv) */
     unsigned char *nz;     /* [ncell] written by a line (else 0 at every step) */
     double *literal;       /* [nslot] a constant's value where it is a number, else NAN */
     LowSerLine *line;
@@ -254,7 +253,7 @@ expand(Out *o, const LowTayStep *st, int k)
         /* b_k = h_k + sum_l sum_{i=1..k} M_i a_{k-i}, the runtime loop's
          * mass_terms from 0 then h_k added (its last term) */
         const LowTaylor *ty = o->ty;
-        int j = st->index, n = o->nv;
+        int j = st->index, n = ty->nv; /* M is nv x nv */
         l = new_line(o, c, LOW_SER_SUM);
         for (int m = 0; m < n; m++)
             for (int i = 1; i <= k; i++)
@@ -269,7 +268,7 @@ expand(Out *o, const LowTayStep *st, int k)
          * by the caller's hook; at order 0 it factors M_0, whose entries
          * are the line's terms */
         const LowTaylor *ty = o->ty;
-        int n = o->nv;
+        int n = ty->nv;
         for (int m = 0; m < n; m++)
             if (!o->nz[at(o, ty->acc_slot[m], k)])
                 value_line(o, at(o, ty->acc_slot[m], k), LOW_TAY_SRC_CONST, 0, 0.0);
@@ -306,8 +305,7 @@ lower_series(const LowTaylor *ty, Arena *A)
     int S = LOW_SERIES_ORDERS + 1, ncell = ty->nslot * S, nall = ty->nstep + ty->nrun;
     /* a real power's exponent must be a number (a parameter's would be a
      * product more per term) */
-    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot,
-             .nv = ty->acc_slot ? ty->nrun - ty->nstate - 1 : 0};
+    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot};
     o.literal = xmalloc(((size_t)ty->nslot + 1) * sizeof *o.literal);
     literals(&o);
     for (int i = 0; i < ty->nstep && !o.why; i++)
@@ -315,8 +313,8 @@ lower_series(const LowTaylor *ty, Arena *A)
             o.why = "powc";
     o.nz = xmalloc((size_t)ncell + 1);
     memset(o.nz, 0, (size_t)ncell + 1);
-    int nq = ty->nstate; /* the state's coefficient 0, which the caller writes */
-    for (int i = 0; i < nq; i++)
+    int ns = ty->nstate; /* the state's coefficient 0, which the caller writes */
+    for (int i = 0; i < ns; i++)
         o.nz[at(&o, ty->state_slot[i], 0)] = 1;
     int *start = arena_new_array(A, int, LOW_SERIES_ORDERS + 1);
     for (int k = 0; k < LOW_SERIES_ORDERS && !o.why && o.nterm <= LOW_SERIES_MAX_TERMS; k++) {
@@ -338,9 +336,9 @@ lower_series(const LowTaylor *ty, Arena *A)
             memcpy(se->term, o.term, (size_t)o.nterm * sizeof *o.term);
         /* the cells taylor_run copies out (the state's, the switches' and
          * events', M's diagonal's first) that stay 0 */
-        int nout = 0, cap = 2 * nq * S + (ty->nevent + ty->nmode) * S + 1;
+        int nout = 0, cap = 2 * ns * S + (ty->nevent + ty->nmode) * S + 1;
         se->zero_out = arena_new_array(A, int, cap);
-        for (int i = 0; i < nq; i++) {
+        for (int i = 0; i < ns; i++) {
             int s = ty->state_slot[i];
             for (int j = 0; j < S; j++)
                 if (!o.nz[at(&o, s, j)]) {

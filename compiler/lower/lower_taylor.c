@@ -478,7 +478,7 @@ run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
     for (int j = 0; j < nv; j++)
         if (ty->v_slot[j] < 0)
             ty->v_slot[j] = ty->nslot++;
-    ty->nstate = nq + nv;
+    ty->nstate = nq + nv, ty->nv = nv;
     ty->state_slot = arena_new_array(A, int, nq + nv + 1);
     memcpy(ty->state_slot, ty->q_slot, (size_t)nq * sizeof *ty->q_slot);
     memcpy(ty->state_slot + nq, ty->v_slot, (size_t)nv * sizeof *ty->v_slot);

@@ -311,7 +311,7 @@ typedef struct LowTaylor {
     int nrun;             /* taylor_run's calls after each order's program,
                            * step[nstep .. nstep + nrun - 1] (every q and v
                            * then has a slot); 0: no taylor_run */
-    int nstate;           /* nq + nv with taylor_run */
+    int nstate, nv;       /* with taylor_run: nq + nv, and the speeds nv */
     int *state_slot;      /* [nstate]: the state's slots, q's then v's (the
                            * caller's X's order) */
     int *acc_slot;        /* [nv] where taylor_run solves M_0 a_k = -b_k by the

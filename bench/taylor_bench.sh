@@ -159,6 +159,32 @@ for spec in pleiades outer_solar_system; do
             "$dir/$spec.runs"
     done
 done
+# A sweep's runs four at a time (--batch 4, one series for four lanes)
+# against one at a time (--batch 1), in the same process kind: 1000
+# Kepler orbits, e = 0.1 .. 0.7, 100 periods each, one row at the end;
+# CPU of the whole sweep (children's user + system), least of 3 rounds
+# in turns.  The rows are the same bytes (tests/cli/test_sweep.sh).
+echo "A sweep: 1000 Kepler runs (e = 0.1 .. 0.7, 100 periods), taylor at 1e-15"
+"$eomc" build "$src/specs/kepler.yaml" --taylor -o "$dir/kep" 2> /dev/null
+cpu_of() { # the command's CPU seconds
+    python3 -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[1:], check=True)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(r.ru_utime + r.ru_stime)' "$@"
+}
+for round in 1 2 3; do
+    for b in 1 4; do
+        c=$(cpu_of "$dir/kep" --method taylor --rtol 1e-15 --atol 1e-15 --sweep e=0.1:0.7:1000 \
+            --t-end 628.3185307179586 --dt 628.3185307179586 --batch $b -o "$dir/sweep$b.csv")
+        echo "$b $c" >> "$dir/sweep.cpu"
+    done
+done
+cmp -s "$dir/sweep1.csv" "$dir/sweep4.csv" || echo "  (the rows differ: a defect)"
+awk '{ if (!($1 in m) || $2 < m[$1]) m[$1] = $2 }
+    END { r = m[4] / m[1]
+          printf "  --batch 1: %.3g ms a run; --batch 4: %.3g ms a run: %.3g of it (target <= 0.4: %s)\n",
+              m[1], m[4], r, r <= 0.4 ? "met" : "missed" }' "$dir/sweep.cpu"
+
 if command -v valgrind > /dev/null 2>&1; then
     ipstep() { # what steps: instructions a step, all in (two rows)
         valgrind --tool=callgrind --callgrind-out-file="$dir/cg.out" "$@" --stats -o /dev/null \

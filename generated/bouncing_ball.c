@@ -562,6 +562,168 @@ out:
 }
 #endif
 
+#if !defined(EOMC_EXTENDED) && defined(EOMC_V4)
+/* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):
+ * the lines above on vectors, each lane's the same arithmetic in the
+ * same order; above order 20 1, for one run at a time. */
+static int
+bouncing_ball_taylor_run4(int K, const double *t0s, const double *ps,
+    const double *us, double *Ts, double *Xs)
+{
+    const int S = K + 1;
+    if (K > 20)
+        return 1;
+    const eomc_v4 t0 = *(const eomc_v4 *)t0s;
+    const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;
+    eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;
+    (void)S, (void)T, (void)t0, (void)p, (void)u;
+    eomc_v4 W[84]; /* slot s's coefficient j at W[j * 4 + s], but the
+                   * state's: X[j * 2 + i], q's then v's */
+    if (K >= 3)
+        X[6] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 4)
+        X[8] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 5)
+        X[10] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 6)
+        X[12] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 7)
+        X[14] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 8)
+        X[16] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 9)
+        X[18] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 10)
+        X[20] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 11)
+        X[22] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 12)
+        X[24] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 13)
+        X[26] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 14)
+        X[28] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 15)
+        X[30] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 16)
+        X[32] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 17)
+        X[34] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 18)
+        X[36] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 19)
+        X[38] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 20)
+        X[40] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 2)
+        X[5] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 3)
+        X[7] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 4)
+        X[9] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 5)
+        X[11] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 6)
+        X[13] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 7)
+        X[15] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 8)
+        X[17] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 9)
+        X[19] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 10)
+        X[21] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 11)
+        X[23] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 12)
+        X[25] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 13)
+        X[27] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 14)
+        X[29] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 15)
+        X[31] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 16)
+        X[33] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 17)
+        X[35] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 18)
+        X[37] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 19)
+        X[39] = EOMC_V4C(0.0); /* at every step */
+    if (K >= 20)
+        X[41] = EOMC_V4C(0.0); /* at every step */
+    /* order 0 */
+    W[0] = p[0];
+    W[2] = p[5];
+    X[2] = X[1];
+    X[3] = -W[2] / W[0];
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    X[4] = X[3] / 2.0;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (K == 19)
+        goto out;
+    /* order 19 */
+out:
+    for (int j = 0; j < K; j++) /* event function 0 */
+        T[1 * S + j] = X[j * 2 + 0];
+    T[0 * S] = W[0]; /* M's diagonal, entry 0 */
+    return 0;
+}
+#endif
+
 /* The slots of q and q' the caller writes, and those of M (row-major),
  * h and the event functions g (-1: none, or zero at every order). */
 static const int taylor_q[1] = {1};
@@ -652,6 +814,9 @@ const eomc_model bouncing_ball_model = {
     .taylor_M = taylor_M, .taylor_h = taylor_h, .taylor_g = taylor_g,
     .taylor = bouncing_ball_taylor, .taylor_why = NULL, /* Taylor's method */
     .taylor_run = bouncing_ball_taylor_run, /* the whole series in one call */
+#ifdef EOMC_V4
+    .taylor_run4 = bouncing_ball_taylor_run4, /* ... for four runs at once */
+#endif
     .taylor_mass = EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL, /* M's series */
 };
 

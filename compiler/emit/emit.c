@@ -701,6 +701,9 @@ print_model_struct(Printer *pr, const Lowered *L, const EmitInfo *info)
         emit_line(pr, "    .taylor_qd = taylor_qd, /* Taylor's series of q' = W(q) v */");
     if (!L->taylor->why && L->taylor->nrun)
         emit_line(pr, "    .taylor_run = %s_taylor_run, /* the whole series in one call */", nm);
+    if (!L->taylor->why && L->taylor->nrun && L->taylor->series && L->taylor->series->lanes)
+        emit_line(pr, "#ifdef EOMC_V4\n    .taylor_run4 = %s_taylor_run4, /* ... for four runs at "
+                  "once */\n#endif", nm);
     if (!L->taylor->why && L->taylor->mass)
         emit_line(pr, "    .taylor_mass = %s, /* M's series */",
                   L->taylor->mass == (LOW_TAYLOR_M_CONSTANT | LOW_TAYLOR_M_DIAGONAL)

@@ -158,6 +158,8 @@ enum { SERIES_WRAP = 92 };
 typedef struct Cells {
     const int *place; /* [nslot] the state's index of a slot, or -1 */
     int nslot, N;
+    int lanes;        /* taylor_run4's: every value a vector of the lanes'
+                       * (EOMC_V4), a number spread over them */
 } Cells;
 
 typedef struct Col {
@@ -186,7 +188,7 @@ put_cell(Col *c, int cell)
     const Cells *m = c->cells;
     int at = cell < 0 ? -1 : m->place[cell % m->nslot];
     if (cell < 0)
-        put(c, "0.0");
+        put(c, m->lanes ? "EOMC_V4C(0.0)" : "0.0");
     else if (at >= 0)
         put(c, "X[%d]", cell / m->nslot * m->N + at);
     else
@@ -225,6 +227,12 @@ static void
 put_value(Col *c, int src, int index, double value)
 {
     char num[40];
+    if (c->cells->lanes && src != LOW_TAY_SRC_P && src != LOW_TAY_SRC_U &&
+        src != LOW_TAY_SRC_T) {
+        emit_const(num, sizeof num, value);
+        put(c, "EOMC_V4C(%s)", num);
+        return;
+    }
     switch (src) {
     case LOW_TAY_SRC_P:
         put(c, "p[%d]", index);
@@ -276,6 +284,26 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
         return;
     }
     put(&c, "    ");
+    if (cells->lanes && (l->kind == LOW_SER_CALL || l->kind == LOW_SER_SELECT)) {
+        /* a lane at a time, by a helper on pointers (vectors passed by
+         * value change the ABI where the machine's vectors are narrower) */
+        put(&c, "%s_v4_%s(&", pr->md->name, l->kind == LOW_SER_CALL ? l->fn : "select");
+        put_cell(&c, l->dst);
+        put(&c, ", ");
+        if (l->kind == LOW_SER_SELECT) {
+            put(&c, "&");
+            put_value(&c, l->src, l->index, 0);
+            put(&c, ", ");
+        }
+        put(&c, "&");
+        put_cell(&c, l->x);
+        if (l->kind == LOW_SER_SELECT || !strcmp(l->fn, "pow")) {
+            put(&c, ", &");
+            put_cell(&c, l->y);
+        }
+        fputs(");\n", pr->f);
+        return;
+    }
     put_cell(&c, l->dst);
     put(&c, " = ");
     switch (l->kind) {
@@ -307,6 +335,13 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
         int times = l->times != 1 && l->nterm > 0, nsum = l->nterm + (l->last >= 0);
         int wrap = l->nterm > 1 && (times || l->over != 0 || l->after != 0 || l->negate);
         int wrap2 = nsum > 1 && l->last >= 0 && (l->over != 0 || l->after != 0 || l->negate);
+        /* a number alone is spread over the lanes (a vector's operator
+         * spreads a number beside a vector itself) */
+        int number = cells->lanes && l->over == 0;
+        for (int t = 0; t < l->nterm && number; t++)
+            number = se->term[l->first + t].x < 0;
+        number &= l->last < 0 || se->term[l->last].x < 0;
+        put(&c, number ? "EOMC_V4C(" : "");
         put(&c, "%s%s%s", l->negate ? (nsum > 1 ? "-(" : "-") : "", wrap2 ? "(" : "",
             wrap ? "(" : "");
         for (int t = 0; t < l->nterm; t++)
@@ -331,6 +366,7 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
             emit_const(num, sizeof num, l->after);
             put(&c, " / %s", num);
         }
+        put(&c, number ? ")" : "");
     }
     }
     fputs(";\n", pr->f);
@@ -340,7 +376,7 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
  * - 1, the state's cells in the caller's X (Cells) and the others in the
  * local W; then what the caller reads of the others copied into T. */
 static void
-print_series(Printer *pr, const LowTaylor *ty)
+print_series(Printer *pr, const LowTaylor *ty, int lanes)
 {
     const LowSeries *se = ty->series;
     int ns = ty->nstate, nslot = ty->nslot;
@@ -349,9 +385,10 @@ print_series(Printer *pr, const LowTaylor *ty)
         place[s] = -1;
     for (int i = 0; i < ns; i++)
         place[ty->state_slot[i]] = i;
-    Cells cells = {place, nslot, ns};
-    emit_line(pr, "    eomc_real W[%d]; /* slot s's coefficient j at W[j * %d + s], but the", se->ncell,
-              nslot);
+    Cells cells = {place, nslot, ns, lanes};
+    const char *zero = lanes ? "EOMC_V4C(0.0)" : "0.0";
+    emit_line(pr, "    %s W[%d]; /* slot s's coefficient j at W[j * %d + s], but the",
+              lanes ? "eomc_v4" : "eomc_real", se->ncell, nslot);
     emit_line(pr, "                   * state's: X[j * %d + i], q's then v's */", ns);
     for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: W's by runs */
         int c = se->zero_out[i], at = place[c % nslot];
@@ -359,13 +396,13 @@ print_series(Printer *pr, const LowTaylor *ty)
                         place[se->zero_out[j] % nslot] < 0;)
             j++;
         if (at >= 0) /* (X has the orders to K) */
-            emit_line(pr, "    if (K >= %d)\n        X[%d] = 0.0; /* at every step */",
-                      c / nslot, c / nslot * ns + at);
+            emit_line(pr, "    if (K >= %d)\n        X[%d] = %s; /* at every step */",
+                      c / nslot, c / nslot * ns + at, zero);
         else if (j - i == 1)
-            emit_line(pr, "    W[%d] = 0.0; /* at every step */", c);
+            emit_line(pr, "    W[%d] = %s; /* at every step */", c, zero);
         else
             emit_line(pr, "    for (int c = %d; c <= %d; c++) /* 0 at every step */\n"
-                          "        W[c] = 0.0;", c, se->zero_out[j - 1]);
+                          "        W[c] = %s;", c, se->zero_out[j - 1], zero);
     }
     for (int k = 0; k < LOW_SERIES_ORDERS; k++) {
         if (k > 0) {
@@ -451,7 +488,7 @@ print_run(Printer *pr, const LowTaylor *ty)
         emit_line(pr, "    if (K > %d)", LOW_SERIES_ORDERS);
         emit_line(pr, "        return 1;");
         emit_line(pr, "    (void)S, (void)T, (void)t0, (void)p, (void)u;");
-        print_series(pr, ty);
+        print_series(pr, ty, 0);
         emit_line(pr, "}");
         emit_line(pr, "#endif\n");
         return;
@@ -479,8 +516,58 @@ print_run(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "%sreturn 0;", in);
     if (ty->series) {
         emit_line(pr, "    }");
-        print_series(pr, ty);
+        print_series(pr, ty, 0);
     }
+    emit_line(pr, "}");
+    emit_line(pr, "#endif\n");
+}
+
+/* taylor_run4 (eomc_model.h): the written-out series once more, each
+ * value a vector of the lanes' (print_series with lanes), so that each
+ * lane computes its run's bits; a libm function or a mode's choice is
+ * taken a lane at a time, by a helper of its own. */
+static void
+print_run4(Printer *pr, const LowTaylor *ty)
+{
+    const char *nm = pr->md->name;
+    const LowSeries *se = ty->series;
+    emit_line(pr, "#if !defined(EOMC_EXTENDED) && defined(EOMC_V4)");
+    int select = 0;
+    for (int i = 0; i < se->nline; i++) {
+        const LowSerLine *l = &se->line[i];
+        select |= l->kind == LOW_SER_SELECT;
+        int seen = l->kind != LOW_SER_CALL;
+        for (int j = 0; j < i && !seen; j++)
+            seen = se->line[j].kind == LOW_SER_CALL && !strcmp(se->line[j].fn, l->fn);
+        if (seen)
+            continue;
+        int two = !strcmp(l->fn, "pow");
+        emit_line(pr, "static inline void\n%s_v4_%s(eomc_v4 *r, const eomc_v4 *a%s)\n{", nm,
+                  l->fn, two ? ", const eomc_v4 *b" : "");
+        emit_line(pr, "    for (int l = 0; l < EOMC_LANES; l++)");
+        emit_line(pr, "        (*r)[l] = %s((*a)[l]%s);\n}\n", l->fn, two ? ", (*b)[l]" : "");
+    }
+    if (select) {
+        emit_line(pr, "static inline void\n%s_v4_select(eomc_v4 *r, const eomc_v4 *mode, "
+                  "const eomc_v4 *a,\n    const eomc_v4 *b)\n{", nm);
+        emit_line(pr, "    for (int l = 0; l < EOMC_LANES; l++)");
+        emit_line(pr, "        (*r)[l] = (*mode)[l] != 0 ? (*a)[l] : (*b)[l];\n}\n");
+    }
+    emit_line(pr, "/* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):");
+    emit_line(pr, " * the lines above on vectors, each lane's the same arithmetic in the");
+    emit_line(pr, " * same order; above order %d 1, for one run at a time. */", LOW_SERIES_ORDERS);
+    char fname[160];
+    snprintf(fname, sizeof fname, "%s_taylor_run4", nm);
+    emit_head(pr, "static int", fname,
+              "int K, const double *t0s, const double *ps, const double *us, double *Ts, "
+              "double *Xs");
+    emit_line(pr, "    const int S = K + 1;");
+    emit_line(pr, "    if (K > %d)\n        return 1;", LOW_SERIES_ORDERS);
+    emit_line(pr, "    const eomc_v4 t0 = *(const eomc_v4 *)t0s;");
+    emit_line(pr, "    const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;");
+    emit_line(pr, "    eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;");
+    emit_line(pr, "    (void)S, (void)T, (void)t0, (void)p, (void)u;");
+    print_series(pr, ty, 1);
     emit_line(pr, "}");
     emit_line(pr, "#endif\n");
 }
@@ -562,6 +649,8 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
     }
     if (ty->nrun)
         print_run(pr, ty);
+    if (ty->nrun && ty->series && ty->series->lanes)
+        print_run4(pr, ty);
     if (ty->qd_slot) {
         emit_line(pr, "/* The slots of q and v the caller writes, those of q' = W(q) v, and");
         emit_line(pr, " * those of M (row-major, in the speeds), h and the event functions g");

@@ -280,6 +280,8 @@ typedef struct LowSeries {
                      * (0 at every step): written 0 (nzero_out) */
     int nzero_out;
     int unoptimized; /* more than LOW_SERIES_OPTIMIZED_TERMS terms */
+    int lanes;       /* also for four runs at once (taylor_run4): M constant
+                      * and diagonal, and optimized */
 } LowSeries;
 
 /* The program of the model's taylor member (eomc_model.h): nstep calls

@@ -105,7 +105,7 @@ sweep(Options *c, eomc_sim *sim)
     if (rc == EOMC_OK) {
         c->run.on_progress = NULL;
         Sweep sw = {m, &c->run, sweep_prepare, sweep_initial, c, pl.nparam, pl.names,
-                    pl.nruns, pl.values, c->threads, c->prog,
+                    pl.nruns, pl.values, c->threads, c->batch, c->prog,
                     c->linearize ? stab_cells : NULL, columns,
                     c->linearize ? 2 * eomc_sim_linear_size(sim) : 0};
         rc = sweep_run(&sw, f);

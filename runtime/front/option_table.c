@@ -149,6 +149,11 @@ static const Row rows[] = {
     {"--sweep-file", O_SWEEP_FILE, "FILE", "one run per row of a CSV (a header of parameter names)",
      .when = ANY},
     {"--threads", O_THREADS, "N", "run a sweep's runs on N threads (same summary)", .when = ANY},
+    {"--batch", O_BATCH, "N",
+     "a Taylor sweep's runs N at a time, one vector's lanes\n"
+     "(1 or 4; default 4 where the model has the series for\n"
+     "it; same summary)",
+     .when = ANY},
     {"--linearize", O_LINEARIZE, NULL,
      "A = dz'/dz and B = dz'/du at the initial state (or --init),\n"
      "z the coordinates and velocities (a constrained model's\n"

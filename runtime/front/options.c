@@ -251,6 +251,13 @@ take_value(Options *c, int k, const char *val)
                          MAX_THREADS);
         c->threads = (int)x;
         return EOMC_OK;
+    case O_BATCH:
+        if (!number(val, &x) || (x != 1 && x != EOMC_LANES))
+            return opt_usage(c, "--batch: '%s' is not 1 or %d (a vector's lanes)", val,
+                             EOMC_LANES);
+        c->batch = (int)x;
+        c->batch_given = 1;
+        return EOMC_OK;
     case O_METHODS: return method_list(c, val);
     case O_TOLERANCES: return number_list(c, opt, val, &c->tolerances, &c->ntolerances);
     case O_STEPS: return number_list(c, opt, val, &c->steps, &c->nsteps);
@@ -297,6 +304,8 @@ check_combination(Options *c)
                          c->linearize ? "linearization's" : "summary", clash);
     } else if (c->threads > 1) {
         return opt_usage(c, "--threads runs the runs of a sweep (--sweep, --sweep-file) at once");
+    } else if (c->batch_given) {
+        return opt_usage(c, "--batch runs the runs of a sweep (--sweep, --sweep-file) together");
     }
     if (c->no_assemble && (c->assemble || c->hold))
         return opt_usage(c, "--no-assemble starts from the initial state as given: it does not "
@@ -554,6 +563,27 @@ check_animate(const Options *c, const eomc_model *m)
     return why ? opt_usage(c, "%s", why) : EOMC_OK;
 }
 
+/* --batch N > 1, given: runs share a series, by Taylor's method, where
+ * the model has its series for the lanes (eomc_model.h's taylor_run4). */
+static int
+check_batch(const Options *c, const eomc_model *m)
+{
+    if (!c->batch_given || c->batch == 1)
+        return EOMC_OK;
+    if (c->linearize)
+        return opt_usage(c, "--batch %d runs integrations together; a sweep of --linearize "
+                         "integrates none", c->batch);
+    if (strcmp(c->run.method, "taylor") != 0)
+        return opt_usage(c, "--batch %d: runs share a series by Taylor's method alone "
+                         "(--method taylor), not by %s", c->batch, c->run.method);
+    if (!m->taylor_run4)
+        return opt_usage(c, "--batch %d: %s has no series for %d runs at once (that needs a "
+                         "constant diagonal M, no constraints, a series short enough to be "
+                         "optimized, and a C compiler with GCC's vectors); --batch 1 runs "
+                         "them one at a time", c->batch, m->name, c->batch);
+    return EOMC_OK;
+}
+
 int
 opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
 {
@@ -606,6 +636,8 @@ opt_parse(Options *c, int argc, char **argv, const eomc_model *m)
     c->scene_assembles = m->assemble;
     int rc = check_combination(c);
     if (rc == EOMC_OK)
+        rc = check_batch(c, m);
+    if (rc == EOMC_OK)
         rc = check_event_options(c, m);
     return rc == EOMC_OK ? check_animate(c, m) : rc;
 }
@@ -622,6 +654,7 @@ opt_init(Options *c, int argc, char **argv, const eomc_model *m)
     c->self = getenv("EOMC_RUN_COMMAND") ? getenv("EOMC_RUN_COMMAND") : c->prog;
     c->run = eomc_run_defaults(m);
     c->threads = 1;
+    c->batch = EOMC_LANES;
     /* every argument at most once in each list */
     c->set = calloc((size_t)argc + 1, sizeof *c->set);
     c->init = calloc((size_t)argc + 1, sizeof *c->init);

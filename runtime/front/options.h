@@ -36,6 +36,7 @@ typedef struct Options {
     const char *hold;     /* --hold LIST, for --assemble */
     char **sweep;         /* --sweep NAME=START:STOP:COUNT, in order */
     int nsweep, threads;  /* and --threads N */
+    int batch, batch_given; /* --batch N: 1, or EOMC_LANES (the default) */
     const char *sweep_file;
     const char **methods; /* NULL-terminated */
     double *tolerances, *steps, target;

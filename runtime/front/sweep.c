@@ -6,6 +6,7 @@
 #include "base/io.h"
 #include "rows.h"
 #include "base/numfmt.h"
+#include "step/integrate.h"
 
 #include <pthread.h>
 #include <stdarg.h>
@@ -107,52 +108,87 @@ cells_row(const Sweep *sw, Text *row, eomc_sim *sim, double *x, int rc, double *
     return row->s;
 }
 
+/* A run in the making: its row's values, its simulator and arrays. */
+typedef struct Run {
+    long k;            /* in sweep order */
+    long i;            /* in this rank's */
+    Text row;
+    eomc_sim *sim;
+    double *x, *last, *out;
+    Last l;
+    eomc_stats st;
+    int rc;
+} Run;
+
+/* Run k up to its integration: its simulator set up and its initial
+ * state (r->rc says whether they could be). */
+static void
+run_begin(const Sweep *sw, long k, Run *r)
+{
+    const eomc_model *m = sw->m;
+    int nx = eomc_nx(m);
+    char num[NUM_MAX];
+    *r = (Run){.k = k};
+    for (int j = 0; j < sw->nparam; j++)
+        add(&r->row, "%s%s", j ? "," : "", num_shortest(num, sw->values[k * sw->nparam + j]));
+    r->sim = eomc_sim_alloc(m);
+    r->x = calloc((size_t)nx + 1, sizeof *r->x);
+    r->last = calloc((size_t)nx + 1, sizeof *r->x);
+    r->out = calloc((size_t)m->nout + 1, sizeof *r->out);
+    int rc = r->sim && r->x && r->last && r->out ? sw->prepare(sw->ctx, r->sim) : EOMC_EUSAGE;
+    for (int j = 0; j < sw->nparam && rc == EOMC_OK; j++)
+        rc = eomc_sim_set(r->sim, sw->names[j], sw->values[k * sw->nparam + j]);
+    if (rc == EOMC_OK)
+        rc = eomc_sim_check(r->sim);
+    if (rc == EOMC_OK)
+        rc = sw->initial(sw->ctx, r->sim, r->x);
+    r->l = (Last){sw->run->t0, r->last, nx};
+    if (r->x && r->last)
+        memcpy(r->last, r->x, (size_t)nx * sizeof *r->x);
+    r->rc = rc;
+}
+
+/* The run's row after its integration (r->rc its status), a malloc'd
+ * line; what run_begin allocated freed. */
+static char *
+run_end(const Sweep *sw, Run *r)
+{
+    const eomc_model *m = sw->m;
+    int n = m->nq, nx = eomc_nx(m), rc = r->rc;
+    char num[NUM_MAX];
+    if (rc == EOMC_OK && m->nout > 0)
+        rc = eomc_sim_outputs(r->sim, r->l.t, r->last, r->last + n, r->out);
+    if (rc == EOMC_OK) {
+        add(&r->row, "%sok,%s", sw->nparam ? "," : "", num_shortest(num, r->l.t));
+        for (int i = 0; i < nx; i++)
+            add(&r->row, ",%s", num_shortest(num, r->last[i]));
+        for (int i = 0; i < m->nout; i++)
+            add(&r->row, ",%s", num_shortest(num, r->out[i]));
+    } else {
+        add(&r->row, "%s", sw->nparam ? "," : "");
+        add_quoted(&r->row, r->sim ? eomc_sim_error(r->sim) : "out of memory");
+        for (int i = 0; i < 1 + nx + m->nout; i++)
+            add(&r->row, ",");
+    }
+    add(&r->row, "\n");
+    eomc_sim_free(r->sim);
+    free(r->x);
+    free(r->last);
+    free(r->out);
+    return r->row.s;
+}
+
 /* Run k into its row (a malloc'd line). */
 static char *
 one_run(const Sweep *sw, long k)
 {
-    const eomc_model *m = sw->m;
-    int n = m->nq, nx = eomc_nx(m);
-    char num[NUM_MAX];
-    Text row = {0};
-    for (int j = 0; j < sw->nparam; j++)
-        add(&row, "%s%s", j ? "," : "", num_shortest(num, sw->values[k * sw->nparam + j]));
-    eomc_sim *sim = eomc_sim_alloc(m);
-    double *x = calloc((size_t)nx + 1, sizeof *x), *last = calloc((size_t)nx + 1, sizeof *x);
-    double *out = calloc((size_t)m->nout + 1, sizeof *out);
-    int rc = sim && x && last && out ? sw->prepare(sw->ctx, sim) : EOMC_EUSAGE;
-    for (int j = 0; j < sw->nparam && rc == EOMC_OK; j++)
-        rc = eomc_sim_set(sim, sw->names[j], sw->values[k * sw->nparam + j]);
-    if (rc == EOMC_OK)
-        rc = eomc_sim_check(sim);
-    if (rc == EOMC_OK)
-        rc = sw->initial(sw->ctx, sim, x);
+    Run r;
+    run_begin(sw, k, &r);
     if (sw->cells) /* the row holds its status until rank 0 writes it */
-        return cells_row(sw, &row, sim, x, rc, last, out);
-    Last l = {sw->run->t0, last, nx};
-    memcpy(last, x, (size_t)nx * sizeof *x);
-    if (rc == EOMC_OK)
-        rc = eomc_sim_integrate(sim, sw->run, x, keep_last, &l, NULL);
-    if (rc == EOMC_OK && m->nout > 0)
-        rc = eomc_sim_outputs(sim, l.t, last, last + n, out);
-    if (rc == EOMC_OK) {
-        add(&row, "%sok,%s", sw->nparam ? "," : "", num_shortest(num, l.t));
-        for (int i = 0; i < nx; i++)
-            add(&row, ",%s", num_shortest(num, last[i]));
-        for (int i = 0; i < m->nout; i++)
-            add(&row, ",%s", num_shortest(num, out[i]));
-    } else {
-        add(&row, "%s", sw->nparam ? "," : "");
-        add_quoted(&row, sim ? eomc_sim_error(sim) : "out of memory");
-        for (int i = 0; i < 1 + nx + m->nout; i++)
-            add(&row, ",");
-    }
-    add(&row, "\n");
-    eomc_sim_free(sim);
-    free(x);
-    free(last);
-    free(out);
-    return row.s;
+        return cells_row(sw, &r.row, r.sim, r.x, r.rc, r.last, r.out);
+    if (r.rc == EOMC_OK)
+        r.rc = eomc_sim_integrate(r.sim, sw->run, r.x, keep_last, &r.l, NULL);
+    return run_end(sw, &r);
 }
 
 typedef struct Pool {
@@ -165,10 +201,54 @@ typedef struct Pool {
                            * workers print on: eomc_main_mem keeps them */
 } Pool;
 
+/* integrate.h's next: the pool's next run that can start, in a lane
+ * (one that cannot gets its row at once). */
+static int
+lane_next(void *ctx, IntegrateLane *lane)
+{
+    Pool *p = ctx;
+    for (long i; (i = atomic_fetch_add(&p->next, 1)) < p->count;) {
+        Run *r = malloc(sizeof *r);
+        if (!r) {
+            p->rows[i] = NULL; /* (the sweep says it ran out of memory) */
+            continue;
+        }
+        run_begin(p->sw, p->first + i * p->step, r);
+        r->i = i;
+        if (r->rc != EOMC_OK) {
+            p->rows[i] = run_end(p->sw, r);
+            free(r);
+            continue;
+        }
+        *lane = (IntegrateLane){.s = r->sim, .x = r->x, .row = keep_last, .ctx = &r->l,
+                                .st = &r->st, .tag = r};
+        return 1;
+    }
+    return 0;
+}
+
+/* integrate.h's done: the lane's run into its row. */
+static void
+lane_done(void *ctx, IntegrateLane *lane)
+{
+    Pool *p = ctx;
+    Run *r = lane->tag;
+    r->rc = lane->rc;
+    p->rows[r->i] = run_end(p->sw, r);
+    free(r);
+}
+
 static void *
 worker(void *arg)
 {
     Pool *p = arg;
+    const Sweep *sw = p->sw;
+    if (sw->batch > 1 && !sw->cells && sw->m->taylor_run4 &&
+        strcmp(sw->run->method, "taylor") == 0) {
+        IntegrateRuns runs = {lane_next, lane_done, p};
+        integrate_lanes(sw->m, sw->run, &runs);
+        return NULL;
+    }
     for (long i; (i = atomic_fetch_add(&p->next, 1)) < p->count;)
         p->rows[i] = one_run(p->sw, p->first + i * p->step);
     return NULL;

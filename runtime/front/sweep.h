@@ -28,6 +28,8 @@ typedef struct Sweep {
     long nruns;
     const double *values;       /* [nruns * nparam], in sweep order */
     int threads;                /* >= 1 */
+    int batch;                  /* EOMC_LANES: Taylor's runs that many at a time, where
+                                 * the model has the series for it; else 1 */
     const char *prog;           /* for messages */
     /* Instead of integrating (NULL: integrate), each run's own ncells
      * cells, computed from its initial state x: ",a,b,..." into *text

@@ -32,7 +32,9 @@
 #ifndef EOMC_MODEL_H
 #define EOMC_MODEL_H
 
-#define EOMC_ABI_VERSION 32
+#define EOMC_ABI_VERSION 33
+/* taylor_run4's runs at once: a vector's doubles */
+enum { EOMC_LANES = 4 };
 /* eomc_model.taylor_mass's flags */
 enum { EOMC_TAYLOR_M_CONSTANT = 1, EOMC_TAYLOR_M_DIAGONAL = 2 };
 
@@ -434,6 +436,16 @@ typedef struct eomc_model {
      * NULL: the runtime's loop over taylor. */
     int (*taylor_run)(int K, double t0, const double *p, const double *u, double *T,
                       double *X, eomc_tay_solve solve, void *ctx);
+    /* taylor_run for EOMC_LANES runs at once (a sweep's batch), where M is
+     * constant and diagonal and the C compiler has vectors (eomc_taylor.h's
+     * eomc_v4): each array holds the lanes' values side by side, value i
+     * of lane l at [i EOMC_LANES + l] (t0 [lanes], p [np lanes], u [(nu +
+     * nmode) lanes], T and X as taylor_run's times the lanes), every array
+     * aligned to EOMC_LANES doubles.  The same lines on vectors: each
+     * lane's bits are those taylor_run gives its run.  0; 1 where K is
+     * above the orders it writes out.  NULL: one run at a time. */
+    int (*taylor_run4)(int K, const double *t0, const double *p, const double *u, double *T,
+                       double *X);
 
     /* ---- switched expressions ----
      * nmode kinks of the spec's max, min and clamp.  Mode k is the value

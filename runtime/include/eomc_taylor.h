@@ -32,6 +32,16 @@
 
 #include "eomc_model.h"
 
+/* taylor_run4's values (eomc_model.h): a vector of four doubles, one
+ * run's a lane, where the C compiler has GCC's vectors (gcc and clang);
+ * may_alias, as the runtime's arrays of doubles are read through them.
+ * EOMC_V4C(x) is the number x in every lane. */
+#if defined(__GNUC__) && !defined(EOMC_EXTENDED)
+#define EOMC_V4 1
+typedef double eomc_v4 __attribute__((vector_size(4 * sizeof(double)), may_alias));
+#define EOMC_V4C(x) ((eomc_v4){(x), (x), (x), (x)})
+#endif
+
 #if defined(EOMC_EXTENDED)
 #define EOMC_TAY_F(name) name##l
 #else

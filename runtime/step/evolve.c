@@ -1250,6 +1250,13 @@ evolve_time(const eomc_evolve *e)
     return e->r.t;
 }
 
+struct Taylor *
+evolve_taylor(eomc_evolve *e, const double **x)
+{
+    *x = e->r.x;
+    return e->r.pending < 0 && !e->r.sample_due && !e->r.jump_due ? e->r.taylor : NULL;
+}
+
 const double *
 evolve_rate(const eomc_evolve *e)
 {

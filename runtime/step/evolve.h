@@ -66,6 +66,11 @@ int evolve_more(const eomc_evolve *e);
 int evolve_step(eomc_evolve *e, EvolveStep *tk);
 /* The time reached, and x' at the state there. */
 double evolve_time(const eomc_evolve *e);
+/* Taylor's method: the series the next step will ask for starts at
+ * (evolve_time, *x) unless a reset or a sample comes first, or the step
+ * is a side step's; its Taylor (taylor.h, for taylor_lanes_fill), NULL
+ * for another method or where a reset or a sample comes first. */
+struct Taylor *evolve_taylor(eomc_evolve *e, const double **x);
 const double *evolve_rate(const eomc_evolve *e);
 /* The state at t into x by a step of its own from (tk, xk, fk): 1, 2, 4,
  * ... pieces until each passes the step control; GSL_SUCCESS or a

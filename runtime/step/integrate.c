@@ -15,6 +15,7 @@
  *  - a row's unit quaternions are renormalized, as the steps' ends are
  *    (the exact motion has |e| = 1; the interpolant is off it by its error).
  */
+#include "integrate.h"
 #include "evolve.h"
 #include "model/simimpl.h"
 #include "model/state.h"
@@ -32,6 +33,8 @@
 /* march's status when a stop event ended the run (not a GSL code, and
  * not one of the step layer's, evolve.h). */
 enum { EVENT_STOPPED = -1100 };
+/* march_step's status when the run goes on. */
+enum { MARCH_ON = -1101 };
 
 typedef struct Driver {
     eomc_evolve *e;               /* the steps */
@@ -46,6 +49,8 @@ typedef struct Driver {
     long k, nrows;                /* the next row, and how many there are */
     eomc_row_fn row;
     void *ctx;
+    double c0;                    /* the CPU time at the start */
+    int rc;                       /* driver_start's status */
 } Driver;
 
 /* ---- rows ---- */
@@ -191,12 +196,15 @@ push_node(Driver *r, double t, const double *x, const double *f)
     dense_push(r->dense, t, x, f, have ? r->qdd : NULL);
 }
 
-/* Integrate to t_end by evolve_step, passing rows as they are settled:
- * the step ends are the interpolant's nodes (dense.h). */
+/* One step by evolve_step, passing rows as they are settled: the step
+ * ends are the interpolant's nodes (dense.h).  MARCH_ON while t_end is
+ * not reached, else march's status. */
 static int
-march(Driver *r)
+march_step(Driver *r)
 {
-    while (evolve_more(r->e)) {
+    if (!evolve_more(r->e))
+        return GSL_SUCCESS;
+    {
         EvolveStep tk;
         int rc = evolve_step(r->e, &tk);
         if (tk.series) { /* Taylor's method: each step's own polynomial */
@@ -206,7 +214,7 @@ march(Driver *r)
                 return finish_at_event(r, &tk);
             if (tk.taken && (rc = series_rows(r, &tk)) != GSL_SUCCESS)
                 return rc;
-            continue;
+            return MARCH_ON;
         }
         if (tk.restarted) /* the nodes before the reset are another motion's */
             dense_clear(r->dense);
@@ -224,7 +232,17 @@ march(Driver *r)
         if ((rc = emit_rows(r, tk.ev == EVOLVE_SET || tk.sampled)) != GSL_SUCCESS)
             return rc;
     }
-    return GSL_SUCCESS;
+    return MARCH_ON;
+}
+
+/* Integrate to t_end: GSL_SUCCESS, or a status for driver_close. */
+static int
+march(Driver *r)
+{
+    int rc;
+    while ((rc = march_step(r)) == MARCH_ON)
+        ;
+    return rc;
 }
 
 static void
@@ -251,70 +269,164 @@ driver_start(Driver *r)
     return rc == EOMC_OK ? evolve_watch(r->e) : rc;
 }
 
-int
-eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
-                   void *ctx, eomc_stats *st)
+/* A run of s from x as eomc_sim_integrate's, up to its first step: the
+ * first row written (driver_start), the steps begun.  EOMC_OK with
+ * *status MARCH_ON where steps follow (march_step takes them), else
+ * GSL_SUCCESS; or a status with its message, and driver_close is not
+ * called. */
+static int
+driver_open(Driver *r, eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
+            void *ctx, eomc_stats *st, int *status)
 {
-    eomc_stats local;
-    if (!st)
-        st = &local;
     const eomc_model *m = eomc_sim_model(s);
     int n = m->nq;
-    Driver r = {.s = s, .o = o, .st = st, .n = n, .N = eomc_nx(m), .x = x, .row = row,
-                .ctx = ctx};
+    *r = (Driver){.s = s, .o = o, .st = st, .n = n, .N = eomc_nx(m), .x = x, .row = row,
+                  .ctx = ctx};
     /* a unit quaternion starts at length 1: the motion keeps |e|, and the
      * steps renormalize it (a start off 1 is the caller's to warn about:
      * eomc_main does) */
-    if (sim_all_finite(x, r.N))
+    if (sim_all_finite(x, r->N))
         state_normalize(m, x, NULL);
     /* the constraint rows this run's solves use, chosen where it starts */
     int rc = sim_start_rows(s, o->t0, x, x + n);
     if (rc == EOMC_OK)
-        rc = evolve_open(&r.e, s, o, x, st);
+        rc = evolve_open(&r->e, s, o, x, st);
     if (rc == EOMC_OK) {
-        r.nrows = eomc_run_rows(o);
-        r.dense = dense_alloc(n, m->nv > 0 ? m->nv : 0);
-        r.xrow = sim_zeros((size_t)r.N);
-        r.erow = sim_zeros((size_t)r.N);
-        r.qdd = m->nv > 0 && m->qdot_jacobian ? sim_zeros((size_t)n) : NULL;
-        if (r.dense && r.qdd)
-            dense_set_speeds(r.dense, to_speeds, s);
-        if (!r.dense || !r.xrow || !r.erow || (m->nv > 0 && m->qdot_jacobian && !r.qdd))
+        r->nrows = eomc_run_rows(o);
+        r->dense = dense_alloc(n, m->nv > 0 ? m->nv : 0);
+        r->xrow = sim_zeros((size_t)r->N);
+        r->erow = sim_zeros((size_t)r->N);
+        r->qdd = m->nv > 0 && m->qdot_jacobian ? sim_zeros((size_t)n) : NULL;
+        if (r->dense && r->qdd)
+            dense_set_speeds(r->dense, to_speeds, s);
+        if (!r->dense || !r->xrow || !r->erow || (m->nv > 0 && m->qdot_jacobian && !r->qdd))
             rc = sim_usage_error(s, "out of memory setting up %s", o->method);
     }
     if (rc != EOMC_OK) {
-        driver_free(&r);
+        driver_free(r);
         return rc;
     }
-    double c0 = sim_seconds(1);
-    rc = driver_start(&r);
-    if (rc == EOMC_OK && r.nrows > 1) {
-        push_node(&r, o->t0, x, evolve_rate(r.e));
-        evolve_begin(r.e);
-        int status = march(&r);
+    r->c0 = sim_seconds(1);
+    *status = GSL_SUCCESS;
+    rc = driver_start(r);
+    if (rc == EOMC_OK && r->nrows > 1) {
+        push_node(r, o->t0, x, evolve_rate(r->e));
+        evolve_begin(r->e);
+        *status = MARCH_ON;
+    }
+    r->rc = rc;
+    return EOMC_OK;
+}
+
+/* The run's end after march's status: its last rows, x where it stopped,
+ * st's time, the driver freed; eomc_sim_integrate's status. */
+static int
+driver_close(Driver *r, int status)
+{
+    int rc = r->rc;
+    if (rc == EOMC_OK && r->nrows > 1) {
         /* the rows up to the last step reached stand, also after a failure */
         if (status != EVOLVE_STOPPED && status != EVENT_STOPPED) {
-            int flushed = emit_rows(&r, 1);
+            int flushed = emit_rows(r, 1);
             if (status == GSL_SUCCESS)
                 status = flushed;
         }
         /* x is where the run stopped: the last state reached (t_end, a stop
          * event, a failure), or the state a callback stopped it at */
-        double t = evolve_time(r.e);
-        st->t_stop = t;
+        double t = evolve_time(r->e);
+        r->st->t_stop = t;
         if (status == EVOLVE_STOPPED) { /* a callback (a row's or on_event) said stop */
             const double *stop_x;
-            rc = evolve_stopped(r.e, &st->t_stop, &stop_x);
-            if (stop_x != x)
-                memcpy(x, stop_x, (size_t)r.N * sizeof *x);
+            rc = evolve_stopped(r->e, &r->st->t_stop, &stop_x);
+            if (stop_x != r->x)
+                memcpy(r->x, stop_x, (size_t)r->N * sizeof *r->x);
         } else if (status == EVENT_STOPPED)
             rc = EOMC_OK;
         else if (status != GSL_SUCCESS)
-            rc = evolve_error(r.e, status);
-        else if (!sim_all_finite(x, r.N))
-            rc = sim_numeric_error(s, t, x, x + n, "the state is not finite");
+            rc = evolve_error(r->e, status);
+        else if (!sim_all_finite(r->x, r->N))
+            rc = sim_numeric_error(r->s, t, r->x, r->x + r->n, "the state is not finite");
     }
-    st->cpu_seconds = sim_seconds(1) - c0;
-    driver_free(&r);
+    r->st->cpu_seconds = sim_seconds(1) - r->c0;
+    driver_free(r);
     return rc;
+}
+
+int
+eomc_sim_integrate(eomc_sim *s, const eomc_run_opts *o, double *x, eomc_row_fn row,
+                   void *ctx, eomc_stats *st)
+{
+    eomc_stats local;
+    Driver r;
+    int status, rc = driver_open(&r, s, o, x, row, ctx, st ? st : &local, &status);
+    if (rc != EOMC_OK)
+        return rc;
+    if (status == MARCH_ON)
+        status = march(&r);
+    return driver_close(&r, status);
+}
+
+/* ---- runs EOMC_LANES at a time (integrate.h) ---- */
+
+/* Lane l's next run, from next(), up to its first step; a run that ends
+ * there (a failure, or a single row) goes back by done() at once. */
+static void
+lane_start(Driver *d, int *status, int *live, IntegrateLane *lane, const eomc_run_opts *o,
+           const IntegrateRuns *runs)
+{
+    *live = 0;
+    while (runs->next(runs->ctx, lane)) {
+        lane->rc = driver_open(d, lane->s, o, lane->x, lane->row, lane->ctx, lane->st, status);
+        if (lane->rc == EOMC_OK && *status == MARCH_ON) {
+            *live = 1;
+            return;
+        }
+        if (lane->rc == EOMC_OK)
+            lane->rc = driver_close(d, *status);
+        runs->done(runs->ctx, lane);
+    }
+}
+
+int
+integrate_lanes(const eomc_model *m, const eomc_run_opts *o, const IntegrateRuns *runs)
+{
+    Driver d[EOMC_LANES];
+    IntegrateLane lane[EOMC_LANES];
+    int status[EOMC_LANES], live[EOMC_LANES], any = 0;
+    TaylorLanes *b = taylor_lanes_alloc(m, o); /* NULL: each run alone */
+    for (int l = 0; l < EOMC_LANES; l++) {
+        lane[l] = (IntegrateLane){0};
+        lane_start(&d[l], &status[l], &live[l], &lane[l], o, runs);
+        any |= live[l];
+    }
+    while (any) {
+        Taylor *tp[EOMC_LANES];
+        double t0[EOMC_LANES];
+        const double *x[EOMC_LANES];
+        int fill = 0;
+        for (int l = 0; l < EOMC_LANES && b; l++) {
+            tp[l] = live[l] ? evolve_taylor(d[l].e, &x[l]) : NULL;
+            t0[l] = live[l] ? evolve_time(d[l].e) : 0;
+            fill += tp[l] != NULL;
+        }
+        /* one lane alone gains nothing from the vectors */
+        if (fill > 1 && taylor_lanes_fill(b, tp, t0, x) != 0) {
+            taylor_lanes_free(b);
+            b = NULL;
+        }
+        any = 0;
+        for (int l = 0; l < EOMC_LANES; l++) {
+            if (!live[l])
+                continue;
+            status[l] = march_step(&d[l]);
+            if (status[l] != MARCH_ON) {
+                lane[l].rc = driver_close(&d[l], status[l]);
+                runs->done(runs->ctx, &lane[l]);
+                lane_start(&d[l], &status[l], &live[l], &lane[l], o, runs);
+            }
+            any |= live[l];
+        }
+    }
+    taylor_lanes_free(b);
+    return EOMC_OK;
 }

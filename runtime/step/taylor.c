@@ -97,6 +97,10 @@ struct Taylor {
     double *xlast;      /* [N] the state taylor_advance left: the compensation
                          * holds while the next series starts there */
     double t0;          /* the last series' start */
+    /* a batch's series (taylor_lanes_fill), taken where the next series
+     * starts at (tb, xb): X's and T's next, swapped in (NULL till then) */
+    double *Xb, *Tb, *xb, tb;
+    int filled;
     /* with constraints (nc > 0; else NULL) */
     int nc;
     double *K, *dK, *r; /* [(nv + nc)^2] the KKT matrix at the start, its scaling,
@@ -222,6 +226,9 @@ taylor_free(Taylor *tp)
     free(tp->comp);
     free(tp->comp0);
     free(tp->xlast);
+    free(tp->Xb);
+    free(tp->Tb);
+    free(tp->xb);
     free(tp->perm);
     free(tp->K);
     free(tp->dK);
@@ -555,7 +562,13 @@ run_series(Taylor *tp, double t0, const double *par, const double *u)
 {
     const eomc_model *m = tp->m;
     int nv = tp->nv, N = tp->N, p = tp->p;
-    int rc = m->taylor_run(p, t0, par, u, tp->T, tp->X, run_solve, tp);
+    int rc = 0;
+    if (tp->filled) { /* a batch's, for this very start (taylor_series) */
+        double *X = tp->X, *T = tp->T;
+        tp->X = tp->Xb, tp->T = tp->Tb, tp->Xb = X, tp->Tb = T;
+    } else {
+        rc = m->taylor_run(p, t0, par, u, tp->T, tp->X, run_solve, tp);
+    }
     if (rc != 0)
         return rc;
     int diagonal = m->taylor_mass == (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL);
@@ -583,11 +596,14 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
                 tp->comp[i] = 0;
     }
     memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
-    memcpy(tp->X, x, (size_t)N * sizeof *x);
+    /* a batch's series is taken for its own start alone, to the bit */
+    tp->filled = tp->filled && t0 == tp->tb && !memcmp(x, tp->xb, (size_t)N * sizeof *x);
+    memcpy(tp->filled ? tp->Xb : tp->X, x, (size_t)N * sizeof *x);
     tp->t0 = t0;
     if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
         return -1; /* the rows its solves use, where they are not chosen yet */
     int rc = m->taylor_run ? run_series(tp, t0, par, u) : 1;
+    tp->filled = 0;
     if (rc < 0)
         return -1;
     if (rc == 0) {
@@ -700,4 +716,133 @@ int
 taylor_order(const Taylor *tp)
 {
     return tp->p;
+}
+
+/* ---- EOMC_LANES runs at once (taylor.h: taylor_lanes_fill) ---- */
+
+struct TaylorLanes {
+    const eomc_model *m;
+    int p;                 /* the runs' order */
+    double *t0, *par, *u;  /* the lanes' side by side: [i EOMC_LANES + l] */
+    double *T, *X;
+    double *idle;          /* an idle lane's series, dropped */
+};
+
+/* n doubles aligned to a vector of the lanes (eomc_model.h asks it), zeroed. */
+static double *
+lane_zeros(size_t n)
+{
+    size_t bytes = (n * EOMC_LANES * sizeof(double) + 63) / 64 * 64;
+    double *a = aligned_alloc(64, bytes);
+    if (a)
+        memset(a, 0, bytes);
+    return a;
+}
+
+TaylorLanes *
+taylor_lanes_alloc(const eomc_model *m, const eomc_run_opts *o)
+{
+    int p = taylor_order_for(o->rtol), N = m->nq + eomc_nv(m);
+    if (!m->taylor_run4 || !(o->rtol > 0))
+        return NULL;
+    TaylorLanes *b = calloc(1, sizeof *b);
+    if (!b)
+        return NULL;
+    b->m = m, b->p = p;
+    b->t0 = lane_zeros(1);
+    b->par = lane_zeros((size_t)m->np + (size_t)m->nd + 1);
+    b->u = lane_zeros((size_t)m->nu + (size_t)m->nmode + 1);
+    b->T = lane_zeros((size_t)m->taylor_nslot * (size_t)(p + 1) + 1);
+    b->X = lane_zeros((size_t)(p + 1) * (size_t)N);
+    b->idle = sim_zeros((size_t)(p + 1) * (size_t)N);
+    if (!b->t0 || !b->par || !b->u || !b->T || !b->X || !b->idle) {
+        taylor_lanes_free(b);
+        return NULL;
+    }
+    return b;
+}
+
+void
+taylor_lanes_free(TaylorLanes *b)
+{
+    if (!b)
+        return;
+    free(b->t0);
+    free(b->par);
+    free(b->u);
+    free(b->T);
+    free(b->X);
+    free(b->idle);
+    free(b);
+}
+
+/* n values of lane l from a into the lanes' b. */
+static void
+to_lane(double *b, int l, const double *a, int n)
+{
+    for (int i = 0; i < n; i++)
+        b[i * EOMC_LANES + l] = a[i];
+}
+
+int
+taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
+                  const double *const *x)
+{
+    const eomc_model *m = b->m;
+    int first = -1;
+    for (int l = EOMC_LANES - 1; l >= 0; l--)
+        first = tp[l] ? l : first;
+    if (first < 0)
+        return 0;
+    int N = tp[first]->N, n = tp[first]->n, p = b->p, S = p + 1;
+    int nu = m->nu + m->nmode, ng = m->nevent + m->nmode;
+    /* an idle lane repeats the first's, whose values are sound */
+    for (int l = 0; l < EOMC_LANES; l++) {
+        int k = tp[l] ? l : first;
+        if (tp[k]->m != m || tp[k]->p != p)
+            return -1;
+        b->t0[l] = t0[k];
+        to_lane(b->par, l, sim_p(tp[k]->s), m->np + m->nd); /* (and the derived) */
+        to_lane(b->u, l, sim_inputs_at(tp[k]->s, t0[k], x[k], x[k] + n), nu);
+        to_lane(b->X, l, x[k], N);
+    }
+    if (m->taylor_run4(p, b->t0, b->par, b->u, b->T, b->X) != 0)
+        return -1;
+    double *dst[EOMC_LANES];
+    for (int l = 0; l < EOMC_LANES; l++) {
+        Taylor *t = tp[l];
+        if (t && !t->Xb) { /* a Taylor in its first batch */
+            t->Xb = sim_zeros((size_t)(TAYLOR_MAX_ORDER + 1) * (size_t)N);
+            t->Tb = sim_zeros((size_t)m->taylor_nslot * (TAYLOR_MAX_ORDER + 1) + 1);
+            t->xb = sim_zeros((size_t)N);
+            if (!t->Xb || !t->Tb || !t->xb)
+                return -1;
+        }
+        dst[l] = t ? t->Xb : b->idle;
+    }
+    /* the lanes apart, X's layout: one pass over the lanes' X, the lanes
+     * written out (a loop over them costs three times as much) */
+    _Static_assert(EOMC_LANES == 4, "the lanes are written out as four");
+    double *d0 = dst[0], *d1 = dst[1], *d2 = dst[2], *d3 = dst[3];
+    const double *v = b->X;
+    for (int i = 0; i < S * N; i++, v += EOMC_LANES)
+        d0[i] = v[0], d1[i] = v[1], d2[i] = v[2], d3[i] = v[3];
+    for (int l = 0; l < EOMC_LANES; l++) {
+        Taylor *t = tp[l];
+        if (!t)
+            continue;
+        /* what taylor_run leaves in T for its caller (eomc_model.h): the
+         * event functions' series, and M's diagonal where it is constant */
+        for (int e = 0; e < ng; e++)
+            for (int j = 0, g = m->taylor_g[e]; g >= 0 && j < p; j++)
+                t->Tb[g * S + j] = b->T[(g * S + j) * EOMC_LANES + l];
+        for (int j = 0; j < t->nv; j++) {
+            int d = m->taylor_M[j * t->nv + j];
+            t->Tb[d * S] = b->T[d * S * EOMC_LANES + l];
+        }
+        memcpy(t->xb, x[l], (size_t)N * sizeof *t->xb);
+        t->tb = t0[l];
+        t->filled = 1;
+    }
+    return 0;
 }

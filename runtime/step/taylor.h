@@ -63,6 +63,21 @@ void taylor_error(const Taylor *tp, double h, double *err);
  * Both crossings of a pair that fit in one step leave g with the same
  * sign at its ends, where the events of the steps (stepevents.h) look. */
 double taylor_event_cut(const Taylor *tp, double h);
+/* EOMC_LANES runs' series by one call of the model's taylor_run4 (a
+ * sweep's batch, integrate.c): lane l's through (t0[l], x[l]) for tp[l]
+ * (NULL: an idle lane), which taylor_series takes where it is asked for
+ * that very series (the same t0 and x, to the bit; else it computes its
+ * own).  The bits are those taylor_series would compute.  For one set of
+ * run options (one order), NULL where the model has no taylor_run4 for
+ * it or memory runs out. */
+typedef struct TaylorLanes TaylorLanes;
+TaylorLanes *taylor_lanes_alloc(const eomc_model *m, const eomc_run_opts *o);
+void taylor_lanes_free(TaylorLanes *b);
+/* 0; -1 where nothing was filled (the order is above those taylor_run4
+ * writes out, a lane of another model or order, memory ran out): each
+ * lane then computes its own, and the next fills would fail as well. */
+int taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
+                      const double *const *x);
 /* The last series' start and order. */
 double taylor_start(const Taylor *tp);
 int taylor_order(const Taylor *tp);

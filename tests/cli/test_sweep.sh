@@ -97,4 +97,53 @@ ok $? "--threads without a sweep: exit $st"
         if ($2 != "ok" || d > 1e-8 * $1 * $1) bad = 1 } END { exit bad }' "$tmp/asm.csv"
 ok $? "--assemble --hold x in a sweep: each run starts on its rod (x^2 + y^2 = l^2 at the end, l = 1, 1.5, 2)"
 
+# --batch: a Taylor sweep's runs four at a time, one series for the four
+# lanes (eomc_model.h's taylor_run4), each lane with its own steps and
+# events.  The rows are the single runs' to the bit, and the motion's own
+# values: Kepler's orbit back at periapsis after three periods, x = a (1 -
+# e), y = 0; the ball's height at 1.2 s from its bounces in closed form.
+kep="$src/specs/kepler.yaml"
+"$eomc" build "$kep" --taylor -o "$tmp/kep" 2> /dev/null
+kt="--method taylor --rtol 1e-15 --atol 1e-15"
+"$tmp/kep" $kt --sweep e=0.1:0.7:13 --batch 1 -o "$tmp/kb1.csv"; st1=$?
+"$tmp/kep" $kt --sweep e=0.1:0.7:13 -o "$tmp/kb4.csv"; st4=$?
+"$tmp/kep" $kt --sweep e=0.1:0.7:13 --batch 4 --threads 2 -o "$tmp/kb4t.csv"
+"$tmp/kep" $kt --set e=0.35 | tail -1 > "$tmp/kalone.csv"
+[ $st1 -eq 0 ] && [ $st4 -eq 0 ] && cmp -s "$tmp/kb1.csv" "$tmp/kb4.csv" &&
+    cmp -s "$tmp/kb1.csv" "$tmp/kb4t.csv" &&
+    [ "$(sed -n 7p "$tmp/kb4.csv" | cut -d, -f3-7)" = "$(cut -d, -f1-5 "$tmp/kalone.csv")" ]
+ok $? "--batch 4 (13 runs: idle lanes; and on 2 threads): the bytes of --batch 1, row e = 0.35 the run alone"
+awk -F, 'NR > 1 { dx = $4 - (1 - $1); if (dx < 0) dx = -dx; y = $5 < 0 ? -$5 : $5
+    if ($2 != "ok" || dx > 1e-12 || y > 1e-12) bad = 1 } END { exit bad || NR != 14 }' "$tmp/kb4.csv"
+ok $? "--batch 4: every orbit back at periapsis, x = 1 - e and y = 0 to 1e-12"
+"$tmp/kep" $kt --sweep e=0.5:1:3 --batch 1 -o "$tmp/kf1.csv" 2> /dev/null
+"$tmp/kep" $kt --sweep e=0.5:1:3 --batch 4 -o "$tmp/kf4.csv" 2> "$tmp/kf4.err"; st=$?
+[ $st -eq 0 ] && cmp -s "$tmp/kf1.csv" "$tmp/kf4.csv" && [ "$(grep -c ',ok,' "$tmp/kf4.csv")" -eq 2 ] &&
+    grep -q 'warning: 1 of 3 runs failed' "$tmp/kf4.err"
+ok $? "--batch 4 with a failing run (e = 1): its error as status, the others' bytes as --batch 1"
+ball="$src/specs/bouncing_ball.yaml"
+"$eomc" build "$ball" --scene bounce --taylor -o "$tmp/ball" 2> /dev/null
+"$tmp/ball" --method taylor --sweep e=0.5:0.8:4 --batch 1 -o "$tmp/bb1.csv"
+"$tmp/ball" --method taylor --sweep e=0.5:0.8:4 --batch 4 -o "$tmp/bb4.csv"; st=$?
+# the height at T = 1.2: the bounce before it at t_k, leaving at v_k upwards
+awk -F, 'NR > 1 { g = 9.81; T = 1.2; t = sqrt(2 / g); v = g * t * $1
+        while (t + 2 * v / g <= T) { t += 2 * v / g; v *= $1 }
+        y = v * (T - t) - g * (T - t) ^ 2 / 2; d = $4 - y; if (d < 0) d = -d
+        if ($2 != "ok" || d > 1e-9) bad = 1 } END { exit bad || NR != 5 }' "$tmp/bb4.csv" &&
+    [ $st -eq 0 ] && cmp -s "$tmp/bb1.csv" "$tmp/bb4.csv"
+ok $? "--batch 4 with events in each lane (a ball bouncing, e = 0.5 .. 0.8): the bounces' closed form to 1e-9, the bytes of --batch 1"
+"$tmp/kep" --sweep e=0.1:0.7:3 --batch 3 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "batch: '3' is not 1 or 4" "$tmp/err"
+ok $? "--batch 3: exit $st (1 or 4, a vector's lanes)"
+"$tmp/kep" --method rk8pd --sweep e=0.1:0.7:3 --batch 4 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q "by Taylor's method alone (--method taylor), not by rk8pd" "$tmp/err"
+ok $? "--batch 4 with rk8pd: exit $st, naming the method"
+"$tmp/kep" $kt --batch 4 > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q 'batch runs the runs of a sweep' "$tmp/err"
+ok $? "--batch without a sweep: exit $st"
+"$eomc" run "$src/specs/cartesian_pendulum.yaml" --method taylor --sweep l=1:2:2 --batch 4 \
+    > /dev/null 2> "$tmp/err"; st=$?
+[ $st -eq 2 ] && grep -q 'has no series for 4 runs at once' "$tmp/err"
+ok $? "--batch 4 for a model with constraints: exit $st, saying why"
+
 tap_end

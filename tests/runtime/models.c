@@ -103,7 +103,7 @@ osc_taylor(int k, int K, double t0, const double *p, const double *u, double *T)
 /* No speeds (v = q'), no recursion shared by unit loads, no series of
  * q' = W(q) v, nothing known of M's series and no taylor_run, no
  * switches and no dry friction (the last members). */
-#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, \
+#define NO_SPEEDS 0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL, 0, NULL, NULL, 0, NULL, NULL, \
     0, NULL, NULL, NULL, NULL, NULL, NULL
 
 #define OSC_TAYLOR 4, osc_taylor_q, osc_taylor_v, osc_taylor_M, osc_taylor_h, osc_taylor_g, \

@@ -101,6 +101,7 @@ struct Taylor {
      * starts at (tb, xb): X's and T's next, swapped in (NULL till then) */
     double *Xb, *Tb, *xb, tb;
     int filled;
+    double hb;          /* ... and its step, or 0: step_size's to compute */
     /* with constraints (nc > 0; else NULL) */
     int nc;
     double *K, *dK, *r; /* [(nv + nc)^2] the KKT matrix at the start, its scaling,
@@ -602,12 +603,13 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     tp->t0 = t0;
     if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
         return -1; /* the rows its solves use, where they are not chosen yet */
+    int filled = tp->filled;
     int rc = m->taylor_run ? run_series(tp, t0, par, u) : 1;
     tp->filled = 0;
     if (rc < 0)
         return -1;
     if (rc == 0) {
-        double hs = step_size(tp);
+        double hs = filled && tp->hb > 0 ? (tp->hlast = tp->hb) : step_size(tp);
         *h = hs < hmax ? hs : hmax;
         return 0;
     }
@@ -726,6 +728,7 @@ struct TaylorLanes {
     double *t0, *par, *u;  /* the lanes' side by side: [i EOMC_LANES + l] */
     double *T, *X;
     double *idle;          /* an idle lane's series, dropped */
+    double *S;             /* [N lanes] the components' scales (lanes_step) */
 };
 
 /* n doubles aligned to a vector of the lanes (eomc_model.h asks it), zeroed. */
@@ -755,7 +758,8 @@ taylor_lanes_alloc(const eomc_model *m, const eomc_run_opts *o)
     b->T = lane_zeros((size_t)m->taylor_nslot * (size_t)(p + 1) + 1);
     b->X = lane_zeros((size_t)(p + 1) * (size_t)N);
     b->idle = sim_zeros((size_t)(p + 1) * (size_t)N);
-    if (!b->t0 || !b->par || !b->u || !b->T || !b->X || !b->idle) {
+    b->S = lane_zeros((size_t)N);
+    if (!b->t0 || !b->par || !b->u || !b->T || !b->X || !b->idle || !b->S) {
         taylor_lanes_free(b);
         return NULL;
     }
@@ -773,6 +777,7 @@ taylor_lanes_free(TaylorLanes *b)
     free(b->T);
     free(b->X);
     free(b->idle);
+    free(b->S);
     free(b);
 }
 
@@ -782,6 +787,72 @@ to_lane(double *b, int l, const double *a, int n)
 {
     for (int i = 0; i < n; i++)
         b[i * EOMC_LANES + l] = a[i];
+}
+
+/* step_size for the lanes where the series continues the last one's
+ * motion (hlast), into h[l] (0 elsewhere, left to step_size): scales and
+ * radius with the lanes side by side, each lane's arithmetic theirs in
+ * their order, so its bits; the loops over the lanes vectorize. */
+static void
+lanes_step(const TaylorLanes *b, Taylor *const *tp, const double *const *x, double *h)
+{
+    int first = 0;
+    while (!tp[first])
+        first++;
+    const Taylor *t0 = tp[first];
+    int N = t0->N, p = b->p, warm = 0;
+    double hj[EOMC_LANES], hw[EOMC_LANES], least[EOMC_LANES];
+    for (int l = 0; l < EOMC_LANES; l++) {
+        const Taylor *t = tp[l];
+        int w = t && t->hlast > 0 && t->hlast < INFINITY &&
+                !memcmp(x[l], t->xlast, (size_t)N * sizeof *x[l]);
+        hw[l] = w ? t->hlast : 0;
+        warm += w;
+        hj[l] = 1;
+        h[l] = 0;
+    }
+    if (!warm)
+        return;
+    double *restrict S = b->S;
+    const double *restrict X = b->X;
+    for (int i = 0; i < N * EOMC_LANES; i++)
+        S[i] = fabs(X[i]);
+    for (int j = 1; j <= p; j++) {
+        const double *restrict c = X + (size_t)j * (size_t)N * EOMC_LANES;
+        for (int l = 0; l < EOMC_LANES; l++)
+            hj[l] *= hw[l];
+        for (int i = 0; i < N; i++) {
+            double *restrict s = S + i * EOMC_LANES;
+            const double *restrict ci = c + i * EOMC_LANES;
+            for (int l = 0; l < EOMC_LANES; l++) {
+                double term = fabs(ci[l]) * hj[l];
+                s[l] = term > s[l] ? term : s[l];
+            }
+        }
+    }
+    double absolute = t0->atol / t0->rtol;
+    for (int i = 0; i < N * EOMC_LANES; i++)
+        S[i] += absolute;
+    double rho[EOMC_LANES];
+    for (int l = 0; l < EOMC_LANES; l++)
+        rho[l] = INFINITY;
+    for (int j = p - 1; j <= p; j++) {
+        const double *c = X + (size_t)j * (size_t)N * EOMC_LANES;
+        for (int l = 0; l < EOMC_LANES; l++)
+            least[l] = INFINITY;
+        for (int i = 0; i < N; i++)
+            for (int l = 0; l < EOMC_LANES; l++) {
+                double s = S[i * EOMC_LANES + l], a = fabs(c[i * EOMC_LANES + l]), r = s / a;
+                least[l] = s > 0 && a > 0 && r < least[l] ? r : least[l];
+            }
+        for (int l = 0; l < EOMC_LANES; l++)
+            if (hw[l] > 0 && least[l] < INFINITY) {
+                double r = pow(least[l], 1.0 / j);
+                rho[l] = r < rho[l] ? r : rho[l];
+            }
+    }
+    for (int l = 0; l < EOMC_LANES; l++)
+        h[l] = hw[l] > 0 ? rho[l] * t0->factor : 0;
 }
 
 int
@@ -808,6 +879,8 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
     }
     if (m->taylor_run4(p, b->t0, b->par, b->u, b->T, b->X) != 0)
         return -1;
+    double h[EOMC_LANES];
+    lanes_step(b, tp, x, h);
     double *dst[EOMC_LANES];
     for (int l = 0; l < EOMC_LANES; l++) {
         Taylor *t = tp[l];
@@ -842,6 +915,7 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
         }
         memcpy(t->xb, x[l], (size_t)N * sizeof *t->xb);
         t->tb = t0[l];
+        t->hb = h[l];
         t->filled = 1;
     }
     return 0;

@@ -132,6 +132,18 @@ awk -F, 'NR > 1 { g = 9.81; T = 1.2; t = sqrt(2 / g); v = g * t * $1
         if ($2 != "ok" || d > 1e-9) bad = 1 } END { exit bad || NR != 5 }' "$tmp/bb4.csv" &&
     [ $st -eq 0 ] && cmp -s "$tmp/bb1.csv" "$tmp/bb4.csv"
 ok $? "--batch 4 with events in each lane (a ball bouncing, e = 0.5 .. 0.8): the bounces' closed form to 1e-9, the bytes of --batch 1"
+# a switched expression in every lane (max(0, -k y - c y'), its modes
+# each lane's): without damping the mass leaves the floor spring after
+# half its period, pi / 10, at v0, so y(1) = v0 (1 - pi / 10)
+"$eomc" build "$src/tests/cli/spring_floor.yaml" --taylor -o "$tmp/floor" 2> /dev/null
+ft="--method taylor --rtol 1e-13 --atol 1e-13 --sweep v0=0.5:2:7 --sweep c=0:4:3"
+"$tmp/floor" $ft --batch 1 -o "$tmp/fb1.csv"
+"$tmp/floor" $ft --batch 4 -o "$tmp/fb4.csv"; st=$?
+[ $st -eq 0 ] && cmp -s "$tmp/fb1.csv" "$tmp/fb4.csv" &&
+    awk -F, 'NR > 1 && $2 == 0 { k++; y = $1 * (1 - 3.14159265358979324 / 10); d = $5 - y
+        e = $6 - $1; if (d < 0) d = -d; if (e < 0) e = -e
+        if ($3 != "ok" || d > 1e-12 || e > 1e-12) bad = 1 } END { exit bad || k != 7 }' "$tmp/fb4.csv"
+ok $? "--batch 4 with switches in each lane (a one-sided floor spring, 21 runs): undamped, y(1) = v0 (1 - pi/10) and y' = v0 to 1e-12; the bytes of --batch 1"
 "$tmp/kep" --sweep e=0.1:0.7:3 --batch 3 > /dev/null 2> "$tmp/err"; st=$?
 [ $st -eq 2 ] && grep -q "batch: '3' is not 1 or 4" "$tmp/err"
 ok $? "--batch 3: exit $st (1 or 4, a vector's lanes)"

@@ -336,6 +336,59 @@ check_run(const eomc_model *m, double t0, int order, int *differ)
     return worst;
 }
 
+/* taylor_run4, where the model has one, against taylor_run lane by lane:
+ * EOMC_LANES made-up states (each its own parameters, inputs and t0) to
+ * order `order`, side by side, and each alone; eomc_model.h says each
+ * lane's bits are its run's, in X and in what T leaves the caller (the
+ * event functions' series, M's diagonal).  The values that differ, or -1
+ * where taylor_run4 left the order to one run at a time (returned 1). */
+static int
+check_run4(const eomc_model *m, int order)
+{
+    enum { L = EOMC_LANES };
+    int n = m->nq, N = 2 * n, S = order + 1, ng = m->nevent + m->nmode;
+    int np = m->np + m->nd, nu = m->nu + m->nmode, nslot = m->taylor_nslot;
+    size_t nT = (size_t)nslot * S + 1, nX = (size_t)S * N + 1;
+    double p[L][PMAX], u[L][UMAX + 1], t0[L], q0[NMAX], v0[NMAX];
+    double *T = calloc(nT * L, sizeof *T), *X = calloc(nX * L, sizeof *X);
+    double *T4 = aligned_alloc(64, (nT * L * sizeof *T + 63) / 64 * 64);
+    double *X4 = aligned_alloc(64, (nX * L * sizeof *X + 63) / 64 * 64);
+    double *p4 = aligned_alloc(64, ((size_t)(np + 1) * L * sizeof *p4 + 63) / 64 * 64);
+    double *u4 = aligned_alloc(64, ((size_t)(nu + 1) * L * sizeof *u4 + 63) / 64 * 64);
+    double *t4 = aligned_alloc(64, 64);
+    memset(T4, 0, nT * L * sizeof *T4);
+    for (int l = 0; l < L; l++) {
+        t0[l] = t4[l] = 0.2 + 0.9 * l;
+        memset(u[l], 0, sizeof u[l]);
+        near_start(m, t0[l], p[l], u[l], q0, v0);
+        for (int i = 0; i < n; i++) {
+            X[l * nX + i] = X4[i * L + l] = q0[i];
+            X[l * nX + n + i] = X4[(n + i) * L + l] = v0[i];
+        }
+        for (int i = 0; i < np; i++)
+            p4[i * L + l] = p[l][i];
+        for (int i = 0; i < nu; i++)
+            u4[i * L + l] = u[l][i];
+    }
+    int differ = 0, rc = m->taylor_run4(order, t4, p4, u4, T4, X4);
+    for (int l = 0; l < L && rc == 0; l++) {
+        double *Tl = T + l * nT, *Xl = X + l * nX;
+        TestSolve ts = {.n = n}; /* (M being diagonal, not called) */
+        m->taylor_run(order, t0[l], p[l], u[l], Tl, Xl, test_solve, &ts);
+        for (int i = 0; i < S * N; i++) /* (the same bits: == alone would pass -0 for 0) */
+            differ += memcmp(&Xl[i], &X4[i * L + l], sizeof *Xl) != 0;
+        for (int e = 0; e < ng; e++)
+            for (int j = 0, g = m->taylor_g[e]; g >= 0 && j < order; j++)
+                differ += memcmp(&Tl[g * S + j], &T4[(g * S + j) * L + l], sizeof *Tl) != 0;
+        for (int i = 0; i < n; i++) {
+            int d = m->taylor_M[i * n + i];
+            differ += memcmp(&Tl[d * S], &T4[d * S * L + l], sizeof *Tl) != 0;
+        }
+    }
+    free(T), free(X), free(T4), free(X4), free(p4), free(u4), free(t4);
+    return rc == 0 ? differ : -1;
+}
+
 int
 main(void)
 {
@@ -414,6 +467,30 @@ main(void)
         CHECK(worst <= TOL, "%s: taylor_run's q(tau) and v(tau) satisfy q' = v and M v' + h "
               "= 0 by mass_bias at |tau| <= rho / 21 (%.2e)", m->name, worst);
     }
+    int nrun4 = 0;
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        const eomc_model *m = models[k];
+        if (!m->taylor_run4)
+            continue;
+        nrun4++;
+        int d = check_run4(m, K), d20 = check_run4(m, 20), left = check_run4(m, K_LOOP);
+        CHECK(d == 0 && d20 == 0 && left == -1,
+              "%s: taylor_run4's %d lanes are taylor_run's to the bit at orders %d and 20 (%d "
+              "and %d values not), and order %d is left to one run at a time", m->name,
+              EOMC_LANES, K, d, d20, K_LOOP);
+    }
+    /* where M is constant and diagonal, the series short, and the compiler
+     * has vectors: not chain5 (M(q)), the Pleiades are not here */
+#ifdef __GNUC__
+    int want4 = 1;
+#else
+    int want4 = 0;
+#endif
+    CHECK(nrun4 >= 5 * want4 && !!kepler_model.taylor_run4 == want4 &&
+              !!bouncing_ball_model.taylor_run4 == want4 && !chain5_model.taylor_run4 &&
+              !cartesian_pendulum_model.taylor_run4,
+          "taylor_run4: %d models, kepler's and bouncing_ball's among them, not chain5's (M(q)) "
+          "or cartesian_pendulum's (a constraint)", nrun4);
     /* the models without constraints have it (written out where M is not
      * constant and diagonal); the others do not */
     CHECK(nrun >= 5 && nrun_general >= 2 && kepler_model.taylor_run &&

@@ -55,11 +55,18 @@ typedef struct Driver {
 
 /* ---- rows ---- */
 
-/* t0 + k dt is computed from k, so no rounding accumulates. */
+/* Row k's time of nrows: t0 + k dt is computed from k, so no rounding
+ * accumulates. */
+static double
+row_at(const eomc_run_opts *o, long nrows, long k)
+{
+    return k == nrows - 1 ? o->t_end : o->t0 + (double)k * o->dt;
+}
+
 double
 eomc_run_row_time(const eomc_run_opts *o, long k)
 {
-    return k == eomc_run_rows(o) - 1 ? o->t_end : o->t0 + (double)k * o->dt;
+    return row_at(o, eomc_run_rows(o), k);
 }
 
 long
@@ -73,6 +80,14 @@ eomc_run_rows(const eomc_run_opts *o)
     if (!(o->t0 + K * o->dt >= o->t_end - SLIVER * o->dt))
         K += 1;
     return (long)K + 1;
+}
+
+/* eomc_run_row_time with the rows counted once (the count is a division
+ * and a ceil, at every step). */
+static double
+row_time(const Driver *r, long k)
+{
+    return row_at(r->o, r->nrows, k);
 }
 
 /* Whether the interpolant's error estimate err passes the run's test,
@@ -112,7 +127,7 @@ static int
 emit_rows(Driver *r, int final)
 {
     while (r->k < r->nrows) {
-        double t = eomc_run_row_time(r->o, r->k);
+        double t = row_time(r, r->k);
         if (t > dense_last(r->dense) || !dense_ready(r->dense, t, final))
             return GSL_SUCCESS;
         dense_eval(r->dense, t, final, r->xrow, r->erow);
@@ -146,7 +161,7 @@ static int
 series_rows(Driver *r, const EvolveStep *tk)
 {
     while (r->k < r->nrows) {
-        double t = eomc_run_row_time(r->o, r->k);
+        double t = row_time(r, r->k);
         if (t > tk->t1)
             return GSL_SUCCESS;
         if (t == tk->t1) {
@@ -172,7 +187,7 @@ finish_at_event(Driver *r, const EvolveStep *tk)
     int rc = tk->series ? series_rows(r, tk) : emit_rows(r, 1);
     if (rc != GSL_SUCCESS)
         return rc;
-    if (r->k > 0 && eomc_run_row_time(r->o, r->k - 1) >= tk->t1)
+    if (r->k > 0 && row_time(r, r->k - 1) >= tk->t1)
         return EVENT_STOPPED;
     rc = r->row ? r->row(r->ctx, tk->t1, tk->x1) : EOMC_OK;
     return rc != EOMC_OK ? evolve_stop(r->e, rc, tk->t1, tk->x1) : EVENT_STOPPED;

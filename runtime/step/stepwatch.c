@@ -80,8 +80,9 @@ stepwatch_tried(StepWatch *w, int rejected)
 void
 stepwatch_accepted(StepWatch *w, double h)
 {
-    w->sum_h += h, w->sum_hlog += h * log(h);
-    w->w_log_h += log(h), w->w_nh++, w->h_last = h;
+    double lh = log(h); /* once: libm's log may set errno, so the compiler calls it each time */
+    w->sum_h += h, w->sum_hlog += h * lh;
+    w->w_log_h += lh, w->w_nh++, w->h_last = h;
 }
 
 /* The run's typical step (COLLAPSE_REL): the geometric mean of its

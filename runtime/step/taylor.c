@@ -651,12 +651,12 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 /* The change over tau, sum_{j>=1} x_j tau^j, by Horner's rule into d,
  * less what the state's rounding owes (comp); then the start plus it. */
 static void
-value(const Taylor *tp, double tau, double *x, double *d)
+value(const Taylor *tp, double tau, double *x, double *restrict d)
 {
     int N = tp->N;
     memcpy(d, tp->X + (size_t)tp->p * (size_t)N, (size_t)N * sizeof *d);
-    for (int j = tp->p - 1; j >= 1; j--) {
-        const double *c = tp->X + (size_t)j * (size_t)N;
+    for (int j = tp->p - 1; j >= 1; j--) { /* (d apart from X: the loop vectorizes) */
+        const double *restrict c = tp->X + (size_t)j * (size_t)N;
         for (int i = 0; i < N; i++)
             d[i] = d[i] * tau + c[i];
     }

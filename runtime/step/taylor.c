@@ -355,14 +355,14 @@ radius_first(const Taylor *tp)
  * plus atol / rtol (GSL's atol + rtol |x_i|, over rtol).  Order by order,
  * as X is laid out, so that the loop over the components vectorizes. */
 static void
-scales(Taylor *tp, double h, double *S)
+scales(Taylor *tp, double h, double *restrict S)
 {
     int p = tp->p, N = tp->N;
     for (int i = 0; i < N; i++)
         S[i] = fabs(tp->X[i]);
     double hj = 1;
-    for (int j = 1; j <= p; j++) {
-        const double *c = tp->X + (size_t)j * (size_t)N;
+    for (int j = 1; j <= p; j++) { /* (S apart from X: the loop vectorizes) */
+        const double *restrict c = tp->X + (size_t)j * (size_t)N;
         hj *= h;
         for (int i = 0; i < N; i++) {
             double term = fabs(c[i]) * hj;

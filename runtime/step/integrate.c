@@ -219,34 +219,32 @@ march_step(Driver *r)
 {
     if (!evolve_more(r->e))
         return GSL_SUCCESS;
-    {
-        EvolveStep tk;
-        int rc = evolve_step(r->e, &tk);
-        if (tk.series) { /* Taylor's method: each step's own polynomial */
-            if (rc != GSL_SUCCESS)
-                return rc;
-            if (tk.taken && tk.ev == EVOLVE_STOP)
-                return finish_at_event(r, &tk);
-            if (tk.taken && (rc = series_rows(r, &tk)) != GSL_SUCCESS)
-                return rc;
-            return MARCH_ON;
-        }
-        if (tk.restarted) /* the nodes before the reset are another motion's */
-            dense_clear(r->dense);
-        if (tk.restarted && tk.taken)
-            push_node(r, tk.t0, tk.x0, tk.f0);
-        if (tk.taken)
-            push_node(r, tk.t1, tk.x1, tk.f1);
-        else if (!isnan(tk.reached) && !tk.restarted)
-            push_node(r, tk.reached, tk.xr, tk.fr);
+    EvolveStep tk;
+    int rc = evolve_step(r->e, &tk);
+    if (tk.series) { /* Taylor's method: each step's own polynomial */
         if (rc != GSL_SUCCESS)
             return rc;
-        if (tk.ev == EVOLVE_STOP)
+        if (tk.taken && tk.ev == EVOLVE_STOP)
             return finish_at_event(r, &tk);
-        /* before a reset (or a sample's new inputs), every row up to it */
-        if ((rc = emit_rows(r, tk.ev == EVOLVE_SET || tk.sampled)) != GSL_SUCCESS)
+        if (tk.taken && (rc = series_rows(r, &tk)) != GSL_SUCCESS)
             return rc;
+        return MARCH_ON;
     }
+    if (tk.restarted) /* the nodes before the reset are another motion's */
+        dense_clear(r->dense);
+    if (tk.restarted && tk.taken)
+        push_node(r, tk.t0, tk.x0, tk.f0);
+    if (tk.taken)
+        push_node(r, tk.t1, tk.x1, tk.f1);
+    else if (!isnan(tk.reached) && !tk.restarted)
+        push_node(r, tk.reached, tk.xr, tk.fr);
+    if (rc != GSL_SUCCESS)
+        return rc;
+    if (tk.ev == EVOLVE_STOP)
+        return finish_at_event(r, &tk);
+    /* before a reset (or a sample's new inputs), every row up to it */
+    if ((rc = emit_rows(r, tk.ev == EVOLVE_SET || tk.sampled)) != GSL_SUCCESS)
+        return rc;
     return MARCH_ON;
 }
 

@@ -67,7 +67,9 @@ double taylor_event_cut(const Taylor *tp, double h);
  * sweep's batch, integrate.c): lane l's through (t0[l], x[l]) for tp[l]
  * (NULL: an idle lane), which taylor_series takes where it is asked for
  * that very series (the same t0 and x, to the bit; else it computes its
- * own).  The bits are those taylor_series would compute.  For one set of
+ * own), with its step where the series continues the last one's motion
+ * (step_size's, the lanes side by side).  The bits are those
+ * taylor_series would compute.  For one set of
  * run options (one order), NULL where the model has no taylor_run4 for
  * it or memory runs out. */
 typedef struct TaylorLanes TaylorLanes;

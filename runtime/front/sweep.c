@@ -82,36 +82,9 @@ add_quoted(Text *t, const char *msg)
     add(t, "\"");
 }
 
-/* The row of a sweep of cells (Sweep.cells) after its values: its status,
- * then its cells (empty when it failed); frees what one_run allocated. */
-static char *
-cells_row(const Sweep *sw, Text *row, eomc_sim *sim, double *x, int rc, double *last,
-          double *out)
-{
-    char *text = NULL;
-    if (rc == EOMC_OK)
-        rc = sw->cells(sw->ctx, sim, x, &text);
-    if (rc == EOMC_OK) {
-        add(row, "%sok%s\n", sw->nparam ? "," : "", text);
-    } else {
-        add(row, "%s", sw->nparam ? "," : "");
-        add_quoted(row, sim ? eomc_sim_error(sim) : "out of memory");
-        for (int i = 0; i < sw->ncells; i++)
-            add(row, ",");
-        add(row, "\n");
-    }
-    free(text);
-    eomc_sim_free(sim);
-    free(x);
-    free(last);
-    free(out);
-    return row->s;
-}
-
 /* A run in the making: its row's values, its simulator and arrays. */
 typedef struct Run {
-    long k;            /* in sweep order */
-    long i;            /* in this rank's */
+    long i;            /* in this rank's order */
     Text row;
     eomc_sim *sim;
     double *x, *last, *out;
@@ -119,6 +92,39 @@ typedef struct Run {
     eomc_stats st;
     int rc;
 } Run;
+
+/* What run_begin allocated, but the row; returns the row. */
+static char *
+run_free(Run *r)
+{
+    eomc_sim_free(r->sim);
+    free(r->x);
+    free(r->last);
+    free(r->out);
+    return r->row.s;
+}
+
+/* The row of a sweep of cells (Sweep.cells) after its values: its status,
+ * then its cells (empty when it failed); the run freed. */
+static char *
+cells_row(const Sweep *sw, Run *r)
+{
+    char *text = NULL;
+    int rc = r->rc;
+    if (rc == EOMC_OK)
+        rc = sw->cells(sw->ctx, r->sim, r->x, &text);
+    if (rc == EOMC_OK) {
+        add(&r->row, "%sok%s\n", sw->nparam ? "," : "", text);
+    } else {
+        add(&r->row, "%s", sw->nparam ? "," : "");
+        add_quoted(&r->row, r->sim ? eomc_sim_error(r->sim) : "out of memory");
+        for (int i = 0; i < sw->ncells; i++)
+            add(&r->row, ",");
+        add(&r->row, "\n");
+    }
+    free(text);
+    return run_free(r);
+}
 
 /* Run k up to its integration: its simulator set up and its initial
  * state (r->rc says whether they could be). */
@@ -128,7 +134,7 @@ run_begin(const Sweep *sw, long k, Run *r)
     const eomc_model *m = sw->m;
     int nx = eomc_nx(m);
     char num[NUM_MAX];
-    *r = (Run){.k = k};
+    *r = (Run){0};
     for (int j = 0; j < sw->nparam; j++)
         add(&r->row, "%s%s", j ? "," : "", num_shortest(num, sw->values[k * sw->nparam + j]));
     r->sim = eomc_sim_alloc(m);
@@ -171,11 +177,7 @@ run_end(const Sweep *sw, Run *r)
             add(&r->row, ",");
     }
     add(&r->row, "\n");
-    eomc_sim_free(r->sim);
-    free(r->x);
-    free(r->last);
-    free(r->out);
-    return r->row.s;
+    return run_free(r);
 }
 
 /* Run k into its row (a malloc'd line). */
@@ -185,7 +187,7 @@ one_run(const Sweep *sw, long k)
     Run r;
     run_begin(sw, k, &r);
     if (sw->cells) /* the row holds its status until rank 0 writes it */
-        return cells_row(sw, &r.row, r.sim, r.x, r.rc, r.last, r.out);
+        return cells_row(sw, &r);
     if (r.rc == EOMC_OK)
         r.rc = eomc_sim_integrate(r.sim, sw->run, r.x, keep_last, &r.l, NULL);
     return run_end(sw, &r);

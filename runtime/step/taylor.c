@@ -790,15 +790,14 @@ to_lane(double *b, int l, const double *a, int n)
 }
 
 /* step_size for the lanes where the series continues the last one's
- * motion (hlast), into h[l] (0 elsewhere, left to step_size): scales and
+ * motion (hlast), into h[l] (0 elsewhere, left to step_size; tp[first]
+ * the first lane that is not idle): scales and
  * radius with the lanes side by side, each lane's arithmetic theirs in
  * their order, so its bits; the loops over the lanes vectorize. */
 static void
-lanes_step(const TaylorLanes *b, Taylor *const *tp, const double *const *x, double *h)
+lanes_step(const TaylorLanes *b, Taylor *const *tp, int first, const double *const *x,
+           double *h)
 {
-    int first = 0;
-    while (!tp[first])
-        first++;
     const Taylor *t0 = tp[first];
     int N = t0->N, p = b->p, warm = 0;
     double hj[EOMC_LANES], hw[EOMC_LANES], least[EOMC_LANES];
@@ -880,7 +879,7 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
     if (m->taylor_run4(p, b->t0, b->par, b->u, b->T, b->X) != 0)
         return -1;
     double h[EOMC_LANES];
-    lanes_step(b, tp, x, h);
+    lanes_step(b, tp, first, x, h);
     double *dst[EOMC_LANES];
     for (int l = 0; l < EOMC_LANES; l++) {
         Taylor *t = tp[l];

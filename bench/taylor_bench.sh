@@ -194,9 +194,16 @@ if command -v valgrind > /dev/null 2>&1; then
     }
     "$eomc" build "$src/specs/kepler.yaml" --taylor -o "$dir/kepler" 2> /dev/null
     period=6.283185307179586
-    k=$(ipstep "$dir/kepler" --set e=0.6 --method taylor --rtol 1e-15 --atol 1e-15 \
-        --t-end 628.3185307179586 --dt 628.3185307179586)
-    echo "  instructions a step (callgrind, all in): Kepler at 1e-15 (order 19) $k (target <= 4000)"
+    # the target is at order 15, rtol 1e-12 (the order rule's);
+    # the bench's Kepler runs above are at 1e-15, order 19
+    for m in "1e-12 15 (target <= 4000)" "1e-15 19"; do
+        set -- $m
+        tol=$1 order=$2
+        shift 2
+        k=$(ipstep "$dir/kepler" --set e=0.6 --method taylor --rtol $tol --atol $tol \
+            --t-end 628.3185307179586 --dt 628.3185307179586)
+        echo "  instructions a step (callgrind, all in): Kepler at $tol (order $order) $k $*"
+    done
     k=$(ipstep "$dir/pleiades" --method taylor --rtol 1e-12 --atol 1e-12 --t-end 3 --dt 3)
     echo "  instructions a step (callgrind, all in): the Pleiades at 1e-12 (order 15) $k (target <= 50000)"
 else

@@ -91,12 +91,17 @@ drift=$(awk -F, 'NR > 1 { e = ($4 * $4 + $5 * $5) / 2 - 1 / sqrt($2 * $2 + $3 * 
 [ $st = 0 ] && [ "$(wc -l < "$tmp/k.csv")" = 102 ] && awk -v d="$drift" 'BEGIN { exit !(d < 1e-13) }'
 ok $? "Kepler, e = 0.6, 100 periods: the energy within $drift of its start (< 1e-13)"
 
-# chain5 against the extended-precision reference
+# chain5 against the extended-precision reference.  At 1e-13 the error is
+# rounding's, amplified by the chain's motion, not the truncation's: the
+# last bits of the step sizes draw it anew (2026-12-01, the steps' roots
+# by pow: 2.6e-13, 1.2e-13, 4.4e-13 at 1e-12, 1e-13, 1e-14; by exp and
+# log: 1.5e-13, 3.3e-13, 1.5e-13; docs/accuracy.md), so the bound is the
+# draws' largest, 5e-13, five times the tolerance
 "$eomc" accuracy "$src/specs/chain5.yaml" --init q1=1.0 --methods taylor --tolerances 1e-8,1e-13 \
     --csv "$tmp/c5.csv" > "$tmp/c5.txt" 2> "$tmp/c5.err"
 st=$?
 set -- $(awk -F, 'NR > 1 { printf "%s %s %s ", $10, $13, $6 }' "$tmp/c5.csv")
-[ $st = 0 ] && awk -v e8="$1" -v e13="$4" 'BEGIN { exit !(e8 < 1e-7 && e13 < 3e-13) }' &&
+[ $st = 0 ] && awk -v e8="$1" -v e13="$4" 'BEGIN { exit !(e8 < 1e-7 && e13 < 5e-13) }' &&
     [ "$2" = 11 ] && [ "$5" = 16 ] && [ "$3" = 0 ] && [ "$6" = 0 ]
 ok $? "chain5, q1 = 1: error_max $1 at 1e-8 (order $2), $4 at 1e-13 (order $5), against the reference; rejected steps $3, $6"
 

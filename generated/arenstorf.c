@@ -1371,13 +1371,6 @@ out:
 #endif
 
 #if !defined(EOMC_EXTENDED) && defined(EOMC_V4)
-static inline void
-arenstorf_v4_pow(eomc_v4 *r, const eomc_v4 *a, const eomc_v4 *b)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = pow((*a)[l], (*b)[l]);
-}
-
 /* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):
  * the lines above on vectors, each lane's the same arithmetic in the
  * same order; above order 20 1, for one run at a time. */
@@ -1416,8 +1409,8 @@ arenstorf_taylor_run4(int K, const double *t0s, const double *ps,
     W[8] = W[5] + W[7];
     W[11] = W[10] * W[10];
     W[12] = W[7] + W[11];
-    arenstorf_v4_pow(&W[28], &W[8], &W[23]);
-    arenstorf_v4_pow(&W[24], &W[12], &W[23]);
+    eomc_v4_pow(&W[28], &W[8], &W[23]);
+    eomc_v4_pow(&W[24], &W[12], &W[23]);
     W[34] = W[27] * W[28];
     W[29] = W[3] * W[28];
     W[30] = W[17] * W[29];

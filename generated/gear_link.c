@@ -544,20 +544,6 @@ out:
 #endif
 
 #if !defined(EOMC_EXTENDED) && defined(EOMC_V4)
-static inline void
-gear_link_v4_sin(eomc_v4 *r, const eomc_v4 *a)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = sin((*a)[l]);
-}
-
-static inline void
-gear_link_v4_cos(eomc_v4 *r, const eomc_v4 *a)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = cos((*a)[l]);
-}
-
 /* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):
  * the lines above on vectors, each lane's the same arithmetic in the
  * same order; above order 20 1, for one run at a time. */
@@ -579,8 +565,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[2] = p[8];
     W[3] = u[0];
     W[5] = p[9];
-    gear_link_v4_sin(&W[6], &X[0]);
-    gear_link_v4_cos(&W[7], &X[0]);
+    eomc_v4_sin(&W[6], &X[0]);
+    eomc_v4_cos(&W[7], &X[0]);
     W[8] = W[2] * W[6];
     W[4] = W[0] * W[3];
     W[9] = W[8] - W[4];

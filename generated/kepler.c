@@ -892,13 +892,6 @@ out:
 #endif
 
 #if !defined(EOMC_EXTENDED) && defined(EOMC_V4)
-static inline void
-kepler_v4_pow(eomc_v4 *r, const eomc_v4 *a, const eomc_v4 *b)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = pow((*a)[l], (*b)[l]);
-}
-
 /* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):
  * the lines above on vectors, each lane's the same arithmetic in the
  * same order; above order 20 1, for one run at a time. */
@@ -922,7 +915,7 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[5] = X[1] * X[1];
     W[7] = EOMC_V4C(-1.5);
     W[6] = W[4] + W[5];
-    kepler_v4_pow(&W[8], &W[6], &W[7]);
+    eomc_v4_pow(&W[8], &W[6], &W[7]);
     W[9] = X[0] * W[8];
     W[11] = X[1] * W[8];
     W[10] = W[3] * W[9];

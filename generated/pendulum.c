@@ -630,20 +630,6 @@ out:
 #endif
 
 #if !defined(EOMC_EXTENDED) && defined(EOMC_V4)
-static inline void
-pendulum_v4_sin(eomc_v4 *r, const eomc_v4 *a)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = sin((*a)[l]);
-}
-
-static inline void
-pendulum_v4_cos(eomc_v4 *r, const eomc_v4 *a)
-{
-    for (int l = 0; l < EOMC_LANES; l++)
-        (*r)[l] = cos((*a)[l]);
-}
-
 /* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):
  * the lines above on vectors, each lane's the same arithmetic in the
  * same order; above order 20 1, for one run at a time. */
@@ -661,8 +647,8 @@ pendulum_taylor_run4(int K, const double *t0s, const double *ps,
     eomc_v4 W[147]; /* slot s's coefficient j at W[j * 7 + s], but the
                    * state's: X[j * 2 + i], q's then v's */
     /* order 0 */
-    pendulum_v4_sin(&W[1], &X[0]);
-    pendulum_v4_cos(&W[2], &X[0]);
+    eomc_v4_sin(&W[1], &X[0]);
+    eomc_v4_cos(&W[2], &X[0]);
     W[3] = p[3];
     W[4] = p[5];
     W[5] = W[4] * W[1];

@@ -285,9 +285,8 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
     }
     put(&c, "    ");
     if (cells->lanes && (l->kind == LOW_SER_CALL || l->kind == LOW_SER_SELECT)) {
-        /* a lane at a time, by a helper on pointers (vectors passed by
-         * value change the ABI where the machine's vectors are narrower) */
-        put(&c, "%s_v4_%s(&", pr->md->name, l->kind == LOW_SER_CALL ? l->fn : "select");
+        /* a lane at a time, by eomc_taylor.h's helper */
+        put(&c, "eomc_v4_%s(&", l->kind == LOW_SER_CALL ? l->fn : "select");
         put_cell(&c, l->dst);
         put(&c, ", ");
         if (l->kind == LOW_SER_SELECT) {
@@ -525,34 +524,12 @@ print_run(Printer *pr, const LowTaylor *ty)
 /* taylor_run4 (eomc_model.h): the written-out series once more, each
  * value a vector of the lanes' (print_series with lanes), so that each
  * lane computes its run's bits; a libm function or a mode's choice is
- * taken a lane at a time, by a helper of its own. */
+ * taken a lane at a time, by eomc_taylor.h's helpers (eomc_v4_pow, ...). */
 static void
 print_run4(Printer *pr, const LowTaylor *ty)
 {
     const char *nm = pr->md->name;
-    const LowSeries *se = ty->series;
     emit_line(pr, "#if !defined(EOMC_EXTENDED) && defined(EOMC_V4)");
-    int select = 0;
-    for (int i = 0; i < se->nline; i++) {
-        const LowSerLine *l = &se->line[i];
-        select |= l->kind == LOW_SER_SELECT;
-        int seen = l->kind != LOW_SER_CALL;
-        for (int j = 0; j < i && !seen; j++)
-            seen = se->line[j].kind == LOW_SER_CALL && !strcmp(se->line[j].fn, l->fn);
-        if (seen)
-            continue;
-        int two = !strcmp(l->fn, "pow");
-        emit_line(pr, "static inline void\n%s_v4_%s(eomc_v4 *r, const eomc_v4 *a%s)\n{", nm,
-                  l->fn, two ? ", const eomc_v4 *b" : "");
-        emit_line(pr, "    for (int l = 0; l < EOMC_LANES; l++)");
-        emit_line(pr, "        (*r)[l] = %s((*a)[l]%s);\n}\n", l->fn, two ? ", (*b)[l]" : "");
-    }
-    if (select) {
-        emit_line(pr, "static inline void\n%s_v4_select(eomc_v4 *r, const eomc_v4 *mode, "
-                  "const eomc_v4 *a,\n    const eomc_v4 *b)\n{", nm);
-        emit_line(pr, "    for (int l = 0; l < EOMC_LANES; l++)");
-        emit_line(pr, "        (*r)[l] = (*mode)[l] != 0 ? (*a)[l] : (*b)[l];\n}\n");
-    }
     emit_line(pr, "/* taylor_run for EOMC_LANES runs at once, a run a lane (eomc_model.h):");
     emit_line(pr, " * the lines above on vectors, each lane's the same arithmetic in the");
     emit_line(pr, " * same order; above order %d 1, for one run at a time. */", LOW_SERIES_ORDERS);

@@ -250,7 +250,8 @@ typedef struct LowSerLine {
     double over;
     int over_cell, negate;
     double after;
-    const char *fn; /* CALL: "sqrt" */
+    const char *fn; /* CALL: sqrt, exp, pow, sin, cos, sinh or cosh (eomc_taylor.h
+                     * has an eomc_v4_ helper for each, for taylor_run4) */
     int x, y;       /* CALL's, SELECT's operands (-1: 0; CALL's y -1: one operand) */
     int src, index;
     double value;

@@ -40,6 +40,39 @@
 #define EOMC_V4 1
 typedef double eomc_v4 __attribute__((vector_size(4 * sizeof(double)), may_alias));
 #define EOMC_V4C(x) ((eomc_v4){(x), (x), (x), (x)})
+
+/* taylor_run4's libm calls (the series' order 0 of sqrt, exp, pow, sin,
+ * cos, sinh, cosh) and a mode's choice, a lane at a time: r = f(a) in
+ * each.  By pointers, as vectors passed by value would change the ABI
+ * where the machine's vectors are narrower. */
+#define EOMC_V4_CALL(f)                                                   \
+    static inline void eomc_v4_##f(eomc_v4 *r, const eomc_v4 *a)           \
+    {                                                                     \
+        for (int l = 0; l < EOMC_LANES; l++)                              \
+            (*r)[l] = f((*a)[l]);                                         \
+    }
+EOMC_V4_CALL(sqrt)
+EOMC_V4_CALL(exp)
+EOMC_V4_CALL(sin)
+EOMC_V4_CALL(cos)
+EOMC_V4_CALL(sinh)
+EOMC_V4_CALL(cosh)
+#undef EOMC_V4_CALL
+
+static inline void
+eomc_v4_pow(eomc_v4 *r, const eomc_v4 *a, const eomc_v4 *b)
+{
+    for (int l = 0; l < EOMC_LANES; l++)
+        (*r)[l] = pow((*a)[l], (*b)[l]);
+}
+
+/* r = a where the mode is on (not 0), b where it is off, lane by lane */
+static inline void
+eomc_v4_select(eomc_v4 *r, const eomc_v4 *mode, const eomc_v4 *a, const eomc_v4 *b)
+{
+    for (int l = 0; l < EOMC_LANES; l++)
+        (*r)[l] = (*mode)[l] != 0 ? (*a)[l] : (*b)[l];
+}
 #endif
 
 #if defined(EOMC_EXTENDED)
